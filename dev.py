@@ -1,0 +1,87 @@
+#!/usr/bin/env python3
+"""Bootstrap and task runner: needs nothing but Python >= 3.11.
+
+    python3 dev.py demo    # create .venv if needed, install, solve + certify the bundled example
+    python3 dev.py test    # create .venv if needed, install, run ruff, mypy, import contracts, pytest
+    python3 dev.py bench   # run the benchmarks in benchmarks/ (slow; not part of `test`)
+
+Extra arguments after `test` are passed to pytest (e.g. `python3 dev.py test -m slow`).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import subprocess
+import sys
+import venv
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent
+VENV = ROOT / ".venv"
+BIN = VENV / ("Scripts" if os.name == "nt" else "bin")
+PY = BIN / "python"
+STAMP = VENV / ".dppverify-install-stamp"
+EXTRAS = "test,bench"
+
+
+def _run(*cmd: str | Path) -> None:
+    print("+", " ".join(str(c) for c in cmd), flush=True)
+    rc = subprocess.call([str(c) for c in cmd], cwd=ROOT)
+    if rc != 0:
+        sys.exit(rc)
+
+
+def ensure_env() -> None:
+    """Create .venv and install the package with its test extras when anything changed."""
+    if sys.version_info < (3, 11):
+        sys.exit(f"dppverify needs Python >= 3.11, this is {sys.version.split()[0]}")
+    if not PY.exists():
+        print(f"creating {VENV}", flush=True)
+        venv.EnvBuilder(with_pip=True, clear=True).create(VENV)
+    digest = hashlib.sha256((ROOT / "pyproject.toml").read_bytes() + EXTRAS.encode()).hexdigest()
+    if STAMP.exists() and STAMP.read_text() == digest:
+        return
+    _run(PY, "-m", "pip", "install", "--quiet", "--upgrade", "pip")
+    _run(PY, "-m", "pip", "install", "--quiet", "-e", f".[{EXTRAS}]")
+    STAMP.write_text(digest)
+
+
+def demo() -> None:
+    ensure_env()
+    example = ROOT / "examples" / "triangle.json"
+    _run(BIN / "dpp", "solve", example)
+    profile = ROOT / "out" / "triangle.profile.json"
+    profile.parent.mkdir(exist_ok=True)
+    _run(BIN / "dpp", "solve", example, "-o", profile)
+    _run(BIN / "dpp", "certify", example, profile)
+
+
+def test(pytest_args: list[str]) -> None:
+    ensure_env()
+    _run(BIN / "ruff", "check", "solver", "dppverify", "tests", "proofs", "benchmarks", "dev.py")
+    _run(BIN / "mypy")
+    _run(BIN / "lint-imports")
+    workers = ["-n", "auto"] if (os.cpu_count() or 1) > 1 else []
+    _run(PY, "-m", "pytest", *workers, *pytest_args)
+
+
+def bench() -> None:
+    ensure_env()
+    for script in sorted((ROOT / "benchmarks").glob("bench_*.py")):
+        _run(PY, script)
+
+
+def main(argv: list[str]) -> None:
+    if not argv or argv[0] not in {"demo", "test", "bench"}:
+        sys.exit(__doc__)
+    if argv[0] == "demo":
+        demo()
+    elif argv[0] == "test":
+        test(argv[1:])
+    else:
+        bench()
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

@@ -1,0 +1,21 @@
+"""The solver's error hierarchy: every user-facing failure is one of these."""
+
+from __future__ import annotations
+
+__all__ = ["DPPError", "InstanceFormatError", "InvalidInstanceError"]
+
+
+class DPPError(Exception):
+    """Base class of every error the solver raises on bad input."""
+
+
+class InvalidInstanceError(DPPError, ValueError):
+    """An instance that is well-formed but violates the game's assumptions.
+
+    Examples: an unknown start node, equal goals, a non-positive weight, a prior
+    outside (0, 1), a goal unreachable from the start.
+    """
+
+
+class InstanceFormatError(InvalidInstanceError):
+    """A file or document that cannot be parsed (malformed JSON, a bad map header...)."""

@@ -1,0 +1,157 @@
+"""The game instance: graph, start node, two candidate goals and the prior over them."""
+
+from __future__ import annotations
+
+from collections.abc import Hashable
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+import networkx as nx
+import numpy as np
+
+from solver.errors import InvalidInstanceError
+from solver.network import Network
+from solver.numbers import parse_number
+
+__all__ = ["Instance"]
+
+
+@dataclass(frozen=True, eq=False)
+class Instance:
+    """A deceptive-path-planning game (paper, Section III-A).
+
+    Parameters
+    ----------
+    graph : networkx.Graph or networkx.DiGraph or Network
+        The environment; edge attribute ``weight`` (default 1) must be positive. An
+        undirected graph can be walked both ways. A prebuilt :class:`Network` (CSR) is
+        accepted as is; grids use :meth:`from_grid`.
+    start : node
+        The Attacker's initial node ``s0``.
+    goals : pair of nodes
+        The two candidate goals, in any order.
+    prior : pair of numbers
+        ``prior[i]`` is the probability that ``goals[i]`` is the true goal; exact numbers
+        (``Fraction``, int, ``"3/5"``; floats are read through ``str``), each in (0, 1),
+        summing to exactly 1.
+
+    Notes
+    -----
+    The *primary* goal ``g1`` is the goal with the larger prior; at a tie (1/2, 1/2) it is
+    ``goals[0]`` (the paper's footnote 2 leaves this choice free). Reachability of the goals
+    is checked when the instance is solved, where the distances are computed anyway.
+
+    Examples
+    --------
+    >>> g = nx.Graph()
+    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    >>> inst = Instance(g, "s", ("g2", "g1"), ("3/10", "7/10"))
+    >>> inst.primary, inst.secondary, inst.b1
+    ('g1', 'g2', Fraction(7, 10))
+    """
+
+    graph: nx.Graph | Network
+    start: Hashable
+    goals: tuple[Hashable, Hashable]
+    prior: tuple[Any, Any]
+    network: Network = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        goals = tuple(self.goals)
+        if len(goals) != 2:
+            raise InvalidInstanceError(f"goals must be two nodes, got {len(goals)}")
+        prior = tuple(self.prior)
+        if len(prior) != 2:
+            raise InvalidInstanceError(f"prior must be two numbers, got {len(prior)}")
+        exact_prior = tuple(parse_number(p, where=f"prior[{i}]") for i, p in enumerate(prior))
+        for i, p in enumerate(exact_prior):
+            if not 0 < p < 1:
+                raise InvalidInstanceError(f"prior[{i}] must lie in (0, 1), got {p}")
+        if sum(exact_prior) != 1:
+            raise InvalidInstanceError(
+                f"prior must sum to 1, got {exact_prior[0]} + {exact_prior[1]} "
+                f"= {sum(exact_prior)}"
+            )
+        net = self.graph if isinstance(self.graph, Network) else Network.from_networkx(self.graph)
+        for what, node in (("start", self.start), ("goal", goals[0]), ("goal", goals[1])):
+            if net.index_of(node) is None:
+                raise InvalidInstanceError(f"{what} node {node!r} not found in graph")
+        if goals[0] == goals[1]:
+            raise InvalidInstanceError(f"the two goals must differ, both are {goals[0]!r}")
+        object.__setattr__(self, "goals", goals)
+        object.__setattr__(self, "prior", exact_prior)
+        object.__setattr__(self, "network", net)
+
+    # ------------------------------------------------------------------ constructors
+    @classmethod
+    def from_grid(
+        cls,
+        blocked: np.ndarray,
+        start: tuple[int, int],
+        goals: tuple[tuple[int, int], tuple[int, int]],
+        prior: tuple[Any, Any],
+        *,
+        connectivity: int = 4,
+    ) -> Instance:
+        """A grid world: ``blocked[r, c]`` True marks an obstacle; cells are ``(r, c)``.
+
+        4-connected with unit weights by default; ``connectivity=8`` adds octile diagonals
+        (weight ``sqrt(2)``, float mode, no corner cutting).
+
+        Examples
+        --------
+        >>> blocked = np.zeros((3, 3), dtype=bool); blocked[1, 1] = True
+        >>> inst = Instance.from_grid(blocked, (0, 0), ((2, 2), (0, 2)), ("3/5", "2/5"))
+        >>> inst.network.n_nodes, inst.primary
+        (9, (2, 2))
+        """
+        return cls(Network.from_grid(blocked, connectivity=connectivity),
+                   _cell(start), (_cell(goals[0]), _cell(goals[1])), prior)
+
+    @classmethod
+    def from_json(cls, data: dict[str, Any] | str) -> Instance:
+        """Parse the ``dpp`` instance JSON (a dict, or its text); see ``docs/formats.md``."""
+        from solver.instance_json import instance_from_json
+
+        return instance_from_json(data)
+
+    def to_json(self) -> dict[str, Any]:
+        """The ``dpp`` instance JSON document (exact numbers as ``"p/q"`` strings)."""
+        from solver.instance_json import instance_to_json
+
+        return instance_to_json(self)
+
+    # ------------------------------------------------------------------ derived
+    @property
+    def primary_index(self) -> int:
+        """Index into ``goals`` of the primary goal (larger prior; ``0`` at a tie)."""
+        return 0 if self.prior[0] >= self.prior[1] else 1
+
+    @property
+    def primary(self) -> Hashable:
+        """The primary goal ``g1``."""
+        return self.goals[self.primary_index]
+
+    @property
+    def secondary(self) -> Hashable:
+        """The secondary goal ``g2``."""
+        return self.goals[1 - self.primary_index]
+
+    @property
+    def b1(self) -> Fraction:
+        """Prior of the primary goal."""
+        return Fraction(self.prior[self.primary_index])
+
+    @property
+    def b2(self) -> Fraction:
+        """Prior of the secondary goal."""
+        return Fraction(self.prior[1 - self.primary_index])
+
+
+def _cell(x: Any) -> tuple[int, int]:
+    try:
+        r, c = x
+        return (int(r), int(c))
+    except (TypeError, ValueError):
+        raise InvalidInstanceError(f"grid cell must be a (row, col) pair, got {x!r}") from None

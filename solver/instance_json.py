@@ -1,0 +1,181 @@
+"""Reading and writing the ``dpp`` instance JSON (``docs/formats.md`` §1)."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Hashable
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+import networkx as nx
+import numpy as np
+
+from solver.errors import InstanceFormatError, InvalidInstanceError
+from solver.instance import Instance
+from solver.network import GridLabels, Network
+from solver.numbers import format_number, parse_number
+
+__all__ = ["instance_from_json", "instance_to_json", "load_instance", "node_from_json",
+           "node_to_json", "read_json"]
+
+
+def read_json(path: str | Path) -> Any:
+    """Read a JSON file, decimals as exact ``Fraction``; errors name the file and line."""
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise InstanceFormatError(f"{p}: cannot read file ({exc.strerror})") from None
+    try:
+        return json.loads(text, parse_float=Fraction)
+    except json.JSONDecodeError as exc:
+        raise InstanceFormatError(
+            f"{p}: malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}"
+        ) from None
+
+
+def load_instance(path: str | Path) -> Instance:
+    """Load an instance JSON file.
+
+    Examples
+    --------
+    >>> import tempfile, json, os
+    >>> doc = {"graph": {"directed": False, "nodes": [{"id": "s"}, {"id": "a"}, {"id": "b"}],
+    ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
+    ...        "start": "s", "goals": ["a", "b"], "prior": [0.6, 0.4]}
+    >>> with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+    ...     json.dump(doc, f)
+    >>> load_instance(f.name).b1
+    Fraction(3, 5)
+    >>> os.unlink(f.name)
+    """
+    try:
+        return instance_from_json(read_json(path))
+    except InstanceFormatError:
+        raise
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{path}: {exc}") from None
+
+
+def node_from_json(x: Any) -> Hashable:
+    """JSON node id to Python: lists become tuples (grid cells ``[r, c]`` -> ``(r, c)``)."""
+    if isinstance(x, list):
+        return tuple(node_from_json(y) for y in x)
+    if isinstance(x, dict):
+        raise InstanceFormatError(f"node id must be a JSON scalar or list, got object {x!r}")
+    if isinstance(x, Fraction):
+        return int(x) if x.denominator == 1 else float(x)
+    return x  # type: ignore[no-any-return]
+
+
+def node_to_json(x: Hashable) -> Any:
+    """Python node id to JSON: tuples become lists."""
+    if isinstance(x, tuple):
+        return [node_to_json(y) for y in x]
+    if isinstance(x, np.integer):
+        return int(x)
+    return x
+
+
+def instance_from_json(data: dict[str, Any] | str) -> Instance:
+    """Build an :class:`Instance` from the instance JSON document (dict or text)."""
+    if isinstance(data, str):
+        try:
+            data = json.loads(data, parse_float=Fraction)
+        except json.JSONDecodeError as exc:
+            raise InstanceFormatError(
+                f"malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}"
+            ) from None
+    if not isinstance(data, dict):
+        raise InstanceFormatError(f"instance must be a JSON object, got {type(data).__name__}")
+    missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
+    if missing:
+        raise InstanceFormatError(f"instance is missing key(s): {', '.join(missing)}")
+    float_weights = data.get("numbers", "exact") == "float"
+    graph = _graph_from_node_link(data["graph"], float_weights=float_weights)
+    goals, prior = data["goals"], data["prior"]
+    if not isinstance(goals, list) or len(goals) != 2:
+        raise InstanceFormatError(f"'goals' must be a list of two node ids, got {goals!r}")
+    if not isinstance(prior, list) or len(prior) != 2:
+        raise InstanceFormatError(f"'prior' must be a list of two numbers, got {prior!r}")
+    return Instance(
+        graph,
+        node_from_json(data["start"]),
+        (node_from_json(goals[0]), node_from_json(goals[1])),
+        (parse_number(prior[0], where="prior[0]"), parse_number(prior[1], where="prior[1]")),
+    )
+
+
+def _graph_from_node_link(g: Any, *, float_weights: bool) -> nx.Graph:
+    if not isinstance(g, dict):
+        raise InstanceFormatError("'graph' must be a node-link JSON object")
+    if g.get("multigraph", False):
+        raise InvalidInstanceError("multigraphs are not supported: merge parallel edges")
+    nodes = g.get("nodes")
+    edges = g.get("edges", g.get("links"))
+    if not isinstance(nodes, list):
+        raise InstanceFormatError("'graph.nodes' must be a list of {\"id\": ...} objects")
+    if not isinstance(edges, list):
+        raise InstanceFormatError("'graph.edges' must be a list of edge objects")
+    graph: nx.Graph = nx.DiGraph() if g.get("directed", False) else nx.Graph()
+    for k, nd in enumerate(nodes):
+        if not isinstance(nd, dict) or "id" not in nd:
+            raise InstanceFormatError(f"graph.nodes[{k}] must be an object with an 'id'")
+        graph.add_node(node_from_json(nd["id"]))
+    for k, e in enumerate(edges):
+        if not isinstance(e, dict) or "source" not in e or "target" not in e:
+            raise InstanceFormatError(f"graph.edges[{k}] must have 'source' and 'target'")
+        u, v = node_from_json(e["source"]), node_from_json(e["target"])
+        for end in (u, v):
+            if end not in graph:
+                raise InvalidInstanceError(f"graph.edges[{k}] uses unknown node {end!r}")
+        raw = e.get("weight", 1)
+        if float_weights and isinstance(raw, Fraction):
+            raw = float(raw)
+        w = parse_number(raw, where=f"weight of edge ({u!r}, {v!r})", allow_float=float_weights)
+        if graph.has_edge(u, v):
+            raise InvalidInstanceError(f"graph.edges[{k}]: duplicate edge ({u!r}, {v!r})")
+        graph.add_edge(u, v, weight=w)
+    return graph
+
+
+def instance_to_json(inst: Instance) -> dict[str, Any]:
+    """The instance JSON document of ``inst`` (inverse of :func:`instance_from_json`)."""
+    net = inst.network
+    doc: dict[str, Any] = {"graph": _node_link(inst), "start": node_to_json(inst.start),
+                           "goals": [node_to_json(g) for g in inst.goals],
+                           "prior": [format_number(p) for p in inst.prior]}
+    if not net.exact:
+        doc["numbers"] = "float"
+    return doc
+
+
+def _node_link(inst: Instance) -> dict[str, Any]:
+    if isinstance(inst.graph, nx.Graph):
+        g = inst.graph
+        edges = [{"source": node_to_json(u), "target": node_to_json(v),
+                  "weight": format_number(_weight(d.get("weight", 1)))}
+                 for u, v, d in g.edges(data=True)]
+        return {"directed": g.is_directed(), "multigraph": False, "graph": {},
+                "nodes": [{"id": node_to_json(v)} for v in g.nodes], "edges": edges}
+    net = inst.network
+    if isinstance(net.labels, GridLabels):
+        free = np.flatnonzero(~net.labels.blocked.ravel())
+        nodes = [{"id": list(net.labels[int(i)])} for i in free]
+    else:
+        nodes = [{"id": node_to_json(v)} for v in net.labels]
+    edges = []
+    for i in range(net.n_nodes):
+        heads, ws = net.out_arcs(i)
+        for j, w in zip(heads.tolist(), ws.tolist(), strict=True):
+            if net.directed or i <= j:
+                edges.append({"source": node_to_json(net.labels[i]),
+                              "target": node_to_json(net.labels[j]),
+                              "weight": format_number(net.weight(w))})
+    return {"directed": net.directed, "multigraph": False, "graph": {}, "nodes": nodes,
+            "edges": edges}
+
+
+def _weight(w: Any) -> Fraction | float:
+    return parse_number(w, where="weight", allow_float=True)

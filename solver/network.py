@@ -1,0 +1,282 @@
+"""Compressed sparse (CSR) form of the game graph: the solver's only hot-path data structure.
+
+A :class:`Network` stores the directed edge set of the graph (an undirected edge is two arcs)
+as scipy CSR arrays over node indices ``0..n-1``. Weights are kept exactly as integer
+numerators over one common ``denominator`` (exact mode) or as floats (float mode, e.g.
+octile grids). Grids are built straight from a boolean obstacle array with numpy, with no
+per-cell Python work; general graphs come through networkx.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Hashable, Iterator, Sequence
+from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import cached_property
+
+import networkx as nx
+import numpy as np
+import scipy.sparse as sp
+
+from solver.errors import InvalidInstanceError
+from solver.numbers import Number, parse_number
+
+__all__ = ["GridLabels", "Network"]
+
+SQRT2 = math.sqrt(2.0)
+
+
+@dataclass(frozen=True)
+class GridLabels(Sequence[tuple[int, int]]):
+    """Node labels ``(row, col)`` of a grid, index ``row * width + col``, computed on demand.
+
+    Blocked cells keep their index (as isolated, unusable nodes) so that no relabelling
+    pass over the grid is needed.
+    """
+
+    blocked: np.ndarray = field(repr=False)
+
+    @property
+    def height(self) -> int:
+        return int(self.blocked.shape[0])
+
+    @property
+    def width(self) -> int:
+        return int(self.blocked.shape[1])
+
+    def __len__(self) -> int:
+        return self.height * self.width
+
+    def __getitem__(self, i: int) -> tuple[int, int]:  # type: ignore[override]
+        if not 0 <= i < len(self):
+            raise IndexError(i)
+        return (i // self.width, i % self.width)
+
+    def __iter__(self) -> Iterator[tuple[int, int]]:
+        for i in range(len(self)):
+            yield self[i]
+
+    def index_of(self, label: Hashable) -> int | None:
+        """Index of a free cell ``(row, col)``, or None if it is outside or blocked."""
+        if not (isinstance(label, tuple) and len(label) == 2):
+            return None
+        r, c = label
+        if not (isinstance(r, int) and isinstance(c, int)):
+            return None
+        if not (0 <= r < self.height and 0 <= c < self.width) or self.blocked[r, c]:
+            return None
+        return r * self.width + c
+
+
+@dataclass(frozen=True, eq=False)
+class Network:
+    """A directed weighted graph in CSR form.
+
+    Attributes
+    ----------
+    labels : Sequence
+        ``labels[i]`` is the node id of index ``i``.
+    indptr, indices : numpy.ndarray
+        CSR arrays of the out-arcs: the heads of node ``i``'s arcs are
+        ``indices[indptr[i]:indptr[i+1]]``.
+    weights : numpy.ndarray
+        Arc weights aligned with ``indices``: int64 numerators (exact) or float64.
+    denominator : int
+        The common denominator of all weights (1 in float mode).
+    exact : bool
+        True when the weights are exact rationals.
+    directed : bool
+        Whether the source graph was directed (informative only: the arcs say it all).
+    """
+
+    labels: Sequence[Hashable]
+    indptr: np.ndarray = field(repr=False)
+    indices: np.ndarray = field(repr=False)
+    weights: np.ndarray = field(repr=False)
+    denominator: int
+    exact: bool
+    directed: bool
+    _index: dict[Hashable, int] | None = field(default=None, repr=False)
+
+    # ------------------------------------------------------------------ construction
+    @classmethod
+    def from_networkx(cls, graph: nx.Graph, *, weight: str = "weight") -> Network:
+        """Build from a networkx ``Graph``/``DiGraph`` (weight attribute default 1).
+
+        Examples
+        --------
+        >>> g = nx.Graph([("s", "g1", {"weight": 3}), ("s", "g2", {"weight": "3/2"})])
+        >>> net = Network.from_networkx(g)
+        >>> net.n_nodes, net.n_arcs, net.denominator
+        (3, 4, 2)
+        """
+        if not isinstance(graph, nx.Graph):
+            raise InvalidInstanceError(
+                f"graph must be a networkx Graph or DiGraph, got {type(graph).__name__}"
+            )
+        if graph.is_multigraph():
+            raise InvalidInstanceError("multigraphs are not supported: merge parallel edges")
+        labels = list(graph.nodes)
+        index = {v: i for i, v in enumerate(labels)}
+        directed = graph.is_directed()
+        heads: list[int] = []
+        tails: list[int] = []
+        values: list[Number] = []
+        for u, v, data in graph.edges(data=True):
+            w = parse_number(data.get(weight, 1), where=f"weight of edge ({u!r}, {v!r})",
+                             allow_float=True)
+            if not w > 0:
+                raise InvalidInstanceError(
+                    f"weight of edge ({u!r}, {v!r}) must be positive, got {w}"
+                )
+            tails.append(index[u])
+            heads.append(index[v])
+            values.append(w)
+            if not directed and u != v:
+                tails.append(index[v])
+                heads.append(index[u])
+                values.append(w)
+        return cls._from_arcs(labels, index, tails, heads, values, directed=directed)
+
+    @classmethod
+    def _from_arcs(
+        cls,
+        labels: Sequence[Hashable],
+        index: dict[Hashable, int] | None,
+        tails: Sequence[int],
+        heads: Sequence[int],
+        values: Sequence[Number],
+        *,
+        directed: bool,
+    ) -> Network:
+        exact = all(isinstance(w, Fraction) for w in values)
+        if exact:
+            den = math.lcm(*(w.denominator for w in values)) if values else 1  # type: ignore[union-attr]
+            nums = [int(w * den) for w in values]
+            big = max(nums, default=0) >= 2**62
+            data = np.array(nums, dtype=object if big else np.int64)
+        else:
+            den = 1
+            data = np.array([float(w) for w in values], dtype=np.float64)
+        n = len(labels)
+        mat = sp.csr_matrix(
+            (data, (np.asarray(tails, dtype=np.int64), np.asarray(heads, dtype=np.int64))),
+            shape=(n, n),
+        )
+        mat.sort_indices()
+        return cls(labels, mat.indptr.astype(np.int64), mat.indices.astype(np.int64),
+                   mat.data, den, exact, directed, index)
+
+    @classmethod
+    def from_grid(cls, blocked: np.ndarray, *, connectivity: int = 4) -> Network:
+        """Build the grid graph of the free cells of ``blocked`` (True = obstacle).
+
+        4-connected grids have unit weights (exact). 8-connected grids use octile weights
+        (diagonal ``sqrt(2)``, float mode) and forbid cutting corners: a diagonal move needs
+        both orthogonal neighbours free (the MovingAI convention).
+
+        Examples
+        --------
+        >>> net = Network.from_grid(np.array([[False, False], [True, False]]))
+        >>> net.n_arcs, net.labels[3]
+        (4, (1, 1))
+        """
+        blocked = np.ascontiguousarray(np.asarray(blocked, dtype=bool))
+        if blocked.ndim != 2 or blocked.size == 0:
+            raise InvalidInstanceError(f"grid must be a non-empty 2-D array, got shape {blocked.shape}")
+        if connectivity not in (4, 8):
+            raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
+        h, w = blocked.shape
+        free = ~blocked
+        idx = np.arange(h * w, dtype=np.int64).reshape(h, w)
+        tails: list[np.ndarray] = []
+        heads: list[np.ndarray] = []
+        vals: list[np.ndarray] = []
+
+        def add(a: np.ndarray, b: np.ndarray, ok: np.ndarray, weight: float) -> None:
+            t, hd = a[ok], b[ok]
+            tails.extend((t, hd))
+            heads.extend((hd, t))
+            vals.extend((np.full(t.size, weight), np.full(t.size, weight)))
+
+        add(idx[:, :-1], idx[:, 1:], free[:, :-1] & free[:, 1:], 1.0)
+        add(idx[:-1, :], idx[1:, :], free[:-1, :] & free[1:, :], 1.0)
+        if connectivity == 8:
+            orth = free[:-1, :-1] & free[:-1, 1:] & free[1:, :-1] & free[1:, 1:]
+            add(idx[:-1, :-1], idx[1:, 1:], orth, SQRT2)
+            add(idx[:-1, 1:], idx[1:, :-1], orth, SQRT2)
+        t_all = np.concatenate(tails)
+        h_all = np.concatenate(heads)
+        v_all = np.concatenate(vals)
+        exact = connectivity == 4
+        data = v_all.astype(np.int64) if exact else v_all
+        mat = sp.csr_matrix((data, (t_all, h_all)), shape=(h * w, h * w))
+        mat.sort_indices()
+        return cls(GridLabels(blocked), mat.indptr.astype(np.int64),
+                   mat.indices.astype(np.int64), mat.data, 1, exact, False, None)
+
+    # ------------------------------------------------------------------ queries
+    @property
+    def n_nodes(self) -> int:
+        return len(self.labels)
+
+    @property
+    def n_arcs(self) -> int:
+        return int(self.indices.size)
+
+    def index_of(self, label: Hashable) -> int | None:
+        """Index of node ``label``, or None if the graph has no such node."""
+        if isinstance(self.labels, GridLabels):
+            return self.labels.index_of(label)
+        assert self._index is not None
+        try:
+            return self._index.get(label)
+        except TypeError:  # unhashable label
+            return None
+
+    def weight(self, raw: int | float) -> Number:
+        """Turn a stored weight or distance (numerator) into a ``Fraction`` or float."""
+        if self.exact:
+            return Fraction(int(raw), self.denominator)
+        return float(raw)
+
+    def out_arcs(self, i: int) -> tuple[np.ndarray, np.ndarray]:
+        """Heads and weights of node ``i``'s out-arcs (heads in increasing index order)."""
+        lo, hi = self.indptr[i], self.indptr[i + 1]
+        return self.indices[lo:hi], self.weights[lo:hi]
+
+    def arc_weight(self, i: int, j: int) -> int | float | None:
+        """The stored weight of arc ``i -> j``, or None if there is no such arc."""
+        heads, ws = self.out_arcs(i)
+        k = int(np.searchsorted(heads, j))
+        if k < heads.size and heads[k] == j:
+            return ws[k].item()  # type: ignore[no-any-return]
+        return None
+
+    def matrix(self) -> sp.csr_matrix:
+        """The arcs as a float64 scipy CSR matrix (for ``scipy.sparse.csgraph``)."""
+        return self._matrix
+
+    @cached_property
+    def _matrix(self) -> sp.csr_matrix:
+        n = self.n_nodes
+        return sp.csr_matrix(
+            (self.weights.astype(np.float64), self.indices, self.indptr), shape=(n, n)
+        )
+
+    @cached_property
+    def reverse(self) -> Network:
+        """The network with every arc reversed (itself when the graph is undirected)."""
+        if not self.directed:
+            return self
+        t = self._matrix.T.tocsr()
+        t.sort_indices()
+        rev_w = (np.rint(t.data).astype(np.int64) if self.exact else t.data)
+        return Network(self.labels, t.indptr.astype(np.int64), t.indices.astype(np.int64),
+                       rev_w, self.denominator, self.exact, True, self._index)
+
+    @cached_property
+    def weight_total(self) -> float:
+        """Sum of all stored weights: an upper bound on every simple path's length."""
+        return float(np.sum(self.weights, dtype=np.float64))
