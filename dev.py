@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Bootstrap and task runner: needs nothing but Python >= 3.11.
 
-    python3 dev.py demo    # create .venv if needed, install, solve + certify the bundled example
-    python3 dev.py test    # create .venv if needed, install, run ruff, mypy, import contracts, pytest
+    python3 dev.py demo    # create .venv if needed, install, solve + certify the example
+    python3 dev.py test    # create .venv if needed, install, lint, type-check, run the tests
     python3 dev.py bench   # run the benchmarks in benchmarks/ (slow; not part of `test`)
 
 Extra arguments after `test` are passed to pytest (e.g. `python3 dev.py test -m slow`).
@@ -34,8 +34,6 @@ def _run(*cmd: str | Path) -> None:
 
 def ensure_env() -> None:
     """Create .venv and install the package with its test extras when anything changed."""
-    if sys.version_info < (3, 11):
-        sys.exit(f"dppverify needs Python >= 3.11, this is {sys.version.split()[0]}")
     if not PY.exists():
         print(f"creating {VENV}", flush=True)
         venv.EnvBuilder(with_pip=True, clear=True).create(VENV)

@@ -13,7 +13,7 @@ import numpy as np
 
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.instance import Instance
-from solver.network import GridLabels, Network
+from solver.network import GridLabels
 from solver.numbers import format_number, parse_number
 
 __all__ = ["instance_from_json", "instance_to_json", "load_instance", "node_from_json",
@@ -66,7 +66,7 @@ def node_from_json(x: Any) -> Hashable:
         raise InstanceFormatError(f"node id must be a JSON scalar or list, got object {x!r}")
     if isinstance(x, Fraction):
         return int(x) if x.denominator == 1 else float(x)
-    return x  # type: ignore[no-any-return]
+    return x
 
 
 def node_to_json(x: Hashable) -> Any:

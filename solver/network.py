@@ -184,7 +184,9 @@ class Network:
         """
         blocked = np.ascontiguousarray(np.asarray(blocked, dtype=bool))
         if blocked.ndim != 2 or blocked.size == 0:
-            raise InvalidInstanceError(f"grid must be a non-empty 2-D array, got shape {blocked.shape}")
+            raise InvalidInstanceError(
+                f"grid must be a non-empty 2-D array, got shape {blocked.shape}"
+            )
         if connectivity not in (4, 8):
             raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
         h, w = blocked.shape
@@ -251,7 +253,8 @@ class Network:
         heads, ws = self.out_arcs(i)
         k = int(np.searchsorted(heads, j))
         if k < heads.size and heads[k] == j:
-            return ws[k].item()  # type: ignore[no-any-return]
+            value = ws[k]
+            return value.item() if isinstance(value, np.generic) else value
         return None
 
     def matrix(self) -> sp.csr_matrix:

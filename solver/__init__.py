@@ -1,0 +1,21 @@
+"""solver: the constructive Perfect Bayesian Nash equilibrium of the DPP game.
+
+>>> import networkx as nx
+>>> from solver import Instance, solve
+>>> g = nx.Graph()
+>>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+>>> str(solve(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).U)
+'12/5'
+"""
+
+from __future__ import annotations
+
+__version__ = "0.1.0"
+
+from solver.equilibrium import Equilibrium, StrategyPath, solve
+from solver.errors import DPPError, InstanceFormatError, InvalidInstanceError
+from solver.instance import Instance
+from solver.instance_json import load_instance
+
+__all__ = ["DPPError", "Equilibrium", "Instance", "InstanceFormatError",
+           "InvalidInstanceError", "StrategyPath", "__version__", "load_instance", "solve"]

@@ -1,0 +1,185 @@
+"""The constructive PBNE of the paper (Sections IV-V): ``solve(instance) -> Equilibrium``."""
+
+from __future__ import annotations
+
+from collections.abc import Hashable
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+
+from solver.distances import distances_from, distances_to
+from solver.errors import InvalidInstanceError
+from solver.evaluation import Trajectory, evaluate
+from solver.instance import Instance
+from solver.numbers import Number
+from solver.phases import Phases, phases_of
+from solver.primary import MixedPath, primary_mixture
+from solver.progress import ProgressDefender
+from solver.secondary import TIE_BREAK, secondary_best_response
+from solver.tolerance import DEFAULT_TOLERANCE, Comparator
+
+__all__ = ["Equilibrium", "StrategyPath", "solve"]
+
+METHOD = "constructive PBNE (paper Sec. IV-V; secondary best response by NOTES §2)"
+
+
+@dataclass(frozen=True)
+class StrategyPath:
+    """A path of a type's mixed strategy, as node ids."""
+
+    nodes: tuple[Hashable, ...]
+    probability: Fraction
+    label: str
+
+
+@dataclass(frozen=True, eq=False)
+class Equilibrium:
+    """The weak PBNE ``(σ*, γ*)`` of an instance, with how it was made.
+
+    Attributes
+    ----------
+    instance : Instance
+        The solved game.
+    defender : ProgressDefender
+        σ*, eq. (9): allocate to ``g1`` with probability new-progress / step weight.
+    secondary_path : tuple
+        ξ² (node ids), the secondary type's deterministic path (eq. 10).
+    schedule : tuple
+        σ*(g1) after each step of ξ².
+    phases : Phases
+        ``t_I``, ``t_II``, ``T`` of ξ² (eqs. 11-12).
+    primary_paths : tuple of StrategyPath
+        ξ^{1,I} and ξ^{1,II} with probabilities ``1 - b2/b1`` and ``b2/b1`` (eq. 14);
+        merged into one path when identical, zero-probability paths dropped.
+    U1, U2, U, U_bar, VoI : Number
+        Type costs, the value ``U* = b1 U1 + b2 U2``, the complete-information value and
+        ``VoI* = (Ū − U*)/Ū`` (Definition 7). Exact ``Fraction`` for rational instances.
+    trajectories : tuple of Trajectory
+        Per path: σ*(g1), Bayes beliefs ``b^1_t`` and cumulative expected allocation to
+        the true goal at every step.
+    exact : bool
+        True when every number is exact; False in float mode.
+    tolerance : float or None
+        The absolute tolerance used in float mode (None when exact).
+    method, tie_break : str
+        Provenance: the construction and the deterministic tie-break among best responses.
+    """
+
+    instance: Instance
+    defender: ProgressDefender = field(repr=False)
+    secondary_path: tuple[Hashable, ...]
+    schedule: tuple[Number, ...]
+    phases: Phases
+    primary_paths: tuple[StrategyPath, ...]
+    U1: Number
+    U2: Number
+    U: Number
+    U_bar: Number
+    VoI: Number
+    trajectories: tuple[Trajectory, ...] = field(repr=False)
+    exact: bool
+    tolerance: float | None
+    method: str = METHOD
+    tie_break: str = TIE_BREAK
+
+    def to_json(self) -> dict[str, Any]:
+        """The ``dpp-profile/1`` strategy-profile document (``docs/formats.md`` §2)."""
+        from solver.profile_json import equilibrium_to_json
+
+        return equilibrium_to_json(self)
+
+    def summary(self) -> str:
+        """A human-readable multi-line summary (what ``dpp solve`` prints)."""
+        from solver.report import summarize
+
+        return summarize(self)
+
+
+def solve(instance: Instance, *, tolerance: float = DEFAULT_TOLERANCE) -> Equilibrium:
+    """Construct the paper's weak PBNE of ``instance``.
+
+    Three Dijkstra runs (from ``s0``, to ``g1``, to ``g2``), a linear scan for ξ² (NOTES §2),
+    then work proportional to the length of the equilibrium paths.
+
+    Parameters
+    ----------
+    instance : Instance
+        The game. Rational weights give exact results.
+    tolerance : float
+        Absolute tolerance on distances, used only when some weight is a float.
+
+    Returns
+    -------
+    Equilibrium
+
+    Raises
+    ------
+    InvalidInstanceError
+        If a goal cannot be reached from the start or from the other goal.
+
+    Examples
+    --------
+    >>> import networkx as nx
+    >>> g = nx.Graph()
+    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    >>> eq = solve(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
+    >>> eq.secondary_path, eq.phases
+    (('s', 'g2'), Phases(t_I=0, t_II=1, T=1))
+    >>> [(p.nodes, str(p.probability)) for p in eq.primary_paths]
+    [(('s', 'g1'), '4/7'), (('s', 'g2'), '3/7')]
+    >>> str(eq.U), str(eq.VoI)
+    ('12/5', '1/9')
+    """
+    net = instance.network
+    compare = Comparator(exact=net.exact, tol=0.0 if net.exact else tolerance)
+    s0 = _index(instance, instance.start)
+    g1 = _index(instance, instance.primary)
+    g2 = _index(instance, instance.secondary)
+    d0 = distances_from(net, s0)
+    d1 = distances_to(net, g1)
+    d2 = distances_to(net, g2)
+    _require_reachable(instance, d0, d1, d2, s0, g1, g2)
+
+    defender = ProgressDefender(net, g1, d1, compare)
+    xi2 = secondary_best_response(net, s0, (g1, g2), d0, d1, d2, compare)
+    schedule = defender.schedule(xi2.path)
+    phases = phases_of(schedule)
+    mixture = primary_mixture(net, xi2.path, phases, g1, d1, instance.b1, instance.b2, compare)
+    secondary = (MixedPath(xi2.path, Fraction(1), "xi2"),)
+    ev = evaluate(net, defender.schedule, mixture, secondary, b1=instance.b1, b2=instance.b2,
+                  g1=g1, g2=g2, d_to_g1=d1, d_to_g2=d2, d_from_start=d0)
+    labels = net.labels
+    return Equilibrium(
+        instance=instance,
+        defender=defender,
+        secondary_path=tuple(labels[i] for i in xi2.path),
+        schedule=tuple(schedule),
+        phases=phases,
+        primary_paths=tuple(StrategyPath(tuple(labels[i] for i in m.path), m.probability,
+                                         m.label) for m in mixture),
+        U1=ev.U1, U2=ev.U2, U=ev.U, U_bar=ev.U_bar, VoI=ev.VoI,
+        trajectories=ev.trajectories,
+        exact=net.exact,
+        tolerance=None if net.exact else tolerance,
+    )
+
+
+def _index(instance: Instance, label: Hashable) -> int:
+    i = instance.network.index_of(label)
+    if i is None:  # Instance validated this already
+        raise InvalidInstanceError(f"node {label!r} not found in graph")
+    return i
+
+
+def _require_reachable(instance: Instance, d0: np.ndarray, d1: np.ndarray, d2: np.ndarray,
+                       s0: int, g1: int, g2: int) -> None:
+    s, p, q = instance.start, instance.primary, instance.secondary
+    for dist, what in ((d0[g1], f"goal {p!r} is unreachable from start {s!r}"),
+                       (d0[g2], f"goal {q!r} is unreachable from start {s!r}"),
+                       (d1[g2], f"goal {p!r} is unreachable from goal {q!r}"),
+                       (d2[g1], f"goal {q!r} is unreachable from goal {p!r}")):
+        if dist == np.inf:
+            raise InvalidInstanceError(what + " (the game needs d(s0,g1), d(s0,g2), "
+                                       "d(g1,g2), d(g2,g1) finite)")

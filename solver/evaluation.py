@@ -1,0 +1,159 @@
+"""Exact evaluation of any (Defender, Attacker) pair on an instance (paper eqs. 5-6, 18).
+
+A *Defender* is given by its schedule: a function mapping a walk (node indices from
+``s0``) to the probability of allocating to ``g1`` after each step — σ*, the alternative
+Defender σ' and any other prefix-based Defender fit. An *Attacker* is a mixed strategy over
+finite paths per type (the paper's Γ_mix). Beliefs follow Bayes' rule (eq. 4) from the
+Attacker's mixture and are independent of the Defender.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Hashable, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from solver.network import Network
+from solver.numbers import Number
+from solver.primary import MixedPath
+
+__all__ = ["Evaluation", "Schedule", "Trajectory", "evaluate"]
+
+Schedule = Callable[[Sequence[int]], list[Number]]
+"""A Defender: walk (node indices) -> probability of allocating to g1 after each step."""
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """One Attacker path with everything that happens along it.
+
+    Attributes
+    ----------
+    type : str
+        ``"primary"`` or ``"secondary"`` (whose true goal is ``g1`` / ``g2``).
+    label : str
+        Name of the path (``xi2``, ``xi1_I``, ...).
+    probability : Fraction
+        Probability that this type takes this path.
+    nodes : tuple
+        Node ids ``s_0 .. s_T``.
+    sigma_g1 : tuple
+        Defender's probability of allocating to ``g1`` after steps ``1..T``.
+    belief_g1 : tuple of Fraction
+        Bayes belief ``b^1_t`` that ``g1`` is true after steps ``0..T`` (eq. 4).
+    allocation : tuple
+        Cumulative expected allocation to this type's true goal after steps ``0..T``.
+    terminal : Number
+        Terminal cost ``d(s_T, g^θ)``.
+    cost : Number
+        ``allocation[-1] + terminal``: this path's cost for its type.
+    """
+
+    type: str
+    label: str
+    probability: Fraction
+    nodes: tuple[Hashable, ...]
+    sigma_g1: tuple[Number, ...]
+    belief_g1: tuple[Fraction, ...]
+    allocation: tuple[Number, ...]
+    terminal: Number
+    cost: Number
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """Type costs ``U1, U2``, overall ``U``, complete-information ``U_bar`` and ``VoI``."""
+
+    U1: Number
+    U2: Number
+    U: Number
+    U_bar: Number
+    VoI: Number
+    trajectories: tuple[Trajectory, ...]
+
+
+def evaluate(
+    net: Network,
+    schedule: Schedule,
+    primary: Sequence[MixedPath],
+    secondary: Sequence[MixedPath],
+    *,
+    b1: Fraction,
+    b2: Fraction,
+    g1: int,
+    g2: int,
+    d_to_g1: np.ndarray,
+    d_to_g2: np.ndarray,
+    d_from_start: np.ndarray,
+) -> Evaluation:
+    """Evaluate a Defender schedule against a mixed Attacker, exactly.
+
+    ``U^θ = Σ_ξ γ(ξ|θ) [Σ_t w(e_t) σ_t(g^θ) + d(s_T, g^θ)]`` (eq. 5),
+    ``U = b1 U1 + b2 U2`` (eq. 6), ``VoI = (Ū − U)/Ū`` with ``Ū = b1 d(s0,g1) + b2 d(s0,g2)``.
+
+    Examples
+    --------
+    >>> import networkx as nx
+    >>> from solver.distances import distances_from, distances_to
+    >>> g = nx.Graph()
+    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    >>> net = Network.from_networkx(g)   # s=0, g2=1, g1=2
+    >>> always_g1 = lambda walk: [Fraction(1)] * (len(walk) - 1)
+    >>> ev = evaluate(net, always_g1, [MixedPath((0, 2), Fraction(1), "direct")],
+    ...               [MixedPath((0, 1), Fraction(1), "direct")], b1=Fraction(7, 10),
+    ...               b2=Fraction(3, 10), g1=2, g2=1, d_to_g1=distances_to(net, 2),
+    ...               d_to_g2=distances_to(net, 1), d_from_start=distances_from(net, 0))
+    >>> str(ev.U1), str(ev.U2), str(ev.U), str(ev.VoI)
+    ('3', '0', '21/10', '2/9')
+    """
+    mixes = {"primary": tuple(primary), "secondary": tuple(secondary)}
+    prior = {"primary": b1, "secondary": b2}
+    all_paths = [(kind, mp) for kind in ("primary", "secondary") for mp in mixes[kind]]
+    trajectories = []
+    u_type: dict[str, Number] = {"primary": _zero(net), "secondary": _zero(net)}
+    for kind, mp in all_paths:
+        true_is_g1 = kind == "primary"
+        sigma = schedule(mp.path)
+        alloc: list[Number] = [_zero(net)]
+        for (u, v), s in zip(zip(mp.path[:-1], mp.path[1:], strict=True), sigma, strict=True):
+            w = net.weight(net.arc_weight(u, v))  # type: ignore[arg-type]
+            alloc.append(alloc[-1] + w * (s if true_is_g1 else 1 - s))
+        end = mp.path[-1]
+        terminal = net.weight((d_to_g1 if true_is_g1 else d_to_g2)[end])
+        cost = alloc[-1] + terminal
+        beliefs = _beliefs_along(mp.path, all_paths, prior)
+        trajectories.append(Trajectory(kind, mp.label, mp.probability,
+                                       tuple(net.labels[i] for i in mp.path), tuple(sigma),
+                                       beliefs, tuple(alloc), terminal, cost))
+        u_type[kind] = u_type[kind] + mp.probability * cost
+    u1, u2 = u_type["primary"], u_type["secondary"]
+    value = b1 * u1 + b2 * u2
+    u_bar = b1 * net.weight(d_from_start[g1]) + b2 * net.weight(d_from_start[g2])
+    return Evaluation(u1, u2, value, u_bar, (u_bar - value) / u_bar, tuple(trajectories))
+
+
+def _zero(net: Network) -> Number:
+    return Fraction(0) if net.exact else 0.0
+
+
+def _beliefs_along(path: Sequence[int], all_paths: Sequence[tuple[str, MixedPath]],
+                   prior: dict[str, Fraction]) -> tuple[Fraction, ...]:
+    """Bayes belief in g1 at each prefix of ``path`` (eq. 4 unrolled): the prior-weighted
+    mass of primary paths sharing the prefix over the total mass sharing it."""
+    shared = [(kind, mp.probability, _common_prefix(path, mp.path)) for kind, mp in all_paths]
+    out = []
+    for t in range(len(path)):
+        num = sum((prior[k] * p for k, p, n in shared if n > t and k == "primary"), Fraction(0))
+        den = num + sum((prior[k] * p for k, p, n in shared if n > t and k == "secondary"),
+                        Fraction(0))
+        out.append(num / den)
+    return tuple(out)
+
+
+def _common_prefix(a: Sequence[int], b: Sequence[int]) -> int:
+    """Number of leading nodes ``a`` and ``b`` share."""
+    n = min(len(a), len(b))
+    x = np.asarray(a[:n]) != np.asarray(b[:n])
+    return int(np.argmax(x)) if x.any() else n

@@ -1,0 +1,87 @@
+"""MovingAI benchmark ``.map`` grids (https://movingai.com/benchmarks/formats.html).
+
+Header ``type octile`` / ``height H`` / ``width W`` / ``map``, then ``H`` rows of ``W``
+characters. ``.`` and ``G`` are passable; ``@``, ``O``, ``T`` (trees) and ``W`` (water) are
+blocked by default; ``S`` (swamp) is passable. Cells are ``(row, col)``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from pathlib import Path
+
+import numpy as np
+
+from solver.errors import InstanceFormatError
+
+__all__ = ["DEFAULT_BLOCKED", "parse_map", "read_map"]
+
+DEFAULT_BLOCKED = frozenset("@OTW")
+PASSABLE = frozenset(".GS")
+
+
+def read_map(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED) -> np.ndarray:
+    """Read a ``.map`` file into a boolean obstacle array (True = blocked).
+
+    Raises
+    ------
+    InstanceFormatError
+        If the file cannot be read or its header or rows are malformed (the message names
+        the file and line).
+    """
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="ascii", errors="strict")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InstanceFormatError(f"{p}: cannot read map file ({exc})") from None
+    try:
+        return parse_map(text, blocked_chars=blocked_chars)
+    except InstanceFormatError as exc:
+        raise InstanceFormatError(f"{p}: {exc}") from None
+
+
+def parse_map(text: str, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED) -> np.ndarray:
+    """Parse the text of a ``.map`` file.
+
+    Examples
+    --------
+    >>> parse_map("type octile\\nheight 2\\nwidth 3\\nmap\\n..@\\nT.G\\n").astype(int).tolist()
+    [[0, 0, 1], [1, 0, 0]]
+    """
+    blocked_set = frozenset(blocked_chars)
+    lines = text.splitlines()
+    header: dict[str, str] = {}
+    k = 0
+    while k < len(lines) and lines[k].strip().lower() != "map":
+        parts = lines[k].split()
+        if len(parts) != 2:
+            raise InstanceFormatError(f"line {k + 1}: expected 'key value' header, "
+                                      f"got {lines[k]!r}")
+        header[parts[0].lower()] = parts[1]
+        k += 1
+    if k == len(lines):
+        raise InstanceFormatError("missing the 'map' line that ends the header")
+    try:
+        height, width = int(header["height"]), int(header["width"])
+    except KeyError as exc:
+        raise InstanceFormatError(f"header lacks {exc.args[0]!r}") from None
+    except ValueError:
+        raise InstanceFormatError("height and width must be integers") from None
+    if height <= 0 or width <= 0:
+        raise InstanceFormatError(f"height and width must be positive, got {height}x{width}")
+    rows = lines[k + 1 : k + 1 + height]
+    if len(rows) != height:
+        raise InstanceFormatError(f"expected {height} map rows, found {len(rows)}")
+    grid = np.zeros((height, width), dtype=bool)
+    for r, row in enumerate(rows):
+        row = row.rstrip("\r\n")
+        if len(row) != width:
+            raise InstanceFormatError(f"line {k + 2 + r}: expected {width} characters, "
+                                      f"found {len(row)}")
+        chars = np.frombuffer(row.encode("ascii"), dtype="S1")
+        bad = set(row) - PASSABLE - blocked_set
+        if bad:
+            raise InstanceFormatError(f"line {k + 2 + r}: unknown map character(s) "
+                                      f"{''.join(sorted(bad))!r}")
+        grid[r] = np.isin(chars, [c.encode() for c in blocked_set])
+    return grid

@@ -1,0 +1,46 @@
+"""Writing an :class:`~solver.equilibrium.Equilibrium` as ``dpp-profile/1`` JSON."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from solver.instance_json import node_to_json
+from solver.numbers import format_number
+
+if TYPE_CHECKING:
+    from solver.equilibrium import Equilibrium
+
+__all__ = ["PROFILE_FORMAT", "equilibrium_to_json"]
+
+PROFILE_FORMAT = "dpp-profile/1"
+
+
+def equilibrium_to_json(eq: Equilibrium) -> dict[str, Any]:
+    """The strategy-profile document of ``docs/formats.md`` §2 (exact numbers as strings)."""
+    from solver import __version__
+
+    inst = eq.instance
+    fmt = format_number
+
+    def entry(nodes: tuple[Any, ...], prob: Any, label: str) -> dict[str, Any]:
+        return {"path": [node_to_json(v) for v in nodes], "probability": fmt(prob),
+                "label": label}
+
+    return {
+        "format": PROFILE_FORMAT,
+        "goals": {"primary": node_to_json(inst.primary),
+                  "secondary": node_to_json(inst.secondary)},
+        "prior": {"primary": fmt(inst.b1), "secondary": fmt(inst.b2)},
+        "defender": {"rule": "progress", "goal": node_to_json(inst.primary)},
+        "attacker": {
+            "primary": [entry(p.nodes, p.probability, p.label) for p in eq.primary_paths],
+            "secondary": [entry(eq.secondary_path, 1, "xi2")],
+        },
+        "phases": {"t_I": eq.phases.t_I, "t_II": eq.phases.t_II, "T": eq.phases.T},
+        "value": {"U1": fmt(eq.U1), "U2": fmt(eq.U2), "U": fmt(eq.U), "U_bar": fmt(eq.U_bar),
+                  "VoI": fmt(eq.VoI)},
+        "exact": eq.exact,
+        "tolerance": eq.tolerance,
+        "solver": {"name": "solver", "version": __version__, "method": eq.method,
+                   "tie_break": eq.tie_break},
+    }

@@ -1,0 +1,83 @@
+"""The Defender's equilibrium strategy σ*: allocation proportional to new progress (eq. 9).
+
+``c_t = min(c_{t-1}, d(s_t, g1))`` with ``c_0 = d(s0, g1)`` (Definition 3) and
+``σ*(g1 | c_{t-1}, e_t) = (c_{t-1} - c_t) / w(e_t)``. Along any walk the allocations to
+``g1`` telescope: ``Σ_t w(e_t) σ*(g1) = c_0 - c_T`` (proofs/TEL.md).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from fractions import Fraction
+from itertools import pairwise
+
+import numpy as np
+
+from solver.network import Network
+from solver.numbers import Number
+from solver.tolerance import Comparator
+
+__all__ = ["ProgressDefender"]
+
+
+@dataclass(frozen=True, eq=False)
+class ProgressDefender:
+    """σ*: allocates to ``g1`` with probability (new progress toward ``g1``) / (step weight).
+
+    Parameters
+    ----------
+    network : Network
+        The game graph.
+    goal : int
+        Index of the primary goal ``g1``.
+    dist_to_goal : numpy.ndarray
+        ``d(v, g1)`` for every node (stored numerators; ``inf`` where ``g1`` is unreachable).
+    compare : Comparator
+        Exact or tolerant comparison (float mode snaps σ* to 0 or 1 within the tolerance).
+
+    Examples
+    --------
+    The paper's Fig. 3: ``c0 = 3.5``; a step of weight 1.5 to a node at distance 2 makes
+    progress 1.5 (σ* = 1), a step of weight 1 to a node at distance 3 makes 0.5.
+
+    >>> import networkx as nx
+    >>> from solver.distances import distances_to
+    >>> g = nx.DiGraph()
+    >>> g.add_weighted_edges_from([("s", "r", "3/2"), ("r", "g1", 2), ("s", "p", 1),
+    ...                            ("p", "g1", 3)])
+    >>> net = Network.from_networkx(g)
+    >>> d = distances_to(net, 3)
+    >>> sigma = ProgressDefender(net, 3, d, Comparator(exact=True))
+    >>> [str(x) for x in sigma.schedule([0, 1, 3])], [str(x) for x in sigma.schedule([0, 2])]
+    (['1', '1'], ['1/2'])
+    """
+
+    network: Network
+    goal: int
+    dist_to_goal: np.ndarray = field(repr=False)
+    compare: Comparator
+
+    def schedule(self, walk: Sequence[int]) -> list[Number]:
+        """σ*(g1) at each step ``t = 1..T`` of ``walk`` (node indices starting at ``s0``)."""
+        net, d = self.network, self.dist_to_goal
+        c = d[walk[0]]
+        out: list[Number] = []
+        for u, v in pairwise(walk):
+            w = net.arc_weight(u, v)
+            if w is None:
+                raise ValueError(f"{net.labels[u]!r} -> {net.labels[v]!r} is not an edge")
+            c_new = min(c, d[v])
+            out.append(self._ratio(c - c_new, w))
+            c = c_new
+        return out
+
+    def _ratio(self, progress: object, w: int | float) -> Number:
+        if self.compare.exact:
+            return Fraction(int(progress), int(w))  # type: ignore[call-overload]
+        p = float(progress)  # type: ignore[arg-type]
+        if self.compare.le(p, 0.0):
+            return 0.0
+        if self.compare.eq(p, float(w)):
+            return 1.0
+        return p / float(w)
