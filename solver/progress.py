@@ -47,9 +47,10 @@ class ProgressDefender:
     >>> g.add_weighted_edges_from([("s", "r", "3/2"), ("r", "g1", 2), ("s", "p", 1),
     ...                            ("p", "g1", 3)])
     >>> net = Network.from_networkx(g)
-    >>> d = distances_to(net, 3)
-    >>> sigma = ProgressDefender(net, 3, d, Comparator(exact=True))
-    >>> [str(x) for x in sigma.schedule([0, 1, 3])], [str(x) for x in sigma.schedule([0, 2])]
+    >>> net.labels    # indices 0..3
+    ['s', 'r', 'g1', 'p']
+    >>> sigma = ProgressDefender(net, 2, distances_to(net, 2), Comparator(exact=True))
+    >>> [str(x) for x in sigma.schedule([0, 1, 2])], [str(x) for x in sigma.schedule([0, 3])]
     (['1', '1'], ['1/2'])
     """
 
