@@ -11,7 +11,7 @@ import numpy as np
 
 from solver.distances import distances_from, distances_to
 from solver.errors import InvalidInstanceError
-from solver.evaluation import Trajectory, evaluate
+from solver.evaluation import Evaluation, Trajectory, evaluate
 from solver.instance import Instance
 from solver.numbers import Number
 from solver.phases import Phases, phases_of
@@ -56,9 +56,8 @@ class Equilibrium:
     U1, U2, U, U_bar, VoI : Number
         Type costs, the value ``U* = b1 U1 + b2 U2``, the complete-information value and
         ``VoI* = (Ū − U*)/Ū`` (Definition 7). Exact ``Fraction`` for rational instances.
-    trajectories : tuple of Trajectory
-        Per path: σ*(g1), Bayes beliefs ``b^1_t`` and cumulative expected allocation to
-        the true goal at every step.
+    evaluation : Evaluation
+        The exact evaluation of (σ*, γ*) the values come from.
     exact : bool
         True when every number is exact; False in float mode.
     tolerance : float or None
@@ -78,11 +77,17 @@ class Equilibrium:
     U: Number
     U_bar: Number
     VoI: Number
-    trajectories: tuple[Trajectory, ...] = field(repr=False)
+    evaluation: Evaluation = field(repr=False)
     exact: bool
     tolerance: float | None
     method: str = METHOD
     tie_break: str = TIE_BREAK
+
+    @property
+    def trajectories(self) -> tuple[Trajectory, ...]:
+        """Per path: σ*(g1), Bayes beliefs ``b^1_t`` and the cumulative expected allocation
+        to the true goal at every step (computed on first access)."""
+        return self.evaluation.trajectories
 
     def to_json(self) -> dict[str, Any]:
         """The ``dpp-profile/1`` strategy-profile document (``docs/formats.md`` §2)."""
@@ -160,7 +165,7 @@ def solve(instance: Instance, *, tolerance: float = DEFAULT_TOLERANCE) -> Equili
         primary_paths=tuple(StrategyPath(tuple(labels[i] for i in m.path), m.probability,
                                          m.label) for m in mixture),
         U1=ev.U1, U2=ev.U2, U=ev.U, U_bar=ev.U_bar, VoI=ev.VoI,
-        trajectories=ev.trajectories,
+        evaluation=ev,
         exact=net.exact,
         tolerance=None if net.exact else tolerance,
     )

@@ -10,8 +10,10 @@ Attacker's mixture and are independent of the Defender.
 from __future__ import annotations
 
 from collections.abc import Callable, Hashable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import cached_property
+from itertools import pairwise
 
 import numpy as np
 
@@ -63,15 +65,49 @@ class Trajectory:
 
 
 @dataclass(frozen=True)
+class _PathRun:
+    """One Attacker path evaluated against the Defender (internal)."""
+
+    kind: str
+    mixed: MixedPath
+    sigma: tuple[Number, ...]
+    weights: tuple[Number, ...]
+    terminal: Number
+    cost: Number
+
+
+@dataclass(frozen=True, eq=False)
 class Evaluation:
-    """Type costs ``U1, U2``, overall ``U``, complete-information ``U_bar`` and ``VoI``."""
+    """Type costs ``U1, U2``, overall ``U``, complete-information ``U_bar`` and ``VoI``.
+
+    ``trajectories`` (per-step σ, beliefs and cumulative allocations of every path) is
+    computed on first access.
+    """
 
     U1: Number
     U2: Number
     U: Number
     U_bar: Number
     VoI: Number
-    trajectories: tuple[Trajectory, ...]
+    _runs: tuple[_PathRun, ...] = field(repr=False)
+    _prior: tuple[Fraction, Fraction] = field(repr=False)
+    _labels: Sequence[Hashable] = field(repr=False)
+
+    @cached_property
+    def trajectories(self) -> tuple[Trajectory, ...]:
+        """Per path: σ(g1), Bayes beliefs ``b^1_t`` (eq. 4) and cumulative allocation."""
+        prior = {"primary": self._prior[0], "secondary": self._prior[1]}
+        all_paths = [(r.kind, r.mixed) for r in self._runs]
+        out = []
+        for run in self._runs:
+            alloc: list[Number] = [run.cost - run.cost]  # a zero of the right type
+            for w, s in zip(run.weights, run.sigma, strict=True):
+                alloc.append(alloc[-1] + w * (s if run.kind == "primary" else 1 - s))
+            out.append(Trajectory(run.kind, run.mixed.label, run.mixed.probability,
+                                  tuple(self._labels[i] for i in run.mixed.path), run.sigma,
+                                  _beliefs_along(run.mixed.path, all_paths, prior),
+                                  tuple(alloc), run.terminal, run.cost))
+        return tuple(out)
 
 
 def evaluate(
@@ -107,31 +143,42 @@ def evaluate(
     ...               d_to_g2=distances_to(net, 1), d_from_start=distances_from(net, 0))
     >>> str(ev.U1), str(ev.U2), str(ev.U), str(ev.VoI)
     ('3', '0', '21/10', '2/9')
+    >>> [str(x) for x in ev.trajectories[0].allocation]
+    ['0', '3']
     """
-    mixes = {"primary": tuple(primary), "secondary": tuple(secondary)}
-    prior = {"primary": b1, "secondary": b2}
-    all_paths = [(kind, mp) for kind in ("primary", "secondary") for mp in mixes[kind]]
-    trajectories = []
+    runs = []
     u_type: dict[str, Number] = {"primary": _zero(net), "secondary": _zero(net)}
-    for kind, mp in all_paths:
+    for kind, mixture in (("primary", primary), ("secondary", secondary)):
         true_is_g1 = kind == "primary"
-        sigma = schedule(mp.path)
-        alloc: list[Number] = [_zero(net)]
-        for (u, v), s in zip(zip(mp.path[:-1], mp.path[1:], strict=True), sigma, strict=True):
-            w = net.weight(net.arc_weight(u, v))  # type: ignore[arg-type]
-            alloc.append(alloc[-1] + w * (s if true_is_g1 else 1 - s))
-        end = mp.path[-1]
-        terminal = net.weight((d_to_g1 if true_is_g1 else d_to_g2)[end])
-        cost = alloc[-1] + terminal
-        beliefs = _beliefs_along(mp.path, all_paths, prior)
-        trajectories.append(Trajectory(kind, mp.label, mp.probability,
-                                       tuple(net.labels[i] for i in mp.path), tuple(sigma),
-                                       beliefs, tuple(alloc), terminal, cost))
-        u_type[kind] = u_type[kind] + mp.probability * cost
+        for mp in mixture:
+            sigma = tuple(schedule(mp.path))
+            raw = net.path_weights(mp.path).tolist()
+            paid = _allocation_total(net, raw, sigma, to_g1=true_is_g1)
+            terminal = net.weight((d_to_g1 if true_is_g1 else d_to_g2)[mp.path[-1]])
+            cost = paid + terminal
+            runs.append(_PathRun(kind, mp, sigma, tuple(net.weight(w) for w in raw), terminal,
+                                 cost))
+            u_type[kind] = u_type[kind] + mp.probability * cost
     u1, u2 = u_type["primary"], u_type["secondary"]
     value = b1 * u1 + b2 * u2
     u_bar = b1 * net.weight(d_from_start[g1]) + b2 * net.weight(d_from_start[g2])
-    return Evaluation(u1, u2, value, u_bar, (u_bar - value) / u_bar, tuple(trajectories))
+    return Evaluation(u1, u2, value, u_bar, (u_bar - value) / u_bar, tuple(runs), (b1, b2),
+                      net.labels)
+
+
+def _allocation_total(net: Network, raw_weights: Sequence[int | float],
+                      sigma: Sequence[Number], *, to_g1: bool) -> Number:
+    """``Σ_t w_t σ_t(g^θ)``. Steps with σ in {0, 1} (most steps on grids) are summed as
+    stored integers; only fractional steps need rational arithmetic."""
+    whole: int | float = 0
+    part: Number = _zero(net)
+    for w, s in zip(raw_weights, sigma, strict=True):
+        share = s if to_g1 else 1 - s
+        if share == 1:
+            whole += w
+        elif share != 0:
+            part += net.weight(w) * share
+    return net.weight(whole) + part
 
 
 def _zero(net: Network) -> Number:
@@ -141,14 +188,16 @@ def _zero(net: Network) -> Number:
 def _beliefs_along(path: Sequence[int], all_paths: Sequence[tuple[str, MixedPath]],
                    prior: dict[str, Fraction]) -> tuple[Fraction, ...]:
     """Bayes belief in g1 at each prefix of ``path`` (eq. 4 unrolled): the prior-weighted
-    mass of primary paths sharing the prefix over the total mass sharing it."""
+    mass of primary paths sharing the prefix over the total mass sharing it. The belief can
+    change only where another path leaves this one, so it is computed once per segment."""
     shared = [(kind, mp.probability, _common_prefix(path, mp.path)) for kind, mp in all_paths]
-    out = []
-    for t in range(len(path)):
-        num = sum((prior[k] * p for k, p, n in shared if n > t and k == "primary"), Fraction(0))
-        den = num + sum((prior[k] * p for k, p, n in shared if n > t and k == "secondary"),
+    out: list[Fraction] = []
+    for t0, t1 in pairwise([0, *sorted({n for _, _, n in shared if 0 < n < len(path)}),
+                            len(path)]):
+        num = sum((prior[k] * p for k, p, n in shared if n > t0 and k == "primary"), Fraction(0))
+        den = num + sum((prior[k] * p for k, p, n in shared if n > t0 and k == "secondary"),
                         Fraction(0))
-        out.append(num / den)
+        out.extend([num / den] * (t1 - t0))
     return tuple(out)
 
 

@@ -36,14 +36,12 @@ class GridLabels(Sequence[tuple[int, int]]):
     """
 
     blocked: np.ndarray = field(repr=False)
+    height: int = field(init=False)
+    width: int = field(init=False)
 
-    @property
-    def height(self) -> int:
-        return int(self.blocked.shape[0])
-
-    @property
-    def width(self) -> int:
-        return int(self.blocked.shape[1])
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "height", int(self.blocked.shape[0]))
+        object.__setattr__(self, "width", int(self.blocked.shape[1]))
 
     def __len__(self) -> int:
         return self.height * self.width
@@ -190,33 +188,35 @@ class Network:
         if connectivity not in (4, 8):
             raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
         h, w = blocked.shape
-        free = ~blocked
-        idx = np.arange(h * w, dtype=np.int64).reshape(h, w)
-        tails: list[np.ndarray] = []
-        heads: list[np.ndarray] = []
-        vals: list[np.ndarray] = []
-
-        def add(a: np.ndarray, b: np.ndarray, ok: np.ndarray, weight: float) -> None:
-            t, hd = a[ok], b[ok]
-            tails.extend((t, hd))
-            heads.extend((hd, t))
-            vals.extend((np.full(t.size, weight), np.full(t.size, weight)))
-
-        add(idx[:, :-1], idx[:, 1:], free[:, :-1] & free[:, 1:], 1.0)
-        add(idx[:-1, :], idx[1:, :], free[:-1, :] & free[1:, :], 1.0)
+        free = np.pad(~blocked, 1)  # a frame of blocked cells: no bounds checks needed
+        n = h * w
+        # neighbour offsets in increasing index order, so each CSR row comes out sorted
+        steps = [(-1, 0), (0, -1), (0, 1), (1, 0)]
         if connectivity == 8:
-            orth = free[:-1, :-1] & free[:-1, 1:] & free[1:, :-1] & free[1:, 1:]
-            add(idx[:-1, :-1], idx[1:, 1:], orth, SQRT2)
-            add(idx[:-1, 1:], idx[1:, :-1], orth, SQRT2)
-        t_all = np.concatenate(tails)
-        h_all = np.concatenate(heads)
-        v_all = np.concatenate(vals)
-        exact = connectivity == 4
-        data = v_all.astype(np.int64) if exact else v_all
-        mat = sp.csr_matrix((data, (t_all, h_all)), shape=(h * w, h * w))
-        mat.sort_indices()
-        return cls(GridLabels(blocked), mat.indptr.astype(np.int64),
-                   mat.indices.astype(np.int64), mat.data, 1, exact, False, None)
+            steps = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
+        k = len(steps)
+        inner = free[1:-1, 1:-1]
+        mask = np.empty((h, w, k), dtype=bool)  # mask[r, c, j]: arc (r, c) -> (r, c) + step j
+        for j, (dr, dc) in enumerate(steps):
+            ok = inner & free[1 + dr : h + 1 + dr, 1 + dc : w + 1 + dc]
+            if dr and dc:  # diagonal: both orthogonal neighbours must be free (no corner cutting)
+                ok &= free[1 + dr : h + 1 + dr, 1:-1] & free[1:-1, 1 + dc : w + 1 + dc]
+            mask[:, :, j] = ok
+        flat = np.flatnonzero(mask)  # row-major: the arcs of node i, in head order
+        offsets = np.array([dr * w + dc for dr, dc in steps], dtype=np.int64)
+        slot = (flat % k).astype(np.int8)
+        flat //= k
+        flat += offsets[slot]
+        indices = flat.astype(np.int32)  # what scipy.sparse.csgraph works in
+        del flat
+        indptr = np.zeros(n + 1, dtype=np.int32 if n * k < 2**31 else np.int64)
+        np.cumsum(np.count_nonzero(mask.reshape(n, k), axis=1), out=indptr[1:])
+        if connectivity == 4:
+            data = np.ones(indices.size, dtype=np.int64)
+            return cls(GridLabels(blocked), indptr, indices, data, 1, True, False, None)
+        diagonal = np.array([bool(dr and dc) for dr, dc in steps])
+        data = np.where(diagonal[slot], SQRT2, 1.0)
+        return cls(GridLabels(blocked), indptr, indices, data, 1, False, False, None)
 
     # ------------------------------------------------------------------ queries
     @property
@@ -257,6 +257,31 @@ class Network:
             return value.item() if isinstance(value, np.generic) else value
         return None
 
+    def path_weights(self, path: Sequence[int]) -> np.ndarray:
+        """Stored weights of the arcs ``path[t-1] -> path[t]``, vectorised.
+
+        Raises
+        ------
+        ValueError
+            If some consecutive pair is not an arc (the message names it).
+        """
+        p = np.asarray(path, dtype=np.int64)
+        if p.size < 2:
+            return self.weights[:0]
+        tails, heads = p[:-1], p[1:]
+        starts = self.indptr[tails]
+        degree = self.indptr[tails + 1] - starts
+        width = max(int(degree.max()), 1)
+        offs = np.arange(width)
+        slots = np.minimum(starts[:, None] + offs, max(self.n_arcs - 1, 0))
+        hit = (offs < degree[:, None]) & (self.indices[slots] == heads[:, None])
+        found = hit.any(axis=1)
+        if not found.all():
+            k = int(np.argmin(found))
+            raise ValueError(f"{self.labels[int(tails[k])]!r} -> {self.labels[int(heads[k])]!r} "
+                             "is not an edge")
+        return self.weights[starts + hit.argmax(axis=1)]
+
     def matrix(self) -> sp.csr_matrix:
         """The arcs as a float64 scipy CSR matrix (for ``scipy.sparse.csgraph``)."""
         return self._matrix
@@ -265,7 +290,7 @@ class Network:
     def _matrix(self) -> sp.csr_matrix:
         n = self.n_nodes
         return sp.csr_matrix(
-            (self.weights.astype(np.float64), self.indices, self.indptr), shape=(n, n)
+            (self.weights.astype(np.float64), self.indices, self.indptr), shape=(n, n), copy=False
         )
 
     @cached_property

@@ -10,7 +10,6 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
-from itertools import pairwise
 
 import numpy as np
 
@@ -61,24 +60,22 @@ class ProgressDefender:
 
     def schedule(self, walk: Sequence[int]) -> list[Number]:
         """σ*(g1) at each step ``t = 1..T`` of ``walk`` (node indices starting at ``s0``)."""
-        net, d = self.network, self.dist_to_goal
-        c = d[walk[0]]
+        weights = self.network.path_weights(walk)
+        progress = self.progress(walk)
+        if self.compare.exact:
+            return [Fraction(int(p), int(w)) for p, w in zip(progress, weights, strict=True)]
         out: list[Number] = []
-        for u, v in pairwise(walk):
-            w = net.arc_weight(u, v)
-            if w is None:
-                raise ValueError(f"{net.labels[u]!r} -> {net.labels[v]!r} is not an edge")
-            c_new = min(c, d[v])
-            out.append(self._ratio(c - c_new, w))
-            c = c_new
+        for p, w in zip(progress.tolist(), weights.tolist(), strict=True):
+            if self.compare.le(p, 0.0):
+                out.append(0.0)
+            elif self.compare.eq(p, w):
+                out.append(1.0)
+            else:
+                out.append(p / w)
         return out
 
-    def _ratio(self, progress: object, w: int | float) -> Number:
-        if self.compare.exact:
-            return Fraction(int(progress), int(w))  # type: ignore[call-overload]
-        p = float(progress)  # type: ignore[arg-type]
-        if self.compare.le(p, 0.0):
-            return 0.0
-        if self.compare.eq(p, float(w)):
-            return 1.0
-        return p / float(w)
+    def progress(self, walk: Sequence[int]) -> np.ndarray:
+        """New progress ``c_{t-1} - c_t`` at each step (stored numerators), vectorised:
+        ``c`` is the running minimum of ``d(s_t, g1)`` along the walk."""
+        c = np.minimum.accumulate(self.dist_to_goal[np.asarray(walk, dtype=np.int64)])
+        return c[:-1] - c[1:]

@@ -71,10 +71,12 @@ def secondary_best_response(
     ((0, 1), 1, 4)
     """
     g1, g2 = goals
-    total = d_from_start + d_to_g1 + d_to_g2
-    m_value = total.min()
-    tied = (total == m_value) if compare.exact else (total <= m_value + compare.tol)
-    pivot = int(np.flatnonzero(tied)[0])
+    total = d_from_start + d_to_g1
+    total += d_to_g2
+    pivot = int(np.argmin(total))  # the first minimiser: exact ties go to the lowest index
+    m_value = total[pivot]
+    if not compare.exact:
+        pivot = int(np.flatnonzero(total <= m_value + compare.tol)[0])
     head = path_from_source(net, start, pivot, d_from_start, compare)
     tail = path_to_target(net, pivot, g2, d_to_g2, compare)
     walk = head + tail[1:]

@@ -1,0 +1,140 @@
+"""Solver benchmarks (issue 2), reported as ratios measured in one run.
+
+1. A 1000x1000 grid with 20% random obstacles: ``solve`` (from the boolean obstacle array,
+   CSR construction included) against ONE ``scipy.sparse.csgraph.dijkstra`` from the start on
+   the same graph. Target: ratio <= 5. Also the peak traced memory of ``solve``.
+2. Small random graphs: ``solve`` against brute-force enumeration of all simple paths for
+   the secondary's best response (what the closed form replaces).
+
+Run: ``.venv/bin/python benchmarks/bench_solver.py [--size 1000] [--repeat 3]``
+"""
+
+from __future__ import annotations
+
+import argparse
+import itertools
+import time
+import tracemalloc
+from collections.abc import Callable
+from fractions import Fraction
+
+import networkx as nx
+import numpy as np
+from scipy.sparse.csgraph import connected_components, dijkstra
+
+from solver import Instance, solve
+from solver.distances import distances_to
+from solver.network import Network
+
+
+def best_of(fn: Callable[[], object], repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def grid_instance(size: int, density: float, seed: int) -> tuple[np.ndarray, tuple[int, int],
+                                                                 tuple[tuple[int, int], ...]]:
+    """Random obstacles; start and goals are corners of the largest free component."""
+    rng = np.random.default_rng(seed)
+    blocked = rng.random((size, size)) < density
+    net = Network.from_grid(blocked)
+    _, comp = connected_components(net.matrix(), directed=False)
+    free = ~blocked.ravel()
+    big = np.bincount(comp[free]).argmax()
+    cells = np.flatnonzero(free & (comp == big))
+    rows, cols = cells // size, cells % size
+
+    def pick(score: np.ndarray) -> tuple[int, int]:
+        i = int(cells[np.argmin(score)])
+        return (i // size, i % size)
+
+    start = pick(rows + cols)                      # near the top-left corner
+    g1 = pick((size - rows) + (size - cols))       # near the bottom-right corner
+    g2 = pick(rows + (size - cols))                # near the top-right corner
+    return blocked, start, (g1, g2)
+
+
+def bench_grid(size: int, repeat: int) -> None:
+    blocked, start, goals = grid_instance(size, 0.2, seed=0)
+    prior = ("3/5", "2/5")
+    net = Network.from_grid(blocked)
+    mat = net.matrix()
+    s = start[0] * size + start[1]
+    t_dij, t_solve = float("inf"), float("inf")
+    for _ in range(repeat):  # interleaved, so both see the same machine load
+        t_dij = min(t_dij, best_of(lambda: dijkstra(mat, directed=True, indices=s), 1))
+        t_solve = min(t_solve, best_of(
+            lambda: solve(Instance.from_grid(blocked, start, goals, prior)), 1))
+    tracemalloc.start()
+    eq = solve(Instance.from_grid(blocked, start, goals, prior))
+    _, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    print(f"grid {size}x{size}, 20% obstacles: {net.n_nodes:,} cells, {net.n_arcs:,} arcs; "
+          f"xi2 has {eq.phases.T} steps, phases {eq.phases}")
+    print(f"  one scipy dijkstra      {t_dij * 1e3:8.1f} ms")
+    print(f"  solve (incl. CSR build) {t_solve * 1e3:8.1f} ms   ratio {t_solve / t_dij:.2f}x "
+          "(target <= 5x)")
+    print(f"  peak traced memory of solve: {peak / 2**20:.0f} MiB "
+          f"({peak / net.n_nodes:.0f} bytes per cell)")
+
+
+def brute_force_u2(inst: Instance) -> Fraction:
+    """min over simple paths ending at their first goal of the secondary's cost against σ*."""
+    eq = solve(inst)  # only for σ* (the progress rule) and the distance field
+    net, sigma = inst.network, eq.defender
+    g1, g2 = net.index_of(inst.primary), net.index_of(inst.secondary)
+    s0 = net.index_of(inst.start)
+    d_to_g2 = distances_to(net, g2)  # type: ignore[arg-type]
+    best: Fraction | None = None
+    stack: list[list[int]] = [[s0]]  # type: ignore[list-item]
+    while stack:
+        path = stack.pop()
+        end = path[-1]
+        if end in (g1, g2):
+            sched = sigma.schedule(path)
+            cost = sum((net.weight(net.arc_weight(u, v)) * (1 - s)  # type: ignore[arg-type]
+                        for (u, v), s in zip(itertools.pairwise(path), sched, strict=True)),
+                       Fraction(0)) + net.weight(d_to_g2[end])
+            best = cost if best is None or cost < best else best
+            continue
+        heads, _ = net.out_arcs(end)
+        stack.extend([*path, int(h)] for h in heads if int(h) not in path)
+    assert best is not None
+    return best  # type: ignore[return-value]
+
+
+def bench_small(repeat: int) -> None:
+    rng = np.random.default_rng(1)
+    print("small random graphs (G(n, p=0.35), integer weights 1..5): solve vs enumerating "
+          "simple paths")
+    for n in (8, 10, 12, 14, 16):
+        while True:
+            g = nx.gnp_random_graph(n, 0.35, seed=int(rng.integers(1 << 30)))
+            if nx.is_connected(g):
+                break
+        for u, v in g.edges:
+            g[u][v]["weight"] = int(rng.integers(1, 6))
+        inst = Instance(g, 0, (n - 1, n - 2), ("3/5", "2/5"))
+        t_brute = best_of(lambda inst=inst: brute_force_u2(inst), 1)  # type: ignore[misc]
+        t_solve = best_of(lambda inst=inst: solve(inst), repeat)  # type: ignore[misc]
+        assert brute_force_u2(inst) == solve(inst).U2
+        print(f"  n={n:2d} m={g.number_of_edges():3d}: enumeration {t_brute * 1e3:9.1f} ms, "
+              f"solve {t_solve * 1e3:6.2f} ms, speed-up {t_brute / t_solve:9.0f}x "
+              "(same U2)")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--size", type=int, default=1000)
+    ap.add_argument("--repeat", type=int, default=5)
+    args = ap.parse_args()
+    bench_grid(args.size, args.repeat)
+    bench_small(args.repeat)
+
+
+if __name__ == "__main__":
+    main()
