@@ -27,8 +27,8 @@ def summarize(eq: Equilibrium) -> str:
         "",
         f"secondary path xi2 ({ph.T} steps): {_path(eq.secondary_path)}",
         f"  sigma*(g1) per step: {_nums(eq.schedule)}",
-        f"  phases: I = steps 1..{ph.t_I}, II = steps {ph.t_I + 1}..{ph.t_II}, "
-        f"III = steps {ph.t_II + 1}..{ph.T}   (t_I={ph.t_I}, t_II={ph.t_II}, T={ph.T})",
+        f"  phases: I {_steps(1, ph.t_I)}, II {_steps(ph.t_I + 1, ph.t_II)}, "
+        f"III {_steps(ph.t_II + 1, ph.T)}   (t_I={ph.t_I}, t_II={ph.t_II}, T={ph.T})",
         "primary mixture:",
     ]
     for p in eq.primary_paths:
@@ -42,6 +42,10 @@ def summarize(eq: Equilibrium) -> str:
         f"VoI*                = {_num(eq.VoI)}",
     ]
     return "\n".join(lines)
+
+
+def _steps(first: int, last: int) -> str:
+    return f"= steps {first}..{last}" if first <= last else "absent"
 
 
 def _num(x: Number) -> str:
