@@ -1,8 +1,13 @@
-"""The checker's error hierarchy (independent of the solver's)."""
+"""The checker's error hierarchy (independent of the solver's).
+
+Every error the checker raises on bad input or a failed solve is a :class:`CheckerError`;
+the ``dpp`` CLI prints it as one line and exits 2. A *refuted* profile is not an error: it
+yields a certificate with failed checks.
+"""
 
 from __future__ import annotations
 
-__all__ = ["CertificateError", "CheckerError", "InvalidInstanceError", "LPError",
+__all__ = ["CertificateError", "CheckerError", "HorizonError", "InvalidInstanceError", "LPError",
            "ProfileError", "TreeTooLargeError"]
 
 
@@ -24,6 +29,10 @@ class LPError(CheckerError, RuntimeError):
 
 class TreeTooLargeError(CheckerError, ValueError):
     """The truncated game tree would exceed the configured size limit."""
+
+
+class HorizonError(CheckerError, ValueError):
+    """The requested horizon is unusable (negative, shorter than a profile path, too short)."""
 
 
 class CertificateError(CheckerError, ValueError):

@@ -1,0 +1,372 @@
+"""The game instance: parse and validate the ``dpp`` instance JSON, exact distances.
+
+The checker reads instances itself (``docs/formats.md`` §1) and validates the paper's
+assumptions (Section III-A): positive weights, two distinct goals, a prior in (0, 1) summing
+to 1, and finite full-graph distances ``d(s0, g1)``, ``d(s0, g2)``, ``d(g1, g2)``,
+``d(g2, g1)`` (NOTES §5). Every violation raises :class:`InvalidInstanceError` with a
+one-line message naming what and where.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Hashable, Mapping
+from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+from types import MappingProxyType
+from typing import Any
+
+from dppverify.distances import dijkstra, hops_to_targets
+from dppverify.errors import InvalidInstanceError
+from dppverify.exact import INF, Number, parse_json, parse_number
+
+__all__ = ["Instance", "Node", "Roles", "instance_from_json", "load_instance", "node_from_json",
+           "node_to_json", "show_node"]
+
+Node = Hashable
+"""A node id after JSON conversion (lists become tuples)."""
+
+
+def node_from_json(x: Any, *, where: str = "node id") -> Node:
+    """Convert a JSON node id: lists become tuples (``[2, 3]`` is the grid cell ``(2, 3)``).
+
+    Examples
+    --------
+    >>> node_from_json([2, 3]), node_from_json("s"), node_from_json(7)
+    ((2, 3), 's', 7)
+    """
+    if isinstance(x, list):
+        return tuple(node_from_json(y, where=where) for y in x)
+    if isinstance(x, dict):
+        raise ValueError(f"{where} must be a JSON scalar or list, got an object")
+    if isinstance(x, Fraction):
+        return int(x) if x.denominator == 1 else float(x)
+    return x
+
+
+def node_to_json(x: Node) -> Any:
+    """Inverse of :func:`node_from_json` (tuples become lists).
+
+    Examples
+    --------
+    >>> node_to_json((2, 3))
+    [2, 3]
+    """
+    if isinstance(x, tuple):
+        return [node_to_json(y) for y in x]
+    return x
+
+
+def show_node(x: Node) -> str:
+    """A node id as it is written in JSON, for messages.
+
+    Examples
+    --------
+    >>> show_node((2, 3)), show_node("s")
+    ('[2, 3]', '"s"')
+    """
+    try:
+        return json.dumps(node_to_json(x))
+    except (TypeError, ValueError):
+        return repr(x)
+
+
+@dataclass(frozen=True)
+class Roles:
+    """Which goal plays ``g1`` (primary) and which ``g2`` (secondary), with priors/distances.
+
+    Attributes
+    ----------
+    g1, g2 : int
+        Node indices of the primary and secondary goals.
+    b1, b2 : Fraction
+        Their priors (``b1 >= b2``, except when a profile labels a 1/2-1/2 tie the other way,
+        which the paper's footnote 2 allows).
+    d1, d2 : tuple
+        Full-graph distances from every node to ``g1`` / ``g2`` (``math.inf`` if unreachable).
+    """
+
+    g1: int
+    g2: int
+    b1: Fraction
+    b2: Fraction
+    d1: tuple[Number, ...]
+    d2: tuple[Number, ...]
+
+    def dist(self, theta: int) -> tuple[Number, ...]:
+        """Distances to the true goal of type ``theta`` (1 = primary, 2 = secondary)."""
+        return self.d1 if theta == 1 else self.d2
+
+    def prior(self, theta: int) -> Fraction:
+        """Prior of type ``theta`` (1 = primary, 2 = secondary)."""
+        return self.b1 if theta == 1 else self.b2
+
+
+@dataclass(frozen=True, eq=False)
+class Instance:
+    """A validated DPP game instance (paper, Section III-A) with exact distances.
+
+    Nodes are numbered ``0 .. n-1`` in document order; ``nodes[i]`` is the id of node ``i``.
+
+    Attributes
+    ----------
+    nodes : tuple
+        Node ids (JSON lists converted to tuples).
+    index : Mapping
+        Node id -> index.
+    directed : bool
+        False when every edge can be walked both ways.
+    succ, pred : tuple
+        ``succ[u]`` = arcs ``(v, w)`` leaving ``u``; ``pred[v]`` = arcs ``(u, w)`` entering ``v``.
+    start : int
+        ``s0``.
+    goals : tuple of int
+        The two goals in document order; ``prior[i]`` belongs to ``goals[i]``.
+    prior : tuple of Fraction
+        Exact priors (always exact, also in float mode).
+    exact : bool
+        False in float mode (``"numbers": "float"``): weights are binary floats.
+    dist_to : tuple
+        ``dist_to[i][v]`` = full-graph ``d(v, goals[i])`` (``math.inf`` if unreachable).
+    hops : tuple of int
+        Fewest steps from each node to the nearest goal (``-1`` if none): tree pruning.
+
+    Examples
+    --------
+    >>> doc = {"graph": {"directed": False, "nodes": [{"id": "s"}, {"id": "g1"}, {"id": "g2"}],
+    ...        "edges": [{"source": "s", "target": "g2", "weight": 2},
+    ...                  {"source": "g2", "target": "g1", "weight": 2},
+    ...                  {"source": "s", "target": "g1", "weight": 3}]},
+    ...        "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]}
+    >>> inst = instance_from_json(doc)
+    >>> r = inst.roles()
+    >>> inst.nodes[r.g1], r.b1, r.d1[inst.start], r.d2[r.g1]
+    ('g1', Fraction(7, 10), 3, 2)
+    """
+
+    nodes: tuple[Node, ...]
+    index: Mapping[Node, int]
+    directed: bool
+    succ: tuple[tuple[tuple[int, Number], ...], ...]
+    pred: tuple[tuple[tuple[int, Number], ...], ...]
+    start: int
+    goals: tuple[int, int]
+    prior: tuple[Fraction, Fraction]
+    exact: bool
+    dist_to: tuple[tuple[Number, ...], tuple[Number, ...]]
+    hops: tuple[int, ...]
+
+    @property
+    def n_nodes(self) -> int:
+        """Number of nodes."""
+        return len(self.nodes)
+
+    @property
+    def primary_slot(self) -> int:
+        """Document position (0 or 1) of the primary goal: larger prior, ``goals[0]`` at a tie."""
+        return 1 if self.prior[1] > self.prior[0] else 0
+
+    @property
+    def tied(self) -> bool:
+        """True at prior 1/2 - 1/2, where either goal may be called primary (footnote 2)."""
+        return self.prior[0] == self.prior[1]
+
+    def slot(self, node: int) -> int | None:
+        """Document position of goal ``node``, or None if it is not a goal."""
+        if node == self.goals[0]:
+            return 0
+        if node == self.goals[1]:
+            return 1
+        return None
+
+    def is_goal(self, node: int) -> bool:
+        """True for the two candidate goals."""
+        return node == self.goals[0] or node == self.goals[1]
+
+    def roles(self, primary_slot: int | None = None) -> Roles:
+        """The (primary, secondary) labelling; default: the instance's primary goal."""
+        i = self.primary_slot if primary_slot is None else primary_slot
+        j = 1 - i
+        return Roles(g1=self.goals[i], g2=self.goals[j], b1=self.prior[i], b2=self.prior[j],
+                     d1=self.dist_to[i], d2=self.dist_to[j])
+
+    def weight(self, u: int, v: int) -> Number | None:
+        """Weight of the arc ``u -> v``, or None when there is no such arc."""
+        for head, w in self.succ[u]:
+            if head == v:
+                return w
+        return None
+
+    def label(self, v: int) -> Node:
+        """The node id of index ``v``."""
+        return self.nodes[v]
+
+    def labels(self, walk: tuple[int, ...] | list[int]) -> tuple[Node, ...]:
+        """Node ids of a walk given as indices."""
+        return tuple(self.nodes[v] for v in walk)
+
+
+def load_instance(path: str | Path) -> Instance:
+    """Read and validate an instance JSON file.
+
+    Raises
+    ------
+    InvalidInstanceError
+        One line ``PATH: what is wrong`` for unreadable, malformed or invalid instances.
+
+    Examples
+    --------
+    >>> load_instance("/nonexistent.json")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: /nonexistent.json: cannot read instance file ...
+    """
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"
+        raise InvalidInstanceError(f"{p}: cannot read instance file ({reason})") from None
+    try:
+        return instance_from_json(text)
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{p}: {exc}") from None
+
+
+def instance_from_json(doc: Mapping[str, Any] | str | bytes) -> Instance:
+    """Build a validated :class:`Instance` from the instance document (dict or JSON text).
+
+    Raises
+    ------
+    InvalidInstanceError
+        For malformed documents and for instances violating the game's assumptions.
+
+    Examples
+    --------
+    >>> instance_from_json('{"graph": {"nodes": [{"id": 1}], "edges": []}, "start": 1, '
+    ...                    '"goals": [1, 1], "prior": [0.5, 0.5]}')
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: goals: the two goals must differ, both are 1
+    """
+    if isinstance(doc, str | bytes):
+        try:
+            doc = parse_json(doc)
+        except json.JSONDecodeError as exc:
+            raise InvalidInstanceError(
+                f"malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}") from None
+        except (ValueError, RecursionError) as exc:
+            raise InvalidInstanceError(f"malformed JSON: {exc}") from None
+    try:
+        return _build(doc)
+    except InvalidInstanceError:
+        raise
+    except (ValueError, TypeError) as exc:  # parse_number / node_from_json messages
+        raise InvalidInstanceError(str(exc)) from None
+
+
+def _require(cond: bool, message: str) -> None:
+    if not cond:
+        raise InvalidInstanceError(message)
+
+
+def _build(doc: Any) -> Instance:
+    _require(isinstance(doc, Mapping), f"instance must be a JSON object, got {type(doc).__name__}")
+    missing = [k for k in ("graph", "start", "goals", "prior") if k not in doc]
+    _require(not missing, f"instance is missing key(s): {', '.join(missing)}")
+    mode = doc.get("numbers", "exact")
+    _require(mode in ("exact", "float"), f"numbers: expected \"exact\" or \"float\", got {mode!r}")
+    exact = mode == "exact"
+    g = doc["graph"]
+    _require(isinstance(g, Mapping), "graph: must be a node-link JSON object")
+    _require(not g.get("multigraph", False), "graph: multigraphs are not supported")
+    directed = g.get("directed", False)
+    _require(isinstance(directed, bool), f"graph.directed: expected true/false, got {directed!r}")
+    raw_nodes = g.get("nodes")
+    raw_edges = g.get("edges", g.get("links"))
+    _require(isinstance(raw_nodes, list), "graph.nodes: must be a list of {\"id\": ...} objects")
+    _require(isinstance(raw_edges, list), "graph.edges: must be a list of edge objects")
+
+    ids: list[Node] = []
+    index: dict[Node, int] = {}
+    for k, nd in enumerate(raw_nodes):
+        _require(isinstance(nd, Mapping) and "id" in nd,
+                 f"graph.nodes[{k}]: must be an object with an \"id\"")
+        v = node_from_json(nd["id"], where=f"graph.nodes[{k}].id")
+        try:
+            hash(v)
+        except TypeError:
+            raise InvalidInstanceError(f"graph.nodes[{k}].id: not a valid node id") from None
+        _require(v not in index, f"graph.nodes[{k}]: duplicate node id {show_node(v)}")
+        index[v] = len(ids)
+        ids.append(v)
+
+    n = len(ids)
+    succ: list[dict[int, Number]] = [{} for _ in range(n)]
+    for k, e in enumerate(raw_edges):
+        _require(isinstance(e, Mapping) and "source" in e and "target" in e,
+                 f"graph.edges[{k}]: must be an object with \"source\" and \"target\"")
+        ends = []
+        for key in ("source", "target"):
+            v = node_from_json(e[key], where=f"graph.edges[{k}].{key}")
+            _require(_known(index, v), f"graph.edges[{k}].{key}: unknown node {show_node(v)}")
+            ends.append(index[v])
+        u, v = ends
+        w = parse_number(e.get("weight", 1), where=f"graph.edges[{k}].weight",
+                         allow_float=not exact)
+        _require(w > 0, f"graph.edges[{k}].weight: must be positive, got {w}")
+        arcs = [(u, v)] if directed or u == v else [(u, v), (v, u)]
+        for a, b in arcs:
+            _require(b not in succ[a],
+                     f"graph.edges[{k}]: duplicate edge {show_node(ids[a])} -> "
+                     f"{show_node(ids[b])}")
+            succ[a][b] = w
+
+    start = _node(doc["start"], index, "start")
+    goals_raw = doc["goals"]
+    _require(isinstance(goals_raw, list) and len(goals_raw) == 2,
+             f"goals: must be a list of two node ids, got {json.dumps(goals_raw, default=str)}")
+    goals = (_node(goals_raw[0], index, "goals[0]"), _node(goals_raw[1], index, "goals[1]"))
+    _require(goals[0] != goals[1], f"goals: the two goals must differ, both are "
+                                   f"{show_node(ids[goals[0]])}")
+    prior = _prior(doc["prior"])
+
+    succ_t = tuple(tuple(sorted(s.items())) for s in succ)
+    pred_l: list[list[tuple[int, Number]]] = [[] for _ in range(n)]
+    for u in range(n):
+        for v, w in succ_t[u]:
+            pred_l[v].append((u, w))
+    pred_t = tuple(tuple(p) for p in pred_l)
+    dist_to = (tuple(dijkstra(pred_t, goals[0])), tuple(dijkstra(pred_t, goals[1])))
+    for i, j in ((0, 1), (1, 0)):
+        gi, gj = show_node(ids[goals[i]]), show_node(ids[goals[j]])
+        _require(dist_to[i][start] != INF,
+                 f"goal {gi} is unreachable from start {show_node(ids[start])}")
+        _require(dist_to[i][goals[j]] != INF,
+                 f"goal {gi} is unreachable from goal {gj}: d({gj}, {gi}) is infinite")
+    hops = tuple(hops_to_targets(pred_t, goals))
+    return Instance(nodes=tuple(ids), index=MappingProxyType(index), directed=directed,
+                    succ=succ_t, pred=pred_t, start=start, goals=goals, prior=prior,
+                    exact=exact, dist_to=dist_to, hops=hops)
+
+
+def _known(index: Mapping[Node, int], v: Node) -> bool:
+    try:
+        return v in index
+    except TypeError:
+        return False
+
+
+def _node(raw: Any, index: Mapping[Node, int], where: str) -> int:
+    v = node_from_json(raw, where=where)
+    _require(_known(index, v), f"{where}: unknown node {show_node(v)}")
+    return index[v]
+
+
+def _prior(raw: Any) -> tuple[Fraction, Fraction]:
+    _require(isinstance(raw, list) and len(raw) == 2,
+             f"prior: must be a list of two numbers, got {json.dumps(raw, default=str)}")
+    p = [Fraction(parse_number(x, where=f"prior[{i}]")) for i, x in enumerate(raw)]
+    for i, x in enumerate(p):
+        _require(0 < x < 1, f"prior[{i}]: must lie strictly between 0 and 1, got {x}")
+    _require(p[0] + p[1] == 1, f"prior: must sum to exactly 1, got {p[0]} + {p[1]} = {p[0] + p[1]}")
+    return (p[0], p[1])

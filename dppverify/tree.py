@@ -1,0 +1,282 @@
+"""The truncated game's tree of walks (NOTES §4), stored compactly as arrays.
+
+A *prefix* is a walk ``s0 s1 … s_t`` with ``t <= H`` steps that has not reached a goal before
+its last node; it is a *leaf* when ``s_t`` is a goal (the game ends at the FIRST goal reached,
+paper Sec. III-A). Prefixes from which no goal can be reached within the ``H - t`` steps
+left are pruned, so every leaf of the tree ends at a goal and every other prefix has a child.
+The Defender's information set after step ``t`` is the prefix itself (it observes the walk).
+
+Prefixes are numbered in breadth-first order: the root (the empty walk at ``s0``) is 0,
+``parent[p] < p``, and the children of ``p`` are the contiguous range
+``child_start[p]:child_stop[p]``. Iterating ``p`` downwards is backward induction.
+
+Examples
+--------
+>>> from dppverify.instance import instance_from_json
+>>> doc = {"graph": {"nodes": [{"id": "s"}, {"id": "g1"}, {"id": "g2"}],
+...        "edges": [{"source": "s", "target": "g2", "weight": 2},
+...                  {"source": "g2", "target": "g1", "weight": 2},
+...                  {"source": "s", "target": "g1", "weight": 3}]},
+...        "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]}
+>>> tree = build_tree(instance_from_json(doc), 1)
+>>> tree.n_prefixes, [tree.instance.labels(tree.walk(p)) for p in tree.leaves()]
+(3, [('s', 'g1'), ('s', 'g2')])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+from tqdm import tqdm
+
+from dppverify.errors import HorizonError, TreeTooLargeError
+from dppverify.exact import Number
+from dppverify.instance import Instance
+
+__all__ = ["DEFAULT_MAX_PREFIXES", "WalkTree", "build_tree", "count_prefixes", "simple_mask"]
+
+DEFAULT_MAX_PREFIXES = 1_000_000
+"""Default size guard: trees with more prefixes raise :class:`TreeTooLargeError`."""
+
+
+@dataclass(frozen=True, eq=False)
+class WalkTree:
+    """The walks of the truncated game with at most ``horizon`` steps (NOTES §4).
+
+    Attributes
+    ----------
+    instance : Instance
+        The game the tree belongs to.
+    horizon : int
+        ``H``: the maximum number of steps of a walk.
+    node : numpy.ndarray of int32
+        Last node of each prefix (``node[0] = s0``).
+    parent : numpy.ndarray of int64
+        Parent prefix (``-1`` for the root).
+    depth : numpy.ndarray of int32
+        Number of steps ``t`` of each prefix.
+    child_start, child_stop : numpy.ndarray of int64
+        Children of ``p``: ``range(child_start[p], child_stop[p])`` (empty for leaves).
+    weight : tuple
+        Exact weight ``w(e_t)`` of the last step of each prefix (0 for the root).
+    """
+
+    instance: Instance
+    horizon: int
+    node: np.ndarray
+    parent: np.ndarray
+    depth: np.ndarray
+    child_start: np.ndarray
+    child_stop: np.ndarray
+    weight: tuple[Number, ...]
+    weight_float: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "weight_float", np.array([float(w) for w in self.weight]))
+
+    @property
+    def n_prefixes(self) -> int:
+        """Number of prefixes (tree nodes), the root included."""
+        return int(self.node.shape[0])
+
+    def is_leaf_mask(self) -> np.ndarray:
+        """Boolean mask of the leaves (prefixes ending at a goal)."""
+        return np.asarray(self.child_start == self.child_stop)
+
+    def leaves(self) -> np.ndarray:
+        """Indices of the leaves, in breadth-first order."""
+        return np.flatnonzero(self.child_start == self.child_stop)
+
+    @property
+    def n_leaves(self) -> int:
+        """Number of leaves (complete walks of the truncated game)."""
+        return int(np.count_nonzero(self.child_start == self.child_stop))
+
+    def children(self, p: int) -> range:
+        """Child prefixes of ``p``."""
+        return range(int(self.child_start[p]), int(self.child_stop[p]))
+
+    def walk(self, p: int) -> tuple[int, ...]:
+        """The walk (node indices ``s0 … s_t``) of prefix ``p``."""
+        return tuple(int(self.node[q]) for q in self.path(p))
+
+    def path(self, p: int) -> list[int]:
+        """Prefix indices from the root down to ``p`` (inclusive)."""
+        out = []
+        parent = self.parent
+        while p >= 0:
+            out.append(p)
+            p = int(parent[p])
+        out.reverse()
+        return out
+
+    def find(self, walk: Sequence[int]) -> int | None:
+        """Index of the prefix whose walk is ``walk`` (node indices), or None if not in the tree."""
+        if not walk or walk[0] != int(self.node[0]):
+            return None
+        p = 0
+        for v in walk[1:]:
+            lo, hi = int(self.child_start[p]), int(self.child_stop[p])
+            hits = np.flatnonzero(self.node[lo:hi] == v)
+            if hits.size == 0:
+                return None
+            p = lo + int(hits[0])
+        return p
+
+
+def count_prefixes(instance: Instance, horizon: int) -> int:
+    """Number of prefixes of the pruned walk tree with ``horizon`` steps, without building it.
+
+    Dynamic programming over (node, steps left): ``O(H·|E|)``.
+
+    Raises
+    ------
+    HorizonError
+        If ``horizon`` is negative.
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
+    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
+    ...                  {"source": 1, "target": 3}]},
+    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
+    >>> [count_prefixes(instance_from_json(doc), h) for h in range(5)]
+    [0, 2, 4, 6, 8]
+    """
+    if horizon < 0:
+        raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
+    inst = instance
+    goal = [inst.is_goal(v) for v in range(inst.n_nodes)]
+    hops = inst.hops
+    cnt = [1 if goal[v] else 0 for v in range(inst.n_nodes)]  # k = 0 steps left
+    for k in range(1, horizon + 1):
+        nxt = []
+        for v in range(inst.n_nodes):
+            if goal[v]:
+                nxt.append(1)
+            elif 0 <= hops[v] <= k:
+                nxt.append(1 + sum(cnt[u] for u, _ in inst.succ[v]))
+            else:
+                nxt.append(0)
+        cnt = nxt
+    return cnt[inst.start]
+
+
+def build_tree(instance: Instance, horizon: int, *,
+               max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> WalkTree:
+    """Build the pruned tree of walks from ``s0`` with at most ``horizon`` steps.
+
+    Parameters
+    ----------
+    instance : Instance
+        The game.
+    horizon : int
+        ``H >= 0``.
+    max_prefixes : int
+        Size guard: the tree is counted first (:func:`count_prefixes`) and
+        :class:`TreeTooLargeError` is raised before any memory is spent when it is larger.
+    progress : bool
+        Show a tqdm progress bar on stderr.
+
+    Raises
+    ------
+    HorizonError
+        If ``horizon`` is negative or no walk reaches a goal within ``horizon`` steps.
+    TreeTooLargeError
+        If the tree has more than ``max_prefixes`` prefixes.
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
+    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
+    ...                  {"source": 1, "target": 3}]},
+    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
+    >>> t = build_tree(instance_from_json(doc), 4)
+    >>> [t.walk(int(p)) for p in t.leaves()]
+    [(0, 2), (0, 1, 3), (0, 1, 0, 2), (0, 1, 0, 1, 3)]
+    >>> build_tree(instance_from_json(doc), 4, max_prefixes=5)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 4 has 8 prefixes, ...
+    """
+    size = count_prefixes(instance, horizon)
+    if size == 0:
+        raise HorizonError(f"no walk from the start reaches a goal within H = {horizon} steps "
+                           f"(the nearest goal is {instance.hops[instance.start]} steps away)")
+    if size > max_prefixes:
+        raise TreeTooLargeError(
+            f"the walk tree for horizon H = {horizon} has {size} prefixes, more than the limit "
+            f"of {max_prefixes}; lower the horizon or raise the limit (--max-prefixes)")
+    inst = instance
+    goal = [inst.is_goal(v) for v in range(inst.n_nodes)]
+    hops = inst.hops
+    node = [inst.start]
+    parent = [-1]
+    depth = [0]
+    weight: list[Number] = [0]
+    child_start = [0] * size
+    child_stop = [0] * size
+    bar = tqdm(total=size, desc=f"walk tree H={horizon}", unit="prefix", disable=not progress,
+               leave=False)
+    lo, hi = 0, 1  # the current level is node[lo:hi]
+    for t in range(1, horizon + 1):
+        left = horizon - t
+        for p in range(lo, hi):
+            child_start[p] = len(node)
+            v = node[p]
+            if not goal[v]:
+                for u, w in inst.succ[v]:
+                    if goal[u] or 0 <= hops[u] <= left:
+                        node.append(u)
+                        parent.append(p)
+                        depth.append(t)
+                        weight.append(w)
+            child_stop[p] = len(node)
+        bar.update(hi - lo)
+        lo, hi = hi, len(node)
+        if lo == hi:
+            break
+    for p in range(lo, hi):  # the deepest level: leaves
+        child_start[p] = child_stop[p] = len(node)
+    bar.update(hi - lo)
+    bar.close()
+    if len(node) != size:  # pragma: no cover - the count and the build share the pruning rule
+        raise AssertionError(f"tree size {len(node)} differs from its count {size}")
+    return WalkTree(instance=inst, horizon=horizon,
+                    node=np.asarray(node, dtype=np.int32),
+                    parent=np.asarray(parent, dtype=np.int64),
+                    depth=np.asarray(depth, dtype=np.int32),
+                    child_start=np.asarray(child_start, dtype=np.int64),
+                    child_stop=np.asarray(child_stop, dtype=np.int64),
+                    weight=tuple(weight))
+
+
+def simple_mask(tree: WalkTree) -> np.ndarray:
+    """Boolean mask: ``True`` for prefixes whose walk visits no node twice (paths).
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
+    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
+    ...                  {"source": 1, "target": 3}]},
+    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
+    >>> t = build_tree(instance_from_json(doc), 4)
+    >>> [t.walk(int(p)) for p in t.leaves()[simple_mask(t)[t.leaves()]]]
+    [(0, 2), (0, 1, 3)]
+    """
+    n = tree.n_prefixes
+    node = tree.node.tolist()
+    parent = tree.parent.tolist()
+    visited = [0] * n
+    simple = [True] * n
+    visited[0] = 1 << node[0]
+    for p in range(1, n):
+        q = parent[p]
+        bit = 1 << node[p]
+        simple[p] = simple[q] and not (visited[q] & bit)
+        visited[p] = visited[q] | bit
+    return np.asarray(simple, dtype=bool)
