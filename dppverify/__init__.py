@@ -2,8 +2,42 @@
 
 It never imports ``solver``: it reads instances and strategy profiles as JSON
 (``docs/formats.md``) and certifies them against the paper's game.
+
+>>> from dppverify import certify
+>>> doc = {"graph": {"nodes": [{"id": "s"}, {"id": "g1"}, {"id": "g2"}],
+...        "edges": [{"source": "s", "target": "g2", "weight": 2},
+...                  {"source": "g2", "target": "g1", "weight": 2},
+...                  {"source": "s", "target": "g1", "weight": 3}]},
+...        "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]}
+>>> profile = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+...     "defender": {"rule": "progress", "goal": "g1"},
+...     "attacker": {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+...                              {"path": ["s", "g2"], "probability": "3/7"}],
+...                  "secondary": [{"path": ["s", "g2"], "probability": "1"}]}}
+>>> certify(doc, profile).verdict
+'pass'
 """
 
 from __future__ import annotations
 
 __version__ = "0.1.0"
+
+from dppverify.certificate import Certificate, CheckRecord
+from dppverify.certify import CHECK_IDS, certify
+from dppverify.errors import (
+    CertificateError,
+    CheckerError,
+    HorizonError,
+    InvalidInstanceError,
+    LPError,
+    ProfileError,
+    TreeTooLargeError,
+)
+from dppverify.instance import Instance, instance_from_json, load_instance
+from dppverify.tree import WalkTree, build_tree, count_prefixes
+from dppverify.value_lp import GameValue, game_value
+
+__all__ = ["CHECK_IDS", "Certificate", "CertificateError", "CheckRecord", "CheckerError",
+           "GameValue", "HorizonError", "Instance", "InvalidInstanceError", "LPError",
+           "ProfileError", "TreeTooLargeError", "WalkTree", "__version__", "build_tree",
+           "certify", "count_prefixes", "game_value", "instance_from_json", "load_instance"]

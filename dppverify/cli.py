@@ -1,14 +1,154 @@
-"""Checker commands of the ``dpp`` CLI (certify, value, export-efg, audit).
+"""Checker commands of the ``dpp`` CLI (certify, value).
 
-``COMMANDS`` is the list the ``dpp`` group registers. Commands raise
-:class:`dppverify.errors.CheckerError` subclasses for bad input; the group prints them
-as one line and exits 2.
+``COMMANDS`` is the list the ``dpp`` group registers. Commands report
+:class:`dppverify.errors.CheckerError` subclasses (bad input) as one line on stderr and exit
+2 themselves, so they behave the same inside the solver's ``dpp`` group and in
+``python -m dppverify``. ``dpp certify`` exits 0 only when every check passes and 1 when the
+profile is refuted (or a check could not be completed).
 """
 
 from __future__ import annotations
 
+import json
+import sys
+from typing import Any
+
 import click
 
-__all__ = ["COMMANDS"]
+from dppverify.certificate import Certificate, CheckRecord
+from dppverify.certify import DEFAULT_TRIALS, certify
+from dppverify.errors import CheckerError
+from dppverify.exact import format_number
+from dppverify.instance import load_instance
+from dppverify.lp import LP_SOLVER, LP_TOLERANCE
+from dppverify.text import show
+from dppverify.tree import DEFAULT_MAX_PREFIXES
+from dppverify.value_lp import GameValue, game_value
 
-COMMANDS: list[click.Command] = []
+__all__ = ["COMMANDS", "certify_command", "format_table", "value_command"]
+
+NUMBERS_WIDTH = 44
+
+
+def _fail(exc: CheckerError) -> None:
+    click.echo(f"error: {exc}", err=True)
+    raise click.exceptions.Exit(2)
+
+
+def _numbers(rec: CheckRecord) -> str:
+    text = " ".join(f"{k}={show(v)}" for k, v in rec.numbers.items() if v is not None)
+    return text if len(text) <= NUMBERS_WIDTH else text[:NUMBERS_WIDTH - 3] + "..."
+
+
+def format_table(cert: Certificate) -> str:
+    """The human-readable certificate: a header line and one row per check."""
+    passed = sum(c.passed for c in cert.checks)
+    mode = "exact" if cert.exact else f"float mode, relative tolerance {cert.tolerance:g}"
+    head = (f"verdict: {cert.verdict.upper()} ({passed}/{len(cert.checks)} checks passed; "
+            f"H = {cert.horizon}, {cert.prefixes} prefixes, {mode}; LP {cert.lp_solver} "
+            f"agreement within {cert.lp_tolerance:g} relative)")
+    rows = [("check", "status", "numbers", "message")]
+    rows += [(c.id, c.status, _numbers(c), c.message) for c in cert.checks]
+    w0 = max(len(r[0]) for r in rows)
+    w1 = max(len(r[1]) for r in rows)
+    w2 = max(len(r[2]) for r in rows)
+    lines = [head] + [f"{a:<{w0}}  {b:<{w1}}  {c:<{w2}}  {d}".rstrip() for a, b, c, d in rows]
+    return "\n".join(lines)
+
+
+@click.command("certify")
+@click.argument("instance", type=click.Path(dir_okay=False))
+@click.argument("profile", type=click.Path(dir_okay=False))
+@click.option("-H", "--horizon", type=click.IntRange(min=0),
+              help="Horizon H of the truncated game (default: the longest profile path).")
+@click.option("--json", "as_json", is_flag=True, help="Print the dpp-certificate/1 JSON.")
+@click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
+              show_default=True, help="Refuse walk trees larger than this.")
+@click.option("--float", "float_mode", is_flag=True,
+              help="Accept float-mode instances (\"numbers\": \"float\") and compare within a "
+                   "relative tolerance of 1e-9 instead of refusing them.")
+@click.option("--seed", type=int, default=0, show_default=True,
+              help="Seed of the random attackers of the L3/L4 checks.")
+@click.option("--trials", type=click.IntRange(min=0), default=DEFAULT_TRIALS, show_default=True,
+              help="Number of random attackers in the L3/L4 checks.")
+def certify_command(instance: str, profile: str, horizon: int | None, as_json: bool,
+                    max_prefixes: int, float_mode: bool, seed: int, trials: int) -> None:
+    """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE.
+
+    PROFILE is a dpp-profile/1 JSON file (from `dpp solve -o` or any other solver). Bad
+    input exits 2 with a one-line message.
+
+    \b
+    Examples:
+      dpp certify examples/triangle.json out/triangle.profile.json
+      dpp certify examples/triangle.json profile.json --horizon 4 --json
+    """
+    try:
+        cert = certify(instance, profile, horizon=horizon, exact=not float_mode,
+                       max_prefixes=max_prefixes, seed=seed, trials=trials,
+                       progress=sys.stderr.isatty())
+    except CheckerError as exc:
+        _fail(exc)
+        return
+    if as_json:
+        click.echo(json.dumps(cert.to_json(), indent=2, ensure_ascii=False))
+    else:
+        click.echo(format_table(cert))
+    raise click.exceptions.Exit(0 if cert.passed else 1)
+
+
+def value_document(v: GameValue) -> dict[str, Any]:
+    """The JSON that ``dpp value --json`` prints."""
+    b = v.bracket
+    return {
+        "horizon": v.horizon,
+        "value_lp": v.lp.value,
+        "value": format_number(b.exact),
+        "lower": format_number(b.lower),
+        "upper": format_number(b.upper),
+        "lower_source": b.lower_source,
+        "upper_source": b.upper_source,
+        "exact": v.exact and b.closed,
+        "lp": {"solver": LP_SOLVER, "status": v.lp.status, "tolerance": LP_TOLERANCE,
+               "seconds": round(v.lp.seconds, 3), "variables": v.lp.variables,
+               "constraints": v.lp.constraints},
+        "tree": {"prefixes": v.prefixes, "leaves": v.leaves},
+    }
+
+
+@click.command("value")
+@click.argument("instance", type=click.Path(dir_okay=False))
+@click.option("-H", "--horizon", type=click.IntRange(min=0), required=True,
+              help="Horizon H of the truncated game.")
+@click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+@click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
+              show_default=True, help="Refuse walk trees larger than this.")
+def value_command(instance: str, horizon: int, as_json: bool, max_prefixes: int) -> None:
+    """Print V_H, the value of INSTANCE's game truncated at H steps (NOTES §4).
+
+    The compact LP (cvxpy + Clarabel) gives a float; rounding its primal and dual solutions
+    to rationals gives exact bounds, which usually meet: V_H is then printed exactly.
+
+    \b
+    Examples:
+      dpp value examples/triangle.json --horizon 4
+      dpp value examples/triangle.json -H 4 --json
+    """
+    try:
+        v = game_value(load_instance(instance), horizon, max_prefixes=max_prefixes,
+                       progress=sys.stderr.isatty())
+    except CheckerError as exc:
+        _fail(exc)
+        return
+    if as_json:
+        click.echo(json.dumps(value_document(v), indent=2))
+        return
+    b = v.bracket
+    exact = (f"{show(b.exact)} exactly" if b.closed and v.exact else
+             f"in [{show(b.lower)}, {show(b.upper)}]")
+    click.echo(f"V_H (H = {v.horizon}) = {exact}; LP value {show(v.lp.value)} "
+               f"({LP_SOLVER}, agreement tolerance {LP_TOLERANCE:g} relative, "
+               f"{v.prefixes} prefixes, {v.lp.seconds:.2f} s)")
+
+
+COMMANDS: list[click.Command] = [certify_command, value_command]

@@ -7,6 +7,7 @@ the checker's tree or backward induction.
 
 from __future__ import annotations
 
+import itertools
 import json
 from collections.abc import Hashable, Iterator, Sequence
 from fractions import Fraction
@@ -110,3 +111,74 @@ def distances_to(doc: dict[str, Any], target: Any) -> dict[Hashable, Fraction]:
         if not changed:
             break
     return dist
+
+
+def profile_doc(primary: Sequence[tuple[Sequence[Any], Any]],
+                secondary: Sequence[tuple[Sequence[Any], Any]], goals: tuple[Any, Any],
+                defender: dict[str, Any] | None = None, **extra: Any) -> dict[str, Any]:
+    """A ``dpp-profile/1`` document from ``(path, probability)`` pairs."""
+    doc: dict[str, Any] = {
+        "format": "dpp-profile/1",
+        "goals": {"primary": goals[0], "secondary": goals[1]},
+        "defender": defender or {"rule": "progress", "goal": goals[0]},
+        "attacker": {
+            "primary": [{"path": list(p), "probability": str(Fraction(q))} for p, q in primary],
+            "secondary": [{"path": list(p), "probability": str(Fraction(q))}
+                          for p, q in secondary],
+        },
+    }
+    doc.update(extra)
+    return doc
+
+
+def three_phase_doc() -> dict[str, Any]:
+    """The conformance case ``phases=I+II+III``: start 3, g1 = 2 (prior 2/3), g2 = 4.
+
+    Hand computation (paper Sec. V): d(·, g1) = {2: 0, 5: 1/2, 0: 5/2, 1: 10/3, 3: 13/3,
+    4: 7/2}; ξ² = 3 1 0 4 with σ* = 1, 5/18, 0 (t_I = 1, t_II = 2, T = 3);
+    ξ^{1,I} = 3 1 2, ξ^{1,II} = 3 1 0 5 2, each with probability b2/b1 = 1/2;
+    U¹ = 13/3, U² = 3·13/18 + 1 = 19/6, U = 71/18.
+    """
+    return make_doc([(0, 1, 3), (0, 2, 4), (0, 4, 1), (0, 5, 2), (1, 2, "10/3"), (1, 3, 1),
+                     (2, 5, "1/2")], 3, [4, 2], ["1/3", "2/3"], nodes=[0, 1, 2, 3, 4, 5])
+
+
+def three_phase_profile() -> dict[str, Any]:
+    """The equilibrium of :func:`three_phase_doc`, written by hand from the construction."""
+    return profile_doc([([3, 1, 2], "1/2"), ([3, 1, 0, 5, 2], "1/2")], [([3, 1, 0, 4], 1)],
+                       (2, 4), phases={"t_I": 1, "t_II": 2, "T": 3},
+                       prior={"primary": "2/3", "secondary": "1/3"},
+                       value={"U1": "13/3", "U2": "19/6", "U": "71/18", "U_bar": "41/9",
+                              "VoI": "11/82"})
+
+
+def triangle_profile() -> dict[str, Any]:
+    """formats.md's example profile (eq. 14: ξ^{1,II} = s g2 with b2/b1 = 3/7)."""
+    return profile_doc([(["s", "g1"], "4/7"), (["s", "g2"], "3/7")], [(["s", "g2"], 1)],
+                       ("g1", "g2"), phases={"t_I": 0, "t_II": 1, "T": 1},
+                       prior={"primary": "7/10", "secondary": "3/10"},
+                       value={"U1": "3", "U2": "1", "U": "12/5", "U_bar": "27/10",
+                              "VoI": "1/9"})
+
+
+def progress_costs(doc: dict[str, Any], walk: Sequence[Any], g1: Any, g2: Any
+                   ) -> tuple[Fraction, Fraction]:
+    """Both types' costs of ``walk`` against σ* (eq. 9), by a naive re-implementation.
+
+    Returns ``(U¹, U²)`` of the walk: ``Σ w σ*(g1) + d(end, g1)`` and
+    ``Σ w (1 − σ*(g1)) + d(end, g2)``, distances by Bellman-Ford.
+    """
+    adj = adjacency(doc)
+    d1, d2 = distances_to(doc, g1), distances_to(doc, g2)
+    nodes = [_key(v) for v in walk]
+    inf = Fraction(10**18)
+    c = d1.get(nodes[0], inf)
+    u1 = u2 = Fraction(0)
+    for a, b in itertools.pairwise(nodes):
+        w = dict(adj[a])[b]
+        new = min(c, d1.get(b, inf))
+        sigma = (c - new) / w
+        u1 += w * sigma
+        u2 += w * (1 - sigma)
+        c = new
+    return u1 + d1[nodes[-1]], u2 + d2[nodes[-1]]

@@ -1,0 +1,255 @@
+"""Certificates: one record per check, and the ``dpp-certificate/1`` JSON form.
+
+``docs/formats.md`` §3. Exact numbers are written as ``"p/q"`` strings, LP values as JSON
+floats; :meth:`Certificate.from_json` reads them back (strings to exact rationals).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from fractions import Fraction
+from types import MappingProxyType
+from typing import Any, Literal, cast
+
+from dppverify.errors import CertificateError
+from dppverify.exact import Number, format_number, normalize
+
+__all__ = ["CERTIFICATE_FORMAT", "STATUSES", "Certificate", "CheckRecord", "Status", "Verdict",
+           "verdict_of"]
+
+CERTIFICATE_FORMAT = "dpp-certificate/1"
+
+Status = Literal["pass", "fail", "error", "skipped"]
+Verdict = Literal["pass", "fail", "error", "incomplete"]
+STATUSES: tuple[Status, ...] = ("pass", "fail", "error", "skipped")
+
+NumberEntry = Number | None
+
+
+@dataclass(frozen=True)
+class CheckRecord:
+    """The outcome of one check.
+
+    Attributes
+    ----------
+    id : str
+        Stable check id (``dppverify/checks.md``).
+    status : {"pass", "fail", "error", "skipped"}
+        ``fail`` refutes the profile (or a lemma on this instance); ``error`` means the check
+        could not be carried out (e.g. an LP did not solve); ``skipped`` means it does not
+        apply or depends on a failed check.
+    message : str
+        One line for humans.
+    numbers : Mapping
+        Exact numbers (``int``/``Fraction``), LP values (``float``) or None.
+    proof : str or None
+        The proof file id in ``proofs/`` that the check tests (TEL, L1, …).
+    """
+
+    id: str
+    status: Status
+    message: str
+    numbers: Mapping[str, NumberEntry] = field(default_factory=dict)
+    proof: str | None = None
+
+    def __post_init__(self) -> None:
+        if self.status not in STATUSES:
+            raise CertificateError(f"check {self.id}: unknown status {self.status!r}")
+        object.__setattr__(self, "numbers", MappingProxyType(dict(self.numbers)))
+
+    @property
+    def passed(self) -> bool:
+        """True when the status is ``pass``."""
+        return self.status == "pass"
+
+    def to_json(self) -> dict[str, Any]:
+        """The record as a JSON object."""
+        doc: dict[str, Any] = {"id": self.id, "status": self.status, "message": self.message,
+                               "numbers": {k: format_number(v) for k, v in self.numbers.items()}}
+        if self.proof is not None:
+            doc["proof"] = self.proof
+        return doc
+
+    @classmethod
+    def from_json(cls, doc: Any) -> CheckRecord:
+        """Read a record written by :meth:`to_json`."""
+        if not isinstance(doc, Mapping):
+            raise CertificateError("a check record must be a JSON object")
+        try:
+            numbers = {str(k): _read_number(v) for k, v in dict(doc.get("numbers", {})).items()}
+            status = doc["status"]
+            if status not in STATUSES:
+                raise CertificateError(f"check {doc.get('id')!r}: unknown status {status!r}")
+            proof = doc.get("proof")
+            return cls(id=str(doc["id"]), status=cast(Status, status),
+                       message=str(doc.get("message", "")), numbers=numbers,
+                       proof=None if proof is None else str(proof))
+        except KeyError as exc:
+            raise CertificateError(f"check record is missing {exc}") from None
+        except (TypeError, ValueError, ZeroDivisionError) as exc:
+            raise CertificateError(f"malformed check record: {exc}") from None
+
+
+def _read_number(v: Any) -> NumberEntry:
+    if v is None or isinstance(v, float):
+        return v
+    if isinstance(v, bool):
+        raise ValueError(f"not a number: {v!r}")
+    if isinstance(v, int | Fraction):
+        return normalize(Fraction(v))
+    if isinstance(v, str):
+        if v in ("inf", "-inf", "nan"):
+            return float(v)
+        return normalize(Fraction(v))
+    raise ValueError(f"not a number: {v!r}")
+
+
+def verdict_of(checks: tuple[CheckRecord, ...]) -> Verdict:
+    """``fail`` if any check failed, else ``error`` if any errored, else ``incomplete`` if any
+    was skipped, else ``pass``.
+
+    Examples
+    --------
+    >>> verdict_of((CheckRecord("a", "pass", ""), CheckRecord("b", "skipped", "")))
+    'incomplete'
+    """
+    statuses = {c.status for c in checks}
+    if "fail" in statuses:
+        return "fail"
+    if "error" in statuses:
+        return "error"
+    if "skipped" in statuses:
+        return "incomplete"
+    return "pass"
+
+
+@dataclass(frozen=True)
+class Certificate:
+    """The result of :func:`dppverify.certify`: every check with its outcome.
+
+    Attributes
+    ----------
+    checks : tuple of CheckRecord
+        In the documented order (``dppverify/checks.md``).
+    horizon : int
+        ``H`` of the truncated game the checks ran on.
+    exact : bool
+        True when every exact number is an exact rational; False in float mode.
+    tolerance : float or None
+        Float mode's relative tolerance (None when exact).
+    lp_solver, lp_tolerance
+        The LP solver and the relative tolerance of LP-vs-exact agreement.
+    prefixes, leaves : int
+        Size of the walk tree.
+    seed : int or None
+        Seed of the random attackers of the L3/L4 checks.
+    info : Mapping
+        Free-form context (instance size, labelling, …).
+
+    Examples
+    --------
+    >>> c = Certificate(checks=(CheckRecord("value.U", "pass", "U = 12/5",
+    ...                                     {"U": Fraction(12, 5), "U_lp": 2.4}),),
+    ...                 horizon=1, exact=True)
+    >>> c.verdict, c.to_json()["checks"][0]["numbers"]
+    ('pass', {'U': '12/5', 'U_lp': 2.4})
+    >>> Certificate.from_json(c.to_json()) == c
+    True
+    """
+
+    checks: tuple[CheckRecord, ...]
+    horizon: int
+    exact: bool
+    tolerance: float | None = None
+    lp_solver: str = "CLARABEL"
+    lp_tolerance: float = 1e-7
+    prefixes: int = 0
+    leaves: int = 0
+    seed: int | None = None
+    info: Mapping[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "checks", tuple(self.checks))
+        object.__setattr__(self, "info", MappingProxyType(dict(self.info)))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Certificate):
+            return NotImplemented
+        return self.to_json() == other.to_json()
+
+    __hash__ = None  # type: ignore[assignment]
+
+    @property
+    def verdict(self) -> Verdict:
+        """``pass`` exactly when every check passed (see :func:`verdict_of`)."""
+        return verdict_of(self.checks)
+
+    @property
+    def passed(self) -> bool:
+        """True when the verdict is ``pass``."""
+        return self.verdict == "pass"
+
+    def check(self, check_id: str) -> CheckRecord:
+        """The record of ``check_id`` (KeyError if absent)."""
+        for c in self.checks:
+            if c.id == check_id:
+                return c
+        raise KeyError(check_id)
+
+    def failed(self) -> tuple[CheckRecord, ...]:
+        """The records whose status is not ``pass``."""
+        return tuple(c for c in self.checks if c.status != "pass")
+
+    def to_json(self) -> dict[str, Any]:
+        """The ``dpp-certificate/1`` document."""
+        return {
+            "format": CERTIFICATE_FORMAT,
+            "verdict": self.verdict,
+            "horizon": self.horizon,
+            "exact": self.exact,
+            "tolerance": self.tolerance,
+            "lp": {"solver": self.lp_solver, "tolerance": self.lp_tolerance},
+            "tree": {"prefixes": self.prefixes, "leaves": self.leaves},
+            "seed": self.seed,
+            "info": json.loads(json.dumps(dict(self.info), default=str)),
+            "checks": [c.to_json() for c in self.checks],
+        }
+
+    @classmethod
+    def from_json(cls, doc: Any) -> Certificate:
+        """Read a ``dpp-certificate/1`` document (dict or JSON text).
+
+        Raises
+        ------
+        CertificateError
+            If the document is malformed or its verdict contradicts its checks.
+        """
+        if isinstance(doc, str | bytes):
+            try:
+                doc = json.loads(doc)
+            except json.JSONDecodeError as exc:
+                raise CertificateError(f"certificate is not JSON: {exc.msg}") from None
+        if not isinstance(doc, Mapping) or doc.get("format") != CERTIFICATE_FORMAT:
+            raise CertificateError(f"not a {CERTIFICATE_FORMAT} document")
+        try:
+            checks = tuple(CheckRecord.from_json(c) for c in doc["checks"])
+            lp = doc.get("lp") or {}
+            tree = doc.get("tree") or {}
+            tol = doc.get("tolerance")
+            cert = cls(checks=checks, horizon=int(doc["horizon"]), exact=bool(doc["exact"]),
+                       tolerance=None if tol is None else float(tol),
+                       lp_solver=str(lp.get("solver", "CLARABEL")),
+                       lp_tolerance=float(lp.get("tolerance", 1e-7)),
+                       prefixes=int(tree.get("prefixes", 0)), leaves=int(tree.get("leaves", 0)),
+                       seed=None if doc.get("seed") is None else int(doc["seed"]),
+                       info=dict(doc.get("info") or {}))
+        except KeyError as exc:
+            raise CertificateError(f"certificate is missing {exc}") from None
+        except (TypeError, ValueError, AttributeError) as exc:
+            raise CertificateError(f"malformed certificate: {exc}") from None
+        if doc.get("verdict") != cert.verdict:
+            raise CertificateError(f"certificate verdict {doc.get('verdict')!r} contradicts its "
+                                   f"checks (they give {cert.verdict!r})")
+        return cert

@@ -1,0 +1,84 @@
+"""What every check needs, computed once: the tree, the labelling, both Defenders on the tree,
+and the profile's realization plans.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+from dppverify.defender import TreeDefender, tree_defender
+from dppverify.evaluate import realization
+from dppverify.exact import Tolerance
+from dppverify.instance import Instance, Roles
+from dppverify.profile import Profile, ProgressRule
+from dppverify.tree import WalkTree
+
+__all__ = ["Context", "make_context"]
+
+
+@dataclass(frozen=True, eq=False)
+class Context:
+    """Shared inputs of the checks.
+
+    Attributes
+    ----------
+    instance, tree, profile
+        The game, its walk tree at the chosen horizon, the resolved profile.
+    roles : Roles
+        The labelling the profile uses (primary = ``profile.primary_slot``).
+    tol : Tolerance
+        Exact comparisons, or float mode's tolerance.
+    sigma_star : TreeDefender
+        The paper's σ* (progress towards ``g1``) on every prefix: used by the lemma checks
+        whatever Defender the profile proposes.
+    defender : TreeDefender or None
+        The profile's Defender on every prefix (None when the profile is ill-formed).
+    x1, x2 : dict or None
+        The profile's realization plans (None when the profile is ill-formed).
+    seed, trials : int
+        Random attackers of the L3/L4 checks: RNG seed and how many.
+    undefined : tuple of int
+        Prefixes where a table Defender without default has no entry.
+    """
+
+    instance: Instance
+    tree: WalkTree
+    profile: Profile
+    roles: Roles
+    tol: Tolerance
+    sigma_star: TreeDefender
+    defender: TreeDefender | None
+    x1: dict[int, Fraction] | None
+    x2: dict[int, Fraction] | None
+    seed: int
+    trials: int
+    undefined: tuple[int, ...] = ()
+
+    @property
+    def usable(self) -> bool:
+        """True when the profile can be evaluated (well-formed, Defender defined on the tree)."""
+        return self.defender is not None and self.x1 is not None and self.x2 is not None
+
+
+def make_context(instance: Instance, tree: WalkTree, profile: Profile, tol: Tolerance,
+                 *, seed: int, trials: int) -> Context:
+    """Evaluate both Defenders on the tree and the profile's realization plans."""
+    roles = instance.roles(profile.primary_slot)
+    sigma_star = tree_defender(tree, roles, ProgressRule(roles.g1))
+    defender = None
+    x1 = x2 = None
+    undefined: tuple[int, ...] = ()
+    if profile.wellformed and profile.defender is not None:
+        td = tree_defender(tree, roles, profile.defender)
+        undefined = td.undefined
+        if not undefined:
+            defender = td
+        try:
+            x1 = realization(tree, profile.primary)
+            x2 = realization(tree, profile.secondary)
+        except KeyError:  # pragma: no cover - the horizon covers every profile walk
+            x1 = x2 = None
+    return Context(instance=instance, tree=tree, profile=profile, roles=roles, tol=tol,
+                   sigma_star=sigma_star, defender=defender, x1=x1, x2=x2, seed=seed,
+                   trials=trials, undefined=undefined)

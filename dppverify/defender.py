@@ -1,0 +1,248 @@
+"""The Defender's strategies: the progress rule σ* (eq. 9) and explicit tables.
+
+Re-implemented from the paper's definition (Sec. IV, Definition 3 and eq. 9), independently
+of the solver: with ``c_0 = d(s0, g)`` and ``c_t = min(c_{t-1}, d(s_t, g))`` (full-graph
+distances, NOTES §1/§3), the Defender allocates to ``g`` with probability
+``(c_{t-1} - c_t) / w(e_t)``. A node that cannot reach ``g`` has ``d = inf`` and gives no
+progress.
+
+Everything is expressed as ``σ(g1 | walk)``, the probability of allocating to the primary
+goal ``g1`` of the labelling in use, and as the allocated amounts
+``a1 = w(e_t) σ(g1)`` and ``a2 = w(e_t) (1 - σ(g1))`` — the stage costs of the two types.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+
+from dppverify.exact import Number, normalize
+from dppverify.instance import Instance, Roles
+from dppverify.profile import DefenderRule, ProgressRule, TableRule
+from dppverify.tree import WalkTree
+
+__all__ = ["TreeDefender", "UndefinedStrategyError", "divide", "progress_along", "sigma_along",
+           "tree_defender"]
+
+
+class UndefinedStrategyError(LookupError):
+    """A table Defender without default has no entry for a walk the game reaches."""
+
+
+def divide(a: Number, b: Number, exact: bool) -> Number:
+    """``a / b``: exact (``int`` when integral) for rationals, float in float mode.
+
+    Examples
+    --------
+    >>> divide(3, 6, True), divide(4, 2, True), divide(1.0, 4.0, False)
+    (Fraction(1, 2), 2, 0.25)
+    """
+    if not exact or isinstance(a, float) or isinstance(b, float):
+        return float(a) / float(b)
+    return normalize(Fraction(a) / Fraction(b))
+
+
+def progress_along(instance: Instance, goal: int, walk: Sequence[int]) -> list[Number]:
+    """The new progress ``c_{t-1} - c_t`` towards ``goal`` at each step of ``walk`` (eq. 8-9).
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
+    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
+    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
+    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> progress_along(inst, 1, [0, 2])   # s -> g2: d(., g1) drops from 3 to 2
+    [1]
+    """
+    slot = instance.slot(goal)
+    assert slot is not None
+    d = instance.dist_to[slot]
+    c = d[walk[0]]
+    out: list[Number] = []
+    for v in walk[1:]:
+        new = min(c, d[v])
+        out.append(c - new)
+        c = new
+    return out
+
+
+def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[int]
+                        ) -> list[Number]:
+    """σ(rule.goal | walk[:t+1]) for t = 1..T."""
+    exact = instance.exact
+    if isinstance(rule, ProgressRule):
+        prog = progress_along(instance, rule.goal, walk)
+        out = []
+        for t, pr in enumerate(prog, start=1):
+            w = instance.weight(walk[t - 1], walk[t])
+            assert w is not None
+            out.append(_clamp(divide(pr, w, exact), exact))
+        return out
+    result: list[Number] = []
+    progress: list[Number] | None = None
+    for t in range(1, len(walk)):
+        key = tuple(walk[:t + 1])
+        if key in rule.entries:
+            result.append(rule.entries[key])
+        elif isinstance(rule.default, ProgressRule):
+            if progress is None:
+                progress = _rule_sigma_to_goal(instance, rule.default, walk)
+            result.append(progress[t - 1])
+        elif rule.default is not None:
+            result.append(rule.default)
+        else:
+            raise UndefinedStrategyError(f"the Defender's table has no entry for walk "
+                                         f"{instance.labels(key)} and no default")
+    return result
+
+
+def _clamp(x: Number, exact: bool) -> Number:
+    if exact:
+        return x
+    return min(1.0, max(0.0, float(x)))
+
+
+def sigma_along(instance: Instance, roles: Roles, rule: DefenderRule,
+                walk: Sequence[int]) -> list[Number]:
+    """``σ(g1 | s0 … s_t)`` at each step ``t = 1..T`` of ``walk``.
+
+    Raises
+    ------
+    UndefinedStrategyError
+        For a table without default that does not list one of the walk's prefixes.
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "a"},
+    ...     {"id": "g1"}, {"id": "g2"}], "edges": [{"source": "s", "target": "a", "weight": 2},
+    ...     {"source": "a", "target": "g1", "weight": 2}, {"source": "s", "target": "g2",
+    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["3/5", "2/5"]})
+    >>> r = inst.roles()
+    >>> sigma_along(inst, r, ProgressRule(r.g1), [0, 1, 2])
+    [1, 1]
+    >>> sigma_along(inst, r, ProgressRule(r.g1), [0, 1, 0, 3])   # back to s, then g2
+    [1, 0, 0]
+    """
+    sigma = _rule_sigma_to_goal(instance, rule, walk)
+    if rule.goal == roles.g1:
+        return sigma
+    one: Number = 1 if instance.exact else 1.0
+    return [normalize(one - s) if instance.exact else one - s for s in sigma]
+
+
+@dataclass(frozen=True)
+class TreeDefender:
+    """A Defender strategy evaluated at every prefix of a walk tree.
+
+    Attributes
+    ----------
+    sigma1 : tuple
+        ``σ(g1 | prefix)`` for every prefix (index 0, the root, holds 0: no action).
+    alloc1, alloc2 : tuple
+        ``w σ(g1)`` and ``w (1 - σ(g1))``: type 1's and type 2's stage cost at each prefix.
+    undefined : tuple of int
+        Prefixes where a table Defender without default has no entry (their values are 0).
+    """
+
+    sigma1: tuple[Number, ...]
+    alloc1: tuple[Number, ...]
+    alloc2: tuple[Number, ...]
+    undefined: tuple[int, ...] = ()
+
+    def alloc(self, theta: int) -> tuple[Number, ...]:
+        """Stage costs of type ``theta`` (1 = primary, 2 = secondary)."""
+        return self.alloc1 if theta == 1 else self.alloc2
+
+
+def _progress_on_tree(tree: WalkTree, goal: int) -> list[Number]:
+    """New progress towards ``goal`` at every prefix (root: 0), eq. (9)'s numerator."""
+    inst = tree.instance
+    slot = inst.slot(goal)
+    assert slot is not None
+    d = inst.dist_to[slot]
+    node = tree.node.tolist()
+    parent = tree.parent.tolist()
+    n = tree.n_prefixes
+    c: list[Number] = [0] * n
+    prog: list[Number] = [0] * n
+    c[0] = d[node[0]]
+    for p in range(1, n):
+        cq = c[parent[p]]
+        dv = d[node[p]]
+        if dv < cq:
+            c[p] = dv
+            prog[p] = cq - dv
+        else:
+            c[p] = cq
+    return prog
+
+
+def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefender:
+    """Evaluate a Defender rule at every prefix of ``tree`` (labelling ``roles``).
+
+    For the progress rule the stage costs are the telescoping increments of NOTES §1:
+    ``a1 = c_{t-1} - c_t`` exactly (no division needed).
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
+    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
+    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
+    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> r = inst.roles()
+    >>> td = tree_defender(build_tree(inst, 1), r, ProgressRule(r.g1))
+    >>> [inst.labels(w) for w in ([0, 1], [0, 2])], td.sigma1, td.alloc1, td.alloc2
+    ([('s', 'g1'), ('s', 'g2')], (0, 1, Fraction(1, 2)), (0, 3, 1), (0, 0, 1))
+    """
+    inst = tree.instance
+    exact = inst.exact
+    n = tree.n_prefixes
+    weight = tree.weight
+    sigma_goal: list[Number] = [0] * n
+    amount: list[Number | None] = [None] * n  # w * sigma_goal when known without multiplying
+    undefined: list[int] = []
+    progress_goal = rule.goal if isinstance(rule, ProgressRule) else (
+        rule.default.goal if isinstance(rule.default, ProgressRule) else None)
+    if progress_goal is not None:
+        prog = _progress_on_tree(tree, progress_goal)
+        for p in range(1, n):
+            s = _clamp(divide(prog[p], weight[p], exact), exact)
+            sigma_goal[p] = s
+            amount[p] = prog[p] if exact else float(weight[p]) * float(s)
+    elif isinstance(rule, TableRule) and rule.default is not None:
+        assert not isinstance(rule.default, ProgressRule)
+        fill: Number = rule.default
+        sigma_goal = [0] + [fill] * (n - 1)
+    if isinstance(rule, TableRule):
+        listed = set()
+        for walk, prob in rule.entries.items():
+            p_idx = tree.find(walk)
+            if p_idx is not None:
+                sigma_goal[p_idx] = prob
+                amount[p_idx] = None
+                listed.add(p_idx)
+        if rule.default is None:
+            undefined = [p for p in range(1, n) if p not in listed]
+    one: Number = 1 if exact else 1.0
+    to_g1 = rule.goal == roles.g1
+    sigma1: list[Number] = [0] * n
+    alloc1: list[Number] = [0] * n
+    alloc2: list[Number] = [0] * n
+    for p in range(1, n):
+        w = weight[p]
+        a = amount[p]
+        if a is None:
+            a = normalize(w * sigma_goal[p]) if exact else float(w) * float(sigma_goal[p])
+        b = normalize(w - a) if exact else float(w) - float(a)
+        if to_g1:
+            sigma1[p], alloc1[p], alloc2[p] = sigma_goal[p], a, b
+        else:
+            s = normalize(one - sigma_goal[p]) if exact else one - float(sigma_goal[p])
+            sigma1[p], alloc1[p], alloc2[p] = s, b, a
+    return TreeDefender(sigma1=tuple(sigma1), alloc1=tuple(alloc1), alloc2=tuple(alloc2),
+                        undefined=tuple(undefined))

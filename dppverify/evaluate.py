@@ -1,0 +1,124 @@
+"""Exact payoffs of a profile: U¹, U², U (eqs. 6-7), Ū and VoI (Definition 7).
+
+Walk by walk, independently of the tree: a walk ``s0 … s_T`` costs type θ
+``Σ_t w(e_t) σ(g^θ | s0 … s_t) + d(s_T, g^θ)`` (stage costs plus the terminal cost, with
+full-graph distances), and ``U^θ`` is the expectation over type θ's mixed strategy.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+from fractions import Fraction
+
+from dppverify.defender import sigma_along
+from dppverify.exact import Number, normalize
+from dppverify.instance import Instance, Roles
+from dppverify.profile import DefenderRule, MixedWalk
+from dppverify.tree import WalkTree
+
+__all__ = ["Values", "complete_information_value", "evaluate", "realization", "walk_cost"]
+
+
+@dataclass(frozen=True)
+class Values:
+    """Payoffs of a profile (paper eqs. 6-7 and Definition 7)."""
+
+    U1: Number
+    U2: Number
+    U: Number
+    U_bar: Number
+    VoI: Number
+
+    def as_dict(self) -> dict[str, Number]:
+        """``{"U1": …, "U2": …, "U": …, "U_bar": …, "VoI": …}``."""
+        return {"U1": self.U1, "U2": self.U2, "U": self.U, "U_bar": self.U_bar, "VoI": self.VoI}
+
+
+def walk_cost(instance: Instance, roles: Roles, rule: DefenderRule, walk: tuple[int, ...],
+              theta: int) -> Number:
+    """Type ``theta``'s cost of ``walk`` against ``rule``: stage costs + terminal cost.
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.profile import ProgressRule
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
+    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
+    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
+    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> r = inst.roles()
+    >>> [walk_cost(inst, r, ProgressRule(r.g1), (0, 2), th) for th in (1, 2)]  # s -> g2
+    [3, 1]
+    """
+    sigma = sigma_along(instance, roles, rule, walk)
+    total: Number = 0
+    for t, s in enumerate(sigma, start=1):
+        w = instance.weight(walk[t - 1], walk[t])
+        assert w is not None
+        total += w * (s if theta == 1 else 1 - s)
+    total += roles.dist(theta)[walk[-1]]
+    return normalize(total) if instance.exact else float(total)
+
+
+def complete_information_value(instance: Instance, roles: Roles) -> Number:
+    """``Ū = b1 d(s0, g1) + b2 d(s0, g2)`` (eq. 2 and Definition 7)."""
+    s0 = instance.start
+    return normalize(roles.b1 * roles.d1[s0] + roles.b2 * roles.d2[s0])
+
+
+def evaluate(instance: Instance, roles: Roles, rule: DefenderRule,
+             primary: Iterable[MixedWalk], secondary: Iterable[MixedWalk]) -> Values:
+    """Exact payoffs of the profile ``(rule, primary, secondary)``.
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.profile import ProgressRule
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
+    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
+    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
+    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> r = inst.roles()
+    >>> v = evaluate(inst, r, ProgressRule(r.g1),
+    ...              [MixedWalk((0, 1), Fraction(4, 7)), MixedWalk((0, 2), Fraction(3, 7))],
+    ...              [MixedWalk((0, 2), Fraction(1))])
+    >>> [str(x) for x in (v.U1, v.U2, v.U, v.U_bar, v.VoI)]
+    ['3', '1', '12/5', '27/10', '1/9']
+    """
+    u: dict[int, Number] = {}
+    for theta, walks in ((1, primary), (2, secondary)):
+        acc: Number = 0
+        for mw in walks:
+            acc += mw.probability * walk_cost(instance, roles, rule, mw.walk, theta)
+        u[theta] = normalize(acc) if instance.exact else float(acc)
+    U = roles.b1 * u[1] + roles.b2 * u[2]
+    U = normalize(U) if instance.exact else float(U)
+    U_bar = complete_information_value(instance, roles)
+    if instance.exact:
+        voi: Number = normalize(Fraction(U_bar - U) / Fraction(U_bar))
+    else:
+        voi = (float(U_bar) - float(U)) / float(U_bar)
+    return Values(U1=u[1], U2=u[2], U=U, U_bar=U_bar, VoI=voi)
+
+
+def realization(tree: WalkTree, walks: Iterable[MixedWalk]) -> dict[int, Fraction]:
+    """Realization plan of a mixed strategy over walks: prefix index -> reach probability.
+
+    Only prefixes with positive probability are listed. Every walk must be in ``tree``.
+
+    Raises
+    ------
+    KeyError
+        If a walk is not a leaf of ``tree`` (longer than the horizon).
+    """
+    x: dict[int, Fraction] = {}
+    for mw in walks:
+        if mw.probability == 0:
+            continue
+        leaf = tree.find(mw.walk)
+        if leaf is None:
+            raise KeyError(f"walk {mw.walk} is not in the walk tree (horizon {tree.horizon})")
+        for p in tree.path(leaf):
+            x[p] = x.get(p, Fraction(0)) + mw.probability
+    return x

@@ -1,0 +1,311 @@
+"""The value ``V_H`` of the truncated game: the compact LP of NOTES §4, plus an exact bracket.
+
+LP (cvxpy + Clarabel, vectorised)::
+
+    V_H = min  Σ_θ b_θ Σ_leaves x_θ(ℓ) d(end ℓ, g^θ) + Σ_{p ≠ root} w_p z_p
+          s.t. x_θ realization plans on the walk tree,  z ≥ b1 x1[1:],  z ≥ b2 x2[1:].
+
+The Defender's infoset is the walk prefix and its best response is greedy per infoset
+(Lemma 3), so ``max_σ`` of the bilinear payoff is ``Σ_p w_p max_θ b_θ x_θ(p)``. The dual
+multipliers ``λ1`` of ``z ≥ b1 x1`` give an optimal Defender strategy ``σ_p = λ1_p / w_p``.
+
+Exact bracket (our choice of exact certificate, cheap and sound): for ANY rational Defender
+strategy σ, ``b1 min_walk U¹(σ) + b2 min_walk U²(σ)`` (exact backward induction) is a lower
+bound on ``V_H``; for ANY rational Attacker realization plans, the exact greedy Defender
+value is an upper bound. We round the LP's dual (Defender) and primal (Attacker) solutions
+to small-denominator rationals, also try the progress rule σ* and, when given, a profile's
+attacker, and report ``V_H`` exactly when the best lower and upper bounds coincide. With a
+certified PBNE (both exact regrets 0) the bracket closes at ``U`` itself, so ``V_H = U``
+exactly.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+
+import cvxpy as cp
+import numpy as np
+from tqdm import tqdm
+
+from dppverify.best_response import attacker_best_response, defender_best_response
+from dppverify.defender import TreeDefender, tree_defender
+from dppverify.exact import Number, normalize
+from dppverify.instance import Instance, Roles
+from dppverify.lp import LPStats, realization_constraints, solve
+from dppverify.profile import ProgressRule
+from dppverify.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
+
+__all__ = ["Bracket", "GameValue", "ValueLP", "exact_bracket", "game_value", "lower_bound",
+           "solve_value_lp", "upper_bound"]
+
+DENOMINATORS = (1, 2, 3, 4, 5, 6, 8, 10, 12, 20, 24, 60, 100, 360, 720, 1000, 5040, 10**4, 10**6)
+"""Denominator limits tried when rounding LP solutions to rationals."""
+
+
+@dataclass(frozen=True)
+class ValueLP:
+    """The compact LP's solution: ``V_H`` (float) with the optimal strategies it found.
+
+    Attributes
+    ----------
+    stats : LPStats
+        Value, status, size, time.
+    x1, x2 : numpy.ndarray
+        The Attacker types' realization plans (one entry per prefix).
+    sigma1 : numpy.ndarray
+        The Defender's allocation to ``g1`` per prefix from the duals (``nan`` at the root).
+    """
+
+    stats: LPStats
+    x1: np.ndarray
+    x2: np.ndarray
+    sigma1: np.ndarray
+
+    @property
+    def value(self) -> float:
+        """``V_H`` as computed by the LP."""
+        return self.stats.value
+
+
+@dataclass(frozen=True)
+class Bracket:
+    """Exact bounds ``lower <= V_H <= upper`` and where they come from."""
+
+    lower: Number
+    upper: Number
+    lower_source: str
+    upper_source: str
+
+    @property
+    def closed(self) -> bool:
+        """True when the bounds coincide: ``V_H`` is then known exactly."""
+        return self.lower == self.upper
+
+    @property
+    def exact(self) -> Number | None:
+        """``V_H`` exactly when the bracket is closed, else None."""
+        return self.lower if self.closed else None
+
+
+def solve_value_lp(tree: WalkTree, roles: Roles) -> ValueLP:
+    """Solve the compact LP of NOTES §4 on ``tree``.
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
+    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
+    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
+    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> round(solve_value_lp(build_tree(inst, 1), inst.roles()).value, 6)
+    2.4
+    """
+    n = tree.n_prefixes
+    leaf = tree.is_leaf_mask()
+    node = tree.node
+    d1 = np.array([float(roles.d1[int(v)]) if leaf[p] else 0.0 for p, v in enumerate(node)])
+    d2 = np.array([float(roles.d2[int(v)]) if leaf[p] else 0.0 for p, v in enumerate(node)])
+    b1, b2 = float(roles.b1), float(roles.b2)
+    x1 = cp.Variable(n)
+    x2 = cp.Variable(n)
+    cons = realization_constraints(tree, x1) + realization_constraints(tree, x2)
+    objective = b1 * (d1 @ x1) + b2 * (d2 @ x2)
+    c1 = c2 = None
+    if n > 1:
+        z = cp.Variable(n - 1)
+        c1 = z >= b1 * x1[1:]
+        c2 = z >= b2 * x2[1:]
+        cons += [c1, c2]
+        objective = objective + tree.weight_float[1:] @ z
+    stats = solve(cp.Problem(cp.Minimize(objective), cons), f"value LP (H = {tree.horizon})")
+    sigma = np.full(n, np.nan)
+    if c1 is not None:
+        lam = np.asarray(c1.dual_value, dtype=float).reshape(-1)
+        sigma[1:] = np.clip(lam / tree.weight_float[1:], 0.0, 1.0)
+    return ValueLP(stats=stats, x1=np.asarray(x1.value, dtype=float).reshape(-1),
+                   x2=np.asarray(x2.value, dtype=float).reshape(-1), sigma1=sigma)
+
+
+def lower_bound(tree: WalkTree, roles: Roles, tdef: TreeDefender) -> Number:
+    """Exact ``b1 min U¹ + b2 min U²`` against a fixed Defender: a lower bound on ``V_H``."""
+    v = (roles.b1 * attacker_best_response(tree, roles, tdef, 1).value
+         + roles.b2 * attacker_best_response(tree, roles, tdef, 2).value)
+    return normalize(v) if tree.instance.exact else float(v)
+
+
+def upper_bound(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
+                x2: Mapping[int, Fraction]) -> Number:
+    """Exact greedy Defender value against fixed Attacker plans: an upper bound on ``V_H``."""
+    return defender_best_response(tree, roles, x1, x2).value
+
+
+def _rational_defender(tree: WalkTree, sigma: np.ndarray, den: int) -> TreeDefender:
+    exact = tree.instance.exact
+    w = tree.weight
+    s1: list[Number] = [0] * tree.n_prefixes
+    a1: list[Number] = [0] * tree.n_prefixes
+    a2: list[Number] = [0] * tree.n_prefixes
+    for p in range(1, tree.n_prefixes):
+        x = float(sigma[p]) if np.isfinite(sigma[p]) else 0.0
+        q = normalize(Fraction(x).limit_denominator(den)) if exact else x
+        q = min(max(q, 0), 1)
+        s1[p] = q
+        a1[p] = normalize(w[p] * q) if exact else float(w[p]) * float(q)
+        a2[p] = normalize(w[p] - a1[p]) if exact else float(w[p]) - float(a1[p])
+    return TreeDefender(sigma1=tuple(s1), alloc1=tuple(a1), alloc2=tuple(a2))
+
+
+def _rational_plan(tree: WalkTree, x: np.ndarray, den: int,
+                   snap: float = 1e-7) -> dict[int, Fraction]:
+    """Round a float realization plan to an exactly feasible rational one (behavioural form)."""
+    plan: dict[int, Fraction] = {0: Fraction(1)}
+    for p in range(tree.n_prefixes):  # breadth-first: parents before children
+        if p not in plan:
+            continue
+        kids = tree.children(p)
+        if not kids:
+            continue
+        raw = np.clip(np.asarray([x[c] for c in kids], dtype=float), 0.0, None)
+        tot = float(raw.sum())
+        if tot <= 0:
+            probs = [Fraction(1)] + [Fraction(0)] * (len(kids) - 1)
+        else:
+            fr = [Fraction(float(r / tot)).limit_denominator(den) if r / tot > snap else
+                  Fraction(0) for r in raw]
+            s = sum(fr)
+            if s == 0:
+                fr = [Fraction(1) if k == int(np.argmax(raw)) else Fraction(0)
+                      for k in range(len(kids))]
+                s = Fraction(1)
+            probs = [f / s for f in fr]
+        for c, pr in zip(kids, probs, strict=True):
+            if pr:
+                plan[c] = plan[p] * pr
+    return plan
+
+
+def exact_bracket(tree: WalkTree, roles: Roles, lp: ValueLP | None = None,
+                  defenders: Sequence[tuple[str, TreeDefender]] = (),
+                  attackers: Iterable[tuple[str, Mapping[int, Fraction], Mapping[int, Fraction]]]
+                  = ()) -> Bracket:
+    """Exact bounds on ``V_H`` from rational strategies (see the module docstring).
+
+    Candidates: the progress rule σ* for either goal, the given ``defenders`` /
+    ``attackers``, and the LP solution rounded at each denominator limit in
+    :data:`DENOMINATORS` (stopping early once the bracket closes).
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
+    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
+    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
+    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> tree = build_tree(inst, 2)
+    >>> b = exact_bracket(tree, inst.roles(), solve_value_lp(tree, inst.roles()))
+    >>> b.exact
+    Fraction(12, 5)
+    """
+    best_lo: tuple[Number, str] | None = None
+    best_hi: tuple[Number, str] | None = None
+
+    def offer_lo(v: Number, src: str) -> None:
+        nonlocal best_lo
+        if best_lo is None or v > best_lo[0]:
+            best_lo = (v, src)
+
+    def offer_hi(v: Number, src: str) -> None:
+        nonlocal best_hi
+        if best_hi is None or v < best_hi[0]:
+            best_hi = (v, src)
+
+    def closed() -> bool:
+        return best_lo is not None and best_hi is not None and best_lo[0] >= best_hi[0]
+
+    for src, tdef in defenders:
+        offer_lo(lower_bound(tree, roles, tdef), src)
+    for g, name in ((roles.g1, "sigma* (progress to g1)"), (roles.g2, "progress to g2")):
+        offer_lo(lower_bound(tree, roles, tree_defender(tree, roles, ProgressRule(g))), name)
+    for src, a1, a2 in attackers:
+        offer_hi(upper_bound(tree, roles, a1, a2), src)
+    if lp is not None:
+        for den in DENOMINATORS:
+            if closed():
+                break
+            offer_lo(lower_bound(tree, roles, _rational_defender(tree, lp.sigma1, den)),
+                     f"LP dual rounded (denominators <= {den})")
+            offer_hi(upper_bound(tree, roles, _rational_plan(tree, lp.x1, den),
+                                 _rational_plan(tree, lp.x2, den)),
+                     f"LP primal rounded (denominators <= {den})")
+    if best_hi is None:  # no attacker candidate: any pure plan gives a (weak) upper bound
+        plan = _rational_plan(tree, np.ones(tree.n_prefixes), 1)
+        offer_hi(upper_bound(tree, roles, plan, plan), "a pure attacker plan")
+    assert best_lo is not None and best_hi is not None
+    return Bracket(lower=best_lo[0], upper=best_hi[0], lower_source=best_lo[1],
+                   upper_source=best_hi[1])
+
+
+@dataclass(frozen=True)
+class GameValue:
+    """``V_H`` of an instance: the LP value, the exact bracket, and the tree's size.
+
+    Attributes
+    ----------
+    horizon : int
+        ``H``.
+    lp : LPStats
+        The compact LP's value (float), status, size and solve time.
+    bracket : Bracket
+        Exact bounds on ``V_H`` (closed when ``V_H`` is known exactly).
+    prefixes, leaves : int
+        Size of the walk tree.
+    exact : bool
+        False for float-mode instances (the bracket is then in floats).
+    """
+
+    horizon: int
+    lp: LPStats
+    bracket: Bracket
+    prefixes: int
+    leaves: int
+    exact: bool
+
+    @property
+    def value(self) -> float:
+        """``V_H`` from the LP."""
+        return self.lp.value
+
+
+def game_value(instance: Instance, horizon: int, *, max_prefixes: int = DEFAULT_MAX_PREFIXES,
+               progress: bool = False) -> GameValue:
+    """``V_H`` of the truncated game of ``instance``: compact LP plus exact bracket.
+
+    The value does not depend on which goal is called primary (the LP is symmetric in the
+    two types), so the instance's own labelling is used.
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
+    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
+    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
+    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> v = game_value(inst, 3)
+    >>> v.bracket.exact, round(v.value, 6), v.prefixes
+    (Fraction(12, 5), 2.4, 3)
+    """
+    tree = build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
+    roles = instance.roles()
+    with tqdm(total=2, desc=f"value LP ({tree.n_prefixes} prefixes)", disable=not progress,
+              leave=False) as bar:
+        lp = solve_value_lp(tree, roles)
+        bar.update(1)
+        bar.set_description("exact bracket")
+        bracket = exact_bracket(tree, roles, lp)
+        bar.update(1)
+    return GameValue(horizon=horizon, lp=lp.stats, bracket=bracket, prefixes=tree.n_prefixes,
+                     leaves=tree.n_leaves, exact=instance.exact)
