@@ -1,0 +1,35 @@
+"""The solver as an audit target: ``solve_json(instance_doc) -> profile_doc``.
+
+``dpp audit --solver solver.adapter:solve_json`` audits this package's solver with the
+independent checker (``docs/audit.md``); any other solver with the same signature can be
+audited the same way.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from solver.equilibrium import solve
+from solver.instance import Instance
+
+__all__ = ["solve_json"]
+
+
+def solve_json(instance_doc: dict[str, Any]) -> dict[str, Any]:
+    """Solve an instance document (``docs/formats.md`` §1) and return its
+    ``dpp-profile/1`` document (§2).
+
+    Examples
+    --------
+    >>> doc = {"graph": {"nodes": [{"id": "s"}, {"id": "g1"}, {"id": "g2"}],
+    ...        "edges": [{"source": "s", "target": "g2", "weight": 2},
+    ...                  {"source": "g2", "target": "g1", "weight": 2},
+    ...                  {"source": "s", "target": "g1", "weight": 3}]},
+    ...        "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]}
+    >>> profile = solve_json(doc)
+    >>> profile["format"], profile["value"]["U"]
+    ('dpp-profile/1', '12/5')
+    >>> [(p["path"], p["probability"]) for p in profile["attacker"]["primary"]]
+    [(['s', 'g1'], '4/7'), (['s', 'g2'], '3/7')]
+    """
+    return solve(Instance.from_json(instance_doc)).to_json()
