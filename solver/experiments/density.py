@@ -1,0 +1,226 @@
+"""The obstacle-density sweep of the paper's Sec. VI-D (Fig. 6), reproducible and parallel.
+
+For each density and sample: draw a grid (:mod:`solver.experiments.sampling`), build the
+game (same start, goals and prior for every grid), evaluate the six (Defender, Attacker)
+pairs of :data:`solver.pairs.PAIRS` exactly and record VoI. The work is cut into tasks of
+:attr:`DensityConfig.chunk` samples; a task's result depends only on its inputs, so local
+processes, one process, or a Dask scheduler give identical rows.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import asdict, dataclass
+from fractions import Fraction
+from typing import Any
+
+from solver.errors import InvalidInstanceError
+from solver.experiments.sampling import Cell, sample_grid
+from solver.instance import Instance
+from solver.pairs import PAIRS, Game
+
+__all__ = ["CSV_FIELDS", "DensityConfig", "Row", "Task", "rows_to_csv", "run_density",
+           "run_task", "tasks_of"]
+
+
+@dataclass(frozen=True)
+class DensityConfig:
+    """The sweep's parameters (defaults: the paper's 20×20, 0-40 %, 200 samples, b = 0.6/0.4).
+
+    Start (19, 0) (bottom-left), g1 = (0, 19) (top-right, prior 3/5), g2 = (0, 0)
+    (top-left, prior 2/5): the 10×10 comparison map's layout scaled up. The paper does not
+    give its start and goal cells.
+    """
+
+    size: int = 20
+    densities: tuple[int, ...] = (0, 10, 20, 30, 40)
+    samples: int = 200
+    seed: int = 0
+    start: Cell = (19, 0)
+    goals: tuple[Cell, Cell] = ((0, 19), (0, 0))
+    prior: tuple[str, str] = ("3/5", "2/5")
+    chunk: int = 25
+
+    def __post_init__(self) -> None:
+        if self.size < 2:
+            raise InvalidInstanceError(f"grid size must be at least 2, got {self.size}")
+        if self.samples < 1:
+            raise InvalidInstanceError(f"--samples must be at least 1, got {self.samples}")
+        if not self.densities:
+            raise InvalidInstanceError("give at least one density")
+        for cell in (self.start, *self.goals):
+            if not all(0 <= x < self.size for x in cell):
+                raise InvalidInstanceError(f"cell {cell} is outside the {self.size}x"
+                                           f"{self.size} grid")
+        if len({self.start, *self.goals}) != 3:
+            raise InvalidInstanceError("start and the two goals must be three different cells")
+        for d in self.densities:
+            if not 0 <= d < 100:
+                raise InvalidInstanceError(f"density must be a percentage in [0, 100), got {d}")
+        p = [Fraction(x) for x in self.prior]
+        if not (0 < p[0] < 1 and p[0] + p[1] == 1):
+            raise InvalidInstanceError(f"prior must be two numbers in (0, 1) summing to 1, "
+                                       f"got {self.prior}")
+
+
+@dataclass(frozen=True)
+class Task:
+    """Samples ``first .. first + count - 1`` at one density."""
+
+    config: DensityConfig
+    density: int
+    first: int
+    count: int
+
+
+@dataclass(frozen=True)
+class Row:
+    """One (sample, pair) result; exact values as ``p/q`` strings."""
+
+    density: int
+    sample: int
+    attempts: int
+    obstacles: int
+    defender: str
+    attacker: str
+    U1: str
+    U2: str
+    U: str
+    U_bar: str
+    VoI: str
+    VoI_float: float
+
+
+CSV_FIELDS = tuple(Row.__dataclass_fields__)
+
+
+def tasks_of(config: DensityConfig) -> list[Task]:
+    """The sweep cut into tasks of ``config.chunk`` samples, in (density, sample) order."""
+    return [Task(config, d, first, min(config.chunk, config.samples - first))
+            for d in config.densities for first in range(0, config.samples, config.chunk)]
+
+
+def run_task(task: Task) -> list[Row]:
+    """Evaluate every pair on every sample of a task (a pure function of ``task``)."""
+    cfg = task.config
+    rows = []
+    for k in range(task.first, task.first + task.count):
+        grid = sample_grid(cfg.size, task.density, k, cfg.seed, cfg.start, cfg.goals)
+        game = Game.of(Instance.from_grid(grid.blocked, cfg.start, cfg.goals, cfg.prior))
+        for r in game.compare(PAIRS):
+            rows.append(Row(task.density, k, grid.attempts, int(grid.blocked.sum()),
+                            r.defender, r.attacker, str(r.U1), str(r.U2), str(r.U),
+                            str(r.U_bar), str(r.VoI), float(r.VoI)))
+    return rows
+
+
+def run_density(config: DensityConfig, *, workers: int | None = None,
+                dask_address: str | None = None,
+                progress: Callable[[int], None] | None = None) -> list[Row]:
+    """Run the sweep; rows sorted by (density, sample, pair order).
+
+    Parameters
+    ----------
+    workers : int, optional
+        Local processes (default: ``os.cpu_count()``); 1 runs in this process.
+    dask_address : str, optional
+        A ``dask.distributed`` scheduler address (``tcp://host:8786``, or a ``LocalCluster``'s
+        ``scheduler_address``): the same tasks are sent there instead.
+    progress : callable, optional
+        Called with the number of samples each finished task covered (e.g. ``tqdm.update``).
+
+    Examples
+    --------
+    >>> rows = run_density(DensityConfig(size=8, start=(7, 0), goals=((0, 7), (0, 0)),
+    ...                                  densities=(0, 20), samples=2), workers=1)
+    >>> len(rows), rows[0].defender, rows[0].attacker
+    (24, 'sigma*', 'gamma*')
+    """
+    tasks = tasks_of(config)
+    if dask_address is not None:
+        results = _run_dask(tasks, dask_address, progress)
+    else:
+        n = workers if workers is not None else (os.cpu_count() or 1)
+        if n < 1:
+            raise InvalidInstanceError(f"--workers must be at least 1, got {n}")
+        results = _run_local(tasks, n, progress)
+    order = {pair: i for i, pair in enumerate(PAIRS)}
+    rows = [row for chunk in results for row in chunk]
+    rows.sort(key=lambda r: (config.densities.index(r.density), r.sample,
+                             order[(r.defender, r.attacker)]))
+    return rows
+
+
+def _run_local(tasks: list[Task], workers: int,
+               progress: Callable[[int], None] | None) -> list[list[Row]]:
+    if workers == 1 or len(tasks) == 1:
+        out = []
+        for t in tasks:
+            out.append(run_task(t))
+            if progress:
+                progress(t.count)
+        return out
+    import multiprocessing
+
+    ctx = multiprocessing.get_context("forkserver" if os.name == "posix" else "spawn")
+    with ProcessPoolExecutor(max_workers=min(workers, len(tasks)), mp_context=ctx) as pool:
+        futures = {pool.submit(run_task, t): t for t in tasks}
+        results = []
+        for fut in as_completed(futures):
+            results.append(fut.result())
+            if progress:
+                progress(futures[fut].count)
+    return results
+
+
+def _run_dask(tasks: list[Task], address: str,
+              progress: Callable[[int], None] | None) -> list[list[Row]]:
+    try:
+        from distributed import Client
+        from distributed import as_completed as dask_completed
+    except ImportError:  # pragma: no cover - dask is in the test and dask extras
+        raise InvalidInstanceError("--dask needs dask[distributed]: pip install "
+                                   "'dppverify[dask]'") from None
+    try:
+        client = Client(address, timeout="10s")
+    except (OSError, TimeoutError) as exc:
+        raise InvalidInstanceError(f"cannot reach the Dask scheduler at {address}: "
+                                   f"{exc}") from None
+    try:
+        futures = client.map(run_task, tasks, pure=False)
+        counts = {f.key: t.count for f, t in zip(futures, tasks, strict=True)}
+        results = []
+        for fut in dask_completed(futures):
+            results.append(fut.result())
+            if progress:
+                progress(counts[fut.key])
+        return results
+    finally:
+        client.close()
+
+
+def rows_to_csv(rows: Iterable[Row]) -> str:
+    """The rows as CSV text (header :data:`CSV_FIELDS`)."""
+    buf = io.StringIO()
+    writer = csv.DictWriter(buf, fieldnames=CSV_FIELDS, lineterminator="\n")
+    writer.writeheader()
+    for r in rows:
+        writer.writerow(asdict(r))
+    return buf.getvalue()
+
+
+def rows_from_csv(text: str) -> Iterator[dict[str, Any]]:
+    """Read back what :func:`rows_to_csv` wrote (density as int, VoI_float as float)."""
+    for rec in csv.DictReader(io.StringIO(text)):
+        missing = set(CSV_FIELDS) - set(rec)
+        if missing:
+            raise InvalidInstanceError(f"CSV lacks column(s) {sorted(missing)}")
+        try:
+            yield {**rec, "density": int(rec["density"]), "sample": int(rec["sample"]),
+                   "VoI_float": float(rec["VoI_float"])}
+        except ValueError as exc:
+            raise InvalidInstanceError(f"bad CSV row {rec}: {exc}") from None

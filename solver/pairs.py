@@ -1,0 +1,179 @@
+"""One exact evaluation for any (Defender, Attacker) pair: U¹, U², U and VoI.
+
+Defenders: ``"sigma*"`` (the equilibrium σ*, eq. 9) and ``"sigma'"`` (greedy on Dragan's
+belief, :mod:`solver.alt_defender`), or any schedule function (walk -> σ(g1) per step).
+Attackers: ``"gamma*"`` (the equilibrium mixture, eq. 10 and 14), ``"ambiguity"`` and
+``"exaggeration"`` (each type deterministically takes its ξ^{θ,am} / ξ^{θ,ex}, eq. 17), or
+any :class:`Attacker`. Values come from :func:`solver.evaluation.evaluate` (eqs. 5, 6 and
+Definition 7): exact ``Fraction`` on rational instances, since every allocation is a
+``Fraction`` (σ*) or 0/1 (σ').
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import cached_property
+
+import numpy as np
+
+from solver.alt_defender import DraganDefender
+from solver.deceptive_paths import Kind, deceptive_path
+from solver.distances import distances_from, distances_to
+from solver.dragan import DraganObserver
+from solver.equilibrium import Equilibrium, solve
+from solver.errors import InvalidInstanceError
+from solver.evaluation import Evaluation, Schedule, evaluate
+from solver.instance import Instance
+from solver.numbers import Number
+from solver.primary import MixedPath
+
+__all__ = ["ATTACKERS", "DEFENDERS", "PAIRS", "Attacker", "Game", "PairResult"]
+
+DEFENDERS = ("sigma*", "sigma'")
+ATTACKERS = ("gamma*", "ambiguity", "exaggeration")
+PAIRS: tuple[tuple[str, str], ...] = (
+    ("sigma*", "gamma*"), ("sigma'", "gamma*"), ("sigma*", "ambiguity"),
+    ("sigma*", "exaggeration"), ("sigma'", "ambiguity"), ("sigma'", "exaggeration"),
+)
+"""The six pairs of the paper's comparison (issue 5), equilibrium first."""
+
+
+@dataclass(frozen=True)
+class Attacker:
+    """A mixed Attacker: per type, paths (node indices) with probabilities summing to 1."""
+
+    name: str
+    primary: tuple[MixedPath, ...]
+    secondary: tuple[MixedPath, ...]
+
+
+@dataclass(frozen=True)
+class PairResult:
+    """U¹, U², U = b1 U¹ + b2 U², Ū and VoI = (Ū − U)/Ū of one (Defender, Attacker) pair."""
+
+    defender: str
+    attacker: str
+    U1: Number
+    U2: Number
+    U: Number
+    U_bar: Number
+    VoI: Number
+
+
+@dataclass(frozen=True, eq=False)
+class Game:
+    """An instance with its distances, equilibrium, Dragan observer and the named strategies.
+
+    Examples
+    --------
+    >>> import networkx as nx
+    >>> g = nx.Graph()
+    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    >>> game = Game.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
+    >>> r = game.pair("sigma*", "gamma*")
+    >>> str(r.U), str(r.VoI)
+    ('12/5', '1/9')
+    >>> [(p.defender, p.attacker, str(p.U)) for p in game.compare()][:2]
+    [('sigma*', 'gamma*', '12/5'), ("sigma'", 'gamma*', '12/5')]
+    """
+
+    instance: Instance
+    start: int
+    g1: int
+    g2: int
+    d_from_start: np.ndarray
+    d_to_g1: np.ndarray
+    d_to_g2: np.ndarray
+
+    @classmethod
+    def of(cls, instance: Instance) -> Game:
+        """Index the instance and compute the three distance fields."""
+        net = instance.network
+        idx = [net.index_of(x) for x in (instance.start, instance.primary, instance.secondary)]
+        s0, g1, g2 = (int(i) for i in idx if i is not None)
+        return cls(instance, s0, g1, g2, distances_from(net, s0), distances_to(net, g1),
+                   distances_to(net, g2))
+
+    # ------------------------------------------------------------------ strategies
+    @cached_property
+    def equilibrium(self) -> Equilibrium:
+        """(σ*, γ*) from :func:`solver.solve`."""
+        return solve(self.instance)
+
+    @cached_property
+    def observer(self) -> DraganObserver:
+        """Dragan's observer (eq. 16) on this instance."""
+        return DraganObserver(self.instance.network, self.start, self.g1, self.g2,
+                              self.d_to_g1, self.d_to_g2, self.instance.b1, self.instance.b2)
+
+    def defender(self, name: str) -> Schedule:
+        """The schedule of ``"sigma*"`` or ``"sigma'"``."""
+        if name == "sigma*":
+            return self.equilibrium.defender.schedule
+        if name == "sigma'":
+            alt = self._alt_defender
+            return lambda walk: list[Number](alt.schedule(walk))
+        raise InvalidInstanceError(f"unknown Defender {name!r}; expected one of {DEFENDERS}")
+
+    @cached_property
+    def _alt_defender(self) -> DraganDefender:
+        return DraganDefender(self.observer)
+
+    def attacker(self, name: str) -> Attacker:
+        """``"gamma*"``, ``"ambiguity"`` or ``"exaggeration"``."""
+        if name == "gamma*":
+            return self._gamma_star
+        if name in ("ambiguity", "exaggeration"):
+            kind: Kind = "ambiguity" if name == "ambiguity" else "exaggeration"
+            return self._deceptive(kind)
+        raise InvalidInstanceError(f"unknown Attacker {name!r}; expected one of {ATTACKERS}")
+
+    @cached_property
+    def _gamma_star(self) -> Attacker:
+        eq = self.equilibrium
+        net = self.instance.network
+
+        def index(nodes: tuple[object, ...]) -> tuple[int, ...]:
+            return tuple(int(net.index_of(v)) for v in nodes)  # type: ignore[arg-type]
+
+        primary = tuple(MixedPath(index(p.nodes), p.probability, p.label)
+                        for p in eq.primary_paths)
+        return Attacker("gamma*", primary,
+                        (MixedPath(index(eq.secondary_path), Fraction(1), "xi2"),))
+
+    def _deceptive(self, kind: Kind) -> Attacker:
+        cache = self.__dict__.setdefault("_deceptive_cache", {})
+        if kind not in cache:
+            tag = "am" if kind == "ambiguity" else "ex"
+            paths = []
+            for theta in (1, 2):
+                try:
+                    dp = deceptive_path(self.observer, theta, kind)
+                except ValueError as exc:
+                    raise InvalidInstanceError(str(exc)) from None
+                paths.append(MixedPath(dp.path, Fraction(1), f"xi{theta}_{tag}"))
+            cache[kind] = Attacker(kind, (paths[0],), (paths[1],))
+        result: Attacker = cache[kind]
+        return result
+
+    # ------------------------------------------------------------------ evaluation
+    def evaluate(self, defender: str | Schedule, attacker: str | Attacker) -> Evaluation:
+        """The exact :class:`~solver.evaluation.Evaluation` of a pair (with trajectories)."""
+        schedule: Callable[..., list[Number]] = (
+            self.defender(defender) if isinstance(defender, str) else defender)
+        att = self.attacker(attacker) if isinstance(attacker, str) else attacker
+        inst = self.instance
+        return evaluate(inst.network, schedule, att.primary, att.secondary, b1=inst.b1,
+                        b2=inst.b2, g1=self.g1, g2=self.g2, d_to_g1=self.d_to_g1,
+                        d_to_g2=self.d_to_g2, d_from_start=self.d_from_start)
+
+    def pair(self, defender: str, attacker: str) -> PairResult:
+        """U¹, U², U, Ū, VoI of a named pair."""
+        ev = self.evaluate(defender, attacker)
+        return PairResult(defender, attacker, ev.U1, ev.U2, ev.U, ev.U_bar, ev.VoI)
+
+    def compare(self, pairs: tuple[tuple[str, str], ...] = PAIRS) -> tuple[PairResult, ...]:
+        """:meth:`pair` for each of ``pairs`` (default: the six of :data:`PAIRS`)."""
+        return tuple(self.pair(d, a) for d, a in pairs)
