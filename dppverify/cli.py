@@ -1,4 +1,4 @@
-"""Checker commands of the ``dpp`` CLI (certify, value).
+"""Checker commands of the ``dpp`` CLI (certify, value, export-efg).
 
 ``COMMANDS`` is the list the ``dpp`` group registers. Commands report
 :class:`dppverify.errors.CheckerError` subclasses (bad input) as one line on stderr and exit
@@ -17,6 +17,7 @@ import click
 
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
+from dppverify.efg import DEFAULT_MAX_EFG_NODES, write_efg
 from dppverify.errors import CheckerError
 from dppverify.exact import format_number
 from dppverify.instance import load_instance
@@ -25,7 +26,8 @@ from dppverify.text import show
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 from dppverify.value_lp import GameValue, game_value
 
-__all__ = ["COMMANDS", "certify_command", "format_table", "value_command"]
+__all__ = ["COMMANDS", "certify_command", "export_efg_command", "format_table",
+           "value_command"]
 
 NUMBERS_WIDTH = 44
 
@@ -151,4 +153,43 @@ def value_command(instance: str, horizon: int, as_json: bool, max_prefixes: int)
                f"{v.prefixes} prefixes, {v.lp.seconds:.2f} s)")
 
 
-COMMANDS: list[click.Command] = [certify_command, value_command]
+@click.command("export-efg")
+@click.argument("instance", type=click.Path(dir_okay=False))
+@click.option("-H", "--horizon", type=click.IntRange(min=0), required=True,
+              help="Horizon H of the truncated game.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="The .efg file to write (atomically).")
+@click.option("--attacker-observes/--attacker-blind", default=True, show_default=True,
+              help="Whether the Attacker's information sets include the Defender's past "
+                   "allocations (the value is the same either way).")
+@click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
+              show_default=True, help="Refuse walk trees larger than this.")
+@click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
+              show_default=True, help="Refuse games with more nodes than this.")
+def export_efg_command(instance: str, horizon: int, output: str, attacker_observes: bool,
+                       max_prefixes: int, max_nodes: int) -> None:
+    """Write INSTANCE's game truncated at H steps as a Gambit .efg file.
+
+    Chance draws the Attacker's goal, the Attacker picks each next node, the Defender
+    allocates each step to a goal (information set: the walk plus its own past allocations,
+    so the game has perfect recall); payoffs sit on the leaves only. Gambit and OpenSpiel
+    read the file; every copy of a t-step walk prefix appears 2^t times, so keep H small.
+
+    \b
+    Examples:
+      dpp export-efg examples/triangle.json --horizon 2 -o triangle.efg
+      dpp export-efg instance.json -H 3 -o game.efg --attacker-blind
+    """
+    try:
+        size = write_efg(output, load_instance(instance), horizon,
+                         attacker_observes=attacker_observes, max_prefixes=max_prefixes,
+                         max_nodes=max_nodes)
+    except CheckerError as exc:
+        _fail(exc)
+        return
+    click.echo(f"wrote {output}: H = {horizon}, {size.nodes} game nodes ({size.terminals} "
+               f"terminals), {size.attacker_infosets} Attacker and {size.defender_infosets} "
+               f"Defender information sets", err=True)
+
+
+COMMANDS: list[click.Command] = [certify_command, value_command, export_efg_command]

@@ -1,0 +1,354 @@
+"""Export the truncated game as a Gambit ``.efg`` file (for peer tools: Gambit, OpenSpiel).
+
+The exported extensive-form game is the truncated game of NOTES §4 with the Defender's
+allocations made explicit moves:
+
+1. **chance** draws the Attacker's type (its true goal) with the prior ``b`` (exact rationals);
+2. the **Attacker** (player 1) of that type chooses the next node of the walk; its
+   information set is its type plus everything it has seen: the walk and the Defender's past
+   allocations (``attacker_observes=True``, the default) or only the walk
+   (``attacker_observes=False``);
+3. after every step the **Defender** (player 2) puts the step's whole weight on one goal
+   (action ``alloc <goal>``; a mixed action is a fractional allocation, the payoff being
+   linear in it). Its information set is the walk prefix **plus its own past allocations**:
+   the game must have perfect recall, otherwise Gambit refuses it and OpenSpiel's
+   sequence-form LP silently solves a different game;
+4. the walk ends at the first goal (a leaf of :class:`~dppverify.tree.WalkTree`, with its
+   pruning). Only terminal nodes carry outcomes (OpenSpiel rejects payoffs elsewhere): the
+   Attacker pays ``Σ_t w(e_t)·[step t was allocated to its true goal] + d(end, true goal)``,
+   the Defender receives it (zero-sum).
+
+The value of this game for the Defender is ``V_H`` (:func:`dppverify.game_value`) in both
+variants: observing the Defender's past moves is worthless to the Attacker (they never
+change the state), which is what the peer cross-check in ``tests/peers`` confirms.
+
+Size: a prefix with ``t`` steps appears ``2^t`` times per type (once per Defender history),
+so the game has ``1 + 2·Σ_p (2^t·[p inner] + 2^(t-1)·[t ≥ 1] + 2^t·[p leaf])`` nodes. Only
+tiny horizons are practical for the peers (see ``docs/peers.md``).
+
+Two format details that matter to OpenSpiel 2.0.2 (its ``.efg`` parser): labels are quoted
+without escapes, so ``"`` and ``\\`` in node ids are replaced by ``'`` and ``/``; and it maps a
+node's children to GLOBAL action ids sorted by first appearance in the file, so every node
+lists its actions in the order their names first appeared (otherwise children are silently
+permuted). Both Gambit and OpenSpiel read rationals ``p/q``; OpenSpiel needs ``|p|, q < 2^31``.
+
+Examples
+--------
+>>> from dppverify.instance import instance_from_json
+>>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"}, {"id": "g2"}],
+...     "edges": [{"source": "s", "target": "g2", "weight": 2},
+...               {"source": "g2", "target": "g1", "weight": 2},
+...               {"source": "s", "target": "g1", "weight": 3}]},
+...     "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+>>> text = to_efg(inst, 1)
+>>> print(text)  # doctest: +ELLIPSIS
+EFG 2 R "dppverify truncated DPP game, H = 1" { "Attacker" "Defender" }
+"..."
+<BLANKLINE>
+c "" 1 "type" { "type g1" 7/10 "type g2" 3/10 } 0
+p "" 1 1 "T1 p0 h-" { "go g1" "go g2" } 0
+p "" 2 1 "D p1 h-" { "alloc g1" "alloc g2" } 0
+t "" 1 "cost 3" { -3 3 }
+t "" 2 "cost 0" { 0 0 }
+p "" 2 2 "D p2 h-" { "alloc g1" "alloc g2" } 0
+t "" 3 "cost 4" { -4 4 }
+t "" 4 "cost 2" { -2 2 }
+p "" 1 2 "T2 p0 h-" { "go g1" "go g2" } 0
+p "" 2 1 "D p1 h-" { "alloc g1" "alloc g2" } 0
+t "" 4 "cost 2" { -2 2 }
+t "" 5 "cost 5" { -5 5 }
+p "" 2 2 "D p2 h-" { "alloc g1" "alloc g2" } 0
+t "" 2 "cost 0" { 0 0 }
+t "" 4 "cost 2" { -2 2 }
+<BLANKLINE>
+>>> efg_size(build_tree(inst, 1)).nodes
+15
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from collections.abc import Iterator
+from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+
+import numpy as np
+
+from dppverify.errors import CheckerError, TreeTooLargeError
+from dppverify.exact import Number, normalize
+from dppverify.instance import Instance
+from dppverify.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
+
+__all__ = ["DEFAULT_MAX_EFG_NODES", "EfgSize", "efg_size", "to_efg", "tree_to_efg", "write_efg"]
+
+DEFAULT_MAX_EFG_NODES = 2_000_000
+"""Default size guard on the exported game's node count (:class:`TreeTooLargeError` above)."""
+
+ATTACKER, DEFENDER = 1, 2
+"""Gambit player numbers (OpenSpiel: players 0 and 1)."""
+
+
+@dataclass(frozen=True)
+class EfgSize:
+    """Size of the exported game, counted from the walk tree.
+
+    Attributes
+    ----------
+    nodes : int
+        All game nodes: the chance root, decision nodes and terminals.
+    terminals, attacker_nodes, defender_nodes : int
+        Nodes of each kind.
+    attacker_infosets, defender_infosets : int
+        Information sets of each player.
+    """
+
+    nodes: int
+    terminals: int
+    attacker_nodes: int
+    defender_nodes: int
+    attacker_infosets: int
+    defender_infosets: int
+
+
+def efg_size(tree: WalkTree, *, attacker_observes: bool = True) -> EfgSize:
+    """Count the exported game's nodes and information sets without writing it.
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}],
+    ...     "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2}]},
+    ...     "start": 0, "goals": [1, 2], "prior": ["1/2", "1/2"]})
+    >>> efg_size(build_tree(inst, 1))
+    EfgSize(nodes=15, terminals=8, attacker_nodes=2, defender_nodes=4, attacker_infosets=2, \
+defender_infosets=2)
+    """
+    depth = tree.depth.astype(np.int64)
+    leaf = tree.is_leaf_mask()
+    copies = np.left_shift(np.int64(1), depth)  # Defender histories before prefix p: 2^t
+    inner_copies = int(copies[~leaf].sum())
+    dnodes = int((copies[1:] // 2).sum())
+    leaves = int(copies[leaf].sum())
+    a_infosets = 2 * (inner_copies if attacker_observes else int(np.count_nonzero(~leaf)))
+    return EfgSize(nodes=1 + 2 * (inner_copies + dnodes + leaves), terminals=2 * leaves,
+                   attacker_nodes=2 * inner_copies, defender_nodes=2 * dnodes,
+                   attacker_infosets=a_infosets, defender_infosets=dnodes)
+
+
+def _label(text: str) -> str:
+    """A label safe inside Gambit quotes for every reader (no escapes)."""
+    return text.replace('"', "'").replace("\\", "/").replace("\n", " ")
+
+
+def _node_names(instance: Instance) -> list[str]:
+    """One distinct, quote-safe name per node (its id; ``v<i>:`` prefixed on a clash)."""
+    names = []
+    for v in instance.nodes:
+        if isinstance(v, tuple):
+            names.append(_label(str(list(v)) if v else "[]"))
+        else:
+            names.append(_label(str(v)))
+    if len(set(names)) < len(names):
+        names = [f"v{i}:{n}" for i, n in enumerate(names)]
+    return names
+
+
+def _number(x: Number) -> str:
+    """A payoff or probability in .efg syntax: ``p/q`` for rationals, positional decimals."""
+    if isinstance(x, float):
+        return str(np.format_float_positional(x, unique=True, trim="-"))
+    f = Fraction(x)
+    return str(f.numerator) if f.denominator == 1 else f"{f.numerator}/{f.denominator}"
+
+
+class _Writer:
+    """Preorder emission of the game tree (one ``.efg`` line per node)."""
+
+    def __init__(self, tree: WalkTree, attacker_observes: bool) -> None:
+        self.tree = tree
+        self.inst = tree.instance
+        self.observes = attacker_observes
+        self.names = _node_names(self.inst)
+        self.goal_names = [self.names[g] for g in self.inst.goals]
+        self.infosets: tuple[dict[tuple[object, ...], int], dict[tuple[object, ...], int]] = (
+            {}, {})
+        self.outcomes: dict[Number, int] = {}
+        self.action_rank: dict[str, int] = {}  # player-action names by first appearance
+        self.exact = self.inst.exact
+        self.zero: Number = 0 if self.exact else 0.0
+
+    def _infoset(self, player: int, key: tuple[object, ...]) -> int:
+        table = self.infosets[player - 1]
+        if key not in table:
+            table[key] = len(table) + 1
+        return table[key]
+
+    def _ordered(self, named: list[tuple[str, int]]) -> list[tuple[str, int]]:
+        """Actions in first-appearance order of their names (OpenSpiel's global action ids)."""
+        big = len(self.action_rank) + len(named)
+        out = sorted(named, key=lambda a: self.action_rank.get(a[0], big))
+        for name, _ in out:
+            self.action_rank.setdefault(name, len(self.action_rank))
+        return out
+
+    def _terminal(self, cost: Number) -> str:
+        cost = normalize(cost) if self.exact else float(cost)
+        num = self.outcomes.setdefault(cost, len(self.outcomes) + 1)
+        c = _number(cost)
+        neg = _number(-cost) if cost != 0 else c
+        return f't "" {num} "cost {c}" {{ {neg} {c} }}'
+
+    @staticmethod
+    def _hist(h: str) -> str:
+        return h or "-"
+
+    def lines(self) -> Iterator[str]:
+        inst = self.inst
+        b = [_number(p) for p in inst.prior]
+        yield (f'c "" 1 "type" {{ "type {self.goal_names[0]}" {b[0]} '
+               f'"type {self.goal_names[1]}" {b[1]} }} 0')
+        for slot in (0, 1):
+            yield from self._attacker(slot, 0, "", self.zero)
+
+    def _attacker(self, slot: int, p: int, hist: str, cost: Number) -> Iterator[str]:
+        """Attacker of type ``slot`` at prefix ``p`` after Defender history ``hist``."""
+        tree = self.tree
+        if tree.child_start[p] == tree.child_stop[p]:
+            v = int(tree.node[p])
+            yield self._terminal(cost + self.inst.dist_to[slot][v])
+            return
+        key: tuple[object, ...] = (slot, p, hist) if self.observes else (slot, p)
+        num = self._infoset(ATTACKER, key)
+        name = f"T{slot + 1} p{p} h{self._hist(hist)}" if self.observes else f"T{slot + 1} p{p}"
+        acts = self._ordered([(f"go {self.names[int(tree.node[c])]}", c)
+                              for c in tree.children(p)])
+        labels = " ".join(f'"{a}"' for a, _ in acts)
+        yield f'p "" {ATTACKER} {num} "{name}" {{ {labels} }} 0'
+        for _, c in acts:
+            yield from self._defender(slot, c, hist, cost)
+
+    def _defender(self, slot: int, p: int, hist: str, cost: Number) -> Iterator[str]:
+        """Defender allocating the last step of prefix ``p`` after its own history ``hist``."""
+        num = self._infoset(DEFENDER, (p, hist))
+        acts = self._ordered([(f"alloc {self.goal_names[k]}", k) for k in (0, 1)])
+        labels = " ".join(f'"{a}"' for a, _ in acts)
+        yield f'p "" {DEFENDER} {num} "D p{p} h{self._hist(hist)}" {{ {labels} }} 0'
+        w = self.tree.weight[p]
+        for _, k in acts:
+            yield from self._attacker(slot, p, hist + str(k + 1),
+                                      cost + w if k == slot else cost)
+
+
+def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True,
+                max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
+    """The ``.efg`` text of the game on an already built walk tree (see :func:`to_efg`)."""
+    size = efg_size(tree, attacker_observes=attacker_observes)
+    if size.nodes > max_nodes:
+        raise TreeTooLargeError(
+            f"the .efg game for H = {tree.horizon} has {size.nodes} nodes ({tree.n_prefixes} "
+            f"walk prefixes, each repeated for every Defender history), more than the limit of "
+            f"{max_nodes}; lower the horizon or raise the limit (--max-nodes)")
+    head = _label(title or f"dppverify truncated DPP game, H = {tree.horizon}")
+    view = ("the Attacker observes the Defender's past allocations" if attacker_observes else
+            "the Attacker does not observe the Defender's allocations")
+    comment = (f"Player 1 = Attacker (pays the cost), player 2 = Defender (receives it); "
+               f"chance draws the Attacker's true goal; {view}; the Defender's information "
+               f"set is the walk prefix plus its own past allocations (perfect recall); "
+               f"{tree.n_prefixes} walk prefixes, {size.nodes} game nodes.")
+    out = [f'EFG 2 R "{head}" {{ "Attacker" "Defender" }}', f'"{_label(comment)}"', ""]
+    out.extend(_Writer(tree, attacker_observes).lines())
+    out.append("")
+    return "\n".join(out)
+
+
+def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
+           max_prefixes: int = DEFAULT_MAX_PREFIXES, max_nodes: int = DEFAULT_MAX_EFG_NODES,
+           title: str | None = None) -> str:
+    """The truncated game of ``instance`` with horizon ``horizon`` as Gambit ``.efg`` text.
+
+    Parameters
+    ----------
+    instance : Instance
+        The game.
+    horizon : int
+        ``H``: walks have at most ``H`` steps (:func:`~dppverify.tree.build_tree`).
+    attacker_observes : bool
+        Whether the Attacker's information sets include the Defender's past allocations
+        (default) or only the walk. The value is the same (see the module docstring).
+    max_prefixes : int
+        Size guard on the walk tree.
+    max_nodes : int
+        Size guard on the exported game (it has ``2^t`` copies of each ``t``-step prefix).
+    title : str, optional
+        The game's title in the file.
+
+    Raises
+    ------
+    HorizonError
+        If no walk reaches a goal within ``horizon`` steps.
+    TreeTooLargeError
+        If the walk tree or the game exceeds its size limit.
+
+    Examples
+    --------
+    >>> from dppverify.instance import instance_from_json
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}],
+    ...     "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2}]},
+    ...     "start": 0, "goals": [1, 2], "prior": ["1/2", "1/2"]})
+    >>> to_efg(inst, 1).splitlines()[3]
+    'c "" 1 "type" { "type 1" 1/2 "type 2" 1/2 } 0'
+    """
+    tree = build_tree(instance, horizon, max_prefixes=max_prefixes)
+    return tree_to_efg(tree, attacker_observes=attacker_observes, max_nodes=max_nodes,
+                       title=title)
+
+
+def write_efg(path: str | Path, instance: Instance, horizon: int, *,
+              attacker_observes: bool = True, max_prefixes: int = DEFAULT_MAX_PREFIXES,
+              max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> EfgSize:
+    """Write :func:`to_efg` to ``path`` atomically (a temporary file, then a rename).
+
+    Returns the game's size. Nothing is written when the game cannot be built.
+
+    Raises
+    ------
+    CheckerError
+        As :func:`to_efg`; or the file cannot be written (one-line message).
+
+    Examples
+    --------
+    >>> import pathlib, tempfile
+    >>> from dppverify.instance import instance_from_json
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}],
+    ...     "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2}]},
+    ...     "start": 0, "goals": [1, 2], "prior": ["1/2", "1/2"]})
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     size = write_efg(pathlib.Path(d) / "game.efg", inst, 1)
+    ...     first = (pathlib.Path(d) / "game.efg").read_text().split()[0]
+    >>> size.nodes, first
+    (15, 'EFG')
+    """
+    tree = build_tree(instance, horizon, max_prefixes=max_prefixes)
+    text = tree_to_efg(tree, attacker_observes=attacker_observes, max_nodes=max_nodes,
+                       title=title)
+    target = Path(path)
+    tmp = None
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp",
+                                   dir=target.parent if str(target.parent) else ".")
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, target)
+        tmp = None
+    except OSError as exc:
+        raise EfgWriteError(f"cannot write {str(target)!r}: {exc.strerror or exc}") from None
+    finally:
+        if tmp is not None and os.path.exists(tmp):
+            os.unlink(tmp)
+    return efg_size(tree, attacker_observes=attacker_observes)
+
+
+class EfgWriteError(CheckerError, OSError):
+    """The ``.efg`` file could not be written."""
