@@ -116,5 +116,197 @@ def _load(instance: str | None, map_file: str | None, start: str | None,
                               _prior(prior_text), connectivity=connectivity)
 
 
+# ---------------------------------------------------------------------- experiments
+_MAP_OPTIONS = [
+    click.argument("instance", required=False, type=click.Path(dir_okay=False)),
+    click.option("--map", "map_file", type=click.Path(dir_okay=False),
+                 help="A MovingAI .map grid (default: the bundled paper10.map)."),
+    click.option("--start", help="Start cell ROW,COL (with --map)."),
+    click.option("--goals", nargs=2, help="Goal cells ROW,COL ROW,COL (with --map)."),
+    click.option("--prior", "prior_text", help="Priors of the two goals, e.g. 0.6,0.4."),
+    click.option("--connectivity", type=click.Choice(["4", "8"]), default="4",
+                 show_default=True, help="Grid moves (with --map)."),
+]
+
+
+def _map_options(fn: Any) -> Any:
+    for option in reversed(_MAP_OPTIONS):
+        fn = option(fn)
+    return fn
+
+
+def _experiment_instance(instance: str | None, map_file: str | None, start: str | None,
+                         goals: tuple[str, str] | None, prior_text: str | None,
+                         connectivity: str) -> Instance:
+    if instance is None and map_file is None and not (start or goals or prior_text):
+        from solver.experiments.compare import paper10_instance
+
+        return paper10_instance()
+    return _load(instance, map_file, start, goals, prior_text, int(connectivity))
+
+
+@main.group("experiment")
+def experiment_group() -> None:
+    """The paper's Section VI experiments (baselines, comparison, density sweep)."""
+
+
+@experiment_group.command("compare")
+@_map_options
+@click.option("--out", "out_dir", type=click.Path(file_okay=False),
+              help="Also write compare.csv and compare.txt into this directory.")
+def experiment_compare(instance: str | None, map_file: str | None, start: str | None,
+                       goals: tuple[str, str] | None, prior_text: str | None,
+                       connectivity: str, out_dir: str | None) -> None:
+    """U1, U2, U, VoI of six (Defender, Attacker) pairs on one instance (exact).
+
+    Without an instance: the bundled 10x10 map, start 9,0, goals 0,9 0,0, prior 0.6,0.4.
+
+    \b
+    Examples:
+      dpp experiment compare
+      dpp experiment compare --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
+    """
+    from pathlib import Path
+
+    from solver.experiments.compare import compare_csv, compare_table, run_compare, verdict
+
+    inst = _experiment_instance(instance, map_file, start, goals, prior_text, connectivity)
+    results = run_compare(inst)
+    text = compare_table(results) + "\n\n" + verdict(results) + "\n"
+    click.echo(text, nl=False)
+    if out_dir:
+        d = Path(out_dir)
+        d.mkdir(parents=True, exist_ok=True)
+        write_atomic(d / "compare.csv", compare_csv(results))
+        write_atomic(d / "compare.txt", text)
+        click.echo(f"wrote {d / 'compare.csv'} and {d / 'compare.txt'}")
+
+
+def _int_list(text: str, what: str) -> tuple[int, ...]:
+    try:
+        values = tuple(int(x) for x in text.split(",") if x.strip())
+    except ValueError:
+        raise InvalidInstanceError(f"{what} must be integers separated by commas, "
+                                   f"got {text!r}") from None
+    if not values:
+        raise InvalidInstanceError(f"{what} is empty")
+    return values
+
+
+@experiment_group.command("density")
+@click.option("--samples", default=200, show_default=True, help="Grids per density.")
+@click.option("--densities", default="0,10,20,30,40", show_default=True,
+              help="Obstacle densities in percent, comma-separated.")
+@click.option("--seed", default=0, show_default=True, help="Seed: same seed, same grids.")
+@click.option("--size", default=20, show_default=True, help="Grid side length.")
+@click.option("--workers", type=int, default=None,
+              help="Local processes (default: all cores; 1 = in this process).")
+@click.option("--dask", "dask_address", metavar="ADDRESS",
+              help="Send the tasks to this dask.distributed scheduler instead.")
+@click.option("--out", "out_dir", type=click.Path(file_okay=False), default="out/density",
+              show_default=True, help="Directory for density.csv, summary.txt, summary.json.")
+@click.option("--no-progress", is_flag=True, help="No progress bar.")
+def experiment_density(samples: int, densities: str, seed: int, size: int,
+                       workers: int | None, dask_address: str | None, out_dir: str,
+                       no_progress: bool) -> None:
+    """VoI of the six strategy pairs on random grids of growing obstacle density.
+
+    Start bottom-left, g1 top-right (prior 3/5), g2 top-left (prior 2/5); obstacles are
+    redrawn until each goal has a path avoiding the other. Prints the summary with the
+    paper's claims checked on the data.
+
+    \b
+    Examples:
+      dpp experiment density                      # the paper's sweep: 5 x 200 grids
+      dpp experiment density --samples 20 --densities 0,20,40 --seed 1 --out out/small
+      dpp experiment density --dask tcp://127.0.0.1:8786
+    """
+    import sys
+    from pathlib import Path
+
+    from tqdm import tqdm
+
+    from solver.experiments.density import DensityConfig, rows_to_csv, run_density
+    from solver.experiments.summary import summarize_density
+
+    config = DensityConfig(size=size, densities=_int_list(densities, "--densities"),
+                           samples=samples, seed=seed, start=(size - 1, 0),
+                           goals=((0, size - 1), (0, 0)))
+    with tqdm(total=samples * len(config.densities), unit="grid", file=sys.stderr,
+              disable=no_progress, desc="density sweep") as bar:
+        rows = run_density(config, workers=workers, dask_address=dask_address,
+                           progress=bar.update)
+    summary = summarize_density(rows)
+    d = Path(out_dir)
+    d.mkdir(parents=True, exist_ok=True)
+    write_atomic(d / "density.csv", rows_to_csv(rows))
+    write_atomic(d / "summary.txt", summary.text() + "\n")
+    write_atomic(d / "summary.json", dumps({"config": {
+        "size": size, "densities": list(config.densities), "samples": samples, "seed": seed,
+        "start": list(config.start), "goals": [list(g) for g in config.goals],
+        "prior": list(config.prior)}, **summary.to_json()}))
+    click.echo(summary.text())
+    click.echo(f"\nwrote {d / 'density.csv'} ({len(rows)} rows), {d / 'summary.txt'}, "
+               f"{d / 'summary.json'}")
+
+
+# ---------------------------------------------------------------------- figures
+_OUT_HELP = "Output file (.png or .svg), or a stem: writes STEM.png and STEM.svg."
+
+
+@main.group("plot")
+def plot_group() -> None:
+    """Figures like the paper's Fig. 4-6 (PNG and SVG)."""
+
+
+@plot_group.command("map")
+@_map_options
+@click.option("-o", "--out", "out", required=True, help=_OUT_HELP)
+@click.option("--no-baselines", is_flag=True, help="Only the equilibrium panel.")
+def plot_map_command(instance: str | None, map_file: str | None, start: str | None,
+                     goals: tuple[str, str] | None, prior_text: str | None,
+                     connectivity: str, out: str, no_baselines: bool) -> None:
+    """Grid, obstacles, equilibrium paths by phase with mixing probabilities, baselines."""
+    from solver.plots import plot_map, save_figure
+
+    inst = _experiment_instance(instance, map_file, start, goals, prior_text, connectivity)
+    files = save_figure(plot_map(inst, baselines=not no_baselines), out)
+    click.echo("wrote " + ", ".join(map(str, files)))
+
+
+@plot_group.command("beliefs")
+@_map_options
+@click.option("-o", "--out", "out", required=True, help=_OUT_HELP)
+@click.option("--defender", type=click.Choice(["sigma*", "sigma'"]), default="sigma*",
+              show_default=True, help="Defender for the allocation panels.")
+def plot_beliefs_command(instance: str | None, map_file: str | None, start: str | None,
+                         goals: tuple[str, str] | None, prior_text: str | None,
+                         connectivity: str, out: str, defender: str) -> None:
+    """Belief b1_t and cumulative expected allocation to the true goal along each path."""
+    from solver.plots import plot_beliefs, save_figure
+
+    inst = _experiment_instance(instance, map_file, start, goals, prior_text, connectivity)
+    files = save_figure(plot_beliefs(inst, defender=defender), out)
+    click.echo("wrote " + ", ".join(map(str, files)))
+
+
+@plot_group.command("voi")
+@click.argument("csv_file", type=click.Path(dir_okay=False))
+@click.option("-o", "--out", "out", required=True, help=_OUT_HELP)
+def plot_voi_command(csv_file: str, out: str) -> None:
+    """VoI box plots by density and strategy pair from a density.csv."""
+    from pathlib import Path
+
+    from solver.experiments.density import rows_from_csv
+    from solver.plots import plot_voi, save_figure
+
+    try:
+        text = Path(csv_file).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise InvalidInstanceError(f"{csv_file}: cannot read file ({exc})") from None
+    files = save_figure(plot_voi(list(rows_from_csv(text))), out)
+    click.echo("wrote " + ", ".join(map(str, files)))
+
+
 for _command in checker_cli.COMMANDS:
     main.add_command(_command)

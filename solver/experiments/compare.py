@@ -1,0 +1,101 @@
+"""The comparison of Sec. VI-C: six (Defender, Attacker) pairs on one grid (Fig. 4/5).
+
+The default instance is the bundled 10×10 map ``solver/data/paper10.map`` (copy in
+``examples/``), start (9, 0), g1 = (0, 9) with prior 3/5, g2 = (0, 0) with prior 2/5.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+from collections.abc import Sequence
+from dataclasses import asdict
+from fractions import Fraction
+from importlib import resources
+from pathlib import Path
+
+from solver.instance import Instance
+from solver.movingai import read_map
+from solver.numbers import Number
+from solver.pairs import PAIRS, Game, PairResult
+
+__all__ = ["DEFAULT_GOALS", "DEFAULT_PRIOR", "DEFAULT_START", "compare_csv", "compare_table",
+           "paper10_instance", "paper10_path", "run_compare", "verdict"]
+
+DEFAULT_START = (9, 0)
+DEFAULT_GOALS = ((0, 9), (0, 0))
+DEFAULT_PRIOR = ("3/5", "2/5")
+
+_NAMES = {"sigma*": "σ*", "sigma'": "σ'", "gamma*": "γ*", "ambiguity": "ambiguity",
+          "exaggeration": "exaggeration"}
+
+
+def paper10_path() -> Path:
+    """Path of the bundled ``paper10.map``."""
+    return Path(str(resources.files("solver") / "data" / "paper10.map"))
+
+
+def paper10_instance() -> Instance:
+    """The comparison instance on the bundled map.
+
+    Examples
+    --------
+    >>> inst = paper10_instance()
+    >>> inst.start, inst.primary, inst.secondary, str(inst.b1)
+    ((9, 0), (0, 9), (0, 0), '3/5')
+    """
+    return Instance.from_grid(read_map(paper10_path()), DEFAULT_START, DEFAULT_GOALS,
+                              DEFAULT_PRIOR)
+
+
+def run_compare(instance: Instance) -> tuple[PairResult, ...]:
+    """U¹, U², U, VoI of the six pairs of :data:`solver.pairs.PAIRS`, exactly.
+
+    Examples
+    --------
+    >>> rows = run_compare(paper10_instance())
+    >>> [(r.defender, r.attacker) for r in rows][:2]
+    [('sigma*', 'gamma*'), ("sigma'", 'gamma*')]
+    """
+    return Game.of(instance).compare(PAIRS)
+
+
+def _num(x: Number) -> str:
+    if isinstance(x, Fraction):
+        return str(x) if x.denominator == 1 else f"{x} (~{float(x):.4g})"
+    return f"{x:.6g}"
+
+
+def compare_table(results: Sequence[PairResult]) -> str:
+    """A fixed-width text table of the results (exact values with decimals)."""
+    head = ("Defender", "Attacker", "U1", "U2", "U", "VoI")
+    body = [(_NAMES.get(r.defender, r.defender), _NAMES.get(r.attacker, r.attacker),
+             _num(r.U1), _num(r.U2), _num(r.U), _num(r.VoI)) for r in results]
+    widths = [max(len(row[i]) for row in (head, *body)) for i in range(len(head))]
+    lines = ["  ".join(c.ljust(w) for c, w in zip(row, widths, strict=True)).rstrip()
+             for row in (head, *body)]
+    lines.insert(1, "  ".join("-" * w for w in widths))
+    return "\n".join(lines)
+
+
+def verdict(results: Sequence[PairResult]) -> str:
+    """Whether the paper's observation ``U(σ',γ*) < U(σ*,γ*)`` holds on these results."""
+    by = {(r.defender, r.attacker): r for r in results}
+    if ("sigma*", "gamma*") not in by or ("sigma'", "gamma*") not in by:
+        return ""
+    u_star, u_alt = by[("sigma*", "gamma*")].U, by[("sigma'", "gamma*")].U
+    rel = "<" if u_alt < u_star else ("=" if u_alt == u_star else ">")
+    holds = "holds" if rel == "<" else "does NOT hold"
+    return (f"U(σ',γ*) = {_num(u_alt)} {rel} U(σ*,γ*) = {_num(u_star)}: the paper's "
+            f"observation U(σ',γ*) < U(σ*,γ*) {holds} on this instance")
+
+
+def compare_csv(results: Sequence[PairResult]) -> str:
+    """The results as CSV (exact ``p/q`` strings)."""
+    buf = io.StringIO()
+    fields = ("defender", "attacker", "U1", "U2", "U", "U_bar", "VoI")
+    w = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
+    w.writeheader()
+    for r in results:
+        w.writerow({k: str(v) for k, v in asdict(r).items()})
+    return buf.getvalue()
