@@ -162,12 +162,15 @@ def value_command(instance: str, horizon: int, as_json: bool, max_prefixes: int)
 @click.option("--attacker-observes/--attacker-blind", default=True, show_default=True,
               help="Whether the Attacker's information sets include the Defender's past "
                    "allocations (the value is the same either way).")
+@click.option("--forced-moves", is_flag=True,
+              help="Also write the Attacker's one-action decision nodes (skipped by default: "
+                   "Gambit 17.0.0b2's lp_solve mis-solves one-action information sets).")
 @click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
 @click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
               show_default=True, help="Refuse games with more nodes than this.")
 def export_efg_command(instance: str, horizon: int, output: str, attacker_observes: bool,
-                       max_prefixes: int, max_nodes: int) -> None:
+                       forced_moves: bool, max_prefixes: int, max_nodes: int) -> None:
     """Write INSTANCE's game truncated at H steps as a Gambit .efg file.
 
     Chance draws the Attacker's goal, the Attacker picks each next node, the Defender
@@ -182,8 +185,8 @@ def export_efg_command(instance: str, horizon: int, output: str, attacker_observ
     """
     try:
         size = write_efg(output, load_instance(instance), horizon,
-                         attacker_observes=attacker_observes, max_prefixes=max_prefixes,
-                         max_nodes=max_nodes)
+                         attacker_observes=attacker_observes, forced_moves=forced_moves,
+                         max_prefixes=max_prefixes, max_nodes=max_nodes)
     except CheckerError as exc:
         _fail(exc)
         return

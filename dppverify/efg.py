@@ -7,7 +7,10 @@ allocations made explicit moves:
 2. the **Attacker** (player 1) of that type chooses the next node of the walk; its
    information set is its type plus everything it has seen: the walk and the Defender's past
    allocations (``attacker_observes=True``, the default) or only the walk
-   (``attacker_observes=False``);
+   (``attacker_observes=False``). Where the walk has only one continuation the move is
+   forced and, by default, not written as a decision node (``forced_moves=False``): Gambit
+   17.0.0b2's ``lp_solve`` returns a wrong value on games with one-action information sets
+   (``docs/peers.md``); ``forced_moves=True`` writes them anyway;
 3. after every step the **Defender** (player 2) puts the step's whole weight on one goal
    (action ``alloc <goal>``; a mixed action is a fractional allocation, the payoff being
    linear in it). Its information set is the walk prefix **plus its own past allocations**:
@@ -23,8 +26,9 @@ variants: observing the Defender's past moves is worthless to the Attacker (they
 change the state), which is what the peer cross-check in ``tests/peers`` confirms.
 
 Size: a prefix with ``t`` steps appears ``2^t`` times per type (once per Defender history),
-so the game has ``1 + 2·Σ_p (2^t·[p inner] + 2^(t-1)·[t ≥ 1] + 2^t·[p leaf])`` nodes. Only
-tiny horizons are practical for the peers (see ``docs/peers.md``).
+so the game has ``1 + 2·Σ_p (2^t·[p a choice] + 2^(t-1)·[t ≥ 1] + 2^t·[p leaf])`` nodes,
+where "a choice" means a prefix with two or more children (any inner prefix with
+``forced_moves=True``). Only tiny horizons are practical for the peers (``docs/peers.md``).
 
 Two format details that matter to OpenSpiel 2.0.2 (its ``.efg`` parser): labels are quoted
 without escapes, so ``"`` and ``\\`` in node ids are replaced by ``'`` and ``/``; and it maps a
@@ -112,7 +116,8 @@ class EfgSize:
     defender_infosets: int
 
 
-def efg_size(tree: WalkTree, *, attacker_observes: bool = True) -> EfgSize:
+def efg_size(tree: WalkTree, *, attacker_observes: bool = True,
+             forced_moves: bool = False) -> EfgSize:
     """Count the exported game's nodes and information sets without writing it.
 
     Examples
@@ -127,11 +132,13 @@ defender_infosets=2)
     """
     depth = tree.depth.astype(np.int64)
     leaf = tree.is_leaf_mask()
+    kids = tree.child_stop - tree.child_start
+    choice = kids >= (1 if forced_moves else 2)  # prefixes written as Attacker nodes
     copies = np.left_shift(np.int64(1), depth)  # Defender histories before prefix p: 2^t
-    inner_copies = int(copies[~leaf].sum())
+    inner_copies = int(copies[choice].sum())
     dnodes = int((copies[1:] // 2).sum())
     leaves = int(copies[leaf].sum())
-    a_infosets = 2 * (inner_copies if attacker_observes else int(np.count_nonzero(~leaf)))
+    a_infosets = 2 * (inner_copies if attacker_observes else int(np.count_nonzero(choice)))
     return EfgSize(nodes=1 + 2 * (inner_copies + dnodes + leaves), terminals=2 * leaves,
                    attacker_nodes=2 * inner_copies, defender_nodes=2 * dnodes,
                    attacker_infosets=a_infosets, defender_infosets=dnodes)
@@ -166,8 +173,9 @@ def _number(x: Number) -> str:
 class _Writer:
     """Preorder emission of the game tree (one ``.efg`` line per node)."""
 
-    def __init__(self, tree: WalkTree, attacker_observes: bool) -> None:
+    def __init__(self, tree: WalkTree, attacker_observes: bool, forced_moves: bool) -> None:
         self.tree = tree
+        self.forced = forced_moves
         self.inst = tree.instance
         self.observes = attacker_observes
         self.names = _node_names(self.inst)
@@ -219,6 +227,9 @@ class _Writer:
             v = int(tree.node[p])
             yield self._terminal(cost + self.inst.dist_to[slot][v])
             return
+        if not self.forced and tree.child_stop[p] - tree.child_start[p] == 1:
+            yield from self._defender(slot, int(tree.child_start[p]), hist, cost)
+            return
         key: tuple[object, ...] = (slot, p, hist) if self.observes else (slot, p)
         num = self._infoset(ATTACKER, key)
         name = f"T{slot + 1} p{p} h{self._hist(hist)}" if self.observes else f"T{slot + 1} p{p}"
@@ -241,10 +252,10 @@ class _Writer:
                                       cost + w if k == slot else cost)
 
 
-def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True,
+def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves: bool = False,
                 max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
     """The ``.efg`` text of the game on an already built walk tree (see :func:`to_efg`)."""
-    size = efg_size(tree, attacker_observes=attacker_observes)
+    size = efg_size(tree, attacker_observes=attacker_observes, forced_moves=forced_moves)
     if size.nodes > max_nodes:
         raise TreeTooLargeError(
             f"the .efg game for H = {tree.horizon} has {size.nodes} nodes ({tree.n_prefixes} "
@@ -258,14 +269,14 @@ def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True,
                f"set is the walk prefix plus its own past allocations (perfect recall); "
                f"{tree.n_prefixes} walk prefixes, {size.nodes} game nodes.")
     out = [f'EFG 2 R "{head}" {{ "Attacker" "Defender" }}', f'"{_label(comment)}"', ""]
-    out.extend(_Writer(tree, attacker_observes).lines())
+    out.extend(_Writer(tree, attacker_observes, forced_moves).lines())
     out.append("")
     return "\n".join(out)
 
 
 def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
-           max_prefixes: int = DEFAULT_MAX_PREFIXES, max_nodes: int = DEFAULT_MAX_EFG_NODES,
-           title: str | None = None) -> str:
+           forced_moves: bool = False, max_prefixes: int = DEFAULT_MAX_PREFIXES,
+           max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
     """The truncated game of ``instance`` with horizon ``horizon`` as Gambit ``.efg`` text.
 
     Parameters
@@ -277,6 +288,9 @@ def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
     attacker_observes : bool
         Whether the Attacker's information sets include the Defender's past allocations
         (default) or only the walk. The value is the same (see the module docstring).
+    forced_moves : bool
+        Also write the Attacker's one-action decision nodes (default: skip them; the game
+        is the same, and Gambit 17.0.0b2's ``lp_solve`` mis-solves one-action infosets).
     max_prefixes : int
         Size guard on the walk tree.
     max_nodes : int
@@ -301,13 +315,14 @@ def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
     'c "" 1 "type" { "type 1" 1/2 "type 2" 1/2 } 0'
     """
     tree = build_tree(instance, horizon, max_prefixes=max_prefixes)
-    return tree_to_efg(tree, attacker_observes=attacker_observes, max_nodes=max_nodes,
-                       title=title)
+    return tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
+                       max_nodes=max_nodes, title=title)
 
 
 def write_efg(path: str | Path, instance: Instance, horizon: int, *,
-              attacker_observes: bool = True, max_prefixes: int = DEFAULT_MAX_PREFIXES,
-              max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> EfgSize:
+              attacker_observes: bool = True, forced_moves: bool = False,
+              max_prefixes: int = DEFAULT_MAX_PREFIXES, max_nodes: int = DEFAULT_MAX_EFG_NODES,
+              title: str | None = None) -> EfgSize:
     """Write :func:`to_efg` to ``path`` atomically (a temporary file, then a rename).
 
     Returns the game's size. Nothing is written when the game cannot be built.
@@ -331,8 +346,8 @@ def write_efg(path: str | Path, instance: Instance, horizon: int, *,
     (15, 'EFG')
     """
     tree = build_tree(instance, horizon, max_prefixes=max_prefixes)
-    text = tree_to_efg(tree, attacker_observes=attacker_observes, max_nodes=max_nodes,
-                       title=title)
+    text = tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
+                       max_nodes=max_nodes, title=title)
     target = Path(path)
     tmp = None
     try:
@@ -347,7 +362,7 @@ def write_efg(path: str | Path, instance: Instance, horizon: int, *,
     finally:
         if tmp is not None and os.path.exists(tmp):
             os.unlink(tmp)
-    return efg_size(tree, attacker_observes=attacker_observes)
+    return efg_size(tree, attacker_observes=attacker_observes, forced_moves=forced_moves)
 
 
 class EfgWriteError(CheckerError, OSError):

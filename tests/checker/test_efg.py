@@ -265,7 +265,8 @@ FRACTIONAL = make_doc([("s", "m", "1/3"), ("m", "g1", "5/2"), ("m", "g2", "2/7")
                        ("s", "g2", "7/3"), ("g1", "g2", 1)], "s", ["g1", "g2"], ["4/7", "3/7"])
 
 CASES = [("triangle", triangle_doc(), 2), ("kite", KITE, 2), ("kite", KITE, 3),
-         ("ladder", LADDER, 2), ("thirds", THIRDS, 3), ("fractional", FRACTIONAL, 4),
+         ("ladder", LADDER, 1), ("ladder", LADDER, 2), ("thirds", THIRDS, 3),
+         ("fractional", FRACTIONAL, 4),
          ("grid", GRID, 4)]
 IDS = [f"{name}-H{h}" for name, _, h in CASES]
 
@@ -274,41 +275,94 @@ def _label(x: Any) -> str:
     return str(x)
 
 
-def _export(doc: dict[str, Any], horizon: int, observes: bool = True) -> Game:
-    return parse(to_efg(instance_from_json(doc), horizon, attacker_observes=observes))
+VARIANTS = [(True, False), (False, False), (True, True), (False, True)]
+VARIANT_IDS = ["observes", "blind", "observes-forced", "blind-forced"]
 
 
-@pytest.mark.parametrize("observes", [True, False])
+def _export(doc: dict[str, Any], horizon: int, observes: bool = True,
+            forced: bool = False) -> Game:
+    return parse(to_efg(instance_from_json(doc), horizon, attacker_observes=observes,
+                        forced_moves=forced))
+
+
+def _continuations(doc: dict[str, Any], horizon: int) -> dict[tuple[Any, ...], set[Any]]:
+    """Walk prefix -> its possible next nodes, from the brute-force walk enumeration."""
+    out: dict[tuple[Any, ...], set[Any]] = defaultdict(set)
+    for w in all_walks(doc, horizon):
+        for t in range(1, len(w)):
+            out[w[:t]].add(w[t])
+    return out
+
+
+def _decode(node: Node, doc: dict[str, Any], horizon: int
+            ) -> tuple[Any, tuple[Any, ...], list[Any]]:
+    """(true goal, walk, allocated goal per step) of the history leading to ``node``.
+
+    A step without an Attacker move (skipped forced move) must be the only continuation.
+    """
+    by_label = {_label(n["id"]): _key(n["id"]) for n in doc["graph"]["nodes"]}
+    cont = _continuations(doc, horizon)
+    kind, _, chance = node.history[0]
+    assert kind == 0 and chance.startswith("type ")
+    goal = by_label[chance.removeprefix("type ")]
+    walk = [_key(doc["start"])]
+    allocs: list[Any] = []
+    moved = False
+    for player, _, action in node.history[1:]:
+        if player == 1:
+            assert action.startswith("go ") and not moved
+            walk.append(by_label[action.removeprefix("go ")])
+            assert walk[-1] in cont[tuple(walk[:-1])]
+            moved = True
+        else:
+            assert action.startswith("alloc ")
+            if not moved:  # a forced step
+                (only,) = cont[tuple(walk)]
+                walk.append(only)
+            allocs.append(by_label[action.removeprefix("alloc ")])
+            moved = False
+    return goal, tuple(walk), allocs
+
+
+@pytest.mark.parametrize(("observes", "forced"), VARIANTS, ids=VARIANT_IDS)
 @pytest.mark.parametrize(("name", "doc", "horizon"), CASES, ids=IDS)
 def test_node_and_infoset_counts_match_the_walk_tree(name: str, doc: dict[str, Any],
-                                                      horizon: int, observes: bool) -> None:
-    game = _export(doc, horizon, observes)
+                                                      horizon: int, observes: bool,
+                                                      forced: bool) -> None:
+    game = _export(doc, horizon, observes, forced)
     tree = build_tree(instance_from_json(doc), horizon)
     depth = [int(t) for t in tree.depth]
-    leaf = tree.is_leaf_mask()
-    inner = [p for p in range(tree.n_prefixes) if not leaf[p]]
+    n_kids = [len(tree.children(p)) for p in range(tree.n_prefixes)]
+    choice = [p for p in range(tree.n_prefixes) if n_kids[p] >= (1 if forced else 2)]
     nodes = list(game.nodes())
     kinds = Counter((n.kind, n.player) for n in nodes)
     assert kinds[("c", 0)] == 1 and game.root.kind == "c"
     # every t-step prefix appears once per type and per Defender history (2^t of them)
     assert kinds[("t", 0)] == 2 * sum(2 ** depth[p] for p in tree.leaves())
-    assert kinds[("p", 1)] == 2 * sum(2 ** depth[p] for p in inner)
+    assert kinds[("p", 1)] == 2 * sum(2 ** depth[p] for p in choice)
     assert kinds[("p", 2)] == 2 * sum(2 ** (depth[p] - 1) for p in range(1, tree.n_prefixes))
     infosets = {(n.player, n.infoset) for n in nodes if n.kind == "p"}
     n_def = sum(1 for pl, _ in infosets if pl == 2)
     n_att = sum(1 for pl, _ in infosets if pl == 1)
     assert n_def == sum(2 ** (depth[p] - 1) for p in range(1, tree.n_prefixes))
-    assert n_att == 2 * (sum(2 ** depth[p] for p in inner) if observes else len(inner))
-    size = efg_size(tree, attacker_observes=observes)
+    assert n_att == 2 * (sum(2 ** depth[p] for p in choice) if observes else len(choice))
+    assert all(len(n.actions) >= (1 if forced else 2) for n in nodes if n.kind == "p")
+    size = efg_size(tree, attacker_observes=observes, forced_moves=forced)
     assert (size.nodes, size.terminals, size.attacker_infosets, size.defender_infosets) == (
         len(nodes), kinds[("t", 0)], n_att, n_def)
 
 
-@pytest.mark.parametrize("observes", [True, False])
+def test_some_cases_have_forced_moves() -> None:
+    # the forced-move variants above differ from the default ones only if moves are forced
+    assert any(sum(1 for n in _export(d, h, forced=True).nodes() if len(n.actions) == 1)
+               for _, d, h in CASES)
+
+
+@pytest.mark.parametrize(("observes", "forced"), VARIANTS, ids=VARIANT_IDS)
 @pytest.mark.parametrize(("name", "doc", "horizon"), CASES, ids=IDS)
 def test_perfect_recall_and_consistent_infosets(name: str, doc: dict[str, Any], horizon: int,
-                                                observes: bool) -> None:
-    game = _export(doc, horizon, observes)
+                                                observes: bool, forced: bool) -> None:
+    game = _export(doc, horizon, observes, forced)
     members: dict[tuple[int, int], list[Node]] = defaultdict(list)
     for n in game.nodes():
         if n.kind == "p":
@@ -318,33 +372,31 @@ def test_perfect_recall_and_consistent_infosets(name: str, doc: dict[str, Any], 
         assert len({own_history(n, player) for n in nodes}) == 1
         assert len({tuple(n.actions) for n in nodes}) == 1
         assert len({n.infoset_name for n in nodes}) == 1
-        types = {n.history[0][2] for n in nodes}  # the chance move: the Attacker's goal
+        decoded = [_decode(n, doc, horizon) for n in nodes]
+        types = {g for g, _, _ in decoded}
+        walks = {w for _, w, _ in decoded}
         if player == 2:
-            # the Defender does not see the type: one member per type, same walk
-            assert len(nodes) == 2 and len(types) == 2
-            assert len({_walk(n) for n in nodes}) == 1
+            # the Defender sees the walk and its own allocations, not the type
+            assert len(nodes) == 2 and len(types) == 2 and len(walks) == 1
+            assert len({tuple(a) for _, _, a in decoded}) == 1
         else:
-            assert len(types) == 1 and len({_walk(n) for n in nodes}) == 1
+            assert len(types) == 1 and len(walks) == 1
             if observes:  # it also sees the Defender's allocations: singletons
                 assert len(nodes) == 1
             else:
-                assert len(nodes) == 2 ** len(_walk(nodes[0]))
+                assert len(nodes) == 2 ** (len(decoded[0][1]) - 1)
 
 
-def _walk(node: Node) -> tuple[str, ...]:
-    return tuple(a for p, _, a in node.history if p == 1)
-
-
+@pytest.mark.parametrize("forced", [False, True])
 @pytest.mark.parametrize(("name", "doc", "horizon"), CASES, ids=IDS)
 def test_payoffs_only_on_leaves_and_equal_to_recomputed_costs(name: str, doc: dict[str, Any],
-                                                               horizon: int) -> None:
-    game = _export(doc, horizon)
+                                                               horizon: int,
+                                                               forced: bool) -> None:
+    game = _export(doc, horizon, forced=forced)
     assert game.players == ["Attacker", "Defender"]
     adj = {u: dict(arcs) for u, arcs in adjacency(doc).items()}
-    by_label = {_label(n["id"]): _key(n["id"]) for n in doc["graph"]["nodes"]}
     goals = [_key(g) for g in doc["goals"]]
     dist = {g: distances_to(doc, g) for g in goals}
-    start = _key(doc["start"])
     outcomes: dict[int, list[Fraction]] = {}
     seen: Counter[tuple[Any, ...]] = Counter()
     for n in game.nodes():
@@ -355,24 +407,14 @@ def test_payoffs_only_on_leaves_and_equal_to_recomputed_costs(name: str, doc: di
         assert outcomes.setdefault(n.outcome, n.payoffs) == n.payoffs
         attacker, defender = n.payoffs
         assert attacker == -defender  # zero-sum
-        kind, _, chance = n.history[0]
-        assert kind == 0 and chance.startswith("type ")
-        goal = by_label[chance.removeprefix("type ")]
-        walk = [start]
-        cost = Fraction(0)
-        for player, _, action in n.history[1:]:
-            if player == 1:
-                assert action.startswith("go ")
-                walk.append(by_label[action.removeprefix("go ")])
-            else:
-                assert action.startswith("alloc ") and len(walk) >= 2
-                if by_label[action.removeprefix("alloc ")] == goal:
-                    cost += adj[walk[-2]][walk[-1]]
+        goal, walk, allocs = _decode(n, doc, horizon)
+        assert len(allocs) == len(walk) - 1  # the Defender allocated every step
         assert all(b in adj[a] for a, b in itertools.pairwise(walk))
         assert walk[-1] in goals and not set(walk[:-1]) & set(goals) and len(walk) <= horizon + 1
-        cost += dist[goal][walk[-1]]
-        assert defender == cost
-        seen[(goal, tuple(walk))] += 1
+        cost = sum((adj[a][b] for (a, b), g in zip(itertools.pairwise(walk), allocs, strict=True)
+                    if g == goal), Fraction(0))
+        assert defender == cost + dist[goal][walk[-1]]
+        seen[(goal, walk)] += 1
     # every walk of the game, for each type, once per Defender history (2^steps)
     expected = Counter({(g, w): 2 ** (len(w) - 1) for g in goals
                         for w in all_walks(doc, horizon)})
@@ -404,15 +446,16 @@ def test_actions_listed_in_first_appearance_order(name: str, doc: dict[str, Any]
             assert ids == sorted(ids)
 
 
-@pytest.mark.parametrize("observes", [True, False])
+@pytest.mark.parametrize(("observes", "forced"), VARIANTS, ids=VARIANT_IDS)
 @pytest.mark.parametrize(("name", "doc", "horizon"), CASES[:-1], ids=IDS[:-1])
 def test_sequence_form_lp_of_the_export_gives_v_h(name: str, doc: dict[str, Any], horizon: int,
-                                                  observes: bool) -> None:
+                                                  observes: bool, forced: bool) -> None:
     value = game_value(instance_from_json(doc), horizon)
     assert value.bracket.closed
     exact = value.bracket.exact
     assert exact is not None
-    lp = sequence_form_value(_export(doc, horizon, observes), minimizer=1, maximizer=2)
+    lp = sequence_form_value(_export(doc, horizon, observes, forced), minimizer=1,
+                             maximizer=2)
     assert abs(lp - float(exact)) <= 1e-9 * max(1.0, abs(float(exact)))
 
 
@@ -448,8 +491,10 @@ def test_float_instances_export_decimals() -> None:
 
 def test_size_guards_raise_before_writing(tmp_path: Path) -> None:
     inst = instance_from_json(GRID)
+    nodes = efg_size(build_tree(inst, 5)).nodes
+    assert to_efg(inst, 5, max_nodes=nodes)
     with pytest.raises(TreeTooLargeError, match="--max-nodes"):
-        to_efg(inst, 5, max_nodes=4400)
+        to_efg(inst, 5, max_nodes=nodes - 1)
     with pytest.raises(TreeTooLargeError, match="--max-prefixes"):
         write_efg(tmp_path / "g.efg", inst, 5, max_prefixes=88)
     assert list(tmp_path.iterdir()) == []
