@@ -229,6 +229,8 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
     from solver.experiments.density import DensityConfig, rows_to_csv, run_density
     from solver.experiments.summary import summarize_density
 
+    if workers is not None and workers < 1:
+        raise InvalidInstanceError(f"--workers must be at least 1, got {workers}")
     config = DensityConfig(size=size, densities=_int_list(densities, "--densities"),
                            samples=samples, seed=seed, start=(size - 1, 0),
                            goals=((0, size - 1), (0, 0)))
