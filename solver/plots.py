@@ -278,7 +278,7 @@ def plot_voi(rows: Iterable[Mapping[str, Any] | Any],
     if not densities:
         raise InvalidInstanceError("no rows to plot")
     pairs = [p for p in pairs if any((d, p) in data for d in densities)]
-    fig, ax = plt.subplots(figsize=(max(7, 1.6 * len(densities) * len(pairs) / 3), 5))
+    fig, ax = plt.subplots(figsize=(max(7, 1.1 * len(densities) * len(pairs) / 3), 5))
     width = 0.8 / len(pairs)
     for j, pair in enumerate(pairs):
         pos = [i + (j - (len(pairs) - 1) / 2) * width for i, d in enumerate(densities)
