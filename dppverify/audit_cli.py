@@ -1,8 +1,8 @@
 """``dpp audit``: audit any solver on random instances (the click command).
 
-The lead registers :data:`audit_command` in ``dppverify.cli.COMMANDS``. Exit codes: 0 every
-example was certified; 1 a failing example was found (shrunk, written to ``--out``); 2 bad
-input (one line on stderr).
+:data:`audit_command` is registered in ``dppverify.cli.COMMANDS`` (the ``dpp`` group).
+Exit codes: 0 every example was certified; 1 a failing example was found (shrunk, written to
+``--out``); 2 bad input (one line on stderr).
 """
 
 from __future__ import annotations

@@ -15,6 +15,7 @@ from typing import Any
 
 import click
 
+from dppverify.audit_cli import audit_command
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, write_efg
@@ -195,4 +196,4 @@ def export_efg_command(instance: str, horizon: int, output: str, attacker_observ
                f"Defender information sets", err=True)
 
 
-COMMANDS: list[click.Command] = [certify_command, value_command, export_efg_command]
+COMMANDS: list[click.Command] = [certify_command, value_command, export_efg_command, audit_command]
