@@ -5,7 +5,8 @@
     python3 dev.py test    # create .venv if needed, install, lint, type-check, run the tests
     python3 dev.py bench   # run the benchmarks in benchmarks/ (slow; not part of `test`)
 
-Extra arguments after `test` are passed to pytest (e.g. `python3 dev.py test -m slow`).
+`test` runs every test not marked `slow`, the peer cross-checks against OpenSpiel and Gambit
+included. Extra arguments after `test` are passed to pytest (e.g. `python3 dev.py test -m slow`).
 """
 
 from __future__ import annotations
@@ -23,7 +24,7 @@ BIN = VENV / ("Scripts" if os.name == "nt" else "bin")
 LINT_PATHS = ("solver", "dppverify", "tests", "proofs", "benchmarks", "dev.py")
 PY = BIN / "python"
 STAMP = VENV / ".dppverify-install-stamp"
-EXTRAS = "test,bench"
+EXTRAS = "test,bench,peers"
 
 
 def _run(*cmd: str | Path) -> None:
@@ -63,7 +64,10 @@ def test(pytest_args: list[str]) -> None:
     _run(BIN / "mypy")
     _run(BIN / "lint-imports")
     workers = ["-n", "auto"] if (os.cpu_count() or 1) > 1 else []
-    _run(PY, "-m", "pytest", *workers, *pytest_args)
+    # the default run includes the peer cross-checks (OpenSpiel, Gambit: the `peers` extra),
+    # which plain `pytest` leaves out; `-m slow` etc. replace this selection
+    markers = [] if "-m" in pytest_args else ["-m", "not slow"]
+    _run(PY, "-m", "pytest", *workers, *markers, *pytest_args)
 
 
 def bench() -> None:

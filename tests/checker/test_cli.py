@@ -31,7 +31,7 @@ def _run(cmd: click.Command, args: list[str]) -> Any:
 
 
 def test_commands_are_registered() -> None:
-    assert {c.name for c in COMMANDS} == {"certify", "value"}
+    assert {c.name for c in COMMANDS} == {"certify", "value", "export-efg", "audit"}
 
 
 def test_certify_passes_with_exit_0_and_a_table(tmp_path: Path) -> None:
