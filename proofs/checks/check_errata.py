@@ -13,13 +13,17 @@ from __future__ import annotations
 from fractions import Fraction
 
 import networkx as nx
+import sympy as sp
 
+import dppverify
 from proofs.checks.errata_search import (
     instance_doc,
     robust,
     search,
     swapped_outcome,
 )
+from solver import solve
+from solver.instance_json import instance_from_json
 
 TRIANGLE = (("s", "g1", 3), ("s", "g2", 2), ("g1", "g2", 2))
 TIED = (("s", "g1", 2), ("s", "g2", 2), ("g1", "g2", 1))
@@ -87,3 +91,75 @@ def test_errata_E1_tied_triangle_depends_on_tie_break() -> None:
 def test_errata_E1_not_exploitable_at_two_thirds() -> None:
     out = swapped_outcome(instance_doc(TRIANGLE, False, (Fraction(2, 3), Fraction(1, 3))))
     assert not out.exploitable and out.failing == ()
+
+
+def test_errata_E1_exploit_gain_closed_form() -> None:
+    # phase-II prefix under the swapped reading: A = b1 - b2, B = b2 (ERRATA E1)
+    b2 = sp.Symbol("b2", positive=True)
+    b1 = 1 - b2
+    sigma = sp.Symbol("sigma", real=True)
+    a_, b_ = b1 - b2, b2
+    gain = sp.Max(a_, b_) - sigma * a_ - (1 - sigma) * b_
+    for b2_val in (sp.Rational(3, 10), sp.Rational(2, 5), sp.Rational(1, 3), sp.Rational(1, 2)):
+        g = sp.simplify(gain.subs(b2, b2_val))
+        b1v = 1 - b2_val
+        expected = ((b1v - 2 * b2_val) * (1 - sigma) if b1v > sp.Rational(2, 3)
+                    else (2 * b2_val - b1v) * sigma)
+        assert sp.simplify(g - expected) == 0
+    assert sp.simplify(a_ / (a_ + b_) - (b1 - b2) / b1) == 0  # the swapped phase-II belief
+
+
+def test_errata_E1_directed_four_arcs_with_weights_at_most_two() -> None:
+    edges = (("s", "g1", 2), ("s", "g2", 2), ("g2", "g1", 1), ("g1", "g2", 2))
+    out = swapped_outcome(instance_doc(edges, True, P7))
+    assert out.exploitable and (str(out.U_star), str(out.exploit_value)) == ("17/10", "9/5")
+
+
+def _progress(g: nx.Graph, walk: tuple[str, ...]) -> list[Fraction]:
+    d = dict(nx.single_source_dijkstra_path_length(g, "g1"))
+    c = [Fraction(d[walk[0]])]
+    for v in walk[1:]:
+        c.append(min(c[-1], Fraction(d[v])))
+    return c
+
+
+def test_errata_E2_progress_inequality_direction() -> None:
+    g = _graph(TRIANGLE)
+    d = dict(nx.single_source_dijkstra_path_length(g, "g1"))
+    c = _progress(g, ("s", "g2"))
+    assert c[0] - c[1] > 0  # new progress at the step s -> g2 ...
+    assert not d["s"] < d["g2"]  # ... although the paper's formula is false there
+    assert d["g2"] < d["s"]  # the corrected formula holds
+
+
+def test_errata_E3_walk_to_the_fake_goal_attains_lemma_1() -> None:
+    g = _graph(TRIANGLE)
+    c = _progress(g, ("s", "g2"))
+    j1 = c[0] - c[-1] + nx.dijkstra_path_length(g, "g2", "g1")  # TEL.3
+    assert j1 == nx.dijkstra_path_length(g, "s", "g1") == 3
+
+
+def test_errata_E4_primary_through_the_fake_goal_pays_more() -> None:
+    doc = instance_doc((("g1", "s", 1), ("s", "g2", 1)), False, P7)
+    profile = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+               "defender": {"rule": "progress", "goal": "g1"},
+               "attacker": {"primary": [{"path": ["s", "g2"], "probability": "1"}],
+                            "secondary": [{"path": ["s", "g2"], "probability": "1"}]}}
+    rec = dppverify.certify(doc, profile).check("pbne.attacker_br.primary")
+    assert rec.status == "fail"
+    g = _graph((("g1", "s", 1), ("s", "g2", 1)))
+    c = _progress(g, ("s", "g2"))
+    u1 = c[0] - c[-1] + nx.dijkstra_path_length(g, "g2", "g1")
+    assert (rec.numbers["U1"], rec.numbers["best_response"]) == (u1, 1) == (2, 1)
+
+
+def test_errata_E5_and_R3_one_half_and_ties() -> None:
+    half = (Fraction(1, 2), Fraction(1, 2))
+    eq = solve(instance_from_json(instance_doc(TRIANGLE, False, half)))
+    assert [(p.nodes, p.probability) for p in eq.primary_paths] == [(("s", "g2"), 1)]
+    values = set()
+    for order, xi2 in ((("s", "g1", "g2"), ("s", "g1")), (("s", "g2", "g1"), ("s", "g2"))):
+        eq = solve(instance_from_json(instance_doc(TIED, False, P7, order)))
+        assert eq.secondary_path == xi2
+        values.add(eq.U)
+    assert values == {Fraction(17, 10)}
