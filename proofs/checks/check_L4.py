@@ -8,7 +8,7 @@ from proofs.checks._sym import is_nonneg, is_pos, is_zero, nonneg, pos
 
 
 def _update(beta: sp.Expr, q1: sp.Expr, q2: sp.Expr) -> sp.Expr:
-    """Bayes, eq. (5): continuation probabilities q1 (primary), q2 (secondary)."""
+    """Bayes, eq. (2): continuation probabilities q1 (primary), q2 (secondary)."""
     return beta * q1 / (beta * q1 + (1 - beta) * q2)
 
 

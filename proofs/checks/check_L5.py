@@ -1,4 +1,4 @@
-"""Symbolic checks for proofs/L5.md (beliefs b1 / 1/2 / 0 induced by eq. (14))."""
+"""Symbolic checks for proofs/L5.md (beliefs b1 / 1/2 / 0 induced by eq. (15))."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ from proofs.checks._sym import is_nonneg, is_zero, nonneg
 e = sp.Symbol("e", nonnegative=True)  # b1 = 1/2 + e, e in [0, 1/2)
 B1 = sp.Rational(1, 2) + e
 B2 = 1 - B1
-P_II = B2 / B1  # eq. (14): gamma*(xi^{1,II} | g1)
+P_II = B2 / B1  # eq. (15): gamma*(xi^{1,II} | g1)
 P_I = 1 - P_II
 
 
@@ -17,7 +17,7 @@ def _belief(mass1: sp.Expr, mass2: sp.Expr) -> sp.Expr:
     return B1 * mass1 / (B1 * mass1 + B2 * mass2)
 
 
-def test_L5_eq14_probabilities_are_in_the_unit_interval() -> None:
+def test_L5_eq15_probabilities_are_in_the_unit_interval() -> None:
     h, = nonneg("h")
     b2 = sp.Rational(1, 2) - h / (1 + h) / 2  # every b2 in (0, 1/2]
     p_ii = b2 / (1 - b2)

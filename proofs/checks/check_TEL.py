@@ -15,7 +15,7 @@ def test_TEL_sum_of_w_sigma_telescopes_for_every_length_up_to_8() -> None:
         total = sp.Integer(0)
         for t in range(1, n + 1):
             c.append(sp.Min(c[t - 1], d[t - 1]))
-            sigma = (c[t - 1] - c[t]) / w[t - 1]  # eq. (9)
+            sigma = (c[t - 1] - c[t]) / w[t - 1]  # eq. (7)
             total += w[t - 1] * sigma
         assert is_zero(total - (c[0] - c[n]))
 

@@ -1,4 +1,4 @@
-"""ERRATA.md E1: the swapped reading of eq. (14) is exploitable; the smallest instance.
+"""ERRATA.md E1: the swapped reading of eq. (15) is exploitable; the smallest instance.
 
 Re-derives the numbers quoted in ``proofs/ERRATA.md`` with the solver (profile) and the
 checker (``dppverify.certify``), and compares them with the closed forms proved there:

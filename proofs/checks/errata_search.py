@@ -1,10 +1,10 @@
-"""Search for a smallest instance where the swapped reading of eq. (14) is exploitable.
+"""Search for a smallest instance where the swapped reading of eq. (15) is exploitable.
 
-ERRATA.md, erratum E1. The sentence before eq. (14) of the paper gives ``xi^{1,I}`` the
-probability ``b2/b1`` and ``xi^{1,II}`` the probability ``1 - b2/b1`` (swapped); eq. (14)
+ERRATA.md, erratum E1. The sentence before eq. (15) of the paper gives ``xi^{1,I}`` the
+probability ``b2/b1`` and ``xi^{1,II}`` the probability ``1 - b2/b1`` (swapped); eq. (15)
 gives the reverse. For each candidate instance, in order of size, this script
 
-1. builds the equilibrium profile with ``solver.solve`` (eq. 14 mixing),
+1. builds the equilibrium profile with ``solver.solve`` (eq. 15 mixing),
 2. swaps the two primary probabilities (the sentence's reading), and
 3. certifies the swapped profile with ``dppverify.certify``.
 
