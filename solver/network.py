@@ -79,7 +79,9 @@ class Network:
         CSR arrays of the out-arcs: the heads of node ``i``'s arcs are
         ``indices[indptr[i]:indptr[i+1]]``.
     weights : numpy.ndarray
-        Arc weights aligned with ``indices``: int64 numerators (exact) or float64.
+        Arc weights aligned with ``indices``: integer numerators (exact mode; int64, or
+        float64 holding small integers — every integer below 2**53 is exact in float64 —
+        as for unit-weight grids, so the scipy matrix can share the buffer) or float64.
     denominator : int
         The common denominator of all weights (1 in float mode).
     exact : bool
@@ -211,8 +213,8 @@ class Network:
         del flat
         indptr = np.zeros(n + 1, dtype=np.int32 if n * k < 2**31 else np.int64)
         np.cumsum(np.count_nonzero(mask.reshape(n, k), axis=1), out=indptr[1:])
-        if connectivity == 4:
-            data = np.ones(indices.size, dtype=np.int64)
+        if connectivity == 4:  # unit weights: exact integers, stored as float64 for scipy
+            data = np.ones(indices.size, dtype=np.float64)
             return cls(GridLabels(blocked), indptr, indices, data, 1, True, False, None)
         diagonal = np.array([bool(dr and dc) for dr, dc in steps])
         data = np.where(diagonal[slot], SQRT2, 1.0)
@@ -290,7 +292,8 @@ class Network:
     def _matrix(self) -> sp.csr_matrix:
         n = self.n_nodes
         return sp.csr_matrix(
-            (self.weights.astype(np.float64), self.indices, self.indptr), shape=(n, n), copy=False
+            (self.weights.astype(np.float64, copy=False), self.indices, self.indptr),
+            shape=(n, n), copy=False,
         )
 
     @cached_property
