@@ -1,6 +1,6 @@
-"""The Defender's strategies: the progress rule σ* (eq. 9) and explicit tables.
+"""The Defender's strategies: the progress rule σ* (eq. (7)) and explicit tables.
 
-Re-implemented from the paper's definition (Sec. IV, Definition 3 and eq. 9), independently
+Re-implemented from the paper's definition (Sec. IV, Definition 3 and eq. (7)), independently
 of the solver: with ``c_0 = d(s0, g)`` and ``c_t = min(c_{t-1}, d(s_t, g))`` (full-graph
 distances, NOTES §1/§3), the Defender allocates to ``g`` with probability
 ``(c_{t-1} - c_t) / w(e_t)``. A node that cannot reach ``g`` has ``d = inf`` and gives no
@@ -44,7 +44,7 @@ def divide(a: Number, b: Number, exact: bool) -> Number:
 
 
 def progress_along(instance: Instance, goal: int, walk: Sequence[int]) -> list[Number]:
-    """The new progress ``c_{t-1} - c_t`` towards ``goal`` at each step of ``walk`` (eq. 8-9).
+    """The new progress ``c_{t-1} - c_t`` towards ``goal`` at each step of ``walk`` (eqs. (6)-(7)).
 
     Examples
     --------
@@ -158,7 +158,7 @@ class TreeDefender:
 
 
 def _progress_on_tree(tree: WalkTree, goal: int) -> list[Number]:
-    """New progress towards ``goal`` at every prefix (root: 0), eq. (9)'s numerator."""
+    """New progress towards ``goal`` at every prefix (root: 0), eq. (7)'s numerator."""
     inst = tree.instance
     slot = inst.slot(goal)
     assert slot is not None

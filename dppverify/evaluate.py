@@ -1,4 +1,4 @@
-"""Exact payoffs of a profile: U¹, U², U (eqs. 6-7), Ū and VoI (Definition 7).
+"""Exact payoffs of a profile: U¹, U², U (eqs. (3)-(4)), Ū and VoI (Definition 6).
 
 Walk by walk, independently of the tree: a walk ``s0 … s_T`` costs type θ
 ``Σ_t w(e_t) σ(g^θ | s0 … s_t) + d(s_T, g^θ)`` (stage costs plus the terminal cost, with
@@ -22,7 +22,7 @@ __all__ = ["Values", "complete_information_value", "evaluate", "realization", "w
 
 @dataclass(frozen=True)
 class Values:
-    """Payoffs of a profile (paper eqs. 6-7 and Definition 7)."""
+    """Payoffs of a profile (paper eqs. (3)-(4) and Definition 6)."""
 
     U1: Number
     U2: Number
@@ -62,7 +62,7 @@ def walk_cost(instance: Instance, roles: Roles, rule: DefenderRule, walk: tuple[
 
 
 def complete_information_value(instance: Instance, roles: Roles) -> Number:
-    """``Ū = b1 d(s0, g1) + b2 d(s0, g2)`` (eq. 2 and Definition 7)."""
+    """``Ū = b1 d(s0, g1) + b2 d(s0, g2)`` (eq. (1) and Definition 6)."""
     s0 = instance.start
     return normalize(roles.b1 * roles.d1[s0] + roles.b2 * roles.d2[s0])
 

@@ -133,7 +133,7 @@ def values(ctx: Context) -> list[CheckRecord]:
 
 
 def phases_of(schedule: list[Number], tol: Tolerance | None = None) -> tuple[int, int, int]:
-    """``(t_I, t_II, T)`` of a σ*(g1) schedule along ξ² (eqs. 11-12, NOTES §3).
+    """``(t_I, t_II, T)`` of a σ*(g1) schedule along ξ² (eqs. (10)-(11), NOTES §3).
 
     Phase I is the maximal initial run of steps with σ* = 1; ``t_II`` is the last step with
     σ* > 0 (``t_I`` if there is none after it). In float mode "= 1" and "> 0" are decided
@@ -305,7 +305,7 @@ def sequential_rationality(ctx: Context) -> CheckRecord:
 
 
 def belief_consistency(ctx: Context) -> CheckRecord:
-    """``pbne.belief_consistency``: beliefs follow Bayes' rule (eq. 5) from the prior.
+    """``pbne.belief_consistency``: beliefs follow Bayes' rule (eq. (2)) from the prior.
 
     The belief is propagated step by step with the behavioural probabilities
     ``γ_t(e_t | h_t, g^i) = x_i(child) / x_i(parent)`` and must equal the closed form

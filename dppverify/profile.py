@@ -9,7 +9,7 @@ profile (check ``profile.wellformed``) instead of crashing.
 
 Defender rules (``defender``):
 
-- ``{"rule": "progress", "goal": g}``: the paper's σ* (eq. 9) measuring progress towards
+- ``{"rule": "progress", "goal": g}``: the paper's σ* (eq. (7)) measuring progress towards
   goal ``g`` and allocating to ``g`` with probability new-progress / step weight.
 - ``{"rule": "table", "goal": g, "entries": [{"walk": [s0, …, s_t], "probability": p}, …],
   "default": q}``: after observing the walk ``s0 … s_t`` (``t >= 1``) allocate to ``g`` with
@@ -52,7 +52,7 @@ class Defect:
 
 @dataclass(frozen=True)
 class ProgressRule:
-    """σ* of eq. (9) measuring progress towards ``goal`` (a node index); allocates to ``goal``."""
+    """σ* of eq. (7) measuring progress towards ``goal`` (a node index); allocates to ``goal``."""
 
     goal: int
 

@@ -6,9 +6,9 @@
     dpp audit --solver-cmd 'python examples/solver_cmd.py {instance} {profile}'
 
 It reads an instance document (docs/formats.md §1) and writes a dpp-profile/1 document
-(§2), rebuilding the paper's equilibrium from scratch with exact fractions: σ* (eq. 9), ξ²
+(§2), rebuilding the paper's equilibrium from scratch with exact fractions: σ* (eq. (7)), ξ²
 through the minimiser v* of d(s0,v) + d(v,g1) + d(v,g2) cut at the first goal (NOTES §2),
-the phases, and the primary's mixture of eq. (14). Any program in any language that does the
+the phases, and the primary's mixture of eq. (15). Any program in any language that does the
 same file-in/file-out can be audited the same way.
 """
 
@@ -86,7 +86,7 @@ def solve(doc: dict[str, Any]) -> dict[str, Any]:
     walk = head[::-1] + tight_path(pivot, g2, d2)[1:]
     xi2 = walk[:next(t for t, v in enumerate(walk) if v in (g1, g2)) + 1]
 
-    # σ* along ξ² (eq. 9) and the phases
+    # σ* along ξ² (eq. (7)) and the phases
     weight = {(u, v): w for u in nodes for v, w in succ[u]}
     c, sigma = d1[s0], []
     for u, v in itertools.pairwise(xi2):

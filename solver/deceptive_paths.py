@@ -1,18 +1,18 @@
-"""Exaggeration and ambiguity paths of Dragan et al. (paper eq. 17a/17b), by exact DP.
+"""Exaggeration and ambiguity paths of Dragan et al. (paper eqs. (18a)/(18b)), exact DP.
 
 For type θ (true goal ``g^θ``, fake goal ``g^{-θ}``) over the paths ``Ξ^θ(s0)`` from ``s0``
 to ``g^θ``::
 
-    ξ^{θ,ex} ∈ argmin Σ_{t=0..T} P(g^θ | ξ[0:t])                          (17a)
-    ξ^{θ,am} ∈ argmin Σ_{t=0..T} |P(g^θ | ξ[0:t]) − P(g^{−θ} | ξ[0:t])|   (17b)
+    ξ^{θ,ex} ∈ argmin Σ_{t=0..T} P(g^θ | ξ[0:t])                          (18a)
+    ξ^{θ,am} ∈ argmin Σ_{t=0..T} |P(g^θ | ξ[0:t]) − P(g^{−θ} | ξ[0:t])|   (18b)
 
-with ``P`` Dragan's belief (eq. 16, path-length cost; :mod:`solver.dragan`).
+with ``P`` Dragan's belief (eq. (17), path-length cost; :mod:`solver.dragan`).
 
 The DP and its horizon
 ----------------------
 A DP over (node, elapsed cost) is not needed: with path length as the cost, ``exp(-C)``
-cancels in eq. (16), so the belief — and each summand — is a function of the current node
-``s_t`` alone. The objective is then a sum of node terms ``τ(s_t) >= 0`` (``> 0`` for 17a):
+cancels in eq. (17), so the belief — and each summand — is a function of the current node
+``s_t`` alone. The objective is then a sum of node terms ``τ(s_t) >= 0`` (``> 0`` for 18a):
 a shortest-path problem with node costs, solved by Dijkstra backwards from ``g^θ``
 (``D(v) = τ(v) + min_{v→u} D(u)``, ``D(g^θ) = τ(g^θ)``), a DP over the node alone.
 
@@ -73,7 +73,7 @@ class DeceptivePath:
     kind : str
         ``"exaggeration"`` or ``"ambiguity"``.
     objective : mpmath.mpf
-        The value of eq. (17a) or (17b) along ``path`` (fixed point, see the module notes).
+        The value of eq. (18a) or (18b) along ``path`` (fixed point, see the module notes).
     """
 
     path: tuple[int, ...]
@@ -83,7 +83,7 @@ class DeceptivePath:
 
 
 def node_terms(observer: DraganObserver, theta: int, kind: Kind) -> list[int]:
-    """The summand of eq. (17a)/(17b) at every node, in fixed point (``2**-SCALE_BITS``).
+    """The summand of eq. (18a)/(18b) at every node, in fixed point (``2**-SCALE_BITS``).
 
     Examples
     --------
@@ -123,7 +123,7 @@ def _scaled(belief_g1: mpmath.mpf, theta: int, kind: Kind) -> int:
 
 def objective(observer: DraganObserver, walk: list[int] | tuple[int, ...], theta: int,
               kind: Kind) -> mpmath.mpf:
-    """Eq. (17a)/(17b) summed along ``walk`` from its node terms (fixed point)."""
+    """Eq. (18a)/(18b) summed along ``walk`` from its node terms (fixed point)."""
     terms = node_terms(observer, theta, kind)
     return _unscale(sum(terms[v] for v in walk))
 
@@ -133,7 +133,7 @@ def _unscale(units: int) -> mpmath.mpf:
 
 
 def deceptive_path(observer: DraganObserver, theta: int, kind: Kind) -> DeceptivePath:
-    """ξ^{θ,ex} or ξ^{θ,am}: the minimiser of eq. (17a)/(17b) (see the module notes).
+    """ξ^{θ,ex} or ξ^{θ,am}: the minimiser of eq. (18a)/(18b) (see the module notes).
 
     Raises
     ------

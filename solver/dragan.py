@@ -1,4 +1,4 @@
-"""Dragan et al.'s observer (paper eq. 16) with path length as the cost functional.
+"""Dragan et al.'s observer (paper eq. (17)) with path length as the cost functional.
 
 ``P(g^i | ξ[0:t]) = exp(-C[ξ[0:t]] - V_i(s_t)) / exp(-V_i(s_0)) · b^i_0 / Z`` with
 ``C`` = path length and ``V_i(s) = d(s, g^i)`` (full-graph distance, as the paper states).
@@ -15,7 +15,7 @@ The belief is irrational in general. Two things are needed from it:
   rational ≠ 1, whose logarithm is irrational (Lindemann), hence never equal to ``δ``: it is
   decided with mpmath interval arithmetic, doubling the precision until the interval for
   ``ln(b1/b2)`` separates from ``δ`` (guaranteed to terminate);
-- *values* (sums of beliefs for eq. 17a/17b, plots): mpmath at :data:`DPS` digits.
+- *values* (sums of beliefs for eqs. (18a)/(18b), plots): mpmath at :data:`DPS` digits.
 
 A node from which ``g^i`` is unreachable has ``e^{-x_i} = 0`` (belief 0 in ``g^i``); a node
 reaching neither goal keeps the prior.
@@ -85,7 +85,7 @@ def _ln_at_least(p: int, q: int, a: int, b: int) -> bool:
 
 @dataclass(frozen=True, eq=False)
 class DraganObserver:
-    """Eq. (16) with path-length cost on a network: the belief ``b^1_t`` at any node.
+    """Eq. (17) with path-length cost on a network: the belief ``b^1_t`` at any node.
 
     Parameters
     ----------

@@ -43,19 +43,19 @@ class Equilibrium:
     instance : Instance
         The solved game.
     defender : ProgressDefender
-        σ*, eq. (9): allocate to ``g1`` with probability new-progress / step weight.
+        σ*, eq. (7): allocate to ``g1`` with probability new-progress / step weight.
     secondary_path : tuple
-        ξ² (node ids), the secondary type's deterministic path (eq. 10).
+        ξ² (node ids), the secondary type's deterministic path (eq. (9), the argmin).
     schedule : tuple
         σ*(g1) after each step of ξ².
     phases : Phases
-        ``t_I``, ``t_II``, ``T`` of ξ² (eqs. 11-12).
+        ``t_I``, ``t_II``, ``T`` of ξ² (eqs. (10)-(11)).
     primary_paths : tuple of StrategyPath
-        ξ^{1,I} and ξ^{1,II} with probabilities ``1 - b2/b1`` and ``b2/b1`` (eq. 14);
+        ξ^{1,I} and ξ^{1,II} with probabilities ``1 - b2/b1`` and ``b2/b1`` (eq. (15));
         merged into one path when identical, zero-probability paths dropped.
     U1, U2, U, U_bar, VoI : Number
         Type costs, the value ``U* = b1 U1 + b2 U2``, the complete-information value and
-        ``VoI* = (Ū − U*)/Ū`` (Definition 7). Exact ``Fraction`` for rational instances.
+        ``VoI* = (Ū − U*)/Ū`` (Definition 6). Exact ``Fraction`` for rational instances.
     evaluation : Evaluation
         The exact evaluation of (σ*, γ*) the values come from.
     exact : bool

@@ -1,9 +1,9 @@
-"""Exact evaluation of any (Defender, Attacker) pair on an instance (paper eqs. 5-6, 18).
+"""Exact evaluation of any (Defender, Attacker) pair on an instance (paper eqs. (3)-(4), (16)).
 
 A *Defender* is given by its schedule: a function mapping a walk (node indices from
 ``s0``) to the probability of allocating to ``g1`` after each step — σ*, the alternative
 Defender σ' and any other prefix-based Defender fit. An *Attacker* is a mixed strategy over
-finite paths per type (the paper's Γ_mix). Beliefs follow Bayes' rule (eq. 4) from the
+finite paths per type (the paper's Γ_mix). Beliefs follow Bayes' rule (eq. (2)) from the
 Attacker's mixture and are independent of the Defender.
 """
 
@@ -44,7 +44,7 @@ class Trajectory:
     sigma_g1 : tuple
         Defender's probability of allocating to ``g1`` after steps ``1..T``.
     belief_g1 : tuple of Fraction
-        Bayes belief ``b^1_t`` that ``g1`` is true after steps ``0..T`` (eq. 4).
+        Bayes belief ``b^1_t`` that ``g1`` is true after steps ``0..T`` (Bayes' rule, eq. (2)).
     allocation : tuple
         Cumulative expected allocation to this type's true goal after steps ``0..T``.
     terminal : Number
@@ -95,7 +95,7 @@ class Evaluation:
 
     @cached_property
     def trajectories(self) -> tuple[Trajectory, ...]:
-        """Per path: σ(g1), Bayes beliefs ``b^1_t`` (eq. 4) and cumulative allocation."""
+        """Per path: σ(g1), Bayes beliefs ``b^1_t`` (eq. (2)) and cumulative allocation."""
         prior = {"primary": self._prior[0], "secondary": self._prior[1]}
         all_paths = [(r.kind, r.mixed) for r in self._runs]
         out = []
@@ -126,8 +126,8 @@ def evaluate(
 ) -> Evaluation:
     """Evaluate a Defender schedule against a mixed Attacker, exactly.
 
-    ``U^θ = Σ_ξ γ(ξ|θ) [Σ_t w(e_t) σ_t(g^θ) + d(s_T, g^θ)]`` (eq. 5),
-    ``U = b1 U1 + b2 U2`` (eq. 6), ``VoI = (Ū − U)/Ū`` with ``Ū = b1 d(s0,g1) + b2 d(s0,g2)``.
+    ``U^θ = Σ_ξ γ(ξ|θ) [Σ_t w(e_t) σ_t(g^θ) + d(s_T, g^θ)]`` (eq. (3)),
+    ``U = b1 U1 + b2 U2`` (eq. (4)), ``VoI = (Ū − U)/Ū`` with ``Ū = b1 d(s0,g1) + b2 d(s0,g2)``.
 
     Examples
     --------
@@ -187,9 +187,10 @@ def _zero(net: Network) -> Number:
 
 def _beliefs_along(path: Sequence[int], all_paths: Sequence[tuple[str, MixedPath]],
                    prior: dict[str, Fraction]) -> tuple[Fraction, ...]:
-    """Bayes belief in g1 at each prefix of ``path`` (eq. 4 unrolled): the prior-weighted
-    mass of primary paths sharing the prefix over the total mass sharing it. The belief can
-    change only where another path leaves this one, so it is computed once per segment."""
+    """Bayes belief in g1 at each prefix of ``path`` (Bayes' rule, eq. (2), unrolled): the
+    prior-weighted mass of primary paths sharing the prefix over the total mass sharing it. The
+    belief can change only where another path leaves this one, so it is computed once per
+    segment."""
     shared = [(kind, mp.probability, _common_prefix(path, mp.path)) for kind, mp in all_paths]
     out: list[Fraction] = []
     for t0, t1 in pairwise([0, *sorted({n for _, _, n in shared if 0 < n < len(path)}),

@@ -1,11 +1,11 @@
 """One exact evaluation for any (Defender, Attacker) pair: U¹, U², U and VoI.
 
-Defenders: ``"sigma*"`` (the equilibrium σ*, eq. 9) and ``"sigma'"`` (greedy on Dragan's
+Defenders: ``"sigma*"`` (the equilibrium σ*, eq. (7)) and ``"sigma'"`` (greedy on Dragan's
 belief, :mod:`solver.alt_defender`), or any schedule function (walk -> σ(g1) per step).
-Attackers: ``"gamma*"`` (the equilibrium mixture, eq. 10 and 14), ``"ambiguity"`` and
-``"exaggeration"`` (each type deterministically takes its ξ^{θ,am} / ξ^{θ,ex}, eq. 17), or
-any :class:`Attacker`. Values come from :func:`solver.evaluation.evaluate` (eqs. 5, 6 and
-Definition 7): exact ``Fraction`` on rational instances, since every allocation is a
+Attackers: ``"gamma*"`` (the equilibrium mixture, eqs. (9) and (15)), ``"ambiguity"`` and
+``"exaggeration"`` (each type deterministically takes its ξ^{θ,am} / ξ^{θ,ex}, eq. (18)), or
+any :class:`Attacker`. Values come from :func:`solver.evaluation.evaluate` (eqs. (3), (4) and
+Definition 6): exact ``Fraction`` on rational instances, since every allocation is a
 ``Fraction`` (σ*) or 0/1 (σ').
 """
 
@@ -104,7 +104,7 @@ class Game:
 
     @cached_property
     def observer(self) -> DraganObserver:
-        """Dragan's observer (eq. 16) on this instance."""
+        """Dragan's observer (eq. (17)) on this instance."""
         return DraganObserver(self.instance.network, self.start, self.g1, self.g2,
                               self.d_to_g1, self.d_to_g2, self.instance.b1, self.instance.b2)
 

@@ -188,7 +188,7 @@ def plot_map(instance: Instance, *, baselines: bool = True, game: Game | None = 
                                        f"{len(mp.path) - 1} steps)"))
         vo = {r.attacker: r.VoI for r in game.compare((("sigma*", "ambiguity"),
                                                        ("sigma*", "exaggeration")))}
-        ax2.set_title(f"Dragan baselines (eq. 17): VoI vs σ*: ambiguity "
+        ax2.set_title(f"Dragan baselines (eq. (18)): VoI vs σ*: ambiguity "
                       f"{float(vo['ambiguity']):.3f}, exaggeration "
                       f"{float(vo['exaggeration']):.3f}", fontsize=10)
         ax2.legend(handles=bl, loc="upper center", bbox_to_anchor=(0.5, -0.1), fontsize=8,
@@ -201,7 +201,7 @@ def plot_map(instance: Instance, *, baselines: bool = True, game: Game | None = 
 def plot_beliefs(instance: Instance, *, defender: str = "sigma*",
                  game: Game | None = None) -> Figure:
     """Per type (columns): the belief ``b^1_t`` along each path (top; Bayes under γ* for the
-    equilibrium paths, Dragan's eq. 16 for the baselines) and the cumulative expected
+    equilibrium paths, Dragan's belief, eq. (17), for the baselines) and the cumulative expected
     allocation to the true goal under ``defender`` (bottom).
 
     Examples
@@ -229,7 +229,7 @@ def plot_beliefs(instance: Instance, *, defender: str = "sigma*",
                 idx = [net.index_of(v) for v in tr.nodes]
                 belief = [float(b) for b in game.observer.beliefs([int(i) for i in idx
                                                                      if i is not None])]
-                source = "Dragan eq. 16"
+                source = "Dragan eq. (17)"
             name = _tex(tr.label)
             prob = f", p = {tr.probability}" if attacker == "gamma*" else ""
             colour = _PATH_COLOURS.get(tr.label, "#7f7f7f")

@@ -1,8 +1,8 @@
-"""The primary Attacker's two branch paths and mixing (Definition 6, eq. 14).
+"""The primary Attacker's two branch paths and mixing (Definition 5, eq. (15)).
 
 ``ξ^{1,α} = ξ²[0..t_α] + ψ(s_{t_α}, g1)`` for α ∈ {I, II}, with ψ a full-graph shortest
 path (every step of ψ has σ* = 1). ``γ*(ξ^{1,II} | g1) = b2 / b1`` and
-``γ*(ξ^{1,I} | g1) = 1 - b2 / b1`` — eq. (14); the sentence before it swaps the two
+``γ*(ξ^{1,I} | g1) = 1 - b2 / b1`` — eq. (15); the sentence before it swaps the two
 (proofs/ERRATA.md). Identical paths are merged and zero-probability paths dropped.
 """
 
@@ -43,7 +43,7 @@ def branch_path(net: Network, xi2: Sequence[int], t: int, g1: int, d_to_g1: np.n
 def primary_mixture(net: Network, xi2: Sequence[int], phases: Phases, g1: int,
                     d_to_g1: np.ndarray, b1: Fraction, b2: Fraction,
                     compare: Comparator) -> tuple[MixedPath, ...]:
-    """The primary type's equilibrium mixture over ξ^{1,I} and ξ^{1,II} (eq. 14).
+    """The primary type's equilibrium mixture over ξ^{1,I} and ξ^{1,II} (eq. (15)).
 
     Examples
     --------

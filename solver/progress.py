@@ -1,4 +1,4 @@
-"""The Defender's equilibrium strategy σ*: allocation proportional to new progress (eq. 9).
+"""The Defender's equilibrium strategy σ*: allocation proportional to new progress (eq. (7)).
 
 ``c_t = min(c_{t-1}, d(s_t, g1))`` with ``c_0 = d(s0, g1)`` (Definition 3) and
 ``σ*(g1 | c_{t-1}, e_t) = (c_{t-1} - c_t) / w(e_t)``. Along any walk the allocations to

@@ -153,7 +153,7 @@ def three_phase_profile() -> dict[str, Any]:
 
 
 def triangle_profile() -> dict[str, Any]:
-    """formats.md's example profile (eq. 14: ξ^{1,II} = s g2 with b2/b1 = 3/7)."""
+    """formats.md's example profile (eq. (15): ξ^{1,II} = s g2 with b2/b1 = 3/7)."""
     return profile_doc([(["s", "g1"], "4/7"), (["s", "g2"], "3/7")], [(["s", "g2"], 1)],
                        ("g1", "g2"), phases={"t_I": 0, "t_II": 1, "T": 1},
                        prior={"primary": "7/10", "secondary": "3/10"},
@@ -163,7 +163,7 @@ def triangle_profile() -> dict[str, Any]:
 
 def progress_costs(doc: dict[str, Any], walk: Sequence[Any], g1: Any, g2: Any
                    ) -> tuple[Fraction, Fraction]:
-    """Both types' costs of ``walk`` against σ* (eq. 9), by a naive re-implementation.
+    """Both types' costs of ``walk`` against σ* (eq. (7)), by a naive re-implementation.
 
     Returns ``(U¹, U²)`` of the walk: ``Σ w σ*(g1) + d(end, g1)`` and
     ``Σ w (1 − σ*(g1)) + d(end, g2)``, distances by Bellman-Ford.

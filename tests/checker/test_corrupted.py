@@ -33,7 +33,7 @@ Mutation = Callable[[dict[str, Any]], None]
 
 def _prose_case() -> tuple[dict[str, Any], dict[str, Any]]:
     case = next(c for c in load_cases() if c["name"] == "prose_mixing_exploitable")
-    # g1 = 2 (7/10), g2 = 1; ξ² = 0 3 1; ξ^{1,I} = 0 2, ξ^{1,II} = 0 3 2 (eq. 14: 4/7, 3/7)
+    # g1 = 2 (7/10), g2 = 1; ξ² = 0 3 1; ξ^{1,I} = 0 2, ξ^{1,II} = 0 3 2 (eq. (15): 4/7, 3/7)
     prof = profile_doc([([0, 2], "4/7"), ([0, 3, 2], "3/7")], [([0, 3, 1], 1)], (2, 1))
     return case["instance"], prof
 

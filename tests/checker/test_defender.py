@@ -1,4 +1,4 @@
-"""The progress rule σ* (eq. 9) and table Defenders, against naive re-implementations."""
+"""The progress rule σ* (eq. (7)) and table Defenders, against naive re-implementations."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Small random instances and an independent eq. (16) for the experiment tests."""
+"""Small random instances and an independent eq. (17), Dragan's belief, for the experiment tests."""
 
 from __future__ import annotations
 
@@ -32,7 +32,7 @@ def random_instance(seed: int, n: int = 7, p: float = 0.45) -> Instance:
 
 def literal_belief(graph: nx.Graph, walk: list[object], goals: tuple[object, object],
                    prior: tuple[Fraction, Fraction], dps: int = 80) -> mpmath.mpf:
-    """P(goals[0] | walk) by eq. (16) written out, C included: exp(-C - V_i(s_t)) /
+    """P(goals[0] | walk) by eq. (17) written out, C included: exp(-C - V_i(s_t)) /
     exp(-V_i(s_0)) * b_i / Z with V_i = networkx Dijkstra distance."""
     ctx = mpmath.MPContext()
     ctx.dps = dps

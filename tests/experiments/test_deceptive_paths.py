@@ -1,4 +1,4 @@
-"""Eq. (17a)/(17b) paths against brute force over simple paths and over walks."""
+"""Eq. (18a)/(18b) paths against brute force over simple paths and over walks."""
 
 from __future__ import annotations
 

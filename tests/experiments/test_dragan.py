@@ -1,4 +1,4 @@
-"""Dragan's observer (eq. 16) and the exact σ' decision against independent computations."""
+"""Dragan's observer (eq. (17)) and the exact σ' decision against independent computations."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ from tests.experiments._graphs import literal_belief, random_instance
 
 
 @pytest.mark.parametrize("seed", range(6))
-def test_belief_matches_literal_eq16_along_random_walks(seed: int) -> None:
+def test_belief_matches_literal_eq17_along_random_walks(seed: int) -> None:
     inst = random_instance(seed)
     game = Game.of(inst)
     net = inst.network

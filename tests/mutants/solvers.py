@@ -77,7 +77,7 @@ def _phases(game: Game, xi2: Path) -> tuple[int, int]:
 
 # ----------------------------------------------------------------------------- mutants
 def mutant_swapped_mixing(doc: Doc) -> Doc:
-    """The sentence before eq. (14): ξ^{1,I} with b2/b1 and ξ^{1,II} with 1 − b2/b1."""
+    """The sentence before eq. (15): ξ^{1,I} with b2/b1 and ξ^{1,II} with 1 − b2/b1."""
     eq, game = _base(doc)
     xi2 = eq.secondary_path
     t_i, t_ii = _phases(game, xi2)
@@ -94,7 +94,7 @@ def mutant_late_branch(doc: Doc) -> Doc:
 
 
 def mutant_xi2_shortest_path(doc: Doc) -> Doc:
-    """ξ² is a plain shortest path s0 → g2 (cut at the first goal); the rest is eq. (14)."""
+    """ξ² is a plain shortest path s0 → g2 (cut at the first goal); the rest is eq. (15)."""
     _, game = _base(doc)
     path = [game.start]
     while not game.is_goal(path[-1]):
@@ -155,7 +155,7 @@ def mutant_drop_phase_ii(doc: Doc) -> Doc:
 
 
 def mutant_tie_uniform(doc: Doc) -> Doc:
-    """Wrong tie handling: at b1 = b2 = 1/2 mix ξ^{1,I} and ξ^{1,II} half and half (eq. 14
+    """Wrong tie handling: at b1 = b2 = 1/2 mix ξ^{1,I} and ξ^{1,II} half and half (eq. (15)
     puts all weight on ξ^{1,II})."""
     eq, game = _base(doc)
     xi2 = eq.secondary_path

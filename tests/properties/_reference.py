@@ -1,7 +1,7 @@
 """A deliberately naive, independent model of the DPP game on an instance document.
 
 Exact rationals throughout, plain dict adjacency, Dijkstra on Fractions, σ* straight from
-eq. (9), costs straight from eq. (5), and exhaustive enumeration of simple paths and walks.
+eq. (7), costs straight from eq. (3), and exhaustive enumeration of simple paths and walks.
 Used as the brute-force reference of the property tests; imports neither package.
 """
 
@@ -82,7 +82,7 @@ class Game:
 
     # ------------------------------------------------------------------ σ* and costs
     def sigma(self, walk: Sequence[Node]) -> list[Fraction]:
-        """σ*(g1) after each step of ``walk`` (eq. 9, running minimum ``c_t``)."""
+        """σ*(g1) after each step of ``walk`` (eq. (7), running minimum ``c_t``)."""
         c = self.d_to(walk[0], self.g1)
         out = []
         for u, v in itertools.pairwise(walk):
@@ -92,7 +92,7 @@ class Game:
         return out
 
     def cost(self, walk: Sequence[Node], theta: int) -> Fraction | float:
-        """Type ``theta``'s cost of ``walk`` against σ* (eq. 5): allocations + terminal."""
+        """Type ``theta``'s cost of ``walk`` against σ* (U^θ, eq. (3)): allocations + terminal."""
         sig = self.sigma(walk)
         paid = sum((self.weight(u, v) * (s if theta == 1 else 1 - s)
                     for (u, v), s in zip(itertools.pairwise(walk), sig, strict=True)),

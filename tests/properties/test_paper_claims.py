@@ -1,8 +1,9 @@
 """The paper's claims as properties, one test per proof id (the proofs in proofs/ cite these
 test names by their prefix): TEL, L1, L2, XI2, L3, L4, L5, THM, HORIZON, LP.
 
-Brute force uses the naive exact model of ``_reference.py`` (walk enumeration, eq. 9, eq. 5);
-the LP route uses ``_normal_form.py``. Example counts follow DPP_HYPOTHESIS_PROFILE."""
+Brute force uses the naive exact model of ``_reference.py`` (walk enumeration, σ* by eq. (7),
+U^θ by eq. (3)); the LP route uses ``_normal_form.py``. Example counts follow
+DPP_HYPOTHESIS_PROFILE."""
 
 from __future__ import annotations
 
@@ -171,7 +172,7 @@ def test_L5_equilibrium_beliefs_are_b1_half_zero_by_phase(doc: Doc) -> None:
     g = Game.from_doc(doc)
     eq = solve(Instance.from_json(doc))
     xi2 = tuple(key(v) for v in eq.secondary_path)
-    t_i, t_ii, _ = g.phases(xi2)  # recomputed from eq. 9, not read from the solver
+    t_i, t_ii, _ = g.phases(xi2)  # recomputed from eq. (7), not read from the solver
     primary = [(tuple(key(v) for v in p.nodes), p.probability) for p in eq.primary_paths]
     beliefs = _beliefs(g, primary, xi2)
     for t, b in enumerate(beliefs):

@@ -51,7 +51,7 @@ def _dist(g: nx.Graph, target: Hashable) -> dict[Hashable, Fraction]:
 
 def _sigma(g: nx.Graph, walk: Sequence[Hashable],
            to_g1: dict[Hashable, Fraction]) -> list[Fraction]:
-    """σ*(g1) after each step, straight from eq. (9)."""
+    """σ*(g1) after each step, straight from eq. (7)."""
     c = to_g1[walk[0]]
     out = []
     for u, v in pairwise(walk):
@@ -63,7 +63,7 @@ def _sigma(g: nx.Graph, walk: Sequence[Hashable],
 
 def _cost(g: nx.Graph, walk: Sequence[Hashable], theta: int, to_g1: dict[Hashable, Fraction],
           to_g2: dict[Hashable, Fraction]) -> Fraction:
-    """The cost of ``walk`` to type ``theta`` against σ* (eq. 6)."""
+    """The cost of ``walk`` to type ``theta`` against σ* (U^θ, eq. (3))."""
     sig = _sigma(g, walk, to_g1)
     paid = sum((Fraction(g[u][v]["weight"]) * (s if theta == 1 else 1 - s)
                 for (u, v), s in zip(pairwise(walk), sig, strict=True)), Fraction(0))
@@ -114,7 +114,7 @@ def test_every_primary_path_costs_exactly_d_s0_g1(inst: Instance) -> None:
 
 def _belief(eq_paths: Sequence[tuple[Sequence[Hashable], Fraction]], xi2: Sequence[Hashable],
             prefix: Sequence[Hashable], b1: Fraction) -> Fraction:
-    """Bayes' rule (eq. 4) from the Attacker's mixture, computed from scratch."""
+    """Bayes' rule (eq. (2)) from the Attacker's mixture, computed from scratch."""
     n = len(prefix)
     x1 = sum((p for nodes, p in eq_paths if tuple(nodes[:n]) == tuple(prefix)), Fraction(0))
     x2 = Fraction(tuple(xi2[:n]) == tuple(prefix))

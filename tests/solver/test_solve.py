@@ -38,7 +38,7 @@ def test_triangle_by_hand(triangle: Instance) -> None:
 def test_beliefs_along_triangle_paths(triangle: Instance) -> None:
     eq = solve(triangle)
     by_label = {t.label: t for t in eq.trajectories}
-    # xi2 = xi1_II: phase II belief exactly 1/2 (eq. 14 mixing), branch xi1_I belief 1
+    # xi2 = xi1_II: phase II belief exactly 1/2 (eq. (15) mixing), branch xi1_I belief 1
     assert by_label["xi2"].belief_g1 == (F(7, 10), F(1, 2))
     assert by_label["xi1_II"].belief_g1 == (F(7, 10), F(1, 2))
     assert by_label["xi1_I"].belief_g1 == (F(7, 10), F(1))
