@@ -10,7 +10,7 @@ prior 1/2.
 - :func:`priors`: ``[p, 1 - p]`` pairs of exact ``"p/q"`` strings, including exactly 1/2;
 - :func:`instances`: instance documents on any graph strategy; the goals and the start are
   chosen so that ``d(s0,g1)``, ``d(s0,g2)``, ``d(g1,g2)`` and ``d(g2,g1)`` are finite;
-- :func:`grid_worlds`: 4-connected grid instances with obstacles (the paper's Sec. VI), by
+- :func:`grid_worlds`: 4-connected grid instances with obstacles (the paper's Sec. VII), by
   default with each goal reachable from the start without passing the other goal.
 
 They produce plain dicts (the checker never imports the solver), ready for
@@ -396,7 +396,7 @@ def grid_worlds(
     """Grid-world instance documents: 4-connected cells ``[row, col]`` with obstacles.
 
     Obstacles cover at most ``floor(max_density * rows * cols)`` cells, never the start or a
-    goal. With ``avoid_other_goal`` (the paper's Sec. VI-D condition) the start differs from
+    goal. With ``avoid_other_goal`` (the paper's Sec. VII-D condition) the start differs from
     both goals and each goal is reachable from the start along a path that does not pass
     through the other goal; without it, the start and both goals are merely connected (the
     start may then be a goal). When the drawn obstacles violate the condition, the fewest

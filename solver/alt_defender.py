@@ -1,4 +1,4 @@
-"""The alternative Defender σ' of Sec. VI-B: greedy on Dragan's belief (eq. (17)).
+"""The alternative Defender σ' of Sec. VII-B: greedy on Dragan's belief (eq. (17)).
 
 After the Attacker's step to ``s_t``, σ' allocates to ``g1`` if ``b^1_t >= 1/2`` and to
 ``g2`` otherwise (Lemma 3: greedy on the belief; at exactly 1/2 it picks ``g1``, as the

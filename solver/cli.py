@@ -147,7 +147,7 @@ def _experiment_instance(instance: str | None, map_file: str | None, start: str 
 
 @main.group("experiment")
 def experiment_group() -> None:
-    """The paper's Section VI experiments (baselines, comparison, density sweep)."""
+    """The paper's Section VII experiments (baselines, comparison, density sweep)."""
 
 
 @experiment_group.command("compare")
@@ -258,7 +258,7 @@ _OUT_HELP = "Output file (.png or .svg), or a stem: writes STEM.png and STEM.svg
 
 @main.group("plot")
 def plot_group() -> None:
-    """Figures like the paper's Fig. 4-6 (PNG and SVG)."""
+    """Figures like the paper's Figs. 7-9 (PNG and SVG)."""
 
 
 @plot_group.command("map")

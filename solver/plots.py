@@ -1,11 +1,11 @@
-"""Figures of the paper's Sec. VI with matplotlib (Agg backend): PNG and SVG.
+"""Figures of the paper's Sec. VII with matplotlib (Agg backend): PNG and SVG.
 
 - :func:`plot_map` — the grid, obstacles, start and goals, the equilibrium paths with ξ²
   coloured by phase and the primary's branches labelled with their mixing probabilities
-  (like Fig. 4), and beside them the ambiguity and exaggeration paths;
+  (like Fig. 7), and beside them the ambiguity and exaggeration paths;
 - :func:`plot_beliefs` — per type, the belief ``b^1_t`` along each path and the cumulative
-  expected allocation to the true goal (like Fig. 5);
-- :func:`plot_voi` — VoI box plots by density and strategy pair (like Fig. 6).
+  expected allocation to the true goal (like Fig. 8);
+- :func:`plot_voi` — VoI box plots by density and strategy pair (like Fig. 9).
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The paper's Section VI experiments: the comparison table and the obstacle-density sweep."""
+"""The paper's Section VII experiments: the comparison table and the obstacle-density sweep."""
 
 from solver.experiments.compare import compare_table, run_compare
 from solver.experiments.density import DensityConfig, run_density

@@ -1,4 +1,4 @@
-"""The comparison of Sec. VI-C: six (Defender, Attacker) pairs on one grid (Fig. 4/5).
+"""The comparison of Sec. VII-C: six (Defender, Attacker) pairs on one grid (Figs. 7/8).
 
 The default instance is the bundled 10×10 map ``solver/data/paper10.map`` (copy in
 ``examples/``), start (9, 0), g1 = (0, 9) with prior 3/5, g2 = (0, 0) with prior 2/5.

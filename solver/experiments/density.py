@@ -1,4 +1,4 @@
-"""The obstacle-density sweep of the paper's Sec. VI-D (Fig. 6), reproducible and parallel.
+"""The obstacle-density sweep of the paper's Sec. VII-D (Fig. 9), reproducible and parallel.
 
 For each density and sample: draw a grid (:mod:`solver.experiments.sampling`), build the
 game (same start, goals and prior for every grid), evaluate the six (Defender, Attacker)

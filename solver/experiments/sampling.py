@@ -1,4 +1,4 @@
-"""Random obstacle grids for the density sweep (paper Sec. VI-D), reproducible per sample.
+"""Random obstacle grids for the density sweep (paper Sec. VII-D), reproducible per sample.
 
 Sample ``k`` at density ``p`` (percent) with seed ``s`` draws from
 ``numpy.random.default_rng([s, p, k])``: the same grid whatever the worker or the order.

@@ -1,6 +1,6 @@
 """Statistics of the density sweep and the paper's qualitative claims, checked on the data.
 
-Claims (paper Sec. VI-D), each reported with its numbers and whether it holds here:
+Claims (paper Sec. VII-D), each reported with its numbers and whether it holds here:
 
 1. against σ*, the equilibrium Attacker has the highest mean VoI, then ambiguity, then
    exaggeration (``mean VoI(σ*,γ*) >= mean VoI(σ*,am) >= mean VoI(σ*,ex)``) at each density;

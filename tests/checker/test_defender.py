@@ -23,7 +23,7 @@ from tests.checker._helpers import (
 
 
 def test_paper_figure_progress_example() -> None:
-    """Fig. 4(a): c_0 = 3.5; moving to a node at distance 2 is progress 1.5, to 3 is 0.5."""
+    """Fig. 3(a): c_0 = 3.5; moving to a node at distance 2 is progress 1.5, to 3 is 0.5."""
     doc = make_doc([("s", "a", 2), ("a", "g1", 2), ("s", "b", 1), ("b", "g1", 3),
                     ("s", "g2", 5), ("g2", "g1", 9)], "s", ["g1", "g2"], ["3/5", "2/5"])
     doc["graph"]["edges"].append({"source": "s", "target": "g1", "weight": "7/2"})
@@ -33,7 +33,7 @@ def test_paper_figure_progress_example() -> None:
     assert progress_along(inst, ix["g1"], [ix["s"], ix["b"]]) == [Fraction(1, 2)]
     r = inst.roles()
     assert sigma_along(inst, r, ProgressRule(r.g1), [ix["s"], ix["a"]]) == [Fraction(3, 4)]
-    # both continue to g1 and pay exactly d(s0, g1) = 7/2 (Fig. 4(b))
+    # both continue to g1 and pay exactly d(s0, g1) = 7/2 (Fig. 3(b))
     for mid in ("a", "b"):
         walk = (ix["s"], ix[mid], ix["g1"])
         assert walk_cost(inst, r, ProgressRule(r.g1), walk, 1) == Fraction(7, 2)

@@ -101,5 +101,5 @@ def test_paper10_map_bundled_and_valid() -> None:
         lab, _ = ndimage.label(free)
         assert lab[9, 0] == lab[goal] != 0
     ph = solve(inst).phases
-    assert 0 < ph.t_I < ph.t_II < ph.T  # all three phases, like the paper's Fig. 4
+    assert 0 < ph.t_I < ph.t_II < ph.T  # all three phases, like the paper's Fig. 7
     assert [(r.defender, r.attacker) for r in run_compare(inst)] == list(PAIRS)

@@ -63,7 +63,7 @@ def test_paper_figure3_progress_example() -> None:
     assert 1 * purple[0] + 3 * purple[1] == F(7, 2)
 
 
-def test_mixing_follows_eq14_not_the_swapped_sentence() -> None:
+def test_mixing_follows_eq15_not_the_swapped_sentence() -> None:
     eq = _solve_named("phases_I_II")
     probs = {p.label: p.probability for p in eq.primary_paths}
     b1, b2 = eq.instance.b1, eq.instance.b2
