@@ -6,7 +6,7 @@
 2. Small random graphs: ``solve`` against brute-force enumeration of all simple paths for
    the secondary's best response (what the closed form replaces).
 
-Run: ``.venv/bin/python benchmarks/bench_solver.py [--size 1000] [--repeat 3]``
+Run: ``.venv/bin/python benchmarks/bench_solver.py [--size 1000] [--repeat 5]``
 """
 
 from __future__ import annotations
