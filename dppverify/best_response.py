@@ -98,14 +98,11 @@ def attacker_best_response(tree: WalkTree, roles: Roles, tdef: TreeDefender, the
 
     Examples
     --------
-    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.examples import triangle
     >>> from dppverify.tree import build_tree
     >>> from dppverify.defender import tree_defender
     >>> from dppverify.profile import ProgressRule
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
-    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
-    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> inst = triangle()
     >>> r = inst.roles()
     >>> tree = build_tree(inst, 3)
     >>> td = tree_defender(tree, r, ProgressRule(r.g1))
@@ -195,12 +192,9 @@ def defender_best_response(tree: WalkTree, roles: Roles, x1: Mapping[int, Fracti
 
     Examples
     --------
-    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.examples import triangle
     >>> from dppverify.tree import build_tree
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
-    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
-    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> inst = triangle()
     >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
     >>> x1 = {0: Fraction(1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
     >>> x2 = {0: Fraction(1), 2: Fraction(1)}

@@ -48,11 +48,8 @@ def progress_along(instance: Instance, goal: int, walk: Sequence[int]) -> list[N
 
     Examples
     --------
-    >>> from dppverify.instance import instance_from_json
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
-    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
-    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> from dppverify.examples import triangle
+    >>> inst = triangle()
     >>> progress_along(inst, 1, [0, 2])   # s -> g2: d(., g1) drops from 3 to 2
     [1]
     """
@@ -188,12 +185,9 @@ def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefen
 
     Examples
     --------
-    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.examples import triangle
     >>> from dppverify.tree import build_tree
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
-    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
-    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> inst = triangle()
     >>> r = inst.roles()
     >>> td = tree_defender(build_tree(inst, 1), r, ProgressRule(r.g1))
     >>> [inst.labels(w) for w in ([0, 1], [0, 2])], td.sigma1, td.alloc1, td.alloc2

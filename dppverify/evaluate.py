@@ -41,12 +41,9 @@ def walk_cost(instance: Instance, roles: Roles, rule: DefenderRule, walk: tuple[
 
     Examples
     --------
-    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.examples import triangle
     >>> from dppverify.profile import ProgressRule
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
-    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
-    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> inst = triangle()
     >>> r = inst.roles()
     >>> [walk_cost(inst, r, ProgressRule(r.g1), (0, 2), th) for th in (1, 2)]  # s -> g2
     [3, 1]
@@ -73,12 +70,9 @@ def evaluate(instance: Instance, roles: Roles, rule: DefenderRule,
 
     Examples
     --------
-    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.examples import triangle
     >>> from dppverify.profile import ProgressRule
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
-    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
-    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> inst = triangle()
     >>> r = inst.roles()
     >>> v = evaluate(inst, r, ProgressRule(r.g1),
     ...              [MixedWalk((0, 1), Fraction(4, 7)), MixedWalk((0, 2), Fraction(3, 7))],

@@ -283,11 +283,8 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
 
     Examples
     --------
-    >>> from dppverify.instance import instance_from_json
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
-    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
-    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> from dppverify.examples import triangle
+    >>> inst = triangle()
     >>> doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
     ...        "defender": {"rule": "progress", "goal": "g1"},
     ...        "attacker": {"primary": [{"path": ["s", "g1"], "probability": "4/7"},

@@ -94,12 +94,9 @@ def solve_value_lp(tree: WalkTree, roles: Roles) -> ValueLP:
 
     Examples
     --------
-    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.examples import triangle
     >>> from dppverify.tree import build_tree
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
-    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
-    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> inst = triangle()
     >>> round(solve_value_lp(build_tree(inst, 1), inst.roles()).value, 6)
     2.4
     """
@@ -199,12 +196,9 @@ def exact_bracket(tree: WalkTree, roles: Roles, lp: ValueLP | None = None,
 
     Examples
     --------
-    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.examples import triangle
     >>> from dppverify.tree import build_tree
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
-    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
-    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> inst = triangle()
     >>> tree = build_tree(inst, 2)
     >>> b = exact_bracket(tree, inst.roles(), solve_value_lp(tree, inst.roles()))
     >>> b.exact
@@ -289,11 +283,8 @@ def game_value(instance: Instance, horizon: int, *, max_prefixes: int = DEFAULT_
 
     Examples
     --------
-    >>> from dppverify.instance import instance_from_json
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "g1"},
-    ...     {"id": "g2"}], "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...     {"source": "g2", "target": "g1", "weight": 2}, {"source": "s", "target": "g1",
-    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]})
+    >>> from dppverify.examples import triangle
+    >>> inst = triangle()
     >>> v = game_value(inst, 3)
     >>> v.bracket.exact, round(v.value, 6), v.prefixes
     (Fraction(12, 5), 2.4, 3)
