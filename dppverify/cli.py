@@ -10,6 +10,7 @@ profile is refuted (or a check could not be completed).
 from __future__ import annotations
 
 import json
+import os
 import sys
 from typing import Any
 
@@ -27,10 +28,38 @@ from dppverify.text import show
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 from dppverify.value_lp import GameValue, game_value
 
-__all__ = ["COMMANDS", "certify_command", "export_efg_command", "format_table",
-           "value_command"]
+__all__ = ["COMMANDS", "ErrorReportingGroup", "certify_command", "export_efg_command",
+           "format_table", "value_command"]
 
 NUMBERS_WIDTH = 44
+
+
+
+class ErrorReportingGroup(click.Group):
+    """A click group for the ``dpp`` commands: bad input is one line and exit 2.
+
+    Errors of the classes in :attr:`user_errors` are the user's (bad input): one line on
+    stderr, ``error: ...``, exit code 2. Anything else is an internal failure: one line, exit
+    code 3, no traceback (set ``DPP_DEBUG=1`` to see it). Subclasses add their package's error
+    classes (``dpp``'s group adds the solver's).
+    """
+
+    user_errors: tuple[type[Exception], ...] = (CheckerError,)
+
+    def invoke(self, ctx: click.Context) -> Any:
+        try:
+            return super().invoke(ctx)
+        except self.user_errors as exc:
+            click.echo(f"error: {exc}", err=True)
+            ctx.exit(2)
+        except (click.exceptions.Exit, click.ClickException, click.Abort):
+            raise
+        except Exception as exc:
+            if os.environ.get("DPP_DEBUG"):
+                raise
+            click.echo(f"internal error: {type(exc).__name__}: {exc} "
+                       "(set DPP_DEBUG=1 for details)", err=True)
+            ctx.exit(3)
 
 
 def _fail(exc: CheckerError) -> None:

@@ -7,7 +7,6 @@ traceback). ``dppverify`` never imports this module: the dependency points one w
 
 from __future__ import annotations
 
-import os
 from typing import Any
 
 import click
@@ -24,23 +23,10 @@ from solver.movingai import read_map
 __all__ = ["main"]
 
 
-class _DppGroup(click.Group):
-    """A click group that turns package errors into one-line messages."""
+class _DppGroup(checker_cli.ErrorReportingGroup):
+    """The checker's error-reporting group, also treating solver errors as bad input."""
 
-    def invoke(self, ctx: click.Context) -> Any:
-        try:
-            return super().invoke(ctx)
-        except (DPPError, CheckerError) as exc:
-            click.echo(f"error: {exc}", err=True)
-            ctx.exit(2)
-        except (click.exceptions.Exit, click.ClickException, click.Abort):
-            raise
-        except Exception as exc:
-            if os.environ.get("DPP_DEBUG"):
-                raise
-            click.echo(f"internal error: {type(exc).__name__}: {exc} "
-                       "(set DPP_DEBUG=1 for details)", err=True)
-            ctx.exit(3)
+    user_errors = (DPPError, CheckerError)
 
 
 @click.group(cls=_DppGroup, context_settings={"help_option_names": ["-h", "--help"]})
