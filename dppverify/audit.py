@@ -55,11 +55,12 @@ from dppverify.certificate import Certificate
 from dppverify.certify import certify
 from dppverify.errors import CheckerError, ProfileError, TreeTooLargeError
 from dppverify.exact import parse_json
+from dppverify.instance import instance_from_json
 from dppverify.strategies import grid_worlds, instances, priors, weighted_graphs
 
 __all__ = ["AUDIT_MAX_PREFIXES", "AuditError", "AuditReport", "Outcome", "Solver",
            "SolverFailedError", "audit_instances", "command_solver", "examine", "load_solver",
-           "run_audit", "write_failure"]
+           "prune_failure", "run_audit", "write_failure"]
 
 Doc = dict[str, Any]
 Solver = Callable[[Doc], Any]
@@ -431,10 +432,82 @@ def run_audit(solver: Solver, *, examples: int = 100, seed: int = 0, max_nodes: 
         return AuditReport(True, counts["examples"], counts["skipped"], 0, None, None,
                            seed=seed, max_nodes=max_nodes)
     minimal = found[-1]  # hypothesis replays the minimal failing example last
+    calls = max(0, counts["shrink"] - 1)
+    if shrink:
+        minimal, pruned_calls = prune_failure(solver, minimal, max_prefixes=max_prefixes,
+                                              trials=trials, seed=seed)
+        calls += pruned_calls
     files = write_failure(minimal, out, seed=seed) if out is not None else ()
-    return AuditReport(False, counts["examples"], counts["skipped"],
-                       max(0, counts["shrink"] - 1), minimal, found[0], files, seed,
-                       max_nodes)
+    return AuditReport(False, counts["examples"], counts["skipped"], calls, minimal, found[0],
+                       files, seed, max_nodes)
+
+
+def prune_failure(solver: Solver, outcome: Outcome, *, max_prefixes: int = AUDIT_MAX_PREFIXES,
+                  trials: int = AUDIT_TRIALS, seed: int = 0) -> tuple[Outcome, int]:
+    """Delete nodes and edges from a failing instance while it still fails the same check.
+
+    Hypothesis shrinks the *draws*, which often leaves nodes the failure does not need (the
+    node count is drawn first). This greedy pass removes, one at a time, every node other
+    than the start and the goals (with its edges), then every edge, keeping a removal when
+    the instance stays valid and the solver's answer still fails the same check; it repeats
+    until nothing can be removed. Returns the pruned outcome and the solver calls spent.
+
+    Examples
+    --------
+    >>> def stay_put(doc):           # a wrong solver: the Attacker never moves
+    ...     s = doc["start"]
+    ...     return {"format": "dpp-profile/1",
+    ...             "attacker": {"primary": [{"path": [s], "probability": "1"}],
+    ...                          "secondary": [{"path": [s], "probability": "1"}]}}
+    >>> doc = {"graph": {"nodes": [{"id": i} for i in range(4)],
+    ...        "edges": [{"source": 0, "target": i} for i in (1, 2, 3)]},
+    ...        "start": 0, "goals": [1, 2], "prior": ["1/2", "1/2"]}
+    >>> pruned, calls = prune_failure(stay_put, examine(stay_put, doc))
+    >>> [n["id"] for n in pruned.instance["graph"]["nodes"]], pruned.check
+    ([0, 1, 2], 'profile.wellformed')
+    """
+    calls = 0
+    best = outcome
+    keep = {json.dumps(best.instance["start"]), *(json.dumps(g) for g in best.instance["goals"])}
+
+    def attempt(doc: Doc) -> Outcome | None:
+        nonlocal calls
+        try:
+            instance_from_json(doc)
+        except CheckerError:  # e.g. a goal became unreachable
+            return None
+        calls += 1
+        try:
+            result = examine(solver, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
+        except TreeTooLargeError:
+            return None
+        return result if result.check == best.check else None
+
+    changed = True
+    while changed:
+        changed = False
+        graph = best.instance["graph"]
+        for node in list(graph["nodes"]):
+            key = json.dumps(node["id"])
+            if key in keep:
+                continue
+            edges = [e for e in graph["edges"]
+                     if key not in (json.dumps(e["source"]), json.dumps(e["target"]))]
+            nodes = [n for n in graph["nodes"] if n is not node]
+            smaller = attempt({**best.instance, "graph": {**graph, "nodes": nodes,
+                                                          "edges": edges}})
+            if smaller is not None:
+                best, changed = smaller, True
+                break
+        if changed:
+            continue
+        for edge in list(graph["edges"]):
+            edges = [e for e in graph["edges"] if e is not edge]
+            smaller = attempt({**best.instance, "graph": {**graph, "edges": edges}})
+            if smaller is not None:
+                best, changed = smaller, True
+                break
+    return best, calls
 
 
 def write_failure(outcome: Outcome, out: str | Path, *, seed: int = 0) -> tuple[Path, ...]:
