@@ -379,6 +379,24 @@ def run_audit(solver: Solver, *, examples: int = 100, seed: int = 0, max_nodes: 
     Returns
     -------
     AuditReport
+
+    Examples
+    --------
+    A "solver" that always answers the triangle's equilibrium is certified on the triangle
+    and refuted on the first generated instance:
+
+    >>> from hypothesis import strategies as st
+    >>> from dppverify.examples import triangle_document
+    >>> answer = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...     "defender": {"rule": "progress", "goal": "g1"},
+    ...     "attacker": {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                              {"path": ["s", "g2"], "probability": "3/7"}],
+    ...                  "secondary": [{"path": ["s", "g2"], "probability": 1}]}}
+    >>> run_audit(lambda doc: answer, examples=3, strategy=st.just(triangle_document())).passed
+    True
+    >>> report = run_audit(lambda doc: answer, examples=20, shrink=False)
+    >>> report.passed, report.examples, report.failure.check
+    (False, 1, 'profile.wellformed')
     """
     if isinstance(examples, bool) or not isinstance(examples, int) or examples < 1:
         raise AuditError(f"examples={examples!r} must be a positive integer")
@@ -511,8 +529,38 @@ def prune_failure(solver: Solver, outcome: Outcome, *, max_prefixes: int = AUDIT
 
 
 def write_failure(outcome: Outcome, out: str | Path, *, seed: int = 0) -> tuple[Path, ...]:
-    """Write ``instance.json``, ``profile.json`` (if JSON), ``certificate.json`` (if
-    certified) and ``failure.json`` (check id, message, seed) into the directory ``out``."""
+    """Write a failing example's files into the directory ``out`` (created if needed).
+
+    Parameters
+    ----------
+    outcome : Outcome
+        The failing example (e.g. :attr:`AuditReport.failure`).
+    out : str or Path
+        The directory.
+    seed : int
+        The campaign's seed, recorded in ``failure.json``.
+
+    Returns
+    -------
+    tuple of Path
+        The files written: ``instance.json``, ``profile.json`` (if the solver's answer was
+        JSON), ``certificate.json`` (if it could be certified) and ``failure.json`` (check
+        id, message, seed).
+
+    Examples
+    --------
+    >>> import json, tempfile
+    >>> from dppverify.examples import triangle_document
+    >>> outcome = examine(lambda doc: 1 / 0, triangle_document())
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     files = write_failure(outcome, Path(d) / "fail", seed=7)
+    ...     names = [f.name for f in files]
+    ...     failure = json.loads(files[-1].read_text())
+    >>> names
+    ['instance.json', 'failure.json']
+    >>> failure["check"], failure["seed"]
+    ('solver.error', 7)
+    """
     folder = Path(out)
     folder.mkdir(parents=True, exist_ok=True)
     docs: dict[str, Any] = {"instance.json": outcome.instance}

@@ -27,8 +27,30 @@ __all__ = ["audit_command", "format_report"]
 
 
 def format_report(report: AuditReport) -> str:
-    """What ``dpp audit`` prints: the summary line, and for a failure the failing check,
-    the minimal instance (one line of JSON) and the files written."""
+    """What ``dpp audit`` prints for a report.
+
+    Parameters
+    ----------
+    report : AuditReport
+        The result of :func:`~dppverify.audit.run_audit`.
+
+    Returns
+    -------
+    str
+        The summary line; for a failure also the failing check, the minimal instance (one
+        line of JSON) and the files written.
+
+    Examples
+    --------
+    >>> from hypothesis import strategies as st
+    >>> from dppverify.examples import triangle_document
+    >>> report = run_audit(lambda doc: 1 / 0, examples=5, shrink=False,
+    ...                    strategy=st.just(triangle_document()))
+    >>> print(format_report(report))  # doctest: +ELLIPSIS
+    audit FAIL after 1 examples (seed 0; ...): the solver raised ZeroDivisionError: division by zero
+    failing check: solver.error
+    minimal failing instance: {"graph": {"nodes": [{"id": "s"}, ...], "prior": ["7/10", "3/10"]}
+    """
     lines = [report.summary()]
     fail = report.failure
     if fail is not None:

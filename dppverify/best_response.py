@@ -57,7 +57,31 @@ class DefenderBR:
 
 
 def terminal_costs(tree: WalkTree, roles: Roles, theta: int) -> list[Number]:
-    """``d(end(p), g^θ)`` at every leaf ``p`` (0 at inner prefixes), full-graph distances."""
+    """``d(end(p), g^θ)`` at every leaf ``p`` (0 at inner prefixes), full-graph distances.
+
+    Parameters
+    ----------
+    tree : WalkTree
+        The walk tree.
+    roles : Roles
+        The labelling (which goal is ``g1``, distances to the goals).
+    theta : int
+        1 (primary) or 2 (secondary).
+
+    Returns
+    -------
+    list
+        One exact number per prefix.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> terminal_costs(tree, inst.roles(), 1), terminal_costs(tree, inst.roles(), 2)
+    ([0, 0, 2], [0, 2, 0])
+    """
     d = roles.dist(theta)
     out: list[Number] = [0] * tree.n_prefixes
     for p in tree.leaves().tolist():
@@ -71,6 +95,34 @@ def leaf_totals(tree: WalkTree, roles: Roles, tdef: TreeDefender, theta: int) ->
     At a leaf: the walk's stage costs plus its terminal cost; at an inner prefix: the stage
     costs so far. A second, independent route to the minimum of
     :func:`attacker_best_response`.
+
+    Parameters
+    ----------
+    tree, roles, tdef
+        The tree, the labelling, and the Defender evaluated on the tree.
+    theta : int
+        1 (primary) or 2 (secondary).
+
+    Returns
+    -------
+    list
+        One exact number per prefix.
+
+    Examples
+    --------
+    Against σ* on the triangle, ``s -> g2`` costs the primary 1 + d(g2, g1) = 3, as much
+    as ``s -> g1`` (Lemma 1), and the secondary 1 (σ* = 1/2 on that step):
+
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> from dppverify.defender import tree_defender
+    >>> from dppverify.profile import ProgressRule
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> leaf_totals(tree, r, td, 1), leaf_totals(tree, r, td, 2)
+    ([0, 3, 3], [0, 2, 1])
     """
     a = tdef.alloc(theta)
     parent = tree.parent.tolist()
@@ -145,6 +197,32 @@ def objective_vector(tree: WalkTree, roles: Roles, tdef: TreeDefender, theta: in
     """Type θ's sequence-form cost vector: stage cost at every prefix plus terminal at leaves.
 
     ``objective_vector(...) @ x`` is type θ's expected cost under realization plan ``x``.
+
+    Parameters
+    ----------
+    tree, roles, tdef
+        The tree, the labelling, and the Defender evaluated on the tree.
+    theta : int
+        1 (primary) or 2 (secondary).
+
+    Returns
+    -------
+    numpy.ndarray
+        Float costs, one per prefix (0 at the root).
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> from dppverify.defender import tree_defender
+    >>> from dppverify.profile import ProgressRule
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> c = objective_vector(tree, r, td, 1)
+    >>> c.tolist(), float(c @ [1, 4 / 7, 3 / 7])   # U¹ of the mixture (4/7, 3/7)
+    ([0.0, 3.0, 3.0], 3.0)
     """
     c = np.array([float(v) for v in tdef.alloc(theta)])
     c[0] = 0.0
@@ -154,7 +232,35 @@ def objective_vector(tree: WalkTree, roles: Roles, tdef: TreeDefender, theta: in
 
 def attacker_best_response_lp(tree: WalkTree, roles: Roles, tdef: TreeDefender,
                               theta: int) -> LPStats:
-    """Type θ's best-response value as the sequence-form LP ``min c·x`` (realization plans)."""
+    """Type θ's best-response value as the sequence-form LP ``min c·x`` (realization plans).
+
+    Parameters
+    ----------
+    tree, roles, tdef
+        The tree, the labelling, and the Defender evaluated on the tree.
+    theta : int
+        1 (primary) or 2 (secondary).
+
+    Returns
+    -------
+    LPStats
+        The LP's value (float) and statistics; the exact counterpart is
+        :func:`attacker_best_response`.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> from dppverify.defender import tree_defender
+    >>> from dppverify.profile import ProgressRule
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> lp = attacker_best_response_lp(tree, r, td, 2)
+    >>> lp.status, round(lp.value, 6), attacker_best_response(tree, r, td, 2).value
+    ('optimal', 1.0, 1)
+    """
     c = objective_vector(tree, roles, tdef, theta)
     x = cp.Variable(tree.n_prefixes)
     problem = cp.Problem(cp.Minimize(c @ x), realization_constraints(tree, x))
@@ -175,7 +281,38 @@ def _terminal_part(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
 
 def payoff_on_tree(tree: WalkTree, roles: Roles, tdef: TreeDefender,
                    x1: Mapping[int, Fraction], x2: Mapping[int, Fraction]) -> Number:
-    """``U = Σ_θ b_θ Σ_p x_θ(p) a_θ(p) + terminal`` from realization plans (a second route to U)."""
+    """``U = Σ_θ b_θ Σ_p x_θ(p) a_θ(p) + terminal`` from realization plans (a second route to U).
+
+    Parameters
+    ----------
+    tree, roles, tdef
+        The tree, the labelling, and the Defender evaluated on the tree.
+    x1, x2 : Mapping
+        Realization plans of the two types: prefix -> reach probability.
+
+    Returns
+    -------
+    Number
+        ``U``, exact for rational instances.
+
+    Examples
+    --------
+    The triangle's equilibrium: primary ``s -> g1`` w.p. 4/7, ``s -> g2`` w.p. 3/7;
+    secondary ``s -> g2``. ``U = 7/10 · 3 + 3/10 · 1``:
+
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> from dppverify.defender import tree_defender
+    >>> from dppverify.profile import ProgressRule
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> x1 = {0: Fraction(1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
+    >>> x2 = {0: Fraction(1), 2: Fraction(1)}
+    >>> payoff_on_tree(tree, r, td, x1, x2)
+    Fraction(12, 5)
+    """
     total: Number = _terminal_part(tree, roles, x1, x2)
     for theta, x in ((1, x1), (2, x2)):
         a = tdef.alloc(theta)
@@ -220,8 +357,35 @@ def defender_best_response_lp(tree: WalkTree, roles: Roles, x1: Mapping[int, Fra
                               x2: Mapping[int, Fraction]) -> tuple[LPStats, dict[int, float]]:
     """The Defender's best response against ``x1``, ``x2`` as an LP over ``σ ∈ [0, 1]^P``.
 
-    Returns the LP statistics (value = the Defender's optimum) and the LP's allocation
-    ``σ(g1 | p)`` at every information set reached with positive probability.
+    Parameters
+    ----------
+    tree, roles
+        The tree and the labelling.
+    x1, x2 : Mapping
+        Realization plans of the two types: prefix -> reach probability.
+
+    Returns
+    -------
+    tuple of LPStats and dict
+        The LP statistics (value = the Defender's optimum) and the LP's allocation
+        ``σ(g1 | p)`` at every information set reached with positive probability.
+
+    Examples
+    --------
+    If the primary went to g2 more often (3/7 to g1, 4/7 to g2), the Defender could get
+    5/2 instead of the equilibrium's 12/5 by allocating to g1 everywhere:
+
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> x1 = {0: Fraction(1), 1: Fraction(3, 7), 2: Fraction(4, 7)}
+    >>> x2 = {0: Fraction(1), 2: Fraction(1)}
+    >>> lp, sigma = defender_best_response_lp(tree, inst.roles(), x1, x2)
+    >>> round(lp.value, 6), {p: round(s, 6) for p, s in sigma.items()}
+    (2.5, {1: 1.0, 2: 1.0})
+    >>> defender_best_response(tree, inst.roles(), x1, x2).value
+    Fraction(5, 2)
     """
     support = sorted(p for p in set(x1) | set(x2) if p != 0)
     const = float(_terminal_part(tree, roles, x1, x2))

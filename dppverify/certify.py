@@ -68,7 +68,32 @@ CHECK_IDS = (
 
 
 def resolve_instance(instance: Instance | Mapping[str, Any] | str | Path) -> Instance:
-    """An :class:`Instance` from an instance, a document (dict) or a file path."""
+    """An :class:`Instance` from an instance, a document (dict) or a file path.
+
+    Parameters
+    ----------
+    instance : Instance, Mapping, str or Path
+        Returned as is, parsed (:func:`~dppverify.instance.instance_from_json`) or loaded
+        (:func:`~dppverify.instance.load_instance`).
+
+    Returns
+    -------
+    Instance
+
+    Raises
+    ------
+    InvalidInstanceError
+        The document or file is not a valid instance.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle, triangle_document
+    >>> inst = triangle()
+    >>> resolve_instance(inst) is inst
+    True
+    >>> resolve_instance(triangle_document(("1/4", "3/4"))).prior
+    (Fraction(1, 4), Fraction(3, 4))
+    """
     if isinstance(instance, Instance):
         return instance
     if isinstance(instance, Mapping):
@@ -84,7 +109,38 @@ def _profile_document(profile: Mapping[str, Any] | str | Path | bytes) -> Mappin
 
 
 def default_horizon(instance: Instance, profile: Profile) -> int:
-    """The longest valid path in the profile (at least the steps to the nearest goal)."""
+    """The longest valid path in the profile (at least the steps to the nearest goal).
+
+    Parameters
+    ----------
+    instance : Instance
+        The game.
+    profile : Profile
+        The resolved profile (:func:`~dppverify.profile.profile_from_json`).
+
+    Returns
+    -------
+    int
+        The horizon ``H`` that :func:`certify` uses when none is given.
+
+    Examples
+    --------
+    On ``s – a – g1``, ``a – g2``, a secondary walk that goes back and forth takes 4 steps:
+
+    >>> from dppverify.instance import instance_from_json
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": v} for v in ("s", "a", "g1", "g2")],
+    ...     "edges": [{"source": "s", "target": "a"}, {"source": "a", "target": "g1"},
+    ...               {"source": "a", "target": "g2"}]},
+    ...     "start": "s", "goals": ["g1", "g2"], "prior": ["1/2", "1/2"]})
+    >>> doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...     "defender": {"rule": "progress", "goal": "g1"},
+    ...     "attacker": {"primary": [{"path": ["s", "a", "g1"], "probability": 1}],
+    ...                  "secondary": [{"path": ["s", "a", "s", "a", "g2"], "probability": 1}]}}
+    >>> default_horizon(inst, profile_from_json(doc, inst))
+    4
+    >>> default_horizon(inst, profile_from_json({"format": "dpp-profile/1"}, inst))
+    2
+    """
     lengths = [len(w.walk) - 1 for w in (*profile.primary, *profile.secondary)]
     return max([*lengths, instance.hops[instance.start]])
 

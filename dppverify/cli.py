@@ -73,7 +73,37 @@ def _numbers(rec: CheckRecord) -> str:
 
 
 def format_table(cert: Certificate) -> str:
-    """The human-readable certificate: a header line and one row per check."""
+    """The human-readable certificate: a header line and one row per check.
+
+    Parameters
+    ----------
+    cert : Certificate
+        The result of :func:`~dppverify.certify.certify`.
+
+    Returns
+    -------
+    str
+        What ``dpp certify`` prints without ``--json``.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle_document
+    >>> profile = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...     "defender": {"rule": "progress", "goal": "g1"},
+    ...     "attacker": {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                              {"path": ["s", "g2"], "probability": "3/7"}],
+    ...                  "secondary": [{"path": ["s", "g2"], "probability": 1}]}}
+    >>> lines = format_table(certify(triangle_document(), profile)).splitlines()
+    >>> len(lines)
+    21
+    >>> for line in lines[:2] + lines[5:7]:  # doctest: +NORMALIZE_WHITESPACE
+    ...     print(line)
+    verdict: PASS (19/19 checks passed; H = 1, 3 prefixes, exact; LP CLARABEL agreement
+      within 1e-07 relative)
+    check      status  numbers                      message
+    value.U    pass    U=12/5 U_lp=2.4 U_tree=12/5  U = 12/5, LP evaluation 2.4
+    value.VoI  pass    U_bar=27/10 VoI=1/9          U_bar = 27/10, VoI = 1/9
+    """
     passed = sum(c.passed for c in cert.checks)
     mode = "exact" if cert.exact else f"float mode, relative tolerance {cert.tolerance:g}"
     head = (f"verdict: {cert.verdict.upper()} ({passed}/{len(cert.checks)} checks passed; "

@@ -63,7 +63,49 @@ class Context:
 
 def make_context(instance: Instance, tree: WalkTree, profile: Profile, tol: Tolerance,
                  *, seed: int, trials: int) -> Context:
-    """Evaluate both Defenders on the tree and the profile's realization plans."""
+    """Evaluate both Defenders on the tree and the profile's realization plans.
+
+    Parameters
+    ----------
+    instance : Instance
+        The game.
+    tree : WalkTree
+        Its walk tree at the chosen horizon.
+    profile : Profile
+        The resolved profile (:func:`~dppverify.profile.profile_from_json`).
+    tol : Tolerance
+        Exact comparisons, or float mode's tolerance.
+    seed, trials : int
+        Seed and number of the random attackers of the L3/L4 checks.
+
+    Returns
+    -------
+    Context
+
+    Examples
+    --------
+    The triangle's equilibrium profile: the realization plans give the primary's mixture
+    (4/7 to g1, 3/7 to g2) and σ* allocates ``s -> g2`` half to each goal.
+
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> prof = profile_from_json({"format": "dpp-profile/1",
+    ...     "goals": {"primary": "g1", "secondary": "g2"},
+    ...     "defender": {"rule": "progress", "goal": "g1"},
+    ...     "attacker": {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                              {"path": ["s", "g2"], "probability": "3/7"}],
+    ...                  "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
+    >>> ctx = make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
+    ...                    seed=0, trials=2)
+    >>> ctx.usable, ctx.x1
+    (True, {0: Fraction(1, 1), 1: Fraction(4, 7), 2: Fraction(3, 7)})
+    >>> ctx.x2
+    {0: Fraction(1, 1), 2: Fraction(1, 1)}
+    >>> ctx.defender.sigma1 == ctx.sigma_star.sigma1 == (0, 1, Fraction(1, 2))
+    True
+    """
     roles = instance.roles(profile.primary_slot)
     sigma_star = tree_defender(tree, roles, ProgressRule(roles.g1))
     defender = None

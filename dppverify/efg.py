@@ -254,7 +254,50 @@ class _Writer:
 
 def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves: bool = False,
                 max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
-    """The ``.efg`` text of the game on an already built walk tree (see :func:`to_efg`)."""
+    """The ``.efg`` text of the game on an already built walk tree (see :func:`to_efg`).
+
+    Parameters
+    ----------
+    tree : WalkTree
+        The walk tree of the truncated game.
+    attacker_observes, forced_moves, max_nodes, title
+        As for :func:`to_efg`.
+
+    Returns
+    -------
+    str
+        The Gambit ``.efg`` text.
+
+    Raises
+    ------
+    TreeTooLargeError
+        If the game has more than ``max_nodes`` nodes.
+
+    Examples
+    --------
+    On the triangle (H = 1) the primary type's walk ``s -> g2`` costs 4 when the Defender
+    allocates the step to g1 (weight 2 + d(g2, g1) = 2) and 2 when it allocates to g2:
+
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> tree = build_tree(inst, 1)
+    >>> text = tree_to_efg(tree)
+    >>> text == to_efg(inst, 1)
+    True
+    >>> print("".join(text.splitlines(keepends=True)[3:11]), end="")
+    c "" 1 "type" { "type g1" 7/10 "type g2" 3/10 } 0
+    p "" 1 1 "T1 p0 h-" { "go g1" "go g2" } 0
+    p "" 2 1 "D p1 h-" { "alloc g1" "alloc g2" } 0
+    t "" 1 "cost 3" { -3 3 }
+    t "" 2 "cost 0" { 0 0 }
+    p "" 2 2 "D p2 h-" { "alloc g1" "alloc g2" } 0
+    t "" 3 "cost 4" { -4 4 }
+    t "" 4 "cost 2" { -2 2 }
+    >>> tree_to_efg(tree, max_nodes=10)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.TreeTooLargeError: the .efg game for H = 1 has 15 nodes ...
+    """
     size = efg_size(tree, attacker_observes=attacker_observes, forced_moves=forced_moves)
     if size.nodes > max_nodes:
         raise TreeTooLargeError(

@@ -59,7 +59,35 @@ def walk_cost(instance: Instance, roles: Roles, rule: DefenderRule, walk: tuple[
 
 
 def complete_information_value(instance: Instance, roles: Roles) -> Number:
-    """``Ū = b1 d(s0, g1) + b2 d(s0, g2)`` (eq. (1) and Definition 6)."""
+    """``Ū = b1 d(s0, g1) + b2 d(s0, g2)`` (eq. (1) and Definition 6).
+
+    The Attacker's expected cost when the Defender knows its goal: each type walks a
+    shortest path and the Defender allocates every step to the true goal.
+
+    Parameters
+    ----------
+    instance : Instance
+        The game.
+    roles : Roles
+        The labelling (which goal is ``g1``).
+
+    Returns
+    -------
+    Number
+        ``Ū``, exact for rational instances.
+
+    Examples
+    --------
+    On the triangle ``d(s, g1) = 3`` and ``d(s, g2) = 2``:
+
+    >>> from dppverify.examples import triangle
+    >>> inst = triangle()
+    >>> complete_information_value(inst, inst.roles())     # 7/10 * 3 + 3/10 * 2
+    Fraction(27, 10)
+    >>> inst = triangle(("1/2", "1/2"))
+    >>> complete_information_value(inst, inst.roles())
+    Fraction(5, 2)
+    """
     s0 = instance.start
     return normalize(roles.b1 * roles.d1[s0] + roles.b2 * roles.d2[s0])
 
@@ -101,10 +129,33 @@ def realization(tree: WalkTree, walks: Iterable[MixedWalk]) -> dict[int, Fractio
 
     Only prefixes with positive probability are listed. Every walk must be in ``tree``.
 
+    Parameters
+    ----------
+    tree : WalkTree
+        The walk tree; every walk must end at one of its leaves.
+    walks : iterable of MixedWalk
+        The mixed strategy (walks as node indices, with probabilities).
+
+    Returns
+    -------
+    dict
+        Prefix index -> exact reach probability (the root has probability 1).
+
     Raises
     ------
     KeyError
         If a walk is not a leaf of ``tree`` (longer than the horizon).
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> tree = build_tree(triangle(), 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> realization(tree, [MixedWalk((0, 1), Fraction(4, 7)), MixedWalk((0, 2), Fraction(3, 7))])
+    {0: Fraction(1, 1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
+    >>> realization(tree, [MixedWalk((0, 2, 1), Fraction(1))])
+    Traceback (most recent call last):
+    KeyError: 'walk (0, 2, 1) is not in the walk tree (horizon 1)'
     """
     x: dict[int, Fraction] = {}
     for mw in walks:

@@ -59,7 +59,38 @@ HALF = Fraction(1, 2)
 
 
 def telescoping(ctx: Context) -> CheckRecord:
-    """``lemma.TEL.telescoping`` (NOTES §1) on every prefix of the tree."""
+    """``lemma.TEL.telescoping`` (NOTES §1) on every prefix of the tree.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.exact import Tolerance
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
+    ...     prof = profile_from_json({"format": "dpp-profile/1",
+    ...         "goals": {"primary": "g1", "secondary": "g2"},
+    ...         "defender": {"rule": "progress", "goal": "g1"},
+    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
+    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
+    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
+    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
+    ...                         seed=0, trials=2)
+    >>> r = telescoping(context())
+    >>> r.status, dict(r.numbers)
+    ('pass', {'prefixes': 3, 'sum_violations': 0, 'range_violations': 0})
+    """
     tree, roles, tol = ctx.tree, ctx.roles, ctx.tol
     d1 = roles.d1
     node = tree.node.tolist()
@@ -97,7 +128,41 @@ def _c_at_leaves(tree: WalkTree, d: Sequence[Number]) -> dict[int, tuple[Number,
 
 
 def l1_lower_bound(ctx: Context) -> CheckRecord:
-    """``lemma.L1.lower_bound``: Lemma 1 and its equality case, over all walks of the tree."""
+    """``lemma.L1.lower_bound``: Lemma 1 and its equality case, over all walks of the tree.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+On the triangle the primary pays ``d(s, g1) = 3`` against σ* on both walks: ``s -> g2``
+    costs it 1 (σ* = 1/2 on a step of weight 2) plus ``d(g2, g1) = 2``.
+
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.exact import Tolerance
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
+    ...     prof = profile_from_json({"format": "dpp-profile/1",
+    ...         "goals": {"primary": "g1", "secondary": "g2"},
+    ...         "defender": {"rule": "progress", "goal": "g1"},
+    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
+    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
+    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
+    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
+    ...                         seed=0, trials=2)
+    >>> r = l1_lower_bound(context())
+    >>> r.status, r.numbers["d_s0_g1"], r.numbers["min_U1"], r.numbers["walks_to_g2_attaining"]
+    ('pass', 3, 3, 1)
+    """
     tree, roles, tol = ctx.tree, ctx.roles, ctx.tol
     inst = ctx.instance
     d0 = roles.d1[inst.start]
@@ -139,7 +204,42 @@ def l1_lower_bound(ctx: Context) -> CheckRecord:
 
 
 def l2_no_revisits(ctx: Context) -> CheckRecord:
-    """``lemma.L2.no_revisits``: Lemma 2 over all walks of the tree."""
+    """``lemma.L2.no_revisits``: Lemma 2 over all walks of the tree.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+The triangle's tree has no revisiting walk (every neighbour of ``s`` is a goal):
+
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.exact import Tolerance
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
+    ...     prof = profile_from_json({"format": "dpp-profile/1",
+    ...         "goals": {"primary": "g1", "secondary": "g2"},
+    ...         "defender": {"rule": "progress", "goal": "g1"},
+    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
+    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
+    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
+    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
+    ...                         seed=0, trials=2)
+    >>> r = l2_no_revisits(context())
+    >>> r.status, r.numbers["min_U2_walks"], r.numbers["min_U2_paths"], r.numbers["walks"]
+    ('pass', 1, 1, 2)
+    >>> r.numbers["min_U2_revisiting"] is None
+    True
+    """
     tree, roles, tol = ctx.tree, ctx.roles, ctx.tol
     totals = leaf_totals(tree, roles, ctx.sigma_star, 2)
     simple = simple_mask(tree)
@@ -170,7 +270,40 @@ def l2_no_revisits(ctx: Context) -> CheckRecord:
 
 
 def xi2_secondary_value(ctx: Context) -> CheckRecord:
-    """``lemma.XI2.secondary_value``: NOTES §2's ``U²* = M − d(s0, g1)`` bounds the tree's min."""
+    """``lemma.XI2.secondary_value``: NOTES §2's ``U²* = M − d(s0, g1)`` bounds the tree's min.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+``M = min_v d(s0, v) + d(v, g1) + d(v, g2) = 4`` (at ``v = g2``), so ``U²* = 4 − 3 = 1``:
+
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.exact import Tolerance
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
+    ...     prof = profile_from_json({"format": "dpp-profile/1",
+    ...         "goals": {"primary": "g1", "secondary": "g2"},
+    ...         "defender": {"rule": "progress", "goal": "g1"},
+    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
+    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
+    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
+    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
+    ...                         seed=0, trials=2)
+    >>> r = xi2_secondary_value(context())
+    >>> r.status, dict(r.numbers)
+    ('pass', {'M': 4, 'U2_star': 1, 'min_U2_tree': 1})
+    """
     inst, roles, tol = ctx.instance, ctx.roles, ctx.tol
     d0 = dijkstra(inst.succ, inst.start)
     M = min(d0[v] + roles.d1[v] + roles.d2[v] for v in range(inst.n_nodes))
@@ -205,6 +338,33 @@ def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | 
 
     With ``through`` (a root-to-leaf list of prefixes), each walk follows it for a random
     number of steps before branching at random: random deviations from a given path.
+
+    Parameters
+    ----------
+    tree : WalkTree
+        The walks to choose from (root to leaf).
+    rng : random.Random
+        The source of randomness (seeded by the caller: same seed, same mixture).
+    through : sequence of int, optional
+        Prefixes of a root-to-leaf path to branch off from.
+    k_max : int
+        At most this many distinct walks.
+
+    Returns
+    -------
+    tuple of MixedWalk
+        Walks (node indices) with exact probabilities summing to 1.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> tree = build_tree(triangle(), 1)   # walks (0, 1) = s g1 and (0, 2) = s g2
+    >>> mix = random_mixture(tree, random.Random(3))
+    >>> [(w.walk, str(w.probability)) for w in mix]
+    [((0, 1), '1/3'), ((0, 2), '2/3')]
+    >>> mix == random_mixture(tree, random.Random(3)), sum(w.probability for w in mix)
+    (True, Fraction(1, 1))
     """
     weights: dict[tuple[int, ...], int] = {}
     for _ in range(rng.randint(1, k_max)):
@@ -216,7 +376,40 @@ def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | 
 
 
 def l3_greedy(ctx: Context) -> CheckRecord:
-    """``lemma.L3.greedy``: Lemma 3 for the profile's attacker and random attackers."""
+    """``lemma.L3.greedy``: Lemma 3 for the profile's attacker and random attackers.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+The profile's attacker and ``ctx.trials = 2`` random ones:
+
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.exact import Tolerance
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
+    ...     prof = profile_from_json({"format": "dpp-profile/1",
+    ...         "goals": {"primary": "g1", "secondary": "g2"},
+    ...         "defender": {"rule": "progress", "goal": "g1"},
+    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
+    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
+    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
+    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
+    ...                         seed=0, trials=2)
+    >>> r = l3_greedy(context())
+    >>> r.status, r.numbers["attackers"], r.numbers["max_value_gap"] < 1e-7
+    ('pass', 3, True)
+    """
     tree, roles = ctx.tree, ctx.roles
     rng = random.Random(f"{ctx.seed}-L3")
     attackers = []
@@ -267,7 +460,38 @@ def l3_greedy(ctx: Context) -> CheckRecord:
 
 
 def l4_monotonicity(ctx: Context) -> CheckRecord:
-    """``lemma.L4.monotonicity``: Lemma 4 along the secondary walk(s) ξ."""
+    """``lemma.L4.monotonicity``: Lemma 4 along the secondary walk(s) ξ.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.exact import Tolerance
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
+    ...     prof = profile_from_json({"format": "dpp-profile/1",
+    ...         "goals": {"primary": "g1", "secondary": "g2"},
+    ...         "defender": {"rule": "progress", "goal": "g1"},
+    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
+    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
+    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
+    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
+    ...                         seed=0, trials=2)
+    >>> r = l4_monotonicity(context())
+    >>> r.status, dict(r.numbers)
+    ('pass', {'secondary_walks': 1, 'primary_strategies': 3, 'violations': 0, 'seed': 0})
+    """
     tree, roles = ctx.tree, ctx.roles
     rng = random.Random(f"{ctx.seed}-L4")
     paths: dict[tuple[int, ...], str] = {}
@@ -311,7 +535,43 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
 
 
 def l5_induced_beliefs(ctx: Context) -> CheckRecord:
-    """``lemma.L5.induced_beliefs``: Lemma 5 for the profile's attacker."""
+    """``lemma.L5.induced_beliefs``: Lemma 5 for the profile's attacker.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+ξ² = ``s -> g2`` is all phase II: the equilibrium mixture makes the belief 1/2 after its
+    step; with the primary's probabilities swapped it is 4/7.
+
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.exact import Tolerance
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
+    ...     prof = profile_from_json({"format": "dpp-profile/1",
+    ...         "goals": {"primary": "g1", "secondary": "g2"},
+    ...         "defender": {"rule": "progress", "goal": "g1"},
+    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
+    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
+    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
+    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
+    ...                         seed=0, trials=2)
+    >>> l5_induced_beliefs(context()).status
+    'pass'
+    >>> r = l5_induced_beliefs(context("3/7", "4/7"))
+    >>> r.status, r.message
+    ('fail', 'at step 1 of ξ² (phase II) the belief is 4/7, not 1/2')
+    """
     cid = "lemma.L5.induced_beliefs"
     if not ctx.usable:
         return CheckRecord(cid, "skipped", NOT_WELLFORMED, {}, "L5")

@@ -47,7 +47,43 @@ def _skip(check_id: str, proof: str | None = None,
 
 
 def wellformed(ctx: Context) -> CheckRecord:
-    """``profile.wellformed``: the document describes a profile of this game."""
+    """``profile.wellformed``: the document describes a profile of this game.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+The triangle's equilibrium (see :mod:`dppverify.examples`), then a primary mixture whose
+    probabilities do not sum to 1:
+
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(attacker, **claims):
+    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
+    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
+    ...                         Tolerance(exact=True), seed=0, trials=2)
+    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
+    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> wellformed(context(eq)).message
+    "well-formed: 2 primary and 1 secondary walk(s), primary goal 'g1'"
+    >>> bad = dict(eq, primary=[{"path": ["s", "g1"], "probability": "1/7"},
+    ...                         {"path": ["s", "g2"], "probability": "3/7"}])
+    >>> r = wellformed(context(bad))
+    >>> r.status, r.message
+    ('fail', 'attacker.primary: probabilities sum to 4/7, not 1')
+    """
     defects = [str(d) for d in ctx.profile.defects]
     if ctx.undefined:
         walk = show_walk(ctx.instance, ctx.tree.walk(ctx.undefined[0]))
@@ -69,7 +105,35 @@ def wellformed(ctx: Context) -> CheckRecord:
 
 
 def profile_values(ctx: Context) -> Values:
-    """Exact U¹, U², U, Ū, VoI of the (well-formed) profile, walk by walk."""
+    """Exact U¹, U², U, Ū, VoI of the (well-formed) profile, walk by walk.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    Values
+
+    Examples
+    --------
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(attacker, **claims):
+    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
+    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
+    ...                         Tolerance(exact=True), seed=0, trials=2)
+    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
+    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> profile_values(context(eq))
+    Values(U1=3, U2=1, U=Fraction(12, 5), U_bar=Fraction(27, 10), VoI=Fraction(1, 9))
+    """
     assert ctx.profile.defender is not None
     return evaluate(ctx.instance, ctx.roles, ctx.profile.defender, ctx.profile.primary,
                     ctx.profile.secondary)
@@ -81,6 +145,41 @@ def values(ctx: Context) -> list[CheckRecord]:
     Three routes must agree: walk by walk (exact), realization plans on the tree (exact),
     and the LP objective vectors at the profile's plans (float, within the LP tolerance);
     the profile's claimed numbers, when present, must equal the exact ones.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    list of CheckRecord
+        The four records, in that order.
+
+    Examples
+    --------
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(attacker, **claims):
+    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
+    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
+    ...                         Tolerance(exact=True), seed=0, trials=2)
+    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
+    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> for r in values(context(eq)):
+    ...     print(r.id, r.status, r.message)
+    value.U1 pass U1 = 3, LP evaluation 3
+    value.U2 pass U2 = 1, LP evaluation 1
+    value.U pass U = 12/5, LP evaluation 2.4
+    value.VoI pass U_bar = 27/10, VoI = 1/9
+    >>> r = values(context(eq, value={"U": "5/2"}))[2]
+    >>> r.status, r.message
+    ('fail', 'U = 12/5 exactly, but the profile claims U = 5/2')
     """
     ids = ("value.U1", "value.U2", "value.U", "value.VoI")
     if not ctx.usable:
@@ -159,7 +258,40 @@ def phases_of(schedule: list[Number], tol: Tolerance | None = None) -> tuple[int
 
 
 def phases(ctx: Context) -> CheckRecord:
-    """``profile.phases``: the claimed ``t_I``, ``t_II``, ``T`` of ξ² match σ* along it."""
+    """``profile.phases``: the claimed ``t_I``, ``t_II``, ``T`` of ξ² match σ* along it.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+On the triangle ξ² = ``s -> g2`` is all phase II (σ* = 1/2 on its one step):
+
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(attacker, **claims):
+    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
+    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
+    ...                         Tolerance(exact=True), seed=0, trials=2)
+    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
+    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> dict(phases(context(eq)).numbers)
+    {'t_I': 0, 't_II': 1, 'T': 1}
+    >>> r = phases(context(eq, phases={"t_I": 1, "t_II": 1, "T": 1}))
+    >>> r.status, r.message
+    ('fail', 't_I, t_II, T = (0, 1, 1) from σ* along ξ²; the profile claims (1, 1, 1)')
+    """
     claim = ctx.profile.claimed_phases
     sec = [w for w in ctx.profile.secondary if w.probability > 0]
     if not ctx.profile.wellformed:
@@ -189,6 +321,41 @@ def attacker_br(ctx: Context, theta: int) -> CheckRecord:
     The regret is ``U^θ(profile) − min over ALL walks of the tree`` against the profile's
     Defender (backward induction; a forward pass over the leaves and the sequence-form LP
     must agree with it).
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+    theta : int
+        1 (primary) or 2 (secondary).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+A secondary type that walks to g1 pays 2 where ``s -> g2`` costs it 1:
+
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(attacker, **claims):
+    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
+    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
+    ...                         Tolerance(exact=True), seed=0, trials=2)
+    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
+    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> r = attacker_br(context(eq), 2)
+    >>> r.id, r.status, r.numbers["U2"], r.numbers["best_response"], r.numbers["regret"]
+    ('pbne.attacker_br.secondary', 'pass', 1, 1, 0)
+    >>> r = attacker_br(context(dict(eq, secondary=[{"path": ["s", "g1"], "probability": 1}])), 2)
+    >>> r.status, r.numbers["regret"]
+    ('fail', 1)
     """
     cid = "pbne.attacker_br." + ("primary" if theta == 1 else "secondary")
     proof = "L1" if theta == 1 else "XI2"
@@ -225,7 +392,43 @@ def attacker_br(ctx: Context, theta: int) -> CheckRecord:
 
 
 def defender_br(ctx: Context) -> CheckRecord:
-    """``pbne.defender_br``: the Defender's exact regret (greedy best response − U) is 0."""
+    """``pbne.defender_br``: the Defender's exact regret (greedy best response − U) is 0.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+With the primary's probabilities swapped (3/7 to g1), allocating ``s -> g2`` to g1 gains
+    the Defender 1/10:
+
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(attacker, **claims):
+    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
+    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
+    ...                         Tolerance(exact=True), seed=0, trials=2)
+    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
+    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> defender_br(context(eq)).numbers["regret"]
+    0
+    >>> swapped = dict(eq, primary=[{"path": ["s", "g1"], "probability": "3/7"},
+    ...                             {"path": ["s", "g2"], "probability": "4/7"}])
+    >>> r = defender_br(context(swapped))
+    >>> r.status, r.numbers["U"], r.numbers["best_response"], r.numbers["regret"]
+    ('fail', Fraction(12, 5), Fraction(5, 2), Fraction(1, 10))
+    """
     cid = "pbne.defender_br"
     if not ctx.usable:
         return _skip(cid, "L3")
@@ -275,6 +478,41 @@ def sequential_rationality(ctx: Context) -> CheckRecord:
 
     Lemma 3: allocate to g1 surely when ``b1_t > 1/2``, to g2 surely when ``b1_t < 1/2``;
     anything is rational at exactly 1/2.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+In equilibrium the belief after ``s -> g2`` is exactly 1/2, so σ* = 1/2 is rational there;
+    with the primary's probabilities swapped it is 4/7 and σ* is not greedy:
+
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(attacker, **claims):
+    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
+    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
+    ...                         Tolerance(exact=True), seed=0, trials=2)
+    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
+    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> dict(sequential_rationality(context(eq)).numbers)
+    {'infosets': 2, 'at_one_half': 1, 'violations': 0}
+    >>> swapped = dict(eq, primary=[{"path": ["s", "g1"], "probability": "3/7"},
+    ...                             {"path": ["s", "g2"], "probability": "4/7"}])
+    >>> print(sequential_rationality(context(swapped)).message)  # doctest: +NORMALIZE_WHITESPACE
+    1 of 2 reached information sets are not greedy; e.g. after "s" -> "g2" the belief in g1
+    is 4/7 but σ(g1) = 1/2
     """
     cid = "pbne.sequential_rationality"
     if not ctx.usable:
@@ -311,6 +549,36 @@ def belief_consistency(ctx: Context) -> CheckRecord:
     ``γ_t(e_t | h_t, g^i) = x_i(child) / x_i(parent)`` and must equal the closed form
     ``b1 x1 / (b1 x1 + b2 x2)`` at every reached information set; the profile's stated prior
     (if any) must be the instance's. Off-path beliefs are unspecified (weak PBNE).
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(attacker, **claims):
+    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
+    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
+    ...                         Tolerance(exact=True), seed=0, trials=2)
+    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
+    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> dict(belief_consistency(context(eq)).numbers)
+    {'b1': Fraction(7, 10), 'b2': Fraction(3, 10), 'infosets': 2, 'mismatches': 0}
+    >>> r = belief_consistency(context(eq, prior={"primary": "1/2", "secondary": "1/2"}))
+    >>> r.status, r.message
+    ('fail', "the profile states the prior (1/2, 1/2) but the instance's is (7/10, 3/10)")
     """
     cid = "pbne.belief_consistency"
     if not ctx.usable:
@@ -356,6 +624,39 @@ def value_check(ctx: Context) -> CheckRecord:
     Exact bounds: the profile's Defender gives ``b1 min U¹ + b2 min U² <= V_H`` and its
     Attacker gives ``V_H <= max_σ U``; with both regrets 0 they meet at ``U``, so ``V_H = U``
     exactly. The LP value must lie within the exact bracket (within the LP tolerance).
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+A secondary type walking to g1 makes ``U = 27/10``, not the value ``V_1 = 12/5``:
+
+    >>> from dppverify.context import make_context
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.profile import profile_from_json
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> def context(attacker, **claims):
+    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
+    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
+    ...                         Tolerance(exact=True), seed=0, trials=2)
+    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
+    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> r = value_check(context(eq))
+    >>> r.status, r.numbers["V_H"], r.numbers["U"]
+    ('pass', Fraction(12, 5), Fraction(12, 5))
+    >>> r = value_check(context(dict(eq, secondary=[{"path": ["s", "g1"], "probability": 1}])))
+    >>> r.status, r.numbers["V_H_lower"], r.numbers["V_H_upper"], r.numbers["U"]
+    ('fail', Fraction(12, 5), Fraction(12, 5), Fraction(27, 10))
     """
     cid = "game.value"
     tree, roles = ctx.tree, ctx.roles

@@ -127,7 +127,37 @@ def solve_value_lp(tree: WalkTree, roles: Roles) -> ValueLP:
 
 
 def lower_bound(tree: WalkTree, roles: Roles, tdef: TreeDefender) -> Number:
-    """Exact ``b1 min U¹ + b2 min U²`` against a fixed Defender: a lower bound on ``V_H``."""
+    """Exact ``b1 min U¹ + b2 min U²`` against a fixed Defender: a lower bound on ``V_H``.
+
+    Parameters
+    ----------
+    tree, roles
+        The walk tree and the labelling.
+    tdef : TreeDefender
+        The Defender, evaluated on the tree.
+
+    Returns
+    -------
+    Number
+        Exact for rational instances.
+
+    Examples
+    --------
+    Against σ* on the triangle the types' best responses cost 3 and 1; a Defender that
+    always allocates to g1 lets the secondary reach g2 for free (7/10 · 3 + 3/10 · 0):
+
+    >>> from dppverify.defender import tree_defender
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.profile import ProgressRule, TableRule
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> tree = build_tree(inst, 1)
+    >>> lower_bound(tree, r, tree_defender(tree, r, ProgressRule(r.g1)))
+    Fraction(12, 5)
+    >>> lower_bound(tree, r, tree_defender(tree, r, TableRule(r.g1, {}, Fraction(1))))
+    Fraction(21, 10)
+    """
     v = (roles.b1 * attacker_best_response(tree, roles, tdef, 1).value
          + roles.b2 * attacker_best_response(tree, roles, tdef, 2).value)
     return normalize(v) if tree.instance.exact else float(v)
@@ -135,7 +165,35 @@ def lower_bound(tree: WalkTree, roles: Roles, tdef: TreeDefender) -> Number:
 
 def upper_bound(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
                 x2: Mapping[int, Fraction]) -> Number:
-    """Exact greedy Defender value against fixed Attacker plans: an upper bound on ``V_H``."""
+    """Exact greedy Defender value against fixed Attacker plans: an upper bound on ``V_H``.
+
+    Parameters
+    ----------
+    tree, roles
+        The walk tree and the labelling.
+    x1, x2 : Mapping
+        Realization plans of the two types: prefix -> reach probability.
+
+    Returns
+    -------
+    Number
+        Exact for rational instances.
+
+    Examples
+    --------
+    The triangle's equilibrium plans give ``12/5 = V_1``; a primary that always walks to
+    g1 gives the Defender more:
+
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> x2 = {0: Fraction(1), 2: Fraction(1)}
+    >>> upper_bound(tree, inst.roles(), {0: Fraction(1), 1: Fraction(4, 7), 2: Fraction(3, 7)}, x2)
+    Fraction(12, 5)
+    >>> upper_bound(tree, inst.roles(), {0: Fraction(1), 1: Fraction(1)}, x2)
+    Fraction(27, 10)
+    """
     return defender_best_response(tree, roles, x1, x2).value
 
 
