@@ -114,7 +114,34 @@ def flow_matrix(tree: WalkTree) -> sp.csr_matrix:
 
 
 def realization_constraints(tree: WalkTree, x: cp.Variable) -> list[cp.Constraint]:
-    """``x`` is a realization plan on ``tree``: ``x >= 0``, ``x[root] = 1``, flow conservation."""
+    """``x`` is a realization plan on ``tree``: ``x >= 0``, ``x[root] = 1``, flow conservation.
+
+    Parameters
+    ----------
+    tree : WalkTree
+        The walk tree.
+    x : cvxpy.Variable
+        One entry per prefix.
+
+    Returns
+    -------
+    list of cvxpy.Constraint
+        Three constraints (two when the tree is only its root).
+
+    Examples
+    --------
+    On the triangle (prefixes 0 = s, 1 = s g1, 2 = s g2) a plan puts the root's unit of
+    probability on the two walks; the cheapest plan for the costs (1, 3) is pure:
+
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> tree = build_tree(triangle(), 1)
+    >>> x = cp.Variable(tree.n_prefixes)
+    >>> stats = solve(cp.Problem(cp.Minimize(x[1] + 3 * x[2]), realization_constraints(tree, x)),
+    ...               "demo")
+    >>> round(stats.value, 6), [round(float(v), 6) + 0.0 for v in x.value]
+    (1.0, [1.0, 1.0, 0.0])
+    """
     cons: list[cp.Constraint] = [x >= 0, x[0] == 1]
     if tree.n_prefixes > 1:
         cons.append(flow_matrix(tree) @ x == 0)
