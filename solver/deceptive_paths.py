@@ -123,7 +123,41 @@ def _scaled(belief_g1: mpmath.mpf, theta: int, kind: Kind) -> int:
 
 def objective(observer: DraganObserver, walk: list[int] | tuple[int, ...], theta: int,
               kind: Kind) -> mpmath.mpf:
-    """Eq. (18a)/(18b) summed along ``walk`` from its node terms (fixed point)."""
+    """Eq. (18a)/(18b) summed along ``walk`` from its node terms (fixed point).
+
+    Parameters
+    ----------
+    observer : DraganObserver
+        The observer's beliefs (eq. (17)).
+    walk : sequence of int
+        Node indices.
+    theta : int
+        1 (primary) or 2 (secondary).
+    kind : {"exaggeration", "ambiguity"}
+        Eq. (18a) (the belief in the true goal) or eq. (18b) (``|2 b^1_t − 1|``).
+
+    Returns
+    -------
+    mpmath.mpf
+        The sum, accurate to ``2**-SCALE_BITS`` per node.
+
+    Examples
+    --------
+    A path s - a - g1 and a - g2 (unit weights), prior (3/5, 2/5): the primary's
+    exaggeration objective is the sum of the beliefs in g1 along its walk.
+
+    >>> import networkx as nx
+    >>> from solver.distances import distances_to
+    >>> net = Network.from_networkx(nx.Graph([("s", "a"), ("a", "g1"), ("a", "g2")]))
+    >>> obs = DraganObserver(net, 0, 2, 3, distances_to(net, 2), distances_to(net, 3),
+    ...                      Fraction(3, 5), Fraction(2, 5))
+    >>> walk = [0, 1, 2]                                   # s, a, g1
+    >>> ex = objective(obs, walk, 1, "exaggeration")
+    >>> mpmath.nstr(ex, 6), abs(ex - sum(obs.beliefs(walk))) < mpmath.mpf(2) ** -100
+    ('2.11724', True)
+    >>> mpmath.nstr(objective(obs, walk, 1, "ambiguity"), 6)  # |2b - 1|: 0.2 + 0.2 + 0.83
+    '1.23449'
+    """
     terms = node_terms(observer, theta, kind)
     return _unscale(sum(terms[v] for v in walk))
 

@@ -38,7 +38,30 @@ def distances_from(net: Network, source: int) -> np.ndarray:
 
 
 def distances_to(net: Network, target: int) -> np.ndarray:
-    """Distances ``d(v, target)`` for every node ``v`` (Dijkstra on the reversed arcs)."""
+    """Distances ``d(v, target)`` for every node ``v`` (Dijkstra on the reversed arcs).
+
+    Parameters
+    ----------
+    net : Network
+        The graph.
+    target : int
+        Node index.
+
+    Returns
+    -------
+    numpy.ndarray
+        As :func:`distances_from`: exact numerators over ``net.denominator`` in exact mode,
+        ``inf`` where ``target`` cannot be reached.
+
+    Examples
+    --------
+    On the directed path ``0 -(1/2)-> 1 -(1)-> 2`` only node 0 reaches itself:
+
+    >>> import networkx as nx
+    >>> net = Network.from_networkx(nx.DiGraph([(0, 1, {"weight": "1/2"}), (1, 2)]))
+    >>> distances_to(net, 2).tolist(), distances_to(net, 0).tolist(), net.denominator
+    ([3.0, 2.0, 0.0], [0.0, inf, inf], 2)
+    """
     return _engine(net.reverse, target)
 
 

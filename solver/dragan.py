@@ -165,7 +165,30 @@ def _limit_belief(no_g1: bool, no_g2: bool, b1: Fraction) -> mpmath.mpf:
 
 
 def belief_hi(b1: Fraction, b2: Fraction, delta: Fraction) -> mpmath.mpf:
-    """``1 / (1 + (b2/b1) e^δ)`` in the :data:`HI` context (``DPS + 10`` digits)."""
+    """``1 / (1 + (b2/b1) e^δ)`` in the :data:`HI` context (``DPS + 10`` digits).
+
+    Parameters
+    ----------
+    b1, b2 : Fraction
+        The prior.
+    delta : Fraction
+        ``δ = x1 − x2`` (see :meth:`DraganObserver.delta`).
+
+    Returns
+    -------
+    mpmath.mpf
+        The belief in ``g1``.
+
+    Examples
+    --------
+    ``δ = 0`` leaves the prior; ``δ = 2`` (two steps towards g2) lowers the belief in g1:
+
+    >>> mpmath.nstr(belief_hi(Fraction(3, 5), Fraction(2, 5), Fraction(0)), 20)
+    '0.6'
+    >>> b = belief_hi(Fraction(3, 5), Fraction(2, 5), Fraction(2))
+    >>> HI.nstr(b, 40), abs(b - 1 / (1 + HI.mpf(2) / 3 * HI.exp(2))) < HI.mpf(10) ** -50
+    ('0.1687468256815759526704055690174413321859', True)
+    """
     ratio = HI.mpf(b2.numerator * b1.denominator) / (b2.denominator * b1.numerator)
     return 1 / (1 + ratio * HI.exp(HI.mpf(delta.numerator) / delta.denominator))
 

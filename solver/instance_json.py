@@ -21,7 +21,37 @@ __all__ = ["instance_from_json", "instance_to_json", "load_instance", "node_from
 
 
 def read_json(path: str | Path) -> Any:
-    """Read a JSON file, decimals as exact ``Fraction``; errors name the file and line."""
+    """Read a JSON file, decimals as exact ``Fraction``; errors name the file and line.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file (UTF-8).
+
+    Returns
+    -------
+    object
+        The parsed JSON, every decimal number as a ``Fraction``.
+
+    Raises
+    ------
+    InstanceFormatError
+        The file cannot be read or is not JSON.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> tmp = tempfile.TemporaryDirectory()
+    >>> p = Path(tmp.name) / "prior.json"
+    >>> _ = p.write_text('{"prior": [0.7, 0.3]}')
+    >>> read_json(p)
+    {'prior': [Fraction(7, 10), Fraction(3, 10)]}
+    >>> _ = p.write_text('{"prior": [0.7,' + chr(10) + ' 0.3')
+    >>> read_json(p)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    solver.errors.InstanceFormatError: .../prior.json: malformed JSON at line 2 column 5: ...
+    >>> tmp.cleanup()
+    """
     p = Path(path)
     try:
         text = p.read_text(encoding="utf-8")
@@ -59,7 +89,31 @@ def load_instance(path: str | Path) -> Instance:
 
 
 def node_from_json(x: Any) -> Hashable:
-    """JSON node id to Python: lists become tuples (grid cells ``[r, c]`` -> ``(r, c)``)."""
+    """JSON node id to Python: lists become tuples (grid cells ``[r, c]`` -> ``(r, c)``).
+
+    Parameters
+    ----------
+    x : object
+        A JSON scalar or list (numbers possibly as ``Fraction``, see :func:`read_json`).
+
+    Returns
+    -------
+    Hashable
+        Integral fractions become ``int``, other fractions ``float``.
+
+    Raises
+    ------
+    InstanceFormatError
+        If ``x`` is a JSON object.
+
+    Examples
+    --------
+    >>> node_from_json([2, 3]), node_from_json(Fraction(4)), node_from_json("s")
+    ((2, 3), 4, 's')
+    >>> node_from_json({"r": 2})
+    Traceback (most recent call last):
+    solver.errors.InstanceFormatError: node id must be a JSON scalar or list, got object {'r': 2}
+    """
     if isinstance(x, list):
         return tuple(node_from_json(y) for y in x)
     if isinstance(x, dict):
@@ -70,7 +124,25 @@ def node_from_json(x: Any) -> Hashable:
 
 
 def node_to_json(x: Hashable) -> Any:
-    """Python node id to JSON: tuples become lists."""
+    """Python node id to JSON: tuples become lists.
+
+    Parameters
+    ----------
+    x : Hashable
+        A node id of an :class:`Instance`.
+
+    Returns
+    -------
+    object
+        Serializable by :func:`json.dumps` (numpy integers become ``int``).
+
+    Examples
+    --------
+    >>> node_to_json((2, 3)), node_to_json(np.int64(5)), node_to_json("s")
+    ([2, 3], 5, 's')
+    >>> node_from_json(node_to_json((2, 3)))
+    (2, 3)
+    """
     if isinstance(x, tuple):
         return [node_to_json(y) for y in x]
     if isinstance(x, np.integer):
@@ -79,7 +151,36 @@ def node_to_json(x: Hashable) -> Any:
 
 
 def instance_from_json(data: dict[str, Any] | str) -> Instance:
-    """Build an :class:`Instance` from the instance JSON document (dict or text)."""
+    """Build an :class:`Instance` from the instance JSON document (dict or text).
+
+    Parameters
+    ----------
+    data : dict or str
+        The document of ``docs/formats.md`` §1, or its JSON text (decimals read exactly).
+
+    Returns
+    -------
+    Instance
+
+    Raises
+    ------
+    InstanceFormatError
+        Malformed document (missing keys, bad JSON, wrong shapes).
+    InvalidInstanceError
+        A well-formed document that is not a valid game (e.g. unknown nodes).
+
+    Examples
+    --------
+    >>> text = ('{"graph": {"nodes": [{"id": "s"}, {"id": "g1"}, {"id": "g2"}], "edges": '
+    ...         '[{"source": "s", "target": "g1"}, {"source": "s", "target": "g2"}]}, '
+    ...         '"start": "s", "goals": ["g1", "g2"], "prior": [0.7, 0.3]}')
+    >>> inst = instance_from_json(text)
+    >>> inst.primary, inst.secondary, inst.b1
+    ('g1', 'g2', Fraction(7, 10))
+    >>> instance_from_json({"graph": {"nodes": [], "edges": []}})
+    Traceback (most recent call last):
+    solver.errors.InstanceFormatError: instance is missing key(s): start, goals, prior
+    """
     if isinstance(data, str):
         try:
             data = json.loads(data, parse_float=Fraction)
@@ -141,7 +242,33 @@ def _graph_from_node_link(g: Any, *, float_weights: bool) -> nx.Graph:
 
 
 def instance_to_json(inst: Instance) -> dict[str, Any]:
-    """The instance JSON document of ``inst`` (inverse of :func:`instance_from_json`)."""
+    """The instance JSON document of ``inst`` (inverse of :func:`instance_from_json`).
+
+    Parameters
+    ----------
+    inst : Instance
+        A graph or grid instance.
+
+    Returns
+    -------
+    dict
+        The document of ``docs/formats.md`` §1, exact numbers as ``"p/q"`` strings; grid
+        cells become ``[row, col]`` nodes.
+
+    Examples
+    --------
+    >>> import networkx as nx
+    >>> g = nx.Graph()
+    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    >>> doc = instance_to_json(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
+    >>> doc["goals"], doc["prior"], doc["graph"]["edges"][0]
+    (['g1', 'g2'], ['7/10', '3/10'], {'source': 's', 'target': 'g2', 'weight': '2'})
+    >>> instance_from_json(doc).b1
+    Fraction(7, 10)
+    >>> grid = Instance.from_grid(np.zeros((1, 3), bool), (0, 0), ((0, 2), (0, 1)), ("1/2", "1/2"))
+    >>> [n["id"] for n in instance_to_json(grid)["graph"]["nodes"]]
+    [[0, 0], [0, 1], [0, 2]]
+    """
     net = inst.network
     doc: dict[str, Any] = {"graph": _node_link(inst), "start": node_to_json(inst.start),
                            "goals": [node_to_json(g) for g in inst.goals],

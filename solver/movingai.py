@@ -23,11 +23,38 @@ PASSABLE = frozenset(".GS")
 def read_map(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED) -> np.ndarray:
     """Read a ``.map`` file into a boolean obstacle array (True = blocked).
 
+    Parameters
+    ----------
+    path : str or Path
+        The ``.map`` file.
+    blocked_chars : iterable of str
+        Map characters that are obstacles (default ``@``, ``O``, ``T``, ``W``).
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        Shape ``(height, width)``.
+
     Raises
     ------
     InstanceFormatError
         If the file cannot be read or its header or rows are malformed (the message names
         the file and line).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = Path(d) / "tiny.map"
+    ...     _ = p.write_text("type octile" + chr(10) + "height 2" + chr(10) + "width 3"
+    ...                      + chr(10) + "map" + chr(10) + "T.S" + chr(10) + "..@" + chr(10))
+    ...     print(read_map(p).astype(int).tolist())
+    ...     print(read_map(p, blocked_chars="@OTWS").astype(int).tolist())  # swamp blocked too
+    [[1, 0, 0], [0, 0, 1]]
+    [[1, 0, 1], [0, 0, 1]]
+    >>> read_map("/nonexistent/x.map")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    solver.errors.InstanceFormatError: /nonexistent/x.map: cannot read map file (...)
     """
     p = Path(path)
     try:

@@ -57,7 +57,35 @@ def _tex(label: str) -> str:
 
 def save_figure(fig: Figure, out: str | Path) -> list[Path]:
     """Write ``fig``: to ``out`` if it ends in ``.png`` or ``.svg``, else to ``out.png`` and
-    ``out.svg``. Returns the files written."""
+    ``out.svg``. Returns the files written.
+
+    Missing parent directories are created; the figure is closed afterwards.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    out : str or Path
+        The file, or a stem for both formats.
+
+    Returns
+    -------
+    list of Path
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     fig, ax = plt.subplots()
+    ...     _ = ax.plot([0, 1], [1, 0])
+    ...     files = save_figure(fig, Path(d) / "figs" / "demo")
+    ...     print([f.name for f in files], all(f.stat().st_size > 0 for f in files))
+    ...     print([f.name for f in save_figure(plt.figure(), Path(d) / "one.svg")])
+    ['demo.png', 'demo.svg'] True
+    ['one.svg']
+    >>> plt.fignum_exists(fig.number)
+    False
+    """
     p = Path(out)
     targets = [p] if p.suffix.lower() in (".png", ".svg") else [
         p.with_name(p.name + ".png"), p.with_name(p.name + ".svg")]

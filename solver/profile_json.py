@@ -16,7 +16,37 @@ PROFILE_FORMAT = "dpp-profile/1"
 
 
 def equilibrium_to_json(eq: Equilibrium) -> dict[str, Any]:
-    """The strategy-profile document of ``docs/formats.md`` §2 (exact numbers as strings)."""
+    """The strategy-profile document of ``docs/formats.md`` §2 (exact numbers as strings).
+
+    Parameters
+    ----------
+    eq : Equilibrium
+        The solver's result (:func:`solver.solve`).
+
+    Returns
+    -------
+    dict
+        A ``dpp-profile/1`` document, JSON-serializable.
+
+    Examples
+    --------
+    The triangle's profile, certified by the independent checker:
+
+    >>> import networkx as nx
+    >>> from dppverify import certify
+    >>> from solver import Instance, solve
+    >>> from solver.instance_json import instance_to_json
+    >>> g = nx.Graph()
+    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    >>> inst = Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))
+    >>> doc = equilibrium_to_json(solve(inst))
+    >>> [(p["path"], p["probability"]) for p in doc["attacker"]["primary"]]
+    [(['s', 'g1'], '4/7'), (['s', 'g2'], '3/7')]
+    >>> doc["value"]["U"], doc["phases"], doc["exact"]
+    ('12/5', {'t_I': 0, 't_II': 1, 'T': 1}, True)
+    >>> certify(instance_to_json(inst), doc).verdict
+    'pass'
+    """
     from solver import __version__
 
     inst = eq.instance

@@ -17,7 +17,41 @@ _MAX_NODES = 12
 
 def summarize(eq: Equilibrium) -> str:
     """A multi-line summary: goals, ξ² with σ* per step and phases, the primary mixture,
-    the type costs, value and VoI."""
+    the type costs, value and VoI.
+
+    Parameters
+    ----------
+    eq : Equilibrium
+        The solver's result (:func:`solver.solve`).
+
+    Returns
+    -------
+    str
+        What ``dpp solve`` prints.
+
+    Examples
+    --------
+    >>> import networkx as nx
+    >>> from solver import Instance, solve
+    >>> g = nx.Graph()
+    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    >>> print(summarize(solve(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))))
+    start 's'; primary goal g1 = 'g1' (prior 7/10), secondary goal g2 = 'g2' (prior 3/10)
+    mode: exact (rational)
+    <BLANKLINE>
+    secondary path xi2 (1 steps): 's' -> 'g2'
+      sigma*(g1) per step: [1/2]
+      phases: I absent, II = steps 1..1, III absent   (t_I=0, t_II=1, T=1)
+    primary mixture:
+      xi1_I   p = 4/7     's' -> 'g1'
+      xi1_II  p = 3/7     's' -> 'g2'
+    <BLANKLINE>
+    U1 (primary cost)   = 3
+    U2 (secondary cost) = 1
+    U* (value)          = 12/5 (~2.4)
+    U_bar (complete information) = 27/10 (~2.7)
+    VoI*                = 1/9 (~0.111111)
+    """
     inst = eq.instance
     ph = eq.phases
     lines = [

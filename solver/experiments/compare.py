@@ -31,7 +31,19 @@ _NAMES = {"sigma*": "σ*", "sigma'": "σ'", "gamma*": "γ*", "ambiguity": "ambig
 
 
 def paper10_path() -> Path:
-    """Path of the bundled ``paper10.map``."""
+    """Path of the bundled ``paper10.map``.
+
+    Returns
+    -------
+    Path
+        Inside the installed ``solver`` package (``solver/data/paper10.map``).
+
+    Examples
+    --------
+    >>> p = paper10_path()
+    >>> p.name, p.read_text().splitlines()[:3]
+    ('paper10.map', ['type octile', 'height 10', 'width 10'])
+    """
     return Path(str(resources.files("solver") / "data" / "paper10.map"))
 
 
@@ -67,7 +79,30 @@ def _num(x: Number) -> str:
 
 
 def compare_table(results: Sequence[PairResult]) -> str:
-    """A fixed-width text table of the results (exact values with decimals)."""
+    """A fixed-width text table of the results (exact values with decimals).
+
+    Parameters
+    ----------
+    results : sequence of PairResult
+        E.g. :func:`run_compare`'s.
+
+    Returns
+    -------
+    str
+        A header, a rule and one row per pair.
+
+    Examples
+    --------
+    >>> import networkx as nx
+    >>> g = nx.Graph()
+    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    >>> results = Game.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
+    >>> print(compare_table(results[:2]))
+    Defender  Attacker  U1             U2  U            VoI
+    --------  --------  -------------  --  -----------  -------------
+    σ*        γ*        3              1   12/5 (~2.4)  1/9 (~0.1111)
+    σ'        γ*        18/7 (~2.571)  2   12/5 (~2.4)  1/9 (~0.1111)
+    """
     head = ("Defender", "Attacker", "U1", "U2", "U", "VoI")
     body = [(_NAMES.get(r.defender, r.defender), _NAMES.get(r.attacker, r.attacker),
              _num(r.U1), _num(r.U2), _num(r.U), _num(r.VoI)) for r in results]
@@ -79,7 +114,32 @@ def compare_table(results: Sequence[PairResult]) -> str:
 
 
 def verdict(results: Sequence[PairResult]) -> str:
-    """Whether the paper's observation ``U(σ',γ*) < U(σ*,γ*)`` holds on these results."""
+    """Whether the paper's observation ``U(σ',γ*) < U(σ*,γ*)`` holds on these results.
+
+    Parameters
+    ----------
+    results : sequence of PairResult
+        E.g. :func:`run_compare`'s.
+
+    Returns
+    -------
+    str
+        One sentence; empty when the results lack one of the two pairs.
+
+    Examples
+    --------
+    It holds on the paper's map, not on the triangle (where both Defenders get 12/5):
+
+    >>> print(verdict(run_compare(paper10_instance())))  # doctest: +NORMALIZE_WHITESPACE
+    U(σ',γ*) = 64/5 (~12.8) < U(σ*,γ*) = 68/5 (~13.6): the paper's observation
+    U(σ',γ*) < U(σ*,γ*) holds on this instance
+    >>> import networkx as nx
+    >>> g = nx.Graph()
+    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    >>> results = Game.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
+    >>> "does NOT hold" in verdict(results), verdict(results[:1])
+    (True, '')
+    """
     by = {(r.defender, r.attacker): r for r in results}
     if ("sigma*", "gamma*") not in by or ("sigma'", "gamma*") not in by:
         return ""
@@ -91,7 +151,29 @@ def verdict(results: Sequence[PairResult]) -> str:
 
 
 def compare_csv(results: Sequence[PairResult]) -> str:
-    """The results as CSV (exact ``p/q`` strings)."""
+    """The results as CSV (exact ``p/q`` strings).
+
+    Parameters
+    ----------
+    results : sequence of PairResult
+        E.g. :func:`run_compare`'s.
+
+    Returns
+    -------
+    str
+        A header line and one line per pair.
+
+    Examples
+    --------
+    >>> import networkx as nx
+    >>> g = nx.Graph()
+    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    >>> results = Game.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
+    >>> print(compare_csv(results[:2]), end="")
+    defender,attacker,U1,U2,U,U_bar,VoI
+    sigma*,gamma*,3,1,12/5,27/10,1/9
+    sigma',gamma*,18/7,2,12/5,27/10,1/9
+    """
     buf = io.StringIO()
     fields = ("defender", "attacker", "U1", "U2", "U", "U_bar", "VoI")
     w = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")

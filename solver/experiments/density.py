@@ -99,13 +99,56 @@ CSV_FIELDS = tuple(Row.__dataclass_fields__)
 
 
 def tasks_of(config: DensityConfig) -> list[Task]:
-    """The sweep cut into tasks of ``config.chunk`` samples, in (density, sample) order."""
+    """The sweep cut into tasks of ``config.chunk`` samples, in (density, sample) order.
+
+    Parameters
+    ----------
+    config : DensityConfig
+        The sweep.
+
+    Returns
+    -------
+    list of Task
+
+    Examples
+    --------
+    Three samples per density in chunks of two: two tasks per density.
+
+    >>> cfg = DensityConfig(size=4, start=(3, 0), goals=((0, 3), (0, 0)), densities=(0, 25),
+    ...                     samples=3, chunk=2)
+    >>> [(t.density, t.first, t.count) for t in tasks_of(cfg)]
+    [(0, 0, 2), (0, 2, 1), (25, 0, 2), (25, 2, 1)]
+    """
     return [Task(config, d, first, min(config.chunk, config.samples - first))
             for d in config.densities for first in range(0, config.samples, config.chunk)]
 
 
 def run_task(task: Task) -> list[Row]:
-    """Evaluate every pair on every sample of a task (a pure function of ``task``)."""
+    """Evaluate every pair on every sample of a task (a pure function of ``task``).
+
+    Parameters
+    ----------
+    task : Task
+        One chunk of the sweep (:func:`tasks_of`).
+
+    Returns
+    -------
+    list of Row
+        One row per sample and pair of :data:`solver.pairs.PAIRS`, in that order.
+
+    Examples
+    --------
+    Sample 2 at density 0 is the empty 4×4 grid: the primary walks 6 steps, the secondary
+    3, and ``U* = 18/5`` against ``Ū = 3/5 · 6 + 2/5 · 3 = 24/5``.
+
+    >>> cfg = DensityConfig(size=4, start=(3, 0), goals=((0, 3), (0, 0)), densities=(0, 25),
+    ...                     samples=3, chunk=2)
+    >>> rows = run_task(tasks_of(cfg)[1])
+    >>> len(rows), rows[0].sample, rows[0].obstacles, (rows[0].defender, rows[0].attacker)
+    (6, 2, 0, ('sigma*', 'gamma*'))
+    >>> rows[0].U, rows[0].U_bar, rows[0].VoI, rows == run_task(tasks_of(cfg)[1])
+    ('18/5', '24/5', '1/4', True)
+    """
     cfg = task.config
     rows = []
     for k in range(task.first, task.first + task.count):
@@ -204,7 +247,30 @@ def _run_dask(tasks: list[Task], address: str,
 
 
 def rows_to_csv(rows: Iterable[Row]) -> str:
-    """The rows as CSV text (header :data:`CSV_FIELDS`)."""
+    """The rows as CSV text (header :data:`CSV_FIELDS`).
+
+    Parameters
+    ----------
+    rows : iterable of Row
+        E.g. :func:`run_density`'s.
+
+    Returns
+    -------
+    str
+        What :func:`rows_from_csv` reads back.
+
+    Examples
+    --------
+    >>> cfg = DensityConfig(size=4, start=(3, 0), goals=((0, 3), (0, 0)), densities=(0, 25),
+    ...                     samples=3, chunk=2)
+    >>> text = rows_to_csv(run_task(tasks_of(cfg)[1])[:2])
+    >>> print(text, end="")
+    density,sample,attempts,obstacles,defender,attacker,U1,U2,U,U_bar,VoI,VoI_float
+    0,2,1,0,sigma*,gamma*,6,0,18/5,24/5,1/4,0.25
+    0,2,1,0,sigma',gamma*,6,0,18/5,24/5,1/4,0.25
+    >>> [r["VoI_float"] for r in rows_from_csv(text)]
+    [0.25, 0.25]
+    """
     buf = io.StringIO()
     writer = csv.DictWriter(buf, fieldnames=CSV_FIELDS, lineterminator="\n")
     writer.writeheader()
