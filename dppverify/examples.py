@@ -7,11 +7,15 @@ secondary path ``s -> g2`` is all phase II, the primary mixes ``s -> g1`` (4/7) 
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from dppverify.instance import Instance, instance_from_json
 
-__all__ = ["triangle", "triangle_document"]
+if TYPE_CHECKING:
+    from dppverify.context import Context
+
+__all__ = ["triangle", "triangle_attacker", "triangle_context", "triangle_document",
+           "triangle_profile"]
 
 
 def triangle_document(prior: tuple[str, str] = ("7/10", "3/10")) -> dict[str, Any]:
@@ -40,3 +44,70 @@ def triangle(prior: tuple[str, str] = ("7/10", "3/10")) -> Instance:
     ('g1', (Fraction(7, 10), Fraction(3, 10)))
     """
     return instance_from_json(triangle_document(prior))
+
+
+def triangle_attacker(p_g1: str = "4/7", p_g2: str = "3/7") -> dict[str, Any]:
+    """The ``attacker`` part of a triangle profile: the equilibrium mixture by default.
+
+    The primary goes ``s -> g1`` with ``p_g1`` and ``s -> g2`` with ``p_g2`` (eq. (15): 4/7
+    and 3/7 at the prior 7/10); the secondary goes ``s -> g2``.
+
+    Examples
+    --------
+    >>> [w["probability"] for w in triangle_attacker("3/7", "4/7")["primary"]]
+    ['3/7', '4/7']
+    """
+    return {"primary": [{"path": ["s", "g1"], "probability": p_g1},
+                        {"path": ["s", "g2"], "probability": p_g2}],
+            "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+
+
+def triangle_profile(attacker: dict[str, Any] | None = None, **claims: Any) -> dict[str, Any]:
+    """A ``dpp-profile/1`` document for the triangle with the progress Defender.
+
+    Parameters
+    ----------
+    attacker : dict, optional
+        The ``attacker`` member (default: :func:`triangle_attacker`, the equilibrium).
+    **claims
+        Extra members, e.g. ``value={"U": "12/5"}`` or ``phases={...}``.
+
+    Examples
+    --------
+    >>> from dppverify import certify
+    >>> certify(triangle_document(), triangle_profile()).verdict
+    'pass'
+    >>> certify(triangle_document(), triangle_profile(triangle_attacker("3/7", "4/7"))).verdict
+    'fail'
+    """
+    return {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+            "defender": {"rule": "progress", "goal": "g1"},
+            "attacker": triangle_attacker() if attacker is None else attacker, **claims}
+
+
+def triangle_context(attacker: dict[str, Any] | None = None, *, horizon: int = 1,
+                     **claims: Any) -> Context:
+    """The checks' shared inputs for a triangle profile (exact, seed 0, 2 random trials).
+
+    Parameters
+    ----------
+    attacker, **claims
+        As for :func:`triangle_profile`.
+    horizon : int
+        The walk tree's horizon.
+
+    Examples
+    --------
+    >>> ctx = triangle_context()
+    >>> ctx.tree.n_prefixes, ctx.profile.primary[0].probability
+    (3, Fraction(4, 7))
+    """
+    from dppverify.context import make_context
+    from dppverify.exact import Tolerance
+    from dppverify.profile import profile_from_json
+    from dppverify.tree import build_tree
+
+    inst = triangle()
+    prof = profile_from_json(triangle_profile(attacker, **claims), inst)
+    return make_context(inst, build_tree(inst, horizon), prof, Tolerance(exact=True), seed=0,
+                        trials=2)

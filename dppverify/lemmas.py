@@ -72,21 +72,9 @@ def telescoping(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.exact import Tolerance
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
+    >>> from dppverify.examples import triangle_attacker, triangle_context
     >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
-    ...     prof = profile_from_json({"format": "dpp-profile/1",
-    ...         "goals": {"primary": "g1", "secondary": "g2"},
-    ...         "defender": {"rule": "progress", "goal": "g1"},
-    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
-    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
-    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
-    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
-    ...                         seed=0, trials=2)
+    ...     return triangle_context(triangle_attacker(p_g1, p_g2))
     >>> r = telescoping(context())
     >>> r.status, dict(r.numbers)
     ('pass', {'prefixes': 3, 'sum_violations': 0, 'range_violations': 0})
@@ -141,24 +129,12 @@ def l1_lower_bound(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-On the triangle the primary pays ``d(s, g1) = 3`` against σ* on both walks: ``s -> g2``
+    On the triangle the primary pays ``d(s, g1) = 3`` against σ* on both walks: ``s -> g2``
     costs it 1 (σ* = 1/2 on a step of weight 2) plus ``d(g2, g1) = 2``.
 
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.exact import Tolerance
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
+    >>> from dppverify.examples import triangle_attacker, triangle_context
     >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
-    ...     prof = profile_from_json({"format": "dpp-profile/1",
-    ...         "goals": {"primary": "g1", "secondary": "g2"},
-    ...         "defender": {"rule": "progress", "goal": "g1"},
-    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
-    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
-    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
-    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
-    ...                         seed=0, trials=2)
+    ...     return triangle_context(triangle_attacker(p_g1, p_g2))
     >>> r = l1_lower_bound(context())
     >>> r.status, r.numbers["d_s0_g1"], r.numbers["min_U1"], r.numbers["walks_to_g2_attaining"]
     ('pass', 3, 3, 1)
@@ -217,23 +193,11 @@ def l2_no_revisits(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-The triangle's tree has no revisiting walk (every neighbour of ``s`` is a goal):
+    The triangle's tree has no revisiting walk (every neighbour of ``s`` is a goal):
 
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.exact import Tolerance
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
+    >>> from dppverify.examples import triangle_attacker, triangle_context
     >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
-    ...     prof = profile_from_json({"format": "dpp-profile/1",
-    ...         "goals": {"primary": "g1", "secondary": "g2"},
-    ...         "defender": {"rule": "progress", "goal": "g1"},
-    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
-    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
-    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
-    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
-    ...                         seed=0, trials=2)
+    ...     return triangle_context(triangle_attacker(p_g1, p_g2))
     >>> r = l2_no_revisits(context())
     >>> r.status, r.numbers["min_U2_walks"], r.numbers["min_U2_paths"], r.numbers["walks"]
     ('pass', 1, 1, 2)
@@ -283,23 +247,11 @@ def xi2_secondary_value(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-``M = min_v d(s0, v) + d(v, g1) + d(v, g2) = 4`` (at ``v = g2``), so ``U²* = 4 − 3 = 1``:
+    ``M = min_v d(s0, v) + d(v, g1) + d(v, g2) = 4`` (at ``v = g2``), so ``U²* = 4 − 3 = 1``:
 
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.exact import Tolerance
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
+    >>> from dppverify.examples import triangle_attacker, triangle_context
     >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
-    ...     prof = profile_from_json({"format": "dpp-profile/1",
-    ...         "goals": {"primary": "g1", "secondary": "g2"},
-    ...         "defender": {"rule": "progress", "goal": "g1"},
-    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
-    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
-    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
-    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
-    ...                         seed=0, trials=2)
+    ...     return triangle_context(triangle_attacker(p_g1, p_g2))
     >>> r = xi2_secondary_value(context())
     >>> r.status, dict(r.numbers)
     ('pass', {'M': 4, 'U2_star': 1, 'min_U2_tree': 1})
@@ -389,23 +341,11 @@ def l3_greedy(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-The profile's attacker and ``ctx.trials = 2`` random ones:
+    The profile's attacker and ``ctx.trials = 2`` random ones:
 
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.exact import Tolerance
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
+    >>> from dppverify.examples import triangle_attacker, triangle_context
     >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
-    ...     prof = profile_from_json({"format": "dpp-profile/1",
-    ...         "goals": {"primary": "g1", "secondary": "g2"},
-    ...         "defender": {"rule": "progress", "goal": "g1"},
-    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
-    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
-    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
-    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
-    ...                         seed=0, trials=2)
+    ...     return triangle_context(triangle_attacker(p_g1, p_g2))
     >>> r = l3_greedy(context())
     >>> r.status, r.numbers["attackers"], r.numbers["max_value_gap"] < 1e-7
     ('pass', 3, True)
@@ -473,21 +413,9 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.exact import Tolerance
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
+    >>> from dppverify.examples import triangle_attacker, triangle_context
     >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
-    ...     prof = profile_from_json({"format": "dpp-profile/1",
-    ...         "goals": {"primary": "g1", "secondary": "g2"},
-    ...         "defender": {"rule": "progress", "goal": "g1"},
-    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
-    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
-    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
-    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
-    ...                         seed=0, trials=2)
+    ...     return triangle_context(triangle_attacker(p_g1, p_g2))
     >>> r = l4_monotonicity(context())
     >>> r.status, dict(r.numbers)
     ('pass', {'secondary_walks': 1, 'primary_strategies': 3, 'violations': 0, 'seed': 0})
@@ -548,24 +476,12 @@ def l5_induced_beliefs(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-ξ² = ``s -> g2`` is all phase II: the equilibrium mixture makes the belief 1/2 after its
+    ξ² = ``s -> g2`` is all phase II: the equilibrium mixture makes the belief 1/2 after its
     step; with the primary's probabilities swapped it is 4/7.
 
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.exact import Tolerance
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
+    >>> from dppverify.examples import triangle_attacker, triangle_context
     >>> def context(p_g1="4/7", p_g2="3/7"):   # the triangle's equilibrium by default
-    ...     prof = profile_from_json({"format": "dpp-profile/1",
-    ...         "goals": {"primary": "g1", "secondary": "g2"},
-    ...         "defender": {"rule": "progress", "goal": "g1"},
-    ...         "attacker": {"primary": [{"path": ["s", "g1"], "probability": p_g1},
-    ...                                  {"path": ["s", "g2"], "probability": p_g2}],
-    ...                      "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
-    ...     return make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
-    ...                         seed=0, trials=2)
+    ...     return triangle_context(triangle_attacker(p_g1, p_g2))
     >>> l5_induced_beliefs(context()).status
     'pass'
     >>> r = l5_induced_beliefs(context("3/7", "4/7"))

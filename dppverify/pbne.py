@@ -60,22 +60,11 @@ def wellformed(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-The triangle's equilibrium (see :mod:`dppverify.examples`), then a primary mixture whose
+    The triangle's equilibrium (see :mod:`dppverify.examples`), then a primary mixture whose
     probabilities do not sum to 1:
 
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
-    >>> def context(attacker, **claims):
-    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
-    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
-    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
-    ...                         Tolerance(exact=True), seed=0, trials=2)
-    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
-    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
-    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
     >>> wellformed(context(eq)).message
     "well-formed: 2 primary and 1 secondary walk(s), primary goal 'g1'"
     >>> bad = dict(eq, primary=[{"path": ["s", "g1"], "probability": "1/7"},
@@ -118,19 +107,8 @@ def profile_values(ctx: Context) -> Values:
 
     Examples
     --------
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
-    >>> def context(attacker, **claims):
-    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
-    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
-    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
-    ...                         Tolerance(exact=True), seed=0, trials=2)
-    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
-    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
-    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
     >>> profile_values(context(eq))
     Values(U1=3, U2=1, U=Fraction(12, 5), U_bar=Fraction(27, 10), VoI=Fraction(1, 9))
     """
@@ -158,19 +136,8 @@ def values(ctx: Context) -> list[CheckRecord]:
 
     Examples
     --------
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
-    >>> def context(attacker, **claims):
-    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
-    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
-    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
-    ...                         Tolerance(exact=True), seed=0, trials=2)
-    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
-    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
-    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
     >>> for r in values(context(eq)):
     ...     print(r.id, r.status, r.message)
     value.U1 pass U1 = 3, LP evaluation 3
@@ -271,21 +238,10 @@ def phases(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-On the triangle ξ² = ``s -> g2`` is all phase II (σ* = 1/2 on its one step):
+    On the triangle ξ² = ``s -> g2`` is all phase II (σ* = 1/2 on its one step):
 
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
-    >>> def context(attacker, **claims):
-    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
-    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
-    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
-    ...                         Tolerance(exact=True), seed=0, trials=2)
-    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
-    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
-    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
     >>> dict(phases(context(eq)).numbers)
     {'t_I': 0, 't_II': 1, 'T': 1}
     >>> r = phases(context(eq, phases={"t_I": 1, "t_II": 1, "T": 1}))
@@ -335,21 +291,10 @@ def attacker_br(ctx: Context, theta: int) -> CheckRecord:
 
     Examples
     --------
-A secondary type that walks to g1 pays 2 where ``s -> g2`` costs it 1:
+    A secondary type that walks to g1 pays 2 where ``s -> g2`` costs it 1:
 
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
-    >>> def context(attacker, **claims):
-    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
-    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
-    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
-    ...                         Tolerance(exact=True), seed=0, trials=2)
-    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
-    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
-    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
     >>> r = attacker_br(context(eq), 2)
     >>> r.id, r.status, r.numbers["U2"], r.numbers["best_response"], r.numbers["regret"]
     ('pbne.attacker_br.secondary', 'pass', 1, 1, 0)
@@ -405,22 +350,11 @@ def defender_br(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-With the primary's probabilities swapped (3/7 to g1), allocating ``s -> g2`` to g1 gains
+    With the primary's probabilities swapped (3/7 to g1), allocating ``s -> g2`` to g1 gains
     the Defender 1/10:
 
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
-    >>> def context(attacker, **claims):
-    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
-    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
-    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
-    ...                         Tolerance(exact=True), seed=0, trials=2)
-    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
-    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
-    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
     >>> defender_br(context(eq)).numbers["regret"]
     0
     >>> swapped = dict(eq, primary=[{"path": ["s", "g1"], "probability": "3/7"},
@@ -490,22 +424,11 @@ def sequential_rationality(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-In equilibrium the belief after ``s -> g2`` is exactly 1/2, so σ* = 1/2 is rational there;
+    In equilibrium the belief after ``s -> g2`` is exactly 1/2, so σ* = 1/2 is rational there;
     with the primary's probabilities swapped it is 4/7 and σ* is not greedy:
 
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
-    >>> def context(attacker, **claims):
-    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
-    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
-    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
-    ...                         Tolerance(exact=True), seed=0, trials=2)
-    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
-    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
-    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
     >>> dict(sequential_rationality(context(eq)).numbers)
     {'infosets': 2, 'at_one_half': 1, 'violations': 0}
     >>> swapped = dict(eq, primary=[{"path": ["s", "g1"], "probability": "3/7"},
@@ -561,19 +484,8 @@ def belief_consistency(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
-    >>> def context(attacker, **claims):
-    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
-    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
-    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
-    ...                         Tolerance(exact=True), seed=0, trials=2)
-    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
-    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
-    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
     >>> dict(belief_consistency(context(eq)).numbers)
     {'b1': Fraction(7, 10), 'b2': Fraction(3, 10), 'infosets': 2, 'mismatches': 0}
     >>> r = belief_consistency(context(eq, prior={"primary": "1/2", "secondary": "1/2"}))
@@ -636,21 +548,10 @@ def value_check(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-A secondary type walking to g1 makes ``U = 27/10``, not the value ``V_1 = 12/5``:
+    A secondary type walking to g1 makes ``U = 27/10``, not the value ``V_1 = 12/5``:
 
-    >>> from dppverify.context import make_context
-    >>> from dppverify.examples import triangle
-    >>> from dppverify.profile import profile_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = triangle()
-    >>> def context(attacker, **claims):
-    ...     doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
-    ...            "defender": {"rule": "progress", "goal": "g1"}, "attacker": attacker, **claims}
-    ...     return make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
-    ...                         Tolerance(exact=True), seed=0, trials=2)
-    >>> eq = {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
-    ...                   {"path": ["s", "g2"], "probability": "3/7"}],
-    ...       "secondary": [{"path": ["s", "g2"], "probability": 1}]}
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
     >>> r = value_check(context(eq))
     >>> r.status, r.numbers["V_H"], r.numbers["U"]
     ('pass', Fraction(12, 5), Fraction(12, 5))
