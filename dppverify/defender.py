@@ -17,13 +17,14 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
+from dppverify.errors import InvalidInstanceError, ProfileError
 from dppverify.exact import Number, normalize
 from dppverify.instance import Instance, Roles
 from dppverify.profile import DefenderRule, ProgressRule, TableRule
 from dppverify.tree import WalkTree
 
 __all__ = ["TreeDefender", "UndefinedStrategyError", "divide", "progress_along", "sigma_along",
-           "tree_defender"]
+           "step_weight", "tree_defender"]
 
 
 class UndefinedStrategyError(LookupError):
@@ -43,6 +44,33 @@ def divide(a: Number, b: Number, exact: bool) -> Number:
     return normalize(Fraction(a) / Fraction(b))
 
 
+def step_weight(instance: Instance, walk: Sequence[int], t: int) -> Number:
+    """The weight of step ``t`` (``walk[t-1] -> walk[t]``) of ``walk``.
+
+    Raises
+    ------
+    ProfileError
+        If that step is not an edge of the instance (the message names it).
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> inst = triangle()
+    >>> s, g1, g2 = (inst.index[v] for v in ("s", "g1", "g2"))
+    >>> step_weight(inst, [s, g2, g1], 2)
+    2
+    >>> step_weight(inst, [s, s], 1)
+    Traceback (most recent call last):
+    ...
+    dppverify.errors.ProfileError: step 1 of the walk, 's' -> 's', is not an edge
+    """
+    w = instance.weight(walk[t - 1], walk[t])
+    if w is None:
+        u, v = instance.nodes[walk[t - 1]], instance.nodes[walk[t]]
+        raise ProfileError(f"step {t} of the walk, {u!r} -> {v!r}, is not an edge")
+    return w
+
+
 def progress_along(instance: Instance, goal: int, walk: Sequence[int]) -> list[Number]:
     """The new progress ``c_{t-1} - c_t`` towards ``goal`` at each step of ``walk`` (eqs. (6)-(7)).
 
@@ -54,7 +82,8 @@ def progress_along(instance: Instance, goal: int, walk: Sequence[int]) -> list[N
     [1]
     """
     slot = instance.slot(goal)
-    assert slot is not None
+    if slot is None:
+        raise InvalidInstanceError(f"node {instance.nodes[goal]!r} is not a goal of the instance")
     d = instance.dist_to[slot]
     c = d[walk[0]]
     out: list[Number] = []
@@ -73,9 +102,7 @@ def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[i
         prog = progress_along(instance, rule.goal, walk)
         out = []
         for t, pr in enumerate(prog, start=1):
-            w = instance.weight(walk[t - 1], walk[t])
-            assert w is not None
-            out.append(_clamp(divide(pr, w, exact), exact))
+            out.append(_clamp(divide(pr, step_weight(instance, walk, t), exact), exact))
         return out
     result: list[Number] = []
     progress: list[Number] | None = None

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import random
+import re
 from fractions import Fraction
 
 import pytest
@@ -121,3 +122,19 @@ def test_walks_through_nodes_that_cannot_reach_g1_make_no_progress() -> None:
     ix = inst.index
     assert progress_along(inst, ix["g1"], [ix[v] for v in ("s", "trap", "trap2", "g2")]) == \
         [0, 0, 1]
+
+
+def test_public_helpers_reject_bad_arguments_with_named_errors() -> None:
+    from dppverify.errors import InvalidInstanceError, ProfileError
+    from dppverify.evaluate import walk_cost
+    from dppverify.examples import triangle
+    from dppverify.profile import ProgressRule
+
+    inst = triangle()
+    r = inst.roles()
+    s, g1 = inst.index["s"], inst.index["g1"]
+    with pytest.raises(InvalidInstanceError, match="'s' is not a goal"):
+        progress_along(inst, s, [s, g1])
+    message = "step 2 of the walk, 'g1' -> 'g1', is not an edge"
+    with pytest.raises(ProfileError, match=re.escape(message)):
+        walk_cost(inst, r, ProgressRule(r.g1), (s, g1, g1), 1)
