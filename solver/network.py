@@ -159,14 +159,9 @@ class Network:
         else:
             den = 1
             data = np.array([float(w) for w in values], dtype=np.float64)
-        n = len(labels)
-        mat = sp.csr_matrix(
-            (data, (np.asarray(tails, dtype=np.int64), np.asarray(heads, dtype=np.int64))),
-            shape=(n, n),
-        )
-        mat.sort_indices()
-        return cls(labels, mat.indptr.astype(np.int64), mat.indices.astype(np.int64),
-                   mat.data, den, exact, directed, index)
+        indptr, indices, weights = _sorted_csr(len(labels), np.asarray(tails, dtype=np.int64),
+                                               np.asarray(heads, dtype=np.int64), data)
+        return cls(labels, indptr, indices, weights, den, exact, directed, index)
 
     @classmethod
     def from_grid(cls, blocked: np.ndarray, *, connectivity: int = 4) -> Network:
@@ -305,13 +300,26 @@ class Network:
         """The network with every arc reversed (itself when the graph is undirected)."""
         if not self.directed:
             return self
-        t = self._matrix.T.tocsr()
-        t.sort_indices()
-        rev_w = (np.rint(t.data).astype(np.int64) if self.exact else t.data)
-        return Network(self.labels, t.indptr.astype(np.int64), t.indices.astype(np.int64),
-                       rev_w, self.denominator, self.exact, True, self._index)
+        tails = np.repeat(np.arange(self.n_nodes, dtype=np.int64), np.diff(self.indptr))
+        indptr, indices, weights = _sorted_csr(self.n_nodes, self.indices.astype(np.int64),
+                                               tails, self.weights)
+        return Network(self.labels, indptr, indices, weights, self.denominator, self.exact, True,
+                       self._index)
 
     @cached_property
     def weight_total(self) -> float:
         """Sum of all stored weights: an upper bound on every simple path's length."""
         return float(np.sum(self.weights, dtype=np.float64))
+
+
+def _sorted_csr(n: int, tails: np.ndarray, heads: np.ndarray, weights: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """CSR arrays of the arcs ``tails[k] -> heads[k]``, heads sorted within each row.
+
+    Pure index arithmetic: the weights are permuted, never converted, so exact integer
+    numerators of any size (int64 or Python ints in an object array) stay exact.
+    """
+    order = np.lexsort((heads, tails))
+    indptr = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(np.bincount(tails, minlength=n), out=indptr[1:])
+    return indptr, heads[order], weights[order]

@@ -139,3 +139,21 @@ def test_float_weights_agree_with_exact_weights() -> None:
     assert exact.exact and not approx.exact and approx.tolerance is not None
     assert exact.secondary_path == approx.secondary_path and exact.phases == approx.phases
     assert abs(float(exact.U) - approx.U) <= 1e-9  # type: ignore[operator]
+
+
+@pytest.mark.parametrize("big", [2**55 + 1, 2**63 + 5])  # beyond float64 / beyond int64
+@pytest.mark.parametrize("directed", [False, True])
+def test_huge_integer_weights_stay_exact(big: int, directed: bool) -> None:
+    """Distances beyond 2**53 use the integer Dijkstra, on the forward AND reversed arcs."""
+    g: nx.Graph = nx.DiGraph() if directed else nx.Graph()
+    arcs = [("s", "g2", 0), ("g2", "g1", 2), ("s", "g1", 1), ("g1", "g2", 3), ("g2", "s", 0),
+            ("g1", "s", 1), ("s", "a", 5), ("a", "g2", 1)]
+    for u, v, extra in arcs:
+        if directed or not g.has_edge(u, v):
+            g.add_edge(u, v, weight=big + extra)
+    eq = solve(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
+    d = dict(nx.all_pairs_dijkstra_path_length(g))  # Python ints: exact
+    m = min(d["s"][v] + d[v]["g1"] + d[v]["g2"] for v in g if "g1" in d[v] and "g2" in d[v])
+    assert eq.U1 == d["s"]["g1"]
+    assert eq.U2 == m - d["s"]["g1"]
+    assert eq.U == F(7, 10) * eq.U1 + F(3, 10) * eq.U2
