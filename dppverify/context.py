@@ -4,9 +4,10 @@ and the profile's realization plans.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 
+from dppverify.best_response import AttackerBR, attacker_best_response
 from dppverify.defender import TreeDefender, tree_defender
 from dppverify.evaluate import realization
 from dppverify.exact import Tolerance
@@ -54,11 +55,34 @@ class Context:
     seed: int
     trials: int
     undefined: tuple[int, ...] = ()
+    _best_responses: dict[tuple[int, int], AttackerBR] = field(default_factory=dict, repr=False)
 
     @property
     def usable(self) -> bool:
         """True when the profile can be evaluated (well-formed, Defender defined on the tree)."""
         return self.defender is not None and self.x1 is not None and self.x2 is not None
+
+    def best_response(self, defender: TreeDefender, theta: int) -> AttackerBR:
+        """Type ``theta``'s best response over the whole tree against ``defender``.
+
+        ``defender`` is :attr:`sigma_star` or :attr:`defender`; several checks need the same
+        backward induction, so each result is computed once per context.
+
+        Examples
+        --------
+        >>> from dppverify.examples import triangle_context
+        >>> ctx = triangle_context()
+        >>> br = ctx.best_response(ctx.sigma_star, 2)
+        >>> br.value, ctx.best_response(ctx.sigma_star, 2) is br
+        (1, True)
+        """
+        if defender is not self.sigma_star and defender is not self.defender:
+            raise ValueError("best_response caches the context's own Defenders only")
+        key = (id(defender), theta)
+        if key not in self._best_responses:
+            self._best_responses[key] = attacker_best_response(self.tree, self.roles, defender,
+                                                               theta)
+        return self._best_responses[key]
 
 
 def make_context(instance: Instance, tree: WalkTree, profile: Profile, tol: Tolerance,
@@ -112,7 +136,8 @@ def make_context(instance: Instance, tree: WalkTree, profile: Profile, tol: Tole
     x1 = x2 = None
     undefined: tuple[int, ...] = ()
     if profile.wellformed and profile.defender is not None:
-        td = tree_defender(tree, roles, profile.defender)
+        td = (sigma_star if profile.defender == ProgressRule(roles.g1)
+              else tree_defender(tree, roles, profile.defender))
         undefined = td.undefined
         if not undefined:
             defender = td

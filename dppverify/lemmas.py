@@ -143,7 +143,7 @@ def l1_lower_bound(ctx: Context) -> CheckRecord:
     inst = ctx.instance
     d0 = roles.d1[inst.start]
     totals = leaf_totals(tree, roles, ctx.sigma_star, 1)
-    br = attacker_best_response(tree, roles, ctx.sigma_star, 1)
+    br = ctx.best_response(ctx.sigma_star, 1)
     leaves = tree.leaves().tolist()
     cs = _c_at_leaves(tree, roles.d1)
     d21 = roles.d1[roles.g2]
@@ -213,7 +213,7 @@ def l2_no_revisits(ctx: Context) -> CheckRecord:
     m_simple = min(totals[p] for p in simple_leaves)
     non_simple = [totals[p] for p in leaves if not simple[p]]
     m_non = min(non_simple) if non_simple else None
-    br_all = attacker_best_response(tree, roles, ctx.sigma_star, 2)
+    br_all = ctx.best_response(ctx.sigma_star, 2)
     br_simple = attacker_best_response(tree, roles, ctx.sigma_star, 2, allowed=simple)
     numbers: dict[str, Number | None] = {"min_U2_walks": m_all, "min_U2_paths": m_simple,
                                          "min_U2_revisiting": m_non, "walks": len(leaves),
@@ -261,7 +261,7 @@ def xi2_secondary_value(ctx: Context) -> CheckRecord:
     M = min(d0[v] + roles.d1[v] + roles.d2[v] for v in range(inst.n_nodes))
     u2_star = M - roles.d1[inst.start]
     u2_star = normalize(u2_star) if inst.exact else float(u2_star)
-    br = attacker_best_response(ctx.tree, roles, ctx.sigma_star, 2)
+    br = ctx.best_response(ctx.sigma_star, 2)
     numbers: dict[str, Number | None] = {"M": M, "U2_star": u2_star, "min_U2_tree": br.value}
     if tol.lt(br.value, u2_star):
         return CheckRecord("lemma.XI2.secondary_value", "fail",
@@ -427,7 +427,7 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
         for w in ctx.profile.secondary:
             if w.probability > 0:
                 paths.setdefault(w.walk, "the profile's secondary walk")
-    br = attacker_best_response(tree, roles, ctx.sigma_star, 2)
+    br = ctx.best_response(ctx.sigma_star, 2)
     paths.setdefault(br.walk, "a secondary best response to σ*")
     violations = []
     strategies = 0

@@ -15,7 +15,6 @@ from fractions import Fraction
 import numpy as np
 
 from dppverify.best_response import (
-    attacker_best_response,
     attacker_best_response_lp,
     defender_best_response,
     defender_best_response_lp,
@@ -308,7 +307,7 @@ def attacker_br(ctx: Context, theta: int) -> CheckRecord:
         return _skip(cid, proof)
     assert ctx.defender is not None and ctx.profile.defender is not None
     inst, tree, roles = ctx.instance, ctx.tree, ctx.roles
-    br = attacker_best_response(tree, roles, ctx.defender, theta)
+    br = ctx.best_response(ctx.defender, theta)
     totals = leaf_totals(tree, roles, ctx.defender, theta)
     forward = min(totals[p] for p in tree.leaves().tolist())
     lp = attacker_best_response_lp(tree, roles, ctx.defender, theta)
@@ -568,7 +567,7 @@ def value_check(ctx: Context) -> CheckRecord:
         assert ctx.defender is not None and ctx.x1 is not None and ctx.x2 is not None
         defenders.append(("the profile's Defender", ctx.defender))
         attackers.append(("the profile's Attacker", ctx.x1, ctx.x2))
-    bracket = exact_bracket(tree, roles, lp, defenders, attackers)
+    bracket = exact_bracket(tree, roles, lp, defenders, attackers, sigma_star=ctx.sigma_star)
     numbers: dict[str, Number | None] = {"V_H_lp": lp.value, "V_H": bracket.exact,
                                          "V_H_lower": bracket.lower, "V_H_upper": bracket.upper,
                                          "H": tree.horizon}

@@ -245,12 +245,14 @@ def _rational_plan(tree: WalkTree, x: np.ndarray, den: int,
 def exact_bracket(tree: WalkTree, roles: Roles, lp: ValueLP | None = None,
                   defenders: Sequence[tuple[str, TreeDefender]] = (),
                   attackers: Iterable[tuple[str, Mapping[int, Fraction], Mapping[int, Fraction]]]
-                  = ()) -> Bracket:
+                  = (), sigma_star: TreeDefender | None = None) -> Bracket:
     """Exact bounds on ``V_H`` from rational strategies (see the module docstring).
 
     Candidates: the progress rule σ* for either goal, the given ``defenders`` /
     ``attackers``, and the LP solution rounded at each denominator limit in
-    :data:`DENOMINATORS` (stopping early once the bracket closes).
+    :data:`DENOMINATORS` (stopping early once the bracket closes). ``sigma_star``, when
+    given, is σ* (progress to ``g1``) already evaluated on ``tree``: it is reused, and not
+    offered twice when it is also one of ``defenders``.
 
     Examples
     --------
@@ -280,8 +282,12 @@ def exact_bracket(tree: WalkTree, roles: Roles, lp: ValueLP | None = None,
 
     for src, tdef in defenders:
         offer_lo(lower_bound(tree, roles, tdef), src)
+    given = {id(tdef) for _, tdef in defenders}
     for g, name in ((roles.g1, "sigma* (progress to g1)"), (roles.g2, "progress to g2")):
-        offer_lo(lower_bound(tree, roles, tree_defender(tree, roles, ProgressRule(g))), name)
+        progress = (sigma_star if g == roles.g1 and sigma_star is not None
+                    else tree_defender(tree, roles, ProgressRule(g)))
+        if id(progress) not in given:
+            offer_lo(lower_bound(tree, roles, progress), name)
     for src, a1, a2 in attackers:
         offer_hi(upper_bound(tree, roles, a1, a2), src)
     if lp is not None:
