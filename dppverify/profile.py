@@ -21,7 +21,7 @@ Defender rules (``defender``):
 from __future__ import annotations
 
 import json
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
@@ -500,8 +500,3 @@ def _declared_tolerance(doc: Mapping[str, Any]) -> float | None:
     if isinstance(raw, int | float | Fraction) and not isinstance(raw, bool):
         return float(raw)
     return None
-
-
-def walk_labels(instance: Instance, walk: Sequence[int]) -> str:
-    """A walk as a compact string of node ids, for messages."""
-    return " ".join(show_node(instance.nodes[v]) for v in walk)
