@@ -1,12 +1,15 @@
 #!/usr/bin/env python3
 """Bootstrap and task runner: needs nothing but Python >= 3.11.
 
-    python3 dev.py demo    # create .venv if needed, install, solve + certify the example
-    python3 dev.py test    # create .venv if needed, install, lint, type-check, run the tests
-    python3 dev.py bench   # run the benchmarks in benchmarks/ (slow; not part of `test`)
+    python3 dev.py demo    # create .venv if needed, install the runtime dependencies, solve + certify
+    python3 dev.py test    # ... install the test extras too, lint, type-check, run the tests
+    python3 dev.py bench   # ... install the bench extras too, run benchmarks/bench_*.py (slow)
 
-`test` runs every test not marked `slow`, the peer cross-checks against OpenSpiel and Gambit
-included. Extra arguments after `test` are passed to pytest (e.g. `python3 dev.py test -m slow`).
+Each command installs only what it needs (`demo`: the runtime dependencies; `test`: the
+extras in TEST_EXTRAS; `bench`: BENCH_EXTRAS) and only when pyproject.toml changed since that
+set (or a larger one) was installed; pip shows its progress. `test` runs every test not marked
+`slow`, the peer cross-checks against OpenSpiel and Gambit included (a bare `pytest` leaves
+them out). Extra arguments after `test` are passed to pytest (e.g. `python3 dev.py test -m slow`).
 """
 
 from __future__ import annotations
@@ -23,8 +26,9 @@ VENV = ROOT / ".venv"
 BIN = VENV / ("Scripts" if os.name == "nt" else "bin")
 LINT_PATHS = ("solver", "dppverify", "tests", "proofs", "benchmarks", "dev.py")
 PY = BIN / "python"
-STAMP = VENV / ".dppverify-install-stamp"
-EXTRAS = "test,bench,peers"
+STAMPS = VENV / "dppverify-installed"
+TEST_EXTRAS = ("test", "peers", "maps")
+BENCH_EXTRAS = (*TEST_EXTRAS, "bench")
 
 
 def _run(*cmd: str | Path) -> None:
@@ -34,17 +38,32 @@ def _run(*cmd: str | Path) -> None:
         sys.exit(rc)
 
 
-def ensure_env() -> None:
-    """Create .venv and install the package with its test extras when anything changed."""
+def _declared_extras() -> set[str]:
+    import tomllib
+
+    with open(ROOT / "pyproject.toml", "rb") as f:
+        return set(tomllib.load(f)["project"].get("optional-dependencies", {}))
+
+
+def ensure_env(extras: tuple[str, ...] = ()) -> None:
+    """Create .venv and install the package (editable) with ``extras`` unless already done.
+
+    A stamp per installed extras set records the pyproject.toml it was installed from, so
+    `demo` after `test` installs nothing, and `test` after `demo` adds only the extras.
+    """
     if not PY.exists():
         print(f"creating {VENV}", flush=True)
         venv.EnvBuilder(with_pip=True, clear=True).create(VENV)
-    digest = hashlib.sha256((ROOT / "pyproject.toml").read_bytes() + EXTRAS.encode()).hexdigest()
-    if STAMP.exists() and STAMP.read_text() == digest:
-        return
-    _run(PY, "-m", "pip", "install", "--quiet", "--upgrade", "pip")
-    _run(PY, "-m", "pip", "install", "--quiet", "-e", f".[{EXTRAS}]")
-    STAMP.write_text(digest)
+    wanted = sorted(set(extras) & _declared_extras())
+    digest = hashlib.sha256((ROOT / "pyproject.toml").read_bytes()).hexdigest()
+    STAMPS.mkdir(exist_ok=True)
+    for stamp in STAMPS.iterdir():  # a stamp names the extras installed, e.g. "peers,test"
+        installed = set(stamp.name.split(",")) - {"runtime"}
+        if set(wanted) <= installed and stamp.read_text() == digest:
+            return
+    target = f".[{','.join(wanted)}]" if wanted else "."
+    _run(PY, "-m", "pip", "install", "--disable-pip-version-check", "-e", target)
+    (STAMPS / (",".join(wanted) or "runtime")).write_text(digest)
 
 
 def demo() -> None:
@@ -58,7 +77,7 @@ def demo() -> None:
 
 
 def test(pytest_args: list[str]) -> None:
-    ensure_env()
+    ensure_env(TEST_EXTRAS)
     lint_paths = [p for p in LINT_PATHS if (ROOT / p).exists()]
     _run(BIN / "ruff", "check", *lint_paths)
     _run(BIN / "mypy")
@@ -71,7 +90,7 @@ def test(pytest_args: list[str]) -> None:
 
 
 def bench() -> None:
-    ensure_env()
+    ensure_env(BENCH_EXTRAS)
     for script in sorted((ROOT / "benchmarks").glob("bench_*.py")):
         _run(PY, script)
 

@@ -1,4 +1,4 @@
-"""Density sweep benchmark (issue 5): the paper's full sweep must finish in under 60 s.
+"""Density sweep benchmark: the paper's full sweep must finish in under 60 s.
 
 Runs ``run_density`` with the default configuration (20×20 grids, densities 0-40 %, 200
 samples each, 6 strategy pairs per grid) on local processes and reports the wall time, the

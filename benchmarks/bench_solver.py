@@ -1,4 +1,4 @@
-"""Solver benchmarks (issue 2), reported as ratios measured in one run.
+"""Solver benchmarks, reported as ratios measured in one run.
 
 1. A 1000x1000 grid with 20% random obstacles: ``solve`` (from the boolean obstacle array,
    CSR construction included) against ONE ``scipy.sparse.csgraph.dijkstra`` from the start on

@@ -1,4 +1,4 @@
-"""V_H benchmark (issue 3): our compact LP against the same LP in scipy's HiGHS, and the peers.
+"""V_H benchmark: our compact LP against the same LP in scipy's HiGHS, and the peers.
 
 On the 3×4 grid (start (0,1), goals (2,0) and (2,3), prior 3/5-2/5, unit weights), for each
 horizon H it reports:

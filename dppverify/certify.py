@@ -1,4 +1,4 @@
-"""``certify(instance, profile)``: certify or refute a profile as a weak PBNE (issue 3).
+"""``certify(instance, profile)``: certify or refute a profile as a weak PBNE.
 
 The profile is checked on the truncated game of horizon ``H`` (default: the longest path in
 the profile): payoffs, both players' exact regrets, sequential rationality and Bayes

@@ -186,7 +186,7 @@ def value_document(v: GameValue) -> dict[str, Any]:
 @click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
 def value_command(instance: str, horizon: int, as_json: bool, max_prefixes: int) -> None:
-    """Print V_H, the value of INSTANCE's game truncated at H steps (NOTES §4).
+    """Print V_H, the value of INSTANCE's game truncated at H steps (proofs/LP.md).
 
     The compact LP (cvxpy + Clarabel) gives a float; rounding its primal and dual solutions
     to rationals gives exact bounds, which usually meet: V_H is then printed exactly.

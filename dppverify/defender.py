@@ -2,7 +2,7 @@
 
 Re-implemented from the paper's definition (Sec. IV, Definition 3 and eq. (7)), independently
 of the solver: with ``c_0 = d(s0, g)`` and ``c_t = min(c_{t-1}, d(s_t, g))`` (full-graph
-distances, NOTES §1/§3), the Defender allocates to ``g`` with probability
+distances, proofs/TEL.md), the Defender allocates to ``g`` with probability
 ``(c_{t-1} - c_t) / w(e_t)``. A node that cannot reach ``g`` has ``d = inf`` and gives no
 progress.
 
@@ -207,7 +207,7 @@ def _progress_on_tree(tree: WalkTree, goal: int) -> list[Number]:
 def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefender:
     """Evaluate a Defender rule at every prefix of ``tree`` (labelling ``roles``).
 
-    For the progress rule the stage costs are the telescoping increments of NOTES §1:
+    For the progress rule the stage costs are the telescoping increments of proofs/TEL.md:
     ``a1 = c_{t-1} - c_t`` exactly (no division needed).
 
     Examples

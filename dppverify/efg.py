@@ -1,6 +1,6 @@
 """Export the truncated game as a Gambit ``.efg`` file (for peer tools: Gambit, OpenSpiel).
 
-The exported extensive-form game is the truncated game of NOTES §4 with the Defender's
+The exported extensive-form game is the truncated game of proofs/LP.md with the Defender's
 allocations made explicit moves:
 
 1. **chance** draws the Attacker's type (its true goal) with the prior ``b`` (exact rationals);

@@ -1,6 +1,6 @@
 """Small bundled instances for examples, doctests and quick experiments.
 
-The triangle is NOTES §3's smallest instance with all the structure of the game: the
+The triangle is proofs/ERRATA.md E1's smallest instance with all the structure of the game: the
 secondary path ``s -> g2`` is all phase II, the primary mixes ``s -> g1`` (4/7) with
 ``s -> g2`` (3/7), and ``U* = 12/5``.
 """

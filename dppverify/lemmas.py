@@ -1,4 +1,4 @@
-"""Lemma certificates on the instance (issue 3, item 5; NOTES §1-§3).
+"""Lemma certificates on the instance (proofs/TEL.md, L1.md, L2.md, XI2.md, L5.md).
 
 All lemma checks use the paper's σ* (progress towards the profile's primary goal) on the
 walk tree, whatever Defender the profile proposes, and exact arithmetic:
@@ -8,7 +8,7 @@ walk tree, whatever Defender the profile proposes, and exact arithmetic:
   ending at g1 costs exactly that; a walk ending at g2 costs ``d(s0,g1) − c_T + d(g2,g1)``.
 - ``lemma.L2.no_revisits``: the secondary's best response over walks equals that over
   simple paths, and every minimising walk is simple.
-- ``lemma.XI2.secondary_value``: that minimum is at least ``M − d(s0, g1)`` (NOTES §2), with
+- ``lemma.XI2.secondary_value``: that minimum is at least ``M − d(s0, g1)`` (proofs/XI2.md), with
   equality once the horizon admits an optimal path.
 - ``lemma.L3.greedy``: for the profile's attacker and random non-reacting attackers, the
   Defender's LP optimum equals the exact greedy-on-belief value and is greedy wherever the
@@ -59,7 +59,7 @@ HALF = Fraction(1, 2)
 
 
 def telescoping(ctx: Context) -> CheckRecord:
-    """``lemma.TEL.telescoping`` (NOTES §1) on every prefix of the tree.
+    """``lemma.TEL.telescoping`` (proofs/TEL.md) on every prefix of the tree.
 
     Parameters
     ----------
@@ -171,7 +171,7 @@ def l1_lower_bound(ctx: Context) -> CheckRecord:
     if problems:
         return CheckRecord("lemma.L1.lower_bound", "fail", "; ".join(problems), numbers, "L1")
     extra = (f"; {len(attain_g2)} of the {len(at_g2)} walks ending at g2 also attain it "
-             f"(exactly those with d(g2,g1) <= c_(T-1), NOTES §3)" if attain_g2 else
+             f"(exactly those with d(g2,g1) <= c_(T-1), proofs/L1.md)" if attain_g2 else
              f"; the {len(at_g2)} walks ending at g2 cost more")
     return CheckRecord("lemma.L1.lower_bound", "pass",
                        f"min over all {len(leaves)} walks of U¹ against σ* is d(s0,g1) = "
@@ -234,7 +234,7 @@ def l2_no_revisits(ctx: Context) -> CheckRecord:
 
 
 def xi2_secondary_value(ctx: Context) -> CheckRecord:
-    """``lemma.XI2.secondary_value``: NOTES §2's ``U²* = M − d(s0, g1)`` bounds the tree's min.
+    """``lemma.XI2.secondary_value``: proofs/XI2.md's ``U²* = M − d(s0, g1)`` bounds the tree's min.
 
     Parameters
     ----------

@@ -198,7 +198,7 @@ def values(ctx: Context) -> list[CheckRecord]:
 
 
 def phases_of(schedule: list[Number], tol: Tolerance | None = None) -> tuple[int, int, int]:
-    """``(t_I, t_II, T)`` of a σ*(g1) schedule along ξ² (eqs. (10)-(11), NOTES §3).
+    """``(t_I, t_II, T)`` of a σ*(g1) schedule along ξ² (eqs. (10)-(11), proofs/L5.md).
 
     Phase I is the maximal initial run of steps with σ* = 1; ``t_II`` is the last step with
     σ* > 0 (``t_I`` if there is none after it). In float mode "= 1" and "> 0" are decided
@@ -530,7 +530,7 @@ def belief_consistency(ctx: Context) -> CheckRecord:
 
 
 def value_check(ctx: Context) -> CheckRecord:
-    """``game.value``: ``V_H`` (compact LP, NOTES §4) equals ``U`` of the profile.
+    """``game.value``: ``V_H`` (compact LP, proofs/LP.md) equals ``U`` of the profile.
 
     Exact bounds: the profile's Defender gives ``b1 min U¹ + b2 min U² <= V_H`` and its
     Attacker gives ``V_H <= max_σ U``; with both regrets 0 they meet at ``U``, so ``V_H = U``

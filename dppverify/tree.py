@@ -1,4 +1,4 @@
-"""The truncated game's tree of walks (NOTES §4), stored compactly as arrays.
+"""The truncated game's tree of walks (proofs/LP.md), stored compactly as arrays.
 
 A *prefix* is a walk ``s0 s1 … s_t`` with ``t <= H`` steps that has not reached a goal before
 its last node; it is a *leaf* when ``s_t`` is a goal (the game ends at the FIRST goal reached,
@@ -43,7 +43,7 @@ DEFAULT_MAX_PREFIXES = 1_000_000
 
 @dataclass(frozen=True, eq=False)
 class WalkTree:
-    """The walks of the truncated game with at most ``horizon`` steps (NOTES §4).
+    """The walks of the truncated game with at most ``horizon`` steps (proofs/LP.md).
 
     Attributes
     ----------

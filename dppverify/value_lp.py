@@ -1,4 +1,4 @@
-"""The value ``V_H`` of the truncated game: the compact LP of NOTES §4, plus an exact bracket.
+"""The value ``V_H`` of the truncated game: the compact LP of proofs/LP.md, plus an exact bracket.
 
 LP (cvxpy + Clarabel, vectorised)::
 
@@ -90,7 +90,7 @@ class Bracket:
 
 
 def solve_value_lp(tree: WalkTree, roles: Roles) -> ValueLP:
-    """Solve the compact LP of NOTES §4 on ``tree``.
+    """Solve the compact LP of proofs/LP.md on ``tree``.
 
     Examples
     --------

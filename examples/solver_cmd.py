@@ -7,7 +7,7 @@
 
 It reads an instance document (docs/formats.md §1) and writes a dpp-profile/1 document
 (§2), rebuilding the paper's equilibrium from scratch with exact fractions: σ* (eq. (7)), ξ²
-through the minimiser v* of d(s0,v) + d(v,g1) + d(v,g2) cut at the first goal (NOTES §2),
+through the minimiser v* of d(s0,v) + d(v,g1) + d(v,g2) cut at the first goal (proofs/XI2.md),
 the phases, and the primary's mixture of eq. (15). Any program in any language that does the
 same file-in/file-out can be audited the same way.
 """

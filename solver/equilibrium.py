@@ -22,7 +22,7 @@ from solver.tolerance import DEFAULT_TOLERANCE, Comparator
 
 __all__ = ["Equilibrium", "StrategyPath", "solve"]
 
-METHOD = "constructive PBNE (paper Sec. IV-V; secondary best response by NOTES §2)"
+METHOD = "constructive PBNE (paper Sec. IV-V; secondary best response by proofs/XI2.md)"
 
 
 @dataclass(frozen=True)
@@ -105,7 +105,7 @@ class Equilibrium:
 def solve(instance: Instance, *, tolerance: float = DEFAULT_TOLERANCE) -> Equilibrium:
     """Construct the paper's weak PBNE of ``instance``.
 
-    Three Dijkstra runs (from ``s0``, to ``g1``, to ``g2``), a linear scan for ξ² (NOTES §2),
+    Three Dijkstra runs (from ``s0``, to ``g1``, to ``g2``), a linear scan for ξ² (proofs/XI2.md),
     then work proportional to the length of the equilibrium paths.
 
     Parameters

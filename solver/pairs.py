@@ -37,7 +37,7 @@ PAIRS: tuple[tuple[str, str], ...] = (
     ("sigma*", "gamma*"), ("sigma'", "gamma*"), ("sigma*", "ambiguity"),
     ("sigma*", "exaggeration"), ("sigma'", "ambiguity"), ("sigma'", "exaggeration"),
 )
-"""The six pairs of the paper's comparison (issue 5), equilibrium first."""
+"""The six pairs of the paper's comparison (Sec. VII), equilibrium first."""
 
 
 @dataclass(frozen=True)

@@ -1,7 +1,7 @@
 """The three phases of ξ² (Section V-B), read off σ*(g1) along ξ² exactly.
 
 Phase I: the maximal initial run of steps with σ* = 1 (ends at ``t_I``). ``t_II``: the last
-step with σ* > 0, or ``t_I`` when no later step has σ* > 0 (NOTES §3; the paper's eq. (11)).
+step with σ* > 0, or ``t_I`` when no later step has σ* > 0 (proofs/L5.md; the paper's eq. (11)).
 Phase III: the steps after ``t_II``. Phase II may contain steps with σ* = 1 or σ* = 0.
 """
 

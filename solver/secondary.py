@@ -1,4 +1,4 @@
-"""The secondary Attacker's best response ξ² to σ* without enumerating paths (NOTES §2).
+"""The secondary Attacker's best response ξ² to σ* without enumerating paths (proofs/XI2.md).
 
 Against σ*, a walk ending at its first goal costs type 2
 ``L(walk) - (c_0 - c_T) + d(s_T, g2)`` (telescoping, proofs/TEL.md). Its minimum over all

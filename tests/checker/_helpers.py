@@ -37,7 +37,7 @@ def make_doc(edges: Sequence[Edge], start: Any, goals: Sequence[Any], prior: Seq
 
 
 def triangle_doc(prior: tuple[str, str] = ("7/10", "3/10")) -> dict[str, Any]:
-    """NOTES §3 / formats.md: s–g2 (2), g2–g1 (2), s–g1 (3)."""
+    """proofs/ERRATA.md E1 / formats.md: s–g2 (2), g2–g1 (2), s–g1 (3)."""
     return make_doc([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)], "s", ["g1", "g2"], prior)
 
 

@@ -61,7 +61,7 @@ def test_three_phase_equilibrium_written_by_hand_certifies() -> None:
 
 
 def test_equilibrium_through_the_fake_goal_certifies() -> None:
-    """g1 reachable only through g2: both types walk to g2 (NOTES §5)."""
+    """g1 reachable only through g2: both types walk to g2 (proofs/README.md, edge cases)."""
     doc = make_doc([("s", "b", 1), ("b", "g2", 1), ("g2", "g1", 1), ("g1", "g2", 1)], "s",
                    ["g2", "g1"], ["2/5", "3/5"], directed=True)
     prof = profile_doc([(["s", "b", "g2"], 1)], [(["s", "b", "g2"], 1)], ("g1", "g2"),

@@ -1,4 +1,4 @@
-"""dppverify never imports the solver (issue 3): statically and at run time."""
+"""dppverify never imports the solver: statically and at run time."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""V_H: the compact LP (NOTES §4) against the conformance data and an independent normal form."""
+"""V_H: the compact LP (proofs/LP.md) against the conformance data and an independent normal form."""
 
 from __future__ import annotations
 
@@ -133,7 +133,7 @@ def test_size_guard() -> None:
 
 @pytest.mark.slow
 def test_three_by_four_grid_at_horizon_12() -> None:
-    """~137k prefixes (NOTES §4): the LP and the exact bracket still agree (takes ~10 s)."""
+    """~137k prefixes: the LP and the exact bracket still agree (takes ~10 s)."""
     inst = instance_from_json(grid_doc(3, 4, (0, 1), [(2, 0), (2, 3)], ["3/5", "2/5"]))
     v = game_value(inst, 12)
     assert v.prefixes == 136_711

@@ -1,4 +1,4 @@
-"""The edge cases of NOTES.md §5 as predicates on instance documents (for ``hypothesis.find``).
+"""The edge cases of proofs/README.md ("Edge cases") as predicates on instance documents (for ``hypothesis.find``).
 
 Predicates that need the equilibrium use the solver (tests may import it); the brute-force
 ones use the independent reference model of ``tests/properties/_reference.py``.
@@ -131,7 +131,7 @@ def fractional_sigma_on_xi2(doc: Doc) -> bool:
 
 
 def dead_end_reachable(doc: Doc) -> bool:
-    """A node the start can reach from which no goal is reachable (NOTES §5: d(·,g1) = ∞;
+    """A node the start can reach from which no goal is reachable (proofs/README.md, edge cases: d(·,g1) = ∞;
     since d(g2,g1) is finite, a node that cannot reach g1 reaches no goal at all)."""
     g = game(doc)
     seen, todo = {g.start}, [g.start]

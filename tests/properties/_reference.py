@@ -76,7 +76,7 @@ class Game:
 
     @property
     def M(self) -> Fraction | float:
-        """``min_v d(s0,v) + d(v,g1) + d(v,g2)`` (NOTES §2)."""
+        """``min_v d(s0,v) + d(v,g1) + d(v,g2)`` (proofs/XI2.md)."""
         d0 = _dist_from(self.succ, self.start)
         return min(d0[v] + self.d_to(v, self.g1) + self.d_to(v, self.g2) for v in d0)
 
@@ -100,7 +100,7 @@ class Game:
         return paid + self.d_to(walk[-1], self.g1 if theta == 1 else self.g2)
 
     def phases(self, walk: Sequence[Node]) -> tuple[int, int, int]:
-        """``(t_I, t_II, T)`` of ``walk`` read off σ* (NOTES §3)."""
+        """``(t_I, t_II, T)`` of ``walk`` read off σ* (proofs/L5.md)."""
         sig = self.sigma(walk)
         t_i = 0
         while t_i < len(sig) and sig[t_i] == 1:

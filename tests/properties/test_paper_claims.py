@@ -234,7 +234,7 @@ def test_HORIZON_V_H_is_U_star_once_H_covers_the_equilibrium(doc: Doc) -> None:
 
 
 def test_HORIZON_below_the_longest_path_V_H_exceeds_U_star_often() -> None:
-    """Report: for H < L (the longest equilibrium path), how often V_H > U* (NOTES §4 says
+    """Report: for H < L (the longest equilibrium path), how often V_H > U* (proofs/HORIZON.md says
     this is common); at least once in 60 derandomized examples."""
     stats: Counter[str] = Counter()
 

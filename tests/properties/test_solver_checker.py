@@ -46,7 +46,7 @@ def test_everything_solve_outputs_is_certified_and_its_value_is_V_H(doc: Doc) ->
     v = game_value(instance_from_json(doc), cert.horizon)
     assert v.bracket.exact == u
     assert abs(v.lp.value - float(u)) <= 1e-7 * max(1.0, float(u))
-    # U* = b2·M + (b1 − b2)·d(s0,g1) (NOTES §2) from the reference model
+    # U* = b2·M + (b1 − b2)·d(s0,g1) (proofs/THM.md, THM.4) from the reference model
     g = Game.from_doc(doc)
     assert u == g.b2 * g.M + (g.b1 - g.b2) * g.d_to(g.start, g.g1)
 

@@ -10,7 +10,7 @@ from solver import Instance
 
 @pytest.fixture
 def triangle() -> Instance:
-    """NOTES §3's smallest instance: s–g2 (2), g2–g1 (2), s–g1 (3), b = (7/10, 3/10)."""
+    """proofs/ERRATA.md E1's smallest instance: s–g2 (2), g2–g1 (2), s–g1 (3), b = (7/10, 3/10)."""
     g = nx.Graph()
     g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
     return Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))

@@ -3,7 +3,7 @@
 Everything is recomputed from the input graph with networkx and Fractions, independently of
 the solver's own distances, schedule and evaluation:
 
-- the closed-form ξ² (NOTES §2) costs the secondary exactly the minimum over ALL simple paths
+- the closed-form ξ² (proofs/XI2.md) costs the secondary exactly the minimum over ALL simple paths
   that end at the first goal they reach (brute force);
 - every primary path is a path of the graph from ``s0`` costing the primary exactly
   ``d(s0, g1)`` (Lemma 1's equality case);

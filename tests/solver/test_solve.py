@@ -1,4 +1,4 @@
-"""Hand-computed equilibria and the edge cases of NOTES.md §5."""
+"""Hand-computed equilibria and the edge cases of proofs/README.md."""
 
 from __future__ import annotations
 
