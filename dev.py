@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Bootstrap and task runner: needs nothing but Python >= 3.11.
 
-    python3 dev.py demo    # create .venv if needed, install the runtime dependencies, solve + certify
+    python3 dev.py demo    # create .venv if needed, install the runtime deps, solve + certify
     python3 dev.py test    # ... install the test extras too, lint, type-check, run the tests
     python3 dev.py bench   # ... install the bench extras too, run benchmarks/bench_*.py (slow)
 

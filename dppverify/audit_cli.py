@@ -2,7 +2,7 @@
 
 :data:`audit_command` is registered in ``dppverify.cli.COMMANDS`` (the ``dpp`` group).
 Exit codes: 0 every example was certified; 1 a failing example was found (shrunk, written to
-``--out``); 2 bad input (one line on stderr).
+``--output-dir``); 2 bad input (one line on stderr).
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ from dppverify.audit import (
     load_solver,
     run_audit,
 )
+from dppverify.cli_conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.errors import CheckerError
 
 __all__ = ["audit_command", "format_report"]
@@ -37,8 +38,8 @@ def format_report(report: AuditReport) -> str:
     Returns
     -------
     str
-        The summary line; for a failure also the failing check, the minimal instance (one
-        line of JSON) and the files written.
+        The summary line; for a failure also the failing check and the minimal instance
+        (one line of JSON). The command prints the files written on stderr.
 
     Examples
     --------
@@ -56,8 +57,6 @@ def format_report(report: AuditReport) -> str:
     if fail is not None:
         lines.append(f"failing check: {fail.check}")
         lines.append("minimal failing instance: " + json.dumps(fail.instance))
-        if report.files:
-            lines.append("wrote " + ", ".join(str(p) for p in report.files))
     return "\n".join(lines)
 
 
@@ -73,25 +72,22 @@ def format_report(report: AuditReport) -> str:
               help="Seed of the instance generation (same seed, same campaign).")
 @click.option("--max-nodes", type=click.IntRange(min=2), default=8, show_default=True,
               help="Largest generated instance, in nodes.")
-@click.option("--out", type=click.Path(file_okay=False), default="audit-failure",
-              show_default=True,
-              help="Directory for the minimal failing instance, profile and certificate "
-                   "(written only on failure).")
+@output_dir_option("Directory for the minimal failing instance, profile and certificate "
+                   "(written only on failure).", default="audit-failure")
 @click.option("--shrink/--no-shrink", default=True, show_default=True,
               help="Shrink the first failing instance to a minimal one.")
 @click.option("--timeout", type=click.FloatRange(min=0, min_open=True), default=60.0,
               show_default=True, help="Seconds per run of a --solver-cmd command.")
 @click.option("--max-prefixes", type=click.IntRange(min=1), default=AUDIT_MAX_PREFIXES,
               show_default=True, help="Skip examples whose walk tree is larger than this.")
-@click.option("--progress/--no-progress", default=None,
-              help="Show a progress bar on stderr (default: when stderr is a terminal).")
+@progress_option
 def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int, seed: int,
-                  max_nodes: int, out: str, shrink: bool, timeout: float, max_prefixes: int,
+                  max_nodes: int, output_dir: str, shrink: bool, timeout: float, max_prefixes: int,
                   progress: bool | None) -> None:
     """Audit a solver: certify its profiles on random instances; shrink the first failure.
 
     Exactly one of --solver and --solver-cmd. Exit 0 when every example is certified, 1 when
-    a failing example is found (written to --out), 2 on bad input.
+    a failing example is found (written to --output-dir), 2 on bad input.
 
     \b
     Examples:
@@ -100,13 +96,15 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
     """
     try:
         solver = _make_solver(solver_spec, solver_cmd, timeout)
-        report = run_audit(solver, examples=examples, seed=seed, max_nodes=max_nodes, out=out,
-                           shrink=shrink, max_prefixes=max_prefixes,
-                           progress=sys.stderr.isatty() if progress is None else progress)
+        report = run_audit(solver, examples=examples, seed=seed, max_nodes=max_nodes,
+                           out=output_dir, shrink=shrink, max_prefixes=max_prefixes,
+                           progress=want_progress(progress))
     except CheckerError as exc:
         click.echo(f"error: {exc}", err=True)
         raise click.exceptions.Exit(2) from None
     click.echo(format_report(report))
+    if report.files:
+        status("wrote " + ", ".join(str(p) for p in report.files))
     raise click.exceptions.Exit(0 if report.passed else 1)
 
 

@@ -13,9 +13,12 @@ tolerance :data:`~dppverify.exact.FLOAT_TOLERANCE` and says so in the certificat
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any
+
+from tqdm import tqdm
 
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.context import Context, make_context
@@ -222,8 +225,11 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path,
         raise HorizonError(f"the horizon H = {horizon} is shorter than the profile's longest "
                            f"path ({longest} steps)")
     tree = build_tree(inst, horizon, max_prefixes=max_prefixes, progress=progress)
-    ctx = make_context(inst, tree, prof, tol, seed=seed, trials=trials)
-    checks = _run_checks(ctx)
+    with tqdm(total=len(CHECK_IDS) + 1, desc="certify: strategies on the tree", unit="check",
+              disable=not progress, leave=False, file=sys.stderr) as bar:
+        ctx = make_context(inst, tree, prof, tol, seed=seed, trials=trials)
+        bar.update(1)
+        checks = _run_checks(ctx, bar)
     roles = ctx.roles
     defender = doc.get("defender")
     info = {
@@ -248,13 +254,21 @@ def _guard(check_id: str, fn: Callable[[], list[CheckRecord]]) -> list[CheckReco
         return [CheckRecord(check_id, "error", f"LP failure: {exc}")]
 
 
-def _run_checks(ctx: Context) -> list[CheckRecord]:
+def _run_checks(ctx: Context, bar: tqdm | None = None) -> list[CheckRecord]:
+    """Every check in :data:`CHECK_IDS` order; ``bar`` names each check as it starts."""
+    def starting(check_id: str) -> None:
+        if bar is not None:
+            bar.set_description(f"certify: {check_id}")
+
+    starting("profile.wellformed, value.*")
     out = [wellformed(ctx)]
     value_ids = ("value.U1", "value.U2", "value.U", "value.VoI")
     try:
         out += values(ctx)
     except LPError as exc:  # pragma: no cover - values() solves no LP
         out += [CheckRecord(i, "error", f"LP failure: {exc}") for i in value_ids]
+    if bar is not None:
+        bar.update(len(out))
     steps: list[tuple[str, Callable[[], list[CheckRecord]]]] = [
         ("profile.phases", lambda: [phases(ctx)]),
         ("pbne.attacker_br.primary", lambda: [attacker_br(ctx, 1)]),
@@ -272,6 +286,9 @@ def _run_checks(ctx: Context) -> list[CheckRecord]:
         ("lemma.L5.induced_beliefs", lambda: [l5_induced_beliefs(ctx)]),
     ]
     for check_id, fn in steps:
+        starting(check_id)
         out += _guard(check_id, fn)
+        if bar is not None:
+            bar.update(1)
     assert tuple(c.id for c in out) == CHECK_IDS, [c.id for c in out]
     return out

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import json
 import os
-import sys
 from typing import Any
 
 import click
@@ -19,6 +18,7 @@ import click
 from dppverify.audit_cli import audit_command
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
+from dppverify.cli_conventions import output_file_option, progress_option, status, want_progress
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, write_efg
 from dppverify.errors import CheckerError
 from dppverify.exact import format_number
@@ -133,8 +133,10 @@ def format_table(cert: Certificate) -> str:
               help="Seed of the random attackers of the L3/L4 checks.")
 @click.option("--trials", type=click.IntRange(min=0), default=DEFAULT_TRIALS, show_default=True,
               help="Number of random attackers in the L3/L4 checks.")
+@progress_option
 def certify_command(instance: str, profile: str, horizon: int | None, as_json: bool,
-                    max_prefixes: int, float_mode: bool, seed: int, trials: int) -> None:
+                    max_prefixes: int, float_mode: bool, seed: int, trials: int,
+                    progress: bool | None) -> None:
     """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE.
 
     PROFILE is a dpp-profile/1 JSON file (from `dpp solve -o` or any other solver). Bad
@@ -148,7 +150,7 @@ def certify_command(instance: str, profile: str, horizon: int | None, as_json: b
     try:
         cert = certify(instance, profile, horizon=horizon, exact=not float_mode,
                        max_prefixes=max_prefixes, seed=seed, trials=trials,
-                       progress=sys.stderr.isatty())
+                       progress=want_progress(progress))
     except CheckerError as exc:
         _fail(exc)
         return
@@ -185,7 +187,9 @@ def value_document(v: GameValue) -> dict[str, Any]:
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 @click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
-def value_command(instance: str, horizon: int, as_json: bool, max_prefixes: int) -> None:
+@progress_option
+def value_command(instance: str, horizon: int, as_json: bool, max_prefixes: int,
+                  progress: bool | None) -> None:
     """Print V_H, the value of INSTANCE's game truncated at H steps (proofs/LP.md).
 
     The compact LP (cvxpy + Clarabel) gives a float; rounding its primal and dual solutions
@@ -198,7 +202,7 @@ def value_command(instance: str, horizon: int, as_json: bool, max_prefixes: int)
     """
     try:
         v = game_value(load_instance(instance), horizon, max_prefixes=max_prefixes,
-                       progress=sys.stderr.isatty())
+                       progress=want_progress(progress))
     except CheckerError as exc:
         _fail(exc)
         return
@@ -217,8 +221,7 @@ def value_command(instance: str, horizon: int, as_json: bool, max_prefixes: int)
 @click.argument("instance", type=click.Path(dir_okay=False))
 @click.option("-H", "--horizon", type=click.IntRange(min=0), required=True,
               help="Horizon H of the truncated game.")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
-              help="The .efg file to write (atomically).")
+@output_file_option("The .efg file to write (atomically).", required=True)
 @click.option("--attacker-observes/--attacker-blind", default=True, show_default=True,
               help="Whether the Attacker's information sets include the Defender's past "
                    "allocations (the value is the same either way).")
@@ -229,8 +232,10 @@ def value_command(instance: str, horizon: int, as_json: bool, max_prefixes: int)
               show_default=True, help="Refuse walk trees larger than this.")
 @click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
               show_default=True, help="Refuse games with more nodes than this.")
+@progress_option
 def export_efg_command(instance: str, horizon: int, output: str, attacker_observes: bool,
-                       forced_moves: bool, max_prefixes: int, max_nodes: int) -> None:
+                       forced_moves: bool, max_prefixes: int, max_nodes: int,
+                       progress: bool | None) -> None:
     """Write INSTANCE's game truncated at H steps as a Gambit .efg file.
 
     Chance draws the Attacker's goal, the Attacker picks each next node, the Defender
@@ -246,13 +251,14 @@ def export_efg_command(instance: str, horizon: int, output: str, attacker_observ
     try:
         size = write_efg(output, load_instance(instance), horizon,
                          attacker_observes=attacker_observes, forced_moves=forced_moves,
-                         max_prefixes=max_prefixes, max_nodes=max_nodes)
+                         max_prefixes=max_prefixes, max_nodes=max_nodes,
+                         progress=want_progress(progress))
     except CheckerError as exc:
         _fail(exc)
         return
-    click.echo(f"wrote {output}: H = {horizon}, {size.nodes} game nodes ({size.terminals} "
-               f"terminals), {size.attacker_infosets} Attacker and {size.defender_infosets} "
-               f"Defender information sets", err=True)
+    status(f"wrote {output}: H = {horizon}, {size.nodes} game nodes ({size.terminals} "
+           f"terminals), {size.attacker_infosets} Attacker and {size.defender_infosets} "
+           f"Defender information sets")
 
 
 COMMANDS: list[click.Command] = [certify_command, value_command, export_efg_command, audit_command]

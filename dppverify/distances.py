@@ -2,7 +2,8 @@
 
 The checker's own implementation, independent of the solver's: pure Python on ``int`` /
 ``Fraction`` (or ``float`` in float mode). It is meant for the small graphs a truncated game
-tree can be built on. All game quantities use *full-graph* distances (proofs/README.md, (G); proofs/THM.md).
+tree can be built on. All game quantities use *full-graph* distances (proofs/README.md,
+assumption (G); proofs/THM.md).
 """
 
 from __future__ import annotations

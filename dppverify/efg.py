@@ -72,6 +72,7 @@ t "" 4 "cost 2" { -2 2 }
 from __future__ import annotations
 
 import os
+import sys
 import tempfile
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -79,6 +80,7 @@ from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
+from tqdm import tqdm
 
 from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.exact import Number, normalize
@@ -365,10 +367,11 @@ def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
 def write_efg(path: str | Path, instance: Instance, horizon: int, *,
               attacker_observes: bool = True, forced_moves: bool = False,
               max_prefixes: int = DEFAULT_MAX_PREFIXES, max_nodes: int = DEFAULT_MAX_EFG_NODES,
-              title: str | None = None) -> EfgSize:
+              title: str | None = None, progress: bool = False) -> EfgSize:
     """Write :func:`to_efg` to ``path`` atomically (a temporary file, then a rename).
 
-    Returns the game's size. Nothing is written when the game cannot be built.
+    Returns the game's size. Nothing is written when the game cannot be built. With
+    ``progress``, tqdm bars on stderr show the tree build and the export.
 
     Raises
     ------
@@ -388,9 +391,12 @@ def write_efg(path: str | Path, instance: Instance, horizon: int, *,
     >>> size.nodes, first
     (15, 'EFG')
     """
-    tree = build_tree(instance, horizon, max_prefixes=max_prefixes)
-    text = tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
-                       max_nodes=max_nodes, title=title)
+    tree = build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
+    with tqdm(total=1, desc=f"export .efg ({tree.n_prefixes} prefixes)", disable=not progress,
+              leave=False, file=sys.stderr) as bar:
+        text = tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
+                           max_nodes=max_nodes, title=title)
+        bar.update(1)
     target = Path(path)
     tmp = None
     try:

@@ -3,8 +3,8 @@
 The checker reads instances itself (``docs/formats.md`` §1) and validates the paper's
 assumptions (Section III-A): positive weights, two distinct goals, a prior in (0, 1) summing
 to 1, and finite full-graph distances ``d(s0, g1)``, ``d(s0, g2)``, ``d(g1, g2)``,
-``d(g2, g1)`` (assumption (R) of proofs/README.md). Every violation raises :class:`InvalidInstanceError` with a
-one-line message naming what and where.
+``d(g2, g1)`` (assumption (R) of proofs/README.md). Every violation raises
+:class:`InvalidInstanceError` with a one-line message naming what and where.
 """
 
 from __future__ import annotations

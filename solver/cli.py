@@ -7,11 +7,19 @@ traceback). ``dppverify`` never imports this module: the dependency points one w
 
 from __future__ import annotations
 
+import sys
 from typing import Any
 
 import click
 
 from dppverify import cli as checker_cli
+from dppverify.cli_conventions import (
+    output_dir_option,
+    output_file_option,
+    progress_option,
+    status,
+    want_progress,
+)
 from dppverify.errors import CheckerError
 from solver.equilibrium import solve
 from solver.errors import DPPError, InvalidInstanceError
@@ -60,8 +68,7 @@ def _prior(text: str) -> tuple[str, str]:
 @click.option("--connectivity", type=click.Choice(["4", "8"]), default="4", show_default=True,
               help="Grid moves (with --map): 4-connected unit, or 8-connected octile.")
 @click.option("--json", "as_json", is_flag=True, help="Print the dpp-profile/1 JSON.")
-@click.option("-o", "--output", type=click.Path(dir_okay=False),
-              help="Write the dpp-profile/1 JSON to this file (atomically).")
+@output_file_option("Write the dpp-profile/1 JSON to this file (atomically).")
 def solve_command(instance: str | None, map_file: str | None, start: str | None,
                   goals: tuple[str, str] | None, prior_text: str | None, connectivity: str,
                   as_json: bool, output: str | None) -> None:
@@ -83,7 +90,7 @@ def solve_command(instance: str | None, map_file: str | None, start: str | None,
     elif not output:
         click.echo(eq.summary())
     else:
-        click.echo(f"wrote {output}: U* = {doc['value']['U']}, VoI* = {doc['value']['VoI']}")
+        status(f"wrote {output}: U* = {doc['value']['U']}, VoI* = {doc['value']['VoI']}")
 
 
 def _load(instance: str | None, map_file: str | None, start: str | None,
@@ -138,11 +145,11 @@ def experiment_group() -> None:
 
 @experiment_group.command("compare")
 @_map_options
-@click.option("--out", "out_dir", type=click.Path(file_okay=False),
-              help="Also write compare.csv and compare.txt into this directory.")
+@output_dir_option("Also write compare.csv and compare.txt into this directory.")
+@progress_option
 def experiment_compare(instance: str | None, map_file: str | None, start: str | None,
                        goals: tuple[str, str] | None, prior_text: str | None,
-                       connectivity: str, out_dir: str | None) -> None:
+                       connectivity: str, output_dir: str | None, progress: bool | None) -> None:
     """U1, U2, U, VoI of six (Defender, Attacker) pairs on one instance (exact).
 
     Without an instance: the bundled 10x10 map, start 9,0, goals 0,9 0,0, prior 0.6,0.4.
@@ -154,18 +161,24 @@ def experiment_compare(instance: str | None, map_file: str | None, start: str | 
     """
     from pathlib import Path
 
-    from solver.experiments.compare import compare_csv, compare_table, run_compare, verdict
+    from tqdm import tqdm
+
+    from solver.experiments.compare import compare_csv, compare_table, verdict
+    from solver.pairs import PAIRS, Game
 
     inst = _experiment_instance(instance, map_file, start, goals, prior_text, connectivity)
-    results = run_compare(inst)
+    game = Game.of(inst)
+    results = tuple(game.pair(d, a) for d, a in tqdm(
+        PAIRS, desc="compare", unit="pair", file=sys.stderr, disable=not want_progress(progress),
+        leave=False))
     text = compare_table(results) + "\n\n" + verdict(results) + "\n"
     click.echo(text, nl=False)
-    if out_dir:
-        d = Path(out_dir)
+    if output_dir:
+        d = Path(output_dir)
         d.mkdir(parents=True, exist_ok=True)
         write_atomic(d / "compare.csv", compare_csv(results))
         write_atomic(d / "compare.txt", text)
-        click.echo(f"wrote {d / 'compare.csv'} and {d / 'compare.txt'}")
+        status(f"wrote {d / 'compare.csv'} and {d / 'compare.txt'}")
 
 
 def _int_list(text: str, what: str) -> tuple[int, ...]:
@@ -189,12 +202,12 @@ def _int_list(text: str, what: str) -> tuple[int, ...]:
               help="Local processes (default: all cores; 1 = in this process).")
 @click.option("--dask", "dask_address", metavar="ADDRESS",
               help="Send the tasks to this dask.distributed scheduler instead.")
-@click.option("--out", "out_dir", type=click.Path(file_okay=False), default="out/density",
-              show_default=True, help="Directory for density.csv, summary.txt, summary.json.")
-@click.option("--no-progress", is_flag=True, help="No progress bar.")
+@output_dir_option("Directory for density.csv, summary.txt, summary.json.",
+                   default="out/density")
+@progress_option
 def experiment_density(samples: int, densities: str, seed: int, size: int,
-                       workers: int | None, dask_address: str | None, out_dir: str,
-                       no_progress: bool) -> None:
+                       workers: int | None, dask_address: str | None, output_dir: str,
+                       progress: bool | None) -> None:
     """VoI of the six strategy pairs on random grids of growing obstacle density.
 
     Start bottom-left, g1 top-right (prior 3/5), g2 top-left (prior 2/5); obstacles are
@@ -204,10 +217,9 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
     \b
     Examples:
       dpp experiment density                      # the paper's sweep: 5 x 200 grids
-      dpp experiment density --samples 20 --densities 0,20,40 --seed 1 --out out/small
+      dpp experiment density --samples 20 --densities 0,20,40 --seed 1 --output-dir out/small
       dpp experiment density --dask tcp://127.0.0.1:8786
     """
-    import sys
     from pathlib import Path
 
     from tqdm import tqdm
@@ -221,11 +233,11 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
                            samples=samples, seed=seed, start=(size - 1, 0),
                            goals=((0, size - 1), (0, 0)))
     with tqdm(total=samples * len(config.densities), unit="grid", file=sys.stderr,
-              disable=no_progress, desc="density sweep") as bar:
+              disable=not want_progress(progress), desc="density sweep") as bar:
         rows = run_density(config, workers=workers, dask_address=dask_address,
                            progress=bar.update)
     summary = summarize_density(rows)
-    d = Path(out_dir)
+    d = Path(output_dir)
     d.mkdir(parents=True, exist_ok=True)
     write_atomic(d / "density.csv", rows_to_csv(rows))
     write_atomic(d / "summary.txt", summary.text() + "\n")
@@ -234,8 +246,8 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
         "start": list(config.start), "goals": [list(g) for g in config.goals],
         "prior": list(config.prior)}, **summary.to_json()}))
     click.echo(summary.text())
-    click.echo(f"\nwrote {d / 'density.csv'} ({len(rows)} rows), {d / 'summary.txt'}, "
-               f"{d / 'summary.json'}")
+    status(f"wrote {d / 'density.csv'} ({len(rows)} rows), {d / 'summary.txt'}, "
+           f"{d / 'summary.json'}")
 
 
 # ---------------------------------------------------------------------- figures
@@ -249,39 +261,39 @@ def plot_group() -> None:
 
 @plot_group.command("map")
 @_map_options
-@click.option("-o", "--out", "out", required=True, help=_OUT_HELP)
+@output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--no-baselines", is_flag=True, help="Only the equilibrium panel.")
 def plot_map_command(instance: str | None, map_file: str | None, start: str | None,
                      goals: tuple[str, str] | None, prior_text: str | None,
-                     connectivity: str, out: str, no_baselines: bool) -> None:
+                     connectivity: str, output: str, no_baselines: bool) -> None:
     """Grid, obstacles, equilibrium paths by phase with mixing probabilities, baselines."""
     from solver.plots import plot_map, save_figure
 
     inst = _experiment_instance(instance, map_file, start, goals, prior_text, connectivity)
-    files = save_figure(plot_map(inst, baselines=not no_baselines), out)
-    click.echo("wrote " + ", ".join(map(str, files)))
+    files = save_figure(plot_map(inst, baselines=not no_baselines), output)
+    status("wrote " + ", ".join(map(str, files)))
 
 
 @plot_group.command("beliefs")
 @_map_options
-@click.option("-o", "--out", "out", required=True, help=_OUT_HELP)
+@output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--defender", type=click.Choice(["sigma*", "sigma'"]), default="sigma*",
               show_default=True, help="Defender for the allocation panels.")
 def plot_beliefs_command(instance: str | None, map_file: str | None, start: str | None,
                          goals: tuple[str, str] | None, prior_text: str | None,
-                         connectivity: str, out: str, defender: str) -> None:
+                         connectivity: str, output: str, defender: str) -> None:
     """Belief b1_t and cumulative expected allocation to the true goal along each path."""
     from solver.plots import plot_beliefs, save_figure
 
     inst = _experiment_instance(instance, map_file, start, goals, prior_text, connectivity)
-    files = save_figure(plot_beliefs(inst, defender=defender), out)
-    click.echo("wrote " + ", ".join(map(str, files)))
+    files = save_figure(plot_beliefs(inst, defender=defender), output)
+    status("wrote " + ", ".join(map(str, files)))
 
 
 @plot_group.command("voi")
 @click.argument("csv_file", type=click.Path(dir_okay=False))
-@click.option("-o", "--out", "out", required=True, help=_OUT_HELP)
-def plot_voi_command(csv_file: str, out: str) -> None:
+@output_file_option(_OUT_HELP, required=True, deprecated="--out")
+def plot_voi_command(csv_file: str, output: str) -> None:
     """VoI box plots by density and strategy pair from a density.csv."""
     from pathlib import Path
 
@@ -292,8 +304,8 @@ def plot_voi_command(csv_file: str, out: str) -> None:
         text = Path(csv_file).read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise InvalidInstanceError(f"{csv_file}: cannot read file ({exc})") from None
-    files = save_figure(plot_voi(list(rows_from_csv(text))), out)
-    click.echo("wrote " + ", ".join(map(str, files)))
+    files = save_figure(plot_voi(list(rows_from_csv(text))), output)
+    status("wrote " + ", ".join(map(str, files)))
 
 
 for _command in checker_cli.COMMANDS:

@@ -29,7 +29,8 @@ from solver.instance import Instance
 from solver.numbers import Number
 from solver.primary import MixedPath
 
-__all__ = ["ATTACKERS", "DEFENDERS", "PAIRS", "Attacker", "Game", "PairResult"]
+__all__ = ["ATTACKERS", "DEFENDERS", "LABELS", "PAIRS", "Attacker", "Game", "PairResult",
+           "pair_label"]
 
 DEFENDERS = ("sigma*", "sigma'")
 ATTACKERS = ("gamma*", "ambiguity", "exaggeration")
@@ -38,6 +39,22 @@ PAIRS: tuple[tuple[str, str], ...] = (
     ("sigma*", "exaggeration"), ("sigma'", "ambiguity"), ("sigma'", "exaggeration"),
 )
 """The six pairs of the paper's comparison (Sec. VII), equilibrium first."""
+
+LABELS = {"sigma*": "σ*", "sigma'": "σ'", "gamma*": "γ*", "ambiguity": "ambiguity",
+          "exaggeration": "exaggeration"}
+"""How every text output, table and figure spells the strategies; the ASCII names (the keys)
+are the spelling of CSV and JSON files, Python arguments and command-line choices."""
+
+
+def pair_label(defender: str, attacker: str) -> str:
+    """``(σ*, γ*)``: a (Defender, Attacker) pair as text outputs and figures show it.
+
+    Examples
+    --------
+    >>> pair_label("sigma'", "exaggeration")
+    "(σ', exaggeration)"
+    """
+    return f"({LABELS.get(defender, defender)}, {LABELS.get(attacker, attacker)})"
 
 
 @dataclass(frozen=True)

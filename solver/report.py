@@ -39,12 +39,12 @@ def summarize(eq: Equilibrium) -> str:
     start 's'; primary goal g1 = 'g1' (prior 7/10), secondary goal g2 = 'g2' (prior 3/10)
     mode: exact (rational)
     <BLANKLINE>
-    secondary path xi2 (1 steps): 's' -> 'g2'
-      sigma*(g1) per step: [1/2]
+    secondary path ξ² (1 steps): 's' -> 'g2'
+      σ*(g1) per step: [1/2]
       phases: I absent, II = steps 1..1, III absent   (t_I=0, t_II=1, T=1)
     primary mixture:
-      xi1_I   p = 4/7     's' -> 'g1'
-      xi1_II  p = 3/7     's' -> 'g2'
+      ξ^{1,I}   p = 4/7     's' -> 'g1'
+      ξ^{1,II}  p = 3/7     's' -> 'g2'
     <BLANKLINE>
     U1 (primary cost)   = 3
     U2 (secondary cost) = 1
@@ -59,14 +59,15 @@ def summarize(eq: Equilibrium) -> str:
         f"secondary goal g2 = {inst.secondary!r} (prior {inst.b2})",
         f"mode: {'exact (rational)' if eq.exact else f'float, tolerance {eq.tolerance:g}'}",
         "",
-        f"secondary path xi2 ({ph.T} steps): {_path(eq.secondary_path)}",
-        f"  sigma*(g1) per step: {_nums(eq.schedule)}",
+        f"secondary path ξ² ({ph.T} steps): {_path(eq.secondary_path)}",
+        f"  σ*(g1) per step: {_nums(eq.schedule)}",
         f"  phases: I {_steps(1, ph.t_I)}, II {_steps(ph.t_I + 1, ph.t_II)}, "
         f"III {_steps(ph.t_II + 1, ph.T)}   (t_I={ph.t_I}, t_II={ph.t_II}, T={ph.T})",
         "primary mixture:",
     ]
     for p in eq.primary_paths:
-        lines.append(f"  {p.label:7s} p = {p.probability!s:7s} {_path(p.nodes)}")
+        label = "ξ^{1," + p.label.removeprefix("xi1_") + "}"
+        lines.append(f"  {label:9s} p = {p.probability!s:7s} {_path(p.nodes)}")
     lines += [
         "",
         f"U1 (primary cost)   = {_num(eq.U1)}",

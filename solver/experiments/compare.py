@@ -17,7 +17,7 @@ from pathlib import Path
 from solver.instance import Instance
 from solver.movingai import read_map
 from solver.numbers import Number
-from solver.pairs import PAIRS, Game, PairResult
+from solver.pairs import LABELS, PAIRS, Game, PairResult
 
 __all__ = ["DEFAULT_GOALS", "DEFAULT_PRIOR", "DEFAULT_START", "compare_csv", "compare_table",
            "paper10_instance", "paper10_path", "run_compare", "verdict"]
@@ -26,8 +26,6 @@ DEFAULT_START = (9, 0)
 DEFAULT_GOALS = ((0, 9), (0, 0))
 DEFAULT_PRIOR = ("3/5", "2/5")
 
-_NAMES = {"sigma*": "σ*", "sigma'": "σ'", "gamma*": "γ*", "ambiguity": "ambiguity",
-          "exaggeration": "exaggeration"}
 
 
 def paper10_path() -> Path:
@@ -104,7 +102,7 @@ def compare_table(results: Sequence[PairResult]) -> str:
     σ'        γ*        18/7 (~2.571)  2   12/5 (~2.4)  1/9 (~0.1111)
     """
     head = ("Defender", "Attacker", "U1", "U2", "U", "VoI")
-    body = [(_NAMES.get(r.defender, r.defender), _NAMES.get(r.attacker, r.attacker),
+    body = [(LABELS.get(r.defender, r.defender), LABELS.get(r.attacker, r.attacker),
              _num(r.U1), _num(r.U2), _num(r.U), _num(r.VoI)) for r in results]
     widths = [max(len(row[i]) for row in (head, *body)) for i in range(len(head))]
     lines = ["  ".join(c.ljust(w) for c, w in zip(row, widths, strict=True)).rstrip()

@@ -24,7 +24,7 @@ from fractions import Fraction
 from itertools import pairwise
 from typing import Any
 
-from solver.pairs import PAIRS
+from solver.pairs import PAIRS, pair_label
 
 __all__ = ["Claim", "DensitySummary", "Stats", "summarize_density"]
 
@@ -73,7 +73,7 @@ class DensitySummary:
                 s = self.stats.get((d, pair))
                 if s is None:
                     continue
-                lines.append(f"  ({pair[0]:6s}, {pair[1]:12s}) {s.mean:8.4f} {s.median:8.4f} "
+                lines.append(f"  {pair_label(*pair):<20s} {s.mean:8.4f} {s.median:8.4f} "
                              f"{s.std:8.4f} [{s.min:7.4f}, {s.max:7.4f}]  (n={s.n})")
         lines.append("")
         lines.append("Paper's claims on this data:")
@@ -136,18 +136,18 @@ def _claims(densities: tuple[int, ...], stats: Mapping[tuple[int, tuple[str, str
         ok = [mean(d, eq) >= mean(d, am) >= mean(d, ex) for d in have]
         ev = "\n".join(f"{d:2d}%: {mean(d, eq):.4f} >= {mean(d, am):.4f} >= {mean(d, ex):.4f}"
                        f"  {'yes' if o else 'NO'}" for d, o in zip(have, ok, strict=True))
-        out.append(Claim("mean VoI: (sigma*, gamma*) >= (sigma*, ambiguity) >= "
-                         "(sigma*, exaggeration) at every density", all(ok), ev))
+        out.append(Claim("mean VoI: (σ*, γ*) >= (σ*, ambiguity) >= (σ*, exaggeration) at "
+                         "every density", all(ok), ev))
         bad = sum(exact[(d, p)][k] > exact[(d, eq)][k]
                   for d in have for p in (am, ex) for k in exact[(d, p)])
         total = sum(len(exact[(d, p)]) for d in have for p in (am, ex))
-        out.append(Claim("sample-wise VoI(sigma*, baseline) <= VoI(sigma*, gamma*) "
-                         "(gamma* best-responds to sigma*)", bad == 0,
+        out.append(Claim("sample-wise VoI(σ*, baseline) <= VoI(σ*, γ*) "
+                         "(γ* best-responds to σ*)", bad == 0,
                          f"{bad} violations in {total} comparisons"))
     if 0 in densities and (0, eq) in exact and (0, alt) in exact:
         a, b = exact[(0, eq)], exact[(0, alt)]
         same = sum(a[k] == b[k] for k in a if k in b)
-        out.append(Claim("VoI(sigma', gamma*) = VoI(sigma*, gamma*) on the obstacle-free grid",
+        out.append(Claim("VoI(σ', γ*) = VoI(σ*, γ*) on the obstacle-free grid",
                          same == len(a) == len(b),
                          f"equal (exactly) on {same} of {len(a)} samples; values "
                          f"{sorted({str(v) for v in a.values()})} vs "
@@ -160,7 +160,7 @@ def _claims(densities: tuple[int, ...], stats: Mapping[tuple[int, tuple[str, str
         ranges = [stats[(d, p)].range for d in ds]
         stds = [stats[(d, p)].std for d in ds]
         falls = all(x > y for x, y in pairwise(means))
-        name = f"({p[0]}, {p[1]})"
+        name = pair_label(*p)
         out.append(Claim(f"mean VoI of {name} falls as the density grows (strictly, at "
                          "every step)", falls,
                          "means: " + ", ".join(f"{d}%: {m:.4f}" for d, m in

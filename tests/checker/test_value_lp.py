@@ -1,4 +1,5 @@
-"""V_H: the compact LP (proofs/LP.md) against the conformance data and an independent normal form."""
+"""V_H: the compact LP (proofs/LP.md) against the conformance data and an independent normal
+form."""
 
 from __future__ import annotations
 

@@ -23,7 +23,7 @@ def _run(*args: str) -> tuple[int, str, str]:
 
 
 def test_compare_default_and_explicit_map_agree(tmp_path: Path) -> None:
-    code, out, _ = _run("experiment", "compare", "--out", str(tmp_path))
+    code, out, _ = _run("experiment", "compare", "--output-dir", str(tmp_path))
     assert code == 0
     code2, out2, _ = _run("experiment", "compare", "--map", PAPER10, "--start", "9,0",
                           "--goals", "0,9", "0,0", "--prior", "0.6,0.4")
@@ -41,7 +41,7 @@ def test_compare_default_and_explicit_map_agree(tmp_path: Path) -> None:
 
 def test_density_writes_csv_and_summary(tmp_path: Path) -> None:
     code, out, err = _run("experiment", "density", "--samples", "2", "--densities", "0,30",
-                          "--size", "8", "--seed", "1", "--workers", "1", "--out",
+                          "--size", "8", "--seed", "1", "--workers", "1", "--output-dir",
                           str(tmp_path))
     assert code == 0, err
     assert "Paper's claims on this data" in out

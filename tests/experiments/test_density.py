@@ -97,14 +97,14 @@ def _synthetic(means: dict[int, list[str]]) -> list[dict[str, object]]:
 def test_claims_can_fail() -> None:
     rising = summarize_density(_synthetic({0: ["1/4", "1/4"], 10: ["1/3", "1/2"]}))
     verdict = {c.text: c.holds for c in rising.claims}
-    assert not verdict["mean VoI of (sigma*, gamma*) falls as the density grows (strictly, "
+    assert not verdict["mean VoI of (σ*, γ*) falls as the density grows (strictly, "
                        "at every step)"]
-    assert verdict["spread of VoI of (sigma*, gamma*) grows with the density (range max-min)"]
+    assert verdict["spread of VoI of (σ*, γ*) grows with the density (range max-min)"]
     falling = summarize_density(_synthetic({0: ["1/2", "1/4"], 10: ["1/4", "1/4"]}))
     verdict = {c.text: c.holds for c in falling.claims}
-    assert verdict["mean VoI of (sigma*, gamma*) falls as the density grows (strictly, at "
+    assert verdict["mean VoI of (σ*, γ*) falls as the density grows (strictly, at "
                    "every step)"]
-    assert not verdict["spread of VoI of (sigma*, gamma*) grows with the density "
+    assert not verdict["spread of VoI of (σ*, γ*) grows with the density "
                        "(standard deviation)"]
 
 

@@ -1,4 +1,5 @@
-"""The edge cases of proofs/README.md ("Edge cases") as predicates on instance documents (for ``hypothesis.find``).
+"""The edge cases of proofs/README.md ("Edge cases") as predicates on instance documents (for
+``hypothesis.find``).
 
 Predicates that need the equilibrium use the solver (tests may import it); the brute-force
 ones use the independent reference model of ``tests/properties/_reference.py``.
@@ -131,8 +132,8 @@ def fractional_sigma_on_xi2(doc: Doc) -> bool:
 
 
 def dead_end_reachable(doc: Doc) -> bool:
-    """A node the start can reach from which no goal is reachable (proofs/README.md, edge cases: d(·,g1) = ∞;
-    since d(g2,g1) is finite, a node that cannot reach g1 reaches no goal at all)."""
+    """A node the start can reach from which no goal is reachable (proofs/README.md, edge cases:
+    d(·,g1) = ∞; since d(g2,g1) is finite, a node that cannot reach g1 reaches no goal at all)."""
     g = game(doc)
     seen, todo = {g.start}, [g.start]
     while todo:

@@ -28,7 +28,7 @@ def run(*args: str) -> Result:
 def test_exit_0_when_every_example_is_certified(tmp_path: Path) -> None:
     out = tmp_path / "out"
     result = run("--solver", "solver.adapter:solve_json", "--examples", "25", "--seed", "3",
-                 "--out", str(out))
+                 "--output-dir", str(out))
     assert result.exit_code == 0, result.output
     assert "audit PASS: 25 examples certified (seed 3" in result.output
     assert not out.exists()  # nothing written on success
@@ -37,7 +37,7 @@ def test_exit_0_when_every_example_is_certified(tmp_path: Path) -> None:
 def test_exit_1_writes_the_minimal_failure(tmp_path: Path) -> None:
     out = tmp_path / "failure"
     result = run("--solver", "tests.mutants.solvers:mutant_drop_phase_ii", "--examples", "300",
-                 "--max-nodes", "6", "--out", str(out))
+                 "--max-nodes", "6", "--output-dir", str(out))
     assert result.exit_code == 1, result.output
     assert "audit FAIL after" in result.output
     assert "failing check: pbne." in result.output
@@ -61,7 +61,7 @@ def test_exit_1_writes_the_minimal_failure(tmp_path: Path) -> None:
 
 def test_solver_errors_are_failures_not_crashes(tmp_path: Path) -> None:
     result = run("--solver", "json:dumps", "--examples", "5", "--no-shrink",
-                 "--out", str(tmp_path))
+                 "--output-dir", str(tmp_path))
     assert result.exit_code == 1
     assert "failing check: solver.output" in result.output
     assert (tmp_path / "instance.json").exists()
@@ -76,11 +76,11 @@ def test_solver_cmd_route_passes() -> None:
 
 def test_solver_cmd_failures(tmp_path: Path) -> None:
     crash = f"{sys.executable} -c 'import sys; sys.exit(\"boom\")' {{instance}} {{profile}}"
-    result = run("--solver-cmd", crash, "--examples", "3", "--out", str(tmp_path / "a"))
+    result = run("--solver-cmd", crash, "--examples", "3", "--output-dir", str(tmp_path / "a"))
     assert result.exit_code == 1
     assert "command exited 1: boom" in result.output
     copy = "cp {instance} {profile}"  # "solves" by echoing the instance: not a profile
-    result = run("--solver-cmd", copy, "--examples", "3", "--out", str(tmp_path / "b"))
+    result = run("--solver-cmd", copy, "--examples", "3", "--output-dir", str(tmp_path / "b"))
     assert result.exit_code == 1
     assert "failing check: profile.format" in result.output
 

@@ -29,8 +29,8 @@ def test_summary_and_json() -> None:
 
 def test_output_file(tmp_path: Path) -> None:
     target = tmp_path / "p.json"
-    code, out, _ = _run("solve", TRIANGLE, "-o", str(target))
-    assert code == 0 and "wrote" in out
+    code, out, err = _run("solve", TRIANGLE, "-o", str(target))
+    assert code == 0 and out == "" and err.startswith(f"wrote {target}: U* = 12/5")
     assert json.loads(target.read_text())["attacker"]["secondary"][0]["path"] == ["s", "g2"]
 
 

@@ -1,0 +1,151 @@
+"""The ``dpp`` command-line conventions, in one place (README "Command-line conventions").
+
+- ``-o/--output FILE`` wherever a command writes one file; ``--output-dir DIR`` wherever it
+  writes a folder (the old spelling ``--out`` is a hidden, deprecated alias);
+- ``--progress/--no-progress`` on every long command, default on only when stderr is a
+  terminal; progress bars go to stderr;
+- data (tables, JSON, summaries) on stdout; status messages ("wrote ...", warnings) on stderr.
+
+Both the checker's commands and the solver's (``solver.cli``) use these decorators, so the
+names cannot drift apart.
+"""
+
+from __future__ import annotations
+
+import functools
+import sys
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+import click
+
+__all__ = ["output_dir_option", "output_file_option", "progress_option", "status",
+           "want_progress"]
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+PROGRESS_HELP = "Progress bars on stderr (default: only when stderr is a terminal)."
+
+
+def progress_option(fn: F) -> F:
+    """Add ``--progress/--no-progress`` (parameter ``progress``: True, False or None).
+
+    Examples
+    --------
+    >>> from click.testing import CliRunner
+    >>> @click.command()
+    ... @progress_option
+    ... def cmd(progress):
+    ...     click.echo(repr(progress))
+    >>> [CliRunner().invoke(cmd, args).output.strip() for args in ([], ["--progress"])]
+    ['None', 'True']
+    """
+    return click.option("--progress/--no-progress", "progress", default=None,
+                        help=PROGRESS_HELP)(fn)
+
+
+def want_progress(flag: bool | None) -> bool:
+    """The ``--progress/--no-progress`` decision: the flag if given, else whether stderr is a
+    terminal.
+
+    Examples
+    --------
+    >>> want_progress(True), want_progress(False)
+    (True, False)
+    """
+    return sys.stderr.isatty() if flag is None else flag
+
+
+def status(message: str) -> None:
+    """Print a status message ("wrote ...") on stderr, where every ``dpp`` command puts them.
+
+    Examples
+    --------
+    >>> status("wrote out/p.json")  # goes to stderr, so doctest sees nothing
+    """
+    click.echo(message, err=True)
+
+
+def _with_deprecated_alias(fn: Any, param: str, old: str, new: str, required: bool,
+                           kind: click.ParamType) -> Any:
+    """Accept the hidden option ``old`` as a deprecated spelling of ``new`` (``param``)."""
+    legacy = f"_deprecated_{param}"
+
+    @functools.wraps(fn)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        old_value = kwargs.pop(legacy, None)
+        if old_value is not None:
+            if kwargs.get(param) is not None:
+                raise click.UsageError(f"give {new} only ({old} is its deprecated spelling)")
+            status(f"warning: {old} is deprecated; use {new}")
+            kwargs[param] = old_value
+        if required and kwargs.get(param) is None:
+            raise click.UsageError(f"Missing option {new!r}.")
+        return fn(*args, **kwargs)
+
+    return click.option(old, legacy, type=kind, hidden=True)(wrapper)
+
+
+def output_file_option(help: str, *, required: bool = False,
+                       deprecated: str | None = None) -> Callable[[F], F]:
+    """Add ``-o/--output FILE`` (parameter ``output``), optionally with a hidden deprecated
+    alias such as ``--out``.
+
+    Examples
+    --------
+    >>> from click.testing import CliRunner
+    >>> @click.command()
+    ... @output_file_option("The file.", deprecated="--out")
+    ... def cmd(output):
+    ...     click.echo(output)
+    >>> CliRunner().invoke(cmd, ["-o", "a.png"]).output
+    'a.png\\n'
+    >>> r = CliRunner().invoke(cmd, ["--out", "b.png"])
+    >>> r.stdout, r.stderr
+    ('b.png\\n', 'warning: --out is deprecated; use --output\\n')
+    """
+    kind = click.Path(dir_okay=False)
+
+    def decorate(fn: F) -> F:
+        if deprecated is not None:
+            fn = _with_deprecated_alias(fn, "output", deprecated, "--output", required, kind)
+        return click.option("-o", "--output", "output", type=kind,
+                            required=required and deprecated is None, help=help)(fn)
+
+    return decorate
+
+
+def output_dir_option(help: str, *, default: str | None = None,
+                      deprecated: str | None = "--out") -> Callable[[F], F]:
+    """Add ``--output-dir DIR`` (parameter ``output_dir``) with the hidden deprecated alias
+    ``--out``.
+
+    Examples
+    --------
+    >>> from click.testing import CliRunner
+    >>> @click.command()
+    ... @output_dir_option("Where to write.", default="out/x")
+    ... def cmd(output_dir):
+    ...     click.echo(output_dir)
+    >>> [CliRunner().invoke(cmd, a).stdout for a in ([], ["--output-dir", "d"], ["--out", "e"])]
+    ['out/x\\n', 'd\\n', 'e\\n']
+    """
+    kind = click.Path(file_okay=False)
+
+    def decorate(fn: F) -> F:
+        if deprecated is not None:
+            inner = fn
+
+            @functools.wraps(inner)
+            def with_default(*args: Any, **kwargs: Any) -> Any:
+                if kwargs.get("output_dir") is None:
+                    kwargs["output_dir"] = default
+                return inner(*args, **kwargs)
+
+            fn = _with_deprecated_alias(with_default, "output_dir", deprecated,
+                                        "--output-dir", False, kind)
+        shown = f"{help} [default: {default}]" if default is not None else help
+        return click.option("--output-dir", "output_dir", type=kind, default=None,
+                            help=shown)(fn)
+
+    return decorate
