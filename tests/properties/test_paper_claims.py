@@ -139,22 +139,35 @@ def test_L3_greedy_defender_is_a_best_response_to_any_attacker(doc: Doc,
 
 
 # ----------------------------------------------------------------------------- L4 / L5
-def _beliefs(g: Game, primary: list[tuple[tuple[Any, ...], Fraction]],
-             xi2: tuple[Any, ...]) -> list[Fraction]:
-    """b1_t along ξ² (t = 0..T) with the secondary deterministic on ξ²."""
-    out = []
-    for t in range(len(xi2)):
-        x1 = sum((p for w, p in primary if w[:t + 1] == xi2[:t + 1]), Fraction(0))
-        out.append(g.b1 * x1 / (g.b1 * x1 + g.b2))
-    return out
+Mixture = list[tuple[tuple[Any, ...], Fraction]]
+
+
+def _mixtures(doc: Doc) -> tuple[Mixture, Mixture]:
+    """Both types' mixed strategies as the solver writes them in its ``dpp-profile/1``
+    document (its actual output, not assumed to be deterministic on ξ²)."""
+    profile = parse_json(json.dumps(solve(Instance.from_json(doc)).to_json()))
+
+    def mixture(theta: str) -> Mixture:
+        return [(tuple(key(v) for v in e["path"]), Fraction(e["probability"]))
+                for e in profile["attacker"][theta]]
+
+    return mixture("primary"), mixture("secondary")
+
+
+def _belief(g: Game, primary: Mixture, secondary: Mixture, prefix: tuple[Any, ...]) -> Fraction:
+    """b1 after ``prefix`` by Bayes' rule (eq. (2)) from both types' mixtures."""
+    n = len(prefix)
+    x1 = sum((p for w, p in primary if w[:n] == prefix), Fraction(0))
+    x2 = sum((p for w, p in secondary if w[:n] == prefix), Fraction(0))
+    return g.b1 * x1 / (g.b1 * x1 + g.b2 * x2)
 
 
 @given(medium, st.randoms(use_true_random=False))
 def test_L4_beliefs_never_increase_along_xi2(doc: Doc, rnd: random.Random) -> None:
     g = Game.from_doc(doc)
-    eq = solve(Instance.from_json(doc))
-    xi2 = tuple(key(v) for v in eq.secondary_path)
-    mixtures = [[(tuple(key(v) for v in p.nodes), p.probability) for p in eq.primary_paths]]
+    primary, secondary = _mixtures(doc)
+    xi2 = max(secondary, key=lambda wp: wp[1])[0]
+    mixtures = [primary]
     for _ in range(3):  # random primaries that leave ξ² at random steps
         paths = []
         for _ in range(3):
@@ -163,18 +176,18 @@ def test_L4_beliefs_never_increase_along_xi2(doc: Doc, rnd: random.Random) -> No
         total = sum(p for _, p in paths)
         mixtures.append([(w, p / total) for w, p in paths])
     for mix in mixtures:
-        beliefs = _beliefs(g, mix, xi2)
+        beliefs = [_belief(g, mix, secondary, xi2[:t + 1]) for t in range(len(xi2))]
         assert all(a >= b for a, b in itertools.pairwise(beliefs)), beliefs
 
 
 @given(medium)
 def test_L5_equilibrium_beliefs_are_b1_half_zero_by_phase(doc: Doc) -> None:
     g = Game.from_doc(doc)
-    eq = solve(Instance.from_json(doc))
-    xi2 = tuple(key(v) for v in eq.secondary_path)
+    primary, secondary = _mixtures(doc)
+    assert len(secondary) == 1 and secondary[0][1] == 1  # ξ² is a pure strategy
+    xi2 = secondary[0][0]
     t_i, t_ii, _ = g.phases(xi2)  # recomputed from eq. (7), not read from the solver
-    primary = [(tuple(key(v) for v in p.nodes), p.probability) for p in eq.primary_paths]
-    beliefs = _beliefs(g, primary, xi2)
+    beliefs = [_belief(g, primary, secondary, xi2[:t + 1]) for t in range(len(xi2))]
     for t, b in enumerate(beliefs):
         expected = g.b1 if t <= t_i else Fraction(1, 2) if t <= t_ii else Fraction(0)
         assert b == expected, (t, beliefs, (t_i, t_ii))
@@ -182,8 +195,7 @@ def test_L5_equilibrium_beliefs_are_b1_half_zero_by_phase(doc: Doc) -> None:
         assert p > 0
         for t in range(len(walk)):
             if walk[:t + 1] != xi2[:t + 1]:
-                x2 = 0
-                assert g.b1 * p / (g.b1 * p + g.b2 * x2) == 1
+                assert _belief(g, primary, secondary, walk[:t + 1]) == 1, (walk, t)
 
 
 # ----------------------------------------------------------------------------- THM

@@ -8,7 +8,9 @@ the solver's own distances, schedule and evaluation:
 - every primary path is a path of the graph from ``s0`` costing the primary exactly
   ``d(s0, g1)`` (Lemma 1's equality case);
 - along ξ² the Bayes belief is ``b1`` / ``1/2`` / ``0`` in phases I / II / III (Lemma 5) and
-  ``1`` on every primary step off ξ².
+  ``1`` on every primary step off ξ²: beliefs by Bayes' rule from both types' mixtures as the
+  solver writes them (its profile document), phases from σ* recomputed along ξ² by eq. (7),
+  and the solver's own reported beliefs (``Equilibrium.trajectories``) must agree.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ import networkx as nx
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from solver import Instance, solve
+from solver import Equilibrium, Instance, solve
 
 PRIORS = [Fraction(1, 2), Fraction(3, 5), Fraction(2, 3), Fraction(7, 10), Fraction(9, 10)]
 
@@ -112,31 +114,57 @@ def test_every_primary_path_costs_exactly_d_s0_g1(inst: Instance) -> None:
     assert eq.U1 == to_g1[inst.start]
 
 
-def _belief(eq_paths: Sequence[tuple[Sequence[Hashable], Fraction]], xi2: Sequence[Hashable],
-            prefix: Sequence[Hashable], b1: Fraction) -> Fraction:
-    """Bayes' rule (eq. (2)) from the Attacker's mixture, computed from scratch."""
+Mixture = list[tuple[tuple[Hashable, ...], Fraction]]
+
+
+def _mixtures(eq: Equilibrium) -> tuple[Mixture, Mixture]:
+    """Both types' mixed strategies as the solver writes them in its profile document."""
+    profile = eq.to_json()
+
+    def mixture(theta: str) -> Mixture:
+        return [(tuple(e["path"]), Fraction(e["probability"]))
+                for e in profile["attacker"][theta]]
+
+    return mixture("primary"), mixture("secondary")
+
+
+def _belief(primary: Mixture, secondary: Mixture, prefix: Sequence[Hashable],
+            b1: Fraction) -> Fraction:
+    """Bayes' rule (eq. (2)) from both types' mixtures, computed from scratch."""
     n = len(prefix)
-    x1 = sum((p for nodes, p in eq_paths if tuple(nodes[:n]) == tuple(prefix)), Fraction(0))
-    x2 = Fraction(tuple(xi2[:n]) == tuple(prefix))
+    x1 = sum((p for nodes, p in primary if nodes[:n] == tuple(prefix)), Fraction(0))
+    x2 = sum((p for nodes, p in secondary if nodes[:n] == tuple(prefix)), Fraction(0))
     return b1 * x1 / (b1 * x1 + (1 - b1) * x2)
+
+
+def _phases(sigma: Sequence[Fraction]) -> tuple[int, int]:
+    """``(t_I, t_II)`` from σ*(g1) along ξ² (Sec. V-B): phase I is the initial run of
+    σ* = 1, ``t_II`` the last step with σ* > 0 (``t_I`` when there is none later)."""
+    t_i = next((t for t, s in enumerate(sigma) if s != 1), len(sigma))
+    return t_i, max([t_i, *(t for t, s in enumerate(sigma, start=1) if s > 0)])
 
 
 @COMMON
 @given(small_instances())
 def test_beliefs_are_b1_half_zero_by_phase_and_one_off_xi2(inst: Instance) -> None:
     eq = solve(inst)
-    b1 = Fraction(inst.b1)
-    mix = [(p.nodes, p.probability) for p in eq.primary_paths]
-    xi2, ph = eq.secondary_path, eq.phases
-    expected = {1: b1, 2: Fraction(1, 2), 3: Fraction(0)}
-    for t in range(1, len(xi2)):
-        assert _belief(mix, xi2, xi2[: t + 1], b1) == expected[ph.phase_of_step(t)], t
-    for nodes, p in mix:
-        if p == 0:
-            continue
+    g, b1 = inst.graph, Fraction(inst.b1)
+    primary, secondary = _mixtures(eq)
+    assert len(secondary) == 1 and secondary[0][1] == 1  # ξ² is a pure strategy
+    xi2 = secondary[0][0]
+    t_i, t_ii = _phases(_sigma(g, xi2, _dist(g, inst.primary)))  # eq. (7), not the solver's
+    assert (eq.phases.t_I, eq.phases.t_II, eq.phases.T) == (t_i, t_ii, len(xi2) - 1)
+    reported = {t.label: t.belief_g1 for t in eq.trajectories}
+    for t in range(len(xi2)):
+        expected = b1 if t <= t_i else Fraction(1, 2) if t <= t_ii else Fraction(0)
+        assert _belief(primary, secondary, xi2[: t + 1], b1) == expected, t
+        assert reported["xi2"][t] == expected, t
+    for (nodes, p), path in zip(primary, eq.primary_paths, strict=True):
+        assert p > 0
         for t in range(1, len(nodes)):
-            if tuple(nodes[: t + 1]) != tuple(xi2[: t + 1]):
-                assert _belief(mix, xi2, nodes[: t + 1], b1) == 1
+            if nodes[: t + 1] != xi2[: t + 1]:
+                assert _belief(primary, secondary, nodes[: t + 1], b1) == 1
+                assert reported[path.label][t] == 1
 
 
 def test_the_generator_reaches_all_three_phases_and_ties() -> None:
