@@ -96,9 +96,9 @@ def brute_force_u2(inst: Instance) -> Fraction:
         end = path[-1]
         if end in (g1, g2):
             sched = sigma.schedule(path)
-            cost = sum((net.weight(net.arc_weight(u, v)) * (1 - s)  # type: ignore[arg-type]
+            cost = sum((net.numbers.convert(net.arc_weight(u, v)) * (1 - s)  # type: ignore[arg-type]
                         for (u, v), s in zip(itertools.pairwise(path), sched, strict=True)),
-                       Fraction(0)) + net.weight(d_to_g2[end])
+                       Fraction(0)) + net.numbers.convert(d_to_g2[end])
             best = cost if best is None or cost < best else best
             continue
         heads, _ = net.out_arcs(end)

@@ -24,14 +24,14 @@ EXACT_FLOAT_LIMIT = 2.0**53
 def distances_from(net: Network, source: int) -> np.ndarray:
     """Distances ``d(source, v)`` for every node ``v`` (``inf`` when unreachable).
 
-    In exact mode the entries are integer numerators over ``net.denominator`` (stored as
-    float64 when below 2**53, else as Python ints in an object array).
+    In exact mode the entries are integer numerators over ``net.numbers.denominator``
+    (stored as float64 when below 2**53, else as Python ints in an object array).
 
     Examples
     --------
     >>> import networkx as nx
     >>> net = Network.from_networkx(nx.DiGraph([(0, 1, {"weight": "1/2"}), (1, 2)]))
-    >>> distances_from(net, 0).tolist(), net.denominator
+    >>> distances_from(net, 0).tolist(), net.numbers.denominator
     ([0.0, 1.0, 3.0], 2)
     """
     return _engine(net, source)
@@ -50,8 +50,8 @@ def distances_to(net: Network, target: int) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        As :func:`distances_from`: exact numerators over ``net.denominator`` in exact mode,
-        ``inf`` where ``target`` cannot be reached.
+        As :func:`distances_from`: exact numerators over ``net.numbers.denominator`` in
+        exact mode, ``inf`` where ``target`` cannot be reached.
 
     Examples
     --------
@@ -59,14 +59,14 @@ def distances_to(net: Network, target: int) -> np.ndarray:
 
     >>> import networkx as nx
     >>> net = Network.from_networkx(nx.DiGraph([(0, 1, {"weight": "1/2"}), (1, 2)]))
-    >>> distances_to(net, 2).tolist(), distances_to(net, 0).tolist(), net.denominator
+    >>> distances_to(net, 2).tolist(), distances_to(net, 0).tolist(), net.numbers.denominator
     ([3.0, 2.0, 0.0], [0.0, inf, inf], 2)
     """
     return _engine(net.reverse, target)
 
 
 def _engine(net: Network, source: int) -> np.ndarray:
-    if not net.exact or net.weight_total < EXACT_FLOAT_LIMIT:
+    if not net.numbers.exact or net.weight_total < EXACT_FLOAT_LIMIT:
         return np.asarray(dijkstra(net.matrix(), directed=True, indices=source))
     return _python_dijkstra(net, source)
 

@@ -95,7 +95,7 @@ class DraganObserver:
         Node indices of ``s_0``, the primary and the secondary goal.
     d_to_g1, d_to_g2 : numpy.ndarray
         Stored distances ``d(v, g1)``, ``d(v, g2)`` (numerators over
-        ``network.denominator`` in exact mode; ``inf`` when unreachable).
+        ``network.numbers.denominator`` in exact mode; ``inf`` when unreachable).
     b1, b2 : Fraction
         The prior (primary first).
 
@@ -132,9 +132,7 @@ class DraganObserver:
         if d1 == np.inf or d2 == np.inf:
             return None
         raw = (d1 - self.d_to_g1[self.start]) - (d2 - self.d_to_g2[self.start])
-        if self.network.exact:
-            return Fraction(int(raw), self.network.denominator)
-        return Fraction(float(raw))  # the float's exact value
+        return Fraction(self.network.numbers.convert(raw))  # a float: its exact value
 
     def belief(self, v: int) -> mpmath.mpf:
         """``b^1_t`` at node ``v`` (mpmath, :data:`DPS` digits)."""

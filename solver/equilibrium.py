@@ -13,12 +13,11 @@ from solver.distances import distances_from, distances_to
 from solver.errors import InvalidInstanceError
 from solver.evaluation import Evaluation, Trajectory, evaluate
 from solver.instance import Instance
-from solver.numbers import Number
+from solver.numbers import DEFAULT_ABS_TOL, Number, NumberMode
 from solver.phases import Phases, phases_of
 from solver.primary import MixedPath, primary_mixture
 from solver.progress import ProgressDefender
 from solver.secondary import TIE_BREAK, secondary_best_response
-from solver.tolerance import DEFAULT_TOLERANCE, Comparator
 
 __all__ = ["Equilibrium", "StrategyPath", "solve"]
 
@@ -58,10 +57,9 @@ class Equilibrium:
         ``VoI* = (Ū − U*)/Ū`` (Definition 6). Exact ``Fraction`` for rational instances.
     evaluation : Evaluation
         The exact evaluation of (σ*, γ*) the values come from.
-    exact : bool
-        True when every number is exact; False in float mode.
-    tolerance : float or None
-        The absolute tolerance used in float mode (None when exact).
+    numbers : NumberMode
+        How the numbers were computed: exact (every value a ``Fraction``), or float with
+        the absolute tolerance ``numbers.abs_tol`` used for every comparison.
     method, tie_break : str
         Provenance: the construction and the deterministic tie-break among best responses.
     """
@@ -78,8 +76,7 @@ class Equilibrium:
     U_bar: Number
     VoI: Number
     evaluation: Evaluation = field(repr=False)
-    exact: bool
-    tolerance: float | None
+    numbers: NumberMode
     method: str = METHOD
     tie_break: str = TIE_BREAK
 
@@ -102,7 +99,7 @@ class Equilibrium:
         return summarize(self)
 
 
-def solve(instance: Instance, *, tolerance: float = DEFAULT_TOLERANCE) -> Equilibrium:
+def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibrium:
     """Construct the paper's weak PBNE of ``instance``.
 
     Three Dijkstra runs (from ``s0``, to ``g1``, to ``g2``), a linear scan for ξ² (proofs/XI2.md),
@@ -112,7 +109,7 @@ def solve(instance: Instance, *, tolerance: float = DEFAULT_TOLERANCE) -> Equili
     ----------
     instance : Instance
         The game. Rational weights give exact results.
-    tolerance : float
+    abs_tol : float
         Absolute tolerance on distances, used only when some weight is a float.
 
     Returns
@@ -138,7 +135,7 @@ def solve(instance: Instance, *, tolerance: float = DEFAULT_TOLERANCE) -> Equili
     ('12/5', '1/9')
     """
     net = instance.network
-    compare = Comparator(exact=net.exact, tol=0.0 if net.exact else tolerance)
+    numbers = net.numbers.with_abs_tol(abs_tol)
     s0 = _index(instance, instance.start)
     g1 = _index(instance, instance.primary)
     g2 = _index(instance, instance.secondary)
@@ -147,11 +144,11 @@ def solve(instance: Instance, *, tolerance: float = DEFAULT_TOLERANCE) -> Equili
     d2 = distances_to(net, g2)
     _require_reachable(instance, d0, d1, d2, s0, g1, g2)
 
-    defender = ProgressDefender(net, g1, d1, compare)
-    xi2 = secondary_best_response(net, s0, (g1, g2), d0, d1, d2, compare)
+    defender = ProgressDefender(net, g1, d1, numbers)
+    xi2 = secondary_best_response(net, s0, (g1, g2), d0, d1, d2, numbers)
     schedule = defender.schedule(xi2.path)
     phases = phases_of(schedule)
-    mixture = primary_mixture(net, xi2.path, phases, g1, d1, instance.b1, instance.b2, compare)
+    mixture = primary_mixture(net, xi2.path, phases, g1, d1, instance.b1, instance.b2, numbers)
     secondary = (MixedPath(xi2.path, Fraction(1), "xi2"),)
     ev = evaluate(net, defender.schedule, mixture, secondary, b1=instance.b1, b2=instance.b2,
                   g1=g1, g2=g2, d_to_g1=d1, d_to_g2=d2, d_from_start=d0)
@@ -166,8 +163,7 @@ def solve(instance: Instance, *, tolerance: float = DEFAULT_TOLERANCE) -> Equili
                                          m.label) for m in mixture),
         U1=ev.U1, U2=ev.U2, U=ev.U, U_bar=ev.U_bar, VoI=ev.VoI,
         evaluation=ev,
-        exact=net.exact,
-        tolerance=None if net.exact else tolerance,
+        numbers=numbers,
     )
 
 

@@ -147,21 +147,22 @@ def evaluate(
     ['0', '3']
     """
     runs = []
-    u_type: dict[str, Number] = {"primary": _zero(net), "secondary": _zero(net)}
+    numbers = net.numbers
+    u_type: dict[str, Number] = {"primary": numbers.zero(), "secondary": numbers.zero()}
     for kind, mixture in (("primary", primary), ("secondary", secondary)):
         true_is_g1 = kind == "primary"
         for mp in mixture:
             sigma = tuple(schedule(mp.path))
             raw = net.path_weights(mp.path).tolist()
             paid = _allocation_total(net, raw, sigma, to_g1=true_is_g1)
-            terminal = net.weight((d_to_g1 if true_is_g1 else d_to_g2)[mp.path[-1]])
+            terminal = numbers.convert((d_to_g1 if true_is_g1 else d_to_g2)[mp.path[-1]])
             cost = paid + terminal
-            runs.append(_PathRun(kind, mp, sigma, tuple(net.weight(w) for w in raw), terminal,
+            runs.append(_PathRun(kind, mp, sigma, tuple(map(numbers.convert, raw)), terminal,
                                  cost))
             u_type[kind] = u_type[kind] + mp.probability * cost
     u1, u2 = u_type["primary"], u_type["secondary"]
     value = b1 * u1 + b2 * u2
-    u_bar = b1 * net.weight(d_from_start[g1]) + b2 * net.weight(d_from_start[g2])
+    u_bar = b1 * numbers.convert(d_from_start[g1]) + b2 * numbers.convert(d_from_start[g2])
     return Evaluation(u1, u2, value, u_bar, (u_bar - value) / u_bar, tuple(runs), (b1, b2),
                       net.labels)
 
@@ -171,18 +172,14 @@ def _allocation_total(net: Network, raw_weights: Sequence[int | float],
     """``Σ_t w_t σ_t(g^θ)``. Steps with σ in {0, 1} (most steps on grids) are summed as
     stored integers; only fractional steps need rational arithmetic."""
     whole: int | float = 0
-    part: Number = _zero(net)
+    part: Number = net.numbers.zero()
     for w, s in zip(raw_weights, sigma, strict=True):
         share = s if to_g1 else 1 - s
         if share == 1:
             whole += w
         elif share != 0:
-            part += net.weight(w) * share
-    return net.weight(whole) + part
-
-
-def _zero(net: Network) -> Number:
-    return Fraction(0) if net.exact else 0.0
+            part += net.numbers.convert(w) * share
+    return net.numbers.convert(whole) + part
 
 
 def _beliefs_along(path: Sequence[int], all_paths: Sequence[tuple[str, MixedPath]],

@@ -273,7 +273,7 @@ def instance_to_json(inst: Instance) -> dict[str, Any]:
     doc: dict[str, Any] = {"graph": _node_link(inst), "start": node_to_json(inst.start),
                            "goals": [node_to_json(g) for g in inst.goals],
                            "prior": [format_number(p) for p in inst.prior]}
-    if not net.exact:
+    if not net.numbers.exact:
         doc["numbers"] = "float"
     return doc
 
@@ -299,7 +299,7 @@ def _node_link(inst: Instance) -> dict[str, Any]:
             if net.directed or i <= j:
                 edges.append({"source": node_to_json(net.labels[i]),
                               "target": node_to_json(net.labels[j]),
-                              "weight": format_number(net.weight(w))})
+                              "weight": format_number(net.numbers.convert(w))})
     return {"directed": net.directed, "multigraph": False, "graph": {}, "nodes": nodes,
             "edges": edges}
 

@@ -1,9 +1,10 @@
 """Compressed sparse (CSR) form of the game graph: the solver's only hot-path data structure.
 
 A :class:`Network` stores the directed edge set of the graph (an undirected edge is two arcs)
-as scipy CSR arrays over node indices ``0..n-1``. Weights are kept exactly as integer
-numerators over one common ``denominator`` (exact mode) or as floats (float mode, e.g.
-octile grids). Grids are built straight from a boolean obstacle array with numpy, with no
+as scipy CSR arrays over node indices ``0..n-1``. Its :class:`~solver.numbers.NumberMode`,
+decided once from the weights, says how they are stored: exactly as integer numerators over
+one common denominator (exact mode) or as floats (float mode, e.g. octile grids). Grids are
+built straight from a boolean obstacle array with numpy, with no
 per-cell Python work; general graphs come through networkx.
 """
 
@@ -20,7 +21,14 @@ import numpy as np
 import scipy.sparse as sp
 
 from solver.errors import InvalidInstanceError
-from solver.numbers import Number, parse_number
+from solver.numbers import (
+    DEFAULT_ABS_TOL,
+    ExactNumbers,
+    FloatNumbers,
+    Number,
+    NumberMode,
+    parse_number,
+)
 
 __all__ = ["GridLabels", "Network"]
 
@@ -82,10 +90,10 @@ class Network:
         Arc weights aligned with ``indices``: integer numerators (exact mode; int64, or
         float64 holding small integers — every integer below 2**53 is exact in float64 —
         as for unit-weight grids, so the scipy matrix can share the buffer) or float64.
-    denominator : int
-        The common denominator of all weights (1 in float mode).
-    exact : bool
-        True when the weights are exact rationals.
+    numbers : NumberMode
+        Exact (:class:`~solver.numbers.ExactNumbers`, with the common denominator of all
+        weights) when every weight is rational; float
+        (:class:`~solver.numbers.FloatNumbers`) otherwise.
     directed : bool
         Whether the source graph was directed (informative only: the arcs say it all).
     """
@@ -94,8 +102,7 @@ class Network:
     indptr: np.ndarray = field(repr=False)
     indices: np.ndarray = field(repr=False)
     weights: np.ndarray = field(repr=False)
-    denominator: int
-    exact: bool
+    numbers: NumberMode
     directed: bool
     _index: dict[Hashable, int] | None = field(default=None, repr=False)
 
@@ -108,8 +115,8 @@ class Network:
         --------
         >>> g = nx.Graph([("s", "g1", {"weight": 3}), ("s", "g2", {"weight": "3/2"})])
         >>> net = Network.from_networkx(g)
-        >>> net.n_nodes, net.n_arcs, net.denominator
-        (3, 4, 2)
+        >>> net.n_nodes, net.n_arcs, net.numbers
+        (3, 4, ExactNumbers(denominator=2))
         """
         if not isinstance(graph, nx.Graph):
             raise InvalidInstanceError(
@@ -150,18 +157,20 @@ class Network:
         *,
         directed: bool,
     ) -> Network:
-        exact = all(isinstance(w, Fraction) for w in values)
-        if exact:
-            den = math.lcm(*(w.denominator for w in values)) if values else 1  # type: ignore[union-attr]
-            nums = [int(w * den) for w in values]
+        fractions = [w for w in values if isinstance(w, Fraction)]
+        numbers: NumberMode
+        if len(fractions) == len(values):
+            den = math.lcm(*(w.denominator for w in fractions)) if fractions else 1
+            nums = [int(w * den) for w in fractions]
             big = max(nums, default=0) >= 2**62
             data = np.array(nums, dtype=object if big else np.int64)
+            numbers = ExactNumbers(den)
         else:
-            den = 1
             data = np.array([float(w) for w in values], dtype=np.float64)
+            numbers = FloatNumbers(DEFAULT_ABS_TOL)
         indptr, indices, weights = _sorted_csr(len(labels), np.asarray(tails, dtype=np.int64),
                                                np.asarray(heads, dtype=np.int64), data)
-        return cls(labels, indptr, indices, weights, den, exact, directed, index)
+        return cls(labels, indptr, indices, weights, numbers, directed, index)
 
     @classmethod
     def from_grid(cls, blocked: np.ndarray, *, connectivity: int = 4) -> Network:
@@ -214,10 +223,11 @@ class Network:
         np.cumsum(degree.ravel(), out=indptr[1:])
         if connectivity == 4:  # unit weights: exact integers, stored as float64 for scipy
             data = np.ones(indices.size, dtype=np.float64)
-            return cls(GridLabels(blocked), indptr, indices, data, 1, True, False, None)
+            return cls(GridLabels(blocked), indptr, indices, data, ExactNumbers(), False, None)
         diagonal = np.array([bool(dr and dc) for dr, dc in steps])
         data = np.where(diagonal[slot], SQRT2, 1.0)
-        return cls(GridLabels(blocked), indptr, indices, data, 1, False, False, None)
+        return cls(GridLabels(blocked), indptr, indices, data, FloatNumbers(DEFAULT_ABS_TOL),
+                   False, None)
 
     # ------------------------------------------------------------------ queries
     @property
@@ -237,12 +247,6 @@ class Network:
             return self._index.get(label)
         except TypeError:  # unhashable label
             return None
-
-    def weight(self, raw: int | float) -> Number:
-        """Turn a stored weight or distance (numerator) into a ``Fraction`` or float."""
-        if self.exact:
-            return Fraction(int(raw), self.denominator)
-        return float(raw)
 
     def out_arcs(self, i: int) -> tuple[np.ndarray, np.ndarray]:
         """Heads and weights of node ``i``'s out-arcs (heads in increasing index order)."""
@@ -303,8 +307,7 @@ class Network:
         tails = np.repeat(np.arange(self.n_nodes, dtype=np.int64), np.diff(self.indptr))
         indptr, indices, weights = _sorted_csr(self.n_nodes, self.indices.astype(np.int64),
                                                tails, self.weights)
-        return Network(self.labels, indptr, indices, weights, self.denominator, self.exact, True,
-                       self._index)
+        return Network(self.labels, indptr, indices, weights, self.numbers, True, self._index)
 
     @cached_property
     def weight_total(self) -> float:

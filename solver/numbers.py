@@ -1,21 +1,196 @@
-"""Exact numbers at the edges: parse JSON numbers/strings to ``Fraction`` and write them back.
+"""The solver's numbers: one number mode per instance, and exact parsing and writing.
 
-Floats enter only through ``str`` (``Fraction("0.6") == 3/5``), never through their binary
-value, so ``0.6`` in a JSON file means exactly 3/5.
+An instance is solved in one :class:`NumberMode`, decided once from its weights: exact
+(:class:`ExactNumbers`: weights and distances are stored as integer numerators over one common
+denominator, values are ``Fraction``, comparisons are exact) or float
+(:class:`FloatNumbers`: octile grids; values are floats compared within an absolute tolerance
+``abs_tol``). Code that builds or compares numbers asks the mode (``zero``, ``convert``,
+``equal``, ``at_most``, ``is_zero``, ``ratio``) instead of testing for exactness itself.
+
+At the edges, floats enter only through ``str`` (``Fraction("0.6") == 3/5``), never through
+their binary value, so ``0.6`` in a JSON file means exactly 3/5.
 """
 
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
 from fractions import Fraction
 from numbers import Rational
+from typing import Any, ClassVar
+
+import numpy as np
 
 from solver.errors import InvalidInstanceError
 
-__all__ = ["Number", "format_number", "parse_number"]
+__all__ = ["DEFAULT_ABS_TOL", "ExactNumbers", "FloatNumbers", "Number", "NumberMode",
+           "format_number", "parse_number"]
 
 Number = Fraction | float
 """An exact rational, or a float in float mode (e.g. octile weights)."""
+
+DEFAULT_ABS_TOL = 1e-9
+"""Absolute tolerance on distances in float mode (octile weights)."""
+
+
+class NumberMode(ABC):
+    """How one instance's numbers are stored, built and compared (exact or float).
+
+    *Stored* values are what the solver's arrays hold (CSR weights, distance fields):
+    integer numerators over ``denominator`` in exact mode, floats in float mode.
+    :meth:`convert` turns one into its value (``Fraction`` or ``float``).
+    """
+
+    exact: ClassVar[bool]
+    """True for exact rational arithmetic."""
+
+    @property
+    @abstractmethod
+    def denominator(self) -> int:
+        """Common denominator of the stored values (1 in float mode)."""
+
+    @property
+    @abstractmethod
+    def abs_tol(self) -> float | None:
+        """Absolute tolerance of the comparisons: None in exact mode."""
+
+    @abstractmethod
+    def zero(self) -> Number:
+        """0 as a value of this mode."""
+
+    @abstractmethod
+    def one(self) -> Number:
+        """1 as a value of this mode."""
+
+    @abstractmethod
+    def convert(self, stored: Any) -> Number:
+        """The value of a stored weight or distance."""
+
+    @abstractmethod
+    def equal(self, a: Any, b: Any) -> bool:
+        """``a == b`` (within ``abs_tol`` in float mode)."""
+
+    @abstractmethod
+    def at_most(self, a: Any, b: Any) -> bool:
+        """``a <= b`` (within ``abs_tol`` in float mode)."""
+
+    @abstractmethod
+    def is_zero(self, values: np.ndarray) -> np.ndarray:
+        """Elementwise ``values == 0`` (within ``abs_tol`` in float mode), vectorised."""
+
+    @abstractmethod
+    def ratio(self, num: Any, den: Any) -> Number:
+        """``num / den`` of two stored values, a probability in [0, 1]: exact, or snapped
+        to exactly 0 or 1 within ``abs_tol`` in float mode."""
+
+    @abstractmethod
+    def describe(self) -> str:
+        """How the mode reads in a summary."""
+
+    @abstractmethod
+    def with_abs_tol(self, abs_tol: float) -> NumberMode:
+        """This mode with another float tolerance (exact mode has none: itself)."""
+
+
+@dataclass(frozen=True)
+class ExactNumbers(NumberMode):
+    """Exact mode: stored values are integer numerators over ``denominator``.
+
+    Examples
+    --------
+    >>> mode = ExactNumbers(denominator=2)
+    >>> mode.convert(3), mode.ratio(1, 2), mode.zero()
+    (Fraction(3, 2), Fraction(1, 2), Fraction(0, 1))
+    >>> mode.equal(0.1 + 0.2, 0.3), mode.abs_tol, mode.describe()
+    (False, None, 'exact (rational)')
+    """
+
+    exact: ClassVar[bool] = True
+    denominator: int = 1
+
+    @property
+    def abs_tol(self) -> None:
+        return None
+
+    def zero(self) -> Fraction:
+        return Fraction(0)
+
+    def one(self) -> Fraction:
+        return Fraction(1)
+
+    def convert(self, stored: Any) -> Fraction:
+        return Fraction(int(stored), self.denominator)
+
+    def equal(self, a: Any, b: Any) -> bool:
+        return bool(a == b)
+
+    def at_most(self, a: Any, b: Any) -> bool:
+        return bool(a <= b)
+
+    def is_zero(self, values: np.ndarray) -> np.ndarray:
+        return np.asarray(values == 0)
+
+    def ratio(self, num: Any, den: Any) -> Fraction:
+        return Fraction(int(num), int(den))
+
+    def describe(self) -> str:
+        return "exact (rational)"
+
+    def with_abs_tol(self, abs_tol: float) -> ExactNumbers:
+        return self
+
+
+@dataclass(frozen=True)
+class FloatNumbers(NumberMode):
+    """Float mode: stored values are floats; values within ``abs_tol`` count as equal.
+
+    Examples
+    --------
+    >>> mode = FloatNumbers(abs_tol=1e-9)
+    >>> mode.equal(0.1 + 0.2, 0.3), mode.at_most(0.3, 0.1 + 0.2), mode.ratio(1.0, 2.0)
+    (True, True, 0.5)
+    >>> mode.ratio(1e-12, 1.0), mode.ratio(1.0 - 1e-12, 1.0), mode.describe()
+    (0.0, 1.0, 'float, absolute tolerance 1e-09')
+    """
+
+    exact: ClassVar[bool] = False
+    abs_tol: float = DEFAULT_ABS_TOL
+
+    @property
+    def denominator(self) -> int:
+        return 1
+
+    def zero(self) -> float:
+        return 0.0
+
+    def one(self) -> float:
+        return 1.0
+
+    def convert(self, stored: Any) -> float:
+        return float(stored)
+
+    def equal(self, a: Any, b: Any) -> bool:
+        return bool(abs(a - b) <= self.abs_tol)
+
+    def at_most(self, a: Any, b: Any) -> bool:
+        return bool(a <= b + self.abs_tol)
+
+    def is_zero(self, values: np.ndarray) -> np.ndarray:
+        return np.asarray(np.abs(values) <= self.abs_tol)
+
+    def ratio(self, num: Any, den: Any) -> float:
+        if self.at_most(num, 0.0):
+            return 0.0
+        if self.equal(num, den):
+            return 1.0
+        return float(num) / float(den)
+
+    def describe(self) -> str:
+        return f"float, absolute tolerance {self.abs_tol:g}"
+
+    def with_abs_tol(self, abs_tol: float) -> FloatNumbers:
+        return FloatNumbers(abs_tol)
 
 
 def parse_number(value: object, *, where: str, allow_float: bool = False) -> Number:

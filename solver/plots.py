@@ -271,7 +271,7 @@ def plot_beliefs(instance: Instance, *, defender: str = "sigma*",
         axes[0][col].set_ylim(-0.03, 1.03)
         axes[0][col].set_ylabel("belief b¹_t (g1 is true)")
         axes[0][col].set_title(f"type {theta} (true goal {goal})")
-        d = float(net.weight(dist[theta]))
+        d = float(net.numbers.convert(dist[theta]))
         axes[1][col].axhline(d, color="grey", lw=0.8, ls="-.",
                              label=f"d(s0, {goal}) = {d:g} (complete information)")
         axes[1][col].set_ylabel(f"cumulative expected allocation to {goal}")

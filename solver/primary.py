@@ -15,9 +15,9 @@ from fractions import Fraction
 import numpy as np
 
 from solver.network import Network
+from solver.numbers import NumberMode
 from solver.phases import Phases
 from solver.shortest_paths import path_to_target
-from solver.tolerance import Comparator
 
 __all__ = ["MixedPath", "primary_mixture"]
 
@@ -32,17 +32,17 @@ class MixedPath:
 
 
 def branch_path(net: Network, xi2: Sequence[int], t: int, g1: int, d_to_g1: np.ndarray,
-                compare: Comparator) -> tuple[int, ...]:
+                numbers: NumberMode) -> tuple[int, ...]:
     """``ξ²[0..t]`` followed by the shortest path ψ from ``ξ²[t]`` to ``g1`` (ξ² if t = T)."""
     if t == len(xi2) - 1:
         return tuple(xi2)
-    psi = path_to_target(net, xi2[t], g1, d_to_g1, compare)
+    psi = path_to_target(net, xi2[t], g1, d_to_g1, numbers)
     return tuple(xi2[:t]) + tuple(psi)
 
 
 def primary_mixture(net: Network, xi2: Sequence[int], phases: Phases, g1: int,
                     d_to_g1: np.ndarray, b1: Fraction, b2: Fraction,
-                    compare: Comparator) -> tuple[MixedPath, ...]:
+                    numbers: NumberMode) -> tuple[MixedPath, ...]:
     """The primary type's equilibrium mixture over ξ^{1,I} and ξ^{1,II} (eq. (15)).
 
     Examples
@@ -53,13 +53,13 @@ def primary_mixture(net: Network, xi2: Sequence[int], phases: Phases, g1: int,
     >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
     >>> net = Network.from_networkx(g)   # s=0, g2=1, g1=2
     >>> mix = primary_mixture(net, [0, 1], Phases(0, 1, 1), 2, distances_to(net, 2),
-    ...                       Fraction(7, 10), Fraction(3, 10), Comparator(exact=True))
+    ...                       Fraction(7, 10), Fraction(3, 10), net.numbers)
     >>> [(m.path, str(m.probability), m.label) for m in mix]
     [((0, 2), '4/7', 'xi1_I'), ((0, 1), '3/7', 'xi1_II')]
     """
     p_ii = b2 / b1
-    path_i = branch_path(net, xi2, phases.t_I, g1, d_to_g1, compare)
-    path_ii = branch_path(net, xi2, phases.t_II, g1, d_to_g1, compare)
+    path_i = branch_path(net, xi2, phases.t_I, g1, d_to_g1, numbers)
+    path_ii = branch_path(net, xi2, phases.t_II, g1, d_to_g1, numbers)
     if path_i == path_ii:
         return (MixedPath(path_i, Fraction(1), "xi1"),)
     out = []

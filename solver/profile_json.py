@@ -69,8 +69,8 @@ def equilibrium_to_json(eq: Equilibrium) -> dict[str, Any]:
         "phases": {"t_I": eq.phases.t_I, "t_II": eq.phases.t_II, "T": eq.phases.T},
         "value": {"U1": fmt(eq.U1), "U2": fmt(eq.U2), "U": fmt(eq.U), "U_bar": fmt(eq.U_bar),
                   "VoI": fmt(eq.VoI)},
-        "exact": eq.exact,
-        "tolerance": eq.tolerance,
+        "exact": eq.numbers.exact,
+        "tolerance": eq.numbers.abs_tol,
         "solver": {"name": "solver", "version": __version__, "method": eq.method,
                    "tie_break": eq.tie_break},
     }

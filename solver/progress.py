@@ -9,13 +9,11 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from fractions import Fraction
 
 import numpy as np
 
 from solver.network import Network
-from solver.numbers import Number
-from solver.tolerance import Comparator
+from solver.numbers import Number, NumberMode
 
 __all__ = ["ProgressDefender"]
 
@@ -32,8 +30,8 @@ class ProgressDefender:
         Index of the primary goal ``g1``.
     dist_to_goal : numpy.ndarray
         ``d(v, g1)`` for every node (stored numerators; ``inf`` where ``g1`` is unreachable).
-    compare : Comparator
-        Exact or tolerant comparison (float mode snaps σ* to 0 or 1 within the tolerance).
+    numbers : NumberMode
+        Exact, or float with a tolerance (float mode snaps σ* to 0 or 1 within it).
 
     Examples
     --------
@@ -48,7 +46,7 @@ class ProgressDefender:
     >>> net = Network.from_networkx(g)
     >>> net.labels    # indices 0..3
     ['s', 'r', 'g1', 'p']
-    >>> sigma = ProgressDefender(net, 2, distances_to(net, 2), Comparator(exact=True))
+    >>> sigma = ProgressDefender(net, 2, distances_to(net, 2), net.numbers)
     >>> [str(x) for x in sigma.schedule([0, 1, 2])], [str(x) for x in sigma.schedule([0, 3])]
     (['1', '1'], ['1/2'])
     """
@@ -56,23 +54,13 @@ class ProgressDefender:
     network: Network
     goal: int
     dist_to_goal: np.ndarray = field(repr=False)
-    compare: Comparator
+    numbers: NumberMode
 
     def schedule(self, walk: Sequence[int]) -> list[Number]:
         """σ*(g1) at each step ``t = 1..T`` of ``walk`` (node indices starting at ``s0``)."""
-        weights = self.network.path_weights(walk)
-        progress = self.progress(walk)
-        if self.compare.exact:
-            return [Fraction(int(p), int(w)) for p, w in zip(progress, weights, strict=True)]
-        out: list[Number] = []
-        for p, w in zip(progress.tolist(), weights.tolist(), strict=True):
-            if self.compare.le(p, 0.0):
-                out.append(0.0)
-            elif self.compare.eq(p, w):
-                out.append(1.0)
-            else:
-                out.append(p / w)
-        return out
+        weights = self.network.path_weights(walk).tolist()
+        ratio = self.numbers.ratio
+        return [ratio(p, w) for p, w in zip(self.progress(walk).tolist(), weights, strict=True)]
 
     def progress(self, walk: Sequence[int]) -> np.ndarray:
         """New progress ``c_{t-1} - c_t`` at each step (stored numerators), vectorised:

@@ -57,7 +57,7 @@ def summarize(eq: Equilibrium) -> str:
     lines = [
         f"start {inst.start!r}; primary goal g1 = {inst.primary!r} (prior {inst.b1}), "
         f"secondary goal g2 = {inst.secondary!r} (prior {inst.b2})",
-        f"mode: {'exact (rational)' if eq.exact else f'float, tolerance {eq.tolerance:g}'}",
+        f"mode: {eq.numbers.describe()}",
         "",
         f"secondary path ξ² ({ph.T} steps): {_path(eq.secondary_path)}",
         f"  σ*(g1) per step: {_nums(eq.schedule)}",

@@ -15,8 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from solver.network import Network
+from solver.numbers import NumberMode
 from solver.shortest_paths import path_from_source, path_to_target
-from solver.tolerance import Comparator
 
 __all__ = ["SecondaryPath", "secondary_best_response"]
 
@@ -54,7 +54,7 @@ def secondary_best_response(
     d_from_start: np.ndarray,
     d_to_g1: np.ndarray,
     d_to_g2: np.ndarray,
-    compare: Comparator,
+    numbers: NumberMode,
 ) -> SecondaryPath:
     """Compute ξ² from the three distance fields (all nodes ``v`` are candidates).
 
@@ -66,19 +66,17 @@ def secondary_best_response(
     >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
     >>> net = Network.from_networkx(g)   # indices: s=0, g2=1, g1=2
     >>> xi = secondary_best_response(net, 0, (2, 1), distances_from(net, 0),
-    ...      distances_to(net, 2), distances_to(net, 1), Comparator(exact=True))
+    ...      distances_to(net, 2), distances_to(net, 1), net.numbers)
     >>> xi.path, xi.pivot, int(xi.m_value)
     ((0, 1), 1, 4)
     """
     g1, g2 = goals
     total = d_from_start + d_to_g1
     total += d_to_g2
-    pivot = int(np.argmin(total))  # the first minimiser: exact ties go to the lowest index
-    m_value = total[pivot]
-    if not compare.exact:
-        pivot = int(np.flatnonzero(total <= m_value + compare.tol)[0])
-    head = path_from_source(net, start, pivot, d_from_start, compare)
-    tail = path_to_target(net, pivot, g2, d_to_g2, compare)
+    m_value = total[int(np.argmin(total))]
+    pivot = int(np.flatnonzero(numbers.is_zero(total - m_value))[0])  # ties: lowest index
+    head = path_from_source(net, start, pivot, d_from_start, numbers)
+    tail = path_to_target(net, pivot, g2, d_to_g2, numbers)
     walk = head + tail[1:]
     cut = next(i for i, v in enumerate(walk) if v in (g1, g2))
     return SecondaryPath(tuple(walk[: cut + 1]), pivot, m_value)

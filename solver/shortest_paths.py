@@ -11,13 +11,13 @@ from __future__ import annotations
 import numpy as np
 
 from solver.network import Network
-from solver.tolerance import Comparator
+from solver.numbers import NumberMode
 
 __all__ = ["path_from_source", "path_to_target"]
 
 
 def path_to_target(net: Network, start: int, target: int, dist_to: np.ndarray,
-                   compare: Comparator) -> list[int]:
+                   numbers: NumberMode) -> list[int]:
     """A shortest path ``start -> target``: from each node, the lowest-index tight successor.
 
     ``dist_to[v] = d(v, target)`` must be finite at ``start``.
@@ -27,7 +27,7 @@ def path_to_target(net: Network, start: int, target: int, dist_to: np.ndarray,
     >>> import networkx as nx
     >>> from solver.distances import distances_to
     >>> net = Network.from_networkx(nx.cycle_graph(4))
-    >>> path_to_target(net, 0, 2, distances_to(net, 2), Comparator(exact=True))
+    >>> path_to_target(net, 0, 2, distances_to(net, 2), net.numbers)
     [0, 1, 2]
     """
     path = [start]
@@ -35,13 +35,13 @@ def path_to_target(net: Network, start: int, target: int, dist_to: np.ndarray,
     while u != target:
         heads, ws = net.out_arcs(u)
         slack = ws + dist_to[heads] - dist_to[u]
-        u = int(heads[_first_tight(slack, compare)])
+        u = int(heads[_first_tight(slack, numbers)])
         path.append(u)
     return path
 
 
 def path_from_source(net: Network, source: int, end: int, dist_from: np.ndarray,
-                     compare: Comparator) -> list[int]:
+                     numbers: NumberMode) -> list[int]:
     """A shortest path ``source -> end``: traced back from ``end`` through the lowest-index
     tight predecessor. ``dist_from[v] = d(source, v)`` must be finite at ``end``.
 
@@ -50,7 +50,7 @@ def path_from_source(net: Network, source: int, end: int, dist_from: np.ndarray,
     >>> import networkx as nx
     >>> from solver.distances import distances_from
     >>> net = Network.from_networkx(nx.cycle_graph(4))
-    >>> path_from_source(net, 0, 2, distances_from(net, 0), Comparator(exact=True))
+    >>> path_from_source(net, 0, 2, distances_from(net, 0), net.numbers)
     [0, 1, 2]
     """
     rev = net.reverse
@@ -59,15 +59,14 @@ def path_from_source(net: Network, source: int, end: int, dist_from: np.ndarray,
     while v != source:
         tails, ws = rev.out_arcs(v)
         slack = dist_from[tails] + ws - dist_from[v]
-        v = int(tails[_first_tight(slack, compare)])
+        v = int(tails[_first_tight(slack, numbers)])
         path.append(v)
     path.reverse()
     return path
 
 
-def _first_tight(slack: np.ndarray, compare: Comparator) -> int:
-    tight = (slack == 0) if compare.exact else (np.abs(slack) <= compare.tol)
-    hits = np.flatnonzero(tight)
+def _first_tight(slack: np.ndarray, numbers: NumberMode) -> int:
+    hits = np.flatnonzero(numbers.is_zero(slack))
     if hits.size == 0:  # cannot happen with consistent distances
         raise RuntimeError("no tight arc: distance field inconsistent with the graph")
     return int(hits[0])

@@ -126,7 +126,7 @@ def test_instances_are_valid_for_both_packages(doc: dict[str, Any]) -> None:
     assert eq.secondary_path[0] == key(doc["start"])
     floats = any(isinstance(e["weight"], float) for e in doc["graph"]["edges"])
     assert doc.get("numbers", "exact") == ("float" if floats else "exact")
-    assert eq.exact is not floats
+    assert eq.numbers.exact is not floats
 
 
 def test_instances_connect_goals_of_a_disconnected_graph() -> None:
@@ -180,7 +180,7 @@ def test_grid_worlds_with_weights() -> None:
     doc = find(grid_worlds(weights="fractions"),
                lambda d: any(isinstance(e["weight"], str) for e in d["graph"]["edges"]),
                settings=_quiet)
-    assert Instance.from_json(doc).network.exact
+    assert Instance.from_json(doc).network.numbers.exact
 
 
 def test_grid_worlds_shrink_to_the_smallest_grid() -> None:

@@ -41,7 +41,7 @@ def test_octile_grid_is_float_mode_with_sqrt2_diagonals() -> None:
     blocked = np.zeros((3, 3), dtype=bool)
     eq = solve(Instance.from_grid(blocked, (0, 0), ((2, 2), (0, 2)), ("3/5", "2/5"),
                                   connectivity=8))
-    assert not eq.exact and eq.tolerance is not None
+    assert not eq.numbers.exact and eq.numbers.abs_tol is not None
     assert eq.U1 == pytest.approx(2 * np.sqrt(2))
 
 

@@ -87,7 +87,8 @@ def test_numbers_are_read_exactly() -> None:
     doc["graph"]["edges"][0]["weight"] = 0.1
     inst = Instance.from_json(json.dumps(doc))
     assert inst.prior == (F(3, 5), F(2, 5))
-    assert inst.network.exact and inst.network.weight(inst.network.arc_weight(0, 1)) == F(1, 10)
+    numbers = inst.network.numbers
+    assert numbers.exact and numbers.convert(inst.network.arc_weight(0, 1)) == F(1, 10)
 
 
 def test_primary_goal_is_the_larger_prior_and_the_first_listed_at_a_tie() -> None:
@@ -115,7 +116,7 @@ def test_grid_round_trip_and_float_octile_round_trip() -> None:
                                   connectivity=conn)
         doc = json.loads(json.dumps(inst.to_json()))
         again = Instance.from_json(doc)
-        assert again.network.exact == (conn == 4)
+        assert again.network.numbers.exact == (conn == 4)
         assert again.network.n_arcs == inst.network.n_arcs
         assert again.to_json() == doc
 

@@ -136,7 +136,7 @@ def test_float_weights_agree_with_exact_weights() -> None:
     gf.add_weighted_edges_from((u, v, float(d["weight"])) for u, v, d in g.edges(data=True))
     exact = solve(Instance(g, "s", ("g1", "g2"), ("3/5", "2/5")))
     approx = solve(Instance(gf, "s", ("g1", "g2"), ("3/5", "2/5")))
-    assert exact.exact and not approx.exact and approx.tolerance is not None
+    assert exact.numbers.exact and not approx.numbers.exact and approx.numbers.abs_tol is not None
     assert exact.secondary_path == approx.secondary_path and exact.phases == approx.phases
     assert abs(float(exact.U) - approx.U) <= 1e-9  # type: ignore[operator]
 
