@@ -24,12 +24,14 @@ from dppverify.errors import CheckerError
 from dppverify.exact import format_number
 from dppverify.instance import load_instance
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
+from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
 from dppverify.text import show
 from dppverify.tree import DEFAULT_MAX_PREFIXES
-from dppverify.value_lp import GameValue, game_value
+from dppverify.value_dp import StructuredValue
+from dppverify.value_lp import GameValue
 
-__all__ = ["COMMANDS", "ErrorReportingGroup", "certify_command", "export_efg_command",
-           "format_table", "value_command"]
+__all__ = ["COMMANDS", "HORIZON", "ErrorReportingGroup", "HorizonParam", "certify_command",
+           "export_efg_command", "format_table", "value_command"]
 
 NUMBERS_WIDTH = 44
 
@@ -161,11 +163,40 @@ def certify_command(instance: str, profile: str, horizon: int | None, as_json: b
     raise click.exceptions.Exit(0 if cert.passed else 1)
 
 
+class HorizonParam(click.ParamType):
+    """A horizon: a non-negative integer, or ``inf`` for the untruncated game (None)."""
+
+    name = "H|inf"
+
+    def convert(self, value: Any, param: click.Parameter | None,
+                ctx: click.Context | None) -> int | None:
+        if value is None or isinstance(value, int):
+            return value
+        text = str(value).strip().lower()
+        if text in ("inf", "infinity"):
+            return None
+        try:
+            h = int(text)
+        except ValueError:
+            self.fail(f"{value!r} is not a non-negative integer or 'inf'", param, ctx)
+        if h < 0:
+            self.fail(f"{value!r} is negative", param, ctx)
+        return h
+
+
+HORIZON = HorizonParam()
+
+
+def _show_horizon(h: int | None) -> str:
+    return "inf" if h is None else str(h)
+
+
 def value_document(v: GameValue) -> dict[str, Any]:
-    """The JSON that ``dpp value --json`` prints."""
+    """The JSON that ``dpp value --json`` prints for the tree route."""
     b = v.bracket
     return {
         "horizon": v.horizon,
+        "route": "tree",
         "value_lp": v.lp.value,
         "value": format_number(b.exact),
         "lower": format_number(b.lower),
@@ -180,41 +211,98 @@ def value_document(v: GameValue) -> dict[str, Any]:
     }
 
 
+def structured_document(v: StructuredValue) -> dict[str, Any]:
+    """The JSON that ``dpp value --json`` prints for the structured route."""
+    return {
+        "horizon": "inf" if v.horizon is None else v.horizon,
+        "route": "structured",
+        "value": format_number(v.value),
+        "lower": format_number(v.value),
+        "upper": format_number(v.value),
+        "exact": v.exact,
+        "dp": {"D1": format_number(v.d1), "D2": format_number(v.d2), "m": format_number(v.m),
+               "steps": v.steps, "fixpoint": v.fixpoint, "arithmetic": v.arithmetic,
+               "seconds": round(v.seconds, 3)},
+    }
+
+
+def routed_document(r: RoutedValue) -> dict[str, Any]:
+    """The JSON of ``dpp value --json``: one route's document, or both with ``agree``."""
+    if r.route == "tree":
+        assert r.tree is not None
+        return value_document(r.tree)
+    assert r.structured is not None
+    if r.route == "structured":
+        return structured_document(r.structured)
+    assert r.tree is not None
+    doc = value_document(r.tree)
+    doc.update(route="both", structured=structured_document(r.structured),
+               agree=r.disagreement is None)
+    if r.disagreement is not None:
+        doc["disagreement"] = r.disagreement
+    return doc
+
+
+def _tree_line(v: GameValue) -> str:
+    b = v.bracket
+    exact = (f"{show(b.exact)} exactly" if b.closed and v.exact else
+             f"in [{show(b.lower)}, {show(b.upper)}]")
+    return (f"V_H (H = {v.horizon}) = {exact}; LP value {show(v.lp.value)} "
+            f"({LP_SOLVER}, agreement tolerance {LP_TOLERANCE:g} relative, "
+            f"{v.prefixes} prefixes, {v.lp.seconds:.2f} s)")
+
+
+def _structured_line(v: StructuredValue) -> str:
+    how = "exactly" if v.exact else f"(float mode, {v.arithmetic})"
+    fix = ", fixpoint reached" if v.fixpoint else ""
+    return (f"V_H (H = {_show_horizon(v.horizon)}) = {show(v.value)} {how}; structured route "
+            f"({v.steps} DP steps{fix}, {v.arithmetic}, {v.seconds:.2f} s)")
+
+
 @click.command("value")
 @click.argument("instance", type=click.Path(dir_okay=False))
-@click.option("-H", "--horizon", type=click.IntRange(min=0), required=True,
-              help="Horizon H of the truncated game.")
+@click.option("-H", "--horizon", type=HORIZON, required=True,
+              help="Horizon H of the truncated game, or 'inf' for the untruncated game "
+                   "(structured route).")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+@click.option("--route", type=click.Choice(ROUTES), default="auto", show_default=True,
+              help="tree: the walk tree's LP; structured: the tree-free DP (docs/checker.md); "
+                   "auto: the tree when it fits --max-prefixes, else structured; both: run "
+                   "both, a disagreement is an error (exit 1).")
 @click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
 @progress_option
-def value_command(instance: str, horizon: int, as_json: bool, max_prefixes: int,
-                  progress: bool | None) -> None:
-    """Print V_H, the value of INSTANCE's game truncated at H steps (proofs/LP.md).
+def value_command(instance: str, horizon: int | None, as_json: bool, route: Route,
+                  max_prefixes: int, progress: bool | None) -> None:
+    """Print V_H, the value of INSTANCE's game truncated at H steps.
 
-    The compact LP (cvxpy + Clarabel) gives a float; rounding its primal and dual solutions
-    to rationals gives exact bounds, which usually meet: V_H is then printed exactly.
+    Tree route: the compact LP (cvxpy + Clarabel) on the walk tree gives a float; rounding
+    its primal and dual solutions to rationals gives exact bounds, which usually meet.
+    Structured route: three hop-bounded Bellman-Ford fields (proofs/DP.md), exact on
+    rational instances, polynomial in the graph; `--horizon inf` is the untruncated game.
 
     \b
     Examples:
       dpp value examples/triangle.json --horizon 4
-      dpp value examples/triangle.json -H 4 --json
+      dpp value examples/triangle.json -H 4 --json --route both
+      dpp value examples/triangle.json --horizon inf
     """
     try:
-        v = game_value(load_instance(instance), horizon, max_prefixes=max_prefixes,
-                       progress=want_progress(progress))
+        r = routed_value(load_instance(instance), horizon, route=route,
+                         max_prefixes=max_prefixes, progress=want_progress(progress))
     except CheckerError as exc:
         _fail(exc)
         return
     if as_json:
-        click.echo(json.dumps(value_document(v), indent=2))
-        return
-    b = v.bracket
-    exact = (f"{show(b.exact)} exactly" if b.closed and v.exact else
-             f"in [{show(b.lower)}, {show(b.upper)}]")
-    click.echo(f"V_H (H = {v.horizon}) = {exact}; LP value {show(v.lp.value)} "
-               f"({LP_SOLVER}, agreement tolerance {LP_TOLERANCE:g} relative, "
-               f"{v.prefixes} prefixes, {v.lp.seconds:.2f} s)")
+        click.echo(json.dumps(routed_document(r), indent=2))
+    else:
+        if r.tree is not None:
+            click.echo(_tree_line(r.tree))
+        if r.structured is not None:
+            click.echo(_structured_line(r.structured))
+    if r.disagreement is not None:
+        click.echo(f"error: {r.disagreement}", err=True)
+        raise click.exceptions.Exit(1)
 
 
 @click.command("export-efg")

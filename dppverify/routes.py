@@ -1,0 +1,202 @@
+"""Which route computes a result: the walk tree, the structured (tree-free) route, or both.
+
+``auto`` takes the tree when the truncated game's tree fits ``max_prefixes`` and the
+structured route otherwise; ``both`` runs both and treats any disagreement as an error of the
+checker (docs/checker.md, "Routes"). :func:`routed_value` is ``dpp value``'s engine.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from dppverify.errors import HorizonError
+from dppverify.exact import Number, Tolerance
+from dppverify.instance import Instance
+from dppverify.lp import lp_agrees
+from dppverify.tree import DEFAULT_MAX_PREFIXES, count_prefixes
+from dppverify.value_dp import StructuredValue, structured_value
+from dppverify.value_lp import GameValue, game_value
+
+__all__ = ["ROUTES", "Route", "RoutedValue", "resolve_route", "routed_value", "tree_fits",
+           "values_agree"]
+
+Route = Literal["auto", "tree", "structured", "both"]
+ROUTES: tuple[Route, ...] = ("auto", "tree", "structured", "both")
+
+
+def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> bool:
+    """True when the pruned walk tree of ``horizon`` steps has at most ``max_prefixes`` prefixes.
+
+    Counts like :func:`~dppverify.tree.count_prefixes` (``O(H·E)``), vectorised with numpy and
+    saturated just above ``max_prefixes`` so that huge trees are never counted in full. An
+    untruncated game (``horizon=None``) never fits.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> inst = triangle()
+    >>> tree_fits(inst, 5, 3), tree_fits(inst, 5, 2), tree_fits(inst, None, 10**9)
+    (True, False, False)
+    """
+    if horizon is None:
+        return False
+    if horizon < 0:
+        raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
+    cap = max_prefixes + 1
+    if cap >= 2**40:  # saturated sums could overflow int64: count exactly instead
+        return count_prefixes(instance, horizon) <= max_prefixes
+    inst = instance
+    n = inst.n_nodes
+    goal = np.zeros(n, dtype=bool)
+    goal[list(inst.goals)] = True
+    hops = np.asarray(inst.hops, dtype=np.int64)
+    tails = [v for v in range(n) if not goal[v] and inst.succ[v]]
+    starts = np.cumsum([0] + [len(inst.succ[v]) for v in tails[:-1]], dtype=np.int64)
+    heads = np.asarray([u for v in tails for u, _ in inst.succ[v]], dtype=np.int64)
+    tails_a = np.asarray(tails, dtype=np.int64)
+    cnt = goal.astype(np.int64)
+    for k in range(1, horizon + 1):
+        nxt = np.zeros(n, dtype=np.int64)
+        if tails_a.size:
+            nxt[tails_a] = np.add.reduceat(cnt[heads], starts)
+        nxt = np.where((hops >= 0) & (hops <= k), nxt + 1, 0)
+        nxt[goal] = 1
+        cnt = np.minimum(nxt, cap)
+    return int(cnt[inst.start]) <= max_prefixes
+
+
+def resolve_route(route: Route, instance: Instance, horizon: int | None,
+                  max_prefixes: int) -> Literal["tree", "structured", "both"]:
+    """The route ``auto`` stands for on this instance (others are returned unchanged).
+
+    Raises
+    ------
+    HorizonError
+        The tree route (or ``both``) with the untruncated game (``horizon=None``).
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> inst = triangle()
+    >>> resolve_route("auto", inst, 3, 100), resolve_route("auto", inst, 3, 2)
+    ('tree', 'structured')
+    >>> resolve_route("tree", inst, None, 100)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.HorizonError: the tree route needs a finite horizon ...
+    """
+    if route == "auto":
+        return "tree" if tree_fits(instance, horizon, max_prefixes) else "structured"
+    if route in ("tree", "both") and horizon is None:
+        raise HorizonError("the tree route needs a finite horizon (--horizon inf is the "
+                           "structured route's)")
+    return route
+
+
+def values_agree(tree: GameValue, structured: Number, tol: Tolerance) -> str | None:
+    """None when the tree route's ``V_H`` and the structured one agree, else why not.
+
+    Exactly when the tree's exact bracket is closed (within the float tolerance in float
+    mode); otherwise the structured value must lie in the bracket and agree with the LP.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.exact import Tolerance
+    >>> from fractions import Fraction
+    >>> v = game_value(triangle(), 2)
+    >>> values_agree(v, Fraction(12, 5), Tolerance(exact=True)) is None
+    True
+    >>> values_agree(v, Fraction(5, 2), Tolerance(exact=True))
+    'the routes disagree: tree V_H = 12/5, structured V_H = 5/2'
+    """
+    b = tree.bracket
+    if b.closed:
+        assert b.exact is not None
+        if tol.eq(b.exact, structured):
+            return None
+        return f"the routes disagree: tree V_H = {b.exact}, structured V_H = {structured}"
+    if not (tol.le(b.lower, structured) and tol.le(structured, b.upper)):
+        return (f"the routes disagree: structured V_H = {structured} lies outside the tree's "
+                f"exact bracket [{b.lower}, {b.upper}]")
+    if not lp_agrees(tree.value, structured):
+        return (f"the routes disagree: structured V_H = {structured}, tree LP value "
+                f"{tree.value!r}")
+    return None
+
+
+@dataclass(frozen=True)
+class RoutedValue:
+    """``V_H`` by the route(s) asked for.
+
+    Attributes
+    ----------
+    route : {"tree", "structured", "both"}
+        The route(s) that ran (``auto`` resolved).
+    horizon : int or None
+        ``H`` (None: the untruncated game).
+    tree : GameValue or None
+        The tree route's result (LP plus exact bracket).
+    structured : StructuredValue or None
+        The structured route's result.
+    disagreement : str or None
+        With ``both``: why the routes disagree (None when they agree).
+    """
+
+    route: Literal["tree", "structured", "both"]
+    horizon: int | None
+    tree: GameValue | None
+    structured: StructuredValue | None
+    disagreement: str | None = None
+
+
+def routed_value(instance: Instance, horizon: int | None, *, route: Route = "auto",
+                 max_prefixes: int = DEFAULT_MAX_PREFIXES,
+                 progress: bool = False) -> RoutedValue:
+    """``V_H`` of ``instance`` by the tree route, the structured route, or both.
+
+    Parameters
+    ----------
+    instance : Instance
+        The game.
+    horizon : int or None
+        ``H``; None for the untruncated game (structured route only).
+    route : {"auto", "tree", "structured", "both"}
+        ``auto``: the tree when it fits ``max_prefixes``, else the structured route.
+    max_prefixes : int
+        Size guard of the walk tree.
+    progress : bool
+        Progress bars on stderr (tree route).
+
+    Returns
+    -------
+    RoutedValue
+
+    Raises
+    ------
+    HorizonError, TreeTooLargeError
+        As :func:`~dppverify.value_lp.game_value` and
+        :func:`~dppverify.value_dp.structured_value`.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> r = routed_value(triangle(), 3, route="both")
+    >>> r.route, r.structured.value, r.tree.bracket.exact, r.disagreement
+    ('both', Fraction(12, 5), Fraction(12, 5), None)
+    >>> routed_value(triangle(), None).route
+    'structured'
+    """
+    chosen = resolve_route(route, instance, horizon, max_prefixes)
+    tree = sv = None
+    if chosen in ("structured", "both"):
+        sv = structured_value(instance, horizon)
+    if chosen in ("tree", "both"):
+        assert horizon is not None
+        tree = game_value(instance, horizon, max_prefixes=max_prefixes, progress=progress)
+    why = None
+    if tree is not None and sv is not None:
+        why = values_agree(tree, sv.value, Tolerance(exact=instance.exact))
+    return RoutedValue(route=chosen, horizon=horizon, tree=tree, structured=sv, disagreement=why)

@@ -1,0 +1,343 @@
+"""``V_H`` without the walk tree: three hop-bounded Bellman–Ford fields (proofs/DP.md).
+
+For ``k`` steps left and every node ``v`` (goals terminal, with their terminal costs)::
+
+    D1_k(v) = min over walks from v with <= k steps of  L(walk) + d(end, g1)
+    D2_k(v) = min over walks from v with <= k steps of  L(walk) + d(end, g2)
+    m_k(v)  = min( min_u [ w(v,u) + m_{k-1}(u) ],  D1_k(v) + D2_k(v) )
+    goals:  D1(g1) = 0, D1(g2) = d(g2,g1);  D2(g1) = d(g1,g2), D2(g2) = 0;
+            m(g1) = d(g1,g2), m(g2) = d(g2,g1);  non-goals at k = 0: +inf
+
+    V_H = b2 · m_H(s0) + (b1 − b2) · D1_H(s0)          (b1 >= b2)
+
+``O(H·E)`` work, vectorised over the arcs with numpy. Exact mode scales the rational weights
+to integers over their common denominator; the fields are ``int64`` arrays when a bound
+computed up front shows every number fits, Python integers (numpy ``object`` arrays)
+otherwise. Float-mode instances are computed in ``float64``. The fields only decrease with
+``k`` and reach a fixpoint after at most ``2n`` steps; the iteration stops there, which gives the
+untruncated game's value for ``horizon=None`` (``--horizon inf``).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from dppverify.errors import HorizonError
+from dppverify.exact import Number, normalize
+from dppverify.instance import Instance, Roles
+
+__all__ = ["Arcs", "Fields", "StructuredValue", "goal_terminal_arcs", "structured_value",
+           "value_fields"]
+
+INT64_LIMIT = 2**60
+"""Finite field values must stay below this for ``int64`` (sums of two sentinels fit)."""
+
+
+@dataclass(frozen=True, eq=False)
+class Arcs:
+    """The arcs leaving non-goal nodes, grouped by tail, with weights scaled for the DP.
+
+    Attributes
+    ----------
+    tails : numpy.ndarray
+        Distinct tails (non-goal nodes with at least one arc), increasing.
+    starts : numpy.ndarray
+        ``starts[i]`` = first arc of ``tails[i]`` (for ``numpy.minimum.reduceat``).
+    heads : numpy.ndarray
+        Head of every arc.
+    weights : numpy.ndarray
+        Scaled weight of every arc: ``int64``, or ``object`` (Python integers) when a weight
+        does not fit, or ``float64`` in float mode.
+    scale : int
+        Common denominator the exact weights were multiplied by (1 in float mode).
+    """
+
+    tails: np.ndarray
+    starts: np.ndarray
+    heads: np.ndarray
+    weights: np.ndarray
+    scale: int
+
+
+@dataclass(frozen=True, eq=False)
+class Fields:
+    """The three fields after ``steps`` iterations (scaled numbers; ``sentinel`` = unreachable).
+
+    Attributes
+    ----------
+    d1, d2, m : numpy.ndarray
+        ``D1_k``, ``D2_k``, ``m_k`` for every node, scaled by :attr:`scale`.
+    steps : int
+        ``k``: the number of steps left the fields describe (``min(H, fixpoint)``).
+    fixpoint : bool
+        True when step ``k`` changed nothing: the fields are those of every larger horizon.
+    sentinel : int or float
+        Values ``>= sentinel`` mean "no goal within ``k`` steps" (``inf`` in float mode).
+    scale : int
+        The common denominator of the exact weights.
+    arithmetic : str
+        ``"int64"``, ``"python-int"`` or ``"float64"``.
+    """
+
+    d1: np.ndarray
+    d2: np.ndarray
+    m: np.ndarray
+    steps: int
+    fixpoint: bool
+    sentinel: int | float
+    scale: int
+    arithmetic: str
+
+    def number(self, x: object) -> Number:
+        """A field entry as an unscaled number (``math.inf`` when unreachable)."""
+        if isinstance(x, float | np.floating):
+            return float(x)
+        xi = int(x)  # type: ignore[call-overload]
+        if xi >= self.sentinel:
+            return math.inf
+        return normalize(Fraction(xi, self.scale))
+
+
+@dataclass(frozen=True)
+class StructuredValue:
+    """``V_H`` by the three-field DP.
+
+    Attributes
+    ----------
+    horizon : int or None
+        ``H`` (None: the untruncated game).
+    value : Number
+        ``V_H``, exact (``int``/``Fraction``) on rational instances, ``float`` in float mode.
+    d1, d2, m : Number
+        ``D1_H(s0)``, ``D2_H(s0)``, ``m_H(s0)`` (unscaled).
+    steps : int
+        Iterations done (stops early at the fixpoint).
+    fixpoint : bool
+        True when the fields reached their fixpoint (``V_H`` equals every larger horizon's).
+    arithmetic : str
+        ``"int64"``, ``"python-int"`` or ``"float64"``.
+    exact : bool
+        False in float mode.
+    seconds : float
+        Wall time of the DP.
+    """
+
+    horizon: int | None
+    value: Number
+    d1: Number
+    d2: Number
+    m: Number
+    steps: int
+    fixpoint: bool
+    arithmetic: str
+    exact: bool
+    seconds: float
+
+
+def goal_terminal_arcs(instance: Instance, *, extra: tuple[Number, ...] = ()) -> Arcs:
+    """The arcs leaving non-goal nodes (goals are terminal), weights scaled to integers.
+
+    Parameters
+    ----------
+    instance : Instance
+        The game.
+    extra : tuple of Number
+        Further exact numbers (terminal costs) whose denominators the scale must clear.
+
+    Returns
+    -------
+    Arcs
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> a = goal_terminal_arcs(triangle())   # only s has arcs: s -> g1 (3), s -> g2 (2)
+    >>> a.tails.tolist(), a.heads.tolist(), a.weights.tolist(), a.scale
+    ([0], [1, 2], [3, 2], 1)
+    """
+    inst = instance
+    tails: list[int] = []
+    starts: list[int] = []
+    heads: list[int] = []
+    raw: list[Number] = []
+    for v in range(inst.n_nodes):
+        if inst.is_goal(v) or not inst.succ[v]:
+            continue
+        tails.append(v)
+        starts.append(len(heads))
+        for u, w in inst.succ[v]:
+            heads.append(u)
+            raw.append(w)
+    if not inst.exact:
+        return Arcs(tails=np.asarray(tails, dtype=np.int64),
+                    starts=np.asarray(starts, dtype=np.int64),
+                    heads=np.asarray(heads, dtype=np.int64),
+                    weights=np.asarray(raw, dtype=np.float64), scale=1)
+    scale = _common_denominator([*raw, *extra])
+    scaled = [int(w * scale) for w in raw]
+    dtype: type = np.int64 if max(scaled, default=0) < INT64_LIMIT else object
+    return Arcs(tails=np.asarray(tails, dtype=np.int64), starts=np.asarray(starts, dtype=np.int64),
+                heads=np.asarray(heads, dtype=np.int64),
+                weights=np.asarray(scaled, dtype=dtype), scale=scale)
+
+
+def _common_denominator(values: list[Number]) -> int:
+    den = 1
+    for w in values:
+        if isinstance(w, Fraction):
+            den = math.lcm(den, w.denominator)
+    return den
+
+
+def value_fields(instance: Instance, horizon: int | None, roles: Roles | None = None) -> Fields:
+    """Iterate the three fields ``min(H, fixpoint)`` times.
+
+    Parameters
+    ----------
+    instance : Instance
+        The game.
+    horizon : int or None
+        ``H >= 0``; None iterates to the fixpoint (the untruncated game).
+    roles : Roles, optional
+        Which goal is ``g1``; default the instance's primary goal.
+
+    Returns
+    -------
+    Fields
+
+    Raises
+    ------
+    HorizonError
+        If ``horizon`` is negative.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> f = value_fields(triangle(), None)
+    >>> [f.number(x) for x in (f.d1[0], f.d2[0], f.m[0])], f.steps, f.fixpoint
+    ([3, 2, 4], 2, True)
+    """
+    if horizon is not None and horizon < 0:
+        raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
+    inst = instance
+    r = inst.roles() if roles is None else roles
+    n = inst.n_nodes
+    cap = 2 * n + 2  # the fields are constant from k = 2n - 2 on (proofs/DP.md, DP.3)
+    limit = cap if horizon is None else min(horizon, cap)
+    d12, d21 = r.d2[r.g1], r.d1[r.g2]
+    if inst.exact:
+        arcs = goal_terminal_arcs(inst, extra=(d12, d21))
+        wmax = int(arcs.weights.max()) if arcs.weights.size else 0
+        term = int(max(d12, d21) * arcs.scale)
+        bound = 2 * (limit * wmax + term) + 1  # every finite field value is below this
+        sentinel: int | float = 2 * bound  # sums of two sentinels plus a weight must fit
+        if 2 * sentinel + wmax < 2**63:
+            dtype: type = np.int64
+            arithmetic = "int64"
+        else:
+            dtype = object
+            arithmetic = "python-int"
+            arcs = Arcs(tails=arcs.tails, starts=arcs.starts, heads=arcs.heads,
+                        weights=np.asarray([int(w) for w in arcs.weights], dtype=object),
+                        scale=arcs.scale)
+        g_vals = (0, int(d21 * arcs.scale), int(d12 * arcs.scale))
+    else:
+        arcs = goal_terminal_arcs(inst)
+        sentinel = math.inf
+        dtype = np.float64
+        arithmetic = "float64"
+        g_vals = (0.0, float(d21), float(d12))  # type: ignore[assignment]
+    zero, g2_to_g1, g1_to_g2 = g_vals
+
+    def fresh() -> np.ndarray:
+        return np.full(n, sentinel, dtype=dtype)
+
+    def goals(d1: np.ndarray, d2: np.ndarray, m: np.ndarray) -> None:
+        d1[r.g1], d1[r.g2] = zero, g2_to_g1
+        d2[r.g1], d2[r.g2] = g1_to_g2, zero
+        m[r.g1], m[r.g2] = g1_to_g2, g2_to_g1
+
+    def relax(field: np.ndarray) -> np.ndarray:
+        out = fresh()
+        if arcs.tails.size:
+            cand = arcs.weights + field[arcs.heads]
+            out[arcs.tails] = np.minimum.reduceat(cand, arcs.starts)
+            np.minimum(out, sentinel, out=out)
+        return out
+
+    d1, d2, m = fresh(), fresh(), fresh()
+    goals(d1, d2, m)
+    steps = 0
+    fixpoint = False
+    while steps < limit:
+        n1, n2, nm = relax(d1), relax(d2), relax(m)
+        goals(n1, n2, nm)
+        split = n1 + n2
+        np.minimum(split, sentinel, out=split)
+        np.minimum(nm, split, out=nm)
+        steps += 1
+        if np.array_equal(n1, d1) and np.array_equal(n2, d2) and np.array_equal(nm, m):
+            fixpoint = True
+            break
+        d1, d2, m = n1, n2, nm
+    if horizon is None and not fixpoint:  # pragma: no cover - DP.3 bounds the iterations
+        raise AssertionError(f"the value fields did not reach their fixpoint in {cap} steps")
+    if not fixpoint and steps == cap:  # pragma: no cover - same bound, finite horizon
+        fixpoint = True
+    return Fields(d1=d1, d2=d2, m=m, steps=steps, fixpoint=fixpoint, sentinel=sentinel,
+                  scale=arcs.scale, arithmetic=arithmetic)
+
+
+def structured_value(instance: Instance, horizon: int | None) -> StructuredValue:
+    """``V_H`` of the game truncated at ``horizon`` steps (None: untruncated), without the tree.
+
+    ``V_H = b2·m_H(s0) + (b1 − b2)·D1_H(s0)`` with the instance's primary goal as ``g1``
+    (``b1 >= b2``; the value does not depend on the labelling at ``b1 = b2``).
+
+    Parameters
+    ----------
+    instance : Instance
+        The game.
+    horizon : int or None
+        ``H >= 0``; None for the untruncated game (``--horizon inf``).
+
+    Returns
+    -------
+    StructuredValue
+
+    Raises
+    ------
+    HorizonError
+        If ``horizon`` is negative or no walk from ``s0`` reaches a goal within it (the same
+        refusal as the walk tree's).
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> inst = triangle()
+    >>> [str(structured_value(inst, h).value) for h in (1, 2)], structured_value(inst, None).value
+    (['12/5', '12/5'], Fraction(12, 5))
+    >>> structured_value(inst, 0)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.HorizonError: no walk from the start reaches a goal within H = 0 steps ...
+    """
+    t0 = time.perf_counter()
+    roles = instance.roles()
+    f = value_fields(instance, horizon, roles)
+    s0 = instance.start
+    d1, d2, m = f.number(f.d1[s0]), f.number(f.d2[s0]), f.number(f.m[s0])
+    if d1 == math.inf:
+        raise HorizonError(f"no walk from the start reaches a goal within H = {horizon} steps "
+                           f"(the nearest goal is {instance.hops[s0]} steps away)")
+    if instance.exact:
+        value: Number = normalize(roles.b2 * m + (roles.b1 - roles.b2) * d1)
+    else:
+        value = float(roles.b2) * float(m) + float(roles.b1 - roles.b2) * float(d1)
+    return StructuredValue(horizon=horizon, value=value, d1=d1, d2=d2, m=m, steps=f.steps,
+                           fixpoint=f.fixpoint, arithmetic=f.arithmetic, exact=instance.exact,
+                           seconds=time.perf_counter() - t0)
