@@ -10,12 +10,15 @@
 
 from __future__ import annotations
 
-__version__ = "0.1.0"
-
-from solver.equilibrium import Equilibrium, StrategyPath, solve
+from solver.equilibrium import Equilibrium, solve
 from solver.errors import DPPError, InstanceFormatError, InvalidInstanceError
 from solver.instance import Instance
-from solver.instance_json import load_instance
+from solver.instance_json import instance_from_json, instance_to_json, load_instance
+from solver.profile_json import equilibrium_to_json
+from solver.report import summarize
+from solver.strategy import StrategyPath
+from solver.version import __version__
 
 __all__ = ["DPPError", "Equilibrium", "Instance", "InstanceFormatError",
-           "InvalidInstanceError", "StrategyPath", "__version__", "load_instance", "solve"]
+           "InvalidInstanceError", "StrategyPath", "__version__", "equilibrium_to_json",
+           "instance_from_json", "instance_to_json", "load_instance", "solve", "summarize"]

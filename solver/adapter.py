@@ -10,7 +10,8 @@ from __future__ import annotations
 from typing import Any
 
 from solver.equilibrium import solve
-from solver.instance import Instance
+from solver.instance_json import instance_from_json
+from solver.profile_json import equilibrium_to_json
 
 __all__ = ["solve_json"]
 
@@ -32,4 +33,4 @@ def solve_json(instance_doc: dict[str, Any]) -> dict[str, Any]:
     >>> [(p["path"], p["probability"]) for p in profile["attacker"]["primary"]]
     [(['s', 'g1'], '4/7'), (['s', 'g2'], '3/7')]
     """
-    return solve(Instance.from_json(instance_doc)).to_json()
+    return equilibrium_to_json(solve(instance_from_json(instance_doc)))

@@ -27,6 +27,8 @@ from solver.instance import Instance
 from solver.instance_json import load_instance
 from solver.io_utils import dumps, write_atomic
 from solver.movingai import read_map
+from solver.profile_json import equilibrium_to_json
+from solver.report import summarize
 
 __all__ = ["main"]
 
@@ -82,13 +84,13 @@ def solve_command(instance: str | None, map_file: str | None, start: str | None,
     """
     inst = _load(instance, map_file, start, goals, prior_text, int(connectivity))
     eq = solve(inst)
-    doc = eq.to_json()
+    doc = equilibrium_to_json(eq)
     if output:
         write_atomic(output, dumps(doc))
     if as_json:
         click.echo(dumps(doc), nl=False)
     elif not output:
-        click.echo(eq.summary())
+        click.echo(summarize(eq))
     else:
         status(f"wrote {output}: U* = {doc['value']['U']}, VoI* = {doc['value']['VoI']}")
 
@@ -164,10 +166,10 @@ def experiment_compare(instance: str | None, map_file: str | None, start: str | 
     from tqdm import tqdm
 
     from solver.experiments.compare import compare_csv, compare_table, verdict
-    from solver.pairs import PAIRS, Game
+    from solver.pairs import PAIRS, PairEvaluator
 
     inst = _experiment_instance(instance, map_file, start, goals, prior_text, connectivity)
-    game = Game.of(inst)
+    game = PairEvaluator.of(inst)
     results = tuple(game.pair(d, a) for d, a in tqdm(
         PAIRS, desc="compare", unit="pair", file=sys.stderr, disable=not want_progress(progress),
         leave=False))

@@ -66,17 +66,17 @@ class DeceptivePath:
 
     Attributes
     ----------
-    path : tuple of int
+    walk : tuple of int
         Node indices ``s0 .. g^θ``.
     theta : int
         1 (primary) or 2 (secondary): whose true goal the path reaches.
     kind : str
         ``"exaggeration"`` or ``"ambiguity"``.
     objective : mpmath.mpf
-        The value of eq. (18a) or (18b) along ``path`` (fixed point, see the module notes).
+        The value of eq. (18a) or (18b) along ``walk`` (fixed point, see the module notes).
     """
 
-    path: tuple[int, ...]
+    walk: tuple[int, ...]
     theta: int
     kind: Kind
     objective: mpmath.mpf
@@ -186,7 +186,7 @@ def deceptive_path(observer: DraganObserver, theta: int, kind: Kind) -> Deceptiv
     >>> net = inst.network
     >>> obs = DraganObserver(net, 6, 2, 0, distances_to(net, 2), distances_to(net, 0),
     ...                      inst.b1, inst.b2)
-    >>> [net.labels[v] for v in deceptive_path(obs, 1, "exaggeration").path]
+    >>> [net.labels[v] for v in deceptive_path(obs, 1, "exaggeration").walk]
     [(2, 0), (1, 0), (1, 1), (0, 1), (0, 2)]
     """
     net = observer.network

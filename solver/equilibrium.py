@@ -5,7 +5,6 @@ from __future__ import annotations
 from collections.abc import Hashable
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any
 
 import numpy as np
 
@@ -15,22 +14,14 @@ from solver.evaluation import Evaluation, Trajectory, evaluate
 from solver.instance import Instance
 from solver.numbers import DEFAULT_ABS_TOL, Number, NumberMode
 from solver.phases import Phases, phases_of
-from solver.primary import MixedPath, primary_mixture
+from solver.primary import primary_mixture
 from solver.progress import ProgressDefender
 from solver.secondary import TIE_BREAK, secondary_best_response
+from solver.strategy import StrategyPath
 
-__all__ = ["Equilibrium", "StrategyPath", "solve"]
+__all__ = ["Equilibrium", "solve"]
 
 METHOD = "constructive PBNE (paper Sec. IV-V; secondary best response by proofs/XI2.md)"
-
-
-@dataclass(frozen=True)
-class StrategyPath:
-    """A path of a type's mixed strategy, as node ids."""
-
-    nodes: tuple[Hashable, ...]
-    probability: Fraction
-    label: str
 
 
 @dataclass(frozen=True, eq=False)
@@ -43,15 +34,16 @@ class Equilibrium:
         The solved game.
     defender : ProgressDefender
         σ*, eq. (7): allocate to ``g1`` with probability new-progress / step weight.
-    secondary_path : tuple
-        ξ² (node ids), the secondary type's deterministic path (eq. (9), the argmin).
+    secondary : StrategyPath
+        ξ², the secondary type's deterministic path (eq. (9), the argmin), probability 1.
     schedule : tuple
         σ*(g1) after each step of ξ².
     phases : Phases
         ``t_I``, ``t_II``, ``T`` of ξ² (eqs. (10)-(11)).
     primary_paths : tuple of StrategyPath
         ξ^{1,I} and ξ^{1,II} with probabilities ``1 - b2/b1`` and ``b2/b1`` (eq. (15));
-        merged into one path when identical, zero-probability paths dropped.
+        merged into one path when identical, zero-probability paths dropped. Each keeps
+        its node indices (``walk``) and node ids (``nodes``).
     U1, U2, U, U_bar, VoI : Number
         Type costs, the value ``U* = b1 U1 + b2 U2``, the complete-information value and
         ``VoI* = (Ū − U*)/Ū`` (Definition 6). Exact ``Fraction`` for rational instances.
@@ -66,7 +58,7 @@ class Equilibrium:
 
     instance: Instance
     defender: ProgressDefender = field(repr=False)
-    secondary_path: tuple[Hashable, ...]
+    secondary: StrategyPath
     schedule: tuple[Number, ...]
     phases: Phases
     primary_paths: tuple[StrategyPath, ...]
@@ -81,22 +73,15 @@ class Equilibrium:
     tie_break: str = TIE_BREAK
 
     @property
+    def secondary_path(self) -> tuple[Hashable, ...]:
+        """ξ² as node ids (``secondary.nodes``)."""
+        return self.secondary.nodes
+
+    @property
     def trajectories(self) -> tuple[Trajectory, ...]:
         """Per path: σ*(g1), Bayes beliefs ``b^1_t`` and the cumulative expected allocation
         to the true goal at every step (computed on first access)."""
         return self.evaluation.trajectories
-
-    def to_json(self) -> dict[str, Any]:
-        """The ``dpp-profile/1`` strategy-profile document (``docs/formats.md`` §2)."""
-        from solver.profile_json import equilibrium_to_json
-
-        return equilibrium_to_json(self)
-
-    def summary(self) -> str:
-        """A human-readable multi-line summary (what ``dpp solve`` prints)."""
-        from solver.report import summarize
-
-        return summarize(self)
 
 
 def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibrium:
@@ -146,21 +131,19 @@ def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibriu
 
     defender = ProgressDefender(net, g1, d1, numbers)
     xi2 = secondary_best_response(net, s0, (g1, g2), d0, d1, d2, numbers)
-    schedule = defender.schedule(xi2.path)
+    schedule = defender.schedule(xi2.walk)
     phases = phases_of(schedule)
-    mixture = primary_mixture(net, xi2.path, phases, g1, d1, instance.b1, instance.b2, numbers)
-    secondary = (MixedPath(xi2.path, Fraction(1), "xi2"),)
-    ev = evaluate(net, defender.schedule, mixture, secondary, b1=instance.b1, b2=instance.b2,
+    mixture = primary_mixture(net, xi2.walk, phases, g1, d1, instance.b1, instance.b2, numbers)
+    secondary = StrategyPath.along(net, xi2.walk, Fraction(1), "xi2")
+    ev = evaluate(net, defender.schedule, mixture, (secondary,), b1=instance.b1, b2=instance.b2,
                   g1=g1, g2=g2, d_to_g1=d1, d_to_g2=d2, d_from_start=d0)
-    labels = net.labels
     return Equilibrium(
         instance=instance,
         defender=defender,
-        secondary_path=tuple(labels[i] for i in xi2.path),
+        secondary=secondary,
         schedule=tuple(schedule),
         phases=phases,
-        primary_paths=tuple(StrategyPath(tuple(labels[i] for i in m.path), m.probability,
-                                         m.label) for m in mixture),
+        primary_paths=mixture,
         U1=ev.U1, U2=ev.U2, U=ev.U, U_bar=ev.U_bar, VoI=ev.VoI,
         evaluation=ev,
         numbers=numbers,

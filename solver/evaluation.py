@@ -19,7 +19,7 @@ import numpy as np
 
 from solver.network import Network
 from solver.numbers import Number
-from solver.primary import MixedPath
+from solver.strategy import StrategyPath
 
 __all__ = ["Evaluation", "Schedule", "Trajectory", "evaluate"]
 
@@ -33,14 +33,16 @@ class Trajectory:
 
     Attributes
     ----------
-    type : str
-        ``"primary"`` or ``"secondary"`` (whose true goal is ``g1`` / ``g2``).
+    theta : int
+        The Attacker type θ: 1 (primary, true goal ``g1``) or 2 (secondary, ``g2``).
     label : str
         Name of the path (``xi2``, ``xi1_I``, ...).
     probability : Fraction
         Probability that this type takes this path.
+    walk : tuple of int
+        Node indices ``s_0 .. s_T``.
     nodes : tuple
-        Node ids ``s_0 .. s_T``.
+        The same as node ids.
     sigma_g1 : tuple
         Defender's probability of allocating to ``g1`` after steps ``1..T``.
     belief_g1 : tuple of Fraction
@@ -53,9 +55,10 @@ class Trajectory:
         ``allocation[-1] + terminal``: this path's cost for its type.
     """
 
-    type: str
+    theta: int
     label: str
     probability: Fraction
+    walk: tuple[int, ...]
     nodes: tuple[Hashable, ...]
     sigma_g1: tuple[Number, ...]
     belief_g1: tuple[Fraction, ...]
@@ -68,8 +71,8 @@ class Trajectory:
 class _PathRun:
     """One Attacker path evaluated against the Defender (internal)."""
 
-    kind: str
-    mixed: MixedPath
+    theta: int
+    path: StrategyPath
     sigma: tuple[Number, ...]
     weights: tuple[Number, ...]
     terminal: Number
@@ -91,21 +94,19 @@ class Evaluation:
     VoI: Number
     _runs: tuple[_PathRun, ...] = field(repr=False)
     _prior: tuple[Fraction, Fraction] = field(repr=False)
-    _labels: Sequence[Hashable] = field(repr=False)
 
     @cached_property
     def trajectories(self) -> tuple[Trajectory, ...]:
         """Per path: σ(g1), Bayes beliefs ``b^1_t`` (eq. (2)) and cumulative allocation."""
-        prior = {"primary": self._prior[0], "secondary": self._prior[1]}
-        all_paths = [(r.kind, r.mixed) for r in self._runs]
+        all_paths = [(r.theta, r.path) for r in self._runs]
         out = []
         for run in self._runs:
             alloc: list[Number] = [run.cost - run.cost]  # a zero of the right type
             for w, s in zip(run.weights, run.sigma, strict=True):
-                alloc.append(alloc[-1] + w * (s if run.kind == "primary" else 1 - s))
-            out.append(Trajectory(run.kind, run.mixed.label, run.mixed.probability,
-                                  tuple(self._labels[i] for i in run.mixed.path), run.sigma,
-                                  _beliefs_along(run.mixed.path, all_paths, prior),
+                alloc.append(alloc[-1] + w * (s if run.theta == 1 else 1 - s))
+            out.append(Trajectory(run.theta, run.path.label, run.path.probability,
+                                  run.path.walk, run.path.nodes, run.sigma,
+                                  _beliefs_along(run.path.walk, all_paths, self._prior),
                                   tuple(alloc), run.terminal, run.cost))
         return tuple(out)
 
@@ -113,8 +114,8 @@ class Evaluation:
 def evaluate(
     net: Network,
     schedule: Schedule,
-    primary: Sequence[MixedPath],
-    secondary: Sequence[MixedPath],
+    primary: Sequence[StrategyPath],
+    secondary: Sequence[StrategyPath],
     *,
     b1: Fraction,
     b2: Fraction,
@@ -137,8 +138,8 @@ def evaluate(
     >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
     >>> net = Network.from_networkx(g)   # s=0, g2=1, g1=2
     >>> always_g1 = lambda walk: [Fraction(1)] * (len(walk) - 1)
-    >>> ev = evaluate(net, always_g1, [MixedPath((0, 2), Fraction(1), "direct")],
-    ...               [MixedPath((0, 1), Fraction(1), "direct")], b1=Fraction(7, 10),
+    >>> direct = [StrategyPath.along(net, walk, Fraction(1), "direct") for walk in ((0, 2), (0, 1))]
+    >>> ev = evaluate(net, always_g1, direct[:1], direct[1:], b1=Fraction(7, 10),
     ...               b2=Fraction(3, 10), g1=2, g2=1, d_to_g1=distances_to(net, 2),
     ...               d_to_g2=distances_to(net, 1), d_from_start=distances_from(net, 0))
     >>> str(ev.U1), str(ev.U2), str(ev.U), str(ev.VoI)
@@ -148,23 +149,21 @@ def evaluate(
     """
     runs = []
     numbers = net.numbers
-    u_type: dict[str, Number] = {"primary": numbers.zero(), "secondary": numbers.zero()}
-    for kind, mixture in (("primary", primary), ("secondary", secondary)):
-        true_is_g1 = kind == "primary"
-        for mp in mixture:
-            sigma = tuple(schedule(mp.path))
-            raw = net.path_weights(mp.path).tolist()
-            paid = _allocation_total(net, raw, sigma, to_g1=true_is_g1)
-            terminal = numbers.convert((d_to_g1 if true_is_g1 else d_to_g2)[mp.path[-1]])
+    u_theta = {1: numbers.zero(), 2: numbers.zero()}
+    for theta, mixture in ((1, primary), (2, secondary)):
+        for sp in mixture:
+            sigma = tuple(schedule(sp.walk))
+            raw = net.path_weights(sp.walk).tolist()
+            paid = _allocation_total(net, raw, sigma, to_g1=theta == 1)
+            terminal = numbers.convert((d_to_g1 if theta == 1 else d_to_g2)[sp.walk[-1]])
             cost = paid + terminal
-            runs.append(_PathRun(kind, mp, sigma, tuple(map(numbers.convert, raw)), terminal,
+            runs.append(_PathRun(theta, sp, sigma, tuple(map(numbers.convert, raw)), terminal,
                                  cost))
-            u_type[kind] = u_type[kind] + mp.probability * cost
-    u1, u2 = u_type["primary"], u_type["secondary"]
+            u_theta[theta] = u_theta[theta] + sp.probability * cost
+    u1, u2 = u_theta[1], u_theta[2]
     value = b1 * u1 + b2 * u2
     u_bar = b1 * numbers.convert(d_from_start[g1]) + b2 * numbers.convert(d_from_start[g2])
-    return Evaluation(u1, u2, value, u_bar, (u_bar - value) / u_bar, tuple(runs), (b1, b2),
-                      net.labels)
+    return Evaluation(u1, u2, value, u_bar, (u_bar - value) / u_bar, tuple(runs), (b1, b2))
 
 
 def _allocation_total(net: Network, raw_weights: Sequence[int | float],
@@ -182,20 +181,20 @@ def _allocation_total(net: Network, raw_weights: Sequence[int | float],
     return net.numbers.convert(whole) + part
 
 
-def _beliefs_along(path: Sequence[int], all_paths: Sequence[tuple[str, MixedPath]],
-                   prior: dict[str, Fraction]) -> tuple[Fraction, ...]:
-    """Bayes belief in g1 at each prefix of ``path`` (Bayes' rule, eq. (2), unrolled): the
+def _beliefs_along(walk: Sequence[int], all_paths: Sequence[tuple[int, StrategyPath]],
+                   prior: tuple[Fraction, Fraction]) -> tuple[Fraction, ...]:
+    """Bayes belief in g1 at each prefix of ``walk`` (Bayes' rule, eq. (2), unrolled): the
     prior-weighted mass of primary paths sharing the prefix over the total mass sharing it. The
     belief can change only where another path leaves this one, so it is computed once per
     segment."""
-    shared = [(kind, mp.probability, _common_prefix(path, mp.path)) for kind, mp in all_paths]
+    shared = [(theta, sp.probability, _common_prefix(walk, sp.walk)) for theta, sp in all_paths]
     out: list[Fraction] = []
-    for t0, t1 in pairwise([0, *sorted({n for _, _, n in shared if 0 < n < len(path)}),
-                            len(path)]):
-        num = sum((prior[k] * p for k, p, n in shared if n > t0 and k == "primary"), Fraction(0))
-        den = num + sum((prior[k] * p for k, p, n in shared if n > t0 and k == "secondary"),
-                        Fraction(0))
-        out.extend([num / den] * (t1 - t0))
+    for t0, t1 in pairwise([0, *sorted({n for _, _, n in shared if 0 < n < len(walk)}),
+                            len(walk)]):
+        mass = [sum((p for th, p, n in shared if n > t0 and th == theta), Fraction(0))
+                for theta in (1, 2)]
+        num = prior[0] * mass[0]
+        out.extend([num / (num + prior[1] * mass[1])] * (t1 - t0))
     return tuple(out)
 
 

@@ -109,44 +109,32 @@ class Instance:
         return cls(Network.from_grid(blocked, connectivity=connectivity),
                    _cell(start), (_cell(goals[0]), _cell(goals[1])), prior)
 
-    @classmethod
-    def from_json(cls, data: dict[str, Any] | str) -> Instance:
-        """Parse the ``dpp`` instance JSON (a dict, or its text); see ``docs/formats.md``."""
-        from solver.instance_json import instance_from_json
-
-        return instance_from_json(data)
-
-    def to_json(self) -> dict[str, Any]:
-        """The ``dpp`` instance JSON document (exact numbers as ``"p/q"`` strings)."""
-        from solver.instance_json import instance_to_json
-
-        return instance_to_json(self)
-
     # ------------------------------------------------------------------ derived
     @property
-    def primary_index(self) -> int:
-        """Index into ``goals`` of the primary goal (larger prior; ``0`` at a tie)."""
+    def primary_slot(self) -> int:
+        """Position (0 or 1) of the primary goal in ``goals`` and ``prior`` (larger prior;
+        ``0`` at a tie)."""
         return 0 if self.prior[0] >= self.prior[1] else 1
 
     @property
     def primary(self) -> Hashable:
         """The primary goal ``g1``."""
-        return self.goals[self.primary_index]
+        return self.goals[self.primary_slot]
 
     @property
     def secondary(self) -> Hashable:
         """The secondary goal ``g2``."""
-        return self.goals[1 - self.primary_index]
+        return self.goals[1 - self.primary_slot]
 
     @property
     def b1(self) -> Fraction:
         """Prior of the primary goal."""
-        return Fraction(self.prior[self.primary_index])
+        return Fraction(self.prior[self.primary_slot])
 
     @property
     def b2(self) -> Fraction:
         """Prior of the secondary goal."""
-        return Fraction(self.prior[1 - self.primary_index])
+        return Fraction(self.prior[1 - self.primary_slot])
 
 
 def _cell(x: Any) -> tuple[int, int]:

@@ -27,9 +27,9 @@ from solver.errors import InvalidInstanceError
 from solver.evaluation import Evaluation, Schedule, evaluate
 from solver.instance import Instance
 from solver.numbers import Number
-from solver.primary import MixedPath
+from solver.strategy import StrategyPath
 
-__all__ = ["ATTACKERS", "DEFENDERS", "LABELS", "PAIRS", "Attacker", "Game", "PairResult",
+__all__ = ["ATTACKERS", "DEFENDERS", "LABELS", "PAIRS", "Attacker", "PairEvaluator", "PairResult",
            "pair_label"]
 
 DEFENDERS = ("sigma*", "sigma'")
@@ -62,8 +62,8 @@ class Attacker:
     """A mixed Attacker: per type, paths (node indices) with probabilities summing to 1."""
 
     name: str
-    primary: tuple[MixedPath, ...]
-    secondary: tuple[MixedPath, ...]
+    primary: tuple[StrategyPath, ...]
+    secondary: tuple[StrategyPath, ...]
 
 
 @dataclass(frozen=True)
@@ -80,15 +80,16 @@ class PairResult:
 
 
 @dataclass(frozen=True, eq=False)
-class Game:
-    """An instance with its distances, equilibrium, Dragan observer and the named strategies.
+class PairEvaluator:
+    """Evaluates (Defender, Attacker) pairs on one instance: the distance fields, the
+    equilibrium, Dragan's observer and the named strategies are computed once and cached.
 
     Examples
     --------
     >>> import networkx as nx
     >>> g = nx.Graph()
     >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> game = Game.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
+    >>> game = PairEvaluator.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
     >>> r = game.pair("sigma*", "gamma*")
     >>> str(r.U), str(r.VoI)
     ('12/5', '1/9')
@@ -105,7 +106,7 @@ class Game:
     d_to_g2: np.ndarray
 
     @classmethod
-    def of(cls, instance: Instance) -> Game:
+    def of(cls, instance: Instance) -> PairEvaluator:
         """Index the instance and compute the three distance fields."""
         net = instance.network
         idx = [net.index_of(x) for x in (instance.start, instance.primary, instance.secondary)]
@@ -150,15 +151,7 @@ class Game:
     @cached_property
     def _gamma_star(self) -> Attacker:
         eq = self.equilibrium
-        net = self.instance.network
-
-        def index(nodes: tuple[object, ...]) -> tuple[int, ...]:
-            return tuple(int(net.index_of(v)) for v in nodes)  # type: ignore[arg-type]
-
-        primary = tuple(MixedPath(index(p.nodes), p.probability, p.label)
-                        for p in eq.primary_paths)
-        return Attacker("gamma*", primary,
-                        (MixedPath(index(eq.secondary_path), Fraction(1), "xi2"),))
+        return Attacker("gamma*", eq.primary_paths, (eq.secondary,))
 
     def _deceptive(self, kind: Kind) -> Attacker:
         cache = self.__dict__.setdefault("_deceptive_cache", {})
@@ -170,7 +163,8 @@ class Game:
                     dp = deceptive_path(self.observer, theta, kind)
                 except ValueError as exc:
                     raise InvalidInstanceError(str(exc)) from None
-                paths.append(MixedPath(dp.path, Fraction(1), f"xi{theta}_{tag}"))
+                paths.append(StrategyPath.along(self.instance.network, dp.walk, Fraction(1),
+                                                f"xi{theta}_{tag}"))
             cache[kind] = Attacker(kind, (paths[0],), (paths[1],))
         result: Attacker = cache[kind]
         return result

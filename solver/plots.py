@@ -27,7 +27,7 @@ from matplotlib.lines import Line2D
 from solver.errors import InvalidInstanceError
 from solver.instance import Instance
 from solver.network import GridLabels
-from solver.pairs import PAIRS, Game
+from solver.pairs import PAIRS, PairEvaluator
 
 __all__ = ["PHASE_COLOURS", "plot_beliefs", "plot_map", "plot_voi", "save_figure"]
 
@@ -144,7 +144,8 @@ def _common(a: Sequence[Hashable], b: Sequence[Hashable]) -> int:
     return n
 
 
-def plot_map(instance: Instance, *, baselines: bool = True, game: Game | None = None) -> Figure:
+def plot_map(instance: Instance, *, baselines: bool = True,
+             game: PairEvaluator | None = None) -> Figure:
     """Equilibrium paths on the grid (ξ² coloured by phase, branches with probabilities),
     and with ``baselines`` the ambiguity / exaggeration paths in a second panel.
 
@@ -155,7 +156,7 @@ def plot_map(instance: Instance, *, baselines: bool = True, game: Game | None = 
     >>> len(fig.axes)
     2
     """
-    game = game or Game.of(instance)
+    game = game or PairEvaluator.of(instance)
     eq = game.equilibrium
     fig, axes = plt.subplots(1, 2 if baselines else 1, figsize=(13 if baselines else 7, 6.4),
                              squeeze=False)
@@ -200,20 +201,19 @@ def plot_map(instance: Instance, *, baselines: bool = True, game: Game | None = 
     if baselines:
         ax2 = axes[0][1]
         _draw_grid(ax2, instance)
-        net = instance.network
         bl: list[Line2D] = []
         for j, kind in enumerate(("ambiguity", "exaggeration")):
             att = game.attacker(kind)
             for theta, mp, colour in ((1, att.primary[0], G1_COLOUR),
                                       (2, att.secondary[0], G2_COLOUR)):
                 off = (-0.15 + 0.1 * (2 * j + theta - 1),) * 2
-                bx, by = _xy([net.labels[v] for v in mp.path], off)
+                bx, by = _xy(list(mp.nodes), off)
                 ls = "-" if kind == "ambiguity" else "--"
                 ax2.plot(bx, by, color=colour, lw=2.2, ls=ls, zorder=3 + j)
                 tag = "am" if kind == "ambiguity" else "ex"
                 bl.append(Line2D([], [], color=colour, lw=2.2, ls=ls,
                                  label=f"{_tex(f'xi{theta}_{tag}')} ({kind}, type {theta}, "
-                                       f"{len(mp.path) - 1} steps)"))
+                                       f"{len(mp.walk) - 1} steps)"))
         vo = {r.attacker: r.VoI for r in game.compare((("sigma*", "ambiguity"),
                                                        ("sigma*", "exaggeration")))}
         ax2.set_title(f"Dragan baselines (eq. (18)): VoI vs σ*: ambiguity "
@@ -227,7 +227,7 @@ def plot_map(instance: Instance, *, baselines: bool = True, game: Game | None = 
 
 
 def plot_beliefs(instance: Instance, *, defender: str = "sigma*",
-                 game: Game | None = None) -> Figure:
+                 game: PairEvaluator | None = None) -> Figure:
     """Per type (columns): the belief ``b^1_t`` along each path (top; Bayes under γ* for the
     equilibrium paths, Dragan's belief, eq. (17), for the baselines) and the cumulative expected
     allocation to the true goal under ``defender`` (bottom).
@@ -239,7 +239,7 @@ def plot_beliefs(instance: Instance, *, defender: str = "sigma*",
     >>> len(fig.axes)
     4
     """
-    game = game or Game.of(instance)
+    game = game or PairEvaluator.of(instance)
     fig, axes = plt.subplots(2, 2, figsize=(12, 7.5), sharex="col")
     net = instance.network
     dist = {1: game.d_from_start[game.g1], 2: game.d_from_start[game.g2]}
@@ -247,16 +247,14 @@ def plot_beliefs(instance: Instance, *, defender: str = "sigma*",
     for attacker in ("gamma*", "ambiguity", "exaggeration"):
         ev = game.evaluate(defender, attacker)
         for tr in ev.trajectories:
-            theta = 1 if tr.type == "primary" else 2
+            theta = tr.theta
             col = theta - 1
             steps = np.arange(len(tr.nodes))
             if attacker == "gamma*":
                 belief = [float(b) for b in tr.belief_g1]
                 source = "Bayes, γ*"
             else:
-                idx = [net.index_of(v) for v in tr.nodes]
-                belief = [float(b) for b in game.observer.beliefs([int(i) for i in idx
-                                                                     if i is not None])]
+                belief = [float(b) for b in game.observer.beliefs(tr.walk)]
                 source = "Dragan eq. (17)"
             name = _tex(tr.label)
             prob = f", p = {tr.probability}" if attacker == "gamma*" else ""

@@ -9,7 +9,6 @@ path (every step of ψ has σ* = 1). ``γ*(ξ^{1,II} | g1) = b2 / b1`` and
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
@@ -18,17 +17,9 @@ from solver.network import Network
 from solver.numbers import NumberMode
 from solver.phases import Phases
 from solver.shortest_paths import path_to_target
+from solver.strategy import StrategyPath
 
-__all__ = ["MixedPath", "primary_mixture"]
-
-
-@dataclass(frozen=True)
-class MixedPath:
-    """One path of a type's mixed strategy (node indices), its probability and label."""
-
-    path: tuple[int, ...]
-    probability: Fraction
-    label: str
+__all__ = ["primary_mixture"]
 
 
 def branch_path(net: Network, xi2: Sequence[int], t: int, g1: int, d_to_g1: np.ndarray,
@@ -42,7 +33,7 @@ def branch_path(net: Network, xi2: Sequence[int], t: int, g1: int, d_to_g1: np.n
 
 def primary_mixture(net: Network, xi2: Sequence[int], phases: Phases, g1: int,
                     d_to_g1: np.ndarray, b1: Fraction, b2: Fraction,
-                    numbers: NumberMode) -> tuple[MixedPath, ...]:
+                    numbers: NumberMode) -> tuple[StrategyPath, ...]:
     """The primary type's equilibrium mixture over ξ^{1,I} and ξ^{1,II} (eq. (15)).
 
     Examples
@@ -54,16 +45,16 @@ def primary_mixture(net: Network, xi2: Sequence[int], phases: Phases, g1: int,
     >>> net = Network.from_networkx(g)   # s=0, g2=1, g1=2
     >>> mix = primary_mixture(net, [0, 1], Phases(0, 1, 1), 2, distances_to(net, 2),
     ...                       Fraction(7, 10), Fraction(3, 10), net.numbers)
-    >>> [(m.path, str(m.probability), m.label) for m in mix]
-    [((0, 2), '4/7', 'xi1_I'), ((0, 1), '3/7', 'xi1_II')]
+    >>> [(m.nodes, str(m.probability), m.label) for m in mix]
+    [(('s', 'g1'), '4/7', 'xi1_I'), (('s', 'g2'), '3/7', 'xi1_II')]
     """
     p_ii = b2 / b1
     path_i = branch_path(net, xi2, phases.t_I, g1, d_to_g1, numbers)
     path_ii = branch_path(net, xi2, phases.t_II, g1, d_to_g1, numbers)
     if path_i == path_ii:
-        return (MixedPath(path_i, Fraction(1), "xi1"),)
+        return (StrategyPath.along(net, path_i, Fraction(1), "xi1"),)
     out = []
     if p_ii < 1:
-        out.append(MixedPath(path_i, 1 - p_ii, "xi1_I"))
-    out.append(MixedPath(path_ii, p_ii, "xi1_II"))
+        out.append(StrategyPath.along(net, path_i, 1 - p_ii, "xi1_I"))
+    out.append(StrategyPath.along(net, path_ii, p_ii, "xi1_II"))
     return tuple(out)

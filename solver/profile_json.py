@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
+from solver.equilibrium import Equilibrium
 from solver.instance_json import node_to_json
 from solver.numbers import format_number
-
-if TYPE_CHECKING:
-    from solver.equilibrium import Equilibrium
+from solver.version import __version__
 
 __all__ = ["PROFILE_FORMAT", "equilibrium_to_json"]
 
@@ -47,8 +46,6 @@ def equilibrium_to_json(eq: Equilibrium) -> dict[str, Any]:
     >>> certify(instance_to_json(inst), doc).verdict
     'pass'
     """
-    from solver import __version__
-
     inst = eq.instance
     fmt = format_number
 

@@ -3,12 +3,9 @@
 from __future__ import annotations
 
 from collections.abc import Hashable, Sequence
-from typing import TYPE_CHECKING
 
+from solver.equilibrium import Equilibrium
 from solver.numbers import Number
-
-if TYPE_CHECKING:
-    from solver.equilibrium import Equilibrium
 
 __all__ = ["summarize"]
 

@@ -34,7 +34,7 @@ class SecondaryPath:
 
     Attributes
     ----------
-    path : tuple of int
+    walk : tuple of int
         Node indices of ξ², from ``s0`` to the first goal reached.
     pivot : int
         ``v*``, the chosen minimiser of ``d(s0,v)+d(v,g1)+d(v,g2)`` (ξ² may be cut before it).
@@ -42,7 +42,7 @@ class SecondaryPath:
         ``M`` as a stored numerator (int-valued) or float.
     """
 
-    path: tuple[int, ...]
+    walk: tuple[int, ...]
     pivot: int
     m_value: object
 
@@ -67,7 +67,7 @@ def secondary_best_response(
     >>> net = Network.from_networkx(g)   # indices: s=0, g2=1, g1=2
     >>> xi = secondary_best_response(net, 0, (2, 1), distances_from(net, 0),
     ...      distances_to(net, 2), distances_to(net, 1), net.numbers)
-    >>> xi.path, xi.pivot, int(xi.m_value)
+    >>> xi.walk, xi.pivot, int(xi.m_value)
     ((0, 1), 1, 4)
     """
     g1, g2 = goals

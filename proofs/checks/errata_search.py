@@ -31,7 +31,7 @@ from fractions import Fraction
 from typing import Any
 
 import dppverify
-from solver import solve
+from solver import equilibrium_to_json, solve
 from solver.errors import DPPError
 from solver.instance_json import instance_from_json
 
@@ -88,7 +88,7 @@ def swapped_outcome(doc: dict[str, Any]) -> Outcome:
         eq = solve(instance_from_json(doc))
     except DPPError:
         return Outcome(False, None, None, (), None, None)
-    profile = eq.to_json()
+    profile = equilibrium_to_json(eq)
     primary = profile["attacker"]["primary"]
     phases = (eq.phases.t_I, eq.phases.t_II, eq.phases.T)
     if len(primary) != 2:  # one branch path (or b2/b1 = 1): nothing to swap here

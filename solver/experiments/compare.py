@@ -17,7 +17,7 @@ from pathlib import Path
 from solver.instance import Instance
 from solver.movingai import read_map
 from solver.numbers import Number
-from solver.pairs import LABELS, PAIRS, Game, PairResult
+from solver.pairs import LABELS, PAIRS, PairEvaluator, PairResult
 
 __all__ = ["DEFAULT_GOALS", "DEFAULT_PRIOR", "DEFAULT_START", "compare_csv", "compare_table",
            "paper10_instance", "paper10_path", "run_compare", "verdict"]
@@ -67,7 +67,7 @@ def run_compare(instance: Instance) -> tuple[PairResult, ...]:
     >>> [(r.defender, r.attacker) for r in rows][:2]
     [('sigma*', 'gamma*'), ("sigma'", 'gamma*')]
     """
-    return Game.of(instance).compare(PAIRS)
+    return PairEvaluator.of(instance).compare(PAIRS)
 
 
 def _num(x: Number) -> str:
@@ -94,7 +94,7 @@ def compare_table(results: Sequence[PairResult]) -> str:
     >>> import networkx as nx
     >>> g = nx.Graph()
     >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> results = Game.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
+    >>> results = PairEvaluator.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
     >>> print(compare_table(results[:2]))
     Defender  Attacker  U1             U2  U            VoI
     --------  --------  -------------  --  -----------  -------------
@@ -134,7 +134,7 @@ def verdict(results: Sequence[PairResult]) -> str:
     >>> import networkx as nx
     >>> g = nx.Graph()
     >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> results = Game.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
+    >>> results = PairEvaluator.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
     >>> "does NOT hold" in verdict(results), verdict(results[:1])
     (True, '')
     """
@@ -166,7 +166,7 @@ def compare_csv(results: Sequence[PairResult]) -> str:
     >>> import networkx as nx
     >>> g = nx.Graph()
     >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> results = Game.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
+    >>> results = PairEvaluator.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
     >>> print(compare_csv(results[:2]), end="")
     defender,attacker,U1,U2,U,U_bar,VoI
     sigma*,gamma*,3,1,12/5,27/10,1/9

@@ -21,7 +21,7 @@ from typing import Any
 from solver.errors import InvalidInstanceError
 from solver.experiments.sampling import Cell, sample_grid
 from solver.instance import Instance
-from solver.pairs import PAIRS, Game
+from solver.pairs import PAIRS, PairEvaluator
 
 __all__ = ["CSV_FIELDS", "DensityConfig", "Row", "Task", "rows_to_csv", "run_density",
            "run_task", "tasks_of"]
@@ -153,7 +153,7 @@ def run_task(task: Task) -> list[Row]:
     rows = []
     for k in range(task.first, task.first + task.count):
         grid = sample_grid(cfg.size, task.density, k, cfg.seed, cfg.start, cfg.goals)
-        game = Game.of(Instance.from_grid(grid.blocked, cfg.start, cfg.goals, cfg.prior))
+        game = PairEvaluator.of(Instance.from_grid(grid.blocked, cfg.start, cfg.goals, cfg.prior))
         for r in game.compare(PAIRS):
             rows.append(Row(task.density, k, grid.attempts, int(grid.blocked.sum()),
                             r.defender, r.attacker, str(r.U1), str(r.U2), str(r.U),

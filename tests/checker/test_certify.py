@@ -20,6 +20,8 @@ from dppverify import (
 )
 from dppverify.exact import parse_json
 from dppverify.tree import build_tree
+from solver import equilibrium_to_json, instance_to_json
+from solver import instance_from_json as solver_instance_from_json
 from tests.checker._helpers import (
     grid_doc,
     load_cases,
@@ -96,13 +98,13 @@ def test_table_defender_equal_to_sigma_star_certifies() -> None:
 
 
 def test_either_labelling_at_prior_one_half() -> None:
-    from solver import Instance, solve
+    from solver import solve
 
     case = next(c for c in load_cases() if c["name"] == "b_half")
     doc = case["instance"]
     swapped = dict(doc, goals=doc["goals"][::-1])
     for d in (doc, swapped):
-        prof = solve(Instance.from_json(d)).to_json()
+        prof = equilibrium_to_json(solve(solver_instance_from_json(d)))
         _assert_certified(doc, prof)
     bad = copy.deepcopy(triangle_profile())
     bad["goals"] = {"primary": "g2", "secondary": "g1"}
@@ -111,9 +113,9 @@ def test_either_labelling_at_prior_one_half() -> None:
 
 @pytest.mark.parametrize("case", load_cases(), ids=lambda c: c["name"])
 def test_solver_profiles_of_all_conformance_cases_certify(case: dict[str, Any]) -> None:
-    from solver import Instance, solve
+    from solver import solve
 
-    prof = solve(Instance.from_json(case["instance"])).to_json()
+    prof = equilibrium_to_json(solve(solver_instance_from_json(case["instance"])))
     cert = certify(case["instance"], parse_json(json.dumps(prof)), trials=2)
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]
     assert cert.check("value.U").numbers["U"] == Fraction(case["expected"]["value"])
@@ -158,9 +160,9 @@ def test_octile_grid_from_the_solver_certifies_in_float_mode() -> None:
     blocked[1, 1] = True
     inst = Instance.from_grid(blocked, (2, 0), ((0, 3), (0, 0)), ("3/5", "2/5"),
                               connectivity=8)
-    idoc = parse_json(json.dumps(inst.to_json()))
+    idoc = parse_json(json.dumps(instance_to_json(inst)))
     assert idoc["numbers"] == "float"
-    pdoc = parse_json(json.dumps(solve(inst).to_json()))
+    pdoc = parse_json(json.dumps(equilibrium_to_json(solve(inst))))
     cert = certify(idoc, pdoc, exact=False)
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]
 

@@ -14,6 +14,8 @@ from hypothesis import strategies as st
 
 from dppverify import InvalidInstanceError, certify, instance_from_json
 from dppverify.exact import parse_json
+from solver import equilibrium_to_json
+from solver import instance_from_json as solver_instance_from_json
 from tests.checker._helpers import grid_doc, make_doc
 
 PRIORS = [("1/2", "1/2"), ("3/5", "2/5"), ("2/5", "3/5"), ("7/10", "3/10"), ("9/10", "1/10"),
@@ -47,7 +49,7 @@ def grid_instances(draw: st.DrawFn) -> dict[str, Any]:
 
 
 def _certify_solver_profile(doc: dict[str, Any]) -> None:
-    from solver import Instance, solve
+    from solver import solve
 
     try:
         inst = instance_from_json(doc)
@@ -55,7 +57,7 @@ def _certify_solver_profile(doc: dict[str, Any]) -> None:
         assume(False)
         return
     assume(inst.n_nodes > 0)
-    prof = solve(Instance.from_json(doc)).to_json()
+    prof = equilibrium_to_json(solve(solver_instance_from_json(doc)))
     cert = certify(doc, parse_json(json.dumps(prof)), trials=2, max_prefixes=200_000)
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]
     u = cert.check("value.U").numbers["U"]

@@ -11,7 +11,7 @@ import pytest
 
 from solver import Instance
 from solver.deceptive_paths import KINDS, deceptive_path, objective
-from solver.pairs import Game
+from solver.pairs import PairEvaluator
 from tests.experiments._graphs import literal_belief, random_instance
 
 EPS = mpmath.mpf(10) ** -35
@@ -39,11 +39,11 @@ def _candidates(inst: Instance, theta: int) -> tuple[object, object, list[list[o
 @pytest.mark.parametrize("kind", KINDS)
 def test_optimal_against_all_simple_paths(seed: int, kind: str) -> None:
     inst = random_instance(seed, n=7)
-    game = Game.of(inst)
+    game = PairEvaluator.of(inst)
     net = inst.network
     for theta in (1, 2):
         dp = deceptive_path(game.observer, theta, kind)  # type: ignore[arg-type]
-        path = [net.labels[v] for v in dp.path]
+        path = [net.labels[v] for v in dp.walk]
         goal, fake, paths = _candidates(inst, theta)
         assert path[0] == inst.start and path[-1] == goal and fake not in path
         assert len(set(path)) == len(path)
@@ -61,7 +61,7 @@ def test_optimal_against_all_simple_paths(seed: int, kind: str) -> None:
 def test_no_walk_beats_the_path(seed: int) -> None:
     """All walks of up to 7 steps from s0 to g^θ avoiding g^{−θ} (revisits allowed)."""
     inst = random_instance(seed, n=6, p=0.5)
-    game = Game.of(inst)
+    game = PairEvaluator.of(inst)
     for kind, theta in itertools.product(KINDS, (1, 2)):
         dp = deceptive_path(game.observer, theta, kind)  # type: ignore[arg-type]
         goal, fake, _ = _candidates(inst, theta)
@@ -84,17 +84,17 @@ def test_grid_ties_are_broken_deterministically() -> None:
     """An obstacle-free grid has many exactly tied paths; the result is stable and its
     objective equals the fixed-point sum recomputed along it."""
     inst = Instance.from_grid(np.zeros((5, 5), bool), (4, 0), ((0, 4), (0, 0)), ("3/5", "2/5"))
-    a, b = Game.of(inst), Game.of(inst)
+    a, b = PairEvaluator.of(inst), PairEvaluator.of(inst)
     for kind, theta in itertools.product(KINDS, (1, 2)):
         p = deceptive_path(a.observer, theta, kind)  # type: ignore[arg-type]
         q = deceptive_path(b.observer, theta, kind)  # type: ignore[arg-type]
-        assert p.path == q.path
-        assert p.objective == objective(a.observer, p.path, theta, kind)  # type: ignore[arg-type]
+        assert p.walk == q.walk
+        assert p.objective == objective(a.observer, p.walk, theta, kind)  # type: ignore[arg-type]
 
 
 def test_unreachable_goal_is_an_error() -> None:
     g = nx.path_graph(["s", "g2", "g1"])
     inst = Instance(g, "s", ("g1", "g2"), ("3/5", "2/5"))
-    game = Game.of(inst)
+    game = PairEvaluator.of(inst)
     with pytest.raises(ValueError, match="without passing"):
         deceptive_path(game.observer, 1, "ambiguity")

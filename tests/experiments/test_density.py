@@ -18,7 +18,7 @@ from solver.experiments.density import (
 )
 from solver.experiments.sampling import sample_grid
 from solver.experiments.summary import summarize_density
-from solver.pairs import PAIRS, Game
+from solver.pairs import PAIRS, PairEvaluator
 
 SMALL = DensityConfig(size=8, start=(7, 0), goals=((0, 7), (0, 0)), densities=(0, 20, 40),
                       samples=3, seed=5, chunk=2)
@@ -51,7 +51,8 @@ def test_rows_recomputed_from_the_grids() -> None:
     assert len(rows) == len(SMALL.densities) * SMALL.samples * len(PAIRS)
     for r in rows[:: len(PAIRS) + 1]:
         s = sample_grid(SMALL.size, r.density, r.sample, SMALL.seed, SMALL.start, SMALL.goals)
-        game = Game.of(Instance.from_grid(s.blocked, SMALL.start, SMALL.goals, SMALL.prior))
+        inst = Instance.from_grid(s.blocked, SMALL.start, SMALL.goals, SMALL.prior)
+        game = PairEvaluator.of(inst)
         ref = game.pair(r.defender, r.attacker)
         assert Fraction(r.VoI) == ref.VoI and r.VoI_float == float(ref.VoI)
         assert r.obstacles == int(s.blocked.sum())

@@ -11,14 +11,14 @@ import pytest
 
 from solver.alt_defender import DraganDefender
 from solver.dragan import ln_at_least
-from solver.pairs import Game
+from solver.pairs import PairEvaluator
 from tests.experiments._graphs import literal_belief, random_instance
 
 
 @pytest.mark.parametrize("seed", range(6))
 def test_belief_matches_literal_eq17_along_random_walks(seed: int) -> None:
     inst = random_instance(seed)
-    game = Game.of(inst)
+    game = PairEvaluator.of(inst)
     net = inst.network
     rng = random.Random(seed)
     walk = [inst.start]
@@ -34,7 +34,7 @@ def test_belief_matches_literal_eq17_along_random_walks(seed: int) -> None:
 @pytest.mark.parametrize("seed", range(6))
 def test_sigma_prime_is_greedy_on_the_literal_belief(seed: int) -> None:
     inst = random_instance(seed)
-    game = Game.of(inst)
+    game = PairEvaluator.of(inst)
     net = inst.network
     alt = DraganDefender(game.observer)
     for v in inst.graph.nodes:

@@ -14,7 +14,7 @@ from scipy import ndimage
 
 from solver import Instance, solve
 from solver.experiments.compare import paper10_instance, paper10_path, run_compare
-from solver.pairs import PAIRS, Game
+from solver.pairs import PAIRS, PairEvaluator
 from tests.experiments._graphs import random_instance
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -41,7 +41,7 @@ def _sigma_star_by_hand(inst: Instance, path: list[object]) -> list[Fraction]:
 @pytest.mark.parametrize("seed", range(8))
 def test_pairs_match_a_hand_evaluation(seed: int) -> None:
     inst = random_instance(seed)
-    game = Game.of(inst)
+    game = PairEvaluator.of(inst)
     net = inst.network
     d1 = nx.shortest_path_length(inst.graph, inst.start, inst.primary, weight="weight")
     d2 = nx.shortest_path_length(inst.graph, inst.start, inst.secondary, weight="weight")
@@ -52,11 +52,11 @@ def test_pairs_match_a_hand_evaluation(seed: int) -> None:
         for theta, mix in ((1, att.primary), (2, att.secondary)):
             total = Fraction(0)
             for mp in mix:
-                path = [net.labels[v] for v in mp.path]
+                path = [net.labels[v] for v in mp.walk]
                 if defender == "sigma*":
                     sig = _sigma_star_by_hand(inst, path)
                 else:
-                    sig = [Fraction(int(game.observer.favours_g1(v))) for v in mp.path[1:]]
+                    sig = [Fraction(int(game.observer.favours_g1(v))) for v in mp.walk[1:]]
                 total += mp.probability * _cost_by_hand(inst, path, theta, sig)
             u.append(total)
         r = game.pair(defender, attacker)
@@ -71,7 +71,7 @@ def test_equilibrium_pair_and_best_response(seed: int) -> None:
     """(σ*, γ*) reproduces solve(); no baseline Attacker does better against σ*, and the
     primary type pays d(s0, g1) on every path that ends at g1 (Lemma 1)."""
     inst = random_instance(seed)
-    game = Game.of(inst)
+    game = PairEvaluator.of(inst)
     eq = solve(inst)
     r = game.pair("sigma*", "gamma*")
     assert (r.U1, r.U2, r.U, r.VoI) == (eq.U1, eq.U2, eq.U, eq.VoI)
@@ -84,10 +84,10 @@ def test_equilibrium_pair_and_best_response(seed: int) -> None:
 
 def test_obstacle_free_grid_sigma_prime_equals_sigma_star() -> None:
     inst = Instance.from_grid(np.zeros((8, 8), bool), (7, 0), ((0, 7), (0, 0)), ("3/5", "2/5"))
-    game = Game.of(inst)
+    game = PairEvaluator.of(inst)
     att = game.attacker("gamma*")
     for mp in (*att.primary, *att.secondary):
-        assert game.defender("sigma*")(mp.path) == game.defender("sigma'")(mp.path)
+        assert game.defender("sigma*")(mp.walk) == game.defender("sigma'")(mp.walk)
     assert game.pair("sigma'", "gamma*").VoI == game.pair("sigma*", "gamma*").VoI
 
 

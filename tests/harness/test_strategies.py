@@ -15,7 +15,8 @@ from hypothesis.errors import InvalidArgument
 
 from dppverify.instance import instance_from_json
 from dppverify.strategies import WEIGHT_KINDS, grid_worlds, instances, priors, weighted_graphs
-from solver import Instance, solve
+from solver import instance_from_json as solver_instance_from_json
+from solver import solve
 from tests.properties._reference import INF, Game, key, number
 
 _quiet = settings(database=None, derandomize=True)
@@ -122,7 +123,7 @@ def test_instances_are_valid_for_both_packages(doc: dict[str, Any]) -> None:
         assert game.d_to(a, b) != INF
     inst = instance_from_json(text)          # the checker accepts it
     assert inst.n_nodes == len(doc["graph"]["nodes"])
-    eq = solve(Instance.from_json(text))     # the solver accepts and solves it
+    eq = solve(solver_instance_from_json(text))     # the solver accepts and solves it
     assert eq.secondary_path[0] == key(doc["start"])
     floats = any(isinstance(e["weight"], float) for e in doc["graph"]["edges"])
     assert doc.get("numbers", "exact") == ("float" if floats else "exact")
@@ -167,7 +168,7 @@ def test_grid_worlds_respect_their_arguments(data: st.DataObject, lo: int, span:
         assert _reaches(game, game.start, g2, avoid=g1)
     for a, b in ((game.start, g1), (game.start, g2), (g1, g2), (g2, g1)):
         assert game.d_to(a, b) != INF
-    solve(Instance.from_json(json.dumps(doc)))
+    solve(solver_instance_from_json(json.dumps(doc)))
 
 
 def test_grid_worlds_bound_the_cell_count() -> None:
@@ -180,7 +181,7 @@ def test_grid_worlds_with_weights() -> None:
     doc = find(grid_worlds(weights="fractions"),
                lambda d: any(isinstance(e["weight"], str) for e in d["graph"]["edges"]),
                settings=_quiet)
-    assert Instance.from_json(doc).network.numbers.exact
+    assert solver_instance_from_json(doc).network.numbers.exact
 
 
 def test_grid_worlds_shrink_to_the_smallest_grid() -> None:

@@ -13,7 +13,7 @@ from collections.abc import Callable, Hashable, Sequence
 from fractions import Fraction
 from typing import Any
 
-from solver import Equilibrium, Instance, solve
+from solver import Equilibrium, instance_from_json, solve
 from tests.properties._reference import INF, Game
 
 Doc = dict[str, Any]
@@ -25,7 +25,7 @@ def _json(v: Hashable) -> Any:
 
 
 def _base(doc: Doc) -> tuple[Equilibrium, Game]:
-    return solve(Instance.from_json(doc)), Game.from_doc(doc)
+    return solve(instance_from_json(doc)), Game.from_doc(doc)
 
 
 def _psi(game: Game, u: Hashable, *, avoid_first: Hashable | None = None) -> Path:

@@ -16,7 +16,8 @@ from hypothesis import strategies as st
 from dppverify import Certificate, certify, game_value, instance_from_json
 from dppverify.exact import FLOAT_TOLERANCE, parse_json
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
-from solver import Instance, solve
+from solver import equilibrium_to_json, instance_to_json, solve
+from solver import instance_from_json as solver_instance_from_json
 from tests.properties._reference import Game, key, to_float_doc
 
 Doc = dict[str, Any]
@@ -32,7 +33,7 @@ exact_instances = st.one_of(
 
 def _profile(doc: Doc) -> Doc:
     """The solver's profile as the checker reads it: through JSON text."""
-    text = json.dumps(solve(Instance.from_json(doc)).to_json())
+    text = json.dumps(equilibrium_to_json(solve(solver_instance_from_json(doc))))
     return parse_json(text)  # type: ignore[no-any-return]
 
 
@@ -53,14 +54,14 @@ def test_everything_solve_outputs_is_certified_and_its_value_is_V_H(doc: Doc) ->
 
 @given(exact_instances)
 def test_exact_and_float_modes_agree(doc: Doc) -> None:
-    exact = solve(Instance.from_json(doc))
+    exact = solve(solver_instance_from_json(doc))
     fdoc = to_float_doc(doc)
-    approx = solve(Instance.from_json(fdoc))
+    approx = solve(solver_instance_from_json(fdoc))
     assert not approx.numbers.exact and exact.numbers.exact
     for name in ("U1", "U2", "U", "U_bar", "VoI"):
         a, b = float(getattr(exact, name)), float(getattr(approx, name))
         assert abs(a - b) <= 1e-9 * max(1.0, abs(a)), name
-    cert = certify(fdoc, parse_json(json.dumps(approx.to_json())), exact=False, trials=1)
+    cert = certify(fdoc, parse_json(json.dumps(equilibrium_to_json(approx))), exact=False, trials=1)
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]
     assert not cert.exact and cert.tolerance == FLOAT_TOLERANCE
 
@@ -68,17 +69,18 @@ def test_exact_and_float_modes_agree(doc: Doc) -> None:
 @given(exact_instances)
 def test_json_round_trips_are_lossless(doc: Doc) -> None:
     # instance: document -> solver Instance -> document -> Instance is a fixed point
-    inst = Instance.from_json(json.dumps(doc))
-    again = Instance.from_json(json.dumps(inst.to_json()))
-    assert again.to_json() == inst.to_json()
-    assert {key(n["id"]) for n in inst.to_json()["graph"]["nodes"]} == {
+    inst = solver_instance_from_json(json.dumps(doc))
+    again = solver_instance_from_json(json.dumps(instance_to_json(inst)))
+    assert instance_to_json(again) == instance_to_json(inst)
+    assert {key(n["id"]) for n in instance_to_json(inst)["graph"]["nodes"]} == {
         key(n["id"]) for n in doc["graph"]["nodes"]}
-    assert instance_from_json(json.dumps(inst.to_json())).n_nodes == len(doc["graph"]["nodes"])
+    n_nodes = instance_from_json(json.dumps(instance_to_json(inst))).n_nodes
+    assert n_nodes == len(doc["graph"]["nodes"])
     # profile: text -> dict -> text is the identity; the checker reads the same numbers
-    profile = solve(inst).to_json()
+    profile = equilibrium_to_json(solve(inst))
     text = json.dumps(profile)
     assert json.dumps(json.loads(text)) == text
-    assert solve(again).to_json() == profile
+    assert equilibrium_to_json(solve(again)) == profile
     # certificate: to_json -> text -> from_json -> to_json is the identity
     cert = certify(doc, parse_json(text), trials=1)
     cert_text = json.dumps(cert.to_json())

@@ -12,7 +12,7 @@ from typing import Any
 
 import pytest
 
-from solver import Instance, solve
+from solver import instance_from_json, solve
 from solver.distances import distances_from
 from tests.solver._cases import load_cases
 
@@ -21,14 +21,14 @@ CASES = load_cases()
 
 @pytest.mark.parametrize("case", CASES, ids=[f"{i}-{c['name']}" for i, c in enumerate(CASES)])
 def test_value_voi_and_primary_cost_match(case: dict[str, Any]) -> None:
-    inst = Instance.from_json(case["instance"])
+    inst = instance_from_json(case["instance"])
     eq = solve(inst)
     expected = case["expected"]
     assert eq.U == Fraction(expected["value"])
     assert eq.VoI == Fraction(expected["voi"])
     d1 = Fraction(expected["d1"])
     # Lemma 1's equality: every primary path costs exactly d(s0, g1)
-    primary_costs = {t.cost for t in eq.trajectories if t.type == "primary"}
+    primary_costs = {t.cost for t in eq.trajectories if t.theta == 1}
     assert primary_costs == {eq.U1}
     if inst.b1 != inst.b2:
         assert eq.U1 == d1
@@ -44,6 +44,6 @@ def test_value_voi_and_primary_cost_match(case: dict[str, Any]) -> None:
 def test_value_does_not_depend_on_which_goal_is_primary_at_one_half(case: dict[str, Any]) -> None:
     doc = dict(case["instance"])
     swapped = dict(doc, goals=doc["goals"][::-1])
-    a, b = solve(Instance.from_json(doc)), solve(Instance.from_json(swapped))
+    a, b = solve(instance_from_json(doc)), solve(instance_from_json(swapped))
     assert a.instance.primary != b.instance.primary
     assert a.U == b.U == Fraction(case["expected"]["value"])

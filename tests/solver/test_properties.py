@@ -23,7 +23,7 @@ import networkx as nx
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from solver import Equilibrium, Instance, solve
+from solver import Equilibrium, Instance, equilibrium_to_json, solve
 
 PRIORS = [Fraction(1, 2), Fraction(3, 5), Fraction(2, 3), Fraction(7, 10), Fraction(9, 10)]
 
@@ -119,7 +119,7 @@ Mixture = list[tuple[tuple[Hashable, ...], Fraction]]
 
 def _mixtures(eq: Equilibrium) -> tuple[Mixture, Mixture]:
     """Both types' mixed strategies as the solver writes them in its profile document."""
-    profile = eq.to_json()
+    profile = equilibrium_to_json(eq)
 
     def mixture(theta: str) -> Mixture:
         return [(tuple(e["path"]), Fraction(e["probability"]))

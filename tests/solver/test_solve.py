@@ -8,7 +8,7 @@ from typing import Any
 import networkx as nx
 import pytest
 
-from solver import Instance, InvalidInstanceError, solve
+from solver import Instance, InvalidInstanceError, instance_from_json, solve
 from solver.phases import Phases
 from tests.solver._cases import load_cases
 
@@ -18,7 +18,7 @@ for _case in load_cases():  # the first case of each edge-case name
 
 
 def _solve_named(name: str) -> Any:
-    return solve(Instance.from_json(NAMED[name]["instance"]))
+    return solve(instance_from_json(NAMED[name]["instance"]))
 
 
 def test_triangle_by_hand(triangle: Instance) -> None:

@@ -1,0 +1,54 @@
+"""One path of a type's mixed strategy, kept both as node indices and as node ids.
+
+Naming, the same across the solver: a ``walk`` is a sequence of node *indices* of the
+:class:`~solver.network.Network` (what the algorithms work on), ``nodes`` the same sequence
+as node *ids* (what users and the JSON formats see).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+
+from solver.network import Network
+
+__all__ = ["StrategyPath"]
+
+
+@dataclass(frozen=True)
+class StrategyPath:
+    """A path of a type's mixed strategy (Γ_mix), its probability and its label.
+
+    Attributes
+    ----------
+    walk : tuple of int
+        Node indices ``s_0 .. s_T``.
+    nodes : tuple
+        The same path as node ids.
+    probability : Fraction
+        Probability that the type takes this path.
+    label : str
+        Its name (``xi2``, ``xi1_I``, ``xi1_II``, ``xi1``, ``xi1_am``, ...).
+
+    Examples
+    --------
+    >>> import networkx as nx
+    >>> net = Network.from_networkx(nx.Graph([("s", "a"), ("a", "g")]))
+    >>> p = StrategyPath.along(net, [0, 1, 2], Fraction(1), "xi2")
+    >>> p.walk, p.nodes
+    ((0, 1, 2), ('s', 'a', 'g'))
+    """
+
+    walk: tuple[int, ...]
+    nodes: tuple[Hashable, ...]
+    probability: Fraction
+    label: str
+
+    @classmethod
+    def along(cls, net: Network, walk: Sequence[int], probability: Fraction,
+              label: str) -> StrategyPath:
+        """The path of ``walk`` (node indices of ``net``), its node ids looked up."""
+        labels = net.labels
+        return cls(tuple(int(i) for i in walk), tuple(labels[int(i)] for i in walk),
+                   probability, label)
