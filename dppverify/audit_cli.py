@@ -1,13 +1,12 @@
 """``dpp audit``: audit any solver on random instances (the click command).
 
 :data:`audit_command` is registered in ``dppverify.cli.COMMANDS`` (the ``dpp`` group).
-Exit codes: 0 every example was certified; 1 a failing example was found (shrunk, written to
-``--output-dir``); 2 bad input (one line on stderr).
+Exit codes: 0 every example was certified; 1 a failing example was found (written to
+``--output-dir`` at once, then shrunk within a budget); 2 bad input (one line on stderr).
 """
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 
@@ -15,79 +14,61 @@ import click
 
 from dppverify.audit import (
     AUDIT_MAX_PREFIXES,
-    AuditReport,
-    Solver,
-    command_solver,
-    load_solver,
+    DEFAULT_SHRINK_CALLS,
+    DEFAULT_SHRINK_SECONDS,
+    DEFAULT_TIMEOUT,
+    CommandRunner,
+    PythonRunner,
+    SolverRunner,
+    format_report,
     run_audit,
 )
 from dppverify.cli_conventions import output_dir_option, progress_option, status, want_progress
-from dppverify.errors import CheckerError
+from dppverify.errors import AuditError, CheckerError
+from dppverify.limits import MAX_AUDIT_EXAMPLES
 
 __all__ = ["audit_command", "format_report"]
 
 
-def format_report(report: AuditReport) -> str:
-    """What ``dpp audit`` prints for a report.
-
-    Parameters
-    ----------
-    report : AuditReport
-        The result of :func:`~dppverify.audit.run_audit`.
-
-    Returns
-    -------
-    str
-        The summary line; for a failure also the failing check and the minimal instance
-        (one line of JSON). The command prints the files written on stderr.
-
-    Examples
-    --------
-    >>> from hypothesis import strategies as st
-    >>> from dppverify.examples import triangle_document
-    >>> report = run_audit(lambda doc: 1 / 0, examples=5, shrink=False,
-    ...                    strategy=st.just(triangle_document()))
-    >>> print(format_report(report))  # doctest: +ELLIPSIS
-    audit FAIL after 1 examples (seed 0; ...): the solver raised ZeroDivisionError: division by zero
-    failing check: solver.error
-    minimal failing instance: {"graph": {"nodes": [{"id": "s"}, ...], "prior": ["7/10", "3/10"]}
-    """
-    lines = [report.summary()]
-    fail = report.failure
-    if fail is not None:
-        lines.append(f"failing check: {fail.check}")
-        lines.append("minimal failing instance: " + json.dumps(fail.instance))
-    return "\n".join(lines)
-
-
 @click.command("audit")
 @click.option("--solver", "solver_spec", metavar="MODULE:FUNCTION",
-              help="A Python callable mapping an instance JSON dict to a profile JSON dict.")
+              help="A Python callable mapping an instance JSON dict to a profile JSON dict "
+                   "(imported and run in a worker process).")
 @click.option("--solver-cmd", "solver_cmd", metavar="CMD",
               help="A command line run per example, e.g. 'prog {instance} {profile}': it reads "
                    "the instance file and writes the profile file.")
-@click.option("--examples", type=click.IntRange(min=1), default=100, show_default=True,
-              help="Example budget.")
-@click.option("--seed", type=int, default=0, show_default=True,
+@click.option("--examples", type=click.IntRange(min=1, max=MAX_AUDIT_EXAMPLES), default=100,
+              show_default=True, help="Example budget.")
+@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
               help="Seed of the instance generation (same seed, same campaign).")
-@click.option("--max-nodes", type=click.IntRange(min=2), default=8, show_default=True,
+@click.option("--max-nodes", type=click.IntRange(min=2, max=64), default=8, show_default=True,
               help="Largest generated instance, in nodes.")
-@output_dir_option("Directory for the minimal failing instance, profile and certificate "
-                   "(written only on failure).", default="audit-failure")
+@output_dir_option("Directory for the failing instance, profile and certificate: written as "
+                   "soon as a failure is found, improved while shrinking (only on failure).",
+                   default="audit-failure")
 @click.option("--shrink/--no-shrink", default=True, show_default=True,
-              help="Shrink the first failing instance to a minimal one.")
-@click.option("--timeout", type=click.FloatRange(min=0, min_open=True), default=60.0,
-              show_default=True, help="Seconds per run of a --solver-cmd command.")
-@click.option("--max-prefixes", type=click.IntRange(min=1), default=AUDIT_MAX_PREFIXES,
-              show_default=True, help="Skip examples whose walk tree is larger than this.")
+              help="Shrink the first failing instance.")
+@click.option("--shrink-calls", type=click.IntRange(min=0), default=DEFAULT_SHRINK_CALLS,
+              show_default=True, help="Shrinking budget: at most this many solver calls.")
+@click.option("--shrink-seconds", type=click.FloatRange(min=0), default=DEFAULT_SHRINK_SECONDS,
+              show_default=True, help="Shrinking budget: at most this many seconds.")
+@click.option("--timeout", type=click.FloatRange(min=0, min_open=True, max=86400),
+              default=DEFAULT_TIMEOUT, show_default=True,
+              help="Seconds per solver run (--solver and --solver-cmd alike).")
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=10**8),
+              default=AUDIT_MAX_PREFIXES, show_default=True,
+              help="Skip examples whose walk tree is larger than this.")
 @progress_option
 def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int, seed: int,
-                  max_nodes: int, output_dir: str, shrink: bool, timeout: float, max_prefixes: int,
+                  max_nodes: int, output_dir: str, shrink: bool, shrink_calls: int,
+                  shrink_seconds: float, timeout: float, max_prefixes: int,
                   progress: bool | None) -> None:
     """Audit a solver: certify its profiles on random instances; shrink the first failure.
 
-    Exactly one of --solver and --solver-cmd. Exit 0 when every example is certified, 1 when
-    a failing example is found (written to --output-dir), 2 on bad input.
+    Exactly one of --solver and --solver-cmd; either runs isolated (a worker process or a
+    command in its own session) under --timeout, and anything it raises, exits with or
+    prints instead of a profile is its failure. Exit 0 when every example is certified, 1
+    when a failing example is found (written to --output-dir), 2 on bad input.
 
     \b
     Examples:
@@ -95,10 +76,11 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
       dpp audit --solver-cmd 'python examples/solver_cmd.py {instance} {profile}'
     """
     try:
-        solver = _make_solver(solver_spec, solver_cmd, timeout)
-        report = run_audit(solver, examples=examples, seed=seed, max_nodes=max_nodes,
-                           out=output_dir, shrink=shrink, max_prefixes=max_prefixes,
-                           progress=want_progress(progress))
+        with _make_runner(solver_spec, solver_cmd, timeout) as runner:
+            report = run_audit(runner, examples=examples, seed=seed, max_nodes=max_nodes,
+                               out=output_dir, shrink=shrink, max_prefixes=max_prefixes,
+                               shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
+                               progress=want_progress(progress), log=status)
     except CheckerError as exc:
         click.echo(f"error: {exc}", err=True)
         raise click.exceptions.Exit(2) from None
@@ -108,13 +90,12 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
     raise click.exceptions.Exit(0 if report.passed else 1)
 
 
-def _make_solver(spec: str | None, cmd: str | None, timeout: float) -> Solver:
-    from dppverify.audit import AuditError
-
-    if cmd is not None and spec is None:
-        return command_solver(cmd, timeout=timeout)
-    if spec is None or cmd is not None:
+def _make_runner(spec: str | None, cmd: str | None, timeout: float) -> SolverRunner:
+    if (spec is None) == (cmd is None):
         raise AuditError("give exactly one of --solver MODULE:FUNCTION and --solver-cmd CMD")
+    if cmd is not None:
+        return CommandRunner(cmd, timeout=timeout)
+    assert spec is not None
     if os.getcwd() not in sys.path:  # like `python -m`: the user's modules in the cwd
         sys.path.insert(0, os.getcwd())
-    return load_solver(spec)
+    return PythonRunner(spec, timeout=timeout)

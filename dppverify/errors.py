@@ -7,8 +7,8 @@ yields a certificate with failed checks.
 
 from __future__ import annotations
 
-__all__ = ["CertificateError", "CheckerError", "HorizonError", "InvalidInstanceError", "LPError",
-           "ProfileError", "TreeTooLargeError"]
+__all__ = ["AuditError", "CertificateError", "CheckerError", "HorizonError",
+           "InvalidInstanceError", "LPError", "ProfileError", "TreeTooLargeError"]
 
 
 class CheckerError(Exception):
@@ -37,3 +37,7 @@ class HorizonError(CheckerError, ValueError):
 
 class CertificateError(CheckerError, ValueError):
     """A certificate document is malformed."""
+
+
+class AuditError(CheckerError, ValueError):
+    """Bad ``dpp audit`` input: a solver that cannot be imported or run, bad arguments."""

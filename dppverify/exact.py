@@ -20,6 +20,8 @@ from fractions import Fraction
 from numbers import Rational
 from typing import Any
 
+from dppverify.limits import MAX_JSON_DEPTH, check_numeral, check_rational
+
 __all__ = ["FLOAT_TOLERANCE", "INF", "Number", "Tolerance", "format_number", "normalize",
            "parse_json", "parse_number", "to_float"]
 
@@ -86,6 +88,7 @@ def parse_number(value: object, *, where: str, allow_float: bool = False) -> Num
         raise ValueError(f"{where}: expected a number, got {json.dumps(value)}")
     if isinstance(value, Rational):
         exact = normalize(Fraction(int(value.numerator), int(value.denominator)))
+        check_rational(exact, where=where)
         if allow_float and not isinstance(value, int):
             return float(exact)
         return exact
@@ -94,10 +97,13 @@ def parse_number(value: object, *, where: str, allow_float: bool = False) -> Num
             raise ValueError(f"{where}: expected a finite number, got {value!r}")
         return value if allow_float else normalize(Fraction(repr(value)))
     if isinstance(value, str):
+        check_numeral(value, where=where)
         try:
-            return normalize(Fraction(value.strip()))
+            exact = normalize(Fraction(value.strip()))
         except (ValueError, ZeroDivisionError):
             raise ValueError(f"{where}: {value!r} is not a number") from None
+        check_rational(exact, where=where)
+        return exact
     raise ValueError(f"{where}: expected a number, got {type(value).__name__}")
 
 
@@ -131,17 +137,50 @@ def _reject_constant(name: str) -> Any:
     raise ValueError(f"non-finite number {name} is not allowed")
 
 
+def _parse_float(text: str) -> Fraction:
+    check_numeral(text, where="JSON number")
+    return Fraction(text)
+
+
+def _parse_int(text: str) -> int:
+    check_numeral(text, where="JSON number")
+    return int(text)
+
+
 def parse_json(text: str | bytes) -> Any:
     """Parse JSON text with decimal literals as exact ``Fraction`` (``NaN``/``Infinity`` refused).
 
-    Raises ``ValueError`` (``json.JSONDecodeError`` for syntax errors).
+    Numerals beyond the limits of :mod:`dppverify.limits` (length, exponent) and documents
+    nested deeper than ``MAX_JSON_DEPTH`` are refused before they can hang the parser.
+
+    Raises ``ValueError`` (``json.JSONDecodeError`` for syntax errors; ``UnicodeDecodeError``
+    for bytes that are not UTF-8).
 
     Examples
     --------
     >>> parse_json('{"p": 0.6, "q": 2}')
     {'p': Fraction(3, 5), 'q': 2}
+    >>> parse_json("[" * 100 + "]" * 100)
+    Traceback (most recent call last):
+    ValueError: JSON nested deeper than 64 levels
     """
-    return json.loads(text, parse_float=Fraction, parse_constant=_reject_constant)
+    try:
+        doc = json.loads(text, parse_float=_parse_float, parse_int=_parse_int,
+                         parse_constant=_reject_constant)
+    except RecursionError:
+        raise ValueError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels") from None
+    _check_depth(doc)
+    return doc
+
+
+def _check_depth(doc: Any) -> None:
+    stack = [(doc, 1)]
+    while stack:
+        x, depth = stack.pop()
+        if isinstance(x, dict | list):
+            if depth > MAX_JSON_DEPTH:
+                raise ValueError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
+            stack.extend((y, depth + 1) for y in (x.values() if isinstance(x, dict) else x))
 
 
 @dataclass(frozen=True)

@@ -37,7 +37,7 @@ def test_exit_0_when_every_example_is_certified(tmp_path: Path) -> None:
 def test_exit_1_writes_the_minimal_failure(tmp_path: Path) -> None:
     out = tmp_path / "failure"
     result = run("--solver", "tests.mutants.solvers:mutant_drop_phase_ii", "--examples", "300",
-                 "--max-nodes", "6", "--output-dir", str(out))
+                 "--max-nodes", "6", "--shrink-calls", "150", "--output-dir", str(out))
     assert result.exit_code == 1, result.output
     assert "audit FAIL after" in result.output
     assert "failing check: pbne." in result.output

@@ -1,0 +1,109 @@
+"""One audited example: run the solver on an instance and certify its answer.
+
+Examples
+--------
+>>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}], "edges": []}, "start": 0,
+...        "goals": [0, 1], "prior": ["1/2", "1/2"]}
+>>> examine(lambda d: 1 / 0, doc).message
+'the solver raised ZeroDivisionError: division by zero'
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from dppverify.audit.runner import Answer, SolverRunner, call_in_process, one_line
+from dppverify.certificate import Certificate
+from dppverify.certify import certify
+from dppverify.errors import CheckerError, ProfileError, TreeTooLargeError
+from dppverify.exact import parse_json
+
+__all__ = ["AUDIT_MAX_PREFIXES", "AUDIT_TRIALS", "Outcome", "examine"]
+
+Doc = dict[str, Any]
+
+AUDIT_MAX_PREFIXES = 200_000
+"""Default size guard of the walk tree per example; larger examples are skipped."""
+
+AUDIT_TRIALS = 2
+"""Random attackers per L3/L4 lemma check (the lemmas concern the instance, not the solver)."""
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """The audit of one instance.
+
+    Attributes
+    ----------
+    instance : dict
+        The instance document given to the solver.
+    profile : object
+        What the solver returned, after a JSON round trip (None if it failed to answer with
+        a JSON object).
+    certificate : Certificate or None
+        The checker's certificate (None when the profile could not be certified at all).
+    check : str
+        The first failing check id, or ``solver.error`` / ``solver.timeout`` /
+        ``solver.output`` / ``profile.format``; empty when the example passed.
+    message : str
+        One line for humans.
+    """
+
+    instance: Doc
+    profile: Any
+    certificate: Certificate | None
+    check: str = ""
+    message: str = ""
+
+    @property
+    def passed(self) -> bool:
+        """True when the profile was certified (verdict ``pass``)."""
+        return self.check == ""
+
+
+def examine(solver: SolverRunner | Callable[[Doc], Any], doc: Doc, *,
+            max_prefixes: int = AUDIT_MAX_PREFIXES, trials: int = AUDIT_TRIALS,
+            seed: int = 0) -> Outcome:
+    """Solve ``doc`` with ``solver`` and certify the answer.
+
+    ``solver`` is a :class:`~dppverify.audit.runner.SolverRunner` (isolated, as
+    :func:`~dppverify.audit.run_audit` uses) or a plain callable, called in this process.
+
+    Raises :class:`~dppverify.errors.TreeTooLargeError` when the walk tree exceeds
+    ``max_prefixes`` (the caller skips the example); everything the solver does wrong is an
+    :class:`Outcome` with ``passed`` False.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle_document
+    >>> examine(lambda d: {"format": "dpp-profile/2"}, triangle_document()).check
+    'profile.format'
+    """
+    answer: Answer = solver(doc) if isinstance(solver, SolverRunner) else call_in_process(
+        solver, doc)
+    if answer.text is None:
+        return Outcome(doc, None, None, answer.check, answer.message)
+    try:
+        profile = parse_json(answer.text)
+    except (ValueError, RecursionError) as exc:
+        return Outcome(doc, None, None, "solver.output",
+                       f"the solver's profile is not JSON: {one_line(exc)}")
+    if not isinstance(profile, dict):
+        return Outcome(doc, None, None, "solver.output",
+                       f"the solver's profile is {type(profile).__name__}, not a JSON object")
+    try:
+        cert = certify(doc, profile, max_prefixes=max_prefixes, trials=trials, seed=seed)
+    except TreeTooLargeError:
+        raise
+    except ProfileError as exc:
+        return Outcome(doc, profile, None, "profile.format", one_line(exc))
+    except CheckerError as exc:  # e.g. a horizon or instance problem caused by the profile
+        return Outcome(doc, profile, None, "profile.format", one_line(exc))
+    if cert.passed:
+        return Outcome(doc, profile, cert)
+    bad = [c for c in cert.checks if c.status != "pass"]
+    first = next((c for c in bad if c.status == "fail"), bad[0])
+    return Outcome(doc, profile, cert, first.id,
+                   f"verdict {cert.verdict}: {first.status} {first.id}: {first.message}")

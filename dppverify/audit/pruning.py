@@ -1,0 +1,147 @@
+"""Shrinking a failure under a budget: the budget itself and the greedy pruning pass.
+
+Hypothesis shrinks the *draws*; :func:`prune_failure` then deletes nodes and edges the
+failure does not need. Both spend solver calls, and a slow solver makes every call count,
+so both draw on one :class:`ShrinkBudget` (solver calls and seconds).
+"""
+
+from __future__ import annotations
+
+import json
+import time
+from collections.abc import Callable
+from typing import Any
+
+from dppverify.audit.examine import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, Outcome, examine
+from dppverify.audit.runner import SolverRunner
+from dppverify.errors import AuditError, CheckerError, TreeTooLargeError
+from dppverify.instance import instance_from_json
+
+__all__ = ["DEFAULT_SHRINK_CALLS", "DEFAULT_SHRINK_SECONDS", "ShrinkBudget", "prune_failure"]
+
+Doc = dict[str, Any]
+
+DEFAULT_SHRINK_CALLS = 500
+"""Default budget of solver calls spent shrinking a failure."""
+
+DEFAULT_SHRINK_SECONDS = 120.0
+"""Default budget of seconds spent shrinking a failure."""
+
+
+class ShrinkBudget:
+    """Solver calls and seconds left for shrinking (the clock starts at :meth:`start`).
+
+    Examples
+    --------
+    >>> b = ShrinkBudget(calls=2, seconds=60).start()
+    >>> b.spend(), b.spend(), b.spend()
+    (True, True, False)
+    >>> b.used, b.exhausted
+    (2, True)
+    """
+
+    def __init__(self, *, calls: int = DEFAULT_SHRINK_CALLS,
+                 seconds: float = DEFAULT_SHRINK_SECONDS) -> None:
+        if isinstance(calls, bool) or not isinstance(calls, int) or calls < 0:
+            raise AuditError(f"shrink calls={calls!r} must be a non-negative integer")
+        if not seconds >= 0:
+            raise AuditError(f"shrink seconds={seconds!r} must be non-negative")
+        self.calls, self.seconds = calls, float(seconds)
+        self.used = 0
+        self.started = 0.0
+        self.deadline = float("inf")
+        self.exhausted = False
+
+    def start(self) -> ShrinkBudget:
+        """Start the clock; returns ``self``."""
+        self.started = time.monotonic()
+        self.deadline = self.started + self.seconds
+        return self
+
+    def spend(self, share: float = 1.0) -> bool:
+        """Take one solver call from the first ``share`` of the budget; False when none is
+        left (with ``share`` 1, the budget is then exhausted)."""
+        calls, deadline = self.calls * share, self.started + self.seconds * share
+        if self.used >= calls or time.monotonic() > min(deadline, self.deadline):
+            self.exhausted = self.exhausted or share >= 1.0
+            return False
+        self.used += 1
+        return True
+
+    def describe(self) -> str:
+        """The budget in words, e.g. ``500 solver calls or 120 s``."""
+        return f"{self.calls} solver calls or {self.seconds:g} s"
+
+
+def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome, *,
+                  max_prefixes: int = AUDIT_MAX_PREFIXES, trials: int = AUDIT_TRIALS,
+                  seed: int = 0, budget: ShrinkBudget | None = None,
+                  on_improve: Callable[[Outcome], None] | None = None) -> tuple[Outcome, int]:
+    """Delete nodes and edges from a failing instance while it still fails the same check.
+
+    Hypothesis shrinks the *draws*, which often leaves nodes the failure does not need (the
+    node count is drawn first). This greedy pass removes, one at a time, every node other
+    than the start and the goals (with its edges), then every edge, keeping a removal when
+    the instance stays valid and the solver's answer still fails the same check; it repeats
+    until nothing can be removed or the ``budget`` is spent. ``on_improve`` is called with
+    every smaller failure. Returns the pruned outcome and the solver calls spent.
+
+    Examples
+    --------
+    >>> def stay_put(doc):           # a wrong solver: the Attacker never moves
+    ...     s = doc["start"]
+    ...     return {"format": "dpp-profile/1",
+    ...             "attacker": {"primary": [{"path": [s], "probability": "1"}],
+    ...                          "secondary": [{"path": [s], "probability": "1"}]}}
+    >>> doc = {"graph": {"nodes": [{"id": i} for i in range(4)],
+    ...        "edges": [{"source": 0, "target": i} for i in (1, 2, 3)]},
+    ...        "start": 0, "goals": [1, 2], "prior": ["1/2", "1/2"]}
+    >>> pruned, calls = prune_failure(stay_put, examine(stay_put, doc))
+    >>> [n["id"] for n in pruned.instance["graph"]["nodes"]], pruned.check
+    ([0, 1, 2], 'profile.wellformed')
+    """
+    budget = budget if budget is not None else ShrinkBudget().start()
+    calls = 0
+    best = outcome
+    keep = {json.dumps(best.instance["start"]), *(json.dumps(g) for g in best.instance["goals"])}
+
+    def attempt(doc: Doc) -> Outcome | None:
+        nonlocal calls
+        try:
+            instance_from_json(doc)
+        except CheckerError:  # e.g. a goal became unreachable
+            return None
+        if not budget.spend():
+            return None
+        calls += 1
+        try:
+            result = examine(solver, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
+        except TreeTooLargeError:
+            return None
+        return result if result.check == best.check else None
+
+    changed = True
+    while changed and not budget.exhausted:
+        changed = False
+        graph = best.instance["graph"]
+        candidates = []
+        for node in graph["nodes"]:
+            key = json.dumps(node["id"])
+            if key in keep:
+                continue
+            edges = [e for e in graph["edges"]
+                     if key not in (json.dumps(e["source"]), json.dumps(e["target"]))]
+            nodes = [n for n in graph["nodes"] if n is not node]
+            candidates.append({**graph, "nodes": nodes, "edges": edges})
+        for edge in graph["edges"]:
+            candidates.append({**graph, "edges": [e for e in graph["edges"] if e is not edge]})
+        for smaller_graph in candidates:
+            smaller = attempt({**best.instance, "graph": smaller_graph})
+            if smaller is not None:
+                best, changed = smaller, True
+                if on_improve is not None:
+                    on_improve(best)
+                break
+            if budget.exhausted:
+                break
+    return best, calls
