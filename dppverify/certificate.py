@@ -46,6 +46,11 @@ class CheckRecord:
         Exact numbers (``int``/``Fraction``), LP values (``float``) or None.
     proof : str or None
         The proof file id in ``proofs/`` that the check tests (TEL, L1, …).
+    route : str or None
+        ``"tree"`` or ``"structured"``: the route that computed the record (None in
+        certificates written before routes existed).
+    relies_on : str or None
+        What the record's computation trusts, e.g. ``"relies on proofs/WALKBR.md"``.
     """
 
     id: str
@@ -53,6 +58,8 @@ class CheckRecord:
     message: str
     numbers: Mapping[str, NumberEntry] = field(default_factory=dict)
     proof: str | None = None
+    route: str | None = None
+    relies_on: str | None = None
 
     def __post_init__(self) -> None:
         if self.status not in STATUSES:
@@ -70,6 +77,10 @@ class CheckRecord:
                                "numbers": {k: format_number(v) for k, v in self.numbers.items()}}
         if self.proof is not None:
             doc["proof"] = self.proof
+        if self.route is not None:
+            doc["route"] = self.route
+        if self.relies_on is not None:
+            doc["relies_on"] = self.relies_on
         return doc
 
     @classmethod
@@ -82,10 +93,12 @@ class CheckRecord:
             status = doc["status"]
             if status not in STATUSES:
                 raise CertificateError(f"check {doc.get('id')!r}: unknown status {status!r}")
-            proof = doc.get("proof")
+            proof, route, relies = doc.get("proof"), doc.get("route"), doc.get("relies_on")
             return cls(id=str(doc["id"]), status=cast(Status, status),
                        message=str(doc.get("message", "")), numbers=numbers,
-                       proof=None if proof is None else str(proof))
+                       proof=None if proof is None else str(proof),
+                       route=None if route is None else str(route),
+                       relies_on=None if relies is None else str(relies))
         except KeyError as exc:
             raise CertificateError(f"check record is missing {exc}") from None
         except (TypeError, ValueError, ZeroDivisionError) as exc:
@@ -133,8 +146,9 @@ class Certificate:
     ----------
     checks : tuple of CheckRecord
         In the documented order (``dppverify/checks.md``).
-    horizon : int
-        ``H`` of the truncated game the checks ran on.
+    horizon : int or None
+        ``H`` of the truncated game the checks ran on; None for the untruncated game
+        (structured route; written ``"inf"`` in JSON).
     exact : bool
         True when every exact number is an exact rational; False in float mode.
     tolerance : float or None
@@ -147,6 +161,10 @@ class Certificate:
         Seed of the random attackers of the L3/L4 checks.
     info : Mapping
         Free-form context (instance size, labelling, …).
+    route : str
+        ``"tree"``, ``"structured"`` or ``"both"``: the route(s) the checks ran on.
+    not_run : Mapping
+        Check ids the route does not run, each with the reason (structured route).
 
     Examples
     --------
@@ -160,7 +178,7 @@ class Certificate:
     """
 
     checks: tuple[CheckRecord, ...]
-    horizon: int
+    horizon: int | None
     exact: bool
     tolerance: float | None = None
     lp_solver: str = "CLARABEL"
@@ -169,10 +187,13 @@ class Certificate:
     leaves: int = 0
     seed: int | None = None
     info: Mapping[str, Any] = field(default_factory=dict)
+    route: str = "tree"
+    not_run: Mapping[str, str] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "checks", tuple(self.checks))
         object.__setattr__(self, "info", MappingProxyType(dict(self.info)))
+        object.__setattr__(self, "not_run", MappingProxyType(dict(self.not_run)))
 
     def __eq__(self, other: object) -> bool:
         if not isinstance(other, Certificate):
@@ -207,7 +228,8 @@ class Certificate:
         return {
             "format": CERTIFICATE_FORMAT,
             "verdict": self.verdict,
-            "horizon": self.horizon,
+            "horizon": "inf" if self.horizon is None else self.horizon,
+            "route": self.route,
             "exact": self.exact,
             "tolerance": self.tolerance,
             "lp": {"solver": self.lp_solver, "tolerance": self.lp_tolerance},
@@ -215,6 +237,7 @@ class Certificate:
             "seed": self.seed,
             "info": json.loads(json.dumps(dict(self.info), default=str)),
             "checks": [c.to_json() for c in self.checks],
+            "not_run": dict(self.not_run),
         }
 
     @classmethod
@@ -238,13 +261,16 @@ class Certificate:
             lp = doc.get("lp") or {}
             tree = doc.get("tree") or {}
             tol = doc.get("tolerance")
-            cert = cls(checks=checks, horizon=int(doc["horizon"]), exact=bool(doc["exact"]),
+            horizon = None if doc["horizon"] == "inf" else int(doc["horizon"])
+            cert = cls(checks=checks, horizon=horizon, exact=bool(doc["exact"]),
                        tolerance=None if tol is None else float(tol),
                        lp_solver=str(lp.get("solver", "CLARABEL")),
                        lp_tolerance=float(lp.get("tolerance", 1e-7)),
                        prefixes=int(tree.get("prefixes", 0)), leaves=int(tree.get("leaves", 0)),
                        seed=None if doc.get("seed") is None else int(doc["seed"]),
-                       info=dict(doc.get("info") or {}))
+                       info=dict(doc.get("info") or {}),
+                       route=str(doc.get("route", "tree")),
+                       not_run={str(k): str(v) for k, v in dict(doc.get("not_run") or {}).items()})
         except KeyError as exc:
             raise CertificateError(f"certificate is missing {exc}") from None
         except (TypeError, ValueError, AttributeError) as exc:

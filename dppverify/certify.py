@@ -13,16 +13,17 @@ tolerance :data:`~dppverify.exact.FLOAT_TOLERANCE` and says so in the certificat
 
 from __future__ import annotations
 
+import dataclasses
 import sys
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from tqdm import tqdm
 
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.context import Context, make_context
-from dppverify.errors import HorizonError, InvalidInstanceError, LPError
+from dppverify.errors import HorizonError, InvalidInstanceError, LPError, TreeTooLargeError
 from dppverify.exact import FLOAT_TOLERANCE, Tolerance
 from dppverify.instance import Instance, instance_from_json, load_instance, node_to_json
 from dppverify.lemmas import (
@@ -45,11 +46,20 @@ from dppverify.pbne import (
     values,
     wellformed,
 )
-from dppverify.profile import Profile, check_format, load_profile_document, profile_from_json
+from dppverify.profile import (
+    Profile,
+    ProgressRule,
+    check_format,
+    load_profile_document,
+    profile_from_json,
+)
+from dppverify.registry import CHECK_IDS, CHECKS, RouteName, not_run, runner, runners
+from dppverify.routes import Route, tree_fits
+from dppverify.structured import structured_checks
 from dppverify.tree import DEFAULT_MAX_PREFIXES, build_tree
 
 __all__ = ["CHECK_IDS", "DEFAULT_TRIALS", "FLOAT_MODE_REFUSED", "certify", "default_horizon",
-           "resolve_instance"]
+           "in_registry_order", "resolve_instance"]
 
 DEFAULT_TRIALS = 5
 """Random non-reacting attackers tried by the L3 and L4 checks."""
@@ -59,15 +69,6 @@ FLOAT_MODE_REFUSED = (
     "certified exactly; certify in float mode with exact=False (CLI: --float), which compares "
     f"with relative tolerance {FLOAT_TOLERANCE:g}")
 
-CHECK_IDS = (
-    "profile.wellformed", "value.U1", "value.U2", "value.U", "value.VoI", "profile.phases",
-    "pbne.attacker_br.primary", "pbne.attacker_br.secondary", "pbne.defender_br",
-    "pbne.sequential_rationality", "pbne.belief_consistency", "game.value",
-    "lemma.TEL.telescoping", "lemma.L1.lower_bound", "lemma.L2.no_revisits",
-    "lemma.XI2.secondary_value", "lemma.L3.greedy", "lemma.L4.monotonicity",
-    "lemma.L5.induced_beliefs",
-)
-"""Every check id, in certificate order (documented in ``dppverify/checks.md``)."""
 
 
 def resolve_instance(instance: Instance | Mapping[str, Any] | str | Path) -> Instance:
@@ -150,9 +151,10 @@ def default_horizon(instance: Instance, profile: Profile) -> int:
 
 def certify(instance: Instance | Mapping[str, Any] | str | Path,
             profile: Mapping[str, Any] | str | Path | bytes, *,
-            horizon: int | None = None, exact: bool = True,
+            horizon: int | Literal["inf"] | None = None, exact: bool = True,
             max_prefixes: int = DEFAULT_MAX_PREFIXES, seed: int = 0,
-            trials: int = DEFAULT_TRIALS, progress: bool = False) -> Certificate:
+            trials: int = DEFAULT_TRIALS, progress: bool = False,
+            route: Route = "auto") -> Certificate:
     """Certify or refute ``profile`` as a weak PBNE of ``instance`` (truncated at ``H``).
 
     Parameters
@@ -161,8 +163,10 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path,
         The game (object, instance document, or path to an instance JSON file).
     profile : Mapping, str, Path or bytes
         A ``dpp-profile/1`` document, a path to one, or its JSON text as bytes.
-    horizon : int, optional
-        ``H``; default the longest path in the profile. Must be at least that.
+    horizon : int, "inf" or None
+        ``H``; default the longest path in the profile (or, when that tree does not fit and
+        the route is ``auto``, the untruncated game). Must be at least the longest path.
+        ``"inf"``: the untruncated game (structured route).
     exact : bool
         Require exact certification (default). With ``exact=False`` float-mode instances
         are accepted and compared within the float tolerance; rational instances are
@@ -173,6 +177,9 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path,
         Seed and number of the random attackers of the L3 / L4 checks.
     progress : bool
         Show tqdm progress bars on stderr.
+    route : {"auto", "tree", "structured", "both"}
+        ``auto``: the walk tree when it fits ``max_prefixes``, else the structured route
+        (docs/checker.md, "Routes"); ``both``: both, a status disagreement is an ``error``.
 
     Returns
     -------
@@ -219,18 +226,26 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path,
     doc = _profile_document(profile)
     prof = profile_from_json(doc, inst, tol)
     longest = default_horizon(inst, prof)
-    if horizon is None:
-        horizon = longest
-    elif horizon < longest:
+    if isinstance(horizon, int) and horizon < longest:
         raise HorizonError(f"the horizon H = {horizon} is shorter than the profile's longest "
                            f"path ({longest} steps)")
-    tree = build_tree(inst, horizon, max_prefixes=max_prefixes, progress=progress)
-    with tqdm(total=len(CHECK_IDS) + 1, desc="certify: strategies on the tree", unit="check",
-              disable=not progress, leave=False, file=sys.stderr) as bar:
-        ctx = make_context(inst, tree, prof, tol, seed=seed, trials=trials)
-        bar.update(1)
-        checks = _run_checks(ctx, bar)
-    roles = ctx.roles
+    chosen, h = _choose_route(inst, prof, horizon, longest, route, max_prefixes)
+    tree_checks: list[CheckRecord] = []
+    prefixes = leaves = 0
+    if chosen in ("tree", "both"):
+        assert h is not None
+        tree = build_tree(inst, h, max_prefixes=max_prefixes, progress=progress)
+        prefixes, leaves = tree.n_prefixes, tree.n_leaves
+        with tqdm(total=len(CHECK_IDS) + 1, desc="certify: strategies on the tree",
+                  unit="check", disable=not progress, leave=False, file=sys.stderr) as bar:
+            ctx = make_context(inst, tree, prof, tol, seed=seed, trials=trials)
+            bar.update(1)
+            tree_checks = _run_checks(ctx, bar)
+    checks = tree_checks
+    if chosen in ("structured", "both"):
+        structured = in_registry_order(structured_checks(inst, prof, tol, h), "structured")
+        checks = structured if chosen == "structured" else _merge(tree_checks, structured)
+    roles = inst.roles(prof.primary_slot)
     defender = doc.get("defender")
     info = {
         "nodes": inst.n_nodes,
@@ -241,54 +256,134 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path,
         "prior": [str(roles.b1), str(roles.b2)],
         "defender_rule": defender.get("rule") if isinstance(defender, Mapping) else None,
     }
-    return Certificate(checks=tuple(checks), horizon=horizon, exact=inst.exact,
+    return Certificate(checks=tuple(checks), horizon=h, exact=inst.exact,
                        tolerance=tol.tolerance, lp_solver=LP_SOLVER, lp_tolerance=LP_TOLERANCE,
-                       prefixes=tree.n_prefixes, leaves=tree.n_leaves, seed=seed, info=info)
+                       prefixes=prefixes, leaves=leaves, seed=seed, info=info, route=chosen,
+                       not_run=not_run("structured") if chosen == "structured" else {})
 
 
-def _guard(check_id: str, fn: Callable[[], list[CheckRecord]]) -> list[CheckRecord]:
-    """Run a check; an LP that does not solve makes it an ``error`` record, not a crash."""
-    try:
-        return fn()
-    except LPError as exc:
-        return [CheckRecord(check_id, "error", f"LP failure: {exc}")]
+def _choose_route(inst: Instance, prof: Profile, horizon: int | Literal["inf"] | None,
+                  longest: int, route: Route, max_prefixes: int
+                  ) -> tuple[Literal["tree", "structured", "both"], int | None]:
+    """The route(s) to run and the horizon (None: the untruncated game)."""
+    table = prof.defender is not None and not isinstance(prof.defender, ProgressRule)
+    if horizon == "inf":
+        if route in ("tree", "both"):
+            raise HorizonError("the tree route needs a finite horizon (--horizon inf is the "
+                               "structured route's)")
+        if table:
+            raise HorizonError(_TABLE_REFUSED.format(why="--horizon inf was asked for"))
+        return "structured", None
+    h = longest if horizon is None else horizon
+    if route == "auto":
+        if tree_fits(inst, h, max_prefixes):
+            return "tree", h
+        if table:
+            raise TreeTooLargeError(_TABLE_REFUSED.format(
+                why=f"the H = {h} walk tree has more than {max_prefixes} prefixes"))
+        return "structured", None if horizon is None else h
+    if route in ("structured", "both") and table:
+        raise TreeTooLargeError(_TABLE_REFUSED.format(why=f"--route {route} was asked for"))
+    return route, h
+
+
+_TABLE_REFUSED = ("a table Defender can only be certified on the walk tree, and {why}; use "
+                  "--route tree with a horizon whose tree fits --max-prefixes")
+
+
+def _merge(tree: list[CheckRecord], structured: list[CheckRecord]) -> list[CheckRecord]:
+    """``both``: each check on both routes must reach the same status (else ``error``)."""
+    other = {r.id: r for r in structured}
+    out = []
+    for r in tree:
+        s = other.get(r.id)
+        if s is None:
+            out.append(r)
+        elif s.status == r.status:
+            out.append(dataclasses.replace(r, route="both",
+                                           relies_on=f"tree: {r.relies_on}; structured: "
+                                                     f"{s.relies_on}"))
+        else:
+            out.append(CheckRecord(r.id, "error", f"the routes disagree: tree {r.status} "
+                                   f"({r.message}); structured {s.status} ({s.message})",
+                                   dict(r.numbers), r.proof, route="both",
+                                   relies_on=f"tree: {r.relies_on}; structured: {s.relies_on}"))
+    return out
+
+
+def _ctx_runner(*ids: str) -> Callable[[Callable[[Context], list[CheckRecord]]],
+                                        Callable[[Context], list[CheckRecord]]]:
+    return runner("tree", *ids)
+
+
+@_ctx_runner("profile.wellformed")
+def _run_wellformed(ctx: Context) -> list[CheckRecord]:
+    return [wellformed(ctx)]
+
+
+@_ctx_runner("value.U1", "value.U2", "value.U", "value.VoI")
+def _run_values(ctx: Context) -> list[CheckRecord]:
+    return values(ctx)
+
+
+def _one(check_id: str, fn: Callable[[Context], CheckRecord]) -> None:
+    runner("tree", check_id)(lambda ctx: [fn(ctx)])
+
+
+_one("profile.phases", phases)
+_one("pbne.attacker_br.primary", lambda ctx: attacker_br(ctx, 1))
+_one("pbne.attacker_br.secondary", lambda ctx: attacker_br(ctx, 2))
+_one("pbne.defender_br", defender_br)
+_one("pbne.sequential_rationality", sequential_rationality)
+_one("pbne.belief_consistency", belief_consistency)
+_one("game.value", value_check)
+_one("lemma.TEL.telescoping", telescoping)
+_one("lemma.L1.lower_bound", l1_lower_bound)
+_one("lemma.L2.no_revisits", l2_no_revisits)
+_one("lemma.XI2.secondary_value", xi2_secondary_value)
+_one("lemma.L3.greedy", l3_greedy)
+_one("lemma.L4.monotonicity", l4_monotonicity)
+_one("lemma.L5.induced_beliefs", l5_induced_beliefs)
 
 
 def _run_checks(ctx: Context, bar: tqdm | None = None) -> list[CheckRecord]:
-    """Every check in :data:`CHECK_IDS` order; ``bar`` names each check as it starts."""
-    def starting(check_id: str) -> None:
+    """Every tree check in registry order; ``bar`` names each check as it starts."""
+    out: list[CheckRecord] = []
+    table = runners("tree")
+    for s in CHECKS:
+        if s.id not in table:
+            continue
+        ids, fn = table[s.id]
         if bar is not None:
-            bar.set_description(f"certify: {check_id}")
+            bar.set_description(f"certify: {', '.join(ids)}")
+        try:
+            records = fn(ctx)
+        except LPError as exc:
+            records = [CheckRecord(i, "error", f"LP failure: {exc}") for i in ids]
+        out += records
+        if bar is not None:
+            bar.update(len(ids))
+    return in_registry_order(out, "tree")
 
-    starting("profile.wellformed, value.*")
-    out = [wellformed(ctx)]
-    value_ids = ("value.U1", "value.U2", "value.U", "value.VoI")
-    try:
-        out += values(ctx)
-    except LPError as exc:  # pragma: no cover - values() solves no LP
-        out += [CheckRecord(i, "error", f"LP failure: {exc}") for i in value_ids]
-    if bar is not None:
-        bar.update(len(out))
-    steps: list[tuple[str, Callable[[], list[CheckRecord]]]] = [
-        ("profile.phases", lambda: [phases(ctx)]),
-        ("pbne.attacker_br.primary", lambda: [attacker_br(ctx, 1)]),
-        ("pbne.attacker_br.secondary", lambda: [attacker_br(ctx, 2)]),
-        ("pbne.defender_br", lambda: [defender_br(ctx)]),
-        ("pbne.sequential_rationality", lambda: [sequential_rationality(ctx)]),
-        ("pbne.belief_consistency", lambda: [belief_consistency(ctx)]),
-        ("game.value", lambda: [value_check(ctx)]),
-        ("lemma.TEL.telescoping", lambda: [telescoping(ctx)]),
-        ("lemma.L1.lower_bound", lambda: [l1_lower_bound(ctx)]),
-        ("lemma.L2.no_revisits", lambda: [l2_no_revisits(ctx)]),
-        ("lemma.XI2.secondary_value", lambda: [xi2_secondary_value(ctx)]),
-        ("lemma.L3.greedy", lambda: [l3_greedy(ctx)]),
-        ("lemma.L4.monotonicity", lambda: [l4_monotonicity(ctx)]),
-        ("lemma.L5.induced_beliefs", lambda: [l5_induced_beliefs(ctx)]),
-    ]
-    for check_id, fn in steps:
-        starting(check_id)
-        out += _guard(check_id, fn)
-        if bar is not None:
-            bar.update(1)
-    assert tuple(c.id for c in out) == CHECK_IDS, [c.id for c in out]
+
+def in_registry_order(records: list[CheckRecord], route: RouteName) -> list[CheckRecord]:
+    """The records in registry order, each tagged with its route and what it relies on; a
+    check of the route without a record becomes an ``error`` record (never a silent gap).
+
+    Examples
+    --------
+    >>> recs = in_registry_order([CheckRecord("value.U", "pass", "")], "tree")
+    >>> len(recs), recs[0].status, recs[3].route, recs[3].relies_on
+    (19, 'error', 'tree', 'the walk tree of H steps')
+    """
+    by_id = {r.id: r for r in records}
+    out = []
+    for s in CHECKS:
+        if route not in s.routes:
+            continue
+        r = by_id.get(s.id)
+        if r is None:
+            r = CheckRecord(s.id, "error", "internal: the check produced no record", {}, s.proof)
+        relies = s.tree if route == "tree" else s.structured
+        out.append(dataclasses.replace(r, route=route, relies_on=r.relies_on or relies))
     return out

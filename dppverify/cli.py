@@ -30,8 +30,8 @@ from dppverify.tree import DEFAULT_MAX_PREFIXES
 from dppverify.value_dp import StructuredValue
 from dppverify.value_lp import GameValue
 
-__all__ = ["COMMANDS", "HORIZON", "ErrorReportingGroup", "HorizonParam", "certify_command",
-           "export_efg_command", "format_table", "value_command"]
+__all__ = ["COMMANDS", "HORIZON", "CertifyHorizonParam", "ErrorReportingGroup", "HorizonParam",
+           "certify_command", "export_efg_command", "format_table", "value_command"]
 
 NUMBERS_WIDTH = 44
 
@@ -108,9 +108,16 @@ def format_table(cert: Certificate) -> str:
     """
     passed = sum(c.passed for c in cert.checks)
     mode = "exact" if cert.exact else f"float mode, relative tolerance {cert.tolerance:g}"
-    head = (f"verdict: {cert.verdict.upper()} ({passed}/{len(cert.checks)} checks passed; "
-            f"H = {cert.horizon}, {cert.prefixes} prefixes, {mode}; LP {cert.lp_solver} "
-            f"agreement within {cert.lp_tolerance:g} relative)")
+    if cert.route == "structured":
+        h = "inf" if cert.horizon is None else str(cert.horizon)
+        skipped = f"; not run: {', '.join(cert.not_run)}" if cert.not_run else ""
+        head = (f"verdict: {cert.verdict.upper()} ({passed}/{len(cert.checks)} checks passed; "
+                f"H = {h}, structured route (no walk tree), {mode}{skipped})")
+    else:
+        both = ", both routes" if cert.route == "both" else ""
+        head = (f"verdict: {cert.verdict.upper()} ({passed}/{len(cert.checks)} checks passed; "
+                f"H = {cert.horizon}, {cert.prefixes} prefixes{both}, {mode}; LP "
+                f"{cert.lp_solver} agreement within {cert.lp_tolerance:g} relative)")
     rows = [("check", "status", "numbers", "message")]
     rows += [(c.id, c.status, _numbers(c), c.message) for c in cert.checks]
     w0 = max(len(r[0]) for r in rows)
@@ -120,11 +127,49 @@ def format_table(cert: Certificate) -> str:
     return "\n".join(lines)
 
 
+class HorizonParam(click.ParamType):
+    """A horizon: a non-negative integer, or ``inf`` for the untruncated game (None)."""
+
+    name = "H|inf"
+    infinite: Any = None
+    """What ``inf`` converts to."""
+
+    def convert(self, value: Any, param: click.Parameter | None,
+                ctx: click.Context | None) -> Any:
+        if value is None or isinstance(value, int):
+            return value
+        text = str(value).strip().lower()
+        if text in ("inf", "infinity"):
+            return self.infinite
+        try:
+            h = int(text)
+        except ValueError:
+            self.fail(f"{value!r} is not a non-negative integer or 'inf'", param, ctx)
+        if h < 0:
+            self.fail(f"{value!r} is negative", param, ctx)
+        return h
+
+
+HORIZON = HorizonParam()
+
+
+class CertifyHorizonParam(HorizonParam):
+    """``certify``'s horizon: ``inf`` is the string ``"inf"`` (None means the default)."""
+
+    infinite = "inf"
+
+
 @click.command("certify")
 @click.argument("instance", type=click.Path(dir_okay=False))
 @click.argument("profile", type=click.Path(dir_okay=False))
-@click.option("-H", "--horizon", type=click.IntRange(min=0),
-              help="Horizon H of the truncated game (default: the longest profile path).")
+@click.option("-H", "--horizon", type=CertifyHorizonParam(),
+              help="Horizon H of the truncated game (default: the longest profile path, or "
+                   "'inf' when that tree does not fit and --route is auto), or 'inf' for the "
+                   "untruncated game (structured route).")
+@click.option("--route", type=click.Choice(ROUTES), default="auto", show_default=True,
+              help="tree: the walk tree; structured: shortest paths and the value DP, no tree "
+                   "(docs/checker.md); auto: the tree when it fits --max-prefixes, else "
+                   "structured; both: run both, a disagreement is an error record.")
 @click.option("--json", "as_json", is_flag=True, help="Print the dpp-certificate/1 JSON.")
 @click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
@@ -136,8 +181,8 @@ def format_table(cert: Certificate) -> str:
 @click.option("--trials", type=click.IntRange(min=0), default=DEFAULT_TRIALS, show_default=True,
               help="Number of random attackers in the L3/L4 checks.")
 @progress_option
-def certify_command(instance: str, profile: str, horizon: int | None, as_json: bool,
-                    max_prefixes: int, float_mode: bool, seed: int, trials: int,
+def certify_command(instance: str, profile: str, horizon: int | str | None, route: Route,
+                    as_json: bool, max_prefixes: int, float_mode: bool, seed: int, trials: int,
                     progress: bool | None) -> None:
     """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE.
 
@@ -148,11 +193,12 @@ def certify_command(instance: str, profile: str, horizon: int | None, as_json: b
     Examples:
       dpp certify examples/triangle.json out/triangle.profile.json
       dpp certify examples/triangle.json profile.json --horizon 4 --json
+      dpp certify examples/triangle.json profile.json --horizon inf
     """
     try:
-        cert = certify(instance, profile, horizon=horizon, exact=not float_mode,
-                       max_prefixes=max_prefixes, seed=seed, trials=trials,
-                       progress=want_progress(progress))
+        cert = certify(instance, profile, horizon=horizon,  # type: ignore[arg-type]
+                       exact=not float_mode, max_prefixes=max_prefixes, seed=seed,
+                       trials=trials, progress=want_progress(progress), route=route)
     except CheckerError as exc:
         _fail(exc)
         return
@@ -163,28 +209,6 @@ def certify_command(instance: str, profile: str, horizon: int | None, as_json: b
     raise click.exceptions.Exit(0 if cert.passed else 1)
 
 
-class HorizonParam(click.ParamType):
-    """A horizon: a non-negative integer, or ``inf`` for the untruncated game (None)."""
-
-    name = "H|inf"
-
-    def convert(self, value: Any, param: click.Parameter | None,
-                ctx: click.Context | None) -> int | None:
-        if value is None or isinstance(value, int):
-            return value
-        text = str(value).strip().lower()
-        if text in ("inf", "infinity"):
-            return None
-        try:
-            h = int(text)
-        except ValueError:
-            self.fail(f"{value!r} is not a non-negative integer or 'inf'", param, ctx)
-        if h < 0:
-            self.fail(f"{value!r} is negative", param, ctx)
-        return h
-
-
-HORIZON = HorizonParam()
 
 
 def _show_horizon(h: int | None) -> str:

@@ -11,7 +11,7 @@ import dppverify
 
 PROOFS = Path(__file__).resolve().parents[1]
 ROOT = PROOFS.parent
-IDS = ("TEL", "L1", "L2", "XI2", "L3", "L4", "L5", "THM", "LP", "HORIZON", "DP")
+IDS = ("TEL", "L1", "L2", "XI2", "L3", "L4", "L5", "THM", "LP", "HORIZON", "DP", "WALKBR")
 FILES = (*IDS, "ERRATA")
 SECTIONS = ("## Statement", "## Proof", "## Checked by")
 CHECK_ID = re.compile(r"`((?:profile|value|pbne|game|lemma)\.[A-Za-z0-9_.]+\*?)`")

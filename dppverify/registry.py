@@ -1,0 +1,158 @@
+"""The check registry: every check's id, certificate order, proof, routes and kind, once.
+
+The certificate order, :data:`CHECK_IDS`, the routes each check runs on, what each relies on,
+and the table in ``dppverify/checks.md`` (tested against this registry) all come from
+:data:`CHECKS`. Runners register themselves per route with :func:`runner`; ``certify`` runs
+the registered runners in registry order.
+
+``kind``: ``check`` is evidence about the profile or the instance; ``consistency`` compares
+two computations of the checker's own (a failure is the checker's fault, never evidence for
+the profile). Both appear in the certificate; the verdict counts both.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any, Literal
+
+__all__ = ["CHECKS", "CHECK_IDS", "CheckSpec", "not_run", "runner", "runners", "spec"]
+
+RouteName = Literal["tree", "structured"]
+Kind = Literal["check", "consistency"]
+
+
+@dataclass(frozen=True)
+class CheckSpec:
+    """One check: id, proof file id, routes, kind, and what each route relies on.
+
+    Attributes
+    ----------
+    id : str
+        Stable check id.
+    proof : str or None
+        The proof file id in ``proofs/`` the check tests.
+    routes : tuple of str
+        ``"tree"`` and/or ``"structured"``.
+    kind : {"check", "consistency"}
+        See the module docstring.
+    tree, structured : str
+        What the check relies on, per route (``"–"`` when it does not run there).
+
+    Examples
+    --------
+    >>> spec("game.value").routes, spec("game.value").structured
+    (('tree', 'structured'), 'relies on proofs/DP.md')
+    """
+
+    id: str
+    proof: str | None
+    routes: tuple[RouteName, ...]
+    kind: Kind
+    tree: str
+    structured: str
+
+
+_T = "the walk tree of H steps"
+_W = "relies on proofs/WALKBR.md"
+_P = "the prefixes of the profile's walks (proofs/L3.md)"
+_PROFILE = "the profile's walks, walk by walk"
+
+CHECKS: tuple[CheckSpec, ...] = (
+    CheckSpec("profile.wellformed", None, ("tree", "structured"), "check", _T,
+              "the profile document alone"),
+    CheckSpec("value.U1", "TEL", ("tree", "structured"), "check", _T, _PROFILE),
+    CheckSpec("value.U2", "TEL", ("tree", "structured"), "check", _T, _PROFILE),
+    CheckSpec("value.U", "TEL", ("tree", "structured"), "check", _T, _PROFILE),
+    CheckSpec("value.VoI", "THM", ("tree", "structured"), "check", _T, "the profile's walks"),
+    CheckSpec("profile.phases", "L5", ("tree", "structured"), "check", _T,
+              "σ* along the profile's secondary walk"),
+    CheckSpec("pbne.attacker_br.primary", "L1", ("tree", "structured"), "check", _T, _W),
+    CheckSpec("pbne.attacker_br.secondary", "XI2", ("tree", "structured"), "check", _T, _W),
+    CheckSpec("pbne.defender_br", "L3", ("tree", "structured"), "check", _T, _P),
+    CheckSpec("pbne.sequential_rationality", "THM", ("tree", "structured"), "check", _T, _P),
+    CheckSpec("pbne.belief_consistency", "THM", ("tree", "structured"), "consistency", _T, _P),
+    CheckSpec("game.value", "HORIZON", ("tree", "structured"), "check", _T,
+              "relies on proofs/DP.md"),
+    CheckSpec("lemma.TEL.telescoping", "TEL", ("tree", "structured"), "consistency", _T,
+              "the profile's prefixes (a consistency check of σ*)"),
+    CheckSpec("lemma.L1.lower_bound", "L1", ("tree", "structured"), "check", _T, _W),
+    CheckSpec("lemma.L2.no_revisits", "L2", ("tree", "structured"), "check", _T,
+              "the profile's secondary walks"),
+    CheckSpec("lemma.XI2.secondary_value", "XI2", ("tree", "structured"), "check", _T, _W),
+    CheckSpec("lemma.L3.greedy", "L3", ("tree",), "check", _T, "–"),
+    CheckSpec("lemma.L4.monotonicity", "L4", ("tree",), "check", _T, "–"),
+    CheckSpec("lemma.L5.induced_beliefs", "L5", ("tree", "structured"), "check", _T, _P),
+)
+"""Every check, in certificate order."""
+
+CHECK_IDS: tuple[str, ...] = tuple(c.id for c in CHECKS)
+"""Every check id, in certificate order."""
+
+_BY_ID = {c.id: c for c in CHECKS}
+_RUNNERS: dict[RouteName, dict[str, tuple[tuple[str, ...], Callable[..., Any]]]] = {
+    "tree": {}, "structured": {}}
+
+NOT_RUN_REASONS = {
+    "lemma.L3.greedy": "needs the walk tree (an LP per random attacker over all prefixes); "
+                       "the Defender's greedy optimality is checked exactly by "
+                       "pbne.defender_br on the profile's prefixes",
+    "lemma.L4.monotonicity": "random primary strategies need the walk tree; the profile's own "
+                             "beliefs along ξ² are checked by lemma.L5.induced_beliefs",
+}
+
+
+def spec(check_id: str) -> CheckSpec:
+    """The registry entry of ``check_id`` (KeyError if unknown).
+
+    Examples
+    --------
+    >>> spec("lemma.L3.greedy").routes
+    ('tree',)
+    """
+    return _BY_ID[check_id]
+
+
+def runner(route: RouteName, *ids: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """Register the function computing the records ``ids`` (in that order) on ``route``.
+
+    Examples
+    --------
+    >>> runner("structured", "lemma.L3.greedy")
+    Traceback (most recent call last):
+    KeyError: 'lemma.L3.greedy is not a registered structured check'
+    """
+    for i in ids:
+        if i not in _BY_ID or route not in _BY_ID[i].routes:
+            raise KeyError(f"{i} is not a registered {route} check")
+
+    def register(fn: Callable[..., Any]) -> Callable[..., Any]:
+        _RUNNERS[route][ids[0]] = (ids, fn)
+        return fn
+    return register
+
+
+def runners(route: RouteName) -> dict[str, tuple[tuple[str, ...], Callable[..., Any]]]:
+    """The runners of ``route`` keyed by the first id they produce.
+
+    Examples
+    --------
+    >>> import dppverify.certify
+    >>> "pbne.defender_br" in runners("tree")
+    True
+    """
+    return _RUNNERS[route]
+
+
+def not_run(route: RouteName) -> dict[str, str]:
+    """The checks ``route`` does not run, each with the reason.
+
+    Examples
+    --------
+    >>> sorted(not_run("structured"))
+    ['lemma.L3.greedy', 'lemma.L4.monotonicity']
+    >>> not_run("tree")
+    {}
+    """
+    return {c.id: NOT_RUN_REASONS.get(c.id, "not on this route") for c in CHECKS
+            if route not in c.routes}

@@ -1,0 +1,473 @@
+"""The structured route of ``certify``: the untruncated game, without the walk tree.
+
+For a profile whose Defender is a progress rule (σ* or the progress rule towards the other
+goal): both Attacker types' exact regret over ALL walks of any length (proofs/WALKBR.md,
+shortest paths only); the Defender's exact regret, sequential rationality and Bayes beliefs
+on the prefixes of the profile's own walks (the only information sets that carry mass);
+payoffs walk by walk; the value by the three-field DP (proofs/DP.md); the lemmas that have a
+polynomial form. The lemma checks that need the tree (L3's and L4's random attackers with
+their LPs) are not run on this route; the certificate says so.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+from fractions import Fraction
+
+from dppverify.certificate import CheckRecord, Status
+from dppverify.defender import sigma_along, step_weight
+from dppverify.evaluate import Values, evaluate, walk_cost
+from dppverify.exact import INF, Number, Tolerance, normalize
+from dppverify.instance import Instance, Roles
+from dppverify.pbne import phases_of
+from dppverify.profile import MixedWalk, Profile, ProgressRule
+from dppverify.text import show, show_walk
+from dppverify.value_dp import structured_value
+from dppverify.walk_br import avoiding_distances, walk_minima
+
+__all__ = ["Trie", "build_trie", "evaluate_walk", "structured_checks"]
+
+
+NOT_WELLFORMED = "not evaluated: the profile is not well-formed (see profile.wellformed)"
+HALF = Fraction(1, 2)
+WALKBR = "relies on proofs/WALKBR.md"
+DP = "relies on proofs/DP.md"
+TRIE = "on the prefixes of the profile's walks (proofs/L3.md)"
+
+
+@dataclass(frozen=True)
+class Trie:
+    """The prefixes of the profile's walks with each type's realization mass.
+
+    ``mass[p] = (x1(p), x2(p))`` for every prefix ``p`` (a node-index tuple, root included).
+    """
+
+    mass: dict[tuple[int, ...], tuple[Fraction, Fraction]]
+
+
+def build_trie(primary: Iterable[MixedWalk], secondary: Iterable[MixedWalk]) -> Trie:
+    """Realization masses of both types on the prefixes of their walks.
+
+    Examples
+    --------
+    >>> from dppverify.profile import MixedWalk
+    >>> t = build_trie([MixedWalk((0, 1), Fraction(4, 7)), MixedWalk((0, 2), Fraction(3, 7))],
+    ...                [MixedWalk((0, 2), Fraction(1))])
+    >>> t.mass[(0,)], t.mass[(0, 2)]
+    ((Fraction(1, 1), Fraction(1, 1)), (Fraction(3, 7), Fraction(1, 1)))
+    """
+    mass: dict[tuple[int, ...], list[Fraction]] = {}
+    for theta, walks in ((0, primary), (1, secondary)):
+        for mw in walks:
+            for t in range(1, len(mw.walk) + 1):
+                entry = mass.setdefault(mw.walk[:t], [Fraction(0), Fraction(0)])
+                entry[theta] += mw.probability
+    return Trie({p: (a, b) for p, (a, b) in mass.items()})
+
+
+def _rec(cid: str, status: Status, message: str, numbers: dict[str, Number | None] | None,
+         proof: str | None, relies_on: str | None) -> CheckRecord:
+    return CheckRecord(cid, status, message, numbers or {}, proof, route="structured",
+                       relies_on=relies_on)
+
+
+def structured_checks(instance: Instance, profile: Profile, tol: Tolerance,
+                      horizon: int | None) -> list[CheckRecord]:
+    """Every check of the structured route, in certificate order.
+
+    Parameters
+    ----------
+    instance : Instance
+        The game.
+    profile : Profile
+        The resolved profile; its Defender must be a progress rule (or the profile
+        ill-formed).
+    tol : Tolerance
+        Exact comparisons, or float mode's tolerance.
+    horizon : int or None
+        ``H`` of the truncated game for ``game.value``; None for the untruncated game.
+
+    Returns
+    -------
+    list of CheckRecord
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle, triangle_profile
+    >>> from dppverify.profile import profile_from_json
+    >>> inst = triangle()
+    >>> recs = structured_checks(inst, profile_from_json(triangle_profile(), inst),
+    ...                          Tolerance(exact=True), None)
+    >>> [r.status for r in recs] == ["pass"] * len(recs), len(recs)
+    (True, 17)
+    """
+    roles = instance.roles(profile.primary_slot)
+    out: list[CheckRecord] = [_wellformed(instance, profile, roles)]
+    usable = profile.wellformed and isinstance(profile.defender, ProgressRule)
+    if not usable:
+        ids = ("value.U1", "value.U2", "value.U", "value.VoI", "profile.phases",
+               "pbne.attacker_br.primary", "pbne.attacker_br.secondary", "pbne.defender_br",
+               "pbne.sequential_rationality", "pbne.belief_consistency", "game.value",
+               "lemma.TEL.telescoping", "lemma.L1.lower_bound", "lemma.L2.no_revisits")
+        out += [_rec(i, "skipped", NOT_WELLFORMED, None, None, None) for i in ids]
+        out.append(_xi2(instance, roles, tol))
+        out.append(_rec("lemma.L5.induced_beliefs", "skipped", NOT_WELLFORMED, None, "L5", None))
+        return out
+    rule = profile.defender
+    assert isinstance(rule, ProgressRule)
+    v = evaluate(instance, roles, rule, profile.primary, profile.secondary)
+    trie = build_trie(profile.primary, profile.secondary)
+    sigma = _sigma_on_trie(instance, roles, rule, trie)
+    defender_max, u_trie = _defender_payoffs(instance, roles, trie, sigma)
+    out += _values(profile, v, u_trie, tol)
+    out.append(_phases(instance, profile, roles, tol))
+    out += _attacker(instance, roles, rule, v, tol)
+    out.append(_defender(v, defender_max, tol))
+    beliefs = _beliefs(roles, trie)
+    out.append(_sequential(instance, trie, sigma, beliefs, tol))
+    out.append(_belief_consistency(instance, profile, roles, trie, beliefs))
+    out.append(_game_value(instance, v, tol, horizon))
+    out.append(_telescoping(instance, roles, trie, tol))
+    out.append(_l1(instance, roles, profile, tol))
+    out.append(_l2(instance, profile))
+    out.append(_xi2(instance, roles, tol))
+    out.append(_l5(instance, profile, roles, beliefs, tol))
+    return out
+
+
+def _wellformed(instance: Instance, profile: Profile, roles: Roles) -> CheckRecord:
+    defects = [str(d) for d in profile.defects]
+    numbers: dict[str, Number | None] = {"defects": len(defects),
+                                         "primary_walks": len(profile.primary),
+                                         "secondary_walks": len(profile.secondary)}
+    if defects:
+        more = f"; and {len(defects) - 5} more" if len(defects) > 5 else ""
+        return _rec("profile.wellformed", "fail", "; ".join(defects[:5]) + more, numbers, None,
+                    "the profile document alone")
+    return _rec("profile.wellformed", "pass",
+                f"well-formed: {len(profile.primary)} primary and {len(profile.secondary)} "
+                f"secondary walk(s), primary goal {instance.nodes[roles.g1]!r}", numbers, None,
+                "the profile document alone")
+
+
+def _sigma_on_trie(instance: Instance, roles: Roles, rule: ProgressRule,
+                   trie: Trie) -> dict[tuple[int, ...], Number]:
+    """σ(g1 | p) at every non-root prefix of the trie."""
+    out: dict[tuple[int, ...], Number] = {}
+    for p in trie.mass:
+        if len(p) > 1 and p not in out:
+            for t, s in enumerate(sigma_along(instance, roles, rule, p), start=2):
+                out[p[:t]] = s
+    return out
+
+
+def _defender_payoffs(instance: Instance, roles: Roles, trie: Trie,
+                      sigma: dict[tuple[int, ...], Number]) -> tuple[Number, Number]:
+    """``max_σ U(σ, γ)`` (greedy per prefix) and ``U`` at the profile's σ, on the trie."""
+    best: Number = 0
+    at_sigma: Number = 0
+    exact = instance.exact
+    for p, (x1, x2) in trie.mass.items():
+        y1, y2 = roles.b1 * x1, roles.b2 * x2
+        if len(p) > 1:
+            w = step_weight(instance, p, len(p) - 1)
+            s = sigma[p]
+            if exact:
+                best += w * max(y1, y2)
+                at_sigma += w * (s * y1 + (1 - s) * y2)
+            else:
+                best += float(w) * float(max(y1, y2))
+                at_sigma += float(w) * (float(s) * float(y1) + (1 - float(s)) * float(y2))
+        if instance.is_goal(p[-1]):
+            term = y1 * roles.d1[p[-1]] + y2 * roles.d2[p[-1]]
+            best += term if exact else float(term)
+            at_sigma += term if exact else float(term)
+    if exact:
+        return normalize(best), normalize(at_sigma)
+    return float(best), float(at_sigma)
+
+
+def _values(profile: Profile, v: Values, u_trie: Number, tol: Tolerance) -> list[CheckRecord]:
+    claims = profile.claimed_values
+    out = []
+    for cid, key, exact in (("value.U1", "U1", v.U1), ("value.U2", "U2", v.U2),
+                            ("value.U", "U", v.U)):
+        numbers: dict[str, Number | None] = {key: exact, f"{key}_profile": claims.get(key)}
+        status: Status = "pass"
+        problems = []
+        if key in claims and not tol.eq(claims[key], exact):
+            status = "fail"
+            problems.append(f"the profile claims {key} = {show(claims[key])}")
+        if key == "U":
+            numbers["U_trie"] = u_trie
+            if not tol.eq(u_trie, exact):
+                status = "error" if status == "pass" else status
+                problems.append(f"the realization-mass route gives {show(u_trie)}")
+        msg = f"{key} = {show(exact)} walk by walk"
+        if problems:
+            msg = f"{key} = {show(exact)} exactly, but " + "; ".join(problems)
+        out.append(_rec(cid, status, msg, numbers, "TEL", "the profile's walks, walk by walk"))
+    bad = [k for k, x in (("U_bar", v.U_bar), ("VoI", v.VoI))
+           if k in claims and not tol.eq(claims[k], x)]
+    msg = f"U_bar = {show(v.U_bar)}, VoI = {show(v.VoI)}"
+    if bad:
+        msg += "; the profile claims " + ", ".join(f"{k} = {show(claims[k])}" for k in bad)
+    out.append(_rec("value.VoI", "fail" if bad else "pass", msg,
+                    {"U_bar": v.U_bar, "VoI": v.VoI}, "THM", "the profile's walks"))
+    return out
+
+
+def _phases(instance: Instance, profile: Profile, roles: Roles, tol: Tolerance) -> CheckRecord:
+    claim = profile.claimed_phases
+    sec = [w for w in profile.secondary if w.probability > 0]
+    how = "σ* along the profile's secondary walk"
+    if len(sec) != 1:
+        if claim is None:
+            return _rec("profile.phases", "pass", "no phases claimed (the secondary mixes "
+                        "several walks)", None, "L5", how)
+        return _rec("profile.phases", "fail", "phases are claimed but the secondary type mixes "
+                    "several walks (phases are defined on one path ξ²)", None, "L5", how)
+    got = phases_of(sigma_along(instance, roles, ProgressRule(roles.g1), sec[0].walk), tol)
+    numbers: dict[str, Number | None] = {"t_I": got[0], "t_II": got[1], "T": got[2]}
+    if claim is None:
+        return _rec("profile.phases", "pass", f"no phases claimed; recomputed t_I = {got[0]}, "
+                    f"t_II = {got[1]}, T = {got[2]}", numbers, "L5", how)
+    ok = tuple(claim) == got
+    return _rec("profile.phases", "pass" if ok else "fail", f"t_I, t_II, T = {got} from σ* "
+                f"along ξ²" + ("" if ok else f"; the profile claims {tuple(claim)}"), numbers,
+                "L5", how)
+
+
+def _attacker(instance: Instance, roles: Roles, rule: ProgressRule, v: Values,
+              tol: Tolerance) -> list[CheckRecord]:
+    mins = walk_minima(instance, rule.goal)
+    out = []
+    for theta, cid, proof in ((1, "pbne.attacker_br.primary", "L1"),
+                              (2, "pbne.attacker_br.secondary", "XI2")):
+        goal = roles.g1 if theta == 1 else roles.g2
+        best = mins.same if goal == rule.goal else mins.other
+        u = v.U1 if theta == 1 else v.U2
+        regret = normalize(u - best) if instance.exact else float(u) - float(best)
+        numbers: dict[str, Number | None] = {"U": u, "min_over_walks": best, "regret": regret}
+        kind = "primary" if theta == 1 else "secondary"
+        if tol.lt(u, best):
+            out.append(_rec(cid, "error", f"the {kind} type's cost {show(u)} is below the "
+                            f"minimum over all walks {show(best)}: the routes disagree",
+                            numbers, proof, WALKBR))
+        elif tol.eq(regret, 0):
+            out.append(_rec(cid, "pass", f"{kind} regret 0 over all walks of any length: "
+                            f"U = min = {show(best)}", numbers, proof, WALKBR))
+        else:
+            out.append(_rec(cid, "fail", f"{kind} regret {show(regret)} > 0: some walk costs "
+                            f"{show(best)} < U = {show(u)} against the profile's Defender",
+                            numbers, proof, WALKBR))
+    return out
+
+
+def _defender(v: Values, best: Number, tol: Tolerance) -> CheckRecord:
+    regret = best - v.U
+    numbers: dict[str, Number | None] = {"U": v.U, "max_sigma_U": best, "regret": regret}
+    if tol.eq(regret, 0):
+        return _rec("pbne.defender_br", "pass", f"Defender regret 0: greedy value "
+                    f"{show(best)} = U on the profile's prefixes", numbers, "L3", TRIE)
+    status: Status = "fail" if tol.lt(0, regret) else "error"
+    return _rec("pbne.defender_br", status, f"Defender regret {show(regret)}: greedy value "
+                f"{show(best)} vs U = {show(v.U)}", numbers, "L3", TRIE)
+
+
+def _beliefs(roles: Roles, trie: Trie) -> dict[tuple[int, ...], Fraction]:
+    out = {}
+    for p, (x1, x2) in trie.mass.items():
+        y1, y2 = roles.b1 * x1, roles.b2 * x2
+        if y1 + y2 > 0:
+            out[p] = y1 / (y1 + y2)
+    return out
+
+
+def _sequential(instance: Instance, trie: Trie, sigma: dict[tuple[int, ...], Number],
+                beliefs: dict[tuple[int, ...], Fraction], tol: Tolerance) -> CheckRecord:
+    bad = []
+    for p, b in beliefs.items():
+        if len(p) < 2:
+            continue
+        s = sigma[p]
+        if (b > HALF and not tol.eq(s, 1)) or (b < HALF and not tol.eq(s, 0)):
+            bad.append((p, b, s))
+    numbers: dict[str, Number | None] = {"reached": len(beliefs) - 1, "violations": len(bad)}
+    if bad:
+        p, b, s = bad[0]
+        return _rec("pbne.sequential_rationality", "fail", f"{len(bad)} reached information "
+                    f"set(s) where the Defender is not greedy, e.g. after "
+                    f"{show_walk(instance, p)} the belief is {show(b)} but σ(g1) = {show(s)}",
+                    numbers, "THM", TRIE)
+    return _rec("pbne.sequential_rationality", "pass", f"greedy on the Bayes belief at all "
+                f"{len(beliefs) - 1} reached information sets", numbers, "THM", TRIE)
+
+
+def _belief_consistency(instance: Instance, profile: Profile, roles: Roles, trie: Trie,
+                        beliefs: dict[tuple[int, ...], Fraction]) -> CheckRecord:
+    problems = []
+    if profile.claimed_prior is not None and profile.claimed_prior != (roles.b1, roles.b2):
+        problems.append(f"the profile states prior {profile.claimed_prior}, the instance has "
+                        f"{(roles.b1, roles.b2)}")
+    for p, b in beliefs.items():
+        if len(p) < 2:
+            if b != roles.b1:
+                problems.append(f"root belief {show(b)} is not the prior")
+            continue
+        q = p[:-1]
+        (a1, a2), (c1, c2) = trie.mass[q], trie.mass[p]
+        prev = beliefs[q]
+        l1 = c1 / a1 if a1 else Fraction(0)  # P(step | type), eq. (2)
+        l2 = c2 / a2 if a2 else Fraction(0)
+        bayes = prev * l1 / (prev * l1 + (1 - prev) * l2)
+        if bayes != b:
+            problems.append(f"after {show_walk(instance, p)}: Bayes' rule gives {show(bayes)}, "
+                            f"the closed form {show(b)}")
+    numbers: dict[str, Number | None] = {"reached": len(beliefs)}
+    if problems:
+        return _rec("pbne.belief_consistency", "fail", "; ".join(problems[:3]), numbers, "THM",
+                    TRIE)
+    return _rec("pbne.belief_consistency", "pass", f"Bayes' rule step by step equals the "
+                f"closed form at all {len(beliefs)} reached information sets", numbers, "THM",
+                TRIE)
+
+
+def _game_value(instance: Instance, v: Values, tol: Tolerance,
+                horizon: int | None) -> CheckRecord:
+    sv = structured_value(instance, horizon)
+    h = "inf" if horizon is None else str(horizon)
+    numbers: dict[str, Number | None] = {"V_H": sv.value, "U": v.U, "dp_steps": sv.steps}
+    if tol.eq(sv.value, v.U):
+        return _rec("game.value", "pass", f"V_H (H = {h}) = {show(sv.value)} = U by the "
+                    f"three-field DP ({sv.steps} steps, {sv.arithmetic})", numbers, "DP", DP)
+    return _rec("game.value", "fail", f"V_H (H = {h}) = {show(sv.value)} but U = {show(v.U)}",
+                numbers, "DP", DP)
+
+
+def _telescoping(instance: Instance, roles: Roles, trie: Trie, tol: Tolerance) -> CheckRecord:
+    c_of = roles.d1
+    bad = 0
+    for p in trie.mass:
+        if len(p) < 2:
+            continue
+        sig = sigma_along(instance, roles, ProgressRule(roles.g1), p)
+        total: Number = 0
+        c = c_of[p[0]]
+        for t, s in enumerate(sig, start=1):
+            total += step_weight(instance, p, t) * s
+            c = min(c, c_of[p[t]])
+            if not (tol.le(0, s) and tol.le(s, 1)):
+                bad += 1
+        if not tol.eq(total, c_of[p[0]] - c):
+            bad += 1
+    numbers: dict[str, Number | None] = {"prefixes": len(trie.mass), "violations": bad}
+    status: Status = "fail" if bad else "pass"
+    return _rec("lemma.TEL.telescoping", status, f"Σ w σ* = c_0 − c_t and σ* ∈ [0, 1] on all "
+                f"{len(trie.mass)} prefixes of the profile's walks" if not bad else
+                f"{bad} violation(s) of the telescoping identity", numbers, "TEL",
+                "the profile's prefixes (a consistency check of σ*)")
+
+
+def _l1(instance: Instance, roles: Roles, profile: Profile, tol: Tolerance) -> CheckRecord:
+    sigma_star = ProgressRule(roles.g1)
+    mins = walk_minima(instance, roles.g1)
+    c0 = roles.d1[instance.start]
+    problems = []
+    for mw in (*profile.primary, *profile.secondary):
+        cost = evaluate_walk(instance, roles, sigma_star, mw.walk)
+        if tol.lt(cost, c0):
+            problems.append(f"{show_walk(instance, mw.walk)} costs {show(cost)} < d(s0,g1)")
+        if mw.walk[-1] == roles.g1 and not tol.eq(cost, c0):
+            problems.append(f"{show_walk(instance, mw.walk)} ends at g1 but costs {show(cost)}")
+    if not tol.eq(mins.same, c0):
+        problems.append(f"the minimum over all walks is {show(mins.same)}")
+    numbers: dict[str, Number | None] = {"d_s0_g1": c0, "min_over_walks": mins.same}
+    if problems:
+        return _rec("lemma.L1.lower_bound", "fail", "; ".join(problems[:3]), numbers, "L1",
+                    WALKBR)
+    return _rec("lemma.L1.lower_bound", "pass", f"against σ* the primary's minimum over all "
+                f"walks is d(s0,g1) = {show(c0)}; every profile walk costs ≥ it, exactly it "
+                f"when ending at g1", numbers, "L1", WALKBR)
+
+
+def evaluate_walk(instance: Instance, roles: Roles, rule: ProgressRule,
+                  walk: tuple[int, ...]) -> Number:
+    """The primary type's cost of ``walk`` against ``rule``.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> evaluate_walk(inst, r, ProgressRule(r.g1), (0, 2))    # s -> g2: 2·(1/2) + d(g2,g1)
+    3
+    """
+    return walk_cost(instance, roles, rule, walk, 1)
+
+
+def _l2(instance: Instance, profile: Profile) -> CheckRecord:
+    loops = [mw for mw in profile.secondary
+             if mw.probability > 0 and len(set(mw.walk)) < len(mw.walk)]
+    numbers: dict[str, Number | None] = {"revisiting_walks": len(loops)}
+    if loops:
+        return _rec("lemma.L2.no_revisits", "fail", f"the secondary plays "
+                    f"{show_walk(instance, loops[0].walk)}, which revisits a node (Lemma 2: "
+                    f"removing the loop is strictly cheaper)", numbers, "L2",
+                    "the profile's secondary walks")
+    return _rec("lemma.L2.no_revisits", "pass", "every secondary walk played is simple",
+                numbers, "L2", "the profile's secondary walks")
+
+
+def _xi2(instance: Instance, roles: Roles, tol: Tolerance) -> CheckRecord:
+    s0 = instance.start
+    d0 = _d_from(instance, s0)
+    m = min(d0[v] + roles.d1[v] + roles.d2[v] for v in range(instance.n_nodes)
+            if d0[v] != INF and roles.d1[v] != INF and roles.d2[v] != INF)
+    expect = m - roles.d1[s0]
+    mins = walk_minima(instance, roles.g1)
+    numbers: dict[str, Number | None] = {"M": m, "M_minus_d": expect,
+                                         "min_over_walks": mins.other}
+    if tol.eq(expect, mins.other):
+        return _rec("lemma.XI2.secondary_value", "pass", f"against σ* the secondary's minimum "
+                    f"over all walks (goal-avoiding distances) = M − d(s0,g1) = {show(expect)} "
+                    f"(plain distances)", numbers, "XI2", WALKBR)
+    return _rec("lemma.XI2.secondary_value", "fail", f"minimum over all walks "
+                f"{show(mins.other)} ≠ M − d(s0,g1) = {show(expect)}", numbers, "XI2", WALKBR)
+
+
+def _d_from(instance: Instance, s0: int) -> list[Number]:
+    return avoiding_distances(instance, s0, reverse=False, blocked=frozenset())
+
+
+def _l5(instance: Instance, profile: Profile, roles: Roles,
+        beliefs: dict[tuple[int, ...], Fraction], tol: Tolerance) -> CheckRecord:
+    cid = "lemma.L5.induced_beliefs"
+    sec = [w for w in profile.secondary if w.probability > 0]
+    if len(sec) != 1:
+        return _rec(cid, "skipped", "not applicable: the secondary type mixes several walks, "
+                    "Lemma 5 is about the paper's deterministic ξ²", None, "L5", TRIE)
+    xi2 = sec[0].walk
+    t1, t2, T = phases_of(sigma_along(instance, roles, ProgressRule(roles.g1), xi2), tol)
+    problems = []
+    along = {xi2[:t + 1] for t in range(len(xi2))}
+    for t in range(len(xi2)):
+        want = roles.b1 if t <= t1 else (HALF if t <= t2 else Fraction(0))
+        got = beliefs[xi2[:t + 1]]
+        if got != want:
+            phase = "I" if t <= t1 else ("II" if t <= t2 else "III")
+            problems.append(f"at step {t} of ξ² (phase {phase}) the belief is {show(got)}, "
+                            f"not {show(want)}")
+    off = [p for p in beliefs if p not in along]
+    bad_off = [p for p in off if beliefs[p] != 1]
+    if bad_off:
+        problems.append(f"{len(bad_off)} primary prefixes off ξ² have belief ≠ 1, e.g. "
+                        f"{show_walk(instance, bad_off[0])}")
+    numbers: dict[str, Number | None] = {"t_I": t1, "t_II": t2, "T": T, "b1": roles.b1,
+                                         "off_path_prefixes": len(off)}
+    if problems:
+        return _rec(cid, "fail", "; ".join(problems[:3]), numbers, "L5", TRIE)
+    return _rec(cid, "pass", f"beliefs along ξ² are {show(roles.b1)} on phase I (t <= {t1}), "
+                f"1/2 on phase II (t <= {t2}), 0 on phase III (t <= {T}); 1 on all {len(off)} "
+                f"primary prefixes off ξ²", numbers, "L5", TRIE)
