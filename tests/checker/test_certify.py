@@ -126,7 +126,11 @@ def test_horizon_shorter_than_the_profile_is_an_error() -> None:
     with pytest.raises(HorizonError, match="shorter than the profile's longest path"):
         certify(three_phase_doc(), three_phase_profile(), horizon=3)
     with pytest.raises(TreeTooLargeError):
-        certify(three_phase_doc(), three_phase_profile(), horizon=30, max_prefixes=1000)
+        certify(three_phase_doc(), three_phase_profile(), horizon=30, max_prefixes=1000,
+                route="tree")
+    # auto: a tree that does not fit goes to the structured route at the same horizon
+    cert = certify(three_phase_doc(), three_phase_profile(), horizon=30, max_prefixes=1000)
+    assert cert.route == "structured" and cert.horizon == 30 and cert.passed
 
 
 def test_files_and_paths(tmp_path: Path) -> None:

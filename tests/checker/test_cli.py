@@ -88,8 +88,11 @@ def test_missing_files_and_short_horizon_exit_2(tmp_path: Path) -> None:
     assert _run(certify_command, [str(tmp_path / "nope.json"), p]).exit_code == 2
     r = _run(certify_command, [i, p, "--horizon", "2"])
     assert r.exit_code == 2 and "shorter" in r.output
-    r = _run(certify_command, [i, p, "--horizon", "40", "--max-prefixes", "50"])
+    r = _run(certify_command, [i, p, "--horizon", "40", "--max-prefixes", "50", "--route",
+                               "tree"])
     assert r.exit_code == 2 and "--max-prefixes" in r.output
+    r = _run(certify_command, [i, p, "--horizon", "40", "--max-prefixes", "50"])  # auto
+    assert r.exit_code == 0 and "H = 40, structured route" in r.output
 
 
 def test_float_instances_need_the_float_flag(tmp_path: Path) -> None:
