@@ -33,7 +33,7 @@ import numpy as np
 from dppverify import certify, game_value, instance_from_json
 from dppverify.exact import parse_json
 from dppverify.value_dp import structured_value
-from solver import Instance, solve
+from solver import Instance, equilibrium_to_json, instance_to_json, solve
 from solver.movingai import read_map
 
 MAPS = ("empty-8-8", "empty-16-16", "empty-32-32", "empty-48-48", "maze-32-32-2",
@@ -92,8 +92,8 @@ def bench_map(name: str, repeat: int) -> dict[str, Any]:
     prior = ("0.6", "0.4")
     t_solve, eq = best(lambda: solve(Instance.from_grid(blocked, start, (g1, g2), prior)),
                        repeat)
-    doc = parse_json(json.dumps(eq.instance.to_json()))
-    prof = parse_json(json.dumps(eq.to_json()))
+    doc = parse_json(json.dumps(instance_to_json(eq.instance)))
+    prof = parse_json(json.dumps(equilibrium_to_json(eq)))
     h = max(len(eq.secondary_path) - 1, *(len(p.nodes) - 1 for p in eq.primary_paths))
     t_cert, cert = best(lambda: certify(doc, prof, route="structured"), repeat)
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]

@@ -26,7 +26,8 @@ from dppverify.exact import parse_json
 from dppverify.examples import triangle_document, triangle_profile
 from dppverify.registry import CHECK_IDS, CHECKS, not_run
 from dppverify.walk_br import walk_minima
-from solver import Instance, solve
+from solver import Instance, equilibrium_to_json, instance_to_json, solve
+from solver import instance_from_json as solver_instance_from_json
 from solver.movingai import read_map
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -35,7 +36,7 @@ Doc = dict[str, Any]
 
 
 def _profile(inst: Instance) -> Doc:
-    return parse_json(json.dumps(solve(inst).to_json()))  # type: ignore[no-any-return]
+    return parse_json(json.dumps(equilibrium_to_json(solve(inst))))  # type: ignore[no-any-return]
 
 
 @pytest.fixture(scope="module")
@@ -51,7 +52,7 @@ def rooms() -> dict[tuple[int, int], tuple[Doc, Doc]]:
     out = {}
     for start in ((31, 1), (31, 16)):
         inst = Instance.from_grid(blocked, start, ((1, 31), (1, 1)), ("0.6", "0.4"))
-        out[start] = (parse_json(json.dumps(inst.to_json())), _profile(inst))
+        out[start] = (parse_json(json.dumps(instance_to_json(inst))), _profile(inst))
     return out
 
 
@@ -180,7 +181,7 @@ def test_walk_minima_of_the_real_map_match_the_closed_form(room: Any) -> None:
 
 @pytest.mark.parametrize("case", CASES[::4], ids=[c["name"] for c in CASES[::4]])
 def test_both_routes_agree_on_conformance_cases(case: Doc) -> None:
-    prof = _profile(Instance.from_json(case["instance"]))
+    prof = _profile(solver_instance_from_json(case["instance"]))
     cert = certify(case["instance"], prof, route="both", trials=1)
     assert cert.route == "both" and cert.passed, [(c.id, c.message) for c in cert.failed()]
     inf = certify(case["instance"], prof, horizon="inf")
