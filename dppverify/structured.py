@@ -24,7 +24,7 @@ from dppverify.pbne import phases_of
 from dppverify.profile import MixedWalk, Profile, ProgressRule
 from dppverify.text import show, show_walk
 from dppverify.value_dp import structured_value
-from dppverify.walk_br import avoiding_distances, walk_minima
+from dppverify.walk_br import WalkMinima, avoiding_distances, walk_minima
 
 __all__ = ["Trie", "build_trie", "evaluate_walk", "structured_checks"]
 
@@ -111,7 +111,7 @@ def structured_checks(instance: Instance, profile: Profile, tol: Tolerance,
                "pbne.sequential_rationality", "pbne.belief_consistency", "game.value",
                "lemma.TEL.telescoping", "lemma.L1.lower_bound", "lemma.L2.no_revisits")
         out += [_rec(i, "skipped", NOT_WELLFORMED, None, None, None) for i in ids]
-        out.append(_xi2(instance, roles, tol))
+        out.append(_xi2(instance, roles, tol, walk_minima(instance, roles.g1)))
         out.append(_rec("lemma.L5.induced_beliefs", "skipped", NOT_WELLFORMED, None, "L5", None))
         return out
     rule = profile.defender
@@ -122,16 +122,18 @@ def structured_checks(instance: Instance, profile: Profile, tol: Tolerance,
     defender_max, u_trie = _defender_payoffs(instance, roles, trie, sigma)
     out += _values(profile, v, u_trie, tol)
     out.append(_phases(instance, profile, roles, tol))
-    out += _attacker(instance, roles, rule, v, tol)
+    star = walk_minima(instance, roles.g1)  # shared by the Attacker, L1 and XI2 checks
+    mins = star if rule.goal == roles.g1 else walk_minima(instance, rule.goal)
+    out += _attacker(roles, rule, v, tol, mins, instance.exact)
     out.append(_defender(v, defender_max, tol))
     beliefs = _beliefs(roles, trie)
     out.append(_sequential(instance, trie, sigma, beliefs, tol))
     out.append(_belief_consistency(instance, profile, roles, trie, beliefs))
     out.append(_game_value(instance, v, tol, horizon))
     out.append(_telescoping(instance, roles, trie, tol))
-    out.append(_l1(instance, roles, profile, tol))
+    out.append(_l1(instance, roles, profile, tol, star))
     out.append(_l2(instance, profile))
-    out.append(_xi2(instance, roles, tol))
+    out.append(_xi2(instance, roles, tol, star))
     out.append(_l5(instance, profile, roles, beliefs, tol))
     return out
 
@@ -239,16 +241,15 @@ def _phases(instance: Instance, profile: Profile, roles: Roles, tol: Tolerance) 
                 "L5", how)
 
 
-def _attacker(instance: Instance, roles: Roles, rule: ProgressRule, v: Values,
-              tol: Tolerance) -> list[CheckRecord]:
-    mins = walk_minima(instance, rule.goal)
+def _attacker(roles: Roles, rule: ProgressRule, v: Values, tol: Tolerance, mins: WalkMinima,
+              exact: bool) -> list[CheckRecord]:
     out = []
     for theta, cid, proof in ((1, "pbne.attacker_br.primary", "L1"),
                               (2, "pbne.attacker_br.secondary", "XI2")):
         goal = roles.g1 if theta == 1 else roles.g2
         best = mins.same if goal == rule.goal else mins.other
         u = v.U1 if theta == 1 else v.U2
-        regret = normalize(u - best) if instance.exact else float(u) - float(best)
+        regret = normalize(u - best) if exact else float(u) - float(best)
         numbers: dict[str, Number | None] = {"U": u, "min_over_walks": best, "regret": regret}
         kind = "primary" if theta == 1 else "secondary"
         if tol.lt(u, best):
@@ -373,9 +374,9 @@ def _telescoping(instance: Instance, roles: Roles, trie: Trie, tol: Tolerance) -
                 "the profile's prefixes (a consistency check of σ*)")
 
 
-def _l1(instance: Instance, roles: Roles, profile: Profile, tol: Tolerance) -> CheckRecord:
+def _l1(instance: Instance, roles: Roles, profile: Profile, tol: Tolerance,
+        mins: WalkMinima) -> CheckRecord:
     sigma_star = ProgressRule(roles.g1)
-    mins = walk_minima(instance, roles.g1)
     c0 = roles.d1[instance.start]
     problems = []
     for mw in (*profile.primary, *profile.secondary):
@@ -423,13 +424,12 @@ def _l2(instance: Instance, profile: Profile) -> CheckRecord:
                 numbers, "L2", "the profile's secondary walks")
 
 
-def _xi2(instance: Instance, roles: Roles, tol: Tolerance) -> CheckRecord:
+def _xi2(instance: Instance, roles: Roles, tol: Tolerance, mins: WalkMinima) -> CheckRecord:
     s0 = instance.start
     d0 = _d_from(instance, s0)
     m = min(d0[v] + roles.d1[v] + roles.d2[v] for v in range(instance.n_nodes)
             if d0[v] != INF and roles.d1[v] != INF and roles.d2[v] != INF)
     expect = m - roles.d1[s0]
-    mins = walk_minima(instance, roles.g1)
     numbers: dict[str, Number | None] = {"M": m, "M_minus_d": expect,
                                          "min_over_walks": mins.other}
     if tol.eq(expect, mins.other):
