@@ -27,6 +27,11 @@ __all__ = ["Instance", "Node", "Roles", "instance_from_json", "load_instance", "
 Node = Hashable
 """A node id after JSON conversion (lists become tuples)."""
 
+NGOAL_REFUSAL = ("goals: this instance lists {n} goals; the two-goal checker reads exactly two. "
+                 "N-goal instances are read by dppverify.ngoal (`dpp value` and `dpp certify` "
+                 "dispatch on the number of goals)")
+"""The two-goal parser's message for an instance with more than two goals."""
+
 
 def node_from_json(x: Any, *, where: str = "node id") -> Node:
     """Convert a JSON node id: lists become tuples (``[2, 3]`` is the grid cell ``(2, 3)``).
@@ -323,6 +328,9 @@ def _build(doc: Any) -> Instance:
 
     start = _node(doc["start"], index, "start")
     goals_raw = doc["goals"]
+    # --- N-goal hook: more than two goals belong to dppverify.ngoal (docs/formats.md §1) ---
+    _require(not (isinstance(goals_raw, list) and len(goals_raw) > 2), NGOAL_REFUSAL.format(
+        n=len(goals_raw) if isinstance(goals_raw, list) else 0))
     _require(isinstance(goals_raw, list) and len(goals_raw) == 2,
              f"goals: must be a list of two node ids, got {json.dumps(goals_raw, default=str)}")
     goals = (_node(goals_raw[0], index, "goals[0]"), _node(goals_raw[1], index, "goals[1]"))

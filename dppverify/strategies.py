@@ -11,7 +11,9 @@ prior 1/2.
 - :func:`instances`: instance documents on any graph strategy; the goals and the start are
   chosen so that ``d(s0,g1)``, ``d(s0,g2)``, ``d(g1,g2)`` and ``d(g2,g1)`` are finite;
 - :func:`grid_worlds`: 4-connected grid instances with obstacles (the paper's Sec. VII), by
-  default with each goal reachable from the start without passing the other goal.
+  default with each goal reachable from the start without passing the other goal;
+- :func:`ngoal_priors` and :func:`ngoal_instances`: N-entry priors and N-goal instances
+  (``N >= 2`` goals, exact weights) for :mod:`dppverify.ngoal`.
 
 They produce plain dicts (the checker never imports the solver), ready for
 ``json.dumps``, :func:`dppverify.certify` or any solver reading the instance format.
@@ -36,7 +38,8 @@ from typing import Any
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-__all__ = ["WEIGHT_KINDS", "grid_worlds", "instances", "priors", "weighted_graphs"]
+__all__ = ["WEIGHT_KINDS", "grid_worlds", "instances", "ngoal_instances", "ngoal_priors", "priors",
+           "weighted_graphs"]
 
 WEIGHT_KINDS = ("units", "integers", "fractions", "floats")
 """Named edge-weight kinds: all 1; integers; exact fractions ``"p/q"``; binary floats."""
@@ -521,3 +524,104 @@ def _cheapest_path(source: int, target: int, neighbours: Sequence[Sequence[int]]
     while path[-1] != source:
         path.append(parent[path[-1]])
     return path
+
+
+# ----------------------------------------------------------------------------- N goals
+def ngoal_priors(n_goals: int, *, max_weight: int = 6) -> st.SearchStrategy[list[str]]:
+    """N-entry priors ``k_i / Σ k`` (each ``k_i`` in ``1 .. max_weight``) as ``"p/q"`` strings.
+
+    Every entry lies in (0, 1) and they sum to exactly 1; shrinking goes to the uniform prior.
+
+    Examples
+    --------
+    >>> from hypothesis import find, settings
+    >>> find(ngoal_priors(3), lambda p: True, settings=settings(database=None))
+    ['1/3', '1/3', '1/3']
+    >>> find(ngoal_priors(3), lambda p: p[0] != p[1], settings=settings(database=None))
+    ['1/4', '1/2', '1/4']
+    """
+    k = _check_int(n_goals, "n_goals", 2)
+    top = _check_int(max_weight, "max_weight", 1)
+    return st.lists(st.integers(1, top), min_size=k, max_size=k).map(
+        lambda ws: [str(Fraction(w, sum(ws))) for w in ws])
+
+
+def ngoal_instances(*, min_goals: int = 3, max_goals: int = 4,
+                    graphs: st.SearchStrategy[Doc] | None = None,
+                    max_prior_weight: int = 6) -> st.SearchStrategy[Doc]:
+    """N-goal instance documents (``docs/formats.md`` §1, "N goals"), valid by construction.
+
+    The goals are distinct nodes of one strongly connected part of the graph (when that part
+    has too few nodes, a cycle of edges through the chosen goals is added, weighted like an
+    existing edge), so every ``d(g^i, g^j)`` is finite; the start is a node that reaches them
+    (about one time in five a goal itself). Weights must be exact (no floats).
+
+    Parameters
+    ----------
+    min_goals, max_goals : int
+        Bounds on ``N`` (``2 <= min_goals <= max_goals``); the graph needs at least
+        ``max_goals`` nodes.
+    graphs : SearchStrategy of dict, optional
+        Node-link graphs (default: :func:`weighted_graphs` with ``max_goals + 1`` to
+        ``max_goals + 4`` nodes and integer weights 1–4).
+    max_prior_weight : int
+        The prior is drawn by :func:`ngoal_priors` with this ``max_weight``.
+
+    Examples
+    --------
+    >>> from hypothesis import find, settings
+    >>> doc = find(ngoal_instances(), lambda d: True, settings=settings(database=None))
+    >>> doc["start"], doc["goals"], doc["prior"]
+    (3, [0, 1, 2], ['1/3', '1/3', '1/3'])
+    >>> ngoal_instances(min_goals=4, max_goals=3)
+    Traceback (most recent call last):
+    hypothesis.errors.InvalidArgument: max_goals=3 < min_goals=4
+    """
+    lo = _check_int(min_goals, "min_goals", 2)
+    hi = _check_int(max_goals, "max_goals", 2)
+    if hi < lo:
+        raise InvalidArgument(f"max_goals={max_goals} < min_goals={min_goals}")
+    _check_int(max_prior_weight, "max_prior_weight", 1)
+    graph_strategy = (weighted_graphs(min_nodes=hi + 1, max_nodes=hi + 4, max_weight=4)
+                      if graphs is None else graphs)
+    if not isinstance(graph_strategy, st.SearchStrategy):
+        raise InvalidArgument(f"graphs={graphs!r} must be a SearchStrategy")
+    return _ngoal_instances(graph_strategy, lo, hi, max_prior_weight)
+
+
+@st.composite
+def _ngoal_instances(draw: st.DrawFn, graphs: st.SearchStrategy[Doc], lo: int, hi: int,
+                     max_prior_weight: int) -> Doc:
+    graph = draw(graphs)
+    adj = _Adjacency(graph)
+    n = len(adj.ids)
+    if n < hi:
+        raise InvalidArgument(f"graphs must produce at least max_goals={hi} nodes, got {n}")
+    edges = _edges(graph)
+    if any(isinstance(e.get("weight"), float) for e in edges):
+        raise InvalidArgument("N-goal instances are exact: graphs must not draw float weights")
+    k = draw(st.integers(lo, hi))
+    first = draw(st.integers(0, n - 1))
+    part = sorted((adj.reach(first) & adj.reach(first, backwards=True)) - {first})
+    if len(part) >= k - 1:
+        others = draw(st.lists(st.sampled_from(part), min_size=k - 1, max_size=k - 1,
+                               unique=True))
+    else:  # join the goals by a cycle of edges
+        rest = [v for v in range(n) if v != first]
+        others = draw(st.lists(st.sampled_from(rest), min_size=k - 1, max_size=k - 1,
+                               unique=True))
+        weight = draw(st.sampled_from([e.get("weight", 1) for e in edges])) if edges else 1
+        ring = [first, *others]
+        for u, v in zip(ring, ring[1:] + ring[:1], strict=True):
+            if v not in adj.succ[u]:
+                edges.append({"source": adj.ids[u], "target": adj.ids[v], "weight": weight})
+                adj.add(u, v)
+        graph = {**graph, "edges": edges}
+        graph.pop("links", None)
+    goals = [first, *others]
+    inner = sorted(adj.reach(first, backwards=True) - set(goals))
+    at_goal = not inner or draw(st.integers(0, 4)) == 4
+    start = draw(st.sampled_from(sorted(goals) if at_goal else inner))
+    prior = draw(ngoal_priors(k, max_weight=max_prior_weight))
+    return {"graph": graph, "start": adj.ids[start], "goals": [adj.ids[g] for g in goals],
+            "prior": prior}

@@ -196,6 +196,10 @@ def instance_from_json(data: dict[str, Any] | str) -> Instance:
     float_weights = data.get("numbers", "exact") == "float"
     graph = _graph_from_node_link(data["graph"], float_weights=float_weights)
     goals, prior = data["goals"], data["prior"]
+    if isinstance(goals, list) and len(goals) > 2:  # N goals: the checker only (dppverify.ngoal)
+        raise InstanceFormatError(
+            f"'goals' lists {len(goals)} goals: the solver's construction (the paper's) is for "
+            "two goals; N-goal instances are checked by `dpp value` / `dpp certify`")
     if not isinstance(goals, list) or len(goals) != 2:
         raise InstanceFormatError(f"'goals' must be a list of two node ids, got {goals!r}")
     if not isinstance(prior, list) or len(prior) != 2:

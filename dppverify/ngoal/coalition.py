@@ -1,0 +1,258 @@
+"""The structured route: ``V_H`` of the N-goal game by the coalition DP over goal subsets.
+
+For every node ``v``, steps left ``k`` and non-empty goal subset ``S`` the DP keeps one number,
+``m_S(v, k)``: the cheapest cost of a pooled "coalition" in which every type of ``S`` starts at
+``v`` with unit weighted mass (``proofs/NGOAL.md``). By increasing ``|S|``::
+
+    m_S(g, k) = Σ_{θ ∈ S} d(g, g^θ)                           (goals are terminal)
+    m_S(v, k) = min( min_u [ w(v, u) + m_S(u, k-1) ],           (walk on together)
+                     min { Σ_{T ⊊ S} c_T m_T(v, k) : c >= 0, Σ_T c_T 1_T = 1_S } )   (split)
+    m_S(v, k) = +inf when no goal is reachable from v within k steps,
+
+    V_H = min { Σ_S c_S m_S(s0, H) : c >= 0, Σ_S c_S 1_S = (b_1, …, b_N) }.
+
+The split is an LP over the fractional partitions of ``S``; its optimum is attained at a vertex,
+and those vertices are the minimal balanced collections of ``S``
+(:func:`dppverify.ngoal.cover.balanced_vertices`: 1, 5, 41, 1291 for ``|S|`` = 2 … 5), so the
+split is one exact integer matrix product per (k, S) over all nodes. The final cover LP is
+solved by the exact simplex of :func:`dppverify.ngoal.cover.min_cover`.
+
+Exactness: weights are scaled to integers by the lcm ``W`` of their denominators; a split
+multiplies by coefficients with denominators dividing ``L`` (the lcm over the vertex tables),
+and ``m_S`` has a denominator dividing ``L^(|S|-1)``, so ``W·L^(N-1)·m`` is an integer for
+every ``(v, k, S)``. The DP runs on those integers (numpy int64 when a bound proves there is no
+overflow, Python integers otherwise), and every division by ``L`` is checked to be exact.
+Cost ``O(H·(2^N·E + n·Σ_S |vertices of S|))``. ``H = inf`` iterates until a layer repeats
+(then every later layer is the same).
+
+For two goals ``m_{1} = D1``, ``m_{2} = D2`` and ``m_{12} = min(step, D1 + D2)``: the
+three-field DP of ``proofs/HORIZON.md``'s two-goal value. That the DP gives the truncated
+game's value for ``N >= 3`` is a conjecture (``proofs/NGOAL.md``), property-tested against the
+tree route.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from dppverify.errors import HorizonError
+from dppverify.exact import INF, Number, normalize
+from dppverify.ngoal.cover import MAX_BALANCED, balanced_vertices, members, min_cover, popcount
+from dppverify.ngoal.instance import NInstance
+
+__all__ = ["CoalitionValue", "coalition_value", "coalition_values"]
+
+
+@dataclass(frozen=True)
+class CoalitionValue:
+    """``V_H`` by the coalition DP, with the coalition costs at the start.
+
+    Attributes
+    ----------
+    horizon : int or None
+        ``H`` (None for ``H = inf``).
+    value : Number
+        ``V_H`` exactly.
+    layers : int
+        Number of DP layers computed (for ``H = inf``: the first ``k`` whose layer repeats).
+    coalition_costs : Mapping
+        Subset mask -> ``m_S(s0, H)`` exactly.
+    cover : Mapping
+        Subset mask -> ``c_S > 0``: the optimal pooling of the prior at the start.
+    """
+
+    horizon: int | None
+    value: Number
+    layers: int
+    coalition_costs: Mapping[int, Number]
+    cover: Mapping[int, Fraction]
+
+
+@dataclass(frozen=True)
+class _Split:
+    mask: int
+    columns: np.ndarray  # global masks of the proper subsets, in the table's column order
+    scaled: np.ndarray  # (n_columns, n_vertices) integer vertex coordinates times lcm
+    lcm: int
+
+
+def _splits(n_goals: int) -> list[_Split]:
+    out = []
+    for size in range(2, n_goals + 1):
+        table = balanced_vertices(size)
+        for mask in range(1, 1 << n_goals):
+            if popcount(mask) != size:
+                continue
+            elems = members(mask)
+            glob = [sum(1 << elems[i] for i in members(local)) for local in table.columns]
+            out.append(_Split(mask, np.asarray(glob, dtype=np.int64), table.scaled, table.lcm))
+    return out
+
+
+class _Runner:
+    """The DP state: arcs in scaled integers and the current layer ``m[S][v]``."""
+
+    def __init__(self, inst: NInstance) -> None:
+        n_goals = inst.n_goals
+        if not 2 <= n_goals <= MAX_BALANCED:
+            raise ValueError(f"the coalition DP handles 2 to {MAX_BALANCED} goals, not {n_goals}")
+        self.inst = inst
+        self.splits = _splits(n_goals)
+        lcm_split = math.lcm(1, *(s.lcm for s in self.splits))
+        weights = [w for arcs in inst.succ for _, w in arcs]
+        wden = math.lcm(1, *(Fraction(w).denominator for w in weights))
+        self.scale = wden * lcm_split ** (n_goals - 1)
+        n = inst.n_nodes
+        max_w = max((Fraction(w) for w in weights), default=Fraction(0))
+        max_d = max(Fraction(d) for row in inst.dist_to for d in row if d != INF)
+        bound = n_goals * ((n + 1) * max_w + max_d) * self.scale
+        width = (1 << n_goals) * max(1, lcm_split) * (bound + 1)
+        self.big = int(bound) * 4 + 4  # above every finite value
+        self.dtype: type | np.dtype = (np.dtype(np.int64) if width * 8 < 2 ** 62
+                                       and self.big * 2 < 2 ** 62 else object)
+        goal = np.zeros(n, dtype=bool)
+        goal[list(inst.goals)] = True
+        self.goal = goal
+        self.hops = np.asarray(inst.hops, dtype=np.int64)
+        src, dst, wts = [], [], []
+        for u in range(n):
+            if goal[u]:
+                continue  # goals are terminal: their arcs are never walked
+            for v, w in inst.succ[u]:
+                src.append(u)
+                dst.append(v)
+                wts.append(int(Fraction(w) * self.scale))
+        self.src = np.asarray(src, dtype=np.int64)
+        self.dst = np.asarray(dst, dtype=np.int64)
+        self.wts = np.asarray(wts, dtype=self.dtype)
+        self.active = np.zeros(n, dtype=bool)  # non-goal nodes with an arc: they take a step
+        self.active[self.src] = True
+        self.seg = np.searchsorted(self.src, np.flatnonzero(self.active))
+        self.terminal: dict[int, np.ndarray] = {}
+        for mask in range(1, 1 << n_goals):
+            vals = np.full(n, self.big, dtype=self.dtype)
+            for g in inst.goals:
+                vals[g] = int(sum(Fraction(inst.dist_to[t][g]) for t in members(mask))
+                              * self.scale)
+            self.terminal[mask] = vals
+
+    def layer0(self) -> dict[int, np.ndarray]:
+        return {mask: vals.copy() for mask, vals in self.terminal.items()}
+
+    def step(self, prev: dict[int, np.ndarray], k: int) -> dict[int, np.ndarray]:
+        finite = self.goal | ((self.hops >= 0) & (self.hops <= k))
+        rows = np.flatnonzero(finite & ~self.goal)
+        out: dict[int, np.ndarray] = {}
+        for mask, old in prev.items():
+            new = self.terminal[mask].copy()
+            if self.seg.size:
+                cand = self.wts + old[self.dst]
+                best = np.minimum.reduceat(cand, self.seg)
+                new[self.active] = np.minimum(best, self.big)
+            new[~finite] = self.big
+            out[mask] = new
+        for sp in self.splits:  # increasing |S|: the columns are final already
+            if rows.size == 0:
+                break
+            mat = np.stack([out[int(c)][rows] for c in sp.columns], axis=1)
+            tot = mat @ sp.scaled.astype(self.dtype)
+            best = tot.min(axis=1)
+            if np.any(best % sp.lcm != 0):  # pragma: no cover - guaranteed by the scaling
+                raise AssertionError("coalition DP: a split is not a multiple of 1/scale")
+            vals = out[sp.mask]
+            vals[rows] = np.minimum(vals[rows], best // sp.lcm)
+        return out
+
+    def value(self, layer: dict[int, np.ndarray], horizon: int | None,
+              layers: int) -> CoalitionValue:
+        s0 = self.inst.start
+        costs: dict[int, Fraction] = {}
+        for mask, vals in layer.items():
+            x = int(vals[s0])
+            if x >= self.big:
+                raise HorizonError(f"no walk from the start reaches a goal within H = {horizon}"
+                                   f" steps (the nearest goal is {self.inst.hops[s0]} steps "
+                                   f"away)")
+            costs[mask] = Fraction(x, self.scale)
+        lp = min_cover(costs, self.inst.prior)
+        return CoalitionValue(horizon=horizon, value=normalize(lp.value), layers=layers,
+                              coalition_costs={m: normalize(c) for m, c in costs.items()},
+                              cover=dict(lp.cover))
+
+
+def _same(a: dict[int, np.ndarray], b: dict[int, np.ndarray]) -> bool:
+    return all(np.array_equal(a[m], b[m]) for m in a)
+
+
+def coalition_value(instance: NInstance, horizon: int | None, *,
+                    max_layers: int | None = None) -> CoalitionValue:
+    """``V_H`` of the N-goal game by the coalition DP (``horizon=None`` for ``H = inf``).
+
+    Parameters
+    ----------
+    instance : NInstance
+        The game (2 to 5 goals).
+    horizon : int or None
+        ``H >= 0``, or None: iterate until a layer repeats (``V_inf = lim V_H``).
+    max_layers : int, optional
+        For ``H = inf``: give up (``HorizonError``) after this many layers.
+
+    Raises
+    ------
+    HorizonError
+        If ``horizon`` is negative, or no goal is reachable within it.
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> v = coalition_value(star3(), 2)
+    >>> v.value, v.coalition_costs[0b111]
+    (Fraction(3, 2), 4)
+    >>> coalition_value(star3(), None).value
+    Fraction(3, 2)
+    """
+    if horizon is not None and horizon < 0:
+        raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
+    run = _Runner(instance)
+    layer = run.layer0()
+    if horizon is not None:
+        for k in range(1, horizon + 1):
+            layer = run.step(layer, k)
+        return run.value(layer, horizon, horizon)
+    k = 0
+    while True:
+        k += 1
+        if max_layers is not None and k > max_layers:
+            raise HorizonError(f"the coalition DP did not converge within {max_layers} layers")
+        nxt = run.step(layer, k)
+        if k > max(instance.hops) and _same(nxt, layer):
+            return run.value(nxt, None, k)
+        layer = nxt
+
+
+def coalition_values(instance: NInstance, horizons: range) -> dict[int, Number]:
+    """``V_H`` for every ``H`` of ``horizons`` (one DP pass; unreachable horizons omitted).
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> coalition_values(star3(), range(4))
+    {1: 2, 2: Fraction(3, 2), 3: Fraction(3, 2)}
+    """
+    run = _Runner(instance)
+    layer = run.layer0()
+    out: dict[int, Number] = {}
+    for k in range(0, horizons.stop):
+        if k:
+            layer = run.step(layer, k)
+        if k in horizons:
+            try:
+                out[k] = run.value(layer, k, k).value
+            except HorizonError:
+                continue
+    return out

@@ -1,0 +1,45 @@
+"""Small bundled N-goal instances for examples, doctests and tests.
+
+``star3`` is a hub graph with three goals: from ``s`` one step to the hub ``m``, from which
+each goal is one step away, plus a direct edge ``s–a`` of weight 2. Walking through ``m``
+keeps every goal possible for one more step.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from dppverify.ngoal.instance import NInstance, ninstance_from_json
+
+__all__ = ["star3", "star3_document"]
+
+
+def star3_document(prior: tuple[str, ...] = ("1/2", "1/3", "1/6")) -> dict[str, Any]:
+    """The hub instance ``s–m`` (1), ``m–a``, ``m–b``, ``m–c`` (1 each), ``s–a`` (2).
+
+    Examples
+    --------
+    >>> doc = star3_document()
+    >>> doc["goals"], doc["prior"]
+    (['a', 'b', 'c'], ['1/2', '1/3', '1/6'])
+    """
+    return {"graph": {"directed": False,
+                      "nodes": [{"id": v} for v in ("s", "m", "a", "b", "c")],
+                      "edges": [{"source": "s", "target": "m", "weight": 1},
+                                {"source": "m", "target": "a", "weight": 1},
+                                {"source": "m", "target": "b", "weight": 1},
+                                {"source": "m", "target": "c", "weight": 1},
+                                {"source": "s", "target": "a", "weight": 2}]},
+            "start": "s", "goals": ["a", "b", "c"], "prior": list(prior)}
+
+
+def star3(prior: tuple[str, ...] = ("1/2", "1/3", "1/6")) -> NInstance:
+    """The hub instance, parsed.
+
+    Examples
+    --------
+    >>> inst = star3()
+    >>> inst.n_goals, inst.labels(inst.goals)
+    (3, ('a', 'b', 'c'))
+    """
+    return ninstance_from_json(star3_document(prior))

@@ -1,0 +1,90 @@
+"""N-goal instances: parsing, validation, and the two-goal parser's refusal of N > 2."""
+
+from __future__ import annotations
+
+import copy
+from typing import Any
+
+import pytest
+
+from dppverify.errors import InvalidInstanceError
+from dppverify.examples import triangle_document
+from dppverify.instance import instance_from_json
+from dppverify.ngoal.examples import star3_document
+from dppverify.ngoal.instance import goal_count, load_ninstance, ninstance_from_json
+
+
+def _doc(**changes: Any) -> dict[str, Any]:
+    doc = copy.deepcopy(star3_document())
+    doc.update(changes)
+    return doc
+
+
+@pytest.mark.parametrize(("changes", "message"), [
+    ({"goals": ["a"], "prior": [1]}, "at least two node ids"),
+    ({"goals": ["a", "b", "a"]}, "goals[2]: goal \"a\" is listed twice"),
+    ({"goals": ["a", "b", "z"]}, "goals[2]: unknown node \"z\""),
+    ({"prior": ["1/2", "1/2"]}, "prior: must be a list of 3 numbers"),
+    ({"prior": ["1/2", "1/3", "1/3"]}, "prior: must sum to exactly 1, got 7/6"),
+    ({"prior": ["1", "0", "0"]}, "prior[0]: must lie strictly between 0 and 1"),
+    ({"prior": ["1/2", "x", "1/6"]}, "prior[1]: 'x' is not a number"),
+    ({"numbers": "float"}, "must be exact"),
+    ({"start": "q"}, "start: unknown node \"q\""),
+])
+def test_invalid_documents_are_one_line_errors(changes: dict[str, Any], message: str) -> None:
+    with pytest.raises(InvalidInstanceError) as info:
+        ninstance_from_json(_doc(**changes))
+    assert message in str(info.value)
+    assert "\n" not in str(info.value)
+
+
+def test_goals_must_reach_each_other() -> None:
+    doc = _doc()
+    doc["graph"]["directed"] = True
+    doc["graph"]["edges"] = [{"source": "s", "target": "m"}, {"source": "m", "target": "a"},
+                             {"source": "m", "target": "b"}, {"source": "m", "target": "c"},
+                             {"source": "a", "target": "m"}, {"source": "b", "target": "m"}]
+    with pytest.raises(InvalidInstanceError, match="goal \"a\" is unreachable from goal \"c\""):
+        ninstance_from_json(doc)
+    doc["graph"]["edges"].append({"source": "c", "target": "m"})
+    assert ninstance_from_json(doc).dist_to[0][doc["graph"]["nodes"].index({"id": "c"})] == 2
+
+
+def test_two_goal_documents_read_the_same_by_both_parsers() -> None:
+    doc = triangle_document()
+    two = instance_from_json(doc)
+    n = ninstance_from_json(doc)
+    assert n.goals == two.goals and n.prior == two.prior and n.dist_to == two.dist_to
+    assert n.succ == two.succ and n.hops == two.hops and n.start == two.start
+
+
+def test_the_two_goal_parser_refuses_more_goals_and_points_at_the_n_goal_checker() -> None:
+    with pytest.raises(InvalidInstanceError) as info:
+        instance_from_json(star3_document())
+    text = str(info.value)
+    assert "lists 3 goals" in text and "dppverify.ngoal" in text and "dpp value" in text
+
+
+def test_goal_count_and_file_errors(tmp_path: Any) -> None:
+    assert goal_count(star3_document()) == 3
+    assert goal_count([1, 2]) is None
+    bad = tmp_path / "bad.json"
+    bad.write_text("{", encoding="utf-8")
+    with pytest.raises(InvalidInstanceError, match=r"bad\.json: malformed JSON at line 1"):
+        load_ninstance(bad)
+    good = tmp_path / "star.json"
+    good.write_text('{"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}], "edges": ['
+                    '{"source": 0, "target": 1}, {"source": 1, "target": 2}]}, "start": 0, '
+                    '"goals": [0, 1, 2], "prior": [0.5, 0.25, 0.25]}', encoding="utf-8")
+    assert load_ninstance(good).hops == (0, 0, 0)
+    with pytest.raises(InvalidInstanceError, match=r"star\.json: prior"):
+        good.write_text(good.read_text().replace("0.25]", "0.2]"), encoding="utf-8")
+        load_ninstance(good)
+
+
+def test_the_solver_stays_two_goal_and_says_so() -> None:
+    from solver import Instance, InstanceFormatError
+
+    with pytest.raises(InstanceFormatError) as info:
+        Instance.from_json(star3_document())
+    assert "lists 3 goals" in str(info.value) and "two goals" in str(info.value)

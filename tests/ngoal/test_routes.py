@@ -1,0 +1,127 @@
+"""V_H of the N-goal game: the tree route (LP + exact bracket) and the coalition DP.
+
+The DP rests on a conjecture (proofs/NGOAL.md); these properties are its tests: on every case
+where both routes run they must agree exactly, and for two goals the DP must equal the
+two-goal checker's value.
+"""
+
+from __future__ import annotations
+
+import copy
+import itertools
+import json
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from dppverify.errors import HorizonError
+from dppverify.instance import instance_from_json
+from dppverify.ngoal.agreement import compare_routes
+from dppverify.ngoal.coalition import coalition_value, coalition_values
+from dppverify.ngoal.examples import star3, star3_document
+from dppverify.ngoal.instance import NInstance, ninstance_from_json
+from dppverify.ngoal.tree import count_nprefixes
+from dppverify.ngoal.value_lp import ngame_value
+from dppverify.strategies import instances, ngoal_instances, weighted_graphs
+from dppverify.value_lp import game_value
+
+MAX_PREFIXES = 2500
+DATA = Path(__file__).resolve().parents[1] / "data" / "ngoal_cases.json"
+
+
+def _horizons(inst: NInstance, extra: int) -> list[int]:
+    first = inst.hops[inst.start]
+    return [h for h in range(first, first + extra + 1)
+            if count_nprefixes(inst, h) <= MAX_PREFIXES]
+
+
+def test_star3_by_hand() -> None:
+    # H = 1: the only walk is s a (weight 2): the Defender guards a against mass 1/2 (cost 1),
+    # types b and c pay d(a, b) = d(a, c) = 2 at the end: 1 + 2/3 + 1/3 = 2.
+    # H >= 2: all types walk s m together (1 · 1/2) and split at m (1/2 + 1/3 + 1/6): 3/2.
+    inst = star3()
+    assert coalition_values(inst, range(6)) == {1: 2, 2: Fraction(3, 2), 3: Fraction(3, 2),
+                                                4: Fraction(3, 2), 5: Fraction(3, 2)}
+    for h in (1, 2, 3):
+        assert ngame_value(inst, h).bracket.exact == coalition_value(inst, h).value
+    assert coalition_value(inst, None).value == Fraction(3, 2)
+
+
+@given(ngoal_instances(min_goals=3, max_goals=4,
+                       graphs=weighted_graphs(min_nodes=4, max_nodes=6, max_weight=4)))
+def test_coalition_dp_equals_the_tree_route(doc: dict[str, Any]) -> None:
+    inst = ninstance_from_json(doc)
+    for h in _horizons(inst, 2):
+        a = compare_routes(inst, h, max_prefixes=MAX_PREFIXES)
+        assert a.agree, (json.dumps(doc), h, a)
+
+
+@given(instances(graphs=weighted_graphs(max_nodes=6, weights="fractions", max_weight=5)))
+def test_for_two_goals_the_dp_is_the_two_goal_value(doc: dict[str, Any]) -> None:
+    inst = ninstance_from_json(doc)
+    two = instance_from_json(doc)
+    for h in _horizons(inst, 3):
+        tree = game_value(two, h, max_prefixes=MAX_PREFIXES)
+        assert tree.bracket.closed
+        assert coalition_value(inst, h).value == tree.bracket.exact
+
+
+def test_recorded_cases_agree() -> None:
+    """Cases kept in tests/data/ngoal_cases.json (hand-made and from the evidence script)."""
+    for case in json.loads(DATA.read_text(encoding="utf-8")):
+        inst = ninstance_from_json(case["instance"])
+        dp = coalition_value(inst, case["horizon"]).value
+        assert dp == Fraction(case["value"]), case["name"]
+        assert compare_routes(inst, case["horizon"]).agree, case["name"]
+
+
+@given(ngoal_instances(min_goals=2, max_goals=4), st.integers(2, 5),
+       st.permutations(range(4)))
+def test_value_is_homogeneous_and_symmetric(doc: dict[str, Any], factor: int,
+                                           perm: list[int]) -> None:
+    inst = ninstance_from_json(doc)
+    h = inst.hops[inst.start] + 2
+    base = coalition_value(inst, h).value
+    scaled = copy.deepcopy(doc)
+    for e in scaled["graph"]["edges"]:
+        e["weight"] = str(Fraction(e.get("weight", 1)) * factor)
+    assert coalition_value(ninstance_from_json(scaled), h).value == factor * base
+    order = [i for i in perm if i < len(doc["goals"])]
+    permuted = {**doc, "goals": [doc["goals"][i] for i in order],
+                "prior": [doc["prior"][i] for i in order]}
+    assert coalition_value(ninstance_from_json(permuted), h).value == base
+
+
+@given(ngoal_instances(min_goals=2, max_goals=5))
+def test_values_do_not_increase_with_h_and_reach_the_infinite_horizon(
+        doc: dict[str, Any]) -> None:
+    inst = ninstance_from_json(doc)
+    inf = coalition_value(inst, None)
+    values = coalition_values(inst, range(inf.layers + 2))
+    seq = [values[h] for h in sorted(values)]
+    assert all(a >= b for a, b in itertools.pairwise(seq))
+    assert seq[-1] == inf.value
+    assert coalition_value(inst, inf.layers).coalition_costs == inf.coalition_costs
+
+
+def test_huge_weights_use_python_integers_exactly() -> None:
+    doc = star3_document()
+    big = 10 ** 18
+    for e in doc["graph"]["edges"]:
+        e["weight"] = e["weight"] * big
+    assert coalition_value(ninstance_from_json(doc), 2).value == Fraction(3, 2) * big
+
+
+def test_horizon_errors() -> None:
+    inst = star3()
+    with pytest.raises(HorizonError, match="within H = 0"):
+        coalition_value(inst, 0)
+    with pytest.raises(HorizonError, match="non-negative"):
+        coalition_value(inst, -1)
+    with pytest.raises(HorizonError, match="did not converge within 1"):
+        coalition_value(inst, None, max_layers=1)
+    assert 0 not in coalition_values(inst, range(2))
