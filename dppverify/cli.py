@@ -20,10 +20,13 @@ from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli_conventions import output_file_option, progress_option, status, want_progress
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, write_efg
-from dppverify.errors import CheckerError
+from dppverify.errors import CheckerError, HorizonError
 from dppverify.exact import format_number
 from dppverify.instance import load_instance
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
+from dppverify.ngoal.certify import certify_ngoal
+from dppverify.ngoal.instance import load_ninstance
+from dppverify.ngoal.routes import is_ngoal_file, nrouted_document, nrouted_lines, nrouted_value
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
 from dppverify.text import show
 from dppverify.tree import DEFAULT_MAX_PREFIXES
@@ -186,7 +189,8 @@ def certify_command(instance: str, profile: str, horizon: int | str | None, rout
                     progress: bool | None) -> None:
     """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE.
 
-    PROFILE is a dpp-profile/1 JSON file (from `dpp solve -o` or any other solver). Bad
+    PROFILE is a dpp-profile/1 JSON file (from `dpp solve -o` or any other solver); for an
+    instance with more than two goals, a dpp-ngoal-profile/1 file (docs/formats.md). Bad
     input exits 2 with a one-line message.
 
     \b
@@ -196,9 +200,17 @@ def certify_command(instance: str, profile: str, horizon: int | str | None, rout
       dpp certify examples/triangle.json profile.json --horizon inf
     """
     try:
-        cert = certify(instance, profile, horizon=horizon,  # type: ignore[arg-type]
-                       exact=not float_mode, max_prefixes=max_prefixes, seed=seed,
-                       trials=trials, progress=want_progress(progress), route=route)
+        if is_ngoal_file(instance):  # N > 2 goals: dppverify.ngoal (dppverify/checks.md)
+            if horizon == "inf" or route == "structured":
+                raise HorizonError("N-goal profiles are certified on the truncated game's walk "
+                                   "tree: give a finite --horizon (default: the longest walk) "
+                                   "and --route auto, tree or both")
+            cert = certify_ngoal(instance, profile, horizon=horizon,  # type: ignore[arg-type]
+                                 max_prefixes=max_prefixes)
+        else:
+            cert = certify(instance, profile, horizon=horizon,  # type: ignore[arg-type]
+                           exact=not float_mode, max_prefixes=max_prefixes, seed=seed,
+                           trials=trials, progress=want_progress(progress), route=route)
     except CheckerError as exc:
         _fail(exc)
         return
@@ -283,6 +295,25 @@ def _structured_line(v: StructuredValue) -> str:
             f"({v.steps} DP steps{fix}, {v.arithmetic}, {v.seconds:.2f} s)")
 
 
+def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route,
+                 max_prefixes: int) -> None:
+    """``dpp value`` for an instance with more than two goals (dppverify.ngoal.routes)."""
+    try:
+        r = nrouted_value(load_ninstance(instance), horizon, route=route,
+                          max_prefixes=max_prefixes)
+    except CheckerError as exc:
+        _fail(exc)
+        return
+    if as_json:
+        click.echo(json.dumps(nrouted_document(r), indent=2))
+    else:
+        for line in nrouted_lines(r):
+            click.echo(line)
+    if r.disagreement is not None:
+        click.echo(f"error: {r.disagreement}", err=True)
+        raise click.exceptions.Exit(1)
+
+
 @click.command("value")
 @click.argument("instance", type=click.Path(dir_okay=False))
 @click.option("-H", "--horizon", type=HORIZON, required=True,
@@ -304,6 +335,8 @@ def value_command(instance: str, horizon: int | None, as_json: bool, route: Rout
     its primal and dual solutions to rationals gives exact bounds, which usually meet.
     Structured route: three hop-bounded Bellman-Ford fields (proofs/DP.md), exact on
     rational instances, polynomial in the graph; `--horizon inf` is the untruncated game.
+    Instances with more than two goals: the tree LP with N types, and as structured route
+    the coalition DP over goal subsets (exact; conjectured equal to V_H, proofs/NGOAL.md).
 
     \b
     Examples:
@@ -311,6 +344,9 @@ def value_command(instance: str, horizon: int | None, as_json: bool, route: Rout
       dpp value examples/triangle.json -H 4 --json --route both
       dpp value examples/triangle.json --horizon inf
     """
+    if is_ngoal_file(instance):
+        _ngoal_value(instance, horizon, as_json, route, max_prefixes)
+        return
     try:
         r = routed_value(load_instance(instance), horizon, route=route,
                          max_prefixes=max_prefixes, progress=want_progress(progress))

@@ -21,7 +21,9 @@ Exactness: weights are scaled to integers by the lcm ``W`` of their denominators
 multiplies by coefficients with denominators dividing ``L`` (the lcm over the vertex tables),
 and ``m_S`` has a denominator dividing ``L^(|S|-1)``, so ``W·L^(N-1)·m`` is an integer for
 every ``(v, k, S)``. The DP runs on those integers (numpy int64 when a bound proves there is no
-overflow, Python integers otherwise), and every division by ``L`` is checked to be exact.
+overflow, Python integers otherwise; the split products in float64 BLAS when the same bound
+proves every partial sum is an integer below 2^53, so that float64 arithmetic on them is exact),
+and every division by ``L`` is checked to be exact.
 Cost ``O(H·(2^N·E + n·Σ_S |vertices of S|))``. ``H = inf`` iterates until a layer repeats
 (then every later layer is the same).
 
@@ -115,6 +117,9 @@ class _Runner:
         self.big = int(bound) * 4 + 4  # above every finite value
         self.dtype: type | np.dtype = (np.dtype(np.int64) if width * 8 < 2 ** 62
                                        and self.big * 2 < 2 ** 62 else object)
+        # Every partial sum of a split product is an integer below ``width``: below 2**53 the
+        # float64 (BLAS) product of the integer matrices is exact, and much faster.
+        self.float_exact = self.dtype == np.dtype(np.int64) and width < 2 ** 53
         goal = np.zeros(n, dtype=bool)
         goal[list(inst.goals)] = True
         self.goal = goal
@@ -160,7 +165,10 @@ class _Runner:
             if rows.size == 0:
                 break
             mat = np.stack([out[int(c)][rows] for c in sp.columns], axis=1)
-            tot = mat @ sp.scaled.astype(self.dtype)
+            if self.float_exact:
+                tot = (mat.astype(np.float64) @ sp.scaled.astype(np.float64)).astype(np.int64)
+            else:
+                tot = mat @ sp.scaled.astype(self.dtype)
             best = tot.min(axis=1)
             if np.any(best % sp.lcm != 0):  # pragma: no cover - guaranteed by the scaling
                 raise AssertionError("coalition DP: a split is not a multiple of 1/scale")

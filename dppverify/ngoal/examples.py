@@ -11,7 +11,7 @@ from typing import Any
 
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
 
-__all__ = ["star3", "star3_document"]
+__all__ = ["star3", "star3_document", "star3_profile"]
 
 
 def star3_document(prior: tuple[str, ...] = ("1/2", "1/3", "1/6")) -> dict[str, Any]:
@@ -43,3 +43,24 @@ def star3(prior: tuple[str, ...] = ("1/2", "1/3", "1/6")) -> NInstance:
     (3, ('a', 'b', 'c'))
     """
     return ninstance_from_json(star3_document(prior))
+
+
+def star3_profile() -> dict[str, Any]:
+    """An equilibrium profile of the hub instance at ``H = 2`` (``dpp-ngoal-profile/1``).
+
+    Every type walks ``s m`` and then to its own goal; the Defender guards ``a`` (the
+    largest prior) on ``s m`` and everywhere off the walks, and the true goal on ``s m b``
+    and ``s m c``. ``U = 1/2 · 2 + 1/3 · 1 + 1/6 · 1 = 3/2 = V_2``.
+
+    Examples
+    --------
+    >>> [mix[0]["path"] for mix in star3_profile()["attacker"]]
+    [['s', 'm', 'a'], ['s', 'm', 'b'], ['s', 'm', 'c']]
+    """
+    return {"format": "dpp-ngoal-profile/1", "goals": ["a", "b", "c"],
+            "attacker": [[{"path": ["s", "m", g], "probability": 1}] for g in ("a", "b", "c")],
+            "defender": {"rule": "table",
+                         "entries": [{"walk": ["s", "m", "b"], "probabilities": [0, 1, 0]},
+                                     {"walk": ["s", "m", "c"], "probabilities": [0, 0, 1]}],
+                         "default": [1, 0, 0]},
+            "value": {"U": "3/2"}}

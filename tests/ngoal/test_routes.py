@@ -14,6 +14,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
@@ -21,7 +22,7 @@ from hypothesis import strategies as st
 from dppverify.errors import HorizonError
 from dppverify.instance import instance_from_json
 from dppverify.ngoal.agreement import compare_routes
-from dppverify.ngoal.coalition import coalition_value, coalition_values
+from dppverify.ngoal.coalition import _Runner, coalition_value, coalition_values
 from dppverify.ngoal.examples import star3, star3_document
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
 from dppverify.ngoal.tree import count_nprefixes
@@ -108,12 +109,18 @@ def test_values_do_not_increase_with_h_and_reach_the_infinite_horizon(
     assert coalition_value(inst, inf.layers).coalition_costs == inf.coalition_costs
 
 
-def test_huge_weights_use_python_integers_exactly() -> None:
+@pytest.mark.parametrize(("factor", "path"), [(1, "float64"), (10 ** 14, "int64"),
+                                             (10 ** 18, "object")])
+def test_every_arithmetic_path_is_exact(factor: int, path: str) -> None:
     doc = star3_document()
-    big = 10 ** 18
     for e in doc["graph"]["edges"]:
-        e["weight"] = e["weight"] * big
-    assert coalition_value(ninstance_from_json(doc), 2).value == Fraction(3, 2) * big
+        e["weight"] = e["weight"] * factor
+    inst = ninstance_from_json(doc)
+    run = _Runner(inst)
+    used = ("float64" if run.float_exact else "int64" if run.dtype == np.dtype(np.int64)
+            else "object")
+    assert used == path
+    assert coalition_value(inst, 2).value == Fraction(3, 2) * factor
 
 
 def test_horizon_errors() -> None:

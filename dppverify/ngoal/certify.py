@@ -1,0 +1,262 @@
+"""Certify an N-goal profile as a weak PBNE of the truncated N-goal game, exactly.
+
+Checks, in order (ids in ``dppverify/checks.md``, "N goals"):
+
+``ngoal.profile.wellformed``
+    The profile parses, every walk is a walk of the game, probabilities sum to exactly 1, and
+    the Defender's table gives a distribution at every prefix of the walk tree.
+``ngoal.value.U``
+    ``U = Σ_θ b_θ U^θ`` exactly (each type's expected stage costs plus terminal costs); equal
+    to the profile's ``value.U`` when it states one.
+``ngoal.pbne.attacker_br``
+    Every type's exact regret is 0: its cost equals the minimum over ALL walks of the tree
+    against the profile's Defender (exact backward induction).
+``ngoal.pbne.defender_br``
+    The Defender's exact regret is 0: the profile's payoff equals the greedy best response's.
+``ngoal.pbne.sequential``
+    At every information set reached with positive probability the Defender's distribution
+    puts mass only on goals of maximal Bayes belief ``μ(θ | p) ∝ b_θ x_θ(p)`` (off the path of
+    play any distribution is rational for some belief: the one uniform on its support).
+``ngoal.value.V_H``
+    The tree route's ``V_H`` (compact LP, exact bracket, with the profile's strategies among
+    the candidates) equals ``U``.
+``ngoal.value.structured``
+    The coalition DP's ``V_H`` (``proofs/NGOAL.md``, a conjecture) agrees with the tree
+    route; a disagreement is an ``error`` (a counterexample to keep), not a refutation.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+from dppverify.certificate import Certificate, CheckRecord, Status
+from dppverify.errors import HorizonError, LPError
+from dppverify.exact import Number, normalize
+from dppverify.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
+from dppverify.ngoal.best_response import (
+    NTreeDefender,
+    attacker_best_response,
+    beliefs,
+    defender_best_response,
+    defender_from_table,
+    payoff,
+)
+from dppverify.ngoal.coalition import coalition_value
+from dppverify.ngoal.instance import NInstance, load_ninstance, ninstance_from_json
+from dppverify.ngoal.profile import NProfile, load_nprofile_document, nprofile_from_json
+from dppverify.ngoal.tree import NWalkTree, build_ntree
+from dppverify.ngoal.value_lp import exact_nbracket, solve_nvalue_lp
+from dppverify.tree import DEFAULT_MAX_PREFIXES
+
+__all__ = ["NGOAL_CHECK_IDS", "certify_ngoal", "payoff_of_type"]
+
+NGOAL_CHECK_IDS = ("ngoal.profile.wellformed", "ngoal.value.U", "ngoal.pbne.attacker_br",
+                   "ngoal.pbne.defender_br", "ngoal.pbne.sequential", "ngoal.value.V_H",
+                   "ngoal.value.structured")
+"""The N-goal certificate's check ids, in order."""
+
+PROOF = "NGOAL"
+
+
+def _skipped(ids: tuple[str, ...], why: str) -> list[CheckRecord]:
+    return [CheckRecord(i, "skipped", why) for i in ids]
+
+
+def _plans(tree: NWalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
+    plans = []
+    for mix in profile.attacker:
+        x: dict[int, Fraction] = {0: Fraction(1)}
+        for mw in mix:
+            for k in range(1, len(mw.walk)):
+                p = tree.find(mw.walk[:k + 1])
+                assert p is not None  # the horizon covers every listed walk
+                x[p] = x.get(p, Fraction(0)) + mw.probability
+        plans.append(x)
+    return plans
+
+
+def _defender(tree: NWalkTree, profile: NProfile) -> NTreeDefender | str:
+    table: dict[int, tuple[Fraction, ...]] = {}
+    for walk, dist in profile.entries.items():
+        p = tree.find(walk)
+        if p is not None:
+            table[p] = dist
+    try:
+        return defender_from_table(tree, table, profile.default)
+    except KeyError as exc:
+        labels = tree.instance.labels(tree.walk(int(exc.args[0])))
+        return f"the Defender's table has no entry for walk {list(labels)} and no default"
+
+
+def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
+                  profile: Mapping[str, Any] | str | Path, *, horizon: int | None = None,
+                  max_prefixes: int = DEFAULT_MAX_PREFIXES) -> Certificate:
+    """Certify (or refute) an N-goal profile on the truncated game with ``horizon`` steps.
+
+    Parameters
+    ----------
+    instance : NInstance, dict, or path
+        The game.
+    profile : dict or path
+        A ``dpp-ngoal-profile/1`` document.
+    horizon : int, optional
+        ``H`` (default: the longest walk of the profile).
+    max_prefixes : int
+        Size guard of the walk tree.
+
+    Raises
+    ------
+    CheckerError
+        Bad input (unreadable instance or profile, a horizon shorter than a listed walk, a
+        tree above the size guard).
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3_document, star3_profile
+    >>> cert = certify_ngoal(star3_document(), star3_profile())
+    >>> cert.verdict, [c.status for c in cert.checks]
+    ('pass', ['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'])
+    >>> bad = star3_profile()
+    >>> bad["defender"]["default"] = [0, 1, 0]   # guards b off the table: on s m and s m a
+    >>> cert = certify_ngoal(star3_document(), bad)
+    >>> cert.verdict, cert.check("ngoal.pbne.defender_br").message
+    ('fail', 'Defender regret 2/3: greedy best response 3/2, profile 5/6')
+    """
+    if isinstance(instance, NInstance):
+        inst = instance
+    elif isinstance(instance, str | Path):
+        inst = load_ninstance(instance)
+    else:
+        inst = ninstance_from_json(instance)
+    doc = (load_nprofile_document(profile) if isinstance(profile, str | Path)
+           else dict(profile))
+    prof = nprofile_from_json(inst, doc)
+    h = prof.longest if horizon is None else horizon
+    if h < prof.longest:
+        raise HorizonError(f"the horizon H = {h} is shorter than the profile's longest walk "
+                           f"({prof.longest} steps)")
+    tree = build_ntree(inst, max(h, inst.hops[inst.start]), max_prefixes=max_prefixes)
+    checks: list[CheckRecord] = []
+    tdef = None if prof.defects else _defender(tree, prof)
+    problems = list(prof.defects) + ([tdef] if isinstance(tdef, str) else [])
+    if problems:
+        more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
+        checks.append(CheckRecord("ngoal.profile.wellformed", "fail", problems[0] + more))
+        checks += _skipped(NGOAL_CHECK_IDS[1:], "the profile is not well formed")
+        return _certificate(checks, tree, inst)
+    assert isinstance(tdef, NTreeDefender)
+    checks.append(CheckRecord("ngoal.profile.wellformed", "pass",
+                              f"{inst.n_goals} types, {sum(map(len, prof.attacker))} walks, "
+                              f"Defender defined on all {tree.n_prefixes - 1} prefixes"))
+    plans = _plans(tree, prof)
+    u = payoff(tree, tdef, plans)
+    per_type = [payoff_of_type(tree, tdef, plans[t], t) for t in range(inst.n_goals)]
+    nums: dict[str, Number | None] = {f"U{t + 1}": per_type[t] for t in range(inst.n_goals)}
+    nums["U"] = u
+    ok = prof.claimed_u is None or prof.claimed_u == u
+    said = "" if prof.claimed_u is None else f" (profile says {prof.claimed_u})"
+    checks.append(CheckRecord("ngoal.value.U", "pass" if ok else "fail", f"U = {u}{said}", nums,
+                              PROOF))
+    regrets = []
+    for t in range(inst.n_goals):
+        br = attacker_best_response(tree, tdef, t)
+        regrets.append((normalize(per_type[t] - br.value), t, br))
+    worst = max(regrets, key=lambda r: r[0])
+    ok = all(r[0] == 0 for r in regrets)
+    msg = ("every type's exact regret is 0" if ok else
+           f"type {worst[1] + 1} (goal {inst.nodes[inst.goals[worst[1]]]!r}) has regret "
+           f"{worst[0]}: walk {list(inst.labels(worst[2].walk))} costs {worst[2].value}")
+    checks.append(CheckRecord("ngoal.pbne.attacker_br", "pass" if ok else "fail", msg,
+                              {f"regret{t + 1}": r for r, t, _ in sorted(regrets,
+                                                                          key=lambda r: r[1])},
+                              PROOF))
+    dbr = defender_best_response(tree, plans)
+    reg = normalize(dbr.value - u)
+    checks.append(CheckRecord("ngoal.pbne.defender_br", "pass" if reg == 0 else "fail",
+                              "Defender regret 0" if reg == 0 else
+                              f"Defender regret {reg}: greedy best response {dbr.value}, "
+                              f"profile {u}", {"regret": reg, "greedy": dbr.value}, PROOF))
+    mu = beliefs(tree, plans)
+    bad = []
+    for p, belief in mu.items():
+        if p == 0:
+            continue
+        top = max(belief)
+        if any(q > 0 and belief[t] < top for t, q in enumerate(tdef.sigma[p])):
+            bad.append(p)
+    msg = (f"greedy on the Bayes belief at all {len(mu) - 1} reached information sets" if not bad
+           else f"{len(bad)} reached information set(s) where the Defender guards a goal of "
+                f"less than maximal belief, e.g. after {list(inst.labels(tree.walk(bad[0])))}: "
+                f"belief {[str(b) for b in mu[bad[0]]]}, "
+                f"Defender {[str(s) for s in tdef.sigma[bad[0]]]}")
+    checks.append(CheckRecord("ngoal.pbne.sequential", "fail" if bad else "pass", msg,
+                              {"infosets": len(mu) - 1}, PROOF))
+    try:
+        lp = solve_nvalue_lp(tree)
+        bracket = exact_nbracket(tree, lp, defenders=[("the profile's Defender", tdef)],
+                                 attackers=[("the profile's Attacker", plans)])
+    except LPError as exc:
+        checks.append(CheckRecord("ngoal.value.V_H", "error", str(exc)))
+        checks.append(CheckRecord("ngoal.value.structured", "skipped", "no tree value"))
+        return _certificate(checks, tree, inst)
+    vnums: dict[str, Number | None] = {"V_H_lower": bracket.lower, "V_H_upper": bracket.upper,
+                                       "V_H_lp": lp.value, "U": u}
+    status: Status
+    if bracket.closed and bracket.exact == u:
+        status, msg = "pass", f"V_H = {bracket.exact} = U (LP {lp.value:.10g})"
+    elif bracket.lower > u or bracket.upper < u:
+        status, msg = "fail", f"V_H in [{bracket.lower}, {bracket.upper}] excludes U = {u}"
+    else:
+        status, msg = "error", (f"V_H in [{bracket.lower}, {bracket.upper}] not closed "
+                                f"exactly; U = {u}")
+    checks.append(CheckRecord("ngoal.value.V_H", status, msg, vnums, PROOF))
+    try:
+        dp = coalition_value(inst, tree.horizon).value
+    except (ValueError, HorizonError) as exc:
+        checks.append(CheckRecord("ngoal.value.structured", "skipped", str(exc)))
+        return _certificate(checks, tree, inst)
+    agree = bracket.lower <= dp <= bracket.upper and lp_agrees(lp.value, dp, LP_TOLERANCE)
+    checks.append(CheckRecord(
+        "ngoal.value.structured", "pass" if agree else "error",
+        f"coalition DP V_H = {dp} agrees with the tree route" if agree else
+        f"coalition DP V_H = {dp} disagrees with the tree route [{bracket.lower}, "
+        f"{bracket.upper}] (LP {lp.value:.10g}): a counterexample to proofs/NGOAL.md's "
+        f"conjecture or a bug — please keep this instance",
+        {"V_H_dp": dp}, PROOF))
+    return _certificate(checks, tree, inst)
+
+
+def payoff_of_type(tree: NWalkTree, tdef: NTreeDefender, plan: Mapping[int, Fraction],
+                   theta: int) -> Number:
+    """Type ``θ``'s expected cost ``U^θ`` under its plan (stage costs plus terminal cost).
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> t = build_ntree(star3(), 1)
+    >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
+    >>> [payoff_of_type(t, d, {0: Fraction(1), 1: Fraction(1)}, th) for th in range(3)]
+    [2, 2, 2]
+    """
+    inst = tree.instance
+    leaf = tree.is_leaf_mask()
+    a = tdef.alloc[theta]
+    d = inst.dist_to[theta]
+    total: Number = 0
+    for p, prob in plan.items():
+        if p:
+            total += prob * a[p]
+        if leaf[p]:
+            total += prob * d[int(tree.node[p])]
+    return normalize(total)
+
+
+def _certificate(checks: list[CheckRecord], tree: NWalkTree, inst: NInstance) -> Certificate:
+    return Certificate(checks=tuple(checks), horizon=tree.horizon, exact=True,
+                       lp_solver=LP_SOLVER, lp_tolerance=LP_TOLERANCE,
+                       prefixes=tree.n_prefixes, leaves=tree.n_leaves,
+                       info={"goals": inst.n_goals, "nodes": inst.n_nodes,
+                             "game": "N goals (dppverify.ngoal)"})

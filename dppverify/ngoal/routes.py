@@ -1,0 +1,171 @@
+"""``dpp value`` for N-goal instances: the tree route, the coalition DP, or both.
+
+Routes (the same names as for two goals): ``tree`` — the walk tree's compact LP closed by an
+exact bracket (the literal definition; finite ``H`` only); ``structured`` — the coalition DP
+over the goal subsets (exact; any ``H`` and ``H = inf``; it rests on the conjecture of
+``proofs/NGOAL.md``, which every output says); ``auto`` — the tree when it fits the size guard,
+else the DP; ``both`` — run both, a disagreement is reported (and exits 1).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from dppverify.errors import HorizonError, InvalidInstanceError
+from dppverify.exact import format_number
+from dppverify.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
+from dppverify.ngoal.coalition import CoalitionValue, coalition_value
+from dppverify.ngoal.cover import MAX_BALANCED, members
+from dppverify.ngoal.instance import NInstance, goal_count, read_instance_document
+from dppverify.ngoal.tree import count_nprefixes
+from dppverify.ngoal.value_lp import NGameValue, ngame_value
+from dppverify.text import show
+from dppverify.tree import DEFAULT_MAX_PREFIXES
+
+__all__ = ["CONJECTURE_NOTE", "NRoutedValue", "is_ngoal_file", "nrouted_document",
+           "nrouted_lines", "nrouted_value"]
+
+CONJECTURE_NOTE = "coalition DP: exact, conjectured equal to V_H (proofs/NGOAL.md)"
+
+
+def is_ngoal_file(path: str | Path) -> bool:
+    """True when the instance file lists more than two goals (False when unreadable).
+
+    Examples
+    --------
+    >>> is_ngoal_file("/nonexistent.json")
+    False
+    """
+    try:
+        n = goal_count(read_instance_document(path))
+    except InvalidInstanceError:
+        return False
+    return n is not None and n > 2
+
+
+@dataclass(frozen=True)
+class NRoutedValue:
+    """``V_H`` of an N-goal instance by the chosen route(s)."""
+
+    route: str
+    horizon: int | None
+    goals: int
+    tree: NGameValue | None
+    structured: CoalitionValue | None
+    disagreement: str | None
+
+
+def nrouted_value(instance: NInstance, horizon: int | None, *, route: str = "auto",
+                  max_prefixes: int = DEFAULT_MAX_PREFIXES) -> NRoutedValue:
+    """``V_H`` by the tree route, the coalition DP, or both (``horizon=None``: ``H = inf``).
+
+    Raises
+    ------
+    HorizonError
+        For ``--route tree`` (or ``both``) with ``H = inf``, or an unreachable horizon.
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> r = nrouted_value(star3(), 3, route="both")
+    >>> r.tree.bracket.exact, r.structured.value, r.disagreement
+    (Fraction(3, 2), Fraction(3, 2), None)
+    >>> nrouted_value(star3(), None).route
+    'structured'
+    """
+    if route not in ("auto", "tree", "structured", "both"):
+        raise ValueError(f"unknown route {route!r}")
+    if horizon is None and route in ("tree", "both"):
+        raise HorizonError("the tree route needs a finite horizon; use --route structured "
+                           "(or auto) for H = inf")
+    if route == "auto":
+        fits = horizon is not None and count_nprefixes(instance, horizon) <= max_prefixes
+        route = "tree" if fits or instance.n_goals > MAX_BALANCED else "structured"
+    tree = (ngame_value(instance, horizon, max_prefixes=max_prefixes)
+            if route in ("tree", "both") and horizon is not None else None)
+    dp = coalition_value(instance, horizon) if route in ("structured", "both") else None
+    disagreement = None
+    if tree is not None and dp is not None:
+        b = tree.bracket
+        if not (b.lower <= dp.value <= b.upper and lp_agrees(tree.value, dp.value)):
+            disagreement = (f"the routes disagree at H = {horizon}: coalition DP {dp.value}, "
+                            f"tree route in [{b.lower}, {b.upper}] (LP {tree.value!r}) — a "
+                            "counterexample to proofs/NGOAL.md's conjecture or a bug; please "
+                            "keep this instance")
+    return NRoutedValue(route=route, horizon=horizon, goals=instance.n_goals, tree=tree,
+                        structured=dp, disagreement=disagreement)
+
+
+def _tree_doc(v: NGameValue) -> dict[str, Any]:
+    b = v.bracket
+    return {"value": format_number(b.exact), "value_lp": v.lp.value,
+            "lower": format_number(b.lower), "upper": format_number(b.upper),
+            "lower_source": b.lower_source, "upper_source": b.upper_source,
+            "exact": b.closed,
+            "lp": {"solver": LP_SOLVER, "status": v.lp.status, "tolerance": LP_TOLERANCE,
+                   "seconds": round(v.lp.seconds, 3), "variables": v.lp.variables,
+                   "constraints": v.lp.constraints},
+            "tree": {"prefixes": v.prefixes, "leaves": v.leaves}}
+
+
+def _subset(mask: int) -> list[int]:
+    return [i + 1 for i in members(mask)]
+
+
+def _dp_doc(v: CoalitionValue) -> dict[str, Any]:
+    return {"value": format_number(v.value), "exact": True, "layers": v.layers,
+            "note": CONJECTURE_NOTE,
+            "cover": [{"goals": _subset(m), "mass": format_number(c)}
+                      for m, c in sorted(v.cover.items())],
+            "coalition_costs": [{"goals": _subset(m), "cost": format_number(c)}
+                                for m, c in sorted(v.coalition_costs.items())]}
+
+
+def nrouted_document(r: NRoutedValue) -> dict[str, Any]:
+    """The JSON ``dpp value --json`` prints for an N-goal instance.
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> doc = nrouted_document(nrouted_value(star3(), 2, route="structured"))
+    >>> doc["value"], doc["structured"]["cover"]
+    ('3/2', [{'goals': [1, 2], 'mass': '1/3'}, {'goals': [1, 3], 'mass': '1/6'}])
+    """
+    value = (r.structured.value if r.structured is not None else
+             r.tree.bracket.exact if r.tree is not None else None)
+    doc: dict[str, Any] = {"goals": r.goals, "horizon": "inf" if r.horizon is None else r.horizon,
+                           "route": r.route, "value": format_number(value),
+                           "tree": None if r.tree is None else _tree_doc(r.tree),
+                           "structured": None if r.structured is None else _dp_doc(r.structured)}
+    if r.route == "both":
+        doc["agree"] = r.disagreement is None
+        if r.disagreement is not None:
+            doc["disagreement"] = r.disagreement
+    return doc
+
+
+def nrouted_lines(r: NRoutedValue) -> list[str]:
+    """The lines ``dpp value`` prints for an N-goal instance.
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> print(nrouted_lines(nrouted_value(star3(), None))[0])
+    V_H (H = inf, N = 3 goals) = 3/2 exactly; coalition DP over 7 goal subsets (3 layers; \
+coalition DP: exact, conjectured equal to V_H (proofs/NGOAL.md))
+    """
+    h = "inf" if r.horizon is None else str(r.horizon)
+    lines = []
+    if r.tree is not None:
+        b = r.tree.bracket
+        exact = f"{show(b.exact)} exactly" if b.closed else f"in [{show(b.lower)}, {show(b.upper)}]"
+        lines.append(f"V_H (H = {h}, N = {r.goals} goals) = {exact}; LP value "
+                     f"{show(r.tree.value)} ({LP_SOLVER}, agreement tolerance {LP_TOLERANCE:g} "
+                     f"relative, {r.tree.prefixes} prefixes, {r.tree.lp.seconds:.2f} s)")
+    if r.structured is not None:
+        lines.append(f"V_H (H = {h}, N = {r.goals} goals) = {show(r.structured.value)} exactly; "
+                     f"coalition DP over {2 ** r.goals - 1} goal subsets "
+                     f"({r.structured.layers} layers; {CONJECTURE_NOTE})")
+    return lines

@@ -1,0 +1,79 @@
+"""Certifying N-goal profiles: the equilibrium passes, corruptions are refuted by name."""
+
+from __future__ import annotations
+
+import copy
+from typing import Any
+
+import pytest
+
+from dppverify.errors import HorizonError, ProfileError
+from dppverify.ngoal.certify import NGOAL_CHECK_IDS, certify_ngoal
+from dppverify.ngoal.examples import star3_document, star3_profile
+from dppverify.ngoal.profile import load_nprofile_document
+
+
+def _failed(profile: dict[str, Any], **kw: Any) -> set[str]:
+    cert = certify_ngoal(star3_document(), profile, **kw)
+    return {c.id for c in cert.checks if c.status == "fail"}
+
+
+def test_the_equilibrium_passes_and_a_longer_game_needs_a_longer_table() -> None:
+    cert = certify_ngoal(star3_document(), star3_profile(), horizon=2)
+    assert cert.passed, cert.failed()
+    assert [c.id for c in cert.checks] == list(NGOAL_CHECK_IDS)
+    assert cert.check("ngoal.value.V_H").numbers["V_H_lower"] == cert.check(
+        "ngoal.value.U").numbers["U"]
+    # At H = 4 type b may loop s m s m b: the table lists only s m b, the default guards a.
+    cert = certify_ngoal(star3_document(), star3_profile(), horizon=4)
+    rec = cert.check("ngoal.pbne.attacker_br")
+    assert rec.status == "fail" and "['s', 'm', 's', 'm', 'b'] costs 0" in rec.message
+    assert cert.check("ngoal.pbne.defender_br").status == "pass"
+
+
+def test_a_type_with_a_cheaper_walk_is_refuted() -> None:
+    p = star3_profile()
+    p["attacker"][1] = [{"path": ["s", "a"], "probability": 1}]  # b: 0 + d(a, b) = 2 > 1
+    rec = certify_ngoal(star3_document(), p).check("ngoal.pbne.attacker_br")
+    assert rec.status == "fail" and rec.numbers["regret2"] == 1
+    assert "walk ['s', 'm', 'b'] costs 1" in rec.message
+
+
+def test_a_defender_off_the_belief_is_refuted() -> None:
+    p = star3_profile()
+    p["defender"]["entries"].append({"walk": ["s", "m"], "probabilities": ["1/2", "1/2", 0]})
+    failed = _failed(p)
+    assert {"ngoal.pbne.sequential", "ngoal.pbne.defender_br"} <= failed
+
+
+def test_a_wrong_claimed_value_is_refuted() -> None:
+    p = star3_profile()
+    p["value"]["U"] = "7/5"
+    assert _failed(p) == {"ngoal.value.U"}
+
+
+@pytest.mark.parametrize(("change", "message"), [
+    (lambda p: p["attacker"][1][0].update(probability="1/2"), "probabilities sum to 1/2"),
+    (lambda p: p["attacker"][2][0].update(path=["s", "c"]), "no edge \"s\" -> \"c\""),
+    (lambda p: p["defender"].pop("default"), "no entry for walk ['s', 'm']"),
+    (lambda p: p["defender"].update(default=[1, 0]), "list of 3 probabilities"),
+    (lambda p: p.update(goals=["b", "a", "c"]), "instance's goals"),
+    (lambda p: p.update(defender={"rule": "progress", "goal": "a"}), "no progress rule"),
+])
+def test_ill_formed_profiles_are_refuted_not_crashed(change: Any, message: str) -> None:
+    p = copy.deepcopy(star3_profile())
+    change(p)
+    cert = certify_ngoal(star3_document(), p)
+    rec = cert.check("ngoal.profile.wellformed")
+    assert rec.status == "fail" and message in rec.message
+    assert cert.verdict == "fail"
+    assert all(c.status == "skipped" for c in cert.checks[1:])
+
+
+def test_bad_input_is_an_error() -> None:
+    with pytest.raises(HorizonError, match="shorter than the profile's longest walk"):
+        certify_ngoal(star3_document(), star3_profile(), horizon=1)
+    with pytest.raises(ProfileError, match="dpp-ngoal-profile/1"):
+        load_nprofile_document(b'{"format": "dpp-profile/1"}')
+    with pytest.raises(ProfileError, match="not JSON"):
+        load_nprofile_document(b"{")
