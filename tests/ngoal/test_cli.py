@@ -62,6 +62,8 @@ def test_certify_an_n_goal_profile(tmp_path: Path) -> None:
     r = _run(certify_command, [i, p, "--json", "-H", "4"])
     cert = Certificate.from_json(r.output)
     assert r.exit_code == 1 and cert.check("ngoal.pbne.attacker_br").status == "fail"
+    r = _run(certify_command, [i, p, "-H", "inf"])
+    assert r.exit_code == 2 and "give a finite --horizon" in r.output
     two = _write(tmp_path, "two.json", {"format": "dpp-profile/1"})
     r = _run(certify_command, [i, two])
     assert r.exit_code == 2 and "dpp-ngoal-profile/1" in r.output
