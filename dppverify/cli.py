@@ -20,10 +20,11 @@ from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli_conventions import output_file_option, progress_option, status, want_progress
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, write_efg
-from dppverify.errors import CheckerError, HorizonError
+from dppverify.errors import CheckerError, HorizonError, OptionError
 from dppverify.exact import format_number
-from dppverify.instance import load_instance
+from dppverify.instance import Instance, load_instance
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
+from dppverify.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.instance import load_ninstance
 from dppverify.ngoal.routes import is_ngoal_file, nrouted_document, nrouted_lines, nrouted_value
@@ -34,7 +35,7 @@ from dppverify.value_dp import StructuredValue
 from dppverify.value_lp import GameValue
 
 __all__ = ["COMMANDS", "HORIZON", "CertifyHorizonParam", "ErrorReportingGroup", "HorizonParam",
-           "certify_command", "export_efg_command", "format_table", "value_command"]
+           "certify_command", "export_efg_command", "format_table", "load_game", "value_command"]
 
 NUMBERS_WIDTH = 44
 
@@ -162,9 +163,30 @@ class CertifyHorizonParam(HorizonParam):
     infinite = "inf"
 
 
+def load_game(instance: str | None, grid: MapRequest | None) -> Instance:
+    """The instance of a command: the INSTANCE file or the ``--map`` option group's grid.
+
+    Examples
+    --------
+    >>> import json, os, tempfile
+    >>> from dppverify.examples import triangle_document
+    >>> with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+    ...     json.dump(triangle_document(), f)
+    >>> load_game(f.name, None).nodes
+    ('s', 'g1', 'g2')
+    >>> os.unlink(f.name)
+    """
+    instance_or_map(instance, grid)
+    if grid is not None:
+        return grid.instance()
+    assert instance is not None
+    return load_instance(instance)
+
+
 @click.command("certify")
-@click.argument("instance", type=click.Path(dir_okay=False))
-@click.argument("profile", type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("profile", required=False, type=click.Path(dir_okay=False), metavar="PROFILE")
+@map_options
 @click.option("-H", "--horizon", type=CertifyHorizonParam(),
               help="Horizon H of the truncated game (default: the longest profile path, or "
                    "'inf' when that tree does not fit and --route is auto), or 'inf' for the "
@@ -184,23 +206,33 @@ class CertifyHorizonParam(HorizonParam):
 @click.option("--trials", type=click.IntRange(min=0), default=DEFAULT_TRIALS, show_default=True,
               help="Number of random attackers in the L3/L4 checks.")
 @progress_option
-def certify_command(instance: str, profile: str, horizon: int | str | None, route: Route,
-                    as_json: bool, max_prefixes: int, float_mode: bool, seed: int, trials: int,
-                    progress: bool | None) -> None:
+def certify_command(instance: str | None, profile: str | None, grid: MapRequest | None,
+                    horizon: int | str | None, route: Route, as_json: bool, max_prefixes: int,
+                    float_mode: bool, seed: int, trials: int, progress: bool | None) -> None:
     """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE.
 
     PROFILE is a dpp-profile/1 JSON file (from `dpp solve -o` or any other solver); for an
-    instance with more than two goals, a dpp-ngoal-profile/1 file (docs/formats.md). Bad
-    input exits 2 with a one-line message.
+    instance with more than two goals, a dpp-ngoal-profile/1 file (docs/formats.md). With
+    --map, the game is the grid and the only argument is PROFILE. Bad input exits 2 with a
+    one-line message.
 
     \b
     Examples:
       dpp certify examples/triangle.json out/triangle.profile.json
       dpp certify examples/triangle.json profile.json --horizon 4 --json
       dpp certify examples/triangle.json profile.json --horizon inf
+      dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
     """
     try:
-        if is_ngoal_file(instance):  # N > 2 goals: dppverify.ngoal (dppverify/checks.md)
+        if grid is not None and profile is not None:
+            raise OptionError(f"with --map, certify takes only PROFILE (got {instance!r} and "
+                              f"{profile!r})")
+        if grid is not None:
+            instance, profile = None, instance
+        if profile is None:
+            raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
+                              f"dpp certify {MAP_USAGE} PROFILE")
+        if instance is not None and is_ngoal_file(instance):  # N > 2 goals: dppverify.ngoal
             if horizon == "inf" or route == "structured":
                 raise HorizonError("N-goal profiles are certified on the truncated game's walk "
                                    "tree: give a finite --horizon (default: the longest walk) "
@@ -208,7 +240,8 @@ def certify_command(instance: str, profile: str, horizon: int | str | None, rout
             cert = certify_ngoal(instance, profile, horizon=horizon,  # type: ignore[arg-type]
                                  max_prefixes=max_prefixes)
         else:
-            cert = certify(instance, profile, horizon=horizon,  # type: ignore[arg-type]
+            cert = certify(load_game(instance, grid), profile,
+                           horizon=horizon,  # type: ignore[arg-type]
                            exact=not float_mode, max_prefixes=max_prefixes, seed=seed,
                            trials=trials, progress=want_progress(progress), route=route)
     except CheckerError as exc:
@@ -315,7 +348,8 @@ def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route
 
 
 @click.command("value")
-@click.argument("instance", type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@map_options
 @click.option("-H", "--horizon", type=HORIZON, required=True,
               help="Horizon H of the truncated game, or 'inf' for the untruncated game "
                    "(structured route).")
@@ -327,8 +361,9 @@ def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route
 @click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
 @progress_option
-def value_command(instance: str, horizon: int | None, as_json: bool, route: Route,
-                  max_prefixes: int, progress: bool | None) -> None:
+def value_command(instance: str | None, grid: MapRequest | None, horizon: int | None,
+                  as_json: bool, route: Route, max_prefixes: int,
+                  progress: bool | None) -> None:
     """Print V_H, the value of INSTANCE's game truncated at H steps.
 
     Tree route: the compact LP (cvxpy + Clarabel) on the walk tree gives a float; rounding
@@ -343,12 +378,13 @@ def value_command(instance: str, horizon: int | None, as_json: bool, route: Rout
       dpp value examples/triangle.json --horizon 4
       dpp value examples/triangle.json -H 4 --json --route both
       dpp value examples/triangle.json --horizon inf
+      dpp value --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 6
     """
-    if is_ngoal_file(instance):
+    if instance is not None and grid is None and is_ngoal_file(instance):
         _ngoal_value(instance, horizon, as_json, route, max_prefixes)
         return
     try:
-        r = routed_value(load_instance(instance), horizon, route=route,
+        r = routed_value(load_game(instance, grid), horizon, route=route,
                          max_prefixes=max_prefixes, progress=want_progress(progress))
     except CheckerError as exc:
         _fail(exc)
@@ -366,7 +402,8 @@ def value_command(instance: str, horizon: int | None, as_json: bool, route: Rout
 
 
 @click.command("export-efg")
-@click.argument("instance", type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@map_options
 @click.option("-H", "--horizon", type=click.IntRange(min=0), required=True,
               help="Horizon H of the truncated game.")
 @output_file_option("The .efg file to write (atomically).", required=True)
@@ -381,9 +418,9 @@ def value_command(instance: str, horizon: int | None, as_json: bool, route: Rout
 @click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
               show_default=True, help="Refuse games with more nodes than this.")
 @progress_option
-def export_efg_command(instance: str, horizon: int, output: str, attacker_observes: bool,
-                       forced_moves: bool, max_prefixes: int, max_nodes: int,
-                       progress: bool | None) -> None:
+def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: int,
+                       output: str, attacker_observes: bool, forced_moves: bool,
+                       max_prefixes: int, max_nodes: int, progress: bool | None) -> None:
     """Write INSTANCE's game truncated at H steps as a Gambit .efg file.
 
     Chance draws the Attacker's goal, the Attacker picks each next node, the Defender
@@ -395,9 +432,10 @@ def export_efg_command(instance: str, horizon: int, output: str, attacker_observ
     Examples:
       dpp export-efg examples/triangle.json --horizon 2 -o triangle.efg
       dpp export-efg instance.json -H 3 -o game.efg --attacker-blind
+      dpp export-efg --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 2 -o g.efg
     """
     try:
-        size = write_efg(output, load_instance(instance), horizon,
+        size = write_efg(output, load_game(instance, grid), horizon,
                          attacker_observes=attacker_observes, forced_moves=forced_moves,
                          max_prefixes=max_prefixes, max_nodes=max_nodes,
                          progress=want_progress(progress))

@@ -8,7 +8,7 @@ yields a certificate with failed checks.
 from __future__ import annotations
 
 __all__ = ["AuditError", "CertificateError", "CheckerError", "HorizonError",
-           "InvalidInstanceError", "LPError", "ProfileError", "TreeTooLargeError"]
+           "InvalidInstanceError", "LPError", "OptionError", "ProfileError", "TreeTooLargeError"]
 
 
 class CheckerError(Exception):
@@ -41,3 +41,7 @@ class CertificateError(CheckerError, ValueError):
 
 class AuditError(CheckerError, ValueError):
     """Bad ``dpp audit`` input: a solver that cannot be imported or run, bad arguments."""
+
+
+class OptionError(CheckerError, ValueError):
+    """Command-line options that do not fit together or a malformed option value."""

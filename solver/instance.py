@@ -97,7 +97,9 @@ class Instance:
         """A grid world: ``blocked[r, c]`` True marks an obstacle; cells are ``(r, c)``.
 
         4-connected with unit weights by default; ``connectivity=8`` adds octile diagonals
-        (weight ``sqrt(2)``, float mode, no corner cutting).
+        (weight ``sqrt(2)``, float mode, no corner cutting). A start or goal cell outside the
+        grid or on an obstacle is an :class:`InvalidInstanceError` naming the cell and the
+        grid's size.
 
         Examples
         --------
@@ -105,9 +107,19 @@ class Instance:
         >>> inst = Instance.from_grid(blocked, (0, 0), ((2, 2), (0, 2)), ("3/5", "2/5"))
         >>> inst.network.n_nodes, inst.primary
         (9, (2, 2))
+        >>> Instance.from_grid(blocked, (1, 1), ((2, 2), (0, 2)), ("3/5", "2/5"))
+        Traceback (most recent call last):
+        solver.errors.InvalidInstanceError: start cell (1, 1) is an obstacle in the 3x3 grid
+        >>> Instance.from_grid(blocked, (0, 0), ((3, 0), (0, 2)), ("3/5", "2/5"))
+        Traceback (most recent call last):
+        solver.errors.InvalidInstanceError: goal cell (3, 0) is outside the 3x3 grid
+          (rows 0-2, columns 0-2)
         """
-        return cls(Network.from_grid(blocked, connectivity=connectivity),
-                   _cell(start), (_cell(goals[0]), _cell(goals[1])), prior)
+        net = Network.from_grid(blocked, connectivity=connectivity)
+        cells = (_cell(start), _cell(goals[0]), _cell(goals[1]))
+        for what, cell in zip(("start", "goal", "goal"), cells, strict=True):
+            _check_free(net.labels, cell, what)
+        return cls(net, cells[0], (cells[1], cells[2]), prior)
 
     # ------------------------------------------------------------------ derived
     @property
@@ -143,3 +155,14 @@ def _cell(x: Any) -> tuple[int, int]:
         return (int(r), int(c))
     except (TypeError, ValueError):
         raise InvalidInstanceError(f"grid cell must be a (row, col) pair, got {x!r}") from None
+
+
+def _check_free(labels: Any, cell: tuple[int, int], what: str) -> None:
+    height, width = labels.height, labels.width
+    r, c = cell
+    if not (0 <= r < height and 0 <= c < width):
+        raise InvalidInstanceError(f"{what} cell ({r}, {c}) is outside the {height}x{width} grid "
+                                   f"(rows 0-{height - 1}, columns 0-{width - 1})")
+    if labels.blocked[r, c]:
+        raise InvalidInstanceError(f"{what} cell ({r}, {c}) is an obstacle in the "
+                                   f"{height}x{width} grid")

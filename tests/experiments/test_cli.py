@@ -73,7 +73,7 @@ def test_plot_instance_figures(tmp_path: Path, kind: str) -> None:
       "--size", "4"), "--workers must be at least 1"),
     (("experiment", "compare", "--map", "missing.map", "--start", "0,0", "--goals", "1,1",
       "0,1", "--prior", "0.6,0.4"), "cannot read map file"),
-    (("experiment", "compare", "--start", "0,0"), "give exactly one of INSTANCE or --map"),
+    (("experiment", "compare", "--start", "0,0"), "--start goes with --map FILE"),
     (("plot", "voi", "missing.csv", "-o", "x.png"), "missing.csv: cannot read file"),
 ])
 def test_bad_input_is_one_line_exit_2(args: tuple[str, ...], message: str) -> None:

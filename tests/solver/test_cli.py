@@ -45,7 +45,7 @@ def test_map_input(tmp_path: Path) -> None:
 
 @pytest.mark.parametrize("args,message", [
     (("solve", "nope.json"), "nope.json: cannot read file"),
-    (("solve",), "give exactly one of INSTANCE or --map FILE"),
+    (("solve",), "missing INSTANCE: give an instance JSON file, or --map FILE"),
     (("solve", "--map", "x.map", "--start", "0,0"), "--map needs"),
     (("solve", "--map", TRIANGLE, "--start", "0,0", "--goals", "1,1", "0,1", "--prior", "1,0"),
      "line 1: expected 'key value' header"),
