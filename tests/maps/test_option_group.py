@@ -50,7 +50,7 @@ def saved(tmp_path_factory: pytest.TempPathFactory, tiny: Path) -> tuple[Path, P
     code, out, err = _run("solve", "--map", str(tiny), *GROUP, "-o", str(prof),
                           "--save-instance", str(inst))
     assert code == 0, err
-    assert f"wrote {inst}" in out and f"wrote {prof}" in out
+    assert f"wrote {inst}" in err and f"wrote {prof}" in err and out == ""
     return inst, prof
 
 
@@ -203,7 +203,7 @@ def _invocation(path: str, group: list[str], tmp: Path, profile: Path) -> list[s
              "certify": [str(profile)], "value": ["-H", "3"],
              "export-efg": ["-H", "2", "-o", str(tmp / "g.efg")],
              "plot map": ["-o", str(tmp / "f.png")], "plot beliefs": ["-o", str(tmp / "f")],
-             "experiment compare": ["--out", str(tmp / "cmp")]}[path]
+             "experiment compare": ["--output-dir", str(tmp / "cmp")]}[path]
     return [*path.split(), *group, *extra]
 
 

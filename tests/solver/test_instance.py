@@ -131,9 +131,11 @@ def test_grid_round_trip_and_float_octile_round_trip() -> None:
 def test_grid_cells() -> None:
     blocked = np.zeros((2, 2), dtype=bool)
     blocked[0, 1] = True
-    with pytest.raises(InvalidInstanceError, match=r"goal node \(0, 1\) not found"):
+    with pytest.raises(InvalidInstanceError,
+                       match=r"goal cell \(0, 1\) is an obstacle in the 2x2 grid"):
         Instance.from_grid(blocked, (0, 0), ((0, 1), (1, 1)), ("1/2", "1/2"))
-    with pytest.raises(InvalidInstanceError, match=r"start node \(5, 5\) not found"):
+    with pytest.raises(InvalidInstanceError,
+                       match=r"start cell \(5, 5\) is outside the 2x2 grid \(rows 0-1, col"):
         Instance.from_grid(blocked, (5, 5), ((1, 0), (1, 1)), ("1/2", "1/2"))
     with pytest.raises(InvalidInstanceError, match="non-empty 2-D array"):
         Instance.from_grid(np.zeros(3, dtype=bool), (0, 0), ((1, 0), (1, 1)), ("1/2", "1/2"))
