@@ -21,6 +21,7 @@ from dppverify.instance import instance_from_json
 from solver import movingai as solver_maps
 from solver.errors import InvalidInstanceError as SolverInvalid
 from solver.instance import Instance
+from solver.instance_json import instance_to_json
 from tests.maps._maps import PAPER10, STANDARD, corner_cells, standard_map_path
 
 MAPS = [PAPER10, *(standard_map_path(name) for name in STANDARD)]
@@ -35,8 +36,8 @@ def _blocked(grid: checker_maps.GridMap) -> np.ndarray:
 def _documents(path: Path, connectivity: int) -> tuple[dict[str, Any], dict[str, Any]]:
     blocked = solver_maps.read_map(path)
     start, g1, g2 = corner_cells(blocked)
-    solver_doc = Instance.from_grid(blocked, start, (g1, g2), ("3/5", "2/5"),
-                                    connectivity=connectivity).to_json()
+    solver_doc = instance_to_json(Instance.from_grid(blocked, start, (g1, g2), ("3/5", "2/5"),
+                                                     connectivity=connectivity))
     checker_doc = checker_maps.grid_document(checker_maps.read_map(path), start, (g1, g2),
                                              ("3/5", "2/5"), connectivity=connectivity)
     return solver_doc, checker_doc
