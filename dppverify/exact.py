@@ -20,7 +20,7 @@ from fractions import Fraction
 from numbers import Rational
 from typing import Any
 
-from dppverify.limits import MAX_JSON_DEPTH, check_numeral, check_rational
+from dppverify.limits import MAX_JSON_DEPTH, MAX_NUMERAL_CHARS, check_numeral, check_rational
 
 __all__ = ["FLOAT_TOLERANCE", "INF", "Number", "Tolerance", "format_number", "normalize",
            "parse_json", "parse_number", "to_float"]
@@ -143,7 +143,8 @@ def _parse_float(text: str) -> Fraction:
 
 
 def _parse_int(text: str) -> int:
-    check_numeral(text, where="JSON number")
+    if len(text) > MAX_NUMERAL_CHARS:  # an integer literal has no exponent to check
+        check_numeral(text, where="JSON number")
     return int(text)
 
 

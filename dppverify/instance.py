@@ -301,30 +301,34 @@ def _build(doc: Any) -> Instance:
             hash(v)
         except TypeError:
             raise InvalidInstanceError(f"graph.nodes[{k}].id: not a valid node id") from None
-        _require(v not in index, f"graph.nodes[{k}]: duplicate node id {show_node(v)}")
+        if v in index:
+            raise InvalidInstanceError(f"graph.nodes[{k}]: duplicate node id {show_node(v)}")
         index[v] = len(ids)
         ids.append(v)
 
     n = len(ids)
     succ: list[dict[int, Number]] = [{} for _ in range(n)]
+    weights: dict[tuple[type, Any], Number] = {}
     for k, e in enumerate(raw_edges):
-        _require(isinstance(e, Mapping) and "source" in e and "target" in e,
-                 f"graph.edges[{k}]: must be an object with \"source\" and \"target\"")
-        ends = []
-        for key in ("source", "target"):
-            v = node_from_json(e[key], where=f"graph.edges[{k}].{key}")
-            _require(_known(index, v), f"graph.edges[{k}].{key}: unknown node {show_node(v)}")
-            ends.append(index[v])
-        u, v = ends
-        w = parse_number(e.get("weight", 1), where=f"graph.edges[{k}].weight",
-                         allow_float=not exact)
-        _require(w > 0, f"graph.edges[{k}].weight: must be positive, got {w}")
-        arcs = [(u, v)] if directed or u == v else [(u, v), (v, u)]
-        for a, b in arcs:
-            _require(b not in succ[a],
-                     f"graph.edges[{k}]: duplicate edge {show_node(ids[a])} -> "
-                     f"{show_node(ids[b])}")
-            succ[a][b] = w
+        if not (isinstance(e, Mapping) and "source" in e and "target" in e):
+            raise InvalidInstanceError(
+                f"graph.edges[{k}]: must be an object with \"source\" and \"target\"")
+        u = _edge_end(e["source"], index, k, "source")
+        v = _edge_end(e["target"], index, k, "target")
+        raw_w = e.get("weight", 1)
+        key = (type(raw_w), raw_w) if type(raw_w) in _SCALARS else None
+        w = weights.get(key) if key is not None else None
+        if w is None:  # each distinct weight literal is parsed and checked once
+            w = parse_number(raw_w, where=f"graph.edges[{k}].weight", allow_float=not exact)
+            _require(w > 0, f"graph.edges[{k}].weight: must be positive, got {w}")
+            if key is not None:
+                weights[key] = w
+        for a, b in ((u, v),) if directed or u == v else ((u, v), (v, u)):
+            sa = succ[a]
+            if b in sa:
+                raise InvalidInstanceError(f"graph.edges[{k}]: duplicate edge "
+                                           f"{show_node(ids[a])} -> {show_node(ids[b])}")
+            sa[b] = w
 
     start = _node(doc["start"], index, "start")
     goals_raw = doc["goals"]
@@ -355,6 +359,25 @@ def _build(doc: Any) -> Instance:
     return Instance(nodes=tuple(ids), index=MappingProxyType(index), directed=directed,
                     succ=succ_t, pred=pred_t, start=start, goals=goals, prior=prior,
                     exact=exact, dist_to=dist_to, hops=hops)
+
+
+_SCALARS = (str, int, Fraction, float)
+"""Weight literals of these types are parsed once per distinct value (keyed with the type)."""
+
+
+def _edge_end(raw: Any, index: Mapping[Node, int], k: int, key: str) -> int:
+    """The index of an edge's end; the common ids (``[r, c]``, ints, strings) without copies."""
+    if type(raw) is list and len(raw) == 2 and type(raw[0]) is int and type(raw[1]) is int:
+        i = index.get((raw[0], raw[1]))
+    elif type(raw) is str or type(raw) is int:
+        i = index.get(raw)
+    else:
+        i = None
+    if i is not None:
+        return i
+    v = node_from_json(raw, where=f"graph.edges[{k}].{key}")
+    _require(_known(index, v), f"graph.edges[{k}].{key}: unknown node {show_node(v)}")
+    return index[v]
 
 
 def _known(index: Mapping[Node, int], v: Node) -> bool:
