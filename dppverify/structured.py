@@ -18,13 +18,13 @@ from fractions import Fraction
 from dppverify.certificate import CheckRecord, Status
 from dppverify.defender import sigma_along, step_weight
 from dppverify.evaluate import Values, evaluate, walk_cost
-from dppverify.exact import INF, Number, Tolerance, normalize
+from dppverify.exact import Number, Tolerance, normalize
 from dppverify.instance import Instance, Roles
 from dppverify.pbne import phases_of
 from dppverify.profile import MixedWalk, Profile, ProgressRule
 from dppverify.text import show, show_walk
 from dppverify.value_dp import structured_value
-from dppverify.walk_br import WalkMinima, avoiding_distances, walk_minima
+from dppverify.walk_br import WalkMinima, split_minimum, walk_minima
 
 __all__ = ["Trie", "build_trie", "evaluate_walk", "structured_checks"]
 
@@ -426,9 +426,7 @@ def _l2(instance: Instance, profile: Profile) -> CheckRecord:
 
 def _xi2(instance: Instance, roles: Roles, tol: Tolerance, mins: WalkMinima) -> CheckRecord:
     s0 = instance.start
-    d0 = _d_from(instance, s0)
-    m = min(d0[v] + roles.d1[v] + roles.d2[v] for v in range(instance.n_nodes)
-            if d0[v] != INF and roles.d1[v] != INF and roles.d2[v] != INF)
+    m = split_minimum(instance, roles.g1, roles.g2)
     expect = m - roles.d1[s0]
     numbers: dict[str, Number | None] = {"M": m, "M_minus_d": expect,
                                          "min_over_walks": mins.other}
@@ -438,10 +436,6 @@ def _xi2(instance: Instance, roles: Roles, tol: Tolerance, mins: WalkMinima) -> 
                     f"(plain distances)", numbers, "XI2", WALKBR)
     return _rec("lemma.XI2.secondary_value", "fail", f"minimum over all walks "
                 f"{show(mins.other)} ≠ M − d(s0,g1) = {show(expect)}", numbers, "XI2", WALKBR)
-
-
-def _d_from(instance: Instance, s0: int) -> list[Number]:
-    return avoiding_distances(instance, s0, reverse=False, blocked=frozenset())
 
 
 def _l5(instance: Instance, profile: Profile, roles: Roles,

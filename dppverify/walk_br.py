@@ -15,6 +15,7 @@ and the checker's exact Dijkstra (:mod:`dppverify.distances`) otherwise; float m
 from __future__ import annotations
 
 import math
+import weakref
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -26,10 +27,105 @@ from dppverify.distances import dijkstra
 from dppverify.exact import INF, Number, normalize
 from dppverify.instance import Instance
 
-__all__ = ["WalkMinima", "avoiding_distances", "walk_minima"]
+__all__ = ["ScaledArcs", "WalkMinima", "avoiding_distances", "scaled_arcs", "scaled_distances",
+           "split_minimum", "walk_minima"]
 
 EXACT_FLOAT_LIMIT = 2**53
 """Integer path sums below this are exact in float64."""
+
+
+@dataclass(frozen=True, eq=False)
+class ScaledArcs:
+    """Every arc of an exact instance as arrays, weights scaled to integers held in float64.
+
+    Attributes
+    ----------
+    tails, heads : numpy.ndarray
+        Tail and head of every arc (``int64``).
+    weights : numpy.ndarray
+        ``weight * scale`` as ``float64``: exact integers, since their total is below
+        :data:`EXACT_FLOAT_LIMIT` (only then is a ``ScaledArcs`` built).
+    scale : int
+        The common denominator of the weights.
+    distances : dict
+        Memo of :func:`scaled_distances` results for this instance.
+    """
+
+    tails: np.ndarray
+    heads: np.ndarray
+    weights: np.ndarray
+    scale: int
+    distances: dict[tuple[int, bool, frozenset[int]], np.ndarray]
+
+
+_ARCS: weakref.WeakKeyDictionary[Instance, ScaledArcs | None] = weakref.WeakKeyDictionary()
+
+
+def scaled_arcs(instance: Instance) -> ScaledArcs | None:
+    """The instance's arcs as arrays (built once per instance), or None when float64 is unsafe.
+
+    None in float mode, and when four times the total scaled weight reaches
+    :data:`EXACT_FLOAT_LIMIT` (a sum of three distances must stay exact): the callers then use
+    the exact Python-integer Dijkstra.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> a = scaled_arcs(triangle())
+    >>> a.tails.tolist(), a.heads.tolist(), a.weights.tolist(), a.scale
+    ([0, 0, 1, 1, 2, 2], [1, 2, 0, 2, 0, 1], [3.0, 2.0, 3.0, 2.0, 2.0, 2.0], 1)
+    """
+    if instance in _ARCS:
+        return _ARCS[instance]
+    out: ScaledArcs | None = None
+    if instance.exact:
+        succ = instance.succ
+        m = sum(len(a) for a in succ)
+        raw = [w for arcs in succ for _, w in arcs]
+        den = 1
+        for d in {w.denominator for w in raw if isinstance(w, Fraction)}:
+            den = math.lcm(den, d)
+        scaled = raw if den == 1 else [int(w * den) for w in raw]
+        if 4 * sum(scaled) < EXACT_FLOAT_LIMIT:
+            tails = np.repeat(np.arange(instance.n_nodes, dtype=np.int64),
+                              np.fromiter((len(a) for a in succ), np.int64, instance.n_nodes))
+            heads = np.fromiter((v for arcs in succ for v, _ in arcs), np.int64, m)
+            out = ScaledArcs(tails=tails, heads=heads,
+                             weights=np.asarray(scaled, dtype=np.float64), scale=den,
+                             distances={})
+    _ARCS[instance] = out
+    return out
+
+
+def scaled_distances(arcs: ScaledArcs, n: int, source: int, *, reverse: bool,
+                     blocked: frozenset[int]) -> np.ndarray:
+    """Scaled distances from ``source`` (to it, with ``reverse``) avoiding ``blocked`` inside.
+
+    Exact integers in float64 (``inf`` when unreachable); memoised on ``arcs``.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> scaled_distances(scaled_arcs(triangle()), 3, 0, reverse=False,
+    ...                  blocked=frozenset({1, 2})).tolist()
+    [0.0, 3.0, 2.0]
+    """
+    key = (source, reverse, blocked)
+    if key not in arcs.distances:
+        rows, cols = (arcs.heads, arcs.tails) if reverse else (arcs.tails, arcs.heads)
+        keep = np.ones(n, dtype=bool)
+        keep[[v for v in blocked if v != source]] = False
+        sel = keep[rows]
+        m = sp.csr_matrix((arcs.weights[sel], (rows[sel], cols[sel])), shape=(n, n))
+        arcs.distances[key] = np.asarray(sp_dijkstra(m, directed=True, indices=source),
+                                         dtype=np.float64)
+    return arcs.distances[key]
+
+
+def _unscale(x: float, scale: int) -> Number:
+    if math.isinf(x):
+        return INF
+    return int(x) if scale == 1 else normalize(Fraction(int(x), scale))
 
 
 def avoiding_distances(instance: Instance, source: int, *, reverse: bool,
@@ -47,21 +143,15 @@ def avoiding_distances(instance: Instance, source: int, *, reverse: bool,
     >>> avoiding_distances(inst, 2, reverse=True, blocked=frozenset({1}))   # to g2 avoiding g1
     [2, 2, 0]
     """
-    adj = instance.pred if reverse else instance.succ
     n = instance.n_nodes
+    arcs = scaled_arcs(instance)
+    if arcs is not None:
+        dist = scaled_distances(arcs, n, source, reverse=reverse, blocked=blocked)
+        return [_unscale(x, arcs.scale) for x in dist.tolist()]
+    adj = instance.pred if reverse else instance.succ
     keep = [[] if (v in blocked and v != source) else list(adj[v]) for v in range(n)]
-    if instance.exact:
-        den = 1
-        for arcs in keep:
-            for _, w in arcs:
-                if isinstance(w, Fraction):
-                    den = math.lcm(den, w.denominator)
-        total = sum(int(w * den) for arcs in keep for _, w in arcs)
-        if total >= EXACT_FLOAT_LIMIT:
-            return dijkstra(keep, source)
-        rows, cols, vals = _coo(keep, lambda w: float(int(w * den)))
-        dist = _scipy(n, rows, cols, vals, source)
-        return [INF if math.isinf(x) else normalize(Fraction(int(x), den)) for x in dist]
+    if instance.exact:  # the total is too large for float64: exact Python integers
+        return dijkstra(keep, source)
     rows, cols, vals = _coo(keep, float)
     return [float(x) for x in _scipy(n, rows, cols, vals, source)]
 
@@ -84,6 +174,30 @@ def _scipy(n: int, rows: list[int], cols: list[int], vals: list[float],
            source: int) -> np.ndarray:
     m = sp.csr_matrix((np.asarray(vals, dtype=np.float64), (rows, cols)), shape=(n, n))
     return np.asarray(sp_dijkstra(m, directed=True, indices=source), dtype=np.float64)
+
+
+def split_minimum(instance: Instance, a: int, b: int) -> Number:
+    """``min_v d(s0, v) + d(v, a) + d(v, b)`` over plain full-graph distances.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> split_minimum(triangle(), 1, 2)   # v = g2: 2 + 2 + 0
+    4
+    """
+    s0, n = instance.start, instance.n_nodes
+    arcs = scaled_arcs(instance)
+    none: frozenset[int] = frozenset()
+    if arcs is not None:
+        total = (scaled_distances(arcs, n, s0, reverse=False, blocked=none)
+                 + scaled_distances(arcs, n, a, reverse=True, blocked=none)
+                 + scaled_distances(arcs, n, b, reverse=True, blocked=none))
+        return _unscale(float(total.min()), arcs.scale)
+    d0 = avoiding_distances(instance, s0, reverse=False, blocked=none)
+    da = instance.dist_to[instance.goals.index(a)]
+    db = instance.dist_to[instance.goals.index(b)]
+    return min(d0[v] + da[v] + db[v] for v in range(n)
+               if d0[v] != INF and da[v] != INF and db[v] != INF)
 
 
 @dataclass(frozen=True)
@@ -127,6 +241,9 @@ def walk_minima(instance: Instance, goal: int) -> WalkMinima:
     if s0 in goals:  # the empty walk is the only one
         same, other = d_to_g[s0], d_to_other[s0]
         return WalkMinima(goal=g, same=same, other=other, witness=s0)
+    arcs = scaled_arcs(instance)
+    if arcs is not None:
+        return _walk_minima_scaled(instance, arcs, g, g_other)
     d1 = avoiding_distances(instance, s0, reverse=False, blocked=goals)
     d2 = avoiding_distances(instance, g_other, reverse=True, blocked=frozenset({g}))
     best: Number = d1[g] + d_to_other[g]
@@ -144,3 +261,23 @@ def walk_minima(instance: Instance, goal: int) -> WalkMinima:
     if instance.exact:
         return WalkMinima(goal=g, same=normalize(c0), other=normalize(other), witness=witness)
     return WalkMinima(goal=g, same=float(c0), other=float(other), witness=witness)
+
+
+def _walk_minima_scaled(instance: Instance, arcs: ScaledArcs, g: int,
+                        g_other: int) -> WalkMinima:
+    """:func:`walk_minima` on exact scaled integers in float64 (vectorised, same tie rule)."""
+    n, s0, k = instance.n_nodes, instance.start, arcs.scale
+    d1 = scaled_distances(arcs, n, s0, reverse=False, blocked=frozenset(instance.goals))
+    d2 = scaled_distances(arcs, n, g_other, reverse=True, blocked=frozenset({g}))
+    dg = scaled_distances(arcs, n, g, reverse=True, blocked=frozenset())
+    d_to_other = instance.dist_to[instance.goals.index(g_other)]
+    best: int | None = None if math.isinf(d1[g]) else int(d1[g]) + int(d_to_other[g] * k)
+    witness = g
+    f = d1 + dg + d2
+    f[g] = np.inf
+    u = int(np.argmin(f))  # the first minimiser, as the loop over nodes in order would pick
+    if not math.isinf(f[u]) and (best is None or f[u] < best):
+        best, witness = int(f[u]), u
+    c0 = instance.dist_to[instance.goals.index(g)][s0]
+    other = INF if best is None else normalize(Fraction(best, k) - c0)
+    return WalkMinima(goal=g, same=normalize(c0), other=other, witness=witness)
