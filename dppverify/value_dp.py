@@ -270,18 +270,26 @@ def value_fields(instance: Instance, horizon: int | None, roles: Roles | None = 
             np.minimum(out, sentinel, out=out)
         return out
 
+    front = _Frontier(arcs, n)
     d1, d2, m = fresh(), fresh(), fresh()
     goals(d1, d2, m)
     steps = 0
     fixpoint = False
+    ch1 = ch2 = chm = None  # nodes changed by the last step (None: the first step, all nodes)
     while steps < limit:
-        n1, n2, nm = relax(d1), relax(d2), relax(m)
-        goals(n1, n2, nm)
-        split = n1 + n2
-        np.minimum(split, sentinel, out=split)
-        np.minimum(nm, split, out=nm)
+        if ch1 is None or ch2 is None or chm is None or front.large(ch1, ch2, chm):
+            n1, n2, nm = relax(d1), relax(d2), relax(m)
+            goals(n1, n2, nm)
+            split = n1 + n2
+            np.minimum(split, sentinel, out=split)
+            np.minimum(nm, split, out=nm)
+            ch1, ch2, chm = (np.flatnonzero(a != b) for a, b in ((n1, d1), (n2, d2), (nm, m)))
+        else:  # only tails of arcs into changed nodes can change (proofs/DP.md, DP.4)
+            n1, ch1 = front.step(d1, ch1, sentinel)
+            n2, ch2 = front.step(d2, ch2, sentinel)
+            nm, chm = front.step(m, chm, sentinel, split_of=(n1, n2, np.union1d(ch1, ch2)))
         steps += 1
-        if np.array_equal(n1, d1) and np.array_equal(n2, d2) and np.array_equal(nm, m):
+        if not (ch1.size or ch2.size or chm.size):
             fixpoint = True
             break
         d1, d2, m = n1, n2, nm
@@ -341,3 +349,56 @@ def structured_value(instance: Instance, horizon: int | None) -> StructuredValue
     return StructuredValue(horizon=horizon, value=value, d1=d1, d2=d2, m=m, steps=f.steps,
                            fixpoint=f.fixpoint, arithmetic=f.arithmetic, exact=instance.exact,
                            seconds=time.perf_counter() - t0)
+
+
+class _Frontier:
+    """Sparse Bellman–Ford steps: recompute only the tails of arcs into changed nodes."""
+
+    def __init__(self, arcs: Arcs, n: int) -> None:
+        self.arcs = arcs
+        deg = np.diff(np.append(arcs.starts, arcs.heads.size))
+        self.first = np.zeros(n, dtype=np.int64)
+        self.deg = np.zeros(n, dtype=np.int64)
+        self.first[arcs.tails] = arcs.starts
+        self.deg[arcs.tails] = deg
+        tail_of_arc = np.repeat(arcs.tails, deg)
+        order = np.argsort(arcs.heads, kind="stable")
+        self.in_tails = tail_of_arc[order]  # tails of the arcs into each head, head by head
+        self.in_first = np.zeros(n, dtype=np.int64)
+        self.in_deg = np.bincount(arcs.heads, minlength=n).astype(np.int64)
+        self.in_first[1:] = np.cumsum(self.in_deg)[:-1]
+        self.limit = max(1, arcs.tails.size // 4)
+
+    def large(self, *changed: np.ndarray) -> bool:
+        """True when a full vectorised step is cheaper than a sparse one."""
+        return sum(int(c.size) for c in changed) > self.limit
+
+    @staticmethod
+    def _ranges(first: np.ndarray, count: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        offs = np.cumsum(count) - count
+        idx = np.repeat(first - offs, count) + np.arange(int(count.sum()), dtype=np.int64)
+        return idx, offs
+
+    def step(self, field: np.ndarray, changed: np.ndarray, sentinel: int | float, *,
+             split_of: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
+             ) -> tuple[np.ndarray, np.ndarray]:
+        """The next field and the nodes whose value changed."""
+        idx, _ = self._ranges(self.in_first[changed], self.in_deg[changed])
+        todo = self.in_tails[idx]
+        if split_of is not None:
+            todo = np.concatenate([todo, split_of[2]])
+        todo = np.unique(todo)
+        todo = todo[self.deg[todo] > 0]  # goals and dead ends never change after step 1
+        out = field.copy()
+        if not todo.size:
+            return out, todo
+        a = self.arcs
+        idx, offs = self._ranges(self.first[todo], self.deg[todo])
+        new = np.minimum.reduceat(a.weights[idx] + field[a.heads[idx]], offs)
+        np.minimum(new, sentinel, out=new)
+        if split_of is not None:
+            split = split_of[0][todo] + split_of[1][todo]
+            np.minimum(split, sentinel, out=split)
+            np.minimum(new, split, out=new)
+        out[todo] = new
+        return out, todo[new != field[todo]]
