@@ -296,7 +296,11 @@ def _build(doc: Any) -> Instance:
     for k, nd in enumerate(raw_nodes):
         _require(isinstance(nd, Mapping) and "id" in nd,
                  f"graph.nodes[{k}]: must be an object with an \"id\"")
-        v = node_from_json(nd["id"], where=f"graph.nodes[{k}].id")
+        raw = nd["id"]
+        if type(raw) is list and len(raw) == 2 and type(raw[0]) is int and type(raw[1]) is int:
+            v: Node = (raw[0], raw[1])  # a grid cell, the common case
+        else:
+            v = node_from_json(raw, where=f"graph.nodes[{k}].id")
         try:
             hash(v)
         except TypeError:

@@ -178,8 +178,8 @@ def goal_terminal_arcs(instance: Instance, *, extra: tuple[Number, ...] = ()) ->
                     starts=np.asarray(starts, dtype=np.int64),
                     heads=np.asarray(heads, dtype=np.int64),
                     weights=np.asarray(raw, dtype=np.float64), scale=1)
-    scale = _common_denominator([*raw, *extra])
-    scaled = [int(w * scale) for w in raw]
+    scale = _common_denominator([*set(raw), *extra])
+    scaled = raw if scale == 1 else [int(w * scale) for w in raw]
     dtype: type = np.int64 if max(scaled, default=0) < INT64_LIMIT else object
     return Arcs(tails=np.asarray(tails, dtype=np.int64), starts=np.asarray(starts, dtype=np.int64),
                 heads=np.asarray(heads, dtype=np.int64),
@@ -189,7 +189,7 @@ def goal_terminal_arcs(instance: Instance, *, extra: tuple[Number, ...] = ()) ->
 def _common_denominator(values: list[Number]) -> int:
     den = 1
     for w in values:
-        if isinstance(w, Fraction):
+        if type(w) is Fraction:
             den = math.lcm(den, w.denominator)
     return den
 

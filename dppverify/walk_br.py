@@ -83,7 +83,7 @@ def scaled_arcs(instance: Instance) -> ScaledArcs | None:
         m = sum(len(a) for a in succ)
         raw = [w for arcs in succ for _, w in arcs]
         den = 1
-        for d in {w.denominator for w in raw if isinstance(w, Fraction)}:
+        for d in {w.denominator for w in set(raw) if isinstance(w, Fraction)}:  # few distinct
             den = math.lcm(den, d)
         scaled = raw if den == 1 else [int(w * den) for w in raw]
         if 4 * sum(scaled) < EXACT_FLOAT_LIMIT:
