@@ -15,6 +15,7 @@ from typing import Any, Literal, cast
 
 from dppverify.errors import CertificateError
 from dppverify.exact import Number, format_number, normalize
+from dppverify.registry import KINDS, Kind, kind_of
 
 __all__ = ["CERTIFICATE_FORMAT", "STATUSES", "Certificate", "CheckRecord", "Status", "Verdict",
            "verdict_of"]
@@ -71,9 +72,17 @@ class CheckRecord:
         """True when the status is ``pass``."""
         return self.status == "pass"
 
+    @property
+    def kind(self) -> Kind:
+        """``check`` (evidence) or ``consistency`` (the checker's own computations compared),
+        from the registry (:func:`~dppverify.registry.kind_of`)."""
+        return kind_of(self.id)
+
     def to_json(self) -> dict[str, Any]:
-        """The record as a JSON object."""
-        doc: dict[str, Any] = {"id": self.id, "status": self.status, "message": self.message,
+        """The record as a JSON object (``kind`` is written for readers, never read back: it
+        comes from the registry)."""
+        doc: dict[str, Any] = {"id": self.id, "kind": self.kind, "status": self.status,
+                               "message": self.message,
                                "numbers": {k: format_number(v) for k, v in self.numbers.items()}}
         if self.proof is not None:
             doc["proof"] = self.proof
@@ -219,6 +228,25 @@ class Certificate:
                 return c
         raise KeyError(check_id)
 
+    def of_kind(self, kind: Kind) -> tuple[CheckRecord, ...]:
+        """The records of ``kind`` (``check``: evidence; ``consistency``: the checker's own
+        computations compared, reported apart from the pass count).
+
+        Examples
+        --------
+        >>> c = Certificate(checks=(CheckRecord("value.U", "pass", ""),
+        ...     CheckRecord("pbne.belief_consistency", "pass", "")), horizon=1, exact=True)
+        >>> [r.id for r in c.of_kind("consistency")], c.counts()
+        (['pbne.belief_consistency'], {'check': (1, 1), 'consistency': (1, 1)})
+        """
+        return tuple(c for c in self.checks if c.kind == kind)
+
+    def counts(self) -> dict[Kind, tuple[int, int]]:
+        """``(passed, total)`` per kind; the ``N/M checks passed`` of the text report is the
+        ``check`` entry (see :meth:`of_kind`)."""
+        return {k: (sum(c.passed for c in self.of_kind(k)), len(self.of_kind(k)))
+                for k in KINDS}
+
     def failed(self) -> tuple[CheckRecord, ...]:
         """The records whose status is not ``pass``."""
         return tuple(c for c in self.checks if c.status != "pass")
@@ -228,6 +256,7 @@ class Certificate:
         return {
             "format": CERTIFICATE_FORMAT,
             "verdict": self.verdict,
+            "counts": {k: {"passed": p, "total": t} for k, (p, t) in self.counts().items()},
             "horizon": "inf" if self.horizon is None else self.horizon,
             "route": self.route,
             "exact": self.exact,

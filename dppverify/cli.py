@@ -34,10 +34,14 @@ from dppverify.tree import DEFAULT_MAX_PREFIXES
 from dppverify.value_dp import StructuredValue
 from dppverify.value_lp import GameValue
 
-__all__ = ["COMMANDS", "HORIZON", "CertifyHorizonParam", "ErrorReportingGroup", "HorizonParam",
-           "certify_command", "export_efg_command", "format_table", "load_game", "value_command"]
+__all__ = ["COMMANDS", "CONSISTENCY_HEADING", "HORIZON", "CertifyHorizonParam",
+           "ErrorReportingGroup", "HorizonParam", "certify_command", "export_efg_command",
+           "format_table", "load_game", "value_command"]
 
 NUMBERS_WIDTH = 44
+
+CONSISTENCY_HEADING = ("consistency checks (the checker's own computations compared; a failure "
+                       "is the checker's fault, not counted above):")
 
 
 
@@ -100,34 +104,43 @@ def format_table(cert: Certificate) -> str:
     ...                              {"path": ["s", "g2"], "probability": "3/7"}],
     ...                  "secondary": [{"path": ["s", "g2"], "probability": 1}]}}
     >>> lines = format_table(certify(triangle_document(), profile)).splitlines()
-    >>> len(lines)
-    21
+    >>> len(lines), lines.index(CONSISTENCY_HEADING)
+    (22, 19)
     >>> for line in lines[:2] + lines[5:7]:  # doctest: +NORMALIZE_WHITESPACE
     ...     print(line)
-    verdict: PASS (19/19 checks passed; H = 1, 3 prefixes, exact; LP CLARABEL agreement
-      within 1e-07 relative)
+    verdict: PASS (17/17 checks passed; 2/2 consistency checks agree; H = 1, 3 prefixes,
+      exact; LP CLARABEL agreement within 1e-07 relative)
     check      status  numbers                      message
     value.U    pass    U=12/5 U_lp=2.4 U_tree=12/5  U = 12/5, LP evaluation 2.4
     value.VoI  pass    U_bar=27/10 VoI=1/9          U_bar = 27/10, VoI = 1/9
     """
-    passed = sum(c.passed for c in cert.checks)
+    counts = cert.counts()
+    passed, total = counts["check"]
+    tally = f"{passed}/{total} checks passed"
+    if counts["consistency"][1]:
+        tally += "; {}/{} consistency checks agree".format(*counts["consistency"])
     mode = "exact" if cert.exact else f"float mode, relative tolerance {cert.tolerance:g}"
     if cert.route == "structured":
         h = "inf" if cert.horizon is None else str(cert.horizon)
         skipped = f"; not run: {', '.join(cert.not_run)}" if cert.not_run else ""
-        head = (f"verdict: {cert.verdict.upper()} ({passed}/{len(cert.checks)} checks passed; "
+        head = (f"verdict: {cert.verdict.upper()} ({tally}; "
                 f"H = {h}, structured route (no walk tree), {mode}{skipped})")
     else:
         both = ", both routes" if cert.route == "both" else ""
-        head = (f"verdict: {cert.verdict.upper()} ({passed}/{len(cert.checks)} checks passed; "
+        head = (f"verdict: {cert.verdict.upper()} ({tally}; "
                 f"H = {cert.horizon}, {cert.prefixes} prefixes{both}, {mode}; LP "
                 f"{cert.lp_solver} agreement within {cert.lp_tolerance:g} relative)")
-    rows = [("check", "status", "numbers", "message")]
-    rows += [(c.id, c.status, _numbers(c), c.message) for c in cert.checks]
+    evidence = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("check")]
+    own = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("consistency")]
+    rows = [("check", "status", "numbers", "message"), *evidence, *own]
     w0 = max(len(r[0]) for r in rows)
     w1 = max(len(r[1]) for r in rows)
     w2 = max(len(r[2]) for r in rows)
-    lines = [head] + [f"{a:<{w0}}  {b:<{w1}}  {c:<{w2}}  {d}".rstrip() for a, b, c, d in rows]
+    lines = [head] + [f"{a:<{w0}}  {b:<{w1}}  {c:<{w2}}  {d}".rstrip()
+                      for a, b, c, d in rows[:1 + len(evidence)]]
+    if own:
+        lines.append(CONSISTENCY_HEADING)
+        lines += [f"{a:<{w0}}  {b:<{w1}}  {c:<{w2}}  {d}".rstrip() for a, b, c, d in own]
     return "\n".join(lines)
 
 

@@ -7,7 +7,9 @@ the registered runners in registry order.
 
 ``kind``: ``check`` is evidence about the profile or the instance; ``consistency`` compares
 two computations of the checker's own (a failure is the checker's fault, never evidence for
-the profile). Both appear in the certificate; the verdict counts both.
+the profile). Both appear in the certificate and the verdict counts both, but the pass count
+("17/17 checks passed") counts only kind ``check``; consistency records are reported apart
+(:func:`kind_of`, :meth:`dppverify.certificate.Certificate.of_kind`).
 """
 
 from __future__ import annotations
@@ -16,10 +18,13 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Literal
 
-__all__ = ["CHECKS", "CHECK_IDS", "CheckSpec", "not_run", "runner", "runners", "spec"]
+__all__ = ["CHECKS", "CHECK_IDS", "KINDS", "CheckSpec", "kind_of", "not_run", "runner", "runners",
+           "spec"]
 
 RouteName = Literal["tree", "structured"]
 Kind = Literal["check", "consistency"]
+KINDS: tuple[Kind, ...] = ("check", "consistency")
+"""The kinds, in the order reports show them."""
 
 
 @dataclass(frozen=True)
@@ -111,6 +116,19 @@ def spec(check_id: str) -> CheckSpec:
     ('tree',)
     """
     return _BY_ID[check_id]
+
+
+def kind_of(check_id: str) -> Kind:
+    """The kind of ``check_id``; an id the registry does not know (a certificate written by
+    another version) counts as ``check``.
+
+    Examples
+    --------
+    >>> kind_of("pbne.belief_consistency"), kind_of("value.U"), kind_of("no.such.check")
+    ('consistency', 'check', 'check')
+    """
+    s = _BY_ID.get(check_id)
+    return "check" if s is None else s.kind
 
 
 def runner(route: RouteName, *ids: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
