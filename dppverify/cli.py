@@ -23,6 +23,7 @@ from dppverify.efg import DEFAULT_MAX_EFG_NODES, write_efg
 from dppverify.errors import CheckerError, HorizonError, OptionError
 from dppverify.exact import format_number
 from dppverify.instance import Instance, load_instance
+from dppverify.limits import MAX_HORIZON, MAX_TRIALS
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.ngoal.certify import certify_ngoal
@@ -56,20 +57,38 @@ class ErrorReportingGroup(click.Group):
 
     user_errors: tuple[type[Exception], ...] = (CheckerError,)
 
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        try:
+            return super().parse_args(ctx, args)
+        except click.UsageError as exc:
+            _usage_error(exc)
+            ctx.exit(2)
+            raise  # pragma: no cover - ctx.exit raises
+
     def invoke(self, ctx: click.Context) -> Any:
         try:
             return super().invoke(ctx)
         except self.user_errors as exc:
-            click.echo(f"error: {exc}", err=True)
+            click.echo(f"error: {' '.join(str(exc).split())}", err=True)
+            ctx.exit(2)
+        except click.UsageError as exc:  # click's three-line usage message, as one line
+            _usage_error(exc)
             ctx.exit(2)
         except (click.exceptions.Exit, click.ClickException, click.Abort):
             raise
         except Exception as exc:
             if os.environ.get("DPP_DEBUG"):
                 raise
-            click.echo(f"internal error: {type(exc).__name__}: {exc} "
+            click.echo(f"internal error: {type(exc).__name__}: {' '.join(str(exc).split())} "
                        "(set DPP_DEBUG=1 for details)", err=True)
             ctx.exit(3)
+
+
+def _usage_error(exc: click.UsageError) -> None:
+    """One line for a click usage error: the message and where to find help."""
+    where = exc.ctx.command_path if exc.ctx is not None else "dpp"
+    message = " ".join(exc.format_message().split())
+    click.echo(f"error: {message} (see '{where} --help')", err=True)
 
 
 def _fail(exc: CheckerError) -> None:
@@ -164,6 +183,8 @@ class HorizonParam(click.ParamType):
             self.fail(f"{value!r} is not a non-negative integer or 'inf'", param, ctx)
         if h < 0:
             self.fail(f"{value!r} is negative", param, ctx)
+        if h > MAX_HORIZON:
+            self.fail(f"{value!r} is beyond the limit of {MAX_HORIZON}", param, ctx)
         return h
 
 
@@ -216,7 +237,8 @@ def load_game(instance: str | None, grid: MapRequest | None) -> Instance:
                    "relative tolerance of 1e-9 instead of refusing them.")
 @click.option("--seed", type=int, default=0, show_default=True,
               help="Seed of the random attackers of the L3/L4 checks.")
-@click.option("--trials", type=click.IntRange(min=0), default=DEFAULT_TRIALS, show_default=True,
+@click.option("--trials", type=click.IntRange(min=0, max=MAX_TRIALS), default=DEFAULT_TRIALS,
+              show_default=True,
               help="Number of random attackers in the L3/L4 checks.")
 @progress_option
 def certify_command(instance: str | None, profile: str | None, grid: MapRequest | None,
@@ -417,7 +439,7 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
 @click.command("export-efg")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
-@click.option("-H", "--horizon", type=click.IntRange(min=0), required=True,
+@click.option("-H", "--horizon", type=click.IntRange(min=0, max=MAX_HORIZON), required=True,
               help="Horizon H of the truncated game.")
 @output_file_option("The .efg file to write (atomically).", required=True)
 @click.option("--attacker-observes/--attacker-blind", default=True, show_default=True,

@@ -71,9 +71,7 @@ t "" 4 "cost 2" { -2 2 }
 
 from __future__ import annotations
 
-import os
 import sys
-import tempfile
 from collections.abc import Iterator
 from dataclasses import dataclass
 from fractions import Fraction
@@ -84,6 +82,7 @@ from tqdm import tqdm
 
 from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.exact import Number, normalize
+from dppverify.files import write_files
 from dppverify.instance import Instance
 from dppverify.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
 
@@ -397,20 +396,7 @@ def write_efg(path: str | Path, instance: Instance, horizon: int, *,
         text = tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
                            max_nodes=max_nodes, title=title)
         bar.update(1)
-    target = Path(path)
-    tmp = None
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp",
-                                   dir=target.parent if str(target.parent) else ".")
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, target)
-        tmp = None
-    except OSError as exc:
-        raise EfgWriteError(f"cannot write {str(target)!r}: {exc.strerror or exc}") from None
-    finally:
-        if tmp is not None and os.path.exists(tmp):
-            os.unlink(tmp)
+    write_files({Path(path): text})  # all or nothing, mode from the umask
     return efg_size(tree, attacker_observes=attacker_observes, forced_moves=forced_moves)
 
 

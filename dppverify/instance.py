@@ -20,6 +20,7 @@ from typing import Any
 from dppverify.distances import dijkstra, hops_to_targets
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import INF, Number, parse_json, parse_number
+from dppverify.files import read_input
 
 __all__ = ["Instance", "Node", "Roles", "instance_from_json", "load_instance", "node_from_json",
            "node_to_json", "show_node"]
@@ -45,6 +46,9 @@ def node_from_json(x: Any, *, where: str = "node id") -> Node:
         return tuple(node_from_json(y, where=where) for y in x)
     if isinstance(x, dict):
         raise ValueError(f"{where} must be a JSON scalar or list, got an object")
+    if isinstance(x, bool) or x is None:
+        raise ValueError(f"{where}: node ids are strings, numbers or lists, got "
+                         f"{json.dumps(x)}")
     if isinstance(x, Fraction):
         return int(x) if x.denominator == 1 else float(x)
     return x
@@ -228,9 +232,10 @@ def load_instance(path: str | Path) -> Instance:
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        reason = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"
+        text = read_input(p).decode("utf-8")
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        reason = (exc.strerror if isinstance(exc, OSError) else
+                  "not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc))
         raise InvalidInstanceError(f"{p}: cannot read instance file ({reason})") from None
     try:
         return instance_from_json(text)

@@ -30,6 +30,7 @@ from typing import Any
 
 from dppverify.errors import ProfileError
 from dppverify.exact import Number, Tolerance, parse_json, parse_number
+from dppverify.files import read_input
 from dppverify.instance import Instance, node_from_json, show_node
 
 __all__ = ["PROFILE_FORMAT", "Defect", "DefenderRule", "MixedWalk", "Profile", "ProgressRule",
@@ -154,9 +155,10 @@ def load_profile_document(source: str | Path | bytes) -> dict[str, Any]:
     else:
         name = str(source)
         try:
-            raw = Path(source).read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as exc:
-            reason = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"
+            raw = read_input(source).decode("utf-8")
+        except (OSError, UnicodeDecodeError, ValueError) as exc:
+            reason = (exc.strerror if isinstance(exc, OSError) else
+                      "not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc))
             raise ProfileError(f"{name}: cannot read profile file ({reason})") from None
     try:
         doc = parse_json(raw)

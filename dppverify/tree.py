@@ -126,10 +126,12 @@ class WalkTree:
         return p
 
 
-def count_prefixes(instance: Instance, horizon: int) -> int:
+def count_prefixes(instance: Instance, horizon: int, *, limit: int | None = None) -> int:
     """Number of prefixes of the pruned walk tree with ``horizon`` steps, without building it.
 
-    Dynamic programming over (node, steps left): ``O(H·|E|)``.
+    Dynamic programming over (node, steps left): ``O(H·|E|)``, and bounded: the count is
+    non-decreasing in the steps left, so it stops as soon as it exceeds ``limit`` (returning
+    a number larger than ``limit``) or stops changing (every walk has ended at a goal).
 
     Raises
     ------
@@ -153,6 +155,8 @@ def count_prefixes(instance: Instance, horizon: int) -> int:
     hops = inst.hops
     cnt = [1 if goal[v] else 0 for v in range(inst.n_nodes)]  # k = 0 steps left
     for k in range(1, horizon + 1):
+        if limit is not None and cnt[inst.start] > limit:
+            break
         nxt = []
         for v in range(inst.n_nodes):
             if goal[v]:
@@ -161,6 +165,8 @@ def count_prefixes(instance: Instance, horizon: int) -> int:
                 nxt.append(1 + sum(cnt[u] for u, _ in inst.succ[v]))
             else:
                 nxt.append(0)
+        if nxt == cnt and k > inst.n_nodes:  # hops <= n: a fixed point from here on
+            break
         cnt = nxt
     return cnt[inst.start]
 
@@ -200,15 +206,16 @@ def build_tree(instance: Instance, horizon: int, *,
     [(0, 2), (0, 1, 3), (0, 1, 0, 2), (0, 1, 0, 1, 3)]
     >>> build_tree(instance_from_json(doc), 4, max_prefixes=5)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
-    dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 4 has 8 prefixes, ...
+    dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 4 has at least 8 prefixes, ...
     """
-    size = count_prefixes(instance, horizon)
+    size = count_prefixes(instance, horizon, limit=max_prefixes)
     if size == 0:
         raise HorizonError(f"no walk from the start reaches a goal within H = {horizon} steps "
                            f"(the nearest goal is {instance.hops[instance.start]} steps away)")
     if size > max_prefixes:
         raise TreeTooLargeError(
-            f"the walk tree for horizon H = {horizon} has {size} prefixes, more than the limit "
+            f"the walk tree for horizon H = {horizon} has at least {size} prefixes, more than "
+            f"the limit "
             f"of {max_prefixes}; lower the horizon or raise the limit (--max-prefixes)")
     inst = instance
     goal = [inst.is_goal(v) for v in range(inst.n_nodes)]

@@ -7,6 +7,7 @@ traceback). ``dppverify`` never imports this module: the dependency points one w
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
@@ -23,10 +24,11 @@ from dppverify.cli_conventions import (
 from dppverify.errors import CheckerError
 from dppverify.map_options import MapRequest, instance_or_map, map_options
 from solver.equilibrium import solve
-from solver.errors import DPPError, InvalidInstanceError
+from solver.errors import DPPError, InvalidInstanceError, OutputError
 from solver.instance import Instance
 from solver.instance_json import instance_to_json, load_instance
-from solver.io_utils import dumps, write_atomic
+from solver.io_utils import dumps, write_atomic, write_files
+from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE, MAX_INPUT_BYTES
 from solver.movingai import read_map
 from solver.profile_json import equilibrium_to_json
 from solver.report import summarize
@@ -72,13 +74,13 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     eq = solve(inst)
     doc = equilibrium_to_json(eq)
     instance_text = dumps(instance_to_json(inst)) if save_instance is not None else None
-    if output:
+    if output is not None:
         write_atomic(output, dumps(doc))
     if save_instance is not None and instance_text is not None:
         write_atomic(save_instance, instance_text)
     if as_json:
         click.echo(dumps(doc), nl=False)
-    elif not output:
+    elif output is None:
         click.echo(summarize(eq))
     else:
         status(f"wrote {output}: U* = {doc['value']['U']}, VoI* = {doc['value']['VoI']}")
@@ -145,11 +147,11 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
         leave=False))
     text = compare_table(results) + "\n\n" + verdict(results) + "\n"
     click.echo(text, nl=False)
-    if output_dir:
+    if output_dir == "":
+        raise OutputError("--output-dir: the output path is empty")
+    if output_dir is not None:
         d = Path(output_dir)
-        d.mkdir(parents=True, exist_ok=True)
-        write_atomic(d / "compare.csv", compare_csv(results))
-        write_atomic(d / "compare.txt", text)
+        write_files({d / "compare.csv": compare_csv(results), d / "compare.txt": text})
         status(f"wrote {d / 'compare.csv'} and {d / 'compare.txt'}")
 
 
@@ -165,11 +167,14 @@ def _int_list(text: str, what: str) -> tuple[int, ...]:
 
 
 @experiment_group.command("density")
-@click.option("--samples", default=200, show_default=True, help="Grids per density.")
+@click.option("--samples", type=click.IntRange(min=1, max=MAX_DENSITY_GRIDS), default=200,
+              show_default=True, help="Grids per density.")
 @click.option("--densities", default="0,10,20,30,40", show_default=True,
               help="Obstacle densities in percent, comma-separated.")
-@click.option("--seed", default=0, show_default=True, help="Seed: same seed, same grids.")
-@click.option("--size", default=20, show_default=True, help="Grid side length.")
+@click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0,
+              show_default=True, help="Seed: same seed, same grids.")
+@click.option("--size", type=click.IntRange(min=2, max=MAX_DENSITY_SIZE), default=20,
+              show_default=True, help="Grid side length.")
 @click.option("--workers", type=int, default=None,
               help="Local processes (default: all cores; 1 = in this process).")
 @click.option("--dask", "dask_address", metavar="ADDRESS",
@@ -200,7 +205,17 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
 
     if workers is not None and workers < 1:
         raise InvalidInstanceError(f"--workers must be at least 1, got {workers}")
-    config = DensityConfig(size=size, densities=_int_list(densities, "--densities"),
+    if str(output_dir) == "":
+        raise InvalidInstanceError("--output-dir: the output path is empty")
+    if dask_address is not None and not re.fullmatch(r"([a-z]+://)?[\w.\-\[\]:]+:\d+",
+                                                     dask_address):
+        raise InvalidInstanceError(f"--dask: {dask_address!r} is not a scheduler address "
+                                   "(e.g. tcp://127.0.0.1:8786)")
+    dens = _int_list(densities, "--densities")
+    if samples * len(dens) > MAX_DENSITY_GRIDS:
+        raise InvalidInstanceError(f"--samples x densities = {samples * len(dens)} grids is "
+                                   f"beyond the limit of {MAX_DENSITY_GRIDS}")
+    config = DensityConfig(size=size, densities=dens,
                            samples=samples, seed=seed, start=(size - 1, 0),
                            goals=((0, size - 1), (0, 0)))
     with tqdm(total=samples * len(config.densities), unit="grid", file=sys.stderr,
@@ -209,13 +224,12 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
                            progress=bar.update)
     summary = summarize_density(rows)
     d = Path(output_dir)
-    d.mkdir(parents=True, exist_ok=True)
-    write_atomic(d / "density.csv", rows_to_csv(rows))
-    write_atomic(d / "summary.txt", summary.text() + "\n")
-    write_atomic(d / "summary.json", dumps({"config": {
-        "size": size, "densities": list(config.densities), "samples": samples, "seed": seed,
-        "start": list(config.start), "goals": [list(g) for g in config.goals],
-        "prior": list(config.prior)}, **summary.to_json()}))
+    write_files({d / "density.csv": rows_to_csv(rows), d / "summary.txt": summary.text() + "\n",
+                 d / "summary.json": dumps({"config": {
+                     "size": size, "densities": list(config.densities), "samples": samples,
+                     "seed": seed, "start": list(config.start),
+                     "goals": [list(g) for g in config.goals], "prior": list(config.prior)},
+                     **summary.to_json()})})
     click.echo(summary.text())
     status(f"wrote {d / 'density.csv'} ({len(rows)} rows), {d / 'summary.txt'}, "
            f"{d / 'summary.json'}")
@@ -271,8 +285,12 @@ def plot_voi_command(csv_file: str, output: str) -> None:
     from solver.plots import plot_voi, save_figure
 
     try:
-        text = Path(csv_file).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
+        with open(csv_file, "rb") as fh:
+            raw = fh.read(MAX_INPUT_BYTES + 1)
+        if len(raw) > MAX_INPUT_BYTES:
+            raise ValueError(f"larger than the limit of {MAX_INPUT_BYTES} bytes")
+        text = raw.decode("utf-8")
+    except (OSError, ValueError) as exc:
         raise InvalidInstanceError(f"{csv_file}: cannot read file ({exc})") from None
     files = save_figure(plot_voi(list(rows_from_csv(text))), output)
     status("wrote " + ", ".join(map(str, files)))

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-__all__ = ["DPPError", "InstanceFormatError", "InvalidInstanceError"]
+__all__ = ["DPPError", "InstanceFormatError", "InvalidInstanceError", "OutputError"]
 
 
 class DPPError(Exception):
@@ -19,3 +19,7 @@ class InvalidInstanceError(DPPError, ValueError):
 
 class InstanceFormatError(InvalidInstanceError):
     """A file or document that cannot be parsed (malformed JSON, a bad map header...)."""
+
+
+class OutputError(DPPError, OSError):
+    """An output location cannot be written (missing permission, full disk, a folder...)."""

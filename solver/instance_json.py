@@ -13,11 +13,19 @@ import numpy as np
 
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.instance import Instance
+from solver.limits import MAX_INPUT_BYTES, MAX_JSON_DEPTH, check_numeral
 from solver.network import GridLabels
 from solver.numbers import format_number, parse_number
 
-__all__ = ["instance_from_json", "instance_to_json", "load_instance", "node_from_json",
-           "node_to_json", "read_json"]
+__all__ = [
+    "instance_from_json",
+    "instance_to_json",
+    "load_instance",
+    "node_from_json",
+    "node_to_json",
+    "parse_json_text",
+    "read_json",
+]
 
 
 def read_json(path: str | Path) -> Any:
@@ -54,15 +62,72 @@ def read_json(path: str | Path) -> Any:
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
+        with open(p, "rb") as fh:
+            raw = fh.read(MAX_INPUT_BYTES + 1)
     except OSError as exc:
         raise InstanceFormatError(f"{p}: cannot read file ({exc.strerror})") from None
+    if len(raw) > MAX_INPUT_BYTES:
+        raise InstanceFormatError(f"{p}: cannot read file (larger than the limit of "
+                                  f"{MAX_INPUT_BYTES} bytes)")
     try:
-        return json.loads(text, parse_float=Fraction)
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InstanceFormatError(f"{p}: cannot read file (not UTF-8 text)") from None
+    try:
+        return parse_json_text(text)
+    except InstanceFormatError as exc:
+        raise InstanceFormatError(f"{p}: {exc}") from None
+
+
+def _parse_float(text: str) -> Fraction:
+    check_numeral(text, where="JSON number")
+    return Fraction(text)
+
+
+def _parse_int(text: str) -> int:
+    check_numeral(text, where="JSON number")
+    return int(text)
+
+
+def parse_json_text(text: str) -> Any:
+    """Parse JSON text: decimals as exact ``Fraction``, within the limits of
+    :mod:`solver.limits` (numeral length and exponent, nesting depth).
+
+    Raises
+    ------
+    InstanceFormatError
+        Malformed JSON, a numeral beyond the limits, or nesting deeper than the limit.
+
+    Examples
+    --------
+    >>> parse_json_text('[0.5, 2]')
+    [Fraction(1, 2), 2]
+    >>> parse_json_text('[1e999999999]')  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    solver.errors.InstanceFormatError: JSON number: the exponent of '1e999999999' is beyond ...
+    """
+    try:
+        doc = json.loads(text, parse_float=_parse_float, parse_int=_parse_int,
+                         parse_constant=_reject_constant)
     except json.JSONDecodeError as exc:
         raise InstanceFormatError(
-            f"{p}: malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}"
-        ) from None
+            f"malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}") from None
+    except RecursionError:
+        raise InstanceFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels") from None
+    except InvalidInstanceError as exc:
+        raise InstanceFormatError(str(exc)) from None
+    stack = [(doc, 1)]
+    while stack:
+        x, depth = stack.pop()
+        if isinstance(x, dict | list):
+            if depth > MAX_JSON_DEPTH:
+                raise InstanceFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
+            stack.extend((y, depth + 1) for y in (x.values() if isinstance(x, dict) else x))
+    return doc
+
+
+def _reject_constant(name: str) -> Any:
+    raise InstanceFormatError(f"non-finite number {name} is not allowed")
 
 
 def load_instance(path: str | Path) -> Instance:
@@ -118,6 +183,9 @@ def node_from_json(x: Any) -> Hashable:
         return tuple(node_from_json(y) for y in x)
     if isinstance(x, dict):
         raise InstanceFormatError(f"node id must be a JSON scalar or list, got object {x!r}")
+    if isinstance(x, bool) or x is None:
+        raise InstanceFormatError(f"node id: node ids are strings, numbers or lists, got "
+                                  f"{json.dumps(x)}")
     if isinstance(x, Fraction):
         return int(x) if x.denominator == 1 else float(x)
     return x
@@ -182,18 +250,16 @@ def instance_from_json(data: dict[str, Any] | str) -> Instance:
     solver.errors.InstanceFormatError: instance is missing key(s): start, goals, prior
     """
     if isinstance(data, str):
-        try:
-            data = json.loads(data, parse_float=Fraction)
-        except json.JSONDecodeError as exc:
-            raise InstanceFormatError(
-                f"malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}"
-            ) from None
+        data = parse_json_text(data)
     if not isinstance(data, dict):
         raise InstanceFormatError(f"instance must be a JSON object, got {type(data).__name__}")
     missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
     if missing:
         raise InstanceFormatError(f"instance is missing key(s): {', '.join(missing)}")
-    float_weights = data.get("numbers", "exact") == "float"
+    mode = data.get("numbers", "exact")
+    if mode not in ("exact", "float"):
+        raise InstanceFormatError(f"numbers: expected \"exact\" or \"float\", got {mode!r}")
+    float_weights = mode == "float"
     graph = _graph_from_node_link(data["graph"], float_weights=float_weights)
     goals, prior = data["goals"], data["prior"]
     if isinstance(goals, list) and len(goals) > 2:  # N goals: the checker only (dppverify.ngoal)
@@ -223,11 +289,17 @@ def _graph_from_node_link(g: Any, *, float_weights: bool) -> nx.Graph:
         raise InstanceFormatError("'graph.nodes' must be a list of {\"id\": ...} objects")
     if not isinstance(edges, list):
         raise InstanceFormatError("'graph.edges' must be a list of edge objects")
-    graph: nx.Graph = nx.DiGraph() if g.get("directed", False) else nx.Graph()
+    directed = g.get("directed", False)
+    if not isinstance(directed, bool):
+        raise InstanceFormatError(f"graph.directed: expected true/false, got {directed!r}")
+    graph: nx.Graph = nx.DiGraph() if directed else nx.Graph()
     for k, nd in enumerate(nodes):
         if not isinstance(nd, dict) or "id" not in nd:
             raise InstanceFormatError(f"graph.nodes[{k}] must be an object with an 'id'")
-        graph.add_node(node_from_json(nd["id"]))
+        node = node_from_json(nd["id"])
+        if node in graph:
+            raise InvalidInstanceError(f"graph.nodes[{k}]: duplicate node id {nd['id']!r}")
+        graph.add_node(node)
     for k, e in enumerate(edges):
         if not isinstance(e, dict) or "source" not in e or "target" not in e:
             raise InstanceFormatError(f"graph.edges[{k}] must have 'source' and 'target'")

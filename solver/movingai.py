@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from solver.errors import InstanceFormatError
+from solver.limits import MAX_INPUT_BYTES
 
 __all__ = ["DEFAULT_BLOCKED", "parse_map", "read_map"]
 
@@ -58,8 +59,12 @@ def read_map(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="ascii", errors="strict")
-    except (OSError, UnicodeDecodeError) as exc:
+        with open(p, "rb") as fh:
+            raw = fh.read(MAX_INPUT_BYTES + 1)
+        if len(raw) > MAX_INPUT_BYTES:
+            raise ValueError(f"larger than the limit of {MAX_INPUT_BYTES} bytes")
+        text = raw.decode("ascii", errors="strict")
+    except (OSError, ValueError) as exc:
         raise InstanceFormatError(f"{p}: cannot read map file ({exc})") from None
     try:
         return parse_map(text, blocked_chars=blocked_chars)
@@ -97,8 +102,11 @@ def parse_map(text: str, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED) -> n
     if height <= 0 or width <= 0:
         raise InstanceFormatError(f"height and width must be positive, got {height}x{width}")
     rows = lines[k + 1 : k + 1 + height]
-    if len(rows) != height:
-        raise InstanceFormatError(f"expected {height} map rows, found {len(rows)}")
+    extra = [line for line in lines[k + 1 + height:] if line.strip()]
+    if len(rows) != height or extra:
+        found = len(rows) + len(extra)
+        raise InstanceFormatError(f"expected {height} map rows (the header's height), "
+                                  f"found {found}")
     grid = np.zeros((height, width), dtype=bool)
     for r, row in enumerate(rows):
         row = row.rstrip("\r\n")

@@ -23,6 +23,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from solver.errors import InvalidInstanceError
+from solver.limits import check_numeral, check_rational
 
 __all__ = ["DEFAULT_ABS_TOL", "ExactNumbers", "FloatNumbers", "Number", "NumberMode",
            "format_number", "parse_number"]
@@ -225,16 +226,21 @@ def parse_number(value: object, *, where: str, allow_float: bool = False) -> Num
     if isinstance(value, bool):
         raise InvalidInstanceError(f"{where}: expected a number, got {value!r}")
     if isinstance(value, Rational):
-        return Fraction(int(value.numerator), int(value.denominator))
+        exact = Fraction(int(value.numerator), int(value.denominator))
+        check_rational(exact, where=where)
+        return exact
     if isinstance(value, float):
         if not math.isfinite(value):
             raise InvalidInstanceError(f"{where}: expected a finite number, got {value!r}")
         return value if allow_float else Fraction(repr(value))
     if isinstance(value, str):
+        check_numeral(value, where=where)
         try:
-            return Fraction(value.strip())
+            exact = Fraction(value.strip())
         except (ValueError, ZeroDivisionError):
             raise InvalidInstanceError(f"{where}: {value!r} is not a number") from None
+        check_rational(exact, where=where)
+        return exact
     raise InvalidInstanceError(f"{where}: expected a number, got {value!r}")
 
 

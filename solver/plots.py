@@ -10,6 +10,7 @@
 
 from __future__ import annotations
 
+import io
 from collections.abc import Hashable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -24,8 +25,9 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from solver.errors import InvalidInstanceError
+from solver.errors import InvalidInstanceError, OutputError
 from solver.instance import Instance
+from solver.io_utils import write_files
 from solver.network import GridLabels
 from solver.pairs import PAIRS, PairEvaluator
 
@@ -59,7 +61,8 @@ def save_figure(fig: Figure, out: str | Path) -> list[Path]:
     """Write ``fig``: to ``out`` if it ends in ``.png`` or ``.svg``, else to ``out.png`` and
     ``out.svg``. Returns the files written.
 
-    Missing parent directories are created; the figure is closed afterwards.
+    The files are written together or not at all (:func:`solver.io_utils.write_files`:
+    missing folders are created); the figure is closed afterwards.
 
     Parameters
     ----------
@@ -86,13 +89,20 @@ def save_figure(fig: Figure, out: str | Path) -> list[Path]:
     >>> plt.fignum_exists(fig.number)
     False
     """
+    if str(out) == "":
+        raise OutputError("-o/--output: the output path is empty")
     p = Path(out)
     targets = [p] if p.suffix.lower() in (".png", ".svg") else [
         p.with_name(p.name + ".png"), p.with_name(p.name + ".svg")]
-    for t in targets:
-        t.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(t, dpi=110, bbox_inches="tight")
-    plt.close(fig)
+    rendered: dict[Path, bytes] = {}
+    try:
+        for t in targets:
+            buf = io.BytesIO()
+            fig.savefig(buf, format=t.suffix[1:].lower(), dpi=110, bbox_inches="tight")
+            rendered[t] = buf.getvalue()
+    finally:
+        plt.close(fig)
+    write_files(rendered)  # all formats or none
     return targets
 
 

@@ -1,0 +1,83 @@
+"""The solver's input limits, in one place (listed in the README, "Limits").
+
+Beyond each limit the solver refuses with one line (exit code 2) instead of hanging or
+exhausting memory. The checker keeps its own copy (``dppverify/limits.py``; the packages
+share no code) with the same values, and the hostile-input suite checks both.
+
+Examples
+--------
+>>> check_numeral("1e999999999", where="weight")  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+solver.errors.InvalidInstanceError: weight: the exponent of '1e999999999' is beyond ...
+"""
+
+from __future__ import annotations
+
+import re
+from fractions import Fraction
+
+from solver.errors import InvalidInstanceError
+
+__all__ = ["MAX_DENSITY_GRIDS", "MAX_DENSITY_SIZE", "MAX_EXPONENT", "MAX_INPUT_BYTES",
+           "MAX_JSON_DEPTH", "MAX_NUMBER_DIGITS", "MAX_NUMERAL_CHARS", "check_numeral",
+           "check_rational"]
+
+MAX_INPUT_BYTES = 64 * 1024 * 1024
+"""Largest instance JSON or ``.map`` file read (bytes): 64 MiB."""
+
+MAX_JSON_DEPTH = 64
+"""Deepest nesting of JSON arrays/objects in a document."""
+
+MAX_NUMERAL_CHARS = 1000
+"""Longest numeral (a JSON number literal or an exact string such as ``"p/q"``)."""
+
+MAX_EXPONENT = 400
+"""Largest decimal exponent written in a numeral."""
+
+MAX_NUMBER_DIGITS = 200
+"""Every number is a rational p/q with |p| and q below 10**200 (after reduction)."""
+
+MAX_DENSITY_SIZE = 200
+"""Largest grid side of ``dpp experiment density --size``."""
+
+MAX_DENSITY_GRIDS = 100_000
+"""Most grids of one density sweep (samples x densities)."""
+
+_NUMERAL = re.compile(r"\s*[-+]?(\d*)(?:\.(\d*))?(?:[eE]([-+]?\d+))?\s*")
+
+
+def check_numeral(text: str, *, where: str) -> None:
+    """Refuse a numeral whose length or written exponent is beyond the limits.
+
+    Examples
+    --------
+    >>> check_numeral("3/5", where="prior[0]")
+    """
+    if len(text) > MAX_NUMERAL_CHARS:
+        raise InvalidInstanceError(f"{where}: a numeral of {len(text)} characters is beyond "
+                                   f"the limit of {MAX_NUMERAL_CHARS}")
+    for part in text.split("/", 1):
+        m = _NUMERAL.fullmatch(part)
+        if m and m.group(3) is not None and abs(int(m.group(3))) > MAX_EXPONENT:
+            raise InvalidInstanceError(f"{where}: the exponent of {text!r} is beyond the limit "
+                                       f"of {MAX_EXPONENT}")
+
+
+def check_rational(x: object, *, where: str) -> None:
+    """Refuse an exact number with more than :data:`MAX_NUMBER_DIGITS` digits above or below
+    the fraction bar.
+
+    Examples
+    --------
+    >>> check_rational(10 ** 400, where="weight")
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: weight: 10**400 or more is beyond the limit of 10**200
+    """
+    if not isinstance(x, int | Fraction):
+        return
+    bound = 10 ** MAX_NUMBER_DIGITS
+    f = Fraction(x)
+    if abs(f.numerator) >= bound or f.denominator >= bound:
+        big = max(abs(f.numerator), f.denominator)
+        raise InvalidInstanceError(f"{where}: 10**{len(str(big)) - 1} or more is beyond the "
+                                   f"limit of 10**{MAX_NUMBER_DIGITS}")
