@@ -206,7 +206,7 @@ def build_tree(instance: Instance, horizon: int, *,
     [(0, 2), (0, 1, 3), (0, 1, 0, 2), (0, 1, 0, 1, 3)]
     >>> build_tree(instance_from_json(doc), 4, max_prefixes=5)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
-    dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 4 has at least 8 prefixes, ...
+    dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 4 has at least 6 prefixes, ...
     """
     size = count_prefixes(instance, horizon, limit=max_prefixes)
     if size == 0:

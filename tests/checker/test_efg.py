@@ -509,8 +509,8 @@ def test_write_efg_is_atomic_and_reports_the_size(tmp_path: Path) -> None:
     assert list(tmp_path.iterdir()) == [target]
     game = parse(target.read_text())
     assert size.nodes == sum(1 for _ in game.nodes())
-    with pytest.raises(CheckerError, match="cannot write"):
-        write_efg(tmp_path / "missing" / "g.efg", instance_from_json(KITE), 2)
+    with pytest.raises(CheckerError, match="cannot write"):  # a file where a folder must be
+        write_efg(target / "g.efg", instance_from_json(KITE), 2)
     assert list(tmp_path.iterdir()) == [target]
 
 
@@ -552,5 +552,5 @@ def test_cli_export_efg_bad_input_exit_2(tmp_path: Path) -> None:
     assert r.exit_code == 2 and "Traceback" not in r.output
     good = tmp_path / "kite.json"
     good.write_text(json.dumps(KITE))
-    r = _run([str(good), "-H", "2", "-o", str(tmp_path / "no" / "g.efg")])
+    r = _run([str(good), "-H", "2", "-o", str(bad / "g.efg")])  # bad.json is not a folder
     assert r.exit_code == 2 and "cannot write" in r.output

@@ -68,7 +68,7 @@ def test_plot_instance_figures(tmp_path: Path, kind: str) -> None:
 @pytest.mark.parametrize("args,message", [
     (("experiment", "density", "--densities", "a,b"), "--densities must be integers"),
     (("experiment", "density", "--densities", "0,100", "--samples", "1"), "percentage"),
-    (("experiment", "density", "--samples", "0"), "--samples must be at least 1"),
+    (("experiment", "density", "--samples", "0"), "'--samples': 0 is not in the range"),
     (("experiment", "density", "--workers", "0", "--samples", "1", "--densities", "0",
       "--size", "4"), "--workers must be at least 1"),
     (("experiment", "compare", "--map", "missing.map", "--start", "0,0", "--goals", "1,1",
