@@ -83,7 +83,7 @@ class CheckRecord:
         comes from the registry)."""
         doc: dict[str, Any] = {"id": self.id, "kind": self.kind, "status": self.status,
                                "message": self.message,
-                               "numbers": {k: format_number(v) for k, v in self.numbers.items()}}
+                               "numbers": {k: _write_number(k, v) for k, v in self.numbers.items()}}
         if self.proof is not None:
             doc["proof"] = self.proof
         if self.route is not None:
@@ -112,6 +112,24 @@ class CheckRecord:
             raise CertificateError(f"check record is missing {exc}") from None
         except (TypeError, ValueError, ZeroDivisionError) as exc:
             raise CertificateError(f"malformed check record: {exc}") from None
+
+
+COUNT_KEYS = frozenset({
+    "H", "T", "t_I", "t_II", "seed", "defects", "primary_walks", "secondary_walks", "walks",
+    "paths", "prefixes", "infosets", "at_one_half", "violations", "mismatches",
+    "sum_violations", "range_violations", "walks_to_g1", "walks_to_g2",
+    "walks_to_g2_attaining", "attackers", "strict_infosets_checked", "primary_strategies",
+    "off_path_prefixes"})
+"""Numbers that count something (walks, prefixes, steps, seeds): JSON integers in a
+certificate. Every other exact number is a ``"p/q"`` string, even when it is an integer."""
+
+
+def _write_number(key: str, v: NumberEntry) -> str | float | int | None:
+    if key in COUNT_KEYS and v is not None and not isinstance(v, float):
+        f = Fraction(v)
+        if f.denominator == 1:
+            return int(f)
+    return format_number(v)
 
 
 def _read_number(v: Any) -> NumberEntry:

@@ -253,7 +253,8 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
 
     \b
     Examples:
-      dpp certify examples/triangle.json out/triangle.profile.json
+      dpp solve examples/triangle.json -o profile.json
+      dpp certify examples/triangle.json profile.json
       dpp certify examples/triangle.json profile.json --horizon 4 --json
       dpp certify examples/triangle.json profile.json --horizon inf
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
@@ -466,7 +467,7 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
     \b
     Examples:
       dpp export-efg examples/triangle.json --horizon 2 -o triangle.efg
-      dpp export-efg instance.json -H 3 -o game.efg --attacker-blind
+      dpp export-efg examples/triangle.json -H 3 -o game.efg --attacker-blind
       dpp export-efg --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 2 -o g.efg
     """
     try:

@@ -21,7 +21,7 @@ def test_round_trip_through_json_text() -> None:
     assert again == cert and again.to_json() == doc
     assert again.check("value.U").numbers["U"] == Fraction(71, 18)
     assert isinstance(again.check("value.U").numbers["U_lp"], float)
-    assert doc["checks"][0]["numbers"]["defects"] == "0"
+    assert doc["checks"][0]["numbers"]["defects"] == 0
 
 
 def test_verdict_precedence() -> None:
@@ -69,3 +69,19 @@ def test_skipped_checks_make_the_verdict_incomplete_or_fail() -> None:
     assert cert.check("lemma.L5.induced_beliefs").status == "skipped"
     assert cert.verdict == "fail"  # the mixed secondary is not a best response here
     assert certify(triangle_doc(), {"format": "dpp-profile/1"}).verdict == "fail"
+
+
+def test_counts_are_json_integers_and_values_exact_strings() -> None:
+    from dppverify.certificate import COUNT_KEYS
+
+    doc = certify(three_phase_doc(), three_phase_profile(), trials=1).to_json()
+    seen = set()
+    for check in doc["checks"]:
+        for key, value in check["numbers"].items():
+            if key in COUNT_KEYS:
+                assert type(value) is int, (check["id"], key, value)
+                seen.add(key)
+            else:
+                assert value is None or isinstance(value, str | float), (check["id"], key)
+    assert {"H", "walks", "prefixes", "t_II"} <= seen
+    assert json.loads(json.dumps(doc))["checks"][0]["numbers"]["defects"] == 0
