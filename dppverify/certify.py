@@ -23,9 +23,15 @@ from tqdm import tqdm
 
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.context import Context, make_context
-from dppverify.errors import HorizonError, InvalidInstanceError, LPError, TreeTooLargeError
+from dppverify.errors import (
+    HorizonError,
+    InvalidInstanceError,
+    LPError,
+    ProfileError,
+    TreeTooLargeError,
+)
 from dppverify.exact import FLOAT_TOLERANCE, Tolerance
-from dppverify.instance import Instance, instance_from_json, load_instance, node_to_json
+from dppverify.instance import Instance, as_instance, node_to_json
 from dppverify.lemmas import (
     l1_lower_bound,
     l2_no_revisits,
@@ -71,14 +77,15 @@ FLOAT_MODE_REFUSED = (
 
 
 
-def resolve_instance(instance: Instance | Mapping[str, Any] | str | Path) -> Instance:
-    """An :class:`Instance` from an instance, a document (dict) or a file path.
+def resolve_instance(instance: Instance | Mapping[str, Any] | str | Path | Any) -> Instance:
+    """An :class:`Instance` from an instance, a document (dict), a file path or any object
+    with ``to_json()`` (:func:`~dppverify.instance.as_instance`).
 
     Parameters
     ----------
-    instance : Instance, Mapping, str or Path
-        Returned as is, parsed (:func:`~dppverify.instance.instance_from_json`) or loaded
-        (:func:`~dppverify.instance.load_instance`).
+    instance : Instance, Mapping, str, Path or an object with ``to_json()``
+        Returned as is, parsed (:func:`~dppverify.instance.instance_from_json`), loaded
+        (:func:`~dppverify.instance.load_instance`) or parsed from ``to_json()``.
 
     Returns
     -------
@@ -98,18 +105,22 @@ def resolve_instance(instance: Instance | Mapping[str, Any] | str | Path) -> Ins
     >>> resolve_instance(triangle_document(("1/4", "3/4"))).prior
     (Fraction(1, 4), Fraction(3, 4))
     """
-    if isinstance(instance, Instance):
-        return instance
-    if isinstance(instance, Mapping):
-        return instance_from_json(instance)
-    return load_instance(instance)
+    return as_instance(instance)
 
 
-def _profile_document(profile: Mapping[str, Any] | str | Path | bytes) -> Mapping[str, Any]:
+def _profile_document(profile: Any) -> Mapping[str, Any]:
+    """A profile document from a dict, a path, JSON bytes or any object with ``to_json()``."""
+    to_json = getattr(profile, "to_json", None)
+    if not isinstance(profile, Mapping | str | Path | bytes) and callable(to_json):
+        profile = to_json()
     if isinstance(profile, Mapping):
         check_format(profile)
         return profile
-    return load_profile_document(profile if isinstance(profile, bytes) else Path(profile))
+    if isinstance(profile, str | Path | bytes):
+        return load_profile_document(profile if isinstance(profile, bytes) else Path(profile))
+    raise ProfileError("a profile must be a JSON document (dict), a file path, JSON bytes or "
+                       f"an object with to_json(); got {type(profile).__name__} (for the "
+                       "solver's Equilibrium pass solver.equilibrium_to_json(eq))")
 
 
 def default_horizon(instance: Instance, profile: Profile) -> int:
@@ -149,8 +160,8 @@ def default_horizon(instance: Instance, profile: Profile) -> int:
     return max([*lengths, instance.hops[instance.start]])
 
 
-def certify(instance: Instance | Mapping[str, Any] | str | Path,
-            profile: Mapping[str, Any] | str | Path | bytes, *,
+def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
+            profile: Mapping[str, Any] | str | Path | bytes | Any, *,
             horizon: int | Literal["inf"] | None = None, exact: bool = True,
             max_prefixes: int = DEFAULT_MAX_PREFIXES, seed: int = 0,
             trials: int = DEFAULT_TRIALS, progress: bool = False,
@@ -159,10 +170,12 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path,
 
     Parameters
     ----------
-    instance : Instance, Mapping, str or Path
-        The game (object, instance document, or path to an instance JSON file).
-    profile : Mapping, str, Path or bytes
-        A ``dpp-profile/1`` document, a path to one, or its JSON text as bytes.
+    instance : Instance, Mapping, str, Path, or any object with ``to_json()``
+        The game (object, instance document, path to an instance JSON file, or any object
+        whose ``to_json()`` returns the instance document).
+    profile : Mapping, str, Path, bytes, or any object with ``to_json()``
+        A ``dpp-profile/1`` document, a path to one, its JSON text as bytes, or any object
+        whose ``to_json()`` returns it.
     horizon : int, "inf" or None
         ``H``; default the longest path in the profile (or, when that tree does not fit and
         the route is ``auto``, the untruncated game). Must be at least the longest path.

@@ -22,8 +22,8 @@ from dppverify.errors import InvalidInstanceError
 from dppverify.exact import INF, Number, parse_json, parse_number
 from dppverify.files import read_input
 
-__all__ = ["Instance", "Node", "Roles", "instance_from_json", "load_instance", "node_from_json",
-           "node_to_json", "show_node"]
+__all__ = ["Instance", "Node", "Roles", "as_instance", "instance_from_json", "load_instance",
+           "node_from_json", "node_to_json", "show_node"]
 
 Node = Hashable
 """A node id after JSON conversion (lists become tuples)."""
@@ -214,6 +214,55 @@ class Instance:
     def labels(self, walk: tuple[int, ...] | list[int]) -> tuple[Node, ...]:
         """Node ids of a walk given as indices."""
         return tuple(self.nodes[v] for v in walk)
+
+
+def as_instance(instance: Any) -> Instance:
+    """An :class:`Instance` from any of the forms the public API accepts (duck typing).
+
+    Parameters
+    ----------
+    instance : Instance, Mapping, str, Path, or an object with ``to_json()``
+        Returned as is; parsed (a document); loaded (a file path); or, for any object with a
+        ``to_json()`` method returning a document (e.g. the solver's ``Instance``), parsed
+        from that document. ``dppverify`` never imports the solver: only the JSON is used.
+
+    Returns
+    -------
+    Instance
+
+    Raises
+    ------
+    InvalidInstanceError
+        The input is none of these, or not a valid instance.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle_document
+    >>> class Foreign:  # any object that can write the instance JSON
+    ...     def to_json(self):
+    ...         return triangle_document()
+    >>> as_instance(Foreign()).prior
+    (Fraction(7, 10), Fraction(3, 10))
+    >>> as_instance(42)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dppverify.errors.InvalidInstanceError: an instance must be ... with to_json(); got int ...
+    """
+    if isinstance(instance, Instance):
+        return instance
+    if isinstance(instance, Mapping):
+        return instance_from_json(instance)
+    if isinstance(instance, str | Path):
+        return load_instance(instance)
+    to_json = getattr(instance, "to_json", None)
+    if callable(to_json):
+        doc = to_json()
+        if isinstance(doc, Mapping | str | bytes):
+            return instance_from_json(doc)
+    raise InvalidInstanceError(
+        "an instance must be an Instance, a JSON document (dict), a file path or an object "
+        f"with to_json(); got {type(instance).__name__} (for the solver's Instance pass "
+        "solver.instance_to_json(instance))")
 
 
 def load_instance(path: str | Path) -> Instance:

@@ -24,6 +24,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Any
 
 import cvxpy as cp
 import numpy as np
@@ -32,7 +33,7 @@ from tqdm import tqdm
 from dppverify.best_response import attacker_best_response, defender_best_response
 from dppverify.defender import TreeDefender, tree_defender
 from dppverify.exact import Number, normalize
-from dppverify.instance import Instance, Roles
+from dppverify.instance import Instance, Roles, as_instance
 from dppverify.lp import LPStats, realization_constraints, solve
 from dppverify.profile import ProgressRule
 from dppverify.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
@@ -338,12 +339,14 @@ class GameValue:
         return self.lp.value
 
 
-def game_value(instance: Instance, horizon: int, *, max_prefixes: int = DEFAULT_MAX_PREFIXES,
-               progress: bool = False) -> GameValue:
+def game_value(instance: Instance | Any, horizon: int, *,
+               max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> GameValue:
     """``V_H`` of the truncated game of ``instance``: compact LP plus exact bracket.
 
-    The value does not depend on which goal is called primary (the LP is symmetric in the
-    two types), so the instance's own labelling is used.
+    ``instance`` may be an :class:`Instance`, an instance document (dict), a file path or any
+    object with ``to_json()`` (:func:`~dppverify.instance.as_instance`). The value does not
+    depend on which goal is called primary (the LP is symmetric in the two types), so the
+    instance's own labelling is used.
 
     Examples
     --------
@@ -353,6 +356,7 @@ def game_value(instance: Instance, horizon: int, *, max_prefixes: int = DEFAULT_
     >>> v.bracket.exact, round(v.value, 6), v.prefixes
     (Fraction(12, 5), 2.4, 3)
     """
+    instance = as_instance(instance)
     tree = build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
     roles = instance.roles()
     with tqdm(total=2, desc=f"value LP ({tree.n_prefixes} prefixes)", disable=not progress,

@@ -24,9 +24,9 @@ class Instance:
     Parameters
     ----------
     graph : networkx.Graph or networkx.DiGraph or Network
-        The environment; edge attribute ``weight`` (default 1) must be positive. An
-        undirected graph can be walked both ways. A prebuilt :class:`Network` (CSR) is
-        accepted as is; grids use :meth:`from_grid`.
+        The environment; edge weights must be positive. An undirected graph can be walked
+        both ways. A prebuilt :class:`Network` (CSR) is accepted as is; grids use
+        :meth:`from_grid`.
     start : node
         The Attacker's initial node ``s0``.
     goals : pair of nodes
@@ -35,6 +35,10 @@ class Instance:
         ``prior[i]`` is the probability that ``goals[i]`` is the true goal; exact numbers
         (``Fraction``, int, ``"3/5"``; floats are read through ``str``), each in (0, 1),
         summing to exactly 1.
+    weight : str or None, keyword-only
+        The edge attribute holding the weight, as in networkx (default ``"weight"``; an edge
+        without it weighs 1). Any other name must be on every edge (else an error naming
+        the edge); ``None`` gives unit weights.
 
     Notes
     -----
@@ -49,12 +53,23 @@ class Instance:
     >>> inst = Instance(g, "s", ("g2", "g1"), ("3/10", "7/10"))
     >>> inst.primary, inst.secondary, inst.b1
     ('g1', 'g2', Fraction(7, 10))
+    >>> h = nx.Graph([("s", "g2", {"cost": 2}), ("g2", "g1", {"cost": 2}),
+    ...               ("s", "g1", {"cost": 3})])
+    >>> inst = Instance(h, "s", ("g1", "g2"), ("7/10", "3/10"), weight="cost")
+    >>> sorted(inst.network.weights.tolist())
+    [2, 2, 2, 2, 3, 3]
+    >>> Instance(g, "s", ("g1", "g2"), (2 / 3, 1 / 3))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    solver.errors.InvalidInstanceError: prior must sum to 1, got 0.666... + 0.333... (floats
+    are read as the decimals they print); write exact fractions as strings, e.g. ("2/3", "1/3")
     """
 
     graph: nx.Graph | Network
     start: Hashable
     goals: tuple[Hashable, Hashable]
     prior: tuple[Any, Any]
+    weight: str | None = field(default="weight", kw_only=True, repr=False)
     network: Network = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -68,12 +83,20 @@ class Instance:
         for i, p in enumerate(exact_prior):
             if not 0 < p < 1:
                 raise InvalidInstanceError(f"prior[{i}] must lie in (0, 1), got {p}")
+        if sum(exact_prior) != 1 and any(isinstance(p, float) for p in prior):
+            guess = tuple(Fraction(p).limit_denominator(1000) for p in exact_prior)
+            hint = (f'; write exact fractions as strings, e.g. ("{guess[0]}", "{guess[1]}")'
+                    if sum(guess) == 1 else "")
+            raise InvalidInstanceError(
+                f"prior must sum to 1, got {prior[0]!r} + {prior[1]!r} (floats are read as "
+                f"the decimals they print){hint}")
         if sum(exact_prior) != 1:
             raise InvalidInstanceError(
                 f"prior must sum to 1, got {exact_prior[0]} + {exact_prior[1]} "
                 f"= {sum(exact_prior)}"
             )
-        net = self.graph if isinstance(self.graph, Network) else Network.from_networkx(self.graph)
+        net = (self.graph if isinstance(self.graph, Network) else
+               Network.from_networkx(self.graph, weight=self.weight))
         for what, node in (("start", self.start), ("goal", goals[0]), ("goal", goals[1])):
             if net.index_of(node) is None:
                 raise InvalidInstanceError(f"{what} node {node!r} not found in graph")

@@ -108,8 +108,14 @@ class Network:
 
     # ------------------------------------------------------------------ construction
     @classmethod
-    def from_networkx(cls, graph: nx.Graph, *, weight: str = "weight") -> Network:
-        """Build from a networkx ``Graph``/``DiGraph`` (weight attribute default 1).
+    def from_networkx(cls, graph: nx.Graph, *, weight: str | None = "weight") -> Network:
+        """Build from a networkx ``Graph``/``DiGraph``.
+
+        ``weight`` names the edge attribute holding the weight, as in networkx. With the
+        default ``"weight"`` an edge without it weighs 1 (as in the instance JSON); with any
+        other name every edge must carry the attribute (a missing one is an error naming the
+        edge, so a misspelt name cannot silently give unit weights); ``None`` gives every
+        edge weight 1.
 
         Examples
         --------
@@ -117,6 +123,12 @@ class Network:
         >>> net = Network.from_networkx(g)
         >>> net.n_nodes, net.n_arcs, net.numbers
         (3, 4, ExactNumbers(denominator=2))
+        >>> Network.from_networkx(nx.Graph([("s", "g1", {"cost": 3})]), weight="cost").weights
+        array([3, 3])
+        >>> Network.from_networkx(nx.Graph([("s", "g1")]), weight="cost")  # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+        ...
+        solver.errors.InvalidInstanceError: edge ('s', 'g1') has no 'cost' attribute ...
         """
         if not isinstance(graph, nx.Graph):
             raise InvalidInstanceError(
@@ -131,8 +143,11 @@ class Network:
         tails: list[int] = []
         values: list[Number] = []
         for u, v, data in graph.edges(data=True):
-            w = parse_number(data.get(weight, 1), where=f"weight of edge ({u!r}, {v!r})",
-                             allow_float=True)
+            if weight is not None and weight != "weight" and weight not in data:
+                raise InvalidInstanceError(
+                    f"edge ({u!r}, {v!r}) has no {weight!r} attribute (weight={weight!r})")
+            raw = 1 if weight is None else data.get(weight, 1)
+            w = parse_number(raw, where=f"weight of edge ({u!r}, {v!r})", allow_float=True)
             if not w > 0:
                 raise InvalidInstanceError(
                     f"weight of edge ({u!r}, {v!r}) must be positive, got {w}"
