@@ -236,12 +236,12 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
 
 
 # ---------------------------------------------------------------------- figures
-_OUT_HELP = "Output file (.png or .svg), or a stem: writes STEM.png and STEM.svg."
+_OUT_HELP = "The figure file: .png, .svg or .pdf (the suffix picks the format)."
 
 
 @main.group("plot")
 def plot_group() -> None:
-    """Figures like the paper's Figs. 7-9 (PNG and SVG)."""
+    """Figures like the paper's Figs. 7-9 (PNG, SVG or PDF)."""
 
 
 @plot_group.command("map")

@@ -1,4 +1,4 @@
-"""Figures of the paper's Sec. VII with matplotlib (Agg backend): PNG and SVG.
+"""Figures of the paper's Sec. VII with matplotlib (Agg backend): PNG, SVG or PDF by suffix.
 
 - :func:`plot_map` — the grid, obstacles, start and goals, the equilibrium paths with ξ²
   coloured by phase and the primary's branches labelled with their mixing probabilities
@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import io
 from collections.abc import Hashable, Iterable, Mapping, Sequence
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
@@ -24,28 +25,34 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
+from matplotlib.ticker import MaxNLocator
 
-from solver.errors import InvalidInstanceError, OutputError
+from solver.errors import DPPError, InvalidInstanceError, OutputError
 from solver.instance import Instance
 from solver.io_utils import write_files
 from solver.network import GridLabels
-from solver.pairs import PAIRS, PairEvaluator
+from solver.pairs import LABELS, PAIRS, PairEvaluator
 
-__all__ = ["PHASE_COLOURS", "plot_beliefs", "plot_map", "plot_voi", "save_figure"]
+__all__ = ["PHASE_COLOURS", "STRATEGY_COLOURS", "plot_beliefs", "plot_map", "plot_voi",
+           "save_figure"]
 
-PHASE_COLOURS = {1: "#e69f00", 2: "#8e44ad", 3: "#0072b2"}
-"""Phase I (σ* = 1 along ξ²) orange, phase II (belief 1/2) purple, phase III blue."""
-G1_COLOUR, G2_COLOUR = "#d62728", "#1f5fbf"
-PAIR_COLOURS = {("sigma*", "gamma*"): "#2ca02c", ("sigma'", "gamma*"): "#98df8a",
-                ("sigma*", "ambiguity"): "#9467bd", ("sigma*", "exaggeration"): "#ff7f0e",
-                ("sigma'", "ambiguity"): "#c5b0d5", ("sigma'", "exaggeration"): "#ffbb78"}
-_SYM = {"sigma*": "σ*", "sigma'": "σ'", "gamma*": "γ*", "ambiguity": "am",
-        "exaggeration": "ex"}
-
-
-_PATH_COLOURS = {"xi1_I": "#2ca02c", "xi1_II": "#17becf", "xi1": "#2ca02c", "xi2": "#2ca02c",
-                 "xi1_am": "#9467bd", "xi2_am": "#9467bd", "xi1_ex": "#ff7f0e",
-                 "xi2_ex": "#ff7f0e"}
+PHASE_COLOURS = {1: "#E69F00", 2: "#CC79A7", 3: "#56B4E9"}
+"""Phase I (σ* = 1 along ξ²) orange, phase II (belief 1/2) pink, phase III sky blue — in every
+figure (map segments, beliefs-plot bands). No strategy uses these colours."""
+STRATEGY_COLOURS = {"gamma*": "#009E73", "ambiguity": "#0072B2", "exaggeration": "#8C510A"}
+"""One colour per Attacker strategy in every figure: γ* green, ambiguity blue, exaggeration
+brown. The Defender is told apart by the fill (σ* solid, σ' hatched) in the VoI plot."""
+DEFENDER_HATCH = {"sigma*": "", "sigma'": "///"}
+MARKER_COLOUR = "#222222"
+FORMATS = ("png", "svg", "pdf")
+"""Output formats, chosen by the file's suffix."""
+VOI = r"$\mathrm{VoI}$"
+"""VoI in a serif face: in DejaVu Sans a capital I looks like a small l ("Vol")."""
+_STYLE: dict[Any, Any] = {"font.family": "DejaVu Sans", "font.size": 12, "axes.titlesize": 13,
+          "axes.labelsize": 12, "legend.fontsize": 11, "xtick.labelsize": 11,
+          "ytick.labelsize": 11, "mathtext.fontset": "dejavuserif"}
+_PHASE_NAMES = {1: "I", 2: "II", 3: "III"}
 
 
 def _tex(label: str) -> str:
@@ -57,23 +64,45 @@ def _tex(label: str) -> str:
     return rf"$\xi^{{{sup}}}$"
 
 
-def save_figure(fig: Figure, out: str | Path) -> list[Path]:
-    """Write ``fig``: to ``out`` if it ends in ``.png`` or ``.svg``, else to ``out.png`` and
-    ``out.svg``. Returns the files written.
+def _num(x: Any) -> str:
+    """A number for a title or legend: exact fractions with a 3-digit decimal, floats rounded.
 
-    The files are written together or not at all (:func:`solver.io_utils.write_files`:
-    missing folders are created); the figure is closed afterwards.
+    >>> from fractions import Fraction
+    >>> _num(Fraction(5, 22)), _num(0.20410018838561994), _num(Fraction(17)), _num(3)
+    ('5/22 ≈ 0.227', '0.204', '17', '3')
+    """
+    if isinstance(x, Fraction):
+        if x.denominator == 1:
+            return str(x.numerator)
+        return f"{x} ≈ {float(x):.3f}" if x.denominator <= 1000 else f"{float(x):.3f}"
+    if isinstance(x, int | np.integer):
+        return str(int(x))
+    return f"{float(x):.3g}"
+
+
+def save_figure(fig: Figure, out: str | Path) -> list[Path]:
+    """Write ``fig`` to ``out`` in the format its suffix names (``.png``, ``.svg``, ``.pdf``).
+
+    A name without one of these suffixes is refused (one file per ``-o``: ``fig.pdf`` is
+    written as PDF, never as ``fig.pdf.png``). Missing parent directories are created; the
+    figure is closed afterwards.
 
     Parameters
     ----------
     fig : matplotlib.figure.Figure
         The figure.
     out : str or Path
-        The file, or a stem for both formats.
+        The file to write.
 
     Returns
     -------
     list of Path
+        The file written (a one-element list).
+
+    Raises
+    ------
+    DPPError
+        If the suffix is missing or not one of :data:`FORMATS`.
 
     Examples
     --------
@@ -81,29 +110,32 @@ def save_figure(fig: Figure, out: str | Path) -> list[Path]:
     >>> with tempfile.TemporaryDirectory() as d:
     ...     fig, ax = plt.subplots()
     ...     _ = ax.plot([0, 1], [1, 0])
-    ...     files = save_figure(fig, Path(d) / "figs" / "demo")
-    ...     print([f.name for f in files], all(f.stat().st_size > 0 for f in files))
-    ...     print([f.name for f in save_figure(plt.figure(), Path(d) / "one.svg")])
-    ['demo.png', 'demo.svg'] True
-    ['one.svg']
+    ...     files = save_figure(fig, Path(d) / "figs" / "demo.pdf")
+    ...     print([f.name for f in files], files[0].read_bytes()[:4])
+    ...     print(sorted(p.name for p in (Path(d) / "figs").iterdir()))
+    ['demo.pdf'] b'%PDF'
+    ['demo.pdf']
     >>> plt.fignum_exists(fig.number)
     False
+    >>> save_figure(plt.figure(), "figure")
+    Traceback (most recent call last):
+    ...
+    solver.errors.DPPError: figure: the output file must end in .png, .svg or .pdf
     """
     if str(out) == "":
         raise OutputError("-o/--output: the output path is empty")
     p = Path(out)
-    targets = [p] if p.suffix.lower() in (".png", ".svg") else [
-        p.with_name(p.name + ".png"), p.with_name(p.name + ".svg")]
-    rendered: dict[Path, bytes] = {}
+    fmt = p.suffix.lower().lstrip(".")
+    if fmt not in FORMATS:
+        plt.close(fig)
+        raise DPPError(f"{p}: the output file must end in .png, .svg or .pdf")
+    buf = io.BytesIO()
     try:
-        for t in targets:
-            buf = io.BytesIO()
-            fig.savefig(buf, format=t.suffix[1:].lower(), dpi=110, bbox_inches="tight")
-            rendered[t] = buf.getvalue()
+        fig.savefig(buf, format=fmt, dpi=150, bbox_inches="tight")
     finally:
         plt.close(fig)
-    write_files(rendered)  # all formats or none
-    return targets
+    write_files({p: buf.getvalue()})  # atomic; missing folders are created
+    return [p]
 
 
 def _grid(instance: Instance) -> np.ndarray:
@@ -113,36 +145,46 @@ def _grid(instance: Instance) -> np.ndarray:
     return labels.blocked
 
 
-def _xy(nodes: Sequence[Hashable], offset: tuple[float, float] = (0.0, 0.0)
-        ) -> tuple[np.ndarray, np.ndarray]:
+def _xy(nodes: Sequence[Hashable], offset: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     rc = np.asarray([list(n) for n in nodes], dtype=np.float64)  # type: ignore[call-overload]
-    return rc[:, 1] + float(offset[0]), rc[:, 0] + float(offset[1])
+    return rc[:, 1] + offset, rc[:, 0] + offset
 
 
-def _draw_grid(ax: Axes, instance: Instance) -> None:
+def _cell_points(ax: Axes, shape: tuple[int, ...]) -> float:
+    """The size of one grid cell in points (for line widths and markers)."""
+    fig = ax.get_figure(root=True)
+    assert fig is not None
+    width_in = ax.get_position().width * fig.get_figwidth()
+    return 72.0 * width_in / max(shape)
+
+
+def _draw_grid(ax: Axes, instance: Instance) -> list[Line2D]:
+    """Grid, obstacles and the start/goal markers (drawn UNDER the paths); legend handles."""
     blocked = _grid(instance)
     h, w = blocked.shape
-    ax.imshow(blocked, cmap="Greys", vmin=0, vmax=1.25, origin="upper",
+    ax.imshow(blocked, cmap="Greys", vmin=0, vmax=1.4, origin="upper",
               extent=(-0.5, w - 0.5, h - 0.5, -0.5))
-    ax.set_xticks(np.arange(-0.5, w, 1), minor=True)
-    ax.set_yticks(np.arange(-0.5, h, 1), minor=True)
-    ax.grid(which="minor", color="#bbbbbb", linewidth=0.4)
+    if max(h, w) <= 40:
+        ax.set_xticks(np.arange(-0.5, w, 1), minor=True)
+        ax.set_yticks(np.arange(-0.5, h, 1), minor=True)
+        ax.grid(which="minor", color="#cccccc", linewidth=0.5)
     ax.tick_params(which="minor", length=0)
-    step = max(1, w // 10)
+    step = max(1, -(-max(h, w) // 5))
     ax.set_xticks(range(0, w, step))
     ax.set_yticks(range(0, h, step))
     ax.set_xlabel("column")
     ax.set_ylabel("row")
-    s = instance.start
-    ax.plot(s[1], s[0], "o", ms=13, mfc="#2ca02c", mec="black", zorder=6)  # type: ignore[index]
-    ax.annotate("s0", (s[1], s[0]), ha="center", va="center", fontsize=7,  # type: ignore[index]
-                color="white", weight="bold", zorder=7)
-    for goal, colour, name in ((instance.primary, G1_COLOUR, "g1"),
-                               (instance.secondary, G2_COLOUR, "g2")):
-        ax.plot(goal[1], goal[0], marker="s", ms=14, mfc=colour, mec="black",  # type: ignore[index]
-                zorder=6)
-        ax.annotate(name, (goal[1], goal[0]), ha="center", va="center", fontsize=7,  # type: ignore[index]
-                    color="white", weight="bold", zorder=7)
+    ms = float(np.clip(0.7 * _cell_points(ax, (h, w)), 5, 18))
+    s, g1, g2 = instance.start, instance.primary, instance.secondary
+    handles = []
+    for node, marker, face, name in ((s, "o", "white", "start s0"),
+                                     (g1, "s", MARKER_COLOUR, f"g1 (prior {instance.b1})"),
+                                     (g2, "s", "white", f"g2 (prior {instance.b2})")):
+        ax.plot(node[1], node[0], marker=marker, ms=ms, mfc=face,  # type: ignore[index]
+                mec=MARKER_COLOUR, mew=2, zorder=2)
+        handles.append(Line2D([], [], marker=marker, ms=11, mfc=face, mec=MARKER_COLOUR,
+                              mew=2, ls="none", label=name))
+    return handles
 
 
 def _common(a: Sequence[Hashable], b: Sequence[Hashable]) -> int:
@@ -154,148 +196,178 @@ def _common(a: Sequence[Hashable], b: Sequence[Hashable]) -> int:
     return n
 
 
+def _legend_below(ax: Axes, handles: list[Any], ncol: int = 2) -> None:
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=ncol,
+              frameon=False, handlelength=2.6, columnspacing=1.2)
+
+
 def plot_map(instance: Instance, *, baselines: bool = True,
              game: PairEvaluator | None = None) -> Figure:
-    """Equilibrium paths on the grid (ξ² coloured by phase, branches with probabilities),
-    and with ``baselines`` the ambiguity / exaggeration paths in a second panel.
+    """Equilibrium paths on the grid (ξ² coloured by phase, the primary's branches with their
+    probabilities in the legend), and with ``baselines`` the ambiguity / exaggeration paths
+    in a second panel. No label is drawn on the grid, so none can cover a path; start and
+    goal markers lie under the paths, so even a one-step phase stays visible.
 
     Examples
     --------
     >>> from solver.experiments.compare import paper10_instance
     >>> fig = plot_map(paper10_instance())
-    >>> len(fig.axes)
-    2
+    >>> len(fig.axes), fig.axes[0].get_title().splitlines()[0]
+    (2, '(σ*, γ*): t_I = 6, t_II = 16, T = 17')
     """
-    game = game or PairEvaluator.of(instance)
+    with plt.rc_context(_STYLE):
+        return _plot_map(instance, baselines, game or PairEvaluator.of(instance))
+
+
+def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figure:
     eq = game.equilibrium
-    fig, axes = plt.subplots(1, 2 if baselines else 1, figsize=(13 if baselines else 7, 6.4),
-                             squeeze=False)
+    ncols = 2 if baselines else 1
+    fig, axes = plt.subplots(1, ncols, figsize=(6.2 * ncols, 7.6), squeeze=False)
     ax = axes[0][0]
-    _draw_grid(ax, instance)
+    markers = _draw_grid(ax, instance)
+    cell = _cell_points(ax, _grid(instance).shape)
+    lw = float(np.clip(0.16 * cell, 1.5, 7))
     xi2 = eq.secondary_path
-    handles: list[Line2D] = []
     x, y = _xy(xi2)
-    seen: set[int] = set()
-    names = {1: "phase I", 2: "phase II", 3: "phase III"}
-    for t in range(1, len(xi2)):
-        ph = eq.phases.phase_of_step(t)
-        ax.plot(x[t - 1:t + 1], y[t - 1:t + 1], color=PHASE_COLOURS[ph], lw=4,
-                solid_capstyle="round", zorder=3)
-        if ph not in seen:
-            seen.add(ph)
-            handles.append(Line2D([], [], color=PHASE_COLOURS[ph], lw=4,
-                                  label=f"{_tex('xi2')} {names[ph]} (type 2, p = 1)"))
+    phases = eq.phases
+    handles: list[Any] = []
+    for ph, first, last in ((1, 1, phases.t_I), (2, phases.t_I + 1, phases.t_II),
+                            (3, phases.t_II + 1, phases.T)):
+        if first > last:
+            continue
+        ax.plot(x[first - 1:last + 1], y[first - 1:last + 1], color=PHASE_COLOURS[ph], lw=lw,
+                solid_capstyle="round", solid_joinstyle="round", zorder=4)
+        steps = f"step {first}" if first == last else f"steps {first}-{last}"
+        handles.append(Line2D([], [], color=PHASE_COLOURS[ph], lw=6,
+                              label=f"{_tex('xi2')} phase {_PHASE_NAMES[ph]} ({steps})"))
     styles = ["--", ":"]
     for k, p in enumerate(eq.primary_paths):
         n = _common(p.nodes, xi2)
-        label = _tex(p.label)
+        label = f"{_tex(p.label)}, p = {p.probability}"
         if n >= len(p.nodes):
-            handles.append(Line2D([], [], color="none",
-                                  label=f"{label} = {_tex('xi2')} (type 1, p = {p.probability})"))
+            handles.append(Line2D([], [], color="none", label=f"{label} (= {_tex('xi2')})"))
             continue
-        bx, by = _xy(p.nodes[n - 1:], (0.12 * (k + 1) - 0.18, 0.12 * (k + 1) - 0.18))
-        ax.plot(bx, by, color=G1_COLOUR, lw=2.4, ls=styles[k % 2], zorder=4)
-        ax.plot(bx[0], by[0], "D", color="black", ms=7, zorder=5)
-        ax.annotate(f"{label}: p = {p.probability}", (bx[0], by[0]),
-                    xytext=(8, 10 - 22 * k), textcoords="offset points", fontsize=9,
-                    bbox={"boxstyle": "round", "fc": "white", "alpha": 0.85}, zorder=8)
-        handles.append(Line2D([], [], color=G1_COLOUR, lw=2.4, ls=styles[k % 2],
-                              label=f"{label}: {_tex('xi2')}[0..{n - 1}] + shortest path to g1 "
-                                    f"(type 1, p = {p.probability})"))
-    phases = eq.phases
-    ax.set_title(f"Equilibrium (σ*, γ*): t_I = {phases.t_I}, t_II = {phases.t_II}, "
-                 f"T = {phases.T}, "
-                 f"VoI* = {eq.VoI} (≈{float(eq.VoI):.3f})", fontsize=10)
-    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.1), fontsize=8,
-              ncol=1, frameon=False)
+        bx, by = _xy(p.nodes[n - 1:], 0.14 * (1 if k % 2 else -1))
+        ax.plot(bx, by, color=STRATEGY_COLOURS["gamma*"], lw=0.75 * lw, ls=styles[k % 2],
+                zorder=5)
+        ax.plot(bx[0], by[0], "D", color=STRATEGY_COLOURS["gamma*"], mec="black", ms=8,
+                zorder=6)
+        handles.append(Line2D([], [], color=STRATEGY_COLOURS["gamma*"], lw=3, ls=styles[k % 2],
+                              marker="D", ms=7, mec="black", label=f"{label} (branch)"))
+    ax.set_title(f"(σ*, γ*): t_I = {phases.t_I}, t_II = {phases.t_II}, T = {phases.T}\n"
+                 f"{VOI}* = {_num(eq.VoI)}")
+    _legend_below(ax, handles + markers)
     if baselines:
         ax2 = axes[0][1]
-        _draw_grid(ax2, instance)
-        bl: list[Line2D] = []
+        markers2 = _draw_grid(ax2, instance)
+        bl: list[Any] = []
         for j, kind in enumerate(("ambiguity", "exaggeration")):
             att = game.attacker(kind)
-            for theta, mp, colour in ((1, att.primary[0], G1_COLOUR),
-                                      (2, att.secondary[0], G2_COLOUR)):
-                off = (-0.15 + 0.1 * (2 * j + theta - 1),) * 2
+            for theta, mp in ((1, att.primary[0]), (2, att.secondary[0])):
+                off = -0.2 + 0.13 * (2 * j + theta - 1)
                 bx, by = _xy(list(mp.nodes), off)
-                ls = "-" if kind == "ambiguity" else "--"
-                ax2.plot(bx, by, color=colour, lw=2.2, ls=ls, zorder=3 + j)
+                ls = "-" if theta == 1 else "--"
+                ax2.plot(bx, by, color=STRATEGY_COLOURS[kind], lw=0.6 * lw, ls=ls, zorder=4 + j)
                 tag = "am" if kind == "ambiguity" else "ex"
-                bl.append(Line2D([], [], color=colour, lw=2.2, ls=ls,
-                                 label=f"{_tex(f'xi{theta}_{tag}')} ({kind}, type {theta}, "
-                                       f"{len(mp.walk) - 1} steps)"))
+                bl.append(Line2D([], [], color=STRATEGY_COLOURS[kind], lw=3, ls=ls,
+                                 label=f"{_tex(f'xi{theta}_{tag}')} {kind} ({len(mp.walk) - 1})"))
         vo = {r.attacker: r.VoI for r in game.compare((("sigma*", "ambiguity"),
                                                        ("sigma*", "exaggeration")))}
-        ax2.set_title(f"Dragan baselines (eq. (18)): VoI vs σ*: ambiguity "
-                      f"{float(vo['ambiguity']):.3f}, exaggeration "
-                      f"{float(vo['exaggeration']):.3f}", fontsize=10)
-        ax2.legend(handles=bl, loc="upper center", bbox_to_anchor=(0.5, -0.1), fontsize=8,
-                   ncol=1, frameon=False)
-    fig.suptitle(f"start {instance.start}, g1 = {instance.primary} (prior {instance.b1}), "
-                 f"g2 = {instance.secondary} (prior {instance.b2})", fontsize=11)
+        ax2.set_title(f"baselines against σ*: {VOI}\nambiguity {_num(vo['ambiguity'])}, "
+                      f"exaggeration {_num(vo['exaggeration'])}")
+        _legend_below(ax2, bl + markers2)
+    fig.tight_layout()
     return fig
+
+
+def _phase_bands(ax: Axes, phases: Any) -> None:
+    for ph, lo, hi in ((1, 0, phases.t_I), (2, phases.t_I, phases.t_II),
+                       (3, phases.t_II, phases.T)):
+        if hi > lo:
+            ax.axvspan(lo, hi, color=PHASE_COLOURS[ph], alpha=0.18, lw=0, zorder=0)
+    for t in sorted({phases.t_I, phases.t_II}):
+        ax.axvline(t, color="#555555", lw=1, ls=(0, (2, 2)), zorder=1)
 
 
 def plot_beliefs(instance: Instance, *, defender: str = "sigma*",
                  game: PairEvaluator | None = None) -> Figure:
     """Per type (columns): the belief ``b^1_t`` along each path (top; Bayes under γ* for the
     equilibrium paths, Dragan's belief, eq. (17), for the baselines) and the cumulative expected
-    allocation to the true goal under ``defender`` (bottom).
+    allocation to the true goal under ``defender`` (bottom). The phases of ξ² are shaded in
+    their colours and ``t_I``, ``t_II`` marked; time ticks are integers.
 
     Examples
     --------
     >>> from solver.experiments.compare import paper10_instance
     >>> fig = plot_beliefs(paper10_instance())
-    >>> len(fig.axes)
-    4
+    >>> len(fig.axes), [t.get_text() for t in fig.axes[0].texts]
+    (4, ['t_I', 't_II'])
     """
-    game = game or PairEvaluator.of(instance)
-    fig, axes = plt.subplots(2, 2, figsize=(12, 7.5), sharex="col")
+    with plt.rc_context(_STYLE):
+        return _plot_beliefs(instance, defender, game or PairEvaluator.of(instance))
+
+
+def _plot_beliefs(instance: Instance, defender: str, game: PairEvaluator) -> Figure:
+    fig, axes = plt.subplots(2, 2, figsize=(10.5, 8.4), sharex=True)
     net = instance.network
+    phases = game.equilibrium.phases
     dist = {1: game.d_from_start[game.g1], 2: game.d_from_start[game.g2]}
-    styles = {"gamma*": "-", "ambiguity": "--", "exaggeration": ":"}
+    entries: dict[str, Any] = {}
     for attacker in ("gamma*", "ambiguity", "exaggeration"):
         ev = game.evaluate(defender, attacker)
         for tr in ev.trajectories:
-            theta = tr.theta
-            col = theta - 1
+            col = tr.theta - 1
             steps = np.arange(len(tr.nodes))
             if attacker == "gamma*":
                 belief = [float(b) for b in tr.belief_g1]
-                source = "Bayes, γ*"
             else:
                 belief = [float(b) for b in game.observer.beliefs(tr.walk)]
-                source = "Dragan eq. (17)"
-            name = _tex(tr.label)
-            prob = f", p = {tr.probability}" if attacker == "gamma*" else ""
-            colour = _PATH_COLOURS.get(tr.label, "#7f7f7f")
-            kw = {"ls": styles[attacker], "lw": 2, "marker": "o", "ms": 2.5, "color": colour}
-            axes[0][col].plot(steps, belief, label=f"{name} ({source}{prob})", **kw)
-            axes[1][col].plot(steps, [float(a) for a in tr.allocation],
-                              label=f"{name}: total cost {float(tr.cost):.4g}", **kw)
+            ls = "--" if tr.label == "xi1_II" else "-"
+            # γ* wide underneath, the baselines narrow on top: equal curves stay visible
+            eq_path = attacker == "gamma*"
+            kw: dict[str, Any] = {"ls": ls, "lw": 5.0 if eq_path else 2.2,
+                                  "color": STRATEGY_COLOURS[attacker],
+                                  "zorder": 3 if eq_path else 4}
+            axes[0][col].plot(steps, belief, **kw)
+            axes[1][col].plot(steps, [float(a) for a in tr.allocation], **kw)
+            name = (f"{_tex(tr.label)} (γ*, p = {tr.probability})" if attacker == "gamma*"
+                    else f"{attacker} (Dragan belief)")
+            entries.setdefault(name, Line2D([], [], **kw, label=name))
     for col, theta in ((0, 1), (1, 2)):
         goal = "g1" if theta == 1 else "g2"
-        axes[0][col].axhline(0.5, color="grey", lw=0.8, ls="-.")
-        axes[0][col].set_ylim(-0.03, 1.03)
-        axes[0][col].set_ylabel("belief b¹_t (g1 is true)")
-        axes[0][col].set_title(f"type {theta} (true goal {goal})")
-        d = float(net.numbers.convert(dist[theta]))
-        axes[1][col].axhline(d, color="grey", lw=0.8, ls="-.",
-                             label=f"d(s0, {goal}) = {d:g} (complete information)")
-        axes[1][col].set_ylabel(f"cumulative expected allocation to {goal}")
-        axes[1][col].set_xlabel("time step t")
         for r in (0, 1):
-            axes[r][col].legend(fontsize=7.5, loc="best")
+            _phase_bands(axes[r][col], phases)
             axes[r][col].grid(alpha=0.3)
-    fig.suptitle(f"Beliefs and expected allocation under {_SYM.get(defender, defender)} "
-                 "(allocation excludes the terminal cost)", fontsize=11)
-    fig.tight_layout()
+            axes[r][col].xaxis.set_major_locator(MaxNLocator(integer=True))
+        top = axes[0][col]
+        top.set_ylim(-0.04, 1.22)
+        top.set_title(f"type {theta}: true goal {goal}")
+        for t, name in ((phases.t_I, "t_I"), (phases.t_II, "t_II")):
+            if name == "t_II" and phases.t_II == phases.t_I:
+                continue
+            top.text(t, 1.2, name, ha="center", va="top", fontsize=12,
+                     bbox={"fc": "white", "ec": "none", "pad": 1}, zorder=2)
+        d = float(net.numbers.convert(dist[theta]))
+        axes[1][col].axhline(d, color="black", lw=1.2, ls=":")
+        axes[1][col].set_xlabel("time step t")
+    axes[0][0].set_ylabel("belief in g1")
+    axes[1][0].set_ylabel("expected allocation\nto the true goal")
+    entries["d(s0, true goal)"] = Line2D([], [], color="black", lw=1.2, ls=":",
+                                         label="d(s0, true goal)")
+    bands = [Patch(fc=PHASE_COLOURS[ph], alpha=0.35, label=f"phase {_PHASE_NAMES[ph]} of ξ²")
+             for ph in (1, 2, 3)]
+    fig.suptitle(f"Beliefs and cumulative expected allocation, Defender "
+                 f"{LABELS.get(defender, defender)}")
+    fig.tight_layout(rect=(0, 0.13, 1, 1))
+    fig.legend(handles=[*entries.values(), *bands], loc="lower center", ncol=3,
+               frameon=False, bbox_to_anchor=(0.5, 0.0), handlelength=2.4)
     return fig
 
 
 def plot_voi(rows: Iterable[Mapping[str, Any] | Any],
              pairs: Sequence[tuple[str, str]] = PAIRS) -> Figure:
-    """Box plots of VoI by density, one box per strategy pair (means as '+').
+    """Box plots of VoI by density, one box per strategy pair (means as '+'): colour = the
+    Attacker's strategy, hatching = the Defender σ'.
 
     Examples
     --------
@@ -305,6 +377,12 @@ def plot_voi(rows: Iterable[Mapping[str, Any] | Any],
     >>> len(fig.axes)
     1
     """
+    with plt.rc_context(_STYLE):
+        return _plot_voi(rows, pairs)
+
+
+def _plot_voi(rows: Iterable[Mapping[str, Any] | Any],
+              pairs: Sequence[tuple[str, str]]) -> Figure:
     data: dict[tuple[int, tuple[str, str]], list[float]] = {}
     for r in rows:
         rec = r if isinstance(r, Mapping) else vars(r)
@@ -314,30 +392,38 @@ def plot_voi(rows: Iterable[Mapping[str, Any] | Any],
     if not densities:
         raise InvalidInstanceError("no rows to plot")
     pairs = [p for p in pairs if any((d, p) in data for d in densities)]
-    fig, ax = plt.subplots(figsize=(max(7, 1.1 * len(densities) * len(pairs) / 3), 5))
-    width = 0.8 / len(pairs)
+    fig, ax = plt.subplots(figsize=(max(7.0, 1.4 * len(densities)), 6.2))
+    width = 0.84 / len(pairs)
     for j, pair in enumerate(pairs):
         pos = [i + (j - (len(pairs) - 1) / 2) * width for i, d in enumerate(densities)
                if (d, pair) in data]
         vals = [data[(d, pair)] for d in densities if (d, pair) in data]
-        colour = PAIR_COLOURS.get(pair, "#888888")
+        colour = STRATEGY_COLOURS.get(pair[1], "#888888")
+        hatch = DEFENDER_HATCH.get(pair[0], "..")
         ax.boxplot(vals, positions=pos, widths=width * 0.85, patch_artist=True,
                    showmeans=True, meanprops={"marker": "+", "markeredgecolor": "black",
-                                              "markersize": 7},
-                   boxprops={"facecolor": colour}, medianprops={"color": "black"},
-                   flierprops={"marker": "o", "markersize": 2.5, "alpha": 0.5})
+                                              "markersize": 8},
+                   boxprops={"facecolor": "white" if hatch else colour, "edgecolor": colour,
+                             "hatch": hatch, "linewidth": 1.6},
+                   whiskerprops={"color": colour}, capprops={"color": colour},
+                   medianprops={"color": "black", "linewidth": 1.6},
+                   flierprops={"marker": "o", "markersize": 3, "alpha": 0.5,
+                               "markeredgecolor": colour})
     ax.set_xticks(range(len(densities)), [f"{d}%" for d in densities])
     ax.set_xlabel("obstacle density")
-    ax.set_ylabel("VoI = (Ū − U) / Ū")
+    ax.set_ylabel(f"{VOI} = (Ū − U) / Ū")
     ax.axhline(0, color="grey", lw=0.8)
     ax.grid(axis="y", alpha=0.3)
-    n = {d: len(data.get((d, pairs[0]), [])) for d in densities}
-    ax.set_title("VoI by obstacle density and strategy pair "
-                 f"(samples per density: {', '.join(str(n[d]) for d in densities)}; "
-                 "+ = mean, line = median)", fontsize=10)
-    ax.legend(handles=[plt.Rectangle((0, 0), 1, 1, fc=PAIR_COLOURS.get(p, "#888888"),
-                                     ec="black", label=f"({_SYM[p[0]]}, {_SYM[p[1]]})")
-                       for p in pairs], fontsize=8, loc="upper center",
-              bbox_to_anchor=(0.5, -0.13), ncol=min(6, len(pairs)), frameon=False)
+    counts = sorted({len(data.get((d, pairs[0]), [])) for d in densities})
+    n = str(counts[0]) if len(counts) == 1 else "-".join(map(str, (counts[0], counts[-1])))
+    ax.set_title(f"{VOI} by obstacle density ({n} grids each; + mean, line median)")
+    attackers = [a for a in STRATEGY_COLOURS if any(p[1] == a for p in pairs)]
+    defenders = [d for d in DEFENDER_HATCH if any(p[0] == d for p in pairs)]
+    handles = [Patch(fc=STRATEGY_COLOURS[a], ec=STRATEGY_COLOURS[a],
+                     label=f"Attacker {LABELS[a]}") for a in attackers]
+    handles += [Patch(fc="white", ec="black", hatch=DEFENDER_HATCH[d] or None,
+                      label=f"Defender {LABELS[d]}") for d in defenders]
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.13),
+              ncol=3, frameon=False)
     fig.tight_layout()
     return fig

@@ -49,12 +49,18 @@ def test_density_writes_csv_and_summary(tmp_path: Path) -> None:
         rows = list(csv.DictReader(f))
     assert len(rows) == 2 * 2 * len(PAIRS)
     assert (tmp_path / "summary.txt").read_text().startswith("VoI by density")
-    code, out, _ = _run("plot", "voi", str(tmp_path / "density.csv"), "-o",
+    magic = {".png": b"\x89PNG", ".svg": b"<?xml", ".pdf": b"%PDF"}
+    for suffix, head in magic.items():  # the suffix picks the format; one file per -o
+        figs = tmp_path / f"figs{suffix}"
+        code, _, err = _run("plot", "voi", str(tmp_path / "density.csv"), "-o",
+                            str(figs / f"voi{suffix}"))
+        assert code == 0, err
+        assert [p.name for p in figs.iterdir()] == [f"voi{suffix}"]
+        assert (figs / f"voi{suffix}").read_bytes().startswith(head)
+    code, _, err = _run("plot", "voi", str(tmp_path / "density.csv"), "-o",
                         str(tmp_path / "voi"))
-    assert code == 0
-    for suffix in (".png", ".svg"):
-        assert (tmp_path / f"voi{suffix}").stat().st_size > 1000
-    assert (tmp_path / "voi.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert code == 2 and "must end in .png, .svg or .pdf" in err
+    assert not (tmp_path / "voi").exists() and not (tmp_path / "voi.png").exists()
 
 
 @pytest.mark.parametrize("kind", ["map", "beliefs"])
