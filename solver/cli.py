@@ -298,3 +298,7 @@ def plot_voi_command(csv_file: str, output: str) -> None:
 
 for _command in checker_cli.COMMANDS:
     main.add_command(_command)
+
+
+if __name__ == "__main__":  # `python -m solver.cli` runs the `dpp` command too
+    main()
