@@ -22,6 +22,7 @@ from typing import Any
 from dppverify.distances import dijkstra, hops_to_targets
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import INF, Number, parse_json, parse_number
+from dppverify.files import read_input
 from dppverify.instance import Node, node_from_json, show_node
 
 __all__ = ["NInstance", "goal_count", "load_ninstance", "ninstance_from_json",
@@ -150,9 +151,10 @@ def read_instance_document(path: str | Path) -> Any:
     """
     p = Path(path)
     try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        reason = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"
+        text = read_input(p).decode("utf-8")
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        reason = (exc.strerror if isinstance(exc, OSError)
+                  else "not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc))
         raise InvalidInstanceError(f"{p}: cannot read instance file ({reason})") from None
     try:
         return parse_json(text)
