@@ -9,7 +9,7 @@ from fractions import Fraction
 
 from dppverify.best_response import AttackerBR, attacker_best_response
 from dppverify.defender import TreeDefender, tree_defender
-from dppverify.evaluate import realization
+from dppverify.evaluation import realization
 from dppverify.exact import Tolerance
 from dppverify.instance import Instance, Roles
 from dppverify.profile import Profile, ProgressRule

@@ -37,11 +37,11 @@ from dppverify.certificate import CheckRecord, Status
 from dppverify.context import Context
 from dppverify.defender import sigma_along
 from dppverify.distances import dijkstra
-from dppverify.evaluate import realization
+from dppverify.evaluation import realization
 from dppverify.exact import Number, normalize
 from dppverify.lp import lp_agrees
 from dppverify.pbne import NOT_WELLFORMED, phases_of
-from dppverify.profile import MixedWalk, ProgressRule
+from dppverify.profile import ProgressRule, StrategyPath
 from dppverify.text import show, show_walk
 from dppverify.tree import WalkTree, simple_mask
 
@@ -293,7 +293,7 @@ def _random_walk(tree: WalkTree, rng: random.Random, start: int = 0) -> tuple[in
 
 
 def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | None = None,
-                   k_max: int = 4) -> tuple[MixedWalk, ...]:
+                   k_max: int = 4) -> tuple[StrategyPath, ...]:
     """A random non-reacting mixed strategy: 1..k_max random walks, rational probabilities.
 
     With ``through`` (a root-to-leaf list of prefixes), each walk follows it for a random
@@ -312,7 +312,7 @@ def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | 
 
     Returns
     -------
-    tuple of MixedWalk
+    tuple of StrategyPath
         Walks (node indices) with exact probabilities summing to 1.
 
     Examples
@@ -332,7 +332,7 @@ def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | 
         walk = _random_walk(tree, rng, start)
         weights[walk] = weights.get(walk, 0) + rng.randint(1, 6)
     total = sum(weights.values())
-    return tuple(MixedWalk(w, Fraction(c, total)) for w, c in weights.items())
+    return tuple(StrategyPath(w, Fraction(c, total)) for w, c in weights.items())
 
 
 def l3_greedy(ctx: Context) -> CheckRecord:
@@ -443,7 +443,7 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
         leaf = tree.find(walk)
         assert leaf is not None
         along = tree.path(leaf)
-        primaries: list[tuple[str, tuple[MixedWalk, ...]]] = []
+        primaries: list[tuple[str, tuple[StrategyPath, ...]]] = []
         if ctx.usable:
             primaries.append(("the profile's primary", ctx.profile.primary))
         primaries += [(f"random primary {k + 1}", random_mixture(tree, rng, through=along))

@@ -25,7 +25,7 @@ from dppverify.best_response import (
 from dppverify.certificate import CheckRecord, Status
 from dppverify.context import Context
 from dppverify.defender import sigma_along
-from dppverify.evaluate import Values, evaluate, walk_cost
+from dppverify.evaluation import Values, evaluate, walk_cost
 from dppverify.exact import Number, Tolerance, normalize
 from dppverify.lp import LP_TOLERANCE, lp_agrees
 from dppverify.profile import ProgressRule

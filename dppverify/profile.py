@@ -33,7 +33,7 @@ from dppverify.exact import Number, Tolerance, parse_json, parse_number
 from dppverify.files import read_input
 from dppverify.instance import Instance, node_from_json, show_node
 
-__all__ = ["PROFILE_FORMAT", "Defect", "DefenderRule", "MixedWalk", "Profile", "ProgressRule",
+__all__ = ["PROFILE_FORMAT", "Defect", "DefenderRule", "Profile", "ProgressRule", "StrategyPath",
            "TableRule", "load_profile_document", "profile_from_json", "validate_walk"]
 
 PROFILE_FORMAT = "dpp-profile/1"
@@ -76,7 +76,7 @@ DefenderRule = ProgressRule | TableRule
 
 
 @dataclass(frozen=True)
-class MixedWalk:
+class StrategyPath:
     """One walk of a type's mixed strategy (Γ_mix) with its probability."""
 
     walk: tuple[int, ...]
@@ -95,7 +95,7 @@ class Profile:
         primary. Falls back to the instance's primary goal when the profile's is unusable.
     defender : DefenderRule or None
         None when the ``defender`` section is unusable (then a defect says why).
-    primary, secondary : tuple of MixedWalk
+    primary, secondary : tuple of StrategyPath
         The valid walks of each type's mixed strategy (invalid entries are dropped and
         recorded as defects).
     claimed_prior : tuple or None
@@ -114,8 +114,8 @@ class Profile:
 
     primary_slot: int
     defender: DefenderRule | None
-    primary: tuple[MixedWalk, ...]
-    secondary: tuple[MixedWalk, ...]
+    primary: tuple[StrategyPath, ...]
+    secondary: tuple[StrategyPath, ...]
     claimed_prior: tuple[Fraction, Fraction] | None = None
     claimed_values: Mapping[str, Number] = field(default_factory=dict)
     claimed_phases: tuple[int, int, int] | None = None
@@ -129,7 +129,7 @@ class Profile:
         """True when the profile has no defect."""
         return not self.defects
 
-    def walks(self, theta: int) -> tuple[MixedWalk, ...]:
+    def walks(self, theta: int) -> tuple[StrategyPath, ...]:
         """Mixed strategy of type ``theta`` (1 = primary, 2 = secondary)."""
         return self.primary if theta == 1 else self.secondary
 
@@ -305,7 +305,7 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
     c = _Collector()
     primary_slot = _goals(doc, instance, c)
     defender = _defender(doc, instance, c, tol)
-    walks: dict[int, tuple[MixedWalk, ...]] = {}
+    walks: dict[int, tuple[StrategyPath, ...]] = {}
     longest = 0
     attacker = doc.get("attacker")
     if not isinstance(attacker, Mapping):
@@ -408,11 +408,11 @@ def _defender(doc: Mapping[str, Any], instance: Instance, c: _Collector,
 
 
 def _mixed(raw: Any, where: str, instance: Instance, c: _Collector,
-           tol: Tolerance) -> tuple[tuple[MixedWalk, ...], int]:
+           tol: Tolerance) -> tuple[tuple[StrategyPath, ...], int]:
     if not isinstance(raw, list) or not raw:
         c.add(where, "missing, or not a non-empty list of {\"path\": [...], \"probability\": p}")
         return (), 0
-    out: list[MixedWalk] = []
+    out: list[StrategyPath] = []
     seen: dict[tuple[int, ...], int] = {}
     total: Fraction = Fraction(0)
     ok_sum = True
@@ -443,7 +443,8 @@ def _mixed(raw: Any, where: str, instance: Instance, c: _Collector,
         seen[walk] = k
         label = e.get("label")
         if prob is not None and prob >= 0:
-            out.append(MixedWalk(walk, Fraction(prob), label if isinstance(label, str) else None))
+            out.append(StrategyPath(walk, Fraction(prob),
+                                    label if isinstance(label, str) else None))
     if ok_sum and not tol.eq(total, 1):
         c.add(where, f"probabilities sum to {total}, not 1")
     return tuple(out), longest

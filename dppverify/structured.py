@@ -17,12 +17,12 @@ from fractions import Fraction
 
 from dppverify.certificate import CheckRecord, Status
 from dppverify.defender import sigma_along, step_weight
-from dppverify.evaluate import Values, evaluate, walk_cost
+from dppverify.evaluation import Values, evaluate, walk_cost
 from dppverify.exact import Number, Tolerance, normalize
 from dppverify.instance import Instance, Roles
 from dppverify.lemmas import OFF_XI2
 from dppverify.pbne import phases_of
-from dppverify.profile import MixedWalk, Profile, ProgressRule
+from dppverify.profile import Profile, ProgressRule, StrategyPath
 from dppverify.text import show, show_walk
 from dppverify.value_dp import structured_value
 from dppverify.walk_br import WalkMinima, split_minimum, walk_minima
@@ -47,14 +47,14 @@ class Trie:
     mass: dict[tuple[int, ...], tuple[Fraction, Fraction]]
 
 
-def build_trie(primary: Iterable[MixedWalk], secondary: Iterable[MixedWalk]) -> Trie:
+def build_trie(primary: Iterable[StrategyPath], secondary: Iterable[StrategyPath]) -> Trie:
     """Realization masses of both types on the prefixes of their walks.
 
     Examples
     --------
-    >>> from dppverify.profile import MixedWalk
-    >>> t = build_trie([MixedWalk((0, 1), Fraction(4, 7)), MixedWalk((0, 2), Fraction(3, 7))],
-    ...                [MixedWalk((0, 2), Fraction(1))])
+    >>> from dppverify.profile import StrategyPath
+    >>> t = build_trie([StrategyPath((0, 1), Fraction(4, 7)), StrategyPath((0, 2), Fraction(3, 7))],
+    ...                [StrategyPath((0, 2), Fraction(1))])
     >>> t.mass[(0,)], t.mass[(0, 2)]
     ((Fraction(1, 1), Fraction(1, 1)), (Fraction(3, 7), Fraction(1, 1)))
     """

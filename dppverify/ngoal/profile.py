@@ -35,20 +35,12 @@ from dppverify.errors import ProfileError
 from dppverify.exact import Number, parse_json, parse_number
 from dppverify.instance import node_from_json, show_node
 from dppverify.ngoal.instance import NInstance
+from dppverify.profile import StrategyPath
 
-__all__ = ["NGOAL_PROFILE_FORMAT", "NMixedWalk", "NProfile", "load_nprofile_document",
+__all__ = ["NGOAL_PROFILE_FORMAT", "NProfile", "load_nprofile_document",
            "nprofile_from_json"]
 
 NGOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
-
-
-@dataclass(frozen=True)
-class NMixedWalk:
-    """One walk of a type's mixed strategy with its probability."""
-
-    walk: tuple[int, ...]
-    probability: Fraction
-    label: str | None = None
 
 
 @dataclass(frozen=True)
@@ -71,7 +63,7 @@ class NProfile:
         Everything that makes the profile ill-formed (``where: what``).
     """
 
-    attacker: tuple[tuple[NMixedWalk, ...], ...]
+    attacker: tuple[tuple[StrategyPath, ...], ...]
     entries: Mapping[tuple[int, ...], tuple[Fraction, ...]]
     default: tuple[Fraction, ...] | None
     claimed_u: Number | None
@@ -206,7 +198,7 @@ def nprofile_from_json(instance: NInstance, doc: Mapping[str, Any]) -> NProfile:
         if not same:
             defects.append("goals: must list the instance's goals in the instance's order")
     raw_att = doc.get("attacker")
-    types: list[tuple[NMixedWalk, ...]] = [() for _ in range(n)]
+    types: list[tuple[StrategyPath, ...]] = [() for _ in range(n)]
     if not isinstance(raw_att, list) or len(raw_att) != n:
         got = len(raw_att) if isinstance(raw_att, list) else type(raw_att).__name__
         defects.append(f"attacker: must be a list of {n} mixed strategies (one per goal), "
@@ -217,7 +209,7 @@ def nprofile_from_json(instance: NInstance, doc: Mapping[str, Any]) -> NProfile:
             if not isinstance(mix, list) or not mix:
                 defects.append(f"{where}: must be a non-empty list of walks")
                 continue
-            walks: list[NMixedWalk] = []
+            walks: list[StrategyPath] = []
             total = Fraction(0)
             for j, entry in enumerate(mix):
                 at = f"{where}[{j}]"
@@ -238,7 +230,7 @@ def nprofile_from_json(instance: NInstance, doc: Mapping[str, Any]) -> NProfile:
                     continue
                 total += prob
                 label = entry.get("label")
-                walks.append(NMixedWalk(walk, prob, None if label is None else str(label)))
+                walks.append(StrategyPath(walk, prob, None if label is None else str(label)))
             if total != 1:
                 defects.append(f"{where}: probabilities sum to {total}, not 1")
             types[theta] = tuple(walks)

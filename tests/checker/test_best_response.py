@@ -18,7 +18,7 @@ from dppverify.best_response import (
     payoff_on_tree,
 )
 from dppverify.defender import tree_defender
-from dppverify.evaluate import evaluate, realization
+from dppverify.evaluation import evaluate, realization
 from dppverify.instance import instance_from_json
 from dppverify.lemmas import random_mixture
 from dppverify.lp import lp_agrees

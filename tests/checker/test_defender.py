@@ -9,7 +9,7 @@ from fractions import Fraction
 import pytest
 
 from dppverify.defender import progress_along, sigma_along, tree_defender
-from dppverify.evaluate import walk_cost
+from dppverify.evaluation import walk_cost
 from dppverify.instance import instance_from_json
 from dppverify.profile import ProgressRule, TableRule
 from dppverify.tree import build_tree
@@ -126,7 +126,7 @@ def test_walks_through_nodes_that_cannot_reach_g1_make_no_progress() -> None:
 
 def test_public_helpers_reject_bad_arguments_with_named_errors() -> None:
     from dppverify.errors import InvalidInstanceError, ProfileError
-    from dppverify.evaluate import walk_cost
+    from dppverify.evaluation import walk_cost
     from dppverify.examples import triangle
     from dppverify.profile import ProgressRule
 

@@ -14,7 +14,7 @@ from fractions import Fraction
 from dppverify.defender import sigma_along, step_weight
 from dppverify.exact import Number, normalize
 from dppverify.instance import Instance, Roles
-from dppverify.profile import DefenderRule, MixedWalk
+from dppverify.profile import DefenderRule, StrategyPath
 from dppverify.tree import WalkTree
 
 __all__ = ["Values", "complete_information_value", "evaluate", "realization", "walk_cost"]
@@ -92,7 +92,7 @@ def complete_information_value(instance: Instance, roles: Roles) -> Number:
 
 
 def evaluate(instance: Instance, roles: Roles, rule: DefenderRule,
-             primary: Iterable[MixedWalk], secondary: Iterable[MixedWalk]) -> Values:
+             primary: Iterable[StrategyPath], secondary: Iterable[StrategyPath]) -> Values:
     """Exact payoffs of the profile ``(rule, primary, secondary)``.
 
     Examples
@@ -102,8 +102,8 @@ def evaluate(instance: Instance, roles: Roles, rule: DefenderRule,
     >>> inst = triangle()
     >>> r = inst.roles()
     >>> v = evaluate(inst, r, ProgressRule(r.g1),
-    ...              [MixedWalk((0, 1), Fraction(4, 7)), MixedWalk((0, 2), Fraction(3, 7))],
-    ...              [MixedWalk((0, 2), Fraction(1))])
+    ...              [StrategyPath((0, 1), Fraction(4, 7)), StrategyPath((0, 2), Fraction(3, 7))],
+    ...              [StrategyPath((0, 2), Fraction(1))])
     >>> [str(x) for x in (v.U1, v.U2, v.U, v.U_bar, v.VoI)]
     ['3', '1', '12/5', '27/10', '1/9']
     """
@@ -123,7 +123,7 @@ def evaluate(instance: Instance, roles: Roles, rule: DefenderRule,
     return Values(U1=u[1], U2=u[2], U=U, U_bar=U_bar, VoI=voi)
 
 
-def realization(tree: WalkTree, walks: Iterable[MixedWalk]) -> dict[int, Fraction]:
+def realization(tree: WalkTree, walks: Iterable[StrategyPath]) -> dict[int, Fraction]:
     """Realization plan of a mixed strategy over walks: prefix index -> reach probability.
 
     Only prefixes with positive probability are listed. Every walk must be in ``tree``.
@@ -132,7 +132,7 @@ def realization(tree: WalkTree, walks: Iterable[MixedWalk]) -> dict[int, Fractio
     ----------
     tree : WalkTree
         The walk tree; every walk must end at one of its leaves.
-    walks : iterable of MixedWalk
+    walks : iterable of StrategyPath
         The mixed strategy (walks as node indices, with probabilities).
 
     Returns
@@ -150,9 +150,10 @@ def realization(tree: WalkTree, walks: Iterable[MixedWalk]) -> dict[int, Fractio
     >>> from dppverify.examples import triangle
     >>> from dppverify.tree import build_tree
     >>> tree = build_tree(triangle(), 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> realization(tree, [MixedWalk((0, 1), Fraction(4, 7)), MixedWalk((0, 2), Fraction(3, 7))])
+    >>> realization(tree, [StrategyPath((0, 1), Fraction(4, 7)),
+    ...                    StrategyPath((0, 2), Fraction(3, 7))])
     {0: Fraction(1, 1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
-    >>> realization(tree, [MixedWalk((0, 2, 1), Fraction(1))])
+    >>> realization(tree, [StrategyPath((0, 2, 1), Fraction(1))])
     Traceback (most recent call last):
     KeyError: 'walk (0, 2, 1) is not in the walk tree (horizon 1)'
     """
