@@ -14,7 +14,9 @@
 - Every ``>>>`` example in these files is run by :mod:`doctest` with the same options.
 
 Commands that are not examples (installing, running the test suite, placeholders such as
-``mysolver:solve``) are written in ```` ```bash ```` blocks instead.
+``mysolver:solve``) are written in ```` ```bash ```` blocks instead. Those are not run, but
+every ``dpp`` command in them must parse (subcommands, options and option values, by Click's
+own parser), except lines with placeholders such as ``INSTANCE`` or ``[--flag]``.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ import os
 import re
 import subprocess
 import sys
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -151,3 +154,85 @@ def test_python_examples(path: Path) -> None:
     runner = doctest.DocTestRunner(optionflags=FLAGS)
     runner.run(test)
     assert runner.failures == 0, f"{path.name}: {runner.failures} failing >>> example(s)"
+
+
+# ``bash`` blocks are not run (installs, long campaigns, placeholders), but every ``dpp`` command
+# in them must still parse: its subcommands and options exist and take the values shown.
+FILE_SUFFIXES = (".json", ".csv", ".map", ".efg", ".png", ".pdf", ".svg")
+PLACEHOLDER = re.compile(r"\b[A-Z]{2,}\b|\[")
+
+
+def bash_dpp_commands(path: Path) -> list[tuple[int, str]]:
+    """The ``dpp …`` command lines of the ```` ```bash ```` blocks (continuations joined).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     md = Path(d) / "x.md"
+    ...     _ = md.write_text("```bash\\npip install x\\n"
+    ...                       "dpp solve a.json \\\\\\n  --json  # c\\n```\\n")
+    ...     bash_dpp_commands(md)
+    [(3, 'dpp solve a.json --json  # c')]
+    """
+    out: list[tuple[int, str]] = []
+    inside, pending, start = False, "", 0
+    for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+        if line.startswith("```"):
+            inside = line.strip() == "```bash"
+            continue
+        if not inside:
+            continue
+        if pending:
+            pending += " " + line.strip()
+        elif line.startswith("dpp "):
+            pending, start = line.strip(), number
+        if pending.endswith("\\"):
+            pending = pending[:-1].rstrip()
+            continue
+        if pending:
+            out.append((start, pending))
+            pending = ""
+    return out
+
+
+BASH_COMMANDS = [(path, number, text) for path in DOCS for number, text in bash_dpp_commands(path)
+                 if not PLACEHOLDER.search(text.split("#")[0])]
+
+
+def test_the_docs_have_bash_commands() -> None:
+    assert len(BASH_COMMANDS) >= 20
+
+
+@pytest.mark.parametrize("path, number, text", [
+    pytest.param(p, n, t, id=f"{p.relative_to(ROOT)}:{n}") for p, n, t in BASH_COMMANDS])
+def test_bash_command_parses(path: Path, number: int, text: str, tmp_path: Path,
+                             monkeypatch: pytest.MonkeyPatch) -> None:
+    import shlex
+
+    import click
+
+    from solver.cli import main
+
+    args = shlex.split(text, comments=True)[1:]
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    for token in args:  # the files earlier commands of the session would have written
+        target = tmp_path / token
+        if token.endswith(FILE_SUFFIXES) and not target.exists():
+            target.parent.mkdir(parents=True, exist_ok=True)
+            target.touch()
+    where = f"{path.relative_to(ROOT)}:{number}: {text}"
+    command: click.Command = main
+    ctx = command.make_context("dpp", list(args), resilient_parsing=False)
+    try:
+        while isinstance(command, click.Group):
+            with warnings.catch_warnings():  # Click 9 moves protected_args into args
+                warnings.simplefilter("ignore", DeprecationWarning)
+                rest = [*getattr(ctx, "protected_args", ()), *ctx.args]
+            assert rest, f"{where}: no subcommand"
+            name, sub, rest = command.resolve_command(ctx, rest)
+            assert sub is not None, f"{where}: unknown command"
+            command, ctx = sub, sub.make_context(name or "", rest, parent=ctx)
+    except click.ClickException as exc:
+        pytest.fail(f"{where}: {exc.format_message()}")
