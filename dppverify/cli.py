@@ -19,7 +19,7 @@ from dppverify.audit_cli import audit_command
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli_conventions import output_file_option, progress_option, status, want_progress
-from dppverify.efg import DEFAULT_MAX_EFG_NODES, write_efg
+from dppverify.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
 from dppverify.errors import CheckerError, HorizonError, OptionError
 from dppverify.exact import format_number
 from dppverify.instance import Instance, load_instance
@@ -462,7 +462,8 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
     Chance draws the Attacker's goal, the Attacker picks each next node, the Defender
     allocates each step to a goal (information set: the walk plus its own past allocations,
     so the game has perfect recall); payoffs sit on the leaves only. Gambit and OpenSpiel
-    read the file; every copy of a t-step walk prefix appears 2^t times, so keep H small.
+    read the file; every copy of a t-step walk prefix appears 2^t times (N^t with N goals:
+    an instance may list N > 2 goals, docs/formats.md), so keep H small.
 
     \b
     Examples:
@@ -470,15 +471,22 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
       dpp export-efg examples/triangle.json -H 3 -o game.efg --attacker-blind
       dpp export-efg --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 2 -o g.efg
     """
+    goals = ""
     try:
-        size = write_efg(output, load_game(instance, grid), horizon,
+        game: GameInstance
+        if instance is not None and grid is None and is_ngoal_file(instance):  # N > 2 goals
+            game = load_ninstance(instance)
+            goals = f"N = {game.n_goals} goals, "
+        else:
+            game = load_game(instance, grid)
+        size = write_efg(output, game, horizon,
                          attacker_observes=attacker_observes, forced_moves=forced_moves,
                          max_prefixes=max_prefixes, max_nodes=max_nodes,
                          progress=want_progress(progress))
     except CheckerError as exc:
         _fail(exc)
         return
-    status(f"wrote {output}: H = {horizon}, {size.nodes} game nodes ({size.terminals} "
+    status(f"wrote {output}: {goals}H = {horizon}, {size.nodes} game nodes ({size.terminals} "
            f"terminals), {size.attacker_infosets} Attacker and {size.defender_infosets} "
            f"Defender information sets")
 

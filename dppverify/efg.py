@@ -1,9 +1,12 @@
 """Export the truncated game as a Gambit ``.efg`` file (for peer tools: Gambit, OpenSpiel).
 
 The exported extensive-form game is the truncated game of proofs/LP.md with the Defender's
-allocations made explicit moves:
+allocations made explicit moves. One writer serves two goals (:class:`~dppverify.instance.
+Instance`, :class:`~dppverify.tree.WalkTree`) and N goals (:class:`~dppverify.ngoal.instance.
+NInstance`, :class:`~dppverify.ngoal.tree.NWalkTree`, ``docs/formats.md`` §2b); with N types:
 
-1. **chance** draws the Attacker's type (its true goal) with the prior ``b`` (exact rationals);
+1. **chance** draws the Attacker's type θ (its true goal g^θ, θ = 1 … N) with the prior ``b``
+   (exact rationals);
 2. the **Attacker** (player 1) of that type chooses the next node of the walk; its
    information set is its type plus everything it has seen: the walk and the Defender's past
    allocations (``attacker_observes=True``, the default) or only the walk
@@ -11,8 +14,8 @@ allocations made explicit moves:
    forced and, by default, not written as a decision node (``forced_moves=False``): Gambit
    17.0.0b2's ``lp_solve`` returns a wrong value on games with one-action information sets
    (``docs/peers.md``); ``forced_moves=True`` writes them anyway;
-3. after every step the **Defender** (player 2) puts the step's whole weight on one goal
-   (action ``alloc <goal>``; a mixed action is a fractional allocation, the payoff being
+3. after every step the **Defender** (player 2) puts the step's whole weight on one of the N
+   goals (action ``alloc <goal>``; a mixed action is a fractional allocation, the payoff being
    linear in it). Its information set is the walk prefix **plus its own past allocations**:
    the game must have perfect recall, otherwise Gambit refuses it and OpenSpiel's
    sequence-form LP silently solves a different game;
@@ -21,14 +24,18 @@ allocations made explicit moves:
    Attacker pays ``Σ_t w(e_t)·[step t was allocated to its true goal] + d(end, true goal)``,
    the Defender receives it (zero-sum).
 
-The value of this game for the Defender is ``V_H`` (:func:`dppverify.game_value`) in both
+The value of this game for the Defender is ``V_H`` (:func:`dppverify.game_value`; for N goals
+:func:`dppverify.ngoal.value_lp.ngame_value`) in both
 variants: observing the Defender's past moves is worthless to the Attacker (they never
 change the state), which is what the peer cross-check in ``tests/peers`` confirms.
 
-Size: a prefix with ``t`` steps appears ``2^t`` times per type (once per Defender history),
-so the game has ``1 + 2·Σ_p (2^t·[p a choice] + 2^(t-1)·[t ≥ 1] + 2^t·[p leaf])`` nodes,
+Size: a prefix with ``t`` steps appears ``N^t`` times per type (once per Defender history),
+so the game has ``1 + N·Σ_p (N^t·[p a choice] + N^(t-1)·[t ≥ 1] + N^t·[p leaf])`` nodes,
 where "a choice" means a prefix with two or more children (any inner prefix with
-``forced_moves=True``). Only tiny horizons are practical for the peers (``docs/peers.md``).
+``forced_moves=True``); the count is exact (Python integers), so the size guard holds at any
+horizon. Only tiny horizons are practical for the peers (``docs/peers.md``).
+A Defender history is written as the allocated goals' numbers ``1 … N`` (``h-`` when empty);
+from ten goals on they are separated by dots.
 
 Two format details that matter to OpenSpiel 2.0.2 (its ``.efg`` parser): labels are quoted
 without escapes, so ``"`` and ``\\`` in node ids are replaced by ``'`` and ``/``; and it maps a
@@ -67,6 +74,17 @@ t "" 4 "cost 2" { -2 2 }
 <BLANKLINE>
 >>> efg_size(build_tree(inst, 1)).nodes
 15
+
+With three goals the chance node has three branches and the Defender three actions:
+
+>>> from dppverify.ngoal.examples import star3
+>>> print("".join(to_efg(star3(), 1).splitlines(keepends=True)[3:9]), end="")
+c "" 1 "type" { "type a" 1/2 "type b" 1/3 "type c" 1/6 } 0
+p "" 2 1 "D p1 h-" { "alloc a" "alloc b" "alloc c" } 0
+t "" 1 "cost 2" { -2 2 }
+t "" 2 "cost 0" { 0 0 }
+t "" 2 "cost 0" { 0 0 }
+p "" 2 1 "D p1 h-" { "alloc a" "alloc b" "alloc c" } 0
 """
 
 from __future__ import annotations
@@ -84,9 +102,18 @@ from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.exact import Number, normalize
 from dppverify.files import write_files
 from dppverify.instance import Instance
+from dppverify.ngoal.instance import NInstance
+from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
 
-__all__ = ["DEFAULT_MAX_EFG_NODES", "EfgSize", "efg_size", "to_efg", "tree_to_efg", "write_efg"]
+__all__ = ["DEFAULT_MAX_EFG_NODES", "EfgSize", "GameInstance", "GameTree", "efg_size", "to_efg",
+           "tree_to_efg", "write_efg"]
+
+GameInstance = Instance | NInstance
+"""An instance the export accepts: two goals or N goals."""
+
+GameTree = WalkTree | NWalkTree
+"""A walk tree the export accepts: two goals or N goals."""
 
 DEFAULT_MAX_EFG_NODES = 2_000_000
 """Default size guard on the exported game's node count (:class:`TreeTooLargeError` above)."""
@@ -117,9 +144,12 @@ class EfgSize:
     defender_infosets: int
 
 
-def efg_size(tree: WalkTree, *, attacker_observes: bool = True,
+def efg_size(tree: GameTree, *, attacker_observes: bool = True,
              forced_moves: bool = False) -> EfgSize:
     """Count the exported game's nodes and information sets without writing it.
+
+    Exact at any size (Python integers: ``N^t`` copies of a ``t``-step prefix), so it is
+    the size guard of :func:`tree_to_efg`.
 
     Examples
     --------
@@ -130,18 +160,28 @@ def efg_size(tree: WalkTree, *, attacker_observes: bool = True,
     >>> efg_size(build_tree(inst, 1))
     EfgSize(nodes=15, terminals=8, attacker_nodes=2, defender_nodes=4, attacker_infosets=2, \
 defender_infosets=2)
+    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.ngoal.tree import build_ntree
+    >>> efg_size(build_ntree(star3(), 2)).nodes
+    136
     """
+    n = len(tree.instance.goals)
     depth = tree.depth.astype(np.int64)
-    leaf = tree.is_leaf_mask()
     kids = tree.child_stop - tree.child_start
     choice = kids >= (1 if forced_moves else 2)  # prefixes written as Attacker nodes
-    copies = np.left_shift(np.int64(1), depth)  # Defender histories before prefix p: 2^t
-    inner_copies = int(copies[choice].sum())
-    dnodes = int((copies[1:] // 2).sum())
-    leaves = int(copies[leaf].sum())
-    a_infosets = 2 * (inner_copies if attacker_observes else int(np.count_nonzero(choice)))
-    return EfgSize(nodes=1 + 2 * (inner_copies + dnodes + leaves), terminals=2 * leaves,
-                   attacker_nodes=2 * inner_copies, defender_nodes=2 * dnodes,
+    top = int(depth.max()) + 1
+    power = [n ** t for t in range(top)]  # Defender histories before a t-step prefix: N^t
+
+    def copies(mask: np.ndarray, shift: int = 0) -> int:
+        per_depth = np.bincount(depth[mask], minlength=top).tolist()
+        return sum(c * power[t - shift] for t, c in enumerate(per_depth) if c and t >= shift)
+
+    inner_copies = copies(choice)
+    dnodes = copies(depth >= 1, shift=1)
+    leaves = copies(kids == 0)
+    a_infosets = n * (inner_copies if attacker_observes else int(np.count_nonzero(choice)))
+    return EfgSize(nodes=1 + n * (inner_copies + dnodes + leaves), terminals=n * leaves,
+                   attacker_nodes=n * inner_copies, defender_nodes=n * dnodes,
                    attacker_infosets=a_infosets, defender_infosets=dnodes)
 
 
@@ -150,7 +190,7 @@ def _label(text: str) -> str:
     return text.replace('"', "'").replace("\\", "/").replace("\n", " ")
 
 
-def _node_names(instance: Instance) -> list[str]:
+def _node_names(instance: GameInstance) -> list[str]:
     """One distinct, quote-safe name per node (its id; ``v<i>:`` prefixed on a clash)."""
     names = []
     for v in instance.nodes:
@@ -174,13 +214,15 @@ def _number(x: Number) -> str:
 class _Writer:
     """Preorder emission of the game tree (one ``.efg`` line per node)."""
 
-    def __init__(self, tree: WalkTree, attacker_observes: bool, forced_moves: bool) -> None:
+    def __init__(self, tree: GameTree, attacker_observes: bool, forced_moves: bool) -> None:
         self.tree = tree
         self.forced = forced_moves
         self.inst = tree.instance
         self.observes = attacker_observes
         self.names = _node_names(self.inst)
         self.goal_names = [self.names[g] for g in self.inst.goals]
+        self.types = range(len(self.goal_names))
+        self.sep = "" if len(self.goal_names) <= 9 else "."  # histories stay unambiguous
         self.infosets: tuple[dict[tuple[object, ...], int], dict[tuple[object, ...], int]] = (
             {}, {})
         self.outcomes: dict[Number, int] = {}
@@ -215,10 +257,10 @@ class _Writer:
 
     def lines(self) -> Iterator[str]:
         inst = self.inst
-        b = [_number(p) for p in inst.prior]
-        yield (f'c "" 1 "type" {{ "type {self.goal_names[0]}" {b[0]} '
-               f'"type {self.goal_names[1]}" {b[1]} }} 0')
-        for slot in (0, 1):
+        branches = " ".join(f'"type {name}" {_number(p)}'
+                            for name, p in zip(self.goal_names, inst.prior, strict=True))
+        yield f'c "" 1 "type" {{ {branches} }} 0'
+        for slot in self.types:
             yield from self._attacker(slot, 0, "", self.zero)
 
     def _attacker(self, slot: int, p: int, hist: str, cost: Number) -> Iterator[str]:
@@ -244,23 +286,23 @@ class _Writer:
     def _defender(self, slot: int, p: int, hist: str, cost: Number) -> Iterator[str]:
         """Defender allocating the last step of prefix ``p`` after its own history ``hist``."""
         num = self._infoset(DEFENDER, (p, hist))
-        acts = self._ordered([(f"alloc {self.goal_names[k]}", k) for k in (0, 1)])
+        acts = self._ordered([(f"alloc {self.goal_names[k]}", k) for k in self.types])
         labels = " ".join(f'"{a}"' for a, _ in acts)
         yield f'p "" {DEFENDER} {num} "D p{p} h{self._hist(hist)}" {{ {labels} }} 0'
         w = self.tree.weight[p]
         for _, k in acts:
-            yield from self._attacker(slot, p, hist + str(k + 1),
-                                      cost + w if k == slot else cost)
+            step = f"{self.sep}{k + 1}" if hist else str(k + 1)
+            yield from self._attacker(slot, p, hist + step, cost + w if k == slot else cost)
 
 
-def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves: bool = False,
+def tree_to_efg(tree: GameTree, *, attacker_observes: bool = True, forced_moves: bool = False,
                 max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
     """The ``.efg`` text of the game on an already built walk tree (see :func:`to_efg`).
 
     Parameters
     ----------
-    tree : WalkTree
-        The walk tree of the truncated game.
+    tree : WalkTree or NWalkTree
+        The walk tree of the truncated game (two goals or N goals).
     attacker_observes, forced_moves, max_nodes, title
         As for :func:`to_efg`.
 
@@ -305,7 +347,9 @@ def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves:
             f"the .efg game for H = {tree.horizon} has {size.nodes} nodes ({tree.n_prefixes} "
             f"walk prefixes, each repeated for every Defender history), more than the limit of "
             f"{max_nodes}; lower the horizon or raise the limit (--max-nodes)")
-    head = _label(title or f"dppverify truncated DPP game, H = {tree.horizon}")
+    n = len(tree.instance.goals)
+    goals = f"N = {n} goals, " if n > 2 else ""
+    head = _label(title or f"dppverify truncated DPP game, {goals}H = {tree.horizon}")
     view = ("the Attacker observes the Defender's past allocations" if attacker_observes else
             "the Attacker does not observe the Defender's allocations")
     comment = (f"Player 1 = Attacker (pays the cost), player 2 = Defender (receives it); "
@@ -318,17 +362,26 @@ def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves:
     return "\n".join(out)
 
 
-def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
+def _build(instance: GameInstance, horizon: int, max_prefixes: int,
+           progress: bool = False) -> GameTree:
+    """The walk tree of either kind of instance (the size guard counts it first)."""
+    if isinstance(instance, NInstance):
+        return build_ntree(instance, horizon, max_prefixes=max_prefixes)
+    return build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
+
+
+def to_efg(instance: GameInstance, horizon: int, *, attacker_observes: bool = True,
            forced_moves: bool = False, max_prefixes: int = DEFAULT_MAX_PREFIXES,
            max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
     """The truncated game of ``instance`` with horizon ``horizon`` as Gambit ``.efg`` text.
 
     Parameters
     ----------
-    instance : Instance
-        The game.
+    instance : Instance or NInstance
+        The game, with two goals or N goals (:mod:`dppverify.ngoal`).
     horizon : int
-        ``H``: walks have at most ``H`` steps (:func:`~dppverify.tree.build_tree`).
+        ``H``: walks have at most ``H`` steps (:func:`~dppverify.tree.build_tree`,
+        :func:`~dppverify.ngoal.tree.build_ntree`).
     attacker_observes : bool
         Whether the Attacker's information sets include the Defender's past allocations
         (default) or only the walk. The value is the same (see the module docstring).
@@ -338,7 +391,7 @@ def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
     max_prefixes : int
         Size guard on the walk tree.
     max_nodes : int
-        Size guard on the exported game (it has ``2^t`` copies of each ``t``-step prefix).
+        Size guard on the exported game (it has ``N^t`` copies of each ``t``-step prefix).
     title : str, optional
         The game's title in the file.
 
@@ -358,19 +411,19 @@ def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
     >>> to_efg(inst, 1).splitlines()[3]
     'c "" 1 "type" { "type 1" 1/2 "type 2" 1/2 } 0'
     """
-    tree = build_tree(instance, horizon, max_prefixes=max_prefixes)
+    tree = _build(instance, horizon, max_prefixes)
     return tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
                        max_nodes=max_nodes, title=title)
 
 
-def write_efg(path: str | Path, instance: Instance, horizon: int, *,
+def write_efg(path: str | Path, instance: GameInstance, horizon: int, *,
               attacker_observes: bool = True, forced_moves: bool = False,
               max_prefixes: int = DEFAULT_MAX_PREFIXES, max_nodes: int = DEFAULT_MAX_EFG_NODES,
               title: str | None = None, progress: bool = False) -> EfgSize:
     """Write :func:`to_efg` to ``path`` atomically (a temporary file, then a rename).
 
     Returns the game's size. Nothing is written when the game cannot be built. With
-    ``progress``, tqdm bars on stderr show the tree build and the export.
+    ``progress``, tqdm bars on stderr show the tree build (two goals) and the export.
 
     Raises
     ------
@@ -390,7 +443,7 @@ def write_efg(path: str | Path, instance: Instance, horizon: int, *,
     >>> size.nodes, first
     (15, 'EFG')
     """
-    tree = build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
+    tree = _build(instance, horizon, max_prefixes, progress)
     with tqdm(total=1, desc=f"export .efg ({tree.n_prefixes} prefixes)", disable=not progress,
               leave=False, file=sys.stderr) as bar:
         text = tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
