@@ -6,7 +6,12 @@ Marked ``peers`` (excluded from the default run). Install the peers and run them
     .venv/bin/pytest -m peers tests/peers
 
 Each peer is skipped cleanly when it is not installed. The games are tiny (at most 123 game
-nodes): Gambit's exact LP needs minutes at a few hundred nodes (``docs/peers.md``).
+nodes for two goals): Gambit's exact LP needs minutes at a few hundred nodes (``docs/peers.md``).
+
+N goals (``dppverify.ngoal``): the same two peers solve the export of N = 3 and N = 4 games
+(``NCASES`` of ``tests/ngoal/test_efg.py``, 136 to 385 game nodes) and must agree with the
+tree route's exact ``V_H`` (:func:`dppverify.ngoal.value_lp.ngame_value`, bracket closed) and
+with the coalition DP (:func:`dppverify.ngoal.coalition.coalition_value`), both exact.
 
 - OpenSpiel: ``pyspiel.load_efg_game`` + ``sequence_form_lp.solve_zero_sum_game`` with HiGHS
   (its default, ECOS, is no longer installed by cvxpy 1.9; its default solver keyword
@@ -31,8 +36,12 @@ import pytest
 from dppverify import game_value
 from dppverify.efg import to_efg
 from dppverify.instance import instance_from_json
+from dppverify.ngoal.coalition import coalition_value
+from dppverify.ngoal.instance import ninstance_from_json
+from dppverify.ngoal.value_lp import ngame_value
 from tests.checker._helpers import triangle_doc
 from tests.checker.test_efg import FRACTIONAL, GRID, KITE, LADDER, THIRDS
+from tests.ngoal.test_efg import NCASES, NIDS
 
 pytestmark = pytest.mark.peers
 
@@ -163,3 +172,51 @@ def test_forced_moves_are_harmless_for_openspiel(openspiel: Any) -> None:
     v0, v1, _ = _openspiel_value(openspiel, text)
     assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
     assert abs(v1 - float(exact)) <= OPENSPIEL_TOLERANCE
+
+
+# ---------------------------------------------------------------------------------------------
+# N goals: the same peers on N = 3 and N = 4 exports
+# ---------------------------------------------------------------------------------------------
+
+
+def _exact_nvalue(doc: dict[str, Any], horizon: int) -> Fraction:
+    """The tree route's exact V_H, which the coalition DP must equal exactly."""
+    inst = ninstance_from_json(doc)
+    v = ngame_value(inst, horizon)
+    assert v.bracket.closed and v.bracket.exact is not None
+    assert coalition_value(inst, horizon).value == v.bracket.exact
+    return Fraction(v.bracket.exact)
+
+
+def test_n_goal_cases_include_four_goals_and_a_horizon_drop() -> None:
+    # the N-goal cases below are not all alike: one has four goals, one changes with H
+    assert {len(doc["goals"]) for _, doc, _ in NCASES} == {3, 4}
+    values = {(name, h): _exact_nvalue(doc, h) for name, doc, h in NCASES if name == "drop3"}
+    assert values == {("drop3", 2): Fraction(21, 2), ("drop3", 3): Fraction(5)}
+
+
+@pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
+@pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
+def test_openspiel_sequence_form_lp_gives_the_n_goal_value(openspiel: Any, name: str,
+                                                          doc: dict[str, Any], horizon: int,
+                                                          observes: bool) -> None:
+    exact = _exact_nvalue(doc, horizon)
+    text = to_efg(ninstance_from_json(doc), horizon, attacker_observes=observes)
+    v0, v1, nash_conv = _openspiel_value(openspiel, text)
+    assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
+    assert abs(v1 - float(exact)) <= OPENSPIEL_TOLERANCE
+    assert 0 <= nash_conv <= OPENSPIEL_TOLERANCE
+
+
+@pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
+@pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
+def test_gambit_exact_lp_gives_exactly_the_n_goal_value(gambit: ModuleType, tmp_path: Path,
+                                                        name: str, doc: dict[str, Any],
+                                                        horizon: int, observes: bool) -> None:
+    exact = _exact_nvalue(doc, horizon)
+    text = to_efg(ninstance_from_json(doc), horizon, attacker_observes=observes)
+    eq = _gambit_solve(gambit, text, tmp_path)
+    defender, attacker = eq.payoffs["Defender"], eq.payoffs["Attacker"]
+    assert isinstance(defender, Fraction)
+    assert defender == exact and attacker == -exact
+    assert eq.agent_max_regret() == 0
