@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 
 from dppverify import certify, game_value, instance_from_json
-from dppverify.exact import parse_json
+from dppverify.json_reading import parse_json
 from dppverify.value_dp import structured_value
 from solver import Instance, equilibrium_to_json, instance_to_json, solve
 from solver.movingai import read_map

@@ -10,7 +10,7 @@ to 1, and finite full-graph distances ``d(s0, g1)``, ``d(s0, g2)``, ``d(g1, g2)`
 from __future__ import annotations
 
 import json
-from collections.abc import Hashable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
@@ -19,66 +19,25 @@ from typing import Any
 
 from dppverify.distances import dijkstra, hops_to_targets
 from dppverify.errors import InvalidInstanceError
-from dppverify.exact import INF, Number, parse_json, parse_number
-from dppverify.files import read_input
+from dppverify.exact import INF, Number
+from dppverify.json_reading import (
+    JsonReadError,
+    Node,
+    node_from_json,
+    node_to_json,
+    parse_json_text,
+    parse_number,
+    read_json_file,
+    show_node,
+)
 
 __all__ = ["Instance", "Node", "Roles", "as_instance", "instance_from_json", "load_instance",
            "node_from_json", "node_to_json", "show_node"]
-
-Node = Hashable
-"""A node id after JSON conversion (lists become tuples)."""
 
 NGOAL_REFUSAL = ("goals: this instance lists {n} goals; the two-goal checker reads exactly two. "
                  "N-goal instances are read by dppverify.ngoal (`dpp value` and `dpp certify` "
                  "dispatch on the number of goals)")
 """The two-goal parser's message for an instance with more than two goals."""
-
-
-def node_from_json(x: Any, *, where: str = "node id") -> Node:
-    """Convert a JSON node id: lists become tuples (``[2, 3]`` is the grid cell ``(2, 3)``).
-
-    Examples
-    --------
-    >>> node_from_json([2, 3]), node_from_json("s"), node_from_json(7)
-    ((2, 3), 's', 7)
-    """
-    if isinstance(x, list):
-        return tuple(node_from_json(y, where=where) for y in x)
-    if isinstance(x, dict):
-        raise ValueError(f"{where} must be a JSON scalar or list, got an object")
-    if isinstance(x, bool) or x is None:
-        raise ValueError(f"{where}: node ids are strings, numbers or lists, got "
-                         f"{json.dumps(x)}")
-    if isinstance(x, Fraction):
-        return int(x) if x.denominator == 1 else float(x)
-    return x
-
-
-def node_to_json(x: Node) -> Any:
-    """Inverse of :func:`node_from_json` (tuples become lists).
-
-    Examples
-    --------
-    >>> node_to_json((2, 3))
-    [2, 3]
-    """
-    if isinstance(x, tuple):
-        return [node_to_json(y) for y in x]
-    return x
-
-
-def show_node(x: Node) -> str:
-    """A node id as it is written in JSON, for messages.
-
-    Examples
-    --------
-    >>> show_node((2, 3)), show_node("s")
-    ('[2, 3]', '"s"')
-    """
-    try:
-        return json.dumps(node_to_json(x))
-    except (TypeError, ValueError):
-        return repr(x)
 
 
 @dataclass(frozen=True)
@@ -281,13 +240,11 @@ def load_instance(path: str | Path) -> Instance:
     """
     p = Path(path)
     try:
-        text = read_input(p).decode("utf-8")
-    except (OSError, UnicodeDecodeError, ValueError) as exc:
-        reason = (exc.strerror if isinstance(exc, OSError) else
-                  "not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc))
-        raise InvalidInstanceError(f"{p}: cannot read instance file ({reason})") from None
+        doc = read_json_file(p, kind="instance")
+    except JsonReadError as exc:
+        raise InvalidInstanceError(f"{p}: {exc}") from None
     try:
-        return instance_from_json(text)
+        return instance_from_json(doc)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{p}: {exc}") from None
 
@@ -309,12 +266,9 @@ def instance_from_json(doc: Mapping[str, Any] | str | bytes) -> Instance:
     """
     if isinstance(doc, str | bytes):
         try:
-            doc = parse_json(doc)
-        except json.JSONDecodeError as exc:
-            raise InvalidInstanceError(
-                f"malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}") from None
-        except (ValueError, RecursionError) as exc:
-            raise InvalidInstanceError(f"malformed JSON: {exc}") from None
+            doc = parse_json_text(doc)
+        except JsonReadError as exc:
+            raise InvalidInstanceError(str(exc)) from None
     try:
         return _build(doc)
     except InvalidInstanceError:

@@ -29,9 +29,16 @@ from types import MappingProxyType
 from typing import Any
 
 from dppverify.errors import ProfileError
-from dppverify.exact import Number, Tolerance, parse_json, parse_number
-from dppverify.files import read_input
-from dppverify.instance import Instance, node_from_json, show_node
+from dppverify.exact import Number, Tolerance
+from dppverify.instance import Instance
+from dppverify.json_reading import (
+    JsonReadError,
+    lookup_node,
+    parse_number,
+    read_json_file,
+    resolve_walk,
+    show_node,
+)
 
 __all__ = ["PROFILE_FORMAT", "Defect", "DefenderRule", "Profile", "ProgressRule", "StrategyPath",
            "TableRule", "load_profile_document", "profile_from_json", "validate_walk"]
@@ -149,24 +156,11 @@ def load_profile_document(source: str | Path | bytes) -> dict[str, Any]:
     Traceback (most recent call last):
     dppverify.errors.ProfileError: profile: "format" must be "dpp-profile/1", got "dpp-profile/2"
     """
-    name = "profile"
-    if isinstance(source, bytes):
-        raw: str | bytes = source
-    else:
-        name = str(source)
-        try:
-            raw = read_input(source).decode("utf-8")
-        except (OSError, UnicodeDecodeError, ValueError) as exc:
-            reason = (exc.strerror if isinstance(exc, OSError) else
-                      "not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc))
-            raise ProfileError(f"{name}: cannot read profile file ({reason})") from None
+    name = "profile" if isinstance(source, bytes) else str(source)
     try:
-        doc = parse_json(raw)
-    except json.JSONDecodeError as exc:
-        raise ProfileError(f"{name}: not JSON (line {exc.lineno} column {exc.colno}: "
-                           f"{exc.msg})") from None
-    except (ValueError, RecursionError) as exc:
-        raise ProfileError(f"{name}: not JSON ({exc})") from None
+        doc = read_json_file(source, kind="profile")
+    except JsonReadError as exc:
+        raise ProfileError(f"{name}: {exc}") from None
     check_format(doc, name)
     return dict(doc)
 
@@ -187,7 +181,9 @@ def validate_walk(instance: Instance, raw: Any, *, complete: bool) -> tuple[int,
 
     A walk starts at ``s0``, follows arcs of the graph, and stops at the FIRST goal it
     reaches (paper Sec. III-A). ``complete`` walks (attacker paths) must end at a goal;
-    otherwise (Defender table entries) the walk must have at least one step.
+    otherwise (Defender table entries) the walk must have at least one step. The two-goal
+    form of :func:`dppverify.json_reading.resolve_walk`: messages name the ``path`` (the
+    ``walk`` of a Defender entry when not ``complete``).
 
     Examples
     --------
@@ -206,34 +202,8 @@ def validate_walk(instance: Instance, raw: Any, *, complete: bool) -> tuple[int,
     >>> validate_walk(inst, ["s", "a"], complete=True)
     'path ends at "a", which is not a goal'
     """
-    if not isinstance(raw, list) or not raw:
-        return "path must be a non-empty list of node ids"
-    walk: list[int] = []
-    for k, x in enumerate(raw):
-        try:
-            v = node_from_json(x, where=f"path[{k}]")
-            idx = instance.index.get(v)
-        except (ValueError, TypeError):
-            return f"path[{k}] is not a node id"
-        if idx is None:
-            return f"path[{k}]: unknown node {show_node(v)}"
-        if k == 0 and idx != instance.start:
-            return (f"path starts at {show_node(v)}, not at the start "
-                    f"{show_node(instance.nodes[instance.start])}")
-        if k > 0:
-            prev = walk[-1]
-            if instance.is_goal(prev):
-                return (f"path reaches goal {show_node(instance.nodes[prev])} at step {k - 1} "
-                        f"and continues (the game ends at the first goal)")
-            if instance.weight(prev, idx) is None:
-                return (f"path[{k}]: no edge {show_node(instance.nodes[prev])} -> "
-                        f"{show_node(v)}")
-        walk.append(idx)
-    if complete and not instance.is_goal(walk[-1]):
-        return f"path ends at {show_node(instance.nodes[walk[-1]])}, which is not a goal"
-    if not complete and len(walk) < 2:
-        return "walk must have at least one step (the Defender acts after each move)"
-    return tuple(walk)
+    return resolve_walk(instance, raw, complete=complete,
+                        subject="path" if complete else "walk")
 
 
 class _Collector:
@@ -326,10 +296,7 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
 
 
 def _goal_node(raw: Any, instance: Instance) -> int | None:
-    try:
-        idx = instance.index.get(node_from_json(raw))
-    except (ValueError, TypeError):
-        return None
+    idx = lookup_node(instance.index, raw)
     return idx if idx is not None and instance.is_goal(idx) else None
 
 
@@ -386,7 +353,7 @@ def _defender(doc: Mapping[str, Any], instance: Instance, c: _Collector,
             continue
         walk = validate_walk(instance, e.get("walk"), complete=False)
         if isinstance(walk, str):
-            c.add(where, walk.replace("path", "walk"))
+            c.add(where, walk)
             continue
         prob = c.probability(e.get("probability"), f"{where}.probability")
         if prob is None:

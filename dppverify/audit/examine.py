@@ -18,7 +18,7 @@ from dppverify.audit.runner import Answer, SolverRunner, call_in_process, one_li
 from dppverify.certificate import Certificate
 from dppverify.certify import certify
 from dppverify.errors import CheckerError, ProfileError, TreeTooLargeError
-from dppverify.exact import parse_json
+from dppverify.json_reading import parse_json
 
 __all__ = ["AUDIT_MAX_PREFIXES", "AUDIT_TRIALS", "Outcome", "examine"]
 

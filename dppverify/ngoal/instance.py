@@ -6,7 +6,7 @@ Validity: every goal is reachable from the start and from every other goal (the 
 costs ``d(g^i, g^j)`` are finite). Exact numbers only (``"numbers": "float"`` is refused).
 Every violation raises :class:`~dppverify.errors.InvalidInstanceError` with one line naming
 what and where. The graph is read with the same primitives as the two-goal parser
-(:func:`dppverify.instance.node_from_json`, :func:`dppverify.exact.parse_number`).
+(:mod:`dppverify.json_reading`).
 """
 
 from __future__ import annotations
@@ -21,9 +21,16 @@ from typing import Any
 
 from dppverify.distances import dijkstra, hops_to_targets
 from dppverify.errors import InvalidInstanceError
-from dppverify.exact import INF, Number, parse_json, parse_number
-from dppverify.files import read_input
-from dppverify.instance import Node, node_from_json, show_node
+from dppverify.exact import INF, Number
+from dppverify.json_reading import (
+    JsonReadError,
+    Node,
+    node_from_json,
+    parse_json_text,
+    parse_number,
+    read_json_file,
+    show_node,
+)
 
 __all__ = ["NInstance", "goal_count", "load_ninstance", "ninstance_from_json",
            "read_instance_document"]
@@ -151,18 +158,9 @@ def read_instance_document(path: str | Path) -> Any:
     """
     p = Path(path)
     try:
-        text = read_input(p).decode("utf-8")
-    except (OSError, UnicodeDecodeError, ValueError) as exc:
-        reason = (exc.strerror if isinstance(exc, OSError)
-                  else "not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc))
-        raise InvalidInstanceError(f"{p}: cannot read instance file ({reason})") from None
-    try:
-        return parse_json(text)
-    except json.JSONDecodeError as exc:
-        raise InvalidInstanceError(f"{p}: malformed JSON at line {exc.lineno} column "
-                                   f"{exc.colno}: {exc.msg}") from None
-    except (ValueError, RecursionError) as exc:
-        raise InvalidInstanceError(f"{p}: malformed JSON: {exc}") from None
+        return read_json_file(p, kind="instance")
+    except JsonReadError as exc:
+        raise InvalidInstanceError(f"{p}: {exc}") from None
 
 
 def load_ninstance(path: str | Path) -> NInstance:
@@ -198,12 +196,9 @@ def ninstance_from_json(doc: Mapping[str, Any] | str | bytes) -> NInstance:
     """
     if isinstance(doc, str | bytes):
         try:
-            doc = parse_json(doc)
-        except json.JSONDecodeError as exc:
-            raise InvalidInstanceError(
-                f"malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}") from None
-        except (ValueError, RecursionError) as exc:
-            raise InvalidInstanceError(f"malformed JSON: {exc}") from None
+            doc = parse_json_text(doc)
+        except JsonReadError as exc:
+            raise InvalidInstanceError(str(exc)) from None
     try:
         return _build(doc)
     except InvalidInstanceError:

@@ -32,8 +32,14 @@ from pathlib import Path
 from typing import Any
 
 from dppverify.errors import ProfileError
-from dppverify.exact import Number, parse_json, parse_number
-from dppverify.instance import node_from_json, show_node
+from dppverify.exact import Number
+from dppverify.json_reading import (
+    JsonReadError,
+    lookup_node,
+    parse_number,
+    read_json_file,
+    resolve_walk,
+)
 from dppverify.ngoal.instance import NInstance
 from dppverify.profile import StrategyPath
 
@@ -91,23 +97,11 @@ def load_nprofile_document(source: str | Path | bytes) -> dict[str, Any]:
     dppverify.errors.ProfileError: profile: "format" must be "dpp-ngoal-profile/1" for an \
 instance with more than two goals, got "dpp-profile/1"
     """
-    name = "profile"
-    if isinstance(source, bytes):
-        raw: str | bytes = source
-    else:
-        name = str(source)
-        try:
-            raw = Path(source).read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as exc:
-            reason = exc.strerror if isinstance(exc, OSError) else "not UTF-8 text"
-            raise ProfileError(f"{name}: cannot read profile file ({reason})") from None
+    name = "profile" if isinstance(source, bytes) else str(source)
     try:
-        doc = parse_json(raw)
-    except json.JSONDecodeError as exc:
-        raise ProfileError(f"{name}: not JSON (line {exc.lineno} column {exc.colno}: "
-                           f"{exc.msg})") from None
-    except (ValueError, RecursionError) as exc:
-        raise ProfileError(f"{name}: not JSON ({exc})") from None
+        doc = read_json_file(source, kind="profile")
+    except JsonReadError as exc:
+        raise ProfileError(f"{name}: {exc}") from None
     if not isinstance(doc, Mapping):
         raise ProfileError(f"{name}: a profile must be a JSON object, got {type(doc).__name__}")
     if doc.get("format") != NGOAL_PROFILE_FORMAT:
@@ -115,34 +109,6 @@ instance with more than two goals, got "dpp-profile/1"
                            f"instance with more than two goals, got "
                            f"{json.dumps(doc.get('format'), default=str)}")
     return dict(doc)
-
-
-def _walk(inst: NInstance, raw: Any, complete: bool) -> tuple[int, ...] | str:
-    if not isinstance(raw, list) or not raw:
-        return "must be a non-empty list of node ids"
-    walk: list[int] = []
-    for k, x in enumerate(raw):
-        try:
-            v = node_from_json(x, where=f"[{k}]")
-            idx = inst.index.get(v)
-        except (ValueError, TypeError):
-            return f"[{k}] is not a node id"
-        if idx is None:
-            return f"[{k}]: unknown node {show_node(v)}"
-        if k == 0 and idx != inst.start:
-            return f"starts at {show_node(v)}, not at the start"
-        if k > 0:
-            if inst.is_goal(walk[-1]):
-                return f"reaches goal {show_node(inst.nodes[walk[-1]])} at step {k - 1} and " \
-                       "continues (the game ends at the first goal)"
-            if inst.weight(walk[-1], idx) is None:
-                return f"[{k}]: no edge {show_node(inst.nodes[walk[-1]])} -> {show_node(v)}"
-        walk.append(idx)
-    if complete and not inst.is_goal(walk[-1]):
-        return f"ends at {show_node(inst.nodes[walk[-1]])}, which is not a goal"
-    if not complete and len(walk) < 2:
-        return "must have at least one step (the Defender acts after each move)"
-    return tuple(walk)
 
 
 def _probability(raw: Any, where: str, defects: list[str]) -> Fraction | None:
@@ -191,10 +157,8 @@ def nprofile_from_json(instance: NInstance, doc: Mapping[str, Any]) -> NProfile:
     longest = 0
     goals = doc.get("goals")
     if goals is not None:
-        try:
-            same = [inst.index.get(node_from_json(g)) for g in goals] == list(inst.goals)
-        except (TypeError, ValueError):
-            same = False
+        same = isinstance(goals, list) and [lookup_node(inst.index, g) for g in goals] == list(
+            inst.goals)
         if not same:
             defects.append("goals: must list the instance's goals in the instance's order")
     raw_att = doc.get("attacker")
@@ -218,7 +182,7 @@ def nprofile_from_json(instance: NInstance, doc: Mapping[str, Any]) -> NProfile:
                     continue
                 if isinstance(entry["path"], list):
                     longest = max(longest, len(entry["path"]) - 1)
-                walk = _walk(inst, entry["path"], complete=True)
+                walk = resolve_walk(inst, entry["path"], complete=True, subject="")
                 prob = _probability(entry.get("probability"), f"{at}.probability", defects)
                 if isinstance(walk, str):
                     defects.append(f"{at}.path {walk}")
@@ -246,7 +210,7 @@ def nprofile_from_json(instance: NInstance, doc: Mapping[str, Any]) -> NProfile:
             if not isinstance(entry, Mapping) or "walk" not in entry:
                 defects.append(f"{at}: must be an object with \"walk\" and \"probabilities\"")
                 continue
-            walk = _walk(inst, entry["walk"], complete=False)
+            walk = resolve_walk(inst, entry["walk"], complete=False, subject="")
             dist = _distribution(entry.get("probabilities"), n, f"{at}.probabilities", defects)
             if isinstance(walk, str):
                 defects.append(f"{at}.walk {walk}")

@@ -18,7 +18,7 @@ from dppverify import (
     certify,
     instance_from_json,
 )
-from dppverify.exact import parse_json
+from dppverify.json_reading import parse_json
 from dppverify.tree import build_tree
 from solver import equilibrium_to_json, instance_to_json
 from solver import instance_from_json as solver_instance_from_json

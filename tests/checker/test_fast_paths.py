@@ -20,8 +20,8 @@ from hypothesis import strategies as st
 
 from dppverify import instance_from_json, walk_br
 from dppverify.errors import InvalidInstanceError
-from dppverify.exact import parse_number
 from dppverify.instance import Instance
+from dppverify.json_reading import parse_number
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
 from dppverify.value_dp import _Frontier, value_fields
 from dppverify.walk_br import avoiding_distances, scaled_arcs, split_minimum, walk_minima

@@ -22,8 +22,8 @@ from click.testing import CliRunner
 from dppverify import Certificate, certify, instance_from_json
 from dppverify.cli import certify_command
 from dppverify.errors import HorizonError, TreeTooLargeError
-from dppverify.exact import parse_json
 from dppverify.examples import triangle_document, triangle_profile
+from dppverify.json_reading import parse_json
 from dppverify.registry import CHECK_IDS, CHECKS, not_run
 from dppverify.walk_br import walk_minima
 from solver import Instance, equilibrium_to_json, instance_to_json, solve

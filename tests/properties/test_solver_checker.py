@@ -14,7 +14,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from dppverify import Certificate, certify, game_value, instance_from_json
-from dppverify.exact import FLOAT_TOLERANCE, parse_json
+from dppverify.exact import FLOAT_TOLERANCE
+from dppverify.json_reading import parse_json
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
 from solver import equilibrium_to_json, instance_to_json, solve
 from solver import instance_from_json as solver_instance_from_json
