@@ -15,7 +15,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any
+from typing import Any, TypeVar
 
 from dppverify.distances import dijkstra, hops_to_targets
 from dppverify.errors import InvalidInstanceError
@@ -31,8 +31,8 @@ from dppverify.json_reading import (
     show_node,
 )
 
-__all__ = ["Instance", "Node", "Roles", "as_instance", "instance_from_json", "load_instance",
-           "node_from_json", "node_to_json", "show_node"]
+__all__ = ["GameInstance", "Instance", "Node", "Roles", "as_instance", "instance_from_json",
+           "load_instance", "node_from_json", "node_to_json", "read_game", "show_node"]
 
 NGOAL_REFUSAL = ("goals: this instance lists {n} goals; the two-goal checker reads exactly two. "
                  "N-goal instances are read by dppverify.ngoal (`dpp value` and `dpp certify` "
@@ -72,10 +72,81 @@ class Roles:
 
 
 @dataclass(frozen=True, eq=False)
-class Instance:
+class GameInstance:
+    """A validated game instance with ``N >= 2`` goals: graph, start, goals, prior, distances.
+
+    What the two-goal :class:`Instance` and the N-goal
+    :class:`~dppverify.ngoal.instance.NInstance` share; both are read by :func:`read_game`.
+    Nodes are numbered ``0 .. n-1`` in document order; ``nodes[i]`` is the id of node ``i``.
+
+    Attributes
+    ----------
+    nodes : tuple
+        Node ids (JSON lists converted to tuples).
+    index : Mapping
+        Node id -> index.
+    directed : bool
+        False when every edge can be walked both ways.
+    succ, pred : tuple
+        ``succ[u]`` = arcs ``(v, w)`` leaving ``u``; ``pred[v]`` = arcs ``(u, w)`` entering ``v``.
+    start : int
+        ``s0``.
+    goals : tuple of int
+        The goals in document order; ``prior[i]`` belongs to ``goals[i]``.
+    prior : tuple of Fraction
+        Exact priors (always exact, also in float mode).
+    exact : bool
+        False in float mode (``"numbers": "float"``, two goals only): weights are binary floats.
+    dist_to : tuple
+        ``dist_to[i][v]`` = full-graph ``d(v, goals[i])`` (``math.inf`` if unreachable).
+    hops : tuple of int
+        Fewest steps from each node to the nearest goal (``-1`` if none): tree pruning.
+    """
+
+    nodes: tuple[Node, ...]
+    index: Mapping[Node, int]
+    directed: bool
+    succ: tuple[tuple[tuple[int, Number], ...], ...]
+    pred: tuple[tuple[tuple[int, Number], ...], ...]
+    start: int
+    goals: tuple[int, ...]
+    prior: tuple[Fraction, ...]
+    exact: bool
+    dist_to: tuple[tuple[Number, ...], ...]
+    hops: tuple[int, ...]
+
+    @property
+    def n_nodes(self) -> int:
+        """Number of nodes."""
+        return len(self.nodes)
+
+    def is_goal(self, node: int) -> bool:
+        """True for the candidate goals."""
+        return node in self.goals
+
+    def weight(self, u: int, v: int) -> Number | None:
+        """Weight of the arc ``u -> v``, or None when there is no such arc."""
+        for head, w in self.succ[u]:
+            if head == v:
+                return w
+        return None
+
+    def label(self, v: int) -> Node:
+        """The node id of index ``v``."""
+        return self.nodes[v]
+
+    def labels(self, walk: tuple[int, ...] | list[int]) -> tuple[Node, ...]:
+        """Node ids of a walk given as indices."""
+        return tuple(self.nodes[v] for v in walk)
+
+
+@dataclass(frozen=True, eq=False)
+class Instance(GameInstance):
     """A validated DPP game instance (paper, Section III-A) with exact distances.
 
-    Nodes are numbered ``0 .. n-1`` in document order; ``nodes[i]`` is the id of node ``i``.
+    A :class:`GameInstance` with exactly two goals, plus the paper's (primary, secondary)
+    labelling. Nodes are numbered ``0 .. n-1`` in document order; ``nodes[i]`` is the id of
+    node ``i``.
 
     Attributes
     ----------
@@ -113,22 +184,9 @@ class Instance:
     ('g1', Fraction(7, 10), 3, 2)
     """
 
-    nodes: tuple[Node, ...]
-    index: Mapping[Node, int]
-    directed: bool
-    succ: tuple[tuple[tuple[int, Number], ...], ...]
-    pred: tuple[tuple[tuple[int, Number], ...], ...]
-    start: int
     goals: tuple[int, int]
     prior: tuple[Fraction, Fraction]
-    exact: bool
     dist_to: tuple[tuple[Number, ...], tuple[Number, ...]]
-    hops: tuple[int, ...]
-
-    @property
-    def n_nodes(self) -> int:
-        """Number of nodes."""
-        return len(self.nodes)
 
     @property
     def primary_slot(self) -> int:
@@ -158,21 +216,6 @@ class Instance:
         j = 1 - i
         return Roles(g1=self.goals[i], g2=self.goals[j], b1=self.prior[i], b2=self.prior[j],
                      d1=self.dist_to[i], d2=self.dist_to[j])
-
-    def weight(self, u: int, v: int) -> Number | None:
-        """Weight of the arc ``u -> v``, or None when there is no such arc."""
-        for head, w in self.succ[u]:
-            if head == v:
-                return w
-        return None
-
-    def label(self, v: int) -> Node:
-        """The node id of index ``v``."""
-        return self.nodes[v]
-
-    def labels(self, walk: tuple[int, ...] | list[int]) -> tuple[Node, ...]:
-        """Node ids of a walk given as indices."""
-        return tuple(self.nodes[v] for v in walk)
 
 
 def as_instance(instance: Any) -> Instance:
@@ -269,12 +312,7 @@ def instance_from_json(doc: Mapping[str, Any] | str | bytes) -> Instance:
             doc = parse_json_text(doc)
         except JsonReadError as exc:
             raise InvalidInstanceError(str(exc)) from None
-    try:
-        return _build(doc)
-    except InvalidInstanceError:
-        raise
-    except (ValueError, TypeError) as exc:  # parse_number / node_from_json messages
-        raise InvalidInstanceError(str(exc)) from None
+    return read_game(doc, Instance, two_goals=True)
 
 
 def _require(cond: bool, message: str) -> None:
@@ -282,14 +320,82 @@ def _require(cond: bool, message: str) -> None:
         raise InvalidInstanceError(message)
 
 
-def _build(doc: Any) -> Instance:
+G = TypeVar("G", bound=GameInstance)
+
+
+def read_game(doc: Any, cls: type[G], *, two_goals: bool) -> G:
+    """Read and validate an instance document (already parsed JSON) into ``cls``.
+
+    The one graph/instance parser of the checker: the two-goal :class:`Instance`
+    (``two_goals=True``: exactly two goals, float mode allowed, the two-goal messages) and the
+    N-goal :class:`~dppverify.ngoal.instance.NInstance` (``two_goals=False``: ``N >= 2``
+    goals, exact numbers only).
+
+    Raises
+    ------
+    InvalidInstanceError
+        One line naming what is wrong and where.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle_document
+    >>> g = read_game(triangle_document(), GameInstance, two_goals=False)
+    >>> g.labels(g.goals), g.prior
+    (('g1', 'g2'), (Fraction(7, 10), Fraction(3, 10)))
+    >>> read_game({**triangle_document(), "numbers": "float"}, GameInstance, two_goals=False)
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: numbers: N-goal instances must be exact \
+("numbers": "exact")
+    """
+    try:
+        return _read_game(doc, cls, two_goals)
+    except InvalidInstanceError:
+        raise
+    except (ValueError, TypeError) as exc:  # parse_number / node_from_json messages
+        raise InvalidInstanceError(str(exc)) from None
+
+
+def _read_game(doc: Any, cls: type[G], two_goals: bool) -> G:
     _require(isinstance(doc, Mapping), f"instance must be a JSON object, got {type(doc).__name__}")
     missing = [k for k in ("graph", "start", "goals", "prior") if k not in doc]
     _require(not missing, f"instance is missing key(s): {', '.join(missing)}")
     mode = doc.get("numbers", "exact")
-    _require(mode in ("exact", "float"), f"numbers: expected \"exact\" or \"float\", got {mode!r}")
+    if two_goals:
+        _require(mode in ("exact", "float"),
+                 f"numbers: expected \"exact\" or \"float\", got {mode!r}")
+    else:
+        _require(mode == "exact",
+                 "numbers: N-goal instances must be exact (\"numbers\": \"exact\")")
     exact = mode == "exact"
-    g = doc["graph"]
+    ids, index, directed, succ = _graph(doc["graph"], exact)
+    start = _node(doc["start"], index, "start")
+    goals = _goals(doc["goals"], index, ids, two_goals)
+    prior = _prior(doc["prior"], len(goals), two_goals)
+    n = len(ids)
+    succ_t = tuple(tuple(sorted(s.items())) for s in succ)
+    pred_l: list[list[tuple[int, Number]]] = [[] for _ in range(n)]
+    for u in range(n):
+        for v, w in succ_t[u]:
+            pred_l[v].append((u, w))
+    pred_t = tuple(tuple(p) for p in pred_l)
+    dist_to = tuple(tuple(dijkstra(pred_t, gi)) for gi in goals)
+    for i, gi in enumerate(goals):
+        name = show_node(ids[gi])
+        _require(dist_to[i][start] != INF,
+                 f"goal {name} is unreachable from start {show_node(ids[start])}")
+        for gj in goals:
+            other = show_node(ids[gj])
+            _require(dist_to[i][gj] != INF, f"goal {name} is unreachable from goal {other}: "
+                                            f"d({other}, {name}) is infinite")
+    hops = tuple(hops_to_targets(pred_t, goals))
+    return cls(nodes=tuple(ids), index=MappingProxyType(index), directed=directed,
+               succ=succ_t, pred=pred_t, start=start, goals=goals, prior=prior,
+               exact=exact, dist_to=dist_to, hops=hops)
+
+
+def _graph(g: Any, exact: bool) -> tuple[list[Node], dict[Node, int], bool,
+                                         list[dict[int, Number]]]:
+    """Node ids, their index, ``directed`` and the successor maps of ``graph``."""
     _require(isinstance(g, Mapping), "graph: must be a node-link JSON object")
     _require(not g.get("multigraph", False), "graph: multigraphs are not supported")
     directed = g.get("directed", False)
@@ -318,8 +424,7 @@ def _build(doc: Any) -> Instance:
         index[v] = len(ids)
         ids.append(v)
 
-    n = len(ids)
-    succ: list[dict[int, Number]] = [{} for _ in range(n)]
+    succ: list[dict[int, Number]] = [{} for _ in ids]
     weights: dict[tuple[type, Any], Number] = {}
     for k, e in enumerate(raw_edges):
         if not (isinstance(e, Mapping) and "source" in e and "target" in e):
@@ -341,36 +446,30 @@ def _build(doc: Any) -> Instance:
                 raise InvalidInstanceError(f"graph.edges[{k}]: duplicate edge "
                                            f"{show_node(ids[a])} -> {show_node(ids[b])}")
             sa[b] = w
+    return ids, index, directed, succ
 
-    start = _node(doc["start"], index, "start")
-    goals_raw = doc["goals"]
-    # --- N-goal hook: more than two goals belong to dppverify.ngoal (docs/formats.md §1) ---
-    _require(not (isinstance(goals_raw, list) and len(goals_raw) > 2), NGOAL_REFUSAL.format(
-        n=len(goals_raw) if isinstance(goals_raw, list) else 0))
-    _require(isinstance(goals_raw, list) and len(goals_raw) == 2,
-             f"goals: must be a list of two node ids, got {json.dumps(goals_raw, default=str)}")
-    goals = (_node(goals_raw[0], index, "goals[0]"), _node(goals_raw[1], index, "goals[1]"))
-    _require(goals[0] != goals[1], f"goals: the two goals must differ, both are "
-                                   f"{show_node(ids[goals[0]])}")
-    prior = _prior(doc["prior"])
 
-    succ_t = tuple(tuple(sorted(s.items())) for s in succ)
-    pred_l: list[list[tuple[int, Number]]] = [[] for _ in range(n)]
-    for u in range(n):
-        for v, w in succ_t[u]:
-            pred_l[v].append((u, w))
-    pred_t = tuple(tuple(p) for p in pred_l)
-    dist_to = (tuple(dijkstra(pred_t, goals[0])), tuple(dijkstra(pred_t, goals[1])))
-    for i, j in ((0, 1), (1, 0)):
-        gi, gj = show_node(ids[goals[i]]), show_node(ids[goals[j]])
-        _require(dist_to[i][start] != INF,
-                 f"goal {gi} is unreachable from start {show_node(ids[start])}")
-        _require(dist_to[i][goals[j]] != INF,
-                 f"goal {gi} is unreachable from goal {gj}: d({gj}, {gi}) is infinite")
-    hops = tuple(hops_to_targets(pred_t, goals))
-    return Instance(nodes=tuple(ids), index=MappingProxyType(index), directed=directed,
-                    succ=succ_t, pred=pred_t, start=start, goals=goals, prior=prior,
-                    exact=exact, dist_to=dist_to, hops=hops)
+def _goals(raw: Any, index: Mapping[Node, int], ids: list[Node], two_goals: bool
+           ) -> tuple[int, ...]:
+    shown = json.dumps(raw, default=str)
+    if two_goals:
+        # --- N-goal hook: more than two goals belong to dppverify.ngoal (docs/formats.md §1) ---
+        _require(not (isinstance(raw, list) and len(raw) > 2),
+                 NGOAL_REFUSAL.format(n=len(raw) if isinstance(raw, list) else 0))
+        _require(isinstance(raw, list) and len(raw) == 2,
+                 f"goals: must be a list of two node ids, got {shown}")
+        goals = (_node(raw[0], index, "goals[0]"), _node(raw[1], index, "goals[1]"))
+        _require(goals[0] != goals[1], f"goals: the two goals must differ, both are "
+                                       f"{show_node(ids[goals[0]])}")
+        return goals
+    _require(isinstance(raw, list) and len(raw) >= 2,
+             f"goals: must be a list of at least two node ids, got {shown}")
+    out: list[int] = []
+    for i, x in enumerate(raw):
+        gi = _node(x, index, f"goals[{i}]")
+        _require(gi not in out, f"goals[{i}]: goal {show_node(ids[gi])} is listed twice")
+        out.append(gi)
+    return tuple(out)
 
 
 _SCALARS = (str, int, Fraction, float)
@@ -405,11 +504,15 @@ def _node(raw: Any, index: Mapping[Node, int], where: str) -> int:
     return index[v]
 
 
-def _prior(raw: Any) -> tuple[Fraction, Fraction]:
-    _require(isinstance(raw, list) and len(raw) == 2,
-             f"prior: must be a list of two numbers, got {json.dumps(raw, default=str)}")
+def _prior(raw: Any, n: int, two_goals: bool) -> tuple[Fraction, ...]:
+    _require(isinstance(raw, list) and len(raw) == n,
+             f"prior: must be a list of two numbers, got {json.dumps(raw, default=str)}"
+             if two_goals else f"prior: must be a list of {n} numbers (one per goal), got "
+                               f"{json.dumps(raw, default=str)}")
     p = [Fraction(parse_number(x, where=f"prior[{i}]")) for i, x in enumerate(raw)]
     for i, x in enumerate(p):
         _require(0 < x < 1, f"prior[{i}]: must lie strictly between 0 and 1, got {x}")
-    _require(p[0] + p[1] == 1, f"prior: must sum to exactly 1, got {p[0]} + {p[1]} = {p[0] + p[1]}")
-    return (p[0], p[1])
+    total = sum(p, Fraction(0))
+    _require(total == 1, f"prior: must sum to exactly 1, got {p[0]} + {p[1]} = {total}"
+                         if two_goals else f"prior: must sum to exactly 1, got {total}")
+    return tuple(p)

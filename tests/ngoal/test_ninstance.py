@@ -6,12 +6,14 @@ import copy
 from typing import Any
 
 import pytest
+from hypothesis import HealthCheck, given, settings
 
 from dppverify.errors import InvalidInstanceError
 from dppverify.examples import triangle_document
-from dppverify.instance import instance_from_json
+from dppverify.instance import GameInstance, instance_from_json
 from dppverify.ngoal.examples import star3_document
 from dppverify.ngoal.instance import goal_count, load_ninstance, ninstance_from_json
+from dppverify.strategies import instances
 
 
 def _doc(**changes: Any) -> dict[str, Any]:
@@ -88,3 +90,15 @@ def test_the_solver_stays_two_goal_and_says_so() -> None:
     with pytest.raises(InstanceFormatError) as info:
         instance_from_json(star3_document())
     assert "lists 3 goals" in str(info.value) and "two goals" in str(info.value)
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(instances())
+def test_both_parsers_agree_on_random_two_goal_documents(doc: dict[str, Any]) -> None:
+    """One graph parser: a two-goal document gives the same game through either class."""
+    two, many = instance_from_json(doc), ninstance_from_json(doc)
+    for name in ("nodes", "directed", "succ", "pred", "start", "goals", "prior", "dist_to",
+                 "hops", "exact"):
+        assert getattr(two, name) == getattr(many, name), name
+    assert dict(two.index) == dict(many.index)
+    assert isinstance(two, GameInstance) and isinstance(many, GameInstance)
