@@ -145,31 +145,17 @@ class Instance(GameInstance):
     """A validated DPP game instance (paper, Section III-A) with exact distances.
 
     A :class:`GameInstance` with exactly two goals, plus the paper's (primary, secondary)
-    labelling. Nodes are numbered ``0 .. n-1`` in document order; ``nodes[i]`` is the id of
-    node ``i``.
+    labelling (:meth:`roles`). Every attribute is that of :class:`GameInstance`; these hold
+    two entries:
 
     Attributes
     ----------
-    nodes : tuple
-        Node ids (JSON lists converted to tuples).
-    index : Mapping
-        Node id -> index.
-    directed : bool
-        False when every edge can be walked both ways.
-    succ, pred : tuple
-        ``succ[u]`` = arcs ``(v, w)`` leaving ``u``; ``pred[v]`` = arcs ``(u, w)`` entering ``v``.
-    start : int
-        ``s0``.
     goals : tuple of int
         The two goals in document order; ``prior[i]`` belongs to ``goals[i]``.
     prior : tuple of Fraction
         Exact priors (always exact, also in float mode).
-    exact : bool
-        False in float mode (``"numbers": "float"``): weights are binary floats.
     dist_to : tuple
         ``dist_to[i][v]`` = full-graph ``d(v, goals[i])`` (``math.inf`` if unreachable).
-    hops : tuple of int
-        Fewest steps from each node to the nearest goal (``-1`` if none): tree pruning.
 
     Examples
     --------

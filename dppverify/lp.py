@@ -14,12 +14,10 @@ import time
 from dataclasses import dataclass
 
 import cvxpy as cp
-import numpy as np
-import scipy.sparse as sp
 
 from dppverify.errors import LPError
 from dppverify.exact import Number
-from dppverify.tree import WalkTree
+from dppverify.tree import FlowTree, flow_matrix
 
 __all__ = ["LP_SOLVER", "LP_TOLERANCE", "SOLVER_SETTINGS", "LPStats", "flow_matrix", "lp_agrees",
            "realization_constraints", "solve"]
@@ -89,37 +87,13 @@ def solve(problem: cp.Problem, what: str) -> LPStats:
                    seconds=seconds)
 
 
-def flow_matrix(tree: WalkTree) -> sp.csr_matrix:
-    """Sequence-form flow constraints ``x[p] - Σ_children x[c] = 0``, one row per inner prefix.
-
-    Examples
-    --------
-    >>> from dppverify.instance import instance_from_json
-    >>> from dppverify.tree import build_tree
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}],
-    ...     "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2}]},
-    ...     "start": 0, "goals": [1, 2], "prior": ["1/2", "1/2"]})
-    >>> flow_matrix(build_tree(inst, 1)).toarray()
-    array([[ 1., -1., -1.]])
-    """
-    n = tree.n_prefixes
-    inner = np.flatnonzero(tree.child_start != tree.child_stop)
-    row_of = np.full(n, -1, dtype=np.int64)
-    row_of[inner] = np.arange(inner.size)
-    children = np.arange(1, n)
-    rows = np.concatenate([row_of[inner], row_of[tree.parent[children]]])
-    cols = np.concatenate([inner, children])
-    vals = np.concatenate([np.ones(inner.size), -np.ones(children.size)])
-    return sp.csr_matrix((vals, (rows, cols)), shape=(inner.size, n))
-
-
-def realization_constraints(tree: WalkTree, x: cp.Variable) -> list[cp.Constraint]:
+def realization_constraints(tree: FlowTree, x: cp.Variable) -> list[cp.Constraint]:
     """``x`` is a realization plan on ``tree``: ``x >= 0``, ``x[root] = 1``, flow conservation.
 
     Parameters
     ----------
-    tree : WalkTree
-        The walk tree.
+    tree : FlowTree
+        The walk tree (two goals or N goals).
     x : cvxpy.Variable
         One entry per prefix.
 

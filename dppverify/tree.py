@@ -27,27 +27,49 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Protocol, TypeVar
 
 import numpy as np
+import scipy.sparse as sp
 from tqdm import tqdm
 
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.exact import Number
-from dppverify.instance import Instance
+from dppverify.instance import GameInstance, Instance
 
-__all__ = ["DEFAULT_MAX_PREFIXES", "WalkTree", "build_tree", "count_prefixes", "simple_mask"]
+__all__ = ["DEFAULT_MAX_PREFIXES", "FlowTree", "PrefixTree", "WalkTree", "build_prefix_tree",
+           "build_tree", "count_prefixes", "flow_matrix", "simple_mask"]
 
 DEFAULT_MAX_PREFIXES = 1_000_000
 """Default size guard: trees with more prefixes raise :class:`TreeTooLargeError`."""
 
 
+class FlowTree(Protocol):
+    """What :func:`flow_matrix` needs of a tree (:class:`WalkTree` and ``NWalkTree``)."""
+
+    @property
+    def n_prefixes(self) -> int: ...
+
+    @property
+    def parent(self) -> np.ndarray: ...
+
+    @property
+    def child_start(self) -> np.ndarray: ...
+
+    @property
+    def child_stop(self) -> np.ndarray: ...
+
+
 @dataclass(frozen=True, eq=False)
-class WalkTree:
-    """The walks of the truncated game with at most ``horizon`` steps (proofs/LP.md).
+class PrefixTree:
+    """The walks of a truncated game (any number of goals) with at most ``horizon`` steps.
+
+    What the two-goal :class:`WalkTree` and the N-goal ``NWalkTree`` share; both are built by
+    :func:`build_prefix_tree`.
 
     Attributes
     ----------
-    instance : Instance
+    instance : GameInstance
         The game the tree belongs to.
     horizon : int
         ``H``: the maximum number of steps of a walk.
@@ -63,7 +85,7 @@ class WalkTree:
         Exact weight ``w(e_t)`` of the last step of each prefix (0 for the root).
     """
 
-    instance: Instance
+    instance: GameInstance
     horizon: int
     node: np.ndarray
     parent: np.ndarray
@@ -126,7 +148,23 @@ class WalkTree:
         return p
 
 
-def count_prefixes(instance: Instance, horizon: int, *, limit: int | None = None) -> int:
+@dataclass(frozen=True, eq=False)
+class WalkTree(PrefixTree):
+    """The walks of the two-goal truncated game with at most ``horizon`` steps (proofs/LP.md).
+
+    A :class:`PrefixTree` whose ``instance`` is a two-goal :class:`Instance` (every other
+    attribute as documented there).
+
+    Attributes
+    ----------
+    instance : Instance
+        The game the tree belongs to.
+    """
+
+    instance: Instance
+
+
+def count_prefixes(instance: GameInstance, horizon: int, *, limit: int | None = None) -> int:
     """Number of prefixes of the pruned walk tree with ``horizon`` steps, without building it.
 
     Dynamic programming over (node, steps left): ``O(H·|E|)``, and bounded: the count is
@@ -175,6 +213,8 @@ def build_tree(instance: Instance, horizon: int, *,
                max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> WalkTree:
     """Build the pruned tree of walks from ``s0`` with at most ``horizon`` steps.
 
+    The two-goal form of :func:`build_prefix_tree`.
+
     Parameters
     ----------
     instance : Instance
@@ -207,6 +247,40 @@ def build_tree(instance: Instance, horizon: int, *,
     >>> build_tree(instance_from_json(doc), 4, max_prefixes=5)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 4 has at least 6 prefixes, ...
+    """
+    return build_prefix_tree(instance, horizon, WalkTree, max_prefixes=max_prefixes,
+                             progress=progress)
+
+
+T = TypeVar("T", bound=PrefixTree)
+
+
+def build_prefix_tree(instance: GameInstance, horizon: int, cls: type[T], *,
+                      max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> T:
+    """Build the pruned tree of walks of any game (two or N goals) as a ``cls``.
+
+    Parameters
+    ----------
+    instance : GameInstance
+        The game (``Instance`` or ``NInstance``).
+    horizon : int
+        ``H >= 0``.
+    cls : type
+        :class:`WalkTree` for an ``Instance``, ``NWalkTree`` for an ``NInstance``.
+    max_prefixes, progress
+        As for :func:`build_tree`.
+
+    Raises
+    ------
+    HorizonError, TreeTooLargeError
+        As for :func:`build_tree`.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> t = build_prefix_tree(triangle(), 1, PrefixTree)
+    >>> type(t).__name__, t.n_leaves
+    ('PrefixTree', 2)
     """
     size = count_prefixes(instance, horizon, limit=max_prefixes)
     if size == 0:
@@ -252,13 +326,13 @@ def build_tree(instance: Instance, horizon: int, *,
     bar.close()
     if len(node) != size:  # pragma: no cover - the count and the build share the pruning rule
         raise AssertionError(f"tree size {len(node)} differs from its count {size}")
-    return WalkTree(instance=inst, horizon=horizon,
-                    node=np.asarray(node, dtype=np.int32),
-                    parent=np.asarray(parent, dtype=np.int64),
-                    depth=np.asarray(depth, dtype=np.int32),
-                    child_start=np.asarray(child_start, dtype=np.int64),
-                    child_stop=np.asarray(child_stop, dtype=np.int64),
-                    weight=tuple(weight))
+    return cls(instance=inst, horizon=horizon,
+               node=np.asarray(node, dtype=np.int32),
+               parent=np.asarray(parent, dtype=np.int64),
+               depth=np.asarray(depth, dtype=np.int32),
+               child_start=np.asarray(child_start, dtype=np.int64),
+               child_stop=np.asarray(child_stop, dtype=np.int64),
+               weight=tuple(weight))
 
 
 def simple_mask(tree: WalkTree) -> np.ndarray:
@@ -287,3 +361,26 @@ def simple_mask(tree: WalkTree) -> np.ndarray:
         simple[p] = simple[q] and not (visited[q] & bit)
         visited[p] = visited[q] | bit
     return np.asarray(simple, dtype=bool)
+
+
+def flow_matrix(tree: FlowTree) -> sp.csr_matrix:
+    """Sequence-form flow constraints ``x[p] - Σ_children x[c] = 0``, one row per inner prefix.
+
+    Serves both trees (:class:`WalkTree`, ``NWalkTree``): it reads only ``n_prefixes``,
+    ``parent``, ``child_start`` and ``child_stop`` (:class:`FlowTree`).
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> flow_matrix(build_tree(triangle(), 1)).toarray()   # s -> s g1, s g2
+    array([[ 1., -1., -1.]])
+    """
+    n = tree.n_prefixes
+    inner = np.flatnonzero(tree.child_start != tree.child_stop)
+    row_of = np.full(n, -1, dtype=np.int64)
+    row_of[inner] = np.arange(inner.size)
+    children = np.arange(1, n)
+    rows = np.concatenate([row_of[inner], row_of[tree.parent[children]]])
+    cols = np.concatenate([inner, children])
+    vals = np.concatenate([np.ones(inner.size), -np.ones(children.size)])
+    return sp.csr_matrix((vals, (rows, cols)), shape=(inner.size, n))

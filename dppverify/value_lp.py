@@ -21,7 +21,7 @@ exactly.
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -36,10 +36,11 @@ from dppverify.exact import Number, normalize
 from dppverify.instance import Instance, Roles, as_instance
 from dppverify.lp import LPStats, realization_constraints, solve
 from dppverify.profile import ProgressRule
-from dppverify.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
+from dppverify.tree import DEFAULT_MAX_PREFIXES, PrefixTree, WalkTree, build_tree
 
-__all__ = ["Bracket", "GameValue", "ValueLP", "exact_bracket", "game_value", "lower_bound",
-           "solve_value_lp", "upper_bound"]
+__all__ = ["DENOMINATORS", "Bracket", "BracketSearch", "GameValue", "ValueLP", "exact_bracket",
+           "game_value", "lower_bound", "rational_plan", "solve_types_lp", "solve_value_lp",
+           "upper_bound"]
 
 DENOMINATORS = (1, 2, 3, 4, 5, 6, 8, 10, 12, 20, 24, 60, 100, 360, 720, 1000, 5040, 10**4, 10**6)
 """Denominator limits tried when rounding LP solutions to rationals."""
@@ -101,30 +102,74 @@ def solve_value_lp(tree: WalkTree, roles: Roles) -> ValueLP:
     >>> round(solve_value_lp(build_tree(inst, 1), inst.roles()).value, 6)
     2.4
     """
+    stats, plans, sigma = solve_types_lp(tree, (roles.b1, roles.b2), (roles.d1, roles.d2),
+                                         f"value LP (H = {tree.horizon})")
+    return ValueLP(stats=stats, x1=plans[0], x2=plans[1], sigma1=sigma[0])
+
+
+def solve_types_lp(tree: PrefixTree, priors: Sequence[Number],
+                   dists: Sequence[Sequence[Number]], what: str
+                   ) -> tuple[LPStats, np.ndarray, np.ndarray]:
+    """The compact LP for any number of types (two goals and N goals share it).
+
+    ``min Σ_θ b_θ Σ_leaves x_θ(ℓ) d_θ(end ℓ) + Σ_{p ≠ root} w_p z_p`` over realization
+    plans ``x_θ`` with ``z_p >= b_θ x_θ(p)`` for every type.
+
+    Parameters
+    ----------
+    tree : PrefixTree
+        The walk tree.
+    priors, dists : Sequence
+        ``b_θ`` and the distances ``d(·, g^θ)`` of each type, in the same order.
+    what : str
+        Names the LP in an :class:`~dppverify.errors.LPError`.
+
+    Returns
+    -------
+    stats : LPStats
+    plans : numpy.ndarray
+        ``plans[θ]``: type θ's realization plan (one float per prefix).
+    sigma : numpy.ndarray
+        ``sigma[θ][p] = λ_θ(p) / w_p`` from the duals of ``z_p >= b_θ x_θ(p)`` (``nan`` at
+        the root): an optimal Defender strategy.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> stats, plans, sigma = solve_types_lp(build_tree(inst, 1), (r.b1, r.b2), (r.d1, r.d2),
+    ...                                      "demo")
+    >>> round(stats.value, 6), [round(float(v), 4) for v in plans[0]]
+    (2.4, [1.0, 0.5714, 0.4286])
+    """
     n = tree.n_prefixes
     leaf = tree.is_leaf_mask()
     node = tree.node
-    d1 = np.array([float(roles.d1[int(v)]) if leaf[p] else 0.0 for p, v in enumerate(node)])
-    d2 = np.array([float(roles.d2[int(v)]) if leaf[p] else 0.0 for p, v in enumerate(node)])
-    b1, b2 = float(roles.b1), float(roles.b2)
-    x1 = cp.Variable(n)
-    x2 = cp.Variable(n)
-    cons = realization_constraints(tree, x1) + realization_constraints(tree, x2)
-    objective = b1 * (d1 @ x1) + b2 * (d2 @ x2)
-    c1 = c2 = None
+    xs = [cp.Variable(n) for _ in priors]
+    cons: list[cp.Constraint] = []
+    terms: list[cp.Expression] = []
+    for b, d, x in zip(priors, dists, xs, strict=True):
+        cost = np.array([float(d[int(v)]) if leaf[p] else 0.0 for p, v in enumerate(node)])
+        cons += realization_constraints(tree, x)
+        terms.append(float(b) * (cost @ x))
+    objective = terms[0]
+    for term in terms[1:]:
+        objective = objective + term
+    duals: list[cp.Constraint] = []
     if n > 1:
         z = cp.Variable(n - 1)
-        c1 = z >= b1 * x1[1:]
-        c2 = z >= b2 * x2[1:]
-        cons += [c1, c2]
+        duals = [z >= float(b) * x[1:] for b, x in zip(priors, xs, strict=True)]
+        cons += duals
         objective = objective + tree.weight_float[1:] @ z
-    stats = solve(cp.Problem(cp.Minimize(objective), cons), f"value LP (H = {tree.horizon})")
-    sigma = np.full(n, np.nan)
-    if c1 is not None:
-        lam = np.asarray(c1.dual_value, dtype=float).reshape(-1)
-        sigma[1:] = np.clip(lam / tree.weight_float[1:], 0.0, 1.0)
-    return ValueLP(stats=stats, x1=np.asarray(x1.value, dtype=float).reshape(-1),
-                   x2=np.asarray(x2.value, dtype=float).reshape(-1), sigma1=sigma)
+    stats = solve(cp.Problem(cp.Minimize(objective), cons), what)
+    sigma = np.full((len(xs), n), np.nan)
+    for theta, c in enumerate(duals):
+        lam = np.asarray(c.dual_value, dtype=float).reshape(-1)
+        sigma[theta, 1:] = np.clip(lam / tree.weight_float[1:], 0.0, 1.0)
+    plans = np.array([np.asarray(x.value, dtype=float).reshape(-1) for x in xs])
+    return stats, plans, sigma
 
 
 def lower_bound(tree: WalkTree, roles: Roles, tdef: TreeDefender) -> Number:
@@ -214,9 +259,23 @@ def _rational_defender(tree: WalkTree, sigma: np.ndarray, den: int) -> TreeDefen
     return TreeDefender(sigma1=tuple(s1), alloc1=tuple(a1), alloc2=tuple(a2))
 
 
-def _rational_plan(tree: WalkTree, x: np.ndarray, den: int,
-                   snap: float = 1e-7) -> dict[int, Fraction]:
-    """Round a float realization plan to an exactly feasible rational one (behavioural form)."""
+def rational_plan(tree: PrefixTree, x: np.ndarray, den: int,
+                  snap: float = 1e-7) -> dict[int, Fraction]:
+    """Round a float realization plan to an exactly feasible rational one (behavioural form).
+
+    At every reached prefix the children's shares ``x[c] / Σ x[c]`` are rounded to
+    denominators ``<= den`` (shares below ``snap`` become 0) and renormalised; a prefix
+    whose children have no mass sends everything to its first (or heaviest) child. Serves
+    both trees (two goals and N goals).
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> from dppverify.tree import build_tree
+    >>> tree = build_tree(triangle(), 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> rational_plan(tree, np.array([1.0, 0.5714286, 0.4285714]), 10)
+    {0: Fraction(1, 1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
+    """
     plan: dict[int, Fraction] = {0: Fraction(1)}
     for p in range(tree.n_prefixes):  # breadth-first: parents before children
         if p not in plan:
@@ -243,6 +302,66 @@ def _rational_plan(tree: WalkTree, x: np.ndarray, den: int,
     return plan
 
 
+class BracketSearch:
+    """The best exact bounds offered so far; the search loop of both exact brackets.
+
+    Lower bounds come from rational Defenders, upper bounds from rational Attacker plans;
+    :meth:`rounded` offers the LP solution rounded at each limit of :data:`DENOMINATORS`
+    until the bracket closes. Used by :func:`exact_bracket` and the N-goal
+    :func:`~dppverify.ngoal.value_lp.exact_nbracket`.
+
+    Examples
+    --------
+    >>> search = BracketSearch()
+    >>> search.offer_lower(Fraction(1), "a"); search.offer_lower(Fraction(2), "b")
+    >>> search.offer_upper(Fraction(3), "c"); search.closed
+    False
+    >>> search.offer_upper(Fraction(2), "d"); search.closed
+    True
+    >>> search.bracket()
+    Bracket(lower=Fraction(2, 1), upper=Fraction(2, 1), lower_source='b', upper_source='d')
+    """
+
+    def __init__(self) -> None:
+        self.lower: tuple[Number, str] | None = None
+        self.upper: tuple[Number, str] | None = None
+
+    def offer_lower(self, value: Number, source: str) -> None:
+        """Keep ``value`` if it is a better (larger) lower bound."""
+        if self.lower is None or value > self.lower[0]:
+            self.lower = (value, source)
+
+    def offer_upper(self, value: Number, source: str) -> None:
+        """Keep ``value`` if it is a better (smaller) upper bound."""
+        if self.upper is None or value < self.upper[0]:
+            self.upper = (value, source)
+
+    @property
+    def closed(self) -> bool:
+        """True once the best bounds meet."""
+        return (self.lower is not None and self.upper is not None
+                and self.lower[0] >= self.upper[0])
+
+    def rounded(self, lower: Callable[[int], Number], upper: Callable[[int], Number]) -> None:
+        """Offer ``lower(den)`` / ``upper(den)`` (the LP's dual / primal rounded at ``den``)."""
+        for den in DENOMINATORS:
+            if self.closed:
+                break
+            self.offer_lower(lower(den), f"LP dual rounded (denominators <= {den})")
+            self.offer_upper(upper(den), f"LP primal rounded (denominators <= {den})")
+
+    def bracket(self, pure: Callable[[dict[int, Fraction]], Number] | None = None,
+                tree: PrefixTree | None = None) -> Bracket:
+        """The bracket; without an upper bound yet, ``pure(plan)`` of a pure plan on ``tree``."""
+        if self.upper is None and pure is not None and tree is not None:
+            # no attacker candidate: any pure plan gives a (weak) upper bound
+            self.offer_upper(pure(rational_plan(tree, np.ones(tree.n_prefixes), 1)),
+                             "a pure attacker plan")
+        assert self.lower is not None and self.upper is not None
+        return Bracket(lower=self.lower[0], upper=self.upper[0], lower_source=self.lower[1],
+                       upper_source=self.upper[1])
+
+
 def exact_bracket(tree: WalkTree, roles: Roles, lp: ValueLP | None = None,
                   defenders: Sequence[tuple[str, TreeDefender]] = (),
                   attackers: Iterable[tuple[str, Mapping[int, Fraction], Mapping[int, Fraction]]]
@@ -265,47 +384,23 @@ def exact_bracket(tree: WalkTree, roles: Roles, lp: ValueLP | None = None,
     >>> b.exact
     Fraction(12, 5)
     """
-    best_lo: tuple[Number, str] | None = None
-    best_hi: tuple[Number, str] | None = None
-
-    def offer_lo(v: Number, src: str) -> None:
-        nonlocal best_lo
-        if best_lo is None or v > best_lo[0]:
-            best_lo = (v, src)
-
-    def offer_hi(v: Number, src: str) -> None:
-        nonlocal best_hi
-        if best_hi is None or v < best_hi[0]:
-            best_hi = (v, src)
-
-    def closed() -> bool:
-        return best_lo is not None and best_hi is not None and best_lo[0] >= best_hi[0]
-
+    search = BracketSearch()
     for src, tdef in defenders:
-        offer_lo(lower_bound(tree, roles, tdef), src)
+        search.offer_lower(lower_bound(tree, roles, tdef), src)
     given = {id(tdef) for _, tdef in defenders}
     for g, name in ((roles.g1, "sigma* (progress to g1)"), (roles.g2, "progress to g2")):
         progress = (sigma_star if g == roles.g1 and sigma_star is not None
                     else tree_defender(tree, roles, ProgressRule(g)))
         if id(progress) not in given:
-            offer_lo(lower_bound(tree, roles, progress), name)
+            search.offer_lower(lower_bound(tree, roles, progress), name)
     for src, a1, a2 in attackers:
-        offer_hi(upper_bound(tree, roles, a1, a2), src)
+        search.offer_upper(upper_bound(tree, roles, a1, a2), src)
     if lp is not None:
-        for den in DENOMINATORS:
-            if closed():
-                break
-            offer_lo(lower_bound(tree, roles, _rational_defender(tree, lp.sigma1, den)),
-                     f"LP dual rounded (denominators <= {den})")
-            offer_hi(upper_bound(tree, roles, _rational_plan(tree, lp.x1, den),
-                                 _rational_plan(tree, lp.x2, den)),
-                     f"LP primal rounded (denominators <= {den})")
-    if best_hi is None:  # no attacker candidate: any pure plan gives a (weak) upper bound
-        plan = _rational_plan(tree, np.ones(tree.n_prefixes), 1)
-        offer_hi(upper_bound(tree, roles, plan, plan), "a pure attacker plan")
-    assert best_lo is not None and best_hi is not None
-    return Bracket(lower=best_lo[0], upper=best_hi[0], lower_source=best_lo[1],
-                   upper_source=best_hi[1])
+        search.rounded(
+            lambda den: lower_bound(tree, roles, _rational_defender(tree, lp.sigma1, den)),
+            lambda den: upper_bound(tree, roles, rational_plan(tree, lp.x1, den),
+                                    rational_plan(tree, lp.x2, den)))
+    return search.bracket(lambda plan: upper_bound(tree, roles, plan, plan), tree)
 
 
 @dataclass(frozen=True)

@@ -30,20 +30,11 @@ class NInstance(GameInstance):
     """A validated N-goal game instance with exact distances.
 
     A :class:`~dppverify.instance.GameInstance` read by the shared parser
-    (:func:`~dppverify.instance.read_game`); nodes are numbered ``0 .. n-1`` in document order.
+    (:func:`~dppverify.instance.read_game`), with every attribute of that class; for N goals
+    they read:
 
     Attributes
     ----------
-    nodes : tuple
-        Node ids (JSON lists converted to tuples).
-    index : Mapping
-        Node id -> index.
-    directed : bool
-        False when every edge can be walked both ways.
-    succ, pred : tuple
-        ``succ[u]`` = arcs ``(v, w)`` leaving ``u``; ``pred[v]`` = arcs ``(u, w)`` entering ``v``.
-    start : int
-        ``s0``.
     goals : tuple of int
         The N goals in document order; type ``θ`` (0-based) walks to ``goals[θ]``.
     prior : tuple of Fraction
@@ -52,8 +43,6 @@ class NInstance(GameInstance):
         Always True: N-goal instances are exact.
     dist_to : tuple
         ``dist_to[θ][v]`` = full-graph ``d(v, goals[θ])`` (``math.inf`` if unreachable).
-    hops : tuple of int
-        Fewest steps from each node to the nearest goal (``-1`` if none).
 
     Examples
     --------

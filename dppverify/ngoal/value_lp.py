@@ -10,6 +10,10 @@ bilinear payoff is ``Σ_p w_p max_θ b_θ x_θ(p)``. The duals ``λ_θ(p)`` of `
 sum to ``w_p`` at every prefix (stationarity in ``z_p``), so ``σ(g^θ | p) = λ_θ(p) / w_p`` is an
 optimal Defender strategy.
 
+The LP, the rounding of its plans and the bracket search are the two-goal ones
+(:func:`~dppverify.value_lp.solve_types_lp`, :func:`~dppverify.value_lp.rational_plan`,
+:class:`~dppverify.value_lp.BracketSearch`); this module adds the N-type bounds.
+
 Exact bracket (the two-goal method of :mod:`dppverify.value_lp`, for N types): for ANY rational
 Defender ``σ``, ``Σ_θ b_θ min_walk U^θ(σ)`` (exact backward induction) is a lower bound on
 ``V_H``; for ANY rational Attacker plans the exact greedy Defender value is an upper bound.
@@ -23,11 +27,10 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
-import cvxpy as cp
 import numpy as np
 
 from dppverify.exact import Number, normalize
-from dppverify.lp import LPStats, solve
+from dppverify.lp import LPStats
 from dppverify.ngoal.best_response import (
     NTreeDefender,
     attacker_best_response,
@@ -35,9 +38,9 @@ from dppverify.ngoal.best_response import (
     defender_from_table,
 )
 from dppverify.ngoal.instance import NInstance
-from dppverify.ngoal.tree import NWalkTree, build_ntree, nflow_matrix
+from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.tree import DEFAULT_MAX_PREFIXES
-from dppverify.value_lp import DENOMINATORS, Bracket
+from dppverify.value_lp import Bracket, BracketSearch, rational_plan, solve_types_lp
 
 __all__ = ["NGameValue", "NValueLP", "exact_nbracket", "lower_nbound", "ngame_value",
            "solve_nvalue_lp", "upper_nbound"]
@@ -79,34 +82,9 @@ def solve_nvalue_lp(tree: NWalkTree) -> NValueLP:
     1.5
     """
     inst = tree.instance
-    n = tree.n_prefixes
-    k = inst.n_goals
-    leaf = tree.is_leaf_mask()
-    flow = nflow_matrix(tree) if n > 1 else None
-    xs = [cp.Variable(n) for _ in range(k)]
-    cons: list[cp.Constraint] = []
-    objective: cp.Expression = cp.Constant(0.0)
-    for theta, x in enumerate(xs):
-        d = inst.dist_to[theta]
-        term = np.array([float(d[int(v)]) if leaf[p] else 0.0 for p, v in enumerate(tree.node)])
-        cons += [x >= 0, x[0] == 1]
-        if flow is not None:
-            cons.append(flow @ x == 0)
-        objective = objective + float(inst.prior[theta]) * (term @ x)
-    duals: list[cp.Constraint] = []
-    if n > 1:
-        z = cp.Variable(n - 1)
-        for theta, x in enumerate(xs):
-            duals.append(z >= float(inst.prior[theta]) * x[1:])
-        cons += duals
-        objective = objective + tree.weight_float[1:] @ z
-    stats = solve(cp.Problem(cp.Minimize(objective), cons),
-                  f"N-goal value LP (N = {k}, H = {tree.horizon})")
-    sigma = np.full((k, n), np.nan)
-    for theta, c in enumerate(duals):
-        lam = np.asarray(c.dual_value, dtype=float).reshape(-1)
-        sigma[theta, 1:] = np.clip(lam / tree.weight_float[1:], 0.0, 1.0)
-    plans = np.array([np.asarray(x.value, dtype=float).reshape(-1) for x in xs])
+    stats, plans, sigma = solve_types_lp(tree, inst.prior, inst.dist_to,
+                                         f"N-goal value LP (N = {inst.n_goals}, "
+                                         f"H = {tree.horizon})")
     return NValueLP(stats=stats, plans=plans, sigma=sigma)
 
 
@@ -155,32 +133,6 @@ def _rational_defender(tree: NWalkTree, sigma: np.ndarray, den: int) -> NTreeDef
     return defender_from_table(tree, table, None)
 
 
-def _rational_plan(tree: NWalkTree, x: np.ndarray, den: int,
-                   snap: float = 1e-7) -> dict[int, Fraction]:
-    """Round a float realization plan to an exactly feasible rational one (behavioural form)."""
-    plan: dict[int, Fraction] = {0: Fraction(1)}
-    for p in range(tree.n_prefixes):
-        if p not in plan:
-            continue
-        kids = tree.children(p)
-        if not kids:
-            continue
-        raw = np.clip(np.asarray([x[c] for c in kids], dtype=float), 0.0, None)
-        tot = float(raw.sum())
-        fr: list[Fraction] = []
-        if tot > 0:
-            fr = [Fraction(float(r / tot)).limit_denominator(den) if r / tot > snap
-                  else Fraction(0) for r in raw]
-        if not fr or sum(fr) == 0:
-            top = int(np.argmax(raw)) if tot > 0 else 0
-            fr = [Fraction(int(i == top)) for i in range(len(kids))]
-        s = sum(fr, Fraction(0))
-        for c, pr in zip(kids, fr, strict=True):
-            if pr:
-                plan[c] = plan[p] * pr / s
-    return plan
-
-
 def exact_nbracket(tree: NWalkTree, lp: NValueLP | None = None,
                    defenders: Iterable[tuple[str, NTreeDefender]] = (),
                    attackers: Iterable[tuple[str, Sequence[Plan]]] = ()) -> Bracket:
@@ -198,39 +150,20 @@ def exact_nbracket(tree: NWalkTree, lp: NValueLP | None = None,
     (Fraction(3, 2), True)
     """
     k = tree.instance.n_goals
-    lo: tuple[Number, str] | None = None
-    hi: tuple[Number, str] | None = None
-
-    def offer_lo(v: Number, src: str) -> None:
-        nonlocal lo
-        if lo is None or v > lo[0]:
-            lo = (v, src)
-
-    def offer_hi(v: Number, src: str) -> None:
-        nonlocal hi
-        if hi is None or v < hi[0]:
-            hi = (v, src)
-
+    search = BracketSearch()
     uniform = tuple(Fraction(1, k) for _ in range(k))
-    offer_lo(lower_nbound(tree, defender_from_table(tree, {}, uniform)), "uniform Defender")
+    search.offer_lower(lower_nbound(tree, defender_from_table(tree, {}, uniform)),
+                       "uniform Defender")
     for src, tdef in defenders:
-        offer_lo(lower_nbound(tree, tdef), src)
+        search.offer_lower(lower_nbound(tree, tdef), src)
     for src, plans in attackers:
-        offer_hi(upper_nbound(tree, plans), src)
+        search.offer_upper(upper_nbound(tree, plans), src)
     if lp is not None:
-        for den in DENOMINATORS:
-            if lo is not None and hi is not None and lo[0] >= hi[0]:
-                break
-            offer_lo(lower_nbound(tree, _rational_defender(tree, lp.sigma, den)),
-                     f"LP dual rounded (denominators <= {den})")
-            offer_hi(upper_nbound(tree, [_rational_plan(tree, lp.plans[t], den)
-                                         for t in range(k)]),
-                     f"LP primal rounded (denominators <= {den})")
-    if hi is None:
-        plan = _rational_plan(tree, np.ones(tree.n_prefixes), 1)
-        offer_hi(upper_nbound(tree, [plan] * k), "a pure attacker plan")
-    assert lo is not None and hi is not None
-    return Bracket(lower=lo[0], upper=hi[0], lower_source=lo[1], upper_source=hi[1])
+        search.rounded(
+            lambda den: lower_nbound(tree, _rational_defender(tree, lp.sigma, den)),
+            lambda den: upper_nbound(tree, [rational_plan(tree, lp.plans[t], den)
+                                            for t in range(k)]))
+    return search.bracket(lambda plan: upper_nbound(tree, [plan] * k), tree)
 
 
 @dataclass(frozen=True)
