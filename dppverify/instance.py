@@ -32,7 +32,8 @@ from dppverify.json_reading import (
 )
 
 __all__ = ["GameInstance", "Instance", "Node", "Roles", "as_instance", "instance_from_json",
-           "load_instance", "node_from_json", "node_to_json", "read_game", "show_node"]
+           "load_game", "load_instance", "node_from_json", "node_to_json", "read_game",
+           "show_node"]
 
 NGOAL_REFUSAL = ("goals: this instance lists {n} goals; the two-goal checker reads exactly two. "
                  "N-goal instances are read by dppverify.ngoal (`dpp value` and `dpp certify` "
@@ -267,15 +268,7 @@ def load_instance(path: str | Path) -> Instance:
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: /nonexistent.json: cannot read instance file ...
     """
-    p = Path(path)
-    try:
-        doc = read_json_file(p, kind="instance")
-    except JsonReadError as exc:
-        raise InvalidInstanceError(f"{p}: {exc}") from None
-    try:
-        return instance_from_json(doc)
-    except InvalidInstanceError as exc:
-        raise InvalidInstanceError(f"{p}: {exc}") from None
+    return load_game(path, Instance, two_goals=True)
 
 
 def instance_from_json(doc: Mapping[str, Any] | str | bytes) -> Instance:
@@ -293,11 +286,6 @@ def instance_from_json(doc: Mapping[str, Any] | str | bytes) -> Instance:
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: goals: the two goals must differ, both are 1
     """
-    if isinstance(doc, str | bytes):
-        try:
-            doc = parse_json_text(doc)
-        except JsonReadError as exc:
-            raise InvalidInstanceError(str(exc)) from None
     return read_game(doc, Instance, two_goals=True)
 
 
@@ -309,8 +297,33 @@ def _require(cond: bool, message: str) -> None:
 G = TypeVar("G", bound=GameInstance)
 
 
+def load_game(path: str | Path, cls: type[G], *, two_goals: bool) -> G:
+    """Read and validate an instance file into ``cls`` (:func:`read_game` on its document).
+
+    Raises
+    ------
+    InvalidInstanceError
+        One line ``PATH: what is wrong`` for unreadable, malformed or invalid instances.
+
+    Examples
+    --------
+    >>> load_game("/nonexistent.json", GameInstance, two_goals=False)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: /nonexistent.json: cannot read instance file ...
+    """
+    p = Path(path)
+    try:
+        doc = read_json_file(p, kind="instance")
+    except JsonReadError as exc:
+        raise InvalidInstanceError(f"{p}: {exc}") from None
+    try:
+        return read_game(doc, cls, two_goals=two_goals)
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{p}: {exc}") from None
+
+
 def read_game(doc: Any, cls: type[G], *, two_goals: bool) -> G:
-    """Read and validate an instance document (already parsed JSON) into ``cls``.
+    """Read and validate an instance document (parsed JSON, or JSON text) into ``cls``.
 
     The one graph/instance parser of the checker: the two-goal :class:`Instance`
     (``two_goals=True``: exactly two goals, float mode allowed, the two-goal messages) and the
@@ -333,6 +346,11 @@ def read_game(doc: Any, cls: type[G], *, two_goals: bool) -> G:
     dppverify.errors.InvalidInstanceError: numbers: N-goal instances must be exact \
 ("numbers": "exact")
     """
+    if isinstance(doc, str | bytes):
+        try:
+            doc = parse_json_text(doc)
+        except JsonReadError as exc:
+            raise InvalidInstanceError(str(exc)) from None
     try:
         return _read_game(doc, cls, two_goals)
     except InvalidInstanceError:

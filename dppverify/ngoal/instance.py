@@ -18,8 +18,8 @@ from typing import Any
 
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import Number
-from dppverify.instance import GameInstance, read_game
-from dppverify.json_reading import JsonReadError, parse_json_text, read_json_file
+from dppverify.instance import GameInstance, load_game, read_game
+from dppverify.json_reading import JsonReadError, read_json_file
 
 __all__ = ["NInstance", "goal_count", "load_ninstance", "ninstance_from_json",
            "read_instance_document"]
@@ -117,11 +117,7 @@ def load_ninstance(path: str | Path) -> NInstance:
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: /nonexistent.json: cannot read instance file ...
     """
-    doc = read_instance_document(path)
-    try:
-        return ninstance_from_json(doc)
-    except InvalidInstanceError as exc:
-        raise InvalidInstanceError(f"{path}: {exc}") from None
+    return load_game(path, NInstance, two_goals=False)
 
 
 def ninstance_from_json(doc: Mapping[str, Any] | str | bytes) -> NInstance:
@@ -139,9 +135,4 @@ def ninstance_from_json(doc: Mapping[str, Any] | str | bytes) -> NInstance:
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: goals[2]: goal 1 is listed twice
     """
-    if isinstance(doc, str | bytes):
-        try:
-            doc = parse_json_text(doc)
-        except JsonReadError as exc:
-            raise InvalidInstanceError(str(exc)) from None
     return read_game(doc, NInstance, two_goals=False)
