@@ -14,6 +14,9 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+import click
+from click.testing import CliRunner, Result
+
 DATA = Path(__file__).resolve().parents[1] / "data"
 
 Edge = tuple[Any, Any, Any]
@@ -52,6 +55,21 @@ def grid_doc(rows: int, cols: int, start: tuple[int, int], goals: Sequence[tuple
                 edges.append(([r, c], [r + dr, c + dc], 1))
     return make_doc(edges, list(start), [list(g) for g in goals], prior,
                     nodes=[[r, c] for r, c in free])
+
+
+def write_doc(tmp_path: Path, name: str, doc: Any) -> str:
+    """Write ``doc`` (JSON-dumped unless it is already text) to ``tmp_path/name``; its path."""
+    p = tmp_path / name
+    p.write_text(doc if isinstance(doc, str) else json.dumps(doc))
+    return str(p)
+
+
+def run_cli(cmd: click.Command, args: list[str]) -> Result:
+    """Invoke a checker command in-process; it must end by exit code, never by a traceback."""
+    result = CliRunner().invoke(cmd, args)
+    assert "Traceback" not in result.output
+    assert result.exception is None or isinstance(result.exception, SystemExit), result.exception
+    return result
 
 
 def load_cases() -> list[dict[str, Any]]:

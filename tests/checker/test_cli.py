@@ -6,28 +6,19 @@ import json
 import subprocess
 import sys
 from pathlib import Path
-from typing import Any
 
-import click
 import pytest
 from click.testing import CliRunner
 
 from dppverify.certificate import Certificate
 from dppverify.cli import COMMANDS, certify_command, value_command
-from tests.checker._helpers import three_phase_doc, three_phase_profile, triangle_doc
-
-
-def _write(tmp_path: Path, name: str, doc: Any) -> str:
-    p = tmp_path / name
-    p.write_text(doc if isinstance(doc, str) else json.dumps(doc))
-    return str(p)
-
-
-def _run(cmd: click.Command, args: list[str]) -> Any:
-    result = CliRunner().invoke(cmd, args)
-    assert "Traceback" not in result.output
-    assert result.exception is None or isinstance(result.exception, SystemExit), result.exception
-    return result
+from tests.checker._helpers import (
+    run_cli,
+    three_phase_doc,
+    three_phase_profile,
+    triangle_doc,
+    write_doc,
+)
 
 
 def test_commands_are_registered() -> None:
@@ -35,9 +26,9 @@ def test_commands_are_registered() -> None:
 
 
 def test_certify_passes_with_exit_0_and_a_table(tmp_path: Path) -> None:
-    i = _write(tmp_path, "i.json", three_phase_doc())
-    p = _write(tmp_path, "p.json", three_phase_profile())
-    r = _run(certify_command, [i, p])
+    i = write_doc(tmp_path, "i.json", three_phase_doc())
+    p = write_doc(tmp_path, "p.json", three_phase_profile())
+    r = run_cli(certify_command, [i, p])
     assert r.exit_code == 0
     lines = r.output.splitlines()
     assert lines[0].startswith("verdict: PASS (17/17 checks passed; 2/2 consistency")
@@ -46,9 +37,9 @@ def test_certify_passes_with_exit_0_and_a_table(tmp_path: Path) -> None:
 
 
 def test_certify_json_is_a_certificate(tmp_path: Path) -> None:
-    i = _write(tmp_path, "i.json", three_phase_doc())
-    p = _write(tmp_path, "p.json", three_phase_profile())
-    r = _run(certify_command, [i, p, "--json", "--horizon", "5", "--seed", "3"])
+    i = write_doc(tmp_path, "i.json", three_phase_doc())
+    p = write_doc(tmp_path, "p.json", three_phase_profile())
+    r = run_cli(certify_command, [i, p, "--json", "--horizon", "5", "--seed", "3"])
     assert r.exit_code == 0
     cert = Certificate.from_json(r.output)
     assert cert.passed and cert.horizon == 5 and cert.seed == 3
@@ -57,8 +48,8 @@ def test_certify_json_is_a_certificate(tmp_path: Path) -> None:
 def test_refuted_profile_exits_1(tmp_path: Path) -> None:
     prof = three_phase_profile()
     prof["attacker"]["primary"] = [{"path": [3, 1, 2], "probability": 1}]
-    r = _run(certify_command, [_write(tmp_path, "i.json", three_phase_doc()),
-                               _write(tmp_path, "p.json", prof)])
+    r = run_cli(certify_command, [write_doc(tmp_path, "i.json", three_phase_doc()),
+                               write_doc(tmp_path, "p.json", prof)])
     assert r.exit_code == 1
     assert r.output.startswith("verdict: FAIL")
     assert any(line.startswith("pbne.defender_br") and " fail " in line
@@ -74,32 +65,32 @@ def test_refuted_profile_exits_1(tmp_path: Path) -> None:
 ])
 def test_bad_input_exits_2_with_one_line(tmp_path: Path, instance: str | None,
                                          profile: str | None, needle: str) -> None:
-    i = _write(tmp_path, "i.json", instance if instance is not None else triangle_doc())
-    p = _write(tmp_path, "p.json", profile if profile is not None else three_phase_profile())
-    r = _run(certify_command, [i, p])
+    i = write_doc(tmp_path, "i.json", instance if instance is not None else triangle_doc())
+    p = write_doc(tmp_path, "p.json", profile if profile is not None else three_phase_profile())
+    r = run_cli(certify_command, [i, p])
     assert r.exit_code == 2
     assert r.output.count("\n") == 1 and r.output.startswith("error: ") and needle in r.output
 
 
 def test_missing_files_and_short_horizon_exit_2(tmp_path: Path) -> None:
-    i = _write(tmp_path, "i.json", three_phase_doc())
-    p = _write(tmp_path, "p.json", three_phase_profile())
-    assert _run(certify_command, [i, str(tmp_path / "nope.json")]).exit_code == 2
-    assert _run(certify_command, [str(tmp_path / "nope.json"), p]).exit_code == 2
-    r = _run(certify_command, [i, p, "--horizon", "2"])
+    i = write_doc(tmp_path, "i.json", three_phase_doc())
+    p = write_doc(tmp_path, "p.json", three_phase_profile())
+    assert run_cli(certify_command, [i, str(tmp_path / "nope.json")]).exit_code == 2
+    assert run_cli(certify_command, [str(tmp_path / "nope.json"), p]).exit_code == 2
+    r = run_cli(certify_command, [i, p, "--horizon", "2"])
     assert r.exit_code == 2 and "shorter" in r.output
-    r = _run(certify_command, [i, p, "--horizon", "40", "--max-prefixes", "50", "--route",
+    r = run_cli(certify_command, [i, p, "--horizon", "40", "--max-prefixes", "50", "--route",
                                "tree"])
     assert r.exit_code == 2 and "--max-prefixes" in r.output
-    r = _run(certify_command, [i, p, "--horizon", "40", "--max-prefixes", "50"])  # auto
+    r = run_cli(certify_command, [i, p, "--horizon", "40", "--max-prefixes", "50"])  # auto
     assert r.exit_code == 0 and "H = 40, structured route" in r.output
 
 
 def test_float_instances_need_the_float_flag(tmp_path: Path) -> None:
     doc = triangle_doc()
     doc["numbers"] = "float"
-    i = _write(tmp_path, "i.json", doc)
-    p = _write(tmp_path, "p.json", {"format": "dpp-profile/1",
+    i = write_doc(tmp_path, "i.json", doc)
+    p = write_doc(tmp_path, "p.json", {"format": "dpp-profile/1",
                                     "goals": {"primary": "g1", "secondary": "g2"},
                                     "defender": {"rule": "progress", "goal": "g1"},
                                     "attacker": {"primary": [
@@ -107,30 +98,30 @@ def test_float_instances_need_the_float_flag(tmp_path: Path) -> None:
                                         {"path": ["s", "g2"], "probability": "3/7"}],
                                         "secondary": [{"path": ["s", "g2"],
                                                        "probability": 1}]}})
-    r = _run(certify_command, [i, p])
+    r = run_cli(certify_command, [i, p])
     assert r.exit_code == 2 and "--float" in r.output
-    r = _run(certify_command, [i, p, "--float"])
+    r = run_cli(certify_command, [i, p, "--float"])
     assert r.exit_code == 0 and "float mode" in r.output
 
 
 def test_value_command(tmp_path: Path) -> None:
-    i = _write(tmp_path, "i.json", three_phase_doc())
-    r = _run(value_command, [i, "--horizon", "4"])
+    i = write_doc(tmp_path, "i.json", three_phase_doc())
+    r = run_cli(value_command, [i, "--horizon", "4"])
     assert r.exit_code == 0 and r.output.startswith("V_H (H = 4) = 71/18 exactly")
-    r = _run(value_command, [i, "-H", "4", "--json"])
+    r = run_cli(value_command, [i, "-H", "4", "--json"])
     doc = json.loads(r.output)
     assert doc["value"] == "71/18" and doc["exact"] and abs(doc["value_lp"] - 71 / 18) < 1e-7
     assert doc["lp"]["solver"] == "CLARABEL" and doc["lp"]["status"] == "optimal"
-    r = _run(value_command, [i, "-H", "1"])
+    r = run_cli(value_command, [i, "-H", "1"])
     assert r.exit_code == 2 and "no walk" in r.output
-    assert _run(value_command, [i]).exit_code == 2  # --horizon is required (click usage)
+    assert run_cli(value_command, [i]).exit_code == 2  # --horizon is required (click usage)
 
 
 def test_dpp_group_and_python_m_dppverify(tmp_path: Path) -> None:
     from solver.cli import main
 
-    i = _write(tmp_path, "i.json", three_phase_doc())
-    p = _write(tmp_path, "p.json", three_phase_profile())
+    i = write_doc(tmp_path, "i.json", three_phase_doc())
+    p = write_doc(tmp_path, "p.json", three_phase_profile())
     r = CliRunner().invoke(main, ["certify", i, p])
     assert r.exit_code == 0 and "Traceback" not in r.output
     r = CliRunner().invoke(main, ["value", i, "-H", "4"])

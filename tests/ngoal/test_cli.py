@@ -6,37 +6,21 @@ import json
 import subprocess
 import sys
 from pathlib import Path
-from typing import Any
-
-import click
-from click.testing import CliRunner
 
 from dppverify.certificate import Certificate
 from dppverify.cli import certify_command, value_command
 from dppverify.ngoal.examples import star3_document, star3_profile
-
-
-def _write(tmp_path: Path, name: str, doc: Any) -> str:
-    p = tmp_path / name
-    p.write_text(doc if isinstance(doc, str) else json.dumps(doc))
-    return str(p)
-
-
-def _run(cmd: click.Command, args: list[str]) -> Any:
-    result = CliRunner().invoke(cmd, args)
-    assert "Traceback" not in result.output
-    assert result.exception is None or isinstance(result.exception, SystemExit), result.exception
-    return result
+from tests.checker._helpers import run_cli, write_doc
 
 
 def test_value_of_an_n_goal_instance_by_each_route(tmp_path: Path) -> None:
-    i = _write(tmp_path, "star.json", star3_document())
-    r = _run(value_command, [i, "-H", "2"])
+    i = write_doc(tmp_path, "star.json", star3_document())
+    r = run_cli(value_command, [i, "-H", "2"])
     assert r.exit_code == 0 and "V_H (H = 2, N = 3 goals) = 3/2 exactly; LP value" in r.output
-    r = _run(value_command, [i, "-H", "inf"])
+    r = run_cli(value_command, [i, "-H", "inf"])
     assert r.exit_code == 0 and "(H = inf, N = 3 goals) = 3/2 exactly; coalition DP" in r.output
     assert "proofs/NGOAL.md" in r.output
-    r = _run(value_command, [i, "-H", "3", "--route", "both", "--json"])
+    r = run_cli(value_command, [i, "-H", "3", "--route", "both", "--json"])
     doc = json.loads(r.output)
     assert r.exit_code == 0 and doc["agree"] is True and doc["value"] == "3/2"
     assert doc["tree"]["value"] == "3/2" and doc["structured"]["value"] == "3/2"
@@ -44,33 +28,33 @@ def test_value_of_an_n_goal_instance_by_each_route(tmp_path: Path) -> None:
 
 
 def test_value_errors_are_one_line_exit_2(tmp_path: Path) -> None:
-    i = _write(tmp_path, "star.json", star3_document())
-    r = _run(value_command, [i, "-H", "inf", "--route", "tree"])
+    i = write_doc(tmp_path, "star.json", star3_document())
+    r = run_cli(value_command, [i, "-H", "inf", "--route", "tree"])
     assert r.exit_code == 2 and "needs a finite horizon" in r.output
-    r = _run(value_command, [i, "-H", "3", "--route", "tree", "--max-prefixes", "3"])
+    r = run_cli(value_command, [i, "-H", "3", "--route", "tree", "--max-prefixes", "3"])
     assert r.exit_code == 2 and "more than the limit of 3" in r.output
     bad = dict(star3_document(), prior=["1/2", "1/2", "1/2"])
-    r = _run(value_command, [_write(tmp_path, "bad.json", bad), "-H", "2"])
+    r = run_cli(value_command, [write_doc(tmp_path, "bad.json", bad), "-H", "2"])
     assert r.exit_code == 2 and r.output.count("\n") == 1 and "must sum to exactly 1" in r.output
 
 
 def test_certify_an_n_goal_profile(tmp_path: Path) -> None:
-    i = _write(tmp_path, "star.json", star3_document())
-    p = _write(tmp_path, "p.json", star3_profile())
-    r = _run(certify_command, [i, p])
+    i = write_doc(tmp_path, "star.json", star3_document())
+    p = write_doc(tmp_path, "p.json", star3_profile())
+    r = run_cli(certify_command, [i, p])
     assert r.exit_code == 0 and r.output.startswith("verdict: PASS (7/7 checks passed; H = 2")
-    r = _run(certify_command, [i, p, "--json", "-H", "4"])
+    r = run_cli(certify_command, [i, p, "--json", "-H", "4"])
     cert = Certificate.from_json(r.output)
     assert r.exit_code == 1 and cert.check("ngoal.pbne.attacker_br").status == "fail"
-    r = _run(certify_command, [i, p, "-H", "inf"])
+    r = run_cli(certify_command, [i, p, "-H", "inf"])
     assert r.exit_code == 2 and "give a finite --horizon" in r.output
-    two = _write(tmp_path, "two.json", {"format": "dpp-profile/1"})
-    r = _run(certify_command, [i, two])
+    two = write_doc(tmp_path, "two.json", {"format": "dpp-profile/1"})
+    r = run_cli(certify_command, [i, two])
     assert r.exit_code == 2 and "dpp-ngoal-profile/1" in r.output
 
 
 def test_python_m_dppverify_dispatches_too(tmp_path: Path) -> None:
-    i = _write(tmp_path, "star.json", star3_document())
+    i = write_doc(tmp_path, "star.json", star3_document())
     out = subprocess.run([sys.executable, "-m", "dppverify", "value", i, "-H", "2", "--route",
                           "structured"], capture_output=True, text=True, check=False)
     assert out.returncode == 0, out.stderr
