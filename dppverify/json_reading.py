@@ -6,7 +6,8 @@ document passes through this module once on its way to a parsed object:
 
 - :func:`read_json_file` / :func:`parse_json`: bounded file reading and JSON text with exact
   decimals (``docs/formats.md``, "Numbers"), one-line errors;
-- :func:`parse_number`: one exact number (``3``, ``0.6`` = 3/5, ``"p/q"``);
+- :func:`parse_number`, :func:`parse_probability`: one exact number (``3``, ``0.6`` = 3/5,
+  ``"p/q"``), one probability;
 - :func:`node_from_json`, :func:`lookup_node`, :func:`show_node`, :func:`node_to_json`: node
   ids (JSON lists become tuples: ``[2, 3]`` is the grid cell ``(2, 3)``);
 - :func:`resolve_walk`: a JSON walk ``[s0, …, s_t]`` checked against a game and turned into
@@ -37,8 +38,8 @@ from dppverify.files import read_input
 from dppverify.limits import MAX_JSON_DEPTH, MAX_NUMERAL_CHARS, check_numeral, check_rational
 
 __all__ = ["JsonReadError", "Node", "WalkGame", "lookup_node", "node_from_json", "node_to_json",
-           "parse_json", "parse_json_text", "parse_number", "read_json_file", "resolve_walk",
-           "show_node"]
+           "parse_json", "parse_json_text", "parse_number", "parse_probability", "read_json_file",
+           "resolve_walk", "show_node"]
 
 Node = Hashable
 """A node id after JSON conversion (lists become tuples)."""
@@ -228,6 +229,28 @@ def parse_number(value: object, *, where: str, allow_float: bool = False) -> Num
         check_rational(exact, where=where)
         return exact
     raise ValueError(f"{where}: expected a number, got {type(value).__name__}")
+
+
+def parse_probability(value: object, *, where: str) -> Fraction:
+    """Parse one probability exactly: a number in ``[0, 1]``.
+
+    Raises
+    ------
+    ValueError
+        ``where: …`` when ``value`` is not a number or lies outside ``[0, 1]``.
+
+    Examples
+    --------
+    >>> parse_probability("4/7", where="p"), parse_probability(1, where="p")
+    (Fraction(4, 7), Fraction(1, 1))
+    >>> parse_probability(1.5, where="attacker[0][1].probability")
+    Traceback (most recent call last):
+    ValueError: attacker[0][1].probability: probability 3/2 is outside [0, 1]
+    """
+    x = Fraction(parse_number(value, where=where))
+    if not 0 <= x <= 1:
+        raise ValueError(f"{where}: probability {x} is outside [0, 1]")
+    return x
 
 
 # --- nodes ----------------------------------------------------------------------------------

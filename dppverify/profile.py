@@ -35,6 +35,7 @@ from dppverify.json_reading import (
     JsonReadError,
     lookup_node,
     parse_number,
+    parse_probability,
     read_json_file,
     resolve_walk,
     show_node,
@@ -223,15 +224,11 @@ class _Collector:
             return None
 
     def probability(self, raw: Any, where: str) -> Fraction | None:
-        x = self.number(raw, where)
-        if x is None:
+        try:
+            return parse_probability(raw, where=where)
+        except ValueError as exc:
+            self.add(where, str(exc).split(": ", 1)[-1])
             return None
-        if isinstance(x, float):  # pragma: no cover - parse_number is exact here
-            x = Fraction(x)
-        if not 0 <= x <= 1:
-            self.add(where, f"probability {x} is outside [0, 1]")
-            return None
-        return Fraction(x)
 
 
 def profile_from_json(doc: Mapping[str, Any], instance: Instance,

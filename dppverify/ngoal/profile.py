@@ -37,6 +37,7 @@ from dppverify.json_reading import (
     JsonReadError,
     lookup_node,
     parse_number,
+    parse_probability,
     read_json_file,
     resolve_walk,
 )
@@ -113,14 +114,10 @@ instance with more than two goals, got "dpp-profile/1"
 
 def _probability(raw: Any, where: str, defects: list[str]) -> Fraction | None:
     try:
-        x = Fraction(parse_number(raw, where=where))
+        return parse_probability(raw, where=where)
     except ValueError as exc:
         defects.append(str(exc))
         return None
-    if not 0 <= x <= 1:
-        defects.append(f"{where}: probability {x} is outside [0, 1]")
-        return None
-    return x
 
 
 def _distribution(raw: Any, n: int, where: str, defects: list[str]
