@@ -1,9 +1,10 @@
 """Export the truncated game as a Gambit ``.efg`` file (for peer tools: Gambit, OpenSpiel).
 
 The exported extensive-form game is the truncated game of proofs/LP.md with the Defender's
-allocations made explicit moves. One writer serves two goals (:class:`~dppverify.instance.
-Instance`, :class:`~dppverify.tree.WalkTree`) and N goals (:class:`~dppverify.ngoal.instance.
-NInstance`, :class:`~dppverify.ngoal.tree.NWalkTree`, ``docs/formats.md`` §2b); with N types:
+allocations made explicit moves. One writer serves two goals
+(:class:`~dppverify.instance.Instance`, :class:`~dppverify.tree.WalkTree`) and N goals
+(:class:`~dppverify.ngoal.instance.NInstance`, :class:`~dppverify.ngoal.tree.NWalkTree`;
+``docs/formats.md`` §1, "N goals"); with N types:
 
 1. **chance** draws the Attacker's type θ (its true goal g^θ, θ = 1 … N) with the prior ``b``
    (exact rationals);
@@ -25,9 +26,9 @@ NInstance`, :class:`~dppverify.ngoal.tree.NWalkTree`, ``docs/formats.md`` §2b);
    the Defender receives it (zero-sum).
 
 The value of this game for the Defender is ``V_H`` (:func:`dppverify.game_value`; for N goals
-:func:`dppverify.ngoal.value_lp.ngame_value`) in both
-variants: observing the Defender's past moves is worthless to the Attacker (they never
-change the state), which is what the peer cross-check in ``tests/peers`` confirms.
+:func:`dppverify.ngoal.value_lp.ngame_value`) in both variants: observing the Defender's past
+moves is worthless to the Attacker (they never change the state), which is what the peer
+cross-check in ``tests/peers`` confirms (for two goals and for N = 3, 4).
 
 Size: a prefix with ``t`` steps appears ``N^t`` times per type (once per Defender history),
 so the game has ``1 + N·Σ_p (N^t·[p a choice] + N^(t-1)·[t ≥ 1] + N^t·[p leaf])`` nodes,
@@ -366,7 +367,7 @@ def _build(instance: GameInstance, horizon: int, max_prefixes: int,
            progress: bool = False) -> GameTree:
     """The walk tree of either kind of instance (the size guard counts it first)."""
     if isinstance(instance, NInstance):
-        return build_ntree(instance, horizon, max_prefixes=max_prefixes)
+        return build_ntree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
     return build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
 
 
@@ -423,7 +424,7 @@ def write_efg(path: str | Path, instance: GameInstance, horizon: int, *,
     """Write :func:`to_efg` to ``path`` atomically (a temporary file, then a rename).
 
     Returns the game's size. Nothing is written when the game cannot be built. With
-    ``progress``, tqdm bars on stderr show the tree build (two goals) and the export.
+    ``progress``, tqdm bars on stderr show the tree build and the export.
 
     Raises
     ------

@@ -322,7 +322,7 @@ def _run(args: list[str]) -> Any:
     return result
 
 
-@pytest.mark.parametrize("flags", [[], ["--attacker-blind"], ["--forced-moves"],
+@pytest.mark.parametrize("flags", [[], ["--attacker-blind"], ["--forced-moves"], ["--progress"],
                                    ["--attacker-blind", "--forced-moves", "--no-progress"]])
 def test_cli_export_efg_n_goals(tmp_path: Path, flags: list[str]) -> None:
     path = tmp_path / "kite3.json"
