@@ -244,7 +244,7 @@ def test_chance_node_and_action_order(name: str, doc: dict[str, Any], horizon: i
             assert [rank[a] for a in x.actions] == sorted(rank[a] for a in x.actions)
 
 
-@pytest.mark.parametrize(("observes", "forced"), VARIANTS[:2], ids=VARIANT_IDS[:2])
+@pytest.mark.parametrize(("observes", "forced"), VARIANTS, ids=VARIANT_IDS)
 @pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
 def test_sequence_form_lp_of_the_export_gives_the_tree_value_and_the_dp(
         name: str, doc: dict[str, Any], horizon: int, observes: bool, forced: bool) -> None:

@@ -41,7 +41,7 @@ from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.value_lp import ngame_value
 from tests.checker._helpers import triangle_doc
 from tests.checker.test_efg import FRACTIONAL, GRID, KITE, LADDER, THIRDS
-from tests.ngoal.test_efg import NCASES, NIDS
+from tests.ngoal.test_efg import DROP3, NCASES, NIDS
 
 pytestmark = pytest.mark.peers
 
@@ -220,3 +220,24 @@ def test_gambit_exact_lp_gives_exactly_the_n_goal_value(gambit: ModuleType, tmp_
     assert isinstance(defender, Fraction)
     assert defender == exact and attacker == -exact
     assert eq.agent_max_regret() == 0
+
+
+@pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
+def test_forced_moves_are_harmless_for_openspiel_on_n_goals(openspiel: Any, name: str,
+                                                            doc: dict[str, Any],
+                                                            horizon: int) -> None:
+    exact = _exact_nvalue(doc, horizon)
+    text = to_efg(ninstance_from_json(doc), horizon, forced_moves=True)
+    v0, v1, _ = _openspiel_value(openspiel, text)
+    assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
+    assert abs(v1 - float(exact)) <= OPENSPIEL_TOLERANCE
+
+
+@pytest.mark.xfail(strict=True, reason="Gambit 17.0.0b2 lp_solve (extensive form) mis-solves "
+                   "games with one-action information sets, with N goals too: 8 instead of "
+                   "21/2 here (drop3, H = 2: one forced walk)")
+def test_pitfall_gambit_one_action_infosets_n_goals(gambit: ModuleType, tmp_path: Path) -> None:
+    exact = _exact_nvalue(DROP3, 2)
+    text = to_efg(ninstance_from_json(DROP3), 2, forced_moves=True)
+    eq = _gambit_solve(gambit, text, tmp_path)
+    assert eq.payoffs["Defender"] == exact
