@@ -24,7 +24,7 @@ import cvxpy as cp
 import numpy as np
 
 from dppverify.defender import TreeDefender
-from dppverify.exact import INF, Number, normalize
+from dppverify.exact import INF, Number
 from dppverify.instance import Roles
 from dppverify.lp import LPStats, realization_constraints, solve
 from dppverify.tree import WalkTree
@@ -189,7 +189,7 @@ def attacker_best_response(tree: WalkTree, roles: Roles, tdef: TreeDefender, the
     p = 0
     while best[p] >= 0:
         p = best[p]
-    value = normalize(J[0]) if tree.instance.exact else float(J[0])
+    value = tree.instance.numbers.convert(J[0])
     return AttackerBR(theta=theta, value=value, leaf=p, walk=tree.walk(p))
 
 
@@ -320,7 +320,7 @@ def payoff_on_tree(tree: WalkTree, roles: Roles, tdef: TreeDefender,
         for p, prob in x.items():
             if p:
                 total += b * prob * a[p]
-    return normalize(total) if tree.instance.exact else float(total)
+    return tree.instance.numbers.convert(total)
 
 
 def defender_best_response(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
@@ -349,7 +349,7 @@ def defender_best_response(tree: WalkTree, roles: Roles, x1: Mapping[int, Fracti
         v2 = roles.b2 * x2.get(p, Fraction(0))
         sigma[p] = 1 if v1 >= v2 else 0
         total += w[p] * max(v1, v2)
-    value = normalize(total) if tree.instance.exact else float(total)
+    value = tree.instance.numbers.convert(total)
     return DefenderBR(value=value, sigma1=sigma)
 
 

@@ -8,7 +8,7 @@ consistency, the value ``V_H``, and the paper's lemmas on the instance. See
 Numbers: rational instances are certified exactly (``Fraction``); LP values are reported
 beside the exact ones. Instances in float mode (``"numbers": "float"``) cannot be certified
 exactly: ``certify`` refuses them unless ``exact=False``, which compares with the relative
-tolerance :data:`~dppverify.exact.FLOAT_TOLERANCE` and says so in the certificate.
+tolerance :data:`~dppverify.numbers.DEFAULT_REL_TOL` and says so in the certificate.
 """
 
 from __future__ import annotations
@@ -30,7 +30,6 @@ from dppverify.errors import (
     ProfileError,
     TreeTooLargeError,
 )
-from dppverify.exact import FLOAT_TOLERANCE, Tolerance
 from dppverify.instance import Instance, as_instance, node_to_json
 from dppverify.lemmas import (
     l1_lower_bound,
@@ -42,6 +41,7 @@ from dppverify.lemmas import (
     xi2_secondary_value,
 )
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
+from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.pbne import (
     attacker_br,
     belief_consistency,
@@ -73,7 +73,7 @@ DEFAULT_TRIALS = 5
 FLOAT_MODE_REFUSED = (
     "the instance uses \"numbers\": \"float\" (binary float weights), so it cannot be "
     "certified exactly; certify in float mode with exact=False (CLI: --float), which compares "
-    f"with relative tolerance {FLOAT_TOLERANCE:g}")
+    f"with relative tolerance {DEFAULT_REL_TOL:g}")
 
 
 
@@ -235,9 +235,8 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     inst = resolve_instance(instance)
     if not inst.exact and exact:
         raise InvalidInstanceError(FLOAT_MODE_REFUSED)
-    tol = Tolerance(exact=inst.exact)
     doc = _profile_document(profile)
-    prof = profile_from_json(doc, inst, tol)
+    prof = profile_from_json(doc, inst, inst.numbers)
     longest = default_horizon(inst, prof)
     if isinstance(horizon, int) and horizon < longest:
         raise HorizonError(f"the horizon H = {horizon} is shorter than the profile's longest "
@@ -251,12 +250,12 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
         prefixes, leaves = tree.n_prefixes, tree.n_leaves
         with tqdm(total=len(CHECK_IDS) + 1, desc="certify: strategies on the tree",
                   unit="check", disable=not progress, leave=False, file=sys.stderr) as bar:
-            ctx = make_context(inst, tree, prof, tol, seed=seed, trials=trials)
+            ctx = make_context(inst, tree, prof, seed=seed, trials=trials)
             bar.update(1)
             tree_checks = _run_checks(ctx, bar)
     checks = tree_checks
     if chosen in ("structured", "both"):
-        structured = in_registry_order(structured_checks(inst, prof, tol, h), "structured")
+        structured = in_registry_order(structured_checks(inst, prof, h), "structured")
         checks = structured if chosen == "structured" else _merge(tree_checks, structured)
     roles = inst.roles(prof.primary_slot)
     defender = doc.get("defender")
@@ -270,7 +269,8 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
         "defender_rule": defender.get("rule") if isinstance(defender, Mapping) else None,
     }
     return Certificate(checks=tuple(checks), horizon=h, exact=inst.exact,
-                       tolerance=tol.tolerance, lp_solver=LP_SOLVER, lp_tolerance=LP_TOLERANCE,
+                       tolerance=inst.numbers.rel_tol, lp_solver=LP_SOLVER,
+                       lp_tolerance=LP_TOLERANCE,
                        prefixes=prefixes, leaves=leaves, seed=seed, info=info, route=chosen,
                        not_run=not_run("structured") if chosen == "structured" else {})
 

@@ -10,8 +10,8 @@ from fractions import Fraction
 from dppverify.best_response import AttackerBR, attacker_best_response
 from dppverify.defender import TreeDefender, tree_defender
 from dppverify.evaluation import realization
-from dppverify.exact import Tolerance
 from dppverify.instance import Instance, Roles
+from dppverify.numbers import NumberMode
 from dppverify.profile import Profile, ProgressRule
 from dppverify.tree import WalkTree
 
@@ -28,8 +28,6 @@ class Context:
         The game, its walk tree at the chosen horizon, the resolved profile.
     roles : Roles
         The labelling the profile uses (primary = ``profile.primary_slot``).
-    tol : Tolerance
-        Exact comparisons, or float mode's tolerance.
     sigma_star : TreeDefender
         The paper's σ* (progress towards ``g1``) on every prefix: used by the lemma checks
         whatever Defender the profile proposes.
@@ -47,7 +45,6 @@ class Context:
     tree: WalkTree
     profile: Profile
     roles: Roles
-    tol: Tolerance
     sigma_star: TreeDefender
     defender: TreeDefender | None
     x1: dict[int, Fraction] | None
@@ -56,6 +53,11 @@ class Context:
     trials: int
     undefined: tuple[int, ...] = ()
     _best_responses: dict[tuple[int, int], AttackerBR] = field(default_factory=dict, repr=False)
+
+    @property
+    def numbers(self) -> NumberMode:
+        """The instance's number mode: exact comparisons, or float mode's tolerance."""
+        return self.instance.numbers
 
     @property
     def usable(self) -> bool:
@@ -85,7 +87,7 @@ class Context:
         return self._best_responses[key]
 
 
-def make_context(instance: Instance, tree: WalkTree, profile: Profile, tol: Tolerance,
+def make_context(instance: Instance, tree: WalkTree, profile: Profile,
                  *, seed: int, trials: int) -> Context:
     """Evaluate both Defenders on the tree and the profile's realization plans.
 
@@ -97,8 +99,6 @@ def make_context(instance: Instance, tree: WalkTree, profile: Profile, tol: Tole
         Its walk tree at the chosen horizon.
     profile : Profile
         The resolved profile (:func:`~dppverify.profile.profile_from_json`).
-    tol : Tolerance
-        Exact comparisons, or float mode's tolerance.
     seed, trials : int
         Seed and number of the random attackers of the L3/L4 checks.
 
@@ -121,8 +121,7 @@ def make_context(instance: Instance, tree: WalkTree, profile: Profile, tol: Tole
     ...     "attacker": {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
     ...                              {"path": ["s", "g2"], "probability": "3/7"}],
     ...                  "secondary": [{"path": ["s", "g2"], "probability": 1}]}}, inst)
-    >>> ctx = make_context(inst, build_tree(inst, 1), prof, Tolerance(exact=True),
-    ...                    seed=0, trials=2)
+    >>> ctx = make_context(inst, build_tree(inst, 1), prof, seed=0, trials=2)
     >>> ctx.usable, ctx.x1
     (True, {0: Fraction(1, 1), 1: Fraction(4, 7), 2: Fraction(3, 7)})
     >>> ctx.x2
@@ -146,6 +145,6 @@ def make_context(instance: Instance, tree: WalkTree, profile: Profile, tol: Tole
             x2 = realization(tree, profile.secondary)
         except KeyError:  # pragma: no cover - the horizon covers every profile walk
             x1 = x2 = None
-    return Context(instance=instance, tree=tree, profile=profile, roles=roles, tol=tol,
+    return Context(instance=instance, tree=tree, profile=profile, roles=roles,
                    sigma_star=sigma_star, defender=defender, x1=x1, x2=x2, seed=seed,
                    trials=trials, undefined=undefined)

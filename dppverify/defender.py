@@ -15,33 +15,19 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from fractions import Fraction
 
 from dppverify.errors import InvalidInstanceError, ProfileError
-from dppverify.exact import Number, normalize
+from dppverify.exact import Number
 from dppverify.instance import Instance, Roles
 from dppverify.profile import DefenderRule, ProgressRule, TableRule
 from dppverify.tree import WalkTree
 
-__all__ = ["TreeDefender", "UndefinedStrategyError", "divide", "progress_along", "sigma_along",
+__all__ = ["TreeDefender", "UndefinedStrategyError", "progress_along", "sigma_along",
            "step_weight", "tree_defender"]
 
 
 class UndefinedStrategyError(LookupError):
     """A table Defender without default has no entry for a walk the game reaches."""
-
-
-def divide(a: Number, b: Number, exact: bool) -> Number:
-    """``a / b``: exact (``int`` when integral) for rationals, float in float mode.
-
-    Examples
-    --------
-    >>> divide(3, 6, True), divide(4, 2, True), divide(1.0, 4.0, False)
-    (Fraction(1, 2), 2, 0.25)
-    """
-    if not exact or isinstance(a, float) or isinstance(b, float):
-        return float(a) / float(b)
-    return normalize(Fraction(a) / Fraction(b))
 
 
 def step_weight(instance: Instance, walk: Sequence[int], t: int) -> Number:
@@ -97,12 +83,11 @@ def progress_along(instance: Instance, goal: int, walk: Sequence[int]) -> list[N
 def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[int]
                         ) -> list[Number]:
     """σ(rule.goal | walk[:t+1]) for t = 1..T."""
-    exact = instance.exact
     if isinstance(rule, ProgressRule):
         prog = progress_along(instance, rule.goal, walk)
         out = []
         for t, pr in enumerate(prog, start=1):
-            out.append(_clamp(divide(pr, step_weight(instance, walk, t), exact), exact))
+            out.append(instance.numbers.ratio(pr, step_weight(instance, walk, t)))
         return out
     result: list[Number] = []
     progress: list[Number] | None = None
@@ -120,12 +105,6 @@ def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[i
             raise UndefinedStrategyError(f"the Defender's table has no entry for walk "
                                          f"{instance.labels(key)} and no default")
     return result
-
-
-def _clamp(x: Number, exact: bool) -> Number:
-    if exact:
-        return x
-    return min(1.0, max(0.0, float(x)))
 
 
 def sigma_along(instance: Instance, roles: Roles, rule: DefenderRule,
@@ -153,8 +132,8 @@ def sigma_along(instance: Instance, roles: Roles, rule: DefenderRule,
     sigma = _rule_sigma_to_goal(instance, rule, walk)
     if rule.goal == roles.g1:
         return sigma
-    one: Number = 1 if instance.exact else 1.0
-    return [normalize(one - s) if instance.exact else one - s for s in sigma]
+    mode = instance.numbers
+    return [mode.difference(mode.one(), s) for s in sigma]
 
 
 @dataclass(frozen=True)
@@ -221,7 +200,7 @@ def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefen
     ([('s', 'g1'), ('s', 'g2')], (0, 1, Fraction(1, 2)), (0, 3, 1), (0, 0, 1))
     """
     inst = tree.instance
-    exact = inst.exact
+    mode = inst.numbers
     n = tree.n_prefixes
     weight = tree.weight
     sigma_goal: list[Number] = [0] * n
@@ -232,9 +211,9 @@ def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefen
     if progress_goal is not None:
         prog = _progress_on_tree(tree, progress_goal)
         for p in range(1, n):
-            s = _clamp(divide(prog[p], weight[p], exact), exact)
+            s = mode.ratio(prog[p], weight[p])
             sigma_goal[p] = s
-            amount[p] = prog[p] if exact else float(weight[p]) * float(s)
+            amount[p] = prog[p] if mode.exact else mode.product(weight[p], s)
     elif isinstance(rule, TableRule) and rule.default is not None:
         assert not isinstance(rule.default, ProgressRule)
         fill: Number = rule.default
@@ -249,7 +228,7 @@ def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefen
                 listed.add(p_idx)
         if rule.default is None:
             undefined = [p for p in range(1, n) if p not in listed]
-    one: Number = 1 if exact else 1.0
+    one = mode.one()
     to_g1 = rule.goal == roles.g1
     sigma1: list[Number] = [0] * n
     alloc1: list[Number] = [0] * n
@@ -258,12 +237,12 @@ def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefen
         w = weight[p]
         a = amount[p]
         if a is None:
-            a = normalize(w * sigma_goal[p]) if exact else float(w) * float(sigma_goal[p])
-        b = normalize(w - a) if exact else float(w) - float(a)
+            a = mode.product(w, sigma_goal[p])
+        b = mode.difference(w, a)
         if to_g1:
             sigma1[p], alloc1[p], alloc2[p] = sigma_goal[p], a, b
         else:
-            s = normalize(one - sigma_goal[p]) if exact else one - float(sigma_goal[p])
+            s = mode.difference(one, sigma_goal[p])
             sigma1[p], alloc1[p], alloc2[p] = s, b, a
     return TreeDefender(sigma1=tuple(sigma1), alloc1=tuple(alloc1), alloc2=tuple(alloc2),
                         undefined=tuple(undefined))

@@ -54,7 +54,7 @@ def walk_cost(instance: Instance, roles: Roles, rule: DefenderRule, walk: tuple[
         w = step_weight(instance, walk, t)
         total += w * (s if theta == 1 else 1 - s)
     total += roles.dist(theta)[walk[-1]]
-    return normalize(total) if instance.exact else float(total)
+    return instance.numbers.convert(total)
 
 
 def complete_information_value(instance: Instance, roles: Roles) -> Number:
@@ -107,16 +107,16 @@ def evaluate(instance: Instance, roles: Roles, rule: DefenderRule,
     >>> [str(x) for x in (v.U1, v.U2, v.U, v.U_bar, v.VoI)]
     ['3', '1', '12/5', '27/10', '1/9']
     """
+    mode = instance.numbers
     u: dict[int, Number] = {}
     for theta, walks in ((1, primary), (2, secondary)):
         acc: Number = 0
         for mw in walks:
             acc += mw.probability * walk_cost(instance, roles, rule, mw.walk, theta)
-        u[theta] = normalize(acc) if instance.exact else float(acc)
-    U = roles.b1 * u[1] + roles.b2 * u[2]
-    U = normalize(U) if instance.exact else float(U)
+        u[theta] = mode.convert(acc)
+    U = mode.convert(roles.b1 * u[1] + roles.b2 * u[2])
     U_bar = complete_information_value(instance, roles)
-    if instance.exact:
+    if mode.exact:
         voi: Number = normalize(Fraction(U_bar - U) / Fraction(U_bar))
     else:
         voi = (float(U_bar) - float(U)) / float(U_bar)

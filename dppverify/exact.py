@@ -10,26 +10,21 @@ done with the numbers once read.
 Exact values are kept as ``int`` when integral and as ``Fraction`` otherwise (integer
 arithmetic is much faster than ``Fraction`` arithmetic, and most instances have integer
 weights). Float mode (instances with ``"numbers": "float"``) keeps edge weights as floats;
-every comparison then goes through a :class:`Tolerance`.
+how numbers are compared is the instance's number mode (:mod:`dppverify.numbers`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from fractions import Fraction
 
-__all__ = ["FLOAT_TOLERANCE", "INF", "Number", "Tolerance", "format_number", "normalize",
-           "to_float"]
+__all__ = ["INF", "Number", "format_number", "normalize", "to_float"]
 
 Number = int | Fraction | float
 """An exact rational (``int`` or ``Fraction``) or, in float mode, a ``float``."""
 
 INF = math.inf
 """Distance to an unreachable node."""
-
-FLOAT_TOLERANCE = 1e-9
-"""Relative tolerance of float mode: ``|a - b| <= 1e-9 * max(1, |a|, |b|)``."""
 
 
 def normalize(x: Number) -> Number:
@@ -69,49 +64,3 @@ def to_float(x: Number) -> float:
     0.25
     """
     return float(x)
-
-
-@dataclass(frozen=True)
-class Tolerance:
-    """Equality and order of numbers: exact, or within a relative tolerance in float mode.
-
-    Exact mode (``exact=True``) compares with ``==`` and ``<=``: no tolerance is ever
-    applied to rational inputs. Float mode treats ``a`` and ``b`` as equal when
-    ``|a - b| <= rel * max(1, |a|, |b|)``.
-
-    Examples
-    --------
-    >>> Tolerance(exact=True).eq(Fraction(1, 3), Fraction(2, 6))
-    True
-    >>> Tolerance(exact=False).eq(0.1 + 0.2, 0.3), Tolerance(exact=True).eq(0.1 + 0.2, 0.3)
-    (True, False)
-    >>> Tolerance(exact=False).lt(1.0, 1.0 + 1e-12)
-    False
-    """
-
-    exact: bool
-    rel: float = FLOAT_TOLERANCE
-
-    @property
-    def tolerance(self) -> float | None:
-        """The relative tolerance in float mode, ``None`` when exact."""
-        return None if self.exact else self.rel
-
-    def _slack(self, a: Number, b: Number) -> float:
-        return self.rel * max(1.0, abs(float(a)), abs(float(b)))
-
-    def eq(self, a: Number, b: Number) -> bool:
-        """``a == b`` (within the tolerance in float mode)."""
-        if self.exact:
-            return bool(a == b)
-        return abs(float(a) - float(b)) <= self._slack(a, b)
-
-    def le(self, a: Number, b: Number) -> bool:
-        """``a <= b`` (within the tolerance in float mode)."""
-        if self.exact:
-            return bool(a <= b)
-        return float(a) <= float(b) + self._slack(a, b)
-
-    def lt(self, a: Number, b: Number) -> bool:
-        """``a < b`` by more than the tolerance (strictly, in exact mode)."""
-        return not self.le(b, a)

@@ -103,11 +103,9 @@ def triangle_context(attacker: dict[str, Any] | None = None, *, horizon: int = 1
     (3, Fraction(4, 7))
     """
     from dppverify.context import make_context
-    from dppverify.exact import Tolerance
     from dppverify.profile import profile_from_json
     from dppverify.tree import build_tree
 
     inst = triangle()
     prof = profile_from_json(triangle_profile(attacker, **claims), inst)
-    return make_context(inst, build_tree(inst, horizon), prof, Tolerance(exact=True), seed=0,
-                        trials=2)
+    return make_context(inst, build_tree(inst, horizon), prof, seed=0, trials=2)

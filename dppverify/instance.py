@@ -30,6 +30,7 @@ from dppverify.json_reading import (
     read_json_file,
     show_node,
 )
+from dppverify.numbers import NumberMode, number_mode
 
 __all__ = ["GameInstance", "Instance", "Node", "Roles", "as_instance", "instance_from_json",
            "load_game", "load_instance", "node_from_json", "node_to_json", "read_game",
@@ -115,6 +116,12 @@ class GameInstance:
     exact: bool
     dist_to: tuple[tuple[Number, ...], ...]
     hops: tuple[int, ...]
+
+    @property
+    def numbers(self) -> NumberMode:
+        """The number mode (:mod:`dppverify.numbers`): exact, or float within a relative
+        tolerance."""
+        return number_mode(self.exact)
 
     @property
     def n_nodes(self) -> int:

@@ -38,7 +38,7 @@ from dppverify.context import Context
 from dppverify.defender import sigma_along
 from dppverify.distances import dijkstra
 from dppverify.evaluation import realization
-from dppverify.exact import Number, normalize
+from dppverify.exact import Number
 from dppverify.lp import lp_agrees
 from dppverify.pbne import NOT_WELLFORMED, phases_of
 from dppverify.profile import ProgressRule, StrategyPath
@@ -85,11 +85,11 @@ def telescoping(ctx: Context) -> CheckRecord:
     >>> r.status, dict(r.numbers)
     ('pass', {'prefixes': 3, 'sum_violations': 0, 'range_violations': 0})
     """
-    tree, roles, tol = ctx.tree, ctx.roles, ctx.tol
+    tree, roles, mode = ctx.tree, ctx.roles, ctx.numbers
     d1 = roles.d1
     node = tree.node.tolist()
     parent = tree.parent.tolist()
-    s1, weight, exact = ctx.sigma_star.sigma1, tree.weight, ctx.instance.exact
+    s1, weight = ctx.sigma_star.sigma1, tree.weight
     c: list[Number] = [d1[node[0]]] * tree.n_prefixes
     acc: list[Number] = [0] * tree.n_prefixes
     bad_sum = bad_range = 0
@@ -97,11 +97,11 @@ def telescoping(ctx: Context) -> CheckRecord:
         q = parent[p]
         c[p] = min(c[q], d1[node[p]])
         # the probability σ*(g1) times the step's weight, not σ*'s stored increment c_{t-1} − c_t
-        taken = normalize(weight[p] * s1[p]) if exact else float(weight[p]) * float(s1[p])
+        taken = mode.product(weight[p], s1[p])
         acc[p] = acc[q] + taken
-        if not tol.eq(acc[p], c[0] - c[p]):
+        if not mode.equal(acc[p], c[0] - c[p]):
             bad_sum += 1
-        if not (tol.le(0, s1[p]) and tol.le(s1[p], 1)):
+        if not (mode.at_most(0, s1[p]) and mode.at_most(s1[p], 1)):
             bad_range += 1
     numbers: dict[str, Number | None] = {"prefixes": tree.n_prefixes,
                                          "sum_violations": bad_sum,
@@ -147,7 +147,7 @@ def l1_lower_bound(ctx: Context) -> CheckRecord:
     >>> r.status, r.numbers["d_s0_g1"], r.numbers["min_U1"], r.numbers["walks_to_g2_attaining"]
     ('pass', 3, 3, 1)
     """
-    tree, roles, tol = ctx.tree, ctx.roles, ctx.tol
+    tree, roles, mode = ctx.tree, ctx.roles, ctx.numbers
     inst = ctx.instance
     d0 = roles.d1[inst.start]
     totals = leaf_totals(tree, roles, ctx.sigma_star, 1)
@@ -157,17 +157,17 @@ def l1_lower_bound(ctx: Context) -> CheckRecord:
     d21 = roles.d1[roles.g2]
     at_g1 = [p for p in leaves if int(tree.node[p]) == roles.g1]
     at_g2 = [p for p in leaves if int(tree.node[p]) == roles.g2]
-    bad_g1 = [p for p in at_g1 if not tol.eq(totals[p], d0)]
-    bad_g2 = [p for p in at_g2 if not tol.eq(totals[p], d0 - cs[p][1] + d21)
-              or tol.lt(totals[p], d0)]
-    attain_g2 = [p for p in at_g2 if tol.eq(totals[p], d0)]
+    bad_g1 = [p for p in at_g1 if not mode.equal(totals[p], d0)]
+    bad_g2 = [p for p in at_g2 if not mode.equal(totals[p], d0 - cs[p][1] + d21)
+              or mode.less_than(totals[p], d0)]
+    attain_g2 = [p for p in at_g2 if mode.equal(totals[p], d0)]
     minimum = min(totals[p] for p in leaves)
     numbers: dict[str, Number | None] = {"d_s0_g1": d0, "min_U1": minimum,
                                          "min_U1_backward": br.value, "walks_to_g1": len(at_g1),
                                          "walks_to_g2": len(at_g2),
                                          "walks_to_g2_attaining": len(attain_g2)}
     problems = []
-    if not (tol.eq(minimum, d0) and tol.eq(br.value, d0)):
+    if not (mode.equal(minimum, d0) and mode.equal(br.value, d0)):
         problems.append(f"the minimum of U¹ is {show(minimum)} (backward induction "
                         f"{show(br.value)}), not d(s0,g1) = {show(d0)}")
     if bad_g1:
@@ -212,7 +212,7 @@ def l2_no_revisits(ctx: Context) -> CheckRecord:
     >>> r.numbers["min_U2_revisiting"] is None
     True
     """
-    tree, roles, tol = ctx.tree, ctx.roles, ctx.tol
+    tree, roles, mode = ctx.tree, ctx.roles, ctx.numbers
     totals = leaf_totals(tree, roles, ctx.sigma_star, 2)
     simple = simple_mask(tree)
     leaves = tree.leaves().tolist()
@@ -226,8 +226,9 @@ def l2_no_revisits(ctx: Context) -> CheckRecord:
     numbers: dict[str, Number | None] = {"min_U2_walks": m_all, "min_U2_paths": m_simple,
                                          "min_U2_revisiting": m_non, "walks": len(leaves),
                                          "paths": len(simple_leaves)}
-    ok = (tol.eq(m_all, m_simple) and tol.eq(br_all.value, m_all)
-          and tol.eq(br_simple.value, m_simple) and (m_non is None or tol.lt(m_all, m_non)))
+    ok = (mode.equal(m_all, m_simple) and mode.equal(br_all.value, m_all)
+          and mode.equal(br_simple.value, m_simple)
+          and (m_non is None or mode.less_than(m_all, m_non)))
     if ok:
         tail = ("no walk of the tree revisits a node" if m_non is None else
                 f"every walk that revisits a node costs more (at least {show(m_non)})")
@@ -264,18 +265,18 @@ def xi2_secondary_value(ctx: Context) -> CheckRecord:
     >>> r.status, dict(r.numbers)
     ('pass', {'M': 4, 'U2_star': 1, 'min_U2_tree': 1})
     """
-    inst, roles, tol = ctx.instance, ctx.roles, ctx.tol
+    inst, roles, mode = ctx.instance, ctx.roles, ctx.numbers
     d0 = dijkstra(inst.succ, inst.start)
     M = min(d0[v] + roles.d1[v] + roles.d2[v] for v in range(inst.n_nodes))
     u2_star = M - roles.d1[inst.start]
-    u2_star = normalize(u2_star) if inst.exact else float(u2_star)
+    u2_star = mode.convert(u2_star)
     br = ctx.best_response(ctx.sigma_star, 2)
     numbers: dict[str, Number | None] = {"M": M, "U2_star": u2_star, "min_U2_tree": br.value}
-    if tol.lt(br.value, u2_star):
+    if mode.less_than(br.value, u2_star):
         return CheckRecord("lemma.XI2.secondary_value", "fail",
                            f"the walk {show_walk(inst, br.walk)} costs the secondary "
                            f"{show(br.value)} < M − d(s0,g1) = {show(u2_star)}", numbers, "XI2")
-    how = ("equals it" if tol.eq(br.value, u2_star) else
+    how = ("equals it" if mode.equal(br.value, u2_star) else
            f"exceeds it: an optimal path needs more than H = {ctx.tree.horizon} steps")
     return CheckRecord("lemma.XI2.secondary_value", "pass",
                        f"min over the tree of U² against σ* is {show(br.value)}; M − d(s0,g1) = "
@@ -506,7 +507,7 @@ def l5_induced_beliefs(ctx: Context) -> CheckRecord:
                            "walks, Lemma 5 is about the paper's deterministic ξ²", {}, "L5")
     inst, tree, roles = ctx.instance, ctx.tree, ctx.roles
     xi2 = sec[0].walk
-    t1, t2, T = phases_of(sigma_along(inst, roles, ProgressRule(roles.g1), xi2), ctx.tol)
+    t1, t2, T = phases_of(sigma_along(inst, roles, ProgressRule(roles.g1), xi2), ctx.numbers)
     leaf = tree.find(xi2)
     assert leaf is not None
     along = tree.path(leaf)

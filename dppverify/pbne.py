@@ -26,8 +26,9 @@ from dppverify.certificate import CheckRecord, Status
 from dppverify.context import Context
 from dppverify.defender import sigma_along
 from dppverify.evaluation import Values, evaluate, walk_cost
-from dppverify.exact import Number, Tolerance, normalize
+from dppverify.exact import Number
 from dppverify.lp import LP_TOLERANCE, lp_agrees
+from dppverify.numbers import EXACT, NumberMode
 from dppverify.profile import ProgressRule
 from dppverify.text import show, show_walk
 from dppverify.value_lp import exact_bracket, solve_value_lp
@@ -170,7 +171,7 @@ def values(ctx: Context) -> list[CheckRecord]:
                                              f"{key}_lp": lp_value}
         problems = []
         status: Status = "pass"
-        if key in claims and not ctx.tol.eq(claims[key], exact):
+        if key in claims and not ctx.numbers.equal(claims[key], exact):
             status = "fail"
             problems.append(f"the profile claims {key} = {show(claims[key])}")
         if not lp_agrees(lp_value, exact):
@@ -178,7 +179,7 @@ def values(ctx: Context) -> list[CheckRecord]:
             problems.append(f"LP evaluation {show(lp_value)} disagrees")
         if key == "U":
             numbers["U_tree"] = tree_u
-            if not ctx.tol.eq(tree_u, exact):
+            if not ctx.numbers.equal(tree_u, exact):
                 status = "error" if status == "pass" else status
                 problems.append(f"the realization-plan route gives {show(tree_u)}")
         claim = f" (profile says {show(claims[key])})" if key in claims else ""
@@ -189,7 +190,7 @@ def values(ctx: Context) -> list[CheckRecord]:
     numbers = {"U_bar": v.U_bar, "VoI": v.VoI, "U_bar_profile": claims.get("U_bar"),
                "VoI_profile": claims.get("VoI")}
     bad = [k for k, x in (("U_bar", v.U_bar), ("VoI", v.VoI))
-           if k in claims and not ctx.tol.eq(claims[k], x)]
+           if k in claims and not ctx.numbers.equal(claims[k], x)]
     msg = f"U_bar = {show(v.U_bar)}, VoI = {show(v.VoI)}"
     if bad:
         msg += "; the profile claims " + ", ".join(f"{k} = {show(claims[k])}" for k in bad)
@@ -197,12 +198,12 @@ def values(ctx: Context) -> list[CheckRecord]:
     return out
 
 
-def phases_of(schedule: list[Number], tol: Tolerance | None = None) -> tuple[int, int, int]:
+def phases_of(schedule: list[Number], numbers: NumberMode = EXACT) -> tuple[int, int, int]:
     """``(t_I, t_II, T)`` of a σ*(g1) schedule along ξ² (eqs. (10)-(11), proofs/L5.md).
 
     Phase I is the maximal initial run of steps with σ* = 1; ``t_II`` is the last step with
     σ* > 0 (``t_I`` if there is none after it). In float mode "= 1" and "> 0" are decided
-    within ``tol``.
+    within ``numbers``' tolerance.
 
     Examples
     --------
@@ -210,15 +211,15 @@ def phases_of(schedule: list[Number], tol: Tolerance | None = None) -> tuple[int
     (2, 5, 7)
     >>> phases_of([0, 0]), phases_of([]), phases_of([1, 1])
     ((0, 0, 2), (0, 0, 0), (2, 2, 2))
-    >>> phases_of([0.9999999999999998, 1e-17], Tolerance(exact=False))
+    >>> from dppverify.numbers import FloatNumbers
+    >>> phases_of([0.9999999999999998, 1e-17], FloatNumbers())
     (1, 1, 2)
     """
-    tol = tol or Tolerance(exact=True)
     T = len(schedule)
     t1 = 0
-    while t1 < T and tol.eq(schedule[t1], 1):
+    while t1 < T and numbers.equal(schedule[t1], 1):
         t1 += 1
-    positive = [t for t, s in enumerate(schedule, start=1) if tol.lt(0, s)]
+    positive = [t for t, s in enumerate(schedule, start=1) if numbers.less_than(0, s)]
     t2 = max([t1, *positive])
     return (t1, t2, T)
 
@@ -259,7 +260,7 @@ def phases(ctx: Context) -> CheckRecord:
                            "type mixes several walks (phases are defined on one path ξ²)", {},
                            "L5")
     got = phases_of(sigma_along(ctx.instance, ctx.roles, ProgressRule(ctx.roles.g1), sec[0].walk),
-                   ctx.tol)
+                   ctx.numbers)
     numbers: dict[str, Number | None] = {"t_I": got[0], "t_II": got[1], "T": got[2]}
     if claim is None:
         return CheckRecord("profile.phases", "pass", f"no phases claimed; recomputed "
@@ -312,15 +313,15 @@ def attacker_br(ctx: Context, theta: int) -> CheckRecord:
     forward = min(totals[p] for p in tree.leaves().tolist())
     lp = attacker_best_response_lp(tree, roles, ctx.defender, theta)
     u = profile_values(ctx).U1 if theta == 1 else profile_values(ctx).U2
-    regret = normalize(u - br.value) if inst.exact else float(u - br.value)
+    regret = ctx.numbers.difference(u, br.value)
     numbers: dict[str, Number | None] = {f"U{theta}": u, "best_response": br.value,
                                          "best_response_lp": lp.value, "regret": regret,
                                          "walks": tree.n_leaves}
     where = f"over all {tree.n_leaves} walks with <= {tree.horizon} steps"
-    if not ctx.tol.eq(forward, br.value) or not lp_agrees(lp.value, br.value):
+    if not ctx.numbers.equal(forward, br.value) or not lp_agrees(lp.value, br.value):
         return CheckRecord(cid, "error", f"backward induction {show(br.value)}, forward pass "
                            f"{show(forward)} and LP {show(lp.value)} disagree", numbers, proof)
-    if ctx.tol.eq(regret, 0):
+    if ctx.numbers.equal(regret, 0):
         return CheckRecord(cid, "pass", f"regret 0: U{theta} = {show(u)} is the minimum {where} "
                            f"(LP {show(lp.value)})", numbers, proof)
     if regret < 0:
@@ -370,13 +371,13 @@ def defender_br(ctx: Context) -> CheckRecord:
     u = profile_values(ctx).U
     br = defender_best_response(tree, roles, ctx.x1, ctx.x2)
     lp, _ = defender_best_response_lp(tree, roles, ctx.x1, ctx.x2)
-    regret = normalize(br.value - u) if ctx.instance.exact else float(br.value - u)
+    regret = ctx.numbers.difference(br.value, u)
     numbers: dict[str, Number | None] = {"U": u, "best_response": br.value,
                                          "best_response_lp": lp.value, "regret": regret}
     if not lp_agrees(lp.value, br.value):
         return CheckRecord(cid, "error", f"greedy best response {show(br.value)} and LP "
                            f"{show(lp.value)} disagree", numbers, "L3")
-    if ctx.tol.eq(regret, 0):
+    if ctx.numbers.equal(regret, 0):
         return CheckRecord(cid, "pass", f"regret 0: no Defender strategy beats U = {show(u)} "
                            f"(greedy best response {show(br.value)}, LP {show(lp.value)})",
                            numbers, "L3")
@@ -443,13 +444,14 @@ def sequential_rationality(ctx: Context) -> CheckRecord:
     beliefs = _beliefs(ctx)
     bad = []
     half = 0
+    mode = ctx.numbers
     for p in sorted(beliefs):
         if p == 0:
             continue
         b, s = beliefs[p], ctx.defender.sigma1[p]
         if b == HALF:
             half += 1
-        elif (b > HALF and not ctx.tol.eq(s, 1)) or (b < HALF and not ctx.tol.eq(s, 0)):
+        elif (b > HALF and not mode.equal(s, 1)) or (b < HALF and not mode.equal(s, 0)):
             bad.append((p, b, s))
     n = len(beliefs) - 1
     numbers: dict[str, Number | None] = {"infosets": n, "at_one_half": half,
@@ -571,8 +573,8 @@ def value_check(ctx: Context) -> CheckRecord:
     numbers: dict[str, Number | None] = {"V_H_lp": lp.value, "V_H": bracket.exact,
                                          "V_H_lower": bracket.lower, "V_H_upper": bracket.upper,
                                          "H": tree.horizon}
-    closed = ctx.tol.eq(bracket.lower, bracket.upper)
-    vh = f"V_H = {show(bracket.lower)}" + (" exactly" if ctx.tol.exact else "") if closed else (
+    closed = ctx.numbers.equal(bracket.lower, bracket.upper)
+    vh = f"V_H = {show(bracket.lower)}" + (" exactly" if ctx.numbers.exact else "") if closed else (
         f"{show(bracket.lower)} <= V_H <= {show(bracket.upper)}")
     vh += f" (LP {show(lp.value)}, H = {tree.horizon})"
     inside = (lp.value >= float(bracket.lower) - _slack(bracket.lower)
@@ -584,7 +586,7 @@ def value_check(ctx: Context) -> CheckRecord:
         return CheckRecord(cid, "skipped", f"{vh}; {NOT_WELLFORMED}", numbers, "LP")
     u = profile_values(ctx).U
     numbers["U"] = u
-    exact_equal = ctx.tol.eq(bracket.lower, u) and ctx.tol.eq(bracket.upper, u)
+    exact_equal = ctx.numbers.equal(bracket.lower, u) and ctx.numbers.equal(bracket.upper, u)
     if exact_equal and lp_agrees(lp.value, u):
         return CheckRecord(cid, "pass", f"{vh} = U", numbers, "HORIZON")
     return CheckRecord(cid, "fail", f"U = {show(u)} is not the value of the truncated game: {vh}",

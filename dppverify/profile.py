@@ -29,7 +29,7 @@ from types import MappingProxyType
 from typing import Any
 
 from dppverify.errors import ProfileError
-from dppverify.exact import Number, Tolerance
+from dppverify.exact import Number
 from dppverify.instance import Instance
 from dppverify.json_reading import (
     JsonReadError,
@@ -40,6 +40,7 @@ from dppverify.json_reading import (
     resolve_walk,
     show_node,
 )
+from dppverify.numbers import EXACT, NumberMode
 
 __all__ = ["PROFILE_FORMAT", "Defect", "DefenderRule", "Profile", "ProgressRule", "StrategyPath",
            "TableRule", "load_profile_document", "profile_from_json", "validate_walk"]
@@ -232,7 +233,7 @@ class _Collector:
 
 
 def profile_from_json(doc: Mapping[str, Any], instance: Instance,
-                      tolerance: Tolerance | None = None) -> Profile:
+                      tolerance: NumberMode | None = None) -> Profile:
     """Resolve a ``dpp-profile/1`` document against ``instance``, recording defects.
 
     Parameters
@@ -241,7 +242,7 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
         The document (numbers as ``int``, ``Fraction``, ``"p/q"`` strings or floats).
     instance : Instance
         The game the profile claims to solve.
-    tolerance : Tolerance, optional
+    tolerance : NumberMode, optional
         How the sum of a mixed strategy's probabilities is compared with 1: exactly (the
         default and always for exact instances) or within the float-mode tolerance.
 
@@ -268,7 +269,7 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
     ['attacker.primary: probabilities sum to 1/2, not 1']
     """
     check_format(doc)
-    tol = tolerance or Tolerance(exact=True)
+    tol = tolerance or EXACT
     c = _Collector()
     primary_slot = _goals(doc, instance, c)
     defender = _defender(doc, instance, c, tol)
@@ -320,7 +321,7 @@ def _goals(doc: Mapping[str, Any], instance: Instance, c: _Collector) -> int:
 
 
 def _defender(doc: Mapping[str, Any], instance: Instance, c: _Collector,
-              tol: Tolerance) -> DefenderRule | None:
+              tol: NumberMode) -> DefenderRule | None:
     d = doc.get("defender")
     if not isinstance(d, Mapping):
         c.add("defender", "missing, or not an object with a \"rule\"")
@@ -372,7 +373,7 @@ def _defender(doc: Mapping[str, Any], instance: Instance, c: _Collector,
 
 
 def _mixed(raw: Any, where: str, instance: Instance, c: _Collector,
-           tol: Tolerance) -> tuple[tuple[StrategyPath, ...], int]:
+           tol: NumberMode) -> tuple[tuple[StrategyPath, ...], int]:
     if not isinstance(raw, list) or not raw:
         c.add(where, "missing, or not a non-empty list of {\"path\": [...], \"probability\": p}")
         return (), 0
@@ -409,7 +410,7 @@ def _mixed(raw: Any, where: str, instance: Instance, c: _Collector,
         if prob is not None and prob >= 0:
             out.append(StrategyPath(walk, Fraction(prob),
                                     label if isinstance(label, str) else None))
-    if ok_sum and not tol.eq(total, 1):
+    if ok_sum and not tol.equal(total, 1):
         c.add(where, f"probabilities sum to {total}, not 1")
     return tuple(out), longest
 

@@ -13,9 +13,10 @@ from typing import Literal
 import numpy as np
 
 from dppverify.errors import HorizonError
-from dppverify.exact import Number, Tolerance
+from dppverify.exact import Number
 from dppverify.instance import Instance
 from dppverify.lp import lp_agrees
+from dppverify.numbers import NumberMode
 from dppverify.tree import DEFAULT_MAX_PREFIXES, count_prefixes
 from dppverify.value_dp import StructuredValue, structured_value
 from dppverify.value_lp import GameValue, game_value
@@ -95,7 +96,7 @@ def resolve_route(route: Route, instance: Instance, horizon: int | None,
     return route
 
 
-def values_agree(tree: GameValue, structured: Number, tol: Tolerance) -> str | None:
+def values_agree(tree: GameValue, structured: Number, numbers: NumberMode) -> str | None:
     """None when the tree route's ``V_H`` and the structured one agree, else why not.
 
     Exactly when the tree's exact bracket is closed (within the float tolerance in float
@@ -104,21 +105,22 @@ def values_agree(tree: GameValue, structured: Number, tol: Tolerance) -> str | N
     Examples
     --------
     >>> from dppverify.examples import triangle
-    >>> from dppverify.exact import Tolerance
+    >>> from dppverify.numbers import EXACT
     >>> from fractions import Fraction
     >>> v = game_value(triangle(), 2)
-    >>> values_agree(v, Fraction(12, 5), Tolerance(exact=True)) is None
+    >>> values_agree(v, Fraction(12, 5), EXACT) is None
     True
-    >>> values_agree(v, Fraction(5, 2), Tolerance(exact=True))
+    >>> values_agree(v, Fraction(5, 2), EXACT)
     'the routes disagree: tree V_H = 12/5, structured V_H = 5/2'
     """
     b = tree.bracket
     if b.closed:
         assert b.exact is not None
-        if tol.eq(b.exact, structured):
+        if numbers.equal(b.exact, structured):
             return None
         return f"the routes disagree: tree V_H = {b.exact}, structured V_H = {structured}"
-    if not (tol.le(b.lower, structured) and tol.le(structured, b.upper)):
+    if not (numbers.at_most(b.lower, structured)
+            and numbers.at_most(structured, b.upper)):
         return (f"the routes disagree: structured V_H = {structured} lies outside the tree's "
                 f"exact bracket [{b.lower}, {b.upper}]")
     if not lp_agrees(tree.value, structured):
@@ -198,5 +200,5 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
         tree = game_value(instance, horizon, max_prefixes=max_prefixes, progress=progress)
     why = None
     if tree is not None and sv is not None:
-        why = values_agree(tree, sv.value, Tolerance(exact=instance.exact))
+        why = values_agree(tree, sv.value, instance.numbers)
     return RoutedValue(route=chosen, horizon=horizon, tree=tree, structured=sv, disagreement=why)

@@ -18,9 +18,10 @@ from fractions import Fraction
 from dppverify.certificate import CheckRecord, Status
 from dppverify.defender import sigma_along, step_weight
 from dppverify.evaluation import Values, evaluate, walk_cost
-from dppverify.exact import Number, Tolerance, normalize
+from dppverify.exact import Number
 from dppverify.instance import Instance, Roles
 from dppverify.lemmas import OFF_XI2
+from dppverify.numbers import NumberMode
 from dppverify.pbne import phases_of
 from dppverify.profile import Profile, ProgressRule, StrategyPath
 from dppverify.text import show, show_walk
@@ -73,7 +74,7 @@ def _rec(cid: str, status: Status, message: str, numbers: dict[str, Number | Non
                        relies_on=relies_on)
 
 
-def structured_checks(instance: Instance, profile: Profile, tol: Tolerance,
+def structured_checks(instance: Instance, profile: Profile,
                       horizon: int | None) -> list[CheckRecord]:
     """Every check of the structured route, in certificate order.
 
@@ -84,8 +85,6 @@ def structured_checks(instance: Instance, profile: Profile, tol: Tolerance,
     profile : Profile
         The resolved profile; its Defender must be a progress rule (or the profile
         ill-formed).
-    tol : Tolerance
-        Exact comparisons, or float mode's tolerance.
     horizon : int or None
         ``H`` of the truncated game for ``game.value``; None for the untruncated game.
 
@@ -99,11 +98,12 @@ def structured_checks(instance: Instance, profile: Profile, tol: Tolerance,
     >>> from dppverify.profile import profile_from_json
     >>> inst = triangle()
     >>> recs = structured_checks(inst, profile_from_json(triangle_profile(), inst),
-    ...                          Tolerance(exact=True), None)
+    ...                          None)
     >>> [r.status for r in recs] == ["pass"] * len(recs), len(recs)
     (True, 17)
     """
     roles = instance.roles(profile.primary_slot)
+    mode = instance.numbers
     out: list[CheckRecord] = [_wellformed(instance, profile, roles)]
     usable = profile.wellformed and isinstance(profile.defender, ProgressRule)
     if not usable:
@@ -112,7 +112,7 @@ def structured_checks(instance: Instance, profile: Profile, tol: Tolerance,
                "pbne.sequential_rationality", "pbne.belief_consistency", "game.value",
                "lemma.TEL.telescoping", "lemma.L1.lower_bound", "lemma.L2.no_revisits")
         out += [_rec(i, "skipped", NOT_WELLFORMED, None, None, None) for i in ids]
-        out.append(_xi2(instance, roles, tol, walk_minima(instance, roles.g1)))
+        out.append(_xi2(instance, roles, mode, walk_minima(instance, roles.g1)))
         out.append(_rec("lemma.L5.induced_beliefs", "skipped", NOT_WELLFORMED, None, "L5", None))
         return out
     rule = profile.defender
@@ -121,21 +121,21 @@ def structured_checks(instance: Instance, profile: Profile, tol: Tolerance,
     trie = build_trie(profile.primary, profile.secondary)
     sigma = _sigma_on_trie(instance, roles, rule, trie)
     defender_max, u_trie = _defender_payoffs(instance, roles, trie, sigma)
-    out += _values(profile, v, u_trie, tol)
-    out.append(_phases(instance, profile, roles, tol))
+    out += _values(profile, v, u_trie, mode)
+    out.append(_phases(instance, profile, roles, mode))
     star = walk_minima(instance, roles.g1)  # shared by the Attacker, L1 and XI2 checks
     mins = star if rule.goal == roles.g1 else walk_minima(instance, rule.goal)
-    out += _attacker(roles, rule, v, tol, mins, instance.exact)
-    out.append(_defender(v, defender_max, tol))
+    out += _attacker(roles, rule, v, mode, mins)
+    out.append(_defender(v, defender_max, mode))
     beliefs = _beliefs(roles, trie)
-    out.append(_sequential(instance, trie, sigma, beliefs, tol))
+    out.append(_sequential(instance, trie, sigma, beliefs, mode))
     out.append(_belief_consistency(instance, profile, roles, trie, beliefs))
-    out.append(_game_value(instance, v, tol, horizon))
-    out.append(_telescoping(instance, roles, trie, tol))
-    out.append(_l1(instance, roles, profile, tol, star))
+    out.append(_game_value(instance, v, mode, horizon))
+    out.append(_telescoping(instance, roles, trie, mode))
+    out.append(_l1(instance, roles, profile, mode, star))
     out.append(_l2(instance, profile))
-    out.append(_xi2(instance, roles, tol, star))
-    out.append(_l5(instance, profile, roles, beliefs, tol))
+    out.append(_xi2(instance, roles, mode, star))
+    out.append(_l5(instance, profile, roles, beliefs, mode))
     return out
 
 
@@ -170,13 +170,13 @@ def _defender_payoffs(instance: Instance, roles: Roles, trie: Trie,
     """``max_σ U(σ, γ)`` (greedy per prefix) and ``U`` at the profile's σ, on the trie."""
     best: Number = 0
     at_sigma: Number = 0
-    exact = instance.exact
+    mode = instance.numbers
     for p, (x1, x2) in trie.mass.items():
         y1, y2 = roles.b1 * x1, roles.b2 * x2
         if len(p) > 1:
             w = step_weight(instance, p, len(p) - 1)
             s = sigma[p]
-            if exact:
+            if mode.exact:
                 best += w * max(y1, y2)
                 at_sigma += w * (s * y1 + (1 - s) * y2)
             else:
@@ -184,14 +184,12 @@ def _defender_payoffs(instance: Instance, roles: Roles, trie: Trie,
                 at_sigma += float(w) * (float(s) * float(y1) + (1 - float(s)) * float(y2))
         if instance.is_goal(p[-1]):
             term = y1 * roles.d1[p[-1]] + y2 * roles.d2[p[-1]]
-            best += term if exact else float(term)
-            at_sigma += term if exact else float(term)
-    if exact:
-        return normalize(best), normalize(at_sigma)
-    return float(best), float(at_sigma)
+            best += mode.convert(term)
+            at_sigma += mode.convert(term)
+    return mode.convert(best), mode.convert(at_sigma)
 
 
-def _values(profile: Profile, v: Values, u_trie: Number, tol: Tolerance) -> list[CheckRecord]:
+def _values(profile: Profile, v: Values, u_trie: Number, mode: NumberMode) -> list[CheckRecord]:
     claims = profile.claimed_values
     out = []
     for cid, key, exact in (("value.U1", "U1", v.U1), ("value.U2", "U2", v.U2),
@@ -199,12 +197,12 @@ def _values(profile: Profile, v: Values, u_trie: Number, tol: Tolerance) -> list
         numbers: dict[str, Number | None] = {key: exact, f"{key}_profile": claims.get(key)}
         status: Status = "pass"
         problems = []
-        if key in claims and not tol.eq(claims[key], exact):
+        if key in claims and not mode.equal(claims[key], exact):
             status = "fail"
             problems.append(f"the profile claims {key} = {show(claims[key])}")
         if key == "U":
             numbers["U_trie"] = u_trie
-            if not tol.eq(u_trie, exact):
+            if not mode.equal(u_trie, exact):
                 status = "error" if status == "pass" else status
                 problems.append(f"the realization-mass route gives {show(u_trie)}")
         msg = f"{key} = {show(exact)} walk by walk"
@@ -212,7 +210,7 @@ def _values(profile: Profile, v: Values, u_trie: Number, tol: Tolerance) -> list
             msg = f"{key} = {show(exact)} exactly, but " + "; ".join(problems)
         out.append(_rec(cid, status, msg, numbers, "TEL", "the profile's walks, walk by walk"))
     bad = [k for k, x in (("U_bar", v.U_bar), ("VoI", v.VoI))
-           if k in claims and not tol.eq(claims[k], x)]
+           if k in claims and not mode.equal(claims[k], x)]
     msg = f"U_bar = {show(v.U_bar)}, VoI = {show(v.VoI)}"
     if bad:
         msg += "; the profile claims " + ", ".join(f"{k} = {show(claims[k])}" for k in bad)
@@ -221,7 +219,7 @@ def _values(profile: Profile, v: Values, u_trie: Number, tol: Tolerance) -> list
     return out
 
 
-def _phases(instance: Instance, profile: Profile, roles: Roles, tol: Tolerance) -> CheckRecord:
+def _phases(instance: Instance, profile: Profile, roles: Roles, mode: NumberMode) -> CheckRecord:
     claim = profile.claimed_phases
     sec = [w for w in profile.secondary if w.probability > 0]
     how = "σ* along the profile's secondary walk"
@@ -231,7 +229,7 @@ def _phases(instance: Instance, profile: Profile, roles: Roles, tol: Tolerance) 
                         "several walks)", None, "L5", how)
         return _rec("profile.phases", "fail", "phases are claimed but the secondary type mixes "
                     "several walks (phases are defined on one path ξ²)", None, "L5", how)
-    got = phases_of(sigma_along(instance, roles, ProgressRule(roles.g1), sec[0].walk), tol)
+    got = phases_of(sigma_along(instance, roles, ProgressRule(roles.g1), sec[0].walk), mode)
     numbers: dict[str, Number | None] = {"t_I": got[0], "t_II": got[1], "T": got[2]}
     if claim is None:
         return _rec("profile.phases", "pass", f"no phases claimed; recomputed t_I = {got[0]}, "
@@ -242,22 +240,22 @@ def _phases(instance: Instance, profile: Profile, roles: Roles, tol: Tolerance) 
                 "L5", how)
 
 
-def _attacker(roles: Roles, rule: ProgressRule, v: Values, tol: Tolerance, mins: WalkMinima,
-              exact: bool) -> list[CheckRecord]:
+def _attacker(roles: Roles, rule: ProgressRule, v: Values, mode: NumberMode,
+              mins: WalkMinima) -> list[CheckRecord]:
     out = []
     for theta, cid, proof in ((1, "pbne.attacker_br.primary", "L1"),
                               (2, "pbne.attacker_br.secondary", "XI2")):
         goal = roles.g1 if theta == 1 else roles.g2
         best = mins.same if goal == rule.goal else mins.other
         u = v.U1 if theta == 1 else v.U2
-        regret = normalize(u - best) if exact else float(u) - float(best)
+        regret = mode.difference(u, best)
         numbers: dict[str, Number | None] = {"U": u, "min_over_walks": best, "regret": regret}
         kind = "primary" if theta == 1 else "secondary"
-        if tol.lt(u, best):
+        if mode.less_than(u, best):
             out.append(_rec(cid, "error", f"the {kind} type's cost {show(u)} is below the "
                             f"minimum over all walks {show(best)}: the routes disagree",
                             numbers, proof, WALKBR))
-        elif tol.eq(regret, 0):
+        elif mode.equal(regret, 0):
             out.append(_rec(cid, "pass", f"{kind} regret 0 over all walks of any length: "
                             f"U = min = {show(best)}", numbers, proof, WALKBR))
         else:
@@ -267,13 +265,13 @@ def _attacker(roles: Roles, rule: ProgressRule, v: Values, tol: Tolerance, mins:
     return out
 
 
-def _defender(v: Values, best: Number, tol: Tolerance) -> CheckRecord:
+def _defender(v: Values, best: Number, mode: NumberMode) -> CheckRecord:
     regret = best - v.U
     numbers: dict[str, Number | None] = {"U": v.U, "max_sigma_U": best, "regret": regret}
-    if tol.eq(regret, 0):
+    if mode.equal(regret, 0):
         return _rec("pbne.defender_br", "pass", f"Defender regret 0: greedy value "
                     f"{show(best)} = U on the profile's prefixes", numbers, "L3", TRIE)
-    status: Status = "fail" if tol.lt(0, regret) else "error"
+    status: Status = "fail" if mode.less_than(0, regret) else "error"
     return _rec("pbne.defender_br", status, f"Defender regret {show(regret)}: greedy value "
                 f"{show(best)} vs U = {show(v.U)}", numbers, "L3", TRIE)
 
@@ -288,13 +286,13 @@ def _beliefs(roles: Roles, trie: Trie) -> dict[tuple[int, ...], Fraction]:
 
 
 def _sequential(instance: Instance, trie: Trie, sigma: dict[tuple[int, ...], Number],
-                beliefs: dict[tuple[int, ...], Fraction], tol: Tolerance) -> CheckRecord:
+                beliefs: dict[tuple[int, ...], Fraction], mode: NumberMode) -> CheckRecord:
     bad = []
     for p, b in beliefs.items():
         if len(p) < 2:
             continue
         s = sigma[p]
-        if (b > HALF and not tol.eq(s, 1)) or (b < HALF and not tol.eq(s, 0)):
+        if (b > HALF and not mode.equal(s, 1)) or (b < HALF and not mode.equal(s, 0)):
             bad.append((p, b, s))
     numbers: dict[str, Number | None] = {"reached": len(beliefs) - 1, "violations": len(bad)}
     if bad:
@@ -336,19 +334,19 @@ def _belief_consistency(instance: Instance, profile: Profile, roles: Roles, trie
                 TRIE)
 
 
-def _game_value(instance: Instance, v: Values, tol: Tolerance,
+def _game_value(instance: Instance, v: Values, mode: NumberMode,
                 horizon: int | None) -> CheckRecord:
     sv = structured_value(instance, horizon)
     h = "inf" if horizon is None else str(horizon)
     numbers: dict[str, Number | None] = {"V_H": sv.value, "U": v.U, "dp_steps": sv.steps}
-    if tol.eq(sv.value, v.U):
+    if mode.equal(sv.value, v.U):
         return _rec("game.value", "pass", f"V_H (H = {h}) = {show(sv.value)} = U by the "
                     f"three-field DP ({sv.steps} steps, {sv.arithmetic})", numbers, "DP", DP)
     return _rec("game.value", "fail", f"V_H (H = {h}) = {show(sv.value)} but U = {show(v.U)}",
                 numbers, "DP", DP)
 
 
-def _telescoping(instance: Instance, roles: Roles, trie: Trie, tol: Tolerance) -> CheckRecord:
+def _telescoping(instance: Instance, roles: Roles, trie: Trie, mode: NumberMode) -> CheckRecord:
     c_of = roles.d1
     bad = 0
     walks = set(trie.mass)
@@ -363,9 +361,9 @@ def _telescoping(instance: Instance, roles: Roles, trie: Trie, tol: Tolerance) -
             total += step_weight(instance, p, t) * s
             c = min(c, c_of[p[t]])
             done.add(p[:t + 1])
-            if not (tol.le(0, s) and tol.le(s, 1)):
+            if not (mode.at_most(0, s) and mode.at_most(s, 1)):
                 bad += 1
-            if not tol.eq(total, c_of[p[0]] - c):
+            if not mode.equal(total, c_of[p[0]] - c):
                 bad += 1
     numbers: dict[str, Number | None] = {"prefixes": len(trie.mass), "violations": bad}
     status: Status = "fail" if bad else "pass"
@@ -375,18 +373,18 @@ def _telescoping(instance: Instance, roles: Roles, trie: Trie, tol: Tolerance) -
                 "the profile's prefixes (a consistency check of σ*)")
 
 
-def _l1(instance: Instance, roles: Roles, profile: Profile, tol: Tolerance,
+def _l1(instance: Instance, roles: Roles, profile: Profile, mode: NumberMode,
         mins: WalkMinima) -> CheckRecord:
     sigma_star = ProgressRule(roles.g1)
     c0 = roles.d1[instance.start]
     problems = []
     for mw in (*profile.primary, *profile.secondary):
         cost = evaluate_walk(instance, roles, sigma_star, mw.walk)
-        if tol.lt(cost, c0):
+        if mode.less_than(cost, c0):
             problems.append(f"{show_walk(instance, mw.walk)} costs {show(cost)} < d(s0,g1)")
-        if mw.walk[-1] == roles.g1 and not tol.eq(cost, c0):
+        if mw.walk[-1] == roles.g1 and not mode.equal(cost, c0):
             problems.append(f"{show_walk(instance, mw.walk)} ends at g1 but costs {show(cost)}")
-    if not tol.eq(mins.same, c0):
+    if not mode.equal(mins.same, c0):
         problems.append(f"the minimum over all walks is {show(mins.same)}")
     numbers: dict[str, Number | None] = {"d_s0_g1": c0, "min_over_walks": mins.same}
     if problems:
@@ -425,13 +423,13 @@ def _l2(instance: Instance, profile: Profile) -> CheckRecord:
                 numbers, "L2", "the profile's secondary walks")
 
 
-def _xi2(instance: Instance, roles: Roles, tol: Tolerance, mins: WalkMinima) -> CheckRecord:
+def _xi2(instance: Instance, roles: Roles, mode: NumberMode, mins: WalkMinima) -> CheckRecord:
     s0 = instance.start
     m = split_minimum(instance, roles.g1, roles.g2)
     expect = m - roles.d1[s0]
     numbers: dict[str, Number | None] = {"M": m, "M_minus_d": expect,
                                          "min_over_walks": mins.other}
-    if tol.eq(expect, mins.other):
+    if mode.equal(expect, mins.other):
         return _rec("lemma.XI2.secondary_value", "pass", f"against σ* the secondary's minimum "
                     f"over all walks (goal-avoiding distances) = M − d(s0,g1) = {show(expect)} "
                     f"(plain distances)", numbers, "XI2", WALKBR)
@@ -440,14 +438,14 @@ def _xi2(instance: Instance, roles: Roles, tol: Tolerance, mins: WalkMinima) -> 
 
 
 def _l5(instance: Instance, profile: Profile, roles: Roles,
-        beliefs: dict[tuple[int, ...], Fraction], tol: Tolerance) -> CheckRecord:
+        beliefs: dict[tuple[int, ...], Fraction], mode: NumberMode) -> CheckRecord:
     cid = "lemma.L5.induced_beliefs"
     sec = [w for w in profile.secondary if w.probability > 0]
     if len(sec) != 1:
         return _rec(cid, "skipped", "not applicable: the secondary type mixes several walks, "
                     "Lemma 5 is about the paper's deterministic ξ²", None, "L5", TRIE)
     xi2 = sec[0].walk
-    t1, t2, T = phases_of(sigma_along(instance, roles, ProgressRule(roles.g1), xi2), tol)
+    t1, t2, T = phases_of(sigma_along(instance, roles, ProgressRule(roles.g1), xi2), mode)
     problems = []
     along = {xi2[:t + 1] for t in range(len(xi2))}
     for t in range(len(xi2)):

@@ -14,8 +14,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from dppverify import Certificate, certify, game_value, instance_from_json
-from dppverify.exact import FLOAT_TOLERANCE
 from dppverify.json_reading import parse_json
+from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
 from solver import equilibrium_to_json, instance_to_json, solve
 from solver import instance_from_json as solver_instance_from_json
@@ -64,7 +64,7 @@ def test_exact_and_float_modes_agree(doc: Doc) -> None:
         assert abs(a - b) <= 1e-9 * max(1.0, abs(a)), name
     cert = certify(fdoc, parse_json(json.dumps(equilibrium_to_json(approx))), exact=False, trials=1)
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]
-    assert not cert.exact and cert.tolerance == FLOAT_TOLERANCE
+    assert not cert.exact and cert.tolerance == DEFAULT_REL_TOL
 
 
 @given(exact_instances)
