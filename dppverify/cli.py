@@ -20,7 +20,7 @@ from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli_conventions import output_file_option, progress_option, status, want_progress
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
-from dppverify.errors import CheckerError, HorizonError, OptionError
+from dppverify.errors import CheckerError, OptionError
 from dppverify.exact import format_number
 from dppverify.instance import Instance, load_instance
 from dppverify.limits import MAX_HORIZON, MAX_TRIALS
@@ -269,12 +269,8 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
             raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
                               f"dpp certify {MAP_USAGE} PROFILE")
         if instance is not None and is_ngoal_file(instance):  # N > 2 goals: dppverify.ngoal
-            if horizon == "inf" or route == "structured":
-                raise HorizonError("N-goal profiles are certified on the truncated game's walk "
-                                   "tree: give a finite --horizon (default: the longest walk) "
-                                   "and --route auto, tree or both")
             cert = certify_ngoal(instance, profile, horizon=horizon,  # type: ignore[arg-type]
-                                 max_prefixes=max_prefixes)
+                                 max_prefixes=max_prefixes, route=route)
         else:
             cert = certify(load_game(instance, grid), profile,
                            horizon=horizon,  # type: ignore[arg-type]

@@ -1,6 +1,12 @@
-"""Certify an N-goal profile as a weak PBNE of the truncated N-goal game, exactly.
+"""Certify an N-goal profile as a weak PBNE of the N-goal game, exactly, by route.
 
-Checks, in order (ids in ``dppverify/checks.md``, "N goals"):
+Routes (as for two goals, ``docs/checker.md`` "Routes"): ``tree`` — the truncated game's walk
+tree at ``H`` (below); ``structured`` — no walk tree, the game of ANY length
+(:mod:`dppverify.ngoal.structured`, proofs/NWALKBR.md; the Defender needs a ``default``);
+``auto`` — the tree when it fits ``max_prefixes``, else structured; ``both`` — both, and a
+check whose statuses differ becomes an ``error`` record.
+
+Tree route checks, in order (ids in ``dppverify/checks.md``, "N goals"):
 
 ``ngoal.profile.wellformed``
     The profile parses, every walk is a walk of the game, probabilities sum to exactly 1, and
@@ -27,10 +33,11 @@ Checks, in order (ids in ``dppverify/checks.md``, "N goals"):
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Mapping
 from fractions import Fraction
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from dppverify.certificate import Certificate, CheckRecord, Status
 from dppverify.errors import HorizonError, LPError
@@ -47,11 +54,14 @@ from dppverify.ngoal.best_response import (
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import NInstance, load_ninstance, ninstance_from_json
 from dppverify.ngoal.profile import NProfile, load_nprofile_document, nprofile_from_json
-from dppverify.ngoal.tree import NWalkTree, build_ntree
+from dppverify.ngoal.structured import NSTRUCTURED_NOT_RUN, nstructured_checks
+from dppverify.ngoal.tree import NWalkTree, build_ntree, count_nprefixes
 from dppverify.ngoal.value_lp import exact_nbracket, solve_nvalue_lp
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 
-__all__ = ["NGOAL_CHECK_IDS", "certify_ngoal", "payoff_of_type"]
+__all__ = ["NGOAL_CHECK_IDS", "NRoute", "certify_ngoal", "payoff_of_type"]
+
+NRoute = Literal["auto", "tree", "structured", "both"]
 
 NGOAL_CHECK_IDS = ("ngoal.profile.wellformed", "ngoal.value.U", "ngoal.pbne.attacker_br",
                    "ngoal.pbne.defender_br", "ngoal.pbne.sequential", "ngoal.value.V_H",
@@ -92,9 +102,10 @@ def _defender(tree: NWalkTree, profile: NProfile) -> NTreeDefender | str:
 
 
 def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
-                  profile: Mapping[str, Any] | str | Path, *, horizon: int | None = None,
-                  max_prefixes: int = DEFAULT_MAX_PREFIXES) -> Certificate:
-    """Certify (or refute) an N-goal profile on the truncated game with ``horizon`` steps.
+                  profile: Mapping[str, Any] | str | Path, *,
+                  horizon: int | Literal["inf"] | None = None,
+                  max_prefixes: int = DEFAULT_MAX_PREFIXES, route: NRoute = "auto") -> Certificate:
+    """Certify (or refute) an N-goal profile, on the walk tree of ``H`` steps or without it.
 
     Parameters
     ----------
@@ -102,28 +113,41 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
         The game.
     profile : dict or path
         A ``dpp-ngoal-profile/1`` document.
-    horizon : int, optional
-        ``H`` (default: the longest walk of the profile).
+    horizon : int, "inf" or None
+        ``H`` (default: the longest walk of the profile; with ``route="auto"`` and a tree
+        above ``max_prefixes``, the untruncated game). ``"inf"``: the untruncated game
+        (structured route only).
     max_prefixes : int
         Size guard of the walk tree.
+    route : {"auto", "tree", "structured", "both"}
+        ``tree``: the walk tree; ``structured``: best responses over all walks, the Defender
+        on the profile's prefixes, the coalition DP (:mod:`dppverify.ngoal.structured`);
+        ``auto``: the tree when it fits ``max_prefixes``, else structured; ``both``: both, a
+        check whose statuses differ becomes an ``error`` (unless one route skipped it).
 
     Raises
     ------
     CheckerError
         Bad input (unreadable instance or profile, a horizon shorter than a listed walk, a
-        tree above the size guard).
+        tree above the size guard, the tree route with ``H = inf``).
 
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3_document, star3_profile
     >>> cert = certify_ngoal(star3_document(), star3_profile())
-    >>> cert.verdict, [c.status for c in cert.checks]
-    ('pass', ['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'])
+    >>> cert.verdict, cert.route, [c.status for c in cert.checks]
+    ('pass', 'tree', ['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'])
     >>> bad = star3_profile()
     >>> bad["defender"]["default"] = [0, 1, 0]   # guards b off the table: on s m and s m a
     >>> cert = certify_ngoal(star3_document(), bad)
     >>> cert.verdict, cert.check("ngoal.pbne.defender_br").message
     ('fail', 'Defender regret 2/3: greedy best response 3/2, profile 5/6')
+
+    On the untruncated game type ``b`` may loop ``s m s m b`` where the default guards ``a``:
+
+    >>> cert = certify_ngoal(star3_document(), star3_profile(), horizon="inf")
+    >>> cert.route, cert.horizon, cert.check("ngoal.pbne.attacker_br").status
+    ('structured', None, 'fail')
     """
     if isinstance(instance, NInstance):
         inst = instance
@@ -134,10 +158,79 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     doc = (load_nprofile_document(profile) if isinstance(profile, str | Path)
            else dict(profile))
     prof = nprofile_from_json(inst, doc)
+    if route not in ("auto", "tree", "structured", "both"):
+        raise ValueError(f"unknown route {route!r}")
+    if isinstance(horizon, int) and horizon < prof.longest:
+        raise HorizonError(f"the horizon H = {horizon} is shorter than the profile's longest "
+                           f"walk ({prof.longest} steps)")
+    chosen, h = _choose_route(inst, prof, horizon, route, max_prefixes)
+    tree_checks: list[CheckRecord] = []
+    tree: NWalkTree | None = None
+    if chosen in ("tree", "both"):
+        assert h is not None
+        tree_checks, tree = _tree_checks(inst, prof, h, max_prefixes)
+    checks = tree_checks
+    trie_size = 0
+    if chosen in ("structured", "both"):
+        structured, trie_size = nstructured_checks(inst, prof, h)
+        checks = structured if chosen == "structured" else _merge(tree_checks, structured)
+    info = {"goals": inst.n_goals, "nodes": inst.n_nodes, "game": "N goals (dppverify.ngoal)"}
+    if chosen != "tree":
+        info["trie_prefixes"] = trie_size
+    return Certificate(checks=tuple(checks), horizon=h if tree is None else tree.horizon,
+                       exact=True, lp_solver=LP_SOLVER,
+                       lp_tolerance=LP_TOLERANCE,
+                       prefixes=0 if tree is None else tree.n_prefixes,
+                       leaves=0 if tree is None else tree.n_leaves, info=info, route=chosen,
+                       not_run=dict(NSTRUCTURED_NOT_RUN) if chosen == "structured" else {})
+
+
+def _choose_route(inst: NInstance, prof: NProfile, horizon: int | Literal["inf"] | None,
+                  route: NRoute, max_prefixes: int
+                  ) -> tuple[Literal["tree", "structured", "both"], int | None]:
+    """The route(s) to run and the horizon (None: the untruncated game)."""
+    if horizon == "inf":
+        if route in ("tree", "both"):
+            raise HorizonError("the tree route needs a finite horizon (--horizon inf is the "
+                               "structured route's)")
+        return "structured", None
     h = prof.longest if horizon is None else horizon
-    if h < prof.longest:
-        raise HorizonError(f"the horizon H = {h} is shorter than the profile's longest walk "
-                           f"({prof.longest} steps)")
+    if route == "auto":
+        if count_nprefixes(inst, max(h, inst.hops[inst.start])) <= max_prefixes:
+            return "tree", h
+        return "structured", None if horizon is None else h
+    return route, h
+
+
+def _merge(tree: list[CheckRecord], structured: list[CheckRecord]) -> list[CheckRecord]:
+    """``both``: each check on both routes must reach the same status (else ``error``); a
+    route that skipped a check decided nothing, so the other route's record stands."""
+    other = {r.id: r for r in structured}
+    out = []
+    for r in tree:
+        s = other.get(r.id)
+        if s is None:
+            out.append(r)
+        elif "skipped" in (r.status, s.status) and r.status != s.status:
+            kept, gave, name = (s, r, "tree") if r.status == "skipped" else (r, s, "structured")
+            out.append(dataclasses.replace(kept, route="both", message=f"{kept.message} "
+                                           f"({name} route: skipped, {gave.message})",
+                                           relies_on=f"tree: {r.relies_on}; structured: "
+                                                     f"{s.relies_on}"))
+        elif s.status == r.status:
+            out.append(dataclasses.replace(r, route="both", relies_on=f"tree: {r.relies_on}; "
+                                                                      f"structured: {s.relies_on}"))
+        else:
+            out.append(CheckRecord(r.id, "error", f"the routes disagree: tree {r.status} "
+                                   f"({r.message}); structured {s.status} ({s.message})",
+                                   dict(r.numbers), r.proof, route="both",
+                                   relies_on=f"tree: {r.relies_on}; structured: {s.relies_on}"))
+    return out
+
+
+def _tree_checks(inst: NInstance, prof: NProfile, h: int,
+                 max_prefixes: int) -> tuple[list[CheckRecord], NWalkTree]:
+    """The tree route's records on the walk tree of ``h`` steps."""
     tree = build_ntree(inst, max(h, inst.hops[inst.start]), max_prefixes=max_prefixes)
     checks: list[CheckRecord] = []
     tdef = None if prof.defects else _defender(tree, prof)
@@ -146,7 +239,7 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
         more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
         checks.append(CheckRecord("ngoal.profile.wellformed", "fail", problems[0] + more))
         checks += _skipped(NGOAL_CHECK_IDS[1:], "the profile is not well formed")
-        return _certificate(checks, tree, inst)
+        return _tagged(checks), tree
     assert isinstance(tdef, NTreeDefender)
     checks.append(CheckRecord("ngoal.profile.wellformed", "pass",
                               f"{inst.n_goals} types, {sum(map(len, prof.attacker))} walks, "
@@ -201,7 +294,7 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     except LPError as exc:
         checks.append(CheckRecord("ngoal.value.V_H", "error", str(exc)))
         checks.append(CheckRecord("ngoal.value.structured", "skipped", "no tree value"))
-        return _certificate(checks, tree, inst)
+        return _tagged(checks), tree
     vnums: dict[str, Number | None] = {"V_H_lower": bracket.lower, "V_H_upper": bracket.upper,
                                        "V_H_lp": lp.value, "U": u}
     status: Status
@@ -217,7 +310,7 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
         dp = coalition_value(inst, tree.horizon).value
     except (ValueError, HorizonError) as exc:
         checks.append(CheckRecord("ngoal.value.structured", "skipped", str(exc)))
-        return _certificate(checks, tree, inst)
+        return _tagged(checks), tree
     agree = bracket.lower <= dp <= bracket.upper and lp_agrees(lp.value, dp, LP_TOLERANCE)
     checks.append(CheckRecord(
         "ngoal.value.structured", "pass" if agree else "error",
@@ -226,7 +319,7 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
         f"{bracket.upper}] (LP {lp.value:.10g}): a counterexample to proofs/NGOAL.md's "
         f"conjecture or a bug — please keep this instance",
         {"V_H_dp": dp}, PROOF))
-    return _certificate(checks, tree, inst)
+    return _tagged(checks), tree
 
 
 def payoff_of_type(tree: NWalkTree, tdef: NTreeDefender, plan: Mapping[int, Fraction],
@@ -254,9 +347,8 @@ def payoff_of_type(tree: NWalkTree, tdef: NTreeDefender, plan: Mapping[int, Frac
     return normalize(total)
 
 
-def _certificate(checks: list[CheckRecord], tree: NWalkTree, inst: NInstance) -> Certificate:
-    return Certificate(checks=tuple(checks), horizon=tree.horizon, exact=True,
-                       lp_solver=LP_SOLVER, lp_tolerance=LP_TOLERANCE,
-                       prefixes=tree.n_prefixes, leaves=tree.n_leaves,
-                       info={"goals": inst.n_goals, "nodes": inst.n_nodes,
-                             "game": "N goals (dppverify.ngoal)"})
+def _tagged(checks: list[CheckRecord]) -> list[CheckRecord]:
+    return [dataclasses.replace(r, route="tree", relies_on=r.relies_on or _TREE) for r in checks]
+
+
+_TREE = "the walk tree of H steps"

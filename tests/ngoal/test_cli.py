@@ -46,8 +46,10 @@ def test_certify_an_n_goal_profile(tmp_path: Path) -> None:
     r = run_cli(certify_command, [i, p, "--json", "-H", "4"])
     cert = Certificate.from_json(r.output)
     assert r.exit_code == 1 and cert.check("ngoal.pbne.attacker_br").status == "fail"
-    r = run_cli(certify_command, [i, p, "-H", "inf"])
-    assert r.exit_code == 2 and "give a finite --horizon" in r.output
+    r = run_cli(certify_command, [i, p, "-H", "inf"])  # the structured route: b loops s m s m b
+    assert r.exit_code == 1 and "H = inf, structured route" in r.output
+    r = run_cli(certify_command, [i, p, "-H", "inf", "--route", "tree"])
+    assert r.exit_code == 2 and "needs a finite horizon" in r.output
     two = write_doc(tmp_path, "two.json", {"format": "dpp-profile/1"})
     r = run_cli(certify_command, [i, two])
     assert r.exit_code == 2 and "dpp-ngoal-profile/1" in r.output

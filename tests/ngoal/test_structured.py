@@ -1,0 +1,279 @@
+"""The N-goal structured route: a profile on the game of ANY length, without the walk tree.
+
+A hand-made equilibrium with mixing (``_doc``/``_profile``: the two-goal triangle with a third,
+pendant goal and a costly dead-end loop ``s–h``) passes on the untruncated game; each
+corruption is refuted by the check that names it; the tree and the structured routes agree
+(property test on random instances and profiles, at horizons where every best response fits).
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+import pytest
+from click.testing import CliRunner
+from hypothesis import assume, event, given
+from hypothesis import strategies as st
+
+from dppverify.certificate import Certificate
+from dppverify.cli import certify_command
+from dppverify.errors import HorizonError
+from dppverify.ngoal.certify import certify_ngoal
+from dppverify.ngoal.examples import star3_document, star3_profile
+from dppverify.ngoal.instance import NInstance, ninstance_from_json
+from dppverify.ngoal.profile import nprofile_from_json
+from dppverify.ngoal.tree import count_nprefixes
+from dppverify.ngoal.walk_br import table_defender, walk_best_response
+from dppverify.strategies import ngoal_instances, weighted_graphs
+
+MAX_PREFIXES = 3000
+
+
+def _doc() -> dict[str, Any]:
+    """s–g1 (3), s–g2 (2), g2–g1 (2), s–g3 (1), s–h (10); prior 1/2, 3/10, 1/5."""
+    return {"graph": {"directed": False,
+                      "nodes": [{"id": v} for v in ("s", "g1", "g2", "g3", "h")],
+                      "edges": [{"source": "s", "target": "g1", "weight": 3},
+                                {"source": "s", "target": "g2", "weight": 2},
+                                {"source": "g2", "target": "g1", "weight": 2},
+                                {"source": "s", "target": "g3", "weight": 1},
+                                {"source": "s", "target": "h", "weight": 10}]},
+            "start": "s", "goals": ["g1", "g2", "g3"], "prior": ["1/2", "3/10", "1/5"]}
+
+
+def _profile() -> dict[str, Any]:
+    """Type 1 mixes s g1 (2/5) and s g2 (3/5) so that s g2 leaves belief 1/2 on g1 and g2;
+    the Defender splits there, guards the revealed goal elsewhere and plays uniform off the
+    table (every loop through h then costs each type at least 20/3)."""
+    return {"format": "dpp-ngoal-profile/1", "goals": ["g1", "g2", "g3"],
+            "attacker": [[{"path": ["s", "g1"], "probability": "2/5"},
+                          {"path": ["s", "g2"], "probability": "3/5"}],
+                         [{"path": ["s", "g2"], "probability": 1}],
+                         [{"path": ["s", "g3"], "probability": 1}]],
+            "defender": {"rule": "table",
+                         "entries": [{"walk": ["s", "g1"], "probabilities": [1, 0, 0]},
+                                     {"walk": ["s", "g2"], "probabilities": ["1/2", "1/2", 0]},
+                                     {"walk": ["s", "g3"], "probabilities": [0, 0, 1]}],
+                         "default": ["1/3", "1/3", "1/3"]},
+            "value": {"U": 2}}
+
+
+def _failed(cert: Certificate) -> set[str]:
+    return {c.id for c in cert.checks if c.status == "fail"}
+
+
+def test_the_equilibrium_passes_on_the_untruncated_game() -> None:
+    cert = certify_ngoal(_doc(), _profile(), horizon="inf")
+    assert cert.passed, cert.failed()
+    assert cert.route == "structured" and cert.horizon is None
+    assert set(cert.not_run) == {"ngoal.value.structured"}
+    assert [c.id for c in cert.checks] == ["ngoal.profile.wellformed", "ngoal.value.U",
+                                           "ngoal.pbne.attacker_br", "ngoal.pbne.defender_br",
+                                           "ngoal.pbne.sequential", "ngoal.value.V_H"]
+    assert cert.check("ngoal.value.U").numbers["U"] == 2
+    assert cert.check("ngoal.value.V_H").numbers["V_H_dp"] == 2
+    assert all(c.route == "structured" and c.relies_on for c in cert.checks)
+    assert "NG.4" in (cert.check("ngoal.value.V_H").relies_on or "")
+    # the same verdict on the tree at every horizon, and both routes agree check by check
+    for h in (1, 3, 5):
+        both = certify_ngoal(_doc(), _profile(), horizon=h, route="both")
+        assert both.passed and both.route == "both", both.failed()
+    # JSON round trip of a structured certificate
+    assert Certificate.from_json(cert.to_json()) == cert
+
+
+@pytest.mark.parametrize(("name", "change", "check", "words"), [
+    ("wrong mixing", lambda p: p["attacker"][0][0].update(probability="1/2")
+     or p["attacker"][0][1].update(probability="1/2"), "ngoal.pbne.sequential",
+     "less than maximal belief, e.g. after ['s', 'g2']"),
+    ("a detour", lambda p: p["attacker"][1][0].update(path=["s", "h", "s", "g2"]),
+     "ngoal.pbne.attacker_br", "type 2 (goal 'g2') has regret 19/3: walk ['s', 'g2']"),
+    ("Defender on a non-maximal goal",
+     lambda p: p["defender"]["entries"][2].update(probabilities=[1, 0, 0]),
+     "ngoal.pbne.sequential", "after ['s', 'g3']: belief ['0', '0', '1'], Defender ['1', '0', "
+                              "'0']"),
+    ("wrong default", lambda p: p["defender"].update(default=[1, 0, 0]),
+     "ngoal.pbne.attacker_br", "type 2 (goal 'g2') has regret 1: walk ['s', 'h', 's', 'g2']"),
+])
+def test_each_corruption_is_refuted_by_its_check(name: str, change: Any, check: str,
+                                                 words: str) -> None:
+    p = copy.deepcopy(_profile())
+    p["value"].pop("U")
+    change(p)
+    cert = certify_ngoal(_doc(), p, horizon="inf")
+    assert cert.verdict == "fail", name
+    rec = cert.check(check)
+    assert rec.status == "fail" and words in rec.message, (name, rec.message)
+
+
+def test_wrong_mixing_fails_the_defender_checks_only() -> None:
+    # type 1 is indifferent between its walks, so U stays 2 = V; at s g2 the belief now
+    # favours g2 (3/10 against 1/4) and the split costs the Defender 2 · (3/10 − 11/40)
+    p = _profile()
+    p["attacker"][0] = [{"path": ["s", "g1"], "probability": "1/2"},
+                        {"path": ["s", "g2"], "probability": "1/2"}]
+    p["value"].pop("U")
+    cert = certify_ngoal(_doc(), p, horizon="inf")
+    assert _failed(cert) == {"ngoal.pbne.defender_br", "ngoal.pbne.sequential"}
+    assert cert.check("ngoal.pbne.defender_br").numbers["regret"] == Fraction(1, 20)
+    assert cert.check("ngoal.value.V_H").status == "pass"
+
+
+def test_the_hub_profile_is_refuted_on_the_untruncated_game_only() -> None:
+    # H = 2: the tree route certifies it; any length: type b loops s m s m b unguarded.
+    assert certify_ngoal(star3_document(), star3_profile(), horizon=2, route="tree").passed
+    cert = certify_ngoal(star3_document(), star3_profile(), horizon=2, route="structured")
+    rec = cert.check("ngoal.pbne.attacker_br")
+    assert rec.status == "fail" and "['s', 'm', 's', 'm', 'b'] (4 steps) costs 0" in rec.message
+    assert rec.numbers["regret2"] == 1 and rec.numbers["regret1"] == 0
+    # both routes at H = 2 disagree on that check (the tree has no 4-step walk): an error
+    both = certify_ngoal(star3_document(), star3_profile(), horizon=2, route="both")
+    assert both.check("ngoal.pbne.attacker_br").status == "error"
+    assert "the routes disagree: tree pass" in both.check("ngoal.pbne.attacker_br").message
+    # at H = 4 the tree sees the loop too and both routes fail it
+    both = certify_ngoal(star3_document(), star3_profile(), horizon=4, route="both")
+    assert both.check("ngoal.pbne.attacker_br").status == "fail"
+
+
+def _dag_star() -> dict[str, Any]:
+    """The hub instance with one-way arcs: no loop, finitely many walks."""
+    d = star3_document()
+    d["graph"]["directed"] = True
+    d["graph"]["edges"] += [{"source": g, "target": "m", "weight": 1} for g in "abc"]
+    return d
+
+
+def test_without_a_default_the_route_says_why_unless_the_table_covers_every_walk() -> None:
+    p = star3_profile()
+    p["defender"].pop("default")
+    p["defender"]["entries"] += [{"walk": ["s", "m"], "probabilities": [1, 0, 0]},
+                                 {"walk": ["s", "m", "a"], "probabilities": [1, 0, 0]}]
+    cert = certify_ngoal(star3_document(), p, horizon="inf")
+    rec = cert.check("ngoal.pbne.attacker_br")
+    assert rec.status == "error" and cert.verdict == "error"
+    assert "no default and its table has no entry for walk ['s', 'a']" in rec.message
+    # on the one-way hub the table lists every walk of the game but s a: still undefined
+    cert = certify_ngoal(_dag_star(), p, horizon="inf")
+    assert cert.check("ngoal.pbne.attacker_br").status == "error"
+    p["defender"]["entries"].append({"walk": ["s", "a"], "probabilities": [1, 0, 0]})
+    cert = certify_ngoal(_dag_star(), p, horizon="inf")
+    assert cert.passed, cert.failed()
+    # a profile walk where the Defender is undefined is ill-formed on both routes
+    q = star3_profile()
+    q["defender"].pop("default")
+    for route in ("tree", "structured"):
+        cert = certify_ngoal(star3_document(), q, horizon=2, route=route)  # type: ignore[arg-type]
+        rec = cert.check("ngoal.profile.wellformed")
+        assert rec.status == "fail" and "no entry for walk ['s', 'm'] and no default" in \
+            rec.message
+
+
+def test_route_choice_and_errors() -> None:
+    with pytest.raises(HorizonError, match="needs a finite horizon"):
+        certify_ngoal(_doc(), _profile(), horizon="inf", route="tree")
+    with pytest.raises(HorizonError, match="needs a finite horizon"):
+        certify_ngoal(_doc(), _profile(), horizon="inf", route="both")
+    # auto: the tree when it fits, else the untruncated game
+    assert certify_ngoal(_doc(), _profile()).route == "tree"
+    cert = certify_ngoal(_doc(), _profile(), max_prefixes=2)
+    assert cert.route == "structured" and cert.horizon is None and cert.passed
+    cert = certify_ngoal(_doc(), _profile(), horizon=3, max_prefixes=2)
+    assert cert.route == "structured" and cert.horizon == 3
+
+
+def test_cli_routes(tmp_path: Path) -> None:
+    i = tmp_path / "i.json"
+    i.write_text(json.dumps(_doc()))
+    p = tmp_path / "p.json"
+    p.write_text(json.dumps(_profile()))
+    r = CliRunner().invoke(certify_command, [str(i), str(p), "-H", "inf"])
+    assert r.exit_code == 0, r.output
+    assert r.output.startswith("verdict: PASS (6/6 checks passed; H = inf, structured route")
+    assert "not run: ngoal.value.structured" in r.output
+    r = CliRunner().invoke(certify_command, [str(i), str(p), "-H", "2", "--route", "both",
+                                             "--json"])
+    assert r.exit_code == 0 and Certificate.from_json(r.output).route == "both"
+    r = CliRunner().invoke(certify_command, [str(i), str(p), "-H", "inf", "--route", "tree"])
+    assert r.exit_code == 2 and r.output.count("\n") == 1 and "finite horizon" in r.output
+
+
+# -- agreement of the routes on random instances and profiles -----------------------------
+
+@st.composite
+def _cases(draw: st.DrawFn) -> tuple[dict[str, Any], dict[str, Any]]:
+    doc = draw(ngoal_instances(min_goals=3, max_goals=3,
+                               graphs=weighted_graphs(min_nodes=4, max_nodes=5, max_weight=3)))
+    inst = ninstance_from_json(doc)
+    ids = inst.nodes
+
+    def walk() -> list[int]:
+        w = [inst.start]
+        while not inst.is_goal(w[-1]):
+            live = [u for u, _ in inst.succ[w[-1]] if inst.is_goal(u) or inst.hops[u] >= 0]
+            if len(w) > 3:  # finish along fewest hops
+                live = [u for u in live if inst.is_goal(u) or inst.hops[u] < inst.hops[w[-1]]]
+            w.append(draw(st.sampled_from(sorted(live))))
+        return w
+
+    n = inst.n_goals
+    attacker = []
+    for _ in range(n):
+        ws = {tuple(walk()) for _ in range(draw(st.integers(1, 2)))}
+        probs = ([Fraction(1)] if len(ws) == 1 else
+                 [p := draw(st.sampled_from([Fraction(1, 3), Fraction(1, 2)])), 1 - p])
+        attacker.append([{"path": [ids[v] for v in w], "probability": str(q)}
+                         for w, q in zip(sorted(ws), probs, strict=True)])
+    vertices = [[int(i == j) for i in range(n)] for j in range(n)]
+    dists = [*vertices, ["1/3"] * n, ["1/2", "1/2", 0]]
+    prefixes = sorted({tuple(e["path"][:k]) for mix in attacker for e in mix
+                       for k in range(2, len(e["path"]) + 1)})
+    entries = [{"walk": list(pf), "probabilities": draw(st.sampled_from(dists))}
+               for pf in prefixes if draw(st.booleans())]
+    prof = {"format": "dpp-ngoal-profile/1", "attacker": attacker,
+            "defender": {"rule": "table", "entries": entries,
+                         "default": draw(st.sampled_from(dists))}}
+    return doc, prof
+
+
+@given(_cases())
+def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, Any]]) -> None:
+    doc, prof = case
+    inst: NInstance = ninstance_from_json(doc)
+    p = nprofile_from_json(inst, prof)
+    assert p.wellformed, p.defects
+    walks = [mw.walk for mix in p.attacker for mw in mix]
+    tdef = table_defender(inst, p.entries, p.default, walks)
+    depth = max(tdef.trie.depth)
+    # every best response over all walks has at most depth + 1 + (non-goal nodes) steps
+    full = depth + 1 + inst.n_nodes - inst.n_goals
+    h0 = max(p.longest, inst.hops[inst.start])
+    # at the profile's own horizon the tree's minimum is over fewer walks: regret no larger
+    tree_cert = certify_ngoal(inst, prof, horizon=h0, route="tree")
+    struct = certify_ngoal(inst, prof, horizon="inf", route="structured")
+    for t in range(1, inst.n_goals + 1):
+        key = f"regret{t}"
+        tr, sr = (c.check("ngoal.pbne.attacker_br").numbers[key] for c in (tree_cert, struct))
+        assert tr is not None and sr is not None and tr <= sr
+    for cid in ("ngoal.profile.wellformed", "ngoal.value.U", "ngoal.pbne.defender_br",
+                "ngoal.pbne.sequential"):
+        assert tree_cert.check(cid).status == struct.check(cid).status, cid
+    for cid in ("ngoal.value.U", "ngoal.pbne.defender_br", "ngoal.pbne.sequential"):
+        assert dict(tree_cert.check(cid).numbers) == dict(struct.check(cid).numbers), cid
+    assume(count_nprefixes(inst, full) <= MAX_PREFIXES)
+    # where every best response fits, the regrets are equal and so are the verdicts
+    both = certify_ngoal(inst, prof, horizon=full, route="both", max_prefixes=MAX_PREFIXES)
+    disagree = [c.message for c in both.checks if c.message.startswith("the routes disagree")]
+    assert not disagree, (json.dumps(doc), json.dumps(prof), disagree)
+    tree_full = certify_ngoal(inst, prof, horizon=full, route="tree", max_prefixes=MAX_PREFIXES)
+    assert tree_full.verdict == struct.verdict
+    event(f"verdict {struct.verdict}; attacker_br {struct.check('ngoal.pbne.attacker_br').status}")
+    for t in range(inst.n_goals):
+        br = walk_best_response(tdef, t)
+        assert br.value is not None and len(br.walk) - 1 <= full
+        key = f"regret{t + 1}"
+        assert tree_full.check("ngoal.pbne.attacker_br").numbers[key] == struct.check(
+            "ngoal.pbne.attacker_br").numbers[key]
