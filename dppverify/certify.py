@@ -22,6 +22,11 @@ from typing import Any, Literal
 from tqdm import tqdm
 
 from dppverify.certificate import Certificate, CheckRecord
+from dppverify.checks.attacker import attacker_br
+from dppverify.checks.beliefs import belief_consistency
+from dppverify.checks.defender import defender_br, sequential_rationality
+from dppverify.checks.payoffs import value_check, values
+from dppverify.checks.wellformed import phases, wellformed
 from dppverify.context import Context, make_context
 from dppverify.errors import (
     HorizonError,
@@ -42,16 +47,6 @@ from dppverify.lemmas import (
 )
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.numbers import DEFAULT_REL_TOL
-from dppverify.pbne import (
-    attacker_br,
-    belief_consistency,
-    defender_br,
-    phases,
-    sequential_rationality,
-    value_check,
-    values,
-    wellformed,
-)
 from dppverify.profile import (
     Profile,
     ProgressRule,

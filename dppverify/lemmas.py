@@ -34,13 +34,14 @@ from dppverify.best_response import (
     leaf_totals,
 )
 from dppverify.certificate import CheckRecord, Status
+from dppverify.checks.skipped import NOT_WELLFORMED
 from dppverify.context import Context
 from dppverify.defender import sigma_along
 from dppverify.distances import dijkstra
 from dppverify.evaluation import realization
 from dppverify.exact import Number
 from dppverify.lp import lp_agrees
-from dppverify.pbne import NOT_WELLFORMED, phases_of
+from dppverify.phases import phases_of
 from dppverify.profile import ProgressRule, StrategyPath
 from dppverify.text import show, show_walk
 from dppverify.tree import WalkTree, simple_mask
@@ -507,7 +508,8 @@ def l5_induced_beliefs(ctx: Context) -> CheckRecord:
                            "walks, Lemma 5 is about the paper's deterministic ξ²", {}, "L5")
     inst, tree, roles = ctx.instance, ctx.tree, ctx.roles
     xi2 = sec[0].walk
-    t1, t2, T = phases_of(sigma_along(inst, roles, ProgressRule(roles.g1), xi2), ctx.numbers)
+    t1, t2, T = phases_of(sigma_along(inst, roles, ProgressRule(roles.g1), xi2),
+                          ctx.numbers).as_tuple()
     leaf = tree.find(xi2)
     assert leaf is not None
     along = tree.path(leaf)

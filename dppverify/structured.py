@@ -16,13 +16,14 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from dppverify.certificate import CheckRecord, Status
+from dppverify.checks.skipped import NOT_WELLFORMED
 from dppverify.defender import sigma_along, step_weight
 from dppverify.evaluation import Values, evaluate, walk_cost
 from dppverify.exact import Number
 from dppverify.instance import Instance, Roles
 from dppverify.lemmas import OFF_XI2
 from dppverify.numbers import NumberMode
-from dppverify.pbne import phases_of
+from dppverify.phases import phases_of
 from dppverify.profile import Profile, ProgressRule, StrategyPath
 from dppverify.text import show, show_walk
 from dppverify.value_dp import structured_value
@@ -31,7 +32,6 @@ from dppverify.walk_br import WalkMinima, split_minimum, walk_minima
 __all__ = ["Trie", "build_trie", "evaluate_walk", "structured_checks"]
 
 
-NOT_WELLFORMED = "not evaluated: the profile is not well-formed (see profile.wellformed)"
 HALF = Fraction(1, 2)
 WALKBR = "relies on proofs/WALKBR.md"
 DP = "relies on proofs/DP.md"
@@ -230,14 +230,14 @@ def _phases(instance: Instance, profile: Profile, roles: Roles, mode: NumberMode
         return _rec("profile.phases", "fail", "phases are claimed but the secondary type mixes "
                     "several walks (phases are defined on one path ξ²)", None, "L5", how)
     got = phases_of(sigma_along(instance, roles, ProgressRule(roles.g1), sec[0].walk), mode)
-    numbers: dict[str, Number | None] = {"t_I": got[0], "t_II": got[1], "T": got[2]}
+    numbers: dict[str, Number | None] = {"t_I": got.t_I, "t_II": got.t_II, "T": got.T}
     if claim is None:
-        return _rec("profile.phases", "pass", f"no phases claimed; recomputed t_I = {got[0]}, "
-                    f"t_II = {got[1]}, T = {got[2]}", numbers, "L5", how)
-    ok = tuple(claim) == got
-    return _rec("profile.phases", "pass" if ok else "fail", f"t_I, t_II, T = {got} from σ* "
-                f"along ξ²" + ("" if ok else f"; the profile claims {tuple(claim)}"), numbers,
-                "L5", how)
+        return _rec("profile.phases", "pass", f"no phases claimed; recomputed t_I = {got.t_I}, "
+                    f"t_II = {got.t_II}, T = {got.T}", numbers, "L5", how)
+    ok = tuple(claim) == got.as_tuple()
+    return _rec("profile.phases", "pass" if ok else "fail", f"t_I, t_II, T = {got.as_tuple()} "
+                f"from σ* along ξ²" + ("" if ok else f"; the profile claims {tuple(claim)}"),
+                numbers, "L5", how)
 
 
 def _attacker(roles: Roles, rule: ProgressRule, v: Values, mode: NumberMode,
@@ -445,7 +445,8 @@ def _l5(instance: Instance, profile: Profile, roles: Roles,
         return _rec(cid, "skipped", "not applicable: the secondary type mixes several walks, "
                     "Lemma 5 is about the paper's deterministic ξ²", None, "L5", TRIE)
     xi2 = sec[0].walk
-    t1, t2, T = phases_of(sigma_along(instance, roles, ProgressRule(roles.g1), xi2), mode)
+    t1, t2, T = phases_of(sigma_along(instance, roles, ProgressRule(roles.g1), xi2),
+                          mode).as_tuple()
     problems = []
     along = {xi2[:t + 1] for t in range(len(xi2))}
     for t in range(len(xi2)):

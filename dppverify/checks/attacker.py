@@ -1,0 +1,80 @@
+"""The Attacker types' regrets: ``pbne.attacker_br.primary`` and ``.secondary``."""
+
+from __future__ import annotations
+
+from dppverify.best_response import attacker_best_response_lp, leaf_totals
+from dppverify.certificate import CheckRecord
+from dppverify.checks.payoffs import profile_values
+from dppverify.checks.skipped import skipped
+from dppverify.context import Context
+from dppverify.evaluation import walk_cost
+from dppverify.exact import Number
+from dppverify.lp import lp_agrees
+from dppverify.text import show, show_walk
+
+__all__ = ["attacker_br"]
+
+
+def attacker_br(ctx: Context, theta: int) -> CheckRecord:
+    """``pbne.attacker_br.primary`` / ``.secondary``: type θ's exact regret is 0.
+
+    The regret is ``U^θ(profile) − min over ALL walks of the tree`` against the profile's
+    Defender (backward induction; a forward pass over the leaves and the sequence-form LP
+    must agree with it).
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+    theta : int
+        1 (primary) or 2 (secondary).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+    A secondary type that walks to g1 pays 2 where ``s -> g2`` costs it 1:
+
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
+    >>> r = attacker_br(context(eq), 2)
+    >>> r.id, r.status, r.numbers["U2"], r.numbers["best_response"], r.numbers["regret"]
+    ('pbne.attacker_br.secondary', 'pass', 1, 1, 0)
+    >>> r = attacker_br(context(dict(eq, secondary=[{"path": ["s", "g1"], "probability": 1}])), 2)
+    >>> r.status, r.numbers["regret"]
+    ('fail', 1)
+    """
+    cid = "pbne.attacker_br." + ("primary" if theta == 1 else "secondary")
+    proof = "L1" if theta == 1 else "XI2"
+    if not ctx.usable:
+        return skipped(cid, proof)
+    assert ctx.defender is not None and ctx.profile.defender is not None
+    inst, tree, roles = ctx.instance, ctx.tree, ctx.roles
+    br = ctx.best_response(ctx.defender, theta)
+    totals = leaf_totals(tree, roles, ctx.defender, theta)
+    forward = min(totals[p] for p in tree.leaves().tolist())
+    lp = attacker_best_response_lp(tree, roles, ctx.defender, theta)
+    u = profile_values(ctx).U1 if theta == 1 else profile_values(ctx).U2
+    regret = ctx.numbers.difference(u, br.value)
+    numbers: dict[str, Number | None] = {f"U{theta}": u, "best_response": br.value,
+                                         "best_response_lp": lp.value, "regret": regret,
+                                         "walks": tree.n_leaves}
+    where = f"over all {tree.n_leaves} walks with <= {tree.horizon} steps"
+    if not ctx.numbers.equal(forward, br.value) or not lp_agrees(lp.value, br.value):
+        return CheckRecord(cid, "error", f"backward induction {show(br.value)}, forward pass "
+                           f"{show(forward)} and LP {show(lp.value)} disagree", numbers, proof)
+    if ctx.numbers.equal(regret, 0):
+        return CheckRecord(cid, "pass", f"regret 0: U{theta} = {show(u)} is the minimum {where} "
+                           f"(LP {show(lp.value)})", numbers, proof)
+    if regret < 0:
+        return CheckRecord(cid, "error", f"U{theta} = {show(u)} is below the best response "
+                           f"{show(br.value)}: inconsistent evaluation", numbers, proof)
+    costs = [(walk_cost(inst, roles, ctx.profile.defender, w.walk, theta), w)
+             for w in ctx.profile.walks(theta) if w.probability > 0]
+    worst_cost, worst = max(costs, key=lambda cw: cw[0])
+    return CheckRecord(cid, "fail", f"regret {show(regret)}: the walk {show_walk(inst, br.walk)} "
+                       f"costs {show(br.value)} < U{theta} = {show(u)}; the profile's walk "
+                       f"{show_walk(inst, worst.walk)} (probability {show(worst.probability)}) "
+                       f"costs {show(worst_cost)}", numbers, proof)

@@ -1,0 +1,189 @@
+"""The profile's payoffs and the game value: ``value.U1``, ``value.U2``, ``value.U``,
+``value.VoI`` and ``game.value``."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from dppverify.best_response import objective_vector, payoff_on_tree
+from dppverify.certificate import CheckRecord, Status
+from dppverify.checks.skipped import NOT_WELLFORMED, skipped
+from dppverify.context import Context
+from dppverify.evaluation import Values, evaluate
+from dppverify.exact import Number
+from dppverify.lp import LP_TOLERANCE, lp_agrees
+from dppverify.text import show
+from dppverify.value_lp import exact_bracket, solve_value_lp
+
+__all__ = ["profile_values", "value_check", "values"]
+
+
+def profile_values(ctx: Context) -> Values:
+    """Exact U¹, U², U, Ū, VoI of the (well-formed) profile, walk by walk.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    Values
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
+    >>> profile_values(context(eq))
+    Values(U1=3, U2=1, U=Fraction(12, 5), U_bar=Fraction(27, 10), VoI=Fraction(1, 9))
+    """
+    assert ctx.profile.defender is not None
+    return evaluate(ctx.instance, ctx.roles, ctx.profile.defender, ctx.profile.primary,
+                    ctx.profile.secondary)
+
+
+def values(ctx: Context) -> list[CheckRecord]:
+    """``value.U1``, ``value.U2``, ``value.U``, ``value.VoI``.
+
+    Three routes must agree: walk by walk (exact), realization plans on the tree (exact),
+    and the LP objective vectors at the profile's plans (float, within the LP tolerance);
+    the profile's claimed numbers, when present, must equal the exact ones.
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    list of CheckRecord
+        The four records, in that order.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
+    >>> for r in values(context(eq)):
+    ...     print(r.id, r.status, r.message)
+    value.U1 pass U1 = 3, LP evaluation 3
+    value.U2 pass U2 = 1, LP evaluation 1
+    value.U pass U = 12/5, LP evaluation 2.4
+    value.VoI pass U_bar = 27/10, VoI = 1/9
+    >>> r = values(context(eq, value={"U": "5/2"}))[2]
+    >>> r.status, r.message
+    ('fail', 'U = 12/5 exactly, but the profile claims U = 5/2')
+    """
+    ids = ("value.U1", "value.U2", "value.U", "value.VoI")
+    if not ctx.usable:
+        return [skipped(i, "TEL") for i in ids]
+    assert ctx.defender is not None and ctx.x1 is not None and ctx.x2 is not None
+    v = profile_values(ctx)
+    claims = ctx.profile.claimed_values
+    tree, roles = ctx.tree, ctx.roles
+    lp_u: dict[int, float] = {}
+    for theta, x in ((1, ctx.x1), (2, ctx.x2)):
+        vec = np.zeros(tree.n_prefixes)
+        for p, prob in x.items():
+            vec[p] = float(prob)
+        lp_u[theta] = float(objective_vector(tree, roles, ctx.defender, theta) @ vec)
+    lp_total = float(roles.b1) * lp_u[1] + float(roles.b2) * lp_u[2]
+    tree_u = payoff_on_tree(tree, roles, ctx.defender, ctx.x1, ctx.x2)
+    out = []
+    for cid, key, exact, lp_value in (("value.U1", "U1", v.U1, lp_u[1]),
+                                      ("value.U2", "U2", v.U2, lp_u[2]),
+                                      ("value.U", "U", v.U, lp_total)):
+        numbers: dict[str, Number | None] = {key: exact, f"{key}_profile": claims.get(key),
+                                             f"{key}_lp": lp_value}
+        problems = []
+        status: Status = "pass"
+        if key in claims and not ctx.numbers.equal(claims[key], exact):
+            status = "fail"
+            problems.append(f"the profile claims {key} = {show(claims[key])}")
+        if not lp_agrees(lp_value, exact):
+            status = "error" if status == "pass" else status
+            problems.append(f"LP evaluation {show(lp_value)} disagrees")
+        if key == "U":
+            numbers["U_tree"] = tree_u
+            if not ctx.numbers.equal(tree_u, exact):
+                status = "error" if status == "pass" else status
+                problems.append(f"the realization-plan route gives {show(tree_u)}")
+        claim = f" (profile says {show(claims[key])})" if key in claims else ""
+        msg = f"{key} = {show(exact)}{claim}, LP evaluation {show(lp_value)}"
+        if problems:
+            msg = f"{key} = {show(exact)} exactly, but " + "; ".join(problems)
+        out.append(CheckRecord(cid, status, msg, numbers, "TEL"))
+    numbers = {"U_bar": v.U_bar, "VoI": v.VoI, "U_bar_profile": claims.get("U_bar"),
+               "VoI_profile": claims.get("VoI")}
+    bad = [k for k, x in (("U_bar", v.U_bar), ("VoI", v.VoI))
+           if k in claims and not ctx.numbers.equal(claims[k], x)]
+    msg = f"U_bar = {show(v.U_bar)}, VoI = {show(v.VoI)}"
+    if bad:
+        msg += "; the profile claims " + ", ".join(f"{k} = {show(claims[k])}" for k in bad)
+    out.append(CheckRecord("value.VoI", "fail" if bad else "pass", msg, numbers, "THM"))
+    return out
+
+
+def value_check(ctx: Context) -> CheckRecord:
+    """``game.value``: ``V_H`` (compact LP, proofs/LP.md) equals ``U`` of the profile.
+
+    Exact bounds: the profile's Defender gives ``b1 min U¹ + b2 min U² <= V_H`` and its
+    Attacker gives ``V_H <= max_σ U``; with both regrets 0 they meet at ``U``, so ``V_H = U``
+    exactly. The LP value must lie within the exact bracket (within the LP tolerance).
+
+    Parameters
+    ----------
+    ctx : Context
+        The shared inputs (:func:`~dppverify.context.make_context`).
+
+    Returns
+    -------
+    CheckRecord
+
+    Examples
+    --------
+    A secondary type walking to g1 makes ``U = 27/10``, not the value ``V_1 = 12/5``:
+
+    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> eq = triangle_attacker()
+    >>> r = value_check(context(eq))
+    >>> r.status, r.numbers["V_H"], r.numbers["U"]
+    ('pass', Fraction(12, 5), Fraction(12, 5))
+    >>> r = value_check(context(dict(eq, secondary=[{"path": ["s", "g1"], "probability": 1}])))
+    >>> r.status, r.numbers["V_H_lower"], r.numbers["V_H_upper"], r.numbers["U"]
+    ('fail', Fraction(12, 5), Fraction(12, 5), Fraction(27, 10))
+    """
+    cid = "game.value"
+    tree, roles = ctx.tree, ctx.roles
+    lp = solve_value_lp(tree, roles)
+    defenders = []
+    attackers = []
+    if ctx.usable:
+        assert ctx.defender is not None and ctx.x1 is not None and ctx.x2 is not None
+        defenders.append(("the profile's Defender", ctx.defender))
+        attackers.append(("the profile's Attacker", ctx.x1, ctx.x2))
+    bracket = exact_bracket(tree, roles, lp, defenders, attackers, sigma_star=ctx.sigma_star)
+    numbers: dict[str, Number | None] = {"V_H_lp": lp.value, "V_H": bracket.exact,
+                                         "V_H_lower": bracket.lower, "V_H_upper": bracket.upper,
+                                         "H": tree.horizon}
+    closed = ctx.numbers.equal(bracket.lower, bracket.upper)
+    vh = f"V_H = {show(bracket.lower)}" + (" exactly" if ctx.numbers.exact else "") if closed else (
+        f"{show(bracket.lower)} <= V_H <= {show(bracket.upper)}")
+    vh += f" (LP {show(lp.value)}, H = {tree.horizon})"
+    inside = (lp.value >= float(bracket.lower) - _slack(bracket.lower)
+              and lp.value <= float(bracket.upper) + _slack(bracket.upper))
+    if not inside:
+        return CheckRecord(cid, "error", f"the LP value lies outside the exact bracket: {vh}",
+                           numbers, "LP")
+    if not ctx.usable:
+        return CheckRecord(cid, "skipped", f"{vh}; {NOT_WELLFORMED}", numbers, "LP")
+    u = profile_values(ctx).U
+    numbers["U"] = u
+    exact_equal = ctx.numbers.equal(bracket.lower, u) and ctx.numbers.equal(bracket.upper, u)
+    if exact_equal and lp_agrees(lp.value, u):
+        return CheckRecord(cid, "pass", f"{vh} = U", numbers, "HORIZON")
+    return CheckRecord(cid, "fail", f"U = {show(u)} is not the value of the truncated game: {vh}",
+                       numbers, "HORIZON")
+
+
+def _slack(x: Number) -> float:
+    return LP_TOLERANCE * max(1.0, abs(float(x)))
