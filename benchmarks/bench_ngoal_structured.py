@@ -6,7 +6,9 @@ type walks a shortest path to its goal (the first one in node order at each step
 Defender's table greedy on the Bayes belief at every prefix of those walks (ties split
 evenly) and a uniform default. The profile is a test load, not an equilibrium: every check
 runs in full whatever its status. Timed: ``certify_ngoal(..., horizon="inf",
-route="structured")`` as a whole, and the coalition DP (``H = inf``) inside it alone.
+route="structured")`` as a whole; the coalition DP (``H = inf``) that it runs, alone; and
+the best responses over all walks alone (the trie, one exact Dijkstra and the trie DP per type:
+what ``ngoal.pbne.attacker_br`` computes).
 
 Run: ``.venv/bin/python benchmarks/bench_ngoal_structured.py [--maps NAME ...] [--goals 3 4 5]``.
 """
@@ -24,6 +26,8 @@ from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.experiment import corner_cells
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
+from dppverify.ngoal.profile import nprofile_from_json
+from dppverify.ngoal.walk_br import table_defender, walk_best_response
 from dppverify.standard_maps import standard_map_path
 
 MAPS = ("room-32-32-4", "room-64-64-8", "maze-128-128-10", "Berlin_1_256")
@@ -71,12 +75,19 @@ def run(name: str, n: int) -> dict[str, Any]:
     t0 = time.perf_counter()
     coalition_value(inst, None)
     dp = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    p = nprofile_from_json(inst, prof)
+    tdef = table_defender(inst, p.entries, p.default,
+                          [mw.walk for mix in p.attacker for mw in mix])
+    for theta in range(n):
+        walk_best_response(tdef, theta)
+    br = time.perf_counter() - t0
     return {"map": name, "N": n, "nodes": inst.n_nodes,
             "arcs": sum(len(a) for a in inst.succ),
             "trie_prefixes": cert.info["trie_prefixes"],
             "statuses": {c.id: c.status for c in cert.checks},
             "certify_seconds": round(total, 2), "coalition_dp_seconds": round(dp, 2),
-            "checks_without_dp_seconds": round(total - dp, 2)}
+            "best_responses_seconds": round(br, 2)}
 
 
 def main(argv: list[str] | None = None) -> int:

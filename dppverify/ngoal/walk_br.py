@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import heapq
 import math
+import weakref
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -170,12 +171,31 @@ def table_defender(instance: NInstance, entries: Mapping[tuple[int, ...], tuple[
                          else tuple(default))
 
 
-def _scale(instance: NInstance, share: Fraction) -> tuple[int, int]:
-    """``(W, q)``: every weight times ``W`` and ``share`` times ``q`` are integers."""
-    den = 1
-    for d in {Fraction(w).denominator for arcs in instance.succ for _, w in arcs}:
-        den = math.lcm(den, d)
-    return den, share.denominator
+_ARCS: weakref.WeakKeyDictionary[NInstance, tuple[int, list[list[tuple[int, int]]]]] = (
+    weakref.WeakKeyDictionary())
+
+
+def _scaled_pred(instance: NInstance) -> tuple[int, list[list[tuple[int, int]]]]:
+    """``(W, pred)``: ``W`` the lcm of the weights' denominators and, for every node ``x``, the
+    arcs ``(u, W·w(u, x))`` entering it from non-goal nodes (built once per instance)."""
+    if instance not in _ARCS:
+        den = 1
+        for d in {Fraction(w).denominator for arcs in instance.succ for _, w in arcs}:
+            den = math.lcm(den, d)
+        goal = set(instance.goals)
+        scaled: dict[Number, int] = {}
+        pred = []
+        for arcs in instance.pred:
+            row = []
+            for u, w in arcs:
+                if u in goal:
+                    continue  # a walk never leaves a goal
+                if w not in scaled:
+                    scaled[w] = int(Fraction(w) * den)
+                row.append((u, scaled[w]))
+            pred.append(row)
+        _ARCS[instance] = (den, pred)
+    return _ARCS[instance]
 
 
 def exit_costs(instance: NInstance, share: Fraction, theta: int
@@ -197,17 +217,14 @@ def exit_costs(instance: NInstance, share: Fraction, theta: int
     ([2, 1, 0, 2, 2], [2, 2, -1, -1, -1])
     """
     inst = instance
-    big, q = _scale(inst, share)
-    step = share * q  # an integer: numerator of share scaled to denominator q
-    num = int(step)
-    unit = big * q
+    big, pred = _scaled_pred(inst)
+    num = share.numerator  # every step costs (W·w)·num / (W·q)
+    unit = big * share.denominator
     n = inst.n_nodes
     best: list[int | None] = [None] * n
     nxt = [-1] * n
     heap: list[tuple[int, int]] = []
-    goal = [False] * n
     for g in inst.goals:
-        goal[g] = True
         t = inst.dist_to[theta][g]
         if t != INF:
             key = int(Fraction(t) * unit)
@@ -215,20 +232,21 @@ def exit_costs(instance: NInstance, share: Fraction, theta: int
             heap.append((key, g))
     heapq.heapify(heap)
     done = [False] * n
+    pop, push = heapq.heappop, heapq.heappush
     while heap:
-        k, x = heapq.heappop(heap)
+        k, x = pop(heap)
         if done[x]:
             continue
         done[x] = True
-        for u, w in inst.pred[x]:
-            if goal[u] or done[u]:
+        for u, wi in pred[x]:
+            if done[u]:
                 continue
-            nk = k + int(Fraction(w) * big) * num
+            nk = k + wi * num
             b = best[u]
             if b is None or nk < b:
                 best[u] = nk
                 nxt[u] = x
-                heapq.heappush(heap, (nk, u))
+                push(heap, (nk, u))
     costs: list[Number] = [INF if b is None else normalize(Fraction(b, unit)) for b in best]
     return costs, nxt
 
