@@ -26,8 +26,9 @@ from dppverify.checks.attacker import attacker_br
 from dppverify.checks.beliefs import belief_consistency
 from dppverify.checks.defender import defender_br, sequential_rationality
 from dppverify.checks.payoffs import value_check, values
+from dppverify.checks.skipped import skipped
 from dppverify.checks.wellformed import phases, wellformed
-from dppverify.context import Context, make_context
+from dppverify.context import Context, EvaluatedContext, make_context
 from dppverify.errors import (
     HorizonError,
     InvalidInstanceError,
@@ -54,7 +55,7 @@ from dppverify.profile import (
     load_profile_document,
     profile_from_json,
 )
-from dppverify.registry import CHECK_IDS, CHECKS, RouteName, not_run, runner, runners
+from dppverify.registry import CHECK_IDS, CHECKS, RouteName, not_run, runner, runners, spec
 from dppverify.routes import Route, tree_fits
 from dppverify.structured import structured_checks
 from dppverify.tree import DEFAULT_MAX_PREFIXES, build_tree
@@ -329,21 +330,37 @@ def _run_wellformed(ctx: Context) -> list[CheckRecord]:
     return [wellformed(ctx)]
 
 
-@_ctx_runner("value.U1", "value.U2", "value.U", "value.VoI")
-def _run_values(ctx: Context) -> list[CheckRecord]:
-    return values(ctx)
+def _on_profile(*ids: str) -> Callable[[Callable[[EvaluatedContext], list[CheckRecord]]],
+                                        Callable[[Context], list[CheckRecord]]]:
+    """Register a runner of checks about the profile: it is called with an
+    :class:`EvaluatedContext` only; for an ill-formed profile its records are ``skipped``."""
+    def register(fn: Callable[[EvaluatedContext], list[CheckRecord]]
+                 ) -> Callable[[Context], list[CheckRecord]]:
+        def run(ctx: Context) -> list[CheckRecord]:
+            if isinstance(ctx, EvaluatedContext):
+                return fn(ctx)
+            return [skipped(i, spec(i).proof) for i in ids]
+        return runner("tree", *ids)(run)
+    return register
+
+
+_on_profile("value.U1", "value.U2", "value.U", "value.VoI")(values)
 
 
 def _one(check_id: str, fn: Callable[[Context], CheckRecord]) -> None:
     runner("tree", check_id)(lambda ctx: [fn(ctx)])
 
 
+def _one_on_profile(check_id: str, fn: Callable[[EvaluatedContext], CheckRecord]) -> None:
+    _on_profile(check_id)(lambda ctx: [fn(ctx)])
+
+
 _one("profile.phases", phases)
-_one("pbne.attacker_br.primary", lambda ctx: attacker_br(ctx, 1))
-_one("pbne.attacker_br.secondary", lambda ctx: attacker_br(ctx, 2))
-_one("pbne.defender_br", defender_br)
-_one("pbne.sequential_rationality", sequential_rationality)
-_one("pbne.belief_consistency", belief_consistency)
+_one_on_profile("pbne.attacker_br.primary", lambda ctx: attacker_br(ctx, 1))
+_one_on_profile("pbne.attacker_br.secondary", lambda ctx: attacker_br(ctx, 2))
+_one_on_profile("pbne.defender_br", defender_br)
+_one_on_profile("pbne.sequential_rationality", sequential_rationality)
+_one_on_profile("pbne.belief_consistency", belief_consistency)
 _one("game.value", value_check)
 _one("lemma.TEL.telescoping", telescoping)
 _one("lemma.L1.lower_bound", l1_lower_bound)
@@ -351,7 +368,7 @@ _one("lemma.L2.no_revisits", l2_no_revisits)
 _one("lemma.XI2.secondary_value", xi2_secondary_value)
 _one("lemma.L3.greedy", l3_greedy)
 _one("lemma.L4.monotonicity", l4_monotonicity)
-_one("lemma.L5.induced_beliefs", l5_induced_beliefs)
+_one_on_profile("lemma.L5.induced_beliefs", l5_induced_beliefs)
 
 
 def _run_checks(ctx: Context, bar: tqdm | None = None) -> list[CheckRecord]:

@@ -34,8 +34,7 @@ from dppverify.best_response import (
     leaf_totals,
 )
 from dppverify.certificate import CheckRecord, Status
-from dppverify.checks.skipped import NOT_WELLFORMED
-from dppverify.context import Context
+from dppverify.context import Context, EvaluatedContext
 from dppverify.defender import sigma_along
 from dppverify.distances import dijkstra
 from dppverify.evaluation import realization
@@ -363,8 +362,7 @@ def l3_greedy(ctx: Context) -> CheckRecord:
     tree, roles = ctx.tree, ctx.roles
     rng = random.Random(f"{ctx.seed}-L3")
     attackers = []
-    if ctx.usable:
-        assert ctx.x1 is not None and ctx.x2 is not None
+    if isinstance(ctx, EvaluatedContext):
         attackers.append(("the profile's attacker", ctx.x1, ctx.x2))
     for k in range(ctx.trials):
         attackers.append((f"random attacker {k + 1}",
@@ -446,7 +444,7 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
         assert leaf is not None
         along = tree.path(leaf)
         primaries: list[tuple[str, tuple[StrategyPath, ...]]] = []
-        if ctx.usable:
+        if isinstance(ctx, EvaluatedContext):
             primaries.append(("the profile's primary", ctx.profile.primary))
         primaries += [(f"random primary {k + 1}", random_mixture(tree, rng, through=along))
                       for k in range(ctx.trials)]
@@ -472,7 +470,7 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
                        f"{strategies} primary strategies (seed {ctx.seed})", numbers, "L4")
 
 
-def l5_induced_beliefs(ctx: Context) -> CheckRecord:
+def l5_induced_beliefs(ctx: EvaluatedContext) -> CheckRecord:
     """``lemma.L5.induced_beliefs``: Lemma 5 for the profile's attacker.
 
     Parameters
@@ -499,9 +497,6 @@ def l5_induced_beliefs(ctx: Context) -> CheckRecord:
     ('fail', 'at step 1 of ξ² (phase II) the belief is 4/7, not 1/2')
     """
     cid = "lemma.L5.induced_beliefs"
-    if not ctx.usable:
-        return CheckRecord(cid, "skipped", NOT_WELLFORMED, {}, "L5")
-    assert ctx.x1 is not None and ctx.x2 is not None
     sec = [w for w in ctx.profile.secondary if w.probability > 0]
     if len(sec) != 1:
         return CheckRecord(cid, "skipped", "not applicable: the secondary type mixes several "
@@ -514,23 +509,16 @@ def l5_induced_beliefs(ctx: Context) -> CheckRecord:
     assert leaf is not None
     along = tree.path(leaf)
 
-    x1, x2 = ctx.x1, ctx.x2
-
-    def belief(p: int) -> Fraction:
-        v1 = roles.b1 * x1.get(p, Fraction(0))
-        v2 = roles.b2 * x2.get(p, Fraction(0))
-        return v1 / (v1 + v2)
-
     problems = []
     for t, p in enumerate(along):
         want = roles.b1 if t <= t1 else (HALF if t <= t2 else Fraction(0))
-        got = belief(p)
+        got = ctx.beliefs[p]
         if got != want:
             phase = "I" if t <= t1 else ("II" if t <= t2 else "III")
             problems.append(f"at step {t} of ξ² (phase {phase}) the belief is {show(got)}, "
                             f"not {show(want)}")
     on_xi2 = set(along)
-    off = [p for p in x1 if p not in on_xi2]
+    off = [p for p in ctx.x1 if p not in on_xi2]
     numbers: dict[str, Number | None] = {"t_I": t1, "t_II": t2, "T": T, "b1": roles.b1,
                                          "off_path_prefixes": len(off)}
     if problems:

@@ -4,9 +4,7 @@ from __future__ import annotations
 
 from dppverify.best_response import attacker_best_response_lp, leaf_totals
 from dppverify.certificate import CheckRecord
-from dppverify.checks.payoffs import profile_values
-from dppverify.checks.skipped import skipped
-from dppverify.context import Context
+from dppverify.context import EvaluatedContext
 from dppverify.evaluation import walk_cost
 from dppverify.exact import Number
 from dppverify.lp import lp_agrees
@@ -15,7 +13,7 @@ from dppverify.text import show, show_walk
 __all__ = ["attacker_br"]
 
 
-def attacker_br(ctx: Context, theta: int) -> CheckRecord:
+def attacker_br(ctx: EvaluatedContext, theta: int) -> CheckRecord:
     """``pbne.attacker_br.primary`` / ``.secondary``: type θ's exact regret is 0.
 
     The regret is ``U^θ(profile) − min over ALL walks of the tree`` against the profile's
@@ -48,15 +46,12 @@ def attacker_br(ctx: Context, theta: int) -> CheckRecord:
     """
     cid = "pbne.attacker_br." + ("primary" if theta == 1 else "secondary")
     proof = "L1" if theta == 1 else "XI2"
-    if not ctx.usable:
-        return skipped(cid, proof)
-    assert ctx.defender is not None and ctx.profile.defender is not None
     inst, tree, roles = ctx.instance, ctx.tree, ctx.roles
     br = ctx.best_response(ctx.defender, theta)
     totals = leaf_totals(tree, roles, ctx.defender, theta)
     forward = min(totals[p] for p in tree.leaves().tolist())
     lp = attacker_best_response_lp(tree, roles, ctx.defender, theta)
-    u = profile_values(ctx).U1 if theta == 1 else profile_values(ctx).U2
+    u = ctx.values.U1 if theta == 1 else ctx.values.U2
     regret = ctx.numbers.difference(u, br.value)
     numbers: dict[str, Number | None] = {f"U{theta}": u, "best_response": br.value,
                                          "best_response_lp": lp.value, "regret": regret,
@@ -71,7 +66,7 @@ def attacker_br(ctx: Context, theta: int) -> CheckRecord:
     if regret < 0:
         return CheckRecord(cid, "error", f"U{theta} = {show(u)} is below the best response "
                            f"{show(br.value)}: inconsistent evaluation", numbers, proof)
-    costs = [(walk_cost(inst, roles, ctx.profile.defender, w.walk, theta), w)
+    costs = [(walk_cost(inst, roles, ctx.evaluated.rule, w.walk, theta), w)
              for w in ctx.profile.walks(theta) if w.probability > 0]
     worst_cost, worst = max(costs, key=lambda cw: cw[0])
     return CheckRecord(cid, "fail", f"regret {show(regret)}: the walk {show_walk(inst, br.walk)} "

@@ -5,33 +5,14 @@ from __future__ import annotations
 from fractions import Fraction
 
 from dppverify.certificate import CheckRecord
-from dppverify.checks.skipped import skipped
-from dppverify.context import Context
+from dppverify.context import EvaluatedContext
 from dppverify.exact import Number
 from dppverify.text import show
 
-__all__ = ["bayes_beliefs", "belief_consistency"]
+__all__ = ["belief_consistency"]
 
 
-def bayes_beliefs(ctx: Context) -> dict[int, Fraction]:
-    """Closed-form Bayes beliefs ``b1 x1 / (b1 x1 + b2 x2)`` at every reached prefix.
-
-    Examples
-    --------
-    >>> from dppverify.examples import triangle_context
-    >>> bayes_beliefs(triangle_context())   # after s -> g2 the types are equally likely
-    {0: Fraction(7, 10), 1: Fraction(1, 1), 2: Fraction(1, 2)}
-    """
-    assert ctx.x1 is not None and ctx.x2 is not None
-    out = {}
-    for p in set(ctx.x1) | set(ctx.x2):
-        v1 = ctx.roles.b1 * ctx.x1.get(p, Fraction(0))
-        v2 = ctx.roles.b2 * ctx.x2.get(p, Fraction(0))
-        out[p] = v1 / (v1 + v2)
-    return out
-
-
-def belief_consistency(ctx: Context) -> CheckRecord:
+def belief_consistency(ctx: EvaluatedContext) -> CheckRecord:
     """``pbne.belief_consistency``: beliefs follow Bayes' rule (eq. (2)) from the prior.
 
     The belief is propagated step by step with the behavioural probabilities
@@ -59,9 +40,6 @@ def belief_consistency(ctx: Context) -> CheckRecord:
     ('fail', "the profile states the prior (1/2, 1/2) but the instance's is (7/10, 3/10)")
     """
     cid = "pbne.belief_consistency"
-    if not ctx.usable:
-        return skipped(cid, "THM")
-    assert ctx.x1 is not None and ctx.x2 is not None
     roles, tree = ctx.roles, ctx.tree
     claim = ctx.profile.claimed_prior
     numbers: dict[str, Number | None] = {"b1": roles.b1, "b2": roles.b2}
@@ -69,7 +47,7 @@ def belief_consistency(ctx: Context) -> CheckRecord:
         return CheckRecord(cid, "fail", f"the profile states the prior ({show(claim[0])}, "
                            f"{show(claim[1])}) but the instance's is ({show(roles.b1)}, "
                            f"{show(roles.b2)})", numbers, "THM")
-    closed = bayes_beliefs(ctx)
+    closed = ctx.beliefs
     recursive: dict[int, Fraction] = {0: roles.b1}
     parent = tree.parent
     mismatches = 0

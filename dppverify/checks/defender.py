@@ -7,10 +7,7 @@ from fractions import Fraction
 
 from dppverify.best_response import defender_best_response, defender_best_response_lp
 from dppverify.certificate import CheckRecord
-from dppverify.checks.beliefs import bayes_beliefs
-from dppverify.checks.payoffs import profile_values
-from dppverify.checks.skipped import skipped
-from dppverify.context import Context
+from dppverify.context import EvaluatedContext
 from dppverify.exact import Number
 from dppverify.lp import lp_agrees
 from dppverify.text import show, show_walk
@@ -20,7 +17,7 @@ __all__ = ["defender_br", "sequential_rationality"]
 HALF = Fraction(1, 2)
 
 
-def defender_br(ctx: Context) -> CheckRecord:
+def defender_br(ctx: EvaluatedContext) -> CheckRecord:
     """``pbne.defender_br``: the Defender's exact regret (greedy best response − U) is 0.
 
     Parameters
@@ -48,11 +45,8 @@ def defender_br(ctx: Context) -> CheckRecord:
     ('fail', Fraction(12, 5), Fraction(5, 2), Fraction(1, 10))
     """
     cid = "pbne.defender_br"
-    if not ctx.usable:
-        return skipped(cid, "L3")
-    assert ctx.x1 is not None and ctx.x2 is not None and ctx.defender is not None
     tree, roles = ctx.tree, ctx.roles
-    u = profile_values(ctx).U
+    u = ctx.values.U
     br = defender_best_response(tree, roles, ctx.x1, ctx.x2)
     lp, _ = defender_best_response_lp(tree, roles, ctx.x1, ctx.x2)
     regret = ctx.numbers.difference(br.value, u)
@@ -80,7 +74,7 @@ def defender_br(ctx: Context) -> CheckRecord:
                        f"most ({show(gain)}) after the walk {walk}", numbers, "L3")
 
 
-def sequential_rationality(ctx: Context) -> CheckRecord:
+def sequential_rationality(ctx: EvaluatedContext) -> CheckRecord:
     """``pbne.sequential_rationality``: greedy w.r.t. the Bayes belief at every reached infoset.
 
     Lemma 3: allocate to g1 surely when ``b1_t > 1/2``, to g2 surely when ``b1_t < 1/2``;
@@ -111,10 +105,7 @@ def sequential_rationality(ctx: Context) -> CheckRecord:
     is 4/7 but σ(g1) = 1/2
     """
     cid = "pbne.sequential_rationality"
-    if not ctx.usable:
-        return skipped(cid, "THM")
-    assert ctx.defender is not None
-    beliefs = bayes_beliefs(ctx)
+    beliefs = ctx.beliefs
     bad = []
     half = 0
     mode = ctx.numbers

@@ -7,42 +7,17 @@ import numpy as np
 
 from dppverify.best_response import objective_vector, payoff_on_tree
 from dppverify.certificate import CheckRecord, Status
-from dppverify.checks.skipped import NOT_WELLFORMED, skipped
-from dppverify.context import Context
-from dppverify.evaluation import Values, evaluate
+from dppverify.checks.skipped import NOT_WELLFORMED
+from dppverify.context import Context, EvaluatedContext
 from dppverify.exact import Number
 from dppverify.lp import LP_TOLERANCE, lp_agrees
 from dppverify.text import show
 from dppverify.value_lp import exact_bracket, solve_value_lp
 
-__all__ = ["profile_values", "value_check", "values"]
+__all__ = ["value_check", "values"]
 
 
-def profile_values(ctx: Context) -> Values:
-    """Exact U¹, U², U, Ū, VoI of the (well-formed) profile, walk by walk.
-
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.context.make_context`).
-
-    Returns
-    -------
-    Values
-
-    Examples
-    --------
-    >>> from dppverify.examples import triangle_attacker, triangle_context as context
-    >>> eq = triangle_attacker()
-    >>> profile_values(context(eq))
-    Values(U1=3, U2=1, U=Fraction(12, 5), U_bar=Fraction(27, 10), VoI=Fraction(1, 9))
-    """
-    assert ctx.profile.defender is not None
-    return evaluate(ctx.instance, ctx.roles, ctx.profile.defender, ctx.profile.primary,
-                    ctx.profile.secondary)
-
-
-def values(ctx: Context) -> list[CheckRecord]:
+def values(ctx: EvaluatedContext) -> list[CheckRecord]:
     """``value.U1``, ``value.U2``, ``value.U``, ``value.VoI``.
 
     Three routes must agree: walk by walk (exact), realization plans on the tree (exact),
@@ -73,11 +48,7 @@ def values(ctx: Context) -> list[CheckRecord]:
     >>> r.status, r.message
     ('fail', 'U = 12/5 exactly, but the profile claims U = 5/2')
     """
-    ids = ("value.U1", "value.U2", "value.U", "value.VoI")
-    if not ctx.usable:
-        return [skipped(i, "TEL") for i in ids]
-    assert ctx.defender is not None and ctx.x1 is not None and ctx.x2 is not None
-    v = profile_values(ctx)
+    v = ctx.values
     claims = ctx.profile.claimed_values
     tree, roles = ctx.tree, ctx.roles
     lp_u: dict[int, float] = {}
@@ -157,8 +128,7 @@ def value_check(ctx: Context) -> CheckRecord:
     lp = solve_value_lp(tree, roles)
     defenders = []
     attackers = []
-    if ctx.usable:
-        assert ctx.defender is not None and ctx.x1 is not None and ctx.x2 is not None
+    if isinstance(ctx, EvaluatedContext):
         defenders.append(("the profile's Defender", ctx.defender))
         attackers.append(("the profile's Attacker", ctx.x1, ctx.x2))
     bracket = exact_bracket(tree, roles, lp, defenders, attackers, sigma_star=ctx.sigma_star)
@@ -174,9 +144,9 @@ def value_check(ctx: Context) -> CheckRecord:
     if not inside:
         return CheckRecord(cid, "error", f"the LP value lies outside the exact bracket: {vh}",
                            numbers, "LP")
-    if not ctx.usable:
+    if not isinstance(ctx, EvaluatedContext):
         return CheckRecord(cid, "skipped", f"{vh}; {NOT_WELLFORMED}", numbers, "LP")
-    u = profile_values(ctx).U
+    u = ctx.values.U
     numbers["U"] = u
     exact_equal = ctx.numbers.equal(bracket.lower, u) and ctx.numbers.equal(bracket.upper, u)
     if exact_equal and lp_agrees(lp.value, u):
