@@ -54,8 +54,9 @@ from dppverify.ngoal.best_response import (
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import NInstance, load_ninstance, ninstance_from_json
 from dppverify.ngoal.profile import NProfile, load_nprofile_document, nprofile_from_json
+from dppverify.ngoal.routes import ntree_fits
 from dppverify.ngoal.structured import NSTRUCTURED_NOT_RUN, nstructured_checks
-from dppverify.ngoal.tree import NWalkTree, build_ntree, count_nprefixes
+from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.ngoal.value_lp import exact_nbracket, solve_nvalue_lp
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 
@@ -196,7 +197,7 @@ def _choose_route(inst: NInstance, prof: NProfile, horizon: int | Literal["inf"]
         return "structured", None
     h = prof.longest if horizon is None else horizon
     if route == "auto":
-        if count_nprefixes(inst, max(h, inst.hops[inst.start])) <= max_prefixes:
+        if ntree_fits(inst, max(h, inst.hops[inst.start]), max_prefixes):
             return "tree", h
         return "structured", None if horizon is None else h
     return route, h

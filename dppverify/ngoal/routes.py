@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 from dppverify.errors import HorizonError, InvalidInstanceError, OptionError
 from dppverify.exact import format_number
@@ -19,13 +19,13 @@ from dppverify.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
 from dppverify.ngoal.coalition import CoalitionValue, coalition_value, too_many_goals
 from dppverify.ngoal.cover import MAX_BALANCED, members
 from dppverify.ngoal.instance import NInstance, goal_count, read_instance_document
-from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import NGameValue, ngame_value
+from dppverify.routes import tree_fits
 from dppverify.text import show
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 
 __all__ = ["CONJECTURE_NOTE", "NRoutedValue", "is_ngoal_file", "nrouted_document",
-           "nrouted_lines", "nrouted_value"]
+           "nrouted_lines", "nrouted_value", "ntree_fits"]
 
 CONJECTURE_NOTE = "coalition DP: exact, conjectured equal to V_H (proofs/NGOAL.md)"
 
@@ -43,6 +43,24 @@ def is_ngoal_file(path: str | Path) -> bool:
     except InvalidInstanceError:
         return False
     return n is not None and n > 2
+
+
+def ntree_fits(instance: NInstance, horizon: int, max_prefixes: int) -> bool:
+    """True when the N-goal walk tree of ``horizon`` steps has at most ``max_prefixes`` prefixes.
+
+    The two-goal count (:func:`dppverify.routes.tree_fits`: vectorised, saturated just above
+    ``max_prefixes``, so huge trees are never counted in full); it reads only the graph, the
+    start, the goals and the hop distances, which an N-goal instance has under the same names,
+    and prunes by the same rule as :func:`~dppverify.ngoal.tree.count_nprefixes`.
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.ngoal.tree import count_nprefixes
+    >>> [count_nprefixes(star3(), h) for h in (2, 3)], ntree_fits(star3(), 3, 7)
+    ([6, 8], False)
+    """
+    return tree_fits(cast(Any, instance), horizon, max_prefixes)
 
 
 @dataclass(frozen=True)
@@ -86,7 +104,7 @@ def nrouted_value(instance: NInstance, horizon: int | None, *, route: str = "aut
     if instance.n_goals > MAX_BALANCED and (horizon is None or route in ("structured", "both")):
         raise OptionError(too_many_goals(instance.n_goals))
     if route == "auto":
-        fits = horizon is not None and count_nprefixes(instance, horizon) <= max_prefixes
+        fits = horizon is not None and ntree_fits(instance, horizon, max_prefixes)
         route = "tree" if fits or instance.n_goals > MAX_BALANCED else "structured"
     tree = (ngame_value(instance, horizon, max_prefixes=max_prefixes)
             if route in ("tree", "both") and horizon is not None else None)

@@ -26,6 +26,7 @@ from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.examples import star3_document, star3_profile
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
 from dppverify.ngoal.profile import nprofile_from_json
+from dppverify.ngoal.routes import ntree_fits
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.walk_br import table_defender, walk_best_response
 from dppverify.strategies import ngoal_instances, weighted_graphs
@@ -277,3 +278,13 @@ def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, 
         key = f"regret{t + 1}"
         assert tree_full.check("ngoal.pbne.attacker_br").numbers[key] == struct.check(
             "ngoal.pbne.attacker_br").numbers[key]
+
+
+@given(ngoal_instances(min_goals=3, max_goals=4,
+                       graphs=weighted_graphs(min_nodes=4, max_nodes=7, max_weight=3)),
+       st.integers(1, 200))
+def test_the_saturating_size_count_decides_like_the_exact_count(doc: dict[str, Any],
+                                                                  limit: int) -> None:
+    inst = ninstance_from_json(doc)
+    for h in range(0, 9):
+        assert ntree_fits(inst, h, limit) == (count_nprefixes(inst, h) <= limit), h
