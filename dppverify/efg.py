@@ -100,7 +100,7 @@ import numpy as np
 from tqdm import tqdm
 
 from dppverify.errors import CheckerError, TreeTooLargeError
-from dppverify.exact import Number, normalize
+from dppverify.exact import Number
 from dppverify.files import write_files
 from dppverify.instance import Instance
 from dppverify.ngoal.instance import NInstance
@@ -229,7 +229,8 @@ class _Writer:
         self.outcomes: dict[Number, int] = {}
         self.action_rank: dict[str, int] = {}  # player-action names by first appearance
         self.exact = self.inst.exact
-        self.zero: Number = 0 if self.exact else 0.0
+        self.numbers = self.inst.numbers
+        self.zero: Number = self.numbers.zero()
 
     def _infoset(self, player: int, key: tuple[object, ...]) -> int:
         table = self.infosets[player - 1]
@@ -246,7 +247,7 @@ class _Writer:
         return out
 
     def _terminal(self, cost: Number) -> str:
-        cost = normalize(cost) if self.exact else float(cost)
+        cost = self.numbers.convert(cost)
         num = self.outcomes.setdefault(cost, len(self.outcomes) + 1)
         c = _number(cost)
         neg = _number(-cost) if cost != 0 else c

@@ -206,7 +206,7 @@ def lower_bound(tree: WalkTree, roles: Roles, tdef: TreeDefender) -> Number:
     """
     v = (roles.b1 * attacker_best_response(tree, roles, tdef, 1).value
          + roles.b2 * attacker_best_response(tree, roles, tdef, 2).value)
-    return normalize(v) if tree.instance.exact else float(v)
+    return tree.instance.numbers.convert(v)
 
 
 def upper_bound(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
@@ -245,6 +245,7 @@ def upper_bound(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
 
 def _rational_defender(tree: WalkTree, sigma: np.ndarray, den: int) -> TreeDefender:
     exact = tree.instance.exact
+    numbers = tree.instance.numbers
     w = tree.weight
     s1: list[Number] = [0] * tree.n_prefixes
     a1: list[Number] = [0] * tree.n_prefixes
@@ -254,8 +255,8 @@ def _rational_defender(tree: WalkTree, sigma: np.ndarray, den: int) -> TreeDefen
         q = normalize(Fraction(x).limit_denominator(den)) if exact else x
         q = min(max(q, 0), 1)
         s1[p] = q
-        a1[p] = normalize(w[p] * q) if exact else float(w[p]) * float(q)
-        a2[p] = normalize(w[p] - a1[p]) if exact else float(w[p]) - float(a1[p])
+        a1[p] = numbers.product(w[p], q)
+        a2[p] = numbers.difference(w[p], a1[p])
     return TreeDefender(sigma1=tuple(s1), alloc1=tuple(a1), alloc2=tuple(a2))
 
 
