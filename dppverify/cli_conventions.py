@@ -66,6 +66,16 @@ def status(message: str) -> None:
     click.echo(message, err=True)
 
 
+class _NonEmptyPath(click.Path):
+    """A path option that refuses ``''`` (which ``Path('')`` would silently turn into ``.``)."""
+
+    def convert(self, value: Any, param: click.Parameter | None,
+                ctx: click.Context | None) -> Any:
+        if isinstance(value, str) and value.strip() == "":
+            self.fail("the path is empty", param, ctx)
+        return super().convert(value, param, ctx)
+
+
 def _with_deprecated_alias(fn: Any, param: str, old: str, new: str, required: bool,
                            kind: click.ParamType) -> Any:
     """Accept the hidden option ``old`` as a deprecated spelling of ``new`` (``param``)."""
@@ -104,7 +114,7 @@ def output_file_option(help: str, *, required: bool = False,
     >>> r.stdout, r.stderr
     ('b.png\\n', 'warning: --out is deprecated; use --output\\n')
     """
-    kind = click.Path(dir_okay=False)
+    kind = _NonEmptyPath(dir_okay=False)
 
     def decorate(fn: F) -> F:
         if deprecated is not None:
@@ -130,7 +140,7 @@ def output_dir_option(help: str, *, default: str | None = None,
     >>> [CliRunner().invoke(cmd, a).stdout for a in ([], ["--output-dir", "d"], ["--out", "e"])]
     ['out/x\\n', 'd\\n', 'e\\n']
     """
-    kind = click.Path(file_okay=False)
+    kind = _NonEmptyPath(file_okay=False)
 
     def decorate(fn: F) -> F:
         if deprecated is not None:

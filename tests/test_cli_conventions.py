@@ -88,3 +88,18 @@ def test_progress_bars_only_on_request(tmp_path: Path) -> None:
     loud = CliRunner().invoke(main, ["certify", TRIANGLE, str(tmp_path / "missing.json"),
                                      "--progress"])
     assert loud.exit_code == 2
+
+
+@pytest.mark.parametrize("name", sorted(n for n, c in _commands()
+                                        if any(p.name in ("output", "output_dir")
+                                               for p in c.params)))
+def test_an_empty_output_path_is_refused_by_name(name: str, tmp_path: Path,
+                                                 monkeypatch: pytest.MonkeyPatch) -> None:
+    # Path("") is "." — an empty -o/--output-dir must not become the current folder
+    monkeypatch.chdir(tmp_path)
+    cmd = dict(_commands())[name]
+    flag = "--output" if any(p.name == "output" for p in cmd.params) else "--output-dir"
+    result = CliRunner().invoke(main, [*name.split(), flag, ""])
+    assert result.exit_code == 2
+    assert "the path is empty" in result.output
+    assert list(tmp_path.iterdir()) == []
