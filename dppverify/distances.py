@@ -1,20 +1,38 @@
 """Exact shortest distances (Dijkstra on exact numbers) and hop counts to the goals.
 
 The checker's own implementation, independent of the solver's: pure Python on ``int`` /
-``Fraction`` (or ``float`` in float mode). It is meant for the small graphs a truncated game
-tree can be built on. All game quantities use *full-graph* distances (proofs/README.md,
-assumption (G); proofs/THM.md).
+``Fraction`` (or ``float`` in float mode). All game quantities use *full-graph* distances
+(proofs/README.md, assumption (G); proofs/THM.md).
+
+On big graphs the exact distances are computed by scipy's Dijkstra on the weights scaled to
+integers over their common denominator, held in ``float64``, when a bound computed up front
+shows every path sum stays below :data:`EXACT_FLOAT_LIMIT` (then every sum float64 forms is an
+exact integer, and the result is the exact one): :class:`ArcArrays` and
+:meth:`ArcArrays.scaled` are that guard, shared by :mod:`dppverify.instance`,
+:mod:`dppverify.walk_br` and :mod:`dppverify.value_dp`; past it the callers use
+:func:`dijkstra` on Python numbers.
 """
 
 from __future__ import annotations
 
 import heapq
+import math
 from collections import deque
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import dijkstra as sp_dijkstra
 
 from dppverify.exact import INF, Number
 
-__all__ = ["Adjacency", "dijkstra", "hops_to_targets"]
+__all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "common_denominator", "dijkstra",
+           "exact_distances_to", "hops_by_arrays", "hops_to_targets", "unscale"]
+
+EXACT_FLOAT_LIMIT = 2**53
+"""Integer path sums below this are exact in float64."""
 
 Adjacency = Sequence[Sequence[tuple[int, Number]]]
 """``adj[u]`` lists the arcs ``(v, w(u, v))`` leaving ``u`` (node indices)."""
@@ -91,3 +109,154 @@ def hops_to_targets(reverse_adj: Adjacency, targets: Iterable[int]) -> list[int]
                 hops[u] = hops[v] + 1
                 queue.append(u)
     return hops
+
+
+def common_denominator(values: Iterable[Number]) -> int:
+    """The least common multiple of the denominators of the exact ``values`` (ints count 1).
+
+    Examples
+    --------
+    >>> common_denominator([1, Fraction(1, 4), Fraction(5, 6)])
+    12
+    """
+    den = 1
+    for w in values:
+        if type(w) is Fraction:
+            den = math.lcm(den, w.denominator)
+    return den
+
+
+@dataclass(frozen=True, eq=False)
+class ArcArrays:
+    """Every arc of a graph as arrays, in adjacency order (by tail, then head).
+
+    Attributes
+    ----------
+    tails, heads : numpy.ndarray
+        Tail and head of every arc (``int64``).
+    codes : numpy.ndarray
+        ``values[codes[i]]`` is the weight of arc ``i`` (``int64``).
+    values : tuple
+        The distinct weights (instances have few).
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 2), (2, Fraction(1, 2))], [(2, 2)], []])
+    >>> a.tails.tolist(), a.heads.tolist(), a.codes.tolist(), a.values
+    ([0, 0, 1], [1, 2, 2], [0, 1, 0], (2, Fraction(1, 2)))
+    >>> a.scaled(a.values), a.scaled([2**53])
+    ((2, [4, 1]), None)
+    """
+
+    tails: np.ndarray
+    heads: np.ndarray
+    codes: np.ndarray
+    values: tuple[Number, ...]
+
+    @classmethod
+    def from_adjacency(cls, adj: Adjacency) -> ArcArrays:
+        """The arcs of ``adj`` (``adj[u]`` lists ``(v, w)``), distinct weights keyed with
+        their type."""
+        code: dict[tuple[type, Number], int] = {}
+        tails: list[int] = []
+        heads: list[int] = []
+        codes: list[int] = []
+        for u, arcs in enumerate(adj):
+            for v, w in arcs:
+                tails.append(u)
+                heads.append(v)
+                codes.append(code.setdefault((type(w), w), len(code)))
+        return cls(tails=np.asarray(tails, dtype=np.int64), heads=np.asarray(heads, dtype=np.int64),
+                   codes=np.asarray(codes, dtype=np.int64), values=tuple(w for _, w in code))
+
+    def weights(self) -> list[Number]:
+        """The weight of every arc (Python numbers)."""
+        return [self.values[c] for c in self.codes.tolist()]
+
+    def scaled(self, total_of: Sequence[Number], *, paths: int = 1,
+               extra: Iterable[Number] = ()) -> tuple[int, list[int]] | None:
+        """``(scale, [v * scale for v in values])`` when float64 sums of them stay exact.
+
+        ``scale`` clears the denominators of ``values`` and ``extra``. None when a weight is
+        a float, or when ``paths`` times the scaled total of ``total_of`` (one entry per arc
+        counted: ``values`` weighted by how many arcs carry them, or any other list of
+        numbers) reaches :data:`EXACT_FLOAT_LIMIT`: a shortest path uses every arc at most
+        once, so ``paths`` path sums added up stay below the limit.
+        """
+        if any(type(v) is float for v in self.values):
+            return None
+        scale = common_denominator([*self.values, *extra])
+        scaled = [int(v * scale) for v in self.values]
+        if total_of is self.values:
+            counts = np.bincount(self.codes, minlength=len(self.values)).tolist()
+            total = sum(v * c for v, c in zip(scaled, counts, strict=True))
+        else:
+            total = sum(int(v * scale) for v in total_of)
+        if paths * total >= EXACT_FLOAT_LIMIT:
+            return None
+        return scale, scaled
+
+    def matrix(self, n: int, scaled: list[int], *, reverse: bool,
+               keep: np.ndarray | None = None) -> sp.csr_matrix:
+        """The scaled weights as a sparse matrix (``reverse``: arcs turned around), only the
+        arcs whose (forward) tail is in ``keep`` when given."""
+        w = np.asarray(scaled, dtype=np.float64)[self.codes]
+        rows, cols = (self.heads, self.tails) if reverse else (self.tails, self.heads)
+        if keep is not None:
+            sel = keep[rows]
+            rows, cols, w = rows[sel], cols[sel], w[sel]
+        return sp.csr_matrix((w, (rows, cols)), shape=(n, n))
+
+
+def exact_distances_to(arcs: ArcArrays, n: int, targets: Sequence[int]
+                       ) -> list[list[Number]] | None:
+    """Exact full-graph distances to each target by scipy, or None past the float64 guard.
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 2), (2, Fraction(7, 2))], [(2, 1)], []])
+    >>> exact_distances_to(a, 3, [2, 0])
+    [[3, 1, 0], [0, inf, inf]]
+    """
+    got = arcs.scaled(arcs.values)
+    if got is None:
+        return None
+    scale, scaled = got
+    dist = np.atleast_2d(sp_dijkstra(arcs.matrix(n, scaled, reverse=True), directed=True,
+                                     indices=list(targets)))
+    return [unscale(row, scale) for row in dist]
+
+
+def unscale(row: np.ndarray, scale: int) -> list[Number]:
+    """Scaled integer distances held in float64 as exact numbers (``inf`` stays ``inf``).
+
+    Examples
+    --------
+    >>> unscale(np.array([0.0, 6.0, 3.0, np.inf]), 2)
+    [0, 3, Fraction(3, 2), inf]
+    """
+    finite = np.isfinite(row)
+    ints = np.where(finite, row, 0).astype(np.int64).tolist()
+    if scale == 1:
+        out: list[Number] = ints
+    else:
+        out = [x // scale if x % scale == 0 else Fraction(x, scale) for x in ints]
+    if not finite.all():
+        for v in np.flatnonzero(~finite).tolist():
+            out[v] = INF
+    return out
+
+
+def hops_by_arrays(arcs: ArcArrays, n: int, targets: Sequence[int]) -> list[int]:
+    """:func:`hops_to_targets` by scipy (breadth-first hop counts; ``-1`` if unreachable).
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 1)], [(2, 1)], [], []])   # 0 -> 1 -> 2; 3 isolated
+    >>> hops_by_arrays(a, 4, [2])
+    [2, 1, 0, -1]
+    """
+    m = arcs.matrix(n, [1] * len(arcs.values), reverse=True)
+    h = np.asarray(sp_dijkstra(m, directed=True, indices=list(targets), unweighted=True,
+                               min_only=True), dtype=np.float64)
+    return np.where(np.isfinite(h), h, -1).astype(np.int64).tolist()

@@ -10,16 +10,26 @@ to 1, and finite full-graph distances ``d(s0, g1)``, ``d(s0, g2)``, ``d(g1, g2)`
 from __future__ import annotations
 
 import json
+import weakref
 from collections.abc import Mapping
 from dataclasses import dataclass
 from fractions import Fraction
+from itertools import chain, pairwise
 from pathlib import Path
 from types import MappingProxyType
 from typing import Any, TypeVar
 
-from dppverify.distances import dijkstra, hops_to_targets
+import numpy as np
+
+from dppverify.distances import (
+    ArcArrays,
+    dijkstra,
+    exact_distances_to,
+    hops_by_arrays,
+    hops_to_targets,
+)
 from dppverify.errors import InvalidInstanceError
-from dppverify.exact import INF, Number
+from dppverify.exact import INF, Number, normalize
 from dppverify.json_reading import (
     JsonReadError,
     Node,
@@ -32,7 +42,8 @@ from dppverify.json_reading import (
 )
 from dppverify.numbers import NumberMode, number_mode
 
-__all__ = ["GameInstance", "Instance", "Node", "Roles", "as_instance", "instance_from_json",
+__all__ = ["GameInstance", "Instance", "Node", "Roles", "arc_arrays", "as_instance",
+           "instance_from_json",
            "load_game", "load_instance", "node_from_json", "node_to_json", "read_game",
            "show_node"]
 
@@ -366,7 +377,7 @@ def read_game(doc: Any, cls: type[G], *, two_goals: bool) -> G:
         raise InvalidInstanceError(str(exc)) from None
 
 
-def _read_game(doc: Any, cls: type[G], two_goals: bool) -> G:
+def _read_game(doc: Any, cls: type[G], two_goals: bool, *, fast: bool = True) -> G:
     _require(isinstance(doc, Mapping), f"instance must be a JSON object, got {type(doc).__name__}")
     missing = [k for k in ("graph", "start", "goals", "prior") if k not in doc]
     _require(not missing, f"instance is missing key(s): {', '.join(missing)}")
@@ -378,18 +389,28 @@ def _read_game(doc: Any, cls: type[G], two_goals: bool) -> G:
         _require(mode == "exact",
                  "numbers: N-goal instances must be exact (\"numbers\": \"exact\")")
     exact = mode == "exact"
-    ids, index, directed, succ = _graph(doc["graph"], exact)
+    regular = _regular_graph(doc["graph"], exact) if fast else None
+    arcs: ArcArrays | None = None
+    if regular is not None:
+        ids, index, directed, succ_t, pred_t, arcs = regular
+    else:
+        ids, index, directed, succ = _graph(doc["graph"], exact)
+        succ_t = tuple(tuple(sorted(s.items())) for s in succ)
     start = _node(doc["start"], index, "start")
     goals = _goals(doc["goals"], index, ids, two_goals)
     prior = _prior(doc["prior"], len(goals), two_goals)
     n = len(ids)
-    succ_t = tuple(tuple(sorted(s.items())) for s in succ)
-    pred_l: list[list[tuple[int, Number]]] = [[] for _ in range(n)]
-    for u in range(n):
-        for v, w in succ_t[u]:
-            pred_l[v].append((u, w))
-    pred_t = tuple(tuple(p) for p in pred_l)
-    dist_to = tuple(tuple(dijkstra(pred_t, gi)) for gi in goals)
+    if regular is None:
+        pred_l: list[list[tuple[int, Number]]] = [[] for _ in range(n)]
+        for u in range(n):
+            for v, w in succ_t[u]:
+                pred_l[v].append((u, w))
+        pred_t = tuple(tuple(p) for p in pred_l)
+    scipy_dist = exact_distances_to(arcs, n, goals) if arcs is not None and exact else None
+    if scipy_dist is not None:
+        dist_to = tuple(tuple(d) for d in scipy_dist)
+    else:  # float mode, an irregular document, or path sums past 2**53: exact Python numbers
+        dist_to = tuple(tuple(map(normalize, dijkstra(pred_t, gi))) for gi in goals)
     for i, gi in enumerate(goals):
         name = show_node(ids[gi])
         _require(dist_to[i][start] != INF,
@@ -398,10 +419,138 @@ def _read_game(doc: Any, cls: type[G], two_goals: bool) -> G:
             other = show_node(ids[gj])
             _require(dist_to[i][gj] != INF, f"goal {name} is unreachable from goal {other}: "
                                             f"d({other}, {name}) is infinite")
-    hops = tuple(hops_to_targets(pred_t, goals))
-    return cls(nodes=tuple(ids), index=MappingProxyType(index), directed=directed,
+    hops = tuple(hops_to_targets(pred_t, goals) if arcs is None
+                 else hops_by_arrays(arcs, n, goals))
+    game = cls(nodes=tuple(ids), index=MappingProxyType(index), directed=directed,
                succ=succ_t, pred=pred_t, start=start, goals=goals, prior=prior,
                exact=exact, dist_to=dist_to, hops=hops)
+    if arcs is not None:
+        _ARC_ARRAYS[game] = arcs
+    return game
+
+
+_ARC_ARRAYS: weakref.WeakKeyDictionary[GameInstance, ArcArrays] = weakref.WeakKeyDictionary()
+
+
+def arc_arrays(game: GameInstance) -> ArcArrays:
+    """The arcs of ``game`` as arrays in ``succ`` order (built once per instance).
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> a = arc_arrays(triangle())
+    >>> a.tails.tolist(), a.heads.tolist(), [a.values[c] for c in a.codes]
+    ([0, 0, 1, 1, 2, 2], [1, 2, 0, 2, 0, 1], [3, 2, 3, 2, 2, 2])
+    """
+    arcs = _ARC_ARRAYS.get(game)
+    if arcs is None:
+        arcs = _ARC_ARRAYS[game] = ArcArrays.from_adjacency(game.succ)
+    return arcs
+
+
+_Regular = tuple[list[Node], dict[Node, int], bool,
+                 tuple[tuple[tuple[int, Number], ...], ...],
+                 tuple[tuple[tuple[int, Number], ...], ...], ArcArrays]
+
+
+def _regular_graph(g: Any, exact: bool) -> _Regular | None:
+    """:func:`_graph` without a Python loop per node and edge, for regular valid documents.
+
+    Regular: node objects are dicts whose ids are all ``[int, int]`` cells, all strings or all
+    ints; edges are dicts with ``source``/``target`` ids of that kind. Returns None on anything
+    else and on any invalid input (a duplicate, an unknown node, a bad weight): then
+    :func:`_graph` reads the document and says what is wrong, with its usual message. When it
+    returns, the result is the one :func:`_graph` and the sorting in :func:`_read_game` give
+    (tests/checker/test_fast_instance.py), plus the arcs as arrays.
+    """
+    if not isinstance(g, Mapping) or g.get("multigraph", False):
+        return None
+    directed = g.get("directed", False)
+    raw_nodes = g.get("nodes")
+    raw_edges = g.get("edges", g.get("links"))
+    if not (type(directed) is bool and type(raw_nodes) is list and type(raw_edges) is list
+            and _all_type(raw_nodes, dict) and _all_type(raw_edges, dict)):
+        return None
+    try:
+        raw_ids = [nd["id"] for nd in raw_nodes]
+        src = [e["source"] for e in raw_edges]
+        dst = [e["target"] for e in raw_edges]
+    except KeyError:
+        return None
+    ids: list[Node]
+    if raw_ids and _cells(raw_ids):
+        if not (_cells(src) and _cells(dst)):
+            return None
+        ids = list(map(tuple, raw_ids))
+        src, dst = list(map(tuple, src)), list(map(tuple, dst))
+    elif _all_type(raw_ids, str) or _all_type(raw_ids, int):
+        kind = type(raw_ids[0]) if raw_ids else str
+        if not (_all_type(src, kind) and _all_type(dst, kind)):
+            return None
+        ids = raw_ids
+    else:
+        return None
+    n, m = len(ids), len(raw_edges)
+    index = dict(zip(ids, range(n), strict=True))
+    if len(index) != n:
+        return None
+    us, vs = list(map(index.get, src)), list(map(index.get, dst))
+    if None in us or None in vs:
+        return None
+    raw_w = [e.get("weight", 1) for e in raw_edges]
+    if not set(map(type, raw_w)) <= set(_SCALARS):
+        return None
+    keys = list(zip(map(type, raw_w), raw_w, strict=True))
+    code = dict.fromkeys(keys)
+    values: list[Number] = []
+    for key in code:  # each distinct literal once, as _graph parses them
+        try:
+            w = parse_number(key[1], where="weight", allow_float=not exact)
+        except (ValueError, TypeError):
+            return None
+        if not w > 0:
+            return None
+        code[key] = len(values)
+        values.append(w)
+    u = np.fromiter(us, dtype=np.int64, count=m)
+    v = np.fromiter(vs, dtype=np.int64, count=m)
+    c = (np.zeros(m, dtype=np.int64) if len(values) == 1
+         else np.fromiter(map(code.__getitem__, keys), dtype=np.int64, count=m))
+    if not directed:
+        back = u != v  # a self-loop is one arc
+        u, v, c = (np.concatenate([u, v[back]]), np.concatenate([v, u[back]]),
+                   np.concatenate([c, c[back]]))
+    fwd = np.argsort(u * n + v, kind="stable")
+    key_sorted = (u * n + v)[fwd]
+    if key_sorted.size > 1 and bool((key_sorted[1:] == key_sorted[:-1]).any()):
+        return None  # a duplicate arc
+    tails, heads, codes = u[fwd], v[fwd], c[fwd]
+    succ_t = _adjacency(n, tails, heads, codes, values)
+    rev = np.argsort(heads * n + tails, kind="stable")
+    pred_t = _adjacency(n, heads[rev], tails[rev], codes[rev], values)
+    return (ids, index, directed, succ_t, pred_t,
+            ArcArrays(tails=tails, heads=heads, codes=codes, values=tuple(values)))
+
+
+def _all_type(xs: list[Any], t: type) -> bool:
+    """Every item of ``xs`` has exactly type ``t`` (``bool`` is not ``int``)."""
+    return not xs or set(map(type, xs)) == {t}
+
+
+def _cells(xs: list[Any]) -> bool:
+    """Every item is a list of two ints (a grid cell)."""
+    return (_all_type(xs, list) and set(map(len, xs)) <= {2}
+            and _all_type(list(chain.from_iterable(xs)), int))
+
+
+def _adjacency(n: int, tails: np.ndarray, heads: np.ndarray, codes: np.ndarray,
+               values: list[Number]) -> tuple[tuple[tuple[int, Number], ...], ...]:
+    """``adj[u]`` = the ``(head, weight)`` pairs of the arcs out of ``u`` (arcs sorted by
+    tail, then head)."""
+    w = [values[0]] * len(codes) if len(values) == 1 else [values[k] for k in codes.tolist()]
+    pairs = list(zip(heads.tolist(), w, strict=True))
+    bounds = np.searchsorted(tails, np.arange(n + 1)).tolist()
+    return tuple(tuple(pairs[a:b]) for a, b in pairwise(bounds))
 
 
 def _graph(g: Any, exact: bool) -> tuple[list[Node], dict[Node, int], bool,

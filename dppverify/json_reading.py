@@ -33,6 +33,8 @@ from numbers import Rational
 from pathlib import Path
 from typing import Any, Protocol
 
+import numpy as np
+
 from dppverify.exact import Number, normalize
 from dppverify.files import read_input
 from dppverify.limits import MAX_JSON_DEPTH, MAX_NUMERAL_CHARS, check_numeral, check_rational
@@ -83,13 +85,48 @@ def parse_json(text: str | bytes) -> Any:
     Traceback (most recent call last):
     ValueError: JSON nested deeper than 64 levels
     """
-    try:
-        doc = json.loads(text, parse_float=_parse_float, parse_int=_parse_int,
+    raw = text.encode("utf-8", "surrogatepass") if isinstance(text, str) else None
+    fast = raw is not None and _LONG_DIGITS not in raw.translate(_DIGIT_MAP)
+    try:  # without a long digit run every integer literal passes _parse_int: json's int is it
+        doc = json.loads(text, parse_float=_parse_float, parse_int=None if fast else _parse_int,
                          parse_constant=_reject_constant)
     except RecursionError:
         raise ValueError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels") from None
-    _check_depth(doc)
+    if raw is not None and b"\\" not in raw:
+        _check_text_depth(raw)
+    else:
+        _check_depth(doc)
     return doc
+
+
+_DIGIT_MAP = bytes(48 if 48 <= i <= 57 else 32 for i in range(256))
+"""``bytes.translate`` table: digits to ``0``, every other byte to a space."""
+
+_LONG_DIGITS = b"0" * MAX_NUMERAL_CHARS
+"""A digit run this long may be an integer literal :func:`_parse_int` refuses."""
+
+_BRACKETS_AND_QUOTES = bytes(i for i in range(256) if i not in b'"[]{}')
+"""Deleting these bytes keeps the structure of a JSON text: quotes and brackets."""
+
+_NESTING = np.zeros(256, dtype=np.int8)
+_NESTING[[ord("["), ord("{")]] = 1
+_NESTING[[ord("]"), ord("}")]] = -1
+
+
+def _check_text_depth(raw: bytes) -> None:
+    """:func:`_check_depth` on the text of a parsed document without backslashes.
+
+    Without escapes every ``"`` opens or closes a string, so the brackets outside strings are
+    those after an even number of quotes; a container's depth is the number of brackets open
+    after its own (UTF-8 continuation bytes are never ASCII).
+    """
+    b = np.frombuffer(raw.translate(None, _BRACKETS_AND_QUOTES), dtype=np.uint8)
+    if not b.size:
+        return
+    step = _NESTING[b]
+    step[(np.cumsum(b == ord('"'), dtype=np.int64) & 1).astype(bool)] = 0
+    if int(np.cumsum(step, dtype=np.int64).max()) > MAX_JSON_DEPTH:
+        raise ValueError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
 
 
 def _check_depth(doc: Any) -> None:

@@ -27,9 +27,10 @@ from fractions import Fraction
 
 import numpy as np
 
+from dppverify.distances import common_denominator
 from dppverify.errors import HorizonError
 from dppverify.exact import Number, normalize
-from dppverify.instance import Instance, Roles
+from dppverify.instance import Instance, Roles, arc_arrays
 
 __all__ = ["Arcs", "Fields", "StructuredValue", "goal_terminal_arcs", "structured_value",
            "value_fields"]
@@ -161,37 +162,27 @@ def goal_terminal_arcs(instance: Instance, *, extra: tuple[Number, ...] = ()) ->
     ([0], [1, 2], [3, 2], 1)
     """
     inst = instance
-    tails: list[int] = []
-    starts: list[int] = []
-    heads: list[int] = []
-    raw: list[Number] = []
-    for v in range(inst.n_nodes):
-        if inst.is_goal(v) or not inst.succ[v]:
-            continue
-        tails.append(v)
-        starts.append(len(heads))
-        for u, w in inst.succ[v]:
-            heads.append(u)
-            raw.append(w)
+    arrays = arc_arrays(inst)
+    is_goal = np.zeros(inst.n_nodes, dtype=bool)
+    is_goal[list(inst.goals)] = True
+    keep = ~is_goal[arrays.tails]
+    tails_all, heads, codes = arrays.tails[keep], arrays.heads[keep], arrays.codes[keep]
+    first = np.ones(tails_all.size, dtype=bool)  # the first arc of each tail
+    first[1:] = tails_all[1:] != tails_all[:-1]
+    starts = np.flatnonzero(first).astype(np.int64)
+    tails = tails_all[starts]
     if not inst.exact:
-        return Arcs(tails=np.asarray(tails, dtype=np.int64),
-                    starts=np.asarray(starts, dtype=np.int64),
-                    heads=np.asarray(heads, dtype=np.int64),
-                    weights=np.asarray(raw, dtype=np.float64), scale=1)
-    scale = _common_denominator([*set(raw), *extra])
-    scaled = raw if scale == 1 else [int(w * scale) for w in raw]
+        return Arcs(tails=tails, starts=starts, heads=heads,
+                    weights=np.asarray([float(w) for w in arrays.values],
+                                       dtype=np.float64)[codes], scale=1)
+    used = np.unique(codes).tolist()  # the weights of these arcs only, as a loop over them
+    values = [arrays.values[c] for c in used]
+    scale = common_denominator([*values, *extra])
+    scaled = [int(w * scale) for w in values]
     dtype: type = np.int64 if max(scaled, default=0) < INT64_LIMIT else object
-    return Arcs(tails=np.asarray(tails, dtype=np.int64), starts=np.asarray(starts, dtype=np.int64),
-                heads=np.asarray(heads, dtype=np.int64),
-                weights=np.asarray(scaled, dtype=dtype), scale=scale)
-
-
-def _common_denominator(values: list[Number]) -> int:
-    den = 1
-    for w in values:
-        if type(w) is Fraction:
-            den = math.lcm(den, w.denominator)
-    return den
+    table: np.ndarray = np.zeros(len(arrays.values), dtype=dtype)
+    table[used] = scaled
+    return Arcs(tails=tails, starts=starts, heads=heads, weights=table[codes], scale=scale)
 
 
 def value_fields(instance: Instance, horizon: int | None, roles: Roles | None = None) -> Fields:

@@ -25,13 +25,10 @@ from scipy.sparse.csgraph import dijkstra as sp_dijkstra
 
 from dppverify.distances import dijkstra
 from dppverify.exact import INF, Number, normalize
-from dppverify.instance import Instance
+from dppverify.instance import Instance, arc_arrays
 
 __all__ = ["ScaledArcs", "WalkMinima", "avoiding_distances", "scaled_arcs", "scaled_distances",
            "split_minimum", "walk_minima"]
-
-EXACT_FLOAT_LIMIT = 2**53
-"""Integer path sums below this are exact in float64."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -44,7 +41,7 @@ class ScaledArcs:
         Tail and head of every arc (``int64``).
     weights : numpy.ndarray
         ``weight * scale`` as ``float64``: exact integers, since their total is below
-        :data:`EXACT_FLOAT_LIMIT` (only then is a ``ScaledArcs`` built).
+        :data:`~dppverify.distances.EXACT_FLOAT_LIMIT` (only then is a ``ScaledArcs`` built).
     scale : int
         The common denominator of the weights.
     distances : dict
@@ -65,8 +62,8 @@ def scaled_arcs(instance: Instance) -> ScaledArcs | None:
     """The instance's arcs as arrays (built once per instance), or None when float64 is unsafe.
 
     None in float mode, and when four times the total scaled weight reaches
-    :data:`EXACT_FLOAT_LIMIT` (a sum of three distances must stay exact): the callers then use
-    the exact Python-integer Dijkstra.
+    :data:`~dppverify.distances.EXACT_FLOAT_LIMIT` (a sum of three distances must stay exact):
+    the callers then use the exact Python-integer Dijkstra.
 
     Examples
     --------
@@ -79,20 +76,13 @@ def scaled_arcs(instance: Instance) -> ScaledArcs | None:
         return _ARCS[instance]
     out: ScaledArcs | None = None
     if instance.exact:
-        succ = instance.succ
-        m = sum(len(a) for a in succ)
-        raw = [w for arcs in succ for _, w in arcs]
-        den = 1
-        for d in {w.denominator for w in set(raw) if isinstance(w, Fraction)}:  # few distinct
-            den = math.lcm(den, d)
-        scaled = raw if den == 1 else [int(w * den) for w in raw]
-        if 4 * sum(scaled) < EXACT_FLOAT_LIMIT:
-            tails = np.repeat(np.arange(instance.n_nodes, dtype=np.int64),
-                              np.fromiter((len(a) for a in succ), np.int64, instance.n_nodes))
-            heads = np.fromiter((v for arcs in succ for v, _ in arcs), np.int64, m)
-            out = ScaledArcs(tails=tails, heads=heads,
-                             weights=np.asarray(scaled, dtype=np.float64), scale=den,
-                             distances={})
+        arrays = arc_arrays(instance)
+        got = arrays.scaled(arrays.values, paths=4)  # a sum of three distances stays exact
+        if got is not None:
+            scale, scaled = got
+            out = ScaledArcs(tails=arrays.tails, heads=arrays.heads,
+                             weights=np.asarray(scaled, dtype=np.float64)[arrays.codes],
+                             scale=scale, distances={})
     _ARCS[instance] = out
     return out
 
