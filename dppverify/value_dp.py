@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -245,45 +246,41 @@ def value_fields(instance: Instance, horizon: int | None, roles: Roles | None = 
         g_vals = (0.0, float(d21), float(d12))  # type: ignore[assignment]
     zero, g2_to_g1, g1_to_g2 = g_vals
 
-    def fresh() -> np.ndarray:
-        return np.full(n, sentinel, dtype=dtype)
+    # the three fields side by side: columns D1, D2, m (one gather and one reduceat per step)
+    def goals(f: np.ndarray) -> None:
+        f[r.g1] = (zero, g1_to_g2, g1_to_g2)
+        f[r.g2] = (g2_to_g1, zero, g2_to_g1)
 
-    def goals(d1: np.ndarray, d2: np.ndarray, m: np.ndarray) -> None:
-        d1[r.g1], d1[r.g2] = zero, g2_to_g1
-        d2[r.g1], d2[r.g2] = g1_to_g2, zero
-        m[r.g1], m[r.g2] = g1_to_g2, g2_to_g1
-
-    def relax(field: np.ndarray) -> np.ndarray:
-        out = fresh()
-        if arcs.tails.size:
-            cand = arcs.weights + field[arcs.heads]
-            out[arcs.tails] = np.minimum.reduceat(cand, arcs.starts)
-            np.minimum(out, sentinel, out=out)
-        return out
+    def split(new: np.ndarray) -> None:  # m = min(relaxed m, D1 + D2), in place
+        both = new[:, 0] + new[:, 1]
+        np.minimum(both, sentinel, out=both)
+        np.minimum(new[:, 2], both, out=new[:, 2])
 
     front = _Frontier(arcs, n)
-    d1, d2, m = fresh(), fresh(), fresh()
-    goals(d1, d2, m)
+    fields: np.ndarray = np.full((n, 3), sentinel, dtype=dtype)
+    goals(fields)
     steps = 0
     fixpoint = False
-    ch1 = ch2 = chm = None  # nodes changed by the last step (None: the first step, all nodes)
+    changed: np.ndarray | None = None  # nodes changed by the last step (None: all of them)
     while steps < limit:
-        if ch1 is None or ch2 is None or chm is None or front.large(ch1, ch2, chm):
-            n1, n2, nm = relax(d1), relax(d2), relax(m)
-            goals(n1, n2, nm)
-            split = n1 + n2
-            np.minimum(split, sentinel, out=split)
-            np.minimum(nm, split, out=nm)
-            ch1, ch2, chm = (np.flatnonzero(a != b) for a, b in ((n1, d1), (n2, d2), (nm, m)))
+        if changed is None or front.large(changed):
+            new: np.ndarray = np.full((n, 3), sentinel, dtype=dtype)
+            if arcs.tails.size:
+                cand = arcs.weights[:, None] + fields[arcs.heads]
+                new[arcs.tails] = np.minimum.reduceat(cand, arcs.starts, axis=0)
+                np.minimum(new, sentinel, out=new)
+            goals(new)
+            split(new)
+            changed = np.flatnonzero((new != fields).any(axis=1))
+            if changed.size:
+                fields = new
         else:  # only tails of arcs into changed nodes can change (proofs/DP.md, DP.4)
-            n1, ch1 = front.step(d1, ch1, sentinel)
-            n2, ch2 = front.step(d2, ch2, sentinel)
-            nm, chm = front.step(m, chm, sentinel, split_of=(n1, n2, np.union1d(ch1, ch2)))
+            changed = front.step(fields, changed, sentinel, split)
         steps += 1
-        if not (ch1.size or ch2.size or chm.size):
+        if not changed.size:
             fixpoint = True
             break
-        d1, d2, m = n1, n2, nm
+    d1, d2, m = (np.ascontiguousarray(fields[:, i]) for i in range(3))
     if horizon is None and not fixpoint:  # pragma: no cover - DP.3 bounds the iterations
         raise AssertionError(f"the value fields did not reach their fixpoint in {cap} steps")
     if not fixpoint and steps == cap:  # pragma: no cover - same bound, finite horizon
@@ -359,10 +356,11 @@ class _Frontier:
         self.in_deg = np.bincount(arcs.heads, minlength=n).astype(np.int64)
         self.in_first[1:] = np.cumsum(self.in_deg)[:-1]
         self.limit = max(1, arcs.tails.size // 4)
+        self.has_arcs = self.deg > 0
 
-    def large(self, *changed: np.ndarray) -> bool:
+    def large(self, changed: np.ndarray) -> bool:
         """True when a full vectorised step is cheaper than a sparse one."""
-        return sum(int(c.size) for c in changed) > self.limit
+        return int(changed.size) > self.limit
 
     @staticmethod
     def _ranges(first: np.ndarray, count: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -370,26 +368,26 @@ class _Frontier:
         idx = np.repeat(first - offs, count) + np.arange(int(count.sum()), dtype=np.int64)
         return idx, offs
 
-    def step(self, field: np.ndarray, changed: np.ndarray, sentinel: int | float, *,
-             split_of: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None,
-             ) -> tuple[np.ndarray, np.ndarray]:
-        """The next field and the nodes whose value changed."""
+    def step(self, fields: np.ndarray, changed: np.ndarray, sentinel: int | float,
+             split: Callable[[np.ndarray], None]) -> np.ndarray:
+        """Advance ``fields`` (columns D1, D2, m) one step in place; the nodes that changed.
+
+        Recomputing a node whose successors did not change gives its value again (the step
+        is the same minimum over the same numbers), so one set of nodes serves all three
+        fields: the tails of arcs into nodes where any field changed.
+        """
         idx, _ = self._ranges(self.in_first[changed], self.in_deg[changed])
-        todo = self.in_tails[idx]
-        if split_of is not None:
-            todo = np.concatenate([todo, split_of[2]])
-        todo = np.unique(todo)
-        todo = todo[self.deg[todo] > 0]  # goals and dead ends never change after step 1
-        out = field.copy()
+        mark = np.zeros(self.has_arcs.size, dtype=bool)
+        mark[self.in_tails[idx]] = True
+        mark &= self.has_arcs  # goals and dead ends never change after step 1
+        todo = np.flatnonzero(mark)
         if not todo.size:
-            return out, todo
+            return todo
         a = self.arcs
         idx, offs = self._ranges(self.first[todo], self.deg[todo])
-        new = np.minimum.reduceat(a.weights[idx] + field[a.heads[idx]], offs)
+        new = np.minimum.reduceat(a.weights[idx, None] + fields[a.heads[idx]], offs, axis=0)
         np.minimum(new, sentinel, out=new)
-        if split_of is not None:
-            split = split_of[0][todo] + split_of[1][todo]
-            np.minimum(split, sentinel, out=split)
-            np.minimum(new, split, out=new)
-        out[todo] = new
-        return out, todo[new != field[todo]]
+        split(new)
+        moved = (new != fields[todo]).any(axis=1)
+        fields[todo] = new  # every new value was computed from the old fields above
+        return todo[moved]

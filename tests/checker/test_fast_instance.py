@@ -5,7 +5,8 @@
   sum stays below 2**53; every field equals the plain reading (``fast=False``), types included,
   and invalid documents get the plain reading's message;
 - past the 2**53 guard the exact Python Dijkstra runs (the same results);
-- value_dp.goal_terminal_arcs (from the instance's arc arrays) equals the plain loop;
+- value_dp: goal_terminal_arcs (from the instance's arc arrays) equals the plain loop, and
+  the three fields (one array, one sparse step for all three) equal the plain recursion;
 - json_reading.parse_json: the text fast path (json's own int, depth from the text) equals the
   hook-per-number reading (which ``bytes`` input still takes), results and messages.
 """
@@ -28,7 +29,7 @@ from dppverify.errors import InvalidInstanceError
 from dppverify.instance import GameInstance, Instance, _read_game, _regular_graph, arc_arrays
 from dppverify.json_reading import parse_json
 from dppverify.strategies import grid_worlds, instances, ngoal_instances, weighted_graphs
-from dppverify.value_dp import goal_terminal_arcs
+from dppverify.value_dp import _Frontier, goal_terminal_arcs, value_fields
 
 random_docs = st.one_of(
     instances(graphs=weighted_graphs(max_nodes=8, weights="fractions", max_weight=5)),
@@ -308,3 +309,71 @@ def test_parse_json_values_and_messages() -> None:
     doc, _ = _same_parse('{"p": 0.6, "q": 2, "r": "0.5"}')
     assert doc == {"p": Fraction(3, 5), "q": 2, "r": "0.5"} and type(doc["q"]) is int
 
+
+
+# --- value_dp: the three fields side by side against the plain recursion -------------------
+
+def _plain_fields(inst: Instance, horizon: int | None) -> tuple[list[Any], int, bool]:
+    """D1, D2, m by the recursion of value_dp's docstring, on Python numbers."""
+    r = inst.roles()
+    n, inf = inst.n_nodes, math.inf
+    cap = 2 * n + 2
+    limit = cap if horizon is None else min(horizon, cap)
+    goal_vals = {r.g1: (0, r.d2[r.g1], r.d2[r.g1]), r.g2: (r.d1[r.g2], 0, r.d1[r.g2])}
+    f = [list(goal_vals.get(v, (inf, inf, inf))) for v in range(n)]
+    steps, fixpoint = 0, False
+    while steps < limit:
+        new = []
+        for v in range(n):
+            if v in goal_vals:
+                new.append(list(goal_vals[v]))
+                continue
+            row = [min((w + f[u][i] for u, w in inst.succ[v]), default=inf) for i in range(3)]
+            row[2] = min(row[2], row[0] + row[1])
+            new.append(row)
+        steps += 1
+        if new == f:
+            fixpoint = True
+            break
+        f = new
+    if steps == cap:
+        fixpoint = True
+    return [[f[v][i] for v in range(n)] for i in range(3)], steps, fixpoint
+
+
+@settings(deadline=None, max_examples=60)
+@given(random_docs, st.integers(min_value=0, max_value=8), st.booleans())
+def test_value_fields_equal_the_plain_recursion(doc: dict[str, Any], extra: int,
+                                                huge: bool) -> None:
+    if huge and doc.get("numbers") != "float":  # Python-integer arithmetic
+        for e in doc["graph"]["edges"]:
+            e["weight"] = str(Fraction(e["weight"]) * 10**20)
+    inst = _read_game(doc, Instance, True)
+    for h in (inst.hops[inst.start] + extra, extra, None):
+        f = value_fields(inst, h)
+        want, steps, fixpoint = _plain_fields(inst, h)
+        got = [[f.number(x) for x in col] for col in (f.d1, f.d2, f.m)]
+        assert (got, f.steps, f.fixpoint) == (want, steps, fixpoint)
+        assert f.arithmetic == ("float64" if not inst.exact else
+                                "python-int" if huge else "int64")
+
+
+def test_value_fields_equal_the_plain_recursion_on_a_maze(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """A 9x12 grid with walls: long wavefronts, so most steps are sparse ones."""
+    sparse = []
+    step = _Frontier.step
+    monkeypatch.setattr(_Frontier, "step", lambda *a: sparse.append(1) or step(*a))
+    doc = _grid(9, 12, "1/2")
+    walls = {(r, 4) for r in range(8)} | {(r, 8) for r in range(1, 9)}
+    g = doc["graph"]
+    g["nodes"] = [nd for nd in g["nodes"] if tuple(nd["id"]) not in walls]
+    g["edges"] = [e for e in g["edges"]
+                  if tuple(e["source"]) not in walls and tuple(e["target"]) not in walls]
+    inst = _read_game(doc, Instance, True)
+    for h in (10, 37, None):
+        f = value_fields(inst, h)
+        want, steps, fixpoint = _plain_fields(inst, h)
+        assert ([[f.number(x) for x in col] for col in (f.d1, f.d2, f.m)], f.steps,
+                f.fixpoint) == (want, steps, fixpoint)
+    assert f.fixpoint and f.steps > 30 and len(sparse) > 60
