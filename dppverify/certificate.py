@@ -6,6 +6,7 @@ floats; :meth:`Certificate.from_json` reads them back (strings to exact rational
 
 from __future__ import annotations
 
+import dataclasses
 import json
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -18,7 +19,7 @@ from dppverify.exact import Number, format_number, normalize
 from dppverify.registry import KINDS, Kind, kind_of
 
 __all__ = ["CERTIFICATE_FORMAT", "STATUSES", "Certificate", "CheckRecord", "Status", "Verdict",
-           "verdict_of"]
+           "merge_routes", "verdict_of"]
 
 CERTIFICATE_FORMAT = "dpp-certificate/1"
 
@@ -163,6 +164,46 @@ def verdict_of(checks: tuple[CheckRecord, ...]) -> Verdict:
     if "skipped" in statuses:
         return "incomplete"
     return "pass"
+
+
+def merge_routes(tree: list[CheckRecord], structured: list[CheckRecord]) -> list[CheckRecord]:
+    """``--route both``: one record per check of the tree route, merged with the structured one.
+
+    Equal statuses give that record (``route="both"``); a route that skipped a check decided
+    nothing, so the other route's record stands (its message says so); any other difference is
+    an ``error`` record naming both. A check only the tree route ran keeps its record.
+
+    Examples
+    --------
+    >>> t = [CheckRecord("a", "pass", "ok", route="tree"), CheckRecord("b", "pass", "ok"),
+    ...      CheckRecord("c", "skipped", "no tree")]
+    >>> s = [CheckRecord("a", "pass", "ok"), CheckRecord("b", "fail", "regret 1"),
+    ...      CheckRecord("c", "pass", "fine")]
+    >>> [(r.id, r.status, r.route) for r in merge_routes(t, s)]
+    [('a', 'pass', 'both'), ('b', 'error', 'both'), ('c', 'pass', 'both')]
+    >>> merge_routes(t, s)[2].message
+    'fine (tree route: skipped, no tree)'
+    """
+    other = {r.id: r for r in structured}
+    out = []
+    for r in tree:
+        s = other.get(r.id)
+        if s is None:
+            out.append(r)
+            continue
+        relies_on = f"tree: {r.relies_on}; structured: {s.relies_on}"
+        if r.status == s.status:
+            out.append(dataclasses.replace(r, route="both", relies_on=relies_on))
+        elif "skipped" in (r.status, s.status):
+            kept, gave, name = (s, r, "tree") if r.status == "skipped" else (r, s, "structured")
+            out.append(dataclasses.replace(
+                kept, route="both", relies_on=relies_on,
+                message=f"{kept.message} ({name} route: skipped, {gave.message})"))
+        else:
+            out.append(CheckRecord(r.id, "error", f"the routes disagree: tree {r.status} "
+                                   f"({r.message}); structured {s.status} ({s.message})",
+                                   dict(r.numbers), r.proof, route="both", relies_on=relies_on))
+    return out
 
 
 @dataclass(frozen=True)

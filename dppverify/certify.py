@@ -21,7 +21,7 @@ from typing import Any, Literal
 
 from tqdm import tqdm
 
-from dppverify.certificate import Certificate, CheckRecord
+from dppverify.certificate import Certificate, CheckRecord, merge_routes
 from dppverify.checks.attacker import attacker_br
 from dppverify.checks.beliefs import belief_consistency
 from dppverify.checks.defender import defender_br, sequential_rationality
@@ -252,7 +252,7 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     checks = tree_checks
     if chosen in ("structured", "both"):
         structured = in_registry_order(structured_checks(inst, prof, h), "structured")
-        checks = structured if chosen == "structured" else _merge(tree_checks, structured)
+        checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)
     roles = inst.roles(prof.primary_slot)
     defender = doc.get("defender")
     info = {
@@ -298,26 +298,6 @@ def _choose_route(inst: Instance, prof: Profile, horizon: int | Literal["inf"] |
 
 _TABLE_REFUSED = ("a table Defender can only be certified on the walk tree, and {why}; use "
                   "--route tree with a horizon whose tree fits --max-prefixes")
-
-
-def _merge(tree: list[CheckRecord], structured: list[CheckRecord]) -> list[CheckRecord]:
-    """``both``: each check on both routes must reach the same status (else ``error``)."""
-    other = {r.id: r for r in structured}
-    out = []
-    for r in tree:
-        s = other.get(r.id)
-        if s is None:
-            out.append(r)
-        elif s.status == r.status:
-            out.append(dataclasses.replace(r, route="both",
-                                           relies_on=f"tree: {r.relies_on}; structured: "
-                                                     f"{s.relies_on}"))
-        else:
-            out.append(CheckRecord(r.id, "error", f"the routes disagree: tree {r.status} "
-                                   f"({r.message}); structured {s.status} ({s.message})",
-                                   dict(r.numbers), r.proof, route="both",
-                                   relies_on=f"tree: {r.relies_on}; structured: {s.relies_on}"))
-    return out
 
 
 def _ctx_runner(*ids: str) -> Callable[[Callable[[Context], list[CheckRecord]]],

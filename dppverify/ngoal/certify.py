@@ -39,7 +39,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any, Literal
 
-from dppverify.certificate import Certificate, CheckRecord, Status
+from dppverify.certificate import Certificate, CheckRecord, Status, merge_routes
 from dppverify.errors import HorizonError, LPError
 from dppverify.exact import Number, normalize
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
@@ -174,7 +174,7 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     trie_size = 0
     if chosen in ("structured", "both"):
         structured, trie_size = nstructured_checks(inst, prof, h)
-        checks = structured if chosen == "structured" else _merge(tree_checks, structured)
+        checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)
     info = {"goals": inst.n_goals, "nodes": inst.n_nodes, "game": "N goals (dppverify.ngoal)"}
     if chosen != "tree":
         info["trie_prefixes"] = trie_size
@@ -201,32 +201,6 @@ def _choose_route(inst: NInstance, prof: NProfile, horizon: int | Literal["inf"]
             return "tree", h
         return "structured", None if horizon is None else h
     return route, h
-
-
-def _merge(tree: list[CheckRecord], structured: list[CheckRecord]) -> list[CheckRecord]:
-    """``both``: each check on both routes must reach the same status (else ``error``); a
-    route that skipped a check decided nothing, so the other route's record stands."""
-    other = {r.id: r for r in structured}
-    out = []
-    for r in tree:
-        s = other.get(r.id)
-        if s is None:
-            out.append(r)
-        elif "skipped" in (r.status, s.status) and r.status != s.status:
-            kept, gave, name = (s, r, "tree") if r.status == "skipped" else (r, s, "structured")
-            out.append(dataclasses.replace(kept, route="both", message=f"{kept.message} "
-                                           f"({name} route: skipped, {gave.message})",
-                                           relies_on=f"tree: {r.relies_on}; structured: "
-                                                     f"{s.relies_on}"))
-        elif s.status == r.status:
-            out.append(dataclasses.replace(r, route="both", relies_on=f"tree: {r.relies_on}; "
-                                                                      f"structured: {s.relies_on}"))
-        else:
-            out.append(CheckRecord(r.id, "error", f"the routes disagree: tree {r.status} "
-                                   f"({r.message}); structured {s.status} ({s.message})",
-                                   dict(r.numbers), r.proof, route="both",
-                                   relies_on=f"tree: {r.relies_on}; structured: {s.relies_on}"))
-    return out
 
 
 def _tree_checks(inst: NInstance, prof: NProfile, h: int,
