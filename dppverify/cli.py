@@ -11,23 +11,28 @@ from __future__ import annotations
 
 import json
 import os
+import sys
 from typing import Any
 
 import click
 
 from dppverify.audit_cli import audit_command
 from dppverify.certificate import Certificate, CheckRecord
+from dppverify.belongs import profile_mismatch
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli_conventions import output_file_option, progress_option, status, want_progress
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
-from dppverify.errors import CheckerError, OptionError
+from dppverify.errors import CheckerError, InvalidInstanceError, OptionError, ProfileError
+from dppverify.files import write_files
+from dppverify.hints import file_hint
 from dppverify.exact import format_number
-from dppverify.instance import Instance, load_instance
+from dppverify.instance import GameInstance, Instance, load_instance
 from dppverify.limits import MAX_HORIZON, MAX_TRIALS
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.instance import load_ninstance
+from dppverify.profile import load_profile_document
 from dppverify.ngoal.routes import is_ngoal_file, nrouted_document, nrouted_lines, nrouted_value
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
 from dppverify.text import show
@@ -96,9 +101,24 @@ def _fail(exc: CheckerError) -> None:
     raise click.exceptions.Exit(2)
 
 
-def _numbers(rec: CheckRecord) -> str:
-    text = " ".join(f"{k}={show(v)}" for k, v in rec.numbers.items() if v is not None)
-    return text if len(text) <= NUMBERS_WIDTH else text[:NUMBERS_WIDTH - 3] + "..."
+def _short(x: Any) -> str:
+    """A number for the table: floats (LP values) with 6 significant digits, else ``show``."""
+    return f"{x:.6g}" if isinstance(x, float) else show(x)
+
+
+def _numbers(rec: CheckRecord) -> list[str]:
+    """The record's numbers as ``key=value`` items, wrapped into lines of NUMBERS_WIDTH.
+
+    Nothing is cut: a number too long for a line is shown as a decimal (``text.show``); its
+    exact form is in the ``--json`` certificate.
+    """
+    lines: list[str] = []
+    for item in (f"{k}={_short(v)}" for k, v in rec.numbers.items() if v is not None):
+        if lines and len(lines[-1]) + 1 + len(item) <= NUMBERS_WIDTH:
+            lines[-1] += " " + item
+        else:
+            lines.append(item)
+    return lines or [""]
 
 
 def format_table(cert: Certificate) -> str:
@@ -123,8 +143,10 @@ def format_table(cert: Certificate) -> str:
     ...                              {"path": ["s", "g2"], "probability": "3/7"}],
     ...                  "secondary": [{"path": ["s", "g2"], "probability": 1}]}}
     >>> lines = format_table(certify(triangle_document(), profile)).splitlines()
-    >>> len(lines), lines.index(CONSISTENCY_HEADING)
-    (22, 19)
+    >>> lines[-4] == CONSISTENCY_HEADING, any("..." in line for line in lines)
+    (True, False)
+    >>> [line.split()[0] for line in lines[-3:]]  # a wrapped numbers cell continues below
+    ['pbne.belief_consistency', 'lemma.TEL.telescoping', 'range_violations=0']
     >>> for line in lines[:2] + lines[5:7]:  # doctest: +NORMALIZE_WHITESPACE
     ...     print(line)
     verdict: PASS (17/17 checks passed; 2/2 consistency checks agree; H = 1, 3 prefixes,
@@ -151,15 +173,22 @@ def format_table(cert: Certificate) -> str:
                 f"{cert.lp_solver} agreement within {cert.lp_tolerance:g} relative)")
     evidence = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("check")]
     own = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("consistency")]
-    rows = [("check", "status", "numbers", "message"), *evidence, *own]
+    rows = [("check", "status", ["numbers"], "message"), *evidence, *own]
     w0 = max(len(r[0]) for r in rows)
     w1 = max(len(r[1]) for r in rows)
-    w2 = max(len(r[2]) for r in rows)
-    lines = [head] + [f"{a:<{w0}}  {b:<{w1}}  {c:<{w2}}  {d}".rstrip()
-                      for a, b, c, d in rows[:1 + len(evidence)]]
+    w2 = max(len(x) for r in rows for x in r[2])
+
+    def row(a: str, b: str, c: list[str], d: str) -> list[str]:
+        first = f"{a:<{w0}}  {b:<{w1}}  {c[0]:<{w2}}  {d}".rstrip()
+        return [first, *(f"{'':<{w0}}  {'':<{w1}}  {x}".rstrip() for x in c[1:])]
+
+    lines = [head]
+    for r in rows[:1 + len(evidence)]:
+        lines += row(*r)
     if own:
         lines.append(CONSISTENCY_HEADING)
-        lines += [f"{a:<{w0}}  {b:<{w1}}  {c:<{w2}}  {d}".rstrip() for a, b, c, d in own]
+        for r in own:
+            lines += row(*r)
     return "\n".join(lines)
 
 
@@ -214,7 +243,39 @@ def load_game(instance: str | None, grid: MapRequest | None) -> Instance:
     if grid is not None:
         return grid.instance()
     assert instance is not None
-    return load_instance(instance)
+    with hinted(instance, "instance"):
+        return load_instance(instance)
+
+
+class hinted:  # noqa: N801 - used as a lowercase context manager
+    """Context manager: a read error of ``path`` becomes :func:`~dppverify.hints.file_hint`'s
+    hint (the file is of another kind: swapped arguments, a ``.map`` file, ...) when it has one.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> d = tempfile.mkdtemp()
+    >>> m = os.path.join(d, "x.map")
+    >>> _ = open(m, "w").write("type octile\\n")
+    >>> with hinted(m, "instance"):  # doctest: +ELLIPSIS
+    ...     load_instance(m)
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: .../x.map is a MovingAI .map file: give it as ...
+    """
+
+    def __init__(self, path: str, kind: Any, command: str = "dpp certify",
+                 errors: tuple[type[Exception], ...] = (CheckerError,)) -> None:
+        self.path, self.kind, self.command, self.errors = path, kind, command, errors
+
+    def __enter__(self) -> None:
+        return None
+
+    def __exit__(self, kind: Any, exc: Any, tb: Any) -> bool:
+        if isinstance(exc, self.errors):
+            hint = file_hint(self.path, self.kind, self.command)
+            if hint is not None:
+                raise type(exc)(hint) from None
+        return False
 
 
 @click.command("certify")
@@ -229,12 +290,16 @@ def load_game(instance: str | None, grid: MapRequest | None) -> Instance:
               help="tree: the walk tree; structured: shortest paths and the value DP, no tree "
                    "(docs/checker.md); auto: the tree when it fits --max-prefixes, else "
                    "structured; both: run both, a disagreement is an error record.")
-@click.option("--json", "as_json", is_flag=True, help="Print the dpp-certificate/1 JSON.")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the dpp-certificate/1 JSON instead of the table.")
+@output_file_option("Write the dpp-certificate/1 JSON to this file (atomically); stdout stays "
+                    "empty, the verdict is one line on stderr.")
 @click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
 @click.option("--float", "float_mode", is_flag=True,
-              help="Accept float-mode instances (\"numbers\": \"float\") and compare within a "
-                   "relative tolerance of 1e-9 instead of refusing them.")
+              help="Float mode is detected from the instance (\"numbers\": \"float\", e.g. "
+                   "--connectivity 8): it is compared within a relative tolerance of 1e-9. "
+                   "This flag is accepted for old scripts and changes nothing.")
 @click.option("--seed", type=int, default=0, show_default=True,
               help="Seed of the random attackers of the L3/L4 checks.")
 @click.option("--trials", type=click.IntRange(min=0, max=MAX_TRIALS), default=DEFAULT_TRIALS,
@@ -242,23 +307,27 @@ def load_game(instance: str | None, grid: MapRequest | None) -> Instance:
               help="Number of random attackers in the L3/L4 checks.")
 @progress_option
 def certify_command(instance: str | None, profile: str | None, grid: MapRequest | None,
-                    horizon: int | str | None, route: Route, as_json: bool, max_prefixes: int,
-                    float_mode: bool, seed: int, trials: int, progress: bool | None) -> None:
+                    horizon: int | str | None, route: Route, as_json: bool,
+                    output: str | None, max_prefixes: int, float_mode: bool, seed: int,
+                    trials: int, progress: bool | None) -> None:
     """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE.
 
     PROFILE is a dpp-profile/1 JSON file (from `dpp solve -o` or any other solver); for an
     instance with more than two goals, a dpp-ngoal-profile/1 file (docs/formats.md). With
-    --map, the game is the grid and the only argument is PROFILE. Bad input exits 2 with a
-    one-line message.
+    --map, the game is the grid and the only argument is PROFILE. A profile made for another
+    instance (other goals, prior, start or map) is one line, exit 2. Float-mode instances
+    (8-connected maps) are detected and compared within a relative tolerance of 1e-9.
 
     \b
     Examples:
       dpp solve examples/triangle.json -o profile.json
       dpp certify examples/triangle.json profile.json
       dpp certify examples/triangle.json profile.json --horizon 4 --json
+      dpp certify examples/triangle.json profile.json -o certificate.json
       dpp certify examples/triangle.json profile.json --horizon inf
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
     """
+    bar = _StartBar(want_progress(progress))
     try:
         if grid is not None and profile is not None:
             raise OptionError(f"with --map, certify takes only PROFILE (got {instance!r} and "
@@ -269,23 +338,92 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
             raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
                               f"dpp certify {MAP_USAGE} PROFILE")
         if instance is not None and is_ngoal_file(instance):  # N > 2 goals: dppverify.ngoal
-            cert = certify_ngoal(instance, profile, horizon=horizon,  # type: ignore[arg-type]
+            game: GameInstance = load_ninstance(instance)
+            doc = _profile_document(profile, game, instance)
+            bar.close()
+            cert = certify_ngoal(game, doc,  # type: ignore[arg-type]
+                                 horizon=horizon,  # type: ignore[arg-type]
                                  max_prefixes=max_prefixes, route=route)
         else:
-            cert = certify(load_game(instance, grid), profile,
-                           horizon=horizon,  # type: ignore[arg-type]
-                           exact=not float_mode, max_prefixes=max_prefixes, seed=seed,
-                           trials=trials, progress=want_progress(progress), route=route)
+            inst = load_game(instance, grid)
+            doc = _profile_document(profile, inst, instance)
+            bar.close()
+            cert = certify(inst, doc, horizon=horizon,  # type: ignore[arg-type]
+                           exact=inst.exact and not float_mode, max_prefixes=max_prefixes,
+                           seed=seed, trials=trials, progress=want_progress(progress),
+                           route=route)
     except CheckerError as exc:
+        bar.close()
         _fail(exc)
         return
-    if as_json:
-        click.echo(json.dumps(cert.to_json(), indent=2, ensure_ascii=False))
-    else:
-        click.echo(format_table(cert))
+    summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
+    emit(cert.to_json(), format_table(cert), as_json=as_json, output=output, summary=summary)
     raise click.exceptions.Exit(0 if cert.passed else 1)
 
 
+class _StartBar:
+    """A progress bar shown at once (reading the files and counting the walk tree come before
+    the checks' own bars), closed when they start."""
+
+    def __init__(self, show: bool) -> None:
+        self.bar: Any = None
+        if show:
+            from tqdm import tqdm
+
+            self.bar = tqdm(total=None, desc="reading the instance and the profile",
+                            file=sys.stderr, leave=False, bar_format="{desc} ({elapsed})")
+            self.bar.refresh()
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+            self.bar = None
+
+
+def _profile_document(path: str, game: GameInstance, instance: str | None) -> dict[str, Any]:
+    """The profile document at ``path``, refused in one line when it belongs to another game."""
+    ngoal = len(game.goals) > 2
+    with hinted(path, "profile"):
+        if ngoal:
+            from dppverify.json_reading import JsonReadError, read_json_file
+
+            try:
+                doc = read_json_file(path, kind="profile")
+            except JsonReadError as exc:
+                raise ProfileError(f"{path}: {exc}") from None
+        else:
+            doc = load_profile_document(path)
+    reason = profile_mismatch(game, doc)
+    if reason is not None:
+        solve = f"dpp solve {instance}" if instance is not None else "dpp solve --map ..."
+        raise ProfileError(f"{path} does not belong to this instance: {reason}; make a "
+                           f"profile for it with {solve} -o PROFILE")
+    return doc  # type: ignore[no-any-return]
+
+
+def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str) -> None:
+    """The one output convention of the checker's commands.
+
+    ``-o FILE``: the JSON document is written to FILE (atomically) and ``wrote FILE: SUMMARY``
+    is the only line, on stderr (stdout stays empty, with or without ``--json``). Otherwise
+    stdout gets the JSON (``--json``) or the text.
+
+    Examples
+    --------
+    >>> emit({"a": 1}, "a = 1", as_json=False, output=None, summary="")
+    a = 1
+    >>> emit({"a": 1}, "a = 1", as_json=True, output=None, summary="")
+    {
+      "a": 1
+    }
+    """
+    if output is not None:
+        write_files({output: json.dumps(doc, indent=2, ensure_ascii=False) + "\n"})
+        status(f"wrote {output}: {summary}")
+    elif as_json:
+        click.echo(json.dumps(doc, indent=2, ensure_ascii=False))
+    else:
+        click.echo(text)
 
 
 def _show_horizon(h: int | None) -> str:
@@ -361,7 +499,7 @@ def _structured_line(v: StructuredValue) -> str:
 
 
 def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route,
-                 max_prefixes: int) -> None:
+                 max_prefixes: int, output: str | None = None) -> None:
     """``dpp value`` for an instance with more than two goals (dppverify.ngoal.routes)."""
     try:
         r = nrouted_value(load_ninstance(instance), horizon, route=route,
@@ -369,11 +507,9 @@ def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route
     except CheckerError as exc:
         _fail(exc)
         return
-    if as_json:
-        click.echo(json.dumps(nrouted_document(r), indent=2))
-    else:
-        for line in nrouted_lines(r):
-            click.echo(line)
+    lines = list(nrouted_lines(r))
+    emit(nrouted_document(r), "\n".join(lines), as_json=as_json, output=output,
+         summary=lines[0] if lines else "")
     if r.disagreement is not None:
         click.echo(f"error: {r.disagreement}", err=True)
         raise click.exceptions.Exit(1)
@@ -386,6 +522,8 @@ def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route
               help="Horizon H of the truncated game, or 'inf' for the untruncated game "
                    "(structured route).")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+@output_file_option("Write the result's JSON to this file (atomically); stdout stays empty, "
+                    "the value is one line on stderr.")
 @click.option("--route", type=click.Choice(ROUTES), default="auto", show_default=True,
               help="tree: the walk tree's LP; structured: the tree-free DP (docs/checker.md); "
                    "auto: the tree when it fits --max-prefixes, else structured; both: run "
@@ -394,7 +532,7 @@ def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route
               show_default=True, help="Refuse walk trees larger than this.")
 @progress_option
 def value_command(instance: str | None, grid: MapRequest | None, horizon: int | None,
-                  as_json: bool, route: Route, max_prefixes: int,
+                  as_json: bool, output: str | None, route: Route, max_prefixes: int,
                   progress: bool | None) -> None:
     """Print V_H, the value of INSTANCE's game truncated at H steps.
 
@@ -410,10 +548,11 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
       dpp value examples/triangle.json --horizon 4
       dpp value examples/triangle.json -H 4 --json --route both
       dpp value examples/triangle.json --horizon inf
+      dpp value examples/triangle.json -H 4 -o value.json
       dpp value --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 6
     """
     if instance is not None and grid is None and is_ngoal_file(instance):
-        _ngoal_value(instance, horizon, as_json, route, max_prefixes)
+        _ngoal_value(instance, horizon, as_json, route, max_prefixes, output)
         return
     try:
         r = routed_value(load_game(instance, grid), horizon, route=route,
@@ -421,13 +560,10 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
     except CheckerError as exc:
         _fail(exc)
         return
-    if as_json:
-        click.echo(json.dumps(routed_document(r), indent=2))
-    else:
-        if r.tree is not None:
-            click.echo(_tree_line(r.tree))
-        if r.structured is not None:
-            click.echo(_structured_line(r.structured))
+    lines = ([_tree_line(r.tree)] if r.tree is not None else []) + \
+        ([_structured_line(r.structured)] if r.structured is not None else [])
+    emit(routed_document(r), "\n".join(lines), as_json=as_json, output=output,
+         summary=lines[0])
     if r.disagreement is not None:
         click.echo(f"error: {r.disagreement}", err=True)
         raise click.exceptions.Exit(1)

@@ -309,8 +309,9 @@ def _belief_consistency(instance: Instance, profile: Profile, roles: Roles, trie
                         beliefs: dict[tuple[int, ...], Fraction]) -> CheckRecord:
     problems = []
     if profile.claimed_prior is not None and profile.claimed_prior != (roles.b1, roles.b2):
-        problems.append(f"the profile states prior {profile.claimed_prior}, the instance has "
-                        f"{(roles.b1, roles.b2)}")
+        c1, c2 = profile.claimed_prior
+        problems.append(f"the profile states the prior ({show(c1)}, {show(c2)}) but the "
+                        f"instance's is ({show(roles.b1)}, {show(roles.b2)})")
     for p, b in beliefs.items():
         if len(p) < 2:
             if b != roles.b1:

@@ -3,27 +3,68 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from decimal import Decimal, localcontext
 from fractions import Fraction
 
 from dppverify.exact import Number
 from dppverify.instance import Instance, show_node
 
-__all__ = ["show", "show_walk"]
+__all__ = ["MAX_EXACT_CHARS", "approx", "show", "show_walk"]
+
+
+MAX_EXACT_CHARS = 24
+"""An exact number longer than this is shown as a decimal (its exact form is in ``--json``)."""
+
+
+def approx(x: Number, digits: int = 12) -> str:
+    """``x`` as a decimal with ``digits`` significant digits; powers of ten when large or small.
+
+    Works for rationals of any size (no float overflow).
+
+    Examples
+    --------
+    >>> approx(Fraction(10**80 * 109, 100)), approx(Fraction(1, 3)), approx(Fraction(-1, 10**9))
+    ('1.09×10^80', '0.333333333333', '-1×10^-9')
+    """
+    with localcontext() as ctx:
+        ctx.prec = digits
+        q = Fraction(x)
+        d = (Decimal(q.numerator) / Decimal(q.denominator)).normalize()
+    if d == 0:
+        return "0"
+    e = d.adjusted()
+    if -5 <= e < digits:
+        text = f"{d:f}"
+        return text
+    mantissa = d.scaleb(-e).normalize()
+    return f"{mantissa:f}×10^{e}"
 
 
 def show(x: Number | None) -> str:
     """A number for a message: exact rationals as ``p/q``, floats with 12 significant digits.
 
+    An exact number longer than :data:`MAX_EXACT_CHARS` characters is shown as ``≈`` and a
+    decimal (powers of ten for large ones): the exact value is in the ``--json`` output.
+
     Examples
     --------
     >>> show(Fraction(12, 5)), show(3), show(2.4000000000001), show(None)
     ('12/5', '3', '2.4', '-')
+    >>> show(Fraction(10**30 + 1, 3)), show(2**300)
+    ('≈3.33333333333×10^29', '≈2.03703597633×10^90')
+    >>> show(Fraction(2**100 + 1, 2**100))
+    '≈1'
     """
     if x is None:
         return "-"
     if isinstance(x, float):
+        if x != x or x in (float("inf"), float("-inf")):
+            return str(x)
         return f"{x:.12g}"
-    return str(Fraction(x))
+    text = str(Fraction(x))
+    if len(text) <= MAX_EXACT_CHARS:
+        return text
+    return "≈" + approx(x)
 
 
 def show_walk(instance: Instance, walk: Sequence[int]) -> str:

@@ -51,8 +51,10 @@ def main() -> None:
 @main.command("solve")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
-@click.option("--json", "as_json", is_flag=True, help="Print the dpp-profile/1 JSON.")
-@output_file_option("Write the dpp-profile/1 JSON to this file (atomically).")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the dpp-profile/1 JSON instead of the summary.")
+@output_file_option("Write the dpp-profile/1 JSON to this file (atomically); stdout stays "
+                    "empty, U* and VoI* are one line on stderr.")
 @click.option("--save-instance", type=click.Path(dir_okay=False), metavar="FILE",
               help="Also write the instance JSON (e.g. of a --map grid) to FILE (atomically).")
 def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
@@ -78,12 +80,12 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         write_atomic(output, dumps(doc))
     if save_instance is not None and instance_text is not None:
         write_atomic(save_instance, instance_text)
-    if as_json:
-        click.echo(dumps(doc), nl=False)
-    elif output is None:
-        click.echo(summarize(eq))
-    else:
+    if output is not None:  # the one output convention: -o writes, stdout stays empty
         status(f"wrote {output}: U* = {doc['value']['U']}, VoI* = {doc['value']['VoI']}")
+    elif as_json:
+        click.echo(dumps(doc), nl=False)
+    else:
+        click.echo(summarize(eq))
     if save_instance is not None:
         status(f"wrote {save_instance}: the instance")
 
@@ -93,7 +95,8 @@ def _load(instance: str | None, grid: MapRequest | None) -> Instance:
     instance_or_map(instance, grid)
     if grid is None:
         assert instance is not None
-        return load_instance(instance)
+        with checker_cli.hinted(instance, "instance", "dpp solve", errors=(DPPError,)):
+            return load_instance(instance)
     blocked = read_map(grid.path)
     try:
         return Instance.from_grid(blocked, grid.start, grid.goals, grid.prior,

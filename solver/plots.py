@@ -139,10 +139,27 @@ def save_figure(fig: Figure, out: str | Path) -> list[Path]:
 
 
 def _grid(instance: Instance) -> np.ndarray:
+    """The obstacle array of a grid instance: a ``.map`` grid, or an instance JSON whose node
+    ids are all ``[row, col]`` cells (as ``dpp solve --save-instance`` writes them); cells
+    without a node are obstacles."""
     labels = instance.network.labels
-    if not isinstance(labels, GridLabels):
-        raise InvalidInstanceError("map figures need a grid instance (a .map file)")
-    return labels.blocked
+    if isinstance(labels, GridLabels):
+        return labels.blocked
+    cells = [n for n in labels if isinstance(n, tuple) and len(n) == 2
+             and all(isinstance(x, int | np.integer) and not isinstance(x, bool) and x >= 0
+                     for x in n)]
+    if not cells or len(cells) != len(labels):
+        raise InvalidInstanceError("map figures need a grid instance: a --map grid, or an "
+                                   "instance JSON whose node ids are [row, col] cells (dpp "
+                                   "solve --map ... --save-instance FILE writes one)")
+    rc = np.asarray(cells, dtype=np.int64)
+    h, w = int(rc[:, 0].max()) + 1, int(rc[:, 1].max()) + 1
+    if h * w > 16 * len(cells) + 1024:
+        raise InvalidInstanceError(f"the grid's cells span {h}x{w} but only {len(cells)} "
+                                   "are nodes: not a grid map")
+    blocked = np.ones((h, w), dtype=bool)
+    blocked[rc[:, 0], rc[:, 1]] = False
+    return blocked
 
 
 def _xy(nodes: Sequence[Hashable], offset: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
