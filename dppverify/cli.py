@@ -339,15 +339,17 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
                               f"dpp certify {MAP_USAGE} PROFILE")
         if instance is not None and is_ngoal_file(instance):  # N > 2 goals: dppverify.ngoal
             game: GameInstance = load_ninstance(instance)
+            bar.phase("reading the profile")
             doc = _profile_document(profile, game, instance)
-            bar.close()
+            bar.phase(f"certifying (route {route})")
             cert = certify_ngoal(game, doc,  # type: ignore[arg-type]
                                  horizon=horizon,  # type: ignore[arg-type]
                                  max_prefixes=max_prefixes, route=route)
         else:
             inst = load_game(instance, grid)
+            bar.phase("reading the profile")
             doc = _profile_document(profile, inst, instance)
-            bar.close()
+            bar.phase(f"certifying (route {route}; the checks' bars follow)")
             cert = certify(inst, doc, horizon=horizon,  # type: ignore[arg-type]
                            exact=inst.exact and not float_mode, max_prefixes=max_prefixes,
                            seed=seed, trials=trials, progress=want_progress(progress),
@@ -356,23 +358,29 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
         bar.close()
         _fail(exc)
         return
+    bar.close()
     summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
     emit(cert.to_json(), format_table(cert), as_json=as_json, output=output, summary=summary)
     raise click.exceptions.Exit(0 if cert.passed else 1)
 
 
 class _StartBar:
-    """A progress bar shown at once (reading the files and counting the walk tree come before
-    the checks' own bars), closed when they start."""
+    """``certify --progress``: a status bar shown at once, naming the phase (reading the
+    instance, the profile, choosing the route and certifying); the checks' own bars appear
+    below it."""
 
     def __init__(self, show: bool) -> None:
         self.bar: Any = None
         if show:
             from tqdm import tqdm
 
-            self.bar = tqdm(total=None, desc="reading the instance and the profile",
-                            file=sys.stderr, leave=False, bar_format="{desc} ({elapsed})")
+            self.bar = tqdm(total=None, desc="certify: reading the instance", file=sys.stderr,
+                            leave=False, bar_format="{desc} [{elapsed}]")
             self.bar.refresh()
+
+    def phase(self, name: str) -> None:
+        if self.bar is not None:
+            self.bar.set_description_str(f"certify: {name}")
 
     def close(self) -> None:
         if self.bar is not None:

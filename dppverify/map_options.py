@@ -17,6 +17,7 @@ from __future__ import annotations
 import functools
 from collections.abc import Callable
 from dataclasses import dataclass
+from fractions import Fraction
 from pathlib import Path
 from typing import Any, TypeVar
 
@@ -24,10 +25,12 @@ import click
 
 from dppverify.errors import CheckerError, InvalidInstanceError, OptionError
 from dppverify.instance import Instance, instance_from_json
+from dppverify.json_reading import parse_number
 from dppverify.movingai import grid_document, read_map
 from dppverify.standard_maps import PREFIX, resolve_map
+from dppverify.text import show
 
-__all__ = ["MAP_USAGE", "MapRequest", "instance_or_map", "map_options", "map_request"]
+__all__ = ["MAP_USAGE", "MapRequest", "check_prior", "instance_or_map", "map_options", "map_request"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -160,6 +163,10 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, str] 
     dppverify.errors.OptionError: --map needs --start R,C --goals R,C R,C --prior P,Q:
       missing --goals and --prior
     """
+    if goals is not None and any(" " in g.strip() for g in goals):
+        quoted = next(g for g in goals if " " in g.strip())
+        raise OptionError(f"--goals takes the cells as separate arguments, e.g. --goals "
+                          f"{' '.join(quoted.split())}, not one quoted argument {quoted!r}")
     if goals is not None:
         second = goals[1]
         if second.startswith("--") or (second.startswith("-") and "," not in second):
@@ -188,9 +195,45 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, str] 
     if len(parts) != 2 or not all(p.strip() for p in parts):
         raise OptionError(f"--prior takes two numbers P,Q (e.g. 0.6,0.4 or 3/5,2/5), "
                           f"got {prior!r}")
+    check_prior([p.strip() for p in parts])
     return MapRequest(map=map_file, path=resolve_map(map_file), start=_cell(start, "--start"),
                       goals=cells, prior=(parts[0].strip(), parts[1].strip()),
                       connectivity=int(connectivity or 4))
+
+
+def check_prior(parts: list[str]) -> None:
+    """Check ``--prior``'s numbers (any count) before the map is read, so that a mistake in
+    them is blamed on ``--prior``, not on the map file.
+
+    Raises
+    ------
+    OptionError
+        A number that is not a probability strictly between 0 and 1, or a sum other than 1.
+
+    Examples
+    --------
+    >>> check_prior(["0.6", "2/5"])
+    >>> check_prior(["0.6", "0.5"])
+    Traceback (most recent call last):
+    dppverify.errors.OptionError: --prior must sum to exactly 1, got 3/5 + 1/2 = 11/10
+    >>> check_prior(["0.6", "x"])
+    Traceback (most recent call last):
+    dppverify.errors.OptionError: --prior: 'x' is not a number (write e.g. 0.6 or 3/5)
+    """
+    values = []
+    for text in parts:
+        try:
+            p = parse_number(text, where="--prior")
+        except (ValueError, TypeError) as exc:
+            raise OptionError(f"{exc} (write e.g. 0.6 or 3/5)") from None
+        if not 0 < p < 1:
+            raise OptionError(f"--prior: each prior must lie strictly between 0 and 1, got "
+                              f"{text}")
+        values.append(Fraction(p))
+    total = sum(values, Fraction(0))
+    if total != 1:
+        raise OptionError(f"--prior must sum to exactly 1, got "
+                          f"{' + '.join(show(v) for v in values)} = {show(total)}")
 
 
 def instance_or_map(instance: str | None, grid: MapRequest | None, *,
