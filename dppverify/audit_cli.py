@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import sys
+from pathlib import Path
 
 import click
 
@@ -30,7 +31,7 @@ from dppverify.limits import MAX_AUDIT_EXAMPLES
 __all__ = ["audit_command", "format_report"]
 
 
-@click.command("audit")
+@click.command("audit", short_help="Audit a solver: certify its answers on random instances.")
 @click.option("--solver", "solver_spec", metavar="MODULE:FUNCTION",
               help="A Python callable mapping an instance JSON dict to a profile JSON dict "
                    "(imported and run in a worker process).")
@@ -98,4 +99,21 @@ def _make_runner(spec: str | None, cmd: str | None, timeout: float) -> SolverRun
     assert spec is not None
     if os.getcwd() not in sys.path:  # like `python -m`: the user's modules in the cwd
         sys.path.insert(0, os.getcwd())
+    checkout = source_checkout()
+    if checkout is not None and str(checkout) not in sys.path:
+        sys.path.append(str(checkout))  # tests.mutants.* from any folder; the user's win
     return PythonRunner(spec, timeout=timeout)
+
+
+def source_checkout() -> Path | None:
+    """The repository folder when dppverify runs from a source checkout (it holds
+    ``tests/mutants/``, the deliberately wrong solvers of docs/audit.md), else None.
+
+    Examples
+    --------
+    >>> root = source_checkout()
+    >>> root is None or (root / "tests" / "mutants").is_dir()
+    True
+    """
+    root = Path(__file__).resolve().parents[1]
+    return root if (root / "tests" / "mutants" / "solvers.py").is_file() else None

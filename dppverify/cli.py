@@ -278,7 +278,7 @@ class hinted:  # noqa: N801 - used as a lowercase context manager
         return False
 
 
-@click.command("certify")
+@click.command("certify", short_help="Certify or refute a profile as a PBNE of an instance.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @click.argument("profile", required=False, type=click.Path(dir_okay=False), metavar="PROFILE")
 @map_options
@@ -523,7 +523,7 @@ def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route
         raise click.exceptions.Exit(1)
 
 
-@click.command("value")
+@click.command("value", short_help="The value V_H of the game truncated at H steps.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
 @click.option("-H", "--horizon", type=HORIZON, required=True,
@@ -577,7 +577,7 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
         raise click.exceptions.Exit(1)
 
 
-@click.command("export-efg")
+@click.command("export-efg", short_help="Write the truncated game as a Gambit .efg file.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
 @click.option("-H", "--horizon", type=click.IntRange(min=0, max=MAX_HORIZON), required=True,

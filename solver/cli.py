@@ -48,7 +48,7 @@ def main() -> None:
     """Deceptive path planning games: solve, certify, audit, experiment."""
 
 
-@main.command("solve")
+@main.command("solve", short_help="Solve an instance for the paper's equilibrium (PBNE).")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
 @click.option("--json", "as_json", is_flag=True,
@@ -116,12 +116,12 @@ def _experiment_instance(instance: str | None, grid: MapRequest | None) -> Insta
     return _load(instance, grid)
 
 
-@main.group("experiment")
+@main.group("experiment", short_help="The paper's Section VII experiments.")
 def experiment_group() -> None:
     """The paper's Section VII experiments (baselines, comparison, density sweep)."""
 
 
-@experiment_group.command("compare")
+@experiment_group.command("compare", short_help="U and VoI of six strategy pairs on one instance.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
 @output_dir_option("Also write compare.csv and compare.txt into this directory.")
@@ -169,7 +169,7 @@ def _int_list(text: str, what: str) -> tuple[int, ...]:
     return values
 
 
-@experiment_group.command("density")
+@experiment_group.command("density", short_help="VoI of six strategy pairs on random grids.")
 @click.option("--samples", type=click.IntRange(min=1, max=MAX_DENSITY_GRIDS), default=200,
               show_default=True, help="Grids per density.")
 @click.option("--densities", default="0,10,20,30,40", show_default=True,
@@ -242,19 +242,29 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
 _OUT_HELP = "The figure file: .png, .svg or .pdf (the suffix picks the format)."
 
 
-@main.group("plot")
+@main.group("plot", short_help="Figures like the paper's Figures 7 to 9.")
 def plot_group() -> None:
-    """Figures like the paper's Figs. 7-9 (PNG, SVG or PDF)."""
+    """Figures like the paper's Figures 7 to 9 (PNG, SVG or PDF; the suffix of -o picks)."""
 
 
-@plot_group.command("map")
+@plot_group.command("map", short_help="The grid with the equilibrium paths and baselines.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--no-baselines", is_flag=True, help="Only the equilibrium panel.")
 def plot_map_command(instance: str | None, grid: MapRequest | None,
                        output: str, no_baselines: bool) -> None:
-    """Grid, obstacles, equilibrium paths by phase with mixing probabilities, baselines."""
+    """Grid, obstacles, equilibrium paths by phase with mixing probabilities, baselines.
+
+    INSTANCE is a grid instance: a --map grid, or the instance JSON that
+    `dpp solve --map ... --save-instance FILE` writes. Without either: the bundled 10x10 map.
+
+    \b
+    Examples:
+      dpp plot map -o map.pdf
+      dpp plot map --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4 -o m.png
+      dpp plot map room.json -o room.pdf --no-baselines
+    """
     from solver.plots import plot_map, save_figure
 
     inst = _experiment_instance(instance, grid)
@@ -262,7 +272,7 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     status("wrote " + ", ".join(map(str, files)))
 
 
-@plot_group.command("beliefs")
+@plot_group.command("beliefs", short_help="Beliefs and expected allocation along the paths.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
@@ -270,7 +280,13 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
               show_default=True, help="Defender for the allocation panels.")
 def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
                        output: str, defender: str) -> None:
-    """Belief b1_t and cumulative expected allocation to the true goal along each path."""
+    """Belief b1_t and cumulative expected allocation to the true goal along each path.
+
+    \b
+    Examples:
+      dpp plot beliefs -o beliefs.pdf
+      dpp plot beliefs --defender "sigma'" -o beliefs-alt.png
+    """
     from solver.plots import plot_beliefs, save_figure
 
     inst = _experiment_instance(instance, grid)
@@ -278,11 +294,20 @@ def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
     status("wrote " + ", ".join(map(str, files)))
 
 
-@plot_group.command("voi")
+@plot_group.command("voi", short_help="VoI box plots by obstacle density (from density.csv).")
 @click.argument("csv_file", type=click.Path(dir_okay=False))
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 def plot_voi_command(csv_file: str, output: str) -> None:
-    """VoI box plots by density and strategy pair from a density.csv."""
+    """VoI box plots by density and strategy pair from CSV_FILE, a density.csv.
+
+    `dpp experiment density --output-dir DIR` writes DIR/density.csv.
+
+    \b
+    Examples:
+      dpp experiment density --samples 20 --output-dir out/small
+      dpp plot voi out/small/density.csv -o voi.pdf
+    """
+    from dppverify.hints import file_hint
 
     from solver.experiments.density import rows_from_csv
     from solver.plots import plot_voi, save_figure
@@ -295,7 +320,17 @@ def plot_voi_command(csv_file: str, output: str) -> None:
         text = raw.decode("utf-8")
     except (OSError, ValueError) as exc:
         raise InvalidInstanceError(f"{csv_file}: cannot read file ({exc})") from None
-    files = save_figure(plot_voi(list(rows_from_csv(text))), output)
+    try:
+        rows = list(rows_from_csv(text))
+    except InvalidInstanceError as exc:
+        hint = file_hint(csv_file, "density CSV", "dpp plot voi")
+        raise InvalidInstanceError(hint or f"{csv_file}: {exc}; make a density CSV with dpp "
+                                   "experiment density --output-dir DIR (it writes "
+                                   "DIR/density.csv)") from None
+    if not rows:
+        raise InvalidInstanceError(f"{csv_file}: no rows; make a density CSV with dpp "
+                                   "experiment density --output-dir DIR")
+    files = save_figure(plot_voi(rows), output)
     status("wrote " + ", ".join(map(str, files)))
 
 

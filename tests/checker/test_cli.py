@@ -86,7 +86,8 @@ def test_missing_files_and_short_horizon_exit_2(tmp_path: Path) -> None:
     assert r.exit_code == 0 and "H = 40, structured route" in r.output
 
 
-def test_float_instances_need_the_float_flag(tmp_path: Path) -> None:
+def test_float_mode_is_detected_from_the_instance(tmp_path: Path) -> None:
+    # issue 24: 8-connected maps (float mode) certify without --float; --float changes nothing
     doc = triangle_doc()
     doc["numbers"] = "float"
     i = write_doc(tmp_path, "i.json", doc)
@@ -99,9 +100,11 @@ def test_float_instances_need_the_float_flag(tmp_path: Path) -> None:
                                         "secondary": [{"path": ["s", "g2"],
                                                        "probability": 1}]}})
     r = run_cli(certify_command, [i, p])
-    assert r.exit_code == 2 and "--float" in r.output
+    assert r.exit_code == 0 and "float mode, relative tolerance 1e-09" in r.output
     r = run_cli(certify_command, [i, p, "--float"])
     assert r.exit_code == 0 and "float mode" in r.output
+    exact = run_cli(certify_command, [write_doc(tmp_path, "e.json", triangle_doc()), p])
+    assert exact.exit_code == 0 and "exact" in exact.output.splitlines()[0]
 
 
 def test_value_command(tmp_path: Path) -> None:
