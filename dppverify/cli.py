@@ -17,23 +17,24 @@ from typing import Any
 import click
 
 from dppverify.audit_cli import audit_command
-from dppverify.certificate import Certificate, CheckRecord
 from dppverify.belongs import profile_mismatch
+from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli_conventions import output_file_option, progress_option, status, want_progress
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
-from dppverify.errors import CheckerError, InvalidInstanceError, OptionError, ProfileError
+from dppverify.errors import CheckerError, OptionError, ProfileError
+from dppverify.exact import format_number
 from dppverify.files import write_files
 from dppverify.hints import file_hint
-from dppverify.exact import format_number
-from dppverify.instance import GameInstance, Instance, load_instance
+from dppverify.instance import GameInstance as AnyGame
+from dppverify.instance import Instance, load_instance
 from dppverify.limits import MAX_HORIZON, MAX_TRIALS
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.instance import load_ninstance
-from dppverify.profile import load_profile_document
 from dppverify.ngoal.routes import is_ngoal_file, nrouted_document, nrouted_lines, nrouted_value
+from dppverify.profile import load_profile_document
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
 from dppverify.text import show
 from dppverify.tree import DEFAULT_MAX_PREFIXES
@@ -247,7 +248,7 @@ def load_game(instance: str | None, grid: MapRequest | None) -> Instance:
         return load_instance(instance)
 
 
-class hinted:  # noqa: N801 - used as a lowercase context manager
+class hinted:
     """Context manager: a read error of ``path`` becomes :func:`~dppverify.hints.file_hint`'s
     hint (the file is of another kind: swapped arguments, a ``.map`` file, ...) when it has one.
 
@@ -270,12 +271,11 @@ class hinted:  # noqa: N801 - used as a lowercase context manager
     def __enter__(self) -> None:
         return None
 
-    def __exit__(self, kind: Any, exc: Any, tb: Any) -> bool:
+    def __exit__(self, kind: Any, exc: Any, tb: Any) -> None:
         if isinstance(exc, self.errors):
             hint = file_hint(self.path, self.kind, self.command)
             if hint is not None:
                 raise type(exc)(hint) from None
-        return False
 
 
 @click.command("certify", short_help="Certify or refute a profile as a PBNE of an instance.")
@@ -338,7 +338,7 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
             raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
                               f"dpp certify {MAP_USAGE} PROFILE")
         if instance is not None and is_ngoal_file(instance):  # N > 2 goals: dppverify.ngoal
-            game: GameInstance = load_ninstance(instance)
+            game: AnyGame = load_ninstance(instance)
             bar.phase("reading the profile")
             doc = _profile_document(profile, game, instance)
             bar.phase(f"certifying (route {route})")
@@ -388,7 +388,7 @@ class _StartBar:
             self.bar = None
 
 
-def _profile_document(path: str, game: GameInstance, instance: str | None) -> dict[str, Any]:
+def _profile_document(path: str, game: AnyGame, instance: str | None) -> dict[str, Any]:
     """The profile document at ``path``, refused in one line when it belongs to another game."""
     ngoal = len(game.goals) > 2
     with hinted(path, "profile"):
@@ -406,7 +406,7 @@ def _profile_document(path: str, game: GameInstance, instance: str | None) -> di
         solve = f"dpp solve {instance}" if instance is not None else "dpp solve --map ..."
         raise ProfileError(f"{path} does not belong to this instance: {reason}; make a "
                            f"profile for it with {solve} -o PROFILE")
-    return doc  # type: ignore[no-any-return]
+    return dict(doc)
 
 
 def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str) -> None:

@@ -268,8 +268,8 @@ def as_instance(instance: Any) -> Instance:
             return instance_from_json(doc)
     raise InvalidInstanceError(
         "an instance must be an Instance, a JSON document (dict), a file path or an object "
-        f"with to_json(); got {type(instance).__name__} (for the solver's Instance pass "
-        "solver.instance_to_json(instance))")
+        f"with to_json(); got {type(instance).__name__} (the solver's Instance and "
+        "Equilibrium have to_json())")
 
 
 def load_instance(path: str | Path) -> Instance:

@@ -30,7 +30,8 @@ from dppverify.movingai import grid_document, read_map
 from dppverify.standard_maps import PREFIX, resolve_map
 from dppverify.text import show
 
-__all__ = ["MAP_USAGE", "MapRequest", "check_prior", "instance_or_map", "map_options", "map_request"]
+__all__ = ["MAP_USAGE", "MapRequest", "check_prior", "instance_or_map", "map_options",
+           "map_request"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 

@@ -308,7 +308,6 @@ def plot_voi_command(csv_file: str, output: str) -> None:
       dpp plot voi out/small/density.csv -o voi.pdf
     """
     from dppverify.hints import file_hint
-
     from solver.experiments.density import rows_from_csv
     from solver.plots import plot_voi, save_figure
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Hashable
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 
@@ -82,6 +83,22 @@ class Equilibrium:
         """Per path: σ*(g1), Bayes beliefs ``b^1_t`` and the cumulative expected allocation
         to the true goal at every step (computed on first access)."""
         return self.evaluation.trajectories
+
+    def to_json(self) -> dict[str, Any]:
+        """The ``dpp-profile/1`` document (docs/formats.md §2), as
+        :func:`solver.equilibrium_to_json`: the protocol through which
+        ``dppverify.certify(instance, equilibrium)`` takes the solver's objects.
+
+        Examples
+        --------
+        >>> import networkx as nx
+        >>> g = nx.Graph([("s", "a"), ("s", "b")])
+        >>> solve(Instance(g, "s", ("a", "b"), ("1/2", "1/2"))).to_json()["format"]
+        'dpp-profile/1'
+        """
+        from solver.profile_json import equilibrium_to_json  # the JSON layer sits above
+
+        return equilibrium_to_json(self)
 
 
 def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibrium:

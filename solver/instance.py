@@ -106,6 +106,23 @@ class Instance:
         object.__setattr__(self, "prior", exact_prior)
         object.__setattr__(self, "network", net)
 
+    def to_json(self) -> dict[str, Any]:
+        """The instance JSON document (docs/formats.md §1), as :func:`solver.instance_to_json`.
+
+        This is the documented protocol through which the checker takes the solver's objects
+        (``dppverify.certify(inst, eq)``) without importing the solver.
+
+        Examples
+        --------
+        >>> import networkx as nx
+        >>> g = nx.Graph([("s", "a"), ("s", "b")])
+        >>> Instance(g, "s", ("a", "b"), ("1/2", "1/2")).to_json()["goals"]
+        ['a', 'b']
+        """
+        from solver.instance_json import instance_to_json  # the JSON layer sits above
+
+        return instance_to_json(self)
+
     # ------------------------------------------------------------------ constructors
     @classmethod
     def from_grid(

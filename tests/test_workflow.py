@@ -1,0 +1,220 @@
+"""Issue 24, a researcher's workflow: one output convention, messages that say what to do next.
+
+Each test is one finding of the issue, run through the ``dpp`` command as a user types it.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import click
+import pytest
+from click.testing import CliRunner
+
+from solver.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+TRIANGLE = str(ROOT / "examples" / "triangle.json")
+PAPER10 = str(ROOT / "examples" / "paper10.map")
+GRID = ["--start", "9,0", "--goals", "0,9", "0,0", "--prior", "0.6,0.4"]
+
+
+def dpp(*args: str) -> click.testing.Result:
+    return CliRunner().invoke(main, list(args))
+
+
+@pytest.fixture()
+def profile(tmp_path: Path) -> str:
+    p = str(tmp_path / "p.json")
+    assert dpp("solve", TRIANGLE, "-o", p).exit_code == 0
+    return p
+
+
+def _one_line_error(r: click.testing.Result) -> str:
+    assert r.exit_code == 2, (r.exit_code, r.output)
+    assert r.stdout == ""
+    lines = r.stderr.splitlines()
+    assert len(lines) == 1 and lines[0].startswith("error: "), r.stderr
+    assert "Fraction(" not in lines[0] and "Traceback" not in lines[0]
+    return lines[0]
+
+
+# ---------------------------------------------------------------- one output convention
+@pytest.mark.parametrize("args", [["solve", TRIANGLE], ["certify", TRIANGLE, "PROFILE"],
+                                  ["value", TRIANGLE, "-H", "3"]])
+def test_json_with_output_writes_the_file_and_prints_one_status_line(
+        args: list[str], profile: str, tmp_path: Path) -> None:
+    args = [profile if a == "PROFILE" else a for a in args]
+    out = tmp_path / "out.json"
+    for extra in (["--json"], []):
+        r = dpp(*args, *extra, "-o", str(out))
+        assert r.exit_code == 0, r.output
+        assert r.stdout == ""
+        assert r.stderr.startswith(f"wrote {out}: ") and r.stderr.count("\n") == 1
+        json.loads(out.read_text())  # the file is the command's JSON document
+        out.unlink()
+    plain = dpp(*args, "--json")
+    assert plain.exit_code == 0 and json.loads(plain.stdout)
+
+
+def test_every_command_printing_json_also_takes_output() -> None:
+    def walk(group: click.Group, prefix: str = ""):  # type: ignore[no-untyped-def]
+        for name, cmd in group.commands.items():
+            if isinstance(cmd, click.Group):
+                yield from walk(cmd, f"{prefix}{name} ")
+            else:
+                yield prefix + name, cmd
+
+    for name, cmd in walk(main):
+        opts = {o for p in cmd.params for o in getattr(p, "opts", [])}
+        if "--json" in opts:
+            assert "--output" in opts, name
+
+
+def test_certificate_file_has_the_exact_numbers_the_table_abbreviates(tmp_path: Path) -> None:
+    from dppverify.certificate import CheckRecord
+    from dppverify.cli import _numbers
+
+    big = {"U1_profile": 10**40 + 1, "ratio": 10**40 // 7 / 10**39}
+    rec = CheckRecord("value.U1", "pass", "", big)  # type: ignore[arg-type]
+    lines = _numbers(rec)
+    assert all(len(line) <= 44 for line in lines) and not any("..." in x for x in lines)
+    assert lines[0].split()[0] == "U1_profile=≈1×10^40"
+
+
+# ---------------------------------------------------------------- float mode detected
+def test_eight_connected_maps_certify_without_float(tmp_path: Path) -> None:
+    p = str(tmp_path / "p.json")
+    grid = ["--map", PAPER10, *GRID, "--connectivity", "8"]
+    assert dpp("solve", *grid, "-o", p).exit_code == 0
+    r = dpp("certify", *grid, p)
+    assert r.exit_code == 0, r.output
+    assert "float mode" in r.stdout.splitlines()[0]
+
+
+# ---------------------------------------------------------------- profile of another game
+def test_profile_of_another_prior_is_one_line(profile: str, tmp_path: Path) -> None:
+    doc = json.loads(Path(TRIANGLE).read_text())
+    doc["prior"] = ["3/5", "2/5"]
+    other = tmp_path / "other.json"
+    other.write_text(json.dumps(doc))
+    line = _one_line_error(dpp("certify", str(other), profile))
+    assert "does not belong to this instance" in line and "(7/10, 3/10)" in line
+    assert "checker" not in line and f"dpp solve {other} -o PROFILE" in line
+
+
+def test_profile_of_another_map_is_one_line(tmp_path: Path) -> None:
+    p = str(tmp_path / "p.json")
+    assert dpp("solve", "--map", PAPER10, *GRID, "-o", p).exit_code == 0
+    moved = ["--start", "9,0", "--goals", "0,9", "0,5", "--prior", "0.6,0.4"]
+    line = _one_line_error(dpp("certify", "--map", PAPER10, *moved, p))
+    assert "its goals are [0, 9], [0, 0], the instance's are [0, 9], [0, 5]" in line
+    # same cells, another map: caught by the complete-information value the profile states
+    m = tmp_path / "open.map"
+    m.write_text("type octile\nheight 10\nwidth 10\nmap\n" + "..........\n" * 10)
+    line = _one_line_error(dpp("certify", "--map", str(m), *GRID, p))
+    assert "U_bar = 88/5" in line and "72/5" in line
+
+
+# ---------------------------------------------------------------- wrong kind of file
+def test_swapped_arguments_and_map_files_get_a_hint(profile: str) -> None:
+    assert "are the arguments swapped?" in _one_line_error(dpp("certify", profile, TRIANGLE))
+    line = _one_line_error(dpp("certify", PAPER10, profile))
+    assert f"--map {PAPER10} --start R,C" in line
+    line = _one_line_error(dpp("solve", PAPER10))
+    assert f"dpp solve --map {PAPER10}" in line
+    assert "not an instance" in _one_line_error(dpp("solve", profile))
+
+
+def test_plot_voi_on_the_wrong_file_names_it_and_the_command(profile: str,
+                                                             tmp_path: Path) -> None:
+    line = _one_line_error(dpp("plot", "voi", profile, "-o", str(tmp_path / "v.png")))
+    assert profile in line and "dpp experiment density --output-dir" in line
+    csv = tmp_path / "compare.csv"
+    csv.write_text("defender,attacker,U1\nsigma*,gamma*,1\n")
+    line = _one_line_error(dpp("plot", "voi", str(csv), "-o", str(tmp_path / "v.png")))
+    assert str(csv) in line and "dpp experiment density" in line
+    assert not (tmp_path / "v.png").exists()
+
+
+def test_plot_map_accepts_the_saved_grid_instance(tmp_path: Path) -> None:
+    inst = tmp_path / "grid.json"
+    r = dpp("solve", "--map", PAPER10, *GRID, "--save-instance", str(inst))
+    assert r.exit_code == 0
+    r = dpp("plot", "map", str(inst), "-o", str(tmp_path / "m.png"))
+    assert r.exit_code == 0, r.output
+    assert (tmp_path / "m.png").stat().st_size > 1000
+    assert "need a grid instance" in _one_line_error(
+        dpp("plot", "map", TRIANGLE, "-o", str(tmp_path / "t.png")))
+
+
+# ---------------------------------------------------------------- the --map option group
+def test_a_bad_prior_with_map_is_blamed_on_prior() -> None:
+    line = _one_line_error(dpp("solve", "--map", PAPER10, "--start", "9,0", "--goals", "0,9",
+                               "0,0", "--prior", "0.6,0.5"))
+    assert line == "error: --prior must sum to exactly 1, got 3/5 + 1/2 = 11/10"
+    assert "paper10" not in line
+
+
+def test_goals_as_one_quoted_argument_gets_a_precise_hint() -> None:
+    line = _one_line_error(dpp("solve", "--map", PAPER10, "--start", "9,0", "--goals",
+                               "0,9 0,0", "--prior", "0.6,0.4"))
+    assert "separate arguments, e.g. --goals 0,9 0,0" in line
+
+
+# ---------------------------------------------------------------- help and progress
+def test_short_help_is_never_cut() -> None:
+    def walk(group: click.Group):  # type: ignore[no-untyped-def]
+        for cmd in group.commands.values():
+            yield cmd
+            if isinstance(cmd, click.Group):
+                yield from walk(cmd)
+
+    for cmd in walk(main):
+        text = cmd.get_short_help_str(limit=60)
+        assert not text.endswith("..."), (cmd.name, text)
+        assert "Figs." not in text
+
+
+@pytest.mark.parametrize("name", ["map", "beliefs", "voi"])
+def test_plot_help_has_examples(name: str) -> None:
+    r = dpp("plot", name, "--help")
+    assert r.exit_code == 0 and "Examples:" in r.output and f"dpp plot {name}" in r.output
+
+
+def test_certify_progress_shows_a_bar_before_the_tree(profile: str) -> None:
+    r = dpp("certify", TRIANGLE, profile, "--progress")
+    assert r.exit_code == 0
+    first = r.stderr.replace("\r", "\n").strip().splitlines()[0]
+    assert first.startswith("certify: reading the instance")
+
+
+# ---------------------------------------------------------------- the audit from anywhere
+def test_the_mutant_audit_runs_from_any_folder(tmp_path: Path) -> None:
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("DPP_", "PYTEST_"))}
+    env["PYTHONPATH"] = str(ROOT)
+    run = subprocess.run(
+        [sys.executable, "-c", "import sys; sys.argv[0] = 'dpp'; from solver.cli import main; "
+         "main()", "audit", "--solver", "tests.mutants.solvers:mutant_drop_phase_ii",
+         "--examples", "40", "--no-shrink", "--output-dir", "failure"],
+        cwd=tmp_path, env=env, text=True, capture_output=True, timeout=600)
+    assert run.returncode == 1, run.stderr
+    assert "cannot import" not in run.stderr
+    assert (tmp_path / "failure" / "instance.json").exists()
+
+
+# ---------------------------------------------------------------- the solver's objects
+def test_certify_takes_the_solvers_objects() -> None:
+    import dppverify
+    import solver
+
+    inst = solver.load_instance(TRIANGLE)
+    eq = solver.solve(inst)
+    assert inst.to_json() == solver.instance_to_json(inst)
+    assert eq.to_json() == solver.equilibrium_to_json(eq)
+    assert dppverify.certify(inst, eq).verdict == "pass"
+    assert dppverify.game_value(inst, 2).bracket.closed
