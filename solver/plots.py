@@ -22,6 +22,7 @@ matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib import patheffects
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
@@ -47,21 +48,37 @@ DEFENDER_HATCH = {"sigma*": "", "sigma'": "///"}
 MARKER_COLOUR = "#222222"
 FORMATS = ("png", "svg", "pdf")
 """Output formats, chosen by the file's suffix."""
-VOI = r"$\mathrm{VoI}$"
-"""VoI in a serif face: in DejaVu Sans a capital I looks like a small l ("Vol")."""
+VOI = "value of information"
+"""Spelled out: in the figures' one font (DejaVu Sans) "VoI" reads as "Vol"."""
 _STYLE: dict[Any, Any] = {"font.family": "DejaVu Sans", "font.size": 12, "axes.titlesize": 13,
           "axes.labelsize": 12, "legend.fontsize": 11, "xtick.labelsize": 11,
-          "ytick.labelsize": 11, "mathtext.fontset": "dejavuserif"}
+          "ytick.labelsize": 11, "mathtext.fontset": "dejavusans", "pdf.fonttype": 42,
+          "svg.fonttype": "none"}
+"""One font family for text and mathtext (DejaVu Sans); fonts embedded as TrueType."""
+LARGE_MAP = 60
+"""Maps with more cells than this on a side get the print rendering: paths of a fixed width
+with a white casing, start and goal markers of a fixed size on top, lighter obstacles."""
+PATH_STYLES = {"xi1_I": "-", "xi1_II": (0, (4, 1.5)), "xi1": "-", "xi2": (0, (1, 1.2))}
+"""One line style per equilibrium path in every figure: ξ^{1,I} solid, ξ^{1,II} dashed, ξ²
+dotted (colour says the Attacker's strategy, the line style which path)."""
 _PHASE_NAMES = {1: "I", 2: "II", 3: "III"}
 
 
 def _tex(label: str) -> str:
-    """Mathtext for a path label: ``xi1_II`` -> ξ^{1,II}, ``xi2_am`` -> ξ^{2,am}."""
+    """Mathtext for a path label: ``xi1_II`` -> ξ^{1,II}, ``xi2_am`` -> ξ^{2,am}, ``xi1`` -> ξ¹.
+
+    >>> print(_tex("xi1_II"), _tex("xi1"), _tex("t"))
+    $\\xi^{1,\\mathrm{II}}$ $\\xi^{1}$ t
+    """
     head, _, tail = label.partition("_")
     if not head.startswith("xi"):
         return label
     sup = head[2:] + (r",\mathrm{" + tail + "}" if tail else "")
     return rf"$\xi^{{{sup}}}$"
+
+
+T_I, T_II = r"$t_{\mathrm{I}}$", r"$t_{\mathrm{II}}$"
+"""The phase boundaries t_I, t_II as mathtext (subscripts, never a literal underscore)."""
 
 
 def _num(x: Any) -> str:
@@ -175,30 +192,49 @@ def _cell_points(ax: Axes, shape: tuple[int, ...]) -> float:
     return 72.0 * width_in / max(shape)
 
 
+def _large(shape: tuple[int, ...]) -> bool:
+    return max(shape) > LARGE_MAP
+
+
+def _casing(lw: float) -> list[Any]:
+    """A white casing under a path, so it stands out from obstacles at print size."""
+    return [patheffects.Stroke(linewidth=lw + 2.2, foreground="white"), patheffects.Normal()]
+
+
 def _draw_grid(ax: Axes, instance: Instance) -> list[Line2D]:
-    """Grid, obstacles and the start/goal markers (drawn UNDER the paths); legend handles."""
+    """Grid, obstacles and the start/goal markers; legend handles.
+
+    Small maps: markers of about a cell UNDER the paths (a one-step phase stays visible).
+    Large maps (:data:`LARGE_MAP`): lighter obstacles and markers of a fixed print size
+    with a white edge ON TOP of the paths, so start and goals are seen at print size.
+    """
     blocked = _grid(instance)
     h, w = blocked.shape
-    ax.imshow(blocked, cmap="Greys", vmin=0, vmax=1.4, origin="upper",
-              extent=(-0.5, w - 0.5, h - 0.5, -0.5))
+    large = _large(blocked.shape)
+    ax.imshow(blocked, cmap="Greys", vmin=0, vmax=2.2 if large else 1.4, origin="upper",
+              extent=(-0.5, w - 0.5, h - 0.5, -0.5), interpolation="nearest")
     if max(h, w) <= 40:
         ax.set_xticks(np.arange(-0.5, w, 1), minor=True)
         ax.set_yticks(np.arange(-0.5, h, 1), minor=True)
         ax.grid(which="minor", color="#cccccc", linewidth=0.5)
     ax.tick_params(which="minor", length=0)
-    step = max(1, -(-max(h, w) // 5))
-    ax.set_xticks(range(0, w, step))
-    ax.set_yticks(range(0, h, step))
+    ax.xaxis.set_major_locator(MaxNLocator(5, integer=True))
+    ax.yaxis.set_major_locator(MaxNLocator(5, integer=True))
+    ax.set_xlim(-0.5, w - 0.5)
+    ax.set_ylim(h - 0.5, -0.5)
     ax.set_xlabel("column")
     ax.set_ylabel("row")
-    ms = float(np.clip(0.7 * _cell_points(ax, (h, w)), 5, 18))
+    ms = 13.0 if large else float(np.clip(0.7 * _cell_points(ax, (h, w)), 5, 18))
     s, g1, g2 = instance.start, instance.primary, instance.secondary
     handles = []
-    for node, marker, face, name in ((s, "o", "white", "start s0"),
-                                     (g1, "s", MARKER_COLOUR, f"g1 (prior {instance.b1})"),
-                                     (g2, "s", "white", f"g2 (prior {instance.b2})")):
+    for node, marker, face, name in ((s, "o", "white", "start $s_0$"),
+                                     (g1, "s", MARKER_COLOUR, f"$g_1$ (prior {instance.b1})"),
+                                     (g2, "s", "white", f"$g_2$ (prior {instance.b2})")):
+        if large:  # a white halo, then the marker, above every path
+            ax.plot(node[1], node[0], marker=marker, ms=ms + 5, mfc="white",  # type: ignore[index]
+                    mec="white", zorder=9, clip_on=False)
         ax.plot(node[1], node[0], marker=marker, ms=ms, mfc=face,  # type: ignore[index]
-                mec=MARKER_COLOUR, mew=2, zorder=2)
+                mec=MARKER_COLOUR, mew=2, zorder=10 if large else 2, clip_on=False)
         handles.append(Line2D([], [], marker=marker, ms=11, mfc=face, mec=MARKER_COLOUR,
                               mew=2, ls="none", label=name))
     return handles
@@ -229,8 +265,8 @@ def plot_map(instance: Instance, *, baselines: bool = True,
     --------
     >>> from solver.experiments.compare import paper10_instance
     >>> fig = plot_map(paper10_instance())
-    >>> len(fig.axes), fig.axes[0].get_title().splitlines()[0]
-    (2, '(σ*, γ*): t_I = 6, t_II = 16, T = 17')
+    >>> print(len(fig.axes), fig.axes[0].get_title().splitlines()[0])
+    2 (σ*, γ*): $t_{\\mathrm{I}}$ = 6, $t_{\\mathrm{II}}$ = 16, T = 17
     """
     with plt.rc_context(_STYLE):
         return _plot_map(instance, baselines, game or PairEvaluator.of(instance))
@@ -239,11 +275,14 @@ def plot_map(instance: Instance, *, baselines: bool = True,
 def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figure:
     eq = game.equilibrium
     ncols = 2 if baselines else 1
-    fig, axes = plt.subplots(1, ncols, figsize=(6.2 * ncols, 7.6), squeeze=False)
+    fig, axes = plt.subplots(1, ncols, figsize=(5.4 * ncols, 6.9), squeeze=False)
     ax = axes[0][0]
     markers = _draw_grid(ax, instance)
-    cell = _cell_points(ax, _grid(instance).shape)
-    lw = float(np.clip(0.16 * cell, 1.5, 7))
+    shape = _grid(instance).shape
+    large = _large(shape)
+    cell = _cell_points(ax, shape)
+    lw = 2.6 if large else float(np.clip(0.16 * cell, 1.5, 7))
+    casing = _casing(lw) if large else None
     xi2 = eq.secondary_path
     x, y = _xy(xi2)
     phases = eq.phases
@@ -253,26 +292,27 @@ def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figur
         if first > last:
             continue
         ax.plot(x[first - 1:last + 1], y[first - 1:last + 1], color=PHASE_COLOURS[ph], lw=lw,
-                solid_capstyle="round", solid_joinstyle="round", zorder=4)
+                solid_capstyle="round", solid_joinstyle="round", zorder=4,
+                path_effects=casing)
         steps = f"step {first}" if first == last else f"steps {first}-{last}"
         handles.append(Line2D([], [], color=PHASE_COLOURS[ph], lw=6,
                               label=f"{_tex('xi2')} phase {_PHASE_NAMES[ph]} ({steps})"))
-    styles = ["--", ":"]
     for k, p in enumerate(eq.primary_paths):
         n = _common(p.nodes, xi2)
         label = f"{_tex(p.label)}, p = {p.probability}"
+        ls = PATH_STYLES.get(p.label, "-")
         if n >= len(p.nodes):
             handles.append(Line2D([], [], color="none", label=f"{label} (= {_tex('xi2')})"))
             continue
-        bx, by = _xy(p.nodes[n - 1:], 0.14 * (1 if k % 2 else -1))
-        ax.plot(bx, by, color=STRATEGY_COLOURS["gamma*"], lw=0.75 * lw, ls=styles[k % 2],
-                zorder=5)
+        bx, by = _xy(p.nodes[n - 1:], 0.0 if large else 0.14 * (1 if k % 2 else -1))
+        ax.plot(bx, by, color=STRATEGY_COLOURS["gamma*"], lw=0.75 * lw, ls=ls, zorder=5,
+                path_effects=_casing(0.75 * lw) if large else None)
         ax.plot(bx[0], by[0], "D", color=STRATEGY_COLOURS["gamma*"], mec="black", ms=8,
                 zorder=6)
-        handles.append(Line2D([], [], color=STRATEGY_COLOURS["gamma*"], lw=3, ls=styles[k % 2],
+        handles.append(Line2D([], [], color=STRATEGY_COLOURS["gamma*"], lw=3, ls=ls,
                               marker="D", ms=7, mec="black", label=f"{label} (branch)"))
-    ax.set_title(f"(σ*, γ*): t_I = {phases.t_I}, t_II = {phases.t_II}, T = {phases.T}\n"
-                 f"{VOI}* = {_num(eq.VoI)}")
+    ax.set_title(f"(σ*, γ*): {T_I} = {phases.t_I}, {T_II} = {phases.t_II}, T = {phases.T}\n"
+                 f"{VOI} {_num(eq.VoI)}")
     _legend_below(ax, handles + markers)
     if baselines:
         ax2 = axes[0][1]
@@ -281,16 +321,19 @@ def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figur
         for j, kind in enumerate(("ambiguity", "exaggeration")):
             att = game.attacker(kind)
             for theta, mp in ((1, att.primary[0]), (2, att.secondary[0])):
-                off = -0.2 + 0.13 * (2 * j + theta - 1)
+                off = 0.0 if large else -0.2 + 0.13 * (2 * j + theta - 1)
                 bx, by = _xy(list(mp.nodes), off)
                 ls = "-" if theta == 1 else "--"
-                ax2.plot(bx, by, color=STRATEGY_COLOURS[kind], lw=0.6 * lw, ls=ls, zorder=4 + j)
+                ax2.plot(bx, by, color=STRATEGY_COLOURS[kind], lw=0.75 * lw if large else 0.6 * lw,
+                         ls=ls, zorder=4 + j,
+                         path_effects=_casing(0.75 * lw) if large else None)
                 tag = "am" if kind == "ambiguity" else "ex"
                 bl.append(Line2D([], [], color=STRATEGY_COLOURS[kind], lw=3, ls=ls,
-                                 label=f"{_tex(f'xi{theta}_{tag}')} {kind} ({len(mp.walk) - 1})"))
+                                 label=f"{_tex(f'xi{theta}_{tag}')} {kind}, "
+                                       f"{len(mp.walk) - 1} steps"))
         vo = {r.attacker: r.VoI for r in game.compare((("sigma*", "ambiguity"),
                                                        ("sigma*", "exaggeration")))}
-        ax2.set_title(f"baselines against σ*: {VOI}\nambiguity {_num(vo['ambiguity'])}, "
+        ax2.set_title(f"baselines against σ*, {VOI}:\nambiguity {_num(vo['ambiguity'])}, "
                       f"exaggeration {_num(vo['exaggeration'])}")
         _legend_below(ax2, bl + markers2)
     fig.tight_layout()
@@ -317,8 +360,8 @@ def plot_beliefs(instance: Instance, *, defender: str = "sigma*",
     --------
     >>> from solver.experiments.compare import paper10_instance
     >>> fig = plot_beliefs(paper10_instance())
-    >>> len(fig.axes), [t.get_text() for t in fig.axes[0].texts]
-    (4, ['t_I', 't_II'])
+    >>> print(len(fig.axes), *[t.get_text() for t in fig.axes[0].texts])
+    4 $t_{\\mathrm{I}}$ $t_{\\mathrm{II}}$
     """
     with plt.rc_context(_STYLE):
         return _plot_beliefs(instance, defender, game or PairEvaluator.of(instance))
@@ -339,7 +382,7 @@ def _plot_beliefs(instance: Instance, defender: str, game: PairEvaluator) -> Fig
                 belief = [float(b) for b in tr.belief_g1]
             else:
                 belief = [float(b) for b in game.observer.beliefs(tr.walk)]
-            ls = "--" if tr.label == "xi1_II" else "-"
+            ls = PATH_STYLES.get(tr.label, "-") if attacker == "gamma*" else "-"
             # γ* wide underneath, the baselines narrow on top: equal curves stay visible
             eq_path = attacker == "gamma*"
             kw: dict[str, Any] = {"ls": ls, "lw": 5.0 if eq_path else 2.2,
@@ -351,7 +394,7 @@ def _plot_beliefs(instance: Instance, defender: str, game: PairEvaluator) -> Fig
                     else f"{attacker} (Dragan belief)")
             entries.setdefault(name, Line2D([], [], **kw, label=name))
     for col, theta in ((0, 1), (1, 2)):
-        goal = "g1" if theta == 1 else "g2"
+        goal = "$g_1$" if theta == 1 else "$g_2$"
         for r in (0, 1):
             _phase_bands(axes[r][col], phases)
             axes[r][col].grid(alpha=0.3)
@@ -359,20 +402,22 @@ def _plot_beliefs(instance: Instance, defender: str, game: PairEvaluator) -> Fig
         top = axes[0][col]
         top.set_ylim(-0.04, 1.22)
         top.set_title(f"type {theta}: true goal {goal}")
-        for t, name in ((phases.t_I, "t_I"), (phases.t_II, "t_II")):
-            if name == "t_II" and phases.t_II == phases.t_I:
+        for t, name in ((phases.t_I, T_I), (phases.t_II, T_II)):
+            if name == T_II and phases.t_II == phases.t_I:
                 continue
             top.text(t, 1.2, name, ha="center", va="top", fontsize=12,
                      bbox={"fc": "white", "ec": "none", "pad": 1}, zorder=2)
         d = float(net.numbers.convert(dist[theta]))
         axes[1][col].axhline(d, color="black", lw=1.2, ls=":")
         axes[1][col].set_xlabel("time step t")
-    axes[0][0].set_ylabel("belief in g1")
+    axes[0][0].set_ylabel("belief in $g_1$")
     axes[1][0].set_ylabel("expected allocation\nto the true goal")
-    entries["d(s0, true goal)"] = Line2D([], [], color="black", lw=1.2, ls=":",
-                                         label="d(s0, true goal)")
-    bands = [Patch(fc=PHASE_COLOURS[ph], alpha=0.35, label=f"phase {_PHASE_NAMES[ph]} of ξ²")
-             for ph in (1, 2, 3)]
+    entries["d"] = Line2D([], [], color="black", lw=1.2, ls=":",
+                          label="$d(s_0,$ true goal$)$")
+    present = {1: phases.t_I > 0, 2: phases.t_II > phases.t_I, 3: phases.T > phases.t_II}
+    bands = [Patch(fc=PHASE_COLOURS[ph], alpha=0.35,
+                   label=f"phase {_PHASE_NAMES[ph]} of {_tex('xi2')}")
+             for ph in (1, 2, 3) if present[ph]]
     fig.suptitle(f"Beliefs and cumulative expected allocation, Defender "
                  f"{LABELS.get(defender, defender)}")
     fig.tight_layout(rect=(0, 0.13, 1, 1))
@@ -417,6 +462,11 @@ def _plot_voi(rows: Iterable[Mapping[str, Any] | Any],
         vals = [data[(d, pair)] for d in densities if (d, pair) in data]
         colour = STRATEGY_COLOURS.get(pair[1], "#888888")
         hatch = DEFENDER_HATCH.get(pair[0], "..")
+        flat = [(x, v[0]) for x, v in zip(pos, vals, strict=True) if min(v) == max(v)]
+        if flat:  # a box of equal values collapses to a line: draw a square instead
+            fx, fy = zip(*flat, strict=True)
+            ax.plot(fx, fy, ls="none", marker="s", ms=9, mew=1.6, mec=colour,
+                    mfc="white" if hatch else colour, zorder=3)
         ax.boxplot(vals, positions=pos, widths=width * 0.85, patch_artist=True,
                    showmeans=True, meanprops={"marker": "+", "markeredgecolor": "black",
                                               "markersize": 8},
@@ -428,18 +478,24 @@ def _plot_voi(rows: Iterable[Mapping[str, Any] | Any],
                                "markeredgecolor": colour})
     ax.set_xticks(range(len(densities)), [f"{d}%" for d in densities])
     ax.set_xlabel("obstacle density")
-    ax.set_ylabel(f"{VOI} = (Ū − U) / Ū")
+    ax.set_ylabel(f"{VOI} $(\\bar{{U}} - U)\\,/\\,\\bar{{U}}$")
     ax.axhline(0, color="grey", lw=0.8)
     ax.grid(axis="y", alpha=0.3)
     counts = sorted({len(data.get((d, pairs[0]), [])) for d in densities})
     n = str(counts[0]) if len(counts) == 1 else "-".join(map(str, (counts[0], counts[-1])))
-    ax.set_title(f"{VOI} by obstacle density ({n} grids each; + mean, line median)")
+    ax.set_title(f"{VOI.capitalize()} by obstacle density ({n} grids each)")
     attackers = [a for a in STRATEGY_COLOURS if any(p[1] == a for p in pairs)]
     defenders = [d for d in DEFENDER_HATCH if any(p[0] == d for p in pairs)]
-    handles = [Patch(fc=STRATEGY_COLOURS[a], ec=STRATEGY_COLOURS[a],
+    handles: list[Any] = [Patch(fc=STRATEGY_COLOURS[a], ec=STRATEGY_COLOURS[a],
                      label=f"Attacker {LABELS[a]}") for a in attackers]
-    handles += [Patch(fc="white", ec="black", hatch=DEFENDER_HATCH[d] or None,
-                      label=f"Defender {LABELS[d]}") for d in defenders]
+    # the Defender as the boxes show it: σ* filled, σ' white and hatched
+    handles += [Patch(fc="white" if DEFENDER_HATCH[d] else "#999999", ec="#555555",
+                      hatch=DEFENDER_HATCH[d] or None, label=f"Defender {LABELS[d]}")
+                for d in defenders]
+    handles += [Line2D([], [], ls="none", marker="+", ms=9, mec="black", label="mean"),
+                Line2D([], [], color="black", lw=1.6, label="median"),
+                Line2D([], [], ls="none", marker="s", ms=9, mfc="#999999", mec="#555555",
+                       label="all grids equal")]
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.13),
               ncol=3, frameon=False)
     fig.tight_layout()

@@ -7,9 +7,26 @@ from collections.abc import Hashable, Sequence
 from solver.equilibrium import Equilibrium
 from solver.numbers import Number
 
-__all__ = ["summarize"]
+__all__ = ["path_label", "summarize"]
 
 _MAX_NODES = 12
+
+
+def path_label(label: str) -> str:
+    """A path label in text: ``xi1_II`` -> ``ξ^{1,II}``, ``xi1`` (one primary path) -> ``ξ¹``.
+
+    Examples
+    --------
+    >>> path_label("xi1_II"), path_label("xi1"), path_label("xi2")
+    ('ξ^{1,II}', 'ξ¹', 'ξ²')
+    """
+    head, _, tail = label.partition("_")
+    sup = {"xi1": "1", "xi2": "2"}.get(head)
+    if sup is None:
+        return label
+    if not tail:
+        return "ξ¹" if sup == "1" else "ξ²"
+    return "ξ^{" + sup + "," + tail + "}"
 
 
 def summarize(eq: Equilibrium) -> str:
@@ -63,7 +80,7 @@ def summarize(eq: Equilibrium) -> str:
         "primary mixture:",
     ]
     for p in eq.primary_paths:
-        label = "ξ^{1," + p.label.removeprefix("xi1_") + "}"
+        label = path_label(p.label)
         lines.append(f"  {label:9s} p = {p.probability!s:7s} {_path(p.nodes)}")
     lines += [
         "",

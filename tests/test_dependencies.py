@@ -86,8 +86,14 @@ def _module_distributions() -> dict[str, list[str]]:
     return packages_distributions()
 
 
+SAME_MODULE = {"cvxpy": {"cvxpy", "cvxpy-base"}}
+"""Distributions that install the same import package: we declare the light ``cvxpy-base``
+(no bundled SCS/OSQP/HiGHS), a machine may have the full ``cvxpy``."""
+
+
 def _distributions(module: str) -> set[str]:
-    return {_norm(d) for d in _module_distributions().get(module, [module])}
+    found = {_norm(d) for d in _module_distributions().get(module, [module])}
+    return found | SAME_MODULE.get(module, set())
 
 
 def test_runtime_imports_are_declared() -> None:

@@ -47,7 +47,7 @@ def test_map_input(tmp_path: Path) -> None:
     (("solve", "nope.json"), "nope.json: cannot read file"),
     (("solve",), "missing INSTANCE: give an instance JSON file, or --map FILE"),
     (("solve", "--map", "x.map", "--start", "0,0"), "--map needs"),
-    (("solve", "--map", TRIANGLE, "--start", "0,0", "--goals", "1,1", "0,1", "--prior", "1,0"),
+    (("solve", "--map", TRIANGLE, "--start", "0,0", "--goals", "1,1", "0,1", "--prior", "0.5,0.5"),
      "line 1: expected 'key value' header"),
 ])
 def test_bad_input_is_one_line_exit_2(args: tuple[str, ...], message: str) -> None:
