@@ -1,0 +1,121 @@
+"""Issue 24's figure findings, each checked on the figure objects (docs/figures/ has the
+contact sheet of all figures at print size)."""
+
+from __future__ import annotations
+
+import matplotlib
+import networkx as nx
+import numpy as np
+import pytest
+from matplotlib.colors import to_rgba
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
+
+from solver import Instance, solve
+from solver.experiments.compare import paper10_instance
+from solver.plots import PATH_STYLES, plot_beliefs, plot_map, plot_voi
+from solver.report import summarize
+
+matplotlib.use("Agg")
+
+EDGES = [(0, 1, 2), (0, 2, 2), (0, 4, 4), (1, 2, 3), (1, 3, 1), (1, 4, 4), (2, 3, 1), (2, 4, 2),
+         (3, 4, 3)]
+
+
+def no_phase_ii() -> Instance:
+    """A five-node game whose ξ² has no phase II (t_I = t_II = 1, T = 2): one primary path."""
+    g = nx.Graph()
+    g.add_weighted_edges_from(EDGES)
+    return Instance(g, 0, (4, 3), ("3/5", "2/5"))
+
+
+def _legend(fig) -> list:  # type: ignore[no-untyped-def]
+    legends = [*fig.legends, *(ax.get_legend() for ax in fig.axes if ax.get_legend())]
+    return [h for leg in legends for h in leg.legend_handles]
+
+
+def _labels(fig) -> list[str]:  # type: ignore[no-untyped-def]
+    legends = [*fig.legends, *(ax.get_legend() for ax in fig.axes if ax.get_legend())]
+    return [t.get_text() for leg in legends for t in leg.get_texts()]
+
+
+def test_beliefs_legend_tells_the_equilibrium_paths_apart() -> None:
+    fig = plot_beliefs(paper10_instance())
+    styles = {}
+    for h, label in zip(_legend(fig), _labels(fig), strict=True):
+        if "γ*" in label:
+            offset, dashes = h._unscaled_dash_pattern  # what is drawn: solid, dashes, dots
+            styles[label.split(" ")[0]] = (offset, tuple(dashes or ()))
+    assert len(styles) == 3 and len(set(styles.values())) == 3, styles
+    assert set(PATH_STYLES) >= {"xi1_I", "xi1_II", "xi2"}
+
+
+def test_t_i_is_a_subscript_not_a_literal_underscore() -> None:
+    fig = plot_beliefs(paper10_instance())
+    texts = [t.get_text() for ax in fig.axes for t in ax.texts]
+    assert texts and all("_{" in t and t.startswith("$") for t in texts)
+    title = plot_map(paper10_instance(), baselines=False).axes[0].get_title()
+    assert "t_I" not in title and r"$t_{\mathrm{I}}$" in title
+
+
+def test_one_font_family_and_no_serif_math() -> None:
+    fig = plot_voi([{"density": 0, "defender": "sigma*", "attacker": "gamma*", "VoI_float": 0.2}],
+                   pairs=[("sigma*", "gamma*")])
+    for text in fig.findobj(matplotlib.text.Text):
+        if text.get_text():
+            assert text.get_fontfamily() == ["DejaVu Sans"], text.get_text()
+    assert "Vo" not in fig.axes[0].get_title() or "value of information" in \
+        fig.axes[0].get_title().lower()
+
+
+def test_without_phase_ii_the_labels_and_legend_say_so() -> None:
+    inst = no_phase_ii()
+    eq = solve(inst)
+    assert eq.phases.t_I == eq.phases.t_II and [p.label for p in eq.primary_paths] == ["xi1"]
+    text = summarize(eq)
+    assert "ξ¹ " in text and "xi1" not in text
+    labels = _labels(plot_beliefs(inst))
+    assert not any("phase II " in t for t in labels), labels
+    assert any("phase I " in t for t in labels) and any("phase III" in t for t in labels)
+    assert not any("xi1" in t for t in labels)
+
+
+def test_baseline_legend_explains_its_numbers() -> None:
+    labels = _labels(plot_map(paper10_instance()))
+    baselines = [t for t in labels if "ambiguity" in t or "exaggeration" in t]
+    assert len(baselines) == 4 and all(t.endswith(" steps") for t in baselines), baselines
+
+
+def test_voi_legend_matches_the_boxes_and_equal_values_stay_visible() -> None:
+    rows = [{"density": d, "defender": de, "attacker": "gamma*", "VoI_float": v}
+            for d, vals in ((0, (0.25, 0.25, 0.25)), (10, (0.2, 0.3, 0.25)))
+            for v in vals for de in ("sigma*", "sigma'")]
+    fig = plot_voi(rows, pairs=[("sigma*", "gamma*"), ("sigma'", "gamma*")])
+    handles = dict(zip(_labels(fig), _legend(fig), strict=True))
+    sigma_star, sigma_prime = handles["Defender σ*"], handles["Defender σ'"]
+    assert isinstance(sigma_star, Patch) and sigma_star.get_facecolor() != to_rgba("white")
+    assert sigma_prime.get_facecolor() == to_rgba("white") and sigma_prime.get_hatch()
+    squares = [ln for ln in fig.axes[0].lines if ln.get_marker() == "s"]
+    assert squares and all(np.allclose(ln.get_ydata(), 0.25) for ln in squares)
+    assert "all grids equal" in handles
+
+
+def test_large_maps_get_print_size_paths_and_markers() -> None:
+    blocked = np.zeros((120, 120), dtype=bool)
+    blocked[40:80, 30:90] = True
+    inst = Instance.from_grid(blocked, (119, 0), ((0, 119), (0, 0)), ("3/5", "2/5"))
+    ax = plot_map(inst, baselines=False).axes[0]
+    paths = [ln for ln in ax.lines if len(ln.get_xdata()) > 2]
+    assert paths and min(ln.get_linewidth() for ln in paths) >= 1.9
+    assert all(ln.get_path_effects() for ln in paths)  # a white casing
+    markers = [ln for ln in ax.lines if ln.get_marker() in ("o", "s")]
+    assert markers and min(ln.get_markersize() for ln in markers) >= 12
+    assert min(ln.get_zorder() for ln in markers) > max(ln.get_zorder() for ln in paths)
+
+
+@pytest.mark.parametrize("kind", ["map", "beliefs"])
+def test_legend_mathtext_is_consistent(kind: str) -> None:
+    fig = plot_map(paper10_instance()) if kind == "map" else plot_beliefs(paper10_instance())
+    labels = _labels(fig)
+    assert not any("_I" in t.replace(r"_{\mathrm{I", "") for t in labels), labels
+    assert all(isinstance(h, Line2D | Patch) for h in _legend(fig))
