@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import json
 import os
-import sys
 from typing import Any
 
 import click
@@ -20,7 +19,13 @@ from dppverify.audit_cli import audit_command
 from dppverify.belongs import profile_mismatch
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
-from dppverify.cli_conventions import output_file_option, progress_option, status, want_progress
+from dppverify.cli_conventions import (
+    PhaseBar,
+    output_file_option,
+    progress_option,
+    status,
+    want_progress,
+)
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
 from dppverify.errors import CheckerError, OptionError, ProfileError
 from dppverify.exact import format_number
@@ -327,7 +332,7 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
       dpp certify examples/triangle.json profile.json --horizon inf
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
     """
-    bar = _StartBar(want_progress(progress))
+    bar = PhaseBar(want_progress(progress), "certify", "reading the instance")
     try:
         if grid is not None and profile is not None:
             raise OptionError(f"with --map, certify takes only PROFILE (got {instance!r} and "
@@ -362,30 +367,6 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
     summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
     emit(cert.to_json(), format_table(cert), as_json=as_json, output=output, summary=summary)
     raise click.exceptions.Exit(0 if cert.passed else 1)
-
-
-class _StartBar:
-    """``certify --progress``: a status bar shown at once, naming the phase (reading the
-    instance, the profile, choosing the route and certifying); the checks' own bars appear
-    below it."""
-
-    def __init__(self, show: bool) -> None:
-        self.bar: Any = None
-        if show:
-            from tqdm import tqdm
-
-            self.bar = tqdm(total=None, desc="certify: reading the instance", file=sys.stderr,
-                            leave=False, bar_format="{desc} [{elapsed}]")
-            self.bar.refresh()
-
-    def phase(self, name: str) -> None:
-        if self.bar is not None:
-            self.bar.set_description_str(f"certify: {name}")
-
-    def close(self) -> None:
-        if self.bar is not None:
-            self.bar.close()
-            self.bar = None
 
 
 def _profile_document(path: str, game: AnyGame, instance: str | None) -> dict[str, Any]:

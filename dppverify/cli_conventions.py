@@ -19,7 +19,7 @@ from typing import Any, TypeVar
 
 import click
 
-__all__ = ["output_dir_option", "output_file_option", "progress_option", "status",
+__all__ = ["PhaseBar", "output_dir_option", "output_file_option", "progress_option", "status",
            "want_progress"]
 
 F = TypeVar("F", bound=Callable[..., Any])
@@ -159,3 +159,36 @@ def output_dir_option(help: str, *, default: str | None = None,
                             help=shown)(fn)
 
     return decorate
+
+
+class PhaseBar:
+    """``--progress`` for a command made of a few phases: a status line on stderr shown at
+    once and naming the current phase with the elapsed time (the phases' own bars, if any,
+    appear below it). Does nothing when ``show`` is False.
+
+    Examples
+    --------
+    >>> bar = PhaseBar(False, "solve", "reading the instance")
+    >>> bar.phase("solving"); bar.close()
+    """
+
+    def __init__(self, show: bool, command: str, first: str) -> None:
+        self.command = command
+        self.bar: Any = None
+        if show:
+            from tqdm import tqdm
+
+            self.bar = tqdm(total=None, desc=f"{command}: {first}", file=sys.stderr,
+                            leave=False, bar_format="{desc} [{elapsed}]")
+            self.bar.refresh()
+
+    def phase(self, name: str) -> None:
+        """Name the next phase."""
+        if self.bar is not None:
+            self.bar.set_description_str(f"{self.command}: {name}")
+
+    def close(self) -> None:
+        """Remove the line (idempotent)."""
+        if self.bar is not None:
+            self.bar.close()
+            self.bar = None

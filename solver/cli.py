@@ -15,6 +15,7 @@ import click
 
 from dppverify import cli as checker_cli
 from dppverify.cli_conventions import (
+    PhaseBar,
     output_dir_option,
     output_file_option,
     progress_option,
@@ -57,8 +58,10 @@ def main() -> None:
                     "empty, U* and VoI* are one line on stderr.")
 @click.option("--save-instance", type=click.Path(dir_okay=False), metavar="FILE",
               help="Also write the instance JSON (e.g. of a --map grid) to FILE (atomically).")
+@progress_option
 def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
-                  output: str | None, save_instance: str | None) -> None:
+                  output: str | None, save_instance: str | None,
+                  progress: bool | None) -> None:
     """Solve INSTANCE (a dpp instance JSON file, or a --map grid) for the paper's PBNE.
 
     \b
@@ -72,10 +75,16 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     if output is not None and save_instance is not None and \
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
-    inst = _load(instance, grid)
-    eq = solve(inst)
-    doc = equilibrium_to_json(eq)
-    instance_text = dumps(instance_to_json(inst)) if save_instance is not None else None
+    bar = PhaseBar(want_progress(progress), "solve", "reading the instance")
+    try:
+        inst = _load(instance, grid)
+        bar.phase("solving")
+        eq = solve(inst)
+        bar.phase("writing")
+        doc = equilibrium_to_json(eq)
+        instance_text = dumps(instance_to_json(inst)) if save_instance is not None else None
+    finally:
+        bar.close()
     if output is not None:
         write_atomic(output, dumps(doc))
     if save_instance is not None and instance_text is not None:
@@ -125,9 +134,11 @@ def experiment_group() -> None:
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
 @output_dir_option("Also write compare.csv and compare.txt into this directory.")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the six rows as JSON (exact p/q strings) instead of the table.")
 @progress_option
 def experiment_compare(instance: str | None, grid: MapRequest | None,
-                       output_dir: str | None, progress: bool | None) -> None:
+                       output_dir: str | None, as_json: bool, progress: bool | None) -> None:
     """U1, U2, U, VoI of six (Defender, Attacker) pairs on one instance (exact).
 
     Without an instance: the bundled 10x10 map, start 9,0, goals 0,9 0,0, prior 0.6,0.4.
@@ -149,7 +160,13 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
         PAIRS, desc="compare", unit="pair", file=sys.stderr, disable=not want_progress(progress),
         leave=False))
     text = compare_table(results) + "\n\n" + verdict(results) + "\n"
-    click.echo(text, nl=False)
+    if as_json:
+        import csv
+        import io
+
+        click.echo(dumps(list(csv.DictReader(io.StringIO(compare_csv(results))))), nl=False)
+    else:
+        click.echo(text, nl=False)
     if output_dir == "":
         raise OutputError("--output-dir: the output path is empty")
     if output_dir is not None:
@@ -184,10 +201,12 @@ def _int_list(text: str, what: str) -> tuple[int, ...]:
               help="Send the tasks to this dask.distributed scheduler instead.")
 @output_dir_option("Directory for density.csv, summary.txt, summary.json.",
                    default="out/density")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print summary.json instead of the text summary.")
 @progress_option
 def experiment_density(samples: int, densities: str, seed: int, size: int,
                        workers: int | None, dask_address: str | None, output_dir: str,
-                       progress: bool | None) -> None:
+                       as_json: bool, progress: bool | None) -> None:
     """VoI of the six strategy pairs on random grids of growing obstacle density.
 
     Start bottom-left, g1 top-right (prior 3/5), g2 top-left (prior 2/5); obstacles are
@@ -227,13 +246,17 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
                            progress=bar.update)
     summary = summarize_density(rows)
     d = Path(output_dir)
+    summary_json = dumps({"config": {
+        "size": size, "densities": list(config.densities), "samples": samples,
+        "seed": seed, "start": list(config.start),
+        "goals": [list(g) for g in config.goals], "prior": list(config.prior)},
+        **summary.to_json()})
     write_files({d / "density.csv": rows_to_csv(rows), d / "summary.txt": summary.text() + "\n",
-                 d / "summary.json": dumps({"config": {
-                     "size": size, "densities": list(config.densities), "samples": samples,
-                     "seed": seed, "start": list(config.start),
-                     "goals": [list(g) for g in config.goals], "prior": list(config.prior)},
-                     **summary.to_json()})})
-    click.echo(summary.text())
+                 d / "summary.json": summary_json})
+    if as_json:
+        click.echo(summary_json, nl=False)
+    else:
+        click.echo(summary.text())
     status(f"wrote {d / 'density.csv'} ({len(rows)} rows), {d / 'summary.txt'}, "
            f"{d / 'summary.json'}")
 
@@ -252,8 +275,9 @@ def plot_group() -> None:
 @map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--no-baselines", is_flag=True, help="Only the equilibrium panel.")
+@progress_option
 def plot_map_command(instance: str | None, grid: MapRequest | None,
-                       output: str, no_baselines: bool) -> None:
+                     output: str, no_baselines: bool, progress: bool | None) -> None:
     """Grid, obstacles, equilibrium paths by phase with mixing probabilities, baselines.
 
     INSTANCE is a grid instance: a --map grid, or the instance JSON that
@@ -267,8 +291,13 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     """
     from solver.plots import plot_map, save_figure
 
-    inst = _experiment_instance(instance, grid)
-    files = save_figure(plot_map(inst, baselines=not no_baselines), output)
+    bar = PhaseBar(want_progress(progress), "plot map", "reading the instance")
+    try:
+        inst = _experiment_instance(instance, grid)
+        bar.phase("solving and drawing")
+        files = save_figure(plot_map(inst, baselines=not no_baselines), output)
+    finally:
+        bar.close()
     status("wrote " + ", ".join(map(str, files)))
 
 
@@ -278,8 +307,9 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--defender", type=click.Choice(["sigma*", "sigma'"]), default="sigma*",
               show_default=True, help="Defender for the allocation panels.")
+@progress_option
 def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
-                       output: str, defender: str) -> None:
+                         output: str, defender: str, progress: bool | None) -> None:
     """Belief b1_t and cumulative expected allocation to the true goal along each path.
 
     \b
@@ -289,15 +319,21 @@ def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
     """
     from solver.plots import plot_beliefs, save_figure
 
-    inst = _experiment_instance(instance, grid)
-    files = save_figure(plot_beliefs(inst, defender=defender), output)
+    bar = PhaseBar(want_progress(progress), "plot beliefs", "reading the instance")
+    try:
+        inst = _experiment_instance(instance, grid)
+        bar.phase("solving and drawing")
+        files = save_figure(plot_beliefs(inst, defender=defender), output)
+    finally:
+        bar.close()
     status("wrote " + ", ".join(map(str, files)))
 
 
 @plot_group.command("voi", short_help="VoI box plots by obstacle density (from density.csv).")
 @click.argument("csv_file", type=click.Path(dir_okay=False))
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
-def plot_voi_command(csv_file: str, output: str) -> None:
+@progress_option
+def plot_voi_command(csv_file: str, output: str, progress: bool | None) -> None:
     """VoI box plots by density and strategy pair from CSV_FILE, a density.csv.
 
     `dpp experiment density --output-dir DIR` writes DIR/density.csv.
@@ -329,7 +365,11 @@ def plot_voi_command(csv_file: str, output: str) -> None:
     if not rows:
         raise InvalidInstanceError(f"{csv_file}: no rows; make a density CSV with dpp "
                                    "experiment density --output-dir DIR")
-    files = save_figure(plot_voi(rows), output)
+    bar = PhaseBar(want_progress(progress), "plot voi", "drawing")
+    try:
+        files = save_figure(plot_voi(rows), output)
+    finally:
+        bar.close()
     status("wrote " + ", ".join(map(str, files)))
 
 

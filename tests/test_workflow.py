@@ -61,18 +61,43 @@ def test_json_with_output_writes_the_file_and_prints_one_status_line(
     assert plain.exit_code == 0 and json.loads(plain.stdout)
 
 
-def test_every_command_printing_json_also_takes_output() -> None:
-    def walk(group: click.Group, prefix: str = ""):  # type: ignore[no-untyped-def]
-        for name, cmd in group.commands.items():
-            if isinstance(cmd, click.Group):
-                yield from walk(cmd, f"{prefix}{name} ")
-            else:
-                yield prefix + name, cmd
+def _leaves(group: click.Group = main, prefix: str = ""):  # type: ignore[no-untyped-def]
+    for name, cmd in group.commands.items():
+        if isinstance(cmd, click.Group):
+            yield from _leaves(cmd, f"{prefix}{name} ")
+        else:
+            yield prefix + name, cmd
 
-    for name, cmd in walk(main):
+
+NO_JSON = {"export-efg", "plot map", "plot beliefs", "plot voi", "audit"}
+"""Commands whose product is a file or folder they write (.efg, a figure, the failure folder):
+their stdout carries no data to print as JSON."""
+
+
+def test_one_convention_on_every_command() -> None:
+    for name, cmd in _leaves():
         opts = {o for p in cmd.params for o in getattr(p, "opts", [])}
-        if "--json" in opts:
-            assert "--output" in opts, name
+        assert "--progress" in opts and "--no-progress" in {
+            o for p in cmd.params for o in getattr(p, "secondary_opts", [])}, name
+        assert "--output" in opts or "--output-dir" in opts, name
+        assert ("--json" in opts) == (name not in NO_JSON), name
+        if name not in {"plot voi", "experiment density", "audit"}:
+            assert "--map" in opts, name
+
+
+def test_progress_on_the_short_commands_shows_the_phase(tmp_path: Path) -> None:
+    r = dpp("solve", TRIANGLE, "--progress", "-o", str(tmp_path / "p.json"))
+    assert r.exit_code == 0 and "solve: reading the instance" in r.stderr
+    r = dpp("plot", "map", "--progress", "-o", str(tmp_path / "m.png"))
+    assert r.exit_code == 0 and "plot map: reading the instance" in r.stderr
+    quiet = dpp("solve", TRIANGLE, "-o", str(tmp_path / "q.json"))
+    assert quiet.stderr.startswith("wrote")
+
+
+def test_experiment_compare_json() -> None:
+    r = dpp("experiment", "compare", TRIANGLE, "--json")
+    rows = json.loads(r.stdout)
+    assert r.exit_code == 0 and len(rows) == 6 and rows[0]["U"] == "12/5"
 
 
 def test_certificate_file_has_the_exact_numbers_the_table_abbreviates(tmp_path: Path) -> None:
