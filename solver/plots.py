@@ -402,9 +402,9 @@ def _plot_beliefs(instance: Instance, defender: str, game: PairEvaluator) -> Fig
         top = axes[0][col]
         top.set_ylim(-0.04, 1.22)
         top.set_title(f"type {theta}: true goal {goal}")
-        for t, name in ((phases.t_I, T_I), (phases.t_II, T_II)):
-            if name == T_II and phases.t_II == phases.t_I:
-                continue
+        marks = ([(phases.t_I, T_I), (phases.t_II, T_II)] if phases.t_II != phases.t_I
+                 else [(phases.t_I, f"{T_I} = {T_II}")])  # no phase II: one mark
+        for t, name in marks:
             top.text(t, 1.2, name, ha="center", va="top", fontsize=12,
                      bbox={"fc": "white", "ec": "none", "pad": 1}, zorder=2)
         d = float(net.numbers.convert(dist[theta]))

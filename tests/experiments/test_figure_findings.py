@@ -78,6 +78,8 @@ def test_without_phase_ii_the_labels_and_legend_say_so() -> None:
     assert not any("phase II " in t for t in labels), labels
     assert any("phase I " in t for t in labels) and any("phase III" in t for t in labels)
     assert not any("xi1" in t for t in labels)
+    marks = [t.get_text() for t in plot_beliefs(inst).axes[0].texts]
+    assert marks == [r"$t_{\mathrm{I}}$ = $t_{\mathrm{II}}$"]
 
 
 def test_baseline_legend_explains_its_numbers() -> None:
