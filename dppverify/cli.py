@@ -342,6 +342,7 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
         if profile is None:
             raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
                               f"dpp certify {MAP_USAGE} PROFILE")
+        check_output_not_input(output, instance, profile)
         if instance is not None and is_ngoal_file(instance):  # N > 2 goals: dppverify.ngoal
             game: AnyGame = load_ninstance(instance)
             bar.phase("reading the profile")
@@ -388,6 +389,22 @@ def _profile_document(path: str, game: AnyGame, instance: str | None) -> dict[st
         raise ProfileError(f"{path} does not belong to this instance: {reason}; make a "
                            f"profile for it with {solve} -o PROFILE")
     return dict(doc)
+
+
+def check_output_not_input(output: str | None, *inputs: str | None) -> None:
+    """Refuse ``-o`` naming one of the command's input files (it would be overwritten).
+
+    Examples
+    --------
+    >>> check_output_not_input("p.json", "i.json", "./p.json")
+    Traceback (most recent call last):
+    dppverify.errors.OptionError: -o p.json names an input file; write the output elsewhere
+    """
+    if output is None:
+        return
+    target = os.path.abspath(output)
+    if any(i is not None and os.path.abspath(i) == target for i in inputs):
+        raise OptionError(f"-o {output} names an input file; write the output elsewhere")
 
 
 def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str) -> None:

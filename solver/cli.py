@@ -75,6 +75,8 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     if output is not None and save_instance is not None and \
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
+    checker_cli.check_output_not_input(output, instance)
+    checker_cli.check_output_not_input(save_instance, instance)
     bar = PhaseBar(want_progress(progress), "solve", "reading the instance")
     try:
         inst = _load(instance, grid)

@@ -111,6 +111,12 @@ def test_certificate_file_has_the_exact_numbers_the_table_abbreviates(tmp_path: 
     assert lines[0].split()[0] == "U1_profile=≈1×10^40"
 
 
+def test_output_never_overwrites_an_input(profile: str) -> None:
+    before = Path(profile).read_text()
+    line = _one_line_error(dpp("certify", TRIANGLE, profile, "-o", profile))
+    assert "names an input file" in line and Path(profile).read_text() == before
+
+
 # ---------------------------------------------------------------- float mode detected
 def test_eight_connected_maps_certify_without_float(tmp_path: Path) -> None:
     p = str(tmp_path / "p.json")
