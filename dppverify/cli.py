@@ -557,6 +557,10 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
       dpp value examples/triangle.json -H 4 -o value.json
       dpp value --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 6
     """
+    try:
+        check_output_not_input(output, instance)
+    except CheckerError as exc:
+        _fail(exc)
     if instance is not None and grid is None and is_ngoal_file(instance):
         _ngoal_value(instance, horizon, as_json, route, max_prefixes, output)
         return
