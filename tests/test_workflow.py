@@ -249,3 +249,31 @@ def test_certify_takes_the_solvers_objects() -> None:
     assert eq.to_json() == solver.equilibrium_to_json(eq)
     assert dppverify.certify(inst, eq).verdict == "pass"
     assert dppverify.game_value(inst, 2).bracket.closed
+
+
+# ---------------------------------------------------------------- messages of the API
+def test_structured_prior_mismatch_has_no_fraction_repr() -> None:
+    import dppverify
+    import solver
+
+    inst = solver.load_instance(TRIANGLE)
+    doc = solver.equilibrium_to_json(solver.solve(inst))
+    doc["prior"] = {"primary": "3/5", "secondary": "2/5"}
+    cert = dppverify.certify(inst, doc, route="structured")
+    rec = cert.check("pbne.belief_consistency")
+    assert rec.status == "fail"
+    assert "(3/5, 2/5)" in rec.message and "(7/10, 3/10)" in rec.message
+    assert "Fraction(" not in rec.message
+
+
+# ---------------------------------------------------------------- the light install
+def test_the_runtime_dependencies_stay_light() -> None:
+    import re
+    import tomllib
+
+    with open(ROOT / "pyproject.toml", "rb") as f:
+        project = tomllib.load(f)["project"]
+    names = {re.split(r"[<>=!\[ ;]", d, maxsplit=1)[0].lower() for d in project["dependencies"]}
+    assert "cvxpy-base" in names and "clarabel" in names and "cvxpy" not in names
+    assert not names & {"scs", "osqp", "ecos", "pandas", "sympy", "highspy", "dask"}
+    assert any(d.startswith("sympy") for d in project["optional-dependencies"]["test"])
