@@ -348,7 +348,8 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
             bar.phase("reading the profile")
             doc = _profile_document(profile, game, instance)
             bar.phase(f"certifying (route {route})")
-            cert = certify_ngoal(game, doc,  # type: ignore[arg-type]
+            del doc  # read again by certify_ngoal, which checks its format tag
+            cert = certify_ngoal(game, profile,  # type: ignore[arg-type]
                                  horizon=horizon,  # type: ignore[arg-type]
                                  max_prefixes=max_prefixes, route=route)
         else:

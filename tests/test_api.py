@@ -53,8 +53,8 @@ def test_wrong_types_are_named_errors_not_type_errors() -> None:
     with pytest.raises(CheckerInstanceError, match="got int"):
         dppverify.certify(42, {})
     inst = Instance(_triangle(), "s", ("g1", "g2"), ("7/10", "3/10"))
-    with pytest.raises(CheckerInstanceError, match="instance_to_json"):
-        dppverify.certify(inst, {})  # the solver's object: the message says what to pass
+    with pytest.raises(ProfileError, match="dpp-profile/1"):
+        dppverify.certify(inst, {})  # the solver's Instance is taken (to_json), {} is not a profile
     with pytest.raises(ProfileError, match="got float"):
         dppverify.certify(instance_to_json(inst), 1.5)
 
