@@ -232,7 +232,8 @@ class CertifyHorizonParam(HorizonParam):
     infinite = "inf"
 
 
-def load_game(instance: str | None, grid: MapRequest | None) -> Instance:
+def load_game(instance: str | None, grid: MapRequest | None,
+              command: str = "dpp certify") -> Instance:
     """The instance of a command: the INSTANCE file or the ``--map`` option group's grid.
 
     Examples
@@ -249,7 +250,7 @@ def load_game(instance: str | None, grid: MapRequest | None) -> Instance:
     if grid is not None:
         return grid.instance()
     assert instance is not None
-    with hinted(instance, "instance"):
+    with hinted(instance, "instance", command):
         return load_instance(instance)
 
 
@@ -566,7 +567,7 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
         _ngoal_value(instance, horizon, as_json, route, max_prefixes, output)
         return
     try:
-        r = routed_value(load_game(instance, grid), horizon, route=route,
+        r = routed_value(load_game(instance, grid, "dpp value"), horizon, route=route,
                          max_prefixes=max_prefixes, progress=want_progress(progress))
     except CheckerError as exc:
         _fail(exc)
@@ -621,7 +622,7 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
             game = load_ninstance(instance)
             goals = f"N = {game.n_goals} goals, "
         else:
-            game = load_game(instance, grid)
+            game = load_game(instance, grid, "dpp export-efg")
         size = write_efg(output, game, horizon,
                          attacker_observes=attacker_observes, forced_moves=forced_moves,
                          max_prefixes=max_prefixes, max_nodes=max_nodes,

@@ -101,12 +101,13 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         status(f"wrote {save_instance}: the instance")
 
 
-def _load(instance: str | None, grid: MapRequest | None) -> Instance:
+def _load(instance: str | None, grid: MapRequest | None,
+          command: str = "dpp solve") -> Instance:
     """The instance of a solver command: the INSTANCE file or the --map grid."""
     instance_or_map(instance, grid)
     if grid is None:
         assert instance is not None
-        with checker_cli.hinted(instance, "instance", "dpp solve", errors=(DPPError,)):
+        with checker_cli.hinted(instance, "instance", command, errors=(DPPError,)):
             return load_instance(instance)
     blocked = read_map(grid.path)
     try:
@@ -117,14 +118,15 @@ def _load(instance: str | None, grid: MapRequest | None) -> Instance:
 
 
 # ---------------------------------------------------------------------- experiments
-def _experiment_instance(instance: str | None, grid: MapRequest | None) -> Instance:
+def _experiment_instance(instance: str | None, grid: MapRequest | None,
+                         command: str = "dpp experiment compare") -> Instance:
     """INSTANCE, the --map grid, or (neither given) the bundled 10x10 map of the paper."""
     instance_or_map(instance, grid, optional=True)
     if instance is None and grid is None:
         from solver.experiments.compare import paper10_instance
 
         return paper10_instance()
-    return _load(instance, grid)
+    return _load(instance, grid, command)
 
 
 @main.group("experiment", short_help="The paper's Section VII experiments.")
@@ -295,7 +297,7 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
 
     bar = PhaseBar(want_progress(progress), "plot map", "reading the instance")
     try:
-        inst = _experiment_instance(instance, grid)
+        inst = _experiment_instance(instance, grid, "dpp plot map")
         bar.phase("solving and drawing")
         files = save_figure(plot_map(inst, baselines=not no_baselines), output)
     finally:
@@ -323,7 +325,7 @@ def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
 
     bar = PhaseBar(want_progress(progress), "plot beliefs", "reading the instance")
     try:
-        inst = _experiment_instance(instance, grid)
+        inst = _experiment_instance(instance, grid, "dpp plot beliefs")
         bar.phase("solving and drawing")
         files = save_figure(plot_beliefs(inst, defender=defender), output)
     finally:

@@ -277,3 +277,13 @@ def test_the_runtime_dependencies_stay_light() -> None:
     assert "cvxpy-base" in names and "clarabel" in names and "cvxpy" not in names
     assert not names & {"scs", "osqp", "ecos", "pandas", "sympy", "highspy", "dask"}
     assert any(d.startswith("sympy") for d in project["optional-dependencies"]["test"])
+
+
+@pytest.mark.parametrize("command", [["value", "-H", "2"], ["export-efg", "-H", "1", "-o", "g.efg"],
+                                     ["plot", "map", "-o", "m.png"], ["experiment", "compare"]])
+def test_a_map_file_as_instance_names_the_right_command(command: list[str]) -> None:
+    name = " ".join(c for c in command if not c.startswith("-") and not c[0].isdigit()
+                    and "." not in c)
+    line = _one_line_error(dpp(*command[:1 + (command[0] in ("plot", "experiment"))], PAPER10,
+                               *command[1 + (command[0] in ("plot", "experiment")):]))
+    assert f"give it as dpp {name} --map {PAPER10}" in line
