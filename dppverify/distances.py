@@ -21,12 +21,14 @@ from collections import deque
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import dijkstra as sp_dijkstra
 
 from dppverify.exact import INF, Number
+
+if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
+    import scipy.sparse as sp
 
 __all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "common_denominator", "dijkstra",
            "exact_distances_to", "hops_by_arrays", "hops_to_targets", "unscale"]
@@ -200,6 +202,8 @@ class ArcArrays:
                keep: np.ndarray | None = None) -> sp.csr_matrix:
         """The scaled weights as a sparse matrix (``reverse``: arcs turned around), only the
         arcs whose (forward) tail is in ``keep`` when given."""
+        import scipy.sparse as sp
+
         w = np.asarray(scaled, dtype=np.float64)[self.codes]
         rows, cols = (self.heads, self.tails) if reverse else (self.tails, self.heads)
         if keep is not None:
@@ -221,6 +225,8 @@ def exact_distances_to(arcs: ArcArrays, n: int, targets: Sequence[int]
     got = arcs.scaled(arcs.values)
     if got is None:
         return None
+    from scipy.sparse.csgraph import dijkstra as sp_dijkstra
+
     scale, scaled = got
     dist = np.atleast_2d(sp_dijkstra(arcs.matrix(n, scaled, reverse=True), directed=True,
                                      indices=list(targets)))
@@ -256,6 +262,8 @@ def hops_by_arrays(arcs: ArcArrays, n: int, targets: Sequence[int]) -> list[int]
     >>> hops_by_arrays(a, 4, [2])
     [2, 1, 0, -1]
     """
+    from scipy.sparse.csgraph import dijkstra as sp_dijkstra
+
     m = arcs.matrix(n, [1] * len(arcs.values), reverse=True)
     h = np.asarray(sp_dijkstra(m, directed=True, indices=list(targets), unweighted=True,
                                min_only=True), dtype=np.float64)

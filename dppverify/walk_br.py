@@ -20,8 +20,6 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import dijkstra as sp_dijkstra
 
 from dppverify.distances import dijkstra
 from dppverify.exact import INF, Number, normalize
@@ -106,6 +104,9 @@ def scaled_distances(arcs: ScaledArcs, n: int, source: int, *, reverse: bool,
         keep = np.ones(n, dtype=bool)
         keep[[v for v in blocked if v != source]] = False
         sel = keep[rows]
+        import scipy.sparse as sp
+        from scipy.sparse.csgraph import dijkstra as sp_dijkstra
+
         m = sp.csr_matrix((arcs.weights[sel], (rows[sel], cols[sel])), shape=(n, n))
         arcs.distances[key] = np.asarray(sp_dijkstra(m, directed=True, indices=source),
                                          dtype=np.float64)
@@ -162,6 +163,9 @@ def _coo(adj: list[list[tuple[int, Number]]], conv: object) -> tuple[list[int], 
 
 def _scipy(n: int, rows: list[int], cols: list[int], vals: list[float],
            source: int) -> np.ndarray:
+    import scipy.sparse as sp
+    from scipy.sparse.csgraph import dijkstra as sp_dijkstra
+
     m = sp.csr_matrix((np.asarray(vals, dtype=np.float64), (rows, cols)), shape=(n, n))
     return np.asarray(sp_dijkstra(m, directed=True, indices=source), dtype=np.float64)
 

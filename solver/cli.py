@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
 
@@ -23,15 +24,12 @@ from dppverify.cli_conventions import (
 )
 from dppverify.errors import CheckerError
 from dppverify.map_options import MapRequest, instance_or_map, map_options
-from solver.equilibrium import solve
 from solver.errors import DPPError, InvalidInstanceError, OutputError
-from solver.instance import Instance
-from solver.instance_json import instance_to_json, load_instance
 from solver.io_utils import dumps, write_atomic, write_files
 from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE, MAX_INPUT_BYTES
-from solver.movingai import read_map
-from solver.profile_json import equilibrium_to_json
-from solver.report import summarize
+
+if TYPE_CHECKING:  # the solver's modules load numpy, scipy, networkx: imported per command
+    from solver.instance import Instance
 
 __all__ = ["main"]
 
@@ -70,6 +68,11 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     if output is not None and save_instance is not None and \
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
+    from solver.equilibrium import solve
+    from solver.instance_json import instance_to_json
+    from solver.profile_json import equilibrium_to_json
+    from solver.report import summarize
+
     inst = _load(instance, grid)
     eq = solve(inst)
     doc = equilibrium_to_json(eq)
@@ -90,6 +93,10 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
 
 def _load(instance: str | None, grid: MapRequest | None) -> Instance:
     """The instance of a solver command: the INSTANCE file or the --map grid."""
+    from solver.instance import Instance
+    from solver.instance_json import load_instance
+    from solver.movingai import read_map
+
     instance_or_map(instance, grid)
     if grid is None:
         assert instance is not None
