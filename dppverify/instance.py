@@ -396,16 +396,31 @@ def _read_game(doc: Any, cls: type[G], two_goals: bool, *, fast: bool = True) ->
     else:
         ids, index, directed, succ = _graph(doc["graph"], exact)
         succ_t = tuple(tuple(sorted(s.items())) for s in succ)
-    start = _node(doc["start"], index, "start")
-    goals = _goals(doc["goals"], index, ids, two_goals)
-    prior = _prior(doc["prior"], len(goals), two_goals)
-    n = len(ids)
     if regular is None:
+        n = len(ids)
         pred_l: list[list[tuple[int, Number]]] = [[] for _ in range(n)]
         for u in range(n):
             for v, w in succ_t[u]:
                 pred_l[v].append((u, w))
         pred_t = tuple(tuple(p) for p in pred_l)
+    return finish_game(cls, ids, index, directed, succ_t, pred_t, arcs, exact=exact,
+                       start=doc["start"], goals=doc["goals"], prior=doc["prior"],
+                       two_goals=two_goals)
+
+
+def finish_game(cls: type[G], ids: list[Node], index: dict[Node, int], directed: bool,
+                succ_t: tuple[tuple[tuple[int, Number], ...], ...],
+                pred_t: tuple[tuple[tuple[int, Number], ...], ...], arcs: ArcArrays | None,
+                *, exact: bool, start: Any, goals: Any, prior: Any, two_goals: bool) -> G:
+    """The game on a read graph: start, goals and prior (as JSON values) checked, distances.
+
+    Shared by the JSON reader and the ``.map`` reader (:mod:`dppverify.movingai`), so that a
+    map read straight into arrays gives the very instance its JSON document gives.
+    """
+    start = _node(start, index, "start")
+    goals = _goals(goals, index, ids, two_goals)
+    prior = _prior(prior, len(goals), two_goals)
+    n = len(ids)
     scipy_dist = exact_distances_to(arcs, n, goals) if arcs is not None and exact else None
     if scipy_dist is not None:
         dist_to = tuple(tuple(d) for d in scipy_dist)
@@ -516,6 +531,28 @@ def _regular_graph(g: Any, exact: bool) -> _Regular | None:
     v = np.fromiter(vs, dtype=np.int64, count=m)
     c = (np.zeros(m, dtype=np.int64) if len(values) == 1
          else np.fromiter(map(code.__getitem__, keys), dtype=np.int64, count=m))
+    built = edge_arrays(n, u, v, c, values, directed)
+    if built is None:
+        return None  # a duplicate arc
+    return (ids, index, directed, *built)
+
+
+def edge_arrays(n: int, u: np.ndarray, v: np.ndarray, c: np.ndarray, values: list[Number],
+                directed: bool) -> tuple[tuple[tuple[tuple[int, Number], ...], ...],
+                                         tuple[tuple[tuple[int, Number], ...], ...],
+                                         ArcArrays] | None:
+    """``succ``, ``pred`` and the arc arrays of the edges ``u[k] - v[k]`` of weight
+    ``values[c[k]]`` (both ways unless ``directed``); None when an arc repeats.
+
+    Examples
+    --------
+    >>> a = np.array([0, 1]); b = np.array([1, 2]); c = np.array([0, 0])
+    >>> succ, pred, arcs = edge_arrays(3, a, b, c, [1], False)
+    >>> succ, arcs.tails.tolist()
+    ((((1, 1),), ((0, 1), (2, 1)), ((1, 1),)), [0, 1, 1, 2])
+    >>> edge_arrays(2, np.array([0, 1]), np.array([1, 0]), c, [1], False) is None
+    True
+    """
     if not directed:
         back = u != v  # a self-loop is one arc
         u, v, c = (np.concatenate([u, v[back]]), np.concatenate([v, u[back]]),
@@ -528,8 +565,7 @@ def _regular_graph(g: Any, exact: bool) -> _Regular | None:
     succ_t = _adjacency(n, tails, heads, codes, values)
     rev = np.argsort(heads * n + tails, kind="stable")
     pred_t = _adjacency(n, heads[rev], tails[rev], codes[rev], values)
-    return (ids, index, directed, succ_t, pred_t,
-            ArcArrays(tails=tails, heads=heads, codes=codes, values=tuple(values)))
+    return succ_t, pred_t, ArcArrays(tails=tails, heads=heads, codes=codes, values=tuple(values))
 
 
 def _all_type(xs: list[Any], t: type) -> bool:

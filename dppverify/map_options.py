@@ -23,8 +23,8 @@ from typing import Any, TypeVar
 import click
 
 from dppverify.errors import CheckerError, InvalidInstanceError, OptionError
-from dppverify.instance import Instance, instance_from_json
-from dppverify.movingai import grid_document, read_map
+from dppverify.instance import Instance
+from dppverify.movingai import grid_game, read_map
 from dppverify.standard_maps import PREFIX, resolve_map
 
 __all__ = ["MAP_USAGE", "MapRequest", "instance_or_map", "map_options", "map_request"]
@@ -109,8 +109,8 @@ class MapRequest:
         """
         grid = read_map(self.path)
         try:
-            return instance_from_json(grid_document(grid, self.start, self.goals, self.prior,
-                                                    connectivity=self.connectivity))
+            return grid_game(grid, self.start, self.goals, self.prior,
+                             connectivity=self.connectivity)
         except InvalidInstanceError as exc:
             raise InvalidInstanceError(f"{self.map}: {exc}") from None
 
