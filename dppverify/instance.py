@@ -335,18 +335,20 @@ def load_game(path: str | Path, cls: type[G], *, two_goals: bool) -> G:
     except JsonReadError as exc:
         raise InvalidInstanceError(f"{p}: {exc}") from None
     try:
-        return read_game(doc, cls, two_goals=two_goals)
+        return read_game(doc, cls, two_goals=two_goals, base=p.parent)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{p}: {exc}") from None
 
 
-def read_game(doc: Any, cls: type[G], *, two_goals: bool) -> G:
+def read_game(doc: Any, cls: type[G], *, two_goals: bool, base: Path | None = None) -> G:
     """Read and validate an instance document (parsed JSON, or JSON text) into ``cls``.
 
     The one graph/instance parser of the checker: the two-goal :class:`Instance`
     (``two_goals=True``: exactly two goals, float mode allowed, the two-goal messages) and the
     N-goal :class:`~dppverify.ngoal.instance.NInstance` (``two_goals=False``: ``N >= 2``
-    goals, exact numbers only).
+    goals, exact numbers only). A compact map instance (``"format": "dpp-map-instance/1"``,
+    :mod:`dppverify.map_instance`) is read from its map; a relative map path is relative to
+    ``base`` (the instance file's directory; the working directory when None).
 
     Raises
     ------
@@ -369,6 +371,11 @@ def read_game(doc: Any, cls: type[G], *, two_goals: bool) -> G:
             doc = parse_json_text(doc)
         except JsonReadError as exc:
             raise InvalidInstanceError(str(exc)) from None
+    if isinstance(doc, Mapping) and "format" in doc:
+        from dppverify.map_instance import is_map_document, map_game
+
+        if is_map_document(doc):
+            return map_game(doc, cls, two_goals=two_goals, base=base)
     try:
         return _read_game(doc, cls, two_goals)
     except InvalidInstanceError:

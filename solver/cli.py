@@ -52,7 +52,9 @@ def main() -> None:
 @click.option("--json", "as_json", is_flag=True, help="Print the dpp-profile/1 JSON.")
 @output_file_option("Write the dpp-profile/1 JSON to this file (atomically).")
 @click.option("--save-instance", type=click.Path(dir_okay=False), metavar="FILE",
-              help="Also write the instance JSON (e.g. of a --map grid) to FILE (atomically).")
+              help="Also write the instance to FILE (atomically): for a --map grid the compact "
+                   "dpp-map-instance/1 document naming the map and its sha256 "
+                   "(docs/formats.md), else the instance JSON.")
 def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
                   output: str | None, save_instance: str | None) -> None:
     """Solve INSTANCE (a dpp instance JSON file, or a --map grid) for the paper's PBNE.
@@ -69,14 +71,19 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
     from solver.equilibrium import solve
-    from solver.instance_json import instance_to_json
+    from solver.instance_json import instance_to_json, map_instance_to_json
     from solver.profile_json import equilibrium_to_json
     from solver.report import summarize
 
-    inst = _load(instance, grid)
+    inst, digest = _load_map_digest(instance, grid)
     eq = solve(inst)
     doc = equilibrium_to_json(eq)
-    instance_text = dumps(instance_to_json(inst)) if save_instance is not None else None
+    instance_text = None
+    if save_instance is not None:  # a map game: the compact document naming the map
+        instance_text = dumps(
+            instance_to_json(inst) if grid is None else
+            map_instance_to_json(grid.map, inst, relative_to=Path(save_instance).parent,
+                                 connectivity=grid.connectivity, digest=digest))
     if output is not None:
         write_atomic(output, dumps(doc))
     if save_instance is not None and instance_text is not None:
@@ -93,18 +100,24 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
 
 def _load(instance: str | None, grid: MapRequest | None) -> Instance:
     """The instance of a solver command: the INSTANCE file or the --map grid."""
+    return _load_map_digest(instance, grid)[0]
+
+
+def _load_map_digest(instance: str | None, grid: MapRequest | None
+                     ) -> tuple[Instance, str | None]:
+    """:func:`_load`, and the sha256 of the --map file (None for an INSTANCE file)."""
     from solver.instance import Instance
     from solver.instance_json import load_instance
-    from solver.movingai import read_map
+    from solver.movingai import read_map_bytes
 
     instance_or_map(instance, grid)
     if grid is None:
         assert instance is not None
-        return load_instance(instance)
-    blocked = read_map(grid.path)
+        return load_instance(instance), None
+    blocked, digest = read_map_bytes(grid.path)
     try:
         return Instance.from_grid(blocked, grid.start, grid.goals, grid.prior,
-                                  connectivity=grid.connectivity)
+                                  connectivity=grid.connectivity), digest
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{grid.map}: {exc}") from None
 

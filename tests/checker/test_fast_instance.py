@@ -372,8 +372,9 @@ def test_value_fields_equal_the_plain_recursion_on_a_maze(
                   if tuple(e["source"]) not in walls and tuple(e["target"]) not in walls]
     inst = _read_game(doc, Instance, True)
     for h in (10, 37, None):
-        f = value_fields(inst, h)
         want, steps, fixpoint = _plain_fields(inst, h)
-        assert ([[f.number(x) for x in col] for col in (f.d1, f.d2, f.m)], f.steps,
-                f.fixpoint) == (want, steps, fixpoint)
+        for method in ("layers", "auto"):  # auto: the Dijkstra fixpoint where H reaches it
+            f = value_fields(inst, h, method=method)  # type: ignore[arg-type]
+            assert ([[f.number(x) for x in col] for col in (f.d1, f.d2, f.m)], f.steps,
+                    f.fixpoint) == (want, steps, fixpoint)
     assert f.fixpoint and f.steps > 30 and len(sparse) > 60
