@@ -18,10 +18,10 @@ from __future__ import annotations
 import heapq
 import math
 from collections import deque
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -30,14 +30,82 @@ from dppverify.exact import INF, Number
 if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
     import scipy.sparse as sp
 
-__all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "common_denominator", "dijkstra",
-           "exact_distances_to", "hops_by_arrays", "hops_to_targets", "unscale"]
+__all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "ArcRows", "common_denominator",
+           "dijkstra", "exact_distances_to", "hops_by_arrays", "hops_to_targets", "unscale"]
 
 EXACT_FLOAT_LIMIT = 2**53
 """Integer path sums below this are exact in float64."""
 
 Adjacency = Sequence[Sequence[tuple[int, Number]]]
 """``adj[u]`` lists the arcs ``(v, w(u, v))`` leaving ``u`` (node indices)."""
+
+
+class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
+    """An instance's ``succ`` (or ``pred``): ``rows[u]`` = the ``(head, weight)`` pairs of
+    ``u``'s arcs, built on access from arrays (arcs sorted by tail, then head).
+
+    It reads like the tuple of tuples it stands for (indexing, iteration, ``len``, equality
+    with any sequence of rows), in memory linear in the arcs as numpy arrays: a grid of a
+    million cells holds no Python object per arc.
+
+    Examples
+    --------
+    >>> rows = ArcRows(3, np.array([0, 0, 2]), np.array([1, 2, 0]), np.array([0, 1, 0]),
+    ...                (1, Fraction(3, 2)))
+    >>> rows[0], rows[1], len(rows), rows == ((( 1, 1), (2, Fraction(3, 2))), (), ((0, 1),))
+    (((1, 1), (2, Fraction(3, 2))), (), 3, True)
+    """
+
+    __slots__ = ("_bounds", "_codes", "_heads", "_n", "_values")
+
+    def __init__(self, n: int, tails: np.ndarray, heads: np.ndarray, codes: np.ndarray,
+                 values: tuple[Number, ...]) -> None:
+        self._n = n
+        self._bounds = np.searchsorted(tails, np.arange(n + 1))
+        self._heads = heads
+        self._codes = codes
+        self._values = values
+
+    def __len__(self) -> int:
+        return self._n
+
+    def _row(self, u: int) -> tuple[tuple[int, Number], ...]:
+        a, b = int(self._bounds[u]), int(self._bounds[u + 1])
+        heads = self._heads[a:b].tolist()
+        if len(self._values) == 1:
+            w = self._values[0]
+            return tuple([(h, w) for h in heads])
+        values = self._values
+        return tuple(zip(heads, [values[c] for c in self._codes[a:b].tolist()], strict=True))
+
+    def __getitem__(self, u: Any) -> Any:
+        if isinstance(u, slice):
+            return tuple(self._row(i) for i in range(*u.indices(self._n)))
+        i = u.__index__()
+        if i < 0:
+            i += self._n
+        if not 0 <= i < self._n:
+            raise IndexError(u)
+        return self._row(i)
+
+    def __iter__(self) -> Iterator[tuple[tuple[int, Number], ...]]:
+        for u in range(self._n):
+            yield self._row(u)
+
+    def degree(self, u: int) -> int:
+        """The number of arcs of ``u`` (without building its row)."""
+        return int(self._bounds[u + 1] - self._bounds[u])
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Sequence):
+            return NotImplemented
+        return len(self) == len(other) and all(
+            tuple(a) == tuple(b) for a, b in zip(self, other, strict=True))
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        return f"ArcRows({self._n} nodes, {self._heads.size} arcs)"
 
 
 def dijkstra(adj: Adjacency, source: int) -> list[Number]:

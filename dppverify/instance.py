@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import json
 import weakref
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from itertools import chain, pairwise
+from itertools import chain
 from pathlib import Path
 from types import MappingProxyType
 from typing import Any, TypeVar
@@ -23,6 +23,7 @@ import numpy as np
 
 from dppverify.distances import (
     ArcArrays,
+    ArcRows,
     dijkstra,
     exact_distances_to,
     hops_by_arrays,
@@ -100,8 +101,9 @@ class GameInstance:
         Node id -> index.
     directed : bool
         False when every edge can be walked both ways.
-    succ, pred : tuple
-        ``succ[u]`` = arcs ``(v, w)`` leaving ``u``; ``pred[v]`` = arcs ``(u, w)`` entering ``v``.
+    succ, pred : ArcRows
+        ``succ[u]`` = arcs ``(v, w)`` leaving ``u``; ``pred[v]`` = arcs ``(u, w)`` entering ``v``
+        (tuples built on access from arrays, :class:`~dppverify.distances.ArcRows`).
     start : int
         ``s0``.
     goals : tuple of int
@@ -119,8 +121,8 @@ class GameInstance:
     nodes: tuple[Node, ...]
     index: Mapping[Node, int]
     directed: bool
-    succ: tuple[tuple[tuple[int, Number], ...], ...]
-    pred: tuple[tuple[tuple[int, Number], ...], ...]
+    succ: Sequence[tuple[tuple[int, Number], ...]]
+    pred: Sequence[tuple[tuple[int, Number], ...]]
     start: int
     goals: tuple[int, ...]
     prior: tuple[Fraction, ...]
@@ -402,22 +404,21 @@ def _read_game(doc: Any, cls: type[G], two_goals: bool, *, fast: bool = True) ->
         ids, index, directed, succ_t, pred_t, arcs = regular
     else:
         ids, index, directed, succ = _graph(doc["graph"], exact)
-        succ_t = tuple(tuple(sorted(s.items())) for s in succ)
-    if regular is None:
         n = len(ids)
+        succ_l = [tuple(sorted(s.items())) for s in succ]
         pred_l: list[list[tuple[int, Number]]] = [[] for _ in range(n)]
         for u in range(n):
-            for v, w in succ_t[u]:
+            for v, w in succ_l[u]:
                 pred_l[v].append((u, w))
-        pred_t = tuple(tuple(p) for p in pred_l)
+        succ_t, pred_t = _rows(n, succ_l), _rows(n, pred_l)
     return finish_game(cls, ids, index, directed, succ_t, pred_t, arcs, exact=exact,
                        start=doc["start"], goals=doc["goals"], prior=doc["prior"],
                        two_goals=two_goals)
 
 
 def finish_game(cls: type[G], ids: list[Node], index: dict[Node, int], directed: bool,
-                succ_t: tuple[tuple[tuple[int, Number], ...], ...],
-                pred_t: tuple[tuple[tuple[int, Number], ...], ...], arcs: ArcArrays | None,
+                succ_t: Sequence[tuple[tuple[int, Number], ...]],
+                pred_t: Sequence[tuple[tuple[int, Number], ...]], arcs: ArcArrays | None,
                 *, exact: bool, start: Any, goals: Any, prior: Any, two_goals: bool) -> G:
     """The game on a read graph: start, goals and prior (as JSON values) checked, distances.
 
@@ -471,8 +472,7 @@ def arc_arrays(game: GameInstance) -> ArcArrays:
 
 
 _Regular = tuple[list[Node], dict[Node, int], bool,
-                 tuple[tuple[tuple[int, Number], ...], ...],
-                 tuple[tuple[tuple[int, Number], ...], ...], ArcArrays]
+                 ArcRows, ArcRows, ArcArrays]
 
 
 def _regular_graph(g: Any, exact: bool) -> _Regular | None:
@@ -545,9 +545,7 @@ def _regular_graph(g: Any, exact: bool) -> _Regular | None:
 
 
 def edge_arrays(n: int, u: np.ndarray, v: np.ndarray, c: np.ndarray, values: list[Number],
-                directed: bool) -> tuple[tuple[tuple[tuple[int, Number], ...], ...],
-                                         tuple[tuple[tuple[int, Number], ...], ...],
-                                         ArcArrays] | None:
+                directed: bool) -> tuple[ArcRows, ArcRows, ArcArrays] | None:
     """``succ``, ``pred`` and the arc arrays of the edges ``u[k] - v[k]`` of weight
     ``values[c[k]]`` (both ways unless ``directed``); None when an arc repeats.
 
@@ -555,7 +553,7 @@ def edge_arrays(n: int, u: np.ndarray, v: np.ndarray, c: np.ndarray, values: lis
     --------
     >>> a = np.array([0, 1]); b = np.array([1, 2]); c = np.array([0, 0])
     >>> succ, pred, arcs = edge_arrays(3, a, b, c, [1], False)
-    >>> succ, arcs.tails.tolist()
+    >>> tuple(succ), arcs.tails.tolist()
     ((((1, 1),), ((0, 1), (2, 1)), ((1, 1),)), [0, 1, 1, 2])
     >>> edge_arrays(2, np.array([0, 1]), np.array([1, 0]), c, [1], False) is None
     True
@@ -575,6 +573,12 @@ def edge_arrays(n: int, u: np.ndarray, v: np.ndarray, c: np.ndarray, values: lis
     return succ_t, pred_t, ArcArrays(tails=tails, heads=heads, codes=codes, values=tuple(values))
 
 
+def _rows(n: int, adj: Sequence[Sequence[tuple[int, Number]]]) -> ArcRows:
+    """``adj`` (sorted rows) as :class:`ArcRows`."""
+    a = ArcArrays.from_adjacency(adj)
+    return ArcRows(n, a.tails, a.heads, a.codes, a.values)
+
+
 def _all_type(xs: list[Any], t: type) -> bool:
     """Every item of ``xs`` has exactly type ``t`` (``bool`` is not ``int``)."""
     return not xs or set(map(type, xs)) == {t}
@@ -587,13 +591,10 @@ def _cells(xs: list[Any]) -> bool:
 
 
 def _adjacency(n: int, tails: np.ndarray, heads: np.ndarray, codes: np.ndarray,
-               values: list[Number]) -> tuple[tuple[tuple[int, Number], ...], ...]:
+               values: list[Number]) -> ArcRows:
     """``adj[u]`` = the ``(head, weight)`` pairs of the arcs out of ``u`` (arcs sorted by
     tail, then head)."""
-    w = [values[0]] * len(codes) if len(values) == 1 else [values[k] for k in codes.tolist()]
-    pairs = list(zip(heads.tolist(), w, strict=True))
-    bounds = np.searchsorted(tails, np.arange(n + 1)).tolist()
-    return tuple(tuple(pairs[a:b]) for a, b in pairwise(bounds))
+    return ArcRows(n, tails, heads, codes, tuple(values))
 
 
 def _graph(g: Any, exact: bool) -> tuple[list[Node], dict[Node, int], bool,

@@ -24,7 +24,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dppverify import instance as instance_module
-from dppverify.distances import EXACT_FLOAT_LIMIT, exact_distances_to
+from dppverify.distances import EXACT_FLOAT_LIMIT, ArcRows, exact_distances_to
 from dppverify.errors import InvalidInstanceError
 from dppverify.instance import GameInstance, Instance, _read_game, _regular_graph, arc_arrays
 from dppverify.json_reading import parse_json
@@ -44,7 +44,7 @@ FIELDS = ("nodes", "directed", "succ", "pred", "start", "goals", "prior", "exact
 
 
 def _types(x: Any) -> Any:
-    if isinstance(x, tuple):
+    if isinstance(x, tuple | ArcRows):  # succ, pred: the rows they stand for
         return tuple(_types(y) for y in x)
     return type(x)
 
