@@ -262,18 +262,20 @@ def _fixpoint(inst: Instance, r: Roles) -> Fixpoint | None:
     from scipy.sparse.csgraph import dijkstra
 
     deg = np.diff(np.append(arcs.starts, arcs.heads.size))
-    tails = np.repeat(arcs.tails, deg)
-    arc_w = arcs.weights.astype(np.float64) * base + 1.0
+    order = np.argsort(arcs.heads, kind="stable")  # reversed arcs u -> v for v -> u, by row
+    cols = np.repeat(arcs.tails, deg)[order]
+    arc_w = (arcs.weights.astype(np.float64) * base + 1.0)[order]
+    indptr = np.zeros(n + 2, dtype=np.int64)
+    np.cumsum(np.bincount(arcs.heads, minlength=n), out=indptr[1:n + 1])
     g1, g2 = r.g1, r.g2
     big = np.iinfo(np.int64).max
 
     def run(src: np.ndarray, cost: np.ndarray, hops: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        # reversed goal-terminal arcs u -> v for v -> u, plus a source node n with an arc to
+        # the reversed goal-terminal arcs, plus a last row: a source node n with an arc to
         # every seed (weight + 1, so that no arc weighs 0)
-        rows = np.concatenate([arcs.heads, np.full(src.size, n, dtype=np.int64)])
-        cols = np.concatenate([tails, src])
+        indptr[n + 1] = indptr[n] + src.size
         w = np.concatenate([arc_w, cost.astype(np.float64) * base + hops + 1.0])
-        mat = csr_matrix((w, (rows, cols)), shape=(n + 1, n + 1))
+        mat = csr_matrix((w, np.concatenate([cols, src]), indptr), shape=(n + 1, n + 1))
         dist = dijkstra(mat, directed=True, indices=n)[:n]
         finite = np.isfinite(dist)
         enc = np.where(finite, dist - 1.0, 0.0).astype(np.int64)

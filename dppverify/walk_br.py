@@ -100,17 +100,31 @@ def scaled_distances(arcs: ScaledArcs, n: int, source: int, *, reverse: bool,
     """
     key = (source, reverse, blocked)
     if key not in arcs.distances:
-        rows, cols = (arcs.heads, arcs.tails) if reverse else (arcs.tails, arcs.heads)
-        keep = np.ones(n, dtype=bool)
-        keep[[v for v in blocked if v != source]] = False
-        sel = keep[rows]
         import scipy.sparse as sp
         from scipy.sparse.csgraph import dijkstra as sp_dijkstra
 
-        m = sp.csr_matrix((arcs.weights[sel], (rows[sel], cols[sel])), shape=(n, n))
+        if reverse:  # the arcs sorted by head (once per instance): CSR rows without a sort
+            order = _REVERSE_ORDER.get(arcs)
+            if order is None:
+                order = _REVERSE_ORDER[arcs] = np.argsort(arcs.heads, kind="stable")
+            rows, cols, w = arcs.heads[order], arcs.tails[order], arcs.weights[order]
+        else:
+            rows, cols, w = arcs.tails, arcs.heads, arcs.weights
+        drop = [v for v in blocked if v != source]
+        if drop:
+            keep = np.ones(n, dtype=bool)
+            keep[drop] = False
+            sel = keep[rows]
+            rows, cols, w = rows[sel], cols[sel], w[sel]
+        indptr = np.zeros(n + 1, dtype=np.int64)
+        np.cumsum(np.bincount(rows, minlength=n), out=indptr[1:])
+        m = sp.csr_matrix((w, cols, indptr), shape=(n, n))
         arcs.distances[key] = np.asarray(sp_dijkstra(m, directed=True, indices=source),
                                          dtype=np.float64)
     return arcs.distances[key]
+
+
+_REVERSE_ORDER: weakref.WeakKeyDictionary[ScaledArcs, np.ndarray] = weakref.WeakKeyDictionary()
 
 
 def _unscale(x: float, scale: int) -> Number:
