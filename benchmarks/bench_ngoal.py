@@ -17,14 +17,15 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import resource
 import subprocess
 import sys
 import time
 from fractions import Fraction
 
-from dppverify.ngoal.coalition import coalition_value
 from dppverify.movingai import GridMap, grid_document
+from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
@@ -75,7 +76,12 @@ def main() -> None:
     parser.add_argument("--max-prefixes", type=int, default=60_000)
     parser.add_argument("--size", type=int, default=64)
     parser.add_argument("--single", type=int, help=argparse.SUPPRESS)
+    parser.add_argument("--quick", action="store_true",
+                        help="tiny sizes, for the test suite (also DPP_BENCH_QUICK=1)")
     args = parser.parse_args()
+    counts = (3, 4, 5)
+    if not args.single and (args.quick or os.environ.get("DPP_BENCH_QUICK")):
+        args.max_prefixes, args.size, counts = 500, 8, (3,)
     if args.single:
         print(json.dumps(single(args.single, args.size)))
         return
@@ -83,7 +89,7 @@ def main() -> None:
     print(f"3x4 grid, N = 3, H = {r['H']} ({r['prefixes']} prefixes): V_H = {r['value']} by "
           f"both routes; tree route {r['tree_seconds']} s (LP {r['lp_seconds']} s), coalition "
           f"DP {r['dp_seconds']} s: ratio {r['ratio']}x")
-    for n in (3, 4, 5):
+    for n in counts:
         out = subprocess.run([sys.executable, __file__, "--single", str(n), "--size",
                               str(args.size)], capture_output=True, text=True, check=True)
         s = json.loads(out.stdout)
