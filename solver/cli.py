@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 import click
 
+import solver.threads  # noqa: F401  (first: one BLAS thread, before numpy loads)
 from dppverify import cli as checker_cli
 from dppverify.cli_conventions import (
     output_dir_option,

@@ -7,10 +7,13 @@ is a benchmark: ``benchmarks/bench_startup.py``).
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 
 import pytest
+
+from solver.threads import BLAS_THREAD_VARIABLES
 
 HEAVY = ("cvxpy", "clarabel", "scipy.stats", "matplotlib", "hypothesis", "dask")
 """Loaded only by the commands that need them (LPs, figures, audits, distributed sweeps)."""
@@ -57,3 +60,17 @@ def test_an_lp_still_loads_cvxpy() -> None:
     code = ("from dppverify import game_value\nfrom dppverify.examples import triangle\n"
             "assert str(game_value(triangle(), 2).bracket.lower) == '12/5'")
     assert _loaded(code, ("cvxpy",)) == ["cvxpy"]
+
+
+@pytest.mark.parametrize(("preset", "code", "want"), [
+    (None, "import solver.cli", "1"), ("3", "import solver.cli", "3"),
+    (None, "import dppverify, solver", None)])
+def test_dpp_runs_single_threaded_blas_unless_told(preset: str | None, code: str,
+                                                   want: str | None) -> None:
+    env = {k: v for k, v in os.environ.items() if k not in BLAS_THREAD_VARIABLES}
+    if preset is not None:
+        env["OPENBLAS_NUM_THREADS"] = preset
+    probe = f"{code}\nimport os\nprint(os.environ.get('OPENBLAS_NUM_THREADS'))"
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                         check=True, timeout=120, env=env)
+    assert out.stdout.strip() == str(want)
