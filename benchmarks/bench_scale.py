@@ -66,7 +66,7 @@ def best(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
 
 def corners(blocked: np.ndarray) -> tuple[tuple[int, int], ...]:
     """The free cells nearest the bottom-left (start), top-right, top-left, bottom-right
-    corners and the centre, all in the largest 4-connected region (ties: row-major)."""
+    corners, the centre and the top middle, all in the largest 4-connected region (ties: row-major)."""
     from scipy import ndimage
 
     labels, _ = ndimage.label(~blocked)
@@ -81,7 +81,8 @@ def corners(blocked: np.ndarray) -> tuple[tuple[int, int], ...]:
         return (int(cells[k, 0]), int(cells[k, 1]))
 
     return tuple(nearest(region, r, c) for r, c in
-                 ((h - 1, 0), (0, w - 1), (0, 0), (h - 1, w - 1), (h // 2, w // 2)))
+                 ((h - 1, 0), (0, w - 1), (0, 0), (h - 1, w - 1), (h // 2, w // 2),
+                  (0, w // 2)))
 
 
 def write_map(path: Path, blocked: np.ndarray) -> None:

@@ -92,6 +92,22 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
         for u in range(self._n):
             yield self._row(u)
 
+    def find(self, u: int, v: int) -> Number | None:
+        """The weight of the arc ``u -> v`` (None when there is none), by binary search.
+
+        Examples
+        --------
+        >>> rows = ArcRows(2, np.array([0]), np.array([1]), np.array([0]), (Fraction(1, 2),))
+        >>> rows.find(0, 1), rows.find(1, 0)
+        (Fraction(1, 2), None)
+        """
+        a, b = int(self._bounds[u]), int(self._bounds[u + 1])
+        i = a + int(np.searchsorted(self._heads[a:b], v))
+        if i < b and int(self._heads[i]) == v:
+            return self._values[int(self._codes[i])] if len(self._values) > 1 else \
+                self._values[0]
+        return None
+
     def degree(self, u: int) -> int:
         """The number of arcs of ``u`` (without building its row)."""
         return int(self._bounds[u + 1] - self._bounds[u])

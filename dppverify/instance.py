@@ -147,6 +147,8 @@ class GameInstance:
 
     def weight(self, u: int, v: int) -> Number | None:
         """Weight of the arc ``u -> v``, or None when there is no such arc."""
+        if isinstance(self.succ, ArcRows):
+            return self.succ.find(u, v)
         for head, w in self.succ[u]:
             if head == v:
                 return w
