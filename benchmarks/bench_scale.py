@@ -66,7 +66,8 @@ def best(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
 
 def corners(blocked: np.ndarray) -> tuple[tuple[int, int], ...]:
     """The free cells nearest the bottom-left (start), top-right, top-left, bottom-right
-    corners, the centre and the top middle, all in the largest 4-connected region (ties: row-major)."""
+    corners, the centre and the top middle, all in the largest 4-connected region (ties:
+    row-major)."""
     from scipy import ndimage
 
     labels, _ = ndimage.label(~blocked)
@@ -167,10 +168,23 @@ def single(kind: str, args: list[str]) -> None:
     print(json.dumps({"seconds": seconds, "rss_mib": rss}))
 
 
-def fresh(kind: str, *args: str) -> dict[str, float]:
+def fresh(kind: str, *args: str) -> dict[str, Any]:
+    """One operation in a fresh process; ``{"failed": last stderr line}`` if it fails (the
+    code before the compact format cannot read its own 1000x1000 instance, for one)."""
     out = subprocess.run([sys.executable, __file__, "--single", kind, *args],
-                         capture_output=True, text=True, check=True, timeout=3600)
+                         capture_output=True, text=True, timeout=3600)
+    if out.returncode != 0:
+        lines = out.stderr.strip().splitlines() or ["no message"]
+        return {"failed": lines[-1][:160]}
     return dict(json.loads(out.stdout.strip().splitlines()[-1]))
+
+
+def _show(r: dict[str, Any], base: dict[str, Any] | None = None) -> str:
+    if "failed" in r:
+        return f"FAILED ({r['failed']})"
+    ratio = "" if base is None or "failed" in base else \
+        f" = {r['seconds'] / base['seconds']:.1f}x"
+    return f"{r['seconds']:.2f} s{ratio} ({r['rss_mib']:.0f} MiB)"
 
 
 # ---------------------------------------------------------------- the rows
@@ -227,10 +241,7 @@ def grid_rows(size: int, repeat: int) -> list[str]:
         c = fresh("certify", str(inst_file), str(prof_file))
         v = fresh("value", str(inst_file))
     rows.append(f"{size}x{size} grid, 20% obstacles (seed 0), fresh processes: solve "
-                f"{s['seconds']:.2f} s ({s['rss_mib']:.0f} MiB) | certify {c['seconds']:.2f} s "
-                f"= {c['seconds'] / s['seconds']:.1f}x ({c['rss_mib']:.0f} MiB) | V_inf "
-                f"{v['seconds']:.2f} s = {v['seconds'] / s['seconds']:.1f}x "
-                f"({v['rss_mib']:.0f} MiB)")
+                f"{_show(s)} | certify {_show(c, s)} | V_inf {_show(v, s)}")
     goals = (cells[1], cells[2])
     t_solve, _ = best(lambda: solve(Instance.from_grid(blocked, cells[0], goals, PRIOR)),
                       repeat)
