@@ -28,6 +28,7 @@ Run: ``.venv/bin/python benchmarks/bench_scale.py [--quick] [--repeat 3] [--maps
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import os
 import resource
@@ -156,7 +157,7 @@ def single(kind: str, args: list[str]) -> None:
     t0 = time.perf_counter()
     if kind == "solve":
         cells = tuple(tuple(c) for c in json.loads(args[1]))
-        op_solve(args[0], cells)  # type: ignore[arg-type]
+        op_solve(args[0], cells)
     elif kind == "certify":
         op_certify(Path(args[0]), Path(args[1]))
     elif kind == "value":
@@ -195,8 +196,8 @@ def startup(repeat: int) -> list[str]:
             "import solver": [sys.executable, "-c", "import solver"]}
     secs = {}
     for name, cmd in runs.items():
-        secs[name] = best(lambda c=cmd: subprocess.run(c, check=True, capture_output=True),
-                          repeat)[0]
+        secs[name] = best(functools.partial(subprocess.run, cmd, check=True,
+                                            capture_output=True), repeat)[0]
     base = secs["python -c pass"]
     return [f"start-up {name}: {s:.3f} s ({s / base:.1f}x python -c pass)"
             for name, s in secs.items() if name != "python -c pass"]
@@ -285,7 +286,7 @@ def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str
     for n in goal_counts:
         prior = [str(Fraction(1, n))] * n
         inst = grid_game(grid, cells[0], cells[1:n + 1], prior, cls=NInstance, two_goals=False)
-        t_n, v = best(lambda i=inst: coalition_value(i, None), repeat)
+        t_n, v = best(functools.partial(coalition_value, inst, None), repeat)
         rows.append(f"{name} N = {n}: coalition DP (H = inf) {t_n:.3f} s = {t_n / t_two:.0f}x "
                     f"the two-goal V_inf ({t_two:.4f} s); V = {v.value}")
     return rows
