@@ -102,11 +102,11 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
         (Fraction(1, 2), None)
         """
         a, b = int(self._bounds[u]), int(self._bounds[u + 1])
-        i = a + int(np.searchsorted(self._heads[a:b], v))
-        if i < b and int(self._heads[i]) == v:
-            return self._values[int(self._codes[i])] if len(self._values) > 1 else \
-                self._values[0]
-        return None
+        try:  # rows are short: a list search beats numpy's per-call overhead
+            i = a + self._heads[a:b].tolist().index(v)
+        except ValueError:
+            return None
+        return self._values[int(self._codes[i])] if len(self._values) > 1 else self._values[0]
 
     def degree(self, u: int) -> int:
         """The number of arcs of ``u`` (without building its row)."""
