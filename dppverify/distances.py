@@ -31,7 +31,8 @@ if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fas
     import scipy.sparse as sp
 
 __all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "ArcRows", "common_denominator",
-           "dijkstra", "exact_distances_to", "hops_by_arrays", "hops_to_targets", "unscale"]
+           "dijkstra", "exact_distances_to", "hops_by_arrays", "hops_to_targets",
+           "scaled_distance_fields", "unscale"]
 
 EXACT_FLOAT_LIMIT = 2**53
 """Integer path sums below this are exact in float64."""
@@ -306,6 +307,25 @@ def exact_distances_to(arcs: ArcArrays, n: int, targets: Sequence[int]
     >>> exact_distances_to(a, 3, [2, 0])
     [[3, 1, 0], [0, inf, inf]]
     """
+    fields = scaled_distance_fields(arcs, n, targets)
+    if fields is None:
+        return None
+    scale, dist = fields
+    return [unscale(row, scale) for row in dist]
+
+
+def scaled_distance_fields(arcs: ArcArrays, n: int, targets: Sequence[int]
+                           ) -> tuple[int, np.ndarray] | None:
+    """:func:`exact_distances_to` before unscaling: ``(scale, rows)``, one float64 row of
+    exact scaled integers per target (kept by the instance for reuse, ``walk_br``).
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 2), (2, Fraction(7, 2))], [(2, 1)], []])
+    >>> scale, rows = scaled_distance_fields(a, 3, [2])
+    >>> scale, rows.tolist()
+    (2, [[6.0, 2.0, 0.0]])
+    """
     got = arcs.scaled(arcs.values)
     if got is None:
         return None
@@ -314,7 +334,7 @@ def exact_distances_to(arcs: ArcArrays, n: int, targets: Sequence[int]
     scale, scaled = got
     dist = np.atleast_2d(sp_dijkstra(arcs.matrix(n, scaled, reverse=True), directed=True,
                                      indices=list(targets)))
-    return [unscale(row, scale) for row in dist]
+    return scale, dist
 
 
 def unscale(row: np.ndarray, scale: int) -> list[Number]:

@@ -25,9 +25,10 @@ from dppverify.distances import (
     ArcArrays,
     ArcRows,
     dijkstra,
-    exact_distances_to,
     hops_by_arrays,
     hops_to_targets,
+    scaled_distance_fields,
+    unscale,
 )
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import INF, Number, normalize
@@ -44,6 +45,7 @@ from dppverify.json_reading import (
 from dppverify.numbers import NumberMode, number_mode
 
 __all__ = ["GameInstance", "Instance", "Node", "Roles", "arc_arrays", "as_instance",
+           "goal_distance_fields",
            "instance_from_json",
            "load_game", "load_instance", "node_from_json", "node_to_json", "read_game",
            "show_node"]
@@ -431,9 +433,9 @@ def finish_game(cls: type[G], ids: list[Node], index: dict[Node, int], directed:
     goals = _goals(goals, index, ids, two_goals)
     prior = _prior(prior, len(goals), two_goals)
     n = len(ids)
-    scipy_dist = exact_distances_to(arcs, n, goals) if arcs is not None and exact else None
-    if scipy_dist is not None:
-        dist_to = tuple(tuple(d) for d in scipy_dist)
+    fields = scaled_distance_fields(arcs, n, goals) if arcs is not None and exact else None
+    if fields is not None:
+        dist_to = tuple(tuple(unscale(row, fields[0])) for row in fields[1])
     else:  # float mode, an irregular document, or path sums past 2**53: exact Python numbers
         dist_to = tuple(tuple(map(normalize, dijkstra(pred_t, gi))) for gi in goals)
     for i, gi in enumerate(goals):
@@ -451,10 +453,30 @@ def finish_game(cls: type[G], ids: list[Node], index: dict[Node, int], directed:
                exact=exact, dist_to=dist_to, hops=hops)
     if arcs is not None:
         _ARC_ARRAYS[game] = arcs
+    if fields is not None:
+        _GOAL_FIELDS[game] = (fields[0], dict(zip(goals, fields[1], strict=True)))
     return game
 
 
 _ARC_ARRAYS: weakref.WeakKeyDictionary[GameInstance, ArcArrays] = weakref.WeakKeyDictionary()
+
+_GOAL_FIELDS: weakref.WeakKeyDictionary[GameInstance, tuple[int, dict[int, np.ndarray]]] = \
+    weakref.WeakKeyDictionary()
+
+
+def goal_distance_fields(game: GameInstance) -> tuple[int, dict[int, np.ndarray]] | None:
+    """``(scale, {goal: d(., goal) · scale})``: the float64 fields the reader computed
+    ``dist_to`` from (exact integers), shared with later computations on the same graph; None
+    when the reader used the exact Python Dijkstra.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> scale, rows = goal_distance_fields(triangle())
+    >>> scale, rows[1].tolist()
+    (1, [3.0, 0.0, 2.0])
+    """
+    return _GOAL_FIELDS.get(game)
 
 
 def arc_arrays(game: GameInstance) -> ArcArrays:

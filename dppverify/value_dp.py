@@ -221,13 +221,16 @@ _FIXPOINTS: weakref.WeakKeyDictionary[Instance, dict[tuple[int, int], Fixpoint |
     weakref.WeakKeyDictionary()
 
 
-def fixpoint_fields(instance: Instance, roles: Roles | None = None) -> Fixpoint | None:
+def fixpoint_fields(instance: Instance, roles: Roles | None = None, *,
+                    arcs: Arcs | None = None) -> Fixpoint | None:
     """The fixpoint of the three fields by Dijkstra (exact mode; cached per instance).
 
     None when the DP is not in ``int64`` arithmetic or the encoded numbers would pass 2**53
     (then only the layered iteration is used). Weights are encoded as ``w·B + 1`` with ``B``
     above every step count, so one float64 Dijkstra (scipy) on these exact integers finds the
     least value and, among the optimal walks, the fewest steps (proofs/DP.md, DP.5).
+    ``arcs``: the goal-terminal arcs of :func:`goal_terminal_arcs` with the terminal costs as
+    ``extra``, when the caller has them already.
 
     Examples
     --------
@@ -240,16 +243,16 @@ def fixpoint_fields(instance: Instance, roles: Roles | None = None) -> Fixpoint 
     cache = _FIXPOINTS.setdefault(instance, {})
     key = (r.g1, r.g2)
     if key not in cache:
-        cache[key] = _fixpoint(instance, r)
+        cache[key] = _fixpoint(instance, r, arcs)
     return cache[key]
 
 
-def _fixpoint(inst: Instance, r: Roles) -> Fixpoint | None:
+def _fixpoint(inst: Instance, r: Roles, given: Arcs | None) -> Fixpoint | None:
     if not inst.exact:
         return None
     n = inst.n_nodes
     d12, d21 = r.d2[r.g1], r.d1[r.g2]
-    arcs = goal_terminal_arcs(inst, extra=(d12, d21))
+    arcs = goal_terminal_arcs(inst, extra=(d12, d21)) if given is None else given
     if arcs.weights.dtype != np.int64:
         return None
     wmax = int(arcs.weights.max()) if arcs.weights.size else 0
@@ -370,7 +373,7 @@ def _value_fields(instance: Instance, horizon: int | None, roles: Roles | None,
         g_vals = (0.0, float(d21), float(d12))  # type: ignore[assignment]
     zero, g2_to_g1, g1_to_g2 = g_vals
     if method == "auto" and arithmetic == "int64":
-        fx = fixpoint_fields(inst, r)
+        fx = fixpoint_fields(inst, r, arcs=arcs)
         if fx is not None and (fx.last <= limit if node is None else
                                max(fx.h1[node], fx.h2[node], fx.hm[node]) <= limit):
             def final(col: np.ndarray) -> np.ndarray:

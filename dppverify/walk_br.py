@@ -23,7 +23,7 @@ import numpy as np
 
 from dppverify.distances import dijkstra
 from dppverify.exact import INF, Number, normalize
-from dppverify.instance import Instance, arc_arrays
+from dppverify.instance import Instance, arc_arrays, goal_distance_fields
 
 __all__ = ["ScaledArcs", "WalkMinima", "avoiding_distances", "scaled_arcs", "scaled_distances",
            "split_minimum", "walk_minima"]
@@ -81,6 +81,10 @@ def scaled_arcs(instance: Instance) -> ScaledArcs | None:
             out = ScaledArcs(tails=arrays.tails, heads=arrays.heads,
                              weights=np.asarray(scaled, dtype=np.float64)[arrays.codes],
                              scale=scale, distances={})
+            shared = goal_distance_fields(instance)
+            if shared is not None and shared[0] == scale:  # d(., goal): the reader's fields
+                for goal, row in shared[1].items():
+                    out.distances[(goal, True, frozenset())] = row
     _ARCS[instance] = out
     return out
 
