@@ -25,6 +25,7 @@ from __future__ import annotations
 import argparse
 import importlib.resources
 import json
+import os
 import time
 import tracemalloc
 from collections import deque
@@ -128,7 +129,11 @@ def main() -> None:
     ap.add_argument("--maps", nargs="*", default=list(MAPS))
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--skip-tree", action="store_true", help="skip the 3x4 tree comparison")
+    ap.add_argument("--quick", action="store_true",
+                    help="tiny sizes, for the test suite (also DPP_BENCH_QUICK=1)")
     args = ap.parse_args()
+    if args.quick or os.environ.get("DPP_BENCH_QUICK"):
+        args.maps, args.repeat, args.skip_tree = ["empty-8-8", "room-32-32-4"], 1, True
     print(f"{'map':<16} {'cells':>6} {'H':>4} {'solve s':>8} {'certify s':>9} {'ratio':>6} "
           f"{'V_H s':>7} {'ratio':>6} {'parse s':>7} {'peak MiB':>8}  start g1 g2")
     for name in args.maps:

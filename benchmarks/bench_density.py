@@ -26,7 +26,11 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--samples", type=int, default=200)
     ap.add_argument("--workers", type=int, default=os.cpu_count() or 1)
+    ap.add_argument("--quick", action="store_true",
+                    help="tiny sizes, for the test suite (also DPP_BENCH_QUICK=1)")
     args = ap.parse_args()
+    if args.quick or os.environ.get("DPP_BENCH_QUICK"):
+        args.samples, args.workers = 2, 1
     cfg = DensityConfig(samples=args.samples)
     grids = cfg.samples * len(cfg.densities)
     t0 = time.perf_counter()

@@ -17,14 +17,15 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import resource
 import subprocess
 import sys
 import time
 from fractions import Fraction
 
+from dppverify.movingai import GridMap, grid_document
 from dppverify.ngoal.coalition import coalition_value
-from dppverify.ngoal.experiment import grid_document
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
@@ -34,7 +35,7 @@ GOALS64 = ((0, 63), (0, 0), (63, 63), (32, 32), (0, 32))
 
 def small_grid() -> NInstance:
     """The 3×4 unit grid with three goals."""
-    return ninstance_from_json(grid_document(("....", "....", "...."), (0, 1),
+    return ninstance_from_json(grid_document(GridMap(3, 4, ("....", "....", "....")), (0, 1),
                                              [(2, 0), (2, 3), (0, 3)],
                                              [Fraction(1, 2), Fraction(1, 3), Fraction(1, 6)]))
 
@@ -60,7 +61,7 @@ def tree_vs_dp(max_prefixes: int) -> dict[str, object]:
 def single(n: int, size: int) -> dict[str, object]:
     rows = tuple("." * size for _ in range(size))
     goals = [(r * (size - 1) // 63, c * (size - 1) // 63) for r, c in GOALS64[:n]]
-    inst = ninstance_from_json(grid_document(rows, (size - 1, 0), goals,
+    inst = ninstance_from_json(grid_document(GridMap(size, size, rows), (size - 1, 0), goals,
                                              [Fraction(1, n)] * n))
     t0 = time.perf_counter()
     v = coalition_value(inst, None)
@@ -75,7 +76,12 @@ def main() -> None:
     parser.add_argument("--max-prefixes", type=int, default=60_000)
     parser.add_argument("--size", type=int, default=64)
     parser.add_argument("--single", type=int, help=argparse.SUPPRESS)
+    parser.add_argument("--quick", action="store_true",
+                        help="tiny sizes, for the test suite (also DPP_BENCH_QUICK=1)")
     args = parser.parse_args()
+    counts = (3, 4, 5)
+    if not args.single and (args.quick or os.environ.get("DPP_BENCH_QUICK")):
+        args.max_prefixes, args.size, counts = 500, 8, (3,)
     if args.single:
         print(json.dumps(single(args.single, args.size)))
         return
@@ -83,7 +89,7 @@ def main() -> None:
     print(f"3x4 grid, N = 3, H = {r['H']} ({r['prefixes']} prefixes): V_H = {r['value']} by "
           f"both routes; tree route {r['tree_seconds']} s (LP {r['lp_seconds']} s), coalition "
           f"DP {r['dp_seconds']} s: ratio {r['ratio']}x")
-    for n in (3, 4, 5):
+    for n in counts:
         out = subprocess.run([sys.executable, __file__, "--single", str(n), "--size",
                               str(args.size)], capture_output=True, text=True, check=True)
         s = json.loads(out.stdout)

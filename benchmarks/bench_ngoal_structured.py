@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import time
 from fractions import Fraction
 from typing import Any
@@ -94,7 +95,11 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--maps", nargs="+", default=list(MAPS))
     ap.add_argument("--goals", nargs="+", type=int, default=[3, 4, 5])
+    ap.add_argument("--quick", action="store_true",
+                    help="tiny sizes, for the test suite (also DPP_BENCH_QUICK=1)")
     args = ap.parse_args(argv)
+    if args.quick or os.environ.get("DPP_BENCH_QUICK"):
+        args.maps, args.goals = ["empty-8-8"], [3]
     for name in args.maps:
         for n in args.goals:
             print(json.dumps(run(name, n)), flush=True)

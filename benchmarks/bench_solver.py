@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import itertools
+import os
 import time
 import tracemalloc
 from collections.abc import Callable
@@ -107,11 +108,11 @@ def brute_force_u2(inst: Instance) -> Fraction:
     return best  # type: ignore[return-value]
 
 
-def bench_small(repeat: int) -> None:
+def bench_small(repeat: int, sizes: tuple[int, ...] = (8, 10, 12, 14, 16)) -> None:
     rng = np.random.default_rng(1)
     print("small random graphs (G(n, p=0.35), integer weights 1..5): solve vs enumerating "
           "simple paths")
-    for n in (8, 10, 12, 14, 16):
+    for n in sizes:
         while True:
             g = nx.gnp_random_graph(n, 0.35, seed=int(rng.integers(1 << 30)))
             if nx.is_connected(g):
@@ -131,9 +132,14 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--size", type=int, default=1000)
     ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--quick", action="store_true",
+                    help="tiny sizes, for the test suite (also DPP_BENCH_QUICK=1)")
     args = ap.parse_args()
+    quick = bool(args.quick or os.environ.get("DPP_BENCH_QUICK"))
+    if quick:
+        args.size, args.repeat = 60, 1
     bench_grid(args.size, args.repeat)
-    bench_small(args.repeat)
+    bench_small(args.repeat, (8,) if quick else (8, 10, 12, 14, 16))
 
 
 if __name__ == "__main__":

@@ -22,7 +22,6 @@ from dppverify.audit import (
     PythonRunner,
     SolverRunner,
     format_report,
-    run_audit,
 )
 from dppverify.cli_conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.errors import AuditError, CheckerError
@@ -76,6 +75,8 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
       dpp audit --solver solver.adapter:solve_json --examples 500
       dpp audit --solver-cmd 'python examples/solver_cmd.py {instance} {profile}'
     """
+    from dppverify.audit.campaign import run_audit  # loads hypothesis: only when run
+
     try:
         with _make_runner(solver_spec, solver_cmd, timeout) as runner:
             report = run_audit(runner, examples=examples, seed=seed, max_nodes=max_nodes,

@@ -20,7 +20,6 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from fractions import Fraction
 
-import cvxpy as cp
 import numpy as np
 
 from dppverify.defender import TreeDefender
@@ -261,6 +260,8 @@ def attacker_best_response_lp(tree: WalkTree, roles: Roles, tdef: TreeDefender,
     >>> lp.status, round(lp.value, 6), attacker_best_response(tree, r, td, 2).value
     ('optimal', 1.0, 1)
     """
+    import cvxpy as cp  # lazily: its import costs ~0.5 s
+
     c = objective_vector(tree, roles, tdef, theta)
     x = cp.Variable(tree.n_prefixes)
     problem = cp.Problem(cp.Minimize(c @ x), realization_constraints(tree, x))
@@ -395,6 +396,8 @@ def defender_best_response_lp(tree: WalkTree, roles: Roles, x1: Mapping[int, Fra
     idx = np.array(support)
     b1x1 = np.array([float(roles.b1 * x1.get(p, Fraction(0))) for p in support])
     b2x2 = np.array([float(roles.b2 * x2.get(p, Fraction(0))) for p in support])
+    import cvxpy as cp  # lazily: its import costs ~0.5 s
+
     sigma = cp.Variable(len(support))
     objective = (w[idx] * (b1x1 - b2x2)) @ sigma + float(w[idx] @ b2x2) + const
     problem = cp.Problem(cp.Maximize(objective), [sigma >= 0, sigma <= 1])

@@ -36,7 +36,7 @@ from dppverify.errors import (
     ProfileError,
     TreeTooLargeError,
 )
-from dppverify.instance import Instance, as_instance, node_to_json
+from dppverify.instance import Instance, arc_arrays, as_instance, node_to_json
 from dppverify.lemmas import (
     l1_lower_bound,
     l2_no_revisits,
@@ -257,7 +257,7 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     defender = doc.get("defender")
     info = {
         "nodes": inst.n_nodes,
-        "arcs": sum(len(s) for s in inst.succ),
+        "arcs": int(arc_arrays(inst).heads.size),
         "start": node_to_json(inst.nodes[inst.start]),
         "primary": node_to_json(inst.nodes[roles.g1]),
         "secondary": node_to_json(inst.nodes[roles.g2]),

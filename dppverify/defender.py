@@ -15,6 +15,8 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from fractions import Fraction
+from typing import cast
 
 from dppverify.errors import InvalidInstanceError, ProfileError
 from dppverify.exact import Number
@@ -85,10 +87,14 @@ def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[i
     """σ(rule.goal | walk[:t+1]) for t = 1..T."""
     if isinstance(rule, ProgressRule):
         prog = progress_along(instance, rule.goal, walk)
-        out = []
-        for t, pr in enumerate(prog, start=1):
-            out.append(instance.numbers.ratio(pr, step_weight(instance, walk, t)))
-        return out
+        weights = [step_weight(instance, walk, t) for t in range(1, len(walk))]
+        if all(type(x) is int for x in prog) and all(type(w) is int for w in weights):
+            # integers (unit grids): the exact ratio without a Fraction per step, decided
+            # once per walk; the same numbers as NumberMode.ratio (an int when it divides)
+            ints = cast(list[tuple[int, int]], list(zip(prog, weights, strict=True)))
+            return [p // w if p % w == 0 else Fraction(p, w) for p, w in ints]
+        ratio = instance.numbers.ratio
+        return [ratio(pr, w) for pr, w in zip(prog, weights, strict=True)]
     result: list[Number] = []
     progress: list[Number] | None = None
     for t in range(1, len(walk)):

@@ -18,24 +18,111 @@ from __future__ import annotations
 import heapq
 import math
 from collections import deque
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import dijkstra as sp_dijkstra
 
 from dppverify.exact import INF, Number
 
-__all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "common_denominator", "dijkstra",
-           "exact_distances_to", "hops_by_arrays", "hops_to_targets", "unscale"]
+if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
+    import scipy.sparse as sp
+
+__all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "ArcRows", "common_denominator",
+           "dijkstra", "exact_distances_to", "hops_by_arrays", "hops_to_targets",
+           "scaled_distance_fields", "unscale"]
 
 EXACT_FLOAT_LIMIT = 2**53
 """Integer path sums below this are exact in float64."""
 
 Adjacency = Sequence[Sequence[tuple[int, Number]]]
 """``adj[u]`` lists the arcs ``(v, w(u, v))`` leaving ``u`` (node indices)."""
+
+
+class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
+    """An instance's ``succ`` (or ``pred``): ``rows[u]`` = the ``(head, weight)`` pairs of
+    ``u``'s arcs, built on access from arrays (arcs sorted by tail, then head).
+
+    It reads like the tuple of tuples it stands for (indexing, iteration, ``len``, equality
+    with any sequence of rows), in memory linear in the arcs as numpy arrays: a grid of a
+    million cells holds no Python object per arc.
+
+    Examples
+    --------
+    >>> rows = ArcRows(3, np.array([0, 0, 2]), np.array([1, 2, 0]), np.array([0, 1, 0]),
+    ...                (1, Fraction(3, 2)))
+    >>> rows[0], rows[1], len(rows), rows == ((( 1, 1), (2, Fraction(3, 2))), (), ((0, 1),))
+    (((1, 1), (2, Fraction(3, 2))), (), 3, True)
+    """
+
+    __slots__ = ("_bounds", "_codes", "_heads", "_n", "_values")
+
+    def __init__(self, n: int, tails: np.ndarray, heads: np.ndarray, codes: np.ndarray,
+                 values: tuple[Number, ...]) -> None:
+        self._n = n
+        self._bounds = np.searchsorted(tails, np.arange(n + 1))
+        self._heads = heads
+        self._codes = codes
+        self._values = values
+
+    def __len__(self) -> int:
+        return self._n
+
+    def _row(self, u: int) -> tuple[tuple[int, Number], ...]:
+        a, b = int(self._bounds[u]), int(self._bounds[u + 1])
+        heads = self._heads[a:b].tolist()
+        if len(self._values) == 1:
+            w = self._values[0]
+            return tuple([(h, w) for h in heads])
+        values = self._values
+        return tuple(zip(heads, [values[c] for c in self._codes[a:b].tolist()], strict=True))
+
+    def __getitem__(self, u: Any) -> Any:
+        if isinstance(u, slice):
+            return tuple(self._row(i) for i in range(*u.indices(self._n)))
+        i = u.__index__()
+        if i < 0:
+            i += self._n
+        if not 0 <= i < self._n:
+            raise IndexError(u)
+        return self._row(i)
+
+    def __iter__(self) -> Iterator[tuple[tuple[int, Number], ...]]:
+        for u in range(self._n):
+            yield self._row(u)
+
+    def find(self, u: int, v: int) -> Number | None:
+        """The weight of the arc ``u -> v`` (None when there is none), by binary search.
+
+        Examples
+        --------
+        >>> rows = ArcRows(2, np.array([0]), np.array([1]), np.array([0]), (Fraction(1, 2),))
+        >>> rows.find(0, 1), rows.find(1, 0)
+        (Fraction(1, 2), None)
+        """
+        a, b = int(self._bounds[u]), int(self._bounds[u + 1])
+        try:  # rows are short: a list search beats numpy's per-call overhead
+            i = a + self._heads[a:b].tolist().index(v)
+        except ValueError:
+            return None
+        return self._values[int(self._codes[i])] if len(self._values) > 1 else self._values[0]
+
+    def degree(self, u: int) -> int:
+        """The number of arcs of ``u`` (without building its row)."""
+        return int(self._bounds[u + 1] - self._bounds[u])
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Sequence):
+            return NotImplemented
+        return len(self) == len(other) and all(
+            tuple(a) == tuple(b) for a, b in zip(self, other, strict=True))
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        return f"ArcRows({self._n} nodes, {self._heads.size} arcs)"
 
 
 def dijkstra(adj: Adjacency, source: int) -> list[Number]:
@@ -200,6 +287,8 @@ class ArcArrays:
                keep: np.ndarray | None = None) -> sp.csr_matrix:
         """The scaled weights as a sparse matrix (``reverse``: arcs turned around), only the
         arcs whose (forward) tail is in ``keep`` when given."""
+        import scipy.sparse as sp
+
         w = np.asarray(scaled, dtype=np.float64)[self.codes]
         rows, cols = (self.heads, self.tails) if reverse else (self.tails, self.heads)
         if keep is not None:
@@ -218,13 +307,34 @@ def exact_distances_to(arcs: ArcArrays, n: int, targets: Sequence[int]
     >>> exact_distances_to(a, 3, [2, 0])
     [[3, 1, 0], [0, inf, inf]]
     """
+    fields = scaled_distance_fields(arcs, n, targets)
+    if fields is None:
+        return None
+    scale, dist = fields
+    return [unscale(row, scale) for row in dist]
+
+
+def scaled_distance_fields(arcs: ArcArrays, n: int, targets: Sequence[int]
+                           ) -> tuple[int, np.ndarray] | None:
+    """:func:`exact_distances_to` before unscaling: ``(scale, rows)``, one float64 row of
+    exact scaled integers per target (kept by the instance for reuse, ``walk_br``).
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 2), (2, Fraction(7, 2))], [(2, 1)], []])
+    >>> scale, rows = scaled_distance_fields(a, 3, [2])
+    >>> scale, rows.tolist()
+    (2, [[6.0, 2.0, 0.0]])
+    """
     got = arcs.scaled(arcs.values)
     if got is None:
         return None
+    from scipy.sparse.csgraph import dijkstra as sp_dijkstra
+
     scale, scaled = got
     dist = np.atleast_2d(sp_dijkstra(arcs.matrix(n, scaled, reverse=True), directed=True,
                                      indices=list(targets)))
-    return [unscale(row, scale) for row in dist]
+    return scale, dist
 
 
 def unscale(row: np.ndarray, scale: int) -> list[Number]:
@@ -256,6 +366,8 @@ def hops_by_arrays(arcs: ArcArrays, n: int, targets: Sequence[int]) -> list[int]
     >>> hops_by_arrays(a, 4, [2])
     [2, 1, 0, -1]
     """
+    from scipy.sparse.csgraph import dijkstra as sp_dijkstra
+
     m = arcs.matrix(n, [1] * len(arcs.values), reverse=True)
     h = np.asarray(sp_dijkstra(m, directed=True, indices=list(targets), unweighted=True,
                                min_only=True), dtype=np.float64)

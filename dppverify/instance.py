@@ -11,10 +11,10 @@ from __future__ import annotations
 
 import json
 import weakref
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from itertools import chain, pairwise
+from itertools import chain
 from pathlib import Path
 from types import MappingProxyType
 from typing import Any, TypeVar
@@ -23,10 +23,12 @@ import numpy as np
 
 from dppverify.distances import (
     ArcArrays,
+    ArcRows,
     dijkstra,
-    exact_distances_to,
     hops_by_arrays,
     hops_to_targets,
+    scaled_distance_fields,
+    unscale,
 )
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import INF, Number, normalize
@@ -43,6 +45,7 @@ from dppverify.json_reading import (
 from dppverify.numbers import NumberMode, number_mode
 
 __all__ = ["GameInstance", "Instance", "Node", "Roles", "arc_arrays", "as_instance",
+           "goal_distance_fields",
            "instance_from_json",
            "load_game", "load_instance", "node_from_json", "node_to_json", "read_game",
            "show_node"]
@@ -100,8 +103,9 @@ class GameInstance:
         Node id -> index.
     directed : bool
         False when every edge can be walked both ways.
-    succ, pred : tuple
-        ``succ[u]`` = arcs ``(v, w)`` leaving ``u``; ``pred[v]`` = arcs ``(u, w)`` entering ``v``.
+    succ, pred : ArcRows
+        ``succ[u]`` = arcs ``(v, w)`` leaving ``u``; ``pred[v]`` = arcs ``(u, w)`` entering ``v``
+        (tuples built on access from arrays, :class:`~dppverify.distances.ArcRows`).
     start : int
         ``s0``.
     goals : tuple of int
@@ -119,8 +123,8 @@ class GameInstance:
     nodes: tuple[Node, ...]
     index: Mapping[Node, int]
     directed: bool
-    succ: tuple[tuple[tuple[int, Number], ...], ...]
-    pred: tuple[tuple[tuple[int, Number], ...], ...]
+    succ: Sequence[tuple[tuple[int, Number], ...]]
+    pred: Sequence[tuple[tuple[int, Number], ...]]
     start: int
     goals: tuple[int, ...]
     prior: tuple[Fraction, ...]
@@ -145,6 +149,8 @@ class GameInstance:
 
     def weight(self, u: int, v: int) -> Number | None:
         """Weight of the arc ``u -> v``, or None when there is no such arc."""
+        if isinstance(self.succ, ArcRows):
+            return self.succ.find(u, v)
         for head, w in self.succ[u]:
             if head == v:
                 return w
@@ -335,18 +341,20 @@ def load_game(path: str | Path, cls: type[G], *, two_goals: bool) -> G:
     except JsonReadError as exc:
         raise InvalidInstanceError(f"{p}: {exc}") from None
     try:
-        return read_game(doc, cls, two_goals=two_goals)
+        return read_game(doc, cls, two_goals=two_goals, base=p.parent)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{p}: {exc}") from None
 
 
-def read_game(doc: Any, cls: type[G], *, two_goals: bool) -> G:
+def read_game(doc: Any, cls: type[G], *, two_goals: bool, base: Path | None = None) -> G:
     """Read and validate an instance document (parsed JSON, or JSON text) into ``cls``.
 
     The one graph/instance parser of the checker: the two-goal :class:`Instance`
     (``two_goals=True``: exactly two goals, float mode allowed, the two-goal messages) and the
     N-goal :class:`~dppverify.ngoal.instance.NInstance` (``two_goals=False``: ``N >= 2``
-    goals, exact numbers only).
+    goals, exact numbers only). A compact map instance (``"format": "dpp-map-instance/1"``,
+    :mod:`dppverify.map_instance`) is read from its map; a relative map path is relative to
+    ``base`` (the instance file's directory; the working directory when None).
 
     Raises
     ------
@@ -369,6 +377,11 @@ def read_game(doc: Any, cls: type[G], *, two_goals: bool) -> G:
             doc = parse_json_text(doc)
         except JsonReadError as exc:
             raise InvalidInstanceError(str(exc)) from None
+    if isinstance(doc, Mapping) and "format" in doc:
+        from dppverify.map_instance import is_map_document, map_game
+
+        if is_map_document(doc):
+            return map_game(doc, cls, two_goals=two_goals, base=base)
     try:
         return _read_game(doc, cls, two_goals)
     except InvalidInstanceError:
@@ -395,20 +408,34 @@ def _read_game(doc: Any, cls: type[G], two_goals: bool, *, fast: bool = True) ->
         ids, index, directed, succ_t, pred_t, arcs = regular
     else:
         ids, index, directed, succ = _graph(doc["graph"], exact)
-        succ_t = tuple(tuple(sorted(s.items())) for s in succ)
-    start = _node(doc["start"], index, "start")
-    goals = _goals(doc["goals"], index, ids, two_goals)
-    prior = _prior(doc["prior"], len(goals), two_goals)
-    n = len(ids)
-    if regular is None:
+        n = len(ids)
+        succ_l = [tuple(sorted(s.items())) for s in succ]
         pred_l: list[list[tuple[int, Number]]] = [[] for _ in range(n)]
         for u in range(n):
-            for v, w in succ_t[u]:
+            for v, w in succ_l[u]:
                 pred_l[v].append((u, w))
-        pred_t = tuple(tuple(p) for p in pred_l)
-    scipy_dist = exact_distances_to(arcs, n, goals) if arcs is not None and exact else None
-    if scipy_dist is not None:
-        dist_to = tuple(tuple(d) for d in scipy_dist)
+        succ_t, pred_t = _rows(n, succ_l), _rows(n, pred_l)
+    return finish_game(cls, ids, index, directed, succ_t, pred_t, arcs, exact=exact,
+                       start=doc["start"], goals=doc["goals"], prior=doc["prior"],
+                       two_goals=two_goals)
+
+
+def finish_game(cls: type[G], ids: list[Node], index: dict[Node, int], directed: bool,
+                succ_t: Sequence[tuple[tuple[int, Number], ...]],
+                pred_t: Sequence[tuple[tuple[int, Number], ...]], arcs: ArcArrays | None,
+                *, exact: bool, start: Any, goals: Any, prior: Any, two_goals: bool) -> G:
+    """The game on a read graph: start, goals and prior (as JSON values) checked, distances.
+
+    Shared by the JSON reader and the ``.map`` reader (:mod:`dppverify.movingai`), so that a
+    map read straight into arrays gives the very instance its JSON document gives.
+    """
+    start = _node(start, index, "start")
+    goals = _goals(goals, index, ids, two_goals)
+    prior = _prior(prior, len(goals), two_goals)
+    n = len(ids)
+    fields = scaled_distance_fields(arcs, n, goals) if arcs is not None and exact else None
+    if fields is not None:
+        dist_to = tuple(tuple(unscale(row, fields[0])) for row in fields[1])
     else:  # float mode, an irregular document, or path sums past 2**53: exact Python numbers
         dist_to = tuple(tuple(map(normalize, dijkstra(pred_t, gi))) for gi in goals)
     for i, gi in enumerate(goals):
@@ -426,10 +453,30 @@ def _read_game(doc: Any, cls: type[G], two_goals: bool, *, fast: bool = True) ->
                exact=exact, dist_to=dist_to, hops=hops)
     if arcs is not None:
         _ARC_ARRAYS[game] = arcs
+    if fields is not None:
+        _GOAL_FIELDS[game] = (fields[0], dict(zip(goals, fields[1], strict=True)))
     return game
 
 
 _ARC_ARRAYS: weakref.WeakKeyDictionary[GameInstance, ArcArrays] = weakref.WeakKeyDictionary()
+
+_GOAL_FIELDS: weakref.WeakKeyDictionary[GameInstance, tuple[int, dict[int, np.ndarray]]] = \
+    weakref.WeakKeyDictionary()
+
+
+def goal_distance_fields(game: GameInstance) -> tuple[int, dict[int, np.ndarray]] | None:
+    """``(scale, {goal: d(., goal) · scale})``: the float64 fields the reader computed
+    ``dist_to`` from (exact integers), shared with later computations on the same graph; None
+    when the reader used the exact Python Dijkstra.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> scale, rows = goal_distance_fields(triangle())
+    >>> scale, rows[1].tolist()
+    (1, [3.0, 0.0, 2.0])
+    """
+    return _GOAL_FIELDS.get(game)
 
 
 def arc_arrays(game: GameInstance) -> ArcArrays:
@@ -449,8 +496,7 @@ def arc_arrays(game: GameInstance) -> ArcArrays:
 
 
 _Regular = tuple[list[Node], dict[Node, int], bool,
-                 tuple[tuple[tuple[int, Number], ...], ...],
-                 tuple[tuple[tuple[int, Number], ...], ...], ArcArrays]
+                 ArcRows, ArcRows, ArcArrays]
 
 
 def _regular_graph(g: Any, exact: bool) -> _Regular | None:
@@ -516,6 +562,26 @@ def _regular_graph(g: Any, exact: bool) -> _Regular | None:
     v = np.fromiter(vs, dtype=np.int64, count=m)
     c = (np.zeros(m, dtype=np.int64) if len(values) == 1
          else np.fromiter(map(code.__getitem__, keys), dtype=np.int64, count=m))
+    built = edge_arrays(n, u, v, c, values, directed)
+    if built is None:
+        return None  # a duplicate arc
+    return (ids, index, directed, *built)
+
+
+def edge_arrays(n: int, u: np.ndarray, v: np.ndarray, c: np.ndarray, values: list[Number],
+                directed: bool) -> tuple[ArcRows, ArcRows, ArcArrays] | None:
+    """``succ``, ``pred`` and the arc arrays of the edges ``u[k] - v[k]`` of weight
+    ``values[c[k]]`` (both ways unless ``directed``); None when an arc repeats.
+
+    Examples
+    --------
+    >>> a = np.array([0, 1]); b = np.array([1, 2]); c = np.array([0, 0])
+    >>> succ, pred, arcs = edge_arrays(3, a, b, c, [1], False)
+    >>> tuple(succ), arcs.tails.tolist()
+    ((((1, 1),), ((0, 1), (2, 1)), ((1, 1),)), [0, 1, 1, 2])
+    >>> edge_arrays(2, np.array([0, 1]), np.array([1, 0]), c, [1], False) is None
+    True
+    """
     if not directed:
         back = u != v  # a self-loop is one arc
         u, v, c = (np.concatenate([u, v[back]]), np.concatenate([v, u[back]]),
@@ -528,8 +594,13 @@ def _regular_graph(g: Any, exact: bool) -> _Regular | None:
     succ_t = _adjacency(n, tails, heads, codes, values)
     rev = np.argsort(heads * n + tails, kind="stable")
     pred_t = _adjacency(n, heads[rev], tails[rev], codes[rev], values)
-    return (ids, index, directed, succ_t, pred_t,
-            ArcArrays(tails=tails, heads=heads, codes=codes, values=tuple(values)))
+    return succ_t, pred_t, ArcArrays(tails=tails, heads=heads, codes=codes, values=tuple(values))
+
+
+def _rows(n: int, adj: Sequence[Sequence[tuple[int, Number]]]) -> ArcRows:
+    """``adj`` (sorted rows) as :class:`ArcRows`."""
+    a = ArcArrays.from_adjacency(adj)
+    return ArcRows(n, a.tails, a.heads, a.codes, a.values)
 
 
 def _all_type(xs: list[Any], t: type) -> bool:
@@ -544,13 +615,10 @@ def _cells(xs: list[Any]) -> bool:
 
 
 def _adjacency(n: int, tails: np.ndarray, heads: np.ndarray, codes: np.ndarray,
-               values: list[Number]) -> tuple[tuple[tuple[int, Number], ...], ...]:
+               values: list[Number]) -> ArcRows:
     """``adj[u]`` = the ``(head, weight)`` pairs of the arcs out of ``u`` (arcs sorted by
     tail, then head)."""
-    w = [values[0]] * len(codes) if len(values) == 1 else [values[k] for k in codes.tolist()]
-    pairs = list(zip(heads.tolist(), w, strict=True))
-    bounds = np.searchsorted(tails, np.arange(n + 1)).tolist()
-    return tuple(tuple(pairs[a:b]) for a, b in pairwise(bounds))
+    return ArcRows(n, tails, heads, codes, tuple(values))
 
 
 def _graph(g: Any, exact: bool) -> tuple[list[Node], dict[Node, int], bool,

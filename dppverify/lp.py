@@ -12,12 +12,14 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-
-import cvxpy as cp
+from typing import TYPE_CHECKING, Any
 
 from dppverify.errors import LPError
 from dppverify.exact import Number
 from dppverify.tree import FlowTree, flow_matrix
+
+if TYPE_CHECKING:  # cvxpy (with scipy.stats) costs ~0.5 s: imported where an LP is built
+    import cvxpy as cp
 
 __all__ = ["LP_SOLVER", "LP_TOLERANCE", "SOLVER_SETTINGS", "LPStats", "flow_matrix", "lp_agrees",
            "realization_constraints", "solve"]
@@ -62,6 +64,7 @@ def solve(problem: cp.Problem, what: str) -> LPStats:
 
     Examples
     --------
+    >>> import cvxpy as cp
     >>> x = cp.Variable(2)
     >>> solve(cp.Problem(cp.Minimize(cp.sum(x)), [x >= 1]), "demo").status
     'optimal'
@@ -69,6 +72,8 @@ def solve(problem: cp.Problem, what: str) -> LPStats:
     Traceback (most recent call last):
     dppverify.errors.LPError: demo: CLARABEL returned status 'infeasible', not 'optimal'
     """
+    import cvxpy as cp
+
     t0 = time.perf_counter()
     try:
         problem.solve(solver=cp.CLARABEL, **SOLVER_SETTINGS)
@@ -110,13 +115,14 @@ def realization_constraints(tree: FlowTree, x: cp.Variable) -> list[cp.Constrain
     >>> from dppverify.examples import triangle
     >>> from dppverify.tree import build_tree
     >>> tree = build_tree(triangle(), 1)
+    >>> import cvxpy as cp
     >>> x = cp.Variable(tree.n_prefixes)
     >>> stats = solve(cp.Problem(cp.Minimize(x[1] + 3 * x[2]), realization_constraints(tree, x)),
     ...               "demo")
     >>> round(stats.value, 6), [round(float(v), 6) + 0.0 for v in x.value]
     (1.0, [1.0, 1.0, 0.0])
     """
-    cons: list[cp.Constraint] = [x >= 0, x[0] == 1]
+    cons: list[Any] = [x >= 0, x[0] == 1]
     if tree.n_prefixes > 1:
         cons.append(flow_matrix(tree) @ x == 0)
     return cons

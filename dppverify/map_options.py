@@ -24,9 +24,9 @@ from typing import Any, TypeVar
 import click
 
 from dppverify.errors import CheckerError, InvalidInstanceError, OptionError
-from dppverify.instance import Instance, instance_from_json
+from dppverify.instance import Instance
 from dppverify.json_reading import parse_number
-from dppverify.movingai import grid_document, read_map
+from dppverify.movingai import grid_game, read_map
 from dppverify.standard_maps import PREFIX, resolve_map
 from dppverify.text import show
 
@@ -113,8 +113,8 @@ class MapRequest:
         """
         grid = read_map(self.path)
         try:
-            return instance_from_json(grid_document(grid, self.start, self.goals, self.prior,
-                                                    connectivity=self.connectivity))
+            return grid_game(grid, self.start, self.goals, self.prior,
+                             connectivity=self.connectivity)
         except InvalidInstanceError as exc:
             raise InvalidInstanceError(f"{self.map}: {exc}") from None
 

@@ -9,11 +9,13 @@ in ``\\n`` or ``\\r\\n``.
 
 :func:`grid_document` turns a map, a start, the goals and a prior into the instance JSON of
 ``docs/formats.md`` §1 — node ids ``[row, col]`` for the free cells in row-major order,
-undirected edges between free neighbours — the same document the solver writes for its grid
-instances (``dpp solve --save-instance``): 4-connected moves have exact unit weights;
+undirected edges between free neighbours — the same document the solver's
+``instance_to_json`` writes for its grid instances: 4-connected moves have exact unit weights;
 8-connected (octile) grids add diagonals of weight ``sqrt(2)`` without corner cutting (a
 diagonal move needs both orthogonal neighbours free) and are float-mode documents
-(``"numbers": "float"``, every weight a binary float).
+(``"numbers": "float"``, every weight a binary float). :func:`grid_game` builds the very
+instance that document gives straight from the map, with numpy and no JSON (what ``--map``
+and the compact map-instance files of :mod:`dppverify.map_instance` use).
 """
 
 from __future__ import annotations
@@ -22,13 +24,18 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
+
+import numpy as np
 
 from dppverify.errors import InvalidInstanceError
-from dppverify.instance import Instance, instance_from_json
+from dppverify.instance import GameInstance, Instance, edge_arrays, finish_game
+from dppverify.json_reading import parse_number
 
-__all__ = ["BLOCKED", "PASSABLE", "GridMap", "grid_document", "map_instance", "parse_map",
-           "read_map"]
+__all__ = ["BLOCKED", "PASSABLE", "GridMap", "grid_document", "grid_game", "map_instance",
+           "parse_map", "read_map"]
+
+G = TypeVar("G", bound=GameInstance)
 
 PASSABLE = frozenset(".GS")
 """Map characters of free cells (ground, ground, swamp)."""
@@ -267,6 +274,77 @@ def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequ
     return doc
 
 
+def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
+              connectivity: int = 4, cls: type[G] = Instance,  # type: ignore[assignment]
+              two_goals: bool = True) -> G:
+    """The grid game straight from the map: ``read_game(grid_document(...))`` without JSON.
+
+    Same arguments, checks and messages as :func:`grid_document` followed by the instance
+    reader (``cls`` and ``two_goals`` as in :func:`dppverify.instance.read_game`), and the
+    same instance: nodes, arcs, distances, hops (tests/checker/test_map_arrays.py compares
+    them on the bundled maps). The edges come from numpy shifts of the free-cell mask.
+
+    Examples
+    --------
+    >>> grid = parse_map("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
+    >>> inst = grid_game(grid, (1, 0), ((1, 2), (0, 0)), ("0.6", "0.4"))
+    >>> inst.n_nodes, inst.nodes[inst.start], inst.dist_to[0][inst.start], inst.succ[0]
+    (5, (1, 0), 4, ((1, 1), (3, 1)))
+    >>> grid_game(grid, (1, 1), ((1, 2), (0, 0)), ("0.6", "0.4"))
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: start cell (1, 1) is an obstacle ('@' at row 1,
+      column 1 of the 2x3 map)
+    """
+    if connectivity not in (4, 8):
+        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
+    grid.check_cell(start, "start")
+    for goal in goals:
+        grid.check_cell(goal, "goal")
+    octile = connectivity == 8
+    h, w = grid.height, grid.width
+    chars = np.frombuffer("".join(grid.rows).encode("ascii"), dtype=np.uint8).reshape(h, w)
+    free = np.isin(chars, np.frombuffer("".join(sorted(PASSABLE)).encode("ascii"),
+                                        dtype=np.uint8))
+    cells = np.flatnonzero(free)  # row-major: the node order of grid_document
+    n = int(cells.size)
+    rank = np.full(h * w, -1, dtype=np.int64)
+    rank[cells] = np.arange(n, dtype=np.int64)
+    # the edge order of grid_document: lower cell row-major, then right, down-left, down,
+    # down-right (a diagonal needs both orthogonal neighbours free)
+    steps = [(0, 1), (1, -1), (1, 0), (1, 1)] if octile else [(0, 1), (1, 0)]
+    pad = np.pad(free, 1)
+    mask = np.empty((h, w, len(steps)), dtype=bool)
+    for j, (dr, dc) in enumerate(steps):
+        ok = free & pad[1 + dr:h + 1 + dr, 1 + dc:w + 1 + dc]
+        if dr and dc:
+            ok &= pad[1 + dr:h + 1 + dr, 1:-1] & pad[1:-1, 1 + dc:w + 1 + dc]
+        mask[:, :, j] = ok
+    flat = np.flatnonzero(mask)
+    del mask
+    cell, slot = np.divmod(flat, len(steps))
+    offset = np.array([dr * w + dc for dr, dc in steps], dtype=np.int64)
+    u, v = rank[cell], rank[cell + offset[slot]]
+    if octile:  # weight codes in order of first appearance, as the JSON reader numbers them
+        diagonal = np.array([bool(dr and dc) for dr, dc in steps])[slot]
+        first_diagonal = bool(diagonal[0]) if diagonal.size else False
+        literals: list[Any] = [SQRT2, 1.0] if first_diagonal else [1.0, SQRT2]
+        c = (diagonal != first_diagonal).astype(np.int64)
+        if not diagonal.any() or diagonal.all():
+            literals = literals[:1]
+    else:
+        literals, c = ["1"], np.zeros(u.size, dtype=np.int64)
+    values = [parse_number(x, where="weight", allow_float=octile) for x in literals]
+    built = edge_arrays(n, u, v, c, values, False)
+    assert built is not None  # a grid has no repeated arc
+    succ_t, pred_t, arcs = built
+    rows, cols = np.divmod(cells, w)
+    ids: list[Any] = list(zip(rows.tolist(), cols.tolist(), strict=True))
+    index = dict(zip(ids, range(n), strict=True))
+    return finish_game(cls, ids, index, False, succ_t, pred_t, arcs, exact=not octile,
+                       start=list(start), goals=[list(g) for g in goals], prior=list(prior),
+                       two_goals=two_goals)
+
+
 def map_instance(path: str | Path, start: Cell, goals: tuple[Cell, Cell],
                  prior: tuple[Any, Any], *, connectivity: int = 4) -> Instance:
     """Read a ``.map`` file and build the validated grid :class:`Instance`.
@@ -285,7 +363,6 @@ def map_instance(path: str | Path, start: Cell, goals: tuple[Cell, Cell],
     """
     grid = read_map(path)
     try:
-        return instance_from_json(grid_document(grid, start, goals, prior,
-                                                connectivity=connectivity))
+        return grid_game(grid, start, goals, prior, connectivity=connectivity)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{path}: {exc}") from None

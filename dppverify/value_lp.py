@@ -24,9 +24,8 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import cvxpy as cp
 import numpy as np
 from tqdm import tqdm
 
@@ -37,6 +36,9 @@ from dppverify.instance import Instance, Roles, as_instance
 from dppverify.lp import LPStats, realization_constraints, solve
 from dppverify.profile import ProgressRule
 from dppverify.tree import DEFAULT_MAX_PREFIXES, PrefixTree, WalkTree, build_tree
+
+if TYPE_CHECKING:  # imported where the LP is built: cvxpy's import costs ~0.5 s
+    import cvxpy as cp
 
 __all__ = ["DENOMINATORS", "Bracket", "BracketSearch", "GameValue", "ValueLP", "exact_bracket",
            "game_value", "lower_bound", "rational_plan", "solve_types_lp", "solve_value_lp",
@@ -144,6 +146,8 @@ def solve_types_lp(tree: PrefixTree, priors: Sequence[Number],
     >>> round(stats.value, 6), [round(float(v), 4) for v in plans[0]]
     (2.4, [1.0, 0.5714, 0.4286])
     """
+    import cvxpy as cp
+
     n = tree.n_prefixes
     leaf = tree.is_leaf_mask()
     node = tree.node

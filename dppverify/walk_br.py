@@ -20,12 +20,10 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import dijkstra as sp_dijkstra
 
 from dppverify.distances import dijkstra
 from dppverify.exact import INF, Number, normalize
-from dppverify.instance import Instance, arc_arrays
+from dppverify.instance import Instance, arc_arrays, goal_distance_fields
 
 __all__ = ["ScaledArcs", "WalkMinima", "avoiding_distances", "scaled_arcs", "scaled_distances",
            "split_minimum", "walk_minima"]
@@ -83,6 +81,10 @@ def scaled_arcs(instance: Instance) -> ScaledArcs | None:
             out = ScaledArcs(tails=arrays.tails, heads=arrays.heads,
                              weights=np.asarray(scaled, dtype=np.float64)[arrays.codes],
                              scale=scale, distances={})
+            shared = goal_distance_fields(instance)
+            if shared is not None and shared[0] == scale:  # d(., goal): the reader's fields
+                for goal, row in shared[1].items():
+                    out.distances[(goal, True, frozenset())] = row
     _ARCS[instance] = out
     return out
 
@@ -102,14 +104,31 @@ def scaled_distances(arcs: ScaledArcs, n: int, source: int, *, reverse: bool,
     """
     key = (source, reverse, blocked)
     if key not in arcs.distances:
-        rows, cols = (arcs.heads, arcs.tails) if reverse else (arcs.tails, arcs.heads)
-        keep = np.ones(n, dtype=bool)
-        keep[[v for v in blocked if v != source]] = False
-        sel = keep[rows]
-        m = sp.csr_matrix((arcs.weights[sel], (rows[sel], cols[sel])), shape=(n, n))
+        import scipy.sparse as sp
+        from scipy.sparse.csgraph import dijkstra as sp_dijkstra
+
+        if reverse:  # the arcs sorted by head (once per instance): CSR rows without a sort
+            order = _REVERSE_ORDER.get(arcs)
+            if order is None:
+                order = _REVERSE_ORDER[arcs] = np.argsort(arcs.heads, kind="stable")
+            rows, cols, w = arcs.heads[order], arcs.tails[order], arcs.weights[order]
+        else:
+            rows, cols, w = arcs.tails, arcs.heads, arcs.weights
+        drop = [v for v in blocked if v != source]
+        if drop:
+            keep = np.ones(n, dtype=bool)
+            keep[drop] = False
+            sel = keep[rows]
+            rows, cols, w = rows[sel], cols[sel], w[sel]
+        indptr = np.zeros(n + 1, dtype=np.int64)
+        np.cumsum(np.bincount(rows, minlength=n), out=indptr[1:])
+        m = sp.csr_matrix((w, cols, indptr), shape=(n, n))
         arcs.distances[key] = np.asarray(sp_dijkstra(m, directed=True, indices=source),
                                          dtype=np.float64)
     return arcs.distances[key]
+
+
+_REVERSE_ORDER: weakref.WeakKeyDictionary[ScaledArcs, np.ndarray] = weakref.WeakKeyDictionary()
 
 
 def _unscale(x: float, scale: int) -> Number:
@@ -162,6 +181,9 @@ def _coo(adj: list[list[tuple[int, Number]]], conv: object) -> tuple[list[int], 
 
 def _scipy(n: int, rows: list[int], cols: list[int], vals: list[float],
            source: int) -> np.ndarray:
+    import scipy.sparse as sp
+    from scipy.sparse.csgraph import dijkstra as sp_dijkstra
+
     m = sp.csr_matrix((np.asarray(vals, dtype=np.float64), (rows, cols)), shape=(n, n))
     return np.asarray(sp_dijkstra(m, directed=True, indices=source), dtype=np.float64)
 

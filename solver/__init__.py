@@ -10,15 +10,39 @@
 
 from __future__ import annotations
 
-from solver.equilibrium import Equilibrium, solve
-from solver.errors import DPPError, InstanceFormatError, InvalidInstanceError
-from solver.instance import Instance
-from solver.instance_json import instance_from_json, instance_to_json, load_instance
-from solver.profile_json import equilibrium_to_json
-from solver.report import summarize
-from solver.strategy import StrategyPath
+from typing import TYPE_CHECKING, Any
+
 from solver.version import __version__
+
+_LAZY = {"Equilibrium": "solver.equilibrium", "solve": "solver.equilibrium",
+         "DPPError": "solver.errors", "InstanceFormatError": "solver.errors",
+         "InvalidInstanceError": "solver.errors", "Instance": "solver.instance",
+         "instance_from_json": "solver.instance_json", "instance_to_json": "solver.instance_json",
+         "load_instance": "solver.instance_json", "equilibrium_to_json": "solver.profile_json",
+         "summarize": "solver.report", "StrategyPath": "solver.strategy"}
+"""The public names, each imported on first use (``import solver`` stays cheap)."""
+
+if TYPE_CHECKING:
+    from solver.equilibrium import Equilibrium, solve
+    from solver.errors import DPPError, InstanceFormatError, InvalidInstanceError
+    from solver.instance import Instance
+    from solver.instance_json import instance_from_json, instance_to_json, load_instance
+    from solver.profile_json import equilibrium_to_json
+    from solver.report import summarize
+    from solver.strategy import StrategyPath
 
 __all__ = ["DPPError", "Equilibrium", "Instance", "InstanceFormatError",
            "InvalidInstanceError", "StrategyPath", "__version__", "equilibrium_to_json",
            "instance_from_json", "instance_to_json", "load_instance", "solve", "summarize"]
+
+
+def __getattr__(name: str) -> Any:
+    """Import a public name from its module on first use."""
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    import importlib
+
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value

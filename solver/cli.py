@@ -10,9 +10,11 @@ from __future__ import annotations
 import re
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
 
+import solver.threads  # noqa: F401  (first: one BLAS thread, before numpy loads)
 from dppverify import cli as checker_cli
 from dppverify.cli_conventions import (
     PhaseBar,
@@ -24,15 +26,12 @@ from dppverify.cli_conventions import (
 )
 from dppverify.errors import CheckerError
 from dppverify.map_options import MapRequest, instance_or_map, map_options
-from solver.equilibrium import solve
 from solver.errors import DPPError, InvalidInstanceError, OutputError
-from solver.instance import Instance
-from solver.instance_json import instance_to_json, load_instance
 from solver.io_utils import dumps, write_atomic, write_files
 from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE, MAX_INPUT_BYTES
-from solver.movingai import read_map
-from solver.profile_json import equilibrium_to_json
-from solver.report import summarize
+
+if TYPE_CHECKING:  # the solver's modules load numpy, scipy, networkx: imported per command
+    from solver.instance import Instance
 
 __all__ = ["main"]
 
@@ -57,7 +56,9 @@ def main() -> None:
 @output_file_option("Write the dpp-profile/1 JSON to this file (atomically); stdout stays "
                     "empty, U* and VoI* are one line on stderr.")
 @click.option("--save-instance", type=click.Path(dir_okay=False), metavar="FILE",
-              help="Also write the instance JSON (e.g. of a --map grid) to FILE (atomically).")
+              help="Also write the instance to FILE (atomically): for a --map grid the compact "
+                   "dpp-map-instance/1 document naming the map and its sha256 "
+                   "(docs/formats.md), else the instance JSON.")
 @progress_option
 def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
                   output: str | None, save_instance: str | None,
@@ -77,14 +78,24 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
     checker_cli.check_output_not_input(output, instance)
     checker_cli.check_output_not_input(save_instance, instance)
+    from solver.equilibrium import solve
+    from solver.instance_json import instance_to_json, map_instance_to_json
+    from solver.profile_json import equilibrium_to_json
+    from solver.report import summarize
+
     bar = PhaseBar(want_progress(progress), "solve", "reading the instance")
     try:
-        inst = _load(instance, grid)
+        inst, digest = _load_map_digest(instance, grid)
         bar.phase("solving")
         eq = solve(inst)
         bar.phase("writing")
         doc = equilibrium_to_json(eq)
-        instance_text = dumps(instance_to_json(inst)) if save_instance is not None else None
+        instance_text = None
+        if save_instance is not None:  # a map game: the compact document naming the map
+            instance_text = dumps(
+                instance_to_json(inst) if grid is None else
+                map_instance_to_json(grid.map, inst, relative_to=Path(save_instance).parent,
+                                     connectivity=grid.connectivity, digest=digest))
     finally:
         bar.close()
     if output is not None:
@@ -104,15 +115,25 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
 def _load(instance: str | None, grid: MapRequest | None,
           command: str = "dpp solve") -> Instance:
     """The instance of a solver command: the INSTANCE file or the --map grid."""
+    return _load_map_digest(instance, grid, command)[0]
+
+
+def _load_map_digest(instance: str | None, grid: MapRequest | None,
+                     command: str = "dpp solve") -> tuple[Instance, str | None]:
+    """:func:`_load`, and the sha256 of the --map file (None for an INSTANCE file)."""
+    from solver.instance import Instance
+    from solver.instance_json import load_instance
+    from solver.movingai import read_map_bytes
+
     instance_or_map(instance, grid)
     if grid is None:
         assert instance is not None
         with checker_cli.hinted(instance, "instance", command, errors=(DPPError,)):
-            return load_instance(instance)
-    blocked = read_map(grid.path)
+            return load_instance(instance), None
+    blocked, digest = read_map_bytes(grid.path)
     try:
         return Instance.from_grid(blocked, grid.start, grid.goals, grid.prior,
-                                  connectivity=grid.connectivity)
+                                  connectivity=grid.connectivity), digest
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{grid.map}: {exc}") from None
 

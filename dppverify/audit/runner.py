@@ -51,11 +51,14 @@ from typing import Any
 from dppverify.errors import AuditError
 from dppverify.files import read_input
 
-__all__ = ["Answer", "CommandRunner", "PythonRunner", "SolverRunner", "call_in_process",
-           "one_line"]
+__all__ = ["DEFAULT_TIMEOUT", "Answer", "CommandRunner", "PythonRunner", "SolverRunner",
+           "call_in_process", "one_line"]
 
 Doc = dict[str, Any]
 Solver = Callable[[Doc], Any]
+
+DEFAULT_TIMEOUT = 60.0
+"""Seconds per solver run (Python callable or command)."""
 
 READY_TIMEOUT = 60.0
 """Seconds a Python solver's module may take to import."""

@@ -73,3 +73,24 @@ def test_DP_value_of_the_HORIZON_example_by_hand_and_by_the_tree() -> None:
         assert dp.value == v
         assert game_value(inst, h).bracket.exact == v
     assert structured_value(inst, None).value == Fraction(13, 10)
+
+
+def test_DP5_dijkstra_fixpoint_and_its_steps_by_hand() -> None:
+    """DP.5 on the HORIZON example: the fixpoint, the steps h and K, and the stop at K + 1."""
+    from dppverify.value_dp import fixpoint_fields, value_fields
+
+    inst = instance_from_json(EXAMPLE)
+    r = inst.roles()
+    fx = fixpoint_fields(inst, r)
+    assert fx is not None
+    s = inst.index["s"]
+    # by hand: D1(s) = 1 in 1 step; D2(s) = 2 (s -> a -> g2) in 2 steps, not 4 via g1 in 1;
+    # m(s) = min(1 + m(g1) = 4, D1 + D2 = 3 after eta(s) = 2 steps) = 3, h^m(s) = 2
+    assert (fx.d1[s], fx.d2[s], fx.m[s]) == (1, 2, 3)
+    assert (fx.h1[s], fx.h2[s], fx.hm[s]) == (1, 2, 2)
+    assert fx.last == 2
+    for h in range(0, 6):  # (d): the layers stop after step K + 1 = 3, equal from step K = 2
+        layers = value_fields(inst, h, r, method="layers")
+        assert layers.steps == min(h, fx.last + 1) and layers.fixpoint == (h >= fx.last + 1)
+        assert (layers.m[s] == fx.m[s]) == (h >= fx.hm[s])
+        assert (layers.d2[s] == fx.d2[s]) == (h >= fx.h2[s])

@@ -24,7 +24,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dppverify import instance as instance_module
-from dppverify.distances import EXACT_FLOAT_LIMIT, exact_distances_to
+from dppverify.distances import EXACT_FLOAT_LIMIT, ArcRows, exact_distances_to
 from dppverify.errors import InvalidInstanceError
 from dppverify.instance import GameInstance, Instance, _read_game, _regular_graph, arc_arrays
 from dppverify.json_reading import parse_json
@@ -44,7 +44,7 @@ FIELDS = ("nodes", "directed", "succ", "pred", "start", "goals", "prior", "exact
 
 
 def _types(x: Any) -> Any:
-    if isinstance(x, tuple):
+    if isinstance(x, tuple | ArcRows):  # succ, pred: the rows they stand for
         return tuple(_types(y) for y in x)
     return type(x)
 
@@ -372,8 +372,9 @@ def test_value_fields_equal_the_plain_recursion_on_a_maze(
                   if tuple(e["source"]) not in walls and tuple(e["target"]) not in walls]
     inst = _read_game(doc, Instance, True)
     for h in (10, 37, None):
-        f = value_fields(inst, h)
         want, steps, fixpoint = _plain_fields(inst, h)
-        assert ([[f.number(x) for x in col] for col in (f.d1, f.d2, f.m)], f.steps,
-                f.fixpoint) == (want, steps, fixpoint)
+        for method in ("layers", "auto"):  # auto: the Dijkstra fixpoint where H reaches it
+            f = value_fields(inst, h, method=method)  # type: ignore[arg-type]
+            assert ([[f.number(x) for x in col] for col in (f.d1, f.d2, f.m)], f.steps,
+                    f.fixpoint) == (want, steps, fixpoint)
     assert f.fixpoint and f.steps > 30 and len(sparse) > 60

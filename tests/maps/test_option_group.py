@@ -9,7 +9,9 @@ group as one line with exit code 2, leaving no file behind.
 
 from __future__ import annotations
 
+import hashlib
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -19,9 +21,11 @@ import pytest
 from click.testing import CliRunner
 
 from dppverify.__main__ import main as checker_main
+from dppverify.instance import instance_from_json as checker_from_json
+from dppverify.instance import load_instance as checker_load
 from solver.cli import main
 from solver.instance import Instance
-from solver.instance_json import instance_to_json
+from solver.instance_json import instance_to_json, load_instance
 from solver.movingai import read_map
 from tests.maps._maps import ROOT, TINY_MAP
 
@@ -81,11 +85,22 @@ def test_one_definition_of_the_group_on_every_command() -> None:
 
 
 def test_save_instance_writes_the_grid_instance(saved: tuple[Path, Path], tiny: Path) -> None:
+    """A --map game is saved as the compact dpp-map-instance/1 document (docs/formats.md §1c):
+    the map by reference (relative to the saved file) and its sha256; both packages read it
+    as the grid instance of the full instance JSON."""
     inst, prof = saved
     expected = Instance.from_grid(read_map(tiny), (2, 0), ((0, 3), (0, 0)), ("3/5", "2/5"))
     doc = json.loads(inst.read_text())
-    assert doc == json.loads(json.dumps(instance_to_json(expected)))
-    assert doc["graph"]["nodes"][0] == {"id": [0, 0]} and len(doc["graph"]["nodes"]) == 10
+    assert doc == {"format": "dpp-map-instance/1",
+                   "map": os.path.relpath(tiny, inst.parent),
+                   "map_sha256": hashlib.sha256(tiny.read_bytes()).hexdigest(),
+                   "start": [2, 0], "goals": [[0, 3], [0, 0]], "prior": ["3/5", "2/5"],
+                   "connectivity": 4}
+    full = json.loads(json.dumps(instance_to_json(expected)))
+    assert instance_to_json(load_instance(inst)) == full
+    checker, reference = checker_load(inst), checker_from_json(full)
+    assert (checker.nodes, tuple(checker.succ), checker.dist_to, checker.prior) == \
+        (reference.nodes, tuple(reference.succ), reference.dist_to, reference.prior)
     assert json.loads(prof.read_text())["goals"] == {"primary": [0, 3], "secondary": [0, 0]}
     # solving the saved instance gives the same profile
     code, out, _ = _run("solve", str(inst), "--json")
