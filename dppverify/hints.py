@@ -53,7 +53,8 @@ def what_is(path: str | Path) -> str | None:
         return "map"
     tag = _FORMAT.search(head)
     if tag:
-        return tag.group(1).decode("ascii", "replace")
+        name = tag.group(1).decode("ascii", "replace")
+        return "instance" if "instance" in name else name  # e.g. dpp-map-instance/1
     if _GRAPH.search(head):
         return "instance"
     if head[:1] not in (b"{", b"[", b" ", b"\n") and b"," in head.split(b"\n", 1)[0]:
