@@ -125,9 +125,11 @@ def experiment_group() -> None:
 @progress_option
 def experiment_compare(instance: str | None, grid: MapRequest | None,
                        output_dir: str | None, progress: bool | None) -> None:
-    """U1, U2, U, VoI of six (Defender, Attacker) pairs on one instance (exact).
+    """U1, U2, U, VoI of fourteen (Defender, Attacker) pairs on one instance (exact).
 
-    Without an instance: the bundled 10x10 map, start 9,0, goals 0,9 0,0, prior 0.6,0.4.
+    Defenders sigma* and sigma'; Attackers gamma*, Dragan's ambiguity and exaggeration, and
+    Masters & Sardina's pi_d1-pi_d4. Without an instance: the bundled 10x10 map, start 9,0,
+    goals 0,9 0,0, prior 0.6,0.4.
 
     \b
     Examples:
@@ -138,13 +140,13 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
     from tqdm import tqdm
 
     from solver.experiments.compare import compare_csv, compare_table, verdict
-    from solver.pairs import PAIRS, PairEvaluator
+    from solver.pairs import COMPARE_PAIRS, PairEvaluator
 
     inst = _experiment_instance(instance, grid)
     game = PairEvaluator.of(inst)
     results = tuple(game.pair(d, a) for d, a in tqdm(
-        PAIRS, desc="compare", unit="pair", file=sys.stderr, disable=not want_progress(progress),
-        leave=False))
+        COMPARE_PAIRS, desc="compare", unit="pair", file=sys.stderr,
+        disable=not want_progress(progress), leave=False))
     text = compare_table(results) + "\n\n" + verdict(results) + "\n"
     click.echo(text, nl=False)
     if output_dir == "":
