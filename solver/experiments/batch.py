@@ -38,7 +38,6 @@ import csv
 import hashlib
 import io
 import os
-import random
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
@@ -50,6 +49,13 @@ from pathlib import Path
 
 import numpy as np
 
+from dppverify.scen import (
+    BATCH_RULE,
+    MAX_SCEN_LINES,
+    Scenario,
+    fake_goal_candidates,
+    parse_scen,
+)
 from solver.errors import DPPError, InvalidInstanceError
 
 __all__ = ["BATCH_RULE", "FIELDS", "MAX_SCEN_LINES", "BatchConfig", "BatchTask", "Scenario",
@@ -63,92 +69,6 @@ FIELDS = ("line", "status", "map", "start", "goal", "fake_goal", "prior", "prima
           "certify_seconds", "reason", "config")
 """The CSV columns. Cells are ``row,col``; values are exact ``p/q``; ``verdict`` is the
 certificate's; times in seconds; ``reason`` is empty on ``ok`` rows."""
-
-BATCH_RULE = "dpp-batch/1"
-"""The name of the fake-goal rule (part of the ``config`` hash)."""
-
-MAX_SCEN_LINES = 1_000_000
-"""Scenario lines accepted in one file."""
-
-
-@dataclass(frozen=True)
-class Scenario:
-    """One line of a ``.scen`` file: ``line`` (1-based), the map name as written, its size
-    as the line states it, and the start and goal as ``(row, col)``; or, for a bad line,
-    ``reason``."""
-
-    line: int
-    map: str = ""
-    width: int = 0
-    height: int = 0
-    start: Cell = (0, 0)
-    goal: Cell = (0, 0)
-    reason: str = ""
-
-
-def parse_scen(text: str) -> list[Scenario]:
-    """The scenario lines of a ``.scen`` file (blank lines and the ``version`` header skipped).
-
-    A malformed line is a :class:`Scenario` with a ``reason``.
-
-    Examples
-    --------
-    >>> text = "version 1\\n0\\tm.map\\t8\\t8\\t0\\t1\\t7\\t6\\t12.5\\n\\nbad line\\n"
-    >>> a, b = parse_scen(text)
-    >>> a.line, a.map, a.start, a.goal
-    (2, 'm.map', (1, 0), (6, 7))
-    >>> b.line, b.reason[:45]
-    (4, 'malformed scenario line: 2 fields, expected 9')
-    """
-    out: list[Scenario] = []
-    for number, raw in enumerate(text.splitlines(), start=1):
-        line = raw.strip()
-        if not line or (number == 1 and line.lower().startswith("version")):
-            continue
-        if len(out) >= MAX_SCEN_LINES:
-            raise InvalidInstanceError(f"more than {MAX_SCEN_LINES} scenario lines")
-        parts = line.split("\t") if "\t" in line else line.split()
-        if len(parts) != 9:
-            out.append(Scenario(number, reason=f"malformed scenario line: {len(parts)} fields, "
-                                "expected 9 (bucket, map, width, height, start_x, start_y, "
-                                "goal_x, goal_y, optimal_length)"))
-            continue
-        try:
-            w, h, sx, sy, gx, gy = (int(p) for p in parts[2:8])
-            float(parts[8])
-        except ValueError:
-            out.append(Scenario(number, reason="malformed scenario line: width, height and "
-                                "the cells must be integers, the length a number"))
-            continue
-        out.append(Scenario(number, parts[1].strip(), w, h, (sy, sx), (gy, gx)))
-    return out
-
-
-def fake_goal_candidates(scenarios: Sequence[Scenario], index: int, seed: int) -> list[Cell]:
-    """The fake-goal candidates of ``scenarios[index]``, in the order the rule tries them.
-
-    The goal cells of the other well-formed lines of the same map, in file order, without
-    repeats and without the line's own start and goal, permuted by
-    ``random.Random(f"dpp-batch:{seed}:{line}")``.
-
-    Examples
-    --------
-    >>> sc = [Scenario(2, "m", 4, 4, (0, 0), (3, 3)), Scenario(3, "m", 4, 4, (1, 1), (0, 3)),
-    ...       Scenario(4, "m", 4, 4, (2, 2), (3, 0)), Scenario(5, "x", 4, 4, (0, 1), (1, 0))]
-    >>> fake_goal_candidates(sc, 0, seed=0), fake_goal_candidates(sc, 0, seed=1)
-    ([(0, 3), (3, 0)], [(3, 0), (0, 3)])
-    """
-    me = scenarios[index]
-    seen: list[Cell] = []
-    for other in scenarios:
-        if other.line == me.line or other.reason or other.map != me.map:
-            continue
-        if other.goal in (me.start, me.goal) or other.goal in seen:
-            continue
-        seen.append(other.goal)
-    random.Random(f"dpp-batch:{seed}:{me.line}").shuffle(seen)
-    return seen
-
 
 @dataclass(frozen=True)
 class BatchConfig:
