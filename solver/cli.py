@@ -287,6 +287,9 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
                                                      dask_address):
         raise InvalidInstanceError(f"--dask: {dask_address!r} is not a scheduler address "
                                    "(e.g. tcp://127.0.0.1:8786)")
+    for folder in maps:
+        if not Path(folder).is_dir():
+            raise InvalidInstanceError(f"--maps {folder!r} is not a folder")
     config = BatchConfig(seed=seed, prior=parse_prior(prior_text),
                          connectivity=int(connectivity), maps=maps, route=route)
     bar = tqdm(unit="line", file=sys.stderr, disable=not want_progress(progress), desc="batch")

@@ -445,17 +445,20 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, *,
         on_start(len(done), total)
     if limit is not None:
         tasks = tasks[:limit]
-    out = _Appender(output)
+    out: _Appender | None = None  # created at the first row: a failed start leaves no file
     written = 0
     try:
         for rows in _results(tasks, workers, dask_address):
+            if out is None:
+                out = _Appender(output)
             for row in rows:
                 out.row(row)
             written += len(rows)
             if progress is not None:
                 progress(len(rows))
     finally:
-        out.close()
+        if out is not None:
+            out.close()
     return written, len(done) + written
 
 

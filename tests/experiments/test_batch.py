@@ -162,11 +162,14 @@ def test_hostile_inputs_are_one_line_exit_2(tmp_path: Path) -> None:
         [str(empty), "-o", str(tmp_path / "y.csv")],
         [str(EMPTY8), "-o", str(tmp_path / "z.csv"), "--prior", "0.6,0.5"],
         [str(EMPTY8), "-o", str(tmp_path)],
+        [str(EMPTY8), "-o", str(tmp_path / "w.csv"), "--maps", str(tmp_path / "none")],
+        [str(EMPTY8), "-o", str(tmp_path / "v.csv"), "--chunk", "0"],
     ]
     for args in cases:
         r = CliRunner().invoke(main, ["batch", *args, "--no-progress"])
         assert r.exit_code == 2, (args, r.output)
         assert r.output.count("\n") == 1 and r.output.startswith("error: "), r.output
-    assert not (tmp_path / "x.csv").exists() and not (tmp_path / "z.csv").exists()
+    for name in ("x.csv", "y.csv", "z.csv", "w.csv", "v.csv"):
+        assert not (tmp_path / name).exists()
     assert other.read_text() == "a,b\n1,2\n"
     assert tuple(_rows(out)[0]) == FIELDS
