@@ -349,6 +349,10 @@ def _verify_provenance(cert_path: str, instance: str | None, profile: str,
         raise CertificateError(f"{cert_path}: the certificate is not JSON ({exc})") from None
     if not isinstance(doc, dict) or doc.get("format") != "dpp-certificate/1":
         raise CertificateError(f"{cert_path}: not a dpp-certificate/1 document")
+    try:
+        Certificate.from_json(doc)  # well-formed, and its verdict agrees with its checks
+    except CertificateError as exc:
+        raise CertificateError(f"{cert_path}: {exc}") from None
     if grid is not None:
         result = verify_provenance(doc, _grid_document(grid), profile, map_file=grid.path)
     else:

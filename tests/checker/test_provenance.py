@@ -97,7 +97,11 @@ def test_bad_certificate_is_exit_2(files: tuple[Path, Path, Path], tmp_path: Pat
     doc = certify(triangle_document(), triangle_profile()).to_json()
     del doc["provenance"]
     old.write_text(json.dumps(doc))
-    for cert in (tmp_path / "missing.json", inst, old):
+    forged = tmp_path / "forged.json"
+    doc = json.loads(files[0].read_text())
+    doc["checks"][0]["status"] = "fail"  # the verdict "pass" no longer agrees
+    forged.write_text(json.dumps(doc))
+    for cert in (tmp_path / "missing.json", inst, old, forged):
         r = CliRunner().invoke(certify_command, ["--verify-provenance", str(cert), str(inst),
                                                  str(prof)])
         assert r.exit_code == 2
