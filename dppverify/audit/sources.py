@@ -68,6 +68,17 @@ def instances_from_dir(folder: str | Path) -> tuple[list[tuple[str, Doc]], list[
     AuditError
         The folder is missing or holds no instance file; a file is unreadable, not JSON or
         an invalid instance (the message names it).
+
+    Examples
+    --------
+    >>> import json, tempfile
+    >>> from dppverify.examples import triangle_document
+    >>> d = Path(tempfile.mkdtemp())
+    >>> _ = (d / "a.json").write_text(json.dumps(triangle_document()))
+    >>> _ = (d / "profile.json").write_text('{"format": "dpp-profile/1"}')
+    >>> docs, other = instances_from_dir(d)
+    >>> [name for name, _ in docs], other, docs[0][1]["prior"]
+    (['a.json'], ['profile.json'], ['7/10', '3/10'])
     """
     d = Path(folder)
     if not d.is_dir():
