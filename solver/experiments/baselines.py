@@ -13,16 +13,13 @@ and the observer-based Defender σ' on three sets of instances:
   :func:`dppverify.ngoal.experiment.corner_cells` (start nearest the bottom-left corner, g1
   nearest the top-right, g2 nearest the top-left), prior (3/5, 2/5).
 
-Run ``python -m solver.experiments.baselines --figure FILE --csv FILE`` (``--help``).
+Run ``dpp experiment baselines --figure FILE --csv FILE`` (``--help``).
 """
 
 from __future__ import annotations
 
-import argparse
 import csv
 import io
-import sys
-import time
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -34,10 +31,11 @@ from solver.experiments.density import DensityConfig
 from solver.experiments.sampling import sample_grid
 from solver.instance import Instance
 from solver.masters_sardina import STRATEGIES
+from solver.movingai import read_map
 from solver.pairs import DEFENDERS, LABELS, PairEvaluator
 
-__all__ = ["ATTACKERS_ALL", "DEFAULT_MAPS", "BaselineRow", "instances", "main", "plot_baselines",
-           "rows_csv", "run_baselines", "summary_table", "worst_case_table"]
+__all__ = ["ATTACKERS_ALL", "COLOURS", "DEFAULT_MAPS", "BaselineRow", "instances",
+           "plot_baselines", "rows_csv", "run_baselines", "summary_table", "worst_case_table"]
 
 ATTACKERS_ALL = ("gamma*", "ambiguity", "exaggeration", *STRATEGIES)
 """The Attackers compared, equilibrium first."""
@@ -46,6 +44,13 @@ DEFAULT_MAPS = ("empty-32-32", "room-32-32-4", "maze-32-32-2", "room-64-64-8")
 """The MovingAI maps of the ``movingai`` set (as in docs/experiments.md, "N goals")."""
 
 PRIOR = ("3/5", "2/5")
+
+COLOURS = {"gamma*": "#009E73", "ambiguity": "#0072B2", "exaggeration": "#8C510A",
+           "pi_d1": "#D55E00", "pi_d2": "#F0E442", "pi_d3": "#999999", "pi_d4": "#6A3D9A"}
+"""Bar colours: γ*, ambiguity and exaggeration as in every figure (``solver.plots.
+STRATEGY_COLOURS``, which the experiments layer may not import; a test keeps them equal)."""
+
+Cell = tuple[int, int]
 
 
 @dataclass(frozen=True)
@@ -60,9 +65,13 @@ class BaselineRow:
     VoI: Fraction
 
 
-def instances(samples: int, densities: Sequence[int], maps: Sequence[str],
+def instances(samples: int, densities: Sequence[int],
+              maps: Sequence[tuple[str, Path, Cell, tuple[Cell, Cell]]],
               seed: int = 0) -> Iterator[tuple[str, str, Instance]]:
     """``(setting, instance name, Instance)`` for the three sets (see the module docstring).
+
+    ``maps`` lists ``(name, .map path, start, (g1, g2))``; ``dpp experiment baselines``
+    places the cells with the checker's corner rule.
 
     Examples
     --------
@@ -77,17 +86,8 @@ def instances(samples: int, densities: Sequence[int], maps: Sequence[str],
                 grid = sample_grid(cfg.size, d, k, cfg.seed, cfg.start, cfg.goals)
                 yield "density", f"{d}%#{k}", Instance.from_grid(grid.blocked, cfg.start,
                                                                  cfg.goals, PRIOR)
-    if maps:
-        from dppverify.movingai import read_map as read_grid
-        from dppverify.ngoal.experiment import corner_cells
-        from dppverify.standard_maps import standard_map_path
-        from solver.movingai import read_map
-
-        for name in maps:
-            path = standard_map_path(name)
-            start, goals = corner_cells(read_grid(path), 2)
-            yield "movingai", name, Instance.from_grid(read_map(path), start,
-                                                       (goals[0], goals[1]), PRIOR)
+    for name, path, start, goals in maps:
+        yield "movingai", name, Instance.from_grid(read_map(path), start, goals, PRIOR)
 
 
 def run_baselines(items: Iterator[tuple[str, str, Instance]]) -> list[BaselineRow]:
@@ -206,11 +206,7 @@ def plot_baselines(rows: Sequence[BaselineRow]) -> Any:
     sets = list(dict.fromkeys(r.setting for r in rows))
     fig, axes = plt.subplots(1, len(sets), figsize=(4.2 * len(sets), 3.8), sharey=True,
                              squeeze=False)
-    from solver.plots import STRATEGY_COLOURS
-
-    ms_colours = {"pi_d1": "#D55E00", "pi_d2": "#F0E442", "pi_d3": "#999999",
-                  "pi_d4": "#6A3D9A"}
-    colours = {**STRATEGY_COLOURS, **ms_colours}
+    colours = COLOURS
     for ax, setting in zip(axes[0], sets, strict=True):
         sub = [r for r in rows if r.setting == setting]
         n = len({r.instance for r in sub})
@@ -235,47 +231,3 @@ def plot_baselines(rows: Sequence[BaselineRow]) -> Any:
     axes[0][-1].legend(handles=handles, loc="upper right", fontsize=8)
     fig.tight_layout()
     return fig
-
-
-def main(argv: Sequence[str] | None = None) -> int:
-    """``python -m solver.experiments.baselines``: the tables, and optionally CSV and figure.
-
-    Examples
-    --------
-    >>> main(["--samples", "0", "--maps"])  # doctest: +ELLIPSIS
-    | set | n | Attacker | ...
-    0
-    """
-    p = argparse.ArgumentParser(prog="python -m solver.experiments.baselines",
-                                description=__doc__.splitlines()[0] if __doc__ else None)
-    p.add_argument("--samples", type=int, default=50, help="grids per density (default 50)")
-    p.add_argument("--densities", default="0,10,20,30,40")
-    p.add_argument("--maps", nargs="*", default=list(DEFAULT_MAPS))
-    p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--csv", type=Path)
-    p.add_argument("--figure", type=Path)
-    args = p.parse_args(argv)
-    try:
-        dens = tuple(int(x) for x in args.densities.split(",") if x.strip())
-    except ValueError:
-        print(f"error: --densities {args.densities!r} must be integers", file=sys.stderr)
-        return 2
-    if args.samples < 0:
-        print("error: --samples must be >= 0", file=sys.stderr)
-        return 2
-    t0 = time.perf_counter()
-    rows = run_baselines(instances(args.samples, dens if args.samples else (), args.maps,
-                                   args.seed))
-    print(summary_table(rows))
-    print()
-    print(worst_case_table(rows))
-    print(f"({len(rows)} evaluations, {time.perf_counter() - t0:.1f} s)", file=sys.stderr)
-    if args.csv is not None:
-        args.csv.write_text(rows_csv(rows))
-    if args.figure is not None:
-        plot_baselines(rows).savefig(args.figure, dpi=120)
-    return 0
-
-
-if __name__ == "__main__":  # pragma: no cover
-    raise SystemExit(main())

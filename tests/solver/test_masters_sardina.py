@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 from itertools import pairwise
+from pathlib import Path
 
 import networkx as nx
 import pytest
@@ -119,3 +120,26 @@ def test_compare_gains_the_strategies() -> None:
     explicit = Attacker("x", (StrategyPath.along(net, walk("SYTR"), Fraction(1), "a"),),
                         (StrategyPath.along(net, walk("SXTB"), Fraction(1), "b"),))
     assert game.evaluate("sigma*", explicit).U == r.U
+
+
+def test_baselines_command_and_colours(tmp_path: Path) -> None:
+    from click.testing import CliRunner
+
+    from solver.cli import main
+    from solver.experiments.baselines import COLOURS
+    from solver.plots import STRATEGY_COLOURS
+
+    assert {k: COLOURS[k] for k in STRATEGY_COLOURS} == STRATEGY_COLOURS
+    r = CliRunner().invoke(main, ["experiment", "baselines", "--samples", "1", "--densities",
+                                  "0,30", "--maps", "empty-8-8", "--csv",
+                                  str(tmp_path / "b.csv"), "--figure",
+                                  str(tmp_path / "b.png"), "--no-progress"])
+    assert r.exit_code == 0, r.output
+    assert "| density | 2 | π_d4 |" in r.stdout and "| movingai | 1 | γ* |" in r.stdout
+    # gamma* best-responds to sigma*: the "gamma* - it" column is never negative
+    for line in r.stdout.splitlines():
+        cells = [c.strip() for c in line.split("|")]
+        if len(cells) == 10 and cells[1] in ("paper10", "density", "movingai"):
+            assert not cells[6].startswith("-"), line
+    assert (tmp_path / "b.png").read_bytes().startswith(b"\x89PNG")
+    assert len((tmp_path / "b.csv").read_text().splitlines()) == 1 + 4 * 14
