@@ -326,8 +326,11 @@ def _command() -> list[str]:
     """The command line of this run: ``sys.argv`` when the process is this command, else
     (e.g. invoked from Python) the command path and its parameters as ``name=value``."""
     ctx = click.get_current_context()
-    if sys.argv and ctx.find_root().info_name == os.path.basename(sys.argv[0]):
+    root = ctx.find_root().info_name or ""
+    if sys.argv and root == os.path.basename(sys.argv[0]):
         return command_line(sys.argv)
+    if sys.argv and sys.argv[0].endswith("__main__.py") and root.startswith("python -m "):
+        return [*root.split(), *sys.argv[1:]]  # python -m dppverify ...
     return [*ctx.command_path.split(), *(f"{k}={v}" for k, v in ctx.params.items()
                                          if v is not None)]
 
