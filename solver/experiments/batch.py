@@ -469,15 +469,16 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     raw = Path(scen).read_bytes() if Path(scen).is_file() else b""
     config = BatchConfig(config.seed, config.prior, config.connectivity,
                          hashlib.sha256(raw).hexdigest(), config.maps, config.route, checker.rule)
-    done = read_done(output, config)
-    tasks, total = scen_tasks(scen, config, checker, skip=done, chunk=chunk)
-    if on_start is not None:
-        on_start(len(done), total)
-    if limit is not None:
-        tasks = tasks[:limit]
-    out: _Appender | None = None  # created at the first row: a failed start leaves no file
+    lock, created = _lock(output)
+    out: _Appender | None = None
     written = 0
     try:
+        done = read_done(output, config)
+        tasks, total = scen_tasks(scen, config, checker, skip=done, chunk=chunk)
+        if on_start is not None:
+            on_start(len(done), total)
+        if limit is not None:
+            tasks = tasks[:limit]
         for rows in _results(tasks, workers, dask_address):
             if out is None:
                 out = _Appender(output)
@@ -489,7 +490,31 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     finally:
         if out is not None:
             out.close()
+        if created and out is None:  # a run that failed before its first row: no file
+            Path(output).unlink(missing_ok=True)
+        lock.close()
     return written, len(done) + written
+
+
+def _lock(path: str | Path) -> tuple[Any, bool]:
+    """Open ``path`` (creating it) and take an exclusive advisory lock on it, so two runs
+    never append to one file; returns the handle (closing it releases the lock) and whether
+    the file was created."""
+    p = Path(path)
+    created = not p.exists()
+    try:
+        fh = open(p, "ab")  # noqa: SIM115 - held for the whole run
+    except OSError as exc:
+        raise InvalidInstanceError(f"{path}: cannot write ({exc.strerror or exc})") from None
+    if os.name == "posix":
+        import fcntl
+
+        try:
+            fcntl.flock(fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            fh.close()
+            raise InvalidInstanceError(f"{path}: another dpp batch is writing it") from None
+    return fh, created
 
 
 def _results(tasks: list[BatchTask], workers: int,

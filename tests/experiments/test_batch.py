@@ -179,3 +179,15 @@ def test_hostile_inputs_are_one_line_exit_2(tmp_path: Path) -> None:
         assert not (tmp_path / name).exists()
     assert other.read_text() == "a,b\n1,2\n"
     assert tuple(_rows(out)[0]) == FIELDS
+
+
+def test_two_runs_never_append_to_one_file(tmp_path: Path) -> None:
+    fcntl = pytest.importorskip("fcntl")
+    out = tmp_path / "b.csv"
+    run_batch(EMPTY8, out, BatchConfig(), limit=1)
+    before = out.read_bytes()
+    with open(out, "ab") as held:  # another run holds the file
+        fcntl.flock(held.fileno(), fcntl.LOCK_EX)
+        r = CliRunner().invoke(main, ["batch", str(EMPTY8), "-o", str(out), "--no-progress"])
+    assert r.exit_code == 2 and r.output == f"error: {out}: another dpp batch is writing it\n"
+    assert out.read_bytes() == before
