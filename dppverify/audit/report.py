@@ -65,6 +65,9 @@ class AuditReport:
     max_nodes: int = 8
     shrunk: bool = True
     budget_exhausted: bool = False
+    source: str = ""
+    """Where the instances came from (``--instances DIR``, ``--scen FILE``); empty for the
+    random campaign."""
 
     def summary(self) -> str:
         """One line: the verdict and the examples used.
@@ -75,6 +78,8 @@ class AuditReport:
         'audit PASS: 5 examples certified (seed 0, at most 8 nodes)'
         """
         skipped = f", {self.skipped} skipped (tree too large)" if self.skipped else ""
+        if self.source:
+            return self._source_summary(skipped)
         if self.passed:
             return (f"audit PASS: {self.examples} examples certified{skipped} "
                     f"(seed {self.seed}, at most {self.max_nodes} nodes)")
@@ -87,6 +92,20 @@ class AuditReport:
             how = f"shrunk with {self.shrink_calls} more solver calls"
         return (f"audit FAIL after {self.examples} examples{skipped} (seed {self.seed}; "
                 f"{how}): {message}")
+
+    def _source_summary(self, skipped: str) -> str:
+        """The summary of an audit on the user's own instances (``source`` set)."""
+        if self.passed:
+            return f"audit PASS: {self.examples} instances of {self.source} certified{skipped}"
+        message = self.failure.message if self.failure is not None else "?"
+        if not self.shrunk:
+            how = "no shrinking"
+        elif self.budget_exhausted:
+            how = f"pruning stopped at its budget after {self.shrink_calls} solver calls"
+        else:
+            how = f"pruned with {self.shrink_calls} more solver calls"
+        return (f"audit FAIL after {self.examples} instances of {self.source}{skipped} ({how}): "
+                f"{message}")
 
 
 def format_report(report: AuditReport) -> str:

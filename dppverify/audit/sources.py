@@ -1,0 +1,232 @@
+"""Auditing a solver on the user's own instances: a folder of instance files, or a map and a
+``.scen`` file (``dpp audit --instances DIR``, ``dpp audit --map FILE --scen FILE``).
+
+The instances are audited in order (files by name; scenario lines by line number) with the
+same examination as the random campaign (:func:`~dppverify.audit.examine`): the solver runs
+isolated, its profile is certified, the first failure is written to ``out`` at once and then
+shrunk by the greedy pruning pass (:func:`~dppverify.audit.prune_failure`, within the same
+budget). Hypothesis' shrinking does not apply: these instances are not drawn from a strategy.
+
+Examples
+--------
+>>> import json, tempfile
+>>> from pathlib import Path
+>>> from dppverify.examples import triangle_document
+>>> d = Path(tempfile.mkdtemp())
+>>> _ = (d / "triangle.json").write_text(json.dumps(triangle_document()))
+>>> _ = (d / "notes.json").write_text("[1, 2]")
+>>> docs, other = instances_from_dir(d)
+>>> [name for name, _ in docs], other
+(['triangle.json'], ['notes.json'])
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable, Sequence
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+from dppverify.audit.examine import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, Outcome, examine
+from dppverify.audit.pruning import ShrinkBudget, prune_failure
+from dppverify.audit.report import AuditReport, write_failure
+from dppverify.audit.runner import SolverRunner
+from dppverify.errors import AuditError, CheckerError, TreeTooLargeError
+from dppverify.files import read_input
+from dppverify.instance import instance_from_json
+from dppverify.json_reading import parse_json
+
+__all__ = ["MAX_AUDIT_INSTANCES", "audit_documents", "instances_from_dir",
+           "instances_from_scen"]
+
+Doc = dict[str, Any]
+
+MAX_AUDIT_INSTANCES = 100_000
+"""Instances accepted from one folder or ``.scen`` file."""
+
+
+def _plain(x: Any) -> Any:
+    """A parsed document with exact numbers written back as ``"p/q"`` strings."""
+    if isinstance(x, Fraction):
+        return str(x.numerator) if x.denominator == 1 else f"{x.numerator}/{x.denominator}"
+    if isinstance(x, dict):
+        return {k: _plain(v) for k, v in x.items()}
+    if isinstance(x, list):
+        return [_plain(v) for v in x]
+    return x
+
+
+def instances_from_dir(folder: str | Path) -> tuple[list[tuple[str, Doc]], list[str]]:
+    """The instance documents of the ``*.json`` files in ``folder`` (not its subfolders),
+    sorted by name, each checked to be a valid two-goal instance; and the names of the JSON
+    files left out because they are not instance documents (no ``"graph"`` key: profiles,
+    certificates, ``failure.json``), so an audit's failure folder can be audited again.
+
+    Raises
+    ------
+    AuditError
+        The folder is missing or holds no instance file; a file is unreadable, not JSON or
+        an invalid instance (the message names it).
+
+    Examples
+    --------
+    >>> import json, tempfile
+    >>> from dppverify.examples import triangle_document
+    >>> d = Path(tempfile.mkdtemp())
+    >>> _ = (d / "a.json").write_text(json.dumps(triangle_document()))
+    >>> _ = (d / "profile.json").write_text('{"format": "dpp-profile/1"}')
+    >>> docs, other = instances_from_dir(d)
+    >>> [name for name, _ in docs], other, docs[0][1]["prior"]
+    (['a.json'], ['profile.json'], ['7/10', '3/10'])
+    """
+    d = Path(folder)
+    if not d.is_dir():
+        raise AuditError(f"--instances {folder}: not a folder")
+    files = sorted(p for p in d.glob("*.json") if p.is_file())
+    if not files:
+        raise AuditError(f"--instances {folder}: no *.json instance files")
+    if len(files) > MAX_AUDIT_INSTANCES:
+        raise AuditError(f"--instances {folder}: more than {MAX_AUDIT_INSTANCES} files")
+    out, other = [], []
+    for p in files:
+        try:
+            doc = parse_json(read_input(p))
+        except (OSError, ValueError, RecursionError) as exc:
+            raise AuditError(f"{p}: cannot read the instance ({exc})") from None
+        if not isinstance(doc, dict) or "graph" not in doc:
+            other.append(p.name)
+            continue
+        try:
+            instance_from_json(doc)
+        except CheckerError as exc:
+            raise AuditError(f"{p}: {exc}") from None
+        out.append((p.name, _plain(doc)))
+    if not out:
+        raise AuditError(f"--instances {folder}: no instance document among its *.json files")
+    return out, other
+
+
+def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: int = 0,
+                        prior: Sequence[str] = ("1/2", "1/2"), connectivity: int = 4,
+                        ) -> tuple[list[tuple[str, Doc]], list[tuple[int, str]]]:
+    """The two-goal games of the ``.scen`` lines on ``map_file`` (lines naming another map
+    are left out), built as ``dpp batch`` builds them (:mod:`dppverify.scen`: the line's
+    goal first, the fake goal of rule ``dpp-batch/1`` second, ``prior`` in that order).
+
+    Returns the ``("line N", document)`` pairs and the lines that cannot be games, each with
+    the reason.
+
+    Examples
+    --------
+    >>> from dppverify.standard_maps import standard_map_path
+    >>> m = standard_map_path("empty-8-8")
+    >>> docs, bad = instances_from_scen(m, m.with_name("empty-8-8-even-1.scen"))
+    >>> len(docs), bad, docs[0][0], docs[0][1]["goals"]
+    (32, [], 'line 2', [[0, 1], [1, 5]])
+    """
+    from dppverify.movingai import grid_document, read_map
+    from dppverify.scen import component, fake_goal, fake_goal_candidates, parse_scen
+
+    grid = read_map(map_file)
+    try:
+        text = read_input(scen_file).decode("utf-8")
+    except (OSError, ValueError) as exc:
+        raise AuditError(f"--scen {scen_file}: cannot read ({exc})") from None
+    scenarios = parse_scen(text)
+    name = Path(map_file).name
+    mine = [s for s in scenarios if s.reason or Path(s.map).name == name]
+    if not mine:
+        raise AuditError(f"--scen {scen_file}: no scenario line on the map {name}")
+    docs: list[tuple[str, Doc]] = []
+    bad: list[tuple[int, str]] = []
+    for i, sc in enumerate(scenarios):
+        if sc not in mine:
+            continue
+        if sc.reason:
+            bad.append((sc.line, sc.reason))
+            continue
+        if (sc.width, sc.height) != (grid.width, grid.height):
+            bad.append((sc.line, f"the line gives the map as {sc.width}x{sc.height}; "
+                                 f"{name} is {grid.width}x{grid.height}"))
+            continue
+        cells = [c for c in (sc.start, sc.goal) if not grid.free(*c)]
+        if cells:
+            bad.append((sc.line, f"cell {cells[0][0]},{cells[0][1]} is outside the map or "
+                                 "an obstacle"))
+            continue
+        reach = component(grid.free, grid.height, grid.width, sc.start, connectivity)
+        fake = fake_goal(fake_goal_candidates(scenarios, i, seed), reach.__contains__)
+        if sc.start == sc.goal or sc.goal not in reach or fake is None:
+            bad.append((sc.line, "the start is the goal, the goal is unreachable, or no "
+                                 "fake goal"))
+            continue
+        doc = grid_document(grid, sc.start, (sc.goal, fake), list(prior),
+                            connectivity=connectivity)
+        docs.append((f"line {sc.line}", _plain(doc)))
+    if len(docs) > MAX_AUDIT_INSTANCES:
+        raise AuditError(f"--scen {scen_file}: more than {MAX_AUDIT_INSTANCES} games")
+    return docs, bad
+
+
+def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], *,
+                    source: str, out: str | Path | None = None, shrink: bool = True,
+                    max_prefixes: int = AUDIT_MAX_PREFIXES, trials: int = AUDIT_TRIALS,
+                    seed: int = 0, budget: ShrinkBudget | None = None,
+                    progress: bool = False,
+                    log: Callable[[str], None] | None = None) -> AuditReport:
+    """Audit ``runner`` on the given ``(name, document)`` pairs, in order; stop at the first
+    failure, write it to ``out``, shrink it with the pruning pass.
+
+    Examples
+    --------
+    >>> from dppverify.audit import PythonRunner
+    >>> from dppverify.examples import triangle_document, triangle_profile
+    >>> with PythonRunner(lambda doc: triangle_profile(), timeout=30) as run:
+    ...     report = audit_documents(run, [("t", triangle_document())], source="mine")
+    >>> report.passed, report.summary()
+    (True, 'audit PASS: 1 instances of mine certified')
+    """
+    from tqdm import tqdm
+
+    budget = budget if budget is not None else ShrinkBudget()
+    examples = skipped = 0
+    first: Outcome | None = None
+    files: tuple[Path, ...] = ()
+    with tqdm(total=len(documents), desc="audit", unit="inst", disable=not progress,
+              file=sys.stderr, leave=False) as bar:
+        for name, doc in documents:
+            try:
+                outcome = examine(runner, doc, max_prefixes=max_prefixes, trials=trials,
+                                  seed=seed)
+            except TreeTooLargeError:
+                skipped += 1
+                bar.update(1)
+                continue
+            examples += 1
+            bar.update(1)
+            if not outcome.passed:
+                first = outcome
+                if out is not None:
+                    files = write_failure(outcome, out, seed=seed)
+                if log is not None:
+                    where = f"; written to {out}" if out is not None else ""
+                    plan = f"; shrinking it (budget: {budget.describe()})" if shrink else ""
+                    log(f"audit: {source}: {name} fails {outcome.check}{where}{plan}")
+                break
+    if first is None:
+        return AuditReport(True, examples, skipped, 0, None, None, seed=seed, source=source)
+    minimal = first
+    if shrink:
+        budget.start()
+
+        def improved(o: Outcome) -> None:
+            nonlocal files
+            if out is not None:
+                files = write_failure(o, out, seed=seed)
+
+        minimal, _ = prune_failure(runner, first, max_prefixes=max_prefixes, trials=trials,
+                                   seed=seed, budget=budget, on_improve=improved)
+    return AuditReport(False, examples, skipped, budget.used, minimal, first, files, seed,
+                       shrunk=shrink, budget_exhausted=shrink and budget.exhausted,
+                       source=source)

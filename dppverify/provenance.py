@@ -1,0 +1,299 @@
+"""Certificate provenance: what a certificate certified, and re-checking it later.
+
+A ``dpp-certificate/1`` document carries a ``provenance`` record (``docs/formats.md`` §3,
+"Provenance"): the sha256 of the instance and of the profile, over documented bytes, the
+dppverify version that wrote it, the route, the number mode and the command line.
+
+The hashed bytes:
+
+- an input given as a **file** (a path): the file's bytes exactly as read (``"bytes":
+  "file"``), so any change of any byte — even whitespace — changes the hash;
+- an input given as **JSON bytes/text**: those bytes (UTF-8 for text), ``"bytes": "file"``
+  too;
+- an input given as a **document** (a dict, or an object with ``to_json()``): its canonical
+  JSON serialisation (``"bytes": "canonical-json"``): :func:`canonical_json`, keys sorted,
+  no whitespace, UTF-8, non-ASCII characters kept;
+- an :class:`~dppverify.instance.Instance` object has no bytes: ``sha256`` is null and
+  ``"bytes": "object"``;
+- a ``--map`` grid: the canonical JSON of the grid's instance document (``"bytes":
+  "canonical-json"``), plus ``"map": {"path", "sha256"}`` of the ``.map`` file's bytes.
+
+:func:`verify_provenance` recomputes the hashes of given files and names every mismatch in
+one line (``dpp certify --verify-provenance CERT INSTANCE PROFILE``).
+
+Examples
+--------
+>>> from dppverify.examples import triangle_document, triangle_profile
+>>> rec = input_record(triangle_document())
+>>> rec["bytes"], len(rec["sha256"])
+('canonical-json', 64)
+>>> input_record(b"{}")["sha256"][:12]
+'44136fa355b3'
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from dppverify.errors import CertificateError, InvalidInstanceError
+from dppverify.files import read_input
+
+__all__ = ["PROVENANCE_KEYS", "ProvenanceCheck", "canonical_json", "file_sha256",
+           "input_record", "provenance_record", "verify_provenance"]
+
+PROVENANCE_KEYS = ("instance", "profile", "dppverify", "route", "numbers", "command")
+"""The keys of a certificate's ``provenance`` record, in the order written."""
+
+
+def canonical_json(doc: Any) -> bytes:
+    """The canonical JSON bytes of a document: sorted keys, no whitespace, UTF-8.
+
+    ``Fraction`` values (in documents built in Python) are written as ``"p/q"`` strings, the
+    form every writer of the formats uses.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> canonical_json({"b": [1, 2], "a": "é", "c": Fraction(3, 5)})
+    b'{"a":"\\xc3\\xa9","b":[1,2],"c":"3/5"}'
+    """
+    def default(x: Any) -> Any:
+        from fractions import Fraction
+
+        if isinstance(x, Fraction):
+            return f"{x.numerator}/{x.denominator}" if x.denominator != 1 else str(x.numerator)
+        if isinstance(x, tuple):  # pragma: no cover - json handles tuples itself
+            return list(x)
+        raise TypeError(f"{type(x).__name__} is not JSON serializable")
+
+    return json.dumps(doc, sort_keys=True, separators=(",", ":"), ensure_ascii=False,
+                      default=default).encode("utf-8")
+
+
+def file_sha256(path: str | Path) -> str:
+    """The sha256 (hex) of a file's bytes as read (refusing files above the input limit).
+
+    Raises
+    ------
+    OSError, ValueError
+        Unreadable file; file above the input size limit.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> with tempfile.NamedTemporaryFile("wb", delete=False) as f:
+    ...     _ = f.write(b"{}")
+    >>> file_sha256(f.name) == hashlib.sha256(b"{}").hexdigest()
+    True
+    >>> os.unlink(f.name)
+    """
+    return hashlib.sha256(read_input(path)).hexdigest()
+
+
+def input_record(source: Any) -> dict[str, Any]:
+    """``{"sha256": hex or None, "bytes": how}`` of an input as given to ``certify``.
+
+    Parameters
+    ----------
+    source : path, bytes, str, Mapping, or an object
+        A ``str``/``Path`` is a file path; ``bytes`` are the document's bytes; a ``Mapping``
+        or an object with ``to_json()`` is hashed by :func:`canonical_json`; anything else
+        has no bytes (``sha256`` None).
+
+    Examples
+    --------
+    >>> input_record({"a": 1}) == {"sha256": hashlib.sha256(b'{"a":1}').hexdigest(),
+    ...                            "bytes": "canonical-json"}
+    True
+    >>> input_record(object())
+    {'sha256': None, 'bytes': 'object'}
+    """
+    if isinstance(source, bytes):
+        return {"sha256": hashlib.sha256(source).hexdigest(), "bytes": "file"}
+    if isinstance(source, str | Path):
+        try:
+            return {"sha256": file_sha256(source), "bytes": "file"}
+        except (OSError, ValueError):  # already reported by the reader, or vanished since
+            return {"sha256": None, "bytes": "file"}
+    doc: Any = source
+    to_json = getattr(source, "to_json", None)
+    if not isinstance(source, Mapping) and callable(to_json):
+        doc = to_json()
+    if isinstance(doc, Mapping):
+        try:
+            return {"sha256": hashlib.sha256(canonical_json(doc)).hexdigest(),
+                    "bytes": "canonical-json"}
+        except (TypeError, ValueError):
+            pass
+    return {"sha256": None, "bytes": "object"}
+
+
+def provenance_record(instance: Any, profile: Any, *, route: str, exact: bool,
+                      command: Sequence[str] | None = None) -> dict[str, Any]:
+    """The ``provenance`` record of a certificate (see the module docstring).
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle_document, triangle_profile
+    >>> rec = provenance_record(triangle_document(), triangle_profile(), route="tree",
+    ...                         exact=True)
+    >>> list(rec) == list(PROVENANCE_KEYS), rec["numbers"], rec["command"]
+    (True, 'exact', None)
+    """
+    from dppverify import __version__
+
+    return {"instance": input_record(instance), "profile": input_record(profile),
+            "dppverify": __version__, "route": route,
+            "numbers": "exact" if exact else "float",
+            "command": None if command is None else [str(a) for a in command]}
+
+
+@dataclass(frozen=True)
+class ProvenanceCheck:
+    """The result of :func:`verify_provenance`.
+
+    Attributes
+    ----------
+    mismatches : tuple of str
+        One phrase per input whose hash differs (empty when everything matches).
+    line : str
+        One line for humans: what matches or what does not.
+    """
+
+    mismatches: tuple[str, ...]
+    line: str
+
+    @property
+    def ok(self) -> bool:
+        """True when every recorded hash matches."""
+        return not self.mismatches
+
+
+def _short(h: Any) -> str:
+    return str(h)[:12] if h else "none"
+
+
+def verify_provenance(certificate: Mapping[str, Any], instance: Any, profile: Any, *,
+                      map_file: str | Path | None = None) -> ProvenanceCheck:
+    """Re-check the hashes a certificate recorded against the given inputs.
+
+    Parameters
+    ----------
+    certificate : Mapping
+        A ``dpp-certificate/1`` document with a ``provenance`` record.
+    instance, profile : path, bytes or document
+        The inputs, hashed as :func:`input_record` does (a file path hashes its bytes; a
+        document, its canonical JSON) — the same way as when certifying.
+    map_file : path, optional
+        For a certificate of a ``--map`` grid: the ``.map`` file, checked against
+        ``provenance.instance.map.sha256`` (``instance`` is then the grid's document).
+
+    Returns
+    -------
+    ProvenanceCheck
+
+    Raises
+    ------
+    CertificateError
+        The certificate has no usable ``provenance`` record.
+    InvalidInstanceError
+        An input file cannot be read.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle_document, triangle_profile
+    >>> cert = {"format": "dpp-certificate/1", "provenance": provenance_record(
+    ...     triangle_document(), triangle_profile(), route="tree", exact=True)}
+    >>> verify_provenance(cert, triangle_document(), triangle_profile()).ok
+    True
+    >>> other = triangle_document(("1/4", "3/4"))
+    >>> verify_provenance(cert, other, triangle_profile()).line  # doctest: +ELLIPSIS
+    'provenance MISMATCH: instance sha256 differs: recorded ..., given ... (profile matches)'
+    """
+    from dppverify import __version__
+
+    prov = certificate.get("provenance") if isinstance(certificate, Mapping) else None
+    if not isinstance(prov, Mapping):
+        raise CertificateError("the certificate has no provenance record (written by a "
+                               "dppverify without provenance, or edited)")
+    mismatches: list[str] = []
+    matched: list[str] = []
+    inputs: list[tuple[str, Any, Any]] = [("instance", instance, prov.get("instance")),
+                                          ("profile", profile, prov.get("profile"))]
+    for name, source, rec in inputs:
+        if not isinstance(rec, Mapping) or not isinstance(rec.get("sha256"), str):
+            mismatches.append(f"{name}: no sha256 recorded")
+            continue
+        given = _given_record(name, source)
+        if given["sha256"] != rec["sha256"]:
+            how = "" if given["bytes"] == rec.get("bytes") else (
+                f" (recorded over {rec.get('bytes')} bytes, given as {given['bytes']})")
+            mismatches.append(f"{name} sha256 differs: recorded {_short(rec['sha256'])}..., "
+                              f"given {_short(given['sha256'])}...{how}")
+        else:
+            matched.append(name)
+        if name == "instance" and map_file is not None:
+            mrec = rec.get("map") if isinstance(rec, Mapping) else None
+            if not isinstance(mrec, Mapping) or not isinstance(mrec.get("sha256"), str):
+                mismatches.append("map: the certificate records no .map file (not made with "
+                                  "--map)")
+            else:
+                got = _given_record("map", str(map_file))["sha256"]
+                if got != mrec["sha256"]:
+                    mismatches.append(f"map sha256 differs: recorded {_short(mrec['sha256'])}"
+                                      f"..., given {_short(got)}...")
+                else:
+                    matched.append("map")
+    version = prov.get("dppverify")
+    note = "" if version == __version__ else (
+        f"; certified by dppverify {version}, this is {__version__}")
+    if mismatches:
+        ok = f" ({', '.join(matched)} match{'es' if len(matched) == 1 else ''})" \
+            if matched else ""
+        return ProvenanceCheck(tuple(mismatches),
+                               f"provenance MISMATCH: {'; '.join(mismatches)}{ok}{note}")
+    return ProvenanceCheck((), f"provenance OK: {', '.join(matched)} match the certificate "
+                               f"(sha256; route {prov.get('route')}, {prov.get('numbers')} "
+                               f"numbers, dppverify {version}){note}")
+
+
+def _given_record(name: str, source: Any) -> dict[str, Any]:
+    if isinstance(source, str | Path):
+        try:
+            return {"sha256": file_sha256(source), "bytes": "file"}
+        except (OSError, ValueError) as exc:
+            raise InvalidInstanceError(f"{source}: cannot read the {name} file ({exc})") \
+                from None
+    return input_record(source)
+
+
+def grid_document_of(map_path: str | Path, start: Any, goals: Any, prior: Any,
+                     connectivity: int) -> dict[str, Any]:
+    """The instance document of a ``--map`` grid (what its provenance hashes)."""
+    from dppverify.movingai import grid_document, read_map
+
+    return grid_document(read_map(map_path), start, goals, prior, connectivity=connectivity)
+
+
+def grid_record(map_path: str | Path, document: Mapping[str, Any]) -> dict[str, Any]:
+    """The ``instance`` provenance of a ``--map`` grid: the canonical JSON hash of its
+    instance ``document`` and ``"map": {"path", "sha256"}`` of the ``.map`` file's bytes."""
+    rec = input_record(document)
+    rec["map"] = {"path": str(map_path), "sha256": input_record(str(map_path))["sha256"]}
+    return rec
+
+
+def command_line(argv: Sequence[str]) -> list[str]:
+    """The command recorded in a certificate: ``argv`` with the program's directory removed.
+
+    Examples
+    --------
+    >>> command_line(["/usr/bin/dpp", "certify", "i.json", "p.json"])
+    ['dpp', 'certify', 'i.json', 'p.json']
+    """
+    return [Path(argv[0]).name if argv else "", *argv[1:]]

@@ -1,0 +1,153 @@
+"""MovingAI ``.scen`` scenario files and the seeded fake-goal rule ``dpp-batch/1``.
+
+A ``.scen`` file (MovingAI benchmark format, version 1) has a header line ``version 1`` and
+one scenario per line, nine tab-separated fields::
+
+    bucket  map  width  height  start_x  start_y  goal_x  goal_y  optimal_length
+
+``x`` is the column and ``y`` the row; our cells are ``(row, col)``, so the start is
+``(start_y, start_x)``. The fake goal of a line (for a two-goal game) is chosen by
+:func:`fake_goal_candidates` and :func:`fake_goal`: the goal cells of the other lines of the
+same map, permuted by a seeded rule, the first one in the start's component taken. Both
+``dpp batch`` (the solver's side) and ``dpp audit --map FILE --scen FILE`` (the checker's)
+use this module, so they build the same games.
+"""
+
+from __future__ import annotations
+
+import random
+from collections import deque
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+from dppverify.errors import InvalidInstanceError
+
+__all__ = ["BATCH_RULE", "MAX_SCEN_LINES", "Scenario", "component", "fake_goal",
+           "fake_goal_candidates", "parse_scen"]
+
+Cell = tuple[int, int]
+
+BATCH_RULE = "dpp-batch/1"
+"""The name of the fake-goal rule."""
+
+MAX_SCEN_LINES = 1_000_000
+"""Scenario lines accepted in one file."""
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """One line of a ``.scen`` file: ``line`` (1-based), the map name as written, its size
+    as the line states it, and the start and goal as ``(row, col)``; or, for a bad line,
+    ``reason``."""
+
+    line: int
+    map: str = ""
+    width: int = 0
+    height: int = 0
+    start: Cell = (0, 0)
+    goal: Cell = (0, 0)
+    reason: str = ""
+
+
+def parse_scen(text: str) -> list[Scenario]:
+    """The scenario lines of a ``.scen`` file (blank lines and the ``version`` header skipped).
+
+    A malformed line is a :class:`Scenario` with a ``reason``.
+
+    Examples
+    --------
+    >>> text = "version 1\\n0\\tm.map\\t8\\t8\\t0\\t1\\t7\\t6\\t12.5\\n\\nbad line\\n"
+    >>> a, b = parse_scen(text)
+    >>> a.line, a.map, a.start, a.goal
+    (2, 'm.map', (1, 0), (6, 7))
+    >>> b.line, b.reason[:45]
+    (4, 'malformed scenario line: 2 fields, expected 9')
+    """
+    out: list[Scenario] = []
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip()
+        if not line or (number == 1 and line.lower().startswith("version")):
+            continue
+        if len(out) >= MAX_SCEN_LINES:
+            raise InvalidInstanceError(f"more than {MAX_SCEN_LINES} scenario lines")
+        parts = line.split("\t") if "\t" in line else line.split()
+        if len(parts) != 9:
+            out.append(Scenario(number, reason=f"malformed scenario line: {len(parts)} fields, "
+                                "expected 9 (bucket, map, width, height, start_x, start_y, "
+                                "goal_x, goal_y, optimal_length)"))
+            continue
+        try:
+            w, h, sx, sy, gx, gy = (int(p) for p in parts[2:8])
+            float(parts[8])
+        except ValueError:
+            out.append(Scenario(number, reason="malformed scenario line: width, height and "
+                                "the cells must be integers, the length a number"))
+            continue
+        out.append(Scenario(number, parts[1].strip(), w, h, (sy, sx), (gy, gx)))
+    return out
+
+
+def fake_goal_candidates(scenarios: Sequence[Scenario], index: int, seed: int) -> list[Cell]:
+    """The fake-goal candidates of ``scenarios[index]``, in the order the rule tries them.
+
+    The goal cells of the other well-formed lines of the same map, in file order, without
+    repeats and without the line's own start and goal, permuted by
+    ``random.Random(f"dpp-batch:{seed}:{line}")``.
+
+    Examples
+    --------
+    >>> sc = [Scenario(2, "m", 4, 4, (0, 0), (3, 3)), Scenario(3, "m", 4, 4, (1, 1), (0, 3)),
+    ...       Scenario(4, "m", 4, 4, (2, 2), (3, 0)), Scenario(5, "x", 4, 4, (0, 1), (1, 0))]
+    >>> fake_goal_candidates(sc, 0, seed=0), fake_goal_candidates(sc, 0, seed=1)
+    ([(0, 3), (3, 0)], [(3, 0), (0, 3)])
+    """
+    me = scenarios[index]
+    seen: list[Cell] = []
+    for other in scenarios:
+        if other.line == me.line or other.reason or other.map != me.map:
+            continue
+        if other.goal in (me.start, me.goal) or other.goal in seen:
+            continue
+        seen.append(other.goal)
+    random.Random(f"dpp-batch:{seed}:{me.line}").shuffle(seen)
+    return seen
+
+
+def component(free: Callable[[int, int], bool], height: int, width: int, start: Cell,
+              connectivity: int = 4) -> set[Cell]:
+    """The free cells reachable from ``start`` (4- or 8-connected; 8 without corner cutting).
+
+    Examples
+    --------
+    >>> rows = ["..@", "@.@", "..."]
+    >>> sorted(component(lambda r, c: rows[r][c] == ".", 3, 3, (0, 0)))
+    [(0, 0), (0, 1), (1, 1), (2, 0), (2, 1), (2, 2)]
+    """
+    seen = {start}
+    queue = deque([start])
+    steps = [(-1, 0), (1, 0), (0, -1), (0, 1)]
+    if connectivity == 8:
+        steps += [(-1, -1), (-1, 1), (1, -1), (1, 1)]
+    while queue:
+        r, c = queue.popleft()
+        for dr, dc in steps:
+            rr, cc = r + dr, c + dc
+            if not (0 <= rr < height and 0 <= cc < width) or (rr, cc) in seen \
+                    or not free(rr, cc):
+                continue
+            if dr and dc and not (free(r + dr, c) and free(r, c + dc)):
+                continue
+            seen.add((rr, cc))
+            queue.append((rr, cc))
+    return seen
+
+
+def fake_goal(candidates: Sequence[Cell], reachable: Callable[[Cell], bool]) -> Cell | None:
+    """The first candidate that is reachable (None when none is).
+
+    Examples
+    --------
+    >>> fake_goal([(0, 3), (3, 0)], lambda cell: cell != (0, 3))
+    (3, 0)
+    """
+    return next((g for g in candidates if reachable(g)), None)

