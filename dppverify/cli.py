@@ -20,7 +20,7 @@ from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli_conventions import output_file_option, progress_option, status, want_progress
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
-from dppverify.errors import CheckerError, OptionError
+from dppverify.errors import CheckerError, OptionError, UndecidedError
 from dppverify.exact import format_number
 from dppverify.instance import Instance, load_instance
 from dppverify.limits import MAX_HORIZON, MAX_TRIALS
@@ -35,7 +35,7 @@ from dppverify.tree import DEFAULT_MAX_PREFIXES
 from dppverify.value_dp import StructuredValue
 from dppverify.value_lp import GameValue
 
-__all__ = ["COMMANDS", "CONSISTENCY_HEADING", "HORIZON", "CertifyHorizonParam",
+__all__ = ["COMMANDS", "CONSISTENCY_HEADING", "FACTS_HEADING", "HORIZON", "CertifyHorizonParam",
            "ErrorReportingGroup", "HorizonParam", "certify_command", "export_efg_command",
            "format_table", "load_game", "value_command"]
 
@@ -43,6 +43,9 @@ NUMBERS_WIDTH = 44
 
 CONSISTENCY_HEADING = ("consistency checks (the checker's own computations compared; a failure "
                        "is the checker's fault, not counted above):")
+
+FACTS_HEADING = ("facts about the profile and the instance (the paper's lemmas, whether this is "
+                 "the paper's construction; reported beside the verdict, never deciding it):")
 
 
 
@@ -68,6 +71,9 @@ class ErrorReportingGroup(click.Group):
     def invoke(self, ctx: click.Context) -> Any:
         try:
             return super().invoke(ctx)
+        except UndecidedError as exc:  # "could not decide": exit 3
+            click.echo(f"undecided: {' '.join(str(exc).split())}", err=True)
+            ctx.exit(3)
         except self.user_errors as exc:
             click.echo(f"error: {' '.join(str(exc).split())}", err=True)
             ctx.exit(2)
@@ -92,6 +98,9 @@ def _usage_error(exc: click.UsageError) -> None:
 
 
 def _fail(exc: CheckerError) -> None:
+    if isinstance(exc, UndecidedError):  # "could not decide": exit 3, never a verdict
+        click.echo(f"undecided: {' '.join(str(exc).split())}", err=True)
+        raise click.exceptions.Exit(3)
     click.echo(f"error: {exc}", err=True)
     raise click.exceptions.Exit(2)
 
@@ -138,28 +147,35 @@ def format_table(cert: Certificate) -> str:
     tally = f"{passed}/{total} checks passed"
     if counts["consistency"][1]:
         tally += "; {}/{} consistency checks agree".format(*counts["consistency"])
+    if counts["fact"][1]:
+        tally += "; {}/{} facts hold".format(*counts["fact"])
     mode = "exact" if cert.exact else f"float mode, relative tolerance {cert.tolerance:g}"
+    game = cert.game_line()
     if cert.route == "structured":
-        h = "inf" if cert.horizon is None else str(cert.horizon)
         skipped = f"; not run: {', '.join(cert.not_run)}" if cert.not_run else ""
-        head = (f"verdict: {cert.verdict.upper()} ({tally}; "
-                f"H = {h}, structured route (no walk tree), {mode}{skipped})")
+        head = (f"verdict: {cert.verdict.upper()} for {game} ({tally}; structured route (no "
+                f"walk tree), {mode}{skipped})")
     else:
         both = ", both routes" if cert.route == "both" else ""
-        head = (f"verdict: {cert.verdict.upper()} ({tally}; "
-                f"H = {cert.horizon}, {cert.prefixes} prefixes{both}, {mode}; LP "
+        head = (f"verdict: {cert.verdict.upper()} for {game} ({tally}; "
+                f"{cert.prefixes} prefixes{both}, {mode}; LP "
                 f"{cert.lp_solver} agreement within {cert.lp_tolerance:g} relative)")
     evidence = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("check")]
     own = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("consistency")]
-    rows = [("check", "status", "numbers", "message"), *evidence, *own]
+    facts = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("fact")]
+    rows = [("check", "status", "numbers", "message"), *evidence, *own, *facts]
     w0 = max(len(r[0]) for r in rows)
     w1 = max(len(r[1]) for r in rows)
     w2 = max(len(r[2]) for r in rows)
-    lines = [head] + [f"{a:<{w0}}  {b:<{w1}}  {c:<{w2}}  {d}".rstrip()
-                      for a, b, c, d in rows[:1 + len(evidence)]]
-    if own:
-        lines.append(CONSISTENCY_HEADING)
-        lines += [f"{a:<{w0}}  {b:<{w1}}  {c:<{w2}}  {d}".rstrip() for a, b, c, d in own]
+    note = cert.truncation_note()
+    lines = [head] + ([f"note: {note}"] if note else [])
+    lines += [f"{a:<{w0}}  {b:<{w1}}  {c:<{w2}}  {d}".rstrip()
+              for a, b, c, d in rows[:1 + len(evidence)]]
+    for heading, group in ((CONSISTENCY_HEADING, own), (FACTS_HEADING, facts)):
+        if group:
+            lines.append(heading)
+            lines += [f"{a:<{w0}}  {b:<{w1}}  {c:<{w2}}  {d}".rstrip()
+                      for a, b, c, d in group]
     return "\n".join(lines)
 
 
@@ -222,9 +238,9 @@ def load_game(instance: str | None, grid: MapRequest | None) -> Instance:
 @click.argument("profile", required=False, type=click.Path(dir_okay=False), metavar="PROFILE")
 @map_options
 @click.option("-H", "--horizon", type=CertifyHorizonParam(),
-              help="Horizon H of the truncated game (default: the longest profile path, or "
-                   "'inf' when that tree does not fit and --route is auto), or 'inf' for the "
-                   "untruncated game (structured route).")
+              help="Certify the game truncated at H steps instead (an explicit request; the "
+                   "verdict then names that game). Default, or 'inf': the untruncated game, "
+                   "by the structured route.")
 @click.option("--route", type=click.Choice(ROUTES), default="auto", show_default=True,
               help="tree: the walk tree; structured: shortest paths and the value DP, no tree "
                    "(docs/checker.md); auto: the tree when it fits --max-prefixes, else "
@@ -244,19 +260,22 @@ def load_game(instance: str | None, grid: MapRequest | None) -> Instance:
 def certify_command(instance: str | None, profile: str | None, grid: MapRequest | None,
                     horizon: int | str | None, route: Route, as_json: bool, max_prefixes: int,
                     float_mode: bool, seed: int, trials: int, progress: bool | None) -> None:
-    """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE.
+    """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE's game.
 
-    PROFILE is a dpp-profile/1 JSON file (from `dpp solve -o` or any other solver); for an
-    instance with more than two goals, a dpp-ngoal-profile/1 file (docs/formats.md). With
-    --map, the game is the grid and the only argument is PROFILE. Bad input exits 2 with a
-    one-line message.
+    Without --horizon the game is the untruncated one (H = inf); --horizon H certifies the
+    game truncated at H, and the verdict says so. The paper's lemmas are reported beside the
+    verdict as facts and never decide it. PROFILE is a dpp-profile/1 JSON file (from `dpp
+    solve -o` or any other solver); for an instance with more than two goals, a
+    dpp-ngoal-profile/1 file (docs/formats.md). With --map, the game is the grid and the only
+    argument is PROFILE. Bad input exits 2 with a one-line message; a profile the untruncated
+    game cannot be decided for (a table Defender without "default") exits 3.
 
     \b
     Examples:
       dpp solve examples/triangle.json -o profile.json
       dpp certify examples/triangle.json profile.json
-      dpp certify examples/triangle.json profile.json --horizon 4 --json
-      dpp certify examples/triangle.json profile.json --horizon inf
+      dpp certify examples/triangle.json profile.json --json
+      dpp certify examples/triangle.json profile.json --horizon 4
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
     """
     try:
@@ -382,9 +401,9 @@ def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route
 @click.command("value")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
-@click.option("-H", "--horizon", type=HORIZON, required=True,
-              help="Horizon H of the truncated game, or 'inf' for the untruncated game "
-                   "(structured route).")
+@click.option("-H", "--horizon", type=HORIZON, default=None,
+              help="Horizon H of the truncated game (an explicit request), or 'inf' for the "
+                   "untruncated game (structured route; the default).")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 @click.option("--route", type=click.Choice(ROUTES), default="auto", show_default=True,
               help="tree: the walk tree's LP; structured: the tree-free DP (docs/checker.md); "
@@ -396,7 +415,7 @@ def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route
 def value_command(instance: str | None, grid: MapRequest | None, horizon: int | None,
                   as_json: bool, route: Route, max_prefixes: int,
                   progress: bool | None) -> None:
-    """Print V_H, the value of INSTANCE's game truncated at H steps.
+    """Print the value of INSTANCE's game: untruncated (H = inf) unless --horizon H is given.
 
     Tree route: the compact LP (cvxpy + Clarabel) on the walk tree gives a float; rounding
     its primal and dual solutions to rationals gives exact bounds, which usually meet.
@@ -407,9 +426,9 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
 
     \b
     Examples:
+      dpp value examples/triangle.json
       dpp value examples/triangle.json --horizon 4
       dpp value examples/triangle.json -H 4 --json --route both
-      dpp value examples/triangle.json --horizon inf
       dpp value --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 6
     """
     if instance is not None and grid is None and is_ngoal_file(instance):

@@ -40,8 +40,9 @@ from pathlib import Path
 from typing import Any, Literal
 
 from dppverify.certificate import Certificate, CheckRecord, Status, merge_routes
-from dppverify.errors import HorizonError, LPError
+from dppverify.errors import HorizonError, LPError, UndecidedError
 from dppverify.exact import Number, normalize
+from dppverify.horizons import parse_horizon
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
 from dppverify.ngoal.best_response import (
     NTreeDefender,
@@ -115,9 +116,9 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     profile : dict or path
         A ``dpp-ngoal-profile/1`` document.
     horizon : int, "inf" or None
-        ``H`` (default: the longest walk of the profile; with ``route="auto"`` and a tree
-        above ``max_prefixes``, the untruncated game). ``"inf"``: the untruncated game
-        (structured route only).
+        None (default) or ``"inf"``: the untruncated game, by the structured route (the
+        Defender needs a ``default``; without one :class:`~dppverify.errors.UndecidedError`,
+        exit 3). An integer ``H``: the game truncated at ``H``, an explicit request.
     max_prefixes : int
         Size guard of the walk tree.
     route : {"auto", "tree", "structured", "both"}
@@ -161,10 +162,11 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     prof = nprofile_from_json(inst, doc)
     if route not in ("auto", "tree", "structured", "both"):
         raise ValueError(f"unknown route {route!r}")
-    if isinstance(horizon, int) and horizon < prof.longest:
-        raise HorizonError(f"the horizon H = {horizon} is shorter than the profile's longest "
+    asked = parse_horizon(horizon)
+    if asked is not None and asked < prof.longest:
+        raise HorizonError(f"the horizon H = {asked} is shorter than the profile's longest "
                            f"walk ({prof.longest} steps)")
-    chosen, h = _choose_route(inst, prof, horizon, route, max_prefixes)
+    chosen, h = _choose_route(inst, prof, asked, route, max_prefixes)
     tree_checks: list[CheckRecord] = []
     tree: NWalkTree | None = None
     if chosen in ("tree", "both"):
@@ -186,21 +188,31 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
                        not_run=dict(NSTRUCTURED_NOT_RUN) if chosen == "structured" else {})
 
 
-def _choose_route(inst: NInstance, prof: NProfile, horizon: int | Literal["inf"] | None,
+def _choose_route(inst: NInstance, prof: NProfile, horizon: int | None,
                   route: NRoute, max_prefixes: int
                   ) -> tuple[Literal["tree", "structured", "both"], int | None]:
-    """The route(s) to run and the horizon (None: the untruncated game)."""
-    if horizon == "inf":
+    """The route(s) to run and the horizon (None: the untruncated game, the default)."""
+    if horizon is None:
         if route in ("tree", "both"):
-            raise HorizonError("the tree route needs a finite horizon (--horizon inf is the "
-                               "structured route's)")
+            raise HorizonError(f"--route {route} needs a finite horizon: the walk tree is the "
+                               f"truncated game's (give --horizon H; without a horizon the "
+                               f"untruncated game is certified by the structured route)")
+        if prof.default is None and not prof.defects:
+            raise UndecidedError(NTABLE_UNDECIDED)
         return "structured", None
-    h = prof.longest if horizon is None else horizon
+    h = horizon
     if route == "auto":
         if ntree_fits(inst, max(h, inst.hops[inst.start]), max_prefixes):
             return "tree", h
-        return "structured", None if horizon is None else h
+        return "structured", h
     return route, h
+
+
+NTABLE_UNDECIDED = (
+    "the untruncated game (H = inf) cannot be decided for this profile: its Defender table has "
+    "no \"default\", so it is undefined on the walks the table does not list; a \"default\" "
+    "distribution would decide it, or --horizon H certifies the game truncated at H")
+"""Why an N-goal table without default cannot be certified on the untruncated game."""
 
 
 def _tree_checks(inst: NInstance, prof: NProfile, h: int,
