@@ -295,15 +295,16 @@ class Certificate:
         raise KeyError(check_id)
 
     def of_kind(self, kind: Kind) -> tuple[CheckRecord, ...]:
-        """The records of ``kind`` (``check``: evidence; ``consistency``: the checker's own
-        computations compared, reported apart from the pass count).
+        """The records of ``kind`` (``check``: evidence for the verdict; ``consistency``: the
+        checker's own computations compared, reported apart from the pass count; ``fact``:
+        the paper's lemmas and construction, reported beside the verdict).
 
         Examples
         --------
         >>> c = Certificate(checks=(CheckRecord("value.U", "pass", ""),
         ...     CheckRecord("pbne.belief_consistency", "pass", "")), horizon=1, exact=True)
         >>> [r.id for r in c.of_kind("consistency")], c.counts()
-        (['pbne.belief_consistency'], {'check': (1, 1), 'consistency': (1, 1)})
+        (['pbne.belief_consistency'], {'check': (1, 1), 'consistency': (1, 1), 'fact': (0, 0)})
         """
         return tuple(c for c in self.checks if c.kind == kind)
 
