@@ -66,8 +66,15 @@ from dppverify.routes import Route, tree_fits
 from dppverify.structured import structured_checks
 from dppverify.tree import DEFAULT_MAX_PREFIXES, build_tree
 
-__all__ = ["CHECK_IDS", "DEFAULT_TRIALS", "FLOAT_MODE_REFUSED", "certify", "shortest_horizon",
-           "in_registry_order", "resolve_instance"]
+__all__ = [
+    "CHECK_IDS",
+    "DEFAULT_TRIALS",
+    "FLOAT_MODE_REFUSED",
+    "certify",
+    "in_registry_order",
+    "resolve_instance",
+    "shortest_horizon",
+]
 
 DEFAULT_TRIALS = 5
 """Random non-reacting attackers tried by the L3 and L4 checks."""

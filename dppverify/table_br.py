@@ -232,7 +232,7 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
                 if len(p) > 1 and instance.is_goal(p[-1]):
                     continue
                 for u, _ in instance.succ[p[-1]]:
-                    if p + (u,) not in in_trie and not instance.is_goal(u):
+                    if (*p, u) not in in_trie and not instance.is_goal(u):
                         exits.add((u, min(cmin[p], dg[u])))
         prog_exit = (_progress_exit(instance, roles, pgoal, theta, same, exits)
                      if progress and exits else {})
@@ -244,7 +244,7 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
                 continue
             best: Number = INF
             for u, w in instance.succ[v]:
-                q = p + (u,)
+                q = (*p, u)
                 if q in in_trie:
                     sg = rule.entries.get(q)
                     if sg is None:
@@ -259,7 +259,7 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
                     cost = step + rest
                 else:
                     assert const_exit is not None and not isinstance(rule.default, ProgressRule)
-                    share = _share(rule, roles, theta, rule.default, instance)  # type: ignore[arg-type]
+                    share = _share(rule, roles, theta, rule.default, instance)
                     cost = w * share + const_exit[u]
                 if cost < best:
                     best = cost

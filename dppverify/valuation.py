@@ -15,9 +15,8 @@ from typing import Any
 
 from dppverify.horizons import parse_horizon
 from dppverify.instance import Instance, as_instance
-from dppverify.ngoal.instance import NInstance, goal_count, ninstance_from_json
+from dppverify.ngoal.instance import NInstance, goal_count, load_ninstance, ninstance_from_json
 from dppverify.ngoal.routes import NRoutedValue, is_ngoal_file, nrouted_value
-from dppverify.ngoal.instance import load_ninstance
 from dppverify.routes import Route, RoutedValue, routed_value
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 

@@ -32,8 +32,8 @@ from tqdm import tqdm
 
 from dppverify.best_response import attacker_best_response, defender_best_response
 from dppverify.defender import TreeDefender, tree_defender
-from dppverify.exact import Number, normalize
 from dppverify.errors import HorizonError
+from dppverify.exact import Number, normalize
 from dppverify.horizons import parse_horizon
 from dppverify.instance import Instance, Roles, as_instance
 from dppverify.lp import LPStats, realization_constraints, solve

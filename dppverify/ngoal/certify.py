@@ -117,8 +117,9 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
         A ``dpp-ngoal-profile/1`` document.
     horizon : int, "inf" or None
         None (default) or ``"inf"``: the untruncated game, by the structured route (the
-        Defender needs a ``default``; without one :class:`~dppverify.errors.UndecidedError`,
-        exit 3). An integer ``H``: the game truncated at ``H``, an explicit request.
+        Defender needs a ``default`` unless its table lists every walk of the game; otherwise
+        :class:`~dppverify.errors.UndecidedError`, exit 3). An integer ``H``: the game
+        truncated at ``H``, an explicit request.
     max_prefixes : int
         Size guard of the walk tree.
     route : {"auto", "tree", "structured", "both"}
@@ -176,6 +177,10 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     trie_size = 0
     if chosen in ("structured", "both"):
         structured, trie_size = nstructured_checks(inst, prof, h)
+        if h is None and prof.default is None:
+            br = next((r for r in structured if r.id == "ngoal.pbne.attacker_br"), None)
+            if br is not None and br.status == "error":  # undefined off the table: undecided
+                raise UndecidedError(NTABLE_UNDECIDED)
         checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)
     info = {"goals": inst.n_goals, "nodes": inst.n_nodes, "game": "N goals (dppverify.ngoal)"}
     if chosen != "tree":
@@ -197,8 +202,6 @@ def _choose_route(inst: NInstance, prof: NProfile, horizon: int | None,
             raise HorizonError(f"--route {route} needs a finite horizon: the walk tree is the "
                                f"truncated game's (give --horizon H; without a horizon the "
                                f"untruncated game is certified by the structured route)")
-        if prof.default is None and not prof.defects:
-            raise UndecidedError(NTABLE_UNDECIDED)
         return "structured", None
     h = horizon
     if route == "auto":
@@ -210,9 +213,11 @@ def _choose_route(inst: NInstance, prof: NProfile, horizon: int | None,
 
 NTABLE_UNDECIDED = (
     "the untruncated game (H = inf) cannot be decided for this profile: its Defender table has "
-    "no \"default\", so it is undefined on the walks the table does not list; a \"default\" "
-    "distribution would decide it, or --horizon H certifies the game truncated at H")
-"""Why an N-goal table without default cannot be certified on the untruncated game."""
+    "no \"default\" and does not list every walk of the game, so it is undefined on some; a "
+    "\"default\" distribution would decide it, or --horizon H certifies the game truncated "
+    "at H")
+"""Why an N-goal table without default (that leaves walks unlisted) cannot be certified on
+the untruncated game."""
 
 
 def _tree_checks(inst: NInstance, prof: NProfile, h: int,

@@ -204,8 +204,8 @@ def test_the_registry_is_the_certificate_order_and_the_checks_md_table() -> None
                                                   if "structured" in c.routes)
     assert dict(s.not_run) == not_run("structured")
     table = (ROOT / "dppverify" / "checks.md").read_text(encoding="utf-8")
-    rows = re.findall(r"^\| `([^`]+)` \| ([A-Z0-9–-]+) \| ([a-z, ]+) \| (check|consistency|fact) \|",
-                      table, flags=re.M)
+    rows = re.findall(r"^\| `([^`]+)` \| ([A-Z0-9–-]+) \| ([a-z, ]+) \| "
+                      r"(check|consistency|fact) \|", table, flags=re.M)
     assert [r[0] for r in rows] == list(CHECK_IDS)
     for (cid, proof, routes, kind), spec in zip(rows, CHECKS, strict=True):
         assert proof == (spec.proof or "–") and kind == spec.kind, cid
