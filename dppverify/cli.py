@@ -131,16 +131,19 @@ def format_table(cert: Certificate) -> str:
     ...     "attacker": {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
     ...                              {"path": ["s", "g2"], "probability": "3/7"}],
     ...                  "secondary": [{"path": ["s", "g2"], "probability": 1}]}}
-    >>> lines = format_table(certify(triangle_document(), profile)).splitlines()
-    >>> len(lines), lines.index(CONSISTENCY_HEADING)
-    (22, 19)
-    >>> for line in lines[:2] + lines[5:7]:  # doctest: +NORMALIZE_WHITESPACE
+    >>> lines = format_table(certify(triangle_document(), profile, horizon=1)).splitlines()
+    >>> len(lines), lines.index(CONSISTENCY_HEADING), lines.index(FACTS_HEADING)
+    (24, 14, 17)
+    >>> for line in lines[:2] + lines[6:8]:  # doctest: +NORMALIZE_WHITESPACE
     ...     print(line)
-    verdict: PASS (17/17 checks passed; 2/2 consistency checks agree; H = 1, 3 prefixes,
-      exact; LP CLARABEL agreement within 1e-07 relative)
-    check      status  numbers                      message
+    verdict: PASS for the game truncated at H = 1 (11/11 checks passed; 2/2 consistency checks
+      agree; 6/6 facts hold; 3 prefixes, exact; LP CLARABEL agreement within 1e-07 relative)
+    note: this certifies the game truncated at H = 1 only, not the full (untruncated) game;
+      omit the horizon to certify the untruncated game
     value.U    pass    U=12/5 U_lp=2.4 U_tree=12/5  U = 12/5, LP evaluation 2.4
     value.VoI  pass    U_bar=27/10 VoI=1/9          U_bar = 27/10, VoI = 1/9
+    >>> format_table(certify(triangle_document(), profile)).splitlines()[0][:50]
+    'verdict: PASS for the untruncated game (H = inf) ('
     """
     counts = cert.counts()
     passed, total = counts["check"]

@@ -132,23 +132,28 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     ------
     CheckerError
         Bad input (unreadable instance or profile, a horizon shorter than a listed walk, a
-        tree above the size guard, the tree route with ``H = inf``).
+        tree above the size guard, the tree route with ``H = inf``);
+        :class:`~dppverify.errors.UndecidedError` when the untruncated game cannot be
+        decided (a table without default that leaves walks unlisted).
 
     Examples
     --------
+    The hub profile is an equilibrium of the game truncated at H = 2 (an explicit request):
+
     >>> from dppverify.ngoal.examples import star3_document, star3_profile
-    >>> cert = certify_ngoal(star3_document(), star3_profile())
+    >>> cert = certify_ngoal(star3_document(), star3_profile(), horizon=2)
     >>> cert.verdict, cert.route, [c.status for c in cert.checks]
     ('pass', 'tree', ['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'])
     >>> bad = star3_profile()
     >>> bad["defender"]["default"] = [0, 1, 0]   # guards b off the table: on s m and s m a
-    >>> cert = certify_ngoal(star3_document(), bad)
+    >>> cert = certify_ngoal(star3_document(), bad, horizon=2)
     >>> cert.verdict, cert.check("ngoal.pbne.defender_br").message
     ('fail', 'Defender regret 2/3: greedy best response 3/2, profile 5/6')
 
-    On the untruncated game type ``b`` may loop ``s m s m b`` where the default guards ``a``:
+    On the untruncated game (the default) type ``b`` may loop ``s m s m b`` where the default
+    guards ``a``:
 
-    >>> cert = certify_ngoal(star3_document(), star3_profile(), horizon="inf")
+    >>> cert = certify_ngoal(star3_document(), star3_profile())
     >>> cert.route, cert.horizon, cert.check("ngoal.pbne.attacker_br").status
     ('structured', None, 'fail')
     """
