@@ -278,3 +278,19 @@ def test_value_cli_default_is_untruncated(tmp_path: Path) -> None:
 def test_game_value_with_infinite_horizon_is_one_line(h: Any) -> None:
     with pytest.raises(HorizonError, match=r"dppverify\.value"):
         dppverify.game_value(kite_document(), h)
+
+
+@pytest.mark.parametrize("goal", ["g1", "g2"])
+def test_progress_default_means_progress_towards_the_tables_own_goal(goal: str) -> None:
+    """docs/formats.md: ``"default": "progress"`` is the progress rule towards the table's
+    ``goal`` (σ* only when that goal is g1); an empty table with it certifies exactly like
+    the progress rule towards that goal, record by record."""
+    from dppverify.examples import triangle_document, triangle_profile
+
+    rule = certify(triangle_document(), dict(triangle_profile(),
+                                             defender={"rule": "progress", "goal": goal}))
+    table = certify(triangle_document(), dict(triangle_profile(), defender=_table(
+        goal, [], "progress")))
+    assert [(c.id, c.status, dict(c.numbers)) for c in rule.checks] == \
+        [(c.id, c.status, dict(c.numbers)) for c in table.checks]
+    assert rule.verdict == ("pass" if goal == "g1" else "fail")
