@@ -38,7 +38,6 @@ from dppverify.errors import (
     LPError,
     ProfileError,
     TreeTooLargeError,
-    UndecidedError,
 )
 from dppverify.horizons import parse_horizon
 from dppverify.instance import Instance, as_instance, node_to_json
@@ -56,7 +55,6 @@ from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.profile import (
     Profile,
     ProgressRule,
-    TableRule,
     check_format,
     load_profile_document,
     profile_from_json,
@@ -223,8 +221,10 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     HorizonError, TreeTooLargeError
         ``horizon`` shorter than a profile path; tree larger than ``max_prefixes``.
     UndecidedError
-        The untruncated game cannot be decided for this profile (a table Defender without
-        ``default``); the message names what would decide it.
+        The untruncated game cannot be decided for this profile: a table Defender without
+        ``default`` that leaves a walk of the game unlisted (a walk the profile itself plays
+        unlisted is a refutation, ``profile.wellformed``); the message names the walk and
+        what would decide it.
 
     Examples
     --------
@@ -307,9 +307,7 @@ def _choose_route(inst: Instance, prof: Profile, horizon: int | None,
             raise HorizonError(f"--route {route} needs a finite horizon: the walk tree is the "
                                f"truncated game's (give --horizon H; without a horizon the "
                                f"untruncated game is certified by the structured route)")
-        if table and isinstance(prof.defender, TableRule) and prof.defender.default is None:
-            raise UndecidedError(TABLE_UNDECIDED)
-        return "structured", None
+        return "structured", None  # a table without default: decided there if it can be
     h = horizon
     if route == "auto":
         if tree_fits(inst, h, max_prefixes):
@@ -322,13 +320,6 @@ def _choose_route(inst: Instance, prof: Profile, horizon: int | None,
         raise TreeTooLargeError(_TABLE_REFUSED.format(why=f"--route {route} was asked for"))
     return route, h
 
-
-TABLE_UNDECIDED = (
-    "the untruncated game (H = inf) cannot be decided for this profile: its table Defender "
-    "has no \"default\", so it is undefined on the walks the table does not list; a "
-    "\"default\" (a probability or \"progress\") would decide it, or --horizon H certifies "
-    "the game truncated at H")
-"""Why a table Defender without default cannot be certified on the untruncated game."""
 
 _TABLE_REFUSED = ("a table Defender on a truncated game can only be certified on the walk "
                   "tree, and {why}; use --route tree with a horizon whose tree fits "

@@ -108,10 +108,10 @@ def structured_checks(instance: Instance, profile: Profile,
     """
     roles = instance.roles(profile.primary_slot)
     mode = instance.numbers
-    out: list[CheckRecord] = [_wellformed(instance, profile, roles)]
-    usable = profile.wellformed and (
-        isinstance(profile.defender, ProgressRule)
-        or (isinstance(profile.defender, TableRule) and profile.defender.default is not None))
+    missing = _unlisted_profile_prefix(profile)
+    out: list[CheckRecord] = [_wellformed(instance, profile, roles, missing)]
+    usable = profile.wellformed and missing is None and isinstance(
+        profile.defender, ProgressRule | TableRule)
     if not usable:
         ids = ("value.U1", "value.U2", "value.U", "value.VoI", "profile.phases",
                "pbne.attacker_br.primary", "pbne.attacker_br.secondary", "pbne.defender_br",
@@ -153,8 +153,29 @@ def structured_checks(instance: Instance, profile: Profile,
     return out
 
 
-def _wellformed(instance: Instance, profile: Profile, roles: Roles) -> CheckRecord:
+def _unlisted_profile_prefix(profile: Profile) -> tuple[int, ...] | None:
+    """The shortest prefix of a profile walk where a table Defender without default is
+    undefined (None when there is none, or the Defender is not such a table)."""
+    rule = profile.defender
+    if not isinstance(rule, TableRule) or rule.default is not None:
+        return None
+    best: tuple[int, ...] | None = None
+    for mw in (*profile.primary, *profile.secondary):
+        for t in range(2, len(mw.walk) + 1):
+            if mw.walk[:t] not in rule.entries:
+                if best is None or t < len(best):
+                    best = mw.walk[:t]
+                break
+    return best
+
+
+def _wellformed(instance: Instance, profile: Profile, roles: Roles,
+                missing: tuple[int, ...] | None = None) -> CheckRecord:
     defects = [str(d) for d in profile.defects]
+    if missing is not None:
+        defects.append(f"the Defender's table has no entry for walk "
+                       f"{show_walk(instance, missing)}, which the profile plays, and no "
+                       f"default")
     numbers: dict[str, Number | None] = {"defects": len(defects),
                                          "primary_walks": len(profile.primary),
                                          "secondary_walks": len(profile.secondary)}

@@ -164,6 +164,19 @@ def _progress_exit(instance: Instance, roles: Roles, goal: int, theta: int, same
     return {s: best.get(s, INF) for s in exits}
 
 
+def _reaches_a_goal(instance: Instance, u: int) -> bool:
+    """True when some walk of the game goes on from ``u`` (a goal is reachable from it)."""
+    return instance.is_goal(u) or any(d[u] != INF for d in instance.dist_to)
+
+
+def _undefined(instance: Instance, walk: tuple[int, ...]) -> str:
+    return (f"the untruncated game (H = inf) cannot be decided for this profile: its table "
+            f"Defender has no \"default\" and no entry for the walk "
+            f"{list(instance.labels(walk))}, so it is undefined there; a \"default\" (a "
+            f"probability or \"progress\") would decide it, or --horizon H certifies the game "
+            f"truncated at H")
+
+
 def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMinima:
     """Both types' exact minimum cost over ALL walks against ``rule`` (it needs a default).
 
@@ -174,7 +187,8 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     roles : Roles
         The labelling (which goal is ``g1``).
     rule : TableRule
-        The Defender; ``rule.default`` must not be None.
+        The Defender. Without a default it must list every walk of the game that goes on
+        from its entries (e.g. on a finite DAG); otherwise the game is undecided.
 
     Returns
     -------
@@ -183,7 +197,8 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     Raises
     ------
     UndecidedError
-        A table without default, or a ``"progress"`` default whose product graph is above
+        A table without default that leaves a walk of the game unlisted (the message names
+        it), or a ``"progress"`` default whose product graph is above
         :data:`MAX_PRODUCT_STATES`.
 
     Examples
@@ -200,10 +215,6 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     >>> table_minima(inst, r, TableRule(goal=r.g1, entries={}, default=ProgressRule(r.g1)))
     TableMinima(primary=2, secondary=1, trie_prefixes=1)
     """
-    if rule.default is None:
-        raise UndecidedError("a table Defender without \"default\" is undefined on the walks "
-                             "it does not list; a \"default\" would decide the untruncated "
-                             "game, or --horizon H certifies the game truncated at H")
     mode = instance.numbers
     trie = _trie(instance, rule.entries)
     in_trie = set(trie)
@@ -219,8 +230,8 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
         dist = roles.dist(theta)
         # exit states: (trie prefix p, next node u) with p·u off the trie
         const_exit: list[Number] | None = None
-        if not progress:
-            assert not isinstance(rule.default, ProgressRule) and rule.default is not None
+        if rule.default is not None and not progress:
+            assert not isinstance(rule.default, ProgressRule)
             const_exit = _constant_exit(instance, roles,
                                         _share(rule, roles, theta, rule.default, instance), theta)
         cmin: dict[tuple[int, ...], Number] = {}
@@ -247,11 +258,19 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
                 q = (*p, u)
                 if q in in_trie:
                     sg = rule.entries.get(q)
+                    if sg is None and rule.default is None:  # a listed walk's unlisted prefix
+                        if _reaches_a_goal(instance, u):
+                            raise UndecidedError(_undefined(instance, q))
+                        continue
                     if sg is None:
                         sg = (mode.ratio(cmin[p] - min(cmin[p], dg[u]), w) if progress
                               else rule.default)  # type: ignore[assignment]
                     assert sg is not None and not isinstance(sg, ProgressRule)
                     cost = w * _share(rule, roles, theta, sg, instance) + J[q]
+                elif rule.default is None:
+                    if _reaches_a_goal(instance, u):
+                        raise UndecidedError(_undefined(instance, q))
+                    continue  # no walk of the game goes on from q: nothing to define
                 elif progress:
                     delta = cmin[p] - min(cmin[p], dg[u])
                     step = delta if same else mode.difference(w, delta)

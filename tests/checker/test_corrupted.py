@@ -17,7 +17,6 @@ from typing import Any
 import pytest
 
 from dppverify import ProfileError, certify
-from dppverify.errors import UndecidedError
 from tests.checker._helpers import (
     all_walks,
     load_cases,
@@ -25,7 +24,6 @@ from tests.checker._helpers import (
     progress_costs,
     three_phase_doc,
     three_phase_profile,
-    tree_horizon,
     triangle_doc,
     triangle_profile,
 )
@@ -128,11 +126,6 @@ CORRUPTIONS: list[tuple[str, Any, Mutation, set[str]]] = [
 ]
 
 
-TRUNCATED_ONLY = {"table without default missing walks"}
-"""Corruptions only the truncated game can refute: a table without default is undefined off
-its entries, so the untruncated game is undecided for it (UndecidedError, exit 3)."""
-
-
 @pytest.mark.parametrize(("name", "base", "mutate", "expected"), CORRUPTIONS,
                          ids=[c[0] for c in CORRUPTIONS])
 def test_corruption_is_refuted_with_the_right_check(name: str, base: Any, mutate: Mutation,
@@ -140,12 +133,7 @@ def test_corruption_is_refuted_with_the_right_check(name: str, base: Any, mutate
     make_instance, make_profile = base
     doc = copy.deepcopy(make_profile())
     mutate(doc)
-    if name in TRUNCATED_ONLY:  # undecidable on the untruncated game (issue 18): exit 3
-        with pytest.raises(UndecidedError):
-            certify(make_instance(), doc)
-        cert = certify(make_instance(), doc, horizon=tree_horizon(make_instance(), doc))
-    else:
-        cert = certify(make_instance(), doc)
+    cert = certify(make_instance(), doc)
     failed = {c.id for c in cert.checks if c.status == "fail"}
     assert cert.verdict == "fail"
     assert expected <= failed, (failed, [c.message for c in cert.failed()])

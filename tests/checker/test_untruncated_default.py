@@ -294,3 +294,32 @@ def test_progress_default_means_progress_towards_the_tables_own_goal(goal: str) 
     assert [(c.id, c.status, dict(c.numbers)) for c in rule.checks] == \
         [(c.id, c.status, dict(c.numbers)) for c in table.checks]
     assert rule.verdict == ("pass" if goal == "g1" else "fail")
+
+
+def test_table_without_default_undefined_on_a_played_walk_is_refuted() -> None:
+    prof = dict(kite_naive_profile(), defender=_table("g1", [(["s", "g1"], 1)]))
+    cert = certify(kite_document(), prof)
+    rec = cert.check("profile.wellformed")
+    assert cert.verdict == "fail" and rec.status == "fail"
+    assert "no entry for walk" in rec.message and "no default" in rec.message
+
+
+def test_table_without_default_listing_every_walk_is_decided() -> None:
+    """On a game whose walks are finitely many (a one-way kite), a table listing them all
+    needs no default: the untruncated game is decided, as the tree route at H = 2 (the
+    whole game) decides it."""
+    doc = kite_document()
+    doc["graph"]["directed"] = True
+    doc["graph"]["edges"] += [{"source": "g1", "target": "g2", "weight": 3},
+                              {"source": "g2", "target": "g1", "weight": 3}]
+    walks = [["s", "g1"], ["s", "g2"], ["s", "a"], ["s", "a", "g1"], ["s", "a", "g2"]]
+    for secondary, verdict in ((["s", "a", "g2"], "pass"), (["s", "g2"], "fail")):
+        prof = dict(kite_naive_profile(), defender=_table(
+            "g1", [(w, 1 if w[-1] in ("g1", "a") else 0) for w in walks]))
+        prof["attacker"] = {"primary": [{"path": ["s", "g1"], "probability": 1}],
+                            "secondary": [{"path": secondary, "probability": 1}]}
+        inf, tree = certify(doc, prof), certify(doc, prof, horizon=2)
+        assert inf.horizon is None and inf.route == "structured"
+        assert [(c.id, c.status) for c in inf.checks if c.kind == "check"] == \
+            [(c.id, c.status) for c in tree.checks if c.kind == "check"]
+        assert (inf.check("pbne.attacker_br.secondary").status == "pass") == (verdict == "pass")
