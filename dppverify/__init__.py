@@ -32,12 +32,15 @@ from dppverify.errors import (
     LPError,
     ProfileError,
     TreeTooLargeError,
+    UndecidedError,
 )
 from dppverify.instance import Instance, instance_from_json, load_instance
 from dppverify.tree import WalkTree, build_tree, count_prefixes
+from dppverify.valuation import value
 from dppverify.value_lp import GameValue, game_value
 
 __all__ = ["CHECK_IDS", "Certificate", "CertificateError", "CheckRecord", "CheckerError",
            "GameValue", "HorizonError", "Instance", "InvalidInstanceError", "LPError",
-           "ProfileError", "TreeTooLargeError", "WalkTree", "__version__", "build_tree",
-           "certify", "count_prefixes", "game_value", "instance_from_json", "load_instance"]
+           "ProfileError", "TreeTooLargeError", "UndecidedError", "WalkTree", "__version__",
+           "build_tree", "certify", "count_prefixes", "game_value", "instance_from_json",
+           "load_instance", "value"]

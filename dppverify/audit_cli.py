@@ -80,7 +80,9 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
     Exactly one of --solver and --solver-cmd; either runs isolated (a worker process or a
     command in its own session) under --timeout, and anything it raises, exits with or
     prints instead of a profile is its failure. Exit 0 when every example is certified, 1
-    when a failing example is found (written to --output-dir), 2 on bad input.
+    when a failing example is found (written to --output-dir), 2 on bad input. Shrinking
+    stays on the first failure (same check id, or same exception type raised at the same
+    place); failure.json keeps the solver's traceback, and DPP_DEBUG=1 prints it.
 
     \b
     Examples:
@@ -115,6 +117,9 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
         click.echo(f"error: {exc}", err=True)
         raise click.exceptions.Exit(2) from None
     click.echo(format_report(report))
+    if os.environ.get("DPP_DEBUG") and report.failure is not None and report.failure.traceback:
+        click.echo("the solver's traceback (DPP_DEBUG):\n" + report.failure.traceback.rstrip(),
+                   err=True)
     if report.files:
         status("wrote " + ", ".join(str(p) for p in report.files))
     raise click.exceptions.Exit(0 if report.passed else 1)

@@ -148,15 +148,22 @@ def _read_number(v: Any) -> NumberEntry:
 
 
 def verdict_of(checks: tuple[CheckRecord, ...]) -> Verdict:
-    """``fail`` if any check failed, else ``error`` if any errored, else ``incomplete`` if any
-    was skipped, else ``pass``.
+    """Over the records of kind ``check`` and ``consistency``: ``fail`` if any failed, else
+    ``error`` if any errored, else ``incomplete`` if any was skipped, else ``pass``.
+
+    Records of kind ``fact`` (the paper's lemmas, "is this the paper's construction") are
+    reported beside the verdict and never decide it
+    (:data:`~dppverify.registry.CHECKS`).
 
     Examples
     --------
     >>> verdict_of((CheckRecord("a", "pass", ""), CheckRecord("b", "skipped", "")))
     'incomplete'
+    >>> verdict_of((CheckRecord("value.U", "pass", ""),
+    ...             CheckRecord("lemma.L5.induced_beliefs", "fail", "belief 1/9, not 0")))
+    'pass'
     """
-    statuses = {c.status for c in checks}
+    statuses = {c.status for c in checks if c.kind != "fact"}
     if "fail" in statuses:
         return "fail"
     if "error" in statuses:
@@ -293,15 +300,16 @@ class Certificate:
         raise KeyError(check_id)
 
     def of_kind(self, kind: Kind) -> tuple[CheckRecord, ...]:
-        """The records of ``kind`` (``check``: evidence; ``consistency``: the checker's own
-        computations compared, reported apart from the pass count).
+        """The records of ``kind`` (``check``: evidence for the verdict; ``consistency``: the
+        checker's own computations compared, reported apart from the pass count; ``fact``:
+        the paper's lemmas and construction, reported beside the verdict).
 
         Examples
         --------
         >>> c = Certificate(checks=(CheckRecord("value.U", "pass", ""),
         ...     CheckRecord("pbne.belief_consistency", "pass", "")), horizon=1, exact=True)
         >>> [r.id for r in c.of_kind("consistency")], c.counts()
-        (['pbne.belief_consistency'], {'check': (1, 1), 'consistency': (1, 1)})
+        (['pbne.belief_consistency'], {'check': (1, 1), 'consistency': (1, 1), 'fact': (0, 0)})
         """
         return tuple(c for c in self.checks if c.kind == kind)
 
@@ -315,11 +323,54 @@ class Certificate:
         """The records whose status is not ``pass``."""
         return tuple(c for c in self.checks if c.status != "pass")
 
+    @property
+    def truncated(self) -> bool:
+        """True when the certificate is about the game truncated at a finite ``H``."""
+        return self.horizon is not None
+
+    def game_line(self) -> str:
+        """The game the verdict is about, for a verdict line.
+
+        Examples
+        --------
+        >>> Certificate(checks=(), horizon=1, exact=True).game_line()
+        'the game truncated at H = 1'
+        >>> Certificate(checks=(), horizon=None, exact=True).game_line()
+        'the untruncated game (H = inf)'
+        """
+        if self.horizon is None:
+            return "the untruncated game (H = inf)"
+        return f"the game truncated at H = {self.horizon}"
+
+    def truncation_note(self) -> str | None:
+        """One line saying a truncated game's certificate is not one for the full game."""
+        if self.horizon is None:
+            return None
+        return (f"this certifies the game truncated at H = {self.horizon} only, not the full "
+                f"(untruncated) game; omit the horizon to certify the untruncated game")
+
+    def game_record(self) -> dict[str, Any]:
+        """The certificate's ``game`` record: the horizon, the ``truncated`` flag and, when
+        truncated, the note that it is not a certificate for the full game.
+
+        Examples
+        --------
+        >>> Certificate(checks=(), horizon=None, exact=True).game_record()
+        {'horizon': 'inf', 'truncated': False}
+        """
+        doc: dict[str, Any] = {"horizon": "inf" if self.horizon is None else self.horizon,
+                               "truncated": self.truncated}
+        note = self.truncation_note()
+        if note is not None:
+            doc["note"] = note
+        return doc
+
     def to_json(self) -> dict[str, Any]:
         """The ``dpp-certificate/1`` document."""
         doc: dict[str, Any] = {
             "format": CERTIFICATE_FORMAT,
             "verdict": self.verdict,
+            "game": self.game_record(),
             "counts": {k: {"passed": p, "total": t} for k, (p, t) in self.counts().items()},
             "horizon": "inf" if self.horizon is None else self.horizon,
             "route": self.route,
@@ -372,6 +423,10 @@ class Certificate:
             raise CertificateError(f"certificate is missing {exc}") from None
         except (TypeError, ValueError, AttributeError) as exc:
             raise CertificateError(f"malformed certificate: {exc}") from None
+        game = doc.get("game")
+        if game is not None and game != cert.game_record():
+            raise CertificateError(f"certificate game record {game!r} contradicts its horizon "
+                                   f"{doc['horizon']!r}")
         if doc.get("verdict") != cert.verdict:
             raise CertificateError(f"certificate verdict {doc.get('verdict')!r} contradicts its "
                                    f"checks (they give {cert.verdict!r})")

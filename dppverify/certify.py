@@ -1,9 +1,12 @@
 """``certify(instance, profile)``: certify or refute a profile as a weak PBNE.
 
-The profile is checked on the truncated game of horizon ``H`` (default: the longest path in
-the profile): payoffs, both players' exact regrets, sequential rationality and Bayes
-consistency, the value ``V_H``, and the paper's lemmas on the instance. See
-``dppverify/checks.md`` for every check id.
+Without a horizon the profile is checked on the untruncated game (``H = inf``) by the
+structured route; a finite ``horizon`` is an explicit request for the game truncated at
+``H`` (the walk tree when it fits). The verdict answers one question, "is the profile a weak
+PBNE of that game?": payoffs, both players' exact regrets, sequential rationality and Bayes
+consistency, the value. The paper's lemmas and "is this the paper's construction" are
+reported beside it as facts (kind ``fact``) and never decide it. See ``dppverify/checks.md``
+for every check id.
 
 Numbers: rational instances are certified exactly (``Fraction``); LP values are reported
 beside the exact ones. Instances in float mode (``"numbers": "float"``) cannot be certified
@@ -36,6 +39,7 @@ from dppverify.errors import (
     ProfileError,
     TreeTooLargeError,
 )
+from dppverify.horizons import parse_horizon
 from dppverify.instance import Instance, arc_arrays, as_instance, node_to_json
 from dppverify.lemmas import (
     l1_lower_bound,
@@ -61,8 +65,15 @@ from dppverify.routes import Route, tree_fits
 from dppverify.structured import structured_checks
 from dppverify.tree import DEFAULT_MAX_PREFIXES, build_tree
 
-__all__ = ["CHECK_IDS", "DEFAULT_TRIALS", "FLOAT_MODE_REFUSED", "certify", "default_horizon",
-           "in_registry_order", "resolve_instance"]
+__all__ = [
+    "CHECK_IDS",
+    "DEFAULT_TRIALS",
+    "FLOAT_MODE_REFUSED",
+    "certify",
+    "in_registry_order",
+    "resolve_instance",
+    "shortest_horizon",
+]
 
 DEFAULT_TRIALS = 5
 """Random non-reacting attackers tried by the L3 and L4 checks."""
@@ -120,8 +131,13 @@ def _profile_document(profile: Any) -> Mapping[str, Any]:
                        "solver's Equilibrium pass solver.equilibrium_to_json(eq))")
 
 
-def default_horizon(instance: Instance, profile: Profile) -> int:
-    """The longest valid path in the profile (at least the steps to the nearest goal).
+def shortest_horizon(instance: Instance, profile: Profile) -> int:
+    """The shortest horizon a truncated game needs for the profile: its longest walk (at least
+    the steps to the nearest goal).
+
+    This is never a default: a profile under test is not known to be an equilibrium, and
+    truncating at its own length hides the longer deviations that would refute it
+    (proofs/HORIZON.md, H.5). Without a horizon :func:`certify` certifies the untruncated game.
 
     Parameters
     ----------
@@ -133,7 +149,7 @@ def default_horizon(instance: Instance, profile: Profile) -> int:
     Returns
     -------
     int
-        The horizon ``H`` that :func:`certify` uses when none is given.
+        The least ``H`` that :func:`certify` accepts as an explicit horizon.
 
     Examples
     --------
@@ -148,9 +164,9 @@ def default_horizon(instance: Instance, profile: Profile) -> int:
     ...     "defender": {"rule": "progress", "goal": "g1"},
     ...     "attacker": {"primary": [{"path": ["s", "a", "g1"], "probability": 1}],
     ...                  "secondary": [{"path": ["s", "a", "s", "a", "g2"], "probability": 1}]}}
-    >>> default_horizon(inst, profile_from_json(doc, inst))
+    >>> shortest_horizon(inst, profile_from_json(doc, inst))
     4
-    >>> default_horizon(inst, profile_from_json({"format": "dpp-profile/1"}, inst))
+    >>> shortest_horizon(inst, profile_from_json({"format": "dpp-profile/1"}, inst))
     2
     """
     lengths = [len(w.walk) - 1 for w in (*profile.primary, *profile.secondary)]
@@ -174,9 +190,9 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
         A ``dpp-profile/1`` document, a path to one, its JSON text as bytes, or any object
         whose ``to_json()`` returns it.
     horizon : int, "inf" or None
-        ``H``; default the longest path in the profile (or, when that tree does not fit and
-        the route is ``auto``, the untruncated game). Must be at least the longest path.
-        ``"inf"``: the untruncated game (structured route).
+        None (default) or ``"inf"``: the untruncated game, by the structured route. An
+        integer ``H``: the game truncated at ``H`` (at least the profile's longest walk);
+        the certificate then says it is not one for the full game.
     exact : bool
         Require exact certification (default). With ``exact=False`` float-mode instances
         are accepted and compared within the float tolerance; rational instances are
@@ -205,6 +221,11 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
         The profile is not JSON or not a ``dpp-profile/1`` document.
     HorizonError, TreeTooLargeError
         ``horizon`` shorter than a profile path; tree larger than ``max_prefixes``.
+    UndecidedError
+        The untruncated game cannot be decided for this profile: a table Defender without
+        ``default`` that leaves a walk of the game unlisted (a walk the profile itself plays
+        unlisted is a refutation, ``profile.wellformed``); the message names the walk and
+        what would decide it.
 
     Examples
     --------
@@ -234,11 +255,12 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
         raise InvalidInstanceError(FLOAT_MODE_REFUSED)
     doc = _profile_document(profile)
     prof = profile_from_json(doc, inst, inst.numbers)
-    longest = default_horizon(inst, prof)
-    if isinstance(horizon, int) and horizon < longest:
-        raise HorizonError(f"the horizon H = {horizon} is shorter than the profile's longest "
+    asked = parse_horizon(horizon)
+    longest = shortest_horizon(inst, prof)
+    if asked is not None and asked < longest:
+        raise HorizonError(f"the horizon H = {asked} is shorter than the profile's longest "
                            f"path ({longest} steps)")
-    chosen, h = _choose_route(inst, prof, horizon, longest, route, max_prefixes)
+    chosen, h = _choose_route(inst, prof, asked, route, max_prefixes)
     tree_checks: list[CheckRecord] = []
     prefixes = leaves = 0
     if chosen in ("tree", "both"):
@@ -274,33 +296,37 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
                                                     exact=inst.exact))
 
 
-def _choose_route(inst: Instance, prof: Profile, horizon: int | Literal["inf"] | None,
-                  longest: int, route: Route, max_prefixes: int
+def _choose_route(inst: Instance, prof: Profile, horizon: int | None,
+                  route: Route, max_prefixes: int
                   ) -> tuple[Literal["tree", "structured", "both"], int | None]:
-    """The route(s) to run and the horizon (None: the untruncated game)."""
+    """The route(s) to run and the horizon (None: the untruncated game).
+
+    No horizon means the untruncated game (H = inf), which only the structured route
+    evaluates; a finite horizon is an explicit request for the truncated game.
+    """
     table = prof.defender is not None and not isinstance(prof.defender, ProgressRule)
-    if horizon == "inf":
+    if horizon is None:
         if route in ("tree", "both"):
-            raise HorizonError("the tree route needs a finite horizon (--horizon inf is the "
-                               "structured route's)")
-        if table:
-            raise HorizonError(_TABLE_REFUSED.format(why="--horizon inf was asked for"))
-        return "structured", None
-    h = longest if horizon is None else horizon
+            raise HorizonError(f"--route {route} needs a finite horizon: the walk tree is the "
+                               f"truncated game's (give --horizon H; without a horizon the "
+                               f"untruncated game is certified by the structured route)")
+        return "structured", None  # a table without default: decided there if it can be
+    h = horizon
     if route == "auto":
         if tree_fits(inst, h, max_prefixes):
             return "tree", h
         if table:
             raise TreeTooLargeError(_TABLE_REFUSED.format(
                 why=f"the H = {h} walk tree has more than {max_prefixes} prefixes"))
-        return "structured", None if horizon is None else h
+        return "structured", h
     if route in ("structured", "both") and table:
         raise TreeTooLargeError(_TABLE_REFUSED.format(why=f"--route {route} was asked for"))
     return route, h
 
 
-_TABLE_REFUSED = ("a table Defender can only be certified on the walk tree, and {why}; use "
-                  "--route tree with a horizon whose tree fits --max-prefixes")
+_TABLE_REFUSED = ("a table Defender on a truncated game can only be certified on the walk "
+                  "tree, and {why}; use --route tree with a horizon whose tree fits "
+                  "--max-prefixes, or omit --horizon to certify the untruncated game")
 
 
 def _ctx_runner(*ids: str) -> Callable[[Callable[[Context], list[CheckRecord]]],

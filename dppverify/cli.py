@@ -29,7 +29,13 @@ from dppverify.cli_conventions import (
     want_progress,
 )
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
-from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
+from dppverify.errors import (
+    CertificateError,
+    CheckerError,
+    OptionError,
+    ProfileError,
+    UndecidedError,
+)
 from dppverify.exact import format_number
 from dppverify.files import read_input, write_files
 from dppverify.hints import file_hint
@@ -56,7 +62,7 @@ from dppverify.tree import DEFAULT_MAX_PREFIXES
 from dppverify.value_dp import StructuredValue
 from dppverify.value_lp import GameValue
 
-__all__ = ["COMMANDS", "CONSISTENCY_HEADING", "HORIZON", "CertifyHorizonParam",
+__all__ = ["COMMANDS", "CONSISTENCY_HEADING", "FACTS_HEADING", "HORIZON", "CertifyHorizonParam",
            "ErrorReportingGroup", "HorizonParam", "certify_command", "export_efg_command",
            "format_table", "load_game", "value_command"]
 
@@ -64,6 +70,9 @@ NUMBERS_WIDTH = 44
 
 CONSISTENCY_HEADING = ("consistency checks (the checker's own computations compared; a failure "
                        "is the checker's fault, not counted above):")
+
+FACTS_HEADING = ("facts about the profile and the instance (the paper's lemmas, whether this is "
+                 "the paper's construction; reported beside the verdict, never deciding it):")
 
 
 
@@ -89,6 +98,9 @@ class ErrorReportingGroup(click.Group):
     def invoke(self, ctx: click.Context) -> Any:
         try:
             return super().invoke(ctx)
+        except UndecidedError as exc:  # "could not decide": exit 3
+            click.echo(f"undecided: {' '.join(str(exc).split())}", err=True)
+            ctx.exit(3)
         except self.user_errors as exc:
             click.echo(f"error: {' '.join(str(exc).split())}", err=True)
             ctx.exit(2)
@@ -113,6 +125,9 @@ def _usage_error(exc: click.UsageError) -> None:
 
 
 def _fail(exc: CheckerError) -> None:
+    if isinstance(exc, UndecidedError):  # "could not decide": exit 3, never a verdict
+        click.echo(f"undecided: {' '.join(str(exc).split())}", err=True)
+        raise click.exceptions.Exit(3)
     click.echo(f"error: {exc}", err=True)
     raise click.exceptions.Exit(2)
 
@@ -158,38 +173,42 @@ def format_table(cert: Certificate) -> str:
     ...     "attacker": {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
     ...                              {"path": ["s", "g2"], "probability": "3/7"}],
     ...                  "secondary": [{"path": ["s", "g2"], "probability": 1}]}}
-    >>> lines = format_table(certify(triangle_document(), profile)).splitlines()
-    >>> lines[-4] == CONSISTENCY_HEADING, any("..." in line for line in lines)
+    >>> lines = format_table(certify(triangle_document(), profile, horizon=1)).splitlines()
+    >>> lines.index(CONSISTENCY_HEADING) < lines.index(FACTS_HEADING), "..." in "".join(lines)
     (True, False)
-    >>> [line.split()[0] for line in lines[-3:]]  # a wrapped numbers cell continues below
-    ['pbne.belief_consistency', 'lemma.TEL.telescoping', 'range_violations=0']
-    >>> for line in lines[:2] + lines[5:7]:  # doctest: +NORMALIZE_WHITESPACE
+    >>> for line in lines[:2] + lines[6:8]:  # doctest: +NORMALIZE_WHITESPACE
     ...     print(line)
-    verdict: PASS (17/17 checks passed; 2/2 consistency checks agree; H = 1, 3 prefixes,
-      exact; LP CLARABEL agreement within 1e-07 relative)
-    check      status  numbers                      message
+    verdict: PASS for the game truncated at H = 1 (11/11 checks passed; 2/2 consistency checks
+      agree; 6/6 facts hold; 3 prefixes, exact; LP CLARABEL agreement within 1e-07 relative)
+    note: this certifies the game truncated at H = 1 only, not the full (untruncated) game;
+      omit the horizon to certify the untruncated game
     value.U    pass    U=12/5 U_lp=2.4 U_tree=12/5  U = 12/5, LP evaluation 2.4
     value.VoI  pass    U_bar=27/10 VoI=1/9          U_bar = 27/10, VoI = 1/9
+    >>> format_table(certify(triangle_document(), profile)).splitlines()[0][:50]
+    'verdict: PASS for the untruncated game (H = inf) ('
     """
     counts = cert.counts()
     passed, total = counts["check"]
     tally = f"{passed}/{total} checks passed"
     if counts["consistency"][1]:
         tally += "; {}/{} consistency checks agree".format(*counts["consistency"])
+    if counts["fact"][1]:
+        tally += "; {}/{} facts hold".format(*counts["fact"])
     mode = "exact" if cert.exact else f"float mode, relative tolerance {cert.tolerance:g}"
+    game = cert.game_line()
     if cert.route == "structured":
-        h = "inf" if cert.horizon is None else str(cert.horizon)
         skipped = f"; not run: {', '.join(cert.not_run)}" if cert.not_run else ""
-        head = (f"verdict: {cert.verdict.upper()} ({tally}; "
-                f"H = {h}, structured route (no walk tree), {mode}{skipped})")
+        head = (f"verdict: {cert.verdict.upper()} for {game} ({tally}; structured route (no "
+                f"walk tree), {mode}{skipped})")
     else:
         both = ", both routes" if cert.route == "both" else ""
-        head = (f"verdict: {cert.verdict.upper()} ({tally}; "
-                f"H = {cert.horizon}, {cert.prefixes} prefixes{both}, {mode}; LP "
+        head = (f"verdict: {cert.verdict.upper()} for {game} ({tally}; "
+                f"{cert.prefixes} prefixes{both}, {mode}; LP "
                 f"{cert.lp_solver} agreement within {cert.lp_tolerance:g} relative)")
     evidence = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("check")]
     own = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("consistency")]
-    rows = [("check", "status", ["numbers"], "message"), *evidence, *own]
+    facts = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("fact")]
+    rows = [("check", "status", ["numbers"], "message"), *evidence, *own, *facts]
     w0 = max(len(r[0]) for r in rows)
     w1 = max(len(r[1]) for r in rows)
     w2 = max(len(x) for r in rows for x in r[2])
@@ -198,13 +217,15 @@ def format_table(cert: Certificate) -> str:
         first = f"{a:<{w0}}  {b:<{w1}}  {c[0]:<{w2}}  {d}".rstrip()
         return [first, *(f"{'':<{w0}}  {'':<{w1}}  {x}".rstrip() for x in c[1:])]
 
-    lines = [head]
+    note = cert.truncation_note()
+    lines = [head] + ([f"note: {note}"] if note else [])
     for r in rows[:1 + len(evidence)]:
         lines += row(*r)
-    if own:
-        lines.append(CONSISTENCY_HEADING)
-        for r in own:
-            lines += row(*r)
+    for heading, group in ((CONSISTENCY_HEADING, own), (FACTS_HEADING, facts)):
+        if group:
+            lines.append(heading)
+            for r in group:
+                lines += row(*r)
     return "\n".join(lines)
 
 
@@ -299,9 +320,9 @@ class hinted:
 @click.argument("profile", required=False, type=click.Path(dir_okay=False), metavar="PROFILE")
 @map_options
 @click.option("-H", "--horizon", type=CertifyHorizonParam(),
-              help="Horizon H of the truncated game (default: the longest profile path, or "
-                   "'inf' when that tree does not fit and --route is auto), or 'inf' for the "
-                   "untruncated game (structured route).")
+              help="Certify the game truncated at H steps instead (an explicit request; the "
+                   "verdict then names that game). Default, or 'inf': the untruncated game, "
+                   "by the structured route.")
 @click.option("--route", type=click.Choice(ROUTES), default="auto", show_default=True,
               help="tree: the walk tree; structured: shortest paths and the value DP, no tree "
                    "(docs/checker.md); auto: the tree when it fits --max-prefixes, else "
@@ -330,21 +351,25 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
                     horizon: int | str | None, route: Route, as_json: bool,
                     output: str | None, max_prefixes: int, float_mode: bool, seed: int,
                     trials: int, provenance_of: str | None, progress: bool | None) -> None:
-    """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE.
+    """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE's game.
 
-    PROFILE is a dpp-profile/1 JSON file (from `dpp solve -o` or any other solver); for an
-    instance with more than two goals, a dpp-ngoal-profile/1 file (docs/formats.md). With
-    --map, the game is the grid and the only argument is PROFILE. A profile made for another
-    instance (other goals, prior, start or map) is one line, exit 2. Float-mode instances
+    Without --horizon the game is the untruncated one (H = inf); --horizon H certifies the
+    game truncated at H, and the verdict says so. The paper's lemmas are reported beside the
+    verdict as facts and never decide it. PROFILE is a dpp-profile/1 JSON file (from `dpp
+    solve -o` or any other solver); for an instance with more than two goals, a
+    dpp-ngoal-profile/1 file (docs/formats.md). With --map, the game is the grid and the only
+    argument is PROFILE. Bad input exits 2 with a one-line message, a profile made for another
+    instance (other goals, prior, start or map) too; a profile the untruncated game cannot be
+    decided for (a table Defender without "default") exits 3. Float-mode instances
     (8-connected maps) are detected and compared within a relative tolerance of 1e-9.
 
     \b
     Examples:
       dpp solve examples/triangle.json -o profile.json
       dpp certify examples/triangle.json profile.json
-      dpp certify examples/triangle.json profile.json --horizon 4 --json
+      dpp certify examples/triangle.json profile.json --json
       dpp certify examples/triangle.json profile.json -o certificate.json
-      dpp certify examples/triangle.json profile.json --horizon inf
+      dpp certify examples/triangle.json profile.json --horizon 4
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
       dpp certify --verify-provenance cert.json examples/triangle.json profile.json
     """
@@ -603,9 +628,9 @@ def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route
 @click.command("value", short_help="The value V_H of the game truncated at H steps.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
-@click.option("-H", "--horizon", type=HORIZON, required=True,
-              help="Horizon H of the truncated game, or 'inf' for the untruncated game "
-                   "(structured route).")
+@click.option("-H", "--horizon", type=HORIZON, default=None,
+              help="Horizon H of the truncated game (an explicit request), or 'inf' for the "
+                   "untruncated game (structured route; the default).")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 @output_file_option("Write the result's JSON to this file (atomically); stdout stays empty, "
                     "the value is one line on stderr.")
@@ -619,7 +644,7 @@ def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route
 def value_command(instance: str | None, grid: MapRequest | None, horizon: int | None,
                   as_json: bool, output: str | None, route: Route, max_prefixes: int,
                   progress: bool | None) -> None:
-    """Print V_H, the value of INSTANCE's game truncated at H steps.
+    """Print the value of INSTANCE's game: untruncated (H = inf) unless --horizon H is given.
 
     Tree route: the compact LP (cvxpy + Clarabel) on the walk tree gives a float; rounding
     its primal and dual solutions to rationals gives exact bounds, which usually meet.
@@ -630,9 +655,9 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
 
     \b
     Examples:
+      dpp value examples/triangle.json
       dpp value examples/triangle.json --horizon 4
       dpp value examples/triangle.json -H 4 --json --route both
-      dpp value examples/triangle.json --horizon inf
       dpp value examples/triangle.json -H 4 -o value.json
       dpp value --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 6
     """

@@ -8,7 +8,8 @@ yields a certificate with failed checks.
 from __future__ import annotations
 
 __all__ = ["AuditError", "CertificateError", "CheckerError", "HorizonError",
-           "InvalidInstanceError", "LPError", "OptionError", "ProfileError", "TreeTooLargeError"]
+           "InvalidInstanceError", "LPError", "OptionError", "ProfileError", "TreeTooLargeError",
+           "UndecidedError"]
 
 
 class CheckerError(Exception):
@@ -45,3 +46,9 @@ class AuditError(CheckerError, ValueError):
 
 class OptionError(CheckerError, ValueError):
     """Command-line options that do not fit together or a malformed option value."""
+
+
+class UndecidedError(CheckerError):
+    """The checker cannot decide the question asked (exit 3, "could not decide"), e.g. a
+    Defender form the untruncated game's structured route cannot evaluate. The message names
+    what would decide it; it is never a PASS."""

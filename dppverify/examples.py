@@ -14,8 +14,8 @@ from dppverify.instance import Instance, instance_from_json
 if TYPE_CHECKING:
     from dppverify.context import Context
 
-__all__ = ["triangle", "triangle_attacker", "triangle_context", "triangle_document",
-           "triangle_profile"]
+__all__ = ["kite", "kite_document", "kite_naive_profile", "triangle", "triangle_attacker",
+           "triangle_context", "triangle_document", "triangle_profile"]
 
 
 def triangle_document(prior: tuple[str, str] = ("7/10", "3/10")) -> dict[str, Any]:
@@ -109,3 +109,50 @@ def triangle_context(attacker: dict[str, Any] | None = None, *, horizon: int = 1
     inst = triangle()
     prof = profile_from_json(triangle_profile(attacker, **claims), inst)
     return make_context(inst, build_tree(inst, horizon), prof, seed=0, trials=2)
+
+
+def kite_document(prior: tuple[str, str] = ("3/5", "2/5")) -> dict[str, Any]:
+    """The kite of issue 18: ``s–g1``, ``s–g2`` of weight 2, ``s–a`` 1, ``a–g1``, ``a–g2`` 1.
+
+    Walking straight to one's goal (one step of weight 2) is an equilibrium of the game
+    truncated at ``H = 1`` but not of the untruncated game, where the secondary's detour
+    ``s a g2`` (two steps) costs 1 against σ*; ``V = 8/5``.
+
+    Examples
+    --------
+    >>> from dppverify import certify
+    >>> certify(kite_document(), kite_naive_profile()).verdict
+    'fail'
+    >>> certify(kite_document(), kite_naive_profile(), horizon=1).verdict
+    'pass'
+    """
+    edges = [("s", "g1", 2), ("s", "g2", 2), ("s", "a", 1), ("a", "g1", 1), ("a", "g2", 1)]
+    return {"graph": {"directed": False,
+                      "nodes": [{"id": v} for v in ("s", "a", "g1", "g2")],
+                      "edges": [{"source": u, "target": v, "weight": w} for u, v, w in edges]},
+            "start": "s", "goals": ["g1", "g2"], "prior": list(prior)}
+
+
+def kite(prior: tuple[str, str] = ("3/5", "2/5")) -> Instance:
+    """The kite (:func:`kite_document`) as a parsed :class:`~dppverify.instance.Instance`.
+
+    Examples
+    --------
+    >>> kite().nodes
+    ('s', 'a', 'g1', 'g2')
+    """
+    return instance_from_json(kite_document(prior))
+
+
+def kite_naive_profile() -> dict[str, Any]:
+    """Each type walks straight to its goal; the Defender is σ* (the progress rule to g1).
+
+    Examples
+    --------
+    >>> kite_naive_profile()["attacker"]["secondary"]
+    [{'path': ['s', 'g2'], 'probability': 1}]
+    """
+    return {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+            "defender": {"rule": "progress", "goal": "g1"},
+            "attacker": {"primary": [{"path": ["s", "g1"], "probability": 1}],
+                         "secondary": [{"path": ["s", "g2"], "probability": 1}]}}

@@ -5,11 +5,17 @@ and the table in ``dppverify/checks.md`` (tested against this registry) all come
 :data:`CHECKS`. Runners register themselves per route with :func:`runner`; ``certify`` runs
 the registered runners in registry order.
 
-``kind``: ``check`` is evidence about the profile or the instance; ``consistency`` compares
-two computations of the checker's own (a failure is the checker's fault, never evidence for
-the profile). Both appear in the certificate and the verdict counts both, but the pass count
-("17/17 checks passed") counts only kind ``check``; consistency records are reported apart
-(:func:`kind_of`, :meth:`dppverify.certificate.Certificate.of_kind`).
+``kind``: ``check`` is evidence for the one question the verdict answers, "is the profile a
+(weak) PBNE of the game?"; ``consistency`` compares two computations of the checker's own (a
+failure is the checker's fault, never evidence for the profile); ``fact`` is a fact about the
+profile or the instance reported beside the verdict: the paper's lemmas and whether the
+profile is the paper's construction (Lemma 5's beliefs). ``profile.phases`` stays a ``check``:
+it only tests phases the document claims (a claim must be true, like ``value.*``), and passes
+when none are claimed, whatever the secondary plays. The verdict counts ``check``
+and ``consistency`` records, never ``fact`` ones: an equilibrium that is not the paper's
+construction still passes. The pass count ("9/9 checks passed") counts only kind ``check``;
+the other kinds are reported apart (:func:`kind_of`,
+:meth:`dppverify.certificate.Certificate.of_kind`).
 """
 
 from __future__ import annotations
@@ -22,8 +28,8 @@ __all__ = ["CHECKS", "CHECK_IDS", "KINDS", "CheckSpec", "kind_of", "not_run", "r
            "spec"]
 
 RouteName = Literal["tree", "structured"]
-Kind = Literal["check", "consistency"]
-KINDS: tuple[Kind, ...] = ("check", "consistency")
+Kind = Literal["check", "consistency", "fact"]
+KINDS: tuple[Kind, ...] = ("check", "consistency", "fact")
 """The kinds, in the order reports show them."""
 
 
@@ -39,7 +45,7 @@ class CheckSpec:
         The proof file id in ``proofs/`` the check tests.
     routes : tuple of str
         ``"tree"`` and/or ``"structured"``.
-    kind : {"check", "consistency"}
+    kind : {"check", "consistency", "fact"}
         See the module docstring.
     tree, structured : str
         What the check relies on, per route (``"–"`` when it does not run there).
@@ -81,13 +87,13 @@ CHECKS: tuple[CheckSpec, ...] = (
               "relies on proofs/DP.md"),
     CheckSpec("lemma.TEL.telescoping", "TEL", ("tree", "structured"), "consistency", _T,
               "the profile's prefixes (a consistency check of σ*)"),
-    CheckSpec("lemma.L1.lower_bound", "L1", ("tree", "structured"), "check", _T, _W),
-    CheckSpec("lemma.L2.no_revisits", "L2", ("tree", "structured"), "check", _T,
+    CheckSpec("lemma.L1.lower_bound", "L1", ("tree", "structured"), "fact", _T, _W),
+    CheckSpec("lemma.L2.no_revisits", "L2", ("tree", "structured"), "fact", _T,
               "the profile's secondary walks"),
-    CheckSpec("lemma.XI2.secondary_value", "XI2", ("tree", "structured"), "check", _T, _W),
-    CheckSpec("lemma.L3.greedy", "L3", ("tree",), "check", _T, "–"),
-    CheckSpec("lemma.L4.monotonicity", "L4", ("tree",), "check", _T, "–"),
-    CheckSpec("lemma.L5.induced_beliefs", "L5", ("tree", "structured"), "check", _T, _P),
+    CheckSpec("lemma.XI2.secondary_value", "XI2", ("tree", "structured"), "fact", _T, _W),
+    CheckSpec("lemma.L3.greedy", "L3", ("tree",), "fact", _T, "–"),
+    CheckSpec("lemma.L4.monotonicity", "L4", ("tree",), "fact", _T, "–"),
+    CheckSpec("lemma.L5.induced_beliefs", "L5", ("tree", "structured"), "fact", _T, _P),
 )
 """Every check, in certificate order."""
 

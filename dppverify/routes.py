@@ -91,8 +91,9 @@ def resolve_route(route: Route, instance: Instance, horizon: int | None,
     if route == "auto":
         return "tree" if tree_fits(instance, horizon, max_prefixes) else "structured"
     if route in ("tree", "both") and horizon is None:
-        raise HorizonError("the tree route needs a finite horizon (--horizon inf is the "
-                           "structured route's)")
+        raise HorizonError("the tree route needs a finite horizon --horizon H (without a "
+                           "horizon, or with inf, the game is the untruncated one: the "
+                           "structured route)")
     return route
 
 

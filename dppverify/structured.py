@@ -1,12 +1,14 @@
 """The structured route of ``certify``: the untruncated game, without the walk tree.
 
 For a profile whose Defender is a progress rule (σ* or the progress rule towards the other
-goal): both Attacker types' exact regret over ALL walks of any length (proofs/WALKBR.md,
-shortest paths only); the Defender's exact regret, sequential rationality and Bayes beliefs
-on the prefixes of the profile's own walks (the only information sets that carry mass);
-payoffs walk by walk; the value by the three-field DP (proofs/DP.md); the lemmas that have a
-polynomial form. The lemma checks that need the tree (L3's and L4's random attackers with
-their LPs) are not run on this route; the certificate says so.
+goal) or a table with a ``default``: both Attacker types' exact regret over ALL walks of any
+length (proofs/WALKBR.md, shortest paths only; for a table proofs/TABLEBR.md, backward
+induction on the table's trie plus an exact Dijkstra off it); the Defender's exact regret,
+sequential rationality and Bayes beliefs on the prefixes of the profile's own walks (the only
+information sets that carry mass); payoffs walk by walk; the value by the three-field DP
+(proofs/DP.md); the lemmas that have a polynomial form. The lemma checks that need the tree
+(L3's and L4's random attackers with their LPs) are not run on this route; the certificate
+says so.
 """
 
 from __future__ import annotations
@@ -24,7 +26,8 @@ from dppverify.instance import Instance, Roles
 from dppverify.lemmas import OFF_XI2
 from dppverify.numbers import NumberMode
 from dppverify.phases import phases_of
-from dppverify.profile import Profile, ProgressRule, StrategyPath
+from dppverify.profile import DefenderRule, Profile, ProgressRule, StrategyPath, TableRule
+from dppverify.table_br import table_minima
 from dppverify.text import show, show_walk
 from dppverify.value_dp import structured_value
 from dppverify.walk_br import WalkMinima, split_minimum, walk_minima
@@ -34,6 +37,7 @@ __all__ = ["Trie", "build_trie", "evaluate_walk", "structured_checks"]
 
 HALF = Fraction(1, 2)
 WALKBR = "relies on proofs/WALKBR.md"
+TABLEBR = "relies on proofs/TABLEBR.md (a table Defender with a default)"
 DP = "relies on proofs/DP.md"
 TRIE = "on the prefixes of the profile's walks (proofs/L3.md)"
 
@@ -83,8 +87,8 @@ def structured_checks(instance: Instance, profile: Profile,
     instance : Instance
         The game.
     profile : Profile
-        The resolved profile; its Defender must be a progress rule (or the profile
-        ill-formed).
+        The resolved profile; its Defender must be a progress rule or a table with a default
+        (or the profile ill-formed).
     horizon : int or None
         ``H`` of the truncated game for ``game.value``; None for the untruncated game.
 
@@ -104,8 +108,10 @@ def structured_checks(instance: Instance, profile: Profile,
     """
     roles = instance.roles(profile.primary_slot)
     mode = instance.numbers
-    out: list[CheckRecord] = [_wellformed(instance, profile, roles)]
-    usable = profile.wellformed and isinstance(profile.defender, ProgressRule)
+    missing = _unlisted_profile_prefix(profile)
+    out: list[CheckRecord] = [_wellformed(instance, profile, roles, missing)]
+    usable = profile.wellformed and missing is None and isinstance(
+        profile.defender, ProgressRule | TableRule)
     if not usable:
         ids = ("value.U1", "value.U2", "value.U", "value.VoI", "profile.phases",
                "pbne.attacker_br.primary", "pbne.attacker_br.secondary", "pbne.defender_br",
@@ -116,7 +122,7 @@ def structured_checks(instance: Instance, profile: Profile,
         out.append(_rec("lemma.L5.induced_beliefs", "skipped", NOT_WELLFORMED, None, "L5", None))
         return out
     rule = profile.defender
-    assert isinstance(rule, ProgressRule)
+    assert rule is not None
     v = evaluate(instance, roles, rule, profile.primary, profile.secondary)
     trie = build_trie(profile.primary, profile.secondary)
     sigma = _sigma_on_trie(instance, roles, rule, trie)
@@ -124,8 +130,16 @@ def structured_checks(instance: Instance, profile: Profile,
     out += _values(profile, v, u_trie, mode)
     out.append(_phases(instance, profile, roles, mode))
     star = walk_minima(instance, roles.g1)  # shared by the Attacker, L1 and XI2 checks
-    mins = star if rule.goal == roles.g1 else walk_minima(instance, rule.goal)
-    out += _attacker(roles, rule, v, mode, mins)
+    if isinstance(rule, ProgressRule):
+        mins = star if rule.goal == roles.g1 else walk_minima(instance, rule.goal)
+        same = roles.g1 == rule.goal
+        best = {1: mins.same if same else mins.other, 2: mins.other if same else mins.same}
+        relies = WALKBR
+    else:
+        tm = table_minima(instance, roles, rule)
+        best = {1: tm.primary, 2: tm.secondary}
+        relies = TABLEBR
+    out += _attacker(v, mode, best, relies)
     out.append(_defender(v, defender_max, mode))
     beliefs = _beliefs(roles, trie)
     out.append(_sequential(instance, trie, sigma, beliefs, mode))
@@ -139,8 +153,29 @@ def structured_checks(instance: Instance, profile: Profile,
     return out
 
 
-def _wellformed(instance: Instance, profile: Profile, roles: Roles) -> CheckRecord:
+def _unlisted_profile_prefix(profile: Profile) -> tuple[int, ...] | None:
+    """The shortest prefix of a profile walk where a table Defender without default is
+    undefined (None when there is none, or the Defender is not such a table)."""
+    rule = profile.defender
+    if not isinstance(rule, TableRule) or rule.default is not None:
+        return None
+    best: tuple[int, ...] | None = None
+    for mw in (*profile.primary, *profile.secondary):
+        for t in range(2, len(mw.walk) + 1):
+            if mw.walk[:t] not in rule.entries:
+                if best is None or t < len(best):
+                    best = mw.walk[:t]
+                break
+    return best
+
+
+def _wellformed(instance: Instance, profile: Profile, roles: Roles,
+                missing: tuple[int, ...] | None = None) -> CheckRecord:
     defects = [str(d) for d in profile.defects]
+    if missing is not None:
+        defects.append(f"the Defender's table has no entry for walk "
+                       f"{show_walk(instance, missing)}, which the profile plays, and no "
+                       f"default")
     numbers: dict[str, Number | None] = {"defects": len(defects),
                                          "primary_walks": len(profile.primary),
                                          "secondary_walks": len(profile.secondary)}
@@ -154,7 +189,7 @@ def _wellformed(instance: Instance, profile: Profile, roles: Roles) -> CheckReco
                 "the profile document alone")
 
 
-def _sigma_on_trie(instance: Instance, roles: Roles, rule: ProgressRule,
+def _sigma_on_trie(instance: Instance, roles: Roles, rule: DefenderRule,
                    trie: Trie) -> dict[tuple[int, ...], Number]:
     """σ(g1 | p) at every non-root prefix of the trie."""
     out: dict[tuple[int, ...], Number] = {}
@@ -240,13 +275,12 @@ def _phases(instance: Instance, profile: Profile, roles: Roles, mode: NumberMode
                 numbers, "L5", how)
 
 
-def _attacker(roles: Roles, rule: ProgressRule, v: Values, mode: NumberMode,
-              mins: WalkMinima) -> list[CheckRecord]:
+def _attacker(v: Values, mode: NumberMode, minima: dict[int, Number],
+              relies: str) -> list[CheckRecord]:
     out = []
     for theta, cid, proof in ((1, "pbne.attacker_br.primary", "L1"),
                               (2, "pbne.attacker_br.secondary", "XI2")):
-        goal = roles.g1 if theta == 1 else roles.g2
-        best = mins.same if goal == rule.goal else mins.other
+        best = minima[theta]
         u = v.U1 if theta == 1 else v.U2
         regret = mode.difference(u, best)
         numbers: dict[str, Number | None] = {"U": u, "min_over_walks": best, "regret": regret}
@@ -254,14 +288,14 @@ def _attacker(roles: Roles, rule: ProgressRule, v: Values, mode: NumberMode,
         if mode.less_than(u, best):
             out.append(_rec(cid, "error", f"the {kind} type's cost {show(u)} is below the "
                             f"minimum over all walks {show(best)}: the routes disagree",
-                            numbers, proof, WALKBR))
+                            numbers, proof, relies))
         elif mode.equal(regret, 0):
             out.append(_rec(cid, "pass", f"{kind} regret 0 over all walks of any length: "
-                            f"U = min = {show(best)}", numbers, proof, WALKBR))
+                            f"U = min = {show(best)}", numbers, proof, relies))
         else:
             out.append(_rec(cid, "fail", f"{kind} regret {show(regret)} > 0: some walk costs "
                             f"{show(best)} < U = {show(u)} against the profile's Defender",
-                            numbers, proof, WALKBR))
+                            numbers, proof, relies))
     return out
 
 

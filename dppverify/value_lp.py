@@ -31,7 +31,9 @@ from tqdm import tqdm
 
 from dppverify.best_response import attacker_best_response, defender_best_response
 from dppverify.defender import TreeDefender, tree_defender
+from dppverify.errors import HorizonError
 from dppverify.exact import Number, normalize
+from dppverify.horizons import parse_horizon
 from dppverify.instance import Instance, Roles, as_instance
 from dppverify.lp import LPStats, realization_constraints, solve
 from dppverify.profile import ProgressRule
@@ -456,6 +458,11 @@ def game_value(instance: Instance | Any, horizon: int, *,
     >>> v.bracket.exact, round(v.value, 6), v.prefixes
     (Fraction(12, 5), 2.4, 3)
     """
+    h = parse_horizon(horizon)
+    if h is None:
+        raise HorizonError("game_value is the truncated game's LP and needs a finite horizon; "
+                           "dppverify.value(instance) gives the untruncated game's value")
+    horizon = h
     instance = as_instance(instance)
     tree = build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
     roles = instance.roles()

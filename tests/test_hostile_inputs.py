@@ -68,7 +68,7 @@ for program in ("dpp", "dppverify"):
                  ["certify", "/dev/zero", "prof.json"], ["certify", "tri.json", "/dev/zero"],
                  ["certify", "missing.json", "prof.json"], ["certify", "tri.json", "missing.json"],
                  ["certify", "tri.json", "tri.json"], ["certify", ".", "prof.json"],
-                 ["value", "tri.json"], ["value", "tri.json", "-H", "abc"],
+                 ["value", "tri.json", "--route", "tree"], ["value", "tri.json", "-H", "abc"],
                  ["value", "tri.json", "-H", "1000000000"], ["value", "tri.json", "-H", "-1"],
                  ["value", "/dev/zero", "-H", "1"], ["value", "missing.json", "-H", "1"],
                  ["value", "tri.json", "-H", "1", "--route", "nope"],

@@ -220,6 +220,8 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
             if not outcome.passed:
                 first(outcome)
         elif not outcome.passed:
+            if outcome.identity != found[0].identity:
+                return  # another failure: shrinking stays on the first one (as hypothesis)
             record(outcome)
         if not outcome.passed:
             raise _Found(outcome.message)
@@ -243,7 +245,8 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
         if not found:
             return AuditReport(True, counts["examples"], counts["skipped"], 0, None, None,
                                seed=seed, max_nodes=max_nodes, shrunk=shrink)
-        minimal = found[-1]  # every failure hypothesis accepts while shrinking is smaller
+        # every failure accepted while shrinking is smaller and has the first one's identity
+        minimal = found[-1]
         if shrink:
             minimal, _ = prune_failure(runner, minimal, max_prefixes=max_prefixes,
                                        trials=trials, seed=seed, budget=budget, on_improve=record)

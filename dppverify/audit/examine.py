@@ -17,7 +17,7 @@ from typing import Any
 from dppverify.audit.runner import Answer, SolverRunner, call_in_process, one_line
 from dppverify.certificate import Certificate
 from dppverify.certify import certify
-from dppverify.errors import CheckerError, ProfileError, TreeTooLargeError
+from dppverify.errors import CheckerError, ProfileError, TreeTooLargeError, UndecidedError
 from dppverify.json_reading import parse_json
 
 __all__ = ["AUDIT_MAX_PREFIXES", "AUDIT_TRIALS", "Outcome", "examine"]
@@ -49,6 +49,10 @@ class Outcome:
         ``solver.output`` / ``profile.format``; empty when the example passed.
     message : str
         One line for humans.
+    traceback : str
+        The solver's traceback when it raised (written to ``failure.json``).
+    where : str
+        ``Type@file:line`` of the exception the solver raised (empty otherwise).
     """
 
     instance: Doc
@@ -56,11 +60,29 @@ class Outcome:
     certificate: Certificate | None
     check: str = ""
     message: str = ""
+    traceback: str = ""
+    where: str = ""
 
     @property
     def passed(self) -> bool:
         """True when the profile was certified (verdict ``pass``)."""
         return self.check == ""
+
+    @property
+    def identity(self) -> str:
+        """What makes two failures the same failure (as hypothesis tells them apart): the
+        failing check id, or for a solver that raised, ``solver.error:Type@file:line`` (the
+        exception type and the place it was raised). Shrinking keeps it fixed.
+
+        Examples
+        --------
+        >>> from dppverify.examples import triangle_document
+        >>> examine(lambda d: {"format": "dpp-profile/2"}, triangle_document()).identity
+        'profile.format'
+        >>> examine(lambda d: 1 / 0, triangle_document()).identity  # doctest: +ELLIPSIS
+        'solver.error:ZeroDivisionError@<doctest ...>:1'
+        """
+        return f"{self.check}:{self.where}" if self.where else self.check
 
 
 def examine(solver: SolverRunner | Callable[[Doc], Any], doc: Doc, *,
@@ -84,7 +106,8 @@ def examine(solver: SolverRunner | Callable[[Doc], Any], doc: Doc, *,
     answer: Answer = solver(doc) if isinstance(solver, SolverRunner) else call_in_process(
         solver, doc)
     if answer.text is None:
-        return Outcome(doc, None, None, answer.check, answer.message)
+        return Outcome(doc, None, None, answer.check, answer.message, answer.traceback,
+                       answer.where)
     try:
         profile = parse_json(answer.text)
     except (ValueError, RecursionError) as exc:
@@ -97,13 +120,15 @@ def examine(solver: SolverRunner | Callable[[Doc], Any], doc: Doc, *,
         cert = certify(doc, profile, max_prefixes=max_prefixes, trials=trials, seed=seed)
     except TreeTooLargeError:
         raise
+    except UndecidedError as exc:  # never a pass: the game cannot be decided for the profile
+        return Outcome(doc, profile, None, "certify.undecided", one_line(exc))
     except ProfileError as exc:
         return Outcome(doc, profile, None, "profile.format", one_line(exc))
     except CheckerError as exc:  # e.g. a horizon or instance problem caused by the profile
         return Outcome(doc, profile, None, "profile.format", one_line(exc))
     if cert.passed:
         return Outcome(doc, profile, cert)
-    bad = [c for c in cert.checks if c.status != "pass"]
+    bad = [c for c in cert.checks if c.status != "pass" and c.kind != "fact"]
     first = next((c for c in bad if c.status == "fail"), bad[0])
     return Outcome(doc, profile, cert, first.id,
                    f"verdict {cert.verdict}: {first.status} {first.id}: {first.message}")

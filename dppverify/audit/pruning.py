@@ -77,7 +77,9 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
                   max_prefixes: int = AUDIT_MAX_PREFIXES, trials: int = AUDIT_TRIALS,
                   seed: int = 0, budget: ShrinkBudget | None = None,
                   on_improve: Callable[[Outcome], None] | None = None) -> tuple[Outcome, int]:
-    """Delete nodes and edges from a failing instance while it still fails the same check.
+    """Delete nodes and edges from a failing instance while it still fails the same way (the
+    same :attr:`~dppverify.audit.examine.Outcome.identity`: check id, or exception type and
+    place).
 
     Hypothesis shrinks the *draws*, which often leaves nodes the failure does not need (the
     node count is drawn first). This greedy pass removes, one at a time, every node other
@@ -118,7 +120,7 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
             result = examine(solver, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
         except TreeTooLargeError:
             return None
-        return result if result.check == best.check else None
+        return result if result.identity == best.identity else None
 
     changed = True
     while changed and not budget.exhausted:

@@ -2,7 +2,8 @@
 
 The failure directory (``--out``) holds ``instance.json``, ``profile.json`` (when the solver
 answered with a JSON object), ``certificate.json`` (when the answer could be certified) and
-``failure.json`` (check id, message, seed). It is written through
+``failure.json`` (check id, the failure's identity — check id, or exception type and place —,
+message, seed, and the solver's traceback when it raised). It is written through
 :func:`dppverify.files.write_files` — every write commits all files together or none — as
 soon as the first failure is found, and rewritten in place whenever shrinking finds a
 smaller failure.
@@ -128,12 +129,15 @@ def format_report(report: AuditReport) -> str:
     >>> print(format_report(report))  # doctest: +ELLIPSIS
     audit FAIL after 1 examples (seed 0; no shrinking): the solver raised ZeroDivisionError: ...
     failing check: solver.error
+    raised: ZeroDivisionError@...
     failing instance: {"graph": {"nodes": [{"id": "s"}, ...], "prior": ["7/10", "3/10"]}
     """
     lines = [report.summary()]
     fail = report.failure
     if fail is not None:
         lines.append(f"failing check: {fail.check}")
+        if fail.where:
+            lines.append(f"raised: {fail.where}")
         if not report.shrunk:
             what = "failing instance"
         elif report.budget_exhausted:
@@ -190,7 +194,9 @@ def write_failure(outcome: Outcome, out: str | Path, *, seed: int = 0) -> tuple[
         docs["profile.json"] = outcome.profile
     if outcome.certificate is not None:
         docs["certificate.json"] = outcome.certificate.to_json()
-    docs["failure.json"] = {"check": outcome.check, "message": outcome.message, "seed": seed}
+    docs["failure.json"] = {"check": outcome.check, "identity": outcome.identity,
+                            "message": outcome.message, "seed": seed,
+                            "traceback": outcome.traceback or None}
     texts = {folder / name: json.dumps(doc, indent=2, default=_number_default) + "\n"
              for name, doc in docs.items()}
     stale = [folder / name for name in FAILURE_FILES if name not in docs]

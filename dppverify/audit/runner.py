@@ -40,6 +40,7 @@ import signal
 import subprocess
 import sys
 import tempfile
+import traceback
 from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
@@ -76,11 +77,18 @@ class Answer:
         ``""`` on success, else ``solver.error``, ``solver.timeout`` or ``solver.output``.
     message : str
         One line for humans (empty on success).
+    traceback : str
+        The solver's traceback when it raised (``solver.error`` from a Python solver).
+    where : str
+        The identity of a raised exception, ``Type@file:line`` of the frame that raised it
+        (as hypothesis tells failures apart); empty otherwise.
     """
 
     text: str | None
     check: str = ""
     message: str = ""
+    traceback: str = ""
+    where: str = ""
 
 
 def one_line(text: object, limit: int = 300) -> str:
@@ -117,8 +125,12 @@ def call_in_process(solver: Solver, doc: Doc) -> Answer:
     try:
         answer = solver(json.loads(json.dumps(doc)))  # the solver gets its own copy
     except BaseException as exc:
+        frames = traceback.extract_tb(exc.__traceback__)
+        place = f"{frames[-1].filename}:{frames[-1].lineno}" if frames else "?"
         return Answer(None, "solver.error",
-                      f"the solver raised {type(exc).__name__}: {one_line(exc)}")
+                      f"the solver raised {type(exc).__name__}: {one_line(exc)}",
+                      traceback="".join(traceback.format_exception(exc)),
+                      where=f"{type(exc).__name__}@{place}")
     if not isinstance(answer, dict):
         return Answer(None, "solver.output",
                       f"the solver returned {type(answer).__name__}, not a JSON object")
@@ -195,7 +207,7 @@ def _worker(target: str | Solver, conn: Connection) -> None:  # pragma: no cover
         if text is None:
             os._exit(0)
         answer = call_in_process(solver, json.loads(text))
-        conn.send((answer.text, answer.check, answer.message))
+        conn.send((answer.text, answer.check, answer.message, answer.traceback, answer.where))
 
 
 class PythonRunner(SolverRunner):
@@ -273,12 +285,12 @@ class PythonRunner(SolverRunner):
                 self.close()
                 return Answer(None, "solver.timeout",
                               f"the solver timed out after {self.timeout:g} s")
-            text, check, message = conn.recv()
+            text, check, message, *exc_info = conn.recv()
         except (EOFError, OSError):
             code = self._proc.exitcode if self._proc is not None else None
             self.close()
             return Answer(None, "solver.error", f"the solver's process exited (code {code})")
-        return Answer(text, check, message)
+        return Answer(text, check, message, *exc_info)
 
     def close(self) -> None:
         proc, conn = self._proc, self._conn

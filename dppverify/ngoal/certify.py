@@ -40,8 +40,9 @@ from pathlib import Path
 from typing import Any, Literal
 
 from dppverify.certificate import Certificate, CheckRecord, Status, merge_routes
-from dppverify.errors import HorizonError, LPError
+from dppverify.errors import HorizonError, LPError, UndecidedError
 from dppverify.exact import Number, normalize
+from dppverify.horizons import parse_horizon
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
 from dppverify.ngoal.best_response import (
     NTreeDefender,
@@ -115,9 +116,10 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     profile : dict or path
         A ``dpp-ngoal-profile/1`` document.
     horizon : int, "inf" or None
-        ``H`` (default: the longest walk of the profile; with ``route="auto"`` and a tree
-        above ``max_prefixes``, the untruncated game). ``"inf"``: the untruncated game
-        (structured route only).
+        None (default) or ``"inf"``: the untruncated game, by the structured route (the
+        Defender needs a ``default`` unless its table lists every walk of the game; otherwise
+        :class:`~dppverify.errors.UndecidedError`, exit 3). An integer ``H``: the game
+        truncated at ``H``, an explicit request.
     max_prefixes : int
         Size guard of the walk tree.
     route : {"auto", "tree", "structured", "both"}
@@ -130,23 +132,28 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     ------
     CheckerError
         Bad input (unreadable instance or profile, a horizon shorter than a listed walk, a
-        tree above the size guard, the tree route with ``H = inf``).
+        tree above the size guard, the tree route with ``H = inf``);
+        :class:`~dppverify.errors.UndecidedError` when the untruncated game cannot be
+        decided (a table without default that leaves walks unlisted).
 
     Examples
     --------
+    The hub profile is an equilibrium of the game truncated at H = 2 (an explicit request):
+
     >>> from dppverify.ngoal.examples import star3_document, star3_profile
-    >>> cert = certify_ngoal(star3_document(), star3_profile())
+    >>> cert = certify_ngoal(star3_document(), star3_profile(), horizon=2)
     >>> cert.verdict, cert.route, [c.status for c in cert.checks]
     ('pass', 'tree', ['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'])
     >>> bad = star3_profile()
     >>> bad["defender"]["default"] = [0, 1, 0]   # guards b off the table: on s m and s m a
-    >>> cert = certify_ngoal(star3_document(), bad)
+    >>> cert = certify_ngoal(star3_document(), bad, horizon=2)
     >>> cert.verdict, cert.check("ngoal.pbne.defender_br").message
     ('fail', 'Defender regret 2/3: greedy best response 3/2, profile 5/6')
 
-    On the untruncated game type ``b`` may loop ``s m s m b`` where the default guards ``a``:
+    On the untruncated game (the default) type ``b`` may loop ``s m s m b`` where the default
+    guards ``a``:
 
-    >>> cert = certify_ngoal(star3_document(), star3_profile(), horizon="inf")
+    >>> cert = certify_ngoal(star3_document(), star3_profile())
     >>> cert.route, cert.horizon, cert.check("ngoal.pbne.attacker_br").status
     ('structured', None, 'fail')
     """
@@ -161,10 +168,11 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     prof = nprofile_from_json(inst, doc)
     if route not in ("auto", "tree", "structured", "both"):
         raise ValueError(f"unknown route {route!r}")
-    if isinstance(horizon, int) and horizon < prof.longest:
-        raise HorizonError(f"the horizon H = {horizon} is shorter than the profile's longest "
+    asked = parse_horizon(horizon)
+    if asked is not None and asked < prof.longest:
+        raise HorizonError(f"the horizon H = {asked} is shorter than the profile's longest "
                            f"walk ({prof.longest} steps)")
-    chosen, h = _choose_route(inst, prof, horizon, route, max_prefixes)
+    chosen, h = _choose_route(inst, prof, asked, route, max_prefixes)
     tree_checks: list[CheckRecord] = []
     tree: NWalkTree | None = None
     if chosen in ("tree", "both"):
@@ -174,6 +182,10 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     trie_size = 0
     if chosen in ("structured", "both"):
         structured, trie_size = nstructured_checks(inst, prof, h)
+        if h is None and prof.default is None:
+            br = next((r for r in structured if r.id == "ngoal.pbne.attacker_br"), None)
+            if br is not None and br.status == "error":  # undefined off the table: undecided
+                raise UndecidedError(NTABLE_UNDECIDED)
         checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)
     info = {"goals": inst.n_goals, "nodes": inst.n_nodes, "game": "N goals (dppverify.ngoal)"}
     if chosen != "tree":
@@ -186,21 +198,31 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
                        not_run=dict(NSTRUCTURED_NOT_RUN) if chosen == "structured" else {})
 
 
-def _choose_route(inst: NInstance, prof: NProfile, horizon: int | Literal["inf"] | None,
+def _choose_route(inst: NInstance, prof: NProfile, horizon: int | None,
                   route: NRoute, max_prefixes: int
                   ) -> tuple[Literal["tree", "structured", "both"], int | None]:
-    """The route(s) to run and the horizon (None: the untruncated game)."""
-    if horizon == "inf":
+    """The route(s) to run and the horizon (None: the untruncated game, the default)."""
+    if horizon is None:
         if route in ("tree", "both"):
-            raise HorizonError("the tree route needs a finite horizon (--horizon inf is the "
-                               "structured route's)")
+            raise HorizonError(f"--route {route} needs a finite horizon: the walk tree is the "
+                               f"truncated game's (give --horizon H; without a horizon the "
+                               f"untruncated game is certified by the structured route)")
         return "structured", None
-    h = prof.longest if horizon is None else horizon
+    h = horizon
     if route == "auto":
         if ntree_fits(inst, max(h, inst.hops[inst.start]), max_prefixes):
             return "tree", h
-        return "structured", None if horizon is None else h
+        return "structured", h
     return route, h
+
+
+NTABLE_UNDECIDED = (
+    "the untruncated game (H = inf) cannot be decided for this profile: its Defender table has "
+    "no \"default\" and does not list every walk of the game, so it is undefined on some; a "
+    "\"default\" distribution would decide it, or --horizon H certifies the game truncated "
+    "at H")
+"""Why an N-goal table without default (that leaves walks unlisted) cannot be certified on
+the untruncated game."""
 
 
 def _tree_checks(inst: NInstance, prof: NProfile, h: int,

@@ -57,3 +57,30 @@ def test_HORIZON_smallest_example_value_drops_to_u_star() -> None:
     values = [game_value(inst, h).bracket for h in (1, 2, 3)]
     assert all(v.closed for v in values)
     assert [v.exact for v in values] == [v1_by_hand, u_star, u_star]
+
+
+def test_HORIZON_own_length_does_not_suffice_the_kite() -> None:
+    """H.5: the naive profile is a PBNE of the game truncated at its own length, not of the
+    game; the secondary's detour costs 1 and V_inf = 8/5 (also for the stretched kites)."""
+    from dppverify import certify, value
+    from dppverify.examples import kite_document, kite_naive_profile
+
+    for k in (1, 2, 4):
+        w = str(Fraction(1, k))
+        edges = [("s", "g1", 2), ("s", "g2", 2), ("s", "a1", w)]
+        edges += [(f"a{i}", f"a{i + 1}", w) for i in range(1, k)]
+        edges += [(f"a{k}", "g1", 1), (f"a{k}", "g2", 1)]
+        nodes = ["s", "g1", "g2", *(f"a{i}" for i in range(1, k + 1))]
+        doc = {"graph": {"directed": False, "nodes": [{"id": v} for v in nodes],
+                         "edges": [{"source": u, "target": v, "weight": x}
+                                   for u, v, x in edges]},
+               "start": "s", "goals": ["g1", "g2"], "prior": ["3/5", "2/5"]}
+        if k == 1:
+            assert instance_from_json(doc).n_nodes == instance_from_json(kite_document()).n_nodes
+        prof = kite_naive_profile()
+        assert certify(doc, prof, horizon=1).verdict == "pass"
+        cert = certify(doc, prof)
+        assert cert.verdict == "fail" and cert.horizon is None
+        assert cert.check("pbne.attacker_br.secondary").numbers["min_over_walks"] == 1
+        v = value(doc).structured
+        assert v is not None and v.value == Fraction(8, 5)

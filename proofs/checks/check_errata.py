@@ -145,12 +145,15 @@ def test_errata_E4_primary_through_the_fake_goal_pays_more() -> None:
                "defender": {"rule": "progress", "goal": "g1"},
                "attacker": {"primary": [{"path": ["s", "g2"], "probability": "1"}],
                             "secondary": [{"path": ["s", "g2"], "probability": "1"}]}}
-    rec = dppverify.certify(doc, profile).check("pbne.attacker_br.primary")
-    assert rec.status == "fail"
     g = _graph((("g1", "s", 1), ("s", "g2", 1)))
     c = _progress(g, ("s", "g2"))
     u1 = c[0] - c[-1] + nx.dijkstra_path_length(g, "g2", "g1")
+    rec = dppverify.certify(doc, profile, horizon=1).check("pbne.attacker_br.primary")
+    assert rec.status == "fail"  # the walk tree of the game truncated at H = 1
     assert (rec.numbers["U1"], rec.numbers["best_response"]) == (u1, 1) == (2, 1)
+    rec = dppverify.certify(doc, profile).check("pbne.attacker_br.primary")
+    assert rec.status == "fail"  # the untruncated game (structured route)
+    assert (rec.numbers["U"], rec.numbers["min_over_walks"]) == (u1, 1)
 
 
 def test_errata_E5_and_R3_one_half_and_ties() -> None:

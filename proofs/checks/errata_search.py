@@ -97,7 +97,8 @@ def swapped_outcome(doc: dict[str, Any]) -> Outcome:
     primary[0]["probability"], primary[1]["probability"] = p1, p0
     cert = dppverify.certify(doc, profile)
     failing = tuple(r.id for r in cert.checks if r.status == "fail")
-    exploit = cert.check("pbne.defender_br").numbers["best_response"]
+    numbers = cert.check("pbne.defender_br").numbers  # the Defender's greedy best response
+    exploit = numbers.get("best_response", numbers.get("max_sigma_U"))
     return Outcome("pbne.defender_br" in failing, Fraction(eq.U),
                    Fraction(exploit) if exploit is not None else None, failing,
                    eq.secondary_path, phases)

@@ -200,3 +200,15 @@ def progress_costs(doc: dict[str, Any], walk: Sequence[Any], g1: Any, g2: Any
         u2 += w * (1 - sigma)
         c = new
     return u1 + d1[nodes[-1]], u2 + d2[nodes[-1]]
+
+
+def tree_horizon(instance: Any, profile: Any) -> int:
+    """The profile's own length (at least the steps to the nearest goal): the horizon tests
+    pass explicitly when they exercise the walk tree (issue 18: without a horizon ``certify``
+    certifies the untruncated game, by the structured route)."""
+    from dppverify.certify import shortest_horizon
+    from dppverify.instance import as_instance
+    from dppverify.profile import profile_from_json
+
+    inst = as_instance(instance)
+    return shortest_horizon(inst, profile_from_json(profile, inst))

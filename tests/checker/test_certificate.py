@@ -13,7 +13,7 @@ from tests.checker._helpers import three_phase_doc, three_phase_profile, triangl
 
 
 def test_round_trip_through_json_text() -> None:
-    cert = certify(three_phase_doc(), three_phase_profile(), trials=1)
+    cert = certify(three_phase_doc(), three_phase_profile(), trials=1, horizon=4)
     doc = cert.to_json()
     assert doc["format"] == "dpp-certificate/1" and doc["verdict"] == "pass"
     text = json.dumps(doc)
@@ -74,7 +74,7 @@ def test_skipped_checks_make_the_verdict_incomplete_or_fail() -> None:
 def test_counts_are_json_integers_and_values_exact_strings() -> None:
     from dppverify.certificate import COUNT_KEYS
 
-    doc = certify(three_phase_doc(), three_phase_profile(), trials=1).to_json()
+    doc = certify(three_phase_doc(), three_phase_profile(), trials=1, horizon=4).to_json()
     seen = set()
     for check in doc["checks"]:
         for key, value in check["numbers"].items():

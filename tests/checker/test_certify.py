@@ -11,7 +11,6 @@ from typing import Any
 import pytest
 
 from dppverify import (
-    CHECK_IDS,
     HorizonError,
     InvalidInstanceError,
     TreeTooLargeError,
@@ -19,6 +18,7 @@ from dppverify import (
     instance_from_json,
 )
 from dppverify.json_reading import parse_json
+from dppverify.registry import CHECKS
 from dppverify.tree import build_tree
 from solver import equilibrium_to_json, instance_to_json
 from solver import instance_from_json as solver_instance_from_json
@@ -29,6 +29,7 @@ from tests.checker._helpers import (
     profile_doc,
     three_phase_doc,
     three_phase_profile,
+    tree_horizon,
     triangle_doc,
     triangle_profile,
 )
@@ -37,11 +38,12 @@ from tests.checker._helpers import (
 def _assert_certified(instance: Any, profile: Any, **kw: Any) -> None:
     cert = certify(instance, profile, **kw)
     assert cert.verdict == "pass", [(c.id, c.status, c.message) for c in cert.failed()]
-    assert tuple(c.id for c in cert.checks) == CHECK_IDS
+    route = "structured" if cert.route == "structured" else "tree"
+    assert tuple(c.id for c in cert.checks) == tuple(c.id for c in CHECKS if route in c.routes)
 
 
 def test_triangle_of_formats_md_certifies_with_the_documented_numbers() -> None:
-    cert = certify(triangle_doc(), triangle_profile())
+    cert = certify(triangle_doc(), triangle_profile(), horizon=1)
     assert cert.passed and cert.horizon == 1 and cert.prefixes == 3
     u = cert.check("value.U").numbers
     assert u["U"] == Fraction(12, 5) and u["U_profile"] == Fraction(12, 5)
@@ -76,6 +78,8 @@ def test_start_at_a_goal() -> None:
     prof = profile_doc([(["g1"], 1)], [(["g1"], 1)], ("g1", "g2"),
                        value={"U1": "0", "U2": "2", "U": "1/2"})
     cert = certify(doc, prof)
+    assert cert.passed and cert.horizon is None and cert.route == "structured"
+    cert = certify(doc, prof, horizon=0)
     assert cert.passed and cert.horizon == 0 and cert.prefixes == 1
 
 
@@ -172,7 +176,8 @@ def test_octile_grid_from_the_solver_certifies_in_float_mode() -> None:
 
 
 def test_seed_is_recorded_and_results_are_reproducible() -> None:
-    a = certify(three_phase_doc(), three_phase_profile(), seed=7, trials=3)
-    b = certify(three_phase_doc(), three_phase_profile(), seed=7, trials=3)
+    h = tree_horizon(three_phase_doc(), three_phase_profile())
+    a = certify(three_phase_doc(), three_phase_profile(), seed=7, trials=3, horizon=h)
+    b = certify(three_phase_doc(), three_phase_profile(), seed=7, trials=3, horizon=h)
     assert a.seed == 7 and a.check("lemma.L3.greedy").numbers["seed"] == 7
     assert a.check("lemma.L4.monotonicity").to_json() == b.check("lemma.L4.monotonicity").to_json()

@@ -31,8 +31,15 @@ def test_certify_passes_with_exit_0_and_a_table(tmp_path: Path) -> None:
     r = run_cli(certify_command, [i, p])
     assert r.exit_code == 0
     lines = r.output.splitlines()
-    assert lines[0].startswith("verdict: PASS (17/17 checks passed; 2/2 consistency")
+    assert lines[0].startswith("verdict: PASS for the untruncated game (H = inf) (11/11 checks "
+                               "passed; 2/2 consistency checks agree; 4/4 facts hold;")
     assert lines[1].split()[:4] == ["check", "status", "numbers", "message"]
+    r = run_cli(certify_command, [i, p, "--horizon", "4"])
+    lines = r.output.splitlines()
+    assert r.exit_code == 0 and lines[0].startswith(
+        "verdict: PASS for the game truncated at H = 4 (11/11 checks passed; 2/2 consistency "
+        "checks agree; 6/6 facts hold;")
+    assert lines[1].startswith("note: this certifies the game truncated at H = 4 only")
     assert any(line.startswith("pbne.defender_br") and " pass " in line for line in lines)
 
 
@@ -83,7 +90,8 @@ def test_missing_files_and_short_horizon_exit_2(tmp_path: Path) -> None:
                                "tree"])
     assert r.exit_code == 2 and "--max-prefixes" in r.output
     r = run_cli(certify_command, [i, p, "--horizon", "40", "--max-prefixes", "50"])  # auto
-    assert r.exit_code == 0 and "H = 40, structured route" in r.output
+    assert r.exit_code == 0 and "for the game truncated at H = 40" in r.output
+    assert "structured route" in r.output
 
 
 def test_float_mode_is_detected_from_the_instance(tmp_path: Path) -> None:
@@ -117,7 +125,8 @@ def test_value_command(tmp_path: Path) -> None:
     assert doc["lp"]["solver"] == "CLARABEL" and doc["lp"]["status"] == "optimal"
     r = run_cli(value_command, [i, "-H", "1"])
     assert r.exit_code == 2 and "no walk" in r.output
-    assert run_cli(value_command, [i]).exit_code == 2  # --horizon is required (click usage)
+    r = run_cli(value_command, [i])  # issue 18: no horizon is the untruncated game
+    assert r.exit_code == 0 and r.output.startswith("V_H (H = inf) = 71/18 exactly")
 
 
 def test_dpp_group_and_python_m_dppverify(tmp_path: Path) -> None:

@@ -11,13 +11,14 @@ from fractions import Fraction
 
 from dppverify import certify
 from dppverify.certificate import Certificate, CheckRecord
-from dppverify.cli import CONSISTENCY_HEADING, format_table
+from dppverify.cli import CONSISTENCY_HEADING, FACTS_HEADING, format_table
 from dppverify.examples import triangle_context
 from dppverify.lemmas import OFF_XI2, l5_induced_beliefs, telescoping
 from dppverify.registry import CHECKS
 from tests.checker._helpers import three_phase_doc, three_phase_profile
 
 CONSISTENCY = {c.id for c in CHECKS if c.kind == "consistency"}
+FACTS = {c.id for c in CHECKS if c.kind == "fact"}
 
 
 def test_the_registry_names_the_consistency_checks() -> None:
@@ -25,18 +26,22 @@ def test_the_registry_names_the_consistency_checks() -> None:
 
 
 def test_the_pass_count_leaves_consistency_checks_out() -> None:
-    cert = certify(three_phase_doc(), three_phase_profile(), trials=1)
-    evidence = len(cert.checks) - len(CONSISTENCY)
+    cert = certify(three_phase_doc(), three_phase_profile(), trials=1, horizon=4)
+    evidence = len(cert.checks) - len(CONSISTENCY) - len(FACTS)
     assert cert.counts() == {"check": (evidence, evidence),
-                             "consistency": (len(CONSISTENCY), len(CONSISTENCY))}
+                             "consistency": (len(CONSISTENCY), len(CONSISTENCY)),
+                             "fact": (len(FACTS), len(FACTS))}
     lines = format_table(cert).splitlines()
-    assert lines[0].startswith(f"verdict: PASS ({evidence}/{evidence} checks passed; "
-                               f"{len(CONSISTENCY)}/{len(CONSISTENCY)} consistency checks agree;")
+    assert lines[0].startswith(f"verdict: PASS for the game truncated at H = 4 ({evidence}/"
+                               f"{evidence} checks passed; {len(CONSISTENCY)}/"
+                               f"{len(CONSISTENCY)} consistency checks agree;")
     rows = [line for line in lines if not line.startswith(" ")]  # wrapped numbers continue
     cut = rows.index(CONSISTENCY_HEADING)
-    above = {line.split()[0] for line in rows[2:cut]}
-    below = {line.split()[0] for line in rows[cut + 1:]}
+    facts = rows.index(FACTS_HEADING)
+    above = {line.split()[0] for line in rows[3:cut]}   # verdict, note, column heads
+    below = {line.split()[0] for line in rows[cut + 1:facts]}
     assert below == CONSISTENCY and not above & CONSISTENCY and len(above) == evidence
+    assert {line.split()[0] for line in rows[facts + 1:]} == FACTS
     doc = cert.to_json()
     assert {r["id"] for r in doc["checks"] if r["kind"] == "consistency"} == CONSISTENCY
     assert doc["counts"]["check"] == {"passed": evidence, "total": evidence}
@@ -44,11 +49,11 @@ def test_the_pass_count_leaves_consistency_checks_out() -> None:
 
 
 def test_a_failed_consistency_check_is_not_counted_but_fails_the_verdict() -> None:
-    cert = certify(three_phase_doc(), three_phase_profile(), trials=1)
+    cert = certify(three_phase_doc(), three_phase_profile(), trials=1, horizon=4)
     broken = tuple(dataclasses.replace(r, status="fail", message="disagree")
                    if r.id == "lemma.TEL.telescoping" else r for r in cert.checks)
     bad = dataclasses.replace(cert, checks=broken)
-    evidence = len(cert.checks) - len(CONSISTENCY)
+    evidence = len(cert.checks) - len(CONSISTENCY) - len(FACTS)
     assert bad.verdict == "fail"
     assert bad.counts()["check"] == (evidence, evidence)
     assert bad.counts()["consistency"] == (len(CONSISTENCY) - 1, len(CONSISTENCY))
@@ -74,3 +79,13 @@ def test_telescoping_fails_when_sigma_star_probabilities_are_off() -> None:
 def test_l5_says_the_belief_off_xi2_is_not_evidence() -> None:
     r = l5_induced_beliefs(triangle_context())
     assert r.status == "pass" and r.message.endswith(OFF_XI2)
+
+
+def test_a_failed_fact_never_decides_the_verdict() -> None:
+    """Issue 18: the paper's lemmas and construction are reported beside the verdict."""
+    cert = certify(three_phase_doc(), three_phase_profile(), trials=1, horizon=4)
+    for fid in FACTS:
+        for status in ("fail", "skipped", "error"):
+            off = tuple(dataclasses.replace(r, status=status) if r.id == fid else r
+                        for r in cert.checks)
+            assert dataclasses.replace(cert, checks=off).verdict == "pass"

@@ -29,6 +29,7 @@ from dppverify.walk_br import walk_minima
 from solver import Instance, equilibrium_to_json, instance_to_json, solve
 from solver import instance_from_json as solver_instance_from_json
 from solver.movingai import read_map
+from tests.checker._helpers import tree_horizon
 
 ROOT = Path(__file__).resolve().parents[2]
 CASES = json.loads((ROOT / "tests" / "data" / "conformance_cases.json").read_text("utf-8"))
@@ -182,28 +183,29 @@ def test_walk_minima_of_the_real_map_match_the_closed_form(room: Any) -> None:
 @pytest.mark.parametrize("case", CASES[::4], ids=[c["name"] for c in CASES[::4]])
 def test_both_routes_agree_on_conformance_cases(case: Doc) -> None:
     prof = _profile(solver_instance_from_json(case["instance"]))
-    cert = certify(case["instance"], prof, route="both", trials=1)
+    h = tree_horizon(case["instance"], prof)
+    cert = certify(case["instance"], prof, route="both", trials=1, horizon=h)
     assert cert.route == "both" and cert.passed, [(c.id, c.message) for c in cert.failed()]
     inf = certify(case["instance"], prof, horizon="inf")
     assert inf.route == "structured" and inf.passed and inf.horizon is None
     bad = copy.deepcopy(prof)
     _swap(bad) if len(bad["attacker"]["primary"]) == 2 else None
     if bad != prof:  # the swapped mixture: both routes refute it, never an error
-        both = certify(case["instance"], bad, route="both", trials=1)
+        both = certify(case["instance"], bad, route="both", trials=1, horizon=h)
         assert both.verdict == "fail" and not any(c.status == "error" for c in both.checks)
 
 
 def test_the_registry_is_the_certificate_order_and_the_checks_md_table() -> None:
     assert len(set(CHECK_IDS)) == len(CHECK_IDS)
-    cert = certify(triangle_document(), triangle_profile())
+    cert = certify(triangle_document(), triangle_profile(), horizon=1)
     assert tuple(c.id for c in cert.checks) == CHECK_IDS
     s = certify(triangle_document(), triangle_profile(), route="structured")
     assert tuple(c.id for c in s.checks) == tuple(c.id for c in CHECKS
                                                   if "structured" in c.routes)
     assert dict(s.not_run) == not_run("structured")
     table = (ROOT / "dppverify" / "checks.md").read_text(encoding="utf-8")
-    rows = re.findall(r"^\| `([^`]+)` \| ([A-Z0-9–-]+) \| ([a-z, ]+) \| (check|consistency) \|",
-                      table, flags=re.M)
+    rows = re.findall(r"^\| `([^`]+)` \| ([A-Z0-9–-]+) \| ([a-z, ]+) \| "
+                      r"(check|consistency|fact) \|", table, flags=re.M)
     assert [r[0] for r in rows] == list(CHECK_IDS)
     for (cid, proof, routes, kind), spec in zip(rows, CHECKS, strict=True):
         assert proof == (spec.proof or "–") and kind == spec.kind, cid
@@ -214,14 +216,17 @@ def test_route_refusals() -> None:
     table = copy.deepcopy(triangle_profile())
     table["defender"] = {"rule": "table", "goal": "g1", "entries": [], "default": "1/2"}
     with pytest.raises(TreeTooLargeError, match="table Defender"):
-        certify(triangle_document(), table, route="structured")
+        certify(triangle_document(), table, route="structured", horizon=1)
     with pytest.raises(TreeTooLargeError, match="table Defender"):
-        certify(triangle_document(), table, max_prefixes=1)
-    with pytest.raises(HorizonError, match="table Defender"):
-        certify(triangle_document(), table, horizon="inf")
+        certify(triangle_document(), table, max_prefixes=1, horizon=1)
+    # issue 18: a table with a default is certified on the untruncated game
+    assert certify(triangle_document(), table, horizon="inf").route == "structured"
+    assert certify(triangle_document(), table).horizon is None
     with pytest.raises(HorizonError, match="finite horizon"):
         certify(triangle_document(), triangle_profile(), horizon="inf", route="tree")
-    assert certify(triangle_document(), table, route="tree").route == "tree"
+    with pytest.raises(HorizonError, match="finite horizon"):
+        certify(triangle_document(), triangle_profile(), route="both")
+    assert certify(triangle_document(), table, route="tree", horizon=1).route == "tree"
 
 
 def test_certify_command_routes(tmp_path: Path) -> None:
@@ -232,9 +237,13 @@ def test_certify_command_routes(tmp_path: Path) -> None:
                                                "default": "1/2"})
     t.write_text(json.dumps(table), encoding="utf-8")
     r = CliRunner().invoke(certify_command, [str(i), str(p), "--horizon", "inf"])
-    assert r.exit_code == 0 and "H = inf, structured route" in r.output
-    r = CliRunner().invoke(certify_command, [str(i), str(p), "--route", "both", "--json"])
+    assert r.exit_code == 0 and "for the untruncated game (H = inf)" in r.output
+    assert "structured route" in r.output
+    r = CliRunner().invoke(certify_command, [str(i), str(p), "--route", "both", "--json",
+                                             "-H", "1"])
     doc = json.loads(r.output)
     assert r.exit_code == 0 and doc["route"] == "both" and doc["verdict"] == "pass"
-    r = CliRunner().invoke(certify_command, [str(i), str(t), "--route", "structured"])
+    r = CliRunner().invoke(certify_command, [str(i), str(t), "--route", "structured", "-H", "1"])
     assert r.exit_code == 2 and r.output.count("\n") == 1 and "table Defender" in r.output
+    r = CliRunner().invoke(certify_command, [str(i), str(t), "--route", "structured"])
+    assert r.exit_code in (0, 1) and "for the untruncated game" in r.output

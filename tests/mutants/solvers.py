@@ -131,7 +131,8 @@ def mutant_no_goal_avoidance(doc: Doc) -> Doc:
 def mutant_defender_lag(doc: Doc) -> Doc:
     """σ* one step late (c_{t-1} read where c_t is due): after s0 … s_t the table Defender
     plays σ*'s allocation of the previous step (0 on the first step). A ``table`` Defender
-    listing every walk of at most H steps."""
+    listing every walk of at most H steps, with σ* (`"default": "progress"`) on longer ones so
+    that it is defined on every walk of the untruncated game (issue 18)."""
     eq, game = _base(doc)
     profile = _profile(game, [(p.nodes, p.probability) for p in eq.primary_paths],
                        eq.secondary_path)
@@ -142,7 +143,8 @@ def mutant_defender_lag(doc: Doc) -> Doc:
         sigma = game.sigma(walk)
         lagged = sigma[-2] if len(sigma) >= 2 else Fraction(0)
         entries.append({"walk": [_json(v) for v in walk], "probability": str(lagged)})
-    profile["defender"] = {"rule": "table", "goal": _json(game.g1), "entries": entries}
+    profile["defender"] = {"rule": "table", "goal": _json(game.g1), "entries": entries,
+                           "default": "progress"}  # defined on every walk of the game
     return profile
 
 

@@ -14,6 +14,7 @@ from dppverify.ngoal.profile import load_nprofile_document
 
 
 def _failed(profile: dict[str, Any], **kw: Any) -> set[str]:
+    kw.setdefault("horizon", 2)  # the hub profile is an equilibrium of the 2-step game only
     cert = certify_ngoal(star3_document(), profile, **kw)
     return {c.id for c in cert.checks if c.status == "fail"}
 
@@ -34,7 +35,7 @@ def test_the_equilibrium_passes_and_a_longer_game_needs_a_longer_table() -> None
 def test_a_type_with_a_cheaper_walk_is_refuted() -> None:
     p = star3_profile()
     p["attacker"][1] = [{"path": ["s", "a"], "probability": 1}]  # b: 0 + d(a, b) = 2 > 1
-    rec = certify_ngoal(star3_document(), p).check("ngoal.pbne.attacker_br")
+    rec = certify_ngoal(star3_document(), p, horizon=2).check("ngoal.pbne.attacker_br")
     assert rec.status == "fail" and rec.numbers["regret2"] == 1
     assert "walk ['s', 'm', 'b'] costs 1" in rec.message
 
@@ -63,7 +64,7 @@ def test_a_wrong_claimed_value_is_refuted() -> None:
 def test_ill_formed_profiles_are_refuted_not_crashed(change: Any, message: str) -> None:
     p = copy.deepcopy(star3_profile())
     change(p)
-    cert = certify_ngoal(star3_document(), p)
+    cert = certify_ngoal(star3_document(), p, horizon=2)
     rec = cert.check("ngoal.profile.wellformed")
     assert rec.status == "fail" and message in rec.message
     assert cert.verdict == "fail"

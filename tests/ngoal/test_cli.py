@@ -41,13 +41,16 @@ def test_value_errors_are_one_line_exit_2(tmp_path: Path) -> None:
 def test_certify_an_n_goal_profile(tmp_path: Path) -> None:
     i = write_doc(tmp_path, "star.json", star3_document())
     p = write_doc(tmp_path, "p.json", star3_profile())
-    r = run_cli(certify_command, [i, p])
-    assert r.exit_code == 0 and r.output.startswith("verdict: PASS (7/7 checks passed; H = 2")
+    r = run_cli(certify_command, [i, p, "-H", "2"])
+    assert r.exit_code == 0 and r.output.startswith(
+        "verdict: PASS for the game truncated at H = 2 (7/7 checks passed;")
+    r = run_cli(certify_command, [i, p])  # issue 18: the untruncated game by default
+    assert r.exit_code == 1 and r.output.startswith("verdict: FAIL for the untruncated game")
     r = run_cli(certify_command, [i, p, "--json", "-H", "4"])
     cert = Certificate.from_json(r.output)
     assert r.exit_code == 1 and cert.check("ngoal.pbne.attacker_br").status == "fail"
     r = run_cli(certify_command, [i, p, "-H", "inf"])  # the structured route: b loops s m s m b
-    assert r.exit_code == 1 and "H = inf, structured route" in r.output
+    assert r.exit_code == 1 and "for the untruncated game (H = inf)" in r.output
     r = run_cli(certify_command, [i, p, "-H", "inf", "--route", "tree"])
     assert r.exit_code == 2 and "needs a finite horizon" in r.output
     two = write_doc(tmp_path, "two.json", {"format": "dpp-profile/1"})

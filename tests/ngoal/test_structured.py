@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 
 from dppverify.certificate import Certificate
 from dppverify.cli import certify_command
-from dppverify.errors import HorizonError
+from dppverify.errors import HorizonError, UndecidedError
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.examples import star3_document, star3_profile
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
@@ -153,13 +153,16 @@ def test_without_a_default_the_route_says_why_unless_the_table_covers_every_walk
     p["defender"].pop("default")
     p["defender"]["entries"] += [{"walk": ["s", "m"], "probabilities": [1, 0, 0]},
                                  {"walk": ["s", "m", "a"], "probabilities": [1, 0, 0]}]
-    cert = certify_ngoal(star3_document(), p, horizon="inf")
+    # issue 18: on the untruncated game this is undecided (exit 3), never a verdict
+    with pytest.raises(UndecidedError, match="would decide"):
+        certify_ngoal(star3_document(), p, horizon="inf")
+    cert = certify_ngoal(star3_document(), p, horizon=4, route="structured")
     rec = cert.check("ngoal.pbne.attacker_br")
     assert rec.status == "error" and cert.verdict == "error"
     assert "no default and its table has no entry for walk ['s', 'a']" in rec.message
     # on the one-way hub the table lists every walk of the game but s a: still undefined
-    cert = certify_ngoal(_dag_star(), p, horizon="inf")
-    assert cert.check("ngoal.pbne.attacker_br").status == "error"
+    with pytest.raises(UndecidedError):
+        certify_ngoal(_dag_star(), p, horizon="inf")
     p["defender"]["entries"].append({"walk": ["s", "a"], "probabilities": [1, 0, 0]})
     cert = certify_ngoal(_dag_star(), p, horizon="inf")
     assert cert.passed, cert.failed()
@@ -179,7 +182,9 @@ def test_route_choice_and_errors() -> None:
     with pytest.raises(HorizonError, match="needs a finite horizon"):
         certify_ngoal(_doc(), _profile(), horizon="inf", route="both")
     # auto: the tree when it fits, else the untruncated game
-    assert certify_ngoal(_doc(), _profile()).route == "tree"
+    # issue 18: no horizon is the untruncated game (structured); a horizon the tree
+    assert certify_ngoal(_doc(), _profile()).route == "structured"
+    assert certify_ngoal(_doc(), _profile(), horizon=2).route == "tree"
     cert = certify_ngoal(_doc(), _profile(), max_prefixes=2)
     assert cert.route == "structured" and cert.horizon is None and cert.passed
     cert = certify_ngoal(_doc(), _profile(), horizon=3, max_prefixes=2)
@@ -193,7 +198,8 @@ def test_cli_routes(tmp_path: Path) -> None:
     p.write_text(json.dumps(_profile()))
     r = CliRunner().invoke(certify_command, [str(i), str(p), "-H", "inf"])
     assert r.exit_code == 0, r.output
-    assert r.output.startswith("verdict: PASS (6/6 checks passed; H = inf, structured route")
+    assert r.output.startswith("verdict: PASS for the untruncated game (H = inf) (6/6 checks "
+                               "passed; structured route")
     assert "not run: ngoal.value.structured" in r.output
     r = CliRunner().invoke(certify_command, [str(i), str(p), "-H", "2", "--route", "both",
                                              "--json"])

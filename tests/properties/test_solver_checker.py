@@ -13,12 +13,13 @@ from typing import Any
 from hypothesis import given
 from hypothesis import strategies as st
 
-from dppverify import Certificate, certify, game_value, instance_from_json
+from dppverify import Certificate, certify, game_value, instance_from_json, value
 from dppverify.json_reading import parse_json
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
 from solver import equilibrium_to_json, instance_to_json, solve
 from solver import instance_from_json as solver_instance_from_json
+from tests.checker._helpers import tree_horizon
 from tests.properties._reference import Game, key, to_float_doc
 
 Doc = dict[str, Any]
@@ -41,11 +42,15 @@ def _profile(doc: Doc) -> Doc:
 @given(exact_instances)
 def test_everything_solve_outputs_is_certified_and_its_value_is_V_H(doc: Doc) -> None:
     profile = _profile(doc)
-    cert = certify(doc, profile, trials=2)
+    cert = certify(doc, profile, trials=2)  # the untruncated game (issue 18)
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]
     u = Fraction(profile["value"]["U"])
+    assert value(doc).structured.value == u  # type: ignore[union-attr]
+    # the game truncated at the profile's length (the walk tree) certifies it too, and its
     # V_H recomputed from the instance alone (compact LP + exact bracket), not read back
-    v = game_value(instance_from_json(doc), cert.horizon)
+    h = tree_horizon(doc, profile)
+    assert certify(doc, profile, trials=2, horizon=h).passed
+    v = game_value(instance_from_json(doc), h)
     assert v.bracket.exact == u
     assert abs(v.lp.value - float(u)) <= 1e-7 * max(1.0, float(u))
     # U* = b2·M + (b1 − b2)·d(s0,g1) (proofs/THM.md, THM.4) from the reference model
