@@ -41,7 +41,7 @@ def test_certificate_records_the_hashes_of_the_file_bytes(files: tuple[Path, Pat
     assert prov["profile"] == {"sha256": hashlib.sha256(prof.read_bytes()).hexdigest(),
                                "bytes": "file"}
     assert prov["dppverify"] == __version__
-    assert (prov["route"], prov["numbers"]) == ("tree", "exact")
+    assert (prov["route"], prov["numbers"]) == ("structured", "exact")  # H = inf by default
     # invoked from Python (not as the `dpp` process): the command path and its parameters
     assert prov["command"][0] == "certify"
     assert {f"instance={inst}", f"profile={prof}", "as_json=True"} <= set(prov["command"])
