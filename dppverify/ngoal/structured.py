@@ -97,6 +97,10 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
         out += [_rec(i, "skipped", "the profile is not well formed", None, "–")
                 for i in _IDS[1:]]
         return out, 0
+    if profile.rule is not None:  # the guarantee rule: dppverify.ngoal.guarantee
+        from dppverify.ngoal.guarantee import guarantee_checks
+
+        return guarantee_checks(inst, profile, horizon)
     walks = [mw.walk for mix in profile.attacker for mw in mix]
     tdef = table_defender(inst, profile.entries, profile.default, walks)
     trie = tdef.trie

@@ -1,0 +1,556 @@
+"""The guarantee-vector Defender rule of ``dpp-ngoal-profile/1`` (proofs/NSOLVE.md), evaluated
+from the checker's own mathematics.
+
+Profile: ``"defender": {"rule": "guarantee", "h": [h_1, …, h_N]}`` (``docs/formats.md`` §2b).
+With ``m_S(v)`` the coalition DP at ``H = inf`` (:mod:`dppverify.ngoal.coalition`, the layer
+that repeats) and ``G_v = { r : r(S) <= m_S(v) for every non-empty S }``:
+
+- the state is ``r``, ``r = h`` at the start;
+- on a step ``v -> u`` of weight ``w`` the Defender plays the lexicographic minimum, in the
+  *priority order* (types by decreasing prior, ties by index), of
+  ``F = { σ ∈ Δ^N : σ(S) >= (r(S) - m_S(u)) / w for every S }``, and ``r <- r - w σ``;
+  when ``F`` is empty, all the weight on the first type of the priority order.
+
+What the checker proves about it (NSOLVE.1-2), exactly:
+
+- ``h ∈ G_{s0}``, and the **arc condition** ``G_v ⊆ G_u + wΔ^N`` on every arc ``(v, u)`` that a
+  walk can take (``v`` not a goal, some goal reachable from ``u``). Then ``F`` is never empty
+  on any walk, ``r`` stays in ``G``, and every walk costs type ``θ`` at least ``h_θ``: the
+  minimum over ALL walks is ``>= h_θ`` (NSOLVE.1). The arc condition is verified as follows:
+  ``m`` is a fixpoint of the DP (steps and splits), which gives it for every direction ``y``
+  whose optimal covers regroup into fractional partitions of sets containing a type of largest
+  ``y`` (NSOLVE.2); the remaining directions are the finitely many *non-pattern extreme rays*
+  ``ρ`` of the cones ``{c >= 0 : y_c maximal at θ*}`` (:func:`bad_rays`: none for ``N <= 3``,
+  the merging lemma), each checked on every arc: ``cov_v(y_ρ) <= Σ_S ρ_S m_S(u) + w·max y_ρ``.
+- On the profile's walks the rule is evaluated step by step; a type paying exactly ``h_θ``
+  has regret 0 over all walks of any length.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import cache
+from typing import Any
+
+import numpy as np
+
+from dppverify.exact import Number
+from dppverify.json_reading import parse_number
+from dppverify.ngoal.instance import NInstance
+
+__all__ = ["ArcCondition", "GuaranteeRule", "GuaranteeSets", "arc_condition", "bad_rays",
+           "guarantee_sets", "guarantee_sigma", "parse_guarantee", "rule_order"]
+
+RULE = "guarantee"
+
+
+@dataclass(frozen=True)
+class GuaranteeRule:
+    """The profile's guarantee rule: the starting state ``h``."""
+
+    h: tuple[Fraction, ...]
+
+
+def parse_guarantee(raw: Mapping[str, Any], n: int, defects: list[str]) -> GuaranteeRule | None:
+    """Read ``{"rule": "guarantee", "h": [...]}``, recording defects (None when ill-formed).
+
+    Examples
+    --------
+    >>> parse_guarantee({"rule": "guarantee", "h": ["1/2", 1, "3"]}, 3, []).h
+    (Fraction(1, 2), Fraction(1, 1), Fraction(3, 1))
+    >>> d = []; parse_guarantee({"rule": "guarantee", "h": [1]}, 3, d); d
+    ['defender.h: must be a list of 3 numbers (one per goal)']
+    """
+    h = raw.get("h")
+    extra = sorted(set(raw) - {"rule", "h"})
+    if extra:
+        defects.append(f"defender: unknown key(s) {', '.join(extra)} for the guarantee rule")
+        return None
+    if not isinstance(h, list) or len(h) != n:
+        defects.append(f"defender.h: must be a list of {n} numbers (one per goal)")
+        return None
+    out = []
+    for i, x in enumerate(h):
+        try:
+            out.append(Fraction(parse_number(x, where=f"defender.h[{i}]")))
+        except ValueError as exc:
+            defects.append(str(exc))
+            return None
+    return GuaranteeRule(tuple(out))
+
+
+def rule_order(prior: Sequence[Fraction]) -> tuple[int, ...]:
+    """The priority order: types by decreasing prior, ties by index.
+
+    Examples
+    --------
+    >>> rule_order([Fraction(1, 6), Fraction(1, 2), Fraction(1, 3)])
+    (1, 2, 0)
+    """
+    return tuple(sorted(range(len(prior)), key=lambda t: (-prior[t], t)))
+
+
+@dataclass(frozen=True, eq=False)
+class GuaranteeSets:
+    """``m_S(v)`` of the coalition DP at ``H = inf`` at every node (scaled integers).
+
+    Attributes
+    ----------
+    instance : NInstance
+    scale : int
+        ``m_S(v) = m[S][v] / scale``.
+    big : int
+        Values ``>= big`` mean: no goal reachable.
+    m : Mapping
+        Subset mask -> array over nodes.
+    layers : int
+        DP layers until the layer repeated.
+    """
+
+    instance: NInstance
+    scale: int
+    big: int
+    m: Mapping[int, np.ndarray]
+    layers: int
+
+    def value(self, mask: int, v: int) -> Fraction | None:
+        """``m_S(v)`` exactly, None where no goal is reachable."""
+        x = int(self.m[mask][v])
+        return None if x >= self.big else Fraction(x, self.scale)
+
+
+_SETS: dict[int, GuaranteeSets] = {}
+
+
+def guarantee_sets(instance: NInstance, *, max_layers: int = 100_000) -> GuaranteeSets:
+    """The DP layer at ``H = inf`` (iterated until it repeats; proofs/NGOAL.md NG.5).
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> g = guarantee_sets(star3())
+    >>> g.value(0b111, star3().start), g.value(0b001, star3().start)
+    (Fraction(4, 1), Fraction(2, 1))
+    """
+    from dppverify.errors import HorizonError
+    from dppverify.ngoal.coalition import _Runner
+
+    run = _Runner(instance)
+    layer = run.layer0()
+    k = 0
+    while True:
+        k += 1
+        if k > max_layers:
+            raise HorizonError(f"the coalition DP did not converge within {max_layers} layers")
+        nxt = run.step(layer, k)
+        if k > max(instance.hops) and all(np.array_equal(nxt[m], layer[m]) for m in layer):
+            return GuaranteeSets(instance, run.scale, run.big, nxt, k)
+        layer = nxt
+
+
+# ---------------------------------------------------------------- the rule's σ (lexmin)
+def _vertex(rows: list[tuple[int, Fraction]], n: int) -> list[Fraction] | None:
+    """Solve ``σ(T_i) = a_i`` (subset masks) with ``Σ σ = 1``; None if singular."""
+    a = [[Fraction(t >> j & 1) for j in range(n)] + [v] for t, v in rows]
+    a.append([Fraction(1)] * n + [Fraction(1)])
+    for col in range(n):
+        piv = None
+        for r in range(col, n):
+            if a[r][col]:
+                piv = r
+                break
+        if piv is None:
+            return None
+        a[col], a[piv] = a[piv], a[col]
+        p = a[col][col]
+        for r in range(n):
+            if r != col and a[r][col]:
+                f = a[r][col] / p
+                a[r] = [x - f * y for x, y in zip(a[r], a[col], strict=True)]
+    return [a[i][n] / a[i][i] for i in range(n)]
+
+
+def guarantee_sigma(r: Sequence[Fraction], sets: GuaranteeSets, u: int, w: Number,
+                    order: Sequence[int]) -> tuple[tuple[Fraction, ...], bool]:
+    """The rule's ``σ`` on a step into ``u`` of weight ``w`` from state ``r`` (and F ≠ ∅).
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> inst = star3()
+    >>> g = guarantee_sets(inst)
+    >>> sigma, ok = guarantee_sigma([Fraction(2), Fraction(2), Fraction(0)], g, 1, 1, (0, 1, 2))
+    >>> [str(x) for x in sigma], ok
+    (['0', '1', '0'], True)
+    """
+    n = len(r)
+    wf = Fraction(w)
+    need: dict[int, Fraction] = {}
+    for mask in range(1, 1 << n):
+        m = sets.value(mask, u)
+        if m is None:
+            continue
+        a = (sum((r[i] for i in range(n) if mask >> i & 1), Fraction(0)) - m) / wf
+        if a > 0:
+            need[mask] = a
+    if not need:
+        return tuple(Fraction(1) if i == order[-1] else Fraction(0) for i in range(n)), True
+    # σ_θ >= 0 is the subset {θ} with bound 0; keep the positive bounds not implied by a subset
+    bounds = {1 << i: Fraction(0) for i in range(n)}
+    for mask, a in need.items():
+        if not any(t != mask and (t & mask) == t and b >= a for t, b in need.items()):
+            bounds[mask] = max(a, bounds.get(mask, Fraction(0)))
+    items = sorted(bounds.items())
+    best: list[Fraction] | None = None
+    for choice in itertools.combinations(items, n - 1):
+        x = _vertex(list(choice), n)
+        if x is None:
+            continue
+        if all(sum((x[j] for j in range(n) if t >> j & 1), Fraction(0)) >= b
+               for t, b in items):
+            if best is None or [x[t] for t in order] < [best[t] for t in order]:
+                best = x
+    if best is None:
+        return tuple(Fraction(1) if i == order[0] else Fraction(0) for i in range(n)), False
+    return tuple(best), True
+
+
+# ---------------------------------------------------------------- the arc condition
+def _nullspace_ray(mat: list[list[Fraction]], k: int) -> list[Fraction] | None:
+    """A basis vector of the null space of ``mat`` (rows of length ``k``) when it is 1-dim."""
+    a = [row[:] for row in mat]
+    pivots: list[int] = []
+    r = 0
+    for col in range(k):
+        p = next((i for i in range(r, len(a)) if a[i][col]), None)
+        if p is None:
+            continue
+        a[r], a[p] = a[p], a[r]
+        pv = a[r][col]
+        a[r] = [x / pv for x in a[r]]
+        for i in range(len(a)):
+            if i != r and a[i][col]:
+                f = a[i][col]
+                a[i] = [x - f * y for x, y in zip(a[i], a[r], strict=True)]
+        pivots.append(col)
+        r += 1
+    free = [c for c in range(k) if c not in pivots]
+    if len(free) != 1:
+        return None
+    f = free[0]
+    x = [Fraction(0)] * k
+    x[f] = Fraction(1)
+    for i, c in enumerate(pivots):
+        x[c] = -a[i][f]
+    return x
+
+
+@cache
+def bad_rays(n: int) -> tuple[tuple[tuple[tuple[int, Fraction], ...], int], ...]:
+    """Extreme rays of ``{c >= 0 : y_c(θ*) >= y_c(θ) ∀θ}`` (``y_c = Σ_S c_S 1_S``, any ``θ*``)
+    that are not fractional partitions of a set containing ``θ*``; each as
+    ``(((S, ρ_S), …), θ*)`` scaled so that ``max y_ρ = 1``.
+
+    Examples
+    --------
+    >>> [len(bad_rays(n)) for n in (2, 3)]
+    [0, 0]
+    >>> rays = bad_rays(4)
+    >>> len(rays), sorted(rays)[0]
+    (36, (((3, Fraction(1, 2)), (5, Fraction(1, 2)), (14, Fraction(1, 2))), 0))
+    """
+    masks = list(range(1, 1 << n))
+    out: set[tuple[tuple[tuple[int, Fraction], ...], int]] = set()
+    star = 0  # by symmetry: rays for θ* = 0, then permuted
+    others = list(range(1, n))
+
+    def y_of(ray: dict[int, Fraction]) -> list[Fraction]:
+        return [sum((c for s, c in ray.items() if s >> i & 1), Fraction(0)) for i in range(n)]
+
+    base: list[dict[int, Fraction]] = []
+    for k in range(1, n + 1):
+        for support in itertools.combinations(masks, k):
+            for tight in itertools.combinations(others, k - 1):
+                rows = [[Fraction((s >> star & 1) - (s >> i & 1)) for s in support]
+                        for i in tight]
+                if k == 1:
+                    x: list[Fraction] | None = [Fraction(1)]
+                else:
+                    x = _nullspace_ray(rows, k)
+                if x is None:
+                    continue
+                if all(v < 0 for v in x):
+                    x = [-v for v in x]
+                if not all(v > 0 for v in x):
+                    continue
+                ray = dict(zip(support, x, strict=True))
+                y = y_of(ray)
+                if any(y[star] < y[i] for i in others):
+                    continue
+                top = y[star]
+                if top == 0:
+                    continue
+                ray = {s: c / top for s, c in ray.items()}
+                y = [v / top for v in y]
+                if all(v in (0, 1) for v in y):
+                    continue  # a fractional partition of {θ : y_θ = 1} ∋ θ*: a pattern
+                base.append(ray)
+    for ray in base:
+        for perm in itertools.permutations(range(n)):
+            moved = {sum(1 << perm[i] for i in range(n) if s >> i & 1): c for s, c in ray.items()}
+            out.add((tuple(sorted(moved.items())), perm[star]))
+    return tuple(sorted(out))
+
+
+@cache
+def _cover_vertices(n: int, y: tuple[Fraction, ...]) -> tuple[tuple[tuple[int, Fraction], ...], ...]:
+    """The vertices of ``{c >= 0 : Σ_S c_S 1_S = y}`` (exact; bases of ``n`` subsets)."""
+    masks = list(range(1, 1 << n))
+    out = set()
+    for basis in itertools.combinations(masks, n):
+        a = [[Fraction(s >> i & 1) for s in basis] + [y[i]] for i in range(n)]
+        ok = True
+        for col in range(n):
+            p = next((i for i in range(col, n) if a[i][col]), None)
+            if p is None:
+                ok = False
+                break
+            a[col], a[p] = a[p], a[col]
+            pv = a[col][col]
+            a[col] = [x / pv for x in a[col]]
+            for i in range(n):
+                if i != col and a[i][col]:
+                    f = a[i][col]
+                    a[i] = [x - f * z for x, z in zip(a[i], a[col], strict=True)]
+        if not ok:
+            continue
+        c = [a[i][n] for i in range(n)]
+        if all(v >= 0 for v in c):
+            out.add(tuple(sorted((s, v) for s, v in zip(basis, c, strict=True) if v)))
+    return tuple(sorted(out))
+
+
+@dataclass(frozen=True)
+class ArcCondition:
+    """Whether ``G_v ⊆ G_u + wΔ^N`` was established on every walkable arc.
+
+    Attributes
+    ----------
+    holds : bool
+    arcs : int
+        Walkable arcs checked.
+    rays : int
+        Non-pattern extreme rays checked on each arc (0 for N <= 3).
+    failure : tuple or None
+        ``(v, u, ray)`` of the first arc where the ray inequality does not hold.
+    """
+
+    holds: bool
+    arcs: int
+    rays: int
+    failure: tuple[int, int, tuple[tuple[int, Fraction], ...]] | None
+
+
+def arc_condition(sets: GuaranteeSets) -> ArcCondition:
+    """Check the arc condition exactly on every walkable arc (see the module docstring).
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> arc_condition(guarantee_sets(star3())).holds
+    True
+    """
+    inst = sets.instance
+    n = inst.n_goals
+    tails, heads, wts = [], [], []
+    for v in range(inst.n_nodes):
+        if inst.is_goal(v):
+            continue
+        for u, w in inst.succ[v]:
+            if int(sets.m[1][u]) >= sets.big or int(sets.m[1][v]) >= sets.big:
+                continue
+            tails.append(v)
+            heads.append(u)
+            wts.append(Fraction(w))
+    narcs = len(tails)
+    if narcs == 0:
+        return ArcCondition(True, 0, 0, None)
+    t_idx = np.asarray(tails, dtype=np.int64)
+    h_idx = np.asarray(heads, dtype=np.int64)
+    w_scaled = np.array([int(w * sets.scale) for w in wts], dtype=object)
+    # the DP step inequality m_S(v) <= w + m_S(u) (a fixpoint property; checked, it is cheap)
+    for mask, vals in sets.m.items():
+        lhs = vals[t_idx].astype(object)
+        rhs = w_scaled + vals[h_idx].astype(object)
+        bad = np.flatnonzero(lhs > rhs)
+        if bad.size:
+            k = int(bad[0])
+            return ArcCondition(False, narcs, 0, (tails[k], heads[k], ((mask, Fraction(1)),)))
+    rays = bad_rays(n)
+    for ray, _star in rays:
+        y = tuple(sum((c for s, c in ray if s >> i & 1), Fraction(0)) for i in range(n))
+        top = max(y)
+        verts = _cover_vertices(n, y)
+        den = 1
+        for _, c in ray:
+            den = den * c.denominator // np.gcd(den, c.denominator)
+        for vert in verts:
+            for _, c in vert:
+                den = den * c.denominator // np.gcd(den, c.denominator)
+        lhs = None
+        for vert in verts:
+            tot = np.zeros(narcs, dtype=object)
+            for s, c in vert:
+                tot = tot + sets.m[s][t_idx].astype(object) * int(c * den)
+            lhs = tot if lhs is None else np.minimum(lhs, tot)
+        rhs = w_scaled * int(top * den)
+        for s, c in ray:
+            rhs = rhs + sets.m[s][h_idx].astype(object) * int(c * den)
+        assert lhs is not None
+        bad = np.flatnonzero(lhs > rhs)
+        if bad.size:
+            k = int(bad[0])
+            return ArcCondition(False, narcs, len(rays), (tails[k], heads[k], ray))
+    return ArcCondition(True, narcs, len(rays), None)
+
+
+def in_start_set(rule: GuaranteeRule, sets: GuaranteeSets) -> int | None:
+    """The first subset mask with ``h(S) > m_S(s0)`` (None when ``h ∈ G_{s0}``)."""
+    s0 = sets.instance.start
+    for mask in sorted(sets.m, key=lambda t: (bin(t).count("1"), t)):
+        m = sets.value(mask, s0)
+        if m is not None and sum((rule.h[i] for i in range(len(rule.h)) if mask >> i & 1),
+                                 Fraction(0)) > m:
+            return mask
+    return None
+
+
+# ---------------------------------------------------------------- the structured route's records
+NSOLVE = "relies on proofs/NSOLVE.md (NSOLVE.1: every walk costs type θ at least h_θ when " \
+    "h ∈ G_s0 and the arc condition holds; NSOLVE.2: the arc condition from the DP fixpoint " \
+    "and the non-pattern rays)"
+
+
+def rule_on_trie(instance: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
+                 parent: Sequence[int], node: Sequence[int]
+                 ) -> tuple[dict[int, tuple[Fraction, ...]], bool]:
+    """The rule's ``σ`` at every prefix of a prefix tree (``parent[p] < p``, root 0).
+
+    Returns the distributions and whether ``F`` was non-empty at every prefix.
+    """
+    order = rule_order(instance.prior)
+    state: dict[int, tuple[Fraction, ...]] = {0: rule.h}
+    sigma: dict[int, tuple[Fraction, ...]] = {}
+    feasible = True
+    for p in range(1, len(node)):
+        q = int(parent[p])
+        r = state[q]
+        v, u = int(node[q]), int(node[p])
+        w = instance.weight(v, u)
+        assert w is not None
+        s, ok = guarantee_sigma(r, sets, u, w, order)
+        feasible &= ok
+        sigma[p] = s
+        state[p] = tuple(x - Fraction(w) * y for x, y in zip(r, s, strict=True))
+    return sigma, feasible
+
+
+def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None) -> tuple[list[Any], int]:
+    """The structured route's records for a profile whose Defender is the guarantee rule.
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.ngoal.profile import nprofile_from_json
+    >>> doc = {"format": "dpp-ngoal-profile/1",
+    ...        "attacker": [[{"path": ["s", "m", "a"], "probability": 1}],
+    ...                     [{"path": ["s", "m", "b"], "probability": 1}],
+    ...                     [{"path": ["s", "m", "c"], "probability": 1}]],
+    ...        "defender": {"rule": "guarantee", "h": [2, 1, 1]}}
+    >>> recs, _ = guarantee_checks(star3(), nprofile_from_json(star3(), doc), None)
+    >>> [(r.id, r.status) for r in recs][2]
+    ('ngoal.pbne.attacker_br', 'pass')
+    """
+    from dppverify.ngoal.structured import _IDS, DOC, WALKS, _defender, _labels, _rec, _value
+    from dppverify.ngoal.walk_br import TableDefender, build_walk_trie
+
+    inst = instance
+    n = inst.n_goals
+    rule: GuaranteeRule = profile.rule
+    walks = [mw.walk for mix in profile.attacker for mw in mix]
+    trie = build_walk_trie(inst, walks)
+    sets = guarantee_sets(inst)
+    parent = trie.parent
+    order_ok = all(parent[p] < p for p in range(1, len(trie)))
+    assert order_ok  # the trie numbers prefixes in insertion order
+    sigma, feasible = rule_on_trie(inst, rule, sets, parent, trie.node)
+    tdef = TableDefender(trie=trie, sigma=sigma, default=None)
+    mass: dict[int, list[Fraction]] = {}
+    per_type: list[Fraction] = []
+    for theta, mix in enumerate(profile.attacker):
+        total = Fraction(0)
+        for mw in mix:
+            p = 0
+            cost = Fraction(0)
+            mass.setdefault(0, [Fraction(0)] * n)[theta] += mw.probability
+            for k, v in enumerate(mw.walk[1:], start=1):
+                p = trie.children[p][v]
+                mass.setdefault(p, [Fraction(0)] * n)[theta] += mw.probability
+                w = inst.weight(mw.walk[k - 1], v)
+                assert w is not None
+                cost += Fraction(w) * sigma[p][theta]
+            total += mw.probability * (cost + Fraction(inst.dist_to[theta][mw.walk[-1]]))
+        per_type.append(total)
+    out = [_rec(_IDS[0], "pass", f"{n} types, {len(walks)} walks, Defender: the guarantee rule "
+                f"with h = {[str(x) for x in rule.h]} (defined on every walk)",
+                {"walks": len(walks), "prefixes": len(trie)}, DOC, None)]
+    u = sum((inst.prior[t] * per_type[t] for t in range(n)), Fraction(0))
+    nums: dict[str, Number | None] = {f"U{t + 1}": per_type[t] for t in range(n)}
+    nums["U"] = u
+    ok = profile.claimed_u is None or profile.claimed_u == u
+    said = "" if profile.claimed_u is None else f" (profile says {profile.claimed_u})"
+    out.append(_rec("ngoal.value.U", "pass" if ok else "fail", f"U = {u}{said}", nums, WALKS))
+    out.append(_attacker_record(inst, rule, sets, per_type, feasible, _rec, _labels))
+    out += _defender(inst, tdef, mass, u)
+    out.append(_value(inst, u, horizon, all(r.passed for r in out)))
+    return out, len(trie)
+
+
+def _attacker_record(inst: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
+                     per_type: list[Fraction], feasible: bool, rec: Any, labels: Any) -> Any:
+    cid = "ngoal.pbne.attacker_br"
+    proof = "NSOLVE"
+    bad_start = in_start_set(rule, sets)
+    if bad_start is not None:
+        members = [i + 1 for i in range(inst.n_goals) if bad_start >> i & 1]
+        return rec(cid, "error", f"h is not in G_s0: h(S) > m_S(s0) for S = {members}; the rule "
+                   f"guarantees nothing (could not decide the Attacker's regret)", None, NSOLVE,
+                   proof)
+    arc = arc_condition(sets)
+    if not arc.holds:
+        assert arc.failure is not None
+        v, u, ray = arc.failure
+        return rec(cid, "error", f"the arc condition G_v ⊆ G_u + wΔ could not be established on "
+                   f"arc {inst.nodes[v]!r} -> {inst.nodes[u]!r} (direction "
+                   f"{[(s, str(c)) for s, c in ray]}): no lower bound over all walks, could not "
+                   f"decide the Attacker's regret", {"arcs": arc.arcs}, NSOLVE, proof)
+    nums: dict[str, Number | None] = {f"regret{t + 1}": per_type[t] - rule.h[t]
+                                      for t in range(inst.n_goals)}
+    nums["arcs"] = arc.arcs
+    below = [t for t in range(inst.n_goals) if per_type[t] < rule.h[t]]
+    if below or not feasible:
+        return rec(cid, "error", "a type pays less than its proved guarantee h: the checker's "
+                   "computations disagree", nums, NSOLVE, proof)
+    above = [t for t in range(inst.n_goals) if per_type[t] > rule.h[t]]
+    if above:
+        t = above[0]
+        return rec(cid, "error", f"type {t + 1} pays {per_type[t]}, above its guarantee h = "
+                   f"{rule.h[t]} (a lower bound over all walks): could not decide its regret",
+                   nums, NSOLVE, proof)
+    rays = f", {arc.rays} non-pattern directions" if arc.rays else ""
+    return rec(cid, "pass", f"every type pays exactly h_θ, its minimum over all walks of any "
+               f"length (arc condition on all {arc.arcs} walkable arcs{rays})", nums, NSOLVE,
+               proof)
