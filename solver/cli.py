@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 import sys
 from pathlib import Path
+from typing import Any
 
 import click
 
@@ -26,10 +27,12 @@ from dppverify.map_options import MapRequest, instance_or_map, map_options
 from solver.equilibrium import solve
 from solver.errors import DPPError, InvalidInstanceError, OutputError
 from solver.instance import Instance
-from solver.instance_json import instance_to_json, load_instance
+from solver.instance_json import instance_to_json, load_instance, read_json
 from solver.io_utils import dumps, write_atomic, write_files
 from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE, MAX_INPUT_BYTES
 from solver.movingai import read_map
+from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
+from solver.ngoal_instance import NGame, ngame_from_grid, ngame_from_json, ngame_to_json
 from solver.profile_json import equilibrium_to_json
 from solver.report import summarize
 
@@ -77,11 +80,9 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     if output is not None and save_instance is not None and \
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
-    from solver.ngoal_cli import ngoal_game, solve_ngoal_command
-
-    ngame = ngoal_game(instance, grid)
+    ngame = _ngoal_game(instance, grid)
     if ngame is not None:  # N > 2 goals: the coalition construction, certified before writing
-        solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance)
+        _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance)
         return
     inst = _load(instance, grid)
     eq = solve(inst)
@@ -113,6 +114,64 @@ def _load(instance: str | None, grid: MapRequest | None) -> Instance:
                                   connectivity=grid.connectivity)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{grid.map}: {exc}") from None
+
+
+# ---------------------------------------------------------------------- N goals
+def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
+    """The N-goal game of a solver command, or None when it has two goals."""
+    instance_or_map(instance, grid)
+    if grid is not None:
+        if grid.n_goals <= 2:
+            return None
+        try:
+            return ngame_from_grid(read_map(grid.path), grid.start, grid.goals, grid.prior)
+        except InvalidInstanceError as exc:
+            raise InvalidInstanceError(f"{grid.map}: {exc}") from None
+    assert instance is not None
+    doc = read_json(instance)
+    if not (isinstance(doc, dict) and isinstance(doc.get("goals"), list)
+            and len(doc["goals"]) > 2):
+        return None
+    try:
+        return ngame_from_json(doc)
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{instance}: {exc}") from None
+
+
+def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | None,
+                        as_json: bool, output: str | None, save_instance: str | None) -> None:
+    """Solve, certify, and write (or refuse in one line, exit 3)."""
+    from dppverify.ngoal.certify import certify_ngoal
+
+    eq = solve_ngoal(game)
+    doc = nequilibrium_to_json(eq)
+    checked = grid.ninstance() if grid is not None else instance
+    assert checked is not None
+    cert = certify_ngoal(checked, doc, horizon="inf", route="structured")
+    if cert.verdict != "pass":
+        bad = next((c for c in cert.checks if c.status not in ("pass", "skipped")), None)
+        why = "" if bad is None else f": {bad.id}: {' '.join(bad.message.split())}"
+        click.echo(f"error: the coalition construction does not give a certified equilibrium "
+                   f"on this instance{why}; nothing written", err=True)
+        raise click.exceptions.Exit(3)
+    text = dumps(doc)
+    instance_text = dumps(ngame_to_json(game)) if save_instance is not None else None
+    if output is not None:
+        write_atomic(output, text)
+    if save_instance is not None and instance_text is not None:
+        write_atomic(save_instance, instance_text)
+    if as_json:
+        click.echo(text, nl=False)
+    elif output is None:
+        click.echo(f"N = {game.n_goals} goals: U = {eq.U} (certified: structured route, "
+                   f"H = inf), VoI = {eq.VoI}, U_bar = {eq.U_bar}; type costs "
+                   f"{[str(c) for c in eq.costs]}; Defender: guarantee rule h = "
+                   f"{[str(x) for x in eq.h]}")
+    else:
+        status(f"wrote {output}: U = {doc['value']['U']}, VoI = {doc['value']['VoI']} "
+               f"(N = {game.n_goals} goals, certified)")
+    if save_instance is not None:
+        status(f"wrote {save_instance}: the instance")
 
 
 # ---------------------------------------------------------------------- experiments

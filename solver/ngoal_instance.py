@@ -18,11 +18,12 @@ import numpy as np
 
 from solver.distances import distances_to
 from solver.errors import InstanceFormatError, InvalidInstanceError
-from solver.instance_json import _graph_from_node_link, node_from_json, read_json
+from solver.instance_json import _graph_from_node_link, node_from_json, node_to_json, read_json
 from solver.network import Network
 from solver.numbers import parse_number
 
-__all__ = ["MAX_NGOALS", "NGame", "ngame_from_grid", "ngame_from_json", "load_ngame"]
+__all__ = ["MAX_NGOALS", "NGame", "load_ngame", "ngame_from_grid", "ngame_from_json",
+           "ngame_to_json"]
 
 MAX_NGOALS = 5
 """The coalition DP enumerates minimal balanced collections of up to five goals."""
@@ -194,3 +195,32 @@ columns 0-2)
     for g in goals:
         _check_free(net.labels, tuple(g), "goal")
     return _build(net, tuple(start), [tuple(g) for g in goals], prior)
+
+
+def ngame_to_json(game: NGame) -> dict[str, Any]:
+    """The instance JSON of an N-goal game (every arc listed, exact weights as strings).
+
+    Examples
+    --------
+    >>> game = ngame_from_grid(np.zeros((1, 3), dtype=bool), (0, 0), [(0, 1), (0, 2)],
+    ...                        ["1/2", "1/2"])
+    >>> doc = ngame_to_json(game)
+    >>> doc["goals"], len(doc["graph"]["edges"])
+    ([[0, 1], [0, 2]], 4)
+    """
+    net = game.network
+    den = game.denominator
+    nodes = [{"id": node_to_json(net.labels[i])} for i in range(net.n_nodes)
+             if net.indptr[i + 1] > net.indptr[i] or i == game.start or i in game.goals]
+    edges = []
+    for i in range(net.n_nodes):
+        heads, ws = net.out_arcs(i)
+        for j, w in zip(heads.tolist(), ws.tolist(), strict=True):
+            edges.append({"source": node_to_json(net.labels[i]),
+                          "target": node_to_json(net.labels[j]),
+                          "weight": str(Fraction(int(w), den))})
+    return {"graph": {"directed": True, "multigraph": False, "graph": {}, "nodes": nodes,
+                      "edges": edges},
+            "start": node_to_json(net.labels[game.start]),
+            "goals": [node_to_json(net.labels[g]) for g in game.goals],
+            "prior": [str(b) for b in game.prior]}

@@ -107,7 +107,7 @@ class GuaranteeSets:
     m : Mapping
         Subset mask -> array over nodes.
     layers : int
-        DP layers until the layer repeated.
+        Label-setting passes (one per subset).
     """
 
     instance: NInstance
@@ -122,11 +122,16 @@ class GuaranteeSets:
         return None if x >= self.big else Fraction(x, self.scale)
 
 
-_SETS: dict[int, GuaranteeSets] = {}
+def guarantee_sets(instance: NInstance) -> GuaranteeSets:
+    """``m_S`` at ``H = inf`` at every node: the unique solution of the DP's fixpoint equations.
 
-
-def guarantee_sets(instance: NInstance, *, max_layers: int = 100_000) -> GuaranteeSets:
-    """The DP layer at ``H = inf`` (iterated until it repeats; proofs/NGOAL.md NG.5).
+    By increasing ``|S|``: the split ``min_λ Σ_T λ_T m_T(v)`` over the minimal balanced
+    collections of ``S`` (:func:`dppverify.ngoal.cover.balanced_vertices`) is known from the
+    smaller subsets, and ``m_S(v) = min_x [dist(v -> x) + init_S(x)]`` over walks whose interior
+    avoids the goals (``init_S`` = the split off the goals, the terminal cost at a goal): one
+    label-setting shortest-path pass per subset (NSOLVE.3: this is the limit ``H -> inf`` of
+    the layered DP of :mod:`dppverify.ngoal.coalition`). Exact: integers scaled by
+    ``W·L^(N-1)``, in float64 only while every value is an integer below 2**53.
 
     Examples
     --------
@@ -135,20 +140,125 @@ def guarantee_sets(instance: NInstance, *, max_layers: int = 100_000) -> Guarant
     >>> g.value(0b111, star3().start), g.value(0b001, star3().start)
     (Fraction(4, 1), Fraction(2, 1))
     """
-    from dppverify.errors import HorizonError
-    from dppverify.ngoal.coalition import _Runner
+    from dppverify.ngoal.cover import MAX_BALANCED, balanced_vertices, members
+    from dppverify.errors import OptionError
+    from dppverify.ngoal.coalition import too_many_goals
 
-    run = _Runner(instance)
-    layer = run.layer0()
-    k = 0
-    while True:
-        k += 1
-        if k > max_layers:
-            raise HorizonError(f"the coalition DP did not converge within {max_layers} layers")
-        nxt = run.step(layer, k)
-        if k > max(instance.hops) and all(np.array_equal(nxt[m], layer[m]) for m in layer):
-            return GuaranteeSets(instance, run.scale, run.big, nxt, k)
-        layer = nxt
+    inst = instance
+    n_goals = inst.n_goals
+    if not 2 <= n_goals <= MAX_BALANCED:
+        raise OptionError(too_many_goals(n_goals))
+    n = inst.n_nodes
+    lcm = 1
+    for size in range(2, n_goals + 1):
+        lcm = lcm * balanced_vertices(size).lcm // _gcd(lcm, balanced_vertices(size).lcm)
+    wden = 1
+    for arcs in inst.succ:
+        for _, w in arcs:
+            d = Fraction(w).denominator
+            wden = wden * d // _gcd(wden, d)
+    scale = wden * lcm ** (n_goals - 1)
+    goal = [inst.is_goal(v) for v in range(n)]
+    live = [not goal[v] and inst.hops[v] >= 0 for v in range(n)]
+    rows = [v for v in range(n) if live[v]]
+    tails: list[int] = []
+    heads: list[int] = []
+    weights: list[int] = []
+    scaled: dict[Any, int] = {}
+    for v in rows:
+        for u, w in inst.succ[v]:
+            tails.append(v)
+            heads.append(u)
+            if w not in scaled:
+                scaled[w] = int(Fraction(w) * scale)
+            weights.append(scaled[w])
+    finite = [inst.dist_to[t][g] for t in range(n_goals) for g in inst.goals]
+    top = (n_goals * (max(Fraction(x) for x in finite) * scale + sum(weights)) + 2) * 2
+    big = int(top) + 1
+    m: dict[int, np.ndarray] = {}
+    idx = np.asarray(rows, dtype=np.int64)
+    for mask in sorted(range(1, 1 << n_goals), key=lambda t: (bin(t).count("1"), t)):
+        init = [-1] * n
+        for g in inst.goals:
+            init[g] = sum(int(Fraction(inst.dist_to[t][g]) * scale) for t in members(mask))
+        elems = members(mask)
+        if len(elems) >= 2 and rows:
+            table = balanced_vertices(len(elems))
+            cols = [sum(1 << elems[i] for i in members(c)) for c in table.columns]
+            mat = np.stack([m[c][idx].astype(object) for c in cols], axis=1)
+            tot = mat.dot(table.scaled.astype(object))
+            best = tot.min(axis=1)
+            for v, x in zip(rows, best.tolist(), strict=True):
+                if x % table.lcm:  # pragma: no cover - guaranteed by the scaling
+                    raise AssertionError("guarantee_sets: a split is not a multiple of 1/scale")
+                init[v] = x // table.lcm
+        m[mask] = _label_setting(n, tails, heads, weights, init, big)
+    return GuaranteeSets(inst, scale, big, m, (1 << n_goals) - 1)
+
+
+def _gcd(a: int, b: int) -> int:
+    while b:
+        a, b = b, a % b
+    return a
+
+
+def _label_setting(n: int, tails: list[int], heads: list[int], weights: list[int],
+                   init: list[int], big: int) -> np.ndarray:
+    """``min_x [dist(v -> x) + init[x]]`` (``init < 0``: no source there), ``big`` if none."""
+    src = [x for x in range(n) if init[x] >= 0]
+    out = np.full(n, big, dtype=object)
+    if max((init[x] for x in src), default=0) + sum(weights) + 2 < 2 ** 53:
+        from scipy.sparse import csr_matrix
+        from scipy.sparse.csgraph import dijkstra
+
+        # reversed arcs, and a root n with arcs n -> x of weight init[x] + 1 (positive)
+        r = np.asarray(heads + [n] * len(src), dtype=np.int64)
+        c = np.asarray(tails + src, dtype=np.int64)
+        w = np.asarray(weights + [init[x] + 1 for x in src], dtype=np.float64)
+        dist = dijkstra(csr_matrix((w, (r, c)), shape=(n + 1, n + 1)), directed=True,
+                        indices=n)[:n]
+        fin = np.flatnonzero(np.isfinite(dist))
+        out[fin] = [int(x) - 1 for x in dist[fin].tolist()]
+        return out
+    import heapq
+
+    pred: list[list[tuple[int, int]]] = [[] for _ in range(n)]
+    for t, h, w2 in zip(tails, heads, weights, strict=True):
+        pred[h].append((t, w2))
+    best: dict[int, int] = {x: init[x] for x in src}
+    heap = [(init[x], x) for x in src]
+    heapq.heapify(heap)
+    done = [False] * n
+    while heap:
+        k, x = heapq.heappop(heap)
+        if done[x]:
+            continue
+        done[x] = True
+        out[x] = k
+        for t, w2 in pred[x]:
+            if not done[t] and (t not in best or k + w2 < best[t]):
+                best[t] = k + w2
+                heapq.heappush(heap, (k + w2, t))
+    return out
+
+
+def dp_value(sets: GuaranteeSets) -> Any:
+    """The coalition DP's value at ``H = inf`` from the fixpoint (a ``CoalitionValue``).
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> dp_value(guarantee_sets(star3())).value
+    Fraction(3, 2)
+    """
+    from dppverify.ngoal.coalition import CoalitionValue
+    from dppverify.ngoal.cover import min_cover
+
+    inst = sets.instance
+    costs = {mask: Fraction(int(v[inst.start]), sets.scale) for mask, v in sets.m.items()}
+    lp = min_cover(costs, inst.prior)
+    return CoalitionValue(horizon=None, value=lp.value, layers=sets.layers,
+                          coalition_costs=costs, cover=dict(lp.cover))
 
 
 # ---------------------------------------------------------------- the rule's σ (lexmin)
@@ -366,21 +476,25 @@ def arc_condition(sets: GuaranteeSets) -> ArcCondition:
     inst = sets.instance
     n = inst.n_goals
     tails, heads, wts = [], [], []
+    reach = sets.m[1] < sets.big
+    scaled: dict[Any, int] = {}
     for v in range(inst.n_nodes):
-        if inst.is_goal(v):
+        if inst.is_goal(v) or not reach[v]:
             continue
         for u, w in inst.succ[v]:
-            if int(sets.m[1][u]) >= sets.big or int(sets.m[1][v]) >= sets.big:
+            if not reach[u]:
                 continue
             tails.append(v)
             heads.append(u)
-            wts.append(Fraction(w))
+            if w not in scaled:
+                scaled[w] = int(Fraction(w) * sets.scale)
+            wts.append(scaled[w])
     narcs = len(tails)
     if narcs == 0:
         return ArcCondition(True, 0, 0, None)
     t_idx = np.asarray(tails, dtype=np.int64)
     h_idx = np.asarray(heads, dtype=np.int64)
-    w_scaled = np.array([int(w * sets.scale) for w in wts], dtype=object)
+    w_scaled = np.array(wts, dtype=object)
     # the DP step inequality m_S(v) <= w + m_S(u) (a fixpoint property; checked, it is cheap)
     for mask, vals in sets.m.items():
         lhs = vals[t_idx].astype(object)
@@ -515,7 +629,8 @@ def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None) -> 
     out.append(_rec("ngoal.value.U", "pass" if ok else "fail", f"U = {u}{said}", nums, WALKS))
     out.append(_attacker_record(inst, rule, sets, per_type, feasible, _rec, _labels))
     out += _defender(inst, tdef, mass, u)
-    out.append(_value(inst, u, horizon, all(r.passed for r in out)))
+    dp = dp_value(sets) if horizon is None else None
+    out.append(_value(inst, u, horizon, all(r.passed for r in out), dp))
     return out, len(trie)
 
 
