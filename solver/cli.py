@@ -123,6 +123,10 @@ def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
     if grid is not None:
         if grid.n_goals <= 2:
             return None
+        if grid.connectivity != 4:
+            raise InvalidInstanceError(f"{grid.map}: the N-goal solver is exact only: float "
+                                       "weights (--connectivity 8) are not supported for more "
+                                       "than two goals")
         try:
             return ngame_from_grid(read_map(grid.path), grid.start, grid.goals, grid.prior)
         except InvalidInstanceError as exc:

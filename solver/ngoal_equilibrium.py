@@ -1,8 +1,10 @@
 """The N-goal construction: coalition Attacker and guarantee-vector Defender (proofs/NSOLVE.md).
 
 - **Root.** The cover LP ``min Σ_S c_S m_S(s0)`` s.t. ``Σ_S c_S 1_S = b`` (exact simplex,
-  :func:`solver.coalitions.cover_lp`) gives the starting coalitions (mass ``c_S``) and its dual
-  ``h`` (``h(S) <= m_S(s0)``, ``h·b`` = the coalition DP's value).
+  :func:`solver.coalitions.cover_lp`) gives the starting coalitions (mass ``c_S``); ``h`` is
+  its lexicographically largest optimal dual in the priority order
+  (:func:`solver.coalitions.canonical_dual`: ``h(S) <= m_S(s0)``, ``h·b`` = the coalition DP's
+  value; for two goals the paper's ``(d(s0, g1), M - d(s0, g1))``).
 - **Attacker.** Each coalition ``S`` of mass ``μ`` at a node ``v`` follows an argmin of the DP:
   it steps ``v -> u`` when ``m_S(v) = w(v, u) + m_S(u)`` (preferred: coalitions stay together;
   among such arcs the one to the lowest node index), else splits into the minimal balanced
@@ -24,7 +26,13 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from solver.coalitions import Coalitions, balanced_collections, coalition_dp, cover_lp
+from solver.coalitions import (
+    Coalitions,
+    balanced_collections,
+    canonical_dual,
+    coalition_dp,
+    cover_lp,
+)
 from solver.coalitions import subset_members as _members
 from solver.guarantee_rule import guarantee_step, priority_order
 from solver.instance_json import node_to_json
@@ -47,7 +55,7 @@ class NEquilibrium:
     game : NGame
         The instance.
     h : tuple of Fraction
-        The Defender's guarantee vector (the cover LP's dual).
+        The Defender's guarantee vector (the cover LP's canonical optimal dual).
     cover : dict
         Subset mask -> starting coalition mass ``c_S``.
     mixtures : tuple
@@ -136,12 +144,14 @@ def solve_ngoal(game: NGame) -> NEquilibrium:
     s0 = game.start
     costs0 = {mask: dp.m(mask, s0) for mask in range(1, 1 << n)}
     root = cover_lp({k: v for k, v in costs0.items() if v is not None}, game.prior)
+    order = priority_order(game.prior)
+    finite = {k: v for k, v in costs0.items() if v is not None}
+    h0 = canonical_dual(finite, game.prior, root.value, order)
     leaves = _expand(dp, dict(root.cover))
     mix: list[dict[tuple[int, ...], Fraction]] = [{} for _ in range(n)]
     for walk, mask, mass in leaves:
         for t in _members(mask):
             mix[t][walk] = mix[t].get(walk, Fraction(0)) + mass / game.prior[t]
-    order = priority_order(game.prior)
     # the rule along every walk (shared prefixes computed once)
     memo: dict[tuple[int, ...], tuple[tuple[Fraction, ...], tuple[Fraction, ...]]] = {}
     feasible = True
@@ -149,7 +159,7 @@ def solve_ngoal(game: NGame) -> NEquilibrium:
     den = game.denominator
     for theta in range(n):
         for walk, prob in mix[theta].items():
-            r = tuple(root.dual)
+            r = h0
             paid = Fraction(0)
             for k in range(1, len(walk)):
                 key = walk[:k + 1]
@@ -167,7 +177,7 @@ def solve_ngoal(game: NGame) -> NEquilibrium:
     u_val = sum((b * c for b, c in zip(game.prior, type_cost, strict=True)), Fraction(0))
     u_bar = sum((game.prior[t] * game.distance(t, s0) for t in range(n)), Fraction(0))
     mixtures = tuple(tuple(sorted(m.items(), key=lambda kv: (-kv[1], kv[0]))) for m in mix)
-    return NEquilibrium(game=game, h=tuple(root.dual), cover=dict(root.cover),
+    return NEquilibrium(game=game, h=h0, cover=dict(root.cover),
                         mixtures=mixtures, costs=tuple(type_cost), U=u_val, U_bar=u_bar,
                         VoI=(u_bar - u_val) / u_bar if u_bar else Fraction(0),
                         dp_value=root.value, feasible=feasible,
