@@ -10,7 +10,6 @@ from __future__ import annotations
 import re
 import sys
 from pathlib import Path
-from typing import Any
 
 import click
 
@@ -108,9 +107,13 @@ def _load(instance: str | None, grid: MapRequest | None) -> Instance:
     if grid is None:
         assert instance is not None
         return load_instance(instance)
+    if grid.n_goals != 2:
+        raise InvalidInstanceError(f"{grid.map}: this command takes two goals, got "
+                                   f"{grid.n_goals} (N-goal games: dpp solve, certify, value)")
     blocked = read_map(grid.path)
     try:
-        return Instance.from_grid(blocked, grid.start, grid.goals, grid.prior,
+        return Instance.from_grid(blocked, grid.start, (grid.goals[0], grid.goals[1]),
+                                  (grid.prior[0], grid.prior[1]),
                                   connectivity=grid.connectivity)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{grid.map}: {exc}") from None

@@ -79,7 +79,7 @@ def balanced_collections(size: int) -> tuple[tuple[tuple[int, Fraction], ...], .
     found: set[tuple[tuple[int, Fraction], ...]] = set()
     for k in np.flatnonzero(feasible):
         d = int(det[k])
-        nums = [int(round(x * d)) for x in sol[k]]
+        nums = [round(x * d) for x in sol[k]]
         lam = [Fraction(x, d) for x in nums]
         members = [cols[int(c)] for c in combos[k]]
         # exact verification: Σ λ_T 1_T = 1_S, λ >= 0

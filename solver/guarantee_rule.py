@@ -41,7 +41,7 @@ def priority_order(prior: Sequence[Fraction]) -> tuple[int, ...]:
 def _solve(rows: list[list[Fraction]], rhs: list[Fraction]) -> list[Fraction] | None:
     """The unique solution of a square exact system, or None when it is singular."""
     n = len(rows)
-    mat = [row[:] + [r] for row, r in zip(rows, rhs, strict=True)]
+    mat = [[*row[:], r] for row, r in zip(rows, rhs, strict=True)]
     for c in range(n):
         p = next((r for r in range(c, n) if mat[r][c] != 0), None)
         if p is None:

@@ -21,6 +21,7 @@ checker before writing it and refuses (one line, nothing written) when it does n
 
 from __future__ import annotations
 
+import functools
 import time
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -81,6 +82,10 @@ class NEquilibrium:
     dp_value: Fraction
     feasible: bool
     seconds: float
+
+
+def _m_at(dp: Coalitions, u: int, mask: int) -> Fraction | None:
+    return dp.m(mask, u)
 
 
 def _expand(dp: Coalitions, cover: dict[int, Fraction]
@@ -166,7 +171,7 @@ def solve_ngoal(game: NGame) -> NEquilibrium:
                 if key not in memo:
                     v, u = walk[k - 1], walk[k]
                     w = Fraction(int(game.network.arc_weight(v, u) or 0), den)
-                    sigma, ok = guarantee_step(r, lambda mask, u=u: dp.m(mask, u), w, order)
+                    sigma, ok = guarantee_step(r, functools.partial(_m_at, dp, u), w, order)
                     feasible &= ok
                     memo[key] = (sigma, tuple(x - w * s for x, s in zip(r, sigma, strict=True)))
                 sigma, r_next = memo[key]

@@ -191,10 +191,10 @@ columns 0-2)
     from solver.instance import _check_free
 
     net = Network.from_grid(blocked, connectivity=4)
-    _check_free(net.labels, tuple(start), "start")
+    _check_free(net.labels, (start[0], start[1]), "start")
     for g in goals:
-        _check_free(net.labels, tuple(g), "goal")
-    return _build(net, tuple(start), [tuple(g) for g in goals], prior)
+        _check_free(net.labels, (g[0], g[1]), "goal")
+    return _build(net, (start[0], start[1]), [(g[0], g[1]) for g in goals], prior)
 
 
 def ngame_to_json(game: NGame) -> dict[str, Any]:

@@ -140,9 +140,9 @@ def guarantee_sets(instance: NInstance) -> GuaranteeSets:
     >>> g.value(0b111, star3().start), g.value(0b001, star3().start)
     (Fraction(4, 1), Fraction(2, 1))
     """
-    from dppverify.ngoal.cover import MAX_BALANCED, balanced_vertices, members
     from dppverify.errors import OptionError
     from dppverify.ngoal.coalition import too_many_goals
+    from dppverify.ngoal.cover import MAX_BALANCED, balanced_vertices, members
 
     inst = instance
     n_goals = inst.n_goals
@@ -320,9 +320,9 @@ def guarantee_sigma(r: Sequence[Fraction], sets: GuaranteeSets, u: int, w: Numbe
         if x is None:
             continue
         if all(sum((x[j] for j in range(n) if t >> j & 1), Fraction(0)) >= b
-               for t, b in items):
-            if best is None or [x[t] for t in order] < [best[t] for t in order]:
-                best = x
+               for t, b in items) and (best is None or [x[t] for t in order]
+                                       < [best[t] for t in order]):
+            best = x
     if best is None:
         return tuple(Fraction(1) if i == order[0] else Fraction(0) for i in range(n)), False
     return tuple(best), True
@@ -343,8 +343,8 @@ def _nullspace_ray(mat: list[list[Fraction]], k: int) -> list[Fraction] | None:
         a[r] = [x / pv for x in a[r]]
         for i in range(len(a)):
             if i != r and a[i][col]:
-                f = a[i][col]
-                a[i] = [x - f * y for x, y in zip(a[i], a[r], strict=True)]
+                fac = a[i][col]
+                a[i] = [x - fac * y for x, y in zip(a[i], a[r], strict=True)]
         pivots.append(col)
         r += 1
     free = [c for c in range(k) if c not in pivots]
@@ -416,7 +416,8 @@ def bad_rays(n: int) -> tuple[tuple[tuple[tuple[int, Fraction], ...], int], ...]
 
 
 @cache
-def _cover_vertices(n: int, y: tuple[Fraction, ...]) -> tuple[tuple[tuple[int, Fraction], ...], ...]:
+def _cover_vertices(n: int, y: tuple[Fraction, ...]
+                    ) -> tuple[tuple[tuple[int, Fraction], ...], ...]:
     """The vertices of ``{c >= 0 : Σ_S c_S 1_S = y}`` (exact; bases of ``n`` subsets)."""
     masks = list(range(1, 1 << n))
     out = set()
@@ -497,9 +498,9 @@ def arc_condition(sets: GuaranteeSets) -> ArcCondition:
     w_scaled = np.array(wts, dtype=object)
     # the DP step inequality m_S(v) <= w + m_S(u) (a fixpoint property; checked, it is cheap)
     for mask, vals in sets.m.items():
-        lhs = vals[t_idx].astype(object)
-        rhs = w_scaled + vals[h_idx].astype(object)
-        bad = np.flatnonzero(lhs > rhs)
+        here = vals[t_idx].astype(object)
+        step = w_scaled + vals[h_idx].astype(object)
+        bad = np.flatnonzero(here > step)
         if bad.size:
             k = int(bad[0])
             return ArcCondition(False, narcs, 0, (tails[k], heads[k], ((mask, Fraction(1)),)))
@@ -514,7 +515,7 @@ def arc_condition(sets: GuaranteeSets) -> ArcCondition:
         for vert in verts:
             for _, c in vert:
                 den = den * c.denominator // np.gcd(den, c.denominator)
-        lhs = None
+        lhs: np.ndarray | None = None
         for vert in verts:
             tot = np.zeros(narcs, dtype=object)
             for s, c in vert:
@@ -572,7 +573,8 @@ def rule_on_trie(instance: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
     return sigma, feasible
 
 
-def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None) -> tuple[list[Any], int]:
+def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None
+                     ) -> tuple[list[Any], int]:
     """The structured route's records for a profile whose Defender is the guarantee rule.
 
     Examples

@@ -42,7 +42,8 @@ from dppverify.json_reading import (
     read_json_file,
     resolve_walk,
 )
-from dppverify.ngoal.guarantee import RULE as GUARANTEE, GuaranteeRule, parse_guarantee
+from dppverify.ngoal.guarantee import RULE as GUARANTEE
+from dppverify.ngoal.guarantee import GuaranteeRule, parse_guarantee
 from dppverify.ngoal.instance import NInstance
 from dppverify.profile import StrategyPath
 

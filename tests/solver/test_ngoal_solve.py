@@ -126,7 +126,7 @@ def _two_goal_doc(rng: random.Random) -> dict[str, Any]:
                "start": 0, "goals": [1, 2], "prior": [str(p), str(1 - p)]}
         try:
             ninstance_from_json(doc)
-        except Exception:  # noqa: BLE001 - resample until valid
+        except Exception:
             continue
         return doc
 
