@@ -38,8 +38,8 @@ from scipy.sparse.csgraph import dijkstra
 
 from solver.ngoal_instance import NGame
 
-__all__ = ["Coalitions", "CoverSolution", "balanced_collections", "canonical_dual",
-           "coalition_dp", "cover_lp", "subset_members"]
+__all__ = ["Coalitions", "CoverSolution", "balanced_collections", "coalition_dp", "cover_lp",
+           "subset_members"]
 
 EXACT_FLOAT = 2 ** 53
 
@@ -101,12 +101,16 @@ class CoverSolution:
     dual: tuple[Fraction, ...]
 
 
-def cover_lp(costs: Mapping[int, Fraction], b: Sequence[Fraction]) -> CoverSolution:
+def cover_lp(costs: Mapping[int, Fraction], b: Sequence[Fraction],
+             order: Sequence[int] = ()) -> CoverSolution:
     """``min Σ_S c_S costs[S]`` s.t. ``Σ_S c_S 1_S = b``, ``c >= 0``, by an exact tableau simplex.
 
     Starts from the singleton basis (feasible: ``b > 0``), Bland's rule (finite). The dual
     ``h`` of the optimal basis satisfies ``h(S) <= costs[S]`` for every ``S`` and ``h·b`` =
-    value.
+    value. With ``order`` the right-hand side is perturbed lexicographically,
+    ``b + ε e_{order[0]} + ε² e_{order[1]} + …``: the final basis is then optimal for ``b`` and
+    its dual is the lexicographically largest optimal dual in ``order`` (LP sensitivity: the
+    perturbed problem's dual maximises ``h·b`` first, then ``h_{order[0]}``, …).
 
     Examples
     --------
@@ -114,12 +118,22 @@ def cover_lp(costs: Mapping[int, Fraction], b: Sequence[Fraction]) -> CoverSolut
     >>> sol = cover_lp({k: Fraction(v) for k, v in costs.items()}, [Fraction(1)] * 3)
     >>> sol.value, sol.dual
     (Fraction(3, 1), (Fraction(1, 1), Fraction(1, 1), Fraction(1, 1)))
+    >>> two = {1: Fraction(9, 2), 2: Fraction(3), 3: Fraction(9, 2)}
+    >>> cover_lp(two, [Fraction(1, 2)] * 2, order=(0, 1)).dual
+    (Fraction(9, 2), Fraction(0, 1))
     """
     n = len(b)
     masks = sorted(costs)
     col = {t: j for j, t in enumerate(masks)}
-    # tableau rows: B^{-1} A | B^{-1} b ; basis = singletons
-    rows = [[Fraction(t >> i & 1) for t in masks] + [Fraction(b[i])] for i in range(n)]
+    width = len(masks)
+
+    def rhs(i: int) -> list[Fraction]:
+        out = [Fraction(b[i])]
+        out += [Fraction(int(i == t)) for t in order]
+        return out
+
+    # tableau rows: B^{-1} A | B^{-1} (b, perturbations) ; basis = singletons
+    rows = [[Fraction(t >> i & 1) for t in masks] + rhs(i) for i in range(n)]
     basis = [1 << i for i in range(n)]
     while True:
         h = _duals(basis, costs, n)
@@ -131,15 +145,15 @@ def cover_lp(costs: Mapping[int, Fraction], b: Sequence[Fraction]) -> CoverSolut
                 entering = t
                 break
         if entering is None:
-            value = sum((costs[basis[i]] * rows[i][-1] for i in range(n)), Fraction(0))
-            cover = {basis[i]: rows[i][-1] for i in range(n) if rows[i][-1]}
+            value = sum((costs[basis[i]] * rows[i][width] for i in range(n)), Fraction(0))
+            cover = {basis[i]: rows[i][width] for i in range(n) if rows[i][width]}
             return CoverSolution(value, cover, tuple(h))
         j = col[entering]
         best = None
         for i in range(n):
             a = rows[i][j]
             if a > 0:
-                key = (rows[i][-1] / a, basis[i])
+                key = ([x / a for x in rows[i][width:]], basis[i])
                 if best is None or key < best[0]:
                     best = (key, i)
         if best is None:  # pragma: no cover - c_S <= min b keeps the LP bounded
@@ -152,54 +166,6 @@ def cover_lp(costs: Mapping[int, Fraction], b: Sequence[Fraction]) -> CoverSolut
                 f = rows[k][j]
                 rows[k] = [x - f * y for x, y in zip(rows[k], rows[i], strict=True)]
         basis[i] = entering
-
-
-def canonical_dual(costs: Mapping[int, Fraction], b: Sequence[Fraction], value: Fraction,
-                   order: Sequence[int]) -> tuple[Fraction, ...]:
-    """The lexicographically largest optimal dual of the cover LP, in ``order``.
-
-    The optimal duals are ``{h : h(S) <= costs[S] ∀S, b·h = value}``, a polytope; its
-    lexicographic maximum (``h_{order[0]}`` first) is one of its vertices, found by trying every
-    choice of ``N - 1`` tight constraints (exact). With two goals and the primary first this
-    is ``(D1, m - D1)``: the paper's progress state (σ* at a tie of the prior too).
-
-    Examples
-    --------
-    >>> costs = {1: Fraction(9, 2), 2: Fraction(3), 3: Fraction(9, 2)}
-    >>> canonical_dual(costs, [Fraction(1, 2)] * 2, Fraction(9, 4), (0, 1))
-    (Fraction(9, 2), Fraction(0, 1))
-    """
-    n = len(b)
-    cons = sorted(costs.items())
-    best: list[Fraction] | None = None
-    for tight in itertools.combinations(cons, n - 1):
-        mat = [[Fraction(t >> i & 1) for i in range(n)] + [Fraction(c)] for t, c in tight]
-        mat.append([Fraction(x) for x in b] + [value])
-        sol = _gauss(mat, n)
-        if sol is None:
-            continue
-        if any(sum((sol[i] for i in subset_members(t)), Fraction(0)) > c for t, c in cons):
-            continue
-        if best is None or [sol[t] for t in order] > [best[t] for t in order]:
-            best = sol
-    assert best is not None  # the LP's own dual is a feasible point, so a vertex exists
-    return tuple(best)
-
-
-def _gauss(mat: list[list[Fraction]], n: int) -> list[Fraction] | None:
-    """Solve a square exact system given as an augmented matrix (None when singular)."""
-    for c in range(n):
-        p = next((r for r in range(c, n) if mat[r][c] != 0), None)
-        if p is None:
-            return None
-        mat[c], mat[p] = mat[p], mat[c]
-        piv = mat[c][c]
-        mat[c] = [x / piv for x in mat[c]]
-        for r in range(n):
-            if r != c and mat[r][c]:
-                f = mat[r][c]
-                mat[r] = [x - f * y for x, y in zip(mat[r], mat[c], strict=True)]
-    return [mat[i][n] for i in range(n)]
 
 
 def _duals(basis: list[int], costs: Mapping[int, Fraction], n: int) -> list[Fraction]:

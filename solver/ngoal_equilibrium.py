@@ -2,9 +2,9 @@
 
 - **Root.** The cover LP ``min Σ_S c_S m_S(s0)`` s.t. ``Σ_S c_S 1_S = b`` (exact simplex,
   :func:`solver.coalitions.cover_lp`) gives the starting coalitions (mass ``c_S``); ``h`` is
-  its lexicographically largest optimal dual in the priority order
-  (:func:`solver.coalitions.canonical_dual`: ``h(S) <= m_S(s0)``, ``h·b`` = the coalition DP's
-  value; for two goals the paper's ``(d(s0, g1), M - d(s0, g1))``).
+  its lexicographically largest optimal dual in the priority order (the simplex on a
+  lexicographically perturbed right-hand side): ``h(S) <= m_S(s0)``, ``h·b`` = the coalition
+  DP's value; for two goals the paper's ``(d(s0, g1), M - d(s0, g1))``.
 - **Attacker.** Each coalition ``S`` of mass ``μ`` at a node ``v`` follows an argmin of the DP:
   it steps ``v -> u`` when ``m_S(v) = w(v, u) + m_S(u)`` (preferred: coalitions stay together;
   among such arcs the one to the lowest node index), else splits into the minimal balanced
@@ -30,7 +30,6 @@ from typing import Any
 from solver.coalitions import (
     Coalitions,
     balanced_collections,
-    canonical_dual,
     coalition_dp,
     cover_lp,
 )
@@ -148,10 +147,10 @@ def solve_ngoal(game: NGame) -> NEquilibrium:
     n = game.n_goals
     s0 = game.start
     costs0 = {mask: dp.m(mask, s0) for mask in range(1, 1 << n)}
-    root = cover_lp({k: v for k, v in costs0.items() if v is not None}, game.prior)
     order = priority_order(game.prior)
     finite = {k: v for k, v in costs0.items() if v is not None}
-    h0 = canonical_dual(finite, game.prior, root.value, order)
+    root = cover_lp(finite, game.prior, order)  # h: the lexicographically largest optimal dual
+    h0 = tuple(root.dual)
     leaves = _expand(dp, dict(root.cover))
     mix: list[dict[tuple[int, ...], Fraction]] = [{} for _ in range(n)]
     for walk, mask, mass in leaves:

@@ -292,9 +292,11 @@ def guarantee_sigma(r: Sequence[Fraction], sets: GuaranteeSets, u: int, w: Numbe
     >>> from dppverify.ngoal.examples import star3
     >>> inst = star3()
     >>> g = guarantee_sets(inst)
-    >>> sigma, ok = guarantee_sigma([Fraction(2), Fraction(2), Fraction(0)], g, 1, 1, (0, 1, 2))
+    >>> sigma, ok = guarantee_sigma([Fraction(2), Fraction(1), Fraction(1)], g, 1, 1, (0, 1, 2))
     >>> [str(x) for x in sigma], ok
-    (['0', '1', '0'], True)
+    (['1', '0', '0'], True)
+    >>> guarantee_sigma([Fraction(3), Fraction(3), Fraction(0)], g, 1, 1, (0, 1, 2))[1]
+    False
     """
     n = len(r)
     wf = Fraction(w)
@@ -358,11 +360,28 @@ def _nullspace_ray(mat: list[list[Fraction]], k: int) -> list[Fraction] | None:
     return x
 
 
+def _minors(mats: np.ndarray) -> np.ndarray:
+    """Signed maximal minors of a batch of ``(j, j+1)`` integer matrices: ``x_c = (-1)^c
+    det(A without column c)``, a null vector (exact: small integer determinants, rounded)."""
+    batch, j, k = mats.shape
+    if j == 0:
+        return np.ones((batch, 1), dtype=np.int64)
+    out = np.empty((batch, k), dtype=np.int64)
+    for c in range(k):
+        sub = np.delete(mats, c, axis=2).astype(np.float64)
+        out[:, c] = np.rint(np.linalg.det(sub)).astype(np.int64) * (-1 if c % 2 else 1)
+    return out
+
+
 @cache
 def bad_rays(n: int) -> tuple[tuple[tuple[tuple[int, Fraction], ...], int], ...]:
     """Extreme rays of ``{c >= 0 : y_c(θ*) >= y_c(θ) ∀θ}`` (``y_c = Σ_S c_S 1_S``, any ``θ*``)
     that are not fractional partitions of a set containing ``θ*``; each as
     ``(((S, ρ_S), …), θ*)`` scaled so that ``max y_ρ = 1``.
+
+    An extreme ray has ``k <= n`` positive entries and ``k - 1`` independent tight rows
+    ``y(θ*) = y(θ)``; its direction is the null vector of those rows on its support (signed
+    maximal minors, exact integers). Enumerated for ``θ* = 0``, then permuted.
 
     Examples
     --------
@@ -372,76 +391,81 @@ def bad_rays(n: int) -> tuple[tuple[tuple[tuple[int, Fraction], ...], int], ...]
     >>> len(rays), sorted(rays)[0]
     (36, (((3, Fraction(1, 2)), (5, Fraction(1, 2)), (14, Fraction(1, 2))), 0))
     """
-    masks = list(range(1, 1 << n))
-    out: set[tuple[tuple[tuple[int, Fraction], ...], int]] = set()
-    star = 0  # by symmetry: rays for θ* = 0, then permuted
-    others = list(range(1, n))
-
-    def y_of(ray: dict[int, Fraction]) -> list[Fraction]:
-        return [sum((c for s, c in ray.items() if s >> i & 1), Fraction(0)) for i in range(n)]
-
-    base: list[dict[int, Fraction]] = []
+    masks = np.arange(1, 1 << n, dtype=np.int64)
+    bits = (masks[None, :] >> np.arange(n)[:, None]) & 1  # (n, M): bits[i, s] = [i ∈ S]
+    diff = bits[0][None, :] - bits[1:]  # rows y(0) - y(θ), θ = 1..n-1
+    base: set[tuple[tuple[int, Fraction], ...]] = set()
     for k in range(1, n + 1):
-        for support in itertools.combinations(masks, k):
-            for tight in itertools.combinations(others, k - 1):
-                rows = [[Fraction((s >> star & 1) - (s >> i & 1)) for s in support]
-                        for i in tight]
-                if k == 1:
-                    x: list[Fraction] | None = [Fraction(1)]
-                else:
-                    x = _nullspace_ray(rows, k)
-                if x is None:
-                    continue
-                if all(v < 0 for v in x):
-                    x = [-v for v in x]
-                if not all(v > 0 for v in x):
-                    continue
-                ray = dict(zip(support, x, strict=True))
-                y = y_of(ray)
-                if any(y[star] < y[i] for i in others):
-                    continue
-                top = y[star]
-                if top == 0:
-                    continue
-                ray = {s: c / top for s, c in ray.items()}
-                y = [v / top for v in y]
-                if all(v in (0, 1) for v in y):
-                    continue  # a fractional partition of {θ : y_θ = 1} ∋ θ*: a pattern
-                base.append(ray)
+        sup = np.array(list(itertools.combinations(range(masks.size), k)), dtype=np.int64)
+        for tight in itertools.combinations(range(n - 1), k - 1):
+            mats = diff[np.asarray(tight, dtype=np.int64)][:, sup]  # (k-1, K, k)
+            x = _minors(np.transpose(mats, (1, 0, 2)))  # (K, k)
+            neg = np.all(x < 0, axis=1)
+            x[neg] = -x[neg]
+            ok = np.all(x > 0, axis=1)
+            if not ok.any():
+                continue
+            xs, ss = x[ok], sup[ok]
+            y = np.einsum("bk,ibk->bi", xs, bits[:, ss])  # (B, n) integer type masses
+            ok2 = np.all(y[:, :1] >= y[:, 1:], axis=1) & (y[:, 0] > 0)
+            pattern = np.all((y == 0) | (y == y[:, :1]), axis=1)
+            for b in np.flatnonzero(ok2 & ~pattern):
+                top = int(y[b, 0])
+                base.add(tuple(sorted((int(masks[s]), Fraction(int(c), top))
+                                      for s, c in zip(ss[b], xs[b], strict=True))))
+    out: set[tuple[tuple[tuple[int, Fraction], ...], int]] = set()
     for ray in base:
         for perm in itertools.permutations(range(n)):
-            moved = {sum(1 << perm[i] for i in range(n) if s >> i & 1): c for s, c in ray.items()}
-            out.add((tuple(sorted(moved.items())), perm[star]))
+            moved = {sum(1 << perm[i] for i in range(n) if s >> i & 1): c for s, c in ray}
+            out.add((tuple(sorted(moved.items())), perm[0]))
     return tuple(sorted(out))
 
 
 @cache
-def _cover_vertices(n: int, y: tuple[Fraction, ...]
-                    ) -> tuple[tuple[tuple[int, Fraction], ...], ...]:
-    """The vertices of ``{c >= 0 : Σ_S c_S 1_S = y}`` (exact; bases of ``n`` subsets)."""
-    masks = list(range(1, 1 << n))
-    out = set()
-    for basis in itertools.combinations(masks, n):
-        a = [[Fraction(s >> i & 1) for s in basis] + [y[i]] for i in range(n)]
-        ok = True
-        for col in range(n):
-            p = next((i for i in range(col, n) if a[i][col]), None)
-            if p is None:
-                ok = False
-                break
-            a[col], a[p] = a[p], a[col]
-            pv = a[col][col]
-            a[col] = [x / pv for x in a[col]]
-            for i in range(n):
-                if i != col and a[i][col]:
-                    f = a[i][col]
-                    a[i] = [x - f * z for x, z in zip(a[i], a[col], strict=True)]
-        if not ok:
-            continue
-        c = [a[i][n] for i in range(n)]
-        if all(v >= 0 for v in c):
-            out.add(tuple(sorted((s, v) for s, v in zip(basis, c, strict=True) if v)))
-    return tuple(sorted(out))
+def _bases(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every non-singular choice of ``n`` subsets: ``(combos, det, adj)`` with the integer
+    adjugates (``B^-1 = adj / det``; 0/1 matrices of size <= 5: exact after rounding)."""
+    masks = np.arange(1, 1 << n, dtype=np.int64)
+    bits = ((masks[None, :] >> np.arange(n)[:, None]) & 1).astype(np.float64)
+    combos = np.array(list(itertools.combinations(range(masks.size), n)), dtype=np.int64)
+    mats = np.transpose(bits[:, combos], (1, 0, 2))  # (K, n, n), columns = subsets
+    det = np.rint(np.linalg.det(mats)).astype(np.int64)
+    keep = det != 0
+    mats, combos, det = mats[keep], combos[keep], det[keep]
+    adj = np.rint(np.linalg.inv(mats) * det[:, None, None]).astype(np.int64)
+    assert np.all(np.einsum("bij,bjk->bik", adj, mats.astype(np.int64))
+                  == det[:, None, None] * np.eye(n, dtype=np.int64))  # exact adjugates
+    return combos, det, adj
+
+
+@cache
+def _cover_vertices(n: int, y: tuple[Fraction, ...]) -> tuple[np.ndarray, int]:
+    """The vertices of ``{c >= 0 : Σ_S c_S 1_S = y}`` as an integer matrix ``V`` (one column
+    per vertex, one row per subset mask ``1 … 2^n - 1``) and its denominator ``D``: ``c = V/D``
+    (Cramer's rule with the exact adjugates of :func:`_bases`)."""
+    den = 1
+    for v in y:
+        den = den * v.denominator // _gcd(den, v.denominator)
+    yy = np.array([int(v * den) for v in y], dtype=np.int64)
+    combos, det, adj = _bases(n)
+    num = adj @ yy  # (K, n): c = num / (det · den)
+    sign = np.sign(det)[:, None]
+    ok = np.all(num * sign >= 0, axis=1)
+    common = int(np.lcm.reduce(np.abs(det[ok]))) if ok.any() else 1
+    cols = np.zeros(((1 << n) - 1, int(ok.sum())), dtype=np.int64)
+    for j, b in enumerate(np.flatnonzero(ok)):
+        cols[combos[b], j] = num[b] * (common // int(det[b]))
+    uniq = np.unique(cols, axis=1)
+    return uniq, common * den
+
+
+def _matmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Exact integer matrix product (float64 BLAS when every partial sum is below 2**53)."""
+    amax = int(np.abs(a).max(initial=0))
+    bmax = int(np.abs(b).max(initial=0))
+    if amax * bmax * max(a.shape[1], 1) < 2 ** 53:
+        return np.rint(a.astype(np.float64) @ b.astype(np.float64)).astype(np.int64)
+    return a.astype(object).dot(b.astype(object))
 
 
 @dataclass(frozen=True)
@@ -505,30 +529,31 @@ def arc_condition(sets: GuaranteeSets) -> ArcCondition:
             k = int(bad[0])
             return ArcCondition(False, narcs, 0, (tails[k], heads[k], ((mask, Fraction(1)),)))
     rays = bad_rays(n)
+    if not rays:
+        return ArcCondition(True, narcs, 0, None)
+    # m at the tails and heads as integer matrices (one column per subset mask 1 … 2^n - 1)
+    mt = np.stack([sets.m[s][t_idx] for s in range(1, 1 << n)], axis=1)
+    mh = np.stack([sets.m[s][h_idx] for s in range(1, 1 << n)], axis=1)
+    by_y: dict[tuple[Fraction, ...], list[tuple[tuple[int, Fraction], ...]]] = {}
     for ray, _star in rays:
         y = tuple(sum((c for s, c in ray if s >> i & 1), Fraction(0)) for i in range(n))
-        top = max(y)
-        verts = _cover_vertices(n, y)
-        den = 1
-        for _, c in ray:
-            den = den * c.denominator // np.gcd(den, c.denominator)
-        for vert in verts:
-            for _, c in vert:
-                den = den * c.denominator // np.gcd(den, c.denominator)
-        lhs: np.ndarray | None = None
-        for vert in verts:
-            tot = np.zeros(narcs, dtype=object)
-            for s, c in vert:
-                tot = tot + sets.m[s][t_idx].astype(object) * int(c * den)
-            lhs = tot if lhs is None else np.minimum(lhs, tot)
-        rhs = w_scaled * int(top * den)
-        for s, c in ray:
-            rhs = rhs + sets.m[s][h_idx].astype(object) * int(c * den)
-        assert lhs is not None
-        bad = np.flatnonzero(lhs > rhs)
-        if bad.size:
-            k = int(bad[0])
-            return ArcCondition(False, narcs, len(rays), (tails[k], heads[k], ray))
+        by_y.setdefault(y, []).append(ray)
+    for y, group in by_y.items():
+        verts, vden = _cover_vertices(n, y)
+        lhs = _matmul(mt, verts).min(axis=1)  # vden · cov_v(y) at every tail
+        rden = 1
+        for ray in group:
+            for _, c in ray:
+                rden = rden * c.denominator // _gcd(rden, c.denominator)
+        mat = np.zeros(((1 << n) - 1, len(group)), dtype=np.int64)
+        for j, ray in enumerate(group):
+            for s_, c in ray:
+                mat[s_ - 1, j] = int(c * rden)
+        rhs = _matmul(mh, mat) + (w_scaled * rden)[:, None]  # rden · (Σ ρ m(u) + w)
+        worse = np.argwhere(lhs.astype(object)[:, None] * rden > rhs.astype(object) * vden)
+        if worse.size:
+            k, j = int(worse[0][0]), int(worse[0][1])
+            return ArcCondition(False, narcs, len(rays), (tails[k], heads[k], group[j]))
     return ArcCondition(True, narcs, len(rays), None)
 
 
