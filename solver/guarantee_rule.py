@@ -89,6 +89,17 @@ def guarantee_step(r: Sequence[Fraction], m_next: Callable[[int], Fraction | Non
         a = (sum((r[i] for i in range(n) if mask >> i & 1), Fraction(0)) - m) / w
         if a > 0:
             lows[mask] = a
+    # σ(S) >= 1 forces σ inside S: when those sets meet in one type, F is that vertex or empty
+    forced = (1 << n) - 1
+    for mask, a in lows.items():
+        if a >= 1:
+            forced &= mask
+    if forced and forced & (forced - 1) == 0:
+        theta = forced.bit_length() - 1
+        point = tuple(Fraction(int(i == theta)) for i in range(n))
+        if all(mask >> theta & 1 or a <= 0 for mask, a in lows.items()) and all(
+                a <= 1 for a in lows.values()):
+            return point, True
     # drop constraints implied by a subset with a larger bound
     keep = {s: a for s, a in lows.items()
             if not any(t != s and t & s == t and lows[t] >= a for t in lows)}

@@ -21,7 +21,8 @@ What the checker proves about it (NSOLVE.1-2), exactly:
   whose optimal covers regroup into fractional partitions of sets containing a type of largest
   ``y`` (NSOLVE.2); the remaining directions are the finitely many *non-pattern extreme rays*
   ``ρ`` of the cones ``{c >= 0 : y_c maximal at θ*}`` (:func:`bad_rays`: none for ``N <= 3``,
-  the merging lemma), each checked on every arc: ``cov_v(y_ρ) <= Σ_S ρ_S m_S(u) + w·max y_ρ``.
+  the merging lemma), each checked on every arc: ``cov_v(y_ρ) <= cov_u(y_ρ) + w·max y_ρ``
+  (the arc condition in the direction ``y_ρ``: necessary, and with the fixpoint sufficient).
 - On the profile's walks the rule is evaluated step by step; a type paying exactly ``h_θ``
   has regret 0 over all walks of any length.
 """
@@ -310,6 +311,16 @@ def guarantee_sigma(r: Sequence[Fraction], sets: GuaranteeSets, u: int, w: Numbe
             need[mask] = a
     if not need:
         return tuple(Fraction(1) if i == order[-1] else Fraction(0) for i in range(n)), True
+    # every S with a bound >= 1 holds all of σ: if they share exactly one type θ, F ⊆ {e_θ}
+    common = (1 << n) - 1
+    for mask, a in need.items():
+        if a >= 1:
+            common &= mask
+    if common and not common & (common - 1):
+        theta = common.bit_length() - 1
+        fits = all(a <= (1 if mask >> theta & 1 else 0) for mask, a in need.items())
+        if fits:
+            return tuple(Fraction(int(i == theta)) for i in range(n)), True
     # σ_θ >= 0 is the subset {θ} with bound 0; keep the positive bounds not implied by a subset
     bounds = {1 << i: Fraction(0) for i in range(n)}
     for mask, a in need.items():
@@ -540,20 +551,13 @@ def arc_condition(sets: GuaranteeSets) -> ArcCondition:
         by_y.setdefault(y, []).append(ray)
     for y, group in by_y.items():
         verts, vden = _cover_vertices(n, y)
-        lhs = _matmul(mt, verts).min(axis=1)  # vden · cov_v(y) at every tail
-        rden = 1
-        for ray in group:
-            for _, c in ray:
-                rden = rden * c.denominator // _gcd(rden, c.denominator)
-        mat = np.zeros(((1 << n) - 1, len(group)), dtype=np.int64)
-        for j, ray in enumerate(group):
-            for s_, c in ray:
-                mat[s_ - 1, j] = int(c * rden)
-        rhs = _matmul(mh, mat) + (w_scaled * rden)[:, None]  # rden · (Σ ρ m(u) + w)
-        worse = np.argwhere(lhs.astype(object)[:, None] * rden > rhs.astype(object) * vden)
+        # vden · cov(y) at every tail and head; AC at y: cov_v(y) <= cov_u(y) + w · max y
+        lhs = _matmul(mt, verts).min(axis=1).astype(object)
+        rhs = _matmul(mh, verts).min(axis=1).astype(object) + w_scaled * vden * max(y)
+        worse = np.flatnonzero(lhs > rhs)
         if worse.size:
-            k, j = int(worse[0][0]), int(worse[0][1])
-            return ArcCondition(False, narcs, len(rays), (tails[k], heads[k], group[j]))
+            k = int(worse[0])
+            return ArcCondition(False, narcs, len(rays), (tails[k], heads[k], group[0]))
     return ArcCondition(True, narcs, len(rays), None)
 
 
