@@ -101,7 +101,7 @@ def _feasible(r: list[Fraction], mu: dict[int, Fraction], w: Fraction, n: int) -
     cons = [(1 << i, Fraction(0)) for i in range(n)] + sorted(need.items())
     for choice in itertools.combinations(cons, n - 1):
         rows = [[Fraction(s >> i & 1) for i in range(n)] for s, _ in choice]
-        sol = _solve(rows + [[Fraction(1)] * n], [b for _, b in choice] + [Fraction(1)])
+        sol = _solve([*rows, [Fraction(1)] * n], [b for _, b in choice] + [Fraction(1)])
         if sol is not None and all(sum((sol[i] for i in members(s)), Fraction(0)) >= b
                                    for s, b in cons):
             return True
