@@ -62,6 +62,9 @@ class NEquilibrium:
         ``mixtures[θ]``: ``((walk as node indices, probability), …)``.
     costs : tuple of Fraction
         ``U^θ``: type θ's expected cost against the rule (exact).
+    guarded, walked : tuple of Fraction
+        Type θ's expected stage cost ``E[Σ_t w_t σ_t(θ)]`` (the weight the Defender puts on
+        its goal) and expected walk length ``E[Σ_t w_t]``.
     U, U_bar, VoI, dp_value : Fraction
         ``Σ b_θ U^θ``; ``Σ b_θ d(s0, g^θ)``; ``(Ū − U)/Ū``; the coalition DP's value ``h·b``.
     feasible : bool
@@ -75,6 +78,8 @@ class NEquilibrium:
     cover: dict[int, Fraction]
     mixtures: tuple[tuple[tuple[tuple[int, ...], Fraction], ...], ...]
     costs: tuple[Fraction, ...]
+    guarded: tuple[Fraction, ...]
+    walked: tuple[Fraction, ...]
     U: Fraction
     U_bar: Fraction
     VoI: Fraction
@@ -160,11 +165,14 @@ def solve_ngoal(game: NGame) -> NEquilibrium:
     memo: dict[tuple[int, ...], tuple[tuple[Fraction, ...], tuple[Fraction, ...]]] = {}
     feasible = True
     type_cost = [Fraction(0)] * n
+    guarded = [Fraction(0)] * n
+    walked = [Fraction(0)] * n
     den = game.denominator
     for theta in range(n):
         for walk, prob in mix[theta].items():
             r = h0
             paid = Fraction(0)
+            length = Fraction(0)
             for k in range(1, len(walk)):
                 key = walk[:k + 1]
                 if key not in memo:
@@ -176,13 +184,17 @@ def solve_ngoal(game: NGame) -> NEquilibrium:
                 sigma, r_next = memo[key]
                 w = Fraction(int(game.network.arc_weight(walk[k - 1], walk[k]) or 0), den)
                 paid += w * sigma[theta]
+                length += w
                 r = r_next
             type_cost[theta] += prob * (paid + game.distance(theta, walk[-1]))
+            guarded[theta] += prob * paid
+            walked[theta] += prob * length
     u_val = sum((b * c for b, c in zip(game.prior, type_cost, strict=True)), Fraction(0))
     u_bar = sum((game.prior[t] * game.distance(t, s0) for t in range(n)), Fraction(0))
     mixtures = tuple(tuple(sorted(m.items(), key=lambda kv: (-kv[1], kv[0]))) for m in mix)
     return NEquilibrium(game=game, h=h0, cover=dict(root.cover),
-                        mixtures=mixtures, costs=tuple(type_cost), U=u_val, U_bar=u_bar,
+                        mixtures=mixtures, costs=tuple(type_cost), guarded=tuple(guarded),
+                        walked=tuple(walked), U=u_val, U_bar=u_bar,
                         VoI=(u_bar - u_val) / u_bar if u_bar else Fraction(0),
                         dp_value=root.value, feasible=feasible,
                         seconds=time.perf_counter() - t0)
