@@ -198,8 +198,11 @@ def ngoal_figure(rows: Sequence[NGoalRow]) -> Any:
         ax.set_title(label, fontsize=9)
         ax.set_xticks(sorted({r.n_goals for r in rows}))
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=7)
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), fontsize=7,
+               frameon=False)
     fig.suptitle("N-goal equilibria (filled: certified exact; hollow: not certified, coalition-"
                  "DP upper bound)", fontsize=9)
-    fig.tight_layout()
+    rows_of_legend = -(-len(labels) // 5)
+    fig.tight_layout(rect=(0, 0.05 * rows_of_legend + 0.02, 1, 1))
     return fig
