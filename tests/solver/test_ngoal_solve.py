@@ -235,3 +235,15 @@ def test_solution_is_deterministic(seed: int) -> None:
     a = nequilibrium_to_json(solve_ngoal(ngame_from_json(doc)))
     b = nequilibrium_to_json(solve_ngoal(ngame_from_json(doc)))
     assert a == b
+
+
+def test_five_goals_on_a_small_grid_are_certified(tmp_path: Path) -> None:
+    m = tmp_path / "m.map"
+    m.write_text("type octile\nheight 4\nwidth 5\nmap\n.....\n.@@..\n...@.\n.....\n")
+    out = tmp_path / "p.json"
+    group = ["--map", str(m), "--start", "3,0", "--goals", "0,4", "0,0", "0,2", "3,4", "2,1",
+             "--prior", "1/3,1/4,1/6,1/8,1/8"]
+    code, _, err = _run("solve", *group, "-o", str(out))
+    assert code == 0, err
+    code, stdout, err = _run("certify", *group, str(out), "--horizon", "inf")
+    assert code == 0 and stdout.startswith("verdict: PASS"), (stdout, err)
