@@ -665,6 +665,15 @@ def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None
     return out, len(trie)
 
 
+def _direction(inst: NInstance, ray: tuple[tuple[int, Fraction], ...]) -> str:
+    """A cover as text: ``1/2·{g1, g2} + …`` (goal ids)."""
+    def goals(mask: int) -> str:
+        return ", ".join(str(inst.nodes[inst.goals[i]]) for i in range(inst.n_goals)
+                         if mask >> i & 1)
+
+    return " + ".join(f"{c}·{{{goals(s)}}}" for s, c in ray)
+
+
 def _attacker_record(inst: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
                      per_type: list[Fraction], feasible: bool, rec: Any, labels: Any) -> Any:
     cid = "ngoal.pbne.attacker_br"
@@ -679,9 +688,9 @@ def _attacker_record(inst: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
     if not arc.holds:
         assert arc.failure is not None
         v, u, ray = arc.failure
-        return rec(cid, "error", f"the arc condition G_v ⊆ G_u + wΔ could not be established on "
-                   f"arc {inst.nodes[v]!r} -> {inst.nodes[u]!r} (direction "
-                   f"{[(s, str(c)) for s, c in ray]}): no lower bound over all walks, could not "
+        return rec(cid, "error", f"the arc condition G_v ⊆ G_u + wΔ fails on arc "
+                   f"{inst.nodes[v]!r} -> {inst.nodes[u]!r} (direction {_direction(inst, ray)}; "
+                   f"proofs/NSOLVE.md NSOLVE.2): no lower bound over all walks, could not "
                    f"decide the Attacker's regret", {"arcs": arc.arcs}, NSOLVE, proof)
     nums: dict[str, Number | None] = {f"regret{t + 1}": per_type[t] - rule.h[t]
                                       for t in range(inst.n_goals)}
