@@ -168,7 +168,15 @@ def ngoal_figure(rows: Sequence[NGoalRow]) -> Any:
     """Three panels against N: the Attacker's cost relative to ``U_bar``, the VoI and the
     deception; one colour per map, solid = equal prior, dashed = skewed; filled markers where
     the profile is certified (an exact value), hollow where it is not (the coalition DP's
-    value: an upper bound on the game's value)."""
+    value: an upper bound on the game's value).
+
+    Examples
+    --------
+    >>> grid = np.zeros((3, 4), dtype=bool); grid[1, 1:3] = True
+    >>> fig = ngoal_figure(ngoal_series(grid, (2, 0), [(0, 3), (2, 3), (0, 0)], map_name="t"))
+    >>> len(fig.axes)
+    3
+    """
     import matplotlib
 
     matplotlib.use("Agg")
