@@ -212,3 +212,32 @@ def test_NSOLVE1_every_walk_costs_at_least_h() -> None:
                 for t in range(3):
                     assert paid[t] + Fraction(inst.dist_to[t][v]) >= h[t]
         done += 1
+
+
+def test_NSOLVE5_two_goals_the_rule_is_the_progress_rule() -> None:
+    rng = random.Random(3)
+    done = 0
+    while done < 20:
+        inst = _instance(rng, 2)
+        if inst is None:
+            continue
+        sets = guarantee_sets(inst)
+        d1 = [Fraction(x) if x != float("inf") else None for x in inst.dist_to[0]]
+        m12 = sets.value(3, inst.start)
+        assert m12 is not None and d1[inst.start] is not None
+        h = [d1[inst.start], m12 - d1[inst.start]]  # (d(s0, g1), M - d(s0, g1))
+        for _ in range(20):
+            r, v, c = list(h), inst.start, d1[inst.start]
+            for _ in range(10):
+                if inst.is_goal(v):
+                    break
+                arcs = [(u, w) for u, w in inst.succ[v] if sets.value(1, u) is not None]
+                u, w = rng.choice(arcs)
+                sigma, ok = guarantee_sigma(r, sets, u, w, (0, 1))
+                du = d1[u]
+                assert ok and du is not None
+                c_next = min(c, du)
+                assert sigma[0] == (c - c_next) / Fraction(w)  # σ*(g1) = new progress / w
+                r = [x - Fraction(w) * s for x, s in zip(r, sigma, strict=True)]
+                v, c = u, c_next
+        done += 1
