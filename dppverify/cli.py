@@ -397,6 +397,10 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
             cert = certify_ngoal(game, profile,  # type: ignore[arg-type]
                                  horizon=horizon,  # type: ignore[arg-type]
                                  max_prefixes=max_prefixes, route=route)
+        elif grid is not None and grid.n_goals > 2:  # an N-goal grid
+            cert = certify_ngoal(grid.ninstance(), profile,
+                                 horizon=horizon,  # type: ignore[arg-type]
+                                 max_prefixes=max_prefixes, route=route)
         else:
             inst = load_game(instance, grid)
             bar.phase("reading the profile")
@@ -608,11 +612,13 @@ def _structured_line(v: StructuredValue) -> str:
             f"({v.steps} DP steps{fix}, {v.arithmetic}, {v.seconds:.2f} s)")
 
 
-def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route,
+def _ngoal_value(instance: str | MapRequest, horizon: int | None, as_json: bool, route: Route,
                  max_prefixes: int, output: str | None = None) -> None:
     """``dpp value`` for an instance with more than two goals (dppverify.ngoal.routes)."""
     try:
-        r = nrouted_value(load_ninstance(instance), horizon, route=route,
+        game = (instance.ninstance() if isinstance(instance, MapRequest)
+                else load_ninstance(instance))
+        r = nrouted_value(game, horizon, route=route,
                           max_prefixes=max_prefixes)
     except CheckerError as exc:
         _fail(exc)
@@ -668,6 +674,9 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
     if instance is not None and grid is None and is_ngoal_file(instance):
         _ngoal_value(instance, horizon, as_json, route, max_prefixes, output)
         return
+    if grid is not None and grid.n_goals > 2 and instance is None:  # an N-goal grid
+        _ngoal_value(grid, horizon, as_json, route, max_prefixes, output)
+        return
     try:
         r = routed_value(load_game(instance, grid, "dpp value"), horizon, route=route,
                          max_prefixes=max_prefixes, progress=want_progress(progress))
@@ -722,6 +731,9 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
         game: GameInstance
         if instance is not None and grid is None and is_ngoal_file(instance):  # N > 2 goals
             game = load_ninstance(instance)
+            goals = f"N = {game.n_goals} goals, "
+        elif grid is not None and grid.n_goals > 2 and instance is None:  # an N-goal grid
+            game = grid.ninstance()
             goals = f"N = {game.n_goals} goals, "
         else:
             game = load_game(instance, grid, "dpp export-efg")

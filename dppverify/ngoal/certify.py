@@ -91,6 +91,13 @@ def _plans(tree: NWalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
 
 
 def _defender(tree: NWalkTree, profile: NProfile) -> NTreeDefender | str:
+    if profile.rule is not None:  # the guarantee rule, evaluated on every prefix of the tree
+        from dppverify.ngoal.guarantee import guarantee_sets, rule_on_trie
+
+        sets = guarantee_sets(tree.instance)
+        sigma, _ = rule_on_trie(tree.instance, profile.rule, sets, tree.parent.tolist(),
+                                tree.node.tolist())
+        return defender_from_table(tree, sigma, None)
     table: dict[int, tuple[Fraction, ...]] = {}
     for walk, dist in profile.entries.items():
         p = tree.find(walk)

@@ -15,11 +15,12 @@ Document::
      "defender": {"rule": "table",
                   "entries": [{"walk": [s0, …, s_t], "probabilities": [q_1, …, q_N]}, …],
                   "default": [q_1, …, q_N]},        (optional)
+              or {"rule": "guarantee", "h": [h_1, …, h_N]}   (dppverify.ngoal.guarantee)
      "value": {"U": …}}                             (optional, informative)
 
 ``attacker[θ]`` is type θ's mixed strategy over walks (type θ's goal is ``goals[θ]``); after
 observing the walk ``s0 … s_t`` the Defender puts the step's weight on goal ``g^i`` with
-probability ``q_i``. No progress rule is known for N > 2 goals, so the Defender is a table.
+probability ``q_i``; or the Defender is the guarantee rule of :mod:`dppverify.ngoal.guarantee`.
 """
 
 from __future__ import annotations
@@ -41,6 +42,8 @@ from dppverify.json_reading import (
     read_json_file,
     resolve_walk,
 )
+from dppverify.ngoal.guarantee import RULE as GUARANTEE
+from dppverify.ngoal.guarantee import GuaranteeRule, parse_guarantee
 from dppverify.ngoal.instance import NInstance
 from dppverify.profile import StrategyPath
 
@@ -68,6 +71,9 @@ class NProfile:
         Steps of the longest listed walk.
     defects : tuple of str
         Everything that makes the profile ill-formed (``where: what``).
+    rule : GuaranteeRule or None
+        The Defender's rule when it is ``{"rule": "guarantee", ...}`` (then ``entries`` is
+        empty and ``default`` None; :mod:`dppverify.ngoal.guarantee`).
     """
 
     attacker: tuple[tuple[StrategyPath, ...], ...]
@@ -76,6 +82,7 @@ class NProfile:
     claimed_u: Number | None
     longest: int
     defects: tuple[str, ...]
+    rule: GuaranteeRule | None = None
 
     @property
     def wellformed(self) -> bool:
@@ -198,9 +205,12 @@ def nprofile_from_json(instance: NInstance, doc: Mapping[str, Any]) -> NProfile:
     entries: dict[tuple[int, ...], tuple[Fraction, ...]] = {}
     default: tuple[Fraction, ...] | None = None
     raw_def = doc.get("defender")
-    if not isinstance(raw_def, Mapping) or raw_def.get("rule") != "table":
+    rule: GuaranteeRule | None = None
+    if isinstance(raw_def, Mapping) and raw_def.get("rule") == GUARANTEE:
+        rule = parse_guarantee(raw_def, n, defects)
+    elif not isinstance(raw_def, Mapping) or raw_def.get("rule") != "table":
         defects.append("defender: must be {\"rule\": \"table\", \"entries\": [...], "
-                       "\"default\": [...]} (no progress rule is known for N > 2 goals)")
+                       "\"default\": [...]} or {\"rule\": \"guarantee\", \"h\": [...]}")
     else:
         for j, entry in enumerate(raw_def.get("entries", [])):
             at = f"defender.entries[{j}]"
@@ -225,4 +235,4 @@ def nprofile_from_json(instance: NInstance, doc: Mapping[str, Any]) -> NProfile:
         except ValueError as exc:
             defects.append(str(exc))
     return NProfile(attacker=tuple(types), entries=entries, default=default, claimed_u=claimed,
-                    longest=longest, defects=tuple(defects))
+                    longest=longest, defects=tuple(defects), rule=rule)

@@ -26,7 +26,7 @@ from fractions import Fraction
 from dppverify.certificate import CheckRecord, Status
 from dppverify.errors import HorizonError
 from dppverify.exact import INF, Number, normalize
-from dppverify.ngoal.coalition import coalition_value
+from dppverify.ngoal.coalition import CoalitionValue, coalition_value
 from dppverify.ngoal.instance import NInstance
 from dppverify.ngoal.profile import NProfile
 from dppverify.ngoal.walk_br import TableDefender, exit_costs, table_defender, walk_best_response
@@ -97,6 +97,10 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
         out += [_rec(i, "skipped", "the profile is not well formed", None, "–")
                 for i in _IDS[1:]]
         return out, 0
+    if profile.rule is not None:  # the guarantee rule: dppverify.ngoal.guarantee
+        from dppverify.ngoal.guarantee import guarantee_checks
+
+        return guarantee_checks(inst, profile, horizon)
     walks = [mw.walk for mix in profile.attacker for mw in mix]
     tdef = table_defender(inst, profile.entries, profile.default, walks)
     trie = tdef.trie
@@ -220,14 +224,15 @@ def _defender(inst: NInstance, tdef: TableDefender, mass: dict[int, list[Fractio
     return recs
 
 
-def _value(inst: NInstance, u: Number, horizon: int | None, equilibrium: bool) -> CheckRecord:
+def _value(inst: NInstance, u: Number, horizon: int | None, equilibrium: bool,
+           known: CoalitionValue | None = None) -> CheckRecord:
     h = "inf" if horizon is None else str(horizon)
     n = inst.n_goals
     relies = ("relies on proofs/NGOAL.md: NG.2, NG.5 (proved: the DP is an upper bound on V_H)"
               + (", NG.3 (proved for two goals: equality)" if n == 2 else
                  ", and NG.4 (conjectured for N >= 3: equality) for a pass"))
     try:
-        dp = coalition_value(inst, horizon)
+        dp = known if known is not None else coalition_value(inst, horizon)
     except (ValueError, HorizonError) as exc:
         return _rec("ngoal.value.V_H", "skipped", f"no coalition DP: {exc}", None, relies)
     nums: dict[str, Number | None] = {"V_H_dp": dp.value, "U": u}

@@ -59,7 +59,12 @@ def test_a_wrong_claimed_value_is_refuted() -> None:
     (lambda p: p["defender"].pop("default"), "no entry for walk ['s', 'm']"),
     (lambda p: p["defender"].update(default=[1, 0]), "list of 3 probabilities"),
     (lambda p: p.update(goals=["b", "a", "c"]), "instance's goals"),
-    (lambda p: p.update(defender={"rule": "progress", "goal": "a"}), "no progress rule"),
+    (lambda p: p.update(defender={"rule": "progress", "goal": "a"}),
+     "or {\"rule\": \"guarantee\""),
+    (lambda p: p.update(defender={"rule": "guarantee", "h": [1, 2]}), "list of 3 numbers"),
+    (lambda p: p.update(defender={"rule": "guarantee", "h": [1, 2, "x"]}), "defender.h[2]"),
+    (lambda p: p.update(defender={"rule": "guarantee", "h": [1, 2, 3], "order": [0]}),
+     "unknown key(s) order"),
 ])
 def test_ill_formed_profiles_are_refuted_not_crashed(change: Any, message: str) -> None:
     p = copy.deepcopy(star3_profile())

