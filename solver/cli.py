@@ -174,7 +174,8 @@ def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
         except InvalidInstanceError as exc:
             raise InvalidInstanceError(f"{grid.map}: {exc}") from None
     assert instance is not None
-    doc = read_json(instance)
+    with checker_cli.hinted(instance, "instance", "dpp solve", errors=(DPPError,)):
+        doc = read_json(instance)
     if not (isinstance(doc, dict) and isinstance(doc.get("goals"), list)
             and len(doc["goals"]) > 2):
         return None

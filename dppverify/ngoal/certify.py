@@ -189,7 +189,7 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     trie_size = 0
     if chosen in ("structured", "both"):
         structured, trie_size = nstructured_checks(inst, prof, h)
-        if h is None and prof.default is None:
+        if h is None and prof.default is None and prof.rule is None:
             br = next((r for r in structured if r.id == "ngoal.pbne.attacker_br"), None)
             if br is not None and br.status == "error":  # undefined off the table: undecided
                 raise UndecidedError(NTABLE_UNDECIDED)

@@ -131,9 +131,8 @@ def test_baselines_command_and_colours(tmp_path: Path) -> None:
 
     assert {k: COLOURS[k] for k in STRATEGY_COLOURS} == STRATEGY_COLOURS
     r = CliRunner().invoke(main, ["experiment", "baselines", "--samples", "1", "--densities",
-                                  "0,30", "--maps", "empty-8-8", "--csv",
-                                  str(tmp_path / "b.csv"), "--figure",
-                                  str(tmp_path / "b.png"), "--no-progress"])
+                                  "0,30", "--maps", "empty-8-8", "--output-dir",
+                                  str(tmp_path), "--no-progress"])
     assert r.exit_code == 0, r.output
     assert "| density | 2 | π_d4 |" in r.stdout and "| movingai | 1 | γ* |" in r.stdout
     # gamma* best-responds to sigma*: the "gamma* - it" column is never negative
@@ -141,5 +140,6 @@ def test_baselines_command_and_colours(tmp_path: Path) -> None:
         cells = [c.strip() for c in line.split("|")]
         if len(cells) == 10 and cells[1] in ("paper10", "density", "movingai"):
             assert not cells[6].startswith("-"), line
-    assert (tmp_path / "b.png").read_bytes().startswith(b"\x89PNG")
-    assert len((tmp_path / "b.csv").read_text().splitlines()) == 1 + 4 * 14
+    assert (tmp_path / "baselines.png").read_bytes().startswith(b"\x89PNG")
+    assert len((tmp_path / "baselines.csv").read_text().splitlines()) == 1 + 4 * 14
+    assert (tmp_path / "summary.txt").read_text() == r.stdout
