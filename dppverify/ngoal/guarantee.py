@@ -53,7 +53,7 @@ from dppverify.ngoal.cover import MAX_BALANCED, _dets, min_cover_vectors
 from dppverify.ngoal.instance import NInstance
 
 __all__ = ["NValue", "Table", "basic_solutions", "extra_directions", "lower_bound_simple",
-           "nvalue", "packing_vertices"]
+           "nvalue", "packing_vertices", "zero_one_normals"]
 
 Normal = tuple[int, ...]
 
