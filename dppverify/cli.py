@@ -30,7 +30,7 @@ from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.instance import load_ninstance
 from dppverify.ngoal.routes import is_ngoal_file, nrouted_document, nrouted_lines, nrouted_value
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
-from dppverify.text import show
+from dppverify.text import show, show_value
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 from dppverify.value_dp import StructuredValue
 from dppverify.value_lp import GameValue
@@ -304,6 +304,7 @@ def value_document(v: GameValue) -> dict[str, Any]:
         "upper": format_number(b.upper),
         "lower_source": b.lower_source,
         "upper_source": b.upper_source,
+        "open_reason": b.reason,
         "exact": v.exact and b.closed,
         "lp": {"solver": LP_SOLVER, "status": v.lp.status, "tolerance": LP_TOLERANCE,
                "seconds": round(v.lp.seconds, 3), "variables": v.lp.variables,
@@ -346,8 +347,9 @@ def routed_document(r: RoutedValue) -> dict[str, Any]:
 
 def _tree_line(v: GameValue) -> str:
     b = v.bracket
-    exact = (f"{show(b.exact)} exactly" if b.closed and v.exact else
-             f"in [{show(b.lower)}, {show(b.upper)}]")
+    exact = (f"{show_value(b.exact)} exactly" if b.closed and v.exact else
+             f"in [{show_value(b.lower)}, {show_value(b.upper)}]"
+             + (f" (open: {b.reason})" if b.reason else ""))
     return (f"V_H (H = {v.horizon}) = {exact}; LP value {show(v.lp.value)} "
             f"({LP_SOLVER}, agreement tolerance {LP_TOLERANCE:g} relative, "
             f"{v.prefixes} prefixes, {v.lp.seconds:.2f} s)")
@@ -356,8 +358,8 @@ def _tree_line(v: GameValue) -> str:
 def _structured_line(v: StructuredValue) -> str:
     how = "exactly" if v.exact else f"(float mode, {v.arithmetic})"
     fix = ", fixpoint reached" if v.fixpoint else ""
-    return (f"V_H (H = {_show_horizon(v.horizon)}) = {show(v.value)} {how}; structured route "
-            f"({v.steps} DP steps{fix}, {v.arithmetic}, {v.seconds:.2f} s)")
+    return (f"V_H (H = {_show_horizon(v.horizon)}) = {show_value(v.value)} {how}; structured "
+            f"route ({v.steps} DP steps{fix}, {v.arithmetic}, {v.seconds:.2f} s)")
 
 
 def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route,

@@ -132,7 +132,7 @@ def _tree_doc(v: NGameValue) -> dict[str, Any]:
     return {"value": format_number(b.exact), "value_lp": v.lp.value,
             "lower": format_number(b.lower), "upper": format_number(b.upper),
             "lower_source": b.lower_source, "upper_source": b.upper_source,
-            "exact": b.closed,
+            "exact": b.closed, "open_reason": b.reason,
             "lp": {"solver": LP_SOLVER, "status": v.lp.status, "tolerance": LP_TOLERANCE,
                    "seconds": round(v.lp.seconds, 3), "variables": v.lp.variables,
                    "constraints": v.lp.constraints},
@@ -204,7 +204,7 @@ three goals) (3 layers)
     if r.tree is not None:
         b = r.tree.bracket
         exact = (f"{show_value(b.exact)} exactly" if b.closed else
-                 f"in [{show_value(b.lower)}, {show_value(b.upper)}]")
+                 f"in [{show_value(b.lower)}, {show_value(b.upper)}] (open: {b.reason})")
         lines.append(f"V_H (H = {h}, N = {r.goals} goals) = {exact}; LP value "
                      f"{show(r.tree.value)} ({LP_SOLVER}, agreement tolerance {LP_TOLERANCE:g} "
                      f"relative, {r.tree.prefixes} prefixes, {r.tree.lp.seconds:.2f} s)")
