@@ -110,9 +110,9 @@ class _LP:
         self.ncols = k * n + (n - 1) * (k + 1)
         self.c = [Fraction(0)] * self.ncols
         for t in range(k):
-            for p in np.flatnonzero(leaf):
-                self.c[self.xcol(t, int(p))] = Fraction(priors[t]) * Fraction(
-                    dists[t][int(tree.node[p])])
+            for q in np.flatnonzero(leaf).tolist():
+                self.c[self.xcol(t, q)] = Fraction(priors[t]) * Fraction(
+                    dists[t][int(tree.node[q])])
         for p in range(1, n):
             self.c[self.zcol(p)] = Fraction(tree.weight[p])
         self.weight = [Fraction(tree.weight[p]) for p in range(n)]
