@@ -47,7 +47,7 @@ from functools import cache
 import numpy as np
 
 from dppverify.errors import HorizonError, OptionError
-from dppverify.exact import INF, Number, normalize
+from dppverify.exact import Number, normalize
 from dppverify.ngoal.coalition import CoalitionValue, _Runner, _same, too_many_goals
 from dppverify.ngoal.cover import MAX_BALANCED, _dets, min_cover_vectors
 from dppverify.ngoal.instance import NInstance
@@ -60,8 +60,8 @@ Normal = tuple[int, ...]
 MAX_ROUNDS = 4
 """Refinement rounds of the general DP (each adds the failing directions as normals)."""
 
-MAX_GENERAL_WORK = 4_000_000
-"""Rough limit on (nodes × layers × table entries) for the exact general DP."""
+MAX_BASES = 5_000_000
+"""Limit on the bases enumerated for the vertices of a refined normal set's tables."""
 
 
 @dataclass(frozen=True)
@@ -289,103 +289,122 @@ class NValue:
 
 @dataclass(frozen=True)
 class _Check:
-    """The arc test for one direction ``y`` (0/1 normals): cover table of ``s·y``, ``λ``s."""
+    """The arc test for one direction ``y``: cover table of ``s·y`` and the ``λ``s."""
 
     scale: int  # s: s·y is an integer vector
-    cover: Table  # vertices of {c >= 0 : Σ_T c_T 1_T = s·y}, columns = mask - 1
-    lams: np.ndarray  # (n_lambda, 2^N - 1): lcm_l · λ
+    cover: Table  # vertices of {c >= 0 : Σ_n c_n n = s·y}, columns index the normals
+    lams: np.ndarray  # (n_lambda, |M|): lcm_l · λ
     lam_lcm: int
     y: tuple[Fraction, ...]
 
 
+def _table(normals: tuple[Normal, ...], rhs: Normal) -> Table:
+    """:func:`basic_solutions` by symmetry: the table of the sorted ``rhs``, columns permuted.
+
+    ``normals`` must be closed under permutations of the goals (the 0/1 vectors are; extra
+    normals are always added with all their permutations).
+    """
+    n = len(rhs)
+    order = sorted(range(n), key=lambda i: (-rhs[i], i))  # srt[k] = rhs[order[k]]
+    base = basic_solutions(normals, tuple(rhs[i] for i in order))
+    inv = [0] * n
+    for k, i in enumerate(order):
+        inv[i] = k
+    index = {v: j for j, v in enumerate(normals)}
+    cols = tuple(index[tuple(normals[j][inv[i]] for i in range(n))] for j in base.columns)
+    return Table(columns=cols, scaled=base.scaled, lcm=base.lcm)
+
+
 @cache
-def _checks01(n_goals: int) -> tuple[_Check, ...]:
-    normals = zero_one_normals(n_goals)
+def _checks(normals: tuple[Normal, ...]) -> tuple[_Check, ...]:
     groups: dict[tuple[Fraction, ...], list[tuple[Fraction, ...]]] = {}
     for lam, y in packing_vertices(normals):
         groups.setdefault(y, []).append(lam)
     out = []
     for y, lams in sorted(groups.items()):
         s = math.lcm(*(x.denominator for x in y))
-        cover = basic_solutions(normals, tuple(int(x * s) for x in y))
+        cover = _table(normals, tuple(int(x * s) for x in y))
         lcm = math.lcm(*(x.denominator for lam in lams for x in lam))
         arr = np.array([[int(x * lcm) for x in lam] for lam in lams], dtype=np.int64)
         out.append(_Check(s, cover, arr, lcm, y))
     return tuple(out)
 
 
-def _matmin(mat: np.ndarray, table: np.ndarray, exact_float: bool) -> np.ndarray:
-    """Row-wise ``min`` of ``mat @ table`` (integers; float64 BLAS when provably exact)."""
-    if exact_float:
+def _matmin(mat: np.ndarray, table: np.ndarray) -> np.ndarray:
+    """Row-wise ``min`` of ``mat @ table`` for non-negative integers, exactly.
+
+    float64 BLAS when every partial sum is provably an integer below 2^53, else Python ints.
+    """
+    top = int(mat.max(initial=0)) if mat.size else 0
+    width = (top + 1) * (int(np.abs(table).sum(axis=0).max(initial=1)) + 1)
+    if width < 2 ** 53:
         return (mat.astype(np.float64) @ table.astype(np.float64)).min(axis=1).astype(np.int64)
     return (mat.astype(object) @ table.astype(object)).min(axis=1)
 
 
-def _certify01(run: _Runner, new: dict[int, np.ndarray], old: dict[int, np.ndarray]
-               ) -> tuple[int, int, tuple[Fraction, ...]] | None:
-    """The first arc ``(v, u)`` violating ``F_v ⊆ F_u + wΔ`` (new layer at v, old at u)."""
-    checks = _checks01(run.inst.n_goals)
-    if not checks or run.src.size == 0:
-        return None
-    n_masks = (1 << run.inst.n_goals) - 1
-    big = run.big
-    finite_new = new[1] < big
-    finite_old = old[1] < big
-    arcs = finite_new[run.src] & finite_old[run.dst]
+Arc = tuple[int, int, tuple[Fraction, ...]]
+
+
+def _certify(checks: tuple[_Check, ...], new: np.ndarray, fin_new: np.ndarray,
+             old: np.ndarray, fin_old: np.ndarray, src: np.ndarray, dst: np.ndarray,
+             wts: np.ndarray) -> list[Arc]:
+    """Arcs violating ``F_v ⊆ F_u + wΔ`` (NG.8(c)), the first one per failing direction.
+
+    ``new``/``old`` are ``(|M|, nodes)`` integer numerators at one scale ``D`` (``new`` at the
+    arcs' tails, ``old`` at their heads), ``wts`` the arc weights times ``D``.
+    """
+    if not checks:
+        return []
+    arcs = fin_new[src] & fin_old[dst]
     if not arcs.any():
-        return None
-    src, dst, wts = run.src[arcs], run.dst[arcs], run.wts[arcs]
-    nodes_v = np.unique(src)
-    nodes_u = np.unique(dst)
-    mnew = np.stack([new[m][nodes_v] for m in range(1, n_masks + 1)], axis=1)
-    mold = np.stack([old[m][nodes_u] for m in range(1, n_masks + 1)], axis=1)
-    bound = int(max(int(mnew.max()), int(mold.max()), 1))
+        return []
+    src, dst, wts = src[arcs], dst[arcs], wts[arcs]
+    nodes_v, nodes_u = np.unique(src), np.unique(dst)
+    mnew, mold = new[:, nodes_v].T, old[:, nodes_u].T
+    out: list[Arc] = []
     for chk in checks:
-        tab = chk.cover.scaled
         cols = np.asarray(chk.cover.columns, dtype=np.int64)
-        width = bound * int(np.abs(tab).sum(axis=0).max(initial=1)) + 1
-        hv = _matmin(mnew[:, cols], tab, width < 2 ** 53)
-        width_l = bound * int(chk.lams.sum(axis=1).max(initial=1)) + 1
-        mu = _matmin(mold, chk.lams.T, width_l < 2 ** 53)
+        hv = _matmin(mnew[:, cols], chk.cover.scaled)
+        mu = _matmin(mold, chk.lams.T)
         hv_arc = hv[np.searchsorted(nodes_v, src)].astype(object)
         mu_arc = mu[np.searchsorted(nodes_u, dst)].astype(object)
-        # h_v(y) <= w + λ·m_u, all at the DP scale: h_v(y) = hv / (lcm_T · s)
+        # h_v(y) <= w + λ·m_u at scale D: h_v(y) = hv / (lcm_T · s), λ·m_u = mu / lcm_λ
         lhs = hv_arc * chk.lam_lcm
         rhs = (wts.astype(object) * chk.cover.lcm * chk.lam_lcm * chk.scale
                + mu_arc * chk.cover.lcm * chk.scale)
         bad = np.flatnonzero(lhs > rhs)
         if bad.size:
             i = int(bad[0])
-            return int(src[i]), int(dst[i]), chk.y
-    return None
+            out.append((int(src[i]), int(dst[i]), chk.y))
+    return out
+
+
+def _layer_array(run: _Runner, layer: dict[int, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    arr = np.stack([layer[m] for m in range(1, 1 << run.inst.n_goals)])
+    return arr, layer[1] < run.big
 
 
 def _coalition_certified(inst: NInstance, horizon: int | None, max_layers: int | None
-                         ) -> tuple[CoalitionValue, str | None, list[tuple[Fraction, ...]]]:
-    """Coalition DP value, layers, and the first failure (None: certified) with its y's."""
+                         ) -> tuple[CoalitionValue, list[Arc],
+                                    tuple[_Runner, dict[int, np.ndarray]] | None]:
+    """Coalition DP value, the failing arcs (empty: certified), and the H = inf fixpoint."""
     run = _Runner(inst)
     layer = run.layer0()
-    fails: list[tuple[Fraction, ...]] = []
-    reason: str | None = None
+    fails: list[Arc] = []
+    checks = _checks(zero_one_normals(inst.n_goals)) if inst.n_goals > 3 else ()
 
-    def check(new: dict[int, np.ndarray], old: dict[int, np.ndarray], k: int) -> None:
-        nonlocal reason
-        if inst.n_goals <= 3:
-            return  # NG.4: the coalition DP is the value
-        bad = _certify01(run, new, old)
-        if bad is not None:
-            v, u, y = bad
-            fails.append(y)
-            if reason is None:
-                reason = (f"arc {inst.nodes[v]!r} -> {inst.nodes[u]!r} (layer {k}) fails the "
-                          f"certificate in direction ({', '.join(str(x) for x in y)})")
+    def check(new: dict[int, np.ndarray], old: dict[int, np.ndarray]) -> None:
+        if checks and not fails:  # NG.4: nothing to check for N <= 3
+            a, fa = _layer_array(run, new)
+            b, fb = (a, fa) if new is old else _layer_array(run, old)
+            fails.extend(_certify(checks, a, fa, b, fb, run.src, run.dst, run.wts))
 
     if horizon is not None:
         for k in range(1, horizon + 1):
             nxt = run.step(layer, k)
-            check(nxt, layer, k)
+            check(nxt, layer)
             layer = nxt
-        return run.value(layer, horizon, horizon), reason, fails
+        return run.value(layer, horizon, horizon), fails, None
     k = 0
     while True:
         k += 1
@@ -393,124 +412,171 @@ def _coalition_certified(inst: NInstance, horizon: int | None, max_layers: int |
             raise HorizonError(f"the coalition DP did not converge within {max_layers} layers")
         nxt = run.step(layer, k)
         if k > max(inst.hops) and _same(nxt, layer):
-            check(nxt, nxt, k)
-            return run.value(nxt, None, k), reason, fails
+            check(nxt, nxt)
+            return run.value(nxt, None, k), fails, (run, nxt)
         layer = nxt
 
 
-# -- the general DP (any normals), exact rationals ---------------------------------------------
+# -- the general DP (any normals), exact integers at a common scale ----------------------------
 
-def _cover_min(tab: Table, costs: Sequence[Number]) -> Number:
-    """``min`` over the table's vertices ``c`` of ``Σ_j c_j costs[columns[j]]`` (inf-aware)."""
-    best: Number = INF
-    vals = [costs[c] for c in tab.columns]
-    for vert in tab.scaled.T:
-        if any(x and vals[i] == INF for i, x in enumerate(vert)):
-            continue
-        tot = sum((int(x) * vals[i] for i, x in enumerate(vert) if x), Fraction(0))
-        best = min(best, tot / tab.lcm)
-    return best
-
-
-def _multiple(y: Sequence[Fraction]) -> Fraction:
-    """``k`` with ``extra_directions([y])[0] = k·y``."""
-    i = next(i for i, x in enumerate(y) if x)
-    return Fraction(extra_directions([y])[0][i]) / y[i]
+class _TooLarge(Exception):
+    """The general DP's numbers left the range of exact float64/int64 arithmetic."""
 
 
 class _General:
-    """The normal-restricted DP in exact rationals (``math.inf`` off the reachable set)."""
+    """The normal-restricted DP (NG.7), vectorised over nodes, in exact integers at scale ``D``.
+
+    A layer is ``(m, finite, D)``: ``m[j, v] = D · m_{n_j}(v)`` (Python-int exact, int64
+    storage), ``finite[v]`` whether ``v`` reaches a goal (all normals are finite together).
+    After every closure the scale is reduced to the least multiple of the weights' common
+    denominator that keeps every value integral, so equal layers have equal representations.
+    """
 
     def __init__(self, inst: NInstance, normals: tuple[Normal, ...]) -> None:
         self.inst = inst
         self.normals = normals
-        self.tops = [max(n) for n in normals]
-        self.closure = [basic_solutions(normals, n) for n in normals]
-        self.checks = packing_vertices(normals)
-        self.covers = {y: basic_solutions(normals, extra_directions([y])[0])
-                       for _, y in self.checks}
-        self.goal = set(inst.goals)
-        self.arcs = [(v, u, Fraction(w)) for v in range(inst.n_nodes) if v not in self.goal
-                     for u, w in inst.succ[v]]
-        self.term = {g: [sum((Fraction(n[t]) * Fraction(inst.dist_to[t][g])
-                              for t in range(inst.n_goals)), Fraction(0)) for n in normals]
+        self.tops = [max(x) for x in normals]
+        self.tables = [_table(normals, x) for x in normals]
+        self.checks = _checks(normals)
+        goal = np.zeros(inst.n_nodes, dtype=bool)
+        goal[list(inst.goals)] = True
+        self.goal = goal
+        src, dst, wts = [], [], []
+        for v in range(inst.n_nodes):
+            if not goal[v]:
+                for u, w in inst.succ[v]:
+                    src.append(v)
+                    dst.append(u)
+                    wts.append(Fraction(w))
+        self.src = np.asarray(src, dtype=np.int64)
+        self.dst = np.asarray(dst, dtype=np.int64)
+        self.w = wts
+        self.wden = math.lcm(1, *(w.denominator for w in wts))
+        self.active = np.unique(self.src)
+        self.seg = np.searchsorted(self.src, self.active)
+        self.term = {g: [sum((Fraction(x[t]) * Fraction(inst.dist_to[t][g])
+                              for t in range(inst.n_goals)), Fraction(0)) for x in normals]
                      for g in inst.goals}
+        self.cut = math.lcm(1, *(t.lcm for t in self.tables))
 
-    def layer0(self) -> list[list[Number]]:
-        inf: list[Number] = [INF] * len(self.normals)
-        return [list(self.term[v]) if v in self.goal else list(inf)
-                for v in range(self.inst.n_nodes)]
+    def weights(self, scale: int) -> np.ndarray:
+        return np.asarray([int(w * scale) for w in self.w], dtype=np.int64)
 
-    def _close(self, a: list[Number]) -> list[Number]:
-        return [_cover_min(tab, a) for tab in self.closure]
+    def _goals(self, m: np.ndarray, scale: int) -> None:
+        for g, vals in self.term.items():
+            m[:, g] = [int(x * scale) for x in vals]
 
-    def step(self, prev: list[list[Number]]) -> list[list[Number]]:
-        nxt: list[list[Number]] = [list(r) for r in prev]
-        best: dict[int, list[Number]] = {}
-        for v, u, w in self.arcs:
-            cand = [w * t + x for t, x in zip(self.tops, prev[u], strict=True)]
-            row = best.setdefault(v, [INF] * len(self.normals))
-            for j, c in enumerate(cand):
-                if c < row[j]:
-                    row[j] = c
-        for v in range(self.inst.n_nodes):
-            if v not in self.goal:
-                nxt[v] = self._close(best[v]) if v in best else [INF] * len(self.normals)
-        return nxt
+    def layer0(self) -> tuple[np.ndarray, np.ndarray, int]:
+        scale = math.lcm(self.wden, *(x.denominator for vals in self.term.values()
+                                      for x in vals))
+        m = np.zeros((len(self.normals), self.inst.n_nodes), dtype=np.int64)
+        self._goals(m, scale)
+        return m, self.goal.copy(), scale
 
-    def h(self, m: list[Number], y: tuple[Fraction, ...]) -> Number:
-        """The cheapest cover of ``y`` by the normals with costs ``m``."""
-        return _cover_min(self.covers[y], m) / _multiple(y)
+    def _reduce(self, m: np.ndarray, finite: np.ndarray, scale: int
+                ) -> tuple[np.ndarray, np.ndarray, int]:
+        g = math.gcd(int(np.gcd.reduce(m[:, finite].ravel(), initial=0)), scale // self.wden)
+        if g > 1:
+            m = m // g
+            scale //= g
+        m[:, ~finite] = 0
+        return m, finite, scale
 
-    def certify(self, new: list[list[Number]], old: list[list[Number]]
-                ) -> list[tuple[int, int, tuple[Fraction, ...]]]:
-        bad = []
-        seen: set[tuple[Fraction, ...]] = set()
-        hs: dict[tuple[int, tuple[Fraction, ...]], Number] = {}
-        for v, u, w in self.arcs:
-            if new[v][0] == INF or old[u][0] == INF:
-                continue
-            for lam, y in self.checks:
-                if y in seen:
-                    continue
-                key = (v, y)
-                if key not in hs:
-                    hs[key] = self.h(new[v], y)
-                mu = sum((x * old[u][j] for j, x in enumerate(lam) if x), Fraction(0))
-                if hs[key] > w + mu:
-                    bad.append((v, u, y))
-                    seen.add(y)
-        return bad
+    def close(self, a: np.ndarray, rows: np.ndarray, scale: int
+              ) -> tuple[np.ndarray, int]:
+        """Closure (NG.7) of the step values ``a`` (``|M| × rows``) at scale ``scale``."""
+        out = np.zeros_like(a)
+        if 2 ** 62 // max(1, self.cut) < int(a.max(initial=0)) + 1:
+            raise _TooLarge
+        for j, tab in enumerate(self.tables):
+            cols = np.asarray(tab.columns, dtype=np.int64)
+            best = _matmin(a[cols].T, tab.scaled)
+            out[j] = np.asarray(best, dtype=object) * (self.cut // tab.lcm)
+        return out, scale * self.cut
 
-    def value(self, layer: list[list[Number]]) -> Fraction:
-        costs = layer[self.inst.start]
-        if costs[0] == INF:
+    def step(self, state: tuple[np.ndarray, np.ndarray, int]
+             ) -> tuple[np.ndarray, np.ndarray, int]:
+        m, finite, scale = state
+        n = self.inst.n_nodes
+        new_fin = self.goal.copy()
+        if self.src.size:
+            fin_dst = finite[self.dst]
+            reach = np.logical_or.reduceat(fin_dst, self.seg)
+            rows = self.active[reach]
+            new_fin[rows] = True
+            wts = self.weights(scale)
+            big = int(m[:, finite].max(initial=0)) * 2 + int(wts.max(initial=0)) * max(
+                self.tops) * 2 + 1
+            if big > 2 ** 61:
+                raise _TooLarge
+            a = np.empty((len(self.normals), rows.size), dtype=np.int64)
+            for j, top in enumerate(self.tops):
+                cand = wts * top + np.where(fin_dst, m[j][self.dst], big)
+                a[j] = np.minimum.reduceat(cand, self.seg)[reach]
+            closed, new_scale = self.close(a, rows, scale)
+        else:
+            rows = np.zeros(0, dtype=np.int64)
+            closed, new_scale = np.zeros((len(self.normals), 0), dtype=np.int64), scale
+        out = np.zeros((len(self.normals), n), dtype=np.int64)
+        out[:, rows] = closed
+        self._goals(out, new_scale)
+        return self._reduce(out, new_fin, new_scale)
+
+    def certify(self, new: tuple[np.ndarray, np.ndarray, int],
+                old: tuple[np.ndarray, np.ndarray, int]) -> list[Arc]:
+        (a, fa, sa), (b, fb, sb) = new, old
+        scale = math.lcm(sa, sb)
+        return _certify(self.checks, a * (scale // sa), fa, b * (scale // sb), fb, self.src,
+                        self.dst, self.weights(scale))
+
+    def value(self, state: tuple[np.ndarray, np.ndarray, int]) -> Fraction:
+        m, finite, scale = state
+        s0 = self.inst.start
+        if not finite[s0]:
             raise HorizonError("no walk from the start reaches a goal within the horizon")
-        lp = min_cover_vectors(self.normals, [Fraction(c) for c in costs], self.inst.prior)
-        return lp.value
+        costs = [Fraction(int(x), scale) for x in m[:, s0]]
+        return min_cover_vectors(self.normals, costs, self.inst.prior).value
+
+    def warm(self, run: _Runner, layer: dict[int, np.ndarray]
+             ) -> tuple[np.ndarray, np.ndarray, int]:
+        """A start above a DP layer (NG.8(b)): the coalition fixpoint, extras by 0/1 covers."""
+        zo = zero_one_normals(self.inst.n_goals)
+        arr, finite = _layer_array(run, layer)
+        m = np.zeros((len(self.normals), self.inst.n_nodes), dtype=np.int64)
+        m[:len(zo)] = np.where(finite, arr, 0)
+        rows = np.flatnonzero(finite)
+        cut = math.lcm(1, *(_table(zo, x).lcm for x in self.normals[len(zo):]))
+        m *= cut
+        for j in range(len(zo), len(self.normals)):
+            tab = _table(zo, self.normals[j])
+            best = _matmin(arr[np.asarray(tab.columns)][:, rows].T, tab.scaled)
+            m[j, rows] = np.asarray(best, dtype=object) * (cut // tab.lcm)
+        return self._reduce(m, finite, run.scale * cut)
 
 
-def _general(inst: NInstance, extras: list[Normal], horizon: int | None,
-             max_layers: int) -> tuple[Fraction, int, list[tuple[int, int, tuple[Fraction, ...]]]]:
+def _general(inst: NInstance, extras: list[Normal], horizon: int | None, max_layers: int,
+             start: tuple[_Runner, dict[int, np.ndarray]] | None
+             ) -> tuple[Fraction, int, list[Arc]]:
     normals = zero_one_normals(inst.n_goals) + tuple(extras)
     dp = _General(inst, normals)
-    layer = dp.layer0()
-    fails: list[tuple[int, int, tuple[Fraction, ...]]] = []
     if horizon is not None:
+        layer = dp.layer0()
+        fails: list[Arc] = []
         for _ in range(horizon):
             nxt = dp.step(layer)
-            fails += dp.certify(nxt, layer)
+            if not fails:
+                fails = dp.certify(nxt, layer)
             layer = nxt
         return dp.value(layer), horizon, fails
-    k = 0
-    while True:
-        k += 1
-        if k > max_layers:
-            raise HorizonError(f"the general DP did not converge within {max_layers} layers")
+    assert start is not None
+    layer = dp.warm(*start)
+    for k in range(1, max_layers + 1):
         nxt = dp.step(layer)
-        if k > max(inst.hops) and nxt == layer:
+        if nxt[2] == layer[2] and np.array_equal(nxt[1], layer[1]) and np.array_equal(
+                nxt[0], layer[0]):
             return dp.value(nxt), k, dp.certify(nxt, nxt)
         layer = nxt
+    raise HorizonError(f"the refined DP did not converge within {max_layers} layers")
 
 
 def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None = None
@@ -518,8 +584,9 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
     """``V_H`` of an N-goal instance (2 to 5 goals), exact where proved, else a bracket.
 
     For N <= 3 the coalition DP is the value (NG.3, NG.4). For N = 4, 5 the coalition DP is
-    certified (NG.8) and, where it fails, refined with the failing directions as extra facet
-    normals (general DP, exact rationals, small instances). ``horizon=None`` is ``H = inf``.
+    certified (NG.8) and, where it fails, refined with the failing directions (and their
+    permutations) as extra facet normals, a few rounds (NG.7, NG.8; for ``H = inf`` started
+    from the coalition fixpoint). ``horizon=None`` is ``H = inf``.
 
     Raises
     ------
@@ -542,49 +609,51 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
         raise OptionError(too_many_goals(inst.n_goals))
     if horizon is not None and horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
-    coal, reason, fails = _coalition_certified(inst, horizon, max_layers)
+    coal, fails, start = _coalition_certified(inst, horizon, max_layers)
     upper, layers = Fraction(coal.value), coal.layers
     n = inst.n_goals
     src = ("coalition DP (NG.3: the value for two goals)" if n == 2 else
            "coalition DP (NG.4: the value for three goals)" if n == 3 else
            "coalition DP, certified at every arc (NG.8)")
-    if reason is None:
+    if not fails:
         return NValue(horizon, normalize(upper), normalize(upper), src, src, layers, (), None,
                       coal)
     up_src = "coalition DP (NG.2: an upper bound)"
+    reason = _fail_reason(inst, fails[0], "the coalition DP")
     extras: list[Normal] = []
     cap = max_layers if max_layers is not None else 50 * inst.n_nodes + 100
-    work = inst.n_nodes * (layers + 1)
     for _ in range(MAX_ROUNDS):
-        new = [d for d in extra_directions(_permutations(fails)) if d not in extras]
+        new = [d for d in extra_directions(_permutations([fails[0][2]])) if d not in extras]
         if not new:
             break
         extras += sorted(new, reverse=True)
-        size = sum(basic_solutions(zero_one_normals(n) + tuple(extras), e).scaled.size
-                   for e in extras)
-        if work * size > MAX_GENERAL_WORK:
-            reason += f"; the refined DP ({len(extras)} extra normals) is beyond its size limit"
+        normals = zero_one_normals(n) + tuple(extras)
+        if math.comb(len(normals) + n, n) > MAX_BASES:
+            reason += (f"; refining needs {len(extras)} extra normals, beyond the vertex "
+                       f"enumeration's limit ({MAX_BASES:,} bases)")
             break
         try:
-            val, layers_g, bad = _general(inst, extras, horizon, cap)
-        except HorizonError as exc:
-            reason += f"; the refined DP: {exc}"
+            val, layers_g, fails = _general(inst, extras, horizon, cap, start)
+        except (HorizonError, _TooLarge) as exc:
+            reason += f"; the refined DP: {exc or 'numbers beyond exact float64 range'}"
             break
         if val < upper:
             upper, layers, up_src = (val, layers_g, f"DP over {len(extras)} extra facet "
                                      "normals (NG.7: an upper bound)")
-        if not bad:
+        if not fails:
             src = f"DP over {len(extras)} extra facet normals, certified at every arc (NG.8)"
             return NValue(horizon, normalize(val), normalize(val), src, src, layers_g,
                           tuple(extras), None, coal)
-        v, u, y = bad[0]
-        reason = (f"arc {inst.nodes[v]!r} -> {inst.nodes[u]!r} fails the certificate of the "
-                  f"DP with {len(extras)} extra normals in direction "
-                  f"({', '.join(str(x) for x in y)})")
-        fails = [b[2] for b in bad]
+        reason = _fail_reason(inst, fails[0], f"the DP with {len(extras)} extra normals")
     lower, lo_src = lower_bound_simple(inst)
     return NValue(horizon, normalize(lower), normalize(upper), lo_src, up_src, layers,
                   tuple(extras), reason, coal)
+
+
+def _fail_reason(inst: NInstance, arc: Arc, what: str) -> str:
+    v, u, y = arc
+    return (f"arc {inst.nodes[v]!r} -> {inst.nodes[u]!r} fails the certificate of {what} in "
+            f"direction ({', '.join(str(x) for x in y)})")
 
 
 def _permutations(ys: list[tuple[Fraction, ...]]) -> list[tuple[Fraction, ...]]:

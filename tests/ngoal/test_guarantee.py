@@ -98,7 +98,7 @@ def test_without_refinement_the_hub_gets_an_honest_bracket(monkeypatch: pytest.M
     assert v.value is None and not v.exact
     assert v.lower <= Fraction(12, 7) < v.upper == Fraction(25, 14)
     assert "NG.9" in v.lower_source and "upper bound" in v.upper_source
-    assert v.reason is not None and "fails the certificate in direction" in v.reason
+    assert v.reason is not None and "fails the certificate of the coalition DP" in v.reason
     i = write_doc(tmp_path, "hub.json", hub4_document())
     r = run_cli(value_command, [i, "-H", "inf"])
     assert r.exit_code == 0 and "in [6/7 (≈ 0.8571429), 25/14 (≈ 1.785714)]" in r.output
