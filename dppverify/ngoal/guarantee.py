@@ -60,7 +60,7 @@ Normal = tuple[int, ...]
 MAX_ROUNDS = 4
 """Refinement rounds of the general DP (each adds the failing directions as normals)."""
 
-MAX_BASES = 5_000_000
+MAX_BASES = 1_000_000
 """Limit on the bases enumerated for the vertices of a refined normal set's tables."""
 
 
@@ -579,6 +579,54 @@ def _general(inst: NInstance, extras: list[Normal], horizon: int | None, max_lay
     raise HorizonError(f"the refined DP did not converge within {max_layers} layers")
 
 
+def _deflated_lower(run: _Runner, layer: dict[int, np.ndarray]) -> Fraction | None:
+    """NG.10: ``DP_inf - t(s0)`` for the least translations ``t`` making ``F - t·1`` a sub-fixpoint.
+
+    ``F`` are the coalition DP's sets at its fixpoint ``layer``. With ``F'_v = F_v - t_v·1``
+    (``t >= 0``, ``t = 0`` at goals) the arc condition for ``(v, u)`` reads
+    ``t_v - t_u >= ℓ(v, u)``, the largest ``(h_{F_v}(y_λ) - w - λ·m_u) / (1·y_λ)`` over the vertices
+    ``λ`` of the packing polytope (the 0/1 ones give ``(m_A(v) - w - m_A(u)) / |A|``). The least
+    such ``t`` is a longest-path fixpoint (Bellman-Ford from ``t = 0``); None if it does not
+    settle within ``n + 1`` rounds (a positive cycle).
+    """
+    inst = run.inst
+    arr, finite = _layer_array(run, layer)
+    keep = finite[run.src] & finite[run.dst]
+    src, dst, wts = run.src[keep], run.dst[keep], run.wts[keep].astype(object)
+    scale = run.scale
+    frac = np.frompyfunc(lambda num, den: Fraction(int(num), int(den)), 2, 1)
+    ell: np.ndarray | None = None
+    for mask in range(1, 1 << inst.n_goals):
+        size = bin(mask).count("1")
+        e = arr[mask - 1][src].astype(object) - wts - arr[mask - 1][dst].astype(object)
+        cand = frac(e, scale * size)
+        ell = cand if ell is None else np.maximum(ell, cand)
+    zo = zero_one_normals(inst.n_goals)
+    for chk in _checks(zo):
+        cols = np.asarray(chk.cover.columns, dtype=np.int64)
+        hv = np.asarray(_matmin(arr[cols][:, src].T, chk.cover.scaled), dtype=object)
+        mu = np.asarray(_matmin(arr[:, dst].T, chk.lams.T), dtype=object)
+        num = (hv * chk.lam_lcm - wts * chk.cover.lcm * chk.scale * chk.lam_lcm
+               - mu * chk.cover.lcm * chk.scale)
+        ones = sum(chk.y, Fraction(0))
+        den = scale * chk.cover.lcm * chk.scale * chk.lam_lcm
+        cand = frac(num, den) / ones
+        ell = cand if ell is None else np.maximum(ell, cand)
+    if ell is None or src.size == 0:
+        return Fraction(0)
+    tails = np.unique(src)
+    seg = np.searchsorted(src, tails)
+    t = np.full(inst.n_nodes, Fraction(0), dtype=object)
+    for _ in range(inst.n_nodes + 1):
+        best = np.maximum.reduceat(t[dst] + ell, seg)
+        new = t.copy()
+        new[tails] = np.maximum(best, Fraction(0))
+        if np.array_equal(new, t):
+            return Fraction(t[inst.start])
+        t = new
+    return None
+
+
 def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None = None
            ) -> NValue:
     """``V_H`` of an N-goal instance (2 to 5 goals), exact where proved, else a bracket.
@@ -646,6 +694,16 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
                           tuple(extras), None, coal)
         reason = _fail_reason(inst, fails[0], f"the DP with {len(extras)} extra normals")
     lower, lo_src = lower_bound_simple(inst)
+    if start is None:  # finite H: the fixpoint's bound holds for every H (NG.10)
+        fix = _coalition_certified(inst, None, max_layers)
+        start, dp_inf = fix[2], Fraction(fix[0].value)
+    else:
+        dp_inf = Fraction(coal.value)
+    assert start is not None
+    shift = _deflated_lower(*start)
+    if shift is not None and dp_inf - shift > lower:
+        lower, lo_src = dp_inf - shift, ("the coalition DP's fixpoint sets translated into a "
+                                         "sub-fixpoint (NG.10)")
     return NValue(horizon, normalize(lower), normalize(upper), lo_src, up_src, layers,
                   tuple(extras), reason, coal)
 
