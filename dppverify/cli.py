@@ -405,7 +405,8 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
     Structured route: three hop-bounded Bellman-Ford fields (proofs/DP.md), exact on
     rational instances, polynomial in the graph; `--horizon inf` is the untruncated game.
     Instances with more than two goals: the tree LP with N types, and as structured route
-    the coalition DP over goal subsets (exact; conjectured equal to V_H, proofs/NGOAL.md).
+    the guarantee sets: the coalition DP over goal subsets, the value for N <= 3 and, for
+    N = 4, 5, where certified (else an exact bracket naming both bounds; proofs/NGOAL.md).
 
     \b
     Examples:
