@@ -27,12 +27,14 @@ permutations of (1, 1, 1, 1/2) for N = 4 and 45 vectors for N = 5.
 
 :func:`nvalue` runs the coalition DP, certifies it (``H = inf``: at the repeated layer, NG.8
 then gives ``V_H`` for every ``H`` from that layer on; finite ``H``: at every layer) and, when
-an arc fails, adds the failing directions ``y_λ`` to ``M`` and re-runs the general DP in exact
-rationals (a few rounds, small instances). Where no certificate is found it returns a bracket
-naming both bounds. Everything is exact: integer scaling and exact divisibility for the
-coalition layers, ``Fraction`` arithmetic in the general DP, vertices by exact integer
-determinants (no polyhedral library: the normals form a fixed small table, so every basis is
-enumerated once per table).
+an arc fails, adds the failing direction ``y_λ`` and its permutations to ``M`` as primitive
+integer normals and re-runs the DP (vectorised, exact integers at a reduced common scale; for
+``H = inf`` started from the coalition fixpoint), a few rounds. Where no certificate is found
+it returns a bracket naming both bounds: the best DP above, and below the better of two simple
+Defenders (NG.9) and the coalition fixpoint's sets translated into a sub-fixpoint (NG.10).
+Everything is exact; vertices come from exact integer determinants of every basis (no
+polyhedral library: the normals form a fixed small table, so each basis is enumerated once per
+table, and tables of permuted right-hand sides are shared by symmetry).
 """
 
 from __future__ import annotations
