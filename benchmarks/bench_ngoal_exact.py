@@ -44,6 +44,7 @@ def run(name: str, n: int) -> dict[str, Any]:
     return {"map": name, "goals": n, "nodes": inst.n_nodes, "coalition_dp": str(dp.value),
             "exact": v.exact, "value": None if v.value is None else str(v.value),
             "lower": str(v.lower), "upper": str(v.upper), "extra_normals": len(v.normals),
+            "proof": v.lower_source if v.exact else None,
             "reason": v.reason, "seconds_dp": round(t_dp, 2), "seconds_exact": round(t_v, 2),
             "ratio": round(t_v / max(t_dp, 1e-9), 2)}
 
@@ -60,7 +61,7 @@ def main(argv: list[str] | None = None) -> None:
     for name, n in cases:
         row = run(name, n)
         rows.append(row)
-        what = (f"exact {row['value']}" if row["exact"] else
+        what = (f"exact {row['value']} ({row['proof']})" if row["exact"] else
                 f"bracket [{row['lower']}, {row['upper']}] ({row['reason']})")
         print(f"{name:14s} N={n} nodes={row['nodes']:6d} DP {row['coalition_dp']:>7s} "
               f"{row['seconds_dp']:7.1f} s | {what}, {row['extra_normals']} extra normals, "

@@ -386,14 +386,16 @@ def _layer_array(run: _Runner, layer: dict[int, np.ndarray]) -> tuple[np.ndarray
     return arr, layer[1] < run.big
 
 
-def _coalition_certified(inst: NInstance, horizon: int | None, max_layers: int | None
+def _coalition_certified(inst: NInstance, horizon: int | None, max_layers: int | None, *,
+                         certify: bool = True
                          ) -> tuple[CoalitionValue, list[Arc],
                                     tuple[_Runner, dict[int, np.ndarray]] | None]:
     """Coalition DP value, the failing arcs (empty: certified), and the H = inf fixpoint."""
     run = _Runner(inst)
     layer = run.layer0()
     fails: list[Arc] = []
-    checks = _checks(zero_one_normals(inst.n_goals)) if inst.n_goals > 3 else ()
+    checks = (_checks(zero_one_normals(inst.n_goals)) if inst.n_goals > 3 and certify
+              else ())
 
     def check(new: dict[int, np.ndarray], old: dict[int, np.ndarray]) -> None:
         if checks and not fails:  # NG.4: nothing to check for N <= 3
@@ -670,7 +672,24 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
                       coal)
     up_src = "coalition DP (NG.2: an upper bound)"
     reason = _fail_reason(inst, fails[0], "the coalition DP")
+    lower, lo_src = lower_bound_simple(inst)
+    fixpoint = start  # the coalition fixpoint, for NG.10 (it bounds every H)
+    if fixpoint is None:
+        fix = _coalition_certified(inst, None, max_layers, certify=False)
+        fixpoint, dp_inf = fix[2], Fraction(fix[0].value)
+    else:
+        dp_inf = upper
+    assert fixpoint is not None
+    shift = _deflated_lower(*fixpoint)
+    if shift is not None and dp_inf - shift > lower:
+        lower, lo_src = dp_inf - shift, ("the coalition DP's fixpoint sets translated into a "
+                                         "sub-fixpoint (NG.10)")
+    if lower == upper:
+        src = "coalition DP (NG.2) meeting the translated fixpoint bound (NG.10)"
+        return NValue(horizon, normalize(upper), normalize(upper), src, src, layers, (), None,
+                      coal)
     extras: list[Normal] = []
+    up_normals: tuple[Normal, ...] = ()
     cap = max_layers if max_layers is not None else 50 * inst.n_nodes + 100
     for _ in range(MAX_ROUNDS):
         new = [d for d in extra_directions(_permutations([fails[0][2]])) if d not in extras]
@@ -688,26 +707,19 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
             reason += f"; the refined DP: {exc or 'numbers beyond exact float64 range'}"
             break
         if val < upper:
-            upper, layers, up_src = (val, layers_g, f"DP over {len(extras)} extra facet "
-                                     "normals (NG.7: an upper bound)")
+            upper, layers, up_normals = val, layers_g, tuple(extras)
+            up_src = f"DP over {len(extras)} extra facet normals (NG.7: an upper bound)"
         if not fails:
             src = f"DP over {len(extras)} extra facet normals, certified at every arc (NG.8)"
             return NValue(horizon, normalize(val), normalize(val), src, src, layers_g,
                           tuple(extras), None, coal)
+        if lower == upper:
+            src = f"{up_src[:-1]}) meeting {lo_src}"
+            return NValue(horizon, normalize(upper), normalize(upper), src, src, layers,
+                          up_normals, None, coal)
         reason = _fail_reason(inst, fails[0], f"the DP with {len(extras)} extra normals")
-    lower, lo_src = lower_bound_simple(inst)
-    if start is None:  # finite H: the fixpoint's bound holds for every H (NG.10)
-        fix = _coalition_certified(inst, None, max_layers)
-        start, dp_inf = fix[2], Fraction(fix[0].value)
-    else:
-        dp_inf = Fraction(coal.value)
-    assert start is not None
-    shift = _deflated_lower(*start)
-    if shift is not None and dp_inf - shift > lower:
-        lower, lo_src = dp_inf - shift, ("the coalition DP's fixpoint sets translated into a "
-                                         "sub-fixpoint (NG.10)")
     return NValue(horizon, normalize(lower), normalize(upper), lo_src, up_src, layers,
-                  tuple(extras), reason, coal)
+                  up_normals, reason, coal)
 
 
 def _fail_reason(inst: NInstance, arc: Arc, what: str) -> str:
