@@ -624,7 +624,7 @@ def _deflated_lower(run: _Runner, layer: dict[int, np.ndarray]) -> Fraction | No
     for _ in range(inst.n_nodes + 1):
         best = np.maximum.reduceat(t[dst] + ell, seg)
         new = t.copy()
-        new[tails] = np.maximum(best, Fraction(0))
+        new[tails] = [max(x, Fraction(0)) for x in best]
         if np.array_equal(new, t):
             return Fraction(t[inst.start])
         t = new

@@ -144,7 +144,9 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
     attacker = _attacker(inst, tdef, per_type)
     out.append(attacker)
     out += _defender(inst, tdef, mass, u)
-    out.append(_value(inst, u, horizon, all(r.passed for r in out)))
+    longest = max(len(w) - 1 for w in walks)
+    covered = horizon is None or horizon >= longest  # NW.5: U = V_H for every H >= longest
+    out.append(_value(inst, u, horizon, covered and all(r.passed for r in out)))
     return out, len(trie)
 
 
@@ -224,7 +226,7 @@ def _defender(inst: NInstance, tdef: TableDefender, mass: dict[int, list[Fractio
 def _value(inst: NInstance, u: Number, horizon: int | None, equilibrium: bool) -> CheckRecord:
     h = "inf" if horizon is None else str(horizon)
     relies = ("relies on proofs/NGOAL.md: NG.2, NG.5 (the coalition DP is an upper bound), "
-              "NG.3/NG.4 (it is the value for N <= 3), NG.6-NG.9 (the guarantee sets: "
+              "NG.3/NG.4 (it is the value for N <= 3), NG.6-NG.10 (the guarantee sets: "
               "exact where certified, else a bracket)")
     try:
         v = nvalue(inst, horizon)
@@ -245,8 +247,9 @@ def _value(inst: NInstance, u: Number, horizon: int | None, equilibrium: bool) -
                     f"{v.upper_source}): the profile is not an equilibrium", nums, relies)
     if equilibrium:
         return _rec("ngoal.value.V_H", "pass", f"U = {u} lies in the bracket [{v.lower}, "
-                    f"{v.upper}] of V_H (H = {h}), and the equilibrium checks above passed, so "
-                    f"V_H = U by the certified equilibrium (NWALKBR)", nums, relies)
+                    f"{v.upper}] of V_H (H = {h}), and the equilibrium checks above passed with "
+                    f"H covering the profile's walks, so V_H = U by the certified equilibrium "
+                    f"(NWALKBR NW.5)", nums, relies)
     return _rec("ngoal.value.V_H", "skipped", f"U = {u} lies in the bracket [{v.lower}, "
                 f"{v.upper}] of V_H (H = {h}; not proved exact: {v.reason}): not decisive; "
                 f"the failed checks above refute the profile", nums, relies)
