@@ -620,13 +620,17 @@ def _deflated_lower(run: _Runner, layer: dict[int, np.ndarray]) -> Fraction | No
         return Fraction(0)
     tails = np.unique(src)
     seg = np.searchsorted(src, tails)
-    t = np.full(inst.n_nodes, Fraction(0), dtype=object)
+    den = math.lcm(1, *{int(x.denominator) for x in ell})
+    nums = [int(x * den) for x in ell]
+    bound = (max(abs(x) for x in nums) + 1) * (inst.n_nodes + 2)
+    lengths = np.asarray(nums, dtype=np.int64 if bound < 2 ** 62 else object)
+    t = np.zeros(inst.n_nodes, dtype=lengths.dtype)  # t · den, exact integers
     for _ in range(inst.n_nodes + 1):
-        best = np.maximum.reduceat(t[dst] + ell, seg)
+        best = np.maximum.reduceat(t[dst] + lengths, seg)
         new = t.copy()
-        new[tails] = [max(x, Fraction(0)) for x in best]
+        new[tails] = np.maximum(best, 0)
         if np.array_equal(new, t):
-            return Fraction(t[inst.start])
+            return Fraction(int(t[inst.start]), den)
         t = new
     return None
 
