@@ -57,7 +57,7 @@ from dppverify.provenance import (
     verify_provenance,
 )
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
-from dppverify.text import show
+from dppverify.text import show, show_value
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 from dppverify.value_dp import StructuredValue
 from dppverify.value_lp import GameValue
@@ -556,6 +556,7 @@ def value_document(v: GameValue) -> dict[str, Any]:
         "upper": format_number(b.upper),
         "lower_source": b.lower_source,
         "upper_source": b.upper_source,
+        "open_reason": b.reason,
         "exact": v.exact and b.closed,
         "lp": {"solver": LP_SOLVER, "status": v.lp.status, "tolerance": LP_TOLERANCE,
                "seconds": round(v.lp.seconds, 3), "variables": v.lp.variables,
@@ -598,8 +599,9 @@ def routed_document(r: RoutedValue) -> dict[str, Any]:
 
 def _tree_line(v: GameValue) -> str:
     b = v.bracket
-    exact = (f"{show(b.exact)} exactly" if b.closed and v.exact else
-             f"in [{show(b.lower)}, {show(b.upper)}]")
+    exact = (f"{show_value(b.exact)} exactly" if b.closed and v.exact else
+             f"in [{show_value(b.lower)}, {show_value(b.upper)}]"
+             + (f" (open: {b.reason})" if b.reason else ""))
     return (f"V_H (H = {v.horizon}) = {exact}; LP value {show(v.lp.value)} "
             f"({LP_SOLVER}, agreement tolerance {LP_TOLERANCE:g} relative, "
             f"{v.prefixes} prefixes, {v.lp.seconds:.2f} s)")
@@ -608,8 +610,8 @@ def _tree_line(v: GameValue) -> str:
 def _structured_line(v: StructuredValue) -> str:
     how = "exactly" if v.exact else f"(float mode, {v.arithmetic})"
     fix = ", fixpoint reached" if v.fixpoint else ""
-    return (f"V_H (H = {_show_horizon(v.horizon)}) = {show(v.value)} {how}; structured route "
-            f"({v.steps} DP steps{fix}, {v.arithmetic}, {v.seconds:.2f} s)")
+    return (f"V_H (H = {_show_horizon(v.horizon)}) = {show_value(v.value)} {how}; structured "
+            f"route ({v.steps} DP steps{fix}, {v.arithmetic}, {v.seconds:.2f} s)")
 
 
 def _ngoal_value(instance: str | MapRequest, horizon: int | None, as_json: bool, route: Route,
@@ -657,7 +659,8 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
     Structured route: three hop-bounded Bellman-Ford fields (proofs/DP.md), exact on
     rational instances, polynomial in the graph; `--horizon inf` is the untruncated game.
     Instances with more than two goals: the tree LP with N types, and as structured route
-    the coalition DP over goal subsets (exact; conjectured equal to V_H, proofs/NGOAL.md).
+    the guarantee sets: the coalition DP over goal subsets, the value for N <= 3 and, for
+    N = 4, 5, where certified (else an exact bracket naming both bounds; proofs/NGOAL.md).
 
     \b
     Examples:

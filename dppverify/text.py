@@ -9,7 +9,7 @@ from fractions import Fraction
 from dppverify.exact import Number
 from dppverify.instance import Instance, show_node
 
-__all__ = ["MAX_EXACT_CHARS", "approx", "show", "show_walk"]
+__all__ = ["MAX_EXACT_CHARS", "approx", "show", "show_value", "show_walk"]
 
 
 MAX_EXACT_CHARS = 24
@@ -65,6 +65,28 @@ def show(x: Number | None) -> str:
     if len(text) <= MAX_EXACT_CHARS:
         return text
     return "≈" + approx(x)
+
+
+def show_value(x: Number | None, digits: int = 40) -> str:
+    """A value for a report line: the exact rational with a decimal approximation beside it.
+
+    A rational longer than ``digits`` characters is shown by its decimal approximation only,
+    with a pointer to the exact form (``--json`` carries it).
+
+    Examples
+    --------
+    >>> show_value(Fraction(12, 7)), show_value(3), show_value(Fraction(10**50 + 1, 10**50))
+    ('12/7 (≈ 1.714286)', '3', '≈ 1 (exact: a 102-digit fraction, see --json)')
+    """
+    if x is None or isinstance(x, float):
+        return show(x)
+    q = Fraction(x)
+    if q.denominator == 1:
+        return str(q)
+    text = str(q)
+    if len(text) <= digits:
+        return f"{text} (≈ {float(q):.7g})"
+    return f"≈ {float(q):.12g} (exact: a {len(text) - 1}-digit fraction, see --json)"
 
 
 def show_walk(instance: Instance, walk: Sequence[int]) -> str:

@@ -14,7 +14,10 @@ strategy σ, ``b1 min_walk U¹(σ) + b2 min_walk U²(σ)`` (exact backward induc
 bound on ``V_H``; for ANY rational Attacker realization plans, the exact greedy Defender
 value is an upper bound. We round the LP's dual (Defender) and primal (Attacker) solutions
 to small-denominator rationals, also try the progress rule σ* and, when given, a profile's
-attacker, and report ``V_H`` exactly when the best lower and upper bounds coincide. With a
+attacker; if the bracket is still open, the LP is solved exactly (:mod:`dppverify.lp_exact`:
+an optimal basis recovered from a float vertex and solved in rationals) and its strategies are
+offered too, which closes it. ``V_H`` is reported exactly when the best bounds coincide; an
+open bracket carries its reason (``Bracket.reason``). With a
 certified PBNE (both exact regrets 0) the bracket closes at ``U`` itself, so ``V_H = U``
 exactly.
 """
@@ -36,6 +39,7 @@ from dppverify.exact import Number, normalize
 from dppverify.horizons import parse_horizon
 from dppverify.instance import Instance, Roles, as_instance
 from dppverify.lp import LPStats, realization_constraints, solve
+from dppverify.lp_exact import solve_tree_lp_exactly
 from dppverify.profile import ProgressRule
 from dppverify.tree import DEFAULT_MAX_PREFIXES, PrefixTree, WalkTree, build_tree
 
@@ -77,12 +81,13 @@ class ValueLP:
 
 @dataclass(frozen=True)
 class Bracket:
-    """Exact bounds ``lower <= V_H <= upper`` and where they come from."""
+    """Exact bounds ``lower <= V_H <= upper``, where they come from, and why still open."""
 
     lower: Number
     upper: Number
     lower_source: str
     upper_source: str
+    reason: str | None = None
 
     @property
     def closed(self) -> bool:
@@ -326,12 +331,14 @@ class BracketSearch:
     >>> search.offer_upper(Fraction(2), "d"); search.closed
     True
     >>> search.bracket()
-    Bracket(lower=Fraction(2, 1), upper=Fraction(2, 1), lower_source='b', upper_source='d')
+    Bracket(lower=Fraction(2, 1), upper=Fraction(2, 1), lower_source='b', upper_source='d', \
+reason=None)
     """
 
     def __init__(self) -> None:
         self.lower: tuple[Number, str] | None = None
         self.upper: tuple[Number, str] | None = None
+        self.reason: str | None = None
 
     def offer_lower(self, value: Number, source: str) -> None:
         """Keep ``value`` if it is a better (larger) lower bound."""
@@ -357,6 +364,27 @@ class BracketSearch:
             self.offer_lower(lower(den), f"LP dual rounded (denominators <= {den})")
             self.offer_upper(upper(den), f"LP primal rounded (denominators <= {den})")
 
+    def exact_lp(self, tree: PrefixTree, priors: Sequence[Number],
+                 dists: Sequence[Sequence[Number]],
+                 lower: Callable[[list[tuple[Fraction, ...]]], Number],
+                 upper: Callable[[list[dict[int, Fraction]]], Number]) -> None:
+        """Offer the exactly solved LP's strategies (:mod:`dppverify.lp_exact`) if still open.
+
+        ``lower(sigma)`` / ``upper(plans)`` evaluate them with the exact best responses, so the
+        bounds do not rely on the LP solve; a failure is kept as the bracket's reason.
+        """
+        if self.closed:
+            return
+        got = solve_tree_lp_exactly(tree, priors, dists)
+        if isinstance(got, str):
+            self.reason = f"no exact LP solution: {got}"
+            return
+        what = "exact LP {} (optimal basis, solved in rationals)"
+        self.offer_lower(lower(got.sigma), what.format("dual"))
+        self.offer_upper(upper(got.plans), what.format("primal"))
+        if not self.closed:  # pragma: no cover - an exact optimum closes the bracket
+            self.reason = "the exact LP solution did not close the bracket (a bug to report)"
+
     def bracket(self, pure: Callable[[dict[int, Fraction]], Number] | None = None,
                 tree: PrefixTree | None = None) -> Bracket:
         """The bracket; without an upper bound yet, ``pure(plan)`` of a pure plan on ``tree``."""
@@ -366,7 +394,8 @@ class BracketSearch:
                              "a pure attacker plan")
         assert self.lower is not None and self.upper is not None
         return Bracket(lower=self.lower[0], upper=self.upper[0], lower_source=self.lower[1],
-                       upper_source=self.upper[1])
+                       upper_source=self.upper[1],
+                       reason=None if self.closed else self.reason or "not searched exactly")
 
 
 def exact_bracket(tree: WalkTree, roles: Roles, lp: ValueLP | None = None,
@@ -407,7 +436,27 @@ def exact_bracket(tree: WalkTree, roles: Roles, lp: ValueLP | None = None,
             lambda den: lower_bound(tree, roles, _rational_defender(tree, lp.sigma1, den)),
             lambda den: upper_bound(tree, roles, rational_plan(tree, lp.x1, den),
                                     rational_plan(tree, lp.x2, den)))
+        if tree.instance.exact:
+            search.exact_lp(tree, (roles.b1, roles.b2), (roles.d1, roles.d2),
+                            lambda sigma: lower_bound(tree, roles, _exact_defender(tree, sigma)),
+                            lambda plans: upper_bound(tree, roles, plans[0], plans[1]))
+        else:
+            search.reason = "float-mode instance: no exact LP closure"
     return search.bracket(lambda plan: upper_bound(tree, roles, plan, plan), tree)
+
+
+def _exact_defender(tree: WalkTree, sigma: Sequence[tuple[Fraction, ...]]) -> TreeDefender:
+    """The two-goal Defender whose allocation to ``g1`` at ``p`` is ``sigma[p][0]``."""
+    numbers = tree.instance.numbers
+    w = tree.weight
+    s1: list[Number] = [0] * tree.n_prefixes
+    a1: list[Number] = [0] * tree.n_prefixes
+    a2: list[Number] = [0] * tree.n_prefixes
+    for p in range(1, tree.n_prefixes):
+        s1[p] = normalize(sigma[p][0])
+        a1[p] = numbers.product(w[p], s1[p])
+        a2[p] = numbers.difference(w[p], a1[p])
+    return TreeDefender(sigma1=tuple(s1), alloc1=tuple(a1), alloc2=tuple(a2))
 
 
 @dataclass(frozen=True)

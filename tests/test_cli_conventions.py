@@ -83,7 +83,7 @@ def test_progress_bars_only_on_request(tmp_path: Path) -> None:
     assert quiet.exit_code == loud.exit_code == 0
     assert quiet.stderr == ""  # CliRunner's stderr is not a terminal
     assert "walk tree" in loud.stderr and "value LP" in loud.stderr
-    assert quiet.stdout.startswith("V_H (H = 3) = 12/5 exactly")
+    assert quiet.stdout.startswith("V_H (H = 3) = 12/5 (≈ 2.4) exactly")
     assert loud.stdout[:30] == quiet.stdout[:30]
     loud = CliRunner().invoke(main, ["certify", TRIANGLE, str(tmp_path / "missing.json"),
                                      "--progress"])

@@ -1,11 +1,11 @@
-"""The two routes side by side: the tree LP's exact bracket against the coalition DP.
+"""The two routes side by side: the tree LP's exact bracket against the structured value.
 
-The coalition DP (:mod:`dppverify.ngoal.coalition`) rests on a conjecture
-(``proofs/NGOAL.md``); the tree route (:mod:`dppverify.ngoal.value_lp`) is the literal
-definition of ``V_H``. On every instance where both run they must agree: the DP's exact value
-lies in the tree route's exact bracket (and equals it when the bracket is closed), and the LP's
-float value matches it within the LP tolerance. Anything else is a disagreement — a
-counterexample to the conjecture or a bug — and is reported as such, never smoothed over.
+The structured value (:func:`dppverify.ngoal.proved_value.nvalue`: exact where proved, else an
+exact bracket; ``proofs/NGOAL.md``) and the tree route (:mod:`dppverify.ngoal.value_lp`, the
+literal definition of ``V_H``) must agree wherever both run: the brackets overlap, and an exact
+structured value lies in the tree route's exact bracket and matches the LP's float value within
+the LP tolerance. Anything else is a bug, reported as such, never smoothed over. The coalition
+DP's value is kept alongside: an upper bound (NG.2), the value for N <= 3 (NG.3, NG.4).
 """
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 from dppverify.exact import Number
 from dppverify.lp import LP_TOLERANCE, lp_agrees
-from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import NInstance
+from dppverify.ngoal.proved_value import NValue, nvalue
 from dppverify.ngoal.value_lp import NGameValue, ngame_value
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 
@@ -31,16 +31,19 @@ class RouteAgreement:
     horizon : int
         ``H``.
     dp : Number
-        ``V_H`` by the coalition DP (exact).
+        The coalition DP at ``H`` (exact; an upper bound on ``V_H``).
+    structured : NValue
+        The structured route's value or bracket.
     tree : NGameValue
         The tree route: LP value and exact bracket.
     agree : bool
-        True when the DP value lies in the exact bracket (equal to it when closed) and the
-        LP value matches it within :data:`dppverify.lp.LP_TOLERANCE` (relative).
+        True when the brackets overlap and an exact structured value lies in the tree's
+        exact bracket and matches the LP within :data:`dppverify.lp.LP_TOLERANCE` (relative).
     """
 
     horizon: int
     dp: Number
+    structured: NValue
     tree: NGameValue
     agree: bool
 
@@ -58,11 +61,15 @@ def compare_routes(instance: NInstance, horizon: int, *,
     --------
     >>> from dppverify.ngoal.examples import star3
     >>> a = compare_routes(star3(), 3)
-    >>> a.dp, a.tree.bracket.exact, a.agree, a.exact
-    (Fraction(3, 2), Fraction(3, 2), True, True)
+    >>> a.dp, a.structured.value, a.tree.bracket.exact, a.agree, a.exact
+    (Fraction(3, 2), Fraction(3, 2), Fraction(3, 2), True, True)
     """
     tree = ngame_value(instance, horizon, max_prefixes=max_prefixes)
-    dp = coalition_value(instance, horizon).value
+    sv = nvalue(instance, horizon)
     b = tree.bracket
-    agree = b.lower <= dp <= b.upper and lp_agrees(tree.value, dp, LP_TOLERANCE)
-    return RouteAgreement(horizon=horizon, dp=dp, tree=tree, agree=bool(agree))
+    agree = sv.lower <= b.upper and b.lower <= sv.upper
+    if sv.value is not None:
+        agree = agree and b.lower <= sv.value <= b.upper and lp_agrees(tree.value, sv.value,
+                                                                       LP_TOLERANCE)
+    return RouteAgreement(horizon=horizon, dp=sv.coalition.value, structured=sv, tree=tree,
+                          agree=bool(agree))

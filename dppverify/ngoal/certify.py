@@ -27,8 +27,10 @@ Tree route checks, in order (ids in ``dppverify/checks.md``, "N goals"):
     The tree route's ``V_H`` (compact LP, exact bracket, with the profile's strategies among
     the candidates) equals ``U``.
 ``ngoal.value.structured``
-    The coalition DP's ``V_H`` (``proofs/NGOAL.md``, a conjecture) agrees with the tree
-    route; a disagreement is an ``error`` (a counterexample to keep), not a refutation.
+    The structured route's ``V_H`` (:func:`dppverify.ngoal.proved_value.nvalue`: exact where
+    proved, else an exact bracket) agrees with the tree route: the brackets overlap and an
+    exact structured value lies in the tree's bracket; a disagreement is an ``error`` (a bug
+    to keep), not a refutation.
 """
 
 from __future__ import annotations
@@ -52,9 +54,9 @@ from dppverify.ngoal.best_response import (
     defender_from_table,
     payoff,
 )
-from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import NInstance, load_ninstance, ninstance_from_json
 from dppverify.ngoal.profile import NProfile, load_nprofile_document, nprofile_from_json
+from dppverify.ngoal.proved_value import nvalue
 from dppverify.ngoal.routes import ntree_fits
 from dppverify.ngoal.structured import NSTRUCTURED_NOT_RUN, nstructured_checks
 from dppverify.ngoal.tree import NWalkTree, build_ntree
@@ -311,18 +313,21 @@ def _tree_checks(inst: NInstance, prof: NProfile, h: int,
                                 f"exactly; U = {u}")
     checks.append(CheckRecord("ngoal.value.V_H", status, msg, vnums, PROOF))
     try:
-        dp = coalition_value(inst, tree.horizon).value
+        sv = nvalue(inst, tree.horizon)
     except (ValueError, HorizonError) as exc:
         checks.append(CheckRecord("ngoal.value.structured", "skipped", str(exc)))
         return _tagged(checks), tree
-    agree = bracket.lower <= dp <= bracket.upper and lp_agrees(lp.value, dp, LP_TOLERANCE)
+    overlap = sv.lower <= bracket.upper and bracket.lower <= sv.upper
+    agree = overlap and (sv.value is None or (bracket.lower <= sv.value <= bracket.upper
+                                              and lp_agrees(lp.value, sv.value, LP_TOLERANCE)))
+    said = (f"structured V_H = {sv.value} ({sv.upper_source})" if sv.value is not None else
+            f"structured bracket [{sv.lower}, {sv.upper}]")
     checks.append(CheckRecord(
         "ngoal.value.structured", "pass" if agree else "error",
-        f"coalition DP V_H = {dp} agrees with the tree route" if agree else
-        f"coalition DP V_H = {dp} disagrees with the tree route [{bracket.lower}, "
-        f"{bracket.upper}] (LP {lp.value:.10g}): a counterexample to proofs/NGOAL.md's "
-        f"conjecture or a bug — please keep this instance",
-        {"V_H_dp": dp}, PROOF))
+        f"{said} agrees with the tree route" if agree else
+        f"{said} disagrees with the tree route [{bracket.lower}, {bracket.upper}] "
+        f"(LP {lp.value:.10g}): a bug — please keep this instance",
+        {"V_H_structured_lower": sv.lower, "V_H_structured_upper": sv.upper}, PROOF))
     return _tagged(checks), tree
 
 

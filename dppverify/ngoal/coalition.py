@@ -28,9 +28,10 @@ Cost ``O(H·(2^N·E + n·Σ_S |vertices of S|))``. ``H = inf`` iterates until a 
 (then every later layer is the same).
 
 For two goals ``m_{1} = D1``, ``m_{2} = D2`` and ``m_{12} = min(step, D1 + D2)``: the
-three-field DP of ``proofs/HORIZON.md``'s two-goal value. That the DP gives the truncated
-game's value for ``N >= 3`` is a conjecture (``proofs/NGOAL.md``), property-tested against the
-tree route.
+three-field DP of ``proofs/HORIZON.md``'s two-goal value. The DP is an upper bound on the
+truncated game's value, equal to it for ``N <= 3`` (``proofs/NGOAL.md`` NG.3, NG.4) and not
+always for ``N >= 4`` (the hub of :func:`dppverify.ngoal.examples.hub4`);
+:func:`dppverify.ngoal.proved_value.nvalue` certifies it or brackets the value.
 """
 
 from __future__ import annotations
@@ -52,14 +53,14 @@ __all__ = ["CoalitionValue", "coalition_value", "coalition_values"]
 
 @dataclass(frozen=True)
 class CoalitionValue:
-    """``V_H`` by the coalition DP, with the coalition costs at the start.
+    """The coalition DP at ``H`` (an upper bound on ``V_H``; the value for N <= 3).
 
     Attributes
     ----------
     horizon : int or None
         ``H`` (None for ``H = inf``).
     value : Number
-        ``V_H`` exactly.
+        The DP's value exactly (``V_H`` for N <= 3; an upper bound for N >= 4).
     layers : int
         Number of DP layers computed (for ``H = inf``: the first ``k`` whose layer repeats).
     coalition_costs : Mapping
@@ -212,7 +213,10 @@ def _same(a: dict[int, np.ndarray], b: dict[int, np.ndarray]) -> bool:
 
 def coalition_value(instance: NInstance, horizon: int | None, *,
                     max_layers: int | None = None) -> CoalitionValue:
-    """``V_H`` of the N-goal game by the coalition DP (``horizon=None`` for ``H = inf``).
+    """The coalition DP of the N-goal game (``horizon=None`` for ``H = inf``).
+
+    An upper bound on ``V_H``, equal to it for N <= 3 (``proofs/NGOAL.md``); use
+    :func:`dppverify.ngoal.proved_value.nvalue` for the certified value or bracket.
 
     Parameters
     ----------

@@ -26,7 +26,7 @@ from functools import cache
 import numpy as np
 
 __all__ = ["BalancedVertices", "CoverLP", "balanced_vertices", "members", "min_cover",
-           "popcount"]
+           "min_cover_vectors", "popcount"]
 
 MAX_BALANCED = 5
 """Largest ground set whose minimal balanced collections are enumerated (1291 at 5)."""
@@ -203,16 +203,50 @@ def min_cover(costs: Mapping[int, Fraction | int], rhs: Sequence[Fraction | int]
     (Fraction(3, 1), [(3, Fraction(1, 2)), (5, Fraction(1, 2)), (6, Fraction(1, 2))], \
 (Fraction(1, 1), Fraction(1, 1), Fraction(1, 1)))
     """
-    n = len(rhs)
     r = [Fraction(x) for x in rhs]
     if any(x <= 0 for x in r):
         raise ValueError("min_cover: every weight must be positive")
+    n = len(r)
     cols = sorted(costs)
     for i in range(n):
         if (1 << i) not in costs:
             raise ValueError(f"min_cover: the singleton of goal {i} has no cost")
-    cost = {t: Fraction(costs[t]) for t in cols}
-    basis = [1 << i for i in range(n)]  # basis[row] = column; B^{-1} tracked explicitly
+    vectors = [tuple((t >> j) & 1 for j in range(n)) for t in cols]
+    lp = min_cover_vectors(vectors, [costs[t] for t in cols], r)
+    return CoverLP(value=lp.value, cover={cols[j]: c for j, c in lp.cover.items()},
+                   dual=lp.dual)
+
+
+def min_cover_vectors(columns: Sequence[Sequence[int]], costs: Sequence[Fraction | int],
+                      rhs: Sequence[Fraction | int]) -> CoverLP:
+    """``min Σ_j c_j costs[j]`` s.t. ``Σ_j c_j columns[j] = rhs``, ``c >= 0``, exactly.
+
+    The primal simplex method in exact rationals (Bland's rule) from the basis of the unit
+    vectors, which must be among the (non-negative integer) ``columns``. The cover is keyed
+    by column index; the dual ``π`` satisfies ``π·columns[j] <= costs[j]`` for every ``j``.
+
+    Examples
+    --------
+    Covering (2, 2, 2, 1) by pairs and the triple {2, 3, 4} (index 4 and up):
+
+    >>> cols = [(1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1), (1, 1, 0, 0),
+    ...         (1, 0, 1, 0), (0, 1, 1, 1)]
+    >>> lp = min_cover_vectors(cols, [2, 2, 2, 2, 2, 2, 2], (2, 2, 2, 1))
+    >>> lp.value, sorted(lp.cover.items())
+    (Fraction(6, 1), [(4, Fraction(1, 1)), (5, Fraction(1, 1)), (6, Fraction(1, 1))])
+    """
+    n = len(rhs)
+    r = [Fraction(x) for x in rhs]
+    if any(x < 0 for x in r):
+        raise ValueError("min_cover: every weight must be non-negative")
+    vecs = [tuple(int(x) for x in c) for c in columns]
+    cost = [Fraction(c) for c in costs]
+    basis = []
+    for i in range(n):
+        unit = tuple(int(i == j) for j in range(n))
+        if unit not in vecs:
+            raise ValueError(f"min_cover: the unit vector of goal {i} is not a column")
+        basis.append(vecs.index(unit))  # basis[row] = column; B^{-1} tracked explicitly
     binv = [[Fraction(int(i == j)) for j in range(n)] for i in range(n)]
     xb = list(r)
     while True:
@@ -220,10 +254,10 @@ def min_cover(costs: Mapping[int, Fraction | int], rhs: Sequence[Fraction | int]
         pi = [sum((cost[basis[i]] * binv[i][j] for i in range(n)), Fraction(0))
               for j in range(n)]
         entering = None
-        for t in cols:  # Bland: smallest index with negative reduced cost
+        for t, vec in enumerate(vecs):  # Bland: smallest index with negative reduced cost
             if t in basis:
                 continue
-            reduced = cost[t] - sum((pi[j] for j in range(n) if t >> j & 1), Fraction(0))
+            reduced = cost[t] - sum((pi[j] * vec[j] for j in range(n) if vec[j]), Fraction(0))
             if reduced < 0:
                 entering = t
                 break
@@ -231,7 +265,7 @@ def min_cover(costs: Mapping[int, Fraction | int], rhs: Sequence[Fraction | int]
             value = sum((cost[basis[i]] * xb[i] for i in range(n)), Fraction(0))
             cover = {basis[i]: xb[i] for i in range(n) if xb[i] != 0}
             return CoverLP(value=value, cover=cover, dual=tuple(pi))
-        col = [Fraction(entering >> j & 1) for j in range(n)]
+        col = [Fraction(vecs[entering][j]) for j in range(n)]
         dcol = [sum((binv[i][j] * col[j] for j in range(n)), Fraction(0)) for i in range(n)]
         best: tuple[Fraction, int, int] | None = None
         for i in range(n):
@@ -240,7 +274,7 @@ def min_cover(costs: Mapping[int, Fraction | int], rhs: Sequence[Fraction | int]
                 key = (ratio, basis[i], i)
                 if best is None or key[:2] < best[:2]:
                     best = key
-        if best is None:  # pragma: no cover - the polytope is bounded (c_T <= max rhs)
+        if best is None:  # pragma: no cover - the polytope is bounded (non-negative columns)
             raise AssertionError("min_cover: unbounded")
         _, _, leave = best
         piv = dcol[leave]

@@ -11,7 +11,7 @@ from typing import Any
 
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
 
-__all__ = ["star3", "star3_document", "star3_profile"]
+__all__ = ["hub4", "hub4_document", "star3", "star3_document", "star3_profile"]
 
 
 def star3_document(prior: tuple[str, ...] = ("1/2", "1/3", "1/6")) -> dict[str, Any]:
@@ -64,3 +64,40 @@ def star3_profile() -> dict[str, Any]:
                                      {"walk": ["s", "m", "c"], "probabilities": [0, 0, 1]}],
                          "default": [1, 0, 0]},
             "value": {"U": "3/2"}}
+
+
+def hub4_document(prior: tuple[str, ...] = ("2/7", "2/7", "2/7", "1/7"), *,
+                  directed: bool = True) -> dict[str, Any]:
+    """The four-goal hub where the coalition DP is not the value (``proofs/NGOAL.md``).
+
+    Unit arcs ``u→u1``; ``u1→A, B, C``; ``A→g1, g2``; ``B→g1, g3``; ``C→g2, g3, g4``; return
+    arcs ``g_i→u`` of weight 10 (they keep the goals' distances finite). Start ``u``. With
+    the default prior the coalition DP is 25/14 and the value 12/7 at every ``H >= 3``.
+    ``directed=False`` gives the undirected version (same gap).
+
+    Examples
+    --------
+    >>> doc = hub4_document()
+    >>> len(doc["graph"]["edges"]), doc["prior"]
+    (15, ['2/7', '2/7', '2/7', '1/7'])
+    """
+    arcs = [("u", "u1", 1), ("u1", "A", 1), ("u1", "B", 1), ("u1", "C", 1),
+            ("A", "g1", 1), ("A", "g2", 1), ("B", "g1", 1), ("B", "g3", 1),
+            ("C", "g2", 1), ("C", "g3", 1), ("C", "g4", 1)]
+    arcs += [(g, "u", 10) for g in ("g1", "g2", "g3", "g4")]
+    nodes = ("u", "u1", "A", "B", "C", "g1", "g2", "g3", "g4")
+    return {"graph": {"directed": directed, "nodes": [{"id": v} for v in nodes],
+                      "edges": [{"source": a, "target": b, "weight": w} for a, b, w in arcs]},
+            "start": "u", "goals": ["g1", "g2", "g3", "g4"], "prior": list(prior)}
+
+
+def hub4(prior: tuple[str, ...] = ("2/7", "2/7", "2/7", "1/7"), *,
+         directed: bool = True) -> NInstance:
+    """The four-goal hub, parsed (:func:`hub4_document`).
+
+    Examples
+    --------
+    >>> hub4().n_goals
+    4
+    """
+    return ninstance_from_json(hub4_document(prior, directed=directed))

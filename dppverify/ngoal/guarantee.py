@@ -660,8 +660,11 @@ def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None
     out.append(_rec("ngoal.value.U", "pass" if ok else "fail", f"U = {u}{said}", nums, WALKS))
     out.append(_attacker_record(inst, rule, sets, per_type, feasible, _rec, _labels))
     out += _defender(inst, tdef, mass, u)
-    dp = dp_value(sets) if horizon is None else None
-    out.append(_value(inst, u, horizon, all(r.passed for r in out), dp))
+    from dppverify.ngoal.proved_value import coalition_nvalue
+
+    known = (coalition_nvalue(dp_value(sets), inst.n_goals)  # proved for N <= 3 (NG.4)
+             if horizon is None and inst.n_goals <= 3 else None)
+    out.append(_value(inst, u, horizon, all(r.passed for r in out), known))
     return out, len(trie)
 
 

@@ -1,10 +1,12 @@
 """``dpp value`` for N-goal instances: the tree route, the coalition DP, or both.
 
 Routes (the same names as for two goals): ``tree`` — the walk tree's compact LP closed by an
-exact bracket (the literal definition; finite ``H`` only); ``structured`` — the coalition DP
-over the goal subsets (exact; any ``H`` and ``H = inf``; it rests on the conjecture of
-``proofs/NGOAL.md``, which every output says); ``auto`` — the tree when it fits the size guard,
-else the DP; ``both`` — run both, a disagreement is reported (and exits 1).
+exact bracket (the literal definition; finite ``H`` only); ``structured`` — the guarantee sets
+(:func:`dppverify.ngoal.proved_value.nvalue`; any ``H`` and ``H = inf``): the coalition DP over the
+goal subsets, which is the value for N <= 3 (``proofs/NGOAL.md`` NG.3, NG.4) and for N = 4, 5
+only where its certificate (NG.8) holds, refined with extra facet normals where it does not;
+otherwise an exact bracket naming both bounds. ``auto`` — the tree when it fits the size
+guard, else the structured route; ``both`` — run both, a disagreement is reported (and exits 1).
 """
 
 from __future__ import annotations
@@ -16,18 +18,20 @@ from typing import Any, cast
 from dppverify.errors import HorizonError, InvalidInstanceError, OptionError
 from dppverify.exact import format_number
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
-from dppverify.ngoal.coalition import CoalitionValue, coalition_value, too_many_goals
+from dppverify.ngoal.coalition import CoalitionValue, too_many_goals
 from dppverify.ngoal.cover import MAX_BALANCED, members
 from dppverify.ngoal.instance import NInstance, goal_count, read_instance_document
+from dppverify.ngoal.proved_value import NValue, nvalue
 from dppverify.ngoal.value_lp import NGameValue, ngame_value
 from dppverify.routes import tree_fits
-from dppverify.text import show
+from dppverify.text import show, show_value
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 
 __all__ = ["CONJECTURE_NOTE", "NRoutedValue", "is_ngoal_file", "nrouted_document",
            "nrouted_lines", "nrouted_value", "ntree_fits"]
 
-CONJECTURE_NOTE = "coalition DP: exact, conjectured equal to V_H (proofs/NGOAL.md)"
+CONJECTURE_NOTE = ("the coalition DP is an upper bound on V_H (NG.2), the value for N <= 3 "
+                   "(NG.3, NG.4) and for N >= 4 only where certified (NG.8; proofs/NGOAL.md)")
 
 
 def is_ngoal_file(path: str | Path) -> bool:
@@ -71,7 +75,7 @@ class NRoutedValue:
     horizon: int | None
     goals: int
     tree: NGameValue | None
-    structured: CoalitionValue | None
+    structured: NValue | None
     disagreement: str | None
 
 
@@ -108,15 +112,17 @@ def nrouted_value(instance: NInstance, horizon: int | None, *, route: str = "aut
         route = "tree" if fits or instance.n_goals > MAX_BALANCED else "structured"
     tree = (ngame_value(instance, horizon, max_prefixes=max_prefixes)
             if route in ("tree", "both") and horizon is not None else None)
-    dp = coalition_value(instance, horizon) if route in ("structured", "both") else None
+    dp = nvalue(instance, horizon) if route in ("structured", "both") else None
     disagreement = None
     if tree is not None and dp is not None:
         b = tree.bracket
-        if not (b.lower <= dp.value <= b.upper and lp_agrees(tree.value, dp.value)):
-            disagreement = (f"the routes disagree at H = {horizon}: coalition DP {dp.value}, "
-                            f"tree route in [{b.lower}, {b.upper}] (LP {tree.value!r}) — a "
-                            "counterexample to proofs/NGOAL.md's conjecture or a bug; please "
-                            "keep this instance")
+        overlap = dp.lower <= b.upper and b.lower <= dp.upper
+        exact_ok = dp.value is None or (b.lower <= dp.value <= b.upper
+                                        and lp_agrees(tree.value, dp.value))
+        if not (overlap and exact_ok):
+            disagreement = (f"the routes disagree at H = {horizon}: structured route "
+                            f"[{dp.lower}, {dp.upper}], tree route in [{b.lower}, {b.upper}] "
+                            f"(LP {tree.value!r}) — a bug; please keep this instance")
     return NRoutedValue(route=route, horizon=horizon, goals=instance.n_goals, tree=tree,
                         structured=dp, disagreement=disagreement)
 
@@ -126,7 +132,7 @@ def _tree_doc(v: NGameValue) -> dict[str, Any]:
     return {"value": format_number(b.exact), "value_lp": v.lp.value,
             "lower": format_number(b.lower), "upper": format_number(b.upper),
             "lower_source": b.lower_source, "upper_source": b.upper_source,
-            "exact": b.closed,
+            "exact": b.closed, "open_reason": b.reason,
             "lp": {"solver": LP_SOLVER, "status": v.lp.status, "tolerance": LP_TOLERANCE,
                    "seconds": round(v.lp.seconds, 3), "variables": v.lp.variables,
                    "constraints": v.lp.constraints},
@@ -137,13 +143,21 @@ def _subset(mask: int) -> list[int]:
     return [i + 1 for i in members(mask)]
 
 
-def _dp_doc(v: CoalitionValue) -> dict[str, Any]:
-    return {"value": format_number(v.value), "exact": True, "layers": v.layers,
-            "note": CONJECTURE_NOTE,
+def _coalition_doc(v: CoalitionValue) -> dict[str, Any]:
+    return {"value": format_number(v.value), "layers": v.layers,
             "cover": [{"goals": _subset(m), "mass": format_number(c)}
                       for m, c in sorted(v.cover.items())],
             "coalition_costs": [{"goals": _subset(m), "cost": format_number(c)}
                                 for m, c in sorted(v.coalition_costs.items())]}
+
+
+def _dp_doc(v: NValue) -> dict[str, Any]:
+    return {"value": format_number(v.value), "exact": v.exact,
+            "lower": format_number(v.lower), "upper": format_number(v.upper),
+            "lower_source": v.lower_source, "upper_source": v.upper_source,
+            "reason": v.reason, "layers": v.layers,
+            "extra_normals": [list(n) for n in v.normals], "note": CONJECTURE_NOTE,
+            "coalition_dp": _coalition_doc(v.coalition)}
 
 
 def nrouted_document(r: NRoutedValue) -> dict[str, Any]:
@@ -153,11 +167,17 @@ def nrouted_document(r: NRoutedValue) -> dict[str, Any]:
     --------
     >>> from dppverify.ngoal.examples import star3
     >>> doc = nrouted_document(nrouted_value(star3(), 2, route="structured"))
-    >>> doc["value"], doc["structured"]["cover"]
+    >>> doc["value"], doc["structured"]["coalition_dp"]["cover"]
     ('3/2', [{'goals': [1, 2], 'mass': '1/3'}, {'goals': [1, 3], 'mass': '1/6'}])
+    >>> from dppverify.ngoal.examples import hub4
+    >>> nrouted_document(nrouted_value(hub4(), None))["value"]
+    '12/7'
     """
-    value = (r.structured.value if r.structured is not None else
-             r.tree.bracket.exact if r.tree is not None else None)
+    value = None
+    if r.structured is not None:
+        value = r.structured.value
+    if value is None and r.tree is not None:
+        value = r.tree.bracket.exact
     doc: dict[str, Any] = {"goals": r.goals, "horizon": "inf" if r.horizon is None else r.horizon,
                            "route": r.route, "value": format_number(value),
                            "tree": None if r.tree is None else _tree_doc(r.tree),
@@ -176,19 +196,26 @@ def nrouted_lines(r: NRoutedValue) -> list[str]:
     --------
     >>> from dppverify.ngoal.examples import star3
     >>> print(nrouted_lines(nrouted_value(star3(), None))[0])
-    V_H (H = inf, N = 3 goals) = 3/2 exactly; coalition DP over 7 goal subsets (3 layers; \
-coalition DP: exact, conjectured equal to V_H (proofs/NGOAL.md))
+    V_H (H = inf, N = 3 goals) = 3/2 (≈ 1.5) exactly; coalition DP (NG.4: the value for \
+three goals) (3 layers)
     """
     h = "inf" if r.horizon is None else str(r.horizon)
     lines = []
     if r.tree is not None:
         b = r.tree.bracket
-        exact = f"{show(b.exact)} exactly" if b.closed else f"in [{show(b.lower)}, {show(b.upper)}]"
+        exact = (f"{show_value(b.exact)} exactly" if b.closed else
+                 f"in [{show_value(b.lower)}, {show_value(b.upper)}] (open: {b.reason})")
         lines.append(f"V_H (H = {h}, N = {r.goals} goals) = {exact}; LP value "
                      f"{show(r.tree.value)} ({LP_SOLVER}, agreement tolerance {LP_TOLERANCE:g} "
                      f"relative, {r.tree.prefixes} prefixes, {r.tree.lp.seconds:.2f} s)")
-    if r.structured is not None:
-        lines.append(f"V_H (H = {h}, N = {r.goals} goals) = {show(r.structured.value)} exactly; "
-                     f"coalition DP over {2 ** r.goals - 1} goal subsets "
-                     f"({r.structured.layers} layers; {CONJECTURE_NOTE})")
+    v = r.structured
+    if v is not None:
+        head = f"V_H (H = {h}, N = {r.goals} goals)"
+        if v.value is not None:
+            lines.append(f"{head} = {show_value(v.value)} exactly; {v.upper_source} "
+                         f"({v.layers} layers)")
+        else:
+            lines.append(f"{head} in [{show_value(v.lower)}, {show_value(v.upper)}]: lower "
+                         f"bound from {v.lower_source}, upper bound from {v.upper_source}; "
+                         f"not proved exact: {v.reason}")
     return lines

@@ -9,10 +9,11 @@ defined on every walk of the game):
 - the Defender's exact regret, sequential rationality and Bayes beliefs on the prefixes of the
   profile's own walks, the only information sets with positive mass (NW.3; off the path every
   distribution is a best response to the belief uniform on its support, NW.4);
-- payoffs walk by walk; the value by the coalition DP at ``H`` or ``H = inf``
-  (proofs/NGOAL.md): ``U`` above the DP refutes the profile (NG.2, proved), ``U`` equal to it
-  passes, ``U`` below it is a finding about the conjecture NG.4 (an ``error``) when the
-  equilibrium checks pass, and ``skipped`` (not decisive) when they fail: never a refutation.
+- payoffs walk by walk; the value by the guarantee sets at ``H`` or ``H = inf``
+  (:func:`dppverify.ngoal.proved_value.nvalue`, proofs/NGOAL.md): where ``V_H`` is proved (N <= 3,
+  or a certified DP for N = 4, 5) ``U`` must equal it; otherwise ``U`` outside the exact
+  bracket refutes the profile, and ``U`` inside it passes only when every equilibrium check
+  passed (a certified equilibrium has ``U = V_H``), else ``skipped`` (not decisive).
 
 The check ids are the tree route's (``dppverify/checks.md``, "N goals"); the tree route's
 ``ngoal.value.structured`` (the DP against the tree LP) is not run here: the DP is this route's
@@ -26,9 +27,9 @@ from fractions import Fraction
 from dppverify.certificate import CheckRecord, Status
 from dppverify.errors import HorizonError
 from dppverify.exact import INF, Number, normalize
-from dppverify.ngoal.coalition import CoalitionValue, coalition_value
 from dppverify.ngoal.instance import NInstance
 from dppverify.ngoal.profile import NProfile
+from dppverify.ngoal.proved_value import NValue, nvalue
 from dppverify.ngoal.walk_br import TableDefender, exit_costs, table_defender, walk_best_response
 
 __all__ = ["NSTRUCTURED_NOT_RUN", "nstructured_checks"]
@@ -42,9 +43,9 @@ TRIE = ("the prefixes of the profile's walks (proofs/NWALKBR.md NW.3; off the pa
 DOC = "the profile document alone"
 
 NSTRUCTURED_NOT_RUN = {
-    "ngoal.value.structured": "compares the coalition DP with the tree route's LP; the "
+    "ngoal.value.structured": "compares the structured value with the tree route's LP; the "
                               "structured route has no walk tree (its ngoal.value.V_H is the "
-                              "coalition DP itself)"}
+                              "structured value itself)"}
 """The N-goal checks the structured route does not run, with the reason."""
 
 _IDS = ("ngoal.profile.wellformed", "ngoal.value.U", "ngoal.pbne.attacker_br",
@@ -72,7 +73,7 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
     profile : NProfile
         The resolved profile.
     horizon : int or None
-        ``H`` of the value check (the coalition DP); None for the untruncated game. The
+        ``H`` of the value check (the guarantee sets); None for the untruncated game. The
         equilibrium checks are always over all walks of any length.
 
     Examples
@@ -147,7 +148,9 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
     attacker = _attacker(inst, tdef, per_type)
     out.append(attacker)
     out += _defender(inst, tdef, mass, u)
-    out.append(_value(inst, u, horizon, all(r.passed for r in out)))
+    longest = max(len(w) - 1 for w in walks)
+    covered = horizon is None or horizon >= longest  # NW.5: U = V_H for every H >= longest
+    out.append(_value(inst, u, horizon, covered and all(r.passed for r in out)))
     return out, len(trie)
 
 
@@ -225,32 +228,33 @@ def _defender(inst: NInstance, tdef: TableDefender, mass: dict[int, list[Fractio
 
 
 def _value(inst: NInstance, u: Number, horizon: int | None, equilibrium: bool,
-           known: CoalitionValue | None = None) -> CheckRecord:
+           known: NValue | None = None) -> CheckRecord:
     h = "inf" if horizon is None else str(horizon)
-    n = inst.n_goals
-    relies = ("relies on proofs/NGOAL.md: NG.2, NG.5 (proved: the DP is an upper bound on V_H)"
-              + (", NG.3 (proved for two goals: equality)" if n == 2 else
-                 ", and NG.4 (conjectured for N >= 3: equality) for a pass"))
+    relies = ("relies on proofs/NGOAL.md: NG.2, NG.5 (the coalition DP is an upper bound), "
+              "NG.3/NG.4 (it is the value for N <= 3), NG.6-NG.10 (the guarantee sets: "
+              "exact where certified, else a bracket)")
     try:
-        dp = known if known is not None else coalition_value(inst, horizon)
+        v = known if known is not None else nvalue(inst, horizon)
     except (ValueError, HorizonError) as exc:
-        return _rec("ngoal.value.V_H", "skipped", f"no coalition DP: {exc}", None, relies)
-    nums: dict[str, Number | None] = {"V_H_dp": dp.value, "U": u}
-    if dp.value == u:
-        return _rec("ngoal.value.V_H", "pass", f"coalition DP V_H (H = {h}) = {dp.value} = U "
-                    f"({dp.layers} layers)", nums, relies)
-    if u > dp.value:
-        return _rec("ngoal.value.V_H", "fail", f"U = {u} exceeds the coalition DP {dp.value} "
-                    f"(H = {h}), an upper bound on the value (NG.2): the profile is not an "
-                    f"equilibrium", nums, relies)
-    if n == 2:
-        return _rec("ngoal.value.V_H", "fail", f"U = {u} is below V_H = {dp.value} (H = {h}, "
-                    f"NG.3): the profile is not an equilibrium", nums, relies)
+        return _rec("ngoal.value.V_H", "skipped", f"no structured value: {exc}", None, relies)
+    nums: dict[str, Number | None] = {"V_H_lower": v.lower, "V_H_upper": v.upper, "U": u}
+    if v.value is not None:
+        nums = {"V_H": v.value, "U": u}
+        if v.value == u:
+            return _rec("ngoal.value.V_H", "pass", f"V_H (H = {h}) = {v.value} = U "
+                        f"({v.upper_source}, {v.layers} layers)", nums, relies)
+        return _rec("ngoal.value.V_H", "fail", f"U = {u} differs from V_H = {v.value} "
+                    f"(H = {h}; {v.upper_source}): the profile is not an equilibrium",
+                    nums, relies)
+    if u > v.upper or u < v.lower:
+        return _rec("ngoal.value.V_H", "fail", f"U = {u} lies outside the exact bracket "
+                    f"[{v.lower}, {v.upper}] of V_H (H = {h}; lower: {v.lower_source}, upper: "
+                    f"{v.upper_source}): the profile is not an equilibrium", nums, relies)
     if equilibrium:
-        return _rec("ngoal.value.V_H", "error", f"U = {u} is below the coalition DP "
-                    f"{dp.value} (H = {h}): the equilibrium checks above passed, so U is the "
-                    f"value and this instance is a counterexample to proofs/NGOAL.md's "
-                    f"conjecture NG.4 — please keep it", nums, relies)
-    return _rec("ngoal.value.V_H", "skipped", f"U = {u} is below the coalition DP {dp.value} "
-                f"(H = {h}): not decisive (the DP equals V_H only by the conjecture NG.4); "
+        return _rec("ngoal.value.V_H", "pass", f"U = {u} lies in the bracket [{v.lower}, "
+                    f"{v.upper}] of V_H (H = {h}), and the equilibrium checks above passed with "
+                    f"H covering the profile's walks, so V_H = U by the certified equilibrium "
+                    f"(NWALKBR NW.5)", nums, relies)
+    return _rec("ngoal.value.V_H", "skipped", f"U = {u} lies in the bracket [{v.lower}, "
+                f"{v.upper}] of V_H (H = {h}; not proved exact: {v.reason}): not decisive; "
                 f"the failed checks above refute the profile", nums, relies)

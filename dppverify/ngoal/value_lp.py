@@ -18,7 +18,9 @@ Exact bracket (the two-goal method of :mod:`dppverify.value_lp`, for N types): f
 Defender ``σ``, ``Σ_θ b_θ min_walk U^θ(σ)`` (exact backward induction) is a lower bound on
 ``V_H``; for ANY rational Attacker plans the exact greedy Defender value is an upper bound.
 The LP's dual and primal solutions are rounded to small-denominator rationals (the same
-denominator limits as for two goals); ``V_H`` is reported exactly when the best bounds meet.
+denominator limits as for two goals); if that leaves the bracket open, the LP is solved exactly
+(:mod:`dppverify.lp_exact`) and its strategies close it. ``V_H`` is reported exactly when the
+best bounds meet; an open bracket carries its reason.
 """
 
 from __future__ import annotations
@@ -163,6 +165,11 @@ def exact_nbracket(tree: NWalkTree, lp: NValueLP | None = None,
             lambda den: lower_nbound(tree, _rational_defender(tree, lp.sigma, den)),
             lambda den: upper_nbound(tree, [rational_plan(tree, lp.plans[t], den)
                                             for t in range(k)]))
+        inst = tree.instance
+        search.exact_lp(tree, inst.prior, inst.dist_to,
+                        lambda sigma: lower_nbound(tree, defender_from_table(
+                            tree, dict(enumerate(sigma)), None)),
+                        lambda plans: upper_nbound(tree, plans))
     return search.bracket(lambda plan: upper_nbound(tree, [plan] * k), tree)
 
 

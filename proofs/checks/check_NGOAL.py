@@ -1,10 +1,12 @@
 """Exact checks of proofs/NGOAL.md: NG.2 (the coalition DP is an upper bound on V_H) on a small
-deterministic campaign, NG.3 (two goals: the DP's root cover gives DP.1's formula), and the two
-algebraic steps of the proofs (subadditivity of the max; the slope of NG.3's objective).
+deterministic campaign, NG.3 (two goals: the DP's root cover gives DP.1's formula), the two
+algebraic steps of the proofs (subadditivity of the max; the slope of NG.3's objective), the
+finite vertex enumeration behind NG.4 and NG.8(c), and the N = 4 refutation on the hub.
 """
 
 from __future__ import annotations
 
+import itertools
 import random
 from fractions import Fraction
 
@@ -12,8 +14,11 @@ import sympy as sp
 
 from dppverify.ngoal.agreement import compare_routes
 from dppverify.ngoal.coalition import coalition_value
+from dppverify.ngoal.examples import hub4
 from dppverify.ngoal.instance import ninstance_from_json
+from dppverify.ngoal.proved_value import nvalue, packing_vertices, zero_one_normals
 from dppverify.ngoal.tree import count_nprefixes
+from dppverify.ngoal.value_lp import ngame_value
 from proofs.checks.ngoal_evidence import FAMILIES, draw_case
 
 
@@ -76,3 +81,76 @@ def test_subadditivity_of_the_max_and_the_NG3_slope() -> None:
     objective = (b1 - c) * d1 + (b2 - c) * d2 + c * m
     assert sp.expand(sp.diff(objective, c)) == sp.expand(m - d1 - d2)
     assert sp.expand(objective.subs(c, b2) - (b2 * m + (b1 - b2) * d1)) == 0
+
+
+def _packing_vertices_by_hand(n_goals: int) -> set[tuple[Fraction, ...]]:
+    """Vertices of P = {λ >= 0 : Σ_S λ_S 1_S <= 1} (all non-empty S): every basis of [A | I].
+
+    Independent of dppverify.ngoal.proved_value: Gauss–Jordan elimination in Fractions on every
+    choice of N columns of the standard form Σ λ_S 1_S + s = 1, kept when non-singular and
+    non-negative (a vertex of a standard-form polyhedron is a basic feasible solution).
+    """
+    sets = list(range(1, 1 << n_goals))
+    cols = [[Fraction((t >> i) & 1) for i in range(n_goals)] for t in sets]
+    cols += [[Fraction(int(i == j)) for i in range(n_goals)] for j in range(n_goals)]
+    out: set[tuple[Fraction, ...]] = set()
+    for basis in itertools.combinations(range(len(cols)), n_goals):
+        mat = [[cols[j][i] for j in basis] + [Fraction(1)] for i in range(n_goals)]
+        for c in range(n_goals):  # Gauss-Jordan with exact pivots
+            piv = next((r for r in range(c, n_goals) if mat[r][c] != 0), None)
+            if piv is None:
+                break
+            mat[c], mat[piv] = mat[piv], mat[c]
+            mat[c] = [x / mat[c][c] for x in mat[c]]
+            for r in range(n_goals):
+                if r != c and mat[r][c] != 0:
+                    f = mat[r][c]
+                    mat[r] = [a - f * b for a, b in zip(mat[r], mat[c], strict=True)]
+        else:
+            x = [mat[i][-1] for i in range(n_goals)]
+            if all(v >= 0 for v in x):
+                lam = [Fraction(0)] * len(sets)
+                for pos, j in enumerate(basis):
+                    if j < len(sets):
+                        lam[j] = x[pos]
+                out.add(tuple(lam))
+    return out
+
+
+def _y(lam: tuple[Fraction, ...], n_goals: int) -> tuple[Fraction, ...]:
+    return tuple(sum((lam[j] for j, t in enumerate(range(1, 1 << n_goals)) if t >> i & 1),
+                     Fraction(0)) for i in range(n_goals))
+
+
+def test_NG4_NG8_the_packing_vertices_with_a_fractional_direction() -> None:
+    # NG.8(c): only vertices λ of P whose y_λ is not 0/1 need checking. N = 2, 3: none, which
+    # proves NG.4; N = 4: exactly the permutations of (1, 1, 1, 1/2).
+    half = Fraction(1, 2)
+    expected = {2: set(), 3: set(),
+                4: set(itertools.permutations((Fraction(1),) * 3 + (half,)))}
+    for n in (2, 3, 4):
+        verts = _packing_vertices_by_hand(n)
+        frac = {_y(lam, n) for lam in verts if any(x not in (0, 1) for x in _y(lam, n))}
+        assert frac == expected[n], (n, frac)
+        assert len(verts) == {2: 5, 3: 16, 4: 95}[n]
+        # the code's vectorised enumeration finds the same vertices and directions
+        code = packing_vertices(zero_one_normals(n))
+        assert {y for _, y in code} == frac
+        assert {lam for lam, _ in code} == {lam for lam in verts if _y(lam, n) in frac}
+    # N = 5 by the code's enumeration only (377k bases): 45 directions, five up to permutation
+    five = {y for _, y in packing_vertices(zero_one_normals(5))}
+    assert len(five) == 45
+    assert len({tuple(sorted(y)) for y in five}) == 5
+
+
+def test_NG4_refuted_for_four_goals_on_the_hub() -> None:
+    for directed in (True, False):
+        inst = hub4(directed=directed)
+        for h in (3, 4, None):
+            assert coalition_value(inst, h).value == Fraction(25, 14)
+            v = nvalue(inst, h)
+            assert v.exact and v.value == Fraction(12, 7)
+            assert (2, 2, 2, 1) in v.normals
+            if h is not None:
+                b = ngame_value(inst, h).bracket
+                assert b.closed and b.exact == Fraction(12, 7)

@@ -118,7 +118,7 @@ def test_float_mode_is_detected_from_the_instance(tmp_path: Path) -> None:
 def test_value_command(tmp_path: Path) -> None:
     i = write_doc(tmp_path, "i.json", three_phase_doc())
     r = run_cli(value_command, [i, "--horizon", "4"])
-    assert r.exit_code == 0 and r.output.startswith("V_H (H = 4) = 71/18 exactly")
+    assert r.exit_code == 0 and r.output.startswith("V_H (H = 4) = 71/18 (≈ 3.944444) exactly")
     r = run_cli(value_command, [i, "-H", "4", "--json"])
     doc = json.loads(r.output)
     assert doc["value"] == "71/18" and doc["exact"] and abs(doc["value_lp"] - 71 / 18) < 1e-7

@@ -16,10 +16,11 @@ from tests.checker._helpers import run_cli, write_doc
 def test_value_of_an_n_goal_instance_by_each_route(tmp_path: Path) -> None:
     i = write_doc(tmp_path, "star.json", star3_document())
     r = run_cli(value_command, [i, "-H", "2"])
-    assert r.exit_code == 0 and "V_H (H = 2, N = 3 goals) = 3/2 exactly; LP value" in r.output
+    assert r.exit_code == 0
+    assert "V_H (H = 2, N = 3 goals) = 3/2 (≈ 1.5) exactly; LP value" in r.output
     r = run_cli(value_command, [i, "-H", "inf"])
-    assert r.exit_code == 0 and "(H = inf, N = 3 goals) = 3/2 exactly; coalition DP" in r.output
-    assert "proofs/NGOAL.md" in r.output
+    assert r.exit_code == 0
+    assert "(H = inf, N = 3 goals) = 3/2 (≈ 1.5) exactly; coalition DP (NG.4" in r.output
     r = run_cli(value_command, [i, "-H", "3", "--route", "both", "--json"])
     doc = json.loads(r.output)
     assert r.exit_code == 0 and doc["agree"] is True and doc["value"] == "3/2"
@@ -63,4 +64,19 @@ def test_python_m_dppverify_dispatches_too(tmp_path: Path) -> None:
     out = subprocess.run([sys.executable, "-m", "dppverify", "value", i, "-H", "2", "--route",
                           "structured"], capture_output=True, text=True, check=False)
     assert out.returncode == 0, out.stderr
-    assert "= 3/2 exactly; coalition DP over 7 goal subsets" in out.stdout
+    assert "= 3/2 (≈ 1.5) exactly; coalition DP (NG.4: the value for three goals)" in out.stdout
+
+
+def test_the_four_goal_counterexample_is_never_given_the_coalition_bound(tmp_path: Path) -> None:
+    """proofs/NGOAL.md: the coalition DP (25/14) is only an upper bound; the value is 12/7."""
+    from dppverify.ngoal.examples import hub4_document
+    for directed in (True, False):
+        i = write_doc(tmp_path, f"hub{directed}.json", hub4_document(directed=directed))
+        for args in (["-H", "inf"], ["-H", "5", "--route", "structured"], ["-H", "5"],
+                     ["-H", "4", "--route", "both"]):
+            r = run_cli(value_command, [i, *args, "--json"])
+            doc = json.loads(r.output)
+            assert r.exit_code == 0 and doc["value"] == "12/7", (directed, args, doc)
+            if doc["structured"] is not None:
+                assert doc["structured"]["coalition_dp"]["value"] == "25/14"
+                assert doc["structured"]["extra_normals"]

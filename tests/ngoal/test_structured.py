@@ -76,7 +76,7 @@ def test_the_equilibrium_passes_on_the_untruncated_game() -> None:
                                            "ngoal.pbne.attacker_br", "ngoal.pbne.defender_br",
                                            "ngoal.pbne.sequential", "ngoal.value.V_H"]
     assert cert.check("ngoal.value.U").numbers["U"] == 2
-    assert cert.check("ngoal.value.V_H").numbers["V_H_dp"] == 2
+    assert cert.check("ngoal.value.V_H").numbers["V_H"] == 2
     assert all(c.route == "structured" and c.relies_on for c in cert.checks)
     assert "NG.4" in (cert.check("ngoal.value.V_H").relies_on or "")
     # the same verdict on the tree at every horizon, and both routes agree check by check

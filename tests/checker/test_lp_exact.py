@@ -1,0 +1,74 @@
+"""The tree LP solved exactly (dppverify.lp_exact): every bracket the tree route admits closes."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from typing import Any
+
+import pytest
+from hypothesis import given
+
+import dppverify.lp_exact as lp_exact
+from dppverify.instance import instance_from_json
+from dppverify.lp_exact import solve_tree_lp_exactly
+from dppverify.ngoal.coalition import coalition_value
+from dppverify.ngoal.instance import ninstance_from_json
+from dppverify.ngoal.tree import build_ntree, count_nprefixes
+from dppverify.ngoal.value_lp import ngame_value
+from dppverify.strategies import instances, ngoal_instances, weighted_graphs
+from dppverify.value_lp import game_value
+
+# A four-goal hub (found by a campaign) where rounding the LP solution at every denominator of
+# DENOMINATORS leaves the bracket open; the exact LP closes it at 44/17 (H = 3, 26 prefixes).
+HUB = {"graph": {"directed": False,
+                 "nodes": [{"id": v} for v in ("u", "u1", "m0", "m1", "g1", "g2", "g3", "g4")],
+                 "edges": [{"source": a, "target": b, "weight": w} for a, b, w in (
+                     ("u", "u1", 2), ("u1", "m0", 2), ("m0", "g3", 1), ("m0", "g4", 1),
+                     ("u1", "m1", 1), ("m1", "g1", 1), ("m1", "g2", 1), ("m1", "g4", 2),
+                     ("g1", "u", 10), ("g2", "u", 10), ("g3", "u", 10), ("g4", "u", 10),
+                     ("u", "m0", 3))]},
+       "start": "u", "goals": ["g1", "g2", "g3", "g4"],
+       "prior": ["6/17", "2/17", "3/17", "6/17"]}
+
+
+def test_the_exact_lp_closes_a_bracket_that_rounding_leaves_open() -> None:
+    inst = ninstance_from_json(HUB)
+    v = ngame_value(inst, 3)
+    assert v.prefixes == 26
+    b = v.bracket
+    assert b.closed and b.exact == Fraction(44, 17) and b.reason is None
+    assert "exact LP" in b.lower_source and "exact LP" in b.upper_source
+    exact = solve_tree_lp_exactly(build_ntree(inst, 3), inst.prior, inst.dist_to)
+    assert not isinstance(exact, str) and exact.value == Fraction(44, 17)
+    assert all(sum(s, Fraction(0)) == 1 and min(s) >= 0 for s in exact.sigma[1:])
+
+
+def test_an_open_bracket_says_why(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(lp_exact, "MAX_EXACT_ROWS", 10)
+    b = ngame_value(ninstance_from_json(HUB), 3).bracket
+    assert not b.closed and b.reason is not None and "constraint rows" in b.reason
+
+
+@given(instances(graphs=weighted_graphs(max_nodes=6, weights="fractions", max_weight=5)))
+def test_two_goal_brackets_close_at_the_dp_value(doc: dict[str, Any]) -> None:
+    inst = instance_from_json(doc)
+    ninst = ninstance_from_json(doc)
+    first = ninst.hops[ninst.start]
+    for h in range(first, first + 3):
+        if count_nprefixes(ninst, h) > 1500:
+            break
+        b = game_value(inst, h, max_prefixes=1500).bracket
+        assert b.closed, (doc, h, b)
+        assert b.exact == coalition_value(ninst, h).value  # NG.3: the DP is the value
+
+
+@given(ngoal_instances(min_goals=3, max_goals=4,
+                       graphs=weighted_graphs(min_nodes=4, max_nodes=6, max_weight=4)))
+def test_n_goal_brackets_close(doc: dict[str, Any]) -> None:
+    inst = ninstance_from_json(doc)
+    first = inst.hops[inst.start]
+    for h in range(first, first + 3):
+        if count_nprefixes(inst, h) > 1500:
+            break
+        b = ngame_value(inst, h, max_prefixes=1500).bracket
+        assert b.closed, (doc, h, b)
