@@ -126,7 +126,7 @@ def test_value_command(tmp_path: Path) -> None:
     r = run_cli(value_command, [i, "-H", "1"])
     assert r.exit_code == 2 and "no walk" in r.output
     r = run_cli(value_command, [i])  # issue 18: no horizon is the untruncated game
-    assert r.exit_code == 0 and r.output.startswith("V_H (H = inf) = 71/18 exactly")
+    assert r.exit_code == 0 and r.output.startswith("V_H (H = inf) = 71/18 (≈ 3.944444) exactly")
 
 
 def test_dpp_group_and_python_m_dppverify(tmp_path: Path) -> None:

@@ -271,7 +271,7 @@ def test_value_entry_point_forms(tmp_path: Path) -> None:
 def test_value_cli_default_is_untruncated(tmp_path: Path) -> None:
     path = _write(tmp_path, "kite.json", kite_document())
     r = CliRunner().invoke(value_command, [path])
-    assert r.exit_code == 0 and "V_H (H = inf) = 8/5 exactly" in r.output
+    assert r.exit_code == 0 and "V_H (H = inf) = 8/5 (≈ 1.6) exactly" in r.output
 
 
 @pytest.mark.parametrize("h", [float("inf"), "inf", None])
