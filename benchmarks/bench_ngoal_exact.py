@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import time
 from typing import Any
 
@@ -54,7 +55,11 @@ def main(argv: list[str] | None = None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--maps", nargs="*", default=None)
     ap.add_argument("--goals", nargs="*", type=int, default=None)
+    ap.add_argument("--quick", action="store_true",
+                    help="one small map and N = 4, for the test suite (also DPP_BENCH_QUICK=1)")
     args = ap.parse_args(argv)
+    if args.quick or os.environ.get("DPP_BENCH_QUICK"):
+        args.maps, args.goals = ["empty-8-8"], [4]
     cases = DEFAULT if args.maps is None else [
         (m, n) for m in args.maps for n in (args.goals or [4, 5])]
     rows = []

@@ -30,6 +30,7 @@ cells) N = 4: solve 0.40 s, certify 3.2 s (pass); N = 5: solve 4.7 s, certify 14
 from __future__ import annotations
 
 import argparse
+import os
 import time
 from typing import Any
 
@@ -80,7 +81,11 @@ def main() -> None:
     ap.add_argument("--maps", nargs="+", default=list(MAPS))
     ap.add_argument("--goals", nargs="+", type=int, default=[3, 4])
     ap.add_argument("--repeat", type=int, default=1)
+    ap.add_argument("--quick", action="store_true",
+                    help="one small map and N = 3, for the test suite (also DPP_BENCH_QUICK=1)")
     args = ap.parse_args()
+    if args.quick or os.environ.get("DPP_BENCH_QUICK"):
+        args.maps, args.goals = ["empty-8-8"], [3]
     for n in args.goals:  # warm-up: enumerations cached per process
         tiny = np.zeros((3, 3), dtype=bool)
         cells = [(0, 0), (0, 2), (2, 2), (1, 1), (0, 1)][:n]

@@ -39,7 +39,6 @@ from dppverify.exact import Number, normalize
 from dppverify.horizons import parse_horizon
 from dppverify.instance import Instance, Roles, as_instance
 from dppverify.lp import LPStats, realization_constraints, solve
-from dppverify.lp_exact import solve_tree_lp_exactly
 from dppverify.profile import ProgressRule
 from dppverify.tree import DEFAULT_MAX_PREFIXES, PrefixTree, WalkTree, build_tree
 
@@ -375,6 +374,8 @@ reason=None)
         """
         if self.closed:
             return
+        from dppverify.lp_exact import solve_tree_lp_exactly  # scipy, sympy: only here
+
         got = solve_tree_lp_exactly(tree, priors, dists)
         if isinstance(got, str):
             self.reason = f"no exact LP solution: {got}"
