@@ -25,7 +25,7 @@ from dppverify.profile import DefenderRule, ProgressRule, TableRule
 from dppverify.tree import WalkTree
 
 __all__ = ["TreeDefender", "UndefinedStrategyError", "progress_along", "sigma_along",
-           "step_weight", "tree_defender"]
+           "step_weight", "step_weights", "tree_defender"]
 
 
 class UndefinedStrategyError(LookupError):
@@ -59,6 +59,29 @@ def step_weight(instance: Instance, walk: Sequence[int], t: int) -> Number:
     return w
 
 
+def step_weights(instance: Instance, walk: Sequence[int]) -> list[Number]:
+    """The weights of steps ``1 .. T`` of ``walk``: :func:`step_weight` for the whole walk.
+
+    Raises
+    ------
+    ProfileError
+        At the first step that is not an edge (the same message as :func:`step_weight`).
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> inst = triangle()
+    >>> s, g1, g2 = (inst.index[v] for v in ("s", "g1", "g2"))
+    >>> step_weights(inst, [s, g2, g1])
+    [2, 2]
+    """
+    weights = instance.weights_along(walk)
+    for t, w in enumerate(weights, start=1):
+        if w is None:
+            step_weight(instance, walk, t)  # raises the message naming the step
+    return cast(list[Number], weights)
+
+
 def progress_along(instance: Instance, goal: int, walk: Sequence[int]) -> list[Number]:
     """The new progress ``c_{t-1} - c_t`` towards ``goal`` at each step of ``walk`` (eqs. (6)-(7)).
 
@@ -87,7 +110,7 @@ def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[i
     """σ(rule.goal | walk[:t+1]) for t = 1..T."""
     if isinstance(rule, ProgressRule):
         prog = progress_along(instance, rule.goal, walk)
-        weights = [step_weight(instance, walk, t) for t in range(1, len(walk))]
+        weights = step_weights(instance, walk)
         if all(type(x) is int for x in prog) and all(type(w) is int for w in weights):
             # integers (unit grids): the exact ratio without a Fraction per step, decided
             # once per walk; the same numbers as NumberMode.ratio (an int when it divides)

@@ -156,6 +156,19 @@ class GameInstance:
                 return w
         return None
 
+    def weights_along(self, walk: Sequence[int]) -> list[Number | None]:
+        """``weight(walk[t-1], walk[t])`` for ``t = 1 .. len(walk) - 1`` (None: no such arc).
+
+        Examples
+        --------
+        >>> from dppverify.examples import triangle
+        >>> triangle().weights_along([0, 2, 1, 1])
+        [2, 2, None]
+        """
+        if isinstance(self.succ, ArcRows) and len(walk) > 8:
+            return self.succ.find_many(walk[:-1], walk[1:])
+        return [self.weight(walk[t - 1], walk[t]) for t in range(1, len(walk))]
+
     def label(self, v: int) -> Node:
         """The node id of index ``v``."""
         return self.nodes[v]
