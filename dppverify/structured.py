@@ -451,8 +451,16 @@ def _telescoping(instance: Instance, roles: Roles, trie: Trie, mode: NumberMode)
             continue
         sig = sigma_along(instance, roles, ProgressRule(roles.g1), p)
         total: Number = 0
-        c = c_of[p[0]]
-        for t, (w, s) in enumerate(zip(step_weights(instance, p), sig, strict=True), start=1):
+        c0 = c = c_of[p[0]]
+        steps = zip(step_weights(instance, p), sig, strict=True)
+        if mode.exact:  # EXACT's at_most / equal are <= / ==: the comparisons inline
+            for t, (w, s) in enumerate(steps, start=1):
+                total += w * s
+                c = min(c, c_of[p[t]])
+                done.add(p[:t + 1])
+                bad += (not 0 <= s <= 1) + (total != c0 - c)
+            continue
+        for t, (w, s) in enumerate(steps, start=1):
             total += w * s
             c = min(c, c_of[p[t]])
             done.add(p[:t + 1])

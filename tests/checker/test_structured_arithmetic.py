@@ -29,6 +29,7 @@ from dppverify.structured import (
     _defender_payoffs,
     _sequential,
     _sigma_on_trie,
+    _telescoping,
     build_trie,
 )
 
@@ -92,6 +93,27 @@ def old_sequential_bad(trie: Trie, sigma: dict[tuple[int, ...], Any],
         s = sigma[p]
         if (b > HALF and not mode.equal(s, 1)) or (b < HALF and not mode.equal(s, 0)):
             bad += 1
+    return bad
+
+
+def old_telescoping_bad(instance: Instance, roles: Any, trie: Trie, mode: Any) -> int:
+    c_of = roles.d1
+    bad = 0
+    done: set[tuple[int, ...]] = set()
+    for p in sorted(set(trie.mass), key=len, reverse=True):
+        if len(p) < 2 or p in done:
+            continue
+        sig = sigma_along(instance, roles, ProgressRule(roles.g1), p)
+        total: Any = 0
+        c = c_of[p[0]]
+        for t, s in enumerate(sig, start=1):
+            total += step_weight(instance, p, t) * s
+            c = min(c, c_of[p[t]])
+            done.add(p[:t + 1])
+            if not (mode.at_most(0, s) and mode.at_most(s, 1)):
+                bad += 1
+            if not mode.equal(total, c_of[p[0]] - c):
+                bad += 1
     return bad
 
 
@@ -201,6 +223,8 @@ def test_structured_arithmetic_equals_the_per_step_code(seed: int, numbers: str,
         assert rec.message.count("Bayes' rule gives") == min(3, len(want))
         seq = _sequential(inst, trie, sigma, bel, inst.numbers)
         assert seq.numbers["violations"] == old_sequential_bad(trie, sigma, bel, inst.numbers)
+    tel = _telescoping(inst, roles, trie, inst.numbers)
+    assert tel.numbers["violations"] == old_telescoping_bad(inst, roles, trie, inst.numbers)
     for mw in (*primary, *secondary):
         assert step_weights(inst, mw.walk) == [step_weight(inst, mw.walk, t)
                                                for t in range(1, len(mw.walk))]
