@@ -32,7 +32,7 @@ if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fas
 
 __all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "ArcRows", "common_denominator",
            "dijkstra", "exact_distances_to", "hops_by_arrays", "hops_to_targets",
-           "scaled_distance_fields", "unscale"]
+           "scaled_distance_fields", "uniform_hops", "unscale"]
 
 EXACT_FLOAT_LIMIT = 2**53
 """Integer path sums below this are exact in float64."""
@@ -385,6 +385,26 @@ def unscale(row: np.ndarray, scale: int) -> list[Number]:
         for v in np.flatnonzero(~finite).tolist():
             out[v] = INF
     return out
+
+
+def uniform_hops(rows: np.ndarray, step: int) -> list[int]:
+    """:func:`hops_to_targets` from exact scaled distance rows when every arc weighs ``step``.
+
+    With one weight a walk of ``k`` steps costs ``k * step``, so the fewest steps to the
+    nearest target is the least distance over ``step`` (``-1`` if unreachable): the BFS of
+    :func:`hops_by_arrays` without another pass over the graph.
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 2)], [(2, 2)], [], []])   # 0 -> 1 -> 2; 3 isolated
+    >>> scale, rows = scaled_distance_fields(a, 4, [2])
+    >>> uniform_hops(rows, 2), hops_by_arrays(a, 4, [2])
+    ([2, 1, 0, -1], [2, 1, 0, -1])
+    """
+    least = np.atleast_2d(rows).min(axis=0)
+    finite = np.isfinite(least)
+    hops = np.where(finite, least, 0).astype(np.int64) // step
+    return np.where(finite, hops, -1).tolist()
 
 
 def hops_by_arrays(arcs: ArcArrays, n: int, targets: Sequence[int]) -> list[int]:

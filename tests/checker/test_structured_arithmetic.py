@@ -16,7 +16,13 @@ import numpy as np
 import pytest
 
 from dppverify.defender import sigma_along, step_weight, step_weights
-from dppverify.distances import ArcRows
+from dppverify.distances import (
+    ArcArrays,
+    ArcRows,
+    hops_by_arrays,
+    scaled_distance_fields,
+    uniform_hops,
+)
 from dppverify.evaluation import walk_cost
 from dppverify.instance import Instance, instance_from_json
 from dppverify.json_reading import _resolve_walk_fast, resolve_walk
@@ -268,3 +274,22 @@ def test_one_pass_walk_reading_agrees(seed: int) -> None:
             fast = _resolve_walk_fast(inst, raw, complete=complete)
             slow = resolve_walk(inst, raw, complete=complete)
             assert fast is None or fast == slow
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_uniform_hops_equal_the_breadth_first_hops(seed: int) -> None:
+    """One weight for every arc: hops from the distance rows = the BFS hop counts."""
+    rng = random.Random(seed)
+    n = rng.randint(1, 15)
+    w = rng.choice([1, 2, Fraction(1, 3), Fraction(5, 2)])
+    adj: list[list[tuple[int, Any]]] = [[] for _ in range(n)]
+    for u in range(n):
+        for v in rng.sample(range(n), rng.randint(0, min(3, n))):
+            if v != u:
+                adj[u].append((v, w))
+    arcs = ArcArrays.from_adjacency([sorted(row) for row in adj])
+    targets = rng.sample(range(n), rng.randint(1, min(3, n)))
+    fields = scaled_distance_fields(arcs, n, targets)
+    assert fields is not None
+    scale, rows = fields
+    assert uniform_hops(rows, int(w * scale)) == hops_by_arrays(arcs, n, targets)
