@@ -293,3 +293,19 @@ def test_uniform_hops_equal_the_breadth_first_hops(seed: int) -> None:
     assert fields is not None
     scale, rows = fields
     assert uniform_hops(rows, int(w * scale)) == hops_by_arrays(arcs, n, targets)
+
+
+@pytest.mark.parametrize("seed", range(60))
+def test_pruned_seeds_give_the_same_fixpoint_fields(seed: int) -> None:
+    """The value DP's third Dijkstra with dominated seeds dropped: the same fields, steps."""
+    from dppverify.value_dp import _fixpoint
+
+    rng = random.Random(seed)
+    inst = random_game(rng, grid=seed % 3 == 0)
+    for roles in (inst.roles(), inst.roles(1)):
+        new, old = _fixpoint(inst, roles, None), _fixpoint(inst, roles, None, prune=False)
+        assert (new is None) == (old is None)
+        if new is not None and old is not None:
+            for f in ("d1", "d2", "m", "h1", "h2", "hm"):
+                assert np.array_equal(getattr(new, f), getattr(old, f)), f
+            assert new.last == old.last
