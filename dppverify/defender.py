@@ -13,6 +13,7 @@ goal ``g1`` of the labelling in use, and as the allocated amounts
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -109,15 +110,37 @@ def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[i
                         ) -> list[Number]:
     """σ(rule.goal | walk[:t+1]) for t = 1..T."""
     if isinstance(rule, ProgressRule):
-        prog = progress_along(instance, rule.goal, walk)
-        weights = step_weights(instance, walk)
-        if all(type(x) is int for x in prog) and all(type(w) is int for w in weights):
-            # integers (unit grids): the exact ratio without a Fraction per step, decided
-            # once per walk; the same numbers as NumberMode.ratio (an int when it divides)
-            ints = cast(list[tuple[int, int]], list(zip(prog, weights, strict=True)))
-            return [p // w if p % w == 0 else Fraction(p, w) for p, w in ints]
-        ratio = instance.numbers.ratio
-        return [ratio(pr, w) for pr, w in zip(prog, weights, strict=True)]
+        memo = _PROGRESS_SIGMA.get(instance)
+        if memo is None:
+            memo = _PROGRESS_SIGMA[instance] = {}
+        key = (rule.goal, tuple(walk))
+        if key not in memo:  # the checks ask for σ along the same profile walks repeatedly
+            memo[key] = tuple(_progress_sigma(instance, rule, walk))
+        return list(memo[key])
+    return _table_sigma(instance, rule, walk)
+
+
+_PROGRESS_SIGMA: weakref.WeakKeyDictionary[Instance, dict[tuple[int, tuple[int, ...]],
+                                                          tuple[Number, ...]]] = \
+    weakref.WeakKeyDictionary()
+
+
+def _progress_sigma(instance: Instance, rule: ProgressRule, walk: Sequence[int]
+                    ) -> list[Number]:
+    """σ(rule.goal | walk[:t+1]) for t = 1..T under a progress rule."""
+    prog = progress_along(instance, rule.goal, walk)
+    weights = step_weights(instance, walk)
+    if all(type(x) is int for x in prog) and all(type(w) is int for w in weights):
+        # integers (unit grids): the exact ratio without a Fraction per step, decided
+        # once per walk; the same numbers as NumberMode.ratio (an int when it divides)
+        ints = cast(list[tuple[int, int]], list(zip(prog, weights, strict=True)))
+        return [p // w if p % w == 0 else Fraction(p, w) for p, w in ints]
+    ratio = instance.numbers.ratio
+    return [ratio(pr, w) for pr, w in zip(prog, weights, strict=True)]
+
+
+def _table_sigma(instance: Instance, rule: TableRule, walk: Sequence[int]) -> list[Number]:
+    """σ(rule.goal | walk[:t+1]) for t = 1..T under a table (its default for unlisted)."""
     result: list[Number] = []
     progress: list[Number] | None = None
     for t in range(1, len(walk)):

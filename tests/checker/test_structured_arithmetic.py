@@ -309,3 +309,24 @@ def test_pruned_seeds_give_the_same_fixpoint_fields(seed: int) -> None:
             for f in ("d1", "d2", "m", "h1", "h2", "hm"):
                 assert np.array_equal(getattr(new, f), getattr(old, f)), f
             assert new.last == old.last
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_sigma_memo_returns_fresh_equal_lists(seed: int) -> None:
+    """σ along a walk is remembered per instance: equal to a fresh computation, and a
+    caller changing the list it got does not change what the next caller gets."""
+    from dppverify.defender import _progress_sigma
+
+    rng = random.Random(seed)
+    inst = random_game(rng, grid=seed % 2 == 0)
+    roles = inst.roles()
+    walk = random_walk(rng, inst)
+    if walk is None or len(walk) < 2:
+        return
+    for goal in (roles.g1, roles.g2):
+        first = sigma_along(inst, roles, ProgressRule(goal), walk)
+        first[0] = "changed"
+        again = sigma_along(inst, roles, ProgressRule(goal), list(walk))
+        fresh = _progress_sigma(inst, ProgressRule(goal), walk)
+        want = fresh if goal == roles.g1 else [inst.numbers.difference(1, s) for s in fresh]
+        assert again == want
