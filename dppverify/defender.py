@@ -13,6 +13,7 @@ goal ``g1`` of the labelling in use, and as the allocated amounts
 
 from __future__ import annotations
 
+import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -25,7 +26,7 @@ from dppverify.profile import DefenderRule, ProgressRule, TableRule
 from dppverify.tree import WalkTree
 
 __all__ = ["TreeDefender", "UndefinedStrategyError", "progress_along", "sigma_along",
-           "step_weight", "tree_defender"]
+           "step_weight", "step_weights", "tree_defender"]
 
 
 class UndefinedStrategyError(LookupError):
@@ -59,6 +60,29 @@ def step_weight(instance: Instance, walk: Sequence[int], t: int) -> Number:
     return w
 
 
+def step_weights(instance: Instance, walk: Sequence[int]) -> list[Number]:
+    """The weights of steps ``1 .. T`` of ``walk``: :func:`step_weight` for the whole walk.
+
+    Raises
+    ------
+    ProfileError
+        At the first step that is not an edge (the same message as :func:`step_weight`).
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> inst = triangle()
+    >>> s, g1, g2 = (inst.index[v] for v in ("s", "g1", "g2"))
+    >>> step_weights(inst, [s, g2, g1])
+    [2, 2]
+    """
+    weights = instance.weights_along(walk)
+    for t, w in enumerate(weights, start=1):
+        if w is None:
+            step_weight(instance, walk, t)  # raises the message naming the step
+    return cast(list[Number], weights)
+
+
 def progress_along(instance: Instance, goal: int, walk: Sequence[int]) -> list[Number]:
     """The new progress ``c_{t-1} - c_t`` towards ``goal`` at each step of ``walk`` (eqs. (6)-(7)).
 
@@ -86,15 +110,37 @@ def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[i
                         ) -> list[Number]:
     """σ(rule.goal | walk[:t+1]) for t = 1..T."""
     if isinstance(rule, ProgressRule):
-        prog = progress_along(instance, rule.goal, walk)
-        weights = [step_weight(instance, walk, t) for t in range(1, len(walk))]
-        if all(type(x) is int for x in prog) and all(type(w) is int for w in weights):
-            # integers (unit grids): the exact ratio without a Fraction per step, decided
-            # once per walk; the same numbers as NumberMode.ratio (an int when it divides)
-            ints = cast(list[tuple[int, int]], list(zip(prog, weights, strict=True)))
-            return [p // w if p % w == 0 else Fraction(p, w) for p, w in ints]
-        ratio = instance.numbers.ratio
-        return [ratio(pr, w) for pr, w in zip(prog, weights, strict=True)]
+        memo = _PROGRESS_SIGMA.get(instance)
+        if memo is None:
+            memo = _PROGRESS_SIGMA[instance] = {}
+        key = (rule.goal, tuple(walk))
+        if key not in memo:  # the checks ask for σ along the same profile walks repeatedly
+            memo[key] = tuple(_progress_sigma(instance, rule, walk))
+        return list(memo[key])
+    return _table_sigma(instance, rule, walk)
+
+
+_PROGRESS_SIGMA: weakref.WeakKeyDictionary[Instance, dict[tuple[int, tuple[int, ...]],
+                                                          tuple[Number, ...]]] = \
+    weakref.WeakKeyDictionary()
+
+
+def _progress_sigma(instance: Instance, rule: ProgressRule, walk: Sequence[int]
+                    ) -> list[Number]:
+    """σ(rule.goal | walk[:t+1]) for t = 1..T under a progress rule."""
+    prog = progress_along(instance, rule.goal, walk)
+    weights = step_weights(instance, walk)
+    if all(type(x) is int for x in prog) and all(type(w) is int for w in weights):
+        # integers (unit grids): the exact ratio without a Fraction per step, decided
+        # once per walk; the same numbers as NumberMode.ratio (an int when it divides)
+        ints = cast(list[tuple[int, int]], list(zip(prog, weights, strict=True)))
+        return [p // w if p % w == 0 else Fraction(p, w) for p, w in ints]
+    ratio = instance.numbers.ratio
+    return [ratio(pr, w) for pr, w in zip(prog, weights, strict=True)]
+
+
+def _table_sigma(instance: Instance, rule: TableRule, walk: Sequence[int]) -> list[Number]:
+    """σ(rule.goal | walk[:t+1]) for t = 1..T under a table (its default for unlisted)."""
     result: list[Number] = []
     progress: list[Number] | None = None
     for t in range(1, len(walk)):

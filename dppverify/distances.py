@@ -32,7 +32,7 @@ if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fas
 
 __all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "ArcRows", "common_denominator",
            "dijkstra", "exact_distances_to", "hops_by_arrays", "hops_to_targets",
-           "scaled_distance_fields", "unscale"]
+           "scaled_distance_fields", "uniform_hops", "unscale"]
 
 EXACT_FLOAT_LIMIT = 2**53
 """Integer path sums below this are exact in float64."""
@@ -108,6 +108,36 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
         except ValueError:
             return None
         return self._values[int(self._codes[i])] if len(self._values) > 1 else self._values[0]
+
+    def find_many(self, tails: Sequence[int], heads: Sequence[int]) -> list[Number | None]:
+        """:meth:`find` for many arcs at once (one numpy pass per position in a row).
+
+        Examples
+        --------
+        >>> rows = ArcRows(3, np.array([0, 0, 1]), np.array([1, 2, 2]), np.array([0, 1, 0]),
+        ...                (Fraction(1, 2), 3))
+        >>> rows.find_many([0, 0, 1, 2], [2, 1, 2, 0])
+        [3, Fraction(1, 2), Fraction(1, 2), None]
+        """
+        u = np.asarray(tails, dtype=np.int64)
+        v = np.asarray(heads, dtype=np.int64)
+        if u.size == 0 or self._heads.size == 0:
+            return [None] * int(u.size)
+        start = self._bounds[u]
+        degree = self._bounds[u + 1] - start
+        pos = np.full(u.size, -1, dtype=np.int64)
+        last = self._heads.size - 1
+        for k in range(int(degree.max())):  # the first match in the row, as find's index()
+            idx = start + k
+            hit = (pos < 0) & (k < degree) & (self._heads[np.minimum(idx, last)] == v)
+            pos[hit] = idx[hit]
+        found = (pos >= 0).tolist()
+        if len(self._values) == 1:
+            w = self._values[0]
+            return [w if ok else None for ok in found]
+        values = self._values
+        codes = self._codes[np.maximum(pos, 0)].tolist()
+        return [values[c] if ok else None for c, ok in zip(codes, found, strict=True)]
 
     def degree(self, u: int) -> int:
         """The number of arcs of ``u`` (without building its row)."""
@@ -355,6 +385,26 @@ def unscale(row: np.ndarray, scale: int) -> list[Number]:
         for v in np.flatnonzero(~finite).tolist():
             out[v] = INF
     return out
+
+
+def uniform_hops(rows: np.ndarray, step: int) -> list[int]:
+    """:func:`hops_to_targets` from exact scaled distance rows when every arc weighs ``step``.
+
+    With one weight a walk of ``k`` steps costs ``k * step``, so the fewest steps to the
+    nearest target is the least distance over ``step`` (``-1`` if unreachable): the BFS of
+    :func:`hops_by_arrays` without another pass over the graph.
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 2)], [(2, 2)], [], []])   # 0 -> 1 -> 2; 3 isolated
+    >>> scale, rows = scaled_distance_fields(a, 4, [2])
+    >>> uniform_hops(rows, 2), hops_by_arrays(a, 4, [2])
+    ([2, 1, 0, -1], [2, 1, 0, -1])
+    """
+    least = np.atleast_2d(rows).min(axis=0)
+    finite = np.isfinite(least)
+    hops = np.where(finite, least, 0).astype(np.int64) // step
+    return np.where(finite, hops, -1).tolist()
 
 
 def hops_by_arrays(arcs: ArcArrays, n: int, targets: Sequence[int]) -> list[int]:

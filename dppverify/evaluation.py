@@ -11,7 +11,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
 
-from dppverify.defender import sigma_along, step_weight
+from dppverify.defender import sigma_along, step_weights
 from dppverify.exact import Number, normalize
 from dppverify.instance import Instance, Roles
 from dppverify.profile import DefenderRule, StrategyPath
@@ -50,8 +50,7 @@ def walk_cost(instance: Instance, roles: Roles, rule: DefenderRule, walk: tuple[
     """
     sigma = sigma_along(instance, roles, rule, walk)
     total: Number = 0
-    for t, s in enumerate(sigma, start=1):
-        w = step_weight(instance, walk, t)
+    for w, s in zip(step_weights(instance, walk), sigma, strict=True):
         total += w * (s if theta == 1 else 1 - s)
     total += roles.dist(theta)[walk[-1]]
     return instance.numbers.convert(total)

@@ -28,6 +28,7 @@ from dppverify.distances import (
     hops_by_arrays,
     hops_to_targets,
     scaled_distance_fields,
+    uniform_hops,
     unscale,
 )
 from dppverify.errors import InvalidInstanceError
@@ -155,6 +156,19 @@ class GameInstance:
             if head == v:
                 return w
         return None
+
+    def weights_along(self, walk: Sequence[int]) -> list[Number | None]:
+        """``weight(walk[t-1], walk[t])`` for ``t = 1 .. len(walk) - 1`` (None: no such arc).
+
+        Examples
+        --------
+        >>> from dppverify.examples import triangle
+        >>> triangle().weights_along([0, 2, 1, 1])
+        [2, 2, None]
+        """
+        if isinstance(self.succ, ArcRows) and len(walk) > 8:
+            return self.succ.find_many(walk[:-1], walk[1:])
+        return [self.weight(walk[t - 1], walk[t]) for t in range(1, len(walk))]
 
     def label(self, v: int) -> Node:
         """The node id of index ``v``."""
@@ -446,8 +460,11 @@ def finish_game(cls: type[G], ids: list[Node], index: dict[Node, int], directed:
             other = show_node(ids[gj])
             _require(dist_to[i][gj] != INF, f"goal {name} is unreachable from goal {other}: "
                                             f"d({other}, {name}) is infinite")
-    hops = tuple(hops_to_targets(pred_t, goals) if arcs is None
-                 else hops_by_arrays(arcs, n, goals))
+    if fields is not None and arcs is not None and len(arcs.values) == 1:
+        hops = tuple(uniform_hops(fields[1], int(arcs.values[0] * fields[0])))
+    else:
+        hops = tuple(hops_to_targets(pred_t, goals) if arcs is None
+                     else hops_by_arrays(arcs, n, goals))
     game = cls(nodes=tuple(ids), index=MappingProxyType(index), directed=directed,
                succ=succ_t, pred=pred_t, start=start, goals=goals, prior=prior,
                exact=exact, dist_to=dist_to, hops=hops)

@@ -409,6 +409,9 @@ def resolve_walk(game: WalkGame, raw: Any, *, complete: bool,
     lead = f"{subject} " if subject else ""
     if not isinstance(raw, list) or not raw:
         return f"{lead}must be a non-empty list of node ids"
+    fast = _resolve_walk_fast(game, raw, complete=complete)
+    if fast is not None:
+        return fast
     walk: list[int] = []
     for k, x in enumerate(raw):
         try:
@@ -433,4 +436,27 @@ def resolve_walk(game: WalkGame, raw: Any, *, complete: bool,
         return f"{lead}ends at {show_node(game.nodes[walk[-1]])}, which is not a goal"
     if not complete and len(walk) < 2:
         return f"{lead}must have at least one step (the Defender acts after each move)"
+    return tuple(walk)
+
+
+def _resolve_walk_fast(game: WalkGame, raw: list[Any], *, complete: bool
+                       ) -> tuple[int, ...] | None:
+    """:func:`resolve_walk` of a valid walk with its arcs looked up in one pass; None when
+    anything is wrong (the caller's step-by-step loop then finds the first problem)."""
+    along = getattr(game, "weights_along", None)
+    if along is None or len(raw) < 2:
+        return None
+    walk: list[int] = []
+    try:
+        for k, x in enumerate(raw):
+            idx = game.index.get(node_from_json(x, where=f"[{k}]"))
+            if idx is None or (k > 0 and game.is_goal(walk[-1])):
+                return None
+            walk.append(idx)
+    except (ValueError, TypeError):
+        return None
+    if walk[0] != game.start or (complete and not game.is_goal(walk[-1])):
+        return None
+    if any(w is None for w in along(walk)):
+        return None
     return tuple(walk)

@@ -19,7 +19,8 @@ from fractions import Fraction
 
 from dppverify.certificate import CheckRecord, Status
 from dppverify.checks.skipped import NOT_WELLFORMED
-from dppverify.defender import sigma_along, step_weight
+from dppverify.defender import sigma_along, step_weight, step_weights
+from dppverify.distances import ArcRows
 from dppverify.evaluation import Values, evaluate, walk_cost
 from dppverify.exact import Number
 from dppverify.instance import Instance, Roles
@@ -202,26 +203,69 @@ def _sigma_on_trie(instance: Instance, roles: Roles, rule: DefenderRule,
 
 def _defender_payoffs(instance: Instance, roles: Roles, trie: Trie,
                       sigma: dict[tuple[int, ...], Number]) -> tuple[Number, Number]:
-    """``max_σ U(σ, γ)`` (greedy per prefix) and ``U`` at the profile's σ, on the trie."""
+    """``max_σ U(σ, γ)`` (greedy per prefix) and ``U`` at the profile's σ, on the trie.
+
+    Exact mode sums ``w`` and ``w σ`` per realization-mass pair (the prefixes of one walk
+    share few of them) and multiplies by the masses once per pair: ``Σ_p w_p max(y1, y2)``
+    and ``Σ_p w_p (σ_p y1 + (1 - σ_p) y2)`` regrouped, the same rationals exactly.
+    """
     best: Number = 0
     at_sigma: Number = 0
     mode = instance.numbers
-    for p, (x1, x2) in trie.mass.items():
+    steps = [p for p in trie.mass if len(p) > 1]
+    weights = _last_step_weights(instance, steps)
+    if mode.exact:
+        groups: dict[tuple[int, int, int, int], list[Number]] = {}
+        masses = {}
+        for p, w in zip(steps, weights, strict=True):
+            mass = trie.mass[p]
+            key = _mass_key(mass)
+            acc = groups.get(key)
+            if acc is None:
+                acc = groups[key] = [0, 0]
+                masses[key] = mass
+            acc[0] += w
+            acc[1] += w * sigma[p]
+        for key, (w_sum, ws_sum) in groups.items():
+            x1, x2 = masses[key]
+            y1, y2 = roles.b1 * x1, roles.b2 * x2
+            best += w_sum * max(y1, y2)
+            at_sigma += ws_sum * y1 + (w_sum - ws_sum) * y2
+    weight_of = dict(zip(steps, weights, strict=True))
+    for p, (x1, x2) in trie.mass.items():  # float mode: the order of the sums as before
+        if not ((len(p) > 1 and not mode.exact) or instance.is_goal(p[-1])):
+            continue
         y1, y2 = roles.b1 * x1, roles.b2 * x2
-        if len(p) > 1:
-            w = step_weight(instance, p, len(p) - 1)
+        if len(p) > 1 and not mode.exact:
+            w = weight_of[p]
             s = sigma[p]
-            if mode.exact:
-                best += w * max(y1, y2)
-                at_sigma += w * (s * y1 + (1 - s) * y2)
-            else:
-                best += float(w) * float(max(y1, y2))
-                at_sigma += float(w) * (float(s) * float(y1) + (1 - float(s)) * float(y2))
+            best += float(w) * float(max(y1, y2))
+            at_sigma += float(w) * (float(s) * float(y1) + (1 - float(s)) * float(y2))
         if instance.is_goal(p[-1]):
             term = y1 * roles.d1[p[-1]] + y2 * roles.d2[p[-1]]
             best += mode.convert(term)
             at_sigma += mode.convert(term)
     return mode.convert(best), mode.convert(at_sigma)
+
+
+def _mass_key(mass: tuple[Fraction, Fraction]) -> tuple[int, int, int, int]:
+    """A realization-mass pair as integers (hashed far faster than two Fractions)."""
+    x1, x2 = mass
+    return (x1.numerator, x1.denominator, x2.numerator, x2.denominator)
+
+
+def _last_step_weights(instance: Instance, prefixes: list[tuple[int, ...]]) -> list[Number]:
+    """The weight of the last step of each prefix (two nodes or more), one pass."""
+    tails = [p[-2] for p in prefixes]
+    heads = [p[-1] for p in prefixes]
+    if isinstance(instance.succ, ArcRows):
+        found = instance.succ.find_many(tails, heads)
+    else:
+        found = [instance.weight(u, v) for u, v in zip(tails, heads, strict=True)]
+    out: list[Number] = []
+    for p, w in zip(prefixes, found, strict=True):
+        out.append(step_weight(instance, p, len(p) - 1) if w is None else w)  # raises
+    return out
 
 
 def _values(profile: Profile, v: Values, u_trie: Number, mode: NumberMode) -> list[CheckRecord]:
@@ -312,21 +356,33 @@ def _defender(v: Values, best: Number, mode: NumberMode) -> CheckRecord:
 
 def _beliefs(roles: Roles, trie: Trie) -> dict[tuple[int, ...], Fraction]:
     out = {}
-    for p, (x1, x2) in trie.mass.items():
-        y1, y2 = roles.b1 * x1, roles.b2 * x2
-        if y1 + y2 > 0:
-            out[p] = y1 / (y1 + y2)
+    by_mass: dict[tuple[int, int, int, int], Fraction | None] = {}  # once per mass pair
+    for p, mass in trie.mass.items():
+        key = _mass_key(mass)
+        if key in by_mass:
+            b = by_mass[key]
+        else:
+            x1, x2 = mass
+            y1, y2 = roles.b1 * x1, roles.b2 * x2
+            b = by_mass[key] = y1 / (y1 + y2) if y1 + y2 > 0 else None
+        if b is not None:
+            out[p] = b
     return out
 
 
 def _sequential(instance: Instance, trie: Trie, sigma: dict[tuple[int, ...], Number],
                 beliefs: dict[tuple[int, ...], Fraction], mode: NumberMode) -> CheckRecord:
     bad = []
+    side: dict[tuple[int, int], int] = {}  # the sign of b - 1/2, once per belief value
     for p, b in beliefs.items():
         if len(p) < 2:
             continue
         s = sigma[p]
-        if (b > HALF and not mode.equal(s, 1)) or (b < HALF and not mode.equal(s, 0)):
+        key = (b.numerator, b.denominator)
+        c = side.get(key)
+        if c is None:
+            c = side[key] = (b > HALF) - (b < HALF)
+        if (c > 0 and not mode.equal(s, 1)) or (c < 0 and not mode.equal(s, 0)):
             bad.append((p, b, s))
     numbers: dict[str, Number | None] = {"reached": len(beliefs) - 1, "violations": len(bad)}
     if bad:
@@ -346,17 +402,21 @@ def _belief_consistency(instance: Instance, profile: Profile, roles: Roles, trie
         c1, c2 = profile.claimed_prior
         problems.append(f"the profile states the prior ({show(c1)}, {show(c2)}) but the "
                         f"instance's is ({show(roles.b1)}, {show(roles.b2)})")
+    steps: dict[tuple[int, ...], Fraction] = {}
     for p, b in beliefs.items():
         if len(p) < 2:
             if b != roles.b1:
                 problems.append(f"root belief {show(b)} is not the prior")
             continue
         q = p[:-1]
-        (a1, a2), (c1, c2) = trie.mass[q], trie.mass[p]
-        prev = beliefs[q]
-        l1 = c1 / a1 if a1 else Fraction(0)  # P(step | type), eq. (2)
-        l2 = c2 / a2 if a2 else Fraction(0)
-        bayes = prev * l1 / (prev * l1 + (1 - prev) * l2)
+        mq, mp, prev = trie.mass[q], trie.mass[p], beliefs[q]
+        key = (prev.numerator, prev.denominator, *_mass_key(mq), *_mass_key(mp))
+        bayes = steps.get(key)  # Bayes' step: once per (belief, masses) triple
+        if bayes is None:
+            (a1, a2), (c1, c2) = mq, mp
+            l1 = c1 / a1 if a1 else Fraction(0)  # P(step | type), eq. (2)
+            l2 = c2 / a2 if a2 else Fraction(0)
+            bayes = steps[key] = prev * l1 / (prev * l1 + (1 - prev) * l2)
         if bayes != b:
             problems.append(f"after {show_walk(instance, p)}: Bayes' rule gives {show(bayes)}, "
                             f"the closed form {show(b)}")
@@ -391,9 +451,17 @@ def _telescoping(instance: Instance, roles: Roles, trie: Trie, mode: NumberMode)
             continue
         sig = sigma_along(instance, roles, ProgressRule(roles.g1), p)
         total: Number = 0
-        c = c_of[p[0]]
-        for t, s in enumerate(sig, start=1):
-            total += step_weight(instance, p, t) * s
+        c0 = c = c_of[p[0]]
+        steps = zip(step_weights(instance, p), sig, strict=True)
+        if mode.exact:  # EXACT's at_most / equal are <= / ==: the comparisons inline
+            for t, (w, s) in enumerate(steps, start=1):
+                total += w * s
+                c = min(c, c_of[p[t]])
+                done.add(p[:t + 1])
+                bad += (not 0 <= s <= 1) + (total != c0 - c)
+            continue
+        for t, (w, s) in enumerate(steps, start=1):
+            total += w * s
             c = min(c, c_of[p[t]])
             done.add(p[:t + 1])
             if not (mode.at_most(0, s) and mode.at_most(s, 1)):

@@ -183,7 +183,8 @@ def goal_terminal_arcs(instance: Instance, *, extra: tuple[Number, ...] = ()) ->
         return Arcs(tails=tails, starts=starts, heads=heads,
                     weights=np.asarray([float(w) for w in arrays.values],
                                        dtype=np.float64)[codes], scale=1)
-    used = np.unique(codes).tolist()  # the weights of these arcs only, as a loop over them
+    # the weights of these arcs only, as a loop over them (np.unique's sorted codes)
+    used = np.flatnonzero(np.bincount(codes, minlength=len(arrays.values))).tolist()
     values = [arrays.values[c] for c in used]
     scale = common_denominator([*values, *extra])
     scaled = [int(w * scale) for w in values]
@@ -247,7 +248,8 @@ def fixpoint_fields(instance: Instance, roles: Roles | None = None, *,
     return cache[key]
 
 
-def _fixpoint(inst: Instance, r: Roles, given: Arcs | None) -> Fixpoint | None:
+def _fixpoint(inst: Instance, r: Roles, given: Arcs | None, *,
+              prune: bool = True) -> Fixpoint | None:
     if not inst.exact:
         return None
     n = inst.n_nodes
@@ -273,11 +275,27 @@ def _fixpoint(inst: Instance, r: Roles, given: Arcs | None) -> Fixpoint | None:
     g1, g2 = r.g1, r.g2
     big = np.iinfo(np.int64).max
 
+    # seed pruning is exact while a seed plus one arc stays below 2**53 in the encoding
+    can_prune = prune and arcs.heads.size > 0 and (vmax + wmax + 1) * base + 1 < 2**53
+    fwd_w = arcs.weights.astype(np.float64) * base + 1.0
+
     def run(src: np.ndarray, cost: np.ndarray, hops: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         # the reversed goal-terminal arcs, plus a last row: a source node n with an arc to
         # every seed (weight + 1, so that no arc weighs 0)
+        seed_w = cost.astype(np.float64) * base + hops + 1.0
+        if can_prune and src.size > 2:
+            # a seed u with an arc u -> x such that seed(x) + arc <= seed(u) is never needed:
+            # every walk from it is matched by x's seed and that arc (encoded, so also in
+            # steps); the distances are the same, the heap starts far smaller
+            full = np.full(n, np.inf)
+            full[src] = seed_w
+            best = np.minimum.reduceat(full[arcs.heads] + fwd_w, arcs.starts)
+            dominated = np.zeros(n, dtype=bool)
+            dominated[arcs.tails] = best <= full[arcs.tails]
+            keep = ~dominated[src]
+            src, seed_w = src[keep], seed_w[keep]
         indptr[n + 1] = indptr[n] + src.size
-        w = np.concatenate([arc_w, cost.astype(np.float64) * base + hops + 1.0])
+        w = np.concatenate([arc_w, seed_w])
         mat = csr_matrix((w, np.concatenate([cols, src]), indptr), shape=(n + 1, n + 1))
         dist = dijkstra(mat, directed=True, indices=n)[:n]
         finite = np.isfinite(dist)
