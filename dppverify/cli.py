@@ -22,6 +22,7 @@ from dppverify.cli_conventions import output_file_option, progress_option, statu
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
 from dppverify.errors import CheckerError, OptionError
 from dppverify.exact import format_number
+from dppverify.files import refuse_input_as_output
 from dppverify.instance import Instance, load_instance
 from dppverify.limits import MAX_HORIZON, MAX_TRIALS
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
@@ -469,6 +470,7 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
     """
     goals = ""
     try:
+        refuse_input_as_output(output, [instance, grid.path if grid is not None else None])
         game: GameInstance
         if instance is not None and grid is None and is_ngoal_file(instance):  # N > 2 goals
             game = load_ninstance(instance)

@@ -27,7 +27,7 @@ from solver.equilibrium import solve
 from solver.errors import DPPError, InvalidInstanceError, OutputError
 from solver.instance import Instance
 from solver.instance_json import instance_to_json, load_instance
-from solver.io_utils import dumps, write_atomic, write_files
+from solver.io_utils import dumps, open_input, refuse_input_as_output, write_atomic, write_files
 from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE, MAX_INPUT_BYTES
 from solver.movingai import read_map
 from solver.profile_json import equilibrium_to_json
@@ -70,6 +70,9 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     if output is not None and save_instance is not None and \
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
+    inputs = [instance, grid.path if grid is not None else None]
+    refuse_input_as_output(output, inputs, option="-o")
+    refuse_input_as_output(save_instance, inputs, option="--save-instance")
     inst = _load(instance, grid)
     eq = solve(inst)
     doc = equilibrium_to_json(eq)
@@ -285,7 +288,7 @@ def plot_voi_command(csv_file: str, output: str) -> None:
     from solver.plots import plot_voi, save_figure
 
     try:
-        with open(csv_file, "rb") as fh:
+        with open_input(csv_file) as fh:
             raw = fh.read(MAX_INPUT_BYTES + 1)
         if len(raw) > MAX_INPUT_BYTES:
             raise ValueError(f"larger than the limit of {MAX_INPUT_BYTES} bytes")

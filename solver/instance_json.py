@@ -13,6 +13,7 @@ import numpy as np
 
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.instance import Instance
+from solver.io_utils import open_input
 from solver.limits import MAX_INPUT_BYTES, MAX_JSON_DEPTH, check_numeral
 from solver.network import GridLabels
 from solver.numbers import format_number, parse_number
@@ -62,7 +63,7 @@ def read_json(path: str | Path) -> Any:
     """
     p = Path(path)
     try:
-        with open(p, "rb") as fh:
+        with open_input(p) as fh:
             raw = fh.read(MAX_INPUT_BYTES + 1)
     except OSError as exc:
         raise InstanceFormatError(f"{p}: cannot read file ({exc.strerror})") from None

@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from solver.errors import InstanceFormatError
+from solver.io_utils import open_input
 from solver.limits import MAX_INPUT_BYTES
 
 __all__ = ["DEFAULT_BLOCKED", "parse_map", "read_map"]
@@ -59,7 +60,7 @@ def read_map(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED
     """
     p = Path(path)
     try:
-        with open(p, "rb") as fh:
+        with open_input(p) as fh:
             raw = fh.read(MAX_INPUT_BYTES + 1)
         if len(raw) > MAX_INPUT_BYTES:
             raise ValueError(f"larger than the limit of {MAX_INPUT_BYTES} bytes")
