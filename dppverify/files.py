@@ -36,7 +36,8 @@ from typing import Any, BinaryIO
 from dppverify.errors import CheckerError
 from dppverify.limits import MAX_INPUT_BYTES
 
-__all__ = ["OutputError", "file_mode", "open_input", "read_input", "refuse_input_as_output", "write_files"]
+__all__ = ["OutputError", "file_mode", "open_input", "read_input", "refuse_input_as_output",
+           "write_files"]
 
 
 class OutputError(CheckerError, OSError):
@@ -195,7 +196,7 @@ def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Pat
     ...     refuse_input_as_output(Path(d) / "y.json", [p])
     ...     refuse_input_as_output(Path(d) / "." / "x.json", [p])
     Traceback (most recent call last):
-    dppverify.files.OutputError: ...x.json is an input of this command; refusing to overwrite it (give another path)
+    dppverify.files.OutputError: ...x.json is an input of this command; refusing to overwrite it ...
     """
     if output is None or str(output) == "":
         return

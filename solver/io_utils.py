@@ -179,7 +179,7 @@ def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Pat
     ...     refuse_input_as_output(Path(d) / "y.json", [p])
     ...     refuse_input_as_output(Path(d) / "." / "x.json", [p])
     Traceback (most recent call last):
-    solver.errors.OutputError: ...x.json is an input of this command; refusing to overwrite it (give another path)
+    solver.errors.OutputError: ...x.json is an input of this command; refusing to overwrite it ...
     """
     if output is None or str(output) == "":
         return
