@@ -24,6 +24,8 @@ from dppverify.errors import CheckerError, OptionError
 from dppverify.exact import format_number
 from dppverify.files import refuse_input_as_output
 from dppverify.instance import Instance, load_instance
+from dppverify.interrupts import Terminated, exit_code, signals_as_exceptions
+from dppverify.interrupts import message as interrupt_message
 from dppverify.limits import MAX_HORIZON, MAX_TRIALS
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
@@ -58,6 +60,16 @@ class ErrorReportingGroup(click.Group):
 
     user_errors: tuple[type[Exception], ...] = (CheckerError,)
 
+    def main(self, *args: Any, **kwargs: Any) -> Any:
+        """Run the command with SIGINT/SIGTERM/SIGHUP as exceptions (dppverify.interrupts):
+        a signal ends it after cleaning up, with one line and exit code 128 + n."""
+        with signals_as_exceptions():
+            try:
+                return super().main(*args, **kwargs)
+            except Terminated as exc:  # a signal outside invoke (e.g. while parsing)
+                click.echo(interrupt_message(exc), err=True)
+                raise SystemExit(exit_code(exc)) from None
+
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
         try:
             return super().parse_args(ctx, args)
@@ -75,6 +87,9 @@ class ErrorReportingGroup(click.Group):
         except click.UsageError as exc:  # click's three-line usage message, as one line
             _usage_error(exc)
             ctx.exit(2)
+        except (KeyboardInterrupt, Terminated) as exc:  # one line, 130 / 143, cleaned up
+            click.echo(interrupt_message(exc), err=True)
+            ctx.exit(exit_code(exc))
         except (click.exceptions.Exit, click.ClickException, click.Abort):
             raise
         except Exception as exc:

@@ -1,0 +1,114 @@
+"""Signals of the ``dpp`` commands: SIGINT, SIGTERM and SIGHUP end a command cleanly.
+
+While a command runs (:func:`signals_as_exceptions`), SIGTERM and SIGHUP raise
+:class:`Terminated` and SIGINT raises ``KeyboardInterrupt`` in the main thread, so every
+``finally`` and ``with`` block on the way out runs: temporary files are removed, no partial
+output file is left (``dppverify.files.write_files`` cleans up on any exception), child
+processes and their process groups are killed. The command group then prints one line and
+exits with the shell's convention, ``128 + signal number`` (130 for SIGINT, 143 for SIGTERM,
+129 for SIGHUP; :func:`exit_code`). A second signal during that cleanup is ignored, so the
+cleanup itself is not cut short.
+
+Examples
+--------
+>>> exit_code(KeyboardInterrupt()), exit_code(Terminated(signal.SIGTERM))
+(130, 143)
+>>> message(Terminated(signal.SIGTERM))
+'error: terminated by SIGTERM; temporary files and child processes were cleaned up'
+"""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+import threading
+from collections.abc import Iterator
+from types import FrameType
+
+__all__ = ["Terminated", "exit_code", "message", "signals_as_exceptions"]
+
+HANDLED = (signal.SIGTERM, signal.SIGHUP)
+"""Signals turned into :class:`Terminated` (SIGINT is Python's ``KeyboardInterrupt``)."""
+
+
+class Terminated(BaseException):
+    """The process received SIGTERM or SIGHUP (a ``BaseException``, like
+    ``KeyboardInterrupt``: no ``except Exception`` swallows it).
+
+    Attributes
+    ----------
+    signum : int
+        The signal number.
+    """
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signal.Signals(signum).name)
+        self.signum = int(signum)
+
+
+def exit_code(exc: BaseException) -> int:
+    """``128 + n`` for the signal ``exc`` stands for (130 for ``KeyboardInterrupt``).
+
+    Examples
+    --------
+    >>> exit_code(Terminated(signal.SIGHUP))
+    129
+    """
+    if isinstance(exc, Terminated):
+        return 128 + exc.signum
+    return 128 + int(signal.SIGINT)
+
+
+def message(exc: BaseException) -> str:
+    """The one line a command prints when a signal ends it.
+
+    Examples
+    --------
+    >>> message(KeyboardInterrupt())
+    'error: interrupted by SIGINT; temporary files and child processes were cleaned up'
+    """
+    if isinstance(exc, Terminated):
+        what = f"terminated by {signal.Signals(exc.signum).name}"
+    else:
+        what = "interrupted by SIGINT"
+    return f"error: {what}; temporary files and child processes were cleaned up"
+
+
+@contextlib.contextmanager
+def signals_as_exceptions() -> Iterator[None]:
+    """Within the block, SIGTERM/SIGHUP raise :class:`Terminated` and SIGINT raises
+    ``KeyboardInterrupt``; once one has been raised, further signals are ignored until the
+    block ends. Outside the main thread it does nothing (Python delivers signals there only).
+
+    Examples
+    --------
+    >>> import os
+    >>> try:
+    ...     with signals_as_exceptions():
+    ...         os.kill(os.getpid(), signal.SIGTERM)
+    ... except Terminated as exc:
+    ...     print(exit_code(exc))
+    143
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    fired = [False]
+
+    def handler(signum: int, frame: FrameType | None) -> None:
+        if fired[0]:
+            return  # cleaning up after the first signal: do not cut the cleanup short
+        fired[0] = True
+        if signum == signal.SIGINT:
+            raise KeyboardInterrupt
+        raise Terminated(signum)
+
+    previous = {s: signal.getsignal(s) for s in (*HANDLED, signal.SIGINT)}
+    previous = {s: h for s, h in previous.items() if h is not signal.SIG_IGN}  # nohup stays
+    for s in previous:
+        signal.signal(s, handler)
+    try:
+        yield
+    finally:
+        for s, h in previous.items():
+            signal.signal(s, h if h is not None else signal.SIG_DFL)
