@@ -20,7 +20,7 @@ from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli_conventions import output_file_option, progress_option, status, want_progress
 from dppverify.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
-from dppverify.errors import CheckerError, OptionError
+from dppverify.errors import CheckerError, LPError, OptionError
 from dppverify.exact import format_number
 from dppverify.files import refuse_input_as_output
 from dppverify.instance import Instance, load_instance
@@ -82,8 +82,8 @@ class ErrorReportingGroup(click.Group):
         try:
             return super().invoke(ctx)
         except self.user_errors as exc:
-            click.echo(f"error: {' '.join(str(exc).split())}", err=True)
-            ctx.exit(2)
+            click.echo(error_line(exc), err=True)
+            ctx.exit(error_code(exc))
         except click.UsageError as exc:  # click's three-line usage message, as one line
             _usage_error(exc)
             ctx.exit(2)
@@ -107,9 +107,37 @@ def _usage_error(exc: click.UsageError) -> None:
     click.echo(f"error: {message} (see '{where} --help')", err=True)
 
 
+def error_code(exc: Exception) -> int:
+    """The exit code of an error: 3 ("could not decide") when a numerical solver failed on
+    input that passed every check (:class:`~dppverify.errors.LPError`), else 2 (bad input).
+
+    Examples
+    --------
+    >>> error_code(LPError("x")), error_code(OptionError("y"))
+    (3, 2)
+    """
+    return 3 if isinstance(exc, LPError) else 2
+
+
+def error_line(exc: Exception) -> str:
+    """The one line printed for an error (:func:`error_code` tells its exit code).
+
+    Examples
+    --------
+    >>> error_line(LPError("value LP: CLARABEL returned status 'infeasible'"))
+    "error: could not decide: value LP: CLARABEL returned status 'infeasible' (a numerical \
+failure of the checker on a valid input, not an error in it)"
+    """
+    text = " ".join(str(exc).split())
+    if isinstance(exc, LPError):
+        return (f"error: could not decide: {text} (a numerical failure of the checker on a "
+                "valid input, not an error in it)")
+    return f"error: {text}"
+
+
 def _fail(exc: CheckerError) -> None:
-    click.echo(f"error: {exc}", err=True)
-    raise click.exceptions.Exit(2)
+    click.echo(error_line(exc), err=True)
+    raise click.exceptions.Exit(error_code(exc))
 
 
 def _numbers(rec: CheckRecord) -> str:

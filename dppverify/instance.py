@@ -40,6 +40,7 @@ from dppverify.json_reading import (
     read_json_file,
     show_node,
 )
+from dppverify.limits import check_float_weights
 from dppverify.numbers import NumberMode, number_mode
 
 __all__ = ["GameInstance", "Instance", "Node", "Roles", "arc_arrays", "as_instance",
@@ -396,6 +397,11 @@ def _read_game(doc: Any, cls: type[G], two_goals: bool, *, fast: bool = True) ->
     else:
         ids, index, directed, succ = _graph(doc["graph"], exact)
         succ_t = tuple(tuple(sorted(s.items())) for s in succ)
+    if not exact:  # float mode: the weight-ratio limit (dppverify.limits), before any search
+        try:
+            check_float_weights([w for s in succ_t for _, w in s])
+        except ValueError as exc:
+            raise InvalidInstanceError(str(exc)) from None
     start = _node(doc["start"], index, "start")
     goals = _goals(doc["goals"], index, ids, two_goals)
     prior = _prior(doc["prior"], len(goals), two_goals)
