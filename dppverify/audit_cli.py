@@ -25,7 +25,7 @@ from dppverify.audit import (
 )
 from dppverify.cli_conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.errors import AuditError, CheckerError
-from dppverify.limits import MAX_AUDIT_EXAMPLES
+from dppverify.limits import MAX_AUDIT_EXAMPLES, MAX_PREFIXES_LIMIT
 
 __all__ = ["audit_command", "format_report"]
 
@@ -55,7 +55,7 @@ __all__ = ["audit_command", "format_report"]
 @click.option("--timeout", type=click.FloatRange(min=0, min_open=True, max=86400),
               default=DEFAULT_TIMEOUT, show_default=True,
               help="Seconds per solver run (--solver and --solver-cmd alike).")
-@click.option("--max-prefixes", type=click.IntRange(min=1, max=10**8),
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
               default=AUDIT_MAX_PREFIXES, show_default=True,
               help="Skip examples whose walk tree is larger than this.")
 @progress_option

@@ -26,7 +26,7 @@ from dppverify.files import refuse_input_as_output
 from dppverify.instance import Instance, load_instance
 from dppverify.interrupts import Terminated, exit_code, signals_as_exceptions
 from dppverify.interrupts import message as interrupt_message
-from dppverify.limits import MAX_HORIZON, MAX_TRIALS
+from dppverify.limits import MAX_HORIZON, MAX_PREFIXES_LIMIT, MAX_TRIALS
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.ngoal.certify import certify_ngoal
@@ -103,6 +103,9 @@ class ErrorReportingGroup(click.Group):
 def _usage_error(exc: click.UsageError) -> None:
     """One line for a click usage error: the message and where to find help."""
     where = exc.ctx.command_path if exc.ctx is not None else "dpp"
+    if isinstance(exc, click.exceptions.NoArgsIsHelpError):  # `dpp plot`: no help dump
+        click.echo(f"error: missing command (see '{where} --help')", err=True)
+        return
     message = " ".join(exc.format_message().split())
     click.echo(f"error: {message} (see '{where} --help')", err=True)
 
@@ -274,7 +277,8 @@ def load_game(instance: str | None, grid: MapRequest | None) -> Instance:
                    "(docs/checker.md); auto: the tree when it fits --max-prefixes, else "
                    "structured; both: run both, a disagreement is an error record.")
 @click.option("--json", "as_json", is_flag=True, help="Print the dpp-certificate/1 JSON.")
-@click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
+              default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
 @click.option("--float", "float_mode", is_flag=True,
               help="Accept float-mode instances (\"numbers\": \"float\") and compare within a "
@@ -434,7 +438,8 @@ def _ngoal_value(instance: str, horizon: int | None, as_json: bool, route: Route
               help="tree: the walk tree's LP; structured: the tree-free DP (docs/checker.md); "
                    "auto: the tree when it fits --max-prefixes, else structured; both: run "
                    "both, a disagreement is an error (exit 1).")
-@click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
+              default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
 @progress_option
 def value_command(instance: str | None, grid: MapRequest | None, horizon: int | None,
@@ -489,7 +494,8 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
 @click.option("--forced-moves", is_flag=True,
               help="Also write the Attacker's one-action decision nodes (skipped by default: "
                    "Gambit 17.0.0b2's lp_solve mis-solves one-action information sets).")
-@click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
+              default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
 @click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
               show_default=True, help="Refuse games with more nodes than this.")

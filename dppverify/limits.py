@@ -132,7 +132,8 @@ def check_rational(x: object, *, where: str) -> None:
                          f"10**{MAX_NUMBER_DIGITS}")
 
 
-def check_float_weights(weights: Iterable[float], *, where: str = "graph.edges") -> None:
+def check_float_weights(weights: Iterable[float | Fraction | int], *,
+                        where: str = "graph.edges") -> None:
     """Refuse float-mode weights whose ratio largest / smallest is beyond
     :data:`MAX_FLOAT_WEIGHT_RATIO`.
 

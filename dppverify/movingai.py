@@ -26,6 +26,7 @@ from typing import Any
 
 from dppverify.errors import InvalidInstanceError
 from dppverify.instance import Instance, instance_from_json
+from dppverify.limits import MAX_MAP_CELLS
 
 __all__ = ["BLOCKED", "PASSABLE", "GridMap", "grid_document", "map_instance", "parse_map",
            "read_map"]
@@ -163,6 +164,9 @@ def parse_map(text: str) -> GridMap:
         raise InvalidInstanceError(f"line 1: expected 'type octile', got {lines[0][:40]!r}")
     height = _header_int(lines[1], "height", 2)
     width = _header_int(lines[2], "width", 3)
+    if height * width > MAX_MAP_CELLS:  # refused before the rows are read
+        raise InvalidInstanceError(f"a {height}x{width} map has {height * width} cells, beyond "
+                                   f"the limit of {MAX_MAP_CELLS} (the memory budget)")
     if lines[3] != "map":
         raise InvalidInstanceError(f"line 4: expected 'map', got {lines[3][:40]!r}")
     body = lines[4:]

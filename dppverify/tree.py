@@ -192,8 +192,8 @@ def count_prefixes(instance: GameInstance, horizon: int, *, limit: int | None = 
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
     inst = instance
     n = inst.n_nodes
-    exact = limit is None or limit + 1 >= 2**40  # saturated int64 sums could overflow
-    cap = None if exact else limit + 1
+    cap = limit + 1 if limit is not None and limit + 1 < 2**40 else None
+    exact = cap is None  # no limit, or saturated int64 sums could overflow: Python ints
     goal = np.zeros(n, dtype=bool)
     goal[list(inst.goals)] = True
     hops = np.asarray(inst.hops, dtype=np.int64)
@@ -228,7 +228,7 @@ def count_prefixes(instance: GameInstance, horizon: int, *, limit: int | None = 
                     sums[j] += c
             else:
                 np.add.at(sums, owner, cnt[heads[arcs]])
-            cnt[active] = sums + 1 if exact else np.minimum(sums + 1, cap)
+            cnt[active] = sums + 1 if cap is None else np.minimum(sums + 1, cap)
         if cap is not None and cnt[inst.start] >= cap:
             break  # the count never decreases with more steps left
     return int(cnt[inst.start])
@@ -337,8 +337,8 @@ def build_prefix_tree(instance: GameInstance, horizon: int, cls: type[T], *,
     if size > max_prefixes:
         raise TreeTooLargeError(
             f"the walk tree for horizon H = {horizon} has at least {size} prefixes, more than "
-            f"the limit "
-            f"of {max_prefixes}; lower the horizon or raise the limit (--max-prefixes)")
+            f"the limit of {max_prefixes} (--max-prefixes); use --route structured, or lower "
+            "the horizon")
     inst = instance
     goal = [inst.is_goal(v) for v in range(inst.n_nodes)]
     hops = inst.hops

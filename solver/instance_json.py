@@ -13,8 +13,7 @@ import numpy as np
 
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.instance import Instance
-from solver.io_utils import open_input
-from solver.limits import MAX_INPUT_BYTES, MAX_JSON_DEPTH, check_numeral
+from solver.limits import MAX_INPUT_BYTES, MAX_JSON_DEPTH, check_numeral, open_input
 from solver.network import GridLabels
 from solver.numbers import format_number, parse_number
 

@@ -11,9 +11,10 @@ import stat
 import tempfile
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, BinaryIO
+from typing import Any
 
 from solver.errors import OutputError
+from solver.limits import open_input
 
 __all__ = ["dumps", "open_input", "refuse_input_as_output", "write_atomic", "write_files"]
 
@@ -42,27 +43,6 @@ def dumps(doc: Any) -> str:
     }
     """
     return json.dumps(doc, indent=2) + "\n"
-
-
-def open_input(path: str | Path) -> BinaryIO:
-    """Open an input file for reading; a FIFO that nobody writes reads as empty instead of
-    blocking (opened non-blocking, then switched back to blocking reads).
-
-    Examples
-    --------
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     os.mkfifo(Path(d) / "fifo")
-    ...     with open_input(Path(d) / "fifo") as fh:
-    ...         fh.read()
-    b''
-    """
-    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
-    try:
-        os.set_blocking(fd, True)
-        return os.fdopen(fd, "rb")
-    except BaseException:
-        os.close(fd)
-        raise
 
 
 def write_atomic(path: str | Path, text: str) -> None:

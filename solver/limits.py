@@ -13,9 +13,12 @@ solver.errors.InvalidInstanceError: weight: the exponent of '1e999999999' is bey
 
 from __future__ import annotations
 
+import os
 import re
 from collections.abc import Iterable
 from fractions import Fraction
+from pathlib import Path
+from typing import BinaryIO
 
 from solver.errors import InvalidInstanceError
 
@@ -33,6 +36,7 @@ __all__ = [
     "check_float_weights",
     "check_numeral",
     "check_rational",
+    "open_input",
 ]
 
 MAX_INPUT_BYTES = 64 * 1024 * 1024
@@ -110,7 +114,8 @@ def check_rational(x: object, *, where: str) -> None:
                                    f"limit of 10**{MAX_NUMBER_DIGITS}")
 
 
-def check_float_weights(weights: Iterable[float], *, where: str = "graph.edges") -> None:
+def check_float_weights(weights: Iterable[float | Fraction | int], *,
+                        where: str = "graph.edges") -> None:
     """Refuse float-mode weights whose ratio largest / smallest is beyond
     :data:`MAX_FLOAT_WEIGHT_RATIO`.
 
@@ -138,3 +143,25 @@ def check_float_weights(weights: Iterable[float], *, where: str = "graph.edges")
         raise InvalidInstanceError(f"{where}: float weights span a ratio of {hi / lo:.0e} "
                                    f"({lo:.0e} to {hi:.0e}), beyond the float-mode limit of "
                                    "10**6; give exact weights")
+
+
+def open_input(path: str | Path) -> BinaryIO:
+    """Open an input file for reading; a FIFO that nobody writes reads as empty instead of
+    blocking (opened non-blocking, then switched back to blocking reads).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     os.mkfifo(Path(d) / "fifo")
+    ...     with open_input(Path(d) / "fifo") as fh:
+    ...         fh.read()
+    b''
+    """
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
+    try:
+        os.set_blocking(fd, True)
+        return os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
