@@ -7,8 +7,11 @@ Exit codes: 0 every example was certified; 1 a failing example was found (writte
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
+import tempfile
+from collections.abc import Iterator
 
 import click
 
@@ -76,7 +79,7 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
       dpp audit --solver-cmd 'python examples/solver_cmd.py {instance} {profile}'
     """
     try:
-        with _make_runner(solver_spec, solver_cmd, timeout) as runner:
+        with _private_hypothesis_home(), _make_runner(solver_spec, solver_cmd, timeout) as runner:
             report = run_audit(runner, examples=examples, seed=seed, max_nodes=max_nodes,
                                out=output_dir, shrink=shrink, max_prefixes=max_prefixes,
                                shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
@@ -88,6 +91,21 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
     if report.files:
         status("wrote " + ", ".join(str(p) for p in report.files))
     raise click.exceptions.Exit(0 if report.passed else 1)
+
+
+@contextlib.contextmanager
+def _private_hypothesis_home() -> Iterator[None]:
+    """Hypothesis' storage in a temporary folder, removed afterwards: the audit never writes
+    ``.hypothesis/`` into the user's working directory."""
+    from hypothesis.configuration import set_hypothesis_home_dir
+
+    with tempfile.TemporaryDirectory(prefix="dpp-audit-hypothesis-",
+                                     ignore_cleanup_errors=True) as home:
+        set_hypothesis_home_dir(home)
+        try:
+            yield
+        finally:
+            set_hypothesis_home_dir(None)
 
 
 def _make_runner(spec: str | None, cmd: str | None, timeout: float) -> SolverRunner:
