@@ -12,6 +12,7 @@ import os
 import sys
 import tempfile
 from collections.abc import Iterator
+from typing import Any
 
 import click
 
@@ -31,6 +32,17 @@ from dppverify.errors import AuditError, CheckerError
 from dppverify.limits import MAX_AUDIT_EXAMPLES, MAX_PREFIXES_LIMIT
 
 __all__ = ["audit_command", "format_report"]
+
+
+class _Seconds(click.FloatRange):
+    """A float range that also refuses ``nan`` (which compares false with both bounds)."""
+
+    def convert(self, value: Any, param: click.Parameter | None,
+                ctx: click.Context | None) -> Any:
+        x = super().convert(value, param, ctx)
+        if x != x:
+            self.fail(f"{value!r} is not a number", param, ctx)
+        return x
 
 
 @click.command("audit")
@@ -53,9 +65,9 @@ __all__ = ["audit_command", "format_report"]
               help="Shrink the first failing instance.")
 @click.option("--shrink-calls", type=click.IntRange(min=0), default=DEFAULT_SHRINK_CALLS,
               show_default=True, help="Shrinking budget: at most this many solver calls.")
-@click.option("--shrink-seconds", type=click.FloatRange(min=0), default=DEFAULT_SHRINK_SECONDS,
+@click.option("--shrink-seconds", type=_Seconds(min=0, max=86400), default=DEFAULT_SHRINK_SECONDS,
               show_default=True, help="Shrinking budget: at most this many seconds.")
-@click.option("--timeout", type=click.FloatRange(min=0, min_open=True, max=86400),
+@click.option("--timeout", type=_Seconds(min=0, min_open=True, max=86400),
               default=DEFAULT_TIMEOUT, show_default=True,
               help="Seconds per solver run (--solver and --solver-cmd alike).")
 @click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),

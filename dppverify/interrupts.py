@@ -19,11 +19,13 @@ Examples
 
 from __future__ import annotations
 
+import _thread
 import contextlib
 import signal
 import threading
 from collections.abc import Iterator
 from types import FrameType
+from typing import Any
 
 __all__ = ["Terminated", "exit_code", "message", "signals_as_exceptions"]
 
@@ -93,12 +95,24 @@ def signals_as_exceptions() -> Iterator[None]:
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    fired = [False]
+    state: dict[str, Any] = {"fired": False, "retry": False, "watchdog": None}
+
+    def redeliver(signum: int, retry: bool) -> None:
+        state["retry"] = retry
+        _thread.interrupt_main(signal.Signals(signum))
 
     def handler(signum: int, frame: FrameType | None) -> None:
-        if fired[0]:
+        if _in_callback(frame):  # an exception raised here would be swallowed: a moment later
+            threading.Timer(0.05, redeliver, args=(signum, False)).start()
+            return
+        if state["fired"] and not state["retry"]:
             return  # cleaning up after the first signal: do not cut the cleanup short
-        fired[0] = True
+        state["fired"], state["retry"] = True, False
+        if state["watchdog"] is None:  # swallowed anyway (a callback we did not recognise)?
+            watchdog = threading.Timer(RETRY_SECONDS, redeliver, args=(signum, True))
+            watchdog.daemon = True
+            watchdog.start()
+            state["watchdog"] = watchdog
         if signum == signal.SIGINT:
             raise KeyboardInterrupt
         raise Terminated(signum)
@@ -110,5 +124,27 @@ def signals_as_exceptions() -> Iterator[None]:
     try:
         yield
     finally:
+        if state["watchdog"] is not None:
+            state["watchdog"].cancel()
         for s, h in previous.items():
             signal.signal(s, h if h is not None else signal.SIG_DFL)
+
+
+RETRY_SECONDS = 15.0
+"""If the command is still running this long after a signal was turned into an exception
+(some callback swallowed it), the signal is delivered once more."""
+
+_CALLBACKS = frozenset({"__del__", "gc_callback", "_gc_callback"})
+
+
+def _in_callback(frame: FrameType | None) -> bool:
+    """True when the signal arrived inside a callback whose exceptions Python ignores (a gc
+    callback, a finaliser)."""
+    f = frame
+    for _ in range(3):
+        if f is None:
+            return False
+        if f.f_code.co_name in _CALLBACKS:
+            return True
+        f = f.f_back
+    return False

@@ -249,9 +249,41 @@ def _kill_workers(pool: ProcessPoolExecutor) -> None:
                 os.killpg(proc.pid, signal.SIGKILL)
         with contextlib.suppress(OSError):
             proc.kill()
+    for _ in range(20):  # the forkserver, a worker it was starting, the resource tracker
+        found = _descendants(os.getpid())
+        for pid in found:
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGKILL)
+        if not found:
+            break
     pool.shutdown(wait=False, cancel_futures=True)
     for proc in procs:
         proc.join(5)
+
+
+def _descendants(pid: int) -> list[int]:
+    """Every live descendant of ``pid`` (through ``/proc``; empty where there is none)."""
+    from pathlib import Path
+
+    kids: dict[int, list[int]] = {}
+    proc_dir = Path("/proc")
+    if not proc_dir.is_dir():
+        return []
+    for entry in proc_dir.iterdir():
+        if entry.name.isdigit():
+            try:
+                text = (entry / "stat").read_text()
+            except OSError:
+                continue
+            fields = text[text.rfind(")") + 2:].split()
+            if fields and fields[0] != "Z":
+                kids.setdefault(int(fields[1]), []).append(int(entry.name))
+    out, todo = [], [pid]
+    while todo:
+        for c in kids.get(todo.pop(), []):
+            out.append(c)
+            todo.append(c)
+    return out
 
 
 def _run_dask(tasks: list[Task], address: str,
