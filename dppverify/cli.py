@@ -24,7 +24,7 @@ from dppverify.errors import CheckerError, LPError, OptionError
 from dppverify.exact import format_number
 from dppverify.files import refuse_input_as_output
 from dppverify.instance import Instance, load_instance
-from dppverify.interrupts import Terminated, exit_code, signals_as_exceptions
+from dppverify.interrupts import Terminated, as_signal, exit_code, signals_as_exceptions
 from dppverify.interrupts import message as interrupt_message
 from dppverify.limits import MAX_HORIZON, MAX_PREFIXES_LIMIT, MAX_TRIALS
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
@@ -82,6 +82,9 @@ class ErrorReportingGroup(click.Group):
         try:
             return super().invoke(ctx)
         except self.user_errors as exc:
+            if (sig := as_signal(exc)) is not None:  # interrupted: a signal, not bad input
+                click.echo(interrupt_message(sig), err=True)
+                ctx.exit(exit_code(sig))
             click.echo(error_line(exc), err=True)
             ctx.exit(error_code(exc))
         except click.UsageError as exc:  # click's three-line usage message, as one line
@@ -93,6 +96,9 @@ class ErrorReportingGroup(click.Group):
         except (click.exceptions.Exit, click.ClickException, click.Abort):
             raise
         except Exception as exc:
+            if (sig := as_signal(exc)) is not None:  # a library turned the signal into this
+                click.echo(interrupt_message(sig), err=True)
+                ctx.exit(exit_code(sig))
             if os.environ.get("DPP_DEBUG"):
                 raise
             click.echo(f"internal error: {type(exc).__name__}: {' '.join(str(exc).split())} "
@@ -139,6 +145,9 @@ failure of the checker on a valid input, not an error in it)"
 
 
 def _fail(exc: CheckerError) -> None:
+    if (sig := as_signal(exc)) is not None:  # interrupted: the signal's line and code
+        click.echo(interrupt_message(sig), err=True)
+        raise click.exceptions.Exit(exit_code(sig))
     click.echo(error_line(exc), err=True)
     raise click.exceptions.Exit(error_code(exc))
 

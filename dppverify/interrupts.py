@@ -19,7 +19,6 @@ Examples
 
 from __future__ import annotations
 
-import _thread
 import contextlib
 import signal
 import threading
@@ -27,7 +26,30 @@ from collections.abc import Iterator
 from types import FrameType
 from typing import Any
 
-__all__ = ["Terminated", "exit_code", "message", "signals_as_exceptions"]
+__all__ = ["Terminated", "as_signal", "exit_code", "message", "signals_as_exceptions"]
+
+_RECEIVED: list[int] = []
+"""The signals received inside the current :func:`signals_as_exceptions` block."""
+
+
+def as_signal(exc: BaseException) -> BaseException | None:
+    """The signal exception an error stands for: ``exc`` itself if it is one, else — when a
+    signal arrived during the command and a library turned its exception into another error
+    (hypothesis does) — that signal's exception; None otherwise.
+
+    Examples
+    --------
+    >>> as_signal(ValueError("x")) is None
+    True
+    >>> exit_code(as_signal(KeyboardInterrupt()))
+    130
+    """
+    if isinstance(exc, KeyboardInterrupt | Terminated):
+        return exc
+    if _RECEIVED:
+        n = _RECEIVED[-1]
+        return KeyboardInterrupt() if n == signal.SIGINT else Terminated(n)
+    return None
 
 HANDLED = (signal.SIGTERM, signal.SIGHUP)
 """Signals turned into :class:`Terminated` (SIGINT is Python's ``KeyboardInterrupt``)."""
@@ -96,10 +118,18 @@ def signals_as_exceptions() -> Iterator[None]:
         yield
         return
     state: dict[str, Any] = {"fired": False, "retry": False, "watchdog": None}
+    main_id = threading.main_thread().ident
+    assert main_id is not None  # the main thread is running this
 
     def redeliver(signum: int, retry: bool) -> None:
         state["retry"] = retry
-        _thread.interrupt_main(signal.Signals(signum))
+        if retry:  # and once more later, should this one be swallowed too
+            again = threading.Timer(RETRY_SECONDS, redeliver, args=(signum, True))
+            again.daemon = True
+            again.start()
+            state["watchdog"] = again
+        # a real signal to the main thread: it also interrupts a blocking call (select, wait)
+        signal.pthread_kill(main_id, signum)
 
     def handler(signum: int, frame: FrameType | None) -> None:
         if _in_callback(frame):  # an exception raised here would be swallowed: a moment later
@@ -108,6 +138,7 @@ def signals_as_exceptions() -> Iterator[None]:
         if state["fired"] and not state["retry"]:
             return  # cleaning up after the first signal: do not cut the cleanup short
         state["fired"], state["retry"] = True, False
+        _RECEIVED.append(signum)
         if state["watchdog"] is None:  # swallowed anyway (a callback we did not recognise)?
             watchdog = threading.Timer(RETRY_SECONDS, redeliver, args=(signum, True))
             watchdog.daemon = True
@@ -124,15 +155,17 @@ def signals_as_exceptions() -> Iterator[None]:
     try:
         yield
     finally:
+        _RECEIVED.clear()
         if state["watchdog"] is not None:
             state["watchdog"].cancel()
         for s, h in previous.items():
             signal.signal(s, h if h is not None else signal.SIG_DFL)
 
 
-RETRY_SECONDS = 15.0
+RETRY_SECONDS = 2.0
 """If the command is still running this long after a signal was turned into an exception
-(some callback swallowed it), the signal is delivered once more."""
+(swallowed by a callback, or by a library's bare ``except:`` while it was being imported),
+the signal is delivered once more, and again every ``RETRY_SECONDS``."""
 
 _CALLBACKS = frozenset({"__del__", "gc_callback", "_gc_callback"})
 

@@ -249,12 +249,16 @@ def _kill_workers(pool: ProcessPoolExecutor) -> None:
                 os.killpg(proc.pid, signal.SIGKILL)
         with contextlib.suppress(OSError):
             proc.kill()
-    for _ in range(20):  # the forkserver, a worker it was starting, the resource tracker
-        found = _descendants(os.getpid())
+    import multiprocessing.forkserver
+
+    server: int = getattr(getattr(multiprocessing.forkserver, "_forkserver", None),
+                          "_forkserver_pid", None) or 0  # no public accessor either
+    for _ in range(20 if server > 0 else 0):  # the forkserver and a worker it was starting
+        found = [*_descendants(server), server]
         for pid in found:
             with contextlib.suppress(OSError):
                 os.kill(pid, signal.SIGKILL)
-        if not found:
+        if len(found) == 1:
             break
     pool.shutdown(wait=False, cancel_futures=True)
     for proc in procs:
