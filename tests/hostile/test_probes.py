@@ -184,6 +184,33 @@ probe("value --route auto huge H decides fast",
       ["value", *MAP, "-H", "10000", "--route", "auto"], code=0, one_line=False, cpu=60)
 probe("certify -H 10000 auto", ["certify", *MAP, "-H", "10000", "prof.json"],
       code=(0, 1, 2), one_line=False, cpu=60)
+
+
+def _long_walks(steps: int) -> Setup:
+    """A path graph of 2 * steps + 1 nodes, start in the middle, a goal at each end, and a
+    profile whose two walks have ``steps`` steps each (written directly, not solved)."""
+    def setup(d: Path) -> None:
+        n = 2 * steps + 1
+        doc = {"graph": {"nodes": [{"id": i} for i in range(n)],
+                         "edges": [{"source": i, "target": i + 1} for i in range(n - 1)]},
+               "start": steps, "goals": [0, n - 1], "prior": ["3/5", "2/5"]}
+        (d / "path.json").write_text(json.dumps(doc))
+        prof = {"format": "dpp-profile/1", "goals": {"primary": 0, "secondary": n - 1},
+                "defender": {"rule": "progress", "goal": 0},
+                "attacker": {"primary": [{"path": list(range(steps, -1, -1)),
+                                          "probability": 1}],
+                             "secondary": [{"path": list(range(steps, n)),
+                                            "probability": 1}]}}
+        (d / "path_profile.json").write_text(json.dumps(prof))
+    return setup
+
+
+probe("certify a 60,000-step walk, structured, in 1.5 GiB",
+      ["certify", "path.json", "path_profile.json", "--route", "structured"],
+      _long_walks(60_000), code=(0, 1), one_line=False, memory=3 << 29, cpu=400)
+probe("value on a 120,001-node path, auto route decides",
+      ["value", "path.json", "-H", "10000", "--route", "auto"],
+      _long_walks(60_000), code=(0, 2), one_line=False, memory=3 << 29, cpu=200)
 # --- the command line: one line, exit 2, for every command ---------------------------------
 for cmd in (["solve"], ["value"], ["certify"], ["export-efg"], ["audit"],
             ["experiment", "compare"], ["experiment", "density"], ["plot", "map"],
