@@ -17,6 +17,7 @@ import signal
 import stat
 import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -110,11 +111,15 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
         signal.signal(signal.SIGINT, signal.SIG_DFL)
 
     full_env = {k: v for k, v in os.environ.items() if k not in ("DPP_DEBUG",)}
+    tmp = cwd.parent / "tmp"  # the probe's TMPDIR: a short link (AF_UNIX paths, < 108 bytes)
+    tmp.mkdir(exist_ok=True)
+    short = Path(tempfile.mkdtemp(prefix="dh", dir="/tmp"))
+    short.rmdir()
+    short.symlink_to(tmp)
     full_env.update({"PYTHONPATH": str(ROOT), "OPENBLAS_NUM_THREADS": "1",
                      "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "COLUMNS": "200",
-                     "TMPDIR": str(cwd.parent / "tmp")})
+                     "TMPDIR": str(short)})
     full_env.update(env or {})
-    (cwd.parent / "tmp").mkdir(exist_ok=True)
     proc = subprocess.Popen([sys.executable, "-m", "solver.cli", *args], cwd=cwd,
                             env=full_env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, start_new_session=True,
@@ -128,6 +133,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
             with contextlib.suppress(OSError):
                 os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
+        short.unlink()
     # every process of the probe's session is gone once the probe has exited
     deadline = time.monotonic() + 10
     members = _session_members(proc.pid)
