@@ -54,6 +54,14 @@ def become_subreaper(parent_death_signal: int | None = None) -> bool:
     -------
     bool
         True on Linux, where it worked.
+
+    Examples
+    --------
+    >>> import subprocess, sys
+    >>> code = "from dppverify.audit.procs import become_subreaper; print(become_subreaper())"
+    >>> out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    >>> out.stdout.strip() in ("True", "False")
+    True
     """
     if parent_death_signal is not None:
         _prctl(PR_SET_PDEATHSIG, int(parent_death_signal))
@@ -106,6 +114,13 @@ def kill_tree(pid: int, *, include_self: bool = True, rounds: int = 20) -> None:
 
     Repeated until no descendant is left (a process may fork while the others die); a
     process that is already gone is skipped.
+
+    Examples
+    --------
+    >>> import subprocess, sys
+    >>> p = subprocess.Popen(["sh", "-c", "sleep 60 & sleep 60"], start_new_session=True)
+    >>> kill_tree(p.pid); p.wait(), descendants(p.pid)
+    (-9, [])
     """
     for _ in range(rounds):
         found = descendants(pid)
