@@ -7,9 +7,13 @@ Exit codes: 0 every example was certified; 1 a failing example was found (writte
 
 from __future__ import annotations
 
+import contextlib
 import os
 import sys
+import tempfile
+from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import click
 
@@ -26,9 +30,20 @@ from dppverify.audit import (
 )
 from dppverify.cli_conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.errors import AuditError, CheckerError
-from dppverify.limits import MAX_AUDIT_EXAMPLES
+from dppverify.limits import MAX_AUDIT_EXAMPLES, MAX_PREFIXES_LIMIT
 
 __all__ = ["audit_command", "format_report"]
+
+
+class _Seconds(click.FloatRange):
+    """A float range that also refuses ``nan`` (which compares false with both bounds)."""
+
+    def convert(self, value: Any, param: click.Parameter | None,
+                ctx: click.Context | None) -> Any:
+        x = super().convert(value, param, ctx)
+        if x != x:
+            self.fail(f"{value!r} is not a number", param, ctx)
+        return x
 
 
 @click.command("audit", short_help="Audit a solver: certify its answers on random instances.")
@@ -51,12 +66,12 @@ __all__ = ["audit_command", "format_report"]
               help="Shrink the first failing instance.")
 @click.option("--shrink-calls", type=click.IntRange(min=0), default=DEFAULT_SHRINK_CALLS,
               show_default=True, help="Shrinking budget: at most this many solver calls.")
-@click.option("--shrink-seconds", type=click.FloatRange(min=0), default=DEFAULT_SHRINK_SECONDS,
+@click.option("--shrink-seconds", type=_Seconds(min=0, max=86400), default=DEFAULT_SHRINK_SECONDS,
               show_default=True, help="Shrinking budget: at most this many seconds.")
-@click.option("--timeout", type=click.FloatRange(min=0, min_open=True, max=86400),
+@click.option("--timeout", type=_Seconds(min=0, min_open=True, max=86400),
               default=DEFAULT_TIMEOUT, show_default=True,
               help="Seconds per solver run (--solver and --solver-cmd alike).")
-@click.option("--max-prefixes", type=click.IntRange(min=1, max=10**8),
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
               default=AUDIT_MAX_PREFIXES, show_default=True,
               help="Skip examples whose walk tree is larger than this.")
 @click.option("--instances", "instances_dir", metavar="DIR", type=click.Path(file_okay=False),
@@ -108,7 +123,7 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
                        max_prefixes=max_prefixes, progress=progress)
         return
     try:
-        with _make_runner(solver_spec, solver_cmd, timeout) as runner:
+        with _private_hypothesis_home(), _make_runner(solver_spec, solver_cmd, timeout) as runner:
             report = run_audit(runner, examples=examples, seed=seed, max_nodes=max_nodes,
                                out=output_dir, shrink=shrink, max_prefixes=max_prefixes,
                                shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
@@ -172,6 +187,21 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
     if report.files:
         status("wrote " + ", ".join(str(p) for p in report.files))
     raise click.exceptions.Exit(0 if report.passed else 1)
+
+
+@contextlib.contextmanager
+def _private_hypothesis_home() -> Iterator[None]:
+    """Hypothesis' storage in a temporary folder, removed afterwards: the audit never writes
+    ``.hypothesis/`` into the user's working directory."""
+    from hypothesis.configuration import set_hypothesis_home_dir
+
+    with tempfile.TemporaryDirectory(prefix="dpp-audit-hypothesis-",
+                                     ignore_cleanup_errors=True) as home:
+        set_hypothesis_home_dir(home)
+        try:
+            yield
+        finally:
+            set_hypothesis_home_dir(None)
 
 
 def _make_runner(spec: str | None, cmd: str | None, timeout: float) -> SolverRunner:

@@ -32,16 +32,19 @@ from dppverify.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
 from dppverify.errors import (
     CertificateError,
     CheckerError,
+    LPError,
     OptionError,
     ProfileError,
     UndecidedError,
 )
 from dppverify.exact import format_number
-from dppverify.files import read_input, write_files
+from dppverify.files import read_input, refuse_input_as_output, write_files
 from dppverify.hints import file_hint
 from dppverify.instance import GameInstance as AnyGame
 from dppverify.instance import Instance, load_instance
-from dppverify.limits import MAX_HORIZON, MAX_TRIALS
+from dppverify.interrupts import Terminated, as_signal, exit_code, signals_as_exceptions
+from dppverify.interrupts import message as interrupt_message
+from dppverify.limits import MAX_HORIZON, MAX_PREFIXES_LIMIT, MAX_TRIALS
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.ngoal.certify import certify_ngoal
@@ -87,6 +90,16 @@ class ErrorReportingGroup(click.Group):
 
     user_errors: tuple[type[Exception], ...] = (CheckerError,)
 
+    def main(self, *args: Any, **kwargs: Any) -> Any:
+        """Run the command with SIGINT/SIGTERM/SIGHUP as exceptions (dppverify.interrupts):
+        a signal ends it after cleaning up, with one line and exit code 128 + n."""
+        with signals_as_exceptions():
+            try:
+                return super().main(*args, **kwargs)
+            except Terminated as exc:  # a signal outside invoke (e.g. while parsing)
+                click.echo(interrupt_message(exc), err=True)
+                raise SystemExit(exit_code(exc)) from None
+
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
         try:
             return super().parse_args(ctx, args)
@@ -102,14 +115,23 @@ class ErrorReportingGroup(click.Group):
             click.echo(f"undecided: {' '.join(str(exc).split())}", err=True)
             ctx.exit(3)
         except self.user_errors as exc:
-            click.echo(f"error: {' '.join(str(exc).split())}", err=True)
-            ctx.exit(2)
+            if (sig := as_signal(exc)) is not None:  # interrupted: a signal, not bad input
+                click.echo(interrupt_message(sig), err=True)
+                ctx.exit(exit_code(sig))
+            click.echo(error_line(exc), err=True)
+            ctx.exit(error_code(exc))
         except click.UsageError as exc:  # click's three-line usage message, as one line
             _usage_error(exc)
             ctx.exit(2)
+        except (KeyboardInterrupt, Terminated) as exc:  # one line, 130 / 143, cleaned up
+            click.echo(interrupt_message(exc), err=True)
+            ctx.exit(exit_code(exc))
         except (click.exceptions.Exit, click.ClickException, click.Abort):
             raise
         except Exception as exc:
+            if (sig := as_signal(exc)) is not None:  # a library turned the signal into this
+                click.echo(interrupt_message(sig), err=True)
+                ctx.exit(exit_code(sig))
             if os.environ.get("DPP_DEBUG"):
                 raise
             click.echo(f"internal error: {type(exc).__name__}: {' '.join(str(exc).split())} "
@@ -120,16 +142,50 @@ class ErrorReportingGroup(click.Group):
 def _usage_error(exc: click.UsageError) -> None:
     """One line for a click usage error: the message and where to find help."""
     where = exc.ctx.command_path if exc.ctx is not None else "dpp"
+    if isinstance(exc, click.exceptions.NoArgsIsHelpError):  # `dpp plot`: no help dump
+        click.echo(f"error: missing command (see '{where} --help')", err=True)
+        return
     message = " ".join(exc.format_message().split())
     click.echo(f"error: {message} (see '{where} --help')", err=True)
+
+
+def error_code(exc: Exception) -> int:
+    """The exit code of an error: 3 ("could not decide") when a numerical solver failed on
+    input that passed every check (:class:`~dppverify.errors.LPError`), else 2 (bad input).
+
+    Examples
+    --------
+    >>> error_code(LPError("x")), error_code(OptionError("y"))
+    (3, 2)
+    """
+    return 3 if isinstance(exc, LPError) else 2
+
+
+def error_line(exc: Exception) -> str:
+    """The one line printed for an error (:func:`error_code` tells its exit code).
+
+    Examples
+    --------
+    >>> error_line(LPError("value LP: CLARABEL returned status 'infeasible'"))
+    "error: could not decide: value LP: CLARABEL returned status 'infeasible' (a numerical \
+failure of the checker on a valid input, not an error in it)"
+    """
+    text = " ".join(str(exc).split())
+    if isinstance(exc, LPError):
+        return (f"error: could not decide: {text} (a numerical failure of the checker on a "
+                "valid input, not an error in it)")
+    return f"error: {text}"
 
 
 def _fail(exc: CheckerError) -> None:
     if isinstance(exc, UndecidedError):  # "could not decide": exit 3, never a verdict
         click.echo(f"undecided: {' '.join(str(exc).split())}", err=True)
         raise click.exceptions.Exit(3)
-    click.echo(f"error: {exc}", err=True)
-    raise click.exceptions.Exit(2)
+    if (sig := as_signal(exc)) is not None:  # interrupted: the signal's line and code
+        click.echo(interrupt_message(sig), err=True)
+        raise click.exceptions.Exit(exit_code(sig))
+    click.echo(error_line(exc), err=True)
+    raise click.exceptions.Exit(error_code(exc))
 
 
 def _short(x: Any) -> str:
@@ -331,7 +387,8 @@ class hinted:
               help="Print the dpp-certificate/1 JSON instead of the table.")
 @output_file_option("Write the dpp-certificate/1 JSON to this file (atomically); stdout stays "
                     "empty, the verdict is one line on stderr.")
-@click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
+              default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
 @click.option("--float", "float_mode", is_flag=True,
               help="Float mode is detected from the instance (\"numbers\": \"float\", e.g. "
@@ -383,7 +440,7 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
         if profile is None:
             raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
                               f"dpp certify {MAP_USAGE} PROFILE")
-        check_output_not_input(output, instance, profile)
+        refuse_input_as_output(output, [instance, profile, grid.path if grid else None])
         if provenance_of is not None:
             bar.close()
             _verify_provenance(provenance_of, instance, profile, grid)
@@ -440,22 +497,6 @@ def _profile_document(path: str, game: AnyGame, instance: str | None) -> dict[st
         raise ProfileError(f"{path} does not belong to this instance: {reason}; make a "
                            f"profile for it with {solve} -o PROFILE")
     return dict(doc)
-
-
-def check_output_not_input(output: str | None, *inputs: str | None) -> None:
-    """Refuse ``-o`` naming one of the command's input files (it would be overwritten).
-
-    Examples
-    --------
-    >>> check_output_not_input("p.json", "i.json", "./p.json")
-    Traceback (most recent call last):
-    dppverify.errors.OptionError: -o p.json names an input file; write the output elsewhere
-    """
-    if output is None:
-        return
-    target = os.path.abspath(output)
-    if any(i is not None and os.path.abspath(i) == target for i in inputs):
-        raise OptionError(f"-o {output} names an input file; write the output elsewhere")
 
 
 def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str) -> None:
@@ -646,7 +687,8 @@ def _ngoal_value(instance: str | MapRequest, horizon: int | None, as_json: bool,
               help="tree: the walk tree's LP; structured: the tree-free DP (docs/checker.md); "
                    "auto: the tree when it fits --max-prefixes, else structured; both: run "
                    "both, a disagreement is an error (exit 1).")
-@click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
+              default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
 @progress_option
 def value_command(instance: str | None, grid: MapRequest | None, horizon: int | None,
@@ -671,7 +713,7 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
       dpp value --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 6
     """
     try:
-        check_output_not_input(output, instance)
+        refuse_input_as_output(output, [instance, grid.path if grid else None])
     except CheckerError as exc:
         _fail(exc)
     if instance is not None and grid is None and is_ngoal_file(instance):
@@ -707,7 +749,8 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
 @click.option("--forced-moves", is_flag=True,
               help="Also write the Attacker's one-action decision nodes (skipped by default: "
                    "Gambit 17.0.0b2's lp_solve mis-solves one-action information sets).")
-@click.option("--max-prefixes", type=click.IntRange(min=1), default=DEFAULT_MAX_PREFIXES,
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
+              default=DEFAULT_MAX_PREFIXES,
               show_default=True, help="Refuse walk trees larger than this.")
 @click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
               show_default=True, help="Refuse games with more nodes than this.")
@@ -731,6 +774,7 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
     """
     goals = ""
     try:
+        refuse_input_as_output(output, [instance, grid.path if grid is not None else None])
         game: GameInstance
         if instance is not None and grid is None and is_ngoal_file(instance):  # N > 2 goals
             game = load_ninstance(instance)

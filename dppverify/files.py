@@ -9,6 +9,12 @@ of the README, "Exit codes, limits and output files"):
   a temporary file next to its target, and only when every one is complete are they renamed
   into place; on failure every temporary file (and every folder created) is removed;
 - files get the mode ``0666`` minus the umask, like any file a program creates;
+- a target that exists and is not a regular file (``/dev/null``, a FIFO, a device, or a
+  symlink to one) is never replaced: the content is streamed into it, after the regular
+  files are complete (a FIFO without a reader is refused at once instead of blocking); a
+  symlink to a regular file keeps its link and has the file it points to replaced;
+- an output that names one of the command's input files is refused
+  (:func:`refuse_input_as_output`);
 - a location that cannot be written raises :class:`OutputError` naming the user's path.
 
 Every file the checker reads goes through :func:`read_input`, which refuses files larger
@@ -19,16 +25,19 @@ whole. The solver has its own copy of these rules (``solver/io_utils.py``).
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
+import stat
 import tempfile
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any
+from typing import Any, BinaryIO
 
 from dppverify.errors import CheckerError
 from dppverify.limits import MAX_INPUT_BYTES
 
-__all__ = ["OutputError", "file_mode", "read_input", "write_files"]
+__all__ = ["OutputError", "file_mode", "open_input", "read_input", "refuse_input_as_output",
+           "write_files"]
 
 
 class OutputError(CheckerError, OSError):
@@ -68,11 +77,35 @@ def read_input(path: str | Path, *, limit: int = MAX_INPUT_BYTES) -> bytes:
     Traceback (most recent call last):
     ValueError: larger than the limit of 10 bytes
     """
-    with open(path, "rb") as fh:
+    with open_input(path) as fh:
         data = fh.read(limit + 1)
     if len(data) > limit:
         raise ValueError(f"larger than the limit of {limit} bytes")
     return data
+
+
+def open_input(path: str | Path) -> BinaryIO:
+    """Open an input file for reading without ever blocking on a FIFO that nobody writes.
+
+    The file is opened non-blocking (a FIFO without a writer then reads as empty instead of
+    hanging), then switched back to blocking reads (a pipe with a writer, e.g. bash's
+    ``<(...)``, is read to its end).
+
+    Examples
+    --------
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     os.mkfifo(Path(d) / "fifo")
+    ...     with open_input(Path(d) / "fifo") as fh:
+    ...         fh.read()
+    b''
+    """
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
+    try:
+        os.set_blocking(fd, True)
+        return os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
 
 
 def write_files(files: Mapping[Any, str | bytes], *,
@@ -108,15 +141,17 @@ def write_files(files: Mapping[Any, str | bytes], *,
     dppverify.files.OutputError: the output path is empty
     """
     targets = [(_target(p), c) for p, c in files.items()]
+    regular = [(t, c) for t, c in targets if not _is_special(t)]
+    special = [(t, c) for t, c in targets if _is_special(t)]
     created: list[Path] = []
     temps: list[tuple[str, Path]] = []
     current = targets[0][0] if targets else Path(".")
     try:
-        for target, _ in targets:
+        for target, _ in regular:
             current = target
             _make_parents(target.parent, created)
         mode = file_mode()
-        for target, content in targets:
+        for target, content in regular:
             current = target
             fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.",
                                        suffix=".tmp")
@@ -125,6 +160,9 @@ def write_files(files: Mapping[Any, str | bytes], *,
             with os.fdopen(fd, "wb") as fh:
                 fh.write(data)
             os.chmod(tmp, mode)
+        for target, content in special:
+            current = target
+            _stream(target, content.encode("utf-8") if isinstance(content, str) else content)
         for tmp, target in temps:
             current = target
             os.replace(tmp, target)
@@ -141,12 +179,77 @@ def write_files(files: Mapping[Any, str | bytes], *,
     return tuple(t for t, _ in targets)
 
 
+def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Path | None], *,
+                           option: str = "-o") -> None:
+    """Refuse an output path that names one of the inputs (the same file, by any path).
+
+    Raises
+    ------
+    OutputError
+        One line naming the path.
+
+    Examples
+    --------
+    >>> with tempfile.TemporaryDirectory() as d:  # doctest: +ELLIPSIS
+    ...     p = Path(d) / "x.json"
+    ...     _ = p.write_text("{}")
+    ...     refuse_input_as_output(Path(d) / "y.json", [p])
+    ...     refuse_input_as_output(Path(d) / "." / "x.json", [p])
+    Traceback (most recent call last):
+    dppverify.files.OutputError: ...x.json is an input of this command; refusing to overwrite it ...
+    """
+    if output is None or str(output) == "":
+        return
+    out = Path(output)
+    for path in inputs:
+        if path is None or str(path) == "":
+            continue
+        same = False
+        try:
+            same = os.path.samefile(out, path)
+        except OSError:
+            same = os.path.realpath(out) == os.path.realpath(path)
+        if same and (not out.exists() or out.is_file()):
+            raise OutputError(f"{option} {out} is an input of this command; refusing to "
+                              "overwrite it (give another path)")
+
+
+def _is_special(target: Path) -> bool:
+    """True when ``target`` exists (through symlinks) and is neither a regular file nor a
+    folder: a device, a FIFO, a socket."""
+    try:
+        st = os.stat(target)
+    except OSError:
+        return False
+    return not stat.S_ISREG(st.st_mode) and not stat.S_ISDIR(st.st_mode)
+
+
+def _stream(target: Path, data: bytes) -> None:
+    """Write ``data`` into the existing non-regular file ``target`` without replacing it."""
+    try:
+        fd = os.open(target, os.O_WRONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
+    except OSError as exc:
+        if exc.errno == errno.ENXIO:  # a FIFO that no process reads
+            raise OSError(exc.errno, "it is a FIFO that no process reads") from None
+        raise
+    try:
+        os.set_blocking(fd, True)
+        view = memoryview(data)
+        while view:
+            n = os.write(fd, view)
+            view = view[n:]
+    finally:
+        os.close(fd)
+
+
 def _target(path: str | Path) -> Path:
     if str(path) == "":
         raise OutputError("the output path is empty")
     p = Path(path)
     if p.is_dir():
         raise OutputError(f"cannot write {p}: it is a folder")
+    if p.is_symlink() and p.is_file():  # keep the link; replace the file it points to
+        return Path(os.path.realpath(p))
     return p
 
 

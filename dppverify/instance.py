@@ -43,6 +43,7 @@ from dppverify.json_reading import (
     read_json_file,
     show_node,
 )
+from dppverify.limits import check_float_weights
 from dppverify.numbers import NumberMode, number_mode
 
 __all__ = ["GameInstance", "Instance", "Node", "Roles", "arc_arrays", "as_instance",
@@ -443,6 +444,12 @@ def finish_game(cls: type[G], ids: list[Node], index: dict[Node, int], directed:
     Shared by the JSON reader and the ``.map`` reader (:mod:`dppverify.movingai`), so that a
     map read straight into arrays gives the very instance its JSON document gives.
     """
+    if not exact:  # float mode: the weight-ratio limit (dppverify.limits), before any search
+        try:
+            check_float_weights(arcs.values if arcs is not None else
+                                [w for row in succ_t for _, w in row])
+        except ValueError as exc:
+            raise InvalidInstanceError(str(exc)) from None
     start = _node(start, index, "start")
     goals = _goals(goals, index, ids, two_goals)
     prior = _prior(prior, len(goals), two_goals)

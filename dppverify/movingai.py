@@ -31,6 +31,7 @@ import numpy as np
 from dppverify.errors import InvalidInstanceError
 from dppverify.instance import GameInstance, Instance, edge_arrays, finish_game
 from dppverify.json_reading import parse_number
+from dppverify.limits import MAX_MAP_CELLS
 
 __all__ = ["BLOCKED", "PASSABLE", "GridMap", "grid_document", "grid_game", "map_instance",
            "parse_map", "read_map"]
@@ -170,6 +171,9 @@ def parse_map(text: str) -> GridMap:
         raise InvalidInstanceError(f"line 1: expected 'type octile', got {lines[0][:40]!r}")
     height = _header_int(lines[1], "height", 2)
     width = _header_int(lines[2], "width", 3)
+    if height * width > MAX_MAP_CELLS:  # refused before the rows are read
+        raise InvalidInstanceError(f"a {height}x{width} map has {height * width} cells, beyond "
+                                   f"the limit of {MAX_MAP_CELLS} (the memory budget)")
     if lines[3] != "map":
         raise InvalidInstanceError(f"line 4: expected 'map', got {lines[3][:40]!r}")
     body = lines[4:]

@@ -10,8 +10,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
-import numpy as np
-
 from dppverify.errors import HorizonError
 from dppverify.exact import Number
 from dppverify.instance import Instance
@@ -31,9 +29,9 @@ ROUTES: tuple[Route, ...] = ("auto", "tree", "structured", "both")
 def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> bool:
     """True when the pruned walk tree of ``horizon`` steps has at most ``max_prefixes`` prefixes.
 
-    Counts like :func:`~dppverify.tree.count_prefixes` (``O(H·E)``), vectorised with numpy and
-    saturated just above ``max_prefixes`` so that huge trees are never counted in full. An
-    untruncated game (``horizon=None``) never fits.
+    Counts with :func:`~dppverify.tree.count_prefixes`, saturated just above
+    ``max_prefixes`` and stopping as soon as the count exceeds it, so that huge trees are
+    never counted in full. An untruncated game (``horizon=None``) never fits.
 
     Examples
     --------
@@ -46,27 +44,7 @@ def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> boo
         return False
     if horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
-    cap = max_prefixes + 1
-    if cap >= 2**40:  # saturated sums could overflow int64: count exactly instead
-        return count_prefixes(instance, horizon) <= max_prefixes
-    inst = instance
-    n = inst.n_nodes
-    goal = np.zeros(n, dtype=bool)
-    goal[list(inst.goals)] = True
-    hops = np.asarray(inst.hops, dtype=np.int64)
-    tails = [v for v in range(n) if not goal[v] and inst.succ[v]]
-    starts = np.cumsum([0] + [len(inst.succ[v]) for v in tails[:-1]], dtype=np.int64)
-    heads = np.asarray([u for v in tails for u, _ in inst.succ[v]], dtype=np.int64)
-    tails_a = np.asarray(tails, dtype=np.int64)
-    cnt = goal.astype(np.int64)
-    for k in range(1, horizon + 1):
-        nxt = np.zeros(n, dtype=np.int64)
-        if tails_a.size:
-            nxt[tails_a] = np.add.reduceat(cnt[heads], starts)
-        nxt = np.where((hops >= 0) & (hops <= k), nxt + 1, 0)
-        nxt[goal] = 1
-        cnt = np.minimum(nxt, cap)
-    return int(cnt[inst.start]) <= max_prefixes
+    return count_prefixes(instance, horizon, limit=max_prefixes) <= max_prefixes
 
 
 def resolve_route(route: Route, instance: Instance, horizon: int | None,

@@ -13,8 +13,8 @@ says so.
 
 from __future__ import annotations
 
-from collections.abc import Iterable
-from dataclasses import dataclass
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from dataclasses import dataclass, field
 from fractions import Fraction
 
 from dppverify.certificate import CheckRecord, Status
@@ -43,18 +43,85 @@ DP = "relies on proofs/DP.md"
 TRIE = "on the prefixes of the profile's walks (proofs/L3.md)"
 
 
-@dataclass(frozen=True)
+class _MassView(Mapping[tuple[int, ...], tuple[Fraction, Fraction]]):
+    """``trie.mass``: prefix (a node-index tuple) -> ``(x1, x2)``, computed on demand from
+    the trie's arrays (no tuple per prefix is stored)."""
+
+    def __init__(self, trie: Trie) -> None:
+        self._trie = trie
+
+    def __getitem__(self, prefix: tuple[int, ...]) -> tuple[Fraction, Fraction]:
+        i = self._trie.find(prefix)
+        if i is None:
+            raise KeyError(prefix)
+        return self._trie.x1[i], self._trie.x2[i]
+
+    def __iter__(self) -> Iterator[tuple[int, ...]]:
+        return (self._trie.walk(i) for i in range(self._trie.size))
+
+    def __len__(self) -> int:
+        return self._trie.size
+
+
+@dataclass(frozen=True, eq=False)
 class Trie:
     """The prefixes of the profile's walks with each type's realization mass.
 
-    ``mass[p] = (x1(p), x2(p))`` for every prefix ``p`` (a node-index tuple, root included).
+    Stored in memory linear in the total walk length: prefix ``i`` is its last node
+    ``node[i]`` and its parent prefix ``parent[i]`` (``-1`` at a root); ``x1[i], x2[i]`` are
+    the two types' realization masses. ``ids[k]`` lists the prefixes along the ``k``-th walk
+    given (primary walks first, then secondary). ``mass`` keeps the tuple-keyed view:
+    ``mass[p] = (x1(p), x2(p))`` for every prefix ``p`` (root included), each key built only
+    when asked for.
     """
 
-    mass: dict[tuple[int, ...], tuple[Fraction, Fraction]]
+    node: tuple[int, ...]
+    parent: tuple[int, ...]
+    x1: tuple[Fraction, ...]
+    x2: tuple[Fraction, ...]
+    ids: tuple[tuple[int, ...], ...]
+    _children: dict[tuple[int, int], int] = field(repr=False)
+
+    @property
+    def size(self) -> int:
+        """Number of prefixes (roots included)."""
+        return len(self.node)
+
+    @property
+    def mass(self) -> Mapping[tuple[int, ...], tuple[Fraction, Fraction]]:
+        """Prefix tuple -> ``(x1, x2)`` (a view; see the class docstring)."""
+        return _MassView(self)
+
+    def find(self, prefix: Sequence[int]) -> int | None:
+        """The id of the prefix ``prefix`` (node indices), or None when it is not in the trie."""
+        i = -1
+        for v in prefix:
+            nxt = self._children.get((i, v))
+            if nxt is None:
+                return None
+            i = nxt
+        return i if prefix else None
+
+    def find_along(self, walk: Sequence[int]) -> list[int]:
+        """The prefix ids along ``walk`` (one per node), which must be in the trie."""
+        out, i = [], -1
+        for v in walk:
+            i = self._children[(i, v)]
+            out.append(i)
+        return out
+
+    def walk(self, i: int) -> tuple[int, ...]:
+        """The node-index tuple of prefix ``i``."""
+        out = []
+        while i >= 0:
+            out.append(self.node[i])
+            i = self.parent[i]
+        return tuple(reversed(out))
 
 
 def build_trie(primary: Iterable[StrategyPath], secondary: Iterable[StrategyPath]) -> Trie:
-    """Realization masses of both types on the prefixes of their walks.
+    """Realization masses of both types on the prefixes of their walks, in memory linear in
+    the total walk length.
 
     Examples
     --------
@@ -63,14 +130,31 @@ def build_trie(primary: Iterable[StrategyPath], secondary: Iterable[StrategyPath
     ...                [StrategyPath((0, 2), Fraction(1))])
     >>> t.mass[(0,)], t.mass[(0, 2)]
     ((Fraction(1, 1), Fraction(1, 1)), (Fraction(3, 7), Fraction(1, 1)))
+    >>> t.size, t.ids, t.walk(2)
+    (3, ((0, 1), (0, 2), (0, 2)), (0, 2))
     """
-    mass: dict[tuple[int, ...], list[Fraction]] = {}
+    children: dict[tuple[int, int], int] = {}
+    node: list[int] = []
+    parent: list[int] = []
+    mass: list[list[Fraction]] = []
+    ids: list[tuple[int, ...]] = []
     for theta, walks in ((0, primary), (1, secondary)):
         for mw in walks:
-            for t in range(1, len(mw.walk) + 1):
-                entry = mass.setdefault(mw.walk[:t], [Fraction(0), Fraction(0)])
-                entry[theta] += mw.probability
-    return Trie({p: (a, b) for p, (a, b) in mass.items()})
+            i = -1
+            along = []
+            for v in mw.walk:
+                nxt = children.get((i, v))
+                if nxt is None:
+                    nxt = children[(i, v)] = len(node)
+                    node.append(v)
+                    parent.append(i)
+                    mass.append([Fraction(0), Fraction(0)])
+                mass[nxt][theta] += mw.probability
+                along.append(nxt)
+                i = nxt
+            ids.append(tuple(along))
+    return Trie(tuple(node), tuple(parent), tuple(m[0] for m in mass),
+                tuple(m[1] for m in mass), tuple(ids), children)
 
 
 def _rec(cid: str, status: Status, message: str, numbers: dict[str, Number | None] | None,
@@ -150,7 +234,7 @@ def structured_checks(instance: Instance, profile: Profile,
     out.append(_l1(instance, roles, profile, mode, star))
     out.append(_l2(instance, profile))
     out.append(_xi2(instance, roles, mode, star))
-    out.append(_l5(instance, profile, roles, beliefs, mode))
+    out.append(_l5(instance, profile, roles, trie, beliefs, mode))
     return out
 
 
@@ -191,18 +275,21 @@ def _wellformed(instance: Instance, profile: Profile, roles: Roles,
 
 
 def _sigma_on_trie(instance: Instance, roles: Roles, rule: DefenderRule,
-                   trie: Trie) -> dict[tuple[int, ...], Number]:
-    """σ(g1 | p) at every non-root prefix of the trie."""
-    out: dict[tuple[int, ...], Number] = {}
-    for p in sorted(trie.mass, key=len, reverse=True):  # whole walks first: O(total length)
-        if len(p) > 1 and p not in out:
-            for t, s in enumerate(sigma_along(instance, roles, rule, p), start=2):
-                out[p[:t]] = s
+                   trie: Trie) -> list[Number | None]:
+    """σ(g1 | p) at every prefix id of the trie (None at a root): along each walk once."""
+    out: list[Number | None] = [None] * trie.size
+    done = [False] * trie.size
+    for along in sorted(trie.ids, key=len, reverse=True):  # longest first: O(total length)
+        if len(along) > 1 and not done[along[-1]]:
+            walk = [trie.node[i] for i in along]
+            for t, sv in enumerate(sigma_along(instance, roles, rule, walk), start=1):
+                out[along[t]] = sv
+                done[along[t]] = True
     return out
 
 
 def _defender_payoffs(instance: Instance, roles: Roles, trie: Trie,
-                      sigma: dict[tuple[int, ...], Number]) -> tuple[Number, Number]:
+                      sigma: list[Number | None]) -> tuple[Number, Number]:
     """``max_σ U(σ, γ)`` (greedy per prefix) and ``U`` at the profile's σ, on the trie.
 
     Exact mode sums ``w`` and ``w σ`` per realization-mass pair (the prefixes of one walk
@@ -212,37 +299,42 @@ def _defender_payoffs(instance: Instance, roles: Roles, trie: Trie,
     best: Number = 0
     at_sigma: Number = 0
     mode = instance.numbers
-    steps = [p for p in trie.mass if len(p) > 1]
-    weights = _last_step_weights(instance, steps)
+    steps = [i for i in range(trie.size) if trie.parent[i] >= 0]
+    weights = _last_step_weights(instance, trie, steps)
+    weight_of = dict(zip(steps, weights, strict=True))
     if mode.exact:
         groups: dict[tuple[int, int, int, int], list[Number]] = {}
         masses = {}
-        for p, w in zip(steps, weights, strict=True):
-            mass = trie.mass[p]
+        for i, w in zip(steps, weights, strict=True):
+            mass = (trie.x1[i], trie.x2[i])
             key = _mass_key(mass)
             acc = groups.get(key)
             if acc is None:
                 acc = groups[key] = [0, 0]
                 masses[key] = mass
+            s = sigma[i]
+            assert s is not None  # every non-root prefix lies on a walk (_sigma_on_trie)
             acc[0] += w
-            acc[1] += w * sigma[p]
+            acc[1] += w * s
         for key, (w_sum, ws_sum) in groups.items():
             x1, x2 = masses[key]
             y1, y2 = roles.b1 * x1, roles.b2 * x2
             best += w_sum * max(y1, y2)
             at_sigma += ws_sum * y1 + (w_sum - ws_sum) * y2
-    weight_of = dict(zip(steps, weights, strict=True))
-    for p, (x1, x2) in trie.mass.items():  # float mode: the order of the sums as before
-        if not ((len(p) > 1 and not mode.exact) or instance.is_goal(p[-1])):
+    for i in range(trie.size):  # float mode: the order of the sums as before
+        last = trie.node[i]
+        on_step = trie.parent[i] >= 0 and not mode.exact
+        if not (on_step or instance.is_goal(last)):
             continue
-        y1, y2 = roles.b1 * x1, roles.b2 * x2
-        if len(p) > 1 and not mode.exact:
-            w = weight_of[p]
-            s = sigma[p]
+        y1, y2 = roles.b1 * trie.x1[i], roles.b2 * trie.x2[i]
+        if on_step:
+            w = weight_of[i]
+            s = sigma[i]
+            assert s is not None
             best += float(w) * float(max(y1, y2))
             at_sigma += float(w) * (float(s) * float(y1) + (1 - float(s)) * float(y2))
-        if instance.is_goal(p[-1]):
-            term = y1 * roles.d1[p[-1]] + y2 * roles.d2[p[-1]]
+        if instance.is_goal(last):
+            term = y1 * roles.d1[last] + y2 * roles.d2[last]
             best += mode.convert(term)
             at_sigma += mode.convert(term)
     return mode.convert(best), mode.convert(at_sigma)
@@ -254,17 +346,17 @@ def _mass_key(mass: tuple[Fraction, Fraction]) -> tuple[int, int, int, int]:
     return (x1.numerator, x1.denominator, x2.numerator, x2.denominator)
 
 
-def _last_step_weights(instance: Instance, prefixes: list[tuple[int, ...]]) -> list[Number]:
-    """The weight of the last step of each prefix (two nodes or more), one pass."""
-    tails = [p[-2] for p in prefixes]
-    heads = [p[-1] for p in prefixes]
+def _last_step_weights(instance: Instance, trie: Trie, ids: list[int]) -> list[Number]:
+    """The weight of the last step of each prefix id (not a root), in one pass."""
+    tails = [trie.node[trie.parent[i]] for i in ids]
+    heads = [trie.node[i] for i in ids]
     if isinstance(instance.succ, ArcRows):
         found = instance.succ.find_many(tails, heads)
     else:
         found = [instance.weight(u, v) for u, v in zip(tails, heads, strict=True)]
     out: list[Number] = []
-    for p, w in zip(prefixes, found, strict=True):
-        out.append(step_weight(instance, p, len(p) - 1) if w is None else w)  # raises
+    for u, v, w in zip(tails, heads, found, strict=True):
+        out.append(step_weight(instance, (u, v), 1) if w is None else w)  # raises
     return out
 
 
@@ -354,10 +446,12 @@ def _defender(v: Values, best: Number, mode: NumberMode) -> CheckRecord:
                 f"{show(best)} vs U = {show(v.U)}", numbers, "L3", TRIE)
 
 
-def _beliefs(roles: Roles, trie: Trie) -> dict[tuple[int, ...], Fraction]:
+def _beliefs(roles: Roles, trie: Trie) -> dict[int, Fraction]:
+    """The Bayes belief in the primary type at every reached prefix id."""
     out = {}
     by_mass: dict[tuple[int, int, int, int], Fraction | None] = {}  # once per mass pair
-    for p, mass in trie.mass.items():
+    for i in range(trie.size):
+        mass = (trie.x1[i], trie.x2[i])
         key = _mass_key(mass)
         if key in by_mass:
             b = by_mass[key]
@@ -366,50 +460,51 @@ def _beliefs(roles: Roles, trie: Trie) -> dict[tuple[int, ...], Fraction]:
             y1, y2 = roles.b1 * x1, roles.b2 * x2
             b = by_mass[key] = y1 / (y1 + y2) if y1 + y2 > 0 else None
         if b is not None:
-            out[p] = b
+            out[i] = b
     return out
 
 
-def _sequential(instance: Instance, trie: Trie, sigma: dict[tuple[int, ...], Number],
-                beliefs: dict[tuple[int, ...], Fraction], mode: NumberMode) -> CheckRecord:
+def _sequential(instance: Instance, trie: Trie, sigma: list[Number | None],
+                beliefs: dict[int, Fraction], mode: NumberMode) -> CheckRecord:
     bad = []
     side: dict[tuple[int, int], int] = {}  # the sign of b - 1/2, once per belief value
-    for p, b in beliefs.items():
-        if len(p) < 2:
+    for i, b in beliefs.items():
+        if trie.parent[i] < 0:
             continue
-        s = sigma[p]
+        s = sigma[i]
+        assert s is not None  # every non-root prefix lies on a walk (_sigma_on_trie)
         key = (b.numerator, b.denominator)
         c = side.get(key)
         if c is None:
             c = side[key] = (b > HALF) - (b < HALF)
         if (c > 0 and not mode.equal(s, 1)) or (c < 0 and not mode.equal(s, 0)):
-            bad.append((p, b, s))
+            bad.append((i, b, s))
     numbers: dict[str, Number | None] = {"reached": len(beliefs) - 1, "violations": len(bad)}
     if bad:
-        p, b, s = bad[0]
+        i, b, s = bad[0]
         return _rec("pbne.sequential_rationality", "fail", f"{len(bad)} reached information "
                     f"set(s) where the Defender is not greedy, e.g. after "
-                    f"{show_walk(instance, p)} the belief is {show(b)} but σ(g1) = {show(s)}",
-                    numbers, "THM", TRIE)
+                    f"{show_walk(instance, trie.walk(i))} the belief is {show(b)} but σ(g1) = "
+                    f"{show(s)}", numbers, "THM", TRIE)
     return _rec("pbne.sequential_rationality", "pass", f"greedy on the Bayes belief at all "
                 f"{len(beliefs) - 1} reached information sets", numbers, "THM", TRIE)
 
 
 def _belief_consistency(instance: Instance, profile: Profile, roles: Roles, trie: Trie,
-                        beliefs: dict[tuple[int, ...], Fraction]) -> CheckRecord:
+                        beliefs: dict[int, Fraction]) -> CheckRecord:
     problems = []
     if profile.claimed_prior is not None and profile.claimed_prior != (roles.b1, roles.b2):
         c1, c2 = profile.claimed_prior
         problems.append(f"the profile states the prior ({show(c1)}, {show(c2)}) but the "
                         f"instance's is ({show(roles.b1)}, {show(roles.b2)})")
     steps: dict[tuple[int, ...], Fraction] = {}
-    for p, b in beliefs.items():
-        if len(p) < 2:
+    for i, b in beliefs.items():
+        q = trie.parent[i]
+        if q < 0:
             if b != roles.b1:
                 problems.append(f"root belief {show(b)} is not the prior")
             continue
-        q = p[:-1]
-        mq, mp, prev = trie.mass[q], trie.mass[p], beliefs[q]
+        mq, mp, prev = (trie.x1[q], trie.x2[q]), (trie.x1[i], trie.x2[i]), beliefs[q]
         key = (prev.numerator, prev.denominator, *_mass_key(mq), *_mass_key(mp))
         bayes = steps.get(key)  # Bayes' step: once per (belief, masses) triple
         if bayes is None:
@@ -417,9 +512,11 @@ def _belief_consistency(instance: Instance, profile: Profile, roles: Roles, trie
             l1 = c1 / a1 if a1 else Fraction(0)  # P(step | type), eq. (2)
             l2 = c2 / a2 if a2 else Fraction(0)
             bayes = steps[key] = prev * l1 / (prev * l1 + (1 - prev) * l2)
-        if bayes != b:
-            problems.append(f"after {show_walk(instance, p)}: Bayes' rule gives {show(bayes)}, "
-                            f"the closed form {show(b)}")
+        if bayes != b and len(problems) < 3:
+            problems.append(f"after {show_walk(instance, trie.walk(i))}: Bayes' rule gives "
+                            f"{show(bayes)}, the closed form {show(b)}")
+        elif bayes != b:
+            problems.append("")
     numbers: dict[str, Number | None] = {"reached": len(beliefs)}
     if problems:
         return _rec("pbne.belief_consistency", "fail", "; ".join(problems[:3]), numbers, "THM",
@@ -444,11 +541,11 @@ def _game_value(instance: Instance, v: Values, mode: NumberMode,
 def _telescoping(instance: Instance, roles: Roles, trie: Trie, mode: NumberMode) -> CheckRecord:
     c_of = roles.d1
     bad = 0
-    walks = set(trie.mass)
-    done: set[tuple[int, ...]] = set()
-    for p in sorted(walks, key=len, reverse=True):  # each prefix checked along a longest walk
-        if len(p) < 2 or p in done:
+    done = [False] * trie.size
+    for along in sorted(trie.ids, key=len, reverse=True):  # each prefix along a longest walk
+        if len(along) < 2 or done[along[-1]]:
             continue
+        p = [trie.node[i] for i in along]
         sig = sigma_along(instance, roles, ProgressRule(roles.g1), p)
         total: Number = 0
         c0 = c = c_of[p[0]]
@@ -457,21 +554,21 @@ def _telescoping(instance: Instance, roles: Roles, trie: Trie, mode: NumberMode)
             for t, (w, s) in enumerate(steps, start=1):
                 total += w * s
                 c = min(c, c_of[p[t]])
-                done.add(p[:t + 1])
+                done[along[t]] = True
                 bad += (not 0 <= s <= 1) + (total != c0 - c)
             continue
         for t, (w, s) in enumerate(steps, start=1):
             total += w * s
             c = min(c, c_of[p[t]])
-            done.add(p[:t + 1])
+            done[along[t]] = True
             if not (mode.at_most(0, s) and mode.at_most(s, 1)):
                 bad += 1
             if not mode.equal(total, c_of[p[0]] - c):
                 bad += 1
-    numbers: dict[str, Number | None] = {"prefixes": len(trie.mass), "violations": bad}
+    numbers: dict[str, Number | None] = {"prefixes": trie.size, "violations": bad}
     status: Status = "fail" if bad else "pass"
     return _rec("lemma.TEL.telescoping", status, f"Σ w σ* = c_0 − c_t and σ* ∈ [0, 1] on all "
-                f"{len(trie.mass)} prefixes of the profile's walks" if not bad else
+                f"{trie.size} prefixes of the profile's walks" if not bad else
                 f"{bad} violation(s) of the telescoping identity", numbers, "TEL",
                 "the profile's prefixes (a consistency check of σ*)")
 
@@ -540,8 +637,8 @@ def _xi2(instance: Instance, roles: Roles, mode: NumberMode, mins: WalkMinima) -
                 f"{show(mins.other)} ≠ M − d(s0,g1) = {show(expect)}", numbers, "XI2", WALKBR)
 
 
-def _l5(instance: Instance, profile: Profile, roles: Roles,
-        beliefs: dict[tuple[int, ...], Fraction], mode: NumberMode) -> CheckRecord:
+def _l5(instance: Instance, profile: Profile, roles: Roles, trie: Trie,
+        beliefs: dict[int, Fraction], mode: NumberMode) -> CheckRecord:
     cid = "lemma.L5.induced_beliefs"
     sec = [w for w in profile.secondary if w.probability > 0]
     if len(sec) != 1:
@@ -551,10 +648,11 @@ def _l5(instance: Instance, profile: Profile, roles: Roles,
     t1, t2, T = phases_of(sigma_along(instance, roles, ProgressRule(roles.g1), xi2),
                           mode).as_tuple()
     problems = []
-    along = {xi2[:t + 1] for t in range(len(xi2))}
+    ids = trie.find_along(xi2)
+    along = set(ids)
     for t in range(len(xi2)):
         want = roles.b1 if t <= t1 else (HALF if t <= t2 else Fraction(0))
-        got = beliefs[xi2[:t + 1]]
+        got = beliefs[ids[t]]
         if got != want:
             phase = "I" if t <= t1 else ("II" if t <= t2 else "III")
             problems.append(f"at step {t} of ξ² (phase {phase}) the belief is {show(got)}, "

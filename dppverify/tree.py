@@ -169,9 +169,11 @@ class WalkTree(PrefixTree):
 def count_prefixes(instance: GameInstance, horizon: int, *, limit: int | None = None) -> int:
     """Number of prefixes of the pruned walk tree with ``horizon`` steps, without building it.
 
-    Dynamic programming over (node, steps left): ``O(H·|E|)``, and bounded: the count is
-    non-decreasing in the steps left, so it stops as soon as it exceeds ``limit`` (returning
-    a number larger than ``limit``) or stops changing (every walk has ended at a goal).
+    Dynamic programming over (node, steps left), vectorised, touching at each layer only the
+    nodes a prefix can be at (a goal within the steps left, reached within the steps taken):
+    at most ``O(H·|E|)``, and ``O(total walk length)`` on a path. Bounded: the count is
+    non-decreasing in the steps left, so with a ``limit`` it saturates just above it and
+    stops as soon as the start's count exceeds it (returning ``limit + 1``).
 
     Raises
     ------
@@ -191,24 +193,70 @@ def count_prefixes(instance: GameInstance, horizon: int, *, limit: int | None = 
     if horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
     inst = instance
-    goal = [inst.is_goal(v) for v in range(inst.n_nodes)]
-    hops = inst.hops
-    cnt = [1 if goal[v] else 0 for v in range(inst.n_nodes)]  # k = 0 steps left
+    n = inst.n_nodes
+    cap = limit + 1 if limit is not None and limit + 1 < 2**40 else None
+    exact = cap is None  # no limit, or saturated int64 sums could overflow: Python ints
+    goal = np.zeros(n, dtype=bool)
+    goal[list(inst.goals)] = True
+    hops = np.asarray(inst.hops, dtype=np.int64)
+    reach = _hops_from(inst, goal)
+    deg = np.asarray([0 if goal[v] else len(inst.succ[v]) for v in range(n)], dtype=np.int64)
+    indptr = np.concatenate([[0], np.cumsum(deg)])
+    heads = np.asarray([u for v in range(n) if not goal[v] for u, _ in inst.succ[v]],
+                       dtype=np.int64)
+    cnt = np.zeros(n, dtype=object if exact else np.int64)
+    cnt[goal] = 1  # k = 0 steps left
+    # a prefix at v with k steps left took horizon - k >= reach[v] steps and reaches a goal
+    # within k: v is active for k in [hops[v], horizon - reach[v]]; only active nodes change
+    # (the others keep a value that is never read again)
+    last = horizon - reach
+    cand = np.flatnonzero(~goal & (hops >= 0) & (hops <= last))
+    cand = cand[np.argsort(hops[cand], kind="stable")]
+    starts = hops[cand]
+    active = np.zeros(0, dtype=np.int64)
+    taken = 0
     for k in range(1, horizon + 1):
-        if limit is not None and cnt[inst.start] > limit:
-            break
-        nxt = []
-        for v in range(inst.n_nodes):
-            if goal[v]:
-                nxt.append(1)
-            elif 0 <= hops[v] <= k:
-                nxt.append(1 + sum(cnt[u] for u, _ in inst.succ[v]))
+        upto = int(np.searchsorted(starts, k, side="right"))
+        active = np.concatenate([active[last[active] >= k], cand[taken:upto]])
+        taken = upto
+        if active.size:
+            lens = deg[active]
+            first = np.repeat(indptr[active] - np.cumsum(lens) + lens, lens)
+            arcs = first + np.arange(int(lens.sum()))
+            owner = np.repeat(np.arange(active.size), lens)
+            sums = np.zeros(active.size, dtype=cnt.dtype)
+            if exact:
+                for j, c in zip(owner.tolist(), cnt[heads[arcs]].tolist(), strict=True):
+                    sums[j] += c
             else:
-                nxt.append(0)
-        if nxt == cnt and k > inst.n_nodes:  # hops <= n: a fixed point from here on
-            break
-        cnt = nxt
-    return cnt[inst.start]
+                np.add.at(sums, owner, cnt[heads[arcs]])
+            cnt[active] = sums + 1 if cap is None else np.minimum(sums + 1, cap)
+        if cap is not None and cnt[inst.start] >= cap:
+            break  # the count never decreases with more steps left
+    return int(cnt[inst.start])
+
+
+def _hops_from(inst: GameInstance, goal: np.ndarray) -> np.ndarray:
+    """Fewest steps from the start to each node along walks that stop at the first goal
+    (a large number where there is none)."""
+    n = inst.n_nodes
+    far = np.iinfo(np.int64).max // 4
+    dist = np.full(n, far, dtype=np.int64)
+    dist[inst.start] = 0
+    frontier = [inst.start]
+    d = 0
+    while frontier:
+        d += 1
+        nxt = []
+        for v in frontier:
+            if goal[v]:
+                continue
+            for u, _ in inst.succ[v]:
+                if dist[u] == far:
+                    dist[u] = d
+                    nxt.append(u)
+        frontier = nxt
+    return dist
 
 
 def build_tree(instance: Instance, horizon: int, *,
@@ -291,8 +339,8 @@ def build_prefix_tree(instance: GameInstance, horizon: int, cls: type[T], *,
     if size > max_prefixes:
         raise TreeTooLargeError(
             f"the walk tree for horizon H = {horizon} has at least {size} prefixes, more than "
-            f"the limit "
-            f"of {max_prefixes}; lower the horizon or raise the limit (--max-prefixes)")
+            f"the limit of {max_prefixes} (--max-prefixes); use --route structured, or lower "
+            "the horizon")
     inst = instance
     goal = [inst.is_goal(v) for v in range(inst.n_nodes)]
     hops = inst.hops

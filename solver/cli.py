@@ -27,7 +27,7 @@ from dppverify.cli_conventions import (
 from dppverify.errors import CheckerError
 from dppverify.map_options import MapRequest, instance_or_map, map_options
 from solver.errors import DPPError, InvalidInstanceError, OutputError
-from solver.io_utils import dumps, write_atomic, write_files
+from solver.io_utils import dumps, open_input, refuse_input_as_output, write_atomic, write_files
 from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE, MAX_INPUT_BYTES
 
 if TYPE_CHECKING:  # the solver's modules load numpy, scipy, networkx: imported per command
@@ -84,8 +84,9 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     if output is not None and save_instance is not None and \
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
-    checker_cli.check_output_not_input(output, instance)
-    checker_cli.check_output_not_input(save_instance, instance)
+    inputs = [instance, grid.path if grid is not None else None]
+    refuse_input_as_output(output, inputs, option="-o")
+    refuse_input_as_output(save_instance, inputs, option="--save-instance")
     ngame = _ngoal_game(instance, grid)
     if ngame is not None:  # N > 2 goals: the coalition construction, certified before writing
         _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance)
@@ -717,7 +718,7 @@ def plot_voi_command(csv_file: str, output: str, progress: bool | None) -> None:
     from solver.plots import plot_voi, save_figure
 
     try:
-        with open(csv_file, "rb") as fh:
+        with open_input(csv_file) as fh:
             raw = fh.read(MAX_INPUT_BYTES + 1)
         if len(raw) > MAX_INPUT_BYTES:
             raise ValueError(f"larger than the limit of {MAX_INPUT_BYTES} bytes")

@@ -112,7 +112,9 @@ def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibriu
     instance : Instance
         The game. Rational weights give exact results.
     abs_tol : float
-        Absolute tolerance on distances, used only when some weight is a float.
+        Tolerance on distances, used only when some weight is a float: relative to the
+        largest weight (scaled by it; the float-mode limit
+        :data:`~solver.limits.MAX_FLOAT_WEIGHT_RATIO` keeps every weight far above it).
 
     Returns
     -------
@@ -137,6 +139,8 @@ def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibriu
     ('12/5', '1/9')
     """
     net = instance.network
+    if not net.numbers.exact and net.weights.size:  # float mode: relative to the largest weight
+        abs_tol *= float(np.max(net.weights))
     numbers = net.numbers.with_abs_tol(abs_tol)
     s0 = _index(instance, instance.start)
     g1 = _index(instance, instance.primary)

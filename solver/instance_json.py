@@ -16,7 +16,7 @@ import numpy as np
 
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.instance import Instance
-from solver.limits import MAX_INPUT_BYTES, MAX_JSON_DEPTH, check_numeral
+from solver.limits import MAX_INPUT_BYTES, MAX_JSON_DEPTH, check_numeral, open_input
 from solver.movingai import STANDARD_PREFIX, map_file, read_map_bytes
 from solver.network import GridLabels
 from solver.numbers import format_number, parse_number
@@ -75,7 +75,7 @@ def read_json(path: str | Path) -> Any:
     """
     p = Path(path)
     try:
-        with open(p, "rb") as fh:
+        with open_input(p) as fh:
             raw = fh.read(MAX_INPUT_BYTES + 1)
     except OSError as exc:
         raise InstanceFormatError(f"{p}: cannot read file ({exc.strerror})") from None

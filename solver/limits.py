@@ -13,14 +13,31 @@ solver.errors.InvalidInstanceError: weight: the exponent of '1e999999999' is bey
 
 from __future__ import annotations
 
+import os
 import re
+from collections.abc import Iterable
 from fractions import Fraction
+from pathlib import Path
+from typing import BinaryIO
 
 from solver.errors import InvalidInstanceError
 
-__all__ = ["MAX_DENSITY_GRIDS", "MAX_DENSITY_SIZE", "MAX_EXPONENT", "MAX_INPUT_BYTES",
-           "MAX_JSON_DEPTH", "MAX_NUMBER_DIGITS", "MAX_NUMERAL_CHARS", "check_numeral",
-           "check_rational"]
+__all__ = [
+    "MAX_DENSITY_GRIDS",
+    "MAX_DENSITY_SIZE",
+    "MAX_EXPONENT",
+    "MAX_FLOAT_WEIGHT_RATIO",
+    "MAX_INPUT_BYTES",
+    "MAX_JSON_DEPTH",
+    "MAX_MAP_CELLS",
+    "MAX_NUMBER_DIGITS",
+    "MAX_NUMERAL_CHARS",
+    "MAX_PREFIXES_LIMIT",
+    "check_float_weights",
+    "check_numeral",
+    "check_rational",
+    "open_input",
+]
 
 MAX_INPUT_BYTES = 64 * 1024 * 1024
 """Largest instance JSON or ``.map`` file read (bytes): 64 MiB."""
@@ -42,6 +59,20 @@ MAX_DENSITY_SIZE = 200
 
 MAX_DENSITY_GRIDS = 100_000
 """Most grids of one density sweep (samples x densities)."""
+
+MAX_FLOAT_WEIGHT_RATIO = 10**6
+"""Float mode (``"numbers": "float"``): largest / smallest edge weight. Float comparisons use
+a tolerance of 1e-9 relative to the largest weight, so a smaller weight must stay far above
+it; exact weights have no such limit."""
+
+MAX_MAP_CELLS = 4_000_000
+"""Largest grid of a ``--map`` (rows x columns, obstacles included): a 2000 x 2000 map. Larger
+maps are refused before any array is allocated (the memory budget: about 1 GiB per
+4 million cells for the checker's structured route)."""
+
+MAX_PREFIXES_LIMIT = 10**7
+"""Largest ``--max-prefixes`` accepted: a walk tree of 10**7 prefixes already takes several
+GiB in the tree route's LP."""
 
 _NUMERAL = re.compile(r"\s*[-+]?(\d*)(?:\.(\d*))?(?:[eE]([-+]?\d+))?\s*")
 
@@ -81,3 +112,56 @@ def check_rational(x: object, *, where: str) -> None:
         big = max(abs(f.numerator), f.denominator)
         raise InvalidInstanceError(f"{where}: 10**{len(str(big)) - 1} or more is beyond the "
                                    f"limit of 10**{MAX_NUMBER_DIGITS}")
+
+
+def check_float_weights(weights: Iterable[float | Fraction | int], *,
+                        where: str = "graph.edges") -> None:
+    """Refuse float-mode weights whose ratio largest / smallest is beyond
+    :data:`MAX_FLOAT_WEIGHT_RATIO`.
+
+    Raises
+    ------
+    InvalidInstanceError
+        One line naming the limit.
+
+    Examples
+    --------
+    >>> check_float_weights([1.0, 2 ** 0.5])
+    >>> check_float_weights([1.0, 1e300])
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: graph.edges: float weights span a ratio of 1e+300 \
+(1e+00 to 1e+300), beyond the float-mode limit of 10**6; give exact weights
+    """
+    lo = hi = None
+    for w in weights:
+        x = float(w)
+        lo = x if lo is None or x < lo else lo
+        hi = x if hi is None or x > hi else hi
+    if lo is None or hi is None or lo <= 0:
+        return
+    if hi / lo > MAX_FLOAT_WEIGHT_RATIO:
+        raise InvalidInstanceError(f"{where}: float weights span a ratio of {hi / lo:.0e} "
+                                   f"({lo:.0e} to {hi:.0e}), beyond the float-mode limit of "
+                                   "10**6; give exact weights")
+
+
+def open_input(path: str | Path) -> BinaryIO:
+    """Open an input file for reading; a FIFO that nobody writes reads as empty instead of
+    blocking (opened non-blocking, then switched back to blocking reads).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     os.mkfifo(Path(d) / "fifo")
+    ...     with open_input(Path(d) / "fifo") as fh:
+    ...         fh.read()
+    b''
+    """
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
+    try:
+        os.set_blocking(fd, True)
+        return os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise

@@ -16,7 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from solver.errors import InstanceFormatError
-from solver.limits import MAX_INPUT_BYTES
+from solver.limits import MAX_INPUT_BYTES, MAX_MAP_CELLS, open_input
 
 __all__ = ["DEFAULT_BLOCKED", "STANDARD_PREFIX", "map_file", "parse_map", "read_map",
            "read_map_bytes"]
@@ -81,7 +81,7 @@ def read_map_bytes(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_B
     """
     p = Path(path)
     try:
-        with open(p, "rb") as fh:
+        with open_input(p) as fh:
             raw = fh.read(MAX_INPUT_BYTES + 1)
         if len(raw) > MAX_INPUT_BYTES:
             raise ValueError(f"larger than the limit of {MAX_INPUT_BYTES} bytes")
@@ -150,6 +150,9 @@ def parse_map(text: str, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED) -> n
         raise InstanceFormatError("height and width must be integers") from None
     if height <= 0 or width <= 0:
         raise InstanceFormatError(f"height and width must be positive, got {height}x{width}")
+    if height * width > MAX_MAP_CELLS:  # refused before any array is allocated
+        raise InstanceFormatError(f"a {height}x{width} map has {height * width} cells, beyond "
+                                  f"the limit of {MAX_MAP_CELLS} (the memory budget)")
     rows = lines[k + 1 : k + 1 + height]
     extra = [line for line in lines[k + 1 + height:] if line.strip()]
     if len(rows) != height or extra:

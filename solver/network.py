@@ -21,6 +21,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from solver.errors import InvalidInstanceError
+from solver.limits import check_float_weights
 from solver.numbers import (
     DEFAULT_ABS_TOL,
     ExactNumbers,
@@ -182,6 +183,8 @@ class Network:
             numbers = ExactNumbers(den)
         else:
             data = np.array([float(w) for w in values], dtype=np.float64)
+            if data.size:
+                check_float_weights([float(data.min()), float(data.max())])
             numbers = FloatNumbers(DEFAULT_ABS_TOL)
         indptr, indices, weights = _sorted_csr(len(labels), np.asarray(tails, dtype=np.int64),
                                                np.asarray(heads, dtype=np.int64), data)

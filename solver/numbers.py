@@ -232,7 +232,9 @@ def parse_number(value: object, *, where: str, allow_float: bool = False) -> Num
     if isinstance(value, float):
         if not math.isfinite(value):
             raise InvalidInstanceError(f"{where}: expected a finite number, got {value!r}")
-        return value if allow_float else Fraction(repr(value))
+        exact = Fraction(repr(value))
+        check_rational(exact, where=where)  # the checker reads the literal exactly: same limit
+        return value if allow_float else exact
     if isinstance(value, str):
         check_numeral(value, where=where)
         try:

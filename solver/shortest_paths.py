@@ -35,7 +35,7 @@ def path_to_target(net: Network, start: int, target: int, dist_to: np.ndarray,
     while u != target:
         heads, ws = net.out_arcs(u)
         slack = ws + dist_to[heads] - dist_to[u]
-        u = int(heads[_first_tight(slack, numbers)])
+        u = int(heads[_first_tight(slack, numbers, dist_to[heads] < dist_to[u])])
         path.append(u)
     return path
 
@@ -59,14 +59,17 @@ def path_from_source(net: Network, source: int, end: int, dist_from: np.ndarray,
     while v != source:
         tails, ws = rev.out_arcs(v)
         slack = dist_from[tails] + ws - dist_from[v]
-        v = int(tails[_first_tight(slack, numbers)])
+        v = int(tails[_first_tight(slack, numbers, dist_from[tails] < dist_from[v])])
         path.append(v)
     path.reverse()
     return path
 
 
-def _first_tight(slack: np.ndarray, numbers: NumberMode) -> int:
-    hits = np.flatnonzero(numbers.is_zero(slack))
+def _first_tight(slack: np.ndarray, numbers: NumberMode, closer: np.ndarray) -> int:
+    """The first tight arc that also gets strictly closer (positive weights: every tight arc
+    does in exact arithmetic; in float mode this keeps the trace from cycling, so it ends
+    within n steps)."""
+    hits = np.flatnonzero(numbers.is_zero(slack) & closer)
     if hits.size == 0:  # cannot happen with consistent distances
         raise RuntimeError("no tight arc: distance field inconsistent with the graph")
     return int(hits[0])

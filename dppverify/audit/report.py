@@ -199,5 +199,14 @@ def write_failure(outcome: Outcome, out: str | Path, *, seed: int = 0) -> tuple[
                             "traceback": outcome.traceback or None}
     texts = {folder / name: json.dumps(doc, indent=2, default=_number_default) + "\n"
              for name, doc in docs.items()}
-    stale = [folder / name for name in FAILURE_FILES if name not in docs]
-    return write_files(texts, remove=stale)
+    # a file of an earlier, larger failure is removed only if this process wrote it: files
+    # the user already had in the folder are never deleted
+    stale = [folder / name for name in FAILURE_FILES
+             if name not in docs and (folder / name).resolve() in _WRITTEN]
+    written = write_files(texts, remove=stale)
+    _WRITTEN.update(p.resolve() for p in written)
+    return written
+
+
+_WRITTEN: set[Path] = set()
+"""Files :func:`write_failure` wrote in this process (the only ones it ever removes)."""

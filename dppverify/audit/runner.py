@@ -11,7 +11,11 @@ end, hang or corrupt the audit:
 - a command line (:class:`CommandRunner`) runs on files, without a shell, in a new session;
 
 in both cases a run that exceeds the timeout has its whole process group killed, so no
-child survives. A solver that cannot be started at all — a module that cannot be imported,
+child survives — not even one that started a session of its own (the worker, and the
+supervisor that starts a command, are child subreapers: :mod:`dppverify.audit.procs`). A
+command's output is read with a cap (its last :data:`OUTPUT_CAP` bytes are kept), and a
+profile path that is not a regular file (a FIFO the solver made) is the solver's failure,
+never a hang. A solver that cannot be started at all — a module that cannot be imported,
 a program that does not exist — is bad input (:class:`~dppverify.errors.AuditError`).
 
 Examples
@@ -37,9 +41,11 @@ import os
 import shlex
 import shutil
 import signal
+import stat
 import subprocess
 import sys
 import tempfile
+import threading
 import traceback
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -49,6 +55,7 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
+from dppverify.audit.procs import SUPERVISOR, become_subreaper, kill_tree
 from dppverify.errors import AuditError
 from dppverify.files import read_input
 
@@ -163,12 +170,6 @@ class SolverRunner:
         self.close()
 
 
-def _kill_group(pid: int) -> None:
-    """SIGKILL every process of the process group ``pid`` (a session the runner started)."""
-    with contextlib.suppress(ProcessLookupError, PermissionError):
-        os.killpg(pid, signal.SIGKILL)
-
-
 def _load(spec: str) -> Solver:
     module_name, sep, attr = spec.partition(":")
     if not sep or not module_name or not attr:
@@ -189,6 +190,9 @@ def _load(spec: str) -> Solver:
 
 def _worker(target: str | Solver, conn: Connection) -> None:  # pragma: no cover - in a child
     os.setsid()  # a process group of its own: a timeout kills the solver's children too
+    for s in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
+        signal.signal(s, signal.SIG_DFL)  # not the audit's handlers (dppverify.interrupts)
+    become_subreaper(signal.SIGKILL)  # the solver's escaped children stay under the worker
     devnull = os.open(os.devnull, os.O_RDWR)
     for fd in (0, 1, 2):
         os.dup2(devnull, fd)
@@ -301,9 +305,7 @@ class PythonRunner(SolverRunner):
             conn.close()
         if proc is not None:
             proc.join(0.5)
-            _kill_group(proc.pid)
-            if proc.exitcode is None:
-                proc.kill()
+            kill_tree(proc.pid)  # the worker, its process group and every descendant
             proc.join()
 
 
@@ -351,38 +353,31 @@ class CommandRunner(SolverRunner):
         self.timeout = timeout
 
     def __call__(self, doc: Doc) -> Answer:
-        with tempfile.TemporaryDirectory(prefix="dpp-audit-") as tmp:
+        with tempfile.TemporaryDirectory(prefix="dpp-audit-", ignore_cleanup_errors=True) as tmp:
             inst, prof = Path(tmp) / "instance.json", Path(tmp) / "profile.json"
             inst.write_text(json.dumps(doc))
             cmd = [a.replace("{instance}", str(inst)).replace("{profile}", str(prof))
                    for a in self.argv]
-            with open(Path(tmp) / "output.txt", "w+b") as log:
-                try:
-                    proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=log,
-                                            stderr=log, start_new_session=True)
-                except OSError as exc:
-                    return Answer(None, "solver.error",
-                                  f"the command could not start: {exc.strerror or exc}")
-                try:
-                    code = proc.wait(self.timeout)
-                except subprocess.TimeoutExpired:
-                    _kill_group(proc.pid)
-                    proc.kill()
-                    proc.wait()
-                    return Answer(None, "solver.timeout",
-                                  f"the command timed out after {self.timeout:g} s")
-                finally:
-                    _kill_group(proc.pid)  # children left behind do not survive the run
-                log.seek(0)
-                lines = log.read(1 << 16).decode("utf-8", "replace").strip().splitlines()
+            result = self._run(cmd)
+            if isinstance(result, Answer):
+                return result
+            code, lines = result
             if code != 0:
                 last = lines[-1] if lines else "no output"
                 return Answer(None, "solver.error",
                               f"the command exited {code}: {one_line(last)}")
             try:
-                raw = read_input(prof)
+                kind = os.stat(prof).st_mode
             except FileNotFoundError:
                 return Answer(None, "solver.output", "the command exited 0 but wrote no profile")
+            except OSError as exc:
+                return Answer(None, "solver.output",
+                              f"the command's profile: {one_line(exc.strerror or exc)}")
+            if not stat.S_ISREG(kind):
+                return Answer(None, "solver.output", "the command's profile path is not a "
+                              "regular file (a FIFO, a device or a folder)")
+            try:
+                raw = read_input(prof)
             except (OSError, ValueError) as exc:
                 return Answer(None, "solver.output", f"the command's profile: {one_line(exc)}")
             try:
@@ -390,3 +385,48 @@ class CommandRunner(SolverRunner):
             except UnicodeDecodeError:
                 return Answer(None, "solver.output", "the command's profile is not UTF-8 text")
             return Answer(text)
+
+    def _run(self, cmd: list[str]) -> Answer | tuple[int, list[str]]:
+        """Run ``cmd`` under :data:`~dppverify.audit.procs.SUPERVISOR`: its exit code and the
+        last lines of its output (read with a cap of :data:`OUTPUT_CAP` bytes), or the
+        timeout's :class:`Answer`. Every process it started is dead when this returns."""
+        argv = [sys.executable, "-I", "-S", "-c", SUPERVISOR, str(os.getpid()), *cmd]
+        try:
+            proc = subprocess.Popen(argv, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                                    stderr=subprocess.STDOUT, start_new_session=True)
+        except OSError as exc:
+            return Answer(None, "solver.error",
+                          f"the command could not start: {exc.strerror or exc}")
+        tail = bytearray()
+        assert proc.stdout is not None
+        reader = threading.Thread(target=_read_capped, args=(proc.stdout, tail), daemon=True)
+        reader.start()
+        try:
+            try:
+                code = proc.wait(self.timeout)
+            except subprocess.TimeoutExpired:
+                proc.terminate()  # the supervisor kills the solver's processes, then exits
+                with contextlib.suppress(subprocess.TimeoutExpired):
+                    proc.wait(5)
+                return Answer(None, "solver.timeout",
+                              f"the command timed out after {self.timeout:g} s")
+        finally:
+            kill_tree(proc.pid)  # whatever is left of the run, then the supervisor
+            proc.wait()
+            reader.join(5)
+            proc.stdout.close()
+        lines = bytes(tail).decode("utf-8", "replace").strip().splitlines()
+        return code, lines
+
+
+OUTPUT_CAP = 1 << 16
+"""Bytes of a command's output kept (its tail): the rest is read and discarded."""
+
+
+def _read_capped(stream: Any, tail: bytearray) -> None:
+    """Read ``stream`` to its end, keeping only its last :data:`OUTPUT_CAP` bytes."""
+    with contextlib.suppress(OSError, ValueError):
+        while chunk := stream.read1(1 << 16):
+            tail += chunk
+            if len(tail) > OUTPUT_CAP:
+                del tail[:len(tail) - OUTPUT_CAP]

@@ -210,14 +210,84 @@ def _run_local(tasks: list[Task], workers: int,
     import multiprocessing
 
     ctx = multiprocessing.get_context("forkserver" if os.name == "posix" else "spawn")
-    with ProcessPoolExecutor(max_workers=min(workers, len(tasks)), mp_context=ctx) as pool:
+    pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)), mp_context=ctx,
+                               initializer=_own_process_group)
+    try:
         futures = {pool.submit(run_task, t): t for t in tasks}
         results = []
         for fut in as_completed(futures):
             results.append(fut.result())
             if progress:
                 progress(futures[fut].count)
+    except BaseException:  # a signal, an error: no worker outlives the sweep
+        _kill_workers(pool)
+        raise
+    pool.shutdown()
     return results
+
+
+def _own_process_group() -> None:  # pragma: no cover - runs in a worker
+    """Worker initializer: a process group of its own (a terminal's Ctrl-C reaches only the
+    sweep, which then kills each worker's group), default signal handlers."""
+    import signal
+
+    if os.name == "posix":
+        os.setpgid(0, 0)
+        for s in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
+            signal.signal(s, signal.SIG_DFL)
+
+
+def _kill_workers(pool: ProcessPoolExecutor) -> None:
+    """Kill every worker process of ``pool`` and its process group, then shut it down."""
+    import contextlib
+    import signal
+
+    procs = list(getattr(pool, "_processes", {}).values())  # no public accessor
+    for proc in procs:
+        with contextlib.suppress(OSError):
+            if os.name == "posix":
+                os.killpg(proc.pid, signal.SIGKILL)
+        with contextlib.suppress(OSError):
+            proc.kill()
+    import multiprocessing.forkserver
+
+    server: int = getattr(getattr(multiprocessing.forkserver, "_forkserver", None),
+                          "_forkserver_pid", None) or 0  # no public accessor either
+    for _ in range(20 if server > 0 else 0):  # the forkserver and a worker it was starting
+        found = [*_descendants(server), server]
+        for pid in found:
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGKILL)
+        if len(found) == 1:
+            break
+    pool.shutdown(wait=False, cancel_futures=True)
+    for proc in procs:
+        proc.join(5)
+
+
+def _descendants(pid: int) -> list[int]:
+    """Every live descendant of ``pid`` (through ``/proc``; empty where there is none)."""
+    from pathlib import Path
+
+    kids: dict[int, list[int]] = {}
+    proc_dir = Path("/proc")
+    if not proc_dir.is_dir():
+        return []
+    for entry in proc_dir.iterdir():
+        if entry.name.isdigit():
+            try:
+                text = (entry / "stat").read_text()
+            except OSError:
+                continue
+            fields = text[text.rfind(")") + 2:].split()
+            if fields and fields[0] != "Z":
+                kids.setdefault(int(fields[1]), []).append(int(entry.name))
+    out, todo = [], [pid]
+    while todo:
+        for c in kids.get(todo.pop(), []):
+            out.append(c)
+            todo.append(c)
+    return out
 
 
 def _run_dask(tasks: list[Task], address: str,

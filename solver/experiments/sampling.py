@@ -80,4 +80,4 @@ def sample_grid(size: int, density: int, sample: int, seed: int, start: Cell,
         if goals_separately_reachable(grid, start, goals):
             return GridSample(grid, attempt)
     raise InvalidInstanceError(f"no valid grid at density {density}% after {MAX_ATTEMPTS} "
-                               "draws (sample {sample})")
+                               f"draws (sample {sample})")

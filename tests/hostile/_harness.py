@@ -1,0 +1,172 @@
+"""Running one hostile probe: the real ``dpp`` program in a subprocess of its own session,
+under resource limits, in a scratch folder whose contents are compared before and after.
+
+Bounded time and memory are enforced by the kernel (``RLIMIT_CPU``, ``RLIMIT_AS``), not by
+timing assertions; a wall-clock guard only turns a hang into a failure instead of blocking the
+suite. "No surviving process" is checked through the probe's session: every process the
+probe started (its session id is the probe's pid) must be gone once it has exited, and the
+pids that hostile solvers write into ``pids/`` must be dead too (escapees in other sessions).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import resource
+import signal
+import stat
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+GUARD_SECONDS = 600
+"""Wall-clock guard per probe: only there so that a hang fails instead of blocking."""
+DEFAULT_MEMORY = 3 << 30
+"""Address-space limit of a probe (bytes): numpy, scipy and cvxpy fit well below it."""
+DEFAULT_CPU = 120
+"""CPU-seconds limit of a probe."""
+
+
+@dataclass
+class Result:
+    """What a probe did."""
+
+    code: int
+    stdout: str
+    stderr: str
+    pid: int
+
+    @property
+    def lines(self) -> list[str]:
+        """The non-empty stderr lines."""
+        return [line for line in self.stderr.splitlines() if line.strip()]
+
+
+def listing(root: Path) -> dict[str, tuple[str, int, int]]:
+    """Every entry under ``root`` (symlinks not followed): kind, size, mtime in ns."""
+    out = {}
+    for p in sorted(root.rglob("*")):
+        st = p.lstat()
+        kind = ("link" if stat.S_ISLNK(st.st_mode) else "fifo" if stat.S_ISFIFO(st.st_mode)
+                else "dir" if stat.S_ISDIR(st.st_mode) else "file")
+        out[str(p.relative_to(root))] = (kind, st.st_size if kind == "file" else 0,
+                                         st.st_mtime_ns if kind == "file" else 0)
+    return out
+
+
+def _session_members(sid: int) -> list[int]:
+    out = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            text = (entry / "stat").read_text()
+        except OSError:
+            continue
+        fields = text[text.rfind(")") + 2:].split()
+        if len(fields) > 3 and int(fields[3]) == sid and fields[0] != "Z":
+            out.append(int(entry.name))
+    return out
+
+
+def alive(pid: int) -> bool:
+    """True when ``pid`` is a live (non-zombie) process."""
+    try:
+        text = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return False
+    return text[text.rfind(")") + 2:].split()[0] != "Z"
+
+
+@dataclass
+class Probe:
+    """One invocation of ``dpp`` and what it must do."""
+
+    args: list[str]
+    code: int | tuple[int, ...] = 2
+    one_line: bool = True
+    memory: int = DEFAULT_MEMORY
+    cpu: int = DEFAULT_CPU
+    changes: tuple[str, ...] = ()
+    """Scratch entries the probe may create or modify (all others must stay untouched)."""
+    env: dict[str, str] = field(default_factory=dict)
+    contains: str = ""
+    """A text the stderr line must contain (case-insensitive)."""
+
+
+def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = DEFAULT_CPU,
+        env: dict[str, str] | None = None,
+        during: Callable[[subprocess.Popen[bytes]], None] | None = None) -> Result:
+    """Run ``python -m solver.cli ARGS`` in ``cwd`` under the limits; ``during`` is called
+    with the running process (to send it a signal, say) before waiting for it."""
+
+    def limits() -> None:  # pragma: no cover - in the child
+        resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+        resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 5))
+        signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+    full_env = {k: v for k, v in os.environ.items() if k not in ("DPP_DEBUG",)}
+    tmp = cwd.parent / "tmp"  # the probe's TMPDIR: a short link (AF_UNIX paths, < 108 bytes)
+    tmp.mkdir(exist_ok=True)
+    short = Path(tempfile.mkdtemp(prefix="dh", dir="/tmp"))
+    short.rmdir()
+    short.symlink_to(tmp)
+    full_env.update({"PYTHONPATH": str(ROOT), "OPENBLAS_NUM_THREADS": "1",
+                     "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "COLUMNS": "200",
+                     "TMPDIR": str(short)})
+    full_env.update(env or {})
+    proc = subprocess.Popen([sys.executable, "-m", "solver.cli", *args], cwd=cwd,
+                            env=full_env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, start_new_session=True,
+                            preexec_fn=limits)
+    try:
+        if during is not None:
+            during(proc)
+        out, err = proc.communicate(timeout=GUARD_SECONDS)
+    finally:
+        if proc.poll() is None:
+            with contextlib.suppress(OSError):
+                os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+        short.unlink()
+    # every process of the probe's session is gone once the probe has exited
+    deadline = time.monotonic() + 10
+    members = _session_members(proc.pid)
+    while members and time.monotonic() < deadline:  # exit in progress: poll, never assert
+        time.sleep(0.05)
+        members = _session_members(proc.pid)
+    assert not members, f"processes of the probe survive: {members}"
+    return Result(proc.returncode, out.decode("utf-8", "replace"),
+                  err.decode("utf-8", "replace"), proc.pid)
+
+
+def wait_for(predicate: Callable[[], bool], proc: subprocess.Popen[bytes],
+             what: str) -> None:
+    """Poll until ``predicate()`` holds (the probe reached some state), while it runs."""
+    deadline = time.monotonic() + GUARD_SECONDS
+    while not predicate():
+        assert proc.poll() is None, f"the probe exited before {what}"
+        assert time.monotonic() < deadline, f"never reached: {what}"
+        time.sleep(0.05)
+
+
+def check(result: Result, probe: Probe, before: dict[str, tuple[str, int, int]],
+          after: dict[str, tuple[str, int, int]]) -> None:
+    """The assertions every probe shares."""
+    codes = probe.code if isinstance(probe.code, tuple) else (probe.code,)
+    assert result.code in codes, (result.code, result.stderr[-2000:], result.stdout[-500:])
+    assert "Traceback" not in result.stderr + result.stdout, result.stderr[-2000:]
+    if probe.one_line:
+        assert len(result.lines) == 1, result.stderr
+    if probe.contains:
+        assert probe.contains.lower() in result.stderr.lower(), result.stderr
+    allowed = set(probe.changes)
+    changed = {k for k in set(before) | set(after)
+               if before.get(k) != after.get(k)
+               and not any(k == a or k.startswith(a + "/") for a in allowed)}
+    assert not changed, f"files changed: {sorted(changed)}"
