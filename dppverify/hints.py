@@ -8,7 +8,9 @@ one-line error says what to do next. Only the first few KiB are read.
 
 from __future__ import annotations
 
+import os
 import re
+import stat
 from pathlib import Path
 from typing import Literal
 
@@ -24,7 +26,10 @@ USAGE = {"instance": "INSTANCE", "profile": "PROFILE", "density CSV": "CSV"}
 
 
 def _peek(path: str | Path) -> bytes:
+    """The first bytes of a regular file (never opens a FIFO or device: that could block)."""
     try:
+        if not stat.S_ISREG(os.stat(path).st_mode):
+            return b""
         with open(path, "rb") as fh:
             return fh.read(PEEK_BYTES)
     except OSError:
