@@ -380,6 +380,9 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
                               f"{profile!r})")
         if grid is not None:
             instance, profile = None, instance
+        if profile is None and provenance_of is not None:
+            raise OptionError("missing INSTANCE or PROFILE: dpp certify --verify-provenance "
+                              "CERT INSTANCE PROFILE (with --map: CERT PROFILE)")
         if profile is None:
             raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
                               f"dpp certify {MAP_USAGE} PROFILE")

