@@ -215,10 +215,12 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
     elif as_json:
         click.echo(text, nl=False)
     else:
-        click.echo(f"N = {game.n_goals} goals: U = {eq.U} (certified: structured route, "
-                   f"H = inf), VoI = {eq.VoI}, U_bar = {eq.U_bar}; type costs "
-                   f"{[str(c) for c in eq.costs]}; Defender: guarantee rule h = "
-                   f"{[str(x) for x in eq.h]}")
+        from solver.report import format_value
+
+        click.echo(f"N = {game.n_goals} goals: U = {format_value(eq.U)} (certified: structured "
+                   f"route, H = inf), VoI = {format_value(eq.VoI)}, U_bar = "
+                   f"{format_value(eq.U_bar)}; type costs ({', '.join(map(str, eq.costs))}); "
+                   f"Defender: guarantee rule h = ({', '.join(map(str, eq.h))})")
     if save_instance is not None:
         status(f"wrote {save_instance}: the instance")
 
