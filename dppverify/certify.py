@@ -259,7 +259,8 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     longest = shortest_horizon(inst, prof)
     if asked is not None and asked < longest:
         raise HorizonError(f"the horizon H = {asked} is shorter than the profile's longest "
-                           f"path ({longest} steps)")
+                           f"path ({longest} steps): give a horizon of at least "
+                           f"{longest}, or none for the untruncated game")
     chosen, h = _choose_route(inst, prof, asked, route, max_prefixes)
     tree_checks: list[CheckRecord] = []
     prefixes = leaves = 0
