@@ -64,7 +64,8 @@ def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
     RoutedValue or NRoutedValue
         Two goals: :class:`~dppverify.routes.RoutedValue`; more:
         :class:`~dppverify.ngoal.routes.NRoutedValue`. ``horizon`` is None for the
-        untruncated game.
+        untruncated game. Both have ``value`` (``V_H`` when proved, else None), ``lower``
+        and ``upper`` (the bounds, equal when proved), whatever the route.
 
     Raises
     ------
@@ -77,7 +78,7 @@ def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
     --------
     >>> from dppverify.examples import triangle_document
     >>> r = value(triangle_document())
-    >>> r.route, r.horizon, r.structured.value
+    >>> r.route, r.horizon, r.value          # r.lower, r.upper: the bounds
     ('structured', None, Fraction(12, 5))
     >>> value(triangle_document(), 2).tree.bracket.exact
     Fraction(12, 5)

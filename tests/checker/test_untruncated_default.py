@@ -323,3 +323,18 @@ def test_table_without_default_listing_every_walk_is_decided() -> None:
         assert [(c.id, c.status) for c in inf.checks if c.kind == "check"] == \
             [(c.id, c.status) for c in tree.checks if c.kind == "check"]
         assert (inf.check("pbne.attacker_br.secondary").status == "pass") == (verdict == "pass")
+
+
+@pytest.mark.parametrize("horizon,route", [("inf", "auto"), (4, "tree"), (4, "structured"),
+                                           (4, "both")])
+def test_value_reads_the_same_whatever_the_route(horizon: Any, route: Any) -> None:
+    r = dppverify.value(kite_document(), horizon, route=route)
+    assert r.value == r.lower == r.upper == Fraction(8, 5)   # kite: V = 8/5 (issue 18)
+
+
+def test_ngoal_value_reads_the_bounds_whatever_the_route() -> None:
+    from dppverify.ngoal.examples import hub4_document
+
+    for h, route in (("inf", "auto"), (5, "tree"), (5, "structured")):
+        r = dppverify.value(hub4_document(), h, route=route)
+        assert r.value == r.lower == r.upper == Fraction(12, 7), (h, route)  # not DP's 25/14
