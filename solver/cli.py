@@ -180,9 +180,26 @@ def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
             and len(doc["goals"]) > 2):
         return None
     try:
-        return ngame_from_json(doc)
+        return ngame_from_json(doc, base=Path(instance).parent)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{instance}: {exc}") from None
+
+
+def _map_document(grid: MapRequest, folder: Path) -> dict[str, Any]:
+    """The compact ``dpp-map-instance/1`` of an N-goal ``--map`` game (docs/formats.md)."""
+    import os
+
+    from solver.instance_json import MAP_INSTANCE_FORMAT
+    from solver.movingai import STANDARD_PREFIX, map_file, read_map_bytes
+    from solver.numbers import format_number, parse_number
+
+    _, digest = read_map_bytes(map_file(grid.map))
+    ref = grid.map if grid.map.startswith(STANDARD_PREFIX) else \
+        os.path.relpath(Path(grid.map).absolute(), folder.absolute())
+    return {"format": MAP_INSTANCE_FORMAT, "map": ref, "map_sha256": digest,
+            "start": list(grid.start), "goals": [list(g) for g in grid.goals],
+            "prior": [format_number(parse_number(p, where="--prior")) for p in grid.prior],
+            "connectivity": grid.connectivity}
 
 
 def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | None,
@@ -204,7 +221,10 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
                    f"on this instance{why}; nothing written", err=True)
         raise click.exceptions.Exit(3)
     text = dumps(doc)
-    instance_text = dumps(ngame_to_json(game)) if save_instance is not None else None
+    instance_text = None
+    if save_instance is not None:  # a map game: the compact document naming the map
+        instance_text = dumps(ngame_to_json(game) if grid is None else
+                              _map_document(grid, Path(save_instance).parent))
     if output is not None:
         write_atomic(output, text)
     if save_instance is not None and instance_text is not None:
