@@ -218,7 +218,8 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
         bad = next((c for c in cert.checks if c.status not in ("pass", "skipped")), None)
         why = "" if bad is None else f": {bad.id}: {' '.join(bad.message.split())}"
         click.echo(f"error: the coalition construction does not give a certified equilibrium "
-                   f"on this instance{why}; nothing written", err=True)
+                   f"on this instance{why}; nothing written (`dpp value` with the same "
+                   f"instance gives the game's value, or an exact bracket)", err=True)
         raise click.exceptions.Exit(3)
     text = dumps(doc)
     instance_text = None
