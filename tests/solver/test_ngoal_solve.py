@@ -208,7 +208,7 @@ def test_solve_then_certify_on_a_standard_map(tmp_path: Path) -> None:
     assert code == 0, err
     assert len(stdout.splitlines()) == 1 and "['" not in stdout, stdout
     u = Fraction(doc["value"]["U"])
-    assert f"U = {u} (≈ {float(u):.6g})" in stdout and "type costs (" in stdout
+    assert f"U = {u} (≈ {float(u):.7g})" in stdout and "type costs (" in stdout
 
 
 @pytest.mark.parametrize("group,message", [
