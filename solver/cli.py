@@ -179,10 +179,11 @@ def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
     if not (isinstance(doc, dict) and isinstance(doc.get("goals"), list)
             and len(doc["goals"]) > 2):
         return None
-    try:
-        return ngame_from_json(doc, base=Path(instance).parent)
-    except InvalidInstanceError as exc:
-        raise InvalidInstanceError(f"{instance}: {exc}") from None
+    with checker_cli.hinted(instance, "instance", "dpp solve", errors=(DPPError,)):
+        try:
+            return ngame_from_json(doc, base=Path(instance).parent)
+        except InvalidInstanceError as exc:
+            raise InvalidInstanceError(f"{instance}: {exc}") from None
 
 
 def _map_document(grid: MapRequest, folder: Path) -> dict[str, Any]:

@@ -165,6 +165,22 @@ def test_swapped_arguments_and_map_files_get_a_hint(profile: str) -> None:
     assert "not an instance" in _one_line_error(dpp("solve", profile))
 
 
+def test_ngoal_profiles_in_the_wrong_place_get_the_same_hints(profile: str,
+                                                             tmp_path: Path) -> None:
+    three = ["--map", PAPER10, "--start", "9,0", "--goals", "0,9", "0,0", "9,9", "--prior",
+             "1/2,1/4,1/4"]
+    p3, i3 = str(tmp_path / "p3.json"), str(tmp_path / "i3.json")
+    assert dpp("solve", *three, "-o", p3, "--save-instance", i3).exit_code == 0
+    assert "are the arguments swapped?" in _one_line_error(dpp("certify", p3, i3))
+    for command in ("value", "solve"):
+        line = _one_line_error(dpp(command, p3))
+        assert f"dpp-ngoal-profile/1 document, not an instance: dpp {command}" in line
+    line = _one_line_error(dpp("export-efg", p3, "-H", "2", "-o", str(tmp_path / "g.efg")))
+    assert "not an instance" in line
+    line = _one_line_error(dpp("certify", TRIANGLE, p3))   # 3 goals against 2
+    assert "does not belong to this instance: its goals are [0, 9], [0, 0], [9, 9]" in line
+
+
 def test_plot_voi_on_the_wrong_file_names_it_and_the_command(profile: str,
                                                              tmp_path: Path) -> None:
     line = _one_line_error(dpp("plot", "voi", profile, "-o", str(tmp_path / "v.png")))
