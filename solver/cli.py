@@ -88,7 +88,8 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     checker_cli.check_output_not_input(save_instance, instance)
     ngame = _ngoal_game(instance, grid)
     if ngame is not None:  # N > 2 goals: the coalition construction, certified before writing
-        _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance)
+        _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance,
+                             want_progress(progress))
         return
     from solver.equilibrium import solve
     from solver.instance_json import instance_to_json, map_instance_to_json
@@ -204,17 +205,23 @@ def _map_document(grid: MapRequest, folder: Path) -> dict[str, Any]:
 
 
 def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | None,
-                        as_json: bool, output: str | None, save_instance: str | None) -> None:
+                        as_json: bool, output: str | None, save_instance: str | None,
+                        progress: bool = False) -> None:
     """Solve, certify, and write (or refuse in one line, exit 3)."""
     from dppverify.ngoal.certify import certify_ngoal
     from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
     from solver.ngoal_instance import ngame_to_json
 
-    eq = solve_ngoal(game)
-    doc = nequilibrium_to_json(eq)
-    checked = grid.ninstance() if grid is not None else instance
-    assert checked is not None
-    cert = certify_ngoal(checked, doc, horizon="inf", route="structured")
+    bar = PhaseBar(progress, "solve", f"solving ({game.n_goals} goals)")
+    try:
+        eq = solve_ngoal(game)
+        doc = nequilibrium_to_json(eq)
+        checked = grid.ninstance() if grid is not None else instance
+        assert checked is not None
+        bar.phase("certifying (structured route, H = inf)")
+        cert = certify_ngoal(checked, doc, horizon="inf", route="structured")
+    finally:
+        bar.close()
     if cert.verdict != "pass":
         bad = next((c for c in cert.checks if c.status not in ("pass", "skipped")), None)
         why = "" if bad is None else f": {bad.id}: {' '.join(bad.message.split())}"
