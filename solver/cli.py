@@ -116,7 +116,9 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     if save_instance is not None and instance_text is not None:
         write_atomic(save_instance, instance_text)
     if output is not None:  # the one output convention: -o writes, stdout stays empty
-        status(f"wrote {output}: U* = {doc['value']['U']}, VoI* = {doc['value']['VoI']}")
+        u, voi = (f"{x:.10g}" if isinstance(x, float) else str(x)  # float mode: 10 digits
+                  for x in (doc["value"]["U"], doc["value"]["VoI"]))
+        status(f"wrote {output}: U* = {u}, VoI* = {voi}")
     elif as_json:
         click.echo(dumps(doc), nl=False)
     else:
