@@ -99,6 +99,8 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     bar = PhaseBar(want_progress(progress), "solve", "reading the instance")
     try:
         inst, digest = _load_map_digest(instance, grid)
+        if inst.start in inst.goals:
+            status(START_IS_GOAL)
         bar.phase("solving")
         eq = solve(inst)
         bar.phase("writing")
@@ -189,6 +191,10 @@ def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
             raise InvalidInstanceError(f"{instance}: {exc}") from None
 
 
+START_IS_GOAL = ("note: the start is a goal: the game ends before any step (T = 0, every type "
+                 "pays its terminal cost, VoI = 0; proofs/README.md (W))")
+
+
 def _map_document(grid: MapRequest, folder: Path) -> dict[str, Any]:
     """The compact ``dpp-map-instance/1`` of an N-goal ``--map`` game (docs/formats.md)."""
     import os
@@ -214,6 +220,8 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
     from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
     from solver.ngoal_instance import ngame_to_json
 
+    if game.start in game.goals:
+        status(START_IS_GOAL)
     bar = PhaseBar(progress, "solve", f"solving ({game.n_goals} goals)")
     try:
         eq = solve_ngoal(game)

@@ -309,3 +309,14 @@ def test_a_map_file_as_instance_names_the_right_command(command: list[str]) -> N
     line = _one_line_error(dpp(*command[:1 + (command[0] in ("plot", "experiment"))], PAPER10,
                                *command[1 + (command[0] in ("plot", "experiment")):]))
     assert f"give it as dpp {name} --map {PAPER10}" in line
+
+
+@pytest.mark.parametrize("goals,prior", [(["0,9", "0,0"], "0.6,0.4"),
+                                         (["0,9", "0,0", "9,9"], "1/2,1/4,1/4")])
+def test_a_start_on_a_goal_is_solved_with_a_note(goals: list[str], prior: str) -> None:
+    r = dpp("solve", "--map", PAPER10, "--start", "0,9", "--goals", *goals, "--prior", prior)
+    assert r.exit_code == 0, r.output
+    assert r.stderr.startswith("note: the start is a goal: the game ends before any step")
+    assert len(r.stderr.splitlines()) == 1
+    r = dpp("solve", "--map", PAPER10, *GRID)
+    assert r.exit_code == 0 and r.stderr == ""
