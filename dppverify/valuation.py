@@ -20,11 +20,18 @@ from dppverify.ngoal.routes import NRoutedValue, is_ngoal_file, nrouted_value
 from dppverify.routes import Route, RoutedValue, routed_value
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 
-__all__ = ["value"]
+__all__ = ["game_of", "value"]
 
 
-def _game(instance: Any) -> Instance | NInstance:
-    """The two-goal or N-goal instance of any accepted form."""
+def game_of(instance: Any) -> Instance | NInstance:
+    """The two-goal or N-goal instance of any accepted form.
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3_document
+    >>> type(game_of(star3_document())).__name__
+    'NInstance'
+    """
     if isinstance(instance, Instance | NInstance):
         return instance
     if isinstance(instance, str | Path):
@@ -87,7 +94,7 @@ def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
     dppverify.errors.HorizonError: the horizon must be a non-negative integer or 'inf', got 'soon'
     """
     h = parse_horizon(horizon)
-    game = _game(instance)
+    game = game_of(instance)
     if isinstance(game, NInstance):
         return nrouted_value(game, h, route=route, max_prefixes=max_prefixes)
     return routed_value(game, h, route=route, max_prefixes=max_prefixes, progress=progress)
