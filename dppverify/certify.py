@@ -17,6 +17,7 @@ tolerance :data:`~dppverify.numbers.DEFAULT_REL_TOL` and says so in the certific
 from __future__ import annotations
 
 import dataclasses
+import json
 import sys
 from collections.abc import Callable, Mapping
 from pathlib import Path
@@ -129,6 +130,22 @@ def _profile_document(profile: Any) -> Mapping[str, Any]:
     raise ProfileError("a profile must be a JSON document (dict), a file path, JSON bytes or "
                        f"an object with to_json(); got {type(profile).__name__} (for the "
                        "solver's Equilibrium pass solver.equilibrium_to_json(eq))")
+
+
+def _nprofile_input(profile: Any) -> Mapping[str, Any] | str | Path:
+    """An N-goal profile as ``certify_ngoal`` takes it (paths stay paths: provenance)."""
+    to_json = getattr(profile, "to_json", None)
+    if not isinstance(profile, Mapping | str | Path | bytes) and callable(to_json):
+        profile = to_json()
+    if isinstance(profile, bytes):
+        try:
+            profile = json.loads(profile)
+        except (ValueError, RecursionError) as exc:
+            raise ProfileError(f"the profile is not JSON ({exc})") from None
+    if isinstance(profile, Mapping | str | Path):
+        return profile
+    raise ProfileError("a profile must be a JSON document (dict), a file path, JSON bytes or "
+                       f"an object with to_json(); got {type(profile).__name__}")
 
 
 def shortest_horizon(instance: Instance, profile: Profile) -> int:
@@ -249,8 +266,31 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     >>> cert = certify(doc, swapped)
     >>> cert.verdict, cert.check("pbne.defender_br").status
     ('fail', 'fail')
+
+    An instance with more than two goals (and its ``dpp-ngoal-profile/1``) is certified by
+    :func:`dppverify.ngoal.certify.certify_ngoal`, as ``dpp certify`` does:
+
+    >>> from dppverify.ngoal.examples import star3_document, star3_profile
+    >>> cert = certify(star3_document(), star3_profile(), horizon=2)
+    >>> cert.verdict, cert.check("ngoal.value.U").status
+    ('pass', 'pass')
     """
-    inst = resolve_instance(instance)
+    from dppverify.ngoal.instance import NInstance
+    from dppverify.valuation import game_of
+
+    game = game_of(instance)
+    if not isinstance(game, Instance):  # N > 2 goals
+        from dppverify.ngoal.certify import certify_ngoal
+
+        given = instance if isinstance(instance, str | Path | Mapping) else game  # provenance
+        nprofile = _nprofile_input(profile)
+        cert = certify_ngoal(given, nprofile, horizon=horizon, max_prefixes=max_prefixes,
+                             route=route)
+        if cert.provenance is not None or isinstance(given, NInstance):
+            return cert
+        return dataclasses.replace(cert, provenance=provenance_record(
+            given, nprofile, route=cert.route, exact=cert.exact))
+    inst = resolve_instance(game)
     if not inst.exact and exact:
         raise InvalidInstanceError(FLOAT_MODE_REFUSED)
     doc = _profile_document(profile)
@@ -259,7 +299,8 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     longest = shortest_horizon(inst, prof)
     if asked is not None and asked < longest:
         raise HorizonError(f"the horizon H = {asked} is shorter than the profile's longest "
-                           f"path ({longest} steps)")
+                           f"path ({longest} steps): give a horizon of at least "
+                           f"{longest}, or none for the untruncated game")
     chosen, h = _choose_route(inst, prof, asked, route, max_prefixes)
     tree_checks: list[CheckRecord] = []
     prefixes = leaves = 0

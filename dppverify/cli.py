@@ -39,7 +39,7 @@ from dppverify.errors import (
 )
 from dppverify.exact import format_number
 from dppverify.files import read_input, refuse_input_as_output, write_files
-from dppverify.hints import file_hint
+from dppverify.hints import file_hint, what_is
 from dppverify.instance import GameInstance as AnyGame
 from dppverify.instance import Instance, load_instance
 from dppverify.interrupts import Terminated, as_signal, exit_code, signals_as_exceptions
@@ -48,7 +48,7 @@ from dppverify.limits import MAX_HORIZON, MAX_PREFIXES_LIMIT, MAX_TRIALS
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.ngoal.certify import certify_ngoal
-from dppverify.ngoal.instance import load_ninstance
+from dppverify.ngoal.instance import NInstance, load_ninstance
 from dppverify.ngoal.routes import is_ngoal_file, nrouted_document, nrouted_lines, nrouted_value
 from dppverify.profile import load_profile_document
 from dppverify.provenance import (
@@ -341,6 +341,12 @@ def load_game(instance: str | None, grid: MapRequest | None,
         return load_instance(instance)
 
 
+def load_ngame(instance: str, command: str) -> NInstance:
+    """The N-goal instance at ``instance``, a read error hinted as :func:`load_game`'s."""
+    with hinted(instance, "instance", command):
+        return load_ninstance(instance)
+
+
 class hinted:
     """Context manager: a read error of ``path`` becomes :func:`~dppverify.hints.file_hint`'s
     hint (the file is of another kind: swapped arguments, a ``.map`` file, ...) when it has one.
@@ -437,6 +443,9 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
                               f"{profile!r})")
         if grid is not None:
             instance, profile = None, instance
+        if profile is None and provenance_of is not None:
+            raise OptionError("missing INSTANCE or PROFILE: dpp certify --verify-provenance "
+                              "CERT INSTANCE PROFILE (with --map: CERT PROFILE)")
         if profile is None:
             raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
                               f"dpp certify {MAP_USAGE} PROFILE")
@@ -446,7 +455,7 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
             _verify_provenance(provenance_of, instance, profile, grid)
             return
         if instance is not None and is_ngoal_file(instance):  # N > 2 goals: dppverify.ngoal
-            game: AnyGame = load_ninstance(instance)
+            game: AnyGame = load_ngame(instance, "dpp certify")
             bar.phase("reading the profile")
             doc = _profile_document(profile, game, instance)
             bar.phase(f"certifying (route {route})")
@@ -482,7 +491,7 @@ def _profile_document(path: str, game: AnyGame, instance: str | None) -> dict[st
     """The profile document at ``path``, refused in one line when it belongs to another game."""
     ngoal = len(game.goals) > 2
     with hinted(path, "profile"):
-        if ngoal:
+        if ngoal or what_is(path) == "dpp-ngoal-profile/1":  # (for two goals: not its game)
             from dppverify.json_reading import JsonReadError, read_json_file
 
             try:
@@ -660,7 +669,7 @@ def _ngoal_value(instance: str | MapRequest, horizon: int | None, as_json: bool,
     """``dpp value`` for an instance with more than two goals (dppverify.ngoal.routes)."""
     try:
         game = (instance.ninstance() if isinstance(instance, MapRequest)
-                else load_ninstance(instance))
+                else load_ngame(instance, "dpp value"))
         r = nrouted_value(game, horizon, route=route,
                           max_prefixes=max_prefixes)
     except CheckerError as exc:
@@ -777,7 +786,7 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
         refuse_input_as_output(output, [instance, grid.path if grid is not None else None])
         game: GameInstance
         if instance is not None and grid is None and is_ngoal_file(instance):  # N > 2 goals
-            game = load_ninstance(instance)
+            game = load_ngame(instance, "dpp export-efg")
             goals = f"N = {game.n_goals} goals, "
         elif grid is not None and grid.n_goals > 2 and instance is None:  # an N-goal grid
             game = grid.ninstance()

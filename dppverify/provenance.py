@@ -213,7 +213,7 @@ def verify_provenance(certificate: Mapping[str, Any], instance: Any, profile: An
     True
     >>> other = triangle_document(("1/4", "3/4"))
     >>> verify_provenance(cert, other, triangle_profile()).line  # doctest: +ELLIPSIS
-    'provenance MISMATCH: instance sha256 differs: recorded ..., given ... (profile matches)'
+    'provenance MISMATCH: instance sha256 differs: recorded ..., given ... (profile matches); ...'
     """
     from dppverify import __version__
 
@@ -225,11 +225,13 @@ def verify_provenance(certificate: Mapping[str, Any], instance: Any, profile: An
     matched: list[str] = []
     inputs: list[tuple[str, Any, Any]] = [("instance", instance, prov.get("instance")),
                                           ("profile", profile, prov.get("profile"))]
+    given_sha: dict[str, str] = {}
     for name, source, rec in inputs:
         if not isinstance(rec, Mapping) or not isinstance(rec.get("sha256"), str):
             mismatches.append(f"{name}: no sha256 recorded")
             continue
         given = _given_record(name, source)
+        given_sha[name] = given["sha256"]
         if given["sha256"] != rec["sha256"]:
             how = "" if given["bytes"] == rec.get("bytes") else (
                 f" (recorded over {rec.get('bytes')} bytes, given as {given['bytes']})")
@@ -255,8 +257,14 @@ def verify_provenance(certificate: Mapping[str, Any], instance: Any, profile: An
     if mismatches:
         ok = f" ({', '.join(matched)} match{'es' if len(matched) == 1 else ''})" \
             if matched else ""
+        recorded = {n: r.get("sha256") for n, _, r in inputs if isinstance(r, Mapping)}
+        swapped = (len(given_sha) == 2 and given_sha["instance"] == recorded.get("profile")
+                   and given_sha["profile"] == recorded.get("instance"))
+        hint = ("; the instance and the profile look swapped: give CERT INSTANCE PROFILE"
+                if swapped else "; these are not the files certified: run dpp certify "
+                "INSTANCE PROFILE to certify them")
         return ProvenanceCheck(tuple(mismatches),
-                               f"provenance MISMATCH: {'; '.join(mismatches)}{ok}{note}")
+                               f"provenance MISMATCH: {'; '.join(mismatches)}{ok}{note}{hint}")
     return ProvenanceCheck((), f"provenance OK: {', '.join(matched)} match the certificate "
                                f"(sha256; route {prov.get('route')}, {prov.get('numbers')} "
                                f"numbers, dppverify {version}){note}")

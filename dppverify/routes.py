@@ -124,6 +124,16 @@ class RoutedValue:
         The structured route's result.
     disagreement : str or None
         With ``both``: why the routes disagree (None when they agree).
+
+    ``value``, ``lower`` and ``upper`` read the result whatever the route: ``V_H`` when it is
+    known (exactly; a float in float mode), else None, and the bounds ``lower <= V_H <= upper``.
+
+    Examples
+    --------
+    >>> from dppverify.examples import triangle
+    >>> r = routed_value(triangle(), 4, route="tree")
+    >>> r.value, r.lower, r.upper
+    (Fraction(12, 5), Fraction(12, 5), Fraction(12, 5))
     """
 
     route: Literal["tree", "structured", "both"]
@@ -131,6 +141,30 @@ class RoutedValue:
     tree: GameValue | None
     structured: StructuredValue | None
     disagreement: str | None = None
+
+    @property
+    def lower(self) -> Number:
+        """A lower bound on ``V_H`` (the value itself when known)."""
+        if self.structured is not None:
+            return self.structured.value
+        assert self.tree is not None  # one route always ran
+        return self.tree.bracket.lower
+
+    @property
+    def upper(self) -> Number:
+        """An upper bound on ``V_H`` (the value itself when known)."""
+        if self.structured is not None:
+            return self.structured.value
+        assert self.tree is not None
+        return self.tree.bracket.upper
+
+    @property
+    def value(self) -> Number | None:
+        """``V_H`` when known (the structured DP, or a closed exact bracket), else None."""
+        if self.structured is not None:
+            return self.structured.value
+        assert self.tree is not None
+        return self.tree.bracket.exact
 
 
 def routed_value(instance: Instance, horizon: int | None, *, route: Route = "auto",

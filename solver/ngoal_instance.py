@@ -18,7 +18,14 @@ import numpy as np
 
 from solver.distances import distances_to
 from solver.errors import InstanceFormatError, InvalidInstanceError
-from solver.instance_json import _graph_from_node_link, node_from_json, node_to_json, read_json
+from solver.instance_json import (
+    MAP_INSTANCE_FORMAT,
+    _graph_from_node_link,
+    node_from_json,
+    node_to_json,
+    read_json,
+    read_map_document,
+)
 from solver.network import Network
 from solver.numbers import parse_number
 
@@ -125,8 +132,11 @@ def _build(net: Network, start: Hashable, goals: Sequence[Hashable], prior: Sequ
     return NGame(net, s, tuple(idx), b, dist)
 
 
-def ngame_from_json(data: Any) -> NGame:
+def ngame_from_json(data: Any, base: Path | None = None) -> NGame:
     """Build an :class:`NGame` from an instance document with ``N >= 2`` goals.
+
+    ``data`` is the instance JSON, or a compact ``dpp-map-instance/1`` document (its map's
+    sha256 checked; a relative map path is relative to ``base``).
 
     Raises
     ------
@@ -142,6 +152,17 @@ def ngame_from_json(data: Any) -> NGame:
     """
     if not isinstance(data, dict):
         raise InstanceFormatError(f"instance must be a JSON object, got {type(data).__name__}")
+    if data.get("format") == MAP_INSTANCE_FORMAT:
+        blocked, start, cells, prior, connectivity, ref = read_map_document(data, base,
+                                                                            count=None)
+        if connectivity != 4:
+            raise InvalidInstanceError("the N-goal solver is exact only: float weights "
+                                       "(connectivity 8) are not supported for more than two "
+                                       "goals")
+        try:
+            return ngame_from_grid(blocked, start, cells, prior)
+        except InvalidInstanceError as exc:
+            raise InvalidInstanceError(f"{ref[:200]}: {exc}") from None
     missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
     if missing:
         raise InstanceFormatError(f"instance is missing key(s): {', '.join(missing)}")

@@ -7,7 +7,7 @@ from collections.abc import Hashable, Sequence
 from solver.equilibrium import Equilibrium
 from solver.numbers import Number
 
-__all__ = ["path_label", "summarize"]
+__all__ = ["format_value", "path_label", "summarize"]
 
 _MAX_NODES = 12
 
@@ -62,9 +62,9 @@ def summarize(eq: Equilibrium) -> str:
     <BLANKLINE>
     U1 (primary cost)   = 3
     U2 (secondary cost) = 1
-    U* (value)          = 12/5 (~2.4)
-    U_bar (complete information) = 27/10 (~2.7)
-    VoI*                = 1/9 (~0.111111)
+    U* (value)          = 12/5 (≈ 2.4)
+    U_bar (complete information) = 27/10 (≈ 2.7)
+    VoI*                = 1/9 (≈ 0.1111111)
     """
     inst = eq.instance
     ph = eq.phases
@@ -97,10 +97,40 @@ def _steps(first: int, last: int) -> str:
     return f"= steps {first}..{last}" if first <= last else "absent"
 
 
-def _num(x: Number) -> str:
+def format_value(x: Number) -> str:
+    """A value as the text outputs write it: ``p/q (≈ decimal)``, an integer bare.
+
+    The same style as the checker's reports (``dppverify.text.show_value``); a fraction longer
+    than 40 characters is shown by its decimal only (``--json`` has the exact form).
+
+    Parameters
+    ----------
+    x : Fraction, int or float
+        The value (a float is float mode: 10 significant digits, no fraction).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> format_value(Fraction(12, 7)), format_value(Fraction(4)), format_value(2 ** 0.5)
+    ('12/7 (≈ 1.714286)', '4', '1.414213562')
+    >>> format_value(Fraction(10**50 + 1, 10**50))
+    '≈ 1 (exact: a 102-digit fraction, see --json)'
+    """
     if isinstance(x, float):
         return f"{x:.10g}"
-    return f"{x} (~{float(x):.6g})" if x.denominator != 1 else str(x)
+    if x.denominator == 1:
+        return str(x)
+    text = str(x)
+    if len(text) > 40:
+        return f"≈ {float(x):.12g} (exact: a {len(text) - 1}-digit fraction, see --json)"
+    return f"{text} (≈ {float(x):.7g})"
+
+
+_num = format_value
 
 
 def _nums(xs: Sequence[Number]) -> str:

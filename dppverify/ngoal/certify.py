@@ -180,7 +180,8 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     asked = parse_horizon(horizon)
     if asked is not None and asked < prof.longest:
         raise HorizonError(f"the horizon H = {asked} is shorter than the profile's longest "
-                           f"walk ({prof.longest} steps)")
+                           f"walk ({prof.longest} steps): give a horizon of at least "
+                           f"{prof.longest}, or none for the untruncated game")
     chosen, h = _choose_route(inst, prof, asked, route, max_prefixes)
     tree_checks: list[CheckRecord] = []
     tree: NWalkTree | None = None

@@ -4,8 +4,10 @@ On one or more MovingAI maps (default: the bundled ``examples/paper10.map``; ``g
 names a standard map, ``docs/maps.md``), 4-connected with unit weights, with a start and an
 ordered list of candidate goals, for ``N = 2 … len(goals)`` the first ``N`` goals are used with
 two priors — equal (``1/N`` each) and skewed (``b_θ ∝ 2^(N-θ)``: the first goal most likely) —
-and the untruncated game's value ``V = V_inf`` is computed exactly by the coalition DP
-(``proofs/NGOAL.md``: an exact upper bound on the value, conjectured equal), beside the
+and the untruncated game's value ``V = V_inf`` is computed exactly by the guarantee sets
+(:func:`dppverify.ngoal.proved_value.nvalue`, ``proofs/NGOAL.md``: the coalition DP, the value
+for N <= 3 and for N = 4, 5 where certified; where it is not proved, ``V`` is the DP's upper
+bound and the row says so: ``V_exact`` false, hollow in the figure), beside the
 complete-information value ``Ū = Σ_θ b_θ d(s0, g^θ)`` (the Defender knows the goal and guards
 it on every step) and ``VoI = (Ū − V) / Ū``.
 
@@ -35,8 +37,8 @@ from dppverify.errors import CheckerError
 from dppverify.exact import Number
 from dppverify.files import write_files
 from dppverify.movingai import GridMap, grid_document, read_map
-from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import ninstance_from_json
+from dppverify.ngoal.proved_value import nvalue
 from dppverify.standard_maps import resolve_map
 
 __all__ = ["GoalRow", "corner_cells", "goal_series", "skewed_prior"]
@@ -127,6 +129,7 @@ class GoalRow:
     voi: Fraction
     layers: int
     seconds: float
+    exact: bool = True
 
 
 def goal_series(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
@@ -148,12 +151,13 @@ def goal_series(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
             doc = grid_document(grid, start, goals[:n], [str(b) for b in prior])
             inst = ninstance_from_json(doc)
             t0 = time.perf_counter()
-            v = coalition_value(inst, None)
+            v = nvalue(inst, None)  # proved, or the DP's upper bound with exact = False
             seconds = time.perf_counter() - t0
             ubar = sum((b * Fraction(inst.dist_to[t][inst.start]) for t, b in enumerate(prior)),
                        Fraction(0))
-            voi = (ubar - Fraction(v.value)) / ubar
-            out.append(GoalRow(map_name, n, kind, prior, v.value, ubar, voi, v.layers, seconds))
+            voi = (ubar - Fraction(v.upper)) / ubar
+            out.append(GoalRow(map_name, n, kind, prior, v.upper, ubar, voi, v.layers, seconds,
+                               v.exact))
     return out
 
 
@@ -187,6 +191,11 @@ def _figure(rows: list[GoalRow], title: str) -> Any:
                      linestyle="--", label=f"Ū (complete info.), {kind}")
             ax2.plot(x, [float(r.voi) for r in pts], marker=markers[kind], color=colour,
                      label=f"{kind} prior")
+            for r in pts:
+                if not r.exact:  # V not proved: the DP's upper bound (VoI: a lower bound)
+                    for ax, y in ((ax1, r.value), (ax2, r.voi)):
+                        ax.plot([r.n_goals], [float(y)], marker=markers[kind], color=colour,
+                                markerfacecolor="white", zorder=3)
         ax1.set_ylabel("Attacker's expected cost")
         ax2.set_ylabel("VoI = (Ū − V) / Ū")
         ax1.set_ylim(0, 1.08 * max(float(r.complete) for r in rows))
@@ -198,6 +207,10 @@ def _figure(rows: list[GoalRow], title: str) -> Any:
                 pts = [r for r in rows if r.prior_kind == kind and r.map_name == name]
                 ax.plot([r.n_goals for r in pts], [float(r.voi) for r in pts],
                         marker=markers[kind], color=f"C{k}", label=name)
+                for r in pts:
+                    if not r.exact:  # V not proved: this VoI is a lower bound
+                        ax.plot([r.n_goals], [float(r.voi)], marker=markers[kind],
+                                color=f"C{k}", markerfacecolor="white", zorder=3)
             ax.set_title(f"{kind} prior", fontsize=10)
             ax.set_ylabel("VoI = (Ū − V) / Ū")
             ax.set_ylim(bottom=0)
@@ -206,6 +219,8 @@ def _figure(rows: list[GoalRow], title: str) -> Any:
         ax.set_xlabel("number of goals N")
         ax.set_xticks(ns)
         ax.grid(alpha=0.3)
+    if any(not r.exact for r in rows):
+        title += "\n(hollow: value not proved; the point is the coalition DP's bound)"
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     return fig
@@ -214,10 +229,11 @@ def _figure(rows: list[GoalRow], title: str) -> Any:
 def _csv(rows: list[GoalRow]) -> str:
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["map", "n_goals", "prior_kind", "prior", "V", "U_bar", "VoI", "layers"])
+    w.writerow(["map", "n_goals", "prior_kind", "prior", "V", "U_bar", "VoI", "layers",
+                "V_exact"])
     for r in rows:
         w.writerow([r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.value,
-                    r.complete, r.voi, r.layers])
+                    r.complete, r.voi, r.layers, "true" if r.exact else "false"])
     return buf.getvalue()
 
 
@@ -248,7 +264,8 @@ def _series(args: argparse.Namespace) -> tuple[list[GoalRow], str]:
         for r in goal_series(grid, start, goals, map_name=name):
             print(f"{name:<16} {r.n_goals}  {r.prior_kind:<6}  {float(r.value):<9.4f}  "
                   f"{float(r.complete):<9.4f}  {float(r.voi):<7.4f}  {r.layers:<6}  "
-                  f"{r.seconds:.2f}", flush=True)
+                  f"{r.seconds:<7.2f}  {'yes' if r.exact else 'no (V: upper bound)'}",
+                  flush=True)
             rows.append(r)
     if len(placed) == 1:
         title = f"{placed[0]} (in the order added)"
@@ -284,7 +301,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"error: --figure {args.figure!r}: the figure is written as PNG (use a .png name)",
               file=sys.stderr)
         return 2
-    print("map              N  prior   V          U_bar      VoI      layers  seconds")
+    print("map              N  prior   V          U_bar      VoI      layers  seconds  "
+          "V proved")
     try:
         rows, title = _series(args)
         files: dict[str, str | bytes] = {}

@@ -650,7 +650,7 @@ def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None
             total += mw.probability * (cost + Fraction(inst.dist_to[theta][mw.walk[-1]]))
         per_type.append(total)
     out = [_rec(_IDS[0], "pass", f"{n} types, {len(walks)} walks, Defender: the guarantee rule "
-                f"with h = {[str(x) for x in rule.h]} (defined on every walk)",
+                f"with h = ({', '.join(map(str, rule.h))}) (defined on every walk)",
                 {"walks": len(walks), "prefixes": len(trie)}, DOC, None)]
     u = sum((inst.prior[t] * per_type[t] for t in range(n)), Fraction(0))
     nums: dict[str, Number | None] = {f"U{t + 1}": per_type[t] for t in range(n)}

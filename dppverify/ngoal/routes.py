@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import Any, cast
 
 from dppverify.errors import HorizonError, InvalidInstanceError, OptionError
-from dppverify.exact import format_number
+from dppverify.exact import Number, format_number
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
 from dppverify.ngoal.coalition import CoalitionValue, too_many_goals
 from dppverify.ngoal.cover import MAX_BALANCED, members
@@ -69,7 +69,18 @@ def ntree_fits(instance: NInstance, horizon: int, max_prefixes: int) -> bool:
 
 @dataclass(frozen=True)
 class NRoutedValue:
-    """``V_H`` of an N-goal instance by the chosen route(s)."""
+    """``V_H`` of an N-goal instance by the chosen route(s).
+
+    ``value`` is ``V_H`` when proved, else None; ``lower`` and ``upper`` are the exact
+    bounds (equal when proved), whatever the route.
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> r = nrouted_value(star3(), None)
+    >>> r.value, r.lower, r.upper
+    (Fraction(3, 2), Fraction(3, 2), Fraction(3, 2))
+    """
 
     route: str
     horizon: int | None
@@ -77,6 +88,29 @@ class NRoutedValue:
     tree: NGameValue | None
     structured: NValue | None
     disagreement: str | None
+
+    @property
+    def lower(self) -> Number:
+        """An exact lower bound on ``V_H``."""
+        if self.structured is not None:
+            return self.structured.lower
+        assert self.tree is not None  # one route always ran
+        return self.tree.bracket.lower
+
+    @property
+    def upper(self) -> Number:
+        """An exact upper bound on ``V_H``."""
+        if self.structured is not None:
+            return self.structured.upper
+        assert self.tree is not None
+        return self.tree.bracket.upper
+
+    @property
+    def value(self) -> Number | None:
+        """``V_H`` when proved, else None."""
+        if self.structured is not None and self.structured.value is not None:
+            return self.structured.value
+        return self.tree.bracket.exact if self.tree is not None else None
 
 
 def nrouted_value(instance: NInstance, horizon: int | None, *, route: str = "auto",

@@ -72,7 +72,7 @@ def run_compare(instance: Instance) -> tuple[PairResult, ...]:
 
 def _num(x: Number) -> str:
     if isinstance(x, Fraction):
-        return str(x) if x.denominator == 1 else f"{x} (~{float(x):.4g})"
+        return str(x) if x.denominator == 1 else f"{x} (≈ {float(x):.4g})"
     return f"{x:.6g}"
 
 
@@ -96,10 +96,10 @@ def compare_table(results: Sequence[PairResult]) -> str:
     >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
     >>> results = PairEvaluator.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
     >>> print(compare_table(results[:2]))
-    Defender  Attacker  U1             U2  U            VoI
-    --------  --------  -------------  --  -----------  -------------
-    σ*        γ*        3              1   12/5 (~2.4)  1/9 (~0.1111)
-    σ'        γ*        18/7 (~2.571)  2   12/5 (~2.4)  1/9 (~0.1111)
+    Defender  Attacker  U1              U2  U             VoI
+    --------  --------  --------------  --  ------------  --------------
+    σ*        γ*        3               1   12/5 (≈ 2.4)  1/9 (≈ 0.1111)
+    σ'        γ*        18/7 (≈ 2.571)  2   12/5 (≈ 2.4)  1/9 (≈ 0.1111)
     """
     head = ("Defender", "Attacker", "U1", "U2", "U", "VoI")
     body = [(LABELS.get(r.defender, r.defender), LABELS.get(r.attacker, r.attacker),
@@ -129,7 +129,7 @@ def verdict(results: Sequence[PairResult]) -> str:
     It holds on the paper's map, not on the triangle (where both Defenders get 12/5):
 
     >>> print(verdict(run_compare(paper10_instance())))  # doctest: +NORMALIZE_WHITESPACE
-    U(σ',γ*) = 64/5 (~12.8) < U(σ*,γ*) = 68/5 (~13.6): the paper's observation
+    U(σ',γ*) = 64/5 (≈ 12.8) < U(σ*,γ*) = 68/5 (≈ 13.6): the paper's observation
     U(σ',γ*) < U(σ*,γ*) holds on this instance
     >>> import networkx as nx
     >>> g = nx.Graph()

@@ -203,14 +203,14 @@ def ngoal_figure(rows: Sequence[NGoalRow]) -> Any:
                 ax.plot([r.n_goals for r in no], [float(get(r)) for r in no], "o",
                         markerfacecolor="white", color=f"C{k}")
         ax.set_xlabel("number of goals N")
-        ax.set_title(label, fontsize=9)
+        ax.set_title(label, fontsize=10)
         ax.set_xticks(sorted({r.n_goals for r in rows}))
         ax.grid(alpha=0.3)
     handles, labels = axes[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), fontsize=7,
+    fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), fontsize=8.5,
                frameon=False)
     fig.suptitle("N-goal equilibria (filled: certified exact; hollow: not certified, coalition-"
-                 "DP upper bound)", fontsize=9)
+                 "DP upper bound)", fontsize=10)
     rows_of_legend = -(-len(labels) // 5)
     fig.tight_layout(rect=(0, 0.05 * rows_of_legend + 0.02, 1, 1))
     return fig

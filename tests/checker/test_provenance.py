@@ -126,3 +126,14 @@ def test_map_certificate_pins_the_map_file(tmp_path: Path) -> None:
     bad = CliRunner().invoke(certify_command, ["--verify-provenance", str(cert), *grid,
                                                str(prof)])
     assert bad.exit_code in (1, 2)
+
+
+def test_swapped_inputs_and_missing_profile_are_named(files: tuple[Path, Path, Path]) -> None:
+    cert, inst, prof = files
+    r = CliRunner().invoke(certify_command, ["--verify-provenance", str(cert), str(prof),
+                                             str(inst)])
+    assert r.exit_code == 1 and r.output.count("\n") == 1
+    assert "look swapped: give CERT INSTANCE PROFILE" in r.output
+    r = CliRunner().invoke(certify_command, ["--verify-provenance", str(cert), str(inst)])
+    assert r.exit_code == 2 and r.output.count("\n") == 1
+    assert "--verify-provenance CERT INSTANCE PROFILE" in r.output

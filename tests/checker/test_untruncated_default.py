@@ -323,3 +323,39 @@ def test_table_without_default_listing_every_walk_is_decided() -> None:
         assert [(c.id, c.status) for c in inf.checks if c.kind == "check"] == \
             [(c.id, c.status) for c in tree.checks if c.kind == "check"]
         assert (inf.check("pbne.attacker_br.secondary").status == "pass") == (verdict == "pass")
+
+
+@pytest.mark.parametrize("horizon,route", [("inf", "auto"), (4, "tree"), (4, "structured"),
+                                           (4, "both")])
+def test_value_reads_the_same_whatever_the_route(horizon: Any, route: Any) -> None:
+    r = dppverify.value(kite_document(), horizon, route=route)
+    assert r.value == r.lower == r.upper == Fraction(8, 5)   # kite: V = 8/5 (issue 18)
+
+
+def test_ngoal_value_reads_the_bounds_whatever_the_route() -> None:
+    from dppverify.ngoal.examples import hub4_document
+
+    for h, route in (("inf", "auto"), (5, "tree"), (5, "structured")):
+        r = dppverify.value(hub4_document(), h, route=route)
+        assert r.value == r.lower == r.upper == Fraction(12, 7), (h, route)  # not DP's 25/14
+
+
+def test_api_certify_dispatches_on_the_number_of_goals(tmp_path: Path) -> None:
+    """dppverify.certify, like dpp certify and dppverify.value, takes N-goal games too."""
+    from dppverify.provenance import verify_provenance
+
+    inst, prof = tmp_path / "i.json", tmp_path / "p.json"
+    inst.write_text(json.dumps(star3_document()))
+    prof.write_text(json.dumps(star3_profile()))
+    for args in ((star3_document(), star3_profile()), (str(inst), str(prof)),
+                 (inst, prof.read_bytes())):
+        cert = dppverify.certify(*args, horizon=2)
+        assert cert.verdict == "pass" and cert.check("ngoal.value.U").status == "pass"
+        assert cert.to_json()["game"] == {"horizon": 2, "truncated": True,
+                                          "note": cert.to_json()["game"]["note"]}
+    cert = dppverify.certify(str(inst), str(prof), horizon=2)
+    assert verify_provenance(cert.to_json(), str(inst), str(prof)).ok
+    via_api = dppverify.certify(star3_document(), star3_profile(), horizon=2)
+    direct = certify_ngoal(star3_document(), star3_profile(), horizon=2)
+    assert [(c.id, c.status, c.message) for c in via_api.checks] == \
+        [(c.id, c.status, c.message) for c in direct.checks]

