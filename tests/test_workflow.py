@@ -118,7 +118,7 @@ def test_certificate_file_has_the_exact_numbers_the_table_abbreviates(tmp_path: 
 def test_output_never_overwrites_an_input(profile: str) -> None:
     before = Path(profile).read_text()
     line = _one_line_error(dpp("certify", TRIANGLE, profile, "-o", profile))
-    assert "names an input file" in line and Path(profile).read_text() == before
+    assert "is an input of this command" in line and Path(profile).read_text() == before
 
 
 # ---------------------------------------------------------------- float mode detected

@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-GUARD_SECONDS = 600
+GUARD_SECONDS = 300
 """Wall-clock guard per probe: only there so that a hang fails instead of blocking."""
 DEFAULT_MEMORY = 3 << 30
 """Address-space limit of a probe (bytes): numpy, scipy and cvxpy fit well below it."""
