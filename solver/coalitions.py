@@ -37,6 +37,7 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
 from solver.ngoal_instance import NGame
+from solver.numbers import solve_exact
 
 __all__ = ["Coalitions", "CoverSolution", "balanced_collections", "coalition_dp", "cover_lp",
            "subset_members"]
@@ -169,19 +170,12 @@ def cover_lp(costs: Mapping[int, Fraction], b: Sequence[Fraction],
 
 
 def _duals(basis: list[int], costs: Mapping[int, Fraction], n: int) -> list[Fraction]:
-    """``h`` with ``h(T) = costs[T]`` for the basic columns (exact Gauss-Jordan)."""
-    mat = [[Fraction(basis[r] >> i & 1) for i in range(n)] + [Fraction(costs[basis[r]])]
-           for r in range(n)]
-    for c in range(n):
-        p = next(r for r in range(c, n) if mat[r][c] != 0)
-        mat[c], mat[p] = mat[p], mat[c]
-        piv = mat[c][c]
-        mat[c] = [x / piv for x in mat[c]]
-        for r in range(n):
-            if r != c and mat[r][c]:
-                f = mat[r][c]
-                mat[r] = [x - f * y for x, y in zip(mat[r], mat[c], strict=True)]
-    return [mat[i][n] for i in range(n)]
+    """``h`` with ``h(T) = costs[T]`` for the basic columns (exact)."""
+    h = solve_exact([[Fraction(basis[r] >> i & 1) for i in range(n)] for r in range(n)],
+                    [Fraction(costs[basis[r]]) for r in range(n)])
+    if h is None:
+        raise ValueError("the cover LP's basis is singular")
+    return h
 
 
 @dataclass(frozen=True, eq=False)

@@ -24,6 +24,8 @@ import itertools
 from collections.abc import Callable, Sequence
 from fractions import Fraction
 
+from solver.numbers import solve_exact
+
 __all__ = ["guarantee_step", "priority_order"]
 
 
@@ -36,24 +38,6 @@ def priority_order(prior: Sequence[Fraction]) -> tuple[int, ...]:
     (1, 0, 2)
     """
     return tuple(sorted(range(len(prior)), key=lambda t: (-prior[t], t)))
-
-
-def _solve(rows: list[list[Fraction]], rhs: list[Fraction]) -> list[Fraction] | None:
-    """The unique solution of a square exact system, or None when it is singular."""
-    n = len(rows)
-    mat = [[*row[:], r] for row, r in zip(rows, rhs, strict=True)]
-    for c in range(n):
-        p = next((r for r in range(c, n) if mat[r][c] != 0), None)
-        if p is None:
-            return None
-        mat[c], mat[p] = mat[p], mat[c]
-        piv = mat[c][c]
-        mat[c] = [x / piv for x in mat[c]]
-        for r in range(n):
-            if r != c and mat[r][c]:
-                f = mat[r][c]
-                mat[r] = [x - f * y for x, y in zip(mat[r], mat[c], strict=True)]
-    return [mat[i][n] for i in range(n)]
 
 
 def guarantee_step(r: Sequence[Fraction], m_next: Callable[[int], Fraction | None], w: Fraction,
@@ -112,7 +96,7 @@ def guarantee_step(r: Sequence[Fraction], m_next: Callable[[int], Fraction | Non
     best: tuple[Fraction, ...] | None = None
     best_key: tuple[Fraction, ...] | None = None
     for tight in itertools.combinations(range(len(cons)), n - 1):
-        sol = _solve([cons[k][0] for k in tight] + [ones],
+        sol = solve_exact([cons[k][0] for k in tight] + [ones],
                      [cons[k][1] for k in tight] + [Fraction(1)])
         if sol is None:
             continue

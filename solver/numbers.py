@@ -25,8 +25,16 @@ import numpy as np
 from solver.errors import InvalidInstanceError
 from solver.limits import check_numeral, check_rational
 
-__all__ = ["DEFAULT_ABS_TOL", "ExactNumbers", "FloatNumbers", "Number", "NumberMode",
-           "format_number", "parse_number"]
+__all__ = [
+    "DEFAULT_ABS_TOL",
+    "ExactNumbers",
+    "FloatNumbers",
+    "Number",
+    "NumberMode",
+    "format_number",
+    "parse_number",
+    "solve_exact",
+]
 
 Number = Fraction | float
 """An exact rational, or a float in float mode (e.g. octile weights)."""
@@ -257,3 +265,31 @@ def format_number(value: Number) -> str | float:
     if isinstance(value, float):
         return value
     return str(Fraction(value))
+
+
+def solve_exact(rows: list[list[Fraction]], rhs: list[Fraction]) -> list[Fraction] | None:
+    """The unique solution of a square linear system in exact rationals (Gauss-Jordan), or
+    None when the system is singular.
+
+    Examples
+    --------
+    >>> from fractions import Fraction as F
+    >>> solve_exact([[F(2), F(1)], [F(1), F(3)]], [F(3), F(5)])
+    [Fraction(4, 5), Fraction(7, 5)]
+    >>> solve_exact([[F(1), F(1)], [F(2), F(2)]], [F(1), F(2)]) is None
+    True
+    """
+    n = len(rows)
+    mat = [[*row, r] for row, r in zip(rows, rhs, strict=True)]
+    for c in range(n):
+        p = next((r for r in range(c, n) if mat[r][c] != 0), None)
+        if p is None:
+            return None
+        mat[c], mat[p] = mat[p], mat[c]
+        piv = mat[c][c]
+        mat[c] = [x / piv for x in mat[c]]
+        for r in range(n):
+            if r != c and mat[r][c]:
+                f = mat[r][c]
+                mat[r] = [x - f * y for x, y in zip(mat[r], mat[c], strict=True)]
+    return [mat[i][n] for i in range(n)]
