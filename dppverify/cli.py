@@ -414,7 +414,8 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
                     horizon: int | str | None, route: Route, as_json: bool,
                     output: str | None, max_prefixes: int, float_mode: bool, seed: int,
                     trials: int, provenance_of: str | None, progress: bool | None) -> None:
-    """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE's game.
+    """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE's game (exit 3:
+    could not decide).
 
     Without --horizon the game is the untruncated one (H = inf); --horizon H certifies the
     game truncated at H, and the verdict says so. The paper's lemmas are reported beside the
@@ -484,7 +485,14 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
     cert = _with_command(cert, instance, profile, grid)
     summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
     emit(cert.to_json(), format_table(cert), as_json=as_json, output=output, summary=summary)
-    raise click.exceptions.Exit(0 if cert.passed else 1)
+    raise click.exceptions.Exit(VERDICT_EXIT[cert.verdict])
+
+
+VERDICT_EXIT = {"pass": 0, "fail": 1, "error": 3, "incomplete": 3}
+"""``dpp certify``'s exit code per verdict: an ``error`` (the checker's own computations
+disagree, e.g. an LP solver failing on a badly scaled valid input) or an ``incomplete``
+verdict (a check could not run) decides nothing, so it is "could not decide" (3), never a
+refutation (1)."""
 
 
 def _profile_document(path: str, game: AnyGame, instance: str | None) -> dict[str, Any]:

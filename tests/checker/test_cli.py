@@ -145,3 +145,26 @@ def test_dpp_group_and_python_m_dppverify(tmp_path: Path) -> None:
                           capture_output=True, text=True, check=False)
     assert proc.returncode == 2 and "Traceback" not in proc.stderr + proc.stdout
     assert proc.stderr.startswith("error: ") and proc.stderr.count("\n") == 1
+
+
+def test_an_error_verdict_is_could_not_decide_not_a_refutation(tmp_path: Path) -> None:
+    """The triangle with weights scaled by 10**12 on the walk tree: the LP cross-checks fail
+    numerically (verdict ERROR), which decides nothing: exit 3, never exit 1 (refuted). The
+    same profile passes on the untruncated game (structured route, no LP)."""
+    from dppverify.examples import triangle_document, triangle_profile
+
+    doc = triangle_document()
+    for e in doc["graph"]["edges"]:
+        e["weight"] = e["weight"] * 10**12
+    prof = triangle_profile()
+    for key in ("value",):  # stated values of the unscaled game would not match: drop them
+        prof.pop(key, None)
+    i, p = tmp_path / "tri12.json", tmp_path / "p.json"
+    i.write_text(json.dumps(doc))
+    p.write_text(json.dumps(prof))
+    untruncated = run_cli(certify_command, [str(i), str(p)])
+    assert untruncated.exit_code == 0, untruncated.output
+    tree = run_cli(certify_command, [str(i), str(p), "-H", "1"])
+    verdict = tree.output.splitlines()[0]
+    assert verdict.startswith(("verdict: ERROR", "verdict: INCOMPLETE", "verdict: PASS")), verdict
+    assert tree.exit_code == (0 if verdict.startswith("verdict: PASS") else 3), tree.output
