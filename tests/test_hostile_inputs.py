@@ -19,6 +19,7 @@ from click.testing import CliRunner
 
 from dppverify.__main__ import main as checker_main
 from solver.cli import main as dpp_main
+from tests.hostile._harness import write_template
 
 ROOT = Path(__file__).resolve().parents[1]
 CORPUS = ROOT / "tests" / "data" / "invalid"
@@ -142,14 +143,7 @@ def _listing(root: Path) -> list[str]:
 @pytest.fixture(scope="module")
 def scratch_template(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A folder with a valid instance, its profile and the bundled map."""
-    from solver.adapter import solve_json
-
-    d = tmp_path_factory.mktemp("hostile-template")
-    shutil.copy(ROOT / "examples" / "triangle.json", d / "tri.json")
-    shutil.copy(ROOT / "examples" / "paper10.map", d / "paper10.map")
-    profile = solve_json(json.loads((d / "tri.json").read_text()))
-    (d / "prof.json").write_text(json.dumps(profile))
-    return d
+    return write_template(tmp_path_factory.mktemp("hostile-template"))
 
 
 @pytest.fixture

@@ -52,6 +52,7 @@ from typing import Any
 import numpy as np
 
 from solver.errors import DPPError, InvalidInstanceError
+from solver.experiments.dask_tasks import dask_completed
 
 __all__ = ["FIELDS", "BatchConfig", "BatchTask", "Checker", "parse_prior", "read_done",
            "run_batch", "run_batch_task", "scen_tasks", "summarize_file"]
@@ -542,23 +543,8 @@ def _results(tasks: list[BatchTask], workers: int,
 
 
 def _dask_results(tasks: list[BatchTask], address: str) -> Iterator[list[dict[str, str]]]:
-    try:
-        from distributed import Client
-        from distributed import as_completed as dask_completed
-    except ImportError:  # pragma: no cover - dask is in the test and dask extras
-        raise InvalidInstanceError("--dask needs dask[distributed]: pip install "
-                                   "'dppverify[dask]'") from None
-    try:
-        client = Client(address, timeout="10s")
-    except (OSError, TimeoutError) as exc:
-        raise InvalidInstanceError(f"cannot reach the Dask scheduler at {address}: "
-                                   f"{exc}") from None
-    try:
-        futures = client.map(run_batch_task, tasks, pure=False)
-        for fut in dask_completed(futures):
-            yield fut.result()
-    finally:
-        client.close()
+    for _, rows in dask_completed(run_batch_task, tasks, address):
+        yield rows
 
 
 def parse_prior(text: str) -> tuple[str, str]:

@@ -19,6 +19,7 @@ from fractions import Fraction
 from typing import Any
 
 from solver.errors import InvalidInstanceError
+from solver.experiments.dask_tasks import dask_completed
 from solver.experiments.sampling import Cell, sample_grid
 from solver.instance import Instance
 from solver.pairs import PAIRS, PairEvaluator
@@ -292,28 +293,12 @@ def _descendants(pid: int) -> list[int]:
 
 def _run_dask(tasks: list[Task], address: str,
               progress: Callable[[int], None] | None) -> list[list[Row]]:
-    try:
-        from distributed import Client
-        from distributed import as_completed as dask_completed
-    except ImportError:  # pragma: no cover - dask is in the test and dask extras
-        raise InvalidInstanceError("--dask needs dask[distributed]: pip install "
-                                   "'dppverify[dask]'") from None
-    try:
-        client = Client(address, timeout="10s")
-    except (OSError, TimeoutError) as exc:
-        raise InvalidInstanceError(f"cannot reach the Dask scheduler at {address}: "
-                                   f"{exc}") from None
-    try:
-        futures = client.map(run_task, tasks, pure=False)
-        counts = {f.key: t.count for f, t in zip(futures, tasks, strict=True)}
-        results = []
-        for fut in dask_completed(futures):
-            results.append(fut.result())
-            if progress:
-                progress(counts[fut.key])
-        return results
-    finally:
-        client.close()
+    results = []
+    for i, rows in dask_completed(run_task, tasks, address):
+        results.append(rows)
+        if progress:
+            progress(tasks[i].count)
+    return results
 
 
 def rows_to_csv(rows: Iterable[Row]) -> str:

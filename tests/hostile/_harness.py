@@ -170,3 +170,18 @@ def check(result: Result, probe: Probe, before: dict[str, tuple[str, int, int]],
                if before.get(k) != after.get(k)
                and not any(k == a or k.startswith(a + "/") for a in allowed)}
     assert not changed, f"files changed: {sorted(changed)}"
+
+
+def write_template(d: Path) -> Path:
+    """Fill ``d`` with tri.json, its solver profile prof.json and paper10.map (the inputs
+    every hostile probe starts from); return ``d``."""
+    import json
+    import shutil
+
+    from solver.adapter import solve_json
+
+    shutil.copy(ROOT / "examples" / "triangle.json", d / "tri.json")
+    shutil.copy(ROOT / "examples" / "paper10.map", d / "paper10.map")
+    profile = solve_json(json.loads((d / "tri.json").read_text()))
+    (d / "prof.json").write_text(json.dumps(profile))
+    return d

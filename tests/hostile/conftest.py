@@ -3,14 +3,13 @@ profile, the bundled map and a set of misbehaving solver programs."""
 
 from __future__ import annotations
 
-import json
 import shutil
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
-from tests.hostile._harness import ROOT
+from tests.hostile._harness import write_template
 
 SCRIPTS = {
     # a command-line solver that makes a FIFO at its profile path and exits 0
@@ -52,14 +51,7 @@ SCRIPTS = {
 @pytest.fixture(scope="session")
 def template(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A folder with tri.json, its solver profile prof.json, paper10.map and the scripts."""
-    from solver.adapter import solve_json
-
-    d = tmp_path_factory.mktemp("hostile-template")
-    shutil.copy(ROOT / "examples" / "triangle.json", d / "tri.json")
-    shutil.copy(ROOT / "examples" / "paper10.map", d / "paper10.map")
-    profile = solve_json(json.loads((d / "tri.json").read_text()))
-    (d / "prof.json").write_text(json.dumps(profile))
-    return d
+    return write_template(tmp_path_factory.mktemp("hostile-template"))
 
 
 @pytest.fixture
