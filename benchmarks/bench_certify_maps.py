@@ -34,8 +34,8 @@ from typing import Any
 import numpy as np
 
 from dppverify import certify, game_value, instance_from_json
-from dppverify.json_reading import parse_json
-from dppverify.value_dp import structured_value
+from dppverify.formats.json_reading import parse_json
+from dppverify.twogoal.value_dp import structured_value
 from solver import Instance, equilibrium_to_json, instance_to_json, solve
 from solver.movingai import read_map
 

@@ -24,7 +24,7 @@ import sys
 import time
 from fractions import Fraction
 
-from dppverify.movingai import GridMap, grid_document
+from dppverify.formats.movingai import GridMap, grid_document
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
 from dppverify.ngoal.tree import count_nprefixes

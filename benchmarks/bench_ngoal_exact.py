@@ -20,12 +20,12 @@ import os
 import time
 from typing import Any
 
-from dppverify.movingai import grid_document, read_map
+from dppverify.formats.movingai import grid_document, read_map
+from dppverify.formats.standard_maps import standard_map_path
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.experiment import corner_cells
 from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.proved_value import nvalue
-from dppverify.standard_maps import standard_map_path
 
 DEFAULT = [(m, n) for m in ("empty-32-32", "room-32-32-4", "maze-32-32-2", "maze-32-32-4")
            for n in (4, 5)] + [("Berlin_1_256", 4)]

@@ -36,11 +36,11 @@ from typing import Any
 
 import numpy as np
 
-from dppverify.movingai import grid_document
-from dppverify.movingai import read_map as checker_read_map
+from dppverify.formats.movingai import grid_document
+from dppverify.formats.movingai import read_map as checker_read_map
+from dppverify.formats.standard_maps import standard_map_path
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.experiment import corner_cells
-from dppverify.standard_maps import standard_map_path
 from solver import Instance, solve
 from solver.movingai import read_map
 from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal

@@ -128,8 +128,8 @@ def op_certify(instance_file: Path, profile_file: Path) -> Any:
 
 def op_value(instance_file: Path, horizon: int | None) -> Any:
     """``V_H`` by the structured route, the instance read from its file."""
-    from dppverify.instance import load_instance
-    from dppverify.value_dp import structured_value
+    from dppverify.game.instance import load_instance
+    from dppverify.twogoal.value_dp import structured_value
 
     return structured_value(load_instance(instance_file), horizon)
 
@@ -259,17 +259,17 @@ def grid_rows(size: int, repeat: int) -> list[str]:
 
 
 def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str]:
-    from dppverify.instance import Instance, read_game
-    from dppverify.movingai import grid_document, read_map
+    from dppverify.formats.movingai import grid_document, read_map
+    from dppverify.formats.standard_maps import standard_map_path
+    from dppverify.game.instance import Instance, read_game
     from dppverify.ngoal.coalition import coalition_value
     from dppverify.ngoal.instance import NInstance
-    from dppverify.standard_maps import standard_map_path
-    from dppverify.value_dp import structured_value
+    from dppverify.twogoal.value_dp import structured_value
 
     def grid_game(grid: Any, start: Any, goals: Any, prior: Any, *, cls: Any = Instance,
                   two_goals: bool = True) -> Any:
         try:
-            from dppverify.movingai import grid_game as direct
+            from dppverify.formats.movingai import grid_game as direct
         except ImportError:  # before the map-to-arrays reader
             return read_game(grid_document(grid, start, goals, prior), cls,
                              two_goals=two_goals)

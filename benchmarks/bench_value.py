@@ -4,7 +4,8 @@ On the 3×4 grid (start (0,1), goals (2,0) and (2,3), prior 3/5-2/5, unit weight
 horizon H it reports:
 
 - the walk tree's size and ``V_H`` exactly (``dppverify.game_value``'s bracket);
-- our value LP (``dppverify.value_lp.solve_value_lp``: cvxpy + Clarabel, wall time including
+- our value LP (``dppverify.tree_route.value_lp.solve_value_lp``: cvxpy + Clarabel, wall time
+including
   cvxpy's problem construction) and the SAME LP assembled as sparse matrices and solved by
   ``scipy.optimize.linprog(method="highs")`` in the same run, as a ratio (target <= 3);
 - OpenSpiel (``load_efg_game`` + ``sequence_form_lp`` with HiGHS) and Gambit
@@ -35,11 +36,11 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.optimize import linprog
 
-from dppverify.efg import efg_size, tree_to_efg
-from dppverify.instance import Instance, Roles, instance_from_json
-from dppverify.lp import flow_matrix
-from dppverify.tree import WalkTree, build_tree
-from dppverify.value_lp import exact_bracket, solve_value_lp
+from dppverify.game.instance import Instance, Roles, instance_from_json
+from dppverify.tree_route.efg import efg_size, tree_to_efg
+from dppverify.tree_route.lp import flow_matrix
+from dppverify.tree_route.tree import WalkTree, build_tree
+from dppverify.tree_route.value_lp import exact_bracket, solve_value_lp
 
 MAX_PEER_NODES = 2_000_000
 """Games larger than this are not even exported for the peers."""

@@ -34,10 +34,10 @@ from dppverify.errors import (
     TreeTooLargeError,
     UndecidedError,
 )
-from dppverify.instance import Instance, instance_from_json, load_instance
-from dppverify.tree import WalkTree, build_tree, count_prefixes
+from dppverify.game.instance import Instance, instance_from_json, load_instance
+from dppverify.tree_route.tree import WalkTree, build_tree, count_prefixes
+from dppverify.tree_route.value_lp import GameValue, game_value
 from dppverify.valuation import value
-from dppverify.value_lp import GameValue, game_value
 
 __all__ = ["CHECK_IDS", "Certificate", "CertificateError", "CheckRecord", "CheckerError",
            "GameValue", "HorizonError", "Instance", "InvalidInstanceError", "LPError",

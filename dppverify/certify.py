@@ -29,20 +29,7 @@ from dppverify.certificate import Certificate, CheckRecord, merge_routes
 from dppverify.checks.attacker import attacker_br
 from dppverify.checks.beliefs import belief_consistency
 from dppverify.checks.defender import defender_br, sequential_rationality
-from dppverify.checks.payoffs import value_check, values
-from dppverify.checks.skipped import skipped
-from dppverify.checks.wellformed import phases, wellformed
-from dppverify.context import Context, EvaluatedContext, make_context
-from dppverify.errors import (
-    HorizonError,
-    InvalidInstanceError,
-    LPError,
-    ProfileError,
-    TreeTooLargeError,
-)
-from dppverify.horizons import parse_horizon
-from dppverify.instance import Instance, arc_arrays, as_instance, node_to_json
-from dppverify.lemmas import (
+from dppverify.checks.lemmas import (
     l1_lower_bound,
     l2_no_revisits,
     l3_greedy,
@@ -51,20 +38,33 @@ from dppverify.lemmas import (
     telescoping,
     xi2_secondary_value,
 )
-from dppverify.lp import LP_SOLVER, LP_TOLERANCE
-from dppverify.numbers import DEFAULT_REL_TOL
-from dppverify.profile import (
+from dppverify.checks.payoffs import value_check, values
+from dppverify.checks.skipped import skipped
+from dppverify.checks.structured import structured_checks
+from dppverify.checks.wellformed import phases, wellformed
+from dppverify.errors import (
+    HorizonError,
+    InvalidInstanceError,
+    LPError,
+    ProfileError,
+    TreeTooLargeError,
+)
+from dppverify.game.instance import Instance, arc_arrays, as_instance, node_to_json
+from dppverify.game.profile import (
     Profile,
     ProgressRule,
     check_format,
     load_profile_document,
     profile_from_json,
 )
+from dppverify.horizons import parse_horizon
+from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.provenance import provenance_record
 from dppverify.registry import CHECK_IDS, CHECKS, RouteName, not_run, runner, runners, spec
 from dppverify.routes import Route, tree_fits
-from dppverify.structured import structured_checks
-from dppverify.tree import DEFAULT_MAX_PREFIXES, build_tree
+from dppverify.tree_route.context import Context, EvaluatedContext, make_context
+from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, build_tree
 
 __all__ = [
     "CHECK_IDS",
@@ -88,13 +88,13 @@ FLOAT_MODE_REFUSED = (
 
 def resolve_instance(instance: Instance | Mapping[str, Any] | str | Path | Any) -> Instance:
     """An :class:`Instance` from an instance, a document (dict), a file path or any object
-    with ``to_json()`` (:func:`~dppverify.instance.as_instance`).
+    with ``to_json()`` (:func:`~dppverify.game.instance.as_instance`).
 
     Parameters
     ----------
     instance : Instance, Mapping, str, Path or an object with ``to_json()``
-        Returned as is, parsed (:func:`~dppverify.instance.instance_from_json`), loaded
-        (:func:`~dppverify.instance.load_instance`) or parsed from ``to_json()``.
+        Returned as is, parsed (:func:`~dppverify.game.instance.instance_from_json`), loaded
+        (:func:`~dppverify.game.instance.load_instance`) or parsed from ``to_json()``.
 
     Returns
     -------
@@ -107,7 +107,7 @@ def resolve_instance(instance: Instance | Mapping[str, Any] | str | Path | Any) 
 
     Examples
     --------
-    >>> from dppverify.examples import triangle, triangle_document
+    >>> from dppverify.game.examples import triangle, triangle_document
     >>> inst = triangle()
     >>> resolve_instance(inst) is inst
     True
@@ -161,7 +161,7 @@ def shortest_horizon(instance: Instance, profile: Profile) -> int:
     instance : Instance
         The game.
     profile : Profile
-        The resolved profile (:func:`~dppverify.profile.profile_from_json`).
+        The resolved profile (:func:`~dppverify.game.profile.profile_from_json`).
 
     Returns
     -------
@@ -172,7 +172,7 @@ def shortest_horizon(instance: Instance, profile: Profile) -> int:
     --------
     On ``s – a – g1``, ``a – g2``, a secondary walk that goes back and forth takes 4 steps:
 
-    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.game.instance import instance_from_json
     >>> inst = instance_from_json({"graph": {"nodes": [{"id": v} for v in ("s", "a", "g1", "g2")],
     ...     "edges": [{"source": "s", "target": "a"}, {"source": "a", "target": "g1"},
     ...               {"source": "a", "target": "g2"}]},

@@ -3,8 +3,8 @@
 The checker's own number handling (``docs/formats.md``, "Numbers"): JSON integers are exact
 integers, JSON decimal literals are the exact decimals they spell (``0.6`` is 3/5, never a
 binary float), and strings ``"p/q"``, ``"p"``, ``"-p/q"``, ``"0.25"`` are exact rationals.
-Reading them from JSON is :func:`dppverify.json_reading.parse_number` (and
-:func:`~dppverify.json_reading.parse_json` for whole documents); this module holds what is
+Reading them from JSON is :func:`dppverify.formats.json_reading.parse_number` (and
+:func:`~dppverify.formats.json_reading.parse_json` for whole documents); this module holds what is
 done with the numbers once read.
 
 Exact values are kept as ``int`` when integral and as ``Fraction`` otherwise (integer

@@ -1,6 +1,7 @@
 """The checker's number mode: exact or float, decided once per instance.
 
-An instance is checked in one :class:`NumberMode` (:attr:`dppverify.instance.Instance.numbers`):
+An instance is checked in one :class:`NumberMode`
+(:attr:`dppverify.game.instance.Instance.numbers`):
 exact (:class:`ExactNumbers`: ``int`` / ``Fraction`` values, comparisons with ``==`` and
 ``<=``, no tolerance ever applied) or float (:class:`FloatNumbers`: instances with
 ``"numbers": "float"``; values are floats, compared within a *relative* tolerance ``rel_tol``:

@@ -13,7 +13,7 @@ The hashed bytes:
 - an input given as a **document** (a dict, or an object with ``to_json()``): its canonical
   JSON serialisation (``"bytes": "canonical-json"``): :func:`canonical_json`, keys sorted,
   no whitespace, UTF-8, non-ASCII characters kept;
-- an :class:`~dppverify.instance.Instance` object has no bytes: ``sha256`` is null and
+- an :class:`~dppverify.game.instance.Instance` object has no bytes: ``sha256`` is null and
   ``"bytes": "object"``;
 - a ``--map`` grid: the canonical JSON of the grid's instance document (``"bytes":
   "canonical-json"``), plus ``"map": {"path", "sha256"}`` of the ``.map`` file's bytes.
@@ -23,7 +23,7 @@ one line (``dpp certify --verify-provenance CERT INSTANCE PROFILE``).
 
 Examples
 --------
->>> from dppverify.examples import triangle_document, triangle_profile
+>>> from dppverify.game.examples import triangle_document, triangle_profile
 >>> rec = input_record(triangle_document())
 >>> rec["bytes"], len(rec["sha256"])
 ('canonical-json', 64)
@@ -41,7 +41,7 @@ from pathlib import Path
 from typing import Any
 
 from dppverify.errors import CertificateError, InvalidInstanceError
-from dppverify.files import read_input
+from dppverify.formats.files import read_input
 
 __all__ = ["PROVENANCE_KEYS", "ProvenanceCheck", "canonical_json", "file_sha256",
            "input_record", "provenance_record", "verify_provenance"]
@@ -139,7 +139,7 @@ def provenance_record(instance: Any, profile: Any, *, route: str, exact: bool,
 
     Examples
     --------
-    >>> from dppverify.examples import triangle_document, triangle_profile
+    >>> from dppverify.game.examples import triangle_document, triangle_profile
     >>> rec = provenance_record(triangle_document(), triangle_profile(), route="tree",
     ...                         exact=True)
     >>> list(rec) == list(PROVENANCE_KEYS), rec["numbers"], rec["command"]
@@ -206,7 +206,7 @@ def verify_provenance(certificate: Mapping[str, Any], instance: Any, profile: An
 
     Examples
     --------
-    >>> from dppverify.examples import triangle_document, triangle_profile
+    >>> from dppverify.game.examples import triangle_document, triangle_profile
     >>> cert = {"format": "dpp-certificate/1", "provenance": provenance_record(
     ...     triangle_document(), triangle_profile(), route="tree", exact=True)}
     >>> verify_provenance(cert, triangle_document(), triangle_profile()).ok
@@ -283,7 +283,7 @@ def _given_record(name: str, source: Any) -> dict[str, Any]:
 def grid_document_of(map_path: str | Path, start: Any, goals: Any, prior: Any,
                      connectivity: int) -> dict[str, Any]:
     """The instance document of a ``--map`` grid (what its provenance hashes)."""
-    from dppverify.movingai import grid_document, read_map
+    from dppverify.formats.movingai import grid_document, read_map
 
     return grid_document(read_map(map_path), start, goals, prior, connectivity=connectivity)
 

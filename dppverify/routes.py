@@ -12,12 +12,12 @@ from typing import Literal
 
 from dppverify.errors import HorizonError
 from dppverify.exact import Number
-from dppverify.instance import Instance
-from dppverify.lp import lp_agrees
+from dppverify.game.instance import Instance
 from dppverify.numbers import NumberMode
-from dppverify.tree import DEFAULT_MAX_PREFIXES, count_prefixes
-from dppverify.value_dp import StructuredValue, structured_value
-from dppverify.value_lp import GameValue, game_value
+from dppverify.tree_route.lp import lp_agrees
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, count_prefixes
+from dppverify.tree_route.value_lp import GameValue, game_value
+from dppverify.twogoal.value_dp import StructuredValue, structured_value
 
 __all__ = ["ROUTES", "Route", "RoutedValue", "resolve_route", "routed_value", "tree_fits",
            "values_agree"]
@@ -29,13 +29,13 @@ ROUTES: tuple[Route, ...] = ("auto", "tree", "structured", "both")
 def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> bool:
     """True when the pruned walk tree of ``horizon`` steps has at most ``max_prefixes`` prefixes.
 
-    Counts with :func:`~dppverify.tree.count_prefixes`, saturated just above
+    Counts with :func:`~dppverify.tree_route.tree.count_prefixes`, saturated just above
     ``max_prefixes`` and stopping as soon as the count exceeds it, so that huge trees are
     never counted in full. An untruncated game (``horizon=None``) never fits.
 
     Examples
     --------
-    >>> from dppverify.examples import triangle
+    >>> from dppverify.game.examples import triangle
     >>> inst = triangle()
     >>> tree_fits(inst, 5, 3), tree_fits(inst, 5, 2), tree_fits(inst, None, 10**9)
     (True, False, False)
@@ -58,7 +58,7 @@ def resolve_route(route: Route, instance: Instance, horizon: int | None,
 
     Examples
     --------
-    >>> from dppverify.examples import triangle
+    >>> from dppverify.game.examples import triangle
     >>> inst = triangle()
     >>> resolve_route("auto", inst, 3, 100), resolve_route("auto", inst, 3, 2)
     ('tree', 'structured')
@@ -83,7 +83,7 @@ def values_agree(tree: GameValue, structured: Number, numbers: NumberMode) -> st
 
     Examples
     --------
-    >>> from dppverify.examples import triangle
+    >>> from dppverify.game.examples import triangle
     >>> from dppverify.numbers import EXACT
     >>> from fractions import Fraction
     >>> v = game_value(triangle(), 2)
@@ -130,7 +130,7 @@ class RoutedValue:
 
     Examples
     --------
-    >>> from dppverify.examples import triangle
+    >>> from dppverify.game.examples import triangle
     >>> r = routed_value(triangle(), 4, route="tree")
     >>> r.value, r.lower, r.upper
     (Fraction(12, 5), Fraction(12, 5), Fraction(12, 5))
@@ -192,12 +192,12 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
     Raises
     ------
     HorizonError, TreeTooLargeError
-        As :func:`~dppverify.value_lp.game_value` and
-        :func:`~dppverify.value_dp.structured_value`.
+        As :func:`~dppverify.tree_route.value_lp.game_value` and
+        :func:`~dppverify.twogoal.value_dp.structured_value`.
 
     Examples
     --------
-    >>> from dppverify.examples import triangle
+    >>> from dppverify.game.examples import triangle
     >>> r = routed_value(triangle(), 3, route="both")
     >>> r.route, r.structured.value, r.tree.bracket.exact, r.disagreement
     ('both', Fraction(12, 5), Fraction(12, 5), None)

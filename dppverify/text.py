@@ -7,7 +7,7 @@ from decimal import Decimal, localcontext
 from fractions import Fraction
 
 from dppverify.exact import Number
-from dppverify.instance import Instance, show_node
+from dppverify.game.instance import Instance, show_node
 
 __all__ = ["MAX_EXACT_CHARS", "approx", "show", "show_value", "show_walk"]
 
@@ -94,7 +94,7 @@ def show_walk(instance: Instance, walk: Sequence[int]) -> str:
 
     Examples
     --------
-    >>> from dppverify.instance import instance_from_json
+    >>> from dppverify.game.instance import instance_from_json
     >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": [0, 1]},
     ...     {"id": "g"}], "edges": [{"source": "s", "target": [0, 1]},
     ...     {"source": "s", "target": "g"}]}, "start": "s", "goals": [[0, 1], "g"],

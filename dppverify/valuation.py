@@ -13,12 +13,12 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from dppverify.game.instance import Instance, as_instance
 from dppverify.horizons import parse_horizon
-from dppverify.instance import Instance, as_instance
 from dppverify.ngoal.instance import NInstance, goal_count, load_ninstance, ninstance_from_json
 from dppverify.ngoal.routes import NRoutedValue, is_ngoal_file, nrouted_value
 from dppverify.routes import Route, RoutedValue, routed_value
-from dppverify.tree import DEFAULT_MAX_PREFIXES
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 
 __all__ = ["game_of", "value"]
 
@@ -83,7 +83,7 @@ def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
 
     Examples
     --------
-    >>> from dppverify.examples import triangle_document
+    >>> from dppverify.game.examples import triangle_document
     >>> r = value(triangle_document())
     >>> r.route, r.horizon, r.value          # r.lower, r.upper: the bounds
     ('structured', None, Fraction(12, 5))

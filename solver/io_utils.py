@@ -1,5 +1,5 @@
 """Small I/O helpers of the solver's CLI: all-or-nothing writes and JSON dumping (the
-checker has its own copy of the rules, ``dppverify/files.py``)."""
+checker has its own copy of the rules, ``dppverify/formats/files.py``)."""
 
 from __future__ import annotations
 

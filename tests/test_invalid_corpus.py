@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from dppverify.errors import CheckerError
-from dppverify.instance import load_instance as checker_load
+from dppverify.game.instance import load_instance as checker_load
 from solver.errors import DPPError
 from solver.instance_json import load_instance as solver_load
 from solver.movingai import read_map

@@ -57,7 +57,7 @@ def test_public_names_still_import() -> None:
 
 
 def test_an_lp_still_loads_cvxpy() -> None:
-    code = ("from dppverify import game_value\nfrom dppverify.examples import triangle\n"
+    code = ("from dppverify import game_value\nfrom dppverify.game.examples import triangle\n"
             "assert str(game_value(triangle(), 2).bracket.lower) == '12/5'")
     assert _loaded(code, ("cvxpy",)) == ["cvxpy"]
 

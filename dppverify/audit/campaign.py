@@ -30,7 +30,7 @@ from dppverify.audit.pruning import (
 from dppverify.audit.report import AuditReport, write_failure
 from dppverify.audit.runner import DEFAULT_TIMEOUT, PythonRunner, SolverRunner
 from dppverify.errors import AuditError, TreeTooLargeError
-from dppverify.files import OutputError
+from dppverify.formats.files import OutputError
 from dppverify.limits import MAX_AUDIT_EXAMPLES
 from dppverify.strategies import grid_worlds, instances, priors, weighted_graphs
 
@@ -143,7 +143,7 @@ def run_audit(solver: SolverRunner | Callable[[Doc], Any], *, examples: int = 10
     and refuted on the first generated instance:
 
     >>> from hypothesis import strategies as st
-    >>> from dppverify.examples import triangle_document, triangle_profile
+    >>> from dppverify.game.examples import triangle_document, triangle_profile
     >>> answer = triangle_profile()
     >>> run_audit(lambda doc: answer, examples=3, strategy=st.just(triangle_document())).passed
     True

@@ -18,7 +18,7 @@ from dppverify.audit.runner import Answer, SolverRunner, call_in_process, one_li
 from dppverify.certificate import Certificate
 from dppverify.certify import certify
 from dppverify.errors import CheckerError, ProfileError, TreeTooLargeError, UndecidedError
-from dppverify.json_reading import parse_json
+from dppverify.formats.json_reading import parse_json
 
 __all__ = ["AUDIT_MAX_PREFIXES", "AUDIT_TRIALS", "Outcome", "examine"]
 
@@ -76,7 +76,7 @@ class Outcome:
 
         Examples
         --------
-        >>> from dppverify.examples import triangle_document
+        >>> from dppverify.game.examples import triangle_document
         >>> examine(lambda d: {"format": "dpp-profile/2"}, triangle_document()).identity
         'profile.format'
         >>> examine(lambda d: 1 / 0, triangle_document()).identity  # doctest: +ELLIPSIS
@@ -99,7 +99,7 @@ def examine(solver: SolverRunner | Callable[[Doc], Any], doc: Doc, *,
 
     Examples
     --------
-    >>> from dppverify.examples import triangle_document
+    >>> from dppverify.game.examples import triangle_document
     >>> examine(lambda d: {"format": "dpp-profile/2"}, triangle_document()).check
     'profile.format'
     """

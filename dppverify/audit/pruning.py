@@ -15,7 +15,7 @@ from typing import Any
 from dppverify.audit.examine import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, Outcome, examine
 from dppverify.audit.runner import SolverRunner
 from dppverify.errors import AuditError, CheckerError, TreeTooLargeError
-from dppverify.instance import instance_from_json
+from dppverify.game.instance import instance_from_json
 
 __all__ = ["DEFAULT_SHRINK_CALLS", "DEFAULT_SHRINK_SECONDS", "ShrinkBudget", "prune_failure"]
 

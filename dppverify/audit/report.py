@@ -4,7 +4,7 @@ The failure directory (``--out``) holds ``instance.json``, ``profile.json`` (whe
 answered with a JSON object), ``certificate.json`` (when the answer could be certified) and
 ``failure.json`` (check id, the failure's identity — check id, or exception type and place —,
 message, seed, and the solver's traceback when it raised). It is written through
-:func:`dppverify.files.write_files` — every write commits all files together or none — as
+:func:`dppverify.formats.files.write_files` — every write commits all files together or none — as
 soon as the first failure is found, and rewritten in place whenever shrinking finds a
 smaller failure.
 """
@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from dppverify.audit.examine import Outcome
-from dppverify.files import write_files
+from dppverify.formats.files import write_files
 
 __all__ = ["FAILURE_FILES", "AuditReport", "format_report", "write_failure"]
 
@@ -123,7 +123,7 @@ def format_report(report: AuditReport) -> str:
     --------
     >>> from hypothesis import strategies as st
     >>> from dppverify.audit import run_audit
-    >>> from dppverify.examples import triangle_document
+    >>> from dppverify.game.examples import triangle_document
     >>> report = run_audit(lambda doc: 1 / 0, examples=5, shrink=False,
     ...                    strategy=st.just(triangle_document()))
     >>> print(format_report(report))  # doctest: +ELLIPSIS
@@ -177,7 +177,7 @@ def write_failure(outcome: Outcome, out: str | Path, *, seed: int = 0) -> tuple[
     --------
     >>> import tempfile
     >>> from dppverify.audit import examine
-    >>> from dppverify.examples import triangle_document
+    >>> from dppverify.game.examples import triangle_document
     >>> outcome = examine(lambda doc: 1 / 0, triangle_document())
     >>> with tempfile.TemporaryDirectory() as d:
     ...     files = write_failure(outcome, Path(d) / "fail", seed=7)

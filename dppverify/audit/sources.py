@@ -11,7 +11,7 @@ Examples
 --------
 >>> import json, tempfile
 >>> from pathlib import Path
->>> from dppverify.examples import triangle_document
+>>> from dppverify.game.examples import triangle_document
 >>> d = Path(tempfile.mkdtemp())
 >>> _ = (d / "triangle.json").write_text(json.dumps(triangle_document()))
 >>> _ = (d / "notes.json").write_text("[1, 2]")
@@ -33,9 +33,9 @@ from dppverify.audit.pruning import ShrinkBudget, prune_failure
 from dppverify.audit.report import AuditReport, write_failure
 from dppverify.audit.runner import SolverRunner
 from dppverify.errors import AuditError, CheckerError, TreeTooLargeError
-from dppverify.files import read_input
-from dppverify.instance import instance_from_json
-from dppverify.json_reading import parse_json
+from dppverify.formats.files import read_input
+from dppverify.formats.json_reading import parse_json
+from dppverify.game.instance import instance_from_json
 
 __all__ = ["MAX_AUDIT_INSTANCES", "audit_documents", "instances_from_dir",
            "instances_from_scen"]
@@ -72,7 +72,7 @@ def instances_from_dir(folder: str | Path) -> tuple[list[tuple[str, Doc]], list[
     Examples
     --------
     >>> import json, tempfile
-    >>> from dppverify.examples import triangle_document
+    >>> from dppverify.game.examples import triangle_document
     >>> d = Path(tempfile.mkdtemp())
     >>> _ = (d / "a.json").write_text(json.dumps(triangle_document()))
     >>> _ = (d / "profile.json").write_text('{"format": "dpp-profile/1"}')
@@ -111,7 +111,7 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
                         prior: Sequence[str] = ("1/2", "1/2"), connectivity: int = 4,
                         ) -> tuple[list[tuple[str, Doc]], list[tuple[int, str]]]:
     """The two-goal games of the ``.scen`` lines on ``map_file`` (lines naming another map
-    are left out), built as ``dpp batch`` builds them (:mod:`dppverify.scen`: the line's
+    are left out), built as ``dpp batch`` builds them (:mod:`dppverify.formats.scen`: the line's
     goal first, the fake goal of rule ``dpp-batch/1`` second, ``prior`` in that order).
 
     Returns the ``("line N", document)`` pairs and the lines that cannot be games, each with
@@ -119,14 +119,14 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
 
     Examples
     --------
-    >>> from dppverify.standard_maps import standard_map_path
+    >>> from dppverify.formats.standard_maps import standard_map_path
     >>> m = standard_map_path("empty-8-8")
     >>> docs, bad = instances_from_scen(m, m.with_name("empty-8-8-even-1.scen"))
     >>> len(docs), bad, docs[0][0], docs[0][1]["goals"]
     (32, [], 'line 2', [[0, 1], [1, 5]])
     """
-    from dppverify.movingai import grid_document, read_map
-    from dppverify.scen import component, fake_goal, fake_goal_candidates, parse_scen
+    from dppverify.formats.movingai import grid_document, read_map
+    from dppverify.formats.scen import component, fake_goal, fake_goal_candidates, parse_scen
 
     grid = read_map(map_file)
     try:
@@ -181,7 +181,7 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], 
     Examples
     --------
     >>> from dppverify.audit import PythonRunner
-    >>> from dppverify.examples import triangle_document, triangle_profile
+    >>> from dppverify.game.examples import triangle_document, triangle_profile
     >>> with PythonRunner(lambda doc: triangle_profile(), timeout=30) as run:
     ...     report = audit_documents(run, [("t", triangle_document())], source="mine")
     >>> report.passed, report.summary()

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-from dppverify.best_response import attacker_best_response_lp, leaf_totals
 from dppverify.certificate import CheckRecord
-from dppverify.context import EvaluatedContext
-from dppverify.evaluation import walk_cost
 from dppverify.exact import Number
-from dppverify.lp import lp_agrees
+from dppverify.game.evaluation import walk_cost
 from dppverify.text import show, show_walk
+from dppverify.tree_route.best_response import attacker_best_response_lp, leaf_totals
+from dppverify.tree_route.context import EvaluatedContext
+from dppverify.tree_route.lp import lp_agrees
 
 __all__ = ["attacker_br"]
 
@@ -23,7 +23,7 @@ def attacker_br(ctx: EvaluatedContext, theta: int) -> CheckRecord:
     Parameters
     ----------
     ctx : Context
-        The shared inputs (:func:`~dppverify.context.make_context`).
+        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
     theta : int
         1 (primary) or 2 (secondary).
 
@@ -35,7 +35,7 @@ def attacker_br(ctx: EvaluatedContext, theta: int) -> CheckRecord:
     --------
     A secondary type that walks to g1 pays 2 where ``s -> g2`` costs it 1:
 
-    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
     >>> eq = triangle_attacker()
     >>> r = attacker_br(context(eq), 2)
     >>> r.id, r.status, r.numbers["U2"], r.numbers["best_response"], r.numbers["regret"]

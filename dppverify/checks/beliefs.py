@@ -5,9 +5,9 @@ from __future__ import annotations
 from fractions import Fraction
 
 from dppverify.certificate import CheckRecord
-from dppverify.context import EvaluatedContext
 from dppverify.exact import Number
 from dppverify.text import show
+from dppverify.tree_route.context import EvaluatedContext
 
 __all__ = ["belief_consistency"]
 
@@ -23,7 +23,7 @@ def belief_consistency(ctx: EvaluatedContext) -> CheckRecord:
     Parameters
     ----------
     ctx : Context
-        The shared inputs (:func:`~dppverify.context.make_context`).
+        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
 
     Returns
     -------
@@ -31,7 +31,7 @@ def belief_consistency(ctx: EvaluatedContext) -> CheckRecord:
 
     Examples
     --------
-    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
     >>> eq = triangle_attacker()
     >>> dict(belief_consistency(context(eq)).numbers)
     {'b1': Fraction(7, 10), 'b2': Fraction(3, 10), 'infosets': 2, 'mismatches': 0}

@@ -5,12 +5,12 @@ from __future__ import annotations
 
 from fractions import Fraction
 
-from dppverify.best_response import defender_best_response, defender_best_response_lp
 from dppverify.certificate import CheckRecord
-from dppverify.context import EvaluatedContext
 from dppverify.exact import Number
-from dppverify.lp import lp_agrees
 from dppverify.text import show, show_walk
+from dppverify.tree_route.best_response import defender_best_response, defender_best_response_lp
+from dppverify.tree_route.context import EvaluatedContext
+from dppverify.tree_route.lp import lp_agrees
 
 __all__ = ["defender_br", "sequential_rationality"]
 
@@ -23,7 +23,7 @@ def defender_br(ctx: EvaluatedContext) -> CheckRecord:
     Parameters
     ----------
     ctx : Context
-        The shared inputs (:func:`~dppverify.context.make_context`).
+        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
 
     Returns
     -------
@@ -34,7 +34,7 @@ def defender_br(ctx: EvaluatedContext) -> CheckRecord:
     With the primary's probabilities swapped (3/7 to g1), allocating ``s -> g2`` to g1 gains
     the Defender 1/10:
 
-    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
     >>> eq = triangle_attacker()
     >>> defender_br(context(eq)).numbers["regret"]
     0
@@ -83,7 +83,7 @@ def sequential_rationality(ctx: EvaluatedContext) -> CheckRecord:
     Parameters
     ----------
     ctx : Context
-        The shared inputs (:func:`~dppverify.context.make_context`).
+        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
 
     Returns
     -------
@@ -94,7 +94,7 @@ def sequential_rationality(ctx: EvaluatedContext) -> CheckRecord:
     In equilibrium the belief after ``s -> g2`` is exactly 1/2, so σ* = 1/2 is rational there;
     with the primary's probabilities swapped it is 4/7 and σ* is not greedy:
 
-    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
     >>> eq = triangle_attacker()
     >>> dict(sequential_rationality(context(eq)).numbers)
     {'infosets': 2, 'at_one_half': 1, 'violations': 0}

@@ -5,14 +5,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from dppverify.best_response import objective_vector, payoff_on_tree
 from dppverify.certificate import CheckRecord, Status
 from dppverify.checks.skipped import NOT_WELLFORMED
-from dppverify.context import Context, EvaluatedContext
 from dppverify.exact import Number
-from dppverify.lp import LP_TOLERANCE, lp_agrees
 from dppverify.text import show
-from dppverify.value_lp import exact_bracket, solve_value_lp
+from dppverify.tree_route.best_response import objective_vector, payoff_on_tree
+from dppverify.tree_route.context import Context, EvaluatedContext
+from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
+from dppverify.tree_route.value_lp import exact_bracket, solve_value_lp
 
 __all__ = ["value_check", "values"]
 
@@ -27,7 +27,7 @@ def values(ctx: EvaluatedContext) -> list[CheckRecord]:
     Parameters
     ----------
     ctx : Context
-        The shared inputs (:func:`~dppverify.context.make_context`).
+        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
 
     Returns
     -------
@@ -36,7 +36,7 @@ def values(ctx: EvaluatedContext) -> list[CheckRecord]:
 
     Examples
     --------
-    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
     >>> eq = triangle_attacker()
     >>> for r in values(context(eq)):
     ...     print(r.id, r.status, r.message)
@@ -104,7 +104,7 @@ def value_check(ctx: Context) -> CheckRecord:
     Parameters
     ----------
     ctx : Context
-        The shared inputs (:func:`~dppverify.context.make_context`).
+        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
 
     Returns
     -------
@@ -114,7 +114,7 @@ def value_check(ctx: Context) -> CheckRecord:
     --------
     A secondary type walking to g1 makes ``U = 27/10``, not the value ``V_1 = 12/5``:
 
-    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
     >>> eq = triangle_attacker()
     >>> r = value_check(context(eq))
     >>> r.status, r.numbers["V_H"], r.numbers["U"]

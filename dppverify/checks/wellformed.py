@@ -4,12 +4,12 @@ from __future__ import annotations
 
 from dppverify.certificate import CheckRecord
 from dppverify.checks.skipped import skipped
-from dppverify.context import Context
-from dppverify.defender import sigma_along
 from dppverify.exact import Number
-from dppverify.phases import phases_of
-from dppverify.profile import ProgressRule
+from dppverify.game.defender import sigma_along
+from dppverify.game.profile import ProgressRule
 from dppverify.text import show_walk
+from dppverify.tree_route.context import Context
+from dppverify.twogoal.phases import phases_of
 
 __all__ = ["phases", "wellformed"]
 
@@ -20,7 +20,7 @@ def wellformed(ctx: Context) -> CheckRecord:
     Parameters
     ----------
     ctx : Context
-        The shared inputs (:func:`~dppverify.context.make_context`).
+        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
 
     Returns
     -------
@@ -28,10 +28,10 @@ def wellformed(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-    The triangle's equilibrium (see :mod:`dppverify.examples`), then a primary mixture whose
+    The triangle's equilibrium (see :mod:`dppverify.game.examples`), then a primary mixture whose
     probabilities do not sum to 1:
 
-    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
     >>> eq = triangle_attacker()
     >>> wellformed(context(eq)).message
     "well-formed: 2 primary and 1 secondary walk(s), primary goal 'g1'"
@@ -67,7 +67,7 @@ def phases(ctx: Context) -> CheckRecord:
     Parameters
     ----------
     ctx : Context
-        The shared inputs (:func:`~dppverify.context.make_context`).
+        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
 
     Returns
     -------
@@ -77,7 +77,7 @@ def phases(ctx: Context) -> CheckRecord:
     --------
     On the triangle ξ² = ``s -> g2`` is all phase II (σ* = 1/2 on its one step):
 
-    >>> from dppverify.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
     >>> eq = triangle_attacker()
     >>> dict(phases(context(eq)).numbers)
     {'t_I': 0, 't_II': 1, 'T': 1}

@@ -13,11 +13,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from dppverify.exact import Number
-from dppverify.lp import LP_TOLERANCE, lp_agrees
 from dppverify.ngoal.instance import NInstance
 from dppverify.ngoal.proved_value import NValue, nvalue
 from dppverify.ngoal.value_lp import NGameValue, ngame_value
-from dppverify.tree import DEFAULT_MAX_PREFIXES
+from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 
 __all__ = ["RouteAgreement", "compare_routes"]
 
@@ -38,7 +38,8 @@ class RouteAgreement:
         The tree route: LP value and exact bracket.
     agree : bool
         True when the brackets overlap and an exact structured value lies in the tree's
-        exact bracket and matches the LP within :data:`dppverify.lp.LP_TOLERANCE` (relative).
+        exact bracket and matches the LP within :data:`dppverify.tree_route.lp.LP_TOLERANCE`
+        (relative).
     """
 
     horizon: int

@@ -45,7 +45,6 @@ from dppverify.certificate import Certificate, CheckRecord, Status, merge_routes
 from dppverify.errors import HorizonError, LPError, UndecidedError
 from dppverify.exact import Number, normalize
 from dppverify.horizons import parse_horizon
-from dppverify.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
 from dppverify.ngoal.best_response import (
     NTreeDefender,
     attacker_best_response,
@@ -61,7 +60,8 @@ from dppverify.ngoal.routes import ntree_fits
 from dppverify.ngoal.structured import NSTRUCTURED_NOT_RUN, nstructured_checks
 from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.ngoal.value_lp import exact_nbracket, solve_nvalue_lp
-from dppverify.tree import DEFAULT_MAX_PREFIXES
+from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 
 __all__ = ["NGOAL_CHECK_IDS", "NRoute", "certify_ngoal", "payoff_of_type"]
 

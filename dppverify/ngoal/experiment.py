@@ -35,11 +35,11 @@ from typing import Any
 
 from dppverify.errors import CheckerError
 from dppverify.exact import Number
-from dppverify.files import write_files
-from dppverify.movingai import GridMap, grid_document, read_map
+from dppverify.formats.files import write_files
+from dppverify.formats.movingai import GridMap, grid_document, read_map
+from dppverify.formats.standard_maps import resolve_map
 from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.proved_value import nvalue
-from dppverify.standard_maps import resolve_map
 
 __all__ = ["GoalRow", "corner_cells", "goal_series", "skewed_prior"]
 
@@ -90,7 +90,7 @@ def corner_cells(grid: GridMap, n_goals: int = MAX_GOALS) -> tuple[Cell, tuple[C
 
     Examples
     --------
-    >>> from dppverify.movingai import parse_map
+    >>> from dppverify.formats.movingai import parse_map
     >>> grid = parse_map("type octile\\nheight 3\\nwidth 4\\nmap\\n....\\n.@@.\\n....\\n")
     >>> corner_cells(grid, 3)
     ((2, 0), ((0, 3), (0, 0), (0, 2)))
@@ -138,7 +138,7 @@ def goal_series(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
 
     Examples
     --------
-    >>> from dppverify.movingai import parse_map
+    >>> from dppverify.formats.movingai import parse_map
     >>> grid = parse_map("type octile\\nheight 3\\nwidth 4\\nmap\\n....\\n.@@.\\n....\\n")
     >>> [(r.n_goals, r.prior_kind, str(r.value), str(r.voi)) for r in
     ...  goal_series(grid, (2, 0), [(0, 3), (2, 3), (0, 0)])][:2]

@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 
 from dppverify.exact import Number
-from dppverify.json_reading import parse_number
+from dppverify.formats.json_reading import parse_number
 from dppverify.ngoal.instance import NInstance
 
 __all__ = ["ArcCondition", "GuaranteeRule", "GuaranteeSets", "arc_condition", "bad_rays",

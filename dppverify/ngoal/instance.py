@@ -6,7 +6,7 @@ Validity: every goal is reachable from the start and from every other goal (the 
 costs ``d(g^i, g^j)`` are finite). Exact numbers only (``"numbers": "float"`` is refused).
 Every violation raises :class:`~dppverify.errors.InvalidInstanceError` with one line naming
 what and where. The document is read by the same parser as the two-goal instance
-(:func:`dppverify.instance.read_game`); :class:`NInstance` adds the N-goal views.
+(:func:`dppverify.game.instance.read_game`); :class:`NInstance` adds the N-goal views.
 """
 
 from __future__ import annotations
@@ -18,8 +18,8 @@ from typing import Any
 
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import Number
-from dppverify.instance import GameInstance, load_game, read_game
-from dppverify.json_reading import JsonReadError, read_json_file
+from dppverify.formats.json_reading import JsonReadError, read_json_file
+from dppverify.game.instance import GameInstance, load_game, read_game
 
 __all__ = ["NInstance", "goal_count", "load_ninstance", "ninstance_from_json",
            "read_instance_document"]
@@ -29,8 +29,8 @@ __all__ = ["NInstance", "goal_count", "load_ninstance", "ninstance_from_json",
 class NInstance(GameInstance):
     """A validated N-goal game instance with exact distances.
 
-    A :class:`~dppverify.instance.GameInstance` read by the shared parser
-    (:func:`~dppverify.instance.read_game`), with every attribute of that class; for N goals
+    A :class:`~dppverify.game.instance.GameInstance` read by the shared parser
+    (:func:`~dppverify.game.instance.read_game`), with every attribute of that class; for N goals
     they read:
 
     Attributes

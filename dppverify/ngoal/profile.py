@@ -34,7 +34,7 @@ from typing import Any
 
 from dppverify.errors import ProfileError
 from dppverify.exact import Number
-from dppverify.json_reading import (
+from dppverify.formats.json_reading import (
     JsonReadError,
     lookup_node,
     parse_number,
@@ -42,10 +42,10 @@ from dppverify.json_reading import (
     read_json_file,
     resolve_walk,
 )
+from dppverify.game.profile import StrategyPath
 from dppverify.ngoal.guarantee import RULE as GUARANTEE
 from dppverify.ngoal.guarantee import GuaranteeRule, parse_guarantee
 from dppverify.ngoal.instance import NInstance
-from dppverify.profile import StrategyPath
 
 __all__ = ["NGOAL_PROFILE_FORMAT", "NProfile", "load_nprofile_document",
            "nprofile_from_json"]

@@ -17,7 +17,6 @@ from typing import Any, cast
 
 from dppverify.errors import HorizonError, InvalidInstanceError, OptionError
 from dppverify.exact import Number, format_number
-from dppverify.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
 from dppverify.ngoal.coalition import CoalitionValue, too_many_goals
 from dppverify.ngoal.cover import MAX_BALANCED, members
 from dppverify.ngoal.instance import NInstance, goal_count, read_instance_document
@@ -25,7 +24,8 @@ from dppverify.ngoal.proved_value import NValue, nvalue
 from dppverify.ngoal.value_lp import NGameValue, ngame_value
 from dppverify.routes import tree_fits
 from dppverify.text import show, show_value
-from dppverify.tree import DEFAULT_MAX_PREFIXES
+from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 
 __all__ = ["CONJECTURE_NOTE", "NRoutedValue", "is_ngoal_file", "nrouted_document",
            "nrouted_lines", "nrouted_value", "ntree_fits"]

@@ -1,12 +1,13 @@
 """The truncated N-goal game's tree of walks, stored compactly as arrays.
 
-The same construction as the two-goal tree (:mod:`dppverify.tree`): a *prefix* is a walk
+The same construction as the two-goal tree (:mod:`dppverify.tree_route.tree`): a *prefix* is a walk
 ``s0 … s_t`` with ``t <= H`` steps that has not reached a goal before its last node; it is a
 *leaf* when ``s_t`` is a goal (the game ends at the FIRST of the N goals reached). Prefixes
 from which no goal is reachable within the steps left are pruned. Prefixes are numbered
 breadth-first (``parent[p] < p``; children contiguous), so iterating downwards is backward
 induction. A size guard counts the tree first, in ``O(H·|E|)``. The construction is the
-two-goal one (:func:`dppverify.tree.build_prefix_tree`); this module names the N-goal tree.
+two-goal one (:func:`dppverify.tree_route.tree.build_prefix_tree`); this module names the N-goal
+tree.
 
 Examples
 --------
@@ -21,7 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from dppverify.ngoal.instance import NInstance
-from dppverify.tree import (
+from dppverify.tree_route.tree import (
     DEFAULT_MAX_PREFIXES,
     PrefixTree,
     build_prefix_tree,
@@ -36,7 +37,7 @@ __all__ = ["NWalkTree", "build_ntree", "count_nprefixes", "nflow_matrix"]
 class NWalkTree(PrefixTree):
     """The walks of the truncated N-goal game with at most ``horizon`` steps.
 
-    A :class:`~dppverify.tree.PrefixTree` whose ``instance`` is an :class:`NInstance`
+    A :class:`~dppverify.tree_route.tree.PrefixTree` whose ``instance`` is an :class:`NInstance`
     (every other attribute as documented there).
 
     Attributes
@@ -58,7 +59,7 @@ class NWalkTree(PrefixTree):
 def count_nprefixes(instance: NInstance, horizon: int) -> int:
     """Number of prefixes of the pruned walk tree, without building it (``O(H·|E|)``).
 
-    :func:`dppverify.tree.count_prefixes` without a limit.
+    :func:`dppverify.tree_route.tree.count_prefixes` without a limit.
 
     Raises
     ------
@@ -78,7 +79,7 @@ def build_ntree(instance: NInstance, horizon: int, *,
                 max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> NWalkTree:
     """Build the pruned tree of walks from ``s0`` with at most ``horizon`` steps.
 
-    :func:`dppverify.tree.build_prefix_tree` for an N-goal instance.
+    :func:`dppverify.tree_route.tree.build_prefix_tree` for an N-goal instance.
 
     Raises
     ------
@@ -99,5 +100,6 @@ def build_ntree(instance: NInstance, horizon: int, *,
 
 
 nflow_matrix = flow_matrix
-"""The flow constraints of an N-goal tree: :func:`dppverify.tree.flow_matrix` (one function
+"""The flow constraints of an N-goal tree: :func:`dppverify.tree_route.tree.flow_matrix` (one
+function
 serves both trees)."""

@@ -11,15 +11,18 @@ sum to ``w_p`` at every prefix (stationarity in ``z_p``), so ``σ(g^θ | p) = λ
 optimal Defender strategy.
 
 The LP, the rounding of its plans and the bracket search are the two-goal ones
-(:func:`~dppverify.value_lp.solve_types_lp`, :func:`~dppverify.value_lp.rational_plan`,
-:class:`~dppverify.value_lp.BracketSearch`); this module adds the N-type bounds.
+(:func:`~dppverify.tree_route.value_lp.solve_types_lp`,
+:func:`~dppverify.tree_route.value_lp.rational_plan`,
+:class:`~dppverify.tree_route.value_lp.BracketSearch`); this module adds the N-type bounds.
 
-Exact bracket (the two-goal method of :mod:`dppverify.value_lp`, for N types): for ANY rational
+Exact bracket (the two-goal method of :mod:`dppverify.tree_route.value_lp`, for N types): for ANY
+rational
 Defender ``σ``, ``Σ_θ b_θ min_walk U^θ(σ)`` (exact backward induction) is a lower bound on
 ``V_H``; for ANY rational Attacker plans the exact greedy Defender value is an upper bound.
 The LP's dual and primal solutions are rounded to small-denominator rationals (the same
 denominator limits as for two goals); if that leaves the bracket open, the LP is solved exactly
-(:mod:`dppverify.lp_exact`) and its strategies close it. ``V_H`` is reported exactly when the
+(:mod:`dppverify.tree_route.lp_exact`) and its strategies close it. ``V_H`` is reported exactly
+when the
 best bounds meet; an open bracket carries its reason.
 """
 
@@ -32,7 +35,6 @@ from fractions import Fraction
 import numpy as np
 
 from dppverify.exact import Number, normalize
-from dppverify.lp import LPStats
 from dppverify.ngoal.best_response import (
     NTreeDefender,
     attacker_best_response,
@@ -41,8 +43,9 @@ from dppverify.ngoal.best_response import (
 )
 from dppverify.ngoal.instance import NInstance
 from dppverify.ngoal.tree import NWalkTree, build_ntree
-from dppverify.tree import DEFAULT_MAX_PREFIXES
-from dppverify.value_lp import Bracket, BracketSearch, rational_plan, solve_types_lp
+from dppverify.tree_route.lp import LPStats
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
+from dppverify.tree_route.value_lp import Bracket, BracketSearch, rational_plan, solve_types_lp
 
 __all__ = ["NGameValue", "NValueLP", "exact_nbracket", "lower_nbound", "ngame_value",
            "solve_nvalue_lp", "upper_nbound"]

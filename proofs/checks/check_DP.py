@@ -8,7 +8,7 @@ from fractions import Fraction
 import sympy as sp
 
 from dppverify import game_value, instance_from_json
-from dppverify.value_dp import structured_value
+from dppverify.twogoal.value_dp import structured_value
 from proofs.checks._sym import is_nonneg, is_zero, nonneg, pos
 
 
@@ -77,7 +77,7 @@ def test_DP_value_of_the_HORIZON_example_by_hand_and_by_the_tree() -> None:
 
 def test_DP5_dijkstra_fixpoint_and_its_steps_by_hand() -> None:
     """DP.5 on the HORIZON example: the fixpoint, the steps h and K, and the stop at K + 1."""
-    from dppverify.value_dp import fixpoint_fields, value_fields
+    from dppverify.twogoal.value_dp import fixpoint_fields, value_fields
 
     inst = instance_from_json(EXAMPLE)
     r = inst.roles()

@@ -63,7 +63,7 @@ def test_HORIZON_own_length_does_not_suffice_the_kite() -> None:
     """H.5: the naive profile is a PBNE of the game truncated at its own length, not of the
     game; the secondary's detour costs 1 and V_inf = 8/5 (also for the stretched kites)."""
     from dppverify import certify, value
-    from dppverify.examples import kite_document, kite_naive_profile
+    from dppverify.game.examples import kite_document, kite_naive_profile
 
     for k in (1, 2, 4):
         w = str(Fraction(1, k))

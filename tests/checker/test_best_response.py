@@ -9,7 +9,12 @@ from typing import Any
 
 import pytest
 
-from dppverify.best_response import (
+from dppverify.checks.lemmas import random_mixture
+from dppverify.game.defender import tree_defender
+from dppverify.game.evaluation import evaluate, realization
+from dppverify.game.instance import instance_from_json
+from dppverify.game.profile import ProgressRule, TableRule
+from dppverify.tree_route.best_response import (
     attacker_best_response,
     attacker_best_response_lp,
     defender_best_response,
@@ -17,13 +22,8 @@ from dppverify.best_response import (
     leaf_totals,
     payoff_on_tree,
 )
-from dppverify.defender import tree_defender
-from dppverify.evaluation import evaluate, realization
-from dppverify.instance import instance_from_json
-from dppverify.lemmas import random_mixture
-from dppverify.lp import lp_agrees
-from dppverify.profile import ProgressRule, TableRule
-from dppverify.tree import build_tree
+from dppverify.tree_route.lp import lp_agrees
+from dppverify.tree_route.tree import build_tree
 from tests.checker._helpers import (
     adjacency,
     all_walks,

@@ -17,9 +17,9 @@ from dppverify import (
     certify,
     instance_from_json,
 )
-from dppverify.json_reading import parse_json
+from dppverify.formats.json_reading import parse_json
 from dppverify.registry import CHECKS
-from dppverify.tree import build_tree
+from dppverify.tree_route.tree import build_tree
 from solver import equilibrium_to_json, instance_to_json
 from solver import instance_from_json as solver_instance_from_json
 from tests.checker._helpers import (
@@ -87,8 +87,8 @@ def test_table_defender_equal_to_sigma_star_certifies() -> None:
     """The same σ* written as an explicit table of allocations (to g2, the other goal)."""
     inst = instance_from_json(three_phase_doc())
     tree = build_tree(inst, 4)
-    from dppverify.defender import tree_defender
-    from dppverify.profile import ProgressRule
+    from dppverify.game.defender import tree_defender
+    from dppverify.game.profile import ProgressRule
 
     r = inst.roles()
     td = tree_defender(tree, r, ProgressRule(r.g1))

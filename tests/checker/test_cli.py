@@ -151,7 +151,7 @@ def test_an_error_verdict_is_could_not_decide_not_a_refutation(tmp_path: Path) -
     """The triangle with weights scaled by 10**12 on the walk tree: the LP cross-checks fail
     numerically (verdict ERROR), which decides nothing: exit 3, never exit 1 (refuted). The
     same profile passes on the untruncated game (structured route, no LP)."""
-    from dppverify.examples import triangle_document, triangle_profile
+    from dppverify.game.examples import triangle_document, triangle_profile
 
     doc = triangle_document()
     for e in doc["graph"]["edges"]:

@@ -8,11 +8,11 @@ from fractions import Fraction
 
 import pytest
 
-from dppverify.defender import progress_along, sigma_along, tree_defender
-from dppverify.evaluation import walk_cost
-from dppverify.instance import instance_from_json
-from dppverify.profile import ProgressRule, TableRule
-from dppverify.tree import build_tree
+from dppverify.game.defender import progress_along, sigma_along, tree_defender
+from dppverify.game.evaluation import walk_cost
+from dppverify.game.instance import instance_from_json
+from dppverify.game.profile import ProgressRule, TableRule
+from dppverify.tree_route.tree import build_tree
 from tests.checker._helpers import (
     all_walks,
     grid_doc,
@@ -126,9 +126,9 @@ def test_walks_through_nodes_that_cannot_reach_g1_make_no_progress() -> None:
 
 def test_public_helpers_reject_bad_arguments_with_named_errors() -> None:
     from dppverify.errors import InvalidInstanceError, ProfileError
-    from dppverify.evaluation import walk_cost
-    from dppverify.examples import triangle
-    from dppverify.profile import ProgressRule
+    from dppverify.game.evaluation import walk_cost
+    from dppverify.game.examples import triangle
+    from dppverify.game.profile import ProgressRule
 
     inst = triangle()
     r = inst.roles()

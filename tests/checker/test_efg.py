@@ -1,7 +1,8 @@
 """The Gambit .efg export: an independent reader re-checks structure, payoffs and the value.
 
 The reader and the sequence-form LP below are written from Gambit's format specification and
-share no code with ``dppverify.efg``: the tests parse the exported text back, check node and
+share no code with ``dppverify.tree_route.efg``: the tests parse the exported text back, check node
+and
 information-set counts against the walk tree, perfect recall, payoffs (on leaves only) against
 costs recomputed from the instance document, the chance probabilities, OpenSpiel's action
 ordering requirement, and that the sequence-form LP of the parsed game (scipy HiGHS) gives
@@ -29,10 +30,10 @@ from scipy.optimize import linprog
 
 from dppverify import game_value
 from dppverify.cli import COMMANDS, export_efg_command
-from dppverify.efg import efg_size, to_efg, write_efg
 from dppverify.errors import CheckerError, HorizonError, TreeTooLargeError
-from dppverify.instance import instance_from_json
-from dppverify.tree import build_tree
+from dppverify.game.instance import instance_from_json
+from dppverify.tree_route.efg import efg_size, to_efg, write_efg
+from dppverify.tree_route.tree import build_tree
 from tests.checker._helpers import (
     _key,
     adjacency,

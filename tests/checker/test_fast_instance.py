@@ -23,13 +23,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dppverify import instance as instance_module
-from dppverify.distances import EXACT_FLOAT_LIMIT, ArcRows, exact_distances_to
 from dppverify.errors import InvalidInstanceError
-from dppverify.instance import GameInstance, Instance, _read_game, _regular_graph, arc_arrays
-from dppverify.json_reading import parse_json
+from dppverify.formats.json_reading import parse_json
+from dppverify.game import instance as instance_module
+from dppverify.game.distances import EXACT_FLOAT_LIMIT, ArcRows, exact_distances_to
+from dppverify.game.instance import GameInstance, Instance, _read_game, _regular_graph, arc_arrays
 from dppverify.strategies import grid_worlds, instances, ngoal_instances, weighted_graphs
-from dppverify.value_dp import _Frontier, goal_terminal_arcs, value_fields
+from dppverify.twogoal.value_dp import _Frontier, goal_terminal_arcs, value_fields
 
 random_docs = st.one_of(
     instances(graphs=weighted_graphs(max_nodes=8, weights="fractions", max_weight=5)),

@@ -18,13 +18,19 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dppverify import instance_from_json, walk_br
+from dppverify import instance_from_json
 from dppverify.errors import InvalidInstanceError
-from dppverify.instance import Instance
-from dppverify.json_reading import parse_number
+from dppverify.formats.json_reading import parse_number
+from dppverify.game.instance import Instance
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
-from dppverify.value_dp import _Frontier, value_fields
-from dppverify.walk_br import avoiding_distances, scaled_arcs, split_minimum, walk_minima
+from dppverify.twogoal import progress_br as walk_br
+from dppverify.twogoal.progress_br import (
+    avoiding_distances,
+    scaled_arcs,
+    split_minimum,
+    walk_minima,
+)
+from dppverify.twogoal.value_dp import _Frontier, value_fields
 from solver.movingai import read_map
 from tests.checker._helpers import make_doc
 

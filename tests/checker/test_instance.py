@@ -13,7 +13,7 @@ import pytest
 
 from dppverify.errors import CheckerError, InvalidInstanceError
 from dppverify.exact import INF
-from dppverify.instance import instance_from_json, load_instance
+from dppverify.game.instance import instance_from_json, load_instance
 from tests.checker._helpers import distances_to, grid_doc, load_cases, make_doc, triangle_doc
 
 

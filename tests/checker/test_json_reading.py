@@ -1,4 +1,4 @@
-"""dppverify.json_reading: the one home of the JSON reading primitives.
+"""dppverify.formats.json_reading: the one home of the JSON reading primitives.
 
 Every parser (two-goal and N-goal instances and profiles) reads numbers, node ids and walks
 through this module only; the walk messages of both profile formats come from one function.
@@ -12,20 +12,20 @@ from pathlib import Path
 import pytest
 
 from dppverify.errors import InvalidInstanceError, ProfileError
-from dppverify.examples import triangle
-from dppverify.json_reading import (
+from dppverify.formats.json_reading import (
     JsonReadError,
     lookup_node,
     read_json_file,
     resolve_walk,
 )
+from dppverify.game.examples import triangle
+from dppverify.game.profile import load_profile_document
 from dppverify.ngoal.examples import star3
 from dppverify.ngoal.instance import read_instance_document
 from dppverify.ngoal.profile import load_nprofile_document
-from dppverify.profile import load_profile_document
 
 ROOT = Path(__file__).resolve().parents[2]
-PARSERS = ("dppverify/instance.py", "dppverify/profile.py", "dppverify/ngoal/instance.py",
+PARSERS = ("dppverify/game/instance.py", "dppverify/game/profile.py", "dppverify/ngoal/instance.py",
            "dppverify/ngoal/profile.py")
 PRIMITIVES = {"parse_json", "parse_number", "node_from_json", "show_node", "lookup_node",
               "resolve_walk", "read_json_file", "parse_json_text", "read_input"}
@@ -38,7 +38,7 @@ def test_parsers_take_their_primitives_from_json_reading(path: str) -> None:
                if isinstance(node, ast.ImportFrom) for alias in node.names}
     used = {name: module for name, module in sources.items() if name in PRIMITIVES}
     assert used, f"{path} reads no JSON primitive"
-    assert set(used.values()) == {"dppverify.json_reading"}, used
+    assert set(used.values()) == {"dppverify.formats.json_reading"}, used
 
 
 @pytest.mark.parametrize("raw, subject, complete, want", [

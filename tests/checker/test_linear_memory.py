@@ -8,10 +8,10 @@ from __future__ import annotations
 import tracemalloc
 from fractions import Fraction
 
-from dppverify.instance import instance_from_json
-from dppverify.profile import StrategyPath
-from dppverify.structured import build_trie
-from dppverify.tree import count_prefixes
+from dppverify.checks.structured import build_trie
+from dppverify.game.instance import instance_from_json
+from dppverify.game.profile import StrategyPath
+from dppverify.tree_route.tree import count_prefixes
 
 
 def test_the_trie_of_a_60000_step_walk_is_linear() -> None:
@@ -55,7 +55,7 @@ def test_counting_a_long_path_tree() -> None:
 def _brute(inst: object, horizon: int) -> int:
     """Prefixes of the pruned walk tree by enumeration: walks from the start that stop at the
     first goal and can still reach a goal within the steps left."""
-    from dppverify.instance import Instance
+    from dppverify.game.instance import Instance
 
     assert isinstance(inst, Instance)
     count = 0

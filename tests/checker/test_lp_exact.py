@@ -1,4 +1,5 @@
-"""The tree LP solved exactly (dppverify.lp_exact): every bracket the tree route admits closes."""
+"""The tree LP solved exactly (dppverify.tree_route.lp_exact): every bracket the tree route admits
+closes."""
 
 from __future__ import annotations
 
@@ -8,15 +9,15 @@ from typing import Any
 import pytest
 from hypothesis import given
 
-import dppverify.lp_exact as lp_exact
-from dppverify.instance import instance_from_json
-from dppverify.lp_exact import solve_tree_lp_exactly
+import dppverify.tree_route.lp_exact as lp_exact
+from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.tree import build_ntree, count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.strategies import instances, ngoal_instances, weighted_graphs
-from dppverify.value_lp import game_value
+from dppverify.tree_route.lp_exact import solve_tree_lp_exactly
+from dppverify.tree_route.value_lp import game_value
 
 # A four-goal hub (found by a campaign) where rounding the LP solution at every denominator of
 # DENOMINATORS leaves the bracket open; the exact LP closes it at 44/17 (H = 3, 26 prefixes).

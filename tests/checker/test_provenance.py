@@ -13,7 +13,7 @@ from dppverify import __version__
 from dppverify.certificate import Certificate
 from dppverify.certify import certify
 from dppverify.cli import certify_command
-from dppverify.examples import triangle_document, triangle_profile
+from dppverify.game.examples import triangle_document, triangle_profile
 from dppverify.provenance import canonical_json, verify_provenance
 
 ROOT = Path(__file__).resolve().parents[2]

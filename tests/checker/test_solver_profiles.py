@@ -13,7 +13,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from dppverify import InvalidInstanceError, certify, instance_from_json
-from dppverify.json_reading import parse_json
+from dppverify.formats.json_reading import parse_json
 from solver import equilibrium_to_json
 from solver import instance_from_json as solver_instance_from_json
 from tests.checker._helpers import grid_doc, make_doc

@@ -22,10 +22,10 @@ from click.testing import CliRunner
 from dppverify import Certificate, certify, instance_from_json
 from dppverify.cli import certify_command
 from dppverify.errors import HorizonError, TreeTooLargeError
-from dppverify.examples import triangle_document, triangle_profile
-from dppverify.json_reading import parse_json
+from dppverify.formats.json_reading import parse_json
+from dppverify.game.examples import triangle_document, triangle_profile
 from dppverify.registry import CHECK_IDS, CHECKS, not_run
-from dppverify.walk_br import walk_minima
+from dppverify.twogoal.progress_br import walk_minima
 from solver import Instance, equilibrium_to_json, instance_to_json, solve
 from solver import instance_from_json as solver_instance_from_json
 from solver.movingai import read_map

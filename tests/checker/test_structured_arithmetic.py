@@ -15,19 +15,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from dppverify.defender import sigma_along, step_weight, step_weights
-from dppverify.distances import (
-    ArcArrays,
-    ArcRows,
-    hops_by_arrays,
-    scaled_distance_fields,
-    uniform_hops,
-)
-from dppverify.evaluation import walk_cost
-from dppverify.instance import Instance, instance_from_json
-from dppverify.json_reading import _resolve_walk_fast, resolve_walk
-from dppverify.profile import ProgressRule, StrategyPath, TableRule
-from dppverify.structured import (
+from dppverify.checks.structured import (
     HALF,
     Trie,
     _belief_consistency,
@@ -38,6 +26,18 @@ from dppverify.structured import (
     _telescoping,
     build_trie,
 )
+from dppverify.formats.json_reading import _resolve_walk_fast, resolve_walk
+from dppverify.game.defender import sigma_along, step_weight, step_weights
+from dppverify.game.distances import (
+    ArcArrays,
+    ArcRows,
+    hops_by_arrays,
+    scaled_distance_fields,
+    uniform_hops,
+)
+from dppverify.game.evaluation import walk_cost
+from dppverify.game.instance import Instance, instance_from_json
+from dppverify.game.profile import ProgressRule, StrategyPath, TableRule
 
 
 # ------------------------------------------------------------------ the replaced code, verbatim
@@ -300,7 +300,7 @@ def test_uniform_hops_equal_the_breadth_first_hops(seed: int) -> None:
 @pytest.mark.parametrize("seed", range(60))
 def test_pruned_seeds_give_the_same_fixpoint_fields(seed: int) -> None:
     """The value DP's third Dijkstra with dominated seeds dropped: the same fields, steps."""
-    from dppverify.value_dp import _fixpoint
+    from dppverify.twogoal.value_dp import _fixpoint
 
     rng = random.Random(seed)
     inst = random_game(rng, grid=seed % 3 == 0)
@@ -317,7 +317,7 @@ def test_pruned_seeds_give_the_same_fixpoint_fields(seed: int) -> None:
 def test_sigma_memo_returns_fresh_equal_lists(seed: int) -> None:
     """σ along a walk is remembered per instance: equal to a fresh computation, and a
     caller changing the list it got does not change what the next caller gets."""
-    from dppverify.defender import _progress_sigma
+    from dppverify.game.defender import _progress_sigma
 
     rng = random.Random(seed)
     inst = random_game(rng, grid=seed % 2 == 0)

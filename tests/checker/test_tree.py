@@ -8,8 +8,8 @@ from typing import Any
 import pytest
 
 from dppverify.errors import HorizonError, TreeTooLargeError
-from dppverify.instance import instance_from_json
-from dppverify.tree import build_tree, count_prefixes, simple_mask
+from dppverify.game.instance import instance_from_json
+from dppverify.tree_route.tree import build_tree, count_prefixes, simple_mask
 from tests.checker._helpers import all_walks, grid_doc, load_cases, make_doc, triangle_doc
 
 

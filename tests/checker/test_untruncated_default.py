@@ -24,14 +24,14 @@ from dppverify import certify
 from dppverify.certificate import Certificate
 from dppverify.cli import certify_command, value_command
 from dppverify.errors import HorizonError, UndecidedError
-from dppverify.examples import kite, kite_document, kite_naive_profile
-from dppverify.instance import instance_from_json
+from dppverify.game.examples import kite, kite_document, kite_naive_profile
+from dppverify.game.instance import instance_from_json
+from dppverify.game.profile import ProgressRule, TableRule
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.examples import star3_document, star3_profile
-from dppverify.profile import ProgressRule, TableRule
 from dppverify.strategies import instances, weighted_graphs
-from dppverify.table_br import table_minima
-from dppverify.walk_br import walk_minima
+from dppverify.structured.table_br import table_minima
+from dppverify.twogoal.progress_br import walk_minima
 from tests.checker._helpers import make_doc
 
 Doc = dict[str, Any]
@@ -225,7 +225,7 @@ def test_table_minima_against_walk_formula_and_tree(doc: Doc, data: st.DataObjec
     tm = table_minima(inst, r, TableRule(goal=goal, entries={}, default=ProgressRule(goal)))
     assert {tm.primary, tm.secondary} == {wm.same, wm.other}
     # a random table: entries on a few walks of the 2-step tree, a random default
-    from dppverify.tree import build_tree
+    from dppverify.tree_route.tree import build_tree
     tree = build_tree(inst, 2)
     walks = [tree.walk(p) for p in range(1, tree.n_prefixes)]
     chosen = data.draw(st.lists(st.sampled_from(walks), max_size=4, unique=True))
@@ -234,8 +234,8 @@ def test_table_minima_against_walk_formula_and_tree(doc: Doc, data: st.DataObjec
         [ProgressRule(goal), Fraction(0), Fraction(1), Fraction(1, 3)]))
     rule = TableRule(goal=goal, entries=entries, default=default)
     tm = table_minima(inst, r, rule)
-    from dppverify.best_response import attacker_best_response
-    from dppverify.defender import tree_defender
+    from dppverify.game.defender import tree_defender
+    from dppverify.tree_route.best_response import attacker_best_response
     for h in (2, 4):
         t = build_tree(inst, h)
         td = tree_defender(t, r, rule)
@@ -285,7 +285,7 @@ def test_progress_default_means_progress_towards_the_tables_own_goal(goal: str) 
     """docs/formats.md: ``"default": "progress"`` is the progress rule towards the table's
     ``goal`` (σ* only when that goal is g1); an empty table with it certifies exactly like
     the progress rule towards that goal, record by record."""
-    from dppverify.examples import triangle_document, triangle_profile
+    from dppverify.game.examples import triangle_document, triangle_profile
 
     rule = certify(triangle_document(), dict(triangle_profile(),
                                              defender={"rule": "progress", "goal": goal}))

@@ -22,10 +22,10 @@ import dppverify.routes
 from dppverify import count_prefixes, game_value, instance_from_json
 from dppverify.cli import value_command
 from dppverify.errors import HorizonError
-from dppverify.examples import triangle
+from dppverify.game.examples import triangle
 from dppverify.routes import resolve_route, routed_value, tree_fits
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
-from dppverify.value_dp import StructuredValue, structured_value, value_fields
+from dppverify.twogoal.value_dp import StructuredValue, structured_value, value_fields
 from solver import instance_from_json as solver_instance_from_json
 from solver import solve
 from tests.checker._helpers import make_doc, three_phase_doc

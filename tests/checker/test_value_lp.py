@@ -12,10 +12,10 @@ import pytest
 from scipy.optimize import linprog
 
 from dppverify import TreeTooLargeError, game_value
-from dppverify.instance import instance_from_json
-from dppverify.lp import lp_agrees
-from dppverify.tree import build_tree
-from dppverify.value_lp import exact_bracket, solve_value_lp
+from dppverify.game.instance import instance_from_json
+from dppverify.tree_route.lp import lp_agrees
+from dppverify.tree_route.tree import build_tree
+from dppverify.tree_route.value_lp import exact_bracket, solve_value_lp
 from tests.checker._helpers import (
     adjacency,
     all_walks,

@@ -8,9 +8,9 @@ from typing import Any
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dppverify.defender import progress_along, sigma_along, step_weight
-from dppverify.instance import Instance, _read_game
-from dppverify.profile import ProgressRule
+from dppverify.game.defender import progress_along, sigma_along, step_weight
+from dppverify.game.instance import Instance, _read_game
+from dppverify.game.profile import ProgressRule
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
 
 docs = st.one_of(

@@ -14,8 +14,8 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from dppverify.scen import parse_scen
-from dppverify.standard_maps import standard_map_path
+from dppverify.formats.scen import parse_scen
+from dppverify.formats.standard_maps import standard_map_path
 from solver.cli import batch_checker, main
 from solver.experiments.batch import FIELDS, BatchConfig
 from solver.experiments.batch import run_batch as _run_batch

@@ -16,8 +16,8 @@ from hypothesis import strategies as st
 
 from dppverify.audit import run_audit
 from dppverify.audit.examine import examine
-from dppverify.audit_cli import audit_command
-from dppverify.examples import triangle_document
+from dppverify.cli.audit import audit_command
+from dppverify.game.examples import triangle_document
 from dppverify.strategies import instances, weighted_graphs
 
 Doc = dict[str, Any]

@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner, Result
 
-from dppverify.audit_cli import audit_command
+from dppverify.cli.audit import audit_command
 
 HOSTILE = "tests.harness.hostile_solvers"
 

@@ -8,9 +8,9 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from dppverify.audit_cli import audit_command
-from dppverify.examples import triangle_document
-from dppverify.standard_maps import standard_map_path
+from dppverify.cli.audit import audit_command
+from dppverify.formats.standard_maps import standard_map_path
+from dppverify.game.examples import triangle_document
 
 EMPTY8 = standard_map_path("empty-8-8")
 SCEN = EMPTY8.with_name("empty-8-8-even-1.scen")

@@ -7,7 +7,7 @@ from typing import Any
 
 from dppverify.audit import examine, prune_failure
 from dppverify.errors import CheckerError
-from dppverify.instance import instance_from_json
+from dppverify.game.instance import instance_from_json
 from tests.mutants.solvers import mutant_drop_phase_ii
 
 # What hypothesis' shrinking alone left for mutant_drop_phase_ii (seed 0): five nodes (2, 4..7)

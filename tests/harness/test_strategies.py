@@ -13,7 +13,7 @@ from hypothesis import find, given, settings
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-from dppverify.instance import instance_from_json
+from dppverify.game.instance import instance_from_json
 from dppverify.strategies import WEIGHT_KINDS, grid_worlds, instances, priors, weighted_graphs
 from solver import instance_from_json as solver_instance_from_json
 from solver import solve

@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 from scipy import ndimage
 
-from dppverify.standard_maps import standard_map_names, standard_map_path
+from dppverify.formats.standard_maps import standard_map_names, standard_map_path
 
 ROOT = Path(__file__).resolve().parents[2]
 PAPER10 = ROOT / "examples" / "paper10.map"

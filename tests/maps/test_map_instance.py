@@ -17,11 +17,11 @@ import pytest
 from click.testing import CliRunner
 
 from dppverify.errors import InvalidInstanceError
-from dppverify.instance import instance_from_json as checker_from_json
-from dppverify.instance import load_game
-from dppverify.instance import load_instance as checker_load
-from dppverify.map_instance import MAP_INSTANCE_FORMAT
-from dppverify.movingai import grid_document, parse_map
+from dppverify.formats.map_instance import MAP_INSTANCE_FORMAT
+from dppverify.formats.movingai import grid_document, parse_map
+from dppverify.game.instance import instance_from_json as checker_from_json
+from dppverify.game.instance import load_game
+from dppverify.game.instance import load_instance as checker_load
 from dppverify.ngoal.instance import NInstance
 from solver.cli import main
 from solver.errors import DPPError

@@ -1,6 +1,7 @@
 """The checker's own ``.map`` reader and grid builder agree with the solver's.
 
-``dppverify.movingai`` shares no code with ``solver.movingai`` / ``Instance.from_grid``; on the
+``dppverify.formats.movingai`` shares no code with ``solver.movingai`` / ``Instance.from_grid``; on
+the
 bundled paper map and the 12 standard MovingAI maps both must give the same obstacles and
 the same instance document (node ids ``[row, col]``, the same edges and weights, float mode
 for octile grids), and so the same checker instance.
@@ -15,9 +16,9 @@ import networkx as nx
 import numpy as np
 import pytest
 
-from dppverify import movingai as checker_maps
 from dppverify.errors import InvalidInstanceError as CheckerInvalid
-from dppverify.instance import instance_from_json
+from dppverify.formats import movingai as checker_maps
+from dppverify.game.instance import instance_from_json
 from solver import movingai as solver_maps
 from solver.errors import InvalidInstanceError as SolverInvalid
 from solver.instance import Instance

@@ -1,7 +1,8 @@
-"""The .efg export of N-goal games (dppverify.efg with an NInstance), re-checked independently.
+"""The .efg export of N-goal games (dppverify.tree_route.efg with an NInstance), re-checked
+independently.
 
 The exported text is parsed back with the independent reader of ``tests/checker/test_efg.py``
-(written from Gambit's format specification, no code shared with ``dppverify.efg``) and
+(written from Gambit's format specification, no code shared with ``dppverify.tree_route.efg``) and
 checked against brute-force walk enumeration on the instance document: node and information
 set counts (``N^t`` copies of a ``t``-step prefix), perfect recall, what each player sees,
 payoffs recomputed from the document, the chance node, OpenSpiel's action order, and that the
@@ -24,15 +25,15 @@ import pytest
 from click.testing import CliRunner
 
 from dppverify.cli import export_efg_command
-from dppverify.efg import efg_size, to_efg, tree_to_efg, write_efg
 from dppverify.errors import HorizonError, TreeTooLargeError
-from dppverify.instance import instance_from_json
+from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.examples import star3_document
 from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.tree import build_ntree
 from dppverify.ngoal.value_lp import ngame_value
-from dppverify.tree import build_tree
+from dppverify.tree_route.efg import efg_size, to_efg, tree_to_efg, write_efg
+from dppverify.tree_route.tree import build_tree
 from tests.checker._helpers import _key, adjacency, all_walks, distances_to, grid_doc, make_doc
 from tests.checker._helpers import triangle_doc as _triangle_doc
 from tests.checker.test_efg import (
@@ -97,7 +98,8 @@ _FLOAT = make_doc([("s", "g1", 0.1), ("s", "g2", 2.5)], "s", ["g1", "g2"], ["1/2
 _FLOAT["numbers"] = "float"
 _DOCS = {"triangle": _triangle_doc(), "kite": KITE, "ladder": LADDER, "thirds": THIRDS,
          "fractional": FRACTIONAL, "grid": GRID, "float": _FLOAT}
-# (case, H, attacker_observes, forced_moves, sha256 prefix, length): dppverify.efg at c2a9ea7
+# (case, H, attacker_observes, forced_moves, sha256 prefix, length): dppverify.tree_route.efg at
+# c2a9ea7
 PINNED = [
     ("triangle", 3, True, False, "518a43e348526ef1", 891),
     ("triangle", 3, False, False, "82414bfaf8a8ccf8", 888),

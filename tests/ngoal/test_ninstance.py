@@ -9,8 +9,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 
 from dppverify.errors import InvalidInstanceError
-from dppverify.examples import triangle_document
-from dppverify.instance import GameInstance, instance_from_json
+from dppverify.game.examples import triangle_document
+from dppverify.game.instance import GameInstance, instance_from_json
 from dppverify.ngoal.examples import star3_document
 from dppverify.ngoal.instance import goal_count, load_ninstance, ninstance_from_json
 from dppverify.strategies import instances

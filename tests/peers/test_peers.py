@@ -34,11 +34,11 @@ from typing import Any
 import pytest
 
 from dppverify import game_value
-from dppverify.efg import to_efg
-from dppverify.instance import instance_from_json
+from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.value_lp import ngame_value
+from dppverify.tree_route.efg import to_efg
 from tests.checker._helpers import triangle_doc
 from tests.checker.test_efg import FRACTIONAL, GRID, KITE, LADDER, THIRDS
 from tests.ngoal.test_efg import DROP3, NCASES, NIDS
@@ -158,7 +158,7 @@ def test_pitfall_imperfect_recall_refused_by_gambit_misvalued_by_openspiel(
 
 @pytest.mark.xfail(strict=True, reason="Gambit 17.0.0b2 lp_solve (extensive form) mis-solves "
                    "games with one-action information sets: 9/5 instead of 21/5 here; "
-                   "dppverify.efg skips forced moves by default for this reason")
+                   "dppverify.tree_route.efg skips forced moves by default for this reason")
 def test_pitfall_gambit_one_action_infosets(gambit: ModuleType, tmp_path: Path) -> None:
     exact = _exact_value(LADDER, 1)
     text = to_efg(instance_from_json(LADDER), 1, forced_moves=True)

@@ -23,7 +23,7 @@ from hypothesis import strategies as st
 
 from dppverify import certify
 from dppverify.audit import audit_instances
-from dppverify.json_reading import parse_json
+from dppverify.formats.json_reading import parse_json
 from dppverify.strategies import instances, priors, weighted_graphs
 from solver.adapter import solve_json
 from tests.mutants.solvers import MUTANTS

@@ -18,7 +18,7 @@ from hypothesis import assume, given, note, settings
 from hypothesis import strategies as st
 
 from dppverify import CheckerError, certify, game_value, instance_from_json
-from dppverify.json_reading import parse_json
+from dppverify.formats.json_reading import parse_json
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
 from solver import equilibrium_to_json, solve
 from solver import instance_from_json as solver_instance_from_json

@@ -14,7 +14,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from dppverify import Certificate, certify, game_value, instance_from_json, value
-from dppverify.json_reading import parse_json
+from dppverify.formats.json_reading import parse_json
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
 from solver import equilibrium_to_json, instance_to_json, solve

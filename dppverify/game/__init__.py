@@ -1,0 +1,1 @@
+"""The game model for any number of goals: instances, profiles, distances, payoffs."""

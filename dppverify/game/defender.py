@@ -1,0 +1,300 @@
+"""The Defender's strategies: the progress rule σ* (eq. (7)) and explicit tables.
+
+Re-implemented from the paper's definition (Sec. IV, Definition 3 and eq. (7)), independently
+of the solver: with ``c_0 = d(s0, g)`` and ``c_t = min(c_{t-1}, d(s_t, g))`` (full-graph
+distances, proofs/TEL.md), the Defender allocates to ``g`` with probability
+``(c_{t-1} - c_t) / w(e_t)``. A node that cannot reach ``g`` has ``d = inf`` and gives no
+progress.
+
+Everything is expressed as ``σ(g1 | walk)``, the probability of allocating to the primary
+goal ``g1`` of the labelling in use, and as the allocated amounts
+``a1 = w(e_t) σ(g1)`` and ``a2 = w(e_t) (1 - σ(g1))`` — the stage costs of the two types.
+"""
+
+from __future__ import annotations
+
+import weakref
+from collections.abc import Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import cast
+
+from dppverify.errors import InvalidInstanceError, ProfileError
+from dppverify.exact import Number
+from dppverify.game.instance import Instance, Roles
+from dppverify.game.profile import DefenderRule, ProgressRule, TableRule
+from dppverify.tree_route.tree import WalkTree
+
+__all__ = ["TreeDefender", "UndefinedStrategyError", "progress_along", "sigma_along",
+           "step_weight", "step_weights", "tree_defender"]
+
+
+class UndefinedStrategyError(LookupError):
+    """A table Defender without default has no entry for a walk the game reaches."""
+
+
+def step_weight(instance: Instance, walk: Sequence[int], t: int) -> Number:
+    """The weight of step ``t`` (``walk[t-1] -> walk[t]``) of ``walk``.
+
+    Raises
+    ------
+    ProfileError
+        If that step is not an edge of the instance (the message names it).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> inst = triangle()
+    >>> s, g1, g2 = (inst.index[v] for v in ("s", "g1", "g2"))
+    >>> step_weight(inst, [s, g2, g1], 2)
+    2
+    >>> step_weight(inst, [s, s], 1)
+    Traceback (most recent call last):
+    ...
+    dppverify.errors.ProfileError: step 1 of the walk, 's' -> 's', is not an edge
+    """
+    w = instance.weight(walk[t - 1], walk[t])
+    if w is None:
+        u, v = instance.nodes[walk[t - 1]], instance.nodes[walk[t]]
+        raise ProfileError(f"step {t} of the walk, {u!r} -> {v!r}, is not an edge")
+    return w
+
+
+def step_weights(instance: Instance, walk: Sequence[int]) -> list[Number]:
+    """The weights of steps ``1 .. T`` of ``walk``: :func:`step_weight` for the whole walk.
+
+    Raises
+    ------
+    ProfileError
+        At the first step that is not an edge (the same message as :func:`step_weight`).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> inst = triangle()
+    >>> s, g1, g2 = (inst.index[v] for v in ("s", "g1", "g2"))
+    >>> step_weights(inst, [s, g2, g1])
+    [2, 2]
+    """
+    weights = instance.weights_along(walk)
+    for t, w in enumerate(weights, start=1):
+        if w is None:
+            step_weight(instance, walk, t)  # raises the message naming the step
+    return cast(list[Number], weights)
+
+
+def progress_along(instance: Instance, goal: int, walk: Sequence[int]) -> list[Number]:
+    """The new progress ``c_{t-1} - c_t`` towards ``goal`` at each step of ``walk`` (eqs. (6)-(7)).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> inst = triangle()
+    >>> progress_along(inst, 1, [0, 2])   # s -> g2: d(., g1) drops from 3 to 2
+    [1]
+    """
+    slot = instance.slot(goal)
+    if slot is None:
+        raise InvalidInstanceError(f"node {instance.nodes[goal]!r} is not a goal of the instance")
+    d = instance.dist_to[slot]
+    c = d[walk[0]]
+    out: list[Number] = []
+    for v in walk[1:]:
+        new = min(c, d[v])
+        out.append(c - new)
+        c = new
+    return out
+
+
+def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[int]
+                        ) -> list[Number]:
+    """σ(rule.goal | walk[:t+1]) for t = 1..T."""
+    if isinstance(rule, ProgressRule):
+        memo = _PROGRESS_SIGMA.get(instance)
+        if memo is None:
+            memo = _PROGRESS_SIGMA[instance] = {}
+        key = (rule.goal, tuple(walk))
+        if key not in memo:  # the checks ask for σ along the same profile walks repeatedly
+            memo[key] = tuple(_progress_sigma(instance, rule, walk))
+        return list(memo[key])
+    return _table_sigma(instance, rule, walk)
+
+
+_PROGRESS_SIGMA: weakref.WeakKeyDictionary[Instance, dict[tuple[int, tuple[int, ...]],
+                                                          tuple[Number, ...]]] = \
+    weakref.WeakKeyDictionary()
+
+
+def _progress_sigma(instance: Instance, rule: ProgressRule, walk: Sequence[int]
+                    ) -> list[Number]:
+    """σ(rule.goal | walk[:t+1]) for t = 1..T under a progress rule."""
+    prog = progress_along(instance, rule.goal, walk)
+    weights = step_weights(instance, walk)
+    if all(type(x) is int for x in prog) and all(type(w) is int for w in weights):
+        # integers (unit grids): the exact ratio without a Fraction per step, decided
+        # once per walk; the same numbers as NumberMode.ratio (an int when it divides)
+        ints = cast(list[tuple[int, int]], list(zip(prog, weights, strict=True)))
+        return [p // w if p % w == 0 else Fraction(p, w) for p, w in ints]
+    ratio = instance.numbers.ratio
+    return [ratio(pr, w) for pr, w in zip(prog, weights, strict=True)]
+
+
+def _table_sigma(instance: Instance, rule: TableRule, walk: Sequence[int]) -> list[Number]:
+    """σ(rule.goal | walk[:t+1]) for t = 1..T under a table (its default for unlisted)."""
+    result: list[Number] = []
+    progress: list[Number] | None = None
+    for t in range(1, len(walk)):
+        key = tuple(walk[:t + 1])
+        if key in rule.entries:
+            result.append(rule.entries[key])
+        elif isinstance(rule.default, ProgressRule):
+            if progress is None:
+                progress = _rule_sigma_to_goal(instance, rule.default, walk)
+            result.append(progress[t - 1])
+        elif rule.default is not None:
+            result.append(rule.default)
+        else:
+            raise UndefinedStrategyError(f"the Defender's table has no entry for walk "
+                                         f"{instance.labels(key)} and no default")
+    return result
+
+
+def sigma_along(instance: Instance, roles: Roles, rule: DefenderRule,
+                walk: Sequence[int]) -> list[Number]:
+    """``σ(g1 | s0 … s_t)`` at each step ``t = 1..T`` of ``walk``.
+
+    Raises
+    ------
+    UndefinedStrategyError
+        For a table without default that does not list one of the walk's prefixes.
+
+    Examples
+    --------
+    >>> from dppverify.game.instance import instance_from_json
+    >>> inst = instance_from_json({"graph": {"nodes": [{"id": "s"}, {"id": "a"},
+    ...     {"id": "g1"}, {"id": "g2"}], "edges": [{"source": "s", "target": "a", "weight": 2},
+    ...     {"source": "a", "target": "g1", "weight": 2}, {"source": "s", "target": "g2",
+    ...     "weight": 3}]}, "start": "s", "goals": ["g1", "g2"], "prior": ["3/5", "2/5"]})
+    >>> r = inst.roles()
+    >>> sigma_along(inst, r, ProgressRule(r.g1), [0, 1, 2])
+    [1, 1]
+    >>> sigma_along(inst, r, ProgressRule(r.g1), [0, 1, 0, 3])   # back to s, then g2
+    [1, 0, 0]
+    """
+    sigma = _rule_sigma_to_goal(instance, rule, walk)
+    if rule.goal == roles.g1:
+        return sigma
+    mode = instance.numbers
+    return [mode.difference(mode.one(), s) for s in sigma]
+
+
+@dataclass(frozen=True)
+class TreeDefender:
+    """A Defender strategy evaluated at every prefix of a walk tree.
+
+    Attributes
+    ----------
+    sigma1 : tuple
+        ``σ(g1 | prefix)`` for every prefix (index 0, the root, holds 0: no action).
+    alloc1, alloc2 : tuple
+        ``w σ(g1)`` and ``w (1 - σ(g1))``: type 1's and type 2's stage cost at each prefix.
+    undefined : tuple of int
+        Prefixes where a table Defender without default has no entry (their values are 0).
+    """
+
+    sigma1: tuple[Number, ...]
+    alloc1: tuple[Number, ...]
+    alloc2: tuple[Number, ...]
+    undefined: tuple[int, ...] = ()
+
+    def alloc(self, theta: int) -> tuple[Number, ...]:
+        """Stage costs of type ``theta`` (1 = primary, 2 = secondary)."""
+        return self.alloc1 if theta == 1 else self.alloc2
+
+
+def _progress_on_tree(tree: WalkTree, goal: int) -> list[Number]:
+    """New progress towards ``goal`` at every prefix (root: 0), eq. (7)'s numerator."""
+    inst = tree.instance
+    slot = inst.slot(goal)
+    assert slot is not None
+    d = inst.dist_to[slot]
+    node = tree.node.tolist()
+    parent = tree.parent.tolist()
+    n = tree.n_prefixes
+    c: list[Number] = [0] * n
+    prog: list[Number] = [0] * n
+    c[0] = d[node[0]]
+    for p in range(1, n):
+        cq = c[parent[p]]
+        dv = d[node[p]]
+        if dv < cq:
+            c[p] = dv
+            prog[p] = cq - dv
+        else:
+            c[p] = cq
+    return prog
+
+
+def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefender:
+    """Evaluate a Defender rule at every prefix of ``tree`` (labelling ``roles``).
+
+    For the progress rule the stage costs are the telescoping increments of proofs/TEL.md:
+    ``a1 = c_{t-1} - c_t`` exactly (no division needed).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> td = tree_defender(build_tree(inst, 1), r, ProgressRule(r.g1))
+    >>> [inst.labels(w) for w in ([0, 1], [0, 2])], td.sigma1, td.alloc1, td.alloc2
+    ([('s', 'g1'), ('s', 'g2')], (0, 1, Fraction(1, 2)), (0, 3, 1), (0, 0, 1))
+    """
+    inst = tree.instance
+    mode = inst.numbers
+    n = tree.n_prefixes
+    weight = tree.weight
+    sigma_goal: list[Number] = [0] * n
+    amount: list[Number | None] = [None] * n  # w * sigma_goal when known without multiplying
+    undefined: list[int] = []
+    progress_goal = rule.goal if isinstance(rule, ProgressRule) else (
+        rule.default.goal if isinstance(rule.default, ProgressRule) else None)
+    if progress_goal is not None:
+        prog = _progress_on_tree(tree, progress_goal)
+        for p in range(1, n):
+            s = mode.ratio(prog[p], weight[p])
+            sigma_goal[p] = s
+            amount[p] = prog[p] if mode.exact else mode.product(weight[p], s)
+    elif isinstance(rule, TableRule) and rule.default is not None:
+        assert not isinstance(rule.default, ProgressRule)
+        fill: Number = rule.default
+        sigma_goal = [0] + [fill] * (n - 1)
+    if isinstance(rule, TableRule):
+        listed = set()
+        for walk, prob in rule.entries.items():
+            p_idx = tree.find(walk)
+            if p_idx is not None:
+                sigma_goal[p_idx] = prob
+                amount[p_idx] = None
+                listed.add(p_idx)
+        if rule.default is None:
+            undefined = [p for p in range(1, n) if p not in listed]
+    one = mode.one()
+    to_g1 = rule.goal == roles.g1
+    sigma1: list[Number] = [0] * n
+    alloc1: list[Number] = [0] * n
+    alloc2: list[Number] = [0] * n
+    for p in range(1, n):
+        w = weight[p]
+        a = amount[p]
+        if a is None:
+            a = mode.product(w, sigma_goal[p])
+        b = mode.difference(w, a)
+        if to_g1:
+            sigma1[p], alloc1[p], alloc2[p] = sigma_goal[p], a, b
+        else:
+            s = mode.difference(one, sigma_goal[p])
+            sigma1[p], alloc1[p], alloc2[p] = s, b, a
+    return TreeDefender(sigma1=tuple(sigma1), alloc1=tuple(alloc1), alloc2=tuple(alloc2),
+                        undefined=tuple(undefined))

@@ -1,0 +1,424 @@
+"""Exact shortest distances (Dijkstra on exact numbers) and hop counts to the goals.
+
+The checker's own implementation, independent of the solver's: pure Python on ``int`` /
+``Fraction`` (or ``float`` in float mode). All game quantities use *full-graph* distances
+(proofs/README.md, assumption (G); proofs/THM.md).
+
+On big graphs the exact distances are computed by scipy's Dijkstra on the weights scaled to
+integers over their common denominator, held in ``float64``, when a bound computed up front
+shows every path sum stays below :data:`EXACT_FLOAT_LIMIT` (then every sum float64 forms is an
+exact integer, and the result is the exact one): :class:`ArcArrays` and
+:meth:`ArcArrays.scaled` are that guard, shared by :mod:`dppverify.game.instance`,
+:mod:`dppverify.twogoal.progress_br` and :mod:`dppverify.twogoal.value_dp`; past it the callers use
+:func:`dijkstra` on Python numbers.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from collections import deque
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from dppverify.exact import INF, Number
+
+if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
+    import scipy.sparse as sp
+
+__all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "ArcRows", "common_denominator",
+           "dijkstra", "exact_distances_to", "hops_by_arrays", "hops_to_targets",
+           "scaled_distance_fields", "uniform_hops", "unscale"]
+
+EXACT_FLOAT_LIMIT = 2**53
+"""Integer path sums below this are exact in float64."""
+
+Adjacency = Sequence[Sequence[tuple[int, Number]]]
+"""``adj[u]`` lists the arcs ``(v, w(u, v))`` leaving ``u`` (node indices)."""
+
+
+class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
+    """An instance's ``succ`` (or ``pred``): ``rows[u]`` = the ``(head, weight)`` pairs of
+    ``u``'s arcs, built on access from arrays (arcs sorted by tail, then head).
+
+    It reads like the tuple of tuples it stands for (indexing, iteration, ``len``, equality
+    with any sequence of rows), in memory linear in the arcs as numpy arrays: a grid of a
+    million cells holds no Python object per arc.
+
+    Examples
+    --------
+    >>> rows = ArcRows(3, np.array([0, 0, 2]), np.array([1, 2, 0]), np.array([0, 1, 0]),
+    ...                (1, Fraction(3, 2)))
+    >>> rows[0], rows[1], len(rows), rows == ((( 1, 1), (2, Fraction(3, 2))), (), ((0, 1),))
+    (((1, 1), (2, Fraction(3, 2))), (), 3, True)
+    """
+
+    __slots__ = ("_bounds", "_codes", "_heads", "_n", "_values")
+
+    def __init__(self, n: int, tails: np.ndarray, heads: np.ndarray, codes: np.ndarray,
+                 values: tuple[Number, ...]) -> None:
+        self._n = n
+        self._bounds = np.searchsorted(tails, np.arange(n + 1))
+        self._heads = heads
+        self._codes = codes
+        self._values = values
+
+    def __len__(self) -> int:
+        return self._n
+
+    def _row(self, u: int) -> tuple[tuple[int, Number], ...]:
+        a, b = int(self._bounds[u]), int(self._bounds[u + 1])
+        heads = self._heads[a:b].tolist()
+        if len(self._values) == 1:
+            w = self._values[0]
+            return tuple([(h, w) for h in heads])
+        values = self._values
+        return tuple(zip(heads, [values[c] for c in self._codes[a:b].tolist()], strict=True))
+
+    def __getitem__(self, u: Any) -> Any:
+        if isinstance(u, slice):
+            return tuple(self._row(i) for i in range(*u.indices(self._n)))
+        i = u.__index__()
+        if i < 0:
+            i += self._n
+        if not 0 <= i < self._n:
+            raise IndexError(u)
+        return self._row(i)
+
+    def __iter__(self) -> Iterator[tuple[tuple[int, Number], ...]]:
+        for u in range(self._n):
+            yield self._row(u)
+
+    def find(self, u: int, v: int) -> Number | None:
+        """The weight of the arc ``u -> v`` (None when there is none), by binary search.
+
+        Examples
+        --------
+        >>> rows = ArcRows(2, np.array([0]), np.array([1]), np.array([0]), (Fraction(1, 2),))
+        >>> rows.find(0, 1), rows.find(1, 0)
+        (Fraction(1, 2), None)
+        """
+        a, b = int(self._bounds[u]), int(self._bounds[u + 1])
+        try:  # rows are short: a list search beats numpy's per-call overhead
+            i = a + self._heads[a:b].tolist().index(v)
+        except ValueError:
+            return None
+        return self._values[int(self._codes[i])] if len(self._values) > 1 else self._values[0]
+
+    def find_many(self, tails: Sequence[int], heads: Sequence[int]) -> list[Number | None]:
+        """:meth:`find` for many arcs at once (one numpy pass per position in a row).
+
+        Examples
+        --------
+        >>> rows = ArcRows(3, np.array([0, 0, 1]), np.array([1, 2, 2]), np.array([0, 1, 0]),
+        ...                (Fraction(1, 2), 3))
+        >>> rows.find_many([0, 0, 1, 2], [2, 1, 2, 0])
+        [3, Fraction(1, 2), Fraction(1, 2), None]
+        """
+        u = np.asarray(tails, dtype=np.int64)
+        v = np.asarray(heads, dtype=np.int64)
+        if u.size == 0 or self._heads.size == 0:
+            return [None] * int(u.size)
+        start = self._bounds[u]
+        degree = self._bounds[u + 1] - start
+        pos = np.full(u.size, -1, dtype=np.int64)
+        last = self._heads.size - 1
+        for k in range(int(degree.max())):  # the first match in the row, as find's index()
+            idx = start + k
+            hit = (pos < 0) & (k < degree) & (self._heads[np.minimum(idx, last)] == v)
+            pos[hit] = idx[hit]
+        found = (pos >= 0).tolist()
+        if len(self._values) == 1:
+            w = self._values[0]
+            return [w if ok else None for ok in found]
+        values = self._values
+        codes = self._codes[np.maximum(pos, 0)].tolist()
+        return [values[c] if ok else None for c, ok in zip(codes, found, strict=True)]
+
+    def degree(self, u: int) -> int:
+        """The number of arcs of ``u`` (without building its row)."""
+        return int(self._bounds[u + 1] - self._bounds[u])
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, Sequence):
+            return NotImplemented
+        return len(self) == len(other) and all(
+            tuple(a) == tuple(b) for a, b in zip(self, other, strict=True))
+
+    __hash__ = None  # type: ignore[assignment]
+
+    def __repr__(self) -> str:
+        return f"ArcRows({self._n} nodes, {self._heads.size} arcs)"
+
+
+def dijkstra(adj: Adjacency, source: int) -> list[Number]:
+    """Exact single-source shortest distances.
+
+    Parameters
+    ----------
+    adj : Adjacency
+        Arcs with positive weights. Pass the *reverse* adjacency to get distances *to*
+        ``source``.
+    source : int
+        Source node index.
+
+    Returns
+    -------
+    list
+        ``dist[v]``: exact distance from ``source`` to ``v``, or ``math.inf`` if unreachable.
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> adj = [[(1, 2), (2, Fraction(7, 2))], [(2, 1)], []]
+    >>> dijkstra(adj, 0)
+    [0, 2, 3]
+    >>> dijkstra(adj, 2)
+    [inf, inf, 0]
+    """
+    dist: list[Number] = [INF] * len(adj)
+    dist[source] = 0
+    heap: list[tuple[Number, int]] = [(0, source)]
+    done = [False] * len(adj)
+    while heap:
+        d, u = heapq.heappop(heap)
+        if done[u]:
+            continue
+        done[u] = True
+        for v, w in adj[u]:
+            nd = d + w
+            if nd < dist[v]:
+                dist[v] = nd
+                heapq.heappush(heap, (nd, v))
+    return dist
+
+
+def hops_to_targets(reverse_adj: Adjacency, targets: Iterable[int]) -> list[int]:
+    """Fewest steps from every node to the nearest target (``-1`` if none is reachable).
+
+    Parameters
+    ----------
+    reverse_adj : Adjacency
+        ``reverse_adj[v]`` lists ``(u, w)`` for every arc ``u -> v``.
+    targets : iterable of int
+        The target nodes (the two goals).
+
+    Examples
+    --------
+    >>> rev = [[], [(0, 1)], [(1, 1)], []]   # arcs 0 -> 1 -> 2; node 3 isolated
+    >>> hops_to_targets(rev, [2])
+    [2, 1, 0, -1]
+    """
+    hops = [-1] * len(reverse_adj)
+    queue: deque[int] = deque()
+    for t in targets:
+        if hops[t] < 0:
+            hops[t] = 0
+            queue.append(t)
+    while queue:
+        v = queue.popleft()
+        for u, _ in reverse_adj[v]:
+            if hops[u] < 0:
+                hops[u] = hops[v] + 1
+                queue.append(u)
+    return hops
+
+
+def common_denominator(values: Iterable[Number]) -> int:
+    """The least common multiple of the denominators of the exact ``values`` (ints count 1).
+
+    Examples
+    --------
+    >>> common_denominator([1, Fraction(1, 4), Fraction(5, 6)])
+    12
+    """
+    den = 1
+    for w in values:
+        if type(w) is Fraction:
+            den = math.lcm(den, w.denominator)
+    return den
+
+
+@dataclass(frozen=True, eq=False)
+class ArcArrays:
+    """Every arc of a graph as arrays, in adjacency order (by tail, then head).
+
+    Attributes
+    ----------
+    tails, heads : numpy.ndarray
+        Tail and head of every arc (``int64``).
+    codes : numpy.ndarray
+        ``values[codes[i]]`` is the weight of arc ``i`` (``int64``).
+    values : tuple
+        The distinct weights (instances have few).
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 2), (2, Fraction(1, 2))], [(2, 2)], []])
+    >>> a.tails.tolist(), a.heads.tolist(), a.codes.tolist(), a.values
+    ([0, 0, 1], [1, 2, 2], [0, 1, 0], (2, Fraction(1, 2)))
+    >>> a.scaled(a.values), a.scaled([2**53])
+    ((2, [4, 1]), None)
+    """
+
+    tails: np.ndarray
+    heads: np.ndarray
+    codes: np.ndarray
+    values: tuple[Number, ...]
+
+    @classmethod
+    def from_adjacency(cls, adj: Adjacency) -> ArcArrays:
+        """The arcs of ``adj`` (``adj[u]`` lists ``(v, w)``), distinct weights keyed with
+        their type."""
+        code: dict[tuple[type, Number], int] = {}
+        tails: list[int] = []
+        heads: list[int] = []
+        codes: list[int] = []
+        for u, arcs in enumerate(adj):
+            for v, w in arcs:
+                tails.append(u)
+                heads.append(v)
+                codes.append(code.setdefault((type(w), w), len(code)))
+        return cls(tails=np.asarray(tails, dtype=np.int64), heads=np.asarray(heads, dtype=np.int64),
+                   codes=np.asarray(codes, dtype=np.int64), values=tuple(w for _, w in code))
+
+    def weights(self) -> list[Number]:
+        """The weight of every arc (Python numbers)."""
+        return [self.values[c] for c in self.codes.tolist()]
+
+    def scaled(self, total_of: Sequence[Number], *, paths: int = 1,
+               extra: Iterable[Number] = ()) -> tuple[int, list[int]] | None:
+        """``(scale, [v * scale for v in values])`` when float64 sums of them stay exact.
+
+        ``scale`` clears the denominators of ``values`` and ``extra``. None when a weight is
+        a float, or when ``paths`` times the scaled total of ``total_of`` (one entry per arc
+        counted: ``values`` weighted by how many arcs carry them, or any other list of
+        numbers) reaches :data:`EXACT_FLOAT_LIMIT`: a shortest path uses every arc at most
+        once, so ``paths`` path sums added up stay below the limit.
+        """
+        if any(type(v) is float for v in self.values):
+            return None
+        scale = common_denominator([*self.values, *extra])
+        scaled = [int(v * scale) for v in self.values]
+        if total_of is self.values:
+            counts = np.bincount(self.codes, minlength=len(self.values)).tolist()
+            total = sum(v * c for v, c in zip(scaled, counts, strict=True))
+        else:
+            total = sum(int(v * scale) for v in total_of)
+        if paths * total >= EXACT_FLOAT_LIMIT:
+            return None
+        return scale, scaled
+
+    def matrix(self, n: int, scaled: list[int], *, reverse: bool,
+               keep: np.ndarray | None = None) -> sp.csr_matrix:
+        """The scaled weights as a sparse matrix (``reverse``: arcs turned around), only the
+        arcs whose (forward) tail is in ``keep`` when given."""
+        import scipy.sparse as sp
+
+        w = np.asarray(scaled, dtype=np.float64)[self.codes]
+        rows, cols = (self.heads, self.tails) if reverse else (self.tails, self.heads)
+        if keep is not None:
+            sel = keep[rows]
+            rows, cols, w = rows[sel], cols[sel], w[sel]
+        return sp.csr_matrix((w, (rows, cols)), shape=(n, n))
+
+
+def exact_distances_to(arcs: ArcArrays, n: int, targets: Sequence[int]
+                       ) -> list[list[Number]] | None:
+    """Exact full-graph distances to each target by scipy, or None past the float64 guard.
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 2), (2, Fraction(7, 2))], [(2, 1)], []])
+    >>> exact_distances_to(a, 3, [2, 0])
+    [[3, 1, 0], [0, inf, inf]]
+    """
+    fields = scaled_distance_fields(arcs, n, targets)
+    if fields is None:
+        return None
+    scale, dist = fields
+    return [unscale(row, scale) for row in dist]
+
+
+def scaled_distance_fields(arcs: ArcArrays, n: int, targets: Sequence[int]
+                           ) -> tuple[int, np.ndarray] | None:
+    """:func:`exact_distances_to` before unscaling: ``(scale, rows)``, one float64 row of
+    exact scaled integers per target (kept by the instance for reuse, ``walk_br``).
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 2), (2, Fraction(7, 2))], [(2, 1)], []])
+    >>> scale, rows = scaled_distance_fields(a, 3, [2])
+    >>> scale, rows.tolist()
+    (2, [[6.0, 2.0, 0.0]])
+    """
+    got = arcs.scaled(arcs.values)
+    if got is None:
+        return None
+    from scipy.sparse.csgraph import dijkstra as sp_dijkstra
+
+    scale, scaled = got
+    dist = np.atleast_2d(sp_dijkstra(arcs.matrix(n, scaled, reverse=True), directed=True,
+                                     indices=list(targets)))
+    return scale, dist
+
+
+def unscale(row: np.ndarray, scale: int) -> list[Number]:
+    """Scaled integer distances held in float64 as exact numbers (``inf`` stays ``inf``).
+
+    Examples
+    --------
+    >>> unscale(np.array([0.0, 6.0, 3.0, np.inf]), 2)
+    [0, 3, Fraction(3, 2), inf]
+    """
+    finite = np.isfinite(row)
+    ints = np.where(finite, row, 0).astype(np.int64).tolist()
+    if scale == 1:
+        out: list[Number] = ints
+    else:
+        out = [x // scale if x % scale == 0 else Fraction(x, scale) for x in ints]
+    if not finite.all():
+        for v in np.flatnonzero(~finite).tolist():
+            out[v] = INF
+    return out
+
+
+def uniform_hops(rows: np.ndarray, step: int) -> list[int]:
+    """:func:`hops_to_targets` from exact scaled distance rows when every arc weighs ``step``.
+
+    With one weight a walk of ``k`` steps costs ``k * step``, so the fewest steps to the
+    nearest target is the least distance over ``step`` (``-1`` if unreachable): the BFS of
+    :func:`hops_by_arrays` without another pass over the graph.
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 2)], [(2, 2)], [], []])   # 0 -> 1 -> 2; 3 isolated
+    >>> scale, rows = scaled_distance_fields(a, 4, [2])
+    >>> uniform_hops(rows, 2), hops_by_arrays(a, 4, [2])
+    ([2, 1, 0, -1], [2, 1, 0, -1])
+    """
+    least = np.atleast_2d(rows).min(axis=0)
+    finite = np.isfinite(least)
+    hops = np.where(finite, least, 0).astype(np.int64) // step
+    return np.where(finite, hops, -1).tolist()
+
+
+def hops_by_arrays(arcs: ArcArrays, n: int, targets: Sequence[int]) -> list[int]:
+    """:func:`hops_to_targets` by scipy (breadth-first hop counts; ``-1`` if unreachable).
+
+    Examples
+    --------
+    >>> a = ArcArrays.from_adjacency([[(1, 1)], [(2, 1)], [], []])   # 0 -> 1 -> 2; 3 isolated
+    >>> hops_by_arrays(a, 4, [2])
+    [2, 1, 0, -1]
+    """
+    from scipy.sparse.csgraph import dijkstra as sp_dijkstra
+
+    m = arcs.matrix(n, [1] * len(arcs.values), reverse=True)
+    h = np.asarray(sp_dijkstra(m, directed=True, indices=list(targets), unweighted=True,
+                               min_only=True), dtype=np.float64)
+    return np.where(np.isfinite(h), h, -1).astype(np.int64).tolist()

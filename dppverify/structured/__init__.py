@@ -1,0 +1,1 @@
+"""The structured route: the game's value and best responses without the walk tree."""

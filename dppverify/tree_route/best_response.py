@@ -1,0 +1,406 @@
+"""Best responses in the truncated game, exactly and as LPs.
+
+*Attacker* (per type θ, against a Defender fixed at every prefix): the minimum over ALL walks
+of the tree — not only simple paths — of stage costs plus terminal cost, by exact backward
+induction ``J(p) = min_c [a_θ(c) + J(c)]``, ``J(leaf) = d(end, g^θ)``; and the same as the
+sequence-form LP ``min c·x`` over realization plans ``x``. Against a Defender whose strategy
+depends only on the walk, seeing the Defender's past actions does not help the Attacker (they
+never change the state), so this is the best response over all behavioural strategies
+within the horizon.
+
+*Defender* (against a non-reacting Attacker given by realization plans ``x1``, ``x2``):
+greedy per information set (Lemma 3): ``Σ_p w_p max(b1 x1(p), b2 x2(p))`` plus the terminal
+costs, exactly; and the LP ``max Σ_p w_p [b1 x1(p) σ_p + b2 x2(p) (1 - σ_p)]`` over
+``σ ∈ [0, 1]^P``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from dppverify.exact import INF, Number
+from dppverify.game.defender import TreeDefender
+from dppverify.game.instance import Roles
+from dppverify.tree_route.lp import LPStats, realization_constraints, solve
+from dppverify.tree_route.tree import WalkTree
+
+__all__ = ["AttackerBR", "DefenderBR", "attacker_best_response", "attacker_best_response_lp",
+           "defender_best_response", "defender_best_response_lp", "leaf_totals",
+           "objective_vector", "payoff_on_tree", "terminal_costs"]
+
+
+@dataclass(frozen=True)
+class AttackerBR:
+    """Type θ's best response in the tree: its cost and one minimising walk."""
+
+    theta: int
+    value: Number
+    leaf: int
+    walk: tuple[int, ...]
+
+
+@dataclass(frozen=True)
+class DefenderBR:
+    """The Defender's greedy best response: its value and allocation per information set.
+
+    ``sigma1[p]`` is 1 where ``b1 x1(p) >= b2 x2(p)`` and 0 otherwise, for every prefix ``p``
+    reached with positive probability (at a tie any allocation is optimal).
+    """
+
+    value: Number
+    sigma1: Mapping[int, int]
+
+
+def terminal_costs(tree: WalkTree, roles: Roles, theta: int) -> list[Number]:
+    """``d(end(p), g^θ)`` at every leaf ``p`` (0 at inner prefixes), full-graph distances.
+
+    Parameters
+    ----------
+    tree : WalkTree
+        The walk tree.
+    roles : Roles
+        The labelling (which goal is ``g1``, distances to the goals).
+    theta : int
+        1 (primary) or 2 (secondary).
+
+    Returns
+    -------
+    list
+        One exact number per prefix.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> inst = triangle()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> terminal_costs(tree, inst.roles(), 1), terminal_costs(tree, inst.roles(), 2)
+    ([0, 0, 2], [0, 2, 0])
+    """
+    d = roles.dist(theta)
+    out: list[Number] = [0] * tree.n_prefixes
+    for p in tree.leaves().tolist():
+        out[p] = d[int(tree.node[p])]
+    return out
+
+
+def leaf_totals(tree: WalkTree, roles: Roles, tdef: TreeDefender, theta: int) -> list[Number]:
+    """Forward pass: total cost of type θ for the walk of every prefix.
+
+    At a leaf: the walk's stage costs plus its terminal cost; at an inner prefix: the stage
+    costs so far. A second, independent route to the minimum of
+    :func:`attacker_best_response`.
+
+    Parameters
+    ----------
+    tree, roles, tdef
+        The tree, the labelling, and the Defender evaluated on the tree.
+    theta : int
+        1 (primary) or 2 (secondary).
+
+    Returns
+    -------
+    list
+        One exact number per prefix.
+
+    Examples
+    --------
+    Against σ* on the triangle, ``s -> g2`` costs the primary 1 + d(g2, g1) = 3, as much
+    as ``s -> g1`` (Lemma 1), and the secondary 1 (σ* = 1/2 on that step):
+
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> from dppverify.game.defender import tree_defender
+    >>> from dppverify.game.profile import ProgressRule
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> leaf_totals(tree, r, td, 1), leaf_totals(tree, r, td, 2)
+    ([0, 3, 3], [0, 2, 1])
+    """
+    a = tdef.alloc(theta)
+    parent = tree.parent.tolist()
+    acc: list[Number] = [0] * tree.n_prefixes
+    for p in range(1, tree.n_prefixes):
+        acc[p] = acc[parent[p]] + a[p]
+    term = terminal_costs(tree, roles, theta)
+    for p in tree.leaves().tolist():
+        acc[p] = acc[p] + term[p]
+    return acc
+
+
+def attacker_best_response(tree: WalkTree, roles: Roles, tdef: TreeDefender, theta: int,
+                           allowed: np.ndarray | None = None) -> AttackerBR:
+    """Exact best response of type θ by backward induction over the walk tree.
+
+    Parameters
+    ----------
+    tree, roles, tdef
+        The tree, the labelling, and the Defender evaluated on the tree.
+    theta : int
+        1 (primary) or 2 (secondary).
+    allowed : numpy.ndarray of bool, optional
+        Restrict to walks through allowed prefixes only (e.g. simple paths, Lemma 2).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> from dppverify.game.defender import tree_defender
+    >>> from dppverify.game.profile import ProgressRule
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> tree = build_tree(inst, 3)
+    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> br = attacker_best_response(tree, r, td, 2)
+    >>> br.value, inst.labels(br.walk)
+    (1, ('s', 'g2'))
+    """
+    a = tdef.alloc(theta)
+    term = terminal_costs(tree, roles, theta)
+    start = tree.child_start.tolist()
+    stop = tree.child_stop.tolist()
+    ok = allowed.tolist() if allowed is not None else None
+    n = tree.n_prefixes
+    J: list[Number] = [INF] * n
+    best = [-1] * n
+    for p in range(n - 1, -1, -1):
+        if ok is not None and not ok[p]:
+            continue
+        lo, hi = start[p], stop[p]
+        if lo == hi:
+            J[p] = term[p]
+            continue
+        bj: Number = INF
+        bc = -1
+        for c in range(lo, hi):
+            v = a[c] + J[c]
+            if v < bj:
+                bj, bc = v, c
+        J[p], best[p] = bj, bc
+    if J[0] == INF:
+        raise ValueError("no allowed walk in the tree")
+    p = 0
+    while best[p] >= 0:
+        p = best[p]
+    value = tree.instance.numbers.convert(J[0])
+    return AttackerBR(theta=theta, value=value, leaf=p, walk=tree.walk(p))
+
+
+def objective_vector(tree: WalkTree, roles: Roles, tdef: TreeDefender, theta: int) -> np.ndarray:
+    """Type θ's sequence-form cost vector: stage cost at every prefix plus terminal at leaves.
+
+    ``objective_vector(...) @ x`` is type θ's expected cost under realization plan ``x``.
+
+    Parameters
+    ----------
+    tree, roles, tdef
+        The tree, the labelling, and the Defender evaluated on the tree.
+    theta : int
+        1 (primary) or 2 (secondary).
+
+    Returns
+    -------
+    numpy.ndarray
+        Float costs, one per prefix (0 at the root).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> from dppverify.game.defender import tree_defender
+    >>> from dppverify.game.profile import ProgressRule
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> c = objective_vector(tree, r, td, 1)
+    >>> c.tolist(), float(c @ [1, 4 / 7, 3 / 7])   # U¹ of the mixture (4/7, 3/7)
+    ([0.0, 3.0, 3.0], 3.0)
+    """
+    c = np.array([float(v) for v in tdef.alloc(theta)])
+    c[0] = 0.0
+    c += np.array([float(v) for v in terminal_costs(tree, roles, theta)])
+    return c
+
+
+def attacker_best_response_lp(tree: WalkTree, roles: Roles, tdef: TreeDefender,
+                              theta: int) -> LPStats:
+    """Type θ's best-response value as the sequence-form LP ``min c·x`` (realization plans).
+
+    Parameters
+    ----------
+    tree, roles, tdef
+        The tree, the labelling, and the Defender evaluated on the tree.
+    theta : int
+        1 (primary) or 2 (secondary).
+
+    Returns
+    -------
+    LPStats
+        The LP's value (float) and statistics; the exact counterpart is
+        :func:`attacker_best_response`.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> from dppverify.game.defender import tree_defender
+    >>> from dppverify.game.profile import ProgressRule
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> lp = attacker_best_response_lp(tree, r, td, 2)
+    >>> lp.status, round(lp.value, 6), attacker_best_response(tree, r, td, 2).value
+    ('optimal', 1.0, 1)
+    """
+    import cvxpy as cp  # lazily: its import costs ~0.5 s
+
+    c = objective_vector(tree, roles, tdef, theta)
+    x = cp.Variable(tree.n_prefixes)
+    problem = cp.Problem(cp.Minimize(c @ x), realization_constraints(tree, x))
+    return solve(problem, f"attacker best response LP (type {theta}, H = {tree.horizon})")
+
+
+def _terminal_part(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
+                   x2: Mapping[int, Fraction]) -> Number:
+    total: Number = 0
+    leaf = tree.child_start == tree.child_stop
+    for theta, x in ((1, x1), (2, x2)):
+        d = roles.dist(theta)
+        for p, prob in x.items():
+            if leaf[p]:
+                total += roles.prior(theta) * prob * d[int(tree.node[p])]
+    return total
+
+
+def payoff_on_tree(tree: WalkTree, roles: Roles, tdef: TreeDefender,
+                   x1: Mapping[int, Fraction], x2: Mapping[int, Fraction]) -> Number:
+    """``U = Σ_θ b_θ Σ_p x_θ(p) a_θ(p) + terminal`` from realization plans (a second route to U).
+
+    Parameters
+    ----------
+    tree, roles, tdef
+        The tree, the labelling, and the Defender evaluated on the tree.
+    x1, x2 : Mapping
+        Realization plans of the two types: prefix -> reach probability.
+
+    Returns
+    -------
+    Number
+        ``U``, exact for rational instances.
+
+    Examples
+    --------
+    The triangle's equilibrium: primary ``s -> g1`` w.p. 4/7, ``s -> g2`` w.p. 3/7;
+    secondary ``s -> g2``. ``U = 7/10 · 3 + 3/10 · 1``:
+
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> from dppverify.game.defender import tree_defender
+    >>> from dppverify.game.profile import ProgressRule
+    >>> inst = triangle()
+    >>> r = inst.roles()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> x1 = {0: Fraction(1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
+    >>> x2 = {0: Fraction(1), 2: Fraction(1)}
+    >>> payoff_on_tree(tree, r, td, x1, x2)
+    Fraction(12, 5)
+    """
+    total: Number = _terminal_part(tree, roles, x1, x2)
+    for theta, x in ((1, x1), (2, x2)):
+        a = tdef.alloc(theta)
+        b = roles.prior(theta)
+        for p, prob in x.items():
+            if p:
+                total += b * prob * a[p]
+    return tree.instance.numbers.convert(total)
+
+
+def defender_best_response(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
+                           x2: Mapping[int, Fraction]) -> DefenderBR:
+    """Exact greedy Defender best response against realization plans ``x1``, ``x2``.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> inst = triangle()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> x1 = {0: Fraction(1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
+    >>> x2 = {0: Fraction(1), 2: Fraction(1)}
+    >>> br = defender_best_response(tree, inst.roles(), x1, x2)
+    >>> br.value, dict(br.sigma1)
+    (Fraction(12, 5), {1: 1, 2: 1})
+    """
+    total: Number = _terminal_part(tree, roles, x1, x2)
+    sigma: dict[int, int] = {}
+    w = tree.weight
+    for p in sorted(set(x1) | set(x2)):
+        if p == 0:
+            continue
+        v1 = roles.b1 * x1.get(p, Fraction(0))
+        v2 = roles.b2 * x2.get(p, Fraction(0))
+        sigma[p] = 1 if v1 >= v2 else 0
+        total += w[p] * max(v1, v2)
+    value = tree.instance.numbers.convert(total)
+    return DefenderBR(value=value, sigma1=sigma)
+
+
+def defender_best_response_lp(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
+                              x2: Mapping[int, Fraction]) -> tuple[LPStats, dict[int, float]]:
+    """The Defender's best response against ``x1``, ``x2`` as an LP over ``σ ∈ [0, 1]^P``.
+
+    Parameters
+    ----------
+    tree, roles
+        The tree and the labelling.
+    x1, x2 : Mapping
+        Realization plans of the two types: prefix -> reach probability.
+
+    Returns
+    -------
+    tuple of LPStats and dict
+        The LP statistics (value = the Defender's optimum) and the LP's allocation
+        ``σ(g1 | p)`` at every information set reached with positive probability.
+
+    Examples
+    --------
+    If the primary went to g2 more often (3/7 to g1, 4/7 to g2), the Defender could get
+    5/2 instead of the equilibrium's 12/5 by allocating to g1 everywhere:
+
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> inst = triangle()
+    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> x1 = {0: Fraction(1), 1: Fraction(3, 7), 2: Fraction(4, 7)}
+    >>> x2 = {0: Fraction(1), 2: Fraction(1)}
+    >>> lp, sigma = defender_best_response_lp(tree, inst.roles(), x1, x2)
+    >>> round(lp.value, 6), {p: round(s, 6) for p, s in sigma.items()}
+    (2.5, {1: 1.0, 2: 1.0})
+    >>> defender_best_response(tree, inst.roles(), x1, x2).value
+    Fraction(5, 2)
+    """
+    support = sorted(p for p in set(x1) | set(x2) if p != 0)
+    const = float(_terminal_part(tree, roles, x1, x2))
+    w = tree.weight_float
+    if not support:
+        return LPStats(const, "optimal", 0, 0, 0.0), {}
+    idx = np.array(support)
+    b1x1 = np.array([float(roles.b1 * x1.get(p, Fraction(0))) for p in support])
+    b2x2 = np.array([float(roles.b2 * x2.get(p, Fraction(0))) for p in support])
+    import cvxpy as cp  # lazily: its import costs ~0.5 s
+
+    sigma = cp.Variable(len(support))
+    objective = (w[idx] * (b1x1 - b2x2)) @ sigma + float(w[idx] @ b2x2) + const
+    problem = cp.Problem(cp.Maximize(objective), [sigma >= 0, sigma <= 1])
+    stats = solve(problem, f"defender best response LP (H = {tree.horizon})")
+    values = np.asarray(sigma.value, dtype=float)
+    return stats, {p: float(values[k]) for k, p in enumerate(support)}

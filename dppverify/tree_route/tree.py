@@ -1,0 +1,438 @@
+"""The truncated game's tree of walks (proofs/LP.md), stored compactly as arrays.
+
+A *prefix* is a walk ``s0 s1 … s_t`` with ``t <= H`` steps that has not reached a goal before
+its last node; it is a *leaf* when ``s_t`` is a goal (the game ends at the FIRST goal reached,
+paper Sec. III-A). Prefixes from which no goal can be reached within the ``H - t`` steps
+left are pruned, so every leaf of the tree ends at a goal and every other prefix has a child.
+The Defender's information set after step ``t`` is the prefix itself (it observes the walk).
+
+Prefixes are numbered in breadth-first order: the root (the empty walk at ``s0``) is 0,
+``parent[p] < p``, and the children of ``p`` are the contiguous range
+``child_start[p]:child_stop[p]``. Iterating ``p`` downwards is backward induction.
+
+Examples
+--------
+>>> from dppverify.game.instance import instance_from_json
+>>> doc = {"graph": {"nodes": [{"id": "s"}, {"id": "g1"}, {"id": "g2"}],
+...        "edges": [{"source": "s", "target": "g2", "weight": 2},
+...                  {"source": "g2", "target": "g1", "weight": 2},
+...                  {"source": "s", "target": "g1", "weight": 3}]},
+...        "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]}
+>>> tree = build_tree(instance_from_json(doc), 1)
+>>> tree.n_prefixes, [tree.instance.labels(tree.walk(p)) for p in tree.leaves()]
+(3, [('s', 'g1'), ('s', 'g2')])
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Protocol, TypeVar
+
+import numpy as np
+from tqdm import tqdm
+
+from dppverify.errors import HorizonError, TreeTooLargeError
+from dppverify.exact import Number
+from dppverify.game.instance import GameInstance, Instance
+
+if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
+    import scipy.sparse as sp
+
+__all__ = ["DEFAULT_MAX_PREFIXES", "FlowTree", "PrefixTree", "WalkTree", "build_prefix_tree",
+           "build_tree", "count_prefixes", "flow_matrix", "simple_mask"]
+
+DEFAULT_MAX_PREFIXES = 1_000_000
+"""Default size guard: trees with more prefixes raise :class:`TreeTooLargeError`."""
+
+
+class FlowTree(Protocol):
+    """What :func:`flow_matrix` needs of a tree (:class:`WalkTree` and ``NWalkTree``)."""
+
+    @property
+    def n_prefixes(self) -> int: ...
+
+    @property
+    def parent(self) -> np.ndarray: ...
+
+    @property
+    def child_start(self) -> np.ndarray: ...
+
+    @property
+    def child_stop(self) -> np.ndarray: ...
+
+
+@dataclass(frozen=True, eq=False)
+class PrefixTree:
+    """The walks of a truncated game (any number of goals) with at most ``horizon`` steps.
+
+    What the two-goal :class:`WalkTree` and the N-goal ``NWalkTree`` share; both are built by
+    :func:`build_prefix_tree`.
+
+    Attributes
+    ----------
+    instance : GameInstance
+        The game the tree belongs to.
+    horizon : int
+        ``H``: the maximum number of steps of a walk.
+    node : numpy.ndarray of int32
+        Last node of each prefix (``node[0] = s0``).
+    parent : numpy.ndarray of int64
+        Parent prefix (``-1`` for the root).
+    depth : numpy.ndarray of int32
+        Number of steps ``t`` of each prefix.
+    child_start, child_stop : numpy.ndarray of int64
+        Children of ``p``: ``range(child_start[p], child_stop[p])`` (empty for leaves).
+    weight : tuple
+        Exact weight ``w(e_t)`` of the last step of each prefix (0 for the root).
+    """
+
+    instance: GameInstance
+    horizon: int
+    node: np.ndarray
+    parent: np.ndarray
+    depth: np.ndarray
+    child_start: np.ndarray
+    child_stop: np.ndarray
+    weight: tuple[Number, ...]
+    weight_float: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "weight_float", np.array([float(w) for w in self.weight]))
+
+    @property
+    def n_prefixes(self) -> int:
+        """Number of prefixes (tree nodes), the root included."""
+        return int(self.node.shape[0])
+
+    def is_leaf_mask(self) -> np.ndarray:
+        """Boolean mask of the leaves (prefixes ending at a goal)."""
+        return np.asarray(self.child_start == self.child_stop)
+
+    def leaves(self) -> np.ndarray:
+        """Indices of the leaves, in breadth-first order."""
+        return np.flatnonzero(self.child_start == self.child_stop)
+
+    @property
+    def n_leaves(self) -> int:
+        """Number of leaves (complete walks of the truncated game)."""
+        return int(np.count_nonzero(self.child_start == self.child_stop))
+
+    def children(self, p: int) -> range:
+        """Child prefixes of ``p``."""
+        return range(int(self.child_start[p]), int(self.child_stop[p]))
+
+    def walk(self, p: int) -> tuple[int, ...]:
+        """The walk (node indices ``s0 … s_t``) of prefix ``p``."""
+        return tuple(int(self.node[q]) for q in self.path(p))
+
+    def path(self, p: int) -> list[int]:
+        """Prefix indices from the root down to ``p`` (inclusive)."""
+        out = []
+        parent = self.parent
+        while p >= 0:
+            out.append(p)
+            p = int(parent[p])
+        out.reverse()
+        return out
+
+    def find(self, walk: Sequence[int]) -> int | None:
+        """Index of the prefix whose walk is ``walk`` (node indices), or None if not in the tree."""
+        if not walk or walk[0] != int(self.node[0]):
+            return None
+        p = 0
+        for v in walk[1:]:
+            lo, hi = int(self.child_start[p]), int(self.child_stop[p])
+            hits = np.flatnonzero(self.node[lo:hi] == v)
+            if hits.size == 0:
+                return None
+            p = lo + int(hits[0])
+        return p
+
+
+@dataclass(frozen=True, eq=False)
+class WalkTree(PrefixTree):
+    """The walks of the two-goal truncated game with at most ``horizon`` steps (proofs/LP.md).
+
+    A :class:`PrefixTree` whose ``instance`` is a two-goal :class:`Instance` (every other
+    attribute as documented there).
+
+    Attributes
+    ----------
+    instance : Instance
+        The game the tree belongs to.
+    """
+
+    instance: Instance
+
+
+def count_prefixes(instance: GameInstance, horizon: int, *, limit: int | None = None) -> int:
+    """Number of prefixes of the pruned walk tree with ``horizon`` steps, without building it.
+
+    Dynamic programming over (node, steps left), vectorised, touching at each layer only the
+    nodes a prefix can be at (a goal within the steps left, reached within the steps taken):
+    at most ``O(H·|E|)``, and ``O(total walk length)`` on a path. Bounded: the count is
+    non-decreasing in the steps left, so with a ``limit`` it saturates just above it and
+    stops as soon as the start's count exceeds it (returning ``limit + 1``).
+
+    Raises
+    ------
+    HorizonError
+        If ``horizon`` is negative.
+
+    Examples
+    --------
+    >>> from dppverify.game.instance import instance_from_json
+    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
+    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
+    ...                  {"source": 1, "target": 3}]},
+    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
+    >>> [count_prefixes(instance_from_json(doc), h) for h in range(5)]
+    [0, 2, 4, 6, 8]
+    """
+    if horizon < 0:
+        raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
+    inst = instance
+    n = inst.n_nodes
+    cap = limit + 1 if limit is not None and limit + 1 < 2**40 else None
+    exact = cap is None  # no limit, or saturated int64 sums could overflow: Python ints
+    goal = np.zeros(n, dtype=bool)
+    goal[list(inst.goals)] = True
+    hops = np.asarray(inst.hops, dtype=np.int64)
+    reach = _hops_from(inst, goal)
+    deg = np.asarray([0 if goal[v] else len(inst.succ[v]) for v in range(n)], dtype=np.int64)
+    indptr = np.concatenate([[0], np.cumsum(deg)])
+    heads = np.asarray([u for v in range(n) if not goal[v] for u, _ in inst.succ[v]],
+                       dtype=np.int64)
+    cnt = np.zeros(n, dtype=object if exact else np.int64)
+    cnt[goal] = 1  # k = 0 steps left
+    # a prefix at v with k steps left took horizon - k >= reach[v] steps and reaches a goal
+    # within k: v is active for k in [hops[v], horizon - reach[v]]; only active nodes change
+    # (the others keep a value that is never read again)
+    last = horizon - reach
+    cand = np.flatnonzero(~goal & (hops >= 0) & (hops <= last))
+    cand = cand[np.argsort(hops[cand], kind="stable")]
+    starts = hops[cand]
+    active = np.zeros(0, dtype=np.int64)
+    taken = 0
+    for k in range(1, horizon + 1):
+        upto = int(np.searchsorted(starts, k, side="right"))
+        active = np.concatenate([active[last[active] >= k], cand[taken:upto]])
+        taken = upto
+        if active.size:
+            lens = deg[active]
+            first = np.repeat(indptr[active] - np.cumsum(lens) + lens, lens)
+            arcs = first + np.arange(int(lens.sum()))
+            owner = np.repeat(np.arange(active.size), lens)
+            sums = np.zeros(active.size, dtype=cnt.dtype)
+            if exact:
+                for j, c in zip(owner.tolist(), cnt[heads[arcs]].tolist(), strict=True):
+                    sums[j] += c
+            else:
+                np.add.at(sums, owner, cnt[heads[arcs]])
+            cnt[active] = sums + 1 if cap is None else np.minimum(sums + 1, cap)
+        if cap is not None and cnt[inst.start] >= cap:
+            break  # the count never decreases with more steps left
+    return int(cnt[inst.start])
+
+
+def _hops_from(inst: GameInstance, goal: np.ndarray) -> np.ndarray:
+    """Fewest steps from the start to each node along walks that stop at the first goal
+    (a large number where there is none)."""
+    n = inst.n_nodes
+    far = np.iinfo(np.int64).max // 4
+    dist = np.full(n, far, dtype=np.int64)
+    dist[inst.start] = 0
+    frontier = [inst.start]
+    d = 0
+    while frontier:
+        d += 1
+        nxt = []
+        for v in frontier:
+            if goal[v]:
+                continue
+            for u, _ in inst.succ[v]:
+                if dist[u] == far:
+                    dist[u] = d
+                    nxt.append(u)
+        frontier = nxt
+    return dist
+
+
+def build_tree(instance: Instance, horizon: int, *,
+               max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> WalkTree:
+    """Build the pruned tree of walks from ``s0`` with at most ``horizon`` steps.
+
+    The two-goal form of :func:`build_prefix_tree`.
+
+    Parameters
+    ----------
+    instance : Instance
+        The game.
+    horizon : int
+        ``H >= 0``.
+    max_prefixes : int
+        Size guard: the tree is counted first (:func:`count_prefixes`) and
+        :class:`TreeTooLargeError` is raised before any memory is spent when it is larger.
+    progress : bool
+        Show a tqdm progress bar on stderr.
+
+    Raises
+    ------
+    HorizonError
+        If ``horizon`` is negative or no walk reaches a goal within ``horizon`` steps.
+    TreeTooLargeError
+        If the tree has more than ``max_prefixes`` prefixes.
+
+    Examples
+    --------
+    >>> from dppverify.game.instance import instance_from_json
+    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
+    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
+    ...                  {"source": 1, "target": 3}]},
+    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
+    >>> t = build_tree(instance_from_json(doc), 4)
+    >>> [t.walk(int(p)) for p in t.leaves()]
+    [(0, 2), (0, 1, 3), (0, 1, 0, 2), (0, 1, 0, 1, 3)]
+    >>> build_tree(instance_from_json(doc), 4, max_prefixes=5)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 4 has at least 6 prefixes, ...
+    """
+    return build_prefix_tree(instance, horizon, WalkTree, max_prefixes=max_prefixes,
+                             progress=progress)
+
+
+T = TypeVar("T", bound=PrefixTree)
+
+
+def build_prefix_tree(instance: GameInstance, horizon: int, cls: type[T], *,
+                      max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> T:
+    """Build the pruned tree of walks of any game (two or N goals) as a ``cls``.
+
+    Parameters
+    ----------
+    instance : GameInstance
+        The game (``Instance`` or ``NInstance``).
+    horizon : int
+        ``H >= 0``.
+    cls : type
+        :class:`WalkTree` for an ``Instance``, ``NWalkTree`` for an ``NInstance``.
+    max_prefixes, progress
+        As for :func:`build_tree`.
+
+    Raises
+    ------
+    HorizonError, TreeTooLargeError
+        As for :func:`build_tree`.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> t = build_prefix_tree(triangle(), 1, PrefixTree)
+    >>> type(t).__name__, t.n_leaves
+    ('PrefixTree', 2)
+    """
+    size = count_prefixes(instance, horizon, limit=max_prefixes)
+    if size == 0:
+        raise HorizonError(f"no walk from the start reaches a goal within H = {horizon} steps "
+                           f"(the nearest goal is {instance.hops[instance.start]} steps away)")
+    if size > max_prefixes:
+        raise TreeTooLargeError(
+            f"the walk tree for horizon H = {horizon} has at least {size} prefixes, more than "
+            f"the limit of {max_prefixes} (--max-prefixes); use --route structured, or lower "
+            "the horizon")
+    inst = instance
+    goal = [inst.is_goal(v) for v in range(inst.n_nodes)]
+    hops = inst.hops
+    node = [inst.start]
+    parent = [-1]
+    depth = [0]
+    weight: list[Number] = [0]
+    child_start = [0] * size
+    child_stop = [0] * size
+    bar = tqdm(total=size, desc=f"walk tree H={horizon}", unit="prefix", disable=not progress,
+               leave=False)
+    lo, hi = 0, 1  # the current level is node[lo:hi]
+    for t in range(1, horizon + 1):
+        left = horizon - t
+        for p in range(lo, hi):
+            child_start[p] = len(node)
+            v = node[p]
+            if not goal[v]:
+                for u, w in inst.succ[v]:
+                    if goal[u] or 0 <= hops[u] <= left:
+                        node.append(u)
+                        parent.append(p)
+                        depth.append(t)
+                        weight.append(w)
+            child_stop[p] = len(node)
+        bar.update(hi - lo)
+        lo, hi = hi, len(node)
+        if lo == hi:
+            break
+    for p in range(lo, hi):  # the deepest level: leaves
+        child_start[p] = child_stop[p] = len(node)
+    bar.update(hi - lo)
+    bar.close()
+    if len(node) != size:  # pragma: no cover - the count and the build share the pruning rule
+        raise AssertionError(f"tree size {len(node)} differs from its count {size}")
+    return cls(instance=inst, horizon=horizon,
+               node=np.asarray(node, dtype=np.int32),
+               parent=np.asarray(parent, dtype=np.int64),
+               depth=np.asarray(depth, dtype=np.int32),
+               child_start=np.asarray(child_start, dtype=np.int64),
+               child_stop=np.asarray(child_stop, dtype=np.int64),
+               weight=tuple(weight))
+
+
+def simple_mask(tree: WalkTree) -> np.ndarray:
+    """Boolean mask: ``True`` for prefixes whose walk visits no node twice (paths).
+
+    Examples
+    --------
+    >>> from dppverify.game.instance import instance_from_json
+    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
+    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
+    ...                  {"source": 1, "target": 3}]},
+    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
+    >>> t = build_tree(instance_from_json(doc), 4)
+    >>> [t.walk(int(p)) for p in t.leaves()[simple_mask(t)[t.leaves()]]]
+    [(0, 2), (0, 1, 3)]
+    """
+    n = tree.n_prefixes
+    node = tree.node.tolist()
+    parent = tree.parent.tolist()
+    visited = [0] * n
+    simple = [True] * n
+    visited[0] = 1 << node[0]
+    for p in range(1, n):
+        q = parent[p]
+        bit = 1 << node[p]
+        simple[p] = simple[q] and not (visited[q] & bit)
+        visited[p] = visited[q] | bit
+    return np.asarray(simple, dtype=bool)
+
+
+def flow_matrix(tree: FlowTree) -> sp.csr_matrix:
+    """Sequence-form flow constraints ``x[p] - Σ_children x[c] = 0``, one row per inner prefix.
+
+    Serves both trees (:class:`WalkTree`, ``NWalkTree``): it reads only ``n_prefixes``,
+    ``parent``, ``child_start`` and ``child_stop`` (:class:`FlowTree`).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> flow_matrix(build_tree(triangle(), 1)).toarray()   # s -> s g1, s g2
+    array([[ 1., -1., -1.]])
+    """
+    import scipy.sparse as sp
+
+    n = tree.n_prefixes
+    inner = np.flatnonzero(tree.child_start != tree.child_stop)
+    row_of = np.full(n, -1, dtype=np.int64)
+    row_of[inner] = np.arange(inner.size)
+    children = np.arange(1, n)
+    rows = np.concatenate([row_of[inner], row_of[tree.parent[children]]])
+    cols = np.concatenate([inner, children])
+    vals = np.concatenate([np.ones(inner.size), -np.ones(children.size)])
+    return sp.csr_matrix((vals, (rows, cols)), shape=(inner.size, n))
