@@ -38,7 +38,7 @@ import numpy as np
 from dppverify.errors import HorizonError
 from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance, Roles
-from dppverify.twogoal.value_fixpoint import Arcs, Fixpoint, fixpoint_fields, goal_terminal_arcs
+from dppverify.twogoal.value_fixpoint import Arcs, fixpoint_fields, goal_terminal_arcs
 
 __all__ = ["Fields", "StructuredValue", "structured_value", "value_fields"]
 
