@@ -12,7 +12,8 @@
   module per family;
 - :mod:`~dppverify.checks.runners`: for every tree check id, the function computing it.
 
-Each check takes the shared :class:`~dppverify.tree_route.context.Context` and returns
+Each check takes the shared :class:`~dppverify.tree_route.context.Context` (built by
+:func:`~dppverify.tree_route.context.make_context`) and returns its
 :class:`~dppverify.certificate.CheckRecord` (ids in ``dppverify/checks.md``). Exact numbers
 decide every pass/fail; LP numbers are reported beside them and must agree within
 :data:`~dppverify.tree_route.lp.LP_TOLERANCE` (a disagreement is an ``error``: the checker's two

@@ -17,15 +17,6 @@ __all__ = ["phases", "wellformed"]
 def wellformed(ctx: Context) -> CheckRecord:
     """``profile.wellformed``: the document describes a profile of this game.
 
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
-
     Examples
     --------
     The triangle's equilibrium (see :mod:`dppverify.game.examples`), then a primary mixture whose
@@ -63,15 +54,6 @@ def wellformed(ctx: Context) -> CheckRecord:
 
 def phases(ctx: Context) -> CheckRecord:
     """``profile.phases``: the claimed ``t_I``, ``t_II``, ``T`` of ξ² match σ* along it.
-
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
 
     Examples
     --------

@@ -24,7 +24,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, TypeVar, overload
 
 import numpy as np
 
@@ -199,6 +199,16 @@ def parse_map(text: str) -> GridMap:
     return GridMap(height, width, tuple(rows))
 
 
+def _octile(grid: GridMap, start: Cell, goals: Sequence[Cell], connectivity: int) -> bool:
+    """Check the start, the goals and ``connectivity`` (4 or 8); True for 8 (octile)."""
+    if connectivity not in (4, 8):
+        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
+    grid.check_cell(start, "start")
+    for goal in goals:
+        grid.check_cell(goal, "goal")
+    return connectivity == 8
+
+
 def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any],
                   *, connectivity: int = 4) -> dict[str, Any]:
     """The instance JSON document of a grid game (``docs/formats.md`` §1).
@@ -242,12 +252,7 @@ def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequ
     >>> doc8["numbers"], len(doc8["graph"]["edges"])  # no diagonal past the obstacle corner
     ('float', 2)
     """
-    if connectivity not in (4, 8):
-        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
-    grid.check_cell(start, "start")
-    for goal in goals:
-        grid.check_cell(goal, "goal")
-    octile = connectivity == 8
+    octile = _octile(grid, start, goals, connectivity)
     # neighbours later in row-major order: right, then (diagonals) down-left, down, down-right
     steps = [(0, 1), (1, -1), (1, 0), (1, 1)] if octile else [(0, 1), (1, 0)]
     unit: str | float = 1.0 if octile else "1"
@@ -278,9 +283,19 @@ def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequ
     return doc
 
 
+@overload
 def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
-              connectivity: int = 4, cls: type[G] = Instance,  # type: ignore[assignment]
-              two_goals: bool = True) -> G:
+              connectivity: int = 4, two_goals: bool = True) -> Instance: ...
+
+
+@overload
+def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
+              connectivity: int = 4, cls: type[G], two_goals: bool = True) -> G: ...
+
+
+def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
+              connectivity: int = 4, cls: type[GameInstance] = Instance,
+              two_goals: bool = True) -> GameInstance:
     """The grid game straight from the map: ``read_game(grid_document(...))`` without JSON.
 
     Same arguments, checks and messages as :func:`grid_document` followed by the instance
@@ -299,12 +314,7 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
     dppverify.errors.InvalidInstanceError: start cell (1, 1) is an obstacle ('@' at row 1,
       column 1 of the 2x3 map)
     """
-    if connectivity not in (4, 8):
-        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
-    grid.check_cell(start, "start")
-    for goal in goals:
-        grid.check_cell(goal, "goal")
-    octile = connectivity == 8
+    octile = _octile(grid, start, goals, connectivity)
     h, w = grid.height, grid.width
     chars = np.frombuffer("".join(grid.rows).encode("ascii"), dtype=np.uint8).reshape(h, w)
     free = np.isin(chars, np.frombuffer("".join(sorted(PASSABLE)).encode("ascii"),

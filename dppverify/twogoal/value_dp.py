@@ -143,7 +143,7 @@ def value_fields(instance: Instance, horizon: int | None, roles: Roles | None = 
     Raises
     ------
     HorizonError
-        If ``horizon`` is negative.
+        If ``horizon`` is negative (None is the untruncated game, not an error).
 
     Examples
     --------

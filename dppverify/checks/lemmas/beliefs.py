@@ -29,15 +29,6 @@ OFF_XI2 = ("off ξ² the belief is 1 by construction (the single secondary walk 
 def l5_induced_beliefs(ctx: EvaluatedContext) -> CheckRecord:
     """``lemma.L5.induced_beliefs``: Lemma 5 for the profile's attacker.
 
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
-
     Examples
     --------
     ξ² = ``s -> g2`` is all phase II: the equilibrium mixture makes the belief 1/2 after its

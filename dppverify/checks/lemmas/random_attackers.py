@@ -87,14 +87,7 @@ def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | 
 def l3_greedy(ctx: Context) -> CheckRecord:
     """``lemma.L3.greedy``: Lemma 3 for the profile's attacker and random attackers.
 
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
+    ``ctx.seed`` and ``ctx.trials`` choose the random attackers.
 
     Examples
     --------
@@ -156,14 +149,7 @@ def l3_greedy(ctx: Context) -> CheckRecord:
 def l4_monotonicity(ctx: Context) -> CheckRecord:
     """``lemma.L4.monotonicity``: Lemma 4 along the secondary walk(s) ξ.
 
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
+    ``ctx.seed`` and ``ctx.trials`` choose the random attackers.
 
     Examples
     --------

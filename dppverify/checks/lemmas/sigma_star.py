@@ -22,15 +22,6 @@ __all__ = ["l1_lower_bound", "l2_no_revisits", "telescoping", "xi2_secondary_val
 def telescoping(ctx: Context) -> CheckRecord:
     """``lemma.TEL.telescoping`` (proofs/TEL.md) on every prefix of the tree.
 
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
-
     Examples
     --------
     >>> from dppverify.game.examples import triangle_context as context
@@ -78,15 +69,6 @@ def _c_at_leaves(tree: WalkTree, d: Sequence[Number]) -> dict[int, tuple[Number,
 
 def l1_lower_bound(ctx: Context) -> CheckRecord:
     """``lemma.L1.lower_bound``: Lemma 1 and its equality case, over all walks of the tree.
-
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
 
     Examples
     --------
@@ -141,15 +123,6 @@ def l1_lower_bound(ctx: Context) -> CheckRecord:
 def l2_no_revisits(ctx: Context) -> CheckRecord:
     """``lemma.L2.no_revisits``: Lemma 2 over all walks of the tree.
 
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
-
     Examples
     --------
     The triangle's tree has no revisiting walk (every neighbour of ``s`` is a goal):
@@ -193,15 +166,6 @@ def l2_no_revisits(ctx: Context) -> CheckRecord:
 
 def xi2_secondary_value(ctx: Context) -> CheckRecord:
     """``lemma.XI2.secondary_value``: proofs/XI2.md's ``U²* = M − d(s0, g1)`` bounds the tree's min.
-
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
 
     Examples
     --------
