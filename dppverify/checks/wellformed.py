@@ -76,7 +76,7 @@ def phases(ctx: Context) -> CheckRecord:
             return CheckRecord("profile.phases", "pass", "no phases claimed (the secondary "
                                "mixes several walks)", {}, "L5")
         return CheckRecord("profile.phases", "fail", "phases are claimed but the secondary "
-                           "type mixes several walks (phases are defined on one path ξ²)", {},
+                           "type mixes several walks (phases are defined on one walk ξ²)", {},
                            "L5")
     got = phases_of(sigma_along(ctx.instance, ctx.roles, ProgressRule(ctx.roles.g1), sec[0].walk),
                    ctx.numbers)

@@ -335,11 +335,11 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
         mask[:, :, j] = ok
     flat = np.flatnonzero(mask)
     del mask
-    cell, slot = np.divmod(flat, len(steps))
+    cell, direction = np.divmod(flat, len(steps))
     offset = np.array([dr * w + dc for dr, dc in steps], dtype=np.int64)
-    u, v = rank[cell], rank[cell + offset[slot]]
+    u, v = rank[cell], rank[cell + offset[direction]]
     if octile:  # weight codes in order of first appearance, as the JSON reader numbers them
-        diagonal = np.array([bool(dr and dc) for dr, dc in steps])[slot]
+        diagonal = np.array([bool(dr and dc) for dr, dc in steps])[direction]
         first_diagonal = bool(diagonal[0]) if diagonal.size else False
         literals: list[Any] = [SQRT2, 1.0] if first_diagonal else [1.0, SQRT2]
         c = (diagonal != first_diagonal).astype(np.int64)
