@@ -24,7 +24,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TypeVar, overload
+from typing import Any, TypeVar
 
 import numpy as np
 
@@ -283,19 +283,9 @@ def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequ
     return doc
 
 
-@overload
 def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
-              connectivity: int = 4, two_goals: bool = True) -> Instance: ...
-
-
-@overload
-def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
-              connectivity: int = 4, cls: type[G], two_goals: bool = True) -> G: ...
-
-
-def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
-              connectivity: int = 4, cls: type[GameInstance] = Instance,
-              two_goals: bool = True) -> GameInstance:
+              connectivity: int = 4, cls: type[G] = Instance,  # type: ignore[assignment]
+              two_goals: bool = True) -> G:
     """The grid game straight from the map: ``read_game(grid_document(...))`` without JSON.
 
     Same arguments, checks and messages as :func:`grid_document` followed by the instance

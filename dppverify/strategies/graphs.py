@@ -1,5 +1,9 @@
-"""Hypothesis strategies for weighted graphs (networkx node-link dicts), and the argument
-checks and graph helpers the other strategy modules share."""
+"""Hypothesis strategies for weighted graphs (networkx node-link dicts).
+
+Also the helpers the package's other modules share (not exported): the argument checks
+(``check_int``, ``check_bool``), the weight strategy (``weight_strategy``) and the graph
+adjacency of a drawn node-link dict (``Adjacency``, ``edges_of``).
+"""
 
 from __future__ import annotations
 
@@ -13,8 +17,7 @@ from typing import Any
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-__all__ = ["WEIGHT_KINDS", "Adjacency", "Doc", "check_bool", "check_int", "edges_of",
-           "weight_strategy", "weighted_graphs"]
+__all__ = ["WEIGHT_KINDS", "weighted_graphs"]
 
 WEIGHT_KINDS = ("units", "integers", "fractions", "floats")
 """Named edge-weight kinds: all 1; integers; exact fractions ``"p/q"``; binary floats."""
