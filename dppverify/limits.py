@@ -87,7 +87,7 @@ def check_numeral(text: str, *, where: str) -> None:
     Raises
     ------
     ValueError
-        One line naming ``where``.
+        One line naming ``where`` and the limit passed (length or exponent).
 
     Examples
     --------

@@ -199,6 +199,16 @@ def parse_map(text: str) -> GridMap:
     return GridMap(height, width, tuple(rows))
 
 
+def _octile(grid: GridMap, start: Cell, goals: Sequence[Cell], connectivity: int) -> bool:
+    """Check the start, the goals and ``connectivity`` (4 or 8); True for 8 (octile)."""
+    if connectivity not in (4, 8):
+        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
+    grid.check_cell(start, "start")
+    for goal in goals:
+        grid.check_cell(goal, "goal")
+    return connectivity == 8
+
+
 def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any],
                   *, connectivity: int = 4) -> dict[str, Any]:
     """The instance JSON document of a grid game (``docs/formats.md`` §1).
@@ -242,12 +252,7 @@ def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequ
     >>> doc8["numbers"], len(doc8["graph"]["edges"])  # no diagonal past the obstacle corner
     ('float', 2)
     """
-    if connectivity not in (4, 8):
-        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
-    grid.check_cell(start, "start")
-    for goal in goals:
-        grid.check_cell(goal, "goal")
-    octile = connectivity == 8
+    octile = _octile(grid, start, goals, connectivity)
     # neighbours later in row-major order: right, then (diagonals) down-left, down, down-right
     steps = [(0, 1), (1, -1), (1, 0), (1, 1)] if octile else [(0, 1), (1, 0)]
     unit: str | float = 1.0 if octile else "1"
@@ -299,12 +304,7 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
     dppverify.errors.InvalidInstanceError: start cell (1, 1) is an obstacle ('@' at row 1,
       column 1 of the 2x3 map)
     """
-    if connectivity not in (4, 8):
-        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
-    grid.check_cell(start, "start")
-    for goal in goals:
-        grid.check_cell(goal, "goal")
-    octile = connectivity == 8
+    octile = _octile(grid, start, goals, connectivity)
     h, w = grid.height, grid.width
     chars = np.frombuffer("".join(grid.rows).encode("ascii"), dtype=np.uint8).reshape(h, w)
     free = np.isin(chars, np.frombuffer("".join(sorted(PASSABLE)).encode("ascii"),
@@ -325,11 +325,11 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
         mask[:, :, j] = ok
     flat = np.flatnonzero(mask)
     del mask
-    cell, slot = np.divmod(flat, len(steps))
+    cell, direction = np.divmod(flat, len(steps))
     offset = np.array([dr * w + dc for dr, dc in steps], dtype=np.int64)
-    u, v = rank[cell], rank[cell + offset[slot]]
+    u, v = rank[cell], rank[cell + offset[direction]]
     if octile:  # weight codes in order of first appearance, as the JSON reader numbers them
-        diagonal = np.array([bool(dr and dc) for dr, dc in steps])[slot]
+        diagonal = np.array([bool(dr and dc) for dr, dc in steps])[direction]
         first_diagonal = bool(diagonal[0]) if diagonal.size else False
         literals: list[Any] = [SQRT2, 1.0] if first_diagonal else [1.0, SQRT2]
         c = (diagonal != first_diagonal).astype(np.int64)

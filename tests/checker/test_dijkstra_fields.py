@@ -16,7 +16,8 @@ from hypothesis import strategies as st
 
 from dppverify.game.instance import Instance, _read_game
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
-from dppverify.twogoal.value_dp import fixpoint_fields, structured_value, value_fields
+from dppverify.twogoal.value_dp import structured_value, value_fields
+from dppverify.twogoal.value_fixpoint import fixpoint_fields
 
 docs = st.one_of(
     instances(graphs=weighted_graphs(max_nodes=9, weights="fractions", max_weight=7)),

@@ -29,7 +29,8 @@ from dppverify.game import instance as instance_module
 from dppverify.game.distances import EXACT_FLOAT_LIMIT, ArcRows, exact_distances_to
 from dppverify.game.instance import GameInstance, Instance, _read_game, _regular_graph, arc_arrays
 from dppverify.strategies import grid_worlds, instances, ngoal_instances, weighted_graphs
-from dppverify.twogoal.value_dp import _Frontier, goal_terminal_arcs, value_fields
+from dppverify.twogoal.value_dp import _Frontier, value_fields
+from dppverify.twogoal.value_fixpoint import goal_terminal_arcs
 
 random_docs = st.one_of(
     instances(graphs=weighted_graphs(max_nodes=8, weights="fractions", max_weight=5)),

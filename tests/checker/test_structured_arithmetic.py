@@ -300,7 +300,7 @@ def test_uniform_hops_equal_the_breadth_first_hops(seed: int) -> None:
 @pytest.mark.parametrize("seed", range(60))
 def test_pruned_seeds_give_the_same_fixpoint_fields(seed: int) -> None:
     """The value DP's third Dijkstra with dominated seeds dropped: the same fields, steps."""
-    from dppverify.twogoal.value_dp import _fixpoint
+    from dppverify.twogoal.value_fixpoint import _fixpoint
 
     rng = random.Random(seed)
     inst = random_game(rng, grid=seed % 3 == 0)
@@ -317,7 +317,7 @@ def test_pruned_seeds_give_the_same_fixpoint_fields(seed: int) -> None:
 def test_sigma_memo_returns_fresh_equal_lists(seed: int) -> None:
     """σ along a walk is remembered per instance: equal to a fresh computation, and a
     caller changing the list it got does not change what the next caller gets."""
-    from dppverify.game.defender import _progress_sigma
+    from dppverify.twogoal.progress import _progress_sigma
 
     rng = random.Random(seed)
     inst = random_game(rng, grid=seed % 2 == 0)
