@@ -114,7 +114,7 @@ def resolve_instance(instance: Instance | Mapping[str, Any] | str | Path | Any) 
     >>> resolve_instance(triangle_document(("1/4", "3/4"))).prior
     (Fraction(1, 4), Fraction(3, 4))
     """
-    return as_instance(instance)
+    return as_instance(instance, two_goals=True)
 
 
 def _profile_document(profile: Any) -> Mapping[str, Any]:
@@ -279,7 +279,7 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     from dppverify.valuation import game_of
 
     game = game_of(instance)
-    if not isinstance(game, Instance):  # N > 2 goals
+    if game.n_goals > 2:  # N > 2 goals
         from dppverify.ngoal.certify import certify_ngoal
 
         given = instance if isinstance(instance, str | Path | Mapping) else game  # provenance

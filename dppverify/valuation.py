@@ -30,12 +30,14 @@ def game_of(instance: Any) -> Instance | NInstance:
     --------
     >>> from dppverify.ngoal.examples import star3_document
     >>> type(game_of(star3_document())).__name__
-    'NInstance'
+    'Instance'
     """
     if isinstance(instance, Instance | NInstance):
         return instance
     if isinstance(instance, str | Path):
-        return load_ninstance(instance) if is_ngoal_file(instance) else as_instance(instance)
+        if is_ngoal_file(instance):
+            return load_ninstance(instance)
+        return as_instance(instance, two_goals=True)
     doc = instance
     if not isinstance(instance, Mapping):
         to_json = getattr(instance, "to_json", None)
@@ -43,7 +45,7 @@ def game_of(instance: Any) -> Instance | NInstance:
             doc = to_json()
     if isinstance(doc, Mapping) and (goal_count(doc) or 0) > 2:
         return ninstance_from_json(doc)
-    return as_instance(doc)
+    return as_instance(doc, two_goals=True)
 
 
 def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
@@ -95,6 +97,6 @@ def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
     """
     h = parse_horizon(horizon)
     game = game_of(instance)
-    if isinstance(game, NInstance):
+    if game.n_goals > 2:
         return nrouted_value(game, h, route=route, max_prefixes=max_prefixes)
     return routed_value(game, h, route=route, max_prefixes=max_prefixes, progress=progress)

@@ -338,7 +338,7 @@ def load_game(instance: str | None, grid: MapRequest | None,
         return grid.instance()
     assert instance is not None
     with hinted(instance, "instance", command):
-        return load_instance(instance)
+        return load_instance(instance, two_goals=True)
 
 
 def load_ngame(instance: str, command: str) -> NInstance:
@@ -461,7 +461,7 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
             doc = _profile_document(profile, game, instance)
             bar.phase(f"certifying (route {route})")
             del doc  # read again by certify_ngoal, which checks its format tag
-            cert = certify_ngoal(game, profile,  # type: ignore[arg-type]
+            cert = certify_ngoal(game, profile,
                                  horizon=horizon,  # type: ignore[arg-type]
                                  max_prefixes=max_prefixes, route=route)
         elif grid is not None and grid.n_goals > 2:  # an N-goal grid

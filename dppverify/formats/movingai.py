@@ -24,19 +24,19 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any
 
 import numpy as np
 
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_number
-from dppverify.game.instance import GameInstance, Instance, edge_arrays, finish_game
+from dppverify.game.graph_reading import edge_arrays
+from dppverify.game.instance import Instance, finish_game
 from dppverify.limits import MAX_MAP_CELLS
 
 __all__ = ["BLOCKED", "PASSABLE", "GridMap", "grid_document", "grid_game", "map_instance",
            "parse_map", "read_map"]
 
-G = TypeVar("G", bound=GameInstance)
 
 PASSABLE = frozenset(".GS")
 """Map characters of free cells (ground, ground, swamp)."""
@@ -279,12 +279,13 @@ def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequ
 
 
 def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
-              connectivity: int = 4, cls: type[G] = Instance,  # type: ignore[assignment]
-              two_goals: bool = True) -> G:
+              connectivity: int = 4, two_goals: bool = False,
+              cls: object = None) -> Instance:
     """The grid game straight from the map: ``read_game(grid_document(...))`` without JSON.
 
     Same arguments, checks and messages as :func:`grid_document` followed by the instance
-    reader (``cls`` and ``two_goals`` as in :func:`dppverify.game.instance.read_game`), and the
+    reader (``two_goals`` as in :func:`dppverify.game.instance.instance_from_json`; ``cls`` is
+    ignored, transitional: removed by the lead after the merge), and the
     same instance: nodes, arcs, distances, hops (tests/checker/test_map_arrays.py compares
     them on the bundled maps). The edges come from numpy shifts of the free-cell mask.
 
@@ -344,7 +345,7 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
     rows, cols = np.divmod(cells, w)
     ids: list[Any] = list(zip(rows.tolist(), cols.tolist(), strict=True))
     index = dict(zip(ids, range(n), strict=True))
-    return finish_game(cls, ids, index, False, succ_t, pred_t, arcs, exact=not octile,
+    return finish_game(ids, index, False, succ_t, pred_t, arcs, exact=not octile,
                        start=list(start), goals=[list(g) for g in goals], prior=list(prior),
                        two_goals=two_goals)
 

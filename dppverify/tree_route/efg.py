@@ -368,7 +368,7 @@ def tree_to_efg(tree: GameTree, *, attacker_observes: bool = True, forced_moves:
 def _build(instance: GameInstance, horizon: int, max_prefixes: int,
            progress: bool = False) -> GameTree:
     """The walk tree of either kind of instance (the size guard counts it first)."""
-    if isinstance(instance, NInstance):
+    if instance.n_goals > 2:
         return build_ntree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
     return build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
 

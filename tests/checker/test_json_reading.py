@@ -25,7 +25,8 @@ from dppverify.ngoal.instance import read_instance_document
 from dppverify.ngoal.profile import load_nprofile_document
 
 ROOT = Path(__file__).resolve().parents[2]
-PARSERS = ("dppverify/game/instance.py", "dppverify/game/profile.py", "dppverify/ngoal/instance.py",
+PARSERS = ("dppverify/game/instance.py", "dppverify/game/profile.py",
+           "dppverify/game/instance_reading.py", "dppverify/game/graph_reading.py",
            "dppverify/ngoal/profile.py")
 PRIMITIVES = {"parse_json", "parse_number", "node_from_json", "show_node", "lookup_node",
               "resolve_walk", "read_json_file", "parse_json_text", "read_input"}

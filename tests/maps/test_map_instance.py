@@ -131,4 +131,4 @@ def test_n_goals_for_the_checker_and_a_refusal_by_the_solver(
     with pytest.raises(DPPError, match="lists 3 goals"):
         solver_load(inst)
     with pytest.raises(InvalidInstanceError, match="two-goal checker reads exactly two"):
-        checker_load(inst)
+        checker_load(inst, two_goals=True)

@@ -62,7 +62,7 @@ def test_two_goal_documents_read_the_same_by_both_parsers() -> None:
 
 def test_the_two_goal_parser_refuses_more_goals_and_points_at_the_n_goal_checker() -> None:
     with pytest.raises(InvalidInstanceError) as info:
-        instance_from_json(star3_document())
+        instance_from_json(star3_document(), two_goals=True)
     text = str(info.value)
     assert "lists 3 goals" in text and "dppverify.ngoal" in text and "dpp value" in text
 
