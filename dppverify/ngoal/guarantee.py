@@ -39,49 +39,11 @@ from typing import Any
 import numpy as np
 
 from dppverify.exact import Number
-from dppverify.formats.json_reading import parse_number
+from dppverify.game.profile_types import GuaranteeRule, parse_guarantee
 from dppverify.ngoal.instance import NInstance
 
 __all__ = ["ArcCondition", "GuaranteeRule", "GuaranteeSets", "arc_condition", "bad_rays",
            "guarantee_sets", "guarantee_sigma", "parse_guarantee", "rule_order"]
-
-RULE = "guarantee"
-
-
-@dataclass(frozen=True)
-class GuaranteeRule:
-    """The profile's guarantee rule: the starting state ``h``."""
-
-    h: tuple[Fraction, ...]
-
-
-def parse_guarantee(raw: Mapping[str, Any], n: int, defects: list[str]) -> GuaranteeRule | None:
-    """Read ``{"rule": "guarantee", "h": [...]}``, recording defects (None when ill-formed).
-
-    Examples
-    --------
-    >>> parse_guarantee({"rule": "guarantee", "h": ["1/2", 1, "3"]}, 3, []).h
-    (Fraction(1, 2), Fraction(1, 1), Fraction(3, 1))
-    >>> d = []; parse_guarantee({"rule": "guarantee", "h": [1]}, 3, d); d
-    ['defender.h: must be a list of 3 numbers (one per goal)']
-    """
-    h = raw.get("h")
-    extra = sorted(set(raw) - {"rule", "h"})
-    if extra:
-        defects.append(f"defender: unknown key(s) {', '.join(extra)} for the guarantee rule")
-        return None
-    if not isinstance(h, list) or len(h) != n:
-        defects.append(f"defender.h: must be a list of {n} numbers (one per goal)")
-        return None
-    out = []
-    for i, x in enumerate(h):
-        try:
-            out.append(Fraction(parse_number(x, where=f"defender.h[{i}]")))
-        except ValueError as exc:
-            defects.append(str(exc))
-            return None
-    return GuaranteeRule(tuple(out))
-
 
 def rule_order(prior: Sequence[Fraction]) -> tuple[int, ...]:
     """The priority order: types by decreasing prior, ties by index.

@@ -27,7 +27,7 @@ from dppverify.ngoal.profile import load_nprofile_document
 ROOT = Path(__file__).resolve().parents[2]
 PARSERS = ("dppverify/game/instance.py", "dppverify/game/profile.py",
            "dppverify/game/instance_reading.py", "dppverify/game/graph_reading.py",
-           "dppverify/ngoal/profile.py")
+           "dppverify/game/profile_types.py")
 PRIMITIVES = {"parse_json", "parse_number", "node_from_json", "show_node", "lookup_node",
               "resolve_walk", "read_json_file", "parse_json_text", "read_input"}
 
