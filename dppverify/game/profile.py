@@ -274,7 +274,7 @@ def _mixed(raw: Any, where: str, instance: Instance, c: DefectCollector,
             c.add(w, walk)
             continue
         if walk in seen:
-            c.add(w, f"duplicate walk: the same path as {where}[{seen[walk]}]")
+            c.add(w, f"duplicate walk: the same walk as {where}[{seen[walk]}]")
             continue
         seen[walk] = k
         label = e.get("label")

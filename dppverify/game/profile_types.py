@@ -12,11 +12,11 @@ everything wrong as :class:`Defect` s (:class:`DefectCollector`) and are loaded 
 from __future__ import annotations
 
 import json
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from dppverify.errors import ProfileError
 from dppverify.exact import Number
@@ -40,6 +40,8 @@ VALUE_KEYS = ("U1", "U2", "U", "U_bar", "VoI")
 """The ``value`` numbers a two-goal profile may claim."""
 GUARANTEE_RULE = "guarantee"
 """The ``rule`` of the N-goal guarantee Defender (:class:`GuaranteeRule`)."""
+
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -139,6 +141,20 @@ class Profile:
     def walks(self, theta: int) -> tuple[StrategyWalk, ...]:
         """Mixed strategy of type ``theta`` (1 = primary, 2 = secondary)."""
         return self.primary if theta == 1 else self.secondary
+
+    @property
+    def attacker(self) -> tuple[tuple[StrategyWalk, ...], ...]:
+        """The mixed strategies by goal index (``attacker[θ]`` walks to the instance's
+        ``goals[θ]``), as :class:`NProfile` holds them.
+
+        Examples
+        --------
+        >>> w = StrategyWalk((0, 1), Fraction(1))
+        >>> Profile(primary_slot=1, defender=None, primary=(w,), secondary=()).attacker
+        ((), (StrategyWalk(walk=(0, 1), probability=Fraction(1, 1), label=None),))
+        """
+        pair = (self.primary, self.secondary)
+        return pair if self.primary_slot == 0 else pair[::-1]
 
 
 @dataclass(frozen=True)
@@ -297,17 +313,16 @@ class DefectCollector:
 
     def number(self, raw: Any, where: str) -> Number | None:
         """``raw`` as an exact number, or None with a defect."""
-        try:
-            return parse_number(raw, where=where)
-        except ValueError as exc:
-            self.add(where, str(exc).split(": ", 1)[-1])
-            return None
+        return self._parsed(parse_number, raw, where)
 
     def probability(self, raw: Any, where: str) -> Fraction | None:
         """``raw`` as a probability in [0, 1], or None with a defect."""
+        return self._parsed(parse_probability, raw, where)
+
+    def _parsed(self, parse: Callable[..., T], raw: Any, where: str) -> T | None:
         try:
-            return parse_probability(raw, where=where)
-        except ValueError as exc:
+            return parse(raw, where=where)
+        except ValueError as exc:  # "where: what" -> Defect(where, what)
             self.add(where, str(exc).split(": ", 1)[-1])
             return None
 
