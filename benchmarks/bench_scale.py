@@ -269,7 +269,7 @@ def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str
     def grid_game(grid: Any, start: Any, goals: Any, prior: Any, *, cls: Any = Instance,
                   two_goals: bool = True) -> Any:
         try:
-            from dppverify.formats.movingai import grid_game as direct
+            from dppverify.game.grids import grid_game as direct
         except ImportError:  # before the map-to-arrays reader
             return read_game(grid_document(grid, start, goals, prior), cls,
                              two_goals=two_goals)

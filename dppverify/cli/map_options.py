@@ -26,8 +26,9 @@ import click
 
 from dppverify.errors import CheckerError, InvalidInstanceError, OptionError
 from dppverify.formats.json_reading import parse_number
-from dppverify.formats.movingai import grid_game, read_map
+from dppverify.formats.movingai import read_map
 from dppverify.formats.standard_maps import PREFIX, resolve_map
+from dppverify.game.grids import grid_game
 from dppverify.game.instance import Instance
 from dppverify.text import show
 

@@ -374,9 +374,11 @@ def instance_from_json(doc: Any, *, two_goals: bool = False,
         except JsonReadError as exc:
             raise InvalidInstanceError(str(exc)) from None
     if isinstance(doc, Mapping) and "format" in doc:
-        from dppverify.formats.map_instance import is_map_document, map_game
+        from dppverify.formats.map_instance import is_map_document
 
         if is_map_document(doc):
+            from dppverify.game.grids import map_game  # grids builds on this module
+
             return map_game(doc, two_goals=two_goals, base=base)
     try:
         return _read_game(doc, two_goals)

@@ -13,8 +13,9 @@ import numpy as np
 import pytest
 
 from dppverify.errors import InvalidInstanceError
-from dppverify.formats.movingai import GridMap, grid_document, grid_game, parse_map, read_map
+from dppverify.formats.movingai import GridMap, grid_document, parse_map, read_map
 from dppverify.formats.standard_maps import standard_map_path
+from dppverify.game.grids import grid_game
 from dppverify.game.instance import GameInstance, arc_arrays, instance_from_json, read_game
 from dppverify.ngoal.instance import NInstance
 from tests.maps._maps import PAPER10, STANDARD, corner_cells
