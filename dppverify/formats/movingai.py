@@ -241,12 +241,7 @@ def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequ
     >>> doc8["numbers"], len(doc8["graph"]["edges"])  # no diagonal past the obstacle corner
     ('float', 2)
     """
-    if connectivity not in (4, 8):
-        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
-    grid.check_cell(start, "start")
-    for goal in goals:
-        grid.check_cell(goal, "goal")
-    octile = connectivity == 8
+    octile = _octile(grid, start, goals, connectivity)
     # neighbours later in row-major order: right, then (diagonals) down-left, down, down-right
     steps = [(0, 1), (1, -1), (1, 0), (1, 1)] if octile else [(0, 1), (1, 0)]
     unit: str | float = 1.0 if octile else "1"
@@ -311,12 +306,7 @@ def grid_arcs(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
     dppverify.errors.InvalidInstanceError: start cell (1, 1) is an obstacle ('@' at row 1,
       column 1 of the 2x3 map)
     """
-    if connectivity not in (4, 8):
-        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
-    grid.check_cell(start, "start")
-    for goal in goals:
-        grid.check_cell(goal, "goal")
-    octile = connectivity == 8
+    octile = _octile(grid, start, goals, connectivity)
     h, w = grid.height, grid.width
     chars = np.frombuffer("".join(grid.rows).encode("ascii"), dtype=np.uint8).reshape(h, w)
     free = np.isin(chars, np.frombuffer("".join(sorted(PASSABLE)).encode("ascii"),
@@ -354,3 +344,13 @@ def grid_arcs(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
     ids: list[Any] = list(zip(rows.tolist(), cols.tolist(), strict=True))
     index = dict(zip(ids, range(n), strict=True))
     return GridArcs(ids, index, u, v, c, values, not octile)
+
+
+def _octile(grid: GridMap, start: Cell, goals: Sequence[Cell], connectivity: int) -> bool:
+    """Check the connectivity and the cells of a grid game; True for 8-connected grids."""
+    if connectivity not in (4, 8):
+        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
+    grid.check_cell(start, "start")
+    for goal in goals:
+        grid.check_cell(goal, "goal")
+    return connectivity == 8
