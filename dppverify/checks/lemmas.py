@@ -32,7 +32,7 @@ from dppverify.exact import Number
 from dppverify.game.defender import sigma_along
 from dppverify.game.distances import dijkstra
 from dppverify.game.evaluation import realization
-from dppverify.game.profile import ProgressRule, StrategyPath
+from dppverify.game.profile import ProgressRule, StrategyWalk
 from dppverify.text import show, show_walk
 from dppverify.tree_route.best_response import (
     attacker_best_response,
@@ -294,7 +294,7 @@ def _random_walk(tree: WalkTree, rng: random.Random, start: int = 0) -> tuple[in
 
 
 def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | None = None,
-                   k_max: int = 4) -> tuple[StrategyPath, ...]:
+                   k_max: int = 4) -> tuple[StrategyWalk, ...]:
     """A random non-reacting mixed strategy: 1..k_max random walks, rational probabilities.
 
     With ``through`` (a root-to-leaf list of prefixes), each walk follows it for a random
@@ -313,7 +313,7 @@ def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | 
 
     Returns
     -------
-    tuple of StrategyPath
+    tuple of StrategyWalk
         Walks (node indices) with exact probabilities summing to 1.
 
     Examples
@@ -333,7 +333,7 @@ def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | 
         walk = _random_walk(tree, rng, start)
         weights[walk] = weights.get(walk, 0) + rng.randint(1, 6)
     total = sum(weights.values())
-    return tuple(StrategyPath(w, Fraction(c, total)) for w, c in weights.items())
+    return tuple(StrategyWalk(w, Fraction(c, total)) for w, c in weights.items())
 
 
 def l3_greedy(ctx: Context) -> CheckRecord:
@@ -443,7 +443,7 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
         leaf = tree.find(walk)
         assert leaf is not None
         along = tree.path(leaf)
-        primaries: list[tuple[str, tuple[StrategyPath, ...]]] = []
+        primaries: list[tuple[str, tuple[StrategyWalk, ...]]] = []
         if isinstance(ctx, EvaluatedContext):
             primaries.append(("the profile's primary", ctx.profile.primary))
         primaries += [(f"random primary {k + 1}", random_mixture(tree, rng, through=along))

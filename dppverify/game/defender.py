@@ -93,7 +93,7 @@ def progress_along(instance: Instance, goal: int, walk: Sequence[int]) -> list[N
     >>> progress_along(inst, 1, [0, 2])   # s -> g2: d(., g1) drops from 3 to 2
     [1]
     """
-    slot = instance.slot(goal)
+    slot = instance.goal_index(goal)
     if slot is None:
         raise InvalidInstanceError(f"node {instance.nodes[goal]!r} is not a goal of the instance")
     d = instance.dist_to[slot]
@@ -215,7 +215,7 @@ class TreeDefender:
 def _progress_on_tree(tree: WalkTree, goal: int) -> list[Number]:
     """New progress towards ``goal`` at every prefix (root: 0), eq. (7)'s numerator."""
     inst = tree.instance
-    slot = inst.slot(goal)
+    slot = inst.goal_index(goal)
     assert slot is not None
     d = inst.dist_to[slot]
     node = tree.node.tolist()

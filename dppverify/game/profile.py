@@ -57,7 +57,6 @@ from dppverify.game.profile_types import (
     NProfile,
     Profile,
     ProgressRule,
-    StrategyPath,
     StrategyWalk,
     TableRule,
     check_format,
@@ -181,7 +180,7 @@ def _goals(doc: Mapping[str, Any], instance: Instance, c: DefectCollector) -> in
                        f"{json.dumps(goals.get('primary'), default=str)}, secondary "
                        f"{json.dumps(goals.get('secondary'), default=str)}")
         return default
-    slot = instance.slot(p)
+    slot = instance.goal_index(p)
     assert slot is not None
     if slot != default and not instance.tied:
         g1 = instance.nodes[instance.goals[default]]
@@ -485,4 +484,4 @@ def read_profile(doc: Mapping[str, Any], instance: Instance,
 
 
 # transitional: removed by the lead after the merge
-__all__ += ["StrategyPath"]
+__all__ += ["StrategyWalk"]

@@ -18,11 +18,9 @@ from dppverify.formats.json_reading import (
     read_json_file,
     resolve_walk,
 )
-from dppverify.game.examples import triangle
-from dppverify.game.profile import load_profile_document
-from dppverify.ngoal.examples import star3
-from dppverify.ngoal.instance import read_instance_document
-from dppverify.ngoal.profile import load_nprofile_document
+from dppverify.game.examples import star3, triangle
+from dppverify.game.instance import read_instance_document
+from dppverify.game.profile import load_nprofile_document, load_profile_document
 
 ROOT = Path(__file__).resolve().parents[2]
 PARSERS = ("dppverify/game/instance.py", "dppverify/game/profile.py",
