@@ -22,9 +22,9 @@ from typing import Any
 
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
+from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.experiment import corner_cells
-from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.proved_value import nvalue
 
 DEFAULT = [(m, n) for m in ("empty-32-32", "room-32-32-4", "maze-32-32-2", "maze-32-32-4")
@@ -35,7 +35,7 @@ def run(name: str, n: int) -> dict[str, Any]:
     """One row: sizes, times, exact value or bracket."""
     grid = read_map(standard_map_path(name))
     start, goals = corner_cells(grid, n)
-    inst = ninstance_from_json(grid_document(grid, start, goals, [f"1/{n}"] * n))
+    inst = instance_from_json(grid_document(grid, start, goals, [f"1/{n}"] * n))
     t0 = time.perf_counter()
     dp = coalition_value(inst, None)
     t_dp = time.perf_counter() - t0

@@ -24,17 +24,17 @@ from typing import Any
 
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
+from dppverify.game.instance import Instance, instance_from_json
+from dppverify.game.profile import nprofile_from_json
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.experiment import corner_cells
-from dppverify.ngoal.instance import NInstance, ninstance_from_json
-from dppverify.ngoal.profile import nprofile_from_json
 from dppverify.ngoal.walk_br import table_defender, walk_best_response
 
 MAPS = ("room-32-32-4", "room-64-64-8", "maze-128-128-10", "Berlin_1_256")
 
 
-def shortest_walk(inst: NInstance, theta: int) -> tuple[int, ...]:
+def shortest_walk(inst: Instance, theta: int) -> tuple[int, ...]:
     """A shortest walk from the start to goal θ, cut at the first goal it reaches."""
     d = inst.dist_to[theta]
     walk = [inst.start]
@@ -44,7 +44,7 @@ def shortest_walk(inst: NInstance, theta: int) -> tuple[int, ...]:
     return tuple(walk)
 
 
-def test_profile(inst: NInstance) -> dict[str, Any]:
+def test_profile(inst: Instance) -> dict[str, Any]:
     """Shortest walks, a greedy table on their prefixes, a uniform default."""
     n = inst.n_goals
     walks = [shortest_walk(inst, t) for t in range(n)]
@@ -68,7 +68,7 @@ def run(name: str, n: int) -> dict[str, Any]:
     grid = read_map(standard_map_path(name))
     start, goals = corner_cells(grid, n)
     doc = grid_document(grid, start, goals, [f"1/{n}"] * n)
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     prof = test_profile(inst)
     t0 = time.perf_counter()
     cert = certify_ngoal(inst, prof, horizon="inf", route="structured")

@@ -100,7 +100,7 @@ def resolve_instance(instance: Instance | Mapping[str, Any] | str | Path | Any) 
     >>> resolve_instance(triangle_document(("1/4", "3/4"))).prior
     (Fraction(1, 4), Fraction(3, 4))
     """
-    return as_instance(instance)
+    return as_instance(instance, two_goals=True)
 
 
 def _profile_document(profile: Any) -> Mapping[str, Any]:
@@ -256,23 +256,23 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     An instance with more than two goals (and its ``dpp-ngoal-profile/1``) is certified by
     :func:`dppverify.ngoal.certify.certify_ngoal`, as ``dpp certify`` does:
 
-    >>> from dppverify.ngoal.examples import star3_document, star3_profile
+    >>> from dppverify.game.examples import star3_document, star3_profile
     >>> cert = certify(star3_document(), star3_profile(), horizon=2)
     >>> cert.verdict, cert.check("ngoal.value.U").status
     ('pass', 'pass')
     """
-    from dppverify.ngoal.instance import NInstance
+    from dppverify.game.instance import Instance
     from dppverify.valuation import game_of
 
     game = game_of(instance)
-    if not isinstance(game, Instance):  # N > 2 goals
+    if game.n_goals > 2:  # N > 2 goals
         from dppverify.ngoal.certify import certify_ngoal
 
         given = instance if isinstance(instance, str | Path | Mapping) else game  # provenance
         nprofile = _nprofile_input(profile)
         cert = certify_ngoal(given, nprofile, horizon=horizon, max_prefixes=max_prefixes,
                              route=route)
-        if cert.provenance is not None or isinstance(given, NInstance):
+        if cert.provenance is not None or isinstance(given, Instance):
             return cert
         return dataclasses.replace(cert, provenance=provenance_record(
             given, nprofile, route=cert.route, exact=cert.exact))

@@ -25,7 +25,7 @@ from dppverify.game.defender import sigma_along, step_weight, step_weights
 from dppverify.game.distances import ArcRows
 from dppverify.game.evaluation import Values, evaluate, walk_cost
 from dppverify.game.instance import Instance, Roles
-from dppverify.game.profile import DefenderRule, Profile, ProgressRule, StrategyPath, TableRule
+from dppverify.game.profile import DefenderRule, Profile, ProgressRule, StrategyWalk, TableRule
 from dppverify.numbers import NumberMode
 from dppverify.structured.table_br import table_minima
 from dppverify.text import show, show_walk
@@ -119,15 +119,15 @@ class Trie:
         return tuple(reversed(out))
 
 
-def build_trie(primary: Iterable[StrategyPath], secondary: Iterable[StrategyPath]) -> Trie:
+def build_trie(primary: Iterable[StrategyWalk], secondary: Iterable[StrategyWalk]) -> Trie:
     """Realization masses of both types on the prefixes of their walks, in memory linear in
     the total walk length.
 
     Examples
     --------
-    >>> from dppverify.game.profile import StrategyPath
-    >>> t = build_trie([StrategyPath((0, 1), Fraction(4, 7)), StrategyPath((0, 2), Fraction(3, 7))],
-    ...                [StrategyPath((0, 2), Fraction(1))])
+    >>> from dppverify.game.profile import StrategyWalk
+    >>> t = build_trie([StrategyWalk((0, 1), Fraction(4, 7)), StrategyWalk((0, 2), Fraction(3, 7))],
+    ...                [StrategyWalk((0, 2), Fraction(1))])
     >>> t.mass[(0,)], t.mass[(0, 2)]
     ((Fraction(1, 1), Fraction(1, 1)), (Fraction(3, 7), Fraction(1, 1)))
     >>> t.size, t.ids, t.walk(2)

@@ -358,7 +358,7 @@ def show_node(x: Node) -> str:
 # --- walks ----------------------------------------------------------------------------------
 
 class WalkGame(Protocol):
-    """What :func:`resolve_walk` needs of a game (two-goal ``Instance`` and ``NInstance``)."""
+    """What :func:`resolve_walk` needs of a game (two-goal ``Instance`` and ``Instance``)."""
 
     @property
     def nodes(self) -> tuple[Node, ...]: ...

@@ -148,8 +148,7 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
             return NotImplemented
         return len(self) == len(other) and all(
             tuple(a) == tuple(b) for a, b in zip(self, other, strict=True))
-
-    __hash__ = None  # type: ignore[assignment]
+    # unhashable: a class that defines __eq__ and not __hash__ gets __hash__ = None
 
     def __repr__(self) -> str:
         return f"ArcRows({self._n} nodes, {self._heads.size} arcs)"

@@ -30,7 +30,7 @@ Cost ``O(H·(2^N·E + n·Σ_S |vertices of S|))``. ``H = inf`` iterates until a 
 For two goals ``m_{1} = D1``, ``m_{2} = D2`` and ``m_{12} = min(step, D1 + D2)``: the
 three-field DP of ``proofs/HORIZON.md``'s two-goal value. The DP is an upper bound on the
 truncated game's value, equal to it for ``N <= 3`` (``proofs/NGOAL.md`` NG.3, NG.4) and not
-always for ``N >= 4`` (the hub of :func:`dppverify.ngoal.examples.hub4`);
+always for ``N >= 4`` (the hub of :func:`dppverify.game.examples.hub4`);
 :func:`dppverify.ngoal.proved_value.nvalue` certifies it or brackets the value.
 """
 
@@ -45,8 +45,8 @@ import numpy as np
 
 from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import INF, Number, normalize
+from dppverify.game.instance import Instance
 from dppverify.ngoal.cover import MAX_BALANCED, balanced_vertices, members, min_cover, popcount
-from dppverify.ngoal.instance import NInstance
 
 __all__ = ["CoalitionValue", "coalition_value", "coalition_values"]
 
@@ -113,7 +113,7 @@ def too_many_goals(n_goals: int) -> str:
 class _Runner:
     """The DP state: arcs in scaled integers and the current layer ``m[S][v]``."""
 
-    def __init__(self, inst: NInstance) -> None:
+    def __init__(self, inst: Instance) -> None:
         n_goals = inst.n_goals
         if not 2 <= n_goals <= MAX_BALANCED:
             raise OptionError(too_many_goals(n_goals))
@@ -211,7 +211,7 @@ def _same(a: dict[int, np.ndarray], b: dict[int, np.ndarray]) -> bool:
     return all(np.array_equal(a[m], b[m]) for m in a)
 
 
-def coalition_value(instance: NInstance, horizon: int | None, *,
+def coalition_value(instance: Instance, horizon: int | None, *,
                     max_layers: int | None = None) -> CoalitionValue:
     """The coalition DP of the N-goal game (``horizon=None`` for ``H = inf``).
 
@@ -220,7 +220,7 @@ def coalition_value(instance: NInstance, horizon: int | None, *,
 
     Parameters
     ----------
-    instance : NInstance
+    instance : Instance
         The game (2 to 5 goals).
     horizon : int or None
         ``H >= 0``, or None: iterate until a layer repeats (``V_inf = lim V_H``).
@@ -234,7 +234,7 @@ def coalition_value(instance: NInstance, horizon: int | None, *,
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> v = coalition_value(star3(), 2)
     >>> v.value, v.coalition_costs[0b111]
     (Fraction(3, 2), 4)
@@ -260,12 +260,12 @@ def coalition_value(instance: NInstance, horizon: int | None, *,
         layer = nxt
 
 
-def coalition_values(instance: NInstance, horizons: range) -> dict[int, Number]:
+def coalition_values(instance: Instance, horizons: range) -> dict[int, Number]:
     """``V_H`` for every ``H`` of ``horizons`` (one DP pass; unreachable horizons omitted).
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> coalition_values(star3(), range(4))
     {1: 2, 2: Fraction(3, 2), 3: Fraction(3, 2)}
     """

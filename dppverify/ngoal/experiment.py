@@ -38,7 +38,7 @@ from dppverify.exact import Number
 from dppverify.formats.files import write_files
 from dppverify.formats.movingai import GridMap, grid_document, read_map
 from dppverify.formats.standard_maps import resolve_map
-from dppverify.ngoal.instance import ninstance_from_json
+from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.proved_value import nvalue
 
 __all__ = ["GoalRow", "corner_cells", "goal_series", "skewed_prior"]
@@ -149,7 +149,7 @@ def goal_series(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
         for kind, prior in (("equal", tuple(Fraction(1, n) for _ in range(n))),
                             ("skewed", skewed_prior(n))):
             doc = grid_document(grid, start, goals[:n], [str(b) for b in prior])
-            inst = ninstance_from_json(doc)
+            inst = instance_from_json(doc)
             t0 = time.perf_counter()
             v = nvalue(inst, None)  # proved, or the DP's upper bound with exact = False
             seconds = time.perf_counter() - t0

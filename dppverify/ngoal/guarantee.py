@@ -39,49 +39,11 @@ from typing import Any
 import numpy as np
 
 from dppverify.exact import Number
-from dppverify.formats.json_reading import parse_number
-from dppverify.ngoal.instance import NInstance
+from dppverify.game.instance import Instance
+from dppverify.game.profile_types import GuaranteeRule, parse_guarantee
 
 __all__ = ["ArcCondition", "GuaranteeRule", "GuaranteeSets", "arc_condition", "bad_rays",
            "guarantee_sets", "guarantee_sigma", "parse_guarantee", "rule_order"]
-
-RULE = "guarantee"
-
-
-@dataclass(frozen=True)
-class GuaranteeRule:
-    """The profile's guarantee rule: the starting state ``h``."""
-
-    h: tuple[Fraction, ...]
-
-
-def parse_guarantee(raw: Mapping[str, Any], n: int, defects: list[str]) -> GuaranteeRule | None:
-    """Read ``{"rule": "guarantee", "h": [...]}``, recording defects (None when ill-formed).
-
-    Examples
-    --------
-    >>> parse_guarantee({"rule": "guarantee", "h": ["1/2", 1, "3"]}, 3, []).h
-    (Fraction(1, 2), Fraction(1, 1), Fraction(3, 1))
-    >>> d = []; parse_guarantee({"rule": "guarantee", "h": [1]}, 3, d); d
-    ['defender.h: must be a list of 3 numbers (one per goal)']
-    """
-    h = raw.get("h")
-    extra = sorted(set(raw) - {"rule", "h"})
-    if extra:
-        defects.append(f"defender: unknown key(s) {', '.join(extra)} for the guarantee rule")
-        return None
-    if not isinstance(h, list) or len(h) != n:
-        defects.append(f"defender.h: must be a list of {n} numbers (one per goal)")
-        return None
-    out = []
-    for i, x in enumerate(h):
-        try:
-            out.append(Fraction(parse_number(x, where=f"defender.h[{i}]")))
-        except ValueError as exc:
-            defects.append(str(exc))
-            return None
-    return GuaranteeRule(tuple(out))
-
 
 def rule_order(prior: Sequence[Fraction]) -> tuple[int, ...]:
     """The priority order: types by decreasing prior, ties by index.
@@ -100,7 +62,7 @@ class GuaranteeSets:
 
     Attributes
     ----------
-    instance : NInstance
+    instance : Instance
     scale : int
         ``m_S(v) = m[S][v] / scale``.
     big : int
@@ -111,7 +73,7 @@ class GuaranteeSets:
         Label-setting passes (one per subset).
     """
 
-    instance: NInstance
+    instance: Instance
     scale: int
     big: int
     m: Mapping[int, np.ndarray]
@@ -123,7 +85,7 @@ class GuaranteeSets:
         return None if x >= self.big else Fraction(x, self.scale)
 
 
-def guarantee_sets(instance: NInstance) -> GuaranteeSets:
+def guarantee_sets(instance: Instance) -> GuaranteeSets:
     """``m_S`` at ``H = inf`` at every node: the unique solution of the DP's fixpoint equations.
 
     By increasing ``|S|``: the split ``min_λ Σ_T λ_T m_T(v)`` over the minimal balanced
@@ -136,7 +98,7 @@ def guarantee_sets(instance: NInstance) -> GuaranteeSets:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> g = guarantee_sets(star3())
     >>> g.value(0b111, star3().start), g.value(0b001, star3().start)
     (Fraction(4, 1), Fraction(2, 1))
@@ -248,7 +210,7 @@ def dp_value(sets: GuaranteeSets) -> Any:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> dp_value(guarantee_sets(star3())).value
     Fraction(3, 2)
     """
@@ -290,7 +252,7 @@ def guarantee_sigma(r: Sequence[Fraction], sets: GuaranteeSets, u: int, w: Numbe
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> inst = star3()
     >>> g = guarantee_sets(inst)
     >>> sigma, ok = guarantee_sigma([Fraction(2), Fraction(1), Fraction(1)], g, 1, 1, (0, 1, 2))
@@ -505,7 +467,7 @@ def arc_condition(sets: GuaranteeSets) -> ArcCondition:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> arc_condition(guarantee_sets(star3())).holds
     True
     """
@@ -578,7 +540,7 @@ NSOLVE = "relies on proofs/NSOLVE.md (NSOLVE.1: every walk costs type θ at leas
     "and the non-pattern rays)"
 
 
-def rule_on_trie(instance: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
+def rule_on_trie(instance: Instance, rule: GuaranteeRule, sets: GuaranteeSets,
                  parent: Sequence[int], node: Sequence[int]
                  ) -> tuple[dict[int, tuple[Fraction, ...]], bool]:
     """The rule's ``σ`` at every prefix of a prefix tree (``parent[p] < p``, root 0).
@@ -602,14 +564,14 @@ def rule_on_trie(instance: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
     return sigma, feasible
 
 
-def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None
+def guarantee_checks(instance: Instance, profile: Any, horizon: int | None
                      ) -> tuple[list[Any], int]:
     """The structured route's records for a profile whose Defender is the guarantee rule.
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.ngoal.profile import nprofile_from_json
+    >>> from dppverify.game.examples import star3
+    >>> from dppverify.game.profile import nprofile_from_json
     >>> doc = {"format": "dpp-ngoal-profile/1",
     ...        "attacker": [[{"path": ["s", "m", "a"], "probability": 1}],
     ...                     [{"path": ["s", "m", "b"], "probability": 1}],
@@ -668,7 +630,7 @@ def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None
     return out, len(trie)
 
 
-def _direction(inst: NInstance, ray: tuple[tuple[int, Fraction], ...]) -> str:
+def _direction(inst: Instance, ray: tuple[tuple[int, Fraction], ...]) -> str:
     """A cover as text: ``1/2·{g1, g2} + …`` (goal ids)."""
     def goals(mask: int) -> str:
         return ", ".join(str(inst.nodes[inst.goals[i]]) for i in range(inst.n_goals)
@@ -677,7 +639,7 @@ def _direction(inst: NInstance, ray: tuple[tuple[int, Fraction], ...]) -> str:
     return " + ".join(f"{c}·{{{goals(s)}}}" for s, c in ray)
 
 
-def _attacker_record(inst: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
+def _attacker_record(inst: Instance, rule: GuaranteeRule, sets: GuaranteeSets,
                      per_type: list[Fraction], feasible: bool, rec: Any, labels: Any) -> Any:
     cid = "ngoal.pbne.attacker_br"
     proof = "NSOLVE"

@@ -50,9 +50,9 @@ import numpy as np
 
 from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import Number, normalize
+from dppverify.game.instance import Instance
 from dppverify.ngoal.coalition import CoalitionValue, _Runner, _same, too_many_goals
 from dppverify.ngoal.cover import MAX_BALANCED, _dets, min_cover_vectors
-from dppverify.ngoal.instance import NInstance
 
 __all__ = [
     "NValue",
@@ -228,7 +228,7 @@ def extra_directions(ys: Sequence[Sequence[Fraction]]) -> list[Normal]:
     return out
 
 
-def lower_bound_simple(instance: NInstance) -> tuple[Fraction, str]:
+def lower_bound_simple(instance: Instance) -> tuple[Fraction, str]:
     """A cheap exact lower bound on every ``V_H`` (and ``V_inf``) from two simple Defenders.
 
     A Defender that always guards goal ``θ`` makes type ``θ`` pay at least ``d(s0, g^θ)``
@@ -238,7 +238,7 @@ def lower_bound_simple(instance: NInstance) -> tuple[Fraction, str]:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> lower_bound_simple(star3())
     (Fraction(1, 1), 'a Defender that always guards goal 1 (NG.9)')
     """
@@ -395,7 +395,7 @@ def _layer_array(run: _Runner, layer: dict[int, np.ndarray]) -> tuple[np.ndarray
     return arr, layer[1] < run.big
 
 
-def _coalition_certified(inst: NInstance, horizon: int | None, max_layers: int | None, *,
+def _coalition_certified(inst: Instance, horizon: int | None, max_layers: int | None, *,
                          certify: bool = True
                          ) -> tuple[CoalitionValue, list[Arc],
                                     tuple[_Runner, dict[int, np.ndarray]] | None]:
@@ -445,7 +445,7 @@ class _General:
     denominator that keeps every value integral, so equal layers have equal representations.
     """
 
-    def __init__(self, inst: NInstance, normals: tuple[Normal, ...]) -> None:
+    def __init__(self, inst: Instance, normals: tuple[Normal, ...]) -> None:
         self.inst = inst
         self.normals = normals
         self.tops = [max(x) for x in normals]
@@ -567,7 +567,7 @@ class _General:
         return self._reduce(m, finite, run.scale * cut)
 
 
-def _general(inst: NInstance, extras: list[Normal], horizon: int | None, max_layers: int,
+def _general(inst: Instance, extras: list[Normal], horizon: int | None, max_layers: int,
              start: tuple[_Runner, dict[int, np.ndarray]] | None
              ) -> tuple[Fraction, int, list[Arc]]:
     normals = zero_one_normals(inst.n_goals) + tuple(extras)
@@ -659,7 +659,7 @@ def coalition_nvalue(coal: CoalitionValue, n_goals: int) -> NValue:
     Examples
     --------
     >>> from dppverify.ngoal.coalition import coalition_value
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> coalition_nvalue(coalition_value(star3(), None), 3).value
     Fraction(3, 2)
     """
@@ -671,7 +671,7 @@ def coalition_nvalue(coal: CoalitionValue, n_goals: int) -> NValue:
     return NValue(coal.horizon, v, v, src, src, coal.layers, (), None, coal)
 
 
-def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None = None
+def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = None
            ) -> NValue:
     """``V_H`` of an N-goal instance (2 to 5 goals), exact where proved, else a bracket.
 
@@ -689,7 +689,7 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import hub4, star3
+    >>> from dppverify.game.examples import hub4, star3
     >>> nvalue(star3(), None).value
     Fraction(3, 2)
     >>> v = nvalue(hub4(), None)
@@ -762,7 +762,7 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
                   up_normals, reason, coal)
 
 
-def _fail_reason(inst: NInstance, arc: Arc, what: str) -> str:
+def _fail_reason(inst: Instance, arc: Arc, what: str) -> str:
     v, u, y = arc
     return (f"arc {inst.nodes[v]!r} -> {inst.nodes[u]!r} fails the certificate of {what} in "
             f"direction ({', '.join(str(x) for x in y)})")

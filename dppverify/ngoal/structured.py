@@ -27,8 +27,8 @@ from fractions import Fraction
 from dppverify.certificate import CheckRecord, Status
 from dppverify.errors import HorizonError
 from dppverify.exact import INF, Number, normalize
-from dppverify.ngoal.instance import NInstance
-from dppverify.ngoal.profile import NProfile
+from dppverify.game.instance import Instance
+from dppverify.game.profile import NProfile
 from dppverify.ngoal.proved_value import NValue, nvalue
 from dppverify.ngoal.walk_br import TableDefender, exit_costs, table_defender, walk_best_response
 
@@ -58,17 +58,17 @@ def _rec(cid: str, status: Status, message: str, numbers: dict[str, Number | Non
                        relies_on=relies_on)
 
 
-def _labels(inst: NInstance, walk: tuple[int, ...]) -> list[object]:
+def _labels(inst: Instance, walk: tuple[int, ...]) -> list[object]:
     return list(inst.labels(walk))
 
 
-def nstructured_checks(instance: NInstance, profile: NProfile,
+def nstructured_checks(instance: Instance, profile: NProfile,
                        horizon: int | None) -> tuple[list[CheckRecord], int]:
     """Every check of the N-goal structured route, in certificate order, and the trie size.
 
     Parameters
     ----------
-    instance : NInstance
+    instance : Instance
         The game.
     profile : NProfile
         The resolved profile.
@@ -81,8 +81,8 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
     The hub profile is an equilibrium of the 2-step game but not of the untruncated one:
     type ``b`` loops ``s m s m b`` unguarded.
 
-    >>> from dppverify.ngoal.examples import star3, star3_profile
-    >>> from dppverify.ngoal.profile import nprofile_from_json
+    >>> from dppverify.game.examples import star3, star3_profile
+    >>> from dppverify.game.profile import nprofile_from_json
     >>> inst = star3()
     >>> recs, size = nstructured_checks(inst, nprofile_from_json(inst, star3_profile()), None)
     >>> [(r.id, r.status) for r in recs][2:4], size
@@ -154,7 +154,7 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
     return out, len(trie)
 
 
-def _attacker(inst: NInstance, tdef: TableDefender, per_type: list[Number]) -> CheckRecord:
+def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number]) -> CheckRecord:
     regrets: list[tuple[Number, int, tuple[int, ...], Number]] = []
     for theta in range(inst.n_goals):
         exits = (None if tdef.default is None
@@ -184,7 +184,7 @@ def _attacker(inst: NInstance, tdef: TableDefender, per_type: list[Number]) -> C
                 f"({len(walk) - 1} steps) costs {v}", nums, NWALKBR, BR)
 
 
-def _defender(inst: NInstance, tdef: TableDefender, mass: dict[int, list[Fraction]],
+def _defender(inst: Instance, tdef: TableDefender, mass: dict[int, list[Fraction]],
               u: Number) -> list[CheckRecord]:
     trie = tdef.trie
     best: Number = 0
@@ -227,7 +227,7 @@ def _defender(inst: NInstance, tdef: TableDefender, mass: dict[int, list[Fractio
     return recs
 
 
-def _value(inst: NInstance, u: Number, horizon: int | None, equilibrium: bool,
+def _value(inst: Instance, u: Number, horizon: int | None, equilibrium: bool,
            known: NValue | None = None) -> CheckRecord:
     h = "inf" if horizon is None else str(horizon)
     relies = ("relies on proofs/NGOAL.md: NG.2, NG.5 (the coalition DP is an upper bound), "

@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 from dppverify.exact import INF, Number, normalize
-from dppverify.ngoal.instance import NInstance
+from dppverify.game.instance import Instance
 
 __all__ = ["NWalkBR", "TableDefender", "WalkTrie", "build_walk_trie", "exit_costs",
            "table_defender", "walk_best_response"]
@@ -48,7 +48,7 @@ class WalkTrie:
 
     Attributes
     ----------
-    instance : NInstance
+    instance : Instance
         The game.
     node, parent, depth : list of int
         Last node, parent prefix (``-1`` at the root) and steps of each prefix.
@@ -57,13 +57,13 @@ class WalkTrie:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> t = build_walk_trie(star3(), [(0, 1, 2), (0, 1, 3)])
     >>> len(t), t.find((0, 1, 3)), t.walk(3), t.find((0, 2))
     (4, 3, (0, 1, 3), None)
     """
 
-    instance: NInstance
+    instance: Instance
     node: list[int] = field(default_factory=list)
     parent: list[int] = field(default_factory=list)
     depth: list[int] = field(default_factory=list)
@@ -113,12 +113,12 @@ class WalkTrie:
         return tuple(reversed(out))
 
 
-def build_walk_trie(instance: NInstance, walks: Iterable[Sequence[int]]) -> WalkTrie:
+def build_walk_trie(instance: Instance, walks: Iterable[Sequence[int]]) -> WalkTrie:
     """The trie of ``walks`` (each starting at ``s0``); the root is always present.
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> len(build_walk_trie(star3(), []))
     1
     """
@@ -152,14 +152,14 @@ class TableDefender:
         return self.sigma.get(p, self.default)
 
 
-def table_defender(instance: NInstance, entries: Mapping[tuple[int, ...], tuple[Fraction, ...]],
+def table_defender(instance: Instance, entries: Mapping[tuple[int, ...], tuple[Fraction, ...]],
                    default: tuple[Fraction, ...] | None,
                    walks: Iterable[Sequence[int]] = ()) -> TableDefender:
     """The table Defender on the trie of its entries and ``walks`` (the profile's walks).
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> one = (Fraction(1), Fraction(0), Fraction(0))
     >>> d = table_defender(star3(), {(0, 1, 3): (Fraction(0), Fraction(1), Fraction(0))}, one)
     >>> d.at(d.trie.find((0, 1, 3))), d.at(d.trie.find((0, 1))) == one
@@ -171,11 +171,11 @@ def table_defender(instance: NInstance, entries: Mapping[tuple[int, ...], tuple[
                          else tuple(default))
 
 
-_ARCS: weakref.WeakKeyDictionary[NInstance, tuple[int, list[list[tuple[int, int]]]]] = (
+_ARCS: weakref.WeakKeyDictionary[Instance, tuple[int, list[list[tuple[int, int]]]]] = (
     weakref.WeakKeyDictionary())
 
 
-def _scaled_pred(instance: NInstance) -> tuple[int, list[list[tuple[int, int]]]]:
+def _scaled_pred(instance: Instance) -> tuple[int, list[list[tuple[int, int]]]]:
     """``(W, pred)``: ``W`` the lcm of the weights' denominators and, for every node ``x``, the
     arcs ``(u, W·w(u, x))`` entering it from non-goal nodes (built once per instance)."""
     if instance not in _ARCS:
@@ -198,7 +198,7 @@ def _scaled_pred(instance: NInstance) -> tuple[int, list[list[tuple[int, int]]]]
     return _ARCS[instance]
 
 
-def exit_costs(instance: NInstance, share: Fraction, theta: int
+def exit_costs(instance: Instance, share: Fraction, theta: int
                ) -> tuple[list[Number], list[int]]:
     """``D_θ(u)``: the cheapest way from ``u`` to the end of the game when every step costs
     ``w·share`` (the default's weight on ``g^θ``), plus the terminal cost ``d(goal, g^θ)``.
@@ -209,7 +209,7 @@ def exit_costs(instance: NInstance, share: Fraction, theta: int
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> inst = star3()                      # nodes s, m, a, b, c = 0..4
     >>> exit_costs(inst, Fraction(0), 1)[0]   # free steps: walk to b from anywhere
     [0, 0, 2, 0, 2]
@@ -289,7 +289,7 @@ def walk_best_response(defender: TableDefender, theta: int,
     Against the hub profile's Defender (guard ``a`` off its table), type ``b`` loops
     ``s m s m b`` for free, cheaper than its profile walk ``s m b`` (cost 1):
 
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> inst = star3()
     >>> one, b = (Fraction(1), Fraction(0), Fraction(0)), (Fraction(0), Fraction(1), Fraction(0))
     >>> d = table_defender(inst, {(0, 1, 3): b}, one, walks=[(0, 1, 2), (0, 1, 3)])

@@ -117,7 +117,7 @@ def _progress_exit(instance: Instance, roles: Roles, goal: int, theta: int, same
     """Cost-to-go from the states ``(node, c)`` in ``exits`` against the progress rule towards
     ``goal`` (running minimum ``c``): exact Dijkstra on the product graph, backwards from the
     goal states."""
-    slot = instance.slot(goal)
+    slot = instance.goal_index(goal)
     assert slot is not None
     dg = instance.dist_to[slot]
     dist = roles.dist(theta)
@@ -221,7 +221,7 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     progress = isinstance(rule.default, ProgressRule)
     # σ(rule.goal | p) and the running minimum c(p) towards the progress goal on the trie
     pgoal = rule.default.goal if isinstance(rule.default, ProgressRule) else rule.goal
-    pslot = instance.slot(pgoal)
+    pslot = instance.goal_index(pgoal)
     assert pslot is not None
     dg = instance.dist_to[pslot]
     out: list[Number] = []

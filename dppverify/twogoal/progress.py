@@ -29,7 +29,7 @@ __all__ = ["progress_along", "progress_on_tree", "progress_sigma"]
 
 def _distances_to(instance: Instance, goal: int) -> Sequence[Number]:
     """``d(., goal)`` over the whole graph (InvalidInstanceError if ``goal`` is no goal)."""
-    theta = instance.slot(goal)
+    theta = instance.goal_index(goal)
     if theta is None:
         raise InvalidInstanceError(f"node {instance.nodes[goal]!r} is not a goal of the instance")
     return instance.dist_to[theta]

@@ -37,7 +37,7 @@ from dppverify.game.distances import (
 )
 from dppverify.game.evaluation import walk_cost
 from dppverify.game.instance import Instance, instance_from_json
-from dppverify.game.profile import ProgressRule, StrategyPath, TableRule
+from dppverify.game.profile import ProgressRule, StrategyWalk, TableRule
 
 
 # ------------------------------------------------------------------ the replaced code, verbatim
@@ -172,7 +172,7 @@ def random_walk(rng: random.Random, inst: Instance) -> tuple[int, ...] | None:
     return tuple(walk) if inst.is_goal(walk[-1]) else None
 
 
-def mixed(rng: random.Random, inst: Instance) -> list[StrategyPath]:
+def mixed(rng: random.Random, inst: Instance) -> list[StrategyWalk]:
     walks = []
     while len(walks) < rng.randint(1, 4):
         w = random_walk(rng, inst)
@@ -181,7 +181,7 @@ def mixed(rng: random.Random, inst: Instance) -> list[StrategyPath]:
     raw = [rng.randint(0, 5) for _ in walks]
     if sum(raw) == 0:
         raw[0] = 1
-    return [StrategyPath(w, Fraction(r, sum(raw))) for w, r in zip(walks, raw, strict=True)]
+    return [StrategyWalk(w, Fraction(r, sum(raw))) for w, r in zip(walks, raw, strict=True)]
 
 
 def rule_for(rng: random.Random, inst: Instance, trie: Trie) -> Any:

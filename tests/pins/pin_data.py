@@ -1,6 +1,6 @@
 """Write the pin cases' input files into ``tests/pins/data/`` (run ONCE, before the refactor).
 
-This module imports the bundled examples (``dppverify.game.examples``, ``dppverify.ngoal.examples``)
+This module imports the bundled examples (``dppverify.game.examples``, ``dppverify.game.examples``)
 and the conformance files; those module paths move in issue 19, so neither the pin test nor the
 default mode of ``make_pins.py`` imports it: the files it writes are committed, and
 ``python tests/pins/make_pins.py --data`` regenerates them only on a commit that still has the

@@ -26,10 +26,10 @@ from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.coalition import _Runner
 from dppverify.ngoal.guarantee import dp_value, guarantee_sets
-from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.strategies import ngoal_instances
 from solver import Instance, solve
 from solver.cli import main
@@ -90,7 +90,7 @@ def test_the_tree_route_agrees_at_the_profiles_horizon(doc: dict[str, Any]) -> N
 @settings(max_examples=30, deadline=None)
 @given(doc=ngoal_instances(min_goals=2, max_goals=4))
 def test_the_solvers_dp_equals_the_checkers_at_every_node(doc: dict[str, Any]) -> None:
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     run = _Runner(inst)
     layer = run.layer0()
     k = 0
@@ -125,7 +125,7 @@ def _two_goal_doc(rng: random.Random) -> dict[str, Any]:
                          "edges": edges},
                "start": 0, "goals": [1, 2], "prior": [str(p), str(1 - p)]}
         try:
-            ninstance_from_json(doc)
+            instance_from_json(doc)
         except Exception:
             continue
         return doc

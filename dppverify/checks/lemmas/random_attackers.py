@@ -13,7 +13,7 @@ from fractions import Fraction
 from dppverify.certificate import CheckRecord, Status
 from dppverify.exact import Number
 from dppverify.game.evaluation import realization
-from dppverify.game.profile import StrategyPath
+from dppverify.game.profile import StrategyWalk
 from dppverify.text import show, show_walk
 from dppverify.tree_route.best_response import defender_best_response, defender_best_response_lp
 from dppverify.tree_route.context import Context, EvaluatedContext
@@ -42,7 +42,7 @@ def _random_walk(tree: WalkTree, rng: random.Random, start: int = 0) -> tuple[in
 
 
 def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | None = None,
-                   k_max: int = 4) -> tuple[StrategyPath, ...]:
+                   k_max: int = 4) -> tuple[StrategyWalk, ...]:
     """A random non-reacting mixed strategy: 1..k_max random walks, rational probabilities.
 
     With ``through`` (a root-to-leaf list of prefixes), each walk follows it for a random
@@ -61,7 +61,7 @@ def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | 
 
     Returns
     -------
-    tuple of StrategyPath
+    tuple of StrategyWalk
         Walks (node indices) with exact probabilities summing to 1.
 
     Examples
@@ -81,7 +81,7 @@ def random_mixture(tree: WalkTree, rng: random.Random, through: Sequence[int] | 
         walk = _random_walk(tree, rng, start)
         weights[walk] = weights.get(walk, 0) + rng.randint(1, 6)
     total = sum(weights.values())
-    return tuple(StrategyPath(w, Fraction(c, total)) for w, c in weights.items())
+    return tuple(StrategyWalk(w, Fraction(c, total)) for w, c in weights.items())
 
 
 def l3_greedy(ctx: Context) -> CheckRecord:
@@ -173,7 +173,7 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
         leaf = tree.find(walk)
         assert leaf is not None
         along = tree.path(leaf)
-        primaries: list[tuple[str, tuple[StrategyPath, ...]]] = []
+        primaries: list[tuple[str, tuple[StrategyWalk, ...]]] = []
         if isinstance(ctx, EvaluatedContext):
             primaries.append(("the profile's primary", ctx.profile.primary))
         primaries += [(f"random primary {k + 1}", random_mixture(tree, rng, through=along))
