@@ -27,7 +27,7 @@ from dppverify.game.evaluation import Values, evaluate, walk_cost
 from dppverify.game.instance import Instance, Roles
 from dppverify.game.profile import DefenderRule, Profile, ProgressRule, StrategyPath, TableRule
 from dppverify.numbers import NumberMode
-from dppverify.structured.table_br import table_minima
+from dppverify.structured.table_br_twogoal import table_minima
 from dppverify.text import show, show_walk
 from dppverify.twogoal.phases import phases_of
 from dppverify.twogoal.progress_br import WalkMinima, split_minimum, walk_minima

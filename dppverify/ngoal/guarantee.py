@@ -620,7 +620,8 @@ def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None
     ('ngoal.pbne.attacker_br', 'pass')
     """
     from dppverify.ngoal.structured import _IDS, DOC, WALKS, _defender, _labels, _rec, _value
-    from dppverify.ngoal.walk_br import TableDefender, build_walk_trie
+    from dppverify.structured.table_br import TableDefender
+    from dppverify.structured.trie import build_walk_trie
 
     inst = instance
     n = inst.n_goals
@@ -632,7 +633,7 @@ def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None
     order_ok = all(parent[p] < p for p in range(1, len(trie)))
     assert order_ok  # the trie numbers prefixes in insertion order
     sigma, feasible = rule_on_trie(inst, rule, sets, parent, trie.node)
-    tdef = TableDefender(trie=trie, sigma=sigma, default=None)
+    tdef = TableDefender(instance=inst, trie=trie, sigma=sigma, default=None)
     mass: dict[int, list[Fraction]] = {}
     per_type: list[Fraction] = []
     for theta, mix in enumerate(profile.attacker):
@@ -642,7 +643,7 @@ def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None
             cost = Fraction(0)
             mass.setdefault(0, [Fraction(0)] * n)[theta] += mw.probability
             for k, v in enumerate(mw.walk[1:], start=1):
-                p = trie.children[p][v]
+                p = trie.extend(p, v)
                 mass.setdefault(p, [Fraction(0)] * n)[theta] += mw.probability
                 w = inst.weight(mw.walk[k - 1], v)
                 assert w is not None

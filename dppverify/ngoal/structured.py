@@ -30,7 +30,13 @@ from dppverify.exact import INF, Number, normalize
 from dppverify.ngoal.instance import NInstance
 from dppverify.ngoal.profile import NProfile
 from dppverify.ngoal.proved_value import NValue, nvalue
-from dppverify.ngoal.walk_br import TableDefender, exit_costs, table_defender, walk_best_response
+from dppverify.structured.table_br import (
+    TableDefender,
+    exit_costs,
+    goal_free_pred,
+    table_defender,
+    walk_best_response,
+)
 
 __all__ = ["NSTRUCTURED_NOT_RUN", "nstructured_checks"]
 
@@ -116,7 +122,7 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
             cost: Number = 0
             mass.setdefault(0, [Fraction(0)] * n)[theta] += mw.probability
             for k, v in enumerate(mw.walk[1:], start=1):
-                p = trie.children[p][v]
+                p = trie.extend(p, v)
                 mass.setdefault(p, [Fraction(0)] * n)[theta] += mw.probability
                 s = tdef.at(p)
                 if s is None:
@@ -156,9 +162,10 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
 
 def _attacker(inst: NInstance, tdef: TableDefender, per_type: list[Number]) -> CheckRecord:
     regrets: list[tuple[Number, int, tuple[int, ...], Number]] = []
+    arcs = None if tdef.default is None else goal_free_pred(inst)
     for theta in range(inst.n_goals):
         exits = (None if tdef.default is None
-                 else exit_costs(inst, tdef.default[theta], theta))
+                 else exit_costs(inst, tdef.default[theta], theta, arcs))
         br = walk_best_response(tdef, theta, exits)
         if br.value is None:
             assert br.undefined is not None
