@@ -195,7 +195,7 @@ def _defender_payoffs(instance: Instance, roles: Roles, trie: WalkTrie,
             si = sigma[i]
             assert si is not None  # every non-root prefix lies on a walk (_sigma_on_trie)
             rows.append((si, 1 - si))
-        best, at_sigma = greedy_sums(trie, (roles.b1, roles.b2),
+        best, at_sigma = greedy_sums(trie.masses, (roles.b1, roles.b2),
                                      zip(steps, weights, rows, strict=True))
     for i in range(trie.size):  # float mode: the order of the sums as before
         last = trie.node[i]

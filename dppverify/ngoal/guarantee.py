@@ -619,7 +619,13 @@ def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None
     >>> [(r.id, r.status) for r in recs][2]
     ('ngoal.pbne.attacker_br', 'pass')
     """
-    from dppverify.ngoal.structured import _IDS, DOC, WALKS, _defender, _labels, _rec, _value
+    from dppverify.checks.structured_ngoal import NGOAL_IDS as _IDS
+    from dppverify.checks.structured_ngoal import PAYOFF_WALKS as WALKS
+    from dppverify.checks.structured_ngoal import PROFILE_DOC as DOC
+    from dppverify.checks.structured_ngoal import defender_records as _defender
+    from dppverify.checks.structured_ngoal import ngoal_record as _rec
+    from dppverify.checks.structured_ngoal import value_record as _value
+    from dppverify.checks.structured_ngoal import walk_labels as _labels
     from dppverify.structured.table_br import TableDefender
     from dppverify.structured.trie import build_walk_trie
 

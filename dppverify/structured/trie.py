@@ -176,9 +176,10 @@ def build_walk_trie(instance: _Start, walks: Iterable[Sequence[int]]) -> WalkTri
     return t
 
 
-def mass_trie(mixes: Sequence[Iterable[MixedWalk]]) -> WalkTrie:
+def mass_trie(mixes: Sequence[Iterable[MixedWalk]], start: int | None = None) -> WalkTrie:
     """Each type's realization masses on the prefixes of its walks (``mixes[θ]``: type ``θ``'s
-    mixed strategy), in memory linear in the total walk length.
+    mixed strategy), in memory linear in the total walk length; ``start`` (``s0``) makes the
+    root prefix ``0`` whatever the walks.
 
     Examples
     --------
@@ -191,6 +192,8 @@ def mass_trie(mixes: Sequence[Iterable[MixedWalk]]) -> WalkTrie:
     (3, [(0, 1), (0, 2), (0, 2)], (0, 2))
     """
     t = WalkTrie(len(mixes))
+    if start is not None:
+        t.insert((start,))
     for theta, mix in enumerate(mixes):
         for mw in mix:
             t.insert(mw.walk, theta, mw.probability)
