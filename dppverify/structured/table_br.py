@@ -55,20 +55,20 @@ class TableDefender:
 
     Attributes
     ----------
-    instance : GameInstance
-        The game.
     trie : WalkTrie
         Contains every listed walk (and usually the profile's walks).
     sigma : Mapping
         Prefix id -> goal distribution (indexed by goal index θ), for the table's walks.
     default : tuple or None
         The distribution at every walk the table does not list.
+    instance : GameInstance
+        The game the walks are walks of.
     """
 
-    instance: GameInstance
     trie: WalkTrie
     sigma: Mapping[int, tuple[Fraction, ...]]
     default: tuple[Fraction, ...] | None
+    instance: GameInstance
 
     def at(self, p: int) -> tuple[Fraction, ...] | None:
         """``σ(· | p)`` at trie prefix ``p`` (None: undefined, no entry and no default)."""

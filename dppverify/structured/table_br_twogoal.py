@@ -148,10 +148,8 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
 
     Parameters
     ----------
-    instance : Instance
-        The game.
-    roles : Roles
-        The labelling (which goal is ``g1``).
+    instance, roles : Instance, Roles
+        The game, and which of its goals is ``g1``.
     rule : TableRule
         The Defender: ``P(allocate to rule.goal | walk)`` for listed walks, and a default (a
         probability, or the progress rule, eq. (7), with the running minimum ``c_t`` taken
