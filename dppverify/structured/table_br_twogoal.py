@@ -95,8 +95,7 @@ def _progress_exit(instance: Instance, roles: Roles, goal: int, theta: int, same
     """Cost-to-go from the states ``(node, c)`` in ``exits`` against the progress rule towards
     ``goal`` (running minimum ``c``): exact Dijkstra on the product graph, backwards from the
     goal states."""
-    index = instance.slot(goal)
-    assert index is not None
+    index = instance.goals.index(goal)
     dg = instance.dist_to[index]
     dist = roles.dist(theta)
     values = sorted({c for _, c in exits} | {x for x in dg if x != INF})
@@ -196,8 +195,7 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     default = rule.default
     # the running minimum c(p) towards the progress goal on the trie (parents come first)
     pgoal = default.goal if isinstance(default, ProgressRule) else rule.goal
-    pindex = instance.slot(pgoal)
-    assert pindex is not None
+    pindex = instance.goals.index(pgoal)
     dg = instance.dist_to[pindex]
     cmin: list[Number] = []
     for p in range(len(trie)):
@@ -217,8 +215,7 @@ def _type_minimum(instance: Instance, roles: Roles, rule: TableRule, trie: WalkT
     induction on the trie, leaving it against the table's default."""
     mode = instance.numbers
     default = rule.default
-    index = instance.slot(pgoal)
-    assert index is not None
+    index = instance.goals.index(pgoal)
     dg = instance.dist_to[index]
     mine = (roles.g1 if theta == 1 else roles.g2) == rule.goal
 
