@@ -275,6 +275,16 @@ def defender_records(inst: GameInstance, tdef: TableDefender,
 
 def value_record(inst: NInstance, u: Number, horizon: int | None, equilibrium: bool,
            known: NValue | None = None) -> CheckRecord:
+    """``ngoal.value.V_H``: ``U`` against the structured value at ``H`` (proofs/NGOAL.md), or
+    against ``known`` when given; ``equilibrium`` says the equilibrium checks passed with ``H``
+    covering the profile's walks (then ``U`` inside the bracket is ``V_H``, NW.5).
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> value_record(star3(), Fraction(3, 2), 2, True).status
+    'pass'
+    """
     h = "inf" if horizon is None else str(horizon)
     relies = ("relies on proofs/NGOAL.md: NG.2, NG.5 (the coalition DP is an upper bound), "
               "NG.3/NG.4 (it is the value for N <= 3), NG.6-NG.10 (the guarantee sets: "

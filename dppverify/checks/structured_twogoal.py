@@ -33,6 +33,18 @@ TRIE = "on the prefixes of the profile's walks (proofs/L3.md)"
 
 def phases_check(instance: Instance, profile: Profile, roles: Roles,
                  mode: NumberMode) -> CheckRecord:
+    """``profile.phases``: the phases of σ* along the secondary's walk ξ² (proofs/L5.md), against
+    those the profile claims.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle, triangle_profile
+    >>> from dppverify.game.profile import profile_from_json
+    >>> inst = triangle()
+    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
+    >>> phases_check(inst, prof, r, inst.numbers).message
+    'no phases claimed; recomputed t_I = 0, t_II = 1, T = 1'
+    """
     claim = profile.claimed_phases
     sec = [w for w in profile.secondary if w.probability > 0]
     how = "σ* along the profile's secondary walk"
@@ -55,6 +67,20 @@ def phases_check(instance: Instance, profile: Profile, roles: Roles,
 
 def telescoping_check(instance: Instance, roles: Roles, trie: WalkTrie,
                       mode: NumberMode) -> CheckRecord:
+    """``lemma.TEL.telescoping``: ``Σ w σ* = c_0 − c_t`` and ``σ* ∈ [0, 1]`` on every prefix of
+    ``trie`` (proofs/TEL.md).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle, triangle_profile
+    >>> from dppverify.game.profile import profile_from_json
+    >>> inst = triangle()
+    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
+    >>> from dppverify.structured.trie import mass_trie
+    >>> t = mass_trie([prof.primary, prof.secondary])
+    >>> telescoping_check(inst, r, t, inst.numbers).status
+    'pass'
+    """
     c_of = roles.d1
     bad = 0
     done = [False] * trie.size
@@ -91,6 +117,20 @@ def telescoping_check(instance: Instance, roles: Roles, trie: WalkTrie,
 
 def l1_check(instance: Instance, roles: Roles, profile: Profile, mode: NumberMode,
         mins: WalkMinima) -> CheckRecord:
+    """``lemma.L1.lower_bound``: against σ* the primary's minimum over all walks is
+    ``d(s0, g1)`` (proofs/L1.md), and every profile walk costs at least that.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle, triangle_profile
+    >>> from dppverify.game.profile import profile_from_json
+    >>> inst = triangle()
+    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
+    >>> from dppverify.twogoal.progress_br import walk_minima
+    >>> mins = walk_minima(inst, r.g1)
+    >>> l1_check(inst, r, prof, inst.numbers, mins).status
+    'pass'
+    """
     sigma_star = ProgressRule(roles.g1)
     c0 = roles.d1[instance.start]
     problems = []
@@ -127,6 +167,17 @@ def evaluate_walk(instance: Instance, roles: Roles, rule: ProgressRule,
 
 
 def l2_check(instance: Instance, profile: Profile) -> CheckRecord:
+    """``lemma.L2.no_revisits``: every secondary walk played is simple (proofs/L2.md).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle, triangle_profile
+    >>> from dppverify.game.profile import profile_from_json
+    >>> inst = triangle()
+    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
+    >>> l2_check(inst, prof).message
+    'every secondary walk played is simple'
+    """
     loops = [mw for mw in profile.secondary
              if mw.probability > 0 and len(set(mw.walk)) < len(mw.walk)]
     numbers: dict[str, Number | None] = {"revisiting_walks": len(loops)}
@@ -140,6 +191,20 @@ def l2_check(instance: Instance, profile: Profile) -> CheckRecord:
 
 
 def xi2_check(instance: Instance, roles: Roles, mode: NumberMode, mins: WalkMinima) -> CheckRecord:
+    """``lemma.XI2.secondary_value``: against σ* the secondary's minimum over all walks is
+    ``M − d(s0, g1)`` (proofs/XI2.md).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle, triangle_profile
+    >>> from dppverify.game.profile import profile_from_json
+    >>> inst = triangle()
+    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
+    >>> from dppverify.twogoal.progress_br import walk_minima
+    >>> mins = walk_minima(inst, r.g1)
+    >>> xi2_check(inst, r, inst.numbers, mins).status
+    'pass'
+    """
     s0 = instance.start
     m = split_minimum(instance, roles.g1, roles.g2)
     expect = m - roles.d1[s0]
@@ -155,6 +220,21 @@ def xi2_check(instance: Instance, roles: Roles, mode: NumberMode, mins: WalkMini
 
 def l5_check(instance: Instance, profile: Profile, roles: Roles, trie: WalkTrie,
         beliefs: dict[int, Fraction], mode: NumberMode) -> CheckRecord:
+    """``lemma.L5.induced_beliefs``: the Bayes beliefs along ξ² by phase (proofs/L5.md);
+    ``beliefs`` maps each reached prefix id of ``trie`` to the belief in the primary type.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle, triangle_profile
+    >>> from dppverify.game.profile import profile_from_json
+    >>> inst = triangle()
+    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
+    >>> from dppverify.structured.trie import mass_trie
+    >>> t = mass_trie([prof.primary, prof.secondary])
+    >>> b = {i: r.b1 * m[0] / (r.b1 * m[0] + r.b2 * m[1]) for i, m in enumerate(t.masses)}
+    >>> l5_check(inst, prof, r, t, b, inst.numbers).status
+    'pass'
+    """
     cid = "lemma.L5.induced_beliefs"
     sec = [w for w in profile.secondary if w.probability > 0]
     if len(sec) != 1:
