@@ -39,7 +39,6 @@ from dppverify.ngoal.proved_value import NValue, nvalue
 from dppverify.structured.table_br import (
     TableDefender,
     exit_costs,
-    goal_free_pred,
     walk_best_response,
 )
 from dppverify.structured.trie import mass_trie
@@ -186,7 +185,7 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
 
 def _attacker(inst: NInstance, tdef: TableDefender, per_type: list[Number]) -> CheckRecord:
     regrets: list[tuple[Number, int, tuple[int, ...], Number]] = []
-    arcs = None if tdef.default is None else goal_free_pred(inst)
+    arcs = None if tdef.default is None else tdef.exit_graph()
     for theta in range(inst.n_goals):
         exits = (None if tdef.default is None
                  else exit_costs(inst, tdef.default[theta], theta, arcs))

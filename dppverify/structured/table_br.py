@@ -33,7 +33,7 @@ lists every prefix of every walk of the game, no best response exists; the N-goa
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 
 from dppverify.exact import INF, Number, normalize
@@ -69,10 +69,17 @@ class TableDefender:
     sigma: Mapping[int, tuple[Fraction, ...]]
     default: tuple[Fraction, ...] | None
     instance: GameInstance
+    _exit_graph: list[GoalFreePred] = field(default_factory=list, init=False, repr=False)
 
     def at(self, p: int) -> tuple[Fraction, ...] | None:
         """``σ(· | p)`` at trie prefix ``p`` (None: undefined, no entry and no default)."""
         return self.sigma.get(p, self.default)
+
+    def exit_graph(self) -> GoalFreePred:
+        """:func:`goal_free_pred` of the instance, built once per Defender (for every type)."""
+        if not self._exit_graph:
+            self._exit_graph.append(goal_free_pred(self.instance))
+        return self._exit_graph[0]
 
 
 def table_defender(instance: GameInstance,
@@ -262,7 +269,7 @@ def walk_best_response(defender: TableDefender, theta: int,
     inst = defender.instance
     default = defender.default
     if exits is None and default is not None:
-        exits = exit_costs(inst, default[theta], theta)
+        exits = exit_costs(inst, default[theta], theta, defender.exit_graph())
 
     def inside(p: int, c: int, w: Number) -> Number | None:
         s = defender.at(c)
