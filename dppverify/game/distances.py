@@ -151,7 +151,7 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
         return len(self) == len(other) and all(
             tuple(a) == tuple(b) for a, b in zip(self, other, strict=True))
 
-    __hash__ = None  # type: ignore[assignment]
+    # defining __eq__ makes the class unhashable (Python sets __hash__ to None), like a list
 
     def __repr__(self) -> str:
         return f"ArcRows({self._n} nodes, {self._heads.size} arcs)"
