@@ -38,10 +38,7 @@ def phases_check(instance: Instance, profile: Profile, roles: Roles,
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle, triangle_profile
-    >>> from dppverify.game.profile import profile_from_json
-    >>> inst = triangle()
-    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
+    >>> inst, r, prof, t, mins = _triangle()
     >>> phases_check(inst, prof, r, inst.numbers).message
     'no phases claimed; recomputed t_I = 0, t_II = 1, T = 1'
     """
@@ -72,12 +69,7 @@ def telescoping_check(instance: Instance, roles: Roles, trie: WalkTrie,
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle, triangle_profile
-    >>> from dppverify.game.profile import profile_from_json
-    >>> inst = triangle()
-    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
-    >>> from dppverify.structured.trie import mass_trie
-    >>> t = mass_trie([prof.primary, prof.secondary])
+    >>> inst, r, prof, t, mins = _triangle()
     >>> telescoping_check(inst, r, t, inst.numbers).status
     'pass'
     """
@@ -122,12 +114,7 @@ def l1_check(instance: Instance, roles: Roles, profile: Profile, mode: NumberMod
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle, triangle_profile
-    >>> from dppverify.game.profile import profile_from_json
-    >>> inst = triangle()
-    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
-    >>> from dppverify.twogoal.progress_br import walk_minima
-    >>> mins = walk_minima(inst, r.g1)
+    >>> inst, r, prof, t, mins = _triangle()
     >>> l1_check(inst, r, prof, inst.numbers, mins).status
     'pass'
     """
@@ -171,10 +158,7 @@ def l2_check(instance: Instance, profile: Profile) -> CheckRecord:
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle, triangle_profile
-    >>> from dppverify.game.profile import profile_from_json
-    >>> inst = triangle()
-    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
+    >>> inst, r, prof, t, mins = _triangle()
     >>> l2_check(inst, prof).message
     'every secondary walk played is simple'
     """
@@ -196,12 +180,7 @@ def xi2_check(instance: Instance, roles: Roles, mode: NumberMode, mins: WalkMini
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle, triangle_profile
-    >>> from dppverify.game.profile import profile_from_json
-    >>> inst = triangle()
-    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
-    >>> from dppverify.twogoal.progress_br import walk_minima
-    >>> mins = walk_minima(inst, r.g1)
+    >>> inst, r, prof, t, mins = _triangle()
     >>> xi2_check(inst, r, inst.numbers, mins).status
     'pass'
     """
@@ -225,12 +204,7 @@ def l5_check(instance: Instance, profile: Profile, roles: Roles, trie: WalkTrie,
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle, triangle_profile
-    >>> from dppverify.game.profile import profile_from_json
-    >>> inst = triangle()
-    >>> r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
-    >>> from dppverify.structured.trie import mass_trie
-    >>> t = mass_trie([prof.primary, prof.secondary])
+    >>> inst, r, prof, t, mins = _triangle()
     >>> b = {i: r.b1 * m[0] / (r.b1 * m[0] + r.b2 * m[1]) for i, m in enumerate(t.masses)}
     >>> l5_check(inst, prof, r, t, b, inst.numbers).status
     'pass'
@@ -261,3 +235,16 @@ def l5_check(instance: Instance, profile: Profile, roles: Roles, trie: WalkTrie,
     return _rec(cid, "pass", f"beliefs along ξ² are {show(roles.b1)} on phase I (t <= {t1}), "
                 f"1/2 on phase II (t <= {t2}), 0 on phase III (t <= {T}); {OFF_XI2}", numbers,
                 "L5", TRIE)
+
+
+def _triangle() -> tuple[Instance, Roles, Profile, WalkTrie, WalkMinima]:
+    """The examples' inputs: the triangle, its equilibrium profile, the profile's trie and the
+    minima over all walks against σ*."""
+    from dppverify.game.examples import triangle, triangle_profile
+    from dppverify.game.profile import profile_from_json
+    from dppverify.structured.trie import mass_trie
+    from dppverify.twogoal.progress_br import walk_minima
+
+    inst = triangle()
+    r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
+    return inst, r, prof, mass_trie([prof.primary, prof.secondary]), walk_minima(inst, r.g1)
