@@ -29,7 +29,7 @@ from dppverify.game.profile import nprofile_from_json
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.experiment import corner_cells
-from dppverify.ngoal.walk_br import table_defender, walk_best_response
+from dppverify.structured.table_br import table_defender, walk_best_response
 
 MAPS = ("room-32-32-4", "room-64-64-8", "maze-128-128-10", "Berlin_1_256")
 

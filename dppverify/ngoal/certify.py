@@ -2,7 +2,7 @@
 
 Routes (as for two goals, ``docs/checker.md`` "Routes"): ``tree`` — the truncated game's walk
 tree at ``H`` (below); ``structured`` — no walk tree, the game of ANY length
-(:mod:`dppverify.ngoal.structured`, proofs/NWALKBR.md; the Defender needs a ``default``);
+(:mod:`dppverify.checks.structured_ngoal`, proofs/NWALKBR.md; the Defender needs a ``default``);
 ``auto`` — the tree when it fits ``max_prefixes``, else structured; ``both`` — both, and a
 check whose statuses differ becomes an ``error`` record.
 
@@ -42,6 +42,7 @@ from pathlib import Path
 from typing import Any, Literal
 
 from dppverify.certificate import Certificate, CheckRecord, Status, merge_routes
+from dppverify.checks.structured_ngoal import NSTRUCTURED_NOT_RUN, nstructured_checks
 from dppverify.errors import HorizonError, LPError, UndecidedError
 from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance, instance_from_json, load_instance
@@ -57,7 +58,6 @@ from dppverify.ngoal.best_response import (
 )
 from dppverify.ngoal.proved_value import nvalue
 from dppverify.ngoal.routes import ntree_fits
-from dppverify.ngoal.structured import NSTRUCTURED_NOT_RUN, nstructured_checks
 from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.ngoal.value_lp import exact_nbracket, solve_nvalue_lp
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
@@ -133,7 +133,7 @@ def certify_ngoal(instance: Instance | Mapping[str, Any] | str | Path,
         Size guard of the walk tree.
     route : {"auto", "tree", "structured", "both"}
         ``tree``: the walk tree; ``structured``: best responses over all walks, the Defender
-        on the profile's prefixes, the coalition DP (:mod:`dppverify.ngoal.structured`);
+        on the profile's prefixes, the coalition DP (:mod:`dppverify.checks.structured_ngoal`);
         ``auto``: the tree when it fits ``max_prefixes``, else structured; ``both``: both, a
         check whose statuses differ becomes an ``error`` (unless one route skipped it).
 

@@ -581,8 +581,15 @@ def guarantee_checks(instance: Instance, profile: Any, horizon: int | None
     >>> [(r.id, r.status) for r in recs][2]
     ('ngoal.pbne.attacker_br', 'pass')
     """
-    from dppverify.ngoal.structured import _IDS, DOC, WALKS, _defender, _labels, _rec, _value
-    from dppverify.ngoal.walk_br import TableDefender, build_walk_trie
+    from dppverify.checks.structured_ngoal import NGOAL_IDS as _IDS
+    from dppverify.checks.structured_ngoal import PAYOFF_WALKS as WALKS
+    from dppverify.checks.structured_ngoal import PROFILE_DOC as DOC
+    from dppverify.checks.structured_ngoal import defender_records as _defender
+    from dppverify.checks.structured_ngoal import ngoal_record as _rec
+    from dppverify.checks.structured_ngoal import value_record as _value
+    from dppverify.checks.structured_ngoal import walk_labels as _labels
+    from dppverify.structured.table_br import TableDefender
+    from dppverify.structured.trie import build_walk_trie
 
     inst = instance
     n = inst.n_goals
@@ -594,7 +601,7 @@ def guarantee_checks(instance: Instance, profile: Any, horizon: int | None
     order_ok = all(parent[p] < p for p in range(1, len(trie)))
     assert order_ok  # the trie numbers prefixes in insertion order
     sigma, feasible = rule_on_trie(inst, rule, sets, parent, trie.node)
-    tdef = TableDefender(trie=trie, sigma=sigma, default=None)
+    tdef = TableDefender(instance=inst, trie=trie, sigma=sigma, default=None)
     mass: dict[int, list[Fraction]] = {}
     per_type: list[Fraction] = []
     for theta, mix in enumerate(profile.attacker):
@@ -604,7 +611,7 @@ def guarantee_checks(instance: Instance, profile: Any, horizon: int | None
             cost = Fraction(0)
             mass.setdefault(0, [Fraction(0)] * n)[theta] += mw.probability
             for k, v in enumerate(mw.walk[1:], start=1):
-                p = trie.children[p][v]
+                p = trie.extend(p, v)
                 mass.setdefault(p, [Fraction(0)] * n)[theta] += mw.probability
                 w = inst.weight(mw.walk[k - 1], v)
                 assert w is not None

@@ -13,7 +13,7 @@ import sympy as sp
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.ngoal.best_response import attacker_best_response, defender_from_table
 from dppverify.ngoal.tree import build_ntree, count_nprefixes
-from dppverify.ngoal.walk_br import table_defender, walk_best_response
+from dppverify.structured.table_br import table_defender, walk_best_response
 from proofs.checks._sym import is_nonneg, is_zero, nonneg
 
 DISTRIBUTIONS = [(Fraction(1), Fraction(0), Fraction(0)), (Fraction(0), Fraction(1), Fraction(0)),

@@ -35,7 +35,7 @@ from dppverify.game.instance import instance_from_json
 from dppverify.game.profile import ProgressRule, TableRule
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.strategies import instances, weighted_graphs
-from dppverify.structured.table_br import table_minima
+from dppverify.structured.table_br_twogoal import table_minima
 from dppverify.twogoal.progress_br import walk_minima
 from tests.checker._helpers import make_doc
 

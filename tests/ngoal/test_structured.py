@@ -28,8 +28,8 @@ from dppverify.game.profile import nprofile_from_json
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.routes import ntree_fits
 from dppverify.ngoal.tree import count_nprefixes
-from dppverify.ngoal.walk_br import table_defender, walk_best_response
 from dppverify.strategies import ngoal_instances, weighted_graphs
+from dppverify.structured.table_br import table_defender, walk_best_response
 
 MAX_PREFIXES = 3000
 
