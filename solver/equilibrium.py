@@ -114,7 +114,7 @@ def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibriu
     abs_tol : float
         Tolerance on distances, used only when some weight is a float: relative to the
         largest weight (scaled by it; the float-mode limit
-        :data:`~solver.limits.MAX_FLOAT_WEIGHT_RATIO` keeps every weight far above it).
+        :data:`~dppio.limits.MAX_FLOAT_WEIGHT_RATIO` keeps every weight far above it).
 
     Returns
     -------

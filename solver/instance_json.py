@@ -14,9 +14,10 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
+from dppio.files import read_input
+from dppio.limits import MAX_JSON_DEPTH, check_numeral
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.instance import Instance
-from solver.limits import MAX_INPUT_BYTES, MAX_JSON_DEPTH, check_numeral, open_input
 from solver.movingai import STANDARD_PREFIX, map_file, read_map_bytes
 from solver.network import GridLabels
 from solver.numbers import format_number, parse_number
@@ -75,13 +76,11 @@ def read_json(path: str | Path) -> Any:
     """
     p = Path(path)
     try:
-        with open_input(p) as fh:
-            raw = fh.read(MAX_INPUT_BYTES + 1)
+        raw = read_input(p)
     except OSError as exc:
         raise InstanceFormatError(f"{p}: cannot read file ({exc.strerror})") from None
-    if len(raw) > MAX_INPUT_BYTES:
-        raise InstanceFormatError(f"{p}: cannot read file (larger than the limit of "
-                                  f"{MAX_INPUT_BYTES} bytes)")
+    except ValueError as exc:
+        raise InstanceFormatError(f"{p}: cannot read file ({exc})") from None
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
@@ -93,12 +92,12 @@ def read_json(path: str | Path) -> Any:
 
 
 def _parse_float(text: str) -> Fraction:
-    check_numeral(text, where="JSON number")
+    check_numeral(text, where="JSON number", error=InvalidInstanceError)
     return Fraction(text)
 
 
 def _parse_int(text: str) -> int:
-    check_numeral(text, where="JSON number")
+    check_numeral(text, where="JSON number", error=InvalidInstanceError)
     return int(text)
 
 

@@ -20,8 +20,8 @@ import networkx as nx
 import numpy as np
 import scipy.sparse as sp
 
+from dppio.limits import check_float_weights
 from solver.errors import InvalidInstanceError
-from solver.limits import check_float_weights
 from solver.numbers import (
     DEFAULT_ABS_TOL,
     ExactNumbers,
@@ -184,7 +184,8 @@ class Network:
         else:
             data = np.array([float(w) for w in values], dtype=np.float64)
             if data.size:
-                check_float_weights([float(data.min()), float(data.max())])
+                check_float_weights([float(data.min()), float(data.max())],
+                                    error=InvalidInstanceError)
             numbers = FloatNumbers(DEFAULT_ABS_TOL)
         indptr, indices, weights = _sorted_csr(len(labels), np.asarray(tails, dtype=np.int64),
                                                np.asarray(heads, dtype=np.int64), data)

@@ -22,8 +22,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from dppio.limits import check_numeral, check_rational
 from solver.errors import InvalidInstanceError
-from solver.limits import check_numeral, check_rational
 
 __all__ = [
     "DEFAULT_ABS_TOL",
@@ -235,21 +235,22 @@ def parse_number(value: object, *, where: str, allow_float: bool = False) -> Num
         raise InvalidInstanceError(f"{where}: expected a number, got {value!r}")
     if isinstance(value, Rational):
         exact = Fraction(int(value.numerator), int(value.denominator))
-        check_rational(exact, where=where)
+        check_rational(exact, where=where, error=InvalidInstanceError)
         return exact
     if isinstance(value, float):
         if not math.isfinite(value):
             raise InvalidInstanceError(f"{where}: expected a finite number, got {value!r}")
         exact = Fraction(repr(value))
-        check_rational(exact, where=where)  # the checker reads the literal exactly: same limit
+        # the checker reads the literal exactly: the same limit
+        check_rational(exact, where=where, error=InvalidInstanceError)
         return value if allow_float else exact
     if isinstance(value, str):
-        check_numeral(value, where=where)
+        check_numeral(value, where=where, error=InvalidInstanceError)
         try:
             exact = Fraction(value.strip())
         except (ValueError, ZeroDivisionError):
             raise InvalidInstanceError(f"{where}: {value!r} is not a number") from None
-        check_rational(exact, where=where)
+        check_rational(exact, where=where, error=InvalidInstanceError)
         return exact
     raise InvalidInstanceError(f"{where}: expected a number, got {value!r}")
 

