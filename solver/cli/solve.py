@@ -111,7 +111,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
 
 def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
     """The N-goal game of a solver command, or None when it has two goals."""
-    from solver.instance_json import read_json
+    from solver.json_text import read_json
     from solver.movingai import read_map
     from solver.ngoal_instance import ngame_from_grid, ngame_from_json
 
