@@ -316,7 +316,7 @@ def _sourced_dijkstra(n: int, tails: np.ndarray, heads: np.ndarray, weights: lis
     heapq.heapify(heap)
     while heap:
         k, x = heapq.heappop(heap)
-        if best[x] is not None and k > best[x]:  # type: ignore[operator]
+        if (b := best[x]) is not None and k > b:
             continue
         for u, w in pred[x]:
             nk = k + w

@@ -15,6 +15,7 @@ from collections.abc import Hashable, Iterator, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property
+from typing import overload
 
 import networkx as nx
 import numpy as np
@@ -55,7 +56,15 @@ class GridLabels(Sequence[tuple[int, int]]):
     def __len__(self) -> int:
         return self.height * self.width
 
-    def __getitem__(self, i: int) -> tuple[int, int]:  # type: ignore[override]
+    @overload
+    def __getitem__(self, i: int) -> tuple[int, int]: ...
+
+    @overload
+    def __getitem__(self, i: slice) -> Sequence[tuple[int, int]]: ...
+
+    def __getitem__(self, i: int | slice) -> tuple[int, int] | Sequence[tuple[int, int]]:
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(len(self)))]
         if not 0 <= i < len(self):
             raise IndexError(i)
         return (i // self.width, i % self.width)

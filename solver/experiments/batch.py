@@ -45,7 +45,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -285,6 +285,7 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
         return _error_row(sc, config, "no fake goal: no other line of this map has a goal "
                           "reachable from this start")
     known = {"fake_goal": _cell_text(fake)}
+    bad_input: tuple[type[Exception], ...] = (DPPError, *checker.errors)
     try:
         t0 = time.perf_counter()
         inst = Instance.from_grid(blocked, sc.start, (sc.goal, fake), config.prior,
@@ -295,7 +296,7 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
         cert = checker.certify(instance_to_json(inst), profile,
                                exact=config.connectivity == 4, route=config.route)
         t2 = time.perf_counter()
-    except (DPPError, *checker.errors) as exc:  # type: ignore[misc]
+    except bad_input as exc:
         return _error_row(sc, config, str(exc), **known)
     except Exception as exc:  # one line, and the batch goes on
         return _error_row(sc, config, f"internal error: {type(exc).__name__}: {exc}", **known)
@@ -304,7 +305,7 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
     row = dict.fromkeys(FIELDS, "")
     row.update(line=str(sc.line), status="ok", map=sc.map, start=_cell_text(sc.start),
                goal=_cell_text(sc.goal), fake_goal=_cell_text(fake),
-               prior=",".join(config.prior), primary=_cell_text(inst.primary),  # type: ignore[arg-type]
+               prior=",".join(config.prior), primary=_cell_text(cast(Cell, inst.primary)),
                U1=str(value["U1"]), U2=str(value["U2"]), U=str(value["U"]),
                U_bar=str(value["U_bar"]), VoI=str(voi),
                VoI_float=repr(float(Fraction(voi)) if isinstance(voi, str) else float(voi)),
