@@ -57,7 +57,7 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
     from tqdm import tqdm
 
     from solver.experiments.compare import compare_csv, compare_table, verdict
-    from solver.pairs import COMPARE_PAIRS, PairEvaluator
+    from solver.strategy_pairs import COMPARE_PAIRS, PairEvaluator
 
     inst = experiment_instance(instance, grid)
     game = PairEvaluator.of(inst)

@@ -32,7 +32,7 @@ from solver.experiments.sampling import sample_grid
 from solver.instance import Instance
 from solver.masters_sardina import STRATEGIES
 from solver.movingai import read_map
-from solver.pairs import DEFENDERS, LABELS, PairEvaluator
+from solver.strategy_pairs import DEFENDERS, LABELS, PairEvaluator
 
 __all__ = ["ATTACKERS_ALL", "COLOURS", "DEFAULT_MAPS", "BaselineRow", "instances",
            "plot_baselines", "rows_csv", "run_baselines", "summary_table", "worst_case_table"]

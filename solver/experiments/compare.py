@@ -17,7 +17,7 @@ from pathlib import Path
 from solver.instance import Instance
 from solver.movingai import read_map
 from solver.numbers import Number
-from solver.pairs import LABELS, PAIRS, PairEvaluator, PairResult
+from solver.strategy_pairs import LABELS, PAIRS, PairEvaluator, PairResult
 
 __all__ = ["DEFAULT_GOALS", "DEFAULT_PRIOR", "DEFAULT_START", "compare_csv", "compare_table",
            "paper10_instance", "paper10_path", "run_compare", "verdict"]
@@ -59,7 +59,7 @@ def paper10_instance() -> Instance:
 
 
 def run_compare(instance: Instance) -> tuple[PairResult, ...]:
-    """U¹, U², U, VoI of the six pairs of :data:`solver.pairs.PAIRS`, exactly.
+    """U¹, U², U, VoI of the six pairs of :data:`solver.strategy_pairs.PAIRS`, exactly.
 
     Examples
     --------

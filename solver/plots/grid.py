@@ -18,7 +18,6 @@ from matplotlib.ticker import MaxNLocator
 from solver.errors import InvalidInstanceError
 from solver.instance import Instance
 from solver.network import GridLabels
-from solver.pairs import LABELS, PairEvaluator
 from solver.plots.style import (
     LARGE_MAP,
     MARKER_COLOUR,
@@ -32,6 +31,7 @@ from solver.plots.style import (
     num_label,
     tex_label,
 )
+from solver.strategy_pairs import LABELS, PairEvaluator
 
 __all__ = ["plot_beliefs", "plot_map"]
 

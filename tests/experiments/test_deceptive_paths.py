@@ -11,7 +11,7 @@ import pytest
 
 from solver import Instance
 from solver.deceptive_paths import KINDS, deceptive_path, objective
-from solver.pairs import PairEvaluator
+from solver.strategy_pairs import PairEvaluator
 from tests.experiments._graphs import literal_belief, random_instance
 
 EPS = mpmath.mpf(10) ** -35

@@ -1,7 +1,7 @@
 """One exact evaluation for any (Defender, Attacker) pair: U¹, U², U and VoI.
 
 Defenders: ``"sigma*"`` (the equilibrium σ*, eq. (7)) and ``"sigma'"`` (greedy on Dragan's
-belief, :mod:`solver.alt_defender`), or any schedule function (walk -> σ(g1) per step).
+belief, :mod:`solver.greedy_defender`), or any schedule function (walk -> σ(g1) per step).
 Attackers: ``"gamma*"`` (the equilibrium mixture, eqs. (9) and (15)), ``"ambiguity"`` and
 ``"exaggeration"`` (each type deterministically takes its ξ^{θ,am} / ξ^{θ,ex}, eq. (18)), or
 any :class:`Attacker`. Values come from :func:`solver.evaluation.evaluate` (eqs. (3), (4) and
@@ -18,13 +18,13 @@ from functools import cached_property
 
 import numpy as np
 
-from solver.alt_defender import DraganDefender
 from solver.deceptive_paths import Kind, deceptive_path
 from solver.distances import distances_from, distances_to
-from solver.dragan import DraganObserver
+from solver.dragan_belief import DraganObserver
 from solver.equilibrium import Equilibrium, solve
 from solver.errors import InvalidInstanceError
 from solver.evaluation import Evaluation, Schedule, evaluate
+from solver.greedy_defender import DraganDefender
 from solver.instance import Instance
 from solver.masters_sardina import LABELS as MS_LABELS
 from solver.masters_sardina import STRATEGIES as MS_STRATEGIES
