@@ -5,7 +5,7 @@ Both command lines treat a :class:`DppioError` as bad input (one line, exit 2).
 
 from __future__ import annotations
 
-__all__ = ["DppioError", "LimitError", "OutputError"]
+__all__ = ["DppioError", "InputError", "LimitError", "OutputError"]
 
 
 class DppioError(Exception):
@@ -16,5 +16,9 @@ class OutputError(DppioError, OSError):
     """An output location cannot be written (missing permission, full disk, a folder...)."""
 
 
-class LimitError(DppioError, ValueError):
+class InputError(DppioError, ValueError):
+    """An input file that cannot be used as it is (larger than the limit, not UTF-8 text)."""
+
+
+class LimitError(InputError):
     """An input beyond one of the limits of :mod:`dppio.limits`."""

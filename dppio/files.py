@@ -34,11 +34,19 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any, BinaryIO
 
-from dppio.errors import LimitError, OutputError
+from dppio.errors import InputError, LimitError, OutputError
 from dppio.limits import MAX_INPUT_BYTES
 
-__all__ = ["OutputError", "file_mode", "open_input", "read_input", "refuse_input_as_output",
-           "write_atomic", "write_files"]
+__all__ = [
+    "OutputError",
+    "file_mode",
+    "open_input",
+    "read_input",
+    "read_text",
+    "refuse_input_as_output",
+    "write_atomic",
+    "write_files",
+]
 
 
 def file_mode() -> int:
@@ -79,6 +87,34 @@ def read_input(path: str | Path, *, limit: int = MAX_INPUT_BYTES) -> bytes:
     if len(data) > limit:
         raise LimitError(f"larger than the limit of {limit} bytes")
     return data
+
+
+def read_text(path: str | Path, *, limit: int = MAX_INPUT_BYTES) -> str:
+    """The UTF-8 text of an input file (:func:`read_input`: larger than ``limit`` refused).
+
+    Raises
+    ------
+    OSError
+        The file cannot be read (the callers name it in their own error class).
+    InputError
+        (a ``ValueError``) Larger than ``limit`` bytes (:class:`~dppio.errors.LimitError`),
+        or not UTF-8 text.
+
+    Examples
+    --------
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     _ = (Path(d) / "a.txt").write_text("café", encoding="utf-8")
+    ...     _ = (Path(d) / "b.txt").write_text("café", encoding="latin-1")
+    ...     print(read_text(Path(d) / "a.txt"))
+    ...     read_text(Path(d) / "b.txt")
+    café
+    Traceback (most recent call last):
+    dppio.errors.InputError: not UTF-8 text
+    """
+    try:
+        return read_input(path, limit=limit).decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError("not UTF-8 text") from None
 
 
 def open_input(path: str | Path) -> BinaryIO:

@@ -132,11 +132,9 @@ def evaluate(
 
     Examples
     --------
-    >>> import networkx as nx
     >>> from solver.distances import distances_from, distances_to
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> net = Network.from_networkx(g)   # s=0, g2=1, g1=2
+    >>> from solver.instance import triangle
+    >>> net = triangle().network   # s=0, g2=1, g1=2
     >>> always_g1 = lambda walk: [Fraction(1)] * (len(walk) - 1)
     >>> direct = [StrategyPath.along(net, walk, Fraction(1), "direct") for walk in ((0, 2), (0, 1))]
     >>> ev = evaluate(net, always_g1, direct[:1], direct[1:], b1=Fraction(7, 10),

@@ -14,7 +14,7 @@ from solver.errors import InvalidInstanceError
 from solver.network import Network
 from solver.numbers import parse_number
 
-__all__ = ["Instance"]
+__all__ = ["Instance", "triangle"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -187,6 +187,21 @@ class Instance:
     def b2(self) -> Fraction:
         """Prior of the secondary goal."""
         return Fraction(self.prior[1 - self.primary_slot])
+
+
+def triangle() -> Instance:
+    """The README's running example: ``s -> g2`` (2), ``g2 -> g1`` (2), ``s -> g1`` (3),
+    goals ``g1, g2`` with the prior ``7/10, 3/10`` (``examples/triangle.json``); U* = 12/5.
+
+    Examples
+    --------
+    >>> inst = triangle()
+    >>> inst.start, inst.goals, str(inst.b1)
+    ('s', ('g1', 'g2'), '7/10')
+    """
+    g = nx.Graph()
+    g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    return Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))
 
 
 def _cell(x: Any) -> tuple[int, int]:

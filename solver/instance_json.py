@@ -378,10 +378,8 @@ def instance_to_json(inst: Instance) -> dict[str, Any]:
 
     Examples
     --------
-    >>> import networkx as nx
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> doc = instance_to_json(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
+    >>> from solver.instance import triangle
+    >>> doc = instance_to_json(triangle())
     >>> doc["goals"], doc["prior"], doc["graph"]["edges"][0]
     (['g1', 'g2'], ['7/10', '3/10'], {'source': 's', 'target': 'g2', 'weight': '2'})
     >>> instance_from_json(doc).b1

@@ -12,7 +12,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from dppio.files import read_input
+from dppio.files import read_text
 from dppio.limits import MAX_JSON_DEPTH, check_numeral
 from solver.errors import InstanceFormatError, InvalidInstanceError
 
@@ -53,15 +53,11 @@ def read_json(path: str | Path) -> Any:
     """
     p = Path(path)
     try:
-        raw = read_input(p)
+        text = read_text(p)
     except OSError as exc:
         raise InstanceFormatError(f"{p}: cannot read file ({exc.strerror})") from None
     except ValueError as exc:
         raise InstanceFormatError(f"{p}: cannot read file ({exc})") from None
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InstanceFormatError(f"{p}: cannot read file (not UTF-8 text)") from None
     try:
         return parse_json_text(text)
     except InstanceFormatError as exc:

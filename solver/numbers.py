@@ -33,6 +33,7 @@ __all__ = [
     "NumberMode",
     "format_number",
     "parse_number",
+    "pivot",
     "solve_exact",
 ]
 
@@ -287,10 +288,24 @@ def solve_exact(rows: list[list[Fraction]], rhs: list[Fraction]) -> list[Fractio
         if p is None:
             return None
         mat[c], mat[p] = mat[p], mat[c]
-        piv = mat[c][c]
-        mat[c] = [x / piv for x in mat[c]]
-        for r in range(n):
-            if r != c and mat[r][c]:
-                f = mat[r][c]
-                mat[r] = [x - f * y for x, y in zip(mat[r], mat[c], strict=True)]
+        pivot(mat, c, c)
     return [mat[i][n] for i in range(n)]
+
+
+def pivot(rows: list[list[Fraction]], i: int, j: int) -> None:
+    """One exact pivot step in place: divide row ``i`` by ``rows[i][j]`` (non-zero), then
+    clear column ``j`` from every other row (Gauss-Jordan elimination, simplex tableaus).
+
+    Examples
+    --------
+    >>> rows = [[Fraction(2), Fraction(4)], [Fraction(1), Fraction(3)]]
+    >>> pivot(rows, 0, 0)
+    >>> [[str(x) for x in row] for row in rows]
+    [['1', '2'], ['0', '1']]
+    """
+    piv = rows[i][j]
+    rows[i] = [x / piv for x in rows[i]]
+    for k, row in enumerate(rows):
+        if k != i and row[j]:
+            f = row[j]
+            rows[k] = [x - f * y for x, y in zip(row, rows[i], strict=True)]

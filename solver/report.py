@@ -45,11 +45,9 @@ def summarize(eq: Equilibrium) -> str:
 
     Examples
     --------
-    >>> import networkx as nx
-    >>> from solver import Instance, solve
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> print(summarize(solve(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))))
+    >>> from solver import solve
+    >>> from solver.instance import triangle
+    >>> print(summarize(solve(triangle())))
     start 's'; primary goal g1 = 'g1' (prior 7/10), secondary goal g2 = 'g2' (prior 3/10)
     mode: exact (rational)
     <BLANKLINE>

@@ -96,10 +96,8 @@ class PairEvaluator:
 
     Examples
     --------
-    >>> import networkx as nx
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> game = PairEvaluator.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
+    >>> from solver.instance import triangle
+    >>> game = PairEvaluator.of(triangle())
     >>> r = game.pair("sigma*", "gamma*")
     >>> str(r.U), str(r.VoI)
     ('12/5', '1/9')

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from dppio.files import read_input
+from dppio.files import read_text
 from dppverify.cli_conventions import (
     PhaseBar,
     output_file_option,
@@ -105,7 +105,7 @@ def plot_voi_command(csv_file: str, output: str, progress: bool | None) -> None:
     from solver.plots import plot_voi, save_figure
 
     try:
-        text = read_input(csv_file).decode("utf-8")
+        text = read_text(csv_file)
     except (OSError, ValueError) as exc:
         raise InvalidInstanceError(f"{csv_file}: cannot read file ({exc})") from None
     try:

@@ -49,6 +49,7 @@ from typing import Any, cast
 
 import numpy as np
 
+from dppio.files import read_input, read_text
 from solver.errors import DPPError, InvalidInstanceError
 from solver.experiments.batch_csv import (
     FIELDS,
@@ -169,20 +170,14 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
     >>> total, len(tasks), tasks[0].scenarios[0].line
     (32, 4, 2)
     """
-    from dppio.files import read_input
-
     path = Path(scen)
     try:
-        raw = read_input(path)
+        text = read_text(path)
     except OSError as exc:
         raise InvalidInstanceError(f"{scen}: cannot read the .scen file "
                                    f"({exc.strerror or exc})") from None
-    except ValueError as exc:
+    except ValueError as exc:  # larger than the limit, not UTF-8 text
         raise InvalidInstanceError(f"{scen}: {exc}") from None
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InvalidInstanceError(f"{scen}: not a UTF-8 text file") from None
     scenarios = checker.parse_scen(text)
     if not scenarios:
         raise InvalidInstanceError(f"{scen}: no scenario lines")
@@ -373,7 +368,10 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     ...                                                                  BatchConfig(), checker)
     ((8, 8), (24, 32))
     """
-    raw = Path(scen).read_bytes() if Path(scen).is_file() else b""
+    try:  # bounded; an unreadable file is reported by scen_tasks below
+        raw = read_input(scen)
+    except (OSError, ValueError):
+        raw = b""
     config = BatchConfig(config.seed, config.prior, config.connectivity,
                          hashlib.sha256(raw).hexdigest(), config.maps, config.route, checker.rule)
     lock, created = lock_output(output)
