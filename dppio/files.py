@@ -102,12 +102,12 @@ def read_text(path: str | Path, *, limit: int = MAX_INPUT_BYTES) -> str:
 
     Examples
     --------
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     _ = (Path(d) / "a.txt").write_text("café", encoding="utf-8")
-    ...     _ = (Path(d) / "b.txt").write_text("café", encoding="latin-1")
-    ...     print(read_text(Path(d) / "a.txt"))
-    ...     read_text(Path(d) / "b.txt")
-    café
+    >>> d = Path(tempfile.mkdtemp())
+    >>> _ = (d / "a.txt").write_text("café", encoding="utf-8")
+    >>> _ = (d / "b.txt").write_text("café", encoding="latin-1")
+    >>> read_text(d / "a.txt")
+    'café'
+    >>> read_text(d / "b.txt")
     Traceback (most recent call last):
     dppio.errors.InputError: not UTF-8 text
     """
