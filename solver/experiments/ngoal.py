@@ -28,7 +28,7 @@ from __future__ import annotations
 import csv
 import io
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
@@ -179,13 +179,17 @@ def ngoal_csv(rows: Sequence[NGoalRow]) -> str:
     >>> ngoal_csv(ngoal_series(grid, (2, 0), [(0, 3), (2, 3)], map_name="t")).splitlines()[1]
     't,2,equal,1/2 1/2,5/2,4,3/8,1/2,0,not run'
     """
+    return _csv(("map", "n_goals", "prior_kind", "prior", "U", "U_bar", "VoI", "deception",
+                 "detour", "certified"),
+                ((r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.U,
+                  r.U_bar, r.VoI, r.deception, r.detour, r.certified) for r in rows))
+
+
+def _csv(header: Sequence[str], rows: Iterable[Sequence[object]]) -> str:
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["map", "n_goals", "prior_kind", "prior", "U", "U_bar", "VoI", "deception",
-                "detour", "certified"])
-    for r in rows:
-        w.writerow([r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.U,
-                    r.U_bar, r.VoI, r.deception, r.detour, r.certified])
+    w.writerow(header)
+    w.writerows(rows)
     return buf.getvalue()
 
 
@@ -298,14 +302,10 @@ def value_csv(rows: Sequence[ValueRow]) -> str:
     map,n_goals,prior_kind,prior,V,U_bar,VoI,layers,V_exact
     t,2,equal,1/2 1/2,5/2,4,3/8,3,true
     """
-    buf = io.StringIO()
-    w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["map", "n_goals", "prior_kind", "prior", "V", "U_bar", "VoI", "layers",
-                "V_exact"])
-    for r in rows:
-        w.writerow([r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.value,
-                    r.complete, r.voi, r.layers, "true" if r.exact else "false"])
-    return buf.getvalue()
+    return _csv(("map", "n_goals", "prior_kind", "prior", "V", "U_bar", "VoI", "layers",
+                 "V_exact"),
+                ((r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.value,
+                  r.complete, r.voi, r.layers, "true" if r.exact else "false") for r in rows))
 
 
 def value_figure(rows: Sequence[ValueRow], title: str) -> Any:
