@@ -69,7 +69,7 @@ class Trajectory:
 
 @dataclass(frozen=True)
 class _PathRun:
-    """One Attacker path evaluated against the Defender (internal)."""
+    """One Attacker walk evaluated against the Defender (internal)."""
 
     theta: int
     path: StrategyPath
@@ -97,7 +97,7 @@ class Evaluation:
 
     @cached_property
     def trajectories(self) -> tuple[Trajectory, ...]:
-        """Per path: σ(g1), Bayes beliefs ``b^1_t`` (eq. (2)) and cumulative allocation."""
+        """Per walk: σ(g1), Bayes beliefs ``b^1_t`` (eq. (2)) and cumulative allocation."""
         all_paths = [(r.theta, r.path) for r in self._runs]
         out = []
         for run in self._runs:

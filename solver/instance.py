@@ -163,30 +163,30 @@ class Instance:
 
     # ------------------------------------------------------------------ derived
     @property
-    def primary_slot(self) -> int:
-        """Position (0 or 1) of the primary goal in ``goals`` and ``prior`` (larger prior;
-        ``0`` at a tie)."""
+    def primary_index(self) -> int:
+        """The goal index (0 or 1) of the primary goal: its position in ``goals`` and ``prior``
+        (the larger prior; ``0`` at a tie)."""
         return 0 if self.prior[0] >= self.prior[1] else 1
 
     @property
     def primary(self) -> Hashable:
         """The primary goal ``g1``."""
-        return self.goals[self.primary_slot]
+        return self.goals[self.primary_index]
 
     @property
     def secondary(self) -> Hashable:
         """The secondary goal ``g2``."""
-        return self.goals[1 - self.primary_slot]
+        return self.goals[1 - self.primary_index]
 
     @property
     def b1(self) -> Fraction:
         """Prior of the primary goal."""
-        return Fraction(self.prior[self.primary_slot])
+        return Fraction(self.prior[self.primary_index])
 
     @property
     def b2(self) -> Fraction:
         """Prior of the secondary goal."""
-        return Fraction(self.prior[1 - self.primary_slot])
+        return Fraction(self.prior[1 - self.primary_index])
 
 
 def triangle() -> Instance:

@@ -69,7 +69,7 @@ def pair_label(defender: str, attacker: str) -> str:
 
 @dataclass(frozen=True)
 class Attacker:
-    """A mixed Attacker: per type, paths (node indices) with probabilities summing to 1."""
+    """A mixed Attacker: per type, walks (node indices) with probabilities summing to 1."""
 
     name: str
     primary: tuple[StrategyPath, ...]
@@ -161,7 +161,7 @@ class PairEvaluator:
 
     @cached_property
     def _masters_sardina(self) -> dict[str, Attacker]:
-        """π_d1–π_d4 (:mod:`solver.masters_sardina`): one deterministic path per type."""
+        """π_d1–π_d4 (:mod:`solver.masters_sardina`): one deterministic walk per type."""
         net, out = self.instance.network, {}
         for name, (p1, p2) in plan_all(self.instance).items():
             out[name] = Attacker(name, (StrategyPath.along(net, p1.walk, Fraction(1),

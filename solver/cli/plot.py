@@ -27,7 +27,7 @@ def plot_group() -> None:
     """Figures like the paper's Figures 7 to 9 (PNG, SVG or PDF; the suffix of -o picks)."""
 
 
-@plot_group.command("map", short_help="The grid with the equilibrium paths and baselines.")
+@plot_group.command("map", short_help="The grid with the equilibrium walks and baselines.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
@@ -35,7 +35,7 @@ def plot_group() -> None:
 @progress_option
 def plot_map_command(instance: str | None, grid: MapRequest | None,
                      output: str, no_baselines: bool, progress: bool | None) -> None:
-    """Grid, obstacles, equilibrium paths by phase with mixing probabilities, baselines.
+    """Grid, obstacles, equilibrium walks by phase with mixing probabilities, baselines.
 
     INSTANCE is a grid instance: a --map grid, or the instance JSON that
     `dpp solve --map ... --save-instance FILE` writes. Without either: the bundled 10x10 map.
@@ -58,7 +58,7 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     status("wrote " + ", ".join(map(str, files)))
 
 
-@plot_group.command("beliefs", short_help="Beliefs and expected allocation along the paths.")
+@plot_group.command("beliefs", short_help="Beliefs and expected allocation along the walks.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
@@ -67,7 +67,7 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
 @progress_option
 def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
                          output: str, defender: str, progress: bool | None) -> None:
-    """Belief b1_t and cumulative expected allocation to the true goal along each path.
+    """Belief b1_t and cumulative expected allocation to the true goal along each walk.
 
     \b
     Examples:
