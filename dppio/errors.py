@@ -1,11 +1,19 @@
 """The errors of the shared edges: an output that cannot be written, a limit exceeded.
 
-Both command lines treat a :class:`DppioError` as bad input (one line, exit 2).
+Each package raises its own error classes at its edges: the checks and writers of
+:mod:`dppio` take ``error=`` (the class to raise, called with the one-line message) and default
+to the classes here. The ``dpp`` command line treats a :class:`DppioError` as bad input too
+(one line, exit 2).
 """
 
 from __future__ import annotations
 
-__all__ = ["DppioError", "InputError", "LimitError", "OutputError"]
+from collections.abc import Callable
+
+__all__ = ["DppioError", "ErrorClass", "InputError", "LimitError", "OutputError"]
+
+ErrorClass = Callable[[str], Exception]
+"""What a check or a writer raises: called with the one-line message."""
 
 
 class DppioError(Exception):

@@ -34,7 +34,7 @@ from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any, BinaryIO
 
-from dppio.errors import InputError, LimitError, OutputError
+from dppio.errors import ErrorClass, InputError, LimitError, OutputError
 from dppio.limits import MAX_INPUT_BYTES
 
 __all__ = [
@@ -141,8 +141,8 @@ def open_input(path: str | Path) -> BinaryIO:
         raise
 
 
-def write_files(files: Mapping[Any, str | bytes], *,
-                remove: Iterable[str | Path] = ()) -> tuple[Path, ...]:
+def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path] = (),
+                error: ErrorClass = OutputError) -> tuple[Path, ...]:
     """Write several files together: all of them or none.
 
     Parameters
@@ -151,6 +151,8 @@ def write_files(files: Mapping[Any, str | bytes], *,
         Target path -> content (``str`` is written as UTF-8).
     remove : iterable of paths
         Files to delete once the new ones are in place (stale files of an earlier write).
+    error : callable
+        The error class to raise (the caller's package's), called with the message.
 
     Returns
     -------
@@ -160,8 +162,8 @@ def write_files(files: Mapping[Any, str | bytes], *,
     Raises
     ------
     OutputError
-        An empty path, a target that is a folder, or any error while writing; the message
-        names the user's path. Nothing is left behind.
+        (or ``error``) An empty path, a target that is a folder, or any error while writing;
+        the message names the user's path. Nothing is left behind.
 
     Examples
     --------
@@ -172,8 +174,11 @@ def write_files(files: Mapping[Any, str | bytes], *,
     >>> write_files({"": "x"})
     Traceback (most recent call last):
     dppio.errors.OutputError: the output path is empty
+    >>> write_files({"": "x"}, error=PermissionError)
+    Traceback (most recent call last):
+    PermissionError: the output path is empty
     """
-    targets = [(_target(p), c) for p, c in files.items()]
+    targets = [(_target(p, error), c) for p, c in files.items()]
     regular = [(t, c) for t, c in targets if not _is_special(t)]
     special = [(t, c) for t, c in targets if _is_special(t)]
     created: list[Path] = []
@@ -203,7 +208,7 @@ def write_files(files: Mapping[Any, str | bytes], *,
     except OSError as exc:
         _clean(temps, created)
         reason = exc.strerror or str(exc)
-        raise OutputError(f"cannot write {current}: {reason}") from None
+        raise error(f"cannot write {current}: {reason}") from None
     except BaseException:
         _clean(temps, created)
         raise
@@ -212,7 +217,8 @@ def write_files(files: Mapping[Any, str | bytes], *,
     return tuple(t for t, _ in targets)
 
 
-def write_atomic(path: str | Path, text: str | bytes) -> Path:
+def write_atomic(path: str | Path, text: str | bytes, *, error: ErrorClass = OutputError
+                 ) -> Path:
     """Write one file atomically (:func:`write_files` with one target).
 
     Examples
@@ -226,17 +232,17 @@ def write_atomic(path: str | Path, text: str | bytes) -> Path:
     ...     print(target.read_text(), sorted(p.name for p in Path(d).iterdir()))
     new ['profile.json']
     """
-    return write_files({Path(path): text})[0]
+    return write_files({Path(path): text}, error=error)[0]
 
 
 def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Path | None], *,
-                           option: str = "-o") -> None:
+                           option: str = "-o", error: ErrorClass = OutputError) -> None:
     """Refuse an output path that names one of the inputs (the same file, by any path).
 
     Raises
     ------
     OutputError
-        One line naming the path.
+        (or ``error``) One line naming the path.
 
     Examples
     --------
@@ -260,8 +266,8 @@ def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Pat
         except OSError:
             same = os.path.realpath(out) == os.path.realpath(path)
         if same and (not out.exists() or out.is_file()):
-            raise OutputError(f"{option} {out} is an input of this command; refusing to "
-                              "overwrite it (give another path)")
+            raise error(f"{option} {out} is an input of this command; refusing to "
+                        "overwrite it (give another path)")
 
 
 def _is_special(target: Path) -> bool:
@@ -292,12 +298,12 @@ def _stream(target: Path, data: bytes) -> None:
         os.close(fd)
 
 
-def _target(path: str | Path) -> Path:
+def _target(path: str | Path, error: ErrorClass) -> Path:
     if str(path) == "":
-        raise OutputError("the output path is empty")
+        raise error("the output path is empty")
     p = Path(path)
     if p.is_dir():
-        raise OutputError(f"cannot write {p}: it is a folder")
+        raise error(f"cannot write {p}: it is a folder")
     if p.is_symlink() and p.is_file():  # keep the link; replace the file it points to
         return Path(os.path.realpath(p))
     return p

@@ -20,10 +20,10 @@ dppio.errors.LimitError: weight: the exponent of '1e999999999' is beyond the lim
 from __future__ import annotations
 
 import re
-from collections.abc import Callable, Iterable
+from collections.abc import Iterable
 from fractions import Fraction
 
-from dppio.errors import LimitError
+from dppio.errors import ErrorClass, LimitError
 
 __all__ = [
     "MAX_EXPONENT",
@@ -34,14 +34,10 @@ __all__ = [
     "MAX_NUMBER_DIGITS",
     "MAX_NUMERAL_CHARS",
     "MAX_PREFIXES_LIMIT",
-    "ErrorClass",
     "check_float_weights",
     "check_numeral",
     "check_rational",
 ]
-
-ErrorClass = Callable[[str], Exception]
-"""What a check raises: called with the one-line message."""
 
 MAX_INPUT_BYTES = 64 * 1024 * 1024
 """Largest input file read (instance, profile, certificate, ``.map``, ``.scen``, CSV): 64 MiB."""

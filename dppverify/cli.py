@@ -17,6 +17,7 @@ from typing import Any
 
 import click
 
+from dppio.limits import MAX_PREFIXES_LIMIT
 from dppverify.audit_cli import audit_command
 from dppverify.belongs import profile_mismatch
 from dppverify.certificate import Certificate, CheckRecord
@@ -44,7 +45,7 @@ from dppverify.instance import GameInstance as AnyGame
 from dppverify.instance import Instance, load_instance
 from dppverify.interrupts import Terminated, as_signal, exit_code, signals_as_exceptions
 from dppverify.interrupts import message as interrupt_message
-from dppverify.limits import MAX_HORIZON, MAX_PREFIXES_LIMIT, MAX_TRIALS
+from dppverify.limits import MAX_HORIZON, MAX_TRIALS
 from dppverify.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.ngoal.certify import certify_ngoal

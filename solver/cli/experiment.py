@@ -9,7 +9,6 @@ from typing import Any
 
 import click
 
-from dppio.errors import OutputError
 from dppio.files import write_files
 from dppverify.cli_conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.map_options import MapRequest, map_options
@@ -21,7 +20,7 @@ from solver.cli.common import (
     int_list,
 )
 from solver.cli.experiment_ngoal import ngoal_command
-from solver.errors import InvalidInstanceError
+from solver.errors import InvalidInstanceError, OutputError
 from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE
 
 __all__ = ["experiment_group"]
@@ -76,7 +75,8 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
         raise OutputError("--output-dir: the output path is empty")
     if output_dir is not None:
         d = Path(output_dir)
-        write_files({d / "compare.csv": compare_csv(results), d / "compare.txt": text})
+        write_files({d / "compare.csv": compare_csv(results), d / "compare.txt": text},
+                    error=OutputError)
         status(f"wrote {d / 'compare.csv'} and {d / 'compare.txt'}")
 
 
@@ -149,7 +149,8 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
         click.echo(text, nl=False)
     if output_dir is not None:
         out = Path(output_dir)
-        write_files({out / "baselines.csv": rows_csv(rows), out / "summary.txt": text})
+        write_files({out / "baselines.csv": rows_csv(rows), out / "summary.txt": text},
+                    error=OutputError)
         figures = save_figure(plot_baselines(rows), out / "baselines.png")
         status(f"wrote {out / 'baselines.csv'}, {out / 'summary.txt'}, "
                + ", ".join(str(f) for f in figures))
@@ -216,7 +217,7 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
         "goals": [list(g) for g in config.goals], "prior": list(config.prior)},
         **summary.to_json()})
     write_files({d / "density.csv": rows_to_csv(rows), d / "summary.txt": summary.text() + "\n",
-                 d / "summary.json": summary_json})
+                 d / "summary.json": summary_json}, error=OutputError)
     if as_json:
         click.echo(summary_json, nl=False)
     else:

@@ -15,7 +15,7 @@ from dppio.files import write_files
 from dppverify.cli_conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.map_options import _CellsOption as CellsOption
 from solver.cli.common import dumps
-from solver.errors import InvalidInstanceError
+from solver.errors import InvalidInstanceError, OutputError
 
 if TYPE_CHECKING:
     from dppverify.movingai import GridMap
@@ -143,7 +143,7 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
     run = _values if values_only else _equilibria
     csv_text, png = run(placed, max_goals, as_json, want_progress(progress))
     d = Path(output_dir)
-    write_files({d / "ngoal.csv": csv_text, d / "ngoal.png": png})
+    write_files({d / "ngoal.csv": csv_text, d / "ngoal.png": png}, error=OutputError)
     status(f"wrote {d / 'ngoal.csv'} ({len(csv_text.splitlines()) - 1} rows) and "
            f"{d / 'ngoal.png'}")
 

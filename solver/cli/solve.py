@@ -19,7 +19,7 @@ from dppverify.cli_conventions import (
 )
 from dppverify.map_options import MapRequest, instance_or_map, map_options
 from solver.cli.common import START_IS_GOAL, dumps, load_with_digest
-from solver.errors import DPPError, InvalidInstanceError
+from solver.errors import DPPError, InvalidInstanceError, OutputError
 
 if TYPE_CHECKING:
     from solver.ngoal_instance import NGame
@@ -64,8 +64,9 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
     inputs = [instance, grid.path if grid is not None else None]
-    refuse_input_as_output(output, inputs, option="-o")
-    refuse_input_as_output(save_instance, inputs, option="--save-instance")
+    refuse_input_as_output(output, inputs, option="-o", error=OutputError)
+    refuse_input_as_output(save_instance, inputs, option="--save-instance",
+                           error=OutputError)
     ngame = _ngoal_game(instance, grid)
     if ngame is not None:  # N > 2 goals: the coalition construction, certified before writing
         _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance,
@@ -94,9 +95,9 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     finally:
         bar.close()
     if output is not None:
-        write_atomic(output, dumps(doc))
+        write_atomic(output, dumps(doc), error=OutputError)
     if save_instance is not None and instance_text is not None:
-        write_atomic(save_instance, instance_text)
+        write_atomic(save_instance, instance_text, error=OutputError)
     if output is not None:  # the one output convention: -o writes, stdout stays empty
         u, voi = (f"{x:.10g}" if isinstance(x, float) else str(x)  # float mode: 10 digits
                   for x in (doc["value"]["U"], doc["value"]["VoI"]))
@@ -191,9 +192,9 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
         instance_text = dumps(ngame_to_json(game) if grid is None else
                               _map_document(grid, Path(save_instance).parent))
     if output is not None:
-        write_atomic(output, text)
+        write_atomic(output, text, error=OutputError)
     if save_instance is not None and instance_text is not None:
-        write_atomic(save_instance, instance_text)
+        write_atomic(save_instance, instance_text, error=OutputError)
     if output is not None:  # the one output convention: -o writes, stdout stays empty
         status(f"wrote {output}: U = {doc['value']['U']}, VoI = {doc['value']['VoI']} "
                f"(N = {game.n_goals} goals, certified)")

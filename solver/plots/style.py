@@ -131,5 +131,5 @@ def save_figure(fig: Figure, out: str | Path) -> list[Path]:
         fig.savefig(buf, format=fmt, dpi=150, bbox_inches="tight")
     finally:
         plt.close(fig)
-    write_files({p: buf.getvalue()})  # atomic; missing folders are created
+    write_files({p: buf.getvalue()}, error=OutputError)  # atomic; missing folders created
     return [p]
