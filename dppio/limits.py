@@ -102,12 +102,8 @@ def check_numeral(text: str, *, where: str, error: ErrorClass = LimitError) -> N
 
 def check_rational(x: object, *, where: str, error: ErrorClass = LimitError) -> None:
     """Refuse a rational whose numerator or denominator has more than
-    :data:`MAX_NUMBER_DIGITS` digits.
-
-    Raises
-    ------
-    LimitError
-        (or ``error``) One line naming ``where``.
+    :data:`MAX_NUMBER_DIGITS` digits: ``error`` (default :class:`~dppio.errors.LimitError`),
+    one line naming ``where``.
 
     Examples
     --------
@@ -129,12 +125,8 @@ def check_rational(x: object, *, where: str, error: ErrorClass = LimitError) -> 
 def check_float_weights(weights: Iterable[float | Fraction | int], *,
                         where: str = "graph.edges", error: ErrorClass = LimitError) -> None:
     """Refuse float-mode weights whose ratio largest / smallest is beyond
-    :data:`MAX_FLOAT_WEIGHT_RATIO`.
-
-    Raises
-    ------
-    LimitError
-        (or ``error``) One line naming the limit.
+    :data:`MAX_FLOAT_WEIGHT_RATIO`: ``error`` (default :class:`~dppio.errors.LimitError`),
+    one line naming the limit.
 
     Examples
     --------

@@ -30,18 +30,8 @@ def path_label(label: str) -> str:
 
 
 def summarize(eq: Equilibrium) -> str:
-    """A multi-line summary: goals, ξ² with σ* per step and phases, the primary mixture,
-    the type costs, value and VoI.
-
-    Parameters
-    ----------
-    eq : Equilibrium
-        The solver's result (:func:`solver.solve`).
-
-    Returns
-    -------
-    str
-        What ``dpp solve`` prints.
+    """What ``dpp solve`` prints for the solver's result ``eq``: goals, ξ² with σ* per step and
+    phases, the primary mixture, the type costs, value and VoI (several lines).
 
     Examples
     --------

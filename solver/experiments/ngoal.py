@@ -31,7 +31,7 @@ import time
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 from scipy import ndimage
@@ -61,9 +61,21 @@ class GameValue:
 Valuer = Callable[[Cell, Sequence[Cell], Sequence[Fraction]], GameValue]
 
 
-def _priors(n: int) -> tuple[tuple[str, tuple[Fraction, ...]], ...]:
-    """The two priors of the series for ``n`` goals: equal and skewed."""
-    return (("equal", tuple(Fraction(1, n) for _ in range(n))), ("skewed", skewed_prior(n)))
+Row = TypeVar("Row")
+
+
+def _series(n_max: int, row: Callable[[int, str, tuple[Fraction, ...]], Row],
+            progress: Callable[[Row], None] | None) -> list[Row]:
+    """``row(N, prior kind, prior)`` for ``N = 2 … n_max`` and the two priors of the series,
+    equal (``1/N``) and skewed (:func:`skewed_prior`), each passed to ``progress`` when done."""
+    out = []
+    for n in range(2, n_max + 1):
+        for kind, prior in (("equal", tuple(Fraction(1, n) for _ in range(n))),
+                            ("skewed", skewed_prior(n))):
+            out.append(row(n, kind, prior))
+            if progress is not None:
+                progress(out[-1])
+    return out
 
 
 def skewed_prior(n: int) -> tuple[Fraction, ...]:
@@ -147,27 +159,21 @@ def ngoal_series(blocked: np.ndarray, start: Cell, goals: Sequence[Cell], *, map
     >>> [(r.n_goals, r.prior_kind, str(r.U), str(r.VoI), r.certified) for r in rows][:2]
     [(2, 'equal', '5/2', '3/8', 'not run'), (2, 'skewed', '10/3', '3/13', 'not run')]
     """
-    out = []
-    for n in range(2, min(len(goals), max_goals) + 1):
-        for kind, prior in _priors(n):
-            t0 = time.perf_counter()
-            eq = solve_ngoal(ngame_from_grid(blocked, start, goals[:n],
-                                             [str(b) for b in prior]))
-            t1 = time.perf_counter()
-            verdict = "not run" if certify is None else certify(start, goals[:n], prior, eq)
-            t2 = time.perf_counter()
-            walked = sum((b * x for b, x in zip(prior, eq.walked, strict=True)), Fraction(0))
-            guarded = sum((b * x for b, x in zip(prior, eq.guarded, strict=True)), Fraction(0))
-            terminal = eq.U - guarded
-            travelled = walked + terminal
-            row = NGoalRow(map_name, n, kind, prior, eq.U, eq.U_bar, eq.VoI,
-                           1 - guarded / walked if walked else Fraction(0),
-                           travelled / eq.U_bar - 1 if eq.U_bar else Fraction(0), verdict,
-                           t1 - t0, t2 - t1)
-            if progress is not None:
-                progress(row)
-            out.append(row)
-    return out
+    def row(n: int, kind: str, prior: tuple[Fraction, ...]) -> NGoalRow:
+        t0 = time.perf_counter()
+        eq = solve_ngoal(ngame_from_grid(blocked, start, goals[:n], [str(b) for b in prior]))
+        t1 = time.perf_counter()
+        verdict = "not run" if certify is None else certify(start, goals[:n], prior, eq)
+        t2 = time.perf_counter()
+        walked = sum((b * x for b, x in zip(prior, eq.walked, strict=True)), Fraction(0))
+        guarded = sum((b * x for b, x in zip(prior, eq.guarded, strict=True)), Fraction(0))
+        travelled = walked + eq.U - guarded  # the walks and the terminal distances
+        return NGoalRow(map_name, n, kind, prior, eq.U, eq.U_bar, eq.VoI,
+                        1 - guarded / walked if walked else Fraction(0),
+                        travelled / eq.U_bar - 1 if eq.U_bar else Fraction(0), verdict,
+                        t1 - t0, t2 - t1)
+
+    return _series(min(len(goals), max_goals), row, progress)
 
 
 def ngoal_csv(rows: Sequence[NGoalRow]) -> str:
@@ -277,18 +283,14 @@ def value_series(start: Cell, goals: Sequence[Cell], value: Valuer, *, map_name:
     ...  value_series((2, 0), [(0, 3), (2, 3)], value)]
     [(2, 'equal', '5/2', '3/8'), (2, 'skewed', '5/2', '3/8')]
     """
-    out = []
-    for n in range(2, min(len(goals), max_goals) + 1):
-        for kind, prior in _priors(n):
-            t0 = time.perf_counter()
-            v = value(start, goals[:n], prior)
-            row = ValueRow(map_name, n, kind, prior, v.value, v.complete,
-                           (v.complete - v.value) / v.complete, v.layers,
-                           time.perf_counter() - t0, v.exact)
-            if progress is not None:
-                progress(row)
-            out.append(row)
-    return out
+    def row(n: int, kind: str, prior: tuple[Fraction, ...]) -> ValueRow:
+        t0 = time.perf_counter()
+        v = value(start, goals[:n], prior)
+        return ValueRow(map_name, n, kind, prior, v.value, v.complete,
+                        (v.complete - v.value) / v.complete, v.layers, time.perf_counter() - t0,
+                        v.exact)
+
+    return _series(min(len(goals), max_goals), row, progress)
 
 
 def value_csv(rows: Sequence[ValueRow]) -> str:
