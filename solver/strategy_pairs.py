@@ -1,7 +1,8 @@
 """One exact evaluation for any (Defender, Attacker) pair: U¹, U², U and VoI.
 
 Defenders: ``"sigma*"`` (the equilibrium σ*, eq. (7)) and ``"sigma'"`` (greedy on Dragan's
-belief, :mod:`solver.greedy_defender`), or any schedule function (walk -> σ(g1) per step).
+belief, :mod:`solver.literature.greedy_defender`), or any schedule function (walk -> σ(g1) per
+step).
 Attackers: ``"gamma*"`` (the equilibrium mixture, eqs. (9) and (15)), ``"ambiguity"`` and
 ``"exaggeration"`` (each type deterministically takes its ξ^{θ,am} / ξ^{θ,ex}, eq. (18)), or
 any :class:`Attacker`. Values come from :func:`solver.evaluation.evaluate` (eqs. (3), (4) and
@@ -18,17 +19,17 @@ from functools import cached_property
 
 import numpy as np
 
-from solver.deceptive_paths import Kind, deceptive_path
 from solver.distances import distances_from, distances_to
-from solver.dragan_belief import DraganObserver
 from solver.equilibrium import Equilibrium, solve
 from solver.errors import InvalidInstanceError
 from solver.evaluation import Evaluation, Schedule, evaluate
-from solver.greedy_defender import DraganDefender
 from solver.instance import Instance
-from solver.masters_sardina import LABELS as MS_LABELS
-from solver.masters_sardina import STRATEGIES as MS_STRATEGIES
-from solver.masters_sardina import plan_all
+from solver.literature.deceptive_paths import Kind, deceptive_path
+from solver.literature.dragan_belief import DraganObserver
+from solver.literature.greedy_defender import DraganDefender
+from solver.literature.masters_sardina import LABELS as MS_LABELS
+from solver.literature.masters_sardina import STRATEGIES as MS_STRATEGIES
+from solver.literature.masters_sardina import plan_all
 from solver.numbers import Number
 from solver.strategy import StrategyPath
 
@@ -45,7 +46,7 @@ PAIRS: tuple[tuple[str, str], ...] = (
 
 MS_PAIRS: tuple[tuple[str, str], ...] = tuple(
     (d, a) for a in MS_STRATEGIES for d in DEFENDERS)
-"""Masters & Sardina's π_d1–π_d4 (:mod:`solver.masters_sardina`) against σ* and σ'."""
+"""Masters & Sardina's π_d1–π_d4 (:mod:`solver.literature.masters_sardina`) against σ* and σ'."""
 
 COMPARE_PAIRS = PAIRS + MS_PAIRS
 """What ``dpp experiment compare`` evaluates: the paper's six pairs, then :data:`MS_PAIRS`."""
@@ -161,7 +162,7 @@ class PairEvaluator:
 
     @cached_property
     def _masters_sardina(self) -> dict[str, Attacker]:
-        """π_d1–π_d4 (:mod:`solver.masters_sardina`): one deterministic walk per type."""
+        """π_d1–π_d4 (:mod:`solver.literature.masters_sardina`): one deterministic walk per type."""
         net, out = self.instance.network, {}
         for name, (p1, p2) in plan_all(self.instance).items():
             out[name] = Attacker(name, (StrategyPath.along(net, p1.walk, Fraction(1),

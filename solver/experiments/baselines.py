@@ -2,8 +2,8 @@
 
 Every Attacker of :data:`ATTACKERS_ALL` — the equilibrium γ*, Dragan's ambiguity and
 exaggeration (paper eq. (18)) and Masters & Sardina's π_d1–π_d4
-(:mod:`solver.masters_sardina`) — is evaluated exactly against the equilibrium Defender σ*
-and the observer-based Defender σ' on three sets of instances:
+(:mod:`solver.literature.masters_sardina`) — is evaluated exactly against the equilibrium
+Defender σ* and the observer-based Defender σ' on three sets of instances:
 
 - ``paper10``: the bundled 10×10 map of the comparison (start (9,0), g1 = (0,9) prior 3/5,
   g2 = (0,0) prior 2/5);
@@ -30,7 +30,7 @@ from solver.experiments.compare import paper10_instance
 from solver.experiments.density import DensityConfig
 from solver.experiments.sampling import sample_grid
 from solver.instance import Instance
-from solver.masters_sardina import STRATEGIES
+from solver.literature.masters_sardina import STRATEGIES
 from solver.movingai import read_map
 from solver.strategy_pairs import DEFENDERS, LABELS, PairEvaluator
 

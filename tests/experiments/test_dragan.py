@@ -9,8 +9,8 @@ import mpmath
 import networkx as nx
 import pytest
 
-from solver.dragan_belief import ln_at_least
-from solver.greedy_defender import DraganDefender
+from solver.literature.dragan_belief import ln_at_least
+from solver.literature.greedy_defender import DraganDefender
 from solver.strategy_pairs import PairEvaluator
 from tests.experiments._graphs import literal_belief, random_instance
 

@@ -13,7 +13,13 @@ from solver.distances import distances_to
 from solver.experiments.density import DensityConfig
 from solver.experiments.sampling import sample_grid
 from solver.instance import Instance
-from solver.masters_sardina import STRATEGIES, last_deceptive_point, plan, plan_all, truthful
+from solver.literature.masters_sardina import (
+    STRATEGIES,
+    last_deceptive_point,
+    plan,
+    plan_all,
+    truthful,
+)
 from solver.strategy_pairs import COMPARE_PAIRS, MS_PAIRS, PAIRS, PairEvaluator
 
 
