@@ -28,10 +28,10 @@ from typing import Any, TypeVar
 
 import numpy as np
 
+from dppio.limits import MAX_MAP_CELLS
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_number
 from dppverify.game.instance import GameInstance, Instance, edge_arrays, finish_game
-from dppverify.limits import MAX_MAP_CELLS
 
 __all__ = ["BLOCKED", "PASSABLE", "GridMap", "grid_document", "grid_game", "map_instance",
            "parse_map", "read_map"]

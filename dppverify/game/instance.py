@@ -21,6 +21,7 @@ from typing import Any, TypeVar
 
 import numpy as np
 
+from dppio.limits import check_float_weights
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import INF, Number, normalize
 from dppverify.formats.json_reading import (
@@ -43,7 +44,6 @@ from dppverify.game.distances import (
     uniform_hops,
     unscale,
 )
-from dppverify.limits import check_float_weights
 from dppverify.numbers import NumberMode, number_mode
 
 __all__ = ["GameInstance", "Instance", "Node", "Roles", "arc_arrays", "as_instance",
@@ -444,7 +444,7 @@ def finish_game(cls: type[G], ids: list[Node], index: dict[Node, int], directed:
     Shared by the JSON reader and the ``.map`` reader (:mod:`dppverify.formats.movingai`), so that a
     map read straight into arrays gives the very instance its JSON document gives.
     """
-    if not exact:  # float mode: the weight-ratio limit (dppverify.limits), before any search
+    if not exact:  # float mode: the weight-ratio limit (dppio.limits), before any search
         try:
             check_float_weights(arcs.values if arcs is not None else
                                 [w for row in succ_t for _, w in row])
