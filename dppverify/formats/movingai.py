@@ -29,9 +29,9 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from dppio.limits import MAX_MAP_CELLS
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_number
-from dppverify.limits import MAX_MAP_CELLS
 
 __all__ = ["BLOCKED", "PASSABLE", "GridArcs", "GridMap", "grid_arcs", "grid_document",
            "parse_map", "read_map"]

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 
+from dppio.limits import check_float_weights
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import INF, normalize
 from dppverify.formats.json_reading import Node, node_from_json, parse_number, show_node
@@ -32,7 +33,6 @@ from dppverify.game.distances import (
     unscale,
 )
 from dppverify.game.graph_reading import Rows, known_node, require
-from dppverify.limits import check_float_weights
 
 if TYPE_CHECKING:
     from dppverify.game.instance import Instance
@@ -86,7 +86,7 @@ def game_parts(ids: list[Node], index: dict[Node, int], directed: bool, succ_t: 
     >>> parts.fields["dist_to"], parts.fields["hops"], parts.scaled[0]
     (((1, 0, 1), (2, 1, 0)), (1, 0, 0), 1)
     """
-    if not exact:  # float mode: the weight-ratio limit (dppverify.limits), before any search
+    if not exact:  # float mode: the weight-ratio limit (dppio.limits), before any search
         try:
             check_float_weights(arcs.values if arcs is not None else
                                 [w for row in succ_t for _, w in row])

@@ -144,7 +144,7 @@ def test_for_two_goals_the_rule_is_sigma_star_on_every_walk(seed: int) -> None:
         g.add_edge(e["source"], e["target"], weight=Fraction(e["weight"]))
     two = solve(Instance(g, 0, (1, 2), tuple(Fraction(p) for p in doc["prior"])))
     assert two.U == eq.U
-    primary = two.instance.primary_slot
+    primary = two.instance.primary_index
     net = game.network
     sigma = ProgressDefender(two.instance.network, two.instance.network.index_of(1 if primary
                                                                                 == 0 else 2),

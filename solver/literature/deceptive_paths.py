@@ -6,7 +6,7 @@ to ``g^θ``::
     ξ^{θ,ex} ∈ argmin Σ_{t=0..T} P(g^θ | ξ[0:t])                          (18a)
     ξ^{θ,am} ∈ argmin Σ_{t=0..T} |P(g^θ | ξ[0:t]) − P(g^{−θ} | ξ[0:t])|   (18b)
 
-with ``P`` Dragan's belief (eq. (17), path-length cost; :mod:`solver.dragan`).
+with ``P`` Dragan's belief (eq. (17), path-length cost; :mod:`solver.literature.dragan_belief`).
 
 The DP and its horizon
 ----------------------
@@ -21,9 +21,9 @@ a shortest-path problem with node costs, solved by Dijkstra backwards from ``g^�
   paper's Definition 4). Removing a cycle from a walk removes non-negative terms, so the
   minimum over walks equals the minimum over simple paths and is attained by one; the
   returned path is simple.
-- **Numbers**: each distinct term is computed by mpmath at 60 digits (``solver.dragan.HI``)
-  and rounded to a fixed point integer with :data:`SCALE_BITS` fractional bits; sums are
-  then exact integers.
+- **Numbers**: each distinct term is computed by mpmath at 60 digits
+  (``solver.literature.dragan_belief.HI``) and rounded to a fixed point integer with
+  :data:`SCALE_BITS` fractional bits; sums are then exact integers.
   Paths whose objectives differ by at most :data:`TIE_UNITS` units (``2^-136 ≈ 1.1e-41``)
   are treated as tied. Genuinely tied paths (same multiset of ``δ`` values, common on grids)
   get bit-identical sums. Rounding moves a path sum by at most ``T/2`` units, below the
@@ -44,7 +44,7 @@ from typing import Literal
 import mpmath
 import numpy as np
 
-from solver.dragan import HI, MP, DraganObserver, belief_hi
+from solver.literature.dragan_belief import HI, MP, DraganObserver, belief_hi
 from solver.network import Network
 
 __all__ = ["KINDS", "SCALE_BITS", "TIE_UNITS", "DeceptivePath", "deceptive_path",

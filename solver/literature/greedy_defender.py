@@ -3,8 +3,8 @@
 After the Attacker's step to ``s_t``, σ' allocates to ``g1`` if ``b^1_t >= 1/2`` and to
 ``g2`` otherwise (Lemma 3: greedy on the belief; at exactly 1/2 it picks ``g1``, as the
 paper says). Every allocation is 0 or 1 and is decided exactly
-(:meth:`solver.dragan.DraganObserver.favours_g1`), so evaluations against σ' are exact
-``Fraction`` values.
+(:meth:`solver.literature.dragan_belief.DraganObserver.favours_g1`), so evaluations against σ'
+are exact ``Fraction`` values.
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-from solver.dragan import DraganObserver
+from solver.literature.dragan_belief import DraganObserver
 
 __all__ = ["DraganDefender"]
 

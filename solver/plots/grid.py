@@ -1,24 +1,10 @@
-"""Figures of the paper's Sec. VII with matplotlib (Agg backend): PNG, SVG or PDF by suffix.
-
-- :func:`plot_map` — the grid, obstacles, start and goals, the equilibrium paths with ξ²
-  coloured by phase and the primary's branches labelled with their mixing probabilities
-  (like Fig. 7), and beside them the ambiguity and exaggeration paths;
-- :func:`plot_beliefs` — per type, the belief ``b^1_t`` along each path and the cumulative
-  expected allocation to the true goal (like Fig. 8);
-- :func:`plot_voi` — VoI box plots by density and strategy pair (like Fig. 9).
-"""
+"""The map figures: the equilibrium walks on the grid (:func:`plot_map`, like the paper's
+Fig. 7) and the beliefs and allocations along them (:func:`plot_beliefs`, like Fig. 8)."""
 
 from __future__ import annotations
 
-import io
-from collections.abc import Hashable, Iterable, Mapping, Sequence
-from fractions import Fraction
-from pathlib import Path
-from typing import Any
-
-import matplotlib
-
-matplotlib.use("Agg")
+from collections.abc import Hashable, Sequence
+from typing import Any, cast
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -29,130 +15,27 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import MaxNLocator
 
-from solver.errors import DPPError, InvalidInstanceError, OutputError
+from solver.errors import InvalidInstanceError
 from solver.instance import Instance
-from solver.io_utils import write_files
 from solver.network import GridLabels
-from solver.pairs import LABELS, PAIRS, PairEvaluator
+from solver.plots.style import (
+    LARGE_MAP,
+    MARKER_COLOUR,
+    PATH_STYLES,
+    PHASE_COLOURS,
+    STRATEGY_COLOURS,
+    STYLE,
+    T_I,
+    T_II,
+    VOI,
+    num_label,
+    tex_label,
+)
+from solver.strategy_pairs import LABELS, PairEvaluator
 
-__all__ = ["PHASE_COLOURS", "STRATEGY_COLOURS", "plot_beliefs", "plot_map", "plot_voi",
-           "save_figure"]
+__all__ = ["plot_beliefs", "plot_map"]
 
-PHASE_COLOURS = {1: "#E69F00", 2: "#CC79A7", 3: "#56B4E9"}
-"""Phase I (σ* = 1 along ξ²) orange, phase II (belief 1/2) pink, phase III sky blue — in every
-figure (map segments, beliefs-plot bands). No strategy uses these colours."""
-STRATEGY_COLOURS = {"gamma*": "#009E73", "ambiguity": "#0072B2", "exaggeration": "#8C510A"}
-"""One colour per Attacker strategy in every figure: γ* green, ambiguity blue, exaggeration
-brown. The Defender is told apart by the fill (σ* solid, σ' hatched) in the VoI plot."""
-DEFENDER_HATCH = {"sigma*": "", "sigma'": "///"}
-MARKER_COLOUR = "#222222"
-FORMATS = ("png", "svg", "pdf")
-"""Output formats, chosen by the file's suffix."""
-VOI = "value of information"
-"""Spelled out: in the figures' one font (DejaVu Sans) "VoI" reads as "Vol"."""
-_STYLE: dict[Any, Any] = {"font.family": "DejaVu Sans", "font.size": 12, "axes.titlesize": 13,
-          "axes.labelsize": 12, "legend.fontsize": 11, "xtick.labelsize": 11,
-          "ytick.labelsize": 11, "mathtext.fontset": "dejavusans", "pdf.fonttype": 42,
-          "svg.fonttype": "none"}
-"""One font family for text and mathtext (DejaVu Sans); fonts embedded as TrueType."""
-LARGE_MAP = 60
-"""Maps with more cells than this on a side get the print rendering: paths of a fixed width
-with a white casing, start and goal markers of a fixed size on top, lighter obstacles."""
-PATH_STYLES = {"xi1_I": "-", "xi1_II": (0, (4, 1.5)), "xi1": "-", "xi2": (0, (1, 1.2))}
-"""One line style per equilibrium path in every figure: ξ^{1,I} solid, ξ^{1,II} dashed, ξ²
-dotted (colour says the Attacker's strategy, the line style which path)."""
 _PHASE_NAMES = {1: "I", 2: "II", 3: "III"}
-
-
-def _tex(label: str) -> str:
-    """Mathtext for a path label: ``xi1_II`` -> ξ^{1,II}, ``xi2_am`` -> ξ^{2,am}, ``xi1`` -> ξ¹.
-
-    >>> print(_tex("xi1_II"), _tex("xi1"), _tex("t"))
-    $\\xi^{1,\\mathrm{II}}$ $\\xi^{1}$ t
-    """
-    head, _, tail = label.partition("_")
-    if not head.startswith("xi"):
-        return label
-    sup = head[2:] + (r",\mathrm{" + tail + "}" if tail else "")
-    return rf"$\xi^{{{sup}}}$"
-
-
-T_I, T_II = r"$t_{\mathrm{I}}$", r"$t_{\mathrm{II}}$"
-"""The phase boundaries t_I, t_II as mathtext (subscripts, never a literal underscore)."""
-
-
-def _num(x: Any) -> str:
-    """A number for a title or legend: exact fractions with a 3-digit decimal, floats rounded.
-
-    >>> from fractions import Fraction
-    >>> _num(Fraction(5, 22)), _num(0.20410018838561994), _num(Fraction(17)), _num(3)
-    ('5/22 ≈ 0.227', '0.204', '17', '3')
-    """
-    if isinstance(x, Fraction):
-        if x.denominator == 1:
-            return str(x.numerator)
-        return f"{x} ≈ {float(x):.3f}" if x.denominator <= 1000 else f"{float(x):.3f}"
-    if isinstance(x, int | np.integer):
-        return str(int(x))
-    return f"{float(x):.3g}"
-
-
-def save_figure(fig: Figure, out: str | Path) -> list[Path]:
-    """Write ``fig`` to ``out`` in the format its suffix names (``.png``, ``.svg``, ``.pdf``).
-
-    A name without one of these suffixes is refused (one file per ``-o``: ``fig.pdf`` is
-    written as PDF, never as ``fig.pdf.png``). Missing parent directories are created; the
-    figure is closed afterwards.
-
-    Parameters
-    ----------
-    fig : matplotlib.figure.Figure
-        The figure.
-    out : str or Path
-        The file to write.
-
-    Returns
-    -------
-    list of Path
-        The file written (a one-element list).
-
-    Raises
-    ------
-    DPPError
-        If the suffix is missing or not one of :data:`FORMATS`.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     fig, ax = plt.subplots()
-    ...     _ = ax.plot([0, 1], [1, 0])
-    ...     files = save_figure(fig, Path(d) / "figs" / "demo.pdf")
-    ...     print([f.name for f in files], files[0].read_bytes()[:4])
-    ...     print(sorted(p.name for p in (Path(d) / "figs").iterdir()))
-    ['demo.pdf'] b'%PDF'
-    ['demo.pdf']
-    >>> plt.fignum_exists(fig.number)
-    False
-    >>> save_figure(plt.figure(), "figure")
-    Traceback (most recent call last):
-    ...
-    solver.errors.DPPError: figure: the output file must end in .png, .svg or .pdf
-    """
-    if str(out) == "":
-        raise OutputError("-o/--output: the output path is empty")
-    p = Path(out)
-    fmt = p.suffix.lower().lstrip(".")
-    if fmt not in FORMATS:
-        plt.close(fig)
-        raise DPPError(f"{p}: the output file must end in .png, .svg or .pdf")
-    buf = io.BytesIO()
-    try:
-        fig.savefig(buf, format=fmt, dpi=150, bbox_inches="tight")
-    finally:
-        plt.close(fig)
-    write_files({p: buf.getvalue()})  # atomic; missing folders are created
-    return [p]
 
 
 def _grid(instance: Instance) -> np.ndarray:
@@ -179,8 +62,13 @@ def _grid(instance: Instance) -> np.ndarray:
     return blocked
 
 
+def _cell(node: Hashable) -> tuple[int, int]:
+    """A grid node id: the cell ``(row, col)``."""
+    return cast("tuple[int, int]", node)
+
+
 def _xy(nodes: Sequence[Hashable], offset: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
-    rc = np.asarray([list(n) for n in nodes], dtype=np.float64)  # type: ignore[call-overload]
+    rc = np.asarray([_cell(n) for n in nodes], dtype=np.float64)
     return rc[:, 1] + offset, rc[:, 0] + offset
 
 
@@ -230,10 +118,11 @@ def _draw_grid(ax: Axes, instance: Instance) -> list[Line2D]:
     for node, marker, face, name in ((s, "o", "white", "start $s_0$"),
                                      (g1, "s", MARKER_COLOUR, f"$g_1$ (prior {instance.b1})"),
                                      (g2, "s", "white", f"$g_2$ (prior {instance.b2})")):
+        row, col = _cell(node)
         if large:  # a white halo, then the marker, above every path
-            ax.plot(node[1], node[0], marker=marker, ms=ms + 5, mfc="white",  # type: ignore[index]
-                    mec="white", zorder=9, clip_on=False)
-        ax.plot(node[1], node[0], marker=marker, ms=ms, mfc=face,  # type: ignore[index]
+            ax.plot(col, row, marker=marker, ms=ms + 5, mfc="white", mec="white", zorder=9,
+                    clip_on=False)
+        ax.plot(col, row, marker=marker, ms=ms, mfc=face,
                 mec=MARKER_COLOUR, mew=2, zorder=10 if large else 2, clip_on=False)
         handles.append(Line2D([], [], marker=marker, ms=11, mfc=face, mec=MARKER_COLOUR,
                               mew=2, ls="none", label=name))
@@ -268,7 +157,7 @@ def plot_map(instance: Instance, *, baselines: bool = True,
     >>> print(len(fig.axes), fig.axes[0].get_title().splitlines()[0])
     2 (σ*, γ*): $t_{\\mathrm{I}}$ = 6, $t_{\\mathrm{II}}$ = 16, T = 17
     """
-    with plt.rc_context(_STYLE):
+    with plt.rc_context(STYLE):
         return _plot_map(instance, baselines, game or PairEvaluator.of(instance))
 
 
@@ -296,13 +185,13 @@ def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figur
                 path_effects=casing)
         steps = f"step {first}" if first == last else f"steps {first}-{last}"
         handles.append(Line2D([], [], color=PHASE_COLOURS[ph], lw=6,
-                              label=f"{_tex('xi2')} phase {_PHASE_NAMES[ph]} ({steps})"))
+                              label=f"{tex_label('xi2')} phase {_PHASE_NAMES[ph]} ({steps})"))
     for k, p in enumerate(eq.primary_paths):
         n = _common(p.nodes, xi2)
-        label = f"{_tex(p.label)}, p = {p.probability}"
+        label = f"{tex_label(p.label)}, p = {p.probability}"
         ls = PATH_STYLES.get(p.label, "-")
         if n >= len(p.nodes):
-            handles.append(Line2D([], [], color="none", label=f"{label} (= {_tex('xi2')})"))
+            handles.append(Line2D([], [], color="none", label=f"{label} (= {tex_label('xi2')})"))
             continue
         bx, by = _xy(p.nodes[n - 1:], 0.0 if large else 0.14 * (1 if k % 2 else -1))
         ax.plot(bx, by, color=STRATEGY_COLOURS["gamma*"], lw=0.75 * lw, ls=ls, zorder=5,
@@ -312,7 +201,7 @@ def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figur
         handles.append(Line2D([], [], color=STRATEGY_COLOURS["gamma*"], lw=3, ls=ls,
                               marker="D", ms=7, mec="black", label=f"{label} (branch)"))
     ax.set_title(f"(σ*, γ*): {T_I} = {phases.t_I}, {T_II} = {phases.t_II}, T = {phases.T}\n"
-                 f"{VOI} {_num(eq.VoI)}")
+                 f"{VOI} {num_label(eq.VoI)}")
     _legend_below(ax, handles + markers)
     if baselines:
         ax2 = axes[0][1]
@@ -329,12 +218,12 @@ def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figur
                          path_effects=_casing(0.75 * lw) if large else None)
                 tag = "am" if kind == "ambiguity" else "ex"
                 bl.append(Line2D([], [], color=STRATEGY_COLOURS[kind], lw=3, ls=ls,
-                                 label=f"{_tex(f'xi{theta}_{tag}')} {kind}, "
+                                 label=f"{tex_label(f'xi{theta}_{tag}')} {kind}, "
                                        f"{len(mp.walk) - 1} steps"))
         vo = {r.attacker: r.VoI for r in game.compare((("sigma*", "ambiguity"),
                                                        ("sigma*", "exaggeration")))}
-        ax2.set_title(f"baselines against σ*, {VOI}:\nambiguity {_num(vo['ambiguity'])}, "
-                      f"exaggeration {_num(vo['exaggeration'])}")
+        ax2.set_title(f"baselines against σ*, {VOI}:\nambiguity {num_label(vo['ambiguity'])}, "
+                      f"exaggeration {num_label(vo['exaggeration'])}")
         _legend_below(ax2, bl + markers2)
     fig.tight_layout()
     return fig
@@ -363,7 +252,7 @@ def plot_beliefs(instance: Instance, *, defender: str = "sigma*",
     >>> print(len(fig.axes), *[t.get_text() for t in fig.axes[0].texts])
     4 $t_{\\mathrm{I}}$ $t_{\\mathrm{II}}$
     """
-    with plt.rc_context(_STYLE):
+    with plt.rc_context(STYLE):
         return _plot_beliefs(instance, defender, game or PairEvaluator.of(instance))
 
 
@@ -390,7 +279,7 @@ def _plot_beliefs(instance: Instance, defender: str, game: PairEvaluator) -> Fig
                                   "zorder": 3 if eq_path else 4}
             axes[0][col].plot(steps, belief, **kw)
             axes[1][col].plot(steps, [float(a) for a in tr.allocation], **kw)
-            name = (f"{_tex(tr.label)} (γ*, p = {tr.probability})" if attacker == "gamma*"
+            name = (f"{tex_label(tr.label)} (γ*, p = {tr.probability})" if attacker == "gamma*"
                     else f"{attacker} (Dragan belief)")
             entries.setdefault(name, Line2D([], [], **kw, label=name))
     for col, theta in ((0, 1), (1, 2)):
@@ -416,87 +305,11 @@ def _plot_beliefs(instance: Instance, defender: str, game: PairEvaluator) -> Fig
                           label="$d(s_0,$ true goal$)$")
     present = {1: phases.t_I > 0, 2: phases.t_II > phases.t_I, 3: phases.T > phases.t_II}
     bands = [Patch(fc=PHASE_COLOURS[ph], alpha=0.35,
-                   label=f"phase {_PHASE_NAMES[ph]} of {_tex('xi2')}")
+                   label=f"phase {_PHASE_NAMES[ph]} of {tex_label('xi2')}")
              for ph in (1, 2, 3) if present[ph]]
     fig.suptitle(f"Beliefs and cumulative expected allocation, Defender "
                  f"{LABELS.get(defender, defender)}")
     fig.tight_layout(rect=(0, 0.13, 1, 1))
     fig.legend(handles=[*entries.values(), *bands], loc="lower center", ncol=3,
                frameon=False, bbox_to_anchor=(0.5, 0.0), handlelength=2.4)
-    return fig
-
-
-def plot_voi(rows: Iterable[Mapping[str, Any] | Any],
-             pairs: Sequence[tuple[str, str]] = PAIRS) -> Figure:
-    """Box plots of VoI by density, one box per strategy pair (means as '+'): colour = the
-    Attacker's strategy, hatching = the Defender σ'.
-
-    Examples
-    --------
-    >>> rows = [{"density": d, "defender": "sigma*", "attacker": "gamma*", "VoI_float": v}
-    ...         for d, v in ((0, 0.25), (0, 0.25), (10, 0.2), (10, 0.3))]
-    >>> fig = plot_voi(rows, pairs=[("sigma*", "gamma*")])
-    >>> len(fig.axes)
-    1
-    """
-    with plt.rc_context(_STYLE):
-        return _plot_voi(rows, pairs)
-
-
-def _plot_voi(rows: Iterable[Mapping[str, Any] | Any],
-              pairs: Sequence[tuple[str, str]]) -> Figure:
-    data: dict[tuple[int, tuple[str, str]], list[float]] = {}
-    for r in rows:
-        rec = r if isinstance(r, Mapping) else vars(r)
-        key = (int(rec["density"]), (str(rec["defender"]), str(rec["attacker"])))
-        data.setdefault(key, []).append(float(rec["VoI_float"]))
-    densities = sorted({d for d, _ in data})
-    if not densities:
-        raise InvalidInstanceError("no rows to plot")
-    pairs = [p for p in pairs if any((d, p) in data for d in densities)]
-    fig, ax = plt.subplots(figsize=(max(7.0, 1.4 * len(densities)), 6.2))
-    width = 0.84 / len(pairs)
-    for j, pair in enumerate(pairs):
-        pos = [i + (j - (len(pairs) - 1) / 2) * width for i, d in enumerate(densities)
-               if (d, pair) in data]
-        vals = [data[(d, pair)] for d in densities if (d, pair) in data]
-        colour = STRATEGY_COLOURS.get(pair[1], "#888888")
-        hatch = DEFENDER_HATCH.get(pair[0], "..")
-        flat = [(x, v[0]) for x, v in zip(pos, vals, strict=True) if min(v) == max(v)]
-        if flat:  # a box of equal values collapses to a line: draw a square instead
-            fx, fy = zip(*flat, strict=True)
-            ax.plot(fx, fy, ls="none", marker="s", ms=9, mew=1.6, mec=colour,
-                    mfc="white" if hatch else colour, zorder=3)
-        ax.boxplot(vals, positions=pos, widths=width * 0.85, patch_artist=True,
-                   showmeans=True, meanprops={"marker": "+", "markeredgecolor": "black",
-                                              "markersize": 8},
-                   boxprops={"facecolor": "white" if hatch else colour, "edgecolor": colour,
-                             "hatch": hatch, "linewidth": 1.6},
-                   whiskerprops={"color": colour}, capprops={"color": colour},
-                   medianprops={"color": "black", "linewidth": 1.6},
-                   flierprops={"marker": "o", "markersize": 3, "alpha": 0.5,
-                               "markeredgecolor": colour})
-    ax.set_xticks(range(len(densities)), [f"{d}%" for d in densities])
-    ax.set_xlabel("obstacle density")
-    ax.set_ylabel(f"{VOI} $(\\bar{{U}} - U)\\,/\\,\\bar{{U}}$")
-    ax.axhline(0, color="grey", lw=0.8)
-    ax.grid(axis="y", alpha=0.3)
-    counts = sorted({len(data.get((d, pairs[0]), [])) for d in densities})
-    n = str(counts[0]) if len(counts) == 1 else "-".join(map(str, (counts[0], counts[-1])))
-    ax.set_title(f"{VOI.capitalize()} by obstacle density ({n} grids each)")
-    attackers = [a for a in STRATEGY_COLOURS if any(p[1] == a for p in pairs)]
-    defenders = [d for d in DEFENDER_HATCH if any(p[0] == d for p in pairs)]
-    handles: list[Any] = [Patch(fc=STRATEGY_COLOURS[a], ec=STRATEGY_COLOURS[a],
-                     label=f"Attacker {LABELS[a]}") for a in attackers]
-    # the Defender as the boxes show it: σ* filled, σ' white and hatched
-    handles += [Patch(fc="white" if DEFENDER_HATCH[d] else "#999999", ec="#555555",
-                      hatch=DEFENDER_HATCH[d] or None, label=f"Defender {LABELS[d]}")
-                for d in defenders]
-    handles += [Line2D([], [], ls="none", marker="+", ms=9, mec="black", label="mean"),
-                Line2D([], [], color="black", lw=1.6, label="median"),
-                Line2D([], [], ls="none", marker="s", ms=9, mfc="#999999", mec="#555555",
-                       label="all grids equal")]
-    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.13),
-              ncol=3, frameon=False)
-    fig.tight_layout()
     return fig

@@ -170,14 +170,18 @@ def last_deceptive_point(net: Network, s0: int, real: int, bogus: int, d_to_real
     return int(path[k])
 
 
-def _leg(net: Network, source: int, target: int, cost: Callable[[int, int, object], object],
+Stored = Fraction | float
+"""A stored weight or distance: an exact integer numerator, or a float (float mode)."""
+
+
+def _leg(net: Network, source: int, target: int, cost: Callable[[int, int, Stored], Stored],
          allowed: Callable[[int], bool]) -> list[int] | None:
     """Least-cost path ``source -> target`` under ``cost(u, v, w)`` through ``allowed``
     nodes (``source`` and ``target`` always allowed); ties: lowest node index at each step
     (a backward Dijkstra to ``target``, then the tight arcs from ``source``)."""
     rev = net.reverse
-    dist: dict[int, object] = {target: 0}
-    heap: list[tuple[object, int]] = [(0, target)]
+    dist: dict[int, Stored] = {target: 0}
+    heap: list[tuple[Stored, int]] = [(0, target)]
     done: set[int] = set()
     while heap:
         d, v = heapq.heappop(heap)
@@ -188,7 +192,7 @@ def _leg(net: Network, source: int, target: int, cost: Callable[[int, int, objec
         for u, w in zip(tails.tolist(), ws.tolist(), strict=True):
             if u != source and not allowed(u):
                 continue
-            nd = d + cost(u, v, w)  # type: ignore[operator]
+            nd = d + cost(u, v, w)
             if u not in dist or _lt(net, nd, dist[u]):
                 dist[u] = nd
                 heapq.heappush(heap, (nd, u))
@@ -201,7 +205,7 @@ def _leg(net: Network, source: int, target: int, cost: Callable[[int, int, objec
         nxt = None
         for v, w in sorted(zip(heads.tolist(), ws.tolist(), strict=True)):
             if v in dist and (v == target or allowed(v)) and net.numbers.equal(
-                    cost(u, v, w) + dist[v], dist[u]):  # type: ignore[operator]
+                    cost(u, v, w) + dist[v], dist[u]):
                 nxt = v
                 break
         assert nxt is not None  # a tight arc exists along a Dijkstra tree
@@ -243,9 +247,9 @@ def plan(inst: Instance, strategy: str, theta: int, *, game: _Game | None = None
         if strategy == "pi_d2":
             first = path_to_target(net, s0, target, distances_to(net, target), net.numbers)
         elif strategy == "pi_d3":
-            def cost(u: int, v: int, w: object) -> object:
+            def cost(u: int, v: int, w: Stored) -> Stored:
                 near_real = _lt(net, d_real[v], d_bogus[v])
-                return w * _PENALTY if near_real else w  # type: ignore[operator]
+                return w * _PENALTY if near_real else w
             leg = _leg(net, s0, target, cost, lambda v: True)
             assert leg is not None  # t is reachable from s0 (it lies on a g_b-g_r path)
             first = leg

@@ -1,7 +1,8 @@
 """One exact evaluation for any (Defender, Attacker) pair: U¹, U², U and VoI.
 
 Defenders: ``"sigma*"`` (the equilibrium σ*, eq. (7)) and ``"sigma'"`` (greedy on Dragan's
-belief, :mod:`solver.alt_defender`), or any schedule function (walk -> σ(g1) per step).
+belief, :mod:`solver.literature.greedy_defender`), or any schedule function (walk -> σ(g1) per
+step).
 Attackers: ``"gamma*"`` (the equilibrium mixture, eqs. (9) and (15)), ``"ambiguity"`` and
 ``"exaggeration"`` (each type deterministically takes its ξ^{θ,am} / ξ^{θ,ex}, eq. (18)), or
 any :class:`Attacker`. Values come from :func:`solver.evaluation.evaluate` (eqs. (3), (4) and
@@ -18,17 +19,17 @@ from functools import cached_property
 
 import numpy as np
 
-from solver.alt_defender import DraganDefender
-from solver.deceptive_paths import Kind, deceptive_path
 from solver.distances import distances_from, distances_to
-from solver.dragan import DraganObserver
 from solver.equilibrium import Equilibrium, solve
 from solver.errors import InvalidInstanceError
 from solver.evaluation import Evaluation, Schedule, evaluate
 from solver.instance import Instance
-from solver.masters_sardina import LABELS as MS_LABELS
-from solver.masters_sardina import STRATEGIES as MS_STRATEGIES
-from solver.masters_sardina import plan_all
+from solver.literature.deceptive_paths import Kind, deceptive_path
+from solver.literature.dragan_belief import DraganObserver
+from solver.literature.greedy_defender import DraganDefender
+from solver.literature.masters_sardina import LABELS as MS_LABELS
+from solver.literature.masters_sardina import STRATEGIES as MS_STRATEGIES
+from solver.literature.masters_sardina import plan_all
 from solver.numbers import Number
 from solver.strategy import StrategyPath
 
@@ -45,7 +46,7 @@ PAIRS: tuple[tuple[str, str], ...] = (
 
 MS_PAIRS: tuple[tuple[str, str], ...] = tuple(
     (d, a) for a in MS_STRATEGIES for d in DEFENDERS)
-"""Masters & Sardina's π_d1–π_d4 (:mod:`solver.masters_sardina`) against σ* and σ'."""
+"""Masters & Sardina's π_d1–π_d4 (:mod:`solver.literature.masters_sardina`) against σ* and σ'."""
 
 COMPARE_PAIRS = PAIRS + MS_PAIRS
 """What ``dpp experiment compare`` evaluates: the paper's six pairs, then :data:`MS_PAIRS`."""
@@ -69,7 +70,7 @@ def pair_label(defender: str, attacker: str) -> str:
 
 @dataclass(frozen=True)
 class Attacker:
-    """A mixed Attacker: per type, paths (node indices) with probabilities summing to 1."""
+    """A mixed Attacker: per type, walks (node indices) with probabilities summing to 1."""
 
     name: str
     primary: tuple[StrategyPath, ...]
@@ -96,10 +97,8 @@ class PairEvaluator:
 
     Examples
     --------
-    >>> import networkx as nx
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> game = PairEvaluator.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
+    >>> from solver.instance import triangle
+    >>> game = PairEvaluator.of(triangle())
     >>> r = game.pair("sigma*", "gamma*")
     >>> str(r.U), str(r.VoI)
     ('12/5', '1/9')
@@ -163,7 +162,7 @@ class PairEvaluator:
 
     @cached_property
     def _masters_sardina(self) -> dict[str, Attacker]:
-        """π_d1–π_d4 (:mod:`solver.masters_sardina`): one deterministic path per type."""
+        """π_d1–π_d4 (:mod:`solver.literature.masters_sardina`): one deterministic walk per type."""
         net, out = self.instance.network, {}
         for name, (p1, p2) in plan_all(self.instance).items():
             out[name] = Attacker(name, (StrategyPath.along(net, p1.walk, Fraction(1),
