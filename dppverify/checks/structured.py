@@ -114,7 +114,7 @@ def structured_checks(instance: Instance, profile: Profile,
         tm = table_minima(instance, roles, rule)
         best = {1: tm.primary, 2: tm.secondary}
         relies = TABLEBR
-    out += _attacker(v, mode, best, relies)
+    out += _attacker(v, mode, best, relies, horizon)
     out.append(_defender(v, defender_max, mode))
     beliefs = _beliefs(roles, trie)
     out.append(_sequential(instance, trie, sigma, beliefs, mode))
@@ -265,7 +265,13 @@ def _values(profile: Profile, v: Values, u_trie: Number, mode: NumberMode) -> li
 
 
 def _attacker(v: Values, mode: NumberMode, minima: dict[int, Number],
-              relies: str) -> list[CheckRecord]:
+              relies: str, horizon: int | None) -> list[CheckRecord]:
+    """The two Attacker types' regrets over all walks of any length (WALKBR / TABLEBR).
+
+    A positive regret refutes the profile only in the untruncated game: at a finite
+    ``horizon`` the cheaper walk may be longer than ``H`` steps, which the truncated game does
+    not have, so the record is ``skipped`` (decided by the tree route, or without a horizon).
+    """
     out = []
     for theta, cid, proof in ((1, "pbne.attacker_br.primary", "L1"),
                               (2, "pbne.attacker_br.secondary", "XI2")):
@@ -281,6 +287,12 @@ def _attacker(v: Values, mode: NumberMode, minima: dict[int, Number],
         elif mode.equal(regret, 0):
             out.append(_rec(cid, "pass", f"{kind} regret 0 over all walks of any length: "
                             f"U = min = {show(best)}", numbers, proof, relies))
+        elif horizon is not None:
+            out.append(_rec(cid, "skipped", f"{kind} regret {show(regret)} > 0 over walks of "
+                            f"any length (some walk costs {show(best)} < U = {show(u)}); "
+                            f"whether a walk of at most H = {horizon} steps does is not decided "
+                            f"by the structured route (use --route tree, or omit the horizon)",
+                            numbers, proof, relies))
         else:
             out.append(_rec(cid, "fail", f"{kind} regret {show(regret)} > 0: some walk costs "
                             f"{show(best)} < U = {show(u)} against the profile's Defender",

@@ -173,7 +173,7 @@ def nstructured_checks(instance: Instance, profile: NProfile,
     said = "" if profile.claimed_u is None else f" (profile says {profile.claimed_u})"
     out.append(ngoal_record("ngoal.value.U", "pass" if ok else "fail", f"U = {u}{said}", nums,
                             PAYOFF_WALKS))
-    attacker = _attacker(inst, tdef, per_type)
+    attacker = _attacker(inst, tdef, per_type, horizon)
     out.append(attacker)
     out += defender_records(inst, tdef, dict(enumerate(trie.masses)), u)
     longest = max(len(w) - 1 for w in walks)
@@ -182,7 +182,15 @@ def nstructured_checks(instance: Instance, profile: NProfile,
     return out, len(trie)
 
 
-def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number]) -> CheckRecord:
+def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],
+              horizon: int | None) -> CheckRecord:
+    """``ngoal.pbne.attacker_br``: every type's exact regret over all walks (NW.1).
+
+    At a finite ``horizon`` only a better walk of at most ``horizon`` steps refutes the profile
+    (the truncated game has no longer walks); a better walk found that is longer decides
+    nothing, and the record is ``skipped`` (the regret over walks of at most ``H`` steps is not
+    computed by this route).
+    """
     regrets: list[tuple[Number, int, tuple[int, ...], Number]] = []
     arcs = None if tdef.default is None else tdef.exit_graph()
     for theta in range(inst.n_goals):
@@ -208,7 +216,15 @@ def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number]) -> Ch
     if worst[0] == 0:
         return ngoal_record("ngoal.pbne.attacker_br", "pass", "every type's exact regret over all "
                     "walks of any length is 0", nums, NWALKBR, BR)
-    r, t, walk, v = worst
+    within = [x for x in regrets if x[0] > 0 and (horizon is None or len(x[2]) - 1 <= horizon)]
+    if not within:
+        r, t, walk, v = worst
+        return ngoal_record("ngoal.pbne.attacker_br", "skipped", f"type {t + 1}'s regret over "
+                    f"walks of any length is {r} (walk {walk_labels(inst, walk)}, "
+                    f"{len(walk) - 1} steps > H = {horizon}); whether a walk of at most "
+                    f"{horizon} steps beats the profile is not decided by the structured route "
+                    f"(use --route tree, or omit the horizon)", nums, NWALKBR, BR)
+    r, t, walk, v = max(within, key=lambda x: x[0])
     return ngoal_record("ngoal.pbne.attacker_br", "fail", f"type {t + 1} (goal "
                 f"{inst.nodes[inst.goals[t]]!r}) has regret {r}: walk {walk_labels(inst, walk)} "
                 f"({len(walk) - 1} steps) costs {v}", nums, NWALKBR, BR)

@@ -127,17 +127,34 @@ def test_wrong_mixing_fails_the_defender_checks_only() -> None:
 def test_the_hub_profile_is_refuted_on_the_untruncated_game_only() -> None:
     # H = 2: the tree route certifies it; any length: type b loops s m s m b unguarded.
     assert certify_ngoal(star3_document(), star3_profile(), horizon=2, route="tree").passed
-    cert = certify_ngoal(star3_document(), star3_profile(), horizon=2, route="structured")
+    cert = certify_ngoal(star3_document(), star3_profile(), horizon=None, route="structured")
     rec = cert.check("ngoal.pbne.attacker_br")
     assert rec.status == "fail" and "['s', 'm', 's', 'm', 'b'] (4 steps) costs 0" in rec.message
     assert rec.numbers["regret2"] == 1 and rec.numbers["regret1"] == 0
-    # both routes at H = 2 disagree on that check (the tree has no 4-step walk): an error
+    # at H = 2 that 4-step walk is not in the game: the structured route decides nothing
+    # (skipped, the verdict incomplete), never a FAIL of the truncated game
+    cert = certify_ngoal(star3_document(), star3_profile(), horizon=2, route="structured")
+    rec = cert.check("ngoal.pbne.attacker_br")
+    assert rec.status == "skipped" and "4 steps > H = 2" in rec.message
+    assert cert.verdict == "incomplete"
+    # both routes at H = 2: the tree route's pass stands
     both = certify_ngoal(star3_document(), star3_profile(), horizon=2, route="both")
-    assert both.check("ngoal.pbne.attacker_br").status == "error"
-    assert "the routes disagree: tree pass" in both.check("ngoal.pbne.attacker_br").message
+    assert both.check("ngoal.pbne.attacker_br").status == "pass" and both.passed
     # at H = 4 the tree sees the loop too and both routes fail it
     both = certify_ngoal(star3_document(), star3_profile(), horizon=4, route="both")
     assert both.check("ngoal.pbne.attacker_br").status == "fail"
+
+
+def test_a_two_goal_walk_longer_than_h_does_not_refute_the_truncated_game() -> None:
+    # the kite's naive profile: the secondary's better walk has 2 steps; at H = 1 it is not a
+    # walk of the game, so the structured route skips the check and both routes pass it
+    from dppverify import certify
+    from dppverify.game.examples import kite_document, kite_naive_profile
+    cert = certify(kite_document(), kite_naive_profile(), horizon=1, route="structured")
+    assert cert.check("pbne.attacker_br.secondary").status == "skipped"
+    assert cert.verdict == "incomplete"
+    assert certify(kite_document(), kite_naive_profile(), horizon=1, route="both").passed
+    assert certify(kite_document(), kite_naive_profile(), horizon=None).verdict == "fail"
 
 
 def _dag_star() -> dict[str, Any]:
