@@ -262,9 +262,12 @@ def _kill_workers(pool: ProcessPoolExecutor) -> None:
                 os.kill(pid, signal.SIGKILL)
         if len(found) == 1:
             break
+    manager = getattr(pool, "_executor_manager_thread", None)  # no public accessor
     pool.shutdown(wait=False, cancel_futures=True)
     for proc in procs:
         proc.join(5)
+    if manager is not None:  # let it close its wake-up pipe before the interpreter exits:
+        manager.join(5)      # else concurrent.futures' exit hook may write to it as it closes
 
 
 def _run_dask(tasks: list[Task], address: str,
