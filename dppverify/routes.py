@@ -207,25 +207,32 @@ class RoutedValue:
     disagreement: str | None = None
     goals: int = 2
 
+    def bounds(self) -> tuple[Number, Number]:
+        """``(lower, upper)`` with ``lower <= V_H <= upper`` (both the value when known).
+
+        Examples
+        --------
+        >>> from dppverify.ngoal.examples import star3
+        >>> routed_value(star3(), 2, route="tree").bounds()
+        (Fraction(3, 2), Fraction(3, 2))
+        """
+        s = self.structured
+        if isinstance(s, StructuredValue):
+            return s.value, s.value
+        if s is not None:
+            return s.lower, s.upper
+        assert self.tree is not None  # one route always ran
+        return self.tree.bracket.lower, self.tree.bracket.upper
+
     @property
     def lower(self) -> Number:
         """A lower bound on ``V_H`` (the value itself when known)."""
-        if isinstance(self.structured, StructuredValue):
-            return self.structured.value
-        if self.structured is not None:
-            return self.structured.lower
-        assert self.tree is not None  # one route always ran
-        return self.tree.bracket.lower
+        return self.bounds()[0]
 
     @property
     def upper(self) -> Number:
         """An upper bound on ``V_H`` (the value itself when known)."""
-        if isinstance(self.structured, StructuredValue):
-            return self.structured.value
-        if self.structured is not None:
-            return self.structured.upper
-        assert self.tree is not None
-        return self.tree.bracket.upper
+        return self.bounds()[1]
 
     @property
     def value(self) -> Number | None:

@@ -86,12 +86,8 @@ def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
     horizon : "inf", None, math.inf or int
         ``"inf"`` (default), None or ``math.inf``: the untruncated game (structured route).
         An integer ``H``: the game truncated at ``H``.
-    route : {"auto", "tree", "structured", "both"}
-        As ``dpp value --route``.
-    max_prefixes : int
-        Size guard of the walk tree.
-    progress : bool
-        Progress bars on stderr (two-goal tree route).
+    route, max_prefixes, progress
+        As :func:`~dppverify.routes.routed_value` (``route`` as ``dpp value --route``).
 
     Returns
     -------

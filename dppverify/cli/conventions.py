@@ -95,7 +95,6 @@ def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str
         click.echo(text)
 
 
-
 class _NonEmptyPath(click.Path):
     """A path option that refuses ``''`` (which ``Path('')`` would silently turn into ``.``)."""
 

@@ -1,11 +1,11 @@
 """``dpp value``: the value ``V_H`` of an instance's game, as text or JSON, for any N >= 2.
 
 The value comes from :func:`dppverify.routes.routed_value` (the route is chosen there); this
-module only prints it. Two goals: the tree route's LP and exact bracket
-(:func:`value_document`), the structured route's three-field DP
-(:func:`structured_document`). More goals: the tree LP with N types and the guarantee sets
-(:func:`nrouted_document`, :func:`nrouted_lines`). With ``--route both`` a disagreement of the
-routes is one line on stderr and exit 1.
+module only prints it, :func:`routed_lines` as text and :func:`routed_document` as JSON. Two
+goals: the tree route's LP and exact bracket (:func:`value_document`), the structured route's
+three-field DP (:func:`structured_document`). More goals: the tree LP with N types and the
+guarantee sets. With ``--route both`` a disagreement of the routes is one line on stderr and
+exit 1.
 """
 
 from __future__ import annotations
@@ -33,8 +33,8 @@ from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 from dppverify.tree_route.value_lp import GameValue
 from dppverify.twogoal.value_dp import StructuredValue
 
-__all__ = ["CONJECTURE_NOTE", "nrouted_document", "nrouted_lines", "routed_document",
-           "routed_lines", "structured_document", "value_command", "value_document"]
+__all__ = ["CONJECTURE_NOTE", "routed_document", "routed_lines", "structured_document",
+           "value_command", "value_document"]
 
 CONJECTURE_NOTE = ("the coalition DP is an upper bound on V_H (NG.2), the value for N <= 3 "
                    "(NG.3, NG.4) and for N >= 4 only where certified (NG.8; proofs/NGOAL.md)")
@@ -102,7 +102,7 @@ def routed_lines(r: RoutedValue) -> list[str]:
     V_H (H = inf) = 12/5 (≈ 2.4) exactly; structured route (... DP steps, fixpoint reached, ...)
     """
     if r.goals > 2:
-        return nrouted_lines(r)
+        return _ngoal_lines(r)
     tree = r.tree if isinstance(r.tree, GameValue) else None
     sv = r.structured if isinstance(r.structured, StructuredValue) else None
     return ([_tree_line(tree)] if tree is not None else []) + \
@@ -169,7 +169,7 @@ def structured_document(v: StructuredValue) -> dict[str, Any]:
 
 def routed_document(r: RoutedValue) -> dict[str, Any]:
     """The JSON of ``dpp value --json``: one route's document, or both with ``agree``
-    (:func:`nrouted_document` for more than two goals).
+    (:func:`_ngoal_document` for more than two goals).
 
     Examples
     --------
@@ -179,7 +179,7 @@ def routed_document(r: RoutedValue) -> dict[str, Any]:
     ('both', True, '12/5', '12/5')
     """
     if r.goals > 2:
-        return nrouted_document(r)
+        return _ngoal_document(r)
     assert isinstance(r.tree, GameValue | None) and isinstance(r.structured, StructuredValue | None)
     if r.route == "tree":
         assert r.tree is not None
@@ -247,18 +247,17 @@ def _dp_doc(v: NValue) -> dict[str, Any]:
             "coalition_dp": _coalition_doc(v.coalition)}
 
 
-def nrouted_document(r: RoutedValue) -> dict[str, Any]:
+def _ngoal_document(r: RoutedValue) -> dict[str, Any]:
     """The JSON ``dpp value --json`` prints for an N-goal instance.
 
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.routes import routed_value
-    >>> doc = nrouted_document(routed_value(star3(), 2, route="structured"))
+    >>> doc = _ngoal_document(routed_value(star3(), 2, route="structured"))
     >>> doc["value"], doc["structured"]["coalition_dp"]["cover"]
     ('3/2', [{'goals': [1, 2], 'mass': '1/3'}, {'goals': [1, 3], 'mass': '1/6'}])
     >>> from dppverify.ngoal.examples import hub4
-    >>> nrouted_document(routed_value(hub4(), None))["value"]
+    >>> _ngoal_document(routed_value(hub4(), None))["value"]
     '12/7'
     """
     assert isinstance(r.tree, NGameValue | None) and isinstance(r.structured, NValue | None)
@@ -278,14 +277,13 @@ def nrouted_document(r: RoutedValue) -> dict[str, Any]:
     return doc
 
 
-def nrouted_lines(r: RoutedValue) -> list[str]:
+def _ngoal_lines(r: RoutedValue) -> list[str]:
     """The lines ``dpp value`` prints for an N-goal instance.
 
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.routes import routed_value
-    >>> print(nrouted_lines(routed_value(star3(), None))[0])
+    >>> print(_ngoal_lines(routed_value(star3(), None))[0])
     V_H (H = inf, N = 3 goals) = 3/2 (≈ 1.5) exactly; coalition DP (NG.4: the value for \
 three goals) (3 layers)
     """

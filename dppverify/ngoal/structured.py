@@ -1,4 +1,4 @@
-"""The structured route of ``certify_ngoal``: an N-goal profile on the game without a walk tree.
+"""The structured route of ``certify`` (N goals): a profile on the game without a walk tree.
 
 For a ``dpp-ngoal-profile/1`` whose Defender is a table with a ``default`` (so that it is
 defined on every walk of the game):
