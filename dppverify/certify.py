@@ -42,17 +42,17 @@ from dppverify.errors import (
     ProfileError,
     UndecidedError,
 )
+from dppverify.formats.json_reading import JsonReadError, read_json_file
 from dppverify.game.instance import Instance, arc_arrays, node_to_json
-from dppverify.game.profile import (
-    Profile,
-    ProgressRule,
-    check_format,
-    load_profile_document,
-    profile_from_json,
-)
+from dppverify.game.profile import Profile, ProgressRule, check_format, profile_from_json
 from dppverify.horizons import parse_horizon
 from dppverify.ngoal.instance import NInstance
-from dppverify.ngoal.profile import NProfile, load_nprofile_document, nprofile_from_json
+from dppverify.ngoal.profile import (
+    NGOAL_PROFILE_FORMAT,
+    NProfile,
+    load_nprofile_document,
+    nprofile_from_json,
+)
 from dppverify.ngoal.structured import NSTRUCTURED_NOT_RUN, nstructured_checks
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.provenance import provenance_record
@@ -92,16 +92,21 @@ NTABLE_UNDECIDED = (
 the untruncated game."""
 
 
-def _profile_document(profile: Any) -> Mapping[str, Any]:
-    """A profile document from a dict, a path, JSON bytes or any object with ``to_json()``."""
+def _read_profile(profile: Any) -> tuple[Any, str]:
+    """A profile document (not yet checked) and its name for messages, from a dict, a path,
+    JSON bytes or any object with ``to_json()``; a file is read once."""
     to_json = getattr(profile, "to_json", None)
     if not isinstance(profile, Mapping | str | Path | bytes) and callable(to_json):
         profile = to_json()
     if isinstance(profile, Mapping):
-        check_format(profile)
-        return profile
+        return profile, "profile"
     if isinstance(profile, str | Path | bytes):
-        return load_profile_document(profile if isinstance(profile, bytes) else Path(profile))
+        source = profile if isinstance(profile, bytes) else Path(profile)
+        name = "profile" if isinstance(source, bytes) else str(source)
+        try:
+            return read_json_file(source, kind="profile"), name
+        except JsonReadError as exc:
+            raise ProfileError(f"{name}: {exc}") from None
     raise ProfileError("a profile must be a JSON document (dict), a file path, JSON bytes or "
                        f"an object with to_json(); got {type(profile).__name__} (for the "
                        "solver's Equilibrium pass solver.equilibrium_to_json(eq))")
@@ -230,7 +235,8 @@ def certify(instance: Instance | NInstance | Mapping[str, Any] | str | Path | An
     >>> cert.verdict, cert.check("pbne.defender_br").status
     ('fail', 'fail')
 
-    An instance with more than two goals and its ``dpp-ngoal-profile/1``:
+    An instance with more than two goals and its ``dpp-ngoal-profile/1`` (a
+    ``dpp-ngoal-profile/1`` for a two-goal instance document is checked the same way):
 
     >>> from dppverify.ngoal.examples import star3_document, star3_profile
     >>> cert = certify(star3_document(), star3_profile(), horizon=2)
@@ -251,16 +257,18 @@ def certify(instance: Instance | NInstance | Mapping[str, Any] | str | Path | An
     """
     game = game_of(instance)
     if isinstance(game, NInstance):
-        given = instance if isinstance(instance, str | Path | Mapping) else game  # provenance
-        nprofile = _nprofile_input(profile)
-        cert = _certify_n(game, nprofile, horizon, max_prefixes, route)
-        if isinstance(given, NInstance):
-            return cert
-        return dataclasses.replace(cert, provenance=provenance_record(
-            given, nprofile, route=cert.route, exact=cert.exact))
+        return _with_provenance(_certify_n(game, _nprofile_input(profile), horizon,
+                                           max_prefixes, route), instance, profile)
     if not game.exact and exact:
         raise InvalidInstanceError(FLOAT_MODE_REFUSED)
-    doc = _profile_document(profile)
+    doc, name = _read_profile(profile)
+    if isinstance(doc, Mapping) and doc.get("format") == NGOAL_PROFILE_FORMAT \
+            and not isinstance(instance, Instance):  # two goals, as an N-goal game
+        ngame = game_of(instance, ngoal=True)
+        assert isinstance(ngame, NInstance)  # game_of(ngoal=True) of a document
+        return _with_provenance(_certify_n(ngame, doc, horizon, max_prefixes, route),
+                                instance, profile)
+    check_format(doc, name)
     prof = profile_from_json(doc, game, game.numbers)
     asked = parse_horizon(horizon)
     _check_horizon(asked, shortest_horizon(game, prof), "path")
@@ -300,6 +308,14 @@ def certify(instance: Instance | NInstance | Mapping[str, Any] | str | Path | An
                        not_run=not_run("structured") if chosen == "structured" else {},
                        provenance=provenance_record(instance, profile, route=chosen,
                                                     exact=game.exact))
+
+
+def _with_provenance(cert: Certificate, instance: Any, profile: Any) -> Certificate:
+    """An N-goal certificate with the provenance of its inputs (none for a game object)."""
+    if isinstance(instance, NInstance) or not isinstance(instance, str | Path | Mapping):
+        return cert
+    return dataclasses.replace(cert, provenance=provenance_record(
+        instance, _nprofile_input(profile), route=cert.route, exact=cert.exact))
 
 
 def _check_horizon(asked: int | None, longest: int, word: str) -> None:

@@ -23,7 +23,7 @@ from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 __all__ = ["game_of", "value"]
 
 
-def game_of(instance: Any) -> Instance | NInstance:
+def game_of(instance: Any, *, ngoal: bool = False) -> Instance | NInstance:
     """The two-goal or N-goal instance of any accepted form, each file read once.
 
     Parameters
@@ -32,6 +32,9 @@ def game_of(instance: Any) -> Instance | NInstance:
         Returned as is, parsed, loaded, or parsed from ``to_json()``. A document listing
         more than two goals is an :class:`~dppverify.ngoal.instance.NInstance`, else an
         :class:`~dppverify.game.instance.Instance`.
+    ngoal : bool
+        Read a document as an :class:`~dppverify.ngoal.instance.NInstance` whatever its
+        number of goals (a two-goal game certified against a ``dpp-ngoal-profile/1``).
 
     Raises
     ------
@@ -43,6 +46,9 @@ def game_of(instance: Any) -> Instance | NInstance:
     >>> from dppverify.ngoal.examples import star3_document
     >>> type(game_of(star3_document())).__name__
     'NInstance'
+    >>> from dppverify.game.examples import triangle_document
+    >>> [type(game_of(triangle_document(), ngoal=n)).__name__ for n in (False, True)]
+    ['Instance', 'NInstance']
     >>> game_of("/nonexistent.json")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: /nonexistent.json: cannot read instance file ...
@@ -53,7 +59,7 @@ def game_of(instance: Any) -> Instance | NInstance:
         path = Path(instance)
         doc = read_instance_document(path)
         try:
-            if _n_goals(doc):
+            if ngoal or _n_goals(doc):
                 return read_game(doc, NInstance, two_goals=False, base=path.parent)
             return read_game(doc, Instance, two_goals=True, base=path.parent)
         except InvalidInstanceError as exc:
@@ -63,7 +69,7 @@ def game_of(instance: Any) -> Instance | NInstance:
         to_json = getattr(instance, "to_json", None)
         if callable(to_json):
             doc = to_json()
-    if isinstance(doc, Mapping) and _n_goals(doc):
+    if isinstance(doc, Mapping) and (ngoal or _n_goals(doc)):
         return read_game(doc, NInstance, two_goals=False)
     return as_instance(doc)
 

@@ -648,7 +648,7 @@ def experiment_ngoal(maps: tuple[str, ...], max_goals: int, output_dir: str, as_
         def certify(start: Any, goals: Any, prior: Any, eq: Any, grid: Any = grid) -> str:
             doc = grid_document(grid, start, list(goals), [str(b) for b in prior])
             cert = certify_profile(doc, nequilibrium_to_json(eq), horizon="inf",
-                                 route="structured")
+                                   route="structured")
             return str(cert.verdict)
 
         def show(r: Any) -> None:
