@@ -57,7 +57,7 @@ from dppverify.ngoal.structured import NSTRUCTURED_NOT_RUN, nstructured_checks
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.provenance import provenance_record
 from dppverify.registry import CHECK_IDS, CHECKS, RouteName, not_run
-from dppverify.routes import Chosen, Route, resolve_route
+from dppverify.routes import Chosen, Route, ngoal_game, resolve_route
 from dppverify.tree_route.context import Context, make_context
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.tree_route.ngoal_checks import NGOAL_CHECK_IDS, ngoal_tree_checks
@@ -256,9 +256,10 @@ def certify(instance: Instance | NInstance | Mapping[str, Any] | str | Path | An
     ('structured', None, 'fail')
     """
     game = game_of(instance)
-    if isinstance(game, NInstance):
+    if ngoal_game(game):
         return _with_provenance(_certify_n(game, _nprofile_input(profile), horizon,
                                            max_prefixes, route), instance, profile)
+    assert isinstance(game, Instance)  # not ngoal_game: the two-goal game
     if not game.exact and exact:
         raise InvalidInstanceError(FLOAT_MODE_REFUSED)
     doc, name = _read_profile(profile)
@@ -312,7 +313,7 @@ def certify(instance: Instance | NInstance | Mapping[str, Any] | str | Path | An
 
 def _with_provenance(cert: Certificate, instance: Any, profile: Any) -> Certificate:
     """An N-goal certificate with the provenance of its inputs (none for a game object)."""
-    if isinstance(instance, NInstance) or not isinstance(instance, str | Path | Mapping):
+    if not isinstance(instance, str | Path | Mapping):  # a game object: no provenance
         return cert
     return dataclasses.replace(cert, provenance=provenance_record(
         instance, _nprofile_input(profile), route=cert.route, exact=cert.exact))

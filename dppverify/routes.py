@@ -14,7 +14,7 @@ certificate (NG.8) holds, else an exact bracket naming both bounds).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Literal, cast
+from typing import Any, Literal, TypeGuard, cast
 
 from dppverify.errors import HorizonError, OptionError, TreeTooLargeError
 from dppverify.exact import Number
@@ -30,13 +30,28 @@ from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, count_prefixes
 from dppverify.tree_route.value_lp import GameValue, game_value
 from dppverify.twogoal.value_dp import StructuredValue, structured_value
 
-__all__ = ["ROUTES", "Chosen", "Route", "RoutedValue", "resolve_route", "routed_value",
-           "tree_fits", "values_agree"]
+__all__ = ["ROUTES", "Chosen", "Route", "RoutedValue", "ngoal_game", "resolve_route",
+           "routed_value", "tree_fits", "values_agree"]
 
 Route = Literal["auto", "tree", "structured", "both"]
 Chosen = Literal["tree", "structured", "both"]
 ROUTES: tuple[Route, ...] = ("auto", "tree", "structured", "both")
 AnyInstance = Instance | NInstance
+
+
+def ngoal_game(game: AnyInstance) -> TypeGuard[NInstance]:
+    """True when ``game`` is played by the N-goal checker and value routes (the one test of
+    which game an instance is; :func:`dppverify.valuation.game_of` reads a document with more
+    than two goals as one).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.ngoal.examples import star3
+    >>> ngoal_game(triangle()), ngoal_game(star3())
+    (False, True)
+    """
+    return isinstance(game, NInstance)
 
 
 def tree_fits(instance: AnyInstance, horizon: int | None, max_prefixes: int) -> bool:
@@ -288,8 +303,9 @@ def routed_value(instance: AnyInstance, horizon: int | None, *, route: Route = "
     (Fraction(3, 2), Fraction(3, 2), None)
     """
     chosen = resolve_route(route, instance, horizon, max_prefixes)
-    if isinstance(instance, NInstance):
+    if ngoal_game(instance):
         return _nrouted_value(instance, horizon, chosen, max_prefixes)
+    assert isinstance(instance, Instance)  # not ngoal_game: the two-goal game
     tree = sv = None
     if chosen in ("structured", "both"):
         sv = structured_value(instance, horizon)

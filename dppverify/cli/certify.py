@@ -33,9 +33,10 @@ from dppverify.cli.table import format_table
 from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
 from dppverify.formats.files import read_input, refuse_input_as_output
 from dppverify.formats.json_reading import JsonReadError, read_json_file
-from dppverify.game.instance import GameInstance, Instance
+from dppverify.game.instance import Instance
 from dppverify.game.profile import load_profile_document
 from dppverify.limits import MAX_PREFIXES_LIMIT, MAX_TRIALS
+from dppverify.ngoal.instance import NInstance
 from dppverify.provenance import (
     command_line,
     grid_document_of,
@@ -44,7 +45,7 @@ from dppverify.provenance import (
     provenance_record,
     verify_provenance,
 )
-from dppverify.routes import ROUTES, Route
+from dppverify.routes import ROUTES, Route, ngoal_game
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 
 __all__ = ["VERDICT_EXIT", "certify_command"]
@@ -133,7 +134,7 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
         doc = _profile_document(profile, game, instance)
         bar.phase(f"certifying (route {route}; the checks' bars follow)")
         # N goals: the file itself, whose reader checks its format tag and names the file
-        cert = certify(game, doc if isinstance(game, Instance) else profile, horizon=horizon,
+        cert = certify(game, profile if ngoal_game(game) else doc, horizon=horizon,
                        exact=game.exact and not float_mode, max_prefixes=max_prefixes,
                        seed=seed, trials=trials, progress=want_progress(progress),
                        route=route)
@@ -154,9 +155,10 @@ verdict (a check could not run) decides nothing, so it is "could not decide" (3)
 refutation (1)."""
 
 
-def _profile_document(path: str, game: GameInstance, instance: str | None) -> dict[str, Any]:
+def _profile_document(path: str, game: Instance | NInstance, instance: str | None
+                      ) -> dict[str, Any]:
     """The profile document at ``path``, refused in one line when it belongs to another game."""
-    ngoal = len(game.goals) > 2
+    ngoal = ngoal_game(game)
     with hinted(path, "profile"):
         if ngoal or what_is(path) == "dpp-ngoal-profile/1":  # (for two goals: not its game)
             try:
