@@ -9,7 +9,7 @@ connected region), equal priors. Measured, wall time, best of ``--repeat``:
   coalition DP at H = inf, the cover LP, the coalition walks and the rule along them), from the
   obstacle array;
 - ``certify N`` — the checker on that profile, structured route, H = inf, from the JSON
-  documents (:func:`dppverify.ngoal.certify.certify_ngoal`, what ``dpp certify`` runs), with
+  documents (:func:`dppverify.certify`, what ``dpp certify`` runs), with
   its verdict (an ``error`` verdict: the arc condition could not be established, proofs/NSOLVE.md);
 - ``solve 2`` — the paper's two-goal solver on the first two goals with prior 0.6 / 0.4
   (``Instance.from_grid`` + ``solve``), and the ratio ``solve N / solve 2``.
@@ -36,10 +36,10 @@ from typing import Any
 
 import numpy as np
 
+from dppverify.certify import certify
 from dppverify.formats.movingai import grid_document
 from dppverify.formats.movingai import read_map as checker_read_map
 from dppverify.formats.standard_maps import standard_map_path
-from dppverify.ngoal.certify import certify_ngoal
 from solver import Instance, solve
 from solver.experiments.ngoal import corner_cells
 from solver.movingai import read_map
@@ -67,7 +67,7 @@ def run(name: str, n: int, repeat: int) -> dict[str, Any]:
     t_n, eq = _best(lambda: solve_ngoal(ngame_from_grid(blocked, start, goals, prior)), repeat)
     doc = grid_document(grid, start, goals, prior)
     prof = nequilibrium_to_json(eq)
-    t_c, cert = _best(lambda: certify_ngoal(doc, prof, horizon="inf", route="structured"),
+    t_c, cert = _best(lambda: certify(doc, prof, horizon="inf", route="structured"),
                       repeat)
     t_2, _ = _best(lambda: solve(Instance.from_grid(blocked, start, (goals[0], goals[1]),
                                                     ("3/5", "2/5"))), max(repeat, 3))
@@ -93,7 +93,7 @@ def main() -> None:
         doc = grid_document(checker_read_map(standard_map_path("empty-8-8")), (7, 0),
                             [(0, 7), (0, 0), (0, 4), (7, 7), (4, 4)][:n], [f"1/{n}"] * n)
         solve_ngoal(game)
-        certify_ngoal(doc, nequilibrium_to_json(solve_ngoal(ngame_from_grid(
+        certify(doc, nequilibrium_to_json(solve_ngoal(ngame_from_grid(
             read_map(standard_map_path("empty-8-8")), (7, 0),
             [(0, 7), (0, 0), (0, 4), (7, 7), (4, 4)][:n], [f"1/{n}"] * n))),
             horizon="inf", route="structured")

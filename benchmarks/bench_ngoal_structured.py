@@ -5,7 +5,7 @@ rule (:func:`solver.experiments.ngoal.corner_cells`), equal priors; a profile in
 type walks a shortest path to its goal (the first one in node order at each step), the
 Defender's table greedy on the Bayes belief at every prefix of those walks (ties split
 evenly) and a uniform default. The profile is a test load, not an equilibrium: every check
-runs in full whatever its status. Timed: ``certify_ngoal(..., horizon="inf",
+runs in full whatever its status. Timed: ``certify(..., horizon="inf",
 route="structured")`` as a whole; the coalition DP (``H = inf``) that it runs, alone; and
 the best responses over all walks alone (the trie, one exact Dijkstra and the trie DP per type:
 what ``ngoal.pbne.attacker_br`` computes).
@@ -22,11 +22,11 @@ import time
 from fractions import Fraction
 from typing import Any
 
+from dppverify.certify import certify
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile import nprofile_from_json
-from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.structured.table_br import table_defender, walk_best_response
 from solver.experiments.ngoal import corner_cells
@@ -72,7 +72,7 @@ def run(name: str, n: int) -> dict[str, Any]:
     inst = instance_from_json(doc)
     prof = test_profile(inst)
     t0 = time.perf_counter()
-    cert = certify_ngoal(inst, prof, horizon="inf", route="structured")
+    cert = certify(inst, prof, horizon="inf", route="structured")
     total = time.perf_counter() - t0
     t0 = time.perf_counter()
     coalition_value(inst, None)

@@ -1,12 +1,19 @@
-"""``certify(instance, profile)``: certify or refute a profile as a weak PBNE.
+"""``certify(instance, profile)``: certify or refute a profile as a weak PBNE, for any N >= 2.
 
-Without a horizon the profile is checked on the untruncated game (``H = inf``) by the
-structured route; a finite ``horizon`` is an explicit request for the game truncated at
-``H`` (the walk tree when it fits). The verdict answers one question, "is the profile a weak
-PBNE of that game?": payoffs, both players' exact regrets, sequential rationality and Bayes
+The one entry point for two and N goals: the instance is read once (:func:`game_of`) and its
+number of goals decides which game it is. Without a horizon the profile is checked on the
+untruncated game (``H = inf``) by the structured route; a finite ``horizon`` is an explicit
+request for the game truncated at ``H`` (the walk tree when it fits; the route is chosen by
+:func:`dppverify.routes.resolve_route`). The verdict answers one question, "is the profile a
+weak PBNE of that game?": payoffs, both players' exact regrets, sequential rationality and Bayes
 consistency, the value. The paper's lemmas and "is this the paper's construction" are
 reported beside it as facts (kind ``fact``) and never decide it. See ``dppverify/checks.md``
 for every check id.
+
+Two goals: a ``dpp-profile/1`` profile and the checks of :data:`CHECK_IDS`. More goals: a
+``dpp-ngoal-profile/1`` profile and the checks of :data:`NGOAL_CHECK_IDS`
+(:mod:`dppverify.tree_route.ngoal_checks` on the walk tree, :mod:`dppverify.checks.structured_ngoal`
+without it).
 
 Numbers: rational instances are certified exactly (``Fraction``); LP values are reported
 beside the exact ones. Instances in float mode (``"numbers": "float"``) cannot be certified
@@ -21,44 +28,52 @@ import json
 import sys
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any
 
 from tqdm import tqdm
 
 from dppverify.certificate import Certificate, CheckRecord, merge_routes
 from dppverify.checks.runners import TREE_RUNNERS
 from dppverify.checks.structured import structured_checks
+from dppverify.checks.structured_ngoal import NSTRUCTURED_NOT_RUN, nstructured_checks
 from dppverify.errors import (
     HorizonError,
     InvalidInstanceError,
     LPError,
     ProfileError,
-    TreeTooLargeError,
+    UndecidedError,
 )
-from dppverify.game.instance import Instance, arc_arrays, as_instance, node_to_json
+from dppverify.formats.json_reading import JsonReadError, read_json_file
+from dppverify.game.instance import Instance, arc_arrays, node_to_json
 from dppverify.game.profile import (
+    NGOAL_PROFILE_FORMAT,
+    NProfile,
     Profile,
     ProgressRule,
     check_format,
-    load_profile_document,
+    load_nprofile_document,
+    nprofile_from_json,
     profile_from_json,
 )
 from dppverify.horizons import parse_horizon
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.provenance import provenance_record
 from dppverify.registry import CHECK_IDS, CHECKS, RouteName, not_run
-from dppverify.routes import Route, tree_fits
+from dppverify.routes import Chosen, Route, ngoal_game, resolve_route
 from dppverify.tree_route.context import Context, make_context
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
+from dppverify.tree_route.ngoal_checks import NGOAL_CHECK_IDS, ngoal_tree_checks
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, build_tree
+from dppverify.valuation import game_of
 
 __all__ = [
     "CHECK_IDS",
     "DEFAULT_TRIALS",
     "FLOAT_MODE_REFUSED",
+    "NGOAL_CHECK_IDS",
+    "NTABLE_UNDECIDED",
     "certify",
     "in_registry_order",
-    "resolve_instance",
     "shortest_horizon",
 ]
 
@@ -70,56 +85,37 @@ FLOAT_MODE_REFUSED = (
     "certified exactly; certify in float mode with exact=False (CLI: --float), which compares "
     f"with relative tolerance {DEFAULT_REL_TOL:g}")
 
+NTABLE_UNDECIDED = (
+    "the untruncated game (H = inf) cannot be decided for this profile: its Defender table has "
+    "no \"default\" and does not list every walk of the game, so it is undefined on some; a "
+    "\"default\" distribution would decide it, or --horizon H certifies the game truncated "
+    "at H")
+"""Why an N-goal table without default (that leaves walks unlisted) cannot be certified on
+the untruncated game."""
 
 
-def resolve_instance(instance: Instance | Mapping[str, Any] | str | Path | Any) -> Instance:
-    """An :class:`Instance` from an instance, a document (dict), a file path or any object
-    with ``to_json()`` (:func:`~dppverify.game.instance.as_instance`).
-
-    Parameters
-    ----------
-    instance : Instance, Mapping, str, Path or an object with ``to_json()``
-        Returned as is, parsed (:func:`~dppverify.game.instance.instance_from_json`), loaded
-        (:func:`~dppverify.game.instance.load_instance`) or parsed from ``to_json()``.
-
-    Returns
-    -------
-    Instance
-
-    Raises
-    ------
-    InvalidInstanceError
-        The document or file is not a valid instance.
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import triangle, triangle_document
-    >>> inst = triangle()
-    >>> resolve_instance(inst) is inst
-    True
-    >>> resolve_instance(triangle_document(("1/4", "3/4"))).prior
-    (Fraction(1, 4), Fraction(3, 4))
-    """
-    return as_instance(instance, two_goals=True)
-
-
-def _profile_document(profile: Any) -> Mapping[str, Any]:
-    """A profile document from a dict, a path, JSON bytes or any object with ``to_json()``."""
+def _read_profile(profile: Any) -> tuple[Any, str]:
+    """A profile document (not yet checked) and its name for messages, from a dict, a path,
+    JSON bytes or any object with ``to_json()``; a file is read once."""
     to_json = getattr(profile, "to_json", None)
     if not isinstance(profile, Mapping | str | Path | bytes) and callable(to_json):
         profile = to_json()
     if isinstance(profile, Mapping):
-        check_format(profile)
-        return profile
+        return profile, "profile"
     if isinstance(profile, str | Path | bytes):
-        return load_profile_document(profile if isinstance(profile, bytes) else Path(profile))
+        source = profile if isinstance(profile, bytes) else Path(profile)
+        name = "profile" if isinstance(source, bytes) else str(source)
+        try:
+            return read_json_file(source, kind="profile"), name
+        except JsonReadError as exc:
+            raise ProfileError(f"{name}: {exc}") from None
     raise ProfileError("a profile must be a JSON document (dict), a file path, JSON bytes or "
                        f"an object with to_json(); got {type(profile).__name__} (for the "
                        "solver's Equilibrium pass solver.equilibrium_to_json(eq))")
 
 
 def _nprofile_input(profile: Any) -> Mapping[str, Any] | str | Path:
-    """An N-goal profile as ``certify_ngoal`` takes it (paths stay paths: provenance)."""
+    """An N-goal profile document, or its path (read by :func:`load_nprofile_document`)."""
     to_json = getattr(profile, "to_json", None)
     if not isinstance(profile, Mapping | str | Path | bytes) and callable(to_json):
         profile = to_json()
@@ -178,7 +174,7 @@ def shortest_horizon(instance: Instance, profile: Profile) -> int:
 
 def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
             profile: Mapping[str, Any] | str | Path | bytes | Any, *,
-            horizon: int | Literal["inf"] | None = None, exact: bool = True,
+            horizon: int | str | float | None = None, exact: bool = True,
             max_prefixes: int = DEFAULT_MAX_PREFIXES, seed: int = 0,
             trials: int = DEFAULT_TRIALS, progress: bool = False,
             route: Route = "auto") -> Certificate:
@@ -186,16 +182,17 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
 
     Parameters
     ----------
-    instance : Instance, Mapping, str, Path, or any object with ``to_json()``
-        The game (object, instance document, path to an instance JSON file, or any object
-        whose ``to_json()`` returns the instance document).
+    instance : Instance, Instance, Mapping, str, Path, or any object with ``to_json()``
+        The game, two or N goals (object, instance document, path to an instance JSON file,
+        or any object whose ``to_json()`` returns the instance document).
     profile : Mapping, str, Path, bytes, or any object with ``to_json()``
-        A ``dpp-profile/1`` document, a path to one, its JSON text as bytes, or any object
-        whose ``to_json()`` returns it.
+        A ``dpp-profile/1`` document (``dpp-ngoal-profile/1`` for more than two goals), a
+        path to one, its JSON text as bytes, or any object whose ``to_json()`` returns it.
     horizon : int, "inf" or None
-        None (default) or ``"inf"``: the untruncated game, by the structured route. An
-        integer ``H``: the game truncated at ``H`` (at least the profile's longest walk);
-        the certificate then says it is not one for the full game.
+        None (default) or ``"inf"``: the untruncated game, by the structured route
+        (:func:`~dppverify.horizons.parse_horizon`). An integer ``H``: the game truncated at
+        ``H`` (at least the profile's longest walk); the certificate then says it is not one
+        for the full game.
     exact : bool
         Require exact certification (default). With ``exact=False`` float-mode instances
         are accepted and compared within the float tolerance; rational instances are
@@ -203,9 +200,9 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     max_prefixes : int
         Size guard of the walk tree.
     seed, trials : int
-        Seed and number of the random attackers of the L3 / L4 checks.
+        Seed and number of the random attackers of the L3 / L4 checks (two goals).
     progress : bool
-        Show tqdm progress bars on stderr.
+        Show tqdm progress bars on stderr (two goals).
     route : {"auto", "tree", "structured", "both"}
         ``auto``: the walk tree when it fits ``max_prefixes``, else the structured route
         (docs/checker.md, "Routes"); ``both``: both, a status disagreement is an ``error``.
@@ -221,139 +218,154 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     InvalidInstanceError
         Bad instance, or a float-mode instance with ``exact=True``.
     ProfileError
-        The profile is not JSON or not a ``dpp-profile/1`` document.
+        The profile is not JSON or not a profile document of the instance's format.
     HorizonError, TreeTooLargeError
-        ``horizon`` shorter than a profile path; tree larger than ``max_prefixes``.
+        ``horizon`` shorter than a profile walk; tree larger than ``max_prefixes``.
     UndecidedError
         The untruncated game cannot be decided for this profile: a table Defender without
         ``default`` that leaves a walk of the game unlisted (a walk the profile itself plays
-        unlisted is a refutation, ``profile.wellformed``); the message names the walk and
-        what would decide it.
+        unlisted is a refutation, ``profile.wellformed``); the message names what would
+        decide it.
 
     Examples
     --------
-    >>> doc = {"graph": {"nodes": [{"id": "s"}, {"id": "g1"}, {"id": "g2"}],
-    ...        "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...                  {"source": "g2", "target": "g1", "weight": 2},
-    ...                  {"source": "s", "target": "g1", "weight": 3}]},
-    ...        "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]}
-    >>> profile = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
-    ...     "defender": {"rule": "progress", "goal": "g1"},
-    ...     "attacker": {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
-    ...                              {"path": ["s", "g2"], "probability": "3/7"}],
-    ...                  "secondary": [{"path": ["s", "g2"], "probability": "1"}]}}
-    >>> cert = certify(doc, profile)
+    >>> from dppverify.game.examples import triangle_attacker, triangle_document, triangle_profile
+    >>> cert = certify(triangle_document(), triangle_profile())
     >>> cert.verdict, str(cert.check("value.U").numbers["U"])
     ('pass', '12/5')
-    >>> swapped = dict(profile, attacker={"primary": [
-    ...     {"path": ["s", "g1"], "probability": "3/7"},
-    ...     {"path": ["s", "g2"], "probability": "4/7"}],
-    ...     "secondary": [{"path": ["s", "g2"], "probability": "1"}]})
-    >>> cert = certify(doc, swapped)
+    >>> cert = certify(triangle_document(), triangle_profile(triangle_attacker("3/7", "4/7")))
     >>> cert.verdict, cert.check("pbne.defender_br").status
     ('fail', 'fail')
 
-    An instance with more than two goals (and its ``dpp-ngoal-profile/1``) is certified by
-    :func:`dppverify.ngoal.certify.certify_ngoal`, as ``dpp certify`` does:
+    An instance with more than two goals and its ``dpp-ngoal-profile/1`` (a
+    ``dpp-ngoal-profile/1`` for a two-goal instance document is checked the same way):
 
     >>> from dppverify.game.examples import star3_document, star3_profile
     >>> cert = certify(star3_document(), star3_profile(), horizon=2)
-    >>> cert.verdict, cert.check("ngoal.value.U").status
-    ('pass', 'pass')
+    >>> cert.verdict, cert.route, [c.status for c in cert.checks]
+    ('pass', 'tree', ['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'])
+    >>> bad = star3_profile()
+    >>> bad["defender"]["default"] = [0, 1, 0]   # guards b off the table: on s m and s m a
+    >>> cert = certify(star3_document(), bad, horizon=2)
+    >>> cert.verdict, cert.check("ngoal.pbne.defender_br").message
+    ('fail', 'Defender regret 2/3: greedy best response 3/2, profile 5/6')
+
+    On the untruncated game (the default) type ``b`` may loop ``s m s m b`` where the default
+    guards ``a``:
+
+    >>> cert = certify(star3_document(), star3_profile())
+    >>> cert.route, cert.horizon, cert.check("ngoal.pbne.attacker_br").status
+    ('structured', None, 'fail')
     """
-    from dppverify.game.instance import Instance
-    from dppverify.valuation import game_of
-
     game = game_of(instance)
-    if game.n_goals > 2:  # N > 2 goals
-        from dppverify.ngoal.certify import certify_ngoal
-
-        given = instance if isinstance(instance, str | Path | Mapping) else game  # provenance
-        nprofile = _nprofile_input(profile)
-        cert = certify_ngoal(given, nprofile, horizon=horizon, max_prefixes=max_prefixes,
-                             route=route)
-        if cert.provenance is not None or isinstance(given, Instance):
-            return cert
-        return dataclasses.replace(cert, provenance=provenance_record(
-            given, nprofile, route=cert.route, exact=cert.exact))
-    inst = resolve_instance(game)
-    if not inst.exact and exact:
+    if ngoal_game(game):
+        return _with_provenance(_certify_n(game, _nprofile_input(profile), horizon,
+                                           max_prefixes, route), instance, profile)
+    assert isinstance(game, Instance)  # not ngoal_game: the two-goal game
+    if not game.exact and exact:
         raise InvalidInstanceError(FLOAT_MODE_REFUSED)
-    doc = _profile_document(profile)
-    prof = profile_from_json(doc, inst, inst.numbers)
+    doc, name = _read_profile(profile)
+    if isinstance(doc, Mapping) and doc.get("format") == NGOAL_PROFILE_FORMAT \
+            and not isinstance(instance, Instance):  # two goals, as an N-goal game
+        ngame = game_of(instance, ngoal=True)
+        assert isinstance(ngame, Instance)  # game_of(ngoal=True) of a document
+        return _with_provenance(_certify_n(ngame, doc, horizon, max_prefixes, route),
+                                instance, profile)
+    check_format(doc, name)
+    prof = profile_from_json(doc, game, game.numbers)
     asked = parse_horizon(horizon)
-    longest = shortest_horizon(inst, prof)
-    if asked is not None and asked < longest:
-        raise HorizonError(f"the horizon H = {asked} is shorter than the profile's longest "
-                           f"path ({longest} steps): give a horizon of at least "
-                           f"{longest}, or none for the untruncated game")
-    chosen, h = _choose_route(inst, prof, asked, route, max_prefixes)
+    _check_horizon(asked, shortest_horizon(game, prof), "path")
+    table = prof.defender is not None and not isinstance(prof.defender, ProgressRule)
+    chosen = resolve_route(route, game, asked, max_prefixes, certifying=True, table=table)
+    h = asked
     tree_checks: list[CheckRecord] = []
     prefixes = leaves = 0
     if chosen in ("tree", "both"):
         assert h is not None
-        tree = build_tree(inst, h, max_prefixes=max_prefixes, progress=progress)
+        tree = build_tree(game, h, max_prefixes=max_prefixes, progress=progress)
         prefixes, leaves = tree.n_prefixes, tree.n_leaves
         with tqdm(total=len(CHECK_IDS) + 1, desc="certify: strategies on the tree",
                   unit="check", disable=not progress, leave=False, file=sys.stderr) as bar:
-            ctx = make_context(inst, tree, prof, seed=seed, trials=trials)
+            ctx = make_context(game, tree, prof, seed=seed, trials=trials)
             bar.update(1)
             tree_checks = _run_checks(ctx, bar)
     checks = tree_checks
     if chosen in ("structured", "both"):
-        structured = in_registry_order(structured_checks(inst, prof, h), "structured")
+        structured = in_registry_order(structured_checks(game, prof, h), "structured")
         checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)
-    roles = inst.roles(prof.primary_slot)
+    roles = game.roles(prof.primary_slot)
     defender = doc.get("defender")
     info = {
-        "nodes": inst.n_nodes,
-        "arcs": int(arc_arrays(inst).heads.size),
-        "start": node_to_json(inst.nodes[inst.start]),
-        "primary": node_to_json(inst.nodes[roles.g1]),
-        "secondary": node_to_json(inst.nodes[roles.g2]),
+        "nodes": game.n_nodes,
+        "arcs": int(arc_arrays(game).heads.size),
+        "start": node_to_json(game.nodes[game.start]),
+        "primary": node_to_json(game.nodes[roles.g1]),
+        "secondary": node_to_json(game.nodes[roles.g2]),
         "prior": [str(roles.b1), str(roles.b2)],
         "defender_rule": defender.get("rule") if isinstance(defender, Mapping) else None,
     }
-    return Certificate(checks=tuple(checks), horizon=h, exact=inst.exact,
-                       tolerance=inst.numbers.rel_tol, lp_solver=LP_SOLVER,
+    return Certificate(checks=tuple(checks), horizon=h, exact=game.exact,
+                       tolerance=game.numbers.rel_tol, lp_solver=LP_SOLVER,
                        lp_tolerance=LP_TOLERANCE,
                        prefixes=prefixes, leaves=leaves, seed=seed, info=info, route=chosen,
                        not_run=not_run("structured") if chosen == "structured" else {},
                        provenance=provenance_record(instance, profile, route=chosen,
-                                                    exact=inst.exact))
+                                                    exact=game.exact))
 
 
-def _choose_route(inst: Instance, prof: Profile, horizon: int | None,
-                  route: Route, max_prefixes: int
-                  ) -> tuple[Literal["tree", "structured", "both"], int | None]:
-    """The route(s) to run and the horizon (None: the untruncated game).
-
-    No horizon means the untruncated game (H = inf), which only the structured route
-    evaluates; a finite horizon is an explicit request for the truncated game.
-    """
-    table = prof.defender is not None and not isinstance(prof.defender, ProgressRule)
-    if horizon is None:
-        if route in ("tree", "both"):
-            raise HorizonError(f"--route {route} needs a finite horizon: the walk tree is the "
-                               f"truncated game's (give --horizon H; without a horizon the "
-                               f"untruncated game is certified by the structured route)")
-        return "structured", None  # a table without default: decided there if it can be
-    h = horizon
-    if route == "auto":
-        if tree_fits(inst, h, max_prefixes):
-            return "tree", h
-        if table:
-            raise TreeTooLargeError(_TABLE_REFUSED.format(
-                why=f"the H = {h} walk tree has more than {max_prefixes} prefixes"))
-        return "structured", h
-    if route in ("structured", "both") and table:
-        raise TreeTooLargeError(_TABLE_REFUSED.format(why=f"--route {route} was asked for"))
-    return route, h
+def _with_provenance(cert: Certificate, instance: Any, profile: Any) -> Certificate:
+    """An N-goal certificate with the provenance of its inputs (none for a game object)."""
+    if not isinstance(instance, str | Path | Mapping):  # a game object: no provenance
+        return cert
+    return dataclasses.replace(cert, provenance=provenance_record(
+        instance, _nprofile_input(profile), route=cert.route, exact=cert.exact))
 
 
-_TABLE_REFUSED = ("a table Defender on a truncated game can only be certified on the walk "
-                  "tree, and {why}; use --route tree with a horizon whose tree fits "
-                  "--max-prefixes, or omit --horizon to certify the untruncated game")
+def _check_horizon(asked: int | None, longest: int, word: str) -> None:
+    """Refuse a finite horizon shorter than the profile's longest walk (``word``: the two-goal
+    message says "path", as it always has)."""
+    if asked is not None and asked < longest:
+        raise HorizonError(f"the horizon H = {asked} is shorter than the profile's longest "
+                           f"{word} ({longest} steps): give a horizon of at least "
+                           f"{longest}, or none for the untruncated game")
+
+
+def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon: Any,
+               max_prefixes: int, route: Route) -> Certificate:
+    """:func:`certify` with more than two goals (a ``dpp-ngoal-profile/1`` profile)."""
+    doc = (load_nprofile_document(profile) if isinstance(profile, str | Path)
+           else dict(profile))
+    prof: NProfile = nprofile_from_json(inst, doc)
+    if route not in ("auto", "tree", "structured", "both"):
+        raise ValueError(f"unknown route {route!r}")
+    asked = parse_horizon(horizon)
+    _check_horizon(asked, prof.longest, "walk")
+    chosen: Chosen = resolve_route(route, inst, asked, max_prefixes, certifying=True)
+    h = asked
+    tree_checks: list[CheckRecord] = []
+    tree = None
+    if chosen in ("tree", "both"):
+        assert h is not None
+        tree_checks, tree = ngoal_tree_checks(inst, prof, h, max_prefixes)
+    checks = tree_checks
+    trie_size = 0
+    if chosen in ("structured", "both"):
+        structured, trie_size = nstructured_checks(inst, prof, h)
+        if h is None and prof.default is None and prof.rule is None:
+            br = next((r for r in structured if r.id == "ngoal.pbne.attacker_br"), None)
+            if br is not None and br.status == "error":  # undefined off the table: undecided
+                raise UndecidedError(NTABLE_UNDECIDED)
+        checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)
+    info: dict[str, Any] = {"goals": inst.n_goals, "nodes": inst.n_nodes,
+                            "game": "N goals (dppverify.ngoal)"}
+    if chosen != "tree":
+        info["trie_prefixes"] = trie_size
+    return Certificate(checks=tuple(checks), horizon=h if tree is None else tree.horizon,
+                       exact=True, lp_solver=LP_SOLVER,
+                       lp_tolerance=LP_TOLERANCE,
+                       prefixes=0 if tree is None else tree.n_prefixes,
+                       leaves=0 if tree is None else tree.n_leaves, info=info, route=chosen,
+                       not_run=dict(NSTRUCTURED_NOT_RUN) if chosen == "structured" else {})
 
 
 def _run_checks(ctx: Context, bar: tqdm | None = None) -> list[CheckRecord]:

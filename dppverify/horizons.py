@@ -1,6 +1,7 @@
 """The horizon argument of the Python API: the untruncated game or a truncated one.
 
-``certify``, ``certify_ngoal`` and :func:`dppverify.value` take ``horizon=None`` or ``"inf"``
+This is the one horizon type of the package (``dpp``'s ``-H/--horizon`` reads the same):
+:func:`dppverify.certify` and :func:`dppverify.value` take ``horizon=None`` or ``"inf"``
 (the untruncated game, the default) or a non-negative integer ``H`` (the game truncated at
 ``H``, an explicit request). Anything else is a :class:`~dppverify.errors.HorizonError` with
 one line, never a raw ``TypeError``.
@@ -15,7 +16,10 @@ from typing import Any
 from dppverify.errors import HorizonError
 from dppverify.limits import MAX_HORIZON
 
-__all__ = ["parse_horizon"]
+__all__ = ["INFINITE_WORDS", "parse_horizon"]
+
+INFINITE_WORDS = ("inf", "infinity")
+"""The words (any case) that mean the untruncated game, H = inf."""
 
 
 def parse_horizon(horizon: Any) -> int | None:
@@ -55,7 +59,7 @@ def parse_horizon(horizon: Any) -> int | None:
         raise bad
     if isinstance(horizon, str):
         text = horizon.strip().lower()
-        if text in ("inf", "infinity"):
+        if text in INFINITE_WORDS:
             return None
         if not text.isdigit():
             raise bad

@@ -1,37 +1,65 @@
-"""Which route computes a result: the walk tree, the structured (tree-free) route, or both.
+"""Which route computes a result, chosen here only: the walk tree, the structured route, or both.
 
-``auto`` takes the tree when the truncated game's tree fits ``max_prefixes`` and the
-structured route otherwise; ``both`` runs both and treats any disagreement as an error of the
-checker (docs/checker.md, "Routes"). :func:`routed_value` is ``dpp value``'s engine.
+For any number of goals ``N >= 2``. ``auto`` takes the tree when the truncated game's tree
+fits ``max_prefixes`` and the structured route otherwise; ``both`` runs both and treats any
+disagreement as an error of the checker (docs/checker.md, "Routes"). :func:`resolve_route`
+is the one place a route is chosen (for ``certify`` and ``value`` alike), and
+:func:`routed_value` is ``dppverify.value``'s (and ``dpp value``'s) engine: the two-goal
+structured route is the three-field DP (:mod:`dppverify.twogoal.value_dp`), the N-goal one the
+guarantee sets (:func:`dppverify.ngoal.proved_value.nvalue`: the coalition DP over the goal
+subsets, the value for N <= 3 (``proofs/NGOAL.md`` NG.3, NG.4) and for N = 4, 5 where its
+certificate (NG.8) holds, else an exact bracket naming both bounds).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal, cast
 
-from dppverify.errors import HorizonError
+from dppverify.errors import HorizonError, OptionError, TreeTooLargeError
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
+from dppverify.ngoal.coalition import too_many_goals
+from dppverify.ngoal.cover import MAX_BALANCED
+from dppverify.ngoal.proved_value import NValue, nvalue
+from dppverify.ngoal.value_lp import NGameValue, ngame_value
 from dppverify.numbers import NumberMode
 from dppverify.tree_route.lp import lp_agrees
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, count_prefixes
 from dppverify.tree_route.value_lp import GameValue, game_value
 from dppverify.twogoal.value_dp import StructuredValue, structured_value
 
-__all__ = ["ROUTES", "Route", "RoutedValue", "resolve_route", "routed_value", "tree_fits",
-           "values_agree"]
+__all__ = ["ROUTES", "Chosen", "Route", "RoutedValue", "ngoal_game", "resolve_route",
+           "routed_value", "tree_fits", "values_agree"]
 
 Route = Literal["auto", "tree", "structured", "both"]
+Chosen = Literal["tree", "structured", "both"]
 ROUTES: tuple[Route, ...] = ("auto", "tree", "structured", "both")
+AnyInstance = Instance
 
 
-def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> bool:
+def ngoal_game(game: Instance) -> bool:
+    """True when ``game`` is played by the N-goal checker and value routes (the one test of
+    which game an instance is; :func:`dppverify.valuation.game_of` reads a document with more
+    than two goals as one).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.game.examples import star3
+    >>> ngoal_game(triangle()), ngoal_game(star3())
+    (False, True)
+    """
+    return game.n_goals > 2
+
+
+def tree_fits(instance: AnyInstance, horizon: int | None, max_prefixes: int) -> bool:
     """True when the pruned walk tree of ``horizon`` steps has at most ``max_prefixes`` prefixes.
 
     Counts with :func:`~dppverify.tree_route.tree.count_prefixes`, saturated just above
     ``max_prefixes`` and stopping as soon as the count exceeds it, so that huge trees are
-    never counted in full. An untruncated game (``horizon=None``) never fits.
+    never counted in full. An untruncated game (``horizon=None``) never fits. Any number of
+    goals: the count reads only the graph, the start, the goals and the hop distances.
 
     Examples
     --------
@@ -39,22 +67,38 @@ def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> boo
     >>> inst = triangle()
     >>> tree_fits(inst, 5, 3), tree_fits(inst, 5, 2), tree_fits(inst, None, 10**9)
     (True, False, False)
+    >>> from dppverify.game.examples import star3
+    >>> from dppverify.ngoal.tree import count_nprefixes
+    >>> [count_nprefixes(star3(), h) for h in (2, 3)], tree_fits(star3(), 3, 7)
+    ([6, 8], False)
     """
     if horizon is None:
         return False
     if horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
-    return count_prefixes(instance, horizon, limit=max_prefixes) <= max_prefixes
+    return count_prefixes(cast(Any, instance), horizon, limit=max_prefixes) <= max_prefixes
 
 
-def resolve_route(route: Route, instance: Instance, horizon: int | None,
-                  max_prefixes: int) -> Literal["tree", "structured", "both"]:
-    """The route ``auto`` stands for on this instance (others are returned unchanged).
+def resolve_route(route: Route, instance: AnyInstance, horizon: int | None,
+                  max_prefixes: int, *, certifying: bool = False,
+                  table: bool = False) -> Chosen:
+    """The route(s) to run on ``instance``'s game at ``horizon`` (None: the untruncated game).
+
+    The one place a route is chosen, for any number of goals: ``auto`` is the walk tree when
+    it fits ``max_prefixes`` and the structured route otherwise; the untruncated game has no
+    walk tree. ``certifying``: for ``certify`` (the tree must cover the walks to the nearest
+    goal; ``table``: the profile's Defender is a two-goal table, which only the tree
+    certifies on a truncated game); otherwise for ``value`` (more than
+    :data:`~dppverify.ngoal.cover.MAX_BALANCED` goals: the tree route only).
 
     Raises
     ------
     HorizonError
         The tree route (or ``both``) with the untruncated game (``horizon=None``).
+    TreeTooLargeError
+        ``table`` on a truncated game whose tree is too large, or with the structured route.
+    OptionError
+        ``value`` with more goals than the structured route takes, where it is needed.
 
     Examples
     --------
@@ -65,14 +109,41 @@ def resolve_route(route: Route, instance: Instance, horizon: int | None,
     >>> resolve_route("tree", inst, None, 100)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     dppverify.errors.HorizonError: the tree route needs a finite horizon ...
+    >>> resolve_route("auto", inst, 3, 2, certifying=True, table=True)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.TreeTooLargeError: a table Defender on a truncated game can only be ...
     """
+    if route not in ROUTES:
+        raise ValueError(f"unknown route {route!r}")
+    if horizon is None and route in ("tree", "both"):
+        raise HorizonError(_NO_TREE_CERTIFY.format(route=route) if certifying else _NO_TREE)
+    n_goals = len(instance.goals)
+    tree_only = not certifying and n_goals > MAX_BALANCED
+    if tree_only and (horizon is None or route in ("structured", "both")):
+        raise OptionError(too_many_goals(n_goals))
+    if horizon is None:
+        return "structured"
     if route == "auto":
-        return "tree" if tree_fits(instance, horizon, max_prefixes) else "structured"
-    if route in ("tree", "both") and horizon is None:
-        raise HorizonError("the tree route needs a finite horizon --horizon H (without a "
-                           "horizon, or with inf, the game is the untruncated one: the "
-                           "structured route)")
+        size = max(horizon, instance.hops[instance.start]) if certifying else horizon
+        if tree_fits(instance, size, max_prefixes) or tree_only:
+            return "tree"
+        if table:
+            raise TreeTooLargeError(_TABLE_REFUSED.format(
+                why=f"the H = {horizon} walk tree has more than {max_prefixes} prefixes"))
+        return "structured"
+    if route in ("structured", "both") and table:
+        raise TreeTooLargeError(_TABLE_REFUSED.format(why=f"--route {route} was asked for"))
     return route
+
+
+_NO_TREE = ("the tree route needs a finite horizon --horizon H (without a horizon, or with inf, "
+            "the game is the untruncated one: the structured route)")
+_NO_TREE_CERTIFY = ("--route {route} needs a finite horizon: the walk tree is the truncated "
+                    "game's (give --horizon H; without a horizon the untruncated game is "
+                    "certified by the structured route)")
+_TABLE_REFUSED = ("a table Defender on a truncated game can only be certified on the walk "
+                  "tree, and {why}; use --route tree with a horizon whose tree fits "
+                  "--max-prefixes, or omit --horizon to certify the untruncated game")
 
 
 def values_agree(tree: GameValue, structured: Number, numbers: NumberMode) -> str | None:
@@ -110,7 +181,7 @@ def values_agree(tree: GameValue, structured: Number, numbers: NumberMode) -> st
 
 @dataclass(frozen=True)
 class RoutedValue:
-    """``V_H`` by the route(s) asked for.
+    """``V_H`` by the route(s) asked for, for any number of goals.
 
     Attributes
     ----------
@@ -118,12 +189,15 @@ class RoutedValue:
         The route(s) that ran (``auto`` resolved).
     horizon : int or None
         ``H`` (None: the untruncated game).
-    tree : GameValue or None
+    tree : GameValue, NGameValue or None
         The tree route's result (LP plus exact bracket).
-    structured : StructuredValue or None
-        The structured route's result.
+    structured : StructuredValue, NValue or None
+        The structured route's result (two goals: the three-field DP; more: the guarantee
+        sets, exact or an exact bracket).
     disagreement : str or None
         With ``both``: why the routes disagree (None when they agree).
+    goals : int
+        The number of goals ``N``.
 
     ``value``, ``lower`` and ``upper`` read the result whatever the route: ``V_H`` when it is
     known (exactly; a float in float mode), else None, and the bounds ``lower <= V_H <= upper``.
@@ -134,48 +208,63 @@ class RoutedValue:
     >>> r = routed_value(triangle(), 4, route="tree")
     >>> r.value, r.lower, r.upper
     (Fraction(12, 5), Fraction(12, 5), Fraction(12, 5))
+    >>> from dppverify.game.examples import star3
+    >>> r = routed_value(star3(), None)
+    >>> r.value, r.lower, r.upper, r.goals
+    (Fraction(3, 2), Fraction(3, 2), Fraction(3, 2), 3)
     """
 
-    route: Literal["tree", "structured", "both"]
+    route: Chosen
     horizon: int | None
-    tree: GameValue | None
-    structured: StructuredValue | None
+    tree: GameValue | NGameValue | None
+    structured: StructuredValue | NValue | None
     disagreement: str | None = None
+    goals: int = 2
+
+    def bounds(self) -> tuple[Number, Number]:
+        """``(lower, upper)`` with ``lower <= V_H <= upper`` (both the value when known).
+
+        Examples
+        --------
+        >>> from dppverify.game.examples import star3
+        >>> routed_value(star3(), 2, route="tree").bounds()
+        (Fraction(3, 2), Fraction(3, 2))
+        """
+        s = self.structured
+        if isinstance(s, StructuredValue):
+            return s.value, s.value
+        if s is not None:
+            return s.lower, s.upper
+        assert self.tree is not None  # one route always ran
+        return self.tree.bracket.lower, self.tree.bracket.upper
 
     @property
     def lower(self) -> Number:
         """A lower bound on ``V_H`` (the value itself when known)."""
-        if self.structured is not None:
-            return self.structured.value
-        assert self.tree is not None  # one route always ran
-        return self.tree.bracket.lower
+        return self.bounds()[0]
 
     @property
     def upper(self) -> Number:
         """An upper bound on ``V_H`` (the value itself when known)."""
-        if self.structured is not None:
-            return self.structured.value
-        assert self.tree is not None
-        return self.tree.bracket.upper
+        return self.bounds()[1]
 
     @property
     def value(self) -> Number | None:
-        """``V_H`` when known (the structured DP, or a closed exact bracket), else None."""
-        if self.structured is not None:
+        """``V_H`` when known (the structured route's, or a closed exact bracket), else None."""
+        if self.structured is not None and self.structured.value is not None:
             return self.structured.value
-        assert self.tree is not None
-        return self.tree.bracket.exact
+        return self.tree.bracket.exact if self.tree is not None else None
 
 
-def routed_value(instance: Instance, horizon: int | None, *, route: Route = "auto",
+def routed_value(instance: AnyInstance, horizon: int | None, *, route: Route = "auto",
                  max_prefixes: int = DEFAULT_MAX_PREFIXES,
                  progress: bool = False) -> RoutedValue:
     """``V_H`` of ``instance`` by the tree route, the structured route, or both.
 
     Parameters
     ----------
-    instance : Instance
-        The game.
+    instance : Instance or Instance
+        The game (two or N goals).
     horizon : int or None
         ``H``; None for the untruncated game (structured route only).
     route : {"auto", "tree", "structured", "both"}
@@ -183,7 +272,7 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
     max_prefixes : int
         Size guard of the walk tree.
     progress : bool
-        Progress bars on stderr (tree route).
+        Progress bars on stderr (two-goal tree route).
 
     Returns
     -------
@@ -193,7 +282,11 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
     ------
     HorizonError, TreeTooLargeError
         As :func:`~dppverify.tree_route.value_lp.game_value` and
-        :func:`~dppverify.twogoal.value_dp.structured_value`.
+        :func:`~dppverify.twogoal.value_dp.structured_value`; the tree route with
+        ``horizon=None``.
+    OptionError
+        More than five goals where the structured route is needed (``H = inf``,
+        ``--route structured`` or ``both``).
 
     Examples
     --------
@@ -203,8 +296,15 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
     ('both', Fraction(12, 5), Fraction(12, 5), None)
     >>> routed_value(triangle(), None).route
     'structured'
+    >>> from dppverify.game.examples import star3
+    >>> r = routed_value(star3(), 3, route="both")
+    >>> r.tree.bracket.exact, r.structured.value, r.disagreement
+    (Fraction(3, 2), Fraction(3, 2), None)
     """
     chosen = resolve_route(route, instance, horizon, max_prefixes)
+    if ngoal_game(instance):
+        return _nrouted_value(instance, horizon, chosen, max_prefixes)
+    assert isinstance(instance, Instance)  # not ngoal_game: the two-goal game
     tree = sv = None
     if chosen in ("structured", "both"):
         sv = structured_value(instance, horizon)
@@ -215,3 +315,23 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
     if tree is not None and sv is not None:
         why = values_agree(tree, sv.value, instance.numbers)
     return RoutedValue(route=chosen, horizon=horizon, tree=tree, structured=sv, disagreement=why)
+
+
+def _nrouted_value(instance: Instance, horizon: int | None, chosen: Chosen,
+                   max_prefixes: int) -> RoutedValue:
+    """:func:`routed_value` with N goals: the tree LP with N types, the guarantee sets."""
+    tree = (ngame_value(instance, horizon, max_prefixes=max_prefixes)
+            if chosen in ("tree", "both") and horizon is not None else None)
+    dp = nvalue(instance, horizon) if chosen in ("structured", "both") else None
+    disagreement = None
+    if tree is not None and dp is not None:
+        b = tree.bracket
+        overlap = dp.lower <= b.upper and b.lower <= dp.upper
+        exact_ok = dp.value is None or (b.lower <= dp.value <= b.upper
+                                        and lp_agrees(tree.value, dp.value))
+        if not (overlap and exact_ok):
+            disagreement = (f"the routes disagree at H = {horizon}: structured route "
+                            f"[{dp.lower}, {dp.upper}], tree route in [{b.lower}, {b.upper}] "
+                            f"(LP {tree.value!r}) — a bug; please keep this instance")
+    return RoutedValue(route=chosen, horizon=horizon, tree=tree, structured=dp,
+                       disagreement=disagreement, goals=instance.n_goals)

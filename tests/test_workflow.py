@@ -106,7 +106,7 @@ def test_experiment_compare_json() -> None:
 
 def test_certificate_file_has_the_exact_numbers_the_table_abbreviates(tmp_path: Path) -> None:
     from dppverify.certificate import CheckRecord
-    from dppverify.cli import _numbers
+    from dppverify.cli.table import _numbers
 
     big = {"U1_profile": 10**40 + 1, "ratio": 10**40 // 7 / 10**39}
     rec = CheckRecord("value.U1", "pass", "", big)  # type: ignore[arg-type]

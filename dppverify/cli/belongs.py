@@ -30,8 +30,9 @@ def _node_list(game: Instance, nodes: list[int]) -> str:
     return ", ".join(show_node(game.nodes[v]) for v in nodes)
 
 
-def _paths(doc: Mapping[str, Any]) -> Iterator[list[Any]]:
-    """Every ``path`` listed under ``attacker`` (either format), skipping malformed entries."""
+def _walks(doc: Mapping[str, Any]) -> Iterator[list[Any]]:
+    """Every walk (a ``path`` member) listed under ``attacker`` (either format), skipping
+    malformed entries."""
     attacker = doc.get("attacker")
     groups: list[Any] = []
     if isinstance(attacker, Mapping):
@@ -46,7 +47,7 @@ def _paths(doc: Mapping[str, Any]) -> Iterator[list[Any]]:
                 yield entry["path"]
 
 
-def _goal_slots(game: Instance, doc: Mapping[str, Any]) -> list[int] | str | None:
+def _goal_nodes(game: Instance, doc: Mapping[str, Any]) -> list[int] | str | None:
     """The profile's goals as instance node indices (in the profile's order), or a reason."""
     raw = doc.get("goals")
     if isinstance(raw, Mapping):
@@ -93,36 +94,36 @@ def profile_mismatch(game: Instance, doc: Any) -> str | None:
     >>> print(profile_mismatch(inst, {**ok, "goals": {"primary": "g1", "secondary": "x"}}))
     its goals are "g1", "x", the instance's are "g1", "g2"
     >>> print(profile_mismatch(inst, {**ok, "attacker": {"primary": [{"path": ["t", "g1"]}]}}))
-    its paths visit nodes the instance does not have ("t")
+    its walks visit nodes the instance does not have ("t")
     >>> print(profile_mismatch(inst, {**ok, "attacker": {"primary": [{"path": ["g2", "g1"]}]}}))
-    its paths start at "g2", the instance's start is "s"
+    its walks start at "g2", the instance's start is "s"
     >>> print(profile_mismatch(inst, {**ok, "value": {"U_bar": "3"}}))
     it states U_bar = 3, but this instance's complete-information value is 27/10
     """
     if not isinstance(doc, Mapping):
         return None
-    slots = _goal_slots(game, doc)
-    if isinstance(slots, str):
-        return slots
+    goals = _goal_nodes(game, doc)
+    if isinstance(goals, str):
+        return goals
     numbers = game.numbers
     prior = doc.get("prior")
-    if slots is not None and isinstance(prior, Mapping | list):
+    if goals is not None and isinstance(prior, Mapping | list):
         raw = ([prior.get("primary"), prior.get("secondary")] if isinstance(prior, Mapping)
                else prior)
         try:
             stated = [parse_probability(p, where="prior") for p in raw]
         except (ValueError, TypeError):
             stated = None
-        if stated is not None and len(stated) == len(slots):
-            have = [game.prior[game.goals.index(v)] for v in slots]
+        if stated is not None and len(stated) == len(goals):
+            have = [game.prior[game.goals.index(v)] for v in goals]
             if stated != have:
                 return (f"it states the prior ({', '.join(show(p) for p in stated)}) for the "
-                        f"goals {_node_list(game, slots)}, the instance's is "
+                        f"goals {_node_list(game, goals)}, the instance's is "
                         f"({', '.join(show(p) for p in have)})")
     unknown: list[Any] = []
     starts: set[int] = set()
-    for path in _paths(doc):
-        for k, raw_node in enumerate(path):
+    for walk in _walks(doc):
+        for k, raw_node in enumerate(walk):
             v = lookup_node(game.index, raw_node)
             if v is None:
                 if len(unknown) < 3 and raw_node not in unknown:
@@ -131,9 +132,9 @@ def profile_mismatch(game: Instance, doc: Any) -> str | None:
                 starts.add(v)
     if unknown:
         shown = ", ".join(show_node(tuple(u) if isinstance(u, list) else u) for u in unknown)
-        return f"its paths visit nodes the instance does not have ({shown})"
+        return f"its walks visit nodes the instance does not have ({shown})"
     if starts and game.start not in starts:
-        return (f"its paths start at {_node_list(game, sorted(starts))}, the instance's start "
+        return (f"its walks start at {_node_list(game, sorted(starts))}, the instance's start "
                 f"is {show_node(game.nodes[game.start])}")
     value = doc.get("value")
     if isinstance(value, Mapping) and "U_bar" in value and len(game.goals) == 2:

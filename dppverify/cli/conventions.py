@@ -4,7 +4,8 @@
   writes a folder (the old spelling ``--out`` is a hidden, deprecated alias);
 - ``--progress/--no-progress`` on every long command, default on only when stderr is a
   terminal; progress bars go to stderr;
-- data (tables, JSON, summaries) on stdout; status messages ("wrote ...", warnings) on stderr.
+- data (tables, JSON, summaries) on stdout; status messages ("wrote ...", warnings) on stderr;
+  a result's JSON written with ``-o FILE`` leaves stdout empty (:func:`emit`).
 
 Both the checker's commands and the solver's (``solver.cli``) use these decorators, so the
 names cannot drift apart.
@@ -13,14 +14,17 @@ names cannot drift apart.
 from __future__ import annotations
 
 import functools
+import json
 import sys
 from collections.abc import Callable
 from typing import Any, TypeVar
 
 import click
 
-__all__ = ["PhaseBar", "output_dir_option", "output_file_option", "progress_option", "status",
-           "want_progress"]
+from dppverify.formats.files import write_files
+
+__all__ = ["PhaseBar", "emit", "output_dir_option", "output_file_option", "progress_option",
+           "status", "want_progress"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -64,6 +68,31 @@ def status(message: str) -> None:
     >>> status("wrote out/p.json")  # goes to stderr, so doctest sees nothing
     """
     click.echo(message, err=True)
+
+
+def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str) -> None:
+    """The one output convention of the checker's commands.
+
+    ``-o FILE``: the JSON document is written to FILE (atomically) and ``wrote FILE: SUMMARY``
+    is the only line, on stderr (stdout stays empty, with or without ``--json``). Otherwise
+    stdout gets the JSON (``--json``) or the text.
+
+    Examples
+    --------
+    >>> emit({"a": 1}, "a = 1", as_json=False, output=None, summary="")
+    a = 1
+    >>> emit({"a": 1}, "a = 1", as_json=True, output=None, summary="")
+    {
+      "a": 1
+    }
+    """
+    if output is not None:
+        write_files({output: json.dumps(doc, indent=2, ensure_ascii=False) + "\n"})
+        status(f"wrote {output}: {summary}")
+    elif as_json:
+        click.echo(json.dumps(doc, indent=2, ensure_ascii=False))
+    else:
+        click.echo(text)
 
 
 class _NonEmptyPath(click.Path):

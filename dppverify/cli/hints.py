@@ -94,9 +94,7 @@ def file_hint(path: str | Path, expected: Kind, command: str = "dpp certify") ->
     >>> print(file_hint(p, "instance").replace(d + os.sep, ""))
     p.json is a dpp-profile/1 document, not an instance: are the arguments swapped? \
 (dpp certify INSTANCE PROFILE)
-    >>> m = os.path.join(d, "m.map")
-    >>> _ = open(m, "w").write("type octile\\n")
-    >>> print(file_hint(m, "instance", "dpp solve").replace(d + os.sep, ""))
+    >>> print(file_hint("m.map", "instance", "dpp solve"))  # a .map name suffices
     m.map is a MovingAI .map file: give it as dpp solve --map m.map --start R,C \
 --goals R,C R,C --prior P,Q
     >>> file_hint(p, "profile") is None

@@ -141,8 +141,9 @@ class MapRequest:
         """The number of goals ``N``."""
         return len(self.goals)
 
-    def ninstance(self) -> Instance:
-        """The checker's N-goal instance of the grid (:mod:`dppverify.game.instance`).
+    def game(self) -> Instance:
+        """The checker's instance of the grid: :meth:`instance` for two goals, else
+        :meth:`ninstance` (messages name the map).
 
         Examples
         --------
@@ -150,11 +151,22 @@ class MapRequest:
         >>> d = tempfile.mkdtemp()
         >>> m = os.path.join(d, "tiny.map")
         >>> _ = open(m, "w").write("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
-        >>> req = map_request(m, "1,0", ("1,2", "0,0", "0,2"), "1/2,1/4,1/4", None)
-        >>> req.ninstance().n_goals
+        >>> inst = map_request(m, "1,0", ("1,2", "0,0"), "0.6,0.4", None).game()
+        >>> type(inst).__name__, inst.n_nodes, inst.dist_to[0][inst.start]
+        ('Instance', 5, 4)
+        >>> map_request(m, "1,0", ("1,2", "0,0", "0,2"), "1/2,1/4,1/4", None).game().n_goals
         3
+        >>> map_request(m, "1,1", ("1,2", "0,0"), "0.6,0.4", None).game()
+        ...                                          # doctest: +ELLIPSIS
+        Traceback (most recent call last):
+        dppverify.errors.InvalidInstanceError: .../tiny.map: start cell (1, 1) is an obstacle
+          ('@' at row 1, column 1 of the 2x3 map)
         >>> os.remove(m); os.rmdir(d)
         """
+        return self.ninstance() if self.n_goals > 2 else self.instance()
+
+    def ninstance(self) -> Instance:
+        """The checker's N-goal instance of the grid (:mod:`dppverify.game.instance`)."""
         from dppverify.formats.movingai import grid_document
         from dppverify.game.instance import instance_from_json
 
@@ -166,24 +178,8 @@ class MapRequest:
             raise InvalidInstanceError(f"{self.map}: {exc}") from None
 
     def instance(self) -> Instance:
-        """The checker's :class:`~dppverify.game.instance.Instance` (its own ``.map`` reader).
-
-        Examples
-        --------
-        >>> import os, tempfile
-        >>> d = tempfile.mkdtemp()
-        >>> m = os.path.join(d, "tiny.map")
-        >>> _ = open(m, "w").write("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
-        >>> inst = map_request(m, "1,0", ("1,2", "0,0"), "0.6,0.4", None).instance()
-        >>> inst.n_nodes, inst.dist_to[0][inst.start]
-        (5, 4)
-        >>> map_request(m, "1,1", ("1,2", "0,0"), "0.6,0.4", None).instance()
-        ...                                          # doctest: +ELLIPSIS
-        Traceback (most recent call last):
-        dppverify.errors.InvalidInstanceError: .../tiny.map: start cell (1, 1) is an obstacle
-          ('@' at row 1, column 1 of the 2x3 map)
-        >>> os.remove(m); os.rmdir(d)
-        """
+        """The checker's two-goal :class:`~dppverify.game.instance.Instance` (its own ``.map``
+        reader, :func:`~dppverify.formats.movingai.grid_game`)."""
         grid = read_map(self.path)
         try:
             return grid_game(grid, self.start, self.goals, self.prior,

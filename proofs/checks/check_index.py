@@ -8,7 +8,7 @@ import re
 from pathlib import Path
 
 import dppverify
-from dppverify.ngoal.certify import NGOAL_CHECK_IDS
+from dppverify.certify import NGOAL_CHECK_IDS
 
 PROOFS = Path(__file__).resolve().parents[1]
 ROOT = PROOFS.parent

@@ -177,8 +177,8 @@ def _finish(csv_text: str, fig: Any, as_json: bool) -> tuple[str, bytes]:
 def _equilibria(placed: Placed, max_goals: int, as_json: bool,
                 progress: bool) -> tuple[str, bytes]:
     """Solve and certify every game of the series."""
+    from dppverify.certify import certify as certify_profile
     from dppverify.formats.movingai import grid_document
-    from dppverify.ngoal.certify import certify_ngoal
     from solver.experiments.ngoal import ngoal_csv, ngoal_figure, ngoal_series
     from solver.ngoal_equilibrium import nequilibrium_to_json
 
@@ -188,7 +188,7 @@ def _equilibria(placed: Placed, max_goals: int, as_json: bool,
     for name, blocked, grid, start, goals in placed:
         def certify(start: Any, goals: Any, prior: Any, eq: Any, grid: Any = grid) -> str:
             doc = grid_document(grid, start, list(goals), [str(b) for b in prior])
-            cert = certify_ngoal(doc, nequilibrium_to_json(eq), horizon="inf",
+            cert = certify_profile(doc, nequilibrium_to_json(eq), horizon="inf",
                                  route="structured")
             return str(cert.verdict)
 

@@ -163,7 +163,7 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
                         as_json: bool, output: str | None, save_instance: str | None,
                         progress: bool = False) -> None:
     """Solve, certify, and write (or refuse in one line, exit 3)."""
-    from dppverify.ngoal.certify import certify_ngoal
+    from dppverify.certify import certify as certify_profile
     from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
     from solver.ngoal_instance import ngame_to_json
 
@@ -176,7 +176,7 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
         checked = grid.ninstance() if grid is not None else instance
         assert checked is not None
         bar.phase("certifying (structured route, H = inf)")
-        cert = certify_ngoal(checked, doc, horizon="inf", route="structured")
+        cert = certify_profile(checked, doc, horizon="inf", route="structured")
     finally:
         bar.close()
     if cert.verdict != "pass":

@@ -11,7 +11,9 @@ import pytest
 from click.testing import CliRunner
 
 from dppverify.certificate import Certificate
-from dppverify.cli import COMMANDS, certify_command, value_command
+from dppverify.cli import COMMANDS
+from dppverify.cli.certify import certify_command
+from dppverify.cli.value import value_command
 from tests.checker._helpers import (
     run_cli,
     three_phase_doc,

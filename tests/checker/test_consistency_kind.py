@@ -12,7 +12,7 @@ from fractions import Fraction
 from dppverify import certify
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.checks.lemmas import OFF_XI2, l5_induced_beliefs, telescoping
-from dppverify.cli import CONSISTENCY_HEADING, FACTS_HEADING, format_table
+from dppverify.cli.table import CONSISTENCY_HEADING, FACTS_HEADING, format_table
 from dppverify.game.examples import triangle_context
 from dppverify.registry import CHECKS
 from tests.checker._helpers import three_phase_doc, three_phase_profile

@@ -29,7 +29,8 @@ from click.testing import CliRunner
 from scipy.optimize import linprog
 
 from dppverify import game_value
-from dppverify.cli import COMMANDS, export_efg_command
+from dppverify.cli import COMMANDS
+from dppverify.cli.export_efg import export_efg_command
 from dppverify.errors import CheckerError, HorizonError, TreeTooLargeError
 from dppverify.game.instance import instance_from_json
 from dppverify.tree_route.efg import efg_size, to_efg, write_efg

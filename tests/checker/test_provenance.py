@@ -12,7 +12,7 @@ from click.testing import CliRunner
 from dppverify import __version__
 from dppverify.certificate import Certificate
 from dppverify.certify import certify
-from dppverify.cli import certify_command
+from dppverify.cli.certify import certify_command
 from dppverify.game.examples import triangle_document, triangle_profile
 from dppverify.provenance import canonical_json, verify_provenance
 

@@ -20,7 +20,7 @@ import pytest
 from click.testing import CliRunner
 
 from dppverify import Certificate, certify, instance_from_json
-from dppverify.cli import certify_command
+from dppverify.cli.certify import certify_command
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.formats.json_reading import parse_json
 from dppverify.game.examples import triangle_document, triangle_profile

@@ -22,7 +22,8 @@ from hypothesis import strategies as st
 import dppverify
 from dppverify import certify
 from dppverify.certificate import Certificate
-from dppverify.cli import certify_command, value_command
+from dppverify.cli.certify import certify_command
+from dppverify.cli.value import value_command
 from dppverify.errors import HorizonError, UndecidedError
 from dppverify.game.examples import (
     kite,
@@ -33,7 +34,6 @@ from dppverify.game.examples import (
 )
 from dppverify.game.instance import instance_from_json
 from dppverify.game.profile import ProgressRule, TableRule
-from dppverify.ngoal.certify import certify_ngoal
 from dppverify.strategies import instances, weighted_graphs
 from dppverify.structured.table_br_twogoal import table_minima
 from dppverify.twogoal.progress_br import walk_minima
@@ -193,15 +193,15 @@ def test_table_without_default_is_undecided(tmp_path: Path) -> None:
 
 
 def test_ngoal_default_is_untruncated_and_no_default_is_undecided() -> None:
-    cert = certify_ngoal(star3_document(), star3_profile())
+    cert = certify(star3_document(), star3_profile())
     assert cert.horizon is None and cert.route == "structured" and cert.verdict == "fail"
-    assert certify_ngoal(star3_document(), star3_profile(), horizon=2).verdict == "pass"
+    assert certify(star3_document(), star3_profile(), horizon=2).verdict == "pass"
     nodef = star3_profile()
     nodef["defender"].pop("default", None)
     nodef["defender"]["entries"] += [{"walk": ["s", "m"], "probabilities": [1, 0, 0]},
                                      {"walk": ["s", "m", "a"], "probabilities": [1, 0, 0]}]
     with pytest.raises(UndecidedError, match="would decide"):
-        certify_ngoal(star3_document(), nodef)
+        certify(star3_document(), nodef)
 
 
 def test_progress_default_table_equals_the_progress_rule() -> None:
@@ -361,6 +361,6 @@ def test_api_certify_dispatches_on_the_number_of_goals(tmp_path: Path) -> None:
     cert = dppverify.certify(str(inst), str(prof), horizon=2)
     assert verify_provenance(cert.to_json(), str(inst), str(prof)).ok
     via_api = dppverify.certify(star3_document(), star3_profile(), horizon=2)
-    direct = certify_ngoal(star3_document(), star3_profile(), horizon=2)
+    direct = certify(star3_document(), star3_profile(), horizon=2)
     assert [(c.id, c.status, c.message) for c in via_api.checks] == \
         [(c.id, c.status, c.message) for c in direct.checks]

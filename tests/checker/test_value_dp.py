@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 
 import dppverify.routes
 from dppverify import count_prefixes, game_value, instance_from_json
-from dppverify.cli import value_command
+from dppverify.cli.value import value_command
 from dppverify.errors import HorizonError
 from dppverify.game.examples import triangle
 from dppverify.routes import resolve_route, routed_value, tree_fits

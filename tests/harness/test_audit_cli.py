@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner, Result
 
-from dppverify.cli import certify_command
 from dppverify.cli.audit import audit_command
+from dppverify.cli.certify import certify_command
 from solver.adapter import solve_json
 
 ROOT = Path(__file__).resolve().parents[2]

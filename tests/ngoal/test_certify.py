@@ -7,26 +7,26 @@ from typing import Any
 
 import pytest
 
+from dppverify.certify import NGOAL_CHECK_IDS, certify
 from dppverify.errors import HorizonError, ProfileError
 from dppverify.game.examples import star3_document, star3_profile
 from dppverify.game.profile import load_nprofile_document
-from dppverify.ngoal.certify import NGOAL_CHECK_IDS, certify_ngoal
 
 
 def _failed(profile: dict[str, Any], **kw: Any) -> set[str]:
     kw.setdefault("horizon", 2)  # the hub profile is an equilibrium of the 2-step game only
-    cert = certify_ngoal(star3_document(), profile, **kw)
+    cert = certify(star3_document(), profile, **kw)
     return {c.id for c in cert.checks if c.status == "fail"}
 
 
 def test_the_equilibrium_passes_and_a_longer_game_needs_a_longer_table() -> None:
-    cert = certify_ngoal(star3_document(), star3_profile(), horizon=2)
+    cert = certify(star3_document(), star3_profile(), horizon=2)
     assert cert.passed, cert.failed()
     assert [c.id for c in cert.checks] == list(NGOAL_CHECK_IDS)
     assert cert.check("ngoal.value.V_H").numbers["V_H_lower"] == cert.check(
         "ngoal.value.U").numbers["U"]
     # At H = 4 type b may loop s m s m b: the table lists only s m b, the default guards a.
-    cert = certify_ngoal(star3_document(), star3_profile(), horizon=4)
+    cert = certify(star3_document(), star3_profile(), horizon=4)
     rec = cert.check("ngoal.pbne.attacker_br")
     assert rec.status == "fail" and "['s', 'm', 's', 'm', 'b'] costs 0" in rec.message
     assert cert.check("ngoal.pbne.defender_br").status == "pass"
@@ -35,7 +35,7 @@ def test_the_equilibrium_passes_and_a_longer_game_needs_a_longer_table() -> None
 def test_a_type_with_a_cheaper_walk_is_refuted() -> None:
     p = star3_profile()
     p["attacker"][1] = [{"path": ["s", "a"], "probability": 1}]  # b: 0 + d(a, b) = 2 > 1
-    rec = certify_ngoal(star3_document(), p, horizon=2).check("ngoal.pbne.attacker_br")
+    rec = certify(star3_document(), p, horizon=2).check("ngoal.pbne.attacker_br")
     assert rec.status == "fail" and rec.numbers["regret2"] == 1
     assert "walk ['s', 'm', 'b'] costs 1" in rec.message
 
@@ -69,7 +69,7 @@ def test_a_wrong_claimed_value_is_refuted() -> None:
 def test_ill_formed_profiles_are_refuted_not_crashed(change: Any, message: str) -> None:
     p = copy.deepcopy(star3_profile())
     change(p)
-    cert = certify_ngoal(star3_document(), p, horizon=2)
+    cert = certify(star3_document(), p, horizon=2)
     rec = cert.check("ngoal.profile.wellformed")
     assert rec.status == "fail" and message in rec.message
     assert cert.verdict == "fail"
@@ -79,7 +79,7 @@ def test_ill_formed_profiles_are_refuted_not_crashed(change: Any, message: str) 
 def test_bad_input_is_an_error() -> None:
     with pytest.raises(HorizonError, match=r"shorter than the profile.s longest walk .* or "
                                            r"none for the untruncated game"):
-        certify_ngoal(star3_document(), star3_profile(), horizon=1)
+        certify(star3_document(), star3_profile(), horizon=1)
     with pytest.raises(ProfileError, match="dpp-ngoal-profile/1"):
         load_nprofile_document(b'{"format": "dpp-profile/1"}')
     with pytest.raises(ProfileError, match="not JSON"):

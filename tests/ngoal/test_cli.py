@@ -8,7 +8,8 @@ import sys
 from pathlib import Path
 
 from dppverify.certificate import Certificate
-from dppverify.cli import certify_command, value_command
+from dppverify.cli.certify import certify_command
+from dppverify.cli.value import value_command
 from dppverify.game.examples import star3_document, star3_profile
 from tests.checker._helpers import run_cli, write_doc
 

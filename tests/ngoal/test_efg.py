@@ -24,7 +24,7 @@ from typing import Any
 import pytest
 from click.testing import CliRunner
 
-from dppverify.cli import export_efg_command
+from dppverify.cli.export_efg import export_efg_command
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.game.examples import star3_document
 from dppverify.game.instance import instance_from_json

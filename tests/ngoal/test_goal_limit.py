@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from dppverify.cli import value_command
+from dppverify.cli.value import value_command
 from dppverify.errors import OptionError
 from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.coalition import coalition_value

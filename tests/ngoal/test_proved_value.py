@@ -15,10 +15,10 @@ from typing import Any
 import pytest
 
 import dppverify.ngoal.proved_value as guarantee
-from dppverify.cli import value_command
+from dppverify.certify import certify
+from dppverify.cli.value import value_command
 from dppverify.game.examples import hub4, hub4_document
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.cover import balanced_vertices
 from dppverify.ngoal.proved_value import (
@@ -122,11 +122,11 @@ def test_the_issue_equilibrium_is_certified_on_the_game_of_any_length() -> None:
     profile = {"format": "dpp-ngoal-profile/1", "attacker": attacker,
                "defender": {"rule": "table", "entries": entries,
                             "default": ["1/4"] * 4}}
-    cert = certify_ngoal(hub4(), profile, horizon="inf", route="structured")
+    cert = certify(hub4(), profile, horizon="inf", route="structured")
     assert cert.passed, cert.failed()
     rec = cert.check("ngoal.value.V_H")
     assert rec.status == "pass" and rec.numbers["V_H"] == Fraction(12, 7) == rec.numbers["U"]
-    tree = certify_ngoal(hub4(), profile, horizon=4, route="tree")
+    tree = certify(hub4(), profile, horizon=4, route="tree")
     assert tree.passed, tree.failed()
 
 

@@ -20,14 +20,14 @@ from hypothesis import assume, event, given
 from hypothesis import strategies as st
 
 from dppverify.certificate import Certificate
-from dppverify.cli import certify_command
+from dppverify.certify import certify
+from dppverify.cli.certify import certify_command
 from dppverify.errors import HorizonError, UndecidedError
 from dppverify.game.examples import star3_document, star3_profile
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile import nprofile_from_json
-from dppverify.ngoal.certify import certify_ngoal
-from dppverify.ngoal.routes import ntree_fits
 from dppverify.ngoal.tree import count_nprefixes
+from dppverify.routes import tree_fits
 from dppverify.strategies import ngoal_instances, weighted_graphs
 from dppverify.structured.table_br import table_defender, walk_best_response
 
@@ -68,7 +68,7 @@ def _failed(cert: Certificate) -> set[str]:
 
 
 def test_the_equilibrium_passes_on_the_untruncated_game() -> None:
-    cert = certify_ngoal(_doc(), _profile(), horizon="inf")
+    cert = certify(_doc(), _profile(), horizon="inf")
     assert cert.passed, cert.failed()
     assert cert.route == "structured" and cert.horizon is None
     assert set(cert.not_run) == {"ngoal.value.structured"}
@@ -81,7 +81,7 @@ def test_the_equilibrium_passes_on_the_untruncated_game() -> None:
     assert "NG.4" in (cert.check("ngoal.value.V_H").relies_on or "")
     # the same verdict on the tree at every horizon, and both routes agree check by check
     for h in (1, 3, 5):
-        both = certify_ngoal(_doc(), _profile(), horizon=h, route="both")
+        both = certify(_doc(), _profile(), horizon=h, route="both")
         assert both.passed and both.route == "both", both.failed()
     # JSON round trip of a structured certificate
     assert Certificate.from_json(cert.to_json()) == cert
@@ -105,7 +105,7 @@ def test_each_corruption_is_refuted_by_its_check(name: str, change: Any, check: 
     p = copy.deepcopy(_profile())
     p["value"].pop("U")
     change(p)
-    cert = certify_ngoal(_doc(), p, horizon="inf")
+    cert = certify(_doc(), p, horizon="inf")
     assert cert.verdict == "fail", name
     rec = cert.check(check)
     assert rec.status == "fail" and words in rec.message, (name, rec.message)
@@ -118,7 +118,7 @@ def test_wrong_mixing_fails_the_defender_checks_only() -> None:
     p["attacker"][0] = [{"path": ["s", "g1"], "probability": "1/2"},
                         {"path": ["s", "g2"], "probability": "1/2"}]
     p["value"].pop("U")
-    cert = certify_ngoal(_doc(), p, horizon="inf")
+    cert = certify(_doc(), p, horizon="inf")
     assert _failed(cert) == {"ngoal.pbne.defender_br", "ngoal.pbne.sequential"}
     assert cert.check("ngoal.pbne.defender_br").numbers["regret"] == Fraction(1, 20)
     assert cert.check("ngoal.value.V_H").status == "pass"
@@ -126,22 +126,22 @@ def test_wrong_mixing_fails_the_defender_checks_only() -> None:
 
 def test_the_hub_profile_is_refuted_on_the_untruncated_game_only() -> None:
     # H = 2: the tree route certifies it; any length: type b loops s m s m b unguarded.
-    assert certify_ngoal(star3_document(), star3_profile(), horizon=2, route="tree").passed
-    cert = certify_ngoal(star3_document(), star3_profile(), horizon=None, route="structured")
+    assert certify(star3_document(), star3_profile(), horizon=2, route="tree").passed
+    cert = certify(star3_document(), star3_profile(), horizon=None, route="structured")
     rec = cert.check("ngoal.pbne.attacker_br")
     assert rec.status == "fail" and "['s', 'm', 's', 'm', 'b'] (4 steps) costs 0" in rec.message
     assert rec.numbers["regret2"] == 1 and rec.numbers["regret1"] == 0
     # at H = 2 that 4-step walk is not in the game: the structured route decides nothing
     # (skipped, the verdict incomplete), never a FAIL of the truncated game
-    cert = certify_ngoal(star3_document(), star3_profile(), horizon=2, route="structured")
+    cert = certify(star3_document(), star3_profile(), horizon=2, route="structured")
     rec = cert.check("ngoal.pbne.attacker_br")
     assert rec.status == "skipped" and "4 steps > H = 2" in rec.message
     assert cert.verdict == "incomplete"
     # both routes at H = 2: the tree route's pass stands
-    both = certify_ngoal(star3_document(), star3_profile(), horizon=2, route="both")
+    both = certify(star3_document(), star3_profile(), horizon=2, route="both")
     assert both.check("ngoal.pbne.attacker_br").status == "pass" and both.passed
     # at H = 4 the tree sees the loop too and both routes fail it
-    both = certify_ngoal(star3_document(), star3_profile(), horizon=4, route="both")
+    both = certify(star3_document(), star3_profile(), horizon=4, route="both")
     assert both.check("ngoal.pbne.attacker_br").status == "fail"
 
 
@@ -172,22 +172,22 @@ def test_without_a_default_the_route_says_why_unless_the_table_covers_every_walk
                                  {"walk": ["s", "m", "a"], "probabilities": [1, 0, 0]}]
     # issue 18: on the untruncated game this is undecided (exit 3), never a verdict
     with pytest.raises(UndecidedError, match="would decide"):
-        certify_ngoal(star3_document(), p, horizon="inf")
-    cert = certify_ngoal(star3_document(), p, horizon=4, route="structured")
+        certify(star3_document(), p, horizon="inf")
+    cert = certify(star3_document(), p, horizon=4, route="structured")
     rec = cert.check("ngoal.pbne.attacker_br")
     assert rec.status == "error" and cert.verdict == "error"
     assert "no default and its table has no entry for walk ['s', 'a']" in rec.message
     # on the one-way hub the table lists every walk of the game but s a: still undefined
     with pytest.raises(UndecidedError):
-        certify_ngoal(_dag_star(), p, horizon="inf")
+        certify(_dag_star(), p, horizon="inf")
     p["defender"]["entries"].append({"walk": ["s", "a"], "probabilities": [1, 0, 0]})
-    cert = certify_ngoal(_dag_star(), p, horizon="inf")
+    cert = certify(_dag_star(), p, horizon="inf")
     assert cert.passed, cert.failed()
     # a profile walk where the Defender is undefined is ill-formed on both routes
     q = star3_profile()
     q["defender"].pop("default")
     for route in ("tree", "structured"):
-        cert = certify_ngoal(star3_document(), q, horizon=2, route=route)  # type: ignore[arg-type]
+        cert = certify(star3_document(), q, horizon=2, route=route)  # type: ignore[arg-type]
         rec = cert.check("ngoal.profile.wellformed")
         assert rec.status == "fail" and "no entry for walk ['s', 'm'] and no default" in \
             rec.message
@@ -195,16 +195,16 @@ def test_without_a_default_the_route_says_why_unless_the_table_covers_every_walk
 
 def test_route_choice_and_errors() -> None:
     with pytest.raises(HorizonError, match="needs a finite horizon"):
-        certify_ngoal(_doc(), _profile(), horizon="inf", route="tree")
+        certify(_doc(), _profile(), horizon="inf", route="tree")
     with pytest.raises(HorizonError, match="needs a finite horizon"):
-        certify_ngoal(_doc(), _profile(), horizon="inf", route="both")
+        certify(_doc(), _profile(), horizon="inf", route="both")
     # auto: the tree when it fits, else the untruncated game
     # issue 18: no horizon is the untruncated game (structured); a horizon the tree
-    assert certify_ngoal(_doc(), _profile()).route == "structured"
-    assert certify_ngoal(_doc(), _profile(), horizon=2).route == "tree"
-    cert = certify_ngoal(_doc(), _profile(), max_prefixes=2)
+    assert certify(_doc(), _profile()).route == "structured"
+    assert certify(_doc(), _profile(), horizon=2).route == "tree"
+    cert = certify(_doc(), _profile(), max_prefixes=2)
     assert cert.route == "structured" and cert.horizon is None and cert.passed
-    cert = certify_ngoal(_doc(), _profile(), horizon=3, max_prefixes=2)
+    cert = certify(_doc(), _profile(), horizon=3, max_prefixes=2)
     assert cert.route == "structured" and cert.horizon == 3
 
 
@@ -276,8 +276,8 @@ def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, 
     full = depth + 1 + inst.n_nodes - inst.n_goals
     h0 = max(p.longest, inst.hops[inst.start])
     # at the profile's own horizon the tree's minimum is over fewer walks: regret no larger
-    tree_cert = certify_ngoal(inst, prof, horizon=h0, route="tree")
-    struct = certify_ngoal(inst, prof, horizon="inf", route="structured")
+    tree_cert = certify(inst, prof, horizon=h0, route="tree")
+    struct = certify(inst, prof, horizon="inf", route="structured")
     for t in range(1, inst.n_goals + 1):
         key = f"regret{t}"
         tr, sr = (c.check("ngoal.pbne.attacker_br").numbers[key] for c in (tree_cert, struct))
@@ -289,10 +289,10 @@ def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, 
         assert dict(tree_cert.check(cid).numbers) == dict(struct.check(cid).numbers), cid
     assume(count_nprefixes(inst, full) <= MAX_PREFIXES)
     # where every best response fits, the regrets are equal and so are the verdicts
-    both = certify_ngoal(inst, prof, horizon=full, route="both", max_prefixes=MAX_PREFIXES)
+    both = certify(inst, prof, horizon=full, route="both", max_prefixes=MAX_PREFIXES)
     disagree = [c.message for c in both.checks if c.message.startswith("the routes disagree")]
     assert not disagree, (json.dumps(doc), json.dumps(prof), disagree)
-    tree_full = certify_ngoal(inst, prof, horizon=full, route="tree", max_prefixes=MAX_PREFIXES)
+    tree_full = certify(inst, prof, horizon=full, route="tree", max_prefixes=MAX_PREFIXES)
     assert tree_full.verdict == struct.verdict
     event(f"verdict {struct.verdict}; attacker_br {struct.check('ngoal.pbne.attacker_br').status}")
     for t in range(inst.n_goals):
@@ -310,4 +310,4 @@ def test_the_saturating_size_count_decides_like_the_exact_count(doc: dict[str, A
                                                                   limit: int) -> None:
     inst = instance_from_json(doc)
     for h in range(0, 9):
-        assert ntree_fits(inst, h, limit) == (count_nprefixes(inst, h) <= limit), h
+        assert tree_fits(inst, h, limit) == (count_nprefixes(inst, h) <= limit), h

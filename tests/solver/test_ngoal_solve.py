@@ -26,8 +26,8 @@ from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from dppverify.certify import certify
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.certify import certify_ngoal
 from dppverify.ngoal.coalition import _Runner
 from dppverify.ngoal.guarantee import dp_value, guarantee_sets
 from dppverify.strategies import ngoal_instances
@@ -53,7 +53,7 @@ GADGET: dict[str, Any] = {
 
 def _certify(doc: dict[str, Any]) -> tuple[Any, Any]:
     eq = solve_ngoal(ngame_from_json(doc))
-    cert = certify_ngoal(doc, nequilibrium_to_json(eq), horizon="inf", route="structured")
+    cert = certify(doc, nequilibrium_to_json(eq), horizon="inf", route="structured")
     return eq, cert
 
 
@@ -78,7 +78,7 @@ def test_solver_profiles_are_certified_on_the_untruncated_game(doc: dict[str, An
 def test_the_tree_route_agrees_at_the_profiles_horizon(doc: dict[str, Any]) -> None:
     eq, cert = _certify(doc)
     longest = max(len(w) - 1 for mix in eq.mixtures for w, _ in mix)
-    tree = certify_ngoal(doc, nequilibrium_to_json(eq), horizon=longest + 1, route="tree",
+    tree = certify(doc, nequilibrium_to_json(eq), horizon=longest + 1, route="tree",
                          max_prefixes=20_000)
     if cert.verdict == "pass":  # an equilibrium of the untruncated game is one of every H >= it
         eqs = {c.id: c.status for c in tree.checks}

@@ -1,12 +1,8 @@
-"""Certify an N-goal profile as a weak PBNE of the N-goal game, exactly, by route.
+"""The N-goal tree route's checks: a ``dpp-ngoal-profile/1`` profile on the walk tree of H steps.
 
-Routes (as for two goals, ``docs/checker.md`` "Routes"): ``tree`` — the truncated game's walk
-tree at ``H`` (below); ``structured`` — no walk tree, the game of ANY length
-(:mod:`dppverify.checks.structured_ngoal`, proofs/NWALKBR.md; the Defender needs a ``default``);
-``auto`` — the tree when it fits ``max_prefixes``, else structured; ``both`` — both, and a
-check whose statuses differ becomes an ``error`` record.
-
-Tree route checks, in order (ids in ``dppverify/checks.md``, "N goals"):
+Called by :func:`dppverify.certify` for an instance with more than two goals when the route is
+``tree`` or ``both`` (the route is chosen in :func:`dppverify.routes.resolve_route`). Checks,
+in order (ids in ``dppverify/checks.md``, "N goals"):
 
 ``ngoal.profile.wellformed``
     The profile parses, every walk is a walk of the game, probabilities sum to exactly 1, and
@@ -21,8 +17,8 @@ Tree route checks, in order (ids in ``dppverify/checks.md``, "N goals"):
     The Defender's exact regret is 0: the profile's payoff equals the greedy best response's.
 ``ngoal.pbne.sequential``
     At every information set reached with positive probability the Defender's distribution
-    puts mass only on goals of maximal Bayes belief ``μ(θ | p) ∝ b_θ x_θ(p)`` (off the path of
-    play any distribution is rational for some belief: the one uniform on its support).
+    puts mass only on goals of maximal Bayes belief ``μ(θ | p) ∝ b_θ x_θ(p)`` (off the path
+    of play any distribution is rational for some belief: the one uniform on its support).
 ``ngoal.value.V_H``
     The tree route's ``V_H`` (compact LP, exact bracket, with the profile's strategies among
     the candidates) equals ``U``.
@@ -38,16 +34,12 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 from fractions import Fraction
-from pathlib import Path
-from typing import Any, Literal
 
-from dppverify.certificate import Certificate, CheckRecord, Status, merge_routes
-from dppverify.checks.structured_ngoal import NSTRUCTURED_NOT_RUN, nstructured_checks
-from dppverify.errors import HorizonError, LPError, UndecidedError
+from dppverify.certificate import CheckRecord, Status
+from dppverify.errors import HorizonError, LPError
 from dppverify.exact import Number, normalize
-from dppverify.game.instance import Instance, instance_from_json, load_instance
-from dppverify.game.profile import NProfile, load_nprofile_document, nprofile_from_json
-from dppverify.horizons import parse_horizon
+from dppverify.game.instance import Instance
+from dppverify.game.profile import NProfile
 from dppverify.ngoal.best_response import (
     NTreeDefender,
     attacker_best_response,
@@ -57,15 +49,11 @@ from dppverify.ngoal.best_response import (
     payoff,
 )
 from dppverify.ngoal.proved_value import nvalue
-from dppverify.ngoal.routes import ntree_fits
 from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.ngoal.value_lp import exact_nbracket, solve_nvalue_lp
-from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
-from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
+from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
 
-__all__ = ["NGOAL_CHECK_IDS", "NRoute", "certify_ngoal", "payoff_of_type"]
-
-NRoute = Literal["auto", "tree", "structured", "both"]
+__all__ = ["NGOAL_CHECK_IDS", "ngoal_tree_checks", "payoff_of_type"]
 
 NGOAL_CHECK_IDS = ("ngoal.profile.wellformed", "ngoal.value.U", "ngoal.pbne.attacker_br",
                    "ngoal.pbne.defender_br", "ngoal.pbne.sequential", "ngoal.value.V_H",
@@ -112,132 +100,22 @@ def _defender(tree: NWalkTree, profile: NProfile) -> NTreeDefender | str:
         return f"the Defender's table has no entry for walk {list(labels)} and no default"
 
 
-def certify_ngoal(instance: Instance | Mapping[str, Any] | str | Path,
-                  profile: Mapping[str, Any] | str | Path, *,
-                  horizon: int | Literal["inf"] | None = None,
-                  max_prefixes: int = DEFAULT_MAX_PREFIXES, route: NRoute = "auto") -> Certificate:
-    """Certify (or refute) an N-goal profile, on the walk tree of ``H`` steps or without it.
+def ngoal_tree_checks(inst: Instance, prof: NProfile, h: int,
+                      max_prefixes: int) -> tuple[list[CheckRecord], NWalkTree]:
+    """The tree route's records of an N-goal profile on the walk tree of ``h`` steps.
 
-    Parameters
-    ----------
-    instance : Instance, dict, or path
-        The game.
-    profile : dict or path
-        A ``dpp-ngoal-profile/1`` document.
-    horizon : int, "inf" or None
-        None (default) or ``"inf"``: the untruncated game, by the structured route (the
-        Defender needs a ``default`` unless its table lists every walk of the game; otherwise
-        :class:`~dppverify.errors.UndecidedError`, exit 3). An integer ``H``: the game
-        truncated at ``H``, an explicit request.
-    max_prefixes : int
-        Size guard of the walk tree.
-    route : {"auto", "tree", "structured", "both"}
-        ``tree``: the walk tree; ``structured``: best responses over all walks, the Defender
-        on the profile's prefixes, the coalition DP (:mod:`dppverify.checks.structured_ngoal`);
-        ``auto``: the tree when it fits ``max_prefixes``, else structured; ``both``: both, a
-        check whose statuses differ becomes an ``error`` (unless one route skipped it).
-
-    Raises
-    ------
-    CheckerError
-        Bad input (unreadable instance or profile, a horizon shorter than a listed walk, a
-        tree above the size guard, the tree route with ``H = inf``);
-        :class:`~dppverify.errors.UndecidedError` when the untruncated game cannot be
-        decided (a table without default that leaves walks unlisted).
+    The tree is built at ``max(h, hops to the nearest goal)``; the records are
+    :data:`NGOAL_CHECK_IDS`, in that order, tagged with the tree route.
 
     Examples
     --------
-    The hub profile is an equilibrium of the game truncated at H = 2 (an explicit request):
-
-    >>> from dppverify.game.examples import star3_document, star3_profile
-    >>> cert = certify_ngoal(star3_document(), star3_profile(), horizon=2)
-    >>> cert.verdict, cert.route, [c.status for c in cert.checks]
-    ('pass', 'tree', ['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'])
-    >>> bad = star3_profile()
-    >>> bad["defender"]["default"] = [0, 1, 0]   # guards b off the table: on s m and s m a
-    >>> cert = certify_ngoal(star3_document(), bad, horizon=2)
-    >>> cert.verdict, cert.check("ngoal.pbne.defender_br").message
-    ('fail', 'Defender regret 2/3: greedy best response 3/2, profile 5/6')
-
-    On the untruncated game (the default) type ``b`` may loop ``s m s m b`` where the default
-    guards ``a``:
-
-    >>> cert = certify_ngoal(star3_document(), star3_profile())
-    >>> cert.route, cert.horizon, cert.check("ngoal.pbne.attacker_br").status
-    ('structured', None, 'fail')
+    >>> from dppverify.game.examples import star3, star3_profile
+    >>> from dppverify.game.profile import nprofile_from_json
+    >>> checks, tree = ngoal_tree_checks(star3(), nprofile_from_json(star3(), star3_profile()),
+    ...                                  2, 1000)
+    >>> [c.status for c in checks], tree.n_prefixes
+    (['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'], 6)
     """
-    if isinstance(instance, Instance):
-        inst = instance
-    elif isinstance(instance, str | Path):
-        inst = load_instance(instance)
-    else:
-        inst = instance_from_json(instance)
-    doc = (load_nprofile_document(profile) if isinstance(profile, str | Path)
-           else dict(profile))
-    prof = nprofile_from_json(inst, doc)
-    if route not in ("auto", "tree", "structured", "both"):
-        raise ValueError(f"unknown route {route!r}")
-    asked = parse_horizon(horizon)
-    if asked is not None and asked < prof.longest:
-        raise HorizonError(f"the horizon H = {asked} is shorter than the profile's longest "
-                           f"walk ({prof.longest} steps): give a horizon of at least "
-                           f"{prof.longest}, or none for the untruncated game")
-    chosen, h = _choose_route(inst, prof, asked, route, max_prefixes)
-    tree_checks: list[CheckRecord] = []
-    tree: NWalkTree | None = None
-    if chosen in ("tree", "both"):
-        assert h is not None
-        tree_checks, tree = _tree_checks(inst, prof, h, max_prefixes)
-    checks = tree_checks
-    trie_size = 0
-    if chosen in ("structured", "both"):
-        structured, trie_size = nstructured_checks(inst, prof, h)
-        if h is None and prof.default is None and prof.rule is None:
-            br = next((r for r in structured if r.id == "ngoal.pbne.attacker_br"), None)
-            if br is not None and br.status == "error":  # undefined off the table: undecided
-                raise UndecidedError(NTABLE_UNDECIDED)
-        checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)
-    info = {"goals": inst.n_goals, "nodes": inst.n_nodes, "game": "N goals (dppverify.ngoal)"}
-    if chosen != "tree":
-        info["trie_prefixes"] = trie_size
-    return Certificate(checks=tuple(checks), horizon=h if tree is None else tree.horizon,
-                       exact=True, lp_solver=LP_SOLVER,
-                       lp_tolerance=LP_TOLERANCE,
-                       prefixes=0 if tree is None else tree.n_prefixes,
-                       leaves=0 if tree is None else tree.n_leaves, info=info, route=chosen,
-                       not_run=dict(NSTRUCTURED_NOT_RUN) if chosen == "structured" else {})
-
-
-def _choose_route(inst: Instance, prof: NProfile, horizon: int | None,
-                  route: NRoute, max_prefixes: int
-                  ) -> tuple[Literal["tree", "structured", "both"], int | None]:
-    """The route(s) to run and the horizon (None: the untruncated game, the default)."""
-    if horizon is None:
-        if route in ("tree", "both"):
-            raise HorizonError(f"--route {route} needs a finite horizon: the walk tree is the "
-                               f"truncated game's (give --horizon H; without a horizon the "
-                               f"untruncated game is certified by the structured route)")
-        return "structured", None
-    h = horizon
-    if route == "auto":
-        if ntree_fits(inst, max(h, inst.hops[inst.start]), max_prefixes):
-            return "tree", h
-        return "structured", h
-    return route, h
-
-
-NTABLE_UNDECIDED = (
-    "the untruncated game (H = inf) cannot be decided for this profile: its Defender table has "
-    "no \"default\" and does not list every walk of the game, so it is undefined on some; a "
-    "\"default\" distribution would decide it, or --horizon H certifies the game truncated "
-    "at H")
-"""Why an N-goal table without default (that leaves walks unlisted) cannot be certified on
-the untruncated game."""
-
-
-def _tree_checks(inst: Instance, prof: NProfile, h: int,
-                 max_prefixes: int) -> tuple[list[CheckRecord], NWalkTree]:
-    """The tree route's records on the walk tree of ``h`` steps."""
     tree = build_ntree(inst, max(h, inst.hops[inst.start]), max_prefixes=max_prefixes)
     checks: list[CheckRecord] = []
     tdef = None if prof.defects else _defender(tree, prof)

@@ -1,0 +1,234 @@
+"""``dpp certify``: certify or refute a profile, print the certificate, record its provenance.
+
+Exit codes: 0 (every check passes), 1 (refuted), 3 (could not decide: an ``error`` or
+``incomplete`` verdict, or an undecidable untruncated game), 2 (bad input, one line). With
+``--verify-provenance CERT`` it certifies nothing: it checks the hashes CERT recorded.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import sys
+from typing import Any
+
+import click
+
+from dppio.limits import MAX_PREFIXES_LIMIT
+from dppverify.certificate import Certificate
+from dppverify.certify import DEFAULT_TRIALS, certify
+from dppverify.cli.belongs import profile_mismatch
+from dppverify.cli.conventions import (
+    PhaseBar,
+    emit,
+    output_file_option,
+    progress_option,
+    want_progress,
+)
+from dppverify.cli.errors import fail
+from dppverify.cli.hints import what_is
+from dppverify.cli.inputs import HORIZON, hinted, load_game
+from dppverify.cli.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
+from dppverify.cli.table import format_table
+from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
+from dppverify.formats.files import read_input, refuse_input_as_output
+from dppverify.formats.json_reading import JsonReadError, read_json_file
+from dppverify.game.instance import Instance
+from dppverify.game.profile import load_profile_document
+from dppverify.limits import MAX_TRIALS
+from dppverify.provenance import (
+    command_line,
+    grid_document_of,
+    grid_record,
+    input_record,
+    provenance_record,
+    verify_provenance,
+)
+from dppverify.routes import ROUTES, Route, ngoal_game
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
+
+__all__ = ["VERDICT_EXIT", "certify_command"]
+
+
+@click.command("certify", short_help="Certify or refute a profile as a PBNE of an instance.")
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("profile", required=False, type=click.Path(dir_okay=False), metavar="PROFILE")
+@map_options
+@click.option("-H", "--horizon", type=HORIZON,
+              help="Certify the game truncated at H steps instead (an explicit request; the "
+                   "verdict then names that game). Default, or 'inf': the untruncated game, "
+                   "by the structured route.")
+@click.option("--route", type=click.Choice(ROUTES), default="auto", show_default=True,
+              help="tree: the walk tree; structured: shortest paths and the value DP, no tree "
+                   "(docs/checker.md); auto: the tree when it fits --max-prefixes, else "
+                   "structured; both: run both, a disagreement is an error record.")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the dpp-certificate/1 JSON instead of the table.")
+@output_file_option("Write the dpp-certificate/1 JSON to this file (atomically); stdout stays "
+                    "empty, the verdict is one line on stderr.")
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
+              default=DEFAULT_MAX_PREFIXES,
+              show_default=True, help="Refuse walk trees larger than this.")
+@click.option("--float", "float_mode", is_flag=True,
+              help="Float mode is detected from the instance (\"numbers\": \"float\", e.g. "
+                   "--connectivity 8): it is compared within a relative tolerance of 1e-9. "
+                   "This flag is accepted for old scripts and changes nothing.")
+@click.option("--seed", type=int, default=0, show_default=True,
+              help="Seed of the random attackers of the L3/L4 checks.")
+@click.option("--trials", type=click.IntRange(min=0, max=MAX_TRIALS), default=DEFAULT_TRIALS,
+              show_default=True,
+              help="Number of random attackers in the L3/L4 checks.")
+@click.option("--verify-provenance", "provenance_of", metavar="CERT",
+              type=click.Path(dir_okay=False),
+              help="Do not certify: check that CERT (a certificate JSON) records the sha256 of "
+                   "INSTANCE and PROFILE (exit 0), or say in one line what differs (exit 1).")
+@progress_option
+def certify_command(instance: str | None, profile: str | None, grid: MapRequest | None,
+                    horizon: int | None, route: Route, as_json: bool,
+                    output: str | None, max_prefixes: int, float_mode: bool, seed: int,
+                    trials: int, provenance_of: str | None, progress: bool | None) -> None:
+    """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE's game (exit 3:
+    could not decide).
+
+    Without --horizon the game is the untruncated one (H = inf); --horizon H certifies the
+    game truncated at H, and the verdict says so. The paper's lemmas are reported beside the
+    verdict as facts and never decide it. PROFILE is a dpp-profile/1 JSON file (from `dpp
+    solve -o` or any other solver); for an instance with more than two goals, a
+    dpp-ngoal-profile/1 file (docs/formats.md). With --map, the game is the grid and the only
+    argument is PROFILE. Bad input exits 2 with a one-line message, a profile made for another
+    instance (other goals, prior, start or map) too; a profile the untruncated game cannot be
+    decided for (a table Defender without "default") exits 3. Float-mode instances
+    (8-connected maps) are detected and compared within a relative tolerance of 1e-9.
+
+    \b
+    Examples:
+      dpp solve examples/triangle.json -o profile.json
+      dpp certify examples/triangle.json profile.json
+      dpp certify examples/triangle.json profile.json --json
+      dpp certify examples/triangle.json profile.json -o certificate.json
+      dpp certify examples/triangle.json profile.json --horizon 4
+      dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
+      dpp certify --verify-provenance cert.json examples/triangle.json profile.json
+    """
+    bar = PhaseBar(want_progress(progress), "certify", "reading the instance")
+    try:
+        if grid is not None and profile is not None:
+            raise OptionError(f"with --map, certify takes only PROFILE (got {instance!r} and "
+                              f"{profile!r})")
+        if grid is not None:
+            instance, profile = None, instance
+        if profile is None and provenance_of is not None:
+            raise OptionError("missing INSTANCE or PROFILE: dpp certify --verify-provenance "
+                              "CERT INSTANCE PROFILE (with --map: CERT PROFILE)")
+        if profile is None:
+            raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
+                              f"dpp certify {MAP_USAGE} PROFILE")
+        refuse_input_as_output(output, [instance, profile, grid.path if grid else None])
+        if provenance_of is not None:
+            bar.close()
+            _verify_provenance(provenance_of, instance, profile, grid)
+            return
+        game = load_game(instance, grid)
+        bar.phase("reading the profile")
+        doc = _profile_document(profile, game, instance)
+        bar.phase(f"certifying (route {route}; the checks' bars follow)")
+        # N goals: the file itself, whose reader checks its format tag and names the file
+        cert = certify(game, profile if ngoal_game(game) else doc, horizon=horizon,
+                       exact=game.exact and not float_mode, max_prefixes=max_prefixes,
+                       seed=seed, trials=trials, progress=want_progress(progress),
+                       route=route)
+    except CheckerError as exc:
+        bar.close()
+        fail(exc)
+    bar.close()
+    cert = _with_command(cert, instance, profile, grid)
+    summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
+    emit(cert.to_json(), format_table(cert), as_json=as_json, output=output, summary=summary)
+    raise click.exceptions.Exit(VERDICT_EXIT[cert.verdict])
+
+
+VERDICT_EXIT = {"pass": 0, "fail": 1, "error": 3, "incomplete": 3}
+"""``dpp certify``'s exit code per verdict: an ``error`` (the checker's own computations
+disagree, e.g. an LP solver failing on a badly scaled valid input) or an ``incomplete``
+verdict (a check could not run) decides nothing, so it is "could not decide" (3), never a
+refutation (1)."""
+
+
+def _profile_document(path: str, game: Instance, instance: str | None
+                      ) -> dict[str, Any]:
+    """The profile document at ``path``, refused in one line when it belongs to another game."""
+    ngoal = ngoal_game(game)
+    with hinted(path, "profile"):
+        if ngoal or what_is(path) == "dpp-ngoal-profile/1":  # (for two goals: not its game)
+            try:
+                doc = read_json_file(path, kind="profile")
+            except JsonReadError as exc:
+                raise ProfileError(f"{path}: {exc}") from None
+        else:
+            doc = load_profile_document(path)
+    reason = profile_mismatch(game, doc)
+    if reason is not None:
+        solve = f"dpp solve {instance}" if instance is not None else "dpp solve --map ..."
+        raise ProfileError(f"{path} does not belong to this instance: {reason}; make a "
+                           f"profile for it with {solve} -o PROFILE")
+    return dict(doc)
+
+
+def _with_command(cert: Certificate, instance: str | None, profile: str,
+                  grid: MapRequest | None) -> Certificate:
+    """The certificate with its provenance's command (and, for --map, the grid's hashes)."""
+    prov = dict(cert.provenance or provenance_record(instance, profile, route=cert.route,
+                                                     exact=cert.exact))
+    prov["command"] = _command()
+    prov["profile"] = input_record(profile)  # the file's bytes (certify was given its document)
+    if grid is not None:
+        prov["instance"] = grid_record(grid.path, _grid_document(grid))
+    elif instance is not None:
+        prov["instance"] = input_record(instance)
+    return dataclasses.replace(cert, provenance=prov)
+
+
+def _command() -> list[str]:
+    """The command line of this run: ``sys.argv`` when the process is this command, else
+    (e.g. invoked from Python) the command path and its parameters as ``name=value``."""
+    ctx = click.get_current_context()
+    root = ctx.find_root().info_name or ""
+    if sys.argv and root == os.path.basename(sys.argv[0]):
+        return command_line(sys.argv)
+    if sys.argv and sys.argv[0].endswith("__main__.py") and root.startswith("python -m "):
+        return [*root.split(), *sys.argv[1:]]  # python -m dppverify ...
+    return [*ctx.command_path.split(), *(f"{k}={v}" for k, v in ctx.params.items()
+                                         if v is not None)]
+
+
+def _grid_document(grid: MapRequest) -> dict[str, Any]:
+    return grid_document_of(grid.path, grid.start, grid.goals, grid.prior, grid.connectivity)
+
+
+def _verify_provenance(cert_path: str, instance: str | None, profile: str,
+                       grid: MapRequest | None) -> None:
+    """``dpp certify --verify-provenance``: one line; exit 0 (match), 1 (mismatch), 2."""
+    try:
+        raw = read_input(cert_path)
+    except (OSError, ValueError) as exc:
+        raise CertificateError(f"{cert_path}: cannot read the certificate ({exc})") from None
+    try:
+        doc = json.loads(raw)
+    except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as exc:
+        raise CertificateError(f"{cert_path}: the certificate is not JSON ({exc})") from None
+    if not isinstance(doc, dict) or doc.get("format") != "dpp-certificate/1":
+        raise CertificateError(f"{cert_path}: not a dpp-certificate/1 document")
+    try:
+        Certificate.from_json(doc)  # well-formed, and its verdict agrees with its checks
+    except CertificateError as exc:
+        raise CertificateError(f"{cert_path}: {exc}") from None
+    if grid is not None:
+        result = verify_provenance(doc, _grid_document(grid), profile, map_file=grid.path)
+    else:
+        instance_or_map(instance, grid)
+        result = verify_provenance(doc, instance, profile)
+    click.echo(result.line)
+    raise click.exceptions.Exit(0 if result.ok else 1)
+
+

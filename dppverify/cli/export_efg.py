@@ -1,0 +1,68 @@
+"""``dpp export-efg``: write an instance's game truncated at H steps as a Gambit ``.efg`` file."""
+
+from __future__ import annotations
+
+import click
+
+from dppio.limits import MAX_PREFIXES_LIMIT
+from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
+from dppverify.cli.errors import fail
+from dppverify.cli.inputs import load_game
+from dppverify.cli.map_options import MapRequest, map_options
+from dppverify.errors import CheckerError
+from dppverify.formats.files import refuse_input_as_output
+from dppverify.limits import MAX_HORIZON
+from dppverify.tree_route.efg import DEFAULT_MAX_EFG_NODES, write_efg
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
+
+__all__ = ["export_efg_command"]
+
+
+@click.command("export-efg", short_help="Write the truncated game as a Gambit .efg file.")
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@map_options
+@click.option("-H", "--horizon", type=click.IntRange(min=0, max=MAX_HORIZON), required=True,
+              help="Horizon H of the truncated game.")
+@output_file_option("The .efg file to write (atomically).", required=True)
+@click.option("--attacker-observes/--attacker-blind", default=True, show_default=True,
+              help="Whether the Attacker's information sets include the Defender's past "
+                   "allocations (the value is the same either way).")
+@click.option("--forced-moves", is_flag=True,
+              help="Also write the Attacker's one-action decision nodes (skipped by default: "
+                   "Gambit 17.0.0b2's lp_solve mis-solves one-action information sets).")
+@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
+              default=DEFAULT_MAX_PREFIXES,
+              show_default=True, help="Refuse walk trees larger than this.")
+@click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
+              show_default=True, help="Refuse games with more nodes than this.")
+@progress_option
+def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: int,
+                       output: str, attacker_observes: bool, forced_moves: bool,
+                       max_prefixes: int, max_nodes: int, progress: bool | None) -> None:
+    """Write INSTANCE's game truncated at H steps as a Gambit .efg file.
+
+    Chance draws the Attacker's goal, the Attacker picks each next node, the Defender
+    allocates each step to a goal (information set: the walk plus its own past allocations,
+    so the game has perfect recall); payoffs sit on the leaves only. Gambit and OpenSpiel
+    read the file; every copy of a t-step walk prefix appears 2^t times (N^t with N goals:
+    an instance may list N > 2 goals, docs/formats.md), so keep H small.
+
+    \b
+    Examples:
+      dpp export-efg examples/triangle.json --horizon 2 -o triangle.efg
+      dpp export-efg examples/triangle.json -H 3 -o game.efg --attacker-blind
+      dpp export-efg --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 2 -o g.efg
+    """
+    try:
+        refuse_input_as_output(output, [instance, grid.path if grid is not None else None])
+        game = load_game(instance, grid, "dpp export-efg")
+        size = write_efg(output, game, horizon,
+                         attacker_observes=attacker_observes, forced_moves=forced_moves,
+                         max_prefixes=max_prefixes, max_nodes=max_nodes,
+                         progress=want_progress(progress))
+    except CheckerError as exc:
+        fail(exc)
+    goals = f"N = {len(game.goals)} goals, " if len(game.goals) > 2 else ""
+    status(f"wrote {output}: {goals}H = {horizon}, {size.nodes} game nodes ({size.terminals} "
+           f"terminals), {size.attacker_infosets} Attacker and {size.defender_infosets} "
+           f"Defender information sets")

@@ -1,0 +1,105 @@
+"""What the checker's commands read: the horizon option, the instance (a file or ``--map``),
+and read errors turned into hints.
+
+``-H/--horizon`` is read by :data:`HORIZON` into the one horizon type of the package
+(:mod:`dppverify.horizons`): a non-negative integer ``H``, or None for the untruncated game
+(``inf``, the default).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import click
+
+from dppverify.cli.hints import file_hint
+from dppverify.cli.map_options import MapRequest, instance_or_map
+from dppverify.errors import CheckerError
+from dppverify.game.instance import Instance
+from dppverify.horizons import INFINITE_WORDS
+from dppverify.limits import MAX_HORIZON
+from dppverify.valuation import game_of
+
+__all__ = ["HORIZON", "HorizonParam", "hinted", "load_game"]
+
+
+class HorizonParam(click.ParamType):
+    """A horizon: a non-negative integer, or ``inf`` for the untruncated game (None).
+
+    Examples
+    --------
+    >>> [HORIZON.convert(v, None, None) for v in ("4", "inf", "Infinity", None, 3)]
+    [4, None, None, None, 3]
+    """
+
+    name = "H|inf"
+
+    def convert(self, value: Any, param: click.Parameter | None,
+                ctx: click.Context | None) -> int | None:
+        if value is None or isinstance(value, int):
+            return value
+        text = str(value).strip().lower()
+        if text in INFINITE_WORDS:
+            return None
+        try:
+            h = int(text)
+        except ValueError:
+            self.fail(f"{value!r} is not a non-negative integer or 'inf'", param, ctx)
+        if h < 0:
+            self.fail(f"{value!r} is negative", param, ctx)
+        if h > MAX_HORIZON:
+            self.fail(f"{value!r} is beyond the limit of {MAX_HORIZON}", param, ctx)
+        return h
+
+
+HORIZON = HorizonParam()
+
+
+def load_game(instance: str | None, grid: MapRequest | None,
+              command: str = "dpp certify") -> Instance:
+    """The instance of a command, two or N goals: the INSTANCE file (read once,
+    :func:`~dppverify.valuation.game_of`) or the ``--map`` option group's grid.
+
+    Examples
+    --------
+    >>> import json, os, tempfile
+    >>> from dppverify.game.examples import triangle_document
+    >>> with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+    ...     json.dump(triangle_document(), f)
+    >>> load_game(f.name, None).nodes
+    ('s', 'g1', 'g2')
+    >>> os.unlink(f.name)
+    """
+    instance_or_map(instance, grid)
+    if grid is not None:
+        return grid.game()
+    assert instance is not None  # instance_or_map: one of the two
+    with hinted(instance, "instance", command):
+        return game_of(instance)
+
+
+class hinted:
+    """Context manager: a read error of ``path`` becomes :func:`~dppverify.cli.hints.file_hint`'s
+    hint (the file is of another kind: swapped arguments, a ``.map`` file, ...) when it has one.
+
+    Examples
+    --------
+    >>> with hinted("/nowhere/x.map", "instance"):  # doctest: +ELLIPSIS
+    ...     game_of("/nowhere/x.map")
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: /nowhere/x.map is a MovingAI .map file: give it as ...
+    """
+
+    def __init__(self, path: str, kind: Any, command: str = "dpp certify",
+                 errors: tuple[type[Exception], ...] = (CheckerError,)) -> None:
+        self.path, self.kind, self.command, self.errors = path, kind, command, errors
+
+    def __enter__(self) -> None:
+        return None
+
+    def __exit__(self, kind: Any, exc: Any, tb: Any) -> None:
+        if isinstance(exc, self.errors):
+            hint = file_hint(self.path, self.kind, self.command)
+            if hint is not None:
+                raise type(exc)(hint) from None
+
