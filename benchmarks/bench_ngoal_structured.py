@@ -25,11 +25,11 @@ from typing import Any
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
 from dppverify.ngoal.certify import certify_ngoal
-from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.experiment import corner_cells
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
 from dppverify.ngoal.profile import nprofile_from_json
 from dppverify.ngoal.walk_br import table_defender, walk_best_response
+from dppverify.structured.coalition import coalition_value
 
 MAPS = ("room-32-32-4", "room-64-64-8", "maze-128-128-10", "Berlin_1_256")
 

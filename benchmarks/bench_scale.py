@@ -262,8 +262,8 @@ def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str
     from dppverify.formats.movingai import grid_document, read_map
     from dppverify.formats.standard_maps import standard_map_path
     from dppverify.game.instance import Instance, read_game
-    from dppverify.ngoal.coalition import coalition_value
     from dppverify.ngoal.instance import NInstance
+    from dppverify.structured.coalition import coalition_value
     from dppverify.twogoal.value_dp import structured_value
 
     def grid_game(grid: Any, start: Any, goals: Any, prior: Any, *, cls: Any = Instance,

@@ -5,7 +5,7 @@ names a standard map, ``docs/maps.md``), 4-connected with unit weights, with a s
 ordered list of candidate goals, for ``N = 2 … len(goals)`` the first ``N`` goals are used with
 two priors — equal (``1/N`` each) and skewed (``b_θ ∝ 2^(N-θ)``: the first goal most likely) —
 and the untruncated game's value ``V = V_inf`` is computed exactly by the guarantee sets
-(:func:`dppverify.ngoal.proved_value.nvalue`, ``proofs/NGOAL.md``: the coalition DP, the value
+(:func:`dppverify.structured.proved_value.nvalue`, ``proofs/NGOAL.md``: the coalition DP, the value
 for N <= 3 and for N = 4, 5 where certified; where it is not proved, ``V`` is the DP's upper
 bound and the row says so: ``V_exact`` false, hollow in the figure), beside the
 complete-information value ``Ū = Σ_θ b_θ d(s0, g^θ)`` (the Defender knows the goal and guards
@@ -39,7 +39,7 @@ from dppverify.formats.files import write_files
 from dppverify.formats.movingai import GridMap, grid_document, read_map
 from dppverify.formats.standard_maps import resolve_map
 from dppverify.ngoal.instance import ninstance_from_json
-from dppverify.ngoal.proved_value import nvalue
+from dppverify.structured.proved_value import nvalue
 
 __all__ = ["GoalRow", "corner_cells", "goal_series", "skewed_prior"]
 
@@ -47,7 +47,7 @@ Cell = tuple[int, int]
 DEFAULT_MAP = "examples/paper10.map"
 MAX_GOALS = 5
 """The coalition DP enumerates minimal balanced collections up to five goals
-(``dppverify/ngoal/cover.py``)."""
+(``dppverify/structured/cover.py``)."""
 
 
 def skewed_prior(n: int) -> tuple[Fraction, ...]:

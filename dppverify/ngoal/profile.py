@@ -15,12 +15,12 @@ Document::
      "defender": {"rule": "table",
                   "entries": [{"walk": [s0, …, s_t], "probabilities": [q_1, …, q_N]}, …],
                   "default": [q_1, …, q_N]},        (optional)
-              or {"rule": "guarantee", "h": [h_1, …, h_N]}   (dppverify.ngoal.guarantee)
+              or {"rule": "guarantee", "h": [h_1, …, h_N]}   (dppverify.structured.guarantee)
      "value": {"U": …}}                             (optional, informative)
 
 ``attacker[θ]`` is type θ's mixed strategy over walks (type θ's goal is ``goals[θ]``); after
 observing the walk ``s0 … s_t`` the Defender puts the step's weight on goal ``g^i`` with
-probability ``q_i``; or the Defender is the guarantee rule of :mod:`dppverify.ngoal.guarantee`.
+probability ``q_i``; or the Defender is the guarantee rule of :mod:`dppverify.structured.guarantee`.
 """
 
 from __future__ import annotations
@@ -43,9 +43,9 @@ from dppverify.formats.json_reading import (
     resolve_walk,
 )
 from dppverify.game.profile import StrategyPath
-from dppverify.ngoal.guarantee import RULE as GUARANTEE
-from dppverify.ngoal.guarantee import GuaranteeRule, parse_guarantee
 from dppverify.ngoal.instance import NInstance
+from dppverify.structured.guarantee import RULE as GUARANTEE
+from dppverify.structured.guarantee import GuaranteeRule, parse_guarantee
 
 __all__ = ["NGOAL_PROFILE_FORMAT", "NProfile", "load_nprofile_document",
            "nprofile_from_json"]
@@ -73,7 +73,7 @@ class NProfile:
         Everything that makes the profile ill-formed (``where: what``).
     rule : GuaranteeRule or None
         The Defender's rule when it is ``{"rule": "guarantee", ...}`` (then ``entries`` is
-        empty and ``default`` None; :mod:`dppverify.ngoal.guarantee`).
+        empty and ``default`` None; :mod:`dppverify.structured.guarantee`).
     """
 
     attacker: tuple[tuple[StrategyPath, ...], ...]

@@ -2,10 +2,10 @@
 
 Routes (the same names as for two goals): ``tree`` — the walk tree's compact LP closed by an
 exact bracket (the literal definition; finite ``H`` only); ``structured`` — the guarantee sets
-(:func:`dppverify.ngoal.proved_value.nvalue`; any ``H`` and ``H = inf``): the coalition DP over the
-goal subsets, which is the value for N <= 3 (``proofs/NGOAL.md`` NG.3, NG.4) and for N = 4, 5
-only where its certificate (NG.8) holds, refined with extra facet normals where it does not;
-otherwise an exact bracket naming both bounds. ``auto`` — the tree when it fits the size
+(:func:`dppverify.structured.proved_value.nvalue`; any ``H`` and ``H = inf``): the coalition DP
+over the goal subsets, which is the value for N <= 3 (``proofs/NGOAL.md`` NG.3, NG.4) and for
+N = 4, 5 only where its certificate (NG.8) holds, refined with extra facet normals where it
+does not; otherwise an exact bracket naming both bounds. ``auto`` — the tree when it fits the size
 guard, else the structured route; ``both`` — run both, a disagreement is reported (and exits 1).
 """
 
@@ -17,12 +17,12 @@ from typing import Any, cast
 
 from dppverify.errors import HorizonError, InvalidInstanceError, OptionError
 from dppverify.exact import Number, format_number
-from dppverify.ngoal.coalition import CoalitionValue, too_many_goals
-from dppverify.ngoal.cover import MAX_BALANCED, members
 from dppverify.ngoal.instance import NInstance, goal_count, read_instance_document
-from dppverify.ngoal.proved_value import NValue, nvalue
 from dppverify.ngoal.value_lp import NGameValue, ngame_value
 from dppverify.routes import tree_fits
+from dppverify.structured.coalition import CoalitionValue, too_many_goals
+from dppverify.structured.cover import MAX_BALANCED, members
+from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.text import show, show_value
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES

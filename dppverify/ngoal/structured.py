@@ -10,8 +10,8 @@ defined on every walk of the game):
   profile's own walks, the only information sets with positive mass (NW.3; off the path every
   distribution is a best response to the belief uniform on its support, NW.4);
 - payoffs walk by walk; the value by the guarantee sets at ``H`` or ``H = inf``
-  (:func:`dppverify.ngoal.proved_value.nvalue`, proofs/NGOAL.md): where ``V_H`` is proved (N <= 3,
-  or a certified DP for N = 4, 5) ``U`` must equal it; otherwise ``U`` outside the exact
+  (:func:`dppverify.structured.proved_value.nvalue`, proofs/NGOAL.md): where ``V_H`` is proved
+  (N <= 3, or a certified DP for N = 4, 5) ``U`` must equal it; otherwise ``U`` outside the exact
   bracket refutes the profile, and ``U`` inside it passes only when every equilibrium check
   passed (a certified equilibrium has ``U = V_H``), else ``skipped`` (not decisive).
 
@@ -29,8 +29,8 @@ from dppverify.errors import HorizonError
 from dppverify.exact import INF, Number, normalize
 from dppverify.ngoal.instance import NInstance
 from dppverify.ngoal.profile import NProfile
-from dppverify.ngoal.proved_value import NValue, nvalue
 from dppverify.ngoal.walk_br import TableDefender, exit_costs, table_defender, walk_best_response
+from dppverify.structured.proved_value import NValue, nvalue
 
 __all__ = ["NSTRUCTURED_NOT_RUN", "nstructured_checks"]
 
@@ -98,8 +98,8 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
         out += [_rec(i, "skipped", "the profile is not well formed", None, "–")
                 for i in _IDS[1:]]
         return out, 0
-    if profile.rule is not None:  # the guarantee rule: dppverify.ngoal.guarantee
-        from dppverify.ngoal.guarantee import guarantee_checks
+    if profile.rule is not None:  # the guarantee rule: dppverify.structured.guarantee
+        from dppverify.structured.guarantee import guarantee_checks
 
         return guarantee_checks(inst, profile, horizon)
     walks = [mw.walk for mix in profile.attacker for mw in mix]

@@ -14,10 +14,10 @@ from fractions import Fraction
 import numpy as np
 import sympy as sp
 
-from dppverify.ngoal.coalition import _Runner
-from dppverify.ngoal.cover import balanced_vertices, members, min_cover
-from dppverify.ngoal.guarantee import bad_rays, guarantee_sets, guarantee_sigma, rule_order
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
+from dppverify.structured.coalition import _Runner
+from dppverify.structured.cover import balanced_vertices, members, min_cover
+from dppverify.structured.guarantee import bad_rays, guarantee_sets, guarantee_sigma, rule_order
 
 
 def _y(ray: tuple[tuple[int, Fraction], ...], n: int) -> list[Fraction]:

@@ -10,8 +10,8 @@ from click.testing import CliRunner
 
 from dppverify.cli import value_command
 from dppverify.errors import OptionError
-from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import ninstance_from_json
+from dppverify.structured.coalition import coalition_value
 
 
 def _star(n: int) -> dict[str, object]:

@@ -21,13 +21,13 @@ from hypothesis import strategies as st
 from dppverify.errors import HorizonError
 from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.agreement import compare_routes
-from dppverify.ngoal.coalition import _Runner, coalition_value, coalition_values
 from dppverify.ngoal.examples import star3, star3_document
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
-from dppverify.ngoal.proved_value import nvalue
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.strategies import instances, ngoal_instances, weighted_graphs
+from dppverify.structured.coalition import _Runner, coalition_value, coalition_values
+from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.value_lp import game_value
 
 MAX_PREFIXES = 2500

@@ -27,10 +27,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dppverify.ngoal.certify import certify_ngoal
-from dppverify.ngoal.coalition import _Runner
-from dppverify.ngoal.guarantee import dp_value, guarantee_sets
 from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.strategies import ngoal_instances
+from dppverify.structured.coalition import _Runner
+from dppverify.structured.guarantee import dp_value, guarantee_sets
 from solver import Instance, solve
 from solver.cli import main
 from solver.coalitions import coalition_dp

@@ -2,7 +2,7 @@
 from the checker's own mathematics.
 
 Profile: ``"defender": {"rule": "guarantee", "h": [h_1, …, h_N]}`` (``docs/formats.md`` §2b).
-With ``m_S(v)`` the coalition DP at ``H = inf`` (:mod:`dppverify.ngoal.coalition`, the layer
+With ``m_S(v)`` the coalition DP at ``H = inf`` (:mod:`dppverify.structured.coalition`, the layer
 that repeats) and ``G_v = { r : r(S) <= m_S(v) for every non-empty S }``:
 
 - the state is ``r``, ``r = h`` at the start;
@@ -127,11 +127,11 @@ def guarantee_sets(instance: NInstance) -> GuaranteeSets:
     """``m_S`` at ``H = inf`` at every node: the unique solution of the DP's fixpoint equations.
 
     By increasing ``|S|``: the split ``min_λ Σ_T λ_T m_T(v)`` over the minimal balanced
-    collections of ``S`` (:func:`dppverify.ngoal.cover.balanced_vertices`) is known from the
+    collections of ``S`` (:func:`dppverify.structured.cover.balanced_vertices`) is known from the
     smaller subsets, and ``m_S(v) = min_x [dist(v -> x) + init_S(x)]`` over walks whose interior
     avoids the goals (``init_S`` = the split off the goals, the terminal cost at a goal): one
     label-setting shortest-path pass per subset (NSOLVE.3: this is the limit ``H -> inf`` of
-    the layered DP of :mod:`dppverify.ngoal.coalition`). Exact: integers scaled by
+    the layered DP of :mod:`dppverify.structured.coalition`). Exact: integers scaled by
     ``W·L^(N-1)``, in float64 only while every value is an integer below 2**53.
 
     Examples
@@ -142,8 +142,8 @@ def guarantee_sets(instance: NInstance) -> GuaranteeSets:
     (Fraction(4, 1), Fraction(2, 1))
     """
     from dppverify.errors import OptionError
-    from dppverify.ngoal.coalition import too_many_goals
-    from dppverify.ngoal.cover import MAX_BALANCED, balanced_vertices, members
+    from dppverify.structured.coalition import too_many_goals
+    from dppverify.structured.cover import MAX_BALANCED, balanced_vertices, members
 
     inst = instance
     n_goals = inst.n_goals
@@ -252,8 +252,8 @@ def dp_value(sets: GuaranteeSets) -> Any:
     >>> dp_value(guarantee_sets(star3())).value
     Fraction(3, 2)
     """
-    from dppverify.ngoal.coalition import CoalitionValue
-    from dppverify.ngoal.cover import min_cover
+    from dppverify.structured.coalition import CoalitionValue
+    from dppverify.structured.cover import min_cover
 
     inst = sets.instance
     costs = {mask: Fraction(int(v[inst.start]), sets.scale) for mask, v in sets.m.items()}
@@ -660,7 +660,7 @@ def guarantee_checks(instance: NInstance, profile: Any, horizon: int | None
     out.append(_rec("ngoal.value.U", "pass" if ok else "fail", f"U = {u}{said}", nums, WALKS))
     out.append(_attacker_record(inst, rule, sets, per_type, feasible, _rec, _labels))
     out += _defender(inst, tdef, mass, u)
-    from dppverify.ngoal.proved_value import coalition_nvalue
+    from dppverify.structured.proved_value import coalition_nvalue
 
     known = (coalition_nvalue(dp_value(sets), inst.n_goals)  # proved for N <= 3 (NG.4)
              if horizon is None and inst.n_goals <= 3 else None)

@@ -13,9 +13,9 @@ For every node ``v``, steps left ``k`` and non-empty goal subset ``S`` the DP ke
 
 The split is an LP over the fractional partitions of ``S``; its optimum is attained at a vertex,
 and those vertices are the minimal balanced collections of ``S``
-(:func:`dppverify.ngoal.cover.balanced_vertices`: 1, 5, 41, 1291 for ``|S|`` = 2 … 5), so the
+(:func:`dppverify.structured.cover.balanced_vertices`: 1, 5, 41, 1291 for ``|S|`` = 2 … 5), so the
 split is one exact integer matrix product per (k, S) over all nodes. The final cover LP is
-solved by the exact simplex of :func:`dppverify.ngoal.cover.min_cover`.
+solved by the exact simplex of :func:`dppverify.structured.cover.min_cover`.
 
 Exactness: weights are scaled to integers by the lcm ``W`` of their denominators; a split
 multiplies by coefficients with denominators dividing ``L`` (the lcm over the vertex tables),
@@ -31,7 +31,7 @@ For two goals ``m_{1} = D1``, ``m_{2} = D2`` and ``m_{12} = min(step, D1 + D2)``
 three-field DP of ``proofs/HORIZON.md``'s two-goal value. The DP is an upper bound on the
 truncated game's value, equal to it for ``N <= 3`` (``proofs/NGOAL.md`` NG.3, NG.4) and not
 always for ``N >= 4`` (the hub of :func:`dppverify.ngoal.examples.hub4`);
-:func:`dppverify.ngoal.proved_value.nvalue` certifies it or brackets the value.
+:func:`dppverify.structured.proved_value.nvalue` certifies it or brackets the value.
 """
 
 from __future__ import annotations
@@ -45,8 +45,8 @@ import numpy as np
 
 from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import INF, Number, normalize
-from dppverify.ngoal.cover import MAX_BALANCED, balanced_vertices, members, min_cover, popcount
 from dppverify.ngoal.instance import NInstance
+from dppverify.structured.cover import MAX_BALANCED, balanced_vertices, members, min_cover, popcount
 
 __all__ = ["CoalitionValue", "coalition_value", "coalition_values"]
 
@@ -216,7 +216,7 @@ def coalition_value(instance: NInstance, horizon: int | None, *,
     """The coalition DP of the N-goal game (``horizon=None`` for ``H = inf``).
 
     An upper bound on ``V_H``, equal to it for N <= 3 (``proofs/NGOAL.md``); use
-    :func:`dppverify.ngoal.proved_value.nvalue` for the certified value or bracket.
+    :func:`dppverify.structured.proved_value.nvalue` for the certified value or bracket.
 
     Parameters
     ----------

@@ -14,7 +14,7 @@ and that a *normal-restricted* DP — one number ``m_n(v, k)`` per node, steps l
 
 describes outer sets ``F_v^k = { r : n·r <= m_n(v, k) ∀ n ∈ M }`` ⊇ ``G_v^k`` (an upper bound on
 ``V_H``, NG.2/NG.7). With ``M`` the 0/1 vectors it is the coalition DP
-(:mod:`dppverify.ngoal.coalition`). The sets are the true ones — and the DP value is ``V_H`` —
+(:mod:`dppverify.structured.coalition`). The sets are the true ones — and the DP value is ``V_H`` —
 as soon as every arc satisfies ``F_v^k ⊆ F_u^{k-1} + w·Δ^N`` (NG.8). By Farkas' lemma that
 holds iff for every vertex ``λ`` of the packing polytope ``P_M = { λ >= 0 : Σ_n λ_n n <= 1 }``
 
@@ -50,9 +50,9 @@ import numpy as np
 
 from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import Number, normalize
-from dppverify.ngoal.coalition import CoalitionValue, _Runner, _same, too_many_goals
-from dppverify.ngoal.cover import MAX_BALANCED, _dets, min_cover_vectors
 from dppverify.ngoal.instance import NInstance
+from dppverify.structured.coalition import CoalitionValue, _Runner, _same, too_many_goals
+from dppverify.structured.cover import MAX_BALANCED, _dets, min_cover_vectors
 
 __all__ = [
     "NValue",
@@ -658,7 +658,7 @@ def coalition_nvalue(coal: CoalitionValue, n_goals: int) -> NValue:
 
     Examples
     --------
-    >>> from dppverify.ngoal.coalition import coalition_value
+    >>> from dppverify.structured.coalition import coalition_value
     >>> from dppverify.ngoal.examples import star3
     >>> coalition_nvalue(coalition_value(star3(), None), 3).value
     Fraction(3, 2)
