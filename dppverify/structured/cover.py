@@ -1,13 +1,21 @@
-"""Fractional covers of a set of goals by subsets: exact vertices and an exact simplex.
+"""Fractional covers of goals by subsets and by integer normals: exact vertices, exact simplex.
 
-Goal subsets are bitmasks (bit θ = type θ). A *fractional cover* of a weight vector ``r`` by a
-family of subsets is ``c >= 0`` with ``Σ_T c_T 1_T = r``. Two exact tools:
+Goal subsets are bitmasks (bit θ = goal index θ). A *fractional cover* of a weight vector ``r``
+by a family of columns (subsets as 0/1 vectors, or non-negative integer *normals*) is
+``c >= 0`` with ``Σ_j c_j columns[j] = r``. The one vertex enumeration and the one exact LP of
+the structured route:
 
+- :func:`basic_solutions`: every vertex of ``{c >= 0 : Σ_j c_j columns[j] = rhs}`` — every
+  choice of ``|support of rhs|`` columns with a non-zero exact integer determinant
+  (:func:`dets`: Laplace expansion, vectorised), solved by Cramer's rule, kept when
+  non-negative; nothing is decided in floating point. :func:`symmetric_table` shares one table
+  between permuted right-hand sides.
 - :func:`balanced_vertices`: the vertices of ``{c >= 0 : Σ_{T ⊊ S} c_T 1_T = 1_S}`` for the
   ground set ``S = {0, …, s-1}`` — the *minimal balanced collections* of cooperative game
-  theory (Shapley), 1, 5, 41 and 1291 of them for ``s = 2 … 5``. Computed once per ``s``
-  by enumerating all ``s``-column bases with exact integer determinants (Leibniz formula,
-  vectorised) and Cramer's rule; nothing is decided in floating point.
+  theory (Shapley), 1, 5, 41 and 1291 of them for ``s = 2 … 5``.
+- :func:`packing_vertices`: the vertices of the packing polytope ``{λ >= 0 : Σ_n λ_n n <= 1}``
+  of a set of normals (the arc certificate of ``proofs/NGOAL.md`` NG.8).
+- :func:`cheapest`: ``min`` over a table's vertices of ``values · c`` at every row, exactly.
 - :func:`min_cover`: ``min Σ_T c_T m_T`` over covers of any positive ``r`` by all non-empty
   subsets, by the primal simplex method in exact rationals (Bland's rule), starting from the
   feasible basis of singletons. It returns the optimal dual ``π`` too, which certifies the
@@ -25,8 +33,12 @@ from functools import cache
 
 import numpy as np
 
-__all__ = ["BalancedVertices", "CoverLP", "balanced_vertices", "members", "min_cover",
-           "min_cover_vectors", "popcount"]
+__all__ = ["MAX_BALANCED", "BalancedVertices", "CoverLP", "Normal", "Table", "balanced_vertices",
+           "basic_solutions", "cheapest", "dets", "members", "min_cover", "min_cover_vectors",
+           "packing_vertices", "popcount", "symmetric_table", "zero_one_normals"]
+
+Normal = tuple[int, ...]
+"""A facet normal (or cover column): a non-negative integer vector, one entry per goal index."""
 
 MAX_BALANCED = 5
 """Largest ground set whose minimal balanced collections are enumerated (1291 at 5)."""
@@ -79,12 +91,20 @@ class BalancedVertices:
     scaled: np.ndarray
 
 
-def _dets(entries: Sequence[Sequence[np.ndarray]]) -> np.ndarray:
+def dets(entries: Sequence[Sequence[np.ndarray]]) -> np.ndarray:
     """Exact integer determinants of a batch of small integer matrices.
 
     ``entries[r][c]`` holds entry ``(r, c)`` of every matrix (a 1-D int64 array). Laplace
     expansion bottom-up over column subsets: the minor of the last ``j`` rows on a ``j``-column
     set ``C`` is ``Σ_{c ∈ C} ± M[s-j, c] · minor(C - c)``.
+
+    Examples
+    --------
+    The determinants of ``[[2, 1], [1, 1]]`` and ``[[0, 1], [1, 0]]``:
+
+    >>> a = np.array
+    >>> dets([[a([2, 0]), a([1, 1])], [a([1, 1]), a([1, 0])]]).tolist()
+    [1, -1]
     """
     s = len(entries)
     minors: dict[int, np.ndarray] = {0: np.ones_like(entries[0][0])}
@@ -102,9 +122,140 @@ def _dets(entries: Sequence[Sequence[np.ndarray]]) -> np.ndarray:
     return minors[(1 << s) - 1]
 
 
+@dataclass(frozen=True)
+class Table:
+    """The vertices of ``{c >= 0 : Σ_j c_j columns[j] = rhs}``, scaled to integers.
+
+    Attributes
+    ----------
+    columns : tuple of int
+        Indices of the columns (into the caller's list) that may be positive.
+    scaled : numpy.ndarray
+        ``lcm · c`` for every vertex: shape ``(len(columns), n_vertices)``, int64.
+    lcm : int
+        Common denominator of every vertex coordinate.
+    """
+
+    columns: tuple[int, ...]
+    scaled: np.ndarray
+    lcm: int
+
+    @property
+    def vertices(self) -> list[tuple[Fraction, ...]]:
+        """The vertices as exact fractions (one entry per column)."""
+        return [tuple(Fraction(int(x), self.lcm) for x in col) for col in self.scaled.T]
+
+
+def basic_solutions(columns: Sequence[Sequence[int]], rhs: Sequence[int]) -> Table:
+    """Every vertex of ``{c >= 0 : Σ_j c_j columns[j] = rhs}`` (non-negative integer data).
+
+    Rows outside the support of ``rhs`` force the columns that use them to 0; on the
+    support, the unit vectors must be among the columns (full row rank). The vertices are the
+    basic feasible solutions: every choice of ``|support|`` columns with a non-zero exact
+    integer determinant, solved by Cramer's rule, kept when non-negative, de-duplicated.
+
+    Examples
+    --------
+    The fractional covers of (1, 1, 1) by the non-empty subsets of three goals (as 0/1
+    columns): the five minimal balanced collections plus the whole set itself.
+
+    >>> t = basic_solutions(zero_one_normals(3), (1, 1, 1))
+    >>> t.scaled.shape[1], t.lcm
+    (6, 2)
+    """
+    rhs = tuple(int(x) for x in rhs)
+    return _basic_solutions(tuple(tuple(int(x) for x in c) for c in columns), rhs)
+
+
+@cache
+def _basic_solutions(columns: tuple[Normal, ...], rhs: Normal) -> Table:
+    rows = [i for i, x in enumerate(rhs) if x != 0]
+    keep = [j for j, c in enumerate(columns)
+            if any(c) and all(c[i] == 0 for i in range(len(rhs)) if rhs[i] == 0)]
+    m = len(rows)
+    if m == 0:
+        return Table(columns=(), scaled=np.zeros((0, 1), dtype=np.int64), lcm=1)
+    mat = np.array([[columns[j][i] for j in keep] for i in rows], dtype=np.int64)
+    b = np.array([rhs[i] for i in rows], dtype=np.int64)
+    found: list[np.ndarray] = []
+    dens: list[int] = []
+    all_combos = itertools.combinations(range(len(keep)), m)
+    while True:
+        chunk = np.array(list(itertools.islice(all_combos, 200_000)), dtype=np.int64)
+        if chunk.size == 0:
+            break
+        entries = [[np.ascontiguousarray(mat[r, chunk[:, c]]) for c in range(m)]
+                   for r in range(m)]
+        det = dets(entries)
+        ok = det != 0
+        chunk, det = chunk[ok], det[ok]
+        entries = [[e[ok] for e in row] for row in entries]
+        if not chunk.size:
+            continue
+        numer = np.empty((chunk.shape[0], m), dtype=np.int64)
+        for i in range(m):  # Cramer: column i replaced by the right-hand side
+            numer[:, i] = dets([[np.full(chunk.shape[0], b[r]) if c == i else entries[r][c]
+                                 for c in range(m)] for r in range(m)])
+        sign = np.sign(det)[:, None]
+        feas = np.all(numer * sign >= 0, axis=1)
+        chunk, det, numer = chunk[feas], det[feas], numer[feas]
+        common = int(np.lcm.reduce(np.abs(det))) if det.size else 1
+        dense = np.zeros((chunk.shape[0], len(keep)), dtype=np.int64)
+        idx = np.arange(chunk.shape[0])
+        for i in range(m):
+            dense[idx, chunk[:, i]] = numer[:, i] * (common // det)
+        found.append(dense)
+        dens.append(common)
+    lcm = math.lcm(1, *dens)
+    stacked = np.concatenate([d * (lcm // c) for d, c in zip(found, dens, strict=True)]) \
+        if found else np.zeros((0, len(keep)), dtype=np.int64)
+    unique = np.unique(stacked, axis=0)  # degenerate vertices have several bases
+    g = int(np.gcd.reduce(np.append(unique.ravel(), lcm)))
+    return Table(columns=tuple(keep), scaled=np.ascontiguousarray((unique // g).T),
+                 lcm=lcm // g)
+
+
+def symmetric_table(normals: tuple[Normal, ...], rhs: Normal) -> Table:
+    """:func:`basic_solutions` by symmetry: the table of the sorted ``rhs``, columns permuted.
+
+    ``normals`` must be closed under permutations of the goals (the 0/1 vectors are; extra
+    normals are always added with all their permutations).
+
+    Examples
+    --------
+    >>> def covers(t):
+    ...     return sorted(sorted(zip(t.columns, v)) for v in t.vertices)
+    >>> zo = zero_one_normals(3)
+    >>> covers(symmetric_table(zo, (1, 2, 1))) == covers(basic_solutions(zo, (1, 2, 1)))
+    True
+    """
+    n = len(rhs)
+    order = sorted(range(n), key=lambda i: (-rhs[i], i))  # srt[k] = rhs[order[k]]
+    base = basic_solutions(normals, tuple(rhs[i] for i in order))
+    inv = [0] * n
+    for k, i in enumerate(order):
+        inv[i] = k
+    index = {v: j for j, v in enumerate(normals)}
+    cols = tuple(index[tuple(normals[j][inv[i]] for i in range(n))] for j in base.columns)
+    return Table(columns=cols, scaled=base.scaled, lcm=base.lcm)
+
+
+def zero_one_normals(n_goals: int) -> tuple[Normal, ...]:
+    """The 0/1 normals ``1_S`` in mask order (``mask = 1 … 2^N - 1``).
+
+    Examples
+    --------
+    >>> zero_one_normals(2)
+    ((1, 0), (0, 1), (1, 1))
+    """
+    return tuple(tuple((s >> i) & 1 for i in range(n_goals)) for s in range(1, 1 << n_goals))
+
+
 @cache
 def balanced_vertices(size: int) -> BalancedVertices:
     """The minimal balanced collections of ``{0, …, size-1}`` as exact cover vertices.
+
+    The vertices of :func:`basic_solutions` for the proper non-empty subsets and ``1_S``.
 
     Parameters
     ----------
@@ -125,36 +276,64 @@ def balanced_vertices(size: int) -> BalancedVertices:
     if not 2 <= size <= MAX_BALANCED:
         raise ValueError(f"balanced collections are tabulated for 2 to {MAX_BALANCED} goals, "
                          f"not {size}")
-    full = (1 << size) - 1
-    columns = tuple(range(1, full))
-    incidence = np.array([[(t >> i) & 1 for t in columns] for i in range(size)], dtype=np.int64)
-    combos = np.array(list(itertools.combinations(range(len(columns)), size)), dtype=np.int64)
-    entries = [[np.ascontiguousarray(incidence[r, combos[:, c]]) for c in range(size)]
-               for r in range(size)]
-    det = _dets(entries)
-    keep = det != 0
-    combos, det = combos[keep], det[keep]
-    entries = [[e[keep] for e in row] for row in entries]
-    ones = np.ones(combos.shape[0], dtype=np.int64)
-    numer = np.empty((combos.shape[0], size), dtype=np.int64)
-    for i in range(size):  # Cramer: column i replaced by the right-hand side 1_S
-        numer[:, i] = _dets([[ones if c == i else row[c] for c in range(size)]
-                             for row in entries])
-    sign = np.sign(det)[:, None]
-    feasible = np.all(numer * sign >= 0, axis=1)
-    combos, det, numer = combos[feasible], det[feasible], numer[feasible]
-    common = int(np.lcm.reduce(np.abs(det)))  # every c = numer/det is a multiple of 1/common
-    dense = np.zeros((combos.shape[0], len(columns)), dtype=np.int64)
-    rows = np.arange(combos.shape[0])
-    for i in range(size):
-        dense[rows, combos[:, i]] = numer[:, i] * (common // det)
-    unique = np.unique(dense, axis=0)  # degenerate vertices have several bases
-    vertices = [tuple(Fraction(int(x), common) for x in row) for row in unique.tolist()]
-    lcm = math.lcm(*(c.denominator for v in vertices for c in v))
-    scaled = np.array([[int(v[j] * lcm) for v in vertices] for j in range(len(columns))],
-                      dtype=np.int64)
-    return BalancedVertices(size=size, columns=columns, vertices=tuple(vertices), lcm=lcm,
-                            scaled=scaled)
+    proper = zero_one_normals(size)[:-1]  # masks 1 … 2^size - 2: column j is mask j + 1
+    table = basic_solutions(proper, (1,) * size)
+    assert table.columns == tuple(range(len(proper)))  # every proper subset may be positive
+    return BalancedVertices(size=size, columns=tuple(range(1, len(proper) + 1)),
+                            vertices=tuple(table.vertices), lcm=table.lcm, scaled=table.scaled)
+
+
+@cache
+def packing_vertices(normals: tuple[Normal, ...]) -> tuple[tuple[tuple[Fraction, ...],
+                                                                tuple[Fraction, ...]], ...]:
+    """The vertices ``λ`` of ``{λ >= 0 : Σ_n λ_n n <= 1}`` with ``y_λ = Σ_n λ_n n`` not 0/1.
+
+    Returned as pairs ``(λ, y_λ)``. Vertices whose ``y_λ`` is a 0/1 vector are left out: the
+    arc condition holds for them automatically (``proofs/NGOAL.md`` NG.8).
+
+    Examples
+    --------
+    >>> len(packing_vertices(zero_one_normals(3)))
+    0
+    >>> sorted({y for _, y in packing_vertices(zero_one_normals(4))})[0]
+    (Fraction(1, 2), Fraction(1, 1), Fraction(1, 1), Fraction(1, 1))
+    """
+    n = len(normals[0])
+    slack = tuple(tuple(int(i == j) for i in range(n)) for j in range(n))
+    table = basic_solutions(normals + slack, (1,) * n)
+    out = []
+    for v in table.vertices:
+        lam = [Fraction(0)] * len(normals)
+        for pos, col in enumerate(table.columns):
+            if col < len(normals):
+                lam[col] = v[pos]
+        y = tuple(sum((lam[j] * normals[j][i] for j in range(len(normals))), Fraction(0))
+                  for i in range(n))
+        if any(x not in (0, 1) for x in y):
+            out.append((tuple(lam), y))
+    return tuple(sorted(set(out)))
+
+
+def cheapest(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:
+    """Row-wise ``min`` of ``values @ scaled`` for non-negative integers, exactly.
+
+    ``values`` holds one row per node and one column per cover column, ``scaled`` a table's
+    integer vertices (:attr:`Table.scaled`): the cheapest cover at every row, times the
+    table's ``lcm``. float64 BLAS when every partial sum is provably an integer below 2^53,
+    else Python integers.
+
+    Examples
+    --------
+    >>> t = basic_solutions(zero_one_normals(2), (1, 1))
+    >>> cheapest(np.array([[2, 3, 4], [2, 3, 6]]), t.scaled).tolist()
+    [4, 5]
+    """
+    top = int(values.max(initial=0)) if values.size else 0
+    width = (top + 1) * (int(np.abs(scaled).sum(axis=0).max(initial=1)) + 1)
+    if width < 2 ** 53:
+        return (values.astype(np.float64) @ scaled.astype(np.float64)).min(axis=1).astype(
+            np.int64)
+    return (values.astype(object) @ scaled.astype(object)).min(axis=1)
 
 
 @dataclass(frozen=True)

@@ -30,6 +30,7 @@ What the checker proves about it (NSOLVE.1-2), exactly:
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -38,9 +39,21 @@ from typing import Any
 
 import numpy as np
 
+from dppverify.errors import OptionError
 from dppverify.exact import Number
 from dppverify.formats.json_reading import parse_number
 from dppverify.ngoal.instance import NInstance
+from dppverify.structured.coalition import CoalitionValue, too_many_goals
+from dppverify.structured.cover import (
+    MAX_BALANCED,
+    balanced_vertices,
+    cheapest,
+    dets,
+    members,
+    min_cover,
+    symmetric_table,
+    zero_one_normals,
+)
 
 __all__ = ["ArcCondition", "GuaranteeRule", "GuaranteeSets", "arc_condition", "bad_rays",
            "guarantee_sets", "guarantee_sigma", "parse_guarantee", "rule_order"]
@@ -141,23 +154,13 @@ def guarantee_sets(instance: NInstance) -> GuaranteeSets:
     >>> g.value(0b111, star3().start), g.value(0b001, star3().start)
     (Fraction(4, 1), Fraction(2, 1))
     """
-    from dppverify.errors import OptionError
-    from dppverify.structured.coalition import too_many_goals
-    from dppverify.structured.cover import MAX_BALANCED, balanced_vertices, members
-
     inst = instance
     n_goals = inst.n_goals
     if not 2 <= n_goals <= MAX_BALANCED:
         raise OptionError(too_many_goals(n_goals))
     n = inst.n_nodes
-    lcm = 1
-    for size in range(2, n_goals + 1):
-        lcm = lcm * balanced_vertices(size).lcm // _gcd(lcm, balanced_vertices(size).lcm)
-    wden = 1
-    for arcs in inst.succ:
-        for _, w in arcs:
-            d = Fraction(w).denominator
-            wden = wden * d // _gcd(wden, d)
+    lcm = math.lcm(1, *(balanced_vertices(size).lcm for size in range(2, n_goals + 1)))
+    wden = math.lcm(1, *(Fraction(w).denominator for arcs in inst.succ for _, w in arcs))
     scale = wden * lcm ** (n_goals - 1)
     goal = [inst.is_goal(v) for v in range(n)]
     live = [not goal[v] and inst.hops[v] >= 0 for v in range(n)]
@@ -195,12 +198,6 @@ def guarantee_sets(instance: NInstance) -> GuaranteeSets:
                 init[v] = x // table.lcm
         m[mask] = _label_setting(n, tails, heads, weights, init, big)
     return GuaranteeSets(inst, scale, big, m, (1 << n_goals) - 1)
-
-
-def _gcd(a: int, b: int) -> int:
-    while b:
-        a, b = b, a % b
-    return a
 
 
 def _label_setting(n: int, tails: list[int], heads: list[int], weights: list[int],
@@ -243,7 +240,7 @@ def _label_setting(n: int, tails: list[int], heads: list[int], weights: list[int
     return out
 
 
-def dp_value(sets: GuaranteeSets) -> Any:
+def dp_value(sets: GuaranteeSets) -> CoalitionValue:
     """The coalition DP's value at ``H = inf`` from the fixpoint (a ``CoalitionValue``).
 
     Examples
@@ -252,9 +249,6 @@ def dp_value(sets: GuaranteeSets) -> Any:
     >>> dp_value(guarantee_sets(star3())).value
     Fraction(3, 2)
     """
-    from dppverify.structured.coalition import CoalitionValue
-    from dppverify.structured.cover import min_cover
-
     inst = sets.instance
     costs = {mask: Fraction(int(v[inst.start]), sets.scale) for mask, v in sets.m.items()}
     lp = min_cover(costs, inst.prior)
@@ -342,45 +336,17 @@ def guarantee_sigma(r: Sequence[Fraction], sets: GuaranteeSets, u: int, w: Numbe
 
 
 # ---------------------------------------------------------------- the arc condition
-def _nullspace_ray(mat: list[list[Fraction]], k: int) -> list[Fraction] | None:
-    """A basis vector of the null space of ``mat`` (rows of length ``k``) when it is 1-dim."""
-    a = [row[:] for row in mat]
-    pivots: list[int] = []
-    r = 0
-    for col in range(k):
-        p = next((i for i in range(r, len(a)) if a[i][col]), None)
-        if p is None:
-            continue
-        a[r], a[p] = a[p], a[r]
-        pv = a[r][col]
-        a[r] = [x / pv for x in a[r]]
-        for i in range(len(a)):
-            if i != r and a[i][col]:
-                fac = a[i][col]
-                a[i] = [x - fac * y for x, y in zip(a[i], a[r], strict=True)]
-        pivots.append(col)
-        r += 1
-    free = [c for c in range(k) if c not in pivots]
-    if len(free) != 1:
-        return None
-    f = free[0]
-    x = [Fraction(0)] * k
-    x[f] = Fraction(1)
-    for i, c in enumerate(pivots):
-        x[c] = -a[i][f]
-    return x
-
-
 def _minors(mats: np.ndarray) -> np.ndarray:
     """Signed maximal minors of a batch of ``(j, j+1)`` integer matrices: ``x_c = (-1)^c
-    det(A without column c)``, a null vector (exact: small integer determinants, rounded)."""
+    det(A without column c)``, a null vector (exact integer determinants)."""
     batch, j, k = mats.shape
     if j == 0:
         return np.ones((batch, 1), dtype=np.int64)
     out = np.empty((batch, k), dtype=np.int64)
     for c in range(k):
-        sub = np.delete(mats, c, axis=2).astype(np.float64)
-        out[:, c] = np.rint(np.linalg.det(sub)).astype(np.int64) * (-1 if c % 2 else 1)
+        entries = [[np.ascontiguousarray(mats[:, r, cc]) for cc in range(k) if cc != c]
+                   for r in range(j)]
+        out[:, c] = dets(entries) * (-1 if c % 2 else 1)
     return out
 
 
@@ -430,53 +396,6 @@ def bad_rays(n: int) -> tuple[tuple[tuple[tuple[int, Fraction], ...], int], ...]
             moved = {sum(1 << perm[i] for i in range(n) if s >> i & 1): c for s, c in ray}
             out.add((tuple(sorted(moved.items())), perm[0]))
     return tuple(sorted(out))
-
-
-@cache
-def _bases(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Every non-singular choice of ``n`` subsets: ``(combos, det, adj)`` with the integer
-    adjugates (``B^-1 = adj / det``; 0/1 matrices of size <= 5: exact after rounding)."""
-    masks = np.arange(1, 1 << n, dtype=np.int64)
-    bits = ((masks[None, :] >> np.arange(n)[:, None]) & 1).astype(np.float64)
-    combos = np.array(list(itertools.combinations(range(masks.size), n)), dtype=np.int64)
-    mats = np.transpose(bits[:, combos], (1, 0, 2))  # (K, n, n), columns = subsets
-    det = np.rint(np.linalg.det(mats)).astype(np.int64)
-    keep = det != 0
-    mats, combos, det = mats[keep], combos[keep], det[keep]
-    adj = np.rint(np.linalg.inv(mats) * det[:, None, None]).astype(np.int64)
-    assert np.all(np.einsum("bij,bjk->bik", adj, mats.astype(np.int64))
-                  == det[:, None, None] * np.eye(n, dtype=np.int64))  # exact adjugates
-    return combos, det, adj
-
-
-@cache
-def _cover_vertices(n: int, y: tuple[Fraction, ...]) -> tuple[np.ndarray, int]:
-    """The vertices of ``{c >= 0 : Σ_S c_S 1_S = y}`` as an integer matrix ``V`` (one column
-    per vertex, one row per subset mask ``1 … 2^n - 1``) and its denominator ``D``: ``c = V/D``
-    (Cramer's rule with the exact adjugates of :func:`_bases`)."""
-    den = 1
-    for v in y:
-        den = den * v.denominator // _gcd(den, v.denominator)
-    yy = np.array([int(v * den) for v in y], dtype=np.int64)
-    combos, det, adj = _bases(n)
-    num = adj @ yy  # (K, n): c = num / (det · den)
-    sign = np.sign(det)[:, None]
-    ok = np.all(num * sign >= 0, axis=1)
-    common = int(np.lcm.reduce(np.abs(det[ok]))) if ok.any() else 1
-    cols = np.zeros(((1 << n) - 1, int(ok.sum())), dtype=np.int64)
-    for j, b in enumerate(np.flatnonzero(ok)):
-        cols[combos[b], j] = num[b] * (common // int(det[b]))
-    uniq = np.unique(cols, axis=1)
-    return uniq, common * den
-
-
-def _matmul(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Exact integer matrix product (float64 BLAS when every partial sum is below 2**53)."""
-    amax = int(np.abs(a).max(initial=0))
-    bmax = int(np.abs(b).max(initial=0))
-    if amax * bmax * max(a.shape[1], 1) < 2 ** 53:
-        return np.rint(a.astype(np.float64) @ b.astype(np.float64)).astype(np.int64)
-    return a.astype(object).dot(b.astype(object))
 
 
 @dataclass(frozen=True)
@@ -549,11 +468,15 @@ def arc_condition(sets: GuaranteeSets) -> ArcCondition:
     for ray, _star in rays:
         y = tuple(sum((c for s, c in ray if s >> i & 1), Fraction(0)) for i in range(n))
         by_y.setdefault(y, []).append(ray)
+    zero_one = zero_one_normals(n)
     for y, group in by_y.items():
-        verts, vden = _cover_vertices(n, y)
+        den = math.lcm(*(v.denominator for v in y))
+        table = symmetric_table(zero_one, tuple(int(v * den) for v in y))
+        cols = np.asarray(table.columns, dtype=np.int64)
+        vden = table.lcm * den
         # vden · cov(y) at every tail and head; AC at y: cov_v(y) <= cov_u(y) + w · max y
-        lhs = _matmul(mt, verts).min(axis=1).astype(object)
-        rhs = _matmul(mh, verts).min(axis=1).astype(object) + w_scaled * vden * max(y)
+        lhs = cheapest(mt[:, cols], table.scaled).astype(object)
+        rhs = cheapest(mh[:, cols], table.scaled).astype(object) + w_scaled * vden * max(y)
         worse = np.flatnonzero(lhs > rhs)
         if worse.size:
             k = int(worse[0])

@@ -52,163 +52,30 @@ from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import Number, normalize
 from dppverify.ngoal.instance import NInstance
 from dppverify.structured.coalition import CoalitionValue, _Runner, _same, too_many_goals
-from dppverify.structured.cover import MAX_BALANCED, _dets, min_cover_vectors
+from dppverify.structured.cover import (
+    MAX_BALANCED,
+    Normal,
+    Table,
+    cheapest,
+    min_cover_vectors,
+    packing_vertices,
+    symmetric_table,
+    zero_one_normals,
+)
 
 __all__ = [
     "NValue",
-    "Table",
-    "basic_solutions",
     "coalition_nvalue",
     "extra_directions",
     "lower_bound_simple",
     "nvalue",
-    "packing_vertices",
-    "zero_one_normals",
 ]
-
-Normal = tuple[int, ...]
 
 MAX_ROUNDS = 4
 """Refinement rounds of the general DP (each adds the failing directions as normals)."""
 
 MAX_BASES = 1_000_000
 """Limit on the bases enumerated for the vertices of a refined normal set's tables."""
-
-
-@dataclass(frozen=True)
-class Table:
-    """The vertices of ``{c >= 0 : Σ_j c_j columns[j] = rhs}``, scaled to integers.
-
-    Attributes
-    ----------
-    columns : tuple of int
-        Indices of the columns (into the caller's list) that may be positive.
-    scaled : numpy.ndarray
-        ``lcm · c`` for every vertex: shape ``(len(columns), n_vertices)``, int64.
-    lcm : int
-        Common denominator of every vertex coordinate.
-    """
-
-    columns: tuple[int, ...]
-    scaled: np.ndarray
-    lcm: int
-
-    @property
-    def vertices(self) -> list[tuple[Fraction, ...]]:
-        """The vertices as exact fractions (one entry per column)."""
-        return [tuple(Fraction(int(x), self.lcm) for x in col) for col in self.scaled.T]
-
-
-def basic_solutions(columns: Sequence[Sequence[int]], rhs: Sequence[int]) -> Table:
-    """Every vertex of ``{c >= 0 : Σ_j c_j columns[j] = rhs}`` (non-negative integer data).
-
-    Rows outside the support of ``rhs`` force the columns that use them to 0; on the
-    support, the unit vectors must be among the columns (full row rank). The vertices are the
-    basic feasible solutions: every choice of ``|support|`` columns with a non-zero exact
-    integer determinant, solved by Cramer's rule, kept when non-negative, de-duplicated.
-
-    Examples
-    --------
-    The fractional covers of (1, 1, 1) by the non-empty subsets of three goals (as 0/1
-    columns): the five minimal balanced collections plus the whole set itself.
-
-    >>> cols = [tuple((s >> i) & 1 for i in range(3)) for s in range(1, 8)]
-    >>> t = basic_solutions(cols, (1, 1, 1))
-    >>> t.scaled.shape[1], t.lcm
-    (6, 2)
-    """
-    rhs = tuple(int(x) for x in rhs)
-    return _basic_solutions(tuple(tuple(int(x) for x in c) for c in columns), rhs)
-
-
-@cache
-def _basic_solutions(columns: tuple[Normal, ...], rhs: Normal) -> Table:
-    rows = [i for i, x in enumerate(rhs) if x != 0]
-    keep = [j for j, c in enumerate(columns)
-            if any(c) and all(c[i] == 0 for i in range(len(rhs)) if rhs[i] == 0)]
-    m = len(rows)
-    if m == 0:
-        return Table(columns=(), scaled=np.zeros((0, 1), dtype=np.int64), lcm=1)
-    mat = np.array([[columns[j][i] for j in keep] for i in rows], dtype=np.int64)
-    b = np.array([rhs[i] for i in rows], dtype=np.int64)
-    found: list[np.ndarray] = []
-    dens: list[int] = []
-    all_combos = itertools.combinations(range(len(keep)), m)
-    while True:
-        chunk = np.array(list(itertools.islice(all_combos, 200_000)), dtype=np.int64)
-        if chunk.size == 0:
-            break
-        entries = [[np.ascontiguousarray(mat[r, chunk[:, c]]) for c in range(m)]
-                   for r in range(m)]
-        det = _dets(entries)
-        ok = det != 0
-        chunk, det = chunk[ok], det[ok]
-        entries = [[e[ok] for e in row] for row in entries]
-        if not chunk.size:
-            continue
-        numer = np.empty((chunk.shape[0], m), dtype=np.int64)
-        for i in range(m):  # Cramer: column i replaced by the right-hand side
-            numer[:, i] = _dets([[np.full(chunk.shape[0], b[r]) if c == i else entries[r][c]
-                                  for c in range(m)] for r in range(m)])
-        sign = np.sign(det)[:, None]
-        feas = np.all(numer * sign >= 0, axis=1)
-        chunk, det, numer = chunk[feas], det[feas], numer[feas]
-        common = int(np.lcm.reduce(np.abs(det))) if det.size else 1
-        dense = np.zeros((chunk.shape[0], len(keep)), dtype=np.int64)
-        idx = np.arange(chunk.shape[0])
-        for i in range(m):
-            dense[idx, chunk[:, i]] = numer[:, i] * (common // det)
-        found.append(dense)
-        dens.append(common)
-    lcm = math.lcm(1, *dens)
-    stacked = np.concatenate([d * (lcm // c) for d, c in zip(found, dens, strict=True)]) \
-        if found else np.zeros((0, len(keep)), dtype=np.int64)
-    unique = np.unique(stacked, axis=0)
-    g = int(np.gcd.reduce(np.append(unique.ravel(), lcm)))
-    return Table(columns=tuple(keep), scaled=np.ascontiguousarray((unique // g).T),
-                 lcm=lcm // g)
-
-
-def zero_one_normals(n_goals: int) -> tuple[Normal, ...]:
-    """The 0/1 normals ``1_S`` in mask order (``mask = 1 … 2^N - 1``).
-
-    Examples
-    --------
-    >>> zero_one_normals(2)
-    ((1, 0), (0, 1), (1, 1))
-    """
-    return tuple(tuple((s >> i) & 1 for i in range(n_goals)) for s in range(1, 1 << n_goals))
-
-
-@cache
-def packing_vertices(normals: tuple[Normal, ...]) -> tuple[tuple[tuple[Fraction, ...],
-                                                                tuple[Fraction, ...]], ...]:
-    """The vertices ``λ`` of ``{λ >= 0 : Σ_n λ_n n <= 1}`` with ``y_λ = Σ_n λ_n n`` not 0/1.
-
-    Returned as pairs ``(λ, y_λ)``. Vertices whose ``y_λ`` is a 0/1 vector are left out: the
-    arc condition holds for them automatically (``proofs/NGOAL.md`` NG.8).
-
-    Examples
-    --------
-    >>> len(packing_vertices(zero_one_normals(3)))
-    0
-    >>> sorted({y for _, y in packing_vertices(zero_one_normals(4))})[0]
-    (Fraction(1, 2), Fraction(1, 1), Fraction(1, 1), Fraction(1, 1))
-    """
-    n = len(normals[0])
-    slack = tuple(tuple(int(i == j) for i in range(n)) for j in range(n))
-    table = basic_solutions(normals + slack, (1,) * n)
-    out = []
-    for v in table.vertices:
-        lam = [Fraction(0)] * len(normals)
-        for pos, col in enumerate(table.columns):
-            if col < len(normals):
-                lam[col] = v[pos]
-        y = tuple(sum((lam[j] * normals[j][i] for j in range(len(normals))), Fraction(0))
-                  for i in range(n))
-        if any(x not in (0, 1) for x in y):
-            out.append((tuple(lam), y))
-    return tuple(sorted(set(out)))
 
 
 def extra_directions(ys: Sequence[Sequence[Fraction]]) -> list[Normal]:
@@ -309,23 +176,6 @@ class _Check:
     y: tuple[Fraction, ...]
 
 
-def _table(normals: tuple[Normal, ...], rhs: Normal) -> Table:
-    """:func:`basic_solutions` by symmetry: the table of the sorted ``rhs``, columns permuted.
-
-    ``normals`` must be closed under permutations of the goals (the 0/1 vectors are; extra
-    normals are always added with all their permutations).
-    """
-    n = len(rhs)
-    order = sorted(range(n), key=lambda i: (-rhs[i], i))  # srt[k] = rhs[order[k]]
-    base = basic_solutions(normals, tuple(rhs[i] for i in order))
-    inv = [0] * n
-    for k, i in enumerate(order):
-        inv[i] = k
-    index = {v: j for j, v in enumerate(normals)}
-    cols = tuple(index[tuple(normals[j][inv[i]] for i in range(n))] for j in base.columns)
-    return Table(columns=cols, scaled=base.scaled, lcm=base.lcm)
-
-
 @cache
 def _checks(normals: tuple[Normal, ...]) -> tuple[_Check, ...]:
     groups: dict[tuple[Fraction, ...], list[tuple[Fraction, ...]]] = {}
@@ -334,23 +184,11 @@ def _checks(normals: tuple[Normal, ...]) -> tuple[_Check, ...]:
     out = []
     for y, lams in sorted(groups.items()):
         s = math.lcm(*(x.denominator for x in y))
-        cover = _table(normals, tuple(int(x * s) for x in y))
+        cover = symmetric_table(normals, tuple(int(x * s) for x in y))
         lcm = math.lcm(*(x.denominator for lam in lams for x in lam))
         arr = np.array([[int(x * lcm) for x in lam] for lam in lams], dtype=np.int64)
         out.append(_Check(s, cover, arr, lcm, y))
     return tuple(out)
-
-
-def _matmin(mat: np.ndarray, table: np.ndarray) -> np.ndarray:
-    """Row-wise ``min`` of ``mat @ table`` for non-negative integers, exactly.
-
-    float64 BLAS when every partial sum is provably an integer below 2^53, else Python ints.
-    """
-    top = int(mat.max(initial=0)) if mat.size else 0
-    width = (top + 1) * (int(np.abs(table).sum(axis=0).max(initial=1)) + 1)
-    if width < 2 ** 53:
-        return (mat.astype(np.float64) @ table.astype(np.float64)).min(axis=1).astype(np.int64)
-    return (mat.astype(object) @ table.astype(object)).min(axis=1)
 
 
 Arc = tuple[int, int, tuple[Fraction, ...]]
@@ -375,8 +213,8 @@ def _certify(checks: tuple[_Check, ...], new: np.ndarray, fin_new: np.ndarray,
     out: list[Arc] = []
     for chk in checks:
         cols = np.asarray(chk.cover.columns, dtype=np.int64)
-        hv = _matmin(mnew[:, cols], chk.cover.scaled)
-        mu = _matmin(mold, chk.lams.T)
+        hv = cheapest(mnew[:, cols], chk.cover.scaled)
+        mu = cheapest(mold, chk.lams.T)
         hv_arc = hv[np.searchsorted(nodes_v, src)].astype(object)
         mu_arc = mu[np.searchsorted(nodes_u, dst)].astype(object)
         # h_v(y) <= w + λ·m_u at scale D: h_v(y) = hv / (lcm_T · s), λ·m_u = mu / lcm_λ
@@ -449,7 +287,7 @@ class _General:
         self.inst = inst
         self.normals = normals
         self.tops = [max(x) for x in normals]
-        self.tables = [_table(normals, x) for x in normals]
+        self.tables = [symmetric_table(normals, x) for x in normals]
         self.checks = _checks(normals)
         goal = np.zeros(inst.n_nodes, dtype=bool)
         goal[list(inst.goals)] = True
@@ -503,7 +341,7 @@ class _General:
             raise _TooLarge
         for j, tab in enumerate(self.tables):
             cols = np.asarray(tab.columns, dtype=np.int64)
-            best = _matmin(a[cols].T, tab.scaled)
+            best = cheapest(a[cols].T, tab.scaled)
             out[j] = np.asarray(best, dtype=object) * (self.cut // tab.lcm)
         return out, scale * self.cut
 
@@ -558,11 +396,11 @@ class _General:
         m = np.zeros((len(self.normals), self.inst.n_nodes), dtype=np.int64)
         m[:len(zo)] = np.where(finite, arr, 0)
         rows = np.flatnonzero(finite)
-        cut = math.lcm(1, *(_table(zo, x).lcm for x in self.normals[len(zo):]))
+        cut = math.lcm(1, *(symmetric_table(zo, x).lcm for x in self.normals[len(zo):]))
         m *= cut
         for j in range(len(zo), len(self.normals)):
-            tab = _table(zo, self.normals[j])
-            best = _matmin(arr[np.asarray(tab.columns)][:, rows].T, tab.scaled)
+            tab = symmetric_table(zo, self.normals[j])
+            best = cheapest(arr[np.asarray(tab.columns)][:, rows].T, tab.scaled)
             m[j, rows] = np.asarray(best, dtype=object) * (cut // tab.lcm)
         return self._reduce(m, finite, run.scale * cut)
 
@@ -617,8 +455,8 @@ def _deflated_lower(run: _Runner, layer: dict[int, np.ndarray]) -> Fraction | No
     zo = zero_one_normals(inst.n_goals)
     for chk in _checks(zo):
         cols = np.asarray(chk.cover.columns, dtype=np.int64)
-        hv = np.asarray(_matmin(arr[cols][:, src].T, chk.cover.scaled), dtype=object)
-        mu = np.asarray(_matmin(arr[:, dst].T, chk.lams.T), dtype=object)
+        hv = np.asarray(cheapest(arr[cols][:, src].T, chk.cover.scaled), dtype=object)
+        mu = np.asarray(cheapest(arr[:, dst].T, chk.lams.T), dtype=object)
         num = (hv * chk.lam_lcm - wts * chk.cover.lcm * chk.scale * chk.lam_lcm
                - mu * chk.cover.lcm * chk.scale)
         ones = sum(chk.y, Fraction(0))

@@ -18,7 +18,8 @@ from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
-from dppverify.structured.proved_value import nvalue, packing_vertices, zero_one_normals
+from dppverify.structured.cover import packing_vertices, zero_one_normals
+from dppverify.structured.proved_value import nvalue
 from proofs.checks.ngoal_evidence import FAMILIES, draw_case
 
 

@@ -22,13 +22,8 @@ from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
-from dppverify.structured.cover import balanced_vertices
-from dppverify.structured.proved_value import (
-    basic_solutions,
-    lower_bound_simple,
-    nvalue,
-    zero_one_normals,
-)
+from dppverify.structured.cover import balanced_vertices, basic_solutions, zero_one_normals
+from dppverify.structured.proved_value import lower_bound_simple, nvalue
 from tests.checker._helpers import run_cli, write_doc
 
 
