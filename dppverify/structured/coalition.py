@@ -48,7 +48,8 @@ from dppverify.exact import INF, Number, normalize
 from dppverify.ngoal.instance import NInstance
 from dppverify.structured.cover import MAX_BALANCED, balanced_vertices, members, min_cover, popcount
 
-__all__ = ["CoalitionValue", "coalition_value", "coalition_values"]
+__all__ = ["CoalitionRunner", "CoalitionValue", "Split", "coalition_scale", "coalition_value",
+           "coalition_values", "same_layer", "splits", "too_many_goals"]
 
 
 @dataclass(frozen=True)
@@ -77,14 +78,44 @@ class CoalitionValue:
 
 
 @dataclass(frozen=True)
-class _Split:
+class Split:
+    """The split of one goal subset ``S``: its minimal balanced collections as a vertex table.
+
+    Attributes
+    ----------
+    mask : int
+        ``S`` (``|S| >= 2``).
+    columns : numpy.ndarray
+        The masks of the proper subsets of ``S``, in the table's column order.
+    scaled : numpy.ndarray
+        ``(n_columns, n_vertices)`` integer vertex coordinates times ``lcm``.
+    lcm : int
+        The common denominator of the vertex coordinates.
+    """
+
     mask: int
-    columns: np.ndarray  # global masks of the proper subsets, in the table's column order
-    scaled: np.ndarray  # (n_columns, n_vertices) integer vertex coordinates times lcm
+    columns: np.ndarray
+    scaled: np.ndarray
     lcm: int
 
 
-def _splits(n_goals: int) -> list[_Split]:
+def splits(n_goals: int) -> list[Split]:
+    """The split of every goal subset with at least two goals, by increasing ``|S|``, then mask.
+
+    Raises
+    ------
+    OptionError
+        Beyond the tabulated balanced collections (more than five goals).
+
+    Examples
+    --------
+    >>> [(s.mask, s.columns.tolist(), s.lcm) for s in splits(2)]
+    [(3, [1, 2], 1)]
+    >>> len(splits(3)), splits(3)[-1].mask
+    (4, 7)
+    """
+    if not 2 <= n_goals <= MAX_BALANCED:
+        raise OptionError(too_many_goals(n_goals))
     out = []
     for size in range(2, n_goals + 1):
         table = balanced_vertices(size)
@@ -93,8 +124,24 @@ def _splits(n_goals: int) -> list[_Split]:
                 continue
             elems = members(mask)
             glob = [sum(1 << elems[i] for i in members(local)) for local in table.columns]
-            out.append(_Split(mask, np.asarray(glob, dtype=np.int64), table.scaled, table.lcm))
+            out.append(Split(mask, np.asarray(glob, dtype=np.int64), table.scaled, table.lcm))
     return out
+
+
+def coalition_scale(instance: NInstance, tables: list[Split]) -> int:
+    """``Q = W·L^(N-1)``: every ``m_S(v, k)`` of the coalition DP times ``Q`` is an integer.
+
+    ``W`` is the lcm of the weights' denominators, ``L`` the lcm over the split tables.
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> coalition_scale(star3(), splits(3))
+    4
+    """
+    lcm_split = math.lcm(1, *(s.lcm for s in tables))
+    wden = math.lcm(1, *(Fraction(w).denominator for arcs in instance.succ for _, w in arcs))
+    return wden * lcm_split ** (instance.n_goals - 1)
 
 
 def too_many_goals(n_goals: int) -> str:
@@ -110,19 +157,25 @@ def too_many_goals(n_goals: int) -> str:
             "for 6); give a finite --horizon for the tree route")
 
 
-class _Runner:
-    """The DP state: arcs in scaled integers and the current layer ``m[S][v]``."""
+class CoalitionRunner:
+    """The coalition DP's state: arcs in scaled integers; a layer is ``{S: m[S][v] · scale}``.
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> run = CoalitionRunner(star3())
+    >>> layer = run.step(run.layer0(), 1)
+    >>> run.value(layer, 1, 1).value, same_layer(layer, run.step(layer, 2))
+    (2, False)
+    """
 
     def __init__(self, inst: NInstance) -> None:
         n_goals = inst.n_goals
-        if not 2 <= n_goals <= MAX_BALANCED:
-            raise OptionError(too_many_goals(n_goals))
         self.inst = inst
-        self.splits = _splits(n_goals)
+        self.splits = splits(n_goals)
         lcm_split = math.lcm(1, *(s.lcm for s in self.splits))
         weights = [w for arcs in inst.succ for _, w in arcs]
-        wden = math.lcm(1, *(Fraction(w).denominator for w in weights))
-        self.scale = wden * lcm_split ** (n_goals - 1)
+        self.scale = coalition_scale(inst, self.splits)
         n = inst.n_nodes
         max_w = max((Fraction(w) for w in weights), default=Fraction(0))
         max_d = max(Fraction(d) for row in inst.dist_to for d in row if d != INF)
@@ -190,6 +243,11 @@ class _Runner:
             vals[rows] = np.minimum(vals[rows], best // sp.lcm)
         return out
 
+    def stacked(self, layer: dict[int, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+        """A layer as one ``(2^N - 1, nodes)`` array (row ``mask - 1``) and its finite nodes."""
+        arr = np.stack([layer[m] for m in range(1, 1 << self.inst.n_goals)])
+        return arr, layer[1] < self.big
+
     def value(self, layer: dict[int, np.ndarray], horizon: int | None,
               layers: int) -> CoalitionValue:
         s0 = self.inst.start
@@ -207,7 +265,8 @@ class _Runner:
                               cover=dict(lp.cover))
 
 
-def _same(a: dict[int, np.ndarray], b: dict[int, np.ndarray]) -> bool:
+def same_layer(a: dict[int, np.ndarray], b: dict[int, np.ndarray]) -> bool:
+    """True when two layers of the coalition DP are equal (then every later layer is too)."""
     return all(np.array_equal(a[m], b[m]) for m in a)
 
 
@@ -243,7 +302,7 @@ def coalition_value(instance: NInstance, horizon: int | None, *,
     """
     if horizon is not None and horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
-    run = _Runner(instance)
+    run = CoalitionRunner(instance)
     layer = run.layer0()
     if horizon is not None:
         for k in range(1, horizon + 1):
@@ -255,7 +314,7 @@ def coalition_value(instance: NInstance, horizon: int | None, *,
         if max_layers is not None and k > max_layers:
             raise HorizonError(f"the coalition DP did not converge within {max_layers} layers")
         nxt = run.step(layer, k)
-        if k > max(instance.hops) and _same(nxt, layer):
+        if k > max(instance.hops) and same_layer(nxt, layer):
             return run.value(nxt, None, k)
         layer = nxt
 
@@ -269,7 +328,7 @@ def coalition_values(instance: NInstance, horizons: range) -> dict[int, Number]:
     >>> coalition_values(star3(), range(4))
     {1: 2, 2: Fraction(3, 2), 3: Fraction(3, 2)}
     """
-    run = _Runner(instance)
+    run = CoalitionRunner(instance)
     layer = run.layer0()
     out: dict[int, Number] = {}
     for k in range(0, horizons.stop):

@@ -39,14 +39,11 @@ from typing import Any
 
 import numpy as np
 
-from dppverify.errors import OptionError
 from dppverify.exact import Number
 from dppverify.formats.json_reading import parse_number
 from dppverify.ngoal.instance import NInstance
-from dppverify.structured.coalition import CoalitionValue, too_many_goals
+from dppverify.structured.coalition import CoalitionValue, coalition_scale, splits
 from dppverify.structured.cover import (
-    MAX_BALANCED,
-    balanced_vertices,
     cheapest,
     dets,
     members,
@@ -156,12 +153,9 @@ def guarantee_sets(instance: NInstance) -> GuaranteeSets:
     """
     inst = instance
     n_goals = inst.n_goals
-    if not 2 <= n_goals <= MAX_BALANCED:
-        raise OptionError(too_many_goals(n_goals))
+    split_of = {sp.mask: sp for sp in splits(n_goals)}
     n = inst.n_nodes
-    lcm = math.lcm(1, *(balanced_vertices(size).lcm for size in range(2, n_goals + 1)))
-    wden = math.lcm(1, *(Fraction(w).denominator for arcs in inst.succ for _, w in arcs))
-    scale = wden * lcm ** (n_goals - 1)
+    scale = coalition_scale(inst, list(split_of.values()))
     goal = [inst.is_goal(v) for v in range(n)]
     live = [not goal[v] and inst.hops[v] >= 0 for v in range(n)]
     rows = [v for v in range(n) if live[v]]
@@ -185,17 +179,15 @@ def guarantee_sets(instance: NInstance) -> GuaranteeSets:
         init = [-1] * n
         for g in inst.goals:
             init[g] = sum(int(Fraction(inst.dist_to[t][g]) * scale) for t in members(mask))
-        elems = members(mask)
-        if len(elems) >= 2 and rows:
-            table = balanced_vertices(len(elems))
-            cols = [sum(1 << elems[i] for i in members(c)) for c in table.columns]
-            mat = np.stack([m[c][idx].astype(object) for c in cols], axis=1)
-            tot = mat.dot(table.scaled.astype(object))
+        split = split_of.get(mask)  # |S| >= 2
+        if split is not None and rows:
+            mat = np.stack([m[int(c)][idx].astype(object) for c in split.columns], axis=1)
+            tot = mat.dot(split.scaled.astype(object))
             best = tot.min(axis=1)
             for v, x in zip(rows, best.tolist(), strict=True):
-                if x % table.lcm:  # pragma: no cover - guaranteed by the scaling
+                if x % split.lcm:  # pragma: no cover - guaranteed by the scaling
                     raise AssertionError("guarantee_sets: a split is not a multiple of 1/scale")
-                init[v] = x // table.lcm
+                init[v] = x // split.lcm
         m[mask] = _label_setting(n, tails, heads, weights, init, big)
     return GuaranteeSets(inst, scale, big, m, (1 << n_goals) - 1)
 

@@ -51,7 +51,12 @@ import numpy as np
 from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import Number, normalize
 from dppverify.ngoal.instance import NInstance
-from dppverify.structured.coalition import CoalitionValue, _Runner, _same, too_many_goals
+from dppverify.structured.coalition import (
+    CoalitionRunner,
+    CoalitionValue,
+    same_layer,
+    too_many_goals,
+)
 from dppverify.structured.cover import (
     MAX_BALANCED,
     Normal,
@@ -228,17 +233,12 @@ def _certify(checks: tuple[_Check, ...], new: np.ndarray, fin_new: np.ndarray,
     return out
 
 
-def _layer_array(run: _Runner, layer: dict[int, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-    arr = np.stack([layer[m] for m in range(1, 1 << run.inst.n_goals)])
-    return arr, layer[1] < run.big
-
-
 def _coalition_certified(inst: NInstance, horizon: int | None, max_layers: int | None, *,
                          certify: bool = True
                          ) -> tuple[CoalitionValue, list[Arc],
-                                    tuple[_Runner, dict[int, np.ndarray]] | None]:
+                                    tuple[CoalitionRunner, dict[int, np.ndarray]] | None]:
     """Coalition DP value, the failing arcs (empty: certified), and the H = inf fixpoint."""
-    run = _Runner(inst)
+    run = CoalitionRunner(inst)
     layer = run.layer0()
     fails: list[Arc] = []
     checks = (_checks(zero_one_normals(inst.n_goals)) if inst.n_goals > 3 and certify
@@ -246,8 +246,8 @@ def _coalition_certified(inst: NInstance, horizon: int | None, max_layers: int |
 
     def check(new: dict[int, np.ndarray], old: dict[int, np.ndarray]) -> None:
         if checks and not fails:  # NG.4: nothing to check for N <= 3
-            a, fa = _layer_array(run, new)
-            b, fb = (a, fa) if new is old else _layer_array(run, old)
+            a, fa = run.stacked(new)
+            b, fb = (a, fa) if new is old else run.stacked(old)
             fails.extend(_certify(checks, a, fa, b, fb, run.src, run.dst, run.wts))
 
     if horizon is not None:
@@ -262,7 +262,7 @@ def _coalition_certified(inst: NInstance, horizon: int | None, max_layers: int |
         if max_layers is not None and k > max_layers:
             raise HorizonError(f"the coalition DP did not converge within {max_layers} layers")
         nxt = run.step(layer, k)
-        if k > max(inst.hops) and _same(nxt, layer):
+        if k > max(inst.hops) and same_layer(nxt, layer):
             check(nxt, nxt)
             return run.value(nxt, None, k), fails, (run, nxt)
         layer = nxt
@@ -388,11 +388,11 @@ class _General:
         costs = [Fraction(int(x), scale) for x in m[:, s0]]
         return min_cover_vectors(self.normals, costs, self.inst.prior).value
 
-    def warm(self, run: _Runner, layer: dict[int, np.ndarray]
+    def warm(self, run: CoalitionRunner, layer: dict[int, np.ndarray]
              ) -> tuple[np.ndarray, np.ndarray, int]:
         """A start above a DP layer (NG.8(b)): the coalition fixpoint, extras by 0/1 covers."""
         zo = zero_one_normals(self.inst.n_goals)
-        arr, finite = _layer_array(run, layer)
+        arr, finite = run.stacked(layer)
         m = np.zeros((len(self.normals), self.inst.n_nodes), dtype=np.int64)
         m[:len(zo)] = np.where(finite, arr, 0)
         rows = np.flatnonzero(finite)
@@ -406,7 +406,7 @@ class _General:
 
 
 def _general(inst: NInstance, extras: list[Normal], horizon: int | None, max_layers: int,
-             start: tuple[_Runner, dict[int, np.ndarray]] | None
+             start: tuple[CoalitionRunner, dict[int, np.ndarray]] | None
              ) -> tuple[Fraction, int, list[Arc]]:
     normals = zero_one_normals(inst.n_goals) + tuple(extras)
     dp = _General(inst, normals)
@@ -430,7 +430,7 @@ def _general(inst: NInstance, extras: list[Normal], horizon: int | None, max_lay
     raise HorizonError(f"the refined DP did not converge within {max_layers} layers")
 
 
-def _deflated_lower(run: _Runner, layer: dict[int, np.ndarray]) -> Fraction | None:
+def _deflated_lower(run: CoalitionRunner, layer: dict[int, np.ndarray]) -> Fraction | None:
     """NG.10: ``DP_inf - t(s0)`` for the least translations ``t`` making ``F - t·1`` a sub-fixpoint.
 
     ``F`` are the coalition DP's sets at its fixpoint ``layer``. With ``F'_v = F_v - t_v·1``
@@ -441,7 +441,7 @@ def _deflated_lower(run: _Runner, layer: dict[int, np.ndarray]) -> Fraction | No
     settle within ``n + 1`` rounds (a positive cycle).
     """
     inst = run.inst
-    arr, finite = _layer_array(run, layer)
+    arr, finite = run.stacked(layer)
     keep = finite[run.src] & finite[run.dst]
     src, dst, wts = run.src[keep], run.dst[keep], run.wts[keep].astype(object)
     scale = run.scale

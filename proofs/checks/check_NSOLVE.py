@@ -15,7 +15,7 @@ import numpy as np
 import sympy as sp
 
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
-from dppverify.structured.coalition import _Runner
+from dppverify.structured.coalition import CoalitionRunner
 from dppverify.structured.cover import balanced_vertices, members, min_cover
 from dppverify.structured.guarantee import bad_rays, guarantee_sets, guarantee_sigma, rule_order
 
@@ -168,7 +168,7 @@ def test_NSOLVE3_label_setting_equals_the_layered_fixpoint() -> None:
         inst = _instance(rng, rng.choice([2, 3, 4]))
         if inst is None:
             continue
-        run = _Runner(inst)
+        run = CoalitionRunner(inst)
         layer = run.layer0()
         k = 0
         while True:
