@@ -6,24 +6,14 @@
     G_g = { r : r <= d(g, g^·) }  at a goal g,     G_v^0 = R^N  elsewhere,
     G_v^k = ∩_{(v,u)} ( G_u^{k-1} + w(v,u)·Δ^N ),
 
-and that a *normal-restricted* DP — one number ``m_n(v, k)`` per node, steps left and normal
-``n`` of a fixed finite set ``M`` of non-negative integer vectors containing every 0/1 vector —
-
-    a_n(v) = min_u [ w(v, u)·max(n) + m_n(u, k-1) ]                         (step)
-    m_n(v) = min { Σ_{n'} c_{n'} a_{n'}(v) : c >= 0, Σ_{n'} c_{n'} n' = n }   (closure)
-
-describes outer sets ``F_v^k = { r : n·r <= m_n(v, k) ∀ n ∈ M }`` ⊇ ``G_v^k`` (an upper bound on
-``V_H``, NG.2/NG.7). With ``M`` the 0/1 vectors it is the coalition DP
-(:mod:`dppverify.structured.coalition`). The sets are the true ones — and the DP value is ``V_H`` —
-as soon as every arc satisfies ``F_v^k ⊆ F_u^{k-1} + w·Δ^N`` (NG.8). By Farkas' lemma that
-holds iff for every vertex ``λ`` of the packing polytope ``P_M = { λ >= 0 : Σ_n λ_n n <= 1 }``
-
-    h_{F_v}(y_λ) <= w + Σ_n λ_n m_n(u),          y_λ = Σ_n λ_n n,
-
-where ``h_{F_v}(y)`` is the cheapest cover of ``y`` by the normals at ``v``. Vertices with
-``y_λ`` a 0/1 vector satisfy it automatically (step and closure), so only the few others are
-checked: none for N = 3 (which proves NG.4: the coalition DP is the value), the four
-permutations of (1, 1, 1, 1/2) for N = 4 and 45 vectors for N = 5.
+and that a *normal-restricted* DP over a finite set ``M`` of facet normals
+(:mod:`dppverify.structured.normal_dp`; with ``M`` the 0/1 vectors it is the coalition DP of
+:mod:`dppverify.structured.coalition`) describes outer sets ``F_v^k`` ⊇ ``G_v^k`` (an upper
+bound on ``V_H``, NG.2/NG.7). The sets are the true ones — and the DP value is ``V_H`` — as
+soon as every arc satisfies ``F_v^k ⊆ F_u^{k-1} + w·Δ^N`` (NG.8), which
+:mod:`dppverify.structured.dp_certificate` checks on the finitely many directions ``y_λ`` of
+the packing polytope's vertices: none for N = 3 (which proves NG.4: the coalition DP is the
+value), the four permutations of (1, 1, 1, 1/2) for N = 4 and 45 vectors for N = 5.
 
 :func:`nvalue` runs the coalition DP, certifies it (``H = inf``: at the repeated layer, NG.8
 then gives ``V_H`` for every ``H`` from that layer on; finite ``H``: at every layer) and, when
@@ -32,9 +22,10 @@ integer normals and re-runs the DP (vectorised, exact integers at a reduced comm
 ``H = inf`` started from the coalition fixpoint), a few rounds. Where no certificate is found
 it returns a bracket naming both bounds: the best DP above, and below the better of two simple
 Defenders (NG.9) and the coalition fixpoint's sets translated into a sub-fixpoint (NG.10).
-Everything is exact; vertices come from exact integer determinants of every basis (no
-polyhedral library: the normals form a fixed small table, so each basis is enumerated once per
-table, and tables of permuted right-hand sides are shared by symmetry).
+Everything is exact; vertices come from exact integer determinants of every basis
+(:mod:`dppverify.structured.cover`; no polyhedral library: the normals form a fixed small
+table, so each basis is enumerated once per table, and tables of permuted right-hand sides are
+shared by symmetry).
 """
 
 from __future__ import annotations
@@ -44,29 +35,16 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from functools import cache
 
 import numpy as np
 
 from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import Number, normalize
 from dppverify.ngoal.instance import NInstance
-from dppverify.structured.coalition import (
-    CoalitionRunner,
-    CoalitionValue,
-    same_layer,
-    too_many_goals,
-)
-from dppverify.structured.cover import (
-    MAX_BALANCED,
-    Normal,
-    Table,
-    cheapest,
-    min_cover_vectors,
-    packing_vertices,
-    symmetric_table,
-    zero_one_normals,
-)
+from dppverify.structured.coalition import CoalitionRunner, CoalitionValue, too_many_goals
+from dppverify.structured.cover import MAX_BALANCED, Normal, cheapest, zero_one_normals
+from dppverify.structured.dp_certificate import Arc, certified_coalition_dp, direction_checks
+from dppverify.structured.normal_dp import BeyondExactRange, normal_dp_value
 
 __all__ = [
     "NValue",
@@ -168,268 +146,6 @@ class NValue:
         return self.upper if self.exact else None
 
 
-# -- the coalition DP (0/1 normals), certified ------------------------------------------------
-
-@dataclass(frozen=True)
-class _Check:
-    """The arc test for one direction ``y``: cover table of ``s·y`` and the ``λ``s."""
-
-    scale: int  # s: s·y is an integer vector
-    cover: Table  # vertices of {c >= 0 : Σ_n c_n n = s·y}, columns index the normals
-    lams: np.ndarray  # (n_lambda, |M|): lcm_l · λ
-    lam_lcm: int
-    y: tuple[Fraction, ...]
-
-
-@cache
-def _checks(normals: tuple[Normal, ...]) -> tuple[_Check, ...]:
-    groups: dict[tuple[Fraction, ...], list[tuple[Fraction, ...]]] = {}
-    for lam, y in packing_vertices(normals):
-        groups.setdefault(y, []).append(lam)
-    out = []
-    for y, lams in sorted(groups.items()):
-        s = math.lcm(*(x.denominator for x in y))
-        cover = symmetric_table(normals, tuple(int(x * s) for x in y))
-        lcm = math.lcm(*(x.denominator for lam in lams for x in lam))
-        arr = np.array([[int(x * lcm) for x in lam] for lam in lams], dtype=np.int64)
-        out.append(_Check(s, cover, arr, lcm, y))
-    return tuple(out)
-
-
-Arc = tuple[int, int, tuple[Fraction, ...]]
-
-
-def _certify(checks: tuple[_Check, ...], new: np.ndarray, fin_new: np.ndarray,
-             old: np.ndarray, fin_old: np.ndarray, src: np.ndarray, dst: np.ndarray,
-             wts: np.ndarray) -> list[Arc]:
-    """Arcs violating ``F_v ⊆ F_u + wΔ`` (NG.8(c)), the first one per failing direction.
-
-    ``new``/``old`` are ``(|M|, nodes)`` integer numerators at one scale ``D`` (``new`` at the
-    arcs' tails, ``old`` at their heads), ``wts`` the arc weights times ``D``.
-    """
-    if not checks:
-        return []
-    arcs = fin_new[src] & fin_old[dst]
-    if not arcs.any():
-        return []
-    src, dst, wts = src[arcs], dst[arcs], wts[arcs]
-    nodes_v, nodes_u = np.unique(src), np.unique(dst)
-    mnew, mold = new[:, nodes_v].T, old[:, nodes_u].T
-    out: list[Arc] = []
-    for chk in checks:
-        cols = np.asarray(chk.cover.columns, dtype=np.int64)
-        hv = cheapest(mnew[:, cols], chk.cover.scaled)
-        mu = cheapest(mold, chk.lams.T)
-        hv_arc = hv[np.searchsorted(nodes_v, src)].astype(object)
-        mu_arc = mu[np.searchsorted(nodes_u, dst)].astype(object)
-        # h_v(y) <= w + λ·m_u at scale D: h_v(y) = hv / (lcm_T · s), λ·m_u = mu / lcm_λ
-        lhs = hv_arc * chk.lam_lcm
-        rhs = (wts.astype(object) * chk.cover.lcm * chk.lam_lcm * chk.scale
-               + mu_arc * chk.cover.lcm * chk.scale)
-        bad = np.flatnonzero(lhs > rhs)
-        if bad.size:
-            i = int(bad[0])
-            out.append((int(src[i]), int(dst[i]), chk.y))
-    return out
-
-
-def _coalition_certified(inst: NInstance, horizon: int | None, max_layers: int | None, *,
-                         certify: bool = True
-                         ) -> tuple[CoalitionValue, list[Arc],
-                                    tuple[CoalitionRunner, dict[int, np.ndarray]] | None]:
-    """Coalition DP value, the failing arcs (empty: certified), and the H = inf fixpoint."""
-    run = CoalitionRunner(inst)
-    layer = run.layer0()
-    fails: list[Arc] = []
-    checks = (_checks(zero_one_normals(inst.n_goals)) if inst.n_goals > 3 and certify
-              else ())
-
-    def check(new: dict[int, np.ndarray], old: dict[int, np.ndarray]) -> None:
-        if checks and not fails:  # NG.4: nothing to check for N <= 3
-            a, fa = run.stacked(new)
-            b, fb = (a, fa) if new is old else run.stacked(old)
-            fails.extend(_certify(checks, a, fa, b, fb, run.src, run.dst, run.wts))
-
-    if horizon is not None:
-        for k in range(1, horizon + 1):
-            nxt = run.step(layer, k)
-            check(nxt, layer)
-            layer = nxt
-        return run.value(layer, horizon, horizon), fails, None
-    k = 0
-    while True:
-        k += 1
-        if max_layers is not None and k > max_layers:
-            raise HorizonError(f"the coalition DP did not converge within {max_layers} layers")
-        nxt = run.step(layer, k)
-        if k > max(inst.hops) and same_layer(nxt, layer):
-            check(nxt, nxt)
-            return run.value(nxt, None, k), fails, (run, nxt)
-        layer = nxt
-
-
-# -- the general DP (any normals), exact integers at a common scale ----------------------------
-
-class _TooLarge(Exception):
-    """The general DP's numbers left the range of exact float64/int64 arithmetic."""
-
-
-class _General:
-    """The normal-restricted DP (NG.7), vectorised over nodes, in exact integers at scale ``D``.
-
-    A layer is ``(m, finite, D)``: ``m[j, v] = D · m_{n_j}(v)`` (Python-int exact, int64
-    storage), ``finite[v]`` whether ``v`` reaches a goal (all normals are finite together).
-    After every closure the scale is reduced to the least multiple of the weights' common
-    denominator that keeps every value integral, so equal layers have equal representations.
-    """
-
-    def __init__(self, inst: NInstance, normals: tuple[Normal, ...]) -> None:
-        self.inst = inst
-        self.normals = normals
-        self.tops = [max(x) for x in normals]
-        self.tables = [symmetric_table(normals, x) for x in normals]
-        self.checks = _checks(normals)
-        goal = np.zeros(inst.n_nodes, dtype=bool)
-        goal[list(inst.goals)] = True
-        self.goal = goal
-        src, dst, wts = [], [], []
-        for v in range(inst.n_nodes):
-            if not goal[v]:
-                for u, w in inst.succ[v]:
-                    src.append(v)
-                    dst.append(u)
-                    wts.append(Fraction(w))
-        self.src = np.asarray(src, dtype=np.int64)
-        self.dst = np.asarray(dst, dtype=np.int64)
-        self.w = wts
-        self.wden = math.lcm(1, *(w.denominator for w in wts))
-        self.active = np.unique(self.src)
-        self.seg = np.searchsorted(self.src, self.active)
-        self.term = {g: [sum((Fraction(x[t]) * Fraction(inst.dist_to[t][g])
-                              for t in range(inst.n_goals)), Fraction(0)) for x in normals]
-                     for g in inst.goals}
-        self.cut = math.lcm(1, *(t.lcm for t in self.tables))
-
-    def weights(self, scale: int) -> np.ndarray:
-        return np.asarray([int(w * scale) for w in self.w], dtype=np.int64)
-
-    def _goals(self, m: np.ndarray, scale: int) -> None:
-        for g, vals in self.term.items():
-            m[:, g] = [int(x * scale) for x in vals]
-
-    def layer0(self) -> tuple[np.ndarray, np.ndarray, int]:
-        scale = math.lcm(self.wden, *(x.denominator for vals in self.term.values()
-                                      for x in vals))
-        m = np.zeros((len(self.normals), self.inst.n_nodes), dtype=np.int64)
-        self._goals(m, scale)
-        return m, self.goal.copy(), scale
-
-    def _reduce(self, m: np.ndarray, finite: np.ndarray, scale: int
-                ) -> tuple[np.ndarray, np.ndarray, int]:
-        g = math.gcd(int(np.gcd.reduce(m[:, finite].ravel(), initial=0)), scale // self.wden)
-        if g > 1:
-            m = m // g
-            scale //= g
-        m[:, ~finite] = 0
-        return m, finite, scale
-
-    def close(self, a: np.ndarray, rows: np.ndarray, scale: int
-              ) -> tuple[np.ndarray, int]:
-        """Closure (NG.7) of the step values ``a`` (``|M| × rows``) at scale ``scale``."""
-        out = np.zeros_like(a)
-        if 2 ** 62 // max(1, self.cut) < int(a.max(initial=0)) + 1:
-            raise _TooLarge
-        for j, tab in enumerate(self.tables):
-            cols = np.asarray(tab.columns, dtype=np.int64)
-            best = cheapest(a[cols].T, tab.scaled)
-            out[j] = np.asarray(best, dtype=object) * (self.cut // tab.lcm)
-        return out, scale * self.cut
-
-    def step(self, state: tuple[np.ndarray, np.ndarray, int]
-             ) -> tuple[np.ndarray, np.ndarray, int]:
-        m, finite, scale = state
-        n = self.inst.n_nodes
-        new_fin = self.goal.copy()
-        if self.src.size:
-            fin_dst = finite[self.dst]
-            reach = np.logical_or.reduceat(fin_dst, self.seg)
-            rows = self.active[reach]
-            new_fin[rows] = True
-            wts = self.weights(scale)
-            big = int(m[:, finite].max(initial=0)) * 2 + int(wts.max(initial=0)) * max(
-                self.tops) * 2 + 1
-            if big > 2 ** 61:
-                raise _TooLarge
-            a = np.empty((len(self.normals), rows.size), dtype=np.int64)
-            for j, top in enumerate(self.tops):
-                cand = wts * top + np.where(fin_dst, m[j][self.dst], big)
-                a[j] = np.minimum.reduceat(cand, self.seg)[reach]
-            closed, new_scale = self.close(a, rows, scale)
-        else:
-            rows = np.zeros(0, dtype=np.int64)
-            closed, new_scale = np.zeros((len(self.normals), 0), dtype=np.int64), scale
-        out = np.zeros((len(self.normals), n), dtype=np.int64)
-        out[:, rows] = closed
-        self._goals(out, new_scale)
-        return self._reduce(out, new_fin, new_scale)
-
-    def certify(self, new: tuple[np.ndarray, np.ndarray, int],
-                old: tuple[np.ndarray, np.ndarray, int]) -> list[Arc]:
-        (a, fa, sa), (b, fb, sb) = new, old
-        scale = math.lcm(sa, sb)
-        return _certify(self.checks, a * (scale // sa), fa, b * (scale // sb), fb, self.src,
-                        self.dst, self.weights(scale))
-
-    def value(self, state: tuple[np.ndarray, np.ndarray, int]) -> Fraction:
-        m, finite, scale = state
-        s0 = self.inst.start
-        if not finite[s0]:
-            raise HorizonError("no walk from the start reaches a goal within the horizon")
-        costs = [Fraction(int(x), scale) for x in m[:, s0]]
-        return min_cover_vectors(self.normals, costs, self.inst.prior).value
-
-    def warm(self, run: CoalitionRunner, layer: dict[int, np.ndarray]
-             ) -> tuple[np.ndarray, np.ndarray, int]:
-        """A start above a DP layer (NG.8(b)): the coalition fixpoint, extras by 0/1 covers."""
-        zo = zero_one_normals(self.inst.n_goals)
-        arr, finite = run.stacked(layer)
-        m = np.zeros((len(self.normals), self.inst.n_nodes), dtype=np.int64)
-        m[:len(zo)] = np.where(finite, arr, 0)
-        rows = np.flatnonzero(finite)
-        cut = math.lcm(1, *(symmetric_table(zo, x).lcm for x in self.normals[len(zo):]))
-        m *= cut
-        for j in range(len(zo), len(self.normals)):
-            tab = symmetric_table(zo, self.normals[j])
-            best = cheapest(arr[np.asarray(tab.columns)][:, rows].T, tab.scaled)
-            m[j, rows] = np.asarray(best, dtype=object) * (cut // tab.lcm)
-        return self._reduce(m, finite, run.scale * cut)
-
-
-def _general(inst: NInstance, extras: list[Normal], horizon: int | None, max_layers: int,
-             start: tuple[CoalitionRunner, dict[int, np.ndarray]] | None
-             ) -> tuple[Fraction, int, list[Arc]]:
-    normals = zero_one_normals(inst.n_goals) + tuple(extras)
-    dp = _General(inst, normals)
-    if horizon is not None:
-        layer = dp.layer0()
-        fails: list[Arc] = []
-        for _ in range(horizon):
-            nxt = dp.step(layer)
-            if not fails:
-                fails = dp.certify(nxt, layer)
-            layer = nxt
-        return dp.value(layer), horizon, fails
-    assert start is not None
-    layer = dp.warm(*start)
-    for k in range(1, max_layers + 1):
-        nxt = dp.step(layer)
-        if nxt[2] == layer[2] and np.array_equal(nxt[1], layer[1]) and np.array_equal(
-                nxt[0], layer[0]):
-            return dp.value(nxt), k, dp.certify(nxt, nxt)
-        layer = nxt
-    raise HorizonError(f"the refined DP did not converge within {max_layers} layers")
-
-
 def _deflated_lower(run: CoalitionRunner, layer: dict[int, np.ndarray]) -> Fraction | None:
     """NG.10: ``DP_inf - t(s0)`` for the least translations ``t`` making ``F - t·1`` a sub-fixpoint.
 
@@ -453,7 +169,7 @@ def _deflated_lower(run: CoalitionRunner, layer: dict[int, np.ndarray]) -> Fract
         cand = frac(e, scale * size)
         ell = cand if ell is None else np.maximum(ell, cand)
     zo = zero_one_normals(inst.n_goals)
-    for chk in _checks(zo):
+    for chk in direction_checks(zo):
         cols = np.asarray(chk.cover.columns, dtype=np.int64)
         hv = np.asarray(cheapest(arr[cols][:, src].T, chk.cover.scaled), dtype=object)
         mu = np.asarray(cheapest(arr[:, dst].T, chk.lams.T), dtype=object)
@@ -539,7 +255,7 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
         raise OptionError(too_many_goals(inst.n_goals))
     if horizon is not None and horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
-    coal, fails, start = _coalition_certified(inst, horizon, max_layers)
+    coal, fails, start = certified_coalition_dp(inst, horizon, max_layers)
     upper, layers = Fraction(coal.value), coal.layers
     n = inst.n_goals
     src = ("coalition DP (NG.3: the value for two goals)" if n == 2 else
@@ -553,7 +269,7 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
     lower, lo_src = lower_bound_simple(inst)
     fixpoint = start  # the coalition fixpoint, for NG.10 (it bounds every H)
     if fixpoint is None:
-        fix = _coalition_certified(inst, None, max_layers, certify=False)
+        fix = certified_coalition_dp(inst, None, max_layers, certify=False)
         fixpoint, dp_inf = fix[2], Fraction(fix[0].value)
     else:
         dp_inf = upper
@@ -580,8 +296,8 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
                        f"enumeration's limit ({MAX_BASES:,} bases)")
             break
         try:
-            val, layers_g, fails = _general(inst, extras, horizon, cap, start)
-        except (HorizonError, _TooLarge) as exc:
+            val, layers_g, fails = normal_dp_value(inst, extras, horizon, cap, start)
+        except (HorizonError, BeyondExactRange) as exc:
             reason += f"; the refined DP: {exc or 'numbers beyond exact float64 range'}"
             break
         if val < upper:
