@@ -99,7 +99,7 @@ def nstructured_checks(instance: NInstance, profile: NProfile,
                 for i in _IDS[1:]]
         return out, 0
     if profile.rule is not None:  # the guarantee rule: dppverify.structured.guarantee
-        from dppverify.structured.guarantee import guarantee_checks
+        from dppverify.checks.structured_guarantee import guarantee_checks
 
         return guarantee_checks(inst, profile, horizon)
     walks = [mw.walk for mix in profile.attacker for mw in mix]
@@ -258,3 +258,9 @@ def _value(inst: NInstance, u: Number, horizon: int | None, equilibrium: bool,
     return _rec("ngoal.value.V_H", "skipped", f"U = {u} lies in the bracket [{v.lower}, "
                 f"{v.upper}] of V_H (H = {h}; not proved exact: {v.reason}): not decisive; "
                 f"the failed checks above refute the profile", nums, relies)
+
+
+# Public names of the records shared with the guarantee rule's checks
+# (dppverify/checks/structured_guarantee.py).
+NGOAL_IDS, PROFILE_DOC, PAYOFF_WALKS = _IDS, DOC, WALKS
+ngoal_record, walk_labels, defender_records, value_record = _rec, _labels, _defender, _value

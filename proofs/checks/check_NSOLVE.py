@@ -15,9 +15,10 @@ import numpy as np
 import sympy as sp
 
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
+from dppverify.structured.arc_condition import bad_rays
 from dppverify.structured.coalition import CoalitionRunner
 from dppverify.structured.cover import balanced_vertices, members, min_cover
-from dppverify.structured.guarantee import bad_rays, guarantee_sets, guarantee_sigma, rule_order
+from dppverify.structured.guarantee import guarantee_sets, guarantee_sigma, rule_order
 
 
 def _y(ray: tuple[tuple[int, Fraction], ...], n: int) -> list[Fraction]:
