@@ -7,7 +7,7 @@ that repeats) and ``G_v = { r : r(S) <= m_S(v) for every non-empty S }``:
 
 - the state is ``r``, ``r = h`` at the start;
 - on a step ``v -> u`` of weight ``w`` the Defender plays the lexicographic minimum, in the
-  *priority order* (types by decreasing prior, ties by index), of
+  *priority order* (types by decreasing prior, ties by goal index), of
   ``F = { σ ∈ Δ^N : σ(S) >= (r(S) - m_S(u)) / w for every S }``, and ``r <- r - w σ``;
   when ``F`` is empty, all the weight on the first type of the priority order.
 
@@ -83,7 +83,7 @@ def parse_guarantee(raw: Mapping[str, Any], n: int, defects: list[str]) -> Guara
 
 
 def rule_order(prior: Sequence[Fraction]) -> tuple[int, ...]:
-    """The priority order: types by decreasing prior, ties by index.
+    """The priority order: types by decreasing prior, ties by goal index.
 
     Examples
     --------
