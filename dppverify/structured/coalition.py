@@ -243,6 +243,28 @@ class CoalitionRunner:
             vals[rows] = np.minimum(vals[rows], best // sp.lcm)
         return out
 
+    def fixpoint(self, max_layers: int | None) -> tuple[dict[int, np.ndarray], int]:
+        """The first layer ``k`` (beyond the farthest goal) equal to layer ``k - 1``, and ``k``.
+
+        Every later layer is the same: it is the DP at ``H = inf``.
+
+        Raises
+        ------
+        HorizonError
+            If no layer repeats within ``max_layers`` layers.
+        """
+        layer = self.layer0()
+        k = 0
+        while True:
+            k += 1
+            if max_layers is not None and k > max_layers:
+                raise HorizonError(f"the coalition DP did not converge within {max_layers} "
+                                   f"layers")
+            nxt = self.step(layer, k)
+            if k > max(self.inst.hops) and same_layer(nxt, layer):
+                return nxt, k
+            layer = nxt
+
     def stacked(self, layer: dict[int, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
         """A layer as one ``(2^N - 1, nodes)`` array (row ``mask - 1``) and its finite nodes."""
         arr = np.stack([layer[m] for m in range(1, 1 << self.inst.n_goals)])
@@ -303,20 +325,13 @@ def coalition_value(instance: NInstance, horizon: int | None, *,
     if horizon is not None and horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
     run = CoalitionRunner(instance)
-    layer = run.layer0()
     if horizon is not None:
+        layer = run.layer0()
         for k in range(1, horizon + 1):
             layer = run.step(layer, k)
         return run.value(layer, horizon, horizon)
-    k = 0
-    while True:
-        k += 1
-        if max_layers is not None and k > max_layers:
-            raise HorizonError(f"the coalition DP did not converge within {max_layers} layers")
-        nxt = run.step(layer, k)
-        if k > max(instance.hops) and same_layer(nxt, layer):
-            return run.value(nxt, None, k)
-        layer = nxt
+    fixpoint, k = run.fixpoint(max_layers)
+    return run.value(fixpoint, None, k)
 
 
 def coalition_values(instance: NInstance, horizons: range) -> dict[int, Number]:

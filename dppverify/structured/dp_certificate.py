@@ -24,9 +24,8 @@ from functools import cache
 
 import numpy as np
 
-from dppverify.errors import HorizonError
 from dppverify.ngoal.instance import NInstance
-from dppverify.structured.coalition import CoalitionRunner, CoalitionValue, same_layer
+from dppverify.structured.coalition import CoalitionRunner, CoalitionValue
 from dppverify.structured.cover import (
     Normal,
     Table,
@@ -164,7 +163,6 @@ def certified_coalition_dp(inst: NInstance, horizon: int | None, max_layers: int
     (Fraction(25, 14), ['1', '1', '1', '1/2'], True)
     """
     run = CoalitionRunner(inst)
-    layer = run.layer0()
     fails: list[Arc] = []
     checks = (direction_checks(zero_one_normals(inst.n_goals)) if inst.n_goals > 3 and certify
               else ())
@@ -176,18 +174,12 @@ def certified_coalition_dp(inst: NInstance, horizon: int | None, max_layers: int
             fails.extend(failing_arcs(checks, a, fa, b, fb, run.src, run.dst, run.wts))
 
     if horizon is not None:
+        layer = run.layer0()
         for k in range(1, horizon + 1):
             nxt = run.step(layer, k)
             check(nxt, layer)
             layer = nxt
         return run.value(layer, horizon, horizon), fails, None
-    k = 0
-    while True:
-        k += 1
-        if max_layers is not None and k > max_layers:
-            raise HorizonError(f"the coalition DP did not converge within {max_layers} layers")
-        nxt = run.step(layer, k)
-        if k > max(inst.hops) and same_layer(nxt, layer):
-            check(nxt, nxt)
-            return run.value(nxt, None, k), fails, (run, nxt)
-        layer = nxt
+    fixpoint, k = run.fixpoint(max_layers)
+    check(fixpoint, fixpoint)
+    return run.value(fixpoint, None, k), fails, (run, fixpoint)

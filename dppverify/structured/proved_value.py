@@ -109,7 +109,7 @@ class NValue:
     Attributes
     ----------
     horizon : int or None
-        ``H`` (None for ``H = inf``).
+        The game's horizon, as in :attr:`coalition` (None: the untruncated game).
     lower, upper : Number
         Exact bounds ``lower <= V_H <= upper``; equal when the value is proved.
     lower_source, upper_source : str
