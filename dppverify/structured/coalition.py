@@ -288,7 +288,16 @@ class CoalitionRunner:
 
 
 def same_layer(a: dict[int, np.ndarray], b: dict[int, np.ndarray]) -> bool:
-    """True when two layers of the coalition DP are equal (then every later layer is too)."""
+    """True when two layers of the coalition DP are equal (then every later layer is too).
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> run = CoalitionRunner(star3())
+    >>> one = run.step(run.layer0(), 1)
+    >>> same_layer(run.layer0(), one), same_layer(one, one)
+    (False, True)
+    """
     return all(np.array_equal(a[m], b[m]) for m in a)
 
 

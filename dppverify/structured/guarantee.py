@@ -313,7 +313,16 @@ def guarantee_sigma(r: Sequence[Fraction], sets: GuaranteeSets, u: int, w: Numbe
 
 
 def in_start_set(rule: GuaranteeRule, sets: GuaranteeSets) -> int | None:
-    """The first subset mask with ``h(S) > m_S(s0)`` (None when ``h ∈ G_{s0}``)."""
+    """The first subset mask with ``h(S) > m_S(s0)`` (None when ``h ∈ G_{s0}``).
+
+    Examples
+    --------
+    >>> from dppverify.ngoal.examples import star3
+    >>> sets = guarantee_sets(star3())
+    >>> in_start_set(GuaranteeRule((Fraction(2), Fraction(1), Fraction(1))), sets)
+    >>> in_start_set(GuaranteeRule((Fraction(3), Fraction(1), Fraction(1))), sets)
+    1
+    """
     s0 = sets.instance.start
     for mask in sorted(sets.m, key=lambda t: (bin(t).count("1"), t)):
         m = sets.value(mask, s0)
@@ -329,6 +338,17 @@ def rule_on_trie(instance: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
     """The rule's ``σ`` at every prefix of a prefix tree (``parent[p] < p``, root 0).
 
     Returns the distributions and whether ``F`` was non-empty at every prefix.
+
+    Examples
+    --------
+    The walk ``s m a`` of the star (prefixes 0, 1, 2 at nodes 0, 1, 2):
+
+    >>> from dppverify.ngoal.examples import star3
+    >>> inst = star3()
+    >>> rule = GuaranteeRule((Fraction(2), Fraction(1), Fraction(1)))
+    >>> sigma, ok = rule_on_trie(inst, rule, guarantee_sets(inst), [0, 0, 1], [0, 1, 2])
+    >>> {p: [str(x) for x in s] for p, s in sigma.items()}, ok
+    ({1: ['1', '0', '0'], 2: ['1', '0', '0']}, True)
     """
     order = rule_order(instance.prior)
     state: dict[int, tuple[Fraction, ...]] = {0: rule.h}
