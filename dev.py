@@ -24,7 +24,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent
 VENV = ROOT / ".venv"
 BIN = VENV / ("Scripts" if os.name == "nt" else "bin")
-LINT_PATHS = ("solver", "dppverify", "tests", "proofs", "benchmarks", "dev.py")
+LINT_PATHS = ("solver", "dppverify", "dppio", "tests", "proofs", "benchmarks", "dev.py")
 PY = BIN / "python"
 STAMPS = VENV / "dppverify-installed"
 TEST_EXTRAS = ("test", "peers", "maps")

@@ -25,7 +25,7 @@ import time
 from fractions import Fraction
 
 from dppverify.formats.movingai import GridMap, grid_document
-from dppverify.ngoal.instance import NInstance, ninstance_from_json
+from dppverify.game.instance import Instance, instance_from_json
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
@@ -33,9 +33,9 @@ from dppverify.structured.coalition import coalition_value
 GOALS64 = ((0, 63), (0, 0), (63, 63), (32, 32), (0, 32))
 
 
-def small_grid() -> NInstance:
+def small_grid() -> Instance:
     """The 3×4 unit grid with three goals."""
-    return ninstance_from_json(grid_document(GridMap(3, 4, ("....", "....", "....")), (0, 1),
+    return instance_from_json(grid_document(GridMap(3, 4, ("....", "....", "....")), (0, 1),
                                              [(2, 0), (2, 3), (0, 3)],
                                              [Fraction(1, 2), Fraction(1, 3), Fraction(1, 6)]))
 
@@ -61,7 +61,7 @@ def tree_vs_dp(max_prefixes: int) -> dict[str, object]:
 def single(n: int, size: int) -> dict[str, object]:
     rows = tuple("." * size for _ in range(size))
     goals = [(r * (size - 1) // 63, c * (size - 1) // 63) for r, c in GOALS64[:n]]
-    inst = ninstance_from_json(grid_document(GridMap(size, size, rows), (size - 1, 0), goals,
+    inst = instance_from_json(grid_document(GridMap(size, size, rows), (size - 1, 0), goals,
                                              [Fraction(1, n)] * n))
     t0 = time.perf_counter()
     v = coalition_value(inst, None)

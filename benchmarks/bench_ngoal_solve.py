@@ -40,8 +40,8 @@ from dppverify.formats.movingai import grid_document
 from dppverify.formats.movingai import read_map as checker_read_map
 from dppverify.formats.standard_maps import standard_map_path
 from dppverify.ngoal.certify import certify_ngoal
-from dppverify.ngoal.experiment import corner_cells
 from solver import Instance, solve
+from solver.experiments.ngoal import corner_cells
 from solver.movingai import read_map
 from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
 from solver.ngoal_instance import ngame_from_grid
@@ -61,9 +61,9 @@ def _best(fn: Any, repeat: int) -> tuple[float, Any]:
 def run(name: str, n: int, repeat: int) -> dict[str, Any]:
     path = standard_map_path(name)
     grid = checker_read_map(path)
-    start, goals = corner_cells(grid, n)
-    prior = [f"1/{n}"] * n
     blocked = read_map(path)
+    start, goals = corner_cells(blocked, n)
+    prior = [f"1/{n}"] * n
     t_n, eq = _best(lambda: solve_ngoal(ngame_from_grid(blocked, start, goals, prior)), repeat)
     doc = grid_document(grid, start, goals, prior)
     prof = nequilibrium_to_json(eq)

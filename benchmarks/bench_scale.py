@@ -259,27 +259,17 @@ def grid_rows(size: int, repeat: int) -> list[str]:
 
 
 def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str]:
-    from dppverify.formats.movingai import grid_document, read_map
+    from dppverify.formats.movingai import read_map
     from dppverify.formats.standard_maps import standard_map_path
-    from dppverify.game.instance import Instance, read_game
-    from dppverify.ngoal.instance import NInstance
+    from dppverify.game.grids import grid_game
     from dppverify.structured.coalition import coalition_value
     from dppverify.twogoal.value_dp import structured_value
-
-    def grid_game(grid: Any, start: Any, goals: Any, prior: Any, *, cls: Any = Instance,
-                  two_goals: bool = True) -> Any:
-        try:
-            from dppverify.formats.movingai import grid_game as direct
-        except ImportError:  # before the map-to-arrays reader
-            return read_game(grid_document(grid, start, goals, prior), cls,
-                             two_goals=two_goals)
-        return direct(grid, start, goals, prior, cls=cls, two_goals=two_goals)
 
     grid = read_map(standard_map_path(name))
     blocked = np.array([[ch not in ".GS" for ch in row] for row in grid.rows])
     cells = corners(blocked)
-    coalition_value(grid_game(grid, cells[0], cells[1:4], ["1/3"] * 3, cls=NInstance,
-                              two_goals=False), None)  # warm-up (imports)
+    coalition_value(grid_game(grid, cells[0], cells[1:4], ["1/3"] * 3),
+                    None)  # warm-up (imports)
     # each timing builds its instance (the fixpoint fields are cached per instance)
     t_two, _ = best(lambda: structured_value(grid_game(grid, cells[0], cells[1:3], PRIOR),
                                              None), repeat)
@@ -287,8 +277,7 @@ def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str
     for n in goal_counts:
         def nvalue(n: int = n) -> Any:
             prior = [str(Fraction(1, n))] * n
-            return coalition_value(grid_game(grid, cells[0], cells[1:n + 1], prior,
-                                             cls=NInstance, two_goals=False), None)
+            return coalition_value(grid_game(grid, cells[0], cells[1:n + 1], prior), None)
 
         t_n, v = best(nvalue, repeat)
         rows.append(f"{name} N = {n}: coalition DP (H = inf) {t_n:.3f} s = {t_n / t_two:.0f}x "

@@ -213,7 +213,7 @@ def merge_routes(tree: list[CheckRecord], structured: list[CheckRecord]) -> list
     return out
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # __eq__ below (by JSON); unhashable, as __eq__ implies
 class Certificate:
     """The result of :func:`dppverify.certify`: every check with its outcome.
 
@@ -279,8 +279,6 @@ class Certificate:
         if not isinstance(other, Certificate):
             return NotImplemented
         return self.to_json() == other.to_json()
-
-    __hash__ = None  # type: ignore[assignment]
 
     @property
     def verdict(self) -> Verdict:

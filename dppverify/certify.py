@@ -19,29 +19,15 @@ from __future__ import annotations
 import dataclasses
 import json
 import sys
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, Literal
 
 from tqdm import tqdm
 
 from dppverify.certificate import Certificate, CheckRecord, merge_routes
-from dppverify.checks.attacker import attacker_br
-from dppverify.checks.beliefs import belief_consistency
-from dppverify.checks.defender import defender_br, sequential_rationality
-from dppverify.checks.lemmas import (
-    l1_lower_bound,
-    l2_no_revisits,
-    l3_greedy,
-    l4_monotonicity,
-    l5_induced_beliefs,
-    telescoping,
-    xi2_secondary_value,
-)
-from dppverify.checks.payoffs import value_check, values
-from dppverify.checks.skipped import skipped
+from dppverify.checks.runners import TREE_RUNNERS
 from dppverify.checks.structured import structured_checks
-from dppverify.checks.wellformed import phases, wellformed
 from dppverify.errors import (
     HorizonError,
     InvalidInstanceError,
@@ -60,9 +46,9 @@ from dppverify.game.profile import (
 from dppverify.horizons import parse_horizon
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.provenance import provenance_record
-from dppverify.registry import CHECK_IDS, CHECKS, RouteName, not_run, runner, runners, spec
+from dppverify.registry import CHECK_IDS, CHECKS, RouteName, not_run
 from dppverify.routes import Route, tree_fits
-from dppverify.tree_route.context import Context, EvaluatedContext, make_context
+from dppverify.tree_route.context import Context, make_context
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, build_tree
 
@@ -114,7 +100,7 @@ def resolve_instance(instance: Instance | Mapping[str, Any] | str | Path | Any) 
     >>> resolve_instance(triangle_document(("1/4", "3/4"))).prior
     (Fraction(1, 4), Fraction(3, 4))
     """
-    return as_instance(instance)
+    return as_instance(instance, two_goals=True)
 
 
 def _profile_document(profile: Any) -> Mapping[str, Any]:
@@ -270,23 +256,23 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     An instance with more than two goals (and its ``dpp-ngoal-profile/1``) is certified by
     :func:`dppverify.ngoal.certify.certify_ngoal`, as ``dpp certify`` does:
 
-    >>> from dppverify.ngoal.examples import star3_document, star3_profile
+    >>> from dppverify.game.examples import star3_document, star3_profile
     >>> cert = certify(star3_document(), star3_profile(), horizon=2)
     >>> cert.verdict, cert.check("ngoal.value.U").status
     ('pass', 'pass')
     """
-    from dppverify.ngoal.instance import NInstance
+    from dppverify.game.instance import Instance
     from dppverify.valuation import game_of
 
     game = game_of(instance)
-    if not isinstance(game, Instance):  # N > 2 goals
+    if game.n_goals > 2:  # N > 2 goals
         from dppverify.ngoal.certify import certify_ngoal
 
         given = instance if isinstance(instance, str | Path | Mapping) else game  # provenance
         nprofile = _nprofile_input(profile)
         cert = certify_ngoal(given, nprofile, horizon=horizon, max_prefixes=max_prefixes,
                              route=route)
-        if cert.provenance is not None or isinstance(given, NInstance):
+        if cert.provenance is not None or isinstance(given, Instance):
             return cert
         return dataclasses.replace(cert, provenance=provenance_record(
             given, nprofile, route=cert.route, exact=cert.exact))
@@ -370,65 +356,13 @@ _TABLE_REFUSED = ("a table Defender on a truncated game can only be certified on
                   "--max-prefixes, or omit --horizon to certify the untruncated game")
 
 
-def _ctx_runner(*ids: str) -> Callable[[Callable[[Context], list[CheckRecord]]],
-                                        Callable[[Context], list[CheckRecord]]]:
-    return runner("tree", *ids)
-
-
-@_ctx_runner("profile.wellformed")
-def _run_wellformed(ctx: Context) -> list[CheckRecord]:
-    return [wellformed(ctx)]
-
-
-def _on_profile(*ids: str) -> Callable[[Callable[[EvaluatedContext], list[CheckRecord]]],
-                                        Callable[[Context], list[CheckRecord]]]:
-    """Register a runner of checks about the profile: it is called with an
-    :class:`EvaluatedContext` only; for an ill-formed profile its records are ``skipped``."""
-    def register(fn: Callable[[EvaluatedContext], list[CheckRecord]]
-                 ) -> Callable[[Context], list[CheckRecord]]:
-        def run(ctx: Context) -> list[CheckRecord]:
-            if isinstance(ctx, EvaluatedContext):
-                return fn(ctx)
-            return [skipped(i, spec(i).proof) for i in ids]
-        return runner("tree", *ids)(run)
-    return register
-
-
-_on_profile("value.U1", "value.U2", "value.U", "value.VoI")(values)
-
-
-def _one(check_id: str, fn: Callable[[Context], CheckRecord]) -> None:
-    runner("tree", check_id)(lambda ctx: [fn(ctx)])
-
-
-def _one_on_profile(check_id: str, fn: Callable[[EvaluatedContext], CheckRecord]) -> None:
-    _on_profile(check_id)(lambda ctx: [fn(ctx)])
-
-
-_one("profile.phases", phases)
-_one_on_profile("pbne.attacker_br.primary", lambda ctx: attacker_br(ctx, 1))
-_one_on_profile("pbne.attacker_br.secondary", lambda ctx: attacker_br(ctx, 2))
-_one_on_profile("pbne.defender_br", defender_br)
-_one_on_profile("pbne.sequential_rationality", sequential_rationality)
-_one_on_profile("pbne.belief_consistency", belief_consistency)
-_one("game.value", value_check)
-_one("lemma.TEL.telescoping", telescoping)
-_one("lemma.L1.lower_bound", l1_lower_bound)
-_one("lemma.L2.no_revisits", l2_no_revisits)
-_one("lemma.XI2.secondary_value", xi2_secondary_value)
-_one("lemma.L3.greedy", l3_greedy)
-_one("lemma.L4.monotonicity", l4_monotonicity)
-_one_on_profile("lemma.L5.induced_beliefs", l5_induced_beliefs)
-
-
 def _run_checks(ctx: Context, bar: tqdm | None = None) -> list[CheckRecord]:
     """Every tree check in registry order; ``bar`` names each check as it starts."""
     out: list[CheckRecord] = []
-    table = runners("tree")
     for s in CHECKS:
-        if s.id not in table:
+        if s.id not in TREE_RUNNERS:
             continue
-        ids, fn = table[s.id]
+        ids, fn = TREE_RUNNERS[s.id].ids, TREE_RUNNERS[s.id].run
         if bar is not None:
             bar.set_description(f"certify: {', '.join(ids)}")
         try:

@@ -8,7 +8,8 @@ yields a certificate with failed checks.
 from __future__ import annotations
 
 __all__ = ["AuditError", "CertificateError", "CheckerError", "HorizonError",
-           "InvalidInstanceError", "LPError", "OptionError", "ProfileError", "TreeTooLargeError",
+           "InvalidInstanceError", "LPError", "NotTwoGoalsError", "OptionError", "ProfileError",
+           "TreeTooLargeError",
            "UndecidedError"]
 
 
@@ -52,3 +53,8 @@ class UndecidedError(CheckerError):
     """The checker cannot decide the question asked (exit 3, "could not decide"), e.g. a
     Defender form the untruncated game's structured route cannot evaluate. The message names
     what would decide it; it is never a PASS."""
+
+
+class NotTwoGoalsError(InvalidInstanceError):
+    """A two-goal view (the paper's primary and secondary goals) of an instance whose number
+    of goals is not two."""

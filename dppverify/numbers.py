@@ -41,13 +41,13 @@ class NumberMode(ABC):
     def rel_tol(self) -> float | None:
         """Relative tolerance of the comparisons: None in exact mode."""
 
-    @abstractmethod
     def zero(self) -> Number:
-        """0 as a value of this mode."""
+        """0 as a value of this mode: ``convert(0)``."""
+        return self.convert(0)
 
-    @abstractmethod
     def one(self) -> Number:
-        """1 as a value of this mode."""
+        """1 as a value of this mode: ``convert(1)``."""
+        return self.convert(1)
 
     @abstractmethod
     def convert(self, x: Number) -> Number:
@@ -103,12 +103,6 @@ class ExactNumbers(NumberMode):
     def rel_tol(self) -> None:
         return None
 
-    def zero(self) -> int:
-        return 0
-
-    def one(self) -> int:
-        return 1
-
     def convert(self, x: Number) -> Number:
         return normalize(x)
 
@@ -150,12 +144,6 @@ class FloatNumbers(NumberMode):
 
     exact: ClassVar[bool] = False
     rel_tol: float = DEFAULT_REL_TOL
-
-    def zero(self) -> float:
-        return 0.0
-
-    def one(self) -> float:
-        return 1.0
 
     def convert(self, x: Number) -> float:
         return float(x)

@@ -2,8 +2,9 @@
 
 The certificate order, :data:`CHECK_IDS`, the routes each check runs on, what each relies on,
 and the table in ``dppverify/checks.md`` (tested against this registry) all come from
-:data:`CHECKS`. Runners register themselves per route with :func:`runner`; ``certify`` runs
-the registered runners in registry order.
+:data:`CHECKS`, declared here once; this module imports nothing of the checker. The function
+computing each tree check is declared beside the checks
+(:data:`dppverify.checks.runners.TREE_RUNNERS`); ``certify`` runs them in registry order.
 
 ``kind``: ``check`` is evidence for the one question the verdict answers, "is the profile a
 (weak) PBNE of the game?"; ``consistency`` compares two computations of the checker's own (a
@@ -20,12 +21,10 @@ the other kinds are reported apart (:func:`kind_of`,
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Literal
 
-__all__ = ["CHECKS", "CHECK_IDS", "KINDS", "CheckSpec", "kind_of", "not_run", "runner", "runners",
-           "spec"]
+__all__ = ["CHECKS", "CHECK_IDS", "KINDS", "CheckSpec", "kind_of", "not_run", "spec"]
 
 RouteName = Literal["tree", "structured"]
 Kind = Literal["check", "consistency", "fact"]
@@ -101,8 +100,6 @@ CHECK_IDS: tuple[str, ...] = tuple(c.id for c in CHECKS)
 """Every check id, in certificate order."""
 
 _BY_ID = {c.id: c for c in CHECKS}
-_RUNNERS: dict[RouteName, dict[str, tuple[tuple[str, ...], Callable[..., Any]]]] = {
-    "tree": {}, "structured": {}}
 
 NOT_RUN_REASONS = {
     "lemma.L3.greedy": "needs the walk tree (an LP per random attacker over all prefixes); "
@@ -135,37 +132,6 @@ def kind_of(check_id: str) -> Kind:
     """
     s = _BY_ID.get(check_id)
     return "check" if s is None else s.kind
-
-
-def runner(route: RouteName, *ids: str) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
-    """Register the function computing the records ``ids`` (in that order) on ``route``.
-
-    Examples
-    --------
-    >>> runner("structured", "lemma.L3.greedy")
-    Traceback (most recent call last):
-    KeyError: 'lemma.L3.greedy is not a registered structured check'
-    """
-    for i in ids:
-        if i not in _BY_ID or route not in _BY_ID[i].routes:
-            raise KeyError(f"{i} is not a registered {route} check")
-
-    def register(fn: Callable[..., Any]) -> Callable[..., Any]:
-        _RUNNERS[route][ids[0]] = (ids, fn)
-        return fn
-    return register
-
-
-def runners(route: RouteName) -> dict[str, tuple[tuple[str, ...], Callable[..., Any]]]:
-    """The runners of ``route`` keyed by the first id they produce.
-
-    Examples
-    --------
-    >>> import dppverify.certify
-    >>> "pbne.defender_br" in runners("tree")
-    True
-    """
-    return _RUNNERS[route]
 
 
 def not_run(route: RouteName) -> dict[str, str]:

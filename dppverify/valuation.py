@@ -13,9 +13,14 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from dppverify.game.instance import Instance, as_instance
+from dppverify.game.instance import (
+    Instance,
+    as_instance,
+    goal_count,
+    instance_from_json,
+    load_instance,
+)
 from dppverify.horizons import parse_horizon
-from dppverify.ngoal.instance import NInstance, goal_count, load_ninstance, ninstance_from_json
 from dppverify.ngoal.routes import NRoutedValue, is_ngoal_file, nrouted_value
 from dppverify.routes import Route, RoutedValue, routed_value
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
@@ -23,30 +28,32 @@ from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 __all__ = ["game_of", "value"]
 
 
-def game_of(instance: Any) -> Instance | NInstance:
+def game_of(instance: Any) -> Instance:
     """The two-goal or N-goal instance of any accepted form.
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3_document
+    >>> from dppverify.game.examples import star3_document
     >>> type(game_of(star3_document())).__name__
-    'NInstance'
+    'Instance'
     """
-    if isinstance(instance, Instance | NInstance):
+    if isinstance(instance, Instance):
         return instance
     if isinstance(instance, str | Path):
-        return load_ninstance(instance) if is_ngoal_file(instance) else as_instance(instance)
+        if is_ngoal_file(instance):
+            return load_instance(instance)
+        return as_instance(instance, two_goals=True)
     doc = instance
     if not isinstance(instance, Mapping):
         to_json = getattr(instance, "to_json", None)
         if callable(to_json):
             doc = to_json()
     if isinstance(doc, Mapping) and (goal_count(doc) or 0) > 2:
-        return ninstance_from_json(doc)
-    return as_instance(doc)
+        return instance_from_json(doc)
+    return as_instance(doc, two_goals=True)
 
 
-def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
+def value(instance: Instance | Mapping[str, Any] | str | Path | Any,
           horizon: int | str | float | None = "inf", *, route: Route = "auto",
           max_prefixes: int = DEFAULT_MAX_PREFIXES,
           progress: bool = False) -> RoutedValue | NRoutedValue:
@@ -54,7 +61,7 @@ def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
 
     Parameters
     ----------
-    instance : Instance, NInstance, Mapping, str, Path or an object with ``to_json()``
+    instance : Instance, Mapping, str, Path or an object with ``to_json()``
         The game, in any form :func:`dppverify.certify` accepts; two or N goals.
     horizon : "inf", None, math.inf or int
         ``"inf"`` (default), None or ``math.inf``: the untruncated game (structured route).
@@ -95,6 +102,6 @@ def value(instance: Instance | NInstance | Mapping[str, Any] | str | Path | Any,
     """
     h = parse_horizon(horizon)
     game = game_of(instance)
-    if isinstance(game, NInstance):
+    if game.n_goals > 2:
         return nrouted_value(game, h, route=route, max_prefixes=max_prefixes)
     return routed_value(game, h, route=route, max_prefixes=max_prefixes, progress=progress)

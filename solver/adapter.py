@@ -22,11 +22,11 @@ def solve_json(instance_doc: dict[str, Any]) -> dict[str, Any]:
 
     Examples
     --------
-    >>> doc = {"graph": {"nodes": [{"id": "s"}, {"id": "g1"}, {"id": "g2"}],
-    ...        "edges": [{"source": "s", "target": "g2", "weight": 2},
-    ...                  {"source": "g2", "target": "g1", "weight": 2},
-    ...                  {"source": "s", "target": "g1", "weight": 3}]},
-    ...        "start": "s", "goals": ["g1", "g2"], "prior": ["7/10", "3/10"]}
+    The triangle of ``examples/triangle.json``:
+
+    >>> import json
+    >>> from pathlib import Path
+    >>> doc = json.loads((Path(__file__).parents[1] / "examples" / "triangle.json").read_text())
     >>> profile = solve_json(doc)
     >>> profile["format"], profile["value"]["U"]
     ('dpp-profile/1', '12/5')

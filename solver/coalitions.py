@@ -37,7 +37,7 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
 from solver.ngoal_instance import NGame
-from solver.numbers import solve_exact
+from solver.numbers import pivot, solve_exact
 
 __all__ = ["Coalitions", "CoverSolution", "balanced_collections", "coalition_dp", "cover_lp",
            "subset_members"]
@@ -160,12 +160,7 @@ def cover_lp(costs: Mapping[int, Fraction], b: Sequence[Fraction],
         if best is None:  # pragma: no cover - c_S <= min b keeps the LP bounded
             raise AssertionError("cover_lp: unbounded")
         i = best[1]
-        piv = rows[i][j]
-        rows[i] = [x / piv for x in rows[i]]
-        for k in range(n):
-            if k != i and rows[k][j]:
-                f = rows[k][j]
-                rows[k] = [x - f * y for x, y in zip(rows[k], rows[i], strict=True)]
+        pivot(rows, i, j)
         basis[i] = entering
 
 
@@ -316,7 +311,7 @@ def _sourced_dijkstra(n: int, tails: np.ndarray, heads: np.ndarray, weights: lis
     heapq.heapify(heap)
     while heap:
         k, x = heapq.heappop(heap)
-        if best[x] is not None and k > best[x]:  # type: ignore[operator]
+        if (b := best[x]) is not None and k > b:
             continue
         for u, w in pred[x]:
             nk = k + w

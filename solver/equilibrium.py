@@ -114,7 +114,7 @@ def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibriu
     abs_tol : float
         Tolerance on distances, used only when some weight is a float: relative to the
         largest weight (scaled by it; the float-mode limit
-        :data:`~solver.limits.MAX_FLOAT_WEIGHT_RATIO` keeps every weight far above it).
+        :data:`~dppio.limits.MAX_FLOAT_WEIGHT_RATIO` keeps every weight far above it).
 
     Returns
     -------
@@ -127,10 +127,8 @@ def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibriu
 
     Examples
     --------
-    >>> import networkx as nx
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> eq = solve(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
+    >>> from solver.instance import triangle
+    >>> eq = solve(triangle())  # s -> g2 (2), g2 -> g1 (2), s -> g1 (3); prior 7/10, 3/10
     >>> eq.secondary_path, eq.phases
     (('s', 'g2'), Phases(t_I=0, t_II=1, T=1))
     >>> [(p.nodes, str(p.probability)) for p in eq.primary_paths]

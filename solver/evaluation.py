@@ -69,7 +69,7 @@ class Trajectory:
 
 @dataclass(frozen=True)
 class _PathRun:
-    """One Attacker path evaluated against the Defender (internal)."""
+    """One Attacker walk evaluated against the Defender (internal)."""
 
     theta: int
     path: StrategyPath
@@ -97,7 +97,7 @@ class Evaluation:
 
     @cached_property
     def trajectories(self) -> tuple[Trajectory, ...]:
-        """Per path: σ(g1), Bayes beliefs ``b^1_t`` (eq. (2)) and cumulative allocation."""
+        """Per walk: σ(g1), Bayes beliefs ``b^1_t`` (eq. (2)) and cumulative allocation."""
         all_paths = [(r.theta, r.path) for r in self._runs]
         out = []
         for run in self._runs:
@@ -132,11 +132,9 @@ def evaluate(
 
     Examples
     --------
-    >>> import networkx as nx
     >>> from solver.distances import distances_from, distances_to
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> net = Network.from_networkx(g)   # s=0, g2=1, g1=2
+    >>> from solver.instance import triangle
+    >>> net = triangle().network   # s=0, g2=1, g1=2
     >>> always_g1 = lambda walk: [Fraction(1)] * (len(walk) - 1)
     >>> direct = [StrategyPath.along(net, walk, Fraction(1), "direct") for walk in ((0, 2), (0, 1))]
     >>> ev = evaluate(net, always_g1, direct[:1], direct[1:], b1=Fraction(7, 10),

@@ -14,7 +14,7 @@ from solver.errors import InvalidInstanceError
 from solver.network import Network
 from solver.numbers import parse_number
 
-__all__ = ["Instance"]
+__all__ = ["Instance", "triangle"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -163,30 +163,45 @@ class Instance:
 
     # ------------------------------------------------------------------ derived
     @property
-    def primary_slot(self) -> int:
-        """Position (0 or 1) of the primary goal in ``goals`` and ``prior`` (larger prior;
-        ``0`` at a tie)."""
+    def primary_index(self) -> int:
+        """The goal index (0 or 1) of the primary goal: its position in ``goals`` and ``prior``
+        (the larger prior; ``0`` at a tie)."""
         return 0 if self.prior[0] >= self.prior[1] else 1
 
     @property
     def primary(self) -> Hashable:
         """The primary goal ``g1``."""
-        return self.goals[self.primary_slot]
+        return self.goals[self.primary_index]
 
     @property
     def secondary(self) -> Hashable:
         """The secondary goal ``g2``."""
-        return self.goals[1 - self.primary_slot]
+        return self.goals[1 - self.primary_index]
 
     @property
     def b1(self) -> Fraction:
         """Prior of the primary goal."""
-        return Fraction(self.prior[self.primary_slot])
+        return Fraction(self.prior[self.primary_index])
 
     @property
     def b2(self) -> Fraction:
         """Prior of the secondary goal."""
-        return Fraction(self.prior[1 - self.primary_slot])
+        return Fraction(self.prior[1 - self.primary_index])
+
+
+def triangle() -> Instance:
+    """The README's running example: ``s -> g2`` (2), ``g2 -> g1`` (2), ``s -> g1`` (3),
+    goals ``g1, g2`` with the prior ``7/10, 3/10`` (``examples/triangle.json``); U* = 12/5.
+
+    Examples
+    --------
+    >>> inst = triangle()
+    >>> inst.start, inst.goals, str(inst.b1)
+    ('s', ('g1', 'g2'), '7/10')
+    """
+    g = nx.Graph()
+    g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
+    return Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))
 
 
 def _cell(x: Any) -> tuple[int, int]:

@@ -16,7 +16,7 @@ import numpy as np
 
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.instance import Instance
-from solver.limits import MAX_INPUT_BYTES, MAX_JSON_DEPTH, check_numeral, open_input
+from solver.json_text import parse_json_text, read_json
 from solver.movingai import STANDARD_PREFIX, map_file, read_map_bytes
 from solver.network import GridLabels
 from solver.numbers import format_number, parse_number
@@ -29,8 +29,6 @@ __all__ = [
     "map_instance_to_json",
     "node_from_json",
     "node_to_json",
-    "parse_json_text",
-    "read_json",
 ]
 
 
@@ -39,108 +37,6 @@ MAP_INSTANCE_FORMAT = "dpp-map-instance/1"
 
 _MAP_KEYS = frozenset({"format", "map", "map_sha256", "start", "goals", "prior",
                        "connectivity"})
-
-
-def read_json(path: str | Path) -> Any:
-    """Read a JSON file, decimals as exact ``Fraction``; errors name the file and line.
-
-    Parameters
-    ----------
-    path : str or Path
-        The file (UTF-8).
-
-    Returns
-    -------
-    object
-        The parsed JSON, every decimal number as a ``Fraction``.
-
-    Raises
-    ------
-    InstanceFormatError
-        The file cannot be read or is not JSON.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> tmp = tempfile.TemporaryDirectory()
-    >>> p = Path(tmp.name) / "prior.json"
-    >>> _ = p.write_text('{"prior": [0.7, 0.3]}')
-    >>> read_json(p)
-    {'prior': [Fraction(7, 10), Fraction(3, 10)]}
-    >>> _ = p.write_text('{"prior": [0.7,' + chr(10) + ' 0.3')
-    >>> read_json(p)  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    solver.errors.InstanceFormatError: .../prior.json: malformed JSON at line 2 column 5: ...
-    >>> tmp.cleanup()
-    """
-    p = Path(path)
-    try:
-        with open_input(p) as fh:
-            raw = fh.read(MAX_INPUT_BYTES + 1)
-    except OSError as exc:
-        raise InstanceFormatError(f"{p}: cannot read file ({exc.strerror})") from None
-    if len(raw) > MAX_INPUT_BYTES:
-        raise InstanceFormatError(f"{p}: cannot read file (larger than the limit of "
-                                  f"{MAX_INPUT_BYTES} bytes)")
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InstanceFormatError(f"{p}: cannot read file (not UTF-8 text)") from None
-    try:
-        return parse_json_text(text)
-    except InstanceFormatError as exc:
-        raise InstanceFormatError(f"{p}: {exc}") from None
-
-
-def _parse_float(text: str) -> Fraction:
-    check_numeral(text, where="JSON number")
-    return Fraction(text)
-
-
-def _parse_int(text: str) -> int:
-    check_numeral(text, where="JSON number")
-    return int(text)
-
-
-def parse_json_text(text: str) -> Any:
-    """Parse JSON text: decimals as exact ``Fraction``, within the limits of
-    :mod:`solver.limits` (numeral length and exponent, nesting depth).
-
-    Raises
-    ------
-    InstanceFormatError
-        Malformed JSON, a numeral beyond the limits, or nesting deeper than the limit.
-
-    Examples
-    --------
-    >>> parse_json_text('[0.5, 2]')
-    [Fraction(1, 2), 2]
-    >>> parse_json_text('[1e999999999]')  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    solver.errors.InstanceFormatError: JSON number: the exponent of '1e999999999' is beyond ...
-    """
-    try:
-        doc = json.loads(text, parse_float=_parse_float, parse_int=_parse_int,
-                         parse_constant=_reject_constant)
-    except json.JSONDecodeError as exc:
-        raise InstanceFormatError(
-            f"malformed JSON at line {exc.lineno} column {exc.colno}: {exc.msg}") from None
-    except RecursionError:
-        raise InstanceFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels") from None
-    except InvalidInstanceError as exc:
-        raise InstanceFormatError(str(exc)) from None
-    stack = [(doc, 1)]
-    while stack:
-        x, depth = stack.pop()
-        if isinstance(x, dict | list):
-            if depth > MAX_JSON_DEPTH:
-                raise InstanceFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
-            stack.extend((y, depth + 1) for y in (x.values() if isinstance(x, dict) else x))
-    return doc
-
-
-def _reject_constant(name: str) -> Any:
-    raise InstanceFormatError(f"non-finite number {name} is not allowed")
 
 
 def load_instance(path: str | Path) -> Instance:
@@ -482,10 +378,8 @@ def instance_to_json(inst: Instance) -> dict[str, Any]:
 
     Examples
     --------
-    >>> import networkx as nx
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> doc = instance_to_json(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
+    >>> from solver.instance import triangle
+    >>> doc = instance_to_json(triangle())
     >>> doc["goals"], doc["prior"], doc["graph"]["edges"][0]
     (['g1', 'g2'], ['7/10', '3/10'], {'source': 's', 'target': 'g2', 'weight': '2'})
     >>> instance_from_json(doc).b1

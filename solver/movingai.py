@@ -15,8 +15,9 @@ from pathlib import Path
 
 import numpy as np
 
+from dppio.files import read_input
+from dppio.limits import MAX_MAP_CELLS
 from solver.errors import InstanceFormatError
-from solver.limits import MAX_INPUT_BYTES, MAX_MAP_CELLS, open_input
 
 __all__ = ["DEFAULT_BLOCKED", "STANDARD_PREFIX", "map_file", "parse_map", "read_map",
            "read_map_bytes"]
@@ -81,10 +82,7 @@ def read_map_bytes(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_B
     """
     p = Path(path)
     try:
-        with open_input(p) as fh:
-            raw = fh.read(MAX_INPUT_BYTES + 1)
-        if len(raw) > MAX_INPUT_BYTES:
-            raise ValueError(f"larger than the limit of {MAX_INPUT_BYTES} bytes")
+        raw = read_input(p)
         text = raw.decode("ascii", errors="strict")
     except (OSError, ValueError) as exc:
         raise InstanceFormatError(f"{p}: cannot read map file ({exc})") from None

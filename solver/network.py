@@ -15,13 +15,14 @@ from collections.abc import Hashable, Iterator, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import cached_property
+from typing import overload
 
 import networkx as nx
 import numpy as np
 import scipy.sparse as sp
 
+from dppio.limits import check_float_weights
 from solver.errors import InvalidInstanceError
-from solver.limits import check_float_weights
 from solver.numbers import (
     DEFAULT_ABS_TOL,
     ExactNumbers,
@@ -55,7 +56,15 @@ class GridLabels(Sequence[tuple[int, int]]):
     def __len__(self) -> int:
         return self.height * self.width
 
-    def __getitem__(self, i: int) -> tuple[int, int]:  # type: ignore[override]
+    @overload
+    def __getitem__(self, i: int) -> tuple[int, int]: ...
+
+    @overload
+    def __getitem__(self, i: slice) -> Sequence[tuple[int, int]]: ...
+
+    def __getitem__(self, i: int | slice) -> tuple[int, int] | Sequence[tuple[int, int]]:
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(len(self)))]
         if not 0 <= i < len(self):
             raise IndexError(i)
         return (i // self.width, i % self.width)
@@ -184,7 +193,8 @@ class Network:
         else:
             data = np.array([float(w) for w in values], dtype=np.float64)
             if data.size:
-                check_float_weights([float(data.min()), float(data.max())])
+                check_float_weights([float(data.min()), float(data.max())],
+                                    error=InvalidInstanceError)
             numbers = FloatNumbers(DEFAULT_ABS_TOL)
         indptr, indices, weights = _sorted_csr(len(labels), np.asarray(tails, dtype=np.int64),
                                                np.asarray(heads, dtype=np.int64), data)

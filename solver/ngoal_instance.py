@@ -23,9 +23,9 @@ from solver.instance_json import (
     _graph_from_node_link,
     node_from_json,
     node_to_json,
-    read_json,
     read_map_document,
 )
+from solver.json_text import read_json
 from solver.network import Network
 from solver.numbers import parse_number
 

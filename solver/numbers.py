@@ -22,8 +22,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from dppio.limits import check_numeral, check_rational
 from solver.errors import InvalidInstanceError
-from solver.limits import check_numeral, check_rational
 
 __all__ = [
     "DEFAULT_ABS_TOL",
@@ -33,6 +33,7 @@ __all__ = [
     "NumberMode",
     "format_number",
     "parse_number",
+    "pivot",
     "solve_exact",
 ]
 
@@ -235,21 +236,22 @@ def parse_number(value: object, *, where: str, allow_float: bool = False) -> Num
         raise InvalidInstanceError(f"{where}: expected a number, got {value!r}")
     if isinstance(value, Rational):
         exact = Fraction(int(value.numerator), int(value.denominator))
-        check_rational(exact, where=where)
+        check_rational(exact, where=where, error=InvalidInstanceError)
         return exact
     if isinstance(value, float):
         if not math.isfinite(value):
             raise InvalidInstanceError(f"{where}: expected a finite number, got {value!r}")
         exact = Fraction(repr(value))
-        check_rational(exact, where=where)  # the checker reads the literal exactly: same limit
+        # the checker reads the literal exactly: the same limit
+        check_rational(exact, where=where, error=InvalidInstanceError)
         return value if allow_float else exact
     if isinstance(value, str):
-        check_numeral(value, where=where)
+        check_numeral(value, where=where, error=InvalidInstanceError)
         try:
             exact = Fraction(value.strip())
         except (ValueError, ZeroDivisionError):
             raise InvalidInstanceError(f"{where}: {value!r} is not a number") from None
-        check_rational(exact, where=where)
+        check_rational(exact, where=where, error=InvalidInstanceError)
         return exact
     raise InvalidInstanceError(f"{where}: expected a number, got {value!r}")
 
@@ -286,10 +288,24 @@ def solve_exact(rows: list[list[Fraction]], rhs: list[Fraction]) -> list[Fractio
         if p is None:
             return None
         mat[c], mat[p] = mat[p], mat[c]
-        piv = mat[c][c]
-        mat[c] = [x / piv for x in mat[c]]
-        for r in range(n):
-            if r != c and mat[r][c]:
-                f = mat[r][c]
-                mat[r] = [x - f * y for x, y in zip(mat[r], mat[c], strict=True)]
+        pivot(mat, c, c)
     return [mat[i][n] for i in range(n)]
+
+
+def pivot(rows: list[list[Fraction]], i: int, j: int) -> None:
+    """One exact pivot step in place: divide row ``i`` by ``rows[i][j]`` (non-zero), then
+    clear column ``j`` from every other row (Gauss-Jordan elimination, simplex tableaus).
+
+    Examples
+    --------
+    >>> rows = [[Fraction(2), Fraction(4)], [Fraction(1), Fraction(3)]]
+    >>> pivot(rows, 0, 0)
+    >>> [[str(x) for x in row] for row in rows]
+    [['1', '2'], ['0', '1']]
+    """
+    piv = rows[i][j]
+    rows[i] = [x / piv for x in rows[i]]
+    for k, row in enumerate(rows):
+        if k != i and row[j]:
+            f = row[j]
+            rows[k] = [x - f * y for x, y in zip(row, rows[i], strict=True)]

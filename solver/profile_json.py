@@ -31,13 +31,11 @@ def equilibrium_to_json(eq: Equilibrium) -> dict[str, Any]:
     --------
     The triangle's profile, certified by the independent checker:
 
-    >>> import networkx as nx
     >>> from dppverify import certify
-    >>> from solver import Instance, solve
+    >>> from solver import solve
+    >>> from solver.instance import triangle
     >>> from solver.instance_json import instance_to_json
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> inst = Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))
+    >>> inst = triangle()
     >>> doc = equilibrium_to_json(solve(inst))
     >>> [(p["path"], p["probability"]) for p in doc["attacker"]["primary"]]
     [(['s', 'g1'], '4/7'), (['s', 'g2'], '3/7')]

@@ -30,26 +30,14 @@ def path_label(label: str) -> str:
 
 
 def summarize(eq: Equilibrium) -> str:
-    """A multi-line summary: goals, ξ² with σ* per step and phases, the primary mixture,
-    the type costs, value and VoI.
-
-    Parameters
-    ----------
-    eq : Equilibrium
-        The solver's result (:func:`solver.solve`).
-
-    Returns
-    -------
-    str
-        What ``dpp solve`` prints.
+    """What ``dpp solve`` prints for the solver's result ``eq``: goals, ξ² with σ* per step and
+    phases, the primary mixture, the type costs, value and VoI (several lines).
 
     Examples
     --------
-    >>> import networkx as nx
-    >>> from solver import Instance, solve
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> print(summarize(solve(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))))
+    >>> from solver import solve
+    >>> from solver.instance import triangle
+    >>> print(summarize(solve(triangle())))
     start 's'; primary goal g1 = 'g1' (prior 7/10), secondary goal g2 = 'g2' (prior 3/10)
     mode: exact (rational)
     <BLANKLINE>

@@ -60,11 +60,9 @@ def secondary_best_response(
 
     Examples
     --------
-    >>> import networkx as nx
     >>> from solver.distances import distances_from, distances_to
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> net = Network.from_networkx(g)   # indices: s=0, g2=1, g1=2
+    >>> from solver.instance import triangle
+    >>> net = triangle().network   # indices: s=0, g2=1, g1=2
     >>> xi = secondary_best_response(net, 0, (2, 1), distances_from(net, 0),
     ...      distances_to(net, 2), distances_to(net, 1), net.numbers)
     >>> xi.walk, xi.pivot, int(xi.m_value)

@@ -47,11 +47,14 @@ def path_from_source(net: Network, source: int, end: int, dist_from: np.ndarray,
 
     Examples
     --------
-    >>> import networkx as nx
+    On the README's triangle (``s = 0``, ``g2 = 1``, ``g1 = 2``) ``s -> g1`` directly (3)
+    beats ``s -> g2 -> g1`` (4):
+
     >>> from solver.distances import distances_from
-    >>> net = Network.from_networkx(nx.cycle_graph(4))
-    >>> path_from_source(net, 0, 2, distances_from(net, 0), net.numbers)
-    [0, 1, 2]
+    >>> from solver.instance import triangle
+    >>> net = triangle().network
+    >>> path_from_source(net, 0, 2, distances_from(net, 0), net.numbers), net.labels[2]
+    ([0, 2], 'g1')
     """
     rev = net.reverse
     path = [end]

@@ -1,8 +1,12 @@
-"""One path of a type's mixed strategy, kept both as node indices and as node ids.
+"""One walk of a type's mixed strategy, kept both as node indices and as node ids.
 
-Naming, the same across the solver: a ``walk`` is a sequence of node *indices* of the
-:class:`~solver.network.Network` (what the algorithms work on), ``nodes`` the same sequence
-as node *ids* (what users and the JSON formats see).
+Naming, the same across the solver and the checker: a *walk* is the sequence of nodes an
+Attacker type takes (the paper's path ξ; the JSON formats keep the key ``"path"``); *path*
+is kept for shortest paths (:mod:`solver.shortest_paths`) and for the paper's names of the
+equilibrium's walks (``secondary_path`` ξ², ``primary_paths`` ξ^{1,α}, public attributes of
+:class:`~solver.equilibrium.Equilibrium`). In code, ``walk`` holds node *indices* of the
+:class:`~solver.network.Network` (what the algorithms work on), ``nodes`` the same sequence as
+node *ids* (what users and the JSON formats see).
 """
 
 from __future__ import annotations

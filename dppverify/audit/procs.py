@@ -28,7 +28,8 @@ from __future__ import annotations
 import contextlib
 import os
 import signal
-from pathlib import Path
+
+from dppio.procs import descendants
 
 __all__ = ["SUPERVISOR", "become_subreaper", "descendants", "kill_tree"]
 
@@ -66,47 +67,6 @@ def become_subreaper(parent_death_signal: int | None = None) -> bool:
     if parent_death_signal is not None:
         _prctl(PR_SET_PDEATHSIG, int(parent_death_signal))
     return _prctl(PR_SET_CHILD_SUBREAPER, 1)
-
-
-def _parents() -> dict[int, int]:
-    out: dict[int, int] = {}
-    proc = Path("/proc")
-    try:
-        entries = list(proc.iterdir())
-    except OSError:
-        return out
-    for entry in entries:
-        if not entry.name.isdigit():
-            continue
-        try:
-            text = (entry / "stat").read_text()
-        except OSError:
-            continue
-        fields = text[text.rfind(")") + 2:].split()
-        with contextlib.suppress(IndexError, ValueError):
-            out[int(entry.name)] = int(fields[1])
-    return out
-
-
-def descendants(pid: int) -> list[int]:
-    """The process ids of every descendant of ``pid`` (through ``/proc``; empty elsewhere).
-
-    Examples
-    --------
-    >>> descendants(os.getpid()) == [] or all(isinstance(p, int) for p in descendants(1))
-    True
-    """
-    parents = _parents()
-    children: dict[int, list[int]] = {}
-    for child, parent in parents.items():
-        children.setdefault(parent, []).append(child)
-    out: list[int] = []
-    todo = [pid]
-    while todo:
-        for c in children.get(todo.pop(), []):
-            out.append(c)
-            todo.append(c)
-    return out
 
 
 def kill_tree(pid: int, *, include_self: bool = True, rounds: int = 20) -> None:

@@ -98,7 +98,7 @@ def instances_from_dir(folder: str | Path) -> tuple[list[tuple[str, Doc]], list[
             other.append(p.name)
             continue
         try:
-            instance_from_json(doc)
+            instance_from_json(doc, two_goals=True)
         except CheckerError as exc:
             raise AuditError(f"{p}: {exc}") from None
         out.append((p.name, _plain(doc)))

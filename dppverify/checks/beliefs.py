@@ -20,15 +20,6 @@ def belief_consistency(ctx: EvaluatedContext) -> CheckRecord:
     ``b1 x1 / (b1 x1 + b2 x2)`` at every reached information set; the profile's stated prior
     (if any) must be the instance's. Off-path beliefs are unspecified (weak PBNE).
 
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
-
     Examples
     --------
     >>> from dppverify.game.examples import triangle_attacker, triangle_context as context

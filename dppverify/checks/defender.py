@@ -20,15 +20,6 @@ HALF = Fraction(1, 2)
 def defender_br(ctx: EvaluatedContext) -> CheckRecord:
     """``pbne.defender_br``: the Defender's exact regret (greedy best response − U) is 0.
 
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
-
     Examples
     --------
     With the primary's probabilities swapped (3/7 to g1), allocating ``s -> g2`` to g1 gains
@@ -79,15 +70,6 @@ def sequential_rationality(ctx: EvaluatedContext) -> CheckRecord:
 
     Lemma 3: allocate to g1 surely when ``b1_t > 1/2``, to g2 surely when ``b1_t < 1/2``;
     anything is rational at exactly 1/2.
-
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
 
     Examples
     --------

@@ -101,15 +101,6 @@ def value_check(ctx: Context) -> CheckRecord:
     Attacker gives ``V_H <= max_σ U``; with both regrets 0 they meet at ``U``, so ``V_H = U``
     exactly. The LP value must lie within the exact bracket (within the LP tolerance).
 
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
-
     Examples
     --------
     A secondary type walking to g1 makes ``U = 27/10``, not the value ``V_1 = 12/5``:

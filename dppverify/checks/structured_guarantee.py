@@ -13,10 +13,7 @@ from collections.abc import Sequence
 from fractions import Fraction
 
 from dppverify.certificate import CheckRecord
-from dppverify.exact import Number
-from dppverify.ngoal.instance import NInstance
-from dppverify.ngoal.profile import NProfile
-from dppverify.ngoal.structured import (
+from dppverify.checks.structured_ngoal import (
     NGOAL_IDS,
     PAYOFF_WALKS,
     PROFILE_DOC,
@@ -24,6 +21,9 @@ from dppverify.ngoal.structured import (
     ngoal_record,
     value_record,
 )
+from dppverify.exact import Number
+from dppverify.game.instance import Instance
+from dppverify.game.profile import NProfile
 from dppverify.structured.arc_condition import arc_condition
 from dppverify.structured.guarantee import (
     GuaranteeRule,
@@ -41,14 +41,14 @@ NSOLVE = "relies on proofs/NSOLVE.md (NSOLVE.1: every walk costs type θ at leas
     "and the non-pattern rays)"
 
 
-def guarantee_checks(instance: NInstance, profile: NProfile, horizon: int | None
+def guarantee_checks(instance: Instance, profile: NProfile, horizon: int | None
                      ) -> tuple[list[CheckRecord], int]:
     """The structured route's records for a profile whose Defender is the guarantee rule.
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.ngoal.profile import nprofile_from_json
+    >>> from dppverify.game.examples import star3
+    >>> from dppverify.game.profile import nprofile_from_json
     >>> doc = {"format": "dpp-ngoal-profile/1",
     ...        "attacker": [[{"path": ["s", "m", "a"], "probability": 1}],
     ...                     [{"path": ["s", "m", "b"], "probability": 1}],
@@ -84,7 +84,7 @@ def guarantee_checks(instance: NInstance, profile: NProfile, horizon: int | None
     return out, len(trie)
 
 
-def _direction(inst: NInstance, ray: tuple[tuple[int, Fraction], ...]) -> str:
+def _direction(inst: Instance, ray: tuple[tuple[int, Fraction], ...]) -> str:
     """A cover as text: ``1/2·{g1, g2} + …`` (goal ids)."""
     def goals(mask: int) -> str:
         return ", ".join(str(inst.nodes[inst.goals[i]]) for i in range(inst.n_goals)
@@ -93,7 +93,7 @@ def _direction(inst: NInstance, ray: tuple[tuple[int, Fraction], ...]) -> str:
     return " + ".join(f"{c}·{{{goals(s)}}}" for s, c in ray)
 
 
-def _attacker_record(inst: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
+def _attacker_record(inst: Instance, rule: GuaranteeRule, sets: GuaranteeSets,
                      per_type: Sequence[Fraction], feasible: bool) -> CheckRecord:
     cid = "ngoal.pbne.attacker_br"
     proof = "NSOLVE"

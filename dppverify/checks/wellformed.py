@@ -17,15 +17,6 @@ __all__ = ["phases", "wellformed"]
 def wellformed(ctx: Context) -> CheckRecord:
     """``profile.wellformed``: the document describes a profile of this game.
 
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
-
     Examples
     --------
     The triangle's equilibrium (see :mod:`dppverify.game.examples`), then a primary mixture whose
@@ -64,15 +55,6 @@ def wellformed(ctx: Context) -> CheckRecord:
 def phases(ctx: Context) -> CheckRecord:
     """``profile.phases``: the claimed ``t_I``, ``t_II``, ``T`` of ξ² match σ* along it.
 
-    Parameters
-    ----------
-    ctx : Context
-        The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-
-    Returns
-    -------
-    CheckRecord
-
     Examples
     --------
     On the triangle ξ² = ``s -> g2`` is all phase II (σ* = 1/2 on its one step):
@@ -94,7 +76,7 @@ def phases(ctx: Context) -> CheckRecord:
             return CheckRecord("profile.phases", "pass", "no phases claimed (the secondary "
                                "mixes several walks)", {}, "L5")
         return CheckRecord("profile.phases", "fail", "phases are claimed but the secondary "
-                           "type mixes several walks (phases are defined on one path ξ²)", {},
+                           "type mixes several walks (phases are defined on one walk ξ²)", {},
                            "L5")
     got = phases_of(sigma_along(ctx.instance, ctx.roles, ProgressRule(ctx.roles.g1), sec[0].walk),
                    ctx.numbers)

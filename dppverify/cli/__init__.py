@@ -17,6 +17,7 @@ from typing import Any
 
 import click
 
+from dppio.limits import MAX_PREFIXES_LIMIT
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli.audit import audit_command
@@ -42,12 +43,11 @@ from dppverify.errors import (
 )
 from dppverify.exact import format_number
 from dppverify.formats.files import read_input, refuse_input_as_output, write_files
-from dppverify.game.instance import GameInstance as AnyGame
 from dppverify.game.instance import Instance, load_instance
+from dppverify.game.instance import Instance as AnyGame
 from dppverify.game.profile import load_profile_document
-from dppverify.limits import MAX_HORIZON, MAX_PREFIXES_LIMIT, MAX_TRIALS
+from dppverify.limits import MAX_HORIZON, MAX_TRIALS
 from dppverify.ngoal.certify import certify_ngoal
-from dppverify.ngoal.instance import NInstance, load_ninstance
 from dppverify.ngoal.routes import is_ngoal_file, nrouted_document, nrouted_lines, nrouted_value
 from dppverify.provenance import (
     command_line,
@@ -59,7 +59,7 @@ from dppverify.provenance import (
 )
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
 from dppverify.text import show, show_value
-from dppverify.tree_route.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
+from dppverify.tree_route.efg import DEFAULT_MAX_EFG_NODES, write_efg
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 from dppverify.tree_route.value_lp import GameValue
@@ -338,13 +338,13 @@ def load_game(instance: str | None, grid: MapRequest | None,
         return grid.instance()
     assert instance is not None
     with hinted(instance, "instance", command):
-        return load_instance(instance)
+        return load_instance(instance, two_goals=True)
 
 
-def load_ngame(instance: str, command: str) -> NInstance:
+def load_ngame(instance: str, command: str) -> Instance:
     """The N-goal instance at ``instance``, a read error hinted as :func:`load_game`'s."""
     with hinted(instance, "instance", command):
-        return load_ninstance(instance)
+        return load_instance(instance)
 
 
 class hinted:
@@ -461,7 +461,7 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
             doc = _profile_document(profile, game, instance)
             bar.phase(f"certifying (route {route})")
             del doc  # read again by certify_ngoal, which checks its format tag
-            cert = certify_ngoal(game, profile,  # type: ignore[arg-type]
+            cert = certify_ngoal(game, profile,
                                  horizon=horizon,  # type: ignore[arg-type]
                                  max_prefixes=max_prefixes, route=route)
         elif grid is not None and grid.n_goals > 2:  # an N-goal grid
@@ -792,7 +792,7 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
     goals = ""
     try:
         refuse_input_as_output(output, [instance, grid.path if grid is not None else None])
-        game: GameInstance
+        game: Instance
         if instance is not None and grid is None and is_ngoal_file(instance):  # N > 2 goals
             game = load_ngame(instance, "dpp export-efg")
             goals = f"N = {game.n_goals} goals, "

@@ -17,6 +17,7 @@ from typing import Any
 
 import click
 
+from dppio.limits import MAX_PREFIXES_LIMIT
 from dppverify.audit import (
     AUDIT_MAX_PREFIXES,
     DEFAULT_SHRINK_CALLS,
@@ -30,7 +31,7 @@ from dppverify.audit import (
 )
 from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.errors import AuditError, CheckerError
-from dppverify.limits import MAX_AUDIT_EXAMPLES, MAX_PREFIXES_LIMIT
+from dppverify.limits import MAX_AUDIT_EXAMPLES
 
 __all__ = ["audit_command", "format_report"]
 

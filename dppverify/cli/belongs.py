@@ -20,13 +20,13 @@ from collections.abc import Iterator, Mapping
 from typing import Any
 
 from dppverify.formats.json_reading import lookup_node, parse_number, parse_probability, show_node
-from dppverify.game.instance import GameInstance
+from dppverify.game.instance import Instance
 from dppverify.text import show
 
 __all__ = ["profile_mismatch"]
 
 
-def _node_list(game: GameInstance, nodes: list[int]) -> str:
+def _node_list(game: Instance, nodes: list[int]) -> str:
     return ", ".join(show_node(game.nodes[v]) for v in nodes)
 
 
@@ -46,7 +46,7 @@ def _paths(doc: Mapping[str, Any]) -> Iterator[list[Any]]:
                 yield entry["path"]
 
 
-def _goal_slots(game: GameInstance, doc: Mapping[str, Any]) -> list[int] | str | None:
+def _goal_slots(game: Instance, doc: Mapping[str, Any]) -> list[int] | str | None:
     """The profile's goals as instance node indices (in the profile's order), or a reason."""
     raw = doc.get("goals")
     if isinstance(raw, Mapping):
@@ -62,12 +62,12 @@ def _goal_slots(game: GameInstance, doc: Mapping[str, Any]) -> list[int] | str |
     return [v for v in found if v is not None]
 
 
-def profile_mismatch(game: GameInstance, doc: Any) -> str | None:
+def profile_mismatch(game: Instance, doc: Any) -> str | None:
     """Why the profile document ``doc`` was not made for ``game``, or None if it may have been.
 
     Parameters
     ----------
-    game : GameInstance
+    game : Instance
         The instance (two or N goals).
     doc : Any
         The parsed profile document (anything; malformed parts are left to the certificate).

@@ -26,13 +26,14 @@ import click
 
 from dppverify.errors import CheckerError, InvalidInstanceError, OptionError
 from dppverify.formats.json_reading import parse_number
-from dppverify.formats.movingai import grid_game, read_map
+from dppverify.formats.movingai import read_map
 from dppverify.formats.standard_maps import PREFIX, resolve_map
+from dppverify.game.grids import grid_game
 from dppverify.game.instance import Instance
 from dppverify.text import show
 
 if TYPE_CHECKING:
-    from dppverify.ngoal.instance import NInstance
+    from dppverify.game.instance import Instance
 
 __all__ = ["MAP_USAGE", "MapRequest", "check_prior", "instance_or_map", "map_options",
            "map_request"]
@@ -140,8 +141,8 @@ class MapRequest:
         """The number of goals ``N``."""
         return len(self.goals)
 
-    def ninstance(self) -> NInstance:
-        """The checker's N-goal instance of the grid (:mod:`dppverify.ngoal.instance`).
+    def ninstance(self) -> Instance:
+        """The checker's N-goal instance of the grid (:mod:`dppverify.game.instance`).
 
         Examples
         --------
@@ -155,11 +156,11 @@ class MapRequest:
         >>> os.remove(m); os.rmdir(d)
         """
         from dppverify.formats.movingai import grid_document
-        from dppverify.ngoal.instance import ninstance_from_json
+        from dppverify.game.instance import instance_from_json
 
         grid = read_map(self.path)
         try:
-            return ninstance_from_json(grid_document(grid, self.start, self.goals, self.prior,
+            return instance_from_json(grid_document(grid, self.start, self.goals, self.prior,
                                                      connectivity=self.connectivity))
         except InvalidInstanceError as exc:
             raise InvalidInstanceError(f"{self.map}: {exc}") from None

@@ -1,40 +1,24 @@
-"""The checker's file I/O at the edges: bounded reading and all-or-nothing writing.
+"""The checker's file I/O at the edges: the shared rules of :mod:`dppio.files`, raising the
+checker's :class:`OutputError`.
 
-Every file the checker's commands write goes through :func:`write_files` (the output policy
-of the README, "Exit codes, limits and output files"):
-
-- a missing folder on the way to a target is created, and removed again if the command
-  fails;
-- all files of one command are committed together or not at all: each is first written to
-  a temporary file next to its target, and only when every one is complete are they renamed
-  into place; on failure every temporary file (and every folder created) is removed;
-- files get the mode ``0666`` minus the umask, like any file a program creates;
-- a target that exists and is not a regular file (``/dev/null``, a FIFO, a device, or a
-  symlink to one) is never replaced: the content is streamed into it, after the regular
-  files are complete (a FIFO without a reader is refused at once instead of blocking); a
-  symlink to a regular file keeps its link and has the file it points to replaced;
-- an output that names one of the command's input files is refused
-  (:func:`refuse_input_as_output`);
-- a location that cannot be written raises :class:`OutputError` naming the user's path.
-
-Every file the checker reads goes through :func:`read_input`, which refuses files larger
-than :data:`dppverify.limits.MAX_INPUT_BYTES` (``/dev/zero`` included) without reading them
-whole. The solver has its own copy of these rules (``solver/io_utils.py``).
+Every file the checker's commands write goes through :func:`write_files` (all files of one
+command committed together or not at all, missing folders created and removed again on
+failure, special files such as ``/dev/null`` streamed into, mode ``0666`` minus the umask;
+the README's output policy, "Exit codes, limits and output files"), and every file it reads
+through :func:`read_input` (larger than :data:`dppio.limits.MAX_INPUT_BYTES` refused without
+reading it whole, a FIFO nobody writes read as empty). The rules live once, in
+:mod:`dppio.files`, shared with the solver; this module only names the checker's error class.
 """
 
 from __future__ import annotations
 
-import contextlib
-import errno
-import os
-import stat
-import tempfile
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, BinaryIO
+from typing import Any
 
+from dppio import files as _files
+from dppio.files import file_mode, open_input, read_input
 from dppverify.errors import CheckerError
-from dppverify.limits import MAX_INPUT_BYTES
 
 __all__ = ["OutputError", "file_mode", "open_input", "read_input", "refuse_input_as_output",
            "write_files"]
@@ -44,231 +28,27 @@ class OutputError(CheckerError, OSError):
     """An output location cannot be written (missing permission, full disk, a folder...)."""
 
 
-def file_mode() -> int:
-    """The mode of a newly created file under the current umask (``0o666 & ~umask``).
-
-    Examples
-    --------
-    >>> old = os.umask(0o022)
-    >>> oct(file_mode())
-    '0o644'
-    >>> _ = os.umask(old)
-    """
-    mask = os.umask(0)
-    os.umask(mask)
-    return 0o666 & ~mask
-
-
-def read_input(path: str | Path, *, limit: int = MAX_INPUT_BYTES) -> bytes:
-    """The bytes of an input file, refusing files larger than ``limit``.
-
-    Reads at most ``limit + 1`` bytes, so ``/dev/zero`` or a huge file is refused quickly.
-
-    Raises
-    ------
-    OSError
-        The file cannot be read (the callers name it in their own error class).
-    ValueError
-        The file is larger than ``limit`` bytes.
-
-    Examples
-    --------
-    >>> read_input("/dev/zero", limit=10)
-    Traceback (most recent call last):
-    ValueError: larger than the limit of 10 bytes
-    """
-    with open_input(path) as fh:
-        data = fh.read(limit + 1)
-    if len(data) > limit:
-        raise ValueError(f"larger than the limit of {limit} bytes")
-    return data
-
-
-def open_input(path: str | Path) -> BinaryIO:
-    """Open an input file for reading without ever blocking on a FIFO that nobody writes.
-
-    The file is opened non-blocking (a FIFO without a writer then reads as empty instead of
-    hanging), then switched back to blocking reads (a pipe with a writer, e.g. bash's
-    ``<(...)``, is read to its end).
-
-    Examples
-    --------
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     os.mkfifo(Path(d) / "fifo")
-    ...     with open_input(Path(d) / "fifo") as fh:
-    ...         fh.read()
-    b''
-    """
-    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
-    try:
-        os.set_blocking(fd, True)
-        return os.fdopen(fd, "rb")
-    except BaseException:
-        os.close(fd)
-        raise
-
-
 def write_files(files: Mapping[Any, str | bytes], *,
                 remove: Iterable[str | Path] = ()) -> tuple[Path, ...]:
-    """Write several files together: all of them or none.
-
-    Parameters
-    ----------
-    files : mapping
-        Target path -> content (``str`` is written as UTF-8).
-    remove : iterable of paths
-        Files to delete once the new ones are in place (stale files of an earlier write).
-
-    Returns
-    -------
-    tuple of Path
-        The targets, in order.
-
-    Raises
-    ------
-    OutputError
-        An empty path, a target that is a folder, or any error while writing; the message
-        names the user's path. Nothing is left behind.
+    """Write several files together, all of them or none (:func:`dppio.files.write_files`).
 
     Examples
     --------
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     written = write_files({Path(d) / "new" / "a.txt": "A", Path(d) / "new" / "b.txt": "B"})
-    ...     print([p.name for p in written], sorted(p.name for p in (Path(d) / "new").iterdir()))
-    ['a.txt', 'b.txt'] ['a.txt', 'b.txt']
     >>> write_files({"": "x"})
     Traceback (most recent call last):
     dppverify.formats.files.OutputError: the output path is empty
     """
-    targets = [(_target(p), c) for p, c in files.items()]
-    regular = [(t, c) for t, c in targets if not _is_special(t)]
-    special = [(t, c) for t, c in targets if _is_special(t)]
-    created: list[Path] = []
-    temps: list[tuple[str, Path]] = []
-    current = targets[0][0] if targets else Path(".")
-    try:
-        for target, _ in regular:
-            current = target
-            _make_parents(target.parent, created)
-        mode = file_mode()
-        for target, content in regular:
-            current = target
-            fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.",
-                                       suffix=".tmp")
-            temps.append((tmp, target))
-            data = content.encode("utf-8") if isinstance(content, str) else content
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(data)
-            os.chmod(tmp, mode)
-        for target, content in special:
-            current = target
-            _stream(target, content.encode("utf-8") if isinstance(content, str) else content)
-        for tmp, target in temps:
-            current = target
-            os.replace(tmp, target)
-        temps.clear()
-    except OSError as exc:
-        _clean(temps, created)
-        reason = exc.strerror or str(exc)
-        raise OutputError(f"cannot write {current}: {reason}") from None
-    except BaseException:
-        _clean(temps, created)
-        raise
-    for p in remove:
-        Path(p).unlink(missing_ok=True)
-    return tuple(t for t, _ in targets)
+    return _files.write_files(files, remove=remove, error=OutputError)
 
 
 def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Path | None], *,
                            option: str = "-o") -> None:
-    """Refuse an output path that names one of the inputs (the same file, by any path).
-
-    Raises
-    ------
-    OutputError
-        One line naming the path.
+    """Refuse an output path that names one of the inputs
+    (:func:`dppio.files.refuse_input_as_output`).
 
     Examples
     --------
-    >>> with tempfile.TemporaryDirectory() as d:  # doctest: +ELLIPSIS
-    ...     p = Path(d) / "x.json"
-    ...     _ = p.write_text("{}")
-    ...     refuse_input_as_output(Path(d) / "y.json", [p])
-    ...     refuse_input_as_output(Path(d) / "." / "x.json", [p])
-    Traceback (most recent call last):
-    dppverify...OutputError: ...x.json is an input of this command; refusing to overwrite it ...
+    >>> refuse_input_as_output("out.json", [None, ""])
+    >>> refuse_input_as_output("dppverify", ["dppverify/."], option="--out")
     """
-    if output is None or str(output) == "":
-        return
-    out = Path(output)
-    for path in inputs:
-        if path is None or str(path) == "":
-            continue
-        same = False
-        try:
-            same = os.path.samefile(out, path)
-        except OSError:
-            same = os.path.realpath(out) == os.path.realpath(path)
-        if same and (not out.exists() or out.is_file()):
-            raise OutputError(f"{option} {out} is an input of this command; refusing to "
-                              "overwrite it (give another path)")
-
-
-def _is_special(target: Path) -> bool:
-    """True when ``target`` exists (through symlinks) and is neither a regular file nor a
-    folder: a device, a FIFO, a socket."""
-    try:
-        st = os.stat(target)
-    except OSError:
-        return False
-    return not stat.S_ISREG(st.st_mode) and not stat.S_ISDIR(st.st_mode)
-
-
-def _stream(target: Path, data: bytes) -> None:
-    """Write ``data`` into the existing non-regular file ``target`` without replacing it."""
-    try:
-        fd = os.open(target, os.O_WRONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
-    except OSError as exc:
-        if exc.errno == errno.ENXIO:  # a FIFO that no process reads
-            raise OSError(exc.errno, "it is a FIFO that no process reads") from None
-        raise
-    try:
-        os.set_blocking(fd, True)
-        view = memoryview(data)
-        while view:
-            n = os.write(fd, view)
-            view = view[n:]
-    finally:
-        os.close(fd)
-
-
-def _target(path: str | Path) -> Path:
-    if str(path) == "":
-        raise OutputError("the output path is empty")
-    p = Path(path)
-    if p.is_dir():
-        raise OutputError(f"cannot write {p}: it is a folder")
-    if p.is_symlink() and p.is_file():  # keep the link; replace the file it points to
-        return Path(os.path.realpath(p))
-    return p
-
-
-def _make_parents(folder: Path, created: list[Path]) -> None:
-    missing = []
-    f = folder if str(folder) else Path(".")
-    while not f.exists():
-        missing.append(f)
-        if f.parent == f:
-            break
-        f = f.parent
-    for d in reversed(missing):
-        d.mkdir()
-        created.append(d)
-
-
-def _clean(temps: list[tuple[str, Path]], created: list[Path]) -> None:
-    for tmp, _ in temps:
-        Path(tmp).unlink(missing_ok=True)
-    for d in reversed(created):
-        with contextlib.suppress(OSError):
-            d.rmdir()
+    _files.refuse_input_as_output(output, inputs, option=option, error=OutputError)

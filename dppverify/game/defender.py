@@ -1,10 +1,9 @@
-"""The Defender's strategies: the progress rule σ* (eq. (7)) and explicit tables.
+"""The Defender's strategies: explicit tables (with a default) and the progress rule σ*.
 
-Re-implemented from the paper's definition (Sec. IV, Definition 3 and eq. (7)), independently
-of the solver: with ``c_0 = d(s0, g)`` and ``c_t = min(c_{t-1}, d(s_t, g))`` (full-graph
-distances, proofs/TEL.md), the Defender allocates to ``g`` with probability
-``(c_{t-1} - c_t) / w(e_t)``. A node that cannot reach ``g`` has ``d = inf`` and gives no
-progress.
+A table gives ``σ(goal | walk)`` for the walks it lists and its default for the others: a
+probability, the progress rule, or none (unlisted walks are undefined). The progress rule
+σ* (eq. (7)) is two-goal mathematics: :mod:`dppverify.twogoal.progress` computes it, and this
+module calls it (imported where a :class:`ProgressRule` is met) only.
 
 Everything is expressed as ``σ(g1 | walk)``, the probability of allocating to the primary
 goal ``g1`` of the labelling in use, and as the allocated amounts
@@ -13,20 +12,18 @@ goal ``g1`` of the labelling in use, and as the allocated amounts
 
 from __future__ import annotations
 
-import weakref
 from collections.abc import Sequence
 from dataclasses import dataclass
-from fractions import Fraction
 from typing import cast
 
-from dppverify.errors import InvalidInstanceError, ProfileError
+from dppverify.errors import ProfileError
 from dppverify.exact import Number
 from dppverify.game.instance import Instance, Roles
 from dppverify.game.profile import DefenderRule, ProgressRule, TableRule
 from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["TreeDefender", "UndefinedStrategyError", "progress_along", "sigma_along",
-           "step_weight", "step_weights", "tree_defender"]
+__all__ = ["TreeDefender", "UndefinedStrategyError", "sigma_along", "step_weight", "step_weights",
+           "tree_defender"]
 
 
 class UndefinedStrategyError(LookupError):
@@ -83,60 +80,14 @@ def step_weights(instance: Instance, walk: Sequence[int]) -> list[Number]:
     return cast(list[Number], weights)
 
 
-def progress_along(instance: Instance, goal: int, walk: Sequence[int]) -> list[Number]:
-    """The new progress ``c_{t-1} - c_t`` towards ``goal`` at each step of ``walk`` (eqs. (6)-(7)).
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import triangle
-    >>> inst = triangle()
-    >>> progress_along(inst, 1, [0, 2])   # s -> g2: d(., g1) drops from 3 to 2
-    [1]
-    """
-    slot = instance.slot(goal)
-    if slot is None:
-        raise InvalidInstanceError(f"node {instance.nodes[goal]!r} is not a goal of the instance")
-    d = instance.dist_to[slot]
-    c = d[walk[0]]
-    out: list[Number] = []
-    for v in walk[1:]:
-        new = min(c, d[v])
-        out.append(c - new)
-        c = new
-    return out
-
-
 def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[int]
                         ) -> list[Number]:
     """σ(rule.goal | walk[:t+1]) for t = 1..T."""
     if isinstance(rule, ProgressRule):
-        memo = _PROGRESS_SIGMA.get(instance)
-        if memo is None:
-            memo = _PROGRESS_SIGMA[instance] = {}
-        key = (rule.goal, tuple(walk))
-        if key not in memo:  # the checks ask for σ along the same profile walks repeatedly
-            memo[key] = tuple(_progress_sigma(instance, rule, walk))
-        return list(memo[key])
+        from dppverify.twogoal.progress import progress_sigma  # N = 2: σ*
+
+        return progress_sigma(instance, rule, walk)
     return _table_sigma(instance, rule, walk)
-
-
-_PROGRESS_SIGMA: weakref.WeakKeyDictionary[Instance, dict[tuple[int, tuple[int, ...]],
-                                                          tuple[Number, ...]]] = \
-    weakref.WeakKeyDictionary()
-
-
-def _progress_sigma(instance: Instance, rule: ProgressRule, walk: Sequence[int]
-                    ) -> list[Number]:
-    """σ(rule.goal | walk[:t+1]) for t = 1..T under a progress rule."""
-    prog = progress_along(instance, rule.goal, walk)
-    weights = step_weights(instance, walk)
-    if all(type(x) is int for x in prog) and all(type(w) is int for w in weights):
-        # integers (unit grids): the exact ratio without a Fraction per step, decided
-        # once per walk; the same numbers as NumberMode.ratio (an int when it divides)
-        ints = cast(list[tuple[int, int]], list(zip(prog, weights, strict=True)))
-        return [p // w if p % w == 0 else Fraction(p, w) for p, w in ints]
-    ratio = instance.numbers.ratio
-    return [ratio(pr, w) for pr, w in zip(prog, weights, strict=True)]
 
 
 def _table_sigma(instance: Instance, rule: TableRule, walk: Sequence[int]) -> list[Number]:
@@ -212,29 +163,6 @@ class TreeDefender:
         return self.alloc1 if theta == 1 else self.alloc2
 
 
-def _progress_on_tree(tree: WalkTree, goal: int) -> list[Number]:
-    """New progress towards ``goal`` at every prefix (root: 0), eq. (7)'s numerator."""
-    inst = tree.instance
-    slot = inst.slot(goal)
-    assert slot is not None
-    d = inst.dist_to[slot]
-    node = tree.node.tolist()
-    parent = tree.parent.tolist()
-    n = tree.n_prefixes
-    c: list[Number] = [0] * n
-    prog: list[Number] = [0] * n
-    c[0] = d[node[0]]
-    for p in range(1, n):
-        cq = c[parent[p]]
-        dv = d[node[p]]
-        if dv < cq:
-            c[p] = dv
-            prog[p] = cq - dv
-        else:
-            c[p] = cq
-    return prog
-
-
 def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefender:
     """Evaluate a Defender rule at every prefix of ``tree`` (labelling ``roles``).
 
@@ -245,9 +173,9 @@ def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefen
     --------
     >>> from dppverify.game.examples import triangle
     >>> from dppverify.tree_route.tree import build_tree
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> td = tree_defender(build_tree(inst, 1), r, ProgressRule(r.g1))
+    >>> tree = build_tree(triangle(), 1)
+    >>> inst, r = tree.instance, tree.instance.roles()
+    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
     >>> [inst.labels(w) for w in ([0, 1], [0, 2])], td.sigma1, td.alloc1, td.alloc2
     ([('s', 'g1'), ('s', 'g2')], (0, 1, Fraction(1, 2)), (0, 3, 1), (0, 0, 1))
     """
@@ -261,7 +189,9 @@ def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefen
     progress_goal = rule.goal if isinstance(rule, ProgressRule) else (
         rule.default.goal if isinstance(rule.default, ProgressRule) else None)
     if progress_goal is not None:
-        prog = _progress_on_tree(tree, progress_goal)
+        from dppverify.twogoal.progress import progress_on_tree  # N = 2: σ*
+
+        prog = progress_on_tree(tree, progress_goal)
         for p in range(1, n):
             s = mode.ratio(prog[p], weight[p])
             sigma_goal[p] = s

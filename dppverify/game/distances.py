@@ -18,10 +18,11 @@ from __future__ import annotations
 import heapq
 import math
 from collections import deque
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Hashable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any
+from itertools import count
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
@@ -32,7 +33,8 @@ if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fas
 
 __all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "ArcRows", "common_denominator",
            "dijkstra", "exact_distances_to", "hops_by_arrays", "hops_to_targets",
-           "scaled_distance_fields", "uniform_hops", "unscale"]
+           "multi_source_dijkstra", "scaled_distance_fields", "state_dijkstra", "uniform_hops",
+           "unscale"]
 
 EXACT_FLOAT_LIMIT = 2**53
 """Integer path sums below this are exact in float64."""
@@ -149,7 +151,7 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
         return len(self) == len(other) and all(
             tuple(a) == tuple(b) for a, b in zip(self, other, strict=True))
 
-    __hash__ = None  # type: ignore[assignment]
+    # defining __eq__ makes the class unhashable (Python sets __hash__ to None), like a list
 
     def __repr__(self) -> str:
         return f"ArcRows({self._n} nodes, {self._heads.size} arcs)"
@@ -180,21 +182,86 @@ def dijkstra(adj: Adjacency, source: int) -> list[Number]:
     >>> dijkstra(adj, 2)
     [inf, inf, 0]
     """
-    dist: list[Number] = [INF] * len(adj)
-    dist[source] = 0
-    heap: list[tuple[Number, int]] = [(0, source)]
-    done = [False] * len(adj)
+    return multi_source_dijkstra(adj, [(source, 0)])[0]
+
+
+def multi_source_dijkstra(adj: Adjacency, sources: Iterable[tuple[int, Number]], *,
+                          factor: Number = 1) -> tuple[list[Number], list[int]]:
+    """Shortest distances from several sources, each with a starting cost, arcs ``w·factor``.
+
+    ``dist[v] = min over sources (s, c) of c + factor·(shortest s -> v)``; ``via[v]`` is the
+    node ``v`` was last reached from (``-1`` at a source or where unreachable): with the
+    *reverse* adjacency, the next node of a cheapest walk from ``v`` to a source. Heap ties
+    pop the smaller node first. Exact on ``int``/``Fraction`` (Python integers are fastest).
+
+    Examples
+    --------
+    >>> adj = [[(1, 2)], [(2, 1)], []]            # 0 -> 1 -> 2
+    >>> multi_source_dijkstra(adj, [(0, 5), (2, 0)], factor=3)
+    ([5, 11, 0], [-1, 0, -1])
+    """
+    n = len(adj)
+    dist: list[Number] = [INF] * n
+    via = [-1] * n
+    heap: list[tuple[Number, int]] = []
+    for s, c in sources:
+        if c < dist[s]:
+            dist[s] = c
+            heap.append((c, s))
+    heapq.heapify(heap)
+    done = [False] * n
+    pop, push = heapq.heappop, heapq.heappush
     while heap:
-        d, u = heapq.heappop(heap)
+        d, u = pop(heap)
         if done[u]:
             continue
         done[u] = True
         for v, w in adj[u]:
-            nd = d + w
+            if done[v]:
+                continue
+            nd = d + w * factor
             if nd < dist[v]:
                 dist[v] = nd
-                heapq.heappush(heap, (nd, v))
-    return dist
+                via[v] = u
+                push(heap, (nd, v))
+    return dist, via
+
+
+S = TypeVar("S", bound=Hashable)
+
+
+def state_dijkstra(sources: Iterable[tuple[S, Number]],
+                   arcs: Callable[[S], Iterable[tuple[S, Number]]]) -> dict[S, Number]:
+    """Shortest distances on an implicit graph of hashable states, from costed sources.
+
+    ``arcs(x)`` lists the ``(y, cost)`` arcs leaving state ``x`` (costs ``>= 0``); states
+    never reached are absent from the result. The form for graphs built on the fly (the
+    ``(node, running minimum)`` product graph of
+    :mod:`dppverify.structured.table_br_twogoal`).
+
+    Examples
+    --------
+    >>> line = {"a": [("b", 2)], "b": [("c", 1)], "c": []}
+    >>> state_dijkstra([("a", 0)], lambda x: line[x])
+    {'a': 0, 'b': 2, 'c': 3}
+    """
+    best: dict[S, Number] = {}
+    heap: list[tuple[Number, int, S]] = []
+    tie = count()
+    for s, c in sources:
+        if c < best.get(s, INF):
+            best[s] = c
+            heapq.heappush(heap, (c, next(tie), s))
+    while heap:
+        d, _, x = heapq.heappop(heap)
+        if best.get(x) != d:
+            continue
+        for y, cost in arcs(x):
+            nd = d + cost
+            if nd < best.get(y, INF):
+                best[y] = nd
+                heapq.heappush(heap, (nd, next(tie), y))
+    return best
 
 
 def hops_to_targets(reverse_adj: Adjacency, targets: Iterable[int]) -> list[int]:
@@ -347,7 +414,8 @@ def exact_distances_to(arcs: ArcArrays, n: int, targets: Sequence[int]
 def scaled_distance_fields(arcs: ArcArrays, n: int, targets: Sequence[int]
                            ) -> tuple[int, np.ndarray] | None:
     """:func:`exact_distances_to` before unscaling: ``(scale, rows)``, one float64 row of
-    exact scaled integers per target (kept by the instance for reuse, ``walk_br``).
+    exact scaled integers per target (kept by the instance for reuse,
+    :mod:`dppverify.twogoal.progress_br`).
 
     Examples
     --------

@@ -10,12 +10,15 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 from dppverify.exact import Number, normalize
 from dppverify.game.defender import sigma_along, step_weights
 from dppverify.game.instance import Instance, Roles
-from dppverify.game.profile import DefenderRule, StrategyPath
-from dppverify.tree_route.tree import WalkTree
+from dppverify.game.profile import DefenderRule, StrategyWalk
+
+if TYPE_CHECKING:  # the game model does not import the tree route
+    from dppverify.tree_route.tree import WalkTree
 
 __all__ = ["Values", "complete_information_value", "evaluate", "realization", "walk_cost"]
 
@@ -41,11 +44,11 @@ def walk_cost(instance: Instance, roles: Roles, rule: DefenderRule, walk: tuple[
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> [walk_cost(inst, r, ProgressRule(r.g1), (0, 2), th) for th in (1, 2)]  # s -> g2
+    The walk ``s -> g2`` of the triangle against σ* costs the primary type 3, the secondary 1:
+
+    >>> from dppverify.game import examples, profile
+    >>> inst = examples.triangle(); roles = inst.roles()
+    >>> [walk_cost(inst, roles, profile.ProgressRule(roles.g1), (0, 2), th) for th in (1, 2)]
     [3, 1]
     """
     sigma = sigma_along(instance, roles, rule, walk)
@@ -60,19 +63,8 @@ def complete_information_value(instance: Instance, roles: Roles) -> Number:
     """``Ū = b1 d(s0, g1) + b2 d(s0, g2)`` (eq. (1) and Definition 6).
 
     The Attacker's expected cost when the Defender knows its goal: each type walks a
-    shortest path and the Defender allocates every step to the true goal.
-
-    Parameters
-    ----------
-    instance : Instance
-        The game.
-    roles : Roles
-        The labelling (which goal is ``g1``).
-
-    Returns
-    -------
-    Number
-        ``Ū``, exact for rational instances.
+    shortest path and the Defender allocates every step to the true goal. ``roles`` says
+    which goal is ``g1``; ``Ū`` is exact for rational instances.
 
     Examples
     --------
@@ -91,18 +83,18 @@ def complete_information_value(instance: Instance, roles: Roles) -> Number:
 
 
 def evaluate(instance: Instance, roles: Roles, rule: DefenderRule,
-             primary: Iterable[StrategyPath], secondary: Iterable[StrategyPath]) -> Values:
+             primary: Iterable[StrategyWalk], secondary: Iterable[StrategyWalk]) -> Values:
     """Exact payoffs of the profile ``(rule, primary, secondary)``.
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> v = evaluate(inst, r, ProgressRule(r.g1),
-    ...              [StrategyPath((0, 1), Fraction(4, 7)), StrategyPath((0, 2), Fraction(3, 7))],
-    ...              [StrategyPath((0, 2), Fraction(1))])
+    The triangle's equilibrium (``s -> g1`` 4/7, ``s -> g2`` 3/7 against σ*):
+
+    >>> from dppverify.game import examples, profile
+    >>> inst = examples.triangle(); roles = inst.roles(); W = StrategyWalk
+    >>> v = evaluate(inst, roles, profile.ProgressRule(roles.g1),
+    ...              [W((0, 1), Fraction(4, 7)), W((0, 2), Fraction(3, 7))],
+    ...              [W((0, 2), Fraction(1))])
     >>> [str(x) for x in (v.U1, v.U2, v.U, v.U_bar, v.VoI)]
     ['3', '1', '12/5', '27/10', '1/9']
     """
@@ -122,7 +114,7 @@ def evaluate(instance: Instance, roles: Roles, rule: DefenderRule,
     return Values(U1=u[1], U2=u[2], U=U, U_bar=U_bar, VoI=voi)
 
 
-def realization(tree: WalkTree, walks: Iterable[StrategyPath]) -> dict[int, Fraction]:
+def realization(tree: WalkTree, walks: Iterable[StrategyWalk]) -> dict[int, Fraction]:
     """Realization plan of a mixed strategy over walks: prefix index -> reach probability.
 
     Only prefixes with positive probability are listed. Every walk must be in ``tree``.
@@ -131,7 +123,7 @@ def realization(tree: WalkTree, walks: Iterable[StrategyPath]) -> dict[int, Frac
     ----------
     tree : WalkTree
         The walk tree; every walk must end at one of its leaves.
-    walks : iterable of StrategyPath
+    walks : iterable of StrategyWalk
         The mixed strategy (walks as node indices, with probabilities).
 
     Returns
@@ -149,10 +141,10 @@ def realization(tree: WalkTree, walks: Iterable[StrategyPath]) -> dict[int, Frac
     >>> from dppverify.game.examples import triangle
     >>> from dppverify.tree_route.tree import build_tree
     >>> tree = build_tree(triangle(), 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> realization(tree, [StrategyPath((0, 1), Fraction(4, 7)),
-    ...                    StrategyPath((0, 2), Fraction(3, 7))])
+    >>> realization(tree, [StrategyWalk((0, 1), Fraction(4, 7)),
+    ...                    StrategyWalk((0, 2), Fraction(3, 7))])
     {0: Fraction(1, 1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
-    >>> realization(tree, [StrategyPath((0, 2, 1), Fraction(1))])
+    >>> realization(tree, [StrategyWalk((0, 2, 1), Fraction(1))])
     Traceback (most recent call last):
     KeyError: 'walk (0, 2, 1) is not in the walk tree (horizon 1)'
     """

@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from dppverify.exact import Number
-from dppverify.ngoal.instance import NInstance
+from dppverify.game.instance import Instance
 from dppverify.ngoal.value_lp import NGameValue, ngame_value
 from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
@@ -54,13 +54,13 @@ class RouteAgreement:
         return self.tree.bracket.closed
 
 
-def compare_routes(instance: NInstance, horizon: int, *,
+def compare_routes(instance: Instance, horizon: int, *,
                    max_prefixes: int = DEFAULT_MAX_PREFIXES) -> RouteAgreement:
     """Compute ``V_H`` by both routes and say whether they agree.
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> a = compare_routes(star3(), 3)
     >>> a.dp, a.structured.value, a.tree.bracket.exact, a.agree, a.exact
     (Fraction(3, 2), Fraction(3, 2), Fraction(3, 2), True, True)

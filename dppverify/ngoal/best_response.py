@@ -41,7 +41,7 @@ class NTreeDefender:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> from dppverify.ngoal.tree import build_ntree
     >>> t = build_ntree(star3(), 1)
     >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
@@ -64,7 +64,7 @@ def defender_from_table(tree: NWalkTree, entries: Mapping[int, Sequence[Fraction
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> from dppverify.ngoal.tree import build_ntree
     >>> t = build_ntree(star3(), 1)
     >>> half = (Fraction(1, 2), Fraction(1, 2), Fraction(0))
@@ -114,7 +114,7 @@ def attacker_best_response(tree: NWalkTree, tdef: NTreeDefender, theta: int) -> 
     Against a Defender that always guards goal ``a``, type ``b`` walks ``s m b`` for free
     and type ``a`` pays 2 whichever way it walks:
 
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> from dppverify.ngoal.tree import build_ntree
     >>> inst = star3()
     >>> t = build_ntree(inst, 2)
@@ -166,7 +166,7 @@ def payoff(tree: NWalkTree, tdef: NTreeDefender, plans: Sequence[Plan]) -> Numbe
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> from dppverify.ngoal.tree import build_ntree
     >>> t = build_ntree(star3(), 1)
     >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
@@ -188,7 +188,7 @@ def defender_best_response(tree: NWalkTree, plans: Sequence[Plan]) -> NDefenderB
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> from dppverify.ngoal.tree import build_ntree
     >>> t = build_ntree(star3(), 1)
     >>> br = defender_best_response(t, [{0: Fraction(1), 1: Fraction(1)}] * 3)
@@ -212,7 +212,7 @@ def beliefs(tree: NWalkTree, plans: Sequence[Plan]) -> dict[int, tuple[Fraction,
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> from dppverify.ngoal.tree import build_ntree
     >>> t = build_ntree(star3(), 1)
     >>> beliefs(t, [{0: Fraction(1), 1: Fraction(1)}] * 3)[1]

@@ -2,7 +2,7 @@
 
 Routes (as for two goals, ``docs/checker.md`` "Routes"): ``tree`` — the truncated game's walk
 tree at ``H`` (below); ``structured`` — no walk tree, the game of ANY length
-(:mod:`dppverify.ngoal.structured`, proofs/NWALKBR.md; the Defender needs a ``default``);
+(:mod:`dppverify.checks.structured_ngoal`, proofs/NWALKBR.md; the Defender needs a ``default``);
 ``auto`` — the tree when it fits ``max_prefixes``, else structured; ``both`` — both, and a
 check whose statuses differ becomes an ``error`` record.
 
@@ -42,8 +42,11 @@ from pathlib import Path
 from typing import Any, Literal
 
 from dppverify.certificate import Certificate, CheckRecord, Status, merge_routes
+from dppverify.checks.structured_ngoal import NSTRUCTURED_NOT_RUN, nstructured_checks
 from dppverify.errors import HorizonError, LPError, UndecidedError
 from dppverify.exact import Number, normalize
+from dppverify.game.instance import Instance, instance_from_json, load_instance
+from dppverify.game.profile import NProfile, load_nprofile_document, nprofile_from_json
 from dppverify.horizons import parse_horizon
 from dppverify.ngoal.best_response import (
     NTreeDefender,
@@ -53,10 +56,7 @@ from dppverify.ngoal.best_response import (
     defender_from_table,
     payoff,
 )
-from dppverify.ngoal.instance import NInstance, load_ninstance, ninstance_from_json
-from dppverify.ngoal.profile import NProfile, load_nprofile_document, nprofile_from_json
 from dppverify.ngoal.routes import ntree_fits
-from dppverify.ngoal.structured import NSTRUCTURED_NOT_RUN, nstructured_checks
 from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.ngoal.value_lp import exact_nbracket, solve_nvalue_lp
 from dppverify.structured.proved_value import nvalue
@@ -112,7 +112,7 @@ def _defender(tree: NWalkTree, profile: NProfile) -> NTreeDefender | str:
         return f"the Defender's table has no entry for walk {list(labels)} and no default"
 
 
-def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
+def certify_ngoal(instance: Instance | Mapping[str, Any] | str | Path,
                   profile: Mapping[str, Any] | str | Path, *,
                   horizon: int | Literal["inf"] | None = None,
                   max_prefixes: int = DEFAULT_MAX_PREFIXES, route: NRoute = "auto") -> Certificate:
@@ -120,7 +120,7 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
 
     Parameters
     ----------
-    instance : NInstance, dict, or path
+    instance : Instance, dict, or path
         The game.
     profile : dict or path
         A ``dpp-ngoal-profile/1`` document.
@@ -133,7 +133,7 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
         Size guard of the walk tree.
     route : {"auto", "tree", "structured", "both"}
         ``tree``: the walk tree; ``structured``: best responses over all walks, the Defender
-        on the profile's prefixes, the coalition DP (:mod:`dppverify.ngoal.structured`);
+        on the profile's prefixes, the coalition DP (:mod:`dppverify.checks.structured_ngoal`);
         ``auto``: the tree when it fits ``max_prefixes``, else structured; ``both``: both, a
         check whose statuses differ becomes an ``error`` (unless one route skipped it).
 
@@ -149,7 +149,7 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     --------
     The hub profile is an equilibrium of the game truncated at H = 2 (an explicit request):
 
-    >>> from dppverify.ngoal.examples import star3_document, star3_profile
+    >>> from dppverify.game.examples import star3_document, star3_profile
     >>> cert = certify_ngoal(star3_document(), star3_profile(), horizon=2)
     >>> cert.verdict, cert.route, [c.status for c in cert.checks]
     ('pass', 'tree', ['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'])
@@ -166,12 +166,12 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
     >>> cert.route, cert.horizon, cert.check("ngoal.pbne.attacker_br").status
     ('structured', None, 'fail')
     """
-    if isinstance(instance, NInstance):
+    if isinstance(instance, Instance):
         inst = instance
     elif isinstance(instance, str | Path):
-        inst = load_ninstance(instance)
+        inst = load_instance(instance)
     else:
-        inst = ninstance_from_json(instance)
+        inst = instance_from_json(instance)
     doc = (load_nprofile_document(profile) if isinstance(profile, str | Path)
            else dict(profile))
     prof = nprofile_from_json(inst, doc)
@@ -208,7 +208,7 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
                        not_run=dict(NSTRUCTURED_NOT_RUN) if chosen == "structured" else {})
 
 
-def _choose_route(inst: NInstance, prof: NProfile, horizon: int | None,
+def _choose_route(inst: Instance, prof: NProfile, horizon: int | None,
                   route: NRoute, max_prefixes: int
                   ) -> tuple[Literal["tree", "structured", "both"], int | None]:
     """The route(s) to run and the horizon (None: the untruncated game, the default)."""
@@ -235,7 +235,7 @@ NTABLE_UNDECIDED = (
 the untruncated game."""
 
 
-def _tree_checks(inst: NInstance, prof: NProfile, h: int,
+def _tree_checks(inst: Instance, prof: NProfile, h: int,
                  max_prefixes: int) -> tuple[list[CheckRecord], NWalkTree]:
     """The tree route's records on the walk tree of ``h`` steps."""
     tree = build_ntree(inst, max(h, inst.hops[inst.start]), max_prefixes=max_prefixes)
@@ -338,7 +338,7 @@ def payoff_of_type(tree: NWalkTree, tdef: NTreeDefender, plan: Mapping[int, Frac
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> t = build_ntree(star3(), 1)
     >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
     >>> [payoff_of_type(t, d, {0: Fraction(1), 1: Fraction(1)}, th) for th in range(3)]

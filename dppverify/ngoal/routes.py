@@ -17,7 +17,7 @@ from typing import Any, cast
 
 from dppverify.errors import HorizonError, InvalidInstanceError, OptionError
 from dppverify.exact import Number, format_number
-from dppverify.ngoal.instance import NInstance, goal_count, read_instance_document
+from dppverify.game.instance import Instance, goal_count, read_instance_document
 from dppverify.ngoal.value_lp import NGameValue, ngame_value
 from dppverify.routes import tree_fits
 from dppverify.structured.coalition import CoalitionValue, too_many_goals
@@ -49,7 +49,7 @@ def is_ngoal_file(path: str | Path) -> bool:
     return n is not None and n > 2
 
 
-def ntree_fits(instance: NInstance, horizon: int, max_prefixes: int) -> bool:
+def ntree_fits(instance: Instance, horizon: int, max_prefixes: int) -> bool:
     """True when the N-goal walk tree of ``horizon`` steps has at most ``max_prefixes`` prefixes.
 
     The two-goal count (:func:`dppverify.routes.tree_fits`: vectorised, saturated just above
@@ -59,7 +59,7 @@ def ntree_fits(instance: NInstance, horizon: int, max_prefixes: int) -> bool:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> from dppverify.ngoal.tree import count_nprefixes
     >>> [count_nprefixes(star3(), h) for h in (2, 3)], ntree_fits(star3(), 3, 7)
     ([6, 8], False)
@@ -76,7 +76,7 @@ class NRoutedValue:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> r = nrouted_value(star3(), None)
     >>> r.value, r.lower, r.upper
     (Fraction(3, 2), Fraction(3, 2), Fraction(3, 2))
@@ -113,7 +113,7 @@ class NRoutedValue:
         return self.tree.bracket.exact if self.tree is not None else None
 
 
-def nrouted_value(instance: NInstance, horizon: int | None, *, route: str = "auto",
+def nrouted_value(instance: Instance, horizon: int | None, *, route: str = "auto",
                   max_prefixes: int = DEFAULT_MAX_PREFIXES) -> NRoutedValue:
     """``V_H`` by the tree route, the coalition DP, or both (``horizon=None``: ``H = inf``).
 
@@ -127,7 +127,7 @@ def nrouted_value(instance: NInstance, horizon: int | None, *, route: str = "aut
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> r = nrouted_value(star3(), 3, route="both")
     >>> r.tree.bracket.exact, r.structured.value, r.disagreement
     (Fraction(3, 2), Fraction(3, 2), None)
@@ -199,11 +199,11 @@ def nrouted_document(r: NRoutedValue) -> dict[str, Any]:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> doc = nrouted_document(nrouted_value(star3(), 2, route="structured"))
     >>> doc["value"], doc["structured"]["coalition_dp"]["cover"]
     ('3/2', [{'goals': [1, 2], 'mass': '1/3'}, {'goals': [1, 3], 'mass': '1/6'}])
-    >>> from dppverify.ngoal.examples import hub4
+    >>> from dppverify.game.examples import hub4
     >>> nrouted_document(nrouted_value(hub4(), None))["value"]
     '12/7'
     """
@@ -228,7 +228,7 @@ def nrouted_lines(r: NRoutedValue) -> list[str]:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> print(nrouted_lines(nrouted_value(star3(), None))[0])
     V_H (H = inf, N = 3 goals) = 3/2 (≈ 1.5) exactly; coalition DP (NG.4: the value for \
 three goals) (3 layers)

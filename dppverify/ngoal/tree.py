@@ -11,7 +11,7 @@ tree.
 
 Examples
 --------
->>> from dppverify.ngoal.examples import star3
+>>> from dppverify.game.examples import star3
 >>> tree = build_ntree(star3(), 1)
 >>> tree.n_prefixes, [tree.instance.labels(tree.walk(p)) for p in tree.leaves().tolist()]
 (2, [('s', 'a')])
@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from dppverify.ngoal.instance import NInstance
+from dppverify.game.instance import Instance
 from dppverify.tree_route.tree import (
     DEFAULT_MAX_PREFIXES,
     PrefixTree,
@@ -37,26 +37,26 @@ __all__ = ["NWalkTree", "build_ntree", "count_nprefixes", "nflow_matrix"]
 class NWalkTree(PrefixTree):
     """The walks of the truncated N-goal game with at most ``horizon`` steps.
 
-    A :class:`~dppverify.tree_route.tree.PrefixTree` whose ``instance`` is an :class:`NInstance`
+    A :class:`~dppverify.tree_route.tree.PrefixTree` whose ``instance`` is an :class:`Instance`
     (every other attribute as documented there).
 
     Attributes
     ----------
-    instance : NInstance
+    instance : Instance
         The game.
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> t = build_ntree(star3(), 2)
     >>> t.n_leaves, t.find((0, 1, 3)), t.weight
     (4, 4, (0, 1, 2, 1, 1, 1))
     """
 
-    instance: NInstance
+    instance: Instance
 
 
-def count_nprefixes(instance: NInstance, horizon: int) -> int:
+def count_nprefixes(instance: Instance, horizon: int) -> int:
     """Number of prefixes of the pruned walk tree, without building it (``O(H·|E|)``).
 
     :func:`dppverify.tree_route.tree.count_prefixes` without a limit.
@@ -68,14 +68,14 @@ def count_nprefixes(instance: NInstance, horizon: int) -> int:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> [count_nprefixes(star3(), h) for h in range(4)]
     [0, 2, 6, 8]
     """
     return count_prefixes(instance, horizon)
 
 
-def build_ntree(instance: NInstance, horizon: int, *,
+def build_ntree(instance: Instance, horizon: int, *,
                 max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> NWalkTree:
     """Build the pruned tree of walks from ``s0`` with at most ``horizon`` steps.
 
@@ -90,7 +90,7 @@ def build_ntree(instance: NInstance, horizon: int, *,
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> build_ntree(star3(), 3, max_prefixes=7)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 3 has at least 8 prefixes, ...

@@ -35,13 +35,13 @@ from fractions import Fraction
 import numpy as np
 
 from dppverify.exact import Number, normalize
+from dppverify.game.instance import Instance
 from dppverify.ngoal.best_response import (
     NTreeDefender,
     attacker_best_response,
     defender_best_response,
     defender_from_table,
 )
-from dppverify.ngoal.instance import NInstance
 from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.tree_route.lp import LPStats
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
@@ -82,7 +82,7 @@ def solve_nvalue_lp(tree: NWalkTree) -> NValueLP:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> round(solve_nvalue_lp(build_ntree(star3(), 2)).value, 6)
     1.5
     """
@@ -98,7 +98,7 @@ def lower_nbound(tree: NWalkTree, tdef: NTreeDefender) -> Number:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> t = build_ntree(star3(), 2)
     >>> third = Fraction(1, 3)
     >>> lower_nbound(t, defender_from_table(t, {}, (third, third, third)))
@@ -115,7 +115,7 @@ def upper_nbound(tree: NWalkTree, plans: Sequence[Plan]) -> Number:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> t = build_ntree(star3(), 1)
     >>> upper_nbound(t, [{0: Fraction(1), 1: Fraction(1)}] * 3)
     2
@@ -148,7 +148,7 @@ def exact_nbracket(tree: NWalkTree, lp: NValueLP | None = None,
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> t = build_ntree(star3(), 2)
     >>> b = exact_nbracket(t, solve_nvalue_lp(t))
     >>> b.exact, b.closed
@@ -204,13 +204,13 @@ class NGameValue:
         return self.lp.value
 
 
-def ngame_value(instance: NInstance, horizon: int, *,
+def ngame_value(instance: Instance, horizon: int, *,
                 max_prefixes: int = DEFAULT_MAX_PREFIXES) -> NGameValue:
     """``V_H`` of the truncated N-goal game: compact LP plus exact bracket.
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> v = ngame_value(star3(), 2)
     >>> v.bracket.exact, round(v.value, 6), v.prefixes
     (Fraction(3, 2), 1.5, 6)

@@ -119,7 +119,7 @@ def arc_condition(sets: GuaranteeSets) -> ArcCondition:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> from dppverify.structured.guarantee import guarantee_sets
     >>> arc_condition(guarantee_sets(star3())).holds
     True

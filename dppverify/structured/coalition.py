@@ -30,7 +30,7 @@ Cost ``O(H·(2^N·E + n·Σ_S |vertices of S|))``. ``H = inf`` iterates until a 
 For two goals ``m_{1} = D1``, ``m_{2} = D2`` and ``m_{12} = min(step, D1 + D2)``: the
 three-field DP of ``proofs/HORIZON.md``'s two-goal value. The DP is an upper bound on the
 truncated game's value, equal to it for ``N <= 3`` (``proofs/NGOAL.md`` NG.3, NG.4) and not
-always for ``N >= 4`` (the hub of :func:`dppverify.ngoal.examples.hub4`);
+always for ``N >= 4`` (the hub of :func:`dppverify.game.examples.hub4`);
 :func:`dppverify.structured.proved_value.nvalue` certifies it or brackets the value.
 """
 
@@ -45,7 +45,7 @@ import numpy as np
 
 from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import INF, Number, normalize
-from dppverify.ngoal.instance import NInstance
+from dppverify.game.instance import Instance
 from dppverify.structured.cover import MAX_BALANCED, balanced_vertices, members, min_cover, popcount
 
 __all__ = ["CoalitionRunner", "CoalitionValue", "Split", "coalition_scale", "coalition_value",
@@ -128,14 +128,14 @@ def splits(n_goals: int) -> list[Split]:
     return out
 
 
-def coalition_scale(instance: NInstance, tables: list[Split]) -> int:
+def coalition_scale(instance: Instance, tables: list[Split]) -> int:
     """``Q = W·L^(N-1)``: every ``m_S(v, k)`` of the coalition DP times ``Q`` is an integer.
 
     ``W`` is the lcm of the weights' denominators, ``L`` the lcm over the split tables.
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> coalition_scale(star3(), splits(3))
     4
     """
@@ -162,14 +162,14 @@ class CoalitionRunner:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> run = CoalitionRunner(star3())
     >>> layer = run.step(run.layer0(), 1)
     >>> run.value(layer, 1, 1).value, same_layer(layer, run.step(layer, 2))
     (2, False)
     """
 
-    def __init__(self, inst: NInstance) -> None:
+    def __init__(self, inst: Instance) -> None:
         n_goals = inst.n_goals
         self.inst = inst
         self.splits = splits(n_goals)
@@ -292,7 +292,7 @@ def same_layer(a: dict[int, np.ndarray], b: dict[int, np.ndarray]) -> bool:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> run = CoalitionRunner(star3())
     >>> one = run.step(run.layer0(), 1)
     >>> same_layer(run.layer0(), one), same_layer(one, one)
@@ -301,7 +301,7 @@ def same_layer(a: dict[int, np.ndarray], b: dict[int, np.ndarray]) -> bool:
     return all(np.array_equal(a[m], b[m]) for m in a)
 
 
-def coalition_value(instance: NInstance, horizon: int | None, *,
+def coalition_value(instance: Instance, horizon: int | None, *,
                     max_layers: int | None = None) -> CoalitionValue:
     """The coalition DP of the N-goal game (``horizon=None`` for ``H = inf``).
 
@@ -310,7 +310,7 @@ def coalition_value(instance: NInstance, horizon: int | None, *,
 
     Parameters
     ----------
-    instance : NInstance
+    instance : Instance
         The game (2 to 5 goals).
     horizon : int or None
         ``H >= 0``, or None: iterate until a layer repeats (``V_inf = lim V_H``).
@@ -324,7 +324,7 @@ def coalition_value(instance: NInstance, horizon: int | None, *,
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> v = coalition_value(star3(), 2)
     >>> v.value, v.coalition_costs[0b111]
     (Fraction(3, 2), 4)
@@ -343,12 +343,12 @@ def coalition_value(instance: NInstance, horizon: int | None, *,
     return run.value(fixpoint, None, k)
 
 
-def coalition_values(instance: NInstance, horizons: range) -> dict[int, Number]:
+def coalition_values(instance: Instance, horizons: range) -> dict[int, Number]:
     """``V_H`` for every ``H`` of ``horizons`` (one DP pass; unreachable horizons omitted).
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> coalition_values(star3(), range(4))
     {1: 2, 2: Fraction(3, 2), 3: Fraction(3, 2)}
     """

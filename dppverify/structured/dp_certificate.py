@@ -24,7 +24,7 @@ from functools import cache
 
 import numpy as np
 
-from dppverify.ngoal.instance import NInstance
+from dppverify.game.instance import Instance
 from dppverify.structured.coalition import CoalitionRunner, CoalitionValue
 from dppverify.structured.cover import (
     Normal,
@@ -144,7 +144,7 @@ def failing_arcs(checks: tuple[DirectionCheck, ...], new: np.ndarray, fin_new: n
     return out
 
 
-def certified_coalition_dp(inst: NInstance, horizon: int | None, max_layers: int | None, *,
+def certified_coalition_dp(inst: Instance, horizon: int | None, max_layers: int | None, *,
                            certify: bool = True
                            ) -> tuple[CoalitionValue, list[Arc],
                                       tuple[CoalitionRunner, dict[int, np.ndarray]] | None]:
@@ -157,7 +157,7 @@ def certified_coalition_dp(inst: NInstance, horizon: int | None, max_layers: int
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import hub4
+    >>> from dppverify.game.examples import hub4
     >>> coal, fails, fixpoint = certified_coalition_dp(hub4(), None, None)
     >>> coal.value, [str(x) for x in fails[0][2]], fixpoint is not None
     (Fraction(25, 14), ['1', '1', '1', '1/2'], True)

@@ -1,7 +1,8 @@
 """The guarantee-vector Defender rule of ``dpp-ngoal-profile/1`` (proofs/NSOLVE.md), evaluated
 from the checker's own mathematics.
 
-Profile: ``"defender": {"rule": "guarantee", "h": [h_1, …, h_N]}`` (``docs/formats.md`` §2b).
+Profile: ``"defender": {"rule": "guarantee", "h": [h_1, …, h_N]}`` (``docs/formats.md`` §2b; read
+by :func:`dppverify.game.profile_types.parse_guarantee`).
 With ``m_S(v)`` the coalition DP at ``H = inf`` (:mod:`dppverify.structured.coalition`, the layer
 that repeats) and ``G_v = { r : r(S) <= m_S(v) for every non-empty S }``:
 
@@ -32,55 +33,16 @@ from typing import Any
 import numpy as np
 
 from dppverify.exact import INF, Number
-from dppverify.formats.json_reading import parse_number
 from dppverify.game.distances import dijkstra
-from dppverify.game.profile import StrategyPath
-from dppverify.ngoal.instance import NInstance
-from dppverify.ngoal.walk_br import TableDefender, build_walk_trie
+from dppverify.game.instance import Instance
+from dppverify.game.profile_types import GuaranteeRule, StrategyWalk
 from dppverify.structured.coalition import CoalitionValue, coalition_scale, splits
 from dppverify.structured.cover import members, min_cover
+from dppverify.structured.table_br import TableDefender
+from dppverify.structured.trie import build_walk_trie
 
-__all__ = ["RULE", "GuaranteeRule", "GuaranteeSets", "RuleProfile", "dp_value",
-           "evaluate_rule_profile", "guarantee_sets", "guarantee_sigma", "in_start_set",
-           "parse_guarantee", "rule_on_trie", "rule_order"]
-
-RULE = "guarantee"
-
-
-@dataclass(frozen=True)
-class GuaranteeRule:
-    """The profile's guarantee rule: the starting state ``h``."""
-
-    h: tuple[Fraction, ...]
-
-
-def parse_guarantee(raw: Mapping[str, Any], n: int, defects: list[str]) -> GuaranteeRule | None:
-    """Read ``{"rule": "guarantee", "h": [...]}``, recording defects (None when ill-formed).
-
-    Examples
-    --------
-    >>> parse_guarantee({"rule": "guarantee", "h": ["1/2", 1, "3"]}, 3, []).h
-    (Fraction(1, 2), Fraction(1, 1), Fraction(3, 1))
-    >>> d = []; parse_guarantee({"rule": "guarantee", "h": [1]}, 3, d); d
-    ['defender.h: must be a list of 3 numbers (one per goal)']
-    """
-    h = raw.get("h")
-    extra = sorted(set(raw) - {"rule", "h"})
-    if extra:
-        defects.append(f"defender: unknown key(s) {', '.join(extra)} for the guarantee rule")
-        return None
-    if not isinstance(h, list) or len(h) != n:
-        defects.append(f"defender.h: must be a list of {n} numbers (one per goal)")
-        return None
-    out = []
-    for i, x in enumerate(h):
-        try:
-            out.append(Fraction(parse_number(x, where=f"defender.h[{i}]")))
-        except ValueError as exc:
-            defects.append(str(exc))
-            return None
-    return GuaranteeRule(tuple(out))
-
+__all__ = ["GuaranteeRule", "GuaranteeSets", "RuleProfile", "dp_value", "evaluate_rule_profile",
+           "guarantee_sets", "guarantee_sigma", "in_start_set", "rule_on_trie", "rule_order"]
 
 def rule_order(prior: Sequence[Fraction]) -> tuple[int, ...]:
     """The priority order: types by decreasing prior, ties by goal index.
@@ -99,7 +61,7 @@ class GuaranteeSets:
 
     Attributes
     ----------
-    instance : NInstance
+    instance : Instance
     scale : int
         ``m_S(v) = m[S][v] / scale``.
     big : int
@@ -110,7 +72,7 @@ class GuaranteeSets:
         Label-setting passes (one per subset).
     """
 
-    instance: NInstance
+    instance: Instance
     scale: int
     big: int
     m: Mapping[int, np.ndarray]
@@ -122,7 +84,7 @@ class GuaranteeSets:
         return None if x >= self.big else Fraction(x, self.scale)
 
 
-def guarantee_sets(instance: NInstance) -> GuaranteeSets:
+def guarantee_sets(instance: Instance) -> GuaranteeSets:
     """``m_S`` at ``H = inf`` at every node: the unique solution of the DP's fixpoint equations.
 
     By increasing ``|S|``: the split ``min_λ Σ_T λ_T m_T(v)`` over the minimal balanced
@@ -135,7 +97,7 @@ def guarantee_sets(instance: NInstance) -> GuaranteeSets:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> g = guarantee_sets(star3())
     >>> g.value(0b111, star3().start), g.value(0b001, star3().start)
     (Fraction(4, 1), Fraction(2, 1))
@@ -222,7 +184,7 @@ def dp_value(sets: GuaranteeSets) -> CoalitionValue:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> dp_value(guarantee_sets(star3())).value
     Fraction(3, 2)
     """
@@ -261,7 +223,7 @@ def guarantee_sigma(r: Sequence[Fraction], sets: GuaranteeSets, u: int, w: Numbe
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> inst = star3()
     >>> g = guarantee_sets(inst)
     >>> sigma, ok = guarantee_sigma([Fraction(2), Fraction(1), Fraction(1)], g, 1, 1, (0, 1, 2))
@@ -317,7 +279,7 @@ def in_start_set(rule: GuaranteeRule, sets: GuaranteeSets) -> int | None:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> sets = guarantee_sets(star3())
     >>> in_start_set(GuaranteeRule((Fraction(2), Fraction(1), Fraction(1))), sets)
     >>> in_start_set(GuaranteeRule((Fraction(3), Fraction(1), Fraction(1))), sets)
@@ -332,7 +294,7 @@ def in_start_set(rule: GuaranteeRule, sets: GuaranteeSets) -> int | None:
     return None
 
 
-def rule_on_trie(instance: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
+def rule_on_trie(instance: Instance, rule: GuaranteeRule, sets: GuaranteeSets,
                  parent: Sequence[int], node: Sequence[int]
                  ) -> tuple[dict[int, tuple[Fraction, ...]], bool]:
     """The rule's ``σ`` at every prefix of a prefix tree (``parent[p] < p``, root 0).
@@ -343,7 +305,7 @@ def rule_on_trie(instance: NInstance, rule: GuaranteeRule, sets: GuaranteeSets,
     --------
     The walk ``s m a`` of the star (prefixes 0, 1, 2 at nodes 0, 1, 2):
 
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> inst = star3()
     >>> rule = GuaranteeRule((Fraction(2), Fraction(1), Fraction(1)))
     >>> sigma, ok = rule_on_trie(inst, rule, guarantee_sets(inst), [0, 0, 1], [0, 1, 2])
@@ -395,17 +357,17 @@ class RuleProfile:
     walks: int
 
 
-def evaluate_rule_profile(instance: NInstance, rule: GuaranteeRule,
-                          attacker: Sequence[Sequence[StrategyPath]]) -> RuleProfile:
+def evaluate_rule_profile(instance: Instance, rule: GuaranteeRule,
+                          attacker: Sequence[Sequence[StrategyWalk]]) -> RuleProfile:
     """The guarantee rule on the trie of the Attacker's walks: ``σ``, masses and payoffs.
 
     ``attacker[θ]`` is type ``θ``'s mixed strategy (valid walks of the instance).
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> inst = star3()
-    >>> attacker = [[StrategyPath((0, 1, g), Fraction(1))] for g in inst.goals]
+    >>> attacker = [[StrategyWalk((0, 1, g), Fraction(1))] for g in inst.goals]
     >>> ev = evaluate_rule_profile(inst, GuaranteeRule((Fraction(2), Fraction(1),
     ...                                                 Fraction(1))), attacker)
     >>> [str(u) for u in ev.per_type], ev.feasible, len(ev.defender.trie)
@@ -420,7 +382,7 @@ def evaluate_rule_profile(instance: NInstance, rule: GuaranteeRule,
     order_ok = all(parent[p] < p for p in range(1, len(trie)))
     assert order_ok  # the trie numbers prefixes in insertion order
     sigma, feasible = rule_on_trie(inst, rule, sets, parent, trie.node)
-    tdef = TableDefender(trie=trie, sigma=sigma, default=None)
+    tdef = TableDefender(instance=inst, trie=trie, sigma=sigma, default=None)
     mass: dict[int, list[Fraction]] = {}
     per_type: list[Fraction] = []
     for theta, mix in enumerate(attacker):
@@ -430,7 +392,7 @@ def evaluate_rule_profile(instance: NInstance, rule: GuaranteeRule,
             cost = Fraction(0)
             mass.setdefault(0, [Fraction(0)] * n)[theta] += mw.probability
             for k, v in enumerate(mw.walk[1:], start=1):
-                p = trie.children[p][v]
+                p = trie.extend(p, v)
                 mass.setdefault(p, [Fraction(0)] * n)[theta] += mw.probability
                 w = inst.weight(mw.walk[k - 1], v)
                 assert w is not None

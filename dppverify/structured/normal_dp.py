@@ -20,7 +20,7 @@ from fractions import Fraction
 import numpy as np
 
 from dppverify.errors import HorizonError
-from dppverify.ngoal.instance import NInstance
+from dppverify.game.instance import Instance
 from dppverify.structured.coalition import CoalitionRunner
 from dppverify.structured.cover import (
     Normal,
@@ -50,13 +50,13 @@ class NormalDP:
     --------
     With the 0/1 normals it is the coalition DP:
 
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> dp = NormalDP(star3(), zero_one_normals(3))
     >>> dp.value(dp.step(dp.step(dp.layer0())))
     Fraction(3, 2)
     """
 
-    def __init__(self, inst: NInstance, normals: tuple[Normal, ...]) -> None:
+    def __init__(self, inst: Instance, normals: tuple[Normal, ...]) -> None:
         self.inst = inst
         self.normals = normals
         self.tops = [max(x) for x in normals]
@@ -178,7 +178,7 @@ class NormalDP:
         return self._reduce(m, finite, run.scale * cut)
 
 
-def normal_dp_value(inst: NInstance, extras: list[Normal], horizon: int | None,
+def normal_dp_value(inst: Instance, extras: list[Normal], horizon: int | None,
                     max_layers: int, start: tuple[CoalitionRunner, dict[int, np.ndarray]] | None
                     ) -> tuple[Fraction, int, list[Arc]]:
     """The DP over the 0/1 normals and ``extras``: its value, layers and failing arcs (NG.8).
@@ -198,7 +198,7 @@ def normal_dp_value(inst: NInstance, extras: list[Normal], horizon: int | None,
     --------
     The hub's value 12/7 with the four permutations of (2, 2, 2, 1), certified:
 
-    >>> from dppverify.ngoal.examples import hub4
+    >>> from dppverify.game.examples import hub4
     >>> extras = [(2, 2, 2, 1), (2, 2, 1, 2), (2, 1, 2, 2), (1, 2, 2, 2)]
     >>> normal_dp_value(hub4(), extras, 3, 100, None)
     (Fraction(12, 7), 3, [])

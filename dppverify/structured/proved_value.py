@@ -40,7 +40,7 @@ import numpy as np
 
 from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import Number, normalize
-from dppverify.ngoal.instance import NInstance
+from dppverify.game.instance import Instance
 from dppverify.structured.coalition import CoalitionRunner, CoalitionValue, too_many_goals
 from dppverify.structured.cover import MAX_BALANCED, Normal, cheapest, zero_one_normals
 from dppverify.structured.dp_certificate import Arc, certified_coalition_dp, direction_checks
@@ -78,7 +78,7 @@ def extra_directions(ys: Sequence[Sequence[Fraction]]) -> list[Normal]:
     return out
 
 
-def lower_bound_simple(instance: NInstance) -> tuple[Fraction, str]:
+def lower_bound_simple(instance: Instance) -> tuple[Fraction, str]:
     """A cheap exact lower bound on every ``V_H`` (and ``V_inf``) from two simple Defenders.
 
     A Defender that always guards goal ``θ`` makes type ``θ`` pay at least ``d(s0, g^θ)``
@@ -88,7 +88,7 @@ def lower_bound_simple(instance: NInstance) -> tuple[Fraction, str]:
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> lower_bound_simple(star3())
     (Fraction(1, 1), 'a Defender that always guards goal 1 (NG.9)')
     """
@@ -213,7 +213,7 @@ def coalition_nvalue(coal: CoalitionValue, n_goals: int) -> NValue:
     Examples
     --------
     >>> from dppverify.structured.coalition import coalition_value
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> coalition_nvalue(coalition_value(star3(), None), 3).value
     Fraction(3, 2)
     """
@@ -225,7 +225,7 @@ def coalition_nvalue(coal: CoalitionValue, n_goals: int) -> NValue:
     return NValue(coal.horizon, v, v, src, src, coal.layers, (), None, coal)
 
 
-def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None = None
+def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = None
            ) -> NValue:
     """``V_H`` of an N-goal instance (2 to 5 goals), exact where proved, else a bracket.
 
@@ -243,7 +243,7 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import hub4, star3
+    >>> from dppverify.game.examples import hub4, star3
     >>> nvalue(star3(), None).value
     Fraction(3, 2)
     >>> v = nvalue(hub4(), None)
@@ -316,7 +316,7 @@ def nvalue(instance: NInstance, horizon: int | None, *, max_layers: int | None =
                   up_normals, reason, coal)
 
 
-def _fail_reason(inst: NInstance, arc: Arc, what: str) -> str:
+def _fail_reason(inst: Instance, arc: Arc, what: str) -> str:
     v, u, y = arc
     return (f"arc {inst.nodes[v]!r} -> {inst.nodes[u]!r} fails the certificate of {what} in "
             f"direction ({', '.join(str(x) for x in y)})")

@@ -1,290 +1,304 @@
-"""Best responses over ALL walks against a two-goal table Defender with a default
-(proofs/TABLEBR.md).
+"""Best responses over ALL walks against a table Defender with a default, for any number of goals
+(proofs/NWALKBR.md; the two-goal forms of the default, proofs/TABLEBR.md).
 
-A table Defender lists ``P(allocate to goal | walk)`` for finitely many walks and plays its
-``default`` on every other walk: a probability ``q`` or ``"progress"`` (the progress rule
-towards the table's own ``goal``, eq. (7), with the running minimum ``c_t`` taken along the
-whole walk). Let the *trie* be the prefix closure of the listed walks. A walk of the game that
-leaves the trie never comes back (the trie is prefix-closed), so its cost is the trie part plus
-the cheapest way to finish from the state in which it left, against the default alone:
+A table Defender lists ``σ(· | walk) ∈ Δ^N`` for finitely many walks and plays its
+``default`` on every other walk. Let the *trie* be the prefix closure of the listed walks
+(:mod:`dppverify.structured.trie`). A walk that leaves the trie never comes back (the trie is
+prefix-closed), so its cost is the trie part plus the cheapest way to finish from the state in
+which it left, against the default alone. Inside the trie, backward induction
+(:func:`trie_induction`)::
 
-- constant default ``q``: the state is the node; a step of weight ``w`` costs type θ
-  ``w·q_θ`` (``q_θ = q`` for the type whose goal is the table's, ``1 − q`` for the other), so
-  the rest is a shortest path to the first goal reached plus its terminal cost ``d(goal, g^θ)``
-  (one exact reverse Dijkstra per type);
-- ``"progress"``: the state is the node and the running minimum ``c`` of ``d(·, goal)``; a
-  step to ``x`` makes progress ``Δ = c − min(c, d(x, goal))`` and costs ``Δ`` (same type) or
-  ``w − Δ`` (the other), both ``>= 0`` (``Δ <= w`` by the triangle inequality, since
-  ``c <= d(v, goal)``). ``c`` only takes the values ``d(x, goal)`` and the exit states' ``c``,
-  so an exact Dijkstra on the product graph (node, c) gives the cost-to-go; its size is
-  guarded (:data:`MAX_PRODUCT_STATES`).
+    J(p) = d(v, g^θ)                                          (p ends at a goal v)
+    J(p) = min over arcs (v, u):  w(v,u)·σ(p·u)[θ] + J(p·u)   (p·u in the trie)
+                                  cost of leaving at p·u       (p·u off the trie)
 
-Backward induction on the finite trie then gives the minimum over all walks of any length
-(exact; the same construction as the N-goal route, proofs/NWALKBR.md NW.1).
+``J(s0)`` is type θ's minimum over every walk of the game of any length (NW.1), exactly. A game
+walk ends at the FIRST goal it reaches, and a type may end at any goal (paying the terminal
+cost ``d(goal, g^θ)``); walks that never reach a goal are not strategies, so nodes from which
+no goal is reachable cost ``+inf``. The cost of leaving depends on the default:
+
+- a constant distribution (any N; a probability ``q`` for two goals): the state is the node; a
+  step of weight ``w`` costs type θ ``w·default[θ]``, so the rest is a shortest path to the
+  first goal reached plus its terminal cost (:func:`exit_costs`, one exact Dijkstra per type);
+- ``"progress"`` (two goals, :mod:`dppverify.structured.table_br_twogoal`): the state is the
+  node and the running minimum of ``d(·, goal)``, and an exact Dijkstra on that product graph
+  gives the cost-to-go.
+
+Without a default the Defender is undefined on every walk outside the table: unless the table
+lists every prefix of every walk of the game, no best response exists; the N-goal
+:func:`walk_best_response` then names one walk where the Defender is undefined, the two-goal
+``table_minima`` raises :class:`~dppverify.errors.UndecidedError` naming one.
 """
 
 from __future__ import annotations
 
-import heapq
-from collections.abc import Mapping
-from dataclasses import dataclass
-from itertools import count
+from collections.abc import Callable, Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
+from fractions import Fraction
 
-from dppverify.errors import UndecidedError
 from dppverify.exact import INF, Number, normalize
-from dppverify.game.instance import Instance, Roles
-from dppverify.game.profile import ProgressRule, TableRule
+from dppverify.game.distances import common_denominator, multi_source_dijkstra
+from dppverify.game.instance import Instance
+from dppverify.structured.trie import WalkTrie, build_walk_trie
 
-__all__ = ["MAX_PRODUCT_STATES", "TableMinima", "table_minima"]
+__all__ = ["GoalFreePred", "TableDefender", "WalkBestResponse", "exit_costs", "goal_free_pred",
+           "table_defender", "trie_induction", "walk_best_response"]
 
-MAX_PRODUCT_STATES = 400_000
-"""Largest (node, running minimum) product graph the ``"progress"`` default is solved on."""
+GoalFreePred = tuple[int, list[list[tuple[int, int]]]]
+"""``(W, pred)``: ``W`` the common denominator of the weights and ``pred[x]`` the arcs
+``(u, W·w(u, x))`` entering ``x`` from non-goal nodes (:func:`goal_free_pred`)."""
 
 
-@dataclass(frozen=True)
-class TableMinima:
-    """Each type's minimum cost over all walks of any length against a table Defender.
+@dataclass(frozen=True, eq=False)
+class TableDefender:
+    """A table Defender on a trie: ``sigma[p]`` for listed prefixes, ``default`` elsewhere.
 
     Attributes
     ----------
-    primary, secondary : Number
-        ``min`` over walks of ``U¹`` and ``U²`` (``INF`` when no goal can be reached).
-    trie_prefixes : int
-        Prefixes of the listed walks' trie (root included).
+    trie : WalkTrie
+        Contains every listed walk (and usually the profile's walks).
+    sigma : Mapping
+        Prefix id -> goal distribution (indexed by goal index θ), for the table's walks.
+    default : tuple or None
+        The distribution at every walk the table does not list.
+    instance : Instance
+        The game the walks are walks of.
     """
 
-    primary: Number
-    secondary: Number
-    trie_prefixes: int
+    trie: WalkTrie
+    sigma: Mapping[int, tuple[Fraction, ...]]
+    default: tuple[Fraction, ...] | None
+    instance: Instance
+    _exit_graph: list[GoalFreePred] = field(default_factory=list, init=False, repr=False)
 
-    def of(self, theta: int) -> Number:
-        """The minimum of type ``theta`` (1 = primary, 2 = secondary)."""
-        return self.primary if theta == 1 else self.secondary
+    def at(self, p: int) -> tuple[Fraction, ...] | None:
+        """``σ(· | p)`` at trie prefix ``p`` (None: undefined, no entry and no default)."""
+        return self.sigma.get(p, self.default)
 
-
-def _trie(instance: Instance, entries: Mapping[tuple[int, ...], object]) -> list[tuple[int, ...]]:
-    """The prefix closure of the listed walks that the game can reach (a walk ends at its
-    first goal: prefixes continuing past a goal are dropped), root first, by length."""
-    s0 = instance.start
-    out: set[tuple[int, ...]] = {(s0,)}
-    for walk in entries:
-        if not walk or walk[0] != s0:
-            continue
-        for t in range(1, len(walk)):
-            if instance.is_goal(walk[t - 1]) or instance.weight(walk[t - 1], walk[t]) is None:
-                break
-            out.add(tuple(walk[:t + 1]))
-    return sorted(out, key=len)
+    def exit_graph(self) -> GoalFreePred:
+        """:func:`goal_free_pred` of the instance, built once per Defender (for every type)."""
+        if not self._exit_graph:
+            self._exit_graph.append(goal_free_pred(self.instance))
+        return self._exit_graph[0]
 
 
-def _share(rule: TableRule, roles: Roles, theta: int, sigma_goal: Number,
-           instance: Instance) -> Number:
-    """``σ(g^θ | p)`` from ``σ(rule.goal | p)``."""
-    if (roles.g1 if theta == 1 else roles.g2) == rule.goal:
-        return sigma_goal
-    return instance.numbers.difference(instance.numbers.one(), sigma_goal)
-
-
-def _constant_exit(instance: Instance, roles: Roles, share: Number, theta: int) -> list[Number]:
-    """Cost-to-go from each node against a constant allocation ``share`` to ``g^θ``: a reverse
-    Dijkstra from the goals (each worth its terminal cost), never passing through a goal."""
-    dist = roles.dist(theta)
-    n = instance.n_nodes
-    best: list[Number] = [INF] * n
-    heap: list[tuple[Number, int, int]] = []
-    tie = count()
-    for g in instance.goals:
-        best[g] = dist[g]
-        heapq.heappush(heap, (dist[g], next(tie), g))
-    done = [False] * n
-    while heap:
-        d, _, x = heapq.heappop(heap)
-        if done[x] or d != best[x]:
-            continue
-        done[x] = True
-        for v, w in instance.pred[x]:
-            if instance.is_goal(v):
-                continue  # a walk ends at its first goal: never continue from one
-            nd = d + w * share
-            if nd < best[v]:
-                best[v] = nd
-                heapq.heappush(heap, (nd, next(tie), v))
-    return best
-
-
-def _progress_exit(instance: Instance, roles: Roles, goal: int, theta: int, same: bool,
-                   exits: set[tuple[int, Number]]) -> dict[tuple[int, Number], Number]:
-    """Cost-to-go from the states ``(node, c)`` in ``exits`` against the progress rule towards
-    ``goal`` (running minimum ``c``): exact Dijkstra on the product graph, backwards from the
-    goal states."""
-    slot = instance.slot(goal)
-    assert slot is not None
-    dg = instance.dist_to[slot]
-    dist = roles.dist(theta)
-    values = sorted({c for _, c in exits} | {x for x in dg if x != INF})
-    n = instance.n_nodes
-    states = sum(1 for x in range(n) for c in values if c <= dg[x])
-    if states > MAX_PRODUCT_STATES:
-        raise UndecidedError(
-            f"the table Defender's \"progress\" default needs a (node, running minimum) "
-            f"product graph of {states} states, above the limit of {MAX_PRODUCT_STATES}; a "
-            f"constant \"default\" would decide the untruncated game, or --horizon H "
-            f"certifies the game truncated at H")
-    # c_at[x]: the c values a state at x can hold (c <= d(x, goal)); goal states cost their
-    # terminal cost whatever c is
-    best: dict[tuple[int, Number], Number] = {}
-    heap: list[tuple[Number, int, int, Number]] = []
-    tie = count()
-    for g in instance.goals:
-        for c in values:
-            if c <= dg[g]:
-                best[(g, c)] = dist[g]
-                heapq.heappush(heap, (dist[g], next(tie), g, c))
-    mode = instance.numbers
-    while heap:
-        d, _, x, c2 = heapq.heappop(heap)
-        if best.get((x, c2)) != d:
-            continue
-        for v, w in instance.pred[x]:
-            if instance.is_goal(v):
-                continue
-            # predecessors (v, c) with min(c, d(x)) == c2 and c <= d(v)
-            if c2 < dg[x]:
-                cands = [c2] if c2 <= dg[v] else []
-            else:  # c2 == d(x): any c >= d(x) that v can hold
-                cands = [c for c in values if c2 <= c <= dg[v]]
-            for c in cands:
-                delta = c - c2
-                step = delta if same else mode.difference(w, delta)
-                nd = d + step
-                key = (v, c)
-                if nd < best.get(key, INF):
-                    best[key] = nd
-                    heapq.heappush(heap, (nd, next(tie), v, c))
-    return {s: best.get(s, INF) for s in exits}
-
-
-def _reaches_a_goal(instance: Instance, u: int) -> bool:
-    """True when some walk of the game goes on from ``u`` (a goal is reachable from it)."""
-    return instance.is_goal(u) or any(d[u] != INF for d in instance.dist_to)
-
-
-def _undefined(instance: Instance, walk: tuple[int, ...]) -> str:
-    return (f"the untruncated game (H = inf) cannot be decided for this profile: its table "
-            f"Defender has no \"default\" and no entry for the walk "
-            f"{list(instance.labels(walk))}, so it is undefined there; a \"default\" (a "
-            f"probability or \"progress\") would decide it, or --horizon H certifies the game "
-            f"truncated at H")
-
-
-def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMinima:
-    """Both types' exact minimum cost over ALL walks against ``rule`` (it needs a default).
-
-    Parameters
-    ----------
-    instance : Instance
-        The game.
-    roles : Roles
-        The labelling (which goal is ``g1``).
-    rule : TableRule
-        The Defender. Without a default it must list every walk of the game that goes on
-        from its entries (e.g. on a finite DAG); otherwise the game is undecided.
-
-    Returns
-    -------
-    TableMinima
-
-    Raises
-    ------
-    UndecidedError
-        A table without default that leaves a walk of the game unlisted (the message names
-        it), or a ``"progress"`` default whose product graph is above
-        :data:`MAX_PRODUCT_STATES`.
+def table_defender(instance: Instance,
+                   entries: Mapping[tuple[int, ...], tuple[Fraction, ...]],
+                   default: tuple[Fraction, ...] | None,
+                   walks: Iterable[Sequence[int]] = ()) -> TableDefender:
+    """The table Defender on the trie of its entries and ``walks`` (the profile's walks).
 
     Examples
     --------
-    On the kite (``s–g1``, ``s–g2`` of weight 2, ``s–a`` 1, ``a–g1``, ``a–g2`` 1, prior
-    3/5), a table that guards g1 everywhere (default 1) lets the secondary walk ``s a g2`` free:
-
-    >>> from fractions import Fraction
-    >>> from dppverify.game.examples import kite
-    >>> inst = kite()
-    >>> r = inst.roles()
-    >>> table_minima(inst, r, TableRule(goal=r.g1, entries={}, default=Fraction(1)))
-    TableMinima(primary=2, secondary=0, trie_prefixes=1)
-    >>> table_minima(inst, r, TableRule(goal=r.g1, entries={}, default=ProgressRule(r.g1)))
-    TableMinima(primary=2, secondary=1, trie_prefixes=1)
+    >>> from dppverify.game.examples import star3
+    >>> one = (Fraction(1), Fraction(0), Fraction(0))
+    >>> d = table_defender(star3(), {(0, 1, 3): (Fraction(0), Fraction(1), Fraction(0))}, one)
+    >>> d.at(d.trie.find((0, 1, 3))), d.at(d.trie.find((0, 1))) == one
+    ((Fraction(0, 1), Fraction(1, 1), Fraction(0, 1)), True)
     """
-    mode = instance.numbers
-    trie = _trie(instance, rule.entries)
-    in_trie = set(trie)
-    progress = isinstance(rule.default, ProgressRule)
-    # σ(rule.goal | p) and the running minimum c(p) towards the progress goal on the trie
-    pgoal = rule.default.goal if isinstance(rule.default, ProgressRule) else rule.goal
-    pslot = instance.slot(pgoal)
-    assert pslot is not None
-    dg = instance.dist_to[pslot]
-    out: list[Number] = []
-    for theta in (1, 2):
-        same = (roles.g1 if theta == 1 else roles.g2) == pgoal
-        dist = roles.dist(theta)
-        # exit states: (trie prefix p, next node u) with p·u off the trie
-        const_exit: list[Number] | None = None
-        if rule.default is not None and not progress:
-            assert not isinstance(rule.default, ProgressRule)
-            const_exit = _constant_exit(instance, roles,
-                                        _share(rule, roles, theta, rule.default, instance), theta)
-        cmin: dict[tuple[int, ...], Number] = {}
-        for p in trie:
-            cmin[p] = dg[p[0]] if len(p) == 1 else min(cmin[p[:-1]], dg[p[-1]])
-        exits: set[tuple[int, Number]] = set()
-        if progress:
-            for p in trie:
-                if len(p) > 1 and instance.is_goal(p[-1]):
-                    continue
-                for u, _ in instance.succ[p[-1]]:
-                    if (*p, u) not in in_trie and not instance.is_goal(u):
-                        exits.add((u, min(cmin[p], dg[u])))
-        prog_exit = (_progress_exit(instance, roles, pgoal, theta, same, exits)
-                     if progress and exits else {})
-        J: dict[tuple[int, ...], Number] = {}
-        for p in reversed(trie):
-            v = p[-1]
-            if instance.is_goal(v):
-                J[p] = dist[v]
+    trie = build_walk_trie(instance, walks)
+    sigma = {trie.insert(w): tuple(d) for w, d in entries.items()}
+    return TableDefender(instance=instance, trie=trie, sigma=sigma,
+                         default=None if default is None else tuple(default))
+
+
+def goal_free_pred(instance: Instance) -> GoalFreePred:
+    """The arcs entering each node from non-goal nodes (a walk never leaves a goal), weights
+    scaled to integers: the graph :func:`exit_costs` runs on. Exact instances only.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> goal_free_pred(star3())[1][:2]        # into s (from m), into m (from s)
+    [[(1, 1)], [(0, 1)]]
+    """
+    den = common_denominator({w for arcs in instance.succ for _, w in arcs})
+    scaled: dict[Number, int] = {}
+    pred = []
+    for arcs in instance.pred:
+        row = []
+        for u, w in arcs:
+            if instance.is_goal(u):
                 continue
-            best: Number = INF
-            for u, w in instance.succ[v]:
-                q = (*p, u)
-                if q in in_trie:
-                    sg = rule.entries.get(q)
-                    if sg is None and rule.default is None:  # a listed walk's unlisted prefix
-                        if _reaches_a_goal(instance, u):
-                            raise UndecidedError(_undefined(instance, q))
-                        continue
-                    if sg is None:
-                        sg = (mode.ratio(cmin[p] - min(cmin[p], dg[u]), w) if progress
-                              else rule.default)  # type: ignore[assignment]
-                    assert sg is not None and not isinstance(sg, ProgressRule)
-                    cost = w * _share(rule, roles, theta, sg, instance) + J[q]
-                elif rule.default is None:
-                    if _reaches_a_goal(instance, u):
-                        raise UndecidedError(_undefined(instance, q))
-                    continue  # no walk of the game goes on from q: nothing to define
-                elif progress:
-                    delta = cmin[p] - min(cmin[p], dg[u])
-                    step = delta if same else mode.difference(w, delta)
-                    rest = dist[u] if instance.is_goal(u) else prog_exit[(u, min(cmin[p], dg[u]))]
-                    cost = step + rest
-                else:
-                    assert const_exit is not None and not isinstance(rule.default, ProgressRule)
-                    share = _share(rule, roles, theta, rule.default, instance)
-                    cost = w * share + const_exit[u]
-                if cost < best:
-                    best = cost
-            J[p] = best
-        root = J[(instance.start,)]
-        out.append(root if root == INF or not mode.exact else normalize(root))
-    return TableMinima(primary=mode.convert(out[0]) if out[0] != INF else INF,
-                       secondary=mode.convert(out[1]) if out[1] != INF else INF,
-                       trie_prefixes=len(trie))
+            if w not in scaled:
+                scaled[w] = int(Fraction(w) * den)
+            row.append((u, scaled[w]))
+        pred.append(row)
+    return den, pred
+
+
+def exit_costs(instance: Instance, share: Fraction, theta: int,
+               arcs: GoalFreePred | None = None) -> tuple[list[Number], list[int]]:
+    """``D_θ(u)``: the cheapest way from ``u`` to the end of the game when every step costs
+    ``w·share`` (the default's weight on ``g^θ``), plus the terminal cost ``d(goal, g^θ)``.
+
+    Walks stop at the first goal (``D_θ(goal) = d(goal, g^θ)``); ``+inf`` where no goal is
+    reachable. Returns the costs and, for each non-goal node, the next node of a cheapest walk
+    (``-1`` where none). Exact: one Dijkstra on Python integers
+    (:func:`~dppverify.game.distances.multi_source_dijkstra`); ``arcs`` may pass
+    :func:`goal_free_pred` computed once for several calls.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> inst = star3()                      # nodes s, m, a, b, c = 0..4
+    >>> exit_costs(inst, Fraction(0), 1)[0]   # free steps: walk to b from anywhere
+    [0, 0, 2, 0, 2]
+    >>> exit_costs(inst, Fraction(1), 0)      # full price: d(·, a)
+    ([2, 1, 0, 2, 2], [2, 2, -1, -1, -1])
+    """
+    big, pred = arcs if arcs is not None else goal_free_pred(instance)
+    unit = big * share.denominator  # every step costs (W·w)·num / (W·q)
+    term = instance.dist_to[theta]
+    sources = [(g, int(term[g] * unit)) for g in instance.goals if term[g] != INF]
+    keys, via = multi_source_dijkstra(pred, sources, factor=share.numerator)
+    costs: list[Number] = [INF if k == INF else normalize(Fraction(int(k), unit)) for k in keys]
+    return costs, via
+
+
+Step = Callable[[int, int, Number], Number | None]
+"""``(p, x, w) -> cost``: a step of weight ``w`` from trie prefix ``p`` (to the trie child
+``x``, or off the trie to node ``x``); None where the Defender is undefined."""
+
+
+def trie_induction(instance: Instance, trie: WalkTrie, terminal: Sequence[Number],
+                   inside: Step, leave: Step
+                   ) -> tuple[list[Number], list[tuple[int, int] | None], tuple[int, ...] | None]:
+    """Backward induction on ``trie`` (deepest prefixes first): ``J``, the choices, and the
+    shortest walk of the game where the Defender is undefined (None when there is none).
+
+    ``J[p]`` is the minimum cost from prefix ``p`` on: ``terminal[v]`` at a goal ``v``;
+    else the least ``inside(p, c, w) + J[c]`` over trie children ``c`` and ``leave(p, u, w)``
+    over arcs leaving the trie (towards nodes from which a goal is reachable). ``choice[p]``
+    is the minimising ``(node, trie child or -1)``.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> inst = star3()
+    >>> t = build_walk_trie(inst, [(0, 1, 2)])
+    >>> J, choice, _ = trie_induction(inst, t, inst.dist_to[0], lambda p, c, w: w,
+    ...                               lambda p, u, w: None)
+    >>> J[0], choice[0]
+    (2, (1, 1))
+    """
+    n = len(trie)
+    J: list[Number] = [INF] * n
+    choice: list[tuple[int, int] | None] = [None] * n
+    undefined: tuple[int, ...] | None = None
+    for p in sorted(range(n), key=lambda q: -trie.depth[q]):
+        v = trie.node[p]
+        if instance.is_goal(v):
+            J[p] = terminal[v]
+            continue
+        best: Number = INF
+        pick: tuple[int, int] | None = None
+        for u, w in instance.succ[v]:
+            c = trie.child(p, u)
+            if c is not None:
+                step = inside(p, c, w)
+                if step is None:
+                    if J[c] != INF:
+                        undefined = _shorter(undefined, trie.walk(c))
+                    continue
+                cost = step + J[c]
+            else:
+                if not (instance.is_goal(u) or instance.hops[u] >= 0):
+                    continue  # no goal reachable: not part of any walk of the game
+                out = leave(p, u, w)
+                if out is None:
+                    undefined = _shorter(undefined, (*trie.walk(p), u))
+                    continue
+                cost = out
+            if cost < best:
+                best, pick = cost, (u, -1 if c is None else c)
+        J[p] = normalize(best) if best != INF else INF
+        choice[p] = pick
+    return J, choice, undefined
+
+
+def _shorter(a: tuple[int, ...] | None, b: tuple[int, ...]) -> tuple[int, ...]:
+    return b if a is None or len(b) < len(a) else a
+
+
+@dataclass(frozen=True)
+class WalkBestResponse:
+    """Type θ's best response over all walks against a table Defender.
+
+    Attributes
+    ----------
+    theta : int
+        The goal index of the type (0-based).
+    value : Number or None
+        The minimum cost over every walk (``+inf`` if no walk ends; None when undefined).
+    walk : tuple of int
+        A minimising walk (empty when ``value`` is None or infinite).
+    undefined : tuple of int or None
+        A walk of the game where the Defender is undefined (no entry, no default); then
+        ``value`` is None.
+    """
+
+    theta: int
+    value: Number | None
+    walk: tuple[int, ...]
+    undefined: tuple[int, ...] | None = None
+
+
+def walk_best_response(defender: TableDefender, theta: int,
+                       exits: tuple[list[Number], list[int]] | None = None) -> WalkBestResponse:
+    """Type ``θ``'s exact minimum over ALL walks of the game against ``defender``.
+
+    ``exits`` may pass a precomputed :func:`exit_costs` for ``defender.default[θ]``.
+
+    Examples
+    --------
+    Against the hub profile's Defender (guard ``a`` off its table), type ``b`` loops
+    ``s m s m b`` for free, cheaper than its profile walk ``s m b`` (cost 1):
+
+    >>> from dppverify.game.examples import star3
+    >>> inst = star3()
+    >>> one, b = (Fraction(1), Fraction(0), Fraction(0)), (Fraction(0), Fraction(1), Fraction(0))
+    >>> d = table_defender(inst, {(0, 1, 3): b}, one, walks=[(0, 1, 2), (0, 1, 3)])
+    >>> br = walk_best_response(d, 1)
+    >>> br.value, inst.labels(br.walk)
+    (0, ('s', 'm', 's', 'm', 'b'))
+    >>> walk_best_response(table_defender(inst, {(0, 1, 3): b}, None), 1).undefined
+    (0, 1)
+    """
+    trie = defender.trie
+    inst = defender.instance
+    default = defender.default
+    if exits is None and default is not None:
+        exits = exit_costs(inst, default[theta], theta, defender.exit_graph())
+
+    def inside(p: int, c: int, w: Number) -> Number | None:
+        s = defender.at(c)
+        return None if s is None else w * s[theta]
+
+    def leave(p: int, u: int, w: Number) -> Number | None:
+        if default is None or exits is None:
+            return None
+        return w * default[theta] + exits[0][u]
+
+    J, choice, undefined = trie_induction(inst, trie, inst.dist_to[theta], inside, leave)
+    if undefined is not None:
+        return WalkBestResponse(theta=theta, value=None, walk=(), undefined=undefined)
+    if J[0] == INF:
+        return WalkBestResponse(theta=theta, value=INF, walk=())
+    walk = [trie.node[0]]
+    p = 0
+    step = choice[p]
+    while step is not None:
+        u, c = step
+        walk.append(u)
+        if c < 0:
+            assert exits is not None
+            x = u
+            while not inst.is_goal(x):
+                x = exits[1][x]
+                walk.append(x)
+            break
+        p = c
+        step = choice[p]
+    return WalkBestResponse(theta=theta, value=J[0], walk=tuple(walk))
+

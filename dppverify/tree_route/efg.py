@@ -4,7 +4,7 @@ The exported extensive-form game is the truncated game of proofs/LP.md with the 
 allocations made explicit moves. One writer serves two goals
 (:class:`~dppverify.game.instance.Instance`, :class:`~dppverify.tree_route.tree.WalkTree`) and N
 goals
-(:class:`~dppverify.ngoal.instance.NInstance`, :class:`~dppverify.ngoal.tree.NWalkTree`;
+(:class:`~dppverify.game.instance.Instance`, :class:`~dppverify.ngoal.tree.NWalkTree`;
 ``docs/formats.md`` §1, "N goals"); with N types:
 
 1. **chance** draws the Attacker's type θ (its true goal g^θ, θ = 1 … N) with the prior ``b``
@@ -79,7 +79,7 @@ t "" 4 "cost 2" { -2 2 }
 
 With three goals the chance node has three branches and the Defender three actions:
 
->>> from dppverify.ngoal.examples import star3
+>>> from dppverify.game.examples import star3
 >>> print("".join(to_efg(star3(), 1).splitlines(keepends=True)[3:9]), end="")
 c "" 1 "type" { "type a" 1/2 "type b" 1/3 "type c" 1/6 } 0
 p "" 2 1 "D p1 h-" { "alloc a" "alloc b" "alloc c" } 0
@@ -104,15 +104,19 @@ from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.exact import Number
 from dppverify.formats.files import write_files
 from dppverify.game.instance import Instance
-from dppverify.ngoal.instance import NInstance
 from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
 
-__all__ = ["DEFAULT_MAX_EFG_NODES", "EfgSize", "GameInstance", "GameTree", "efg_size", "to_efg",
-           "tree_to_efg", "write_efg"]
+__all__ = [
+    "DEFAULT_MAX_EFG_NODES",
+    "EfgSize",
+    "GameTree",
+    "efg_size",
+    "to_efg",
+    "tree_to_efg",
+    "write_efg",
+]
 
-GameInstance = Instance | NInstance
-"""An instance the export accepts: two goals or N goals."""
 
 GameTree = WalkTree | NWalkTree
 """A walk tree the export accepts: two goals or N goals."""
@@ -162,7 +166,7 @@ def efg_size(tree: GameTree, *, attacker_observes: bool = True,
     >>> efg_size(build_tree(inst, 1))
     EfgSize(nodes=15, terminals=8, attacker_nodes=2, defender_nodes=4, attacker_infosets=2, \
 defender_infosets=2)
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> from dppverify.ngoal.tree import build_ntree
     >>> efg_size(build_ntree(star3(), 2)).nodes
     136
@@ -192,7 +196,7 @@ def _label(text: str) -> str:
     return text.replace('"', "'").replace("\\", "/").replace("\n", " ")
 
 
-def _node_names(instance: GameInstance) -> list[str]:
+def _node_names(instance: Instance) -> list[str]:
     """One distinct, quote-safe name per node (its id; ``v<i>:`` prefixed on a clash)."""
     names = []
     for v in instance.nodes:
@@ -365,22 +369,22 @@ def tree_to_efg(tree: GameTree, *, attacker_observes: bool = True, forced_moves:
     return "\n".join(out)
 
 
-def _build(instance: GameInstance, horizon: int, max_prefixes: int,
+def _build(instance: Instance, horizon: int, max_prefixes: int,
            progress: bool = False) -> GameTree:
     """The walk tree of either kind of instance (the size guard counts it first)."""
-    if isinstance(instance, NInstance):
+    if instance.n_goals > 2:
         return build_ntree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
     return build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
 
 
-def to_efg(instance: GameInstance, horizon: int, *, attacker_observes: bool = True,
+def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
            forced_moves: bool = False, max_prefixes: int = DEFAULT_MAX_PREFIXES,
            max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
     """The truncated game of ``instance`` with horizon ``horizon`` as Gambit ``.efg`` text.
 
     Parameters
     ----------
-    instance : Instance or NInstance
+    instance : Instance or Instance
         The game, with two goals or N goals (:mod:`dppverify.ngoal`).
     horizon : int
         ``H``: walks have at most ``H`` steps (:func:`~dppverify.tree_route.tree.build_tree`,
@@ -419,7 +423,7 @@ def to_efg(instance: GameInstance, horizon: int, *, attacker_observes: bool = Tr
                        max_nodes=max_nodes, title=title)
 
 
-def write_efg(path: str | Path, instance: GameInstance, horizon: int, *,
+def write_efg(path: str | Path, instance: Instance, horizon: int, *,
               attacker_observes: bool = True, forced_moves: bool = False,
               max_prefixes: int = DEFAULT_MAX_PREFIXES, max_nodes: int = DEFAULT_MAX_EFG_NODES,
               title: str | None = None, progress: bool = False) -> EfgSize:

@@ -230,7 +230,7 @@ def solve_tree_lp_exactly(tree: PrefixTree, priors: Sequence[Number],
 
     Examples
     --------
-    >>> from dppverify.ngoal.examples import star3
+    >>> from dppverify.game.examples import star3
     >>> from dppverify.ngoal.tree import build_ntree
     >>> inst = star3()
     >>> r = solve_tree_lp_exactly(build_ntree(inst, 2), inst.prior, inst.dist_to)

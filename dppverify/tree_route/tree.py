@@ -34,7 +34,7 @@ from tqdm import tqdm
 
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.exact import Number
-from dppverify.game.instance import GameInstance, Instance
+from dppverify.game.instance import Instance
 
 if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
     import scipy.sparse as sp
@@ -71,7 +71,7 @@ class PrefixTree:
 
     Attributes
     ----------
-    instance : GameInstance
+    instance : Instance
         The game the tree belongs to.
     horizon : int
         ``H``: the maximum number of steps of a walk.
@@ -87,7 +87,7 @@ class PrefixTree:
         Exact weight ``w(e_t)`` of the last step of each prefix (0 for the root).
     """
 
-    instance: GameInstance
+    instance: Instance
     horizon: int
     node: np.ndarray
     parent: np.ndarray
@@ -166,7 +166,7 @@ class WalkTree(PrefixTree):
     instance: Instance
 
 
-def count_prefixes(instance: GameInstance, horizon: int, *, limit: int | None = None) -> int:
+def count_prefixes(instance: Instance, horizon: int, *, limit: int | None = None) -> int:
     """Number of prefixes of the pruned walk tree with ``horizon`` steps, without building it.
 
     Dynamic programming over (node, steps left), vectorised, touching at each layer only the
@@ -236,7 +236,7 @@ def count_prefixes(instance: GameInstance, horizon: int, *, limit: int | None = 
     return int(cnt[inst.start])
 
 
-def _hops_from(inst: GameInstance, goal: np.ndarray) -> np.ndarray:
+def _hops_from(inst: Instance, goal: np.ndarray) -> np.ndarray:
     """Fewest steps from the start to each node along walks that stop at the first goal
     (a large number where there is none)."""
     n = inst.n_nodes
@@ -305,18 +305,18 @@ def build_tree(instance: Instance, horizon: int, *,
 T = TypeVar("T", bound=PrefixTree)
 
 
-def build_prefix_tree(instance: GameInstance, horizon: int, cls: type[T], *,
+def build_prefix_tree(instance: Instance, horizon: int, cls: type[T], *,
                       max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> T:
     """Build the pruned tree of walks of any game (two or N goals) as a ``cls``.
 
     Parameters
     ----------
-    instance : GameInstance
-        The game (``Instance`` or ``NInstance``).
+    instance : Instance
+        The game (``Instance`` or ``Instance``).
     horizon : int
         ``H >= 0``.
     cls : type
-        :class:`WalkTree` for an ``Instance``, ``NWalkTree`` for an ``NInstance``.
+        :class:`WalkTree` for an ``Instance``, ``NWalkTree`` for an ``Instance``.
     max_prefixes, progress
         As for :func:`build_tree`.
 

@@ -515,7 +515,7 @@ def game_value(instance: Instance | Any, horizon: int, *,
         raise HorizonError("game_value is the truncated game's LP and needs a finite horizon; "
                            "dppverify.value(instance) gives the untruncated game's value")
     horizon = h
-    instance = as_instance(instance)
+    instance = as_instance(instance, two_goals=True)
     tree = build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
     roles = instance.roles()
     with tqdm(total=2, desc=f"value LP ({tree.n_prefixes} prefixes)", disable=not progress,

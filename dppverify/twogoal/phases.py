@@ -1,4 +1,4 @@
-"""The phases of the secondary's path ξ² under σ* (eqs. (10)-(11), proofs/L5.md).
+"""The phases of the secondary's walk ξ² under σ* (eqs. (10)-(11), proofs/L5.md).
 
 Phase I is the maximal initial run of steps with σ*(g1) = 1 (ends at ``t_I``); ``t_II`` is the
 last step with σ*(g1) > 0 (``t_I`` if there is none after it); phase III is the steps after

@@ -22,7 +22,7 @@ from fractions import Fraction
 import numpy as np
 
 from dppverify.exact import INF, Number, normalize
-from dppverify.game.distances import dijkstra
+from dppverify.game.distances import ArcArrays, dijkstra
 from dppverify.game.instance import Instance, arc_arrays, goal_distance_fields
 
 __all__ = ["ScaledArcs", "WalkMinima", "avoiding_distances", "scaled_arcs", "scaled_distances",
@@ -31,25 +31,28 @@ __all__ = ["ScaledArcs", "WalkMinima", "avoiding_distances", "scaled_arcs", "sca
 
 @dataclass(frozen=True, eq=False)
 class ScaledArcs:
-    """Every arc of an exact instance as arrays, weights scaled to integers held in float64.
+    """An exact instance's arcs (:class:`~dppverify.game.distances.ArcArrays`) with their
+    weights scaled to integers held in float64.
 
     Attributes
     ----------
-    tails, heads : numpy.ndarray
-        Tail and head of every arc (``int64``).
+    arrays : ArcArrays
+        The arcs (tails and heads, in ``succ`` order).
     weights : numpy.ndarray
-        ``weight * scale`` as ``float64``: exact integers, since their total is below
-        :data:`~dppverify.game.distances.EXACT_FLOAT_LIMIT` (only then is a ``ScaledArcs`` built).
+        ``weight * scale`` of every arc as ``float64``: exact integers, since their total is
+        below :data:`~dppverify.game.distances.EXACT_FLOAT_LIMIT` (only then is one built).
     scale : int
         The common denominator of the weights.
+    by_head : numpy.ndarray
+        The arcs' indices sorted by head (stable): the reversed graph's rows.
     distances : dict
         Memo of :func:`scaled_distances` results for this instance.
     """
 
-    tails: np.ndarray
-    heads: np.ndarray
+    arrays: ArcArrays
     weights: np.ndarray
     scale: int
+    by_head: np.ndarray
     distances: dict[tuple[int, bool, frozenset[int]], np.ndarray]
 
 
@@ -67,7 +70,7 @@ def scaled_arcs(instance: Instance) -> ScaledArcs | None:
     --------
     >>> from dppverify.game.examples import triangle
     >>> a = scaled_arcs(triangle())
-    >>> a.tails.tolist(), a.heads.tolist(), a.weights.tolist(), a.scale
+    >>> a.arrays.tails.tolist(), a.arrays.heads.tolist(), a.weights.tolist(), a.scale
     ([0, 0, 1, 1, 2, 2], [1, 2, 0, 2, 0, 1], [3.0, 2.0, 3.0, 2.0, 2.0, 2.0], 1)
     """
     if instance in _ARCS:
@@ -78,9 +81,10 @@ def scaled_arcs(instance: Instance) -> ScaledArcs | None:
         got = arrays.scaled(arrays.values, paths=4)  # a sum of three distances stays exact
         if got is not None:
             scale, scaled = got
-            out = ScaledArcs(tails=arrays.tails, heads=arrays.heads,
+            out = ScaledArcs(arrays=arrays,
                              weights=np.asarray(scaled, dtype=np.float64)[arrays.codes],
-                             scale=scale, distances={})
+                             scale=scale, by_head=np.argsort(arrays.heads, kind="stable"),
+                             distances={})
             shared = goal_distance_fields(instance)
             if shared is not None and shared[0] == scale:  # d(., goal): the reader's fields
                 for goal, row in shared[1].items():
@@ -107,13 +111,12 @@ def scaled_distances(arcs: ScaledArcs, n: int, source: int, *, reverse: bool,
         import scipy.sparse as sp
         from scipy.sparse.csgraph import dijkstra as sp_dijkstra
 
+        tails, heads = arcs.arrays.tails, arcs.arrays.heads
         if reverse:  # the arcs sorted by head (once per instance): CSR rows without a sort
-            order = _REVERSE_ORDER.get(arcs)
-            if order is None:
-                order = _REVERSE_ORDER[arcs] = np.argsort(arcs.heads, kind="stable")
-            rows, cols, w = arcs.heads[order], arcs.tails[order], arcs.weights[order]
+            order = arcs.by_head
+            rows, cols, w = heads[order], tails[order], arcs.weights[order]
         else:
-            rows, cols, w = arcs.tails, arcs.heads, arcs.weights
+            rows, cols, w = tails, heads, arcs.weights
         drop = [v for v in blocked if v != source]
         if drop:
             keep = np.ones(n, dtype=bool)
@@ -126,9 +129,6 @@ def scaled_distances(arcs: ScaledArcs, n: int, source: int, *, reverse: bool,
         arcs.distances[key] = np.asarray(sp_dijkstra(m, directed=True, indices=source),
                                          dtype=np.float64)
     return arcs.distances[key]
-
-
-_REVERSE_ORDER: weakref.WeakKeyDictionary[ScaledArcs, np.ndarray] = weakref.WeakKeyDictionary()
 
 
 def _unscale(x: float, scale: int) -> Number:
@@ -161,30 +161,16 @@ def avoiding_distances(instance: Instance, source: int, *, reverse: bool,
     keep = [[] if (v in blocked and v != source) else list(adj[v]) for v in range(n)]
     if instance.exact:  # the total is too large for float64: exact Python integers
         return dijkstra(keep, source)
-    rows, cols, vals = _coo(keep, float)
-    return [float(x) for x in _scipy(n, rows, cols, vals, source)]
+    return [float(x) for x in _float_distances(n, ArcArrays.from_adjacency(keep), source)]
 
 
-def _coo(adj: list[list[tuple[int, Number]]], conv: object) -> tuple[list[int], list[int],
-                                                                      list[float]]:
-    rows: list[int] = []
-    cols: list[int] = []
-    vals: list[float] = []
-    f = conv  # a callable: Number -> float
-    for u, arcs in enumerate(adj):
-        for v, w in arcs:
-            rows.append(u)
-            cols.append(v)
-            vals.append(f(w))  # type: ignore[operator]
-    return rows, cols, vals
-
-
-def _scipy(n: int, rows: list[int], cols: list[int], vals: list[float],
-           source: int) -> np.ndarray:
+def _float_distances(n: int, arcs: ArcArrays, source: int) -> np.ndarray:
+    """Float-mode distances from ``source`` by scipy's Dijkstra."""
     import scipy.sparse as sp
     from scipy.sparse.csgraph import dijkstra as sp_dijkstra
 
-    m = sp.csr_matrix((np.asarray(vals, dtype=np.float64), (rows, cols)), shape=(n, n))
+    w = np.asarray([float(x) for x in arcs.weights()], dtype=np.float64)
+    m = sp.csr_matrix((w, (arcs.tails, arcs.heads)), shape=(n, n))
     return np.asarray(sp_dijkstra(m, directed=True, indices=source), dtype=np.float64)
 
 

@@ -77,7 +77,8 @@ def test_DP_value_of_the_HORIZON_example_by_hand_and_by_the_tree() -> None:
 
 def test_DP5_dijkstra_fixpoint_and_its_steps_by_hand() -> None:
     """DP.5 on the HORIZON example: the fixpoint, the steps h and K, and the stop at K + 1."""
-    from dppverify.twogoal.value_dp import fixpoint_fields, value_fields
+    from dppverify.twogoal.value_dp import value_fields
+    from dppverify.twogoal.value_fixpoint import fixpoint_fields
 
     inst = instance_from_json(EXAMPLE)
     r = inst.roles()

@@ -12,9 +12,9 @@ from fractions import Fraction
 
 import sympy as sp
 
+from dppverify.game.examples import hub4
+from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.agreement import compare_routes
-from dppverify.ngoal.examples import hub4
-from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
@@ -31,7 +31,7 @@ def _cases(seed: int, goals: int, count: int) -> list[dict[str, object]]:
         if doc is None:
             continue
         try:
-            ninstance_from_json(doc)
+            instance_from_json(doc)
         except ValueError:
             continue
         out.append(doc)
@@ -41,7 +41,7 @@ def _cases(seed: int, goals: int, count: int) -> list[dict[str, object]]:
 def test_NG2_the_dp_is_never_below_the_exact_lower_bound_and_NG4_holds_here() -> None:
     for goals in (3, 4):
         for doc in _cases(7, goals, 4):
-            inst = ninstance_from_json(doc)
+            inst = instance_from_json(doc)
             h = inst.hops[inst.start] + 1
             if count_nprefixes(inst, h) > 1500:
                 h -= 1
@@ -52,7 +52,7 @@ def test_NG2_the_dp_is_never_below_the_exact_lower_bound_and_NG4_holds_here() ->
 
 def test_NG3_two_goal_root_cover_is_dp1() -> None:
     for doc in _cases(3, 2, 8):
-        inst = ninstance_from_json(doc)
+        inst = instance_from_json(doc)
         h = inst.hops[inst.start] + 2
         v = coalition_value(inst, h)
         d1, d2, m = (v.coalition_costs[k] for k in (1, 2, 3))

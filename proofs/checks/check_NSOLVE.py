@@ -14,7 +14,7 @@ from fractions import Fraction
 import numpy as np
 import sympy as sp
 
-from dppverify.ngoal.instance import NInstance, ninstance_from_json
+from dppverify.game.instance import Instance, instance_from_json
 from dppverify.structured.arc_condition import bad_rays
 from dppverify.structured.coalition import CoalitionRunner
 from dppverify.structured.cover import balanced_vertices, members, min_cover
@@ -147,7 +147,7 @@ def test_NSOLVE2_where_the_arc_condition_fails_the_direction_test_says_so() -> N
     assert not _ray_test(mv, mu, Fraction(1), 4)
 
 
-def _instance(rng: random.Random, n_goals: int) -> NInstance | None:
+def _instance(rng: random.Random, n_goals: int) -> Instance | None:
     n = rng.randint(n_goals + 1, n_goals + 4)
     edges = {(u, v) for u in range(n) for v in range(n) if u != v and rng.random() < 0.35}
     doc = {"graph": {"directed": True, "nodes": [{"id": v} for v in range(n)],
@@ -157,7 +157,7 @@ def _instance(rng: random.Random, n_goals: int) -> NInstance | None:
            "start": n - 1, "goals": list(range(n_goals)),
            "prior": [str(Fraction(1, n_goals))] * n_goals}
     try:
-        return ninstance_from_json(doc)
+        return instance_from_json(doc)
     except ValueError:
         return None
 

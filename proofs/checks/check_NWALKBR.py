@@ -10,10 +10,10 @@ from fractions import Fraction
 
 import sympy as sp
 
+from dppverify.game.instance import Instance, instance_from_json
 from dppverify.ngoal.best_response import attacker_best_response, defender_from_table
-from dppverify.ngoal.instance import NInstance, ninstance_from_json
 from dppverify.ngoal.tree import build_ntree, count_nprefixes
-from dppverify.ngoal.walk_br import table_defender, walk_best_response
+from dppverify.structured.table_br import table_defender, walk_best_response
 from proofs.checks._sym import is_nonneg, is_zero, nonneg
 
 DISTRIBUTIONS = [(Fraction(1), Fraction(0), Fraction(0)), (Fraction(0), Fraction(1), Fraction(0)),
@@ -22,7 +22,7 @@ DISTRIBUTIONS = [(Fraction(1), Fraction(0), Fraction(0)), (Fraction(0), Fraction
                  (Fraction(0), Fraction(2, 3), Fraction(1, 3))]
 
 
-def _instance(rng: random.Random) -> NInstance | None:
+def _instance(rng: random.Random) -> Instance | None:
     n = rng.randint(4, 6)
     edges = {(u, v) for u in range(n) for v in range(u + 1, n) if rng.random() < 0.5}
     doc = {"graph": {"directed": False, "nodes": [{"id": v} for v in range(n)],
@@ -31,12 +31,12 @@ def _instance(rng: random.Random) -> NInstance | None:
                                for u, v in sorted(edges)]},
            "start": n - 1, "goals": [0, 1, 2], "prior": ["1/2", "1/3", "1/6"]}
     try:
-        return ninstance_from_json(doc)
+        return instance_from_json(doc)
     except ValueError:
         return None
 
 
-def _random_walk(inst: NInstance, rng: random.Random, steps: int) -> tuple[int, ...]:
+def _random_walk(inst: Instance, rng: random.Random, steps: int) -> tuple[int, ...]:
     w = [inst.start]
     while len(w) <= steps and not inst.is_goal(w[-1]):
         live = [u for u, _ in inst.succ[w[-1]] if inst.is_goal(u) or inst.hops[u] >= 0]

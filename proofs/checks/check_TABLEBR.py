@@ -12,7 +12,7 @@ from dppverify.game.defender import sigma_along
 from dppverify.game.examples import kite
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile import ProgressRule, TableRule
-from dppverify.structured.table_br import table_minima
+from dppverify.structured.table_br_twogoal import table_minima
 from proofs.checks._sym import is_nonneg, nonneg
 
 

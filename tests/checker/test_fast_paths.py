@@ -112,15 +112,15 @@ def test_sparse_dp_steps_in_python_integers(monkeypatch: pytest.MonkeyPatch) -> 
 
 def _exact_walk_br(inst: Instance) -> tuple[Any, ...]:
     """walk_br's results with the scaled arrays switched off (the exact Python Dijkstra)."""
-    saved = walk_br._ARCS.get(inst, "absent")
+    had, saved = inst in walk_br._ARCS, walk_br._ARCS.get(inst)
     walk_br._ARCS[inst] = None
     try:
         return _walk_br(inst)
     finally:
-        if saved == "absent":
-            del walk_br._ARCS[inst]
+        if had:
+            walk_br._ARCS[inst] = saved
         else:
-            walk_br._ARCS[inst] = saved  # type: ignore[assignment]
+            del walk_br._ARCS[inst]
 
 
 def _walk_br(inst: Instance) -> tuple[Any, ...]:

@@ -18,15 +18,14 @@ from dppverify.formats.json_reading import (
     read_json_file,
     resolve_walk,
 )
-from dppverify.game.examples import triangle
-from dppverify.game.profile import load_profile_document
-from dppverify.ngoal.examples import star3
-from dppverify.ngoal.instance import read_instance_document
-from dppverify.ngoal.profile import load_nprofile_document
+from dppverify.game.examples import star3, triangle
+from dppverify.game.instance import read_instance_document
+from dppverify.game.profile import load_nprofile_document, load_profile_document
 
 ROOT = Path(__file__).resolve().parents[2]
-PARSERS = ("dppverify/game/instance.py", "dppverify/game/profile.py", "dppverify/ngoal/instance.py",
-           "dppverify/ngoal/profile.py")
+PARSERS = ("dppverify/game/instance.py", "dppverify/game/profile.py",
+           "dppverify/game/instance_reading.py", "dppverify/game/graph_reading.py",
+           "dppverify/game/profile_types.py")
 PRIMITIVES = {"parse_json", "parse_number", "node_from_json", "show_node", "lookup_node",
               "resolve_walk", "read_json_file", "parse_json_text", "read_input"}
 

@@ -8,9 +8,9 @@ from __future__ import annotations
 import tracemalloc
 from fractions import Fraction
 
-from dppverify.checks.structured import build_trie
 from dppverify.game.instance import instance_from_json
-from dppverify.game.profile import StrategyPath
+from dppverify.game.profile import StrategyWalk
+from dppverify.structured.trie import mass_trie
 from dppverify.tree_route.tree import count_prefixes
 
 
@@ -20,8 +20,8 @@ def test_the_trie_of_a_60000_step_walk_is_linear() -> None:
     other = (0, 1, 2, 3, 99_999)
     tracemalloc.start()
     try:
-        trie = build_trie([StrategyPath(walk, Fraction(1, 2)), StrategyPath(other, Fraction(1, 2))],
-                          [StrategyPath(walk[:10], Fraction(1))])
+        trie = mass_trie([[StrategyWalk(walk, Fraction(1, 2)), StrategyWalk(other, Fraction(1, 2))],
+                          [StrategyWalk(walk[:10], Fraction(1))]])
         peak = tracemalloc.get_traced_memory()[1]
     finally:
         tracemalloc.stop()

@@ -11,7 +11,6 @@ from hypothesis import given
 
 import dppverify.tree_route.lp_exact as lp_exact
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.tree import build_ntree, count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.strategies import instances, ngoal_instances, weighted_graphs
@@ -33,7 +32,7 @@ HUB = {"graph": {"directed": False,
 
 
 def test_the_exact_lp_closes_a_bracket_that_rounding_leaves_open() -> None:
-    inst = ninstance_from_json(HUB)
+    inst = instance_from_json(HUB)
     v = ngame_value(inst, 3)
     assert v.prefixes == 26
     b = v.bracket
@@ -46,14 +45,14 @@ def test_the_exact_lp_closes_a_bracket_that_rounding_leaves_open() -> None:
 
 def test_an_open_bracket_says_why(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(lp_exact, "MAX_EXACT_ROWS", 10)
-    b = ngame_value(ninstance_from_json(HUB), 3).bracket
+    b = ngame_value(instance_from_json(HUB), 3).bracket
     assert not b.closed and b.reason is not None and "constraint rows" in b.reason
 
 
 @given(instances(graphs=weighted_graphs(max_nodes=6, weights="fractions", max_weight=5)))
 def test_two_goal_brackets_close_at_the_dp_value(doc: dict[str, Any]) -> None:
     inst = instance_from_json(doc)
-    ninst = ninstance_from_json(doc)
+    ninst = instance_from_json(doc)
     first = ninst.hops[ninst.start]
     for h in range(first, first + 3):
         if count_nprefixes(ninst, h) > 1500:
@@ -66,7 +65,7 @@ def test_two_goal_brackets_close_at_the_dp_value(doc: dict[str, Any]) -> None:
 @given(ngoal_instances(min_goals=3, max_goals=4,
                        graphs=weighted_graphs(min_nodes=4, max_nodes=6, max_weight=4)))
 def test_n_goal_brackets_close(doc: dict[str, Any]) -> None:
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     first = inst.hops[inst.start]
     for h in range(first, first + 3):
         if count_nprefixes(inst, h) > 1500:

@@ -16,16 +16,13 @@ import numpy as np
 import pytest
 
 from dppverify.checks.structured import (
-    HALF,
-    Trie,
     _belief_consistency,
     _beliefs,
     _defender_payoffs,
     _sequential,
     _sigma_on_trie,
-    _telescoping,
-    build_trie,
 )
+from dppverify.checks.structured_twogoal import HALF, telescoping_check
 from dppverify.formats.json_reading import _resolve_walk_fast, resolve_walk
 from dppverify.game.defender import sigma_along, step_weight, step_weights
 from dppverify.game.distances import (
@@ -37,11 +34,12 @@ from dppverify.game.distances import (
 )
 from dppverify.game.evaluation import walk_cost
 from dppverify.game.instance import Instance, instance_from_json
-from dppverify.game.profile import ProgressRule, StrategyPath, TableRule
+from dppverify.game.profile import ProgressRule, StrategyWalk, TableRule
+from dppverify.structured.trie import WalkTrie, mass_trie
 
 
 # ------------------------------------------------------------------ the replaced code, verbatim
-def old_defender_payoffs(instance: Instance, roles: Any, trie: Trie,
+def old_defender_payoffs(instance: Instance, roles: Any, trie: WalkTrie,
                          sigma: dict[tuple[int, ...], Any]) -> tuple[Any, Any]:
     best: Any = 0
     at_sigma: Any = 0
@@ -64,7 +62,7 @@ def old_defender_payoffs(instance: Instance, roles: Any, trie: Trie,
     return mode.convert(best), mode.convert(at_sigma)
 
 
-def old_beliefs(roles: Any, trie: Trie) -> dict[tuple[int, ...], Fraction]:
+def old_beliefs(roles: Any, trie: WalkTrie) -> dict[tuple[int, ...], Fraction]:
     out = {}
     for p, (x1, x2) in trie.mass.items():
         y1, y2 = roles.b1 * x1, roles.b2 * x2
@@ -73,7 +71,7 @@ def old_beliefs(roles: Any, trie: Trie) -> dict[tuple[int, ...], Fraction]:
     return out
 
 
-def old_bayes_problems(roles: Any, trie: Trie, beliefs: dict[tuple[int, ...], Fraction]
+def old_bayes_problems(roles: Any, trie: WalkTrie, beliefs: dict[tuple[int, ...], Fraction]
                        ) -> list[tuple[tuple[int, ...], Fraction]]:
     out = []
     for p, b in beliefs.items():
@@ -90,7 +88,7 @@ def old_bayes_problems(roles: Any, trie: Trie, beliefs: dict[tuple[int, ...], Fr
     return out
 
 
-def old_sequential_bad(trie: Trie, sigma: dict[tuple[int, ...], Any],
+def old_sequential_bad(trie: WalkTrie, sigma: dict[tuple[int, ...], Any],
                        beliefs: dict[tuple[int, ...], Fraction], mode: Any) -> int:
     bad = 0
     for p, b in beliefs.items():
@@ -102,7 +100,7 @@ def old_sequential_bad(trie: Trie, sigma: dict[tuple[int, ...], Any],
     return bad
 
 
-def old_telescoping_bad(instance: Instance, roles: Any, trie: Trie, mode: Any) -> int:
+def old_telescoping_bad(instance: Instance, roles: Any, trie: WalkTrie, mode: Any) -> int:
     c_of = roles.d1
     bad = 0
     done: set[tuple[int, ...]] = set()
@@ -172,7 +170,7 @@ def random_walk(rng: random.Random, inst: Instance) -> tuple[int, ...] | None:
     return tuple(walk) if inst.is_goal(walk[-1]) else None
 
 
-def mixed(rng: random.Random, inst: Instance) -> list[StrategyPath]:
+def mixed(rng: random.Random, inst: Instance) -> list[StrategyWalk]:
     walks = []
     while len(walks) < rng.randint(1, 4):
         w = random_walk(rng, inst)
@@ -181,10 +179,10 @@ def mixed(rng: random.Random, inst: Instance) -> list[StrategyPath]:
     raw = [rng.randint(0, 5) for _ in walks]
     if sum(raw) == 0:
         raw[0] = 1
-    return [StrategyPath(w, Fraction(r, sum(raw))) for w, r in zip(walks, raw, strict=True)]
+    return [StrategyWalk(w, Fraction(r, sum(raw))) for w, r in zip(walks, raw, strict=True)]
 
 
-def rule_for(rng: random.Random, inst: Instance, trie: Trie) -> Any:
+def rule_for(rng: random.Random, inst: Instance, trie: WalkTrie) -> Any:
     roles = inst.roles()
     kind = rng.randrange(3)
     if kind == 0:
@@ -209,7 +207,7 @@ def test_structured_arithmetic_equals_the_per_step_code(seed: int, numbers: str,
         return
     roles = inst.roles()
     primary, secondary = mixed(rng, inst), mixed(rng, inst)
-    trie = build_trie(primary, secondary)
+    trie = mass_trie([primary, secondary])
     rule = rule_for(rng, inst, trie)
     sigma = _sigma_on_trie(inst, roles, rule, trie)  # by prefix id; the old code by tuple
     sig_t = {trie.walk(i): sigma[i] for i in range(trie.size) if trie.parent[i] >= 0}
@@ -231,7 +229,7 @@ def test_structured_arithmetic_equals_the_per_step_code(seed: int, numbers: str,
         assert rec.message.count("Bayes' rule gives") == min(3, len(want))
         seq = _sequential(inst, trie, sigma, bel, inst.numbers)
         assert seq.numbers["violations"] == old_sequential_bad(trie, sig_t, bel_t, inst.numbers)
-    tel = _telescoping(inst, roles, trie, inst.numbers)
+    tel = telescoping_check(inst, roles, trie, inst.numbers)
     assert tel.numbers["violations"] == old_telescoping_bad(inst, roles, trie, inst.numbers)
     for mw in (*primary, *secondary):
         assert step_weights(inst, mw.walk) == [step_weight(inst, mw.walk, t)
@@ -300,7 +298,7 @@ def test_uniform_hops_equal_the_breadth_first_hops(seed: int) -> None:
 @pytest.mark.parametrize("seed", range(60))
 def test_pruned_seeds_give_the_same_fixpoint_fields(seed: int) -> None:
     """The value DP's third Dijkstra with dominated seeds dropped: the same fields, steps."""
-    from dppverify.twogoal.value_dp import _fixpoint
+    from dppverify.twogoal.value_fixpoint import _fixpoint
 
     rng = random.Random(seed)
     inst = random_game(rng, grid=seed % 3 == 0)
@@ -317,7 +315,7 @@ def test_pruned_seeds_give_the_same_fixpoint_fields(seed: int) -> None:
 def test_sigma_memo_returns_fresh_equal_lists(seed: int) -> None:
     """σ along a walk is remembered per instance: equal to a fresh computation, and a
     caller changing the list it got does not change what the next caller gets."""
-    from dppverify.game.defender import _progress_sigma
+    from dppverify.twogoal.progress import _progress_sigma
 
     rng = random.Random(seed)
     inst = random_game(rng, grid=seed % 2 == 0)

@@ -24,13 +24,18 @@ from dppverify import certify
 from dppverify.certificate import Certificate
 from dppverify.cli import certify_command, value_command
 from dppverify.errors import HorizonError, UndecidedError
-from dppverify.game.examples import kite, kite_document, kite_naive_profile
+from dppverify.game.examples import (
+    kite,
+    kite_document,
+    kite_naive_profile,
+    star3_document,
+    star3_profile,
+)
 from dppverify.game.instance import instance_from_json
 from dppverify.game.profile import ProgressRule, TableRule
 from dppverify.ngoal.certify import certify_ngoal
-from dppverify.ngoal.examples import star3_document, star3_profile
 from dppverify.strategies import instances, weighted_graphs
-from dppverify.structured.table_br import table_minima
+from dppverify.structured.table_br_twogoal import table_minima
 from dppverify.twogoal.progress_br import walk_minima
 from tests.checker._helpers import make_doc
 
@@ -333,7 +338,7 @@ def test_value_reads_the_same_whatever_the_route(horizon: Any, route: Any) -> No
 
 
 def test_ngoal_value_reads_the_bounds_whatever_the_route() -> None:
-    from dppverify.ngoal.examples import hub4_document
+    from dppverify.game.examples import hub4_document
 
     for h, route in (("inf", "auto"), (5, "tree"), (5, "structured")):
         r = dppverify.value(hub4_document(), h, route=route)

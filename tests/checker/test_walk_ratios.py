@@ -8,10 +8,11 @@ from typing import Any
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dppverify.game.defender import progress_along, sigma_along, step_weight
-from dppverify.game.instance import Instance, _read_game
+from dppverify.game.defender import sigma_along, step_weight
+from dppverify.game.instance import _read_game
 from dppverify.game.profile import ProgressRule
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
+from dppverify.twogoal.progress import progress_along
 
 docs = st.one_of(
     instances(graphs=weighted_graphs(max_nodes=7, max_weight=4)),
@@ -23,7 +24,7 @@ docs = st.one_of(
 @settings(deadline=None, max_examples=100)
 @given(docs, st.data())
 def test_progress_sigma_equals_the_per_step_ratio(doc: dict[str, Any], data: Any) -> None:
-    inst = _read_game(doc, Instance, True)
+    inst = _read_game(doc, True)
     walk = [inst.start]
     for _ in range(data.draw(st.integers(min_value=1, max_value=8))):
         arcs = inst.succ[walk[-1]]

@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from solver import Instance
-from solver.deceptive_paths import KINDS, deceptive_path, objective
-from solver.pairs import PairEvaluator
+from solver.literature.deceptive_paths import KINDS, deceptive_path, objective
+from solver.strategy_pairs import PairEvaluator
 from tests.experiments._graphs import literal_belief, random_instance
 
 EPS = mpmath.mpf(10) ** -35

@@ -9,9 +9,9 @@ import mpmath
 import networkx as nx
 import pytest
 
-from solver.alt_defender import DraganDefender
-from solver.dragan import ln_at_least
-from solver.pairs import PairEvaluator
+from solver.literature.dragan_belief import ln_at_least
+from solver.literature.greedy_defender import DraganDefender
+from solver.strategy_pairs import PairEvaluator
 from tests.experiments._graphs import literal_belief, random_instance
 
 

@@ -13,10 +13,10 @@ import numpy as np
 import pytest
 
 from dppverify.errors import InvalidInstanceError
-from dppverify.formats.movingai import GridMap, grid_document, grid_game, parse_map, read_map
+from dppverify.formats.movingai import GridMap, grid_document, parse_map, read_map
 from dppverify.formats.standard_maps import standard_map_path
-from dppverify.game.instance import GameInstance, arc_arrays, instance_from_json, read_game
-from dppverify.ngoal.instance import NInstance
+from dppverify.game.grids import grid_game
+from dppverify.game.instance import Instance, arc_arrays, instance_from_json
 from tests.maps._maps import PAPER10, STANDARD, corner_cells
 
 
@@ -24,7 +24,7 @@ def _blocked(grid: GridMap) -> np.ndarray:
     return np.array([[ch not in ".GS" for ch in row] for row in grid.rows], dtype=bool)
 
 
-def _same(a: GameInstance, b: GameInstance) -> None:
+def _same(a: Instance, b: Instance) -> None:
     for field in ("nodes", "directed", "succ", "pred", "start", "goals", "prior", "exact",
                   "dist_to", "hops"):
         assert getattr(a, field) == getattr(b, field), field
@@ -67,8 +67,8 @@ def test_same_n_goal_instance() -> None:
     goals = (g1, g2, (r, grid.width - 1 - c))
     assert len(set(goals)) == 3
     prior = ("1/2", "1/3", "1/6")
-    _same(grid_game(grid, start, goals, prior, cls=NInstance, two_goals=False),
-          read_game(grid_document(grid, start, goals, prior), NInstance, two_goals=False))
+    _same(grid_game(grid, start, goals, prior, two_goals=False),
+          instance_from_json(grid_document(grid, start, goals, prior), two_goals=False))
 
 
 @pytest.mark.parametrize(("text", "start", "goals", "prior"), [

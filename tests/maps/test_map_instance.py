@@ -20,9 +20,7 @@ from dppverify.errors import InvalidInstanceError
 from dppverify.formats.map_instance import MAP_INSTANCE_FORMAT
 from dppverify.formats.movingai import grid_document, parse_map
 from dppverify.game.instance import instance_from_json as checker_from_json
-from dppverify.game.instance import load_game
 from dppverify.game.instance import load_instance as checker_load
-from dppverify.ngoal.instance import NInstance
 from solver.cli import main
 from solver.errors import DPPError
 from solver.instance_json import instance_to_json
@@ -124,11 +122,11 @@ def test_n_goals_for_the_checker_and_a_refusal_by_the_solver(
     _, inst, _ = game
     doc = {**_doc(inst), "goals": [[0, 3], [0, 0], [2, 3]], "prior": ["1/2", "1/3", "1/6"]}
     inst.write_text(json.dumps(doc))
-    n = load_game(inst, NInstance, two_goals=False)
+    n = checker_load(inst)
     assert len(n.goals) == 3 and n.prior[2] == Fraction(1, 6)
     code, out, _ = _run("value", str(inst), "--horizon", "inf")
     assert code == 0 and "N = 3 goals" in out
     with pytest.raises(DPPError, match="lists 3 goals"):
         solver_load(inst)
     with pytest.raises(InvalidInstanceError, match="two-goal checker reads exactly two"):
-        checker_load(inst)
+        checker_load(inst, two_goals=True)

@@ -18,6 +18,7 @@ import pytest
 
 from dppverify.errors import InvalidInstanceError as CheckerInvalid
 from dppverify.formats import movingai as checker_maps
+from dppverify.game import grids as checker_grids
 from dppverify.game.instance import instance_from_json
 from solver import movingai as solver_maps
 from solver.errors import InvalidInstanceError as SolverInvalid
@@ -89,7 +90,7 @@ def test_same_checker_instance(name: str, connectivity: int) -> None:
 
 def test_paper_map_instance() -> None:
     """The bundled map against networkx's grid graph and BFS distances."""
-    inst = checker_maps.map_instance(PAPER10, (9, 0), ((0, 9), (0, 0)), ("0.6", "0.4"))
+    inst = checker_grids.map_instance(PAPER10, (9, 0), ((0, 9), (0, 0)), ("0.6", "0.4"))
     blocked = solver_maps.read_map(PAPER10)
     g = nx.grid_2d_graph(*blocked.shape)
     g.remove_nodes_from(map(tuple, np.argwhere(blocked).tolist()))
@@ -108,7 +109,7 @@ def test_paper_map_instance() -> None:
 def test_bad_start_cell_is_named_by_both_builders(cell: tuple[int, int],
                                                    words: list[str]) -> None:
     with pytest.raises(CheckerInvalid) as checker_err:
-        checker_maps.map_instance(PAPER10, cell, ((0, 9), (0, 0)), ("0.6", "0.4"))
+        checker_grids.map_instance(PAPER10, cell, ((0, 9), (0, 0)), ("0.6", "0.4"))
     with pytest.raises(SolverInvalid) as solver_err:
         Instance.from_grid(solver_maps.read_map(PAPER10), cell, ((0, 9), (0, 0)), ("3/5", "2/5"))
     for message in (str(checker_err.value), str(solver_err.value)):
@@ -118,9 +119,9 @@ def test_bad_start_cell_is_named_by_both_builders(cell: tuple[int, int],
 
 def test_bad_goal_cell_is_named() -> None:
     with pytest.raises(CheckerInvalid, match=r"goal cell \(10, 9\) is outside"):
-        checker_maps.map_instance(PAPER10, (9, 0), ((10, 9), (0, 0)), ("0.6", "0.4"))
+        checker_grids.map_instance(PAPER10, (9, 0), ((10, 9), (0, 0)), ("0.6", "0.4"))
     with pytest.raises(CheckerInvalid, match=r"goal cell \(5, 0\) is an obstacle"):
-        checker_maps.map_instance(PAPER10, (9, 0), ((0, 9), (5, 0)), ("0.6", "0.4"))
+        checker_grids.map_instance(PAPER10, (9, 0), ((0, 9), (5, 0)), ("0.6", "0.4"))
     with pytest.raises(SolverInvalid, match=r"goal cell \(5, 0\) is an obstacle"):
         Instance.from_grid(solver_maps.read_map(PAPER10), (9, 0), ((0, 9), (5, 0)), ("3/5", "2/5"))
 

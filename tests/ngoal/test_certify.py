@@ -8,9 +8,9 @@ from typing import Any
 import pytest
 
 from dppverify.errors import HorizonError, ProfileError
+from dppverify.game.examples import star3_document, star3_profile
+from dppverify.game.profile import load_nprofile_document
 from dppverify.ngoal.certify import NGOAL_CHECK_IDS, certify_ngoal
-from dppverify.ngoal.examples import star3_document, star3_profile
-from dppverify.ngoal.profile import load_nprofile_document
 
 
 def _failed(profile: dict[str, Any], **kw: Any) -> set[str]:

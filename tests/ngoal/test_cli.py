@@ -9,7 +9,7 @@ from pathlib import Path
 
 from dppverify.certificate import Certificate
 from dppverify.cli import certify_command, value_command
-from dppverify.ngoal.examples import star3_document, star3_profile
+from dppverify.game.examples import star3_document, star3_profile
 from tests.checker._helpers import run_cli, write_doc
 
 
@@ -69,7 +69,7 @@ def test_python_m_dppverify_dispatches_too(tmp_path: Path) -> None:
 
 def test_the_four_goal_counterexample_is_never_given_the_coalition_bound(tmp_path: Path) -> None:
     """proofs/NGOAL.md: the coalition DP (25/14) is only an upper bound; the value is 12/7."""
-    from dppverify.ngoal.examples import hub4_document
+    from dppverify.game.examples import hub4_document
     for directed in (True, False):
         i = write_doc(tmp_path, f"hub{directed}.json", hub4_document(directed=directed))
         for args in (["-H", "inf"], ["-H", "5", "--route", "structured"], ["-H", "5"],

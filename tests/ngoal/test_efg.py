@@ -1,4 +1,4 @@
-"""The .efg export of N-goal games (dppverify.tree_route.efg with an NInstance), re-checked
+"""The .efg export of N-goal games (dppverify.tree_route.efg with an Instance), re-checked
 independently.
 
 The exported text is parsed back with the independent reader of ``tests/checker/test_efg.py``
@@ -26,9 +26,8 @@ from click.testing import CliRunner
 
 from dppverify.cli import export_efg_command
 from dppverify.errors import HorizonError, TreeTooLargeError
+from dppverify.game.examples import star3_document
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.examples import star3_document
-from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.tree import build_ntree
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
@@ -86,7 +85,7 @@ VARIANT_IDS = ["observes", "blind", "observes-forced", "blind-forced"]
 
 def _export(doc: dict[str, Any], horizon: int, observes: bool = True, forced: bool = False
             ) -> Any:
-    return parse(to_efg(ninstance_from_json(doc), horizon, attacker_observes=observes,
+    return parse(to_efg(instance_from_json(doc), horizon, attacker_observes=observes,
                         forced_moves=forced))
 
 
@@ -140,7 +139,7 @@ def test_two_goals_read_as_n_goals_export_the_same_bytes(name: str, observes: bo
     doc = _DOCS[name]
     h = {"triangle": 3, "kite": 3, "ladder": 2, "thirds": 3, "fractional": 4, "grid": 4}[name]
     two = to_efg(instance_from_json(doc), h, attacker_observes=observes, forced_moves=forced)
-    n = to_efg(ninstance_from_json(doc), h, attacker_observes=observes, forced_moves=forced)
+    n = to_efg(instance_from_json(doc), h, attacker_observes=observes, forced_moves=forced)
     assert n == two
 
 
@@ -155,7 +154,7 @@ def test_node_and_infoset_counts_are_n_to_the_t(name: str, doc: dict[str, Any], 
                                                 observes: bool, forced: bool) -> None:
     n = len(doc["goals"])
     game = _export(doc, horizon, observes, forced)
-    tree = build_ntree(ninstance_from_json(doc), horizon)
+    tree = build_ntree(instance_from_json(doc), horizon)
     depth = [int(t) for t in tree.depth]
     kids = [len(tree.children(p)) for p in range(tree.n_prefixes)]
     choice = [p for p in range(tree.n_prefixes) if kids[p] >= (1 if forced else 2)]
@@ -250,7 +249,7 @@ def test_chance_node_and_action_order(name: str, doc: dict[str, Any], horizon: i
 @pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
 def test_sequence_form_lp_of_the_export_gives_the_tree_value_and_the_dp(
         name: str, doc: dict[str, Any], horizon: int, observes: bool, forced: bool) -> None:
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     exact = ngame_value(inst, horizon).bracket.exact
     assert exact is not None
     assert coalition_value(inst, horizon).value == exact
@@ -270,7 +269,7 @@ def test_ten_goals_or_more_separate_the_history_digits() -> None:
     goals = [f"g{i}" for i in range(1, 12)]
     doc = make_doc([("s", "a", 1), ("a", "b", 1), *[("b", g, 1) for g in goals]], "s", goals,
                    ["1/11"] * 11)
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     text = to_efg(inst, 3)
     assert '"D p3 h1.11"' in text and '"D p3 h11.1"' in text
     game = parse(text)
@@ -284,7 +283,7 @@ def test_ten_goals_or_more_separate_the_history_digits() -> None:
 
 
 def test_size_guards_and_horizon_errors(tmp_path: Path) -> None:
-    inst = ninstance_from_json(GRID3)
+    inst = instance_from_json(GRID3)
     nodes = efg_size(build_ntree(inst, 3)).nodes
     assert to_efg(inst, 3, max_nodes=nodes)
     with pytest.raises(TreeTooLargeError, match="--max-nodes"):
@@ -307,7 +306,7 @@ def test_size_is_exact_beyond_64_bits() -> None:
     assert size.nodes > 2 ** 80
     with pytest.raises(TreeTooLargeError, match="--max-nodes"):
         tree_to_efg(build_tree(two, 81))
-    three = ninstance_from_json(make_doc([*edges, (80, "g3", 1)], 0, ["g1", "g2", "g3"],
+    three = instance_from_json(make_doc([*edges, (80, "g3", 1)], 0, ["g1", "g2", "g3"],
                                          ["1/3", "1/3", "1/3"]))
     assert efg_size(build_ntree(three, 81)).defender_infosets > 3 ** 80
 
@@ -332,7 +331,7 @@ def test_cli_export_efg_n_goals(tmp_path: Path, flags: list[str]) -> None:
     out = tmp_path / "kite3.efg"
     r = _run([str(path), "-H", "2", "-o", str(out), *flags])
     assert r.exit_code == 0, r.output
-    inst = ninstance_from_json(KITE3)
+    inst = instance_from_json(KITE3)
     assert out.read_text() == to_efg(inst, 2, attacker_observes="--attacker-blind" not in flags,
                                      forced_moves="--forced-moves" in flags)
     size = efg_size(build_ntree(inst, 2), attacker_observes="--attacker-blind" not in flags,

@@ -10,7 +10,7 @@ from click.testing import CliRunner
 
 from dppverify.cli import value_command
 from dppverify.errors import OptionError
-from dppverify.ngoal.instance import ninstance_from_json
+from dppverify.game.instance import instance_from_json
 from dppverify.structured.coalition import coalition_value
 
 
@@ -22,7 +22,7 @@ def _star(n: int) -> dict[str, object]:
 
 def test_coalition_dp_refuses_six_goals() -> None:
     with pytest.raises(OptionError, match="2 to 5 goals, not 6"):
-        coalition_value(ninstance_from_json(_star(6)), None)
+        coalition_value(instance_from_json(_star(6)), None)
 
 
 @pytest.mark.parametrize("args", [["--horizon", "inf"],

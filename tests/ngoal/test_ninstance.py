@@ -9,10 +9,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 
 from dppverify.errors import InvalidInstanceError
-from dppverify.game.examples import triangle_document
-from dppverify.game.instance import GameInstance, instance_from_json
-from dppverify.ngoal.examples import star3_document
-from dppverify.ngoal.instance import goal_count, load_ninstance, ninstance_from_json
+from dppverify.game.examples import star3_document, triangle_document
+from dppverify.game.instance import Instance, goal_count, instance_from_json, load_instance
 from dppverify.strategies import instances
 
 
@@ -35,7 +33,7 @@ def _doc(**changes: Any) -> dict[str, Any]:
 ])
 def test_invalid_documents_are_one_line_errors(changes: dict[str, Any], message: str) -> None:
     with pytest.raises(InvalidInstanceError) as info:
-        ninstance_from_json(_doc(**changes))
+        instance_from_json(_doc(**changes))
     assert message in str(info.value)
     assert "\n" not in str(info.value)
 
@@ -47,22 +45,22 @@ def test_goals_must_reach_each_other() -> None:
                              {"source": "m", "target": "b"}, {"source": "m", "target": "c"},
                              {"source": "a", "target": "m"}, {"source": "b", "target": "m"}]
     with pytest.raises(InvalidInstanceError, match="goal \"a\" is unreachable from goal \"c\""):
-        ninstance_from_json(doc)
+        instance_from_json(doc)
     doc["graph"]["edges"].append({"source": "c", "target": "m"})
-    assert ninstance_from_json(doc).dist_to[0][doc["graph"]["nodes"].index({"id": "c"})] == 2
+    assert instance_from_json(doc).dist_to[0][doc["graph"]["nodes"].index({"id": "c"})] == 2
 
 
 def test_two_goal_documents_read_the_same_by_both_parsers() -> None:
     doc = triangle_document()
     two = instance_from_json(doc)
-    n = ninstance_from_json(doc)
+    n = instance_from_json(doc)
     assert n.goals == two.goals and n.prior == two.prior and n.dist_to == two.dist_to
     assert n.succ == two.succ and n.hops == two.hops and n.start == two.start
 
 
 def test_the_two_goal_parser_refuses_more_goals_and_points_at_the_n_goal_checker() -> None:
     with pytest.raises(InvalidInstanceError) as info:
-        instance_from_json(star3_document())
+        instance_from_json(star3_document(), two_goals=True)
     text = str(info.value)
     assert "lists 3 goals" in text and "dppverify.ngoal" in text and "dpp value" in text
 
@@ -73,15 +71,15 @@ def test_goal_count_and_file_errors(tmp_path: Any) -> None:
     bad = tmp_path / "bad.json"
     bad.write_text("{", encoding="utf-8")
     with pytest.raises(InvalidInstanceError, match=r"bad\.json: malformed JSON at line 1"):
-        load_ninstance(bad)
+        load_instance(bad)
     good = tmp_path / "star.json"
     good.write_text('{"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}], "edges": ['
                     '{"source": 0, "target": 1}, {"source": 1, "target": 2}]}, "start": 0, '
                     '"goals": [0, 1, 2], "prior": [0.5, 0.25, 0.25]}', encoding="utf-8")
-    assert load_ninstance(good).hops == (0, 0, 0)
+    assert load_instance(good).hops == (0, 0, 0)
     with pytest.raises(InvalidInstanceError, match=r"star\.json: prior"):
         good.write_text(good.read_text().replace("0.25]", "0.2]"), encoding="utf-8")
-        load_ninstance(good)
+        load_instance(good)
 
 
 def test_the_two_goal_reader_refuses_n_goals_and_names_the_n_goal_commands() -> None:
@@ -97,9 +95,9 @@ def test_the_two_goal_reader_refuses_n_goals_and_names_the_n_goal_commands() -> 
 @given(instances())
 def test_both_parsers_agree_on_random_two_goal_documents(doc: dict[str, Any]) -> None:
     """One graph parser: a two-goal document gives the same game through either class."""
-    two, many = instance_from_json(doc), ninstance_from_json(doc)
+    two, many = instance_from_json(doc), instance_from_json(doc)
     for name in ("nodes", "directed", "succ", "pred", "start", "goals", "prior", "dist_to",
                  "hops", "exact"):
         assert getattr(two, name) == getattr(many, name), name
     assert dict(two.index) == dict(many.index)
-    assert isinstance(two, GameInstance) and isinstance(many, GameInstance)
+    assert isinstance(two, Instance) and isinstance(many, Instance)

@@ -19,10 +19,9 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from dppverify.errors import HorizonError
-from dppverify.game.instance import instance_from_json
+from dppverify.game.examples import star3, star3_document
+from dppverify.game.instance import Instance, instance_from_json
 from dppverify.ngoal.agreement import compare_routes
-from dppverify.ngoal.examples import star3, star3_document
-from dppverify.ngoal.instance import NInstance, ninstance_from_json
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.strategies import instances, ngoal_instances, weighted_graphs
@@ -34,7 +33,7 @@ MAX_PREFIXES = 2500
 DATA = Path(__file__).resolve().parents[1] / "data" / "ngoal_cases.json"
 
 
-def _horizons(inst: NInstance, extra: int) -> list[int]:
+def _horizons(inst: Instance, extra: int) -> list[int]:
     first = inst.hops[inst.start]
     return [h for h in range(first, first + extra + 1)
             if count_nprefixes(inst, h) <= MAX_PREFIXES]
@@ -55,7 +54,7 @@ def test_star3_by_hand() -> None:
 @given(ngoal_instances(min_goals=3, max_goals=5,
                        graphs=weighted_graphs(min_nodes=5, max_nodes=6, max_weight=4)))
 def test_structured_and_tree_routes_agree(doc: dict[str, Any]) -> None:
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     for h in _horizons(inst, 2):
         a = compare_routes(inst, h, max_prefixes=MAX_PREFIXES)
         assert a.agree, (json.dumps(doc), h, a)
@@ -69,7 +68,7 @@ def test_structured_and_tree_routes_agree(doc: dict[str, Any]) -> None:
 
 @given(instances(graphs=weighted_graphs(max_nodes=6, weights="fractions", max_weight=5)))
 def test_for_two_goals_the_dp_is_the_two_goal_value(doc: dict[str, Any]) -> None:
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     two = instance_from_json(doc)
     for h in _horizons(inst, 3):
         tree = game_value(two, h, max_prefixes=MAX_PREFIXES)
@@ -80,7 +79,7 @@ def test_for_two_goals_the_dp_is_the_two_goal_value(doc: dict[str, Any]) -> None
 def test_recorded_cases_agree() -> None:
     """Cases kept in tests/data/ngoal_cases.json (hand-made and from the evidence script)."""
     for case in json.loads(DATA.read_text(encoding="utf-8")):
-        inst = ninstance_from_json(case["instance"])
+        inst = instance_from_json(case["instance"])
         h = case["horizon"]
         assert nvalue(inst, h).value == Fraction(case["value"]), case["name"]
         if "coalition_dp" in case:
@@ -93,23 +92,23 @@ def test_recorded_cases_agree() -> None:
        st.permutations(range(4)))
 def test_value_is_homogeneous_and_symmetric(doc: dict[str, Any], factor: int,
                                            perm: list[int]) -> None:
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     h = inst.hops[inst.start] + 2
     base = coalition_value(inst, h).value
     scaled = copy.deepcopy(doc)
     for e in scaled["graph"]["edges"]:
         e["weight"] = str(Fraction(e.get("weight", 1)) * factor)
-    assert coalition_value(ninstance_from_json(scaled), h).value == factor * base
+    assert coalition_value(instance_from_json(scaled), h).value == factor * base
     order = [i for i in perm if i < len(doc["goals"])]
     permuted = {**doc, "goals": [doc["goals"][i] for i in order],
                 "prior": [doc["prior"][i] for i in order]}
-    assert coalition_value(ninstance_from_json(permuted), h).value == base
+    assert coalition_value(instance_from_json(permuted), h).value == base
 
 
 @given(ngoal_instances(min_goals=2, max_goals=5))
 def test_values_do_not_increase_with_h_and_reach_the_infinite_horizon(
         doc: dict[str, Any]) -> None:
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     inf = coalition_value(inst, None)
     values = coalition_values(inst, range(inf.layers + 2))
     seq = [values[h] for h in sorted(values)]
@@ -124,7 +123,7 @@ def test_every_arithmetic_path_is_exact(factor: int, path: str) -> None:
     doc = star3_document()
     for e in doc["graph"]["edges"]:
         e["weight"] = e["weight"] * factor
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     run = CoalitionRunner(inst)
     used = ("float64" if run.float_exact else "int64" if run.dtype == np.dtype(np.int64)
             else "object")

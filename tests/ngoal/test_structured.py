@@ -22,14 +22,14 @@ from hypothesis import strategies as st
 from dppverify.certificate import Certificate
 from dppverify.cli import certify_command
 from dppverify.errors import HorizonError, UndecidedError
+from dppverify.game.examples import star3_document, star3_profile
+from dppverify.game.instance import Instance, instance_from_json
+from dppverify.game.profile import nprofile_from_json
 from dppverify.ngoal.certify import certify_ngoal
-from dppverify.ngoal.examples import star3_document, star3_profile
-from dppverify.ngoal.instance import NInstance, ninstance_from_json
-from dppverify.ngoal.profile import nprofile_from_json
 from dppverify.ngoal.routes import ntree_fits
 from dppverify.ngoal.tree import count_nprefixes
-from dppverify.ngoal.walk_br import table_defender, walk_best_response
 from dppverify.strategies import ngoal_instances, weighted_graphs
+from dppverify.structured.table_br import table_defender, walk_best_response
 
 MAX_PREFIXES = 3000
 
@@ -214,7 +214,7 @@ def test_cli_routes(tmp_path: Path) -> None:
 def _cases(draw: st.DrawFn) -> tuple[dict[str, Any], dict[str, Any]]:
     doc = draw(ngoal_instances(min_goals=3, max_goals=3,
                                graphs=weighted_graphs(min_nodes=4, max_nodes=5, max_weight=3)))
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     ids = inst.nodes
 
     def walk() -> list[int]:
@@ -249,7 +249,7 @@ def _cases(draw: st.DrawFn) -> tuple[dict[str, Any], dict[str, Any]]:
 @given(_cases())
 def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, Any]]) -> None:
     doc, prof = case
-    inst: NInstance = ninstance_from_json(doc)
+    inst: Instance = instance_from_json(doc)
     p = nprofile_from_json(inst, prof)
     assert p.wellformed, p.defects
     walks = [mw.walk for mix in p.attacker for mw in mix]
@@ -291,6 +291,6 @@ def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, 
        st.integers(1, 200))
 def test_the_saturating_size_count_decides_like_the_exact_count(doc: dict[str, Any],
                                                                   limit: int) -> None:
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     for h in range(0, 9):
         assert ntree_fits(inst, h, limit) == (count_nprefixes(inst, h) <= limit), h

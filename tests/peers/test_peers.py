@@ -35,7 +35,6 @@ import pytest
 
 from dppverify import game_value
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
 from dppverify.tree_route.efg import to_efg
@@ -181,7 +180,7 @@ def test_forced_moves_are_harmless_for_openspiel(openspiel: Any) -> None:
 
 def _exact_nvalue(doc: dict[str, Any], horizon: int) -> Fraction:
     """The tree route's exact V_H, which the coalition DP must equal exactly."""
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     v = ngame_value(inst, horizon)
     assert v.bracket.closed and v.bracket.exact is not None
     assert coalition_value(inst, horizon).value == v.bracket.exact
@@ -201,7 +200,7 @@ def test_openspiel_sequence_form_lp_gives_the_n_goal_value(openspiel: Any, name:
                                                           doc: dict[str, Any], horizon: int,
                                                           observes: bool) -> None:
     exact = _exact_nvalue(doc, horizon)
-    text = to_efg(ninstance_from_json(doc), horizon, attacker_observes=observes)
+    text = to_efg(instance_from_json(doc), horizon, attacker_observes=observes)
     v0, v1, nash_conv = _openspiel_value(openspiel, text)
     assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
     assert abs(v1 - float(exact)) <= OPENSPIEL_TOLERANCE
@@ -214,7 +213,7 @@ def test_gambit_exact_lp_gives_exactly_the_n_goal_value(gambit: ModuleType, tmp_
                                                         name: str, doc: dict[str, Any],
                                                         horizon: int, observes: bool) -> None:
     exact = _exact_nvalue(doc, horizon)
-    text = to_efg(ninstance_from_json(doc), horizon, attacker_observes=observes)
+    text = to_efg(instance_from_json(doc), horizon, attacker_observes=observes)
     eq = _gambit_solve(gambit, text, tmp_path)
     defender, attacker = eq.payoffs["Defender"], eq.payoffs["Attacker"]
     assert isinstance(defender, Fraction)
@@ -227,7 +226,7 @@ def test_forced_moves_are_harmless_for_openspiel_on_n_goals(openspiel: Any, name
                                                             doc: dict[str, Any],
                                                             horizon: int) -> None:
     exact = _exact_nvalue(doc, horizon)
-    text = to_efg(ninstance_from_json(doc), horizon, forced_moves=True)
+    text = to_efg(instance_from_json(doc), horizon, forced_moves=True)
     v0, v1, _ = _openspiel_value(openspiel, text)
     assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
     assert abs(v1 - float(exact)) <= OPENSPIEL_TOLERANCE
@@ -238,6 +237,6 @@ def test_forced_moves_are_harmless_for_openspiel_on_n_goals(openspiel: Any, name
                    "21/2 here (drop3, H = 2: one forced walk)")
 def test_pitfall_gambit_one_action_infosets_n_goals(gambit: ModuleType, tmp_path: Path) -> None:
     exact = _exact_nvalue(DROP3, 2)
-    text = to_efg(ninstance_from_json(DROP3), 2, forced_moves=True)
+    text = to_efg(instance_from_json(DROP3), 2, forced_moves=True)
     eq = _gambit_solve(gambit, text, tmp_path)
     assert eq.payoffs["Defender"] == exact

@@ -26,8 +26,8 @@ from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.certify import certify_ngoal
-from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.strategies import ngoal_instances
 from dppverify.structured.coalition import CoalitionRunner
 from dppverify.structured.guarantee import dp_value, guarantee_sets
@@ -90,7 +90,7 @@ def test_the_tree_route_agrees_at_the_profiles_horizon(doc: dict[str, Any]) -> N
 @settings(max_examples=30, deadline=None)
 @given(doc=ngoal_instances(min_goals=2, max_goals=4))
 def test_the_solvers_dp_equals_the_checkers_at_every_node(doc: dict[str, Any]) -> None:
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     run = CoalitionRunner(inst)
     layer = run.layer0()
     k = 0
@@ -125,7 +125,7 @@ def _two_goal_doc(rng: random.Random) -> dict[str, Any]:
                          "edges": edges},
                "start": 0, "goals": [1, 2], "prior": [str(p), str(1 - p)]}
         try:
-            ninstance_from_json(doc)
+            instance_from_json(doc)
         except Exception:
             continue
         return doc
@@ -144,7 +144,7 @@ def test_for_two_goals_the_rule_is_sigma_star_on_every_walk(seed: int) -> None:
         g.add_edge(e["source"], e["target"], weight=Fraction(e["weight"]))
     two = solve(Instance(g, 0, (1, 2), tuple(Fraction(p) for p in doc["prior"])))
     assert two.U == eq.U
-    primary = two.instance.primary_slot
+    primary = two.instance.primary_index
     net = game.network
     sigma = ProgressDefender(two.instance.network, two.instance.network.index_of(1 if primary
                                                                                 == 0 else 2),

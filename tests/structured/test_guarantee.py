@@ -7,8 +7,8 @@ from fractions import Fraction
 
 import pytest
 
-from dppverify.ngoal.examples import hub4_document, star3_document
-from dppverify.ngoal.instance import ninstance_from_json
+from dppverify.game.examples import hub4_document, star3_document
+from dppverify.game.instance import instance_from_json
 from dppverify.structured.arc_condition import arc_condition
 from dppverify.structured.guarantee import guarantee_sets
 
@@ -21,7 +21,7 @@ def test_huge_weights_take_the_exact_branch_and_scale_the_sets(doc: dict) -> Non
     big = copy.deepcopy(doc)
     for edge in big["graph"]["edges"]:
         edge["weight"] = edge["weight"] * factor
-    small_inst, big_inst = ninstance_from_json(doc), ninstance_from_json(big)
+    small_inst, big_inst = instance_from_json(doc), instance_from_json(big)
     small, large = guarantee_sets(small_inst), guarantee_sets(big_inst)
     for mask in small.m:
         for v in range(small_inst.n_nodes):

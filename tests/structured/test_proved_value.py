@@ -1,6 +1,6 @@
 """The structured N-goal value (proofs/NGOAL.md NG.6-NG.9): exact where certified, else a bracket.
 
-The hub of :func:`dppverify.ngoal.examples.hub4` refutes "coalition DP = value" for N = 4; random
+The hub of :func:`dppverify.game.examples.hub4` refutes "coalition DP = value" for N = 4; random
 hub gadgets (a hub from which middle nodes reach two or three goals each) are where such gaps
 live, so they are compared with the tree route here.
 """
@@ -16,9 +16,9 @@ import pytest
 
 import dppverify.structured.proved_value as guarantee
 from dppverify.cli import value_command
+from dppverify.game.examples import hub4, hub4_document
+from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.certify import certify_ngoal
-from dppverify.ngoal.examples import hub4, hub4_document
-from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
@@ -55,7 +55,7 @@ def hub_gadget(rng: random.Random, n_goals: int) -> dict[str, Any]:
 
 def _compare(doc: dict[str, Any], extra: int) -> tuple[int, int]:
     """Both routes on ``doc`` at the first ``extra + 1`` horizons; (exact, gaps) counts."""
-    inst = ninstance_from_json(doc)
+    inst = instance_from_json(doc)
     exact = gaps = 0
     first = inst.hops[inst.start]
     for h in range(first, first + extra + 1):
@@ -165,7 +165,7 @@ def test_unrefined_brackets_hold_the_tree_value(monkeypatch: pytest.MonkeyPatch)
     docs = [hub4_document(), hub4_document(directed=False)]
     docs += [hub_gadget(rng, 4) for _ in range(12)]
     for doc in docs:
-        inst = ninstance_from_json(doc)
+        inst = instance_from_json(doc)
         h = inst.hops[inst.start] + 1
         v = nvalue(inst, h)
         b = ngame_value(inst, h, max_prefixes=3000).bracket
@@ -178,6 +178,6 @@ def test_unrefined_brackets_hold_the_tree_value(monkeypatch: pytest.MonkeyPatch)
 def test_the_simple_lower_bound_is_below_the_value() -> None:
     rng = random.Random(7)
     for _ in range(6):
-        inst = ninstance_from_json(hub_gadget(rng, 4))
+        inst = instance_from_json(hub_gadget(rng, 4))
         low, source = lower_bound_simple(inst)
         assert low <= nvalue(inst, None).upper and "NG.9" in source

@@ -1,0 +1,330 @@
+"""Files at the edges of both packages: bounded reading and all-or-nothing writing.
+
+Every file the ``dpp`` commands write goes through :func:`write_files` (the output policy of
+the README, "Exit codes, limits and output files"):
+
+- a missing folder on the way to a target is created, and removed again if the command
+  fails;
+- all files of one command are committed together or not at all: each is first written to
+  a temporary file next to its target, and only when every one is complete are they renamed
+  into place; on failure every temporary file (and every folder created) is removed;
+- files get the mode ``0666`` minus the umask, like any file a program creates;
+- a target that exists and is not a regular file (``/dev/null``, a FIFO, a device, or a
+  symlink to one) is never replaced: the content is streamed into it, after the regular
+  files are complete (a FIFO without a reader is refused at once instead of blocking); a
+  symlink to a regular file keeps its link and has the file it points to replaced;
+- an output that names one of the command's input files is refused
+  (:func:`refuse_input_as_output`);
+- a location that cannot be written raises :class:`~dppio.errors.OutputError` naming the
+  user's path.
+
+Every input file is read through :func:`read_input` (or :func:`open_input`), which refuses
+files larger than :data:`dppio.limits.MAX_INPUT_BYTES` (``/dev/zero`` included) without
+reading them whole, and never blocks on a FIFO that nobody writes.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import os
+import stat
+import tempfile
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import Any, BinaryIO
+
+from dppio.errors import ErrorClass, InputError, LimitError, OutputError
+from dppio.limits import MAX_INPUT_BYTES
+
+__all__ = [
+    "OutputError",
+    "file_mode",
+    "open_input",
+    "read_input",
+    "read_text",
+    "refuse_input_as_output",
+    "write_atomic",
+    "write_files",
+]
+
+
+def file_mode() -> int:
+    """The mode of a newly created file under the current umask (``0o666 & ~umask``).
+
+    Examples
+    --------
+    >>> old = os.umask(0o022)
+    >>> oct(file_mode())
+    '0o644'
+    >>> _ = os.umask(old)
+    """
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
+def read_input(path: str | Path, *, limit: int = MAX_INPUT_BYTES) -> bytes:
+    """The bytes of an input file, refusing files larger than ``limit``.
+
+    Reads at most ``limit + 1`` bytes, so ``/dev/zero`` or a huge file is refused quickly.
+
+    Raises
+    ------
+    OSError
+        The file cannot be read (the callers name it in their own error class).
+    LimitError
+        (a ``ValueError``) The file is larger than ``limit`` bytes.
+
+    Examples
+    --------
+    >>> read_input("/dev/zero", limit=10)
+    Traceback (most recent call last):
+    dppio.errors.LimitError: larger than the limit of 10 bytes
+    """
+    with open_input(path) as fh:
+        data = fh.read(limit + 1)
+    if len(data) > limit:
+        raise LimitError(f"larger than the limit of {limit} bytes")
+    return data
+
+
+def read_text(path: str | Path, *, limit: int = MAX_INPUT_BYTES) -> str:
+    """The UTF-8 text of an input file (:func:`read_input`: larger than ``limit`` refused).
+
+    Raises
+    ------
+    OSError
+        The file cannot be read (the callers name it in their own error class).
+    InputError
+        (a ``ValueError``) Larger than ``limit`` bytes (:class:`~dppio.errors.LimitError`),
+        or not UTF-8 text.
+
+    Examples
+    --------
+    >>> d = Path(tempfile.mkdtemp())
+    >>> _ = (d / "a.txt").write_text("café", encoding="utf-8")
+    >>> _ = (d / "b.txt").write_text("café", encoding="latin-1")
+    >>> read_text(d / "a.txt")
+    'café'
+    >>> read_text(d / "b.txt")
+    Traceback (most recent call last):
+    dppio.errors.InputError: not UTF-8 text
+    """
+    try:
+        return read_input(path, limit=limit).decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError("not UTF-8 text") from None
+
+
+def open_input(path: str | Path) -> BinaryIO:
+    """Open an input file for reading without ever blocking on a FIFO that nobody writes.
+
+    The file is opened non-blocking (a FIFO without a writer then reads as empty instead of
+    hanging), then switched back to blocking reads (a pipe with a writer, e.g. bash's
+    ``<(...)``, is read to its end).
+
+    Examples
+    --------
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     os.mkfifo(Path(d) / "fifo")
+    ...     with open_input(Path(d) / "fifo") as fh:
+    ...         fh.read()
+    b''
+    """
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
+    try:
+        os.set_blocking(fd, True)
+        return os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
+
+
+def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path] = (),
+                error: ErrorClass = OutputError) -> tuple[Path, ...]:
+    """Write several files together: all of them or none.
+
+    Parameters
+    ----------
+    files : mapping
+        Target path -> content (``str`` is written as UTF-8).
+    remove : iterable of paths
+        Files to delete once the new ones are in place (stale files of an earlier write).
+    error : callable
+        The error class to raise (the caller's package's), called with the message.
+
+    Returns
+    -------
+    tuple of Path
+        The targets, in order.
+
+    Raises
+    ------
+    OutputError
+        (or ``error``) An empty path, a target that is a folder, or any error while writing;
+        the message names the user's path. Nothing is left behind.
+
+    Examples
+    --------
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     written = write_files({Path(d) / "new" / "a.txt": "A", Path(d) / "new" / "b.txt": "B"})
+    ...     print([p.name for p in written], sorted(p.name for p in (Path(d) / "new").iterdir()))
+    ['a.txt', 'b.txt'] ['a.txt', 'b.txt']
+    >>> write_files({"": "x"})
+    Traceback (most recent call last):
+    dppio.errors.OutputError: the output path is empty
+    >>> write_files({"": "x"}, error=PermissionError)
+    Traceback (most recent call last):
+    PermissionError: the output path is empty
+    """
+    targets = [(_target(p, error), c) for p, c in files.items()]
+    regular = [(t, c) for t, c in targets if not _is_special(t)]
+    special = [(t, c) for t, c in targets if _is_special(t)]
+    created: list[Path] = []
+    temps: list[tuple[str, Path]] = []
+    current = targets[0][0] if targets else Path(".")
+    try:
+        for target, _ in regular:
+            current = target
+            _make_parents(target.parent, created)
+        mode = file_mode()
+        for target, content in regular:
+            current = target
+            fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.",
+                                       suffix=".tmp")
+            temps.append((tmp, target))
+            data = content.encode("utf-8") if isinstance(content, str) else content
+            with os.fdopen(fd, "wb") as fh:
+                fh.write(data)
+            os.chmod(tmp, mode)
+        for target, content in special:
+            current = target
+            _stream(target, content.encode("utf-8") if isinstance(content, str) else content)
+        for tmp, target in temps:
+            current = target
+            os.replace(tmp, target)
+        temps.clear()
+    except OSError as exc:
+        _clean(temps, created)
+        reason = exc.strerror or str(exc)
+        raise error(f"cannot write {current}: {reason}") from None
+    except BaseException:
+        _clean(temps, created)
+        raise
+    for p in remove:
+        Path(p).unlink(missing_ok=True)
+    return tuple(t for t, _ in targets)
+
+
+def write_atomic(path: str | Path, text: str | bytes, *, error: ErrorClass = OutputError
+                 ) -> Path:
+    """Write one file atomically (:func:`write_files` with one target).
+
+    Examples
+    --------
+    The file is replaced, and no temporary file is left behind:
+
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     target = Path(d) / "profile.json"
+    ...     _ = write_atomic(target, "old")
+    ...     _ = write_atomic(target, "new")
+    ...     print(target.read_text(), sorted(p.name for p in Path(d).iterdir()))
+    new ['profile.json']
+    """
+    return write_files({Path(path): text}, error=error)[0]
+
+
+def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Path | None], *,
+                           option: str = "-o", error: ErrorClass = OutputError) -> None:
+    """Refuse an output path that names one of the inputs (the same file, by any path).
+
+    Raises
+    ------
+    OutputError
+        (or ``error``) One line naming the path.
+
+    Examples
+    --------
+    >>> with tempfile.TemporaryDirectory() as d:  # doctest: +ELLIPSIS
+    ...     p = Path(d) / "x.json"
+    ...     _ = p.write_text("{}")
+    ...     refuse_input_as_output(Path(d) / "y.json", [p])
+    ...     refuse_input_as_output(Path(d) / "." / "x.json", [p])
+    Traceback (most recent call last):
+    dppio.errors.OutputError: ...x.json is an input of this command; refusing to overwrite it ...
+    """
+    if output is None or str(output) == "":
+        return
+    out = Path(output)
+    for path in inputs:
+        if path is None or str(path) == "":
+            continue
+        same = False
+        try:
+            same = os.path.samefile(out, path)
+        except OSError:
+            same = os.path.realpath(out) == os.path.realpath(path)
+        if same and (not out.exists() or out.is_file()):
+            raise error(f"{option} {out} is an input of this command; refusing to "
+                        "overwrite it (give another path)")
+
+
+def _is_special(target: Path) -> bool:
+    """True when ``target`` exists (through symlinks) and is neither a regular file nor a
+    folder: a device, a FIFO, a socket."""
+    try:
+        st = os.stat(target)
+    except OSError:
+        return False
+    return not stat.S_ISREG(st.st_mode) and not stat.S_ISDIR(st.st_mode)
+
+
+def _stream(target: Path, data: bytes) -> None:
+    """Write ``data`` into the existing non-regular file ``target`` without replacing it."""
+    try:
+        fd = os.open(target, os.O_WRONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
+    except OSError as exc:
+        if exc.errno == errno.ENXIO:  # a FIFO that no process reads
+            raise OSError(exc.errno, "it is a FIFO that no process reads") from None
+        raise
+    try:
+        os.set_blocking(fd, True)
+        view = memoryview(data)
+        while view:
+            n = os.write(fd, view)
+            view = view[n:]
+    finally:
+        os.close(fd)
+
+
+def _target(path: str | Path, error: ErrorClass) -> Path:
+    if str(path) == "":
+        raise error("the output path is empty")
+    p = Path(path)
+    if p.is_dir():
+        raise error(f"cannot write {p}: it is a folder")
+    if p.is_symlink() and p.is_file():  # keep the link; replace the file it points to
+        return Path(os.path.realpath(p))
+    return p
+
+
+def _make_parents(folder: Path, created: list[Path]) -> None:
+    missing = []
+    f = folder if str(folder) else Path(".")
+    while not f.exists():
+        missing.append(f)
+        if f.parent == f:
+            break
+        f = f.parent
+    for d in reversed(missing):
+        d.mkdir()
+        created.append(d)
+
+
+def _clean(temps: list[tuple[str, Path]], created: list[Path]) -> None:
+    for tmp, _ in temps:
+        Path(tmp).unlink(missing_ok=True)
+    for d in reversed(created):
+        with contextlib.suppress(OSError):
+            d.rmdir()

@@ -1,0 +1,148 @@
+"""The numeric and size limits both packages enforce, in one place (README, "Limits").
+
+Beyond each limit the solver and the checker refuse with one line (exit code 2) instead of
+hanging or exhausting memory. The values and the checks that refuse a numeral *before* it is
+parsed live here once; each package keeps its own limits of its own options
+(``solver/limits.py``, ``dppverify/limits.py``) and its own parsers.
+
+Every check raises ``error(message)``: :class:`~dppio.errors.LimitError` by default, or the
+caller's own error class (the solver raises its ``InvalidInstanceError``).
+
+Examples
+--------
+>>> MAX_NUMBER_DIGITS, MAX_EXPONENT
+(200, 400)
+>>> check_numeral("1e999999999", where="weight")
+Traceback (most recent call last):
+dppio.errors.LimitError: weight: the exponent of '1e999999999' is beyond the limit of 400
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable
+from fractions import Fraction
+
+from dppio.errors import ErrorClass, LimitError
+
+__all__ = [
+    "MAX_EXPONENT",
+    "MAX_FLOAT_WEIGHT_RATIO",
+    "MAX_INPUT_BYTES",
+    "MAX_JSON_DEPTH",
+    "MAX_MAP_CELLS",
+    "MAX_NUMBER_DIGITS",
+    "MAX_NUMERAL_CHARS",
+    "MAX_PREFIXES_LIMIT",
+    "check_float_weights",
+    "check_numeral",
+    "check_rational",
+]
+
+MAX_INPUT_BYTES = 64 * 1024 * 1024
+"""Largest input file read (instance, profile, certificate, ``.map``, ``.scen``, CSV): 64 MiB."""
+
+MAX_JSON_DEPTH = 64
+"""Deepest nesting of JSON arrays/objects in a document."""
+
+MAX_NUMERAL_CHARS = 1000
+"""Longest numeral (a JSON number literal or an exact string such as ``"p/q"``)."""
+
+MAX_EXPONENT = 400
+"""Largest decimal exponent written in a numeral (``1e400`` is read, ``1e401`` refused)."""
+
+MAX_NUMBER_DIGITS = 200
+"""Every number is a rational p/q with |p| and q below 10**200 (after reduction)."""
+
+MAX_FLOAT_WEIGHT_RATIO = 10**6
+"""Float mode (``"numbers": "float"``): largest / smallest edge weight. Float comparisons use
+a tolerance of 1e-9 relative to the largest weight, so a smaller weight must stay far above
+it; exact weights have no such limit."""
+
+MAX_MAP_CELLS = 4_000_000
+"""Largest grid of a ``--map`` (rows x columns, obstacles included): a 2000 x 2000 map. Larger
+maps are refused before any array is allocated (the memory budget: about 1 GiB per
+4 million cells for the checker's structured route)."""
+
+MAX_PREFIXES_LIMIT = 10**7
+"""Largest ``--max-prefixes`` accepted: a walk tree of 10**7 prefixes already takes several
+GiB in the tree route's LP."""
+
+_NUMERAL = re.compile(r"\s*[-+]?(\d*)(?:\.(\d*))?(?:[eE]([-+]?\d+))?\s*")
+
+
+def check_numeral(text: str, *, where: str, error: ErrorClass = LimitError) -> None:
+    """Refuse a numeral whose size alone would make parsing it hang or explode.
+
+    Checks the length (:data:`MAX_NUMERAL_CHARS`) and the written exponent
+    (:data:`MAX_EXPONENT`) before anything is converted; ``"p/q"`` strings are checked part by
+    part.
+
+    Raises
+    ------
+    LimitError
+        (or ``error``) One line naming ``where``.
+
+    Examples
+    --------
+    >>> check_numeral("3/5", where="prior[0]")
+    >>> check_numeral("1" * 1001, where="w", error=ValueError)
+    Traceback (most recent call last):
+    ValueError: w: a numeral of 1001 characters is beyond the limit of 1000
+    """
+    if len(text) > MAX_NUMERAL_CHARS:
+        raise error(f"{where}: a numeral of {len(text)} characters is beyond the limit "
+                    f"of {MAX_NUMERAL_CHARS}")
+    for part in text.split("/", 1):
+        m = _NUMERAL.fullmatch(part)
+        if m and m.group(3) is not None and abs(int(m.group(3))) > MAX_EXPONENT:
+            raise error(f"{where}: the exponent of {text!r} is beyond the limit of "
+                        f"{MAX_EXPONENT}")
+
+
+def check_rational(x: object, *, where: str, error: ErrorClass = LimitError) -> None:
+    """Refuse a rational whose numerator or denominator has more than
+    :data:`MAX_NUMBER_DIGITS` digits: ``error`` (default :class:`~dppio.errors.LimitError`),
+    one line naming ``where``.
+
+    Examples
+    --------
+    >>> check_rational(Fraction(1, 3), where="prior[0]")
+    >>> check_rational(10 ** 400, where="weight")
+    Traceback (most recent call last):
+    dppio.errors.LimitError: weight: 10**400 or more is beyond the limit of 10**200
+    """
+    if not isinstance(x, int | Fraction):
+        return  # floats (float mode) are bounded by their type
+    bound = 10 ** MAX_NUMBER_DIGITS
+    f = Fraction(x)
+    if abs(f.numerator) >= bound or f.denominator >= bound:
+        big = max(abs(f.numerator), f.denominator)
+        raise error(f"{where}: 10**{len(str(big)) - 1} or more is beyond the limit of "
+                    f"10**{MAX_NUMBER_DIGITS}")
+
+
+def check_float_weights(weights: Iterable[float | Fraction | int], *,
+                        where: str = "graph.edges", error: ErrorClass = LimitError) -> None:
+    """Refuse float-mode weights whose ratio largest / smallest is beyond
+    :data:`MAX_FLOAT_WEIGHT_RATIO`: ``error`` (default :class:`~dppio.errors.LimitError`),
+    one line naming the limit.
+
+    Examples
+    --------
+    >>> check_float_weights([1.0, 2 ** 0.5])
+    >>> check_float_weights([1.0, 1e300])
+    Traceback (most recent call last):
+    dppio.errors.LimitError: graph.edges: float weights span a ratio of 1e+300 (1e+00 to 1e+300), \
+beyond the float-mode limit of 10**6; give exact weights
+    """
+    lo = hi = None
+    for w in weights:
+        x = float(w)
+        lo = x if lo is None or x < lo else lo
+        hi = x if hi is None or x > hi else hi
+    if lo is None or hi is None or lo <= 0:
+        return
+    if hi / lo > MAX_FLOAT_WEIGHT_RATIO:
+        raise error(f"{where}: float weights span a ratio of {hi / lo:.0e} ({lo:.0e} to "
+                    f"{hi:.0e}), beyond the float-mode limit of 10**6; give exact weights")

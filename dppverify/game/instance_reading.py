@@ -1,0 +1,254 @@
+"""Reading the instance document: the start, goals and prior checked, distances computed.
+
+The parsing half of :mod:`dppverify.game.instance` (which builds the
+:class:`~dppverify.game.instance.Instance` from what this module computes), on a graph read by
+:mod:`dppverify.game.graph_reading`: the start, goal and prior checks under the two-goal or the
+N-goal rules (:func:`read_goals`, :func:`read_prior`), the distances to the goals and the hops
+(:func:`game_parts`), and the arrays kept per instance (:func:`arc_arrays`,
+:func:`goal_distance_fields`).
+"""
+
+from __future__ import annotations
+
+import json
+import weakref
+from collections.abc import Mapping
+from fractions import Fraction
+from types import MappingProxyType
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+
+from dppio.limits import check_float_weights
+from dppverify.errors import InvalidInstanceError
+from dppverify.exact import INF, normalize
+from dppverify.formats.json_reading import Node, node_from_json, parse_number, show_node
+from dppverify.game.distances import (
+    ArcArrays,
+    dijkstra,
+    hops_by_arrays,
+    hops_to_targets,
+    scaled_distance_fields,
+    uniform_hops,
+    unscale,
+)
+from dppverify.game.graph_reading import Rows, known_node, require
+
+if TYPE_CHECKING:
+    from dppverify.game.instance import Instance
+
+__all__ = ["NGOAL_REFUSAL", "GameParts", "arc_arrays", "game_parts", "goal_distance_fields",
+           "read_goals", "read_node", "read_prior", "remember_arrays", "two_goal_rules"]
+
+NGOAL_REFUSAL = ("goals: this instance lists {n} goals; the two-goal checker reads exactly two. "
+                 "N-goal instances are read by dppverify.ngoal (`dpp value` and `dpp certify` "
+                 "dispatch on the number of goals)")
+"""The message for an instance with more than two goals read with ``two_goals=True``."""
+
+
+def two_goal_rules(raw_goals: Any, two_goals: bool) -> bool:
+    """True when a document is read under the two-goal rules: ``two_goals`` asked, or the
+    document lists exactly two goals (then float numbers are allowed and the messages say
+    "two"); otherwise the N-goal rules (exact numbers, "N numbers (one per goal)").
+
+    Examples
+    --------
+    >>> two_goal_rules(["a", "b"], False), two_goal_rules(["a", "b", "c"], False)
+    (True, False)
+    >>> two_goal_rules(["a"], False), two_goal_rules(["a"], True)
+    (False, True)
+    """
+    return two_goals or (isinstance(raw_goals, list) and len(raw_goals) == 2)
+
+
+class GameParts(NamedTuple):
+    """What :func:`game_parts` computes: the instance's fields, and the float64 distance
+    fields ``(scale, {goal: d(., goal) · scale})`` when it computed them (else None)."""
+
+    fields: dict[str, Any]
+    scaled: tuple[int, dict[int, np.ndarray]] | None
+
+
+def game_parts(ids: list[Node], index: dict[Node, int], directed: bool, succ_t: Rows,
+                pred_t: Rows, arcs: ArcArrays | None, *, exact: bool, start: Any, goals: Any,
+                prior: Any, two_goals: bool = False) -> GameParts:
+    """The fields of the game on a read graph: start, goals and prior (JSON values) checked,
+    distances to the goals, hops to the nearest goal.
+
+    Examples
+    --------
+    >>> from dppverify.game.graph_reading import read_graph
+    >>> g = {"nodes": [{"id": "s"}, {"id": "a"}, {"id": "b"}],
+    ...      "edges": [{"source": "s", "target": "a"}, {"source": "a", "target": "b"}]}
+    >>> ids, index, directed, succ, pred, arcs = read_graph(g, True)
+    >>> parts = game_parts(ids, index, directed, succ, pred, arcs, exact=True, start="s",
+    ...                    goals=["a", "b"], prior=["1/2", "1/2"])
+    >>> parts.fields["dist_to"], parts.fields["hops"], parts.scaled[0]
+    (((1, 0, 1), (2, 1, 0)), (1, 0, 0), 1)
+    """
+    if not exact:  # float mode: the weight-ratio limit (dppio.limits), before any search
+        try:
+            check_float_weights(arcs.values if arcs is not None else
+                                [w for row in succ_t for _, w in row])
+        except ValueError as exc:
+            raise InvalidInstanceError(str(exc)) from None
+    two = two_goal_rules(goals, two_goals)
+    start = read_node(start, index, "start")
+    goals = read_goals(goals, index, ids, two)
+    prior = read_prior(prior, len(goals), two)
+    n = len(ids)
+    fields = scaled_distance_fields(arcs, n, goals) if arcs is not None and exact else None
+    if fields is not None:
+        dist_to = tuple(tuple(unscale(row, fields[0])) for row in fields[1])
+    else:  # float mode, an irregular document, or path sums past 2**53: exact Python numbers
+        dist_to = tuple(tuple(map(normalize, dijkstra(pred_t, gi))) for gi in goals)
+    for i, gi in enumerate(goals):
+        name = show_node(ids[gi])
+        require(dist_to[i][start] != INF,
+                f"goal {name} is unreachable from start {show_node(ids[start])}")
+        for gj in goals:
+            other = show_node(ids[gj])
+            require(dist_to[i][gj] != INF, f"goal {name} is unreachable from goal {other}: "
+                                           f"d({other}, {name}) is infinite")
+    if fields is not None and arcs is not None and len(arcs.values) == 1:
+        hops = tuple(uniform_hops(fields[1], int(arcs.values[0] * fields[0])))
+    else:
+        hops = tuple(hops_to_targets(pred_t, goals) if arcs is None
+                     else hops_by_arrays(arcs, n, goals))
+    scaled = (fields[0], dict(zip(goals, fields[1], strict=True))) if fields is not None else None
+    return GameParts(dict(nodes=tuple(ids), index=MappingProxyType(index), directed=directed,
+                          succ=succ_t, pred=pred_t, start=start, goals=goals, prior=prior,
+                          exact=exact, dist_to=dist_to, hops=hops), scaled)
+
+
+_ARC_ARRAYS: weakref.WeakKeyDictionary[Instance, ArcArrays] = weakref.WeakKeyDictionary()
+
+_GOAL_FIELDS: weakref.WeakKeyDictionary[Instance, tuple[int, dict[int, np.ndarray]]] = \
+    weakref.WeakKeyDictionary()
+
+
+def goal_distance_fields(game: Instance) -> tuple[int, dict[int, np.ndarray]] | None:
+    """``(scale, {goal: d(., goal) · scale})``: the float64 fields the reader computed
+    ``dist_to`` from (exact integers), shared with later computations on the same graph; None
+    when the reader used the exact Python Dijkstra.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> scale, rows = goal_distance_fields(triangle())
+    >>> scale, rows[1].tolist()
+    (1, [3.0, 0.0, 2.0])
+    """
+    return _GOAL_FIELDS.get(game)
+
+
+def arc_arrays(game: Instance) -> ArcArrays:
+    """The arcs of ``game`` as arrays in ``succ`` order (built once per instance).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> a = arc_arrays(triangle())
+    >>> a.tails.tolist(), a.heads.tolist(), [a.values[c] for c in a.codes]
+    ([0, 0, 1, 1, 2, 2], [1, 2, 0, 2, 0, 1], [3, 2, 3, 2, 2, 2])
+    """
+    arcs = _ARC_ARRAYS.get(game)
+    if arcs is None:
+        arcs = _ARC_ARRAYS[game] = ArcArrays.from_adjacency(game.succ)
+    return arcs
+
+
+def remember_arrays(game: Instance, arcs: ArcArrays | None,
+                    scaled: tuple[int, dict[int, np.ndarray]] | None) -> None:
+    """Keep the arrays the reader built for ``game`` (:func:`arc_arrays`,
+    :func:`goal_distance_fields`), for as long as ``game`` lives.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> inst = triangle()
+    >>> remember_arrays(inst, None, None); goal_distance_fields(inst)[0]
+    1
+    """
+    if arcs is not None:
+        _ARC_ARRAYS[game] = arcs
+    if scaled is not None:
+        _GOAL_FIELDS[game] = scaled
+
+
+def read_goals(raw: Any, index: Mapping[Node, int], ids: list[Node], two_goals: bool
+               ) -> tuple[int, ...]:
+    """The goals (node indices, document order) of the JSON list ``raw``.
+
+    ``two_goals``: exactly two distinct goals (:data:`NGOAL_REFUSAL` for more); otherwise at
+    least two, each listed once.
+
+    Examples
+    --------
+    >>> read_goals(["b", "a", "c"], {"a": 0, "b": 1, "c": 2}, ["a", "b", "c"], False)
+    (1, 0, 2)
+    >>> read_goals(["b", "b"], {"a": 0, "b": 1}, ["a", "b"], True)
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: goals: the two goals must differ, both are "b"
+    """
+    shown = json.dumps(raw, default=str)
+    if two_goals:
+        # a reader that asked for two goals refuses more (docs/formats.md §1)
+        require(not (isinstance(raw, list) and len(raw) > 2),
+                NGOAL_REFUSAL.format(n=len(raw) if isinstance(raw, list) else 0))
+        require(isinstance(raw, list) and len(raw) == 2,
+                f"goals: must be a list of two node ids, got {shown}")
+        goals = (read_node(raw[0], index, "goals[0]"), read_node(raw[1], index, "goals[1]"))
+        require(goals[0] != goals[1], f"goals: the two goals must differ, both are "
+                                      f"{show_node(ids[goals[0]])}")
+        return goals
+    require(isinstance(raw, list) and len(raw) >= 2,
+            f"goals: must be a list of at least two node ids, got {shown}")
+    out: list[int] = []
+    for i, x in enumerate(raw):
+        gi = read_node(x, index, f"goals[{i}]")
+        require(gi not in out, f"goals[{i}]: goal {show_node(ids[gi])} is listed twice")
+        out.append(gi)
+    return tuple(out)
+
+
+def read_node(raw: Any, index: Mapping[Node, int], where: str) -> int:
+    """The index of the node id ``raw`` (a JSON value) found at ``where``.
+
+    Examples
+    --------
+    >>> read_node("b", {"a": 0, "b": 1}, "start")
+    1
+    >>> read_node("z", {"a": 0}, "start")
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: start: unknown node "z"
+    """
+    v = node_from_json(raw, where=where)
+    require(known_node(index, v), f"{where}: unknown node {show_node(v)}")
+    return index[v]
+
+
+def read_prior(raw: Any, n: int, two_goals: bool) -> tuple[Fraction, ...]:
+    """The exact prior of ``n`` goals: each in (0, 1), summing to exactly 1.
+
+    ``two_goals``: the two-goal messages ("a list of two numbers", "got p + q = s").
+
+    Examples
+    --------
+    >>> read_prior(["1/2", "1/3", "1/6"], 3, False)
+    (Fraction(1, 2), Fraction(1, 3), Fraction(1, 6))
+    >>> read_prior(["1/2", "1/3"], 2, True)
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: prior: must sum to exactly 1, got 1/2 + 1/3 = 5/6
+    """
+    require(isinstance(raw, list) and len(raw) == n,
+            f"prior: must be a list of two numbers, got {json.dumps(raw, default=str)}"
+            if two_goals else f"prior: must be a list of {n} numbers (one per goal), got "
+                               f"{json.dumps(raw, default=str)}")
+    p = [Fraction(parse_number(x, where=f"prior[{i}]")) for i, x in enumerate(raw)]
+    for i, x in enumerate(p):
+        require(0 < x < 1, f"prior[{i}]: must lie strictly between 0 and 1, got {x}")
+    total = sum(p, Fraction(0))
+    require(total == 1, f"prior: must sum to exactly 1, got {p[0]} + {p[1]} = {total}"
+                        if two_goals else f"prior: must sum to exactly 1, got {total}")
+    return tuple(p)

