@@ -15,10 +15,10 @@ from fractions import Fraction
 from dppverify.certificate import CheckRecord
 from dppverify.checks.structured_ngoal import (
     NGOAL_IDS,
-    PAYOFF_WALKS,
     PROFILE_DOC,
     defender_records,
     ngoal_record,
+    payoff_record,
     value_record,
 )
 from dppverify.exact import Number
@@ -70,12 +70,7 @@ def guarantee_checks(instance: Instance, profile: NProfile, horizon: int | None
                         f"every walk)", {"walks": ev.walks, "prefixes": len(trie)}, PROFILE_DOC,
                         None)]
     u = sum((inst.prior[t] * per_type[t] for t in range(n)), Fraction(0))
-    nums: dict[str, Number | None] = {f"U{t + 1}": per_type[t] for t in range(n)}
-    nums["U"] = u
-    ok = profile.claimed_u is None or profile.claimed_u == u
-    said = "" if profile.claimed_u is None else f" (profile says {profile.claimed_u})"
-    out.append(ngoal_record("ngoal.value.U", "pass" if ok else "fail", f"U = {u}{said}", nums,
-                            PAYOFF_WALKS))
+    out.append(payoff_record(per_type, u, profile.claimed_u))
     out.append(_attacker_record(inst, rule, ev.sets, per_type, ev.feasible))
     out += defender_records(inst, ev.defender, ev.mass, u)
     known = (coalition_nvalue(dp_value(ev.sets), inst.n_goals)  # proved for N <= 3 (NG.4)
