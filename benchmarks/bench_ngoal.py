@@ -26,9 +26,9 @@ from fractions import Fraction
 
 from dppverify.formats.movingai import GridMap, grid_document
 from dppverify.game.instance import Instance, instance_from_json
-from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
+from dppverify.structured.coalition import coalition_value
 
 GOALS64 = ((0, 63), (0, 0), (63, 63), (32, 32), (0, 32))
 

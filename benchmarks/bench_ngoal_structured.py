@@ -27,7 +27,7 @@ from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile import nprofile_from_json
-from dppverify.ngoal.coalition import coalition_value
+from dppverify.structured.coalition import coalition_value
 from dppverify.structured.table_br import table_defender, walk_best_response
 from solver.experiments.ngoal import corner_cells
 from solver.movingai import read_map as read_blocked

@@ -262,7 +262,7 @@ def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str
     from dppverify.formats.movingai import read_map
     from dppverify.formats.standard_maps import standard_map_path
     from dppverify.game.grids import grid_game
-    from dppverify.ngoal.coalition import coalition_value
+    from dppverify.structured.coalition import coalition_value
     from dppverify.twogoal.value_dp import structured_value
 
     grid = read_map(standard_map_path(name))

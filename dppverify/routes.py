@@ -6,7 +6,7 @@ disagreement as an error of the checker (docs/checker.md, "Routes"). :func:`reso
 is the one place a route is chosen (for ``certify`` and ``value`` alike), and
 :func:`routed_value` is ``dppverify.value``'s (and ``dpp value``'s) engine: the two-goal
 structured route is the three-field DP (:mod:`dppverify.twogoal.value_dp`), the N-goal one the
-guarantee sets (:func:`dppverify.ngoal.proved_value.nvalue`: the coalition DP over the goal
+guarantee sets (:func:`dppverify.structured.proved_value.nvalue`: the coalition DP over the goal
 subsets, the value for N <= 3 (``proofs/NGOAL.md`` NG.3, NG.4) and for N = 4, 5 where its
 certificate (NG.8) holds, else an exact bracket naming both bounds).
 """
@@ -19,11 +19,11 @@ from typing import Any, Literal, cast
 from dppverify.errors import HorizonError, OptionError, TreeTooLargeError
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
-from dppverify.ngoal.coalition import too_many_goals
-from dppverify.ngoal.cover import MAX_BALANCED
-from dppverify.ngoal.proved_value import NValue, nvalue
 from dppverify.ngoal.value_lp import NGameValue, ngame_value
 from dppverify.numbers import NumberMode
+from dppverify.structured.coalition import too_many_goals
+from dppverify.structured.cover import MAX_BALANCED
+from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.tree_route.lp import lp_agrees
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, count_prefixes
 from dppverify.tree_route.value_lp import GameValue, game_value
@@ -89,7 +89,7 @@ def resolve_route(route: Route, instance: AnyInstance, horizon: int | None,
     walk tree. ``certifying``: for ``certify`` (the tree must cover the walks to the nearest
     goal; ``table``: the profile's Defender is a two-goal table, which only the tree
     certifies on a truncated game); otherwise for ``value`` (more than
-    :data:`~dppverify.ngoal.cover.MAX_BALANCED` goals: the tree route only).
+    :data:`~dppverify.structured.cover.MAX_BALANCED` goals: the tree route only).
 
     Raises
     ------

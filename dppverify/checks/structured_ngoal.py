@@ -12,8 +12,8 @@ defined on every walk of the game):
   mass (NW.3; off the path every distribution is a best response to the belief uniform on its
   support, NW.4);
 - payoffs walk by walk; the value by the guarantee sets at ``H`` or ``H = inf``
-  (:func:`dppverify.ngoal.proved_value.nvalue`, proofs/NGOAL.md): where ``V_H`` is proved (N <= 3,
-  or a certified DP for N = 4, 5) ``U`` must equal it; otherwise ``U`` outside the exact
+  (:func:`dppverify.structured.proved_value.nvalue`, proofs/NGOAL.md): where ``V_H`` is proved
+  (N <= 3, or a certified DP for N = 4, 5) ``U`` must equal it; otherwise ``U`` outside the exact
   bracket refutes the profile, and ``U`` inside it passes only when every equilibrium check
   passed (a certified equilibrium has ``U = V_H``), else ``skipped`` (not decisive).
 
@@ -34,7 +34,7 @@ from dppverify.errors import HorizonError
 from dppverify.exact import INF, Number, normalize
 from dppverify.game.instance import Instance
 from dppverify.game.profile import NProfile
-from dppverify.ngoal.proved_value import NValue, nvalue
+from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.structured.table_br import (
     TableDefender,
     exit_costs,
@@ -43,7 +43,7 @@ from dppverify.structured.table_br import (
 from dppverify.structured.trie import mass_trie
 
 __all__ = ["NGOAL_IDS", "NSTRUCTURED_NOT_RUN", "PAYOFF_WALKS", "PROFILE_DOC", "defender_records",
-           "ngoal_record", "nstructured_checks", "value_record", "walk_labels"]
+           "ngoal_record", "nstructured_checks", "payoff_record", "value_record", "walk_labels"]
 
 PROOF = "NGOAL"
 BR = "NWALKBR"
@@ -74,6 +74,23 @@ def ngoal_record(cid: str, status: Status, message: str,
     'NGOAL'
     """
     return structured_record(cid, status, message, numbers, proof, relies_on)
+
+
+def payoff_record(per_type: Sequence[Number], u: Number, claimed_u: Number | None
+                  ) -> CheckRecord:
+    """``ngoal.value.U``: every type's payoff ``U_θ`` and ``U``, against the profile's claim.
+
+    Examples
+    --------
+    >>> payoff_record([2, 1], Fraction(3, 2), 2).message
+    'U = 3/2 (profile says 2)'
+    """
+    nums: dict[str, Number | None] = {f"U{t + 1}": x for t, x in enumerate(per_type)}
+    nums["U"] = u
+    ok = claimed_u is None or claimed_u == u
+    said = "" if claimed_u is None else f" (profile says {claimed_u})"
+    return ngoal_record("ngoal.value.U", "pass" if ok else "fail", f"U = {u}{said}", nums,
+                        PAYOFF_WALKS)
 
 
 def walk_labels(inst: Instance, walk: tuple[int, ...]) -> list[object]:
@@ -125,8 +142,8 @@ def nstructured_checks(instance: Instance, profile: NProfile,
         out += [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
                 for i in NGOAL_IDS[1:]]
         return out, 0
-    if profile.rule is not None:  # the guarantee rule: dppverify.ngoal.guarantee
-        from dppverify.ngoal.guarantee import guarantee_checks
+    if profile.rule is not None:  # the guarantee rule: dppverify.structured.guarantee
+        from dppverify.checks.structured_guarantee import guarantee_checks
 
         return guarantee_checks(inst, profile, horizon)
     walks = [mw.walk for mix in profile.attacker for mw in mix]
@@ -167,12 +184,7 @@ def nstructured_checks(instance: Instance, profile: NProfile,
                                                       if has_default else "without a default"),
                 {"walks": len(walks), "prefixes": len(trie)}, PROFILE_DOC, None)]
     u = normalize(sum((inst.prior[t] * per_type[t] for t in range(n)), Fraction(0)))
-    nums: dict[str, Number | None] = {f"U{t + 1}": per_type[t] for t in range(n)}
-    nums["U"] = u
-    ok = profile.claimed_u is None or profile.claimed_u == u
-    said = "" if profile.claimed_u is None else f" (profile says {profile.claimed_u})"
-    out.append(ngoal_record("ngoal.value.U", "pass" if ok else "fail", f"U = {u}{said}", nums,
-                            PAYOFF_WALKS))
+    out.append(payoff_record(per_type, u, profile.claimed_u))
     attacker = _attacker(inst, tdef, per_type, horizon)
     out.append(attacker)
     out += defender_records(inst, tdef, dict(enumerate(trie.masses)), u)

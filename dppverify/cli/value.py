@@ -22,11 +22,11 @@ from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.errors import CheckerError
 from dppverify.exact import format_number
 from dppverify.formats.files import refuse_input_as_output
-from dppverify.ngoal.coalition import CoalitionValue
-from dppverify.ngoal.cover import members
-from dppverify.ngoal.proved_value import NValue
 from dppverify.ngoal.value_lp import NGameValue
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
+from dppverify.structured.coalition import CoalitionValue
+from dppverify.structured.cover import members
+from dppverify.structured.proved_value import NValue
 from dppverify.text import show, show_value
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES

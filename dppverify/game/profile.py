@@ -27,7 +27,7 @@ N-goal document (``dpp-ngoal-profile/1``)::
      "defender": {"rule": "table",
                   "entries": [{"walk": [s0, …, s_t], "probabilities": [q_1, …, q_N]}, …],
                   "default": [q_1, …, q_N]},        (optional)
-              or {"rule": "guarantee", "h": [h_1, …, h_N]}   (dppverify.ngoal.guarantee)
+              or {"rule": "guarantee", "h": [h_1, …, h_N]}   (dppverify.structured.guarantee)
      "value": {"U": …}}                             (optional, informative)
 
 ``attacker[θ]`` is the mixed strategy of goal index θ (its goal is ``goals[θ]``); after

@@ -177,7 +177,7 @@ class NProfile:
         Everything that makes the profile ill-formed (``where: what``).
     rule : GuaranteeRule or None
         The Defender's rule when it is ``{"rule": "guarantee", ...}`` (then ``entries`` is
-        empty and ``default`` None; the guarantee rule of :mod:`dppverify.ngoal.guarantee`).
+        empty and ``default`` None; the guarantee rule of :mod:`dppverify.structured.guarantee`).
     """
 
     attacker: tuple[tuple[StrategyWalk, ...], ...]

@@ -9,10 +9,10 @@ goal (``docs/formats.md`` §1, "N goals"). Two routes:
   LP with N types (cvxpy + Clarabel) closed by an exact rational bracket, exact best responses
   of every type and of the Defender, Bayes beliefs and sequential rationality of a profile
   (:mod:`dppverify.ngoal.tree`, :mod:`dppverify.ngoal.value_lp`,
-  :mod:`dppverify.ngoal.best_response`, :mod:`dppverify.tree_route.ngoal_checks`);
-- the *structured route*: the guarantee sets (:mod:`dppverify.ngoal.proved_value`), for any
+  :mod:`dppverify.ngoal.best_response`, :mod:`dppverify.ngoal.certify`);
+- the *structured route*: the guarantee sets (:mod:`dppverify.structured.proved_value`), for any
   horizon and ``H = inf``: the coalition dynamic programme over the ``2^N - 1`` goal subsets
-  (:mod:`dppverify.ngoal.coalition`) is an upper bound, the value for N <= 3 (proved in
+  (:mod:`dppverify.structured.coalition`) is an upper bound, the value for N <= 3 (proved in
   ``proofs/NGOAL.md``) and for N = 4, 5 where an exact certificate holds (refined with extra
   facet normals where it does not); otherwise an exact bracket. Its agreement with the tree
   route is property-tested.

@@ -1,6 +1,6 @@
 """The two routes side by side: the tree LP's exact bracket against the structured value.
 
-The structured value (:func:`dppverify.ngoal.proved_value.nvalue`: exact where proved, else an
+The structured value (:func:`dppverify.structured.proved_value.nvalue`: exact where proved, else an
 exact bracket; ``proofs/NGOAL.md``) and the tree route (:mod:`dppverify.ngoal.value_lp`, the
 literal definition of ``V_H``) must agree wherever both run: the brackets overlap, and an exact
 structured value lies in the tree route's exact bracket and matches the LP's float value within
@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
-from dppverify.ngoal.proved_value import NValue, nvalue
 from dppverify.ngoal.value_lp import NGameValue, ngame_value
+from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 

@@ -23,7 +23,7 @@ in order (ids in ``dppverify/checks.md``, "N goals"):
     The tree route's ``V_H`` (compact LP, exact bracket, with the profile's strategies among
     the candidates) equals ``U``.
 ``ngoal.value.structured``
-    The structured route's ``V_H`` (:func:`dppverify.ngoal.proved_value.nvalue`: exact where
+    The structured route's ``V_H`` (:func:`dppverify.structured.proved_value.nvalue`: exact where
     proved, else an exact bracket) agrees with the tree route: the brackets overlap and an
     exact structured value lies in the tree's bracket; a disagreement is an ``error`` (a bug
     to keep), not a refutation.
@@ -48,9 +48,9 @@ from dppverify.ngoal.best_response import (
     defender_from_table,
     payoff,
 )
-from dppverify.ngoal.proved_value import nvalue
 from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.ngoal.value_lp import exact_nbracket, solve_nvalue_lp
+from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
 
 __all__ = ["NGOAL_CHECK_IDS", "ngoal_tree_checks", "payoff_of_type"]
@@ -82,7 +82,7 @@ def _plans(tree: NWalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
 
 def _defender(tree: NWalkTree, profile: NProfile) -> NTreeDefender | str:
     if profile.rule is not None:  # the guarantee rule, evaluated on every prefix of the tree
-        from dppverify.ngoal.guarantee import guarantee_sets, rule_on_trie
+        from dppverify.structured.guarantee import guarantee_sets, rule_on_trie
 
         sets = guarantee_sets(tree.instance)
         sigma, _ = rule_on_trie(tree.instance, profile.rule, sets, tree.parent.tolist(),

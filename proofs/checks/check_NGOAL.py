@@ -15,10 +15,11 @@ import sympy as sp
 from dppverify.game.examples import hub4
 from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.agreement import compare_routes
-from dppverify.ngoal.coalition import coalition_value
-from dppverify.ngoal.proved_value import nvalue, packing_vertices, zero_one_normals
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
+from dppverify.structured.coalition import coalition_value
+from dppverify.structured.cover import packing_vertices, zero_one_normals
+from dppverify.structured.proved_value import nvalue
 from proofs.checks.ngoal_evidence import FAMILIES, draw_case
 
 
@@ -86,7 +87,7 @@ def test_subadditivity_of_the_max_and_the_NG3_slope() -> None:
 def _packing_vertices_by_hand(n_goals: int) -> set[tuple[Fraction, ...]]:
     """Vertices of P = {λ >= 0 : Σ_S λ_S 1_S <= 1} (all non-empty S): every basis of [A | I].
 
-    Independent of dppverify.ngoal.proved_value: Gauss–Jordan elimination in Fractions on every
+    Independent of dppverify.structured.proved_value: Gauss–Jordan elimination in Fractions on every
     choice of N columns of the standard form Σ λ_S 1_S + s = 1, kept when non-singular and
     non-negative (a vertex of a standard-form polyhedron is a basic feasible solution).
     """

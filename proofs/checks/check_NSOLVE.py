@@ -15,9 +15,10 @@ import numpy as np
 import sympy as sp
 
 from dppverify.game.instance import Instance, instance_from_json
-from dppverify.ngoal.coalition import _Runner
-from dppverify.ngoal.cover import balanced_vertices, members, min_cover
-from dppverify.ngoal.guarantee import bad_rays, guarantee_sets, guarantee_sigma, rule_order
+from dppverify.structured.arc_condition import bad_rays
+from dppverify.structured.coalition import CoalitionRunner
+from dppverify.structured.cover import balanced_vertices, members, min_cover
+from dppverify.structured.guarantee import guarantee_sets, guarantee_sigma, rule_order
 
 
 def _y(ray: tuple[tuple[int, Fraction], ...], n: int) -> list[Fraction]:
@@ -168,7 +169,7 @@ def test_NSOLVE3_label_setting_equals_the_layered_fixpoint() -> None:
         inst = _instance(rng, rng.choice([2, 3, 4]))
         if inst is None:
             continue
-        run = _Runner(inst)
+        run = CoalitionRunner(inst)
         layer = run.layer0()
         k = 0
         while True:

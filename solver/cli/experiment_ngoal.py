@@ -44,7 +44,7 @@ def checker_valuer(grid: GridMap) -> Valuer:
     """
     from dppverify.formats.movingai import grid_document
     from dppverify.game.instance import instance_from_json
-    from dppverify.ngoal.proved_value import nvalue
+    from dppverify.structured.proved_value import nvalue
     from solver.experiments.ngoal import GameValue
 
     def value(start: Cell, goals: Sequence[Cell], prior: Sequence[Fraction]) -> GameValue:

@@ -11,10 +11,10 @@ from hypothesis import given
 
 import dppverify.tree_route.lp_exact as lp_exact
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.tree import build_ntree, count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.strategies import instances, ngoal_instances, weighted_graphs
+from dppverify.structured.coalition import coalition_value
 from dppverify.tree_route.lp_exact import solve_tree_lp_exactly
 from dppverify.tree_route.value_lp import game_value
 

@@ -28,9 +28,9 @@ from dppverify.cli.export_efg import export_efg_command
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.game.examples import star3_document
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.tree import build_ntree
 from dppverify.ngoal.value_lp import ngame_value
+from dppverify.structured.coalition import coalition_value
 from dppverify.tree_route.efg import efg_size, to_efg, tree_to_efg, write_efg
 from dppverify.tree_route.tree import build_tree
 from tests.checker._helpers import _key, adjacency, all_walks, distances_to, grid_doc, make_doc

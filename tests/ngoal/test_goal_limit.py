@@ -11,7 +11,7 @@ from click.testing import CliRunner
 from dppverify.cli.value import value_command
 from dppverify.errors import OptionError
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.coalition import coalition_value
+from dppverify.structured.coalition import coalition_value
 
 
 def _star(n: int) -> dict[str, object]:

@@ -22,11 +22,11 @@ from dppverify.errors import HorizonError
 from dppverify.game.examples import star3, star3_document
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.ngoal.agreement import compare_routes
-from dppverify.ngoal.coalition import _Runner, coalition_value, coalition_values
-from dppverify.ngoal.proved_value import nvalue
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.strategies import instances, ngoal_instances, weighted_graphs
+from dppverify.structured.coalition import CoalitionRunner, coalition_value, coalition_values
+from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.value_lp import game_value
 
 MAX_PREFIXES = 2500
@@ -124,7 +124,7 @@ def test_every_arithmetic_path_is_exact(factor: int, path: str) -> None:
     for e in doc["graph"]["edges"]:
         e["weight"] = e["weight"] * factor
     inst = instance_from_json(doc)
-    run = _Runner(inst)
+    run = CoalitionRunner(inst)
     used = ("float64" if run.float_exact else "int64" if run.dtype == np.dtype(np.int64)
             else "object")
     assert used == path

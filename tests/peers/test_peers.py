@@ -11,7 +11,7 @@ nodes for two goals): Gambit's exact LP needs minutes at a few hundred nodes (``
 N goals (``dppverify.ngoal``): the same two peers solve the export of N = 3 and N = 4 games
 (``NCASES`` of ``tests/ngoal/test_efg.py``, 136 to 385 game nodes) and must agree with the
 tree route's exact ``V_H`` (:func:`dppverify.ngoal.value_lp.ngame_value`, bracket closed) and
-with the coalition DP (:func:`dppverify.ngoal.coalition.coalition_value`), both exact.
+with the coalition DP (:func:`dppverify.structured.coalition.coalition_value`), both exact.
 
 - OpenSpiel: ``pyspiel.load_efg_game`` + ``sequence_form_lp.solve_zero_sum_game`` with HiGHS
   (its default, ECOS, is no longer installed by cvxpy 1.9; its default solver keyword
@@ -35,8 +35,8 @@ import pytest
 
 from dppverify import game_value
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.value_lp import ngame_value
+from dppverify.structured.coalition import coalition_value
 from dppverify.tree_route.efg import to_efg
 from tests.checker._helpers import triangle_doc
 from tests.checker.test_efg import FRACTIONAL, GRID, KITE, LADDER, THIRDS

@@ -28,9 +28,9 @@ from hypothesis import strategies as st
 
 from dppverify.certify import certify
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.coalition import _Runner
-from dppverify.ngoal.guarantee import dp_value, guarantee_sets
 from dppverify.strategies import ngoal_instances
+from dppverify.structured.coalition import CoalitionRunner
+from dppverify.structured.guarantee import dp_value, guarantee_sets
 from solver import Instance, solve
 from solver.cli import main
 from solver.coalitions import coalition_dp
@@ -91,7 +91,7 @@ def test_the_tree_route_agrees_at_the_profiles_horizon(doc: dict[str, Any]) -> N
 @given(doc=ngoal_instances(min_goals=2, max_goals=4))
 def test_the_solvers_dp_equals_the_checkers_at_every_node(doc: dict[str, Any]) -> None:
     inst = instance_from_json(doc)
-    run = _Runner(inst)
+    run = CoalitionRunner(inst)
     layer = run.layer0()
     k = 0
     while True:  # the checker's layered DP until a layer repeats (proofs/NGOAL.md NG.5)

@@ -1,4 +1,4 @@
-"""Exact fractional covers: the vertex tables and the exact simplex (dppverify.ngoal.cover)."""
+"""Exact fractional covers: the vertex tables and the exact simplex (dppverify.structured.cover)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import scipy.optimize
 from hypothesis import given
 from hypothesis import strategies as st
 
-from dppverify.ngoal.cover import balanced_vertices, members, min_cover, popcount
+from dppverify.structured.cover import balanced_vertices, members, min_cover, popcount
 
 
 @pytest.mark.parametrize(("size", "count"), [(2, 1), (3, 5), (4, 41), (5, 1291)])

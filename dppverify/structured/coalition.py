@@ -13,9 +13,9 @@ For every node ``v``, steps left ``k`` and non-empty goal subset ``S`` the DP ke
 
 The split is an LP over the fractional partitions of ``S``; its optimum is attained at a vertex,
 and those vertices are the minimal balanced collections of ``S``
-(:func:`dppverify.ngoal.cover.balanced_vertices`: 1, 5, 41, 1291 for ``|S|`` = 2 … 5), so the
+(:func:`dppverify.structured.cover.balanced_vertices`: 1, 5, 41, 1291 for ``|S|`` = 2 … 5), so the
 split is one exact integer matrix product per (k, S) over all nodes. The final cover LP is
-solved by the exact simplex of :func:`dppverify.ngoal.cover.min_cover`.
+solved by the exact simplex of :func:`dppverify.structured.cover.min_cover`.
 
 Exactness: weights are scaled to integers by the lcm ``W`` of their denominators; a split
 multiplies by coefficients with denominators dividing ``L`` (the lcm over the vertex tables),
@@ -31,7 +31,7 @@ For two goals ``m_{1} = D1``, ``m_{2} = D2`` and ``m_{12} = min(step, D1 + D2)``
 three-field DP of ``proofs/HORIZON.md``'s two-goal value. The DP is an upper bound on the
 truncated game's value, equal to it for ``N <= 3`` (``proofs/NGOAL.md`` NG.3, NG.4) and not
 always for ``N >= 4`` (the hub of :func:`dppverify.game.examples.hub4`);
-:func:`dppverify.ngoal.proved_value.nvalue` certifies it or brackets the value.
+:func:`dppverify.structured.proved_value.nvalue` certifies it or brackets the value.
 """
 
 from __future__ import annotations
@@ -46,9 +46,10 @@ import numpy as np
 from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import INF, Number, normalize
 from dppverify.game.instance import Instance
-from dppverify.ngoal.cover import MAX_BALANCED, balanced_vertices, members, min_cover, popcount
+from dppverify.structured.cover import MAX_BALANCED, balanced_vertices, members, min_cover, popcount
 
-__all__ = ["CoalitionValue", "coalition_value", "coalition_values"]
+__all__ = ["CoalitionRunner", "CoalitionValue", "Split", "coalition_scale", "coalition_value",
+           "coalition_values", "same_layer", "splits", "too_many_goals"]
 
 
 @dataclass(frozen=True)
@@ -77,14 +78,44 @@ class CoalitionValue:
 
 
 @dataclass(frozen=True)
-class _Split:
+class Split:
+    """The split of one goal subset ``S``: its minimal balanced collections as a vertex table.
+
+    Attributes
+    ----------
+    mask : int
+        ``S`` (``|S| >= 2``).
+    columns : numpy.ndarray
+        The masks of the proper subsets of ``S``, in the table's column order.
+    scaled : numpy.ndarray
+        ``(n_columns, n_vertices)`` integer vertex coordinates times ``lcm``.
+    lcm : int
+        The common denominator of the vertex coordinates.
+    """
+
     mask: int
-    columns: np.ndarray  # global masks of the proper subsets, in the table's column order
-    scaled: np.ndarray  # (n_columns, n_vertices) integer vertex coordinates times lcm
+    columns: np.ndarray
+    scaled: np.ndarray
     lcm: int
 
 
-def _splits(n_goals: int) -> list[_Split]:
+def splits(n_goals: int) -> list[Split]:
+    """The split of every goal subset with at least two goals, by increasing ``|S|``, then mask.
+
+    Raises
+    ------
+    OptionError
+        Beyond the tabulated balanced collections (more than five goals).
+
+    Examples
+    --------
+    >>> [(s.mask, s.columns.tolist(), s.lcm) for s in splits(2)]
+    [(3, [1, 2], 1)]
+    >>> len(splits(3)), splits(3)[-1].mask
+    (4, 7)
+    """
+    if not 2 <= n_goals <= MAX_BALANCED:
+        raise OptionError(too_many_goals(n_goals))
     out = []
     for size in range(2, n_goals + 1):
         table = balanced_vertices(size)
@@ -93,8 +124,24 @@ def _splits(n_goals: int) -> list[_Split]:
                 continue
             elems = members(mask)
             glob = [sum(1 << elems[i] for i in members(local)) for local in table.columns]
-            out.append(_Split(mask, np.asarray(glob, dtype=np.int64), table.scaled, table.lcm))
+            out.append(Split(mask, np.asarray(glob, dtype=np.int64), table.scaled, table.lcm))
     return out
+
+
+def coalition_scale(instance: Instance, tables: list[Split]) -> int:
+    """``Q = W·L^(N-1)``: every ``m_S(v, k)`` of the coalition DP times ``Q`` is an integer.
+
+    ``W`` is the lcm of the weights' denominators, ``L`` the lcm over the split tables.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> coalition_scale(star3(), splits(3))
+    4
+    """
+    lcm_split = math.lcm(1, *(s.lcm for s in tables))
+    wden = math.lcm(1, *(Fraction(w).denominator for arcs in instance.succ for _, w in arcs))
+    return wden * lcm_split ** (instance.n_goals - 1)
 
 
 def too_many_goals(n_goals: int) -> str:
@@ -110,19 +157,25 @@ def too_many_goals(n_goals: int) -> str:
             "for 6); give a finite --horizon for the tree route")
 
 
-class _Runner:
-    """The DP state: arcs in scaled integers and the current layer ``m[S][v]``."""
+class CoalitionRunner:
+    """The coalition DP's state: arcs in scaled integers; a layer is ``{S: m[S][v] · scale}``.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> run = CoalitionRunner(star3())
+    >>> layer = run.step(run.layer0(), 1)
+    >>> run.value(layer, 1, 1).value, same_layer(layer, run.step(layer, 2))
+    (2, False)
+    """
 
     def __init__(self, inst: Instance) -> None:
         n_goals = inst.n_goals
-        if not 2 <= n_goals <= MAX_BALANCED:
-            raise OptionError(too_many_goals(n_goals))
         self.inst = inst
-        self.splits = _splits(n_goals)
+        self.splits = splits(n_goals)
         lcm_split = math.lcm(1, *(s.lcm for s in self.splits))
         weights = [w for arcs in inst.succ for _, w in arcs]
-        wden = math.lcm(1, *(Fraction(w).denominator for w in weights))
-        self.scale = wden * lcm_split ** (n_goals - 1)
+        self.scale = coalition_scale(inst, self.splits)
         n = inst.n_nodes
         max_w = max((Fraction(w) for w in weights), default=Fraction(0))
         max_d = max(Fraction(d) for row in inst.dist_to for d in row if d != INF)
@@ -190,6 +243,33 @@ class _Runner:
             vals[rows] = np.minimum(vals[rows], best // sp.lcm)
         return out
 
+    def fixpoint(self, max_layers: int | None) -> tuple[dict[int, np.ndarray], int]:
+        """The first layer ``k`` (beyond the farthest goal) equal to layer ``k - 1``, and ``k``.
+
+        Every later layer is the same: it is the DP at ``H = inf``.
+
+        Raises
+        ------
+        HorizonError
+            If no layer repeats within ``max_layers`` layers.
+        """
+        layer = self.layer0()
+        k = 0
+        while True:
+            k += 1
+            if max_layers is not None and k > max_layers:
+                raise HorizonError(f"the coalition DP did not converge within {max_layers} "
+                                   f"layers")
+            nxt = self.step(layer, k)
+            if k > max(self.inst.hops) and same_layer(nxt, layer):
+                return nxt, k
+            layer = nxt
+
+    def stacked(self, layer: dict[int, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+        """A layer as one ``(2^N - 1, nodes)`` array (row ``mask - 1``) and its finite nodes."""
+        arr = np.stack([layer[m] for m in range(1, 1 << self.inst.n_goals)])
+        return arr, layer[1] < self.big
+
     def value(self, layer: dict[int, np.ndarray], horizon: int | None,
               layers: int) -> CoalitionValue:
         s0 = self.inst.start
@@ -207,7 +287,17 @@ class _Runner:
                               cover=dict(lp.cover))
 
 
-def _same(a: dict[int, np.ndarray], b: dict[int, np.ndarray]) -> bool:
+def same_layer(a: dict[int, np.ndarray], b: dict[int, np.ndarray]) -> bool:
+    """True when two layers of the coalition DP are equal (then every later layer is too).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> run = CoalitionRunner(star3())
+    >>> one = run.step(run.layer0(), 1)
+    >>> same_layer(run.layer0(), one), same_layer(one, one)
+    (False, True)
+    """
     return all(np.array_equal(a[m], b[m]) for m in a)
 
 
@@ -216,7 +306,7 @@ def coalition_value(instance: Instance, horizon: int | None, *,
     """The coalition DP of the N-goal game (``horizon=None`` for ``H = inf``).
 
     An upper bound on ``V_H``, equal to it for N <= 3 (``proofs/NGOAL.md``); use
-    :func:`dppverify.ngoal.proved_value.nvalue` for the certified value or bracket.
+    :func:`dppverify.structured.proved_value.nvalue` for the certified value or bracket.
 
     Parameters
     ----------
@@ -243,21 +333,14 @@ def coalition_value(instance: Instance, horizon: int | None, *,
     """
     if horizon is not None and horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
-    run = _Runner(instance)
-    layer = run.layer0()
+    run = CoalitionRunner(instance)
     if horizon is not None:
+        layer = run.layer0()
         for k in range(1, horizon + 1):
             layer = run.step(layer, k)
         return run.value(layer, horizon, horizon)
-    k = 0
-    while True:
-        k += 1
-        if max_layers is not None and k > max_layers:
-            raise HorizonError(f"the coalition DP did not converge within {max_layers} layers")
-        nxt = run.step(layer, k)
-        if k > max(instance.hops) and _same(nxt, layer):
-            return run.value(nxt, None, k)
-        layer = nxt
+    fixpoint, k = run.fixpoint(max_layers)
+    return run.value(fixpoint, None, k)
 
 
 def coalition_values(instance: Instance, horizons: range) -> dict[int, Number]:
@@ -269,7 +352,7 @@ def coalition_values(instance: Instance, horizons: range) -> dict[int, Number]:
     >>> coalition_values(star3(), range(4))
     {1: 2, 2: Fraction(3, 2), 3: Fraction(3, 2)}
     """
-    run = _Runner(instance)
+    run = CoalitionRunner(instance)
     layer = run.layer0()
     out: dict[int, Number] = {}
     for k in range(0, horizons.stop):

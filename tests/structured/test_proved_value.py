@@ -14,21 +14,16 @@ from typing import Any
 
 import pytest
 
-import dppverify.ngoal.proved_value as guarantee
+import dppverify.structured.proved_value as guarantee
 from dppverify.certify import certify
 from dppverify.cli.value import value_command
 from dppverify.game.examples import hub4, hub4_document
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.coalition import coalition_value
-from dppverify.ngoal.cover import balanced_vertices
-from dppverify.ngoal.proved_value import (
-    basic_solutions,
-    lower_bound_simple,
-    nvalue,
-    zero_one_normals,
-)
 from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
+from dppverify.structured.coalition import coalition_value
+from dppverify.structured.cover import balanced_vertices, basic_solutions, zero_one_normals
+from dppverify.structured.proved_value import lower_bound_simple, nvalue
 from tests.checker._helpers import run_cli, write_doc
 
 

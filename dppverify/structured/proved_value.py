@@ -1,0 +1,331 @@
+"""Exact N-goal values: the guarantee-set recursion, certified on a finite set of facet normals.
+
+``proofs/NGOAL.md`` (NG.6) proves that the value of the truncated N-goal game is
+``V_H = max { b·r : r ∈ G_{s0}^H }`` for the *guarantee sets*
+
+    G_g = { r : r <= d(g, g^·) }  at a goal g,     G_v^0 = R^N  elsewhere,
+    G_v^k = ∩_{(v,u)} ( G_u^{k-1} + w(v,u)·Δ^N ),
+
+and that a *normal-restricted* DP over a finite set ``M`` of facet normals
+(:mod:`dppverify.structured.normal_dp`; with ``M`` the 0/1 vectors it is the coalition DP of
+:mod:`dppverify.structured.coalition`) describes outer sets ``F_v^k`` ⊇ ``G_v^k`` (an upper
+bound on ``V_H``, NG.2/NG.7). The sets are the true ones — and the DP value is ``V_H`` — as
+soon as every arc satisfies ``F_v^k ⊆ F_u^{k-1} + w·Δ^N`` (NG.8), which
+:mod:`dppverify.structured.dp_certificate` checks on the finitely many directions ``y_λ`` of
+the packing polytope's vertices: none for N = 3 (which proves NG.4: the coalition DP is the
+value), the four permutations of (1, 1, 1, 1/2) for N = 4 and 45 vectors for N = 5.
+
+:func:`nvalue` runs the coalition DP, certifies it (``H = inf``: at the repeated layer, NG.8
+then gives ``V_H`` for every ``H`` from that layer on; finite ``H``: at every layer) and, when
+an arc fails, adds the failing direction ``y_λ`` and its permutations to ``M`` as primitive
+integer normals and re-runs the DP (vectorised, exact integers at a reduced common scale; for
+``H = inf`` started from the coalition fixpoint), a few rounds. Where no certificate is found
+it returns a bracket naming both bounds: the best DP above, and below the better of two simple
+Defenders (NG.9) and the coalition fixpoint's sets translated into a sub-fixpoint (NG.10).
+Everything is exact; vertices come from exact integer determinants of every basis
+(:mod:`dppverify.structured.cover`; no polyhedral library: the normals form a fixed small
+table, so each basis is enumerated once per table, and tables of permuted right-hand sides are
+shared by symmetry).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+
+import numpy as np
+
+from dppverify.errors import HorizonError, OptionError
+from dppverify.exact import Number, normalize
+from dppverify.game.instance import Instance
+from dppverify.structured.coalition import CoalitionRunner, CoalitionValue, too_many_goals
+from dppverify.structured.cover import MAX_BALANCED, Normal, cheapest, zero_one_normals
+from dppverify.structured.dp_certificate import Arc, certified_coalition_dp, direction_checks
+from dppverify.structured.normal_dp import BeyondExactRange, normal_dp_value
+
+__all__ = [
+    "NValue",
+    "coalition_nvalue",
+    "extra_directions",
+    "lower_bound_simple",
+    "nvalue",
+]
+
+MAX_ROUNDS = 4
+"""Refinement rounds of the general DP (each adds the failing directions as normals)."""
+
+MAX_BASES = 1_000_000
+"""Limit on the bases enumerated for the vertices of a refined normal set's tables."""
+
+
+def extra_directions(ys: Sequence[Sequence[Fraction]]) -> list[Normal]:
+    """The primitive integer vectors along the directions ``ys`` (new normals).
+
+    Examples
+    --------
+    >>> extra_directions([(Fraction(1), Fraction(1), Fraction(1), Fraction(1, 2))])
+    [(2, 2, 2, 1)]
+    """
+    out = []
+    for y in ys:
+        den = math.lcm(*(Fraction(x).denominator for x in y))
+        ints = [int(Fraction(x) * den) for x in y]
+        g = math.gcd(*ints)
+        out.append(tuple(x // g for x in ints))
+    return out
+
+
+def lower_bound_simple(instance: Instance) -> tuple[Fraction, str]:
+    """A cheap exact lower bound on every ``V_H`` (and ``V_inf``) from two simple Defenders.
+
+    A Defender that always guards goal ``θ`` makes type ``θ`` pay at least ``d(s0, g^θ)``
+    (the walk's weight plus the terminal cost); the uniform Defender makes every type ``θ``
+    pay at least ``d(s0, g^θ)/N``. The bound is the better of ``max_θ b_θ d(s0, g^θ)`` and
+    ``Σ_θ b_θ d(s0, g^θ) / N`` (``proofs/NGOAL.md`` NG.9).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> lower_bound_simple(star3())
+    (Fraction(1, 1), 'a Defender that always guards goal 1 (NG.9)')
+    """
+    inst = instance
+    d = [Fraction(inst.dist_to[t][inst.start]) for t in range(inst.n_goals)]
+    guard = [inst.prior[t] * d[t] for t in range(inst.n_goals)]
+    best = max(range(inst.n_goals), key=lambda t: guard[t])
+    uniform = sum(guard, Fraction(0)) / inst.n_goals
+    if uniform > guard[best]:
+        return uniform, "the uniform Defender (NG.9)"
+    return guard[best], f"a Defender that always guards goal {best + 1} (NG.9)"
+
+
+@dataclass(frozen=True)
+class NValue:
+    """``V_H`` of an N-goal instance by the guarantee sets: exact, or a named bracket.
+
+    Attributes
+    ----------
+    horizon : int or None
+        The game's horizon, as in :attr:`coalition` (None: the untruncated game).
+    lower, upper : Number
+        Exact bounds ``lower <= V_H <= upper``; equal when the value is proved.
+    lower_source, upper_source : str
+        Where each bound comes from.
+    layers : int
+        DP layers of the run that gave ``upper``.
+    normals : tuple of tuple of int
+        The facet normals beyond the 0/1 vectors that the final DP used (empty for the
+        coalition DP).
+    reason : str or None
+        Why the value is not proved (None when it is).
+    coalition : CoalitionValue
+        The coalition DP at ``H`` (its cover and coalition costs at the start).
+    """
+
+    horizon: int | None
+    lower: Number
+    upper: Number
+    lower_source: str
+    upper_source: str
+    layers: int
+    normals: tuple[Normal, ...]
+    reason: str | None
+    coalition: CoalitionValue
+
+    @property
+    def exact(self) -> bool:
+        """True when ``V_H`` is proved: the bounds meet."""
+        return self.lower == self.upper
+
+    @property
+    def value(self) -> Number | None:
+        """``V_H`` when proved, else None."""
+        return self.upper if self.exact else None
+
+
+def _deflated_lower(run: CoalitionRunner, layer: dict[int, np.ndarray]) -> Fraction | None:
+    """NG.10: ``DP_inf - t(s0)`` for the least translations ``t`` making ``F - t·1`` a sub-fixpoint.
+
+    ``F`` are the coalition DP's sets at its fixpoint ``layer``. With ``F'_v = F_v - t_v·1``
+    (``t >= 0``, ``t = 0`` at goals) the arc condition for ``(v, u)`` reads
+    ``t_v - t_u >= ℓ(v, u)``, the largest ``(h_{F_v}(y_λ) - w - λ·m_u) / (1·y_λ)`` over the vertices
+    ``λ`` of the packing polytope (the 0/1 ones give ``(m_A(v) - w - m_A(u)) / |A|``). The least
+    such ``t`` is a longest-path fixpoint (Bellman-Ford from ``t = 0``); None if it does not
+    settle within ``n + 1`` rounds (a positive cycle).
+    """
+    inst = run.inst
+    arr, finite = run.stacked(layer)
+    keep = finite[run.src] & finite[run.dst]
+    src, dst, wts = run.src[keep], run.dst[keep], run.wts[keep].astype(object)
+    scale = run.scale
+    frac = np.frompyfunc(lambda num, den: Fraction(int(num), int(den)), 2, 1)
+    ell: np.ndarray | None = None
+    for mask in range(1, 1 << inst.n_goals):
+        size = bin(mask).count("1")
+        e = arr[mask - 1][src].astype(object) - wts - arr[mask - 1][dst].astype(object)
+        cand = frac(e, scale * size)
+        ell = cand if ell is None else np.maximum(ell, cand)
+    zo = zero_one_normals(inst.n_goals)
+    for chk in direction_checks(zo):
+        cols = np.asarray(chk.cover.columns, dtype=np.int64)
+        hv = np.asarray(cheapest(arr[cols][:, src].T, chk.cover.scaled), dtype=object)
+        mu = np.asarray(cheapest(arr[:, dst].T, chk.lams.T), dtype=object)
+        num = (hv * chk.lam_lcm - wts * chk.cover.lcm * chk.scale * chk.lam_lcm
+               - mu * chk.cover.lcm * chk.scale)
+        ones = sum(chk.y, Fraction(0))
+        den = scale * chk.cover.lcm * chk.scale * chk.lam_lcm
+        cand = frac(num, den) / ones
+        ell = cand if ell is None else np.maximum(ell, cand)
+    if ell is None or src.size == 0:
+        return Fraction(0)
+    tails = np.unique(src)
+    seg = np.searchsorted(src, tails)
+    den = math.lcm(1, *{int(x.denominator) for x in ell})
+    nums = [int(x * den) for x in ell]
+    bound = (max(abs(x) for x in nums) + 1) * (inst.n_nodes + 2)
+    lengths = np.asarray(nums, dtype=np.int64 if bound < 2 ** 62 else object)
+    t = np.zeros(inst.n_nodes, dtype=lengths.dtype)  # t · den, exact integers
+    for _ in range(inst.n_nodes + 1):
+        best = np.maximum.reduceat(t[dst] + lengths, seg)
+        new = t.copy()
+        new[tails] = np.maximum(best, 0)
+        if np.array_equal(new, t):
+            return Fraction(int(t[inst.start]), den)
+        t = new
+    return None
+
+
+def coalition_nvalue(coal: CoalitionValue, n_goals: int) -> NValue:
+    """The proved value of an instance with ``n_goals <= 3`` from its coalition DP, already run.
+
+    For two and three goals the coalition DP is the value (NG.3, NG.4), so a caller that has
+    the DP (e.g. the guarantee rule's label-setting fixpoint, proofs/NSOLVE.md NSOLVE.3) need
+    not run :func:`nvalue` again.
+
+    Raises
+    ------
+    ValueError
+        ``n_goals > 3``: there the DP is only an upper bound (NG.2); use :func:`nvalue`.
+
+    Examples
+    --------
+    >>> from dppverify.structured.coalition import coalition_value
+    >>> from dppverify.game.examples import star3
+    >>> coalition_nvalue(coalition_value(star3(), None), 3).value
+    Fraction(3, 2)
+    """
+    if n_goals > 3:
+        raise ValueError(f"the coalition DP is the value only for N <= 3 goals, not {n_goals}")
+    src = ("coalition DP (NG.3: the value for two goals)" if n_goals == 2 else
+           "coalition DP (NG.4: the value for three goals)")
+    v = normalize(Fraction(coal.value))
+    return NValue(coal.horizon, v, v, src, src, coal.layers, (), None, coal)
+
+
+def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = None
+           ) -> NValue:
+    """``V_H`` of an N-goal instance (2 to 5 goals), exact where proved, else a bracket.
+
+    For N <= 3 the coalition DP is the value (NG.3, NG.4). For N = 4, 5 the coalition DP is
+    certified (NG.8) and, where it fails, refined with the failing directions (and their
+    permutations) as extra facet normals, a few rounds (NG.7, NG.8; for ``H = inf`` started
+    from the coalition fixpoint). ``horizon=None`` is ``H = inf``.
+
+    Raises
+    ------
+    HorizonError
+        If ``horizon`` is negative or no goal is reachable within it.
+    OptionError
+        For more than five goals.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import hub4, star3
+    >>> nvalue(star3(), None).value
+    Fraction(3, 2)
+    >>> v = nvalue(hub4(), None)
+    >>> v.value, v.normals
+    (Fraction(12, 7), ((2, 2, 2, 1), (2, 2, 1, 2), (2, 1, 2, 2), (1, 2, 2, 2)))
+    """
+    inst = instance
+    if not 2 <= inst.n_goals <= MAX_BALANCED:
+        raise OptionError(too_many_goals(inst.n_goals))
+    if horizon is not None and horizon < 0:
+        raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
+    coal, fails, start = certified_coalition_dp(inst, horizon, max_layers)
+    upper, layers = Fraction(coal.value), coal.layers
+    n = inst.n_goals
+    src = ("coalition DP (NG.3: the value for two goals)" if n == 2 else
+           "coalition DP (NG.4: the value for three goals)" if n == 3 else
+           "coalition DP, certified at every arc (NG.8)")
+    if not fails:
+        return NValue(horizon, normalize(upper), normalize(upper), src, src, layers, (), None,
+                      coal)
+    up_src = "coalition DP (NG.2: an upper bound)"
+    reason = _fail_reason(inst, fails[0], "the coalition DP")
+    lower, lo_src = lower_bound_simple(inst)
+    fixpoint = start  # the coalition fixpoint, for NG.10 (it bounds every H)
+    if fixpoint is None:
+        fix = certified_coalition_dp(inst, None, max_layers, certify=False)
+        fixpoint, dp_inf = fix[2], Fraction(fix[0].value)
+    else:
+        dp_inf = upper
+    assert fixpoint is not None
+    shift = _deflated_lower(*fixpoint)
+    if shift is not None and dp_inf - shift > lower:
+        lower, lo_src = dp_inf - shift, ("the coalition DP's fixpoint sets translated into a "
+                                         "sub-fixpoint (NG.10)")
+    if lower == upper:
+        src = "coalition DP (NG.2) meeting the translated fixpoint bound (NG.10)"
+        return NValue(horizon, normalize(upper), normalize(upper), src, src, layers, (), None,
+                      coal)
+    extras: list[Normal] = []
+    up_normals: tuple[Normal, ...] = ()
+    cap = max_layers if max_layers is not None else 50 * inst.n_nodes + 100
+    for _ in range(MAX_ROUNDS):
+        new = [d for d in extra_directions(_permutations([fails[0][2]])) if d not in extras]
+        if not new:
+            break
+        extras += sorted(new, reverse=True)
+        normals = zero_one_normals(n) + tuple(extras)
+        if math.comb(len(normals) + n, n) > MAX_BASES:
+            reason += (f"; refining needs {len(extras)} extra normals, beyond the vertex "
+                       f"enumeration's limit ({MAX_BASES:,} bases)")
+            break
+        try:
+            val, layers_g, fails = normal_dp_value(inst, extras, horizon, cap, start)
+        except (HorizonError, BeyondExactRange) as exc:
+            reason += f"; the refined DP: {exc or 'numbers beyond exact float64 range'}"
+            break
+        if val < upper:
+            upper, layers, up_normals = val, layers_g, tuple(extras)
+            up_src = f"DP over {len(extras)} extra facet normals (NG.7: an upper bound)"
+        if not fails:
+            src = f"DP over {len(extras)} extra facet normals, certified at every arc (NG.8)"
+            return NValue(horizon, normalize(val), normalize(val), src, src, layers_g,
+                          tuple(extras), None, coal)
+        if lower == upper:
+            src = f"{up_src[:-1]}) meeting {lo_src}"
+            return NValue(horizon, normalize(upper), normalize(upper), src, src, layers,
+                          up_normals, None, coal)
+        reason = _fail_reason(inst, fails[0], f"the DP with {len(extras)} extra normals")
+    return NValue(horizon, normalize(lower), normalize(upper), lo_src, up_src, layers,
+                  up_normals, reason, coal)
+
+
+def _fail_reason(inst: Instance, arc: Arc, what: str) -> str:
+    v, u, y = arc
+    return (f"arc {inst.nodes[v]!r} -> {inst.nodes[u]!r} fails the certificate of {what} in "
+            f"direction ({', '.join(str(x) for x in y)})")
+
+
+def _permutations(ys: list[tuple[Fraction, ...]]) -> list[tuple[Fraction, ...]]:
+    """Every permutation of every direction (the goals are symmetric in the tables)."""
+    out: dict[tuple[Fraction, ...], None] = {}
+    for y in ys:
+        for p in itertools.permutations(y):
+            out[p] = None
+    return list(out)
