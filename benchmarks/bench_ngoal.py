@@ -27,8 +27,8 @@ from fractions import Fraction
 from dppverify.formats.movingai import GridMap, grid_document
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
-from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
+from dppverify.tree_route.tree import count_prefixes
 
 GOALS64 = ((0, 63), (0, 0), (63, 63), (32, 32), (0, 32))
 
@@ -43,7 +43,7 @@ def small_grid() -> NInstance:
 def tree_vs_dp(max_prefixes: int) -> dict[str, object]:
     inst = small_grid()
     h = inst.hops[inst.start]
-    while count_nprefixes(inst, h + 1) <= max_prefixes:
+    while count_prefixes(inst, h + 1) <= max_prefixes:
         h += 1
     t0 = time.perf_counter()
     tree = ngame_value(inst, h, max_prefixes=max_prefixes)

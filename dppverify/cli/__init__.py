@@ -59,7 +59,7 @@ from dppverify.provenance import (
 )
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
 from dppverify.text import show, show_value
-from dppverify.tree_route.efg import DEFAULT_MAX_EFG_NODES, GameInstance, write_efg
+from dppverify.tree_route.efg import DEFAULT_MAX_EFG_NODES, write_efg
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 from dppverify.tree_route.value_lp import GameValue
@@ -792,7 +792,7 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
     goals = ""
     try:
         refuse_input_as_output(output, [instance, grid.path if grid is not None else None])
-        game: GameInstance
+        game: AnyGame
         if instance is not None and grid is None and is_ngoal_file(instance):  # N > 2 goals
             game = load_ngame(instance, "dpp export-efg")
             goals = f"N = {game.n_goals} goals, "

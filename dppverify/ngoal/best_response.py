@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from dppverify.exact import INF, Number, normalize
-from dppverify.ngoal.tree import NWalkTree
+from dppverify.tree_route.tree import WalkTree
 
 __all__ = ["NAttackerBR", "NDefenderBR", "NTreeDefender", "attacker_best_response",
            "beliefs", "defender_best_response", "defender_from_table", "payoff"]
@@ -42,8 +42,8 @@ class NTreeDefender:
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.ngoal.tree import build_ntree
-    >>> t = build_ntree(star3(), 1)
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> t = build_tree(star3(), 1)
     >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
     >>> d.alloc[0]
     (0, 2)
@@ -53,7 +53,7 @@ class NTreeDefender:
     alloc: tuple[tuple[Number, ...], ...]
 
 
-def defender_from_table(tree: NWalkTree, entries: Mapping[int, Sequence[Fraction]],
+def defender_from_table(tree: WalkTree, entries: Mapping[int, Sequence[Fraction]],
                         default: Sequence[Fraction] | None) -> NTreeDefender:
     """Evaluate a table Defender (prefix -> goal distribution, with a default) on ``tree``.
 
@@ -65,8 +65,8 @@ def defender_from_table(tree: NWalkTree, entries: Mapping[int, Sequence[Fraction
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.ngoal.tree import build_ntree
-    >>> t = build_ntree(star3(), 1)
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> t = build_tree(star3(), 1)
     >>> half = (Fraction(1, 2), Fraction(1, 2), Fraction(0))
     >>> defender_from_table(t, {1: half}, None).alloc
     ((0, 1), (0, 1), (0, 0))
@@ -106,7 +106,7 @@ class NDefenderBR:
     choice: Mapping[int, int]
 
 
-def attacker_best_response(tree: NWalkTree, tdef: NTreeDefender, theta: int) -> NAttackerBR:
+def attacker_best_response(tree: WalkTree, tdef: NTreeDefender, theta: int) -> NAttackerBR:
     """Exact best response of type ``θ`` (0-based) by backward induction over all walks.
 
     Examples
@@ -115,9 +115,9 @@ def attacker_best_response(tree: NWalkTree, tdef: NTreeDefender, theta: int) -> 
     and type ``a`` pays 2 whichever way it walks:
 
     >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.ngoal.tree import build_ntree
+    >>> from dppverify.tree_route.tree import build_tree
     >>> inst = star3()
-    >>> t = build_ntree(inst, 2)
+    >>> t = build_tree(inst, 2)
     >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
     >>> [(br.value, inst.labels(br.walk)) for br in (attacker_best_response(t, d, 0),
     ...                                               attacker_best_response(t, d, 1))]
@@ -149,7 +149,7 @@ def attacker_best_response(tree: NWalkTree, tdef: NTreeDefender, theta: int) -> 
     return NAttackerBR(theta=theta, value=normalize(J[0]), leaf=p, walk=tree.walk(p))
 
 
-def _terminal(tree: NWalkTree, plans: Sequence[Plan]) -> Number:
+def _terminal(tree: WalkTree, plans: Sequence[Plan]) -> Number:
     inst = tree.instance
     leaf = tree.is_leaf_mask()
     total: Number = 0
@@ -161,14 +161,14 @@ def _terminal(tree: NWalkTree, plans: Sequence[Plan]) -> Number:
     return total
 
 
-def payoff(tree: NWalkTree, tdef: NTreeDefender, plans: Sequence[Plan]) -> Number:
+def payoff(tree: WalkTree, tdef: NTreeDefender, plans: Sequence[Plan]) -> Number:
     """``U = Σ_θ b_θ [Σ_p x_θ(p) a_θ(p) + terminal]``: the Attacker's expected cost, exactly.
 
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.ngoal.tree import build_ntree
-    >>> t = build_ntree(star3(), 1)
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> t = build_tree(star3(), 1)
     >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
     >>> payoff(t, d, [{0: Fraction(1), 1: Fraction(1)}] * 3)   # all walk s a
     2
@@ -183,14 +183,14 @@ def payoff(tree: NWalkTree, tdef: NTreeDefender, plans: Sequence[Plan]) -> Numbe
     return normalize(total)
 
 
-def defender_best_response(tree: NWalkTree, plans: Sequence[Plan]) -> NDefenderBR:
+def defender_best_response(tree: WalkTree, plans: Sequence[Plan]) -> NDefenderBR:
     """Exact greedy Defender best response against realization plans (one per type).
 
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.ngoal.tree import build_ntree
-    >>> t = build_ntree(star3(), 1)
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> t = build_tree(star3(), 1)
     >>> br = defender_best_response(t, [{0: Fraction(1), 1: Fraction(1)}] * 3)
     >>> br.value, dict(br.choice)
     (2, {1: 0})
@@ -207,14 +207,14 @@ def defender_best_response(tree: NWalkTree, plans: Sequence[Plan]) -> NDefenderB
     return NDefenderBR(value=normalize(total), choice=choice)
 
 
-def beliefs(tree: NWalkTree, plans: Sequence[Plan]) -> dict[int, tuple[Fraction, ...]]:
+def beliefs(tree: WalkTree, plans: Sequence[Plan]) -> dict[int, tuple[Fraction, ...]]:
     """Bayes beliefs ``μ(· | p)`` at every prefix reached with positive probability.
 
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.ngoal.tree import build_ntree
-    >>> t = build_ntree(star3(), 1)
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> t = build_tree(star3(), 1)
     >>> beliefs(t, [{0: Fraction(1), 1: Fraction(1)}] * 3)[1]
     (Fraction(1, 2), Fraction(1, 3), Fraction(1, 6))
     """

@@ -58,10 +58,9 @@ from dppverify.ngoal.profile import NProfile, load_nprofile_document, nprofile_f
 from dppverify.ngoal.proved_value import nvalue
 from dppverify.ngoal.routes import ntree_fits
 from dppverify.ngoal.structured import NSTRUCTURED_NOT_RUN, nstructured_checks
-from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.ngoal.value_lp import exact_nbracket, solve_nvalue_lp
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
-from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
 
 __all__ = ["NGOAL_CHECK_IDS", "NRoute", "certify_ngoal", "payoff_of_type"]
 
@@ -79,7 +78,7 @@ def _skipped(ids: tuple[str, ...], why: str) -> list[CheckRecord]:
     return [CheckRecord(i, "skipped", why) for i in ids]
 
 
-def _plans(tree: NWalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
+def _plans(tree: WalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
     plans = []
     for mix in profile.attacker:
         x: dict[int, Fraction] = {0: Fraction(1)}
@@ -92,7 +91,7 @@ def _plans(tree: NWalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
     return plans
 
 
-def _defender(tree: NWalkTree, profile: NProfile) -> NTreeDefender | str:
+def _defender(tree: WalkTree, profile: NProfile) -> NTreeDefender | str:
     if profile.rule is not None:  # the guarantee rule, evaluated on every prefix of the tree
         from dppverify.ngoal.guarantee import guarantee_sets, rule_on_trie
 
@@ -184,7 +183,7 @@ def certify_ngoal(instance: NInstance | Mapping[str, Any] | str | Path,
                            f"{prof.longest}, or none for the untruncated game")
     chosen, h = _choose_route(inst, prof, asked, route, max_prefixes)
     tree_checks: list[CheckRecord] = []
-    tree: NWalkTree | None = None
+    tree: WalkTree | None = None
     if chosen in ("tree", "both"):
         assert h is not None
         tree_checks, tree = _tree_checks(inst, prof, h, max_prefixes)
@@ -236,9 +235,9 @@ the untruncated game."""
 
 
 def _tree_checks(inst: NInstance, prof: NProfile, h: int,
-                 max_prefixes: int) -> tuple[list[CheckRecord], NWalkTree]:
+                 max_prefixes: int) -> tuple[list[CheckRecord], WalkTree]:
     """The tree route's records on the walk tree of ``h`` steps."""
-    tree = build_ntree(inst, max(h, inst.hops[inst.start]), max_prefixes=max_prefixes)
+    tree = build_tree(inst, max(h, inst.hops[inst.start]), max_prefixes=max_prefixes)
     checks: list[CheckRecord] = []
     tdef = None if prof.defects else _defender(tree, prof)
     problems = list(prof.defects) + ([tdef] if isinstance(tdef, str) else [])
@@ -332,14 +331,14 @@ def _tree_checks(inst: NInstance, prof: NProfile, h: int,
     return _tagged(checks), tree
 
 
-def payoff_of_type(tree: NWalkTree, tdef: NTreeDefender, plan: Mapping[int, Fraction],
+def payoff_of_type(tree: WalkTree, tdef: NTreeDefender, plan: Mapping[int, Fraction],
                    theta: int) -> Number:
     """Type ``θ``'s expected cost ``U^θ`` under its plan (stage costs plus terminal cost).
 
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> t = build_ntree(star3(), 1)
+    >>> t = build_tree(star3(), 1)
     >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
     >>> [payoff_of_type(t, d, {0: Fraction(1), 1: Fraction(1)}, th) for th in range(3)]
     [2, 2, 2]

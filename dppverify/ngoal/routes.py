@@ -55,13 +55,13 @@ def ntree_fits(instance: NInstance, horizon: int, max_prefixes: int) -> bool:
     The two-goal count (:func:`dppverify.routes.tree_fits`: vectorised, saturated just above
     ``max_prefixes``, so huge trees are never counted in full); it reads only the graph, the
     start, the goals and the hop distances, which an N-goal instance has under the same names,
-    and prunes by the same rule as :func:`~dppverify.ngoal.tree.count_nprefixes`.
+    and prunes by the same rule as :func:`~dppverify.tree_route.tree.count_prefixes`.
 
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.ngoal.tree import count_nprefixes
-    >>> [count_nprefixes(star3(), h) for h in (2, 3)], ntree_fits(star3(), 3, 7)
+    >>> from dppverify.tree_route.tree import count_prefixes
+    >>> [count_prefixes(star3(), h) for h in (2, 3)], ntree_fits(star3(), 3, 7)
     ([6, 8], False)
     """
     return tree_fits(cast(Any, instance), horizon, max_prefixes)

@@ -42,9 +42,8 @@ from dppverify.ngoal.best_response import (
     defender_from_table,
 )
 from dppverify.ngoal.instance import NInstance
-from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.tree_route.lp import LPStats
-from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
 from dppverify.tree_route.value_lp import Bracket, BracketSearch, rational_plan, solve_types_lp
 
 __all__ = ["NGameValue", "NValueLP", "exact_nbracket", "lower_nbound", "ngame_value",
@@ -77,13 +76,13 @@ class NValueLP:
         return self.stats.value
 
 
-def solve_nvalue_lp(tree: NWalkTree) -> NValueLP:
+def solve_nvalue_lp(tree: WalkTree) -> NValueLP:
     """Solve the compact N-type value LP on ``tree`` (Clarabel; status checked).
 
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> round(solve_nvalue_lp(build_ntree(star3(), 2)).value, 6)
+    >>> round(solve_nvalue_lp(build_tree(star3(), 2)).value, 6)
     1.5
     """
     inst = tree.instance
@@ -93,13 +92,13 @@ def solve_nvalue_lp(tree: NWalkTree) -> NValueLP:
     return NValueLP(stats=stats, plans=plans, sigma=sigma)
 
 
-def lower_nbound(tree: NWalkTree, tdef: NTreeDefender) -> Number:
+def lower_nbound(tree: WalkTree, tdef: NTreeDefender) -> Number:
     """Exact ``Σ_θ b_θ min_walk U^θ`` against a fixed Defender: a lower bound on ``V_H``.
 
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> t = build_ntree(star3(), 2)
+    >>> t = build_tree(star3(), 2)
     >>> third = Fraction(1, 3)
     >>> lower_nbound(t, defender_from_table(t, {}, (third, third, third)))
     Fraction(2, 3)
@@ -110,20 +109,20 @@ def lower_nbound(tree: NWalkTree, tdef: NTreeDefender) -> Number:
     return normalize(total)
 
 
-def upper_nbound(tree: NWalkTree, plans: Sequence[Plan]) -> Number:
+def upper_nbound(tree: WalkTree, plans: Sequence[Plan]) -> Number:
     """Exact greedy Defender value against fixed Attacker plans: an upper bound on ``V_H``.
 
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> t = build_ntree(star3(), 1)
+    >>> t = build_tree(star3(), 1)
     >>> upper_nbound(t, [{0: Fraction(1), 1: Fraction(1)}] * 3)
     2
     """
     return defender_best_response(tree, plans).value
 
 
-def _rational_defender(tree: NWalkTree, sigma: np.ndarray, den: int) -> NTreeDefender:
+def _rational_defender(tree: WalkTree, sigma: np.ndarray, den: int) -> NTreeDefender:
     k = tree.instance.n_goals
     table: dict[int, tuple[Fraction, ...]] = {}
     for p in range(1, tree.n_prefixes):
@@ -138,7 +137,7 @@ def _rational_defender(tree: NWalkTree, sigma: np.ndarray, den: int) -> NTreeDef
     return defender_from_table(tree, table, None)
 
 
-def exact_nbracket(tree: NWalkTree, lp: NValueLP | None = None,
+def exact_nbracket(tree: WalkTree, lp: NValueLP | None = None,
                    defenders: Iterable[tuple[str, NTreeDefender]] = (),
                    attackers: Iterable[tuple[str, Sequence[Plan]]] = ()) -> Bracket:
     """Exact bounds on ``V_H`` from rational strategies (see the module docstring).
@@ -149,7 +148,7 @@ def exact_nbracket(tree: NWalkTree, lp: NValueLP | None = None,
     Examples
     --------
     >>> from dppverify.ngoal.examples import star3
-    >>> t = build_ntree(star3(), 2)
+    >>> t = build_tree(star3(), 2)
     >>> b = exact_nbracket(t, solve_nvalue_lp(t))
     >>> b.exact, b.closed
     (Fraction(3, 2), True)
@@ -215,7 +214,7 @@ def ngame_value(instance: NInstance, horizon: int, *,
     >>> v.bracket.exact, round(v.value, 6), v.prefixes
     (Fraction(3, 2), 1.5, 6)
     """
-    tree = build_ntree(instance, horizon, max_prefixes=max_prefixes)
+    tree = build_tree(instance, horizon, max_prefixes=max_prefixes)
     lp = solve_nvalue_lp(tree)
     return NGameValue(horizon=horizon, lp=lp.stats, bracket=exact_nbracket(tree, lp),
                       prefixes=tree.n_prefixes, leaves=tree.n_leaves)

@@ -1,10 +1,8 @@
 """Export the truncated game as a Gambit ``.efg`` file (for peer tools: Gambit, OpenSpiel).
 
 The exported extensive-form game is the truncated game of proofs/LP.md with the Defender's
-allocations made explicit moves. One writer serves two goals
-(:class:`~dppverify.game.instance.Instance`, :class:`~dppverify.tree_route.tree.WalkTree`) and N
-goals
-(:class:`~dppverify.ngoal.instance.NInstance`, :class:`~dppverify.ngoal.tree.NWalkTree`;
+allocations made explicit moves. One writer serves any number of goals
+(:class:`~dppverify.game.instance.GameInstance`, :class:`~dppverify.tree_route.tree.WalkTree`;
 ``docs/formats.md`` §1, "N goals"); with N types:
 
 1. **chance** draws the Attacker's type θ (its true goal g^θ, θ = 1 … N) with the prior ``b``
@@ -103,19 +101,10 @@ from tqdm import tqdm
 from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.exact import Number
 from dppverify.formats.files import write_files
-from dppverify.game.instance import Instance
-from dppverify.ngoal.instance import NInstance
-from dppverify.ngoal.tree import NWalkTree, build_ntree
+from dppverify.game.instance import GameInstance
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
 
-__all__ = ["DEFAULT_MAX_EFG_NODES", "EfgSize", "GameInstance", "GameTree", "efg_size", "to_efg",
-           "tree_to_efg", "write_efg"]
-
-GameInstance = Instance | NInstance
-"""An instance the export accepts: two goals or N goals."""
-
-GameTree = WalkTree | NWalkTree
-"""A walk tree the export accepts: two goals or N goals."""
+__all__ = ["DEFAULT_MAX_EFG_NODES", "EfgSize", "efg_size", "to_efg", "tree_to_efg", "write_efg"]
 
 DEFAULT_MAX_EFG_NODES = 2_000_000
 """Default size guard on the exported game's node count (:class:`TreeTooLargeError` above)."""
@@ -146,7 +135,7 @@ class EfgSize:
     defender_infosets: int
 
 
-def efg_size(tree: GameTree, *, attacker_observes: bool = True,
+def efg_size(tree: WalkTree, *, attacker_observes: bool = True,
              forced_moves: bool = False) -> EfgSize:
     """Count the exported game's nodes and information sets without writing it.
 
@@ -163,8 +152,8 @@ def efg_size(tree: GameTree, *, attacker_observes: bool = True,
     EfgSize(nodes=15, terminals=8, attacker_nodes=2, defender_nodes=4, attacker_infosets=2, \
 defender_infosets=2)
     >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.ngoal.tree import build_ntree
-    >>> efg_size(build_ntree(star3(), 2)).nodes
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> efg_size(build_tree(star3(), 2)).nodes
     136
     """
     n = len(tree.instance.goals)
@@ -216,7 +205,7 @@ def _number(x: Number) -> str:
 class _Writer:
     """Preorder emission of the game tree (one ``.efg`` line per node)."""
 
-    def __init__(self, tree: GameTree, attacker_observes: bool, forced_moves: bool) -> None:
+    def __init__(self, tree: WalkTree, attacker_observes: bool, forced_moves: bool) -> None:
         self.tree = tree
         self.forced = forced_moves
         self.inst = tree.instance
@@ -298,13 +287,13 @@ class _Writer:
             yield from self._attacker(slot, p, hist + step, cost + w if k == slot else cost)
 
 
-def tree_to_efg(tree: GameTree, *, attacker_observes: bool = True, forced_moves: bool = False,
+def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves: bool = False,
                 max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
     """The ``.efg`` text of the game on an already built walk tree (see :func:`to_efg`).
 
     Parameters
     ----------
-    tree : WalkTree or NWalkTree
+    tree : WalkTree or WalkTree
         The walk tree of the truncated game (two goals or N goals).
     attacker_observes, forced_moves, max_nodes, title
         As for :func:`to_efg`.
@@ -365,14 +354,6 @@ def tree_to_efg(tree: GameTree, *, attacker_observes: bool = True, forced_moves:
     return "\n".join(out)
 
 
-def _build(instance: GameInstance, horizon: int, max_prefixes: int,
-           progress: bool = False) -> GameTree:
-    """The walk tree of either kind of instance (the size guard counts it first)."""
-    if isinstance(instance, NInstance):
-        return build_ntree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
-    return build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
-
-
 def to_efg(instance: GameInstance, horizon: int, *, attacker_observes: bool = True,
            forced_moves: bool = False, max_prefixes: int = DEFAULT_MAX_PREFIXES,
            max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
@@ -380,11 +361,10 @@ def to_efg(instance: GameInstance, horizon: int, *, attacker_observes: bool = Tr
 
     Parameters
     ----------
-    instance : Instance or NInstance
-        The game, with two goals or N goals (:mod:`dppverify.ngoal`).
+    instance : GameInstance
+        The game, with ``N >= 2`` goals.
     horizon : int
-        ``H``: walks have at most ``H`` steps (:func:`~dppverify.tree_route.tree.build_tree`,
-        :func:`~dppverify.ngoal.tree.build_ntree`).
+        ``H``: walks have at most ``H`` steps (:func:`~dppverify.tree_route.tree.build_tree`).
     attacker_observes : bool
         Whether the Attacker's information sets include the Defender's past allocations
         (default) or only the walk. The value is the same (see the module docstring).
@@ -414,7 +394,7 @@ def to_efg(instance: GameInstance, horizon: int, *, attacker_observes: bool = Tr
     >>> to_efg(inst, 1).splitlines()[3]
     'c "" 1 "type" { "type 1" 1/2 "type 2" 1/2 } 0'
     """
-    tree = _build(instance, horizon, max_prefixes)
+    tree = build_tree(instance, horizon, max_prefixes=max_prefixes)
     return tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
                        max_nodes=max_nodes, title=title)
 
@@ -446,7 +426,7 @@ def write_efg(path: str | Path, instance: GameInstance, horizon: int, *,
     >>> size.nodes, first
     (15, 'EFG')
     """
-    tree = _build(instance, horizon, max_prefixes, progress)
+    tree = build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
     with tqdm(total=1, desc=f"export .efg ({tree.n_prefixes} prefixes)", disable=not progress,
               leave=False, file=sys.stderr) as bar:
         text = tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,

@@ -41,7 +41,7 @@ from dppverify.game.profile import ProgressRule
 from dppverify.horizons import parse_horizon
 from dppverify.tree_route.best_response import attacker_best_response, defender_best_response
 from dppverify.tree_route.lp import LPStats, realization_constraints, solve
-from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, PrefixTree, WalkTree, build_tree
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
 
 if TYPE_CHECKING:  # imported where the LP is built: cvxpy's import costs ~0.5 s
     import cvxpy as cp
@@ -116,7 +116,7 @@ def solve_value_lp(tree: WalkTree, roles: Roles) -> ValueLP:
     return ValueLP(stats=stats, x1=plans[0], x2=plans[1], sigma1=sigma[0])
 
 
-def solve_types_lp(tree: PrefixTree, priors: Sequence[Number],
+def solve_types_lp(tree: WalkTree, priors: Sequence[Number],
                    dists: Sequence[Sequence[Number]], what: str
                    ) -> tuple[LPStats, np.ndarray, np.ndarray]:
     """The compact LP for any number of types (two goals and N goals share it).
@@ -126,7 +126,7 @@ def solve_types_lp(tree: PrefixTree, priors: Sequence[Number],
 
     Parameters
     ----------
-    tree : PrefixTree
+    tree : WalkTree
         The walk tree.
     priors, dists : Sequence
         ``b_θ`` and the distances ``d(·, g^θ)`` of each type, in the same order.
@@ -271,7 +271,7 @@ def _rational_defender(tree: WalkTree, sigma: np.ndarray, den: int) -> TreeDefen
     return TreeDefender(sigma1=tuple(s1), alloc1=tuple(a1), alloc2=tuple(a2))
 
 
-def rational_plan(tree: PrefixTree, x: np.ndarray, den: int,
+def rational_plan(tree: WalkTree, x: np.ndarray, den: int,
                   snap: float = 1e-7) -> dict[int, Fraction]:
     """Round a float realization plan to an exactly feasible rational one (behavioural form).
 
@@ -364,7 +364,7 @@ reason=None)
             self.offer_lower(lower(den), f"LP dual rounded (denominators <= {den})")
             self.offer_upper(upper(den), f"LP primal rounded (denominators <= {den})")
 
-    def exact_lp(self, tree: PrefixTree, priors: Sequence[Number],
+    def exact_lp(self, tree: WalkTree, priors: Sequence[Number],
                  dists: Sequence[Sequence[Number]],
                  lower: Callable[[list[tuple[Fraction, ...]]], Number],
                  upper: Callable[[list[dict[int, Fraction]]], Number]) -> None:
@@ -389,7 +389,7 @@ reason=None)
             self.reason = "the exact LP solution did not close the bracket (a bug to report)"
 
     def bracket(self, pure: Callable[[dict[int, Fraction]], Number] | None = None,
-                tree: PrefixTree | None = None) -> Bracket:
+                tree: WalkTree | None = None) -> Bracket:
         """The bracket; without an upper bound yet, ``pure(plan)`` of a pure plan on ``tree``."""
         if self.upper is None and pure is not None and tree is not None:
             # no attacker candidate: any pure plan gives a (weak) upper bound

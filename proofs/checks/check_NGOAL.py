@@ -17,8 +17,8 @@ from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.examples import hub4
 from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.proved_value import nvalue, packing_vertices, zero_one_normals
-from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
+from dppverify.tree_route.tree import count_prefixes
 from proofs.checks.ngoal_evidence import FAMILIES, draw_case
 
 
@@ -42,7 +42,7 @@ def test_NG2_the_dp_is_never_below_the_exact_lower_bound_and_NG4_holds_here() ->
         for doc in _cases(7, goals, 4):
             inst = ninstance_from_json(doc)
             h = inst.hops[inst.start] + 1
-            if count_nprefixes(inst, h) > 1500:
+            if count_prefixes(inst, h) > 1500:
                 h -= 1
             a = compare_routes(inst, h, max_prefixes=1500)
             assert a.dp >= a.tree.bracket.lower  # NG.2: V_H <= DP

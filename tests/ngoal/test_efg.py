@@ -30,7 +30,6 @@ from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.examples import star3_document
 from dppverify.ngoal.instance import ninstance_from_json
-from dppverify.ngoal.tree import build_ntree
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.tree_route.efg import efg_size, to_efg, tree_to_efg, write_efg
 from dppverify.tree_route.tree import build_tree
@@ -155,7 +154,7 @@ def test_node_and_infoset_counts_are_n_to_the_t(name: str, doc: dict[str, Any], 
                                                 observes: bool, forced: bool) -> None:
     n = len(doc["goals"])
     game = _export(doc, horizon, observes, forced)
-    tree = build_ntree(ninstance_from_json(doc), horizon)
+    tree = build_tree(ninstance_from_json(doc), horizon)
     depth = [int(t) for t in tree.depth]
     kids = [len(tree.children(p)) for p in range(tree.n_prefixes)]
     choice = [p for p in range(tree.n_prefixes) if kids[p] >= (1 if forced else 2)]
@@ -280,12 +279,12 @@ def test_ten_goals_or_more_separate_the_history_digits() -> None:
             members[(x.player, x.infoset)].append(x)
     assert all(len({own_history(x, pl) for x in xs}) == 1 for (pl, _), xs in members.items())
     n_def = sum(1 for pl, _ in members if pl == 2)
-    assert n_def == efg_size(build_ntree(inst, 3)).defender_infosets
+    assert n_def == efg_size(build_tree(inst, 3)).defender_infosets
 
 
 def test_size_guards_and_horizon_errors(tmp_path: Path) -> None:
     inst = ninstance_from_json(GRID3)
-    nodes = efg_size(build_ntree(inst, 3)).nodes
+    nodes = efg_size(build_tree(inst, 3)).nodes
     assert to_efg(inst, 3, max_nodes=nodes)
     with pytest.raises(TreeTooLargeError, match="--max-nodes"):
         to_efg(inst, 3, max_nodes=nodes - 1)
@@ -309,7 +308,7 @@ def test_size_is_exact_beyond_64_bits() -> None:
         tree_to_efg(build_tree(two, 81))
     three = ninstance_from_json(make_doc([*edges, (80, "g3", 1)], 0, ["g1", "g2", "g3"],
                                          ["1/3", "1/3", "1/3"]))
-    assert efg_size(build_ntree(three, 81)).defender_infosets > 3 ** 80
+    assert efg_size(build_tree(three, 81)).defender_infosets > 3 ** 80
 
 
 # ---------------------------------------------------------------------------------------------
@@ -335,7 +334,7 @@ def test_cli_export_efg_n_goals(tmp_path: Path, flags: list[str]) -> None:
     inst = ninstance_from_json(KITE3)
     assert out.read_text() == to_efg(inst, 2, attacker_observes="--attacker-blind" not in flags,
                                      forced_moves="--forced-moves" in flags)
-    size = efg_size(build_ntree(inst, 2), attacker_observes="--attacker-blind" not in flags,
+    size = efg_size(build_tree(inst, 2), attacker_observes="--attacker-blind" not in flags,
                     forced_moves="--forced-moves" in flags)
     assert f"{size.nodes} game nodes" in r.output and "N = 3 goals" in r.output
 

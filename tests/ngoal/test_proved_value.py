@@ -27,8 +27,8 @@ from dppverify.ngoal.proved_value import (
     nvalue,
     zero_one_normals,
 )
-from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
+from dppverify.tree_route.tree import count_prefixes
 from tests.checker._helpers import run_cli, write_doc
 
 
@@ -67,7 +67,7 @@ def _compare(doc: dict[str, Any], extra: int) -> tuple[int, int]:
         v = nvalue(inst, h)
         dp = coalition_value(inst, h).value
         assert v.upper <= dp and v.lower <= v.upper
-        if count_nprefixes(inst, h) > 3000:
+        if count_prefixes(inst, h) > 3000:
             continue
         b = ngame_value(inst, h, max_prefixes=3000).bracket
         assert v.lower <= b.upper and b.lower <= v.upper, (doc, h, v, b)

@@ -25,9 +25,9 @@ from dppverify.ngoal.coalition import _Runner, coalition_value, coalition_values
 from dppverify.ngoal.examples import star3, star3_document
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
 from dppverify.ngoal.proved_value import nvalue
-from dppverify.ngoal.tree import count_nprefixes
 from dppverify.ngoal.value_lp import ngame_value
 from dppverify.strategies import instances, ngoal_instances, weighted_graphs
+from dppverify.tree_route.tree import count_prefixes
 from dppverify.tree_route.value_lp import game_value
 
 MAX_PREFIXES = 2500
@@ -37,7 +37,7 @@ DATA = Path(__file__).resolve().parents[1] / "data" / "ngoal_cases.json"
 def _horizons(inst: NInstance, extra: int) -> list[int]:
     first = inst.hops[inst.start]
     return [h for h in range(first, first + extra + 1)
-            if count_nprefixes(inst, h) <= MAX_PREFIXES]
+            if count_prefixes(inst, h) <= MAX_PREFIXES]
 
 
 def test_star3_by_hand() -> None:
