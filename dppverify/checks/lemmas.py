@@ -373,8 +373,8 @@ def l3_greedy(ctx: Context) -> CheckRecord:
     problems = []
     checked = 0
     for name, x1, x2 in attackers:
-        greedy = defender_best_response(tree, roles, x1, x2)
-        lp, sigma = defender_best_response_lp(tree, roles, x1, x2)
+        greedy = defender_best_response(tree, roles, {1: x1, 2: x2})
+        lp, sigma = defender_best_response_lp(tree, roles, {1: x1, 2: x2})
         err = abs(lp.value - float(greedy.value))
         worst_value = max(worst_value, err)
         if not lp_agrees(lp.value, greedy.value):

@@ -45,22 +45,21 @@ from dppverify.certificate import Certificate, CheckRecord, Status, merge_routes
 from dppverify.errors import HorizonError, LPError, UndecidedError
 from dppverify.exact import Number, normalize
 from dppverify.horizons import parse_horizon
-from dppverify.ngoal.best_response import (
-    NTreeDefender,
-    attacker_best_response,
-    beliefs,
-    defender_best_response,
-    defender_from_table,
-    payoff,
-)
 from dppverify.ngoal.instance import NInstance, load_ninstance, ninstance_from_json
 from dppverify.ngoal.profile import NProfile, load_nprofile_document, nprofile_from_json
 from dppverify.ngoal.proved_value import nvalue
 from dppverify.ngoal.routes import ntree_fits
 from dppverify.ngoal.structured import NSTRUCTURED_NOT_RUN, nstructured_checks
-from dppverify.ngoal.value_lp import exact_nbracket, solve_nvalue_lp
+from dppverify.tree_route.best_response import (
+    attacker_best_response,
+    beliefs,
+    defender_best_response,
+    payoff_on_tree,
+)
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
+from dppverify.tree_route.players import DefenderOnTree, defender_from_table
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
+from dppverify.tree_route.value_lp import exact_bracket, solve_value_lp
 
 __all__ = ["NGOAL_CHECK_IDS", "NRoute", "certify_ngoal", "payoff_of_type"]
 
@@ -91,7 +90,7 @@ def _plans(tree: WalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
     return plans
 
 
-def _defender(tree: WalkTree, profile: NProfile) -> NTreeDefender | str:
+def _defender(tree: WalkTree, profile: NProfile) -> DefenderOnTree | str:
     if profile.rule is not None:  # the guarantee rule, evaluated on every prefix of the tree
         from dppverify.ngoal.guarantee import guarantee_sets, rule_on_trie
 
@@ -246,12 +245,12 @@ def _tree_checks(inst: NInstance, prof: NProfile, h: int,
         checks.append(CheckRecord("ngoal.profile.wellformed", "fail", problems[0] + more))
         checks += _skipped(NGOAL_CHECK_IDS[1:], "the profile is not well formed")
         return _tagged(checks), tree
-    assert isinstance(tdef, NTreeDefender)
+    assert isinstance(tdef, DefenderOnTree)
     checks.append(CheckRecord("ngoal.profile.wellformed", "pass",
                               f"{inst.n_goals} types, {sum(map(len, prof.attacker))} walks, "
                               f"Defender defined on all {tree.n_prefixes - 1} prefixes"))
     plans = _plans(tree, prof)
-    u = payoff(tree, tdef, plans)
+    u = payoff_on_tree(tree, inst, tdef, dict(enumerate(plans)))
     per_type = [payoff_of_type(tree, tdef, plans[t], t) for t in range(inst.n_goals)]
     nums: dict[str, Number | None] = {f"U{t + 1}": per_type[t] for t in range(inst.n_goals)}
     nums["U"] = u
@@ -261,7 +260,7 @@ def _tree_checks(inst: NInstance, prof: NProfile, h: int,
                               PROOF))
     regrets = []
     for t in range(inst.n_goals):
-        br = attacker_best_response(tree, tdef, t)
+        br = attacker_best_response(tree, inst, tdef, t)
         regrets.append((normalize(per_type[t] - br.value), t, br))
     worst = max(regrets, key=lambda r: r[0])
     ok = all(r[0] == 0 for r in regrets)
@@ -272,13 +271,13 @@ def _tree_checks(inst: NInstance, prof: NProfile, h: int,
                               {f"regret{t + 1}": r for r, t, _ in sorted(regrets,
                                                                           key=lambda r: r[1])},
                               PROOF))
-    dbr = defender_best_response(tree, plans)
+    dbr = defender_best_response(tree, inst, dict(enumerate(plans)))
     reg = normalize(dbr.value - u)
     checks.append(CheckRecord("ngoal.pbne.defender_br", "pass" if reg == 0 else "fail",
                               "Defender regret 0" if reg == 0 else
                               f"Defender regret {reg}: greedy best response {dbr.value}, "
                               f"profile {u}", {"regret": reg, "greedy": dbr.value}, PROOF))
-    mu = beliefs(tree, plans)
+    mu = beliefs(tree, inst, dict(enumerate(plans)))
     bad = []
     for p, belief in mu.items():
         if p == 0:
@@ -294,9 +293,9 @@ def _tree_checks(inst: NInstance, prof: NProfile, h: int,
     checks.append(CheckRecord("ngoal.pbne.sequential", "fail" if bad else "pass", msg,
                               {"infosets": len(mu) - 1}, PROOF))
     try:
-        lp = solve_nvalue_lp(tree)
-        bracket = exact_nbracket(tree, lp, defenders=[("the profile's Defender", tdef)],
-                                 attackers=[("the profile's Attacker", plans)])
+        lp = solve_value_lp(tree, inst)
+        bracket = exact_bracket(tree, inst, lp, defenders=[("the profile's Defender", tdef)],
+                                attackers=[("the profile's Attacker", dict(enumerate(plans)))])
     except LPError as exc:
         checks.append(CheckRecord("ngoal.value.V_H", "error", str(exc)))
         checks.append(CheckRecord("ngoal.value.structured", "skipped", "no tree value"))
@@ -331,7 +330,7 @@ def _tree_checks(inst: NInstance, prof: NProfile, h: int,
     return _tagged(checks), tree
 
 
-def payoff_of_type(tree: WalkTree, tdef: NTreeDefender, plan: Mapping[int, Fraction],
+def payoff_of_type(tree: WalkTree, tdef: DefenderOnTree, plan: Mapping[int, Fraction],
                    theta: int) -> Number:
     """Type ``θ``'s expected cost ``U^θ`` under its plan (stage costs plus terminal cost).
 
@@ -345,7 +344,7 @@ def payoff_of_type(tree: WalkTree, tdef: NTreeDefender, plan: Mapping[int, Fract
     """
     inst = tree.instance
     leaf = tree.is_leaf_mask()
-    a = tdef.alloc[theta]
+    a = tdef.alloc(theta)
     d = inst.dist_to[theta]
     total: Number = 0
     for p, prob in plan.items():

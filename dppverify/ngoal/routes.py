@@ -21,11 +21,11 @@ from dppverify.ngoal.coalition import CoalitionValue, too_many_goals
 from dppverify.ngoal.cover import MAX_BALANCED, members
 from dppverify.ngoal.instance import NInstance, goal_count, read_instance_document
 from dppverify.ngoal.proved_value import NValue, nvalue
-from dppverify.ngoal.value_lp import NGameValue, ngame_value
 from dppverify.routes import tree_fits
 from dppverify.text import show, show_value
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE, lp_agrees
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
+from dppverify.tree_route.value_lp import GameValue, game_value
 
 __all__ = ["CONJECTURE_NOTE", "NRoutedValue", "is_ngoal_file", "nrouted_document",
            "nrouted_lines", "nrouted_value", "ntree_fits"]
@@ -85,7 +85,7 @@ class NRoutedValue:
     route: str
     horizon: int | None
     goals: int
-    tree: NGameValue | None
+    tree: GameValue | None
     structured: NValue | None
     disagreement: str | None
 
@@ -144,7 +144,7 @@ def nrouted_value(instance: NInstance, horizon: int | None, *, route: str = "aut
     if route == "auto":
         fits = horizon is not None and ntree_fits(instance, horizon, max_prefixes)
         route = "tree" if fits or instance.n_goals > MAX_BALANCED else "structured"
-    tree = (ngame_value(instance, horizon, max_prefixes=max_prefixes)
+    tree = (game_value(instance, horizon, max_prefixes=max_prefixes)
             if route in ("tree", "both") and horizon is not None else None)
     dp = nvalue(instance, horizon) if route in ("structured", "both") else None
     disagreement = None
@@ -161,7 +161,7 @@ def nrouted_value(instance: NInstance, horizon: int | None, *, route: str = "aut
                         structured=dp, disagreement=disagreement)
 
 
-def _tree_doc(v: NGameValue) -> dict[str, Any]:
+def _tree_doc(v: GameValue) -> dict[str, Any]:
     b = v.bracket
     return {"value": format_number(b.exact), "value_lp": v.lp.value,
             "lower": format_number(b.lower), "upper": format_number(b.upper),

@@ -25,7 +25,7 @@ allocations made explicit moves. One writer serves any number of goals
    the Defender receives it (zero-sum).
 
 The value of this game for the Defender is ``V_H`` (:func:`dppverify.game_value`; for N goals
-:func:`dppverify.ngoal.value_lp.ngame_value`) in both variants: observing the Defender's past
+:func:`dppverify.tree_route.value_lp.game_value`) in both variants: observing the Defender's past
 moves is worthless to the Attacker (they never change the state), which is what the peer
 cross-check in ``tests/peers`` confirms (for two goals and for N = 3, 4).
 

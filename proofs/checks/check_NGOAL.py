@@ -12,13 +12,13 @@ from fractions import Fraction
 
 import sympy as sp
 
-from dppverify.ngoal.agreement import compare_routes
+from dppverify.agreement import compare_routes
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.examples import hub4
 from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.ngoal.proved_value import nvalue, packing_vertices, zero_one_normals
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.tree_route.tree import count_prefixes
+from dppverify.tree_route.value_lp import game_value
 from proofs.checks.ngoal_evidence import FAMILIES, draw_case
 
 
@@ -152,5 +152,5 @@ def test_NG4_refuted_for_four_goals_on_the_hub() -> None:
             assert v.exact and v.value == Fraction(12, 7)
             assert (2, 2, 2, 1) in v.normals
             if h is not None:
-                b = ngame_value(inst, h).bracket
+                b = game_value(inst, h).bracket
                 assert b.closed and b.exact == Fraction(12, 7)

@@ -10,9 +10,10 @@ from fractions import Fraction
 
 import sympy as sp
 
-from dppverify.ngoal.best_response import attacker_best_response, defender_from_table
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
 from dppverify.ngoal.walk_br import table_defender, walk_best_response
+from dppverify.tree_route.best_response import attacker_best_response
+from dppverify.tree_route.players import defender_from_table
 from dppverify.tree_route.tree import build_tree, count_prefixes
 from proofs.checks._sym import is_nonneg, is_zero, nonneg
 
@@ -66,7 +67,7 @@ def test_NWALKBR_equals_exhaustive_backward_induction_over_all_walks() -> None:
         tree_def = defender_from_table(tree, table, default)
         for theta in range(inst.n_goals):
             br = walk_best_response(tdef, theta)
-            exhaustive = attacker_best_response(tree, tree_def, theta)
+            exhaustive = attacker_best_response(tree, inst, tree_def, theta)
             assert br.value == exhaustive.value, (theta, entries, default)
             assert len(br.walk) - 1 <= bound
             # the witness is a walk of the game and costs what NW.1 says

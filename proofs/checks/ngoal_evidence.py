@@ -20,8 +20,8 @@ from collections import Counter
 from fractions import Fraction
 from typing import Any
 
+from dppverify.agreement import compare_routes
 from dppverify.errors import TreeTooLargeError
-from dppverify.ngoal.agreement import compare_routes
 from dppverify.ngoal.instance import ninstance_from_json
 from dppverify.tree_route.tree import count_prefixes
 

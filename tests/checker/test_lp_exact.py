@@ -13,7 +13,6 @@ import dppverify.tree_route.lp_exact as lp_exact
 from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.instance import ninstance_from_json
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.strategies import instances, ngoal_instances, weighted_graphs
 from dppverify.tree_route.lp_exact import solve_tree_lp_exactly
 from dppverify.tree_route.tree import build_tree, count_prefixes
@@ -34,7 +33,7 @@ HUB = {"graph": {"directed": False,
 
 def test_the_exact_lp_closes_a_bracket_that_rounding_leaves_open() -> None:
     inst = ninstance_from_json(HUB)
-    v = ngame_value(inst, 3)
+    v = game_value(inst, 3)
     assert v.prefixes == 26
     b = v.bracket
     assert b.closed and b.exact == Fraction(44, 17) and b.reason is None
@@ -46,7 +45,7 @@ def test_the_exact_lp_closes_a_bracket_that_rounding_leaves_open() -> None:
 
 def test_an_open_bracket_says_why(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(lp_exact, "MAX_EXACT_ROWS", 10)
-    b = ngame_value(ninstance_from_json(HUB), 3).bracket
+    b = game_value(ninstance_from_json(HUB), 3).bracket
     assert not b.closed and b.reason is not None and "constraint rows" in b.reason
 
 
@@ -71,5 +70,5 @@ def test_n_goal_brackets_close(doc: dict[str, Any]) -> None:
     for h in range(first, first + 3):
         if count_prefixes(inst, h) > 1500:
             break
-        b = ngame_value(inst, h, max_prefixes=1500).bracket
+        b = game_value(inst, h, max_prefixes=1500).bracket
         assert b.closed, (doc, h, b)

@@ -7,7 +7,7 @@ checked against brute-force walk enumeration on the instance document: node and 
 set counts (``N^t`` copies of a ``t``-step prefix), perfect recall, what each player sees,
 payoffs recomputed from the document, the chance node, OpenSpiel's action order, and that the
 sequence-form LP of the parsed game (scipy HiGHS) gives the tree route's exact ``V_H``
-(:func:`dppverify.ngoal.value_lp.ngame_value`) and the coalition DP's value. The two-goal
+(:func:`dppverify.tree_route.value_lp.game_value`) and the coalition DP's value. The two-goal
 export is pinned byte for byte (digests of the output before the writer became N-generic).
 """
 
@@ -30,9 +30,9 @@ from dppverify.game.instance import instance_from_json
 from dppverify.ngoal.coalition import coalition_value
 from dppverify.ngoal.examples import star3_document
 from dppverify.ngoal.instance import ninstance_from_json
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.tree_route.efg import efg_size, to_efg, tree_to_efg, write_efg
 from dppverify.tree_route.tree import build_tree
+from dppverify.tree_route.value_lp import game_value
 from tests.checker._helpers import _key, adjacency, all_walks, distances_to, grid_doc, make_doc
 from tests.checker._helpers import triangle_doc as _triangle_doc
 from tests.checker.test_efg import (
@@ -250,7 +250,7 @@ def test_chance_node_and_action_order(name: str, doc: dict[str, Any], horizon: i
 def test_sequence_form_lp_of_the_export_gives_the_tree_value_and_the_dp(
         name: str, doc: dict[str, Any], horizon: int, observes: bool, forced: bool) -> None:
     inst = ninstance_from_json(doc)
-    exact = ngame_value(inst, horizon).bracket.exact
+    exact = game_value(inst, horizon).bracket.exact
     assert exact is not None
     assert coalition_value(inst, horizon).value == exact
     lp = sequence_form_value(_export(doc, horizon, observes, forced), minimizer=1, maximizer=2)

@@ -27,8 +27,8 @@ from dppverify.ngoal.proved_value import (
     nvalue,
     zero_one_normals,
 )
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.tree_route.tree import count_prefixes
+from dppverify.tree_route.value_lp import game_value
 from tests.checker._helpers import run_cli, write_doc
 
 
@@ -69,7 +69,7 @@ def _compare(doc: dict[str, Any], extra: int) -> tuple[int, int]:
         assert v.upper <= dp and v.lower <= v.upper
         if count_prefixes(inst, h) > 3000:
             continue
-        b = ngame_value(inst, h, max_prefixes=3000).bracket
+        b = game_value(inst, h, max_prefixes=3000).bracket
         assert v.lower <= b.upper and b.lower <= v.upper, (doc, h, v, b)
         if v.value is not None:
             exact += 1
@@ -173,7 +173,7 @@ def test_unrefined_brackets_hold_the_tree_value(monkeypatch: pytest.MonkeyPatch)
         inst = ninstance_from_json(doc)
         h = inst.hops[inst.start] + 1
         v = nvalue(inst, h)
-        b = ngame_value(inst, h, max_prefixes=3000).bracket
+        b = game_value(inst, h, max_prefixes=3000).bracket
         assert b.closed
         assert v.lower <= b.exact <= v.upper, (doc, h, v, b)
         brackets += v.value is None

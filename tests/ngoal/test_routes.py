@@ -18,14 +18,13 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from dppverify.agreement import compare_routes
 from dppverify.errors import HorizonError
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.agreement import compare_routes
 from dppverify.ngoal.coalition import _Runner, coalition_value, coalition_values
 from dppverify.ngoal.examples import star3, star3_document
 from dppverify.ngoal.instance import NInstance, ninstance_from_json
 from dppverify.ngoal.proved_value import nvalue
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.strategies import instances, ngoal_instances, weighted_graphs
 from dppverify.tree_route.tree import count_prefixes
 from dppverify.tree_route.value_lp import game_value
@@ -48,7 +47,7 @@ def test_star3_by_hand() -> None:
     assert coalition_values(inst, range(6)) == {1: 2, 2: Fraction(3, 2), 3: Fraction(3, 2),
                                                 4: Fraction(3, 2), 5: Fraction(3, 2)}
     for h in (1, 2, 3):
-        assert ngame_value(inst, h).bracket.exact == coalition_value(inst, h).value
+        assert game_value(inst, h).bracket.exact == coalition_value(inst, h).value
     assert coalition_value(inst, None).value == Fraction(3, 2)
 
 
