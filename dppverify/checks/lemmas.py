@@ -442,7 +442,7 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
     for walk, _origin in paths.items():
         leaf = tree.find(walk)
         assert leaf is not None
-        along = tree.path(leaf)
+        along = tree.prefixes(leaf)
         primaries: list[tuple[str, tuple[StrategyPath, ...]]] = []
         if isinstance(ctx, EvaluatedContext):
             primaries.append(("the profile's primary", ctx.profile.primary))
@@ -507,7 +507,7 @@ def l5_induced_beliefs(ctx: EvaluatedContext) -> CheckRecord:
                           ctx.numbers).as_tuple()
     leaf = tree.find(xi2)
     assert leaf is not None
-    along = tree.path(leaf)
+    along = tree.prefixes(leaf)
 
     problems = []
     for t, p in enumerate(along):

@@ -94,14 +94,9 @@ def leaf_totals(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
     Against σ* on the triangle, ``s -> g2`` costs the primary 1 + d(g2, g1) = 3, as much
     as ``s -> g1`` (Lemma 1), and the secondary 1 (σ* = 1/2 on that step):
 
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> from dppverify.game.defender import tree_defender
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> tree, r, td = ctx.tree, ctx.roles, ctx.sigma_star   # σ*: progress to g1
     >>> leaf_totals(tree, r, td, 1), leaf_totals(tree, r, td, 2)
     ([0, 3, 3], [0, 2, 1])
     """
@@ -132,16 +127,10 @@ def attacker_best_response(tree: WalkTree, types: AnyTypes,
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> from dppverify.game.defender import tree_defender
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> tree = build_tree(inst, 3)
-    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
-    >>> br = attacker_best_response(tree, r, td, 2)
-    >>> br.value, inst.labels(br.walk)
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context(horizon=3)
+    >>> br = attacker_best_response(ctx.tree, ctx.roles, ctx.sigma_star, 2)
+    >>> br.value, ctx.instance.labels(br.walk)
     (1, ('s', 'g2'))
 
     With three goals, against a Defender that always guards goal ``a``, type ``b`` walks
@@ -149,6 +138,7 @@ def attacker_best_response(tree: WalkTree, types: AnyTypes,
 
     >>> from dppverify.ngoal.examples import star3
     >>> from dppverify.tree_route.players import defender_from_table
+    >>> from dppverify.tree_route.tree import build_tree
     >>> inst = star3()
     >>> t = build_tree(inst, 2)
     >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
@@ -195,15 +185,9 @@ def objective_vector(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> from dppverify.game.defender import tree_defender
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
-    >>> c = objective_vector(tree, r, td, 1)
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2; σ*: progress to g1
+    >>> c = objective_vector(ctx.tree, ctx.roles, ctx.sigma_star, 1)
     >>> c.tolist(), float(c @ [1, 4 / 7, 3 / 7])   # U¹ of the mixture (4/7, 3/7)
     ([0.0, 3.0, 3.0], 3.0)
     """
@@ -221,14 +205,9 @@ def attacker_best_response_lp(tree: WalkTree, types: AnyTypes,
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> from dppverify.game.defender import tree_defender
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> tree, r, td = ctx.tree, ctx.roles, ctx.sigma_star   # σ*: progress to g1
     >>> lp = attacker_best_response_lp(tree, r, td, 2)
     >>> lp.status, round(lp.value, 6), attacker_best_response(tree, r, td, 2).value
     ('optimal', 1.0, 1)
@@ -275,23 +254,19 @@ def payoff_on_tree(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
     The triangle's equilibrium: primary ``s -> g1`` w.p. 4/7, ``s -> g2`` w.p. 3/7;
     secondary ``s -> g2``. ``U = 7/10 · 3 + 3/10 · 1``:
 
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> from dppverify.game.defender import tree_defender
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
-    >>> x1 = {0: Fraction(1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
-    >>> x2 = {0: Fraction(1), 2: Fraction(1)}
-    >>> payoff_on_tree(tree, r, td, {1: x1, 2: x2})
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> tree, r, td = ctx.tree, ctx.roles, ctx.sigma_star   # σ*: progress to g1
+    >>> ctx.x1
+    {0: Fraction(1, 1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
+    >>> payoff_on_tree(tree, r, td, {1: ctx.x1, 2: ctx.x2})
     Fraction(12, 5)
 
     Three goals, all types walking ``s a`` against a Defender guarding ``a``:
 
     >>> from dppverify.ngoal.examples import star3
     >>> from dppverify.tree_route.players import defender_from_table
+    >>> from dppverify.tree_route.tree import build_tree
     >>> t = build_tree(star3(), 1)
     >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
     >>> payoff_on_tree(t, star3(), d, dict.fromkeys(range(3), {0: Fraction(1), 1: Fraction(1)}))
@@ -314,17 +289,18 @@ def defender_best_response(tree: WalkTree, types: AnyTypes,
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> inst = triangle()
-    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> x1 = {0: Fraction(1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
-    >>> x2 = {0: Fraction(1), 2: Fraction(1)}
-    >>> br = defender_best_response(tree, inst.roles(), {1: x1, 2: x2})
+    Against the triangle's equilibrium plans (the primary's mixture 4/7, 3/7):
+
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> br = defender_best_response(ctx.tree, ctx.roles, {1: ctx.x1, 2: ctx.x2})
     >>> br.value, dict(br.choice)
     (Fraction(12, 5), {1: 1, 2: 1})
+
+    Three goals, all types walking ``s a``:
+
     >>> from dppverify.ngoal.examples import star3
-    >>> from dppverify.tree_route.players import defender_from_table
+    >>> from dppverify.tree_route.tree import build_tree
     >>> t = build_tree(star3(), 1)
     >>> br = defender_best_response(t, star3(), dict.fromkeys(range(3), {0: 1, 1: 1}))
     >>> br.value, dict(br.choice)

@@ -58,17 +58,7 @@ class Bracket:
 def lower_bound(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy) -> Number:
     """Exact ``Σ_θ b_θ min_walk U^θ`` against a fixed Defender: a lower bound on ``V_H``.
 
-    Parameters
-    ----------
-    tree, types
-        The walk tree and the types.
-    tdef : TreeStrategy
-        The Defender, evaluated on the tree.
-
-    Returns
-    -------
-    Number
-        Exact for rational instances.
+    ``tdef`` is the Defender evaluated on ``tree``; the bound is exact for rational instances.
 
     Examples
     --------
@@ -102,17 +92,8 @@ def lower_bound(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy) -> Number:
 def upper_bound(tree: WalkTree, types: AnyTypes, plans: Mapping[int, Plan]) -> Number:
     """Exact greedy Defender value against fixed Attacker plans: an upper bound on ``V_H``.
 
-    Parameters
-    ----------
-    tree, types
-        The walk tree and the types.
-    plans : Mapping
-        ``plans[θ]``: type θ's realization plan (prefix -> reach probability).
-
-    Returns
-    -------
-    Number
-        Exact for rational instances.
+    ``plans[θ]`` is type θ's realization plan (prefix -> reach probability); the bound is
+    exact for rational instances.
 
     Examples
     --------

@@ -34,7 +34,7 @@ from tqdm import tqdm
 
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.exact import Number
-from dppverify.game.instance import GameInstance
+from dppverify.game.instance import GameInstance, Instance, instance_from_json
 
 if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
     import scipy.sparse as sp
@@ -110,10 +110,10 @@ class WalkTree(Generic[G]):
 
     def walk(self, p: int) -> tuple[int, ...]:
         """The walk (node indices ``s0 … s_t``) of prefix ``p``."""
-        return tuple(int(self.node[q]) for q in self.path(p))
+        return tuple(int(self.node[q]) for q in self.prefixes(p))
 
-    def path(self, p: int) -> list[int]:
-        """Prefix indices from the root down to ``p`` (inclusive)."""
+    def prefixes(self, p: int) -> list[int]:
+        """The prefixes of ``p``'s walk: prefix indices from the root down to ``p`` (inclusive)."""
         out = []
         parent = self.parent
         while p >= 0:
@@ -152,12 +152,9 @@ def count_prefixes(instance: GameInstance, horizon: int, *, limit: int | None = 
 
     Examples
     --------
-    >>> from dppverify.game.instance import instance_from_json
-    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
-    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
-    ...                  {"source": 1, "target": 3}]},
-    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
-    >>> [count_prefixes(instance_from_json(doc), h) for h in range(5)]
+    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3`` (:func:`_fork`):
+
+    >>> [count_prefixes(_fork(), h) for h in range(5)]
     [0, 2, 4, 6, 8]
     """
     if horizon < 0:
@@ -254,15 +251,12 @@ def build_tree(instance: G, horizon: int, *, max_prefixes: int = DEFAULT_MAX_PRE
 
     Examples
     --------
-    >>> from dppverify.game.instance import instance_from_json
-    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
-    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
-    ...                  {"source": 1, "target": 3}]},
-    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
-    >>> t = build_tree(instance_from_json(doc), 4)
+    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3`` (:func:`_fork`):
+
+    >>> t = build_tree(_fork(), 4)
     >>> [t.walk(int(p)) for p in t.leaves()]
     [(0, 2), (0, 1, 3), (0, 1, 0, 2), (0, 1, 0, 1, 3)]
-    >>> build_tree(instance_from_json(doc), 4, max_prefixes=5)  # doctest: +ELLIPSIS
+    >>> build_tree(_fork(), 4, max_prefixes=5)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 4 has at least 6 prefixes, ...
 
@@ -334,12 +328,7 @@ def tree_fits(instance: GameInstance, horizon: int | None, max_prefixes: int) ->
 
     Counts with :func:`count_prefixes`, saturated just above ``max_prefixes`` and stopping as
     soon as the count exceeds it, so that huge trees are never counted in full. An untruncated
-    game (``horizon=None``) never fits.
-
-    Raises
-    ------
-    HorizonError
-        If ``horizon`` is negative.
+    game (``horizon=None``) never fits; a negative horizon raises :class:`HorizonError`.
 
     Examples
     --------
@@ -363,12 +352,9 @@ def simple_mask(tree: WalkTree) -> np.ndarray:
 
     Examples
     --------
-    >>> from dppverify.game.instance import instance_from_json
-    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
-    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
-    ...                  {"source": 1, "target": 3}]},
-    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
-    >>> t = build_tree(instance_from_json(doc), 4)
+    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3`` (:func:`_fork`):
+
+    >>> t = build_tree(_fork(), 4)
     >>> [t.walk(int(p)) for p in t.leaves()[simple_mask(t)[t.leaves()]]]
     [(0, 2), (0, 1, 3)]
     """
@@ -406,3 +392,13 @@ def flow_matrix(tree: WalkTree) -> sp.csr_matrix:
     cols = np.concatenate([inner, children])
     vals = np.concatenate([np.ones(inner.size), -np.ones(children.size)])
     return sp.csr_matrix((vals, (rows, cols)), shape=(inner.size, n))
+
+
+def _fork() -> Instance:
+    """The docstrings' example: the undirected path ``2 - 0 - 1 - 3``, start ``0``, goals
+    ``2`` and ``3``, prior 1/2 - 1/2."""
+    return instance_from_json({
+        "graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
+                  "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
+                            {"source": 1, "target": 3}]},
+        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]})
