@@ -10,7 +10,7 @@ solution rounded to small denominators, the exactly solved LP) until they meet;
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -25,11 +25,12 @@ from dppverify.tree_route.players import (
     TreeStrategy,
     Types,
     as_types,
+    defender_from_rows,
 )
 from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["DENOMINATORS", "Bracket", "BracketSearch", "defender_from_rows",
-           "lower_bound", "rational_plan", "rounded_defender", "upper_bound"]
+__all__ = ["DENOMINATORS", "Bracket", "BracketSearch", "lower_bound", "rational_plan",
+           "rounded_defender", "upper_bound"]
 
 DENOMINATORS = (1, 2, 3, 4, 5, 6, 8, 10, 12, 20, 24, 60, 100, 360, 720, 1000, 5040, 10**4, 10**6)
 """Denominator limits tried when rounding LP solutions to rationals."""
@@ -114,29 +115,22 @@ def upper_bound(tree: WalkTree, types: AnyTypes, plans: Mapping[int, Plan]) -> N
     return defender_best_response(tree, types, plans).value
 
 
-def defender_from_rows(tree: WalkTree, types: Types, rows: Sequence[Sequence[Number]]
-                       ) -> DefenderOnTree:
-    """The Defender with ``σ(g^θ | p) = rows[p][k]`` (``θ = thetas[k]``; each row sums to 1):
-    the last type's stage cost is the rest of the step's weight, ``w - Σ`` of the others'."""
-    numbers = tree.instance.numbers
-    w = tree.weight
-    k = len(types.thetas)
-    allocs: list[list[Number]] = [[0] * tree.n_prefixes for _ in range(k)]
-    for p in range(1, tree.n_prefixes):
-        rest = w[p]
-        for j in range(k - 1):
-            allocs[j][p] = numbers.product(w[p], rows[p][j])
-            rest = numbers.difference(rest, allocs[j][p])
-        allocs[k - 1][p] = rest
-    return DefenderOnTree(sigma=tuple(tuple(r) for r in rows),
-                          allocs=tuple(tuple(a) for a in allocs), thetas=types.thetas)
-
-
 def rounded_defender(tree: WalkTree, types: Types, sigma: np.ndarray, den: int
-                      ) -> DefenderOnTree:
-    """The LP's Defender ``sigma`` rounded to denominators ``<= den``: with two types the
-    first type's share (the second gets the rest; floats in float mode), with more each
-    share, renormalised."""
+                     ) -> DefenderOnTree:
+    """The LP's Defender ``sigma`` (``sigma[k][p]``, floats) rounded to denominators ``<= den``.
+
+    With two types the first type's share is rounded and the second gets the rest (floats in
+    float mode); with more, each share is rounded and the shares renormalised.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> inst = triangle()
+    >>> sigma = np.array([[np.nan, 0.9999999, 0.4999999], [np.nan, 0.0, 0.5]])
+    >>> rounded_defender(build_tree(inst, 1), as_types(inst.roles()), sigma, 10).sigma
+    ((0, 0), (1, 0), (Fraction(1, 2), Fraction(1, 2)))
+    """
     exact = tree.instance.exact
     k = len(types.thetas)
     rows: list[tuple[Number, ...]] = [tuple(0 for _ in range(k))]

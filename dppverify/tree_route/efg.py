@@ -250,30 +250,30 @@ class _Writer:
         branches = " ".join(f'"type {name}" {_number(p)}'
                             for name, p in zip(self.goal_names, inst.prior, strict=True))
         yield f'c "" 1 "type" {{ {branches} }} 0'
-        for slot in self.types:
-            yield from self._attacker(slot, 0, "", self.zero)
+        for theta in self.types:
+            yield from self._attacker(theta, 0, "", self.zero)
 
-    def _attacker(self, slot: int, p: int, hist: str, cost: Number) -> Iterator[str]:
-        """Attacker of type ``slot`` at prefix ``p`` after Defender history ``hist``."""
+    def _attacker(self, theta: int, p: int, hist: str, cost: Number) -> Iterator[str]:
+        """Attacker of type ``theta`` at prefix ``p`` after Defender history ``hist``."""
         tree = self.tree
         if tree.child_start[p] == tree.child_stop[p]:
             v = int(tree.node[p])
-            yield self._terminal(cost + self.inst.dist_to[slot][v])
+            yield self._terminal(cost + self.inst.dist_to[theta][v])
             return
         if not self.forced and tree.child_stop[p] - tree.child_start[p] == 1:
-            yield from self._defender(slot, int(tree.child_start[p]), hist, cost)
+            yield from self._defender(theta, int(tree.child_start[p]), hist, cost)
             return
-        key: tuple[object, ...] = (slot, p, hist) if self.observes else (slot, p)
+        key: tuple[object, ...] = (theta, p, hist) if self.observes else (theta, p)
         num = self._infoset(ATTACKER, key)
-        name = f"T{slot + 1} p{p} h{self._hist(hist)}" if self.observes else f"T{slot + 1} p{p}"
+        name = f"T{theta + 1} p{p} h{self._hist(hist)}" if self.observes else f"T{theta + 1} p{p}"
         acts = self._ordered([(f"go {self.names[int(tree.node[c])]}", c)
                               for c in tree.children(p)])
         labels = " ".join(f'"{a}"' for a, _ in acts)
         yield f'p "" {ATTACKER} {num} "{name}" {{ {labels} }} 0'
         for _, c in acts:
-            yield from self._defender(slot, c, hist, cost)
+            yield from self._defender(theta, c, hist, cost)
 
-    def _defender(self, slot: int, p: int, hist: str, cost: Number) -> Iterator[str]:
+    def _defender(self, theta: int, p: int, hist: str, cost: Number) -> Iterator[str]:
         """Defender allocating the last step of prefix ``p`` after its own history ``hist``."""
         num = self._infoset(DEFENDER, (p, hist))
         acts = self._ordered([(f"alloc {self.goal_names[k]}", k) for k in self.types])
@@ -282,7 +282,7 @@ class _Writer:
         w = self.tree.weight[p]
         for _, k in acts:
             step = f"{self.sep}{k + 1}" if hist else str(k + 1)
-            yield from self._attacker(slot, p, hist + step, cost + w if k == slot else cost)
+            yield from self._attacker(theta, p, hist + step, cost + w if k == theta else cost)
 
 
 def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves: bool = False,

@@ -1,6 +1,6 @@
 """The compact tree LP solved exactly: an optimal basis from a float vertex, then exact rationals.
 
-The LP of :func:`dppverify.tree_route.value_lp.solve_types_lp` (two goals and N goals) in standard
+The LP of :func:`dppverify.tree_route.value_lp.solve_value_lp` (any number of goals) in standard
 form::
 
     min  Σ_θ b_θ Σ_leaves d_θ(end ℓ) x_θ(ℓ) + Σ_{p ≠ root} w_p z_p

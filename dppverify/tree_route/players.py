@@ -21,7 +21,7 @@ from dppverify.game.instance import GameInstance, Roles
 from dppverify.tree_route.tree import WalkTree
 
 __all__ = ["AnyTypes", "DefenderOnTree", "Plan", "TreeStrategy", "Types", "as_types",
-           "defender_from_table"]
+           "defender_from_rows", "defender_from_table"]
 
 Plan = Mapping[int, Fraction]
 """A realization plan: prefix -> reach probability (reached prefixes)."""
@@ -158,3 +158,34 @@ def defender_from_table(tree: WalkTree, entries: Mapping[int, Sequence[Fraction]
             alloc[theta][p] = normalize(tree.weight[p] * s[theta])
     return DefenderOnTree(sigma=tuple(sigma), allocs=tuple(tuple(a) for a in alloc),
                           thetas=tuple(range(n_goals)))
+
+
+def defender_from_rows(tree: WalkTree, types: Types, rows: Sequence[Sequence[Number]]
+                       ) -> DefenderOnTree:
+    """The Defender with ``σ(g^θ | p) = rows[p][k]`` (``θ = thetas[k]``; each row sums to 1).
+
+    The last type's stage cost is the rest of the step's weight, ``w - Σ`` of the others'
+    (so that in float mode the two stage costs of a step add up to its weight exactly).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> inst = triangle()
+    >>> d = defender_from_rows(build_tree(inst, 1), as_types(inst.roles()),
+    ...                        [(0, 0), (1, 0), (Fraction(1, 4), Fraction(3, 4))])
+    >>> d.alloc(1), d.alloc(2)
+    ((0, 3, Fraction(1, 2)), (0, 0, Fraction(3, 2)))
+    """
+    numbers = tree.instance.numbers
+    w = tree.weight
+    k = len(types.thetas)
+    allocs: list[list[Number]] = [[0] * tree.n_prefixes for _ in range(k)]
+    for p in range(1, tree.n_prefixes):
+        rest = w[p]
+        for j in range(k - 1):
+            allocs[j][p] = numbers.product(w[p], rows[p][j])
+            rest = numbers.difference(rest, allocs[j][p])
+        allocs[k - 1][p] = rest
+    return DefenderOnTree(sigma=tuple(tuple(r) for r in rows),
+                          allocs=tuple(tuple(a) for a in allocs), thetas=types.thetas)

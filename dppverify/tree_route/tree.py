@@ -143,12 +143,8 @@ def count_prefixes(instance: GameInstance, horizon: int, *, limit: int | None = 
     nodes a prefix can be at (a goal within the steps left, reached within the steps taken):
     at most ``O(H·|E|)``, and ``O(total walk length)`` on a path. Bounded: the count is
     non-decreasing in the steps left, so with a ``limit`` it saturates just above it and
-    stops as soon as the start's count exceeds it (returning ``limit + 1``).
-
-    Raises
-    ------
-    HorizonError
-        If ``horizon`` is negative.
+    stops as soon as the start's count exceeds it (returning ``limit + 1``). A negative
+    ``horizon`` raises :class:`HorizonError`.
 
     Examples
     --------

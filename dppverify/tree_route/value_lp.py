@@ -42,14 +42,20 @@ from dppverify.horizons import parse_horizon
 from dppverify.tree_route.bracket import (
     Bracket,
     BracketSearch,
-    defender_from_rows,
     lower_bound,
     rational_plan,
     rounded_defender,
     upper_bound,
 )
 from dppverify.tree_route.lp import LPStats, realization_constraints, solve
-from dppverify.tree_route.players import AnyTypes, Plan, TreeStrategy, as_types, defender_from_table
+from dppverify.tree_route.players import (
+    AnyTypes,
+    Plan,
+    TreeStrategy,
+    as_types,
+    defender_from_rows,
+    defender_from_table,
+)
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
 
 if TYPE_CHECKING:  # imported where the LP is built: cvxpy's import costs ~0.5 s
