@@ -9,7 +9,7 @@ goal (``docs/formats.md`` §1, "N goals"). Two routes:
   LP with N types (cvxpy + Clarabel) closed by an exact rational bracket, exact best responses
   of every type and of the Defender, Bayes beliefs and sequential rationality of a profile
   (:mod:`dppverify.tree_route.tree`, :mod:`dppverify.tree_route.value_lp`,
-  :mod:`dppverify.ngoal.best_response`, :mod:`dppverify.ngoal.certify`);
+  :mod:`dppverify.tree_route.best_response`, :mod:`dppverify.ngoal.certify`);
 - the *structured route*: the guarantee sets (:mod:`dppverify.ngoal.proved_value`), for any
   horizon and ``H = inf``: the coalition dynamic programme over the ``2^N - 1`` goal subsets
   (:mod:`dppverify.ngoal.coalition`) is an upper bound, the value for N <= 3 (proved in

@@ -24,10 +24,10 @@ allocations made explicit moves. One writer serves any number of goals
    Attacker pays ``Σ_t w(e_t)·[step t was allocated to its true goal] + d(end, true goal)``,
    the Defender receives it (zero-sum).
 
-The value of this game for the Defender is ``V_H`` (:func:`dppverify.game_value`; for N goals
-:func:`dppverify.tree_route.value_lp.game_value`) in both variants: observing the Defender's past
-moves is worthless to the Attacker (they never change the state), which is what the peer
-cross-check in ``tests/peers`` confirms (for two goals and for N = 3, 4).
+The value of this game for the Defender is ``V_H`` (:func:`dppverify.game_value`, any number
+of goals) in both variants: observing the Defender's past moves is worthless to the Attacker
+(they never change the state), which is what the peer cross-check in ``tests/peers`` confirms
+(for two goals and for N = 3, 4).
 
 Size: a prefix with ``t`` steps appears ``N^t`` times per type (once per Defender history),
 so the game has ``1 + N·Σ_p (N^t·[p a choice] + N^(t-1)·[t ≥ 1] + N^t·[p leaf])`` nodes,
