@@ -292,7 +292,7 @@ def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves:
     Parameters
     ----------
     tree : WalkTree
-        The walk tree of the truncated game (two goals or N goals).
+        The walk tree of the truncated game (any number of goals).
     attacker_observes, forced_moves, max_nodes, title
         As for :func:`to_efg`.
 

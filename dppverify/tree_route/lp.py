@@ -98,7 +98,7 @@ def realization_constraints(tree: WalkTree, x: cp.Variable) -> list[cp.Constrain
     Parameters
     ----------
     tree : WalkTree
-        The walk tree (two goals or N goals).
+        The walk tree (any number of goals).
     x : cvxpy.Variable
         One entry per prefix.
 

@@ -224,7 +224,7 @@ def solve_tree_lp_exactly(tree: WalkTree, priors: Sequence[Number],
     Parameters
     ----------
     tree : WalkTree
-        The walk tree (two goals or N goals).
+        The walk tree (any number of goals).
     priors, dists : Sequence
         ``b_θ`` and the distances ``d(·, g^θ)`` of each type (exact).
 
