@@ -38,6 +38,7 @@ __all__ = ["AttackerBR", "DefenderBR", "attacker_best_response", "attacker_best_
            "beliefs", "defender_best_response", "defender_best_response_lp", "leaf_totals",
            "objective_vector", "payoff_on_tree", "terminal_costs"]
 
+
 @dataclass(frozen=True)
 class AttackerBR:
     """Type θ's best response in the tree: its cost and one minimising walk."""

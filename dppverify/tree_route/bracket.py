@@ -35,6 +35,7 @@ __all__ = ["DENOMINATORS", "Bracket", "BracketSearch", "lower_bound", "rational_
 DENOMINATORS = (1, 2, 3, 4, 5, 6, 8, 10, 12, 20, 24, 60, 100, 360, 720, 1000, 5040, 10**4, 10**6)
 """Denominator limits tried when rounding LP solutions to rationals."""
 
+
 @dataclass(frozen=True)
 class Bracket:
     """Exact bounds ``lower <= V_H <= upper``, where they come from, and why still open."""

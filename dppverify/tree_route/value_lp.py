@@ -63,6 +63,7 @@ if TYPE_CHECKING:  # imported where the LP is built: cvxpy's import costs ~0.5 s
 
 __all__ = ["GameValue", "ValueLP", "exact_bracket", "game_value", "solve_value_lp"]
 
+
 @dataclass(frozen=True)
 class ValueLP:
     """The compact LP's solution: ``V_H`` (float) with the optimal strategies it found.
