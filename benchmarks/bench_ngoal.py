@@ -2,7 +2,7 @@
 
 1. On the 3×4 unit grid (start (0,1); goals (2,0), (2,3), (0,3); prior 1/2, 1/3, 1/6), at the
    largest horizon whose walk tree has at most ``--max-prefixes`` prefixes: ``V_H`` by the tree
-   route (``ngame_value``: tree, compact LP with cvxpy + Clarabel, exact bracket; and the LP
+   route (``game_value``: tree, compact LP with cvxpy + Clarabel, exact bracket; and the LP
    alone) and by the coalition DP (``coalition_value``), timed in the same run; the ratio is
    tree route / DP, and both values must agree exactly.
 2. The DP alone on a 64×64 open 4-connected grid (start (63,0); goals (0,63), (0,0), (63,63),
@@ -26,9 +26,9 @@ from fractions import Fraction
 
 from dppverify.formats.movingai import GridMap, grid_document
 from dppverify.game.instance import Instance, instance_from_json
-from dppverify.ngoal.tree import count_nprefixes
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
+from dppverify.tree_route.tree import count_prefixes
+from dppverify.tree_route.value_lp import game_value
 
 GOALS64 = ((0, 63), (0, 0), (63, 63), (32, 32), (0, 32))
 
@@ -43,10 +43,10 @@ def small_grid() -> Instance:
 def tree_vs_dp(max_prefixes: int) -> dict[str, object]:
     inst = small_grid()
     h = inst.hops[inst.start]
-    while count_nprefixes(inst, h + 1) <= max_prefixes:
+    while count_prefixes(inst, h + 1) <= max_prefixes:
         h += 1
     t0 = time.perf_counter()
-    tree = ngame_value(inst, h, max_prefixes=max_prefixes)
+    tree = game_value(inst, h, max_prefixes=max_prefixes)
     t_tree = time.perf_counter() - t0
     t0 = time.perf_counter()
     dp = coalition_value(inst, h)

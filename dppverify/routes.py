@@ -19,7 +19,6 @@ from typing import Any, Literal, cast
 from dppverify.errors import HorizonError, OptionError, TreeTooLargeError
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
-from dppverify.ngoal.value_lp import NGameValue, ngame_value
 from dppverify.numbers import NumberMode
 from dppverify.structured.coalition import too_many_goals
 from dppverify.structured.cover import MAX_BALANCED
@@ -68,8 +67,8 @@ def tree_fits(instance: AnyInstance, horizon: int | None, max_prefixes: int) -> 
     >>> tree_fits(inst, 5, 3), tree_fits(inst, 5, 2), tree_fits(inst, None, 10**9)
     (True, False, False)
     >>> from dppverify.game.examples import star3
-    >>> from dppverify.ngoal.tree import count_nprefixes
-    >>> [count_nprefixes(star3(), h) for h in (2, 3)], tree_fits(star3(), 3, 7)
+    >>> from dppverify.tree_route.tree import count_prefixes
+    >>> [count_prefixes(star3(), h) for h in (2, 3)], tree_fits(star3(), 3, 7)
     ([6, 8], False)
     """
     if horizon is None:
@@ -189,7 +188,7 @@ class RoutedValue:
         The route(s) that ran (``auto`` resolved).
     horizon : int or None
         ``H`` (None: the untruncated game).
-    tree : GameValue, NGameValue or None
+    tree : GameValue, GameValue or None
         The tree route's result (LP plus exact bracket).
     structured : StructuredValue, NValue or None
         The structured route's result (two goals: the three-field DP; more: the guarantee
@@ -216,7 +215,7 @@ class RoutedValue:
 
     route: Chosen
     horizon: int | None
-    tree: GameValue | NGameValue | None
+    tree: GameValue | GameValue | None
     structured: StructuredValue | NValue | None
     disagreement: str | None = None
     goals: int = 2
@@ -320,7 +319,7 @@ def routed_value(instance: AnyInstance, horizon: int | None, *, route: Route = "
 def _nrouted_value(instance: Instance, horizon: int | None, chosen: Chosen,
                    max_prefixes: int) -> RoutedValue:
     """:func:`routed_value` with N goals: the tree LP with N types, the guarantee sets."""
-    tree = (ngame_value(instance, horizon, max_prefixes=max_prefixes)
+    tree = (game_value(instance, horizon, max_prefixes=max_prefixes)
             if chosen in ("tree", "both") and horizon is not None else None)
     dp = nvalue(instance, horizon) if chosen in ("structured", "both") else None
     disagreement = None

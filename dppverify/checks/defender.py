@@ -38,8 +38,8 @@ def defender_br(ctx: EvaluatedContext) -> CheckRecord:
     cid = "pbne.defender_br"
     tree, roles = ctx.tree, ctx.roles
     u = ctx.values.U
-    br = defender_best_response(tree, roles, ctx.x1, ctx.x2)
-    lp, _ = defender_best_response_lp(tree, roles, ctx.x1, ctx.x2)
+    br = defender_best_response(tree, roles, {1: ctx.x1, 2: ctx.x2})
+    lp, _ = defender_best_response_lp(tree, roles, {1: ctx.x1, 2: ctx.x2})
     regret = ctx.numbers.difference(br.value, u)
     numbers: dict[str, Number | None] = {"U": u, "best_response": br.value,
                                          "best_response_lp": lp.value, "regret": regret}
@@ -54,7 +54,7 @@ def defender_br(ctx: EvaluatedContext) -> CheckRecord:
         return CheckRecord(cid, "error", f"U = {show(u)} exceeds the Defender's best response "
                            f"{show(br.value)}: inconsistent evaluation", numbers, "L3")
     gains = []
-    for p in br.sigma1:
+    for p in br.choice:
         v1 = roles.b1 * ctx.x1.get(p, Fraction(0))
         v2 = roles.b2 * ctx.x2.get(p, Fraction(0))
         s = ctx.defender.sigma1[p]

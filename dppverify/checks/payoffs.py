@@ -58,7 +58,7 @@ def values(ctx: EvaluatedContext) -> list[CheckRecord]:
             vec[p] = float(prob)
         lp_u[theta] = float(objective_vector(tree, roles, ctx.defender, theta) @ vec)
     lp_total = float(roles.b1) * lp_u[1] + float(roles.b2) * lp_u[2]
-    tree_u = payoff_on_tree(tree, roles, ctx.defender, ctx.x1, ctx.x2)
+    tree_u = payoff_on_tree(tree, roles, ctx.defender, {1: ctx.x1, 2: ctx.x2})
     out = []
     for cid, key, exact, lp_value in (("value.U1", "U1", v.U1, lp_u[1]),
                                       ("value.U2", "U2", v.U2, lp_u[2]),
@@ -121,7 +121,7 @@ def value_check(ctx: Context) -> CheckRecord:
     attackers = []
     if isinstance(ctx, EvaluatedContext):
         defenders.append(("the profile's Defender", ctx.defender))
-        attackers.append(("the profile's Attacker", ctx.x1, ctx.x2))
+        attackers.append(("the profile's Attacker", {1: ctx.x1, 2: ctx.x2}))
     bracket = exact_bracket(tree, roles, lp, defenders, attackers, sigma_star=ctx.sigma_star)
     numbers: dict[str, Number | None] = {"V_H_lp": lp.value, "V_H": bracket.exact,
                                          "V_H_lower": bracket.lower, "V_H_upper": bracket.upper,

@@ -22,7 +22,6 @@ from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.errors import CheckerError
 from dppverify.exact import format_number
 from dppverify.formats.files import refuse_input_as_output
-from dppverify.ngoal.value_lp import NGameValue
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
 from dppverify.structured.coalition import CoalitionValue
 from dppverify.structured.cover import members
@@ -214,7 +213,7 @@ def _structured_line(v: StructuredValue) -> str:
 
 
 
-def _tree_doc(v: NGameValue) -> dict[str, Any]:
+def _tree_doc(v: GameValue) -> dict[str, Any]:
     b = v.bracket
     return {"value": format_number(b.exact), "value_lp": v.lp.value,
             "lower": format_number(b.lower), "upper": format_number(b.upper),
@@ -260,7 +259,7 @@ def _ngoal_document(r: RoutedValue) -> dict[str, Any]:
     >>> _ngoal_document(routed_value(hub4(), None))["value"]
     '12/7'
     """
-    assert isinstance(r.tree, NGameValue | None) and isinstance(r.structured, NValue | None)
+    assert isinstance(r.tree, GameValue | None) and isinstance(r.structured, NValue | None)
     value = None
     if r.structured is not None:
         value = r.structured.value
@@ -287,7 +286,7 @@ def _ngoal_lines(r: RoutedValue) -> list[str]:
     V_H (H = inf, N = 3 goals) = 3/2 (≈ 1.5) exactly; coalition DP (NG.4: the value for \
 three goals) (3 layers)
     """
-    assert isinstance(r.tree, NGameValue | None) and isinstance(r.structured, NValue | None)
+    assert isinstance(r.tree, GameValue | None) and isinstance(r.structured, NValue | None)
     h = "inf" if r.horizon is None else str(r.horizon)
     lines = []
     if r.tree is not None:

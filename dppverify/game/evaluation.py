@@ -155,6 +155,6 @@ def realization(tree: WalkTree, walks: Iterable[StrategyWalk]) -> dict[int, Frac
         leaf = tree.find(mw.walk)
         if leaf is None:
             raise KeyError(f"walk {mw.walk} is not in the walk tree (horizon {tree.horizon})")
-        for p in tree.path(leaf):
+        for p in tree.prefixes(leaf):
             x[p] = x.get(p, Fraction(0)) + mw.probability
     return x

@@ -1,4 +1,8 @@
-"""Best responses in the truncated game, exactly and as LPs.
+"""Best responses, payoffs and Bayes beliefs in the truncated game (any ``N >= 2`` goals).
+
+The players are those of :mod:`dppverify.tree_route.players`: the Attacker's types θ, each a
+realization plan ``x_θ`` (prefix -> reach probability), and a Defender that gives type θ the
+stage cost ``a_θ(p) = w(p)·σ(g^θ | p)`` at every prefix ``p``.
 
 *Attacker* (per type θ, against a Defender fixed at every prefix): the minimum over ALL walks
 of the tree — not only simple paths — of stage costs plus terminal cost, by exact backward
@@ -8,10 +12,13 @@ depends only on the walk, seeing the Defender's past actions does not help the A
 never change the state), so this is the best response over all behavioural strategies
 within the horizon.
 
-*Defender* (against a non-reacting Attacker given by realization plans ``x1``, ``x2``):
-greedy per information set (Lemma 3): ``Σ_p w_p max(b1 x1(p), b2 x2(p))`` plus the terminal
-costs, exactly; and the LP ``max Σ_p w_p [b1 x1(p) σ_p + b2 x2(p) (1 - σ_p)]`` over
-``σ ∈ [0, 1]^P``.
+*Defender* (against a non-reacting Attacker given by realization plans): greedy per
+information set (Lemma 3; ``proofs/L3.md``'s argument does not use the number of types):
+``Σ_p w_p max_θ b_θ x_θ(p)`` plus the terminal costs, exactly; for two types also the LP
+``max Σ_p w_p [b1 x1(p) σ_p + b2 x2(p) (1 - σ_p)]`` over ``σ ∈ [0, 1]^P``.
+
+*Beliefs*: at a prefix reached with positive probability, ``μ(θ | p) = b_θ x_θ(p) /
+Σ_η b_η x_η(p)``.
 """
 
 from __future__ import annotations
@@ -23,13 +30,12 @@ from fractions import Fraction
 import numpy as np
 
 from dppverify.exact import INF, Number
-from dppverify.game.defender import TreeDefender
-from dppverify.game.instance import Roles
 from dppverify.tree_route.lp import LPStats, realization_constraints, solve
+from dppverify.tree_route.players import AnyTypes, Plan, TreeStrategy, Types, as_types
 from dppverify.tree_route.tree import WalkTree
 
 __all__ = ["AttackerBR", "DefenderBR", "attacker_best_response", "attacker_best_response_lp",
-           "defender_best_response", "defender_best_response_lp", "leaf_totals",
+           "beliefs", "defender_best_response", "defender_best_response_lp", "leaf_totals",
            "objective_vector", "payoff_on_tree", "terminal_costs"]
 
 
@@ -45,32 +51,20 @@ class AttackerBR:
 
 @dataclass(frozen=True)
 class DefenderBR:
-    """The Defender's greedy best response: its value and allocation per information set.
+    """The Defender's greedy best response: its value and a best type per information set.
 
-    ``sigma1[p]`` is 1 where ``b1 x1(p) >= b2 x2(p)`` and 0 otherwise, for every prefix ``p``
-    reached with positive probability (at a tie any allocation is optimal).
+    ``choice[p]`` is the type θ with the largest ``b_θ x_θ(p)`` (the first in the plans' order
+    at a tie, where any allocation is optimal), for every prefix ``p`` reached with positive
+    probability: allocating the step to ``g^θ`` is a best response.
     """
 
     value: Number
-    sigma1: Mapping[int, int]
+    choice: Mapping[int, int]
 
 
-def terminal_costs(tree: WalkTree, roles: Roles, theta: int) -> list[Number]:
+def terminal_costs(tree: WalkTree, types: AnyTypes, theta: int
+                   ) -> list[Number]:
     """``d(end(p), g^θ)`` at every leaf ``p`` (0 at inner prefixes), full-graph distances.
-
-    Parameters
-    ----------
-    tree : WalkTree
-        The walk tree.
-    roles : Roles
-        The labelling (which goal is ``g1``, distances to the goals).
-    theta : int
-        1 (primary) or 2 (secondary).
-
-    Returns
-    -------
-    list
-        One exact number per prefix.
 
     Examples
     --------
@@ -81,45 +75,29 @@ def terminal_costs(tree: WalkTree, roles: Roles, theta: int) -> list[Number]:
     >>> terminal_costs(tree, inst.roles(), 1), terminal_costs(tree, inst.roles(), 2)
     ([0, 0, 2], [0, 2, 0])
     """
-    d = roles.dist(theta)
+    d = as_types(types).dist(theta)
     out: list[Number] = [0] * tree.n_prefixes
     for p in tree.leaves().tolist():
         out[p] = d[int(tree.node[p])]
     return out
 
 
-def leaf_totals(tree: WalkTree, roles: Roles, tdef: TreeDefender, theta: int) -> list[Number]:
+def leaf_totals(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
+                theta: int) -> list[Number]:
     """Forward pass: total cost of type θ for the walk of every prefix.
 
     At a leaf: the walk's stage costs plus its terminal cost; at an inner prefix: the stage
     costs so far. A second, independent route to the minimum of
     :func:`attacker_best_response`.
 
-    Parameters
-    ----------
-    tree, roles, tdef
-        The tree, the labelling, and the Defender evaluated on the tree.
-    theta : int
-        1 (primary) or 2 (secondary).
-
-    Returns
-    -------
-    list
-        One exact number per prefix.
-
     Examples
     --------
     Against σ* on the triangle, ``s -> g2`` costs the primary 1 + d(g2, g1) = 3, as much
     as ``s -> g1`` (Lemma 1), and the secondary 1 (σ* = 1/2 on that step):
 
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> from dppverify.game.defender import tree_defender
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> tree, r, td = ctx.tree, ctx.roles, ctx.sigma_star   # σ*: progress to g1
     >>> leaf_totals(tree, r, td, 1), leaf_totals(tree, r, td, 2)
     ([0, 3, 3], [0, 2, 1])
     """
@@ -128,41 +106,49 @@ def leaf_totals(tree: WalkTree, roles: Roles, tdef: TreeDefender, theta: int) ->
     acc: list[Number] = [0] * tree.n_prefixes
     for p in range(1, tree.n_prefixes):
         acc[p] = acc[parent[p]] + a[p]
-    term = terminal_costs(tree, roles, theta)
+    term = terminal_costs(tree, types, theta)
     for p in tree.leaves().tolist():
         acc[p] = acc[p] + term[p]
     return acc
 
 
-def attacker_best_response(tree: WalkTree, roles: Roles, tdef: TreeDefender, theta: int,
+def attacker_best_response(tree: WalkTree, types: AnyTypes,
+                           tdef: TreeStrategy, theta: int,
                            allowed: np.ndarray | None = None) -> AttackerBR:
     """Exact best response of type θ by backward induction over the walk tree.
 
     Parameters
     ----------
-    tree, roles, tdef
-        The tree, the labelling, and the Defender evaluated on the tree.
+    tree, types, tdef
+        The tree, the types, and the Defender evaluated on the tree.
     theta : int
-        1 (primary) or 2 (secondary).
+        The type.
     allowed : numpy.ndarray of bool, optional
         Restrict to walks through allowed prefixes only (e.g. simple paths, Lemma 2).
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> from dppverify.game.defender import tree_defender
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> tree = build_tree(inst, 3)
-    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
-    >>> br = attacker_best_response(tree, r, td, 2)
-    >>> br.value, inst.labels(br.walk)
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context(horizon=3)
+    >>> br = attacker_best_response(ctx.tree, ctx.roles, ctx.sigma_star, 2)
+    >>> br.value, ctx.instance.labels(br.walk)
     (1, ('s', 'g2'))
+
+    With three goals, against a Defender that always guards goal ``a``, type ``b`` walks
+    ``s m b`` for free and type ``a`` pays 2 whichever way it walks:
+
+    >>> from dppverify.game.examples import star3
+    >>> from dppverify.tree_route.players import defender_from_table
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> inst = star3()
+    >>> t = build_tree(inst, 2)
+    >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
+    >>> [(br.value, inst.labels(br.walk)) for br in (attacker_best_response(t, inst, d, 0),
+    ...                                               attacker_best_response(t, inst, d, 1))]
+    [(2, ('s', 'm', 'a')), (0, ('s', 'm', 'b'))]
     """
     a = tdef.alloc(theta)
-    term = terminal_costs(tree, roles, theta)
+    term = terminal_costs(tree, types, theta)
     start = tree.child_start.tolist()
     stop = tree.child_stop.tolist()
     ok = allowed.tolist() if allowed is not None else None
@@ -192,104 +178,72 @@ def attacker_best_response(tree: WalkTree, roles: Roles, tdef: TreeDefender, the
     return AttackerBR(theta=theta, value=value, leaf=p, walk=tree.walk(p))
 
 
-def objective_vector(tree: WalkTree, roles: Roles, tdef: TreeDefender, theta: int) -> np.ndarray:
+def objective_vector(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
+                     theta: int) -> np.ndarray:
     """Type θ's sequence-form cost vector: stage cost at every prefix plus terminal at leaves.
 
     ``objective_vector(...) @ x`` is type θ's expected cost under realization plan ``x``.
 
-    Parameters
-    ----------
-    tree, roles, tdef
-        The tree, the labelling, and the Defender evaluated on the tree.
-    theta : int
-        1 (primary) or 2 (secondary).
-
-    Returns
-    -------
-    numpy.ndarray
-        Float costs, one per prefix (0 at the root).
-
     Examples
     --------
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> from dppverify.game.defender import tree_defender
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
-    >>> c = objective_vector(tree, r, td, 1)
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2; σ*: progress to g1
+    >>> c = objective_vector(ctx.tree, ctx.roles, ctx.sigma_star, 1)
     >>> c.tolist(), float(c @ [1, 4 / 7, 3 / 7])   # U¹ of the mixture (4/7, 3/7)
     ([0.0, 3.0, 3.0], 3.0)
     """
     c = np.array([float(v) for v in tdef.alloc(theta)])
     c[0] = 0.0
-    c += np.array([float(v) for v in terminal_costs(tree, roles, theta)])
+    c += np.array([float(v) for v in terminal_costs(tree, types, theta)])
     return c
 
 
-def attacker_best_response_lp(tree: WalkTree, roles: Roles, tdef: TreeDefender,
-                              theta: int) -> LPStats:
+def attacker_best_response_lp(tree: WalkTree, types: AnyTypes,
+                              tdef: TreeStrategy, theta: int) -> LPStats:
     """Type θ's best-response value as the sequence-form LP ``min c·x`` (realization plans).
 
-    Parameters
-    ----------
-    tree, roles, tdef
-        The tree, the labelling, and the Defender evaluated on the tree.
-    theta : int
-        1 (primary) or 2 (secondary).
-
-    Returns
-    -------
-    LPStats
-        The LP's value (float) and statistics; the exact counterpart is
-        :func:`attacker_best_response`.
+    The exact counterpart is :func:`attacker_best_response`.
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> from dppverify.game.defender import tree_defender
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> tree, r, td = ctx.tree, ctx.roles, ctx.sigma_star   # σ*: progress to g1
     >>> lp = attacker_best_response_lp(tree, r, td, 2)
     >>> lp.status, round(lp.value, 6), attacker_best_response(tree, r, td, 2).value
     ('optimal', 1.0, 1)
     """
     import cvxpy as cp  # lazily: its import costs ~0.5 s
 
-    c = objective_vector(tree, roles, tdef, theta)
+    c = objective_vector(tree, types, tdef, theta)
     x = cp.Variable(tree.n_prefixes)
     problem = cp.Problem(cp.Minimize(c @ x), realization_constraints(tree, x))
     return solve(problem, f"attacker best response LP (type {theta}, H = {tree.horizon})")
 
 
-def _terminal_part(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
-                   x2: Mapping[int, Fraction]) -> Number:
+def _terminal_part(tree: WalkTree, types: Types, plans: Mapping[int, Plan]) -> Number:
+    """``Σ_θ b_θ Σ_leaves x_θ(ℓ) d(end ℓ, g^θ)``."""
     total: Number = 0
-    leaf = tree.child_start == tree.child_stop
-    for theta, x in ((1, x1), (2, x2)):
-        d = roles.dist(theta)
+    leaf = tree.is_leaf_mask()
+    for theta, x in plans.items():
+        d = types.dist(theta)
+        b = types.prior(theta)
         for p, prob in x.items():
             if leaf[p]:
-                total += roles.prior(theta) * prob * d[int(tree.node[p])]
+                total += b * prob * d[int(tree.node[p])]
     return total
 
 
-def payoff_on_tree(tree: WalkTree, roles: Roles, tdef: TreeDefender,
-                   x1: Mapping[int, Fraction], x2: Mapping[int, Fraction]) -> Number:
-    """``U = Σ_θ b_θ Σ_p x_θ(p) a_θ(p) + terminal`` from realization plans (a second route to U).
+def payoff_on_tree(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
+                   plans: Mapping[int, Plan]) -> Number:
+    """``U = Σ_θ b_θ [Σ_p x_θ(p) a_θ(p) + terminal]`` from realization plans (a second route to U).
 
     Parameters
     ----------
-    tree, roles, tdef
-        The tree, the labelling, and the Defender evaluated on the tree.
-    x1, x2 : Mapping
-        Realization plans of the two types: prefix -> reach probability.
+    tree, types, tdef
+        The tree, the types, and the Defender evaluated on the tree.
+    plans : Mapping
+        ``plans[θ]``: type θ's realization plan, for every type.
 
     Returns
     -------
@@ -301,75 +255,91 @@ def payoff_on_tree(tree: WalkTree, roles: Roles, tdef: TreeDefender,
     The triangle's equilibrium: primary ``s -> g1`` w.p. 4/7, ``s -> g2`` w.p. 3/7;
     secondary ``s -> g2``. ``U = 7/10 · 3 + 3/10 · 1``:
 
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> from dppverify.game.defender import tree_defender
-    >>> from dppverify.game.profile import ProgressRule
-    >>> inst = triangle()
-    >>> r = inst.roles()
-    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> td = tree_defender(tree, r, ProgressRule(r.g1))
-    >>> x1 = {0: Fraction(1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
-    >>> x2 = {0: Fraction(1), 2: Fraction(1)}
-    >>> payoff_on_tree(tree, r, td, x1, x2)
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> tree, r, td = ctx.tree, ctx.roles, ctx.sigma_star   # σ*: progress to g1
+    >>> ctx.x1
+    {0: Fraction(1, 1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
+    >>> payoff_on_tree(tree, r, td, {1: ctx.x1, 2: ctx.x2})
     Fraction(12, 5)
+
+    Three goals, all types walking ``s a`` against a Defender guarding ``a``:
+
+    >>> from dppverify.game.examples import star3
+    >>> from dppverify.tree_route.players import defender_from_table
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> t = build_tree(star3(), 1)
+    >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
+    >>> payoff_on_tree(t, star3(), d, dict.fromkeys(range(3), {0: Fraction(1), 1: Fraction(1)}))
+    2
     """
-    total: Number = _terminal_part(tree, roles, x1, x2)
-    for theta, x in ((1, x1), (2, x2)):
+    t = as_types(types)
+    total: Number = _terminal_part(tree, t, plans)
+    for theta, x in plans.items():
         a = tdef.alloc(theta)
-        b = roles.prior(theta)
+        b = t.prior(theta)
         for p, prob in x.items():
             if p:
                 total += b * prob * a[p]
     return tree.instance.numbers.convert(total)
 
 
-def defender_best_response(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
-                           x2: Mapping[int, Fraction]) -> DefenderBR:
-    """Exact greedy Defender best response against realization plans ``x1``, ``x2``.
+def defender_best_response(tree: WalkTree, types: AnyTypes,
+                           plans: Mapping[int, Plan]) -> DefenderBR:
+    """Exact greedy Defender best response against realization plans (one per type).
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.tree_route.tree import build_tree
-    >>> inst = triangle()
-    >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> x1 = {0: Fraction(1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
-    >>> x2 = {0: Fraction(1), 2: Fraction(1)}
-    >>> br = defender_best_response(tree, inst.roles(), x1, x2)
-    >>> br.value, dict(br.sigma1)
+    Against the triangle's equilibrium plans (the primary's mixture 4/7, 3/7):
+
+    >>> from dppverify.game.examples import triangle_context
+    >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
+    >>> br = defender_best_response(ctx.tree, ctx.roles, {1: ctx.x1, 2: ctx.x2})
+    >>> br.value, dict(br.choice)
     (Fraction(12, 5), {1: 1, 2: 1})
+
+    Three goals, all types walking ``s a``:
+
+    >>> from dppverify.game.examples import star3
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> t = build_tree(star3(), 1)
+    >>> br = defender_best_response(t, star3(), dict.fromkeys(range(3), {0: 1, 1: 1}))
+    >>> br.value, dict(br.choice)
+    (2, {1: 0})
     """
-    total: Number = _terminal_part(tree, roles, x1, x2)
-    sigma: dict[int, int] = {}
+    t = as_types(types)
+    total: Number = _terminal_part(tree, t, plans)
+    choice: dict[int, int] = {}
     w = tree.weight
-    for p in sorted(set(x1) | set(x2)):
-        if p == 0:
-            continue
-        v1 = roles.b1 * x1.get(p, Fraction(0))
-        v2 = roles.b2 * x2.get(p, Fraction(0))
-        sigma[p] = 1 if v1 >= v2 else 0
-        total += w[p] * max(v1, v2)
-    value = tree.instance.numbers.convert(total)
-    return DefenderBR(value=value, sigma1=sigma)
+    for p in sorted({p for x in plans.values() for p, prob in x.items() if prob and p}):
+        masses = [(t.prior(theta) * x.get(p, Fraction(0)), theta) for theta, x in plans.items()]
+        top = max(m for m, _ in masses)
+        choice[p] = next(theta for m, theta in masses if m == top)
+        total += w[p] * top
+    return DefenderBR(value=tree.instance.numbers.convert(total), choice=choice)
 
 
-def defender_best_response_lp(tree: WalkTree, roles: Roles, x1: Mapping[int, Fraction],
-                              x2: Mapping[int, Fraction]) -> tuple[LPStats, dict[int, float]]:
-    """The Defender's best response against ``x1``, ``x2`` as an LP over ``σ ∈ [0, 1]^P``.
+def defender_best_response_lp(tree: WalkTree, types: AnyTypes,
+                              plans: Mapping[int, Plan]) -> tuple[LPStats, dict[int, float]]:
+    """The Defender's best response against two types' plans as an LP over ``σ ∈ [0, 1]^P``.
 
     Parameters
     ----------
-    tree, roles
-        The tree and the labelling.
-    x1, x2 : Mapping
-        Realization plans of the two types: prefix -> reach probability.
+    tree, types
+        The tree and the (two) types.
+    plans : Mapping
+        The two types' realization plans; ``σ_p`` is the allocation to the first one's goal.
 
     Returns
     -------
     tuple of LPStats and dict
-        The LP statistics (value = the Defender's optimum) and the LP's allocation
-        ``σ(g1 | p)`` at every information set reached with positive probability.
+        The LP statistics (value = the Defender's optimum) and the LP's allocation ``σ_p``
+        at every information set of the plans.
+
+    Raises
+    ------
+    ValueError
+        Unless there are exactly two plans.
 
     Examples
     --------
@@ -380,22 +350,26 @@ def defender_best_response_lp(tree: WalkTree, roles: Roles, x1: Mapping[int, Fra
     >>> from dppverify.tree_route.tree import build_tree
     >>> inst = triangle()
     >>> tree = build_tree(inst, 1)   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> x1 = {0: Fraction(1), 1: Fraction(3, 7), 2: Fraction(4, 7)}
-    >>> x2 = {0: Fraction(1), 2: Fraction(1)}
-    >>> lp, sigma = defender_best_response_lp(tree, inst.roles(), x1, x2)
+    >>> plans = {1: {0: Fraction(1), 1: Fraction(3, 7), 2: Fraction(4, 7)},
+    ...          2: {0: Fraction(1), 2: Fraction(1)}}
+    >>> lp, sigma = defender_best_response_lp(tree, inst.roles(), plans)
     >>> round(lp.value, 6), {p: round(s, 6) for p, s in sigma.items()}
     (2.5, {1: 1.0, 2: 1.0})
-    >>> defender_best_response(tree, inst.roles(), x1, x2).value
+    >>> defender_best_response(tree, inst.roles(), plans).value
     Fraction(5, 2)
     """
+    if len(plans) != 2:
+        raise ValueError(f"the Defender's LP takes two types' plans, got {len(plans)}")
+    t = as_types(types)
+    (th1, x1), (th2, x2) = plans.items()
     support = sorted(p for p in set(x1) | set(x2) if p != 0)
-    const = float(_terminal_part(tree, roles, x1, x2))
+    const = float(_terminal_part(tree, t, plans))
     w = tree.weight_float
     if not support:
         return LPStats(const, "optimal", 0, 0, 0.0), {}
     idx = np.array(support)
-    b1x1 = np.array([float(roles.b1 * x1.get(p, Fraction(0))) for p in support])
-    b2x2 = np.array([float(roles.b2 * x2.get(p, Fraction(0))) for p in support])
+    b1x1 = np.array([float(t.prior(th1) * x1.get(p, Fraction(0))) for p in support])
+    b2x2 = np.array([float(t.prior(th2) * x2.get(p, Fraction(0))) for p in support])
     import cvxpy as cp  # lazily: its import costs ~0.5 s
 
     sigma = cp.Variable(len(support))
@@ -404,3 +378,25 @@ def defender_best_response_lp(tree: WalkTree, roles: Roles, x1: Mapping[int, Fra
     stats = solve(problem, f"defender best response LP (H = {tree.horizon})")
     values = np.asarray(sigma.value, dtype=float)
     return stats, {p: float(values[k]) for k, p in enumerate(support)}
+
+
+def beliefs(tree: WalkTree, types: AnyTypes, plans: Mapping[int, Plan]
+            ) -> dict[int, tuple[Fraction, ...]]:
+    """Bayes beliefs ``μ(· | p)`` (in the plans' order) at every prefix reached.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> from dppverify.tree_route.players import defender_from_table
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> t = build_tree(star3(), 1)
+    >>> beliefs(t, star3(), dict.fromkeys(range(3), {0: Fraction(1), 1: Fraction(1)}))[1]
+    (Fraction(1, 2), Fraction(1, 3), Fraction(1, 6))
+    """
+    t = as_types(types)
+    out: dict[int, tuple[Fraction, ...]] = {}
+    for p in sorted({p for x in plans.values() for p, prob in x.items() if prob}):
+        masses = [t.prior(theta) * x.get(p, Fraction(0)) for theta, x in plans.items()]
+        tot = sum(masses, Fraction(0))
+        out[p] = tuple(m / tot for m in masses)
+    return out

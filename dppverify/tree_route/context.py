@@ -19,6 +19,7 @@ from dppverify.game.instance import Instance, Roles
 from dppverify.game.profile import DefenderRule, Profile, ProgressRule
 from dppverify.numbers import NumberMode
 from dppverify.tree_route.best_response import AttackerBR, attacker_best_response
+from dppverify.tree_route.best_response import beliefs as bayes_beliefs
 from dppverify.tree_route.tree import WalkTree
 
 __all__ = ["Context", "EvaluatedContext", "EvaluatedProfile", "make_context"]
@@ -151,16 +152,6 @@ class EvaluatedContext(Context):
         return defender is self.sigma_star or defender is self.evaluated.defender
 
 
-def _beliefs(roles: Roles, x1: dict[int, Fraction], x2: dict[int, Fraction]
-             ) -> dict[int, Fraction]:
-    out = {}
-    for p in set(x1) | set(x2):
-        v1 = roles.b1 * x1.get(p, Fraction(0))
-        v2 = roles.b2 * x2.get(p, Fraction(0))
-        out[p] = v1 / (v1 + v2)
-    return out
-
-
 def make_context(instance: Instance, tree: WalkTree, profile: Profile,
                  *, seed: int, trials: int) -> Context:
     """Evaluate σ* on the tree and, when the profile is well-formed, the profile.
@@ -228,8 +219,9 @@ def make_context(instance: Instance, tree: WalkTree, profile: Profile,
                        undefined=() if td is None else td.undefined)
     x1, x2 = plans
     values = evaluate(instance, roles, rule, profile.primary, profile.secondary)
+    mu = bayes_beliefs(tree, roles, {1: x1, 2: x2})
     evaluated = EvaluatedProfile(rule=rule, defender=td, x1=x1, x2=x2, values=values,
-                                 beliefs=_beliefs(roles, x1, x2))
+                                 beliefs={p: m[0] for p, m in mu.items()})
     return EvaluatedContext(instance=instance, tree=tree, profile=profile, roles=roles,
                             sigma_star=sigma_star, seed=seed, trials=trials,
                             evaluated=evaluated)

@@ -1,10 +1,8 @@
 """Export the truncated game as a Gambit ``.efg`` file (for peer tools: Gambit, OpenSpiel).
 
 The exported extensive-form game is the truncated game of proofs/LP.md with the Defender's
-allocations made explicit moves. One writer serves two goals
-(:class:`~dppverify.game.instance.Instance`, :class:`~dppverify.tree_route.tree.WalkTree`) and N
-goals
-(:class:`~dppverify.game.instance.Instance`, :class:`~dppverify.ngoal.tree.NWalkTree`;
+allocations made explicit moves. One writer serves any number of goals
+(:class:`~dppverify.game.instance.Instance`, :class:`~dppverify.tree_route.tree.WalkTree`;
 ``docs/formats.md`` §1, "N goals"); with N types:
 
 1. **chance** draws the Attacker's type θ (its true goal g^θ, θ = 1 … N) with the prior ``b``
@@ -26,10 +24,10 @@ goals
    Attacker pays ``Σ_t w(e_t)·[step t was allocated to its true goal] + d(end, true goal)``,
    the Defender receives it (zero-sum).
 
-The value of this game for the Defender is ``V_H`` (:func:`dppverify.game_value`; for N goals
-:func:`dppverify.ngoal.value_lp.ngame_value`) in both variants: observing the Defender's past
-moves is worthless to the Attacker (they never change the state), which is what the peer
-cross-check in ``tests/peers`` confirms (for two goals and for N = 3, 4).
+The value of this game for the Defender is ``V_H`` (:func:`dppverify.game_value`, any number
+of goals) in both variants: observing the Defender's past moves is worthless to the Attacker
+(they never change the state), which is what the peer cross-check in ``tests/peers`` confirms
+(for two goals and for N = 3, 4).
 
 Size: a prefix with ``t`` steps appears ``N^t`` times per type (once per Defender history),
 so the game has ``1 + N·Σ_p (N^t·[p a choice] + N^(t-1)·[t ≥ 1] + N^t·[p leaf])`` nodes,
@@ -104,22 +102,9 @@ from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.exact import Number
 from dppverify.formats.files import write_files
 from dppverify.game.instance import Instance
-from dppverify.ngoal.tree import NWalkTree, build_ntree
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
 
-__all__ = [
-    "DEFAULT_MAX_EFG_NODES",
-    "EfgSize",
-    "GameTree",
-    "efg_size",
-    "to_efg",
-    "tree_to_efg",
-    "write_efg",
-]
-
-
-GameTree = WalkTree | NWalkTree
-"""A walk tree the export accepts: two goals or N goals."""
+__all__ = ["DEFAULT_MAX_EFG_NODES", "EfgSize", "efg_size", "to_efg", "tree_to_efg", "write_efg"]
 
 DEFAULT_MAX_EFG_NODES = 2_000_000
 """Default size guard on the exported game's node count (:class:`TreeTooLargeError` above)."""
@@ -150,7 +135,7 @@ class EfgSize:
     defender_infosets: int
 
 
-def efg_size(tree: GameTree, *, attacker_observes: bool = True,
+def efg_size(tree: WalkTree, *, attacker_observes: bool = True,
              forced_moves: bool = False) -> EfgSize:
     """Count the exported game's nodes and information sets without writing it.
 
@@ -159,16 +144,14 @@ def efg_size(tree: GameTree, *, attacker_observes: bool = True,
 
     Examples
     --------
-    >>> from dppverify.game.instance import instance_from_json
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}],
-    ...     "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2}]},
-    ...     "start": 0, "goals": [1, 2], "prior": ["1/2", "1/2"]})
+    >>> from dppverify.game.examples import triangle
+    >>> inst = triangle()
     >>> efg_size(build_tree(inst, 1))
     EfgSize(nodes=15, terminals=8, attacker_nodes=2, defender_nodes=4, attacker_infosets=2, \
 defender_infosets=2)
     >>> from dppverify.game.examples import star3
-    >>> from dppverify.ngoal.tree import build_ntree
-    >>> efg_size(build_ntree(star3(), 2)).nodes
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> efg_size(build_tree(star3(), 2)).nodes
     136
     """
     n = len(tree.instance.goals)
@@ -220,7 +203,7 @@ def _number(x: Number) -> str:
 class _Writer:
     """Preorder emission of the game tree (one ``.efg`` line per node)."""
 
-    def __init__(self, tree: GameTree, attacker_observes: bool, forced_moves: bool) -> None:
+    def __init__(self, tree: WalkTree, attacker_observes: bool, forced_moves: bool) -> None:
         self.tree = tree
         self.forced = forced_moves
         self.inst = tree.instance
@@ -267,30 +250,30 @@ class _Writer:
         branches = " ".join(f'"type {name}" {_number(p)}'
                             for name, p in zip(self.goal_names, inst.prior, strict=True))
         yield f'c "" 1 "type" {{ {branches} }} 0'
-        for slot in self.types:
-            yield from self._attacker(slot, 0, "", self.zero)
+        for theta in self.types:
+            yield from self._attacker(theta, 0, "", self.zero)
 
-    def _attacker(self, slot: int, p: int, hist: str, cost: Number) -> Iterator[str]:
-        """Attacker of type ``slot`` at prefix ``p`` after Defender history ``hist``."""
+    def _attacker(self, theta: int, p: int, hist: str, cost: Number) -> Iterator[str]:
+        """Attacker of type ``theta`` at prefix ``p`` after Defender history ``hist``."""
         tree = self.tree
         if tree.child_start[p] == tree.child_stop[p]:
             v = int(tree.node[p])
-            yield self._terminal(cost + self.inst.dist_to[slot][v])
+            yield self._terminal(cost + self.inst.dist_to[theta][v])
             return
         if not self.forced and tree.child_stop[p] - tree.child_start[p] == 1:
-            yield from self._defender(slot, int(tree.child_start[p]), hist, cost)
+            yield from self._defender(theta, int(tree.child_start[p]), hist, cost)
             return
-        key: tuple[object, ...] = (slot, p, hist) if self.observes else (slot, p)
+        key: tuple[object, ...] = (theta, p, hist) if self.observes else (theta, p)
         num = self._infoset(ATTACKER, key)
-        name = f"T{slot + 1} p{p} h{self._hist(hist)}" if self.observes else f"T{slot + 1} p{p}"
+        name = f"T{theta + 1} p{p} h{self._hist(hist)}" if self.observes else f"T{theta + 1} p{p}"
         acts = self._ordered([(f"go {self.names[int(tree.node[c])]}", c)
                               for c in tree.children(p)])
         labels = " ".join(f'"{a}"' for a, _ in acts)
         yield f'p "" {ATTACKER} {num} "{name}" {{ {labels} }} 0'
         for _, c in acts:
-            yield from self._defender(slot, c, hist, cost)
+            yield from self._defender(theta, c, hist, cost)
 
-    def _defender(self, slot: int, p: int, hist: str, cost: Number) -> Iterator[str]:
+    def _defender(self, theta: int, p: int, hist: str, cost: Number) -> Iterator[str]:
         """Defender allocating the last step of prefix ``p`` after its own history ``hist``."""
         num = self._infoset(DEFENDER, (p, hist))
         acts = self._ordered([(f"alloc {self.goal_names[k]}", k) for k in self.types])
@@ -299,17 +282,17 @@ class _Writer:
         w = self.tree.weight[p]
         for _, k in acts:
             step = f"{self.sep}{k + 1}" if hist else str(k + 1)
-            yield from self._attacker(slot, p, hist + step, cost + w if k == slot else cost)
+            yield from self._attacker(theta, p, hist + step, cost + w if k == theta else cost)
 
 
-def tree_to_efg(tree: GameTree, *, attacker_observes: bool = True, forced_moves: bool = False,
+def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves: bool = False,
                 max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
     """The ``.efg`` text of the game on an already built walk tree (see :func:`to_efg`).
 
     Parameters
     ----------
-    tree : WalkTree or NWalkTree
-        The walk tree of the truncated game (two goals or N goals).
+    tree : WalkTree
+        The walk tree of the truncated game (any number of goals).
     attacker_observes, forced_moves, max_nodes, title
         As for :func:`to_efg`.
 
@@ -335,15 +318,10 @@ def tree_to_efg(tree: GameTree, *, attacker_observes: bool = True, forced_moves:
     >>> text = tree_to_efg(tree)
     >>> text == to_efg(inst, 1)
     True
-    >>> print("".join(text.splitlines(keepends=True)[3:11]), end="")
+    >>> print("".join(text.splitlines(keepends=True)[3:6]), end="")
     c "" 1 "type" { "type g1" 7/10 "type g2" 3/10 } 0
     p "" 1 1 "T1 p0 h-" { "go g1" "go g2" } 0
     p "" 2 1 "D p1 h-" { "alloc g1" "alloc g2" } 0
-    t "" 1 "cost 3" { -3 3 }
-    t "" 2 "cost 0" { 0 0 }
-    p "" 2 2 "D p2 h-" { "alloc g1" "alloc g2" } 0
-    t "" 3 "cost 4" { -4 4 }
-    t "" 4 "cost 2" { -2 2 }
     >>> tree_to_efg(tree, max_nodes=10)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     dppverify.errors.TreeTooLargeError: the .efg game for H = 1 has 15 nodes ...
@@ -369,14 +347,6 @@ def tree_to_efg(tree: GameTree, *, attacker_observes: bool = True, forced_moves:
     return "\n".join(out)
 
 
-def _build(instance: Instance, horizon: int, max_prefixes: int,
-           progress: bool = False) -> GameTree:
-    """The walk tree of either kind of instance (the size guard counts it first)."""
-    if instance.n_goals > 2:
-        return build_ntree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
-    return build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
-
-
 def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
            forced_moves: bool = False, max_prefixes: int = DEFAULT_MAX_PREFIXES,
            max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
@@ -384,11 +354,10 @@ def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
 
     Parameters
     ----------
-    instance : Instance or Instance
-        The game, with two goals or N goals (:mod:`dppverify.ngoal`).
+    instance : Instance
+        The game, with ``N >= 2`` goals.
     horizon : int
-        ``H``: walks have at most ``H`` steps (:func:`~dppverify.tree_route.tree.build_tree`,
-        :func:`~dppverify.ngoal.tree.build_ntree`).
+        ``H``: walks have at most ``H`` steps (:func:`~dppverify.tree_route.tree.build_tree`).
     attacker_observes : bool
         Whether the Attacker's information sets include the Defender's past allocations
         (default) or only the walk. The value is the same (see the module docstring).
@@ -411,14 +380,12 @@ def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
 
     Examples
     --------
-    >>> from dppverify.game.instance import instance_from_json
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}],
-    ...     "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2}]},
-    ...     "start": 0, "goals": [1, 2], "prior": ["1/2", "1/2"]})
+    >>> from dppverify.game.examples import triangle
+    >>> inst = triangle()
     >>> to_efg(inst, 1).splitlines()[3]
-    'c "" 1 "type" { "type 1" 1/2 "type 2" 1/2 } 0'
+    'c "" 1 "type" { "type g1" 7/10 "type g2" 3/10 } 0'
     """
-    tree = _build(instance, horizon, max_prefixes)
+    tree = build_tree(instance, horizon, max_prefixes=max_prefixes)
     return tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
                        max_nodes=max_nodes, title=title)
 
@@ -440,17 +407,15 @@ def write_efg(path: str | Path, instance: Instance, horizon: int, *,
     Examples
     --------
     >>> import pathlib, tempfile
-    >>> from dppverify.game.instance import instance_from_json
-    >>> inst = instance_from_json({"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}],
-    ...     "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2}]},
-    ...     "start": 0, "goals": [1, 2], "prior": ["1/2", "1/2"]})
+    >>> from dppverify.game.examples import triangle
+    >>> inst = triangle()
     >>> with tempfile.TemporaryDirectory() as d:
     ...     size = write_efg(pathlib.Path(d) / "game.efg", inst, 1)
     ...     first = (pathlib.Path(d) / "game.efg").read_text().split()[0]
     >>> size.nodes, first
     (15, 'EFG')
     """
-    tree = _build(instance, horizon, max_prefixes, progress)
+    tree = build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
     with tqdm(total=1, desc=f"export .efg ({tree.n_prefixes} prefixes)", disable=not progress,
               leave=False, file=sys.stderr) as bar:
         text = tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,

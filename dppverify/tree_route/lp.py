@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from dppverify.errors import LPError
 from dppverify.exact import Number
-from dppverify.tree_route.tree import FlowTree, flow_matrix
+from dppverify.tree_route.tree import WalkTree, flow_matrix
 
 if TYPE_CHECKING:  # cvxpy (with scipy.stats) costs ~0.5 s: imported where an LP is built
     import cvxpy as cp
@@ -92,13 +92,13 @@ def solve(problem: cp.Problem, what: str) -> LPStats:
                    seconds=seconds)
 
 
-def realization_constraints(tree: FlowTree, x: cp.Variable) -> list[cp.Constraint]:
+def realization_constraints(tree: WalkTree, x: cp.Variable) -> list[cp.Constraint]:
     """``x`` is a realization plan on ``tree``: ``x >= 0``, ``x[root] = 1``, flow conservation.
 
     Parameters
     ----------
-    tree : FlowTree
-        The walk tree (two goals or N goals).
+    tree : WalkTree
+        The walk tree (any number of goals).
     x : cvxpy.Variable
         One entry per prefix.
 

@@ -1,6 +1,6 @@
 """The compact tree LP solved exactly: an optimal basis from a float vertex, then exact rationals.
 
-The LP of :func:`dppverify.tree_route.value_lp.solve_types_lp` (two goals and N goals) in standard
+The LP of :func:`dppverify.tree_route.value_lp.solve_value_lp` (any number of goals) in standard
 form::
 
     min  Σ_θ b_θ Σ_leaves d_θ(end ℓ) x_θ(ℓ) + Σ_{p ≠ root} w_p z_p
@@ -38,7 +38,7 @@ from sympy import QQ
 from sympy.polys.matrices import DomainMatrix
 
 from dppverify.exact import Number
-from dppverify.tree_route.tree import PrefixTree
+from dppverify.tree_route.tree import WalkTree
 
 __all__ = ["MAX_EXACT_ROWS", "ExactLP", "solve_tree_lp_exactly"]
 
@@ -74,7 +74,7 @@ class ExactLP:
 class _LP:
     """The standard form: sparse exact columns, right-hand side and costs."""
 
-    def __init__(self, tree: PrefixTree, priors: Sequence[Number],
+    def __init__(self, tree: WalkTree, priors: Sequence[Number],
                  dists: Sequence[Sequence[Number]]) -> None:
         n = tree.n_prefixes
         k = len(priors)
@@ -217,23 +217,23 @@ class _LP:
         return out
 
 
-def solve_tree_lp_exactly(tree: PrefixTree, priors: Sequence[Number],
+def solve_tree_lp_exactly(tree: WalkTree, priors: Sequence[Number],
                           dists: Sequence[Sequence[Number]]) -> ExactLP | str:
     """The compact LP's exact optimum with optimal strategies, or the reason it is not found.
 
     Parameters
     ----------
-    tree : PrefixTree
-        The walk tree (two goals or N goals).
+    tree : WalkTree
+        The walk tree (any number of goals).
     priors, dists : Sequence
         ``b_θ`` and the distances ``d(·, g^θ)`` of each type (exact).
 
     Examples
     --------
     >>> from dppverify.game.examples import star3
-    >>> from dppverify.ngoal.tree import build_ntree
+    >>> from dppverify.tree_route.tree import build_tree
     >>> inst = star3()
-    >>> r = solve_tree_lp_exactly(build_ntree(inst, 2), inst.prior, inst.dist_to)
+    >>> r = solve_tree_lp_exactly(build_tree(inst, 2), inst.prior, inst.dist_to)
     >>> r.value, r.sigma[1]
     (Fraction(3, 2), (Fraction(1, 1), Fraction(0, 1), Fraction(0, 1)))
     """

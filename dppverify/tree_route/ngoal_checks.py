@@ -40,18 +40,17 @@ from dppverify.errors import HorizonError, LPError
 from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance
 from dppverify.game.profile import NProfile
-from dppverify.ngoal.best_response import (
-    NTreeDefender,
+from dppverify.structured.proved_value import nvalue
+from dppverify.tree_route.best_response import (
     attacker_best_response,
     beliefs,
     defender_best_response,
-    defender_from_table,
-    payoff,
+    payoff_on_tree,
 )
-from dppverify.ngoal.tree import NWalkTree, build_ntree
-from dppverify.ngoal.value_lp import exact_nbracket, solve_nvalue_lp
-from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
+from dppverify.tree_route.players import DefenderOnTree, defender_from_table
+from dppverify.tree_route.tree import WalkTree, build_tree
+from dppverify.tree_route.value_lp import exact_bracket, solve_value_lp
 
 __all__ = ["NGOAL_CHECK_IDS", "ngoal_tree_checks", "payoff_of_type"]
 
@@ -67,7 +66,7 @@ def _skipped(ids: tuple[str, ...], why: str) -> list[CheckRecord]:
     return [CheckRecord(i, "skipped", why) for i in ids]
 
 
-def _plans(tree: NWalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
+def _plans(tree: WalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
     plans = []
     for mix in profile.attacker:
         x: dict[int, Fraction] = {0: Fraction(1)}
@@ -80,7 +79,7 @@ def _plans(tree: NWalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
     return plans
 
 
-def _defender(tree: NWalkTree, profile: NProfile) -> NTreeDefender | str:
+def _defender(tree: WalkTree, profile: NProfile) -> DefenderOnTree | str:
     if profile.rule is not None:  # the guarantee rule, evaluated on every prefix of the tree
         from dppverify.structured.guarantee import guarantee_sets, rule_on_trie
 
@@ -101,7 +100,7 @@ def _defender(tree: NWalkTree, profile: NProfile) -> NTreeDefender | str:
 
 
 def ngoal_tree_checks(inst: Instance, prof: NProfile, h: int,
-                      max_prefixes: int) -> tuple[list[CheckRecord], NWalkTree]:
+                      max_prefixes: int) -> tuple[list[CheckRecord], WalkTree]:
     """The tree route's records of an N-goal profile on the walk tree of ``h`` steps.
 
     The tree is built at ``max(h, hops to the nearest goal)``; the records are
@@ -116,7 +115,7 @@ def ngoal_tree_checks(inst: Instance, prof: NProfile, h: int,
     >>> [c.status for c in checks], tree.n_prefixes
     (['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'], 6)
     """
-    tree = build_ntree(inst, max(h, inst.hops[inst.start]), max_prefixes=max_prefixes)
+    tree = build_tree(inst, max(h, inst.hops[inst.start]), max_prefixes=max_prefixes)
     checks: list[CheckRecord] = []
     tdef = None if prof.defects else _defender(tree, prof)
     problems = list(prof.defects) + ([tdef] if isinstance(tdef, str) else [])
@@ -125,12 +124,12 @@ def ngoal_tree_checks(inst: Instance, prof: NProfile, h: int,
         checks.append(CheckRecord("ngoal.profile.wellformed", "fail", problems[0] + more))
         checks += _skipped(NGOAL_CHECK_IDS[1:], "the profile is not well formed")
         return _tagged(checks), tree
-    assert isinstance(tdef, NTreeDefender)
+    assert isinstance(tdef, DefenderOnTree)
     checks.append(CheckRecord("ngoal.profile.wellformed", "pass",
                               f"{inst.n_goals} types, {sum(map(len, prof.attacker))} walks, "
                               f"Defender defined on all {tree.n_prefixes - 1} prefixes"))
     plans = _plans(tree, prof)
-    u = payoff(tree, tdef, plans)
+    u = payoff_on_tree(tree, inst, tdef, dict(enumerate(plans)))
     per_type = [payoff_of_type(tree, tdef, plans[t], t) for t in range(inst.n_goals)]
     nums: dict[str, Number | None] = {f"U{t + 1}": per_type[t] for t in range(inst.n_goals)}
     nums["U"] = u
@@ -140,7 +139,7 @@ def ngoal_tree_checks(inst: Instance, prof: NProfile, h: int,
                               PROOF))
     regrets = []
     for t in range(inst.n_goals):
-        br = attacker_best_response(tree, tdef, t)
+        br = attacker_best_response(tree, inst, tdef, t)
         regrets.append((normalize(per_type[t] - br.value), t, br))
     worst = max(regrets, key=lambda r: r[0])
     ok = all(r[0] == 0 for r in regrets)
@@ -151,13 +150,13 @@ def ngoal_tree_checks(inst: Instance, prof: NProfile, h: int,
                               {f"regret{t + 1}": r for r, t, _ in sorted(regrets,
                                                                           key=lambda r: r[1])},
                               PROOF))
-    dbr = defender_best_response(tree, plans)
+    dbr = defender_best_response(tree, inst, dict(enumerate(plans)))
     reg = normalize(dbr.value - u)
     checks.append(CheckRecord("ngoal.pbne.defender_br", "pass" if reg == 0 else "fail",
                               "Defender regret 0" if reg == 0 else
                               f"Defender regret {reg}: greedy best response {dbr.value}, "
                               f"profile {u}", {"regret": reg, "greedy": dbr.value}, PROOF))
-    mu = beliefs(tree, plans)
+    mu = beliefs(tree, inst, dict(enumerate(plans)))
     bad = []
     for p, belief in mu.items():
         if p == 0:
@@ -173,9 +172,9 @@ def ngoal_tree_checks(inst: Instance, prof: NProfile, h: int,
     checks.append(CheckRecord("ngoal.pbne.sequential", "fail" if bad else "pass", msg,
                               {"infosets": len(mu) - 1}, PROOF))
     try:
-        lp = solve_nvalue_lp(tree)
-        bracket = exact_nbracket(tree, lp, defenders=[("the profile's Defender", tdef)],
-                                 attackers=[("the profile's Attacker", plans)])
+        lp = solve_value_lp(tree, inst)
+        bracket = exact_bracket(tree, inst, lp, defenders=[("the profile's Defender", tdef)],
+                                attackers=[("the profile's Attacker", dict(enumerate(plans)))])
     except LPError as exc:
         checks.append(CheckRecord("ngoal.value.V_H", "error", str(exc)))
         checks.append(CheckRecord("ngoal.value.structured", "skipped", "no tree value"))
@@ -210,21 +209,21 @@ def ngoal_tree_checks(inst: Instance, prof: NProfile, h: int,
     return _tagged(checks), tree
 
 
-def payoff_of_type(tree: NWalkTree, tdef: NTreeDefender, plan: Mapping[int, Fraction],
+def payoff_of_type(tree: WalkTree, tdef: DefenderOnTree, plan: Mapping[int, Fraction],
                    theta: int) -> Number:
     """Type ``θ``'s expected cost ``U^θ`` under its plan (stage costs plus terminal cost).
 
     Examples
     --------
     >>> from dppverify.game.examples import star3
-    >>> t = build_ntree(star3(), 1)
+    >>> t = build_tree(star3(), 1)
     >>> d = defender_from_table(t, {}, (Fraction(1), Fraction(0), Fraction(0)))
     >>> [payoff_of_type(t, d, {0: Fraction(1), 1: Fraction(1)}, th) for th in range(3)]
     [2, 2, 2]
     """
     inst = tree.instance
     leaf = tree.is_leaf_mask()
-    a = tdef.alloc[theta]
+    a = tdef.alloc(theta)
     d = inst.dist_to[theta]
     total: Number = 0
     for p, prob in plan.items():

@@ -27,47 +27,33 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Protocol, TypeVar
+from typing import TYPE_CHECKING, Generic, TypeVar
 
 import numpy as np
 from tqdm import tqdm
 
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.exact import Number
-from dppverify.game.instance import Instance
+from dppverify.game.instance import Instance, instance_from_json
 
 if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
     import scipy.sparse as sp
 
-__all__ = ["DEFAULT_MAX_PREFIXES", "FlowTree", "PrefixTree", "WalkTree", "build_prefix_tree",
-           "build_tree", "count_prefixes", "flow_matrix", "simple_mask"]
+__all__ = ["DEFAULT_MAX_PREFIXES", "WalkTree", "build_tree", "count_prefixes", "flow_matrix",
+           "simple_mask", "tree_fits"]
 
 DEFAULT_MAX_PREFIXES = 1_000_000
 """Default size guard: trees with more prefixes raise :class:`TreeTooLargeError`."""
 
 
-class FlowTree(Protocol):
-    """What :func:`flow_matrix` needs of a tree (:class:`WalkTree` and ``NWalkTree``)."""
-
-    @property
-    def n_prefixes(self) -> int: ...
-
-    @property
-    def parent(self) -> np.ndarray: ...
-
-    @property
-    def child_start(self) -> np.ndarray: ...
-
-    @property
-    def child_stop(self) -> np.ndarray: ...
+G = TypeVar("G", bound=Instance)
 
 
 @dataclass(frozen=True, eq=False)
-class PrefixTree:
-    """The walks of a truncated game (any number of goals) with at most ``horizon`` steps.
+class WalkTree(Generic[G]):
+    """The walks of a truncated game (``N >= 2`` goals) with at most ``horizon`` steps.
 
-    What the two-goal :class:`WalkTree` and the N-goal ``NWalkTree`` share; both are built by
-    :func:`build_prefix_tree`.
+    Built by :func:`build_tree` (proofs/LP.md); generic in the instance type it was built from.
 
     Attributes
     ----------
@@ -87,7 +73,7 @@ class PrefixTree:
         Exact weight ``w(e_t)`` of the last step of each prefix (0 for the root).
     """
 
-    instance: Instance
+    instance: G
     horizon: int
     node: np.ndarray
     parent: np.ndarray
@@ -124,10 +110,10 @@ class PrefixTree:
 
     def walk(self, p: int) -> tuple[int, ...]:
         """The walk (node indices ``s0 … s_t``) of prefix ``p``."""
-        return tuple(int(self.node[q]) for q in self.path(p))
+        return tuple(int(self.node[q]) for q in self.prefixes(p))
 
-    def path(self, p: int) -> list[int]:
-        """Prefix indices from the root down to ``p`` (inclusive)."""
+    def prefixes(self, p: int) -> list[int]:
+        """The prefixes of ``p``'s walk: prefix indices from the root down to ``p`` (inclusive)."""
         out = []
         parent = self.parent
         while p >= 0:
@@ -150,22 +136,6 @@ class PrefixTree:
         return p
 
 
-@dataclass(frozen=True, eq=False)
-class WalkTree(PrefixTree):
-    """The walks of the two-goal truncated game with at most ``horizon`` steps (proofs/LP.md).
-
-    A :class:`PrefixTree` whose ``instance`` is a two-goal :class:`Instance` (every other
-    attribute as documented there).
-
-    Attributes
-    ----------
-    instance : Instance
-        The game the tree belongs to.
-    """
-
-    instance: Instance
-
-
 def count_prefixes(instance: Instance, horizon: int, *, limit: int | None = None) -> int:
     """Number of prefixes of the pruned walk tree with ``horizon`` steps, without building it.
 
@@ -173,21 +143,14 @@ def count_prefixes(instance: Instance, horizon: int, *, limit: int | None = None
     nodes a prefix can be at (a goal within the steps left, reached within the steps taken):
     at most ``O(H·|E|)``, and ``O(total walk length)`` on a path. Bounded: the count is
     non-decreasing in the steps left, so with a ``limit`` it saturates just above it and
-    stops as soon as the start's count exceeds it (returning ``limit + 1``).
-
-    Raises
-    ------
-    HorizonError
-        If ``horizon`` is negative.
+    stops as soon as the start's count exceeds it (returning ``limit + 1``). A negative
+    ``horizon`` raises :class:`HorizonError`.
 
     Examples
     --------
-    >>> from dppverify.game.instance import instance_from_json
-    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
-    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
-    ...                  {"source": 1, "target": 3}]},
-    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
-    >>> [count_prefixes(instance_from_json(doc), h) for h in range(5)]
+    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3`` (:func:`_fork`):
+
+    >>> [count_prefixes(_fork(), h) for h in range(5)]
     [0, 2, 4, 6, 8]
     """
     if horizon < 0:
@@ -259,16 +222,14 @@ def _hops_from(inst: Instance, goal: np.ndarray) -> np.ndarray:
     return dist
 
 
-def build_tree(instance: Instance, horizon: int, *,
-               max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> WalkTree:
+def build_tree(instance: G, horizon: int, *, max_prefixes: int = DEFAULT_MAX_PREFIXES,
+               progress: bool = False) -> WalkTree[G]:
     """Build the pruned tree of walks from ``s0`` with at most ``horizon`` steps.
-
-    The two-goal form of :func:`build_prefix_tree`.
 
     Parameters
     ----------
     instance : Instance
-        The game.
+        The game (any number of goals ``N >= 2``).
     horizon : int
         ``H >= 0``.
     max_prefixes : int
@@ -286,51 +247,24 @@ def build_tree(instance: Instance, horizon: int, *,
 
     Examples
     --------
-    >>> from dppverify.game.instance import instance_from_json
-    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
-    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
-    ...                  {"source": 1, "target": 3}]},
-    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
-    >>> t = build_tree(instance_from_json(doc), 4)
+    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3`` (:func:`_fork`):
+
+    >>> t = build_tree(_fork(), 4)
     >>> [t.walk(int(p)) for p in t.leaves()]
     [(0, 2), (0, 1, 3), (0, 1, 0, 2), (0, 1, 0, 1, 3)]
-    >>> build_tree(instance_from_json(doc), 4, max_prefixes=5)  # doctest: +ELLIPSIS
+    >>> build_tree(_fork(), 4, max_prefixes=5)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 4 has at least 6 prefixes, ...
-    """
-    return build_prefix_tree(instance, horizon, WalkTree, max_prefixes=max_prefixes,
-                             progress=progress)
 
+    With three goals (the game ends at the first of them reached):
 
-T = TypeVar("T", bound=PrefixTree)
-
-
-def build_prefix_tree(instance: Instance, horizon: int, cls: type[T], *,
-                      max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> T:
-    """Build the pruned tree of walks of any game (two or N goals) as a ``cls``.
-
-    Parameters
-    ----------
-    instance : Instance
-        The game (``Instance`` or ``Instance``).
-    horizon : int
-        ``H >= 0``.
-    cls : type
-        :class:`WalkTree` for an ``Instance``, ``NWalkTree`` for an ``Instance``.
-    max_prefixes, progress
-        As for :func:`build_tree`.
-
-    Raises
-    ------
-    HorizonError, TreeTooLargeError
-        As for :func:`build_tree`.
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import triangle
-    >>> t = build_prefix_tree(triangle(), 1, PrefixTree)
-    >>> type(t).__name__, t.n_leaves
-    ('PrefixTree', 2)
+    >>> from dppverify.game.examples import star3
+    >>> t = build_tree(star3(), 2)
+    >>> t.n_leaves, t.find((0, 1, 3)), t.weight
+    (4, 4, (0, 1, 2, 1, 1, 1))
+    >>> build_tree(star3(), 3, max_prefixes=7)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 3 has at least 8 prefixes, ...
     """
     size = count_prefixes(instance, horizon, limit=max_prefixes)
     if size == 0:
@@ -376,7 +310,7 @@ def build_prefix_tree(instance: Instance, horizon: int, cls: type[T], *,
     bar.close()
     if len(node) != size:  # pragma: no cover - the count and the build share the pruning rule
         raise AssertionError(f"tree size {len(node)} differs from its count {size}")
-    return cls(instance=inst, horizon=horizon,
+    return WalkTree(instance=inst, horizon=horizon,
                node=np.asarray(node, dtype=np.int32),
                parent=np.asarray(parent, dtype=np.int64),
                depth=np.asarray(depth, dtype=np.int32),
@@ -385,17 +319,38 @@ def build_prefix_tree(instance: Instance, horizon: int, cls: type[T], *,
                weight=tuple(weight))
 
 
+def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> bool:
+    """True when the pruned walk tree of ``horizon`` steps has at most ``max_prefixes`` prefixes.
+
+    Counts with :func:`count_prefixes`, saturated just above ``max_prefixes`` and stopping as
+    soon as the count exceeds it, so that huge trees are never counted in full. An untruncated
+    game (``horizon=None``) never fits; a negative horizon raises :class:`HorizonError`.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.game.examples import star3
+    >>> inst = triangle()
+    >>> tree_fits(inst, 5, 3), tree_fits(inst, 5, 2), tree_fits(inst, None, 10**9)
+    (True, False, False)
+    >>> [count_prefixes(star3(), h) for h in (2, 3)], tree_fits(star3(), 3, 7)
+    ([6, 8], False)
+    """
+    if horizon is None:
+        return False
+    if horizon < 0:
+        raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
+    return count_prefixes(instance, horizon, limit=max_prefixes) <= max_prefixes
+
+
 def simple_mask(tree: WalkTree) -> np.ndarray:
     """Boolean mask: ``True`` for prefixes whose walk visits no node twice (paths).
 
     Examples
     --------
-    >>> from dppverify.game.instance import instance_from_json
-    >>> doc = {"graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
-    ...        "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
-    ...                  {"source": 1, "target": 3}]},
-    ...        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]}
-    >>> t = build_tree(instance_from_json(doc), 4)
+    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3`` (:func:`_fork`):
+
+    >>> t = build_tree(_fork(), 4)
     >>> [t.walk(int(p)) for p in t.leaves()[simple_mask(t)[t.leaves()]]]
     [(0, 2), (0, 1, 3)]
     """
@@ -413,11 +368,8 @@ def simple_mask(tree: WalkTree) -> np.ndarray:
     return np.asarray(simple, dtype=bool)
 
 
-def flow_matrix(tree: FlowTree) -> sp.csr_matrix:
+def flow_matrix(tree: WalkTree) -> sp.csr_matrix:
     """Sequence-form flow constraints ``x[p] - Σ_children x[c] = 0``, one row per inner prefix.
-
-    Serves both trees (:class:`WalkTree`, ``NWalkTree``): it reads only ``n_prefixes``,
-    ``parent``, ``child_start`` and ``child_stop`` (:class:`FlowTree`).
 
     Examples
     --------
@@ -436,3 +388,13 @@ def flow_matrix(tree: FlowTree) -> sp.csr_matrix:
     cols = np.concatenate([inner, children])
     vals = np.concatenate([np.ones(inner.size), -np.ones(children.size)])
     return sp.csr_matrix((vals, (rows, cols)), shape=(inner.size, n))
+
+
+def _fork() -> Instance:
+    """The docstrings' example: the undirected path ``2 - 0 - 1 - 3``, start ``0``, goals
+    ``2`` and ``3``, prior 1/2 - 1/2."""
+    return instance_from_json({
+        "graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
+                  "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
+                            {"source": 1, "target": 3}]},
+        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]})

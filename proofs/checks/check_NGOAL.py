@@ -12,14 +12,14 @@ from fractions import Fraction
 
 import sympy as sp
 
+from dppverify.agreement import compare_routes
 from dppverify.game.examples import hub4
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.agreement import compare_routes
-from dppverify.ngoal.tree import count_nprefixes
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
 from dppverify.structured.cover import packing_vertices, zero_one_normals
 from dppverify.structured.proved_value import nvalue
+from dppverify.tree_route.tree import count_prefixes
+from dppverify.tree_route.value_lp import game_value
 from proofs.checks.ngoal_evidence import FAMILIES, draw_case
 
 
@@ -43,7 +43,7 @@ def test_NG2_the_dp_is_never_below_the_exact_lower_bound_and_NG4_holds_here() ->
         for doc in _cases(7, goals, 4):
             inst = instance_from_json(doc)
             h = inst.hops[inst.start] + 1
-            if count_nprefixes(inst, h) > 1500:
+            if count_prefixes(inst, h) > 1500:
                 h -= 1
             a = compare_routes(inst, h, max_prefixes=1500)
             assert a.dp >= a.tree.bracket.lower  # NG.2: V_H <= DP
@@ -153,5 +153,5 @@ def test_NG4_refuted_for_four_goals_on_the_hub() -> None:
             assert v.exact and v.value == Fraction(12, 7)
             assert (2, 2, 2, 1) in v.normals
             if h is not None:
-                b = ngame_value(inst, h).bracket
+                b = game_value(inst, h).bracket
                 assert b.closed and b.exact == Fraction(12, 7)

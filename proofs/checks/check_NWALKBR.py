@@ -11,9 +11,10 @@ from fractions import Fraction
 import sympy as sp
 
 from dppverify.game.instance import Instance, instance_from_json
-from dppverify.ngoal.best_response import attacker_best_response, defender_from_table
-from dppverify.ngoal.tree import build_ntree, count_nprefixes
 from dppverify.structured.table_br import table_defender, walk_best_response
+from dppverify.tree_route.best_response import attacker_best_response
+from dppverify.tree_route.players import defender_from_table
+from dppverify.tree_route.tree import build_tree, count_prefixes
 from proofs.checks._sym import is_nonneg, is_zero, nonneg
 
 DISTRIBUTIONS = [(Fraction(1), Fraction(0), Fraction(0)), (Fraction(0), Fraction(1), Fraction(0)),
@@ -59,14 +60,14 @@ def test_NWALKBR_equals_exhaustive_backward_induction_over_all_walks() -> None:
         default = rng.choice(DISTRIBUTIONS)
         tdef = table_defender(inst, entries, default)
         bound = max(tdef.trie.depth) + 1 + inst.n_nodes - inst.n_goals
-        if count_nprefixes(inst, bound + 2) > 20000:
+        if count_prefixes(inst, bound + 2) > 20000:
             continue
-        tree = build_ntree(inst, bound + 2)  # NW.1's bound and two more steps
+        tree = build_tree(inst, bound + 2)  # NW.1's bound and two more steps
         table = {p: d for w, d in entries.items() if (p := tree.find(w)) is not None}
         tree_def = defender_from_table(tree, table, default)
         for theta in range(inst.n_goals):
             br = walk_best_response(tdef, theta)
-            exhaustive = attacker_best_response(tree, tree_def, theta)
+            exhaustive = attacker_best_response(tree, inst, tree_def, theta)
             assert br.value == exhaustive.value, (theta, entries, default)
             assert len(br.walk) - 1 <= bound
             # the witness is a walk of the game and costs what NW.1 says

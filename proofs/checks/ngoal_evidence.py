@@ -20,10 +20,10 @@ from collections import Counter
 from fractions import Fraction
 from typing import Any
 
+from dppverify.agreement import compare_routes
 from dppverify.errors import TreeTooLargeError
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.agreement import compare_routes
-from dppverify.ngoal.tree import count_nprefixes
+from dppverify.tree_route.tree import count_prefixes
 
 FAMILIES = ("undirected", "digraph", "fractional", "grid")
 
@@ -95,7 +95,7 @@ def run(cases: int, seed: int, max_prefixes: int, goal_counts: tuple[int, ...]
                 done += 1
                 first = inst.hops[inst.start]
                 for h in range(first, first + 4):
-                    if count_nprefixes(inst, h) > max_prefixes:
+                    if count_prefixes(inst, h) > max_prefixes:
                         break
                     try:
                         a = compare_routes(inst, h, max_prefixes=max_prefixes)

@@ -136,9 +136,9 @@ def test_defender_best_response_is_the_best_pure_strategy(seed: int) -> None:
         rule = TableRule(goal=r.g1, entries=table, default=Fraction(0))
         u = evaluate(inst, r, rule, prim, sec).U
         best = u if best is None else max(best, u)
-        assert payoff_on_tree(tree, r, tree_defender(tree, r, rule), x1, x2) == u
-    greedy = defender_best_response(tree, r, x1, x2)
+        assert payoff_on_tree(tree, r, tree_defender(tree, r, rule), {1: x1, 2: x2}) == u
+    greedy = defender_best_response(tree, r, {1: x1, 2: x2})
     assert greedy.value == best
-    lp, sigma = defender_best_response_lp(tree, r, x1, x2)
+    lp, sigma = defender_best_response_lp(tree, r, {1: x1, 2: x2})
     assert lp_agrees(lp.value, best)
     assert set(sigma) == set(infosets)

@@ -64,7 +64,7 @@ def test_sigma_star_on_every_walk_matches_a_naive_implementation(case: dict) -> 
         walk = tree.walk(p)
         labels = inst.labels(walk)
         u1, u2 = progress_costs(doc, labels, g1, g2)
-        path = tree.path(p)
+        path = tree.prefixes(p)
         assert sum(td.alloc1[q] for q in path[1:]) + r.d1[walk[-1]] == u1
         assert sum(td.alloc2[q] for q in path[1:]) + r.d2[walk[-1]] == u2
         assert walk_cost(inst, r, ProgressRule(r.g1), walk, 1) == u1

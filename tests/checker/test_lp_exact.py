@@ -11,11 +11,10 @@ from hypothesis import given
 
 import dppverify.tree_route.lp_exact as lp_exact
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.tree import build_ntree, count_nprefixes
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.strategies import instances, ngoal_instances, weighted_graphs
 from dppverify.structured.coalition import coalition_value
 from dppverify.tree_route.lp_exact import solve_tree_lp_exactly
+from dppverify.tree_route.tree import build_tree, count_prefixes
 from dppverify.tree_route.value_lp import game_value
 
 # A four-goal hub (found by a campaign) where rounding the LP solution at every denominator of
@@ -33,19 +32,19 @@ HUB = {"graph": {"directed": False,
 
 def test_the_exact_lp_closes_a_bracket_that_rounding_leaves_open() -> None:
     inst = instance_from_json(HUB)
-    v = ngame_value(inst, 3)
+    v = game_value(inst, 3)
     assert v.prefixes == 26
     b = v.bracket
     assert b.closed and b.exact == Fraction(44, 17) and b.reason is None
     assert "exact LP" in b.lower_source and "exact LP" in b.upper_source
-    exact = solve_tree_lp_exactly(build_ntree(inst, 3), inst.prior, inst.dist_to)
+    exact = solve_tree_lp_exactly(build_tree(inst, 3), inst.prior, inst.dist_to)
     assert not isinstance(exact, str) and exact.value == Fraction(44, 17)
     assert all(sum(s, Fraction(0)) == 1 and min(s) >= 0 for s in exact.sigma[1:])
 
 
 def test_an_open_bracket_says_why(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(lp_exact, "MAX_EXACT_ROWS", 10)
-    b = ngame_value(instance_from_json(HUB), 3).bracket
+    b = game_value(instance_from_json(HUB), 3).bracket
     assert not b.closed and b.reason is not None and "constraint rows" in b.reason
 
 
@@ -55,7 +54,7 @@ def test_two_goal_brackets_close_at_the_dp_value(doc: dict[str, Any]) -> None:
     ninst = instance_from_json(doc)
     first = ninst.hops[ninst.start]
     for h in range(first, first + 3):
-        if count_nprefixes(ninst, h) > 1500:
+        if count_prefixes(ninst, h) > 1500:
             break
         b = game_value(inst, h, max_prefixes=1500).bracket
         assert b.closed, (doc, h, b)
@@ -68,7 +67,7 @@ def test_n_goal_brackets_close(doc: dict[str, Any]) -> None:
     inst = instance_from_json(doc)
     first = inst.hops[inst.start]
     for h in range(first, first + 3):
-        if count_nprefixes(inst, h) > 1500:
+        if count_prefixes(inst, h) > 1500:
             break
-        b = ngame_value(inst, h, max_prefixes=1500).bracket
+        b = game_value(inst, h, max_prefixes=1500).bracket
         assert b.closed, (doc, h, b)

@@ -123,7 +123,7 @@ def test_exact_bracket_contains_the_lp_value_on_a_grid() -> None:
     b = exact_bracket(tree, r, lp)
     assert float(b.lower) - 1e-7 <= lp.value <= float(b.upper) + 1e-7
     assert b.closed
-    assert np.all(lp.x1 >= -1e-8) and abs(lp.x1[0] - 1) < 1e-8
+    assert np.all(lp.plans[0] >= -1e-8) and abs(lp.plans[0][0] - 1) < 1e-8
 
 
 def test_size_guard() -> None:

@@ -7,7 +7,7 @@ checked against brute-force walk enumeration on the instance document: node and 
 set counts (``N^t`` copies of a ``t``-step prefix), perfect recall, what each player sees,
 payoffs recomputed from the document, the chance node, OpenSpiel's action order, and that the
 sequence-form LP of the parsed game (scipy HiGHS) gives the tree route's exact ``V_H``
-(:func:`dppverify.ngoal.value_lp.ngame_value`) and the coalition DP's value. The two-goal
+(:func:`dppverify.tree_route.value_lp.game_value`) and the coalition DP's value. The two-goal
 export is pinned byte for byte (digests of the output before the writer became N-generic).
 """
 
@@ -28,11 +28,10 @@ from dppverify.cli.export_efg import export_efg_command
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.game.examples import star3_document
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.tree import build_ntree
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
 from dppverify.tree_route.efg import efg_size, to_efg, tree_to_efg, write_efg
 from dppverify.tree_route.tree import build_tree
+from dppverify.tree_route.value_lp import game_value
 from tests.checker._helpers import _key, adjacency, all_walks, distances_to, grid_doc, make_doc
 from tests.checker._helpers import triangle_doc as _triangle_doc
 from tests.checker.test_efg import (
@@ -154,7 +153,7 @@ def test_node_and_infoset_counts_are_n_to_the_t(name: str, doc: dict[str, Any], 
                                                 observes: bool, forced: bool) -> None:
     n = len(doc["goals"])
     game = _export(doc, horizon, observes, forced)
-    tree = build_ntree(instance_from_json(doc), horizon)
+    tree = build_tree(instance_from_json(doc), horizon)
     depth = [int(t) for t in tree.depth]
     kids = [len(tree.children(p)) for p in range(tree.n_prefixes)]
     choice = [p for p in range(tree.n_prefixes) if kids[p] >= (1 if forced else 2)]
@@ -250,7 +249,7 @@ def test_chance_node_and_action_order(name: str, doc: dict[str, Any], horizon: i
 def test_sequence_form_lp_of_the_export_gives_the_tree_value_and_the_dp(
         name: str, doc: dict[str, Any], horizon: int, observes: bool, forced: bool) -> None:
     inst = instance_from_json(doc)
-    exact = ngame_value(inst, horizon).bracket.exact
+    exact = game_value(inst, horizon).bracket.exact
     assert exact is not None
     assert coalition_value(inst, horizon).value == exact
     lp = sequence_form_value(_export(doc, horizon, observes, forced), minimizer=1, maximizer=2)
@@ -279,12 +278,12 @@ def test_ten_goals_or_more_separate_the_history_digits() -> None:
             members[(x.player, x.infoset)].append(x)
     assert all(len({own_history(x, pl) for x in xs}) == 1 for (pl, _), xs in members.items())
     n_def = sum(1 for pl, _ in members if pl == 2)
-    assert n_def == efg_size(build_ntree(inst, 3)).defender_infosets
+    assert n_def == efg_size(build_tree(inst, 3)).defender_infosets
 
 
 def test_size_guards_and_horizon_errors(tmp_path: Path) -> None:
     inst = instance_from_json(GRID3)
-    nodes = efg_size(build_ntree(inst, 3)).nodes
+    nodes = efg_size(build_tree(inst, 3)).nodes
     assert to_efg(inst, 3, max_nodes=nodes)
     with pytest.raises(TreeTooLargeError, match="--max-nodes"):
         to_efg(inst, 3, max_nodes=nodes - 1)
@@ -308,7 +307,7 @@ def test_size_is_exact_beyond_64_bits() -> None:
         tree_to_efg(build_tree(two, 81))
     three = instance_from_json(make_doc([*edges, (80, "g3", 1)], 0, ["g1", "g2", "g3"],
                                          ["1/3", "1/3", "1/3"]))
-    assert efg_size(build_ntree(three, 81)).defender_infosets > 3 ** 80
+    assert efg_size(build_tree(three, 81)).defender_infosets > 3 ** 80
 
 
 # ---------------------------------------------------------------------------------------------
@@ -334,7 +333,7 @@ def test_cli_export_efg_n_goals(tmp_path: Path, flags: list[str]) -> None:
     inst = instance_from_json(KITE3)
     assert out.read_text() == to_efg(inst, 2, attacker_observes="--attacker-blind" not in flags,
                                      forced_moves="--forced-moves" in flags)
-    size = efg_size(build_ntree(inst, 2), attacker_observes="--attacker-blind" not in flags,
+    size = efg_size(build_tree(inst, 2), attacker_observes="--attacker-blind" not in flags,
                     forced_moves="--forced-moves" in flags)
     assert f"{size.nodes} game nodes" in r.output and "N = 3 goals" in r.output
 

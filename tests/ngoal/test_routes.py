@@ -18,15 +18,14 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from dppverify.agreement import compare_routes
 from dppverify.errors import HorizonError
 from dppverify.game.examples import star3, star3_document
 from dppverify.game.instance import Instance, instance_from_json
-from dppverify.ngoal.agreement import compare_routes
-from dppverify.ngoal.tree import count_nprefixes
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.strategies import instances, ngoal_instances, weighted_graphs
 from dppverify.structured.coalition import CoalitionRunner, coalition_value, coalition_values
 from dppverify.structured.proved_value import nvalue
+from dppverify.tree_route.tree import count_prefixes
 from dppverify.tree_route.value_lp import game_value
 
 MAX_PREFIXES = 2500
@@ -36,7 +35,7 @@ DATA = Path(__file__).resolve().parents[1] / "data" / "ngoal_cases.json"
 def _horizons(inst: Instance, extra: int) -> list[int]:
     first = inst.hops[inst.start]
     return [h for h in range(first, first + extra + 1)
-            if count_nprefixes(inst, h) <= MAX_PREFIXES]
+            if count_prefixes(inst, h) <= MAX_PREFIXES]
 
 
 def test_star3_by_hand() -> None:
@@ -47,7 +46,7 @@ def test_star3_by_hand() -> None:
     assert coalition_values(inst, range(6)) == {1: 2, 2: Fraction(3, 2), 3: Fraction(3, 2),
                                                 4: Fraction(3, 2), 5: Fraction(3, 2)}
     for h in (1, 2, 3):
-        assert ngame_value(inst, h).bracket.exact == coalition_value(inst, h).value
+        assert game_value(inst, h).bracket.exact == coalition_value(inst, h).value
     assert coalition_value(inst, None).value == Fraction(3, 2)
 
 

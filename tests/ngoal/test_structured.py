@@ -26,10 +26,10 @@ from dppverify.errors import HorizonError, UndecidedError
 from dppverify.game.examples import star3_document, star3_profile
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile import nprofile_from_json
-from dppverify.ngoal.tree import count_nprefixes
 from dppverify.routes import tree_fits
 from dppverify.strategies import ngoal_instances, weighted_graphs
 from dppverify.structured.table_br import table_defender, walk_best_response
+from dppverify.tree_route.tree import count_prefixes
 
 MAX_PREFIXES = 3000
 
@@ -287,7 +287,7 @@ def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, 
         assert tree_cert.check(cid).status == struct.check(cid).status, cid
     for cid in ("ngoal.value.U", "ngoal.pbne.defender_br", "ngoal.pbne.sequential"):
         assert dict(tree_cert.check(cid).numbers) == dict(struct.check(cid).numbers), cid
-    assume(count_nprefixes(inst, full) <= MAX_PREFIXES)
+    assume(count_prefixes(inst, full) <= MAX_PREFIXES)
     # where every best response fits, the regrets are equal and so are the verdicts
     both = certify(inst, prof, horizon=full, route="both", max_prefixes=MAX_PREFIXES)
     disagree = [c.message for c in both.checks if c.message.startswith("the routes disagree")]
@@ -310,4 +310,4 @@ def test_the_saturating_size_count_decides_like_the_exact_count(doc: dict[str, A
                                                                   limit: int) -> None:
     inst = instance_from_json(doc)
     for h in range(0, 9):
-        assert tree_fits(inst, h, limit) == (count_nprefixes(inst, h) <= limit), h
+        assert tree_fits(inst, h, limit) == (count_prefixes(inst, h) <= limit), h

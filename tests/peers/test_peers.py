@@ -10,7 +10,7 @@ nodes for two goals): Gambit's exact LP needs minutes at a few hundred nodes (``
 
 N goals (``dppverify.ngoal``): the same two peers solve the export of N = 3 and N = 4 games
 (``NCASES`` of ``tests/ngoal/test_efg.py``, 136 to 385 game nodes) and must agree with the
-tree route's exact ``V_H`` (:func:`dppverify.ngoal.value_lp.ngame_value`, bracket closed) and
+tree route's exact ``V_H`` (:func:`dppverify.tree_route.value_lp.game_value`, bracket closed) and
 with the coalition DP (:func:`dppverify.structured.coalition.coalition_value`), both exact.
 
 - OpenSpiel: ``pyspiel.load_efg_game`` + ``sequence_form_lp.solve_zero_sum_game`` with HiGHS
@@ -35,7 +35,6 @@ import pytest
 
 from dppverify import game_value
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
 from dppverify.tree_route.efg import to_efg
 from tests.checker._helpers import triangle_doc
@@ -181,7 +180,7 @@ def test_forced_moves_are_harmless_for_openspiel(openspiel: Any) -> None:
 def _exact_nvalue(doc: dict[str, Any], horizon: int) -> Fraction:
     """The tree route's exact V_H, which the coalition DP must equal exactly."""
     inst = instance_from_json(doc)
-    v = ngame_value(inst, horizon)
+    v = game_value(inst, horizon)
     assert v.bracket.closed and v.bracket.exact is not None
     assert coalition_value(inst, horizon).value == v.bracket.exact
     return Fraction(v.bracket.exact)

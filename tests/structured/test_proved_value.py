@@ -19,11 +19,11 @@ from dppverify.certify import certify
 from dppverify.cli.value import value_command
 from dppverify.game.examples import hub4, hub4_document
 from dppverify.game.instance import instance_from_json
-from dppverify.ngoal.tree import count_nprefixes
-from dppverify.ngoal.value_lp import ngame_value
 from dppverify.structured.coalition import coalition_value
 from dppverify.structured.cover import balanced_vertices, basic_solutions, zero_one_normals
 from dppverify.structured.proved_value import lower_bound_simple, nvalue
+from dppverify.tree_route.tree import count_prefixes
+from dppverify.tree_route.value_lp import game_value
 from tests.checker._helpers import run_cli, write_doc
 
 
@@ -62,9 +62,9 @@ def _compare(doc: dict[str, Any], extra: int) -> tuple[int, int]:
         v = nvalue(inst, h)
         dp = coalition_value(inst, h).value
         assert v.upper <= dp and v.lower <= v.upper
-        if count_nprefixes(inst, h) > 3000:
+        if count_prefixes(inst, h) > 3000:
             continue
-        b = ngame_value(inst, h, max_prefixes=3000).bracket
+        b = game_value(inst, h, max_prefixes=3000).bracket
         assert v.lower <= b.upper and b.lower <= v.upper, (doc, h, v, b)
         if v.value is not None:
             exact += 1
@@ -168,7 +168,7 @@ def test_unrefined_brackets_hold_the_tree_value(monkeypatch: pytest.MonkeyPatch)
         inst = instance_from_json(doc)
         h = inst.hops[inst.start] + 1
         v = nvalue(inst, h)
-        b = ngame_value(inst, h, max_prefixes=3000).bracket
+        b = game_value(inst, h, max_prefixes=3000).bracket
         assert b.closed
         assert v.lower <= b.exact <= v.upper, (doc, h, v, b)
         brackets += v.value is None

@@ -52,7 +52,7 @@ def l5_induced_beliefs(ctx: EvaluatedContext) -> CheckRecord:
                           ctx.numbers).as_tuple()
     leaf = tree.find(xi2)
     assert leaf is not None
-    along = tree.path(leaf)
+    along = tree.prefixes(leaf)
 
     problems = []
     for t, p in enumerate(along):

@@ -112,8 +112,8 @@ def l3_greedy(ctx: Context) -> CheckRecord:
     problems = []
     checked = 0
     for name, x1, x2 in attackers:
-        greedy = defender_best_response(tree, roles, x1, x2)
-        lp, sigma = defender_best_response_lp(tree, roles, x1, x2)
+        greedy = defender_best_response(tree, roles, {1: x1, 2: x2})
+        lp, sigma = defender_best_response_lp(tree, roles, {1: x1, 2: x2})
         err = abs(lp.value - float(greedy.value))
         worst_value = max(worst_value, err)
         if not lp_agrees(lp.value, greedy.value):
@@ -172,7 +172,7 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
     for walk, _origin in walks.items():
         leaf = tree.find(walk)
         assert leaf is not None
-        along = tree.path(leaf)
+        along = tree.prefixes(leaf)
         primaries: list[tuple[str, tuple[StrategyWalk, ...]]] = []
         if isinstance(ctx, EvaluatedContext):
             primaries.append(("the profile's primary", ctx.profile.primary))

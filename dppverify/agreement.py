@@ -1,7 +1,7 @@
 """The two routes side by side: the tree LP's exact bracket against the structured value.
 
 The structured value (:func:`dppverify.structured.proved_value.nvalue`: exact where proved, else an
-exact bracket; ``proofs/NGOAL.md``) and the tree route (:mod:`dppverify.ngoal.value_lp`, the
+exact bracket; ``proofs/NGOAL.md``) and the tree route (:mod:`dppverify.tree_route.value_lp`, the
 literal definition of ``V_H``) must agree wherever both run: the brackets overlap, and an exact
 structured value lies in the tree route's exact bracket and matches the LP's float value within
 the LP tolerance. Anything else is a bug, reported as such, never smoothed over. The coalition
@@ -14,10 +14,10 @@ from dataclasses import dataclass
 
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
-from dppverify.ngoal.value_lp import NGameValue, ngame_value
 from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
+from dppverify.tree_route.value_lp import GameValue, game_value
 
 __all__ = ["RouteAgreement", "compare_routes"]
 
@@ -34,7 +34,7 @@ class RouteAgreement:
         The coalition DP at ``H`` (exact; an upper bound on ``V_H``).
     structured : NValue
         The structured route's value or bracket.
-    tree : NGameValue
+    tree : GameValue
         The tree route: LP value and exact bracket.
     agree : bool
         True when the brackets overlap and an exact structured value lies in the tree's
@@ -45,7 +45,7 @@ class RouteAgreement:
     horizon: int
     dp: Number
     structured: NValue
-    tree: NGameValue
+    tree: GameValue
     agree: bool
 
     @property
@@ -65,7 +65,7 @@ def compare_routes(instance: Instance, horizon: int, *,
     >>> a.dp, a.structured.value, a.tree.bracket.exact, a.agree, a.exact
     (Fraction(3, 2), Fraction(3, 2), Fraction(3, 2), True, True)
     """
-    tree = ngame_value(instance, horizon, max_prefixes=max_prefixes)
+    tree = game_value(instance, horizon, max_prefixes=max_prefixes)
     sv = nvalue(instance, horizon)
     b = tree.bracket
     agree = sv.lower <= b.upper and b.lower <= sv.upper
