@@ -1,9 +1,10 @@
 """The numeric and size limits both packages enforce, in one place (README, "Limits").
 
 Beyond each limit the solver and the checker refuse with one line (exit code 2) instead of
-hanging or exhausting memory. The values and the checks that refuse a numeral *before* it is
-parsed live here once; each package keeps its own limits of its own options
-(``solver/limits.py``, ``dppverify/limits.py``) and its own parsers.
+hanging or exhausting memory. The values, the checks that refuse a numeral *before* it is
+parsed and the check of a parsed JSON document's nesting depth live here once; each package
+keeps its own limits of its own options (``solver/limits.py``, ``dppverify/limits.py``) and
+its own parsers.
 
 Every check raises ``error(message)``: :class:`~dppio.errors.LimitError` by default, or the
 caller's own error class (the solver raises its ``InvalidInstanceError``).
