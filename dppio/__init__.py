@@ -6,7 +6,8 @@ mathematical: each has its own parsers and validators of instances, maps and num
 a reader bug is never shared (``tests/maps/test_readers_agree.py`` cross-checks them). What
 they share lives here and only here: how a file is read without hanging or exhausting memory
 (:mod:`dppio.files`), how outputs are written all or nothing, the limit values with the
-checks that refuse a numeral before it is parsed (:mod:`dppio.limits`), and how the processes
+checks that refuse a numeral before it is parsed or a JSON document nested too deep
+(:mod:`dppio.limits`), and how the processes
 a command started are found to end them (:mod:`dppio.procs`). Each package raises its own
 error classes (the checks and writers take ``error=``). ``dppio`` imports neither package
 (import-linter enforces it).

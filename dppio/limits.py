@@ -1,9 +1,10 @@
 """The numeric and size limits both packages enforce, in one place (README, "Limits").
 
 Beyond each limit the solver and the checker refuse with one line (exit code 2) instead of
-hanging or exhausting memory. The values and the checks that refuse a numeral *before* it is
-parsed live here once; each package keeps its own limits of its own options
-(``solver/limits.py``, ``dppverify/limits.py``) and its own parsers.
+hanging or exhausting memory. The values, the checks that refuse a numeral *before* it is
+parsed and the check of a parsed JSON document's nesting depth live here once; each package
+keeps its own limits of its own options (``solver/limits.py``, ``dppverify/limits.py``) and
+its own parsers.
 
 Every check raises ``error(message)``: :class:`~dppio.errors.LimitError` by default, or the
 caller's own error class (the solver raises its ``InvalidInstanceError``).
@@ -22,6 +23,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 from fractions import Fraction
+from typing import Any
 
 from dppio.errors import ErrorClass, LimitError
 
@@ -35,6 +37,7 @@ __all__ = [
     "MAX_NUMERAL_CHARS",
     "MAX_PREFIXES_LIMIT",
     "check_float_weights",
+    "check_json_depth",
     "check_numeral",
     "check_rational",
 ]
@@ -146,3 +149,26 @@ beyond the float-mode limit of 10**6; give exact weights
     if hi / lo > MAX_FLOAT_WEIGHT_RATIO:
         raise error(f"{where}: float weights span a ratio of {hi / lo:.0e} ({lo:.0e} to "
                     f"{hi:.0e}), beyond the float-mode limit of 10**6; give exact weights")
+
+
+def check_json_depth(doc: Any, *, error: ErrorClass = LimitError) -> None:
+    """Refuse a parsed JSON document nested deeper than :data:`MAX_JSON_DEPTH` levels of
+    arrays/objects: ``error`` (default :class:`~dppio.errors.LimitError`), one line.
+
+    Examples
+    --------
+    >>> check_json_depth({"a": [1, [2]]})
+    >>> nested: list = []
+    >>> for _ in range(64):
+    ...     nested = [nested]
+    >>> check_json_depth(nested, error=ValueError)
+    Traceback (most recent call last):
+    ValueError: JSON nested deeper than 64 levels
+    """
+    stack = [(doc, 1)]
+    while stack:
+        x, depth = stack.pop()
+        if isinstance(x, dict | list):
+            if depth > MAX_JSON_DEPTH:
+                raise error(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
+            stack.extend((y, depth + 1) for y in (x.values() if isinstance(x, dict) else x))

@@ -34,7 +34,6 @@ __all__ = ["ROUTES", "Chosen", "Route", "RoutedValue", "ngoal_game", "resolve_ro
 Route = Literal["auto", "tree", "structured", "both"]
 Chosen = Literal["tree", "structured", "both"]
 ROUTES: tuple[Route, ...] = ("auto", "tree", "structured", "both")
-AnyInstance = Instance
 
 
 def ngoal_game(game: Instance) -> bool:
@@ -52,7 +51,7 @@ def ngoal_game(game: Instance) -> bool:
     return game.n_goals > 2
 
 
-def tree_fits(instance: AnyInstance, horizon: int | None, max_prefixes: int) -> bool:
+def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> bool:
     """True when the pruned walk tree of ``horizon`` steps has at most ``max_prefixes`` prefixes.
 
     Counts with :func:`~dppverify.tree_route.tree.count_prefixes`, saturated just above
@@ -78,7 +77,7 @@ def tree_fits(instance: AnyInstance, horizon: int | None, max_prefixes: int) -> 
     return count_prefixes(cast(Any, instance), horizon, limit=max_prefixes) <= max_prefixes
 
 
-def resolve_route(route: Route, instance: AnyInstance, horizon: int | None,
+def resolve_route(route: Route, instance: Instance, horizon: int | None,
                   max_prefixes: int, *, certifying: bool = False,
                   table: bool = False) -> Chosen:
     """The route(s) to run on ``instance``'s game at ``horizon`` (None: the untruncated game).
@@ -255,14 +254,14 @@ class RoutedValue:
         return self.tree.bracket.exact if self.tree is not None else None
 
 
-def routed_value(instance: AnyInstance, horizon: int | None, *, route: Route = "auto",
+def routed_value(instance: Instance, horizon: int | None, *, route: Route = "auto",
                  max_prefixes: int = DEFAULT_MAX_PREFIXES,
                  progress: bool = False) -> RoutedValue:
     """``V_H`` of ``instance`` by the tree route, the structured route, or both.
 
     Parameters
     ----------
-    instance : Instance or Instance
+    instance : Instance
         The game (two or N goals).
     horizon : int or None
         ``H``; None for the untruncated game (structured route only).

@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from dppio.files import read_text
-from dppio.limits import MAX_JSON_DEPTH, check_numeral
+from dppio.limits import MAX_JSON_DEPTH, check_json_depth, check_numeral
 from solver.errors import InstanceFormatError, InvalidInstanceError
 
 __all__ = ["parse_json_text", "read_json"]
@@ -101,13 +101,7 @@ def parse_json_text(text: str) -> Any:
         raise InstanceFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels") from None
     except InvalidInstanceError as exc:
         raise InstanceFormatError(str(exc)) from None
-    stack = [(doc, 1)]
-    while stack:
-        x, depth = stack.pop()
-        if isinstance(x, dict | list):
-            if depth > MAX_JSON_DEPTH:
-                raise InstanceFormatError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
-            stack.extend((y, depth + 1) for y in (x.values() if isinstance(x, dict) else x))
+    check_json_depth(doc, error=InstanceFormatError)
     return doc
 
 

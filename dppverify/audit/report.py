@@ -84,29 +84,30 @@ class AuditReport:
         if self.passed:
             return (f"audit PASS: {self.examples} examples certified{skipped} "
                     f"(seed {self.seed}, at most {self.max_nodes} nodes)")
-        message = self.failure.message if self.failure is not None else "?"
-        if not self.shrunk:
-            how = "no shrinking"
-        elif self.budget_exhausted:
-            how = f"shrinking stopped at its budget after {self.shrink_calls} solver calls"
-        else:
-            how = f"shrunk with {self.shrink_calls} more solver calls"
+        how = self._how("shrinking", "shrunk")
         return (f"audit FAIL after {self.examples} examples{skipped} (seed {self.seed}; "
-                f"{how}): {message}")
+                f"{how}): {self._message()}")
 
     def _source_summary(self, skipped: str) -> str:
         """The summary of an audit on the user's own instances (``source`` set)."""
         if self.passed:
             return f"audit PASS: {self.examples} instances of {self.source} certified{skipped}"
-        message = self.failure.message if self.failure is not None else "?"
-        if not self.shrunk:
-            how = "no shrinking"
-        elif self.budget_exhausted:
-            how = f"pruning stopped at its budget after {self.shrink_calls} solver calls"
-        else:
-            how = f"pruned with {self.shrink_calls} more solver calls"
+        how = self._how("pruning", "pruned")
         return (f"audit FAIL after {self.examples} instances of {self.source}{skipped} ({how}): "
-                f"{message}")
+                f"{self._message()}")
+
+    def _message(self) -> str:
+        """The failure's one line (``?`` if none is recorded)."""
+        return self.failure.message if self.failure is not None else "?"
+
+    def _how(self, doing: str, done: str) -> str:
+        """How the failing example was reduced: ``doing``/``done`` name the reduction (the
+        random campaign shrinks, an audit of the user's instances prunes)."""
+        if not self.shrunk:
+            return "no shrinking"
+        if self.budget_exhausted:
+            return f"{doing} stopped at its budget after {self.shrink_calls} solver calls"
+        return f"{done} with {self.shrink_calls} more solver calls"
 
 
 def format_report(report: AuditReport) -> str:

@@ -35,7 +35,13 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from dppio.limits import MAX_JSON_DEPTH, MAX_NUMERAL_CHARS, check_numeral, check_rational
+from dppio.limits import (
+    MAX_JSON_DEPTH,
+    MAX_NUMERAL_CHARS,
+    check_json_depth,
+    check_numeral,
+    check_rational,
+)
 from dppverify.exact import Number, normalize
 from dppverify.formats.files import read_input
 
@@ -95,7 +101,7 @@ def parse_json(text: str | bytes) -> Any:
     if raw is not None and b"\\" not in raw:
         _check_text_depth(raw)
     else:
-        _check_depth(doc)
+        check_json_depth(doc, error=ValueError)
     return doc
 
 
@@ -114,7 +120,7 @@ _NESTING[[ord("]"), ord("}")]] = -1
 
 
 def _check_text_depth(raw: bytes) -> None:
-    """:func:`_check_depth` on the text of a parsed document without backslashes.
+    """:func:`~dppio.limits.check_json_depth` on the text of a parsed document without backslashes.
 
     Without escapes every ``"`` opens or closes a string, so the brackets outside strings are
     those after an even number of quotes; a container's depth is the number of brackets open
@@ -127,16 +133,6 @@ def _check_text_depth(raw: bytes) -> None:
     step[(np.cumsum(b == ord('"'), dtype=np.int64) & 1).astype(bool)] = 0
     if int(np.cumsum(step, dtype=np.int64).max()) > MAX_JSON_DEPTH:
         raise ValueError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
-
-
-def _check_depth(doc: Any) -> None:
-    stack = [(doc, 1)]
-    while stack:
-        x, depth = stack.pop()
-        if isinstance(x, dict | list):
-            if depth > MAX_JSON_DEPTH:
-                raise ValueError(f"JSON nested deeper than {MAX_JSON_DEPTH} levels")
-            stack.extend((y, depth + 1) for y in (x.values() if isinstance(x, dict) else x))
 
 
 def parse_json_text(text: str | bytes, *, profile: bool = False) -> Any:
