@@ -23,14 +23,13 @@ __all__ = ["grid_game", "map_game", "map_instance"]
 
 
 def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
-              connectivity: int = 4, two_goals: bool = False, cls: object = None) -> Instance:
+              connectivity: int = 4, two_goals: bool = False) -> Instance:
     """The grid game straight from the map: ``instance_from_json(grid_document(...))``
     without JSON.
 
     Same arguments, checks and messages as :func:`~dppverify.formats.movingai.grid_document`
     followed by the instance reader (``two_goals`` as in
-    :func:`~dppverify.game.instance.instance_from_json`; ``cls`` is ignored, transitional:
-    removed by the lead after the merge), and the same instance.
+    :func:`~dppverify.game.instance.instance_from_json`), and the same instance.
 
     Examples
     --------

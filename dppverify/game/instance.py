@@ -249,10 +249,6 @@ goals; this instance has 3
         return Roles(g1=self.goals[i], g2=self.goals[j], b1=self.prior[i], b2=self.prior[j],
                      d1=self.dist_to[i], d2=self.dist_to[j])
 
-    # transitional: removed by the lead after the merge
-    slot = goal_index
-    goal_slot = goal_index
-
 
 def as_instance(instance: Any, *, two_goals: bool = False) -> Instance:
     """An :class:`Instance` from any of the forms the public API accepts (duck typing).
@@ -430,35 +426,33 @@ def finish_game(ids: list[Node], index: dict[Node, int], directed: bool, succ_t:
     return game
 
 
-# transitional: removed by the lead after the merge (the old names of the one API)
-GameInstance = Instance
-NInstance = Instance
+def goal_count(doc: Any) -> int | None:
+    """The number of goals an instance document lists (None if ``goals`` is not a list).
 
-
-def ninstance_from_json(doc: Any) -> Instance:  # transitional
-    return instance_from_json(doc)
-
-
-def load_ninstance(path: str | Path) -> Instance:  # transitional
-    return load_instance(path)
-
-
-def read_game(doc: Any, cls: object = None, *, two_goals: bool = False,
-              base: Path | None = None) -> Instance:  # transitional (cls is ignored)
-    return instance_from_json(doc, two_goals=two_goals, base=base)
-
-
-def load_game(path: str | Path, cls: object = None, *,
-              two_goals: bool = False) -> Instance:  # transitional (cls is ignored)
-    return load_instance(path, two_goals=two_goals)
-
-
-def goal_count(doc: Any) -> int | None:  # transitional
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3_document
+    >>> goal_count(star3_document()), goal_count({"goals": "g"})
+    (3, None)
+    """
     return len(doc["goals"]) if isinstance(doc, Mapping) and isinstance(
         doc.get("goals"), list) else None
 
 
-def read_instance_document(path: str | Path) -> Any:  # transitional
+def read_instance_document(path: str | Path) -> Any:
+    """The JSON document of an instance file, read once (bounded), not yet validated.
+
+    Raises
+    ------
+    InvalidInstanceError
+        ``PATH: cannot read instance file (reason)`` or the JSON error.
+
+    Examples
+    --------
+    >>> read_instance_document("/nonexistent.json")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: /nonexistent.json: cannot read instance file ...
+    """
     try:
         return read_json_file(Path(path), kind="instance")
     except JsonReadError as exc:

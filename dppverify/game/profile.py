@@ -482,6 +482,3 @@ def read_profile(doc: Mapping[str, Any], instance: Instance,
         return nprofile_from_json(instance, doc)
     return profile_from_json(doc, instance, tolerance)
 
-
-# transitional: removed by the lead after the merge
-__all__ += ["StrategyWalk"]

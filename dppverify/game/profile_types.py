@@ -326,6 +326,3 @@ class DefectCollector:
             self.add(where, str(exc).split(": ", 1)[-1])
             return None
 
-
-# transitional: removed by the lead after the merge
-StrategyPath = StrategyWalk
