@@ -20,8 +20,6 @@ It never imports ``solver``: it reads instances and strategy profiles as JSON
 
 from __future__ import annotations
 
-__version__ = "0.1.0"
-
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.certify import CHECK_IDS, certify
 from dppverify.errors import (
@@ -38,6 +36,7 @@ from dppverify.game.instance import Instance, instance_from_json, load_instance
 from dppverify.tree_route.tree import WalkTree, build_tree, count_prefixes
 from dppverify.tree_route.value_lp import GameValue, game_value
 from dppverify.valuation import value
+from dppverify.version import __version__
 
 __all__ = ["CHECK_IDS", "Certificate", "CertificateError", "CheckRecord", "CheckerError",
            "GameValue", "HorizonError", "Instance", "InvalidInstanceError", "LPError",

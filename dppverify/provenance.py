@@ -145,7 +145,7 @@ def provenance_record(instance: Any, profile: Any, *, route: str, exact: bool,
     >>> list(rec) == list(PROVENANCE_KEYS), rec["numbers"], rec["command"]
     (True, 'exact', None)
     """
-    from dppverify import __version__
+    from dppverify.version import __version__
 
     return {"instance": input_record(instance), "profile": input_record(profile),
             "dppverify": __version__, "route": route,
@@ -215,7 +215,7 @@ def verify_provenance(certificate: Mapping[str, Any], instance: Any, profile: An
     >>> verify_provenance(cert, other, triangle_profile()).line  # doctest: +ELLIPSIS
     'provenance MISMATCH: instance sha256 differs: recorded ..., given ... (profile matches); ...'
     """
-    from dppverify import __version__
+    from dppverify.version import __version__
 
     prov = certificate.get("provenance") if isinstance(certificate, Mapping) else None
     if not isinstance(prov, Mapping):

@@ -5,9 +5,13 @@ from __future__ import annotations
 from collections.abc import Sequence
 from decimal import Decimal, localcontext
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 from dppverify.exact import Number
-from dppverify.game.instance import Instance, show_node
+from dppverify.formats.json_reading import show_node
+
+if TYPE_CHECKING:
+    from dppverify.game.instance import Instance
 
 __all__ = ["MAX_EXACT_CHARS", "approx", "show", "show_value", "show_walk"]
 

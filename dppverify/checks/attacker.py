@@ -35,7 +35,9 @@ def attacker_br(ctx: EvaluatedContext, theta: int) -> CheckRecord:
     --------
     A secondary type that walks to g1 pays 2 where ``s -> g2`` costs it 1:
 
-    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker
+
+    >>> from dppverify.tree_route.context import triangle_context as context
     >>> eq = triangle_attacker()
     >>> r = attacker_br(context(eq), 2)
     >>> r.id, r.status, r.numbers["U2"], r.numbers["best_response"], r.numbers["regret"]

@@ -22,7 +22,8 @@ def belief_consistency(ctx: EvaluatedContext) -> CheckRecord:
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker
+    >>> from dppverify.tree_route.context import triangle_context as context
     >>> eq = triangle_attacker()
     >>> dict(belief_consistency(context(eq)).numbers)
     {'b1': Fraction(7, 10), 'b2': Fraction(3, 10), 'infosets': 2, 'mismatches': 0}

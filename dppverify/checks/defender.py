@@ -25,7 +25,9 @@ def defender_br(ctx: EvaluatedContext) -> CheckRecord:
     With the primary's probabilities swapped (3/7 to g1), allocating ``s -> g2`` to g1 gains
     the Defender 1/10:
 
-    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker
+
+    >>> from dppverify.tree_route.context import triangle_context as context
     >>> eq = triangle_attacker()
     >>> defender_br(context(eq)).numbers["regret"]
     0
@@ -76,7 +78,9 @@ def sequential_rationality(ctx: EvaluatedContext) -> CheckRecord:
     In equilibrium the belief after ``s -> g2`` is exactly 1/2, so σ* = 1/2 is rational there;
     with the primary's probabilities swapped it is 4/7 and σ* is not greedy:
 
-    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker
+
+    >>> from dppverify.tree_route.context import triangle_context as context
     >>> eq = triangle_attacker()
     >>> dict(sequential_rationality(context(eq)).numbers)
     {'infosets': 2, 'at_one_half': 1, 'violations': 0}

@@ -36,7 +36,8 @@ def values(ctx: EvaluatedContext) -> list[CheckRecord]:
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker
+    >>> from dppverify.tree_route.context import triangle_context as context
     >>> eq = triangle_attacker()
     >>> for r in values(context(eq)):
     ...     print(r.id, r.status, r.message)
@@ -105,7 +106,9 @@ def value_check(ctx: Context) -> CheckRecord:
     --------
     A secondary type walking to g1 makes ``U = 27/10``, not the value ``V_1 = 12/5``:
 
-    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker
+
+    >>> from dppverify.tree_route.context import triangle_context as context
     >>> eq = triangle_attacker()
     >>> r = value_check(context(eq))
     >>> r.status, r.numbers["V_H"], r.numbers["U"]

@@ -22,7 +22,9 @@ def wellformed(ctx: Context) -> CheckRecord:
     The triangle's equilibrium (see :mod:`dppverify.game.examples`), then a primary mixture whose
     probabilities do not sum to 1:
 
-    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker
+
+    >>> from dppverify.tree_route.context import triangle_context as context
     >>> eq = triangle_attacker()
     >>> wellformed(context(eq)).message
     "well-formed: 2 primary and 1 secondary walk(s), primary goal 'g1'"
@@ -59,7 +61,9 @@ def phases(ctx: Context) -> CheckRecord:
     --------
     On the triangle ξ² = ``s -> g2`` is all phase II (σ* = 1/2 on its one step):
 
-    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker
+
+    >>> from dppverify.tree_route.context import triangle_context as context
     >>> eq = triangle_attacker()
     >>> dict(phases(context(eq)).numbers)
     {'t_I': 0, 't_II': 1, 'T': 1}

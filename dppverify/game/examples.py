@@ -12,15 +12,12 @@ coalition DP is not the value (``proofs/NGOAL.md``).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from dppverify.game.instance import Instance, instance_from_json
 
-if TYPE_CHECKING:
-    from dppverify.tree_route.context import Context
-
 __all__ = ["hub4", "hub4_document", "kite", "kite_document", "kite_naive_profile", "star3",
-           "star3_document", "star3_profile", "triangle", "triangle_attacker", "triangle_context",
+           "star3_document", "star3_profile", "triangle", "triangle_attacker",
            "triangle_document", "triangle_profile"]
 
 
@@ -89,32 +86,6 @@ def triangle_profile(attacker: dict[str, Any] | None = None, **claims: Any) -> d
     return {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
             "defender": {"rule": "progress", "goal": "g1"},
             "attacker": triangle_attacker() if attacker is None else attacker, **claims}
-
-
-def triangle_context(attacker: dict[str, Any] | None = None, *, horizon: int = 1,
-                     **claims: Any) -> Context:
-    """The checks' shared inputs for a triangle profile (exact, seed 0, 2 random trials).
-
-    Parameters
-    ----------
-    attacker, **claims
-        As for :func:`triangle_profile`.
-    horizon : int
-        The walk tree's horizon.
-
-    Examples
-    --------
-    >>> ctx = triangle_context()
-    >>> ctx.tree.n_prefixes, ctx.profile.primary[0].probability
-    (3, Fraction(4, 7))
-    """
-    from dppverify.game.profile import profile_from_json
-    from dppverify.tree_route.context import make_context
-    from dppverify.tree_route.tree import build_tree
-
-    inst = triangle()
-    prof = profile_from_json(triangle_profile(attacker, **claims), inst)
-    return make_context(inst, build_tree(inst, horizon), prof, seed=0, trials=2)
 
 
 def kite_document(prior: tuple[str, str] = ("3/5", "2/5")) -> dict[str, Any]:

@@ -67,7 +67,7 @@ def lower_bound(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy) -> Number:
     Against σ* on the triangle the types' best responses cost 3 and 1; a Defender that
     always allocates to g1 lets the secondary reach g2 for free (7/10 · 3 + 3/10 · 0):
 
-    >>> from dppverify.game.defender import tree_defender
+    >>> from dppverify.tree_route.tree_defender import tree_defender
     >>> from dppverify.game.examples import triangle
     >>> from dppverify.game.profile import ProgressRule, TableRule
     >>> from dppverify.tree_route.tree import build_tree

@@ -5,8 +5,9 @@ either the two-goal labelling (:class:`~dppverify.game.instance.Roles`, θ = 1 p
 secondary) or an instance's N goals in document order (θ = the goal index ``0 .. N-1``); an
 Attacker type plays a realization plan (:data:`Plan`). A Defender evaluated on the tree gives
 type θ the stage cost ``a_θ(p) = w(p)·σ(g^θ | p)`` at every prefix ``p``
-(:class:`TreeStrategy`): the two-goal :class:`~dppverify.game.defender.TreeDefender`, or a
-:class:`DefenderOnTree` for any number of goals.
+(:class:`TreeStrategy`): the two-goal
+:class:`~dppverify.tree_route.tree_defender.TreeDefender`, or a :class:`DefenderOnTree` for any
+number of goals.
 """
 
 from __future__ import annotations

@@ -35,7 +35,6 @@ import numpy as np
 from tqdm import tqdm
 
 from dppverify.errors import HorizonError
-from dppverify.game.defender import TreeDefender, tree_defender
 from dppverify.game.instance import Instance, Roles, as_instance
 from dppverify.game.profile import ProgressRule
 from dppverify.horizons import parse_horizon
@@ -57,6 +56,7 @@ from dppverify.tree_route.players import (
     defender_from_table,
 )
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, WalkTree, build_tree
+from dppverify.tree_route.tree_defender import TreeDefender, tree_defender
 
 if TYPE_CHECKING:  # imported where the LP is built: cvxpy's import costs ~0.5 s
     import cvxpy as cp

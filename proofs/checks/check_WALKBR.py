@@ -8,9 +8,9 @@ from pathlib import Path
 import sympy as sp
 
 from dppverify import build_tree, count_prefixes, instance_from_json
-from dppverify.game.defender import tree_defender
 from dppverify.game.profile import ProgressRule
 from dppverify.tree_route.best_response import attacker_best_response
+from dppverify.tree_route.tree_defender import tree_defender
 from dppverify.twogoal.progress_br import walk_minima
 from proofs.checks._sym import is_nonneg, is_zero, nonneg
 

@@ -10,7 +10,6 @@ from typing import Any
 import pytest
 
 from dppverify.checks.lemmas import random_mixture
-from dppverify.game.defender import tree_defender
 from dppverify.game.evaluation import evaluate, realization
 from dppverify.game.instance import instance_from_json
 from dppverify.game.profile import ProgressRule, TableRule
@@ -24,6 +23,7 @@ from dppverify.tree_route.best_response import (
 )
 from dppverify.tree_route.lp import lp_agrees
 from dppverify.tree_route.tree import build_tree
+from dppverify.tree_route.tree_defender import tree_defender
 from tests.checker._helpers import (
     adjacency,
     all_walks,

@@ -87,8 +87,8 @@ def test_table_defender_equal_to_sigma_star_certifies() -> None:
     """The same σ* written as an explicit table of allocations (to g2, the other goal)."""
     inst = instance_from_json(three_phase_doc())
     tree = build_tree(inst, 4)
-    from dppverify.game.defender import tree_defender
     from dppverify.game.profile import ProgressRule
+    from dppverify.tree_route.tree_defender import tree_defender
 
     r = inst.roles()
     td = tree_defender(tree, r, ProgressRule(r.g1))

@@ -13,8 +13,8 @@ from dppverify import certify
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.checks.lemmas import OFF_XI2, l5_induced_beliefs, telescoping
 from dppverify.cli.table import CONSISTENCY_HEADING, FACTS_HEADING, format_table
-from dppverify.game.examples import triangle_context
 from dppverify.registry import CHECKS
+from dppverify.tree_route.context import triangle_context
 from tests.checker._helpers import three_phase_doc, three_phase_profile
 
 CONSISTENCY = {c.id for c in CHECKS if c.kind == "consistency"}

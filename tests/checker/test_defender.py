@@ -8,11 +8,12 @@ from fractions import Fraction
 
 import pytest
 
-from dppverify.game.defender import sigma_along, tree_defender
+from dppverify.game.defender import sigma_along
 from dppverify.game.evaluation import walk_cost
 from dppverify.game.instance import instance_from_json
 from dppverify.game.profile import ProgressRule, TableRule
 from dppverify.tree_route.tree import build_tree
+from dppverify.tree_route.tree_defender import tree_defender
 from dppverify.twogoal.progress import progress_along
 from tests.checker._helpers import (
     all_walks,

@@ -239,8 +239,8 @@ def test_table_minima_against_walk_formula_and_tree(doc: Doc, data: st.DataObjec
         [ProgressRule(goal), Fraction(0), Fraction(1), Fraction(1, 3)]))
     rule = TableRule(goal=goal, entries=entries, default=default)
     tm = table_minima(inst, r, rule)
-    from dppverify.game.defender import tree_defender
     from dppverify.tree_route.best_response import attacker_best_response
+    from dppverify.tree_route.tree_defender import tree_defender
     for h in (2, 4):
         t = build_tree(inst, h)
         td = tree_defender(t, r, rule)

@@ -34,7 +34,9 @@ def l5_induced_beliefs(ctx: EvaluatedContext) -> CheckRecord:
     ξ² = ``s -> g2`` is all phase II: the equilibrium mixture makes the belief 1/2 after its
     step; with the primary's probabilities swapped it is 4/7.
 
-    >>> from dppverify.game.examples import triangle_attacker, triangle_context as context
+    >>> from dppverify.game.examples import triangle_attacker
+
+    >>> from dppverify.tree_route.context import triangle_context as context
     >>> l5_induced_beliefs(context()).status
     'pass'
     >>> r = l5_induced_beliefs(context(triangle_attacker("3/7", "4/7")))
