@@ -357,7 +357,7 @@ def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon:
                 raise UndecidedError(NTABLE_UNDECIDED)
         checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)
     info: dict[str, Any] = {"goals": inst.n_goals, "nodes": inst.n_nodes,
-                            "game": "N goals (dppverify.ngoal)"}
+                            "game": "N goals"}
     if chosen != "tree":
         info["trie_prefixes"] = trie_size
     return Certificate(checks=tuple(checks), horizon=h if tree is None else tree.horizon,

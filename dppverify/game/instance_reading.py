@@ -41,8 +41,8 @@ __all__ = ["NGOAL_REFUSAL", "GameParts", "arc_arrays", "game_parts", "goal_dista
            "read_goals", "read_node", "read_prior", "remember_arrays", "two_goal_rules"]
 
 NGOAL_REFUSAL = ("goals: this instance lists {n} goals; the two-goal checker reads exactly two. "
-                 "N-goal instances are read by dppverify.ngoal (`dpp value` and `dpp certify` "
-                 "dispatch on the number of goals)")
+                 "Instances with any number of goals are read by dppverify.certify and "
+                 "dppverify.value (`dpp value` and `dpp certify` take any number of goals)")
 """The message for an instance with more than two goals read with ``two_goals=True``."""
 
 

@@ -13,7 +13,7 @@ prior 1/2.
 - :func:`grid_worlds`: 4-connected grid instances with obstacles (the paper's Sec. VII), by
   default with each goal reachable from the start without passing the other goal;
 - :func:`ngoal_priors` and :func:`ngoal_instances`: N-entry priors and N-goal instances
-  (``N >= 2`` goals, exact weights) for :mod:`dppverify.ngoal`.
+  (``N >= 2`` goals, exact weights) for the checker's N-goal routes.
 
 They produce plain dicts (the checker never imports the solver), ready for
 ``json.dumps``, :func:`dppverify.certify` or any solver reading the instance format.

@@ -1,4 +1,4 @@
-"""`dpp value` and `dpp certify` dispatch on the number of goals (N > 2: dppverify.ngoal)."""
+"""`dpp value` and `dpp certify` dispatch on the number of goals (one entry point for any N)."""
 
 from __future__ import annotations
 

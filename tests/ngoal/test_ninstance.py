@@ -62,7 +62,7 @@ def test_the_two_goal_parser_refuses_more_goals_and_points_at_the_n_goal_checker
     with pytest.raises(InvalidInstanceError) as info:
         instance_from_json(star3_document(), two_goals=True)
     text = str(info.value)
-    assert "lists 3 goals" in text and "dppverify.ngoal" in text and "dpp value" in text
+    assert "lists 3 goals" in text and "dppverify.certify" in text and "dpp value" in text
 
 
 def test_goal_count_and_file_errors(tmp_path: Any) -> None:

@@ -8,7 +8,7 @@ Marked ``peers`` (excluded from the default run). Install the peers and run them
 Each peer is skipped cleanly when it is not installed. The games are tiny (at most 123 game
 nodes for two goals): Gambit's exact LP needs minutes at a few hundred nodes (``docs/peers.md``).
 
-N goals (``dppverify.ngoal``): the same two peers solve the export of N = 3 and N = 4 games
+N goals (any N, one tree route): the same two peers solve the export of N = 3 and N = 4 games
 (``NCASES`` of ``tests/ngoal/test_efg.py``, 136 to 385 game nodes) and must agree with the
 tree route's exact ``V_H`` (:func:`dppverify.tree_route.value_lp.game_value`, bracket closed) and
 with the coalition DP (:func:`dppverify.structured.coalition.coalition_value`), both exact.
