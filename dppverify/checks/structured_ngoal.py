@@ -33,7 +33,7 @@ from dppverify.checks.structured_shared import greedy_sums, structured_record
 from dppverify.errors import HorizonError
 from dppverify.exact import INF, Number, normalize
 from dppverify.game.instance import Instance
-from dppverify.game.profile import NProfile
+from dppverify.game.profile import Profile
 from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.structured.table_br import (
     TableDefender,
@@ -105,7 +105,7 @@ def walk_labels(inst: Instance, walk: tuple[int, ...]) -> list[object]:
     return list(inst.labels(walk))
 
 
-def nstructured_checks(instance: Instance, profile: NProfile,
+def nstructured_checks(instance: Instance, profile: Profile,
                        horizon: int | None) -> tuple[list[CheckRecord], int]:
     """Every check of the N-goal structured route, in certificate order, and the trie size.
 
@@ -113,7 +113,7 @@ def nstructured_checks(instance: Instance, profile: NProfile,
     ----------
     instance : Instance
         The game.
-    profile : NProfile
+    profile : Profile
         The resolved profile.
     horizon : int or None
         ``H`` of the value check (the guarantee sets); None for the untruncated game. The
@@ -125,9 +125,9 @@ def nstructured_checks(instance: Instance, profile: NProfile,
     type ``b`` loops ``s m s m b`` unguarded.
 
     >>> from dppverify.game.examples import star3, star3_profile
-    >>> from dppverify.game.profile import nprofile_from_json
+    >>> from dppverify.game.profile import profile_from_json
     >>> inst = star3()
-    >>> recs, size = nstructured_checks(inst, nprofile_from_json(inst, star3_profile()), None)
+    >>> recs, size = nstructured_checks(inst, profile_from_json(star3_profile(), inst), None)
     >>> [(r.id, r.status) for r in recs][2:4], size
     ([('ngoal.pbne.attacker_br', 'fail'), ('ngoal.pbne.defender_br', 'pass')], 5)
     >>> recs[2].message
@@ -137,8 +137,8 @@ def nstructured_checks(instance: Instance, profile: NProfile,
     n = inst.n_goals
     if profile.defects:
         more = f" (and {len(profile.defects) - 1} more)" if len(profile.defects) > 1 else ""
-        out = [ngoal_record(NGOAL_IDS[0], "fail", profile.defects[0] + more, None, PROFILE_DOC,
-                            None)]
+        out = [ngoal_record(NGOAL_IDS[0], "fail", f"{profile.defects[0]}{more}", None,
+                            PROFILE_DOC, None)]
         out += [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
                 for i in NGOAL_IDS[1:]]
         return out, 0
