@@ -47,6 +47,7 @@ from dppverify.formats.json_reading import JsonReadError, read_json_file
 from dppverify.game.instance import Instance, arc_arrays, node_to_json
 from dppverify.game.profile import (
     NGOAL_PROFILE_FORMAT,
+    GoalTable,
     Profile,
     ProgressRule,
     check_format,
@@ -350,7 +351,7 @@ def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon:
     trie_size = 0
     if chosen in ("structured", "both"):
         structured, trie_size = nstructured_checks(inst, prof, h)
-        if h is None and prof.default is None and prof.rule is None:
+        if h is None and isinstance(prof.defender, GoalTable) and prof.defender.default is None:
             br = next((r for r in structured if r.id == "ngoal.pbne.attacker_br"), None)
             if br is not None and br.status == "error":  # undefined off the table: undecided
                 raise UndecidedError(NTABLE_UNDECIDED)

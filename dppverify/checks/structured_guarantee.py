@@ -60,8 +60,8 @@ def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
     """
     inst = instance
     n = inst.n_goals
-    rule = profile.rule
-    assert rule is not None  # the caller dispatches on the guarantee rule
+    rule = profile.defender
+    assert isinstance(rule, GuaranteeRule)  # the caller dispatches on the guarantee rule
     ev = evaluate_rule_profile(inst, rule, profile.attacker)
     per_type = ev.per_type
     trie = ev.defender.trie

@@ -33,7 +33,7 @@ from dppverify.checks.structured_shared import greedy_sums, structured_record
 from dppverify.errors import HorizonError
 from dppverify.exact import INF, Number, normalize
 from dppverify.game.instance import Instance
-from dppverify.game.profile import Profile
+from dppverify.game.profile import GoalTable, GuaranteeRule, Profile
 from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.structured.table_br import (
     TableDefender,
@@ -142,16 +142,18 @@ def nstructured_checks(instance: Instance, profile: Profile,
         out += [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
                 for i in NGOAL_IDS[1:]]
         return out, 0
-    if profile.rule is not None:  # the guarantee rule: dppverify.structured.guarantee
+    if isinstance(profile.defender, GuaranteeRule):  # dppverify.structured.guarantee
         from dppverify.checks.structured_guarantee import guarantee_checks
 
         return guarantee_checks(inst, profile, horizon)
     walks = [mw.walk for mix in profile.attacker for mw in mix]
     # realization masses x_θ(p) on the profile's walks, then the table's entries
     trie = mass_trie(profile.attacker, start=inst.start)
-    sigma = {trie.insert(w): tuple(d) for w, d in profile.entries.items()}
+    table = profile.defender
+    assert isinstance(table, GoalTable)  # well-formed: a table or the guarantee rule
+    sigma = {trie.insert(w): tuple(d) for w, d in table.entries.items()}
     tdef = TableDefender(instance=inst, trie=trie, sigma=sigma, default=None
-                         if profile.default is None else tuple(profile.default))
+                         if table.default is None else tuple(table.default))
     # payoffs walk by walk
     per_type: list[Number] = []
     missing: tuple[int, ...] | None = None
@@ -178,9 +180,9 @@ def nstructured_checks(instance: Instance, profile: Profile,
         out += [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
                 for i in NGOAL_IDS[1:]]
         return out, len(trie)
-    has_default = profile.default is not None
+    has_default = table.default is not None
     out = [ngoal_record(NGOAL_IDS[0], "pass", f"{n} types, {len(walks)} walks, Defender table of "
-                f"{len(profile.entries)} entries " + ("and a default (defined on every walk)"
+                f"{len(table.entries)} entries " + ("and a default (defined on every walk)"
                                                       if has_default else "without a default"),
                 {"walks": len(walks), "prefixes": len(trie)}, PROFILE_DOC, None)]
     u = normalize(sum((inst.prior[t] * per_type[t] for t in range(n)), Fraction(0)))

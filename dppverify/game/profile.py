@@ -54,7 +54,10 @@ from dppverify.game.profile_types import (
     Defect,
     DefectCollector,
     DefenderRule,
+    GoalTable,
+    GuaranteeRule,
     Profile,
+    ProfileDefender,
     ProgressRule,
     StrategyWalk,
     TableRule,
@@ -64,9 +67,10 @@ from dppverify.game.profile_types import (
 )
 from dppverify.numbers import EXACT, NumberMode
 
-__all__ = ["NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "Defect", "DefenderRule", "Profile",
-           "ProgressRule", "StrategyWalk", "TableRule", "check_format", "load_profile_document",
-           "profile_from_json", "validate_walk"]
+__all__ = ["NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "Defect", "DefenderRule", "GoalTable",
+           "GuaranteeRule", "Profile", "ProfileDefender", "ProgressRule", "StrategyWalk",
+           "TableRule", "check_format", "load_profile_document", "profile_from_json",
+           "validate_walk"]
 
 
 def validate_walk(instance: Instance, raw: Any, *, complete: bool) -> tuple[int, ...] | str:
@@ -143,7 +147,7 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
     ['attacker.primary: probabilities sum to 1/2, not 1']
     >>> from dppverify.game.examples import star3, star3_profile
     >>> p = profile_from_json(star3_profile(), star3())
-    >>> p.format, p.wellformed, [w.walk for w in p.attacker[1]], p.default
+    >>> p.format, p.wellformed, [w.walk for w in p.attacker[1]], p.defender.default
     ('dpp-ngoal-profile/1', True, [(0, 1, 3)], (Fraction(1, 1), Fraction(0, 1), Fraction(0, 1)))
     >>> bad = {**star3_profile(), "attacker": star3_profile()["attacker"][:2]}
     >>> [str(d) for d in profile_from_json(bad, star3()).defects]
@@ -373,25 +377,23 @@ def _ngoal_profile(doc: Mapping[str, Any], instance: Instance) -> Profile:
         for theta, mix in enumerate(raw_att):
             types[theta], steps = _nmixed(mix, f"attacker[{theta}]", instance, c)
             longest = max(longest, steps)
-    entries: dict[tuple[int, ...], tuple[Fraction, ...]] = {}
-    default: tuple[Fraction, ...] | None = None
     raw_def = doc.get("defender")
-    rule = None
+    defender: ProfileDefender | None = None
     if isinstance(raw_def, Mapping) and raw_def.get("rule") == GUARANTEE_RULE:
-        rule = parse_guarantee(raw_def, n, c)
+        defender = parse_guarantee(raw_def, n, c)
     elif not isinstance(raw_def, Mapping) or raw_def.get("rule") != "table":
         c.add("defender", "must be {\"rule\": \"table\", \"entries\": [...], \"default\": [...]} "
                           "or {\"rule\": \"guarantee\", \"h\": [...]}")
     else:
         entries = _ntable(raw_def.get("entries", []), instance, c)
-        if raw_def.get("default") is not None:
-            default = _distribution(raw_def["default"], n, "defender.default", c)
+        default = (None if raw_def.get("default") is None
+                   else _distribution(raw_def["default"], n, "defender.default", c))
+        defender = GoalTable(MappingProxyType(entries), default)
     claimed: Number | None = None
     value = doc.get("value")
     if isinstance(value, Mapping) and value.get("U") is not None:
         claimed = c.number(value["U"], "value.U")
-    return Profile(attacker=tuple(types), entries=MappingProxyType(entries), default=default,
-                   rule=rule, format=NGOAL_PROFILE_FORMAT,
+    return Profile(attacker=tuple(types), defender=defender, format=NGOAL_PROFILE_FORMAT,
                    claimed_values=MappingProxyType({} if claimed is None else {"U": claimed}),
                    longest=longest, defects=tuple(c.defects))
 

@@ -29,9 +29,9 @@ from dppverify.formats.json_reading import (
 )
 
 __all__ = ["GUARANTEE_RULE", "NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "VALUE_KEYS", "Defect",
-           "DefectCollector", "DefenderRule", "GuaranteeRule", "Profile", "ProgressRule",
-           "StrategyWalk", "TableRule", "check_format", "load_profile_document",
-           "parse_guarantee"]
+           "DefectCollector", "DefenderRule", "GoalTable", "GuaranteeRule", "Profile",
+           "ProfileDefender", "ProgressRule", "StrategyWalk", "TableRule", "check_format",
+           "load_profile_document", "parse_guarantee"]
 
 PROFILE_FORMAT = "dpp-profile/1"
 """The two-goal profile's ``format`` tag."""
@@ -95,20 +95,40 @@ class StrategyWalk:
 
 
 @dataclass(frozen=True)
+class GoalTable:
+    """An N-goal Defender table: after observing a walk, a distribution over the goals.
+
+    ``entries`` maps walks (node-index tuples with at least one step) to distributions
+    ``(q_0, …, q_{N-1})`` over the goal indices; ``default`` is used for unlisted walks (None:
+    unlisted walks are undefined).
+    """
+
+    entries: Mapping[tuple[int, ...], tuple[Fraction, ...]]
+    default: tuple[Fraction, ...] | None
+
+
+@dataclass(frozen=True)
 class GuaranteeRule:
-    """The profile's guarantee rule: the starting state ``h``."""
+    """The N-goal guarantee rule: its starting state ``h``.
+
+    The Defender of :mod:`dppverify.structured.guarantee` (``{"rule": "guarantee", "h": [...]}``).
+    """
 
     h: tuple[Fraction, ...]
+
+
+ProfileDefender = ProgressRule | TableRule | GoalTable | GuaranteeRule
+"""The Defender a profile states: a two-goal rule (``dpp-profile/1``), or an N-goal table or the
+guarantee rule (``dpp-ngoal-profile/1``)."""
 
 
 @dataclass(frozen=True)
 class Profile:
     """A strategy profile of either format resolved against an instance, with its defects.
 
-    One type for both documents: ``attacker`` holds the mixed strategies by goal index for
-    any N; the Defender is ``defender`` in a ``dpp-profile/1`` document and ``entries`` /
-    ``default`` or ``rule`` in a ``dpp-ngoal-profile/1`` one (``format`` says which). The
-    two-goal views (:attr:`primary`, :attr:`secondary`, :meth:`walks`, ``primary_slot``,
+    One type for both documents (``format`` says which it came from): ``attacker`` holds the
+    mixed strategies by goal index for any N and ``defender`` the Defender. The two-goal
+    views (:attr:`primary`, :attr:`secondary`, :meth:`walks`, ``primary_slot``,
     ``claimed_prior``, ``claimed_phases``) are meaningful for ``dpp-profile/1`` only.
 
     Attributes
@@ -116,16 +136,10 @@ class Profile:
     attacker : tuple
         ``attacker[θ]``: the valid walks of the mixed strategy of goal index θ (walking to the
         instance's ``goals[θ]``; invalid entries are dropped and recorded as defects).
-    defender : DefenderRule or None
-        ``dpp-profile/1``: the Defender's rule; None when the ``defender`` section is unusable
-        (then a defect says why), and for ``dpp-ngoal-profile/1``.
-    entries : Mapping
-        ``dpp-ngoal-profile/1``: the Defender's table, walk (node indices) -> goal distribution.
-    default : tuple or None
-        ``dpp-ngoal-profile/1``: the Defender's distribution for unlisted walks.
-    rule : GuaranteeRule or None
-        ``dpp-ngoal-profile/1``: the Defender's rule when it is ``{"rule": "guarantee", ...}``
-        (then ``entries`` is empty and ``default`` None; :mod:`dppverify.structured.guarantee`).
+    defender : ProfileDefender or None
+        ``dpp-profile/1``: a :class:`ProgressRule` or :class:`TableRule`;
+        ``dpp-ngoal-profile/1``: a :class:`GoalTable` or the :class:`GuaranteeRule`. None when
+        the ``defender`` section is unusable (then a defect says why).
     format : str
         The document's format tag (:data:`PROFILE_FORMAT` or :data:`NGOAL_PROFILE_FORMAT`).
     primary_slot : int
@@ -154,10 +168,7 @@ class Profile:
     """
 
     attacker: tuple[tuple[StrategyWalk, ...], ...]
-    defender: DefenderRule | None = None
-    entries: Mapping[tuple[int, ...], tuple[Fraction, ...]] = field(default_factory=dict)
-    default: tuple[Fraction, ...] | None = None
-    rule: GuaranteeRule | None = None
+    defender: ProfileDefender | None = None
     format: str = PROFILE_FORMAT
     primary_slot: int = 0
     claimed_values: Mapping[str, Number] = field(default_factory=dict)

@@ -39,7 +39,7 @@ from dppverify.certificate import CheckRecord, Status
 from dppverify.errors import HorizonError, LPError
 from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance
-from dppverify.game.profile import Profile
+from dppverify.game.profile import GoalTable, GuaranteeRule, Profile
 from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.best_response import (
     attacker_best_response,
@@ -80,20 +80,22 @@ def _plans(tree: WalkTree, profile: Profile) -> list[dict[int, Fraction]]:
 
 
 def _defender(tree: WalkTree, profile: Profile) -> DefenderOnTree | str:
-    if profile.rule is not None:  # the guarantee rule, evaluated on every prefix of the tree
+    rule = profile.defender
+    if isinstance(rule, GuaranteeRule):  # evaluated on every prefix of the tree
         from dppverify.structured.guarantee import guarantee_sets, rule_on_trie
 
         sets = guarantee_sets(tree.instance)
-        sigma, _ = rule_on_trie(tree.instance, profile.rule, sets, tree.parent.tolist(),
+        sigma, _ = rule_on_trie(tree.instance, rule, sets, tree.parent.tolist(),
                                 tree.node.tolist())
         return defender_from_table(tree, sigma, None)
+    assert isinstance(rule, GoalTable)  # well-formed: a table or the guarantee rule
     table: dict[int, tuple[Fraction, ...]] = {}
-    for walk, dist in profile.entries.items():
+    for walk, dist in rule.entries.items():
         p = tree.find(walk)
         if p is not None:
             table[p] = dist
     try:
-        return defender_from_table(tree, table, profile.default)
+        return defender_from_table(tree, table, rule.default)
     except KeyError as exc:
         labels = tree.instance.labels(tree.walk(int(exc.args[0])))
         return f"the Defender's table has no entry for walk {list(labels)} and no default"

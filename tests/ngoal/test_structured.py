@@ -270,7 +270,7 @@ def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, 
     p = profile_from_json(prof, inst)
     assert p.wellformed, p.defects
     walks = [mw.walk for mix in p.attacker for mw in mix]
-    tdef = table_defender(inst, p.entries, p.default, walks)
+    tdef = table_defender(inst, p.defender.entries, p.defender.default, walks)
     depth = max(tdef.trie.depth)
     # every best response over all walks has at most depth + 1 + (non-goal nodes) steps
     full = depth + 1 + inst.n_nodes - inst.n_goals
