@@ -83,6 +83,7 @@ class TableRule:
 
 
 DefenderRule = ProgressRule | TableRule
+"""A two-goal Defender rule (``dpp-profile/1``); :data:`ProfileDefender` holds any format's."""
 
 
 @dataclass(frozen=True)
