@@ -26,7 +26,7 @@ from dppverify.certify import certify
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
 from dppverify.game.instance import Instance, instance_from_json
-from dppverify.game.profile import nprofile_from_json
+from dppverify.game.profile import GoalTable, profile_from_json
 from dppverify.structured.coalition import coalition_value
 from dppverify.structured.table_br import table_defender, walk_best_response
 from solver.experiments.ngoal import corner_cells
@@ -78,8 +78,9 @@ def run(name: str, n: int) -> dict[str, Any]:
     coalition_value(inst, None)
     dp = time.perf_counter() - t0
     t0 = time.perf_counter()
-    p = nprofile_from_json(inst, prof)
-    tdef = table_defender(inst, p.entries, p.default,
+    p = profile_from_json(prof, inst)
+    assert isinstance(p.defender, GoalTable)
+    tdef = table_defender(inst, p.defender.entries, p.defender.default,
                           [mw.walk for mix in p.attacker for mw in mix])
     for theta in range(n):
         walk_best_response(tdef, theta)

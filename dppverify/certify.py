@@ -47,12 +47,11 @@ from dppverify.formats.json_reading import JsonReadError, read_json_file
 from dppverify.game.instance import Instance, arc_arrays, node_to_json
 from dppverify.game.profile import (
     NGOAL_PROFILE_FORMAT,
-    NProfile,
+    GoalTable,
     Profile,
     ProgressRule,
     check_format,
-    load_nprofile_document,
-    nprofile_from_json,
+    load_profile_document,
     profile_from_json,
 )
 from dppverify.horizons import parse_horizon
@@ -114,8 +113,9 @@ def _read_profile(profile: Any) -> tuple[Any, str]:
                        "solver's Equilibrium pass solver.equilibrium_to_json(eq))")
 
 
-def _nprofile_input(profile: Any) -> Mapping[str, Any] | str | Path:
-    """An N-goal profile document, or its path (read by :func:`load_nprofile_document`)."""
+def _ngoal_profile_input(profile: Any) -> Mapping[str, Any] | str | Path:
+    """An N-goal profile document, or its path (read by
+    :func:`~dppverify.game.profile.load_profile_document`)."""
     to_json = getattr(profile, "to_json", None)
     if not isinstance(profile, Mapping | str | Path | bytes) and callable(to_json):
         profile = to_json()
@@ -259,7 +259,7 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     """
     game = game_of(instance)
     if ngoal_game(game):
-        return _with_provenance(_certify_n(game, _nprofile_input(profile), horizon,
+        return _with_provenance(_certify_n(game, _ngoal_profile_input(profile), horizon,
                                            max_prefixes, route), instance, profile)
     assert isinstance(game, Instance)  # not ngoal_game: the two-goal game
     if not game.exact and exact:
@@ -318,7 +318,7 @@ def _with_provenance(cert: Certificate, instance: Any, profile: Any) -> Certific
     if not isinstance(instance, str | Path | Mapping):  # a game object: no provenance
         return cert
     return dataclasses.replace(cert, provenance=provenance_record(
-        instance, _nprofile_input(profile), route=cert.route, exact=cert.exact))
+        instance, _ngoal_profile_input(profile), route=cert.route, exact=cert.exact))
 
 
 def _check_horizon(asked: int | None, longest: int, word: str) -> None:
@@ -333,9 +333,9 @@ def _check_horizon(asked: int | None, longest: int, word: str) -> None:
 def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon: Any,
                max_prefixes: int, route: Route) -> Certificate:
     """:func:`certify` with more than two goals (a ``dpp-ngoal-profile/1`` profile)."""
-    doc = (load_nprofile_document(profile) if isinstance(profile, str | Path)
-           else dict(profile))
-    prof: NProfile = nprofile_from_json(inst, doc)
+    doc = (load_profile_document(profile, NGOAL_PROFILE_FORMAT)
+           if isinstance(profile, str | Path) else dict(profile))
+    prof = profile_from_json(doc, inst, fmt=NGOAL_PROFILE_FORMAT)
     if route not in ("auto", "tree", "structured", "both"):
         raise ValueError(f"unknown route {route!r}")
     asked = parse_horizon(horizon)
@@ -351,7 +351,7 @@ def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon:
     trie_size = 0
     if chosen in ("structured", "both"):
         structured, trie_size = nstructured_checks(inst, prof, h)
-        if h is None and prof.default is None and prof.rule is None:
+        if h is None and isinstance(prof.defender, GoalTable) and prof.defender.default is None:
             br = next((r for r in structured if r.id == "ngoal.pbne.attacker_br"), None)
             if br is not None and br.status == "error":  # undefined off the table: undecided
                 raise UndecidedError(NTABLE_UNDECIDED)

@@ -97,7 +97,7 @@ def structured_checks(instance: Instance, profile: Profile,
         out.append(_rec("lemma.L5.induced_beliefs", "skipped", NOT_WELLFORMED, None, "L5", None))
         return out
     rule = profile.defender
-    assert rule is not None
+    assert isinstance(rule, DefenderRule)  # usable
     v = evaluate(instance, roles, rule, profile.primary, profile.secondary)
     trie = mass_trie([profile.primary, profile.secondary])
     sigma = _sigma_on_trie(instance, roles, rule, trie)

@@ -23,7 +23,7 @@ from dppverify.checks.structured_ngoal import (
 )
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
-from dppverify.game.profile import NProfile
+from dppverify.game.profile import Profile
 from dppverify.structured.arc_condition import arc_condition
 from dppverify.structured.guarantee import (
     GuaranteeRule,
@@ -41,27 +41,27 @@ NSOLVE = "relies on proofs/NSOLVE.md (NSOLVE.1: every walk costs type θ at leas
     "and the non-pattern rays)"
 
 
-def guarantee_checks(instance: Instance, profile: NProfile, horizon: int | None
+def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
                      ) -> tuple[list[CheckRecord], int]:
     """The structured route's records for a profile whose Defender is the guarantee rule.
 
     Examples
     --------
     >>> from dppverify.game.examples import star3
-    >>> from dppverify.game.profile import nprofile_from_json
+    >>> from dppverify.game.profile import profile_from_json
     >>> doc = {"format": "dpp-ngoal-profile/1",
     ...        "attacker": [[{"path": ["s", "m", "a"], "probability": 1}],
     ...                     [{"path": ["s", "m", "b"], "probability": 1}],
     ...                     [{"path": ["s", "m", "c"], "probability": 1}]],
     ...        "defender": {"rule": "guarantee", "h": [2, 1, 1]}}
-    >>> recs, _ = guarantee_checks(star3(), nprofile_from_json(star3(), doc), None)
+    >>> recs, _ = guarantee_checks(star3(), profile_from_json(doc, star3()), None)
     >>> [(r.id, r.status) for r in recs][2]
     ('ngoal.pbne.attacker_br', 'pass')
     """
     inst = instance
     n = inst.n_goals
-    rule = profile.rule
-    assert rule is not None  # the caller dispatches on the guarantee rule
+    rule = profile.defender
+    assert isinstance(rule, GuaranteeRule)  # the caller dispatches on the guarantee rule
     ev = evaluate_rule_profile(inst, rule, profile.attacker)
     per_type = ev.per_type
     trie = ev.defender.trie

@@ -33,7 +33,7 @@ from dppverify.checks.structured_shared import greedy_sums, structured_record
 from dppverify.errors import HorizonError
 from dppverify.exact import INF, Number, normalize
 from dppverify.game.instance import Instance
-from dppverify.game.profile import NProfile
+from dppverify.game.profile import GoalTable, GuaranteeRule, Profile
 from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.structured.table_br import (
     TableDefender,
@@ -105,7 +105,7 @@ def walk_labels(inst: Instance, walk: tuple[int, ...]) -> list[object]:
     return list(inst.labels(walk))
 
 
-def nstructured_checks(instance: Instance, profile: NProfile,
+def nstructured_checks(instance: Instance, profile: Profile,
                        horizon: int | None) -> tuple[list[CheckRecord], int]:
     """Every check of the N-goal structured route, in certificate order, and the trie size.
 
@@ -113,7 +113,7 @@ def nstructured_checks(instance: Instance, profile: NProfile,
     ----------
     instance : Instance
         The game.
-    profile : NProfile
+    profile : Profile
         The resolved profile.
     horizon : int or None
         ``H`` of the value check (the guarantee sets); None for the untruncated game. The
@@ -125,9 +125,9 @@ def nstructured_checks(instance: Instance, profile: NProfile,
     type ``b`` loops ``s m s m b`` unguarded.
 
     >>> from dppverify.game.examples import star3, star3_profile
-    >>> from dppverify.game.profile import nprofile_from_json
+    >>> from dppverify.game.profile import profile_from_json
     >>> inst = star3()
-    >>> recs, size = nstructured_checks(inst, nprofile_from_json(inst, star3_profile()), None)
+    >>> recs, size = nstructured_checks(inst, profile_from_json(star3_profile(), inst), None)
     >>> [(r.id, r.status) for r in recs][2:4], size
     ([('ngoal.pbne.attacker_br', 'fail'), ('ngoal.pbne.defender_br', 'pass')], 5)
     >>> recs[2].message
@@ -137,21 +137,23 @@ def nstructured_checks(instance: Instance, profile: NProfile,
     n = inst.n_goals
     if profile.defects:
         more = f" (and {len(profile.defects) - 1} more)" if len(profile.defects) > 1 else ""
-        out = [ngoal_record(NGOAL_IDS[0], "fail", profile.defects[0] + more, None, PROFILE_DOC,
-                            None)]
+        out = [ngoal_record(NGOAL_IDS[0], "fail", f"{profile.defects[0]}{more}", None,
+                            PROFILE_DOC, None)]
         out += [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
                 for i in NGOAL_IDS[1:]]
         return out, 0
-    if profile.rule is not None:  # the guarantee rule: dppverify.structured.guarantee
+    if isinstance(profile.defender, GuaranteeRule):  # dppverify.structured.guarantee
         from dppverify.checks.structured_guarantee import guarantee_checks
 
         return guarantee_checks(inst, profile, horizon)
     walks = [mw.walk for mix in profile.attacker for mw in mix]
     # realization masses x_θ(p) on the profile's walks, then the table's entries
     trie = mass_trie(profile.attacker, start=inst.start)
-    sigma = {trie.insert(w): tuple(d) for w, d in profile.entries.items()}
+    table = profile.defender
+    assert isinstance(table, GoalTable)  # well-formed: a table or the guarantee rule
+    sigma = {trie.insert(w): tuple(d) for w, d in table.entries.items()}
     tdef = TableDefender(instance=inst, trie=trie, sigma=sigma, default=None
-                         if profile.default is None else tuple(profile.default))
+                         if table.default is None else tuple(table.default))
     # payoffs walk by walk
     per_type: list[Number] = []
     missing: tuple[int, ...] | None = None
@@ -178,9 +180,9 @@ def nstructured_checks(instance: Instance, profile: NProfile,
         out += [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
                 for i in NGOAL_IDS[1:]]
         return out, len(trie)
-    has_default = profile.default is not None
+    has_default = table.default is not None
     out = [ngoal_record(NGOAL_IDS[0], "pass", f"{n} types, {len(walks)} walks, Defender table of "
-                f"{len(profile.entries)} entries " + ("and a default (defined on every walk)"
+                f"{len(table.entries)} entries " + ("and a default (defined on every walk)"
                                                       if has_default else "without a default"),
                 {"walks": len(walks), "prefixes": len(trie)}, PROFILE_DOC, None)]
     u = normalize(sum((inst.prior[t] * per_type[t] for t in range(n)), Fraction(0)))

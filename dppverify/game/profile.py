@@ -54,22 +54,23 @@ from dppverify.game.profile_types import (
     Defect,
     DefectCollector,
     DefenderRule,
-    NProfile,
+    GoalTable,
+    GuaranteeRule,
     Profile,
+    ProfileDefender,
     ProgressRule,
     StrategyWalk,
     TableRule,
     check_format,
-    load_nprofile_document,
     load_profile_document,
     parse_guarantee,
 )
 from dppverify.numbers import EXACT, NumberMode
 
-__all__ = ["NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "Defect", "DefenderRule", "NProfile",
-           "Profile", "ProgressRule", "StrategyWalk", "TableRule", "check_format",
-           "load_nprofile_document", "load_profile_document", "nprofile_from_json",
-           "profile_from_json", "read_profile", "validate_walk"]
+__all__ = ["NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "Defect", "DefenderRule", "GoalTable",
+           "GuaranteeRule", "Profile", "ProfileDefender", "ProgressRule", "StrategyWalk",
+           "TableRule", "check_format", "load_profile_document", "profile_from_json",
+           "validate_walk"]
 
 
 def validate_walk(instance: Instance, raw: Any, *, complete: bool) -> tuple[int, ...] | str:
@@ -103,8 +104,9 @@ def validate_walk(instance: Instance, raw: Any, *, complete: bool) -> tuple[int,
 
 
 def profile_from_json(doc: Mapping[str, Any], instance: Instance,
-                      tolerance: NumberMode | None = None) -> Profile:
-    """Resolve a ``dpp-profile/1`` document against ``instance``, recording defects.
+                      tolerance: NumberMode | None = None, *, fmt: str | None = None
+                      ) -> Profile:
+    """Resolve a profile document of either format against ``instance``, recording defects.
 
     Parameters
     ----------
@@ -113,13 +115,19 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
     instance : Instance
         The game the profile claims to solve.
     tolerance : NumberMode, optional
-        How the sum of a mixed strategy's probabilities is compared with 1: exactly (the
-        default and always for exact instances) or within the float-mode tolerance.
+        ``dpp-profile/1``: how the sum of a mixed strategy's probabilities is compared with 1:
+        exactly (the default and always for exact instances) or within the float-mode
+        tolerance (``dpp-ngoal-profile/1`` compares exactly).
+    fmt : str, optional
+        The format to read ``doc`` as; by default its ``format`` tag
+        (``dpp-ngoal-profile/1``, else ``dpp-profile/1``). The ``dpp-profile/1`` reader checks
+        the tag (:func:`check_format`); ``dpp-ngoal-profile/1`` is read as given (its tag is
+        checked where its file is loaded, :func:`load_profile_document`).
 
     Raises
     ------
     ProfileError
-        Only when ``doc`` is not an object tagged ``dpp-profile/1``.
+        Only when a ``dpp-profile/1`` ``doc`` is not an object tagged ``dpp-profile/1``.
 
     Examples
     --------
@@ -137,7 +145,17 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
     ...                           "secondary": [{"path": ["s", "g2"], "probability": 1}]})
     >>> [str(d) for d in profile_from_json(bad, inst).defects]
     ['attacker.primary: probabilities sum to 1/2, not 1']
+    >>> from dppverify.game.examples import star3, star3_profile
+    >>> p = profile_from_json(star3_profile(), star3())
+    >>> p.format, p.wellformed, [w.walk for w in p.attacker[1]], p.defender.default
+    ('dpp-ngoal-profile/1', True, [(0, 1, 3)], (Fraction(1, 1), Fraction(0, 1), Fraction(0, 1)))
+    >>> bad = {**star3_profile(), "attacker": star3_profile()["attacker"][:2]}
+    >>> [str(d) for d in profile_from_json(bad, star3()).defects]
+    ['attacker: must be a list of 3 mixed strategies (one per goal), got 2']
     """
+    if fmt == NGOAL_PROFILE_FORMAT or (fmt is None and isinstance(doc, Mapping)
+                                       and doc.get("format") == NGOAL_PROFILE_FORMAT):
+        return _ngoal_profile(doc, instance)
     check_format(doc)
     tol = tolerance or EXACT
     c = DefectCollector()
@@ -152,9 +170,10 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
     for theta, key in ((1, "primary"), (2, "secondary")):
         walks[theta], steps = _mixed(attacker.get(key), f"attacker.{key}", instance, c, tol)
         longest = max(longest, steps)
+    pair = (walks[1], walks[2])
     return Profile(
+        attacker=pair if primary_slot == 0 else pair[::-1],
         primary_slot=primary_slot, defender=defender,
-        primary=walks[1], secondary=walks[2],
         claimed_prior=_claimed_prior(doc, c),
         claimed_values=MappingProxyType(_claimed_values(doc, c)),
         claimed_phases=_claimed_phases(doc, c),
@@ -340,19 +359,8 @@ def _declared_tolerance(doc: Mapping[str, Any]) -> float | None:
     return None
 
 
-def nprofile_from_json(instance: Instance, doc: Mapping[str, Any]) -> NProfile:
-    """Resolve a ``dpp-ngoal-profile/1`` document against ``instance``, recording defects.
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import star3, star3_profile
-    >>> p = nprofile_from_json(star3(), star3_profile())
-    >>> p.wellformed, [w.walk for w in p.attacker[1]], p.default
-    (True, [(0, 1, 3)], (Fraction(1, 1), Fraction(0, 1), Fraction(0, 1)))
-    >>> bad = {**star3_profile(), "attacker": star3_profile()["attacker"][:2]}
-    >>> nprofile_from_json(star3(), bad).defects
-    ('attacker: must be a list of 3 mixed strategies (one per goal), got 2',)
-    """
+def _ngoal_profile(doc: Mapping[str, Any], instance: Instance) -> Profile:
+    """Resolve a ``dpp-ngoal-profile/1`` document against ``instance``, recording defects."""
     n = instance.n_goals
     c = DefectCollector()
     goals = doc.get("goals")
@@ -369,25 +377,25 @@ def nprofile_from_json(instance: Instance, doc: Mapping[str, Any]) -> NProfile:
         for theta, mix in enumerate(raw_att):
             types[theta], steps = _nmixed(mix, f"attacker[{theta}]", instance, c)
             longest = max(longest, steps)
-    entries: dict[tuple[int, ...], tuple[Fraction, ...]] = {}
-    default: tuple[Fraction, ...] | None = None
     raw_def = doc.get("defender")
-    rule = None
+    defender: ProfileDefender | None = None
     if isinstance(raw_def, Mapping) and raw_def.get("rule") == GUARANTEE_RULE:
-        rule = parse_guarantee(raw_def, n, c)
+        defender = parse_guarantee(raw_def, n, c)
     elif not isinstance(raw_def, Mapping) or raw_def.get("rule") != "table":
         c.add("defender", "must be {\"rule\": \"table\", \"entries\": [...], \"default\": [...]} "
                           "or {\"rule\": \"guarantee\", \"h\": [...]}")
     else:
         entries = _ntable(raw_def.get("entries", []), instance, c)
-        if raw_def.get("default") is not None:
-            default = _distribution(raw_def["default"], n, "defender.default", c)
+        default = (None if raw_def.get("default") is None
+                   else _distribution(raw_def["default"], n, "defender.default", c))
+        defender = GoalTable(MappingProxyType(entries), default)
     claimed: Number | None = None
     value = doc.get("value")
     if isinstance(value, Mapping) and value.get("U") is not None:
         claimed = c.number(value["U"], "value.U")
-    return NProfile(attacker=tuple(types), entries=entries, default=default, claimed_u=claimed,
-                    longest=longest, defects=tuple(map(str, c.defects)), rule=rule)
+    return Profile(attacker=tuple(types), defender=defender, format=NGOAL_PROFILE_FORMAT,
+                   claimed_values=MappingProxyType({} if claimed is None else {"U": claimed}),
+                   longest=longest, defects=tuple(c.defects))
 
 
 def _nmixed(mix: Any, where: str, instance: Instance, c: DefectCollector
@@ -459,26 +467,3 @@ def _distribution(raw: Any, n: int, where: str, c: DefectCollector
         c.add(where, f"probabilities sum to {sum(out)}, not 1")
         return None
     return out
-
-
-def read_profile(doc: Mapping[str, Any], instance: Instance,
-                 tolerance: NumberMode | None = None) -> Profile | NProfile:
-    """Resolve a profile document of either format (by its ``format`` tag) against ``instance``.
-
-    Raises
-    ------
-    ProfileError
-        When ``doc`` is tagged with neither format (as :func:`check_format`).
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import star3, star3_profile, triangle, triangle_profile
-    >>> type(read_profile(star3_profile(), star3())).__name__
-    'NProfile'
-    >>> read_profile(triangle_profile(), triangle()).wellformed
-    True
-    """
-    if isinstance(doc, Mapping) and doc.get("format") == NGOAL_PROFILE_FORMAT:
-        return nprofile_from_json(instance, doc)
-    return profile_from_json(doc, instance, tolerance)
-

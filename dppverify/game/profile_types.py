@@ -1,12 +1,13 @@
 """The strategy profile's types, its two JSON formats' tags and what their readers share.
 
 Two documents describe a strategy profile (``docs/formats.md`` §2, §2b): ``dpp-profile/1``
-(two goals: the paper's primary and secondary types, a Defender allocating to one goal) read
-into :class:`Profile`, and ``dpp-ngoal-profile/1`` (``N >= 2`` goals: one mixed strategy per
-goal index, a Defender table of goal distributions or the guarantee rule) read into
-:class:`NProfile`. Both list each type's mixed strategy as :class:`StrategyWalk` s, record
-everything wrong as :class:`Defect` s (:class:`DefectCollector`) and are loaded by
-:func:`load_profile_document`. The readers are in :mod:`dppverify.game.profile`.
+(two goals: the paper's primary and secondary types, a Defender allocating to one goal) and
+``dpp-ngoal-profile/1`` (``N >= 2`` goals: one mixed strategy per goal index, a Defender table
+of goal distributions or the guarantee rule). Both are read into the one :class:`Profile`
+(its ``format`` says which document it came from). Both list each type's mixed strategy as
+:class:`StrategyWalk` s, record everything wrong as :class:`Defect` s
+(:class:`DefectCollector`) and are loaded by :func:`load_profile_document`. The readers are
+in :mod:`dppverify.game.profile`.
 """
 
 from __future__ import annotations
@@ -28,9 +29,9 @@ from dppverify.formats.json_reading import (
 )
 
 __all__ = ["GUARANTEE_RULE", "NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "VALUE_KEYS", "Defect",
-           "DefectCollector", "DefenderRule", "GuaranteeRule", "NProfile", "Profile",
-           "ProgressRule", "StrategyWalk", "TableRule", "check_format",
-           "load_nprofile_document", "load_profile_document", "parse_guarantee"]
+           "DefectCollector", "DefenderRule", "GoalTable", "GuaranteeRule", "Profile",
+           "ProfileDefender", "ProgressRule", "StrategyWalk", "TableRule", "check_format",
+           "load_profile_document", "parse_guarantee"]
 
 PROFILE_FORMAT = "dpp-profile/1"
 """The two-goal profile's ``format`` tag."""
@@ -82,6 +83,7 @@ class TableRule:
 
 
 DefenderRule = ProgressRule | TableRule
+"""A two-goal Defender rule (``dpp-profile/1``); :data:`ProfileDefender` holds any format's."""
 
 
 @dataclass(frozen=True)
@@ -94,23 +96,61 @@ class StrategyWalk:
 
 
 @dataclass(frozen=True)
+class GoalTable:
+    """An N-goal Defender table: after observing a walk, a distribution over the goals.
+
+    ``entries`` maps walks (node-index tuples with at least one step) to distributions
+    ``(q_0, …, q_{N-1})`` over the goal indices; ``default`` is used for unlisted walks (None:
+    unlisted walks are undefined).
+    """
+
+    entries: Mapping[tuple[int, ...], tuple[Fraction, ...]]
+    default: tuple[Fraction, ...] | None
+
+
+@dataclass(frozen=True)
+class GuaranteeRule:
+    """The N-goal guarantee rule: its starting state ``h``.
+
+    The Defender of :mod:`dppverify.structured.guarantee` (``{"rule": "guarantee", "h": [...]}``).
+    """
+
+    h: tuple[Fraction, ...]
+
+
+ProfileDefender = ProgressRule | TableRule | GoalTable | GuaranteeRule
+"""The Defender a profile states: a two-goal rule (``dpp-profile/1``), or an N-goal table or the
+guarantee rule (``dpp-ngoal-profile/1``)."""
+
+
+@dataclass(frozen=True)
 class Profile:
-    """A strategy profile resolved against an instance (node indices), with its defects.
+    """A strategy profile of either format resolved against an instance, with its defects.
+
+    One type for both documents (``format`` says which it came from): ``attacker`` holds the
+    mixed strategies by goal index for any N and ``defender`` the Defender. The two-goal
+    views (:attr:`primary`, :attr:`secondary`, :meth:`walks`, ``primary_slot``,
+    ``claimed_prior``, ``claimed_phases``) are meaningful for ``dpp-profile/1`` only.
 
     Attributes
     ----------
+    attacker : tuple
+        ``attacker[θ]``: the valid walks of the mixed strategy of goal index θ (walking to the
+        instance's ``goals[θ]``; invalid entries are dropped and recorded as defects).
+    defender : ProfileDefender or None
+        ``dpp-profile/1``: a :class:`ProgressRule` or :class:`TableRule`;
+        ``dpp-ngoal-profile/1``: a :class:`GoalTable` or the :class:`GuaranteeRule`. None when
+        the ``defender`` section is unusable (then a defect says why).
+    format : str
+        The document's format tag (:data:`PROFILE_FORMAT` or :data:`NGOAL_PROFILE_FORMAT`).
     primary_slot : int
-        Document position (in the instance's ``goals``) of the goal the profile calls
-        primary. Falls back to the instance's primary goal when the profile's is unusable.
-    defender : DefenderRule or None
-        None when the ``defender`` section is unusable (then a defect says why).
-    primary, secondary : tuple of StrategyWalk
-        The valid walks of each type's mixed strategy (invalid entries are dropped and
-        recorded as defects).
+        ``dpp-profile/1``: goal index of the goal the profile calls primary. Falls back to the
+        instance's primary goal when the profile's is unusable.
+    claimed_values : Mapping
+        The profile's ``value`` numbers (``U1``, ``U2``, ``U``, ``U_bar``, ``VoI``; only ``U``
+        for ``dpp-ngoal-profile/1``).
     claimed_prior : tuple or None
         ``prior`` (primary, secondary) as the profile states it.
-    claimed_values : Mapping
-        The profile's ``value`` numbers (``U1``, ``U2``, ``U``, ``U_bar``, ``VoI``).
     claimed_phases : tuple or None
         ``(t_I, t_II, T)`` as the profile states them.
     declared_exact, declared_tolerance
@@ -119,14 +159,21 @@ class Profile:
         Steps of the longest listed attacker walk (valid or not).
     defects : tuple of Defect
         Everything that makes the profile ill-formed.
+
+    Examples
+    --------
+    >>> w = StrategyWalk((0, 1), Fraction(1))
+    >>> p = Profile(attacker=((), (w,)), primary_slot=1)
+    >>> p.primary == (w,), p.secondary, p.walks(2), p.wellformed
+    (True, (), (), True)
     """
 
-    primary_slot: int
-    defender: DefenderRule | None
-    primary: tuple[StrategyWalk, ...]
-    secondary: tuple[StrategyWalk, ...]
-    claimed_prior: tuple[Fraction, Fraction] | None = None
+    attacker: tuple[tuple[StrategyWalk, ...], ...]
+    defender: ProfileDefender | None = None
+    format: str = PROFILE_FORMAT
+    primary_slot: int = 0
     claimed_values: Mapping[str, Number] = field(default_factory=dict)
+    claimed_prior: tuple[Fraction, Fraction] | None = None
     claimed_phases: tuple[int, int, int] | None = None
     declared_exact: bool | None = None
     declared_tolerance: float | None = None
@@ -138,67 +185,24 @@ class Profile:
         """True when the profile has no defect."""
         return not self.defects
 
+    @property
+    def claimed_u(self) -> Number | None:
+        """The profile's ``value.U`` (informative), or None."""
+        return self.claimed_values.get("U")
+
+    @property
+    def primary(self) -> tuple[StrategyWalk, ...]:
+        """Two goals: the primary type's mixed strategy."""
+        return self.attacker[self.primary_slot]
+
+    @property
+    def secondary(self) -> tuple[StrategyWalk, ...]:
+        """Two goals: the secondary type's mixed strategy."""
+        return self.attacker[1 - self.primary_slot]
+
     def walks(self, theta: int) -> tuple[StrategyWalk, ...]:
-        """Mixed strategy of type ``theta`` (1 = primary, 2 = secondary)."""
+        """Two goals: mixed strategy of type ``theta`` (1 = primary, 2 = secondary)."""
         return self.primary if theta == 1 else self.secondary
-
-    @property
-    def attacker(self) -> tuple[tuple[StrategyWalk, ...], ...]:
-        """The mixed strategies by goal index (``attacker[θ]`` walks to the instance's
-        ``goals[θ]``), as :class:`NProfile` holds them.
-
-        Examples
-        --------
-        >>> w = StrategyWalk((0, 1), Fraction(1))
-        >>> Profile(primary_slot=1, defender=None, primary=(w,), secondary=()).attacker
-        ((), (StrategyWalk(walk=(0, 1), probability=Fraction(1, 1), label=None),))
-        """
-        pair = (self.primary, self.secondary)
-        return pair if self.primary_slot == 0 else pair[::-1]
-
-
-@dataclass(frozen=True)
-class NProfile:
-    """An N-goal profile resolved against an instance, with its defects.
-
-    Attributes
-    ----------
-    attacker : tuple
-        ``attacker[θ]``: type θ's valid walks.
-    entries : Mapping
-        The Defender's table: walk (node indices) -> goal distribution.
-    default : tuple or None
-        The Defender's distribution for unlisted walks.
-    claimed_u : Number or None
-        The profile's ``value.U`` (informative).
-    longest : int
-        Steps of the longest listed walk.
-    defects : tuple of str
-        Everything that makes the profile ill-formed (``where: what``).
-    rule : GuaranteeRule or None
-        The Defender's rule when it is ``{"rule": "guarantee", ...}`` (then ``entries`` is
-        empty and ``default`` None; the guarantee rule of :mod:`dppverify.structured.guarantee`).
-    """
-
-    attacker: tuple[tuple[StrategyWalk, ...], ...]
-    entries: Mapping[tuple[int, ...], tuple[Fraction, ...]]
-    default: tuple[Fraction, ...] | None
-    claimed_u: Number | None
-    longest: int
-    defects: tuple[str, ...]
-    rule: GuaranteeRule | None = None
-
-    @property
-    def wellformed(self) -> bool:
-        """True when the profile has no defect."""
-        return not self.defects
-
-
-@dataclass(frozen=True)
-class GuaranteeRule:
-    """The profile's guarantee rule: the starting state ``h``."""
-
-    h: tuple[Fraction, ...]
 
 
 def parse_guarantee(raw: Mapping[str, Any], n: int, c: DefectCollector
@@ -257,18 +261,6 @@ instance with more than two goals, got "dpp-profile/1"
         raise ProfileError(f"{name}: {exc}") from None
     check_format(doc, name, fmt)
     return dict(doc)
-
-
-def load_nprofile_document(source: str | Path | bytes) -> dict[str, Any]:
-    """:func:`load_profile_document` of a ``dpp-ngoal-profile/1`` document.
-
-    Examples
-    --------
-    >>> load_nprofile_document(b'[]')
-    Traceback (most recent call last):
-    dppverify.errors.ProfileError: profile: a profile must be a JSON object, got list
-    """
-    return load_profile_document(source, NGOAL_PROFILE_FORMAT)
 
 
 def check_format(doc: Any, name: str = "profile", fmt: str = PROFILE_FORMAT) -> None:

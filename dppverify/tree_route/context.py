@@ -204,7 +204,7 @@ def make_context(instance: Instance, tree: WalkTree, profile: Profile,
     """
     roles = instance.roles(profile.primary_slot)
     sigma_star = tree_defender(tree, roles, ProgressRule(roles.g1))
-    rule = profile.defender
+    rule = profile.defender if isinstance(profile.defender, DefenderRule) else None  # two goals
     td = None
     if profile.wellformed and rule is not None:
         td = sigma_star if rule == ProgressRule(roles.g1) else tree_defender(tree, roles, rule)

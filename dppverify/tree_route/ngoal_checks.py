@@ -39,7 +39,7 @@ from dppverify.certificate import CheckRecord, Status
 from dppverify.errors import HorizonError, LPError
 from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance
-from dppverify.game.profile import NProfile
+from dppverify.game.profile import GoalTable, GuaranteeRule, Profile
 from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.best_response import (
     attacker_best_response,
@@ -66,7 +66,7 @@ def _skipped(ids: tuple[str, ...], why: str) -> list[CheckRecord]:
     return [CheckRecord(i, "skipped", why) for i in ids]
 
 
-def _plans(tree: WalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
+def _plans(tree: WalkTree, profile: Profile) -> list[dict[int, Fraction]]:
     plans = []
     for mix in profile.attacker:
         x: dict[int, Fraction] = {0: Fraction(1)}
@@ -79,27 +79,29 @@ def _plans(tree: WalkTree, profile: NProfile) -> list[dict[int, Fraction]]:
     return plans
 
 
-def _defender(tree: WalkTree, profile: NProfile) -> DefenderOnTree | str:
-    if profile.rule is not None:  # the guarantee rule, evaluated on every prefix of the tree
+def _defender(tree: WalkTree, profile: Profile) -> DefenderOnTree | str:
+    rule = profile.defender
+    if isinstance(rule, GuaranteeRule):  # evaluated on every prefix of the tree
         from dppverify.structured.guarantee import guarantee_sets, rule_on_trie
 
         sets = guarantee_sets(tree.instance)
-        sigma, _ = rule_on_trie(tree.instance, profile.rule, sets, tree.parent.tolist(),
+        sigma, _ = rule_on_trie(tree.instance, rule, sets, tree.parent.tolist(),
                                 tree.node.tolist())
         return defender_from_table(tree, sigma, None)
+    assert isinstance(rule, GoalTable)  # well-formed: a table or the guarantee rule
     table: dict[int, tuple[Fraction, ...]] = {}
-    for walk, dist in profile.entries.items():
+    for walk, dist in rule.entries.items():
         p = tree.find(walk)
         if p is not None:
             table[p] = dist
     try:
-        return defender_from_table(tree, table, profile.default)
+        return defender_from_table(tree, table, rule.default)
     except KeyError as exc:
         labels = tree.instance.labels(tree.walk(int(exc.args[0])))
         return f"the Defender's table has no entry for walk {list(labels)} and no default"
 
 
-def ngoal_tree_checks(inst: Instance, prof: NProfile, h: int,
+def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
                       max_prefixes: int) -> tuple[list[CheckRecord], WalkTree]:
     """The tree route's records of an N-goal profile on the walk tree of ``h`` steps.
 
@@ -109,8 +111,8 @@ def ngoal_tree_checks(inst: Instance, prof: NProfile, h: int,
     Examples
     --------
     >>> from dppverify.game.examples import star3, star3_profile
-    >>> from dppverify.game.profile import nprofile_from_json
-    >>> checks, tree = ngoal_tree_checks(star3(), nprofile_from_json(star3(), star3_profile()),
+    >>> from dppverify.game.profile import profile_from_json
+    >>> checks, tree = ngoal_tree_checks(star3(), profile_from_json(star3_profile(), star3()),
     ...                                  2, 1000)
     >>> [c.status for c in checks], tree.n_prefixes
     (['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'], 6)
@@ -118,7 +120,7 @@ def ngoal_tree_checks(inst: Instance, prof: NProfile, h: int,
     tree = build_tree(inst, max(h, inst.hops[inst.start]), max_prefixes=max_prefixes)
     checks: list[CheckRecord] = []
     tdef = None if prof.defects else _defender(tree, prof)
-    problems = list(prof.defects) + ([tdef] if isinstance(tdef, str) else [])
+    problems = [str(d) for d in prof.defects] + ([tdef] if isinstance(tdef, str) else [])
     if problems:
         more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
         checks.append(CheckRecord("ngoal.profile.wellformed", "fail", problems[0] + more))

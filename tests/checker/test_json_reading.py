@@ -7,6 +7,7 @@ through this module only; the walk messages of both profile formats come from on
 from __future__ import annotations
 
 import ast
+from functools import partial
 from pathlib import Path
 
 import pytest
@@ -20,7 +21,7 @@ from dppverify.formats.json_reading import (
 )
 from dppverify.game.examples import star3, triangle
 from dppverify.game.instance import read_instance_document
-from dppverify.game.profile import load_nprofile_document, load_profile_document
+from dppverify.game.profile import NGOAL_PROFILE_FORMAT, load_profile_document
 
 ROOT = Path(__file__).resolve().parents[2]
 PARSERS = ("dppverify/game/instance.py", "dppverify/game/profile.py",
@@ -79,7 +80,7 @@ def test_read_json_file_is_bounded(kind: str, want: str) -> None:
 
 def test_every_document_reader_refuses_dev_zero_in_one_line() -> None:
     for load, error in ((load_profile_document, ProfileError),
-                        (load_nprofile_document, ProfileError),
+                        (partial(load_profile_document, fmt=NGOAL_PROFILE_FORMAT), ProfileError),
                         (read_instance_document, InvalidInstanceError)):
         with pytest.raises(error) as exc:
             load("/dev/zero")

@@ -10,7 +10,7 @@ import pytest
 from dppverify.certify import NGOAL_CHECK_IDS, certify
 from dppverify.errors import HorizonError, ProfileError
 from dppverify.game.examples import star3_document, star3_profile
-from dppverify.game.profile import load_nprofile_document
+from dppverify.game.profile import NGOAL_PROFILE_FORMAT, load_profile_document
 
 
 def _failed(profile: dict[str, Any], **kw: Any) -> set[str]:
@@ -81,6 +81,6 @@ def test_bad_input_is_an_error() -> None:
                                            r"none for the untruncated game"):
         certify(star3_document(), star3_profile(), horizon=1)
     with pytest.raises(ProfileError, match="dpp-ngoal-profile/1"):
-        load_nprofile_document(b'{"format": "dpp-profile/1"}')
+        load_profile_document(b'{"format": "dpp-profile/1"}', NGOAL_PROFILE_FORMAT)
     with pytest.raises(ProfileError, match="not JSON"):
-        load_nprofile_document(b"{")
+        load_profile_document(b"{", NGOAL_PROFILE_FORMAT)

@@ -25,7 +25,7 @@ from dppverify.cli.certify import certify_command
 from dppverify.errors import HorizonError, UndecidedError
 from dppverify.game.examples import star3_document, star3_profile
 from dppverify.game.instance import Instance, instance_from_json
-from dppverify.game.profile import nprofile_from_json
+from dppverify.game.profile import profile_from_json
 from dppverify.routes import tree_fits
 from dppverify.strategies import ngoal_instances, weighted_graphs
 from dppverify.structured.table_br import table_defender, walk_best_response
@@ -267,10 +267,10 @@ def _cases(draw: st.DrawFn) -> tuple[dict[str, Any], dict[str, Any]]:
 def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, Any]]) -> None:
     doc, prof = case
     inst: Instance = instance_from_json(doc)
-    p = nprofile_from_json(inst, prof)
+    p = profile_from_json(prof, inst)
     assert p.wellformed, p.defects
     walks = [mw.walk for mix in p.attacker for mw in mix]
-    tdef = table_defender(inst, p.entries, p.default, walks)
+    tdef = table_defender(inst, p.defender.entries, p.defender.default, walks)
     depth = max(tdef.trie.depth)
     # every best response over all walks has at most depth + 1 + (non-goal nodes) steps
     full = depth + 1 + inst.n_nodes - inst.n_goals
