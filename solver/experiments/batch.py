@@ -156,13 +156,6 @@ def _find_map(name: str, scen_dir: Path, maps: Sequence[str],
     return None, f"unknown map {name!r} (looked in {where})"
 
 
-def _example() -> tuple[Checker, Path]:
-    """The independent checker and its bundled ``empty-8-8-even-1.scen`` (the examples' input)."""
-    from solver.cli import batch_checker
-    checker = batch_checker()
-    return checker, Path(checker.standard_map_path("empty-8-8")).with_name("empty-8-8-even-1.scen")
-
-
 def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
                skip: Iterable[int] = (), chunk: int = 8) -> tuple[list[BatchTask], int]:
     """Read a ``.scen`` file and cut the lines not in ``skip`` into tasks of ``chunk`` lines.
@@ -171,7 +164,8 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
 
     Examples
     --------
-    >>> checker, scen = _example()
+    >>> from solver.cli.batch import batch_example
+    >>> checker, scen = batch_example()
     >>> tasks, total = scen_tasks(scen, BatchConfig(), checker, chunk=10)
     >>> total, len(tasks), tasks[0].scenarios[0].line
     (32, 4, 2)
@@ -320,7 +314,8 @@ def run_batch_task(task: BatchTask) -> list[dict[str, str]]:
 
     Examples
     --------
-    >>> checker, scen = _example()
+    >>> from solver.cli.batch import batch_example
+    >>> checker, scen = batch_example()
     >>> tasks, _ = scen_tasks(scen, BatchConfig(), checker, chunk=2)
     >>> [(r["line"], r["status"], r["goal"], r["fake_goal"], r["verdict"])
     ...  for r in run_batch_task(tasks[0])]
@@ -364,7 +359,8 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     Examples
     --------
     >>> import tempfile
-    >>> checker, scen = _example()
+    >>> from solver.cli.batch import batch_example
+    >>> checker, scen = batch_example()
     >>> out = Path(tempfile.mkdtemp()) / "b.csv"
     >>> run_batch(scen, out, BatchConfig(), checker, limit=1), run_batch(scen, out,
     ...                                                                  BatchConfig(), checker)
