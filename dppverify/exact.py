@@ -16,9 +16,10 @@ how numbers are compared is the instance's number mode (:mod:`dppverify.numbers`
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from fractions import Fraction
 
-__all__ = ["INF", "Number", "format_number", "normalize", "to_float"]
+__all__ = ["INF", "Bracket", "Number", "format_number", "normalize", "to_float"]
 
 Number = int | Fraction | float
 """An exact rational (``int`` or ``Fraction``) or, in float mode, a ``float``."""
@@ -64,3 +65,35 @@ def to_float(x: Number) -> float:
     0.25
     """
     return float(x)
+
+
+@dataclass(frozen=True)
+class Bracket:
+    """Exact bounds ``lower <= V_H <= upper``, where they come from, and why still open.
+
+    The one type of an exact value or bracket, for the tree route
+    (:mod:`dppverify.tree_route.bracket`) and the structured route
+    (:class:`dppverify.structured.proved_value.NValue`) alike.
+
+    Examples
+    --------
+    >>> b = Bracket(Fraction(2), Fraction(5, 2), "a Defender", "an Attacker", "no exact LP")
+    >>> b.closed, b.exact, Bracket(2, 2, "x", "y").exact
+    (False, None, 2)
+    """
+
+    lower: Number
+    upper: Number
+    lower_source: str
+    upper_source: str
+    reason: str | None = None
+
+    @property
+    def closed(self) -> bool:
+        """True when the bounds coincide: ``V_H`` is then known exactly."""
+        return self.lower == self.upper
+
+    @property
+    def exact(self) -> Number | None:
+        """``V_H`` exactly when the bracket is closed, else None."""
+        return self.lower if self.closed else None
