@@ -1,4 +1,4 @@
-"""Numbers: the exact number type, formatting, and the comparison rule.
+"""Numbers: the exact number type, formatting, the comparison rule, and the exact bracket.
 
 The checker's own number handling (``docs/formats.md``, "Numbers"): JSON integers are exact
 integers, JSON decimal literals are the exact decimals they spell (``0.6`` is 3/5, never a
@@ -11,6 +11,9 @@ Exact values are kept as ``int`` when integral and as ``Fraction`` otherwise (in
 arithmetic is much faster than ``Fraction`` arithmetic, and most instances have integer
 weights). Float mode (instances with ``"numbers": "float"``) keeps edge weights as floats;
 how numbers are compared is the instance's number mode (:mod:`dppverify.numbers`).
+
+:class:`Bracket` is the one type of an exact value or exact bounds on ``V_H`` with where each
+bound comes from, for both routes.
 """
 
 from __future__ import annotations
