@@ -45,9 +45,9 @@ def run(name: str, n: int) -> dict[str, Any]:
     v = nvalue(inst, None)
     t_v = time.perf_counter() - t0
     return {"map": name, "goals": n, "nodes": inst.n_nodes, "coalition_dp": str(dp.value),
-            "exact": v.exact, "value": None if v.value is None else str(v.value),
+            "exact": v.closed, "value": None if v.value is None else str(v.value),
             "lower": str(v.lower), "upper": str(v.upper), "extra_normals": len(v.normals),
-            "proof": v.lower_source if v.exact else None,
+            "proof": v.lower_source if v.closed else None,
             "reason": v.reason, "seconds_dp": round(t_dp, 2), "seconds_exact": round(t_v, 2),
             "ratio": round(t_v / max(t_dp, 1e-9), 2)}
 

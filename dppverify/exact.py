@@ -1,4 +1,4 @@
-"""Numbers: the exact number type, formatting, and the comparison rule.
+"""Numbers: the exact number type, formatting, the comparison rule, and the exact bracket.
 
 The checker's own number handling (``docs/formats.md``, "Numbers"): JSON integers are exact
 integers, JSON decimal literals are the exact decimals they spell (``0.6`` is 3/5, never a
@@ -11,14 +11,18 @@ Exact values are kept as ``int`` when integral and as ``Fraction`` otherwise (in
 arithmetic is much faster than ``Fraction`` arithmetic, and most instances have integer
 weights). Float mode (instances with ``"numbers": "float"``) keeps edge weights as floats;
 how numbers are compared is the instance's number mode (:mod:`dppverify.numbers`).
+
+:class:`Bracket` is the one type of an exact value or exact bounds on ``V_H`` with where each
+bound comes from, for both routes.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from fractions import Fraction
 
-__all__ = ["INF", "Number", "format_number", "normalize", "to_float"]
+__all__ = ["INF", "Bracket", "Number", "format_number", "normalize", "to_float"]
 
 Number = int | Fraction | float
 """An exact rational (``int`` or ``Fraction``) or, in float mode, a ``float``."""
@@ -64,3 +68,35 @@ def to_float(x: Number) -> float:
     0.25
     """
     return float(x)
+
+
+@dataclass(frozen=True)
+class Bracket:
+    """Exact bounds ``lower <= V_H <= upper``, where they come from, and why still open.
+
+    The one type of an exact value or bracket, for the tree route
+    (:mod:`dppverify.tree_route.bracket`) and the structured route
+    (:class:`dppverify.structured.proved_value.NValue`) alike.
+
+    Examples
+    --------
+    >>> b = Bracket(Fraction(2), Fraction(5, 2), "a Defender", "an Attacker", "no exact LP")
+    >>> b.closed, b.exact, Bracket(2, 2, "x", "y").exact
+    (False, None, 2)
+    """
+
+    lower: Number
+    upper: Number
+    lower_source: str
+    upper_source: str
+    reason: str | None = None
+
+    @property
+    def closed(self) -> bool:
+        """True when the bounds coincide: ``V_H`` is then known exactly."""
+        return self.lower == self.upper
+
+    @property
+    def exact(self) -> Number | None:
+        """``V_H`` exactly when the bracket is closed, else None."""
+        return self.lower if self.closed else None

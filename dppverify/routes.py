@@ -14,7 +14,7 @@ certificate (NG.8) holds, else an exact bracket naming both bounds).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, Literal, cast
+from typing import Literal
 
 from dppverify.errors import HorizonError, OptionError, TreeTooLargeError
 from dppverify.exact import Number
@@ -24,7 +24,7 @@ from dppverify.structured.coalition import too_many_goals
 from dppverify.structured.cover import MAX_BALANCED
 from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.tree_route.lp import lp_agrees
-from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, count_prefixes
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, tree_fits
 from dppverify.tree_route.value_lp import GameValue, game_value
 from dppverify.twogoal.value_dp import StructuredValue, structured_value
 
@@ -49,32 +49,6 @@ def ngoal_game(game: Instance) -> bool:
     (False, True)
     """
     return game.n_goals > 2
-
-
-def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> bool:
-    """True when the pruned walk tree of ``horizon`` steps has at most ``max_prefixes`` prefixes.
-
-    Counts with :func:`~dppverify.tree_route.tree.count_prefixes`, saturated just above
-    ``max_prefixes`` and stopping as soon as the count exceeds it, so that huge trees are
-    never counted in full. An untruncated game (``horizon=None``) never fits. Any number of
-    goals: the count reads only the graph, the start, the goals and the hop distances.
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import triangle
-    >>> inst = triangle()
-    >>> tree_fits(inst, 5, 3), tree_fits(inst, 5, 2), tree_fits(inst, None, 10**9)
-    (True, False, False)
-    >>> from dppverify.game.examples import star3
-    >>> from dppverify.tree_route.tree import count_prefixes
-    >>> [count_prefixes(star3(), h) for h in (2, 3)], tree_fits(star3(), 3, 7)
-    ([6, 8], False)
-    """
-    if horizon is None:
-        return False
-    if horizon < 0:
-        raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
-    return count_prefixes(cast(Any, instance), horizon, limit=max_prefixes) <= max_prefixes
 
 
 def resolve_route(route: Route, instance: Instance, horizon: int | None,

@@ -11,6 +11,7 @@ object, or a command line ``'prog {instance} {profile}'`` run on files. One modu
 - :mod:`~dppverify.audit.campaign` draws instances with hypothesis (:func:`run_audit`);
 - :mod:`~dppverify.audit.pruning` shrinks a failure within a budget;
 - :mod:`~dppverify.audit.report` holds the result and writes the failure directory.
+- :mod:`~dppverify.audit.defaults` holds every default and budget of ``dpp audit``.
 
 An example *fails* when the solver raises, exits or times out (``solver.error``,
 ``solver.timeout``), returns something that is not a JSON object (``solver.output``), returns
@@ -43,21 +44,17 @@ from __future__ import annotations
 
 from typing import Any
 
-from dppverify.audit.examine import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, Outcome, examine
-from dppverify.audit.pruning import (
+from dppverify.audit.defaults import (
+    AUDIT_MAX_PREFIXES,
+    AUDIT_TRIALS,
     DEFAULT_SHRINK_CALLS,
     DEFAULT_SHRINK_SECONDS,
-    ShrinkBudget,
-    prune_failure,
-)
-from dppverify.audit.report import AuditReport, format_report, write_failure
-from dppverify.audit.runner import (
     DEFAULT_TIMEOUT,
-    Answer,
-    CommandRunner,
-    PythonRunner,
-    SolverRunner,
 )
+from dppverify.audit.examine import Outcome, examine
+from dppverify.audit.pruning import ShrinkBudget, prune_failure
+from dppverify.audit.report import AuditReport, format_report, write_failure
+from dppverify.audit.runner import Answer, CommandRunner, PythonRunner, SolverRunner
 from dppverify.errors import AuditError
 
 __all__ = ["AUDIT_MAX_PREFIXES", "AUDIT_TRIALS", "DEFAULT_SHRINK_CALLS", "DEFAULT_SHRINK_SECONDS",

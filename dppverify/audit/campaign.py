@@ -20,26 +20,26 @@ from hypothesis import seed as hypothesis_seed
 from hypothesis import strategies as st
 from hypothesis.errors import Unsatisfiable
 
-from dppverify.audit.examine import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, Outcome, examine
-from dppverify.audit.pruning import (
+from dppverify.audit.defaults import (
+    AUDIT_MAX_PREFIXES,
+    AUDIT_TRIALS,
     DEFAULT_SHRINK_CALLS,
     DEFAULT_SHRINK_SECONDS,
-    ShrinkBudget,
-    prune_failure,
+    DEFAULT_TIMEOUT,
+    HYPOTHESIS_SHARE,
 )
+from dppverify.audit.examine import Outcome, examine
+from dppverify.audit.pruning import ShrinkBudget, prune_failure
 from dppverify.audit.report import AuditReport, write_failure
-from dppverify.audit.runner import DEFAULT_TIMEOUT, PythonRunner, SolverRunner
+from dppverify.audit.runner import PythonRunner, SolverRunner
 from dppverify.errors import AuditError, TreeTooLargeError
 from dppverify.formats.files import OutputError
 from dppverify.limits import MAX_AUDIT_EXAMPLES
 from dppverify.strategies import grid_worlds, instances, priors, weighted_graphs
 
-__all__ = ["DEFAULT_TIMEOUT", "audit_instances", "run_audit"]
+__all__ = ["audit_instances", "run_audit"]
 
 Doc = dict[str, Any]
-
-HYPOTHESIS_SHARE = 0.5
-"""Share of the shrinking budget hypothesis may use; the pruning pass gets the rest."""
 
 
 def audit_instances(*, max_nodes: int = 8) -> st.SearchStrategy[Doc]:

@@ -14,21 +14,16 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from dppverify.audit.defaults import AUDIT_MAX_PREFIXES, AUDIT_TRIALS
 from dppverify.audit.runner import Answer, SolverRunner, call_in_process, one_line
 from dppverify.certificate import Certificate
 from dppverify.certify import certify
 from dppverify.errors import CheckerError, ProfileError, TreeTooLargeError, UndecidedError
 from dppverify.formats.json_reading import parse_json
 
-__all__ = ["AUDIT_MAX_PREFIXES", "AUDIT_TRIALS", "Outcome", "examine"]
+__all__ = ["Outcome", "examine"]
 
 Doc = dict[str, Any]
-
-AUDIT_MAX_PREFIXES = 200_000
-"""Default size guard of the walk tree per example; larger examples are skipped."""
-
-AUDIT_TRIALS = 2
-"""Random attackers per L3/L4 lemma check (the lemmas concern the instance, not the solver)."""
 
 
 @dataclass(frozen=True)

@@ -12,20 +12,20 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from dppverify.audit.examine import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, Outcome, examine
+from dppverify.audit.defaults import (
+    AUDIT_MAX_PREFIXES,
+    AUDIT_TRIALS,
+    DEFAULT_SHRINK_CALLS,
+    DEFAULT_SHRINK_SECONDS,
+)
+from dppverify.audit.examine import Outcome, examine
 from dppverify.audit.runner import SolverRunner
 from dppverify.errors import AuditError, CheckerError, TreeTooLargeError
 from dppverify.game.instance import instance_from_json
 
-__all__ = ["DEFAULT_SHRINK_CALLS", "DEFAULT_SHRINK_SECONDS", "ShrinkBudget", "prune_failure"]
+__all__ = ["ShrinkBudget", "prune_failure"]
 
 Doc = dict[str, Any]
-
-DEFAULT_SHRINK_CALLS = 500
-"""Default budget of solver calls spent shrinking a failure."""
-
-DEFAULT_SHRINK_SECONDS = 120.0
-"""Default budget of seconds spent shrinking a failure."""
 
 
 class ShrinkBudget:

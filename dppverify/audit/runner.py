@@ -55,21 +55,16 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
+from dppverify.audit.defaults import READY_TIMEOUT
 from dppverify.audit.procs import SUPERVISOR, become_subreaper, kill_tree
 from dppverify.errors import AuditError
 from dppverify.formats.files import read_input
 
-__all__ = ["DEFAULT_TIMEOUT", "Answer", "CommandRunner", "PythonRunner", "SolverRunner",
+__all__ = ["Answer", "CommandRunner", "PythonRunner", "SolverRunner",
            "call_in_process", "one_line"]
 
 Doc = dict[str, Any]
 Solver = Callable[[Doc], Any]
-
-DEFAULT_TIMEOUT = 60.0
-"""Seconds per solver run (Python callable or command)."""
-
-READY_TIMEOUT = 60.0
-"""Seconds a Python solver's module may take to import."""
 
 
 @dataclass(frozen=True)

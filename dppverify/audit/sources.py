@@ -28,7 +28,8 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from dppverify.audit.examine import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, Outcome, examine
+from dppverify.audit.defaults import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, MAX_AUDIT_INSTANCES
+from dppverify.audit.examine import Outcome, examine
 from dppverify.audit.pruning import ShrinkBudget, prune_failure
 from dppverify.audit.report import AuditReport, write_failure
 from dppverify.audit.runner import SolverRunner
@@ -37,13 +38,10 @@ from dppverify.formats.files import read_input
 from dppverify.formats.json_reading import parse_json
 from dppverify.game.instance import instance_from_json
 
-__all__ = ["MAX_AUDIT_INSTANCES", "audit_documents", "instances_from_dir",
+__all__ = ["audit_documents", "instances_from_dir",
            "instances_from_scen"]
 
 Doc = dict[str, Any]
-
-MAX_AUDIT_INSTANCES = 100_000
-"""Instances accepted from one folder or ``.scen`` file."""
 
 
 def _plain(x: Any) -> Any:

@@ -37,10 +37,8 @@ def progress_option(fn: F) -> F:
     Examples
     --------
     >>> from click.testing import CliRunner
-    >>> @click.command()
-    ... @progress_option
-    ... def cmd(progress):
-    ...     click.echo(repr(progress))
+    >>> from dppverify.cli.examples import echo_command
+    >>> cmd = echo_command(progress_option, "progress", repr)
     >>> [CliRunner().invoke(cmd, args).output.strip() for args in ([], ["--progress"])]
     ['None', 'True']
     """
@@ -133,10 +131,8 @@ def output_file_option(help: str, *, required: bool = False,
     Examples
     --------
     >>> from click.testing import CliRunner
-    >>> @click.command()
-    ... @output_file_option("The file.", deprecated="--out")
-    ... def cmd(output):
-    ...     click.echo(output)
+    >>> from dppverify.cli.examples import echo_command
+    >>> cmd = echo_command(output_file_option("The file.", deprecated="--out"), "output")
     >>> CliRunner().invoke(cmd, ["-o", "a.png"]).output
     'a.png\\n'
     >>> r = CliRunner().invoke(cmd, ["--out", "b.png"])
@@ -162,10 +158,8 @@ def output_dir_option(help: str, *, default: str | None = None,
     Examples
     --------
     >>> from click.testing import CliRunner
-    >>> @click.command()
-    ... @output_dir_option("Where to write.", default="out/x")
-    ... def cmd(output_dir):
-    ...     click.echo(output_dir)
+    >>> from dppverify.cli.examples import echo_command
+    >>> cmd = echo_command(output_dir_option("Where to write.", default="out/x"), "output_dir")
     >>> [CliRunner().invoke(cmd, a).stdout for a in ([], ["--output-dir", "d"], ["--out", "e"])]
     ['out/x\\n', 'd\\n', 'e\\n']
     """

@@ -87,11 +87,10 @@ def file_hint(path: str | Path, expected: Kind, command: str = "dpp certify") ->
 
     Examples
     --------
-    >>> import os, tempfile
-    >>> d = tempfile.mkdtemp()
-    >>> p = os.path.join(d, "p.json")
-    >>> _ = open(p, "w").write('{"format": "dpp-profile/1"}')
-    >>> print(file_hint(p, "instance").replace(d + os.sep, ""))
+    >>> import os
+    >>> from dppverify.cli.examples import scratch_file
+    >>> p = scratch_file("p.json", '{"format": "dpp-profile/1"}')
+    >>> print(file_hint(p, "instance").replace(os.path.dirname(p) + os.sep, ""))
     p.json is a dpp-profile/1 document, not an instance: are the arguments swapped? \
 (dpp certify INSTANCE PROFILE)
     >>> print(file_hint("m.map", "instance", "dpp solve"))  # a .map name suffices

@@ -147,10 +147,8 @@ class MapRequest:
 
         Examples
         --------
-        >>> import os, tempfile
-        >>> d = tempfile.mkdtemp()
-        >>> m = os.path.join(d, "tiny.map")
-        >>> _ = open(m, "w").write("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
+        >>> from dppverify.cli.examples import scratch_file
+        >>> m = scratch_file("tiny.map", "type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
         >>> inst = map_request(m, "1,0", ("1,2", "0,0"), "0.6,0.4", None).game()
         >>> type(inst).__name__, inst.n_nodes, inst.dist_to[0][inst.start]
         ('Instance', 5, 4)
@@ -161,7 +159,7 @@ class MapRequest:
         Traceback (most recent call last):
         dppverify.errors.InvalidInstanceError: .../tiny.map: start cell (1, 1) is an obstacle
           ('@' at row 1, column 1 of the 2x3 map)
-        >>> os.remove(m); os.rmdir(d)
+        >>> import os; os.remove(m); os.rmdir(os.path.dirname(m))
         """
         return self.ninstance() if self.n_goals > 2 else self.instance()
 
@@ -345,10 +343,8 @@ def map_options(fn: F) -> F:
     Examples
     --------
     >>> from click.testing import CliRunner
-    >>> @click.command()
-    ... @map_options
-    ... def where(grid):
-    ...     click.echo(grid.start if grid else "no map")
+    >>> from dppverify.cli.examples import echo_command
+    >>> where = echo_command(map_options, "grid", lambda grid: grid.start if grid else "no map")
     >>> CliRunner().invoke(where, ["--map", "m.map", "--start", "9,0", "--goals", "0,9",
     ...                            "0,0", "--prior", "0.6,0.4"]).output
     '(9, 0)\\n'

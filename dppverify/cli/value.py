@@ -238,7 +238,7 @@ def _coalition_doc(v: CoalitionValue) -> dict[str, Any]:
 
 
 def _dp_doc(v: NValue) -> dict[str, Any]:
-    return {"value": format_number(v.value), "exact": v.exact,
+    return {"value": format_number(v.value), "exact": v.closed,
             "lower": format_number(v.lower), "upper": format_number(v.upper),
             "lower_source": v.lower_source, "upper_source": v.upper_source,
             "reason": v.reason, "layers": v.layers,

@@ -39,7 +39,7 @@ from fractions import Fraction
 import numpy as np
 
 from dppverify.errors import HorizonError, OptionError
-from dppverify.exact import Number, normalize
+from dppverify.exact import Bracket, Number, normalize
 from dppverify.game.instance import Instance
 from dppverify.structured.coalition import CoalitionRunner, CoalitionValue, too_many_goals
 from dppverify.structured.cover import MAX_BALANCED, Normal, cheapest, zero_one_normals
@@ -102,9 +102,12 @@ def lower_bound_simple(instance: Instance) -> tuple[Fraction, str]:
     return guard[best], f"a Defender that always guards goal {best + 1} (NG.9)"
 
 
-@dataclass(frozen=True)
-class NValue:
+@dataclass(frozen=True, kw_only=True)
+class NValue(Bracket):
     """``V_H`` of an N-goal instance by the guarantee sets: exact, or a named bracket.
+
+    A :class:`~dppverify.exact.Bracket` (``closed`` when the value is proved, ``exact`` the
+    value then) with how the structured route got it.
 
     Attributes
     ----------
@@ -126,24 +129,15 @@ class NValue:
     """
 
     horizon: int | None
-    lower: Number
-    upper: Number
-    lower_source: str
-    upper_source: str
     layers: int
     normals: tuple[Normal, ...]
-    reason: str | None
     coalition: CoalitionValue
 
     @property
-    def exact(self) -> bool:
-        """True when ``V_H`` is proved: the bounds meet."""
-        return self.lower == self.upper
-
-    @property
     def value(self) -> Number | None:
-        """``V_H`` when proved, else None."""
-        return self.upper if self.exact else None
+        """``V_H`` when proved, else None (:attr:`exact`, under the name the routes' values
+        share)."""
+        return self.exact
 
 
 def _deflated_lower(run: CoalitionRunner, layer: dict[int, np.ndarray]) -> Fraction | None:
@@ -222,7 +216,9 @@ def coalition_nvalue(coal: CoalitionValue, n_goals: int) -> NValue:
     src = ("coalition DP (NG.3: the value for two goals)" if n_goals == 2 else
            "coalition DP (NG.4: the value for three goals)")
     v = normalize(Fraction(coal.value))
-    return NValue(coal.horizon, v, v, src, src, coal.layers, (), None, coal)
+    return NValue(v, v, src, src, None,
+                  horizon=coal.horizon, layers=coal.layers, normals=(),
+                  coalition=coal)
 
 
 def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = None
@@ -262,8 +258,9 @@ def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = 
            "coalition DP (NG.4: the value for three goals)" if n == 3 else
            "coalition DP, certified at every arc (NG.8)")
     if not fails:
-        return NValue(horizon, normalize(upper), normalize(upper), src, src, layers, (), None,
-                      coal)
+        return NValue(normalize(upper), normalize(upper), src, src, None,
+                      horizon=horizon, layers=layers, normals=(),
+                      coalition=coal)
     up_src = "coalition DP (NG.2: an upper bound)"
     reason = _fail_reason(inst, fails[0], "the coalition DP")
     lower, lo_src = lower_bound_simple(inst)
@@ -280,8 +277,9 @@ def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = 
                                          "sub-fixpoint (NG.10)")
     if lower == upper:
         src = "coalition DP (NG.2) meeting the translated fixpoint bound (NG.10)"
-        return NValue(horizon, normalize(upper), normalize(upper), src, src, layers, (), None,
-                      coal)
+        return NValue(normalize(upper), normalize(upper), src, src, None,
+                      horizon=horizon, layers=layers, normals=(),
+                      coalition=coal)
     extras: list[Normal] = []
     up_normals: tuple[Normal, ...] = ()
     cap = max_layers if max_layers is not None else 50 * inst.n_nodes + 100
@@ -305,15 +303,18 @@ def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = 
             up_src = f"DP over {len(extras)} extra facet normals (NG.7: an upper bound)"
         if not fails:
             src = f"DP over {len(extras)} extra facet normals, certified at every arc (NG.8)"
-            return NValue(horizon, normalize(val), normalize(val), src, src, layers_g,
-                          tuple(extras), None, coal)
+            return NValue(normalize(val), normalize(val), src, src, None,
+                          horizon=horizon, layers=layers_g, normals=tuple(extras),
+                          coalition=coal)
         if lower == upper:
             src = f"{up_src[:-1]}) meeting {lo_src}"
-            return NValue(horizon, normalize(upper), normalize(upper), src, src, layers,
-                          up_normals, None, coal)
+            return NValue(normalize(upper), normalize(upper), src, src, None,
+                          horizon=horizon, layers=layers, normals=up_normals,
+                          coalition=coal)
         reason = _fail_reason(inst, fails[0], f"the DP with {len(extras)} extra normals")
-    return NValue(horizon, normalize(lower), normalize(upper), lo_src, up_src, layers,
-                  up_normals, reason, coal)
+    return NValue(normalize(lower), normalize(upper), lo_src, up_src, reason,
+                  horizon=horizon, layers=layers, normals=up_normals,
+                  coalition=coal)
 
 
 def _fail_reason(inst: Instance, arc: Arc, what: str) -> str:

@@ -11,12 +11,11 @@ solution rounded to small denominators, the exactly solved LP) until they meet;
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
 
-from dppverify.exact import Number, normalize
+from dppverify.exact import Bracket, Number, normalize
 from dppverify.tree_route.best_response import attacker_best_response, defender_best_response
 from dppverify.tree_route.players import (
     AnyTypes,
@@ -34,27 +33,6 @@ __all__ = ["DENOMINATORS", "Bracket", "BracketSearch", "lower_bound", "rational_
 
 DENOMINATORS = (1, 2, 3, 4, 5, 6, 8, 10, 12, 20, 24, 60, 100, 360, 720, 1000, 5040, 10**4, 10**6)
 """Denominator limits tried when rounding LP solutions to rationals."""
-
-
-@dataclass(frozen=True)
-class Bracket:
-    """Exact bounds ``lower <= V_H <= upper``, where they come from, and why still open."""
-
-    lower: Number
-    upper: Number
-    lower_source: str
-    upper_source: str
-    reason: str | None = None
-
-    @property
-    def closed(self) -> bool:
-        """True when the bounds coincide: ``V_H`` is then known exactly."""
-        return self.lower == self.upper
-
-    @property
-    def exact(self) -> Number | None:
-        """``V_H`` exactly when the bracket is closed, else None."""
-        return self.lower if self.closed else None
 
 
 def lower_bound(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy) -> Number:

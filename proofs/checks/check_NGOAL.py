@@ -150,7 +150,7 @@ def test_NG4_refuted_for_four_goals_on_the_hub() -> None:
         for h in (3, 4, None):
             assert coalition_value(inst, h).value == Fraction(25, 14)
             v = nvalue(inst, h)
-            assert v.exact and v.value == Fraction(12, 7)
+            assert v.closed and v.value == Fraction(12, 7)
             assert (2, 2, 2, 1) in v.normals
             if h is not None:
                 b = game_value(inst, h).bracket

@@ -13,7 +13,7 @@ from dppverify.errors import CheckerError
 from solver.cli.common import check_dask_address
 from solver.errors import InvalidInstanceError, OutputError
 
-__all__ = ["batch_checker", "batch_command"]
+__all__ = ["batch_checker", "batch_command", "batch_example"]
 
 
 def batch_checker() -> Any:
@@ -35,6 +35,19 @@ def batch_checker() -> Any:
                    fake_goal_candidates=fake_goal_candidates,
                    standard_map_path=standard_map_path, errors=(CheckerError,),
                    rule=BATCH_RULE)
+
+
+def batch_example() -> tuple[Any, Path]:
+    """:func:`batch_checker` and its bundled ``empty-8-8-even-1.scen`` (the examples' input).
+
+    Examples
+    --------
+    >>> checker, scen = batch_example()
+    >>> scen.name
+    'empty-8-8-even-1.scen'
+    """
+    checker = batch_checker()
+    return checker, Path(checker.standard_map_path("empty-8-8")).with_name("empty-8-8-even-1.scen")
 
 
 @click.command("batch", short_help="Solve and certify every line of a MovingAI .scen file.")

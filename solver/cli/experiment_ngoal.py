@@ -50,10 +50,10 @@ def checker_valuer(grid: GridMap) -> Valuer:
     def value(start: Cell, goals: Sequence[Cell], prior: Sequence[Fraction]) -> GameValue:
         inst = instance_from_json(grid_document(grid, start, list(goals),
                                                  [str(b) for b in prior]))
-        v = nvalue(inst, None)  # proved, or the DP's upper bound with exact = False
+        v = nvalue(inst, None)  # proved, or the DP's upper bound with closed = False
         ubar = sum((b * Fraction(inst.dist_to[t][inst.start]) for t, b in enumerate(prior)),
                    Fraction(0))
-        return GameValue(Fraction(v.upper), ubar, v.exact, v.layers)
+        return GameValue(Fraction(v.upper), ubar, v.closed, v.layers)
 
     return value
 

@@ -164,9 +164,8 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
 
     Examples
     --------
-    >>> from solver.cli import batch_checker
-    >>> checker = batch_checker()
-    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
+    >>> from solver.cli.batch import batch_example
+    >>> checker, scen = batch_example()
     >>> tasks, total = scen_tasks(scen, BatchConfig(), checker, chunk=10)
     >>> total, len(tasks), tasks[0].scenarios[0].line
     (32, 4, 2)
@@ -315,9 +314,8 @@ def run_batch_task(task: BatchTask) -> list[dict[str, str]]:
 
     Examples
     --------
-    >>> from solver.cli import batch_checker
-    >>> checker = batch_checker()
-    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
+    >>> from solver.cli.batch import batch_example
+    >>> checker, scen = batch_example()
     >>> tasks, _ = scen_tasks(scen, BatchConfig(), checker, chunk=2)
     >>> [(r["line"], r["status"], r["goal"], r["fake_goal"], r["verdict"])
     ...  for r in run_batch_task(tasks[0])]
@@ -361,9 +359,8 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     Examples
     --------
     >>> import tempfile
-    >>> from solver.cli import batch_checker
-    >>> checker = batch_checker()
-    >>> scen = checker.standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
+    >>> from solver.cli.batch import batch_example
+    >>> checker, scen = batch_example()
     >>> out = Path(tempfile.mkdtemp()) / "b.csv"
     >>> run_batch(scen, out, BatchConfig(), checker, limit=1), run_batch(scen, out,
     ...                                                                  BatchConfig(), checker)

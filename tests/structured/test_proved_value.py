@@ -81,7 +81,7 @@ def test_the_hub_value_is_twelve_sevenths_and_the_coalition_dp_is_only_a_bound()
         for h in (3, 5, None):
             v = nvalue(inst, h)
             assert coalition_value(inst, h).value == Fraction(25, 14)
-            assert v.exact and v.value == Fraction(12, 7), (directed, h, v)
+            assert v.closed and v.value == Fraction(12, 7), (directed, h, v)
             assert set(v.normals) == {(2, 2, 2, 1), (2, 2, 1, 2), (2, 1, 2, 2), (1, 2, 2, 2)}
             assert "certified" in v.lower_source
 
@@ -90,7 +90,7 @@ def test_without_refinement_the_hub_gets_an_honest_bracket(monkeypatch: pytest.M
                                                           tmp_path: Path) -> None:
     monkeypatch.setattr(guarantee, "MAX_ROUNDS", 0)
     v = nvalue(hub4(), None)
-    assert v.value is None and not v.exact
+    assert v.value is None and not v.closed
     # NG.10: the translated fixpoint sets give the value itself as the lower bound here
     assert v.lower == Fraction(12, 7) and v.upper == Fraction(25, 14)
     assert "NG.10" in v.lower_source and "upper bound" in v.upper_source
