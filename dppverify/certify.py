@@ -261,14 +261,12 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     if ngoal_game(game):
         return _with_provenance(_certify_n(game, _ngoal_profile_input(profile), horizon,
                                            max_prefixes, route), instance, profile)
-    assert isinstance(game, Instance)  # not ngoal_game: the two-goal game
     if not game.exact and exact:
         raise InvalidInstanceError(FLOAT_MODE_REFUSED)
     doc, name = _read_profile(profile)
     if isinstance(doc, Mapping) and doc.get("format") == NGOAL_PROFILE_FORMAT \
             and not isinstance(instance, Instance):  # two goals, as an N-goal game
         ngame = game_of(instance, ngoal=True)
-        assert isinstance(ngame, Instance)  # game_of(ngoal=True) of a document
         return _with_provenance(_certify_n(ngame, doc, horizon, max_prefixes, route),
                                 instance, profile)
     check_format(doc, name)

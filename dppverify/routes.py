@@ -276,7 +276,6 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
     chosen = resolve_route(route, instance, horizon, max_prefixes)
     if ngoal_game(instance):
         return _nrouted_value(instance, horizon, chosen, max_prefixes)
-    assert isinstance(instance, Instance)  # not ngoal_game: the two-goal game
     tree = sv = None
     if chosen in ("structured", "both"):
         sv = structured_value(instance, horizon)

@@ -68,7 +68,7 @@ def test_structured_and_tree_routes_agree(doc: dict[str, Any]) -> None:
 @given(instances(graphs=weighted_graphs(max_nodes=6, weights="fractions", max_weight=5)))
 def test_for_two_goals_the_dp_is_the_two_goal_value(doc: dict[str, Any]) -> None:
     inst = instance_from_json(doc)
-    two = instance_from_json(doc)
+    two = instance_from_json(doc, two_goals=True)  # the two-goal reading rules
     for h in _horizons(inst, 3):
         tree = game_value(two, h, max_prefixes=MAX_PREFIXES)
         assert tree.bracket.closed
