@@ -20,25 +20,27 @@ from dppverify.checks.structured_ngoal import (
     ngoal_record,
     payoff_record,
     value_record,
+    walk_labels,
 )
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
 from dppverify.game.profile import Profile
-from dppverify.structured.arc_condition import arc_condition
 from dppverify.structured.guarantee import (
     GuaranteeRule,
-    GuaranteeSets,
     dp_value,
     evaluate_rule_profile,
     in_start_set,
 )
+from dppverify.structured.normal_fixpoint import NormalSets
 from dppverify.structured.proved_value import coalition_nvalue
+from dppverify.structured.rule_response import RuleSearch, rule_response
 
-__all__ = ["NSOLVE", "guarantee_checks"]
+__all__ = ["NRULE", "guarantee_checks"]
 
-NSOLVE = "relies on proofs/NSOLVE.md (NSOLVE.1: every walk costs type θ at least h_θ when " \
-    "h ∈ G_s0 and the arc condition holds; NSOLVE.2: the arc condition from the DP fixpoint " \
-    "and the non-pattern rays)"
+NRULE = ("relies on proofs/NRULE.md (NR.2: every walk costs type θ at least h_θ when h ∈ F_s0 "
+         "and the arc condition holds; NR.4: the exact search over the rule's states; NR.3: "
+         "costs telescope)")
+PROOF = "NRULE"
 
 
 def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
@@ -65,13 +67,14 @@ def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
     ev = evaluate_rule_profile(inst, rule, profile.attacker)
     per_type = ev.per_type
     trie = ev.defender.trie
-    out = [ngoal_record(NGOAL_IDS[0], "pass", f"{n} types, {ev.walks} walks, Defender: the "
-                        f"guarantee rule with h = ({', '.join(map(str, rule.h))}) (defined on "
-                        f"every walk)", {"walks": ev.walks, "prefixes": len(trie)}, PROFILE_DOC,
-                        None)]
+    text = (f"{n} types, {ev.walks} walks, Defender: the guarantee rule with h = "
+            f"({', '.join(map(str, rule.h))}) and {len(rule.normals)} extra normals (defined "
+            f"on every walk)")
+    out = [ngoal_record(NGOAL_IDS[0], "pass", text, {"walks": ev.walks, "prefixes": len(trie)},
+                        PROFILE_DOC, None)]
     u = sum((inst.prior[t] * per_type[t] for t in range(n)), Fraction(0))
     out.append(payoff_record(per_type, u, profile.claimed_u))
-    out.append(_attacker_record(inst, rule, ev.sets, per_type, ev.feasible))
+    out.append(_attacker_record(inst, rule, ev.sets, per_type, horizon))
     out += defender_records(inst, ev.defender, ev.mass, u)
     known = (coalition_nvalue(dp_value(ev.sets), inst.n_goals)  # proved for N <= 3 (NG.4)
              if horizon is None and inst.n_goals <= 3 else None)
@@ -79,48 +82,64 @@ def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
     return out, len(trie)
 
 
-def _direction(inst: Instance, ray: tuple[tuple[int, Fraction], ...]) -> str:
-    """A cover as text: ``1/2·{g1, g2} + …`` (goal ids)."""
-    def goals(mask: int) -> str:
-        return ", ".join(str(inst.nodes[inst.goals[i]]) for i in range(inst.n_goals)
-                         if mask >> i & 1)
-
-    return " + ".join(f"{c}·{{{goals(s)}}}" for s, c in ray)
+def _normal_text(inst: Instance, a: tuple[int, ...]) -> str:
+    """A normal as text: its non-zero entries by goal id (``2·g1 + 2·g2 + 1·g4``)."""
+    return " + ".join(f"{x}·{inst.nodes[inst.goals[i]]}" for i, x in enumerate(a) if x)
 
 
-def _attacker_record(inst: Instance, rule: GuaranteeRule, sets: GuaranteeSets,
-                     per_type: Sequence[Fraction], feasible: bool) -> CheckRecord:
+def _attacker_record(inst: Instance, rule: GuaranteeRule, sets: NormalSets,
+                     per_type: Sequence[Fraction], horizon: int | None) -> CheckRecord:
+    """``ngoal.pbne.attacker_br``: every type's exact regret over all walks (NRULE), of at most
+    ``horizon`` steps when given."""
     cid = "ngoal.pbne.attacker_br"
-    proof = "NSOLVE"
-    bad_start = in_start_set(rule, sets)
-    if bad_start is not None:
-        goal_numbers = [i + 1 for i in range(inst.n_goals) if bad_start >> i & 1]
-        return ngoal_record(cid, "error", f"h is not in G_s0: h(S) > m_S(s0) for S = "
-                            f"{goal_numbers}; the rule guarantees nothing (could not decide the "
-                            f"Attacker's regret)", None, NSOLVE, proof)
-    arc = arc_condition(sets)
-    if not arc.holds:
-        assert arc.failure is not None
-        v, u, ray = arc.failure
-        return ngoal_record(cid, "error", f"the arc condition G_v ⊆ G_u + wΔ fails on arc "
-                            f"{inst.nodes[v]!r} -> {inst.nodes[u]!r} (direction "
-                            f"{_direction(inst, ray)}; proofs/NSOLVE.md NSOLVE.2): no lower "
-                            f"bound over all walks, could not decide the Attacker's regret",
-                            {"arcs": arc.arcs}, NSOLVE, proof)
-    nums: dict[str, Number | None] = {f"regret{t + 1}": per_type[t] - rule.h[t]
-                                      for t in range(inst.n_goals)}
-    nums["arcs"] = arc.arcs
-    below = [t for t in range(inst.n_goals) if per_type[t] < rule.h[t]]
-    if below or not feasible:
-        return ngoal_record(cid, "error", "a type pays less than its proved guarantee h: the "
-                            "checker's computations disagree", nums, NSOLVE, proof)
-    above = [t for t in range(inst.n_goals) if per_type[t] > rule.h[t]]
-    if above:
-        t = above[0]
-        return ngoal_record(cid, "error", f"type {t + 1} pays {per_type[t]}, above its "
-                            f"guarantee h = {rule.h[t]} (a lower bound over all walks): could "
-                            f"not decide its regret", nums, NSOLVE, proof)
-    rays = f", {arc.rays} non-pattern directions" if arc.rays else ""
-    return ngoal_record(cid, "pass", f"every type pays exactly h_θ, its minimum over all walks "
-                        f"of any length (arc condition on all {arc.arcs} walkable arcs{rays})",
-                        nums, NSOLVE, proof)
+    out, rs = rule_response(inst, rule, sets, per_type, max_steps=horizon)
+    nums: dict[str, Number | None] = {}
+    for r in out:
+        nums[f"regret{r.theta + 1}"] = (None if not r.decided else
+                                        r.bound - r.value if r.value is not None else 0)
+    nums["arcs"] = rs.arc.arcs
+    nums["states"] = sum(r.states for r in out)
+    found = [r for r in out if r.value is not None]
+    if found:
+        r = max(found, key=lambda x: (x.bound - (x.value or 0), -x.theta))
+        assert r.value is not None and r.walk is not None
+        return ngoal_record(cid, "fail", f"type {r.theta + 1} (goal "
+                            f"{inst.nodes[inst.goals[r.theta]]!r}) has regret "
+                            f"{r.bound - r.value}: walk {walk_labels(inst, r.walk)} "
+                            f"({len(r.walk) - 1} steps) costs {r.value} against the rule "
+                            f"({r.how})", nums, NRULE, PROOF)
+    undecided = [r for r in out if not r.decided]
+    if undecided:
+        r = undecided[0]
+        return ngoal_record(cid, "error", f"could not decide type {r.theta + 1}'s regret: "
+                            f"{r.how} without a walk below its cost {r.bound} or a proof that "
+                            f"none exists ({_why_no_guarantee(inst, rule, rs)})", nums, NRULE,
+                            PROOF)
+    hows = sorted({r.how for r in out})
+    walks = "of any length" if horizon is None else f"of at most {horizon} steps"
+    return ngoal_record(cid, "pass", f"every type's exact regret over all walks {walks} "
+                        f"is 0 ({'; '.join(hows)}; {_guarantee_text(inst, rule, rs)})", nums,
+                        NRULE, PROOF)
+
+
+def _guarantee_text(inst: Instance, rule: GuaranteeRule, rs: RuleSearch) -> str:
+    if rs.in_start and rs.arc.holds:
+        extra = f", {rs.arc.rays} non-pattern directions" if rs.arc.rays else ""
+        return (f"h ∈ F_s0 and the arc condition holds on all {rs.arc.arcs} walkable arcs"
+                f"{extra}")
+    return _why_no_guarantee(inst, rule, rs)
+
+
+def _why_no_guarantee(inst: Instance, rule: GuaranteeRule, rs: RuleSearch) -> str:
+    if not rs.in_start:
+        bad = in_start_set(rule, rs.sets)
+        assert bad is not None
+        return f"h is not in F_s0: a·h > m_a(s0) for a = {_normal_text(inst, bad)}"
+    if not rs.arc.decided:
+        return "the arc condition was not tested: too many normals for its direction tables"
+    if not rs.arc.holds:
+        assert rs.arc.failure is not None
+        v, u, _ = rs.arc.failure
+        return (f"the arc condition F_v ⊆ F_u + wΔ fails on {len(rs.arc.failing)} arc(s), e.g. "
+                f"{inst.nodes[v]!r} -> {inst.nodes[u]!r}")
+    return "h ∈ F_s0 and the arc condition holds"

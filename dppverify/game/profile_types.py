@@ -13,6 +13,7 @@ in :mod:`dppverify.game.profile`.
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -28,10 +29,28 @@ from dppverify.formats.json_reading import (
     read_json_file,
 )
 
-__all__ = ["GUARANTEE_RULE", "NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "VALUE_KEYS", "Defect",
-           "DefectCollector", "DefenderRule", "GoalTable", "GuaranteeRule", "Profile",
-           "ProfileDefender", "ProgressRule", "StrategyWalk", "TableRule", "check_format",
-           "load_profile_document", "parse_guarantee"]
+__all__ = [
+    "GUARANTEE_RULE",
+    "MAX_NORMALS",
+    "MAX_NORMAL_ENTRY",
+    "NGOAL_PROFILE_FORMAT",
+    "PROFILE_FORMAT",
+    "VALUE_KEYS",
+    "Defect",
+    "DefectCollector",
+    "DefenderRule",
+    "GoalTable",
+    "GuaranteeRule",
+    "Profile",
+    "ProfileDefender",
+    "ProgressRule",
+    "StrategyWalk",
+    "TableRule",
+    "check_format",
+    "load_profile_document",
+    "parse_guarantee",
+    "parse_normals",
+]
 
 PROFILE_FORMAT = "dpp-profile/1"
 """The two-goal profile's ``format`` tag."""
@@ -110,12 +129,14 @@ class GoalTable:
 
 @dataclass(frozen=True)
 class GuaranteeRule:
-    """The N-goal guarantee rule: its starting state ``h``.
+    """The N-goal guarantee rule: its starting state ``h`` and its extra facet normals.
 
-    The Defender of :mod:`dppverify.structured.guarantee` (``{"rule": "guarantee", "h": [...]}``).
+    The Defender of :mod:`dppverify.structured.guarantee` (``{"rule": "guarantee", "h": [...],
+    "normals": [...]}``); ``normals`` are the normals beyond the 0/1 vectors (always included).
     """
 
     h: tuple[Fraction, ...]
+    normals: tuple[tuple[int, ...], ...] = ()
 
 
 ProfileDefender = ProgressRule | TableRule | GoalTable | GuaranteeRule
@@ -205,9 +226,61 @@ class Profile:
         return self.primary if theta == 1 else self.secondary
 
 
+MAX_NORMALS = 64
+"""At most this many extra facet normals in a guarantee rule (``defender.normals``)."""
+MAX_NORMAL_ENTRY = 16
+"""The largest entry of an extra facet normal."""
+
+
+def parse_normals(raw: Any, n: int) -> tuple[tuple[int, ...], ...]:
+    """Read ``defender.normals``: extra facet normals of the guarantee rule (``docs/formats.md``
+    §2b), each N non-negative integers (at most :data:`MAX_NORMAL_ENTRY`), not a 0/1 vector,
+    gcd 1, no duplicates; at most :data:`MAX_NORMALS` of them.
+
+    Raises
+    ------
+    ProfileError
+        One line naming the first malformed entry (``dpp certify`` exits 2).
+
+    Examples
+    --------
+    >>> parse_normals([[2, 2, 2, 1], [1, 2, 2, 2]], 4)
+    ((2, 2, 2, 1), (1, 2, 2, 2))
+    >>> parse_normals([[2, 2, 2, 2]], 4)
+    Traceback (most recent call last):
+    dppverify.errors.ProfileError: defender.normals[0]: the entries' gcd must be 1, got 2
+    """
+    where = "defender.normals"
+    if not isinstance(raw, list):
+        raise ProfileError(f"{where}: must be a list of facet normals (lists of {n} integers)")
+    if len(raw) > MAX_NORMALS:
+        raise ProfileError(f"{where}: at most {MAX_NORMALS} extra normals, got {len(raw)}")
+    out: list[tuple[int, ...]] = []
+    for i, a in enumerate(raw):
+        at = f"{where}[{i}]"
+        if not isinstance(a, list) or len(a) != n:
+            raise ProfileError(f"{at}: must be a list of {n} integers (one per goal)")
+        if not all(isinstance(x, int) and not isinstance(x, bool) for x in a):
+            raise ProfileError(f"{at}: entries must be JSON integers")
+        if any(x < 0 or x > MAX_NORMAL_ENTRY for x in a):
+            raise ProfileError(f"{at}: entries must lie in 0..{MAX_NORMAL_ENTRY}")
+        if all(x in (0, 1) for x in a):
+            raise ProfileError(f"{at}: a 0/1 vector (the 0/1 normals are always included; "
+                               f"list only the others)")
+        g = math.gcd(*a)
+        if g != 1:
+            raise ProfileError(f"{at}: the entries' gcd must be 1, got {g}")
+        t = tuple(a)
+        if t in out:
+            raise ProfileError(f"{at}: duplicates {where}[{out.index(t)}]")
+        out.append(t)
+    return tuple(out)
+
+
 def parse_guarantee(raw: Mapping[str, Any], n: int, c: DefectCollector
                     ) -> GuaranteeRule | None:
-    """Read ``{"rule": "guarantee", "h": [...]}``, recording defects (None when ill-formed).
+    """Read ``{"rule": "guarantee", "h": [...], "normals": [...]}``, recording defects (None
+    when ill-formed); malformed ``normals`` raise (:func:`parse_normals`).
 
     Examples
     --------
@@ -218,7 +291,8 @@ def parse_guarantee(raw: Mapping[str, Any], n: int, c: DefectCollector
     ['defender.h: must be a list of 3 numbers (one per goal)']
     """
     h = raw.get("h")
-    extra = sorted(set(raw) - {"rule", "h"})
+    normals = parse_normals(raw.get("normals", []), n)
+    extra = sorted(set(raw) - {"rule", "h", "normals"})
     if extra:
         c.add("defender", f"unknown key(s) {', '.join(extra)} for the guarantee rule")
         return None
@@ -231,7 +305,7 @@ def parse_guarantee(raw: Mapping[str, Any], n: int, c: DefectCollector
         if y is None:
             return None
         out.append(Fraction(y))
-    return GuaranteeRule(tuple(out))
+    return GuaranteeRule(tuple(out), normals)
 
 
 def load_profile_document(source: str | Path | bytes, fmt: str = PROFILE_FORMAT

@@ -26,9 +26,10 @@ from typing import Any
 import numpy as np
 
 from dppverify.structured.cover import cheapest, dets, symmetric_table, zero_one_normals
-from dppverify.structured.guarantee import GuaranteeSets
+from dppverify.structured.dp_certificate import direction_checks, failing_arc_mask
+from dppverify.structured.normal_fixpoint import NormalSets
 
-__all__ = ["ArcCondition", "arc_condition", "bad_rays"]
+__all__ = ["MAX_DIRECTION_BASES", "ArcCondition", "arc_condition", "bad_rays", "walkable_arcs"]
 
 
 def _minors(mats: np.ndarray) -> np.ndarray:
@@ -95,7 +96,7 @@ def bad_rays(n: int) -> tuple[tuple[tuple[tuple[int, Fraction], ...], int], ...]
 
 @dataclass(frozen=True)
 class ArcCondition:
-    """Whether ``G_v ⊆ G_u + wΔ^N`` was established on every walkable arc.
+    """Whether ``F_v ⊆ F_u + wΔ^N`` was established on every walkable arc.
 
     Attributes
     ----------
@@ -103,78 +104,167 @@ class ArcCondition:
     arcs : int
         Walkable arcs checked.
     rays : int
-        Non-pattern extreme rays checked on each arc (0 for N <= 3).
+        Non-pattern directions checked on each arc (0 for N <= 3 and 0/1 normals).
     failure : tuple or None
-        ``(v, u, ray)`` of the first arc where the ray inequality does not hold.
+        ``(v, u, ray)`` of the first arc where the test fails (``ray``: the failing cover
+        ``((mask, coefficient), …)`` for 0/1 normals, ``(("y", direction),)`` otherwise).
+    failing : tuple of tuple of int
+        Every failing arc ``(v, u)``.
+    decided : bool
+        False when the test was not run (the normals' direction tables exceed
+        :data:`MAX_DIRECTION_BASES`); then ``holds`` is False.
     """
 
     holds: bool
     arcs: int
     rays: int
-    failure: tuple[int, int, tuple[tuple[int, Fraction], ...]] | None
+    failure: tuple[int, int, tuple[tuple[Any, Any], ...]] | None
+    failing: tuple[tuple[int, int], ...] = ()
+    decided: bool = True
 
 
-def arc_condition(sets: GuaranteeSets) -> ArcCondition:
-    """Check the arc condition exactly on every walkable arc (see the module docstring).
+MAX_DIRECTION_BASES = 2_000_000
+"""Most bases :func:`~dppverify.structured.cover.packing_vertices` may enumerate for the arc
+test of a normal set with extras (``C(|A| + N, N)``); beyond it the test is not run."""
+
+
+def walkable_arcs(sets: NormalSets, start: int | None = None
+                  ) -> tuple[list[int], list[int], list[Any]]:
+    """The arcs ``(v, u)`` a walk can take: ``v`` not a goal, both reaching a goal; with
+    ``start``, only those whose tail a walk from ``start`` reaches (interior avoiding goals).
 
     Examples
     --------
     >>> from dppverify.game.examples import star3
     >>> from dppverify.structured.guarantee import guarantee_sets
+    >>> t, h, w = walkable_arcs(guarantee_sets(star3()))
+    >>> list(zip(t, h))
+    [(0, 1), (0, 2), (1, 0), (1, 2), (1, 3), (1, 4)]
+    """
+    inst = sets.instance
+    reach = sets.finite
+    ok = np.ones(inst.n_nodes, dtype=bool)
+    if start is not None:
+        ok[:] = False
+        ok[start] = True
+        stack = [start]
+        while stack:
+            v = stack.pop()
+            if inst.is_goal(v):
+                continue
+            for u, _ in inst.succ[v]:
+                if not ok[u] and reach[u]:
+                    ok[u] = True
+                    stack.append(u)
+    tails, heads, wts = [], [], []
+    for v in range(inst.n_nodes):
+        if inst.is_goal(v) or not reach[v] or not ok[v]:
+            continue
+        for u, w in inst.succ[v]:
+            if reach[u]:
+                tails.append(v)
+                heads.append(u)
+                wts.append(w)
+    return tails, heads, wts
+
+
+def arc_condition(sets: NormalSets, start: int | None = None) -> ArcCondition:
+    """Check the arc condition exactly on every walkable arc (see the module docstring).
+
+    With extra normals the test is NG.8(c) over the packing polytope's directions
+    (:func:`~dppverify.structured.dp_certificate.direction_checks`); without, NSOLVE.2's
+    non-pattern rays. ``start``: only the arcs a walk from ``start`` can take.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import hub4, star3
+    >>> from dppverify.structured.guarantee import guarantee_sets
     >>> arc_condition(guarantee_sets(star3())).holds
+    True
+    >>> a = arc_condition(guarantee_sets(hub4()))
+    >>> a.holds, a.failing
+    (False, ((0, 1),))
+    >>> extras = [(2, 2, 2, 1), (2, 2, 1, 2), (2, 1, 2, 2), (1, 2, 2, 2)]
+    >>> arc_condition(guarantee_sets(hub4(), extras)).holds
     True
     """
     inst = sets.instance
     n = inst.n_goals
-    tails, heads, wts = [], [], []
-    reach = sets.m[1] < sets.big
-    scaled: dict[Any, int] = {}
-    for v in range(inst.n_nodes):
-        if inst.is_goal(v) or not reach[v]:
-            continue
-        for u, w in inst.succ[v]:
-            if not reach[u]:
-                continue
-            tails.append(v)
-            heads.append(u)
-            if w not in scaled:
-                scaled[w] = int(Fraction(w) * sets.scale)
-            wts.append(scaled[w])
+    tails, heads, weights = walkable_arcs(sets, start)
     narcs = len(tails)
     if narcs == 0:
         return ArcCondition(True, 0, 0, None)
+    scaled: dict[Any, int] = {}
+    wts = []
+    for w in weights:
+        if w not in scaled:
+            scaled[w] = int(Fraction(w) * sets.scale)
+        wts.append(scaled[w])
     t_idx = np.asarray(tails, dtype=np.int64)
     h_idx = np.asarray(heads, dtype=np.int64)
     w_scaled = np.array(wts, dtype=object)
-    # the DP step inequality m_S(v) <= w + m_S(u) (a fixpoint property; checked, it is cheap)
-    for mask, vals in sets.m.items():
-        here = vals[t_idx].astype(object)
-        step = w_scaled + vals[h_idx].astype(object)
+    # the DP step inequality m_a(v) <= w·max(a) + m_a(u) (a fixpoint property; checked, cheap)
+    for a, vals in zip(sets.normals, sets.rows, strict=True):
+        here = np.asarray(vals, dtype=object)[t_idx]
+        step = w_scaled * max(a) + np.asarray(vals, dtype=object)[h_idx]
         bad = np.flatnonzero(here > step)
         if bad.size:
             k = int(bad[0])
-            return ArcCondition(False, narcs, 0, (tails[k], heads[k], ((mask, Fraction(1)),)))
+            fail = tuple((tails[i], heads[i]) for i in bad.tolist())
+            return ArcCondition(False, narcs, 0, (tails[k], heads[k], (("y", a),)), fail)
+    if sets.extras:
+        return _direction_test(sets, tails, heads, w_scaled)
     rays = bad_rays(n)
     if not rays:
         return ArcCondition(True, narcs, 0, None)
     # m at the tails and heads as integer matrices (one column per subset mask 1 … 2^n - 1)
-    mt = np.stack([sets.m[s][t_idx] for s in range(1, 1 << n)], axis=1)
-    mh = np.stack([sets.m[s][h_idx] for s in range(1, 1 << n)], axis=1)
+    mt = np.stack([np.asarray(sets.rows[s - 1], dtype=object)[t_idx] for s in range(1, 1 << n)],
+                  axis=1)
+    mh = np.stack([np.asarray(sets.rows[s - 1], dtype=object)[h_idx] for s in range(1, 1 << n)],
+                  axis=1)
     by_y: dict[tuple[Fraction, ...], list[tuple[tuple[int, Fraction], ...]]] = {}
     for ray, _star in rays:
         y = tuple(sum((c for s, c in ray if s >> i & 1), Fraction(0)) for i in range(n))
         by_y.setdefault(y, []).append(ray)
     zero_one = zero_one_normals(n)
+    failing = np.zeros(narcs, dtype=bool)
+    first: tuple[int, int, tuple[tuple[Any, Any], ...]] | None = None
     for y, group in by_y.items():
         den = math.lcm(*(v.denominator for v in y))
         table = symmetric_table(zero_one, tuple(int(v * den) for v in y))
         cols = np.asarray(table.columns, dtype=np.int64)
         vden = table.lcm * den
         # vden · cov(y) at every tail and head; AC at y: cov_v(y) <= cov_u(y) + w · max y
-        lhs = cheapest(mt[:, cols], table.scaled).astype(object)
-        rhs = cheapest(mh[:, cols], table.scaled).astype(object) + w_scaled * vden * max(y)
-        worse = np.flatnonzero(lhs > rhs)
-        if worse.size:
-            k = int(worse[0])
-            return ArcCondition(False, narcs, len(rays), (tails[k], heads[k], group[0]))
-    return ArcCondition(True, narcs, len(rays), None)
+        lhs = np.asarray(cheapest(mt[:, cols], table.scaled), dtype=object)
+        rhs = (np.asarray(cheapest(mh[:, cols], table.scaled), dtype=object)
+               + w_scaled * vden * max(y))
+        worse = lhs > rhs
+        if worse.any() and first is None:
+            k = int(np.flatnonzero(worse)[0])
+            first = (tails[k], heads[k], group[0])
+        failing |= worse
+    fail = tuple((tails[i], heads[i]) for i in np.flatnonzero(failing).tolist())
+    return ArcCondition(first is None, narcs, len(rays), first, fail)
+
+
+def _direction_test(sets: NormalSets, tails: list[int], heads: list[int],
+                    w_scaled: np.ndarray) -> ArcCondition:
+    """NG.8(c) for a normal set with extras: every packing-polytope direction, the 0/1 ones
+    included (the rule's support numbers need not be closed, ``proofs/NRULE.md`` NR.2)."""
+    n = sets.instance.n_goals
+    narcs = len(tails)
+    if math.comb(len(sets.normals) + n, n) > MAX_DIRECTION_BASES:
+        return ArcCondition(False, narcs, 0, None, (), decided=False)
+    checks = direction_checks(sets.normals, True)
+    stacked = np.stack([np.asarray(r, dtype=object) for r in sets.rows])
+    src = np.asarray(tails, dtype=np.int64)
+    dst = np.asarray(heads, dtype=np.int64)
+    failing: set[tuple[int, int]] = set()
+    first: tuple[int, int, tuple[tuple[Any, Any], ...]] | None = None
+    for chk in checks:
+        bad = failing_arc_mask(chk, stacked, stacked, src, dst, w_scaled)
+        for i in np.flatnonzero(bad).tolist():
+            failing.add((tails[i], heads[i]))
+            if first is None:
+                first = (tails[i], heads[i], (("y", chk.y),))
+    return ArcCondition(first is None, narcs, len(checks), first, tuple(sorted(failing)))

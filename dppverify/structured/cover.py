@@ -218,8 +218,8 @@ def _basic_solutions(columns: tuple[Normal, ...], rhs: Normal) -> Table:
 def symmetric_table(normals: tuple[Normal, ...], rhs: Normal) -> Table:
     """:func:`basic_solutions` by symmetry: the table of the sorted ``rhs``, columns permuted.
 
-    ``normals`` must be closed under permutations of the goals (the 0/1 vectors are; extra
-    normals are always added with all their permutations).
+    When ``normals`` is not closed under permutations of the goals (the 0/1 vectors are), the
+    table is enumerated directly.
 
     Examples
     --------
@@ -230,6 +230,8 @@ def symmetric_table(normals: tuple[Normal, ...], rhs: Normal) -> Table:
     True
     """
     n = len(rhs)
+    if not _permutation_closed(tuple(tuple(x) for x in normals)):
+        return basic_solutions(normals, rhs)
     order = sorted(range(n), key=lambda i: (-rhs[i], i))  # srt[k] = rhs[order[k]]
     base = basic_solutions(normals, tuple(rhs[i] for i in order))
     inv = [0] * n
@@ -238,6 +240,13 @@ def symmetric_table(normals: tuple[Normal, ...], rhs: Normal) -> Table:
     index = {v: j for j, v in enumerate(normals)}
     cols = tuple(index[tuple(normals[j][inv[i]] for i in range(n))] for j in base.columns)
     return Table(columns=cols, scaled=base.scaled, lcm=base.lcm)
+
+
+@cache
+def _permutation_closed(normals: tuple[Normal, ...]) -> bool:
+    """Whether every permutation of every normal is in the set (then tables are shared)."""
+    have = set(normals)
+    return all(tuple(p) in have for a in normals for p in itertools.permutations(a))
 
 
 def zero_one_normals(n_goals: int) -> tuple[Normal, ...]:
@@ -284,12 +293,13 @@ def balanced_vertices(size: int) -> BalancedVertices:
 
 
 @cache
-def packing_vertices(normals: tuple[Normal, ...]) -> tuple[tuple[tuple[Fraction, ...],
-                                                                tuple[Fraction, ...]], ...]:
+def packing_vertices(normals: tuple[Normal, ...], every: bool = False
+                     ) -> tuple[tuple[tuple[Fraction, ...], tuple[Fraction, ...]], ...]:
     """The vertices ``λ`` of ``{λ >= 0 : Σ_n λ_n n <= 1}`` with ``y_λ = Σ_n λ_n n`` not 0/1.
 
-    Returned as pairs ``(λ, y_λ)``. Vertices whose ``y_λ`` is a 0/1 vector are left out: the
-    arc condition holds for them automatically (``proofs/NGOAL.md`` NG.8).
+    Returned as pairs ``(λ, y_λ)``. Vertices whose ``y_λ`` is a 0/1 vector are left out unless
+    ``every``: for closed support numbers the arc condition holds for them automatically
+    (``proofs/NGOAL.md`` NG.8); ``λ = 0`` is always left out.
 
     Examples
     --------
@@ -309,7 +319,7 @@ def packing_vertices(normals: tuple[Normal, ...]) -> tuple[tuple[tuple[Fraction,
                 lam[col] = v[pos]
         y = tuple(sum((lam[j] * normals[j][i] for j in range(len(normals))), Fraction(0))
                   for i in range(n))
-        if any(x not in (0, 1) for x in y):
+        if any(x not in (0, 1) for x in y) or (every and any(y)):
             out.append((tuple(lam), y))
     return tuple(sorted(set(out)))
 

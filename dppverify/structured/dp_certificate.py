@@ -36,7 +36,7 @@ from dppverify.structured.cover import (
 )
 
 __all__ = ["Arc", "DirectionCheck", "certified_coalition_dp", "direction_checks",
-           "failing_arcs"]
+           "failing_arc_mask", "failing_arcs"]
 
 
 @dataclass(frozen=True)
@@ -65,8 +65,11 @@ class DirectionCheck:
 
 
 @cache
-def direction_checks(normals: tuple[Normal, ...]) -> tuple[DirectionCheck, ...]:
-    """The arc tests of a set of normals: one per direction ``y_λ`` that is not a 0/1 vector.
+def direction_checks(normals: tuple[Normal, ...], every: bool = False
+                     ) -> tuple[DirectionCheck, ...]:
+    """The arc tests of a set of normals: one per direction ``y_λ`` that is not a 0/1 vector
+    (every non-zero direction with ``every``: for support numbers that are not closed, e.g. the
+    guarantee rule's with extra normals, ``proofs/NRULE.md`` NR.2).
 
     Examples
     --------
@@ -76,7 +79,7 @@ def direction_checks(normals: tuple[Normal, ...]) -> tuple[DirectionCheck, ...]:
     ['1/2', '1', '1', '1']
     """
     groups: dict[tuple[Fraction, ...], list[tuple[Fraction, ...]]] = {}
-    for lam, y in packing_vertices(normals):
+    for lam, y in packing_vertices(normals, every):
         groups.setdefault(y, []).append(lam)
     out = []
     for y, lams in sorted(groups.items()):
@@ -124,24 +127,42 @@ def failing_arcs(checks: tuple[DirectionCheck, ...], new: np.ndarray, fin_new: n
     if not arcs.any():
         return []
     src, dst, wts = src[arcs], dst[arcs], wts[arcs]
-    nodes_v, nodes_u = np.unique(src), np.unique(dst)
-    mnew, mold = new[:, nodes_v].T, old[:, nodes_u].T
     out: list[Arc] = []
     for chk in checks:
-        cols = np.asarray(chk.cover.columns, dtype=np.int64)
-        hv = cheapest(mnew[:, cols], chk.cover.scaled)
-        mu = cheapest(mold, chk.lams.T)
-        hv_arc = hv[np.searchsorted(nodes_v, src)].astype(object)
-        mu_arc = mu[np.searchsorted(nodes_u, dst)].astype(object)
-        # h_v(y) <= w + λ·m_u at scale D: h_v(y) = hv / (lcm_T · s), λ·m_u = mu / lcm_λ
-        lhs = hv_arc * chk.lam_lcm
-        rhs = (wts.astype(object) * chk.cover.lcm * chk.lam_lcm * chk.scale
-               + mu_arc * chk.cover.lcm * chk.scale)
-        bad = np.flatnonzero(lhs > rhs)
+        bad = np.flatnonzero(failing_arc_mask(chk, new, old, src, dst, wts))
         if bad.size:
             i = int(bad[0])
             out.append((int(src[i]), int(dst[i]), chk.y))
     return out
+
+
+def failing_arc_mask(chk: DirectionCheck, new: np.ndarray, old: np.ndarray, src: np.ndarray,
+                     dst: np.ndarray, wts: np.ndarray) -> np.ndarray:
+    """Which arcs violate ``h_{F_v}(y) <= w + λ·m(u)`` in one direction (NG.8(c)).
+
+    ``new`` (at the tails) and ``old`` (at the heads) are ``(|M|, nodes)`` integer numerators
+    at one scale ``D``, ``wts`` the arc weights times ``D``; returns a boolean per arc.
+
+    Examples
+    --------
+    >>> chk = direction_checks(zero_one_normals(4))[0]
+    >>> at_u = np.array([[bin(s).count("1")] * 2 for s in range(1, 16)])
+    >>> failing_arc_mask(chk, at_u + 1, at_u, np.array([0]), np.array([1]),
+    ...                  np.array([1])).tolist()
+    [False]
+    """
+    nodes_v, nodes_u = np.unique(src), np.unique(dst)
+    mnew, mold = new[:, nodes_v].T, old[:, nodes_u].T
+    cols = np.asarray(chk.cover.columns, dtype=np.int64)
+    hv = np.asarray(cheapest(mnew[:, cols], chk.cover.scaled), dtype=object)
+    mu = np.asarray(cheapest(mold, chk.lams.T), dtype=object)
+    hv_arc = hv[np.searchsorted(nodes_v, src)]
+    mu_arc = mu[np.searchsorted(nodes_u, dst)]
+    # h_v(y) <= w + λ·m_u at scale D: h_v(y) = hv / (lcm_T · s), λ·m_u = mu / lcm_λ
+    lhs = hv_arc * chk.lam_lcm
+    rhs = (np.asarray(wts, dtype=object) * chk.cover.lcm * chk.lam_lcm * chk.scale
+           + mu_arc * chk.cover.lcm * chk.scale)
+    return np.asarray(lhs > rhs, dtype=bool)
 
 
 def certified_coalition_dp(inst: Instance, horizon: int | None, max_layers: int | None, *,

@@ -84,7 +84,7 @@ def _defender(tree: WalkTree, profile: Profile) -> DefenderOnTree | str:
     if isinstance(rule, GuaranteeRule):  # evaluated on every prefix of the tree
         from dppverify.structured.guarantee import guarantee_sets, rule_on_trie
 
-        sets = guarantee_sets(tree.instance)
+        sets = guarantee_sets(tree.instance, rule.normals)
         sigma, _ = rule_on_trie(tree.instance, rule, sets, tree.parent.tolist(),
                                 tree.node.tolist())
         return defender_from_table(tree, sigma, None)
