@@ -1,17 +1,17 @@
-"""The arc condition of the guarantee sets (``proofs/NSOLVE.md`` NSOLVE.2), exactly.
+"""The arc condition of the guarantee rule's sets, exactly (``proofs/NRULE.md`` NR.2).
 
-With ``m_S(v)`` the coalition DP at ``H = inf`` (:func:`dppverify.structured.guarantee.
-guarantee_sets`) and ``G_v = { r : r(S) <= m_S(v) for every non-empty S }``, the **arc
-condition** ``G_v ⊆ G_u + wΔ^N`` on every arc ``(v, u)`` that a walk can take (``v`` not a
-goal, some goal reachable from ``u``) makes the guarantee rule's ``F`` non-empty on every walk
-(NSOLVE.1). It is verified as follows: ``m`` is a fixpoint of the DP (steps and splits), which
-gives it for every direction ``y`` whose optimal covers regroup into fractional partitions of
-sets containing a type of largest ``y`` (NSOLVE.2); the remaining directions are the finitely
-many *non-pattern extreme rays* ``ρ`` of the cones ``{c >= 0 : y_c maximal at θ*}``
-(:func:`bad_rays`: none for ``N <= 3``, the merging lemma), each checked on every arc:
-``cov_v(y_ρ) <= cov_u(y_ρ) + w·max y_ρ`` (the arc condition in the direction ``y_ρ``:
-necessary, and with the fixpoint sufficient). The covers come from the exact vertex tables
-of :mod:`dppverify.structured.cover`.
+With ``m_a(v)`` the rule's DP at ``H = inf`` over its normals ``A``
+(:mod:`dppverify.structured.normal_fixpoint`; the coalition DP for the 0/1 vectors) and
+``F_v = { r : a·r <= m_a(v), a ∈ A }``, the **arc condition** ``F_v ⊆ F_u + wΔ^N`` on every arc
+``(v, u)`` that a walk can take (``v`` not a goal, some goal reachable from ``u``) makes the
+rule's ``F`` non-empty on every walk and guarantees every type ``h_θ`` (NR.2, NSOLVE.1). By
+Farkas' lemma it holds iff ``h_{F_v}(y) <= h_{F_u}(y) + w`` for the finitely many directions
+``y`` of the packing polytope's vertices
+(:func:`~dppverify.structured.cover.packing_directions`, each with ``max y = 1``); for the 0/1
+vectors alone the support numbers are closed and the DP's fixpoint gives the 0/1 directions,
+so only the others are tested (none for ``N <= 3``; NSOLVE.2's non-pattern rays
+:func:`bad_rays` are the same test in ray form). The support functions are exact cover LPs at
+every node (:func:`~dppverify.structured.cover_lp.cover_values`).
 """
 
 from __future__ import annotations
@@ -25,11 +25,11 @@ from typing import Any
 
 import numpy as np
 
-from dppverify.structured.cover import cheapest, dets, symmetric_table, zero_one_normals
-from dppverify.structured.dp_certificate import direction_checks, failing_arc_mask
+from dppverify.structured.cover import dets, packing_directions
+from dppverify.structured.cover_lp import cover_values
 from dppverify.structured.normal_fixpoint import NormalSets
 
-__all__ = ["MAX_DIRECTION_BASES", "ArcCondition", "arc_condition", "bad_rays", "walkable_arcs"]
+__all__ = ["ArcCondition", "arc_condition", "bad_rays", "walkable_arcs"]
 
 
 def _minors(mats: np.ndarray) -> np.ndarray:
@@ -104,15 +104,14 @@ class ArcCondition:
     arcs : int
         Walkable arcs checked.
     rays : int
-        Non-pattern directions checked on each arc (0 for N <= 3 and 0/1 normals).
+        Directions checked on each arc (0 for N <= 3 and 0/1 normals).
     failure : tuple or None
-        ``(v, u, ray)`` of the first arc where the test fails (``ray``: the failing cover
-        ``((mask, coefficient), …)`` for 0/1 normals, ``(("y", direction),)`` otherwise).
+        ``(v, u, (("y", y),))`` of the first arc where the test fails in direction ``y`` (the
+        step inequality's failures name the normal as ``y``).
     failing : tuple of tuple of int
         Every failing arc ``(v, u)``.
-    decided : bool
-        False when the test was not run (the normals' direction tables exceed
-        :data:`MAX_DIRECTION_BASES`); then ``holds`` is False.
+    directions : tuple
+        Every direction ``y`` in which some arc fails.
     """
 
     holds: bool
@@ -120,12 +119,7 @@ class ArcCondition:
     rays: int
     failure: tuple[int, int, tuple[tuple[Any, Any], ...]] | None
     failing: tuple[tuple[int, int], ...] = ()
-    decided: bool = True
-
-
-MAX_DIRECTION_BASES = 2_000_000
-"""Most bases :func:`~dppverify.structured.cover.packing_vertices` may enumerate for the arc
-test of a normal set with extras (``C(|A| + N, N)``); beyond it the test is not run."""
+    directions: tuple[tuple[Fraction, ...], ...] = ()
 
 
 def walkable_arcs(sets: NormalSets, start: int | None = None
@@ -171,9 +165,7 @@ def walkable_arcs(sets: NormalSets, start: int | None = None
 def arc_condition(sets: NormalSets, start: int | None = None) -> ArcCondition:
     """Check the arc condition exactly on every walkable arc (see the module docstring).
 
-    With extra normals the test is NG.8(c) over the packing polytope's directions
-    (:func:`~dppverify.structured.dp_certificate.direction_checks`); without, NSOLVE.2's
-    non-pattern rays. ``start``: only the arcs a walk from ``start`` can take.
+    ``start``: only the arcs a walk from ``start`` can take.
 
     Examples
     --------
@@ -188,8 +180,6 @@ def arc_condition(sets: NormalSets, start: int | None = None) -> ArcCondition:
     >>> arc_condition(guarantee_sets(hub4(), extras)).holds
     True
     """
-    inst = sets.instance
-    n = inst.n_goals
     tails, heads, weights = walkable_arcs(sets, start)
     narcs = len(tails)
     if narcs == 0:
@@ -212,59 +202,36 @@ def arc_condition(sets: NormalSets, start: int | None = None) -> ArcCondition:
             k = int(bad[0])
             fail = tuple((tails[i], heads[i]) for i in bad.tolist())
             return ArcCondition(False, narcs, 0, (tails[k], heads[k], (("y", a),)), fail)
-    if sets.extras:
-        return _direction_test(sets, tails, heads, w_scaled)
-    rays = bad_rays(n)
-    if not rays:
+    return _support_test(sets, tails, heads, w_scaled)
+
+
+def _support_test(sets: NormalSets, tails: list[int], heads: list[int],
+                  w_scaled: np.ndarray) -> ArcCondition:
+    """``h_{F_v}(y) <= h_{F_u}(y) + w`` on every arc for every packing direction ``y``
+    (``proofs/NRULE.md`` NR.2; ``max y = 1``). Without extra normals the support numbers are
+    closed and the 0/1 directions hold by the fixpoint's step inequality (NG.8(c)), so only
+    the others are tested."""
+    narcs = len(tails)
+    ys = [y for y in packing_directions(sets.normals)
+          if sets.extras or any(x not in (0, 1) for x in y)]
+    if not ys:
         return ArcCondition(True, narcs, 0, None)
-    # m at the tails and heads as integer matrices (one column per subset mask 1 … 2^n - 1)
-    mt = np.stack([np.asarray(sets.rows[s - 1], dtype=object)[t_idx] for s in range(1, 1 << n)],
-                  axis=1)
-    mh = np.stack([np.asarray(sets.rows[s - 1], dtype=object)[h_idx] for s in range(1, 1 << n)],
-                  axis=1)
-    by_y: dict[tuple[Fraction, ...], list[tuple[tuple[int, Fraction], ...]]] = {}
-    for ray, _star in rays:
-        y = tuple(sum((c for s, c in ray if s >> i & 1), Fraction(0)) for i in range(n))
-        by_y.setdefault(y, []).append(ray)
-    zero_one = zero_one_normals(n)
+    nodes = np.unique(np.asarray(tails + heads, dtype=np.int64))
+    stacked = np.stack([np.asarray(r, dtype=object)[nodes] for r in sets.rows])
+    t_pos = np.searchsorted(nodes, np.asarray(tails, dtype=np.int64))
+    h_pos = np.searchsorted(nodes, np.asarray(heads, dtype=np.int64))
     failing = np.zeros(narcs, dtype=bool)
     first: tuple[int, int, tuple[tuple[Any, Any], ...]] | None = None
-    for y, group in by_y.items():
-        den = math.lcm(*(v.denominator for v in y))
-        table = symmetric_table(zero_one, tuple(int(v * den) for v in y))
-        cols = np.asarray(table.columns, dtype=np.int64)
-        vden = table.lcm * den
-        # vden · cov(y) at every tail and head; AC at y: cov_v(y) <= cov_u(y) + w · max y
-        lhs = np.asarray(cheapest(mt[:, cols], table.scaled), dtype=object)
-        rhs = (np.asarray(cheapest(mh[:, cols], table.scaled), dtype=object)
-               + w_scaled * vden * max(y))
-        worse = lhs > rhs
-        if worse.any() and first is None:
-            k = int(np.flatnonzero(worse)[0])
-            first = (tails[k], heads[k], group[0])
-        failing |= worse
-    fail = tuple((tails[i], heads[i]) for i in np.flatnonzero(failing).tolist())
-    return ArcCondition(first is None, narcs, len(rays), first, fail)
-
-
-def _direction_test(sets: NormalSets, tails: list[int], heads: list[int],
-                    w_scaled: np.ndarray) -> ArcCondition:
-    """NG.8(c) for a normal set with extras: every packing-polytope direction, the 0/1 ones
-    included (the rule's support numbers need not be closed, ``proofs/NRULE.md`` NR.2)."""
-    n = sets.instance.n_goals
-    narcs = len(tails)
-    if math.comb(len(sets.normals) + n, n) > MAX_DIRECTION_BASES:
-        return ArcCondition(False, narcs, 0, None, (), decided=False)
-    checks = direction_checks(sets.normals, True)
-    stacked = np.stack([np.asarray(r, dtype=object) for r in sets.rows])
-    src = np.asarray(tails, dtype=np.int64)
-    dst = np.asarray(heads, dtype=np.int64)
-    failing: set[tuple[int, int]] = set()
-    first: tuple[int, int, tuple[tuple[Any, Any], ...]] | None = None
-    for chk in checks:
-        bad = failing_arc_mask(chk, stacked, stacked, src, dst, w_scaled)
-        for i in np.flatnonzero(bad).tolist():
-            failing.add((tails[i], heads[i]))
+    bad_ys = []
+    for y in ys:
+        s = math.lcm(*(x.denominator for x in y))
+        num, den = cover_values(sets.normals, stacked, tuple(int(x * s) for x in y))
+        bad = num[t_pos] > num[h_pos] + w_scaled * (s * den)
+        if bad.any():
+            bad_ys.append(y)
             if first is None:
-                first = (tails[i], heads[i], (("y", chk.y),))
-    return ArcCondition(first is None, narcs, len(checks), first, tuple(sorted(failing)))
+                k = int(np.flatnonzero(bad)[0])
+                first = (tails[k], heads[k], (("y", y),))
+        failing |= np.asarray(bad, dtype=bool)
+    fail = tuple(sorted({(tails[i], heads[i]) for i in np.flatnonzero(failing).tolist()}))
+    return ArcCondition(first is None, narcs, len(ys), first, fail, tuple(bad_ys))

@@ -35,7 +35,8 @@ import numpy as np
 
 __all__ = ["MAX_BALANCED", "BalancedVertices", "CoverLP", "Normal", "Table", "balanced_vertices",
            "basic_solutions", "cheapest", "dets", "members", "min_cover", "min_cover_vectors",
-           "packing_vertices", "popcount", "symmetric_table", "zero_one_normals"]
+           "packing_directions", "packing_vertices", "popcount", "symmetric_table",
+           "zero_one_normals"]
 
 Normal = tuple[int, ...]
 """A facet normal (or cover column): a non-negative integer vector, one entry per goal index."""
@@ -199,20 +200,34 @@ def _basic_solutions(columns: tuple[Normal, ...], rhs: Normal) -> Table:
         sign = np.sign(det)[:, None]
         feas = np.all(numer * sign >= 0, axis=1)
         chunk, det, numer = chunk[feas], det[feas], numer[feas]
-        common = int(np.lcm.reduce(np.abs(det))) if det.size else 1
-        dense = np.zeros((chunk.shape[0], len(keep)), dtype=np.int64)
+        common = math.lcm(1, *(int(x) for x in np.unique(np.abs(det))))
+        wide = common * (int(np.abs(numer).max(initial=0)) + 1) >= 2 ** 62
+        dense = np.zeros((chunk.shape[0], len(keep)), dtype=object if wide else np.int64)
         idx = np.arange(chunk.shape[0])
+        factor = np.array([common // int(x) for x in det], dtype=object if wide else np.int64)
         for i in range(m):
-            dense[idx, chunk[:, i]] = numer[:, i] * (common // det)
-        found.append(dense)
+            dense[idx, chunk[:, i]] = numer[:, i].astype(dense.dtype) * factor
+        # degenerate vertices have several bases
+        found.append(np.unique(dense, axis=0) if not wide else
+                     np.array(sorted(set(map(tuple, dense.tolist()))), dtype=object))
         dens.append(common)
     lcm = math.lcm(1, *dens)
-    stacked = np.concatenate([d * (lcm // c) for d, c in zip(found, dens, strict=True)]) \
-        if found else np.zeros((0, len(keep)), dtype=np.int64)
-    unique = np.unique(stacked, axis=0)  # degenerate vertices have several bases
-    g = int(np.gcd.reduce(np.append(unique.ravel(), lcm)))
-    return Table(columns=tuple(keep), scaled=np.ascontiguousarray((unique // g).T),
-                 lcm=lcm // g)
+    top = max((int(np.abs(d).max(initial=0)) * (lcm // c) for d, c in
+               zip(found, dens, strict=True)), default=0)
+    if top < 2 ** 62:
+        stacked = np.concatenate([d * (lcm // c) for d, c in zip(found, dens, strict=True)]) \
+            if found else np.zeros((0, len(keep)), dtype=np.int64)
+        unique = np.unique(stacked, axis=0)
+        g = math.gcd(lcm, *(int(x) for x in np.unique(unique)))
+        scaled = np.ascontiguousarray((unique // g).T)
+    else:  # beyond int64: exact Python integers (N = 5 tables can get there)
+        rows_set = {tuple(int(x) * (lcm // c) for x in row) for d, c in
+                    zip(found, dens, strict=True) for row in d.tolist()}
+        rows_sorted = sorted(rows_set)
+        g = math.gcd(lcm, *(x for row in rows_sorted for x in row))
+        scaled = np.array([[x // g for x in row] for row in rows_sorted],
+                          dtype=object).reshape(len(rows_sorted), len(keep)).T.copy()
+    return Table(columns=tuple(keep), scaled=scaled, lcm=lcm // g)
 
 
 def symmetric_table(normals: tuple[Normal, ...], rhs: Normal) -> Table:
@@ -322,6 +337,63 @@ def packing_vertices(normals: tuple[Normal, ...], every: bool = False
         if any(x not in (0, 1) for x in y) or (every and any(y)):
             out.append((tuple(lam), y))
     return tuple(sorted(set(out)))
+
+
+@cache
+def packing_directions(normals: tuple[Normal, ...]) -> tuple[tuple[Fraction, ...], ...]:
+    """Every non-zero ``y_λ = Σ_n λ_n n`` over the vertices ``λ`` of ``{λ >= 0 : Σ_n λ_n n <= 1}``.
+
+    A vertex has basic normals ``B`` and basic slacks ``S``; with ``T`` the other coordinates,
+    ``y_T = 1``, ``B_T λ_B = 1_T`` (``B_T`` non-singular, ``|B| = |T|``), ``λ_B >= 0`` and
+    ``y_S <= 1``. So every such ``y`` has ``max y = 1``, and ``T`` = all coordinates gives
+    ``y = 1`` only: the enumeration runs over ``|T| < N`` and ``|B| = |T|`` normals (exact
+    integer determinants), far fewer bases than the whole polytope's. ``normals`` must contain
+    the unit vectors.
+
+    Examples
+    --------
+    >>> ys = packing_directions(zero_one_normals(4))
+    >>> len(ys), sum(1 for y in ys if any(x not in (0, 1) for x in y))
+    (19, 4)
+    >>> len(packing_directions(zero_one_normals(5))) - 31
+    45
+    """
+    n = len(normals[0])
+    amat = np.array(normals, dtype=np.int64)  # K × n
+    k = amat.shape[0]
+    found: set[tuple[Fraction, ...]] = {(Fraction(1),) * n}
+    for t in range(1, n):
+        combos_all = itertools.combinations(range(k), t)
+        while True:
+            combos = np.array(list(itertools.islice(combos_all, 200_000)), dtype=np.int64)
+            if combos.size == 0:
+                break
+            cols = amat[combos]  # (C, t, n): the t normals of every combination
+            for tset in itertools.combinations(range(n), t):
+                entries = [[np.ascontiguousarray(cols[:, c, tset[r]]) for c in range(t)]
+                           for r in range(t)]
+                det = dets(entries)
+                ok = det != 0
+                if not ok.any():
+                    continue
+                sub = [[e[ok] for e in row] for row in entries]
+                d = det[ok]
+                ones = np.ones(d.size, dtype=np.int64)
+                lam = np.stack([dets([[ones if c == i else sub[r][c] for c in range(t)]
+                                      for r in range(t)]) for i in range(t)], axis=1)
+                sign = np.sign(d)[:, None]
+                lam = lam * sign  # λ·|det|
+                feas = np.all(lam >= 0, axis=1)
+                if not feas.any():
+                    continue
+                y = np.einsum("bc,bcn->bn", lam[feas], cols[ok][feas])  # y·|det|
+                ad = np.abs(d[feas])
+                keep = np.all(y <= ad[:, None], axis=1)
+                pairs = np.concatenate([y[keep], ad[keep][:, None]], axis=1)
+                g = np.gcd.reduce(pairs, axis=1)
+                for *row, den in np.unique(pairs // g[:, None], axis=0).tolist():
+                    found.add(tuple(Fraction(x, den) for x in row))
+    return tuple(sorted(found))
 
 
 def cheapest(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:

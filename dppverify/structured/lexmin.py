@@ -17,7 +17,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from fractions import Fraction
 
-__all__ = ["lexmin", "reduce_rows", "simplex_min"]
+__all__ = ["lexmin", "reduce_rows", "simplex_basis", "simplex_min"]
 
 Row = tuple[tuple[int, ...], Fraction]
 
@@ -53,6 +53,8 @@ def simplex_min(cost: Sequence[Fraction], eq_rows: Sequence[Sequence[Fraction]],
                 eq_rhs: Sequence[Fraction]) -> list[Fraction] | None:
     """``argmin cost·x`` s.t. ``x >= 0``, ``eq_rows x = eq_rhs``; None if infeasible.
 
+    :func:`simplex_basis` with the basis left out.
+
     Exact two-phase simplex with Bland's rule (the feasible set must be bounded: here it
     always lies in a simplex). Negative right-hand sides are negated first.
 
@@ -61,6 +63,20 @@ def simplex_min(cost: Sequence[Fraction], eq_rows: Sequence[Sequence[Fraction]],
     >>> simplex_min([Fraction(1), Fraction(0)], [[Fraction(1), Fraction(1)]], [Fraction(1)])
     [Fraction(0, 1), Fraction(1, 1)]
     >>> simplex_min([Fraction(1)], [[Fraction(1)], [Fraction(2)]], [Fraction(1), Fraction(1)])
+    """
+    out = simplex_basis(cost, eq_rows, eq_rhs)
+    return None if out is None else out[0]
+
+
+def simplex_basis(cost: Sequence[Fraction], eq_rows: Sequence[Sequence[Fraction]],
+                  eq_rhs: Sequence[Fraction]) -> tuple[list[Fraction], list[int]] | None:
+    """:func:`simplex_min` and its optimal basis (one column per row; a row whose artificial
+    could not leave the basis is redundant and gets ``-1``).
+
+    Examples
+    --------
+    >>> simplex_basis([Fraction(2), Fraction(1)], [[Fraction(1), Fraction(1)]], [Fraction(3)])
+    ([Fraction(0, 1), Fraction(3, 1)], [1])
     """
     m = len(eq_rows)
     nv = len(cost)
@@ -130,7 +146,7 @@ def simplex_min(cost: Sequence[Fraction], eq_rows: Sequence[Sequence[Fraction]],
     for i in range(m):
         if basis[i] < nv:
             x[basis[i]] = tab[i][total]
-    return x
+    return x, [b if b < nv else -1 for b in basis]
 
 
 def lexmin(rows: Sequence[Row], n: int, order: Sequence[int]) -> tuple[Fraction, ...] | None:

@@ -164,7 +164,8 @@ def proper_cover_table(normals: Sequence[Normal], a: Normal) -> tuple[list[int],
     return idx, table
 
 
-def normal_sets(instance: Instance, extras: Sequence[Normal] = ()) -> NormalSets:
+def normal_sets(instance: Instance, extras: Sequence[Normal] = (),
+                base: NormalSets | None = None) -> NormalSets:
     """``m_a`` at ``H = inf`` for the 0/1 normals and ``extras``: one label-setting pass each.
 
     Parameters
@@ -174,6 +175,9 @@ def normal_sets(instance: Instance, extras: Sequence[Normal] = ()) -> NormalSets
     extras : sequence of Normal
         Extra normals: non-negative integer vectors of length N, not 0/1, distinct (the
         profile reader validates them).
+    base : NormalSets, optional
+        Sets of the same instance over fewer normals: the rows of its normals are reused
+        unless a new normal lies below them (then their splits may change).
 
     Examples
     --------
@@ -199,8 +203,22 @@ def normal_sets(instance: Instance, extras: Sequence[Normal] = ()) -> NormalSets
     scale = coalition_scale(inst, list(split_of.values()))
     rows: list[np.ndarray | None] = [None] * len(normals)
     order = sorted(range(len(normals)), key=lambda j: (sum(normals[j]), j))
+    reuse: dict[int, np.ndarray] = {}
+    if base is not None and base.instance is inst:
+        old = {a: k for k, a in enumerate(base.normals)}
+        fresh = [a for a in normals if a not in old]
+        for j, a in enumerate(normals):
+            k = old.get(a)
+            if k is not None and not any(b != a and all(x <= y for x, y in zip(b, a, strict=True))
+                                         for b in fresh):
+                reuse[j] = np.asarray(base.rows[k], dtype=object)
+        if reuse:
+            scale = base.scale
     for j in order:
         a = normals[j]
+        if j in reuse:
+            rows[j] = reuse[j] * (scale // base.scale) if base is not None else reuse[j]
+            continue
         init = np.full(n, -1, dtype=object)
         for g in inst.goals:
             init[g] = sum(int(Fraction(inst.dist_to[t][g]) * scale) * a[t]

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -41,10 +41,21 @@ import numpy as np
 from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import Bracket, Number, normalize
 from dppverify.game.instance import Instance
+from dppverify.structured.arc_condition import ArcCondition, arc_condition, walkable_arcs
 from dppverify.structured.coalition import CoalitionRunner, CoalitionValue, too_many_goals
-from dppverify.structured.cover import MAX_BALANCED, Normal, cheapest, zero_one_normals
+from dppverify.structured.cover import (
+    MAX_BALANCED,
+    Normal,
+    cheapest,
+    min_cover_vectors,
+    packing_directions,
+    zero_one_normals,
+)
+from dppverify.structured.cover_lp import cover_values
 from dppverify.structured.dp_certificate import Arc, certified_coalition_dp, direction_checks
+from dppverify.structured.guarantee import dp_value
 from dppverify.structured.normal_dp import BeyondExactRange, normal_dp_value
+from dppverify.structured.normal_fixpoint import NormalSets, normal_sets
 
 __all__ = [
     "NValue",
@@ -221,8 +232,138 @@ def coalition_nvalue(coal: CoalitionValue, n_goals: int) -> NValue:
                   coalition=coal)
 
 
-def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = None
-           ) -> NValue:
+MAX_EXTRAS = 64
+"""The refinement stops once the extra normals would exceed this many (the profile format's
+limit on ``normals``)."""
+
+
+def _sets_value(sets: NormalSets) -> Fraction:
+    inst = sets.instance
+    col = sets.column(inst.start)
+    assert col is not None  # the start reaches a goal
+    return Fraction(min_cover_vectors(sets.normals, col, inst.prior).value)
+
+
+def _translated_lower(sets: NormalSets) -> Fraction | None:
+    """NG.10 in support-function form: ``DP_inf - t(s0)`` for the least ``t >= 0`` (0 at the
+    goals) with ``(t_v - t_u)·(1·y) >= h_{F_v}(y) - h_{F_u}(y) - w`` for every walkable arc and
+    packing direction ``y``; None if that longest-path problem does not settle (a positive
+    cycle)."""
+    inst = sets.instance
+    tails, heads, weights = walkable_arcs(sets, inst.start)
+    if not tails:
+        return _sets_value(sets)
+    nodes = np.unique(np.asarray(tails + heads, dtype=np.int64))
+    stacked = np.stack([np.asarray(r, dtype=object)[nodes] for r in sets.rows])
+    t_pos = np.searchsorted(nodes, np.asarray(tails, dtype=np.int64))
+    h_pos = np.searchsorted(nodes, np.asarray(heads, dtype=np.int64))
+    wts = [Fraction(w) for w in weights]
+    ell = [Fraction(-10 ** 30)] * len(tails)
+    for y in packing_directions(sets.normals):
+        s = math.lcm(*(x.denominator for x in y))
+        num, den = cover_values(sets.normals, stacked, tuple(int(x * s) for x in y))
+        size = sum(y, Fraction(0))
+        for k in range(len(tails)):
+            gap = (Fraction(int(num[t_pos[k]]) - int(num[h_pos[k]]), den * sets.scale * s)
+                   - wts[k]) / size
+            if gap > ell[k]:
+                ell[k] = gap
+    t = dict.fromkeys(nodes.tolist(), Fraction(0))
+    for _ in range(len(t) + 1):
+        changed = False
+        for k, (v, u) in enumerate(zip(tails, heads, strict=True)):
+            want = max(Fraction(0), t[u] + ell[k])
+            if not inst.is_goal(v) and want > t[v]:
+                t[v] = want
+                changed = True
+        if not changed:
+            return _sets_value(sets) - t[inst.start]
+    return None
+
+
+def _infinite_nvalue(inst: Instance, progress: Callable[[str], None] | None) -> NValue:
+    """:func:`nvalue` at ``H = inf``: label-setting fixpoints (NRULE NR.1), their arc test
+    (NR.2) and a refinement with the failing directions as extra normals."""
+    n = inst.n_goals
+    say = progress or (lambda _msg: None)
+    say("the coalition DP at H = inf (one label-setting pass per goal subset)")
+    sets = normal_sets(inst)
+    coal = dp_value(sets)
+    upper = Fraction(coal.value)
+    if n <= 3:
+        return coalition_nvalue(coal, n)
+    say("the arc condition of the coalition sets on every walkable arc")
+    arc = arc_condition(sets, inst.start)
+    src = "coalition DP, certified at every arc (NG.8, NRULE NR.1(e))"
+    if arc.holds:
+        return NValue(normalize(upper), normalize(upper), src, src, None, horizon=None,
+                      layers=len(sets.normals), normals=(), coalition=coal)
+    up_src = "coalition DP (NG.2: an upper bound)"
+    reason = _arc_reason(inst, arc, "the coalition DP")
+    lower, lo_src = lower_bound_simple(inst)
+    say("a lower bound from the coalition sets translated into a sub-fixpoint (NG.10)")
+    shift = _translated_lower(sets)
+    if shift is not None and shift > lower:
+        lower, lo_src = shift, ("the coalition DP's fixpoint sets translated into a "
+                                "sub-fixpoint (NG.10)")
+    if lower == upper:
+        src = "coalition DP (NG.2) meeting the translated fixpoint bound (NG.10)"
+        return NValue(normalize(upper), normalize(upper), src, src, None, horizon=None,
+                      layers=len(sets.normals), normals=(), coalition=coal)
+    extras: list[Normal] = []
+    up_normals: tuple[Normal, ...] = ()
+    for round_ in range(1, MAX_ROUNDS + 1):
+        failing = arc.failure
+        assert failing is not None
+        new = [d for d in dict.fromkeys(extra_directions(_failing_directions(arc)))
+               if d not in extras and any(x > 1 for x in d)]
+        if not new:
+            reason += "; no new direction to refine with"
+            break
+        if len(extras) + len(new) > MAX_EXTRAS:
+            reason += (f"; refining needs more than {MAX_EXTRAS} extra normals (the refinement "
+                       f"budget)")
+            break
+        extras += sorted(new, reverse=True)
+        say(f"refinement round {round_}: {len(extras)} extra normals")
+        sets = normal_sets(inst, extras, base=sets)
+        val = _sets_value(sets)
+        if val < upper:
+            upper, up_normals = val, tuple(extras)
+            up_src = (f"DP over {len(extras)} extra facet normals (NRULE NR.1(a): an upper "
+                      f"bound)")
+        say(f"refinement round {round_}: the arc condition with {len(extras)} extra normals")
+        arc = arc_condition(sets, inst.start)
+        if arc.holds:
+            src = (f"DP over {len(extras)} extra facet normals, certified at every arc "
+                   f"(NRULE NR.1(e))")
+            return NValue(normalize(val), normalize(val), src, src, None, horizon=None,
+                          layers=len(sets.normals), normals=tuple(extras), coalition=coal)
+        if lower == upper:
+            src = f"{up_src[:-1]}) meeting {lo_src}"
+            return NValue(normalize(upper), normalize(upper), src, src, None, horizon=None,
+                          layers=len(sets.normals), normals=up_normals, coalition=coal)
+        reason = _arc_reason(inst, arc, f"the DP with {len(extras)} extra normals")
+    else:
+        reason += f"; {MAX_ROUNDS} refinement rounds (the refinement budget)"
+    return NValue(normalize(lower), normalize(upper), lo_src, up_src, reason, horizon=None,
+                  layers=len(sets.normals), normals=up_normals, coalition=coal)
+
+
+def _failing_directions(arc: ArcCondition) -> list[tuple[Fraction, ...]]:
+    assert arc.failure is not None
+    return [tuple(Fraction(x) for x in arc.failure[2][0][1]), *arc.directions]
+
+
+def _arc_reason(inst: Instance, arc: ArcCondition, what: str) -> str:
+    assert arc.failure is not None
+    v, u, ((_, y),) = arc.failure
+    return (f"arc {inst.nodes[v]!r} -> {inst.nodes[u]!r} fails the certificate of {what} in "
+            f"direction ({', '.join(str(x) for x in y)})")
+
+
+def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = None,
+           progress: Callable[[str], None] | None = None) -> NValue:
     """``V_H`` of an N-goal instance (2 to 5 goals), exact where proved, else a bracket.
 
     For N <= 3 the coalition DP is the value (NG.3, NG.4). For N = 4, 5 the coalition DP is
@@ -244,13 +385,15 @@ def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = 
     Fraction(3, 2)
     >>> v = nvalue(hub4(), None)
     >>> v.value, v.normals
-    (Fraction(12, 7), ((2, 2, 2, 1), (2, 2, 1, 2), (2, 1, 2, 2), (1, 2, 2, 2)))
+    (Fraction(12, 7), ((2, 2, 2, 1),))
     """
     inst = instance
     if not 2 <= inst.n_goals <= MAX_BALANCED:
         raise OptionError(too_many_goals(inst.n_goals))
     if horizon is not None and horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
+    if horizon is None:
+        return _infinite_nvalue(inst, progress)
     coal, fails, start = certified_coalition_dp(inst, horizon, max_layers)
     upper, layers = Fraction(coal.value), coal.layers
     n = inst.n_goals

@@ -128,8 +128,6 @@ class RuleSearch:
         self._col: dict[int, list[Fraction] | None] = {}
 
     def _safe_nodes(self, tails: list[int], heads: list[int]) -> set[int]:
-        if not self.arc.decided:
-            return set()
         bad_tails = {v for v, _ in self.arc.failing}
         pred: dict[int, list[int]] = {}
         for v, u in zip(tails, heads, strict=True):

@@ -1,9 +1,10 @@
 """An independent judge for the guarantee rule with normals (tests only; slow and simple).
 
 Nothing here uses the checker's rule code: the rule's DP is the layered recursion of
-``proofs/NRULE.md`` (dominated covers, NG.7's layers until one repeats) in Fractions with its
-own vertex enumeration; the rule's ``σ`` is the lexicographic minimum found by enumerating the
-vertices of ``F``; best responses enumerate the walks (deduplicated by node and state).
+``proofs/NRULE.md`` (dominated covers, NG.7's layers until one repeats) in Fractions (only the
+cover polytopes' vertex tables are the checker's); the rule's ``σ`` is the lexicographic
+minimum found by enumerating the vertices of ``F``; best responses enumerate the walks
+(deduplicated by node and state).
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from collections.abc import Sequence
 from fractions import Fraction
 
 from dppverify.game.instance import Instance
+from dppverify.structured.cover import basic_solutions
 
 Normal = tuple[int, ...]
 
@@ -35,20 +37,11 @@ def solve(mat: list[list[Fraction]], n: int) -> list[Fraction] | None:
 
 
 def cover_vertices(columns: Sequence[Normal], rhs: Normal) -> list[dict[int, Fraction]]:
-    """Every vertex of ``{c >= 0 : Σ c_j columns[j] = rhs}`` (brute force over bases)."""
-    rows = [i for i, x in enumerate(rhs) if x]
-    usable = [j for j, c in enumerate(columns)
-              if any(c) and all(c[i] == 0 for i in range(len(rhs)) if rhs[i] == 0)]
-    out: list[dict[int, Fraction]] = []
-    for basis in itertools.combinations(usable, len(rows)):
-        mat = [[Fraction(columns[j][i]) for j in basis] + [Fraction(rhs[i])] for i in rows]
-        x = solve(mat, len(rows))
-        if x is None or any(v < 0 for v in x):
-            continue
-        vert = {j: v for j, v in zip(basis, x, strict=True) if v}
-        if vert not in out:
-            out.append(vert)
-    return out
+    """Every vertex of ``{c >= 0 : Σ c_j columns[j] = rhs}`` (the checker's exact vertex
+    enumeration, :func:`dppverify.structured.cover.basic_solutions`: the judge's recursion,
+    rule and walks are its own, the vertex tables are shared for speed)."""
+    table = basic_solutions(list(columns), rhs)
+    return [{table.columns[j]: c for j, c in enumerate(v) if c} for v in table.vertices]
 
 
 def layered_dp(inst: Instance, normals: Sequence[Normal], max_layers: int = 400

@@ -117,7 +117,7 @@ def _draw(seed: int) -> tuple[dict[str, Any], dict[str, Any], int]:
     m = layered_dp(inst, normals)
     attacker = []
     for theta in range(n_goals):
-        best, walk = min_over_walks(inst, h, normals, m, theta, steps)
+        _, walk = min_over_walks(inst, h, normals, m, theta, steps)
         assert walk is not None
         choice = rng.random()
         walks = [walk]
@@ -206,7 +206,19 @@ def test_the_hub_with_its_exact_normals_passes_by_the_guarantee() -> None:
     cert = certify(hub4_document(), profile, horizon="inf", route="structured")
     assert cert.verdict == "pass", [(c.id, c.status, c.message) for c in cert.checks]
     assert "NR.2" in cert.check("ngoal.pbne.attacker_br").message
-    # the same walks against the 0/1 rule: refuted by a witness walk
+    # the 0/1 rule with the same h: its arc condition fails at u -> u1, so NR.2 says nothing,
+    # but the exhaustive search proves that no walk beats the profile (and the tree route,
+    # which sees every walk of this finite game, agrees)
     profile["defender"] = {"rule": "guarantee", "h": [str(x) for x in h]}
     cert = certify(hub4_document(), profile, horizon="inf", route="structured")
-    assert cert.verdict == "fail"
+    br = cert.check("ngoal.pbne.attacker_br")
+    assert cert.verdict == "pass" and "exhaustive search" in br.message, br.message
+    assert "fails on 1 arc(s)" in br.message
+    assert certify(hub4_document(), profile, horizon=3, route="tree").verdict == "pass"
+    # with the coalition DP's h the 0/1 rule is refuted by a witness walk: on u -> u1 its F is
+    # empty, the fallback guards goal 1 only and type 2 walks to g2 unguarded
+    profile["defender"] = {"rule": "guarantee", "h": ["2", "2", "3/2", "3/2"]}
+    cert = certify(hub4_document(), profile, horizon="inf", route="structured")
+    br = cert.check("ngoal.pbne.attacker_br")
+    assert cert.verdict == "fail" and br.status == "fail"
+    assert certify(hub4_document(), profile, horizon=3, route="tree").verdict == "fail"
