@@ -124,7 +124,13 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
     (32, [], 'line 2', [[0, 1], [1, 5]])
     """
     from dppverify.formats.movingai import grid_document, read_map
-    from dppverify.formats.scen import component, fake_goal, fake_goal_candidates, parse_scen
+    from dppverify.formats.scen import (
+        candidates_of,
+        component,
+        fake_goal,
+        goals_by_map,
+        parse_scen,
+    )
 
     grid = read_map(map_file)
     try:
@@ -133,13 +139,14 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
         raise AuditError(f"--scen {scen_file}: cannot read ({exc})") from None
     scenarios = parse_scen(text)
     name = Path(map_file).name
-    mine = [s for s in scenarios if s.reason or Path(s.map).name == name]
+    mine = {s.line for s in scenarios if s.reason or Path(s.map).name == name}
     if not mine:
         raise AuditError(f"--scen {scen_file}: no scenario line on the map {name}")
     docs: list[tuple[str, Doc]] = []
     bad: list[tuple[int, str]] = []
-    for i, sc in enumerate(scenarios):
-        if sc not in mine:
+    goals = goals_by_map(scenarios)  # once: each line's candidates in linear time
+    for sc in scenarios:
+        if sc.line not in mine:
             continue
         if sc.reason:
             bad.append((sc.line, sc.reason))
@@ -154,7 +161,7 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
                                  "an obstacle"))
             continue
         reach = component(grid.free, grid.height, grid.width, sc.start, connectivity)
-        fake = fake_goal(fake_goal_candidates(scenarios, i, seed), reach.__contains__)
+        fake = fake_goal(candidates_of(goals[sc.map], sc, seed), reach.__contains__)
         if sc.start == sc.goal or sc.goal not in reach or fake is None:
             bad.append((sc.line, "the start is the goal, the goal is unreachable, or no "
                                  "fake goal"))
@@ -162,8 +169,8 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
         doc = grid_document(grid, sc.start, (sc.goal, fake), list(prior),
                             connectivity=connectivity)
         docs.append((f"line {sc.line}", _plain(doc)))
-    if len(docs) > MAX_AUDIT_INSTANCES:
-        raise AuditError(f"--scen {scen_file}: more than {MAX_AUDIT_INSTANCES} games")
+        if len(docs) > MAX_AUDIT_INSTANCES:  # at once, before building the rest
+            raise AuditError(f"--scen {scen_file}: more than {MAX_AUDIT_INSTANCES} games")
     return docs, bad
 
 

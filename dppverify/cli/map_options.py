@@ -24,12 +24,14 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
+from dppio.memory import check_memory
 from dppverify.errors import CheckerError, InvalidInstanceError, OptionError
 from dppverify.formats.json_reading import parse_number
-from dppverify.formats.movingai import read_map
+from dppverify.formats.movingai import PASSABLE, GridMap, read_map
 from dppverify.formats.standard_maps import PREFIX, resolve_map
 from dppverify.game.grids import grid_game
 from dppverify.game.instance import Instance
+from dppverify.limits import map_memory
 from dppverify.text import show
 
 if TYPE_CHECKING:
@@ -163,12 +165,21 @@ class MapRequest:
         """
         return self.ninstance() if self.n_goals > 2 else self.instance()
 
+    def _read(self) -> GridMap:
+        """The map, refused in one line when its game would need more memory than this
+        process may use (:func:`dppverify.limits.map_memory`)."""
+        grid = read_map(self.path)
+        free = sum(sum(ch in PASSABLE for ch in row) for row in grid.rows)
+        check_memory(map_memory(free, self.n_goals), error=InvalidInstanceError,
+                     what=f"{self.map}: the game of {free} free cells and {self.n_goals} goals")
+        return grid
+
     def ninstance(self) -> Instance:
         """The checker's N-goal instance of the grid (:mod:`dppverify.game.instance`)."""
         from dppverify.formats.movingai import grid_document
         from dppverify.game.instance import instance_from_json
 
-        grid = read_map(self.path)
+        grid = self._read()
         try:
             return instance_from_json(grid_document(grid, self.start, self.goals, self.prior,
                                                      connectivity=self.connectivity))
@@ -178,7 +189,7 @@ class MapRequest:
     def instance(self) -> Instance:
         """The checker's two-goal :class:`~dppverify.game.instance.Instance` (its own ``.map``
         reader, :func:`~dppverify.formats.movingai.grid_game`)."""
-        grid = read_map(self.path)
+        grid = self._read()
         try:
             return grid_game(grid, self.start, self.goals, self.prior,
                              connectivity=self.connectivity)

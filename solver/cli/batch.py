@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -9,11 +10,12 @@ from typing import Any
 import click
 
 from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
+from dppverify.cli.interrupts import Terminated, exit_code, message
 from dppverify.errors import CheckerError
 from solver.cli.common import check_dask_address
-from solver.errors import InvalidInstanceError, OutputError
+from solver.errors import InvalidInstanceError
 
-__all__ = ["batch_checker", "batch_command", "batch_example"]
+__all__ = ["BatchProgress", "batch_checker", "batch_command", "batch_example"]
 
 
 def batch_checker() -> Any:
@@ -27,14 +29,13 @@ def batch_checker() -> Any:
     ('dpp-batch/1', 'dppverify.certify')
     """
     from dppverify.certify import certify
-    from dppverify.formats.scen import BATCH_RULE, fake_goal_candidates, parse_scen
+    from dppverify.formats.scen import BATCH_RULE, candidates_of, goals_by_map, parse_scen
     from dppverify.formats.standard_maps import standard_map_path
     from solver.experiments.batch import Checker
 
-    return Checker(certify=certify, parse_scen=parse_scen,
-                   fake_goal_candidates=fake_goal_candidates,
-                   standard_map_path=standard_map_path, errors=(CheckerError,),
-                   rule=BATCH_RULE)
+    return Checker(certify=certify, parse_scen=parse_scen, goals_by_map=goals_by_map,
+                   candidates_of=candidates_of, standard_map_path=standard_map_path,
+                   errors=(CheckerError,), rule=BATCH_RULE)
 
 
 def batch_example() -> tuple[Any, Path]:
@@ -81,7 +82,11 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
 
     The fake goal of a line is the goal of another line of the same map, picked by a seeded
     rule; the prior is --prior (scenario goal first). Bad lines are rows with a reason. An
-    interrupted run continues where it stopped when run again with the same arguments.
+    interrupted run continues where it stopped when run again with the same arguments; -o
+    is only ever appended to when it is a batch CSV of the same configuration (anything else
+    is refused, untouched). Exit code, from every row of the file: 0 every line certified
+    (verdict pass), 1 a profile refuted (verdict fail), 3 a verdict error/incomplete or an
+    internal error, else 2 when a line could not be made a game.
 
     \b
     Examples:
@@ -89,36 +94,79 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
       dpp batch s.scen -o s.csv --maps maps/ --prior 0.6,0.4 --seed 3 --workers 2
       dpp batch s.scen -o s.csv --dask tcp://127.0.0.1:8786
     """
-    from tqdm import tqdm
+    from solver.experiments.batch import BatchConfig, parse_prior, run_batch
 
-    from solver.experiments.batch import BatchConfig, parse_prior, run_batch, summarize_file
-
-    if Path(output).is_dir():
-        raise OutputError(f"-o {output!r} is a directory")
     check_dask_address(dask_address)
     for folder in maps:
-        if not Path(folder).is_dir():
+        if not os.path.isdir(folder):  # False on any error (a name too long, a NUL byte)
             raise InvalidInstanceError(f"--maps {folder!r} is not a folder")
     config = BatchConfig(seed=seed, prior=parse_prior(prior_text),
                          connectivity=int(connectivity), maps=maps, route=route)
-    bar = tqdm(unit="line", file=sys.stderr, disable=not want_progress(progress), desc="batch")
-
-    def start(done: int, total: int) -> None:
-        bar.reset(total=total)
-        bar.update(done)
-        if done:
-            status(f"resuming: {output} holds {done} of {total} rows")
-
+    bar = BatchProgress(want_progress(progress), output)
     try:
-        written, rows = run_batch(scen, output, config, batch_checker(), workers=workers,
-                                  dask_address=dask_address, chunk=chunk, progress=bar.update,
-                                  on_start=start)
-    except KeyboardInterrupt:
+        result = run_batch(scen, output, config, batch_checker(), workers=workers,
+                           dask_address=dask_address, chunk=chunk, progress=bar.update,
+                           on_start=bar.start)
+    except (KeyboardInterrupt, Terminated) as exc:
         bar.close()
-        status(f"interrupted: the rows finished so far are in {output}; run the same command "
-               "again to continue")
-        raise click.exceptions.Exit(130) from None
+        click.echo(bar.interrupted(exc), err=True)
+        raise click.exceptions.Exit(exit_code(exc)) from None
     finally:
         bar.close()
-    click.echo(summarize_file(output))
-    status(f"wrote {output}: {written} rows now, {rows} in the file")
+    click.echo(result.summary)
+    status(f"wrote {output}: {result.written} rows now, {result.rows} in the file")
+    raise click.exceptions.Exit(result.exit_code)
+
+
+class BatchProgress:
+    """``dpp batch``'s progress: a bar counting only this run's rows (a resumed run's rate
+    and ETA are not inflated by the rows it found), and the line printed when a signal ends
+    the run (naming the file only when it holds rows).
+
+    Examples
+    --------
+    >>> import io
+    >>> p = BatchProgress(True, "b.csv", file=io.StringIO())
+    >>> p.start(30, 40); p.update(1)
+    >>> p.bar.format_dict["initial"], p.bar.format_dict["n"]
+    (30, 31)
+    >>> p.close(); p.interrupted(KeyboardInterrupt())
+    'error: interrupted by SIGINT; the 31 rows finished so far are in b.csv: run the same \
+command again to continue'
+    >>> BatchProgress(False, "b.csv").interrupted(KeyboardInterrupt())
+    'error: interrupted by SIGINT before the first row was finished; nothing was written'
+    """
+
+    def __init__(self, show: bool, output: str, file: Any = None) -> None:
+        self.show, self.output, self.file = show, output, file
+        self.bar: Any = None
+        self.rows = 0
+
+    def start(self, done: int, total: int) -> None:
+        """The run starts with ``done`` of ``total`` rows already in the file."""
+        from tqdm import tqdm
+
+        self.rows = done
+        self.bar = tqdm(total=total, initial=done, unit="line", desc="batch",
+                        file=self.file or sys.stderr, disable=not self.show)
+        if done:
+            status(f"resuming: {self.output} holds {done} of {total} rows")
+
+    def update(self, n: int) -> None:
+        """``n`` more rows are in the file."""
+        self.rows += n
+        if self.bar is not None:
+            self.bar.update(n)
+
+    def close(self) -> None:
+        """Remove the bar (idempotent)."""
+        if self.bar is not None:
+            self.bar.close()
+
+    def interrupted(self, exc: BaseException) -> str:
+        """The one line printed when the signal ``exc`` ends the run."""
+        what = message(exc).split(";")[0]
+        if self.rows == 0:
+            return f"{what} before the first row was finished; nothing was written"
+        return (f"{what}; the {self.rows} row{'s' if self.rows != 1 else ''} finished so far are "
+                f"in {self.output}: run the same command again to continue")

@@ -18,7 +18,7 @@ from dppverify.cli.conventions import (
     want_progress,
 )
 from dppverify.cli.map_options import MapRequest, instance_or_map, map_options
-from solver.cli.common import START_IS_GOAL, dumps, load_with_digest
+from solver.cli.common import START_IS_GOAL, check_map_memory, dumps, load_with_digest
 from solver.errors import DPPError, InvalidInstanceError, OutputError
 
 if TYPE_CHECKING:
@@ -124,8 +124,10 @@ def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
             raise InvalidInstanceError(f"{grid.map}: the N-goal solver is exact only: float "
                                        "weights (--connectivity 8) are not supported for more "
                                        "than two goals")
+        blocked = read_map(grid.path)
+        check_map_memory(grid.map, blocked, grid.n_goals)
         try:
-            return ngame_from_grid(read_map(grid.path), grid.start, grid.goals, grid.prior)
+            return ngame_from_grid(blocked, grid.start, grid.goals, grid.prior)
         except InvalidInstanceError as exc:
             raise InvalidInstanceError(f"{grid.map}: {exc}") from None
     assert instance is not None

@@ -13,12 +13,10 @@ import csv
 import io
 import os
 from collections.abc import Callable, Iterable, Iterator
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict, dataclass
 from fractions import Fraction
 from typing import Any
 
-from dppio.procs import descendants
 from solver.errors import InvalidInstanceError
 from solver.experiments.dask_tasks import dask_completed
 from solver.experiments.sampling import Cell, sample_grid
@@ -209,74 +207,23 @@ def _run_local(tasks: list[Task], workers: int,
             if progress:
                 progress(t.count)
         return out
-    import multiprocessing
+    from solver.experiments.local_pool import completed
 
-    ctx = multiprocessing.get_context("forkserver" if os.name == "posix" else "spawn")
-    pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)), mp_context=ctx,
-                               initializer=_own_process_group)
-    try:
-        futures = {pool.submit(run_task, t): t for t in tasks}
-        results = []
-        for fut in as_completed(futures):
-            results.append(fut.result())
-            if progress:
-                progress(futures[fut].count)
-    except BaseException:  # a signal, an error: no worker outlives the sweep
-        _kill_workers(pool)
-        raise
-    pool.shutdown()
+    results = []
+    for task, rows in completed(run_task, tasks, min(workers, len(tasks))):
+        results.append(rows)
+        if progress:
+            progress(task.count)
     return results
-
-
-def _own_process_group() -> None:  # pragma: no cover - runs in a worker
-    """Worker initializer: a process group of its own (a terminal's Ctrl-C reaches only the
-    sweep, which then kills each worker's group), default signal handlers."""
-    import signal
-
-    if os.name == "posix":
-        os.setpgid(0, 0)
-        for s in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
-            signal.signal(s, signal.SIG_DFL)
-
-
-def _kill_workers(pool: ProcessPoolExecutor) -> None:
-    """Kill every worker process of ``pool`` and its process group, then shut it down."""
-    import contextlib
-    import signal
-
-    procs = list(getattr(pool, "_processes", {}).values())  # no public accessor
-    for proc in procs:
-        with contextlib.suppress(OSError):
-            if os.name == "posix":
-                os.killpg(proc.pid, signal.SIGKILL)
-        with contextlib.suppress(OSError):
-            proc.kill()
-    import multiprocessing.forkserver
-
-    server: int = getattr(getattr(multiprocessing.forkserver, "_forkserver", None),
-                          "_forkserver_pid", None) or 0  # no public accessor either
-    for _ in range(20 if server > 0 else 0):  # the forkserver and a worker it was starting
-        found = [*descendants(server), server]
-        for pid in found:
-            with contextlib.suppress(OSError):
-                os.kill(pid, signal.SIGKILL)
-        if len(found) == 1:
-            break
-    manager = getattr(pool, "_executor_manager_thread", None)  # no public accessor
-    pool.shutdown(wait=False, cancel_futures=True)
-    for proc in procs:
-        proc.join(5)
-    if manager is not None:  # let it close its wake-up pipe before the interpreter exits:
-        manager.join(5)      # else concurrent.futures' exit hook may write to it as it closes
 
 
 def _run_dask(tasks: list[Task], address: str,
               progress: Callable[[int], None] | None) -> list[list[Row]]:
     results = []
-    for i, rows in dask_completed(run_task, tasks, address):
+    for task, rows in dask_completed(run_task, tasks, address):
         results.append(rows)
         if progress:
-            progress(tasks[i].count)
+            progress(task.count)
     return results
 
 
