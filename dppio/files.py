@@ -191,16 +191,16 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
         mode = file_mode()
         for target, content in regular:
             current = target
-            fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.",
+            fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=_temp_prefix(target),
                                        suffix=".tmp")
             temps.append((tmp, target))
-            data = content.encode("utf-8") if isinstance(content, str) else content
+            data = _encode(content)
             with os.fdopen(fd, "wb") as fh:
                 fh.write(data)
             os.chmod(tmp, mode)
         for target, content in special:
             current = target
-            _stream(target, content.encode("utf-8") if isinstance(content, str) else content)
+            _stream(target, _encode(content))
         for tmp, target in temps:
             current = target
             os.replace(tmp, target)
@@ -265,7 +265,7 @@ def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Pat
             same = os.path.samefile(out, path)
         except OSError:
             same = os.path.realpath(out) == os.path.realpath(path)
-        if same and (not out.exists() or out.is_file()):
+        if same and (not os.path.exists(out) or os.path.isfile(out)):
             raise error(f"{option} {out} is an input of this command; refusing to "
                         "overwrite it (give another path)")
 
@@ -298,13 +298,44 @@ def _stream(target: Path, data: bytes) -> None:
         os.close(fd)
 
 
+def _encode(content: str | bytes) -> bytes:
+    """UTF-8 bytes of ``content``; a character UTF-8 cannot hold (a lone surrogate: a file
+    name that is not UTF-8, as Python reads it) is written as its escape ``\\udcff``, which in
+    a JSON string reads back as the same character.
+
+    Examples
+    --------
+    >>> name = os.fsdecode(b"b\\xff.json")  # a file name that is not UTF-8
+    >>> _encode(f'{{"file": "{name}"}}')
+    b'{"file": "b\\\\udcff.json"}'
+    """
+    if isinstance(content, bytes):
+        return content
+    return content.encode("utf-8", "backslashreplace")
+
+
+def _temp_prefix(target: Path) -> str:
+    """``.NAME.`` for the temporary file of ``target`` (``.NAME.XXXXXXXX.tmp``), or ``.dpp.``
+    when that would pass the file system's limit of 255 bytes for a name (a legal name of
+    250 bytes must still be writable).
+
+    Examples
+    --------
+    >>> _temp_prefix(Path("out/p.json")), _temp_prefix(Path("a" * 250 + ".json"))
+    ('.p.json.', '.dpp.')
+    """
+    if len(os.fsencode(target.name)) + len("..XXXXXXXX.tmp") > 255:
+        return ".dpp."
+    return f".{target.name}."
+
+
 def _target(path: str | Path, error: ErrorClass) -> Path:
     if str(path) == "":
         raise error("the output path is empty")
     p = Path(path)
-    if p.is_dir():
+    if os.path.isdir(p):  # (os.path: False, not an exception, for a name too long)
         raise error(f"cannot write {p}: it is a folder")
-    if p.is_symlink() and p.is_file():  # keep the link; replace the file it points to
+    if os.path.islink(p) and os.path.isfile(p):  # keep the link; replace the file it points to
         return Path(os.path.realpath(p))
     return p
 

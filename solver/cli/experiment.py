@@ -9,7 +9,7 @@ from typing import Any
 
 import click
 
-from dppio.files import write_files
+from dppio.files import refuse_input_as_output, write_files
 from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.cli.map_options import MapRequest, map_options
 from solver.cli.common import (
@@ -58,6 +58,10 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
     from solver.experiments.compare import compare_csv, compare_table, verdict
     from solver.strategy_pairs import COMPARE_PAIRS, PairEvaluator
 
+    if output_dir:  # before any work: an output is never an input
+        for target in (Path(output_dir) / "compare.csv", Path(output_dir) / "compare.txt"):
+            refuse_input_as_output(target, [instance, grid.path if grid is not None else None],
+                                   option="--output-dir", error=OutputError)
     inst = experiment_instance(instance, grid)
     game = PairEvaluator.of(inst)
     results = tuple(game.pair(d, a) for d, a in tqdm(

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
-from dppio.files import write_files
+from dppio.files import refuse_input_as_output, write_files
 from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.cli.map_options import _CellsOption as CellsOption
 from solver.cli.common import dumps
@@ -121,6 +121,10 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
     if str(output_dir) == "":
         raise InvalidInstanceError("--output-dir: the output path is empty")
     specs = maps or (DEFAULT_MAP,)
+    d = Path(output_dir)
+    for target in (d / "ngoal.csv", d / "ngoal.png"):  # before any work: never an input
+        refuse_input_as_output(target, [resolve_map(spec) for spec in specs],
+                               option="--output-dir", error=OutputError)
     if len(specs) > 1 and (start is not None or goals is not None):
         raise InvalidInstanceError("--start/--goals need a single --map")
     start_cell = None if start is None else _cell(start, "--start")
@@ -142,7 +146,6 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
         placed.append((name, blocked, grid, s, g))
     run = _values if values_only else _equilibria
     csv_text, png = run(placed, max_goals, as_json, want_progress(progress))
-    d = Path(output_dir)
     write_files({d / "ngoal.csv": csv_text, d / "ngoal.png": png}, error=OutputError)
     status(f"wrote {d / 'ngoal.csv'} ({len(csv_text.splitlines()) - 1} rows) and "
            f"{d / 'ngoal.png'}")
