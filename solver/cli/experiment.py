@@ -125,7 +125,7 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
     )
     from solver.experiments.ngoal import corner_cells
     from solver.movingai import read_map
-    from solver.plots import save_figure
+    from solver.plots.style import figure_bytes
 
     dens = int_list(densities, "--densities") if samples else ()
     check_grid_count(samples, dens)
@@ -153,11 +153,10 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
         click.echo(text, nl=False)
     if output_dir is not None:
         out = Path(output_dir)
-        write_files({out / "baselines.csv": rows_csv(rows), out / "summary.txt": text},
-                    error=OutputError)
-        figures = save_figure(plot_baselines(rows), out / "baselines.png")
-        status(f"wrote {out / 'baselines.csv'}, {out / 'summary.txt'}, "
-               + ", ".join(str(f) for f in figures))
+        write_files({out / "baselines.csv": rows_csv(rows), out / "summary.txt": text,
+                     out / "baselines.png": figure_bytes(plot_baselines(rows), "png")},
+                    error=OutputError)  # all three or none
+        status(f"wrote {out / 'baselines.csv'}, {out / 'summary.txt'}, {out / 'baselines.png'}")
 
 
 @experiment_group.command("density", short_help="VoI of six strategy pairs on random grids.")

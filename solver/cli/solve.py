@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
-from dppio.files import refuse_input_as_output, write_atomic
+from dppio.files import refuse_input_as_output, write_files
 from dppverify import cli as checker_cli
 from dppverify.cli.conventions import (
     PhaseBar,
@@ -94,10 +94,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
                                      connectivity=grid.connectivity, digest=digest))
     finally:
         bar.close()
-    if output is not None:
-        write_atomic(output, dumps(doc), error=OutputError)
-    if save_instance is not None and instance_text is not None:
-        write_atomic(save_instance, instance_text, error=OutputError)
+    _write_outputs(output, dumps(doc), save_instance, instance_text)
     if output is not None:  # the one output convention: -o writes, stdout stays empty
         u, voi = (f"{x:.10g}" if isinstance(x, float) else str(x)  # float mode: 10 digits
                   for x in (doc["value"]["U"], doc["value"]["VoI"]))
@@ -108,6 +105,19 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         click.echo(summarize(eq))
     if save_instance is not None:
         status(f"wrote {save_instance}: the instance")
+
+
+def _write_outputs(output: str | None, profile: str, save_instance: str | None,
+                   instance_text: str | None) -> None:
+    """Commit ``-o`` and ``--save-instance`` together: both or neither (a full disk never
+    leaves one of them)."""
+    files = {}
+    if output is not None:
+        files[output] = profile
+    if save_instance is not None and instance_text is not None:
+        files[save_instance] = instance_text
+    if files:
+        write_files(files, error=OutputError)
 
 
 def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
@@ -193,10 +203,7 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
     if save_instance is not None:  # a map game: the compact document naming the map
         instance_text = dumps(ngame_to_json(game) if grid is None else
                               _map_document(grid, Path(save_instance).parent))
-    if output is not None:
-        write_atomic(output, text, error=OutputError)
-    if save_instance is not None and instance_text is not None:
-        write_atomic(save_instance, instance_text, error=OutputError)
+    _write_outputs(output, text, save_instance, instance_text)
     if output is not None:  # the one output convention: -o writes, stdout stays empty
         status(f"wrote {output}: U = {doc['value']['U']}, VoI = {doc['value']['VoI']} "
                f"(N = {game.n_goals} goals, certified)")

@@ -481,15 +481,21 @@ def parse_prior(text: str) -> tuple[str, str]:
     >>> parse_prior("0.6,0.5")
     Traceback (most recent call last):
     solver.errors.InvalidInstanceError: --prior 0.6,0.5: the two priors must sum to 1
+    >>> parse_prior("1e999999999,0")
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: --prior: the exponent of '1e999999999' is beyond the \
+limit of 400 (e.g. 1/2,1/2 or 0.6,0.4)
     """
+    from solver.numbers import parse_number
+
     parts = [p.strip() for p in text.split(",")]
-    try:
-        if len(parts) != 2:
-            raise ValueError
-        nums = [Fraction(p) for p in parts]
-    except (ValueError, ZeroDivisionError):
+    if len(parts) != 2:
         raise InvalidInstanceError(f"--prior takes two numbers P,Q (e.g. 1/2,1/2 or 0.6,0.4), "
-                                   f"got {text!r}") from None
+                                   f"got {text[:60]!r}")
+    try:  # within the numeral limits: '1e999999999' is refused, never expanded
+        nums = [Fraction(parse_number(p, where="--prior")) for p in parts]
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{exc} (e.g. 1/2,1/2 or 0.6,0.4)") from None
     if not all(0 < x < 1 for x in nums):
         raise InvalidInstanceError(f"--prior {text}: each prior must lie in (0, 1)")
     if sum(nums) != 1:
