@@ -40,6 +40,7 @@ from dppio.limits import MAX_INPUT_BYTES
 __all__ = [
     "OutputError",
     "file_mode",
+    "short_path",
     "open_input",
     "read_input",
     "read_text",
@@ -62,6 +63,24 @@ def file_mode() -> int:
     mask = os.umask(0)
     os.umask(mask)
     return 0o666 & ~mask
+
+
+def short_path(path: str | Path, limit: int = 160) -> str:
+    """``path`` for a one-line message: cut in the middle when longer than ``limit``
+    characters (a path past PATH_MAX would make the line kilobytes long).
+
+    Examples
+    --------
+    >>> short_path("out/p.json")
+    'out/p.json'
+    >>> short_path("d" * 400 + "/p.json", limit=20)
+    'dddddddddd…dd/p.json (407 characters)'
+    """
+    text = str(path)
+    if len(text) <= limit:
+        return text
+    half = limit // 2
+    return f"{text[:half]}…{text[-half:]} ({len(text)} characters)"
 
 
 def read_input(path: str | Path, *, limit: int = MAX_INPUT_BYTES) -> bytes:
@@ -208,7 +227,7 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
     except OSError as exc:
         _clean(temps, created)
         reason = exc.strerror or str(exc)
-        raise error(f"cannot write {current}: {reason}") from None
+        raise error(f"cannot write {short_path(current)}: {reason}") from None
     except BaseException:
         _clean(temps, created)
         raise
@@ -266,7 +285,7 @@ def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Pat
         except OSError:
             same = os.path.realpath(out) == os.path.realpath(path)
         if same and (not os.path.exists(out) or os.path.isfile(out)):
-            raise error(f"{option} {out} is an input of this command; refusing to "
+            raise error(f"{option} {short_path(out)} is an input of this command; refusing to "
                         "overwrite it (give another path)")
 
 
@@ -334,7 +353,7 @@ def _target(path: str | Path, error: ErrorClass) -> Path:
         raise error("the output path is empty")
     p = Path(path)
     if os.path.isdir(p):  # (os.path: False, not an exception, for a name too long)
-        raise error(f"cannot write {p}: it is a folder")
+        raise error(f"cannot write {short_path(p)}: it is a folder")
     if os.path.islink(p) and os.path.isfile(p):  # keep the link; replace the file it points to
         return Path(os.path.realpath(p))
     return p

@@ -32,7 +32,7 @@ import tempfile
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-from dppio.files import file_mode
+from dppio.files import file_mode, short_path
 from solver.errors import InvalidInstanceError, OutputError
 from solver.experiments.batch_csv import HEADER, BatchTally, format_rows, parse_row, read_rows
 
@@ -115,7 +115,7 @@ file)
         OutputError
             One line, before any byte is written: the rule of this module.
         """
-        shown = str(output)
+        shown = short_path(output)
         if shown == "":
             raise OutputError("-o: the output path is empty")
         try:
