@@ -74,7 +74,7 @@ def short_path(path: str | Path, limit: int = 160) -> str:
     >>> short_path("out/p.json")
     'out/p.json'
     >>> short_path("d" * 400 + "/p.json", limit=20)
-    'dddddddddd…dd/p.json (407 characters)'
+    'dddddddddd…ddd/p.json (407 characters)'
     """
     text = str(path)
     if len(text) <= limit:
