@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 import os
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import asdict, dataclass
@@ -261,13 +262,42 @@ def rows_to_csv(rows: Iterable[Row]) -> str:
 
 
 def rows_from_csv(text: str) -> Iterator[dict[str, Any]]:
-    """Read back what :func:`rows_to_csv` wrote (density as int, VoI_float as float)."""
-    for rec in csv.DictReader(io.StringIO(text)):
-        missing = set(CSV_FIELDS) - set(rec)
-        if missing:
-            raise InvalidInstanceError(f"CSV lacks column(s) {sorted(missing)}")
-        try:
-            yield {**rec, "density": int(rec["density"]), "sample": int(rec["sample"]),
-                   "VoI_float": float(rec["VoI_float"])}
-        except ValueError as exc:
-            raise InvalidInstanceError(f"bad CSV row {rec}: {exc}") from None
+    """Read back what :func:`rows_to_csv` wrote (density as int, VoI_float as a finite
+    float); anything else (a field too large for CSV, a number that is not one) is a one-line
+    :class:`~solver.errors.InvalidInstanceError`.
+
+    Examples
+    --------
+    >>> text = ",".join(CSV_FIELDS) + chr(10) + "0,2,1,0,sigma*,gamma*,6,0,18/5,24/5,1/4,1e999"
+    >>> list(rows_from_csv(text))
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: CSV line 2: VoI_float '1e999' is not a finite number
+    """
+    reader = csv.DictReader(io.StringIO(text))
+    try:
+        for rec in reader:
+            missing = set(CSV_FIELDS) - set(rec)
+            if missing:
+                raise InvalidInstanceError(f"CSV lacks column(s) {sorted(missing)}")
+            yield _density_row(rec, reader.line_num)
+    except csv.Error as exc:
+        raise InvalidInstanceError(f"CSV line {reader.line_num}: {exc}") from None
+
+
+def _density_row(rec: dict[str, Any], line: int) -> dict[str, Any]:
+    out: dict[str, Any] = dict(rec)
+    for key in ("density", "sample"):
+        text = str(rec[key])
+        if not (text.isdigit() and len(text) <= 10):
+            raise InvalidInstanceError(f"CSV line {line}: {key} {text[:40]!r} is not a count")
+        out[key] = int(text)
+    text = str(rec["VoI_float"])
+    try:
+        voi = float(text) if len(text) <= 40 else math.nan
+    except ValueError:
+        voi = math.nan
+    if not math.isfinite(voi):
+        raise InvalidInstanceError(f"CSV line {line}: VoI_float {text[:40]!r} is not a finite "
+                                   "number")
+    out["VoI_float"] = voi
+    return out
