@@ -106,7 +106,7 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
     try:
         result = run_batch(scen, output, config, batch_checker(), workers=workers,
                            dask_address=dask_address, chunk=chunk, progress=bar.update,
-                           on_start=bar.start)
+                           on_start=bar.start, on_end=bar.end)
     except (KeyboardInterrupt, Terminated) as exc:
         bar.close()
         click.echo(bar.interrupted(exc), err=True)
@@ -131,8 +131,8 @@ class BatchProgress:
     >>> p.bar.format_dict["initial"], p.bar.format_dict["n"]
     (30, 31)
     >>> p.close(); p.interrupted(KeyboardInterrupt())
-    'error: interrupted by SIGINT; the 31 rows finished so far are in b.csv: run the same \
-command again to continue'
+    'error: interrupted by SIGINT; 31 rows finished so far are in b.csv: run the same command \
+again to continue'
     >>> BatchProgress(False, "b.csv").interrupted(KeyboardInterrupt())
     'error: interrupted by SIGINT before the first row was finished; nothing was written'
     """
@@ -158,6 +158,10 @@ command again to continue'
         if self.bar is not None:
             self.bar.update(n)
 
+    def end(self, rows: int) -> None:
+        """The run ended (however) with ``rows`` rows in the file."""
+        self.rows = rows
+
     def close(self) -> None:
         """Remove the bar (idempotent)."""
         if self.bar is not None:
@@ -168,5 +172,6 @@ command again to continue'
         what = message(exc).split(";")[0]
         if self.rows == 0:
             return f"{what} before the first row was finished; nothing was written"
-        return (f"{what}; the {self.rows} row{'s' if self.rows != 1 else ''} finished so far are "
-                f"in {self.output}: run the same command again to continue")
+        rows = "1 row finished so far is" if self.rows == 1 else \
+            f"{self.rows} rows finished so far are"
+        return f"{what}; {rows} in {self.output}: run the same command again to continue"

@@ -402,6 +402,7 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
               workers: int = 1, dask_address: str | None = None, chunk: int = 8,
               progress: Callable[[int], None] | None = None,
               on_start: Callable[[int, int], None] | None = None,
+              on_end: Callable[[int], None] | None = None,
               limit: int | None = None) -> BatchResult:
     """Run (or continue) the batch.
 
@@ -425,6 +426,9 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
         Called with the number of rows each finished task wrote.
     on_start : callable, optional
         Called with (rows already done, rows in total) before the work starts.
+    on_end : callable, optional
+        Called with the rows the file holds when the run ends, however it ends (a signal
+        too).
     limit : int, optional
         Stop after this many tasks (used to test interruptions).
 
@@ -447,10 +451,17 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
         tasks: Iterable[BatchTask] = plan.tasks(out.done, chunk)
         if limit is not None:
             tasks = (t for _, t in zip(range(limit), tasks, strict=False))
-        for rows in _results(tasks, workers, dask_address):
-            out.append(rows)
-            if progress is not None:
-                progress(len(rows))
+        try:
+            for rows in _results(tasks, workers, dask_address):
+                out.append(rows)
+                if progress is not None:
+                    progress(len(rows))
+        except BaseException:  # a signal, an error: the rows the file really holds
+            if on_end is not None:
+                on_end(out.rows_in_file())
+            raise
+        if on_end is not None:
+            on_end(out.tally.rows)
         return BatchResult(out.written, out.tally.rows, out.tally.summary(),
                            out.tally.exit_code())
 

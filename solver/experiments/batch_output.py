@@ -212,24 +212,40 @@ file)
             self._create(HEADER + data)
         else:
             pos = os.lseek(self._fd, 0, os.SEEK_END)
+            complete = False
             try:
                 _write_all(self._fd, (HEADER if pos == 0 else b"") + data)
                 os.fsync(self._fd)
-            except OSError as exc:
-                with contextlib.suppress(OSError):
-                    os.ftruncate(self._fd, pos)
-                raise OutputError(f"cannot write {self.shown}: {exc.strerror or exc}; "
-                                  f"{self._kept()}") from None
+                complete = True
+            except BaseException as exc:  # a full disk, a signal: back to the last whole row
+                if not complete:
+                    with contextlib.suppress(OSError):
+                        os.ftruncate(self._fd, pos)
+                if isinstance(exc, OSError):
+                    raise OutputError(f"cannot write {self.shown}: {exc.strerror or exc}; "
+                                      f"{self._kept()}") from None
+                raise
         self.written += len(rows)
         for info in infos:
             self.tally.add(info)
+
+    def rows_in_file(self) -> int:
+        """The rows the file holds now, counted from the file itself (when a signal ended
+        the run between a write and its count); 0 when there is no file."""
+        if self._fd is None:
+            return 0
+        try:
+            with open(self.target, "rb") as fh:
+                return sum(1 for _ in read_rows(iter(lambda: fh.read(1 << 20), b"")))
+        except (OSError, InvalidInstanceError):
+            return self.tally.rows
 
     def _kept(self) -> str:
         rows = self.tally.rows
         if rows == 0:
             return "nothing was written"
-        return (f"the {rows} row{'s' if rows != 1 else ''} finished before are in it: run the "
-                "same command again to continue")
+        held = "1 row finished before is" if rows == 1 else f"{rows} rows finished before are"
+        return f"{held} in it: run the same command again to continue"
 
     def _create(self, data: bytes) -> None:
         """The new file, with its header and first rows: written next to it, then linked into
@@ -249,6 +265,7 @@ file)
             except FileExistsError:
                 raise OutputError(f"-o {self.shown} appeared while the batch ran (another "
                                   "program made it); the rows are not written") from None
+            self._fd = fd  # linked: the file exists now, whatever happens next
             os.unlink(tmp)
             tmp = None
             with contextlib.suppress(OSError):
@@ -257,22 +274,20 @@ file)
                     os.fsync(dfd)
                 finally:
                     os.close(dfd)
-        except OSError as exc:
-            if fd is not None:
-                os.close(fd)
+        except BaseException as exc:  # an error, a signal: nothing stays unless it was linked
             if tmp is not None:
                 Path(tmp).unlink(missing_ok=True)
-            _remove_created(self._created)
-            raise OutputError(f"cannot write {self.shown}: {exc.strerror or exc}; nothing was "
-                              "written") from None
-        except BaseException:
+            if self._fd is not None:  # linked: the file stands (a failed folder fsync too)
+                if isinstance(exc, Exception):
+                    return
+                raise
             if fd is not None:
                 os.close(fd)
-            if tmp is not None:
-                Path(tmp).unlink(missing_ok=True)
             _remove_created(self._created)
+            if isinstance(exc, OSError) and not isinstance(exc, OutputError):
+                raise OutputError(f"cannot write {self.shown}: {exc.strerror or exc}; nothing "
+                                  "was written") from None
             raise
-        self._fd = fd
 
     def close(self) -> None:
         """Release the file (and its lock); folders made for a file never written go."""

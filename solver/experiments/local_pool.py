@@ -128,20 +128,28 @@ def completed(fn: Callable[[T], R], tasks: Iterable[T], workers: int, *,
 _END = object()
 
 
-def _start_time(pid: int) -> str:
-    """The start time of process ``pid`` (``/proc``; '' elsewhere): with the pid, it names
-    the process even after its pid is reused."""
+def _stat(pid: int) -> list[str]:
+    """The fields of ``/proc/PID/stat`` after the command name (empty when unreadable)."""
     try:
         text = Path(f"/proc/{pid}/stat").read_text()
     except OSError:
-        return ""
-    fields = text[text.rfind(")") + 2:].split()
+        return []
+    return text[text.rfind(")") + 2:].split()
+
+
+def _start_time(pid: int) -> str:
+    """The start time of process ``pid`` (``/proc``; '' elsewhere): with the pid, it names
+    the process even after its pid is reused."""
+    fields = _stat(pid)
     return fields[19] if len(fields) > 19 else ""
 
 
 def _alive(pid: int, started: str) -> bool:
+    """True while the run's process lives: not gone, not a zombie (killed, not yet reaped),
+    not another process with its pid."""
     if started:
-        return _start_time(pid) == started
+        fields = _stat(pid)
+        return len(fields) > 19 and fields[19] == started and fields[0] not in ("Z", "X")
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
