@@ -40,11 +40,11 @@ from dppio.limits import MAX_INPUT_BYTES
 __all__ = [
     "OutputError",
     "file_mode",
-    "short_path",
     "open_input",
     "read_input",
     "read_text",
     "refuse_input_as_output",
+    "short_path",
     "write_atomic",
     "write_files",
 ]

@@ -14,7 +14,7 @@ import contextlib
 import re
 import socket
 from collections.abc import Callable, Iterable, Iterator
-from typing import Any, TypeVar
+from typing import Any, TypeVar, cast
 
 from solver.errors import InvalidInstanceError
 
@@ -86,15 +86,15 @@ def dask_completed(fn: Callable[[T], Any], tasks: Iterable[T],
             threads = sum(client.nthreads().values())
         inflight = max(8, 2 * threads)
         todo = iter(tasks)
-        running: dict[str, T] = {}
+        running: dict[Any, T] = {}
         pending = completed([])
 
         def submit() -> bool:
-            task = next(todo, _END)
-            if task is _END:
+            item = next(todo, _END)
+            if item is _END:
                 return False
-            fut = client.submit(fn, task, pure=False)
-            running[fut.key] = task  # type: ignore[assignment]
+            fut = client.submit(fn, item, pure=False)
+            running[fut.key] = cast(T, item)
             pending.add(fut)
             return True
 

@@ -28,7 +28,7 @@ import time
 from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from pathlib import Path
-from typing import TypeVar
+from typing import TypeVar, cast
 
 from dppio.procs import descendants
 from solver.errors import InvalidInstanceError
@@ -109,10 +109,10 @@ def completed(fn: Callable[[T], R], tasks: Iterable[T], workers: int, *,
     try:
         while True:
             while len(running) < 2 * workers:
-                task = next(todo, _END)
-                if task is _END:
+                item = next(todo, _END)
+                if item is _END:
                     break
-                running[pool.submit(fn, task)] = task  # type: ignore[arg-type]
+                running[pool.submit(fn, cast(T, item))] = cast(T, item)
             if not running:
                 break
             finished, _ = wait(running, return_when=FIRST_COMPLETED)
