@@ -31,8 +31,23 @@ SIGPIPE_EXIT = 128 + 13
 """The exit code of a command whose standard output is a pipe nobody reads any more."""
 
 
-class StreamError(OSError):
-    """A write to standard output failed (a closed pipe, a full disk, an I/O error)."""
+class StreamError(Exception):
+    """A write to standard output failed (a closed pipe, a full disk, an I/O error). Not an
+    ``OSError``, so that no handler of file errors (click's own, for a closed pipe) takes it
+    for another failure: the command group ends the command with its one rule.
+
+    Attributes
+    ----------
+    errno : int
+        The error number of the failed write.
+    strerror : str
+        Its description.
+    """
+
+    def __init__(self, errno_: int | None, strerror: str) -> None:
+        super().__init__(strerror)
+        self.errno = errno_
+        self.strerror = strerror
 
 
 class _GuardedOutput(io.FileIO):

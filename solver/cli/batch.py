@@ -70,10 +70,11 @@ def batch_example() -> tuple[Any, Path]:
               help="Send the tasks to this dask.distributed scheduler instead.")
 @click.option("--chunk", type=click.IntRange(min=1, max=10_000), default=8, show_default=True,
               help="Scenario lines per task.")
-@click.option("--route", type=click.Choice(["structured", "auto", "tree", "both"]),
+@click.option("--route", type=click.Choice(["structured", "auto"]),
               default="structured", show_default=True,
-              help="The checker's route (auto/tree build the walk tree: minutes per line on "
-                   "32x32 maps).")
+              help="The checker's route for the untruncated game (auto builds the walk tree "
+                   "when it fits: minutes per line on 32x32 maps; tree and both certify a "
+                   "truncated game, which a batch does not).")
 @progress_option
 def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivity: str,
                   maps: tuple[str, ...], workers: int, dask_address: str | None, chunk: int,

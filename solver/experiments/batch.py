@@ -235,6 +235,11 @@ def plan_batch(scen: str | Path, config: BatchConfig, checker: Checker) -> Batch
     scenarios = tuple(checker.parse_scen(text))
     if not scenarios:
         raise InvalidInstanceError(f"{scen}: no scenario lines")
+    if all(sc.reason for sc in scenarios):  # another kind of file: refused, not 0 ok rows
+        kind = " (a MovingAI .map file: give the .scen file, its lines name the map)" \
+            if text.lstrip().startswith("type ") else ""
+        raise InvalidInstanceError(f"{scen}: not a .scen file: no line has the nine fields "
+                                   f"of a scenario{kind}")
     maps: dict[str, tuple[str | None, str]] = {}
     for sc in scenarios:
         if sc.map and sc.map not in maps:

@@ -37,8 +37,8 @@ def check_scheduler(address: str, seconds: float = CONNECT_SECONDS) -> None:
     Traceback (most recent call last):
     solver.errors.InvalidInstanceError: cannot reach the Dask scheduler at tcp://127.0.0.1:1: ...
     """
-    m = re.fullmatch(r"(?:tcp://)?\[?([^\[\]]+?)\]?:(\d+)", address)
-    if m is None:
+    m = re.fullmatch(r"(?:tcp://)?\[?([^\[\]/]+?)\]?:(\d+)", address)
+    if m is None:  # another protocol (tls://, ucx://, ...): left to distributed
         return
     host, port = m.group(1), int(m.group(2))
     try:
@@ -77,9 +77,9 @@ def dask_completed(fn: Callable[[T], Any], tasks: Iterable[T],
     check_scheduler(address)
     try:
         client = Client(address, timeout=f"{CONNECT_SECONDS:g}s")
-    except (OSError, TimeoutError) as exc:
+    except Exception as exc:  # unreachable, a protocol without its settings (tls:// ...)
         raise InvalidInstanceError(f"cannot reach the Dask scheduler at {address}: "
-                                   f"{exc}") from None
+                                   f"{' '.join(str(exc).split())}") from None
     try:
         threads = 4
         with contextlib.suppress(Exception):

@@ -96,7 +96,8 @@ probe("certify -o records a non-UTF-8 input name", ["certify", ODD + ".json", "p
       _copy("tri.json", ODD + ".json"), code=0, changes=("c.json",))
 # --- standard output -------------------------------------------------------------------------
 for cmd in (["solve", "tri.json"], ["certify", "tri.json", "prof.json"],
-            ["value", "tri.json", "--json"], ["experiment", "compare"], ["solve", "--help"]):
+            ["value", "tri.json", "--json"], ["experiment", "compare"], ["solve", "--help"],
+            ["--version"], ["--help"]):
     label = " ".join(c for c in cmd if not c.endswith(".json"))
     probe(f"{label} > closed pipe", cmd, code=141, one_line=False, stdout="closed-pipe")
     probe(f"{label} > /dev/full", cmd, contains="standard output", stdout="full")
