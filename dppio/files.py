@@ -299,13 +299,22 @@ def _is_special(target: Path) -> bool:
     return not stat.S_ISREG(st.st_mode) and not stat.S_ISDIR(st.st_mode)
 
 
+def _is_socket(target: Path) -> bool:
+    try:
+        return stat.S_ISSOCK(os.stat(target).st_mode)
+    except OSError:
+        return False
+
+
 def _stream(target: Path, data: bytes) -> None:
     """Write ``data`` into the existing non-regular file ``target`` without replacing it."""
     try:
         fd = os.open(target, os.O_WRONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
     except OSError as exc:
-        if exc.errno == errno.ENXIO:  # a FIFO that no process reads
-            raise OSError(exc.errno, "it is a FIFO that no process reads") from None
+        if exc.errno == errno.ENXIO:  # a FIFO that no process reads, or a socket
+            what = "a socket, not a file" if _is_socket(target) else \
+                "a FIFO that no process reads"
+            raise OSError(exc.errno, f"it is {what}") from None
         raise
     try:
         os.set_blocking(fd, True)
@@ -351,6 +360,9 @@ def _temp_prefix(target: Path) -> str:
 def _target(path: str | Path, error: ErrorClass) -> Path:
     if str(path) == "":
         raise error("the output path is empty")
+    if str(path).endswith(("/", os.sep)):  # Path() would drop the slash and write a file
+        raise error(f"cannot write {short_path(path)}: it names a folder (a trailing /); give "
+                    "a file name")
     p = Path(path)
     if os.path.isdir(p):  # (os.path: False, not an exception, for a name too long)
         raise error(f"cannot write {short_path(p)}: it is a folder")

@@ -118,6 +118,8 @@ file)
         shown = short_path(output)
         if shown == "":
             raise OutputError("-o: the output path is empty")
+        if str(output).endswith(("/", os.sep)):  # Path() would drop the slash
+            raise OutputError(f"-o {shown} names a folder (a trailing /); give a file name")
         try:
             st_link = os.lstat(output)
         except FileNotFoundError:
