@@ -56,13 +56,7 @@ def check_open_files(workers: int, *, option: str = "--workers") -> None:
 
     Examples
     --------
-    >>> check_open_files(2)
-    >>> import resource
-    >>> old = resource.getrlimit(resource.RLIMIT_NOFILE)
-    >>> resource.setrlimit(resource.RLIMIT_NOFILE, (old[0], old[0]))
-    >>> check_open_files(10**6)  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    solver.errors.InvalidInstanceError: --workers 1000000 needs about ... open files; ...
+    >>> check_open_files(2)  # (tests/experiments/test_local_pool.py: under ulimit -n 20)
     """
     try:
         import resource
