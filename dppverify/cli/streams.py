@@ -141,17 +141,31 @@ def _is_fd(stream: Any, fd: int) -> bool:
 
 def flush_stdout() -> None:
     """Flush standard output now (so that a failure is :class:`StreamError` here, inside the
-    command, not at interpreter exit)."""
+    command, not at interpreter exit).
+
+    Examples
+    --------
+    >>> print("data", end=""); flush_stdout()
+    data
+    """
     if sys.stdout is not None:
         sys.stdout.flush()
 
 
-def silence_stdout() -> None:
-    """Point standard output's descriptor at ``/dev/null`` (after it failed), so that the
-    interpreter's last flush at exit does not fail again."""
+def silence_stdout(fd: int = 1) -> None:
+    """Point standard output's descriptor (``fd``) at ``/dev/null`` after it failed, so that
+    the interpreter's last flush at exit does not fail again.
+
+    Examples
+    --------
+    >>> r, w = os.pipe(); os.close(r)  # a pipe nobody reads
+    >>> silence_stdout(w); os.write(w, b"gone")  # now it takes anything
+    4
+    >>> os.close(w)
+    """
     with contextlib.suppress(OSError, ValueError, AttributeError):
         null = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(null, 1)
+        os.dup2(null, fd)
         os.close(null)
 
 

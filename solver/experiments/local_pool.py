@@ -179,7 +179,19 @@ def _worker_start(run: int, started: str) -> None:  # pragma: no cover - runs in
 
 def kill_pool(pool: ProcessPoolExecutor) -> None:
     """Kill every worker process of ``pool`` and its process group, the forkserver and what
-    it was starting, then shut the pool down (without waiting for a task)."""
+    it was starting, then shut the pool down (without waiting for a task).
+
+    Examples
+    --------
+    >>> import multiprocessing
+    >>> pool = ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("forkserver"))
+    >>> pool.submit(abs, -1).result()
+    1
+    >>> workers = list(pool._processes.values())
+    >>> kill_pool(pool)
+    >>> [p.is_alive() for p in workers]
+    [False]
+    """
     procs = list((getattr(pool, "_processes", None) or {}).values())  # no public accessor
     for proc in procs:
         with contextlib.suppress(OSError, ValueError):

@@ -163,7 +163,8 @@ probe("batch full disk at the first row", [*BATCH, "-o", "b.csv"], fsize=400,
       contains="nothing was written")
 probe("batch full disk on a resumed file", [*BATCH, "-o", "b.csv"],
       _with(_batch_csv("b.csv", lambda t: "\n".join(t.splitlines()[:2]) + "\n")),
-      fsize=300, one_line=False, contains="run the same command again")
+      fsize=300, one_line=False, contains="run the same command again",
+      changes=("b.csv",))  # its time changes (rolled back); its rows are checked below
 # --- 7. exit codes and the summary ---------------------------------------------------------
 probe("batch where every line fails", ["batch", "bad.scen", "-o", "b.csv", "--no-progress"],
       _with(_file("bad.scen", "version 1\n" + "0\tnowhere.map\t4\t3\t0\t0\t3\t2\t5\n" * 4)),
@@ -179,8 +180,9 @@ def test_batch_probe(scratch: Path, name: str, probe_: Probe, setup: Setup | Non
         rows = list(csv.DictReader((scratch / "target.csv").open(encoding="utf-8")))
         assert [r["verdict"] for r in rows] == ["pass"] * 3
     if name.startswith("batch full disk on a resumed"):
-        lines = (scratch / "b.csv").read_text().splitlines()  # rolled back: whole rows only
-        assert len(lines) == 2 and lines[1].startswith("2,ok,")
+        text = (scratch / "b.csv").read_text()  # rolled back: its header and first row only
+        lines = text.splitlines()
+        assert text.endswith("\n") and len(lines) == 2 and lines[1].startswith("2,ok,")
     if name == "batch where every line fails":
         assert result.stdout.startswith("4 rows: 0 ok, 4 errors (first: line 2: unknown map "
                                         "'nowhere.map'"), result.stdout
