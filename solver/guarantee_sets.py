@@ -390,6 +390,12 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
     finite[goals] = True
     changed = goals
     tops = system.tops
+    top_all = int(tops.max())
+    lcm_all = max(1, system.lcm)
+    width_all = max(int(np.abs(t.scaled).sum(axis=0).max(initial=1)) + 1
+                    for t in system.closures)
+    trivial = [t.scaled.shape[1] == 1 for t in system.closures]
+    mmax = int(m.max(initial=0))
     k = 0
     while True:
         k += 1
@@ -404,31 +410,48 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
         fin_h = finite[heads]
         fin_rows = np.logical_or.reduceat(fin_h, seg)
         w_s = graph.weights[arcs] * (scale // den)
-        big = int(m.max(initial=0)) + int(w_s.max(initial=0)) * int(tops.max()) + 1
-        if big * max(1, system.lcm) * 4 > INT_LIMIT:
+        big = mmax + int(w_s.max(initial=0)) * top_all + 1
+        if big * lcm_all * 4 > INT_LIMIT:
             raise BudgetExceeded("numbers beyond the exact int64 range")
-        step = np.empty((a, rows.size), dtype=np.int64)
-        for j in range(a):
-            cand = np.where(fin_h, w_s * tops[j] + m[j, heads], big)
-            step[j] = np.minimum.reduceat(cand, seg)
+        cand = tops[:, None] * w_s[None, :] + m[:, heads]
+        cand[:, ~fin_h] = big
+        step = np.minimum.reduceat(cand, seg, axis=1)
         live = np.flatnonzero(fin_rows)
         new = np.zeros((a, rows.size), dtype=np.int64)
-        closed = []
+        sub = step[:, live]
+        exact_float = (big + 1) * width_all < EXACT
+        subf = sub.T.astype(np.float64) if exact_float else None
+        closed: list[np.ndarray | None] = []
         for j, tab in enumerate(system.closures):
-            cols = np.asarray(tab.columns, dtype=np.int64)
-            closed.append(min_product(step[cols][:, live].T, tab.scaled))
+            if trivial[j]:
+                closed.append(None)  # the only cover is a itself: the step value
+            elif subf is not None:
+                cols = np.asarray(tab.columns, dtype=np.int64)
+                closed.append((subf[:, cols] @ tab.scaled.astype(np.float64)).min(axis=1)
+                              .astype(np.int64))
+            else:
+                cols = np.asarray(tab.columns, dtype=np.int64)
+                closed.append(min_product(sub[cols].T, tab.scaled))
         # back to scale D: grow D where a closure value is not a multiple of its table's lcm
         grow = 1
         for j, tab in enumerate(system.closures):
-            g = math.gcd(int(np.gcd.reduce(closed[j], initial=0)), tab.lcm)
+            x = closed[j]
+            if x is None or tab.lcm == 1 or not np.any(x % tab.lcm):
+                continue
+            g = math.gcd(int(np.gcd.reduce(x, initial=0)), tab.lcm)
             grow = math.lcm(grow, tab.lcm // g)
         if grow > 1:
             scale *= grow
             m *= grow
-            if int(m.max(initial=0)) * max(1, system.lcm) * 4 > INT_LIMIT:
+            mmax *= grow
+            sub = sub * grow
+            if mmax * lcm_all * 4 > INT_LIMIT:
                 raise BudgetExceeded("numbers beyond the exact int64 range")
         for j, tab in enumerate(system.closures):
-            new[j, live] = closed[j] * grow // tab.lcm
+            x = closed[j]
+            new[j, live] = sub[j] if x is None else x * grow // tab.lcm
+        if live.size:
+            mmax = max(mmax, int(new[:, live].max()))
         if check_layers:
             t_arcs = fin_rows[np.repeat(np.arange(rows.size), np.diff(np.append(seg, len(arcs))))]
             keep = t_arcs & fin_h
@@ -552,39 +575,60 @@ class Unreached:
     upper: Fixpoint | None
 
 
-def guarantee_sets(graph: ArcGraph, budget: Budget = Budget()) -> GuaranteeSets | Unreached:
+HEURISTIC_ROUNDS = 3
+"""Rounds that take the missing facets at the fixpoint itself (fast, no termination proof);
+after them every round takes them at the first failing layer (proofs/NEXACT.md NX.6)."""
+
+
+def guarantee_sets(graph: ArcGraph, budget: Budget | None = None) -> GuaranteeSets | Unreached:
     """The exact guarantee sets at ``H = inf``: the refined normal-restricted DP, certified.
+
+    Each round runs the DP to its fixpoint and tests the arc condition at every walkable arc;
+    where it fails, the facets of ``∩_u (F_u + wΔ)`` that ``F_v`` violates join the normals
+    (with their permutations): for the first :data:`HEURISTIC_ROUNDS` rounds at the fixpoint,
+    afterwards at the first failing layer of a run tested layer by layer, where every earlier
+    layer is exact, so that each normal added is a facet of an exact layer set (NX.6).
 
     Returns :class:`GuaranteeSets` when a fixpoint passes the arc test at every walkable arc,
     else :class:`Unreached` with the reason (the budget) and the best outer DP found.
     """
+    budget = Budget() if budget is None else budget
     n_goals = graph.n_goals
     max_layers = budget.layers if budget.layers is not None else 20 * graph.n_nodes + 200
     system = NormalSystem(zero_one_normals(n_goals))
     best: Fixpoint | None = None
-    try:
-        fix = layered_dp(graph, system, check_layers=False, max_layers=max_layers)
-    except BudgetExceeded as exc:
-        return Unreached(str(exc), None)
-    assert isinstance(fix, Fixpoint)
-    best = fix
-    if not fixpoint_failures(graph, fix).size:
-        return GuaranteeSets(fix, 0)
-    for rounds in range(1, budget.rounds + 1):
+    rounds = 0
+    while True:
         try:
-            run = layered_dp(graph, system, check_layers=True, max_layers=max_layers)
+            fix = layered_dp(graph, system, check_layers=False, max_layers=max_layers)
         except BudgetExceeded as exc:
             return Unreached(str(exc), best)
-        if isinstance(run, Fixpoint):
-            best = run
-            if fixpoint_failures(graph, run).size:  # pragma: no cover - NX.5: cannot happen
-                return Unreached("a fixpoint whose layers all pass fails the arc test", best)
-            return GuaranteeSets(run, rounds - 1)
+        assert isinstance(fix, Fixpoint)
+        best = fix
+        failing = fixpoint_failures(graph, fix)
+        if not failing.size:
+            return GuaranteeSets(fix, rounds)
+        if rounds >= budget.rounds:
+            return Unreached(f"no certified fixpoint within {budget.rounds} refinement rounds",
+                             best)
+        rounds += 1
         new: list[Normal] = []
-        for v in run.tails[:8]:
-            new += _local_facets(graph, system, run, int(v), 8)
+        if rounds <= HEURISTIC_ROUNDS:
+            at_fix = LayerFailure(fix.layers, failing, np.arange(graph.n_nodes), fix.m, fix.m,
+                                  fix.finite, fix.scale)
+            for v in failing[:8]:
+                new += _local_facets(graph, system, at_fix, int(v), 8)
+        if not new:  # the proved route: the first failing layer
+            try:
+                run = layered_dp(graph, system, check_layers=True, max_layers=max_layers)
+            except BudgetExceeded as exc:
+                return Unreached(str(exc), best)
+            if isinstance(run, Fixpoint):  # pragma: no cover - NX.5: every layer exact
+                return Unreached("a fixpoint whose layers all pass fails the arc test", best)
+            for v in run.tails[:8]:
+                new += _local_facets(graph, system, run, int(v), 8)
         if not new:  # pragma: no cover - a failing layer always misses a facet (NX.6)
-            return Unreached(f"layer {run.layer}: no missing facet found", best)
+            return Unreached("no missing facet found at a failing layer", best)
         normals = symmetric_closure(list(system.normals) + new)
         if len(normals) - (2 ** n_goals - 1) > budget.extra_normals:
             return Unreached(f"more than {budget.extra_normals} extra normals needed", best)
@@ -592,4 +636,3 @@ def guarantee_sets(graph: ArcGraph, budget: Budget = Budget()) -> GuaranteeSets 
             system = NormalSystem(normals)
         except ValueError as exc:
             return Unreached(str(exc), best)
-    return Unreached(f"no certified fixpoint within {budget.rounds} refinement rounds", best)

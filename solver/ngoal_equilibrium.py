@@ -17,8 +17,10 @@ first, :func:`solve_ngoal` raises :class:`FixpointNotReached` with an exact valu
 
 from __future__ import annotations
 
+import itertools
 import time
 from collections import deque
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
@@ -26,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from solver.errors import DPPError
-from solver.guarantee_rule import priority_order
+from solver.guarantee_rule import priority_order, rule_step
 from solver.guarantee_sets import (
     ArcGraph,
     Budget,
@@ -38,13 +40,15 @@ from solver.instance_json import node_to_json
 from solver.ngoal_instance import NGame
 from solver.normal_attacker import normal_attacker
 from solver.normal_cover import normal_cover_lp
-from solver.vertex_tables import Normal
 from solver.version import __version__
+from solver.vertex_tables import Normal
 
 __all__ = ["FixpointNotReached", "NEquilibrium", "arc_graph", "nequilibrium_to_json",
            "solve_ngoal"]
 
 NGOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
+DEFAULT_BUDGET = Budget()
+"""The refinement's limits for ``dpp solve`` (stated in its one-line answer when reached)."""
 METHOD = ("normal-coalition Attacker and exact guarantee rule (proofs/NEXACT.md); the "
           "normal-restricted DP at H = inf over refined facet normals, certified by the arc "
           "test; steps preferred to splits, first cheapest arc")
@@ -123,13 +127,52 @@ class NEquilibrium:
     rounds: int
     feasible: bool
     seconds: float
+    fixpoint: Fixpoint | None = field(default=None, repr=False)
+    node_index: np.ndarray | None = field(default=None, repr=False)
+
+    def rule_values(self, v: int) -> list[Fraction | None]:
+        """``m_a(v)`` for every normal of the rule (0/1 vectors in mask order, then the extra
+        normals) at the game's node ``v``; None where no goal is reachable or ``v`` is off the
+        walks."""
+        assert self.fixpoint is not None and self.node_index is not None
+        i = int(self.node_index[v])
+        fix = self.fixpoint
+        if i < 0 or not fix.finite[i]:
+            return [None] * len(fix.system.normals)
+        return [fix.value(j, i) for j in range(len(fix.system.normals))]
+
+    def defender_along(self, walk: Sequence[int]) -> list[tuple[Fraction, ...]]:
+        """The rule's ``σ`` after every step of a walk (game node indices), exactly.
+
+        Examples
+        --------
+        >>> from solver.ngoal_instance import ngame_from_json
+        >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
+        ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
+        ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
+        >>> eq = solve_ngoal(ngame_from_json(doc))
+        >>> [[str(x) for x in s] for s in eq.defender_along([0, 1])]
+        [['1', '0']]
+        """
+        assert self.fixpoint is not None
+        normals = self.fixpoint.system.normals
+        order = priority_order(self.game.prior)
+        r = self.h
+        out = []
+        for v, u in itertools.pairwise(walk):
+            w = Fraction(int(self.game.network.arc_weight(v, u) or 0), self.game.denominator)
+            sigma, _ = rule_step(r, normals, self.rule_values(u), w, order)
+            out.append(sigma)
+            r = tuple(x - w * y for x, y in zip(r, sigma, strict=True))
+        return out
 
 
 def arc_graph(game: NGame) -> tuple[ArcGraph, np.ndarray]:
     """The walkable part of ``game`` as arrays, and the game's node index of each node.
 
     The nodes are those on some walk: reachable from the start through non-goal nodes, and
-    from which a goal is reachable. Arcs out of goals are dropped (walks end there).
+    from which a goal is reachable, and every goal. Arcs out of goals are dropped (walks end
+    there).
 
     Examples
     --------
@@ -160,7 +203,7 @@ def arc_graph(game: NGame) -> tuple[ArcGraph, np.ndarray]:
     reach = np.zeros(n, dtype=bool)
     for d in game.dist_to:
         reach |= np.isfinite(d.astype(np.float64))
-    keep = np.flatnonzero(seen & reach)
+    keep = np.flatnonzero((seen & reach) | goal)  # every goal: its terminal costs
     new = np.full(n, -1, dtype=np.int64)
     new[keep] = np.arange(keep.size)
     indptr = [0]
@@ -212,7 +255,7 @@ def _fixpoint_value(fix: Fixpoint, start: int, prior: tuple[Fraction, ...]) -> F
     return normal_cover_lp(fix.system.normals, costs, list(prior)).value
 
 
-def solve_ngoal(game: NGame, budget: Budget = Budget()) -> NEquilibrium:
+def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
     """Solve an N-goal game by the exact construction.
 
     Raises
@@ -276,7 +319,14 @@ def solve_ngoal(game: NGame, budget: Budget = Budget()) -> NEquilibrium:
                         walked=tuple(walked), U=u_val, U_bar=u_bar,
                         VoI=(u_bar - u_val) / u_bar if u_bar else Fraction(0),
                         dp_value=plan.value, layers=fix.layers, rounds=found.rounds,
-                        feasible=True, seconds=time.perf_counter() - t0)
+                        feasible=True, seconds=time.perf_counter() - t0, fixpoint=fix,
+                        node_index=_inverse(labels, game.network.n_nodes))
+
+
+def _inverse(labels: np.ndarray, n: int) -> np.ndarray:
+    out = np.full(n, -1, dtype=np.int64)
+    out[labels] = np.arange(labels.size)
+    return out
 
 
 def nequilibrium_to_json(eq: NEquilibrium) -> dict[str, Any]:
