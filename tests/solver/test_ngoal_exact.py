@@ -14,6 +14,7 @@
 from __future__ import annotations
 
 import itertools
+import functools
 import json
 from fractions import Fraction
 from pathlib import Path
@@ -50,6 +51,7 @@ def _walk_cost(eq: NEquilibrium, theta: int, walk: tuple[int, ...]) -> Fraction:
     return paid + game.distance(theta, walk[-1])
 
 
+@functools.cache
 def _checker_reads_normals() -> bool:
     """Whether the checker evaluates the guarantee rule with ``normals`` (issue 29, h29c)."""
     eq = solve_ngoal(ngame_from_json(GADGET))
