@@ -207,7 +207,7 @@ def _vertex_table(columns: tuple[Normal, ...], rhs: Normal, max_bases: int) -> V
         idx = np.arange(chunk.shape[0])
         for i in range(m):
             dense[idx, chunk[:, i]] = numer[:, i] * (common // det)
-        found.append(dense)
+        found.append(_unique_rows(dense))  # a degenerate vertex has several bases
         dens.append(common)
     lcm = math.lcm(1, *dens)
     stacked = (np.concatenate([d * (lcm // c) for d, c in zip(found, dens, strict=True)])

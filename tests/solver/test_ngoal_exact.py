@@ -97,10 +97,11 @@ def _check(doc: dict[str, Any], *, finite: bool = False) -> NEquilibrium:
     eq = solve_ngoal(ngame_from_json(doc))
     assert eq.U == eq.dp_value == sum((b * h for b, h in zip(eq.game.prior, eq.h, strict=True)),
                                       Fraction(0))
-    value = nvalue(instance_from_json(doc), None)  # the checker's own value (or bracket)
-    assert value.lower <= eq.U <= value.upper
-    if value.closed:
-        assert eq.U == value.exact
+    if eq.game.n_goals <= 4:  # the checker's own value (or bracket); N = 5: via certify
+        value = nvalue(instance_from_json(doc), None)
+        assert value.lower <= eq.U <= value.upper
+        if value.closed:
+            assert eq.U == value.exact
     for theta, mix in enumerate(eq.mixtures):  # NX.4: every walk of type θ costs h_θ
         assert sum(p for _, p in mix) == 1
         for walk, _ in mix:
