@@ -59,7 +59,7 @@ def test_NX1_the_root_lp_is_dual_feasible_tight_and_complementary() -> None:
 
 def _sets(doc: dict) -> tuple:
     game = ngame_from_json(doc)
-    graph, labels = arc_graph(game)
+    graph, _ = arc_graph(game)
     found = guarantee_sets(graph)
     assert isinstance(found, GuaranteeSets)
     return game, graph, found.fixpoint
@@ -98,7 +98,8 @@ def test_NX4_every_piece_is_tight_and_sigma_is_greedy(doc: dict) -> None:
     def dot(a: tuple, r: tuple) -> Fraction:
         return sum((x * y for x, y in zip(a, r, strict=True)), Fraction(0))
 
-    stack = [((graph.start,), dict(root.cover), h)]
+    stack: list[tuple[tuple[int, ...], dict[int, Fraction], tuple[Fraction, ...]]] = [
+        ((graph.start,), dict(root.cover), h)]
     while stack:
         walk, pieces, r = stack.pop()
         v = walk[-1]

@@ -79,7 +79,7 @@ def digraph(rng: random.Random, n_goals: int) -> Doc:
         weights = {e: rng.choice(["1", "1", "2", "3", "1/2"]) for e in g.edges}
         comps = (nx.strongly_connected_components(g) if directed
                  else nx.connected_components(g))
-        part = max(comps, key=len)
+        part: set[int] = max(comps, key=lambda c: len(c))
         if len(part) < n_goals:
             continue
         goals = rng.sample(sorted(part), n_goals)
@@ -103,10 +103,11 @@ def grid(rng: random.Random, n_goals: int) -> Doc:
                 g.remove_node(cell)
         if g.number_of_nodes() < n_goals + 1:
             continue
-        part = sorted(max(nx.connected_components(g), key=len))
-        if len(part) < n_goals + 1:
+        comps: list[set[tuple[int, int]]] = list(nx.connected_components(g))
+        cells = sorted(max(comps, key=len))
+        if len(cells) < n_goals + 1:
             continue
-        cells = rng.sample(part, n_goals + 1)
+        cells = rng.sample(cells, n_goals + 1)
         ids = {c: f"{c[0]},{c[1]}" for c in g.nodes}
         return {"graph": {"directed": False, "nodes": [{"id": ids[c]} for c in g.nodes],
                           "edges": [{"source": ids[a], "target": ids[b], "weight": 1}

@@ -13,8 +13,8 @@
 
 from __future__ import annotations
 
-import itertools
 import functools
+import itertools
 import json
 from fractions import Fraction
 from pathlib import Path
@@ -64,8 +64,8 @@ def _table_profile(eq: NEquilibrium, doc: dict[str, Any]) -> dict[str, Any]:
     game: NGame = eq.game
     net = game.network
     goals = set(game.goals)
-    entries = []
-    stack = [(game.start,)]
+    entries: list[dict[str, Any]] = []
+    stack: list[tuple[int, ...]] = [(game.start,)]
     while stack:
         walk = stack.pop()
         if len(walk) > 1:
@@ -163,7 +163,7 @@ def test_past_the_budget_the_bracket_holds_the_value() -> None:
     with pytest.raises(FixpointNotReached) as info:
         solve_ngoal(ngame_from_json(GADGET), Budget(rounds=0))
     exc = info.value
-    assert exc.lower <= Fraction(12, 7) <= exc.upper == Fraction(25, 14)
+    assert exc.upper == Fraction(25, 14) and exc.lower <= Fraction(12, 7) <= exc.upper
     assert "0 refinement rounds" in str(exc) and "NG.9" in exc.lower_source
 
 

