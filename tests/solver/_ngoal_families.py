@@ -104,7 +104,8 @@ def grid(rng: random.Random, n_goals: int) -> Doc:
         if g.number_of_nodes() < n_goals + 1:
             continue
         comps: list[set[tuple[int, int]]] = list(nx.connected_components(g))
-        cells = sorted(max(comps, key=lambda c: len(c)))
+        sizes = [len(c) for c in comps]
+        cells = sorted(comps[sizes.index(max(sizes))])
         if len(cells) < n_goals + 1:
             continue
         cells = rng.sample(cells, n_goals + 1)
