@@ -2,7 +2,7 @@
 
 Draws ``--per`` instances per family (random digraphs, small grids with obstacles, hub gadgets:
 ``tests/solver/_ngoal_families.py``, seeds ``0 … per-1``) and N = 2..5, solves each with
-:func:`solver.ngoal_equilibrium.solve_ngoal` (the default budget) and counts: solved, solved
+:func:`solver.coalitions.construction.solve_ngoal` (the default budget) and counts: solved, solved
 with extra facet normals (the 0/1 coalition sets did not suffice: the instances the old
 construction refused), refused (the budget ended first: exit 3 with a bracket), with the
 reasons of the refusals and the time per instance.
@@ -17,8 +17,8 @@ import collections
 import os
 import time
 
-from solver.ngoal_equilibrium import FixpointNotReached, solve_ngoal
-from solver.ngoal_instance import ngame_from_json
+from solver.coalitions.construction import FixpointNotReached, solve_ngoal
+from solver.game.indexed_instance import ngame_from_json
 from tests.solver._ngoal_families import FAMILIES, draw
 
 

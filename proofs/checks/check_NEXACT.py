@@ -16,9 +16,10 @@ import numpy as np
 import pytest
 import sympy as sp
 
-import solver.guarantee_sets as gsets
-from solver.guarantee_rule import priority_order, rule_step
-from solver.guarantee_sets import (
+import solver.coalitions.guarantee_sets as gsets
+from solver.coalitions.construction import arc_graph
+from solver.coalitions.guarantee_rule import priority_order, rule_step
+from solver.coalitions.guarantee_sets import (
     GuaranteeSets,
     LayerFailure,
     NormalSystem,
@@ -26,12 +27,11 @@ from solver.guarantee_sets import (
     layered_dp,
     symmetric_closure,
 )
-from solver.ngoal_equilibrium import arc_graph
-from solver.ngoal_instance import ngame_from_json
-from solver.normal_attacker import _moves
-from solver.normal_cover import normal_cover_lp
+from solver.coalitions.normal_attacker import _moves
+from solver.coalitions.normal_cover import normal_cover_lp
+from solver.coalitions.vertex_tables import packing_vertices, primitive, zero_one_normals
+from solver.game.indexed_instance import ngame_from_json
 from solver.numbers import solve_exact
-from solver.vertex_tables import packing_vertices, primitive, zero_one_normals
 from tests.solver._ngoal_families import GADGET, draw
 
 CASES = ([GADGET] + [draw("hub", s, n) for s in range(6) for n in (4, 5)]

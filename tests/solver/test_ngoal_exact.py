@@ -29,14 +29,14 @@ from dppverify.certify import certify
 from dppverify.game.instance import instance_from_json
 from dppverify.structured.proved_value import nvalue
 from solver.cli import main
-from solver.guarantee_sets import Budget
-from solver.ngoal_equilibrium import (
+from solver.coalitions.construction import (
     FixpointNotReached,
     NEquilibrium,
     nequilibrium_to_json,
     solve_ngoal,
 )
-from solver.ngoal_instance import NGame, ngame_from_json
+from solver.coalitions.guarantee_sets import Budget
+from solver.game.indexed_instance import NGame, ngame_from_json
 from tests.solver._ngoal_families import GADGET, draw
 
 FAMILIES = st.sampled_from(["digraph", "grid", "hub", "hub"])
@@ -169,7 +169,7 @@ def test_past_the_budget_the_bracket_holds_the_value() -> None:
 
 def test_the_cli_refuses_past_the_budget_in_one_line_and_keeps_the_instance(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    import solver.ngoal_equilibrium as eqm
+    import solver.coalitions.construction as eqm
 
     monkeypatch.setattr(eqm.solve_ngoal, "__defaults__", (Budget(rounds=0),))
     src = tmp_path / "gadget.json"

@@ -2,13 +2,13 @@
 
 - **Sets.** The exact guarantee sets at ``H = inf`` as the fixpoint of the normal-restricted DP
   over a refined set ``A`` of facet normals, certified by the arc test at every walkable arc
-  (:mod:`solver.guarantee_sets`); with the 0/1 normals alone this is the coalition DP.
+  (:mod:`solver.coalitions.guarantee_sets`); with the 0/1 normals alone this is the coalition DP.
 - **Root and Attacker.** The cover LP at the start gives the value, the guarantee vector ``h``
   (its lexicographically largest optimal dual in the priority order) and the starting pieces;
-  the pieces walk down the DP's ranks (:mod:`solver.normal_attacker`).
+  the pieces walk down the DP's ranks (:mod:`solver.coalitions.normal_attacker`).
 - **Defender.** The guarantee rule with ``h`` and the extra normals,
   ``{"rule": "guarantee", "h": [...], "normals": [...]}`` (``docs/formats.md`` §2b;
-  :mod:`solver.guarantee_rule` evaluates it).
+  :mod:`solver.coalitions.guarantee_rule` evaluates it).
 
 Every type pays exactly ``h_θ`` on each of its walks and at least ``h_θ`` on any walk
 (proofs/NEXACT.md NX.4, NX.5), so ``U = b·h = V_inf``. Where the budget of the refinement ends
@@ -27,21 +27,21 @@ from typing import Any
 
 import numpy as np
 
-from solver.errors import DPPError
-from solver.guarantee_rule import priority_order, rule_step
-from solver.guarantee_sets import (
+from solver.coalitions.guarantee_rule import priority_order, rule_step
+from solver.coalitions.guarantee_sets import (
     ArcGraph,
     Budget,
     Fixpoint,
     GuaranteeSets,
     guarantee_sets,
 )
-from solver.instance_json import node_to_json
-from solver.ngoal_instance import NGame
-from solver.normal_attacker import normal_attacker
-from solver.normal_cover import normal_cover_lp
+from solver.coalitions.normal_attacker import normal_attacker
+from solver.coalitions.normal_cover import normal_cover_lp
+from solver.coalitions.vertex_tables import Normal
+from solver.errors import DPPError
+from solver.formats.nodes import node_to_json
+from solver.game.indexed_instance import NGame
 from solver.version import __version__
-from solver.vertex_tables import Normal
 
 __all__ = ["FixpointNotReached", "NEquilibrium", "arc_graph", "nequilibrium_to_json",
            "solve_ngoal"]
@@ -146,7 +146,7 @@ class NEquilibrium:
 
         Examples
         --------
-        >>> from solver.ngoal_instance import ngame_from_json
+        >>> from solver.game.indexed_instance import ngame_from_json
         >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
         ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
         ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
@@ -176,7 +176,7 @@ def arc_graph(game: NGame) -> tuple[ArcGraph, np.ndarray]:
 
     Examples
     --------
-    >>> from solver.ngoal_instance import ngame_from_json
+    >>> from solver.game.indexed_instance import ngame_from_json
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "sabz"],
     ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"},
     ...                  {"source": "a", "target": "z"}]},
@@ -234,7 +234,7 @@ def simple_lower_bound(game: NGame) -> tuple[Fraction, str]:
 
     Examples
     --------
-    >>> from solver.ngoal_instance import ngame_from_json
+    >>> from solver.game.indexed_instance import ngame_from_json
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
     ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
     ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
@@ -265,7 +265,7 @@ def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
 
     Examples
     --------
-    >>> from solver.ngoal_instance import ngame_from_json
+    >>> from solver.game.indexed_instance import ngame_from_json
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "smabc"],
     ...        "edges": [{"source": "s", "target": "m"}, {"source": "m", "target": "a"},
     ...                  {"source": "m", "target": "b"}, {"source": "m", "target": "c"},
@@ -334,7 +334,7 @@ def nequilibrium_to_json(eq: NEquilibrium) -> dict[str, Any]:
 
     Examples
     --------
-    >>> from solver.ngoal_instance import ngame_from_json
+    >>> from solver.game.indexed_instance import ngame_from_json
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
     ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
     ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}

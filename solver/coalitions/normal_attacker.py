@@ -1,7 +1,7 @@
 """The normal-coalition Attacker and the root of the exact guarantee rule (proofs/NEXACT.md).
 
-Given a certified fixpoint of the normal-restricted DP (:mod:`solver.guarantee_sets`: normals
-``A``, support numbers ``m*``, ranks):
+Given a certified fixpoint of the normal-restricted DP
+(:mod:`solver.coalitions.guarantee_sets`: normals ``A``, support numbers ``m*``, ranks):
 
 - **Root.** The cover LP ``min Σ_a c_a m*_a(s0)`` s.t. ``Σ_a c_a a = b`` gives the value, the
   starting pieces (normal ``a`` with mass ``c_a``) and, as its lexicographically largest
@@ -26,8 +26,8 @@ from fractions import Fraction
 
 import numpy as np
 
-from solver.guarantee_sets import ArcGraph, Fixpoint
-from solver.normal_cover import normal_cover_lp
+from solver.coalitions.guarantee_sets import ArcGraph, Fixpoint
+from solver.coalitions.normal_cover import normal_cover_lp
 
 __all__ = ["AttackerPlan", "normal_attacker"]
 

@@ -13,14 +13,15 @@ here is exact integers at a common scale ``D`` (numpy int64, products in float64
 every partial sum is an integer below 2**53). The layers are computed incrementally (only the
 tails of arcs into changed nodes are recomputed) until one repeats: the *fixpoint* ``m*`` (the
 greatest fixpoint of the layer map), reached at layer ``K``. ``rank[a, v]`` is the layer at
-which ``m_a(v)`` reached its final value; the Attacker of :mod:`solver.normal_attacker` walks
-down the ranks, so its walks have at most ``K`` steps (proofs/NEXACT.md NX.2).
+which ``m_a(v)`` reached its final value; the Attacker of
+:mod:`solver.coalitions.normal_attacker` walks down the ranks, so its walks have at most
+``K`` steps (proofs/NEXACT.md NX.2).
 
 :func:`guarantee_sets` finds ``A`` by *refinement*: the DP with the 0/1 normals, the arc test
 ``F_v ⊆ F_u + wΔ`` at its fixpoint (Farkas, on the packing polytope's directions,
-:mod:`solver.vertex_tables`); where it fails, the DP is re-run with the test at every layer,
-and at the first failing layer ``k`` (every earlier layer then *is* the exact set) the exact
-set ``G_v^k = ∩_u (F_u^{k-1} + wΔ)`` at a failing node is written out in H-representation,
+:mod:`solver.coalitions.vertex_tables`); where it fails, the DP is re-run with the test at
+every layer, and at the first failing layer ``k`` (every earlier layer then *is* the exact
+set) the exact set ``G_v^k = ∩_u (F_u^{k-1} + wΔ)`` at a failing node is written out in H-representation,
 its facets that ``F_v^k`` violates are found (a candidate is a facet iff the other candidates
 do not cover it as cheaply: one exact LP), and they join ``A`` with their permutations. Every
 normal added is a facet normal of an exact layer set (or a permutation of one), so the
@@ -39,8 +40,8 @@ from functools import cache
 
 import numpy as np
 
-from solver.normal_cover import normal_cover_lp
-from solver.vertex_tables import (
+from solver.coalitions.normal_cover import normal_cover_lp
+from solver.coalitions.vertex_tables import (
     Direction,
     Normal,
     VertexTable,
@@ -264,8 +265,8 @@ def symmetric_table(normals: tuple[Normal, ...], rhs: Normal) -> VertexTable:
 
 @cache
 def packing_directions_symmetric(normals: tuple[Normal, ...]) -> tuple[Direction, ...]:
-    """:func:`solver.vertex_tables.packing_directions` with the cover tables shared by symmetry.
-    """
+    """:func:`solver.coalitions.vertex_tables.packing_directions` with the cover tables shared
+    by symmetry."""
     out = []
     for d in packing_directions_raw(normals):
         s, y, lams, lcm = d
