@@ -21,7 +21,8 @@ which ``m_a(v)`` reached its final value; the Attacker of
 ``F_v ⊆ F_u + wΔ`` at its fixpoint (Farkas, on the packing polytope's directions,
 :mod:`solver.coalitions.vertex_tables`); where it fails, the DP is re-run with the test at
 every layer, and at the first failing layer ``k`` (every earlier layer then *is* the exact
-set) the exact set ``G_v^k = ∩_u (F_u^{k-1} + wΔ)`` at a failing node is written out in H-representation,
+set) the exact set ``G_v^k = ∩_u (F_u^{k-1} + wΔ)`` at a failing node is written out in
+H-representation,
 its facets that ``F_v^k`` violates are found (a candidate is a facet iff the other candidates
 do not cover it as cheaply: one exact LP), and they join ``A`` with their permutations. Every
 normal added is a facet normal of an exact layer set (or a permutation of one), so the
