@@ -31,8 +31,11 @@ from solver.coalitions.guarantee_rule import priority_order, rule_step
 from solver.coalitions.guarantee_sets import (
     ArcGraph,
     Budget,
+    BudgetExceeded,
     Fixpoint,
     GuaranteeSets,
+    Unreached,
+    dominated_failures,
     guarantee_sets,
 )
 from solver.coalitions.normal_attacker import normal_attacker
@@ -48,6 +51,8 @@ __all__ = ["FixpointNotReached", "NEquilibrium", "arc_graph", "nequilibrium_to_j
 
 NGOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
 DEFAULT_BUDGET = Budget()
+DOMINATED_ROUNDS = 2
+"""Rounds that add the failing directions of the written rule's (dominated) sets as normals."""
 """The refinement's limits for ``dpp solve`` (stated in its one-line answer when reached)."""
 METHOD = ("normal-coalition Attacker and exact guarantee rule (proofs/NEXACT.md); the "
           "normal-restricted DP at H = inf over refined facet normals, certified by the arc "
@@ -131,9 +136,9 @@ class NEquilibrium:
     node_index: np.ndarray | None = field(default=None, repr=False)
 
     def rule_values(self, v: int) -> list[Fraction | None]:
-        """``m_a(v)`` for every normal of the rule (0/1 vectors in mask order, then the extra
-        normals) at the game's node ``v``; None where no goal is reachable or ``v`` is off the
-        walks."""
+        """``m_a(v)`` of the written rule (the format's dominated reading, docs/formats.md §2b)
+        for every normal (0/1 vectors in mask order, then the extra normals) at the game's node
+        ``v``; None where no goal is reachable or ``v`` is off the walks."""
         assert self.fixpoint is not None and self.node_index is not None
         i = int(self.node_index[v])
         fix = self.fixpoint
@@ -278,6 +283,26 @@ def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
     t0 = time.perf_counter()
     graph, labels = arc_graph(game)
     found = guarantee_sets(graph, budget)
+    written = None
+    for _ in range(DOMINATED_ROUNDS + 1):  # the written rule, under the format's reading
+        if not isinstance(found, GuaranteeSets):
+            break
+        max_layers = budget.layers if budget.layers is not None else 20 * graph.n_nodes + 200
+        try:
+            written, bad = dominated_failures(graph, found.normals, max_layers)
+        except BudgetExceeded as exc:
+            found = Unreached(f"the written rule's sets: {exc}", found.fixpoint)
+            break
+        if not bad:
+            break
+        extra = [a for a in bad if a not in found.normals]
+        if not extra or _ + 1 > DOMINATED_ROUNDS:
+            v = _fixpoint_value(found.fixpoint, graph.start, game.prior)
+            src = "the certified fixpoint (proofs/NEXACT.md NX.5)"
+            raise FixpointNotReached(
+                "the rule with these normals fails the arc test under the format's dominated "
+                f"reading (docs/formats.md §2b) in direction {bad[0]}", v, src, v, src)
+        found = guarantee_sets(graph, budget, initial=[*found.extra_normals, *extra])
     if not isinstance(found, GuaranteeSets):
         lower, lo_src = simple_lower_bound(game)
         upper = None if found.upper is None else _fixpoint_value(found.upper, graph.start,
@@ -288,6 +313,7 @@ def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
         raise FixpointNotReached(found.reason + f"; budget: {budget.describe()}", lower,
                                  lo_src, upper, up_src)
     fix = found.fixpoint
+    assert written is not None
     n = game.n_goals
     order = priority_order(game.prior)
     plan = normal_attacker(graph, fix, game.prior, order)
@@ -319,7 +345,7 @@ def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
                         walked=tuple(walked), U=u_val, U_bar=u_bar,
                         VoI=(u_bar - u_val) / u_bar if u_bar else Fraction(0),
                         dp_value=plan.value, layers=fix.layers, rounds=found.rounds,
-                        feasible=True, seconds=time.perf_counter() - t0, fixpoint=fix,
+                        feasible=True, seconds=time.perf_counter() - t0, fixpoint=written,
                         node_index=_inverse(labels, game.network.n_nodes))
 
 

@@ -215,10 +215,14 @@ class NormalSystem:
     """A normal set ``A`` with its tables: closures, packing directions, packing vertices.
 
     ``normals`` must be closed under permutations (:func:`symmetric_closure`); tables of
-    permuted right-hand sides are shared.
+    permuted right-hand sides are shared. With ``dominated`` the closure of ``a`` uses only the
+    normals ``n <= a`` (componentwise): the reading of ``docs/formats.md`` §2b by which the
+    checker judges a written rule; its values need not be closed, so every direction of the
+    packing polytope is tested, the 0/1 ones included.
     """
 
     normals: tuple[Normal, ...]
+    dominated: bool = False
     tops: np.ndarray = field(init=False, repr=False)
     closures: tuple[VertexTable, ...] = field(init=False, repr=False)
     directions: tuple[Direction, ...] = field(init=False, repr=False)
@@ -226,9 +230,13 @@ class NormalSystem:
     def __post_init__(self) -> None:
         object.__setattr__(self, "tops", np.array([max(a) for a in self.normals],
                                                   dtype=np.int64))
-        object.__setattr__(self, "closures", tuple(symmetric_table(self.normals, a)
-                                                   for a in self.normals))
-        object.__setattr__(self, "directions", packing_directions_symmetric(self.normals))
+        if self.dominated:
+            closures = tuple(_dominated_table(self.normals, a) for a in self.normals)
+        else:
+            closures = tuple(symmetric_table(self.normals, a) for a in self.normals)
+        object.__setattr__(self, "closures", closures)
+        object.__setattr__(self, "directions",
+                           packing_directions_symmetric(self.normals, self.dominated))
 
     @property
     def n_goals(self) -> int:
@@ -264,12 +272,21 @@ def symmetric_table(normals: tuple[Normal, ...], rhs: Normal) -> VertexTable:
     return VertexTable(columns=cols, scaled=base.scaled, lcm=base.lcm)
 
 
+def _dominated_table(normals: tuple[Normal, ...], a: Normal) -> VertexTable:
+    """The covers of ``a`` by the normals ``n <= a`` (``a`` itself included: the step)."""
+    keep = [j for j, n in enumerate(normals) if all(x <= y for x, y in zip(n, a, strict=True))]
+    sub = vertex_table(tuple(normals[j] for j in keep), a)
+    return VertexTable(columns=tuple(keep[c] for c in sub.columns), scaled=sub.scaled,
+                       lcm=sub.lcm)
+
+
 @cache
-def packing_directions_symmetric(normals: tuple[Normal, ...]) -> tuple[Direction, ...]:
+def packing_directions_symmetric(normals: tuple[Normal, ...], every: bool = False
+                                 ) -> tuple[Direction, ...]:
     """:func:`solver.coalitions.vertex_tables.packing_directions` with the cover tables shared
-    by symmetry."""
+    by symmetry (``every``: the 0/1 directions too)."""
     out = []
-    for d in packing_directions_raw(normals):
+    for d in packing_directions_raw(normals, every):
         s, y, lams, lcm = d
         cover = symmetric_table(normals, tuple(int(x * s) for x in y))
         out.append(Direction(y, s, cover, lams, lcm))
@@ -277,15 +294,16 @@ def packing_directions_symmetric(normals: tuple[Normal, ...]) -> tuple[Direction
 
 
 @cache
-def packing_directions_raw(normals: tuple[Normal, ...]
+def packing_directions_raw(normals: tuple[Normal, ...], every: bool = False
                            ) -> tuple[tuple[int, tuple[Fraction, ...], np.ndarray, int], ...]:
-    """``(s, y, lam_lcm · λs, lam_lcm)`` per non-0/1 direction of the packing vertices."""
+    """``(s, y, lam_lcm · λs, lam_lcm)`` per non-0/1 direction of the packing vertices (every
+    non-zero direction with ``every``)."""
     n = len(normals[0])
     groups: dict[tuple[Fraction, ...], list[tuple[Fraction, ...]]] = {}
     for lam in packing_vertices(normals):
         y = tuple(sum((lam[j] * normals[j][i] for j in range(len(normals)) if lam[j]),
                       Fraction(0)) for i in range(n))
-        if all(x in (0, 1) for x in y):
+        if not any(y) or (not every and all(x in (0, 1) for x in y)):
             continue
         groups.setdefault(y, []).append(lam)
     out = []
@@ -297,7 +315,7 @@ def packing_directions_raw(normals: tuple[Normal, ...]
     return tuple(out)
 
 
-def failing_arcs(system: NormalSystem, tail_vals: np.ndarray, head_vals: np.ndarray,
+def failing_arcs(directions: Sequence[Direction], tail_vals: np.ndarray, head_vals: np.ndarray,
                  tail_pos: np.ndarray, head_pos: np.ndarray, w_scaled: np.ndarray
                  ) -> np.ndarray:
     """A mask over arcs violating ``F_v ⊆ F_u + wΔ`` (proofs/NGOAL.md NG.8(c)).
@@ -310,7 +328,7 @@ def failing_arcs(system: NormalSystem, tail_vals: np.ndarray, head_vals: np.ndar
     bad = np.zeros(len(tail_pos), dtype=bool)
     if not len(tail_pos):
         return bad
-    for d in system.directions:
+    for d in directions:
         cols = np.asarray(d.cover.columns, dtype=np.int64)
         hv = min_product(tail_vals[cols].T, d.cover.scaled)[tail_pos].astype(object)
         mu = min_product(head_vals.T, d.lams.T)[head_pos].astype(object)
@@ -459,7 +477,7 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
             keep = t_arcs & fin_h
             if keep.any():
                 arc_tail = np.repeat(np.arange(rows.size), np.diff(np.append(seg, len(arcs))))
-                bad = failing_arcs(system, new, m, arc_tail[keep], heads[keep],
+                bad = failing_arcs(system.directions, new, m, arc_tail[keep], heads[keep],
                                    graph.weights[arcs][keep] * (scale // den))
                 if bad.any():
                     tails = np.unique(rows[arc_tail[keep][bad]])
@@ -484,7 +502,7 @@ def fixpoint_failures(graph: ArcGraph, fix: Fixpoint) -> np.ndarray:
     tails, heads = graph.tails, graph.heads
     keep = fix.finite[tails] & fix.finite[heads]
     w = graph.weights[keep] * (fix.scale // graph.denominator)
-    bad = failing_arcs(fix.system, fix.m, fix.m, tails[keep], heads[keep], w)
+    bad = failing_arcs(fix.system.directions, fix.m, fix.m, tails[keep], heads[keep], w)
     return np.unique(tails[keep][bad])
 
 
@@ -582,7 +600,8 @@ HEURISTIC_ROUNDS = 3
 after them every round takes them at the first failing layer (proofs/NEXACT.md NX.6)."""
 
 
-def guarantee_sets(graph: ArcGraph, budget: Budget | None = None) -> GuaranteeSets | Unreached:
+def guarantee_sets(graph: ArcGraph, budget: Budget | None = None,
+                   initial: Sequence[Normal] = ()) -> GuaranteeSets | Unreached:
     """The exact guarantee sets at ``H = inf``: the refined normal-restricted DP, certified.
 
     Each round runs the DP to its fixpoint and tests the arc condition at every walkable arc;
@@ -593,11 +612,12 @@ def guarantee_sets(graph: ArcGraph, budget: Budget | None = None) -> GuaranteeSe
 
     Returns :class:`GuaranteeSets` when a fixpoint passes the arc test at every walkable arc,
     else :class:`Unreached` with the reason (the budget) and the best outer DP found.
+    ``initial`` normals (with their permutations) join the 0/1 vectors from the start.
     """
     budget = Budget() if budget is None else budget
     n_goals = graph.n_goals
     max_layers = budget.layers if budget.layers is not None else 20 * graph.n_nodes + 200
-    system = NormalSystem(zero_one_normals(n_goals))
+    system = NormalSystem(symmetric_closure([*zero_one_normals(n_goals), *initial]))
     best: Fixpoint | None = None
     rounds = 0
     while True:
@@ -638,3 +658,27 @@ def guarantee_sets(graph: ArcGraph, budget: Budget | None = None) -> GuaranteeSe
             system = NormalSystem(normals)
         except ValueError as exc:
             return Unreached(str(exc), best)
+
+
+def dominated_failures(graph: ArcGraph, normals: tuple[Normal, ...], max_layers: int
+                       ) -> tuple[Fixpoint, list[Normal]]:
+    """The rule's sets under the format's dominated reading (``docs/formats.md`` §2b) and the
+    primitive directions in which they fail the arc test at some walkable arc (empty: the
+    written rule's sets pass).
+
+    Raises
+    ------
+    BudgetExceeded
+        When the dominated DP does not repeat a layer within ``max_layers``.
+    """
+    system = NormalSystem(normals, dominated=True)
+    fix = layered_dp(graph, system, check_layers=False, max_layers=max_layers)
+    assert isinstance(fix, Fixpoint)
+    tails, heads = graph.tails, graph.heads
+    keep = fix.finite[tails] & fix.finite[heads]
+    w = graph.weights[keep] * (fix.scale // graph.denominator)
+    bad: list[Normal] = []
+    for d in system.directions:
+        if failing_arcs((d,), fix.m, fix.m, tails[keep], heads[keep], w).any():
+            bad.append(primitive(d.y))
+    return fix, bad

@@ -116,14 +116,14 @@ def _check(doc: dict[str, Any], *, finite: bool = False) -> NEquilibrium:
     return eq
 
 
-@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(family=FAMILIES, seed=st.integers(0, 10 ** 6), n=st.integers(2, 5))
 def test_every_drawn_instance_is_solved_and_certified(family: str, seed: int, n: int) -> None:
     _check(draw(family, seed, n))
 
 
-@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(seed=st.integers(0, 10 ** 6), n=st.integers(3, 5))
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 10 ** 6), n=st.integers(3, 4))
 def test_finite_hub_games_are_certified_by_the_tree_route(seed: int, n: int) -> None:
     import random
 
@@ -137,6 +137,16 @@ def test_finite_hub_games_are_certified_by_the_tree_route(seed: int, n: int) -> 
 def test_campaign(family: str, n: int) -> None:
     for seed in range(60):
         _check(draw(family, seed, n))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("n", [3, 4, 5])
+def test_finite_hub_campaign(n: int) -> None:
+    import random
+
+    from tests.solver._ngoal_families import hub
+    for seed in range(40):
+        _check(hub(random.Random(seed), n, dag=True), finite=True)
 
 
 def test_the_gadget_is_solved_with_the_normals_2221() -> None:
