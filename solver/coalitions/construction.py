@@ -287,6 +287,9 @@ def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
     for _ in range(DOMINATED_ROUNDS + 1):  # the written rule, under the format's reading
         if not isinstance(found, GuaranteeSets):
             break
+        if not found.extra_normals:  # a cover of 1_S uses subsets of S only: the same DP
+            written = found.fixpoint
+            break
         max_layers = budget.layers if budget.layers is not None else 20 * graph.n_nodes + 200
         try:
             written, bad = dominated_failures(graph, found.normals, max_layers)
