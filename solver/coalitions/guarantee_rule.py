@@ -65,50 +65,9 @@ def guarantee_step(r: Sequence[Fraction], m_next: Callable[[int], Fraction | Non
     ((Fraction(1, 1), Fraction(0, 1)), True)
     """
     n = len(r)
-    lows: dict[int, Fraction] = {}
-    for mask in range(1, 1 << n):
-        m = m_next(mask)
-        if m is None:
-            continue
-        a = (sum((r[i] for i in range(n) if mask >> i & 1), Fraction(0)) - m) / w
-        if a > 0:
-            lows[mask] = a
-    # σ(S) >= 1 forces σ inside S: when those sets meet in one type, F is that vertex or empty
-    forced = (1 << n) - 1
-    for mask, a in lows.items():
-        if a >= 1:
-            forced &= mask
-    if forced and forced & (forced - 1) == 0:
-        theta = forced.bit_length() - 1
-        point = tuple(Fraction(int(i == theta)) for i in range(n))
-        if all(mask >> theta & 1 or a <= 0 for mask, a in lows.items()) and all(
-                a <= 1 for a in lows.values()):
-            return point, True
-    # drop constraints implied by a subset with a larger bound
-    keep = {s: a for s, a in lows.items()
-            if not any(t != s and t & s == t and lows[t] >= a for t in lows)}
-    if not keep:
-        return tuple(Fraction(int(i == order[-1])) for i in range(n)), True
-    cons: list[tuple[list[Fraction], Fraction]] = [
-        ([Fraction(int(i == j)) for j in range(n)], Fraction(0)) for i in range(n)]
-    cons += [([Fraction(s >> j & 1) for j in range(n)], a) for s, a in sorted(keep.items())]
-    ones = [Fraction(1)] * n
-    best: tuple[Fraction, ...] | None = None
-    best_key: tuple[Fraction, ...] | None = None
-    for tight in itertools.combinations(range(len(cons)), n - 1):
-        sol = solve_exact([cons[k][0] for k in tight] + [ones],
-                     [cons[k][1] for k in tight] + [Fraction(1)])
-        if sol is None:
-            continue
-        if any(sum((c * x for c, x in zip(row, sol, strict=True)), Fraction(0)) < lo
-               for row, lo in cons):
-            continue
-        key = tuple(sol[t] for t in order)
-        if best_key is None or key < best_key:
-            best, best_key = tuple(sol), key
-    if best is None:
-        return tuple(Fraction(int(i == order[0])) for i in range(n)), False
-    return best, True
+    masks = range(1, 1 << n)
+    normals = [tuple((mask >> i) & 1 for i in range(n)) for mask in masks]
+    return rule_step(r, normals, [m_next(mask) for mask in masks], w, order)
 
 
 def rule_step(r: Sequence[Fraction], normals: Sequence[Sequence[int]],
