@@ -28,6 +28,13 @@ Measured (one run, 2-core shared machine, 2026-11-25): Berlin_1_256 (47,540 cell
 solve 0.42 s, certify 1.10 s (pass), 17x the two-goal solve (0.025 s); N = 4: solve 1.39 s,
 certify 6.9 s, error (the arc condition fails, proofs/NSOLVE.md); maze-128-128-10 (14,818
 cells) N = 4: solve 0.40 s, certify 3.2 s (pass); N = 5: solve 4.7 s, certify 142 s (pass).
+
+Measured with ``--issue`` (one run, the 2-core machine shared with six other helpers, load
+average about 16, 2026-11-28): Berlin_1_256 with the issue's four goals: solve 438 s (U = 913/4,
+the value ``dpp value`` proves; the four permutations of (2, 2, 2, 1) as extra normals, one
+refinement round, 591 layers), 800x the two-goal solve in the same run (0.55 s); certify 7.4 s
+with a checker that does not read the rule's normals yet (verdict ``fail``: the profile's
+``normals`` key is refused). The same solve took 156 s at load average about 12.
 """
 
 from __future__ import annotations
