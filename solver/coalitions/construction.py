@@ -293,7 +293,7 @@ def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
         max_layers = budget.layers if budget.layers is not None else 20 * graph.n_nodes + 200
         try:
             written, bad = dominated_failures(graph, found.normals, max_layers)
-        except BudgetExceeded as exc:
+        except (BudgetExceeded, ValueError) as exc:
             found = Unreached(f"the written rule's sets: {exc}", found.fixpoint)
             break
         if not bad:
@@ -319,7 +319,12 @@ def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
     assert written is not None
     n = game.n_goals
     order = priority_order(game.prior)
-    plan = normal_attacker(graph, fix, game.prior, order)
+    try:
+        plan = normal_attacker(graph, fix, game.prior, order)
+    except ValueError as exc:  # the plan's size limit
+        v = _fixpoint_value(fix, graph.start, game.prior)
+        src = "the certified fixpoint (proofs/NEXACT.md NX.5)"
+        raise FixpointNotReached(str(exc), v, src, v, src) from None
     normals = fix.system.normals
     mix = plan.mixtures(normals, game.prior)
     h0 = plan.h

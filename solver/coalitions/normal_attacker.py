@@ -125,7 +125,9 @@ def _moves(graph: ArcGraph, fix: Fixpoint, j: int, v: int) -> list[tuple[int, Fr
     tab = system.closures[j]
     cols = np.asarray(tab.columns, dtype=np.int64)
     totals = best[cols].astype(object) @ tab.scaled.astype(object)
-    k = next(i for i, x in enumerate(totals) if x == target * tab.lcm)  # NX.2: one exists
+    k = next((i for i, x in enumerate(totals) if x == target * tab.lcm), None)
+    if k is None:  # pragma: no cover - NX.2: a ranked cover always exists
+        raise AssertionError("normal Attacker: no ranked cover attains m*")
     out = []
     for pos, col in enumerate(tab.columns):
         c = int(tab.scaled[pos, k])
