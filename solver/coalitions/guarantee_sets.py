@@ -613,6 +613,17 @@ def guarantee_sets(graph: ArcGraph, budget: Budget | None = None,
     Returns :class:`GuaranteeSets` when a fixpoint passes the arc test at every walkable arc,
     else :class:`Unreached` with the reason (the budget) and the best outer DP found.
     ``initial`` normals (with their permutations) join the 0/1 vectors from the start.
+
+    Examples
+    --------
+    Two goals one step from the start: the 0/1 normals suffice, no refinement:
+
+    >>> graph = ArcGraph(indptr=np.array([0, 2, 2, 2]), heads=np.array([1, 2]),
+    ...                  weights=np.array([1, 1]), denominator=1, goals=(1, 2),
+    ...                  terminal=np.array([[0, 2], [2, 0]]), start=0)
+    >>> found = guarantee_sets(graph)
+    >>> found.rounds, found.extra_normals, [str(found.fixpoint.value(2, 0))]
+    (0, (), ['2'])
     """
     budget = Budget() if budget is None else budget
     n_goals = graph.n_goals

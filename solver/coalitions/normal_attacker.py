@@ -75,6 +75,18 @@ def normal_attacker(graph: ArcGraph, fix: Fixpoint, prior: Sequence[Fraction],
     ------
     ValueError
         If the plan would list more than ``max_walks`` walks.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from solver.coalitions.guarantee_sets import guarantee_sets
+    >>> graph = ArcGraph(indptr=np.array([0, 2, 2, 2]), heads=np.array([1, 2]),
+    ...                  weights=np.array([1, 1]), denominator=1, goals=(1, 2),
+    ...                  terminal=np.array([[0, 2], [2, 0]]), start=0)
+    >>> fix = guarantee_sets(graph).fixpoint
+    >>> plan = normal_attacker(graph, fix, [Fraction(1, 2)] * 2, (0, 1))
+    >>> str(plan.value), [w for w, _ in plan.leaves]
+    ('1', [(0, 1), (0, 2)])
     """
     system = fix.system
     normals = system.normals
