@@ -14,6 +14,7 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
+from dppio.limits import check_rational
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.instance import Instance
 from solver.json_text import parse_json_text, read_json
@@ -317,7 +318,9 @@ def map_instance_to_json(map_ref: str, inst: Instance, *, relative_to: Path | No
         _, digest = read_map_bytes(map_file(map_ref))
     ref = map_ref
     if not map_ref.startswith(STANDARD_PREFIX) and relative_to is not None:
-        ref = os.path.relpath(Path(map_ref).absolute(), Path(relative_to).absolute())
+        # between the real folders: through a symlinked folder, ".." is taken from the
+        # folder the link points to, so the path resolves however the instance is reached
+        ref = os.path.relpath(os.path.realpath(map_ref), os.path.realpath(relative_to))
     return {"format": MAP_INSTANCE_FORMAT, "map": ref, "map_sha256": digest,
             "start": node_to_json(inst.start), "goals": [node_to_json(g) for g in inst.goals],
             "prior": [format_number(p) for p in inst.prior], "connectivity": connectivity}
@@ -354,6 +357,9 @@ def _graph_from_node_link(g: Any, *, float_weights: bool) -> nx.Graph:
                 raise InvalidInstanceError(f"graph.edges[{k}] uses unknown node {end!r}")
         raw = e.get("weight", 1)
         if float_weights and isinstance(raw, Fraction):
+            # the size limit first: float() of a decimal literal such as 1e400 overflows
+            check_rational(raw, where=f"weight of edge ({u!r}, {v!r})",
+                           error=InvalidInstanceError)
             raw = float(raw)
         w = parse_number(raw, where=f"weight of edge ({u!r}, {v!r})", allow_float=float_weights)
         if graph.has_edge(u, v):
