@@ -343,8 +343,11 @@ def _check_horizon(asked: int | None, longest: int, word: str) -> None:
 def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon: Any,
                max_prefixes: int, route: Route) -> Certificate:
     """:func:`certify` with more than two goals (a ``dpp-ngoal-profile/1`` profile)."""
-    doc = (load_profile_document(profile, NGOAL_PROFILE_FORMAT)
-           if isinstance(profile, str | Path) else dict(profile))
+    if isinstance(profile, str | Path):
+        doc = load_profile_document(profile, NGOAL_PROFILE_FORMAT)
+    else:  # a document is held to its format tag as a file is (one verdict)
+        check_format(profile, "profile", NGOAL_PROFILE_FORMAT)
+        doc = dict(profile)
     prof = profile_from_json(doc, inst, fmt=NGOAL_PROFILE_FORMAT)
     if route not in ("auto", "tree", "structured", "both"):
         raise ValueError(f"unknown route {route!r}")

@@ -151,6 +151,8 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
     from dppverify.formats.standard_maps import resolve_map
 
     try:
+        if (solver_spec is None) == (solver_cmd is None):  # before reading any input
+            raise AuditError(ONE_SOLVER)
         if instances_dir is not None and (map_file is not None or scen_file is not None):
             raise AuditError("give --instances DIR or --map FILE --scen FILE, not both")
         if instances_dir is not None:
@@ -244,9 +246,12 @@ def _private_hypothesis_home() -> Iterator[None]:
             set_hypothesis_home_dir(None)
 
 
+ONE_SOLVER = "give exactly one of --solver MODULE:FUNCTION and --solver-cmd CMD"
+
+
 def _make_runner(spec: str | None, cmd: str | None, timeout: float) -> SolverRunner:
     if (spec is None) == (cmd is None):
-        raise AuditError("give exactly one of --solver MODULE:FUNCTION and --solver-cmd CMD")
+        raise AuditError(ONE_SOLVER)
     if cmd is not None:
         return CommandRunner(cmd, timeout=timeout)
     assert spec is not None

@@ -146,7 +146,7 @@ def _certify_files(instance: str | None, profile: str | None, grid: MapRequest |
             return
         game = load_game(instance, grid)
         bar.phase("reading the profile")
-        doc = _profile_document(profile, game)
+        doc = _profile_document(profile, game, instance)
         bar.phase(f"certifying (route {route}; the checks' bars follow)")
         # N goals: the file itself, whose reader checks its format tag and names the file
         cert = certify(game, profile if ngoal_game(game) else doc, horizon=horizon,
@@ -175,7 +175,7 @@ verdict (a check could not run) decides nothing, so it is "could not decide" (3)
 refutation (1)."""
 
 
-def _profile_document(path: str, game: Instance) -> dict[str, Any]:
+def _profile_document(path: str, game: Instance, instance: str | None) -> dict[str, Any]:
     """The profile document at ``path`` (not JSON, or not a profile document of the game's
     format: bad input, one line). Whatever it says about the game is the certificate's
     business: a claim or a goal that disagrees with the instance is refuted by a named check
@@ -188,8 +188,30 @@ def _profile_document(path: str, game: Instance) -> dict[str, Any]:
             except JsonReadError as exc:
                 raise ProfileError(f"{path}: {exc}") from None
         else:
-            doc = load_profile_document(path)
+            try:
+                doc = load_profile_document(path)
+            except ProfileError as exc:  # the other format: say whose game it looks like
+                raise ProfileError(_foreign(exc, path, game, instance)) from None
+    if ngoal and isinstance(doc, dict) and doc.get("format") != "dpp-ngoal-profile/1":
+        raise ProfileError(_foreign(ProfileError(
+            f"{path}: \"format\" must be \"dpp-ngoal-profile/1\" for an instance with more "
+            f"than two goals, got {json.dumps(doc.get('format'), default=str)[:60]}"),
+            path, game, instance))
     return dict(doc)
+
+
+def _foreign(exc: Exception, path: str, game: Instance, instance: str | None) -> str:
+    """A format error of the profile at ``path``, with what it looks made for when that can
+    be told (another game's goals: a two-goal profile for an N-goal instance, say)."""
+    try:
+        reason = profile_mismatch(game, read_json_file(path, kind="profile"))
+    except (JsonReadError, ValueError, TypeError, RecursionError):
+        reason = None
+    if reason is None:
+        return str(exc)
+    solve = f"dpp solve {instance}" if instance is not None else "dpp solve --map ..."
+    return (f"{exc}; it looks made for another instance: {reason} (make a profile for this one "
+            f"with {solve} -o PROFILE)")
 
 
 def _with_command(cert: Certificate, instance: str | None, profile: str,

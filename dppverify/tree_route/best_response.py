@@ -375,9 +375,9 @@ def defender_best_response_lp(tree: WalkTree, types: AnyTypes,
     import cvxpy as cp  # lazily: its import costs ~0.5 s
 
     sigma = cp.Variable(len(support))
-    slope, offset = w[idx] * (b1x1 - b2x2), float(w[idx] @ b2x2) + const
-    scale = cost_scale(slope, offset)  # costs of size one (lp.py)
-    objective = (scale * slope) @ sigma + scale * offset
+    slope, offset = w[idx] * (b1x1 - b2x2), float(w[idx] @ b2x2)
+    scale = cost_scale(slope, offset + const)  # costs of size one (lp.py)
+    objective = (scale * slope) @ sigma + scale * offset + scale * const
     problem = cp.Problem(cp.Maximize(objective), [sigma >= 0, sigma <= 1])
     stats = unscaled(solve(problem, f"defender best response LP (H = {tree.horizon})"), scale)
     values = np.asarray(sigma.value, dtype=float)

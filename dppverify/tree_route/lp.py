@@ -6,9 +6,10 @@ solved with ``solver=cp.CLARABEL`` at tightened tolerances. Any status other tha
 contributes a silent number. LP values are floats; the checker compares them with the exact
 values within :data:`LP_TOLERANCE` (relative, see :func:`lp_agrees`).
 
-Costs are rescaled before an LP is built (:func:`cost_scale`): every cost coefficient of the
-LP's objective is multiplied by one power of two that brings the largest into [1/2, 1), and
-the optimum is divided by it again (:func:`unscaled`). The optimal strategies are those of
+Costs far from size one are rescaled before an LP is built (:func:`cost_scale`): when the
+largest cost coefficient lies outside ``[2**-16, 2**16]``, every cost coefficient of the LP's
+objective is multiplied by one power of two that brings the largest into [1/2, 1), and the
+optimum is divided by it again (:func:`unscaled`). The optimal strategies are those of
 the unscaled LP (a positive factor on the objective changes no optimal point, and the
 Defender's duals, divided by the equally scaled weights, are unchanged), a power of two is
 exact in binary floating point, and the solver's absolute tolerances then act on numbers of
@@ -33,8 +34,19 @@ from dppverify.tree_route.tree import WalkTree, flow_matrix
 if TYPE_CHECKING:  # cvxpy (with scipy.stats) costs ~0.5 s: imported where an LP is built
     import cvxpy as cp
 
-__all__ = ["LP_SOLVER", "LP_TOLERANCE", "SOLVER_SETTINGS", "LPStats", "cost_scale", "flow_matrix",
-           "lp_agrees", "realization_constraints", "solve", "unscaled"]
+__all__ = [
+    "LP_SOLVER",
+    "LP_TOLERANCE",
+    "SCALED_BEYOND",
+    "SOLVER_SETTINGS",
+    "LPStats",
+    "cost_scale",
+    "flow_matrix",
+    "lp_agrees",
+    "realization_constraints",
+    "solve",
+    "unscaled",
+]
 
 LP_SOLVER = "CLARABEL"
 """The LP solver (through cvxpy)."""
@@ -61,19 +73,26 @@ class LPStats:
     magnitude: float = 1.0
 
 
+SCALED_BEYOND = 2.0 ** 16
+"""Costs are rescaled only when the largest lies outside ``[2**-16, 2**16]``: instances of
+ordinary size keep their LPs exactly as posed (and their LP values to the last digit)."""
+
+
 def cost_scale(*costs: np.ndarray | float) -> float:
-    """The power of two ``2**-k`` by which to multiply an LP's cost coefficients so that the
-    largest in absolute value lies in [1/2, 1) (1.0 when every cost is 0 or one is not finite).
+    """The power of two ``2**-k`` by which to multiply an LP's cost coefficients: 1 when the
+    largest in absolute value lies within ``[2**-16, 2**16]`` (:data:`SCALED_BEYOND`), is 0 or
+    is not finite; otherwise the one that brings it into [1/2, 1).
 
     Examples
     --------
     >>> cost_scale(np.array([3.0, -0.5])), cost_scale(np.array([2e12]), 7.0) * 2e12
-    (0.25, 0.9094947017729282)
+    (1.0, 0.9094947017729282)
     >>> cost_scale(np.array([1e-12])) * 1e-12, cost_scale(np.zeros(3)), cost_scale()
     (0.549755813888, 1.0, 1.0)
     """
     largest = max((float(np.max(np.abs(c), initial=0.0)) for c in costs), default=0.0)
-    if largest == 0.0 or not math.isfinite(largest):
+    if not math.isfinite(largest) or largest == 0.0 or \
+            1.0 / SCALED_BEYOND <= largest <= SCALED_BEYOND:
         return 1.0
     return math.ldexp(1.0, -math.frexp(largest)[1])
 
@@ -84,10 +103,14 @@ def unscaled(stats: LPStats, scale: float) -> LPStats:
 
     Examples
     --------
-    >>> stats = unscaled(LPStats(0.75, "optimal", 2, 3, 0.1), 0.25)
+    >>> stats = unscaled(LPStats(0.75, "optimal", 2, 3, 0.1), 2.0 ** -20)
     >>> stats.value, stats.magnitude
-    (3.0, 4.0)
+    (786432.0, 1048576.0)
+    >>> unscaled(LPStats(0.75, "optimal", 2, 3, 0.1), 1.0).magnitude  # not rescaled: 1
+    1.0
     """
+    if scale == 1.0:
+        return stats
     return dataclasses.replace(stats, value=stats.value / scale, magnitude=1.0 / scale)
 
 
