@@ -28,6 +28,7 @@ from pathlib import Path
 import pytest
 
 from tests.hostile._harness import Probe, Result, check, listing, run
+from tests.hostile.test_probes import _combine
 
 pytestmark = pytest.mark.hostile
 
@@ -63,13 +64,6 @@ def case(name: str, args: list[str], setup: Setup | None = None, *, stdin: str |
 def _write(name: str, text: str) -> Setup:
     def setup(d: Path) -> None:
         (d / name).write_text(text)
-    return setup
-
-
-def _combine(*setups: Setup) -> Setup:
-    def setup(d: Path) -> None:
-        for s in setups:
-            s(d)
     return setup
 
 
