@@ -49,9 +49,10 @@ __all__ = ["MEMO_BYTES", "STDIN", "is_stdin", "open_input", "peek_input", "read_
 STDIN = "-"
 """The input name that means standard input."""
 
-MEMO_BYTES = 256 * 1024 * 1024
-"""Regular files kept by one :func:`reading_once` session, in bytes (non-regular inputs and
-standard input are always kept)."""
+MEMO_BYTES = 2 * MAX_INPUT_BYTES
+"""Regular files kept by one :func:`reading_once` session, in bytes: an instance and a profile
+of the largest size (non-regular inputs and standard input are always kept). A command that
+reads many files (``batch`` its maps, ``audit --instances`` its folder) keeps no more."""
 
 
 class _Session:
