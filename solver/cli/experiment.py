@@ -56,6 +56,7 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
     from tqdm import tqdm
 
     from solver.experiments.compare import compare_csv, compare_table, verdict
+    from solver.experiments.field_metrics import attacker_metrics, metrics_table, walks_csv
     from solver.strategy_pairs import COMPARE_PAIRS, PairEvaluator
 
     inst = experiment_instance(instance, grid)
@@ -63,21 +64,29 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
     results = tuple(game.pair(d, a) for d, a in tqdm(
         COMPARE_PAIRS, desc="compare", unit="pair", file=sys.stderr,
         disable=not want_progress(progress), leave=False))
-    text = compare_table(results) + "\n\n" + verdict(results) + "\n"
+    field = attacker_metrics(game, (a for _, a in COMPARE_PAIRS))
+    expected = {a: m.expected for a, m in field.items()}
+    text = (compare_table(results) + "\n\n" + verdict(results) + "\n\n"
+            + "The field's metrics (Masters & Sardina; expectation over the prior and the "
+              "walks; the same against both Defenders):\n" + metrics_table(field) + "\n")
+    table_csv = compare_csv(results, expected)
     if as_json:
         import csv
         import io
 
-        click.echo(dumps(list(csv.DictReader(io.StringIO(compare_csv(results))))), nl=False)
+        click.echo(dumps(list(csv.DictReader(io.StringIO(table_csv)))), nl=False)
     else:
         click.echo(text, nl=False)
     if output_dir == "":
         raise OutputError("--output-dir: the output path is empty")
     if output_dir is not None:
         d = Path(output_dir)
-        write_files({d / "compare.csv": compare_csv(results), d / "compare.txt": text},
+        goals = tuple(",".join(map(str, g)) if isinstance(g, tuple) else str(g)
+                      for g in (inst.primary, inst.secondary))
+        write_files({d / "compare.csv": table_csv, d / "compare.txt": text,
+                     d / "walks.csv": walks_csv(field, (goals[0], goals[1]))},
                     error=OutputError)
-        status(f"wrote {d / 'compare.csv'} and {d / 'compare.txt'}")
+        status(f"wrote {d / 'compare.csv'}, {d / 'walks.csv'} and {d / 'compare.txt'}")
 
 
 @experiment_group.command(
