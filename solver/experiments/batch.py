@@ -52,6 +52,7 @@ import numpy as np
 
 from dppio.files import read_input, read_text
 from solver.errors import DPPError, InvalidInstanceError
+from solver.experiments.batch_columns import exploitability_cell, line_columns
 from solver.experiments.batch_csv import (
     FIELDS,
     CsvAppender,
@@ -235,7 +236,7 @@ def _cell_text(cell: Cell | None) -> str:
 
 def _error_row(sc: Any, config: BatchConfig, reason: str, **known: str) -> dict[str, str]:
     row = dict.fromkeys(FIELDS, "")
-    row.update(line=str(sc.line), status="error", map=sc.map,
+    row.update(line=str(sc.line), status="error", map=sc.map, scen_optimal=sc.optimal,
                start=_cell_text(sc.start) if not sc.reason else "",
                goal=_cell_text(sc.goal) if not sc.reason else "",
                prior=",".join(config.prior),
@@ -291,6 +292,7 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
         cert = checker.certify(instance_to_json(inst), profile,
                                exact=config.connectivity == 4, route=config.route)
         t2 = time.perf_counter()
+        columns = line_columns(eq, sc.goal)
     except bad_input as exc:
         return _error_row(sc, config, str(exc), **known)
     except Exception as exc:  # one line, and the batch goes on
@@ -298,6 +300,8 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
     value = profile["value"]
     voi = value["VoI"]
     row = dict.fromkeys(FIELDS, "")
+    row.update(columns, scen_optimal=sc.optimal,
+               nash_conv=exploitability_cell(cert))
     row.update(line=str(sc.line), status="ok", map=sc.map, start=_cell_text(sc.start),
                goal=_cell_text(sc.goal), fake_goal=_cell_text(fake),
                prior=",".join(config.prior), primary=_cell_text(cast(Cell, inst.primary)),
