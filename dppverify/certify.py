@@ -54,6 +54,7 @@ from dppverify.game.profile import (
     load_profile_document,
     profile_from_json,
 )
+from dppverify.exploitability import exploitability_of
 from dppverify.horizons import parse_horizon
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.provenance import provenance_record
@@ -302,13 +303,16 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
         "prior": [str(roles.b1), str(roles.b2)],
         "defender_rule": defender.get("rule") if isinstance(defender, Mapping) else None,
     }
+    exploit = exploitability_of(checks, goals=[info["primary"], info["secondary"]],
+                                priors=[roles.b1, roles.b2], horizon=h, exact=game.exact)
     return Certificate(checks=tuple(checks), horizon=h, exact=game.exact,
                        tolerance=game.numbers.rel_tol, lp_solver=LP_SOLVER,
                        lp_tolerance=LP_TOLERANCE,
                        prefixes=prefixes, leaves=leaves, seed=seed, info=info, route=chosen,
                        not_run=not_run("structured") if chosen == "structured" else {},
                        provenance=provenance_record(instance, profile, route=chosen,
-                                                    exact=game.exact))
+                                                    exact=game.exact),
+                       exploitability=exploit)
 
 
 def _with_provenance(cert: Certificate, instance: Any, profile: Any) -> Certificate:
@@ -358,7 +362,10 @@ def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon:
                             "game": "N goals"}
     if chosen != "tree":
         info["trie_prefixes"] = trie_size
-    return Certificate(checks=tuple(checks), horizon=h if tree is None else tree.horizon,
+    horizon_of = h if tree is None else tree.horizon
+    exploit = exploitability_of(checks, goals=[node_to_json(inst.nodes[g]) for g in inst.goals],
+                                priors=list(inst.prior), horizon=horizon_of, exact=True)
+    return Certificate(checks=tuple(checks), horizon=horizon_of, exploitability=exploit,
                        exact=True, lp_solver=LP_SOLVER,
                        lp_tolerance=LP_TOLERANCE,
                        prefixes=0 if tree is None else tree.n_prefixes,
