@@ -43,6 +43,7 @@ from dppverify.errors import (
     ProfileError,
     UndecidedError,
 )
+from dppverify.exploitability import exploitability_of
 from dppverify.formats.json_reading import JsonReadError, read_json_file
 from dppverify.game.instance import Instance, arc_arrays, node_to_json
 from dppverify.game.profile import (
@@ -54,7 +55,6 @@ from dppverify.game.profile import (
     load_profile_document,
     profile_from_json,
 )
-from dppverify.exploitability import exploitability_of
 from dppverify.horizons import parse_horizon
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.provenance import provenance_record

@@ -144,7 +144,7 @@ def compare_csv(results: Sequence[PairResult],
     sigma',gamma*,18/7,2,12/5,27/10,1/9
     """
     buf = io.StringIO()
-    fields = ("defender", "attacker", "U1", "U2", "U", "U_bar", "VoI")
+    fields: tuple[str, ...] = ("defender", "attacker", "U1", "U2", "U", "U_bar", "VoI")
     if metrics is not None:
         fields += METRIC_FIELDS
     w = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")

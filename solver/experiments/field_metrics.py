@@ -46,7 +46,15 @@ class AttackerMetrics:
 
 def attacker_metrics(game: PairEvaluator, names: Iterable[str]) -> dict[str, AttackerMetrics]:
     """The metrics of each named Attacker's walks on ``game``'s instance, and their
-    expectation (see the module docstring)."""
+    expectation (see the module docstring).
+
+    Examples
+    --------
+    >>> from solver.instance import triangle
+    >>> m = attacker_metrics(PairEvaluator.of(triangle()), ("gamma*", "ambiguity"))
+    >>> str(m["gamma*"].expected.cost), str(m["ambiguity"].expected.cost)
+    ('3', '27/10')
+    """
     meter = RouteMeter.of(game.instance, game.d_to_g1, game.d_to_g2)
     out = {}
     for name in dict.fromkeys(names):
