@@ -60,6 +60,7 @@ from solver.experiments.batch_csv import (
     read_done,
     summarize_file,
 )
+from solver.experiments.batch_lines import LineSelection
 from solver.experiments.dask_tasks import dask_completed
 
 __all__ = ["FIELDS", "BatchConfig", "BatchTask", "Checker", "parse_prior", "read_done",
@@ -158,10 +159,12 @@ def _find_map(name: str, scen_dir: Path, maps: Sequence[str],
 
 
 def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
-               skip: Iterable[int] = (), chunk: int = 8) -> tuple[list[BatchTask], int]:
+               skip: Iterable[int] = (), chunk: int = 8,
+               select: LineSelection | None = None) -> tuple[list[BatchTask], int]:
     """Read a ``.scen`` file and cut the lines not in ``skip`` into tasks of ``chunk`` lines.
 
-    Returns the tasks and the total number of rows the file gives.
+    Returns the tasks and the total number of rows the file gives (of the lines ``select``
+    keeps, :mod:`solver.experiments.batch_lines`: ``--lines`` and ``--shard``).
 
     Examples
     --------
@@ -183,10 +186,11 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
     if not scenarios:
         raise InvalidInstanceError(f"{scen}: no scenario lines")
     done = set(skip)
+    chosen = None if select is None else select.choose([sc.line for sc in scenarios])
     found: dict[str, tuple[str | None, str]] = {}
     todo = []
     for i, sc in enumerate(scenarios):
-        if sc.line in done:
+        if sc.line in done or (chosen is not None and sc.line not in chosen):
             continue
         if sc.map and sc.map not in found:
             found[sc.map] = _find_map(sc.map, path.parent, config.maps, checker)
@@ -199,7 +203,7 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
         tasks.append(BatchTask(config, checker, tuple(p[0] for p in part),
                                tuple(p[1] for p in part), tuple(p[2] for p in part),
                                tuple(p[3] for p in part)))
-    return tasks, len(scenarios)
+    return tasks, len(scenarios) if chosen is None else len(chosen)
 
 
 @lru_cache(maxsize=8)
@@ -336,7 +340,8 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
               workers: int = 1, dask_address: str | None = None, chunk: int = 8,
               progress: Callable[[int], None] | None = None,
               on_start: Callable[[int, int], None] | None = None,
-              limit: int | None = None) -> tuple[int, int]:
+              limit: int | None = None,
+              select: LineSelection | None = None) -> tuple[int, int]:
     """Run (or continue) the batch; returns (rows written now, rows in the file).
 
     Parameters
@@ -359,6 +364,9 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
         Called with (rows already done, rows in total) before the work starts.
     limit : int, optional
         Stop after this many tasks (used to test interruptions).
+    select : LineSelection, optional
+        Run only these lines (``--lines``, ``--shard``); rows of other lines already in the
+        file stay (same configuration).
 
     Examples
     --------
@@ -381,9 +389,9 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     written = 0
     try:
         done = read_done(output, config.key)
-        tasks, total = scen_tasks(scen, config, checker, skip=done, chunk=chunk)
+        tasks, total = scen_tasks(scen, config, checker, skip=done, chunk=chunk, select=select)
         if on_start is not None:
-            on_start(len(done), total)
+            on_start(total - sum(len(t.scenarios) for t in tasks), total)
         if limit is not None:
             tasks = tasks[:limit]
         for rows in _results(tasks, workers, dask_address):
