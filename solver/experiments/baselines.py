@@ -35,11 +35,11 @@ from solver.experiments.field_metrics import (
     walks_csv,
 )
 from solver.experiments.sampling import sample_grid
-from solver.instance import Instance
+from solver.formats.movingai import read_map
+from solver.game.instance import Instance
 from solver.literature.masters_sardina import STRATEGIES
 from solver.literature.path_metrics import METRIC_FIELDS, PERCENTS, metric_row
-from solver.movingai import read_map
-from solver.strategy_pairs import DEFENDERS, LABELS, PairEvaluator
+from solver.literature.strategy_pairs import DEFENDERS, LABELS, PairEvaluator
 
 __all__ = [
     "ATTACKERS_ALL",

@@ -16,9 +16,9 @@ from __future__ import annotations
 from collections.abc import Hashable, Mapping
 from typing import Any
 
-from solver.equilibrium import Equilibrium
 from solver.literature.path_metrics import METRIC_FIELDS, metric_row
 from solver.literature.walk_metrics import RouteMeter
+from solver.twogoal.equilibrium import Equilibrium
 
 __all__ = ["FIELD_COLUMNS", "exploitability_cell", "line_columns"]
 

@@ -9,7 +9,7 @@ Attacker's walks only, so they are the same against σ* and σ'.
 Examples
 --------
 >>> from solver.experiments.compare import paper10_instance
->>> from solver.strategy_pairs import PairEvaluator
+>>> from solver.literature.strategy_pairs import PairEvaluator
 >>> m = attacker_metrics(PairEvaluator.of(paper10_instance()), ("gamma*",))
 >>> [(w.label, str(w.probability), str(w.metrics.ldp)) for w in m["gamma*"].walks]
 [('xi1_I', '1/3', '1/3'), ('xi1_II', '2/3', '19/24'), ('xi2', '1', '6/17')]
@@ -25,9 +25,9 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 
 from solver.literature.path_metrics import METRIC_FIELDS, PERCENTS, PathMetrics, metric_row
+from solver.literature.strategy_pairs import LABELS, PairEvaluator
 from solver.literature.walk_metrics import RouteMeter, WalkMetrics
 from solver.numbers import Number
-from solver.strategy_pairs import LABELS, PairEvaluator
 
 __all__ = ["WALK_FIELDS", "AttackerMetrics", "attacker_metrics", "metrics_table", "walks_csv"]
 
@@ -50,7 +50,7 @@ def attacker_metrics(game: PairEvaluator, names: Iterable[str]) -> dict[str, Att
 
     Examples
     --------
-    >>> from solver.instance import triangle
+    >>> from solver.game.instance import triangle
     >>> m = attacker_metrics(PairEvaluator.of(triangle()), ("gamma*", "ambiguity"))
     >>> str(m["gamma*"].expected.cost), str(m["ambiguity"].expected.cost)
     ('3', '27/10')

@@ -2,7 +2,7 @@
 
 A type θ's walk ends at the first goal it reaches, where the type pays the terminal cost
 ``d(end, g^θ)``: its **route** is the walk followed, when it ended at the other goal, by the
-shortest path from there to ``g^θ`` (the solver's tie rule, :mod:`solver.shortest_paths`), the
+shortest path from there to ``g^θ`` (the solver's tie rule, :mod:`solver.graph.shortest_paths`), the
 path that terminal cost pays for. This is the path Masters & Sardina's reference script
 measures (π_d1's route goes to the bogus goal and on to the real one). The real goal of type
 θ is ``g^θ`` and its bogus goal the other goal; truthfulness is
@@ -10,7 +10,7 @@ measures (π_d1's route goes to the bogus goal and on to the real one). The real
 
 Examples
 --------
->>> from solver.instance import triangle
+>>> from solver.game.instance import triangle
 >>> meter = RouteMeter.of(triangle())
 >>> m = meter.walk_metrics((0, 1), 1)  # the primary type walks s -> g2, then g2 -> g1
 >>> meter.route((0, 1), 1), str(m.cost), str(m.cost_ratio), str(m.ldp)
@@ -25,13 +25,13 @@ from fractions import Fraction
 
 import numpy as np
 
-from solver.distances import distances_to
-from solver.instance import Instance
+from solver.game.instance import Instance
+from solver.game.walks import StrategyPath
+from solver.graph.distances import distances_to
+from solver.graph.network import Network
+from solver.graph.shortest_paths import path_to_target
 from solver.literature.masters_sardina import truthful
 from solver.literature.path_metrics import PathMetrics, expectation, route_metrics
-from solver.network import Network
-from solver.shortest_paths import path_to_target
-from solver.strategy import StrategyPath
 
 __all__ = ["RouteMeter", "WalkMetrics"]
 
@@ -130,7 +130,7 @@ class RouteMeter:
         Examples
         --------
         >>> from solver import solve
-        >>> from solver.instance import triangle
+        >>> from solver.game.instance import triangle
         >>> eq = solve(triangle())
         >>> rows = RouteMeter.of(triangle()).strategy(eq.primary_paths, (eq.secondary,))
         >>> [(r.theta, r.label, str(r.probability), r.steps) for r in rows]
@@ -157,7 +157,7 @@ class RouteMeter:
         Examples
         --------
         >>> from solver import solve
-        >>> from solver.instance import triangle
+        >>> from solver.game.instance import triangle
         >>> eq = solve(triangle())
         >>> meter = RouteMeter.of(triangle())
         >>> e = meter.expectation(meter.strategy(eq.primary_paths, (eq.secondary,)))

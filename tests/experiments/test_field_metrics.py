@@ -105,7 +105,7 @@ def test_pi_d1_by_hand(written: Path) -> None:
 
 def test_every_walk_matches_the_independent_computation(written: Path) -> None:
     from solver.experiments.compare import paper10_instance
-    from solver.strategy_pairs import PairEvaluator
+    from solver.literature.strategy_pairs import PairEvaluator
 
     game = PairEvaluator.of(paper10_instance())
     rows = _csv(written / "walks.csv")

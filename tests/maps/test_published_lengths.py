@@ -3,8 +3,8 @@
 Every line of a ``.scen`` file carries the benchmark's optimal length from its start to its
 goal, computed by MovingAI on the 8-connected grid **without corner cutting** (a diagonal step
 only when both cells beside it are free) with weight √2 per diagonal. Our
-:meth:`solver.network.Network.from_grid` with ``connectivity=8`` builds that grid; the
-distances come from the engine :mod:`solver.distances` uses (``scipy``'s Dijkstra on the
+:meth:`solver.graph.network.Network.from_grid` with ``connectivity=8`` builds that grid; the
+distances come from the engine :mod:`solver.graph.distances` uses (``scipy``'s Dijkstra on the
 network's matrix), one run per distinct start, vectorised over many starts at a time. Every
 line must agree within :data:`TOLERANCE` (the files print 8 decimals), and the 4-connected
 distance (``connectivity=4``, unit steps: a subgraph of the same weights) must be finite and
@@ -26,8 +26,8 @@ from scipy.sparse.csgraph import dijkstra
 
 from dppverify.formats.scen import parse_scen
 from dppverify.formats.standard_maps import standard_map_names, standard_map_path
-from solver.movingai import read_map
-from solver.network import Network
+from solver.formats.movingai import read_map
+from solver.graph.network import Network
 
 TOLERANCE = 1e-7
 """Absolute agreement with the published length (which has 8 decimals)."""
