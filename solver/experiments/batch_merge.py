@@ -98,6 +98,12 @@ def merge_shards(shards: Sequence[str | Path], output: str | Path) -> int:
         configurations, or a line in two shards.
     OutputError
         ``output`` cannot be written (nothing is left behind).
+
+    Examples
+    --------
+    >>> merge_shards([], "all.csv")
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: dpp batch merge needs at least one shard CSV
     """
     if not shards:
         raise InvalidInstanceError("dpp batch merge needs at least one shard CSV")
