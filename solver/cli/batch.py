@@ -81,8 +81,10 @@ class _BatchCommand(click.Command):
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
         if args and args[0] == "merge":
-            ctx.meta["dpp.batch.merge"] = merge_command.make_context("merge", list(args[1:]),
-                                                                     parent=ctx)
+            # the parent is the group's context, so that usage lines read "dpp batch merge"
+            name = f"{ctx.info_name} merge"
+            ctx.meta["dpp.batch.merge"] = merge_command.make_context(name, list(args[1:]),
+                                                                     parent=ctx.parent)
             return []
         return super().parse_args(ctx, args)
 
