@@ -41,8 +41,9 @@ so its line is malformed."""
 @dataclass(frozen=True)
 class Scenario:
     """One line of a ``.scen`` file: ``line`` (1-based), the map name as written, its size
-    as the line states it, and the start and goal as ``(row, col)``; or, for a bad line,
-    ``reason``."""
+    as the line states it, the start and goal as ``(row, col)`` and MovingAI's published
+    optimal length as written (``optimal``, 8-connected without corner cutting); or, for a bad
+    line, ``reason``."""
 
     line: int
     map: str = ""
@@ -51,6 +52,7 @@ class Scenario:
     start: Cell = (0, 0)
     goal: Cell = (0, 0)
     reason: str = ""
+    optimal: str = ""
 
 
 def parse_scen(text: str) -> list[Scenario]:
@@ -62,8 +64,8 @@ def parse_scen(text: str) -> list[Scenario]:
     --------
     >>> text = "version 1\\n0\\tm.map\\t8\\t8\\t0\\t1\\t7\\t6\\t12.5\\n\\nbad line\\n"
     >>> a, b = parse_scen(text)
-    >>> a.line, a.map, a.start, a.goal
-    (2, 'm.map', (1, 0), (6, 7))
+    >>> a.line, a.map, a.start, a.goal, a.optimal
+    (2, 'm.map', (1, 0), (6, 7), '12.5')
     >>> b.line, b.reason[:45]
     (4, 'malformed scenario line: 2 fields, expected 9')
     """
@@ -92,7 +94,8 @@ def parse_scen(text: str) -> list[Scenario]:
             out.append(Scenario(number, reason=f"malformed scenario line: a map name of "
                                 f"{len(name)} characters (at most {MAX_MAP_NAME})"))
             continue
-        out.append(Scenario(number, name, w, h, (sy, sx), (gy, gx)))
+        out.append(Scenario(number, name, w, h, (sy, sx), (gy, gx),
+                            optimal=parts[8].strip()))
     return out
 
 

@@ -57,7 +57,9 @@ import numpy as np
 
 from dppio.files import read_input
 from solver.errors import DPPError, InvalidInstanceError
+from solver.experiments.batch_columns import exploitability_cell, line_columns
 from solver.experiments.batch_csv import FIELDS, read_done, summarize_file
+from solver.experiments.batch_lines import LineSelection
 from solver.experiments.batch_output import BatchOutput
 from solver.experiments.dask_tasks import dask_completed
 
@@ -158,12 +160,20 @@ class BatchPlan:
         """The files the run reads: the ``.scen`` file and the maps found."""
         return (str(self.scen), *(p for p, _ in self.maps.values() if p is not None))
 
-    def tasks(self, skip: Iterable[int] = (), chunk: int = 8) -> Iterator[BatchTask]:
-        """The lines not in ``skip``, ``chunk`` at a time (lazily)."""
+    def chosen(self, select: LineSelection | None = None) -> set[int]:
+        """The scenario lines ``select`` keeps (``--lines``, ``--shard``: every line without
+        it; :mod:`solver.experiments.batch_lines`)."""
+        lines = [sc.line for sc in self.scenarios]
+        return set(lines) if select is None else select.choose(lines)
+
+    def tasks(self, skip: Iterable[int] = (), chunk: int = 8,
+              select: LineSelection | None = None) -> Iterator[BatchTask]:
+        """The lines ``select`` keeps and not in ``skip``, ``chunk`` at a time (lazily)."""
         done = set(skip)
+        keep = None if select is None else self.chosen(select)
         part: list[Any] = []
         for sc in self.scenarios:
-            if sc.line in done:
+            if sc.line in done or (keep is not None and sc.line not in keep):
                 continue
             part.append(sc)
             if len(part) == chunk:
@@ -248,10 +258,12 @@ def plan_batch(scen: str | Path, config: BatchConfig, checker: Checker) -> Batch
 
 
 def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
-               skip: Iterable[int] = (), chunk: int = 8) -> tuple[list[BatchTask], int]:
+               skip: Iterable[int] = (), chunk: int = 8,
+               select: LineSelection | None = None) -> tuple[list[BatchTask], int]:
     """Read a ``.scen`` file and cut the lines not in ``skip`` into tasks of ``chunk`` lines.
 
-    Returns the tasks and the total number of rows the file gives.
+    Returns the tasks and the total number of rows the file gives (of the lines ``select``
+    keeps, :mod:`solver.experiments.batch_lines`: ``--lines`` and ``--shard``).
 
     Examples
     --------
@@ -262,7 +274,7 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
     (32, 4, 2)
     """
     plan = plan_batch(scen, config, checker)
-    return list(plan.tasks(skip, chunk)), len(plan.scenarios)
+    return list(plan.tasks(skip, chunk, select)), len(plan.chosen(select))
 
 @lru_cache(maxsize=8)
 def _blocked(path: str, mtime_ns: int) -> np.ndarray:
@@ -298,7 +310,7 @@ def _cell_text(cell: Cell | None) -> str:
 
 def _error_row(sc: Any, config: BatchConfig, reason: str, **known: str) -> dict[str, str]:
     row = dict.fromkeys(FIELDS, "")
-    row.update(line=str(sc.line), status="error", map=sc.map,
+    row.update(line=str(sc.line), status="error", map=sc.map, scen_optimal=sc.optimal,
                start=_cell_text(sc.start) if not sc.reason else "",
                goal=_cell_text(sc.goal) if not sc.reason else "",
                prior=",".join(config.prior),
@@ -355,6 +367,7 @@ def _run_line(sc: Any, goals: Sequence[Cell], map_path: str | None, missing: str
         cert = checker.certify(instance_to_json(inst), profile,
                                exact=config.connectivity == 4, route=config.route)
         t2 = time.perf_counter()
+        columns = line_columns(eq, sc.goal)
     except bad_input as exc:
         return _error_row(sc, config, str(exc), **known)
     except Exception as exc:  # one line, and the batch goes on
@@ -362,6 +375,8 @@ def _run_line(sc: Any, goals: Sequence[Cell], map_path: str | None, missing: str
     value = profile["value"]
     voi = value["VoI"]
     row = dict.fromkeys(FIELDS, "")
+    row.update(columns, scen_optimal=sc.optimal,
+               nash_conv=exploitability_cell(cert))
     row.update(line=str(sc.line), status="ok", map=sc.map, start=_cell_text(sc.start),
                goal=_cell_text(sc.goal), fake_goal=_cell_text(fake),
                prior=",".join(config.prior), primary=_cell_text(cast(Cell, inst.primary)),
@@ -408,7 +423,8 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
               progress: Callable[[int], None] | None = None,
               on_start: Callable[[int, int], None] | None = None,
               on_end: Callable[[int], None] | None = None,
-              limit: int | None = None) -> BatchResult:
+              limit: int | None = None,
+              select: LineSelection | None = None) -> BatchResult:
     """Run (or continue) the batch.
 
     Parameters
@@ -436,6 +452,9 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
         too).
     limit : int, optional
         Stop after this many tasks (used to test interruptions).
+    select : LineSelection, optional
+        Run only these lines (``--lines``, ``--shard``); rows of other lines already in the
+        file stay (same configuration).
 
     Examples
     --------
@@ -451,9 +470,10 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     plan = plan_batch(scen, config, checker)
     with BatchOutput.open(output, plan.config.key, lines=(sc.line for sc in plan.scenarios),
                           inputs=plan.inputs) as out:
-        if on_start is not None:
-            on_start(len(out.done), len(plan.scenarios))
-        tasks: Iterable[BatchTask] = plan.tasks(out.done, chunk)
+        chosen = plan.chosen(select)
+        if on_start is not None:  # of the selected lines: those already done, all of them
+            on_start(len(chosen & out.done), len(chosen))
+        tasks: Iterable[BatchTask] = plan.tasks(out.done, chunk, select)
         if limit is not None:
             tasks = (t for _, t in zip(range(limit), tasks, strict=False))
         try:

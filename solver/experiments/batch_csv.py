@@ -17,6 +17,7 @@ from pathlib import Path
 
 from dppio.files import open_input
 from solver.errors import InvalidInstanceError
+from solver.literature.path_metrics import METRIC_FIELDS
 
 __all__ = [
     "FIELDS",
@@ -32,11 +33,13 @@ __all__ = [
     "summarize_file",
 ]
 
-FIELDS = ("line", "status", "map", "start", "goal", "fake_goal", "prior", "primary", "U1",
-          "U2", "U", "U_bar", "VoI", "VoI_float", "verdict", "route", "solve_seconds",
-          "certify_seconds", "reason", "config")
+FIELDS = ("line", "status", "map", "start", "goal", "fake_goal", "prior", "primary",
+          "scen_optimal", "distance", "U1", "U2", "U", "U_bar", "VoI", "VoI_float",
+          *METRIC_FIELDS, "verdict", "nash_conv", "route", "solve_seconds", "certify_seconds",
+          "reason", "config")
 """The CSV columns. Cells are ``row,col``; values are exact ``p/q``; ``verdict`` is the
-certificate's; times in seconds; ``reason`` is empty on ``ok`` rows."""
+certificate's; times in seconds; ``reason`` is empty on ``ok`` rows. The published length,
+our distance, the path metrics and ``nash_conv``: :mod:`solver.experiments.batch_columns`."""
 
 HEADER = (",".join(FIELDS) + "\n").encode()
 """The first line of every batch CSV, byte for byte."""
@@ -78,8 +81,8 @@ def format_rows(rows: Iterable[dict[str, str]]) -> bytes:
     --------
     >>> row = dict.fromkeys(FIELDS, "") | {"line": "2", "status": "error",
     ...                                    "reason": "two\\nlines", "config": "0123456789ab"}
-    >>> format_rows([row])
-    b'2,error,,,,,,,,,,,,,,,,,two lines,0123456789ab\\n'
+    >>> format_rows([row]).endswith(b",two lines,0123456789ab\\n"), format_rows([row]).count(b"\\n")
+    (True, 1)
     """
     buf = io.StringIO()
     writer = csv.writer(buf, lineterminator="\n")
@@ -161,8 +164,9 @@ def read_rows(chunks: Iterable[bytes], key: str | None = None, *, where: str = "
     --------
     >>> ok = format_rows([dict.fromkeys(FIELDS, "") | {"line": "3", "status": "error",
     ...                   "reason": "no fake goal", "config": "0123456789ab"}])
-    >>> [(end, r.line) for end, r in read_rows([HEADER + ok + b"4,o"])]
-    [(187, 3)]
+    >>> rows = list(read_rows([HEADER + ok + b"4,o"]))  # (end offset, row); 4 is torn
+    >>> [(end == len(HEADER + ok), r.line) for end, r in rows]
+    [(True, 3)]
     >>> list(read_rows([b'{"my": "notes"}']))
     Traceback (most recent call last):
     solver.errors.InvalidInstanceError: the file is not a dpp batch CSV: its first line is not \
@@ -304,7 +308,8 @@ def read_done(path: str | Path, key: str) -> set[int]:
     >>> p = Path(tempfile.mkdtemp()) / "b.csv"
     >>> read_done(p, "0123456789ab")
     set()
-    >>> _ = p.write_text(",".join(FIELDS) + "\\n3,error" + ",x" * 17 + ",0123456789ab" + "\\n2,o")
+    >>> _ = p.write_text(",".join(FIELDS) + "\\n3,error" + ",x" * (len(FIELDS) - 3)
+    ...                  + ",0123456789ab" + "\\n2,o")
     >>> read_done(p, "0123456789ab"), p.read_text().endswith("2,o")
     ({3}, True)
     """

@@ -110,13 +110,15 @@ class Probe:
 def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = DEFAULT_CPU,
         env: dict[str, str] | None = None,
         during: Callable[[subprocess.Popen[bytes]], None] | None = None,
-        fsize: int | None = None, nofile: int | None = None, stdout: str = "pipe",
-        ignore: tuple[int, ...] = (), survivors_seconds: float = 10) -> Result:
+        stdin: bytes | None = None, fsize: int | None = None, nofile: int | None = None,
+        stdout: str = "pipe", ignore: tuple[int, ...] = (),
+        survivors_seconds: float = 10) -> Result:
     """Run ``python -m solver.cli ARGS`` in ``cwd`` under the limits; ``during`` is called
-    with the running process (to send it a signal, say) before waiting for it. ``fsize``,
-    ``nofile`` and ``stdout`` as in :class:`Probe`; ``ignore``: signals the probe starts with
-    ignored (``nohup``); ``survivors_seconds``: how long the probe's processes may take to
-    end after it exited."""
+    with the running process (to send it a signal, say) before waiting for it; ``stdin``:
+    bytes piped to its standard input (default: ``/dev/null``). ``fsize``, ``nofile`` and
+    ``stdout`` as in :class:`Probe`; ``ignore``: signals the probe starts with ignored
+    (``nohup``); ``survivors_seconds``: how long the probe's processes may take to end after
+    it exited."""
 
     def limits() -> None:  # pragma: no cover - in the child
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
@@ -152,7 +154,9 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
     elif stdout == "closed":
         out_target = subprocess.DEVNULL  # and closed in the child
     proc = subprocess.Popen([sys.executable, "-m", "solver.cli", *args], cwd=cwd,
-                            env=full_env, stdin=subprocess.DEVNULL, stdout=out_target,
+                            env=full_env,
+                            stdin=subprocess.DEVNULL if stdin is None else subprocess.PIPE,
+                            stdout=out_target,
                             stderr=subprocess.PIPE, start_new_session=True,
                             preexec_fn=limits)
     if pipe_w is not None:
@@ -162,7 +166,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
     try:
         if during is not None:
             during(proc)
-        out, err = proc.communicate(timeout=GUARD_SECONDS)
+        out, err = proc.communicate(stdin, timeout=GUARD_SECONDS)
     finally:
         if proc.poll() is None:
             with contextlib.suppress(OSError):
