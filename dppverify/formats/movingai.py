@@ -34,7 +34,7 @@ from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_number
 
 __all__ = ["BLOCKED", "PASSABLE", "GridArcs", "GridMap", "grid_arcs", "grid_document",
-           "parse_map", "read_map"]
+           "parse_map", "read_map", "read_map_file"]
 
 
 PASSABLE = frozenset(".GS")
@@ -101,7 +101,21 @@ class GridMap:
 
 
 def read_map(path: str | Path) -> GridMap:
-    """Read a ``.map`` file strictly; errors name the file and the line.
+    """Read a ``.map`` file strictly; errors name the file and the line
+    (:func:`read_map_file` without the bytes).
+
+    Examples
+    --------
+    >>> read_map("/nonexistent.map")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: /nonexistent.map: cannot read map file (...)
+    """
+    return read_map_file(path)[0]
+
+
+def read_map_file(path: str | Path) -> tuple[GridMap, bytes]:
+    """Read a ``.map`` file strictly, with the bytes it was parsed from (what a compact map
+    instance's ``map_sha256`` hashes); errors name the file and the line.
 
     Parameters
     ----------
@@ -110,7 +124,7 @@ def read_map(path: str | Path) -> GridMap:
 
     Returns
     -------
-    GridMap
+    (GridMap, bytes)
 
     Raises
     ------
@@ -119,19 +133,21 @@ def read_map(path: str | Path) -> GridMap:
 
     Examples
     --------
-    >>> read_map("/nonexistent.map")  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    dppverify.errors.InvalidInstanceError: /nonexistent.map: cannot read map file (...)
+    >>> from dppverify.formats.standard_maps import standard_map_path
+    >>> grid, data = read_map_file(standard_map_path("empty-8-8"))
+    >>> grid.height, data[:11]
+    (8, b'type octile')
     """
     p = Path(path)
     try:
-        text = p.read_bytes().decode("ascii")
+        data = p.read_bytes()
+        text = data.decode("ascii")
     except OSError as exc:
         raise InvalidInstanceError(f"{p}: cannot read map file ({exc.strerror})") from None
     except UnicodeDecodeError as exc:
         raise InvalidInstanceError(f"{p}: not an ASCII map file (byte {exc.start})") from None
     try:
-        return parse_map(text)
+        return parse_map(text), data
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{p}: {exc}") from None
 

