@@ -406,9 +406,8 @@ def _node_link(inst: Instance) -> dict[str, Any]:
         return {"directed": g.is_directed(), "multigraph": False, "graph": {},
                 "nodes": [{"id": node_to_json(v)} for v in g.nodes], "edges": edges}
     net = inst.network
-    if isinstance(net.labels, GridLabels):
-        free = np.flatnonzero(~net.labels.blocked.ravel())
-        nodes = [{"id": list(net.labels[int(i)])} for i in free]
+    if isinstance(net.labels, GridLabels):  # the free cells, row-major
+        nodes = [{"id": list(cell)} for cell in net.labels]
     else:
         nodes = [{"id": node_to_json(v)} for v in net.labels]
     edges = []

@@ -18,7 +18,7 @@ from typing import Any
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.map_instance import MapReference, read_map_reference
 from dppverify.formats.movingai import Cell, GridMap, grid_arcs, read_map
-from dppverify.game.graph_reading import edge_arrays
+from dppverify.game.distances import ArcArrays, ArcRows
 from dppverify.game.instance import Instance, finish_game
 from dppverify.game.instance_reading import two_goal_rules
 
@@ -53,11 +53,12 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
     a = grid_arcs(grid, start, goals, connectivity=connectivity)
     if not a.exact and not two_goal_rules(list(goals), two_goals):
         raise InvalidInstanceError(NGOAL_FLOAT_REFUSAL)
-    built = edge_arrays(len(a.ids), a.u, a.v, a.c, a.values, False)
-    if built is None:  # a grid has no repeated arc
-        raise InvalidInstanceError("a grid map gave a repeated arc")
-    succ_t, pred_t, arcs = built
-    return finish_game(a.ids, a.node_index, False, succ_t, pred_t, arcs, exact=a.exact,
+    values = tuple(a.values)
+    arcs = ArcArrays(tails=a.tails, heads=a.heads, codes=a.codes, values=values,
+                     symmetric=True)
+    # undirected: the arcs entering v are those leaving it, so pred is succ
+    succ = ArcRows(len(a.ids), a.tails, a.heads, a.codes, values, bounds=a.indptr)
+    return finish_game(a.ids, a.node_index, False, succ, succ, arcs, exact=a.exact,
                        start=list(start), goals=[list(g) for g in goals], prior=list(prior),
                        two_goals=two_goals)
 
