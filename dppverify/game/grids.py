@@ -19,8 +19,8 @@ from dppverify.errors import InvalidInstanceError
 from dppverify.formats.map_instance import MapReference, read_map_reference
 from dppverify.formats.movingai import Cell, GridMap, grid_arcs, read_map
 from dppverify.game.distances import ArcArrays, ArcRows
-from dppverify.game.instance import Instance, finish_game
 from dppverify.game.instance_reading import two_goal_rules
+from dppverify.game.instance_type import Instance, finish_game
 
 __all__ = ["NGOAL_FLOAT_REFUSAL", "grid_game", "map_game", "map_instance", "reference_game"]
 

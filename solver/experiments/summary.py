@@ -24,7 +24,7 @@ from fractions import Fraction
 from itertools import pairwise
 from typing import Any
 
-from solver.strategy_pairs import PAIRS, pair_label
+from solver.literature.strategy_pairs import PAIRS, pair_label
 
 __all__ = ["Claim", "DensitySummary", "Stats", "summarize_density"]
 

@@ -16,8 +16,9 @@ from matplotlib.patches import Patch
 from matplotlib.ticker import MaxNLocator
 
 from solver.errors import InvalidInstanceError
-from solver.instance import Instance
-from solver.network import GridLabels
+from solver.game.instance import Instance
+from solver.graph.network import GridLabels
+from solver.literature.strategy_pairs import LABELS, PairEvaluator
 from solver.plots.style import (
     LARGE_MAP,
     MARKER_COLOUR,
@@ -31,7 +32,6 @@ from solver.plots.style import (
     num_label,
     tex_label,
 )
-from solver.strategy_pairs import LABELS, PairEvaluator
 
 __all__ = ["plot_beliefs", "plot_map"]
 

@@ -14,7 +14,7 @@ from matplotlib.patches import Patch
 from solver import Instance, solve
 from solver.experiments.compare import paper10_instance
 from solver.plots import PATH_STYLES, plot_beliefs, plot_map, plot_voi
-from solver.report import summarize
+from solver.twogoal.report import summarize
 
 matplotlib.use("Agg")
 
