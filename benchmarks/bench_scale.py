@@ -15,8 +15,10 @@ Rows (wall time, best of ``--repeat`` in this process unless a fresh process is 
    to the game as a whole ``dpp`` command in a fresh process, timed as a user times it
    (imports included), with its own peak RSS: ``dpp solve --map`` (writing the profile and
    the compact instance), ``dpp certify`` of the saved instance and with ``--map``,
-   ``dpp value`` both ways, ``dpp plot map --map`` (issue 31: certify --map <= 3x solve, every
-   route <= 1 GiB); the commands interleaved, best of ``--repeat``. Then, in this process,
+   ``dpp value`` both ways, ``dpp plot map --map``, ``dpp audit --map --scen
+   --map-instances`` on two scenario lines (``--full-audit``: also with full instance
+   documents) (issue 31: certify --map <= 3x solve, every route <= 1 GiB); the commands
+   interleaved, best of ``--repeat``. Then, in this process,
    ``solve`` (from the obstacle array) against one ``scipy.sparse.csgraph.dijkstra`` from the
    start on the free cells' graph (``_grids.free_cell_graph``, built by the benchmark, the
    same graph for any code on ``PYTHONPATH``), and three such runs against one (target:
@@ -204,11 +206,25 @@ GRID_COMMANDS = (
     ("value INSTANCE", ["value", "instance.json"]),
     ("value --map", ["value", "{map}"]),
     ("plot map --map", ["plot", "map", "{map}", "-o", "plot.png"]),
+    ("audit --map --scen --map-instances",
+     ["audit", "--solver", "solver.adapter:solve_json", "--map", "grid.map", "--scen",
+      "grid.scen", "--prior", ",".join(PRIOR), "--map-instances"]),
 )
+FULL_AUDIT = ("audit --map --scen (full documents)",
+              ["audit", "--solver", "solver.adapter:solve_json", "--map", "grid.map", "--scen",
+               "grid.scen", "--prior", ",".join(PRIOR)])
 """The routes from the map to the game, as ``dpp`` commands (``{map}``: the option group)."""
 
 
-def grid_rows(size: int, repeat: int, *, plot: bool = True) -> list[str]:
+def write_scen(path: Path, cells: tuple[tuple[int, int], ...], size: int) -> None:
+    """Two scenario lines from the start, to g1 and to g2 (each the other's fake goal)."""
+    (r, c) = cells[0]
+    lines = [f"0\tgrid.map\t{size}\t{size}\t{c}\t{r}\t{gc}\t{gr}\t0" for gr, gc in cells[1:3]]
+    path.write_text("version 1\n" + "\n".join(lines) + "\n")
+
+
+def grid_rows(size: int, repeat: int, *, plot: bool = True,
+              full_audit: bool = False) -> list[str]:
     """The ``size`` x ``size`` grid, 20 % obstacles: every route as a whole ``dpp`` command
     (fresh process), then ``solve`` against one scipy Dijkstra in this process."""
     blocked = random_grid(size, 0.2, 0)
@@ -219,13 +235,15 @@ def grid_rows(size: int, repeat: int, *, plot: bool = True) -> list[str]:
     with tempfile.TemporaryDirectory() as tmp:
         d = Path(tmp)
         write_map(d / "grid.map", blocked)
+        write_scen(d / "grid.scen", cells, size)
         solve_args = ["solve", *group, "-o", "profile.json", "--save-instance", "instance.json"]
         first = command(solve_args, d)  # writes the files the other commands read
         if "failed" in first:
             raise SystemExit(f"dpp solve failed on the grid: {first['failed']}")
         results: dict[str, list[dict[str, Any]]] = {"solve": []}
+        chosen = [*GRID_COMMANDS, *([FULL_AUDIT] if full_audit else [])]
         commands = [(name, [a for x in args for a in (group if x == "{map}" else [x])])
-                    for name, args in GRID_COMMANDS if plot or not name.startswith("plot")]
+                    for name, args in chosen if plot or not name.startswith("plot")]
         for _ in range(max(1, repeat)):  # interleaved: every command sees the same load
             results["solve"].append(command(solve_args, d))
             for name, args in commands:
@@ -233,9 +251,9 @@ def grid_rows(size: int, repeat: int, *, plot: bool = True) -> list[str]:
     best_of = {name: _best_run(runs) for name, runs in results.items()}
     rows.append(f"{size}x{size} grid, 20% obstacles (seed 0), dpp commands in fresh processes "
                 f"(best of {max(1, repeat)}; memory: the largest peak RSS):")
-    rows.append(f"  solve --map (-o, --save-instance)  {_show(best_of['solve'])}")
+    rows.append(f"  {'solve --map (-o, --save-instance)':<36} {_show(best_of['solve'])}")
     for name, _ in commands:
-        rows.append(f"  {name:<33} {_show(best_of[name], best_of['solve'])}")
+        rows.append(f"  {name:<36} {_show(best_of[name], best_of['solve'])}")
     rows.extend(solver_rows(blocked, cells, repeat))
     return rows
 
@@ -306,6 +324,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--maps", nargs="*", default=None)
     ap.add_argument("--size", type=int, default=None, help="grid side (default 1000)")
     ap.add_argument("--sections", nargs="+", default=list(SECTIONS), choices=SECTIONS)
+    ap.add_argument("--full-audit", action="store_true",
+                    help="also dpp audit --map --scen with full instance documents (> 2 GiB "
+                         "on the 1000x1000 grid)")
     ap.add_argument("--no-plot", action="store_true",
                     help="leave out dpp plot map on the grid (the slowest route)")
     args = ap.parse_args(argv)
@@ -322,7 +343,8 @@ def main(argv: list[str] | None = None) -> int:
         for name in maps:
             print(map_row(name, repeat), flush=True)
     if "grid" in args.sections:
-        for line in grid_rows(size, repeat, plot=not (args.no_plot or quick)):
+        for line in grid_rows(size, repeat, plot=not (args.no_plot or quick),
+                              full_audit=args.full_audit):
             print(line, flush=True)
     if "ngoal" in args.sections:
         ngoal = ("empty-16-16", (3,)) if quick else ("room-32-32-4", (3, 4, 5))
