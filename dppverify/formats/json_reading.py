@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Hashable, Mapping
+from collections.abc import Hashable, Mapping, Sequence
 from fractions import Fraction
 from numbers import Rational
 from pathlib import Path
@@ -357,7 +357,7 @@ class WalkGame(Protocol):
     """What :func:`resolve_walk` needs of a game (two-goal ``Instance`` and ``Instance``)."""
 
     @property
-    def nodes(self) -> tuple[Node, ...]: ...
+    def nodes(self) -> Sequence[Node]: ...
 
     @property
     def index(self) -> Mapping[Node, int]: ...

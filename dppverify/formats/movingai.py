@@ -302,15 +302,18 @@ class GridArcs(NamedTuple):
     """A grid's graph as arrays: the arcs of :func:`grid_document`'s edges, both ways, in
     adjacency (CSR) order.
 
-    ``ids[k]`` is the cell of node ``k`` (free cells row-major), ``node_index`` its inverse.
-    The arcs leaving node ``u`` are ``indptr[u]:indptr[u + 1]``, by increasing head: arc
-    ``j`` goes ``tails[j] -> heads[j]`` with weight ``values[codes[j]]`` (the weights numbered
-    in the order the JSON reader meets them in the document); every arc's reverse is an arc
-    of the same weight. ``exact`` is False for octile grids (float weights).
+    The nodes are the free cells, row-major: node ``k`` is the cell at ``framed[k]`` of the map
+    with a one-cell frame (``(row + 1) * stride + col + 1``, ``stride = width + 2``);
+    ``node_at`` is the inverse (-1 at blocked cells and the frame). The arcs leaving node ``u``
+    are ``indptr[u]:indptr[u + 1]``, by increasing head: arc ``j`` goes ``tails[j] ->
+    heads[j]`` with weight ``values[codes[j]]`` (the weights numbered in the order the JSON
+    reader meets them in the document); every arc's reverse is an arc of the same weight.
+    ``exact`` is False for octile grids (float weights).
     """
 
-    ids: list[Any]
-    node_index: dict[Any, int]
+    framed: np.ndarray
+    node_at: np.ndarray
+    stride: int
     indptr: np.ndarray
     tails: np.ndarray
     heads: np.ndarray
@@ -331,8 +334,8 @@ def grid_arcs(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
     --------
     >>> grid = parse_map("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
     >>> a = grid_arcs(grid, (1, 0), ((1, 2), (0, 0)), connectivity=8)
-    >>> a.ids[:3], a.indptr.tolist(), a.heads.tolist(), a.codes.tolist(), a.values
-    ([(0, 0), (0, 1), (0, 2)], [0, 2, 4, 6, 7, 8], [1, 3, 0, 2, 1, 4, 0, 2], \
+    >>> a.framed.tolist(), a.indptr.tolist(), a.heads.tolist(), a.codes.tolist(), a.values
+    ([6, 7, 8, 11, 13], [0, 2, 4, 6, 7, 8], [1, 3, 0, 2, 1, 4, 0, 2], \
 [0, 0, 0, 0, 0, 1, 0, 1], [1.0, 1.4142135623730951])
     >>> grid_arcs(grid, (1, 1), ((1, 2), (0, 0)))
     Traceback (most recent call last):
@@ -376,10 +379,7 @@ def grid_arcs(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
     else:
         literals, codes = ["1"], np.zeros(heads.size, dtype=np.int64)
     values = [parse_number(x, where="weight", allow_float=octile) for x in literals]
-    rows, cols = np.divmod(framed, stride)
-    ids: list[Any] = list(zip((rows - 1).tolist(), (cols - 1).tolist(), strict=True))
-    index = dict(zip(ids, range(n), strict=True))
-    return GridArcs(ids, index, indptr, tails, heads, codes, values, not octile)
+    return GridArcs(framed, node_at, stride, indptr, tails, heads, codes, values, not octile)
 
 
 def _first_edge_diagonal(heads2: np.ndarray, arc: np.ndarray,

@@ -179,9 +179,15 @@ def _fixpoint(inst: Instance, r: Roles, given: Arcs | None, *,
     table = np.full(len(arrays.values), np.inf)
     used = np.flatnonzero(np.bincount(codes[~from_goal], minlength=table.size))
     table[used] = [float(int(arrays.values[c] * arcs.scale) * base + 1) for c in used.tolist()]
-    arc_w = table[codes]
-    arc_w[from_goal] = np.inf
-    indptr = np.empty(n + 2, dtype=np.int64)
+    # the graph's arrays with room for a last row (a source node n with an arc to every seed),
+    # filled once; each run writes its seeds after the arcs and reads a prefix
+    m_arcs = cols.size
+    weights = np.empty(m_arcs + n, dtype=np.float64)
+    np.take(table, codes, out=weights[:m_arcs])
+    weights[:m_arcs][from_goal] = np.inf
+    heads = np.empty(m_arcs + n, dtype=np.int32)
+    heads[:m_arcs] = cols
+    indptr = np.empty(n + 2, dtype=np.int32 if m_arcs + n < 2**31 else np.int64)
     indptr[:n + 1] = rows_r
     big = np.iinfo(np.int64).max
 
@@ -204,9 +210,11 @@ def _fixpoint(inst: Instance, r: Roles, given: Arcs | None, *,
             dominated[arcs.tails] = best <= full[arcs.tails]
             keep = ~dominated[src]
             src, seed_w = src[keep], seed_w[keep]
-        indptr[n + 1] = indptr[n] + src.size
-        w = np.concatenate([arc_w, seed_w])
-        mat = csr_matrix((w, np.concatenate([cols, src]), indptr), shape=(n + 1, n + 1))
+        end = m_arcs + src.size
+        indptr[n + 1] = end
+        weights[m_arcs:end] = seed_w
+        heads[m_arcs:end] = src
+        mat = csr_matrix((weights[:end], heads[:end], indptr), shape=(n + 1, n + 1), copy=False)
         dist = dijkstra(mat, directed=True, indices=n)[:n]
         finite = np.isfinite(dist)
         enc = np.where(finite, dist - 1.0, 0.0).astype(np.int64)
