@@ -29,6 +29,8 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from dppio.errors import InputError
+from dppio.inputs import read_input
 from dppio.limits import MAX_MAP_CELLS
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_number
@@ -139,11 +141,13 @@ def read_map_file(path: str | Path) -> tuple[GridMap, bytes]:
     (8, b'type octile')
     """
     p = Path(path)
-    try:
-        data = p.read_bytes()
+    try:  # bounded, and read once per command: the bytes hashed are the bytes parsed
+        data = read_input(path)
         text = data.decode("ascii")
     except OSError as exc:
         raise InvalidInstanceError(f"{p}: cannot read map file ({exc.strerror})") from None
+    except InputError as exc:
+        raise InvalidInstanceError(f"{p}: cannot read map file ({exc})") from None
     except UnicodeDecodeError as exc:
         raise InvalidInstanceError(f"{p}: not an ASCII map file (byte {exc.start})") from None
     try:
