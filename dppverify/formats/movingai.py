@@ -337,10 +337,14 @@ def grid_arcs(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
     Examples
     --------
     >>> grid = parse_map("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
-    >>> a = grid_arcs(grid, (1, 0), ((1, 2), (0, 0)), connectivity=8)
-    >>> a.framed.tolist(), a.indptr.tolist(), a.heads.tolist(), a.codes.tolist(), a.values
-    ([6, 7, 8, 11, 13], [0, 2, 4, 6, 7, 8], [1, 3, 0, 2, 1, 4, 0, 2], \
-[0, 0, 0, 0, 0, 1, 0, 1], [1.0, 1.4142135623730951])
+    >>> a = grid_arcs(grid, (1, 0), ((1, 2), (0, 0)))
+    >>> a.framed.tolist(), a.indptr.tolist(), a.heads.tolist(), a.values
+    ([6, 7, 8, 11, 13], [0, 2, 4, 6, 7, 8], [1, 3, 0, 2, 1, 4, 0, 2], [1])
+    >>> b = grid_arcs(parse_map("type octile\\nheight 2\\nwidth 2\\nmap\\n..\\n..\\n"),
+    ...               (1, 0), ((0, 1), (0, 0)), connectivity=8)
+    >>> b.heads.tolist(), b.codes.tolist(), b.values
+    ([1, 2, 3, 0, 2, 3, 0, 1, 3, 0, 1, 2], [0, 0, 1, 0, 1, 0, 0, 1, 0, 1, 0, 0], \
+[1.0, 1.4142135623730951])
     >>> grid_arcs(grid, (1, 1), ((1, 2), (0, 0)))
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: start cell (1, 1) is an obstacle ('@' at row 1,
