@@ -203,7 +203,7 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
                        "gives the value or a bracket)")
         else:
             doc = nequilibrium_to_json(eq)
-            checked = grid.ninstance() if grid is not None else instance
+            checked = grid.game() if grid is not None else instance
             assert checked is not None
             bar.phase("certifying (structured route, H = inf)")
             cert = certify_profile(checked, doc, horizon="inf", route="structured")

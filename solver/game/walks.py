@@ -53,6 +53,4 @@ class StrategyPath:
     def along(cls, net: Network, walk: Sequence[int], probability: Fraction,
               label: str) -> StrategyPath:
         """The path of ``walk`` (node indices of ``net``), its node ids looked up."""
-        labels = net.labels
-        return cls(tuple(int(i) for i in walk), tuple(labels[int(i)] for i in walk),
-                   probability, label)
+        return cls(tuple(int(i) for i in walk), net.labels_of(walk), probability, label)
