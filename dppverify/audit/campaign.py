@@ -60,7 +60,8 @@ def audit_instances(*, max_nodes: int = 8) -> st.SearchStrategy[Doc]:
     >>> len(doc["graph"]["nodes"]), doc["prior"]
     (2, ['1/2', '1/2'])
     """
-    if isinstance(max_nodes, bool) or not isinstance(max_nodes, int) or max_nodes < 2:
+    given: object = max_nodes  # checked as given, whatever its type
+    if isinstance(given, bool) or not isinstance(given, int) or given < 2:
         raise AuditError(f"max_nodes={max_nodes!r} must be an integer >= 2")
     extra = 2 * max_nodes
     # about 40% exactly 1/2 (the tie of footnote 2), shrinking to it
@@ -212,8 +213,7 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
         except TreeTooLargeError:
             if not found:
                 counts["skipped"] += 1
-            reject()
-            return
+            reject()  # raises: hypothesis discards the example
         if not found:
             counts["examples"] += 1
             bar.update(1)

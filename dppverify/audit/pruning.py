@@ -42,7 +42,8 @@ class ShrinkBudget:
 
     def __init__(self, *, calls: int = DEFAULT_SHRINK_CALLS,
                  seconds: float = DEFAULT_SHRINK_SECONDS) -> None:
-        if isinstance(calls, bool) or not isinstance(calls, int) or calls < 0:
+        given: object = calls  # checked as given, whatever its type
+        if isinstance(given, bool) or not isinstance(given, int) or given < 0:
             raise AuditError(f"shrink calls={calls!r} must be a non-negative integer")
         if not seconds >= 0:
             raise AuditError(f"shrink seconds={seconds!r} must be non-negative")
@@ -144,6 +145,6 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
                 if on_improve is not None:
                     on_improve(best)
                 break
-            if budget.exhausted:
-                break
+            if budget.exhausted:  # attempt() spent from it (mypy keeps the loop's narrowing)
+                break  # type: ignore[unreachable]
     return best, calls
