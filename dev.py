@@ -27,7 +27,7 @@ BIN = VENV / ("Scripts" if os.name == "nt" else "bin")
 LINT_PATHS = ("solver", "dppverify", "dppio", "tests", "proofs", "benchmarks", "dev.py")
 PY = BIN / "python"
 STAMPS = VENV / "dppverify-installed"
-TEST_EXTRAS = ("test", "peers", "maps")
+TEST_EXTRAS = ("test", "peers", "maps", "docs")
 BENCH_EXTRAS = (*TEST_EXTRAS, "bench")
 
 
