@@ -14,6 +14,7 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
+from dppio.text import json_shown
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.instance import Instance
 from solver.json_text import parse_json_text, read_json
@@ -57,10 +58,8 @@ def load_instance(path: str | Path) -> Instance:
     doc = read_json(path)  # its errors name the file
     try:
         return instance_from_json(doc, base=Path(path).parent)
-    except InstanceFormatError as exc:
-        if isinstance(doc, dict) and doc.get("format") == MAP_INSTANCE_FORMAT:
-            raise InstanceFormatError(f"{path}: {exc}") from None
-        raise
+    except InstanceFormatError as exc:  # one line naming the file
+        raise InstanceFormatError(f"{path}: {exc}") from None
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{path}: {exc}") from None
 
@@ -183,9 +182,11 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None) 
     if isinstance(goals, list) and len(goals) > 2:  # N goals: solver.ngoal_instance
         raise InstanceFormatError(_two_goals_only(len(goals)))
     if not isinstance(goals, list) or len(goals) != 2:
-        raise InstanceFormatError(f"'goals' must be a list of two node ids, got {goals!r}")
+        raise InstanceFormatError(f"'goals' must be a list of two node ids, got "
+                                  f"{json_shown(goals)}")
     if not isinstance(prior, list) or len(prior) != 2:
-        raise InstanceFormatError(f"'prior' must be a list of two numbers, got {prior!r}")
+        raise InstanceFormatError(f"'prior' must be a list of two numbers, one per goal, got "
+                                  f"{json_shown(prior)}")
     return Instance(
         graph,
         node_from_json(data["start"]),
@@ -253,10 +254,11 @@ def read_map_document(data: dict[str, Any], base: Path | None, *, count: int | N
     if not isinstance(goals, list) or not (
             len(goals) == count if count is not None else 2 <= len(goals) <= 5):
         sizes = "2 to 5" if count is None else "two" if count == 2 else str(count)
-        raise InstanceFormatError(f"'goals' must be a list of {sizes} cells, got {goals!r}"[:200])
+        raise InstanceFormatError(f"'goals' must be a list of {sizes} cells, got "
+                                  f"{json_shown(goals)}")
     if not isinstance(prior, list) or len(prior) != len(goals):
         raise InstanceFormatError(f"'prior' must be a list of {len(goals)} numbers (one per "
-                                  f"goal), got {prior!r}"[:200])
+                                  f"goal), got {json_shown(prior)}")
     start = _map_cell(data["start"], "start")
     cells = [_map_cell(g, f"goals[{i}]") for i, g in enumerate(goals)]
     blocked, actual = read_map_bytes(map_file(ref, base))

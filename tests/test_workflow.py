@@ -214,7 +214,59 @@ def test_a_bad_prior_with_map_is_blamed_on_prior() -> None:
 def test_goals_as_one_quoted_argument_gets_a_precise_hint() -> None:
     line = _one_line_error(dpp("solve", "--map", PAPER10, "--start", "9,0", "--goals",
                                "0,9 0,0", "--prior", "0.6,0.4"))
-    assert "separate arguments, e.g. --goals 0,9 0,0" in line
+    assert "separate arguments ROW,COL ROW,COL, e.g. --goals 0,9 0,0" in line
+
+
+@pytest.mark.parametrize("goals", [["0, 9", "0,0"], ["0 , 9", "0, 0"], ["0 9 0 0"]])
+def test_goals_with_spaces_get_a_hint_that_works(goals: list[str]) -> None:
+    """The hint's suggestion is itself a valid --goals (it was `--goals 0, 9` for `"0, 9"`)."""
+    line = _one_line_error(dpp("solve", "--map", PAPER10, "--start", "9,0", "--goals",
+                               *goals, "--prior", "0.6,0.4"))
+    suggested = line.split("e.g. --goals ")[1].split(", not one quoted")[0]
+    assert suggested == "0,9 0,0"
+    r = dpp("solve", "--map", PAPER10, "--start", "9,0", "--goals", *suggested.split(),
+            "--prior", "0.6,0.4")
+    assert r.exit_code == 0, r.output
+
+
+@pytest.mark.parametrize("command", [["solve"], ["value"], ["certify", "PROFILE"],
+                                     ["plot", "map", "-o", "OUT.png"]])
+def test_a_short_prior_names_the_file_and_shows_what_was_written(command: list[str],
+                                                                  profile: str,
+                                                                  tmp_path: Path) -> None:
+    doc = json.loads(Path(TRIANGLE).read_text())
+    doc["prior"] = [0.7]
+    bad = tmp_path / "short-prior.json"
+    bad.write_text(json.dumps(doc))
+    args = [a.replace("PROFILE", profile).replace("OUT", str(tmp_path / "f"))
+            for a in command]
+    line = _one_line_error(dpp(*args[:1], str(bad), *args[1:]) if args[0] != "plot" else
+                           dpp(*args[:2], str(bad), *args[2:]))
+    assert str(bad) in line and "must be a list of two numbers" in line
+    assert line.endswith("got [0.7]")
+
+
+@pytest.mark.parametrize("command", [["solve"], ["value"], ["certify", "p.json"],
+                                     ["plot", "map", "-o", "m.png"]])
+def test_a_scenario_file_as_map_names_its_map_and_dpp_batch(command: list[str],
+                                                            tmp_path: Path) -> None:
+    scen = tmp_path / "paper10.scen"
+    scen.write_text("version 1\n0\tpaper10.map\t10\t10\t0\t9\t9\t0\t18\n")
+    line = _one_line_error(dpp(*command[:2 if command[0] == "plot" else 1], "--map", str(scen),
+                               *GRID, *command[2 if command[0] == "plot" else 1:]))
+    assert "a MovingAI scenario file (.scen), not a map" in line
+    assert "--map paper10.map" in line and f"dpp batch {scen}" in line
+
+
+@pytest.mark.parametrize("command", ["solve", "value", "certify", "export-efg"])
+def test_n_goals_with_connectivity_8_are_refused_in_option_terms(command: str) -> None:
+    line = _one_line_error(dpp(command, "--map", PAPER10, "--start", "9,0", "--goals", "0,9",
+                               "0,0", "9,9", "5,5", "--prior", "1/4,1/4,1/4,1/4",
+                               "--connectivity", "8",
+                               *{"certify": ["p.json"], "export-efg": ["-H", "2", "-o", "g.efg"]
+                                 }.get(command, [])))
+    assert "--connectivity 8" in line and "with 4 goals" in line and "--connectivity 4" in line
+    assert '"numbers"' not in line
 
 
 # ---------------------------------------------------------------- help and progress

