@@ -26,6 +26,7 @@ from fractions import Fraction
 from typing import Any
 
 from dppio.errors import ErrorClass, LimitError
+from dppio.text import decimal
 
 __all__ = [
     "MAX_EXPONENT",
@@ -147,8 +148,8 @@ beyond the float-mode limit of 10**6; give exact weights
     if lo is None or hi is None or lo <= 0:
         return
     if hi / lo > MAX_FLOAT_WEIGHT_RATIO:
-        raise error(f"{where}: float weights span a ratio of {hi / lo:.0e} ({lo:.0e} to "
-                    f"{hi:.0e}), beyond the float-mode limit of 10**6; give exact weights")
+        raise error(f"{where}: float weights span a ratio of {decimal(hi / lo)} ({decimal(lo)} "
+                    f"to {decimal(hi)}), beyond the float-mode limit of 10**6; give exact weights")
 
 
 def check_json_depth(doc: Any, *, error: ErrorClass = LimitError) -> None:

@@ -14,10 +14,11 @@ from __future__ import annotations
 
 import json
 import math
+from decimal import Decimal, localcontext
 from fractions import Fraction
 from typing import Any
 
-__all__ = ["DIGITS", "decimal", "json_shown"]
+__all__ = ["DIGITS", "count", "decimal", "json_shown"]
 
 DIGITS = 4
 """Significant digits of every decimal shown in text and figures."""
@@ -34,22 +35,44 @@ def decimal(x: float | int | Fraction, *, sign: bool = False) -> str:
     ('228.2', '24.97', '0', '-0.0478')
     >>> decimal(Fraction(10**30 + 1, 3)), decimal(2.5e-7), decimal(0.012, sign=True)
     ('3.333×10^29', '2.5×10^-7', '+0.012')
+    >>> decimal(Fraction(10**80 * 109, 100)), decimal(123456), decimal(1234567)
+    ('1.09×10^80', '123500', '1.235×10^6')
     >>> decimal(float("inf")), decimal(float("nan"))
     ('inf', 'nan')
     """
-    v = float(x)
-    if not math.isfinite(v):
-        return str(v)
-    plus = "+" if sign and v > 0 else ""
-    if v == 0:
+    if isinstance(x, float) and not math.isfinite(x):
+        return str(x)
+    q = Fraction(x)  # exact: a rational of any size never overflows a float
+    with localcontext() as ctx:
+        ctx.prec = DIGITS
+        d = (Decimal(q.numerator) / Decimal(q.denominator)).normalize()
+    plus = "+" if sign and q > 0 else ""
+    if d == 0:
         return plus + "0"
-    text = f"{v:.{DIGITS}g}"
-    if "e" not in text and 1e-4 <= abs(v) < 1e6:
-        return plus + text
-    mantissa, _, exponent = f"{v:.{DIGITS - 1}e}".partition("e")
-    mantissa = mantissa.rstrip("0").rstrip(".")
-    e = int(exponent)
-    return plus + (mantissa if e == 0 else f"{mantissa}×10^{e}")
+    e = d.adjusted()
+    if -4 <= e < 6:
+        return plus + f"{d:f}"
+    return plus + f"{d.scaleb(-e).normalize():f}×10^{e}"
+
+
+_PLURALS = {"prefix": "prefixes", "leaf": "leaves", "entry": "entries", "match": "matches"}
+
+
+def count(n: int, noun: str) -> str:
+    """``n`` and ``noun``, plural unless ``n`` is 1 (the last word of ``noun`` is inflected).
+
+    Examples
+    --------
+    >>> count(1, "example"), count(3, "example"), count(0, "DP step"), count(1, "prefix")
+    ('1 example', '3 examples', '0 DP steps', '1 prefix')
+    >>> count(2, "prefix"), count(2, "leaf"), count(5, "information set"), count(2, "entry")
+    ('2 prefixes', '2 leaves', '5 information sets', '2 entries')
+    """
+    if n == 1:
+        return f"{n} {noun}"
+    head, _, last = noun.rpartition(" ")
+    plural = _PLURALS.get(last, last + "s")
+    return f"{n} {head + ' ' if head else ''}{plural}"
 
 
 def json_shown(x: Any, limit: int = 80) -> str:

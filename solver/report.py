@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Hashable, Sequence
 
+from dppio.text import decimal
 from solver.equilibrium import Equilibrium
 from solver.numbers import Number
 
@@ -109,20 +110,20 @@ def format_value(x: Number) -> str:
     '≈ 1 (exact: a 102-digit fraction, see --json)'
     """
     if isinstance(x, float):
-        return f"{x:.10g}"
+        return decimal(x)
     if x.denominator == 1:
         return str(x)
     text = str(x)
     if len(text) > 40:
-        return f"≈ {float(x):.12g} (exact: a {len(text) - 1}-digit fraction, see --json)"
-    return f"{text} (≈ {float(x):.7g})"
+        return f"≈ {decimal(x)} (exact: a {len(text) - 1}-digit fraction, see --json)"
+    return f"{text} (≈ {decimal(x)})"
 
 
 _num = format_value
 
 
 def _nums(xs: Sequence[Number]) -> str:
-    shown = [str(x) if not isinstance(x, float) else f"{x:.4g}" for x in xs[:_MAX_NODES * 2]]
+    shown = [str(x) if not isinstance(x, float) else decimal(x) for x in xs[:_MAX_NODES * 2]]
     more = f" ... (+{len(xs) - len(shown)})" if len(xs) > len(shown) else ""
     return "[" + ", ".join(shown) + "]" + more
 

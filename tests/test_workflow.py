@@ -372,3 +372,56 @@ def test_a_start_on_a_goal_is_solved_with_a_note(goals: list[str], prior: str) -
     assert len(r.stderr.splitlines()) == 1
     r = dpp("solve", "--map", PAPER10, *GRID)
     assert r.exit_code == 0 and r.stderr == ""
+
+
+# ---------------------------------------------------------------- plurals and numbers
+def test_one_example_is_singular() -> None:
+    from dppverify.audit.report import AuditReport
+
+    assert AuditReport(True, 1, 0, 0, None, None).summary().startswith(
+        "audit PASS: 1 example certified (seed 0")
+    assert "5 examples certified" in AuditReport(True, 5, 0, 0, None, None).summary()
+
+
+def test_one_rule_for_decimals_in_text() -> None:
+    """Every decimal shown beside an exact value has dppio.text.DIGITS significant digits,
+    in the checker's lines, the solver's summaries, the comparison table and the figures."""
+    from fractions import Fraction
+
+    from dppio.text import decimal
+    from dppverify.text import show_value
+    from solver.experiments.compare import _num
+    from solver.plots.style import num_label
+    from solver.report import format_value
+
+    x = Fraction(71, 18)
+    assert decimal(x) == "3.944"
+    assert show_value(x) == format_value(x) == _num(x) == "71/18 (≈ 3.944)"
+    assert num_label(x) == "71/18 ≈ 3.944"
+    r = dpp("value", TRIANGLE, "-H", "2", "--route", "tree")
+    assert "(≈ 2.4)" in r.stdout and "LP value 2.4 " in r.stdout
+
+
+def test_no_format_spec_bypasses_the_decimal_rule() -> None:
+    """Decimals are formatted by dppio.text.decimal only: no f-string precision spec in the
+    packages (CSV data columns of dpp batch excepted: they are data, not text)."""
+    import re
+
+    spec = re.compile(r"\{[^{}]*:[<>^+ ]?[0-9]*\.[0-9]+[fgeF%]\}")
+    found = []
+    for pkg in ("solver", "dppverify", "dppio"):
+        for path in (ROOT / pkg).rglob("*.py"):
+            if path.name == "text.py" and path.parent.name == "dppio":
+                continue
+            for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+                if spec.search(line) and "_seconds=f" not in line and "seconds=f\"" not in line:
+                    found.append(f"{path.relative_to(ROOT)}:{n}: {line.strip()}")
+    assert not found, "\n".join(found)
+
+
+@pytest.mark.parametrize("name", ["map", "beliefs", "voi"])
+def test_plot_marks_its_output_required(name: str) -> None:
+    help_text = " ".join(dpp("plot", name, "--help").stdout.split())
+    assert "-o, --output FILE" in help_text and "[required]" in help_text
+    r = dpp("plot", name, *(["x.csv"] if name == "voi" else []))
+    assert r.exit_code == 2 and "Missing option '--output'" in r.stderr

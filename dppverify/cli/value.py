@@ -12,6 +12,7 @@ from __future__ import annotations
 import click
 
 from dppio.limits import MAX_PREFIXES_LIMIT
+from dppio.text import count, decimal
 from dppverify.cli.conventions import emit, output_file_option, progress_option, want_progress
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import HORIZON, load_game
@@ -111,14 +112,14 @@ def _tree_line(v: GameValue) -> str:
              + (f" (open: {b.reason})" if b.reason else ""))
     return (f"V_H (H = {v.horizon}) = {exact}; LP value {show(v.lp.value)} "
             f"({LP_SOLVER}, agreement tolerance {LP_TOLERANCE:g} relative, "
-            f"{v.prefixes} prefixes, {v.lp.seconds:.2f} s)")
+            f"{count(v.prefixes, 'prefix')}, {decimal(v.lp.seconds)} s)")
 
 
 def _structured_line(v: StructuredValue) -> str:
     how = "exactly" if v.exact else f"(float mode, {v.arithmetic})"
     fix = ", fixpoint reached" if v.fixpoint else ""
     return (f"V_H (H = {_show_horizon(v.horizon)}) = {show_value(v.value)} {how}; structured "
-            f"route ({v.steps} DP steps{fix}, {v.arithmetic}, {v.seconds:.2f} s)")
+            f"route ({count(v.steps, 'DP step')}{fix}, {v.arithmetic}, {decimal(v.seconds)} s)")
 
 
 
@@ -132,7 +133,7 @@ def _ngoal_lines(r: RoutedValue) -> list[str]:
     V_H (H = inf, N = 3 goals) = 3/2 (≈ 1.5) exactly; coalition DP (NG.4: the value for \
 three goals) (3 layers)
     """
-    assert isinstance(r.tree, GameValue | None) and isinstance(r.structured, NValue | None)
+    assert isinstance(r.structured, NValue | None)  # N goals: the guarantee sets
     h = "inf" if r.horizon is None else str(r.horizon)
     lines = []
     if r.tree is not None:
@@ -141,13 +142,14 @@ three goals) (3 layers)
                  f"in [{show_value(b.lower)}, {show_value(b.upper)}] (open: {b.reason})")
         lines.append(f"V_H (H = {h}, N = {r.goals} goals) = {exact}; LP value "
                      f"{show(r.tree.value)} ({LP_SOLVER}, agreement tolerance {LP_TOLERANCE:g} "
-                     f"relative, {r.tree.prefixes} prefixes, {r.tree.lp.seconds:.2f} s)")
+                     f"relative, {count(r.tree.prefixes, 'prefix')}, "
+                     f"{decimal(r.tree.lp.seconds)} s)")
     v = r.structured
     if v is not None:
         head = f"V_H (H = {h}, N = {r.goals} goals)"
         if v.value is not None:
             lines.append(f"{head} = {show_value(v.value)} exactly; {v.upper_source} "
-                         f"({v.layers} layers)")
+                         f"({count(v.layers, 'layer')})")
         else:
             lines.append(f"{head} in [{show_value(v.lower)}, {show_value(v.upper)}]: lower "
                          f"bound from {v.lower_source}, upper bound from {v.upper_source}; "

@@ -8,6 +8,7 @@ from typing import Any
 
 import click
 
+from dppio.text import count
 from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
 from dppverify.errors import CheckerError
 from solver.cli.common import check_dask_address
@@ -121,4 +122,4 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
     finally:
         bar.close()
     click.echo(summarize_file(output))
-    status(f"wrote {output}: {written} rows now, {rows} in the file")
+    status(f"wrote {output}: {count(written, 'row')} now, {rows} in the file")

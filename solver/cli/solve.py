@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from dppio.files import refuse_input_as_output, write_atomic
+from dppio.text import decimal
 from dppverify import cli as checker_cli
 from dppverify.cli.conventions import (
     PhaseBar,
@@ -99,7 +100,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     if save_instance is not None and instance_text is not None:
         write_atomic(save_instance, instance_text, error=OutputError)
     if output is not None:  # the one output convention: -o writes, stdout stays empty
-        u, voi = (f"{x:.10g}" if isinstance(x, float) else str(x)  # float mode: 10 digits
+        u, voi = (decimal(x) if isinstance(x, float) else str(x)  # float mode
                   for x in (doc["value"]["U"], doc["value"]["VoI"]))
         status(f"wrote {output}: U* = {u}, VoI* = {voi}")
     elif as_json:

@@ -26,6 +26,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+from dppio.text import decimal
 from solver.experiments.compare import paper10_instance
 from solver.experiments.density import DensityConfig
 from solver.experiments.sampling import sample_grid
@@ -136,9 +137,10 @@ def summary_table(rows: Sequence[BaselineRow]) -> str:
             eq = [by[(n, "sigma*", "gamma*")] for n in names]
             gap = [e - s for e, s in zip(eq, star, strict=True)]
             worse = sum(1 for s, x in zip(star, alt, strict=True) if x > s)
-            lines.append(f"| {setting} | {len(names)} | {LABELS[a]} | {_mean(star):.4f} | "
-                         f"{_mean(alt):.4f} | {_mean(gap):+.4f} | "
-                         f"{_mean(alt) - _mean(star):+.4f} | {worse}/{len(names)} |")
+            lines.append(f"| {setting} | {len(names)} | {LABELS[a]} | {decimal(_mean(star))} | "
+                         f"{decimal(_mean(alt))} | {decimal(_mean(gap), sign=True)} | "
+                         f"{decimal(_mean(alt) - _mean(star), sign=True)} | "
+                         f"{worse}/{len(names)} |")
     return "\n".join(lines)
 
 
@@ -164,8 +166,9 @@ def worst_case_table(rows: Sequence[BaselineRow]) -> str:
         alt = [worst[(n, "sigma'")] for n in names]
         more = sum(1 for s, x in zip(star, alt, strict=True) if x > s)
         less = sum(1 for s, x in zip(star, alt, strict=True) if x < s)
-        lines.append(f"| {setting} | {len(names)} | {_mean(star):.4f} | {_mean(alt):.4f} | "
-                     f"{_mean(alt) - _mean(star):+.4f} | {more}/{len(names)} | "
+        lines.append(f"| {setting} | {len(names)} | {decimal(_mean(star))} | "
+                     f"{decimal(_mean(alt))} | "
+                     f"{decimal(_mean(alt) - _mean(star), sign=True)} | {more}/{len(names)} | "
                      f"{less}/{len(names)} |")
     return "\n".join(lines)
 

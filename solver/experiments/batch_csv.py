@@ -10,6 +10,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from dppio.text import count, decimal
 from solver.errors import InvalidInstanceError
 
 __all__ = ["FIELDS", "CsvAppender", "lock_output", "read_done", "summarize_file"]
@@ -171,5 +172,6 @@ def summarize_file(path: str | Path) -> str:
     solve_s = sum(float(r["solve_seconds"]) for r in ok)
     cert_s = sum(float(r["certify_seconds"]) for r in ok)
     errors = len(rows) - len(ok)
-    return (f"{len(rows)} rows: {len(ok)} ok ({vs}), {errors} error{'s' if errors != 1 else ''}; "
-            f"mean VoI {voi:.4f}; solve {solve_s:.2f} s, certify {cert_s:.2f} s in total")
+    return (f"{count(len(rows), 'row')}: {len(ok)} ok ({vs}), {count(errors, 'error')}; "
+            f"mean VoI {decimal(voi)}; solve {decimal(solve_s)} s, certify {decimal(cert_s)} s in "
+            "total")

@@ -14,6 +14,7 @@ from fractions import Fraction
 from importlib import resources
 from pathlib import Path
 
+from dppio.text import decimal
 from solver.instance import Instance
 from solver.movingai import read_map
 from solver.numbers import Number
@@ -72,8 +73,8 @@ def run_compare(instance: Instance) -> tuple[PairResult, ...]:
 
 def _num(x: Number) -> str:
     if isinstance(x, Fraction):
-        return str(x) if x.denominator == 1 else f"{x} (≈ {float(x):.4g})"
-    return f"{x:.6g}"
+        return str(x) if x.denominator == 1 else f"{x} (≈ {decimal(x)})"
+    return decimal(x)
 
 
 def compare_table(results: Sequence[PairResult]) -> str:

@@ -15,6 +15,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import MaxNLocator
 
+from dppio.text import count
 from solver.errors import InvalidInstanceError
 from solver.instance import Instance
 from solver.network import GridLabels
@@ -219,7 +220,7 @@ def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figur
                 tag = "am" if kind == "ambiguity" else "ex"
                 bl.append(Line2D([], [], color=STRATEGY_COLOURS[kind], lw=3, ls=ls,
                                  label=f"{tex_label(f'xi{theta}_{tag}')} {kind}, "
-                                       f"{len(mp.walk) - 1} steps"))
+                                       f"{count(len(mp.walk) - 1, 'step')}"))
         vo = {r.attacker: r.VoI for r in game.compare((("sigma*", "ambiguity"),
                                                        ("sigma*", "exaggeration")))}
         ax2.set_title(f"baselines against σ*, {VOI}:\nambiguity {num_label(vo['ambiguity'])}, "

@@ -13,6 +13,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from dppio.files import write_files
+from dppio.text import decimal
 from solver.errors import DPPError, OutputError
 
 __all__ = ["DEFENDER_HATCH", "FORMATS", "LARGE_MAP", "MARKER_COLOUR", "PATH_STYLES",
@@ -60,21 +61,22 @@ T_I, T_II = r"$t_{\mathrm{I}}$", r"$t_{\mathrm{II}}$"
 
 
 def num_label(x: Any) -> str:
-    """A number for a title or legend: exact fractions with a 3-digit decimal, floats rounded.
+    """A number for a title or legend: an exact fraction with its decimal beside it, a float
+    as a decimal (:func:`dppio.text.decimal`, the one rule of every output).
 
     >>> from fractions import Fraction
     >>> num_label(Fraction(5, 22)), num_label(0.20410018838561994)
-    ('5/22 ≈ 0.227', '0.204')
+    ('5/22 ≈ 0.2273', '0.2041')
     >>> num_label(Fraction(17)), num_label(3)
     ('17', '3')
     """
     if isinstance(x, Fraction):
         if x.denominator == 1:
             return str(x.numerator)
-        return f"{x} ≈ {float(x):.3f}" if x.denominator <= 1000 else f"{float(x):.3f}"
+        return f"{x} ≈ {decimal(x)}" if x.denominator <= 1000 else decimal(x)
     if isinstance(x, int | np.integer):
         return str(int(x))
-    return f"{float(x):.3g}"
+    return decimal(float(x))
 
 
 def save_figure(fig: Figure, out: str | Path) -> list[Path]:
