@@ -56,7 +56,7 @@ MAX_EXPONENT = 400
 """Largest decimal exponent written in a numeral (``1e400`` is read, ``1e401`` refused)."""
 
 MAX_NUMBER_DIGITS = 200
-"""Every number is a rational p/q with |p| and q below 10**200 (after reduction)."""
+"""Every number is a rational p/q with abs(p) and q below 10**200 (after reduction)."""
 
 MAX_FLOAT_WEIGHT_RATIO = 10**6
 """Float mode (``"numbers": "float"``): largest / smallest edge weight. Float comparisons use

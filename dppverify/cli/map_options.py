@@ -83,23 +83,31 @@ class _CellsOption(click.Option):
         return (value,)
 
 
-_OPTIONS = [
-    click.option("--map", "map_file", metavar="FILE",
-                 help=f"A MovingAI .map grid instead of an instance JSON file; "
-                      f"{PREFIX}NAME names a standard map (the 'maps' extra), e.g. "
-                      f"{PREFIX}room-32-32-4."),
-    click.option("--start", metavar="R,C", help="Start cell ROW,COL (with --map)."),
-    click.option("--goals", cls=_CellsOption, metavar="R,C R,C [R,C ...]",
-                 help="The goal cells ROW,COL ROW,COL: two, or N for an N-goal game (with "
-                      "--map)."),
-    click.option("--prior", "prior_text", metavar="P,Q",
-                 help="Priors of the goals, in --goals order, e.g. 0.6,0.4 or 3/5,2/5 "
-                      "(N numbers for N goals; with --map)."),
-    click.option("--connectivity", type=click.Choice(["4", "8"]), default=None,
-                 help="Grid moves (with --map): 4 = up/down/left/right, unit weights, exact "
-                      "(default); 8 = also diagonals of weight sqrt(2) without corner "
-                      "cutting (float mode)."),
-]
+def _options(two_goals: bool) -> list[Callable[[Any], Any]]:
+    """The group's options; ``two_goals``: the help of a command that takes two goals only."""
+    goals_help = ("The two goal cells ROW,COL ROW,COL (with --map)." if two_goals else
+                  "The goal cells ROW,COL ROW,COL: two, or N for an N-goal game (with --map).")
+    prior_help = ("Priors of the two goals, in --goals order, e.g. 0.6,0.4 or 3/5,2/5 (with "
+                  "--map)." if two_goals else
+                  "Priors of the goals, in --goals order, e.g. 0.6,0.4 or 3/5,2/5 (N numbers "
+                  "for N goals; with --map).")
+    return [
+        click.option("--map", "map_file", metavar="FILE",
+                     help=f"A MovingAI .map grid instead of an instance JSON file; "
+                          f"{PREFIX}NAME names a standard map (the 'maps' extra), e.g. "
+                          f"{PREFIX}room-32-32-4."),
+        click.option("--start", metavar="R,C", help="Start cell ROW,COL (with --map)."),
+        click.option("--goals", cls=_CellsOption,
+                     metavar="R,C R,C" if two_goals else "R,C R,C [R,C ...]", help=goals_help),
+        click.option("--prior", "prior_text", metavar="P,Q", help=prior_help),
+        click.option("--connectivity", type=click.Choice(["4", "8"]), default=None,
+                     help="Grid moves (with --map): 4 = up/down/left/right, unit weights, "
+                          "exact (default); 8 = also diagonals of weight sqrt(2) without "
+                          "corner cutting (float mode)."),
+    ]
+
+
+_OPTIONS = _options(two_goals=False)
 
 
 @dataclass(frozen=True)
@@ -399,6 +407,23 @@ def instance_or_map(instance: str | None, grid: MapRequest | None, *,
         raise OptionError(f"missing INSTANCE: give an instance JSON file, or {MAP_USAGE}")
 
 
+def two_goal_map_options(fn: F) -> F:
+    """:func:`map_options` for a command that takes two goals only: its help says so, and
+    ``--goals`` with more cells is one line naming the commands that take N goals.
+
+    Examples
+    --------
+    >>> from click.testing import CliRunner
+    >>> from dppverify.cli.examples import echo_command
+    >>> cmd = echo_command(two_goal_map_options, "grid", lambda grid: grid.goals)
+    >>> r = CliRunner().invoke(cmd, ["--map", "m.map", "--start", "9,0", "--goals", "0,9",
+    ...                              "0,0", "9,9", "--prior", "1/2,1/3,1/6"])
+    >>> r.exit_code, r.output  # doctest: +ELLIPSIS
+    (2, 'error: --goals: this command takes two goals, got 3 (N goals: dpp solve, ...)\\n')
+    """
+    return _map_options(fn, two_goals=True)
+
+
 def map_options(fn: F) -> F:
     """Decorator: add the ``--map`` option group to a click command.
 
@@ -418,11 +443,18 @@ def map_options(fn: F) -> F:
     >>> r.exit_code, r.output
     (2, 'error: --start goes with --map FILE, which is missing\\n')
     """
+    return _map_options(fn, two_goals=False)
+
+
+def _map_options(fn: F, *, two_goals: bool) -> F:
     @functools.wraps(fn)
     def command(*args: Any, map_file: str | None, start: str | None,
                 goals: tuple[str, ...] | None, prior_text: str | None,
                 connectivity: str | None, **kwargs: Any) -> Any:
         try:
+            if two_goals and map_file is not None and goals is not None and len(goals) > 2:
+                raise OptionError(f"--goals: this command takes two goals, got {len(goals)} "
+                                  f"(N goals: dpp solve, certify, value, export-efg, plot map)")
             grid = map_request(map_file, start, goals, prior_text, connectivity)
         except CheckerError as exc:
             click.echo(f"error: {exc}", err=True)
@@ -430,6 +462,6 @@ def map_options(fn: F) -> F:
         return fn(*args, grid=grid, **kwargs)
 
     wrapped: Any = command
-    for option in reversed(_OPTIONS):
+    for option in reversed(_options(two_goals) if two_goals else _OPTIONS):
         wrapped = option(wrapped)
     return wrapped

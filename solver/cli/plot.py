@@ -12,7 +12,7 @@ from dppverify.cli.conventions import (
     status,
     want_progress,
 )
-from dppverify.cli.map_options import MapRequest, map_options
+from dppverify.cli.map_options import MapRequest, map_options, two_goal_map_options
 from solver.cli.common import experiment_instance
 from solver.errors import InvalidInstanceError
 
@@ -60,7 +60,7 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
 
 @plot_group.command("beliefs", short_help="Beliefs and expected allocation along the walks.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
-@map_options
+@two_goal_map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--defender", type=click.Choice(["sigma*", "sigma'"]), default="sigma*",
               show_default=True, help="Defender for the allocation panels.")
