@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import functools
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
@@ -71,6 +72,9 @@ class NEquilibrium:
         Whether the rule's ``F`` was non-empty at every step of the profile's walks.
     seconds : float
         Solve time.
+    sigma : Mapping
+        The Defender's distribution over the goals after each prefix (2 nodes or more) of
+        the profile's walks, by the guarantee rule (what the figures show).
     """
 
     game: NGame = field(repr=False)
@@ -86,6 +90,8 @@ class NEquilibrium:
     dp_value: Fraction
     feasible: bool
     seconds: float
+    sigma: Mapping[tuple[int, ...], tuple[Fraction, ...]] = field(default_factory=dict,
+                                                                  repr=False)
 
 
 def _m_at(dp: Coalitions, u: int, mask: int) -> Fraction | None:
@@ -197,7 +203,8 @@ def solve_ngoal(game: NGame) -> NEquilibrium:
                         walked=tuple(walked), U=u_val, U_bar=u_bar,
                         VoI=(u_bar - u_val) / u_bar if u_bar else Fraction(0),
                         dp_value=root.value, feasible=feasible,
-                        seconds=time.perf_counter() - t0)
+                        seconds=time.perf_counter() - t0,
+                        sigma={k: v[0] for k, v in memo.items()})
 
 
 def nequilibrium_to_json(eq: NEquilibrium) -> dict[str, Any]:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import click
 
 from dppio.files import read_text
@@ -14,7 +16,11 @@ from dppverify.cli.conventions import (
 )
 from dppverify.cli.map_options import MapRequest, map_options, two_goal_map_options
 from solver.cli.common import experiment_instance
+from solver.cli.solve import ngoal_game
 from solver.errors import InvalidInstanceError
+
+if TYPE_CHECKING:
+    from solver.ngoal_instance import NGame
 
 __all__ = ["plot_group"]
 
@@ -39,20 +45,43 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
 
     INSTANCE is a grid instance: a --map grid, or the instance JSON that
     `dpp solve --map ... --save-instance FILE` writes. Without either: the bundled 10x10 map.
+    With N > 2 goals: each type's walks of the N-goal equilibrium (dpp solve's), coloured by
+    type, and the Defender's sigma over the goals along each type's walk (no baselines).
 
     \b
     Examples:
       dpp plot map -o map.pdf
       dpp plot map --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4 -o m.png
       dpp plot map room.json -o room.pdf --no-baselines
+      dpp plot map --map examples/paper10.map --start 9,0 --goals 0,9 0,0 9,9 \\
+                   --prior 1/2,1/3,1/6 -o paper10-n3.png
     """
     from solver.plots import plot_map, save_figure
 
+    game = ngoal_game(instance, grid)
+    if game is not None:
+        _plot_ngoal_map(game, output, want_progress(progress))
+        return
     bar = PhaseBar(want_progress(progress), "plot map", "reading the instance")
     try:
         inst = experiment_instance(instance, grid, "dpp plot map")
         bar.phase("solving and drawing")
         files = save_figure(plot_map(inst, baselines=not no_baselines), output)
+    finally:
+        bar.close()
+    status("wrote " + ", ".join(map(str, files)))
+
+
+def _plot_ngoal_map(game: NGame, output: str, progress: bool) -> None:
+    """The N-goal figure: solve (the construction ``dpp solve`` writes), then draw."""
+    from solver.ngoal_equilibrium import solve_ngoal
+    from solver.plots import plot_ngoal_map, save_figure
+
+    bar = PhaseBar(progress, "plot map", f"solving ({game.n_goals} goals)")
+    try:
+        eq = solve_ngoal(game)
+        bar.phase("drawing")
+        files = save_figure(plot_ngoal_map(eq), output)
     finally:
         bar.close()
     status("wrote " + ", ".join(map(str, files)))

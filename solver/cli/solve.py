@@ -25,7 +25,7 @@ from solver.errors import DPPError, InvalidInstanceError, OutputError
 if TYPE_CHECKING:
     from solver.ngoal_instance import NGame
 
-__all__ = ["solve_command"]
+__all__ = ["ngoal_game", "solve_command"]
 
 
 
@@ -68,7 +68,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     refuse_input_as_output(output, inputs, option="-o", error=OutputError)
     refuse_input_as_output(save_instance, inputs, option="--save-instance",
                            error=OutputError)
-    ngame = _ngoal_game(instance, grid)
+    ngame = ngoal_game(instance, grid)
     if ngame is not None:  # N > 2 goals: the coalition construction, certified before writing
         _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance,
                              want_progress(progress))
@@ -111,7 +111,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         status(f"wrote {save_instance}: the instance")
 
 
-def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
+def ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
     """The N-goal game of a solver command, or None when it has two goals."""
     from solver.json_text import read_json
     from solver.movingai import read_map

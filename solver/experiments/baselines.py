@@ -231,6 +231,8 @@ def plot_baselines(rows: Sequence[BaselineRow]) -> Any:
     handles = [Patch(facecolor="white", edgecolor="black", label="Defender σ*"),
                Patch(facecolor="white", edgecolor="black", hatch="//", label="Defender σ'"),
                plt.Line2D([], [], color="black", linestyle="--", label="PBNE value (σ*, γ*)")]
-    axes[0][-1].legend(handles=handles, loc="upper right", fontsize=8)
-    fig.tight_layout()
+    # below the panels, never over a bar (the tallest bars reach the panels' top)
+    fig.tight_layout(rect=(0, 0.09, 1, 1))
+    fig.legend(handles=handles, loc="lower center", ncol=3, frameon=False, fontsize=9,
+               bbox_to_anchor=(0.5, 0.0))
     return fig

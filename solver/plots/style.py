@@ -16,7 +16,8 @@ from dppio.files import write_files
 from dppio.text import decimal
 from solver.errors import DPPError, OutputError
 
-__all__ = ["DEFENDER_HATCH", "FORMATS", "LARGE_MAP", "MARKER_COLOUR", "PATH_STYLES",
+__all__ = ["DEFENDER_HATCH", "FORMATS", "GOAL_COLOURS", "LARGE_MAP", "LARGE_MARKER",
+           "MARKER_COLOUR", "PATH_STYLES",
            "PHASE_COLOURS", "STRATEGY_COLOURS", "STYLE", "T_I", "T_II", "VOI", "num_label",
            "save_figure", "tex_label"]
 
@@ -37,6 +38,10 @@ STYLE: dict[Any, Any] = {"font.family": "DejaVu Sans", "font.size": 12, "axes.ti
           "ytick.labelsize": 11, "mathtext.fontset": "dejavusans", "pdf.fonttype": 42,
           "svg.fonttype": "none"}
 """One font family for text and mathtext (DejaVu Sans); fonts embedded as TrueType."""
+LARGE_MARKER = 13.0
+"""The size (points) of the start and goal markers on a large map."""
+GOAL_COLOURS = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00")
+"""N-goal figures: one colour per goal, the same for the type walking to it (up to 5)."""
 LARGE_MAP = 60
 """Maps with more cells than this on a side get the print rendering: paths of a fixed width
 with a white casing, start and goal markers of a fixed size on top, lighter obstacles."""
