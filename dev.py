@@ -91,10 +91,15 @@ def test(pytest_args: list[str]) -> None:
     _run(PY, "-m", "pytest", *workers, *markers, *pytest_args)
 
 
-def docs_command(out: Path = ROOT / "docs" / "_build" / "html") -> list[str]:
-    """The sphinx-build command of the site: warnings are errors, every warning is shown."""
-    return [str(PY), "-m", "sphinx", "-b", "html", "-W", "--keep-going", "-q", "-j", "auto",
-            "-c", str(ROOT / "docs"), str(ROOT), str(out)]
+def docs_command(out: Path = ROOT / "docs" / "_build" / "html",
+                 python: str | Path = PY) -> list[str]:
+    """The sphinx-build command of the site: warnings are errors, every warning is shown.
+
+    The source folder is the repository (docs/conf.py says which pages); autosummary writes
+    the API pages it generates to docs/site/_generated/ (not in git).
+    """
+    return [str(python), "-m", "sphinx", "-b", "html", "-W", "--keep-going", "-q", "-j",
+            "auto", "-c", str(ROOT / "docs"), str(ROOT), str(out)]
 
 
 def docs() -> None:
