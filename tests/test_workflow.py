@@ -425,3 +425,18 @@ def test_plot_marks_its_output_required(name: str) -> None:
     assert "-o, --output FILE" in help_text and "[required]" in help_text
     r = dpp("plot", name, *(["x.csv"] if name == "voi" else []))
     assert r.exit_code == 2 and "Missing option '--output'" in r.stderr
+
+
+def test_plot_map_draws_an_n_goal_equilibrium_from_map_or_saved_instance(tmp_path: Path) -> None:
+    cells = ["--start", "9,0", "--goals", "0,9", "0,0", "9,9", "--prior", "1/2,1/3,1/6"]
+    r = dpp("plot", "map", "--map", PAPER10, *cells, "-o", str(tmp_path / "n3.png"))
+    assert r.exit_code == 0 and (tmp_path / "n3.png").stat().st_size > 10_000, r.output
+    inst = tmp_path / "i3.json"
+    assert dpp("solve", "--map", PAPER10, *cells, "-o", str(tmp_path / "p3.json"),
+               "--save-instance", str(inst)).exit_code == 0
+    r = dpp("plot", "map", str(inst), "-o", str(tmp_path / "i3.png"))
+    assert r.exit_code == 0 and (tmp_path / "i3.png").is_file(), r.output
+    line = _one_line_error(dpp("plot", "beliefs", "--map", PAPER10, *cells,
+                               "-o", str(tmp_path / "b.png")))
+    assert "this command takes two goals, got 3" in line
+    assert not (tmp_path / "b.png").exists()

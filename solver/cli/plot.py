@@ -58,7 +58,7 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     """
     from solver.plots import plot_map, save_figure
 
-    game = ngoal_game(instance, grid)
+    game = ngoal_game(instance, grid) if instance is not None or grid is not None else None
     if game is not None:
         _plot_ngoal_map(game, output, want_progress(progress))
         return
