@@ -7,10 +7,11 @@
     python3 dev.py bench   # ... install the bench extras too, run benchmarks/bench_*.py (slow)
 
 Each command installs only what it needs (`demo`: the runtime dependencies; `test`: the
-extras in TEST_EXTRAS; `docs`: the `docs` extra; `bench`: BENCH_EXTRAS) and only when pyproject.toml changed since that
-set (or a larger one) was installed; pip shows its progress. `test` runs every test not marked
-`slow`, the peer cross-checks against OpenSpiel and Gambit included (a bare `pytest` leaves
-them out). Extra arguments after `test` are passed to pytest (e.g. `python3 dev.py test -m slow`).
+extras in TEST_EXTRAS; `docs`: the `docs` extra; `bench`: BENCH_EXTRAS) and only when
+pyproject.toml changed since that set (or a larger one) was installed; pip shows its
+progress. `test` runs every test not marked `slow`, the peer cross-checks against OpenSpiel
+and Gambit included (a bare `pytest` leaves them out). Extra arguments after `test` are passed
+to pytest (e.g. `python3 dev.py test -m slow`).
 """
 
 from __future__ import annotations

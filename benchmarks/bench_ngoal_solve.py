@@ -5,7 +5,7 @@ experiment's corner rule (start nearest the bottom-left corner; goals nearest th
 top-left, top-middle, bottom-right corners and the centre, in that order, within the start's
 connected region), equal priors. Measured, wall time, best of ``--repeat``:
 
-- ``solve N`` — the N-goal construction (:func:`solver.ngoal_equilibrium.solve_ngoal`: the
+- ``solve N`` — the N-goal construction (:func:`solver.coalitions.construction.solve_ngoal`: the
   coalition DP at H = inf, the cover LP, the coalition walks and the rule along them), from the
   obstacle array;
 - ``certify N`` — the checker on that profile, structured route, H = inf, from the JSON
@@ -41,10 +41,10 @@ from dppverify.formats.movingai import grid_document
 from dppverify.formats.movingai import read_map as checker_read_map
 from dppverify.formats.standard_maps import standard_map_path
 from solver import Instance, solve
+from solver.coalitions.construction import nequilibrium_to_json, solve_ngoal
 from solver.experiments.ngoal import corner_cells
-from solver.movingai import read_map
-from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
-from solver.ngoal_instance import ngame_from_grid
+from solver.formats.movingai import read_map
+from solver.game.indexed_instance import ngame_from_grid
 
 MAPS = ("room-32-32-4", "room-64-64-8", "maze-128-128-10", "Berlin_1_256")
 

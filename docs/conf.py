@@ -22,7 +22,7 @@ from dppverify.version import __version__  # noqa: E402
 
 project = "dppverify"
 author = "The dppverify developers"
-copyright = "2026, The dppverify developers"  # noqa: A001 (Sphinx's name)
+copyright = "2026, The dppverify developers"
 version = release = __version__
 
 root_doc = "docs/site/index"
@@ -50,7 +50,8 @@ napoleon_google_docstring = False
 napoleon_numpy_docstring = True
 napoleon_use_rtype = False
 
-templates_path = [str(ROOT / "docs/site/_templates")]  # a module page: docstring, members, submodules
+# a module page: its docstring, its members, its submodules
+templates_path = [str(ROOT / "docs/site/_templates")]
 autodoc_default_options["ignore-module-all"] = True  # each object once, on its own module's page
 
 

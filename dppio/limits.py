@@ -137,7 +137,7 @@ def check_float_weights(weights: Iterable[float | Fraction | int], *,
     >>> check_float_weights([1.0, 2 ** 0.5])
     >>> check_float_weights([1.0, 1e300])
     Traceback (most recent call last):
-    dppio.errors.LimitError: graph.edges: float weights span a ratio of 1e+300 (1e+00 to 1e+300), \
+    dppio.errors.LimitError: graph.edges: float weights span a ratio of 1×10^300 (1 to 1×10^300), \
 beyond the float-mode limit of 10**6; give exact weights
     """
     lo = hi = None

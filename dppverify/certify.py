@@ -12,8 +12,8 @@ for every check id.
 
 Two goals: a ``dpp-profile/1`` profile and the checks of :data:`CHECK_IDS`. More goals: a
 ``dpp-ngoal-profile/1`` profile and the checks of :data:`NGOAL_CHECK_IDS`
-(:mod:`dppverify.tree_route.ngoal_checks` on the walk tree, :mod:`dppverify.checks.structured_ngoal`
-without it).
+(:mod:`dppverify.tree_route.per_goal_checks` on the walk tree,
+:mod:`dppverify.checks.structured_per_goal` without it).
 
 Numbers: rational instances are certified exactly (``Fraction``); LP values are reported
 beside the exact ones. Instances in float mode (``"numbers": "float"``) cannot be certified
@@ -35,7 +35,7 @@ from tqdm import tqdm
 from dppverify.certificate import Certificate, CheckRecord, merge_routes
 from dppverify.checks.runners import TREE_RUNNERS
 from dppverify.checks.structured import structured_checks
-from dppverify.checks.structured_ngoal import NSTRUCTURED_NOT_RUN, nstructured_checks
+from dppverify.checks.structured_per_goal import NSTRUCTURED_NOT_RUN, nstructured_checks
 from dppverify.errors import (
     HorizonError,
     InvalidInstanceError,
@@ -61,7 +61,7 @@ from dppverify.registry import CHECK_IDS, CHECKS, RouteName, not_run
 from dppverify.routes import Chosen, Route, ngoal_game, resolve_route
 from dppverify.tree_route.context import Context, make_context
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
-from dppverify.tree_route.ngoal_checks import NGOAL_CHECK_IDS, ngoal_tree_checks
+from dppverify.tree_route.per_goal_checks import NGOAL_CHECK_IDS, ngoal_tree_checks
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, build_tree
 from dppverify.valuation import game_of
 

@@ -35,5 +35,5 @@ def test_the_site_builds_without_warnings(tmp_path: Path) -> None:
     # the API reference, from the docstrings (numpy sections rendered as fields)
     api = (out / "docs/site/_generated/dppverify.value_document.html").read_text()
     assert "value_document" in api and "Parameters" in api and "dpp-value/1" in api
-    for module in ("dppverify.certify", "solver.equilibrium", "dppio.text"):
+    for module in ("dppverify.certify", "solver.twogoal.equilibrium", "dppio.text"):
         assert (out / f"docs/site/_generated/{module}.html").is_file(), module

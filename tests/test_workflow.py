@@ -392,7 +392,7 @@ def test_one_rule_for_decimals_in_text() -> None:
     from dppverify.text import show_value
     from solver.experiments.compare import _num
     from solver.plots.style import num_label
-    from solver.report import format_value
+    from solver.twogoal.report import format_value
 
     x = Fraction(71, 18)
     assert decimal(x) == "3.944"

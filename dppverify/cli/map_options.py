@@ -185,7 +185,7 @@ class MapRequest:
 
     def instance(self) -> Instance:
         """The checker's two-goal :class:`~dppverify.game.instance.Instance` (its own ``.map``
-        reader, :func:`~dppverify.formats.movingai.grid_game`)."""
+        reader, :func:`~dppverify.game.grids.grid_game`)."""
         grid = read_map(self.path)
         try:
             return grid_game(grid, self.start, self.goals, self.prior,

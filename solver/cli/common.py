@@ -11,7 +11,7 @@ from dppverify.cli.map_options import MapRequest, instance_or_map
 from solver.errors import DPPError, InvalidInstanceError
 
 if TYPE_CHECKING:  # the solver's modules load numpy, scipy, networkx: imported per command
-    from solver.instance import Instance
+    from solver.game.instance import Instance
 
 __all__ = ["START_IS_GOAL", "check_dask_address", "check_grid_count", "dumps",
            "experiment_instance", "int_list", "load_instance", "load_with_digest"]
@@ -63,9 +63,9 @@ def load_with_digest(instance: str | None, grid: MapRequest | None,
     >>> load_with_digest(str(triangle), None)[1] is None
     True
     """
-    from solver.instance import Instance
-    from solver.instance_json import load_instance
-    from solver.movingai import read_map_bytes
+    from solver.formats.movingai import read_map_bytes
+    from solver.game.instance import Instance
+    from solver.game.instance_reading import load_instance
 
     instance_or_map(instance, grid)
     if grid is None:

@@ -56,7 +56,7 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
     from tqdm import tqdm
 
     from solver.experiments.compare import compare_csv, compare_table, verdict
-    from solver.strategy_pairs import COMPARE_PAIRS, PairEvaluator
+    from solver.literature.strategy_pairs import COMPARE_PAIRS, PairEvaluator
 
     inst = experiment_instance(instance, grid)
     game = PairEvaluator.of(inst)
@@ -120,7 +120,7 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
         worst_case_table,
     )
     from solver.experiments.ngoal import corner_cells
-    from solver.movingai import read_map
+    from solver.formats.movingai import read_map
     from solver.plots import save_figure
 
     dens = int_list(densities, "--densities") if samples else ()

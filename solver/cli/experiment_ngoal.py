@@ -117,7 +117,7 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
     from dppverify.formats.movingai import read_map as checker_read_map
     from dppverify.formats.standard_maps import resolve_map
     from solver.experiments.ngoal import corner_cells
-    from solver.movingai import read_map
+    from solver.formats.movingai import read_map
 
     if str(output_dir) == "":
         raise InvalidInstanceError("--output-dir: the output path is empty")
@@ -180,8 +180,8 @@ def _equilibria(placed: Placed, max_goals: int, as_json: bool,
     """Solve and certify every game of the series."""
     from dppverify.certify import certify as certify_profile
     from dppverify.formats.movingai import grid_document
+    from solver.coalitions.construction import nequilibrium_to_json
     from solver.experiments.ngoal import ngoal_csv, ngoal_figure, ngoal_series
-    from solver.ngoal_equilibrium import nequilibrium_to_json
 
     echo = _table("map              N  prior   U          U_bar      VoI     deception  "
                   "certified  seconds", as_json, progress)

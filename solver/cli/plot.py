@@ -20,7 +20,7 @@ from solver.cli.solve import ngoal_game
 from solver.errors import InvalidInstanceError
 
 if TYPE_CHECKING:
-    from solver.ngoal_instance import NGame
+    from solver.game.indexed_instance import NGame
 
 __all__ = ["plot_group"]
 
@@ -58,7 +58,8 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     """
     from solver.plots import plot_map, save_figure
 
-    game = ngoal_game(instance, grid) if instance is not None or grid is not None else None
+    game = (ngoal_game(instance, grid, "dpp plot map")
+            if instance is not None or grid is not None else None)
     if game is not None:
         _plot_ngoal_map(game, output, want_progress(progress))
         return
@@ -74,7 +75,7 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
 
 def _plot_ngoal_map(game: NGame, output: str, progress: bool) -> None:
     """The N-goal figure: solve (the construction ``dpp solve`` writes), then draw."""
-    from solver.ngoal_equilibrium import solve_ngoal
+    from solver.coalitions.construction import solve_ngoal
     from solver.plots import plot_ngoal_map, save_figure
 
     bar = PhaseBar(progress, "plot map", f"solving ({game.n_goals} goals)")

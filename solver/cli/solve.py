@@ -23,7 +23,7 @@ from solver.cli.common import START_IS_GOAL, dumps, load_with_digest
 from solver.errors import DPPError, InvalidInstanceError, OutputError
 
 if TYPE_CHECKING:
-    from solver.ngoal_instance import NGame
+    from solver.game.indexed_instance import NGame
 
 __all__ = ["ngoal_game", "solve_command"]
 
@@ -73,10 +73,10 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance,
                              want_progress(progress))
         return
-    from solver.equilibrium import solve
-    from solver.instance_json import instance_to_json, map_instance_to_json
-    from solver.profile_json import equilibrium_to_json
-    from solver.report import summarize
+    from solver.game.instance_writing import instance_to_json, map_instance_to_json
+    from solver.twogoal.equilibrium import solve
+    from solver.twogoal.profile_json import equilibrium_to_json
+    from solver.twogoal.report import summarize
 
     bar = PhaseBar(want_progress(progress), "solve", "reading the instance")
     try:
@@ -111,11 +111,12 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         status(f"wrote {save_instance}: the instance")
 
 
-def ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
+def ngoal_game(instance: str | None, grid: MapRequest | None,
+               command: str = "dpp solve") -> NGame | None:
     """The N-goal game of a solver command, or None when it has two goals."""
-    from solver.json_text import read_json
-    from solver.movingai import read_map
-    from solver.ngoal_instance import ngame_from_grid, ngame_from_json
+    from solver.formats.json_text import read_json
+    from solver.formats.movingai import read_map
+    from solver.game.indexed_instance import ngame_from_grid, ngame_from_json
 
     instance_or_map(instance, grid)
     if grid is not None:
@@ -130,12 +131,12 @@ def ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
         except InvalidInstanceError as exc:
             raise InvalidInstanceError(f"{grid.map}: {exc}") from None
     assert instance is not None
-    with checker_cli.hinted(instance, "instance", "dpp solve", errors=(DPPError,)):
+    with checker_cli.hinted(instance, "instance", command, errors=(DPPError,)):
         doc = read_json(instance)
     if not (isinstance(doc, dict) and isinstance(doc.get("goals"), list)
             and len(doc["goals"]) > 2):
         return None
-    with checker_cli.hinted(instance, "instance", "dpp solve", errors=(DPPError,)):
+    with checker_cli.hinted(instance, "instance", command, errors=(DPPError,)):
         try:
             return ngame_from_json(doc, base=Path(instance).parent)
         except InvalidInstanceError as exc:
@@ -147,8 +148,8 @@ def _map_document(grid: MapRequest, folder: Path) -> dict[str, Any]:
     """The compact ``dpp-map-instance/1`` of an N-goal ``--map`` game (docs/formats.md)."""
     import os
 
-    from solver.instance_json import MAP_INSTANCE_FORMAT
-    from solver.movingai import STANDARD_PREFIX, map_file, read_map_bytes
+    from solver.formats.map_instance import MAP_INSTANCE_FORMAT
+    from solver.formats.movingai import STANDARD_PREFIX, map_file, read_map_bytes
     from solver.numbers import format_number, parse_number
 
     _, digest = read_map_bytes(map_file(grid.map))
@@ -165,8 +166,8 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
                         progress: bool = False) -> None:
     """Solve, certify, and write (or refuse in one line, exit 3)."""
     from dppverify.certify import certify as certify_profile
-    from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
-    from solver.ngoal_instance import ngame_to_json
+    from solver.coalitions.construction import nequilibrium_to_json, solve_ngoal
+    from solver.game.indexed_instance import ngame_to_json
 
     if game.start in game.goals:
         status(START_IS_GOAL)
@@ -202,7 +203,7 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
     elif as_json:
         click.echo(text, nl=False)
     else:
-        from solver.report import format_value
+        from solver.twogoal.report import format_value
 
         click.echo(f"N = {game.n_goals} goals: U = {format_value(eq.U)} (certified: structured "
                    f"route, H = inf), VoI = {format_value(eq.VoI)}, U_bar = "

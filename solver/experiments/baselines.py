@@ -30,10 +30,10 @@ from dppio.text import decimal
 from solver.experiments.compare import paper10_instance
 from solver.experiments.density import DensityConfig
 from solver.experiments.sampling import sample_grid
-from solver.instance import Instance
+from solver.formats.movingai import read_map
+from solver.game.instance import Instance
 from solver.literature.masters_sardina import STRATEGIES
-from solver.movingai import read_map
-from solver.strategy_pairs import DEFENDERS, LABELS, PairEvaluator
+from solver.literature.strategy_pairs import DEFENDERS, LABELS, PairEvaluator
 
 __all__ = ["ATTACKERS_ALL", "COLOURS", "DEFAULT_MAPS", "BaselineRow", "instances",
            "plot_baselines", "rows_csv", "run_baselines", "summary_table", "worst_case_table"]

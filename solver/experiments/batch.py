@@ -203,7 +203,7 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
 
 @lru_cache(maxsize=8)
 def _blocked(path: str, mtime_ns: int) -> np.ndarray:
-    from solver.movingai import read_map
+    from solver.formats.movingai import read_map
 
     return read_map(path)
 
@@ -246,10 +246,10 @@ def _error_row(sc: Any, config: BatchConfig, reason: str, **known: str) -> dict[
 
 def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing: str,
               config: BatchConfig, checker: Checker) -> dict[str, str]:
-    from solver.equilibrium import solve
-    from solver.instance import Instance
-    from solver.instance_json import instance_to_json
-    from solver.profile_json import equilibrium_to_json
+    from solver.game.instance import Instance
+    from solver.game.instance_writing import instance_to_json
+    from solver.twogoal.equilibrium import solve
+    from solver.twogoal.profile_json import equilibrium_to_json
 
     if sc.reason:
         return _error_row(sc, config, sc.reason)

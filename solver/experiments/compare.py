@@ -15,10 +15,10 @@ from importlib import resources
 from pathlib import Path
 
 from dppio.text import decimal
-from solver.instance import Instance
-from solver.movingai import read_map
+from solver.formats.movingai import read_map
+from solver.game.instance import Instance
+from solver.literature.strategy_pairs import LABELS, PAIRS, PairEvaluator, PairResult
 from solver.numbers import Number
-from solver.strategy_pairs import LABELS, PAIRS, PairEvaluator, PairResult
 
 __all__ = ["DEFAULT_GOALS", "DEFAULT_PRIOR", "DEFAULT_START", "compare_csv", "compare_table",
            "paper10_instance", "paper10_path", "run_compare", "verdict"]
@@ -60,7 +60,7 @@ def paper10_instance() -> Instance:
 
 
 def run_compare(instance: Instance) -> tuple[PairResult, ...]:
-    """U¹, U², U, VoI of the six pairs of :data:`solver.strategy_pairs.PAIRS`, exactly.
+    """U¹, U², U, VoI of the six pairs of :data:`solver.literature.strategy_pairs.PAIRS`, exactly.
 
     Examples
     --------
@@ -83,7 +83,7 @@ def compare_table(results: Sequence[PairResult]) -> str:
 
     Examples
     --------
-    >>> from solver.instance import triangle
+    >>> from solver.game.instance import triangle
     >>> results = PairEvaluator.of(triangle()).compare()
     >>> print(compare_table(results[:2]))
     Defender  Attacker  U1              U2  U             VoI
@@ -112,7 +112,7 @@ def verdict(results: Sequence[PairResult]) -> str:
     >>> print(verdict(run_compare(paper10_instance())))  # doctest: +NORMALIZE_WHITESPACE
     U(σ',γ*) = 64/5 (≈ 12.8) < U(σ*,γ*) = 68/5 (≈ 13.6): the paper's observation
     U(σ',γ*) < U(σ*,γ*) holds on this instance
-    >>> from solver.instance import triangle
+    >>> from solver.game.instance import triangle
     >>> results = PairEvaluator.of(triangle()).compare()
     >>> "does NOT hold" in verdict(results), verdict(results[:1])
     (True, '')
@@ -133,7 +133,7 @@ def compare_csv(results: Sequence[PairResult]) -> str:
 
     Examples
     --------
-    >>> from solver.instance import triangle
+    >>> from solver.game.instance import triangle
     >>> results = PairEvaluator.of(triangle()).compare()
     >>> print(compare_csv(results[:2]), end="")
     defender,attacker,U1,U2,U,U_bar,VoI

@@ -2,9 +2,9 @@
 
 For each density and sample: draw a grid (:mod:`solver.experiments.sampling`), build the
 game (same start, goals and prior for every grid), evaluate the six (Defender, Attacker)
-pairs of :data:`solver.strategy_pairs.PAIRS` exactly and record VoI. The work is cut into tasks of
-:attr:`DensityConfig.chunk` samples; a task's result depends only on its inputs, so local
-processes, one process, or a Dask scheduler give identical rows.
+pairs of :data:`solver.literature.strategy_pairs.PAIRS` exactly and record VoI. The work is
+cut into tasks of :attr:`DensityConfig.chunk` samples; a task's result depends only on its
+inputs, so local processes, one process, or a Dask scheduler give identical rows.
 """
 
 from __future__ import annotations
@@ -22,8 +22,8 @@ from dppio.procs import descendants
 from solver.errors import InvalidInstanceError
 from solver.experiments.dask_tasks import dask_completed
 from solver.experiments.sampling import Cell, sample_grid
-from solver.instance import Instance
-from solver.strategy_pairs import PAIRS, PairEvaluator
+from solver.game.instance import Instance
+from solver.literature.strategy_pairs import PAIRS, PairEvaluator
 
 __all__ = ["CSV_FIELDS", "DensityConfig", "Row", "Task", "rows_to_csv", "run_density",
            "run_task", "tasks_of"]
@@ -136,7 +136,8 @@ def run_task(task: Task) -> list[Row]:
     Returns
     -------
     list of Row
-        One row per sample and pair of :data:`solver.strategy_pairs.PAIRS`, in that order.
+        One row per sample and pair of :data:`solver.literature.strategy_pairs.PAIRS`, in that
+        order.
 
     Examples
     --------

@@ -3,7 +3,7 @@
 On MovingAI maps (4-connected, unit weights) one rule places a start and five goals
 (:func:`corner_cells`); for ``N = 2 … 5`` the first ``N`` goals are used with equal priors
 (``1/N``) and skewed priors (``b_θ ∝ 2^(N-θ)``). Each game is solved by the N-goal
-construction (:func:`solver.ngoal_equilibrium.solve_ngoal`) and the profile is handed to a
+construction (:func:`solver.coalitions.construction.solve_ngoal`) and the profile is handed to a
 certifier (the command line passes the checker: structured route, ``H = inf``). Reported, all
 exact:
 
@@ -36,9 +36,9 @@ from typing import Any, TypeVar
 import numpy as np
 from scipy import ndimage
 
+from solver.coalitions.construction import NEquilibrium, solve_ngoal
 from solver.errors import InvalidInstanceError
-from solver.ngoal_equilibrium import NEquilibrium, solve_ngoal
-from solver.ngoal_instance import MAX_NGOALS, ngame_from_grid
+from solver.game.indexed_instance import MAX_NGOALS, ngame_from_grid
 
 __all__ = ["GameValue", "NGoalRow", "ValueRow", "corner_cells", "ngoal_csv", "ngoal_figure",
            "ngoal_series", "skewed_prior", "value_csv", "value_figure", "value_series"]

@@ -25,7 +25,7 @@ from itertools import pairwise
 from typing import Any
 
 from dppio.text import decimal
-from solver.strategy_pairs import PAIRS, pair_label
+from solver.literature.strategy_pairs import PAIRS, pair_label
 
 __all__ = ["Claim", "DensitySummary", "Stats", "summarize_density"]
 

@@ -14,8 +14,8 @@ import matplotlib
 
 matplotlib.use("Agg")  # before any module of this package imports pyplot
 
+from solver.plots.goal_walks import plot_ngoal_map
 from solver.plots.grid import plot_beliefs, plot_map
-from solver.plots.ngoal_map import plot_ngoal_map
 from solver.plots.style import PATH_STYLES, PHASE_COLOURS, STRATEGY_COLOURS, save_figure
 from solver.plots.voi import plot_voi
 

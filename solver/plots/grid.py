@@ -17,8 +17,9 @@ from matplotlib.ticker import MaxNLocator
 
 from dppio.text import count
 from solver.errors import InvalidInstanceError
-from solver.instance import Instance
-from solver.network import GridLabels
+from solver.game.instance import Instance
+from solver.graph.network import GridLabels
+from solver.literature.strategy_pairs import LABELS, PairEvaluator
 from solver.plots.style import (
     LARGE_MAP,
     LARGE_MARKER,
@@ -33,7 +34,6 @@ from solver.plots.style import (
     num_label,
     tex_label,
 )
-from solver.strategy_pairs import LABELS, PairEvaluator
 
 __all__ = ["draw_grid_background", "grid_cell_points", "large_map", "plot_beliefs", "plot_map"]
 

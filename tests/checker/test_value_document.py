@@ -98,12 +98,12 @@ def test_the_default_is_the_untruncated_game(files: dict[str, str]) -> None:
 
 def test_an_open_bracket_names_both_bounds(files: dict[str, str]) -> None:
     """hub4 at H = inf: the coalition DP's 25/14 is only an upper bound (proofs/NGOAL.md);
-    the value 12/7 is proved by NG.10, and the coalition DP stays in the details."""
+    the value 12/7 is proved (by the refined DP), and the coalition DP stays in the details."""
     doc = _document([files["hub4"]])
     _check_shape(doc, goals=4, route="structured", horizon="inf")
     details = doc["structured"]["details"]
     assert doc["value"] == "12/7" and details["coalition_dp"]["value"] == "25/14"
-    assert "NG.10" in doc["lower_source"]
+    assert "NG." in doc["lower_source"] and doc["exact"] is True
 
 
 def test_float_mode_has_the_same_shape() -> None:

@@ -14,7 +14,7 @@ from matplotlib.patches import Patch
 from solver import Instance, solve
 from solver.experiments.compare import paper10_instance, paper10_path
 from solver.plots import PATH_STYLES, plot_beliefs, plot_map, plot_voi
-from solver.report import summarize
+from solver.twogoal.report import summarize
 
 matplotlib.use("Agg")
 
@@ -168,9 +168,9 @@ def test_baselines_legend_covers_no_bar() -> None:
 
 
 def test_the_n_goal_map_draws_every_walk_and_the_defenders_sigma() -> None:
-    from solver.movingai import read_map
-    from solver.ngoal_equilibrium import solve_ngoal
-    from solver.ngoal_instance import ngame_from_grid
+    from solver.coalitions.construction import solve_ngoal
+    from solver.formats.movingai import read_map
+    from solver.game.indexed_instance import ngame_from_grid
     from solver.plots import plot_ngoal_map
     from solver.plots.style import GOAL_COLOURS
 

@@ -23,8 +23,8 @@ from dppverify.game.instance import instance_from_json as checker_from_json
 from dppverify.game.instance import load_instance as checker_load
 from solver.cli import main
 from solver.errors import DPPError
-from solver.instance_json import instance_to_json
-from solver.instance_json import load_instance as solver_load
+from solver.game.instance_reading import load_instance as solver_load
+from solver.game.instance_writing import instance_to_json
 from tests.maps._maps import TINY_MAP
 
 GROUP = ["--start", "2,0", "--goals", "0,3", "0,0", "--prior", "3/5,2/5"]

@@ -24,9 +24,10 @@ from dppverify.__main__ import main as checker_main
 from dppverify.game.instance import instance_from_json as checker_from_json
 from dppverify.game.instance import load_instance as checker_load
 from solver.cli import main
-from solver.instance import Instance
-from solver.instance_json import instance_to_json, load_instance
-from solver.movingai import read_map
+from solver.formats.movingai import read_map
+from solver.game.instance import Instance
+from solver.game.instance_reading import load_instance
+from solver.game.instance_writing import instance_to_json
 from tests.maps._maps import ROOT, TINY_MAP
 
 START, G1, G2 = "2,0", "0,3", "0,0"

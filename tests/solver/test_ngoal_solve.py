@@ -33,11 +33,11 @@ from dppverify.structured.coalition import CoalitionRunner
 from dppverify.structured.guarantee import dp_value, guarantee_sets
 from solver import Instance, solve
 from solver.cli import main
-from solver.coalitions import coalition_dp
-from solver.guarantee_rule import guarantee_step, priority_order
-from solver.ngoal_equilibrium import nequilibrium_to_json, solve_ngoal
-from solver.ngoal_instance import ngame_from_json
-from solver.progress import ProgressDefender
+from solver.coalitions.coalition_dp import coalition_dp
+from solver.coalitions.construction import nequilibrium_to_json, solve_ngoal
+from solver.coalitions.guarantee_rule import guarantee_step, priority_order
+from solver.game.indexed_instance import ngame_from_json
+from solver.twogoal.progress import ProgressDefender
 
 GADGET: dict[str, Any] = {
     "graph": {"directed": True,

@@ -1,18 +1,18 @@
 """The N-goal construction: coalition Attacker and guarantee-vector Defender (proofs/NSOLVE.md).
 
 - **Root.** The cover LP ``min Σ_S c_S m_S(s0)`` s.t. ``Σ_S c_S 1_S = b`` (exact simplex,
-  :func:`solver.coalitions.cover_lp`) gives the starting coalitions (mass ``c_S``); ``h`` is
-  its lexicographically largest optimal dual in the priority order (the simplex on a
-  lexicographically perturbed right-hand side): ``h(S) <= m_S(s0)``, ``h·b`` = the coalition
-  DP's value; for two goals the paper's ``(d(s0, g1), M - d(s0, g1))``.
+  :func:`solver.coalitions.coalition_dp.cover_lp`) gives the starting coalitions (mass
+  ``c_S``); ``h`` is its lexicographically largest optimal dual in the priority order (the
+  simplex on a lexicographically perturbed right-hand side): ``h(S) <= m_S(s0)``, ``h·b`` =
+  the coalition DP's value; for two goals the paper's ``(d(s0, g1), M - d(s0, g1))``.
 - **Attacker.** Each coalition ``S`` of mass ``μ`` at a node ``v`` follows an argmin of the DP:
   it steps ``v -> u`` when ``m_S(v) = w(v, u) + m_S(u)`` (preferred: coalitions stay together;
   among such arcs the one to the lowest node index), else splits into the minimal balanced
   collection ``{T: λ_T}`` attaining ``m_S(v)`` (children of mass ``μ·λ_T``), and stops at a
   goal. Type ``θ`` plays each resulting walk with probability (mass of the coalitions ``∋ θ``
   ending on it) / ``b_θ``.
-- **Defender.** The guarantee rule with ``h``: :mod:`solver.guarantee_rule`, written to the
-  profile as ``{"rule": "guarantee", "h": [...]}`` (``docs/formats.md`` §2b).
+- **Defender.** The guarantee rule with ``h``: :mod:`solver.coalitions.guarantee_rule`, written
+  to the profile as ``{"rule": "guarantee", "h": [...]}`` (``docs/formats.md`` §2b).
 
 The construction is an equilibrium wherever the *arc condition* holds
 (``proofs/NSOLVE.md``); ``dpp solve`` certifies every N-goal profile with the independent
@@ -28,16 +28,11 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from solver.coalitions import (
-    Coalitions,
-    balanced_collections,
-    coalition_dp,
-    cover_lp,
-)
-from solver.coalitions import subset_members as _members
-from solver.guarantee_rule import guarantee_step, priority_order
-from solver.instance_json import node_to_json
-from solver.ngoal_instance import NGame
+from solver.coalitions.coalition_dp import Coalitions, balanced_collections, coalition_dp, cover_lp
+from solver.coalitions.coalition_dp import subset_members as _members
+from solver.coalitions.guarantee_rule import guarantee_step, priority_order
+from solver.formats.nodes import node_to_json
+from solver.game.indexed_instance import NGame
 from solver.version import __version__
 
 __all__ = ["NEquilibrium", "nequilibrium_to_json", "solve_ngoal"]
@@ -143,7 +138,7 @@ def solve_ngoal(game: NGame) -> NEquilibrium:
 
     Examples
     --------
-    >>> from solver.ngoal_instance import ngame_from_json
+    >>> from solver.game.indexed_instance import ngame_from_json
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "smabc"],
     ...        "edges": [{"source": "s", "target": "m"}, {"source": "m", "target": "a"},
     ...                  {"source": "m", "target": "b"}, {"source": "m", "target": "c"},
@@ -212,7 +207,7 @@ def nequilibrium_to_json(eq: NEquilibrium) -> dict[str, Any]:
 
     Examples
     --------
-    >>> from solver.ngoal_instance import ngame_from_json
+    >>> from solver.game.indexed_instance import ngame_from_json
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
     ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
     ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}

@@ -36,7 +36,7 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
-from solver.ngoal_instance import NGame
+from solver.game.indexed_instance import NGame
 from solver.numbers import pivot, solve_exact
 
 __all__ = ["Coalitions", "CoverSolution", "balanced_collections", "coalition_dp", "cover_lp",
@@ -219,7 +219,7 @@ def coalition_dp(game: NGame) -> Coalitions:
     --------
     The hub: ``s -> m`` then ``m -> a | b | c`` (unit weights), ``s -> a`` weight 2:
 
-    >>> from solver.ngoal_instance import ngame_from_json
+    >>> from solver.game.indexed_instance import ngame_from_json
     >>> doc = {"graph": {"directed": True, "nodes": [{"id": x} for x in "smabc"],
     ...        "edges": [{"source": "s", "target": "m"}, {"source": "m", "target": "a"},
     ...                  {"source": "m", "target": "b"}, {"source": "m", "target": "c"},

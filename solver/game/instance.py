@@ -11,7 +11,8 @@ import networkx as nx
 import numpy as np
 
 from solver.errors import InvalidInstanceError
-from solver.network import Network
+from solver.game.instance_writing import instance_to_json
+from solver.graph.network import Network
 from solver.numbers import parse_number
 
 __all__ = ["Instance", "triangle"]
@@ -119,8 +120,6 @@ class Instance:
         >>> Instance(g, "s", ("a", "b"), ("1/2", "1/2")).to_json()["goals"]
         ['a', 'b']
         """
-        from solver.instance_json import instance_to_json  # the JSON layer sits above
-
         return instance_to_json(self)
 
     # ------------------------------------------------------------------ constructors

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from solver.network import Network
+from solver.graph.network import Network
 from solver.numbers import Number, NumberMode
 
 __all__ = ["ProgressDefender"]
@@ -39,7 +39,7 @@ class ProgressDefender:
     progress 1.5 (σ* = 1), a step of weight 1 to a node at distance 3 makes 0.5.
 
     >>> import networkx as nx
-    >>> from solver.distances import distances_to
+    >>> from solver.graph.distances import distances_to
     >>> g = nx.DiGraph()
     >>> g.add_weighted_edges_from([("s", "r", "3/2"), ("r", "g1", 2), ("s", "p", 1),
     ...                            ("p", "g1", 3)])

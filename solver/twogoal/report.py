@@ -5,8 +5,8 @@ from __future__ import annotations
 from collections.abc import Hashable, Sequence
 
 from dppio.text import decimal
-from solver.equilibrium import Equilibrium
 from solver.numbers import Number
+from solver.twogoal.equilibrium import Equilibrium
 
 __all__ = ["format_value", "path_label", "summarize"]
 
@@ -37,7 +37,7 @@ def summarize(eq: Equilibrium) -> str:
     Examples
     --------
     >>> from solver import solve
-    >>> from solver.instance import triangle
+    >>> from solver.game.instance import triangle
     >>> print(summarize(solve(triangle())))
     start 's'; primary goal g1 = 'g1' (prior 7/10), secondary goal g2 = 'g2' (prior 3/10)
     mode: exact (rational)

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from solver.network import Network
+from solver.graph.network import Network
 from solver.numbers import NumberMode
 
 __all__ = ["path_from_source", "path_to_target"]
@@ -25,7 +25,7 @@ def path_to_target(net: Network, start: int, target: int, dist_to: np.ndarray,
     Examples
     --------
     >>> import networkx as nx
-    >>> from solver.distances import distances_to
+    >>> from solver.graph.distances import distances_to
     >>> net = Network.from_networkx(nx.cycle_graph(4))
     >>> path_to_target(net, 0, 2, distances_to(net, 2), net.numbers)
     [0, 1, 2]
@@ -50,8 +50,8 @@ def path_from_source(net: Network, source: int, end: int, dist_from: np.ndarray,
     On the README's triangle (``s = 0``, ``g2 = 1``, ``g1 = 2``) ``s -> g1`` directly (3)
     beats ``s -> g2 -> g1`` (4):
 
-    >>> from solver.distances import distances_from
-    >>> from solver.instance import triangle
+    >>> from solver.graph.distances import distances_from
+    >>> from solver.game.instance import triangle
     >>> net = triangle().network
     >>> path_from_source(net, 0, 2, distances_from(net, 0), net.numbers), net.labels[2]
     ([0, 2], 'g1')

@@ -14,9 +14,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from solver.network import Network
+from solver.graph.network import Network
+from solver.graph.shortest_paths import path_from_source, path_to_target
 from solver.numbers import NumberMode
-from solver.shortest_paths import path_from_source, path_to_target
 
 __all__ = ["SecondaryPath", "secondary_best_response"]
 
@@ -60,8 +60,8 @@ def secondary_best_response(
 
     Examples
     --------
-    >>> from solver.distances import distances_from, distances_to
-    >>> from solver.instance import triangle
+    >>> from solver.graph.distances import distances_from, distances_to
+    >>> from solver.game.instance import triangle
     >>> net = triangle().network   # indices: s=0, g2=1, g1=2
     >>> xi = secondary_best_response(net, 0, (2, 1), distances_from(net, 0),
     ...      distances_to(net, 2), distances_to(net, 1), net.numbers)

@@ -1,13 +1,15 @@
-"""Writing an :class:`~solver.equilibrium.Equilibrium` as ``dpp-profile/1`` JSON."""
+"""Writing an :class:`~solver.twogoal.equilibrium.Equilibrium` as ``dpp-profile/1`` JSON."""
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from solver.equilibrium import Equilibrium
-from solver.instance_json import node_to_json
+from solver.formats.nodes import node_to_json
 from solver.numbers import format_number
 from solver.version import __version__
+
+if TYPE_CHECKING:
+    from solver.twogoal.equilibrium import Equilibrium
 
 __all__ = ["PROFILE_FORMAT", "equilibrium_to_json"]
 
@@ -33,8 +35,8 @@ def equilibrium_to_json(eq: Equilibrium) -> dict[str, Any]:
 
     >>> from dppverify import certify
     >>> from solver import solve
-    >>> from solver.instance import triangle
-    >>> from solver.instance_json import instance_to_json
+    >>> from solver.game.instance import triangle
+    >>> from solver.game.instance_writing import instance_to_json
     >>> inst = triangle()
     >>> doc = equilibrium_to_json(solve(inst))
     >>> [(p["path"], p["probability"]) for p in doc["attacker"]["primary"]]

@@ -17,9 +17,9 @@ from itertools import pairwise
 
 import numpy as np
 
-from solver.network import Network
+from solver.game.walks import StrategyPath
+from solver.graph.network import Network
 from solver.numbers import Number
-from solver.strategy import StrategyPath
 
 __all__ = ["Evaluation", "Schedule", "Trajectory", "evaluate"]
 
@@ -132,8 +132,8 @@ def evaluate(
 
     Examples
     --------
-    >>> from solver.distances import distances_from, distances_to
-    >>> from solver.instance import triangle
+    >>> from solver.graph.distances import distances_from, distances_to
+    >>> from solver.game.instance import triangle
     >>> net = triangle().network   # s=0, g2=1, g1=2
     >>> always_g1 = lambda walk: [Fraction(1)] * (len(walk) - 1)
     >>> direct = [StrategyPath.along(net, walk, Fraction(1), "direct") for walk in ((0, 2), (0, 1))]

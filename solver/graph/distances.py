@@ -1,4 +1,4 @@
-"""Single-source shortest distances on a :class:`~solver.network.Network`, exactly.
+"""Single-source shortest distances on a :class:`~solver.graph.network.Network`, exactly.
 
 Exact networks store integer weight numerators. ``scipy.sparse.csgraph.dijkstra`` works
 in float64, which represents every integer below 2**53 exactly; when the total weight of
@@ -13,7 +13,7 @@ import heapq
 import numpy as np
 from scipy.sparse.csgraph import dijkstra
 
-from solver.network import Network
+from solver.graph.network import Network
 
 __all__ = ["EXACT_FLOAT_LIMIT", "distances_from", "distances_to"]
 

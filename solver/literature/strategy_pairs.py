@@ -5,8 +5,8 @@ belief, :mod:`solver.literature.greedy_defender`), or any schedule function (wal
 step).
 Attackers: ``"gamma*"`` (the equilibrium mixture, eqs. (9) and (15)), ``"ambiguity"`` and
 ``"exaggeration"`` (each type deterministically takes its ξ^{θ,am} / ξ^{θ,ex}, eq. (18)), or
-any :class:`Attacker`. Values come from :func:`solver.evaluation.evaluate` (eqs. (3), (4) and
-Definition 6): exact ``Fraction`` on rational instances, since every allocation is a
+any :class:`Attacker`. Values come from :func:`solver.twogoal.evaluation.evaluate` (eqs. (3),
+(4) and Definition 6): exact ``Fraction`` on rational instances, since every allocation is a
 ``Fraction`` (σ*) or 0/1 (σ').
 """
 
@@ -19,11 +19,10 @@ from functools import cached_property
 
 import numpy as np
 
-from solver.distances import distances_from, distances_to
-from solver.equilibrium import Equilibrium, solve
 from solver.errors import InvalidInstanceError
-from solver.evaluation import Evaluation, Schedule, evaluate
-from solver.instance import Instance
+from solver.game.instance import Instance
+from solver.game.walks import StrategyPath
+from solver.graph.distances import distances_from, distances_to
 from solver.literature.deceptive_paths import Kind, deceptive_path
 from solver.literature.dragan_belief import DraganObserver
 from solver.literature.greedy_defender import DraganDefender
@@ -31,7 +30,8 @@ from solver.literature.masters_sardina import LABELS as MS_LABELS
 from solver.literature.masters_sardina import STRATEGIES as MS_STRATEGIES
 from solver.literature.masters_sardina import plan_all
 from solver.numbers import Number
-from solver.strategy import StrategyPath
+from solver.twogoal.equilibrium import Equilibrium, solve
+from solver.twogoal.evaluation import Evaluation, Schedule, evaluate
 
 __all__ = ["ATTACKERS", "COMPARE_PAIRS", "DEFENDERS", "LABELS", "MS_PAIRS", "PAIRS", "Attacker",
            "PairEvaluator", "PairResult", "pair_label"]
@@ -97,7 +97,7 @@ class PairEvaluator:
 
     Examples
     --------
-    >>> from solver.instance import triangle
+    >>> from solver.game.instance import triangle
     >>> game = PairEvaluator.of(triangle())
     >>> r = game.pair("sigma*", "gamma*")
     >>> str(r.U), str(r.VoI)
@@ -194,7 +194,8 @@ class PairEvaluator:
 
     # ------------------------------------------------------------------ evaluation
     def evaluate(self, defender: str | Schedule, attacker: str | Attacker) -> Evaluation:
-        """The exact :class:`~solver.evaluation.Evaluation` of a pair (with trajectories)."""
+        """The exact :class:`~solver.twogoal.evaluation.Evaluation` of a pair (with
+        trajectories)."""
         schedule: Callable[..., list[Number]] = (
             self.defender(defender) if isinstance(defender, str) else defender)
         att = self.attacker(attacker) if isinstance(attacker, str) else attacker

@@ -16,17 +16,14 @@ from typing import Any
 
 import numpy as np
 
-from solver.distances import distances_to
 from solver.errors import InstanceFormatError, InvalidInstanceError
-from solver.instance_json import (
-    MAP_INSTANCE_FORMAT,
-    _graph_from_node_link,
-    node_from_json,
-    node_to_json,
-    read_map_document,
-)
-from solver.json_text import read_json
-from solver.network import Network
+from solver.formats.json_text import read_json
+from solver.formats.map_instance import MAP_INSTANCE_FORMAT, read_map_document
+from solver.formats.nodes import node_from_json, node_to_json
+from solver.game.instance import _check_free
+from solver.game.instance_reading import _graph_from_node_link
+from solver.graph.distances import distances_to
+from solver.graph.network import Network
 from solver.numbers import parse_number
 
 __all__ = ["MAX_NGOALS", "NGame", "load_ngame", "ngame_from_grid", "ngame_from_json",
@@ -38,7 +35,7 @@ MAX_NGOALS = 5
 
 @dataclass(frozen=True, eq=False)
 class NGame:
-    """A validated N-goal game on a :class:`~solver.network.Network` (exact weights).
+    """A validated N-goal game on a :class:`~solver.graph.network.Network` (exact weights).
 
     Attributes
     ----------
@@ -209,8 +206,6 @@ def ngame_from_grid(blocked: np.ndarray, start: tuple[int, int],
     solver.errors.InvalidInstanceError: start cell (3, 0) is outside the 3x3 grid (rows 0-2, \
 columns 0-2)
     """
-    from solver.instance import _check_free
-
     net = Network.from_grid(blocked, connectivity=4)
     _check_free(net.labels, (start[0], start[1]), "start")
     for g in goals:

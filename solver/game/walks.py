@@ -2,10 +2,10 @@
 
 Naming, the same across the solver and the checker: a *walk* is the sequence of nodes an
 Attacker type takes (the paper's path ξ; the JSON formats keep the key ``"path"``); *path*
-is kept for shortest paths (:mod:`solver.shortest_paths`) and for the paper's names of the
+is kept for shortest paths (:mod:`solver.graph.shortest_paths`) and for the paper's names of the
 equilibrium's walks (``secondary_path`` ξ², ``primary_paths`` ξ^{1,α}, public attributes of
-:class:`~solver.equilibrium.Equilibrium`). In code, ``walk`` holds node *indices* of the
-:class:`~solver.network.Network` (what the algorithms work on), ``nodes`` the same sequence as
+:class:`~solver.twogoal.equilibrium.Equilibrium`). In code, ``walk`` holds node *indices* of the
+:class:`~solver.graph.network.Network` (what the algorithms work on), ``nodes`` the same sequence as
 node *ids* (what users and the JSON formats see).
 """
 
@@ -15,7 +15,7 @@ from collections.abc import Hashable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 
-from solver.network import Network
+from solver.graph.network import Network
 
 __all__ = ["StrategyPath"]
 

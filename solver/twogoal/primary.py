@@ -13,11 +13,11 @@ from fractions import Fraction
 
 import numpy as np
 
-from solver.network import Network
+from solver.game.walks import StrategyPath
+from solver.graph.network import Network
+from solver.graph.shortest_paths import path_to_target
 from solver.numbers import NumberMode
-from solver.phases import Phases
-from solver.shortest_paths import path_to_target
-from solver.strategy import StrategyPath
+from solver.twogoal.phases import Phases
 
 __all__ = ["primary_mixture"]
 
@@ -39,7 +39,7 @@ def primary_mixture(net: Network, xi2: Sequence[int], phases: Phases, g1: int,
     Examples
     --------
     >>> import networkx as nx
-    >>> from solver.distances import distances_to
+    >>> from solver.graph.distances import distances_to
     >>> g = nx.Graph()
     >>> g.add_weighted_edges_from([("s", "g2", 2), ("g2", "g1", 2), ("s", "g1", 3)])
     >>> net = Network.from_networkx(g)   # s=0, g2=1, g1=2

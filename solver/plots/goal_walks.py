@@ -11,9 +11,9 @@ sees where the Defender guards the type's own goal and where it is deceived.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Hashable, Sequence
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -27,9 +27,14 @@ from solver.plots.grid import draw_grid_background, grid_cell_points, large_map
 from solver.plots.style import GOAL_COLOURS, MARKER_COLOUR, STYLE, VOI, num_label
 
 if TYPE_CHECKING:
-    from solver.ngoal_equilibrium import NEquilibrium
+    from solver.coalitions.construction import NEquilibrium
 
 __all__ = ["plot_ngoal_map"]
+
+
+def _cell(labels: Sequence[Hashable], v: int) -> tuple[int, int]:
+    """Node ``v``'s grid cell ``(row, col)``."""
+    return cast("tuple[int, int]", labels[v])
 
 
 def _walk_xy(cells: Sequence[tuple[int, int]], offset: float) -> tuple[np.ndarray, np.ndarray]:
@@ -43,7 +48,7 @@ def plot_ngoal_map(eq: NEquilibrium) -> Figure:
     Parameters
     ----------
     eq : NEquilibrium
-        :func:`solver.ngoal_equilibrium.solve_ngoal` on a grid game (node ids ``(row, col)``).
+        :func:`solver.coalitions.construction.solve_ngoal` on a grid game (node ids ``(row, col)``).
 
     Returns
     -------
@@ -52,9 +57,9 @@ def plot_ngoal_map(eq: NEquilibrium) -> Figure:
 
     Examples
     --------
-    >>> from solver.movingai import read_map
-    >>> from solver.ngoal_equilibrium import solve_ngoal
-    >>> from solver.ngoal_instance import ngame_from_grid
+    >>> from solver.formats.movingai import read_map
+    >>> from solver.coalitions.construction import solve_ngoal
+    >>> from solver.game.indexed_instance import ngame_from_grid
     >>> from solver.experiments.compare import paper10_path
     >>> game = ngame_from_grid(read_map(paper10_path()), (9, 0), [(0, 9), (0, 0), (9, 9)],
     ...                        ["1/2", "1/3", "1/6"])
@@ -83,7 +88,7 @@ def _plot(eq: NEquilibrium) -> Figure:
         colour = GOAL_COLOURS[theta]
         offset = 0.0 if large else (theta - (n - 1) / 2) * min(0.5 / n, 0.14)
         for k, (walk, _) in enumerate(eq.mixtures[theta]):
-            x, y = _walk_xy([labels[v] for v in walk], offset)
+            x, y = _walk_xy([_cell(labels, v) for v in walk], offset)
             ax.plot(x, y, color=colour, lw=lw if k == 0 else 0.7 * lw,
                     ls="-" if k == 0 else (0, (3, 1.5)), zorder=4 + (n - theta) * 0.01,
                     solid_capstyle="round", solid_joinstyle="round")
@@ -96,7 +101,7 @@ def _plot(eq: NEquilibrium) -> Figure:
     markers += [(g, "s", GOAL_COLOURS[t], f"$g^{t + 1}$ (prior {game.prior[t]})")
                 for t, g in enumerate(game.goals)]
     for node, marker, face, name in markers:
-        row, col = labels[node]
+        row, col = _cell(labels, node)
         ax.plot(col, row, marker=marker, ms=ms, mfc=face, mec=MARKER_COLOUR, mew=2,
                 zorder=10)
         handles.append(Line2D([], [], marker=marker, ms=10, mfc=face, mec=MARKER_COLOUR,
@@ -135,6 +140,6 @@ def _sigma_panel(ax: Any, eq: NEquilibrium, theta: int) -> None:
     ax.tick_params(labelsize=9)
     ax.set_ylabel("σ", fontsize=10)
     cell = game.network.labels[game.goals[theta]]
-    share = "" if p == 1 else f"; walk p = {p}"
+    mixed = "" if p == 1 else f"; walk p = {p}"
     ax.set_title(f"type {theta + 1}: goal $g^{theta + 1}$ {cell}, prior "
-                 f"{game.prior[theta]}{share}", fontsize=10)
+                 f"{game.prior[theta]}{mixed}", fontsize=10)

@@ -9,16 +9,17 @@ from typing import Any
 
 import numpy as np
 
-from solver.distances import distances_from, distances_to
 from solver.errors import InvalidInstanceError
-from solver.evaluation import Evaluation, Trajectory, evaluate
-from solver.instance import Instance
+from solver.game.instance import Instance
+from solver.game.walks import StrategyPath
+from solver.graph.distances import distances_from, distances_to
 from solver.numbers import DEFAULT_ABS_TOL, Number, NumberMode
-from solver.phases import Phases, phases_of
-from solver.primary import primary_mixture
-from solver.progress import ProgressDefender
-from solver.secondary import TIE_BREAK, secondary_best_response
-from solver.strategy import StrategyPath
+from solver.twogoal.evaluation import Evaluation, Trajectory, evaluate
+from solver.twogoal.phases import Phases, phases_of
+from solver.twogoal.primary import primary_mixture
+from solver.twogoal.profile_json import equilibrium_to_json
+from solver.twogoal.progress import ProgressDefender
+from solver.twogoal.secondary import TIE_BREAK, secondary_best_response
 
 __all__ = ["Equilibrium", "solve"]
 
@@ -96,8 +97,6 @@ class Equilibrium:
         >>> solve(Instance(g, "s", ("a", "b"), ("1/2", "1/2"))).to_json()["format"]
         'dpp-profile/1'
         """
-        from solver.profile_json import equilibrium_to_json  # the JSON layer sits above
-
         return equilibrium_to_json(self)
 
 
@@ -127,7 +126,7 @@ def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibriu
 
     Examples
     --------
-    >>> from solver.instance import triangle
+    >>> from solver.game.instance import triangle
     >>> eq = solve(triangle())  # s -> g2 (2), g2 -> g1 (2), s -> g1 (3); prior 7/10, 3/10
     >>> eq.secondary_path, eq.phases
     (('s', 'g2'), Phases(t_I=0, t_II=1, T=1))
