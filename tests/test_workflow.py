@@ -440,3 +440,31 @@ def test_plot_map_draws_an_n_goal_equilibrium_from_map_or_saved_instance(tmp_pat
                                "-o", str(tmp_path / "b.png")))
     assert "this command takes two goals, got 3" in line
     assert not (tmp_path / "b.png").exists()
+
+
+@pytest.mark.parametrize("goals", [["0,9", "0,0"], ["0,9", "0,0", "9,9"]])
+def test_plot_refuses_a_wrong_suffix_before_any_work(goals: list[str], tmp_path: Path,
+                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    import solver.coalitions.construction as construction
+    import solver.plots.grid as grid
+
+    def boom(*args: object, **kwargs: object) -> None:
+        raise AssertionError("solved before the output name was checked")
+
+    monkeypatch.setattr(construction, "solve_ngoal", boom)
+    monkeypatch.setattr(grid, "PairEvaluator", type("P", (), {"of": staticmethod(boom)}))
+    prior = "0.6,0.4" if len(goals) == 2 else "1/2,1/3,1/6"
+    line = _one_line_error(dpp("plot", "map", "--map", PAPER10, "--start", "9,0", "--goals",
+                               *goals, "--prior", prior, "-o", str(tmp_path / "m.txt")))
+    assert line.endswith("m.txt: the output file must end in .png, .svg or .pdf")
+
+
+def test_plot_map_of_a_graph_that_is_no_grid_is_one_line() -> None:
+    import tempfile
+
+    from dppverify.game.examples import star3_document
+    with tempfile.TemporaryDirectory() as d:
+        path = Path(d) / "star3.json"
+        path.write_text(json.dumps(star3_document()))
+        line = _one_line_error(dpp("plot", "map", str(path), "-o", str(Path(d) / "s.png")))
+    assert "map figures need a grid instance" in line

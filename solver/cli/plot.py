@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import click
 
@@ -18,6 +18,7 @@ from dppverify.cli.map_options import MapRequest, map_options, two_goal_map_opti
 from solver.cli.common import experiment_instance
 from solver.cli.solve import ngoal_game
 from solver.errors import InvalidInstanceError
+from solver.plots.style import check_suffix
 
 if TYPE_CHECKING:
     from solver.game.indexed_instance import NGame
@@ -61,8 +62,10 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     game = (ngoal_game(instance, grid, "dpp plot map")
             if instance is not None or grid is not None else None)
     if game is not None:
-        _plot_ngoal_map(game, output, want_progress(progress))
+        _plot_ngoal_map(game, grid.ninstance() if grid is not None else instance, output,
+                        want_progress(progress))
         return
+    check_suffix(output)
     bar = PhaseBar(want_progress(progress), "plot map", "reading the instance")
     try:
         inst = experiment_instance(instance, grid, "dpp plot map")
@@ -73,16 +76,32 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     status("wrote " + ", ".join(map(str, files)))
 
 
-def _plot_ngoal_map(game: NGame, output: str, progress: bool) -> None:
-    """The N-goal figure: solve (the construction ``dpp solve`` writes), then draw."""
-    from solver.coalitions.construction import solve_ngoal
+def _plot_ngoal_map(game: NGame, checked: Any, output: str, progress: bool) -> None:
+    """The N-goal figure of what ``dpp solve`` writes: the construction, certified by the
+    checker on the untruncated game (else one line, exit 3, nothing drawn), then drawn."""
+    from dppverify.certify import certify as certify_profile
+    from solver.coalitions.construction import nequilibrium_to_json, solve_ngoal
     from solver.plots import plot_ngoal_map, save_figure
+    from solver.plots.grid import grid_array
 
+    check_suffix(output)
+    grid_array(game)  # a grid game, or one line before any work
     bar = PhaseBar(progress, "plot map", f"solving ({game.n_goals} goals)")
     try:
         eq = solve_ngoal(game)
+        bar.phase("certifying (structured route, H = inf)")
+        cert = certify_profile(checked, nequilibrium_to_json(eq), horizon="inf",
+                               route="structured")
+        if cert.verdict != "pass":
+            raise click.ClickException("")  # reported below, after the bar is gone
         bar.phase("drawing")
         files = save_figure(plot_ngoal_map(eq), output)
+    except click.ClickException:
+        bar.close()
+        click.echo("error: the coalition construction does not give a certified equilibrium "
+                   "on this instance; nothing drawn (dpp value gives the game's value, or an "
+                   "exact bracket)", err=True)
+        raise click.exceptions.Exit(3) from None
     finally:
         bar.close()
     status("wrote " + ", ".join(map(str, files)))
@@ -106,6 +125,7 @@ def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
     """
     from solver.plots import plot_beliefs, save_figure
 
+    check_suffix(output)
     bar = PhaseBar(want_progress(progress), "plot beliefs", "reading the instance")
     try:
         inst = experiment_instance(instance, grid, "dpp plot beliefs")

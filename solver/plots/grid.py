@@ -35,12 +35,13 @@ from solver.plots.style import (
     tex_label,
 )
 
-__all__ = ["draw_grid_background", "grid_cell_points", "large_map", "plot_beliefs", "plot_map"]
+__all__ = ["draw_grid_background", "grid_array", "grid_cell_points", "large_map", "plot_beliefs",
+           "plot_map"]
 
 _PHASE_NAMES = {1: "I", 2: "II", 3: "III"}
 
 
-def _grid(instance: Any) -> np.ndarray:
+def grid_array(instance: Any) -> np.ndarray:
     """The obstacle array of a grid instance: a ``.map`` grid, or an instance JSON whose node
     ids are all ``[row, col]`` cells (as ``dpp solve --save-instance`` writes them); cells
     without a node are obstacles."""
@@ -107,7 +108,7 @@ def draw_grid_background(ax: Axes, instance: Any) -> np.ndarray:
     numpy.ndarray
         The obstacle array (True = blocked).
     """
-    blocked = _grid(instance)
+    blocked = grid_array(instance)
     h, w = blocked.shape
     large = large_map(blocked.shape)
     ax.imshow(blocked, cmap="Greys", vmin=0, vmax=2.2 if large else 1.4, origin="upper",
@@ -195,7 +196,7 @@ def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figur
     fig, axes = plt.subplots(1, ncols, figsize=(5.4 * ncols, 6.9), squeeze=False)
     ax = axes[0][0]
     markers = _draw_grid(ax, instance)
-    shape = _grid(instance).shape
+    shape = grid_array(instance).shape
     large = large_map(shape)
     cell = grid_cell_points(ax, shape)
     lw = 2.6 if large else float(np.clip(0.16 * cell, 1.5, 7))

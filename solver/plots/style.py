@@ -16,10 +16,25 @@ from dppio.files import write_files
 from dppio.text import decimal
 from solver.errors import DPPError, OutputError
 
-__all__ = ["DEFENDER_HATCH", "FORMATS", "GOAL_COLOURS", "LARGE_MAP", "LARGE_MARKER",
-           "MARKER_COLOUR", "PATH_STYLES",
-           "PHASE_COLOURS", "STRATEGY_COLOURS", "STYLE", "T_I", "T_II", "VOI", "num_label",
-           "save_figure", "tex_label"]
+__all__ = [
+    "DEFENDER_HATCH",
+    "FORMATS",
+    "GOAL_COLOURS",
+    "LARGE_MAP",
+    "LARGE_MARKER",
+    "MARKER_COLOUR",
+    "PATH_STYLES",
+    "PHASE_COLOURS",
+    "STRATEGY_COLOURS",
+    "STYLE",
+    "T_I",
+    "T_II",
+    "VOI",
+    "check_suffix",
+    "num_label",
+    "save_figure",
+    "tex_label",
+]
 
 PHASE_COLOURS = {1: "#E69F00", 2: "#CC79A7", 3: "#56B4E9"}
 """Phase I (σ* = 1 along ξ²) orange, phase II (belief 1/2) pink, phase III sky blue — in every
@@ -82,6 +97,25 @@ def num_label(x: Any) -> str:
     if isinstance(x, int | np.integer):
         return str(int(x))
     return decimal(float(x))
+
+
+def check_suffix(out: str | Path) -> None:
+    """Refuse an output name whose suffix is not a figure format, before any work.
+
+    Raises
+    ------
+    DPPError
+        As :func:`save_figure` would, after the figure was computed.
+
+    Examples
+    --------
+    >>> check_suffix("map.pdf")
+    >>> check_suffix("map.txt")
+    Traceback (most recent call last):
+    solver.errors.DPPError: map.txt: the output file must end in .png, .svg or .pdf
+    """
+    if str(out) and Path(out).suffix.lower().lstrip(".") not in FORMATS:
+        raise DPPError(f"{Path(out)}: the output file must end in .png, .svg or .pdf")
 
 
 def save_figure(fig: Figure, out: str | Path) -> list[Path]:
