@@ -44,7 +44,7 @@ def show(x: Number | None) -> str:
     >>> show(Fraction(12, 5)), show(3), show(2.4000000000001), show(None)
     ('12/5', '3', '2.4', '-')
     >>> show(Fraction(10**30 + 1, 3)), show(2**300)
-    ('≈3.33333333333×10^29', '≈2.03703597633×10^90')
+    ('≈3.333×10^29', '≈2.037×10^90')
     >>> show(Fraction(2**100 + 1, 2**100))
     '≈1'
     """
@@ -69,7 +69,7 @@ def show_value(x: Number | None, digits: int = 40) -> str:
     Examples
     --------
     >>> show_value(Fraction(12, 7)), show_value(3), show_value(Fraction(10**50 + 1, 10**50))
-    ('12/7 (≈ 1.714286)', '3', '≈ 1 (exact: a 102-digit fraction, see --json)')
+    ('12/7 (≈ 1.714)', '3', '≈ 1 (exact: a 102-digit fraction, see --json)')
     """
     if x is None or isinstance(x, float):
         return show(x)

@@ -65,10 +65,10 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
         _plot_ngoal_map(game, grid.ninstance() if grid is not None else instance, output,
                         want_progress(progress))
         return
-    check_suffix(output)
     bar = PhaseBar(want_progress(progress), "plot map", "reading the instance")
     try:
         inst = experiment_instance(instance, grid, "dpp plot map")
+        check_suffix(output)  # after the inputs' mistakes, before the work
         bar.phase("solving and drawing")
         files = save_figure(plot_map(inst, baselines=not no_baselines), output)
     finally:
@@ -84,8 +84,8 @@ def _plot_ngoal_map(game: NGame, checked: Any, output: str, progress: bool) -> N
     from solver.plots import plot_ngoal_map, save_figure
     from solver.plots.grid import grid_array
 
-    check_suffix(output)
     grid_array(game)  # a grid game, or one line before any work
+    check_suffix(output)
     bar = PhaseBar(progress, "plot map", f"solving ({game.n_goals} goals)")
     try:
         eq = solve_ngoal(game)
@@ -125,10 +125,10 @@ def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
     """
     from solver.plots import plot_beliefs, save_figure
 
-    check_suffix(output)
     bar = PhaseBar(want_progress(progress), "plot beliefs", "reading the instance")
     try:
         inst = experiment_instance(instance, grid, "dpp plot beliefs")
+        check_suffix(output)  # after the inputs' mistakes, before the work
         bar.phase("solving and drawing")
         files = save_figure(plot_beliefs(inst, defender=defender), output)
     finally:

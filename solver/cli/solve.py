@@ -113,7 +113,20 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
 
 def ngoal_game(instance: str | None, grid: MapRequest | None,
                command: str = "dpp solve") -> NGame | None:
-    """The N-goal game of a solver command, or None when it has two goals."""
+    """The N-goal game of a solver command, or None when it has two goals.
+
+    Examples
+    --------
+    >>> from solver.experiments.compare import paper10_path
+    >>> from dppverify.cli.map_options import map_request
+    >>> grid = map_request(str(paper10_path()), "9,0", ("0,9", "0,0", "9,9"), "1/2,1/3,1/6",
+    ...                    None)
+    >>> ngoal_game(None, grid).n_goals
+    3
+    >>> grid = map_request(str(paper10_path()), "9,0", ("0,9", "0,0"), "3/5,2/5", None)
+    >>> ngoal_game(None, grid) is None
+    True
+    """
     from solver.formats.json_text import read_json
     from solver.formats.movingai import read_map
     from solver.game.indexed_instance import ngame_from_grid, ngame_from_json

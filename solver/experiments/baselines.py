@@ -122,7 +122,7 @@ def summary_table(rows: Sequence[BaselineRow]) -> str:
     Examples
     --------
     >>> print(summary_table(run_baselines(instances(1, (), ()))).splitlines()[2])
-    | paper10 | 1 | γ* | 0.2273 | 0.2727 | +0.0000 | +0.0455 | 1/1 |
+    | paper10 | 1 | γ* | 0.2273 | 0.2727 | 0 | +0.04545 | 1/1 |
     """
     head = ("| set | n | Attacker | VoI vs σ* | VoI vs σ' | γ* − it (vs σ*) | σ' − σ* "
             "| σ' concedes more |")
@@ -153,7 +153,7 @@ def worst_case_table(rows: Sequence[BaselineRow]) -> str:
     Examples
     --------
     >>> print(worst_case_table(run_baselines(instances(1, (), ()))).splitlines()[2])
-    | paper10 | 1 | 0.2273 | 0.5000 | +0.2727 | 1/1 | 0/1 |
+    | paper10 | 1 | 0.2273 | 0.5 | +0.2727 | 1/1 | 0/1 |
     """
     lines = ["| set | n | worst VoI vs σ* | worst VoI vs σ' | difference | σ' worse | σ' better |",
              "|---|---:|---:|---:|---:|---|---|"]

@@ -159,7 +159,7 @@ def summarize_file(path: str | Path) -> str:
     >>> lines = [",".join(FIELDS)] + [",".join(r[k] for k in FIELDS) for r in (ok, ok, bad)]
     >>> _ = out.write_text(chr(10).join(lines) + chr(10))
     >>> summarize_file(out)
-    '3 rows: 2 ok (verdict pass 2), 1 error; mean VoI 0.2500; solve 1.00 s, certify 2.00 s in total'
+    '3 rows: 2 ok (verdict pass 2), 1 error; mean VoI 0.25; solve 1 s, certify 2 s in total'
     """
     with open(path, encoding="utf-8", newline="") as fh:
         rows = list(csv.DictReader(fh))

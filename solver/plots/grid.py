@@ -44,7 +44,15 @@ _PHASE_NAMES = {1: "I", 2: "II", 3: "III"}
 def grid_array(instance: Any) -> np.ndarray:
     """The obstacle array of a grid instance: a ``.map`` grid, or an instance JSON whose node
     ids are all ``[row, col]`` cells (as ``dpp solve --save-instance`` writes them); cells
-    without a node are obstacles."""
+    without a node are obstacles.
+
+    Examples
+    --------
+    >>> from solver.experiments.compare import paper10_instance
+    >>> blocked = grid_array(paper10_instance())
+    >>> blocked.shape, int(blocked.sum())
+    ((10, 10), 16)
+    """
     labels = instance.network.labels
     if isinstance(labels, GridLabels):
         return labels.blocked
@@ -76,7 +84,15 @@ def _xy(nodes: Sequence[Hashable], offset: float = 0.0) -> tuple[np.ndarray, np.
 
 
 def grid_cell_points(ax: Axes, shape: tuple[int, ...]) -> float:
-    """The size of one grid cell in points (for line widths and markers)."""
+    """The size of one grid cell in points (for line widths and markers).
+
+    Examples
+    --------
+    >>> fig, ax = plt.subplots(figsize=(4, 4))
+    >>> bool(grid_cell_points(ax, (10, 10)) > 0)
+    True
+    >>> plt.close(fig)
+    """
     fig = ax.get_figure(root=True)
     assert fig is not None
     width_in = ax.get_position().width * fig.get_figwidth()
@@ -84,7 +100,13 @@ def grid_cell_points(ax: Axes, shape: tuple[int, ...]) -> float:
 
 
 def large_map(shape: tuple[int, ...]) -> bool:
-    """Whether a grid gets the print rendering (:data:`~solver.plots.style.LARGE_MAP`)."""
+    """Whether a grid gets the print rendering (:data:`~solver.plots.style.LARGE_MAP`).
+
+    Examples
+    --------
+    >>> large_map((10, 10)), large_map((256, 256))
+    (False, True)
+    """
     return max(shape) > LARGE_MAP
 
 
@@ -107,6 +129,14 @@ def draw_grid_background(ax: Axes, instance: Any) -> np.ndarray:
     -------
     numpy.ndarray
         The obstacle array (True = blocked).
+
+    Examples
+    --------
+    >>> from solver.experiments.compare import paper10_instance
+    >>> fig, ax = plt.subplots()
+    >>> draw_grid_background(ax, paper10_instance()).shape, tuple(map(float, ax.get_xlim()))
+    ((10, 10), (-0.5, 9.5))
+    >>> plt.close(fig)
     """
     blocked = grid_array(instance)
     h, w = blocked.shape

@@ -53,7 +53,7 @@ def summarize(eq: Equilibrium) -> str:
     U2 (secondary cost) = 1
     U* (value)          = 12/5 (≈ 2.4)
     U_bar (complete information) = 27/10 (≈ 2.7)
-    VoI*                = 1/9 (≈ 0.1111111)
+    VoI*                = 1/9 (≈ 0.1111)
     """
     inst = eq.instance
     ph = eq.phases
@@ -95,7 +95,7 @@ def format_value(x: Number) -> str:
     Parameters
     ----------
     x : Fraction, int or float
-        The value (a float is float mode: 10 significant digits, no fraction).
+        The value (a float is float mode: dppio.text.decimal, no fraction).
 
     Returns
     -------
@@ -105,7 +105,7 @@ def format_value(x: Number) -> str:
     --------
     >>> from fractions import Fraction
     >>> format_value(Fraction(12, 7)), format_value(Fraction(4)), format_value(2 ** 0.5)
-    ('12/7 (≈ 1.714286)', '4', '1.414213562')
+    ('12/7 (≈ 1.714)', '4', '1.414')
     >>> format_value(Fraction(10**50 + 1, 10**50))
     '≈ 1 (exact: a 102-digit fraction, see --json)'
     """

@@ -120,7 +120,7 @@ def test_float_mode_is_detected_from_the_instance(tmp_path: Path) -> None:
 def test_value_command(tmp_path: Path) -> None:
     i = write_doc(tmp_path, "i.json", three_phase_doc())
     r = run_cli(value_command, [i, "--horizon", "4"])
-    assert r.exit_code == 0 and r.output.startswith("V_H (H = 4) = 71/18 (≈ 3.944444) exactly")
+    assert r.exit_code == 0 and r.output.startswith("V_H (H = 4) = 71/18 (≈ 3.944) exactly")
     r = run_cli(value_command, [i, "-H", "4", "--json"])
     doc = json.loads(r.output)
     lp = doc["tree"]["details"]
@@ -130,7 +130,7 @@ def test_value_command(tmp_path: Path) -> None:
     r = run_cli(value_command, [i, "-H", "1"])
     assert r.exit_code == 2 and "no walk" in r.output
     r = run_cli(value_command, [i])  # issue 18: no horizon is the untruncated game
-    assert r.exit_code == 0 and r.output.startswith("V_H (H = inf) = 71/18 (≈ 3.944444) exactly")
+    assert r.exit_code == 0 and r.output.startswith("V_H (H = inf) = 71/18 (≈ 3.944) exactly")
 
 
 def test_dpp_group_and_python_m_dppverify(tmp_path: Path) -> None:
