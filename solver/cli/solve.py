@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from dppio.files import refuse_input_as_output, write_atomic
+from dppio.inputs import is_stdin
 from dppio.text import decimal
 from dppverify import cli as checker_cli
 from dppverify.cli.conventions import (
@@ -65,6 +66,10 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
     inputs = [instance, grid.path if grid is not None else None]
+    if save_instance is not None and grid is not None and is_stdin(grid.map):
+        raise InvalidInstanceError("--save-instance with --map -: the saved instance would name "
+                                   "a map that cannot be read again; save the map to a file "
+                                   "and give --map FILE")
     refuse_input_as_output(output, inputs, option="-o", error=OutputError)
     refuse_input_as_output(save_instance, inputs, option="--save-instance",
                            error=OutputError)
@@ -167,7 +172,7 @@ def _map_document(grid: MapRequest, folder: Path) -> dict[str, Any]:
 
     _, digest = read_map_bytes(map_file(grid.map))
     ref = grid.map if grid.map.startswith(STANDARD_PREFIX) else \
-        os.path.relpath(Path(grid.map).absolute(), folder.absolute())
+        os.path.relpath(os.path.realpath(grid.map), os.path.realpath(folder))  # symlinks
     return {"format": MAP_INSTANCE_FORMAT, "map": ref, "map_sha256": digest,
             "start": list(grid.start), "goals": [list(g) for g in grid.goals],
             "prior": [format_number(parse_number(p, where="--prior")) for p in grid.prior],
