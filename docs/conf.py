@@ -10,6 +10,7 @@ errors (``dev.py docs`` passes ``-W``).
 
 from __future__ import annotations
 
+import shutil
 import sys
 import types
 from pathlib import Path
@@ -43,6 +44,9 @@ myst_heading_anchors = 3
 myst_enable_extensions = ["dollarmath"]
 
 autosummary_generate = True
+# autosummary writes its pages into docs/site/_generated and never deletes one: start afresh,
+# so a module renamed since the last build leaves no stale page behind
+shutil.rmtree(ROOT / "docs" / "site" / "_generated", ignore_errors=True)
 autosummary_imported_members = False
 autodoc_default_options = {"members": True, "show-inheritance": True}
 autodoc_typehints = "none"  # the Parameters sections say the types

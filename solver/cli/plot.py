@@ -18,7 +18,6 @@ from dppverify.cli.map_options import MapRequest, map_options, two_goal_map_opti
 from solver.cli.common import experiment_instance
 from solver.cli.solve import ngoal_game
 from solver.errors import InvalidInstanceError
-from solver.plots.style import check_suffix
 
 if TYPE_CHECKING:
     from solver.game.indexed_instance import NGame
@@ -68,6 +67,8 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     bar = PhaseBar(want_progress(progress), "plot map", "reading the instance")
     try:
         inst = experiment_instance(instance, grid, "dpp plot map")
+        from solver.plots.style import check_suffix  # matplotlib: not at start-up
+
         check_suffix(output)  # after the inputs' mistakes, before the work
         bar.phase("solving and drawing")
         files = save_figure(plot_map(inst, baselines=not no_baselines), output)
@@ -83,6 +84,7 @@ def _plot_ngoal_map(game: NGame, checked: Any, output: str, progress: bool) -> N
     from solver.coalitions.construction import nequilibrium_to_json, solve_ngoal
     from solver.plots import plot_ngoal_map, save_figure
     from solver.plots.grid import grid_array
+    from solver.plots.style import check_suffix
 
     grid_array(game)  # a grid game, or one line before any work
     check_suffix(output)
@@ -128,6 +130,8 @@ def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
     bar = PhaseBar(want_progress(progress), "plot beliefs", "reading the instance")
     try:
         inst = experiment_instance(instance, grid, "dpp plot beliefs")
+        from solver.plots.style import check_suffix  # matplotlib: not at start-up
+
         check_suffix(output)  # after the inputs' mistakes, before the work
         bar.phase("solving and drawing")
         files = save_figure(plot_beliefs(inst, defender=defender), output)
