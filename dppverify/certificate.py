@@ -16,6 +16,7 @@ from typing import Any, Literal, cast
 
 from dppverify.errors import CertificateError
 from dppverify.exact import Number, format_number, normalize
+from dppverify.exploitability import Exploitability, exploitability_of
 from dppverify.registry import KINDS, Kind, kind_of
 
 __all__ = ["CERTIFICATE_FORMAT", "STATUSES", "Certificate", "CheckRecord", "Status", "Verdict",
@@ -244,6 +245,9 @@ class Certificate:
         What was certified (:mod:`dppverify.provenance`): the sha256 of the instance and
         the profile, the dppverify version, the route, the number mode and the command;
         None in certificates written before provenance existed.
+    exploitability : Exploitability or None
+        Every player's exact regret and their sum, NashConv (:mod:`dppverify.exploitability`),
+        on the game of ``horizon``; None in certificates written before it existed.
 
     Examples
     --------
@@ -269,6 +273,7 @@ class Certificate:
     route: str = "tree"
     not_run: Mapping[str, str] = field(default_factory=dict)
     provenance: Mapping[str, Any] | None = None
+    exploitability: Exploitability | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "checks", tuple(self.checks))
@@ -381,6 +386,8 @@ class Certificate:
             "checks": [c.to_json() for c in self.checks],
             "not_run": dict(self.not_run),
         }
+        if self.exploitability is not None:
+            doc["exploitability"] = self.exploitability.to_json()
         if self.provenance is not None:
             doc["provenance"] = json.loads(json.dumps(dict(self.provenance)))
         return doc
@@ -417,6 +424,9 @@ class Certificate:
                        route=str(doc.get("route", "tree")),
                        not_run={str(k): str(v) for k, v in dict(doc.get("not_run") or {}).items()},
                        provenance=_provenance(doc.get("provenance")))
+            if doc.get("exploitability") is not None:
+                cert = dataclasses.replace(cert, exploitability=_exploitability(
+                    doc["exploitability"], checks, horizon, bool(doc["exact"])))
         except KeyError as exc:
             raise CertificateError(f"certificate is missing {exc}") from None
         except (TypeError, ValueError, AttributeError) as exc:
@@ -437,3 +447,20 @@ def _provenance(value: Any) -> dict[str, Any] | None:
     if not isinstance(value, Mapping):
         raise TypeError("provenance must be a JSON object")
     return dict(value)
+
+
+def _exploitability(value: Any, checks: tuple[CheckRecord, ...], horizon: int | None,
+                    exact: bool) -> Exploitability:
+    """The certificate's ``exploitability`` record, recomputed from its checks (goals and
+    priors from the record) and refused when the record says otherwise."""
+    if not isinstance(value, Mapping) or not isinstance(value.get("types"), list):
+        raise TypeError("exploitability must be a JSON object with a list of types")
+    types = value["types"]
+    if not all(isinstance(t, Mapping) for t in types):
+        raise TypeError("exploitability types must be JSON objects")
+    e = exploitability_of(checks, goals=[t.get("goal") for t in types],
+                          priors=[Fraction(str(t.get("prior"))) for t in types],
+                          horizon=horizon, exact=exact)
+    if e.to_json() != dict(value):
+        raise CertificateError("the certificate's exploitability record contradicts its checks")
+    return e

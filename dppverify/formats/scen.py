@@ -37,8 +37,9 @@ MAX_SCEN_LINES = 1_000_000
 @dataclass(frozen=True)
 class Scenario:
     """One line of a ``.scen`` file: ``line`` (1-based), the map name as written, its size
-    as the line states it, and the start and goal as ``(row, col)``; or, for a bad line,
-    ``reason``."""
+    as the line states it, the start and goal as ``(row, col)`` and MovingAI's published
+    optimal length as written (``optimal``, 8-connected without corner cutting); or, for a bad
+    line, ``reason``."""
 
     line: int
     map: str = ""
@@ -47,6 +48,7 @@ class Scenario:
     start: Cell = (0, 0)
     goal: Cell = (0, 0)
     reason: str = ""
+    optimal: str = ""
 
 
 def parse_scen(text: str) -> list[Scenario]:
@@ -58,8 +60,8 @@ def parse_scen(text: str) -> list[Scenario]:
     --------
     >>> text = "version 1\\n0\\tm.map\\t8\\t8\\t0\\t1\\t7\\t6\\t12.5\\n\\nbad line\\n"
     >>> a, b = parse_scen(text)
-    >>> a.line, a.map, a.start, a.goal
-    (2, 'm.map', (1, 0), (6, 7))
+    >>> a.line, a.map, a.start, a.goal, a.optimal
+    (2, 'm.map', (1, 0), (6, 7), '12.5')
     >>> b.line, b.reason[:45]
     (4, 'malformed scenario line: 2 fields, expected 9')
     """
@@ -83,7 +85,8 @@ def parse_scen(text: str) -> list[Scenario]:
             out.append(Scenario(number, reason="malformed scenario line: width, height and "
                                 "the cells must be integers, the length a number"))
             continue
-        out.append(Scenario(number, parts[1].strip(), w, h, (sy, sx), (gy, gx)))
+        out.append(Scenario(number, parts[1].strip(), w, h, (sy, sx), (gy, gx),
+                            optimal=parts[8].strip()))
     return out
 
 

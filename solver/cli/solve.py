@@ -1,5 +1,5 @@
 """``dpp solve``: the equilibrium of a two-goal game (the paper's PBNE) or, with N > 2 goals,
-the coalition construction certified by the checker before it is written."""
+the exact construction (proofs/NEXACT.md) certified by the checker before it is written."""
 
 from __future__ import annotations
 
@@ -48,9 +48,11 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     """Solve INSTANCE (a dpp instance JSON file, or a --map grid) for the paper's PBNE.
 
     With N > 2 goals (an N-goal instance, or --goals with N cells and an N-entry --prior):
-    the coalition construction of proofs/NSOLVE.md, written as a dpp-ngoal-profile/1 with the
-    guarantee rule after the checker certified it on the untruncated game; where it cannot
-    be certified, one line and exit 3, nothing written.
+    the exact construction of proofs/NEXACT.md (the guarantee sets' facet normals at the
+    fixpoint, the normal-coalition Attacker), written as a dpp-ngoal-profile/1 with the
+    guarantee rule after the checker certified it on the untruncated game. Where the fixpoint
+    is not reached within the solver's budget: one line with the value bracket, exit 3, no
+    profile (--save-instance is still written).
 
     \b
     Examples:
@@ -182,35 +184,47 @@ def _map_document(grid: MapRequest, folder: Path) -> dict[str, Any]:
 def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | None,
                         as_json: bool, output: str | None, save_instance: str | None,
                         progress: bool = False) -> None:
-    """Solve, certify, and write (or refuse in one line, exit 3)."""
+    """Solve, certify, and write (or say why not in one line, exit 3; the instance is still
+    written with --save-instance)."""
     from dppverify.certify import certify as certify_profile
-    from solver.coalitions.construction import nequilibrium_to_json, solve_ngoal
+    from solver.coalitions.construction import FixpointNotReached, nequilibrium_to_json, solve_ngoal
     from solver.game.indexed_instance import ngame_to_json
 
     if game.start in game.goals:
         status(START_IS_GOAL)
-    bar = PhaseBar(progress, "solve", f"solving ({game.n_goals} goals)")
-    try:
-        eq = solve_ngoal(game)
-        doc = nequilibrium_to_json(eq)
-        checked = grid.ninstance() if grid is not None else instance
-        assert checked is not None
-        bar.phase("certifying (structured route, H = inf)")
-        cert = certify_profile(checked, doc, horizon="inf", route="structured")
-    finally:
-        bar.close()
-    if cert.verdict != "pass":
-        bad = next((c for c in cert.checks if c.status not in ("pass", "skipped")), None)
-        why = "" if bad is None else f": {bad.id}: {' '.join(bad.message.split())}"
-        click.echo(f"error: the coalition construction does not give a certified equilibrium "
-                   f"on this instance{why}; nothing written (`dpp value` with the same "
-                   f"instance gives the game's value, or an exact bracket)", err=True)
-        raise click.exceptions.Exit(3)
-    text = dumps(doc)
     instance_text = None
     if save_instance is not None:  # a map game: the compact document naming the map
         instance_text = dumps(ngame_to_json(game) if grid is None else
                               _map_document(grid, Path(save_instance).parent))
+    bar = PhaseBar(progress, "solve", f"solving ({game.n_goals} goals)")
+    refusal = None
+    try:
+        try:
+            eq = solve_ngoal(game)
+        except FixpointNotReached as exc:
+            refusal = (f"error: {exc}; no profile written (`dpp value` with the same instance "
+                       "gives the value or a bracket)")
+        else:
+            doc = nequilibrium_to_json(eq)
+            checked = grid.ninstance() if grid is not None else instance
+            assert checked is not None
+            bar.phase("certifying (structured route, H = inf)")
+            cert = certify_profile(checked, doc, horizon="inf", route="structured")
+            if cert.verdict != "pass":
+                bad = next((c for c in cert.checks if c.status not in ("pass", "skipped")),
+                           None)
+                why = "" if bad is None else f": {bad.id}: {' '.join(bad.message.split())}"
+                refusal = (f"error: the checker did not certify the solver's profile "
+                           f"({cert.verdict}){why}; no profile written")
+    finally:
+        bar.close()
+    if refusal is not None:
+        if save_instance is not None and instance_text is not None:
+            write_atomic(save_instance, instance_text, error=OutputError)
+            status(f"wrote {save_instance}: the instance")
+        click.echo(refusal, err=True)
+        raise click.exceptions.Exit(3)
+    text = dumps(doc)
     if output is not None:
         write_atomic(output, text, error=OutputError)
     if save_instance is not None and instance_text is not None:
@@ -226,6 +240,7 @@ def _solve_ngoal_command(game: NGame, instance: str | None, grid: MapRequest | N
         click.echo(f"N = {game.n_goals} goals: U = {format_value(eq.U)} (certified: structured "
                    f"route, H = inf), VoI = {format_value(eq.VoI)}, U_bar = "
                    f"{format_value(eq.U_bar)}; type costs ({', '.join(map(str, eq.costs))}); "
-                   f"Defender: guarantee rule h = ({', '.join(map(str, eq.h))})")
+                   f"Defender: guarantee rule h = ({', '.join(map(str, eq.h))})"
+                   + (f" with {len(eq.normals)} extra normals" if eq.normals else ""))
     if save_instance is not None:
         status(f"wrote {save_instance}: the instance")

@@ -52,6 +52,7 @@ import numpy as np
 
 from dppio.files import read_input, read_text
 from solver.errors import DPPError, InvalidInstanceError
+from solver.experiments.batch_columns import exploitability_cell, line_columns
 from solver.experiments.batch_csv import (
     FIELDS,
     CsvAppender,
@@ -59,6 +60,7 @@ from solver.experiments.batch_csv import (
     read_done,
     summarize_file,
 )
+from solver.experiments.batch_lines import LineSelection
 from solver.experiments.dask_tasks import dask_completed
 
 __all__ = ["FIELDS", "BatchConfig", "BatchTask", "Checker", "parse_prior", "read_done",
@@ -157,10 +159,12 @@ def _find_map(name: str, scen_dir: Path, maps: Sequence[str],
 
 
 def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
-               skip: Iterable[int] = (), chunk: int = 8) -> tuple[list[BatchTask], int]:
+               skip: Iterable[int] = (), chunk: int = 8,
+               select: LineSelection | None = None) -> tuple[list[BatchTask], int]:
     """Read a ``.scen`` file and cut the lines not in ``skip`` into tasks of ``chunk`` lines.
 
-    Returns the tasks and the total number of rows the file gives.
+    Returns the tasks and the total number of rows the file gives (of the lines ``select``
+    keeps, :mod:`solver.experiments.batch_lines`: ``--lines`` and ``--shard``).
 
     Examples
     --------
@@ -182,10 +186,11 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
     if not scenarios:
         raise InvalidInstanceError(f"{scen}: no scenario lines")
     done = set(skip)
+    chosen = None if select is None else select.choose([sc.line for sc in scenarios])
     found: dict[str, tuple[str | None, str]] = {}
     todo = []
     for i, sc in enumerate(scenarios):
-        if sc.line in done:
+        if sc.line in done or (chosen is not None and sc.line not in chosen):
             continue
         if sc.map and sc.map not in found:
             found[sc.map] = _find_map(sc.map, path.parent, config.maps, checker)
@@ -198,7 +203,7 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
         tasks.append(BatchTask(config, checker, tuple(p[0] for p in part),
                                tuple(p[1] for p in part), tuple(p[2] for p in part),
                                tuple(p[3] for p in part)))
-    return tasks, len(scenarios)
+    return tasks, len(scenarios) if chosen is None else len(chosen)
 
 
 @lru_cache(maxsize=8)
@@ -235,7 +240,7 @@ def _cell_text(cell: Cell | None) -> str:
 
 def _error_row(sc: Any, config: BatchConfig, reason: str, **known: str) -> dict[str, str]:
     row = dict.fromkeys(FIELDS, "")
-    row.update(line=str(sc.line), status="error", map=sc.map,
+    row.update(line=str(sc.line), status="error", map=sc.map, scen_optimal=sc.optimal,
                start=_cell_text(sc.start) if not sc.reason else "",
                goal=_cell_text(sc.goal) if not sc.reason else "",
                prior=",".join(config.prior),
@@ -291,6 +296,7 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
         cert = checker.certify(instance_to_json(inst), profile,
                                exact=config.connectivity == 4, route=config.route)
         t2 = time.perf_counter()
+        columns = line_columns(eq, sc.goal)
     except bad_input as exc:
         return _error_row(sc, config, str(exc), **known)
     except Exception as exc:  # one line, and the batch goes on
@@ -298,6 +304,8 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
     value = profile["value"]
     voi = value["VoI"]
     row = dict.fromkeys(FIELDS, "")
+    row.update(columns, scen_optimal=sc.optimal,
+               nash_conv=exploitability_cell(cert))
     row.update(line=str(sc.line), status="ok", map=sc.map, start=_cell_text(sc.start),
                goal=_cell_text(sc.goal), fake_goal=_cell_text(fake),
                prior=",".join(config.prior), primary=_cell_text(cast(Cell, inst.primary)),
@@ -332,7 +340,8 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
               workers: int = 1, dask_address: str | None = None, chunk: int = 8,
               progress: Callable[[int], None] | None = None,
               on_start: Callable[[int, int], None] | None = None,
-              limit: int | None = None) -> tuple[int, int]:
+              limit: int | None = None,
+              select: LineSelection | None = None) -> tuple[int, int]:
     """Run (or continue) the batch; returns (rows written now, rows in the file).
 
     Parameters
@@ -355,6 +364,9 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
         Called with (rows already done, rows in total) before the work starts.
     limit : int, optional
         Stop after this many tasks (used to test interruptions).
+    select : LineSelection, optional
+        Run only these lines (``--lines``, ``--shard``); rows of other lines already in the
+        file stay (same configuration).
 
     Examples
     --------
@@ -377,9 +389,9 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     written = 0
     try:
         done = read_done(output, config.key)
-        tasks, total = scen_tasks(scen, config, checker, skip=done, chunk=chunk)
+        tasks, total = scen_tasks(scen, config, checker, skip=done, chunk=chunk, select=select)
         if on_start is not None:
-            on_start(len(done), total)
+            on_start(total - sum(len(t.scenarios) for t in tasks), total)
         if limit is not None:
             tasks = tasks[:limit]
         for rows in _results(tasks, workers, dask_address):

@@ -12,14 +12,17 @@ from typing import Any
 
 from dppio.text import count, decimal
 from solver.errors import InvalidInstanceError
+from solver.literature.path_metrics import METRIC_FIELDS
 
 __all__ = ["FIELDS", "CsvAppender", "lock_output", "read_done", "summarize_file"]
 
-FIELDS = ("line", "status", "map", "start", "goal", "fake_goal", "prior", "primary", "U1",
-          "U2", "U", "U_bar", "VoI", "VoI_float", "verdict", "route", "solve_seconds",
-          "certify_seconds", "reason", "config")
+FIELDS = ("line", "status", "map", "start", "goal", "fake_goal", "prior", "primary",
+          "scen_optimal", "distance", "U1", "U2", "U", "U_bar", "VoI", "VoI_float",
+          *METRIC_FIELDS, "verdict", "nash_conv", "route", "solve_seconds", "certify_seconds",
+          "reason", "config")
 """The CSV columns. Cells are ``row,col``; values are exact ``p/q``; ``verdict`` is the
-certificate's; times in seconds; ``reason`` is empty on ``ok`` rows."""
+certificate's; times in seconds; ``reason`` is empty on ``ok`` rows. The published length,
+our distance, the path metrics and ``nash_conv``: :mod:`solver.experiments.batch_columns`."""
 
 def read_done(path: str | Path, key: str) -> set[int]:
     """The lines already in an output file (after dropping a torn last row), checked: every
@@ -37,7 +40,8 @@ def read_done(path: str | Path, key: str) -> set[int]:
     >>> p = Path(tempfile.mkdtemp()) / "b.csv"
     >>> read_done(p, "0123456789ab")
     set()
-    >>> _ = p.write_text(",".join(FIELDS) + "\\n3,ok" + "," * 18 + "0123456789ab" + "\\n2,o")
+    >>> _ = p.write_text(",".join(FIELDS) + "\\n3,ok" + "," * (len(FIELDS) - 2) + "0123456789ab"
+    ...                  + "\\n2,o")
     >>> read_done(p, "0123456789ab"), p.read_text().endswith("\\n")
     ({3}, True)
     """

@@ -12,7 +12,6 @@ sees where the Defender guards the type's own goal and where it is deceived.
 from __future__ import annotations
 
 from collections.abc import Hashable, Sequence
-from fractions import Fraction
 from typing import TYPE_CHECKING, Any, cast
 
 import matplotlib.pyplot as plt
@@ -124,8 +123,7 @@ def _sigma_panel(ax: Any, eq: NEquilibrium, theta: int) -> None:
     """σ after each step of type ``theta``'s most probable walk, stacked over the goals."""
     game = eq.game
     walk, p = eq.mixtures[theta][0]
-    sig = [eq.sigma.get(walk[:k + 1], (Fraction(0),) * game.n_goals)
-           for k in range(1, len(walk))]
+    sig = eq.defender_along(walk)
     steps = np.arange(1, len(walk))
     bottom = np.zeros(len(sig))
     for g in range(game.n_goals):
