@@ -10,6 +10,7 @@ import click
 
 from dppio.files import refuse_input_as_output, write_files
 from dppio.inputs import is_stdin
+from dppio.text import decimal
 from dppverify import cli as checker_cli
 from dppverify.cli.conventions import (
     PhaseBar,
@@ -25,7 +26,7 @@ from solver.errors import DPPError, InvalidInstanceError, OutputError
 if TYPE_CHECKING:
     from solver.game.indexed_instance import NGame
 
-__all__ = ["solve_command"]
+__all__ = ["ngoal_game", "solve_command"]
 
 
 
@@ -74,7 +75,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     refuse_input_as_output(output, inputs, option="-o", error=OutputError)
     refuse_input_as_output(save_instance, inputs, option="--save-instance",
                            error=OutputError)
-    ngame = _ngoal_game(instance, grid)
+    ngame = ngoal_game(instance, grid)
     if ngame is not None:  # N > 2 goals: the coalition construction, certified before writing
         _solve_ngoal_command(ngame, instance, grid, as_json, output, save_instance,
                              want_progress(progress))
@@ -103,7 +104,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         bar.close()
     _write_outputs(output, dumps(doc), save_instance, instance_text)
     if output is not None:  # the one output convention: -o writes, stdout stays empty
-        u, voi = (f"{x:.10g}" if isinstance(x, float) else str(x)  # float mode: 10 digits
+        u, voi = (decimal(x) if isinstance(x, float) else str(x)  # float mode
                   for x in (doc["value"]["U"], doc["value"]["VoI"]))
         status(f"wrote {output}: U* = {u}, VoI* = {voi}")
     elif as_json:
@@ -127,8 +128,22 @@ def _write_outputs(output: str | None, profile: str, save_instance: str | None,
         write_files(files, error=OutputError)
 
 
-def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
-    """The N-goal game of a solver command, or None when it has two goals."""
+def ngoal_game(instance: str | None, grid: MapRequest | None,
+               command: str = "dpp solve") -> NGame | None:
+    """The N-goal game of a solver command, or None when it has two goals.
+
+    Examples
+    --------
+    >>> from solver.experiments.compare import paper10_path
+    >>> from dppverify.cli.map_options import map_request
+    >>> grid = map_request(str(paper10_path()), "9,0", ("0,9", "0,0", "9,9"), "1/2,1/3,1/6",
+    ...                    None)
+    >>> ngoal_game(None, grid).n_goals
+    3
+    >>> grid = map_request(str(paper10_path()), "9,0", ("0,9", "0,0"), "3/5,2/5", None)
+    >>> ngoal_game(None, grid) is None
+    True
+    """
     from solver.formats.json_text import read_json
     from solver.formats.movingai import read_map
     from solver.game.indexed_instance import ngame_from_grid, ngame_from_json
@@ -148,12 +163,12 @@ def _ngoal_game(instance: str | None, grid: MapRequest | None) -> NGame | None:
         except InvalidInstanceError as exc:
             raise InvalidInstanceError(f"{grid.map}: {exc}") from None
     assert instance is not None
-    with checker_cli.hinted(instance, "instance", "dpp solve", errors=(DPPError,)):
+    with checker_cli.hinted(instance, "instance", command, errors=(DPPError,)):
         doc = read_json(instance)
     if not (isinstance(doc, dict) and isinstance(doc.get("goals"), list)
             and len(doc["goals"]) > 2):
         return None
-    with checker_cli.hinted(instance, "instance", "dpp solve", errors=(DPPError,)):
+    with checker_cli.hinted(instance, "instance", command, errors=(DPPError,)):
         try:
             return ngame_from_json(doc, base=Path(instance).parent)
         except InvalidInstanceError as exc:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from collections.abc import Hashable, Sequence
 
+from dppio.text import decimal
 from solver.numbers import Number
 from solver.twogoal.equilibrium import Equilibrium
 
@@ -52,7 +53,7 @@ def summarize(eq: Equilibrium) -> str:
     U2 (secondary cost) = 1
     U* (value)          = 12/5 (≈ 2.4)
     U_bar (complete information) = 27/10 (≈ 2.7)
-    VoI*                = 1/9 (≈ 0.1111111)
+    VoI*                = 1/9 (≈ 0.1111)
     """
     inst = eq.instance
     ph = eq.phases
@@ -94,7 +95,7 @@ def format_value(x: Number) -> str:
     Parameters
     ----------
     x : Fraction, int or float
-        The value (a float is float mode: 10 significant digits, no fraction).
+        The value (a float is float mode: dppio.text.decimal, no fraction).
 
     Returns
     -------
@@ -104,25 +105,25 @@ def format_value(x: Number) -> str:
     --------
     >>> from fractions import Fraction
     >>> format_value(Fraction(12, 7)), format_value(Fraction(4)), format_value(2 ** 0.5)
-    ('12/7 (≈ 1.714286)', '4', '1.414213562')
+    ('12/7 (≈ 1.714)', '4', '1.414')
     >>> format_value(Fraction(10**50 + 1, 10**50))
     '≈ 1 (exact: a 102-digit fraction, see --json)'
     """
     if isinstance(x, float):
-        return f"{x:.10g}"
+        return decimal(x)
     if x.denominator == 1:
         return str(x)
     text = str(x)
     if len(text) > 40:
-        return f"≈ {float(x):.12g} (exact: a {len(text) - 1}-digit fraction, see --json)"
-    return f"{text} (≈ {float(x):.7g})"
+        return f"≈ {decimal(x)} (exact: a {len(text) - 1}-digit fraction, see --json)"
+    return f"{text} (≈ {decimal(x)})"
 
 
 _num = format_value
 
 
 def _nums(xs: Sequence[Number]) -> str:
-    shown = [str(x) if not isinstance(x, float) else f"{x:.4g}" for x in xs[:_MAX_NODES * 2]]
+    shown = [str(x) if not isinstance(x, float) else decimal(x) for x in xs[:_MAX_NODES * 2]]
     more = f" ... (+{len(xs) - len(shown)})" if len(xs) > len(shown) else ""
     return "[" + ", ".join(shown) + "]" + more
 
