@@ -37,7 +37,7 @@ from dppverify import certify, game_value, instance_from_json
 from dppverify.formats.json_reading import parse_json
 from dppverify.twogoal.value_dp import structured_value
 from solver import Instance, equilibrium_to_json, instance_to_json, solve
-from solver.movingai import read_map
+from solver.formats.movingai import read_map
 
 MAPS = ("empty-8-8", "empty-16-16", "empty-32-32", "empty-48-48", "maze-32-32-2",
         "maze-32-32-4", "maze-128-128-2", "maze-128-128-10", "room-32-32-4", "room-64-64-8",

@@ -27,7 +27,7 @@ from dppverify.game.instance import instance_from_json
 from dppverify.structured.coalition import coalition_value
 from dppverify.structured.proved_value import nvalue
 from solver.experiments.ngoal import corner_cells
-from solver.movingai import read_map as read_blocked
+from solver.formats.movingai import read_map as read_blocked
 
 DEFAULT = [(m, n) for m in ("empty-32-32", "room-32-32-4", "maze-32-32-2", "maze-32-32-4")
            for n in (4, 5)] + [("Berlin_1_256", 4)]

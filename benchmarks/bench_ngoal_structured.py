@@ -30,7 +30,7 @@ from dppverify.game.profile import GoalTable, profile_from_json
 from dppverify.structured.coalition import coalition_value
 from dppverify.structured.table_br import table_defender, walk_best_response
 from solver.experiments.ngoal import corner_cells
-from solver.movingai import read_map as read_blocked
+from solver.formats.movingai import read_map as read_blocked
 
 MAPS = ("room-32-32-4", "room-64-64-8", "maze-128-128-10", "Berlin_1_256")
 

@@ -12,8 +12,8 @@ for every check id.
 
 Two goals: a ``dpp-profile/1`` profile and the checks of :data:`CHECK_IDS`. More goals: a
 ``dpp-ngoal-profile/1`` profile and the checks of :data:`NGOAL_CHECK_IDS`
-(:mod:`dppverify.tree_route.ngoal_checks` on the walk tree, :mod:`dppverify.checks.structured_ngoal`
-without it).
+(:mod:`dppverify.tree_route.per_goal_checks` on the walk tree,
+:mod:`dppverify.checks.structured_per_goal` without it).
 
 Numbers: rational instances are certified exactly (``Fraction``); LP values are reported
 beside the exact ones. Instances in float mode (``"numbers": "float"``) cannot be certified
@@ -32,10 +32,11 @@ from typing import Any
 
 from tqdm import tqdm
 
+from dppio.inputs import reading_once
 from dppverify.certificate import Certificate, CheckRecord, merge_routes
 from dppverify.checks.runners import TREE_RUNNERS
 from dppverify.checks.structured import structured_checks
-from dppverify.checks.structured_ngoal import NSTRUCTURED_NOT_RUN, nstructured_checks
+from dppverify.checks.structured_per_goal import NSTRUCTURED_NOT_RUN, nstructured_checks
 from dppverify.errors import (
     HorizonError,
     InvalidInstanceError,
@@ -43,6 +44,7 @@ from dppverify.errors import (
     ProfileError,
     UndecidedError,
 )
+from dppverify.exploitability import exploitability_of
 from dppverify.formats.json_reading import JsonReadError, read_json_file
 from dppverify.game.instance import Instance, arc_arrays, node_to_json
 from dppverify.game.profile import (
@@ -61,7 +63,7 @@ from dppverify.registry import CHECK_IDS, CHECKS, RouteName, not_run
 from dppverify.routes import Chosen, Route, ngoal_game, resolve_route
 from dppverify.tree_route.context import Context, make_context
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
-from dppverify.tree_route.ngoal_checks import NGOAL_CHECK_IDS, ngoal_tree_checks
+from dppverify.tree_route.per_goal_checks import NGOAL_CHECK_IDS, ngoal_tree_checks
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, build_tree
 from dppverify.valuation import game_of
 
@@ -257,6 +259,16 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     >>> cert.route, cert.horizon, cert.check("ngoal.pbne.attacker_br").status
     ('structured', None, 'fail')
     """
+    with reading_once():  # each input file read once: what is hashed is what was parsed
+        return _certify(instance, profile, horizon=horizon, exact=exact,
+                        max_prefixes=max_prefixes, seed=seed, trials=trials, progress=progress,
+                        route=route)
+
+
+def _certify(instance: Any, profile: Any, *, horizon: int | str | float | None, exact: bool,
+             max_prefixes: int, seed: int, trials: int, progress: bool,
+             route: Route) -> Certificate:
+    """:func:`certify` inside its :func:`~dppio.inputs.reading_once` block."""
     game = game_of(instance)
     if ngoal_game(game):
         return _with_provenance(_certify_n(game, _ngoal_profile_input(profile), horizon,
@@ -264,9 +276,10 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     if not game.exact and exact:
         raise InvalidInstanceError(FLOAT_MODE_REFUSED)
     doc, name = _read_profile(profile)
-    if isinstance(doc, Mapping) and doc.get("format") == NGOAL_PROFILE_FORMAT \
-            and not isinstance(instance, Instance):  # two goals, as an N-goal game
-        ngame = game_of(instance, ngoal=True)
+    if isinstance(doc, Mapping) and doc.get("format") == NGOAL_PROFILE_FORMAT:
+        # two goals, as an N-goal game (an Instance object is one already: the same verdict
+        # whether the game is given as a file, a document or an object)
+        ngame = game if isinstance(instance, Instance) else game_of(instance, ngoal=True)
         return _with_provenance(_certify_n(ngame, doc, horizon, max_prefixes, route),
                                 instance, profile)
     check_format(doc, name)
@@ -302,13 +315,16 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
         "prior": [str(roles.b1), str(roles.b2)],
         "defender_rule": defender.get("rule") if isinstance(defender, Mapping) else None,
     }
+    exploit = exploitability_of(checks, goals=[info["primary"], info["secondary"]],
+                                priors=[roles.b1, roles.b2], horizon=h, exact=game.exact)
     return Certificate(checks=tuple(checks), horizon=h, exact=game.exact,
                        tolerance=game.numbers.rel_tol, lp_solver=LP_SOLVER,
                        lp_tolerance=LP_TOLERANCE,
                        prefixes=prefixes, leaves=leaves, seed=seed, info=info, route=chosen,
                        not_run=not_run("structured") if chosen == "structured" else {},
                        provenance=provenance_record(instance, profile, route=chosen,
-                                                    exact=game.exact))
+                                                    exact=game.exact),
+                       exploitability=exploit)
 
 
 def _with_provenance(cert: Certificate, instance: Any, profile: Any) -> Certificate:
@@ -331,8 +347,11 @@ def _check_horizon(asked: int | None, longest: int, word: str) -> None:
 def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon: Any,
                max_prefixes: int, route: Route) -> Certificate:
     """:func:`certify` with more than two goals (a ``dpp-ngoal-profile/1`` profile)."""
-    doc = (load_profile_document(profile, NGOAL_PROFILE_FORMAT)
-           if isinstance(profile, str | Path) else dict(profile))
+    if isinstance(profile, str | Path):
+        doc = load_profile_document(profile, NGOAL_PROFILE_FORMAT)
+    else:  # a document is held to its format tag as a file is (one verdict)
+        check_format(profile, "profile", NGOAL_PROFILE_FORMAT)
+        doc = dict(profile)
     prof = profile_from_json(doc, inst, fmt=NGOAL_PROFILE_FORMAT)
     if route not in ("auto", "tree", "structured", "both"):
         raise ValueError(f"unknown route {route!r}")
@@ -358,7 +377,10 @@ def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon:
                             "game": "N goals"}
     if chosen != "tree":
         info["trie_prefixes"] = trie_size
-    return Certificate(checks=tuple(checks), horizon=h if tree is None else tree.horizon,
+    horizon_of = h if tree is None else tree.horizon
+    exploit = exploitability_of(checks, goals=[node_to_json(inst.nodes[g]) for g in inst.goals],
+                                priors=list(inst.prior), horizon=horizon_of, exact=True)
+    return Certificate(checks=tuple(checks), horizon=horizon_of, exploitability=exploit,
                        exact=True, lp_solver=LP_SOLVER,
                        lp_tolerance=LP_TOLERANCE,
                        prefixes=0 if tree is None else tree.n_prefixes,

@@ -14,22 +14,25 @@ from typing import TYPE_CHECKING, Any
 
 from solver.version import __version__
 
-_LAZY = {"Equilibrium": "solver.equilibrium", "solve": "solver.equilibrium",
+_LAZY = {"Equilibrium": "solver.twogoal.equilibrium", "solve": "solver.twogoal.equilibrium",
          "DPPError": "solver.errors", "InstanceFormatError": "solver.errors",
-         "InvalidInstanceError": "solver.errors", "Instance": "solver.instance",
-         "instance_from_json": "solver.instance_json", "instance_to_json": "solver.instance_json",
-         "load_instance": "solver.instance_json", "equilibrium_to_json": "solver.profile_json",
-         "summarize": "solver.report", "StrategyPath": "solver.strategy"}
+         "InvalidInstanceError": "solver.errors", "Instance": "solver.game.instance",
+         "instance_from_json": "solver.game.instance_reading",
+         "instance_to_json": "solver.game.instance_writing",
+         "load_instance": "solver.game.instance_reading",
+         "equilibrium_to_json": "solver.twogoal.profile_json",
+         "summarize": "solver.twogoal.report", "StrategyPath": "solver.game.walks"}
 """The public names, each imported on first use (``import solver`` stays cheap)."""
 
 if TYPE_CHECKING:
-    from solver.equilibrium import Equilibrium, solve
     from solver.errors import DPPError, InstanceFormatError, InvalidInstanceError
-    from solver.instance import Instance
-    from solver.instance_json import instance_from_json, instance_to_json, load_instance
-    from solver.profile_json import equilibrium_to_json
-    from solver.report import summarize
-    from solver.strategy import StrategyPath
+    from solver.game.instance import Instance
+    from solver.game.instance_reading import instance_from_json, load_instance
+    from solver.game.instance_writing import instance_to_json
+    from solver.game.walks import StrategyPath
+    from solver.twogoal.equilibrium import Equilibrium, solve
+    from solver.twogoal.profile_json import equilibrium_to_json
+    from solver.twogoal.report import summarize
 
 __all__ = ["DPPError", "Equilibrium", "Instance", "InstanceFormatError",
            "InvalidInstanceError", "StrategyPath", "__version__", "equilibrium_to_json",

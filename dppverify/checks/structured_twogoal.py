@@ -13,10 +13,11 @@ from dppverify.certificate import CheckRecord, Status
 from dppverify.checks.lemmas import OFF_XI2
 from dppverify.checks.structured_shared import structured_record as _rec
 from dppverify.exact import Number
-from dppverify.game.defender import sigma_along, step_weights
+from dppverify.game.defender import sigma_along
 from dppverify.game.evaluation import walk_cost
 from dppverify.game.instance import Instance, Roles
 from dppverify.game.profile import Profile, ProgressRule
+from dppverify.game.step_weights import step_weights
 from dppverify.numbers import NumberMode
 from dppverify.structured.trie import WalkTrie
 from dppverify.text import show, show_walk

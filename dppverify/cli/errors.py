@@ -4,7 +4,9 @@
 :class:`~dppverify.errors.CheckerError` (bad input) is ``error: ...`` and exit 2, an
 :class:`~dppverify.errors.UndecidedError` is ``undecided: ...`` and exit 3, an internal
 failure one line and exit 3, a signal one line and ``128 + n``. Commands report their own
-errors with :func:`fail`, so that they behave the same inside either group.
+errors with :func:`fail`, so that they behave the same inside either group. Every command
+runs in a :func:`dppio.inputs.reading_once` block (each input read once; ``-`` is standard
+input, for one input only).
 """
 
 from __future__ import annotations
@@ -14,8 +16,17 @@ from typing import Any, NoReturn
 
 import click
 
+from dppio.inputs import STDIN, reading_once
+from dppio.memory import memory_limit_text
 from dppverify.cli.interrupts import Terminated, as_signal, exit_code, signals_as_exceptions
 from dppverify.cli.interrupts import message as interrupt_message
+from dppverify.cli.streams import (
+    StreamError,
+    flush_stdout,
+    silence_stdout,
+    standard_streams,
+    stream_failure,
+)
 from dppverify.errors import CheckerError, LPError, UndecidedError
 
 __all__ = ["ErrorReportingGroup", "error_code", "error_line", "fail"]
@@ -34,15 +45,27 @@ class ErrorReportingGroup(click.Group):
 
     def main(self, *args: Any, **kwargs: Any) -> Any:
         """Run the command with SIGINT/SIGTERM/SIGHUP as exceptions (dppverify.cli.interrupts):
-        a signal ends it after cleaning up, with one line and exit code 128 + n."""
-        with signals_as_exceptions():
+        a signal ends it after cleaning up, with one line and exit code 128 + n; with the
+        standard streams guarded (dppverify.cli.streams): standard output that cannot be
+        written ends it with one line (a closed pipe: quietly, 141), never a traceback."""
+        with standard_streams(), signals_as_exceptions():
             try:
-                return super().main(*args, **kwargs)
+                try:
+                    return super().main(*args, **kwargs)
+                finally:
+                    flush_stdout()
             except Terminated as exc:  # a signal outside invoke (e.g. while parsing)
                 click.echo(interrupt_message(exc), err=True)
                 raise SystemExit(exit_code(exc)) from None
+            except StreamError as exc:  # standard output failed (at the last flush)
+                raise SystemExit(_stream_exit(exc)) from None
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        words = args[:args.index("--")] if "--" in args else args
+        if words.count(STDIN) > 1:  # one stream, one input (dppio.inputs)
+            click.echo(f"error: {STDIN} (standard input) can stand for one input only, "
+                       f"got it {words.count(STDIN)} times", err=True)
+            ctx.exit(2)
         try:
             return super().parse_args(ctx, args)
         except click.UsageError as exc:
@@ -52,7 +75,8 @@ class ErrorReportingGroup(click.Group):
 
     def invoke(self, ctx: click.Context) -> Any:
         try:
-            return super().invoke(ctx)
+            with reading_once():  # each input read once: what is hashed is what was parsed
+                return super().invoke(ctx)
         except self.user_errors as exc:
             fail(exc)
         except click.UsageError as exc:  # click's three-line usage message, as one line
@@ -61,6 +85,10 @@ class ErrorReportingGroup(click.Group):
         except (KeyboardInterrupt, Terminated) as exc:  # one line, 130 / 143, cleaned up
             click.echo(interrupt_message(exc), err=True)
             ctx.exit(exit_code(exc))
+        except StreamError as exc:  # standard output failed: one line (or none), no traceback
+            ctx.exit(_stream_exit(exc))
+        except MemoryError:  # the input needs more memory than this process may have
+            ctx.exit(_memory_exit())
         except (click.exceptions.Exit, click.ClickException, click.Abort):
             raise
         except Exception as exc:
@@ -72,6 +100,23 @@ class ErrorReportingGroup(click.Group):
             click.echo(f"internal error: {type(exc).__name__}: {' '.join(str(exc).split())} "
                        "(set DPP_DEBUG=1 for details)", err=True)
             ctx.exit(3)
+
+
+def _stream_exit(exc: StreamError) -> int:
+    """Report a failed standard output (dppverify.cli.streams) and give the exit code."""
+    line, code = stream_failure(exc)
+    silence_stdout()
+    if line is not None:
+        click.echo(line, err=True)
+    return code
+
+
+def _memory_exit() -> int:
+    """Report an exhausted memory in one line; exit code 2, as for an input beyond a limit."""
+    click.echo("error: out of memory: this input needs more memory than this process may use "
+               f"({memory_limit_text()}); give a smaller input (docs/limits.md, 'Sizes and "
+               "memory')", err=True)
+    return 2
 
 
 def _usage_error(exc: click.UsageError) -> None:

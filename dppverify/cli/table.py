@@ -2,13 +2,15 @@
 
 One header line (the verdict, the game, the tallies), then one row per check of kind
 ``check``, then the consistency checks and the facts under their own headings
-(:data:`CONSISTENCY_HEADING`, :data:`FACTS_HEADING`).
+(:data:`CONSISTENCY_HEADING`, :data:`FACTS_HEADING`), and last the exploitability (every
+player's exact regret and NashConv, :mod:`dppverify.exploitability`).
 """
 
 from __future__ import annotations
 
 from typing import Any
 
+from dppio.text import count
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.text import show
 
@@ -24,8 +26,9 @@ FACTS_HEADING = ("facts about the profile and the instance (the paper's lemmas, 
 
 
 def _short(x: Any) -> str:
-    """A number for the table: floats (LP values) with 6 significant digits, else ``show``."""
-    return f"{x:.6g}" if isinstance(x, float) else show(x)
+    """A number for the table: ``show`` (floats, e.g. LP values, with dppio.text.DIGITS
+    significant digits)."""
+    return show(x)
 
 
 def _numbers(rec: CheckRecord) -> list[str]:
@@ -78,6 +81,9 @@ def format_table(cert: Certificate) -> str:
     value.VoI  pass    U_bar=27/10 VoI=1/9          U_bar = 27/10, VoI = 1/9
     >>> format_table(certify(triangle_document(), profile)).splitlines()[0][:50]
     'verdict: PASS for the untruncated game (H = inf) ('
+    >>> print(lines[-1])  # doctest: +NORMALIZE_WHITESPACE
+    exploitability on the game truncated at H = 1: NashConv 0 = Attacker 0 (type regrets: g1 0,
+      g2 0, weighted by the prior) + Defender 0
     """
     counts = cert.counts()
     passed, total = counts["check"]
@@ -95,7 +101,7 @@ def format_table(cert: Certificate) -> str:
     else:
         both = ", both routes" if cert.route == "both" else ""
         head = (f"verdict: {cert.verdict.upper()} for {game} ({tally}; "
-                f"{cert.prefixes} prefixes{both}, {mode}; LP "
+                f"{count(cert.prefixes, 'prefix')}{both}, {mode}; LP "
                 f"{cert.lp_solver} agreement within {cert.lp_tolerance:g} relative)")
     evidence = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("check")]
     own = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("consistency")]
@@ -118,5 +124,7 @@ def format_table(cert: Certificate) -> str:
             lines.append(heading)
             for r in group:
                 lines += row(*r)
+    if cert.exploitability is not None:
+        lines.append(f"exploitability on {game}: {cert.exploitability.summary()}")
     return "\n".join(lines)
 

@@ -11,7 +11,7 @@ connectivity, instead of listing every cell and edge::
 A relative ``map`` path is relative to the directory of the instance file (to the working
 directory for a document given in memory). The reader checks the map file's sha256 against
 ``map_sha256`` and refuses a mismatch, so the hash of the compact file pins the map too. The
-game is built by the checker's own ``.map`` reader (:func:`dppverify.formats.movingai.grid_game`):
+game is built by the checker's own ``.map`` reader (:func:`dppverify.game.grids.grid_game`):
 it
 is the instance of the full JSON document of the same grid. The solver reads and writes the
 same format with its own code.

@@ -13,9 +13,10 @@ from fractions import Fraction
 from typing import TYPE_CHECKING
 
 from dppverify.exact import Number, normalize
-from dppverify.game.defender import sigma_along, step_weights
+from dppverify.game.defender import sigma_along
 from dppverify.game.instance import Instance, Roles
 from dppverify.game.profile import DefenderRule, StrategyWalk
+from dppverify.game.step_weights import step_weights
 
 if TYPE_CHECKING:  # the game model does not import the tree route
     from dppverify.tree_route.tree import WalkTree

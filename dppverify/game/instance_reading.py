@@ -10,9 +10,8 @@ N-goal rules (:func:`read_goals`, :func:`read_prior`), the distances to the goal
 
 from __future__ import annotations
 
-import json
 import weakref
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from fractions import Fraction
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, NamedTuple
@@ -20,6 +19,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from dppio.limits import check_float_weights
+from dppio.text import json_shown
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import INF, normalize
 from dppverify.formats.json_reading import Node, node_from_json, parse_number, show_node
@@ -33,6 +33,7 @@ from dppverify.game.distances import (
     unscale,
 )
 from dppverify.game.graph_reading import Rows, known_node, require
+from dppverify.limits import MAX_GOALS
 
 if TYPE_CHECKING:
     from dppverify.game.instance import Instance
@@ -69,7 +70,7 @@ class GameParts(NamedTuple):
     scaled: tuple[int, dict[int, np.ndarray]] | None
 
 
-def game_parts(ids: list[Node], index: dict[Node, int], directed: bool, succ_t: Rows,
+def game_parts(ids: Sequence[Node], index: Mapping[Node, int], directed: bool, succ_t: Rows,
                 pred_t: Rows, arcs: ArcArrays | None, *, exact: bool, start: Any, goals: Any,
                 prior: Any, two_goals: bool = False) -> GameParts:
     """The fields of the game on a read graph: start, goals and prior (JSON values) checked,
@@ -116,7 +117,10 @@ def game_parts(ids: list[Node], index: dict[Node, int], directed: bool, succ_t: 
         hops = tuple(hops_to_targets(pred_t, goals) if arcs is None
                      else hops_by_arrays(arcs, n, goals))
     scaled = (fields[0], dict(zip(goals, fields[1], strict=True))) if fields is not None else None
-    return GameParts(dict(nodes=tuple(ids), index=MappingProxyType(index), directed=directed,
+    # a list and a dict (the JSON reader) are frozen; a grid's lazy cells and index already are
+    nodes = tuple(ids) if isinstance(ids, list) else ids
+    frozen = MappingProxyType(index) if isinstance(index, dict) else index
+    return GameParts(dict(nodes=nodes, index=frozen, directed=directed,
                           succ=succ_t, pred=pred_t, start=start, goals=goals, prior=prior,
                           exact=exact, dist_to=dist_to, hops=hops), scaled)
 
@@ -176,7 +180,7 @@ def remember_arrays(game: Instance, arcs: ArcArrays | None,
         _GOAL_FIELDS[game] = scaled
 
 
-def read_goals(raw: Any, index: Mapping[Node, int], ids: list[Node], two_goals: bool
+def read_goals(raw: Any, index: Mapping[Node, int], ids: Sequence[Node], two_goals: bool
                ) -> tuple[int, ...]:
     """The goals (node indices, document order) of the JSON list ``raw``.
 
@@ -191,7 +195,7 @@ def read_goals(raw: Any, index: Mapping[Node, int], ids: list[Node], two_goals: 
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: goals: the two goals must differ, both are "b"
     """
-    shown = json.dumps(raw, default=str)
+    shown = json_shown(raw)
     if two_goals:
         # a reader that asked for two goals refuses more (docs/formats.md §1)
         require(not (isinstance(raw, list) and len(raw) > 2),
@@ -203,11 +207,15 @@ def read_goals(raw: Any, index: Mapping[Node, int], ids: list[Node], two_goals: 
                                       f"{show_node(ids[goals[0]])}")
         return goals
     require(isinstance(raw, list) and len(raw) >= 2,
-            f"goals: must be a list of at least two node ids, got {shown}")
+            f"goals: must be a list of at least two node ids, got {shown[:200]}")
+    # distances to every goal are computed on reading: bounded before any of them
+    require(len(raw) <= MAX_GOALS, f"goals: {len(raw)} goals, beyond the limit of {MAX_GOALS}")
     out: list[int] = []
+    seen: set[int] = set()
     for i, x in enumerate(raw):
         gi = read_node(x, index, f"goals[{i}]")
-        require(gi not in out, f"goals[{i}]: goal {show_node(ids[gi])} is listed twice")
+        require(gi not in seen, f"goals[{i}]: goal {show_node(ids[gi])} is listed twice")
+        seen.add(gi)
         out.append(gi)
     return tuple(out)
 
@@ -242,9 +250,9 @@ def read_prior(raw: Any, n: int, two_goals: bool) -> tuple[Fraction, ...]:
     dppverify.errors.InvalidInstanceError: prior: must sum to exactly 1, got 1/2 + 1/3 = 5/6
     """
     require(isinstance(raw, list) and len(raw) == n,
-            f"prior: must be a list of two numbers, got {json.dumps(raw, default=str)}"
+            f"prior: must be a list of two numbers, one per goal, got {json_shown(raw)}"
             if two_goals else f"prior: must be a list of {n} numbers (one per goal), got "
-                               f"{json.dumps(raw, default=str)}")
+                               f"{json_shown(raw)}")
     p = [Fraction(parse_number(x, where=f"prior[{i}]")) for i, x in enumerate(raw)]
     for i, x in enumerate(p):
         require(0 < x < 1, f"prior[{i}]: must lie strictly between 0 and 1, got {x}")

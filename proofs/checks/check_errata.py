@@ -23,7 +23,7 @@ from proofs.checks.errata_search import (
     swapped_outcome,
 )
 from solver import solve
-from solver.instance_json import instance_from_json
+from solver.game.instance_reading import instance_from_json
 
 TRIANGLE = (("s", "g1", 3), ("s", "g2", 2), ("g1", "g2", 2))
 TIED = (("s", "g1", 2), ("s", "g2", 2), ("g1", "g2", 1))

@@ -33,7 +33,7 @@ from typing import Any
 import dppverify
 from solver import equilibrium_to_json, solve
 from solver.errors import DPPError
-from solver.instance_json import instance_from_json
+from solver.game.instance_reading import instance_from_json
 
 __all__ = ["Outcome", "candidates", "instance_doc", "robust", "search", "some_order",
            "swapped_outcome"]

@@ -4,17 +4,26 @@ checks."""
 from __future__ import annotations
 
 import re
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from dppverify import cli as checker_cli
 from dppverify.cli.map_options import MapRequest, instance_or_map
 from solver.errors import DPPError, InvalidInstanceError
 
 if TYPE_CHECKING:  # the solver's modules load numpy, scipy, networkx: imported per command
-    from solver.instance import Instance
+    from solver.game.instance import Instance
 
-__all__ = ["START_IS_GOAL", "check_dask_address", "check_grid_count", "dumps",
-           "experiment_instance", "int_list", "load_instance", "load_with_digest"]
+__all__ = [
+    "START_IS_GOAL",
+    "check_dask_address",
+    "check_grid_count",
+    "check_map_memory",
+    "dumps",
+    "experiment_instance",
+    "int_list",
+    "load_instance",
+    "load_with_digest",
+]
 
 
 def dumps(doc: object) -> str:
@@ -63,9 +72,9 @@ def load_with_digest(instance: str | None, grid: MapRequest | None,
     >>> load_with_digest(str(triangle), None)[1] is None
     True
     """
-    from solver.instance import Instance
-    from solver.instance_json import load_instance
-    from solver.movingai import read_map_bytes
+    from solver.formats.movingai import read_map_bytes
+    from solver.game.instance import Instance
+    from solver.game.instance_reading import load_instance
 
     instance_or_map(instance, grid)
     if grid is None:
@@ -76,12 +85,30 @@ def load_with_digest(instance: str | None, grid: MapRequest | None,
         raise InvalidInstanceError(f"{grid.map}: this command takes two goals, got "
                                    f"{grid.n_goals} (N-goal games: dpp solve, certify, value)")
     blocked, digest = read_map_bytes(grid.path)
+    check_map_memory(grid.map, blocked, 2)
     try:
         return Instance.from_grid(blocked, grid.start, (grid.goals[0], grid.goals[1]),
                                   (grid.prior[0], grid.prior[1]),
                                   connectivity=grid.connectivity), digest
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{grid.map}: {exc}") from None
+
+
+def check_map_memory(name: str, blocked: Any, n_goals: int) -> None:
+    """Refuse in one line a map whose game would need more memory than this process may use
+    (:func:`solver.limits.map_memory`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> check_map_memory("m.map", np.zeros((3, 4), dtype=bool), 2)
+    """
+    from dppio.memory import check_memory
+    from solver.limits import map_memory
+
+    free = int(blocked.size - blocked.sum())
+    check_memory(map_memory(free, n_goals), error=InvalidInstanceError,
+                 what=f"{name}: the game of {free} free cells and {n_goals} goals")
 
 
 START_IS_GOAL = ("note: the start is a goal: the game ends before any step (T = 0, every type "

@@ -8,16 +8,18 @@ from __future__ import annotations
 
 import csv
 import io
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import asdict
 from fractions import Fraction
 from importlib import resources
 from pathlib import Path
 
-from solver.instance import Instance
-from solver.movingai import read_map
+from dppio.text import decimal
+from solver.formats.movingai import read_map
+from solver.game.instance import Instance
+from solver.literature.path_metrics import METRIC_FIELDS, PathMetrics, metric_row
+from solver.literature.strategy_pairs import LABELS, PAIRS, PairEvaluator, PairResult
 from solver.numbers import Number
-from solver.strategy_pairs import LABELS, PAIRS, PairEvaluator, PairResult
 
 __all__ = ["DEFAULT_GOALS", "DEFAULT_PRIOR", "DEFAULT_START", "compare_csv", "compare_table",
            "paper10_instance", "paper10_path", "run_compare", "verdict"]
@@ -59,7 +61,7 @@ def paper10_instance() -> Instance:
 
 
 def run_compare(instance: Instance) -> tuple[PairResult, ...]:
-    """U¹, U², U, VoI of the six pairs of :data:`solver.strategy_pairs.PAIRS`, exactly.
+    """U¹, U², U, VoI of the six pairs of :data:`solver.literature.strategy_pairs.PAIRS`, exactly.
 
     Examples
     --------
@@ -72,8 +74,8 @@ def run_compare(instance: Instance) -> tuple[PairResult, ...]:
 
 def _num(x: Number) -> str:
     if isinstance(x, Fraction):
-        return str(x) if x.denominator == 1 else f"{x} (≈ {float(x):.4g})"
-    return f"{x:.6g}"
+        return str(x) if x.denominator == 1 else f"{x} (≈ {decimal(x)})"
+    return decimal(x)
 
 
 def compare_table(results: Sequence[PairResult]) -> str:
@@ -82,7 +84,7 @@ def compare_table(results: Sequence[PairResult]) -> str:
 
     Examples
     --------
-    >>> from solver.instance import triangle
+    >>> from solver.game.instance import triangle
     >>> results = PairEvaluator.of(triangle()).compare()
     >>> print(compare_table(results[:2]))
     Defender  Attacker  U1              U2  U             VoI
@@ -111,7 +113,7 @@ def verdict(results: Sequence[PairResult]) -> str:
     >>> print(verdict(run_compare(paper10_instance())))  # doctest: +NORMALIZE_WHITESPACE
     U(σ',γ*) = 64/5 (≈ 12.8) < U(σ*,γ*) = 68/5 (≈ 13.6): the paper's observation
     U(σ',γ*) < U(σ*,γ*) holds on this instance
-    >>> from solver.instance import triangle
+    >>> from solver.game.instance import triangle
     >>> results = PairEvaluator.of(triangle()).compare()
     >>> "does NOT hold" in verdict(results), verdict(results[:1])
     (True, '')
@@ -126,13 +128,16 @@ def verdict(results: Sequence[PairResult]) -> str:
             f"observation U(σ',γ*) < U(σ*,γ*) {holds} on this instance")
 
 
-def compare_csv(results: Sequence[PairResult]) -> str:
+def compare_csv(results: Sequence[PairResult],
+                metrics: Mapping[str, PathMetrics] | None = None) -> str:
     """``results`` (e.g. :func:`run_compare`'s) as CSV: a header line and one line per pair,
-    exact ``p/q`` strings.
+    exact ``p/q`` strings; with ``metrics`` (each Attacker's expected path metrics,
+    :func:`solver.experiments.field_metrics.attacker_metrics`) also the field's columns
+    (:data:`~solver.literature.path_metrics.METRIC_FIELDS`) after ``VoI``.
 
     Examples
     --------
-    >>> from solver.instance import triangle
+    >>> from solver.game.instance import triangle
     >>> results = PairEvaluator.of(triangle()).compare()
     >>> print(compare_csv(results[:2]), end="")
     defender,attacker,U1,U2,U,U_bar,VoI
@@ -140,9 +145,14 @@ def compare_csv(results: Sequence[PairResult]) -> str:
     sigma',gamma*,18/7,2,12/5,27/10,1/9
     """
     buf = io.StringIO()
-    fields = ("defender", "attacker", "U1", "U2", "U", "U_bar", "VoI")
+    fields: tuple[str, ...] = ("defender", "attacker", "U1", "U2", "U", "U_bar", "VoI")
+    if metrics is not None:
+        fields += METRIC_FIELDS
     w = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
     w.writeheader()
     for r in results:
-        w.writerow({k: str(v) for k, v in asdict(r).items()})
+        row = {k: str(v) for k, v in asdict(r).items()}
+        if metrics is not None:
+            row.update(metric_row(metrics[r.attacker]))
+        w.writerow(row)
     return buf.getvalue()

@@ -44,8 +44,8 @@ from typing import Literal
 import mpmath
 import numpy as np
 
+from solver.graph.network import Network
 from solver.literature.dragan_belief import HI, MP, DraganObserver, belief_hi
-from solver.network import Network
 
 __all__ = ["KINDS", "SCALE_BITS", "TIE_UNITS", "DeceptivePath", "deceptive_path",
            "node_terms", "objective"]
@@ -88,8 +88,8 @@ def node_terms(observer: DraganObserver, theta: int, kind: Kind) -> list[int]:
     Examples
     --------
     >>> import networkx as nx
-    >>> from solver.distances import distances_to
-    >>> from solver.network import Network
+    >>> from solver.graph.distances import distances_to
+    >>> from solver.graph.network import Network
     >>> net = Network.from_networkx(nx.Graph([("s", "g1"), ("s", "g2")]))
     >>> obs = DraganObserver(net, 0, 1, 2, distances_to(net, 1), distances_to(net, 2),
     ...                      Fraction(1, 2), Fraction(1, 2))
@@ -147,7 +147,7 @@ def objective(observer: DraganObserver, walk: list[int] | tuple[int, ...], theta
     exaggeration objective is the sum of the beliefs in g1 along its walk.
 
     >>> import networkx as nx
-    >>> from solver.distances import distances_to
+    >>> from solver.graph.distances import distances_to
     >>> net = Network.from_networkx(nx.Graph([("s", "a"), ("a", "g1"), ("a", "g2")]))
     >>> obs = DraganObserver(net, 0, 2, 3, distances_to(net, 2), distances_to(net, 3),
     ...                      Fraction(3, 5), Fraction(2, 5))
@@ -180,7 +180,7 @@ def deceptive_path(observer: DraganObserver, theta: int, kind: Kind) -> Deceptiv
     exaggeration path heads to g2's side first; its ambiguity path keeps the belief near 1/2.
 
     >>> from solver import Instance
-    >>> from solver.distances import distances_to
+    >>> from solver.graph.distances import distances_to
     >>> inst = Instance.from_grid(np.zeros((3, 3), bool), (2, 0), ((0, 2), (0, 0)),
     ...                           ("3/5", "2/5"))
     >>> net = inst.network

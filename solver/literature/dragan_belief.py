@@ -33,7 +33,7 @@ import numpy as np
 from mpmath.ctx_iv import MPIntervalContext
 from mpmath.ctx_mp import MPContext
 
-from solver.network import Network
+from solver.graph.network import Network
 
 __all__ = ["DPS", "HI", "MP", "DraganObserver", "belief_hi", "ln_at_least"]
 
@@ -105,7 +105,7 @@ class DraganObserver:
     are one step closer, so the belief is still the prior; at ``g2`` it drops.
 
     >>> import networkx as nx
-    >>> from solver.distances import distances_to
+    >>> from solver.graph.distances import distances_to
     >>> net = Network.from_networkx(nx.Graph([("s", "a"), ("a", "g1"), ("a", "g2")]))
     >>> obs = DraganObserver(net, 0, 2, 3, distances_to(net, 2), distances_to(net, 3),
     ...                      Fraction(3, 5), Fraction(2, 5))

@@ -27,8 +27,8 @@ class DraganDefender:
     Examples
     --------
     >>> import networkx as nx
-    >>> from solver.distances import distances_to
-    >>> from solver.network import Network
+    >>> from solver.graph.distances import distances_to
+    >>> from solver.graph.network import Network
     >>> net = Network.from_networkx(nx.Graph([("s", "a"), ("a", "g1"), ("a", "g2")]))
     >>> obs = DraganObserver(net, 0, 2, 3, distances_to(net, 2), distances_to(net, 3),
     ...                      Fraction(3, 5), Fraction(2, 5))

@@ -31,7 +31,7 @@ In this game a walk ends at the first goal it reaches, where type θ pays the te
 ``d(end, g^θ)``: so π_d1 ends at ``g_b`` and the rest of its route (a shortest path from
 ``g_b`` to ``g_r``) is exactly that terminal cost; any other path is cut at the first goal
 it reaches. Shortest-path ties follow the solver's rule (lowest node index,
-:mod:`solver.shortest_paths`).
+:mod:`solver.graph.shortest_paths`).
 
 Examples
 --------
@@ -39,7 +39,7 @@ A corridor ``s – a – b`` with ``g1`` beyond ``b`` and ``g2`` one step off ``
 
 >>> import networkx as nx
 >>> from fractions import Fraction
->>> from solver.instance import Instance
+>>> from solver.game.instance import Instance
 >>> g = nx.Graph([("s", "a"), ("a", "b"), ("b", "g1"), ("a", "g2")])
 >>> plans = plan_all(Instance(g, "s", ("g1", "g2"), ("1/2", "1/2")))
 >>> for name in STRATEGIES:  # the primary type's paths
@@ -59,10 +59,10 @@ from fractions import Fraction
 
 import numpy as np
 
-from solver.distances import distances_from, distances_to
-from solver.instance import Instance
-from solver.network import Network
-from solver.shortest_paths import path_to_target
+from solver.game.instance import Instance
+from solver.graph.distances import distances_from, distances_to
+from solver.graph.network import Network
+from solver.graph.shortest_paths import path_to_target
 
 __all__ = ["LABELS", "STRATEGIES", "MSPath", "last_deceptive_point", "plan", "plan_all",
            "truthful"]

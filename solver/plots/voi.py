@@ -11,8 +11,8 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from solver.errors import InvalidInstanceError
+from solver.literature.strategy_pairs import LABELS, PAIRS
 from solver.plots.style import DEFENDER_HATCH, STRATEGY_COLOURS, STYLE, VOI
-from solver.strategy_pairs import LABELS, PAIRS
 
 __all__ = ["plot_voi"]
 

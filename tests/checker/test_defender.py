@@ -12,9 +12,9 @@ from dppverify.game.defender import sigma_along
 from dppverify.game.evaluation import walk_cost
 from dppverify.game.instance import instance_from_json
 from dppverify.game.profile import ProgressRule, TableRule
+from dppverify.game.progress_rule import progress_along
 from dppverify.tree_route.tree import build_tree
 from dppverify.tree_route.tree_defender import tree_defender
-from dppverify.twogoal.progress import progress_along
 from tests.checker._helpers import (
     all_walks,
     grid_doc,

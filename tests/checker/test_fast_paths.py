@@ -31,7 +31,7 @@ from dppverify.twogoal.progress_br import (
     walk_minima,
 )
 from dppverify.twogoal.value_dp import _Frontier, value_fields
-from solver.movingai import read_map
+from solver.formats.movingai import read_map
 from tests.checker._helpers import make_doc
 
 random_instances = st.one_of(

@@ -28,7 +28,7 @@ from dppverify.registry import CHECK_IDS, CHECKS, not_run
 from dppverify.twogoal.progress_br import walk_minima
 from solver import Instance, equilibrium_to_json, instance_to_json, solve
 from solver import instance_from_json as solver_instance_from_json
-from solver.movingai import read_map
+from solver.formats.movingai import read_map
 from tests.checker._helpers import tree_horizon
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -24,7 +24,7 @@ from dppverify.checks.structured import (
 )
 from dppverify.checks.structured_twogoal import HALF, telescoping_check
 from dppverify.formats.json_reading import _resolve_walk_fast, resolve_walk
-from dppverify.game.defender import sigma_along, step_weight, step_weights
+from dppverify.game.defender import sigma_along
 from dppverify.game.distances import (
     ArcArrays,
     ArcRows,
@@ -35,6 +35,7 @@ from dppverify.game.distances import (
 from dppverify.game.evaluation import walk_cost
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile import ProgressRule, StrategyWalk, TableRule
+from dppverify.game.step_weights import step_weight, step_weights
 from dppverify.structured.trie import WalkTrie, mass_trie
 
 
@@ -315,7 +316,7 @@ def test_pruned_seeds_give_the_same_fixpoint_fields(seed: int) -> None:
 def test_sigma_memo_returns_fresh_equal_lists(seed: int) -> None:
     """σ along a walk is remembered per instance: equal to a fresh computation, and a
     caller changing the list it got does not change what the next caller gets."""
-    from dppverify.twogoal.progress import _progress_sigma
+    from dppverify.game.progress_rule import _progress_sigma
 
     rng = random.Random(seed)
     inst = random_game(rng, grid=seed % 2 == 0)

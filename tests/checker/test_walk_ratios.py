@@ -8,11 +8,12 @@ from typing import Any
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dppverify.game.defender import sigma_along, step_weight
+from dppverify.game.defender import sigma_along
 from dppverify.game.instance import _read_game
 from dppverify.game.profile import ProgressRule
+from dppverify.game.progress_rule import progress_along
+from dppverify.game.step_weights import step_weight
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
-from dppverify.twogoal.progress import progress_along
 
 docs = st.one_of(
     instances(graphs=weighted_graphs(max_nodes=7, max_weight=4)),

@@ -11,7 +11,7 @@ from click.testing import CliRunner
 
 from solver.cli import main
 from solver.experiments.compare import paper10_instance
-from solver.strategy_pairs import COMPARE_PAIRS, PAIRS, PairEvaluator
+from solver.literature.strategy_pairs import COMPARE_PAIRS, PAIRS, PairEvaluator
 
 ROOT = Path(__file__).resolve().parents[2]
 PAPER10 = str(ROOT / "examples" / "paper10.map")

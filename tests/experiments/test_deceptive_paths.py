@@ -11,7 +11,7 @@ import pytest
 
 from solver import Instance
 from solver.literature.deceptive_paths import KINDS, deceptive_path, objective
-from solver.strategy_pairs import PairEvaluator
+from solver.literature.strategy_pairs import PairEvaluator
 from tests.experiments._graphs import literal_belief, random_instance
 
 EPS = mpmath.mpf(10) ** -35

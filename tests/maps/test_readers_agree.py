@@ -1,10 +1,9 @@
 """The checker's own ``.map`` reader and grid builder agree with the solver's.
 
-``dppverify.formats.movingai`` shares no code with ``solver.movingai`` / ``Instance.from_grid``; on
-the
-bundled paper map and the 12 standard MovingAI maps both must give the same obstacles and
-the same instance document (node ids ``[row, col]``, the same edges and weights, float mode
-for octile grids), and so the same checker instance.
+``dppverify.formats.movingai`` shares no code with ``solver.formats.movingai`` /
+``Instance.from_grid``; on the bundled paper map and the 12 standard MovingAI maps both must
+give the same obstacles and the same instance document (node ids ``[row, col]``, the same
+edges and weights, float mode for octile grids), and so the same checker instance.
 """
 
 from __future__ import annotations
@@ -20,10 +19,10 @@ from dppverify.errors import InvalidInstanceError as CheckerInvalid
 from dppverify.formats import movingai as checker_maps
 from dppverify.game import grids as checker_grids
 from dppverify.game.instance import instance_from_json
-from solver import movingai as solver_maps
 from solver.errors import InvalidInstanceError as SolverInvalid
-from solver.instance import Instance
-from solver.instance_json import instance_to_json
+from solver.formats import movingai as solver_maps
+from solver.game.instance import Instance
+from solver.game.instance_writing import instance_to_json
 from tests.maps._maps import PAPER10, STANDARD, corner_cells, standard_map_path
 
 MAPS = [PAPER10, *(standard_map_path(name) for name in STANDARD)]

@@ -22,7 +22,7 @@ from click.testing import CliRunner
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats import standard_maps
 from solver.cli import main
-from solver.movingai import read_map
+from solver.formats.movingai import read_map
 from tests.maps._maps import STANDARD, corner_cells, map_args, standard_map_path
 
 

@@ -13,7 +13,7 @@ from typing import Any
 import pytest
 
 from solver import instance_from_json, solve
-from solver.distances import distances_from
+from solver.graph.distances import distances_from
 from tests.solver._cases import load_cases
 
 CASES = load_cases()

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from solver import Instance, InstanceFormatError, solve
-from solver.movingai import parse_map, read_map
+from solver.formats.movingai import parse_map, read_map
 
 MAP = """type octile
 height 4

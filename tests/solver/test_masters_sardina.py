@@ -9,10 +9,10 @@ from pathlib import Path
 import networkx as nx
 import pytest
 
-from solver.distances import distances_to
 from solver.experiments.density import DensityConfig
 from solver.experiments.sampling import sample_grid
-from solver.instance import Instance
+from solver.game.instance import Instance
+from solver.graph.distances import distances_to
 from solver.literature.masters_sardina import (
     STRATEGIES,
     last_deceptive_point,
@@ -20,7 +20,7 @@ from solver.literature.masters_sardina import (
     plan_all,
     truthful,
 )
-from solver.strategy_pairs import COMPARE_PAIRS, MS_PAIRS, PAIRS, PairEvaluator
+from solver.literature.strategy_pairs import COMPARE_PAIRS, MS_PAIRS, PAIRS, PairEvaluator
 
 
 def fork(y_t: int) -> Instance:
@@ -117,8 +117,8 @@ def test_compare_gains_the_strategies() -> None:
     # the primary type walks S-Y-T-R (4), the secondary S-X-T-B (4); hand evaluation of
     # sigma*: progress towards g1 = R is 1 on each step that shortens d(., R) ... checked
     # through the generic evaluator against an explicit Attacker with the same paths
-    from solver.strategy import StrategyPath
-    from solver.strategy_pairs import Attacker
+    from solver.game.walks import StrategyPath
+    from solver.literature.strategy_pairs import Attacker
 
     net = inst.network
     ids = {v: net.index_of(v) for v in "SXYTRB"}

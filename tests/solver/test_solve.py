@@ -9,7 +9,7 @@ import networkx as nx
 import pytest
 
 from solver import Instance, InvalidInstanceError, instance_from_json, solve
-from solver.phases import Phases
+from solver.twogoal.phases import Phases
 from tests.solver._cases import load_cases
 
 NAMED: dict[str, dict[str, Any]] = {}

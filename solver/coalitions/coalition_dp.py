@@ -1,0 +1,322 @@
+"""The coalition DP of the N-goal game at ``H = inf``, with its argmins (the solver's own).
+
+For a non-empty set ``S`` of types (a bitmask) and a node ``v``, ``m_S(v)`` is the cost of a
+*coalition*: every type of ``S`` at ``v`` with unit mass, walking together (a shared step costs
+its weight once) and splitting into sub-coalitions (``proofs/NSOLVE.md``)::
+
+    m_S(g) = Σ_{θ ∈ S} d(g, g^θ)                                 at a goal g (walks end there)
+    m_S(v) = min( min_{(v,u)} [ w(v,u) + m_S(u) ],  split_S(v) )   elsewhere
+    split_S(v) = min { Σ_{T ⊊ S} λ_T m_T(v) : λ a minimal balanced collection of S }
+
+By increasing ``|S|``, ``split_S`` is known before ``m_S``, and ``m_S`` is a shortest-path
+problem with sources: ``m_S(v) = min_x [ dist(v → x) + init_S(x) ]`` over walks whose interior
+avoids the goals, ``init_S`` the split at non-goals and the terminal cost at goals. One
+Dijkstra per ``S`` (exact: integers scaled by ``W·L^(N-1)``, ``W`` the weights' denominator,
+``L`` the lcm of the collections' denominators; scipy's float64 Dijkstra when every value is
+an integer below 2**53, which float64 represents exactly; Python integers otherwise).
+
+The balanced collections are the vertices of ``{λ >= 0 : Σ_{T ⊊ S} λ_T 1_T = 1_S}``, found by
+trying every basis (a float pre-filter on the integer determinants, then exact integers).
+The cover LP at the start, ``min Σ_S c_S m_S(s0)`` s.t. ``Σ_S c_S 1_S = b``, is solved by an
+exact simplex (:func:`cover_lp`), which also returns its dual ``h`` (``h(S) <= m_S(s0)``,
+``h·b`` = the value).
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import cache
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.sparse.csgraph import dijkstra
+
+from solver.game.indexed_instance import NGame
+from solver.numbers import pivot, solve_exact
+
+__all__ = ["Coalitions", "CoverSolution", "balanced_collections", "coalition_dp", "cover_lp",
+           "subset_members"]
+
+EXACT_FLOAT = 2 ** 53
+
+
+def subset_members(mask: int) -> tuple[int, ...]:
+    """The types of a subset mask.
+
+    Examples
+    --------
+    >>> subset_members(0b1101)
+    (0, 2, 3)
+    """
+    return tuple(i for i in range(mask.bit_length()) if mask >> i & 1)
+
+
+@cache
+def balanced_collections(size: int) -> tuple[tuple[tuple[int, Fraction], ...], ...]:
+    """The minimal balanced collections of ``{0, …, size-1}``: ``((T, λ_T), …)`` per collection.
+
+    Examples
+    --------
+    >>> [len(balanced_collections(s)) for s in (2, 3, 4)]
+    [1, 5, 41]
+    >>> balanced_collections(2)
+    (((1, Fraction(1, 1)), (2, Fraction(1, 1))),)
+    """
+    full = (1 << size) - 1
+    cols = list(range(1, full))
+    inc = np.array([[(t >> i) & 1 for t in cols] for i in range(size)], dtype=np.float64)
+    combos = np.array(list(itertools.combinations(range(len(cols)), size)), dtype=np.int64)
+    mats = np.transpose(inc[:, combos], (1, 0, 2))  # (k, size, size): columns = subsets
+    det = np.linalg.det(mats)
+    ok = np.abs(det) > 0.5  # integer determinants: non-singular iff |det| >= 1
+    mats, combos, det = mats[ok], combos[ok], np.rint(det[ok]).astype(np.int64)
+    sol = np.linalg.solve(mats, np.ones((mats.shape[0], size, 1)))[:, :, 0]
+    feasible = np.all(sol > -1e-9, axis=1)  # a negative entry is at most -1/|det| <= -1/120
+    found: set[tuple[tuple[int, Fraction], ...]] = set()
+    for k in np.flatnonzero(feasible):
+        d = int(det[k])
+        nums = [round(x * d) for x in sol[k]]
+        lam = [Fraction(x, d) for x in nums]
+        members = [cols[int(c)] for c in combos[k]]
+        # exact verification: Σ λ_T 1_T = 1_S, λ >= 0
+        for i in range(size):
+            if sum(lam[j] for j, t in enumerate(members) if t >> i & 1) != 1:
+                raise AssertionError("balanced_collections: inexact basis solution")
+        if any(x < 0 for x in lam):
+            continue
+        found.add(tuple(sorted((t, x) for t, x in zip(members, lam, strict=True) if x)))
+    return tuple(sorted(found))
+
+
+@dataclass(frozen=True)
+class CoverSolution:
+    """The exact optimum of the cover LP: value, primal cover ``c`` and dual ``h``."""
+
+    value: Fraction
+    cover: Mapping[int, Fraction]
+    dual: tuple[Fraction, ...]
+
+
+def cover_lp(costs: Mapping[int, Fraction], b: Sequence[Fraction],
+             order: Sequence[int] = ()) -> CoverSolution:
+    """``min Σ_S c_S costs[S]`` s.t. ``Σ_S c_S 1_S = b``, ``c >= 0``, by an exact tableau simplex.
+
+    Starts from the singleton basis (feasible: ``b > 0``), Bland's rule (finite). The dual
+    ``h`` of the optimal basis satisfies ``h(S) <= costs[S]`` for every ``S`` and ``h·b`` =
+    value. With ``order`` the right-hand side is perturbed lexicographically,
+    ``b + ε e_{order[0]} + ε² e_{order[1]} + …``: the final basis is then optimal for ``b`` and
+    its dual is the lexicographically largest optimal dual in ``order`` (LP sensitivity: the
+    perturbed problem's dual maximises ``h·b`` first, then ``h_{order[0]}``, …).
+
+    Examples
+    --------
+    >>> costs = {1: 2, 2: 2, 4: 2, 3: 2, 5: 2, 6: 2, 7: 5}
+    >>> sol = cover_lp({k: Fraction(v) for k, v in costs.items()}, [Fraction(1)] * 3)
+    >>> sol.value, sol.dual
+    (Fraction(3, 1), (Fraction(1, 1), Fraction(1, 1), Fraction(1, 1)))
+    >>> two = {1: Fraction(9, 2), 2: Fraction(3), 3: Fraction(9, 2)}
+    >>> cover_lp(two, [Fraction(1, 2)] * 2, order=(0, 1)).dual
+    (Fraction(9, 2), Fraction(0, 1))
+    """
+    n = len(b)
+    masks = sorted(costs)
+    col = {t: j for j, t in enumerate(masks)}
+    width = len(masks)
+
+    def rhs(i: int) -> list[Fraction]:
+        out = [Fraction(b[i])]
+        out += [Fraction(int(i == t)) for t in order]
+        return out
+
+    # tableau rows: B^{-1} A | B^{-1} (b, perturbations) ; basis = singletons
+    rows = [[Fraction(t >> i & 1) for t in masks] + rhs(i) for i in range(n)]
+    basis = [1 << i for i in range(n)]
+    while True:
+        h = _duals(basis, costs, n)
+        entering = None
+        for t in masks:
+            if t in basis:
+                continue
+            if costs[t] - sum(h[i] for i in subset_members(t)) < 0:
+                entering = t
+                break
+        if entering is None:
+            value = sum((costs[basis[i]] * rows[i][width] for i in range(n)), Fraction(0))
+            cover = {basis[i]: rows[i][width] for i in range(n) if rows[i][width]}
+            return CoverSolution(value, cover, tuple(h))
+        j = col[entering]
+        best = None
+        for i in range(n):
+            a = rows[i][j]
+            if a > 0:
+                key = ([x / a for x in rows[i][width:]], basis[i])
+                if best is None or key < best[0]:
+                    best = (key, i)
+        if best is None:  # pragma: no cover - c_S <= min b keeps the LP bounded
+            raise AssertionError("cover_lp: unbounded")
+        i = best[1]
+        pivot(rows, i, j)
+        basis[i] = entering
+
+
+def _duals(basis: list[int], costs: Mapping[int, Fraction], n: int) -> list[Fraction]:
+    """``h`` with ``h(T) = costs[T]`` for the basic columns (exact)."""
+    h = solve_exact([[Fraction(basis[r] >> i & 1) for i in range(n)] for r in range(n)],
+                    [Fraction(costs[basis[r]]) for r in range(n)])
+    if h is None:
+        raise ValueError("the cover LP's basis is singular")
+    return h
+
+
+@dataclass(frozen=True, eq=False)
+class Coalitions:
+    """``m_S(v)`` at ``H = inf`` for every subset and node, with argmins.
+
+    Attributes
+    ----------
+    game : NGame
+        The game.
+    scale : int
+        ``m_S(v) = cost[S][v] / scale`` (``scale = W·L^(N-1)``).
+    cost : Mapping
+        Subset mask -> array of scaled integer costs (``-1`` where no goal is reachable).
+    split : Mapping
+        Subset mask -> array of ``split_S(v)`` (scaled; ``-1`` where undefined).
+    split_choice : Mapping
+        Subset mask -> array: index into :func:`balanced_collections` of an argmin split.
+    """
+
+    game: NGame
+    scale: int
+    cost: Mapping[int, np.ndarray]
+    split: Mapping[int, np.ndarray]
+    split_choice: Mapping[int, np.ndarray]
+
+    def m(self, mask: int, v: int) -> Fraction | None:
+        """``m_S(v)`` exactly (None where no goal is reachable from ``v``)."""
+        x = int(self.cost[mask][v])
+        return None if x < 0 else Fraction(x, self.scale)
+
+
+def _collections_in(mask: int) -> list[tuple[tuple[int, Fraction], ...]]:
+    elems = subset_members(mask)
+    out = []
+    for coll in balanced_collections(len(elems)):
+        out.append(tuple((sum(1 << elems[i] for i in subset_members(t)), lam)
+                         for t, lam in coll))
+    return out
+
+
+def coalition_dp(game: NGame) -> Coalitions:
+    """The coalition DP at ``H = inf`` (one Dijkstra per subset, by increasing size).
+
+    Examples
+    --------
+    The hub: ``s -> m`` then ``m -> a | b | c`` (unit weights), ``s -> a`` weight 2:
+
+    >>> from solver.game.indexed_instance import ngame_from_json
+    >>> doc = {"graph": {"directed": True, "nodes": [{"id": x} for x in "smabc"],
+    ...        "edges": [{"source": "s", "target": "m"}, {"source": "m", "target": "a"},
+    ...                  {"source": "m", "target": "b"}, {"source": "m", "target": "c"},
+    ...                  {"source": "s", "target": "a", "weight": 2},
+    ...                  {"source": "a", "target": "s"}, {"source": "b", "target": "s"},
+    ...                  {"source": "c", "target": "s"}]},
+    ...        "start": "s", "goals": ["a", "b", "c"], "prior": ["1/2", "1/3", "1/6"]}
+    >>> dp = coalition_dp(ngame_from_json(doc))
+    >>> [str(dp.m(t, 0)) for t in (1, 2, 4, 7)]
+    ['2', '2', '2', '4']
+    """
+    n_goals = game.n_goals
+    net = game.network
+    n = net.n_nodes
+    sizes = range(2, n_goals + 1)
+    lcm = math.lcm(1, *(lam.denominator for s in sizes for coll in balanced_collections(s)
+                        for _, lam in coll))
+    scale = lcm ** (n_goals - 1)
+    is_goal = np.zeros(n, dtype=bool)
+    is_goal[list(game.goals)] = True
+    tails = np.repeat(np.arange(n, dtype=np.int64), np.diff(net.indptr))
+    keep = ~is_goal[tails]  # walks end at the first goal: arcs out of goals are never used
+    t_arc, h_arc = tails[keep], net.indices[keep].astype(np.int64)
+    w_arc = [int(x) * scale for x in net.weights[keep].tolist()]
+    reach = np.zeros(n, dtype=bool)  # nodes from which some goal is reachable
+    for d in game.dist_to:
+        reach |= np.isfinite(d.astype(np.float64))
+    term: dict[int, list[int]] = {}
+    for g in game.goals:
+        term[g] = [int(game.dist_to[t][g]) * scale for t in range(n_goals)]
+    cost: dict[int, np.ndarray] = {}
+    split: dict[int, np.ndarray] = {}
+    choice: dict[int, np.ndarray] = {}
+    nodes = np.flatnonzero(reach & ~is_goal)
+    for mask in sorted(range(1, 1 << n_goals), key=lambda t: (bin(t).count("1"), t)):
+        init = np.full(n, -1, dtype=object)
+        for g in game.goals:
+            init[g] = sum(term[g][t] for t in subset_members(mask))
+        spl = np.full(n, -1, dtype=object)
+        pick = np.full(n, -1, dtype=np.int64)
+        if mask & (mask - 1):  # |S| >= 2: the split is known from smaller subsets
+            best = None
+            for k, coll in enumerate(_collections_in(mask)):
+                tot = np.zeros(nodes.size, dtype=object)
+                for t, lam in coll:
+                    tot = tot + cost[t][nodes] * (lam.numerator * (lcm // lam.denominator))
+                if best is None:
+                    best, arg = tot, np.zeros(nodes.size, dtype=np.int64)
+                else:
+                    better = tot < best
+                    best = np.where(better, tot, best)
+                    arg = np.where(better, k, arg)
+            assert best is not None
+            if any(int(x) % lcm for x in best):  # pragma: no cover - guaranteed by the scale
+                raise AssertionError("coalition DP: a split is not a multiple of 1/scale")
+            spl[nodes] = best // lcm
+            pick[nodes] = arg
+            init[nodes] = spl[nodes]
+        cost[mask] = _sourced_dijkstra(n, t_arc, h_arc, w_arc, init)
+        split[mask] = spl
+        choice[mask] = pick
+    return Coalitions(game, scale * game.denominator, cost, split, choice)
+
+
+def _sourced_dijkstra(n: int, tails: np.ndarray, heads: np.ndarray, weights: list[int],
+                      init: np.ndarray) -> np.ndarray:
+    """``min_x [dist(v -> x) + init[x]]`` for every ``v`` (``init < 0``: not a source)."""
+    src = [i for i in range(n) if init[i] >= 0]
+    top = max((int(init[i]) for i in src), default=0) + sum(weights) + 2
+    if top < EXACT_FLOAT:
+        # reversed arcs plus a super-source n with arcs n -> x of weight init[x] + 1 (> 0)
+        rows = np.concatenate([heads, np.full(len(src), n, dtype=np.int64)])
+        cols = np.concatenate([tails, np.asarray(src, dtype=np.int64)])
+        vals = np.concatenate([np.asarray(weights, dtype=np.float64),
+                               np.asarray([int(init[i]) + 1 for i in src], dtype=np.float64)])
+        mat = sp.csr_matrix((vals, (rows, cols)), shape=(n + 1, n + 1))
+        d = dijkstra(mat, directed=True, indices=n)[:n]
+        out = np.full(n, -1, dtype=object)
+        fin = np.isfinite(d)
+        out[fin] = [int(x) - 1 for x in d[fin]]
+        return out
+    pred: list[list[tuple[int, int]]] = [[] for _ in range(n)]
+    for t, h, w in zip(tails.tolist(), heads.tolist(), weights, strict=True):
+        pred[h].append((t, w))
+    best: list[int | None] = [None] * n
+    heap = [(int(init[i]), i) for i in src]
+    for k, i in heap:
+        best[i] = k
+    heapq.heapify(heap)
+    while heap:
+        k, x = heapq.heappop(heap)
+        if (b := best[x]) is not None and k > b:
+            continue
+        for u, w in pred[x]:
+            nk = k + w
+            b = best[u]
+            if b is None or nk < b:
+                best[u] = nk
+                heapq.heappush(heap, (nk, u))
+    return np.array([-1 if b is None else b for b in best], dtype=object)

@@ -1,0 +1,166 @@
+"""Reading the ``dpp`` instance JSON (``docs/formats.md`` §1) and the compact map instance
+(``dpp-map-instance/1``, §1c: a grid game by reference to its ``.map`` file) into an
+:class:`~solver.game.instance.Instance`."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from pathlib import Path
+from typing import Any
+
+import networkx as nx
+
+from dppio.limits import check_rational
+from dppio.text import json_shown
+from solver.errors import InstanceFormatError, InvalidInstanceError
+from solver.formats.json_text import parse_json_text, read_json
+from solver.formats.map_instance import MAP_INSTANCE_FORMAT, read_map_document, two_goals_only
+from solver.formats.nodes import node_from_json
+from solver.game.instance import Instance
+from solver.numbers import parse_number
+
+__all__ = ["instance_from_json", "load_instance"]
+
+
+def load_instance(path: str | Path) -> Instance:
+    """Load an instance JSON file.
+
+    Examples
+    --------
+    >>> import tempfile, json, os
+    >>> doc = {"graph": {"directed": False, "nodes": [{"id": "s"}, {"id": "a"}, {"id": "b"}],
+    ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
+    ...        "start": "s", "goals": ["a", "b"], "prior": [0.6, 0.4]}
+    >>> with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+    ...     json.dump(doc, f)
+    >>> load_instance(f.name).b1
+    Fraction(3, 5)
+    >>> os.unlink(f.name)
+    """
+    doc = read_json(path)  # its errors name the file
+    try:
+        return instance_from_json(doc, base=Path(path).parent)
+    except InstanceFormatError as exc:  # one line naming the file
+        raise InstanceFormatError(f"{path}: {exc}") from None
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{path}: {exc}") from None
+
+
+def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None) -> Instance:
+    """Build an :class:`Instance` from the instance JSON document (dict or text).
+
+    Parameters
+    ----------
+    data : dict or str
+        The document of ``docs/formats.md`` §1, or its JSON text (decimals read exactly); or
+        a compact map instance (§1c), read from its ``.map`` file straight into CSR arrays.
+    base : Path, optional
+        The directory a compact map instance's relative ``map`` path is relative to (the
+        instance file's; default: the working directory).
+
+    Returns
+    -------
+    Instance
+
+    Raises
+    ------
+    InstanceFormatError
+        Malformed document (missing keys, bad JSON, wrong shapes).
+    InvalidInstanceError
+        A well-formed document that is not a valid game (e.g. unknown nodes).
+
+    Examples
+    --------
+    >>> text = ('{"graph": {"nodes": [{"id": "s"}, {"id": "g1"}, {"id": "g2"}], "edges": '
+    ...         '[{"source": "s", "target": "g1"}, {"source": "s", "target": "g2"}]}, '
+    ...         '"start": "s", "goals": ["g1", "g2"], "prior": [0.7, 0.3]}')
+    >>> inst = instance_from_json(text)
+    >>> inst.primary, inst.secondary, inst.b1
+    ('g1', 'g2', Fraction(7, 10))
+    >>> instance_from_json({"graph": {"nodes": [], "edges": []}})
+    Traceback (most recent call last):
+    solver.errors.InstanceFormatError: instance is missing key(s): start, goals, prior
+    """
+    if isinstance(data, str):
+        data = parse_json_text(data)
+    if not isinstance(data, dict):
+        raise InstanceFormatError(f"instance must be a JSON object, got {type(data).__name__}")
+    if data.get("format") == MAP_INSTANCE_FORMAT:
+        return _from_map_document(data, base)
+    missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
+    if missing:
+        raise InstanceFormatError(f"instance is missing key(s): {', '.join(missing)}")
+    mode = data.get("numbers", "exact")
+    if mode not in ("exact", "float"):
+        raise InstanceFormatError(f"numbers: expected \"exact\" or \"float\", got {mode!r}")
+    float_weights = mode == "float"
+    graph = _graph_from_node_link(data["graph"], float_weights=float_weights)
+    goals, prior = data["goals"], data["prior"]
+    if isinstance(goals, list) and len(goals) > 2:  # N goals: solver.game.indexed_instance
+        raise InstanceFormatError(two_goals_only(len(goals)))
+    if not isinstance(goals, list) or len(goals) != 2:
+        raise InstanceFormatError(f"'goals' must be a list of two node ids, got "
+                                  f"{json_shown(goals)}")
+    if not isinstance(prior, list) or len(prior) != 2:
+        raise InstanceFormatError(f"'prior' must be a list of two numbers, one per goal, got "
+                                  f"{json_shown(prior)}")
+    return Instance(
+        graph,
+        node_from_json(data["start"]),
+        (node_from_json(goals[0]), node_from_json(goals[1])),
+        (parse_number(prior[0], where="prior[0]"), parse_number(prior[1], where="prior[1]")),
+    )
+
+
+def _from_map_document(data: dict[str, Any], base: Path | None) -> Instance:
+    """The grid instance of a compact map document (its map's sha256 checked)."""
+    blocked, start, cells, prior, connectivity, ref = read_map_document(data, base)
+    try:
+        return Instance.from_grid(blocked, start, (cells[0], cells[1]),
+                                  (parse_number(prior[0], where="prior[0]"),
+                                   parse_number(prior[1], where="prior[1]")),
+                                  connectivity=connectivity)
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{ref[:200]}: {exc}") from None
+
+
+def _graph_from_node_link(g: Any, *, float_weights: bool) -> nx.Graph:
+    if not isinstance(g, dict):
+        raise InstanceFormatError("'graph' must be a node-link JSON object")
+    if g.get("multigraph", False):
+        raise InvalidInstanceError("multigraphs are not supported: merge parallel edges")
+    nodes = g.get("nodes")
+    edges = g.get("edges", g.get("links"))
+    if not isinstance(nodes, list):
+        raise InstanceFormatError("'graph.nodes' must be a list of {\"id\": ...} objects")
+    if not isinstance(edges, list):
+        raise InstanceFormatError("'graph.edges' must be a list of edge objects")
+    directed = g.get("directed", False)
+    if not isinstance(directed, bool):
+        raise InstanceFormatError(f"graph.directed: expected true/false, got {directed!r}")
+    graph: nx.Graph = nx.DiGraph() if directed else nx.Graph()
+    for k, nd in enumerate(nodes):
+        if not isinstance(nd, dict) or "id" not in nd:
+            raise InstanceFormatError(f"graph.nodes[{k}] must be an object with an 'id'")
+        node = node_from_json(nd["id"])
+        if node in graph:
+            raise InvalidInstanceError(f"graph.nodes[{k}]: duplicate node id {nd['id']!r}")
+        graph.add_node(node)
+    for k, e in enumerate(edges):
+        if not isinstance(e, dict) or "source" not in e or "target" not in e:
+            raise InstanceFormatError(f"graph.edges[{k}] must have 'source' and 'target'")
+        u, v = node_from_json(e["source"]), node_from_json(e["target"])
+        for end in (u, v):
+            if end not in graph:
+                raise InvalidInstanceError(f"graph.edges[{k}] uses unknown node {end!r}")
+        raw = e.get("weight", 1)
+        if float_weights and isinstance(raw, Fraction):
+            # the size limit first: float() of a decimal literal such as 1e400 overflows
+            check_rational(raw, where=f"weight of edge ({u!r}, {v!r})",
+                           error=InvalidInstanceError)
+            raw = float(raw)
+        w = parse_number(raw, where=f"weight of edge ({u!r}, {v!r})", allow_float=float_weights)
+        if graph.has_edge(u, v):
+            raise InvalidInstanceError(f"graph.edges[{k}]: duplicate edge ({u!r}, {v!r})")
+        graph.add_edge(u, v, weight=w)
+    return graph

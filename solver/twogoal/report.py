@@ -1,0 +1,136 @@
+"""Human-readable text for an equilibrium (what ``dpp solve`` prints)."""
+
+from __future__ import annotations
+
+from collections.abc import Hashable, Sequence
+
+from dppio.text import decimal
+from solver.numbers import Number
+from solver.twogoal.equilibrium import Equilibrium
+
+__all__ = ["format_value", "path_label", "summarize"]
+
+_MAX_NODES = 12
+
+
+def path_label(label: str) -> str:
+    """A path label in text: ``xi1_II`` -> ``ξ^{1,II}``, ``xi1`` (one primary path) -> ``ξ¹``.
+
+    Examples
+    --------
+    >>> path_label("xi1_II"), path_label("xi1"), path_label("xi2")
+    ('ξ^{1,II}', 'ξ¹', 'ξ²')
+    """
+    head, _, tail = label.partition("_")
+    sup = {"xi1": "1", "xi2": "2"}.get(head)
+    if sup is None:
+        return label
+    if not tail:
+        return "ξ¹" if sup == "1" else "ξ²"
+    return "ξ^{" + sup + "," + tail + "}"
+
+
+def summarize(eq: Equilibrium) -> str:
+    """What ``dpp solve`` prints for the solver's result ``eq``: goals, ξ² with σ* per step and
+    phases, the primary mixture, the type costs, value and VoI (several lines).
+
+    Examples
+    --------
+    >>> from solver import solve
+    >>> from solver.game.instance import triangle
+    >>> print(summarize(solve(triangle())))
+    start 's'; primary goal g1 = 'g1' (prior 7/10), secondary goal g2 = 'g2' (prior 3/10)
+    mode: exact (rational)
+    <BLANKLINE>
+    secondary path ξ² (1 steps): 's' -> 'g2'
+      σ*(g1) per step: [1/2]
+      phases: I absent, II = steps 1..1, III absent   (t_I=0, t_II=1, T=1)
+    primary mixture:
+      ξ^{1,I}   p = 4/7     's' -> 'g1'
+      ξ^{1,II}  p = 3/7     's' -> 'g2'
+    <BLANKLINE>
+    U1 (primary cost)   = 3
+    U2 (secondary cost) = 1
+    U* (value)          = 12/5 (≈ 2.4)
+    U_bar (complete information) = 27/10 (≈ 2.7)
+    VoI*                = 1/9 (≈ 0.1111)
+    """
+    inst = eq.instance
+    ph = eq.phases
+    lines = [
+        f"start {inst.start!r}; primary goal g1 = {inst.primary!r} (prior {inst.b1}), "
+        f"secondary goal g2 = {inst.secondary!r} (prior {inst.b2})",
+        f"mode: {eq.numbers.describe()}",
+        "",
+        f"secondary path ξ² ({ph.T} steps): {_path(eq.secondary_path)}",
+        f"  σ*(g1) per step: {_nums(eq.schedule)}",
+        f"  phases: I {_steps(1, ph.t_I)}, II {_steps(ph.t_I + 1, ph.t_II)}, "
+        f"III {_steps(ph.t_II + 1, ph.T)}   (t_I={ph.t_I}, t_II={ph.t_II}, T={ph.T})",
+        "primary mixture:",
+    ]
+    for p in eq.primary_paths:
+        label = path_label(p.label)
+        lines.append(f"  {label:9s} p = {p.probability!s:7s} {_path(p.nodes)}")
+    lines += [
+        "",
+        f"U1 (primary cost)   = {_num(eq.U1)}",
+        f"U2 (secondary cost) = {_num(eq.U2)}",
+        f"U* (value)          = {_num(eq.U)}",
+        f"U_bar (complete information) = {_num(eq.U_bar)}",
+        f"VoI*                = {_num(eq.VoI)}",
+    ]
+    return "\n".join(lines)
+
+
+def _steps(first: int, last: int) -> str:
+    return f"= steps {first}..{last}" if first <= last else "absent"
+
+
+def format_value(x: Number) -> str:
+    """A value as the text outputs write it: ``p/q (≈ decimal)``, an integer bare.
+
+    The same style as the checker's reports (``dppverify.text.show_value``); a fraction longer
+    than 40 characters is shown by its decimal only (``--json`` has the exact form).
+
+    Parameters
+    ----------
+    x : Fraction, int or float
+        The value (a float is float mode: dppio.text.decimal, no fraction).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> format_value(Fraction(12, 7)), format_value(Fraction(4)), format_value(2 ** 0.5)
+    ('12/7 (≈ 1.714)', '4', '1.414')
+    >>> format_value(Fraction(10**50 + 1, 10**50))
+    '≈ 1 (exact: a 102-digit fraction, see --json)'
+    """
+    if isinstance(x, float):
+        return decimal(x)
+    if x.denominator == 1:
+        return str(x)
+    text = str(x)
+    if len(text) > 40:
+        return f"≈ {decimal(x)} (exact: a {len(text) - 1}-digit fraction, see --json)"
+    return f"{text} (≈ {decimal(x)})"
+
+
+_num = format_value
+
+
+def _nums(xs: Sequence[Number]) -> str:
+    shown = [str(x) if not isinstance(x, float) else decimal(x) for x in xs[:_MAX_NODES * 2]]
+    more = f" ... (+{len(xs) - len(shown)})" if len(xs) > len(shown) else ""
+    return "[" + ", ".join(shown) + "]" + more
+
+
+def _path(nodes: Sequence[Hashable]) -> str:
+    if len(nodes) <= _MAX_NODES:
+        return " -> ".join(map(repr, nodes))
+    head = " -> ".join(map(repr, nodes[:5]))
+    tail = " -> ".join(map(repr, nodes[-5:]))
+    return f"{head} -> ... ({len(nodes) - 10} more) ... -> {tail}"
