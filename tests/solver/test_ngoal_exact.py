@@ -2,8 +2,8 @@
 
 - property (random digraphs, grids, hub gadgets, N = 2..5): the solver answers, its value is
   the game's value, and its profile is certified by the checker — on the untruncated game
-  (structured route, H = inf) where the rule has no extra normals or the checker reads them,
-  and by the tree route on finite games (hub gadgets without return arcs) with the rule
+  (structured route, H = inf), extra normals or not, and by the tree route on finite games
+  (hub gadgets without return arcs) with the rule
   written out as a table on every prefix, at H = the longest walk (the whole game);
 - the N = 4 gadget of proofs/NGOAL.md: value 12/7 with the normals (2, 2, 2, 1), the
   equilibrium of NGOAL (types {1,2} via A, {1,3} via B, {2,3,4} via C, each ½/½);
@@ -13,7 +13,6 @@
 
 from __future__ import annotations
 
-import functools
 import itertools
 import json
 from fractions import Fraction
@@ -49,14 +48,6 @@ def _walk_cost(eq: NEquilibrium, theta: int, walk: tuple[int, ...]) -> Fraction:
                              strict=True):
         paid += Fraction(int(game.network.arc_weight(v, u) or 0), game.denominator) * sigma[theta]
     return paid + game.distance(theta, walk[-1])
-
-
-@functools.cache
-def _checker_reads_normals() -> bool:
-    """Whether the checker evaluates the guarantee rule with ``normals`` (issue 29, h29c)."""
-    eq = solve_ngoal(ngame_from_json(GADGET))
-    cert = certify(GADGET, nequilibrium_to_json(eq), horizon="inf", route="structured")
-    return cert.check("ngoal.profile.wellformed").status == "pass"
 
 
 def _table_profile(eq: NEquilibrium, doc: dict[str, Any]) -> dict[str, Any]:
@@ -106,9 +97,8 @@ def _check(doc: dict[str, Any], *, finite: bool = False) -> NEquilibrium:
         assert sum(p for _, p in mix) == 1
         for walk, _ in mix:
             assert _walk_cost(eq, theta, walk) == eq.h[theta]
-    if not eq.normals or _checker_reads_normals():
-        cert = certify(doc, nequilibrium_to_json(eq), horizon="inf", route="structured")
-        assert cert.verdict == "pass", cert.checks
+    cert = certify(doc, nequilibrium_to_json(eq), horizon="inf", route="structured")
+    assert cert.verdict == "pass", cert.checks
     if finite:
         h = _longest_walk(eq)
         cert = certify(doc, _table_profile(eq, doc), horizon=h, route="tree")

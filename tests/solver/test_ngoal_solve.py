@@ -61,11 +61,7 @@ def _certify(doc: dict[str, Any]) -> tuple[Any, Any]:
 @settings(max_examples=40, deadline=None)
 @given(doc=ngoal_instances(min_goals=2, max_goals=4))
 def test_solver_profiles_are_certified_on_the_untruncated_game(doc: dict[str, Any]) -> None:
-    from tests.solver.test_ngoal_exact import _checker_reads_normals
-
     eq, cert = _certify(doc)
-    if eq.normals and not _checker_reads_normals():
-        return  # extra normals: certified once the checker reads them (test_ngoal_exact)
     assert cert.verdict == "pass", cert.checks
     assert eq.U == eq.dp_value == sum(b * h for b, h in zip(eq.game.prior, eq.h, strict=True))
 
@@ -180,21 +176,15 @@ def _run(*args: str) -> tuple[int, str, str]:
 
 def test_the_n4_gadget_is_solved_with_extra_normals(tmp_path: Path) -> None:
     """Once refused (the 0/1 arc condition fails there); now solved with the normals
-    (2, 2, 2, 1) (proofs/NEXACT.md). Written once the checker certifies the rule with normals;
-    until the checker reads them (issue 29's checker side) the answer is exit 3, one line."""
-    from tests.solver.test_ngoal_exact import _checker_reads_normals
-
+    (2, 2, 2, 1) (proofs/NEXACT.md), written and certified by the checker."""
     inst = tmp_path / "gadget.json"
     inst.write_text(json.dumps(GADGET))
     out = tmp_path / "p.json"
     code, stdout, err = _run("solve", str(inst), "-o", str(out))
-    if _checker_reads_normals():
-        assert code == 0, err
-        doc = json.loads(out.read_text())
-        assert doc["value"]["U"] == "12/7" and [2, 2, 2, 1] in doc["defender"]["normals"]
-    else:
-        assert code == 3 and stdout == "" and not out.exists()
-        assert len(err.strip().splitlines()) == 1, err
+    assert code == 0, err
+    doc = json.loads(out.read_text())
+    assert doc["value"]["U"] == "12/7" and [2, 2, 2, 1] in doc["defender"]["normals"]
+    assert "certified" in stdout + err
 
 
 def test_solve_then_certify_on_a_standard_map(tmp_path: Path) -> None:
