@@ -156,7 +156,7 @@ def value_record(inst: Instance, u: Number, horizon: int | None, equilibrium: bo
         nums = {"V_H": v.value, "U": u}
         if v.value == u:
             return ngoal_record("ngoal.value.V_H", "pass", f"V_H (H = {h}) = {v.value} = U "
-                        f"({v.upper_source}, {v.layers} layers)", nums, relies)
+                        f"({v.upper_source}, {v.effort})", nums, relies)
         return ngoal_record("ngoal.value.V_H", "fail", f"U = {u} differs from V_H = {v.value} "
                     f"(H = {h}; {v.upper_source}): the profile is not an equilibrium",
                     nums, relies)

@@ -131,7 +131,7 @@ def _ngoal_lines(r: RoutedValue) -> list[str]:
     >>> from dppverify.game.examples import star3
     >>> print(_ngoal_lines(routed_value(star3(), None))[0])
     V_H (H = inf, N = 3 goals) = 3/2 (≈ 1.5) exactly; coalition DP (NG.4: the value for \
-three goals) (3 layers)
+three goals) (7 label-setting passes)
     """
     assert isinstance(r.structured, NValue | None)  # N goals: the guarantee sets
     h = "inf" if r.horizon is None else str(r.horizon)
@@ -149,7 +149,7 @@ three goals) (3 layers)
         head = f"V_H (H = {h}, N = {r.goals} goals)"
         if v.value is not None:
             lines.append(f"{head} = {show_value(v.value)} exactly; {v.upper_source} "
-                         f"({count(v.layers, 'layer')})")
+                         f"({v.effort})")
         else:
             lines.append(f"{head} in [{show_value(v.lower)}, {show_value(v.upper)}]: lower "
                          f"bound from {v.lower_source}, upper bound from {v.upper_source}; "

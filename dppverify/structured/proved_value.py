@@ -129,7 +129,8 @@ class NValue(Bracket):
     lower_source, upper_source : str
         Where each bound comes from.
     layers : int
-        DP layers of the run that gave ``upper``.
+        DP layers of the run that gave ``upper`` (``H = inf``: its label-setting passes, one
+        per normal; :attr:`effort` says which).
     normals : tuple of tuple of int
         The facet normals beyond the 0/1 vectors that the final DP used (empty for the
         coalition DP).
@@ -149,6 +150,21 @@ class NValue(Bracket):
         """``V_H`` when proved, else None (:attr:`exact`, under the name the routes' values
         share)."""
         return self.exact
+
+    @property
+    def effort(self) -> str:
+        """What :attr:`layers` counts, for messages: DP layers at a finite ``H``, label-setting
+        passes (one per normal) at ``H = inf``.
+
+        Examples
+        --------
+        >>> from dppverify.game.examples import star3
+        >>> nvalue(star3(), None).effort, nvalue(star3(), 2).effort
+        ('7 label-setting passes', '2 layers')
+        """
+        if self.horizon is None:
+            return f"{self.layers} label-setting pass{'' if self.layers == 1 else 'es'}"
+        return f"{self.layers} layer{'' if self.layers == 1 else 's'}"
 
 
 def _deflated_lower(run: CoalitionRunner, layer: dict[int, np.ndarray]) -> Fraction | None:
