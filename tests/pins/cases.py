@@ -166,8 +166,8 @@ CASES: tuple[Case, ...] = (
     _one("solve_star3_json", "solve", "star3.json", "--json"),
     _one("solve_star3_equal_prior", "solve", "star3_equal_prior.json"),
     _one("solve_paper10_map_n3", "solve", *_PAPER10_N3, "-o", "p3.json"),
-    _one("solve_hub4_refused", "solve", "hub4.json"),
-    _one("solve_hub4_refused_output", "solve", "hub4.json", "--json", "-o", "p.json"),
+    _one("solve_hub4", "solve", "hub4.json"),
+    _one("solve_hub4_output", "solve", "hub4.json", "--json", "-o", "p.json"),
     _one("solve_malformed", "solve", "malformed.json"),
     _one("solve_profile_as_instance", "solve", "triangle_profile.json"),
 )
