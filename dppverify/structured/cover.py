@@ -97,7 +97,8 @@ def dets(entries: Sequence[Sequence[np.ndarray]]) -> np.ndarray:
 
     ``entries[r][c]`` holds entry ``(r, c)`` of every matrix (a 1-D int64 array). Laplace
     expansion bottom-up over column subsets: the minor of the last ``j`` rows on a ``j``-column
-    set ``C`` is ``Σ_{c ∈ C} ± M[s-j, c] · minor(C - c)``.
+    set ``C`` is ``Σ_{c ∈ C} ± M[s-j, c] · minor(C - c)``. Where a minor could leave int64
+    (``s!·max|entry|^s >= 2^62``) the arithmetic is in Python integers (an object array).
 
     Examples
     --------
@@ -108,6 +109,9 @@ def dets(entries: Sequence[Sequence[np.ndarray]]) -> np.ndarray:
     [1, -1]
     """
     s = len(entries)
+    top = max((int(np.abs(e).max(initial=0)) for row in entries for e in row), default=0)
+    if math.factorial(s) * max(top, 1) ** s >= 2 ** 62:  # |minor| <= j!·top^j: Python ints
+        entries = [[np.asarray(e, dtype=object) for e in row] for row in entries]
     minors: dict[int, np.ndarray] = {0: np.ones_like(entries[0][0])}
     for j in range(1, s + 1):
         row = s - j
@@ -193,13 +197,15 @@ def _basic_solutions(columns: tuple[Normal, ...], rhs: Normal) -> Table:
         entries = [[e[ok] for e in row] for row in entries]
         if not chunk.size:
             continue
-        numer = np.empty((chunk.shape[0], m), dtype=np.int64)
+        numer = np.empty((chunk.shape[0], m), dtype=det.dtype)
         for i in range(m):  # Cramer: column i replaced by the right-hand side
             numer[:, i] = dets([[np.full(chunk.shape[0], b[r]) if c == i else entries[r][c]
                                  for c in range(m)] for r in range(m)])
-        sign = np.sign(det)[:, None]
+        sign = np.where(det > 0, 1, -1).astype(det.dtype)[:, None]
         feas = np.all(numer * sign >= 0, axis=1)
         chunk, det, numer = chunk[feas], det[feas], numer[feas]
+        if not chunk.size:
+            continue
         common = math.lcm(1, *(int(x) for x in np.unique(np.abs(det))))
         wide = common * (int(np.abs(numer).max(initial=0)) + 1) >= 2 ** 62
         dense = np.zeros((chunk.shape[0], len(keep)), dtype=object if wide else np.int64)
@@ -381,18 +387,18 @@ def packing_directions(normals: tuple[Normal, ...]) -> tuple[tuple[Fraction, ...
                 ones = np.ones(d.size, dtype=np.int64)
                 lam = np.stack([dets([[ones if c == i else sub[r][c] for c in range(t)]
                                       for r in range(t)]) for i in range(t)], axis=1)
-                sign = np.sign(d)[:, None]
-                lam = lam * sign  # λ·|det|
+                lam = lam * np.where(d > 0, 1, -1).astype(d.dtype)[:, None]  # λ·|det|
                 feas = np.all(lam >= 0, axis=1)
                 if not feas.any():
                     continue
-                y = np.einsum("bc,bcn->bn", lam[feas], cols[ok][feas])  # y·|det|
+                y = (lam[feas][:, :, None] * cols[ok][feas]).sum(axis=1)  # y·|det|
                 ad = np.abs(d[feas])
                 keep = np.all(y <= ad[:, None], axis=1)
                 pairs = np.concatenate([y[keep], ad[keep][:, None]], axis=1)
-                g = np.gcd.reduce(pairs, axis=1)
-                for *row, den in np.unique(pairs // g[:, None], axis=0).tolist():
-                    found.add(tuple(Fraction(x, den) for x in row))
+                if pairs.dtype != object:
+                    pairs = np.unique(pairs, axis=0)
+                for *row, den in pairs.tolist():
+                    found.add(tuple(Fraction(int(x), int(den)) for x in row))
     return tuple(sorted(found))
 
 

@@ -11,7 +11,13 @@ import scipy.optimize
 from hypothesis import given
 from hypothesis import strategies as st
 
-from dppverify.structured.cover import balanced_vertices, members, min_cover, popcount
+from dppverify.structured.cover import (
+    balanced_vertices,
+    basic_solutions,
+    members,
+    min_cover,
+    popcount,
+)
 
 
 @pytest.mark.parametrize(("size", "count"), [(2, 1), (3, 5), (4, 41), (5, 1291)])
@@ -95,3 +101,50 @@ def test_masks() -> None:
     assert [popcount(m) for m in range(8)] == [0, 1, 1, 2, 1, 2, 2, 3]
     assert [members(m) for m in (0, 5, 6)] == [(), (0, 2), (1, 2)]
     assert all(len(members(m)) == popcount(m) for m in itertools.chain(range(64)))
+
+
+def _brute_vertices(columns: list[tuple[int, ...]], rhs: tuple[int, ...]
+                    ) -> set[tuple[Fraction, ...]]:
+    """Every basic feasible solution of ``Σ c_j columns[j] = rhs, c >= 0`` by Gauss-Jordan in
+    Fractions over all bases (rhs of full support)."""
+    n = len(rhs)
+    out: set[tuple[Fraction, ...]] = set()
+    for basis in itertools.combinations(range(len(columns)), n):
+        mat = [[Fraction(columns[j][i]) for j in basis] + [Fraction(rhs[i])] for i in range(n)]
+        for col in range(n):
+            piv = next((r for r in range(col, n) if mat[r][col] != 0), None)
+            if piv is None:
+                break
+            mat[col], mat[piv] = mat[piv], mat[col]
+            mat[col] = [x / mat[col][col] for x in mat[col]]
+            for r in range(n):
+                if r != col and mat[r][col] != 0:
+                    mat[r] = [x - mat[r][col] * y for x, y in zip(mat[r], mat[col], strict=True)]
+        else:
+            c = [Fraction(0)] * len(columns)
+            for pos, j in enumerate(basis):
+                c[j] = mat[pos][n]
+            if all(x >= 0 for x in c):
+                out.add(tuple(c))
+    return out
+
+
+def test_vertex_tables_stay_exact_beyond_int64() -> None:
+    """Five goals, four normals with large prime entries: the determinants' lcm is about
+    10^20 (beyond int64). The table was once built in int64 (its lcm overflowed silently,
+    giving vertices that do not solve the system, or a caught crash in np.gcd); it is exact
+    now and equals a brute-force enumeration in Fractions."""
+    units = [tuple(int(i == j) for j in range(5)) for i in range(5)]
+    primes = (100003, 100019, 100043, 100049)
+    extra = [tuple(p if j == i else 1 for j in range(5)) for i, p in enumerate(primes)]
+    columns = units + extra
+    rhs = (1, 1, 1, 1, 1)
+    table = basic_solutions(columns, rhs)
+    assert table.lcm >= 2 ** 63
+    got = {tuple(v[table.columns.index(j)] if j in table.columns else Fraction(0)
+                 for j in range(len(columns))) for v in table.vertices}
+    for c in got:
+        assert all(x >= 0 for x in c)
+        assert all(sum(c[j] * columns[j][i] for j in range(len(columns))) == rhs[i]
+                   for i in range(5))
+    assert got == _brute_vertices(columns, rhs)

@@ -19,8 +19,10 @@ from dppverify.certify import certify
 from dppverify.cli.value import value_command
 from dppverify.game.examples import hub4, hub4_document
 from dppverify.game.instance import instance_from_json
+from dppverify.structured.arc_condition import arc_condition
 from dppverify.structured.coalition import coalition_value
 from dppverify.structured.cover import balanced_vertices, basic_solutions, zero_one_normals
+from dppverify.structured.normal_fixpoint import normal_sets
 from dppverify.structured.proved_value import lower_bound_simple, nvalue
 from dppverify.tree_route.tree import count_prefixes
 from dppverify.tree_route.value_lp import game_value
@@ -184,3 +186,22 @@ def test_the_simple_lower_bound_is_below_the_value() -> None:
         inst = instance_from_json(hub_gadget(rng, 4))
         low, source = lower_bound_simple(inst)
         assert low <= nvalue(inst, None).upper and "NG.9" in source
+
+
+@pytest.mark.parametrize("seed", [91, 117])
+def test_five_goal_hub_values_at_h_inf_are_exact_and_equal_the_tree_lp(seed: int) -> None:
+    """Issue 29: ``dpp value`` stayed bracketed on N = 5 hubs whose value is known (the value
+    is the coalition DP's here, as in the issue's [299/126, 22/9], but its sets fail the arc
+    test at u -> u1, so it was not proved; the brackets were [107/42, 55/21] and
+    [97/42, 50/21]). The refinement now proves the value at H = inf; these hubs have no
+    return arcs, so every walk has at most three steps and the tree LP at H = 4 is the whole
+    game's value (NG.1), an independent judge."""
+    from tests.solver._ngoal_families import hub
+
+    inst = instance_from_json(hub(random.Random(f"dag-{seed}"), 5, dag=True))
+    v = nvalue(inst, None)
+    assert not arc_condition(normal_sets(inst), inst.start).holds  # the 0/1 sets do not prove it
+    b = game_value(inst, 4).bracket
+    assert b.closed
+    assert v.closed and v.value == b.exact, (v, b)
+    assert v.normals and "certified at every arc" in v.upper_source
