@@ -13,6 +13,7 @@ certificate (NG.8) holds, else an exact bracket naming both bounds).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
@@ -230,7 +231,8 @@ class RoutedValue:
 
 def routed_value(instance: Instance, horizon: int | None, *, route: Route = "auto",
                  max_prefixes: int = DEFAULT_MAX_PREFIXES,
-                 progress: bool = False) -> RoutedValue:
+                 progress: bool = False,
+                 phase: Callable[[str], None] | None = None) -> RoutedValue:
     """``V_H`` of ``instance`` by the tree route, the structured route, or both.
 
     Parameters
@@ -245,6 +247,9 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
         Size guard of the walk tree.
     progress : bool
         Progress bars on stderr (two-goal tree route).
+    phase : callable, optional
+        Called with a short description of each phase of the N-goal structured route (the
+        ``--progress`` line of ``dpp value``).
 
     Returns
     -------
@@ -275,7 +280,7 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
     """
     chosen = resolve_route(route, instance, horizon, max_prefixes)
     if ngoal_game(instance):
-        return _nrouted_value(instance, horizon, chosen, max_prefixes)
+        return _nrouted_value(instance, horizon, chosen, max_prefixes, phase)
     tree = sv = None
     if chosen in ("structured", "both"):
         sv = structured_value(instance, horizon)
@@ -289,11 +294,13 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
 
 
 def _nrouted_value(instance: Instance, horizon: int | None, chosen: Chosen,
-                   max_prefixes: int) -> RoutedValue:
+                   max_prefixes: int, phase: Callable[[str], None] | None = None
+                   ) -> RoutedValue:
     """:func:`routed_value` with N goals: the tree LP with N types, the guarantee sets."""
     tree = (game_value(instance, horizon, max_prefixes=max_prefixes)
             if chosen in ("tree", "both") and horizon is not None else None)
-    dp = nvalue(instance, horizon) if chosen in ("structured", "both") else None
+    dp = (nvalue(instance, horizon, progress=phase) if chosen in ("structured", "both")
+          else None)
     disagreement = None
     if tree is not None and dp is not None:
         b = tree.bracket

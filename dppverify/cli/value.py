@@ -13,7 +13,13 @@ import click
 
 from dppio.limits import MAX_PREFIXES_LIMIT
 from dppio.text import count, decimal
-from dppverify.cli.conventions import emit, output_file_option, progress_option, want_progress
+from dppverify.cli.conventions import (
+    PhaseBar,
+    emit,
+    output_file_option,
+    progress_option,
+    want_progress,
+)
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import HORIZON, load_game
 from dppverify.cli.map_options import MapRequest, map_options
@@ -70,12 +76,18 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
       dpp value examples/triangle.json -H 4 -o value.json
       dpp value --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 6
     """
+    show = want_progress(progress)
+    bar = PhaseBar(show, "value", "reading the instance")
     try:
         refuse_input_as_output(output, [instance, grid.path if grid else None])
-        r = routed_value(load_game(instance, grid, "dpp value"), horizon, route=route,
-                         max_prefixes=max_prefixes, progress=want_progress(progress))
+        game = load_game(instance, grid, "dpp value")
+        bar.phase(f"V_H (route {route})")
+        r = routed_value(game, horizon, route=route, max_prefixes=max_prefixes,
+                         progress=show, phase=bar.phase)
     except CheckerError as exc:
+        bar.close()
         fail(exc)
+    bar.close()
     lines = routed_lines(r)
     emit(value_document(r), "\n".join(lines), as_json=as_json, output=output,
          summary=lines[0] if lines else "")

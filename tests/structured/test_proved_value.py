@@ -205,3 +205,17 @@ def test_five_goal_hub_values_at_h_inf_are_exact_and_equal_the_tree_lp(seed: int
     assert b.closed
     assert v.closed and v.value == b.exact, (v, b)
     assert v.normals and "certified at every arc" in v.upper_source
+
+
+def test_value_progress_names_each_phase_on_stderr(tmp_path: Path) -> None:
+    """Issue 32: ``dpp value --progress`` printed nothing while the N-goal structured route
+    ran; it now shows a status line naming the phase (the fixpoint passes, the arc test, each
+    refinement round), on stderr only."""
+    i = write_doc(tmp_path, "hub.json", hub4_document())
+    r = run_cli(value_command, [i, "--progress"])
+    assert r.exit_code == 0
+    assert "value: the coalition DP at H = inf" in r.stderr
+    assert "refinement round 1" in r.stderr
+    assert "value:" not in r.stdout and "12/7" in r.stdout
+    quiet = run_cli(value_command, [i, "--no-progress"])
+    assert quiet.stderr == "" and quiet.stdout == r.stdout
