@@ -14,8 +14,10 @@ from fractions import Fraction
 from dppverify.game.examples import hub4
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile_types import GuaranteeRule
+from dppverify.structured.arc_condition import arc_condition, walkable_arcs
 from dppverify.structured.cover import basic_solutions, min_cover_vectors, zero_one_normals
 from dppverify.structured.guarantee import guarantee_sigma, rule_order
+from dppverify.structured.lexmin import simplex_min
 from dppverify.structured.normal_fixpoint import normal_sets
 from dppverify.structured.rule_response import RuleSearch
 
@@ -170,6 +172,77 @@ def test_NR2_every_walk_costs_at_least_h_when_the_arc_condition_holds() -> None:
             total = cost[t] + Fraction(inst.dist_to[t][v])
             assert total >= h[t]  # NR.2
             assert total == h[t] - r[t] + Fraction(inst.dist_to[t][v])  # NR.3
+
+
+def _solve(mat: list[list[Fraction]], rhs: list[Fraction]) -> list[Fraction] | None:
+    """The unique solution of a square system in Fractions, None when singular."""
+    n = len(rhs)
+    a = [[*row, b] for row, b in zip(mat, rhs, strict=True)]
+    for col in range(n):
+        piv = next((r for r in range(col, n) if a[r][col] != 0), None)
+        if piv is None:
+            return None
+        a[col], a[piv] = a[piv], a[col]
+        a[col] = [x / a[col][col] for x in a[col]]
+        for r in range(n):
+            if r != col and a[r][col] != 0:
+                a[r] = [x - a[r][col] * y for x, y in zip(a[r], a[col], strict=True)]
+    return [a[i][n] for i in range(n)]
+
+
+def _vertices(normals: tuple[tuple[int, ...], ...], m: list[Fraction]) -> list[list[Fraction]]:
+    """The maximal vertices of F = {r : a·r <= m_a, a ∈ A} (N tight, independent rows,
+    feasible; not below another vertex)."""
+    n = len(normals[0])
+    found: set[tuple[Fraction, ...]] = set()
+    for rows in itertools.combinations(range(len(normals)), n):
+        r = _solve([[Fraction(x) for x in normals[j]] for j in rows], [m[j] for j in rows])
+        if r is not None and all(sum((a * x for a, x in zip(normals[j], r, strict=True)),
+                                     Fraction(0)) <= m[j] for j in range(len(normals))):
+            found.add(tuple(r))
+    out = [list(r) for r in found]
+    # F_u + wΔ^N is down-closed too: the vertices below another one need no test
+    return [r for r in out if not any(q != r and all(x <= y for x, y in zip(r, q, strict=True))
+                                      for q in out)]
+
+
+def _in_sum(normals: tuple[tuple[int, ...], ...], r: list[Fraction], m: list[Fraction],
+            w: Fraction) -> bool:
+    """r ∈ F_u + wΔ^N: some σ ∈ Δ^N with a·(r - wσ) <= m_a(u) for every a (exact simplex
+    over σ and one slack per normal)."""
+    n, k = len(r), len(normals)
+    rows = [[w * a[t] for t in range(n)] + [Fraction(-int(i == j)) for i in range(k)]
+            for j, a in enumerate(normals)]
+    rhs = [sum((a[t] * r[t] for t in range(n)), Fraction(0)) - m[j]
+           for j, a in enumerate(normals)]
+    rows.append([Fraction(1)] * n + [Fraction(0)] * k)
+    rhs.append(Fraction(1))
+    return simplex_min([Fraction(0)] * (n + k), rows, rhs) is not None
+
+
+def test_NR2_the_arc_test_is_containment_at_the_vertices_of_F() -> None:
+    """NR.2's criterion, as the checker evaluates it (support functions in the packing
+    directions), against the definition: F_x is down-closed with recession cone -R^N_+, so
+    F_x ⊆ F_u + wΔ^N (also down-closed) iff every vertex of F_x lies in F_u + wΔ^N."""
+    rng = random.Random(9)
+    cases = [(hub4(), ()), (hub4(), (HUB_EXTRAS[0],)), (hub4(), tuple(HUB_EXTRAS))]
+    cases.append((_hub(rng, 4), tuple(rng.sample(HUB_EXTRAS, rng.randint(0, 2)))))
+    verdicts = set()
+    for inst, extra in cases:
+        sets = normal_sets(inst, extra)
+        got = arc_condition(sets, inst.start)
+        tails, heads, weights = walkable_arcs(sets, inst.start)
+        failing = set()
+        for x, u, w in zip(tails, heads, weights, strict=True):
+            mx, mu = sets.column(x), sets.column(u)
+            assert mx is not None and mu is not None
+            if not all(_in_sum(sets.normals, r, mu, Fraction(w))
+                       for r in _vertices(sets.normals, mx)):
+                failing.add((x, u))
+        assert got.holds == (not failing), (extra, got, failing)
+        assert set(got.failing) == failing
+        verdicts.add(got.holds)
+    assert verdicts == {True, False}  # both outcomes occur
 
 
 def test_NR4_ab_the_abstract_state_gives_the_same_sigma_as_the_true_state() -> None:
