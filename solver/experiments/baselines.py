@@ -213,7 +213,7 @@ def field_table(rows: Sequence[BaselineRow]) -> str:
     Examples
     --------
     >>> print(field_table(run_baselines(instances(1, (), ()))).splitlines()[2])
-    | paper10 | 1 | γ* | 1.1333 | 0.5245 | 1.0000 | 0.00 | 0.00 | 0.60 | 0.60 | 1.00 | 1.00 |
+    | paper10 | 1 | γ* | 1.133 | 0.5245 | 1 | 0 | 0 | 0.6 | 0.6 | 1 | 1 |
     """
     head = ("| set | n | Attacker | cost ratio | LDP | density | "
             + " | ".join(f"truthful {p} %" for p in PERCENTS) + " |")
@@ -229,8 +229,8 @@ def field_table(rows: Sequence[BaselineRow]) -> str:
                     _mean_any([m.deceptive_density for m in ms])]
             truth = [_mean_any([m.truthful[i] for m in ms]) for i in range(len(PERCENTS))]
             lines.append(f"| {setting} | {len(ms)} | {LABELS[a]} | "
-                         + " | ".join(f"{x:.4f}" for x in mean) + " | "
-                         + " | ".join(f"{x:.2f}" for x in truth) + " |")
+                         + " | ".join(decimal(x) for x in mean) + " | "
+                         + " | ".join(decimal(x) for x in truth) + " |")
     return "\n".join(lines)
 
 
