@@ -103,7 +103,9 @@ def test_an_open_bracket_names_both_bounds(files: dict[str, str]) -> None:
     _check_shape(doc, goals=4, route="structured", horizon="inf")
     details = doc["structured"]["details"]
     assert doc["value"] == "12/7" and details["coalition_dp"]["value"] == "25/14"
-    assert "NG." in doc["lower_source"] and doc["exact"] is True
+    # the proof of exactness: the refined DP's sets pass the arc test (NRULE NR.1(e))
+    assert "NR.1(e)" in doc["lower_source"] and doc["exact"] is True
+    assert doc["structured"]["details"]["extra_normals"] == [[2, 2, 2, 1]]
 
 
 def test_float_mode_has_the_same_shape() -> None:
