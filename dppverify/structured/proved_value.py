@@ -253,6 +253,11 @@ MAX_EXTRAS = 64
 limit on ``normals``)."""
 
 
+MAX_TRANSLATED_ARCS = 20_000
+"""NG.10's translated lower bound (:func:`_translated_lower`, exact arithmetic per arc) is
+tried at ``H = inf`` only up to this many walkable arcs."""
+
+
 def _sets_value(sets: NormalSets) -> Fraction:
     inst = sets.instance
     col = sets.column(inst.start)
@@ -317,15 +322,7 @@ def _infinite_nvalue(inst: Instance, progress: Callable[[str], None] | None) -> 
     up_src = "coalition DP (NG.2: an upper bound)"
     reason = _arc_reason(inst, arc, "the coalition DP")
     lower, lo_src = lower_bound_simple(inst)
-    say("a lower bound from the coalition sets translated into a sub-fixpoint (NG.10)")
-    shift = _translated_lower(sets)
-    if shift is not None and shift > lower:
-        lower, lo_src = shift, ("the coalition DP's fixpoint sets translated into a "
-                                "sub-fixpoint (NG.10)")
-    if lower == upper:
-        src = "coalition DP (NG.2) meeting the translated fixpoint bound (NG.10)"
-        return NValue(normalize(upper), normalize(upper), src, src, None, horizon=None,
-                      layers=len(sets.normals), normals=(), coalition=coal)
+    coalition_sets = sets
     extras: list[Normal] = []
     up_normals: tuple[Normal, ...] = ()
     for round_ in range(1, MAX_ROUNDS + 1):
@@ -362,6 +359,20 @@ def _infinite_nvalue(inst: Instance, progress: Callable[[str], None] | None) -> 
         reason = _arc_reason(inst, arc, f"the DP with {len(extras)} extra normals")
     else:
         reason += f"; {MAX_ROUNDS} refinement rounds (the refinement budget)"
+    # NG.10 only for the bracket: a longest-path problem over every walkable arc in Fractions
+    if len(walkable_arcs(coalition_sets, inst.start)[0]) <= MAX_TRANSLATED_ARCS:
+        say("a lower bound from the coalition sets translated into a sub-fixpoint (NG.10)")
+        shift = _translated_lower(coalition_sets)
+        if shift is not None and shift > lower:
+            lower, lo_src = shift, ("the coalition DP's fixpoint sets translated into a "
+                                    "sub-fixpoint (NG.10)")
+        if lower == upper:
+            src = f"{up_src[:-1]}) meeting the translated fixpoint bound (NG.10)"
+            return NValue(normalize(upper), normalize(upper), src, src, None, horizon=None,
+                          layers=len(sets.normals), normals=up_normals, coalition=coal)
+    else:
+        lo_src += (f" (NG.10's translated bound not tried: more than {MAX_TRANSLATED_ARCS} "
+                   f"walkable arcs)")
     return NValue(normalize(lower), normalize(upper), lo_src, up_src, reason, horizon=None,
                   layers=len(sets.normals), normals=up_normals, coalition=coal)
 
