@@ -40,6 +40,17 @@ from dppverify.structured.normal_fixpoint import NormalSets
 
 __all__ = ["MAX_STATES", "RuleResponse", "RuleSearch", "rule_response"]
 
+def _dot(a: tuple[int, ...], r: State) -> Fraction | None:
+    """``a·r``, or None when ``a`` involves a dropped coordinate (NR.4(b))."""
+    total = Fraction(0)
+    for ai, x in zip(a, r, strict=True):
+        if ai:
+            if x is None:
+                return None
+            total += ai * x
+    return total
+
+
 MAX_STATES = 200_000
 """States the search of one type may expand before it gives up (reported as undecided)."""
 
@@ -156,16 +167,8 @@ class RuleSearch:
         rows: list[tuple[tuple[int, ...], Fraction]] = []
         if m_u is not None:
             for a, m in zip(self.normals, m_u, strict=True):
-                total = Fraction(0)
-                dead = False
-                for i in range(n):
-                    if a[i]:
-                        x = r[i]
-                        if x is None:
-                            dead = True
-                            break
-                        total += a[i] * x
-                if dead:
+                total = _dot(a, r)
+                if total is None:
                     continue
                 need = (total - m) / w
                 if need > 0:
@@ -181,16 +184,8 @@ class RuleSearch:
         n = self.n
         alive_coord = [False] * n
         for a, mu in zip(self.normals, self.mu, strict=True):
-            total = Fraction(0)
-            dead = False
-            for i in range(n):
-                if a[i]:
-                    x = r[i]
-                    if x is None:
-                        dead = True
-                        break
-                    total += a[i] * x
-            if dead or total <= mu:
+            total = _dot(a, r)
+            if total is None or total <= mu:
                 continue
             for i in range(n):
                 if a[i]:
