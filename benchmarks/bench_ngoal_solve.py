@@ -5,9 +5,9 @@ experiment's corner rule (start nearest the bottom-left corner; goals nearest th
 top-left, top-middle, bottom-right corners and the centre, in that order, within the start's
 connected region), equal priors. Measured, wall time, best of ``--repeat``:
 
-- ``solve N`` — the N-goal construction (:func:`solver.coalitions.construction.solve_ngoal`: the
-  coalition DP at H = inf, the cover LP, the coalition walks and the rule along them), from the
-  obstacle array;
+- ``solve N`` — the N-goal construction
+  (:func:`solver.coalitions.construction.coalition_equilibrium`: the coalition DP at H = inf,
+  the cover LP, the coalition walks and the rule along them), from the obstacle array;
 - ``certify N`` — the checker on that profile, structured route, H = inf, from the JSON
   documents (:func:`dppverify.certify`, what ``dpp certify`` runs), with
   its verdict (an ``error`` verdict: the arc condition could not be established, proofs/NSOLVE.md);
@@ -41,10 +41,9 @@ from dppverify.formats.movingai import grid_document
 from dppverify.formats.movingai import read_map as checker_read_map
 from dppverify.formats.standard_maps import standard_map_path
 from solver import Instance, solve
-from solver.coalitions.construction import nequilibrium_to_json, solve_ngoal
+from solver.coalitions.construction import coalition_equilibrium
 from solver.experiments.ngoal import corner_cells
 from solver.formats.movingai import read_map
-from solver.game.indexed_instance import ngame_from_grid
 
 MAPS = ("room-32-32-4", "room-64-64-8", "maze-128-128-10", "Berlin_1_256")
 
@@ -64,9 +63,10 @@ def run(name: str, n: int, repeat: int) -> dict[str, Any]:
     blocked = read_map(path)
     start, goals = corner_cells(blocked, n)
     prior = [f"1/{n}"] * n
-    t_n, eq = _best(lambda: solve_ngoal(ngame_from_grid(blocked, start, goals, prior)), repeat)
+    t_n, eq = _best(lambda: coalition_equilibrium(
+        Instance.from_grid(blocked, start, goals, prior)), repeat)
     doc = grid_document(grid, start, goals, prior)
-    prof = nequilibrium_to_json(eq)
+    prof = eq.to_json()
     t_c, cert = _best(lambda: certify(doc, prof, horizon="inf", route="structured"),
                       repeat)
     t_2, _ = _best(lambda: solve(Instance.from_grid(blocked, start, (goals[0], goals[1]),
@@ -89,13 +89,13 @@ def main() -> None:
     for n in args.goals:  # warm-up: enumerations cached per process
         tiny = np.zeros((3, 3), dtype=bool)
         cells = [(0, 0), (0, 2), (2, 2), (1, 1), (0, 1)][:n]
-        game = ngame_from_grid(tiny, (2, 0), cells, [f"1/{n}"] * n)
+        game = Instance.from_grid(tiny, (2, 0), cells, [f"1/{n}"] * n)
         doc = grid_document(checker_read_map(standard_map_path("empty-8-8")), (7, 0),
                             [(0, 7), (0, 0), (0, 4), (7, 7), (4, 4)][:n], [f"1/{n}"] * n)
-        solve_ngoal(game)
-        certify(doc, nequilibrium_to_json(solve_ngoal(ngame_from_grid(
+        coalition_equilibrium(game)
+        certify(doc, coalition_equilibrium(Instance.from_grid(
             read_map(standard_map_path("empty-8-8")), (7, 0),
-            [(0, 7), (0, 0), (0, 4), (7, 7), (4, 4)][:n], [f"1/{n}"] * n))),
+            [(0, 7), (0, 0), (0, 4), (7, 7), (4, 4)][:n], [f"1/{n}"] * n)).to_json(),
             horizon="inf", route="structured")
     print(f"{'map':16} {'N':>2} {'cells':>6} {'solve N':>9} {'certify N':>10} {'verdict':>8} "
           f"{'solve 2':>8} {'ratio':>7}")

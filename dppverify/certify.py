@@ -109,8 +109,8 @@ def _read_profile(profile: Any) -> tuple[Any, str]:
         except JsonReadError as exc:
             raise ProfileError(f"{name}: {exc}") from None
     raise ProfileError("a profile must be a JSON document (dict), a file path, JSON bytes or "
-                       f"an object with to_json(); got {type(profile).__name__} (for the "
-                       "solver's Equilibrium pass solver.equilibrium_to_json(eq))")
+                       f"an object with to_json(); got {type(profile).__name__} (the solver's "
+                       "results have to_json())")
 
 
 def _ngoal_profile_input(profile: Any) -> Mapping[str, Any] | str | Path:

@@ -32,6 +32,7 @@ __all__ = [
     "Number",
     "NumberMode",
     "format_number",
+    "format_value",
     "parse_number",
     "pivot",
     "solve_exact",
@@ -309,3 +310,36 @@ def pivot(rows: list[list[Fraction]], i: int, j: int) -> None:
         if k != i and row[j]:
             f = row[j]
             rows[k] = [x - f * y for x, y in zip(row, rows[i], strict=True)]
+
+
+def format_value(x: Number) -> str:
+    """A value as the text outputs write it: ``p/q (≈ decimal)``, an integer bare.
+
+    The same style as the checker's reports (``dppverify.text.show_value``); a fraction longer
+    than 40 characters is shown by its decimal only (``--json`` has the exact form).
+
+    Parameters
+    ----------
+    x : Fraction, int or float
+        The value (a float is float mode: 10 significant digits, no fraction).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> format_value(Fraction(12, 7)), format_value(Fraction(4)), format_value(2 ** 0.5)
+    ('12/7 (≈ 1.714286)', '4', '1.414213562')
+    >>> format_value(Fraction(10**50 + 1, 10**50))
+    '≈ 1 (exact: a 102-digit fraction, see --json)'
+    """
+    if isinstance(x, float):
+        return f"{x:.10g}"
+    if x.denominator == 1:
+        return str(x)
+    text = str(x)
+    if len(text) > 40:
+        return f"≈ {float(x):.12g} (exact: a {len(text) - 1}-digit fraction, see --json)"
+    return f"{text} (≈ {float(x):.7g})"

@@ -109,4 +109,5 @@ def test_no_module_is_named_for_n_goals() -> None:
 
 def test_the_solver_root_holds_the_front_door_and_the_core() -> None:
     loose = sorted(p.stem for p in (ROOT / "solver").glob("*.py"))
-    assert loose == ["__init__", "adapter", "errors", "limits", "numbers", "threads", "version"]
+    assert loose == ["__init__", "adapter", "errors", "limits", "numbers", "solution", "threads",
+                     "version"]

@@ -266,7 +266,8 @@ def test_certify_takes_the_solvers_objects() -> None:
     inst = solver.load_instance(TRIANGLE)
     eq = solver.solve(inst)
     assert inst.to_json() == solver.instance_to_json(inst)
-    assert eq.to_json() == solver.equilibrium_to_json(eq)
+    with pytest.warns(DeprecationWarning, match="equilibrium_to_json is deprecated"):
+        assert eq.to_json() == solver.equilibrium_to_json(eq)
     assert dppverify.certify(inst, eq).verdict == "pass"
     assert dppverify.game_value(inst, 2).bracket.closed
 
@@ -277,7 +278,7 @@ def test_structured_prior_mismatch_has_no_fraction_repr() -> None:
     import solver
 
     inst = solver.load_instance(TRIANGLE)
-    doc = solver.equilibrium_to_json(solver.solve(inst))
+    doc = solver.solve(inst).to_json()
     doc["prior"] = {"primary": "3/5", "secondary": "2/5"}
     cert = dppverify.certify(inst, doc, route="structured")
     rec = cert.check("pbne.belief_consistency")

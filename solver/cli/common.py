@@ -37,8 +37,9 @@ def dumps(doc: object) -> str:
 
 
 def load_instance(instance: str | None, grid: MapRequest | None,
-          command: str = "dpp solve") -> Instance:
-    """The instance of a solver command: the INSTANCE file or the --map grid.
+          command: str = "dpp solve", *, two_goals: bool = True) -> Instance:
+    """The instance of a solver command: the INSTANCE file or the --map grid (two goals
+    unless ``two_goals=False``: then any N, as ``dpp solve`` takes).
 
     Examples
     --------
@@ -48,11 +49,12 @@ def load_instance(instance: str | None, grid: MapRequest | None,
     >>> load_instance(str(triangle), None).goals
     ('g1', 'g2')
     """
-    return load_with_digest(instance, grid, command)[0]
+    return load_with_digest(instance, grid, command, two_goals=two_goals)[0]
 
 
 def load_with_digest(instance: str | None, grid: MapRequest | None,
-                     command: str = "dpp solve") -> tuple[Instance, str | None]:
+                     command: str = "dpp solve", *, two_goals: bool = True
+                     ) -> tuple[Instance, str | None]:
     """:func:`load_instance`, and the sha256 of the --map file (None for an INSTANCE file).
 
     Examples
@@ -71,14 +73,13 @@ def load_with_digest(instance: str | None, grid: MapRequest | None,
     if grid is None:
         assert instance is not None
         with checker_cli.hinted(instance, "instance", command, errors=(DPPError,)):
-            return load_instance(instance), None
-    if grid.n_goals != 2:
+            return load_instance(instance, two_goals=two_goals), None
+    if two_goals and grid.n_goals != 2:
         raise InvalidInstanceError(f"{grid.map}: this command takes two goals, got "
                                    f"{grid.n_goals} (N-goal games: dpp solve, certify, value)")
     blocked, digest = read_map_bytes(grid.path)
     try:
-        return Instance.from_grid(blocked, grid.start, (grid.goals[0], grid.goals[1]),
-                                  (grid.prior[0], grid.prior[1]),
+        return Instance.from_grid(blocked, grid.start, grid.goals, grid.prior,
                                   connectivity=grid.connectivity), digest
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{grid.map}: {exc}") from None

@@ -30,25 +30,24 @@ from typing import Any
 from solver.coalitions.coalition_dp import Coalitions, balanced_collections, coalition_dp, cover_lp
 from solver.coalitions.coalition_dp import subset_members as _members
 from solver.coalitions.guarantee_rule import guarantee_step, priority_order
-from solver.formats.nodes import node_to_json
-from solver.game.indexed_instance import NGame
-from solver.version import __version__
+from solver.game.instance import Instance
+from solver.game.profile_writing import per_goal_profile
+from solver.game.walks import StrategyWalk
 
-__all__ = ["NEquilibrium", "nequilibrium_to_json", "solve_ngoal"]
+__all__ = ["CoalitionEquilibrium", "coalition_equilibrium"]
 
-NGOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
 METHOD = ("coalition Attacker and guarantee-vector Defender (proofs/NSOLVE.md); coalition DP "
           "at H = inf; steps preferred to splits, lowest node index first")
 
 
 @dataclass(frozen=True, eq=False)
-class NEquilibrium:
-    """The N-goal profile the construction gives, with its exact values.
+class CoalitionEquilibrium:
+    """The profile the coalition construction gives, with its exact values (any N >= 2).
 
     Attributes
     ----------
-    game : NGame
-        The instance.
+    instance : Instance
+        The game (exact weights).
     h : tuple of Fraction
         The Defender's guarantee vector (the cover LP's canonical optimal dual).
     cover : dict
@@ -68,7 +67,7 @@ class NEquilibrium:
         Solve time.
     """
 
-    game: NGame = field(repr=False)
+    instance: Instance = field(repr=False)
     h: tuple[Fraction, ...]
     cover: dict[int, Fraction]
     mixtures: tuple[tuple[tuple[tuple[int, ...], Fraction], ...], ...]
@@ -82,6 +81,36 @@ class NEquilibrium:
     feasible: bool
     seconds: float
 
+    @property
+    def strategies(self) -> tuple[tuple[StrategyWalk, ...], ...]:
+        """``strategies[θ]``: the mixed strategy of goal index θ, as walks with probabilities."""
+        net = self.instance.network
+        return tuple(tuple(StrategyWalk.along(net, walk, p) for walk, p in mix)
+                     for mix in self.mixtures)
+
+    def to_json(self) -> dict[str, Any]:
+        """The ``dpp-ngoal-profile/1`` document with the guarantee rule (``docs/formats.md``
+        §2b), written by :func:`~solver.game.profile_writing.per_goal_profile`.
+
+        Examples
+        --------
+        >>> from solver.game.instance_reading import instance_from_json
+        >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
+        ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
+        ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
+        >>> out = coalition_equilibrium(instance_from_json(doc)).to_json()
+        >>> out["defender"], out["value"]["U"]
+        ({'rule': 'guarantee', 'h': ['1', '1']}, '1')
+        """
+        return per_goal_profile(
+            self.instance, self.strategies,
+            defender={"rule": "guarantee", "h": [str(x) for x in self.h]},
+            values={"U": str(self.U), "U_types": [str(x) for x in self.costs],
+                    "U_bar": str(self.U_bar), "VoI": str(self.VoI)},
+            method=METHOD,
+            cover={"+".join(str(t + 1) for t in _members(s)): str(c)
+                   for s, c in sorted(self.cover.items())})
+
 
 def _m_at(dp: Coalitions, u: int, mask: int) -> Fraction | None:
     return dp.m(mask, u)
@@ -90,12 +119,12 @@ def _m_at(dp: Coalitions, u: int, mask: int) -> Fraction | None:
 def _expand(dp: Coalitions, cover: dict[int, Fraction]
             ) -> list[tuple[tuple[int, ...], int, Fraction]]:
     """Follow every coalition's argmins from the start: ``(walk, mask, mass)`` at the goals."""
-    game = dp.game
+    game = dp.instance
     net = game.network
-    goals = set(game.goals)
+    goals = set(game.targets)
     scale_w = dp.scale // game.denominator  # arc numerators -> DP scale
     out: list[tuple[tuple[int, ...], int, Fraction]] = []
-    stack: list[tuple[list[int], int, Fraction]] = [([game.start], s, c)
+    stack: list[tuple[list[int], int, Fraction]] = [([game.s0], s, c)
                                                     for s, c in sorted(cover.items())]
     while stack:
         walk, mask, mass = stack.pop()
@@ -127,25 +156,26 @@ def _expand(dp: Coalitions, cover: dict[int, Fraction]
     return out
 
 
-def solve_ngoal(game: NGame) -> NEquilibrium:
-    """Solve an N-goal game by the construction (exact).
+def coalition_equilibrium(game: Instance) -> CoalitionEquilibrium:
+    """The coalition construction on ``game`` (exact): the entry of the N-goal construction,
+    which :func:`solver.solve` calls for ``N >= 3`` (for two goals it gives σ*'s values).
 
     Examples
     --------
-    >>> from solver.game.indexed_instance import ngame_from_json
+    >>> from solver.game.instance_reading import instance_from_json
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "smabc"],
     ...        "edges": [{"source": "s", "target": "m"}, {"source": "m", "target": "a"},
     ...                  {"source": "m", "target": "b"}, {"source": "m", "target": "c"},
     ...                  {"source": "s", "target": "a", "weight": 2}]},
     ...        "start": "s", "goals": ["a", "b", "c"], "prior": ["1/2", "1/3", "1/6"]}
-    >>> eq = solve_ngoal(ngame_from_json(doc))
+    >>> eq = coalition_equilibrium(instance_from_json(doc))
     >>> str(eq.U), str(eq.dp_value), eq.feasible
     ('3/2', '3/2', True)
     """
     t0 = time.perf_counter()
     dp = coalition_dp(game)
     n = game.n_goals
-    s0 = game.start
+    s0 = game.s0
     costs0 = {mask: dp.m(mask, s0) for mask in range(1, 1 << n)}
     order = priority_order(game.prior)
     finite = {k: v for k, v in costs0.items() if v is not None}
@@ -187,44 +217,9 @@ def solve_ngoal(game: NGame) -> NEquilibrium:
     u_val = sum((b * c for b, c in zip(game.prior, type_cost, strict=True)), Fraction(0))
     u_bar = sum((game.prior[t] * game.distance(t, s0) for t in range(n)), Fraction(0))
     mixtures = tuple(tuple(sorted(m.items(), key=lambda kv: (-kv[1], kv[0]))) for m in mix)
-    return NEquilibrium(game=game, h=h0, cover=dict(root.cover),
+    return CoalitionEquilibrium(instance=game, h=h0, cover=dict(root.cover),
                         mixtures=mixtures, costs=tuple(type_cost), guarded=tuple(guarded),
                         walked=tuple(walked), U=u_val, U_bar=u_bar,
                         VoI=(u_bar - u_val) / u_bar if u_bar else Fraction(0),
                         dp_value=root.value, feasible=feasible,
                         seconds=time.perf_counter() - t0)
-
-
-def nequilibrium_to_json(eq: NEquilibrium) -> dict[str, Any]:
-    """The ``dpp-ngoal-profile/1`` document with the guarantee rule (``docs/formats.md`` §2b).
-
-    Examples
-    --------
-    >>> from solver.game.indexed_instance import ngame_from_json
-    >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
-    ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
-    ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
-    >>> out = nequilibrium_to_json(solve_ngoal(ngame_from_json(doc)))
-    >>> out["defender"], out["value"]["U"]
-    ({'rule': 'guarantee', 'h': ['1', '1']}, '1')
-    """
-    game = eq.game
-    lab = game.label
-
-    def walk_json(walk: tuple[int, ...]) -> list[Any]:
-        return [node_to_json(lab(v)) for v in walk]
-
-    return {
-        "format": NGOAL_PROFILE_FORMAT,
-        "goals": [node_to_json(lab(g)) for g in game.goals],
-        "attacker": [[{"path": walk_json(w), "probability": str(p)} for w, p in mix]
-                     for mix in eq.mixtures],
-        "defender": {"rule": "guarantee", "h": [str(x) for x in eq.h]},
-        "value": {"U": str(eq.U), "U_types": [str(x) for x in eq.costs],
-                  "U_bar": str(eq.U_bar), "VoI": str(eq.VoI)},
-        "exact": True,
-        "tolerance": None,
-        "solver": {"name": "solver", "version": __version__, "method": METHOD,
-                   "cover": {"+".join(str(t + 1) for t in _members(s)): str(c)
-                             for s, c in sorted(eq.cover.items())}},
-    }

@@ -3,9 +3,9 @@
 On MovingAI maps (4-connected, unit weights) one rule places a start and five goals
 (:func:`corner_cells`); for ``N = 2 … 5`` the first ``N`` goals are used with equal priors
 (``1/N``) and skewed priors (``b_θ ∝ 2^(N-θ)``). Each game is solved by the N-goal
-construction (:func:`solver.coalitions.construction.solve_ngoal`) and the profile is handed to a
-certifier (the command line passes the checker: structured route, ``H = inf``). Reported, all
-exact:
+construction (:func:`solver.coalitions.construction.coalition_equilibrium`) and the profile is
+handed to a certifier (the command line passes the checker: structured route, ``H = inf``).
+Reported, all exact:
 
 - ``U``: the Attacker's expected cost in the profile (the game's value when certified;
   otherwise the coalition DP's value, an upper bound on it, proofs/NGOAL.md NG.2);
@@ -36,15 +36,15 @@ from typing import Any, TypeVar
 import numpy as np
 from scipy import ndimage
 
-from solver.coalitions.construction import NEquilibrium, solve_ngoal
+from solver.coalitions.construction import CoalitionEquilibrium, coalition_equilibrium
 from solver.errors import InvalidInstanceError
-from solver.game.indexed_instance import MAX_NGOALS, ngame_from_grid
+from solver.game.instance import MAX_GOALS, Instance
 
 __all__ = ["GameValue", "NGoalRow", "ValueRow", "corner_cells", "ngoal_csv", "ngoal_figure",
            "ngoal_series", "skewed_prior", "value_csv", "value_figure", "value_series"]
 
 Cell = tuple[int, int]
-Certifier = Callable[[Cell, Sequence[Cell], Sequence[Fraction], NEquilibrium], str]
+Certifier = Callable[[Cell, Sequence[Cell], Sequence[Fraction], CoalitionEquilibrium], str]
 
 
 @dataclass(frozen=True)
@@ -90,7 +90,7 @@ def skewed_prior(n: int) -> tuple[Fraction, ...]:
     return tuple(Fraction(2 ** (n - 1 - i), total) for i in range(n))
 
 
-def corner_cells(blocked: np.ndarray, n_goals: int = MAX_NGOALS) -> tuple[Cell, tuple[Cell, ...]]:
+def corner_cells(blocked: np.ndarray, n_goals: int = MAX_GOALS) -> tuple[Cell, tuple[Cell, ...]]:
     """A start and ``n_goals`` goals placed by one rule on any map.
 
     The start is the free cell nearest (Manhattan, then row, then column) to the bottom-left
@@ -148,7 +148,7 @@ class NGoalRow:
 
 
 def ngoal_series(blocked: np.ndarray, start: Cell, goals: Sequence[Cell], *, map_name: str,
-                 certify: Certifier | None = None, max_goals: int = MAX_NGOALS,
+                 certify: Certifier | None = None, max_goals: int = MAX_GOALS,
                  progress: Callable[[NGoalRow], None] | None = None) -> list[NGoalRow]:
     """Solve (and certify) the games with the first ``N = 2 … max_goals`` goals, two priors.
 
@@ -161,7 +161,8 @@ def ngoal_series(blocked: np.ndarray, start: Cell, goals: Sequence[Cell], *, map
     """
     def row(n: int, kind: str, prior: tuple[Fraction, ...]) -> NGoalRow:
         t0 = time.perf_counter()
-        eq = solve_ngoal(ngame_from_grid(blocked, start, goals[:n], [str(b) for b in prior]))
+        eq = coalition_equilibrium(Instance.from_grid(blocked, start, goals[:n],
+                                                      [str(b) for b in prior]))
         t1 = time.perf_counter()
         verdict = "not run" if certify is None else certify(start, goals[:n], prior, eq)
         t2 = time.perf_counter()
@@ -269,7 +270,7 @@ class ValueRow:
 
 
 def value_series(start: Cell, goals: Sequence[Cell], value: Valuer, *, map_name: str = "map",
-                 max_goals: int = MAX_NGOALS,
+                 max_goals: int = MAX_GOALS,
                  progress: Callable[[ValueRow], None] | None = None) -> list[ValueRow]:
     """The value and VoI for ``N = 2 … len(goals)`` goals with equal and skewed priors.
 

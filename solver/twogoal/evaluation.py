@@ -17,7 +17,7 @@ from itertools import pairwise
 
 import numpy as np
 
-from solver.game.walks import StrategyPath
+from solver.game.walks import StrategyWalk
 from solver.graph.network import Network
 from solver.numbers import Number
 
@@ -72,7 +72,7 @@ class _PathRun:
     """One Attacker walk evaluated against the Defender (internal)."""
 
     theta: int
-    path: StrategyPath
+    path: StrategyWalk
     sigma: tuple[Number, ...]
     weights: tuple[Number, ...]
     terminal: Number
@@ -114,8 +114,8 @@ class Evaluation:
 def evaluate(
     net: Network,
     schedule: Schedule,
-    primary: Sequence[StrategyPath],
-    secondary: Sequence[StrategyPath],
+    primary: Sequence[StrategyWalk],
+    secondary: Sequence[StrategyWalk],
     *,
     b1: Fraction,
     b2: Fraction,
@@ -136,7 +136,7 @@ def evaluate(
     >>> from solver.game.instance import triangle
     >>> net = triangle().network   # s=0, g2=1, g1=2
     >>> always_g1 = lambda walk: [Fraction(1)] * (len(walk) - 1)
-    >>> direct = [StrategyPath.along(net, walk, Fraction(1), "direct") for walk in ((0, 2), (0, 1))]
+    >>> direct = [StrategyWalk.along(net, walk, Fraction(1), "direct") for walk in ((0, 2), (0, 1))]
     >>> ev = evaluate(net, always_g1, direct[:1], direct[1:], b1=Fraction(7, 10),
     ...               b2=Fraction(3, 10), g1=2, g2=1, d_to_g1=distances_to(net, 2),
     ...               d_to_g2=distances_to(net, 1), d_from_start=distances_from(net, 0))
@@ -179,7 +179,7 @@ def _allocation_total(net: Network, raw_weights: Sequence[int | float],
     return net.numbers.convert(whole) + part
 
 
-def _beliefs_along(walk: Sequence[int], all_paths: Sequence[tuple[int, StrategyPath]],
+def _beliefs_along(walk: Sequence[int], all_paths: Sequence[tuple[int, StrategyWalk]],
                    prior: tuple[Fraction, Fraction]) -> tuple[Fraction, ...]:
     """Bayes belief in g1 at each prefix of ``walk`` (Bayes' rule, eq. (2), unrolled): the
     prior-weighted mass of primary paths sharing the prefix over the total mass sharing it. The

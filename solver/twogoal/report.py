@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 from collections.abc import Hashable, Sequence
+from typing import TYPE_CHECKING
 
-from solver.numbers import Number
-from solver.twogoal.equilibrium import Equilibrium
+from solver.numbers import Number, format_value
 
-__all__ = ["format_value", "path_label", "summarize"]
+if TYPE_CHECKING:
+    from solver.twogoal.equilibrium import Equilibrium
+
+__all__ = ["path_label", "summarize"]
 
 _MAX_NODES = 12
 
@@ -35,9 +38,9 @@ def summarize(eq: Equilibrium) -> str:
 
     Examples
     --------
-    >>> from solver import solve
     >>> from solver.game.instance import triangle
-    >>> print(summarize(solve(triangle())))
+    >>> from solver.twogoal.equilibrium import paper_equilibrium
+    >>> print(summarize(paper_equilibrium(triangle())))
     start 's'; primary goal g1 = 'g1' (prior 7/10), secondary goal g2 = 'g2' (prior 3/10)
     mode: exact (rational)
     <BLANKLINE>
@@ -83,39 +86,6 @@ def summarize(eq: Equilibrium) -> str:
 
 def _steps(first: int, last: int) -> str:
     return f"= steps {first}..{last}" if first <= last else "absent"
-
-
-def format_value(x: Number) -> str:
-    """A value as the text outputs write it: ``p/q (≈ decimal)``, an integer bare.
-
-    The same style as the checker's reports (``dppverify.text.show_value``); a fraction longer
-    than 40 characters is shown by its decimal only (``--json`` has the exact form).
-
-    Parameters
-    ----------
-    x : Fraction, int or float
-        The value (a float is float mode: 10 significant digits, no fraction).
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> from fractions import Fraction
-    >>> format_value(Fraction(12, 7)), format_value(Fraction(4)), format_value(2 ** 0.5)
-    ('12/7 (≈ 1.714286)', '4', '1.414213562')
-    >>> format_value(Fraction(10**50 + 1, 10**50))
-    '≈ 1 (exact: a 102-digit fraction, see --json)'
-    """
-    if isinstance(x, float):
-        return f"{x:.10g}"
-    if x.denominator == 1:
-        return str(x)
-    text = str(x)
-    if len(text) > 40:
-        return f"≈ {float(x):.12g} (exact: a {len(text) - 1}-digit fraction, see --json)"
-    return f"{text} (≈ {float(x):.7g})"
 
 
 _num = format_value

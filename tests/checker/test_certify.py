@@ -20,8 +20,8 @@ from dppverify import (
 from dppverify.formats.json_reading import parse_json
 from dppverify.registry import CHECKS
 from dppverify.tree_route.tree import build_tree
-from solver import equilibrium_to_json, instance_to_json
 from solver import instance_from_json as solver_instance_from_json
+from solver import instance_to_json
 from tests.checker._helpers import (
     grid_doc,
     load_cases,
@@ -102,13 +102,13 @@ def test_table_defender_equal_to_sigma_star_certifies() -> None:
 
 
 def test_either_labelling_at_prior_one_half() -> None:
-    from solver import solve
+    from solver.twogoal.equilibrium import paper_equilibrium
 
     case = next(c for c in load_cases() if c["name"] == "b_half")
     doc = case["instance"]
     swapped = dict(doc, goals=doc["goals"][::-1])
     for d in (doc, swapped):
-        prof = equilibrium_to_json(solve(solver_instance_from_json(d)))
+        prof = paper_equilibrium(solver_instance_from_json(d)).to_json()
         _assert_certified(doc, prof)
     bad = copy.deepcopy(triangle_profile())
     bad["goals"] = {"primary": "g2", "secondary": "g1"}
@@ -117,9 +117,9 @@ def test_either_labelling_at_prior_one_half() -> None:
 
 @pytest.mark.parametrize("case", load_cases(), ids=lambda c: c["name"])
 def test_solver_profiles_of_all_conformance_cases_certify(case: dict[str, Any]) -> None:
-    from solver import solve
+    from solver.twogoal.equilibrium import paper_equilibrium
 
-    prof = equilibrium_to_json(solve(solver_instance_from_json(case["instance"])))
+    prof = paper_equilibrium(solver_instance_from_json(case["instance"])).to_json()
     cert = certify(case["instance"], parse_json(json.dumps(prof)), trials=2)
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]
     assert cert.check("value.U").numbers["U"] == Fraction(case["expected"]["value"])
@@ -164,7 +164,8 @@ def test_float_mode_is_refused_unless_asked_for() -> None:
 def test_octile_grid_from_the_solver_certifies_in_float_mode() -> None:
     import numpy as np
 
-    from solver import Instance, solve
+    from solver import Instance
+    from solver.twogoal.equilibrium import paper_equilibrium
 
     blocked = np.zeros((3, 4), dtype=bool)
     blocked[1, 1] = True
@@ -172,7 +173,7 @@ def test_octile_grid_from_the_solver_certifies_in_float_mode() -> None:
                               connectivity=8)
     idoc = parse_json(json.dumps(instance_to_json(inst)))
     assert idoc["numbers"] == "float"
-    pdoc = parse_json(json.dumps(equilibrium_to_json(solve(inst))))
+    pdoc = parse_json(json.dumps(paper_equilibrium(inst).to_json()))
     cert = certify(idoc, pdoc, exact=False)
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]
 

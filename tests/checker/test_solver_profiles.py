@@ -14,7 +14,6 @@ from hypothesis import strategies as st
 
 from dppverify import InvalidInstanceError, certify, instance_from_json
 from dppverify.formats.json_reading import parse_json
-from solver import equilibrium_to_json
 from solver import instance_from_json as solver_instance_from_json
 from tests.checker._helpers import grid_doc, make_doc
 
@@ -49,7 +48,7 @@ def grid_instances(draw: st.DrawFn) -> dict[str, Any]:
 
 
 def _certify_solver_profile(doc: dict[str, Any]) -> None:
-    from solver import solve
+    from solver.twogoal.equilibrium import paper_equilibrium
 
     try:
         inst = instance_from_json(doc)
@@ -57,7 +56,7 @@ def _certify_solver_profile(doc: dict[str, Any]) -> None:
         assume(False)
         return
     assume(inst.n_nodes > 0)
-    prof = equilibrium_to_json(solve(solver_instance_from_json(doc)))
+    prof = paper_equilibrium(solver_instance_from_json(doc)).to_json()
     cert = certify(doc, parse_json(json.dumps(prof)), trials=2, max_prefixes=200_000)
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]
     u = cert.check("value.U").numbers["U"]

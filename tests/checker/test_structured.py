@@ -26,9 +26,10 @@ from dppverify.formats.json_reading import parse_json
 from dppverify.game.examples import triangle_document, triangle_profile
 from dppverify.registry import CHECK_IDS, CHECKS, not_run
 from dppverify.twogoal.progress_br import walk_minima
-from solver import Instance, equilibrium_to_json, instance_to_json, solve
+from solver import Instance, instance_to_json
 from solver import instance_from_json as solver_instance_from_json
 from solver.formats.movingai import read_map
+from solver.twogoal.equilibrium import paper_equilibrium
 from tests.checker._helpers import tree_horizon
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -37,7 +38,7 @@ Doc = dict[str, Any]
 
 
 def _profile(inst: Instance) -> Doc:
-    return parse_json(json.dumps(equilibrium_to_json(solve(inst))))  # type: ignore[no-any-return]
+    return parse_json(json.dumps(paper_equilibrium(inst).to_json()))  # type: ignore[no-any-return]
 
 
 @pytest.fixture(scope="module")

@@ -27,7 +27,7 @@ from dppverify.routes import resolve_route, routed_value, tree_fits
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
 from dppverify.twogoal.value_dp import StructuredValue, structured_value, value_fields
 from solver import instance_from_json as solver_instance_from_json
-from solver import solve
+from solver.twogoal.equilibrium import paper_equilibrium
 from tests.checker._helpers import make_doc, three_phase_doc
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "conformance_cases.json"
@@ -86,7 +86,7 @@ def test_structured_equals_tree_on_random_instances(doc: dict[str, Any], extra: 
 @given(exact_instances)
 def test_value_is_non_increasing_in_H_and_equals_U_once_H_covers_the_profile(
         doc: dict[str, Any]) -> None:
-    eq = solve(solver_instance_from_json(doc))
+    eq = paper_equilibrium(solver_instance_from_json(doc))
     longest = max(len(eq.secondary_path) - 1, *(len(p.nodes) - 1 for p in eq.primary_paths))
     inst = instance_from_json(doc)
     h0 = inst.hops[inst.start]

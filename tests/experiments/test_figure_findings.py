@@ -11,9 +11,10 @@ from matplotlib.colors import to_rgba
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from solver import Instance, solve
+from solver import Instance
 from solver.experiments.compare import paper10_instance
 from solver.plots import PATH_STYLES, plot_beliefs, plot_map, plot_voi
+from solver.twogoal.equilibrium import paper_equilibrium
 from solver.twogoal.report import summarize
 
 matplotlib.use("Agg")
@@ -70,7 +71,7 @@ def test_one_font_family_and_no_serif_math() -> None:
 
 def test_without_phase_ii_the_labels_and_legend_say_so() -> None:
     inst = no_phase_ii()
-    eq = solve(inst)
+    eq = paper_equilibrium(inst)
     assert eq.phases.t_I == eq.phases.t_II and [p.label for p in eq.primary_paths] == ["xi1"]
     text = summarize(eq)
     assert "ξ¹ " in text and "xi1" not in text

@@ -12,9 +12,10 @@ import numpy as np
 import pytest
 from scipy import ndimage
 
-from solver import Instance, solve
+from solver import Instance
 from solver.experiments.compare import paper10_instance, paper10_path, run_compare
 from solver.literature.strategy_pairs import PAIRS, PairEvaluator
+from solver.twogoal.equilibrium import paper_equilibrium
 from tests.experiments._graphs import random_instance
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -68,11 +69,11 @@ def test_pairs_match_a_hand_evaluation(seed: int) -> None:
 
 @pytest.mark.parametrize("seed", range(8))
 def test_equilibrium_pair_and_best_response(seed: int) -> None:
-    """(σ*, γ*) reproduces solve(); no baseline Attacker does better against σ*, and the
+    """(σ*, γ*) reproduces paper_equilibrium(); no baseline Attacker does better against σ*, and the
     primary type pays d(s0, g1) on every path that ends at g1 (Lemma 1)."""
     inst = random_instance(seed)
     game = PairEvaluator.of(inst)
-    eq = solve(inst)
+    eq = paper_equilibrium(inst)
     r = game.pair("sigma*", "gamma*")
     assert (r.U1, r.U2, r.U, r.VoI) == (eq.U1, eq.U2, eq.U, eq.VoI)
     d1 = nx.shortest_path_length(inst.graph, inst.start, inst.primary, weight="weight")
@@ -100,6 +101,6 @@ def test_paper10_map_bundled_and_valid() -> None:
         free[other] = False
         lab, _ = ndimage.label(free)
         assert lab[9, 0] == lab[goal] != 0
-    ph = solve(inst).phases
+    ph = paper_equilibrium(inst).phases
     assert 0 < ph.t_I < ph.t_II < ph.T  # all three phases, like the paper's Fig. 7
     assert [(r.defender, r.attacker) for r in run_compare(inst)] == list(PAIRS)

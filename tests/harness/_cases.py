@@ -16,7 +16,8 @@ from typing import Any
 from hypothesis import strategies as st
 
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
-from solver import Equilibrium, instance_from_json, solve
+from solver import Equilibrium, instance_from_json
+from solver.twogoal.equilibrium import paper_equilibrium
 from tests.properties._reference import INF, Game, key
 
 Doc = dict[str, Any]
@@ -24,7 +25,7 @@ Doc = dict[str, Any]
 
 @lru_cache(maxsize=4096)
 def _solve_text(text: str) -> Equilibrium:
-    return solve(instance_from_json(text))
+    return paper_equilibrium(instance_from_json(text))
 
 
 def solved(doc: Doc) -> Equilibrium:

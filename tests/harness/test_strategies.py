@@ -16,7 +16,7 @@ from hypothesis.errors import InvalidArgument
 from dppverify.game.instance import instance_from_json
 from dppverify.strategies import WEIGHT_KINDS, grid_worlds, instances, priors, weighted_graphs
 from solver import instance_from_json as solver_instance_from_json
-from solver import solve
+from solver.twogoal.equilibrium import paper_equilibrium
 from tests.properties._reference import INF, Game, key, number
 
 _quiet = settings(database=None, derandomize=True)
@@ -123,7 +123,7 @@ def test_instances_are_valid_for_both_packages(doc: dict[str, Any]) -> None:
         assert game.d_to(a, b) != INF
     inst = instance_from_json(text)          # the checker accepts it
     assert inst.n_nodes == len(doc["graph"]["nodes"])
-    eq = solve(solver_instance_from_json(text))     # the solver accepts and solves it
+    eq = paper_equilibrium(solver_instance_from_json(text))     # the solver accepts and solves it
     assert eq.secondary_path[0] == key(doc["start"])
     floats = any(isinstance(e["weight"], float) for e in doc["graph"]["edges"])
     assert doc.get("numbers", "exact") == ("float" if floats else "exact")
@@ -168,7 +168,7 @@ def test_grid_worlds_respect_their_arguments(data: st.DataObject, lo: int, span:
         assert _reaches(game, game.start, g2, avoid=g1)
     for a, b in ((game.start, g1), (game.start, g2), (g1, g2), (g2, g1)):
         assert game.d_to(a, b) != INF
-    solve(solver_instance_from_json(json.dumps(doc)))
+    paper_equilibrium(solver_instance_from_json(json.dumps(doc)))
 
 
 def test_grid_worlds_bound_the_cell_count() -> None:

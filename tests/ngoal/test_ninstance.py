@@ -85,8 +85,9 @@ def test_goal_count_and_file_errors(tmp_path: Any) -> None:
 def test_the_two_goal_reader_refuses_n_goals_and_names_the_n_goal_commands() -> None:
     from solver import InstanceFormatError, instance_from_json
 
+    assert instance_from_json(star3_document()).n_goals == 3  # the reader takes any N
     with pytest.raises(InstanceFormatError) as info:
-        instance_from_json(star3_document())
+        instance_from_json(star3_document(), two_goals=True)
     assert "lists 3 goals" in str(info.value) and "two-goal instances only" in str(info.value)
     assert "`dpp solve`, `dpp certify` and `dpp value` take N goals" in str(info.value)
 

@@ -8,8 +8,9 @@ import networkx as nx
 import numpy as np
 import pytest
 
-from solver import Instance, InstanceFormatError, solve
+from solver import Instance, InstanceFormatError
 from solver.formats.movingai import parse_map, read_map
+from solver.twogoal.equilibrium import paper_equilibrium
 
 MAP = """type octile
 height 4
@@ -32,14 +33,14 @@ def test_grid_solves_like_the_same_graph_built_with_networkx() -> None:
         if not (nx.has_path(g, (0, 0), (5, 6)) and nx.has_path(g, (0, 0), (0, 6))):
             continue
         goals = ((5, 6), (0, 6))
-        fast = solve(Instance.from_grid(blocked, (0, 0), goals, ("3/5", "2/5")))
-        slow = solve(Instance(g, (0, 0), goals, ("3/5", "2/5")))
+        fast = paper_equilibrium(Instance.from_grid(blocked, (0, 0), goals, ("3/5", "2/5")))
+        slow = paper_equilibrium(Instance(g, (0, 0), goals, ("3/5", "2/5")))
         assert (fast.U, fast.VoI, fast.U2) == (slow.U, slow.VoI, slow.U2)
 
 
 def test_octile_grid_is_float_mode_with_sqrt2_diagonals() -> None:
     blocked = np.zeros((3, 3), dtype=bool)
-    eq = solve(Instance.from_grid(blocked, (0, 0), ((2, 2), (0, 2)), ("3/5", "2/5"),
+    eq = paper_equilibrium(Instance.from_grid(blocked, (0, 0), ((2, 2), (0, 2)), ("3/5", "2/5"),
                                   connectivity=8))
     assert not eq.numbers.exact and eq.numbers.abs_tol is not None
     assert eq.U1 == pytest.approx(2 * np.sqrt(2))

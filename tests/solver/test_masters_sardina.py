@@ -117,14 +117,14 @@ def test_compare_gains_the_strategies() -> None:
     # the primary type walks S-Y-T-R (4), the secondary S-X-T-B (4); hand evaluation of
     # sigma*: progress towards g1 = R is 1 on each step that shortens d(., R) ... checked
     # through the generic evaluator against an explicit Attacker with the same paths
-    from solver.game.walks import StrategyPath
+    from solver.game.walks import StrategyWalk
     from solver.literature.strategy_pairs import Attacker
 
     net = inst.network
     ids = {v: net.index_of(v) for v in "SXYTRB"}
     walk = lambda s: [ids[c] for c in s]  # noqa: E731
-    explicit = Attacker("x", (StrategyPath.along(net, walk("SYTR"), Fraction(1), "a"),),
-                        (StrategyPath.along(net, walk("SXTB"), Fraction(1), "b"),))
+    explicit = Attacker("x", (StrategyWalk.along(net, walk("SYTR"), Fraction(1), "a"),),
+                        (StrategyWalk.along(net, walk("SXTB"), Fraction(1), "b"),))
     assert game.evaluate("sigma*", explicit).U == r.U
 
 

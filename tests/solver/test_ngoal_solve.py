@@ -31,12 +31,13 @@ from dppverify.game.instance import instance_from_json
 from dppverify.strategies import ngoal_instances
 from dppverify.structured.coalition import CoalitionRunner
 from dppverify.structured.guarantee import dp_value, guarantee_sets
-from solver import Instance, solve
+from solver import Instance
 from solver.cli import main
 from solver.coalitions.coalition_dp import coalition_dp
-from solver.coalitions.construction import nequilibrium_to_json, solve_ngoal
+from solver.coalitions.construction import coalition_equilibrium
 from solver.coalitions.guarantee_rule import guarantee_step, priority_order
-from solver.game.indexed_instance import ngame_from_json
+from solver.game.instance_reading import instance_from_json as solver_instance
+from solver.twogoal.equilibrium import paper_equilibrium
 from solver.twogoal.progress import ProgressDefender
 
 GADGET: dict[str, Any] = {
@@ -52,8 +53,8 @@ GADGET: dict[str, Any] = {
 
 
 def _certify(doc: dict[str, Any]) -> tuple[Any, Any]:
-    eq = solve_ngoal(ngame_from_json(doc))
-    cert = certify(doc, nequilibrium_to_json(eq), horizon="inf", route="structured")
+    eq = coalition_equilibrium(solver_instance(doc))
+    cert = certify(doc, eq.to_json(), horizon="inf", route="structured")
     return eq, cert
 
 
@@ -66,7 +67,7 @@ def test_solver_profiles_are_certified_on_the_untruncated_game(doc: dict[str, An
     assert "fail" not in statuses.values(), cert.checks
     if n <= 3:  # proved: the arc condition always holds (no non-pattern direction)
         assert cert.verdict == "pass", cert.checks
-        assert eq.U == eq.dp_value == sum(b * h for b, h in zip(eq.game.prior, eq.h,
+        assert eq.U == eq.dp_value == sum(b * h for b, h in zip(eq.instance.prior, eq.h,
                                                                 strict=True))
     elif cert.verdict != "pass":  # N = 4: only where the arc condition is not established
         assert statuses["ngoal.pbne.attacker_br"] == "error"
@@ -78,7 +79,7 @@ def test_solver_profiles_are_certified_on_the_untruncated_game(doc: dict[str, An
 def test_the_tree_route_agrees_at_the_profiles_horizon(doc: dict[str, Any]) -> None:
     eq, cert = _certify(doc)
     longest = max(len(w) - 1 for mix in eq.mixtures for w, _ in mix)
-    tree = certify(doc, nequilibrium_to_json(eq), horizon=longest + 1, route="tree",
+    tree = certify(doc, eq.to_json(), horizon=longest + 1, route="tree",
                          max_prefixes=20_000)
     if cert.verdict == "pass":  # an equilibrium of the untruncated game is one of every H >= it
         eqs = {c.id: c.status for c in tree.checks}
@@ -101,15 +102,15 @@ def test_the_solvers_dp_equals_the_checkers_at_every_node(doc: dict[str, Any]) -
             break
         layer = nxt
     sets = guarantee_sets(inst)
-    ours = coalition_dp(ngame_from_json(doc))
+    ours = coalition_dp(solver_instance(doc))
     for mask, vals in nxt.items():
         for v in range(inst.n_nodes):
             layered = None if int(vals[v]) >= run.big else Fraction(int(vals[v]), run.scale)
             assert sets.value(mask, v) == layered
             # the solver's network may number nodes differently: compare by label
-            j = ours.game.network.index_of(inst.nodes[v])
+            j = ours.instance.network.index_of(inst.nodes[v])
             assert j is not None and ours.m(mask, j) == layered
-    assert dp_value(sets).value == solve_ngoal(ngame_from_json(doc)).dp_value
+    assert dp_value(sets).value == coalition_equilibrium(solver_instance(doc)).dp_value
 
 
 def _two_goal_doc(rng: random.Random) -> dict[str, Any]:
@@ -135,25 +136,25 @@ def _two_goal_doc(rng: random.Random) -> dict[str, Any]:
 def test_for_two_goals_the_rule_is_sigma_star_on_every_walk(seed: int) -> None:
     rng = random.Random(seed)
     doc = _two_goal_doc(rng)
-    game = ngame_from_json(doc)
-    eq = solve_ngoal(game)
+    game = solver_instance(doc)
+    eq = coalition_equilibrium(game)
     dp = coalition_dp(game)
     g = nx.DiGraph() if doc["graph"]["directed"] else nx.Graph()
     g.add_nodes_from(range(len(doc["graph"]["nodes"])))
     for e in doc["graph"]["edges"]:
         g.add_edge(e["source"], e["target"], weight=Fraction(e["weight"]))
-    two = solve(Instance(g, 0, (1, 2), tuple(Fraction(p) for p in doc["prior"])))
+    two = paper_equilibrium(Instance(g, 0, (1, 2), tuple(Fraction(p) for p in doc["prior"])))
     assert two.U == eq.U
-    primary = two.instance.primary_index
+    primary = two.instance.primary_goal_index
     net = game.network
     sigma = ProgressDefender(two.instance.network, two.instance.network.index_of(1 if primary
                                                                                 == 0 else 2),
                              two.defender.dist_to_goal, two.instance.network.numbers)
     order = priority_order(game.prior)
     assert order[0] == primary
-    goals = set(game.goals)
+    goals = set(game.targets)
     for _ in range(30):  # random walks from the start, stopped at the first goal
-        walk = [game.start]
+        walk = [game.s0]
         r = tuple(eq.h)
         rule = []
         for _ in range(8):
@@ -237,8 +238,8 @@ def test_solution_is_deterministic(seed: int) -> None:
     rng = random.Random(seed)
     doc = _two_goal_doc(rng)
     doc["goals"] = [1, 2]
-    a = nequilibrium_to_json(solve_ngoal(ngame_from_json(doc)))
-    b = nequilibrium_to_json(solve_ngoal(ngame_from_json(doc)))
+    a = coalition_equilibrium(solver_instance(doc)).to_json()
+    b = coalition_equilibrium(solver_instance(doc)).to_json()
     assert a == b
 
 

@@ -23,7 +23,8 @@ import networkx as nx
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
-from solver import Equilibrium, Instance, equilibrium_to_json, solve
+from solver import Equilibrium, Instance
+from solver.twogoal.equilibrium import paper_equilibrium
 
 PRIORS = [Fraction(1, 2), Fraction(3, 5), Fraction(2, 3), Fraction(7, 10), Fraction(9, 10)]
 
@@ -92,7 +93,7 @@ COMMON = settings(max_examples=60, deadline=None, derandomize=True,
 @COMMON
 @given(small_instances())
 def test_xi2_cost_is_the_brute_force_minimum_over_simple_paths(inst: Instance) -> None:
-    eq = solve(inst)
+    eq = paper_equilibrium(inst)
     g, g1, g2 = inst.graph, inst.primary, inst.secondary
     to_g1, to_g2 = _dist(g, g1), _dist(g, g2)
     best = min(_cost(g, p, 2, to_g1, to_g2) for p in _goal_paths(g, inst.start, {g1, g2}))
@@ -103,7 +104,7 @@ def test_xi2_cost_is_the_brute_force_minimum_over_simple_paths(inst: Instance) -
 @COMMON
 @given(small_instances())
 def test_every_primary_path_costs_exactly_d_s0_g1(inst: Instance) -> None:
-    eq = solve(inst)
+    eq = paper_equilibrium(inst)
     g, g1, g2 = inst.graph, inst.primary, inst.secondary
     to_g1, to_g2 = _dist(g, g1), _dist(g, g2)
     assert sum(p.probability for p in eq.primary_paths) == 1
@@ -119,7 +120,7 @@ Mixture = list[tuple[tuple[Hashable, ...], Fraction]]
 
 def _mixtures(eq: Equilibrium) -> tuple[Mixture, Mixture]:
     """Both types' mixed strategies as the solver writes them in its profile document."""
-    profile = equilibrium_to_json(eq)
+    profile = eq.to_json()
 
     def mixture(theta: str) -> Mixture:
         return [(tuple(e["path"]), Fraction(e["probability"]))
@@ -147,7 +148,7 @@ def _phases(sigma: Sequence[Fraction]) -> tuple[int, int]:
 @COMMON
 @given(small_instances())
 def test_beliefs_are_b1_half_zero_by_phase_and_one_off_xi2(inst: Instance) -> None:
-    eq = solve(inst)
+    eq = paper_equilibrium(inst)
     g, b1 = inst.graph, Fraction(inst.b1)
     primary, secondary = _mixtures(eq)
     assert len(secondary) == 1 and secondary[0][1] == 1  # ξ² is a pure strategy
@@ -174,9 +175,10 @@ def test_the_generator_reaches_all_three_phases_and_ties() -> None:
     quick = settings(max_examples=2000, database=None, phases=[Phase.generate])
 
     def three_phases(inst: Instance) -> bool:
-        ph = solve(inst).phases
+        ph = paper_equilibrium(inst).phases
         return 0 < ph.t_I < ph.t_II < ph.T
 
     find(small_instances(), three_phases, settings=quick)
-    find(small_instances(), lambda i: i.b1 == Fraction(1, 2) and solve(i).phases.t_II == 0,
+    find(small_instances(),
+         lambda i: i.b1 == Fraction(1, 2) and paper_equilibrium(i).phases.t_II == 0,
          settings=quick)

@@ -8,7 +8,8 @@ from typing import Any
 import networkx as nx
 import pytest
 
-from solver import Instance, InvalidInstanceError, instance_from_json, solve
+from solver import Instance, InvalidInstanceError, instance_from_json
+from solver.twogoal.equilibrium import paper_equilibrium
 from solver.twogoal.phases import Phases
 from tests.solver._cases import load_cases
 
@@ -18,12 +19,12 @@ for _case in load_cases():  # the first case of each edge-case name
 
 
 def _solve_named(name: str) -> Any:
-    return solve(instance_from_json(NAMED[name]["instance"]))
+    return paper_equilibrium(instance_from_json(NAMED[name]["instance"]))
 
 
 def test_triangle_by_hand(triangle: Instance) -> None:
     # M = min_v d(s,v)+d(v,g1)+d(v,g2): v=s 0+3+2, v=g2 2+2+0, v=g1 3+0+2 -> M = 4 at g2
-    eq = solve(triangle)
+    eq = paper_equilibrium(triangle)
     assert eq.secondary_path == ("s", "g2")
     assert eq.schedule == (F(1, 2),)  # c0 = 3, c1 = d(g2, g1) = 2, progress 1 over weight 2
     assert eq.phases == Phases(0, 1, 1)
@@ -36,7 +37,7 @@ def test_triangle_by_hand(triangle: Instance) -> None:
 
 
 def test_beliefs_along_triangle_paths(triangle: Instance) -> None:
-    eq = solve(triangle)
+    eq = paper_equilibrium(triangle)
     by_label = {t.label: t for t in eq.trajectories}
     # xi2 = xi1_II: phase II belief exactly 1/2 (eq. (15) mixing), branch xi1_I belief 1
     assert by_label["xi2"].belief_g1 == (F(7, 10), F(1, 2))
@@ -53,7 +54,7 @@ def test_paper_figure3_progress_example() -> None:
     g = nx.DiGraph()
     g.add_weighted_edges_from([("s", "r", F(3, 2)), ("r", "g1", 2), ("s", "p", 1),
                                ("p", "g1", 3), ("s", "g2", 5), ("g2", "g1", 9), ("g1", "g2", 9)])
-    eq = solve(Instance(g, "s", ("g1", "g2"), ("3/5", "2/5")))
+    eq = paper_equilibrium(Instance(g, "s", ("g1", "g2"), ("3/5", "2/5")))
     idx = eq.instance.network.index_of
     red = eq.defender.schedule([idx("s"), idx("r"), idx("g1")])
     purple = eq.defender.schedule([idx("s"), idx("p"), idx("g1")])
@@ -122,10 +123,10 @@ def test_unreachable_goal_is_a_clear_error() -> None:
     g = nx.DiGraph()
     g.add_weighted_edges_from([("s", "g1", 1), ("s", "g2", 1), ("g1", "g2", 1)])
     with pytest.raises(InvalidInstanceError, match="unreachable from goal"):
-        solve(Instance(g, "s", ("g1", "g2"), ("1/2", "1/2")))
+        paper_equilibrium(Instance(g, "s", ("g1", "g2"), ("1/2", "1/2")))
     g.add_node("x")
     with pytest.raises(InvalidInstanceError, match="'x' is unreachable from start 's'"):
-        solve(Instance(g, "s", ("g1", "x"), ("1/2", "1/2")))
+        paper_equilibrium(Instance(g, "s", ("g1", "x"), ("1/2", "1/2")))
 
 
 def test_float_weights_agree_with_exact_weights() -> None:
@@ -134,8 +135,8 @@ def test_float_weights_agree_with_exact_weights() -> None:
                                ("s", "g2", F(8, 7)), ("g1", "g2", F(1, 2))])
     gf = nx.Graph()
     gf.add_weighted_edges_from((u, v, float(d["weight"])) for u, v, d in g.edges(data=True))
-    exact = solve(Instance(g, "s", ("g1", "g2"), ("3/5", "2/5")))
-    approx = solve(Instance(gf, "s", ("g1", "g2"), ("3/5", "2/5")))
+    exact = paper_equilibrium(Instance(g, "s", ("g1", "g2"), ("3/5", "2/5")))
+    approx = paper_equilibrium(Instance(gf, "s", ("g1", "g2"), ("3/5", "2/5")))
     assert exact.numbers.exact and not approx.numbers.exact and approx.numbers.abs_tol is not None
     assert exact.secondary_path == approx.secondary_path and exact.phases == approx.phases
     assert abs(float(exact.U) - approx.U) <= 1e-9  # type: ignore[operator]
@@ -151,7 +152,7 @@ def test_huge_integer_weights_stay_exact(big: int, directed: bool) -> None:
     for u, v, extra in arcs:
         if directed or not g.has_edge(u, v):
             g.add_edge(u, v, weight=big + extra)
-    eq = solve(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
+    eq = paper_equilibrium(Instance(g, "s", ("g1", "g2"), ("7/10", "3/10")))
     d = dict(nx.all_pairs_dijkstra_path_length(g))  # Python ints: exact
     m = min(d["s"][v] + d[v]["g1"] + d[v]["g2"] for v in g if "g1" in d[v] and "g2" in d[v])
     assert eq.U1 == d["s"]["g1"]
