@@ -12,8 +12,8 @@ By increasing ``|S|``, ``split_S`` is known before ``m_S``, and ``m_S`` is a sho
 problem with sources: ``m_S(v) = min_x [ dist(v → x) + init_S(x) ]`` over walks whose interior
 avoids the goals, ``init_S`` the split at non-goals and the terminal cost at goals. One
 Dijkstra per ``S`` (exact: integers scaled by ``W·L^(N-1)``, ``W`` the weights' denominator,
-``L`` the lcm of the collections' denominators; scipy's float64 Dijkstra when every value is
-an integer below 2**53, which float64 represents exactly; Python integers otherwise).
+``L`` the lcm of the collections' denominators;
+:func:`~solver.graph.distances.distances_from_sources`).
 
 The balanced collections are the vertices of ``{λ >= 0 : Σ_{T ⊊ S} λ_T 1_T = 1_S}``, found by
 trying every basis (a float pre-filter on the integer determinants, then exact integers).
@@ -24,7 +24,6 @@ exact simplex (:func:`cover_lp`), which also returns its dual ``h`` (``h(S) <= m
 
 from __future__ import annotations
 
-import heapq
 import itertools
 import math
 from collections.abc import Mapping, Sequence
@@ -33,16 +32,14 @@ from fractions import Fraction
 from functools import cache
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import dijkstra
 
 from solver.game.instance import Instance
+from solver.graph.distances import distances_from_sources
 from solver.numbers import pivot, solve_exact
 
 __all__ = ["Coalitions", "CoverSolution", "balanced_collections", "coalition_dp", "cover_lp",
            "subset_members"]
 
-EXACT_FLOAT_LIMIT = 2 ** 53
 
 
 def subset_members(mask: int) -> tuple[int, ...]:
@@ -278,45 +275,7 @@ def coalition_dp(game: Instance) -> Coalitions:
             spl[nodes] = best // lcm
             pick[nodes] = arg
             init[nodes] = spl[nodes]
-        cost[mask] = _sourced_dijkstra(n, t_arc, h_arc, w_arc, init)
+        cost[mask] = distances_from_sources(n, t_arc, h_arc, w_arc, init)
         split[mask] = spl
         choice[mask] = pick
     return Coalitions(game, scale * game.denominator, cost, split, choice)
-
-
-def _sourced_dijkstra(n: int, tails: np.ndarray, heads: np.ndarray, weights: list[int],
-                      init: np.ndarray) -> np.ndarray:
-    """``min_x [dist(v -> x) + init[x]]`` for every ``v`` (``init < 0``: not a source)."""
-    src = [i for i in range(n) if init[i] >= 0]
-    top = max((int(init[i]) for i in src), default=0) + sum(weights) + 2
-    if top < EXACT_FLOAT_LIMIT:
-        # reversed arcs plus a super-source n with arcs n -> x of weight init[x] + 1 (> 0)
-        rows = np.concatenate([heads, np.full(len(src), n, dtype=np.int64)])
-        cols = np.concatenate([tails, np.asarray(src, dtype=np.int64)])
-        vals = np.concatenate([np.asarray(weights, dtype=np.float64),
-                               np.asarray([int(init[i]) + 1 for i in src], dtype=np.float64)])
-        mat = sp.csr_matrix((vals, (rows, cols)), shape=(n + 1, n + 1))
-        d = dijkstra(mat, directed=True, indices=n)[:n]
-        out = np.full(n, -1, dtype=object)
-        fin = np.isfinite(d)
-        out[fin] = [int(x) - 1 for x in d[fin]]
-        return out
-    pred: list[list[tuple[int, int]]] = [[] for _ in range(n)]
-    for t, h, w in zip(tails.tolist(), heads.tolist(), weights, strict=True):
-        pred[h].append((t, w))
-    best: list[int | None] = [None] * n
-    heap = [(int(init[i]), i) for i in src]
-    for k, i in heap:
-        best[i] = k
-    heapq.heapify(heap)
-    while heap:
-        k, x = heapq.heappop(heap)
-        if (b := best[x]) is not None and k > b:
-            continue
-        for u, w in pred[x]:
-            nk = k + w
-            b = best[u]
-            if b is None or nk < b:
-                best[u] = nk
-                heapq.heappush(heap, (nk, u))
-    return np.array([-1 if b is None else b for b in best], dtype=object)
