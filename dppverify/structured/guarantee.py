@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 
 from dppverify.exact import INF, Number
-from dppverify.game.distances import dijkstra
+from dppverify.game.distances import EXACT_FLOAT_LIMIT, dijkstra, sparse_dijkstra
 from dppverify.game.instance import Instance
 from dppverify.game.profile_types import GuaranteeRule, StrategyWalk
 from dppverify.structured.coalition import CoalitionValue, coalition_scale, splits
@@ -157,15 +157,13 @@ def _label_setting(n: int, tails: list[int], heads: list[int], weights: list[int
     rows = heads + [n] * len(src)
     cols = tails + src
     lengths = weights + [init[x] + 1 for x in src]
-    if max((init[x] for x in src), default=0) + sum(weights) + 2 < 2 ** 53:
+    if max((init[x] for x in src), default=0) + sum(weights) + 2 < EXACT_FLOAT_LIMIT:
         from scipy.sparse import csr_matrix
-        from scipy.sparse.csgraph import dijkstra as scipy_dijkstra
 
         r = np.asarray(rows, dtype=np.int64)
         c = np.asarray(cols, dtype=np.int64)
         w = np.asarray(lengths, dtype=np.float64)
-        dist = scipy_dijkstra(csr_matrix((w, (r, c)), shape=(n + 1, n + 1)), directed=True,
-                              indices=n)[:n]
+        dist = sparse_dijkstra(csr_matrix((w, (r, c)), shape=(n + 1, n + 1)), n)[:n]
         fin = np.flatnonzero(np.isfinite(dist))
         out[fin] = [int(x) - 1 for x in dist[fin].tolist()]
         return out
