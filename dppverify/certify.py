@@ -291,7 +291,7 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     if chosen in ("structured", "both"):
         structured = in_registry_order(structured_checks(game, prof, h), "structured")
         checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)
-    roles = game.roles(prof.primary_slot)
+    roles = game.roles(prof.primary_goal_index)
     defender = doc.get("defender")
     info = {
         "nodes": game.n_nodes,

@@ -82,7 +82,7 @@ def structured_checks(instance: Instance, profile: Profile,
     >>> [r.status for r in recs] == ["pass"] * len(recs), len(recs)
     (True, 17)
     """
-    roles = instance.roles(profile.primary_slot)
+    roles = instance.roles(profile.primary_goal_index)
     mode = instance.numbers
     missing = _unlisted_profile_prefix(profile)
     out: list[CheckRecord] = [_wellformed(instance, profile, roles, missing)]

@@ -129,7 +129,7 @@ class Profile:
 
     One type for both documents (``format`` says which it came from): ``attacker`` holds the
     mixed strategies by goal index for any N and ``defender`` the Defender. The two-goal
-    views (:attr:`primary`, :attr:`secondary`, :meth:`walks`, ``primary_slot``,
+    views (:attr:`primary`, :attr:`secondary`, :meth:`walks`, ``primary_goal_index``,
     ``claimed_prior``, ``claimed_phases``) are meaningful for ``dpp-profile/1`` only.
 
     Attributes
@@ -143,7 +143,7 @@ class Profile:
         the ``defender`` section is unusable (then a defect says why).
     format : str
         The document's format tag (:data:`PROFILE_FORMAT` or :data:`NGOAL_PROFILE_FORMAT`).
-    primary_slot : int
+    primary_goal_index : int
         ``dpp-profile/1``: goal index of the goal the profile calls primary. Falls back to the
         instance's primary goal when the profile's is unusable.
     claimed_values : Mapping
@@ -163,7 +163,7 @@ class Profile:
     Examples
     --------
     >>> w = StrategyWalk((0, 1), Fraction(1))
-    >>> p = Profile(attacker=((), (w,)), primary_slot=1)
+    >>> p = Profile(attacker=((), (w,)), primary_goal_index=1)
     >>> p.primary == (w,), p.secondary, p.walks(2), p.wellformed
     (True, (), (), True)
     """
@@ -171,7 +171,7 @@ class Profile:
     attacker: tuple[tuple[StrategyWalk, ...], ...]
     defender: ProfileDefender | None = None
     format: str = PROFILE_FORMAT
-    primary_slot: int = 0
+    primary_goal_index: int = 0
     claimed_values: Mapping[str, Number] = field(default_factory=dict)
     claimed_prior: tuple[Fraction, Fraction] | None = None
     claimed_phases: tuple[int, int, int] | None = None
@@ -193,12 +193,12 @@ class Profile:
     @property
     def primary(self) -> tuple[StrategyWalk, ...]:
         """Two goals: the primary type's mixed strategy."""
-        return self.attacker[self.primary_slot]
+        return self.attacker[self.primary_goal_index]
 
     @property
     def secondary(self) -> tuple[StrategyWalk, ...]:
         """Two goals: the secondary type's mixed strategy."""
-        return self.attacker[1 - self.primary_slot]
+        return self.attacker[1 - self.primary_goal_index]
 
     def walks(self, theta: int) -> tuple[StrategyWalk, ...]:
         """Two goals: mixed strategy of type ``theta`` (1 = primary, 2 = secondary)."""

@@ -78,7 +78,7 @@ def test_progress_towards_g2_is_the_mirror_rule() -> None:
     r = inst.roles()
     tree = build_tree(inst, 4)
     to_g2 = tree_defender(tree, r, ProgressRule(r.g2))
-    swapped = inst.roles(1 - inst.primary_slot)
+    swapped = inst.roles(1 - inst.primary_goal_index)
     mirror = tree_defender(tree, swapped, ProgressRule(swapped.g1))
     assert to_g2.alloc1 == mirror.alloc2 and to_g2.alloc2 == mirror.alloc1
 

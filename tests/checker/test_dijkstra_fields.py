@@ -43,7 +43,7 @@ def _same_fields(inst: Instance, h: int | None, slot: int) -> None:
 @given(docs, st.booleans())
 def test_dijkstra_fixpoint_equals_the_layers(doc: dict[str, Any], swap: bool) -> None:
     inst = _read_game(doc, True)
-    slot = 1 - inst.primary_slot if swap and inst.tied else inst.primary_slot
+    slot = 1 - inst.primary_goal_index if swap and inst.tied else inst.primary_goal_index
     fx = fixpoint_fields(inst, inst.roles(slot))
     last = fx.last if fx is not None else 2 * inst.n_nodes
     for h in [*range(0, last + 3), None]:
@@ -65,7 +65,7 @@ def test_a_maze_fixpoint_is_found_by_dijkstra_and_equals_the_layers() -> None:
     fx = fixpoint_fields(inst)
     assert fx is not None and fx.last > 50  # a long serpentine: many layers
     for h in (fx.last - 1, fx.last, fx.last + 1, fx.last + 7, None):
-        _same_fields(inst, h, inst.primary_slot)
+        _same_fields(inst, h, inst.primary_goal_index)
     assert structured_value(inst, None).value == structured_value(inst, fx.last + 1).value
 
 
