@@ -9,9 +9,10 @@ Each peer is skipped cleanly when it is not installed. The games are tiny (at mo
 nodes for two goals): Gambit's exact LP needs minutes at a few hundred nodes (``docs/peers.md``).
 
 N goals (any N, one tree route): the same two peers solve the export of N = 3 and N = 4 games
-(``NCASES`` of ``tests/ngoal/test_efg.py``, 136 to 385 game nodes) and must agree with the
-tree route's exact ``V_H`` (:func:`dppverify.tree_route.value_lp.game_value`, bracket closed) and
-with the coalition DP (:func:`dppverify.structured.coalition.coalition_value`), both exact.
+(``NCASES`` of ``tests/dppverify/tree_route/test_efg_any_n.py``, 136 to 385 game nodes) and must
+agree with the tree route's exact ``V_H`` (:func:`dppverify.tree_route.value_lp.game_value`,
+bracket closed) and with the coalition DP (:func:`dppverify.structured.coalition.coalition_value`),
+both exact.
 
 - OpenSpiel: ``pyspiel.load_efg_game`` + ``sequence_form_lp.solve_zero_sum_game`` with HiGHS
   (its default, ECOS, is no longer installed by cvxpy 1.9; its default solver keyword
@@ -37,9 +38,9 @@ from dppverify import game_value
 from dppverify.game.instance import instance_from_json
 from dppverify.structured.coalition import coalition_value
 from dppverify.tree_route.efg import to_efg
-from tests.checker._helpers import triangle_doc
-from tests.checker.test_efg import FRACTIONAL, GRID, KITE, LADDER, THIRDS
-from tests.ngoal.test_efg import DROP3, NCASES, NIDS
+from tests.dppverify._helpers import triangle_doc
+from tests.dppverify.tree_route.test_efg import FRACTIONAL, GRID, KITE, LADDER, THIRDS
+from tests.dppverify.tree_route.test_efg_any_n import DROP3, NCASES, NIDS
 
 pytestmark = pytest.mark.peers
 

@@ -20,7 +20,7 @@ from dppverify.strategies import grid_worlds, instances, weighted_graphs
 from solver import instance_from_json as solver_instance_from_json
 from solver import instance_to_json
 from solver.twogoal.equilibrium import paper_equilibrium
-from tests.checker._helpers import tree_horizon
+from tests.dppverify._helpers import tree_horizon
 from tests.properties._reference import Game, key, to_float_doc
 
 Doc = dict[str, Any]
