@@ -39,7 +39,7 @@ from dppverify.game.instance import instance_from_json
 from dppverify.structured.coalition import coalition_value
 from dppverify.tree_route.efg import to_efg
 from tests.dppverify._helpers import triangle_doc
-from tests.dppverify.tree_route.test_efg import FRACTIONAL, GRID, KITE, LADDER, THIRDS
+from tests.dppverify.tree_route._efg_reader import FRACTIONAL, GRID, KITE, LADDER, THIRDS
 from tests.dppverify.tree_route.test_efg_any_n import DROP3, NCASES, NIDS
 
 pytestmark = pytest.mark.peers

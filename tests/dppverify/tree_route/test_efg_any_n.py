@@ -2,7 +2,7 @@
 independently.
 
 The exported text is parsed back with the independent reader of
-``tests/dppverify/tree_route/test_efg.py`` (written from Gambit's format specification, no code
+``tests/dppverify/tree_route/_efg_reader.py`` (written from Gambit's format specification, no code
 shared with ``dppverify.tree_route.efg``) and checked against brute-force walk enumeration on the
 instance document: node and information
 set counts (``N^t`` copies of a ``t``-step prefix), perfect recall, what each player sees,
@@ -23,9 +23,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from click.testing import CliRunner
 
-from dppverify.cli.export_efg import export_efg_command
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.game.examples import star3_document
 from dppverify.game.instance import instance_from_json
@@ -35,18 +33,22 @@ from dppverify.tree_route.tree import build_tree
 from dppverify.tree_route.value_lp import game_value
 from tests.dppverify._helpers import _key, adjacency, all_walks, distances_to, grid_doc, make_doc
 from tests.dppverify._helpers import triangle_doc as _triangle_doc
-from tests.dppverify.tree_route.test_efg import (
+from tests.dppverify.tree_route._efg_reader import (
     FRACTIONAL,
     GRID,
     KITE,
     LADDER,
     THIRDS,
+    VARIANT_IDS,
+    VARIANTS,
     Node,
+    decode,
+    export,
     own_history,
     parse,
+    run_cli,
     sequence_form_value,
 )
-from tests.dppverify.tree_route.test_efg import _decode as decode
 
 # ---------------------------------------------------------------------------------------------
 # N-goal cases (tiny: the peers in tests/peers solve the same games)
@@ -79,14 +81,6 @@ NCASES = [("star3", STAR3, 2), ("star3", STAR3, 3), ("drop3", DROP3, 2), ("drop3
           ("kite3", KITE3, 2), ("frac3", FRAC3, 3), ("directed3", DIRECTED3, 3),
           ("grid3", GRID3, 2), ("star4", STAR4, 2)]
 NIDS = [f"{name}-H{h}" for name, _, h in NCASES]
-VARIANTS = [(True, False), (False, False), (True, True), (False, True)]
-VARIANT_IDS = ["observes", "blind", "observes-forced", "blind-forced"]
-
-
-def _export(doc: dict[str, Any], horizon: int, observes: bool = True, forced: bool = False
-            ) -> Any:
-    return parse(to_efg(instance_from_json(doc), horizon, attacker_observes=observes,
-                        forced_moves=forced))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -153,7 +147,7 @@ def test_two_goals_read_as_n_goals_export_the_same_bytes(name: str, observes: bo
 def test_node_and_infoset_counts_are_n_to_the_t(name: str, doc: dict[str, Any], horizon: int,
                                                 observes: bool, forced: bool) -> None:
     n = len(doc["goals"])
-    game = _export(doc, horizon, observes, forced)
+    game = export(doc, horizon, observes, forced)
     tree = build_tree(instance_from_json(doc), horizon)
     depth = [int(t) for t in tree.depth]
     kids = [len(tree.children(p)) for p in range(tree.n_prefixes)]
@@ -182,7 +176,7 @@ def test_perfect_recall_and_what_each_player_sees(name: str, doc: dict[str, Any]
                                                   observes: bool, forced: bool) -> None:
     n = len(doc["goals"])
     members: dict[tuple[int, int], list[Node]] = defaultdict(list)
-    for x in _export(doc, horizon, observes, forced).nodes():
+    for x in export(doc, horizon, observes, forced).nodes():
         if x.kind == "p":
             members[(x.player, x.infoset)].append(x)
     for (player, _), nodes in members.items():
@@ -205,7 +199,7 @@ def test_perfect_recall_and_what_each_player_sees(name: str, doc: dict[str, Any]
 @pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
 def test_payoffs_on_leaves_equal_recomputed_costs(name: str, doc: dict[str, Any], horizon: int,
                                                   forced: bool) -> None:
-    game = _export(doc, horizon, forced=forced)
+    game = export(doc, horizon, forced=forced)
     assert game.players == ["Attacker", "Defender"]
     adj = {u: dict(arcs) for u, arcs in adjacency(doc).items()}
     goals = [_key(g) for g in doc["goals"]]
@@ -232,7 +226,7 @@ def test_payoffs_on_leaves_equal_recomputed_costs(name: str, doc: dict[str, Any]
 
 @pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
 def test_chance_node_and_action_order(name: str, doc: dict[str, Any], horizon: int) -> None:
-    game = _export(doc, horizon)
+    game = export(doc, horizon)
     assert [x for x in game.nodes() if x.kind == "c"] == [game.root]
     assert game.root.probs == [Fraction(b) for b in doc["prior"]]
     assert game.root.actions == [f"type {g}" for g in doc["goals"]]
@@ -253,14 +247,14 @@ def test_sequence_form_lp_of_the_export_gives_the_tree_value_and_the_dp(
     exact = game_value(inst, horizon).bracket.exact
     assert exact is not None
     assert coalition_value(inst, horizon).value == exact
-    lp = sequence_form_value(_export(doc, horizon, observes, forced), minimizer=1, maximizer=2)
+    lp = sequence_form_value(export(doc, horizon, observes, forced), minimizer=1, maximizer=2)
     assert abs(lp - float(exact)) <= 1e-9 * max(1.0, abs(float(exact)))
 
 
 def test_the_value_depends_on_the_horizon_in_the_export() -> None:
     # guards against cases where any export would match: V_2 = 21/2, V_3 = 5 for DROP3
-    v2 = sequence_form_value(_export(DROP3, 2), 1, 2)
-    v3 = sequence_form_value(_export(DROP3, 3), 1, 2)
+    v2 = sequence_form_value(export(DROP3, 2), 1, 2)
+    v3 = sequence_form_value(export(DROP3, 3), 1, 2)
     assert abs(v2 - 10.5) < 1e-9 and abs(v3 - 5) < 1e-9
 
 
@@ -316,20 +310,13 @@ def test_size_is_exact_beyond_64_bits() -> None:
 # ---------------------------------------------------------------------------------------------
 
 
-def _run(args: list[str]) -> Any:
-    result = CliRunner().invoke(export_efg_command, args)
-    assert "Traceback" not in result.output
-    assert result.exception is None or isinstance(result.exception, SystemExit), result.exception
-    return result
-
-
 @pytest.mark.parametrize("flags", [[], ["--attacker-blind"], ["--forced-moves"], ["--progress"],
                                    ["--attacker-blind", "--forced-moves", "--no-progress"]])
 def test_cli_export_efg_n_goals(tmp_path: Path, flags: list[str]) -> None:
     path = tmp_path / "kite3.json"
     path.write_text(json.dumps(KITE3))
     out = tmp_path / "kite3.efg"
-    r = _run([str(path), "-H", "2", "-o", str(out), *flags])
+    r = run_cli([str(path), "-H", "2", "-o", str(out), *flags])
     assert r.exit_code == 0, r.output
     inst = instance_from_json(KITE3)
     assert out.read_text() == to_efg(inst, 2, attacker_observes="--attacker-blind" not in flags,
@@ -339,13 +326,16 @@ def test_cli_export_efg_n_goals(tmp_path: Path, flags: list[str]) -> None:
     assert f"{size.nodes} game nodes" in r.output and "N = 3 goals" in r.output
 
 
-@pytest.mark.parametrize("extra", [["-H", "3", "--max-nodes", "100"],
-                                   ["-H", "3", "--max-prefixes", "5"], ["-H", "0"]])
-def test_cli_export_efg_n_goals_refusals_are_one_line(tmp_path: Path, extra: list[str]) -> None:
-    path = tmp_path / "kite3.json"
-    path.write_text(json.dumps(KITE3))
+@pytest.mark.parametrize(("doc", "horizon"), [(KITE, 9), (KITE3, 3)], ids=["N=2", "N=3"])
+@pytest.mark.parametrize("extra", [["--max-nodes", "100"], ["--max-prefixes", "5"], ["H=0"]])
+def test_cli_export_efg_refusals_are_one_line(tmp_path: Path, doc: dict[str, Any], horizon: int,
+                                              extra: list[str]) -> None:
+    """Too large a game (nodes, prefixes) or ``-H 0``: one line, exit 2, nothing written."""
+    path = tmp_path / "game.json"
+    path.write_text(json.dumps(doc))
     out = tmp_path / "g.efg"
-    r = _run([str(path), "-o", str(out), *extra])
+    flags = ["-H", "0"] if extra == ["H=0"] else ["-H", str(horizon), *extra]
+    r = run_cli([str(path), "-o", str(out), *flags])
     assert r.exit_code == 2 and r.output.startswith("error: ") and len(r.output.splitlines()) == 1
     assert not out.exists()
 
@@ -354,7 +344,7 @@ def test_cli_export_efg_invalid_n_goal_instance(tmp_path: Path) -> None:
     bad = dict(KITE3, prior=["1/2", "1/3", "1/3"])
     path = tmp_path / "bad.json"
     path.write_text(json.dumps(bad))
-    r = _run([str(path), "-H", "2", "-o", str(tmp_path / "g.efg")])
+    r = run_cli([str(path), "-H", "2", "-o", str(tmp_path / "g.efg")])
     assert r.exit_code == 2 and len(r.output.splitlines()) == 1
     assert "prior: must sum to exactly 1" in r.output
     assert not (tmp_path / "g.efg").exists()
