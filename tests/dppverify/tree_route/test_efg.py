@@ -12,9 +12,8 @@ ordering requirement, and that the sequence-form LP of the parsed game (scipy Hi
 
 from __future__ import annotations
 
-import itertools
 import json
-from collections import Counter, defaultdict
+from collections import defaultdict
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
@@ -24,20 +23,14 @@ import pytest
 from dppverify import game_value
 from dppverify.cli import COMMANDS
 from dppverify.cli.export_efg import export_efg_command
-from dppverify.errors import CheckerError, HorizonError, TreeTooLargeError
+from dppverify.errors import CheckerError
 from dppverify.game.instance import instance_from_json
-from dppverify.tree_route.efg import efg_size, to_efg, write_efg
-from dppverify.tree_route.tree import build_tree
+from dppverify.tree_route.efg import to_efg, write_efg
 from tests.dppverify._helpers import (
-    _key,
-    adjacency,
-    all_walks,
-    distances_to,
     make_doc,
 )
 from tests.dppverify.tree_route._efg_reader import (
     CASES,
-    GRID,
     IDS,
     KITE,
     VARIANT_IDS,
@@ -55,34 +48,6 @@ from tests.dppverify.tree_route._efg_reader import (
 # ---------------------------------------------------------------------------------------------
 # The tests
 # ---------------------------------------------------------------------------------------------
-
-@pytest.mark.parametrize(("observes", "forced"), VARIANTS, ids=VARIANT_IDS)
-@pytest.mark.parametrize(("name", "doc", "horizon"), CASES, ids=IDS)
-def test_node_and_infoset_counts_match_the_walk_tree(name: str, doc: dict[str, Any],
-                                                      horizon: int, observes: bool,
-                                                      forced: bool) -> None:
-    game = export(doc, horizon, observes, forced)
-    tree = build_tree(instance_from_json(doc), horizon)
-    depth = [int(t) for t in tree.depth]
-    n_kids = [len(tree.children(p)) for p in range(tree.n_prefixes)]
-    choice = [p for p in range(tree.n_prefixes) if n_kids[p] >= (1 if forced else 2)]
-    nodes = list(game.nodes())
-    kinds = Counter((n.kind, n.player) for n in nodes)
-    assert kinds[("c", 0)] == 1 and game.root.kind == "c"
-    # every t-step prefix appears once per type and per Defender history (2^t of them)
-    assert kinds[("t", 0)] == 2 * sum(2 ** depth[p] for p in tree.leaves())
-    assert kinds[("p", 1)] == 2 * sum(2 ** depth[p] for p in choice)
-    assert kinds[("p", 2)] == 2 * sum(2 ** (depth[p] - 1) for p in range(1, tree.n_prefixes))
-    infosets = {(n.player, n.infoset) for n in nodes if n.kind == "p"}
-    n_def = sum(1 for pl, _ in infosets if pl == 2)
-    n_att = sum(1 for pl, _ in infosets if pl == 1)
-    assert n_def == sum(2 ** (depth[p] - 1) for p in range(1, tree.n_prefixes))
-    assert n_att == 2 * (sum(2 ** depth[p] for p in choice) if observes else len(choice))
-    assert all(len(n.actions) >= (1 if forced else 2) for n in nodes if n.kind == "p")
-    size = efg_size(tree, attacker_observes=observes, forced_moves=forced)
-    assert (size.nodes, size.terminals, size.attacker_infosets, size.defender_infosets) == (
-        len(nodes), kinds[("t", 0)], n_att, n_def)
-
 
 def test_some_cases_have_forced_moves() -> None:
     # the forced-move variants above differ from the default ones only if moves are forced
@@ -117,40 +82,6 @@ def test_perfect_recall_and_consistent_infosets(name: str, doc: dict[str, Any], 
                 assert len(nodes) == 1
             else:
                 assert len(nodes) == 2 ** (len(decoded[0][1]) - 1)
-
-
-@pytest.mark.parametrize("forced", [False, True])
-@pytest.mark.parametrize(("name", "doc", "horizon"), CASES, ids=IDS)
-def test_payoffs_only_on_leaves_and_equal_to_recomputed_costs(name: str, doc: dict[str, Any],
-                                                               horizon: int,
-                                                               forced: bool) -> None:
-    game = export(doc, horizon, forced=forced)
-    assert game.players == ["Attacker", "Defender"]
-    adj = {u: dict(arcs) for u, arcs in adjacency(doc).items()}
-    goals = [_key(g) for g in doc["goals"]]
-    dist = {g: distances_to(doc, g) for g in goals}
-    outcomes: dict[int, list[Fraction]] = {}
-    seen: Counter[tuple[Any, ...]] = Counter()
-    for n in game.nodes():
-        if n.kind != "t":
-            assert n.payoffs is None and n.outcome == 0
-            continue
-        assert n.payoffs is not None and n.outcome > 0
-        assert outcomes.setdefault(n.outcome, n.payoffs) == n.payoffs
-        attacker, defender = n.payoffs
-        assert attacker == -defender  # zero-sum
-        goal, walk, allocs = decode(n, doc, horizon)
-        assert len(allocs) == len(walk) - 1  # the Defender allocated every step
-        assert all(b in adj[a] for a, b in itertools.pairwise(walk))
-        assert walk[-1] in goals and not set(walk[:-1]) & set(goals) and len(walk) <= horizon + 1
-        cost = sum((adj[a][b] for (a, b), g in zip(itertools.pairwise(walk), allocs, strict=True)
-                    if g == goal), Fraction(0))
-        assert defender == cost + dist[goal][walk[-1]]
-        seen[(goal, walk)] += 1
-    # every walk of the game, for each type, once per Defender history (2^steps)
-    expected = Counter({(g, w): 2 ** (len(w) - 1) for g in goals
-                        for w in all_walks(doc, horizon)})
-    assert seen == expected
 
 
 @pytest.mark.parametrize(("name", "doc", "horizon"), CASES, ids=IDS)
@@ -219,19 +150,6 @@ def test_float_instances_export_decimals() -> None:
     assert "e-" not in text and "0.1" in text
     costs = {n.payoffs[1] for n in parse(text).nodes() if n.payoffs}
     assert Fraction("0.1") in costs and Fraction("2.5") in costs
-
-
-def test_size_guards_raise_before_writing(tmp_path: Path) -> None:
-    inst = instance_from_json(GRID)
-    nodes = efg_size(build_tree(inst, 5)).nodes
-    assert to_efg(inst, 5, max_nodes=nodes)
-    with pytest.raises(TreeTooLargeError, match="--max-nodes"):
-        to_efg(inst, 5, max_nodes=nodes - 1)
-    with pytest.raises(TreeTooLargeError, match="--max-prefixes"):
-        write_efg(tmp_path / "g.efg", inst, 5, max_prefixes=88)
-    assert list(tmp_path.iterdir()) == []
-    with pytest.raises(HorizonError):
-        to_efg(inst, 1)
 
 
 def test_write_efg_is_atomic_and_reports_the_size(tmp_path: Path) -> None:

@@ -34,8 +34,10 @@ from dppverify.tree_route.value_lp import game_value
 from tests.dppverify._helpers import _key, adjacency, all_walks, distances_to, grid_doc, make_doc
 from tests.dppverify._helpers import triangle_doc as _triangle_doc
 from tests.dppverify.tree_route._efg_reader import (
+    CASES,
     FRACTIONAL,
     GRID,
+    IDS,
     KITE,
     LADDER,
     THIRDS,
@@ -143,9 +145,11 @@ def test_two_goals_read_as_n_goals_export_the_same_bytes(name: str, observes: bo
 
 
 @pytest.mark.parametrize(("observes", "forced"), VARIANTS, ids=VARIANT_IDS)
-@pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
+@pytest.mark.parametrize(("name", "doc", "horizon"), CASES + NCASES, ids=IDS + NIDS)
 def test_node_and_infoset_counts_are_n_to_the_t(name: str, doc: dict[str, Any], horizon: int,
                                                 observes: bool, forced: bool) -> None:
+    """Every t-step prefix appears once per type and per Defender history (N^t of them), for
+    N = 2 (the two-goal cases) and more."""
     n = len(doc["goals"])
     game = export(doc, horizon, observes, forced)
     tree = build_tree(instance_from_json(doc), horizon)
@@ -165,6 +169,7 @@ def test_node_and_infoset_counts_are_n_to_the_t(name: str, doc: dict[str, Any], 
     assert n_def == d_nodes
     assert n_att == n * (sum(n ** depth[p] for p in choice) if observes else len(choice))
     assert all(len(x.actions) == n for x in nodes if x.kind == "p" and x.player == 2)
+    assert all(len(x.actions) >= (1 if forced else 2) for x in nodes if x.kind == "p")
     size = efg_size(tree, attacker_observes=observes, forced_moves=forced)
     assert (size.nodes, size.terminals, size.attacker_infosets, size.defender_infosets) == (
         len(nodes), kinds[("t", 0)], n_att, n_def)
@@ -196,25 +201,32 @@ def test_perfect_recall_and_what_each_player_sees(name: str, doc: dict[str, Any]
 
 
 @pytest.mark.parametrize("forced", [False, True])
-@pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
-def test_payoffs_on_leaves_equal_recomputed_costs(name: str, doc: dict[str, Any], horizon: int,
-                                                  forced: bool) -> None:
+@pytest.mark.parametrize(("name", "doc", "horizon"), CASES + NCASES, ids=IDS + NIDS)
+def test_payoffs_only_on_leaves_and_equal_to_recomputed_costs(name: str, doc: dict[str, Any],
+                                                               horizon: int,
+                                                               forced: bool) -> None:
+    """Zero-sum payoffs on the leaves only, one per outcome, each the cost recomputed from the
+    instance document (what lands on the true goal plus its terminal cost); every walk of the
+    game for each type once per Defender history (N^steps), for N = 2 and more."""
     game = export(doc, horizon, forced=forced)
     assert game.players == ["Attacker", "Defender"]
     adj = {u: dict(arcs) for u, arcs in adjacency(doc).items()}
     goals = [_key(g) for g in doc["goals"]]
     dist = {g: distances_to(doc, g) for g in goals}
+    outcomes: dict[int, list[Fraction]] = {}
     seen: Counter[tuple[Any, ...]] = Counter()
     for x in game.nodes():
         if x.kind != "t":
             assert x.payoffs is None and x.outcome == 0
             continue
-        assert x.payoffs is not None
+        assert x.payoffs is not None and x.outcome > 0
+        assert outcomes.setdefault(x.outcome, x.payoffs) == x.payoffs
         attacker, defender = x.payoffs
         assert attacker == -defender  # zero-sum
         goal, walk, allocs = decode(x, doc, horizon)
-        assert len(allocs) == len(walk) - 1
-        assert walk[-1] in goals and not set(walk[:-1]) & set(goals)
+        assert len(allocs) == len(walk) - 1  # the Defender allocated every step
+        assert all(b in adj[a] for a, b in itertools.pairwise(walk))
+        assert walk[-1] in goals and not set(walk[:-1]) & set(goals) and len(walk) <= horizon + 1
         cost = sum((adj[a][b] for (a, b), g in zip(itertools.pairwise(walk), allocs, strict=True)
                     if g == goal), Fraction(0))
         assert defender == cost + dist[goal][walk[-1]]  # what lands on its true goal
@@ -276,18 +288,23 @@ def test_ten_goals_or_more_separate_the_history_digits() -> None:
     assert n_def == efg_size(build_tree(inst, 3)).defender_infosets
 
 
-def test_size_guards_and_horizon_errors(tmp_path: Path) -> None:
-    inst = instance_from_json(GRID3)
-    nodes = efg_size(build_tree(inst, 3)).nodes
-    assert to_efg(inst, 3, max_nodes=nodes)
+@pytest.mark.parametrize(("doc", "horizon", "prefixes", "too_short"),
+                         [(GRID, 5, 88, 1), (GRID3, 3, 5, 0)], ids=["N=2", "N=3"])
+def test_size_guards_and_horizon_errors(tmp_path: Path, doc: dict[str, Any], horizon: int,
+                                        prefixes: int, too_short: int) -> None:
+    """The size guards refuse before anything is written; a horizon the game cannot take is
+    refused; the written export has exactly the nodes the size said."""
+    inst = instance_from_json(doc)
+    nodes = efg_size(build_tree(inst, horizon)).nodes
+    assert to_efg(inst, horizon, max_nodes=nodes)
     with pytest.raises(TreeTooLargeError, match="--max-nodes"):
-        to_efg(inst, 3, max_nodes=nodes - 1)
+        to_efg(inst, horizon, max_nodes=nodes - 1)
     with pytest.raises(TreeTooLargeError, match="--max-prefixes"):
-        write_efg(tmp_path / "g.efg", inst, 3, max_prefixes=5)
+        write_efg(tmp_path / "g.efg", inst, horizon, max_prefixes=prefixes)
     assert list(tmp_path.iterdir()) == []
     with pytest.raises(HorizonError):
-        to_efg(inst, 0)
-    size = write_efg(tmp_path / "g.efg", inst, 3)
+        to_efg(inst, too_short)
+    size = write_efg(tmp_path / "g.efg", inst, horizon)
     assert size.nodes == nodes == sum(1 for _ in parse((tmp_path / "g.efg").read_text()).nodes())
 
 
