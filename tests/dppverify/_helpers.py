@@ -16,6 +16,9 @@ from typing import Any
 
 import click
 from click.testing import CliRunner, Result
+from hypothesis import strategies as st
+
+from dppverify.strategies import grid_worlds, instances, weighted_graphs
 
 DATA = Path(__file__).resolve().parents[1] / "data"
 
@@ -212,3 +215,19 @@ def tree_horizon(instance: Any, profile: Any) -> int:
 
     inst = as_instance(instance)
     return shortest_horizon(inst, profile_from_json(profile, inst))
+
+
+def instance_documents(max_nodes: int, max_weight: int, float_nodes: int, grid_size: int,
+                       grid_cells: int) -> st.SearchStrategy[dict[str, Any]]:
+    """Two-goal instance documents of every kind the reader takes: fractional weights,
+    directed graphs (not always strongly connected), float mode, grid worlds."""
+    return st.one_of(
+        instances(graphs=weighted_graphs(max_nodes=max_nodes, weights="fractions",
+                                         max_weight=max_weight)),
+        instances(graphs=weighted_graphs(max_nodes=max_nodes, directed=True,
+                                         strongly_connected=False)),
+        instances(graphs=weighted_graphs(max_nodes=float_nodes, weights="floats")).map(
+            lambda d: {**d, "numbers": "float"}),
+        grid_worlds(max_size=grid_size, max_cells=grid_cells),
+    )
+

@@ -15,17 +15,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dppverify.game.instance import Instance, _read_game
-from dppverify.strategies import grid_worlds, instances, weighted_graphs
 from dppverify.twogoal.value_dp import structured_value, value_fields
 from dppverify.twogoal.value_fixpoint import fixpoint_fields
+from tests.dppverify._helpers import instance_documents
 
-docs = st.one_of(
-    instances(graphs=weighted_graphs(max_nodes=9, weights="fractions", max_weight=7)),
-    instances(graphs=weighted_graphs(max_nodes=9, directed=True, strongly_connected=False)),
-    instances(graphs=weighted_graphs(max_nodes=6, weights="floats")).map(
-        lambda d: {**d, "numbers": "float"}),
-    grid_worlds(max_size=5, max_cells=20),
-)
+docs = instance_documents(max_nodes=9, max_weight=7, float_nodes=6, grid_size=5, grid_cells=20)
 
 
 def _same_fields(inst: Instance, h: int | None, slot: int) -> None:

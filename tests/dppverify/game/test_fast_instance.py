@@ -32,14 +32,10 @@ from dppverify.game.instance import Instance, _read_game, arc_arrays
 from dppverify.strategies import grid_worlds, instances, ngoal_instances, weighted_graphs
 from dppverify.twogoal.value_dp import _Frontier, value_fields
 from dppverify.twogoal.value_fixpoint import goal_terminal_arcs
+from tests.dppverify._helpers import instance_documents
 
-random_docs = st.one_of(
-    instances(graphs=weighted_graphs(max_nodes=8, weights="fractions", max_weight=5)),
-    instances(graphs=weighted_graphs(max_nodes=8, directed=True, strongly_connected=False)),
-    instances(graphs=weighted_graphs(max_nodes=6, weights="floats")).map(
-        lambda d: {**d, "numbers": "float"}),
-    grid_worlds(max_size=4, max_cells=12),
-)
+random_docs = instance_documents(max_nodes=8, max_weight=5, float_nodes=6, grid_size=4,
+                                 grid_cells=12)
 
 FIELDS = ("nodes", "directed", "succ", "pred", "start", "goals", "prior", "exact", "dist_to",
           "hops")

@@ -8,6 +8,7 @@ from typing import Any
 
 import pytest
 from hypothesis import given
+from hypothesis import strategies as st
 
 import dppverify.tree_route.lp_exact as lp_exact
 from dppverify.game.instance import instance_from_json
@@ -48,26 +49,24 @@ def test_an_open_bracket_says_why(monkeypatch: pytest.MonkeyPatch) -> None:
     assert not b.closed and b.reason is not None and "constraint rows" in b.reason
 
 
-@given(instances(graphs=weighted_graphs(max_nodes=6, weights="fractions", max_weight=5)))
-def test_two_goal_brackets_close_at_the_dp_value(doc: dict[str, Any]) -> None:
-    inst = instance_from_json(doc, two_goals=True)  # the two-goal reading rules
+GAMES = {"N=2": instances(graphs=weighted_graphs(max_nodes=6, weights="fractions", max_weight=5)),
+         "N=3,4": ngoal_instances(min_goals=3, max_goals=4,
+                                  graphs=weighted_graphs(min_nodes=4, max_nodes=6, max_weight=4))}
+
+
+@pytest.mark.parametrize("games", GAMES.values(), ids=GAMES.keys())
+@given(data=st.data())
+def test_brackets_close(games: st.SearchStrategy[dict[str, Any]], data: st.DataObject) -> None:
+    """The exact bracket of V_H closes on small games for any N; for two goals (read under the
+    two-goal rules) at the coalition DP's value (NG.3: the DP is the value)."""
+    doc = data.draw(games)
     ninst = instance_from_json(doc)  # the reader for any N
+    inst = instance_from_json(doc, two_goals=True) if ninst.n_goals == 2 else ninst
     first = ninst.hops[ninst.start]
     for h in range(first, first + 3):
         if count_prefixes(ninst, h) > 1500:
             break
         b = game_value(inst, h, max_prefixes=1500).bracket
         assert b.closed, (doc, h, b)
-        assert b.exact == coalition_value(ninst, h).value  # NG.3: the DP is the value
-
-
-@given(ngoal_instances(min_goals=3, max_goals=4,
-                       graphs=weighted_graphs(min_nodes=4, max_nodes=6, max_weight=4)))
-def test_n_goal_brackets_close(doc: dict[str, Any]) -> None:
-    inst = instance_from_json(doc)
-    first = inst.hops[inst.start]
-    for h in range(first, first + 3):
-        if count_prefixes(inst, h) > 1500:
-            break
-        b = game_value(inst, h, max_prefixes=1500).bracket
-        assert b.closed, (doc, h, b)
+        if ninst.n_goals == 2:
+            assert b.exact == coalition_value(ninst, h).value

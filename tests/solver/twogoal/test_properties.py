@@ -86,6 +86,13 @@ def _goal_paths(g: nx.Graph, start: Hashable, goals: set[Hashable]) -> Iterator[
                 stack.append([*path, nxt])
 
 
+def _solved(inst: Instance) -> tuple[Equilibrium, nx.Graph, Hashable, Hashable,
+                                     dict[Hashable, Fraction], dict[Hashable, Fraction]]:
+    """The equilibrium, the graph, g1, g2 and the brute-force distances to g1 and g2."""
+    g, g1, g2 = inst.graph, inst.primary, inst.secondary
+    return paper_equilibrium(inst), g, g1, g2, _dist(g, g1), _dist(g, g2)
+
+
 COMMON = settings(max_examples=60, deadline=None, derandomize=True,
                   suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
 
@@ -93,9 +100,7 @@ COMMON = settings(max_examples=60, deadline=None, derandomize=True,
 @COMMON
 @given(small_instances())
 def test_xi2_cost_is_the_brute_force_minimum_over_simple_paths(inst: Instance) -> None:
-    eq = paper_equilibrium(inst)
-    g, g1, g2 = inst.graph, inst.primary, inst.secondary
-    to_g1, to_g2 = _dist(g, g1), _dist(g, g2)
+    eq, g, g1, g2, to_g1, to_g2 = _solved(inst)
     best = min(_cost(g, p, 2, to_g1, to_g2) for p in _goal_paths(g, inst.start, {g1, g2}))
     assert _cost(g, eq.secondary_path, 2, to_g1, to_g2) == best
     assert eq.U2 == best
@@ -104,9 +109,7 @@ def test_xi2_cost_is_the_brute_force_minimum_over_simple_paths(inst: Instance) -
 @COMMON
 @given(small_instances())
 def test_every_primary_path_costs_exactly_d_s0_g1(inst: Instance) -> None:
-    eq = paper_equilibrium(inst)
-    g, g1, g2 = inst.graph, inst.primary, inst.secondary
-    to_g1, to_g2 = _dist(g, g1), _dist(g, g2)
+    eq, g, g1, g2, to_g1, to_g2 = _solved(inst)
     assert sum(p.probability for p in eq.primary_paths) == 1
     for path in eq.primary_paths:
         assert path.nodes[0] == inst.start and path.nodes[-1] in (g1, g2)
