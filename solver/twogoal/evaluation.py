@@ -68,11 +68,11 @@ class Trajectory:
 
 
 @dataclass(frozen=True)
-class _PathRun:
+class _WalkRun:
     """One Attacker walk evaluated against the Defender (internal)."""
 
     theta: int
-    path: StrategyWalk
+    strategy: StrategyWalk
     sigma: tuple[Number, ...]
     weights: tuple[Number, ...]
     terminal: Number
@@ -92,21 +92,21 @@ class Evaluation:
     U: Number
     U_bar: Number
     VoI: Number
-    _runs: tuple[_PathRun, ...] = field(repr=False)
+    _runs: tuple[_WalkRun, ...] = field(repr=False)
     _prior: tuple[Fraction, Fraction] = field(repr=False)
 
     @cached_property
     def trajectories(self) -> tuple[Trajectory, ...]:
         """Per walk: σ(g1), Bayes beliefs ``b^1_t`` (eq. (2)) and cumulative allocation."""
-        all_paths = [(r.theta, r.path) for r in self._runs]
+        all_paths = [(r.theta, r.strategy) for r in self._runs]
         out = []
         for run in self._runs:
             alloc: list[Number] = [run.cost - run.cost]  # a zero of the right type
             for w, s in zip(run.weights, run.sigma, strict=True):
                 alloc.append(alloc[-1] + w * (s if run.theta == 1 else 1 - s))
-            out.append(Trajectory(run.theta, run.path.label, run.path.probability,
-                                  run.path.walk, run.path.nodes, run.sigma,
-                                  _beliefs_along(run.path.walk, all_paths, self._prior),
+            out.append(Trajectory(run.theta, run.strategy.label, run.strategy.probability,
+                                  run.strategy.walk, run.strategy.nodes, run.sigma,
+                                  _beliefs_along(run.strategy.walk, all_paths, self._prior),
                                   tuple(alloc), run.terminal, run.cost))
         return tuple(out)
 
@@ -155,7 +155,7 @@ def evaluate(
             paid = _allocation_total(net, raw, sigma, to_g1=theta == 1)
             terminal = numbers.convert((d_to_g1 if theta == 1 else d_to_g2)[sp.walk[-1]])
             cost = paid + terminal
-            runs.append(_PathRun(theta, sp, sigma, tuple(map(numbers.convert, raw)), terminal,
+            runs.append(_WalkRun(theta, sp, sigma, tuple(map(numbers.convert, raw)), terminal,
                                  cost))
             u_theta[theta] = u_theta[theta] + sp.probability * cost
     u1, u2 = u_theta[1], u_theta[2]

@@ -57,8 +57,12 @@ VARIANT_IDS = ["observes", "blind"]
 
 
 def _exact_value(doc: dict[str, Any], horizon: int) -> Fraction:
-    v = game_value(instance_from_json(doc), horizon)
+    """The tree route's exact V_H (any N); for N > 2 the coalition DP must equal it exactly."""
+    inst = instance_from_json(doc)
+    v = game_value(inst, horizon)
     assert v.bracket.closed and v.bracket.exact is not None
+    if inst.n_goals > 2:
+        assert coalition_value(inst, horizon).value == v.bracket.exact
     return Fraction(v.bracket.exact)
 
 
@@ -104,7 +108,7 @@ def _gambit_solve(gambit: ModuleType, text: str, tmp_path: Path) -> Any:
 
 
 @pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
-@pytest.mark.parametrize(("name", "doc", "horizon"), CASES, ids=IDS)
+@pytest.mark.parametrize(("name", "doc", "horizon"), CASES + NCASES, ids=IDS + NIDS)
 def test_openspiel_sequence_form_lp_gives_v_h(openspiel: Any, name: str, doc: dict[str, Any],
                                               horizon: int, observes: bool) -> None:
     exact = _exact_value(doc, horizon)
@@ -117,7 +121,7 @@ def test_openspiel_sequence_form_lp_gives_v_h(openspiel: Any, name: str, doc: di
 
 
 @pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
-@pytest.mark.parametrize(("name", "doc", "horizon"), CASES, ids=IDS)
+@pytest.mark.parametrize(("name", "doc", "horizon"), CASES + NCASES, ids=IDS + NIDS)
 def test_gambit_exact_lp_gives_exactly_v_h(gambit: ModuleType, tmp_path: Path, name: str,
                                            doc: dict[str, Any], horizon: int,
                                            observes: bool) -> None:
@@ -178,54 +182,18 @@ def test_forced_moves_are_harmless_for_openspiel(openspiel: Any) -> None:
 # ---------------------------------------------------------------------------------------------
 
 
-def _exact_nvalue(doc: dict[str, Any], horizon: int) -> Fraction:
-    """The tree route's exact V_H, which the coalition DP must equal exactly."""
-    inst = instance_from_json(doc)
-    v = game_value(inst, horizon)
-    assert v.bracket.closed and v.bracket.exact is not None
-    assert coalition_value(inst, horizon).value == v.bracket.exact
-    return Fraction(v.bracket.exact)
-
-
 def test_n_goal_cases_include_four_goals_and_a_horizon_drop() -> None:
     # the N-goal cases below are not all alike: one has four goals, one changes with H
     assert {len(doc["goals"]) for _, doc, _ in NCASES} == {3, 4}
-    values = {(name, h): _exact_nvalue(doc, h) for name, doc, h in NCASES if name == "drop3"}
+    values = {(name, h): _exact_value(doc, h) for name, doc, h in NCASES if name == "drop3"}
     assert values == {("drop3", 2): Fraction(21, 2), ("drop3", 3): Fraction(5)}
-
-
-@pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
-@pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
-def test_openspiel_sequence_form_lp_gives_the_n_goal_value(openspiel: Any, name: str,
-                                                          doc: dict[str, Any], horizon: int,
-                                                          observes: bool) -> None:
-    exact = _exact_nvalue(doc, horizon)
-    text = to_efg(instance_from_json(doc), horizon, attacker_observes=observes)
-    v0, v1, nash_conv = _openspiel_value(openspiel, text)
-    assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
-    assert abs(v1 - float(exact)) <= OPENSPIEL_TOLERANCE
-    assert 0 <= nash_conv <= OPENSPIEL_TOLERANCE
-
-
-@pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
-@pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
-def test_gambit_exact_lp_gives_exactly_the_n_goal_value(gambit: ModuleType, tmp_path: Path,
-                                                        name: str, doc: dict[str, Any],
-                                                        horizon: int, observes: bool) -> None:
-    exact = _exact_nvalue(doc, horizon)
-    text = to_efg(instance_from_json(doc), horizon, attacker_observes=observes)
-    eq = _gambit_solve(gambit, text, tmp_path)
-    defender, attacker = eq.payoffs["Defender"], eq.payoffs["Attacker"]
-    assert isinstance(defender, Fraction)
-    assert defender == exact and attacker == -exact
-    assert eq.agent_max_regret() == 0
 
 
 @pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
 def test_forced_moves_are_harmless_for_openspiel_on_n_goals(openspiel: Any, name: str,
                                                             doc: dict[str, Any],
                                                             horizon: int) -> None:
-    exact = _exact_nvalue(doc, horizon)
+    exact = _exact_value(doc, horizon)
     text = to_efg(instance_from_json(doc), horizon, forced_moves=True)
     v0, v1, _ = _openspiel_value(openspiel, text)
     assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
@@ -236,7 +204,7 @@ def test_forced_moves_are_harmless_for_openspiel_on_n_goals(openspiel: Any, name
                    "games with one-action information sets, with N goals too: 8 instead of "
                    "21/2 here (drop3, H = 2: one forced walk)")
 def test_pitfall_gambit_one_action_infosets_n_goals(gambit: ModuleType, tmp_path: Path) -> None:
-    exact = _exact_nvalue(DROP3, 2)
+    exact = _exact_value(DROP3, 2)
     text = to_efg(instance_from_json(DROP3), 2, forced_moves=True)
     eq = _gambit_solve(gambit, text, tmp_path)
     assert eq.payoffs["Defender"] == exact

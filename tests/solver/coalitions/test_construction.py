@@ -20,7 +20,6 @@ from pathlib import Path
 from typing import Any
 
 import networkx as nx
-import numpy as np
 import pytest
 from click.testing import CliRunner
 from hypothesis import given, settings
@@ -93,14 +92,7 @@ def test_the_tree_route_agrees_at_the_profiles_horizon(doc: dict[str, Any]) -> N
 def test_the_solvers_dp_equals_the_checkers_at_every_node(doc: dict[str, Any]) -> None:
     inst = instance_from_json(doc)
     run = CoalitionRunner(inst)
-    layer = run.layer0()
-    k = 0
-    while True:  # the checker's layered DP until a layer repeats (proofs/NGOAL.md NG.5)
-        k += 1
-        nxt = run.step(layer, k)
-        if k > max(inst.hops) and all(np.array_equal(nxt[m], layer[m]) for m in layer):
-            break
-        layer = nxt
+    nxt, _ = run.fixpoint(None)  # the checker's layered DP until a layer repeats (NGOAL NG.5)
     sets = guarantee_sets(inst)
     ours = coalition_dp(solver_instance(doc))
     for mask, vals in nxt.items():
