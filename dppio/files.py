@@ -18,9 +18,10 @@ the README, "Exit codes, limits and output files"):
 - a location that cannot be written raises :class:`~dppio.errors.OutputError` naming the
   user's path.
 
-Every input file is read through :func:`read_input` (or :func:`open_input`), which refuses
+Every input is read through :func:`read_input` (or :func:`open_input`), which refuses
 files larger than :data:`dppio.limits.MAX_INPUT_BYTES` (``/dev/zero`` included) without
-reading them whole, and never blocks on a FIFO that nobody writes.
+reading them whole, never blocks on a FIFO that nobody writes, reads ``-`` as standard input
+and reads each input once per command (:mod:`dppio.inputs`, re-exported here).
 """
 
 from __future__ import annotations
@@ -32,10 +33,10 @@ import stat
 import tempfile
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import Any, BinaryIO
+from typing import Any
 
-from dppio.errors import ErrorClass, InputError, LimitError, OutputError
-from dppio.limits import MAX_INPUT_BYTES
+from dppio.errors import ErrorClass, OutputError
+from dppio.inputs import STDIN, open_input, read_input, read_text
 
 __all__ = [
     "OutputError",
@@ -62,83 +63,6 @@ def file_mode() -> int:
     mask = os.umask(0)
     os.umask(mask)
     return 0o666 & ~mask
-
-
-def read_input(path: str | Path, *, limit: int = MAX_INPUT_BYTES) -> bytes:
-    """The bytes of an input file, refusing files larger than ``limit``.
-
-    Reads at most ``limit + 1`` bytes, so ``/dev/zero`` or a huge file is refused quickly.
-
-    Raises
-    ------
-    OSError
-        The file cannot be read (the callers name it in their own error class).
-    LimitError
-        (a ``ValueError``) The file is larger than ``limit`` bytes.
-
-    Examples
-    --------
-    >>> read_input("/dev/zero", limit=10)
-    Traceback (most recent call last):
-    dppio.errors.LimitError: larger than the limit of 10 bytes
-    """
-    with open_input(path) as fh:
-        data = fh.read(limit + 1)
-    if len(data) > limit:
-        raise LimitError(f"larger than the limit of {limit} bytes")
-    return data
-
-
-def read_text(path: str | Path, *, limit: int = MAX_INPUT_BYTES) -> str:
-    """The UTF-8 text of an input file (:func:`read_input`: larger than ``limit`` refused).
-
-    Raises
-    ------
-    OSError
-        The file cannot be read (the callers name it in their own error class).
-    InputError
-        (a ``ValueError``) Larger than ``limit`` bytes (:class:`~dppio.errors.LimitError`),
-        or not UTF-8 text.
-
-    Examples
-    --------
-    >>> d = Path(tempfile.mkdtemp())
-    >>> _ = (d / "a.txt").write_text("café", encoding="utf-8")
-    >>> _ = (d / "b.txt").write_text("café", encoding="latin-1")
-    >>> read_text(d / "a.txt")
-    'café'
-    >>> read_text(d / "b.txt")
-    Traceback (most recent call last):
-    dppio.errors.InputError: not UTF-8 text
-    """
-    try:
-        return read_input(path, limit=limit).decode("utf-8")
-    except UnicodeDecodeError:
-        raise InputError("not UTF-8 text") from None
-
-
-def open_input(path: str | Path) -> BinaryIO:
-    """Open an input file for reading without ever blocking on a FIFO that nobody writes.
-
-    The file is opened non-blocking (a FIFO without a writer then reads as empty instead of
-    hanging), then switched back to blocking reads (a pipe with a writer, e.g. bash's
-    ``<(...)``, is read to its end).
-
-    Examples
-    --------
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     os.mkfifo(Path(d) / "fifo")
-    ...     with open_input(Path(d) / "fifo") as fh:
-    ...         fh.read()
-    b''
-    """
-    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
-    try:
-        os.set_blocking(fd, True)
-        return os.fdopen(fd, "rb")
-    except BaseException:
-        os.close(fd)
-        raise
 
 
 def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path] = (),
@@ -258,7 +182,7 @@ def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Pat
         return
     out = Path(output)
     for path in inputs:
-        if path is None or str(path) == "":
+        if path is None or str(path) in ("", STDIN):  # standard input is not a file
             continue
         same = False
         try:

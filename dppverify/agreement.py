@@ -70,7 +70,7 @@ def compare_routes(instance: Instance, horizon: int, *,
     b = tree.bracket
     agree = sv.lower <= b.upper and b.lower <= sv.upper
     if sv.value is not None:
-        agree = agree and b.lower <= sv.value <= b.upper and lp_agrees(tree.value, sv.value,
+        agree = agree and b.lower <= sv.value <= b.upper and lp_agrees(tree.lp, sv.value,
                                                                        LP_TOLERANCE)
     return RouteAgreement(horizon=horizon, dp=sv.coalition.value, structured=sv, tree=tree,
                           agree=bool(agree))

@@ -32,6 +32,7 @@ from typing import Any
 
 from tqdm import tqdm
 
+from dppio.inputs import reading_once
 from dppverify.certificate import Certificate, CheckRecord, merge_routes
 from dppverify.checks.runners import TREE_RUNNERS
 from dppverify.checks.structured import structured_checks
@@ -257,6 +258,16 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     >>> cert.route, cert.horizon, cert.check("ngoal.pbne.attacker_br").status
     ('structured', None, 'fail')
     """
+    with reading_once():  # each input file read once: what is hashed is what was parsed
+        return _certify(instance, profile, horizon=horizon, exact=exact,
+                        max_prefixes=max_prefixes, seed=seed, trials=trials, progress=progress,
+                        route=route)
+
+
+def _certify(instance: Any, profile: Any, *, horizon: int | str | float | None, exact: bool,
+             max_prefixes: int, seed: int, trials: int, progress: bool,
+             route: Route) -> Certificate:
+    """:func:`certify` inside its :func:`~dppio.inputs.reading_once` block."""
     game = game_of(instance)
     if ngoal_game(game):
         return _with_provenance(_certify_n(game, _ngoal_profile_input(profile), horizon,
@@ -264,9 +275,10 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     if not game.exact and exact:
         raise InvalidInstanceError(FLOAT_MODE_REFUSED)
     doc, name = _read_profile(profile)
-    if isinstance(doc, Mapping) and doc.get("format") == NGOAL_PROFILE_FORMAT \
-            and not isinstance(instance, Instance):  # two goals, as an N-goal game
-        ngame = game_of(instance, ngoal=True)
+    if isinstance(doc, Mapping) and doc.get("format") == NGOAL_PROFILE_FORMAT:
+        # two goals, as an N-goal game (an Instance object is one already: the same verdict
+        # whether the game is given as a file, a document or an object)
+        ngame = game if isinstance(instance, Instance) else game_of(instance, ngoal=True)
         return _with_provenance(_certify_n(ngame, doc, horizon, max_prefixes, route),
                                 instance, profile)
     check_format(doc, name)
@@ -331,8 +343,11 @@ def _check_horizon(asked: int | None, longest: int, word: str) -> None:
 def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon: Any,
                max_prefixes: int, route: Route) -> Certificate:
     """:func:`certify` with more than two goals (a ``dpp-ngoal-profile/1`` profile)."""
-    doc = (load_profile_document(profile, NGOAL_PROFILE_FORMAT)
-           if isinstance(profile, str | Path) else dict(profile))
+    if isinstance(profile, str | Path):
+        doc = load_profile_document(profile, NGOAL_PROFILE_FORMAT)
+    else:  # a document is held to its format tag as a file is (one verdict)
+        check_format(profile, "profile", NGOAL_PROFILE_FORMAT)
+        doc = dict(profile)
     prof = profile_from_json(doc, inst, fmt=NGOAL_PROFILE_FORMAT)
     if route not in ("auto", "tree", "structured", "both"):
         raise ValueError(f"unknown route {route!r}")

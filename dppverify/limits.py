@@ -6,13 +6,13 @@ exhausting memory.
 
 Examples
 --------
->>> MAX_HORIZON, MAX_TRIALS, MAX_AUDIT_EXAMPLES
-(10000, 10000, 1000000)
+>>> MAX_HORIZON, MAX_TRIALS, MAX_AUDIT_EXAMPLES, MAX_NGOAL_LP_CELLS
+(10000, 10000, 1000000, 100000)
 """
 
 from __future__ import annotations
 
-__all__ = ["MAX_AUDIT_EXAMPLES", "MAX_HORIZON", "MAX_TRIALS"]
+__all__ = ["MAX_AUDIT_EXAMPLES", "MAX_GOALS", "MAX_HORIZON", "MAX_NGOAL_LP_CELLS", "MAX_TRIALS"]
 
 MAX_HORIZON = 10_000
 """Largest horizon H of a truncated game (``--horizon``)."""
@@ -22,3 +22,14 @@ MAX_TRIALS = 10_000
 
 MAX_AUDIT_EXAMPLES = 1_000_000
 """Largest example budget of ``dpp audit --examples``."""
+
+MAX_NGOAL_LP_CELLS = 100_000
+"""N goals: the most (goal, prefix) pairs of a walk tree's LP, which has one variable per goal
+and prefix (the size rule of N goals; two goals have ``--max-prefixes`` alone). Measured: a
+star of 300 goals at H = 2 (90,000 pairs) takes about 25 s, one of 500 goals (250,000) about
+110 s, one of 1,000 goals did not finish in 5 minutes."""
+
+MAX_GOALS = 1_000
+"""Most goals of an instance: reading one computes the distances to every goal (one
+shortest-path pass each), so the count is bounded before any of them (5,000 goals on a
+5,000-node star took a minute to read)."""

@@ -145,7 +145,7 @@ def values_agree(tree: GameValue, structured: Number, numbers: NumberMode) -> st
             and numbers.at_most(structured, b.upper)):
         return (f"the routes disagree: structured V_H = {structured} lies outside the tree's "
                 f"exact bracket [{b.lower}, {b.upper}]")
-    if not lp_agrees(tree.value, structured):
+    if not lp_agrees(tree.lp, structured):
         return (f"the routes disagree: structured V_H = {structured}, tree LP value "
                 f"{tree.value!r}")
     return None
@@ -299,7 +299,7 @@ def _nrouted_value(instance: Instance, horizon: int | None, chosen: Chosen,
         b = tree.bracket
         overlap = dp.lower <= b.upper and b.lower <= dp.upper
         exact_ok = dp.value is None or (b.lower <= dp.value <= b.upper
-                                        and lp_agrees(tree.value, dp.value))
+                                        and lp_agrees(tree.lp, dp.value))
         if not (overlap and exact_ok):
             disagreement = (f"the routes disagree at H = {horizon}: structured route "
                             f"[{dp.lower}, {dp.upper}], tree route in [{b.lower}, {b.upper}] "

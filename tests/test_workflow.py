@@ -132,27 +132,48 @@ def test_eight_connected_maps_certify_without_float(tmp_path: Path) -> None:
 
 
 # ---------------------------------------------------------------- profile of another game
-def test_profile_of_another_prior_is_one_line(profile: str, tmp_path: Path) -> None:
+# Issue 34 (one verdict): a profile of another game is refuted (exit 1) by the check that
+# names its claim, as dppverify.certify() and dpp audit refute it, with a note on stderr.
+def _refuted_with_note(r: click.testing.Result) -> str:
+    assert r.exit_code == 1, (r.exit_code, r.output)
+    assert r.stdout.startswith("verdict: FAIL"), r.stdout[:300]
+    notes = [line for line in r.stderr.splitlines() if line.startswith("note: ")]
+    assert len(notes) == 1 and "looks made for another instance" in notes[0], r.stderr
+    return notes[0]
+
+
+def _row(r: click.testing.Result, check: str) -> str:
+    return next(line for line in r.stdout.splitlines() if line.startswith(check + " "))
+
+
+def test_profile_of_another_prior_is_refuted_naming_the_claim(profile: str,
+                                                              tmp_path: Path) -> None:
     doc = json.loads(Path(TRIANGLE).read_text())
     doc["prior"] = ["3/5", "2/5"]
     other = tmp_path / "other.json"
     other.write_text(json.dumps(doc))
-    line = _one_line_error(dpp("certify", str(other), profile))
-    assert "does not belong to this instance" in line and "(7/10, 3/10)" in line
-    assert "checker" not in line and f"dpp solve {other} -o PROFILE" in line
+    r = dpp("certify", str(other), profile)
+    note = _refuted_with_note(r)
+    assert "(7/10, 3/10)" in note and f"dpp solve {other} -o PROFILE" in note
+    row = _row(r, "pbne.belief_consistency")
+    assert " fail " in row and "the profile states the prior (7/10, 3/10)" in row
 
 
-def test_profile_of_another_map_is_one_line(tmp_path: Path) -> None:
+def test_profile_of_another_map_is_refuted_naming_the_claim(tmp_path: Path) -> None:
     p = str(tmp_path / "p.json")
     assert dpp("solve", "--map", PAPER10, *GRID, "-o", p).exit_code == 0
     moved = ["--start", "9,0", "--goals", "0,9", "0,5", "--prior", "0.6,0.4"]
-    line = _one_line_error(dpp("certify", "--map", PAPER10, *moved, p))
-    assert "its goals are [0, 9], [0, 0], the instance's are [0, 9], [0, 5]" in line
-    # same cells, another map: caught by the complete-information value the profile states
+    r = dpp("certify", "--map", PAPER10, *moved, p)
+    note = _refuted_with_note(r)
+    assert "its goals are [0, 9], [0, 0], the instance's are [0, 9], [0, 5]" in note
+    assert " fail " in _row(r, "profile.wellformed")
+    # same cells, another map: refuted by the complete-information value the profile states
     m = tmp_path / "open.map"
     m.write_text("type octile\nheight 10\nwidth 10\nmap\n" + "..........\n" * 10)
-    line = _one_line_error(dpp("certify", "--map", str(m), *GRID, p))
-    assert "U_bar = 88/5" in line and "72/5" in line
+    r = dpp("certify", "--map", str(m), *GRID, p)
+    note = _refuted_with_note(r)
+    assert "U_bar = 88/5" in note and "72/5" in note
+    assert "the profile claims U_bar = 88/5" in _row(r, "value.VoI")
 
 
 # ---------------------------------------------------------------- wrong kind of file
@@ -177,8 +198,9 @@ def test_ngoal_profiles_in_the_wrong_place_get_the_same_hints(profile: str,
         assert f"dpp-ngoal-profile/1 document, not an instance: dpp {command}" in line
     line = _one_line_error(dpp("export-efg", p3, "-H", "2", "-o", str(tmp_path / "g.efg")))
     assert "not an instance" in line
-    line = _one_line_error(dpp("certify", TRIANGLE, p3))   # 3 goals against 2
-    assert "does not belong to this instance: its goals are [0, 9], [0, 0], [9, 9]" in line
+    r = dpp("certify", TRIANGLE, p3)   # 3 goals against 2: refuted, as by certify()
+    assert "its goals are [0, 9], [0, 0], [9, 9]" in _refuted_with_note(r)
+    assert " fail " in _row(r, "ngoal.profile.wellformed")
 
 
 def test_plot_voi_on_the_wrong_file_names_it_and_the_command(profile: str,

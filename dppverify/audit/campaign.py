@@ -6,10 +6,27 @@ timeout), stops at the first failing example, writes it to ``out`` at once, then
 — hypothesis' shrinking, then :func:`~dppverify.audit.pruning.prune_failure` — within a
 :class:`~dppverify.audit.pruning.ShrinkBudget`, rewriting ``out`` whenever a smaller failure
 is found.
+
+Nested campaigns
+----------------
+A campaign is one hypothesis run seeded by ``seed`` whose settings never depend on the
+budget: ``max_examples`` is always :data:`~dppverify.limits.MAX_AUDIT_EXAMPLES`, and the
+budget only says when to stop (the test raises :class:`_Enough` before the solver sees the
+``examples + 1``-th game). Under a fixed seed and fixed settings, hypothesis draws each game
+from the games drawn before it and how they ended; before the first failure every game
+ended the same way whatever the solver (a pass, or a skip that is not reported to
+hypothesis as a rejection), so the stream of games depends only on the seed, the strategy
+and its settings (``max_nodes``). Games already audited are not examined again: examples
+are distinct games (equal documents, :func:`game_key`). Hence a budget of ``N`` audits
+exactly the first ``N`` examples of any larger budget with the same seed, and a solver
+that fails at example ``k`` fails there for every budget ``>= k``
+(``tests/dppverify/audit/test_audit_nesting.py``).
 """
 
 from __future__ import annotations
 
+import hashlib
+import json
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -18,7 +35,6 @@ from typing import Any
 from hypothesis import HealthCheck, Phase, Verbosity, given, reject, settings
 from hypothesis import seed as hypothesis_seed
 from hypothesis import strategies as st
-from hypothesis.errors import Unsatisfiable
 
 from dppverify.audit.defaults import (
     AUDIT_MAX_PREFIXES,
@@ -27,17 +43,18 @@ from dppverify.audit.defaults import (
     DEFAULT_SHRINK_SECONDS,
     DEFAULT_TIMEOUT,
     HYPOTHESIS_SHARE,
+    SKIP_FACTOR,
+    SKIP_FLOOR,
 )
 from dppverify.audit.examine import Outcome, examine
 from dppverify.audit.pruning import ShrinkBudget, prune_failure
-from dppverify.audit.report import AuditReport, write_failure
+from dppverify.audit.report import AuditReport, check_output_folder, save_failure
 from dppverify.audit.runner import PythonRunner, SolverRunner
 from dppverify.errors import AuditError, TreeTooLargeError
-from dppverify.formats.files import OutputError
 from dppverify.limits import MAX_AUDIT_EXAMPLES
 from dppverify.strategies import grid_worlds, instances, priors, weighted_graphs
 
-__all__ = ["audit_instances", "run_audit"]
+__all__ = ["audit_instances", "game_key", "run_audit"]
 
 Doc = dict[str, Any]
 
@@ -110,9 +127,10 @@ def run_audit(solver: SolverRunner | Callable[[Doc], Any], *, examples: int = 10
         document to a profile document, which is then run in a worker process
         (:class:`~dppverify.audit.runner.PythonRunner` with ``timeout``).
     examples : int
-        Example budget (hypothesis ``max_examples``).
+        Example budget: the first ``examples`` distinct games of the seed's stream (a
+        smaller budget audits a prefix of a larger one; see the module docstring).
     seed : int
-        Seed of the generation: the same seed and solver give the same campaign.
+        Seed of the generation: the same seed, strategy and solver give the same campaign.
     max_nodes : int
         Largest instance (nodes) of the default strategy :func:`audit_instances`.
     out : path, optional
@@ -153,8 +171,8 @@ def run_audit(solver: SolverRunner | Callable[[Doc], Any], *, examples: int = 10
     """
     _check_int("examples", examples, 1, MAX_AUDIT_EXAMPLES)
     _check_int("seed", seed, 0)
-    if out is not None and str(out) == "":
-        raise OutputError("--out: the output path is empty")
+    if out is not None:
+        check_output_folder(out)  # before any example: never a campaign that cannot report
     source = audit_instances(max_nodes=max_nodes) if strategy is None else strategy
     budget = ShrinkBudget(calls=shrink_calls, seconds=shrink_seconds)
     if isinstance(solver, SolverRunner):
@@ -170,22 +188,46 @@ def run_audit(solver: SolverRunner | Callable[[Doc], Any], *, examples: int = 10
             runner.close()
 
 
+class _Enough(BaseException):
+    """Raised inside the hypothesis test once the budget's examples are done: it ends the run
+    without counting as a failure (hypothesis lets ``BaseException`` s that are not
+    ``Exception`` s pass through, as it does ``KeyboardInterrupt``)."""
+
+
+def game_key(doc: Doc) -> str:
+    """The identity of a generated game: the sha256 of its canonical JSON (two examples are
+    the same game exactly when their documents are equal).
+
+    Examples
+    --------
+    >>> game_key({"b": 1, "a": [2]}) == game_key({"a": [2], "b": 1})
+    True
+    """
+    text = json.dumps(doc, sort_keys=True, separators=(",", ":"), default=str)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
 def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples: int,
               seed: int, max_nodes: int, out: str | Path | None, shrink: bool, progress: bool,
               max_prefixes: int, trials: int, budget: ShrinkBudget,
               log: Callable[[str], None] | None) -> AuditReport:
+    """One hypothesis run whose settings never depend on ``examples`` (see the module
+    docstring, "Nested campaigns"): the budget only says when to stop."""
     from tqdm import tqdm
 
     counts = {"examples": 0, "skipped": 0}
+    seen: set[str] = set()
     found: list[Outcome] = []
     files: list[tuple[Any, ...]] = [()]
+    skip_limit = max(SKIP_FLOOR, SKIP_FACTOR * examples)
+    stopped = [""]
     bar = tqdm(total=examples, desc="audit", unit="ex", disable=not progress, file=sys.stderr,
                leave=False)
 
     def record(outcome: Outcome) -> None:
         found.append(outcome)
         if out is not None:
-            files[0] = write_failure(outcome, out, seed=seed)
+            files[0] = save_failure(outcome, out, seed=seed, log=log)
         if len(found) > 1:
             bar.set_description(f"shrinking: {budget.used}/{budget.calls} calls, "
                                 f"{len(outcome.instance['graph']['nodes'])} nodes")
@@ -201,50 +243,75 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
             bar.reset(total=budget.calls)
             bar.set_description("shrinking")
 
-    def one(doc: Doc) -> None:
-        if found:  # shrinking (or hypothesis replaying the failure)
-            # hypothesis' shrinking gets half the budget, the pruning pass the rest
-            if not shrink or not budget.spend(HYPOTHESIS_SHARE):
-                return
-            bar.update(1)
+    def shrinking(doc: Doc) -> None:
+        # hypothesis' shrinking gets half the budget, the pruning pass the rest
+        if not shrink or not budget.spend(HYPOTHESIS_SHARE):
+            return
+        bar.update(1)
         try:
             outcome = examine(runner, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
         except TreeTooLargeError:
-            if not found:
-                counts["skipped"] += 1
             reject()
             return
-        if not found:
-            counts["examples"] += 1
-            bar.update(1)
-            if not outcome.passed:
-                first(outcome)
-        elif not outcome.passed:
-            if outcome.identity != found[0].identity:
-                return  # another failure: shrinking stays on the first one (as hypothesis)
-            record(outcome)
+        if outcome.passed or outcome.identity != found[0].identity:
+            return  # another failure: shrinking stays on the first one (as hypothesis)
+        record(outcome)
+        raise _Found(outcome.message)
+
+    def one(doc: Doc) -> None:
+        if found:  # shrinking (or hypothesis replaying the failure)
+            shrinking(doc)
+            return
+        key = game_key(doc)
+        if key in seen:
+            return  # a game already audited is not an example again
+        if counts["examples"] >= examples:
+            raise _Enough
+        seen.add(key)
+        try:
+            outcome = examine(runner, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
+        except TreeTooLargeError:
+            # skipped, not rejected: what hypothesis draws next must not depend on the solver
+            counts["skipped"] += 1
+            if counts["skipped"] >= skip_limit:
+                stopped[0] = "skipped"
+                raise _Enough from None
+            return
+        counts["examples"] += 1
+        bar.update(1)
         if not outcome.passed:
+            first(outcome)
             raise _Found(outcome.message)
 
     phases = [Phase.generate, Phase.shrink] if shrink else [Phase.generate]
-    config = settings(parent=settings.get_profile("default"), max_examples=examples,
+    # max_examples is the same for every budget: hypothesis' generation (its early small
+    # examples, its mutations) is then the same sequence whatever the budget
+    config = settings(parent=settings.get_profile("default"), max_examples=MAX_AUDIT_EXAMPLES,
                       database=None, deadline=None, derandomize=False, phases=phases,
                       verbosity=Verbosity.quiet, suppress_health_check=list(HealthCheck),
                       print_blob=False, report_multiple_bugs=False)
     test = config(hypothesis_seed(seed)(given(source)(one)))
     try:
         test()
-    except Unsatisfiable:
-        if not found:
-            raise AuditError(f"every generated example was skipped: walk trees larger than "
-                             f"max_prefixes={max_prefixes} (lower --max-nodes)") from None
+    except _Enough:
+        pass
     except Exception:  # _Found, or hypothesis' Flaky error around a failure
         if not found:
             raise
+    if not found and counts["examples"] == 0:
+        bar.close()
+        if stopped[0]:
+            raise AuditError(f"every generated example was skipped: walk trees larger than "
+                             f"max_prefixes={max_prefixes} (lower --max-nodes)")
+        raise AuditError("the instance strategy gave no example")
+    note = ""
+    if not found and counts["examples"] < examples:
+        note = (f"stopped after {counts['skipped']} skipped examples" if stopped[0] else
+                "the generator has no further distinct game")
     try:
         if not found:
             return AuditReport(True, counts["examples"], counts["skipped"], 0, None, None,
-                               seed=seed, max_nodes=max_nodes, shrunk=shrink)
+                               seed=seed, max_nodes=max_nodes, shrunk=shrink, note=note)
         # every failure accepted while shrinking is smaller and has the first one's identity
         minimal = found[-1]
         if shrink:
@@ -255,3 +322,4 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
     return AuditReport(False, counts["examples"], counts["skipped"], budget.used, minimal,
                        found[0], files[0], seed, max_nodes, shrunk=shrink,
                        budget_exhausted=shrink and budget.exhausted)
+

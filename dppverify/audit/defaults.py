@@ -10,7 +10,8 @@ Examples
 from __future__ import annotations
 
 __all__ = ["AUDIT_MAX_PREFIXES", "AUDIT_TRIALS", "DEFAULT_SHRINK_CALLS", "DEFAULT_SHRINK_SECONDS",
-           "DEFAULT_TIMEOUT", "HYPOTHESIS_SHARE", "MAX_AUDIT_INSTANCES", "READY_TIMEOUT"]
+           "DEFAULT_TIMEOUT", "HYPOTHESIS_SHARE", "MAX_AUDIT_INSTANCES", "READY_TIMEOUT",
+           "SKIP_FACTOR", "SKIP_FLOOR"]
 
 AUDIT_MAX_PREFIXES = 200_000
 """Default size guard of the walk tree per example; larger examples are skipped."""
@@ -35,3 +36,10 @@ HYPOTHESIS_SHARE = 0.5
 
 MAX_AUDIT_INSTANCES = 100_000
 """Instances accepted from one folder or ``.scen`` file."""
+
+SKIP_FACTOR = 10
+"""A campaign of ``N`` examples stops after ``max(SKIP_FLOOR, SKIP_FACTOR * N)`` skipped ones
+(walk trees larger than ``max_prefixes``), so that it always ends."""
+
+SKIP_FLOOR = 100
+"""See :data:`SKIP_FACTOR`."""

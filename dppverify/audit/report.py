@@ -3,7 +3,8 @@
 The failure directory (``--out``) holds ``instance.json``, ``profile.json`` (when the solver
 answered with a JSON object), ``certificate.json`` (when the answer could be certified) and
 ``failure.json`` (check id, the failure's identity — check id, or exception type and place —,
-message, seed, and the solver's traceback when it raised). It is written through
+message, seed, the exit code ``dpp certify`` gives on the folder's instance and profile
+(:func:`certify_exit`), and the solver's traceback when it raised). It is written through
 :func:`dppverify.formats.files.write_files` — every write commits all files together or none — as
 soon as the first failure is found, and rewritten in place whenever shrinking finds a
 smaller failure.
@@ -12,15 +13,19 @@ smaller failure.
 from __future__ import annotations
 
 import json
+import os
+import stat
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
 from dppverify.audit.examine import Outcome
-from dppverify.formats.files import write_files
+from dppverify.formats.files import OutputError, write_files
 
-__all__ = ["FAILURE_FILES", "AuditReport", "format_report", "write_failure"]
+__all__ = ["FAILURE_FILES", "AuditReport", "certify_exit", "check_output_folder", "format_report",
+           "save_failure", "write_failure"]
 
 FAILURE_FILES = ("instance.json", "profile.json", "certificate.json", "failure.json")
 """The files of a failure directory, in the order they are listed."""
@@ -69,6 +74,8 @@ class AuditReport:
     source: str = ""
     """Where the instances came from (``--instances DIR``, ``--scen FILE``); empty for the
     random campaign."""
+    note: str = ""
+    """Why a passing campaign certified fewer examples than its budget (empty otherwise)."""
 
     def summary(self) -> str:
         """One line: the verdict and the examples used.
@@ -82,8 +89,9 @@ class AuditReport:
         if self.source:
             return self._source_summary(skipped)
         if self.passed:
+            note = f"; {self.note}" if self.note else ""
             return (f"audit PASS: {self.examples} examples certified{skipped} "
-                    f"(seed {self.seed}, at most {self.max_nodes} nodes)")
+                    f"(seed {self.seed}, at most {self.max_nodes} nodes{note})")
         how = self._how("shrinking", "shrunk")
         return (f"audit FAIL after {self.examples} examples{skipped} (seed {self.seed}; "
                 f"{how}): {self._message()}")
@@ -155,6 +163,77 @@ def _number_default(x: Any) -> Any:
     raise TypeError(f"{type(x).__name__} is not JSON serializable")
 
 
+def check_output_folder(out: str | Path) -> None:
+    """Refuse, before any example is run, a failure folder that could not be written: a path
+    through a file, a file in its place, a folder without write permission, a name the system
+    refuses (too long). Nothing is created (the folder is made only when a failure is found).
+
+    Raises
+    ------
+    OutputError
+        One line naming the folder and why.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> d = Path(tempfile.mkdtemp())
+    >>> _ = (d / "f").write_text("")
+    >>> check_output_folder(d / "new" / "deeper")
+    >>> check_output_folder(d / "f" / "sub")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.formats.files.OutputError: --output-dir .../f/sub: cannot be created: .../f is not \
+a folder
+    """
+    folder = Path(out)
+    if str(out) == "":
+        raise OutputError("--output-dir: the path is empty")
+    probe = folder
+    while True:
+        try:
+            st = probe.stat()
+        except (FileNotFoundError, NotADirectoryError):
+            if probe.parent == probe:
+                break
+            probe = probe.parent
+            continue
+        except OSError as exc:  # too long, a loop of links, not a folder on the way, ...
+            raise OutputError(f"--output-dir {out}: cannot be created: "
+                              f"{exc.strerror or exc}") from None
+        if not stat.S_ISDIR(st.st_mode):
+            raise OutputError(f"--output-dir {out}: cannot be created: {probe} is not a folder")
+        if not os.access(probe, os.W_OK | os.X_OK):
+            raise OutputError(f"--output-dir {out}: cannot be written: no write permission "
+                              f"in {probe}")
+        return
+    raise OutputError(f"--output-dir {out}: cannot be created")
+
+
+def certify_exit(outcome: Outcome) -> int | None:
+    """The exit code of ``dpp certify instance.json profile.json`` on a failure's files (the
+    one verdict of docs/formats.md: the CLI, ``dppverify.certify`` and the audit agree): 1 when
+    the certificate refutes the profile, 3 when it could not decide (``certify.undecided``,
+    an ``error`` or ``incomplete`` verdict), 2 when the profile is not a profile document of the
+    instance's format (``profile.format``); None when the solver gave no profile.
+
+    Examples
+    --------
+    >>> from dppverify.audit import examine
+    >>> from dppverify.game.examples import triangle_document
+    >>> doc = triangle_document()
+    >>> [certify_exit(examine(f, doc)) for f in (lambda d: 1 / 0,
+    ...                                          lambda d: {"format": "dpp-profile/2"},
+    ...                                          lambda d: {"format": "dpp-profile/1"})]
+    [None, 2, 1]
+    """
+    if outcome.profile is None:
+        return None
+    if outcome.check == "profile.format":
+        return 2
+    if outcome.certificate is None:
+        return 3  # certify.undecided
+    return {"pass": 0, "fail": 1}.get(outcome.certificate.verdict, 3)
+
+
 def write_failure(outcome: Outcome, out: str | Path, *, seed: int = 0) -> tuple[Path, ...]:
     """Write a failing example's files into the directory ``out`` (all or none).
 
@@ -197,6 +276,7 @@ def write_failure(outcome: Outcome, out: str | Path, *, seed: int = 0) -> tuple[
         docs["certificate.json"] = outcome.certificate.to_json()
     docs["failure.json"] = {"check": outcome.check, "identity": outcome.identity,
                             "message": outcome.message, "seed": seed,
+                            "certify_exit": certify_exit(outcome),
                             "traceback": outcome.traceback or None}
     texts = {folder / name: json.dumps(doc, indent=2, default=_number_default) + "\n"
              for name, doc in docs.items()}
@@ -211,3 +291,30 @@ def write_failure(outcome: Outcome, out: str | Path, *, seed: int = 0) -> tuple[
 
 _WRITTEN: set[Path] = set()
 """Files :func:`write_failure` wrote in this process (the only ones it ever removes)."""
+
+
+def save_failure(outcome: Outcome, out: str | Path, *, seed: int = 0,
+                 log: Callable[[str], None] | None = None) -> tuple[Path, ...]:
+    """:func:`write_failure`, but a folder that cannot be written (the audit checks it up
+    front, :func:`check_output_folder`, so this is something like a full disk) is said on
+    ``log`` in one line and the audit goes on to its verdict; returns the files written (none
+    then).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from dppverify.audit import examine
+    >>> from dppverify.game.examples import triangle_document
+    >>> d = Path(tempfile.mkdtemp())
+    >>> _ = (d / "f").write_text("")
+    >>> save_failure(examine(lambda doc: 1 / 0, triangle_document()), d / "f", log=print)
+    ... # doctest: +ELLIPSIS
+    audit: could not write the failure: cannot write .../f/instance.json: Not a directory
+    ()
+    """
+    try:
+        return write_failure(outcome, out, seed=seed)
+    except OutputError as exc:
+        if log is not None:
+            log(f"audit: could not write the failure: {' '.join(str(exc).split())}")
+        return ()

@@ -17,7 +17,7 @@ Examples
 >>> _ = (d / "notes.json").write_text("[1, 2]")
 >>> docs, other = instances_from_dir(d)
 >>> [name for name, _ in docs], other
-(['triangle.json'], ['notes.json'])
+(['triangle.json'], [('notes.json', 'not an instance document (no "graph" and no format)')])
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ from typing import Any
 from dppverify.audit.defaults import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, MAX_AUDIT_INSTANCES
 from dppverify.audit.examine import Outcome, examine
 from dppverify.audit.pruning import ShrinkBudget, prune_failure
-from dppverify.audit.report import AuditReport, write_failure
+from dppverify.audit.report import AuditReport, check_output_folder, save_failure
 from dppverify.audit.runner import SolverRunner
 from dppverify.errors import AuditError, CheckerError, TreeTooLargeError
 from dppverify.formats.files import read_input
@@ -55,17 +55,24 @@ def _plain(x: Any) -> Any:
     return x
 
 
-def instances_from_dir(folder: str | Path) -> tuple[list[tuple[str, Doc]], list[str]]:
-    """The instance documents of the ``*.json`` files in ``folder`` (not its subfolders),
-    sorted by name, each checked to be a valid two-goal instance; and the names of the JSON
-    files left out because they are not instance documents (no ``"graph"`` key: profiles,
-    certificates, ``failure.json``), so an audit's failure folder can be audited again.
+def instances_from_dir(folder: str | Path) -> tuple[list[tuple[str, Doc]], list[tuple[str, str]]]:
+    """The two-goal instance documents of the ``*.json`` files in ``folder`` (not its
+    subfolders), sorted by name, each checked to be a valid two-goal instance; and every file
+    left out, with the reason.
+
+    An instance document is a node-link one (a ``"graph"`` key) or a compact map instance
+    (``dpp-map-instance/1``, as ``dpp solve --save-instance`` writes for ``--map``: its map is
+    read relative to the file, checked against its sha256, and the solver is given the full
+    node-link document of the grid). Left out, each named with why: files not named
+    ``*.json``, JSON documents that are not instances (profiles, certificates, an audit's
+    ``failure.json``, so a failure folder can be audited again), instances with more than two
+    goals.
 
     Raises
     ------
     AuditError
-        The folder is missing or holds no instance file; a file is unreadable, not JSON or
-        an invalid instance (the message names it).
+        The folder is missing or holds no two-goal instance file; a file is unreadable, not
+        JSON or an invalid instance (the message names it).
 
     Examples
     --------
@@ -76,33 +83,64 @@ def instances_from_dir(folder: str | Path) -> tuple[list[tuple[str, Doc]], list[
     >>> _ = (d / "profile.json").write_text('{"format": "dpp-profile/1"}')
     >>> docs, other = instances_from_dir(d)
     >>> [name for name, _ in docs], other, docs[0][1]["prior"]
-    (['a.json'], ['profile.json'], ['7/10', '3/10'])
+    (['a.json'], [('profile.json', 'a dpp-profile/1 document, not an instance')], ['7/10', '3/10'])
     """
+    from dppverify.formats.map_instance import is_map_document, read_map_reference
+    from dppverify.formats.movingai import grid_document
+
     d = Path(folder)
     if not d.is_dir():
         raise AuditError(f"--instances {folder}: not a folder")
-    files = sorted(p for p in d.glob("*.json") if p.is_file())
+    entries = sorted(p for p in d.iterdir() if p.is_file())
+    files = [p for p in entries if p.suffix == ".json"]
+    left_out = [(p.name, "not a *.json file") for p in entries if p.suffix != ".json"]
     if not files:
         raise AuditError(f"--instances {folder}: no *.json instance files")
     if len(files) > MAX_AUDIT_INSTANCES:
         raise AuditError(f"--instances {folder}: more than {MAX_AUDIT_INSTANCES} files")
-    out, other = [], []
+    out = []
     for p in files:
         try:
             doc = parse_json(read_input(p))
         except (OSError, ValueError, RecursionError) as exc:
             raise AuditError(f"{p}: cannot read the instance ({exc})") from None
-        if not isinstance(doc, dict) or "graph" not in doc:
-            other.append(p.name)
+        why = _not_an_instance(doc)
+        if why is not None:
+            left_out.append((p.name, why))
             continue
         try:
+            if is_map_document(doc):
+                ref = read_map_reference(doc, base=p.parent)
+                doc = grid_document(ref.grid, ref.start, ref.goals, list(ref.prior),
+                                    connectivity=ref.connectivity)
+            goals = doc.get("goals")
+            if isinstance(goals, list) and len(goals) > 2:
+                left_out.append((p.name, f"an instance with {len(goals)} goals (the audit "
+                                         "runs two-goal solvers)"))
+                continue
             instance_from_json(doc, two_goals=True)
         except CheckerError as exc:
             raise AuditError(f"{p}: {exc}") from None
         out.append((p.name, _plain(doc)))
     if not out:
-        raise AuditError(f"--instances {folder}: no instance document among its *.json files")
-    return out, other
+        why = "; ".join(f"{name}: {reason}" for name, reason in left_out[:5])
+        raise AuditError(f"--instances {folder}: no two-goal instance document among its "
+                         f"*.json files ({why}{'; ...' if len(left_out) > 5 else ''})")
+    return out, sorted(left_out)
+
+
+def _not_an_instance(doc: Any) -> str | None:
+    """Why a JSON document is not an instance document (None when it is one)."""
+    from dppverify.formats.map_instance import is_map_document
+
+    if isinstance(doc, dict) and ("graph" in doc or is_map_document(doc)):
+        return None
+    tag = doc.get("format") if isinstance(doc, dict) else None
+    if isinstance(tag, str) and tag:
+        return f"a {tag[:40]} document, not an instance"
+    if isinstance(doc, dict) and "check" in doc and "identity" in doc:
+        return "an audit's failure.json, not an instance"
+    return "not an instance document (no \"graph\" and no format)"
 
 
 def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: int = 0,
@@ -187,6 +225,8 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], 
     """
     from tqdm import tqdm
 
+    if out is not None:
+        check_output_folder(out)  # before any instance: never an audit that cannot report
     budget = budget if budget is not None else ShrinkBudget()
     examples = skipped = 0
     first: Outcome | None = None
@@ -206,7 +246,7 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], 
             if not outcome.passed:
                 first = outcome
                 if out is not None:
-                    files = write_failure(outcome, out, seed=seed)
+                    files = save_failure(outcome, out, seed=seed, log=log)
                 if log is not None:
                     where = f"; written to {out}" if out is not None else ""
                     plan = f"; shrinking it (budget: {budget.describe()})" if shrink else ""
@@ -221,7 +261,7 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], 
         def improved(o: Outcome) -> None:
             nonlocal files
             if out is not None:
-                files = write_failure(o, out, seed=seed)
+                files = save_failure(o, out, seed=seed, log=log)
 
         minimal, _ = prune_failure(runner, first, max_prefixes=max_prefixes, trials=trials,
                                    seed=seed, budget=budget, on_improve=improved)

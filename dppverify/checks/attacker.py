@@ -59,7 +59,7 @@ def attacker_br(ctx: EvaluatedContext, theta: int) -> CheckRecord:
                                          "best_response_lp": lp.value, "regret": regret,
                                          "walks": tree.n_leaves}
     where = f"over all {tree.n_leaves} walks with <= {tree.horizon} steps"
-    if not ctx.numbers.equal(forward, br.value) or not lp_agrees(lp.value, br.value):
+    if not ctx.numbers.equal(forward, br.value) or not lp_agrees(lp, br.value):
         return CheckRecord(cid, "error", f"backward induction {show(br.value)}, forward pass "
                            f"{show(forward)} and LP {show(lp.value)} disagree", numbers, proof)
     if ctx.numbers.equal(regret, 0):

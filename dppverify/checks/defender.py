@@ -45,7 +45,7 @@ def defender_br(ctx: EvaluatedContext) -> CheckRecord:
     regret = ctx.numbers.difference(br.value, u)
     numbers: dict[str, Number | None] = {"U": u, "best_response": br.value,
                                          "best_response_lp": lp.value, "regret": regret}
-    if not lp_agrees(lp.value, br.value):
+    if not lp_agrees(lp, br.value):
         return CheckRecord(cid, "error", f"greedy best response {show(br.value)} and LP "
                            f"{show(lp.value)} disagree", numbers, "L3")
     if ctx.numbers.equal(regret, 0):

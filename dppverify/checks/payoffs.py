@@ -143,7 +143,7 @@ def value_check(ctx: Context) -> CheckRecord:
     u = ctx.values.U
     numbers["U"] = u
     exact_equal = ctx.numbers.equal(bracket.lower, u) and ctx.numbers.equal(bracket.upper, u)
-    if exact_equal and lp_agrees(lp.value, u):
+    if exact_equal and lp_agrees(lp.stats, u):
         return CheckRecord(cid, "pass", f"{vh} = U", numbers, "HORIZON")
     return CheckRecord(cid, "fail", f"U = {show(u)} is not the value of the truncated game: {vh}",
                        numbers, "HORIZON")

@@ -151,21 +151,20 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
     from dppverify.formats.standard_maps import resolve_map
 
     try:
+        if (solver_spec is None) == (solver_cmd is None):  # before reading any input
+            raise AuditError(ONE_SOLVER)
         if instances_dir is not None and (map_file is not None or scen_file is not None):
             raise AuditError("give --instances DIR or --map FILE --scen FILE, not both")
         if instances_dir is not None:
+            _refuse_output_in(output_dir, instances_dir)
             docs, other = instances_from_dir(instances_dir)
             source = instances_dir
-            if other:
-                status(f"audit: {instances_dir}: left out {len(other)} JSON file"
-                       f"{'s' if len(other) > 1 else ''} that are not instance documents "
-                       f"(no \"graph\"): {', '.join(other[:5])}{' ...' if len(other) > 5 else ''}")
+            for name, why in other:  # every file left out, named, with why
+                status(f"audit: {instances_dir}: left out {name}: {why}")
         else:
             if map_file is None or scen_file is None:
                 raise AuditError("--map and --scen go together: --map FILE --scen FILE")
-            prior = [p.strip() for p in prior_text.split(",")]
-            if len(prior) != 2 or not all(prior):
-                raise AuditError(f"--prior takes two numbers P,Q, got {prior_text!r}")
+            prior = _scen_prior(prior_text)
             docs, bad = instances_from_scen(resolve_map(map_file), scen_file, seed=seed,
                                             prior=prior)
             source = scen_file
@@ -190,6 +189,48 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
     raise click.exceptions.Exit(0 if report.passed else 1)
 
 
+def _refuse_output_in(output_dir: str, instances_dir: str) -> None:
+    """Refuse an ``--output-dir`` that is the ``--instances`` folder itself: the failure's
+    files would be written among the user's instances (and audited next time). A subfolder
+    is fine: ``--instances`` reads only the folder's own files."""
+    same = False
+    try:
+        same = os.path.samefile(output_dir, instances_dir)
+    except OSError:
+        same = os.path.realpath(output_dir) == os.path.realpath(instances_dir)
+    if same:
+        raise AuditError(f"--output-dir {output_dir} is the --instances folder: the failure "
+                         "files would be written among your instances; give another folder "
+                         "(a subfolder is fine)")
+
+
+def _scen_prior(text: str) -> list[str]:
+    """The two priors of ``--prior P,Q`` for ``--scen``, checked as the instance reader checks
+    a prior (exact numbers in (0, 1) summing to exactly 1): a wrong prior is bad input, never
+    the solver's failure.
+
+    Examples
+    --------
+    >>> _scen_prior("0.6, 0.4")
+    ['0.6', '0.4']
+    >>> _scen_prior("0.7,0.7")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.AuditError: --prior 0.7,0.7: ...
+    """
+    from dppverify.game.instance import instance_from_json
+
+    prior = [p.strip() for p in text.split(",")]
+    if len(prior) != 2 or not all(prior):
+        raise AuditError(f"--prior takes two numbers P,Q, got {text!r}")
+    probe = {"graph": {"nodes": [{"id": 0}, {"id": 1}], "edges": [{"source": 0, "target": 1}]},
+             "start": 0, "goals": [0, 1], "prior": prior}
+    try:
+        instance_from_json(probe, two_goals=True)
+    except CheckerError as exc:
+        raise AuditError(f"--prior {text}: {' '.join(str(exc).split())}") from None
+    return prior
+
+
 @contextlib.contextmanager
 def _private_hypothesis_home() -> Iterator[None]:
     """Hypothesis' storage in a temporary folder, removed afterwards: the audit never writes
@@ -205,9 +246,12 @@ def _private_hypothesis_home() -> Iterator[None]:
             set_hypothesis_home_dir(None)
 
 
+ONE_SOLVER = "give exactly one of --solver MODULE:FUNCTION and --solver-cmd CMD"
+
+
 def _make_runner(spec: str | None, cmd: str | None, timeout: float) -> SolverRunner:
     if (spec is None) == (cmd is None):
-        raise AuditError("give exactly one of --solver MODULE:FUNCTION and --solver-cmd CMD")
+        raise AuditError(ONE_SOLVER)
     if cmd is not None:
         return CommandRunner(cmd, timeout=timeout)
     assert spec is not None
@@ -228,6 +272,8 @@ def source_checkout() -> Path | None:
     >>> root = source_checkout()
     >>> root is None or (root / "tests" / "mutants").is_dir()
     True
+    >>> root == Path(__file__).resolve().parents[2]  # this file is dppverify/cli/audit.py
+    True
     """
-    root = Path(__file__).resolve().parents[1]
+    root = Path(__file__).resolve().parents[2]
     return root if (root / "tests" / "mutants" / "solvers.py").is_file() else None

@@ -1,17 +1,13 @@
-"""Does a profile belong to an instance? A quick look at the profile's identity, for the CLI.
+"""Does a profile look made for another instance? A diagnosis for ``dpp certify``'s note.
 
-``dpp certify INSTANCE PROFILE`` first asks :func:`profile_mismatch` whether PROFILE was
-computed for INSTANCE at all: a profile naming other goals, another prior, another start, cells
-the instance does not have, or a complete-information value ``U_bar`` that is not this
-instance's, was made for another game. Certifying it would only produce a long FAIL table (in
-which checks that do not depend on the profile still pass), so ``dpp certify`` says it in one
-line instead (exit 2).
-
-Only the profile's identity is compared here (goals, prior, start, node ids and the stated
-``U_bar``, which depends on the instance alone); whether the profile is an equilibrium is the
-certificate's business. :func:`dppverify.certify` itself does not call this: from Python (and
-in ``dpp audit``) every profile gets its certificate, and a foreign one is refuted there. Works
-for any number of goals (``dpp-profile/1`` and ``dpp-ngoal-profile/1``).
+When ``dpp certify INSTANCE PROFILE`` refutes a profile, :func:`profile_mismatch` says whether
+PROFILE looks computed for another game: a profile naming other goals, another prior, another
+start, cells the instance does not have, or a complete-information value ``U_bar`` that is not
+this instance's. The verdict is the certificate's (exit 1, the failing check naming the claim:
+docs/formats.md, "One verdict"; ``dppverify.certify`` and ``dpp audit`` give the same);
+this only adds one ``note:`` line saying what to do. Only the profile's identity is compared
+here (goals, prior, start, node ids and the stated ``U_bar``, which depends on the instance
+alone). Works for any number of goals (``dpp-profile/1`` and ``dpp-ngoal-profile/1``).
 """
 
 from __future__ import annotations

@@ -15,6 +15,7 @@ from typing import Any
 
 import click
 
+from dppio.inputs import reading_once
 from dppio.limits import MAX_PREFIXES_LIMIT
 from dppverify.certificate import Certificate
 from dppverify.certify import DEFAULT_TRIALS, certify
@@ -24,6 +25,7 @@ from dppverify.cli.conventions import (
     emit,
     output_file_option,
     progress_option,
+    status,
     want_progress,
 )
 from dppverify.cli.errors import fail
@@ -96,10 +98,13 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
     verdict as facts and never decide it. PROFILE is a dpp-profile/1 JSON file (from `dpp
     solve -o` or any other solver); for an instance with more than two goals, a
     dpp-ngoal-profile/1 file (docs/formats.md). With --map, the game is the grid and the only
-    argument is PROFILE. Bad input exits 2 with a one-line message, a profile made for another
-    instance (other goals, prior, start or map) too; a profile the untruncated game cannot be
-    decided for (a table Defender without "default") exits 3. Float-mode instances
-    (8-connected maps) are detected and compared within a relative tolerance of 1e-9.
+    argument is PROFILE; either file may be - (standard input). Bad input (a file that is
+    not JSON or not a profile document) exits 2 with a one-line message; a profile that
+    names other goals or states a wrong prior or value is refuted (exit 1) by the check
+    that names it, with a note when it looks made for another instance; a profile the
+    untruncated game cannot be decided for (a table Defender without "default") exits 3.
+    Float-mode instances (8-connected maps) are detected and compared within a relative
+    tolerance of 1e-9.
 
     \b
     Examples:
@@ -111,6 +116,16 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
       dpp certify --verify-provenance cert.json examples/triangle.json profile.json
     """
+    with reading_once():  # each input read once: the certificate hashes the bytes parsed
+        _certify_files(instance, profile, grid, horizon, route, as_json, output, max_prefixes,
+                       float_mode, seed, trials, provenance_of, progress)
+
+
+def _certify_files(instance: str | None, profile: str | None, grid: MapRequest | None,
+                   horizon: int | None, route: Route, as_json: bool, output: str | None,
+                   max_prefixes: int, float_mode: bool, seed: int, trials: int,
+                   provenance_of: str | None, progress: bool | None) -> None:
+    """The body of :func:`certify_command` (inside its ``reading_once`` block)."""
     bar = PhaseBar(want_progress(progress), "certify", "reading the instance")
     try:
         if grid is not None and profile is not None:
@@ -142,6 +157,11 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
         bar.close()
         fail(exc)
     bar.close()
+    reason = profile_mismatch(game, doc)
+    if reason is not None and cert.verdict != "pass":  # refuted; say why it looks foreign
+        solve = f"dpp solve {instance}" if instance is not None else "dpp solve --map ..."
+        status(f"note: {profile} looks made for another instance: {reason} (make a profile "
+               f"for this one with {solve} -o PROFILE)")
     cert = _with_command(cert, instance, profile, grid)
     summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
     emit(cert.to_json(), format_table(cert), as_json=as_json, output=output, summary=summary)
@@ -155,9 +175,11 @@ verdict (a check could not run) decides nothing, so it is "could not decide" (3)
 refutation (1)."""
 
 
-def _profile_document(path: str, game: Instance, instance: str | None
-                      ) -> dict[str, Any]:
-    """The profile document at ``path``, refused in one line when it belongs to another game."""
+def _profile_document(path: str, game: Instance, instance: str | None) -> dict[str, Any]:
+    """The profile document at ``path`` (not JSON, or not a profile document of the game's
+    format: bad input, one line). Whatever it says about the game is the certificate's
+    business: a claim or a goal that disagrees with the instance is refuted by a named check
+    (docs/formats.md, "One verdict")."""
     ngoal = ngoal_game(game)
     with hinted(path, "profile"):
         if ngoal or what_is(path) == "dpp-ngoal-profile/1":  # (for two goals: not its game)
@@ -166,13 +188,30 @@ def _profile_document(path: str, game: Instance, instance: str | None
             except JsonReadError as exc:
                 raise ProfileError(f"{path}: {exc}") from None
         else:
-            doc = load_profile_document(path)
-    reason = profile_mismatch(game, doc)
-    if reason is not None:
-        solve = f"dpp solve {instance}" if instance is not None else "dpp solve --map ..."
-        raise ProfileError(f"{path} does not belong to this instance: {reason}; make a "
-                           f"profile for it with {solve} -o PROFILE")
+            try:
+                doc = load_profile_document(path)
+            except ProfileError as exc:  # the other format: say whose game it looks like
+                raise ProfileError(_foreign(exc, path, game, instance)) from None
+    if ngoal and isinstance(doc, dict) and doc.get("format") != "dpp-ngoal-profile/1":
+        raise ProfileError(_foreign(ProfileError(
+            f"{path}: \"format\" must be \"dpp-ngoal-profile/1\" for an instance with more "
+            f"than two goals, got {json.dumps(doc.get('format'), default=str)[:60]}"),
+            path, game, instance))
     return dict(doc)
+
+
+def _foreign(exc: Exception, path: str, game: Instance, instance: str | None) -> str:
+    """A format error of the profile at ``path``, with what it looks made for when that can
+    be told (another game's goals: a two-goal profile for an N-goal instance, say)."""
+    try:
+        reason = profile_mismatch(game, read_json_file(path, kind="profile"))
+    except (JsonReadError, ValueError, TypeError, RecursionError):
+        reason = None
+    if reason is None:
+        return str(exc)
+    solve = f"dpp solve {instance}" if instance is not None else "dpp solve --map ..."
+    return (f"{exc}; it looks made for another instance: {reason} (make a profile for this one "
+            f"with {solve} -o PROFILE)")
 
 
 def _with_command(cert: Certificate, instance: str | None, profile: str,

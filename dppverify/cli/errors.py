@@ -4,7 +4,9 @@
 :class:`~dppverify.errors.CheckerError` (bad input) is ``error: ...`` and exit 2, an
 :class:`~dppverify.errors.UndecidedError` is ``undecided: ...`` and exit 3, an internal
 failure one line and exit 3, a signal one line and ``128 + n``. Commands report their own
-errors with :func:`fail`, so that they behave the same inside either group.
+errors with :func:`fail`, so that they behave the same inside either group. Every command
+runs in a :func:`dppio.inputs.reading_once` block (each input read once; ``-`` is standard
+input, for one input only).
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ from typing import Any, NoReturn
 
 import click
 
+from dppio.inputs import STDIN, reading_once
 from dppverify.cli.interrupts import Terminated, as_signal, exit_code, signals_as_exceptions
 from dppverify.cli.interrupts import message as interrupt_message
 from dppverify.errors import CheckerError, LPError, UndecidedError
@@ -43,6 +46,11 @@ class ErrorReportingGroup(click.Group):
                 raise SystemExit(exit_code(exc)) from None
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        words = args[:args.index("--")] if "--" in args else args
+        if words.count(STDIN) > 1:  # one stream, one input (dppio.inputs)
+            click.echo(f"error: {STDIN} (standard input) can stand for one input only, "
+                       f"got it {words.count(STDIN)} times", err=True)
+            ctx.exit(2)
         try:
             return super().parse_args(ctx, args)
         except click.UsageError as exc:
@@ -52,7 +60,8 @@ class ErrorReportingGroup(click.Group):
 
     def invoke(self, ctx: click.Context) -> Any:
         try:
-            return super().invoke(ctx)
+            with reading_once():  # each input read once: what is hashed is what was parsed
+                return super().invoke(ctx)
         except self.user_errors as exc:
             fail(exc)
         except click.UsageError as exc:  # click's three-line usage message, as one line

@@ -8,11 +8,11 @@ one-line error says what to do next. Only the first few KiB are read.
 
 from __future__ import annotations
 
-import os
 import re
-import stat
 from pathlib import Path
 from typing import Literal
+
+from dppio.inputs import peek_input
 
 __all__ = ["file_hint"]
 
@@ -26,14 +26,10 @@ USAGE = {"instance": "INSTANCE", "profile": "PROFILE", "density CSV": "CSV"}
 
 
 def _peek(path: str | Path) -> bytes:
-    """The first bytes of a regular file (never opens a FIFO or device: that could block)."""
-    try:
-        if not stat.S_ISREG(os.stat(path).st_mode):
-            return b""
-        with open(path, "rb") as fh:
-            return fh.read(PEEK_BYTES)
-    except OSError:
-        return b""
+    """The first bytes of an input: those already read (standard input, or an input this
+    command read), else the start of a regular file (never opens a FIFO or device: that could
+    block; :func:`dppio.inputs.peek_input`)."""
+    return peek_input(path, PEEK_BYTES)
 
 
 def what_is(path: str | Path) -> str | None:

@@ -29,6 +29,8 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
+from dppio.errors import InputError
+from dppio.inputs import read_input
 from dppio.limits import MAX_MAP_CELLS
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_number
@@ -124,10 +126,12 @@ def read_map(path: str | Path) -> GridMap:
     dppverify.errors.InvalidInstanceError: /nonexistent.map: cannot read map file (...)
     """
     p = Path(path)
-    try:
-        text = p.read_bytes().decode("ascii")
+    try:  # bounded, and read once per command: the bytes hashed are the bytes parsed
+        text = read_input(path).decode("ascii")
     except OSError as exc:
         raise InvalidInstanceError(f"{p}: cannot read map file ({exc.strerror})") from None
+    except InputError as exc:
+        raise InvalidInstanceError(f"{p}: cannot read map file ({exc})") from None
     except UnicodeDecodeError as exc:
         raise InvalidInstanceError(f"{p}: not an ASCII map file (byte {exc.start})") from None
     try:

@@ -33,6 +33,7 @@ from dppverify.game.distances import (
     unscale,
 )
 from dppverify.game.graph_reading import Rows, known_node, require
+from dppverify.limits import MAX_GOALS
 
 if TYPE_CHECKING:
     from dppverify.game.instance import Instance
@@ -203,11 +204,15 @@ def read_goals(raw: Any, index: Mapping[Node, int], ids: list[Node], two_goals: 
                                       f"{show_node(ids[goals[0]])}")
         return goals
     require(isinstance(raw, list) and len(raw) >= 2,
-            f"goals: must be a list of at least two node ids, got {shown}")
+            f"goals: must be a list of at least two node ids, got {shown[:200]}")
+    # distances to every goal are computed on reading: bounded before any of them
+    require(len(raw) <= MAX_GOALS, f"goals: {len(raw)} goals, beyond the limit of {MAX_GOALS}")
     out: list[int] = []
+    seen: set[int] = set()
     for i, x in enumerate(raw):
         gi = read_node(x, index, f"goals[{i}]")
-        require(gi not in out, f"goals[{i}]: goal {show_node(ids[gi])} is listed twice")
+        require(gi not in seen, f"goals[{i}]: goal {show_node(ids[gi])} is listed twice")
+        seen.add(gi)
         out.append(gi)
     return tuple(out)
 

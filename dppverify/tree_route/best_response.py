@@ -30,7 +30,7 @@ from fractions import Fraction
 import numpy as np
 
 from dppverify.exact import INF, Number
-from dppverify.tree_route.lp import LPStats, realization_constraints, solve
+from dppverify.tree_route.lp import LPStats, cost_scale, realization_constraints, solve, unscaled
 from dppverify.tree_route.players import AnyTypes, Plan, TreeStrategy, Types, as_types
 from dppverify.tree_route.tree import WalkTree
 
@@ -216,9 +216,11 @@ def attacker_best_response_lp(tree: WalkTree, types: AnyTypes,
     import cvxpy as cp  # lazily: its import costs ~0.5 s
 
     c = objective_vector(tree, types, tdef, theta)
+    scale = cost_scale(c)  # costs of size one (lp.py)
     x = cp.Variable(tree.n_prefixes)
-    problem = cp.Problem(cp.Minimize(c @ x), realization_constraints(tree, x))
-    return solve(problem, f"attacker best response LP (type {theta}, H = {tree.horizon})")
+    problem = cp.Problem(cp.Minimize((scale * c) @ x), realization_constraints(tree, x))
+    return unscaled(solve(problem, f"attacker best response LP (type {theta}, H = "
+                                   f"{tree.horizon})"), scale)
 
 
 def _terminal_part(tree: WalkTree, types: Types, plans: Mapping[int, Plan]) -> Number:
@@ -373,9 +375,11 @@ def defender_best_response_lp(tree: WalkTree, types: AnyTypes,
     import cvxpy as cp  # lazily: its import costs ~0.5 s
 
     sigma = cp.Variable(len(support))
-    objective = (w[idx] * (b1x1 - b2x2)) @ sigma + float(w[idx] @ b2x2) + const
+    slope, offset = w[idx] * (b1x1 - b2x2), float(w[idx] @ b2x2)
+    scale = cost_scale(slope, offset + const)  # costs of size one (lp.py)
+    objective = (scale * slope) @ sigma + scale * offset + scale * const
     problem = cp.Problem(cp.Maximize(objective), [sigma >= 0, sigma <= 1])
-    stats = solve(problem, f"defender best response LP (H = {tree.horizon})")
+    stats = unscaled(solve(problem, f"defender best response LP (H = {tree.horizon})"), scale)
     values = np.asarray(sigma.value, dtype=float)
     return stats, {p: float(values[k]) for k, p in enumerate(support)}
 

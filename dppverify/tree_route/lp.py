@@ -5,14 +5,27 @@ solved with ``solver=cp.CLARABEL`` at tightened tolerances. Any status other tha
 ``optimal`` (``optimal_inaccurate`` included) raises :class:`LPError`: an LP never
 contributes a silent number. LP values are floats; the checker compares them with the exact
 values within :data:`LP_TOLERANCE` (relative, see :func:`lp_agrees`).
+
+Costs far from size one are rescaled before an LP is built (:func:`cost_scale`): when the
+largest cost coefficient lies outside ``[2**-16, 2**16]``, every cost coefficient of the LP's
+objective is multiplied by one power of two that brings the largest into [1/2, 1), and the
+optimum is divided by it again (:func:`unscaled`). The optimal strategies are those of
+the unscaled LP (a positive factor on the objective changes no optimal point, and the
+Defender's duals, divided by the equally scaled weights, are unchanged), a power of two is
+exact in binary floating point, and the solver's absolute tolerances then act on numbers of
+size one: an instance whose weights are all multiplied by 10^12 or 10^-12 is solved as well
+as the instance itself.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
+
+import numpy as np
 
 from dppverify.errors import LPError
 from dppverify.exact import Number
@@ -21,8 +34,19 @@ from dppverify.tree_route.tree import WalkTree, flow_matrix
 if TYPE_CHECKING:  # cvxpy (with scipy.stats) costs ~0.5 s: imported where an LP is built
     import cvxpy as cp
 
-__all__ = ["LP_SOLVER", "LP_TOLERANCE", "SOLVER_SETTINGS", "LPStats", "flow_matrix", "lp_agrees",
-           "realization_constraints", "solve"]
+__all__ = [
+    "LP_SOLVER",
+    "LP_TOLERANCE",
+    "SCALED_BEYOND",
+    "SOLVER_SETTINGS",
+    "LPStats",
+    "cost_scale",
+    "flow_matrix",
+    "lp_agrees",
+    "realization_constraints",
+    "solve",
+    "unscaled",
+]
 
 LP_SOLVER = "CLARABEL"
 """The LP solver (through cvxpy)."""
@@ -37,26 +61,81 @@ LP_TOLERANCE = 1e-7
 
 @dataclass(frozen=True)
 class LPStats:
-    """What an LP solve reports: value, status, size and time."""
+    """What an LP solve reports: value, status, size and time; ``magnitude`` is the size of
+    the LP's costs (the power of two above the largest, :func:`cost_scale`), the scale of its
+    absolute error (:func:`lp_agrees`)."""
 
     value: float
     status: str
     variables: int
     constraints: int
     seconds: float
+    magnitude: float = 1.0
 
 
-def lp_agrees(lp_value: float, exact_value: Number, tolerance: float = LP_TOLERANCE) -> bool:
-    """True when an LP value matches an exact value within the relative tolerance.
+SCALED_BEYOND = 2.0 ** 16
+"""Costs are rescaled only when the largest lies outside ``[2**-16, 2**16]``: instances of
+ordinary size keep their LPs exactly as posed (and their LP values to the last digit)."""
+
+
+def cost_scale(*costs: np.ndarray | float) -> float:
+    """The power of two ``2**-k`` by which to multiply an LP's cost coefficients: 1 when the
+    largest in absolute value lies within ``[2**-16, 2**16]`` (:data:`SCALED_BEYOND`), is 0 or
+    is not finite; otherwise the one that brings it into [1/2, 1).
+
+    Examples
+    --------
+    >>> cost_scale(np.array([3.0, -0.5])), cost_scale(np.array([2e12]), 7.0) * 2e12
+    (1.0, 0.9094947017729282)
+    >>> cost_scale(np.array([1e-12])) * 1e-12, cost_scale(np.zeros(3)), cost_scale()
+    (0.549755813888, 1.0, 1.0)
+    """
+    largest = max((float(np.max(np.abs(c), initial=0.0)) for c in costs), default=0.0)
+    if not math.isfinite(largest) or largest == 0.0 or \
+            1.0 / SCALED_BEYOND <= largest <= SCALED_BEYOND:
+        return 1.0
+    return math.ldexp(1.0, -math.frexp(largest)[1])
+
+
+def unscaled(stats: LPStats, scale: float) -> LPStats:
+    """The statistics of an LP solved with costs multiplied by ``scale``, with the value of
+    the LP as posed (divided by ``scale``: exact, a power of two).
+
+    Examples
+    --------
+    >>> stats = unscaled(LPStats(0.75, "optimal", 2, 3, 0.1), 2.0 ** -20)
+    >>> stats.value, stats.magnitude
+    (786432.0, 1048576.0)
+    >>> unscaled(LPStats(0.75, "optimal", 2, 3, 0.1), 1.0).magnitude  # not rescaled: 1
+    1.0
+    """
+    if scale == 1.0:
+        return stats
+    return dataclasses.replace(stats, value=stats.value / scale, magnitude=1.0 / scale)
+
+
+def lp_agrees(lp: float | LPStats, exact_value: Number,
+              tolerance: float = LP_TOLERANCE) -> bool:
+    """True when an LP value matches an exact value within the relative tolerance:
+    ``|lp - exact| <= tolerance * max(|exact|, m)``, where ``m`` is the LP's ``magnitude``
+    (the size of its costs: an LP solved on costs of size one is accurate relative to them)
+    when ``lp`` is an :class:`LPStats`, else 1.
 
     Examples
     --------
     >>> from fractions import Fraction
     >>> lp_agrees(2.4000000001, Fraction(12, 5)), lp_agrees(2.41, Fraction(12, 5))
     (True, False)
+    >>> huge = LPStats(-4.4e1, "optimal", 1, 1, 0.0, magnitude=2.0 ** 43)  # weights ~ 10^12
+    >>> lp_agrees(huge, 0), lp_agrees(-4.4e1, 0)
+    (True, False)
     """
+    if isinstance(lp, LPStats):
+        value, floor = lp.value, lp.magnitude
+    else:
+        value, floor = lp, 1.0
     exact = float(exact_value)
-    return math.isfinite(lp_value) and abs(lp_value - exact) <= tolerance * max(1.0, abs(exact))
+    return math.isfinite(value) and abs(value - exact) <= tolerance * max(floor, abs(exact))
 
 
 def solve(problem: cp.Problem, what: str) -> LPStats:

@@ -38,6 +38,7 @@ from sympy import QQ
 from sympy.polys.matrices import DomainMatrix
 
 from dppverify.exact import Number
+from dppverify.tree_route.lp import cost_scale
 from dppverify.tree_route.tree import WalkTree
 
 __all__ = ["MAX_EXACT_ROWS", "ExactLP", "solve_tree_lp_exactly"]
@@ -129,13 +130,14 @@ class _LP:
                 cols.append(j)
                 vals.append(float(v))
         a = sps.csr_matrix((vals, (rows, cols)), shape=(self.m, self.ncols))
-        res = linprog(np.array([float(x) for x in self.c]), A_eq=a,
-                      b_eq=np.array([float(x) for x in self.b]), bounds=(0, None),
-                      method="highs-ds")
+        costs = np.array([float(x) for x in self.c])
+        costs *= cost_scale(costs)  # costs of size one (lp.py): the same vertices, ordering
+        res = linprog(costs, A_eq=a, b_eq=np.array([float(x) for x in self.b]),
+                      bounds=(0, None), method="highs-ds")
         if res.status != 0:
             return f"HiGHS's dual simplex returned status {res.status} ({res.message})"
         y = np.asarray(res.eqlin.marginals, dtype=float)
-        reduced = np.array([float(self.c[j]) for j in range(self.ncols)]) - a.T @ y
+        reduced = costs - a.T @ y
         return np.asarray(res.x, dtype=float), reduced
 
     def basis(self, order: list[int]) -> list[int] | None:

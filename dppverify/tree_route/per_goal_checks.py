@@ -199,7 +199,7 @@ def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
         return _tagged(checks), tree
     overlap = sv.lower <= bracket.upper and bracket.lower <= sv.upper
     agree = overlap and (sv.value is None or (bracket.lower <= sv.value <= bracket.upper
-                                              and lp_agrees(lp.value, sv.value, LP_TOLERANCE)))
+                                              and lp_agrees(lp.stats, sv.value, LP_TOLERANCE)))
     said = (f"structured V_H = {sv.value} ({sv.upper_source})" if sv.value is not None else
             f"structured bracket [{sv.lower}, {sv.upper}]")
     checks.append(CheckRecord(

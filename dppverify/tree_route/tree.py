@@ -35,12 +35,14 @@ from tqdm import tqdm
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.exact import Number
 from dppverify.game.instance import Instance, instance_from_json
+from dppverify.limits import MAX_NGOAL_LP_CELLS
+from dppverify.structured.cover import MAX_BALANCED
 
 if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
     import scipy.sparse as sp
 
 __all__ = ["DEFAULT_MAX_PREFIXES", "WalkTree", "build_tree", "count_prefixes", "flow_matrix",
-           "simple_mask", "tree_fits"]
+           "lp_prefix_limit", "simple_mask", "tree_fits"]
 
 DEFAULT_MAX_PREFIXES = 1_000_000
 """Default size guard: trees with more prefixes raise :class:`TreeTooLargeError`."""
@@ -266,10 +268,19 @@ def build_tree(instance: G, horizon: int, *, max_prefixes: int = DEFAULT_MAX_PRE
     Traceback (most recent call last):
     dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 3 has at least 8 prefixes, ...
     """
-    size = count_prefixes(instance, horizon, limit=max_prefixes)
+    cap = lp_prefix_limit(instance, max_prefixes)
+    size = count_prefixes(instance, horizon, limit=cap)
     if size == 0:
         raise HorizonError(f"no walk from the start reaches a goal within H = {horizon} steps "
                            f"(the nearest goal is {instance.hops[instance.start]} steps away)")
+    if size > cap < max_prefixes:
+        raise TreeTooLargeError(
+            f"N = {instance.n_goals} goals: the walk tree's LP has one variable per goal and "
+            f"prefix, at most {MAX_NGOAL_LP_CELLS:,} (so {cap:,} prefixes for "
+            f"{instance.n_goals} goals), and the tree for horizon H = {horizon} has at least "
+            f"{size:,} prefixes; lower the horizon" + (
+                ", or use --route structured" if instance.n_goals <= MAX_BALANCED
+                else ""))
     if size > max_prefixes:
         raise TreeTooLargeError(
             f"the walk tree for horizon H = {horizon} has at least {size} prefixes, more than "
@@ -319,6 +330,22 @@ def build_tree(instance: G, horizon: int, *, max_prefixes: int = DEFAULT_MAX_PRE
                weight=tuple(weight))
 
 
+def lp_prefix_limit(instance: Instance, max_prefixes: int) -> int:
+    """The most prefixes a walk tree of ``instance`` may have: ``max_prefixes``, and with more
+    than two goals also ``MAX_NGOAL_LP_CELLS // N`` (the tree's LP has one variable per goal
+    and prefix: the size rule of N goals, ``docs/limits.md``).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3, triangle
+    >>> lp_prefix_limit(triangle(), 10**6), lp_prefix_limit(star3(), 10**6)
+    (1000000, 33333)
+    """
+    if instance.n_goals <= 2:
+        return max_prefixes
+    return min(max_prefixes, MAX_NGOAL_LP_CELLS // instance.n_goals)
+
+
 def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> bool:
     """True when the pruned walk tree of ``horizon`` steps has at most ``max_prefixes`` prefixes.
 
@@ -340,7 +367,8 @@ def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> boo
         return False
     if horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
-    return count_prefixes(instance, horizon, limit=max_prefixes) <= max_prefixes
+    cap = lp_prefix_limit(instance, max_prefixes)
+    return count_prefixes(instance, horizon, limit=cap) <= cap
 
 
 def simple_mask(tree: WalkTree) -> np.ndarray:

@@ -46,7 +46,13 @@ from dppverify.tree_route.bracket import (
     rounded_defender,
     upper_bound,
 )
-from dppverify.tree_route.lp import LPStats, realization_constraints, solve
+from dppverify.tree_route.lp import (
+    LPStats,
+    cost_scale,
+    realization_constraints,
+    solve,
+    unscaled,
+)
 from dppverify.tree_route.players import (
     AnyTypes,
     Plan,
@@ -114,11 +120,15 @@ def solve_value_lp(tree: WalkTree, types: AnyTypes) -> ValueLP:
     node = tree.node
     xs = [cp.Variable(n) for _ in t.thetas]
     cons: list[cp.Constraint] = []
+    costs = [np.array([float(b) * float(d[int(v)]) if leaf[p] else 0.0
+                       for p, v in enumerate(node)]) for b, d in zip(t.priors, t.dists,
+                                                                     strict=True)]
+    weights = tree.weight_float[1:]
+    scale = cost_scale(weights, *costs)  # costs of size one (lp.py): 10^12 x weights too
     terms: list[cp.Expression] = []
-    for b, d, x in zip(t.priors, t.dists, xs, strict=True):
-        cost = np.array([float(d[int(v)]) if leaf[p] else 0.0 for p, v in enumerate(node)])
+    for cost, x in zip(costs, xs, strict=True):
         cons += realization_constraints(tree, x)
-        terms.append(float(b) * (cost @ x))
+        terms.append((scale * cost) @ x)
     objective = terms[0]
     for term in terms[1:]:
         objective = objective + term
@@ -127,12 +137,12 @@ def solve_value_lp(tree: WalkTree, types: AnyTypes) -> ValueLP:
         z = cp.Variable(n - 1)
         duals = [z >= float(b) * x[1:] for b, x in zip(t.priors, xs, strict=True)]
         cons += duals
-        objective = objective + tree.weight_float[1:] @ z
-    stats = solve(cp.Problem(cp.Minimize(objective), cons), what)
+        objective = objective + (scale * weights) @ z
+    stats = unscaled(solve(cp.Problem(cp.Minimize(objective), cons), what), scale)
     sigma = np.full((len(xs), n), np.nan)
     for k, c in enumerate(duals):
         lam = np.asarray(c.dual_value, dtype=float).reshape(-1)
-        sigma[k, 1:] = np.clip(lam / tree.weight_float[1:], 0.0, 1.0)
+        sigma[k, 1:] = np.clip(lam / (scale * weights), 0.0, 1.0)
     plans = np.array([np.asarray(x.value, dtype=float).reshape(-1) for x in xs])
     return ValueLP(stats=stats, plans=plans, sigma=sigma)
 

@@ -9,6 +9,7 @@ from typing import Any
 import click
 
 from dppio.files import refuse_input_as_output, write_atomic
+from dppio.inputs import is_stdin
 from dppverify.cli.conventions import (
     PhaseBar,
     output_file_option,
@@ -60,6 +61,10 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
             Path(output).absolute() == Path(save_instance).absolute():
         raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
     inputs = [instance, grid.path if grid is not None else None]
+    if save_instance is not None and grid is not None and is_stdin(grid.map):
+        raise InvalidInstanceError("--save-instance with --map -: the saved instance would name "
+                                   "a map that cannot be read again; save the map to a file "
+                                   "and give --map FILE")
     refuse_input_as_output(output, inputs, option="-o", error=OutputError)
     refuse_input_as_output(save_instance, inputs, option="--save-instance",
                            error=OutputError)

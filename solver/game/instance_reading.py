@@ -16,6 +16,7 @@ from typing import Any
 
 import networkx as nx
 
+from dppio.limits import check_rational
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.formats.json_text import parse_json_text, read_json
 from solver.formats.map_instance import MAP_INSTANCE_FORMAT, read_map_document, two_goals_only
@@ -205,6 +206,9 @@ def _graph_from_node_link(g: Any, *, float_weights: bool) -> nx.Graph:
                 raise InvalidInstanceError(f"graph.edges[{k}] uses unknown node {end!r}")
         raw = e.get("weight", 1)
         if float_weights and isinstance(raw, Fraction):
+            # the size limit first: float() of a decimal literal such as 1e400 overflows
+            check_rational(raw, where=f"weight of edge ({u!r}, {v!r})",
+                           error=InvalidInstanceError)
             raw = float(raw)
         w = parse_number(raw, where=f"weight of edge ({u!r}, {v!r})", allow_float=float_weights)
         if graph.has_edge(u, v):

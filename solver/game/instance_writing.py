@@ -58,7 +58,9 @@ def map_instance_to_json(map_ref: str, inst: Instance, *, relative_to: Path | No
         _, digest = read_map_bytes(map_file(map_ref))
     ref = map_ref
     if not map_ref.startswith(STANDARD_PREFIX) and relative_to is not None:
-        ref = os.path.relpath(Path(map_ref).absolute(), Path(relative_to).absolute())
+        # between the real folders: through a symlinked folder, ".." is taken from the
+        # folder the link points to, so the path resolves however the instance is reached
+        ref = os.path.relpath(os.path.realpath(map_ref), os.path.realpath(relative_to))
     return {"format": MAP_INSTANCE_FORMAT, "map": ref, "map_sha256": digest,
             "start": node_to_json(inst.start), "goals": [node_to_json(g) for g in inst.goals],
             "prior": [format_number(p) for p in inst.prior], "connectivity": connectivity}

@@ -101,9 +101,11 @@ class Probe:
 
 def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = DEFAULT_CPU,
         env: dict[str, str] | None = None,
-        during: Callable[[subprocess.Popen[bytes]], None] | None = None) -> Result:
+        during: Callable[[subprocess.Popen[bytes]], None] | None = None,
+        stdin: bytes | None = None) -> Result:
     """Run ``python -m solver.cli ARGS`` in ``cwd`` under the limits; ``during`` is called
-    with the running process (to send it a signal, say) before waiting for it."""
+    with the running process (to send it a signal, say) before waiting for it; ``stdin``:
+    bytes piped to its standard input (default: ``/dev/null``)."""
 
     def limits() -> None:  # pragma: no cover - in the child
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
@@ -121,13 +123,15 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
                      "TMPDIR": str(short)})
     full_env.update(env or {})
     proc = subprocess.Popen([sys.executable, "-m", "solver.cli", *args], cwd=cwd,
-                            env=full_env, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                            env=full_env,
+                            stdin=subprocess.DEVNULL if stdin is None else subprocess.PIPE,
+                            stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, start_new_session=True,
                             preexec_fn=limits)
     try:
         if during is not None:
             during(proc)
-        out, err = proc.communicate(timeout=GUARD_SECONDS)
+        out, err = proc.communicate(stdin, timeout=GUARD_SECONDS)
     finally:
         if proc.poll() is None:
             with contextlib.suppress(OSError):

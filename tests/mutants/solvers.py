@@ -200,6 +200,14 @@ def mutant_defender_wrong_goal(doc: Doc) -> Doc:
     return profile
 
 
+def mutant_first_walk_only(doc: Doc) -> Doc:
+    """The primary plays only the first of its walks, with probability 1 (issue 34: it passes
+    small budgets and is caught only where the primary mixes, i.e. when phase II exists)."""
+    eq, game = _base(doc)
+    first = eq.primary_paths[0]
+    return _profile(game, [(first.nodes, Fraction(1))], eq.secondary_path)
+
+
 MUTANTS: dict[str, Callable[[Doc], Doc]] = {
     "swapped mixing probabilities": mutant_swapped_mixing,
     "branching one step late": mutant_late_branch,
@@ -210,6 +218,7 @@ MUTANTS: dict[str, Callable[[Doc], Doc]] = {
     "b = 1/2 tie mixed half/half": mutant_tie_uniform,
     "primary branch not a shortest path": mutant_detour_branch,
     "sigma* towards g2": mutant_defender_wrong_goal,
+    "primary plays only its first walk": mutant_first_walk_only,
 }
 """Every mutant, by a short description."""
 

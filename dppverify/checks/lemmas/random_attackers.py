@@ -116,7 +116,7 @@ def l3_greedy(ctx: Context) -> CheckRecord:
         lp, sigma = defender_best_response_lp(tree, roles, {1: x1, 2: x2})
         err = abs(lp.value - float(greedy.value))
         worst_value = max(worst_value, err)
-        if not lp_agrees(lp.value, greedy.value):
+        if not lp_agrees(lp, greedy.value):
             problems.append(f"{name}: LP optimum {show(lp.value)} ≠ greedy value "
                             f"{show(greedy.value)}")
         coef = {p: tree.weight[p] * (roles.b1 * x1.get(p, Fraction(0))

@@ -67,7 +67,10 @@ def test_a_corrupted_solver_is_caught_on_a_folder(folder: Path) -> None:
     code, _, err = _audit("--solver", "tests.mutants.solvers:mutant_swapped_mixing",
                           "--instances", "failure", "--no-shrink", "--output-dir", "again")
     assert code == 1
-    assert "left out 3 JSON files that are not instance documents" in err
+    for name, why in (("certificate.json", "a dpp-certificate/1 document, not an instance"),
+                      ("failure.json", "an audit's failure.json, not an instance"),
+                      ("profile.json", "a dpp-profile/1 document, not an instance")):
+        assert f"audit: failure: left out {name}: {why}\n" in err, err  # every one, with why
 
 
 def test_scen_lines_on_a_map(tmp_path: Path) -> None:
