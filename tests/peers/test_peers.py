@@ -159,22 +159,21 @@ def test_pitfall_imperfect_recall_refused_by_gambit_misvalued_by_openspiel(
     assert abs(-v0 - float(exact)) > 1  # silently a different number (6.2 vs 31/10)
 
 
-@pytest.mark.xfail(strict=True, reason="Gambit 17.0.0b2 lp_solve (extensive form) mis-solves "
-                   "games with one-action information sets: 9/5 instead of 21/5 here; "
-                   "dppverify.tree_route.efg skips forced moves by default for this reason")
-def test_pitfall_gambit_one_action_infosets(gambit: ModuleType, tmp_path: Path) -> None:
-    exact = _exact_value(LADDER, 1)
-    text = to_efg(instance_from_json(LADDER), 1, forced_moves=True)
+@pytest.mark.parametrize(("doc", "horizon"), [
+    pytest.param(LADDER, 1, id="ladder-H1", marks=pytest.mark.xfail(strict=True, reason=(
+        "Gambit 17.0.0b2 lp_solve (extensive form) mis-solves games with one-action "
+        "information sets: 9/5 instead of 21/5 here; dppverify.tree_route.efg skips forced "
+        "moves by default for this reason"))),
+    pytest.param(DROP3, 2, id="drop3-H2", marks=pytest.mark.xfail(strict=True, reason=(
+        "Gambit 17.0.0b2 lp_solve (extensive form) mis-solves games with one-action "
+        "information sets, with N goals too: 8 instead of 21/2 here (drop3, H = 2: one forced "
+        "walk)")))])
+def test_pitfall_gambit_one_action_infosets(gambit: ModuleType, tmp_path: Path,
+                                            doc: dict[str, Any], horizon: int) -> None:
+    exact = _exact_value(doc, horizon)
+    text = to_efg(instance_from_json(doc), horizon, forced_moves=True)
     eq = _gambit_solve(gambit, text, tmp_path)
     assert eq.payoffs["Defender"] == exact
-
-
-def test_forced_moves_are_harmless_for_openspiel(openspiel: Any) -> None:
-    exact = _exact_value(LADDER, 2)
-    text = to_efg(instance_from_json(LADDER), 2, forced_moves=True)
-    v0, v1, _ = _openspiel_value(openspiel, text)
-    assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
-    assert abs(v1 - float(exact)) <= OPENSPIEL_TOLERANCE
 
 
 # ---------------------------------------------------------------------------------------------
@@ -189,22 +188,12 @@ def test_n_goal_cases_include_four_goals_and_a_horizon_drop() -> None:
     assert values == {("drop3", 2): Fraction(21, 2), ("drop3", 3): Fraction(5)}
 
 
-@pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
-def test_forced_moves_are_harmless_for_openspiel_on_n_goals(openspiel: Any, name: str,
-                                                            doc: dict[str, Any],
-                                                            horizon: int) -> None:
+@pytest.mark.parametrize(("name", "doc", "horizon"), [("ladder", LADDER, 2), *NCASES],
+                         ids=["ladder-H2", *NIDS])
+def test_forced_moves_are_harmless_for_openspiel(openspiel: Any, name: str, doc: dict[str, Any],
+                                                 horizon: int) -> None:
     exact = _exact_value(doc, horizon)
     text = to_efg(instance_from_json(doc), horizon, forced_moves=True)
     v0, v1, _ = _openspiel_value(openspiel, text)
     assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
     assert abs(v1 - float(exact)) <= OPENSPIEL_TOLERANCE
-
-
-@pytest.mark.xfail(strict=True, reason="Gambit 17.0.0b2 lp_solve (extensive form) mis-solves "
-                   "games with one-action information sets, with N goals too: 8 instead of "
-                   "21/2 here (drop3, H = 2: one forced walk)")
-def test_pitfall_gambit_one_action_infosets_n_goals(gambit: ModuleType, tmp_path: Path) -> None:
-    exact = _exact_value(DROP3, 2)
-    text = to_efg(instance_from_json(DROP3), 2, forced_moves=True)
-    eq = _gambit_solve(gambit, text, tmp_path)
-    assert eq.payoffs["Defender"] == exact
