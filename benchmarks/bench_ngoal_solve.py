@@ -6,8 +6,10 @@ top-left, top-middle, bottom-right corners and the centre, in that order, within
 connected region), equal priors. Measured, wall time, best of ``--repeat``:
 
 - ``solve N`` — the N-goal construction
-  (:func:`solver.coalitions.construction.coalition_equilibrium`: the coalition DP at H = inf,
-  the cover LP, the coalition walks and the rule along them), from the obstacle array;
+  (:func:`solver.coalitions.construction.coalition_equilibrium`, proofs/NEXACT.md: the
+  normal-restricted DP at H = inf with its refinement and arc test, the root LP, the
+  normal-coalition walks), from the obstacle array; ``normals`` is the number of extra facet
+  normals it needed (0: the 0/1 coalition sets sufficed);
 - ``certify N`` — the checker on that profile, structured route, H = inf, from the JSON
   documents (:func:`dppverify.certify`, what ``dpp certify`` runs), with
   its verdict (an ``error`` verdict: the arc condition could not be established, proofs/NSOLVE.md);
@@ -19,12 +21,21 @@ the checker, the non-pattern directions of proofs/NSOLVE.md); a warm-up run on a
 the same N is done first and not timed.
 
 Run: ``.venv/bin/python benchmarks/bench_ngoal_solve.py [--maps Berlin_1_256 ...]
-[--goals 3 4] [--repeat 1]``.
+[--goals 3 4] [--repeat 1]``; ``--issue`` runs the rows of issue 29 instead: Berlin_1_256 with
+start (255, 0), goals (0, 255), (0, 0), (1, 128), (255, 255), equal priors, and N = 5 on the
+four 32×32 maps by the corner rule.
 
 Measured (one run, 2-core shared machine, 2026-11-25): Berlin_1_256 (47,540 cells) N = 3:
 solve 0.42 s, certify 1.10 s (pass), 17x the two-goal solve (0.025 s); N = 4: solve 1.39 s,
 certify 6.9 s, error (the arc condition fails, proofs/NSOLVE.md); maze-128-128-10 (14,818
 cells) N = 4: solve 0.40 s, certify 3.2 s (pass); N = 5: solve 4.7 s, certify 142 s (pass).
+
+Measured with ``--issue`` (one run, the 2-core machine shared with six other helpers, load
+average about 16, 2026-11-28): Berlin_1_256 with the issue's four goals: solve 438 s (U = 913/4,
+the value ``dpp value`` proves; the four permutations of (2, 2, 2, 1) as extra normals, one
+refinement round, 591 layers), 800x the two-goal solve in the same run (0.55 s); certify 7.4 s
+with a checker that does not read the rule's normals yet (verdict ``fail``: the profile's
+``normals`` key is refused). The same solve took 156 s at load average about 12.
 """
 
 from __future__ import annotations
@@ -57,11 +68,19 @@ def _best(fn: Any, repeat: int) -> tuple[float, Any]:
     return best, out
 
 
-def run(name: str, n: int, repeat: int) -> dict[str, Any]:
+ISSUE_ROWS: tuple[tuple[str, tuple[int, int] | None, tuple[tuple[int, int], ...] | None, int],
+                  ...] = (
+    ("Berlin_1_256", (255, 0), ((0, 255), (0, 0), (1, 128), (255, 255)), 4),
+    *((m, None, None, 5) for m in ("empty-32-32", "room-32-32-4", "maze-32-32-2",
+                                   "maze-32-32-4")))
+
+
+def run(name: str, n: int, repeat: int, cells: tuple[Any, Any] | None = None
+        ) -> dict[str, Any]:
     path = standard_map_path(name)
     grid = checker_read_map(path)
     blocked = read_map(path)
-    start, goals = corner_cells(blocked, n)
+    start, goals = corner_cells(blocked, n) if cells is None else cells
     prior = [f"1/{n}"] * n
     t_n, eq = _best(lambda: coalition_equilibrium(
         Instance.from_grid(blocked, start, goals, prior)), repeat)
@@ -73,7 +92,7 @@ def run(name: str, n: int, repeat: int) -> dict[str, Any]:
                                                     ("3/5", "2/5"))), max(repeat, 3))
     return {"map": name, "N": n, "nodes": int((~blocked).sum()), "solve_N": t_n,
             "certify_N": t_c, "verdict": cert.verdict, "solve_2": t_2, "ratio": t_n / t_2,
-            "U": str(eq.U), "VoI": float(eq.VoI)}
+            "U": str(eq.U), "VoI": float(eq.VoI), "normals": len(eq.normals)}
 
 
 def main() -> None:
@@ -81,6 +100,9 @@ def main() -> None:
     ap.add_argument("--maps", nargs="+", default=list(MAPS))
     ap.add_argument("--goals", nargs="+", type=int, default=[3, 4])
     ap.add_argument("--repeat", type=int, default=1)
+    ap.add_argument("--issue", action="store_true",
+                    help="the rows of issue 29: Berlin_1_256 N = 4 (the issue's cells), N = 5 on "
+                         "the 32×32 maps")
     ap.add_argument("--quick", action="store_true",
                     help="one small map and N = 3, for the test suite (also DPP_BENCH_QUICK=1)")
     args = ap.parse_args()
@@ -98,13 +120,15 @@ def main() -> None:
             [(0, 7), (0, 0), (0, 4), (7, 7), (4, 4)][:n], [f"1/{n}"] * n)).to_json(),
             horizon="inf", route="structured")
     print(f"{'map':16} {'N':>2} {'cells':>6} {'solve N':>9} {'certify N':>10} {'verdict':>8} "
-          f"{'solve 2':>8} {'ratio':>7}")
-    for name in args.maps:
-        for n in args.goals:
-            r = run(name, n, args.repeat)
-            print(f"{r['map']:16} {r['N']:>2} {r['nodes']:>6} {r['solve_N']:>8.2f}s "
-                  f"{r['certify_N']:>9.2f}s {r['verdict']:>8} {r['solve_2']:>7.3f}s "
-                  f"{r['ratio']:>6.0f}x", flush=True)
+          f"{'solve 2':>8} {'ratio':>7} {'normals':>7}  U")
+    todo: list[tuple[str, int, tuple[Any, Any] | None]] = (
+        [(m, n, None if s is None else (s, g)) for m, s, g, n in ISSUE_ROWS] if args.issue
+        else [(m, n, None) for m in args.maps for n in args.goals])
+    for name, n, placed in todo:
+        r = run(name, n, args.repeat, placed)
+        print(f"{r['map']:16} {r['N']:>2} {r['nodes']:>6} {r['solve_N']:>8.2f}s "
+              f"{r['certify_N']:>9.2f}s {r['verdict']:>8} {r['solve_2']:>7.3f}s "
+              f"{r['ratio']:>6.0f}x {r['normals']:>7}  {r['U']}", flush=True)
 
 
 if __name__ == "__main__":

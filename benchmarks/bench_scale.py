@@ -1,4 +1,4 @@
-"""Issue 22's scale table: every row a ratio measured in one run (docs/benchmarks.md).
+"""Issues 22 and 31's scale table: every row a ratio measured in one run (docs/benchmarks.md).
 
 Rows (wall time, best of ``--repeat`` in this process unless a fresh process is named):
 
@@ -10,19 +10,32 @@ Rows (wall time, best of ``--repeat`` in this process unless a fresh process is 
    ``dpp solve --save-instance`` writes and the profile file, and certifies by the structured
    route, untruncated game, as ``dpp certify`` does) and ``V_H`` at H = inf and at H = the
    equilibrium length (the checker reads the compact instance, then the three-field DP), each
-   over ``solve`` (target: <= 3x). Berlin_1_256 is the issue's headline row.
-3. **The 1000x1000 grid, 20 % obstacles** (seed 0; the same cells): ``solve``, ``certify``,
-   ``V_H`` (H = inf) of the compact round trip, each in a fresh process with its peak RSS
-   (target: certify <= 3x solve, <= 1 GiB); and, in this process, ``solve`` (from the obstacle
-   array) against one ``scipy.sparse.csgraph.dijkstra`` from the start on the same graph, and
-   three such runs against one (target <= 3.5x).
+   over ``solve`` (target: <= 3x). Berlin_1_256 is the headline row (issue 31: certify <= 3x).
+3. **The 1000x1000 grid, 20 % obstacles** (seed 0; the same cells), every route from the map
+   to the game as a whole ``dpp`` command in a fresh process, timed as a user times it
+   (imports included), with its own peak RSS: ``dpp solve --map`` (writing the profile and
+   the compact instance), ``dpp certify`` of the saved instance and with ``--map``,
+   ``dpp value`` both ways, ``dpp plot map --map``, ``dpp audit --map --scen
+   --map-instances`` on two scenario lines (``--full-audit``: also with full instance
+   documents) (issue 31: certify --map <= 3x solve, every route <= 1 GiB); the commands
+   interleaved, best of ``--repeat``. Then, in this process,
+   ``solve`` (from the obstacle array) against one ``scipy.sparse.csgraph.dijkstra`` from the
+   start on the free cells' graph (``_grids.free_cell_graph``, built by the benchmark, the
+   same graph for any code on ``PYTHONPATH``), and three such runs against one (target:
+   solve <= 3.5x).
 4. **N goals**: the coalition DP at H = inf on room-32-32-4 with N = 3, 4, 5 corner goals
    (equal priors), each over the two-goal structured ``V_H`` of the same map.
 
-``--quick`` (or ``DPP_BENCH_QUICK=1``): two small maps, a 100x100 grid, N = 3 on
+``--quick`` (or ``DPP_BENCH_QUICK=1``): two small maps, a 100x100 grid (no plot), N = 3 on
 empty-16-16, one repetition: seconds, for the test suite (no timing is asserted there).
+``--sections`` runs some of ``startup maps grid ngoal`` only.
 
-Run: ``.venv/bin/python benchmarks/bench_scale.py [--quick] [--repeat 3] [--maps NAME ...]``
+The script measures the code on ``PYTHONPATH`` (``dpp`` commands are run as
+``python -c "from solver.cli import main; ..."``), so the same command measures a "before"
+checkout: ``PYTHONPATH=<checkout> .venv/bin/python benchmarks/bench_scale.py``.
+
+Run: ``.venv/bin/python benchmarks/bench_scale.py [--quick] [--repeat 3] [--maps NAME ...]
+[--sections grid maps] [--no-plot]``
 """
 
 from __future__ import annotations
@@ -31,7 +44,6 @@ import argparse
 import functools
 import json
 import os
-import resource
 import subprocess
 import sys
 import tempfile
@@ -42,11 +54,13 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from _grids import corners, free_cell_graph, random_grid, write_map
 
 MAPS = ("empty-8-8", "empty-16-16", "empty-32-32", "empty-48-48", "maze-32-32-2",
         "maze-32-32-4", "maze-128-128-2", "maze-128-128-10", "room-32-32-4", "room-64-64-8",
         "room-64-64-16", "Berlin_1_256")
 QUICK_MAPS = ("empty-8-8", "room-32-32-4")
+SECTIONS = ("startup", "maps", "grid", "ngoal")
 PRIOR = ("3/5", "2/5")
 
 
@@ -63,38 +77,6 @@ def best(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
         out = fn()
         times.append(time.perf_counter() - t0)
     return min(times), out
-
-
-def corners(blocked: np.ndarray) -> tuple[tuple[int, int], ...]:
-    """The free cells nearest the bottom-left (start), top-right, top-left, bottom-right
-    corners, the centre and the top middle, all in the largest 4-connected region (ties:
-    row-major)."""
-    from scipy import ndimage
-
-    labels, _ = ndimage.label(~blocked)
-    sizes = np.bincount(labels.ravel())
-    sizes[0] = 0
-    h, w = blocked.shape
-    region = np.argwhere(labels == int(np.argmax(sizes)))
-
-    def nearest(cells: np.ndarray, r: int, c: int) -> tuple[int, int]:
-        d = np.abs(cells[:, 0] - r) + np.abs(cells[:, 1] - c)
-        k = int(np.lexsort((cells[:, 1], cells[:, 0], d))[0])
-        return (int(cells[k, 0]), int(cells[k, 1]))
-
-    return tuple(nearest(region, r, c) for r, c in
-                 ((h - 1, 0), (0, w - 1), (0, 0), (h - 1, w - 1), (h // 2, w // 2),
-                  (0, w // 2)))
-
-
-def write_map(path: Path, blocked: np.ndarray) -> None:
-    rows = ["".join("@" if b else "." for b in row) for row in blocked]
-    path.write_text(f"type octile\nheight {blocked.shape[0]}\nwidth {blocked.shape[1]}\nmap\n"
-                    + "\n".join(rows) + "\n")
-
-
-def random_grid(size: int, density: float, seed: int) -> np.ndarray:
-    return np.random.default_rng(seed).random((size, size)) < density
 
 
 def _map_path(ref: str) -> str:
@@ -153,40 +135,34 @@ def save_game(map_ref: str, cells: tuple[tuple[int, int], ...], d: Path) -> tupl
     return inst_file, prof_file, eq
 
 
-def single(kind: str, args: list[str]) -> None:
-    """One operation in this (fresh) process: seconds and peak RSS as JSON on stdout."""
-    t0 = time.perf_counter()
-    if kind == "solve":
-        cells = tuple(tuple(c) for c in json.loads(args[1]))
-        op_solve(args[0], cells)
-    elif kind == "certify":
-        op_certify(Path(args[0]), Path(args[1]))
-    elif kind == "value":
-        op_value(Path(args[0]), None)
-    else:
-        raise SystemExit(f"unknown --single {kind}")
-    seconds = time.perf_counter() - t0
-    rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    print(json.dumps({"seconds": seconds, "rss_mib": rss}))
+DPP = "import sys; from solver.cli import main; sys.argv[0] = 'dpp'; sys.exit(main())"
+"""``dpp`` as a fresh process on the code of ``PYTHONPATH`` (a "before" checkout, too)."""
 
 
-def fresh(kind: str, *args: str) -> dict[str, Any]:
-    """One operation in a fresh process; ``{"failed": last stderr line}`` if it fails (the
-    code before the compact format cannot read its own 1000x1000 instance, for one)."""
-    out = subprocess.run([sys.executable, __file__, "--single", kind, *args],
-                         capture_output=True, text=True, timeout=3600)
-    if out.returncode != 0:
-        lines = out.stderr.strip().splitlines() or ["no message"]
-        return {"failed": lines[-1][:160]}
-    return dict(json.loads(out.stdout.strip().splitlines()[-1]))
+def command(args: list[str], cwd: Path) -> dict[str, Any]:
+    """One ``dpp`` command in a fresh process, timed as a user times it (imports included):
+    ``{"seconds", "rss_mib"}`` (its own peak resident memory, by ``wait4``), or
+    ``{"failed": last stderr line}``."""
+    with tempfile.TemporaryFile() as err:
+        t0 = time.perf_counter()
+        proc = subprocess.Popen([sys.executable, "-c", DPP, *args], cwd=cwd,
+                                stdout=subprocess.DEVNULL, stderr=err)
+        _, status, usage = os.wait4(proc.pid, 0)
+        seconds = time.perf_counter() - t0
+        proc.returncode = os.waitstatus_to_exitcode(status)
+        if proc.returncode != 0:
+            err.seek(0)
+            lines = err.read().decode(errors="replace").strip().splitlines() or ["no message"]
+            return {"failed": f"exit {proc.returncode}: {lines[-1][:160]}"}
+    return {"seconds": seconds, "rss_mib": usage.ru_maxrss / 1024}
 
 
 def _show(r: dict[str, Any], base: dict[str, Any] | None = None) -> str:
     if "failed" in r:
         return f"FAILED ({r['failed']})"
     ratio = "" if base is None or "failed" in base else \
-        f" = {r['seconds'] / base['seconds']:.1f}x"
-    return f"{r['seconds']:.2f} s{ratio} ({r['rss_mib']:.0f} MiB)"
+        f" = {r['seconds'] / base['seconds']:.1f}x solve"
+    return f"{r['seconds']:.2f} s{ratio}, {r['rss_mib']:.0f} MiB"
 
 
 # ---------------------------------------------------------------- the rows
@@ -213,11 +189,15 @@ def map_row(name: str, repeat: int) -> str:
         d = Path(tmp)
         inst_file, prof_file, eq = save_game(ref, cells, d)
         op_certify(inst_file, prof_file)  # warm-up: the checker's lazy imports
-        t_solve, _ = best(lambda: op_solve(ref, cells), repeat)
-        t_cert, _ = best(lambda: op_certify(inst_file, prof_file), repeat)
-        t_inf, v_inf = best(lambda: op_value(inst_file, None), repeat)
         h = max(len(eq.secondary_path) - 1, *(len(p.nodes) - 1 for p in eq.primary_paths))
-        t_h, v_h = best(lambda: op_value(inst_file, h), repeat)
+        t_solve = t_cert = t_inf = t_h = float("inf")
+        for _ in range(max(1, repeat)):  # interleaved: the four see the same machine load
+            t_solve = min(t_solve, best(lambda: op_solve(ref, cells), 1)[0])
+            t_cert = min(t_cert, best(lambda: op_certify(inst_file, prof_file), 1)[0])
+            t, v_inf = best(lambda: op_value(inst_file, None), 1)
+            t_inf = min(t_inf, t)
+            t, v_h = best(lambda: op_value(inst_file, h), 1)
+            t_h = min(t_h, t)
     if v_inf.value != eq.U or v_h.value != eq.U:
         raise SystemExit(f"{name}: V != U*: {v_inf.value}, {v_h.value}, {eq.U}")
     return (f"{name:<16} solve {t_solve:.3f} s | certify {t_cert:.3f} s = "
@@ -225,39 +205,93 @@ def map_row(name: str, repeat: int) -> str:
             f"V_H (H={h}) {t_h:.3f} s = {t_h / t_solve:.1f}x")
 
 
-def grid_rows(size: int, repeat: int) -> list[str]:
-    from scipy.sparse.csgraph import dijkstra
+GRID_COMMANDS = (
+    ("certify INSTANCE", ["certify", "instance.json", "profile.json"]),
+    ("certify --map", ["certify", "{map}", "profile.json"]),
+    ("value INSTANCE", ["value", "instance.json"]),
+    ("value --map", ["value", "{map}"]),
+    ("plot map --map", ["plot", "map", "{map}", "-o", "plot.png"]),
+    ("audit --map --scen --map-instances",
+     ["audit", "--solver", "solver.adapter:solve_json", "--map", "grid.map", "--scen",
+      "grid.scen", "--prior", ",".join(PRIOR), "--map-instances"]),
+)
+FULL_AUDIT = ("audit --map --scen (full documents)",
+              ["audit", "--solver", "solver.adapter:solve_json", "--map", "grid.map", "--scen",
+               "grid.scen", "--prior", ",".join(PRIOR)])
+"""The routes from the map to the game, as ``dpp`` commands (``{map}``: the option group)."""
 
-    from solver import Instance
-    from solver.graph.network import Network
-    from solver.twogoal.equilibrium import paper_equilibrium
 
+def write_scen(path: Path, cells: tuple[tuple[int, int], ...], size: int) -> None:
+    """Two scenario lines from the start, to g1 and to g2 (each the other's fake goal)."""
+    (r, c) = cells[0]
+    lines = [f"0\tgrid.map\t{size}\t{size}\t{c}\t{r}\t{gc}\t{gr}\t0" for gr, gc in cells[1:3]]
+    path.write_text("version 1\n" + "\n".join(lines) + "\n")
+
+
+def grid_rows(size: int, repeat: int, *, plot: bool = True,
+              full_audit: bool = False) -> list[str]:
+    """The ``size`` x ``size`` grid, 20 % obstacles: every route as a whole ``dpp`` command
+    (fresh process), then ``solve`` against one scipy Dijkstra in this process."""
     blocked = random_grid(size, 0.2, 0)
     cells = corners(blocked)[:3]
+    group = ["--map", "grid.map", "--start", "{},{}".format(*cells[0]), "--goals",
+             "{},{}".format(*cells[1]), "{},{}".format(*cells[2]), "--prior", ",".join(PRIOR)]
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         d = Path(tmp)
         write_map(d / "grid.map", blocked)
-        ref = str(d / "grid.map")
-        inst_file, prof_file, _ = save_game(ref, cells, d)
-        s = fresh("solve", ref, json.dumps(cells))
-        c = fresh("certify", str(inst_file), str(prof_file))
-        v = fresh("value", str(inst_file))
-    rows.append(f"{size}x{size} grid, 20% obstacles (seed 0), fresh processes: solve "
-                f"{_show(s)} | certify {_show(c, s)} | V_inf {_show(v, s)}")
-    goals = (cells[1], cells[2])
-    t_solve, _ = best(
-        lambda: paper_equilibrium(Instance.from_grid(blocked, cells[0], goals, PRIOR)), repeat)
-    net = Network.from_grid(blocked)
-    mat = net.matrix()
-    src = net.index_of(cells[0])
-    t_one, _ = best(lambda: dijkstra(mat, directed=True, indices=src), repeat)
-    t_three, _ = best(lambda: [dijkstra(mat, directed=True, indices=net.index_of(x))
-                               for x in cells[:3]], repeat)
-    rows.append(f"{size}x{size} grid: solve (from the obstacle array) {t_solve:.3f} s vs one "
-                f"scipy Dijkstra {t_one:.3f} s = {t_solve / t_one:.1f}x (three Dijkstras: "
-                f"{t_three / t_one:.1f}x)")
+        write_scen(d / "grid.scen", cells, size)
+        solve_args = ["solve", *group, "-o", "profile.json", "--save-instance", "instance.json"]
+        first = command(solve_args, d)  # writes the files the other commands read
+        if "failed" in first:
+            raise SystemExit(f"dpp solve failed on the grid: {first['failed']}")
+        results: dict[str, list[dict[str, Any]]] = {"solve": []}
+        chosen = [*GRID_COMMANDS, *([FULL_AUDIT] if full_audit else [])]
+        commands = [(name, [a for x in args for a in (group if x == "{map}" else [x])])
+                    for name, args in chosen if plot or not name.startswith("plot")]
+        for _ in range(max(1, repeat)):  # interleaved: every command sees the same load
+            results["solve"].append(command(solve_args, d))
+            for name, args in commands:
+                results.setdefault(name, []).append(command(args, d))
+    best_of = {name: _best_run(runs) for name, runs in results.items()}
+    rows.append(f"{size}x{size} grid, 20% obstacles (seed 0), dpp commands in fresh processes "
+                f"(best of {max(1, repeat)}; memory: the largest peak RSS):")
+    rows.append(f"  {'solve --map (-o, --save-instance)':<36} {_show(best_of['solve'])}")
+    for name, _ in commands:
+        rows.append(f"  {name:<36} {_show(best_of[name], best_of['solve'])}")
+    rows.extend(solver_rows(blocked, cells, repeat))
     return rows
+
+
+def _best_run(runs: list[dict[str, Any]]) -> dict[str, Any]:
+    ok = [r for r in runs if "failed" not in r]
+    if not ok:
+        return runs[-1]
+    return {"seconds": min(r["seconds"] for r in ok), "rss_mib": max(r["rss_mib"] for r in ok)}
+
+
+def solver_rows(blocked: np.ndarray, cells: tuple[tuple[int, int], ...],
+                repeat: int) -> list[str]:
+    """``solve`` from the obstacle array against one scipy Dijkstra from the start on the free
+    cells' graph (``_grids.free_cell_graph``: built here, not by the solver), interleaved."""
+    from scipy.sparse.csgraph import dijkstra
+
+    from solver import Instance, solve
+
+    mat, node = free_cell_graph(blocked)
+    src = [int(node[c]) for c in cells[:3]]
+    goals = (cells[1], cells[2])
+    t_solve = t_one = t_three = float("inf")
+    for _ in range(max(1, repeat)):
+        t_one = min(t_one, best(lambda: dijkstra(mat, directed=True, indices=src[0]), 1)[0])
+        t_solve = min(t_solve, best(lambda: solve(Instance.from_grid(blocked, cells[0], goals,
+                                                                     PRIOR)), 1)[0])
+        t_three = min(t_three, best(lambda: [dijkstra(mat, directed=True, indices=s)
+                                             for s in src], 1)[0])
+    size = blocked.shape[0]
+    return [f"{size}x{size} grid: solve (from the obstacle array) {t_solve:.3f} s vs one "
+            f"scipy Dijkstra on the free cells {t_one:.3f} s = {t_solve / t_one:.2f}x "
+            f"(three Dijkstras: {t_three / t_one:.2f}x)"]
 
 
 def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str]:
@@ -294,25 +328,34 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--maps", nargs="*", default=None)
     ap.add_argument("--size", type=int, default=None, help="grid side (default 1000)")
-    ap.add_argument("--single", nargs="+", help=argparse.SUPPRESS)
+    ap.add_argument("--sections", nargs="+", default=list(SECTIONS), choices=SECTIONS)
+    ap.add_argument("--full-audit", action="store_true",
+                    help="also dpp audit --map --scen with full instance documents (> 2 GiB "
+                         "on the 1000x1000 grid)")
+    ap.add_argument("--no-plot", action="store_true",
+                    help="leave out dpp plot map on the grid (the slowest route)")
     args = ap.parse_args(argv)
-    if args.single:
-        single(args.single[0], args.single[1:])
-        return 0
     quick = quick_mode(argv)
     repeat = 1 if quick else args.repeat
     maps = args.maps if args.maps is not None else (QUICK_MAPS if quick else MAPS)
     size = args.size or (100 if quick else 1000)
     t0 = time.perf_counter()
-    for line in startup(repeat):
-        print(line, flush=True)
-    for name in maps:
-        print(map_row(name, repeat), flush=True)
-    for line in grid_rows(size, repeat):
-        print(line, flush=True)
-    ngoal = ("empty-16-16", (3,)) if quick else ("room-32-32-4", (3, 4, 5))
-    for line in ngoal_rows(ngoal[0], ngoal[1], repeat):
-        print(line, flush=True)
+    print(f"(load average {os.getloadavg()[0]:.1f} at the start)", flush=True)
+    if "startup" in args.sections:
+        for line in startup(repeat):
+            print(line, flush=True)
+    if "maps" in args.sections:
+        for name in maps:
+            print(map_row(name, repeat), flush=True)
+    if "grid" in args.sections:
+        for line in grid_rows(size, repeat, plot=not (args.no_plot or quick),
+                              full_audit=args.full_audit):
+            print(line, flush=True)
+    if "ngoal" in args.sections:
+        ngoal = ("empty-16-16", (3,)) if quick else ("room-32-32-4", (3, 4, 5))
+        for line in ngoal_rows(ngoal[0], ngoal[1], repeat):
+            print(line, flush=True)
+    print(f"(load average {os.getloadavg()[0]:.1f} at the end)")
     print(f"(total {time.perf_counter() - t0:.1f} s{', quick mode' if quick else ''})")
     return 0
 

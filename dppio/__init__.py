@@ -7,7 +7,8 @@ a reader bug is never shared (``tests/maps/test_readers_agree.py`` cross-checks 
 they share lives here and only here: how a file is read without hanging or exhausting memory
 (:mod:`dppio.files`), how outputs are written all or nothing, the limit values with the
 checks that refuse a numeral before it is parsed or a JSON document nested too deep
-(:mod:`dppio.limits`), and how the processes
+(:mod:`dppio.limits`), how much memory a command may use (:mod:`dppio.memory`), and how the
+processes
 a command started are found to end them (:mod:`dppio.procs`). Each package raises its own
 error classes (the checks and writers take ``error=``). ``dppio`` imports neither package
 (import-linter enforces it).

@@ -45,6 +45,7 @@ __all__ = [
     "read_input",
     "read_text",
     "refuse_input_as_output",
+    "short_path",
     "write_atomic",
     "write_files",
 ]
@@ -63,6 +64,24 @@ def file_mode() -> int:
     mask = os.umask(0)
     os.umask(mask)
     return 0o666 & ~mask
+
+
+def short_path(path: str | Path, limit: int = 160) -> str:
+    """``path`` for a one-line message: cut in the middle when longer than ``limit``
+    characters (a path past PATH_MAX would make the line kilobytes long).
+
+    Examples
+    --------
+    >>> short_path("out/p.json")
+    'out/p.json'
+    >>> short_path("d" * 400 + "/p.json", limit=20)
+    'dddddddddd…ddd/p.json (407 characters)'
+    """
+    text = str(path)
+    if len(text) <= limit:
+        return text
+    half = limit // 2
+    return f"{text[:half]}…{text[-half:]} ({len(text)} characters)"
 
 
 def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path] = (),
@@ -115,16 +134,16 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
         mode = file_mode()
         for target, content in regular:
             current = target
-            fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.",
+            fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=_temp_prefix(target),
                                        suffix=".tmp")
             temps.append((tmp, target))
-            data = content.encode("utf-8") if isinstance(content, str) else content
+            data = _encode(content)
             with os.fdopen(fd, "wb") as fh:
                 fh.write(data)
             os.chmod(tmp, mode)
         for target, content in special:
             current = target
-            _stream(target, content.encode("utf-8") if isinstance(content, str) else content)
+            _stream(target, _encode(content))
         for tmp, target in temps:
             current = target
             os.replace(tmp, target)
@@ -132,7 +151,7 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
     except OSError as exc:
         _clean(temps, created)
         reason = exc.strerror or str(exc)
-        raise error(f"cannot write {current}: {reason}") from None
+        raise error(f"cannot write {short_path(current)}: {reason}") from None
     except BaseException:
         _clean(temps, created)
         raise
@@ -189,8 +208,8 @@ def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Pat
             same = os.path.samefile(out, path)
         except OSError:
             same = os.path.realpath(out) == os.path.realpath(path)
-        if same and (not out.exists() or out.is_file()):
-            raise error(f"{option} {out} is an input of this command; refusing to "
+        if same and (not os.path.exists(out) or os.path.isfile(out)):
+            raise error(f"{option} {short_path(out)} is an input of this command; refusing to "
                         "overwrite it (give another path)")
 
 
@@ -204,13 +223,22 @@ def _is_special(target: Path) -> bool:
     return not stat.S_ISREG(st.st_mode) and not stat.S_ISDIR(st.st_mode)
 
 
+def _is_socket(target: Path) -> bool:
+    try:
+        return stat.S_ISSOCK(os.stat(target).st_mode)
+    except OSError:
+        return False
+
+
 def _stream(target: Path, data: bytes) -> None:
     """Write ``data`` into the existing non-regular file ``target`` without replacing it."""
     try:
         fd = os.open(target, os.O_WRONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
     except OSError as exc:
-        if exc.errno == errno.ENXIO:  # a FIFO that no process reads
-            raise OSError(exc.errno, "it is a FIFO that no process reads") from None
+        if exc.errno == errno.ENXIO:  # a FIFO that no process reads, or a socket
+            what = "a socket, not a file" if _is_socket(target) else \
+                "a FIFO that no process reads"
+            raise OSError(exc.errno, f"it is {what}") from None
         raise
     try:
         os.set_blocking(fd, True)
@@ -222,13 +250,47 @@ def _stream(target: Path, data: bytes) -> None:
         os.close(fd)
 
 
+def _encode(content: str | bytes) -> bytes:
+    """UTF-8 bytes of ``content``; a character UTF-8 cannot hold (a lone surrogate: a file
+    name that is not UTF-8, as Python reads it) is written as its escape ``\\udcff``, which in
+    a JSON string reads back as the same character.
+
+    Examples
+    --------
+    >>> name = os.fsdecode(b"b\\xff.json")  # a file name that is not UTF-8
+    >>> _encode(f'{{"file": "{name}"}}')
+    b'{"file": "b\\\\udcff.json"}'
+    """
+    if isinstance(content, bytes):
+        return content
+    return content.encode("utf-8", "backslashreplace")
+
+
+def _temp_prefix(target: Path) -> str:
+    """``.NAME.`` for the temporary file of ``target`` (``.NAME.XXXXXXXX.tmp``), or ``.dpp.``
+    when that would pass the file system's limit of 255 bytes for a name (a legal name of
+    250 bytes must still be writable).
+
+    Examples
+    --------
+    >>> _temp_prefix(Path("out/p.json")), _temp_prefix(Path("a" * 250 + ".json"))
+    ('.p.json.', '.dpp.')
+    """
+    if len(os.fsencode(target.name)) + len("..XXXXXXXX.tmp") > 255:
+        return ".dpp."
+    return f".{target.name}."
+
+
 def _target(path: str | Path, error: ErrorClass) -> Path:
     if str(path) == "":
         raise error("the output path is empty")
+    if str(path).endswith(("/", os.sep)):  # Path() would drop the slash and write a file
+        raise error(f"cannot write {short_path(path)}: it names a folder (a trailing /); give "
+                    "a file name")
     p = Path(path)
-    if p.is_dir():
-        raise error(f"cannot write {p}: it is a folder")
-    if p.is_symlink() and p.is_file():  # keep the link; replace the file it points to
+    if os.path.isdir(p):  # (os.path: False, not an exception, for a name too long)
+        raise error(f"cannot write {short_path(p)}: it is a folder")
+    if os.path.islink(p) and os.path.isfile(p):  # keep the link; replace the file it points to
         return Path(os.path.realpath(p))
     return p
 

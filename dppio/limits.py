@@ -64,8 +64,9 @@ it; exact weights have no such limit."""
 
 MAX_MAP_CELLS = 4_000_000
 """Largest grid of a ``--map`` (rows x columns, obstacles included): a 2000 x 2000 map. Larger
-maps are refused before any array is allocated (the memory budget: about 1 GiB per
-4 million cells for the checker's structured route)."""
+maps are refused before any array is allocated; within it, the memory a game on the map
+needs is estimated and checked against what the process may use (:mod:`dppio.memory`,
+measured: about 1 GiB per million free cells for the checker's structured route)."""
 
 MAX_PREFIXES_LIMIT = 10**7
 """Largest ``--max-prefixes`` accepted: a walk tree of 10**7 prefixes already takes several

@@ -14,8 +14,11 @@ from fractions import Fraction
 from types import MappingProxyType
 from typing import Any, Literal, cast
 
+from dppio.limits import check_numeral, check_rational
 from dppverify.errors import CertificateError
 from dppverify.exact import Number, format_number, normalize
+from dppverify.exploitability import Exploitability, exploitability_of
+from dppverify.limits import MAX_HORIZON
 from dppverify.registry import KINDS, Kind, kind_of
 
 __all__ = ["CERTIFICATE_FORMAT", "STATUSES", "Certificate", "CheckRecord", "Status", "Verdict",
@@ -134,17 +137,31 @@ def _write_number(key: str, v: NumberEntry) -> str | float | int | None:
 
 
 def _read_number(v: Any) -> NumberEntry:
+    """A number of a check record, within the limits of :mod:`dppio.limits` (a numeral such
+    as ``"1e999999999"`` is refused before it is expanded)."""
     if v is None or isinstance(v, float):
         return v
     if isinstance(v, bool):
         raise ValueError(f"not a number: {v!r}")
     if isinstance(v, int | Fraction):
+        check_rational(v, where="number", error=ValueError)
         return normalize(Fraction(v))
     if isinstance(v, str):
         if v in ("inf", "-inf", "nan"):
             return float(v)
-        return normalize(Fraction(v))
+        check_numeral(v, where="number", error=ValueError)
+        f = Fraction(v)
+        check_rational(f, where="number", error=ValueError)
+        return normalize(f)
     raise ValueError(f"not a number: {v!r}")
+
+
+def _read_count(v: Any, what: str, limit: int = 10**18, low: int = 0) -> int:
+    """An integer field of a certificate (horizon, seed, tree sizes) from ``low`` to
+    ``limit``."""
+    if isinstance(v, bool) or not isinstance(v, int) or not low <= v <= limit:
+        raise ValueError(f"{what} must be an integer from {low} to {limit}, got {str(v)[:40]}")
+    return v
 
 
 def verdict_of(checks: tuple[CheckRecord, ...]) -> Verdict:
@@ -244,6 +261,9 @@ class Certificate:
         What was certified (:mod:`dppverify.provenance`): the sha256 of the instance and
         the profile, the dppverify version, the route, the number mode and the command;
         None in certificates written before provenance existed.
+    exploitability : Exploitability or None
+        Every player's exact regret and their sum, NashConv (:mod:`dppverify.exploitability`),
+        on the game of ``horizon``; None in certificates written before it existed.
 
     Examples
     --------
@@ -269,6 +289,7 @@ class Certificate:
     route: str = "tree"
     not_run: Mapping[str, str] = field(default_factory=dict)
     provenance: Mapping[str, Any] | None = None
+    exploitability: Exploitability | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "checks", tuple(self.checks))
@@ -381,6 +402,8 @@ class Certificate:
             "checks": [c.to_json() for c in self.checks],
             "not_run": dict(self.not_run),
         }
+        if self.exploitability is not None:
+            doc["exploitability"] = self.exploitability.to_json()
         if self.provenance is not None:
             doc["provenance"] = json.loads(json.dumps(dict(self.provenance)))
         return doc
@@ -399,6 +422,8 @@ class Certificate:
                 doc = json.loads(doc)
             except json.JSONDecodeError as exc:
                 raise CertificateError(f"certificate is not JSON: {exc.msg}") from None
+            except (ValueError, RecursionError) as exc:  # an integer of 5000 digits, nesting
+                raise CertificateError(f"certificate is not readable JSON: {exc}") from None
         if not isinstance(doc, Mapping) or doc.get("format") != CERTIFICATE_FORMAT:
             raise CertificateError(f"not a {CERTIFICATE_FORMAT} document")
         try:
@@ -406,20 +431,26 @@ class Certificate:
             lp = doc.get("lp") or {}
             tree = doc.get("tree") or {}
             tol = doc.get("tolerance")
-            horizon = None if doc["horizon"] == "inf" else int(doc["horizon"])
+            horizon = None if doc["horizon"] == "inf" else \
+                _read_count(doc["horizon"], "horizon", MAX_HORIZON)
             cert = cls(checks=checks, horizon=horizon, exact=bool(doc["exact"]),
                        tolerance=None if tol is None else float(tol),
                        lp_solver=str(lp.get("solver", "CLARABEL")),
                        lp_tolerance=float(lp.get("tolerance", 1e-7)),
-                       prefixes=int(tree.get("prefixes", 0)), leaves=int(tree.get("leaves", 0)),
-                       seed=None if doc.get("seed") is None else int(doc["seed"]),
+                       prefixes=_read_count(tree.get("prefixes", 0), "tree.prefixes"),
+                       leaves=_read_count(tree.get("leaves", 0), "tree.leaves"),
+                       seed=None if doc.get("seed") is None else _read_count(doc["seed"], "seed",
+                                                                             2**64, -2**64),
                        info=dict(doc.get("info") or {}),
                        route=str(doc.get("route", "tree")),
                        not_run={str(k): str(v) for k, v in dict(doc.get("not_run") or {}).items()},
                        provenance=_provenance(doc.get("provenance")))
+            if doc.get("exploitability") is not None:
+                cert = dataclasses.replace(cert, exploitability=_exploitability(
+                    doc["exploitability"], checks, horizon, bool(doc["exact"])))
         except KeyError as exc:
             raise CertificateError(f"certificate is missing {exc}") from None
-        except (TypeError, ValueError, AttributeError) as exc:
+        except (TypeError, ValueError, AttributeError, OverflowError) as exc:
             raise CertificateError(f"malformed certificate: {exc}") from None
         game = doc.get("game")
         if game is not None and game != cert.game_record():
@@ -437,3 +468,20 @@ def _provenance(value: Any) -> dict[str, Any] | None:
     if not isinstance(value, Mapping):
         raise TypeError("provenance must be a JSON object")
     return dict(value)
+
+
+def _exploitability(value: Any, checks: tuple[CheckRecord, ...], horizon: int | None,
+                    exact: bool) -> Exploitability:
+    """The certificate's ``exploitability`` record, recomputed from its checks (goals and
+    priors from the record) and refused when the record says otherwise."""
+    if not isinstance(value, Mapping) or not isinstance(value.get("types"), list):
+        raise TypeError("exploitability must be a JSON object with a list of types")
+    types = value["types"]
+    if not all(isinstance(t, Mapping) for t in types):
+        raise TypeError("exploitability types must be JSON objects")
+    e = exploitability_of(checks, goals=[t.get("goal") for t in types],
+                          priors=[Fraction(str(t.get("prior"))) for t in types],
+                          horizon=horizon, exact=exact)
+    if e.to_json() != dict(value):
+        raise CertificateError("the certificate's exploitability record contradicts its checks")
+    return e

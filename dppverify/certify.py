@@ -44,6 +44,7 @@ from dppverify.errors import (
     ProfileError,
     UndecidedError,
 )
+from dppverify.exploitability import exploitability_of
 from dppverify.formats.json_reading import JsonReadError, read_json_file
 from dppverify.game.instance import Instance, arc_arrays, node_to_json
 from dppverify.game.profile import (
@@ -314,13 +315,16 @@ def _certify(instance: Any, profile: Any, *, horizon: int | str | float | None, 
         "prior": [str(roles.b1), str(roles.b2)],
         "defender_rule": defender.get("rule") if isinstance(defender, Mapping) else None,
     }
+    exploit = exploitability_of(checks, goals=[info["primary"], info["secondary"]],
+                                priors=[roles.b1, roles.b2], horizon=h, exact=game.exact)
     return Certificate(checks=tuple(checks), horizon=h, exact=game.exact,
                        tolerance=game.numbers.rel_tol, lp_solver=LP_SOLVER,
                        lp_tolerance=LP_TOLERANCE,
                        prefixes=prefixes, leaves=leaves, seed=seed, info=info, route=chosen,
                        not_run=not_run("structured") if chosen == "structured" else {},
                        provenance=provenance_record(instance, profile, route=chosen,
-                                                    exact=game.exact))
+                                                    exact=game.exact),
+                       exploitability=exploit)
 
 
 def _with_provenance(cert: Certificate, instance: Any, profile: Any) -> Certificate:
@@ -373,7 +377,10 @@ def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon:
                             "game": "N goals"}
     if chosen != "tree":
         info["trie_prefixes"] = trie_size
-    return Certificate(checks=tuple(checks), horizon=h if tree is None else tree.horizon,
+    horizon_of = h if tree is None else tree.horizon
+    exploit = exploitability_of(checks, goals=[node_to_json(inst.nodes[g]) for g in inst.goals],
+                                priors=list(inst.prior), horizon=horizon_of, exact=True)
+    return Certificate(checks=tuple(checks), horizon=horizon_of, exploitability=exploit,
                        exact=True, lp_solver=LP_SOLVER,
                        lp_tolerance=LP_TOLERANCE,
                        prefixes=0 if tree is None else tree.n_prefixes,

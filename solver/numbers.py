@@ -104,6 +104,9 @@ class NumberMode(ABC):
         """This mode with another float tolerance (exact mode has none: itself)."""
 
 
+_ZERO, _ONE = Fraction(0), Fraction(1)
+
+
 @dataclass(frozen=True)
 class ExactNumbers(NumberMode):
     """Exact mode: stored values are integer numerators over ``denominator``.
@@ -143,7 +146,10 @@ class ExactNumbers(NumberMode):
         return np.asarray(values == 0)
 
     def ratio(self, num: Any, den: Any) -> Fraction:
-        return Fraction(int(num), int(den))
+        n, d = int(num), int(den)
+        if n == 0:  # σ* is 0 or 1 on most steps of a unit grid: no gcd for those
+            return _ZERO
+        return _ONE if n == d else Fraction(n, d)
 
     def describe(self) -> str:
         return "exact (rational)"

@@ -174,4 +174,5 @@ Defender: guarantee rule h = (1, 1, 2)
     return (f"N = {result.n_goals} goals: U = {format_value(ceq.U)}{note}, VoI = "
             f"{format_value(ceq.VoI)}, U_bar = {format_value(ceq.U_bar)}; type costs "
             f"({', '.join(map(str, ceq.costs))}); Defender: guarantee rule h = "
-            f"({', '.join(map(str, ceq.h))})")
+            f"({', '.join(map(str, ceq.h))})"
+            + (f" with {len(ceq.normals)} extra normals" if ceq.normals else ""))

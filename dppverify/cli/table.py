@@ -2,7 +2,8 @@
 
 One header line (the verdict, the game, the tallies), then one row per check of kind
 ``check``, then the consistency checks and the facts under their own headings
-(:data:`CONSISTENCY_HEADING`, :data:`FACTS_HEADING`).
+(:data:`CONSISTENCY_HEADING`, :data:`FACTS_HEADING`), and last the exploitability (every
+player's exact regret and NashConv, :mod:`dppverify.exploitability`).
 """
 
 from __future__ import annotations
@@ -78,6 +79,9 @@ def format_table(cert: Certificate) -> str:
     value.VoI  pass    U_bar=27/10 VoI=1/9          U_bar = 27/10, VoI = 1/9
     >>> format_table(certify(triangle_document(), profile)).splitlines()[0][:50]
     'verdict: PASS for the untruncated game (H = inf) ('
+    >>> print(lines[-1])  # doctest: +NORMALIZE_WHITESPACE
+    exploitability on the game truncated at H = 1: NashConv 0 = Attacker 0 (type regrets: g1 0,
+      g2 0, weighted by the prior) + Defender 0
     """
     counts = cert.counts()
     passed, total = counts["check"]
@@ -118,5 +122,7 @@ def format_table(cert: Certificate) -> str:
             lines.append(heading)
             for r in group:
                 lines += row(*r)
+    if cert.exploitability is not None:
+        lines.append(f"exploitability on {game}: {cert.exploitability.summary()}")
     return "\n".join(lines)
 

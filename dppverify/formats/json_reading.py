@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Hashable, Mapping
+from collections.abc import Hashable, Mapping, Sequence
 from fractions import Fraction
 from numbers import Rational
 from pathlib import Path
@@ -357,7 +357,7 @@ class WalkGame(Protocol):
     """What :func:`resolve_walk` needs of a game (two-goal ``Instance`` and ``Instance``)."""
 
     @property
-    def nodes(self) -> tuple[Node, ...]: ...
+    def nodes(self) -> Sequence[Node]: ...
 
     @property
     def index(self) -> Mapping[Node, int]: ...
@@ -444,9 +444,13 @@ def _resolve_walk_fast(game: WalkGame, raw: list[Any], *, complete: bool
     if along is None or len(raw) < 2:
         return None
     walk: list[int] = []
+    index = game.index
     try:
         for k, x in enumerate(raw):
-            idx = game.index.get(node_from_json(x, where=f"[{k}]"))
+            if type(x) is list and len(x) == 2 and type(x[0]) is int and type(x[1]) is int:
+                idx = index.get((x[0], x[1]))  # a grid cell, the common case: no recursion
+            else:
+                idx = index.get(node_from_json(x, where=f"[{k}]"))
             if idx is None or (k > 0 and game.is_goal(walk[-1])):
                 return None
             walk.append(idx)

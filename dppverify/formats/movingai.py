@@ -36,7 +36,7 @@ from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_number
 
 __all__ = ["BLOCKED", "PASSABLE", "GridArcs", "GridMap", "grid_arcs", "grid_document",
-           "parse_map", "read_map"]
+           "parse_map", "read_map", "read_map_file"]
 
 
 PASSABLE = frozenset(".GS")
@@ -103,7 +103,21 @@ class GridMap:
 
 
 def read_map(path: str | Path) -> GridMap:
-    """Read a ``.map`` file strictly; errors name the file and the line.
+    """Read a ``.map`` file strictly; errors name the file and the line
+    (:func:`read_map_file` without the bytes).
+
+    Examples
+    --------
+    >>> read_map("/nonexistent.map")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: /nonexistent.map: cannot read map file (...)
+    """
+    return read_map_file(path)[0]
+
+
+def read_map_file(path: str | Path) -> tuple[GridMap, bytes]:
+    """Read a ``.map`` file strictly, with the bytes it was parsed from (what a compact map
+    instance's ``map_sha256`` hashes); errors name the file and the line.
 
     Parameters
     ----------
@@ -112,7 +126,7 @@ def read_map(path: str | Path) -> GridMap:
 
     Returns
     -------
-    GridMap
+    (GridMap, bytes)
 
     Raises
     ------
@@ -121,13 +135,15 @@ def read_map(path: str | Path) -> GridMap:
 
     Examples
     --------
-    >>> read_map("/nonexistent.map")  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    dppverify.errors.InvalidInstanceError: /nonexistent.map: cannot read map file (...)
+    >>> from dppverify.formats.standard_maps import standard_map_path
+    >>> grid, data = read_map_file(standard_map_path("empty-8-8"))
+    >>> grid.height, data[:11]
+    (8, b'type octile')
     """
     p = Path(path)
     try:  # bounded, and read once per command: the bytes hashed are the bytes parsed
-        text = read_input(path).decode("ascii")
+        data = read_input(path)
+        text = data.decode("ascii")
     except OSError as exc:
         raise InvalidInstanceError(f"{p}: cannot read map file ({exc.strerror})") from None
     except InputError as exc:
@@ -135,7 +151,7 @@ def read_map(path: str | Path) -> GridMap:
     except UnicodeDecodeError as exc:
         raise InvalidInstanceError(f"{p}: not an ASCII map file (byte {exc.start})") from None
     try:
-        return parse_map(text)
+        return parse_map(text), data
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{p}: {exc}") from None
 
@@ -287,34 +303,48 @@ def grid_document(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequ
 
 
 class GridArcs(NamedTuple):
-    """A grid's graph as arrays, in the node and edge order of :func:`grid_document`.
+    """A grid's graph as arrays: the arcs of :func:`grid_document`'s edges, both ways, in
+    adjacency (CSR) order.
 
-    ``ids[k]`` is the cell of node ``k`` (free cells row-major), ``node_index`` its inverse; edge
-    ``j`` joins ``u[j]`` and ``v[j]`` with weight ``values[c[j]]``; ``exact`` is False for
-    octile grids (float weights).
+    The nodes are the free cells, row-major: node ``k`` is the cell at ``framed[k]`` of the map
+    with a one-cell frame (``(row + 1) * stride + col + 1``, ``stride = width + 2``);
+    ``node_at`` is the inverse (-1 at blocked cells and the frame). The arcs leaving node ``u``
+    are ``indptr[u]:indptr[u + 1]``, by increasing head: arc ``j`` goes ``tails[j] ->
+    heads[j]`` with weight ``values[codes[j]]`` (the weights numbered in the order the JSON
+    reader meets them in the document); every arc's reverse is an arc of the same weight.
+    ``exact`` is False for octile grids (float weights).
     """
 
-    ids: list[Any]
-    node_index: dict[Any, int]
-    u: np.ndarray
-    v: np.ndarray
-    c: np.ndarray
+    framed: np.ndarray
+    node_at: np.ndarray
+    stride: int
+    indptr: np.ndarray
+    tails: np.ndarray
+    heads: np.ndarray
+    codes: np.ndarray
     values: list[Any]
     exact: bool
 
 
 def grid_arcs(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
               connectivity: int = 4) -> GridArcs:
-    """The edges of :func:`grid_document` as arrays, from numpy shifts of the free-cell mask.
+    """The arcs of :func:`grid_document`'s edges as CSR arrays, from numpy shifts of the
+    free-cell mask (no sort: the neighbours of a cell in increasing row-major order are up,
+    left, right, down, with the diagonals in between for 8-connected grids).
 
     Same checks and messages as :func:`grid_document` for the connectivity and the cells.
 
     Examples
     --------
     >>> grid = parse_map("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
-    >>> a = grid_arcs(grid, (1, 0), ((1, 2), (0, 0)), connectivity=8)
-    >>> a.ids[:3], a.u.tolist(), a.v.tolist(), a.exact
-    ([(0, 0), (0, 1), (0, 2)], [0, 0, 1, 2], [1, 3, 2, 4], False)
+    >>> a = grid_arcs(grid, (1, 0), ((1, 2), (0, 0)))
+    >>> a.framed.tolist(), a.indptr.tolist(), a.heads.tolist(), a.values
+    ([6, 7, 8, 11, 13], [0, 2, 4, 6, 7, 8], [1, 3, 0, 2, 1, 4, 0, 2], [1])
+    >>> b = grid_arcs(parse_map("type octile\\nheight 2\\nwidth 2\\nmap\\n..\\n..\\n"),
+    ...               (1, 0), ((0, 1), (0, 0)), connectivity=8)
+    >>> b.heads.tolist(), b.codes.tolist(), b.values
+    ([1, 2, 3, 0, 2, 3, 0, 1, 3, 0, 1, 2], [0, 0, 1, 0, 1, 0, 0, 1, 0, 1, 0, 0], \
+[1.0, 1.4142135623730951])
     >>> grid_arcs(grid, (1, 1), ((1, 2), (0, 0)))
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: start cell (1, 1) is an obstacle ('@' at row 1,
@@ -325,36 +355,50 @@ def grid_arcs(grid: GridMap, start: Cell, goals: Sequence[Cell], *,
     chars = np.frombuffer("".join(grid.rows).encode("ascii"), dtype=np.uint8).reshape(h, w)
     free = np.isin(chars, np.frombuffer("".join(sorted(PASSABLE)).encode("ascii"),
                                         dtype=np.uint8))
-    cells = np.flatnonzero(free)  # row-major: the node order of grid_document
-    n = int(cells.size)
-    rank = np.full(h * w, -1, dtype=np.int64)
-    rank[cells] = np.arange(n, dtype=np.int64)
-    # the edge order of grid_document: lower cell row-major, then right, down-left, down,
-    # down-right (a diagonal needs both orthogonal neighbours free)
-    steps = [(0, 1), (1, -1), (1, 0), (1, 1)] if octile else [(0, 1), (1, 0)]
-    pad = np.pad(free, 1)
-    mask = np.empty((h, w, len(steps)), dtype=bool)
+    stride = w + 2  # cells are indexed in the map with a one-cell frame: no bounds checks
+    framed = np.flatnonzero(np.pad(free, 1))  # row-major: the node order of grid_document
+    n = int(framed.size)
+    node_at = np.full((h + 2) * stride, -1, dtype=np.int64)
+    node_at[framed] = np.arange(n, dtype=np.int64)
+    steps = ([(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)] if octile
+             else [(-1, 0), (0, -1), (0, 1), (1, 0)])  # increasing head index
+    k = len(steps)
+    heads2 = np.empty((n, k), dtype=np.int64)  # heads2[u, j]: the neighbour by step j, or -1
     for j, (dr, dc) in enumerate(steps):
-        ok = free & pad[1 + dr:h + 1 + dr, 1 + dc:w + 1 + dc]
-        if dr and dc:
-            ok &= pad[1 + dr:h + 1 + dr, 1:-1] & pad[1:-1, 1 + dc:w + 1 + dc]
-        mask[:, :, j] = ok
-    flat = np.flatnonzero(mask)
-    del mask
-    cell, direction = np.divmod(flat, len(steps))
-    offset = np.array([dr * w + dc for dr, dc in steps], dtype=np.int64)
-    u, v = rank[cell], rank[cell + offset[direction]]
+        heads2[:, j] = node_at[framed + (dr * stride + dc)]
+        if dr and dc:  # a diagonal needs both orthogonal neighbours free
+            cut = (node_at[framed + dr * stride] < 0) | (node_at[framed + dc] < 0)
+            heads2[cut, j] = -1
+    arc = heads2 >= 0
+    heads = heads2[arc]
+    degree = np.zeros(n, dtype=np.int64)
+    for j in range(k):
+        degree += arc[:, j]
+    indptr = np.zeros(n + 1, dtype=np.int64)
+    np.cumsum(degree, out=indptr[1:])
+    tails = np.repeat(np.arange(n, dtype=np.int64), degree)
     if octile:  # weight codes in order of first appearance, as the JSON reader numbers them
-        diagonal = np.array([bool(dr and dc) for dr, dc in steps])[direction]
-        first_diagonal = bool(diagonal[0]) if diagonal.size else False
+        diagonal = np.broadcast_to(np.array([bool(dr and dc) for dr, dc in steps]), (n, k))[arc]
+        first_diagonal = _first_edge_diagonal(heads2, arc, steps)
         literals: list[Any] = [SQRT2, 1.0] if first_diagonal else [1.0, SQRT2]
-        c = (diagonal != first_diagonal).astype(np.int64)
+        codes = (diagonal != first_diagonal).astype(np.int64)
         if not diagonal.any() or diagonal.all():
             literals = literals[:1]
     else:
-        literals, c = ["1"], np.zeros(u.size, dtype=np.int64)
+        literals, codes = ["1"], np.zeros(heads.size, dtype=np.int64)
     values = [parse_number(x, where="weight", allow_float=octile) for x in literals]
-    rows, cols = np.divmod(cells, w)
-    ids: list[Any] = list(zip(rows.tolist(), cols.tolist(), strict=True))
-    index = dict(zip(ids, range(n), strict=True))
-    return GridArcs(ids, index, u, v, c, values, not octile)
+    return GridArcs(framed, node_at, stride, indptr, tails, heads, codes, values, not octile)
+
+
+def _first_edge_diagonal(heads2: np.ndarray, arc: np.ndarray,
+                         steps: list[tuple[int, int]]) -> bool:
+    """Whether :func:`grid_document`'s first edge is a diagonal: the first cell with a
+    neighbour later in row-major order, its first such step (right, down-left, down,
+    down-right)."""
+    later = [j for j, (dr, dc) in enumerate(steps) if dr > 0 or (dr == 0 and dc > 0)]
+    has = arc[:, later]
+    rows = np.flatnonzero(has.any(axis=1))
+    if rows.size == 0:
+        return False
+    j = later[int(np.argmax(has[rows[0]]))]
+    return bool(steps[j][0] and steps[j][1])

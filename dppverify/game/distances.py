@@ -19,7 +19,7 @@ import heapq
 import math
 from collections import defaultdict, deque
 from collections.abc import Callable, Hashable, Iterable, Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from fractions import Fraction
 from itertools import count
 from typing import TYPE_CHECKING, Any, TypeVar
@@ -62,9 +62,10 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
     __slots__ = ("_bounds", "_codes", "_heads", "_n", "_values")
 
     def __init__(self, n: int, tails: np.ndarray, heads: np.ndarray, codes: np.ndarray,
-                 values: tuple[Number, ...]) -> None:
+                 values: tuple[Number, ...], *, bounds: np.ndarray | None = None) -> None:
         self._n = n
-        self._bounds = np.searchsorted(tails, np.arange(n + 1))
+        # bounds: the CSR row pointer when the caller has it (rows u are bounds[u]:bounds[u+1])
+        self._bounds = np.searchsorted(tails, np.arange(n + 1)) if bounds is None else bounds
         self._heads = heads
         self._codes = codes
         self._values = values
@@ -349,6 +350,11 @@ class ArcArrays:
     heads: np.ndarray
     codes: np.ndarray
     values: tuple[Number, ...]
+    symmetric: bool = False
+    """True when every arc's reverse is an arc of the same weight (an undirected graph): the
+    reversed graph is then the graph itself."""
+    _rows: dict[tuple[int, bool], tuple[np.ndarray, np.ndarray, np.ndarray | None]] = field(
+        default_factory=dict, repr=False, compare=False)
 
     @classmethod
     def from_adjacency(cls, adj: Adjacency) -> ArcArrays:
@@ -393,18 +399,51 @@ class ArcArrays:
             return None
         return scale, scaled
 
+    def rows(self, n: int, *, reverse: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
+        """The graph (``reverse``: the reversed graph) in CSR form over ``n`` nodes:
+        ``(indptr, indices, order)``; the arc at CSR position ``k`` is arc ``order[k]``
+        (``order`` None: the arcs' own order). Built once per graph and direction.
+
+        Examples
+        --------
+        >>> a = ArcArrays.from_adjacency([[(1, 2), (2, Fraction(1, 2))], [(2, 2)], []])
+        >>> indptr, indices, order = a.rows(3, reverse=True)
+        >>> indptr.tolist(), indices.tolist(), order.tolist()
+        ([0, 0, 1, 3], [0, 0, 1], [0, 1, 2])
+        """
+        if reverse and self.symmetric:  # the reversed graph is the graph
+            reverse = False
+        key = (n, reverse)
+        if key not in self._rows:
+            order = np.argsort(self.heads, kind="stable") if reverse else None
+            rows = self.tails if order is None else self.heads[order]
+            indptr = np.searchsorted(rows, np.arange(n + 1)).astype(np.int32)
+            cols = self.heads if order is None else self.tails[order]
+            self._rows[key] = (indptr, cols.astype(np.int32), order)
+        return self._rows[key]
+
     def matrix(self, n: int, scaled: list[int], *, reverse: bool,
                keep: np.ndarray | None = None) -> sp.csr_matrix:
         """The scaled weights as a sparse matrix (``reverse``: arcs turned around), only the
-        arcs whose (forward) tail is in ``keep`` when given."""
+        arcs whose (forward) tail is in ``keep`` when given; int32 indices, as
+        ``scipy.sparse.csgraph`` works in (no conversion per run).
+
+        Examples
+        --------
+        >>> a = ArcArrays.from_adjacency([[(1, 2), (2, Fraction(1, 2))], [(2, 2)], []])
+        >>> a.matrix(3, [4, 1], reverse=False).toarray().tolist()[0]
+        [0.0, 4.0, 1.0]
+        """
         import scipy.sparse as sp
 
         w = np.asarray(scaled, dtype=np.float64)[self.codes]
-        rows, cols = (self.heads, self.tails) if reverse else (self.tails, self.heads)
         if keep is not None:
+            rows, cols = (self.heads, self.tails) if reverse else (self.tails, self.heads)
             sel = keep[rows]
-            rows, cols, w = rows[sel], cols[sel], w[sel]
-        return sp.csr_matrix((w, (rows, cols)), shape=(n, n))
+            return sp.csr_matrix((w[sel], (rows[sel], cols[sel])), shape=(n, n))
+        indptr, indices, order = self.rows(n, reverse=reverse)
+        return sp.csr_matrix((w if order is None else w[order], indices, indptr),
+                             shape=(n, n), copy=False)
 
 
 def sparse_dijkstra(matrix: sp.csr_matrix, indices: int | Sequence[int],

@@ -180,7 +180,8 @@ def edge_arrays(n: int, u: np.ndarray, v: np.ndarray, c: np.ndarray, values: lis
     succ_t = _adjacency(n, tails, heads, codes, values)
     rev = np.argsort(heads * n + tails, kind="stable")
     pred_t = _adjacency(n, heads[rev], tails[rev], codes[rev], values)
-    return succ_t, pred_t, ArcArrays(tails=tails, heads=heads, codes=codes, values=tuple(values))
+    return succ_t, pred_t, ArcArrays(tails=tails, heads=heads, codes=codes, values=tuple(values),
+                                     symmetric=not directed)
 
 
 def _rows(n: int, adj: Sequence[Sequence[tuple[int, Number]]]) -> ArcRows:

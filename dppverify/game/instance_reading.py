@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import json
 import weakref
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from fractions import Fraction
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, NamedTuple
@@ -70,7 +70,7 @@ class GameParts(NamedTuple):
     scaled: tuple[int, dict[int, np.ndarray]] | None
 
 
-def game_parts(ids: list[Node], index: dict[Node, int], directed: bool, succ_t: Rows,
+def game_parts(ids: Sequence[Node], index: Mapping[Node, int], directed: bool, succ_t: Rows,
                 pred_t: Rows, arcs: ArcArrays | None, *, exact: bool, start: Any, goals: Any,
                 prior: Any, two_goals: bool = False) -> GameParts:
     """The fields of the game on a read graph: start, goals and prior (JSON values) checked,
@@ -117,7 +117,10 @@ def game_parts(ids: list[Node], index: dict[Node, int], directed: bool, succ_t: 
         hops = tuple(hops_to_targets(pred_t, goals) if arcs is None
                      else hops_by_arrays(arcs, n, goals))
     scaled = (fields[0], dict(zip(goals, fields[1], strict=True))) if fields is not None else None
-    return GameParts(dict(nodes=tuple(ids), index=MappingProxyType(index), directed=directed,
+    # a list and a dict (the JSON reader) are frozen; a grid's lazy cells and index already are
+    nodes = tuple(ids) if isinstance(ids, list) else ids
+    frozen = MappingProxyType(index) if isinstance(index, dict) else index
+    return GameParts(dict(nodes=nodes, index=frozen, directed=directed,
                           succ=succ_t, pred=pred_t, start=start, goals=goals, prior=prior,
                           exact=exact, dist_to=dist_to, hops=hops), scaled)
 
@@ -177,7 +180,7 @@ def remember_arrays(game: Instance, arcs: ArcArrays | None,
         _GOAL_FIELDS[game] = scaled
 
 
-def read_goals(raw: Any, index: Mapping[Node, int], ids: list[Node], two_goals: bool
+def read_goals(raw: Any, index: Mapping[Node, int], ids: Sequence[Node], two_goals: bool
                ) -> tuple[int, ...]:
     """The goals (node indices, document order) of the JSON list ``raw``.
 

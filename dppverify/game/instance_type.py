@@ -69,8 +69,9 @@ class Instance:
 
     Attributes
     ----------
-    nodes : tuple
-        Node ids (JSON lists converted to tuples).
+    nodes : sequence
+        Node ids (JSON lists converted to tuples): a tuple, or for a grid read from its map
+        the cells made on access (:class:`~dppverify.game.grids.GridCells`).
     index : Mapping
         Node id -> index.
     directed : bool
@@ -116,7 +117,7 @@ class Instance:
 goals; this instance has 3
     """
 
-    nodes: tuple[Node, ...]
+    nodes: Sequence[Node]
     index: Mapping[Node, int]
     directed: bool
     succ: Rows
@@ -227,7 +228,7 @@ goals; this instance has 3
                      d1=self.dist_to[i], d2=self.dist_to[j])
 
 
-def finish_game(ids: list[Node], index: dict[Node, int], directed: bool, succ_t: Rows,
+def finish_game(ids: Sequence[Node], index: Mapping[Node, int], directed: bool, succ_t: Rows,
                 pred_t: Rows, arcs: ArcArrays | None, *, exact: bool, start: Any, goals: Any,
                 prior: Any, two_goals: bool = False) -> Instance:
     """The game on a read graph: start, goals and prior (as JSON values) checked, distances.

@@ -104,6 +104,8 @@ class WalkTrie:
         p = -1
         along = []
         children = self._children
+        if theta is not None and type(probability) is not Fraction:
+            probability = Fraction(probability)
         for v in walk:
             c = children.get((p, v))
             if c is None:
@@ -113,7 +115,9 @@ class WalkTrie:
                 self.depth.append(self.depth[p] + 1 if p >= 0 else 0)
                 self.masses.append([Fraction(0)] * self._types)
             if theta is not None:
-                self.masses[c][theta] += probability
+                masses = self.masses[c]
+                # a new prefix's mass is this walk's probability: no Fraction sum needed
+                masses[theta] = masses[theta] + probability if masses[theta] else probability
                 along.append(c)
             p = c
         if theta is not None:

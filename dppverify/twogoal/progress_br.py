@@ -43,8 +43,6 @@ class ScaledArcs:
         below :data:`~dppverify.game.distances.EXACT_FLOAT_LIMIT` (only then is one built).
     scale : int
         The common denominator of the weights.
-    by_head : numpy.ndarray
-        The arcs' indices sorted by head (stable): the reversed graph's rows.
     distances : dict
         Memo of :func:`scaled_distances` results for this instance.
     """
@@ -52,7 +50,6 @@ class ScaledArcs:
     arrays: ArcArrays
     weights: np.ndarray
     scale: int
-    by_head: np.ndarray
     distances: dict[tuple[int, bool, frozenset[int]], np.ndarray]
 
 
@@ -83,8 +80,7 @@ def scaled_arcs(instance: Instance) -> ScaledArcs | None:
             scale, scaled = got
             out = ScaledArcs(arrays=arrays,
                              weights=np.asarray(scaled, dtype=np.float64)[arrays.codes],
-                             scale=scale, by_head=np.argsort(arrays.heads, kind="stable"),
-                             distances={})
+                             scale=scale, distances={})
             shared = goal_distance_fields(instance)
             if shared is not None and shared[0] == scale:  # d(., goal): the reader's fields
                 for goal, row in shared[1].items():
@@ -110,21 +106,15 @@ def scaled_distances(arcs: ScaledArcs, n: int, source: int, *, reverse: bool,
     if key not in arcs.distances:
         import scipy.sparse as sp
 
-        tails, heads = arcs.arrays.tails, arcs.arrays.heads
-        if reverse:  # the arcs sorted by head (once per instance): CSR rows without a sort
-            order = arcs.by_head
-            rows, cols, w = heads[order], tails[order], arcs.weights[order]
-        else:
-            rows, cols, w = tails, heads, arcs.weights
+        # the graph's CSR rows (reversed: the arcs by head), built once per instance
+        indptr, indices, order = arcs.arrays.rows(n, reverse=reverse)
+        w = arcs.weights if order is None else arcs.weights[order]
         drop = [v for v in blocked if v != source]
-        if drop:
-            keep = np.ones(n, dtype=bool)
-            keep[drop] = False
-            sel = keep[rows]
-            rows, cols, w = rows[sel], cols[sel], w[sel]
-        indptr = np.zeros(n + 1, dtype=np.int64)
-        np.cumsum(np.bincount(rows, minlength=n), out=indptr[1:])
-        m = sp.csr_matrix((w, cols, indptr), shape=(n, n))
+        if drop:  # a blocked node's arcs are never followed: weight inf, which no path uses
+            w = w.copy()
+            for v in drop:
+                w[indptr[v]:indptr[v + 1]] = np.inf
+        m = sp.csr_matrix((w, indices, indptr), shape=(n, n), copy=False)
         arcs.distances[key] = sparse_dijkstra(m, source)
     return arcs.distances[key]
 

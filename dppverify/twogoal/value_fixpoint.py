@@ -167,13 +167,27 @@ def _fixpoint(inst: Instance, r: Roles, given: Arcs | None, *,
         return None
     from scipy.sparse import csr_matrix
 
-    deg = np.diff(np.append(arcs.starts, arcs.heads.size))
-    order = np.argsort(arcs.heads, kind="stable")  # reversed arcs u -> v for v -> u, by row
-    cols = np.repeat(arcs.tails, deg)[order]
-    arc_w = (arcs.weights.astype(np.float64) * base + 1.0)[order]
-    indptr = np.zeros(n + 2, dtype=np.int64)
-    np.cumsum(np.bincount(arcs.heads, minlength=n), out=indptr[1:n + 1])
     g1, g2 = r.g1, r.g2
+    # the reversed arcs u -> v for v -> u, by row: the instance's reversed graph (built once
+    # per instance, shared with the other shortest-path passes), the arcs out of a goal
+    # (goals are terminal) weighing inf, which no shortest path uses
+    arrays = arc_arrays(inst)
+    rows_r, cols, order = arrays.rows(n, reverse=True)
+    codes = arrays.codes if order is None else arrays.codes[order]
+    from_goal = (cols == g1) | (cols == g2)
+    table = np.full(len(arrays.values), np.inf)
+    used = np.flatnonzero(np.bincount(codes[~from_goal], minlength=table.size))
+    table[used] = [float(int(arrays.values[c] * arcs.scale) * base + 1) for c in used.tolist()]
+    # the graph's arrays with room for a last row (a source node n with an arc to every seed),
+    # filled once; each run writes its seeds after the arcs and reads a prefix
+    m_arcs = cols.size
+    weights = np.empty(m_arcs + n, dtype=np.float64)
+    np.take(table, codes, out=weights[:m_arcs])
+    weights[:m_arcs][from_goal] = np.inf
+    heads = np.empty(m_arcs + n, dtype=np.int32)
+    heads[:m_arcs] = cols
+    indptr = np.empty(n + 2, dtype=np.int32 if m_arcs + n < 2**31 else np.int64)
+    indptr[:n + 1] = rows_r
     big = np.iinfo(np.int64).max
 
     # seed pruning is exact while a seed plus one arc stays below 2**53 in the encoding
@@ -196,9 +210,11 @@ def _fixpoint(inst: Instance, r: Roles, given: Arcs | None, *,
             dominated[arcs.tails] = best <= full[arcs.tails]
             keep = ~dominated[src]
             src, seed_w = src[keep], seed_w[keep]
-        indptr[n + 1] = indptr[n] + src.size
-        w = np.concatenate([arc_w, seed_w])
-        mat = csr_matrix((w, np.concatenate([cols, src]), indptr), shape=(n + 1, n + 1))
+        end = m_arcs + src.size
+        indptr[n + 1] = end
+        weights[m_arcs:end] = seed_w
+        heads[m_arcs:end] = src
+        mat = csr_matrix((weights[:end], heads[:end], indptr), shape=(n + 1, n + 1), copy=False)
         dist = sparse_dijkstra(mat, n)[:n]
         finite = np.isfinite(dist)
         enc = np.where(finite, dist - 1.0, 0.0).astype(np.int64)

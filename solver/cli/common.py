@@ -4,7 +4,7 @@ checks."""
 from __future__ import annotations
 
 import re
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from dppverify import cli as checker_cli
 from dppverify.cli.map_options import MapRequest, instance_or_map
@@ -13,8 +13,17 @@ from solver.errors import DPPError, InvalidInstanceError
 if TYPE_CHECKING:  # the solver's modules load numpy, scipy, networkx: imported per command
     from solver.game.instance import Instance
 
-__all__ = ["START_IS_GOAL", "check_dask_address", "check_grid_count", "dumps",
-           "experiment_instance", "int_list", "load_instance", "load_with_digest"]
+__all__ = [
+    "START_IS_GOAL",
+    "check_dask_address",
+    "check_grid_count",
+    "check_map_memory",
+    "dumps",
+    "experiment_instance",
+    "int_list",
+    "load_instance",
+    "load_with_digest",
+]
 
 
 def dumps(doc: object) -> str:
@@ -77,12 +86,34 @@ def load_with_digest(instance: str | None, grid: MapRequest | None,
     if two_goals and grid.n_goals != 2:
         raise InvalidInstanceError(f"{grid.map}: this command takes two goals, got "
                                    f"{grid.n_goals} (N-goal games: dpp solve, certify, value)")
+    if grid.n_goals > 2 and grid.connectivity != 4:
+        raise InvalidInstanceError(f"{grid.map}: the N-goal solver is exact only: float "
+                                   "weights (--connectivity 8) are not supported for more "
+                                   "than two goals")
     blocked, digest = read_map_bytes(grid.path)
+    check_map_memory(grid.map, blocked, grid.n_goals)
     try:
         return Instance.from_grid(blocked, grid.start, grid.goals, grid.prior,
                                   connectivity=grid.connectivity), digest
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{grid.map}: {exc}") from None
+
+
+def check_map_memory(name: str, blocked: Any, n_goals: int) -> None:
+    """Refuse in one line a map whose game would need more memory than this process may use
+    (:func:`solver.limits.map_memory`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> check_map_memory("m.map", np.zeros((3, 4), dtype=bool), 2)
+    """
+    from dppio.memory import check_memory
+    from solver.limits import map_memory
+
+    free = int(blocked.size - blocked.sum())
+    check_memory(map_memory(free, n_goals), error=InvalidInstanceError,
+                 what=f"{name}: the game of {free} free cells and {n_goals} goals")
 
 
 START_IS_GOAL = ("note: the start is a goal: the game ends before any step (T = 0, every type "

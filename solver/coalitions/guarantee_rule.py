@@ -26,7 +26,7 @@ from fractions import Fraction
 
 from solver.numbers import solve_exact
 
-__all__ = ["guarantee_step", "priority_order"]
+__all__ = ["guarantee_step", "priority_order", "rule_step"]
 
 
 def priority_order(prior: Sequence[Fraction]) -> tuple[int, ...]:
@@ -65,47 +65,84 @@ def guarantee_step(r: Sequence[Fraction], m_next: Callable[[int], Fraction | Non
     ((Fraction(1, 1), Fraction(0, 1)), True)
     """
     n = len(r)
-    lows: dict[int, Fraction] = {}
-    for mask in range(1, 1 << n):
-        m = m_next(mask)
+    masks = range(1, 1 << n)
+    normals = [tuple((mask >> i) & 1 for i in range(n)) for mask in masks]
+    return rule_step(r, normals, [m_next(mask) for mask in masks], w, order)
+
+
+def rule_step(r: Sequence[Fraction], normals: Sequence[Sequence[int]],
+              m_next: Sequence[Fraction | None], w: Fraction, order: Sequence[int]
+              ) -> tuple[tuple[Fraction, ...], bool]:
+    """The guarantee rule with normals: the canonical ``σ`` of one step, and whether ``F`` was
+    non-empty (``docs/formats.md`` §2b).
+
+    ``F = {σ ∈ Δ^N : a·σ >= (a·r − m_a(u)) / w for every normal a with m_a(u) defined}``;
+    ``σ`` is its lexicographic minimum in the priority order (all weight on ``order[0]`` when
+    ``F`` is empty). Exact: the vertices of ``F`` from every choice of ``N − 1`` tight
+    constraints among the non-redundant ones (``σ_θ >= 0``; ``a·σ >= ℓ_a`` for ``ℓ_a > 0`` not
+    implied by a normal ``b <= a`` with ``ℓ_b >= ℓ_a``); a constraint with ``ℓ_a = max a``
+    confines ``σ`` to ``argmax a`` first.
+
+    Examples
+    --------
+    Two types, ``r = (3, 1)``, ``m(u) = (2, 1, 3)`` for the normals (1, 0), (0, 1), (1, 1)
+    and ``w = 1``: type 1 must get at least 1, so ``σ = (1, 0)``; with the normal (2, 1)
+    bounded by 5 as well ``F = {(1, 0)}``; bounded by 4 it is empty (``2σ_1 + σ_2 >= 3``):
+
+    >>> normals = ((1, 0), (0, 1), (1, 1), (2, 1))
+    >>> m = [Fraction(2), Fraction(1), Fraction(3), Fraction(5)]
+    >>> rule_step([Fraction(3), Fraction(1)], normals, m, Fraction(1), (0, 1))
+    ((Fraction(1, 1), Fraction(0, 1)), True)
+    >>> rule_step([Fraction(3), Fraction(1)], normals, m[:3] + [Fraction(4)], Fraction(1),
+    ...           (0, 1))[1]
+    False
+    """
+    n = len(r)
+    lows: list[tuple[tuple[int, ...], Fraction]] = []
+    for a, m in zip(normals, m_next, strict=True):
         if m is None:
             continue
-        a = (sum((r[i] for i in range(n) if mask >> i & 1), Fraction(0)) - m) / w
-        if a > 0:
-            lows[mask] = a
-    # σ(S) >= 1 forces σ inside S: when those sets meet in one type, F is that vertex or empty
-    forced = (1 << n) - 1
-    for mask, a in lows.items():
-        if a >= 1:
-            forced &= mask
-    if forced and forced & (forced - 1) == 0:
-        theta = forced.bit_length() - 1
-        point = tuple(Fraction(int(i == theta)) for i in range(n))
-        if all(mask >> theta & 1 or a <= 0 for mask, a in lows.items()) and all(
-                a <= 1 for a in lows.values()):
-            return point, True
-    # drop constraints implied by a subset with a larger bound
-    keep = {s: a for s, a in lows.items()
-            if not any(t != s and t & s == t and lows[t] >= a for t in lows)}
-    if not keep:
-        return tuple(Fraction(int(i == order[-1])) for i in range(n)), True
+        ell = (sum((x * y for x, y in zip(a, r, strict=True) if x), Fraction(0)) - m) / w
+        if ell > 0:
+            lows.append((tuple(int(x) for x in a), ell))
+    support = [True] * n
+    for a, ell in lows:  # a·σ <= max a on Δ: ℓ_a = max a forces σ onto argmax a
+        top = max(a)
+        if ell > top:
+            return tuple(Fraction(int(i == order[0])) for i in range(n)), False
+        if ell == top:
+            support = [s and a[i] == top for i, s in enumerate(support)]
+    free = [i for i in range(n) if support[i]]
+    if not free:
+        return tuple(Fraction(int(i == order[0])) for i in range(n)), False
+    # drop constraints implied by another one: b <= a (on the free types) with ℓ_b >= ℓ_a
+    sub = [(tuple(a[i] for i in free), ell) for a, ell in lows]
+    keep = [(a, ell) for k, (a, ell) in enumerate(sub)
+            if not any(j != k and all(x <= y for x, y in zip(b, a, strict=True))
+                       and (lb > ell or (lb == ell and j < k)) for j, (b, lb) in enumerate(sub))]
+    d = len(free)
     cons: list[tuple[list[Fraction], Fraction]] = [
-        ([Fraction(int(i == j)) for j in range(n)], Fraction(0)) for i in range(n)]
-    cons += [([Fraction(s >> j & 1) for j in range(n)], a) for s, a in sorted(keep.items())]
-    ones = [Fraction(1)] * n
-    best: tuple[Fraction, ...] | None = None
+        ([Fraction(int(i == j)) for j in range(d)], Fraction(0)) for i in range(d)]
+    cons += [([Fraction(x) for x in a], ell) for a, ell in keep]
+    ones = [Fraction(1)] * d
+    rank = {t: k for k, t in enumerate(order)}
+    local_order = sorted(range(d), key=lambda i: rank[free[i]])
+    best: list[Fraction] | None = None
     best_key: tuple[Fraction, ...] | None = None
-    for tight in itertools.combinations(range(len(cons)), n - 1):
+    for tight in itertools.combinations(range(len(cons)), d - 1):
         sol = solve_exact([cons[k][0] for k in tight] + [ones],
-                     [cons[k][1] for k in tight] + [Fraction(1)])
+                          [cons[k][1] for k in tight] + [Fraction(1)])
         if sol is None:
             continue
         if any(sum((c * x for c, x in zip(row, sol, strict=True)), Fraction(0)) < lo
                for row, lo in cons):
             continue
-        key = tuple(sol[t] for t in order)
+        key = tuple(sol[i] for i in local_order)
         if best_key is None or key < best_key:
-            best, best_key = tuple(sol), key
+            best, best_key = sol, key
     if best is None:
         return tuple(Fraction(int(i == order[0])) for i in range(n)), False
-    return best, True
+    out = [Fraction(0)] * n
+    for i, x in zip(free, best, strict=True):
+        out[i] = x
+    return tuple(out), True

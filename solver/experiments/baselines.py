@@ -28,14 +28,34 @@ from typing import Any
 
 from solver.experiments.compare import paper10_instance
 from solver.experiments.density import DensityConfig
+from solver.experiments.field_metrics import (
+    WALK_FIELDS,
+    AttackerMetrics,
+    attacker_metrics,
+    walks_csv,
+)
 from solver.experiments.sampling import sample_grid
 from solver.formats.movingai import read_map
 from solver.game.instance import Instance
 from solver.literature.masters_sardina import STRATEGIES
+from solver.literature.path_metrics import METRIC_FIELDS, PERCENTS, metric_row
 from solver.literature.strategy_pairs import DEFENDERS, LABELS, PairEvaluator
 
-__all__ = ["ATTACKERS_ALL", "COLOURS", "DEFAULT_MAPS", "BaselineRow", "instances",
-           "plot_baselines", "rows_csv", "run_baselines", "summary_table", "worst_case_table"]
+__all__ = [
+    "ATTACKERS_ALL",
+    "COLOURS",
+    "DEFAULT_MAPS",
+    "BaselineRow",
+    "baseline_walks_csv",
+    "field_table",
+    "instances",
+    "plot_baselines",
+    "plot_field_metrics",
+    "rows_csv",
+    "run_baselines",
+    "summary_table",
+    "worst_case_table",
+]
 
 ATTACKERS_ALL = ("gamma*", "ambiguity", "exaggeration", *STRATEGIES)
 """The Attackers compared, equilibrium first."""
@@ -55,7 +75,9 @@ Cell = tuple[int, int]
 
 @dataclass(frozen=True)
 class BaselineRow:
-    """VoI of one (Defender, Attacker) pair on one instance (exact, and as a float)."""
+    """VoI of one (Defender, Attacker) pair on one instance (exact, and as a float), and the
+    Attacker's path metrics (:mod:`solver.experiments.field_metrics`: the same against both
+    Defenders; None when not computed)."""
 
     setting: str
     instance: str
@@ -63,6 +85,8 @@ class BaselineRow:
     attacker: str
     U: Fraction
     VoI: Fraction
+    field: AttackerMetrics | None = None
+    goals: tuple[str, str] = ("g1", "g2")
 
 
 def instances(samples: int, densities: Sequence[int],
@@ -102,11 +126,18 @@ def run_baselines(items: Iterator[tuple[str, str, Instance]]) -> list[BaselineRo
     rows = []
     for setting, name, inst in items:
         game = PairEvaluator.of(inst)
+        field = attacker_metrics(game, ATTACKERS_ALL)
+        goals = (_cell_text(inst.primary), _cell_text(inst.secondary))
         for a in ATTACKERS_ALL:
             for d in DEFENDERS:
                 r = game.pair(d, a)
-                rows.append(BaselineRow(setting, name, d, a, Fraction(r.U), Fraction(r.VoI)))
+                rows.append(BaselineRow(setting, name, d, a, Fraction(r.U), Fraction(r.VoI),
+                                        field[a], goals))
     return rows
+
+
+def _cell_text(node: object) -> str:
+    return ",".join(str(x) for x in node) if isinstance(node, tuple) else str(node)
 
 
 def _mean(xs: Sequence[Fraction]) -> float:
@@ -170,22 +201,81 @@ def worst_case_table(rows: Sequence[BaselineRow]) -> str:
     return "\n".join(lines)
 
 
+def field_table(rows: Sequence[BaselineRow]) -> str:
+    """A Markdown table per set: each Attacker's path metrics (Masters & Sardina's columns,
+    :mod:`solver.literature.path_metrics`), averaged over the instances: the cost ratio, the
+    LDP and the deceptive density, and the share of instances (weighted by the prior and the
+    walks' probabilities) on which the Attacker is truthful at 10 … 99 % of its route.
+
+    Examples
+    --------
+    >>> print(field_table(run_baselines(instances(1, (), ()))).splitlines()[2])
+    | paper10 | 1 | γ* | 1.1333 | 0.5245 | 1.0000 | 0.00 | 0.00 | 0.60 | 0.60 | 1.00 | 1.00 |
+    """
+    head = ("| set | n | Attacker | cost ratio | LDP | density | "
+            + " | ".join(f"truthful {p} %" for p in PERCENTS) + " |")
+    lines = [head, "|---|---:|---|---:|---:|---:|" + "---:|" * len(PERCENTS)]
+    for setting in dict.fromkeys(r.setting for r in rows):
+        sub = [r for r in rows if r.setting == setting and r.defender == DEFENDERS[0]
+               and r.field is not None]
+        for a in ATTACKERS_ALL:
+            ms = [r.field.expected for r in sub if r.attacker == a and r.field is not None]
+            if not ms:
+                continue
+            mean = [_mean_any([m.cost_ratio for m in ms]), _mean_any([m.ldp for m in ms]),
+                    _mean_any([m.deceptive_density for m in ms])]
+            truth = [_mean_any([m.truthful[i] for m in ms]) for i in range(len(PERCENTS))]
+            lines.append(f"| {setting} | {len(ms)} | {LABELS[a]} | "
+                         + " | ".join(f"{x:.4f}" for x in mean) + " | "
+                         + " | ".join(f"{x:.2f}" for x in truth) + " |")
+    return "\n".join(lines)
+
+
+def _mean_any(xs: Sequence[Any]) -> float:
+    return float(sum(Fraction(x) if not isinstance(x, float) else x for x in xs) / len(xs))
+
+
 def rows_csv(rows: Sequence[BaselineRow]) -> str:
-    """The rows as CSV (exact ``U`` and ``VoI``).
+    """The rows as CSV (exact ``U`` and ``VoI``), with the Attacker's expected path metrics
+    (:data:`~solver.literature.path_metrics.METRIC_FIELDS`, empty when not computed).
 
     Examples
     --------
     >>> print("\\n".join(rows_csv(run_baselines(instances(1, (), ()))).splitlines()[:2]))
-    set,instance,defender,attacker,U,VoI,VoI_float
-    paper10,paper10,sigma*,gamma*,68/5,5/22,0.22727272727272727
+    set,instance,defender,attacker,U,VoI,VoI_float,cost,cost_ratio,ldp,deceptive_density,\
+truthful_10,truthful_25,truthful_50,truthful_75,truthful_90,truthful_99
+    paper10,paper10,sigma*,gamma*,68/5,5/22,0.22727272727272727,20,17/15,107/204,1,0,0,3/5,\
+3/5,1,1
     """
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(("set", "instance", "defender", "attacker", "U", "VoI", "VoI_float"))
+    w.writerow(("set", "instance", "defender", "attacker", "U", "VoI", "VoI_float",
+                *METRIC_FIELDS))
     for r in rows:
+        cells = metric_row(r.field.expected) if r.field is not None else {}
         w.writerow((r.setting, r.instance, r.defender, r.attacker, str(r.U), str(r.VoI),
-                    float(r.VoI)))
+                    float(r.VoI), *(cells.get(k, "") for k in METRIC_FIELDS)))
     return buf.getvalue()
+
+
+def baseline_walks_csv(rows: Sequence[BaselineRow]) -> str:
+    """One CSV row per walk of each Attacker on each instance, with its path metrics
+    (:data:`~solver.experiments.field_metrics.WALK_FIELDS` after ``set`` and ``instance``).
+
+    Examples
+    --------
+    >>> text = baseline_walks_csv(run_baselines(instances(1, (), ())))
+    >>> print("\\n".join(text.splitlines()[:2]))  # doctest: +ELLIPSIS
+    set,instance,attacker,type,goal,walk,probability,steps,cost,...
+    paper10,paper10,gamma*,1,"0,9",xi1_I,1/3,18,18,1,1/3,1,0,0,1,1,1,1
+    """
+    parts = [",".join(("set", "instance", *WALK_FIELDS)) + "\n"]
+    for r in rows:
+        if r.defender != DEFENDERS[0] or r.field is None:
+            continue
+        parts.append(walks_csv({r.attacker: r.field}, r.goals,
+                               lead=(("set", r.setting), ("instance", r.instance))))
+    return "".join(parts)
 
 
 def plot_baselines(rows: Sequence[BaselineRow]) -> Any:
@@ -230,4 +320,65 @@ def plot_baselines(rows: Sequence[BaselineRow]) -> Any:
                plt.Line2D([], [], color="black", linestyle="--", label="PBNE value (σ*, γ*)")]
     axes[0][-1].legend(handles=handles, loc="upper right", fontsize=8)
     fig.tight_layout()
+    return fig
+
+
+def plot_field_metrics(rows: Sequence[BaselineRow]) -> Any:
+    """The field's deceptivity figure (after Masters & Sardina, IJCAI 2017, Fig. 5): per set,
+    the share of instances on which each Attacker is truthful at 10 … 99 % of its route
+    (lower: more deceptive), and beside it each Attacker's mean cost ratio against its mean
+    last deceptive point. The equilibrium Attacker γ* (of σ*, the PBNE) is drawn thick; the
+    curves are shifted sideways a little so that equal ones stay visible.
+    Returns the matplotlib figure.
+
+    Examples
+    --------
+    >>> fig = plot_field_metrics(run_baselines(instances(1, (), ())))
+    >>> [ax.get_title() for ax in fig.axes]
+    ['paper10 (1 instance): truthful at x % of the route', 'paper10: cost and LDP']
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    sets = list(dict.fromkeys(r.setting for r in rows))
+    fig, axes = plt.subplots(len(sets), 2, figsize=(9.5, 3.4 * len(sets)), squeeze=False,
+                             gridspec_kw={"width_ratios": [1.6, 1]})
+    markers = dict(zip(ATTACKERS_ALL, "o^vsDPX", strict=True))
+    for (ax, ax2), setting in zip(axes, sets, strict=True):
+        sub = [r for r in rows if r.setting == setting and r.defender == DEFENDERS[0]
+               and r.field is not None]
+        n = len({r.instance for r in sub})
+        for a in ATTACKERS_ALL:
+            ms = [r.field.expected for r in sub if r.attacker == a and r.field is not None]
+            if not ms:
+                continue
+            eq = a == "gamma*"
+            style = {"color": COLOURS[a], "marker": markers[a], "linewidth": 2.6 if eq else 1.2,
+                     "markersize": 7 if eq else 5, "zorder": 3 if eq else 2,
+                     "markeredgecolor": "black", "markeredgewidth": 0.4}
+            truth = [_mean_any([m.truthful[i] for m in ms]) for i in range(len(PERCENTS))]
+            shift = 0.7 * (ATTACKERS_ALL.index(a) - 3)  # equal curves stay visible side by side
+            ax.plot([p + shift for p in PERCENTS], truth,
+                    label=LABELS[a] + (" (PBNE, vs σ*)" if eq else ""), **style)
+            ax2.scatter(_mean_any([m.ldp for m in ms]), _mean_any([m.cost_ratio for m in ms]),
+                        s=90 if eq else 45, color=COLOURS[a], marker=markers[a],
+                        edgecolors="black", linewidths=0.5, zorder=style["zorder"])
+        ax.set_xticks(PERCENTS)
+        ax.set_xlim(5, 102)
+        ax.set_ylim(-0.04, 1.04)
+        ax.set_xlabel("path completed (% of the route's steps)")
+        ax.set_ylabel("share truthful (lower: more deceptive)")
+        ax.set_title(f"{setting} ({n} instance{'s' if n != 1 else ''}): truthful at x % of "
+                     "the route")
+        ax.grid(alpha=0.3)
+        ax2.set_xlabel("mean last deceptive point (path fraction)")
+        ax2.set_ylabel("mean cost / optimal cost")
+        ax2.set_title(f"{setting}: cost and LDP")
+        ax2.grid(alpha=0.3)
+    handles, labels = axes[0][0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="upper center", ncol=len(labels), fontsize=8,
+               frameon=False, handletextpad=0.3, columnspacing=1.0)
+    fig.tight_layout(rect=(0, 0, 1, 1 - 0.25 / (3.4 * len(sets))))
     return fig

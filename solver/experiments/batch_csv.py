@@ -1,34 +1,306 @@
-"""The output file of ``dpp batch``: its columns, the rows already done (resuming), appending
-rows durably, the lock that keeps two runs apart, and a one-line summary."""
+"""The output file of ``dpp batch`` as a format: its columns, how a row is written and read
+back (every field checked, so that a hand-edited file is refused in one line), the tally of
+its rows, the one-line summary and the exit code.
+
+What may be appended to, and how, is :mod:`solver.experiments.batch_output`.
+"""
 
 from __future__ import annotations
 
 import csv
 import io
-import os
-from collections.abc import Sequence
+import math
+import re
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
+from dppio.files import open_input
 from solver.errors import InvalidInstanceError
+from solver.literature.path_metrics import METRIC_FIELDS
 
-__all__ = ["FIELDS", "CsvAppender", "lock_output", "read_done", "summarize_file"]
+__all__ = [
+    "FIELDS",
+    "HEADER",
+    "MAX_REASON_CHARS",
+    "MAX_ROW_BYTES",
+    "BatchTally",
+    "RowInfo",
+    "format_rows",
+    "parse_row",
+    "read_done",
+    "read_rows",
+    "summarize_file",
+]
 
-FIELDS = ("line", "status", "map", "start", "goal", "fake_goal", "prior", "primary", "U1",
-          "U2", "U", "U_bar", "VoI", "VoI_float", "verdict", "route", "solve_seconds",
-          "certify_seconds", "reason", "config")
+FIELDS = ("line", "status", "map", "start", "goal", "fake_goal", "prior", "primary",
+          "scen_optimal", "distance", "U1", "U2", "U", "U_bar", "VoI", "VoI_float",
+          *METRIC_FIELDS, "verdict", "nash_conv", "route", "solve_seconds", "certify_seconds",
+          "reason", "config")
 """The CSV columns. Cells are ``row,col``; values are exact ``p/q``; ``verdict`` is the
-certificate's; times in seconds; ``reason`` is empty on ``ok`` rows."""
+certificate's; times in seconds; ``reason`` is empty on ``ok`` rows. The published length,
+our distance, the path metrics and ``nash_conv``: :mod:`solver.experiments.batch_columns`."""
 
-def read_done(path: str | Path, key: str) -> set[int]:
-    """The lines already in an output file (after dropping a torn last row), checked: every
-    row's ``config`` column must be ``key`` (the configuration's hash, ``BatchConfig.key``).
+HEADER = (",".join(FIELDS) + "\n").encode()
+"""The first line of every batch CSV, byte for byte."""
+
+MAX_ROW_BYTES = 1 << 20
+"""Longest row a batch writes (a map name is at most 4096 characters, a reason at most
+:data:`MAX_REASON_CHARS`): a longer line was not written by ``dpp batch``."""
+
+MAX_REASON_CHARS = 2000
+"""A row's ``reason`` is cut to this many characters."""
+
+VERDICTS = ("pass", "fail", "error", "incomplete")
+"""The certificate verdicts an ``ok`` row may carry."""
+
+_LINE = re.compile(r"[1-9][0-9]{0,9}")
+_FLOAT = re.compile(r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]{1,3})?|nan|inf")
+_CONTROL = re.compile(r"[\x00-\x1f\x7f\x85\u2028\u2029]")
+
+
+@dataclass(frozen=True)
+class RowInfo:
+    """What the tally needs of one row (read back and checked by :func:`parse_row`)."""
+
+    line: int
+    status: str
+    verdict: str = ""
+    voi: float = 0.0
+    solve_seconds: float = 0.0
+    certify_seconds: float = 0.0
+    reason: str = ""
+
+
+def format_rows(rows: Iterable[dict[str, str]]) -> bytes:
+    """The CSV lines of ``rows`` (UTF-8): one physical line per row, whatever the fields hold
+    (line breaks and control characters become spaces, the reason is cut to
+    :data:`MAX_REASON_CHARS`).
+
+    Examples
+    --------
+    >>> row = dict.fromkeys(FIELDS, "") | {"line": "2", "status": "error",
+    ...                                    "reason": "two\\nlines", "config": "0123456789ab"}
+    >>> format_rows([row]).endswith(b",two lines,0123456789ab\\n"), format_rows([row]).count(b"\\n")
+    (True, 1)
+    """
+    buf = io.StringIO()
+    writer = csv.writer(buf, lineterminator="\n")
+    for row in rows:
+        values = [_CONTROL.sub(" ", str(row.get(k, ""))) for k in FIELDS]
+        values[FIELDS.index("reason")] = values[FIELDS.index("reason")][:MAX_REASON_CHARS]
+        writer.writerow(values)
+    return buf.getvalue().encode("utf-8", "backslashreplace")
+
+
+def _number(text: str, column: str) -> float:
+    if len(text) > 40 or not _FLOAT.fullmatch(text):
+        raise ValueError(f"{column} {text[:40]!r} is not a number")
+    x = float(text)
+    if not math.isfinite(x):
+        raise ValueError(f"{column} {text!r} is not a finite number")
+    return x
+
+
+def parse_row(raw: bytes, key: str | None = None) -> RowInfo:
+    """Read back one row (a line without its newline), checking every field a batch writes;
+    ``key``, when given, must be its ``config`` column.
+
+    Raises
+    ------
+    ValueError
+        Why the line is not a batch row (one short clause).
+
+    Examples
+    --------
+    >>> line = format_rows([dict.fromkeys(FIELDS, "") | {"line": "7", "status": "ok",
+    ...     "verdict": "pass", "VoI_float": "0.25", "solve_seconds": "0.5",
+    ...     "certify_seconds": "1", "config": "0123456789ab"}]).rstrip(b"\\n")
+    >>> parse_row(line, "0123456789ab").voi
+    0.25
+    >>> parse_row(line.replace(b"0.25", b"1e999999"))
+    Traceback (most recent call last):
+    ValueError: VoI_float '1e999999' is not a number
+    """
+    if len(raw) > MAX_ROW_BYTES:
+        raise ValueError(f"a line of more than {MAX_ROW_BYTES} bytes")
+    try:
+        text = raw.decode("utf-8")
+        recs = list(csv.reader([text]))
+    except (UnicodeDecodeError, csv.Error) as exc:
+        raise ValueError(f"not CSV text ({exc})") from None
+    rec = recs[0] if len(recs) == 1 else []
+    if len(rec) != len(FIELDS):
+        raise ValueError(f"{len(rec)} fields, expected {len(FIELDS)}")
+    row = dict(zip(FIELDS, rec, strict=True))
+    if not _LINE.fullmatch(row["line"]):
+        raise ValueError(f"line {row['line'][:40]!r} is not a line number")
+    if key is not None and row["config"] != key:
+        raise ValueError(f"written for another configuration (config {row['config'][:40]!r}, "
+                         f"now {key}: another .scen file, seed, prior, connectivity or route)")
+    if row["status"] == "error":
+        return RowInfo(int(row["line"]), "error", reason=row["reason"])
+    if row["status"] != "ok":
+        raise ValueError(f"status {row['status'][:40]!r} is neither ok nor error")
+    if row["verdict"] not in VERDICTS:
+        raise ValueError(f"verdict {row['verdict'][:40]!r} is not one of {', '.join(VERDICTS)}")
+    return RowInfo(int(row["line"]), "ok", row["verdict"], _number(row["VoI_float"], "VoI_float"),
+                   _number(row["solve_seconds"], "solve_seconds"),
+                   _number(row["certify_seconds"], "certify_seconds"))
+
+
+def read_rows(chunks: Iterable[bytes], key: str | None = None, *, where: str = "the file"
+              ) -> Iterator[tuple[int, RowInfo]]:
+    """``(end offset, row)`` for every complete row of a batch CSV given as byte chunks,
+    after checking its header; a torn last row (no newline: the run was killed mid-write)
+    is not yielded. Memory stays within one row.
 
     Raises
     ------
     InvalidInstanceError
-        The file is not a batch CSV, repeats a line, or was written for another
-        configuration.
+        One line: the file is not a batch CSV (of configuration ``key``, when given).
+
+    Examples
+    --------
+    >>> ok = format_rows([dict.fromkeys(FIELDS, "") | {"line": "3", "status": "error",
+    ...                   "reason": "no fake goal", "config": "0123456789ab"}])
+    >>> rows = list(read_rows([HEADER + ok + b"4,o"]))  # (end offset, row); 4 is torn
+    >>> [(end == len(HEADER + ok), r.line) for end, r in rows]
+    [(True, 3)]
+    >>> list(read_rows([b'{"my": "notes"}']))
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: the file is not a dpp batch CSV: its first line is not \
+the batch header
+    """
+    pending = b""
+    offset = 0
+    header_done = False
+    number = 0
+    for chunk in chunks:
+        pending += chunk
+        while True:
+            cut = pending.find(b"\n")
+            if cut < 0:
+                break
+            line, pending = pending[:cut], pending[cut + 1:]
+            offset += cut + 1
+            number += 1
+            if not header_done:
+                if line + b"\n" != HEADER:
+                    raise _not_batch(where, "its first line is not the batch header")
+                header_done = True
+                continue
+            try:
+                yield offset, parse_row(line, key)
+            except ValueError as exc:
+                raise _not_batch(where, f"file line {number}: {exc}") from None
+        if len(pending) > max(MAX_ROW_BYTES, len(HEADER)):
+            raise _not_batch(where, f"a line of more than {MAX_ROW_BYTES} bytes")
+    if not header_done and (number or pending):
+        raise _not_batch(where, "its first line is not the batch header")
+    if header_done and pending and not re.fullmatch(rb"[0-9]{1,10}(,[^\n]*)?", pending):
+        raise _not_batch(where, "its last line is neither a row nor the start of one")
+
+
+def _not_batch(where: str, why: str) -> InvalidInstanceError:
+    return InvalidInstanceError(f"{where} is not a dpp batch CSV: {why}")
+
+
+@dataclass
+class BatchTally:
+    """The rows of a batch CSV counted as they are read or written: the summary line
+    (:meth:`summary`) and the exit code (:meth:`exit_code`) come from here.
+
+    Examples
+    --------
+    >>> t = BatchTally()
+    >>> t.add(RowInfo(2, "ok", "pass", 0.25, 0.5, 1.0)); t.add(RowInfo(3, "error", reason="x"))
+    >>> t.summary()
+    '2 rows: 1 ok (verdict pass 1), 1 error (first: line 3: x); mean VoI 0.2500; solve 0.50 s, \
+certify 1.00 s in total'
+    >>> t.exit_code()
+    2
+    """
+
+    rows: int = 0
+    ok: int = 0
+    verdicts: dict[str, int] = field(default_factory=dict)
+    errors: int = 0
+    internal: int = 0
+    first_error: tuple[int, str] | None = None
+    voi: float = 0.0
+    solve_seconds: float = 0.0
+    certify_seconds: float = 0.0
+
+    def add(self, row: RowInfo) -> None:
+        """Count one row."""
+        self.rows += 1
+        if row.status == "ok":
+            self.ok += 1
+            self.verdicts[row.verdict] = self.verdicts.get(row.verdict, 0) + 1
+            self.voi += row.voi
+            self.solve_seconds += row.solve_seconds
+            self.certify_seconds += row.certify_seconds
+            return
+        self.errors += 1
+        self.internal += row.reason.startswith("internal error")
+        if self.first_error is None or row.line < self.first_error[0]:
+            self.first_error = (row.line, row.reason)
+
+    def summary(self) -> str:
+        """One line: rows, ok (by verdict), errors (the first by line), mean VoI, times."""
+        vs = ", ".join(f"verdict {k} {v}" for k, v in sorted(self.verdicts.items()))
+        ok = f"{self.ok} ok" + (f" ({vs})" if vs else "")
+        err = f"{self.errors} error{'s' if self.errors != 1 else ''}"
+        if self.first_error is not None:
+            line, reason = self.first_error
+            short = reason if len(reason) <= 100 else reason[:99] + "…"
+            err += f" (first: line {line}: {short})"
+        voi = f"mean VoI {self.voi / self.ok:.4f}" if self.ok else "no VoI (no ok row)"
+        return (f"{self.rows} row{'s' if self.rows != 1 else ''}: {ok}, {err}; {voi}; solve "
+                f"{self.solve_seconds:.2f} s, certify {self.certify_seconds:.2f} s in total")
+
+    def exit_code(self) -> int:
+        """``dpp batch``'s exit code, from every row of the file: 1 if a certificate refuted
+        a profile (verdict ``fail``); else 3 if one could not decide (verdict ``error`` or
+        ``incomplete``) or a line met an internal error; else 2 if a line could not be made
+        a game (a row with status ``error``: malformed, unknown map, no fake goal, ...);
+        else 0 (every line solved and certified: verdict ``pass``)."""
+        if self.verdicts.get("fail"):
+            return 1
+        if self.verdicts.get("error") or self.verdicts.get("incomplete") or self.internal:
+            return 3
+        return 2 if self.errors else 0
+
+
+def _chunks(path: str | Path, size: int = 1 << 20) -> Iterator[bytes]:
+    with open_input(path) as fh:
+        while chunk := fh.read(size):
+            yield chunk
+
+
+def _checked(path: str | Path, key: str | None) -> Iterator[RowInfo]:
+    seen: set[int] = set()
+    try:
+        for _, row in read_rows(_chunks(path), key, where=str(path)):
+            if row.line in seen:
+                raise InvalidInstanceError(f"{path} is not a dpp batch CSV: line {row.line} "
+                                           "appears twice")
+            seen.add(row.line)
+            yield row
+    except OSError as exc:
+        raise InvalidInstanceError(f"{path}: cannot read ({exc.strerror or exc})") from None
+
+
+def read_done(path: str | Path, key: str) -> set[int]:
+    """The scenario lines an existing batch CSV holds (a torn last row left out), every row
+    checked to belong to configuration ``key``; an empty set when there is no file. Reads
+    only: the file is never changed.
+
+    Raises
+    ------
+    InvalidInstanceError
+        The file is not a batch CSV, repeats a line, or was written for another configuration.
 
     Examples
     --------
@@ -36,117 +308,18 @@ def read_done(path: str | Path, key: str) -> set[int]:
     >>> p = Path(tempfile.mkdtemp()) / "b.csv"
     >>> read_done(p, "0123456789ab")
     set()
-    >>> _ = p.write_text(",".join(FIELDS) + "\\n3,ok" + "," * 18 + "0123456789ab" + "\\n2,o")
-    >>> read_done(p, "0123456789ab"), p.read_text().endswith("\\n")
+    >>> _ = p.write_text(",".join(FIELDS) + "\\n3,error" + ",x" * (len(FIELDS) - 3)
+    ...                  + ",0123456789ab" + "\\n2,o")
+    >>> read_done(p, "0123456789ab"), p.read_text().endswith("2,o")
     ({3}, True)
     """
-    p = Path(path)
-    if not p.exists():
+    if not Path(path).exists():
         return set()
-    try:
-        raw = p.read_bytes()
-    except OSError as exc:
-        raise InvalidInstanceError(f"{path}: cannot read ({exc.strerror or exc})") from None
-    if raw and not raw.endswith(b"\n"):  # a torn last row: the run was killed mid-write
-        cut = raw.rfind(b"\n") + 1
-        with open(p, "r+b") as fh:
-            fh.truncate(cut)
-            fh.flush()
-            os.fsync(fh.fileno())
-        raw = raw[:cut]
-    if not raw:
-        return set()
-    try:
-        reader = csv.reader(io.StringIO(raw.decode("utf-8")))
-        header = next(reader)
-    except (UnicodeDecodeError, StopIteration, csv.Error):
-        raise InvalidInstanceError(f"{path}: not a dpp batch CSV; give another --output")\
-            from None
-    if tuple(header) != FIELDS:
-        raise InvalidInstanceError(f"{path}: not a dpp batch CSV (its header differs); give "
-                                   "another --output")
-    done: set[int] = set()
-    for rec in reader:
-        try:
-            if len(rec) != len(FIELDS):
-                raise ValueError
-            line = int(rec[0])
-        except ValueError:
-            raise InvalidInstanceError(f"{path}: a malformed row ({','.join(rec)[:60]!r}); "
-                                       "give another --output") from None
-        if rec[-1] != key:
-            raise InvalidInstanceError(
-                f"{path}: written for another configuration (config {rec[-1]}, now "
-                f"{key}: another .scen file, seed, prior or connectivity); give another "
-                "--output or remove it")
-        if line in done:
-            raise InvalidInstanceError(f"{path}: line {line} appears twice")
-        done.add(line)
-    return done
-
-
-class CsvAppender:
-    """Appends rows to the output, each flushed and fsync-ed (the header first if new)."""
-
-    def __init__(self, path: str | Path) -> None:
-        p = Path(path)
-        new = not p.exists() or p.stat().st_size == 0
-        try:
-            self.fh = open(p, "a", encoding="utf-8", newline="")  # noqa: SIM115
-        except OSError as exc:
-            raise InvalidInstanceError(f"{path}: cannot write ({exc.strerror or exc})") \
-                from None
-        if new:
-            self._write(FIELDS)
-
-    def _write(self, values: Sequence[str]) -> None:
-        buf = io.StringIO()
-        csv.writer(buf, lineterminator="\n").writerow(values)
-        self.fh.write(buf.getvalue())
-        self.fh.flush()
-        os.fsync(self.fh.fileno())
-
-    def row(self, row: dict[str, str]) -> None:
-        self._write([row[k] for k in FIELDS])
-
-    def close(self) -> None:
-        self.fh.close()
-
-
-def lock_output(path: str | Path) -> tuple[Any, bool]:
-    """Open ``path`` (creating it) and take an exclusive advisory lock on it, so two runs
-    never append to one file; returns the handle (closing it releases the lock) and whether
-    the file was created.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> out = Path(tempfile.mkdtemp()) / "b.csv"
-    >>> fh, created = lock_output(out)
-    >>> created, lock_output(out)[1]  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    solver.errors.InvalidInstanceError: .../b.csv: another dpp batch is writing it
-    >>> fh.close()
-    """
-    p = Path(path)
-    created = not p.exists()
-    try:
-        fh = open(p, "ab")  # noqa: SIM115 - held for the whole run
-    except OSError as exc:
-        raise InvalidInstanceError(f"{path}: cannot write ({exc.strerror or exc})") from None
-    if os.name == "posix":
-        import fcntl
-
-        try:
-            fcntl.flock(fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:
-            fh.close()
-            raise InvalidInstanceError(f"{path}: another dpp batch is writing it") from None
-    return fh, created
+    return {row.line for row in _checked(path, key)}
 
 
 def summarize_file(path: str | Path) -> str:
-    """One line about a batch CSV: rows, ok/error, verdicts, mean VoI and times.
+    """One line about a batch CSV (:meth:`BatchTally.summary`), every row checked.
 
     Examples
     --------
@@ -155,21 +328,14 @@ def summarize_file(path: str | Path) -> str:
     >>> ok = dict.fromkeys(FIELDS, "") | {"status": "ok", "verdict": "pass", "VoI_float": "0.25",
     ...                                   "solve_seconds": "0.5", "certify_seconds": "1"}
     >>> bad = dict.fromkeys(FIELDS, "") | {"status": "error", "reason": "no fake goal"}
-    >>> lines = [",".join(FIELDS)] + [",".join(r[k] for k in FIELDS) for r in (ok, ok, bad)]
-    >>> _ = out.write_text(chr(10).join(lines) + chr(10))
+    >>> rows: Sequence[dict[str, str]] = [ok | {"line": "2"}, ok | {"line": "3"},
+    ...                                   bad | {"line": "4"}]
+    >>> _ = out.write_bytes(HEADER + format_rows(rows))
     >>> summarize_file(out)
-    '3 rows: 2 ok (verdict pass 2), 1 error; mean VoI 0.2500; solve 1.00 s, certify 2.00 s in total'
+    '3 rows: 2 ok (verdict pass 2), 1 error (first: line 4: no fake goal); mean VoI 0.2500; \
+solve 1.00 s, certify 2.00 s in total'
     """
-    with open(path, encoding="utf-8", newline="") as fh:
-        rows = list(csv.DictReader(fh))
-    ok = [r for r in rows if r["status"] == "ok"]
-    verdicts: dict[str, int] = {}
-    for r in ok:
-        verdicts[r["verdict"]] = verdicts.get(r["verdict"], 0) + 1
-    vs = ", ".join(f"verdict {k} {v}" for k, v in sorted(verdicts.items()))
-    voi = sum(float(r["VoI_float"]) for r in ok) / len(ok) if ok else float("nan")
-    solve_s = sum(float(r["solve_seconds"]) for r in ok)
-    cert_s = sum(float(r["certify_seconds"]) for r in ok)
-    errors = len(rows) - len(ok)
-    return (f"{len(rows)} rows: {len(ok)} ok ({vs}), {errors} error{'s' if errors != 1 else ''}; "
-            f"mean VoI {voi:.4f}; solve {solve_s:.2f} s, certify {cert_s:.2f} s in total")
+    tally = BatchTally()
+    for row in _checked(path, None):
+        tally.add(row)
+    return tally.summary()

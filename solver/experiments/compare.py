@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import csv
 import io
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import asdict
 from fractions import Fraction
 from importlib import resources
@@ -16,6 +16,7 @@ from pathlib import Path
 
 from solver.formats.movingai import read_map
 from solver.game.instance import Instance
+from solver.literature.path_metrics import METRIC_FIELDS, PathMetrics, metric_row
 from solver.literature.strategy_pairs import LABELS, PAIRS, PairEvaluator, PairResult
 from solver.numbers import Number
 
@@ -126,9 +127,12 @@ def verdict(results: Sequence[PairResult]) -> str:
             f"observation U(σ',γ*) < U(σ*,γ*) {holds} on this instance")
 
 
-def compare_csv(results: Sequence[PairResult]) -> str:
+def compare_csv(results: Sequence[PairResult],
+                metrics: Mapping[str, PathMetrics] | None = None) -> str:
     """``results`` (e.g. :func:`run_compare`'s) as CSV: a header line and one line per pair,
-    exact ``p/q`` strings.
+    exact ``p/q`` strings; with ``metrics`` (each Attacker's expected path metrics,
+    :func:`solver.experiments.field_metrics.attacker_metrics`) also the field's columns
+    (:data:`~solver.literature.path_metrics.METRIC_FIELDS`) after ``VoI``.
 
     Examples
     --------
@@ -140,9 +144,14 @@ def compare_csv(results: Sequence[PairResult]) -> str:
     sigma',gamma*,18/7,2,12/5,27/10,1/9
     """
     buf = io.StringIO()
-    fields = ("defender", "attacker", "U1", "U2", "U", "U_bar", "VoI")
+    fields: tuple[str, ...] = ("defender", "attacker", "U1", "U2", "U", "U_bar", "VoI")
+    if metrics is not None:
+        fields += METRIC_FIELDS
     w = csv.DictWriter(buf, fieldnames=fields, lineterminator="\n")
     w.writeheader()
     for r in results:
-        w.writerow({k: str(v) for k, v in asdict(r).items()})
+        row = {k: str(v) for k, v in asdict(r).items()}
+        if metrics is not None:
+            row.update(metric_row(metrics[r.attacker]))
+        w.writerow(row)
     return buf.getvalue()

@@ -11,14 +11,13 @@ from __future__ import annotations
 
 import csv
 import io
+import math
 import os
 from collections.abc import Callable, Iterable, Iterator
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict, dataclass
 from fractions import Fraction
 from typing import Any
 
-from dppio.procs import descendants
 from solver.errors import InvalidInstanceError
 from solver.experiments.dask_tasks import dask_completed
 from solver.experiments.sampling import Cell, sample_grid
@@ -210,74 +209,23 @@ def _run_local(tasks: list[Task], workers: int,
             if progress:
                 progress(t.count)
         return out
-    import multiprocessing
+    from solver.experiments.local_pool import completed
 
-    ctx = multiprocessing.get_context("forkserver" if os.name == "posix" else "spawn")
-    pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)), mp_context=ctx,
-                               initializer=_own_process_group)
-    try:
-        futures = {pool.submit(run_task, t): t for t in tasks}
-        results = []
-        for fut in as_completed(futures):
-            results.append(fut.result())
-            if progress:
-                progress(futures[fut].count)
-    except BaseException:  # a signal, an error: no worker outlives the sweep
-        _kill_workers(pool)
-        raise
-    pool.shutdown()
+    results = []
+    for task, rows in completed(run_task, tasks, min(workers, len(tasks))):
+        results.append(rows)
+        if progress:
+            progress(task.count)
     return results
-
-
-def _own_process_group() -> None:  # pragma: no cover - runs in a worker
-    """Worker initializer: a process group of its own (a terminal's Ctrl-C reaches only the
-    sweep, which then kills each worker's group), default signal handlers."""
-    import signal
-
-    if os.name == "posix":
-        os.setpgid(0, 0)
-        for s in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
-            signal.signal(s, signal.SIG_DFL)
-
-
-def _kill_workers(pool: ProcessPoolExecutor) -> None:
-    """Kill every worker process of ``pool`` and its process group, then shut it down."""
-    import contextlib
-    import signal
-
-    procs = list(getattr(pool, "_processes", {}).values())  # no public accessor
-    for proc in procs:
-        with contextlib.suppress(OSError):
-            if os.name == "posix":
-                os.killpg(proc.pid, signal.SIGKILL)
-        with contextlib.suppress(OSError):
-            proc.kill()
-    import multiprocessing.forkserver
-
-    server: int = getattr(getattr(multiprocessing.forkserver, "_forkserver", None),
-                          "_forkserver_pid", None) or 0  # no public accessor either
-    for _ in range(20 if server > 0 else 0):  # the forkserver and a worker it was starting
-        found = [*descendants(server), server]
-        for pid in found:
-            with contextlib.suppress(OSError):
-                os.kill(pid, signal.SIGKILL)
-        if len(found) == 1:
-            break
-    manager = getattr(pool, "_executor_manager_thread", None)  # no public accessor
-    pool.shutdown(wait=False, cancel_futures=True)
-    for proc in procs:
-        proc.join(5)
-    if manager is not None:  # let it close its wake-up pipe before the interpreter exits:
-        manager.join(5)      # else concurrent.futures' exit hook may write to it as it closes
 
 
 def _run_dask(tasks: list[Task], address: str,
               progress: Callable[[int], None] | None) -> list[list[Row]]:
     results = []
-    for i, rows in dask_completed(run_task, tasks, address):
+    for task, rows in dask_completed(run_task, tasks, address):
         results.append(rows)
         if progress:
-            progress(tasks[i].count)
+            progress(task.count)
     return results
 
 
@@ -315,13 +263,42 @@ def rows_to_csv(rows: Iterable[Row]) -> str:
 
 
 def rows_from_csv(text: str) -> Iterator[dict[str, Any]]:
-    """Read back what :func:`rows_to_csv` wrote (density as int, VoI_float as float)."""
-    for rec in csv.DictReader(io.StringIO(text)):
-        missing = set(CSV_FIELDS) - set(rec)
-        if missing:
-            raise InvalidInstanceError(f"CSV lacks column(s) {sorted(missing)}")
-        try:
-            yield {**rec, "density": int(rec["density"]), "sample": int(rec["sample"]),
-                   "VoI_float": float(rec["VoI_float"])}
-        except ValueError as exc:
-            raise InvalidInstanceError(f"bad CSV row {rec}: {exc}") from None
+    """Read back what :func:`rows_to_csv` wrote (density as int, VoI_float as a finite
+    float); anything else (a field too large for CSV, a number that is not one) is a one-line
+    :class:`~solver.errors.InvalidInstanceError`.
+
+    Examples
+    --------
+    >>> text = ",".join(CSV_FIELDS) + chr(10) + "0,2,1,0,sigma*,gamma*,6,0,18/5,24/5,1/4,1e999"
+    >>> list(rows_from_csv(text))
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: CSV line 2: VoI_float '1e999' is not a finite number
+    """
+    reader = csv.DictReader(io.StringIO(text))
+    try:
+        for rec in reader:
+            missing = set(CSV_FIELDS) - set(rec)
+            if missing:
+                raise InvalidInstanceError(f"CSV lacks column(s) {sorted(missing)}")
+            yield _density_row(rec, reader.line_num)
+    except csv.Error as exc:
+        raise InvalidInstanceError(f"CSV line {reader.line_num}: {exc}") from None
+
+
+def _density_row(rec: dict[str, Any], line: int) -> dict[str, Any]:
+    out: dict[str, Any] = dict(rec)
+    for key in ("density", "sample"):
+        text = str(rec[key])
+        if not (text.isdigit() and len(text) <= 10):
+            raise InvalidInstanceError(f"CSV line {line}: {key} {text[:40]!r} is not a count")
+        out[key] = int(text)
+    text = str(rec["VoI_float"])
+    try:
+        voi = float(text) if len(text) <= 40 else math.nan
+    except ValueError:
+        voi = math.nan
+    if not math.isfinite(voi):
+        raise InvalidInstanceError(f"CSV line {line}: VoI_float {text[:40]!r} is not a finite "
+                                   "number")
+    out["VoI_float"] = voi
+    return out

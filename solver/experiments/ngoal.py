@@ -3,12 +3,15 @@
 On MovingAI maps (4-connected, unit weights) one rule places a start and five goals
 (:func:`corner_cells`); for ``N = 2 … 5`` the first ``N`` goals are used with equal priors
 (``1/N``) and skewed priors (``b_θ ∝ 2^(N-θ)``). Each game is solved by the N-goal
-construction (:func:`solver.coalitions.construction.coalition_equilibrium`) and the profile is
-handed to a certifier (the command line passes the checker: structured route, ``H = inf``).
+construction (:func:`solver.coalitions.construction.coalition_equilibrium`, proofs/NEXACT.md)
+and the profile is handed to a certifier (the command line passes the checker: structured
+route, ``H = inf``).
 Reported, all exact:
 
-- ``U``: the Attacker's expected cost in the profile (the game's value when certified;
-  otherwise the coalition DP's value, an upper bound on it, proofs/NGOAL.md NG.2);
+- ``U``: the Attacker's expected cost in the profile, the game's value ``V_inf`` (NEXACT NX.5:
+  proved by the solver's own exact checks; ``certified`` says whether the independent checker
+  confirmed it); empty (``-``) only where the solver's budget ended first (``certified``:
+  ``not solved``);
 - ``U_bar = Σ_θ b_θ d(s0, g^θ)`` (complete information) and ``VoI = (U_bar − U) / U_bar``;
 - ``deception = 1 − Σ_θ b_θ E[guarded_θ] / Σ_θ b_θ E[L_θ]``: the fraction of the walked
   distance on which the Defender's weight is on a wrong goal;
@@ -36,7 +39,11 @@ from typing import Any, TypeVar
 import numpy as np
 from scipy import ndimage
 
-from solver.coalitions.construction import CoalitionEquilibrium, coalition_equilibrium
+from solver.coalitions.construction import (
+    CoalitionEquilibrium,
+    FixpointNotReached,
+    coalition_equilibrium,
+)
 from solver.errors import InvalidInstanceError
 from solver.game.instance import MAX_GOALS, Instance
 
@@ -129,19 +136,25 @@ def corner_cells(blocked: np.ndarray, n_goals: int = MAX_GOALS) -> tuple[Cell, t
     return start, tuple(goals)
 
 
+VERDICTS = {"pass": "pass", "fail": "refuted", "error": "undecided"}
+"""How a checker verdict reads in the table (the checker's ``error`` is "could not decide")."""
+
+
 @dataclass(frozen=True)
 class NGoalRow:
-    """One game of the series (exact numbers; ``certified`` is the certifier's verdict)."""
+    """One game of the series (exact numbers; ``certified``: ``pass``, ``refuted``,
+    ``undecided`` (the checker could not decide), ``not run``, or ``not solved`` when the
+    solver's budget ended first — then ``U``, ``VoI``, ``deception``, ``detour`` are None)."""
 
     map_name: str
     n_goals: int
     prior_kind: str
     prior: tuple[Fraction, ...]
-    U: Fraction
+    U: Fraction | None
     U_bar: Fraction
-    VoI: Fraction
-    deception: Fraction
-    detour: Fraction
+    VoI: Fraction | None
+    deception: Fraction | None
+    detour: Fraction | None
     certified: str
     solve_seconds: float
     certify_seconds: float
@@ -149,8 +162,11 @@ class NGoalRow:
 
 def ngoal_series(blocked: np.ndarray, start: Cell, goals: Sequence[Cell], *, map_name: str,
                  certify: Certifier | None = None, max_goals: int = MAX_GOALS,
-                 progress: Callable[[NGoalRow], None] | None = None) -> list[NGoalRow]:
+                 progress: Callable[[NGoalRow], None] | None = None,
+                 starting: Callable[[int, str], None] | None = None) -> list[NGoalRow]:
     """Solve (and certify) the games with the first ``N = 2 … max_goals`` goals, two priors.
+
+    ``starting(N, prior kind)`` is called before each game, ``progress(row)`` after it.
 
     Examples
     --------
@@ -160,11 +176,20 @@ def ngoal_series(blocked: np.ndarray, start: Cell, goals: Sequence[Cell], *, map
     [(2, 'equal', '5/2', '3/8', 'not run'), (2, 'skewed', '10/3', '3/13', 'not run')]
     """
     def row(n: int, kind: str, prior: tuple[Fraction, ...]) -> NGoalRow:
+        if starting is not None:
+            starting(n, kind)
         t0 = time.perf_counter()
-        eq = coalition_equilibrium(Instance.from_grid(blocked, start, goals[:n],
-                                                      [str(b) for b in prior]))
+        game = Instance.from_grid(blocked, start, goals[:n], [str(b) for b in prior])
+        try:
+            eq = coalition_equilibrium(game)
+        except FixpointNotReached:
+            u_bar = sum((b * game.distance(t, game.s0) for t, b in enumerate(prior)),
+                        Fraction(0))
+            return NGoalRow(map_name, n, kind, prior, None, u_bar, None, None, None,
+                            "not solved", time.perf_counter() - t0, 0.0)
         t1 = time.perf_counter()
-        verdict = "not run" if certify is None else certify(start, goals[:n], prior, eq)
+        verdict = ("not run" if certify is None else
+                   VERDICTS.get(v := certify(start, goals[:n], prior, eq), v))
         t2 = time.perf_counter()
         walked = sum((b * x for b, x in zip(prior, eq.walked, strict=True)), Fraction(0))
         guarded = sum((b * x for b, x in zip(prior, eq.guarded, strict=True)), Fraction(0))
@@ -188,8 +213,13 @@ def ngoal_csv(rows: Sequence[NGoalRow]) -> str:
     """
     return _csv(("map", "n_goals", "prior_kind", "prior", "U", "U_bar", "VoI", "deception",
                  "detour", "certified"),
-                ((r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)), r.U,
-                  r.U_bar, r.VoI, r.deception, r.detour, r.certified) for r in rows))
+                ((r.map_name, r.n_goals, r.prior_kind, " ".join(map(str, r.prior)),
+                  _blank(r.U), r.U_bar, _blank(r.VoI), _blank(r.deception), _blank(r.detour),
+                  r.certified) for r in rows))
+
+
+def _blank(x: Fraction | None) -> object:
+    return "" if x is None else x
 
 
 def _csv(header: Sequence[str], rows: Iterable[Sequence[object]]) -> str:
@@ -202,9 +232,10 @@ def _csv(header: Sequence[str], rows: Iterable[Sequence[object]]) -> str:
 
 def ngoal_figure(rows: Sequence[NGoalRow]) -> Any:
     """Three panels against N: the Attacker's cost relative to ``U_bar``, the VoI and the
-    deception; one colour per map, solid = equal prior, dashed = skewed; filled markers where
-    the profile is certified (an exact value), hollow where it is not (the coalition DP's
-    value: an upper bound on the game's value).
+    deception; one colour per map, solid = equal prior, dashed = skewed. Every plotted value is
+    the game's exact value (proofs/NEXACT.md); filled markers where the checker certified the
+    profile, hollow where it did not (counted in the title); games the solver's budget left
+    unsolved are not plotted (counted in the title).
 
     Examples
     --------
@@ -219,14 +250,16 @@ def ngoal_figure(rows: Sequence[NGoalRow]) -> Any:
     import matplotlib.pyplot as plt
 
     names = list(dict.fromkeys(r.map_name for r in rows))
+    solved = [r for r in rows if r.U is not None]
     fig, axes = plt.subplots(1, 3, figsize=(12, 3.8))
-    panels = (("U / U_bar (Attacker's cost, relative)", lambda r: r.U / r.U_bar),
-              ("VoI = (U_bar - U) / U_bar", lambda r: r.VoI),
-              ("deception (share of the walk guarded wrong)", lambda r: r.deception))
+    panels: tuple[tuple[str, Callable[[NGoalRow], Fraction]], ...] = (
+        ("U / U_bar (Attacker's cost, relative)", lambda r: Fraction(r.U or 0) / r.U_bar),
+        ("VoI = (U_bar - U) / U_bar", lambda r: Fraction(r.VoI or 0)),
+        ("deception (share of the walk guarded wrong)", lambda r: Fraction(r.deception or 0)))
     for ax, (label, get) in zip(axes, panels, strict=True):
         for k, name in enumerate(names):
             for kind, style in (("equal", "-"), ("skewed", "--")):
-                pts = [r for r in rows if r.map_name == name and r.prior_kind == kind]
+                pts = [r for r in solved if r.map_name == name and r.prior_kind == kind]
                 if not pts:
                     continue
                 x = [r.n_goals for r in pts]
@@ -245,8 +278,15 @@ def ngoal_figure(rows: Sequence[NGoalRow]) -> Any:
     handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 5), fontsize=8.5,
                frameon=False)
-    fig.suptitle("N-goal equilibria (filled: certified exact; hollow: not certified, coalition-"
-                 "DP upper bound)", fontsize=10)
+    hollow = sum(1 for r in solved if r.certified != "pass")
+    unsolved = len(rows) - len(solved)
+    notes = []
+    if hollow:
+        notes.append(f"hollow: {hollow} not certified by the checker")
+    if unsolved:
+        notes.append(f"{unsolved} not solved within the budget (not plotted)")
+    fig.suptitle("N-goal equilibria: exact values (filled: certified by the checker"
+                 + ("; " + "; ".join(notes) if notes else "") + ")", fontsize=10)
     rows_of_legend = -(-len(labels) // 5)
     fig.tight_layout(rect=(0, 0.05 * rows_of_legend + 0.02, 1, 1))
     return fig

@@ -217,8 +217,8 @@ class Instance:
         --------
         >>> blocked = np.zeros((3, 3), dtype=bool); blocked[1, 1] = True
         >>> inst = Instance.from_grid(blocked, (0, 0), ((2, 2), (0, 2)), ("3/5", "2/5"))
-        >>> inst.network.n_nodes, inst.primary
-        (9, (2, 2))
+        >>> inst.network.n_nodes, inst.primary   # the free cells are the nodes
+        (8, (2, 2))
         >>> Instance.from_grid(blocked, (1, 1), ((2, 2), (0, 2)), ("3/5", "2/5"))
         Traceback (most recent call last):
         solver.errors.InvalidInstanceError: start cell (1, 1) is an obstacle in the 3x3 grid

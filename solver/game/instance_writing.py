@@ -9,7 +9,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import networkx as nx
-import numpy as np
 
 from solver.formats.map_instance import MAP_INSTANCE_FORMAT
 from solver.formats.movingai import STANDARD_PREFIX, map_file, read_map_bytes
@@ -89,6 +88,7 @@ def instance_to_json(inst: Instance) -> dict[str, Any]:
     (['g1', 'g2'], ['7/10', '3/10'], {'source': 's', 'target': 'g2', 'weight': '2'})
     >>> instance_from_json(doc).b1
     Fraction(7, 10)
+    >>> import numpy as np
     >>> grid = Instance.from_grid(np.zeros((1, 3), bool), (0, 0), ((0, 2), (0, 1)), ("1/2", "1/2"))
     >>> [n["id"] for n in instance_to_json(grid)["graph"]["nodes"]]
     [[0, 0], [0, 1], [0, 2]]
@@ -111,9 +111,8 @@ def _node_link(inst: Instance) -> dict[str, Any]:
         return {"directed": g.is_directed(), "multigraph": False, "graph": {},
                 "nodes": [{"id": node_to_json(v)} for v in g.nodes], "edges": edges}
     net = inst.network
-    if isinstance(net.labels, GridLabels):
-        free = np.flatnonzero(~net.labels.blocked.ravel())
-        nodes = [{"id": list(net.labels[int(i)])} for i in free]
+    if isinstance(net.labels, GridLabels):  # the free cells, row-major
+        nodes = [{"id": list(cell)} for cell in net.labels]
     else:
         nodes = [{"id": node_to_json(v)} for v in net.labels]
     edges = []

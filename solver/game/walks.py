@@ -54,6 +54,4 @@ class StrategyWalk:
     def along(cls, net: Network, walk: Sequence[int], probability: Fraction,
               label: str = "") -> StrategyWalk:
         """The walk of node indices ``walk`` of ``net``, its node ids looked up."""
-        labels = net.labels
-        return cls(tuple(int(i) for i in walk), tuple(labels[int(i)] for i in walk),
-                   probability, label)
+        return cls(tuple(int(i) for i in walk), net.labels_of(walk), probability, label)

@@ -39,22 +39,39 @@ SQRT2 = math.sqrt(2.0)
 
 @dataclass(frozen=True)
 class GridLabels(Sequence[tuple[int, int]]):
-    """Node labels ``(row, col)`` of a grid, index ``row * width + col``, computed on demand.
+    """Node labels ``(row, col)`` of a grid's free cells, in row-major order, computed on
+    demand: node ``i`` is the ``i``-th free cell (blocked cells are no nodes).
 
-    Blocked cells keep their index (as isolated, unusable nodes) so that no relabelling
-    pass over the grid is needed.
+    Examples
+    --------
+    >>> labels = GridLabels(np.array([[False, True], [False, False]]))
+    >>> len(labels), labels[1], labels.index_of((1, 1)), labels.index_of((0, 1))
+    (3, (1, 0), 2, None)
+    >>> labels.cells_of([2, 0])
+    ((1, 1), (0, 0))
     """
 
     blocked: np.ndarray = field(repr=False)
     height: int = field(init=False)
     width: int = field(init=False)
+    padded: np.ndarray = field(init=False, repr=False)
+    """``padded[i]``: the index of node ``i``'s cell in the grid with a one-cell frame
+    (``(row + 1) * (width + 2) + col + 1``), increasing."""
+    node_at: np.ndarray = field(init=False, repr=False)
+    """``node_at[p]``: the node at framed cell index ``p``, or -1 (blocked, or the frame)."""
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "height", int(self.blocked.shape[0]))
-        object.__setattr__(self, "width", int(self.blocked.shape[1]))
+        h, w = (int(x) for x in self.blocked.shape)
+        object.__setattr__(self, "height", h)
+        object.__setattr__(self, "width", w)
+        padded = np.flatnonzero(np.pad(~np.asarray(self.blocked, dtype=bool), 1))
+        node_at = np.full((h + 2) * (w + 2), -1, dtype=np.int32)
+        node_at[padded] = np.arange(padded.size, dtype=np.int32)
+        object.__setattr__(self, "padded", padded)
+        object.__setattr__(self, "node_at", node_at)
 
     def __len__(self) -> int:
-        return self.height * self.width
+        return int(self.padded.size)
 
     @overload
     def __getitem__(self, i: int) -> tuple[int, int]: ...
@@ -64,14 +81,19 @@ class GridLabels(Sequence[tuple[int, int]]):
 
     def __getitem__(self, i: int | slice) -> tuple[int, int] | Sequence[tuple[int, int]]:
         if isinstance(i, slice):
-            return [self[j] for j in range(*i.indices(len(self)))]
+            return list(self.cells_of(range(*i.indices(len(self)))))
         if not 0 <= i < len(self):
             raise IndexError(i)
-        return (i // self.width, i % self.width)
+        r, c = divmod(int(self.padded[i]), self.width + 2)
+        return (r - 1, c - 1)
 
     def __iter__(self) -> Iterator[tuple[int, int]]:
-        for i in range(len(self)):
-            yield self[i]
+        yield from self.cells_of(range(len(self)))
+
+    def cells_of(self, nodes: Sequence[int]) -> tuple[tuple[int, int], ...]:
+        """The cells of many nodes at once (one numpy pass)."""
+        r, c = np.divmod(self.padded[np.asarray(nodes, dtype=np.int64)], self.width + 2)
+        return tuple(zip((r - 1).tolist(), (c - 1).tolist(), strict=True))
 
     def index_of(self, label: Hashable) -> int | None:
         """Index of a free cell ``(row, col)``, or None if it is outside or blocked."""
@@ -80,9 +102,10 @@ class GridLabels(Sequence[tuple[int, int]]):
         r, c = label
         if not (isinstance(r, int) and isinstance(c, int)):
             return None
-        if not (0 <= r < self.height and 0 <= c < self.width) or self.blocked[r, c]:
+        if not (0 <= r < self.height and 0 <= c < self.width):
             return None
-        return r * self.width + c
+        i = int(self.node_at[(r + 1) * (self.width + 2) + c + 1])
+        return None if i < 0 else i
 
 
 @dataclass(frozen=True, eq=False)
@@ -204,15 +227,17 @@ class Network:
     def from_grid(cls, blocked: np.ndarray, *, connectivity: int = 4) -> Network:
         """Build the grid graph of the free cells of ``blocked`` (True = obstacle).
 
-        4-connected grids have unit weights (exact). 8-connected grids use octile weights
-        (diagonal ``sqrt(2)``, float mode) and forbid cutting corners: a diagonal move needs
-        both orthogonal neighbours free (the MovingAI convention).
+        The nodes are the free cells in row-major order (:class:`GridLabels`); blocked cells
+        are no nodes, so no shortest-path run visits them. 4-connected grids have unit
+        weights (exact). 8-connected grids use octile weights (diagonal ``sqrt(2)``, float
+        mode) and forbid cutting corners: a diagonal move needs both orthogonal neighbours
+        free (the MovingAI convention).
 
         Examples
         --------
         >>> net = Network.from_grid(np.array([[False, False], [True, False]]))
-        >>> net.n_arcs, net.labels[3]
-        (4, (1, 1))
+        >>> net.n_nodes, net.n_arcs, net.labels[2]
+        (3, 4, (1, 1))
         """
         blocked = np.ascontiguousarray(np.asarray(blocked, dtype=bool))
         if blocked.ndim != 2 or blocked.size == 0:
@@ -221,41 +246,35 @@ class Network:
             )
         if connectivity not in (4, 8):
             raise InvalidInstanceError(f"connectivity must be 4 or 8, got {connectivity}")
-        h, w = blocked.shape
-        free = np.pad(~blocked, 1)  # a frame of blocked cells: no bounds checks needed
-        n = h * w
+        labels = GridLabels(blocked)
+        stride = labels.width + 2  # a frame of blocked cells: no bounds checks needed
         # neighbour offsets in increasing index order, so each CSR row comes out sorted
         steps = [(-1, 0), (0, -1), (0, 1), (1, 0)]
         if connectivity == 8:
             steps = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)]
-        k = len(steps)
-        inner = free[1:-1, 1:-1]
-        mask = np.empty((h, w, k), dtype=bool)  # mask[r, c, j]: arc (r, c) -> (r, c) + step j
+        n, k = len(labels), len(steps)
+        cells, node_at = labels.padded, labels.node_at
+        heads = np.empty((n, k), dtype=np.int32)  # heads[i, j]: node i + step j, or -1
         for j, (dr, dc) in enumerate(steps):
-            ok = inner & free[1 + dr : h + 1 + dr, 1 + dc : w + 1 + dc]
+            heads[:, j] = node_at[cells + (dr * stride + dc)]
             if dr and dc:  # diagonal: both orthogonal neighbours must be free (no corner cutting)
-                ok &= free[1 + dr : h + 1 + dr, 1:-1] & free[1:-1, 1 + dc : w + 1 + dc]
-            mask[:, :, j] = ok
-        flat = np.flatnonzero(mask)  # row-major: the arcs of node i, in head order
-        offsets = np.array([dr * w + dc for dr, dc in steps], dtype=np.int64)
-        shift = k.bit_length() - 1  # k is 4 or 8: divide by shifting, not by `//`
-        slot = (flat & (k - 1)).astype(np.int8)
-        flat >>= shift
-        flat += offsets[slot]
-        indices = flat.astype(np.int32)  # what scipy.sparse.csgraph works in
-        del flat
-        degree = np.zeros((h, w), dtype=np.int32)
-        for j in range(k):  # summing the k planes is far faster than count_nonzero(axis=1)
-            degree += mask[:, :, j]
+                cut = (node_at[cells + dr * stride] < 0) | (node_at[cells + dc] < 0)
+                heads[cut, j] = -1
+        arc = heads >= 0
+        indices = heads[arc]  # row by row, each row in increasing head order
         indptr = np.zeros(n + 1, dtype=np.int32 if n * k < 2**31 else np.int64)
-        np.cumsum(degree.ravel(), out=indptr[1:])
+        degree = np.zeros(n, dtype=indptr.dtype)
+        for j in range(k):  # summing the k columns is far faster than count_nonzero(axis=1)
+            degree += arc[:, j]
+        np.cumsum(degree, out=indptr[1:])
         if connectivity == 4:  # unit weights: exact integers, stored as float64 for scipy
             data = np.ones(indices.size, dtype=np.float64)
-            return cls(GridLabels(blocked), indptr, indices, data, ExactNumbers(), False, None)
-        diagonal = np.array([bool(dr and dc) for dr, dc in steps])
-        data = np.where(diagonal[slot], SQRT2, 1.0)
-        return cls(GridLabels(blocked), indptr, indices, data, FloatNumbers(DEFAULT_ABS_TOL),
-                   False, None)
+            net = cls(labels, indptr, indices, data, ExactNumbers(), False, None)
+            net.__dict__["weight_total"] = float(indices.size)  # the sum, without a pass
+            return net
+        step_weight = np.array([SQRT2 if dr and dc else 1.0 for dr, dc in steps])
+        data = np.broadcast_to(step_weight, (n, k))[arc]
+        return cls(labels, indptr, indices, data, FloatNumbers(DEFAULT_ABS_TOL), False, None)
 
     # ------------------------------------------------------------------ queries
     @property
@@ -265,6 +284,19 @@ class Network:
     @property
     def n_arcs(self) -> int:
         return int(self.indices.size)
+
+    def labels_of(self, walk: Sequence[int]) -> tuple[Hashable, ...]:
+        """The node ids of many node indices (a grid's cells in one numpy pass).
+
+        Examples
+        --------
+        >>> Network.from_grid(np.zeros((2, 2), dtype=bool)).labels_of([3, 1])
+        ((1, 1), (0, 1))
+        """
+        if isinstance(self.labels, GridLabels):
+            return self.labels.cells_of(walk)
+        labels = self.labels
+        return tuple(labels[int(i)] for i in walk)
 
     def index_of(self, label: Hashable) -> int | None:
         """Index of node ``label``, or None if the graph has no such node."""

@@ -3,7 +3,10 @@
 Given exact distances, a shortest path is traced along *tight* arcs
 (``w(u, v) + d(v, t) == d(u, t)``). Among tight arcs the lowest node index wins — the
 node order of the instance (insertion order of the networkx graph / the JSON node list;
-row-major for grids). Only nodes on the traced path are touched.
+row-major for grids). Only nodes on the traced path are touched: each step reads the arcs
+of one node, as Python numbers through memoryviews of the CSR and distance arrays (no numpy
+call per step; a path of L steps costs O(L) scalar reads, never a pass over the graph).
+Stored values that are not machine numbers (Python integers past int64) use numpy per step.
 """
 
 from __future__ import annotations
@@ -30,6 +33,9 @@ def path_to_target(net: Network, start: int, target: int, dist_to: np.ndarray,
     >>> path_to_target(net, 0, 2, distances_to(net, 2), net.numbers)
     [0, 1, 2]
     """
+    views = _views(net, dist_to)
+    if views is not None:
+        return _trace(*views, start, target, numbers.abs_tol)
     path = [start]
     u = start
     while u != target:
@@ -57,14 +63,50 @@ def path_from_source(net: Network, source: int, end: int, dist_from: np.ndarray,
     ([0, 2], 'g1')
     """
     rev = net.reverse
-    path = [end]
-    v = end
-    while v != source:
-        tails, ws = rev.out_arcs(v)
-        slack = dist_from[tails] + ws - dist_from[v]
-        v = int(tails[_first_tight(slack, numbers, dist_from[tails] < dist_from[v])])
-        path.append(v)
+    views = _views(rev, dist_from)
+    if views is not None:
+        path = _trace(*views, end, source, numbers.abs_tol)
+    else:
+        path = [end]
+        v = end
+        while v != source:
+            tails, ws = rev.out_arcs(v)
+            slack = dist_from[tails] + ws - dist_from[v]
+            v = int(tails[_first_tight(slack, numbers, dist_from[tails] < dist_from[v])])
+            path.append(v)
     path.reverse()
+    return path
+
+
+def _views(net: Network, dist: np.ndarray
+           ) -> tuple[memoryview, memoryview, memoryview, memoryview] | None:
+    """Memoryviews of the CSR arrays and a distance field (Python numbers on indexing), or
+    None when some array holds Python objects (exact numerators past int64)."""
+    arrays = (net.indptr, net.indices, net.weights, dist)
+    if any(a.dtype.kind not in "iuf" or a.ndim != 1 for a in arrays):
+        return None
+    indptr, indices, weights, d = (memoryview(np.ascontiguousarray(a).data) for a in arrays)
+    return indptr, indices, weights, d
+
+
+def _trace(indptr: memoryview, heads: memoryview, weights: memoryview, dist: memoryview,
+           u: int, stop: int, tol: float | None) -> list[int]:
+    """From ``u`` to ``stop``: at each node the first arc (lowest head index) ``u -> v`` with
+    ``w + d(v) == d(u)`` (within ``tol`` in float mode) that gets strictly closer — the rule
+    of :func:`_first_tight`, on scalars."""
+    path = [u]
+    while u != stop:
+        du = dist[u]
+        for k in range(indptr[u], indptr[u + 1]):
+            v = heads[k]
+            dv = dist[v]
+            if dv < du and (weights[k] + dv == du if tol is None
+                            else abs(weights[k] + dv - du) <= tol):
+                break
+        else:  # cannot happen with consistent distances
+            raise RuntimeError("no tight arc: distance field inconsistent with the graph")
+        u = v
+        path.append(u)
     return path
 
 

@@ -16,8 +16,8 @@ from dppio.files import write_files
 from solver.errors import DPPError, OutputError
 
 __all__ = ["DEFENDER_HATCH", "FORMATS", "LARGE_MAP", "MARKER_COLOUR", "PATH_STYLES",
-           "PHASE_COLOURS", "STRATEGY_COLOURS", "STYLE", "T_I", "T_II", "VOI", "num_label",
-           "save_figure", "tex_label"]
+           "PHASE_COLOURS", "STRATEGY_COLOURS", "STYLE", "T_I", "T_II", "VOI", "figure_bytes",
+           "num_label", "save_figure", "tex_label"]
 
 PHASE_COLOURS = {1: "#E69F00", 2: "#CC79A7", 3: "#56B4E9"}
 """Phase I (σ* = 1 along ξ²) orange, phase II (belief 1/2) pink, phase III sky blue — in every
@@ -126,10 +126,24 @@ def save_figure(fig: Figure, out: str | Path) -> list[Path]:
     if fmt not in FORMATS:
         plt.close(fig)
         raise DPPError(f"{p}: the output file must end in .png, .svg or .pdf")
+    write_files({p: figure_bytes(fig, fmt)}, error=OutputError)  # atomic; folders created
+    return [p]
+
+
+def figure_bytes(fig: Figure, fmt: str) -> bytes:
+    """The figure as a ``fmt`` file's bytes (``png``, ``svg``, ``pdf``: as :func:`save_figure`
+    writes it), for a command that commits it together with other files; the figure is
+    closed.
+
+    Examples
+    --------
+    >>> fig, ax = plt.subplots()
+    >>> figure_bytes(fig, "png")[:4]
+    b'\x89PNG'
+    """
     buf = io.BytesIO()
     try:
         fig.savefig(buf, format=fmt, dpi=150, bbox_inches="tight")
     finally:
         plt.close(fig)
-    write_files({p: buf.getvalue()}, error=OutputError)  # atomic; missing folders created
-    return [p]
+    return buf.getvalue()

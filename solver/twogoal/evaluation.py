@@ -9,6 +9,7 @@ Attacker's mixture and are independent of the Defender.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -147,6 +148,7 @@ def evaluate(
     """
     runs = []
     numbers = net.numbers
+    convert = functools.cache(numbers.convert)  # a walk's weights take few distinct values
     u_theta = {1: numbers.zero(), 2: numbers.zero()}
     for theta, mixture in ((1, primary), (2, secondary)):
         for sp in mixture:
@@ -155,8 +157,7 @@ def evaluate(
             paid = _allocation_total(net, raw, sigma, to_g1=theta == 1)
             terminal = numbers.convert((d_to_g1 if theta == 1 else d_to_g2)[sp.walk[-1]])
             cost = paid + terminal
-            runs.append(_WalkRun(theta, sp, sigma, tuple(map(numbers.convert, raw)), terminal,
-                                 cost))
+            runs.append(_WalkRun(theta, sp, sigma, tuple(map(convert, raw)), terminal, cost))
             u_theta[theta] = u_theta[theta] + sp.probability * cost
     u1, u2 = u_theta[1], u_theta[2]
     value = b1 * u1 + b2 * u2

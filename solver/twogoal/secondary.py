@@ -71,8 +71,9 @@ def secondary_best_response(
     g1, g2 = goals
     total = d_from_start + d_to_g1
     total += d_to_g2
-    m_value = total[int(np.argmin(total))]
-    pivot = int(np.flatnonzero(numbers.is_zero(total - m_value))[0])  # ties: lowest index
+    first = int(np.argmin(total))  # the first minimum: the lowest index among exact ties
+    m_value = total[first]
+    pivot = first if numbers.exact else int(np.flatnonzero(numbers.is_zero(total - m_value))[0])
     head = path_from_source(net, start, pivot, d_from_start, numbers)
     tail = path_to_target(net, pivot, g2, d_to_g2, numbers)
     walk = head + tail[1:]

@@ -108,24 +108,46 @@ def test_bad_certificate_is_exit_2(files: tuple[Path, Path, Path], tmp_path: Pat
         assert r.output.count("\n") == 1 and r.output.startswith("error: ")
 
 
-def test_map_certificate_pins_the_map_file(tmp_path: Path) -> None:
+def test_map_certificate_pins_the_map_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+                                           ) -> None:
     m = tmp_path / "tiny.map"
     m.write_text("type octile\nheight 2\nwidth 3\nmap\n...\n.@.\n")
     prof = tmp_path / "p.json"
-    grid = ["--map", str(m), "--start", "1,0", "--goals", "1,2", "0,0", "--prior", "1/2,1/2"]
+    cells = ["--start", "1,0", "--goals", "1,2", "0,0", "--prior", "1/2,1/2"]
+    grid = ["--map", str(m), *cells]
     from solver.cli import main
 
-    assert CliRunner().invoke(main, ["solve", *grid, "-o", str(prof)]).exit_code == 0
+    saved = tmp_path / "saved" / "i.json"
+    saved.parent.mkdir()
+    assert CliRunner().invoke(main, ["solve", *grid, "-o", str(prof), "--save-instance",
+                                     str(saved)]).exit_code == 0
     r = CliRunner().invoke(certify_command, [*grid, str(prof), "--json"])
     assert r.exit_code == 0
     cert = tmp_path / "c.json"
     cert.write_text(r.output)
+    # the instance hash is that of the compact map instance dpp solve --save-instance wrote,
+    # its map path cut to the file's name (the map's bytes are pinned by map_sha256)
+    rec = json.loads(r.output)["provenance"]["instance"]
+    compact = json.loads(saved.read_text())
+    assert compact["map"] == "../tiny.map"
+    assert rec["sha256"] == hashlib.sha256(canonical_json({**compact, "map": "tiny.map"})
+                                           ).hexdigest()
+    assert rec["bytes"] == "canonical-json" and rec["map"]["sha256"] == compact["map_sha256"]
     ok = CliRunner().invoke(certify_command, ["--verify-provenance", str(cert), *grid, str(prof)])
     assert ok.exit_code == 0 and "map" in ok.output
+    # the same map given from another folder: the same game, the same hashes
+    monkeypatch.chdir(saved.parent)
+    again = CliRunner().invoke(certify_command, ["--verify-provenance", str(cert), "--map",
+                                                 "../tiny.map", *cells, str(prof)])
+    assert again.exit_code == 0, again.output
+    other = CliRunner().invoke(certify_command, ["--verify-provenance", str(cert), "--map",
+                                                 "../tiny.map", *cells[:-1], "2/3,1/3",
+                                                 str(prof)])
+    assert other.exit_code == 1 and "instance sha256 differs" in other.output
     m.write_text("type octile\nheight 2\nwidth 3\nmap\n...\n.@@\n")  # same cells used? no: map
     bad = CliRunner().invoke(certify_command, ["--verify-provenance", str(cert), *grid,
                                                str(prof)])
-    assert bad.exit_code in (1, 2)
+    assert bad.exit_code == 1 and "map sha256 differs" in bad.output
 
 
 def test_swapped_inputs_and_missing_profile_are_named(files: tuple[Path, Path, Path]) -> None:

