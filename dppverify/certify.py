@@ -249,14 +249,14 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     >>> bad = star3_profile()
     >>> bad["defender"]["default"] = [0, 1, 0]   # guards b off the table: on s m and s m a
     >>> cert = certify(star3_document(), bad, horizon=2)
-    >>> cert.verdict, cert.check("ngoal.pbne.defender_br").message
+    >>> cert.verdict, cert.check("pbne.defender_br").message
     ('fail', 'Defender regret 2/3: greedy best response 3/2, profile 5/6')
 
     On the untruncated game (the default) type ``b`` may loop ``s m s m b`` where the default
     guards ``a``:
 
     >>> cert = certify(star3_document(), star3_profile())
-    >>> cert.route, cert.horizon, cert.check("ngoal.pbne.attacker_br").status
+    >>> cert.route, cert.horizon, cert.check("pbne.attacker_br").status
     ('structured', None, 'fail')
     """
     with reading_once():  # each input file read once: what is hashed is what was parsed
@@ -369,7 +369,7 @@ def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon:
     if chosen in ("structured", "both"):
         structured, trie_size = nstructured_checks(inst, prof, h)
         if h is None and isinstance(prof.defender, GoalTable) and prof.defender.default is None:
-            br = next((r for r in structured if r.id == "ngoal.pbne.attacker_br"), None)
+            br = next((r for r in structured if r.id == "pbne.attacker_br"), None)
             if br is not None and br.status == "error":  # undefined off the table: undecided
                 raise UndecidedError(NTABLE_UNDECIDED)
         checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)

@@ -200,7 +200,7 @@ def test_ngoal_profiles_in_the_wrong_place_get_the_same_hints(profile: str,
     assert "not an instance" in line
     r = dpp("certify", TRIANGLE, p3)   # 3 goals against 2: refuted, as by certify()
     assert "its goals are [0, 9], [0, 0], [9, 9]" in _refuted_with_note(r)
-    assert " fail " in _row(r, "ngoal.profile.wellformed")
+    assert " fail " in _row(r, "profile.wellformed")
 
 
 def test_plot_voi_on_the_wrong_file_names_it_and_the_command(profile: str,

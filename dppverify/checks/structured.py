@@ -11,7 +11,7 @@ carry mass); payoffs walk by walk; the value by the three-field DP (proofs/DP.md
 the two-goal layer :mod:`dppverify.checks.structured_twogoal`, the phases and the lemmas that
 have a polynomial form. The lemma checks that need the tree (L3's and L4's random attackers
 with their LPs) are not run on this route; the certificate says so. The N-goal records
-(``ngoal.*``) are :mod:`dppverify.checks.structured_per_goal`'s.
+(:data:`~dppverify.registry.NGOAL_CHECKS`) are :mod:`dppverify.checks.structured_per_goal`'s.
 """
 
 from __future__ import annotations

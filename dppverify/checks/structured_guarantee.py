@@ -56,7 +56,7 @@ def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
     ...        "defender": {"rule": "guarantee", "h": [2, 1, 1]}}
     >>> recs, _ = guarantee_checks(star3(), profile_from_json(doc, star3()), None)
     >>> [(r.id, r.status) for r in recs][2]
-    ('ngoal.pbne.attacker_br', 'pass')
+    ('pbne.attacker_br', 'pass')
     """
     inst = instance
     n = inst.n_goals
@@ -90,7 +90,7 @@ def _direction(inst: Instance, ray: tuple[tuple[int, Fraction], ...]) -> str:
 
 def _attacker_record(inst: Instance, rule: GuaranteeRule, sets: GuaranteeSets,
                      per_type: Sequence[Fraction], feasible: bool) -> CheckRecord:
-    cid = "ngoal.pbne.attacker_br"
+    cid = "pbne.attacker_br"
     proof = "NSOLVE"
     bad_start = in_start_set(rule, sets)
     if bad_start is not None:

@@ -6,7 +6,7 @@ Only a document that is not JSON, not a JSON object, or not tagged with its form
 or do not sum to 1, a step that is not an edge, a walk that does not start at ``s0``, does not
 end at a goal or continues past its first goal, unknown nodes, duplicate walks, goals that do
 not match the instance — is recorded as a :class:`Defect`: the checker then *refutes* the
-profile (check ``profile.wellformed``, ``ngoal.profile.wellformed``) instead of crashing.
+profile (check ``profile.wellformed``, ``profile.wellformed``) instead of crashing.
 
 Two-goal Defender rules (``dpp-profile/1``, ``defender``):
 

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import copy
+import re
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -11,6 +13,9 @@ from dppverify.certify import NGOAL_CHECK_IDS, certify
 from dppverify.errors import HorizonError, ProfileError
 from dppverify.game.examples import star3_document, star3_profile
 from dppverify.game.profile import NGOAL_PROFILE_FORMAT, load_profile_document
+from dppverify.registry import CHECKS, NGOAL_CHECKS, kind_of, spec
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _failed(profile: dict[str, Any], **kw: Any) -> set[str]:
@@ -23,19 +28,38 @@ def test_the_equilibrium_passes_and_a_longer_game_needs_a_longer_table() -> None
     cert = certify(star3_document(), star3_profile(), horizon=2)
     assert cert.passed, cert.failed()
     assert [c.id for c in cert.checks] == list(NGOAL_CHECK_IDS)
-    assert cert.check("ngoal.value.V_H").numbers["V_H_lower"] == cert.check(
-        "ngoal.value.U").numbers["U"]
+    assert cert.check("game.value").numbers["V_H_lower"] == cert.check(
+        "value.U").numbers["U"]
     # At H = 4 type b may loop s m s m b: the table lists only s m b, the default guards a.
     cert = certify(star3_document(), star3_profile(), horizon=4)
-    rec = cert.check("ngoal.pbne.attacker_br")
+    rec = cert.check("pbne.attacker_br")
     assert rec.status == "fail" and "['s', 'm', 's', 'm', 'b'] costs 0" in rec.message
-    assert cert.check("ngoal.pbne.defender_br").status == "pass"
+    assert cert.check("pbne.defender_br").status == "pass"
+
+
+def test_every_n_goal_check_id_is_in_the_registry_and_the_checks_md_table() -> None:
+    """One check vocabulary for any N: a shared id keeps its kind and routes, and every id of
+    an N-goal certificate (tree route, structured route, both) is a registry id."""
+    shared = {c.id for c in CHECKS} & {c.id for c in NGOAL_CHECKS}
+    assert shared == {"profile.wellformed", "value.U", "pbne.defender_br",
+                      "pbne.sequential_rationality", "game.value"}
+    for c in NGOAL_CHECKS:
+        if c.id in shared:
+            assert (spec(c.id).kind, spec(c.id).routes) == (c.kind, c.routes), c.id
+        assert kind_of(c.id) == c.kind
+    for kw in ({"horizon": 2}, {}, {"horizon": 2, "route": "both"}):
+        cert = certify(star3_document(), star3_profile(), **kw)
+        assert {c.id for c in cert.checks} | set(cert.not_run) <= set(NGOAL_CHECK_IDS), kw
+    table = (ROOT / "dppverify" / "checks.md").read_text(encoding="utf-8")
+    part = table.split("## N goals", 1)[1]
+    rows = re.findall(r"^\| `([^`]+)` \| ([A-Z0-9–-]+) \|", part, flags=re.M)
+    assert rows == [(c.id, c.proof) for c in NGOAL_CHECKS]
 
 
 def test_a_type_with_a_cheaper_walk_is_refuted() -> None:
     p = star3_profile()
     p["attacker"][1] = [{"path": ["s", "a"], "probability": 1}]  # b: 0 + d(a, b) = 2 > 1
-    rec = certify(star3_document(), p, horizon=2).check("ngoal.pbne.attacker_br")
+    rec = certify(star3_document(), p, horizon=2).check("pbne.attacker_br")
     assert rec.status == "fail" and rec.numbers["regret2"] == 1
     assert "walk ['s', 'm', 'b'] costs 1" in rec.message
 
@@ -44,13 +68,13 @@ def test_a_defender_off_the_belief_is_refuted() -> None:
     p = star3_profile()
     p["defender"]["entries"].append({"walk": ["s", "m"], "probabilities": ["1/2", "1/2", 0]})
     failed = _failed(p)
-    assert {"ngoal.pbne.sequential", "ngoal.pbne.defender_br"} <= failed
+    assert {"pbne.sequential_rationality", "pbne.defender_br"} <= failed
 
 
 def test_a_wrong_claimed_value_is_refuted() -> None:
     p = star3_profile()
     p["value"]["U"] = "7/5"
-    assert _failed(p) == {"ngoal.value.U"}
+    assert _failed(p) == {"value.U"}
 
 
 @pytest.mark.parametrize(("change", "message"), [
@@ -70,7 +94,7 @@ def test_ill_formed_profiles_are_refuted_not_crashed(change: Any, message: str) 
     p = copy.deepcopy(star3_profile())
     change(p)
     cert = certify(star3_document(), p, horizon=2)
-    rec = cert.check("ngoal.profile.wellformed")
+    rec = cert.check("profile.wellformed")
     assert rec.status == "fail" and message in rec.message
     assert cert.verdict == "fail"
     assert all(c.status == "skipped" for c in cert.checks[1:])

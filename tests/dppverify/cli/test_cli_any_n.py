@@ -45,12 +45,13 @@ def test_certify_an_n_goal_profile(tmp_path: Path) -> None:
     p = write_doc(tmp_path, "p.json", star3_profile())
     r = run_cli(certify_command, [i, p, "-H", "2"])
     assert r.exit_code == 0 and r.output.startswith(
-        "verdict: PASS for the game truncated at H = 2 (7/7 checks passed;")
+        "verdict: PASS for the game truncated at H = 2 (6/6 checks passed; 1/1 consistency "
+        "checks agree;")
     r = run_cli(certify_command, [i, p])  # issue 18: the untruncated game by default
     assert r.exit_code == 1 and r.output.startswith("verdict: FAIL for the untruncated game")
     r = run_cli(certify_command, [i, p, "--json", "-H", "4"])
     cert = Certificate.from_json(r.output)
-    assert r.exit_code == 1 and cert.check("ngoal.pbne.attacker_br").status == "fail"
+    assert r.exit_code == 1 and cert.check("pbne.attacker_br").status == "fail"
     r = run_cli(certify_command, [i, p, "-H", "inf"])  # the structured route: b loops s m s m b
     assert r.exit_code == 1 and "for the untruncated game (H = inf)" in r.output
     r = run_cli(certify_command, [i, p, "-H", "inf", "--route", "tree"])

@@ -71,14 +71,14 @@ def test_the_equilibrium_passes_on_the_untruncated_game() -> None:
     cert = certify(_doc(), _profile(), horizon="inf")
     assert cert.passed, cert.failed()
     assert cert.route == "structured" and cert.horizon is None
-    assert set(cert.not_run) == {"ngoal.value.structured"}
-    assert [c.id for c in cert.checks] == ["ngoal.profile.wellformed", "ngoal.value.U",
-                                           "ngoal.pbne.attacker_br", "ngoal.pbne.defender_br",
-                                           "ngoal.pbne.sequential", "ngoal.value.V_H"]
-    assert cert.check("ngoal.value.U").numbers["U"] == 2
-    assert cert.check("ngoal.value.V_H").numbers["V_H"] == 2
+    assert set(cert.not_run) == {"game.value.structured"}
+    assert [c.id for c in cert.checks] == ["profile.wellformed", "value.U",
+                                           "pbne.attacker_br", "pbne.defender_br",
+                                           "pbne.sequential_rationality", "game.value"]
+    assert cert.check("value.U").numbers["U"] == 2
+    assert cert.check("game.value").numbers["V_H"] == 2
     assert all(c.route == "structured" and c.relies_on for c in cert.checks)
-    assert "NG.4" in (cert.check("ngoal.value.V_H").relies_on or "")
+    assert "NG.4" in (cert.check("game.value").relies_on or "")
     # the same verdict on the tree at every horizon, and both routes agree check by check
     for h in (1, 3, 5):
         both = certify(_doc(), _profile(), horizon=h, route="both")
@@ -89,16 +89,16 @@ def test_the_equilibrium_passes_on_the_untruncated_game() -> None:
 
 @pytest.mark.parametrize(("name", "change", "check", "words"), [
     ("wrong mixing", lambda p: p["attacker"][0][0].update(probability="1/2")
-     or p["attacker"][0][1].update(probability="1/2"), "ngoal.pbne.sequential",
+     or p["attacker"][0][1].update(probability="1/2"), "pbne.sequential_rationality",
      "less than maximal belief, e.g. after ['s', 'g2']"),
     ("a detour", lambda p: p["attacker"][1][0].update(path=["s", "h", "s", "g2"]),
-     "ngoal.pbne.attacker_br", "type 2 (goal 'g2') has regret 19/3: walk ['s', 'g2']"),
+     "pbne.attacker_br", "type 2 (goal 'g2') has regret 19/3: walk ['s', 'g2']"),
     ("Defender on a non-maximal goal",
      lambda p: p["defender"]["entries"][2].update(probabilities=[1, 0, 0]),
-     "ngoal.pbne.sequential", "after ['s', 'g3']: belief ['0', '0', '1'], Defender ['1', '0', "
-                              "'0']"),
+     "pbne.sequential_rationality",
+     "after ['s', 'g3']: belief ['0', '0', '1'], Defender ['1', '0', '0']"),
     ("wrong default", lambda p: p["defender"].update(default=[1, 0, 0]),
-     "ngoal.pbne.attacker_br", "type 2 (goal 'g2') has regret 1: walk ['s', 'h', 's', 'g2']"),
+     "pbne.attacker_br", "type 2 (goal 'g2') has regret 1: walk ['s', 'h', 's', 'g2']"),
 ])
 def test_each_corruption_is_refuted_by_its_check(name: str, change: Any, check: str,
                                                  words: str) -> None:
@@ -119,30 +119,30 @@ def test_wrong_mixing_fails_the_defender_checks_only() -> None:
                         {"path": ["s", "g2"], "probability": "1/2"}]
     p["value"].pop("U")
     cert = certify(_doc(), p, horizon="inf")
-    assert _failed(cert) == {"ngoal.pbne.defender_br", "ngoal.pbne.sequential"}
-    assert cert.check("ngoal.pbne.defender_br").numbers["regret"] == Fraction(1, 20)
-    assert cert.check("ngoal.value.V_H").status == "pass"
+    assert _failed(cert) == {"pbne.defender_br", "pbne.sequential_rationality"}
+    assert cert.check("pbne.defender_br").numbers["regret"] == Fraction(1, 20)
+    assert cert.check("game.value").status == "pass"
 
 
 def test_the_hub_profile_is_refuted_on_the_untruncated_game_only() -> None:
     # H = 2: the tree route certifies it; any length: type b loops s m s m b unguarded.
     assert certify(star3_document(), star3_profile(), horizon=2, route="tree").passed
     cert = certify(star3_document(), star3_profile(), horizon=None, route="structured")
-    rec = cert.check("ngoal.pbne.attacker_br")
+    rec = cert.check("pbne.attacker_br")
     assert rec.status == "fail" and "['s', 'm', 's', 'm', 'b'] (4 steps) costs 0" in rec.message
     assert rec.numbers["regret2"] == 1 and rec.numbers["regret1"] == 0
     # at H = 2 that 4-step walk is not in the game: the structured route decides nothing
     # (skipped, the verdict incomplete), never a FAIL of the truncated game
     cert = certify(star3_document(), star3_profile(), horizon=2, route="structured")
-    rec = cert.check("ngoal.pbne.attacker_br")
+    rec = cert.check("pbne.attacker_br")
     assert rec.status == "skipped" and "4 steps > H = 2" in rec.message
     assert cert.verdict == "incomplete"
     # both routes at H = 2: the tree route's pass stands
     both = certify(star3_document(), star3_profile(), horizon=2, route="both")
-    assert both.check("ngoal.pbne.attacker_br").status == "pass" and both.passed
+    assert both.check("pbne.attacker_br").status == "pass" and both.passed
     # at H = 4 the tree sees the loop too and both routes fail it
     both = certify(star3_document(), star3_profile(), horizon=4, route="both")
-    assert both.check("ngoal.pbne.attacker_br").status == "fail"
+    assert both.check("pbne.attacker_br").status == "fail"
 
 
 def test_a_two_goal_walk_longer_than_h_does_not_refute_the_truncated_game() -> None:
@@ -174,7 +174,7 @@ def test_without_a_default_the_route_says_why_unless_the_table_covers_every_walk
     with pytest.raises(UndecidedError, match="would decide"):
         certify(star3_document(), p, horizon="inf")
     cert = certify(star3_document(), p, horizon=4, route="structured")
-    rec = cert.check("ngoal.pbne.attacker_br")
+    rec = cert.check("pbne.attacker_br")
     assert rec.status == "error" and cert.verdict == "error"
     assert "no default and its table has no entry for walk ['s', 'a']" in rec.message
     # on the one-way hub the table lists every walk of the game but s a: still undefined
@@ -188,7 +188,7 @@ def test_without_a_default_the_route_says_why_unless_the_table_covers_every_walk
     q["defender"].pop("default")
     for route in ("tree", "structured"):
         cert = certify(star3_document(), q, horizon=2, route=route)  # type: ignore[arg-type]
-        rec = cert.check("ngoal.profile.wellformed")
+        rec = cert.check("profile.wellformed")
         assert rec.status == "fail" and "no entry for walk ['s', 'm'] and no default" in \
             rec.message
 
@@ -217,7 +217,7 @@ def test_cli_routes(tmp_path: Path) -> None:
     assert r.exit_code == 0, r.output
     assert r.output.startswith("verdict: PASS for the untruncated game (H = inf) (6/6 checks "
                                "passed; structured route")
-    assert "not run: ngoal.value.structured" in r.output
+    assert "not run: game.value.structured" in r.output
     r = CliRunner().invoke(certify_command, [str(i), str(p), "-H", "2", "--route", "both",
                                              "--json"])
     assert r.exit_code == 0 and Certificate.from_json(r.output).route == "both"
@@ -280,12 +280,12 @@ def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, 
     struct = certify(inst, prof, horizon="inf", route="structured")
     for t in range(1, inst.n_goals + 1):
         key = f"regret{t}"
-        tr, sr = (c.check("ngoal.pbne.attacker_br").numbers[key] for c in (tree_cert, struct))
+        tr, sr = (c.check("pbne.attacker_br").numbers[key] for c in (tree_cert, struct))
         assert tr is not None and sr is not None and tr <= sr
-    for cid in ("ngoal.profile.wellformed", "ngoal.value.U", "ngoal.pbne.defender_br",
-                "ngoal.pbne.sequential"):
+    for cid in ("profile.wellformed", "value.U", "pbne.defender_br",
+                "pbne.sequential_rationality"):
         assert tree_cert.check(cid).status == struct.check(cid).status, cid
-    for cid in ("ngoal.value.U", "ngoal.pbne.defender_br", "ngoal.pbne.sequential"):
+    for cid in ("value.U", "pbne.defender_br", "pbne.sequential_rationality"):
         assert dict(tree_cert.check(cid).numbers) == dict(struct.check(cid).numbers), cid
     assume(count_prefixes(inst, full) <= MAX_PREFIXES)
     # where every best response fits, the regrets are equal and so are the verdicts
@@ -294,13 +294,13 @@ def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, 
     assert not disagree, (json.dumps(doc), json.dumps(prof), disagree)
     tree_full = certify(inst, prof, horizon=full, route="tree", max_prefixes=MAX_PREFIXES)
     assert tree_full.verdict == struct.verdict
-    event(f"verdict {struct.verdict}; attacker_br {struct.check('ngoal.pbne.attacker_br').status}")
+    event(f"verdict {struct.verdict}; attacker_br {struct.check('pbne.attacker_br').status}")
     for t in range(inst.n_goals):
         br = walk_best_response(tdef, t)
         assert br.value is not None and len(br.walk) - 1 <= full
         key = f"regret{t + 1}"
-        assert tree_full.check("ngoal.pbne.attacker_br").numbers[key] == struct.check(
-            "ngoal.pbne.attacker_br").numbers[key]
+        assert tree_full.check("pbne.attacker_br").numbers[key] == struct.check(
+            "pbne.attacker_br").numbers[key]
 
 
 @given(ngoal_instances(min_goals=3, max_goals=4,

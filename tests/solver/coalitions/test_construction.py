@@ -79,8 +79,8 @@ def test_the_tree_route_agrees_at_the_profiles_horizon(doc: dict[str, Any]) -> N
                          max_prefixes=20_000)
     if cert.verdict == "pass":  # an equilibrium of the untruncated game is one of every H >= it
         eqs = {c.id: c.status for c in tree.checks}
-        for cid in ("ngoal.value.U", "ngoal.pbne.attacker_br", "ngoal.pbne.defender_br",
-                    "ngoal.pbne.sequential", "ngoal.value.V_H"):
+        for cid in ("value.U", "pbne.attacker_br", "pbne.defender_br",
+                    "pbne.sequential_rationality", "game.value"):
             assert eqs[cid] == "pass", tree.checks
 
 

@@ -56,7 +56,7 @@ def _checker_reads_normals() -> bool:
     """Whether the checker evaluates the guarantee rule with ``normals`` (issue 29, h29c)."""
     eq = coalition_equilibrium(solver_instance(GADGET))
     cert = certify(GADGET, eq.to_json(), horizon="inf", route="structured")
-    return cert.check("ngoal.profile.wellformed").status == "pass"
+    return cert.check("profile.wellformed").status == "pass"
 
 
 def _table_profile(eq: CoalitionEquilibrium, doc: dict[str, Any]) -> dict[str, Any]:
