@@ -3,13 +3,15 @@
 
     python3 dev.py demo    # create .venv if needed, install the runtime deps, solve + certify
     python3 dev.py test    # ... install the test extras too, lint, type-check, run the tests
+    python3 dev.py docs    # ... build the documentation site into docs/_build/html (-W)
     python3 dev.py bench   # ... install the bench extras too, run benchmarks/bench_*.py (slow)
 
 Each command installs only what it needs (`demo`: the runtime dependencies; `test`: the
-extras in TEST_EXTRAS; `bench`: BENCH_EXTRAS) and only when pyproject.toml changed since that
-set (or a larger one) was installed; pip shows its progress. `test` runs every test not marked
-`slow`, the peer cross-checks against OpenSpiel and Gambit included (a bare `pytest` leaves
-them out). Extra arguments after `test` are passed to pytest (e.g. `python3 dev.py test -m slow`).
+extras in TEST_EXTRAS; `docs`: the `docs` extra; `bench`: BENCH_EXTRAS) and only when
+pyproject.toml changed since that set (or a larger one) was installed; pip shows its
+progress. `test` runs every test not marked `slow`, the peer cross-checks against OpenSpiel
+and Gambit included (a bare `pytest` leaves them out). Extra arguments after `test` are passed
+to pytest (e.g. `python3 dev.py test -m slow`).
 """
 
 from __future__ import annotations
@@ -24,10 +26,11 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent
 VENV = ROOT / ".venv"
 BIN = VENV / ("Scripts" if os.name == "nt" else "bin")
-LINT_PATHS = ("solver", "dppverify", "dppio", "tests", "proofs", "benchmarks", "dev.py")
+LINT_PATHS = ("solver", "dppverify", "dppio", "tests", "proofs", "benchmarks", "dev.py",
+              "noxfile.py", "docs/conf.py")
 PY = BIN / "python"
 STAMPS = VENV / "dppverify-installed"
-TEST_EXTRAS = ("test", "peers", "maps")
+TEST_EXTRAS = ("test", "peers", "maps", "docs")
 BENCH_EXTRAS = (*TEST_EXTRAS, "bench")
 
 
@@ -89,6 +92,23 @@ def test(pytest_args: list[str]) -> None:
     _run(PY, "-m", "pytest", *workers, *markers, *pytest_args)
 
 
+def docs_command(out: Path = ROOT / "docs" / "_build" / "html",
+                 python: str | Path = PY) -> list[str]:
+    """The sphinx-build command of the site: warnings are errors, every warning is shown.
+
+    The source folder is the repository (docs/conf.py says which pages); autosummary writes
+    the API pages it generates to docs/site/_generated/ (not in git).
+    """
+    return [str(python), "-m", "sphinx", "-b", "html", "-W", "--keep-going", "-q", "-j",
+            "auto", "-c", str(ROOT / "docs"), str(ROOT), str(out)]
+
+
+def docs() -> None:
+    ensure_env(("docs",))
+    _run(*docs_command())
+    print(f"the site: {ROOT / 'docs' / '_build' / 'html' / 'index.html'}", flush=True)
+
+
 def bench() -> None:
     ensure_env(BENCH_EXTRAS)
     for script in sorted((ROOT / "benchmarks").glob("bench_*.py")):
@@ -96,12 +116,14 @@ def bench() -> None:
 
 
 def main(argv: list[str]) -> None:
-    if not argv or argv[0] not in {"demo", "test", "bench"}:
+    if not argv or argv[0] not in {"demo", "test", "docs", "bench"}:
         sys.exit(__doc__)
     if argv[0] == "demo":
         demo()
     elif argv[0] == "test":
         test(argv[1:])
+    elif argv[0] == "docs":
+        docs()
     else:
         bench()
 

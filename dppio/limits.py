@@ -26,6 +26,7 @@ from fractions import Fraction
 from typing import Any
 
 from dppio.errors import ErrorClass, LimitError
+from dppio.text import decimal
 
 __all__ = [
     "MAX_EXPONENT",
@@ -55,7 +56,7 @@ MAX_EXPONENT = 400
 """Largest decimal exponent written in a numeral (``1e400`` is read, ``1e401`` refused)."""
 
 MAX_NUMBER_DIGITS = 200
-"""Every number is a rational p/q with |p| and q below 10**200 (after reduction)."""
+"""Every number is a rational p/q with abs(p) and q below 10**200 (after reduction)."""
 
 MAX_FLOAT_WEIGHT_RATIO = 10**6
 """Float mode (``"numbers": "float"``): largest / smallest edge weight. Float comparisons use
@@ -137,7 +138,7 @@ def check_float_weights(weights: Iterable[float | Fraction | int], *,
     >>> check_float_weights([1.0, 2 ** 0.5])
     >>> check_float_weights([1.0, 1e300])
     Traceback (most recent call last):
-    dppio.errors.LimitError: graph.edges: float weights span a ratio of 1e+300 (1e+00 to 1e+300), \
+    dppio.errors.LimitError: graph.edges: float weights span a ratio of 1×10^300 (1 to 1×10^300), \
 beyond the float-mode limit of 10**6; give exact weights
     """
     lo = hi = None
@@ -148,8 +149,8 @@ beyond the float-mode limit of 10**6; give exact weights
     if lo is None or hi is None or lo <= 0:
         return
     if hi / lo > MAX_FLOAT_WEIGHT_RATIO:
-        raise error(f"{where}: float weights span a ratio of {hi / lo:.0e} ({lo:.0e} to "
-                    f"{hi:.0e}), beyond the float-mode limit of 10**6; give exact weights")
+        raise error(f"{where}: float weights span a ratio of {decimal(hi / lo)} ({decimal(lo)} "
+                    f"to {decimal(hi)}), beyond the float-mode limit of 10**6; give exact weights")
 
 
 def check_json_depth(doc: Any, *, error: ErrorClass = LimitError) -> None:

@@ -9,9 +9,11 @@ of a traceback or an internal error.
 from __future__ import annotations
 
 import contextlib
+from fractions import Fraction
 from pathlib import Path
 
 from dppio.errors import ErrorClass, LimitError
+from dppio.text import decimal
 
 __all__ = ["available_memory", "check_memory", "memory_limit_text"]
 
@@ -70,10 +72,10 @@ def memory_limit_text() -> str:
     """
     limit = _rlimit_as()
     if limit is not None:
-        return f"an address-space limit of {limit / 2**30:.1f} GiB (ulimit -v)"
+        return f"an address-space limit of {decimal(Fraction(limit, 2**30))} GiB (ulimit -v)"
     free = _mem_available()
     if free is not None:
-        return f"the system's available memory, {free / 2**30:.1f} GiB"
+        return f"the system's available memory, {decimal(Fraction(free, 2**30))} GiB"
     return "unknown limit"
 
 
@@ -91,11 +93,12 @@ def check_memory(need: int, *, what: str, error: ErrorClass = LimitError) -> Non
     >>> check_memory(1, what="a tiny map")
     >>> check_memory(1 << 62, what="a huge map")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
-    dppio.errors.LimitError: a huge map needs about 4294967296.0 GiB of memory; ...
+    dppio.errors.LimitError: a huge map needs about 4.295×10^9 GiB of memory; ...
     """
     room = available_memory()
     if room is not None and need > room:
-        raise error(f"{what} needs about {need / 2**30:.1f} GiB of memory; this process may "
-                    f"use {room / 2**30:.1f} GiB more ({memory_limit_text()}); give a smaller "
-                    "input or more memory")
+        gib_need, gib_room = decimal(Fraction(need, 2**30)), decimal(Fraction(room, 2**30))
+        raise error(f"{what} needs about {gib_need} GiB of memory; this process may use "
+                    f"{gib_room} GiB more ({memory_limit_text()}); give a smaller input or more "
+                    "memory")
 

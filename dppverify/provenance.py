@@ -180,7 +180,7 @@ def _short(h: Any) -> str:
     return str(h)[:12] if h else "none"
 
 
-def verify_provenance(certificate: Mapping[str, Any], instance: Any, profile: Any, *,
+def verify_provenance(certificate: object, instance: Any, profile: Any, *,
                       map_file: str | Path | None = None) -> ProvenanceCheck:
     """Re-check the hashes a certificate recorded against the given inputs.
 
@@ -242,7 +242,7 @@ def verify_provenance(certificate: Mapping[str, Any], instance: Any, profile: An
         else:
             matched.append(name)
         if name == "instance" and map_file is not None:
-            mrec = rec.get("map") if isinstance(rec, Mapping) else None
+            mrec = rec.get("map")
             if not isinstance(mrec, Mapping) or not isinstance(mrec.get("sha256"), str):
                 mismatches.append("map: the certificate records no .map file (not made with "
                                   "--map)")

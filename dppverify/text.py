@@ -3,10 +3,10 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from decimal import Decimal, localcontext
 from fractions import Fraction
 from typing import TYPE_CHECKING
 
+from dppio.text import decimal
 from dppverify.exact import Number
 from dppverify.formats.json_reading import show_node
 
@@ -20,28 +20,17 @@ MAX_EXACT_CHARS = 24
 """An exact number longer than this is shown as a decimal (its exact form is in ``--json``)."""
 
 
-def approx(x: Number, digits: int = 12) -> str:
-    """``x`` as a decimal with ``digits`` significant digits; powers of ten when large or small.
+def approx(x: Number) -> str:
+    """``x`` as a decimal: :func:`dppio.text.decimal` (the one rule of both packages).
 
     Works for rationals of any size (no float overflow).
 
     Examples
     --------
     >>> approx(Fraction(10**80 * 109, 100)), approx(Fraction(1, 3)), approx(Fraction(-1, 10**9))
-    ('1.09×10^80', '0.333333333333', '-1×10^-9')
+    ('1.09×10^80', '0.3333', '-1×10^-9')
     """
-    with localcontext() as ctx:
-        ctx.prec = digits
-        q = Fraction(x)
-        d = (Decimal(q.numerator) / Decimal(q.denominator)).normalize()
-    if d == 0:
-        return "0"
-    e = d.adjusted()
-    if -5 <= e < digits:
-        text = f"{d:f}"
-        return text
-    mantissa = d.scaleb(-e).normalize()
-    return f"{mantissa:f}×10^{e}"
+    return decimal(x)
 
 
 def show(x: Number | None) -> str:
@@ -55,7 +44,7 @@ def show(x: Number | None) -> str:
     >>> show(Fraction(12, 5)), show(3), show(2.4000000000001), show(None)
     ('12/5', '3', '2.4', '-')
     >>> show(Fraction(10**30 + 1, 3)), show(2**300)
-    ('≈3.33333333333×10^29', '≈2.03703597633×10^90')
+    ('≈3.333×10^29', '≈2.037×10^90')
     >>> show(Fraction(2**100 + 1, 2**100))
     '≈1'
     """
@@ -64,7 +53,7 @@ def show(x: Number | None) -> str:
     if isinstance(x, float):
         if x != x or x in (float("inf"), float("-inf")):
             return str(x)
-        return f"{x:.12g}"
+        return decimal(x)
     text = str(Fraction(x))
     if len(text) <= MAX_EXACT_CHARS:
         return text
@@ -80,7 +69,7 @@ def show_value(x: Number | None, digits: int = 40) -> str:
     Examples
     --------
     >>> show_value(Fraction(12, 7)), show_value(3), show_value(Fraction(10**50 + 1, 10**50))
-    ('12/7 (≈ 1.714286)', '3', '≈ 1 (exact: a 102-digit fraction, see --json)')
+    ('12/7 (≈ 1.714)', '3', '≈ 1 (exact: a 102-digit fraction, see --json)')
     """
     if x is None or isinstance(x, float):
         return show(x)
@@ -89,8 +78,8 @@ def show_value(x: Number | None, digits: int = 40) -> str:
         return str(q)
     text = str(q)
     if len(text) <= digits:
-        return f"{text} (≈ {float(q):.7g})"
-    return f"≈ {float(q):.12g} (exact: a {len(text) - 1}-digit fraction, see --json)"
+        return f"{text} (≈ {approx(q)})"
+    return f"≈ {approx(q)} (exact: a {len(text) - 1}-digit fraction, see --json)"
 
 
 def show_walk(instance: Instance, walk: Sequence[int]) -> str:

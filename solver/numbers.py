@@ -23,6 +23,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from dppio.limits import check_numeral, check_rational
+from dppio.text import decimal
 from solver.errors import InvalidInstanceError
 
 __all__ = [
@@ -327,7 +328,7 @@ def format_value(x: Number) -> str:
     Parameters
     ----------
     x : Fraction, int or float
-        The value (a float is float mode: 10 significant digits, no fraction).
+        The value (a float is float mode: dppio.text.decimal, no fraction).
 
     Returns
     -------
@@ -337,15 +338,15 @@ def format_value(x: Number) -> str:
     --------
     >>> from fractions import Fraction
     >>> format_value(Fraction(12, 7)), format_value(Fraction(4)), format_value(2 ** 0.5)
-    ('12/7 (≈ 1.714286)', '4', '1.414213562')
+    ('12/7 (≈ 1.714)', '4', '1.414')
     >>> format_value(Fraction(10**50 + 1, 10**50))
     '≈ 1 (exact: a 102-digit fraction, see --json)'
     """
     if isinstance(x, float):
-        return f"{x:.10g}"
+        return decimal(x)
     if x.denominator == 1:
         return str(x)
     text = str(x)
     if len(text) > 40:
-        return f"≈ {float(x):.12g} (exact: a {len(text) - 1}-digit fraction, see --json)"
-    return f"{text} (≈ {float(x):.7g})"
+        return f"≈ {decimal(x)} (exact: a {len(text) - 1}-digit fraction, see --json)"
+    return f"{text} (≈ {decimal(x)})"

@@ -161,7 +161,7 @@ def summarize(result: Solution | Equilibrium, *, certified: str = "") -> str:
     >>> import networkx as nx
     >>> star = nx.Graph([("s", "a"), ("s", "b"), ("s", "c", {"weight": 2})])
     >>> print(summarize(solve(Instance(star, "s", ("a", "b", "c"), ("1/2", "1/3", "1/6")))))
-    N = 3 goals: U = 7/6 (≈ 1.166667), VoI = 0, U_bar = 7/6 (≈ 1.166667); type costs (1, 1, 2); \
+    N = 3 goals: U = 7/6 (≈ 1.167), VoI = 0, U_bar = 7/6 (≈ 1.167); type costs (1, 1, 2); \
 Defender: guarantee rule h = (1, 1, 2)
     """
     if isinstance(result, Equilibrium):

@@ -236,7 +236,59 @@ def test_a_bad_prior_with_map_is_blamed_on_prior() -> None:
 def test_goals_as_one_quoted_argument_gets_a_precise_hint() -> None:
     line = _one_line_error(dpp("solve", "--map", PAPER10, "--start", "9,0", "--goals",
                                "0,9 0,0", "--prior", "0.6,0.4"))
-    assert "separate arguments, e.g. --goals 0,9 0,0" in line
+    assert "separate arguments ROW,COL ROW,COL, e.g. --goals 0,9 0,0" in line
+
+
+@pytest.mark.parametrize("goals", [["0, 9", "0,0"], ["0 , 9", "0, 0"], ["0 9 0 0"]])
+def test_goals_with_spaces_get_a_hint_that_works(goals: list[str]) -> None:
+    """The hint's suggestion is itself a valid --goals (it was `--goals 0, 9` for `"0, 9"`)."""
+    line = _one_line_error(dpp("solve", "--map", PAPER10, "--start", "9,0", "--goals",
+                               *goals, "--prior", "0.6,0.4"))
+    suggested = line.split("e.g. --goals ")[1].split(", not one quoted")[0]
+    assert suggested == "0,9 0,0"
+    r = dpp("solve", "--map", PAPER10, "--start", "9,0", "--goals", *suggested.split(),
+            "--prior", "0.6,0.4")
+    assert r.exit_code == 0, r.output
+
+
+@pytest.mark.parametrize("command", [["solve"], ["value"], ["certify", "PROFILE"],
+                                     ["plot", "map", "-o", "OUT.png"]])
+def test_a_short_prior_names_the_file_and_shows_what_was_written(command: list[str],
+                                                                  profile: str,
+                                                                  tmp_path: Path) -> None:
+    doc = json.loads(Path(TRIANGLE).read_text())
+    doc["prior"] = [0.7]
+    bad = tmp_path / "short-prior.json"
+    bad.write_text(json.dumps(doc))
+    args = [a.replace("PROFILE", profile).replace("OUT", str(tmp_path / "f"))
+            for a in command]
+    line = _one_line_error(dpp(*args[:1], str(bad), *args[1:]) if args[0] != "plot" else
+                           dpp(*args[:2], str(bad), *args[2:]))
+    assert str(bad) in line and "must be a list of two numbers" in line
+    assert line.endswith("got [0.7]")
+
+
+@pytest.mark.parametrize("command", [["solve"], ["value"], ["certify", "p.json"],
+                                     ["plot", "map", "-o", "m.png"]])
+def test_a_scenario_file_as_map_names_its_map_and_dpp_batch(command: list[str],
+                                                            tmp_path: Path) -> None:
+    scen = tmp_path / "paper10.scen"
+    scen.write_text("version 1\n0\tpaper10.map\t10\t10\t0\t9\t9\t0\t18\n")
+    line = _one_line_error(dpp(*command[:2 if command[0] == "plot" else 1], "--map", str(scen),
+                               *GRID, *command[2 if command[0] == "plot" else 1:]))
+    assert "a MovingAI scenario file (.scen), not a map" in line
+    assert "--map paper10.map" in line and f"dpp batch {scen}" in line
+
+
+@pytest.mark.parametrize("command", ["solve", "value", "certify", "export-efg"])
+def test_n_goals_with_connectivity_8_are_refused_in_option_terms(command: str) -> None:
+    line = _one_line_error(dpp(command, "--map", PAPER10, "--start", "9,0", "--goals", "0,9",
+                               "0,0", "9,9", "5,5", "--prior", "1/4,1/4,1/4,1/4",
+                               "--connectivity", "8",
+                               *{"certify": ["p.json"], "export-efg": ["-H", "2", "-o", "g.efg"]
+                                 }.get(command, [])))
+    assert "--connectivity 8" in line and "with 4 goals" in line and "--connectivity 4" in line
+    assert '"numbers"' not in line
 
 
 # ---------------------------------------------------------------- help and progress
@@ -343,3 +395,99 @@ def test_a_start_on_a_goal_is_solved_with_a_note(goals: list[str], prior: str) -
     assert len(r.stderr.splitlines()) == 1
     r = dpp("solve", "--map", PAPER10, *GRID)
     assert r.exit_code == 0 and r.stderr == ""
+
+
+# ---------------------------------------------------------------- plurals and numbers
+def test_one_example_is_singular() -> None:
+    from dppverify.audit.report import AuditReport
+
+    assert AuditReport(True, 1, 0, 0, None, None).summary().startswith(
+        "audit PASS: 1 example certified (seed 0")
+    assert "5 examples certified" in AuditReport(True, 5, 0, 0, None, None).summary()
+
+
+def test_one_rule_for_decimals_in_text() -> None:
+    """Every decimal shown beside an exact value has dppio.text.DIGITS significant digits,
+    in the checker's lines, the solver's summaries, the comparison table and the figures."""
+    from fractions import Fraction
+
+    from dppio.text import decimal
+    from dppverify.text import show_value
+    from solver.experiments.compare import _num
+    from solver.plots.style import num_label
+    from solver.twogoal.report import format_value
+
+    x = Fraction(71, 18)
+    assert decimal(x) == "3.944"
+    assert show_value(x) == format_value(x) == _num(x) == "71/18 (≈ 3.944)"
+    assert num_label(x) == "71/18 ≈ 3.944"
+    r = dpp("value", TRIANGLE, "-H", "2", "--route", "tree")
+    assert "(≈ 2.4)" in r.stdout and "LP value 2.4 " in r.stdout
+
+
+def test_no_format_spec_bypasses_the_decimal_rule() -> None:
+    """Decimals are formatted by dppio.text.decimal only: no f-string precision spec in the
+    packages (CSV data columns of dpp batch excepted: they are data, not text)."""
+    import re
+
+    spec = re.compile(r"\{[^{}]*:[<>^+ ]?[0-9]*\.[0-9]+[fgeF%]\}")
+    found = []
+    for pkg in ("solver", "dppverify", "dppio"):
+        for path in (ROOT / pkg).rglob("*.py"):
+            if path.name == "text.py" and path.parent.name == "dppio":
+                continue
+            for n, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+                if spec.search(line) and "_seconds=f" not in line and "seconds=f\"" not in line:
+                    found.append(f"{path.relative_to(ROOT)}:{n}: {line.strip()}")
+    assert not found, "\n".join(found)
+
+
+@pytest.mark.parametrize("name", ["map", "beliefs", "voi"])
+def test_plot_marks_its_output_required(name: str) -> None:
+    help_text = " ".join(dpp("plot", name, "--help").stdout.split())
+    assert "-o, --output FILE" in help_text and "[required]" in help_text
+    r = dpp("plot", name, *(["x.csv"] if name == "voi" else []))
+    assert r.exit_code == 2 and "Missing option '--output'" in r.stderr
+
+
+def test_plot_map_draws_an_n_goal_equilibrium_from_map_or_saved_instance(tmp_path: Path) -> None:
+    cells = ["--start", "9,0", "--goals", "0,9", "0,0", "9,9", "--prior", "1/2,1/3,1/6"]
+    r = dpp("plot", "map", "--map", PAPER10, *cells, "-o", str(tmp_path / "n3.png"))
+    assert r.exit_code == 0 and (tmp_path / "n3.png").stat().st_size > 10_000, r.output
+    inst = tmp_path / "i3.json"
+    assert dpp("solve", "--map", PAPER10, *cells, "-o", str(tmp_path / "p3.json"),
+               "--save-instance", str(inst)).exit_code == 0
+    r = dpp("plot", "map", str(inst), "-o", str(tmp_path / "i3.png"))
+    assert r.exit_code == 0 and (tmp_path / "i3.png").is_file(), r.output
+    line = _one_line_error(dpp("plot", "beliefs", "--map", PAPER10, *cells,
+                               "-o", str(tmp_path / "b.png")))
+    assert "this command takes two goals, got 3" in line
+    assert not (tmp_path / "b.png").exists()
+
+
+@pytest.mark.parametrize("goals", [["0,9", "0,0"], ["0,9", "0,0", "9,9"]])
+def test_plot_refuses_a_wrong_suffix_before_any_work(goals: list[str], tmp_path: Path,
+                                                     monkeypatch: pytest.MonkeyPatch) -> None:
+    import solver.coalitions.construction as construction
+    import solver.plots.grid as grid
+
+    def boom(*args: object, **kwargs: object) -> None:
+        raise AssertionError("solved before the output name was checked")
+
+    monkeypatch.setattr(construction, "coalition_equilibrium", boom)
+    monkeypatch.setattr(grid, "PairEvaluator", type("P", (), {"of": staticmethod(boom)}))
+    prior = "0.6,0.4" if len(goals) == 2 else "1/2,1/3,1/6"
+    line = _one_line_error(dpp("plot", "map", "--map", PAPER10, "--start", "9,0", "--goals",
+                               *goals, "--prior", prior, "-o", str(tmp_path / "m.txt")))
+    assert line.endswith("m.txt: the output file must end in .png, .svg or .pdf")
+
+
+def test_plot_map_of_a_graph_that_is_no_grid_is_one_line() -> None:
+    import tempfile
+
+    from dppverify.game.examples import star3_document
+    with tempfile.TemporaryDirectory() as d:
+        path = Path(d) / "star3.json"
+        path.write_text(json.dumps(star3_document()))
+        line = _one_line_error(dpp("plot", "map", str(path), "-o", str(Path(d) / "s.png")))
+    assert "map figures need a grid instance" in line

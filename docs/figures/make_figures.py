@@ -32,6 +32,8 @@ FIGURES = {  # name: dpp arguments (without -o)
     "paper10_beliefs": ["plot", "beliefs"],
     "voi_density": ["plot", "voi", "{density}"],
     "berlin_map": ["plot", "map", *BERLIN],
+    "paper10_map_n3": ["plot", "map", "--map", "examples/paper10.map", "--start", "9,0",
+                       "--goals", "0,9", "0,0", "9,9", "--prior", "1/2,1/3,1/6"],
 }
 EXTRA = ["ngoal_goals.png", "ngoal_maps.png", "baselines.png", "field_metrics.png"]
 BASELINES = ["baselines.png", "field_metrics.png"]  # written by `dpp experiment baselines`

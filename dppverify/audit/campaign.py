@@ -77,7 +77,8 @@ def audit_instances(*, max_nodes: int = 8) -> st.SearchStrategy[Doc]:
     >>> len(doc["graph"]["nodes"]), doc["prior"]
     (2, ['1/2', '1/2'])
     """
-    if isinstance(max_nodes, bool) or not isinstance(max_nodes, int) or max_nodes < 2:
+    given: object = max_nodes  # checked as given, whatever its type
+    if isinstance(given, bool) or not isinstance(given, int) or given < 2:
         raise AuditError(f"max_nodes={max_nodes!r} must be an integer >= 2")
     extra = 2 * max_nodes
     # about 40% exactly 1/2 (the tie of footnote 2), shrinking to it
@@ -251,8 +252,7 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
         try:
             outcome = examine(runner, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
         except TreeTooLargeError:
-            reject()
-            return
+            reject()  # raises: hypothesis discards the example
         if outcome.passed or outcome.identity != found[0].identity:
             return  # another failure: shrinking stays on the first one (as hypothesis)
         record(outcome)

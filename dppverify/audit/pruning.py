@@ -8,8 +8,10 @@ so both draw on one :class:`ShrinkBudget` (solver calls and seconds).
 from __future__ import annotations
 
 import json
+import math
 import time
 from collections.abc import Callable
+from fractions import Fraction
 from typing import Any
 
 from dppverify.audit.defaults import (
@@ -42,7 +44,8 @@ class ShrinkBudget:
 
     def __init__(self, *, calls: int = DEFAULT_SHRINK_CALLS,
                  seconds: float = DEFAULT_SHRINK_SECONDS) -> None:
-        if isinstance(calls, bool) or not isinstance(calls, int) or calls < 0:
+        given: object = calls  # checked as given, whatever its type
+        if isinstance(given, bool) or not isinstance(given, int) or given < 0:
             raise AuditError(f"shrink calls={calls!r} must be a non-negative integer")
         if not seconds >= 0:
             raise AuditError(f"shrink seconds={seconds!r} must be non-negative")
@@ -73,6 +76,37 @@ class ShrinkBudget:
         return f"{self.calls} solver calls or {self.seconds:g} s"
 
 
+def simpler_graphs(graph: Doc) -> list[Doc]:
+    """The graphs one simplification away, towards small undirected unit-weight graphs
+    (docs/audit.md): undirected (if directed; of two opposite arcs the lighter is kept), every
+    weight 1, then one edge's weight rounded up to an integer, or set to 1.
+
+    Examples
+    --------
+    >>> g = {"directed": True, "nodes": [{"id": 0}, {"id": 1}],
+    ...      "edges": [{"source": 0, "target": 1, "weight": "3/2"}]}
+    >>> [(s["directed"], [e["weight"] for e in s["edges"]]) for s in simpler_graphs(g)]
+    [(False, ['3/2']), (True, [1]), (True, [2]), (True, [1])]
+    """
+    out: list[Doc] = []
+    edges = graph["edges"]
+    if graph.get("directed"):
+        lightest: dict[frozenset[str], dict[str, Any]] = {}
+        for e in edges:
+            key = frozenset((json.dumps(e["source"]), json.dumps(e["target"])))
+            if key not in lightest or (Fraction(str(e.get("weight", 1)))
+                                       < Fraction(str(lightest[key].get("weight", 1)))):
+                lightest[key] = e
+        out.append({**graph, "directed": False, "edges": list(lightest.values())})
+    if any(e.get("weight", 1) != 1 for e in edges):
+        out.append({**graph, "edges": [{**e, "weight": 1} for e in edges]})
+    for k, e in enumerate(edges):
+        w = Fraction(str(e.get("weight", 1)))
+        for simpler in sorted({math.ceil(w), 1} - {w}, reverse=True):
+            out.append({**graph, "edges": [*edges[:k], {**e, "weight": simpler}, *edges[k + 1:]]})
+    return out
+
+
 def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome, *,
                   max_prefixes: int = AUDIT_MAX_PREFIXES, trials: int = AUDIT_TRIALS,
                   seed: int = 0, budget: ShrinkBudget | None = None,
@@ -83,9 +117,10 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
 
     Hypothesis shrinks the *draws*, which often leaves nodes the failure does not need (the
     node count is drawn first). This greedy pass removes, one at a time, every node other
-    than the start and the goals (with its edges), then every edge, keeping a removal when
-    the instance stays valid and the solver's answer still fails the same check; it repeats
-    until nothing can be removed or the ``budget`` is spent. ``on_improve`` is called with
+    than the start and the goals (with its edges), then every edge, then tries the simpler
+    graphs of :func:`simpler_graphs` (undirected, integer and unit weights), keeping a change
+    when the instance stays valid and the solver's answer still fails the same check; it
+    repeats until nothing changes or the ``budget`` is spent. ``on_improve`` is called with
     every smaller failure. Returns the pruned outcome and the solver calls spent.
 
     Examples
@@ -137,6 +172,7 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
             candidates.append({**graph, "nodes": nodes, "edges": edges})
         for edge in graph["edges"]:
             candidates.append({**graph, "edges": [e for e in graph["edges"] if e is not edge]})
+        candidates += simpler_graphs(graph)
         for smaller_graph in candidates:
             smaller = attempt({**best.instance, "graph": smaller_graph})
             if smaller is not None:
@@ -144,6 +180,6 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
                 if on_improve is not None:
                     on_improve(best)
                 break
-            if budget.exhausted:
-                break
+            if budget.exhausted:  # attempt() spent from it (mypy keeps the loop's narrowing)
+                break  # type: ignore[unreachable]
     return best, calls

@@ -23,6 +23,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+from dppio.text import count
 from dppverify.audit.examine import Outcome
 from dppverify.formats.files import OutputError, write_files
 
@@ -92,19 +93,20 @@ class AuditReport:
             return self._source_summary(skipped)
         if self.passed:
             note = f"; {self.note}" if self.note else ""
-            return (f"audit PASS: {self.examples} examples certified{skipped} "
-                    f"(seed {self.seed}, at most {self.max_nodes} nodes{note})")
+            return (f"audit PASS: {count(self.examples, 'example')} certified{skipped} "
+                    f"(seed {self.seed}, at most {count(self.max_nodes, 'node')}{note})")
         how = self._how("shrinking", "shrunk")
-        return (f"audit FAIL after {self.examples} examples{skipped} (seed {self.seed}; "
+        return (f"audit FAIL after {count(self.examples, 'example')}{skipped} (seed {self.seed}; "
                 f"{how}): {self._message()}")
 
     def _source_summary(self, skipped: str) -> str:
         """The summary of an audit on the user's own instances (``source`` set)."""
         if self.passed:
-            return f"audit PASS: {self.examples} instances of {self.source} certified{skipped}"
+            return (f"audit PASS: {count(self.examples, 'instance')} of {self.source} "
+                    f"certified{skipped}")
         how = self._how("pruning", "pruned")
-        return (f"audit FAIL after {self.examples} instances of {self.source}{skipped} ({how}): "
-                f"{self._message()}")
+        return (f"audit FAIL after {count(self.examples, 'instance')} of {self.source}{skipped} "
+                f"({how}): {self._message()}")
 
     def _message(self) -> str:
         """The failure's one line (``?`` if none is recorded)."""
@@ -116,8 +118,8 @@ class AuditReport:
         if not self.shrunk:
             return "no shrinking"
         if self.budget_exhausted:
-            return f"{doing} stopped at its budget after {self.shrink_calls} solver calls"
-        return f"{done} with {self.shrink_calls} more solver calls"
+            return f"{doing} stopped at its budget after {count(self.shrink_calls, 'solver call')}"
+        return f"{done} with {count(self.shrink_calls, 'more solver call')}"
 
 
 def format_report(report: AuditReport) -> str:
@@ -138,7 +140,7 @@ def format_report(report: AuditReport) -> str:
     >>> report = run_audit(lambda doc: 1 / 0, examples=5, shrink=False,
     ...                    strategy=st.just(triangle_document()))
     >>> print(format_report(report))  # doctest: +ELLIPSIS
-    audit FAIL after 1 examples (seed 0; no shrinking): the solver raised ZeroDivisionError: ...
+    audit FAIL after 1 example (seed 0; no shrinking): the solver raised ZeroDivisionError: ...
     failing check: solver.error
     raised: ZeroDivisionError@...
     failing instance: {"graph": {"nodes": [{"id": "s"}, ...], "prior": ["7/10", "3/10"]}

@@ -242,7 +242,7 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], 
     >>> with PythonRunner(lambda doc: triangle_profile(), timeout=30) as run:
     ...     report = audit_documents(run, [("t", triangle_document())], source="mine")
     >>> report.passed, report.summary()
-    (True, 'audit PASS: 1 instances of mine certified')
+    (True, 'audit PASS: 1 instance of mine certified')
     """
     from tqdm import tqdm
 

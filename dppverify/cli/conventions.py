@@ -16,6 +16,7 @@ from __future__ import annotations
 import functools
 import json
 import sys
+import threading
 from collections.abc import Callable
 from typing import Any, TypeVar
 
@@ -144,8 +145,11 @@ def output_file_option(help: str, *, required: bool = False,
     def decorate(fn: F) -> F:
         if deprecated is not None:
             fn = _with_deprecated_alias(fn, "output", deprecated, "--output", required, kind)
+        # with the deprecated alias the wrapper enforces `required` (either spelling counts),
+        # so the help says it as click does for a required option
+        shown = f"{help}  [required]" if required and deprecated is not None else help
         return click.option("-o", "--output", "output", type=kind,
-                            required=required and deprecated is None, help=help)(fn)
+                            required=required and deprecated is None, help=shown)(fn)
 
     return decorate
 
@@ -189,29 +193,53 @@ class PhaseBar:
     once and naming the current phase with the elapsed time (the phases' own bars, if any,
     appear below it). Does nothing when ``show`` is False.
 
+    The elapsed time keeps counting during a long phase: a daemon thread redraws the line
+    every ``interval`` seconds until :meth:`close` (a phase that computes for minutes
+    without a bar of its own no longer shows a frozen ``[00:05]``).
+
     Examples
     --------
     >>> bar = PhaseBar(False, "solve", "reading the instance")
     >>> bar.phase("solving"); bar.close()
     """
 
-    def __init__(self, show: bool, command: str, first: str) -> None:
+    def __init__(self, show: bool, command: str, first: str, *,
+                 interval: float = 1.0) -> None:
         self.command = command
         self.bar: Any = None
+        self._stop = threading.Event()
+        self._lock = threading.Lock()
+        self._ticker: threading.Thread | None = None
         if show:
             from tqdm import tqdm
 
             self.bar = tqdm(total=None, desc=f"{command}: {first}", file=sys.stderr,
                             leave=False, bar_format="{desc} [{elapsed}]")
             self.bar.refresh()
+            self._ticker = threading.Thread(target=self._tick, args=(interval,),
+                                            name="PhaseBar", daemon=True)
+            self._ticker.start()
+
+    def _tick(self, interval: float) -> None:
+        """Redraw the line (its elapsed time) until :meth:`close`."""
+        while not self._stop.wait(interval):
+            with self._lock:
+                if self.bar is not None:
+                    self.bar.refresh()
 
     def phase(self, name: str) -> None:
         """Name the next phase."""
-        if self.bar is not None:
-            self.bar.set_description_str(f"{self.command}: {name}")
+        with self._lock:
+            if self.bar is not None:
+                self.bar.set_description_str(f"{self.command}: {name}")
 
     def close(self) -> None:
-        """Remove the line (idempotent)."""
-        if self.bar is not None:
-            self.bar.close()
-            self.bar = None
+        """Stop the clock and remove the line (idempotent)."""
+        self._stop.set()
+        if self._ticker is not None:
+            self._ticker.join()
+            self._ticker = None
+        with self._lock:
+            if self.bar is not None:
+                self.bar.close()
+                self.bar = None

@@ -43,7 +43,8 @@ def what_is(path: str | Path) -> str | None:
     >>> for name, text in (("a.map", "type octile\\nheight 1\\nwidth 1\\nmap\\n.\\n"),
     ...                    ("p.json", '{"format": "dpp-profile/1", "goals": {}}'),
     ...                    ("i.json", '{"graph": {"nodes": []}, "start": 0}')):
-    ...     _ = open(os.path.join(d, name), "w").write(text)
+    ...     with open(os.path.join(d, name), "w") as f:
+    ...         _ = f.write(text)
     ...     print(name, what_is(os.path.join(d, name)))
     a.map map
     p.json dpp-profile/1

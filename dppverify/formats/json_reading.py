@@ -29,7 +29,7 @@ import json
 import math
 from collections.abc import Hashable, Mapping, Sequence
 from fractions import Fraction
-from numbers import Rational
+from numbers import Integral, Rational
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -247,7 +247,7 @@ def parse_number(value: object, *, where: str, allow_float: bool = False) -> Num
     if isinstance(value, Rational):
         exact = normalize(Fraction(int(value.numerator), int(value.denominator)))
         check_rational(exact, where=where)
-        if allow_float and not isinstance(value, int):
+        if allow_float and not isinstance(value, Integral):
             return float(exact)
         return exact
     if isinstance(value, float):

@@ -61,8 +61,10 @@ def as_instance(instance: Any, *, two_goals: bool = False) -> Instance:
         Read exactly two goals (as :func:`instance_from_json`); an :class:`Instance` given
         as is must then have two goals.
 
-    Raises :class:`InvalidInstanceError` when the input is none of these, or not a valid
-    instance.
+    Raises
+    ------
+    InvalidInstanceError
+        The input is none of these, or not a valid instance.
 
     Examples
     --------

@@ -10,7 +10,6 @@ N-goal rules (:func:`read_goals`, :func:`read_prior`), the distances to the goal
 
 from __future__ import annotations
 
-import json
 import weakref
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
@@ -20,6 +19,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from dppio.limits import check_float_weights
+from dppio.text import json_shown
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import INF, normalize
 from dppverify.formats.json_reading import Node, node_from_json, parse_number, show_node
@@ -195,7 +195,7 @@ def read_goals(raw: Any, index: Mapping[Node, int], ids: Sequence[Node], two_goa
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: goals: the two goals must differ, both are "b"
     """
-    shown = json.dumps(raw, default=str)
+    shown = json_shown(raw)
     if two_goals:
         # a reader that asked for two goals refuses more (docs/formats.md §1)
         require(not (isinstance(raw, list) and len(raw) > 2),
@@ -250,9 +250,9 @@ def read_prior(raw: Any, n: int, two_goals: bool) -> tuple[Fraction, ...]:
     dppverify.errors.InvalidInstanceError: prior: must sum to exactly 1, got 1/2 + 1/3 = 5/6
     """
     require(isinstance(raw, list) and len(raw) == n,
-            f"prior: must be a list of two numbers, got {json.dumps(raw, default=str)}"
+            f"prior: must be a list of two numbers, one per goal, got {json_shown(raw)}"
             if two_goals else f"prior: must be a list of {n} numbers (one per goal), got "
-                               f"{json.dumps(raw, default=str)}")
+                               f"{json_shown(raw)}")
     p = [Fraction(parse_number(x, where=f"prior[{i}]")) for i, x in enumerate(raw)]
     for i, x in enumerate(p):
         require(0 < x < 1, f"prior[{i}]: must lie strictly between 0 and 1, got {x}")

@@ -153,8 +153,9 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
     >>> [str(d) for d in profile_from_json(bad, star3()).defects]
     ['attacker: must be a list of 3 mixed strategies (one per goal), got 2']
     """
-    if fmt == NGOAL_PROFILE_FORMAT or (fmt is None and isinstance(doc, Mapping)
-                                       and doc.get("format") == NGOAL_PROFILE_FORMAT):
+    given: object = doc  # a parsed JSON value, checked as given
+    if fmt == NGOAL_PROFILE_FORMAT or (fmt is None and isinstance(given, Mapping)
+                                       and given.get("format") == NGOAL_PROFILE_FORMAT):
         return _ngoal_profile(doc, instance)
     check_format(doc)
     tol = tolerance or EXACT

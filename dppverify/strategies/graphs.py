@@ -82,7 +82,8 @@ def _fraction_json(x: Fraction) -> int | str:
 
 def _positive_weight(w: object) -> Any:
     """Check a user-supplied weight and encode it for JSON."""
-    if isinstance(w, bool) or not isinstance(w, Real | str):
+    number_like = isinstance(w, Real | str) and not isinstance(w, bool)  # w stays `object`
+    if not number_like:
         raise InvalidArgument(f"weights strategy produced {w!r}, not a number")
     try:
         value = Fraction(str(w)) if not isinstance(w, Fraction) else w
@@ -207,10 +208,11 @@ def _key(x: Any) -> Hashable:
 class Adjacency:
     """Successor/predecessor sets of a node-link dict (node positions as indices)."""
 
-    def __init__(self, graph: Doc) -> None:
-        nodes = graph.get("nodes") if isinstance(graph, dict) else None
-        if not isinstance(nodes, list) or len(nodes) < 2:
+    def __init__(self, graph: object) -> None:  # whatever a user's strategy drew
+        if not (isinstance(graph, dict) and isinstance(graph.get("nodes"), list)
+                and len(graph["nodes"]) >= 2):
             raise InvalidArgument("graphs must produce node-link dicts with at least 2 nodes")
+        nodes = graph["nodes"]
         self.ids = [nd["id"] for nd in nodes]
         self.index = {_key(v): i for i, v in enumerate(self.ids)}
         self.directed = bool(graph.get("directed", False))

@@ -65,8 +65,9 @@ def grid_worlds(
     lo = check_int(min_size, "min_size", 2 if avoid_other_goal else 1)
     hi = check_int(max_size, "max_size", lo)
     cells = hi * hi if max_cells is None else check_int(max_cells, "max_cells", 1)
-    if (isinstance(max_density, bool) or not isinstance(max_density, Real)
-            or not 0 <= max_density < 1):
+    density: object = max_density  # checked as given, whatever its type
+    if (isinstance(density, bool) or not isinstance(density, Real)
+            or not 0 <= float(density) < 1):
         raise InvalidArgument(f"max_density={max_density!r} must lie in [0, 1)")
     need = 3 if avoid_other_goal else 2
     shapes = {r: (max(lo, -(-need // r)), min(hi, cells // r)) for r in range(lo, hi + 1)}

@@ -41,7 +41,7 @@ __all__ = ["Arc", "DirectionCheck", "certified_coalition_dp", "direction_checks"
 
 @dataclass(frozen=True)
 class DirectionCheck:
-    """The arc test for one direction ``y``: cover table of ``s·y`` and the ``λ``s.
+    """The arc test for one direction ``y``: cover table of ``s·y`` and the ``λ`` values.
 
     Attributes
     ----------
@@ -52,7 +52,7 @@ class DirectionCheck:
     lams : numpy.ndarray
         ``(n_lambda, |M|)``: ``lam_lcm · λ`` for every packing vertex ``λ`` with ``y_λ = y``.
     lam_lcm : int
-        The common denominator of the ``λ``s.
+        The common denominator of the ``λ`` values.
     y : tuple of Fraction
         The direction.
     """

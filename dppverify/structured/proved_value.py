@@ -296,7 +296,7 @@ def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = 
         try:
             val, layers_g, fails = normal_dp_value(inst, extras, horizon, cap, start)
         except (HorizonError, BeyondExactRange) as exc:
-            reason += f"; the refined DP: {exc or 'numbers beyond exact float64 range'}"
+            reason += f"; the refined DP: {str(exc) or 'numbers beyond exact float64 range'}"
             break
         if val < upper:
             upper, layers, up_normals = val, layers_g, tuple(extras)

@@ -35,6 +35,7 @@ import dataclasses
 from collections.abc import Mapping
 from fractions import Fraction
 
+from dppio.text import decimal
 from dppverify.certificate import CheckRecord, Status
 from dppverify.errors import HorizonError, LPError
 from dppverify.exact import Number, normalize
@@ -184,7 +185,7 @@ def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
                                        "V_H_lp": lp.value, "U": u}
     status: Status
     if bracket.closed and bracket.exact == u:
-        status, msg = "pass", f"V_H = {bracket.exact} = U (LP {lp.value:.10g})"
+        status, msg = "pass", f"V_H = {bracket.exact} = U (LP {decimal(lp.value)})"
     elif bracket.lower > u or bracket.upper < u:
         status, msg = "fail", f"V_H in [{bracket.lower}, {bracket.upper}] excludes U = {u}"
     else:
@@ -205,7 +206,7 @@ def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
         "game.value.structured", "pass" if agree else "error",
         f"{said} agrees with the tree route" if agree else
         f"{said} disagrees with the tree route [{bracket.lower}, {bracket.upper}] "
-        f"(LP {lp.value:.10g}): a bug — please keep this instance",
+        f"(LP {decimal(lp.value)}): a bug — please keep this instance",
         {"V_H_structured_lower": sv.lower, "V_H_structured_upper": sv.upper}, PROOF))
     return _tagged(checks), tree
 

@@ -9,6 +9,7 @@ from typing import Any
 
 import click
 
+from dppio.text import count
 from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
 from dppverify.cli.interrupts import Terminated, exit_code, message
 from dppverify.errors import CheckerError
@@ -73,7 +74,7 @@ def merge_command(shards: tuple[str, ...], output: str) -> None:
         raise OutputError(f"-o {output!r} is a directory")
     rows = merge_shards(shards, output)
     click.echo(summarize_file(output))
-    status(f"wrote {output}: {rows} rows from {len(shards)} shard{'s' if len(shards) != 1 else ''}")
+    status(f"wrote {output}: {count(rows, 'row')} from {count(len(shards), 'shard')}")
 
 
 class _BatchCommand(click.Command):
@@ -179,7 +180,7 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
     finally:
         bar.close()
     click.echo(result.summary)
-    status(f"wrote {output}: {result.written} rows now, {result.rows} in the file")
+    status(f"wrote {output}: {count(result.written, 'row')} now, {result.rows} in the file")
     raise click.exceptions.Exit(result.exit_code)
 
 

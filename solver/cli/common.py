@@ -121,8 +121,10 @@ START_IS_GOAL = ("note: the start is a goal: the game ends before any step (T = 
 
 
 def experiment_instance(instance: str | None, grid: MapRequest | None,
-                         command: str = "dpp experiment compare") -> Instance:
-    """INSTANCE, the --map grid, or (neither given) the bundled 10x10 map of the paper.
+                        command: str = "dpp experiment compare", *,
+                        two_goals: bool = True) -> Instance:
+    """INSTANCE, the --map grid, or (neither given) the bundled 10x10 map of the paper (two
+    goals unless ``two_goals=False``).
 
     Examples
     --------
@@ -134,7 +136,7 @@ def experiment_instance(instance: str | None, grid: MapRequest | None,
         from solver.experiments.compare import paper10_instance
 
         return paper10_instance()
-    return load_instance(instance, grid, command)
+    return load_instance(instance, grid, command, two_goals=two_goals)
 
 
 def int_list(text: str, what: str) -> tuple[int, ...]:

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from dppio.files import refuse_input_as_output, write_files
+from dppio.text import decimal
 from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.cli.map_options import _CellsOption as CellsOption
 from solver.cli.common import dumps
@@ -200,12 +201,12 @@ def _equilibria(placed: Placed, max_goals: int, as_json: bool,
             return str(cert.verdict)
 
         def show(r: Any) -> None:
-            u = "-" if r.U is None else f"{float(r.U):<9.4f}"
-            voi = "-" if r.VoI is None else f"{float(r.VoI):<6.4f}"
-            dec = "-" if r.deception is None else f"{float(r.deception):<9.4f}"
+            u = "-" if r.U is None else decimal(r.U)
+            voi = "-" if r.VoI is None else decimal(r.VoI)
+            dec = "-" if r.deception is None else decimal(r.deception)
             echo(f"{r.map_name:<16} {r.n_goals}  {r.prior_kind:<6}  {u:<9}  "
-                 f"{float(r.U_bar):<9.4f}  {voi:<6}  {dec:<9}  {r.certified:<9}  "
-                 f"{r.solve_seconds + r.certify_seconds:.2f}")
+                 f"{decimal(r.U_bar):<9}  {voi:<6}  {dec:<9}  {r.certified:<9}  "
+                 f"{decimal(r.solve_seconds + r.certify_seconds)}")
             done[0] += 1
             if progress:
                 status(f"experiment ngoal: {done[0]}/{total} games done")
@@ -234,9 +235,9 @@ def _values(placed: Placed, max_goals: int, as_json: bool,
         echo(f"# {where[-1]}")
 
         def show(r: Any) -> None:
-            echo(f"{r.map_name:<16} {r.n_goals}  {r.prior_kind:<6}  {float(r.value):<9.4f}  "
-                 f"{float(r.complete):<9.4f}  {float(r.voi):<7.4f}  {r.layers:<6}  "
-                 f"{r.seconds:<7.2f}  {'yes' if r.exact else 'no (V: upper bound)'}")
+            echo(f"{r.map_name:<16} {r.n_goals}  {r.prior_kind:<6}  {decimal(r.value):<9}  "
+                 f"{decimal(r.complete):<9}  {decimal(r.voi):<7}  {r.layers:<6}  "
+                 f"{decimal(r.seconds):<7}  {'yes' if r.exact else 'no (V: upper bound)'}")
 
         rows += value_series(start, goals, checker_valuer(grid), map_name=name,
                              max_goals=max_goals, progress=show)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
 import click
 
 from dppio.files import read_text, refuse_input_as_output
@@ -12,9 +14,12 @@ from dppverify.cli.conventions import (
     status,
     want_progress,
 )
-from dppverify.cli.map_options import MapRequest, map_options
+from dppverify.cli.map_options import MapRequest, map_options, two_goal_map_options
 from solver.cli.common import experiment_instance
 from solver.errors import InvalidInstanceError, OutputError
+
+if TYPE_CHECKING:
+    from solver.game.instance import Instance
 
 __all__ = ["plot_group"]
 
@@ -39,12 +44,16 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
 
     INSTANCE is a grid instance: a --map grid, or the instance JSON that
     `dpp solve --map ... --save-instance FILE` writes. Without either: the bundled 10x10 map.
+    With N > 2 goals: each type's walks of the N-goal equilibrium (dpp solve's), coloured by
+    type, and the Defender's sigma over the goals along each type's walk (no baselines).
 
     \b
     Examples:
       dpp plot map -o map.pdf
       dpp plot map --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4 -o m.png
       dpp plot map room.json -o room.pdf --no-baselines
+      dpp plot map --map examples/paper10.map --start 9,0 --goals 0,9 0,0 9,9 \\
+                   --prior 1/2,1/3,1/6 -o paper10-n3.png
     """
     from solver.plots import plot_map, save_figure
 
@@ -52,7 +61,15 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
                            error=OutputError)
     bar = PhaseBar(want_progress(progress), "plot map", "reading the instance")
     try:
-        inst = experiment_instance(instance, grid, "dpp plot map")
+        inst = experiment_instance(instance, grid, "dpp plot map", two_goals=False)
+        if inst.n_goals > 2:
+            bar.close()
+            _plot_ngoal_map(inst, grid.game() if grid is not None else instance, output,
+                            want_progress(progress))
+            return
+        from solver.plots.style import check_suffix  # matplotlib: not at start-up
+
+        check_suffix(output)  # after the inputs' mistakes, before the work
         bar.phase("solving and drawing")
         files = save_figure(plot_map(inst, baselines=not no_baselines), output)
     finally:
@@ -60,9 +77,41 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     status("wrote " + ", ".join(map(str, files)))
 
 
+def _plot_ngoal_map(game: Instance, checked: Any, output: str, progress: bool) -> None:
+    """The N-goal figure of what ``dpp solve`` writes: the construction, certified by the
+    checker on the untruncated game (else one line, exit 3, nothing drawn), then drawn."""
+    from dppverify.certify import certify as certify_profile
+    from solver.coalitions.construction import coalition_equilibrium
+    from solver.plots import plot_ngoal_map, save_figure
+    from solver.plots.grid import grid_array
+    from solver.plots.style import check_suffix
+
+    grid_array(game)  # a grid game, or one line before any work
+    check_suffix(output)
+    bar = PhaseBar(progress, "plot map", f"solving ({game.n_goals} goals)")
+    try:
+        eq = coalition_equilibrium(game)
+        bar.phase("certifying (structured route, H = inf)")
+        cert = certify_profile(checked, eq.to_json(), horizon="inf",
+                               route="structured")
+        if cert.verdict != "pass":
+            raise click.ClickException("")  # reported below, after the bar is gone
+        bar.phase("drawing")
+        files = save_figure(plot_ngoal_map(eq), output)
+    except click.ClickException:
+        bar.close()
+        click.echo("error: the coalition construction does not give a certified equilibrium "
+                   "on this instance; nothing drawn (dpp value gives the game's value, or an "
+                   "exact bracket)", err=True)
+        raise click.exceptions.Exit(3) from None
+    finally:
+        bar.close()
+    status("wrote " + ", ".join(map(str, files)))
+
+
 @plot_group.command("beliefs", short_help="Beliefs and expected allocation along the walks.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
-@map_options
+@two_goal_map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--defender", type=click.Choice(["sigma*", "sigma'"]), default="sigma*",
               show_default=True, help="Defender for the allocation panels.")
@@ -83,6 +132,9 @@ def plot_beliefs_command(instance: str | None, grid: MapRequest | None,
     bar = PhaseBar(want_progress(progress), "plot beliefs", "reading the instance")
     try:
         inst = experiment_instance(instance, grid, "dpp plot beliefs")
+        from solver.plots.style import check_suffix  # matplotlib: not at start-up
+
+        check_suffix(output)  # after the inputs' mistakes, before the work
         bar.phase("solving and drawing")
         files = save_figure(plot_beliefs(inst, defender=defender), output)
     finally:

@@ -10,6 +10,7 @@ import click
 
 from dppio.files import refuse_input_as_output, write_files
 from dppio.inputs import is_stdin
+from dppio.text import decimal
 from dppverify.cli.conventions import (
     PhaseBar,
     output_file_option,
@@ -135,8 +136,8 @@ def _write_outputs(output: str | None, profile: str, save_instance: str | None,
 
 
 def _values_line(doc: dict[str, Any], n_goals: int) -> str:
-    """The line on stderr after ``-o``: the value and VoI (float mode: 10 digits)."""
-    u, voi = (f"{x:.10g}" if isinstance(x, float) else str(x)
+    """The line on stderr after ``-o``: the value and VoI (float mode: dppio.text.decimal)."""
+    u, voi = (decimal(x) if isinstance(x, float) else str(x)
               for x in (doc["value"]["U"], doc["value"]["VoI"]))
     if n_goals == 2:
         return f"U* = {u}, VoI* = {voi}"

@@ -26,6 +26,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+from dppio.text import decimal
 from solver.experiments.compare import paper10_instance
 from solver.experiments.density import DensityConfig
 from solver.experiments.field_metrics import (
@@ -152,7 +153,7 @@ def summary_table(rows: Sequence[BaselineRow]) -> str:
     Examples
     --------
     >>> print(summary_table(run_baselines(instances(1, (), ()))).splitlines()[2])
-    | paper10 | 1 | γ* | 0.2273 | 0.2727 | +0.0000 | +0.0455 | 1/1 |
+    | paper10 | 1 | γ* | 0.2273 | 0.2727 | 0 | +0.04545 | 1/1 |
     """
     head = ("| set | n | Attacker | VoI vs σ* | VoI vs σ' | γ* − it (vs σ*) | σ' − σ* "
             "| σ' concedes more |")
@@ -167,9 +168,10 @@ def summary_table(rows: Sequence[BaselineRow]) -> str:
             eq = [by[(n, "sigma*", "gamma*")] for n in names]
             gap = [e - s for e, s in zip(eq, star, strict=True)]
             worse = sum(1 for s, x in zip(star, alt, strict=True) if x > s)
-            lines.append(f"| {setting} | {len(names)} | {LABELS[a]} | {_mean(star):.4f} | "
-                         f"{_mean(alt):.4f} | {_mean(gap):+.4f} | "
-                         f"{_mean(alt) - _mean(star):+.4f} | {worse}/{len(names)} |")
+            lines.append(f"| {setting} | {len(names)} | {LABELS[a]} | {decimal(_mean(star))} | "
+                         f"{decimal(_mean(alt))} | {decimal(_mean(gap), sign=True)} | "
+                         f"{decimal(_mean(alt) - _mean(star), sign=True)} | "
+                         f"{worse}/{len(names)} |")
     return "\n".join(lines)
 
 
@@ -182,7 +184,7 @@ def worst_case_table(rows: Sequence[BaselineRow]) -> str:
     Examples
     --------
     >>> print(worst_case_table(run_baselines(instances(1, (), ()))).splitlines()[2])
-    | paper10 | 1 | 0.2273 | 0.5000 | +0.2727 | 1/1 | 0/1 |
+    | paper10 | 1 | 0.2273 | 0.5 | +0.2727 | 1/1 | 0/1 |
     """
     lines = ["| set | n | worst VoI vs σ* | worst VoI vs σ' | difference | σ' worse | σ' better |",
              "|---|---:|---:|---:|---:|---|---|"]
@@ -195,8 +197,9 @@ def worst_case_table(rows: Sequence[BaselineRow]) -> str:
         alt = [worst[(n, "sigma'")] for n in names]
         more = sum(1 for s, x in zip(star, alt, strict=True) if x > s)
         less = sum(1 for s, x in zip(star, alt, strict=True) if x < s)
-        lines.append(f"| {setting} | {len(names)} | {_mean(star):.4f} | {_mean(alt):.4f} | "
-                     f"{_mean(alt) - _mean(star):+.4f} | {more}/{len(names)} | "
+        lines.append(f"| {setting} | {len(names)} | {decimal(_mean(star))} | "
+                     f"{decimal(_mean(alt))} | "
+                     f"{decimal(_mean(alt) - _mean(star), sign=True)} | {more}/{len(names)} | "
                      f"{less}/{len(names)} |")
     return "\n".join(lines)
 
@@ -210,7 +213,7 @@ def field_table(rows: Sequence[BaselineRow]) -> str:
     Examples
     --------
     >>> print(field_table(run_baselines(instances(1, (), ()))).splitlines()[2])
-    | paper10 | 1 | γ* | 1.1333 | 0.5245 | 1.0000 | 0.00 | 0.00 | 0.60 | 0.60 | 1.00 | 1.00 |
+    | paper10 | 1 | γ* | 1.133 | 0.5245 | 1 | 0 | 0 | 0.6 | 0.6 | 1 | 1 |
     """
     head = ("| set | n | Attacker | cost ratio | LDP | density | "
             + " | ".join(f"truthful {p} %" for p in PERCENTS) + " |")
@@ -226,8 +229,8 @@ def field_table(rows: Sequence[BaselineRow]) -> str:
                     _mean_any([m.deceptive_density for m in ms])]
             truth = [_mean_any([m.truthful[i] for m in ms]) for i in range(len(PERCENTS))]
             lines.append(f"| {setting} | {len(ms)} | {LABELS[a]} | "
-                         + " | ".join(f"{x:.4f}" for x in mean) + " | "
-                         + " | ".join(f"{x:.2f}" for x in truth) + " |")
+                         + " | ".join(decimal(x) for x in mean) + " | "
+                         + " | ".join(decimal(x) for x in truth) + " |")
     return "\n".join(lines)
 
 
@@ -318,8 +321,10 @@ def plot_baselines(rows: Sequence[BaselineRow]) -> Any:
     handles = [Patch(facecolor="white", edgecolor="black", label="Defender σ*"),
                Patch(facecolor="white", edgecolor="black", hatch="//", label="Defender σ'"),
                plt.Line2D([], [], color="black", linestyle="--", label="PBNE value (σ*, γ*)")]
-    axes[0][-1].legend(handles=handles, loc="upper right", fontsize=8)
-    fig.tight_layout()
+    # below the panels, never over a bar (the tallest bars reach the panels' top)
+    fig.tight_layout(rect=(0, 0.09, 1, 1))
+    fig.legend(handles=handles, loc="lower center", ncol=3, frameon=False, fontsize=9,
+               bbox_to_anchor=(0.5, 0.0))
     return fig
 
 

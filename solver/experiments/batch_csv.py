@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from dppio.files import open_input
+from dppio.text import count, decimal
 from solver.errors import InvalidInstanceError
 from solver.literature.path_metrics import METRIC_FIELDS
 
@@ -216,8 +217,8 @@ class BatchTally:
     >>> t = BatchTally()
     >>> t.add(RowInfo(2, "ok", "pass", 0.25, 0.5, 1.0)); t.add(RowInfo(3, "error", reason="x"))
     >>> t.summary()
-    '2 rows: 1 ok (verdict pass 1), 1 error (first: line 3: x); mean VoI 0.2500; solve 0.50 s, \
-certify 1.00 s in total'
+    '2 rows: 1 ok (verdict pass 1), 1 error (first: line 3: x); mean VoI 0.25; solve 0.5 s, \
+certify 1 s in total'
     >>> t.exit_code()
     2
     """
@@ -251,14 +252,15 @@ certify 1.00 s in total'
         """One line: rows, ok (by verdict), errors (the first by line), mean VoI, times."""
         vs = ", ".join(f"verdict {k} {v}" for k, v in sorted(self.verdicts.items()))
         ok = f"{self.ok} ok" + (f" ({vs})" if vs else "")
-        err = f"{self.errors} error{'s' if self.errors != 1 else ''}"
+        err = count(self.errors, "error")
         if self.first_error is not None:
             line, reason = self.first_error
             short = reason if len(reason) <= 100 else reason[:99] + "…"
             err += f" (first: line {line}: {short})"
-        voi = f"mean VoI {self.voi / self.ok:.4f}" if self.ok else "no VoI (no ok row)"
-        return (f"{self.rows} row{'s' if self.rows != 1 else ''}: {ok}, {err}; {voi}; solve "
-                f"{self.solve_seconds:.2f} s, certify {self.certify_seconds:.2f} s in total")
+        voi = f"mean VoI {decimal(self.voi / self.ok)}" if self.ok else "no VoI (no ok row)"
+        return (f"{count(self.rows, 'row')}: {ok}, {err}; {voi}; solve "
+                f"{decimal(self.solve_seconds)} s, certify {decimal(self.certify_seconds)} s in "
+                "total")
 
     def exit_code(self) -> int:
         """``dpp batch``'s exit code, from every row of the file: 1 if a certificate refuted
@@ -332,8 +334,8 @@ def summarize_file(path: str | Path) -> str:
     ...                                   bad | {"line": "4"}]
     >>> _ = out.write_bytes(HEADER + format_rows(rows))
     >>> summarize_file(out)
-    '3 rows: 2 ok (verdict pass 2), 1 error (first: line 4: no fake goal); mean VoI 0.2500; \
-solve 1.00 s, certify 2.00 s in total'
+    '3 rows: 2 ok (verdict pass 2), 1 error (first: line 4: no fake goal); mean VoI 0.25; \
+solve 1 s, certify 2 s in total'
     """
     tally = BatchTally()
     for row in _checked(path, None):

@@ -14,6 +14,7 @@ from fractions import Fraction
 from importlib import resources
 from pathlib import Path
 
+from dppio.text import decimal
 from solver.formats.movingai import read_map
 from solver.game.instance import Instance
 from solver.literature.path_metrics import METRIC_FIELDS, PathMetrics, metric_row
@@ -73,8 +74,8 @@ def run_compare(instance: Instance) -> tuple[PairResult, ...]:
 
 def _num(x: Number) -> str:
     if isinstance(x, Fraction):
-        return str(x) if x.denominator == 1 else f"{x} (≈ {float(x):.4g})"
-    return f"{x:.6g}"
+        return str(x) if x.denominator == 1 else f"{x} (≈ {decimal(x)})"
+    return decimal(x)
 
 
 def compare_table(results: Sequence[PairResult]) -> str:

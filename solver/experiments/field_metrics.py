@@ -23,7 +23,9 @@ import csv
 import io
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from fractions import Fraction
 
+from dppio.text import decimal
 from solver.literature.path_metrics import METRIC_FIELDS, PERCENTS, PathMetrics, metric_row
 from solver.literature.strategy_pairs import LABELS, PairEvaluator
 from solver.literature.walk_metrics import RouteMeter, WalkMetrics
@@ -91,9 +93,7 @@ def walks_csv(metrics: Mapping[str, AttackerMetrics], goals: tuple[str, str],
 
 
 def _show(x: Number) -> str:
-    if isinstance(x, float):
-        return f"{x:.4g}"
-    return str(x) if x.denominator == 1 else f"{float(x):.4f}"
+    return str(x) if isinstance(x, Fraction) and x.denominator == 1 else decimal(x)
 
 
 def metrics_table(metrics: Mapping[str, AttackerMetrics]) -> str:
@@ -105,10 +105,10 @@ def metrics_table(metrics: Mapping[str, AttackerMetrics]) -> str:
     >>> from solver.experiments.compare import paper10_instance
     >>> m = attacker_metrics(PairEvaluator.of(paper10_instance()), ("gamma*", "pi_d1"))
     >>> print(metrics_table(m))
-    Attacker  cost     cost ratio  LDP     density  truthful at 10 25 50 75 90 99 %
-    --------  -------  ----------  ------  -------  -------------------------------
-    γ*        20       1.1333      0.5245  1        0 0 0.6 0.6 1 1
-    π_d1      26.4000  1.5020      0.8254  1        0 0 0 0 1 1
+    Attacker  cost  cost ratio  LDP     density  truthful at 10 25 50 75 90 99 %
+    --------  ----  ----------  ------  -------  -------------------------------
+    γ*        20    1.133       0.5245  1        0 0 0.6 0.6 1 1
+    π_d1      26.4  1.502       0.8254  1        0 0 0 0 1 1
     """
     head = ("Attacker", "cost", "cost ratio", "LDP", "density",
             "truthful at " + " ".join(str(p) for p in PERCENTS) + " %")
@@ -117,7 +117,7 @@ def metrics_table(metrics: Mapping[str, AttackerMetrics]) -> str:
         e = am.expected
         body.append((LABELS.get(name, name), _show(e.cost), _show(e.cost_ratio), _show(e.ldp),
                      _show(e.deceptive_density),
-                     " ".join(f"{float(t):.3g}" for t in e.truthful)))
+                     " ".join(decimal(t) for t in e.truthful)))
     widths = [max(len(r[i]) for r in (head, *body)) for i in range(len(head))]
     lines = ["  ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)).rstrip()
              for r in (head, *body)]

@@ -24,6 +24,7 @@ from fractions import Fraction
 from itertools import pairwise
 from typing import Any
 
+from dppio.text import decimal
 from solver.literature.strategy_pairs import PAIRS, pair_label
 
 __all__ = ["Claim", "DensitySummary", "Stats", "summarize_density"]
@@ -73,8 +74,9 @@ class DensitySummary:
                 s = self.stats.get((d, pair))
                 if s is None:
                     continue
-                lines.append(f"  {pair_label(*pair):<20s} {s.mean:8.4f} {s.median:8.4f} "
-                             f"{s.std:8.4f} [{s.min:7.4f}, {s.max:7.4f}]  (n={s.n})")
+                lines.append(f"  {pair_label(*pair):<20s} {decimal(s.mean):>8} "
+                             f"{decimal(s.median):>8} {decimal(s.std):>8} "
+                             f"[{decimal(s.min):>7}, {decimal(s.max):>7}]  (n={s.n})")
         lines.append("")
         lines.append("Paper's claims on this data:")
         for c in self.claims:
@@ -134,7 +136,8 @@ def _claims(densities: tuple[int, ...], stats: Mapping[tuple[int, tuple[str, str
     have = [d for d in densities if all((d, p) in stats for p in (eq, am, ex))]
     if have:
         ok = [mean(d, eq) >= mean(d, am) >= mean(d, ex) for d in have]
-        ev = "\n".join(f"{d:2d}%: {mean(d, eq):.4f} >= {mean(d, am):.4f} >= {mean(d, ex):.4f}"
+        ev = "\n".join(f"{d:2d}%: {decimal(mean(d, eq))} >= {decimal(mean(d, am))} >= "
+                       f"{decimal(mean(d, ex))}"
                        f"  {'yes' if o else 'NO'}" for d, o in zip(have, ok, strict=True))
         out.append(Claim("mean VoI: (σ*, γ*) >= (σ*, ambiguity) >= (σ*, exaggeration) at "
                          "every density", all(ok), ev))
@@ -163,14 +166,14 @@ def _claims(densities: tuple[int, ...], stats: Mapping[tuple[int, tuple[str, str
         name = pair_label(*p)
         out.append(Claim(f"mean VoI of {name} falls as the density grows (strictly, at "
                          "every step)", falls,
-                         "means: " + ", ".join(f"{d}%: {m:.4f}" for d, m in
+                         "means: " + ", ".join(f"{d}%: {decimal(m)}" for d, m in
                                                zip(ds, means, strict=True))))
         out.append(Claim(f"mean VoI of {name} is lower at the highest density than at the "
                          "lowest (weaker form)", means[-1] < means[0],
-                         f"{ds[0]}%: {means[0]:.4f}, {ds[-1]}%: {means[-1]:.4f}"))
+                         f"{ds[0]}%: {decimal(means[0])}, {ds[-1]}%: {decimal(means[-1])}"))
         for label, values in (("standard deviation", stds), ("range max-min", ranges)):
             grows = all(x < y for x, y in pairwise(values))
             out.append(Claim(f"spread of VoI of {name} grows with the density ({label})",
-                             grows, ", ".join(f"{d}%: {x:.4f}" for d, x in
+                             grows, ", ".join(f"{d}%: {decimal(x)}" for d, x in
                                               zip(ds, values, strict=True))))
     return tuple(out)

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from dppio.text import json_shown
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.formats.movingai import map_file, read_map_bytes
 
@@ -82,10 +83,11 @@ def read_map_document(data: dict[str, Any], base: Path | None, *, count: int | N
     if not isinstance(goals, list) or not (
             len(goals) == count if count is not None else 2 <= len(goals) <= 5):
         sizes = "2 to 5" if count is None else "two" if count == 2 else str(count)
-        raise InstanceFormatError(f"'goals' must be a list of {sizes} cells, got {goals!r}"[:200])
+        raise InstanceFormatError(f"'goals' must be a list of {sizes} cells, got "
+                                  f"{json_shown(goals)}")
     if not isinstance(prior, list) or len(prior) != len(goals):
         raise InstanceFormatError(f"'prior' must be a list of {len(goals)} numbers (one per "
-                                  f"goal), got {prior!r}"[:200])
+                                  f"goal), got {json_shown(prior)}")
     start = _map_cell(data["start"], "start")
     cells = [_map_cell(g, f"goals[{i}]") for i, g in enumerate(goals)]
     blocked, actual = read_map_bytes(map_file(ref, base))
@@ -105,4 +107,4 @@ def two_goals_only(n: int) -> str:
     "'goals' lists 3 goals: this takes two-goal insta"
     """
     return (f"'goals' lists {n} goals: this takes two-goal instances only (`dpp solve`, "
-            "`dpp certify` and `dpp value` take N goals)")
+            "`dpp certify`, `dpp value`, `dpp export-efg` and `dpp plot map` take N goals)")

@@ -17,6 +17,7 @@ from typing import Any
 import networkx as nx
 
 from dppio.limits import check_rational
+from dppio.text import json_shown
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.formats.json_text import parse_json_text, read_json
 from solver.formats.map_instance import MAP_INSTANCE_FORMAT, read_map_document, two_goals_only
@@ -46,10 +47,8 @@ def load_instance(path: str | Path, *, two_goals: bool = False) -> Instance:
     doc = read_json(path)  # its errors name the file
     try:
         return instance_from_json(doc, base=Path(path).parent, two_goals=two_goals)
-    except InstanceFormatError as exc:
-        if isinstance(doc, dict) and doc.get("format") == MAP_INSTANCE_FORMAT:
-            raise InstanceFormatError(f"{path}: {exc}") from None
-        raise
+    except InstanceFormatError as exc:  # one line naming the file
+        raise InstanceFormatError(f"{path}: {exc}") from None
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{path}: {exc}") from None
 
@@ -127,9 +126,11 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
                         tuple(node_from_json(g) for g in goals), tuple(prior))
     graph = _graph_from_node_link(data["graph"], float_weights=float_weights)
     if not isinstance(goals, list) or len(goals) != 2:
-        raise InstanceFormatError(f"'goals' must be a list of two node ids, got {goals!r}")
+        raise InstanceFormatError(f"'goals' must be a list of two node ids, got "
+                                  f"{json_shown(goals)}")
     if not isinstance(prior, list) or len(prior) != 2:
-        raise InstanceFormatError(f"'prior' must be a list of two numbers, got {prior!r}")
+        raise InstanceFormatError(f"'prior' must be a list of two numbers, one per goal, got "
+                                  f"{json_shown(prior)}")
     return Instance(
         graph,
         node_from_json(data["start"]),

@@ -15,12 +15,14 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 from matplotlib.ticker import MaxNLocator
 
+from dppio.text import count
 from solver.errors import InvalidInstanceError
 from solver.game.instance import Instance
 from solver.graph.network import GridLabels
 from solver.literature.strategy_pairs import LABELS, PairEvaluator
 from solver.plots.style import (
     LARGE_MAP,
+    LARGE_MARKER,
     MARKER_COLOUR,
     PATH_STYLES,
     PHASE_COLOURS,
@@ -33,15 +35,24 @@ from solver.plots.style import (
     tex_label,
 )
 
-__all__ = ["plot_beliefs", "plot_map"]
+__all__ = ["draw_grid_background", "grid_array", "grid_cell_points", "large_map", "plot_beliefs",
+           "plot_map"]
 
 _PHASE_NAMES = {1: "I", 2: "II", 3: "III"}
 
 
-def _grid(instance: Instance) -> np.ndarray:
+def grid_array(instance: Any) -> np.ndarray:
     """The obstacle array of a grid instance: a ``.map`` grid, or an instance JSON whose node
     ids are all ``[row, col]`` cells (as ``dpp solve --save-instance`` writes them); cells
-    without a node are obstacles."""
+    without a node are obstacles.
+
+    Examples
+    --------
+    >>> from solver.experiments.compare import paper10_instance
+    >>> blocked = grid_array(paper10_instance())
+    >>> blocked.shape, int(blocked.sum())
+    ((10, 10), 16)
+    """
     labels = instance.network.labels
     if isinstance(labels, GridLabels):
         return labels.blocked
@@ -72,16 +83,33 @@ def _xy(nodes: Sequence[Hashable], offset: float = 0.0) -> tuple[np.ndarray, np.
     return rc[:, 1] + offset, rc[:, 0] + offset
 
 
-def _cell_points(ax: Axes, shape: tuple[int, ...]) -> float:
-    """The size of one grid cell in points (for line widths and markers)."""
+def grid_cell_points(ax: Axes, shape: tuple[int, ...]) -> float:
+    """The size of one grid cell in points (for line widths and markers).
+
+    Examples
+    --------
+    >>> fig, ax = plt.subplots(figsize=(4, 4))
+    >>> bool(grid_cell_points(ax, (10, 10)) > 0)
+    True
+    >>> plt.close(fig)
+    """
     fig = ax.get_figure(root=True)
     assert fig is not None
     width_in = ax.get_position().width * fig.get_figwidth()
     return 72.0 * width_in / max(shape)
 
 
-def _large(shape: tuple[int, ...]) -> bool:
+def large_map(shape: tuple[int, ...]) -> bool:
+    """Whether a grid gets the print rendering (:data:`~solver.plots.style.LARGE_MAP`).
+
+    Examples
+    --------
+    >>> large_map((10, 10)), large_map((256, 256))
+    (False, True)
+    """
     return max(shape) > LARGE_MAP
+
+
 
 
 def _casing(lw: float) -> list[Any]:
@@ -89,16 +117,30 @@ def _casing(lw: float) -> list[Any]:
     return [patheffects.Stroke(linewidth=lw + 2.2, foreground="white"), patheffects.Normal()]
 
 
-def _draw_grid(ax: Axes, instance: Instance) -> list[Line2D]:
-    """Grid, obstacles and the start/goal markers; legend handles.
+def draw_grid_background(ax: Axes, instance: Any) -> np.ndarray:
+    """The grid of ``instance`` (anything with a grid ``network``): obstacles, cell lines on
+    small maps, integer ticks, and the axes' limits with room for the corner markers.
 
-    Small maps: markers of about a cell UNDER the paths (a one-step phase stays visible).
-    Large maps (:data:`LARGE_MAP`): lighter obstacles and markers of a fixed print size
-    with a white edge ON TOP of the paths, so start and goals are seen at print size.
+    On a large map the start and goal markers have a fixed print size, many cells wide: the
+    limits leave that much room around the grid, so a marker in a corner stays inside the
+    frame (it covered the ``0`` tick labels and reached the next panel's title).
+
+    Returns
+    -------
+    numpy.ndarray
+        The obstacle array (True = blocked).
+
+    Examples
+    --------
+    >>> from solver.experiments.compare import paper10_instance
+    >>> fig, ax = plt.subplots()
+    >>> draw_grid_background(ax, paper10_instance()).shape, tuple(map(float, ax.get_xlim()))
+    ((10, 10), (-0.5, 9.5))
+    >>> plt.close(fig)
     """
-    blocked = _grid(instance)
+    blocked = grid_array(instance)
     h, w = blocked.shape
-    large = _large(blocked.shape)
+    large = large_map(blocked.shape)
     ax.imshow(blocked, cmap="Greys", vmin=0, vmax=2.2 if large else 1.4, origin="upper",
               extent=(-0.5, w - 0.5, h - 0.5, -0.5), interpolation="nearest")
     if max(h, w) <= 40:
@@ -108,11 +150,29 @@ def _draw_grid(ax: Axes, instance: Instance) -> list[Line2D]:
     ax.tick_params(which="minor", length=0)
     ax.xaxis.set_major_locator(MaxNLocator(5, integer=True))
     ax.yaxis.set_major_locator(MaxNLocator(5, integer=True))
-    ax.set_xlim(-0.5, w - 0.5)
-    ax.set_ylim(h - 0.5, -0.5)
     ax.set_xlabel("column")
     ax.set_ylabel("row")
-    ms = 13.0 if large else float(np.clip(0.7 * _cell_points(ax, (h, w)), 5, 18))
+    ax.set_xlim(-0.5, w - 0.5)
+    ax.set_ylim(h - 0.5, -0.5)
+    if large:  # half a haloed marker (LARGE_MARKER + 5 points) of room on every side
+        pad = 0.5 * (LARGE_MARKER + 5) / grid_cell_points(ax, (h, w))
+        ax.set_xlim(-0.5 - pad, w - 0.5 + pad)
+        ax.set_ylim(h - 0.5 + pad, -0.5 - pad)
+    return blocked
+
+
+def _draw_grid(ax: Axes, instance: Instance) -> list[Line2D]:
+    """Grid, obstacles and the start/goal markers; legend handles.
+
+    Small maps: markers of about a cell UNDER the paths (a one-step phase stays visible).
+    Large maps (:data:`LARGE_MAP`): lighter obstacles and markers of a fixed print size
+    with a white edge ON TOP of the paths, so start and goals are seen at print size; the
+    axes leave room for them (:func:`draw_grid_background`).
+    """
+    blocked = draw_grid_background(ax, instance)
+    h, w = blocked.shape
+    large = large_map(blocked.shape)
+    ms = LARGE_MARKER if large else float(np.clip(0.7 * grid_cell_points(ax, (h, w)), 5, 18))
     s, g1, g2 = instance.start, instance.primary, instance.secondary
     handles = []
     for node, marker, face, name in ((s, "o", "white", "start $s_0$"),
@@ -120,8 +180,7 @@ def _draw_grid(ax: Axes, instance: Instance) -> list[Line2D]:
                                      (g2, "s", "white", f"$g_2$ (prior {instance.b2})")):
         row, col = _cell(node)
         if large:  # a white halo, then the marker, above every path
-            ax.plot(col, row, marker=marker, ms=ms + 5, mfc="white", mec="white", zorder=9,
-                    clip_on=False)
+            ax.plot(col, row, marker=marker, ms=ms + 5, mfc="white", mec="white", zorder=9)
         ax.plot(col, row, marker=marker, ms=ms, mfc=face,
                 mec=MARKER_COLOUR, mew=2, zorder=10 if large else 2, clip_on=False)
         handles.append(Line2D([], [], marker=marker, ms=11, mfc=face, mec=MARKER_COLOUR,
@@ -167,9 +226,9 @@ def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figur
     fig, axes = plt.subplots(1, ncols, figsize=(5.4 * ncols, 6.9), squeeze=False)
     ax = axes[0][0]
     markers = _draw_grid(ax, instance)
-    shape = _grid(instance).shape
-    large = _large(shape)
-    cell = _cell_points(ax, shape)
+    shape = grid_array(instance).shape
+    large = large_map(shape)
+    cell = grid_cell_points(ax, shape)
     lw = 2.6 if large else float(np.clip(0.16 * cell, 1.5, 7))
     casing = _casing(lw) if large else None
     xi2 = eq.secondary_path
@@ -219,7 +278,7 @@ def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figur
                 tag = "am" if kind == "ambiguity" else "ex"
                 bl.append(Line2D([], [], color=STRATEGY_COLOURS[kind], lw=3, ls=ls,
                                  label=f"{tex_label(f'xi{theta}_{tag}')} {kind}, "
-                                       f"{len(mp.walk) - 1} steps"))
+                                       f"{count(len(mp.walk) - 1, 'step')}"))
         vo = {r.attacker: r.VoI for r in game.compare((("sigma*", "ambiguity"),
                                                        ("sigma*", "exaggeration")))}
         ax2.set_title(f"baselines against σ*, {VOI}:\nambiguity {num_label(vo['ambiguity'])}, "

@@ -13,11 +13,28 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from dppio.files import write_files
+from dppio.text import decimal
 from solver.errors import DPPError, OutputError
 
-__all__ = ["DEFENDER_HATCH", "FORMATS", "LARGE_MAP", "MARKER_COLOUR", "PATH_STYLES",
-           "PHASE_COLOURS", "STRATEGY_COLOURS", "STYLE", "T_I", "T_II", "VOI", "figure_bytes",
-           "num_label", "save_figure", "tex_label"]
+__all__ = [
+    "DEFENDER_HATCH",
+    "FORMATS",
+    "GOAL_COLOURS",
+    "LARGE_MAP",
+    "LARGE_MARKER",
+    "MARKER_COLOUR",
+    "PATH_STYLES",
+    "PHASE_COLOURS",
+    "STRATEGY_COLOURS",
+    "STYLE",
+    "T_I",
+    "T_II",
+    "VOI",
+    "check_suffix",
+    "num_label",
+    "save_figure",
+    "tex_label",
+]
 
 PHASE_COLOURS = {1: "#E69F00", 2: "#CC79A7", 3: "#56B4E9"}
 """Phase I (σ* = 1 along ξ²) orange, phase II (belief 1/2) pink, phase III sky blue — in every
@@ -36,6 +53,10 @@ STYLE: dict[Any, Any] = {"font.family": "DejaVu Sans", "font.size": 12, "axes.ti
           "ytick.labelsize": 11, "mathtext.fontset": "dejavusans", "pdf.fonttype": 42,
           "svg.fonttype": "none"}
 """One font family for text and mathtext (DejaVu Sans); fonts embedded as TrueType."""
+LARGE_MARKER = 13.0
+"""The size (points) of the start and goal markers on a large map."""
+GOAL_COLOURS = ("#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00")
+"""N-goal figures: one colour per goal, the same for the type walking to it (up to 5)."""
 LARGE_MAP = 60
 """Maps with more cells than this on a side get the print rendering: paths of a fixed width
 with a white casing, start and goal markers of a fixed size on top, lighter obstacles."""
@@ -60,21 +81,41 @@ T_I, T_II = r"$t_{\mathrm{I}}$", r"$t_{\mathrm{II}}$"
 
 
 def num_label(x: Any) -> str:
-    """A number for a title or legend: exact fractions with a 3-digit decimal, floats rounded.
+    """A number for a title or legend: an exact fraction with its decimal beside it, a float
+    as a decimal (:func:`dppio.text.decimal`, the one rule of every output).
 
     >>> from fractions import Fraction
     >>> num_label(Fraction(5, 22)), num_label(0.20410018838561994)
-    ('5/22 ≈ 0.227', '0.204')
+    ('5/22 ≈ 0.2273', '0.2041')
     >>> num_label(Fraction(17)), num_label(3)
     ('17', '3')
     """
     if isinstance(x, Fraction):
         if x.denominator == 1:
             return str(x.numerator)
-        return f"{x} ≈ {float(x):.3f}" if x.denominator <= 1000 else f"{float(x):.3f}"
+        return f"{x} ≈ {decimal(x)}" if x.denominator <= 1000 else decimal(x)
     if isinstance(x, int | np.integer):
         return str(int(x))
-    return f"{float(x):.3g}"
+    return decimal(float(x))
+
+
+def check_suffix(out: str | Path) -> None:
+    """Refuse an output name whose suffix is not a figure format, before any work.
+
+    Raises
+    ------
+    DPPError
+        As :func:`save_figure` would, after the figure was computed.
+
+    Examples
+    --------
+    >>> check_suffix("map.pdf")
+    >>> check_suffix("map.txt")
+    Traceback (most recent call last):
+    solver.errors.DPPError: map.txt: the output file must end in .png, .svg or .pdf
+    """
+    if str(out) and Path(out).suffix.lower().lstrip(".") not in FORMATS:
+        raise DPPError(f"{Path(out)}: the output file must end in .png, .svg or .pdf")
 
 
 def save_figure(fig: Figure, out: str | Path) -> list[Path]:

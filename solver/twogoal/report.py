@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Hashable, Sequence
 from typing import TYPE_CHECKING
 
+from dppio.text import decimal
 from solver.numbers import Number, format_value
 
 if TYPE_CHECKING:
@@ -55,7 +56,7 @@ def summarize(eq: Equilibrium) -> str:
     U2 (secondary cost) = 1
     U* (value)          = 12/5 (≈ 2.4)
     U_bar (complete information) = 27/10 (≈ 2.7)
-    VoI*                = 1/9 (≈ 0.1111111)
+    VoI*                = 1/9 (≈ 0.1111)
     """
     inst = eq.instance
     ph = eq.phases
@@ -92,7 +93,7 @@ _num = format_value
 
 
 def _nums(xs: Sequence[Number]) -> str:
-    shown = [str(x) if not isinstance(x, float) else f"{x:.4g}" for x in xs[:_MAX_NODES * 2]]
+    shown = [str(x) if not isinstance(x, float) else decimal(x) for x in xs[:_MAX_NODES * 2]]
     more = f" ... (+{len(xs) - len(shown)})" if len(xs) > len(shown) else ""
     return "[" + ", ".join(shown) + "]" + more
 

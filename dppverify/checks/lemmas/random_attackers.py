@@ -10,6 +10,7 @@ import random
 from collections.abc import Sequence
 from fractions import Fraction
 
+from dppio.text import decimal
 from dppverify.certificate import CheckRecord, Status
 from dppverify.exact import Number
 from dppverify.game.evaluation import realization
@@ -130,7 +131,7 @@ def l3_greedy(ctx: Context) -> CheckRecord:
             target = 1.0 if c > 0 else 0.0
             worst_sigma = max(worst_sigma, abs(s - target))
             if abs(s - target) > GREEDY_SIGMA_TOLERANCE:
-                problems.append(f"{name}: the LP allocates σ(g1) = {s:.6g} after "
+                problems.append(f"{name}: the LP allocates σ(g1) = {decimal(s)} after "
                                 f"{show_walk(ctx.instance, tree.walk(p))} where the belief is "
                                 f"strictly {'above' if c > 0 else 'below'} 1/2")
                 break
@@ -141,8 +142,8 @@ def l3_greedy(ctx: Context) -> CheckRecord:
     status: Status = "fail" if problems else "pass"
     msg = ("; ".join(problems[:3]) if problems else
            f"for {len(attackers)} non-reacting attackers (seed {ctx.seed}) the Defender's LP "
-           f"optimum equals the greedy value (gap <= {worst_value:.2g}) and is greedy at all "
-           f"{checked} strict-belief information sets (within {worst_sigma:.2g})")
+           f"optimum equals the greedy value (gap <= {decimal(worst_value)}) and is greedy at all "
+           f"{checked} strict-belief information sets (within {decimal(worst_sigma)})")
     return CheckRecord("lemma.L3.greedy", status, msg, numbers, "L3")
 
 

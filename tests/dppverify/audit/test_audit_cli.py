@@ -116,3 +116,27 @@ def test_audit_through_the_dpp_group() -> None:
                                        "--examples", "3"])
     assert "Traceback" not in result.output
     assert result.exit_code == 0, result.output
+
+
+def test_pruning_goes_towards_undirected_unit_weight_graphs() -> None:
+    """Issue 32: the shrunk failing instance kept fractional weights on a directed graph,
+    although shrinking goes towards small undirected unit-weight graphs (docs/audit.md)."""
+    from dppverify.audit.examine import examine
+    from dppverify.audit.pruning import prune_failure
+
+    def stay_put(doc):  # type: ignore[no-untyped-def]  # fails on every graph
+        s = doc["start"]
+        return {"format": "dpp-profile/1",
+                "attacker": {"primary": [{"path": [s], "probability": "1"}],
+                             "secondary": [{"path": [s], "probability": "1"}]}}
+
+    doc = {"graph": {"directed": True, "nodes": [{"id": i} for i in range(3)],
+                     "edges": [{"source": 0, "target": 1, "weight": "3/2"},
+                               {"source": 0, "target": 2, "weight": "5/3"},
+                               {"source": 1, "target": 2, "weight": "7/2"},
+                               {"source": 2, "target": 1, "weight": "1/2"}]},
+           "start": 0, "goals": [1, 2], "prior": ["1/2", "1/2"]}
+    pruned, _ = prune_failure(stay_put, examine(stay_put, doc))
+    graph = pruned.instance["graph"]
+    assert pruned.check == "profile.wellformed"
+    assert not graph.get("directed") and all(e.get("weight", 1) == 1 for e in graph["edges"])

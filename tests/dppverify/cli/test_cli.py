@@ -120,15 +120,17 @@ def test_float_mode_is_detected_from_the_instance(tmp_path: Path) -> None:
 def test_value_command(tmp_path: Path) -> None:
     i = write_doc(tmp_path, "i.json", three_phase_doc())
     r = run_cli(value_command, [i, "--horizon", "4"])
-    assert r.exit_code == 0 and r.output.startswith("V_H (H = 4) = 71/18 (≈ 3.944444) exactly")
+    assert r.exit_code == 0 and r.output.startswith("V_H (H = 4) = 71/18 (≈ 3.944) exactly")
     r = run_cli(value_command, [i, "-H", "4", "--json"])
     doc = json.loads(r.output)
-    assert doc["value"] == "71/18" and doc["exact"] and abs(doc["value_lp"] - 71 / 18) < 1e-7
-    assert doc["lp"]["solver"] == "CLARABEL" and doc["lp"]["status"] == "optimal"
+    lp = doc["tree"]["details"]
+    assert doc["format"] == "dpp-value/1" and doc["route"] == "tree"
+    assert doc["value"] == "71/18" and doc["exact"] and abs(lp["value_lp"] - 71 / 18) < 1e-7
+    assert lp["lp"]["solver"] == "CLARABEL" and lp["lp"]["status"] == "optimal"
     r = run_cli(value_command, [i, "-H", "1"])
     assert r.exit_code == 2 and "no walk" in r.output
     r = run_cli(value_command, [i])  # issue 18: no horizon is the untruncated game
-    assert r.exit_code == 0 and r.output.startswith("V_H (H = inf) = 71/18 (≈ 3.944444) exactly")
+    assert r.exit_code == 0 and r.output.startswith("V_H (H = inf) = 71/18 (≈ 3.944) exactly")
 
 
 def test_dpp_group_and_python_m_dppverify(tmp_path: Path) -> None:

@@ -80,5 +80,6 @@ def test_the_four_goal_counterexample_is_never_given_the_coalition_bound(tmp_pat
             doc = json.loads(r.output)
             assert r.exit_code == 0 and doc["value"] == "12/7", (directed, args, doc)
             if doc["structured"] is not None:
-                assert doc["structured"]["coalition_dp"]["value"] == "25/14"
-                assert doc["structured"]["extra_normals"]
+                details = doc["structured"]["details"]
+                assert details["coalition_dp"]["value"] == "25/14"
+                assert details["extra_normals"]

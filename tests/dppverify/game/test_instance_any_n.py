@@ -89,7 +89,8 @@ def test_the_two_goal_reader_refuses_n_goals_and_names_the_n_goal_commands() -> 
     with pytest.raises(InstanceFormatError) as info:
         instance_from_json(star3_document(), two_goals=True)
     assert "lists 3 goals" in str(info.value) and "two-goal instances only" in str(info.value)
-    assert "`dpp solve`, `dpp certify` and `dpp value` take N goals" in str(info.value)
+    assert ("`dpp solve`, `dpp certify`, `dpp value`, `dpp export-efg` and `dpp plot map` "
+            "take N goals") in str(info.value)
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -97,7 +97,7 @@ def test_without_refinement_the_hub_gets_an_honest_bracket(monkeypatch: pytest.M
     assert v.reason is not None and "fails the certificate of the coalition DP" in v.reason
     i = write_doc(tmp_path, "hub.json", hub4_document())
     r = run_cli(value_command, [i, "-H", "inf"])
-    assert r.exit_code == 0 and "in [12/7 (≈ 1.714286), 25/14 (≈ 1.785714)]" in r.output
+    assert r.exit_code == 0 and "in [12/7 (≈ 1.714), 25/14 (≈ 1.786)]" in r.output
     assert "exactly" not in r.output
 
 

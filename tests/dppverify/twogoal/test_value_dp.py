@@ -163,7 +163,7 @@ def test_value_command_routes(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -
     i.write_text(json.dumps(three_phase_doc()), encoding="utf-8")
     r = _run([str(i), "--horizon", "inf"])
     assert r.exit_code == 0
-    assert r.output.startswith("V_H (H = inf) = 71/18 (≈ 3.944444) exactly; structured")
+    assert r.output.startswith("V_H (H = inf) = 71/18 (≈ 3.944) exactly; structured")
     r = _run([str(i), "-H", "4", "--route", "both", "--json"])
     doc = json.loads(r.output)
     assert r.exit_code == 0 and doc["route"] == "both" and doc["agree"]

@@ -25,6 +25,7 @@ from click.testing import CliRunner
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from dppio.text import decimal
 from dppverify.certify import certify
 from dppverify.game.instance import instance_from_json
 from dppverify.strategies import ngoal_instances
@@ -206,7 +207,7 @@ def test_solve_then_certify_on_a_standard_map(tmp_path: Path) -> None:
     assert code == 0, err
     assert len(stdout.splitlines()) == 1 and "['" not in stdout, stdout
     u = Fraction(doc["value"]["U"])
-    assert f"U = {u} (≈ {float(u):.7g})" in stdout and "type costs (" in stdout
+    assert f"U = {u} (≈ {decimal(u)})" in stdout and "type costs (" in stdout
 
 
 @pytest.mark.parametrize("group,message", [
@@ -216,7 +217,7 @@ def test_solve_then_certify_on_a_standard_map(tmp_path: Path) -> None:
     (["--goals", "0,0", "0,2", "2,2", "--prior", "1/2,1/3,1/3"], "prior must sum"),
     (["--goals", "0,0", "0,2", "0,2", "--prior", "1/2,1/3,1/6"], "listed twice"),
     (["--goals", "0,0", "0,2", "2,2", "--prior", "1/2,1/3,1/6", "--connectivity", "8"],
-     "exact only"),
+     "with 3 goals the game is exact"),
 ])
 def test_hostile_ngoal_maps(group: list[str], message: str, tmp_path: Path) -> None:
     m = tmp_path / "m.map"
@@ -271,5 +272,7 @@ def test_ngoal_map_instance_is_compact_and_read_by_both_packages(tmp_path: Path)
     u = json.loads(out.read_text())["value"]["U"]
     code, stdout, err = _run("solve", str(inst), "--json")   # the solver reads it back
     assert code == 0 and json.loads(stdout)["value"]["U"] == u, err
-    code, _, err = _run("plot", "map", str(inst), "-o", str(tmp_path / "m.png"))
+    code, _, err = _run("plot", "map", str(inst), "-o", str(tmp_path / "m.png"))  # issue 32
+    assert code == 0 and (tmp_path / "m.png").is_file(), err
+    code, _, err = _run("plot", "beliefs", str(inst), "-o", str(tmp_path / "b.png"))
     assert code == 2 and "two-goal instances only" in err and len(err.splitlines()) == 1

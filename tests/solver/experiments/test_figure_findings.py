@@ -12,7 +12,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from solver import Instance
-from solver.experiments.compare import paper10_instance
+from solver.experiments.compare import paper10_instance, paper10_path
 from solver.plots import PATH_STYLES, plot_beliefs, plot_map, plot_voi
 from solver.twogoal.equilibrium import paper_equilibrium
 from solver.twogoal.report import summarize
@@ -122,3 +122,72 @@ def test_legend_mathtext_is_consistent(kind: str) -> None:
     labels = _labels(fig)
     assert not any("_I" in t.replace(r"_{\mathrm{I", "") for t in labels), labels
     assert all(isinstance(h, Line2D | Patch) for h in _legend(fig))
+
+
+# ---------------------------------------------------------------- issue 32's figure findings
+def _extent(fig, artist):  # type: ignore[no-untyped-def]
+    fig.canvas.draw()
+    return artist.get_window_extent(fig.canvas.get_renderer())
+
+
+def test_corner_markers_stay_inside_the_frame_on_large_maps() -> None:
+    """Issue 32: on a large map the start and goal markers (fixed print size) in the corners
+    covered the '0' tick labels and reached the next panel's title."""
+    blocked = np.zeros((200, 200), dtype=bool)
+    blocked[60:140, 50:150] = True
+    inst = Instance.from_grid(blocked, (199, 0), ((0, 199), (0, 0)), ("3/5", "2/5"))
+    fig = plot_map(inst)
+    for ax in fig.axes:
+        frame = _extent(fig, ax.patch)
+        markers = [ln for ln in ax.lines if ln.get_marker() in ("o", "s")]
+        assert markers
+        for ln in markers:
+            box = _extent(fig, ln)
+            assert frame.x0 - 0.5 <= box.x0 and box.x1 <= frame.x1 + 0.5, (box, frame)
+            assert frame.y0 - 0.5 <= box.y0 and box.y1 <= frame.y1 + 0.5, (box, frame)
+        ticks = [t for t in ax.get_xticklabels() + ax.get_yticklabels() if t.get_text() == "0"]
+        assert ticks
+        for t in ticks:
+            assert not any(_extent(fig, t).overlaps(_extent(fig, ln)) for ln in markers)
+    title = _extent(fig, fig.axes[1].title)
+    assert not any(_extent(fig, ln).overlaps(title) for ln in fig.axes[0].lines
+                   if ln.get_marker() in ("o", "s"))
+
+
+def test_baselines_legend_covers_no_bar() -> None:
+    """Issue 32: the legend covered the tallest bar of baselines.png."""
+    from solver.experiments.baselines import instances, plot_baselines, run_baselines
+
+    fig = plot_baselines(run_baselines(instances(1, (), ())))
+    legends = [*fig.legends, *(ax.get_legend() for ax in fig.axes if ax.get_legend())]
+    assert legends
+    bars = [p for ax in fig.axes for p in ax.patches if p.get_height() != 0]
+    assert bars
+    for leg in legends:
+        box = _extent(fig, leg)
+        assert not any(box.overlaps(_extent(fig, b)) for b in bars)
+
+
+def test_the_n_goal_map_draws_every_walk_and_the_defenders_sigma() -> None:
+    from solver.coalitions.construction import coalition_equilibrium
+    from solver.formats.movingai import read_map
+    from solver.plots import plot_ngoal_map
+    from solver.plots.style import GOAL_COLOURS
+
+    game = Instance.from_grid(read_map(paper10_path()), (9, 0),
+                              [(0, 9), (0, 0), (9, 9)], ["1/2", "1/3", "1/6"])
+    eq = coalition_equilibrium(game)
+    fig = plot_ngoal_map(eq)
+    ax, panels = fig.axes[0], fig.axes[1:]
+    walks = [ln for ln in ax.lines if len(ln.get_xdata()) > 1]
+    assert len(walks) == sum(len(m) for m in eq.mixtures)
+    for theta, mixture in enumerate(eq.mixtures):  # each type's walks in its goal's colour
+        mine = [ln for ln in walks if to_rgba(ln.get_color()) == to_rgba(GOAL_COLOURS[theta])]
+        assert len(mine) == len(mixture)
+    assert len(panels) == game.n_goals
+    for theta, panel in enumerate(panels):  # σ stacks to 1 after every step of the walk
+        walk = eq.mixtures[theta][0][0]
+        heights = np.zeros(len(walk) - 1)
+        for bar in panel.patches:
+            heights[round(bar.get_x() + bar.get_width() / 2) - 1] += bar.get_height()
+        assert np.allclose(heights, 1.0)

@@ -1,0 +1,82 @@
+"""Sphinx configuration of the documentation site (``python3 dev.py docs``).
+
+The source folder is the repository root, so the Markdown pages keep the links they have on
+GitHub: ``README.md`` is the home page, ``docs/*.md`` the guides, ``proofs/*.md`` the proofs,
+``dppverify/checks.md`` the check ids, ``CHANGELOG.md``; ``docs/site/`` holds the few pages
+only the site needs (the table of contents, the API reference). MyST reads the Markdown,
+autodoc and autosummary the docstrings, numpydoc their numpy-style sections. Warnings are
+errors (``dev.py docs`` passes ``-W``).
+"""
+
+from __future__ import annotations
+
+import shutil
+import sys
+import types
+from pathlib import Path
+from typing import Any
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from dppverify.version import __version__  # noqa: E402
+
+project = "dppverify"
+author = "The dppverify developers"
+copyright = "2026, The dppverify developers"
+version = release = __version__
+
+root_doc = "docs/site/index"
+include_patterns = ["README.md", "CHANGELOG.md", "docs/*.md", "docs/site/**",
+                    "proofs/*.md", "dppverify/checks.md"]
+exclude_patterns = ["docs/_build/**", ".venv/**", "docs/site/_templates/**",
+                    "docs/site/_extra/**"]
+
+extensions = [
+    "myst_parser",
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.mathjax",
+    "sphinx.ext.napoleon",  # reads the numpy-style sections (numpydoc's format), fast
+]
+source_suffix = {".md": "markdown", ".rst": "restructuredtext"}  # .rst: autosummary's pages
+myst_heading_anchors = 3
+myst_enable_extensions = ["dollarmath"]
+
+autosummary_generate = True
+# autosummary writes its pages into docs/site/_generated and never deletes one: start afresh,
+# so a module renamed since the last build leaves no stale page behind
+shutil.rmtree(ROOT / "docs" / "site" / "_generated", ignore_errors=True)
+autosummary_imported_members = False
+autodoc_default_options = {"members": True, "show-inheritance": True}
+autodoc_typehints = "none"  # the Parameters sections say the types
+napoleon_google_docstring = False
+napoleon_numpy_docstring = True
+napoleon_use_rtype = False
+
+# a module page: its docstring, its members, its submodules
+templates_path = [str(ROOT / "docs/site/_templates")]
+autodoc_default_options["ignore-module-all"] = True  # each object once, on its own module's page
+
+
+def _skip_aliases(app: object, what: str, name: str, obj: object, skip: bool,
+                  options: object) -> bool | None:
+    """Leave out type aliases such as ``Normal = tuple[int, ...]`` (autodoc cannot sign them)."""
+    return True if isinstance(obj, types.GenericAlias) else None
+
+
+def setup(app: Any) -> None:
+    app.connect("autodoc-skip-member", _skip_aliases)
+
+
+html_theme = "alabaster"
+html_title = f"dppverify {release}"
+html_static_path: list[str] = []
+html_extra_path = ["site/_extra"]  # index.html: the site's front page at the top of the build
+suppress_warnings = [
+    "myst.header",  # the proofs number their sections freely (### under #)
+    # the two packages define the same names on purpose (each its own Instance, errors,
+    # numbers: docs/architecture.md, "What stays twice"), so an unqualified type in a
+    # docstring has two targets; the link goes to one of them
+    "ref.python",
+]
