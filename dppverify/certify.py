@@ -49,9 +49,7 @@ from dppverify.formats.json_reading import JsonReadError, read_json_file
 from dppverify.game.instance import Instance, arc_arrays, node_to_json
 from dppverify.game.profile import (
     NGOAL_PROFILE_FORMAT,
-    GoalTable,
     Profile,
-    ProgressRule,
     check_format,
     load_profile_document,
     profile_from_json,
@@ -286,7 +284,7 @@ def _certify(instance: Any, profile: Any, *, horizon: int | str | float | None, 
     prof = profile_from_json(doc, game, game.numbers)
     asked = parse_horizon(horizon)
     _check_horizon(asked, shortest_horizon(game, prof), "path")
-    table = prof.defender is not None and not isinstance(prof.defender, ProgressRule)
+    table = prof.defender is not None and prof.defender.table
     chosen = resolve_route(route, game, asked, max_prefixes, certifying=True, table=table)
     h = asked
     tree_checks: list[CheckRecord] = []
@@ -368,7 +366,7 @@ def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon:
     trie_size = 0
     if chosen in ("structured", "both"):
         structured, trie_size = nstructured_checks(inst, prof, h)
-        if h is None and isinstance(prof.defender, GoalTable) and prof.defender.default is None:
+        if h is None and prof.defender is not None and not prof.defender.defined_everywhere:
             br = next((r for r in structured if r.id == "pbne.attacker_br"), None)
             if br is not None and br.status == "error":  # undefined off the table: undecided
                 raise UndecidedError(NTABLE_UNDECIDED)

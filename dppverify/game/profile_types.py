@@ -17,7 +17,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
-from typing import Any, TypeVar
+from types import MappingProxyType
+from typing import Any, Protocol, TypeVar
 
 from dppverify.errors import ProfileError
 from dppverify.exact import Number
@@ -29,9 +30,9 @@ from dppverify.formats.json_reading import (
 )
 
 __all__ = ["GUARANTEE_RULE", "NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "VALUE_KEYS", "Defect",
-           "DefectCollector", "DefenderRule", "GoalTable", "GuaranteeRule", "Profile",
-           "ProfileDefender", "ProgressRule", "StrategyWalk", "TableRule", "check_format",
-           "load_profile_document", "parse_guarantee"]
+           "DefectCollector", "DefenderInterface", "DefenderRule", "GoalTable", "GuaranteeRule",
+           "Profile", "ProfileDefender", "ProgressRule", "StrategyWalk", "TableRule",
+           "check_format", "load_profile_document", "parse_guarantee"]
 
 PROFILE_FORMAT = "dpp-profile/1"
 """The two-goal profile's ``format`` tag."""
@@ -61,11 +62,62 @@ class Defect:
         return f"{self.where}{self.sep}{self.message}"
 
 
+class DefenderInterface(Protocol):
+    """What the checks ask of any Defender rule, answered by the rule itself (a new rule
+    answers these, instead of being told apart by its type in every module).
+
+    ``table``: the rule lists walks (a table; its missing walks are its ``default``'s);
+    ``defined_everywhere``: the rule gives a σ after every walk of the game (a table only with a
+    ``default``); ``progress_goal``: the goal index σ* of eq. (7) measures progress towards where
+    the rule follows it (the progress rule, or a table's ``"progress"`` default), else None;
+    ``entries``: the walks the rule lists (none but a table's).
+    """
+
+    @property
+    def table(self) -> bool: ...
+
+    @property
+    def defined_everywhere(self) -> bool: ...
+
+    @property
+    def progress_goal(self) -> int | None: ...
+
+    @property
+    def entries(self) -> Mapping[tuple[int, ...], Any]: ...
+
+
+_NO_ENTRIES: Mapping[tuple[int, ...], Fraction] = MappingProxyType({})
+
+
 @dataclass(frozen=True)
 class ProgressRule:
-    """σ* of eq. (7) measuring progress towards ``goal`` (a node index); allocates to ``goal``."""
+    """σ* of eq. (7) measuring progress towards ``goal`` (a node index); allocates to ``goal``.
+
+    Examples
+    --------
+    >>> rule = ProgressRule(1)
+    >>> rule.table, rule.defined_everywhere, rule.progress_goal, dict(rule.entries), rule.constant
+    (False, True, 1, {}, None)
+    """
 
     goal: int
+    table = False
+    defined_everywhere = True
+
+    @property
+    def progress_goal(self) -> int:
+        """σ*'s goal: this rule's."""
+        return self.goal
+
+    @property
+    def entries(self) -> Mapping[tuple[int, ...], Fraction]:
+        """No walk is listed: σ* everywhere."""
+        return _NO_ENTRIES
+
+    @property
+    def constant(self) -> Fraction | None:
+        """No constant probability off a table."""
+        return None
 
 
 @dataclass(frozen=True)
@@ -80,6 +132,30 @@ class TableRule:
     goal: int
     entries: Mapping[tuple[int, ...], Fraction]
     default: Fraction | ProgressRule | None
+    table = True
+
+    @property
+    def defined_everywhere(self) -> bool:
+        """A σ after every walk: with a ``default`` only.
+
+        Examples
+        --------
+        >>> TableRule(0, {}, None).defined_everywhere, TableRule(0, {}, Fraction(1, 2)).constant
+        (False, Fraction(1, 2))
+        >>> TableRule(0, {}, ProgressRule(2)).progress_goal
+        2
+        """
+        return self.default is not None
+
+    @property
+    def progress_goal(self) -> int | None:
+        """σ*'s goal when the ``default`` is ``"progress"``."""
+        return self.default.goal if isinstance(self.default, ProgressRule) else None
+
+    @property
+    def constant(self) -> Fraction | None:
+        """The ``default`` when it is a probability."""
+        return None if isinstance(self.default, ProgressRule) else self.default
 
 
 DefenderRule = ProgressRule | TableRule
@@ -106,6 +182,13 @@ class GoalTable:
 
     entries: Mapping[tuple[int, ...], tuple[Fraction, ...]]
     default: tuple[Fraction, ...] | None
+    table = True
+    progress_goal = None
+
+    @property
+    def defined_everywhere(self) -> bool:
+        """A distribution after every walk: with a ``default`` only."""
+        return self.default is not None
 
 
 @dataclass(frozen=True)
@@ -116,6 +199,14 @@ class GuaranteeRule:
     """
 
     h: tuple[Fraction, ...]
+    table = False
+    defined_everywhere = True
+    progress_goal = None
+
+    @property
+    def entries(self) -> Mapping[tuple[int, ...], tuple[Fraction, ...]]:
+        """No walk is listed: the rule is defined everywhere."""
+        return MappingProxyType({})
 
 
 ProfileDefender = ProgressRule | TableRule | GoalTable | GuaranteeRule
