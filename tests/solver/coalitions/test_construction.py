@@ -39,17 +39,8 @@ from solver.coalitions.guarantee_rule import guarantee_step, priority_order
 from solver.game.instance_reading import instance_from_json as solver_instance
 from solver.twogoal.equilibrium import paper_equilibrium
 from solver.twogoal.progress import ProgressDefender
-
-GADGET: dict[str, Any] = {
-    "graph": {"directed": True,
-              "nodes": [{"id": x} for x in ("u", "u1", "A", "B", "C", "g1", "g2", "g3", "g4")],
-              "edges": [{"source": a, "target": b, "weight": w} for a, b, w in (
-                  ("u", "u1", 1), ("u1", "A", 1), ("u1", "B", 1), ("u1", "C", 1),
-                  ("A", "g1", 1), ("A", "g2", 1), ("B", "g1", 1), ("B", "g3", 1),
-                  ("C", "g2", 1), ("C", "g3", 1), ("C", "g4", 1), ("g1", "u", 10),
-                  ("g2", "u", 10), ("g3", "u", 10), ("g4", "u", 10))]},
-    "start": "u", "goals": ["g1", "g2", "g3", "g4"], "prior": ["2/7", "2/7", "2/7", "1/7"]}
-"""The N = 4 counterexample to NG.4 (proofs/NGOAL.md): coalition DP 25/14, value 12/7."""
+from tests.solver._ngoal_families import GADGET  # NGOAL's N = 4 counterexample
+from tests.solver.coalitions.test_exact import _checker_reads_normals
 
 
 def _certify(doc: dict[str, Any]) -> tuple[Any, Any]:
@@ -61,8 +52,6 @@ def _certify(doc: dict[str, Any]) -> tuple[Any, Any]:
 @settings(max_examples=40, deadline=None)
 @given(doc=ngoal_instances(min_goals=2, max_goals=4))
 def test_solver_profiles_are_certified_on_the_untruncated_game(doc: dict[str, Any]) -> None:
-    from tests.solver.coalitions.test_exact import _checker_reads_normals
-
     eq, cert = _certify(doc)
     # extra normals: certified once the checker reads them (test_exact)
     assume(not (eq.normals and not _checker_reads_normals()))
@@ -176,8 +165,6 @@ def test_the_n4_gadget_is_solved_with_extra_normals(tmp_path: Path) -> None:
     """Once refused (the 0/1 arc condition fails there); now solved with the normals
     (2, 2, 2, 1) (proofs/NEXACT.md). Written once the checker certifies the rule with normals;
     until the checker reads them (issue 29's checker side) the answer is exit 3, one line."""
-    from tests.solver.coalitions.test_exact import _checker_reads_normals
-
     inst = tmp_path / "gadget.json"
     inst.write_text(json.dumps(GADGET))
     out = tmp_path / "p.json"
