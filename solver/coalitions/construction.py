@@ -183,13 +183,10 @@ class CoalitionEquilibrium:
 
         Examples
         --------
-        >>> from solver.game.instance_reading import instance_from_json
-        >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
-        ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
-        ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
-        >>> out = coalition_equilibrium(instance_from_json(doc)).to_json()
+        >>> from solver.game.instance import triangle
+        >>> out = coalition_equilibrium(triangle()).to_json()   # two goals: σ*'s value
         >>> out["defender"], out["value"]["U"]
-        ({'rule': 'guarantee', 'h': ['1', '1']}, '1')
+        ({'rule': 'guarantee', 'h': ['3', '1']}, '12/5')
         """
         defender: dict[str, Any] = {"rule": "guarantee", "h": [str(x) for x in self.h]}
         if self.normals:  # only when there are extra ones
