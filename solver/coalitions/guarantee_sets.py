@@ -41,6 +41,7 @@ from functools import cache
 
 import numpy as np
 
+from solver.coalitions.block_fixpoint import block_fixpoint, fixpoint_ranks
 from solver.coalitions.normal_cover import normal_cover_lp
 from solver.coalitions.vertex_tables import (
     Direction,
@@ -330,13 +331,18 @@ def failing_arcs(directions: Sequence[Direction], tail_vals: np.ndarray, head_va
         return bad
     for d in directions:
         cols = np.asarray(d.cover.columns, dtype=np.int64)
-        hv = min_product(tail_vals[cols].T, d.cover.scaled)[tail_pos].astype(object)
-        mu = min_product(head_vals.T, d.lams.T)[head_pos].astype(object)
+        hv = min_product(tail_vals[cols].T, d.cover.scaled)[tail_pos]
+        mu = min_product(head_vals.T, d.lams.T)[head_pos]
         # h_v(y) <= w + λ·m_u:  hv / (lcm_T · s) <= w + mu / lcm_λ   (all at scale D)
-        lhs = hv * d.lam_lcm
-        rhs = (w_scaled.astype(object) * d.cover.lcm * d.lam_lcm * d.scale
-               + mu * d.cover.lcm * d.scale)
-        bad |= np.asarray(lhs > rhs, dtype=bool)
+        f_w, f_mu = d.cover.lcm * d.lam_lcm * d.scale, d.cover.lcm * d.scale
+        top = max(int(hv.max(initial=0)) * d.lam_lcm,
+                  int(w_scaled.max(initial=0)) * f_w + int(mu.max(initial=0)) * f_mu)
+        if max(top, f_w, f_mu, d.lam_lcm) < INT_LIMIT:  # int64 holds every term exactly
+            bad |= hv * d.lam_lcm > w_scaled * f_w + mu * f_mu
+        else:
+            lhs = hv.astype(object) * d.lam_lcm
+            rhs = w_scaled.astype(object) * f_w + mu.astype(object) * f_mu
+            bad |= np.asarray(lhs > rhs, dtype=bool)
     return bad
 
 
@@ -497,6 +503,49 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
     return Fixpoint(system, m, scale, finite, rank, int(rank.max(initial=0)))
 
 
+def normal_dp(graph: ArcGraph, system: NormalSystem, max_layers: int) -> Fixpoint:
+    """The fixpoint of the normal-restricted DP with the layered DP's ranks.
+
+    By blocks of sourced shortest paths and a label-setting for the ranks
+    (:mod:`solver.coalitions.block_fixpoint`, proofs/NEXACT.md NX.7): the same ``m*``, finite
+    nodes, ranks and ``K`` as :func:`layered_dp` (only the common scale may differ), in a few
+    rounds instead of ``K`` layers. Where that method does not apply it is
+    :func:`layered_dp`.
+
+    Raises
+    ------
+    BudgetExceeded
+        As :func:`layered_dp`: no repeated layer within ``max_layers`` layers (the ranks give
+        ``K``), or numbers beyond the exact range.
+
+    Examples
+    --------
+    >>> graph = ArcGraph(indptr=np.array([0, 2, 2, 2]), heads=np.array([1, 2]),
+    ...                  weights=np.array([1, 1]), denominator=1, goals=(1, 2),
+    ...                  terminal=np.array([[0, 2], [2, 0]]), start=0)
+    >>> fix = normal_dp(graph, NormalSystem(zero_one_normals(2)), 100)
+    >>> [str(fix.value(j, 0)) for j in range(3)], fix.layers
+    (['1', '1', '2'], 1)
+    """
+    normals = np.array(system.normals, dtype=np.int64)
+    goal_values = normals @ graph.terminal.T
+    found = block_fixpoint(graph.indptr, graph.heads, graph.weights, graph.denominator,
+                           graph.goals, goal_values, system.tops, system.closures,
+                           [sum(a) for a in system.normals], max_rounds=max_layers + 1)
+    if found is None:
+        fix = layered_dp(graph, system, check_layers=False, max_layers=max_layers)
+        assert isinstance(fix, Fixpoint)
+        return fix
+    m, scale, finite, _ = found
+    rank = fixpoint_ranks(graph.indptr, graph.heads,
+                          graph.weights * (scale // graph.denominator), graph.goals,
+                          system.tops, system.closures, m, finite)
+    layers = int(rank.max(initial=0))
+    if layers >= max_layers:
+        raise BudgetExceeded(f"no repeated layer within {max_layers:,} layers")
+    return Fixpoint(system, m, scale, finite, rank, layers)
+
+
 def fixpoint_failures(graph: ArcGraph, fix: Fixpoint) -> np.ndarray:
     """The tails of walkable arcs violating ``F_v ⊆ F_u + wΔ`` at the fixpoint."""
     tails, heads = graph.tails, graph.heads
@@ -633,10 +682,9 @@ def guarantee_sets(graph: ArcGraph, budget: Budget | None = None,
     rounds = 0
     while True:
         try:
-            fix = layered_dp(graph, system, check_layers=False, max_layers=max_layers)
+            fix = normal_dp(graph, system, max_layers)
         except BudgetExceeded as exc:
             return Unreached(str(exc), best)
-        assert isinstance(fix, Fixpoint)
         best = fix
         failing = fixpoint_failures(graph, fix)
         if not failing.size:
@@ -683,8 +731,7 @@ def dominated_failures(graph: ArcGraph, normals: tuple[Normal, ...], max_layers:
         When the dominated DP does not repeat a layer within ``max_layers``.
     """
     system = NormalSystem(normals, dominated=True)
-    fix = layered_dp(graph, system, check_layers=False, max_layers=max_layers)
-    assert isinstance(fix, Fixpoint)
+    fix = normal_dp(graph, system, max_layers)
     tails, heads = graph.tails, graph.heads
     keep = fix.finite[tails] & fix.finite[heads]
     w = graph.weights[keep] * (fix.scale // graph.denominator)
