@@ -35,6 +35,7 @@ __all__ = ["block_fixpoint", "exact_totals", "fixpoint_ranks"]
 EXACT = 2 ** 53
 INT_LIMIT = 2 ** 62
 UNSET = np.iinfo(np.int32).max
+NONE = np.iinfo(np.int64).max
 
 
 def exact_totals(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:
@@ -78,15 +79,26 @@ def _own_column(table: VertexTable, j: int) -> int | None:
     return int(own[0])
 
 
-def _steps(tails: np.ndarray, heads: np.ndarray, w_top: np.ndarray, x: np.ndarray,
-           fin: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """``s(v) = min_{(v,u), u finite} [w_top + x(u)]`` and whether it is finite, per node."""
-    ok = fin[heads]
-    out = np.full(n, np.iinfo(np.int64).max, dtype=np.int64)
-    np.minimum.at(out, tails[ok], w_top[ok] + x[heads[ok]])
-    has = np.zeros(n, dtype=bool)
-    has[tails[ok]] = True
-    return out, has
+def _steps(indptr: np.ndarray, heads: np.ndarray, w_top: np.ndarray, x: np.ndarray,
+           fin: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``s(v) = min_{(v,u), u finite} [w_top + x(u)]`` and whether it is finite, per node
+    (arcs in CSR order by tail)."""
+    n = len(indptr) - 1
+    cand = np.where(fin[heads], w_top + x[heads], NONE)
+    out = np.full(n, NONE, dtype=np.int64)
+    starts = indptr[:-1]
+    nonempty = starts < indptr[1:]
+    if cand.size:
+        out[nonempty] = np.minimum.reduceat(cand, starts[nonempty])
+    return out, out < NONE
+
+
+def _distinct(keys: np.ndarray, stamp: np.ndarray) -> np.ndarray:
+    """``keys`` without repeats (first-come order not kept), in linear time; ``stamp`` is a
+    scratch array indexed by key."""
+    pos = np.arange(keys.size, dtype=np.int64)
+    stamp[keys] = pos
+    return keys[stamp[keys] == pos]
 
 
 def _sourced(rev: tuple[np.ndarray, np.ndarray, np.ndarray], w: np.ndarray, init: np.ndarray,
@@ -206,7 +218,7 @@ def block_fixpoint(indptr: np.ndarray, heads: np.ndarray, weights: np.ndarray, d
         hit = step_cache.get(j)
         if hit is None or hit[0] != version[j]:
             w_top = weights * (int(tops[j]) * (scale // den))
-            s, has = _steps(tails, heads, w_top, x[j], fin[j], n)
+            s, has = _steps(indptr, heads, w_top, x[j], fin[j])
             hit = (version[j], s, has)
             step_cache[j] = hit
         return hit[1], hit[2]
@@ -306,7 +318,7 @@ def fixpoint_ranks(indptr: np.ndarray, heads: np.ndarray, w_scaled: np.ndarray,
     opt_arc = np.zeros((n_a, heads.size), dtype=bool)
     for j in range(n_a):
         cand = w_scaled * int(tops[j]) + m[j, heads]
-        s, _ = _steps(tails, heads, w_scaled * int(tops[j]), m[j], finite, n)
+        s, _ = _steps(indptr, heads, w_scaled * int(tops[j]), m[j], finite)
         s_star[j] = np.where(inner, s, 0)
         opt_arc[j] = ok_arc & (cand == s[tails])
     # the attained covers: entries (normal a, node v, support of the vertex), by node
@@ -327,16 +339,21 @@ def fixpoint_ranks(indptr: np.ndarray, heads: np.ndarray, w_scaled: np.ndarray,
     e_a = np.concatenate(ent_a)
     e_v = np.concatenate(ent_v)
     e_s = np.concatenate(ent_s)
-    by_node = np.argsort(e_v, kind="stable")
-    e_a, e_v, e_s = e_a[by_node], e_v[by_node], e_s[by_node]
-    e_ptr = np.concatenate([[0], np.cumsum(np.bincount(e_v, minlength=n))]).astype(np.int64)
-    pad = e_s < 0
-    e_sc = np.where(pad, 0, e_s)
+    # each entry waits for its support's steps: a count, and the slots by (normal, node)
+    waiting = (e_s >= 0).sum(axis=1)
+    slot_e, slot_n = np.nonzero(e_s >= 0)
+    slot_key = e_s[slot_e, slot_n] * n + e_v[slot_e]
+    by_key = np.argsort(slot_key, kind="stable")
+    slot_e = slot_e[by_key]
+    slot_ptr = np.concatenate([[0], np.cumsum(np.bincount(slot_key, minlength=n_a * n))]
+                              ).astype(np.int64)
+    slot_cnt = np.diff(slot_ptr)
     rev_ptr, _, rev_arcs = _reverse(tails, heads, n)
     rev_cnt = np.diff(rev_ptr)
     rank = np.full((n_a, n), UNSET, dtype=np.int64)
     rank[:, ~inner] = 0
-    ready = np.full((n_a, n), UNSET, dtype=np.int64)
+    ready = np.zeros((n_a, n), dtype=bool)
+    stamp = np.zeros(n_a * n, dtype=np.int64)
     fa = np.repeat(np.arange(n_a, dtype=np.int64), goals_a.size)
     fu = np.tile(goals_a, n_a)
     k = 0
@@ -345,17 +362,17 @@ def fixpoint_ranks(indptr: np.ndarray, heads: np.ndarray, w_scaled: np.ndarray,
         arcs, owner = _expand(rev_ptr, rev_cnt, fu)
         aa = fa[owner]
         sel = opt_arc[aa, rev_arcs[arcs]]
-        aa, vv = aa[sel], tails[rev_arcs[arcs[sel]]]
-        fresh = ready[aa, vv] == UNSET
-        ready[aa[fresh], vv[fresh]] = k
-        nodes = np.unique(vv[fresh])
-        idx, _ = _expand(e_ptr, np.diff(e_ptr), nodes)
-        idx = idx[rank[e_a[idx], e_v[idx]] == UNSET]
-        ok = np.all((ready[e_sc[idx], e_v[idx][:, None]] <= k) | pad[idx], axis=1)
-        idx = idx[ok]
-        key = np.unique(e_a[idx] * n + e_v[idx])
+        keys = aa[sel] * n + tails[rev_arcs[arcs[sel]]]
+        keys = _distinct(keys[~ready.flat[keys]], stamp)
+        ready.flat[keys] = True  # ready[a, v] = k
+        slots, _ = _expand(slot_ptr, slot_cnt, keys)
+        ent = slot_e[slots]
+        np.subtract.at(waiting, ent, 1)
+        ent = ent[waiting[ent] == 0]
+        key = e_a[ent] * n + e_v[ent]
+        key = _distinct(key[rank.flat[key] == UNSET], stamp)
         fa, fu = key // n, key % n
-        rank[fa, fu] = k
+        rank.flat[key] = k
     if np.any(rank == UNSET):  # pragma: no cover - NX.7: every value is attained by a cover
         raise AssertionError("fixpoint ranks: a value no ranked cover attains")
     return rank.astype(np.int32)

@@ -34,10 +34,10 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
-from functools import cache
+from functools import cache, cached_property
 
 import numpy as np
 
@@ -360,18 +360,26 @@ class Fixpoint:
         The common denominator ``D``.
     finite : numpy.ndarray
         Whether a goal is reachable from the node.
-    rank : numpy.ndarray
-        ``(|A|, nodes)``: the layer at which ``m_a(v)`` reached its final value.
-    layers : int
-        ``K``: the last layer that changed something.
+    ranks : callable
+        Gives :attr:`rank` (computed on first use: only the certified fixpoint's Attacker and
+        ``K`` need them).
     """
 
     system: NormalSystem
     m: np.ndarray
     scale: int
     finite: np.ndarray
-    rank: np.ndarray
-    layers: int
+    ranks: Callable[[], np.ndarray] = field(repr=False)
+
+    @cached_property
+    def rank(self) -> np.ndarray:
+        """``(|A|, nodes)``: the layer at which ``m_a(v)`` reached its final value."""
+        return self.ranks()
+
+    @cached_property
+    def layers(self) -> int:
+        """``K``: the last layer that changed something."""
+        return int(self.rank.max(initial=0))
 
     def value(self, j: int, v: int) -> Fraction:
         """``m_{a_j}(v)`` exactly."""
@@ -382,7 +390,7 @@ class Fixpoint:
 class LayerFailure:
     """The first layer ``k`` where ``F_v^k ⊄ F_u^{k-1} + wΔ``: its failing tails and the
     values of layers ``k`` (at the recomputed ``rows``) and ``k - 1`` (all nodes) at scale
-    ``scale``."""
+    ``scale`` (``layer`` -1: the failures of a fixpoint, both layers the repeated one)."""
 
     layer: int
     tails: np.ndarray
@@ -500,7 +508,7 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
         changed = rows[np.any(diff, axis=0)]
         if changed.size == 0:
             break
-    return Fixpoint(system, m, scale, finite, rank, int(rank.max(initial=0)))
+    return Fixpoint(system, m, scale, finite, lambda: rank)
 
 
 def normal_dp(graph: ArcGraph, system: NormalSystem, max_layers: int) -> Fixpoint:
@@ -537,13 +545,19 @@ def normal_dp(graph: ArcGraph, system: NormalSystem, max_layers: int) -> Fixpoin
         assert isinstance(fix, Fixpoint)
         return fix
     m, scale, finite, _ = found
-    rank = fixpoint_ranks(graph.indptr, graph.heads,
-                          graph.weights * (scale // graph.denominator), graph.goals,
-                          system.tops, system.closures, m, finite)
-    layers = int(rank.max(initial=0))
-    if layers >= max_layers:
+
+    def ranks() -> np.ndarray:
+        return fixpoint_ranks(graph.indptr, graph.heads,
+                              graph.weights * (scale // graph.denominator), graph.goals,
+                              system.tops, system.closures, m, finite)
+
+    fix = Fixpoint(system, m, scale, finite, ranks)
+    # K <= the number of (normal, inner node) pairs (the ranks take every value 0..K); below
+    # that the budget of layers is checked on K itself, as the layered DP does
+    inner = int(np.count_nonzero(finite)) - len(set(graph.goals))
+    if max_layers <= len(system.normals) * inner and fix.layers >= max_layers:
         raise BudgetExceeded(f"no repeated layer within {max_layers:,} layers")
-    return Fixpoint(system, m, scale, finite, rank, layers)
+    return fix
 
 
 def fixpoint_failures(graph: ArcGraph, fix: Fixpoint) -> np.ndarray:
@@ -695,7 +709,8 @@ def guarantee_sets(graph: ArcGraph, budget: Budget | None = None,
         rounds += 1
         new: list[Normal] = []
         if rounds <= HEURISTIC_ROUNDS:
-            at_fix = LayerFailure(fix.layers, failing, np.arange(graph.n_nodes), fix.m, fix.m,
+            # the fixpoint's own failures (no layer: -1; its ranks are not needed)
+            at_fix = LayerFailure(-1, failing, np.arange(graph.n_nodes), fix.m, fix.m,
                                   fix.finite, fix.scale)
             for v in failing[:8]:
                 new += _local_facets(graph, system, at_fix, int(v), 8)
