@@ -29,10 +29,10 @@ import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
 from solver.coalitions.vertex_tables import VertexTable
+from solver.graph.distances import EXACT_FLOAT_LIMIT
 
 __all__ = ["block_fixpoint", "exact_totals", "fixpoint_ranks"]
 
-EXACT = 2 ** 53
 INT_LIMIT = 2 ** 62
 UNSET = np.iinfo(np.int32).max
 NONE = np.iinfo(np.int64).max
@@ -58,7 +58,7 @@ def exact_totals(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:
         return np.zeros((values.shape[0], scaled.shape[1]), dtype=np.int64)
     top = int(values.max(initial=0))
     width = (top + 1) * (int(np.abs(scaled).sum(axis=0).max(initial=1)) + 1)
-    if width < EXACT:
+    if width < EXACT_FLOAT_LIMIT:
         return values.astype(np.float64) @ scaled.astype(np.float64)
     out = values.astype(object) @ scaled.astype(object)
     if max((int(x) for x in out.flat), default=0) >= INT_LIMIT:
@@ -115,7 +115,7 @@ def _sourced(rev: tuple[np.ndarray, np.ndarray, np.ndarray], w: np.ndarray, init
         return out, fin
     w_rev = w[arc_ids]
     top = int(init[src].max()) + 1 + int(w.max(initial=0)) * (n + 1)
-    if top < EXACT:
+    if top < EXACT_FLOAT_LIMIT:
         data = np.concatenate([w_rev.astype(np.float64),
                                (init[src] + 1).astype(np.float64)])
         full_cols = np.concatenate([cols, src])

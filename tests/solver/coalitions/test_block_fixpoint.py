@@ -19,8 +19,8 @@ from hypothesis import strategies as st
 
 from solver.coalitions import guarantee_sets as gs
 from solver.coalitions.block_fixpoint import block_fixpoint
-from solver.coalitions.construction import arc_graph, nequilibrium_to_json, solve_ngoal
-from solver.game.indexed_instance import ngame_from_json
+from solver.coalitions.construction import arc_graph, coalition_equilibrium
+from solver.game.instance_reading import instance_from_json
 from tests.solver._ngoal_families import GADGET, draw
 
 EXTRA = {3: [(2, 2, 1)], 4: [(2, 2, 2, 1)], 5: [(2, 2, 1, 1, 1)]}
@@ -50,7 +50,7 @@ def _systems(n: int) -> list[gs.NormalSystem]:
 
 
 def _graph(doc: dict[str, Any]) -> gs.ArcGraph:
-    graph, _ = arc_graph(ngame_from_json(doc))
+    graph, _ = arc_graph(instance_from_json(doc))
     return graph
 
 
@@ -95,7 +95,7 @@ def test_budget_of_layers_is_the_same() -> None:
 def test_same_profile_as_the_layered_route(family: str, seed: int, n: int,
                                            monkeypatch: pytest.MonkeyPatch) -> None:
     doc = GADGET if family == "gadget" else draw(family, seed, n)
-    new = nequilibrium_to_json(solve_ngoal(ngame_from_json(doc)))
+    new = coalition_equilibrium(instance_from_json(doc)).to_json()
     monkeypatch.setattr(gs, "normal_dp", _layered)
-    old = nequilibrium_to_json(solve_ngoal(ngame_from_json(doc)))
+    old = coalition_equilibrium(instance_from_json(doc)).to_json()
     assert new == old
