@@ -40,6 +40,9 @@ with a checker that does not read the rule's normals yet (verdict ``fail``: the 
 
 from __future__ import annotations
 
+import solver.threads  # noqa: F401  (first: one BLAS thread before numpy loads, as `dpp` runs)
+
+# isort: split
 import argparse
 import os
 import time
@@ -52,6 +55,7 @@ from dppverify.formats.movingai import grid_document
 from dppverify.formats.movingai import read_map as checker_read_map
 from dppverify.formats.standard_maps import standard_map_path
 from solver import Instance, solve
+from solver.coalitions import guarantee_sets
 from solver.coalitions.construction import coalition_equilibrium
 from solver.experiments.ngoal import corner_cells
 from solver.formats.movingai import read_map
@@ -75,8 +79,15 @@ ISSUE_ROWS: tuple[tuple[str, tuple[int, int] | None, tuple[tuple[int, int], ...]
                                    "maze-32-32-4")))
 
 
-def run(name: str, n: int, repeat: int, cells: tuple[Any, Any] | None = None
-        ) -> dict[str, Any]:
+def _layered_dp(graph: guarantee_sets.ArcGraph, system: guarantee_sets.NormalSystem,
+                max_layers: int) -> guarantee_sets.Fixpoint:
+    fix = guarantee_sets.layered_dp(graph, system, check_layers=False, max_layers=max_layers)
+    assert isinstance(fix, guarantee_sets.Fixpoint)
+    return fix
+
+
+def run(name: str, n: int, repeat: int, cells: tuple[Any, Any] | None = None,
+        layered: bool = False) -> dict[str, Any]:
     path = standard_map_path(name)
     grid = checker_read_map(path)
     blocked = read_map(path)
@@ -84,6 +95,17 @@ def run(name: str, n: int, repeat: int, cells: tuple[Any, Any] | None = None
     prior = [f"1/{n}"] * n
     t_n, eq = _best(lambda: coalition_equilibrium(
         Instance.from_grid(blocked, start, goals, prior)), repeat)
+    t_l = None
+    if layered:  # the same construction with the DP layer by layer (the test oracle)
+        fast = guarantee_sets.normal_dp
+        guarantee_sets.normal_dp = _layered_dp
+        try:
+            t_l, old = _best(lambda: coalition_equilibrium(
+                Instance.from_grid(blocked, start, goals, prior)), repeat)
+        finally:
+            guarantee_sets.normal_dp = fast
+        if old.to_json() != eq.to_json():
+            raise AssertionError(f"{name}: the layered DP's profile differs")
     doc = grid_document(grid, start, goals, prior)
     prof = eq.to_json()
     t_c, cert = _best(lambda: certify(doc, prof, horizon="inf", route="structured"),
@@ -91,7 +113,8 @@ def run(name: str, n: int, repeat: int, cells: tuple[Any, Any] | None = None
     t_2, _ = _best(lambda: solve(Instance.from_grid(blocked, start, (goals[0], goals[1]),
                                                     ("3/5", "2/5"))), max(repeat, 3))
     return {"map": name, "N": n, "nodes": int((~blocked).sum()), "solve_N": t_n,
-            "certify_N": t_c, "verdict": cert.verdict, "solve_2": t_2, "ratio": t_n / t_2,
+            "layered_N": t_l, "certify_N": t_c, "verdict": cert.verdict, "solve_2": t_2,
+            "ratio": t_n / t_2,
             "U": str(eq.U), "VoI": float(eq.VoI), "normals": len(eq.normals)}
 
 
@@ -103,6 +126,12 @@ def main() -> None:
     ap.add_argument("--issue", action="store_true",
                     help="the rows of issue 29: Berlin_1_256 N = 4 (the issue's cells), N = 5 on "
                          "the 32×32 maps")
+    ap.add_argument("--only", nargs="+", default=None, metavar="MAP",
+                    help="with --issue: only these maps' rows")
+    ap.add_argument("--layered", action="store_true",
+                    help="also time the construction with the DP layer by layer (the route "
+                         "before the block fixpoint, proofs/NEXACT.md NX.7) and check that it "
+                         "writes the same profile")
     ap.add_argument("--quick", action="store_true",
                     help="one small map and N = 3, for the test suite (also DPP_BENCH_QUICK=1)")
     args = ap.parse_args()
@@ -119,14 +148,16 @@ def main() -> None:
             read_map(standard_map_path("empty-8-8")), (7, 0),
             [(0, 7), (0, 0), (0, 4), (7, 7), (4, 4)][:n], [f"1/{n}"] * n)).to_json(),
             horizon="inf", route="structured")
-    print(f"{'map':16} {'N':>2} {'cells':>6} {'solve N':>9} {'certify N':>10} {'verdict':>8} "
-          f"{'solve 2':>8} {'ratio':>7} {'normals':>7}  U")
+    print(f"{'map':16} {'N':>2} {'cells':>6} {'solve N':>9} {'layered':>9} {'certify N':>10} "
+          f"{'verdict':>8} {'solve 2':>8} {'ratio':>7} {'normals':>7}  U")
     todo: list[tuple[str, int, tuple[Any, Any] | None]] = (
-        [(m, n, None if s is None else (s, g)) for m, s, g, n in ISSUE_ROWS] if args.issue
+        [(m, n, None if s is None else (s, g)) for m, s, g, n in ISSUE_ROWS
+         if args.only is None or m in args.only] if args.issue
         else [(m, n, None) for m in args.maps for n in args.goals])
     for name, n, placed in todo:
-        r = run(name, n, args.repeat, placed)
-        print(f"{r['map']:16} {r['N']:>2} {r['nodes']:>6} {r['solve_N']:>8.2f}s "
+        r = run(name, n, args.repeat, placed, args.layered)
+        lay = "-" if r["layered_N"] is None else f"{r['layered_N']:.2f}s"
+        print(f"{r['map']:16} {r['N']:>2} {r['nodes']:>6} {r['solve_N']:>8.2f}s {lay:>9} "
               f"{r['certify_N']:>9.2f}s {r['verdict']:>8} {r['solve_2']:>7.3f}s "
               f"{r['ratio']:>6.0f}x {r['normals']:>7}  {r['U']}", flush=True)
 

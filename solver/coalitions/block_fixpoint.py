@@ -228,9 +228,9 @@ def block_fixpoint(indptr: np.ndarray, heads: np.ndarray, weights: np.ndarray, d
             changed = False
             for j in order:
                 tab = closures[j]
-                inputs = (scale, *(version[c] for c in tab.columns if c != j))
+                inputs = tuple(version[c] for c in tab.columns if c != j)
                 if seen.get(j) == inputs:
-                    continue  # the same sources: the same shortest paths
+                    continue  # the same sources (up to the common scale): the same solution
                 init = np.zeros(n, dtype=np.int64)
                 src = is_goal.copy()
                 init[goals_a] = x[j, goals_a]
@@ -266,7 +266,7 @@ def block_fixpoint(indptr: np.ndarray, heads: np.ndarray, weights: np.ndarray, d
                         init[goals_a] = x[j, goals_a]
                     init[nodes] = vals_live // tab.lcm
                     src[nodes] = True
-                seen[j] = (scale, *(version[c] for c in tab.columns if c != j))
+                seen[j] = inputs
                 w_top = weights * (int(tops[j]) * (scale // den))
                 new, nfin = _sourced(rev, w_top, init, np.flatnonzero(src), n)
                 if not (np.array_equal(nfin, fin[j]) and np.array_equal(new[nfin], x[j, nfin])):
