@@ -36,6 +36,8 @@ __all__ = ["block_fixpoint", "exact_totals", "fixpoint_ranks"]
 INT_LIMIT = 2 ** 62
 UNSET = np.iinfo(np.int32).max
 NONE = np.iinfo(np.int64).max
+CHUNK = 8192
+"""Rows per block of the cover totals (bounds the temporaries: 8192 × vertices)."""
 
 
 def exact_totals(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:
@@ -249,7 +251,9 @@ def block_fixpoint(indptr: np.ndarray, heads: np.ndarray, weights: np.ndarray, d
                     top = int(vals[~lost].max(initial=0))
                     big = top * int(sc.sum(axis=0).max(initial=1)) + 1
                     vals[lost] = big
-                    best = exact_totals(vals, sc).min(axis=1)
+                    best = np.concatenate(
+                        [exact_totals(vals[lo:lo + CHUNK], sc).min(axis=1).astype(np.int64)
+                         for lo in range(0, live.size, CHUNK)] or [np.zeros(0, np.int64)])
                     got = best < big
                     vals_live, nodes = best[got].astype(np.int64), live[got]
                     if tab.lcm > 1 and np.any(vals_live % tab.lcm):
@@ -327,8 +331,7 @@ def fixpoint_ranks(indptr: np.ndarray, heads: np.ndarray, w_scaled: np.ndarray,
     ent_a, ent_v, ent_s = [], [], []
     for j, tab in enumerate(closures):
         cols = np.asarray(tab.columns, dtype=np.int64)
-        tot = exact_totals(s_star[cols][:, live].T, tab.scaled)
-        hit_v, hit_q = np.nonzero(tot == (m[j, live] * tab.lcm)[:, None])
+        hit_v, hit_q = _attaining(s_star[cols][:, live].T, tab.scaled, m[j, live] * tab.lcm)
         supp = np.full((tab.scaled.shape[1], width), -1, dtype=np.int64)
         for q in range(tab.scaled.shape[1]):
             nz = cols[np.flatnonzero(tab.scaled[:, q])]
@@ -376,6 +379,22 @@ def fixpoint_ranks(indptr: np.ndarray, heads: np.ndarray, w_scaled: np.ndarray,
     if np.any(rank == UNSET):  # pragma: no cover - NX.7: every value is attained by a cover
         raise AssertionError("fixpoint ranks: a value no ranked cover attains")
     return rank.astype(np.int32)
+
+
+def _attaining(values: np.ndarray, scaled: np.ndarray, target: np.ndarray
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """The pairs (row, vertex) with ``values[row] @ scaled[:, vertex] == target[row]``, exactly
+    (by blocks of rows: the totals of one block at a time)."""
+    rows: list[np.ndarray] = []
+    verts: list[np.ndarray] = []
+    for lo in range(0, values.shape[0], CHUNK):
+        tot = exact_totals(values[lo:lo + CHUNK], scaled)
+        r, q = np.nonzero(tot == target[lo:lo + CHUNK, None])
+        rows.append(r + lo)
+        verts.append(q)
+    if not rows:
+        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    return np.concatenate(rows), np.concatenate(verts)
 
 
 def _expand(ptr: np.ndarray, cnt: np.ndarray, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
