@@ -36,6 +36,19 @@ the value ``dpp value`` proves; the four permutations of (2, 2, 2, 1) as extra n
 refinement round, 591 layers), 800x the two-goal solve in the same run (0.55 s); certify 7.4 s
 with a checker that does not read the rule's normals yet (verdict ``fail``: the profile's
 ``normals`` key is refused). The same solve took 156 s at load average about 12.
+
+Measured with ``--issue --only Berlin_1_256 empty-32-32 maze-32-32-2 maze-32-32-4 --layered``
+(one run, one BLAS thread as ``dpp`` runs, load average 3–4, 2026-11-28, branch h35s): the
+fixpoint by blocks of sourced shortest paths and the ranks by label-setting (proofs/NEXACT.md
+NX.7) against the layered DP in the same run, same profile asserted: Berlin_1_256 with the
+issue's four goals solve 4.48 s vs 8.11 s layered (1.8x; U = 913/4, four extra normals,
+K = 591), certify 0.44 s ``fail`` (this checker refuses the ``normals`` key); N = 5 by the
+corner rule: empty-32-32 0.20 s vs 0.23 s (certify 5.3 s, pass), maze-32-32-2 0.14 s vs
+0.19 s (3.4 s, pass), maze-32-32-4 0.23 s vs 0.27 s (3.8 s, pass). room-32-32-4 N = 5 does not
+finish in 300 s: its refinement reaches 66 normals and the packing polytope's vertex
+enumeration (207,085 vertices, 102 s) and cover tables dominate, not the DP. The whole
+``dpp solve`` command on Berlin (``/usr/bin/time``): 12.5 s wall, 10.9 s user before; 5.8 s
+wall, 5.0 s user after (exit 3 both: the checker of this base refuses the normals).
 """
 
 from __future__ import annotations
@@ -137,7 +150,8 @@ def main() -> None:
     args = ap.parse_args()
     if args.quick or os.environ.get("DPP_BENCH_QUICK"):
         args.maps, args.goals = ["empty-8-8"], [3]
-    for n in args.goals:  # warm-up: enumerations cached per process
+    warm = sorted({n for *_, n in ISSUE_ROWS}) if args.issue else args.goals
+    for n in warm:  # warm-up: enumerations cached per process
         tiny = np.zeros((3, 3), dtype=bool)
         cells = [(0, 0), (0, 2), (2, 2), (1, 1), (0, 1)][:n]
         game = Instance.from_grid(tiny, (2, 0), cells, [f"1/{n}"] * n)
