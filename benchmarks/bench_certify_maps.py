@@ -36,8 +36,9 @@ import numpy as np
 from dppverify import certify, game_value, instance_from_json
 from dppverify.formats.json_reading import parse_json
 from dppverify.twogoal.value_dp import structured_value
-from solver import Instance, equilibrium_to_json, instance_to_json, solve
+from solver import Instance, instance_to_json
 from solver.formats.movingai import read_map
+from solver.twogoal.equilibrium import paper_equilibrium
 
 MAPS = ("empty-8-8", "empty-16-16", "empty-32-32", "empty-48-48", "maze-32-32-2",
         "maze-32-32-4", "maze-128-128-2", "maze-128-128-10", "room-32-32-4", "room-64-64-8",
@@ -93,9 +94,9 @@ def bench_map(name: str, repeat: int) -> dict[str, Any]:
     blocked = load(name)
     start, g1, g2 = choose(blocked)
     prior = ("0.6", "0.4")
-    t_solve, eq = best(lambda: solve(Instance.from_grid(blocked, start, (g1, g2), prior)),
-                       repeat)
-    texts = json.dumps(instance_to_json(eq.instance)), json.dumps(equilibrium_to_json(eq))
+    t_solve, eq = best(
+        lambda: paper_equilibrium(Instance.from_grid(blocked, start, (g1, g2), prior)), repeat)
+    texts = json.dumps(instance_to_json(eq.instance)), json.dumps(eq.to_json())
     t_parse, (doc, prof) = best(lambda: tuple(parse_json(t) for t in texts), repeat)
     h = max(len(eq.secondary_path) - 1, *(len(p.nodes) - 1 for p in eq.primary_paths))
     t_cert, cert = best(lambda: certify(doc, prof, route="structured"), repeat)

@@ -2,10 +2,10 @@
 
 Draws ``--per`` instances per family (random digraphs, small grids with obstacles, hub gadgets:
 ``tests/solver/_ngoal_families.py``, seeds ``0 … per-1``) and N = 2..5, solves each with
-:func:`solver.coalitions.construction.solve_ngoal` (the default budget) and counts: solved, solved
-with extra facet normals (the 0/1 coalition sets did not suffice: the instances the old
-construction refused), refused (the budget ended first: exit 3 with a bracket), with the
-reasons of the refusals and the time per instance.
+:func:`solver.coalitions.construction.coalition_equilibrium` (the default budget) and counts:
+solved, solved with extra facet normals (the 0/1 coalition sets did not suffice: the
+instances the old construction refused), refused (the budget ended first: exit 3 with a
+bracket), with the reasons of the refusals and the time per instance.
 
 Run: ``.venv/bin/python benchmarks/bench_ngoal_refusals.py [--per 50] [--goals 4 5]``.
 """
@@ -17,8 +17,8 @@ import collections
 import os
 import time
 
-from solver.coalitions.construction import FixpointNotReached, solve_ngoal
-from solver.game.indexed_instance import ngame_from_json
+from solver.coalitions.construction import FixpointNotReached, coalition_equilibrium
+from solver.game.instance_reading import instance_from_json
 from tests.solver._ngoal_families import FAMILIES, draw
 
 
@@ -41,10 +41,10 @@ def main() -> None:
             c: collections.Counter[str] = collections.Counter()
             t0 = time.perf_counter()
             for seed in range(args.per):
-                game = ngame_from_json(draw(family, seed, n))
+                game = instance_from_json(draw(family, seed, n))
                 c["drawn"] += 1
                 try:
-                    eq = solve_ngoal(game)
+                    eq = coalition_equilibrium(game)
                 except FixpointNotReached as exc:
                     c["refused"] += 1
                     print(f"  refused: {family} seed {seed} N = {n}: {exc}", flush=True)

@@ -8,7 +8,7 @@ evenly) and a uniform default. The profile is a test load, not an equilibrium: e
 runs in full whatever its status. Timed: ``certify(..., horizon="inf",
 route="structured")`` as a whole; the coalition DP (``H = inf``) that it runs, alone; and
 the best responses over all walks alone (the trie, one exact Dijkstra and the trie DP per type:
-what ``ngoal.pbne.attacker_br`` computes).
+what ``pbne.attacker_br`` computes).
 
 Run: ``.venv/bin/python benchmarks/bench_ngoal_structured.py [--maps NAME ...] [--goals 3 4 5]``.
 """

@@ -91,11 +91,12 @@ def _map_path(ref: str) -> str:
 # ---------------------------------------------------------------- the measured operations
 def op_solve(map_ref: str, cells: tuple[tuple[int, int], ...]) -> Any:
     """The solver: read the map, build the instance, solve."""
-    from solver import Instance, solve
+    from solver import Instance
     from solver.formats.movingai import read_map
+    from solver.twogoal.equilibrium import paper_equilibrium
 
     blocked = read_map(_map_path(map_ref))
-    return solve(Instance.from_grid(blocked, cells[0], (cells[1], cells[2]), PRIOR))
+    return paper_equilibrium(Instance.from_grid(blocked, cells[0], (cells[1], cells[2]), PRIOR))
 
 
 def op_certify(instance_file: Path, profile_file: Path) -> Any:
@@ -119,7 +120,7 @@ def op_value(instance_file: Path, horizon: int | None) -> Any:
 def save_game(map_ref: str, cells: tuple[tuple[int, int], ...], d: Path) -> tuple[Path, Path,
                                                                                   Any]:
     """Solve, then write the compact instance and the profile as ``dpp solve`` does."""
-    from solver import equilibrium_to_json, instance_to_json
+    from solver import instance_to_json
 
     eq = op_solve(map_ref, cells)
     inst_file, prof_file = d / "instance.json", d / "profile.json"
@@ -130,7 +131,7 @@ def save_game(map_ref: str, cells: tuple[tuple[int, int], ...], d: Path) -> tupl
     else:
         inst_file.write_text(json.dumps(map_instance_to_json(map_ref, eq.instance,
                                                              relative_to=d)))
-    prof_file.write_text(json.dumps(equilibrium_to_json(eq)))
+    prof_file.write_text(json.dumps(eq.to_json()))
     return inst_file, prof_file, eq
 
 

@@ -26,8 +26,9 @@ import numpy as np
 from _grids import free_cell_graph, random_grid
 from scipy.sparse.csgraph import connected_components, dijkstra
 
-from solver import Instance, solve
+from solver import Instance
 from solver.graph.distances import distances_to
+from solver.twogoal.equilibrium import paper_equilibrium
 
 
 def best_of(fn: Callable[[], object], repeat: int) -> float:
@@ -68,9 +69,9 @@ def bench_grid(size: int, repeat: int) -> None:
     for _ in range(repeat):  # interleaved, so both see the same machine load
         t_dij = min(t_dij, best_of(lambda: dijkstra(mat, directed=True, indices=s), 1))
         t_solve = min(t_solve, best_of(
-            lambda: solve(Instance.from_grid(blocked, start, goals, prior)), 1))
+            lambda: paper_equilibrium(Instance.from_grid(blocked, start, goals, prior)), 1))
     tracemalloc.start()
-    eq = solve(Instance.from_grid(blocked, start, goals, prior))
+    eq = paper_equilibrium(Instance.from_grid(blocked, start, goals, prior))
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
     print(f"grid {size}x{size}, 20% obstacles: {mat.shape[0]:,} free cells, {mat.nnz:,} arcs; "
@@ -84,7 +85,7 @@ def bench_grid(size: int, repeat: int) -> None:
 
 def brute_force_u2(inst: Instance) -> Fraction:
     """min over simple paths ending at their first goal of the secondary's cost against σ*."""
-    eq = solve(inst)  # only for σ* (the progress rule) and the distance field
+    eq = paper_equilibrium(inst)  # only for σ* (the progress rule) and the distance field
     net, sigma = inst.network, eq.defender
     g1, g2 = net.index_of(inst.primary), net.index_of(inst.secondary)
     s0 = net.index_of(inst.start)
@@ -120,8 +121,8 @@ def bench_small(repeat: int, sizes: tuple[int, ...] = (8, 10, 12, 14, 16)) -> No
             g[u][v]["weight"] = int(rng.integers(1, 6))
         inst = Instance(g, 0, (n - 1, n - 2), ("3/5", "2/5"))
         t_brute = best_of(lambda inst=inst: brute_force_u2(inst), 1)  # type: ignore[misc]
-        t_solve = best_of(lambda inst=inst: solve(inst), repeat)  # type: ignore[misc]
-        assert brute_force_u2(inst) == solve(inst).U2
+        t_solve = best_of(lambda inst=inst: paper_equilibrium(inst), repeat)  # type: ignore[misc]
+        assert brute_force_u2(inst) == paper_equilibrium(inst).U2
         print(f"  n={n:2d} m={g.number_of_edges():3d}: enumeration {t_brute * 1e3:9.1f} ms, "
               f"solve {t_solve * 1e3:6.2f} ms, speed-up {t_brute / t_solve:9.0f}x "
               "(same U2)")

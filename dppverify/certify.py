@@ -49,9 +49,7 @@ from dppverify.formats.json_reading import JsonReadError, read_json_file
 from dppverify.game.instance import Instance, arc_arrays, node_to_json
 from dppverify.game.profile import (
     NGOAL_PROFILE_FORMAT,
-    GoalTable,
     Profile,
-    ProgressRule,
     check_format,
     load_profile_document,
     profile_from_json,
@@ -111,8 +109,8 @@ def _read_profile(profile: Any) -> tuple[Any, str]:
         except JsonReadError as exc:
             raise ProfileError(f"{name}: {exc}") from None
     raise ProfileError("a profile must be a JSON document (dict), a file path, JSON bytes or "
-                       f"an object with to_json(); got {type(profile).__name__} (for the "
-                       "solver's Equilibrium pass solver.equilibrium_to_json(eq))")
+                       f"an object with to_json(); got {type(profile).__name__} (the solver's "
+                       "results have to_json())")
 
 
 def _ngoal_profile_input(profile: Any) -> Mapping[str, Any] | str | Path:
@@ -249,14 +247,14 @@ def certify(instance: Instance | Mapping[str, Any] | str | Path | Any,
     >>> bad = star3_profile()
     >>> bad["defender"]["default"] = [0, 1, 0]   # guards b off the table: on s m and s m a
     >>> cert = certify(star3_document(), bad, horizon=2)
-    >>> cert.verdict, cert.check("ngoal.pbne.defender_br").message
+    >>> cert.verdict, cert.check("pbne.defender_br").message
     ('fail', 'Defender regret 2/3: greedy best response 3/2, profile 5/6')
 
     On the untruncated game (the default) type ``b`` may loop ``s m s m b`` where the default
     guards ``a``:
 
     >>> cert = certify(star3_document(), star3_profile())
-    >>> cert.route, cert.horizon, cert.check("ngoal.pbne.attacker_br").status
+    >>> cert.route, cert.horizon, cert.check("pbne.attacker_br").status
     ('structured', None, 'fail')
     """
     with reading_once():  # each input file read once: what is hashed is what was parsed
@@ -286,7 +284,7 @@ def _certify(instance: Any, profile: Any, *, horizon: int | str | float | None, 
     prof = profile_from_json(doc, game, game.numbers)
     asked = parse_horizon(horizon)
     _check_horizon(asked, shortest_horizon(game, prof), "path")
-    table = prof.defender is not None and not isinstance(prof.defender, ProgressRule)
+    table = prof.defender is not None and prof.defender.table
     chosen = resolve_route(route, game, asked, max_prefixes, certifying=True, table=table)
     h = asked
     tree_checks: list[CheckRecord] = []
@@ -304,7 +302,7 @@ def _certify(instance: Any, profile: Any, *, horizon: int | str | float | None, 
     if chosen in ("structured", "both"):
         structured = in_registry_order(structured_checks(game, prof, h), "structured")
         checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)
-    roles = game.roles(prof.primary_slot)
+    roles = game.roles(prof.primary_goal_index)
     defender = doc.get("defender")
     info = {
         "nodes": game.n_nodes,
@@ -368,8 +366,8 @@ def _certify_n(inst: Instance, profile: Mapping[str, Any] | str | Path, horizon:
     trie_size = 0
     if chosen in ("structured", "both"):
         structured, trie_size = nstructured_checks(inst, prof, h)
-        if h is None and isinstance(prof.defender, GoalTable) and prof.defender.default is None:
-            br = next((r for r in structured if r.id == "ngoal.pbne.attacker_br"), None)
+        if h is None and prof.defender is not None and not prof.defender.defined_everywhere:
+            br = next((r for r in structured if r.id == "pbne.attacker_br"), None)
             if br is not None and br.status == "error":  # undefined off the table: undecided
                 raise UndecidedError(NTABLE_UNDECIDED)
         checks = structured if chosen == "structured" else merge_routes(tree_checks, structured)

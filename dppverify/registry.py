@@ -24,7 +24,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
-__all__ = ["CHECKS", "CHECK_IDS", "KINDS", "CheckSpec", "kind_of", "not_run", "spec"]
+__all__ = ["CHECKS", "CHECK_IDS", "KINDS", "NGOAL_CHECKS", "NGOAL_CHECK_IDS", "CheckSpec",
+           "kind_of", "not_run", "spec"]
 
 RouteName = Literal["tree", "structured"]
 Kind = Literal["check", "consistency", "fact"]
@@ -94,12 +95,38 @@ CHECKS: tuple[CheckSpec, ...] = (
     CheckSpec("lemma.L4.monotonicity", "L4", ("tree",), "fact", _T, "–"),
     CheckSpec("lemma.L5.induced_beliefs", "L5", ("tree", "structured"), "fact", _T, _P),
 )
-"""Every check, in certificate order."""
+"""Every check of a two-goal certificate (``dpp-profile/1``), in certificate order."""
 
 CHECK_IDS: tuple[str, ...] = tuple(c.id for c in CHECKS)
-"""Every check id, in certificate order."""
+"""Every check id of a two-goal certificate, in certificate order."""
 
-_BY_ID = {c.id: c for c in CHECKS}
+_NW = "relies on proofs/NWALKBR.md (NW.1: the minimum over all walks of any length)"
+_NP = ("the prefixes of the profile's walks (proofs/NWALKBR.md NW.3; off the path NW.4: any "
+       "distribution is greedy for the belief uniform on its support)")
+
+NGOAL_CHECKS: tuple[CheckSpec, ...] = (
+    CheckSpec("profile.wellformed", "NGOAL", ("tree", "structured"), "check", _T,
+              "the profile document alone"),
+    CheckSpec("value.U", "NGOAL", ("tree", "structured"), "check", _T, _PROFILE),
+    CheckSpec("pbne.attacker_br", "NGOAL", ("tree", "structured"), "check", _T, _NW),
+    CheckSpec("pbne.defender_br", "NGOAL", ("tree", "structured"), "check", _T, _NP),
+    CheckSpec("pbne.sequential_rationality", "NGOAL", ("tree", "structured"), "check", _T, _NP),
+    CheckSpec("game.value", "NGOAL", ("tree", "structured"), "check", _T,
+              "relies on proofs/NGOAL.md (the guarantee sets' value)"),
+    CheckSpec("game.value.structured", "NGOAL", ("tree",), "consistency", _T, "–"),
+)
+"""Every check of an N-goal certificate (``dpp-ngoal-profile/1``), in certificate order: the
+same id as two goals for the same question (well formed, ``U``, the Defender's best response,
+sequential rationality, ``V_H = U``); ``pbne.attacker_br`` holds every type's regret (two
+goals split it by type, with the lemmas behind each), ``game.value.structured`` compares the
+structured value with the tree route's. The two-goal facts (phases, lemmas) have no N-goal
+entry."""
+
+NGOAL_CHECK_IDS: tuple[str, ...] = tuple(c.id for c in NGOAL_CHECKS)
+"""Every check id of an N-goal certificate, in certificate order."""
+
+_BY_ID = {c.id: c for c in NGOAL_CHECKS} | {c.id: c for c in CHECKS}
+"""One entry per id (a shared id: the two-goal entry; both have the same kind and routes)."""
 
 NOT_RUN_REASONS = {
     "lemma.L3.greedy": "needs the walk tree (an LP per random attacker over all prefixes); "
@@ -107,11 +134,14 @@ NOT_RUN_REASONS = {
                        "pbne.defender_br on the profile's prefixes",
     "lemma.L4.monotonicity": "random primary strategies need the walk tree; the profile's own "
                              "beliefs along ξ² are checked by lemma.L5.induced_beliefs",
+    "game.value.structured": "compares the structured value with the tree route's LP; the "
+                             "structured route has no walk tree (its game.value is the "
+                             "structured value itself)",
 }
 
 
 def spec(check_id: str) -> CheckSpec:
-    """The registry entry of ``check_id`` (KeyError if unknown).
+    """The registry entry of ``check_id``, for two or N goals (KeyError if unknown).
 
     Examples
     --------
@@ -134,15 +164,15 @@ def kind_of(check_id: str) -> Kind:
     return "check" if s is None else s.kind
 
 
-def not_run(route: RouteName) -> dict[str, str]:
-    """The checks ``route`` does not run, each with the reason.
+def not_run(route: RouteName, *, n_goals: int = 2) -> dict[str, str]:
+    """The checks ``route`` does not run on a game of ``n_goals`` goals, each with the reason.
 
     Examples
     --------
     >>> sorted(not_run("structured"))
     ['lemma.L3.greedy', 'lemma.L4.monotonicity']
-    >>> not_run("tree")
-    {}
+    >>> not_run("tree"), list(not_run("structured", n_goals=3))
+    ({}, ['game.value.structured'])
     """
-    return {c.id: NOT_RUN_REASONS.get(c.id, "not on this route") for c in CHECKS
-            if route not in c.routes}
+    return {c.id: NOT_RUN_REASONS.get(c.id, "not on this route")
+            for c in (CHECKS if n_goals == 2 else NGOAL_CHECKS) if route not in c.routes}

@@ -1,4 +1,5 @@
-"""solver: the constructive Perfect Bayesian Nash equilibrium of the DPP game.
+"""solver: the constructive Perfect Bayesian Nash equilibrium of the DPP game, for any number
+of goals (:func:`solve`; two goals: the paper's σ*, more: the coalition construction).
 
 >>> import networkx as nx
 >>> from solver import Instance, solve
@@ -10,42 +11,58 @@
 
 from __future__ import annotations
 
+import warnings
 from typing import TYPE_CHECKING, Any
 
 from solver.version import __version__
 
-_LAZY = {"Equilibrium": "solver.twogoal.equilibrium", "solve": "solver.twogoal.equilibrium",
+_LAZY = {"Solution": "solver.solution", "solve": "solver.solution",
+         "summarize": "solver.solution", "Equilibrium": "solver.twogoal.equilibrium",
          "DPPError": "solver.errors", "InstanceFormatError": "solver.errors",
          "InvalidInstanceError": "solver.errors", "Instance": "solver.game.instance",
          "instance_from_json": "solver.game.instance_reading",
          "instance_to_json": "solver.game.instance_writing",
          "load_instance": "solver.game.instance_reading",
-         "equilibrium_to_json": "solver.twogoal.profile_json",
-         "summarize": "solver.twogoal.report", "StrategyPath": "solver.game.walks"}
+         "StrategyWalk": "solver.game.walks"}
 """The public names, each imported on first use (``import solver`` stays cheap)."""
+
+_DEPRECATED = {"StrategyPath": ("StrategyWalk", "solver.game.walks"),
+               "equilibrium_to_json": ("_to_json", "solver")}
+"""Old public names: still served, with a DeprecationWarning naming what replaces them."""
 
 if TYPE_CHECKING:
     from solver.errors import DPPError, InstanceFormatError, InvalidInstanceError
     from solver.game.instance import Instance
     from solver.game.instance_reading import instance_from_json, load_instance
     from solver.game.instance_writing import instance_to_json
-    from solver.game.walks import StrategyPath
-    from solver.twogoal.equilibrium import Equilibrium, solve
-    from solver.twogoal.profile_json import equilibrium_to_json
-    from solver.twogoal.report import summarize
+    from solver.game.walks import StrategyWalk
+    from solver.solution import Solution, solve, summarize
+    from solver.twogoal.equilibrium import Equilibrium
 
 __all__ = ["DPPError", "Equilibrium", "Instance", "InstanceFormatError",
-           "InvalidInstanceError", "StrategyPath", "__version__", "equilibrium_to_json",
+           "InvalidInstanceError", "Solution", "StrategyWalk", "__version__",
            "instance_from_json", "instance_to_json", "load_instance", "solve", "summarize"]
+
+
+def _to_json(result: Any) -> dict[str, Any]:
+    """``result.to_json()``: what the deprecated ``solver.equilibrium_to_json`` does."""
+    doc: dict[str, Any] = result.to_json()
+    return doc
 
 
 def __getattr__(name: str) -> Any:
     """Import a public name from its module on first use."""
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     import importlib
 
-    value = getattr(importlib.import_module(module), name)
+    if name in _DEPRECATED:
+        new, module = _DEPRECATED[name]
+        use = "the result's to_json()" if new == "_to_json" else f"solver.{new}"
+        warnings.warn(f"solver.{name} is deprecated: use {use}", DeprecationWarning,
+                      stacklevel=2)
+        return getattr(importlib.import_module(module), new)
+    home = _LAZY.get(name)
+    if home is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(home), name)
     globals()[name] = value
     return value

@@ -9,16 +9,14 @@ from __future__ import annotations
 
 from typing import Any
 
-from solver.game.instance_reading import instance_from_json
-from solver.twogoal.equilibrium import solve
-from solver.twogoal.profile_json import equilibrium_to_json
+from solver.solution import solve
 
 __all__ = ["solve_json"]
 
 
 def solve_json(instance_doc: dict[str, Any]) -> dict[str, Any]:
-    """Solve an instance document (``docs/formats.md`` §1) and return its
-    ``dpp-profile/1`` document (§2).
+    """Solve an instance document (``docs/formats.md`` §1) and return its profile document:
+    ``dpp-profile/1`` for two goals (§2), ``dpp-ngoal-profile/1`` for more (§2b).
 
     Examples
     --------
@@ -33,4 +31,4 @@ def solve_json(instance_doc: dict[str, Any]) -> dict[str, Any]:
     >>> [(p["path"], p["probability"]) for p in profile["attacker"]["primary"]]
     [(['s', 'g1'], '4/7'), (['s', 'g2'], '3/7')]
     """
-    return equilibrium_to_json(solve(instance_from_json(instance_doc)))
+    return solve(instance_doc).to_json()

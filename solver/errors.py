@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-__all__ = ["DPPError", "InstanceFormatError", "InvalidInstanceError", "OutputError"]
+__all__ = ["DPPError", "InstanceFormatError", "InvalidInstanceError", "NotTwoGoalsError",
+           "OutputError"]
 
 
 class DPPError(Exception):
@@ -19,6 +20,11 @@ class InvalidInstanceError(DPPError, ValueError):
 
 class InstanceFormatError(InvalidInstanceError):
     """A file or document that cannot be parsed (malformed JSON, a bad map header...)."""
+
+
+class NotTwoGoalsError(InvalidInstanceError):
+    """A two-goal view (the paper's primary and secondary goals) asked of an instance with
+    ``N != 2`` goals."""
 
 
 class OutputError(DPPError, OSError):

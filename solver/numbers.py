@@ -23,6 +23,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from dppio.limits import check_numeral, check_rational
+from dppio.text import decimal
 from solver.errors import InvalidInstanceError
 
 __all__ = [
@@ -32,6 +33,7 @@ __all__ = [
     "Number",
     "NumberMode",
     "format_number",
+    "format_value",
     "parse_number",
     "pivot",
     "solve_exact",
@@ -315,3 +317,36 @@ def pivot(rows: list[list[Fraction]], i: int, j: int) -> None:
         if k != i and row[j]:
             f = row[j]
             rows[k] = [x - f * y for x, y in zip(row, rows[i], strict=True)]
+
+
+def format_value(x: Number) -> str:
+    """A value as the text outputs write it: ``p/q (≈ decimal)``, an integer bare.
+
+    The same style as the checker's reports (``dppverify.text.show_value``); a fraction longer
+    than 40 characters is shown by its decimal only (``--json`` has the exact form).
+
+    Parameters
+    ----------
+    x : Fraction, int or float
+        The value (a float is float mode: dppio.text.decimal, no fraction).
+
+    Returns
+    -------
+    str
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> format_value(Fraction(12, 7)), format_value(Fraction(4)), format_value(2 ** 0.5)
+    ('12/7 (≈ 1.714)', '4', '1.414')
+    >>> format_value(Fraction(10**50 + 1, 10**50))
+    '≈ 1 (exact: a 102-digit fraction, see --json)'
+    """
+    if isinstance(x, float):
+        return decimal(x)
+    if x.denominator == 1:
+        return str(x)
+    text = str(x)
+    if len(text) > 40:
+        return f"≈ {decimal(x)} (exact: a {len(text) - 1}-digit fraction, see --json)"
+    return f"{text} (≈ {decimal(x)})"

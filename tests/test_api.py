@@ -14,7 +14,7 @@ import pytest
 import dppverify
 from dppverify.errors import InvalidInstanceError as CheckerInstanceError
 from dppverify.errors import ProfileError
-from solver import Instance, equilibrium_to_json, instance_to_json, solve
+from solver import Instance, instance_to_json, solve
 from solver.errors import InvalidInstanceError
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -40,7 +40,7 @@ class _Wrapped:
 
 def test_certify_and_value_accept_objects_dicts_and_paths(tmp_path: Path) -> None:
     inst = Instance(_triangle(), "s", ("g1", "g2"), ("7/10", "3/10"))
-    inst_doc, prof_doc = instance_to_json(inst), equilibrium_to_json(solve(inst))
+    inst_doc, prof_doc = instance_to_json(inst), solve(inst).to_json()
     cert = dppverify.certify(_Wrapped(inst_doc), _Wrapped(prof_doc))
     assert cert.passed and cert.check("value.U").numbers["U"] == Fraction(12, 5)
     assert dppverify.game_value(_Wrapped(inst_doc), 3).bracket.exact == Fraction(12, 5)

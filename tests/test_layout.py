@@ -109,4 +109,14 @@ def test_no_module_is_named_for_n_goals() -> None:
 
 def test_the_solver_root_holds_the_front_door_and_the_core() -> None:
     loose = sorted(p.stem for p in (ROOT / "solver").glob("*.py"))
-    assert loose == ["__init__", "adapter", "errors", "limits", "numbers", "threads", "version"]
+    assert loose == ["__init__", "adapter", "errors", "limits", "numbers", "solution", "threads",
+                     "version"]
+
+
+@pytest.mark.parametrize("package", PACKAGES)
+def test_the_tests_mirror_the_package(package: str) -> None:
+    """``tests/<package>/<layer>/`` holds the tests of ``<package>/<layer>/``: no other folder."""
+    folders = {p.name for p in (ROOT / "tests" / package).iterdir()
+               if p.is_dir() and p.name != "__pycache__"}
+    assert folders, f"tests/{package}/ has no layer folders"
+    assert folders <= _children(package), f"tests/{package}/ has folders no layer of {package} has"

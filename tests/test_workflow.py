@@ -200,7 +200,7 @@ def test_ngoal_profiles_in_the_wrong_place_get_the_same_hints(profile: str,
     assert "not an instance" in line
     r = dpp("certify", TRIANGLE, p3)   # 3 goals against 2: refuted, as by certify()
     assert "its goals are [0, 9], [0, 0], [9, 9]" in _refuted_with_note(r)
-    assert " fail " in _row(r, "ngoal.profile.wellformed")
+    assert " fail " in _row(r, "profile.wellformed")
 
 
 def test_plot_voi_on_the_wrong_file_names_it_and_the_command(profile: str,
@@ -340,7 +340,8 @@ def test_certify_takes_the_solvers_objects() -> None:
     inst = solver.load_instance(TRIANGLE)
     eq = solver.solve(inst)
     assert inst.to_json() == solver.instance_to_json(inst)
-    assert eq.to_json() == solver.equilibrium_to_json(eq)
+    with pytest.warns(DeprecationWarning, match="equilibrium_to_json is deprecated"):
+        assert eq.to_json() == solver.equilibrium_to_json(eq)
     assert dppverify.certify(inst, eq).verdict == "pass"
     assert dppverify.game_value(inst, 2).bracket.closed
 
@@ -351,7 +352,7 @@ def test_structured_prior_mismatch_has_no_fraction_repr() -> None:
     import solver
 
     inst = solver.load_instance(TRIANGLE)
-    doc = solver.equilibrium_to_json(solver.solve(inst))
+    doc = solver.solve(inst).to_json()
     doc["prior"] = {"primary": "3/5", "secondary": "2/5"}
     cert = dppverify.certify(inst, doc, route="structured")
     rec = cert.check("pbne.belief_consistency")
@@ -473,7 +474,7 @@ def test_plot_refuses_a_wrong_suffix_before_any_work(goals: list[str], tmp_path:
     def boom(*args: object, **kwargs: object) -> None:
         raise AssertionError("solved before the output name was checked")
 
-    monkeypatch.setattr(construction, "solve_ngoal", boom)
+    monkeypatch.setattr(construction, "coalition_equilibrium", boom)
     monkeypatch.setattr(grid, "PairEvaluator", type("P", (), {"of": staticmethod(boom)}))
     prior = "0.6,0.4" if len(goals) == 2 else "1/2,1/3,1/6"
     line = _one_line_error(dpp("plot", "map", "--map", PAPER10, "--start", "9,0", "--goals",

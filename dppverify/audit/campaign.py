@@ -20,7 +20,7 @@ and its settings (``max_nodes``). Games already audited are not examined again: 
 are distinct games (equal documents, :func:`game_key`). Hence a budget of ``N`` audits
 exactly the first ``N`` examples of any larger budget with the same seed, and a solver
 that fails at example ``k`` fails there for every budget ``>= k``
-(``tests/harness/test_audit_nesting.py``).
+(``tests/dppverify/audit/test_audit_nesting.py``).
 """
 
 from __future__ import annotations

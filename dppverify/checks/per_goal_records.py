@@ -13,6 +13,7 @@ from dppverify.checks.structured_shared import greedy_sums, structured_record
 from dppverify.errors import HorizonError
 from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance
+from dppverify.registry import NGOAL_CHECKS
 from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.structured.table_br import TableDefender
 
@@ -27,8 +28,8 @@ TRIE = ("the prefixes of the profile's walks (proofs/NWALKBR.md NW.3; off the pa
         "distribution is greedy for the belief uniform on its support)")
 PROFILE_DOC = "the profile document alone"
 
-NGOAL_IDS = ("ngoal.profile.wellformed", "ngoal.value.U", "ngoal.pbne.attacker_br",
-        "ngoal.pbne.defender_br", "ngoal.pbne.sequential", "ngoal.value.V_H")
+NGOAL_IDS = tuple(c.id for c in NGOAL_CHECKS if "structured" in c.routes)
+"""The N-goal structured route's check ids, in certificate order (the registry's)."""
 
 
 def ngoal_record(cid: str, status: Status, message: str,
@@ -38,7 +39,7 @@ def ngoal_record(cid: str, status: Status, message: str,
 
     Examples
     --------
-    >>> ngoal_record("ngoal.value.U", "pass", "U = 1", None, PAYOFF_WALKS).proof
+    >>> ngoal_record("value.U", "pass", "U = 1", None, PAYOFF_WALKS).proof
     'NGOAL'
     """
     return structured_record(cid, status, message, numbers, proof, relies_on)
@@ -46,7 +47,7 @@ def ngoal_record(cid: str, status: Status, message: str,
 
 def payoff_record(per_type: Sequence[Number], u: Number, claimed_u: Number | None
                   ) -> CheckRecord:
-    """``ngoal.value.U``: every type's payoff ``U_θ`` and ``U``, against the profile's claim.
+    """``value.U``: every type's payoff ``U_θ`` and ``U``, against the profile's claim.
 
     Examples
     --------
@@ -57,7 +58,7 @@ def payoff_record(per_type: Sequence[Number], u: Number, claimed_u: Number | Non
     nums["U"] = u
     ok = claimed_u is None or claimed_u == u
     said = "" if claimed_u is None else f" (profile says {claimed_u})"
-    return ngoal_record("ngoal.value.U", "pass" if ok else "fail", f"U = {u}{said}", nums,
+    return ngoal_record("value.U", "pass" if ok else "fail", f"U = {u}{said}", nums,
                         PAYOFF_WALKS)
 
 
@@ -75,7 +76,7 @@ def walk_labels(inst: Instance, walk: tuple[int, ...]) -> list[object]:
 
 def defender_records(inst: Instance, tdef: TableDefender,
                      mass: Mapping[int, Sequence[Fraction]], u: Number) -> list[CheckRecord]:
-    """``ngoal.pbne.defender_br`` and ``ngoal.pbne.sequential`` (NW.3) on the prefixes with
+    """``pbne.defender_br`` and ``pbne.sequential_rationality`` (NW.3) on the prefixes with
     mass: ``mass[p][θ]`` is type θ's realization mass at trie prefix ``p`` of ``tdef``.
 
     Examples
@@ -115,7 +116,7 @@ def defender_records(inst: Instance, tdef: TableDefender,
     regret = normalize(best - at)
     greedy = normalize(u + regret)
     status: Status = "pass" if regret == 0 else "fail"
-    recs = [ngoal_record("ngoal.pbne.defender_br", status, "Defender regret 0" if regret == 0 else
+    recs = [ngoal_record("pbne.defender_br", status, "Defender regret 0" if regret == 0 else
                  f"Defender regret {regret}: greedy best response {greedy}, profile {u}",
                  {"regret": regret, "greedy": greedy}, TRIE, BR)]
     if bad:
@@ -125,14 +126,14 @@ def defender_records(inst: Instance, tdef: TableDefender,
                f"belief {[str(b) for b in belief]}, Defender {[str(x) for x in s]}")
     else:
         msg = f"greedy on the Bayes belief at all {reached} reached information sets"
-    recs.append(ngoal_record("ngoal.pbne.sequential", "fail" if bad else "pass", msg,
+    recs.append(ngoal_record("pbne.sequential_rationality", "fail" if bad else "pass", msg,
                      {"infosets": reached}, TRIE, BR))
     return recs
 
 
 def value_record(inst: Instance, u: Number, horizon: int | None, equilibrium: bool,
            known: NValue | None = None) -> CheckRecord:
-    """``ngoal.value.V_H``: ``U`` against the structured value at ``H`` (proofs/NGOAL.md), or
+    """``game.value``: ``U`` against the structured value at ``H`` (proofs/NGOAL.md), or
     against ``known`` when given; ``equilibrium`` says the equilibrium checks passed with ``H``
     covering the profile's walks (then ``U`` inside the bracket is ``V_H``, NW.5).
 
@@ -149,26 +150,26 @@ def value_record(inst: Instance, u: Number, horizon: int | None, equilibrium: bo
     try:
         v = known if known is not None else nvalue(inst, horizon)
     except (ValueError, HorizonError) as exc:
-        return ngoal_record("ngoal.value.V_H", "skipped", f"no structured value: {exc}", None,
+        return ngoal_record("game.value", "skipped", f"no structured value: {exc}", None,
                             relies)
     nums: dict[str, Number | None] = {"V_H_lower": v.lower, "V_H_upper": v.upper, "U": u}
     if v.value is not None:
         nums = {"V_H": v.value, "U": u}
         if v.value == u:
-            return ngoal_record("ngoal.value.V_H", "pass", f"V_H (H = {h}) = {v.value} = U "
+            return ngoal_record("game.value", "pass", f"V_H (H = {h}) = {v.value} = U "
                         f"({v.upper_source}, {v.effort})", nums, relies)
-        return ngoal_record("ngoal.value.V_H", "fail", f"U = {u} differs from V_H = {v.value} "
+        return ngoal_record("game.value", "fail", f"U = {u} differs from V_H = {v.value} "
                     f"(H = {h}; {v.upper_source}): the profile is not an equilibrium",
                     nums, relies)
     if u > v.upper or u < v.lower:
-        return ngoal_record("ngoal.value.V_H", "fail", f"U = {u} lies outside the exact bracket "
+        return ngoal_record("game.value", "fail", f"U = {u} lies outside the exact bracket "
                     f"[{v.lower}, {v.upper}] of V_H (H = {h}; lower: {v.lower_source}, upper: "
                     f"{v.upper_source}): the profile is not an equilibrium", nums, relies)
     if equilibrium:
-        return ngoal_record("ngoal.value.V_H", "pass", f"U = {u} lies in the bracket [{v.lower}, "
+        return ngoal_record("game.value", "pass", f"U = {u} lies in the bracket [{v.lower}, "
                     f"{v.upper}] of V_H (H = {h}), and the equilibrium checks above passed with "
                     f"H covering the profile's walks, so V_H = U by the certified equilibrium "
                     f"(NWALKBR NW.5)", nums, relies)
-    return ngoal_record("ngoal.value.V_H", "skipped", f"U = {u} lies in the bracket [{v.lower}, "
+    return ngoal_record("game.value", "skipped", f"U = {u} lies in the bracket [{v.lower}, "
                 f"{v.upper}] of V_H (H = {h}; not proved exact: {v.reason}): not decisive; "
                 f"the failed checks above refute the profile", nums, relies)

@@ -11,7 +11,7 @@ carry mass); payoffs walk by walk; the value by the three-field DP (proofs/DP.md
 the two-goal layer :mod:`dppverify.checks.structured_twogoal`, the phases and the lemmas that
 have a polynomial form. The lemma checks that need the tree (L3's and L4's random attackers
 with their LPs) are not run on this route; the certificate says so. The N-goal records
-(``ngoal.*``) are :mod:`dppverify.checks.structured_per_goal`'s.
+(:data:`~dppverify.registry.NGOAL_CHECKS`) are :mod:`dppverify.checks.structured_per_goal`'s.
 """
 
 from __future__ import annotations
@@ -82,7 +82,7 @@ def structured_checks(instance: Instance, profile: Profile,
     >>> [r.status for r in recs] == ["pass"] * len(recs), len(recs)
     (True, 17)
     """
-    roles = instance.roles(profile.primary_slot)
+    roles = instance.roles(profile.primary_goal_index)
     mode = instance.numbers
     missing = _unlisted_profile_prefix(profile)
     out: list[CheckRecord] = [_wellformed(instance, profile, roles, missing)]
@@ -106,7 +106,7 @@ def structured_checks(instance: Instance, profile: Profile,
     out += _values(profile, v, u_trie, mode)
     out.append(phases_check(instance, profile, roles, mode))
     star = walk_minima(instance, roles.g1)  # shared by the Attacker, L1 and XI2 checks
-    if isinstance(rule, ProgressRule):
+    if isinstance(rule, ProgressRule):  # σ*'s best responses (proofs/WALKBR.md), else a table's
         mins = star if rule.goal == roles.g1 else walk_minima(instance, rule.goal)
         same = roles.g1 == rule.goal
         best = {1: mins.same if same else mins.other, 2: mins.other if same else mins.same}
@@ -133,7 +133,7 @@ def _unlisted_profile_prefix(profile: Profile) -> tuple[int, ...] | None:
     """The shortest prefix of a profile walk where a table Defender without default is
     undefined (None when there is none, or the Defender is not such a table)."""
     rule = profile.defender
-    if not isinstance(rule, TableRule) or rule.default is not None:
+    if rule is None or rule.defined_everywhere:
         return None
     best: tuple[int, ...] | None = None
     for mw in (*profile.primary, *profile.secondary):

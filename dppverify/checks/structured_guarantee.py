@@ -58,7 +58,7 @@ def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
     ...        "defender": {"rule": "guarantee", "h": [2, 1, 1]}}
     >>> recs, _ = guarantee_checks(star3(), profile_from_json(doc, star3()), None)
     >>> [(r.id, r.status) for r in recs][2]
-    ('ngoal.pbne.attacker_br', 'pass')
+    ('pbne.attacker_br', 'pass')
     """
     inst = instance
     n = inst.n_goals
@@ -89,9 +89,9 @@ def _normal_text(inst: Instance, a: tuple[int, ...]) -> str:
 
 def _attacker_record(inst: Instance, rule: GuaranteeRule, sets: NormalSets,
                      per_type: Sequence[Fraction], horizon: int | None) -> CheckRecord:
-    """``ngoal.pbne.attacker_br``: every type's exact regret over all walks (NRULE), of at most
+    """``pbne.attacker_br``: every type's exact regret over all walks (NRULE), of at most
     ``horizon`` steps when given."""
-    cid = "ngoal.pbne.attacker_br"
+    cid = "pbne.attacker_br"
     out, rs = rule_response(inst, rule, sets, per_type, max_steps=horizon)
     nums: dict[str, Number | None] = {}
     for r in out:

@@ -19,7 +19,7 @@ defined on every walk of the game):
 
 The check ids are the tree route's (``dppverify/checks.md``, "N goals"); the two-goal route's
 records are :mod:`dppverify.checks.structured`'s. The tree route's
-``ngoal.value.structured`` (the DP against the tree LP) is not run here: the DP is this route's
+``game.value.structured`` (the DP against the tree LP) is not run here: the DP is this route's
 value.
 """
 
@@ -43,16 +43,14 @@ from dppverify.checks.structured_guarantee import guarantee_checks
 from dppverify.exact import INF, Number, normalize
 from dppverify.game.instance import Instance
 from dppverify.game.profile import GoalTable, GuaranteeRule, Profile
+from dppverify.registry import not_run
 from dppverify.structured.table_br import TableDefender, exit_costs, walk_best_response
 from dppverify.structured.trie import mass_trie
 
 __all__ = ["NSTRUCTURED_NOT_RUN", "nstructured_checks"]
 
-NSTRUCTURED_NOT_RUN = {
-    "ngoal.value.structured": "compares the structured value with the tree route's LP; the "
-                              "structured route has no walk tree (its ngoal.value.V_H is the "
-                              "structured value itself)"}
-"""The N-goal checks the structured route does not run, with the reason."""
+NSTRUCTURED_NOT_RUN = not_run("structured", n_goals=3)
+"""The N-goal checks the structured route does not run, with the reason (the registry's)."""
 
 def nstructured_checks(instance: Instance, profile: Profile,
                        horizon: int | None) -> tuple[list[CheckRecord], int]:
@@ -78,7 +76,7 @@ def nstructured_checks(instance: Instance, profile: Profile,
     >>> inst = star3()
     >>> recs, size = nstructured_checks(inst, profile_from_json(star3_profile(), inst), None)
     >>> [(r.id, r.status) for r in recs][2:4], size
-    ([('ngoal.pbne.attacker_br', 'fail'), ('ngoal.pbne.defender_br', 'pass')], 5)
+    ([('pbne.attacker_br', 'fail'), ('pbne.defender_br', 'pass')], 5)
     >>> recs[2].message
     "type 2 (goal 'b') has regret 1: walk ['s', 'm', 's', 'm', 'b'] (4 steps) costs 0"
     """
@@ -145,7 +143,7 @@ def nstructured_checks(instance: Instance, profile: Profile,
 
 def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],
               horizon: int | None) -> CheckRecord:
-    """``ngoal.pbne.attacker_br``: every type's exact regret over all walks (NW.1).
+    """``pbne.attacker_br``: every type's exact regret over all walks (NW.1).
 
     At a finite ``horizon`` only a better walk of at most ``horizon`` steps refutes the profile
     (the truncated game has no longer walks); a better walk found that is longer decides
@@ -160,7 +158,7 @@ def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],
         br = walk_best_response(tdef, theta, exits)
         if br.value is None:
             assert br.undefined is not None
-            return ngoal_record("ngoal.pbne.attacker_br", "error", f"the Defender has no default "
+            return ngoal_record("pbne.attacker_br", "error", f"the Defender has no default "
                         f"and its table has no entry for walk "
                         f"{walk_labels(inst, br.undefined)}: no best response over all walks "
                         f"can be computed (give a default, or certify on the walk tree: --route "
@@ -170,23 +168,23 @@ def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],
     nums: dict[str, Number | None] = {f"regret{t + 1}": r for r, t, _, _ in regrets}
     if any(r < 0 for r, _, _, _ in regrets):
         r, t, _, v = min(regrets, key=lambda x: x[0])
-        return ngoal_record("ngoal.pbne.attacker_br", "error", f"type {t + 1}'s profile cost is "
+        return ngoal_record("pbne.attacker_br", "error", f"type {t + 1}'s profile cost is "
                     f"below its minimum over all walks {v} (regret {r}): the checker's "
                     f"computations disagree", nums, NWALKBR, BR)
     worst = max(regrets, key=lambda x: x[0])
     if worst[0] == 0:
-        return ngoal_record("ngoal.pbne.attacker_br", "pass", "every type's exact regret over all "
+        return ngoal_record("pbne.attacker_br", "pass", "every type's exact regret over all "
                     "walks of any length is 0", nums, NWALKBR, BR)
     within = [x for x in regrets if x[0] > 0 and (horizon is None or len(x[2]) - 1 <= horizon)]
     if not within:
         r, t, walk, v = worst
-        return ngoal_record("ngoal.pbne.attacker_br", "skipped", f"type {t + 1}'s regret over "
+        return ngoal_record("pbne.attacker_br", "skipped", f"type {t + 1}'s regret over "
                     f"walks of any length is {r} (walk {walk_labels(inst, walk)}, "
                     f"{len(walk) - 1} steps > H = {horizon}); whether a walk of at most "
                     f"{horizon} steps beats the profile is not decided by the structured route "
                     f"(use --route tree, or omit the horizon)", nums, NWALKBR, BR)
     r, t, walk, v = max(within, key=lambda x: x[0])
-    return ngoal_record("ngoal.pbne.attacker_br", "fail", f"type {t + 1} (goal "
+    return ngoal_record("pbne.attacker_br", "fail", f"type {t + 1} (goal "
                 f"{inst.nodes[inst.goals[t]]!r}) has regret {r}: walk {walk_labels(inst, walk)} "
                 f"({len(walk) - 1} steps) costs {v}", nums, NWALKBR, BR)
 

@@ -15,7 +15,7 @@ from collections.abc import Sequence
 
 from dppverify.exact import Number
 from dppverify.game.instance import Instance, Roles
-from dppverify.game.profile import DefenderRule, ProgressRule, TableRule
+from dppverify.game.profile import DefenderRule, ProgressRule
 from dppverify.game.progress_rule import progress_sigma
 
 __all__ = ["UndefinedStrategyError", "sigma_along"]
@@ -27,26 +27,20 @@ class UndefinedStrategyError(LookupError):
 
 def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[int]
                         ) -> list[Number]:
-    """σ(rule.goal | walk[:t+1]) for t = 1..T."""
-    if isinstance(rule, ProgressRule):
-        return progress_sigma(instance, rule, walk)
-    return _table_sigma(instance, rule, walk)
-
-
-def _table_sigma(instance: Instance, rule: TableRule, walk: Sequence[int]) -> list[Number]:
-    """σ(rule.goal | walk[:t+1]) for t = 1..T under a table (its default for unlisted)."""
+    """σ(rule.goal | walk[:t+1]) for t = 1..T: the rule's listed walks, else σ* towards its
+    progress goal, else its constant default (the progress rule lists no walk)."""
     result: list[Number] = []
     progress: list[Number] | None = None
     for t in range(1, len(walk)):
         key = tuple(walk[:t + 1])
         if key in rule.entries:
             result.append(rule.entries[key])
-        elif isinstance(rule.default, ProgressRule):
+        elif rule.progress_goal is not None:
             if progress is None:
-                progress = _rule_sigma_to_goal(instance, rule.default, walk)
+                progress = progress_sigma(instance, ProgressRule(rule.progress_goal), walk)
             result.append(progress[t - 1])
-        elif rule.default is not None:
-            result.append(rule.default)
+        elif rule.constant is not None:
+            result.append(rule.constant)
         else:
             raise UndefinedStrategyError(f"the Defender's table has no entry for walk "
                                          f"{instance.labels(key)} and no default")

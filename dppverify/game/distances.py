@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import heapq
 import math
-from collections import deque
+from collections import defaultdict, deque
 from collections.abc import Callable, Hashable, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
@@ -33,8 +33,8 @@ if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fas
 
 __all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "ArcRows", "common_denominator",
            "dijkstra", "exact_distances_to", "hops_by_arrays", "hops_to_targets",
-           "multi_source_dijkstra", "scaled_distance_fields", "state_dijkstra", "uniform_hops",
-           "unscale"]
+           "multi_source_dijkstra", "scaled_distance_fields", "sparse_dijkstra", "state_dijkstra",
+           "uniform_hops", "unscale"]
 
 EXACT_FLOAT_LIMIT = 2**53
 """Integer path sums below this are exact in float64."""
@@ -202,29 +202,14 @@ def multi_source_dijkstra(adj: Adjacency, sources: Iterable[tuple[int, Number]],
     ([5, 11, 0], [-1, 0, -1])
     """
     n = len(adj)
+    if factor == 1:
+        arcs: Callable[[int], Iterable[tuple[int, Number]]] = adj.__getitem__
+    else:
+        def arcs(u: int) -> Iterable[tuple[int, Number]]:
+            return [(v, w * factor) for v, w in adj[u]]
     dist: list[Number] = [INF] * n
     via = [-1] * n
-    heap: list[tuple[Number, int]] = []
-    for s, c in sources:
-        if c < dist[s]:
-            dist[s] = c
-            heap.append((c, s))
-    heapq.heapify(heap)
-    done = [False] * n
-    pop, push = heapq.heappop, heapq.heappush
-    while heap:
-        d, u = pop(heap)
-        if done[u]:
-            continue
-        done[u] = True
-        for v, w in adj[u]:
-            if done[v]:
-                continue
-            nd = d + w * factor
-            if nd < dist[v]:
-                dist[v] = nd
-                via[v] = u
-                push(heap, (nd, v))
+    _dijkstra(sources, arcs, dist, via, ordered=True)
     return dist, via
 
 
@@ -246,23 +231,51 @@ def state_dijkstra(sources: Iterable[tuple[S, Number]],
     >>> state_dijkstra([("a", 0)], lambda x: line[x])
     {'a': 0, 'b': 2, 'c': 3}
     """
-    best: dict[S, Number] = {}
-    heap: list[tuple[Number, int, S]] = []
+    dist: defaultdict[S, Number] = defaultdict(lambda: INF)
+    _dijkstra(sources, arcs, dist, {}, ordered=False)
+    return {x: d for x, d in dist.items() if d != INF}  # a source of infinite cost is unreached
+
+
+def _dijkstra(sources: Iterable[tuple[Any, Number]],
+              arcs: Callable[[Any], Iterable[tuple[Any, Number]]], dist: Any, via: Any, *,
+              ordered: bool) -> None:
+    """The checker's one Dijkstra engine, on exact numbers: fills ``dist[x]`` with the least
+    cost from the costed sources to every state ``x`` reached, and ``via[x]`` with the state
+    it was last reached from.
+
+    ``dist`` reads ``INF`` for a state not reached yet: a list over node indices, or a
+    ``defaultdict``. Heap ties pop the smaller state first when ``ordered`` (node indices),
+    else the one pushed first (states need not be comparable). A heap entry whose cost is
+    above the state's known cost is stale and skipped (a cost is pushed only when it
+    improves).
+
+    Examples
+    --------
+    >>> line = [[(1, 2)], [(2, 1)], []]
+    >>> dist, via = [INF] * 3, [-1] * 3
+    >>> _dijkstra([(0, 0)], line.__getitem__, dist, via, ordered=True)
+    >>> dist, via
+    ([0, 2, 3], [-1, 0, 1])
+    """
     tie = count()
+    heap: list[Any] = []
     for s, c in sources:
-        if c < best.get(s, INF):
-            best[s] = c
-            heapq.heappush(heap, (c, next(tie), s))
+        if c < dist[s]:
+            dist[s] = c
+            heap.append((c, s) if ordered else (c, next(tie), s))
+    heapq.heapify(heap)
+    pop, push = heapq.heappop, heapq.heappush
     while heap:
-        d, _, x = heapq.heappop(heap)
-        if best.get(x) != d:
+        item = pop(heap)
+        d, u = item[0], item[-1]
+        if d > dist[u]:
             continue
-        for y, cost in arcs(x):
-            nd = d + cost
-            if nd < best.get(y, INF):
-                best[y] = nd
-                heapq.heappush(heap, (nd, next(tie), y))
-    return best
+        for v, w in arcs(u):
+            nd = d + w
+            if nd < dist[v]:
+                dist[v] = nd
+                via[v] = u
+                push(heap, (nd, v) if ordered else (nd, next(tie), v))
 
 
 def hops_to_targets(reverse_adj: Adjacency, targets: Iterable[int]) -> list[int]:
@@ -433,6 +446,26 @@ class ArcArrays:
                              shape=(n, n), copy=False)
 
 
+def sparse_dijkstra(matrix: sp.csr_matrix, indices: int | Sequence[int],
+                    **options: Any) -> np.ndarray:
+    """scipy's float64 Dijkstra on a sparse matrix (``directed=True``; ``options`` are
+    :func:`scipy.sparse.csgraph.dijkstra`'s): the checker's one call of it, for the callers
+    that first made sure every path sum is an integer below :data:`EXACT_FLOAT_LIMIT` (then
+    its result is exact). scipy is imported here, on first use.
+
+    Examples
+    --------
+    >>> import scipy.sparse as sp
+    >>> m = sp.csr_matrix(([2.0, 1.0], ([0, 1], [1, 2])), shape=(3, 3))   # 0 -> 1 -> 2
+    >>> sparse_dijkstra(m, 0).tolist()
+    [0.0, 2.0, 3.0]
+    """
+    from scipy.sparse.csgraph import dijkstra as scipy_dijkstra
+
+    return np.asarray(scipy_dijkstra(matrix, directed=True, indices=indices, **options),
+                      dtype=np.float64)
+
+
 def exact_distances_to(arcs: ArcArrays, n: int, targets: Sequence[int]
                        ) -> list[list[Number]] | None:
     """Exact full-graph distances to each target by scipy, or None past the float64 guard.
@@ -466,11 +499,8 @@ def scaled_distance_fields(arcs: ArcArrays, n: int, targets: Sequence[int]
     got = arcs.scaled(arcs.values)
     if got is None:
         return None
-    from scipy.sparse.csgraph import dijkstra as sp_dijkstra
-
     scale, scaled = got
-    dist = np.atleast_2d(sp_dijkstra(arcs.matrix(n, scaled, reverse=True), directed=True,
-                                     indices=list(targets)))
+    dist = np.atleast_2d(sparse_dijkstra(arcs.matrix(n, scaled, reverse=True), list(targets)))
     return scale, dist
 
 
@@ -523,9 +553,6 @@ def hops_by_arrays(arcs: ArcArrays, n: int, targets: Sequence[int]) -> list[int]
     >>> hops_by_arrays(a, 4, [2])
     [2, 1, 0, -1]
     """
-    from scipy.sparse.csgraph import dijkstra as sp_dijkstra
-
     m = arcs.matrix(n, [1] * len(arcs.values), reverse=True)
-    h = np.asarray(sp_dijkstra(m, directed=True, indices=list(targets), unweighted=True,
-                               min_only=True), dtype=np.float64)
+    h = sparse_dijkstra(m, list(targets), unweighted=True, min_only=True)
     return np.where(np.isfinite(h), h, -1).astype(np.int64).tolist()

@@ -83,7 +83,7 @@ def regular_graph(g: Any, exact: bool) -> Graph | None:
     else and on any invalid input (a duplicate, an unknown node, a bad weight): then
     :func:`plain_graph` reads the document and says what is wrong, with its usual message. When it
     returns, the result is the one :func:`plain_graph` and the sorting in :func:`read_graph` give
-    (tests/checker/test_fast_instance.py), plus the arcs as arrays.
+    (tests/dppverify/game/test_fast_instance.py), plus the arcs as arrays.
 
     Examples
     --------

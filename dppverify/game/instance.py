@@ -11,7 +11,7 @@ where (the parsing itself is :mod:`dppverify.game.instance_reading` and
 
 Two goals are the case ``N = 2``: a document listing exactly two goals is read under the
 two-goal rules (float weights allowed, ``"numbers": "float"``; the two-goal messages), and the
-instance has the paper's (primary, secondary) views :attr:`Instance.primary_slot`,
+instance has the paper's (primary, secondary) views :attr:`Instance.primary_goal_index`,
 :attr:`Instance.tied` and :meth:`Instance.roles`, which raise :class:`NotTwoGoalsError` for
 ``N != 2``. A reader asked for ``two_goals=True`` refuses a document with more goals.
 """

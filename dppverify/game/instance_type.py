@@ -2,8 +2,9 @@
 
 :class:`Instance` is frozen: nodes, arcs (as arrays, :class:`~dppverify.game.distances.ArcRows`),
 start, goals, prior and the full-graph distances to every goal. Two goals are the case
-``N = 2``: :attr:`Instance.primary_slot`, :attr:`Instance.tied` and :meth:`Instance.roles` are the
-paper's (primary, secondary) views and raise :class:`NotTwoGoalsError` for ``N != 2``.
+``N = 2``: :attr:`Instance.primary_goal_index`, :attr:`Instance.tied` and
+:meth:`Instance.roles` are the paper's (primary, secondary) views and raise
+:class:`NotTwoGoalsError` for ``N != 2``.
 :func:`finish_game` builds the instance from a read graph; the readers of documents and maps
 (:mod:`dppverify.game.instance`, :mod:`dppverify.game.grids`) build on it.
 """
@@ -204,12 +205,12 @@ goals; this instance has 3
                                    f"goals; this instance has {len(self.goals)}")
 
     @property
-    def primary_slot(self) -> int:
+    def primary_goal_index(self) -> int:
         """Goal index (0 or 1) of the primary goal: larger prior, ``goals[0]`` at a tie.
 
         Raises :class:`NotTwoGoalsError` unless ``N = 2`` (as :attr:`tied`, :meth:`roles`).
         """
-        self._two("primary_slot")
+        self._two("primary_goal_index")
         return 1 if self.prior[1] > self.prior[0] else 0
 
     @property
@@ -218,10 +219,10 @@ goals; this instance has 3
         self._two("tied")
         return self.prior[0] == self.prior[1]
 
-    def roles(self, primary_slot: int | None = None) -> Roles:
+    def roles(self, primary_goal_index: int | None = None) -> Roles:
         """The (primary, secondary) labelling; default: the instance's primary goal."""
         self._two("roles")
-        i = self.primary_slot if primary_slot is None else primary_slot
+        i = self.primary_goal_index if primary_goal_index is None else primary_goal_index
         j = 1 - i
         return Roles(g1=self.goals[i], g2=self.goals[j], b1=self.prior[i], b2=self.prior[j],
                      d1=self.dist_to[i], d2=self.dist_to[j])

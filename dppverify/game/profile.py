@@ -6,7 +6,7 @@ Only a document that is not JSON, not a JSON object, or not tagged with its form
 or do not sum to 1, a step that is not an edge, a walk that does not start at ``s0``, does not
 end at a goal or continues past its first goal, unknown nodes, duplicate walks, goals that do
 not match the instance — is recorded as a :class:`Defect`: the checker then *refutes* the
-profile (check ``profile.wellformed``, ``ngoal.profile.wellformed``) instead of crashing.
+profile (check ``profile.wellformed``, ``profile.wellformed``) instead of crashing.
 
 Two-goal Defender rules (``dpp-profile/1``, ``defender``):
 
@@ -160,7 +160,7 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
     check_format(doc)
     tol = tolerance or EXACT
     c = DefectCollector()
-    primary_slot = _goals(doc, instance, c)
+    primary_goal_index = _goals(doc, instance, c)
     defender = _defender(doc, instance, c, tol)
     walks: dict[int, tuple[StrategyWalk, ...]] = {}
     longest = 0
@@ -173,8 +173,8 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
         longest = max(longest, steps)
     pair = (walks[1], walks[2])
     return Profile(
-        attacker=pair if primary_slot == 0 else pair[::-1],
-        primary_slot=primary_slot, defender=defender,
+        attacker=pair if primary_goal_index == 0 else pair[::-1],
+        primary_goal_index=primary_goal_index, defender=defender,
         claimed_prior=_claimed_prior(doc, c),
         claimed_values=MappingProxyType(_claimed_values(doc, c)),
         claimed_phases=_claimed_phases(doc, c),
@@ -189,7 +189,7 @@ def _goal_node(raw: Any, instance: Instance) -> int | None:
 
 
 def _goals(doc: Mapping[str, Any], instance: Instance, c: DefectCollector) -> int:
-    default = instance.primary_slot
+    default = instance.primary_goal_index
     goals = doc.get("goals")
     if not isinstance(goals, Mapping):
         c.add("goals", "missing, or not an object {\"primary\": g1, \"secondary\": g2}")

@@ -18,7 +18,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
-from typing import Any, TypeVar
+from types import MappingProxyType
+from typing import Any, Protocol, TypeVar
 
 from dppverify.errors import ProfileError
 from dppverify.exact import Number
@@ -38,6 +39,7 @@ __all__ = [
     "VALUE_KEYS",
     "Defect",
     "DefectCollector",
+    "DefenderInterface",
     "DefenderRule",
     "GoalTable",
     "GuaranteeRule",
@@ -80,11 +82,62 @@ class Defect:
         return f"{self.where}{self.sep}{self.message}"
 
 
+class DefenderInterface(Protocol):
+    """What the checks ask of any Defender rule, answered by the rule itself (a new rule
+    answers these, instead of being told apart by its type in every module).
+
+    ``table``: the rule lists walks (a table; its missing walks are its ``default``'s);
+    ``defined_everywhere``: the rule gives a σ after every walk of the game (a table only with a
+    ``default``); ``progress_goal``: the goal index σ* of eq. (7) measures progress towards where
+    the rule follows it (the progress rule, or a table's ``"progress"`` default), else None;
+    ``entries``: the walks the rule lists (none but a table's).
+    """
+
+    @property
+    def table(self) -> bool: ...
+
+    @property
+    def defined_everywhere(self) -> bool: ...
+
+    @property
+    def progress_goal(self) -> int | None: ...
+
+    @property
+    def entries(self) -> Mapping[tuple[int, ...], Any]: ...
+
+
+_NO_ENTRIES: Mapping[tuple[int, ...], Fraction] = MappingProxyType({})
+
+
 @dataclass(frozen=True)
 class ProgressRule:
-    """σ* of eq. (7) measuring progress towards ``goal`` (a node index); allocates to ``goal``."""
+    """σ* of eq. (7) measuring progress towards ``goal`` (a node index); allocates to ``goal``.
+
+    Examples
+    --------
+    >>> rule = ProgressRule(1)
+    >>> rule.table, rule.defined_everywhere, rule.progress_goal, dict(rule.entries), rule.constant
+    (False, True, 1, {}, None)
+    """
 
     goal: int
+    table = False
+    defined_everywhere = True
+
+    @property
+    def progress_goal(self) -> int:
+        """σ*'s goal: this rule's."""
+        return self.goal
+
+    @property
+    def entries(self) -> Mapping[tuple[int, ...], Fraction]:
+        """No walk is listed: σ* everywhere."""
+        return _NO_ENTRIES
+
+    @property
+    def constant(self) -> Fraction | None:
+        """No constant probability off a table."""
+        return None
 
 
 @dataclass(frozen=True)
@@ -99,6 +152,30 @@ class TableRule:
     goal: int
     entries: Mapping[tuple[int, ...], Fraction]
     default: Fraction | ProgressRule | None
+    table = True
+
+    @property
+    def defined_everywhere(self) -> bool:
+        """A σ after every walk: with a ``default`` only.
+
+        Examples
+        --------
+        >>> TableRule(0, {}, None).defined_everywhere, TableRule(0, {}, Fraction(1, 2)).constant
+        (False, Fraction(1, 2))
+        >>> TableRule(0, {}, ProgressRule(2)).progress_goal
+        2
+        """
+        return self.default is not None
+
+    @property
+    def progress_goal(self) -> int | None:
+        """σ*'s goal when the ``default`` is ``"progress"``."""
+        return self.default.goal if isinstance(self.default, ProgressRule) else None
+
+    @property
+    def constant(self) -> Fraction | None:
+        """The ``default`` when it is a probability."""
+        return None if isinstance(self.default, ProgressRule) else self.default
 
 
 DefenderRule = ProgressRule | TableRule
@@ -125,6 +202,13 @@ class GoalTable:
 
     entries: Mapping[tuple[int, ...], tuple[Fraction, ...]]
     default: tuple[Fraction, ...] | None
+    table = True
+    progress_goal = None
+
+    @property
+    def defined_everywhere(self) -> bool:
+        """A distribution after every walk: with a ``default`` only."""
+        return self.default is not None
 
 
 @dataclass(frozen=True)
@@ -137,6 +221,14 @@ class GuaranteeRule:
 
     h: tuple[Fraction, ...]
     normals: tuple[tuple[int, ...], ...] = ()
+    table = False
+    defined_everywhere = True
+    progress_goal = None
+
+    @property
+    def entries(self) -> Mapping[tuple[int, ...], tuple[Fraction, ...]]:
+        """No walk is listed: the rule is defined everywhere."""
+        return MappingProxyType({})
 
 
 ProfileDefender = ProgressRule | TableRule | GoalTable | GuaranteeRule
@@ -150,7 +242,7 @@ class Profile:
 
     One type for both documents (``format`` says which it came from): ``attacker`` holds the
     mixed strategies by goal index for any N and ``defender`` the Defender. The two-goal
-    views (:attr:`primary`, :attr:`secondary`, :meth:`walks`, ``primary_slot``,
+    views (:attr:`primary`, :attr:`secondary`, :meth:`walks`, ``primary_goal_index``,
     ``claimed_prior``, ``claimed_phases``) are meaningful for ``dpp-profile/1`` only.
 
     Attributes
@@ -164,7 +256,7 @@ class Profile:
         the ``defender`` section is unusable (then a defect says why).
     format : str
         The document's format tag (:data:`PROFILE_FORMAT` or :data:`NGOAL_PROFILE_FORMAT`).
-    primary_slot : int
+    primary_goal_index : int
         ``dpp-profile/1``: goal index of the goal the profile calls primary. Falls back to the
         instance's primary goal when the profile's is unusable.
     claimed_values : Mapping
@@ -184,7 +276,7 @@ class Profile:
     Examples
     --------
     >>> w = StrategyWalk((0, 1), Fraction(1))
-    >>> p = Profile(attacker=((), (w,)), primary_slot=1)
+    >>> p = Profile(attacker=((), (w,)), primary_goal_index=1)
     >>> p.primary == (w,), p.secondary, p.walks(2), p.wellformed
     (True, (), (), True)
     """
@@ -192,7 +284,7 @@ class Profile:
     attacker: tuple[tuple[StrategyWalk, ...], ...]
     defender: ProfileDefender | None = None
     format: str = PROFILE_FORMAT
-    primary_slot: int = 0
+    primary_goal_index: int = 0
     claimed_values: Mapping[str, Number] = field(default_factory=dict)
     claimed_prior: tuple[Fraction, Fraction] | None = None
     claimed_phases: tuple[int, int, int] | None = None
@@ -214,12 +306,12 @@ class Profile:
     @property
     def primary(self) -> tuple[StrategyWalk, ...]:
         """Two goals: the primary type's mixed strategy."""
-        return self.attacker[self.primary_slot]
+        return self.attacker[self.primary_goal_index]
 
     @property
     def secondary(self) -> tuple[StrategyWalk, ...]:
         """Two goals: the secondary type's mixed strategy."""
-        return self.attacker[1 - self.primary_slot]
+        return self.attacker[1 - self.primary_goal_index]
 
     def walks(self, theta: int) -> tuple[StrategyWalk, ...]:
         """Two goals: mixed strategy of type ``theta`` (1 = primary, 2 = secondary)."""

@@ -45,6 +45,7 @@ import numpy as np
 
 from dppverify.errors import HorizonError, OptionError
 from dppverify.exact import INF, Number, normalize
+from dppverify.game.distances import EXACT_FLOAT_LIMIT
 from dppverify.game.instance import Instance
 from dppverify.structured.cover import MAX_BALANCED, balanced_vertices, members, min_cover, popcount
 
@@ -186,7 +187,7 @@ class CoalitionRunner:
                                        and self.big * 2 < 2 ** 62 else object)
         # Every partial sum of a split product is an integer below ``width``: below 2**53 the
         # float64 (BLAS) product of the integer matrices is exact, and much faster.
-        self.float_exact = self.dtype == np.dtype(np.int64) and width < 2 ** 53
+        self.float_exact = self.dtype == np.dtype(np.int64) and width < EXACT_FLOAT_LIMIT
         goal = np.zeros(n, dtype=bool)
         goal[list(inst.goals)] = True
         self.goal = goal

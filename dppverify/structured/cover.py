@@ -33,6 +33,8 @@ from functools import cache
 
 import numpy as np
 
+from dppverify.game.distances import EXACT_FLOAT_LIMIT
+
 __all__ = ["MAX_BALANCED", "BalancedVertices", "CoverLP", "Normal", "Table", "balanced_vertices",
            "basic_solutions", "cheapest", "dets", "members", "min_cover", "min_cover_vectors",
            "packing_directions", "packing_vertices", "popcount", "symmetric_table",
@@ -418,7 +420,7 @@ def cheapest(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:
     """
     top = int(values.max(initial=0)) if values.size else 0
     width = (top + 1) * (int(np.abs(scaled).sum(axis=0).max(initial=1)) + 1)
-    if width < 2 ** 53:
+    if width < EXACT_FLOAT_LIMIT:
         return (values.astype(np.float64) @ scaled.astype(np.float64)).min(axis=1).astype(
             np.int64)
     return (values.astype(object) @ scaled.astype(object)).min(axis=1)

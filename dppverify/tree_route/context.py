@@ -62,7 +62,7 @@ class Context:
     instance, tree, profile
         The game, its walk tree at the chosen horizon, the resolved profile.
     roles : Roles
-        The labelling the profile uses (primary = ``profile.primary_slot``).
+        The labelling the profile uses (primary = ``profile.primary_goal_index``).
     sigma_star : TreeDefender
         The paper's σ* (progress towards ``g1``) on every prefix: used by the lemma checks
         whatever Defender the profile proposes.
@@ -202,7 +202,7 @@ def make_context(instance: Instance, tree: WalkTree, profile: Profile,
     >>> isinstance(bad, EvaluatedContext)
     False
     """
-    roles = instance.roles(profile.primary_slot)
+    roles = instance.roles(profile.primary_goal_index)
     sigma_star = tree_defender(tree, roles, ProgressRule(roles.g1))
     rule = profile.defender if isinstance(profile.defender, DefenderRule) else None  # two goals
     td = None

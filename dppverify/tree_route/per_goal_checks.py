@@ -4,25 +4,25 @@ Called by :func:`dppverify.certify` for an instance with more than two goals whe
 ``tree`` or ``both`` (the route is chosen in :func:`dppverify.routes.resolve_route`). Checks,
 in order (ids in ``dppverify/checks.md``, "N goals"):
 
-``ngoal.profile.wellformed``
+``profile.wellformed``
     The profile parses, every walk is a walk of the game, probabilities sum to exactly 1, and
     the Defender's table gives a distribution at every prefix of the walk tree.
-``ngoal.value.U``
+``value.U``
     ``U = Σ_θ b_θ U^θ`` exactly (each type's expected stage costs plus terminal costs); equal
     to the profile's ``value.U`` when it states one.
-``ngoal.pbne.attacker_br``
+``pbne.attacker_br``
     Every type's exact regret is 0: its cost equals the minimum over ALL walks of the tree
     against the profile's Defender (exact backward induction).
-``ngoal.pbne.defender_br``
+``pbne.defender_br``
     The Defender's exact regret is 0: the profile's payoff equals the greedy best response's.
-``ngoal.pbne.sequential``
+``pbne.sequential_rationality``
     At every information set reached with positive probability the Defender's distribution
     puts mass only on goals of maximal Bayes belief ``μ(θ | p) ∝ b_θ x_θ(p)`` (off the path
     of play any distribution is rational for some belief: the one uniform on its support).
-``ngoal.value.V_H``
+``game.value``
     The tree route's ``V_H`` (compact LP, exact bracket, with the profile's strategies among
     the candidates) equals ``U``.
-``ngoal.value.structured``
+``game.value.structured``
     The structured route's ``V_H`` (:func:`dppverify.structured.proved_value.nvalue`: exact where
     proved, else an exact bracket) agrees with the tree route: the brackets overlap and an
     exact structured value lies in the tree's bracket; a disagreement is an ``error`` (a bug
@@ -41,6 +41,7 @@ from dppverify.errors import HorizonError, LPError
 from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance
 from dppverify.game.profile import GoalTable, GuaranteeRule, Profile
+from dppverify.registry import NGOAL_CHECK_IDS as REGISTRY_NGOAL_IDS
 from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.best_response import (
     attacker_best_response,
@@ -55,10 +56,8 @@ from dppverify.tree_route.value_lp import exact_bracket, solve_value_lp
 
 __all__ = ["NGOAL_CHECK_IDS", "ngoal_tree_checks", "payoff_of_type"]
 
-NGOAL_CHECK_IDS = ("ngoal.profile.wellformed", "ngoal.value.U", "ngoal.pbne.attacker_br",
-                   "ngoal.pbne.defender_br", "ngoal.pbne.sequential", "ngoal.value.V_H",
-                   "ngoal.value.structured")
-"""The N-goal certificate's check ids, in order."""
+NGOAL_CHECK_IDS = REGISTRY_NGOAL_IDS
+"""The N-goal certificate's check ids, in order (the registry's)."""
 
 PROOF = "NGOAL"
 
@@ -124,11 +123,11 @@ def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
     problems = [str(d) for d in prof.defects] + ([tdef] if isinstance(tdef, str) else [])
     if problems:
         more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
-        checks.append(CheckRecord("ngoal.profile.wellformed", "fail", problems[0] + more))
+        checks.append(CheckRecord("profile.wellformed", "fail", problems[0] + more))
         checks += _skipped(NGOAL_CHECK_IDS[1:], "the profile is not well formed")
         return _tagged(checks), tree
     assert isinstance(tdef, DefenderOnTree)
-    checks.append(CheckRecord("ngoal.profile.wellformed", "pass",
+    checks.append(CheckRecord("profile.wellformed", "pass",
                               f"{inst.n_goals} types, {sum(map(len, prof.attacker))} walks, "
                               f"Defender defined on all {tree.n_prefixes - 1} prefixes"))
     plans = _plans(tree, prof)
@@ -138,7 +137,7 @@ def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
     nums["U"] = u
     ok = prof.claimed_u is None or prof.claimed_u == u
     said = "" if prof.claimed_u is None else f" (profile says {prof.claimed_u})"
-    checks.append(CheckRecord("ngoal.value.U", "pass" if ok else "fail", f"U = {u}{said}", nums,
+    checks.append(CheckRecord("value.U", "pass" if ok else "fail", f"U = {u}{said}", nums,
                               PROOF))
     regrets = []
     for t in range(inst.n_goals):
@@ -149,13 +148,13 @@ def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
     msg = ("every type's exact regret is 0" if ok else
            f"type {worst[1] + 1} (goal {inst.nodes[inst.goals[worst[1]]]!r}) has regret "
            f"{worst[0]}: walk {list(inst.labels(worst[2].walk))} costs {worst[2].value}")
-    checks.append(CheckRecord("ngoal.pbne.attacker_br", "pass" if ok else "fail", msg,
+    checks.append(CheckRecord("pbne.attacker_br", "pass" if ok else "fail", msg,
                               {f"regret{t + 1}": r for r, t, _ in sorted(regrets,
                                                                           key=lambda r: r[1])},
                               PROOF))
     dbr = defender_best_response(tree, inst, dict(enumerate(plans)))
     reg = normalize(dbr.value - u)
-    checks.append(CheckRecord("ngoal.pbne.defender_br", "pass" if reg == 0 else "fail",
+    checks.append(CheckRecord("pbne.defender_br", "pass" if reg == 0 else "fail",
                               "Defender regret 0" if reg == 0 else
                               f"Defender regret {reg}: greedy best response {dbr.value}, "
                               f"profile {u}", {"regret": reg, "greedy": dbr.value}, PROOF))
@@ -172,15 +171,15 @@ def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
                 f"less than maximal belief, e.g. after {list(inst.labels(tree.walk(bad[0])))}: "
                 f"belief {[str(b) for b in mu[bad[0]]]}, "
                 f"Defender {[str(s) for s in tdef.sigma[bad[0]]]}")
-    checks.append(CheckRecord("ngoal.pbne.sequential", "fail" if bad else "pass", msg,
+    checks.append(CheckRecord("pbne.sequential_rationality", "fail" if bad else "pass", msg,
                               {"infosets": len(mu) - 1}, PROOF))
     try:
         lp = solve_value_lp(tree, inst)
         bracket = exact_bracket(tree, inst, lp, defenders=[("the profile's Defender", tdef)],
                                 attackers=[("the profile's Attacker", dict(enumerate(plans)))])
     except LPError as exc:
-        checks.append(CheckRecord("ngoal.value.V_H", "error", str(exc)))
-        checks.append(CheckRecord("ngoal.value.structured", "skipped", "no tree value"))
+        checks.append(CheckRecord("game.value", "error", str(exc)))
+        checks.append(CheckRecord("game.value.structured", "skipped", "no tree value"))
         return _tagged(checks), tree
     vnums: dict[str, Number | None] = {"V_H_lower": bracket.lower, "V_H_upper": bracket.upper,
                                        "V_H_lp": lp.value, "U": u}
@@ -192,11 +191,11 @@ def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
     else:
         status, msg = "error", (f"V_H in [{bracket.lower}, {bracket.upper}] not closed "
                                 f"exactly; U = {u}")
-    checks.append(CheckRecord("ngoal.value.V_H", status, msg, vnums, PROOF))
+    checks.append(CheckRecord("game.value", status, msg, vnums, PROOF))
     try:
         sv = nvalue(inst, tree.horizon)
     except (ValueError, HorizonError) as exc:
-        checks.append(CheckRecord("ngoal.value.structured", "skipped", str(exc)))
+        checks.append(CheckRecord("game.value.structured", "skipped", str(exc)))
         return _tagged(checks), tree
     overlap = sv.lower <= bracket.upper and bracket.lower <= sv.upper
     agree = overlap and (sv.value is None or (bracket.lower <= sv.value <= bracket.upper
@@ -204,7 +203,7 @@ def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
     said = (f"structured V_H = {sv.value} ({sv.upper_source})" if sv.value is not None else
             f"structured bracket [{sv.lower}, {sv.upper}]")
     checks.append(CheckRecord(
-        "ngoal.value.structured", "pass" if agree else "error",
+        "game.value.structured", "pass" if agree else "error",
         f"{said} agrees with the tree route" if agree else
         f"{said} disagrees with the tree route [{bracket.lower}, {bracket.upper}] "
         f"(LP {decimal(lp.value)}): a bug — please keep this instance",

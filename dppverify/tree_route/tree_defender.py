@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from dppverify.exact import Number
 from dppverify.game.instance import Roles
-from dppverify.game.profile import DefenderRule, ProgressRule, TableRule
+from dppverify.game.profile import DefenderRule
 from dppverify.tree_route.tree import WalkTree
 
 __all__ = ["TreeDefender", "tree_defender"]
@@ -50,6 +50,7 @@ def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefen
     Examples
     --------
     >>> from dppverify.game.examples import triangle
+    >>> from dppverify.game.profile import ProgressRule
     >>> from dppverify.tree_route.tree import build_tree
     >>> tree = build_tree(triangle(), 1)
     >>> inst, r = tree.instance, tree.instance.roles()
@@ -64,8 +65,7 @@ def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefen
     sigma_goal: list[Number] = [0] * n
     amount: list[Number | None] = [None] * n  # w * sigma_goal when known without multiplying
     undefined: list[int] = []
-    progress_goal = rule.goal if isinstance(rule, ProgressRule) else (
-        rule.default.goal if isinstance(rule.default, ProgressRule) else None)
+    progress_goal = rule.progress_goal
     if progress_goal is not None:
         from dppverify.twogoal.progress import progress_on_tree  # N = 2: σ*
 
@@ -74,20 +74,18 @@ def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefen
             s = mode.ratio(prog[p], weight[p])
             sigma_goal[p] = s
             amount[p] = prog[p] if mode.exact else mode.product(weight[p], s)
-    elif isinstance(rule, TableRule) and rule.default is not None:
-        assert not isinstance(rule.default, ProgressRule)
-        fill: Number = rule.default
+    elif rule.constant is not None:
+        fill: Number = rule.constant
         sigma_goal = [0] + [fill] * (n - 1)
-    if isinstance(rule, TableRule):
-        listed = set()
-        for walk, prob in rule.entries.items():
-            p_idx = tree.find(walk)
-            if p_idx is not None:
-                sigma_goal[p_idx] = prob
-                amount[p_idx] = None
-                listed.add(p_idx)
-        if rule.default is None:
-            undefined = [p for p in range(1, n) if p not in listed]
+    listed = set()
+    for walk, prob in rule.entries.items():  # the progress rule lists none
+        p_idx = tree.find(walk)
+        if p_idx is not None:
+            sigma_goal[p_idx] = prob
+            amount[p_idx] = None
+            listed.add(p_idx)
+    if not rule.defined_everywhere:
+        undefined = [p for p in range(1, n) if p not in listed]
     one = mode.one()
     to_g1 = rule.goal == roles.g1
     sigma1: list[Number] = [0] * n

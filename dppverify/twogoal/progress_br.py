@@ -22,7 +22,7 @@ from fractions import Fraction
 import numpy as np
 
 from dppverify.exact import INF, Number, normalize
-from dppverify.game.distances import ArcArrays, dijkstra
+from dppverify.game.distances import ArcArrays, dijkstra, sparse_dijkstra
 from dppverify.game.instance import Instance, arc_arrays, goal_distance_fields
 
 __all__ = ["ScaledArcs", "WalkMinima", "avoiding_distances", "scaled_arcs", "scaled_distances",
@@ -105,7 +105,6 @@ def scaled_distances(arcs: ScaledArcs, n: int, source: int, *, reverse: bool,
     key = (source, reverse, blocked)
     if key not in arcs.distances:
         import scipy.sparse as sp
-        from scipy.sparse.csgraph import dijkstra as sp_dijkstra
 
         # the graph's CSR rows (reversed: the arcs by head), built once per instance
         indptr, indices, order = arcs.arrays.rows(n, reverse=reverse)
@@ -116,8 +115,7 @@ def scaled_distances(arcs: ScaledArcs, n: int, source: int, *, reverse: bool,
             for v in drop:
                 w[indptr[v]:indptr[v + 1]] = np.inf
         m = sp.csr_matrix((w, indices, indptr), shape=(n, n), copy=False)
-        arcs.distances[key] = np.asarray(sp_dijkstra(m, directed=True, indices=source),
-                                         dtype=np.float64)
+        arcs.distances[key] = sparse_dijkstra(m, source)
     return arcs.distances[key]
 
 
@@ -157,11 +155,10 @@ def avoiding_distances(instance: Instance, source: int, *, reverse: bool,
 def _float_distances(n: int, arcs: ArcArrays, source: int) -> np.ndarray:
     """Float-mode distances from ``source`` by scipy's Dijkstra."""
     import scipy.sparse as sp
-    from scipy.sparse.csgraph import dijkstra as sp_dijkstra
 
     w = np.asarray([float(x) for x in arcs.weights()], dtype=np.float64)
     m = sp.csr_matrix((w, (arcs.tails, arcs.heads)), shape=(n, n))
-    return np.asarray(sp_dijkstra(m, directed=True, indices=source), dtype=np.float64)
+    return sparse_dijkstra(m, source)
 
 
 def split_minimum(instance: Instance, a: int, b: int) -> Number:

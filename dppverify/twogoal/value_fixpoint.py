@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from dppverify.exact import Number
-from dppverify.game.distances import common_denominator
+from dppverify.game.distances import EXACT_FLOAT_LIMIT, common_denominator, sparse_dijkstra
 from dppverify.game.instance import Instance, Roles, arc_arrays
 
 __all__ = ["INT64_LIMIT", "Arcs", "Fixpoint", "fixpoint_fields", "goal_terminal_arcs"]
@@ -163,10 +163,9 @@ def _fixpoint(inst: Instance, r: Roles, given: Arcs | None, *,
     term = int(max(d12, d21) * arcs.scale)
     base = 2 * n + 3  # above every step count (at most 2n - 2, DP.3)
     vmax = 2 * ((n - 1) * wmax + term) + 1  # above every finite fixpoint value
-    if (vmax + 1) * base + 1 >= 2**53:  # float64 holds every encoded number exactly
+    if (vmax + 1) * base + 1 >= EXACT_FLOAT_LIMIT:  # float64 holds every encoded number exactly
         return None
     from scipy.sparse import csr_matrix
-    from scipy.sparse.csgraph import dijkstra
 
     g1, g2 = r.g1, r.g2
     # the reversed arcs u -> v for v -> u, by row: the instance's reversed graph (built once
@@ -192,7 +191,8 @@ def _fixpoint(inst: Instance, r: Roles, given: Arcs | None, *,
     big = np.iinfo(np.int64).max
 
     # seed pruning is exact while a seed plus one arc stays below 2**53 in the encoding
-    can_prune = prune and arcs.heads.size > 0 and (vmax + wmax + 1) * base + 1 < 2**53
+    can_prune = (prune and arcs.heads.size > 0
+                 and (vmax + wmax + 1) * base + 1 < EXACT_FLOAT_LIMIT)
     fwd_w = arcs.weights.astype(np.float64) * base + 1.0
 
     def run(src: np.ndarray, cost: np.ndarray, hops: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -215,7 +215,7 @@ def _fixpoint(inst: Instance, r: Roles, given: Arcs | None, *,
         weights[m_arcs:end] = seed_w
         heads[m_arcs:end] = src
         mat = csr_matrix((weights[:end], heads[:end], indptr), shape=(n + 1, n + 1), copy=False)
-        dist = dijkstra(mat, directed=True, indices=n)[:n]
+        dist = sparse_dijkstra(mat, n)[:n]
         finite = np.isfinite(dist)
         enc = np.where(finite, dist - 1.0, 0.0).astype(np.int64)
         val, hop = np.divmod(enc, base)

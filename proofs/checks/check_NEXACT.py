@@ -30,7 +30,7 @@ from solver.coalitions.guarantee_sets import (
 from solver.coalitions.normal_attacker import _moves
 from solver.coalitions.normal_cover import normal_cover_lp
 from solver.coalitions.vertex_tables import packing_vertices, primitive, zero_one_normals
-from solver.game.indexed_instance import ngame_from_json
+from solver.game.instance_reading import instance_from_json
 from solver.numbers import solve_exact
 from tests.solver._ngoal_families import GADGET, draw
 
@@ -58,7 +58,7 @@ def test_NX1_the_root_lp_is_dual_feasible_tight_and_complementary() -> None:
 
 
 def _sets(doc: dict) -> tuple:
-    game = ngame_from_json(doc)
+    game = instance_from_json(doc)
     graph, _ = arc_graph(game)
     found = guarantee_sets(graph)
     assert isinstance(found, GuaranteeSets)
@@ -157,7 +157,7 @@ def _face_dimension(rows: list[tuple[tuple[int, ...], Fraction]], p: tuple[int, 
 def test_NX6_the_proved_route_adds_facets_of_the_exact_layer_set(
         monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(gsets, "HEURISTIC_ROUNDS", 0)
-    game = ngame_from_json(GADGET)
+    game = instance_from_json(GADGET)
     graph, _ = arc_graph(game)
     found = guarantee_sets(graph)
     assert isinstance(found, GuaranteeSets) and found.rounds == 1

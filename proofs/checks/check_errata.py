@@ -22,8 +22,8 @@ from proofs.checks.errata_search import (
     search,
     swapped_outcome,
 )
-from solver import solve
 from solver.game.instance_reading import instance_from_json
+from solver.twogoal.equilibrium import paper_equilibrium
 
 TRIANGLE = (("s", "g1", 3), ("s", "g2", 2), ("g1", "g2", 2))
 TIED = (("s", "g1", 2), ("s", "g2", 2), ("g1", "g2", 1))
@@ -158,11 +158,11 @@ def test_errata_E4_primary_through_the_fake_goal_pays_more() -> None:
 
 def test_errata_E5_and_R3_one_half_and_ties() -> None:
     half = (Fraction(1, 2), Fraction(1, 2))
-    eq = solve(instance_from_json(instance_doc(TRIANGLE, False, half)))
+    eq = paper_equilibrium(instance_from_json(instance_doc(TRIANGLE, False, half)))
     assert [(p.nodes, p.probability) for p in eq.primary_paths] == [(("s", "g2"), 1)]
     values = set()
     for order, xi2 in ((("s", "g1", "g2"), ("s", "g1")), (("s", "g2", "g1"), ("s", "g2"))):
-        eq = solve(instance_from_json(instance_doc(TIED, False, P7, order)))
+        eq = paper_equilibrium(instance_from_json(instance_doc(TIED, False, P7, order)))
         assert eq.secondary_path == xi2
         values.add(eq.U)
     assert values == {Fraction(17, 10)}

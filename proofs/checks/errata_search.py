@@ -31,9 +31,9 @@ from fractions import Fraction
 from typing import Any
 
 import dppverify
-from solver import equilibrium_to_json, solve
 from solver.errors import DPPError
 from solver.game.instance_reading import instance_from_json
+from solver.twogoal.equilibrium import paper_equilibrium
 
 __all__ = ["Outcome", "candidates", "instance_doc", "robust", "search", "some_order",
            "swapped_outcome"]
@@ -85,10 +85,10 @@ def swapped_outcome(doc: dict[str, Any]) -> Outcome:
     (True, '12/5', '5/2')
     """
     try:
-        eq = solve(instance_from_json(doc))
+        eq = paper_equilibrium(instance_from_json(doc))
     except DPPError:
         return Outcome(False, None, None, (), None, None)
-    profile = equilibrium_to_json(eq)
+    profile = eq.to_json()
     primary = profile["attacker"]["primary"]
     phases = (eq.phases.t_I, eq.phases.t_II, eq.phases.T)
     if len(primary) != 2:  # one branch path (or b2/b1 = 1): nothing to swap here

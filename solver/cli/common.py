@@ -46,8 +46,9 @@ def dumps(doc: object) -> str:
 
 
 def load_instance(instance: str | None, grid: MapRequest | None,
-          command: str = "dpp solve") -> Instance:
-    """The instance of a solver command: the INSTANCE file or the --map grid.
+          command: str = "dpp solve", *, two_goals: bool = True) -> Instance:
+    """The instance of a solver command: the INSTANCE file or the --map grid (two goals
+    unless ``two_goals=False``: then any N, as ``dpp solve`` takes).
 
     Examples
     --------
@@ -57,11 +58,12 @@ def load_instance(instance: str | None, grid: MapRequest | None,
     >>> load_instance(str(triangle), None).goals
     ('g1', 'g2')
     """
-    return load_with_digest(instance, grid, command)[0]
+    return load_with_digest(instance, grid, command, two_goals=two_goals)[0]
 
 
 def load_with_digest(instance: str | None, grid: MapRequest | None,
-                     command: str = "dpp solve") -> tuple[Instance, str | None]:
+                     command: str = "dpp solve", *, two_goals: bool = True
+                     ) -> tuple[Instance, str | None]:
     """:func:`load_instance`, and the sha256 of the --map file (None for an INSTANCE file).
 
     Examples
@@ -80,15 +82,18 @@ def load_with_digest(instance: str | None, grid: MapRequest | None,
     if grid is None:
         assert instance is not None
         with checker_cli.hinted(instance, "instance", command, errors=(DPPError,)):
-            return load_instance(instance), None
-    if grid.n_goals != 2:
+            return load_instance(instance, two_goals=two_goals), None
+    if two_goals and grid.n_goals != 2:
         raise InvalidInstanceError(f"{grid.map}: this command takes two goals, got "
                                    f"{grid.n_goals} (N-goal games: dpp solve, certify, value)")
+    if grid.n_goals > 2 and grid.connectivity != 4:
+        raise InvalidInstanceError(f"{grid.map}: the N-goal solver is exact only: float "
+                                   "weights (--connectivity 8) are not supported for more "
+                                   "than two goals")
     blocked, digest = read_map_bytes(grid.path)
-    check_map_memory(grid.map, blocked, 2)
+    check_map_memory(grid.map, blocked, grid.n_goals)
     try:
-        return Instance.from_grid(blocked, grid.start, (grid.goals[0], grid.goals[1]),
-                                  (grid.prior[0], grid.prior[1]),
+        return Instance.from_grid(blocked, grid.start, grid.goals, grid.prior,
                                   connectivity=grid.connectivity), digest
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{grid.map}: {exc}") from None
@@ -116,8 +121,10 @@ START_IS_GOAL = ("note: the start is a goal: the game ends before any step (T = 
 
 
 def experiment_instance(instance: str | None, grid: MapRequest | None,
-                         command: str = "dpp experiment compare") -> Instance:
-    """INSTANCE, the --map grid, or (neither given) the bundled 10x10 map of the paper.
+                        command: str = "dpp experiment compare", *,
+                        two_goals: bool = True) -> Instance:
+    """INSTANCE, the --map grid, or (neither given) the bundled 10x10 map of the paper (two
+    goals unless ``two_goals=False``).
 
     Examples
     --------
@@ -129,7 +136,7 @@ def experiment_instance(instance: str | None, grid: MapRequest | None,
         from solver.experiments.compare import paper10_instance
 
         return paper10_instance()
-    return load_instance(instance, grid, command)
+    return load_instance(instance, grid, command, two_goals=two_goals)
 
 
 def int_list(text: str, what: str) -> tuple[int, ...]:

@@ -186,7 +186,6 @@ def _equilibria(placed: Placed, max_goals: int, as_json: bool,
     """Solve and certify every game of the series."""
     from dppverify.certify import certify as certify_profile
     from dppverify.formats.movingai import grid_document
-    from solver.coalitions.construction import nequilibrium_to_json
     from solver.experiments.ngoal import ngoal_csv, ngoal_figure, ngoal_series
 
     echo = _table("map              N  prior   U          U_bar      VoI     deception  "
@@ -197,7 +196,7 @@ def _equilibria(placed: Placed, max_goals: int, as_json: bool,
     for name, blocked, grid, start, goals in placed:
         def certify(start: Any, goals: Any, prior: Any, eq: Any, grid: Any = grid) -> str:
             doc = grid_document(grid, start, list(goals), [str(b) for b in prior])
-            cert = certify_profile(doc, nequilibrium_to_json(eq), horizon="inf",
+            cert = certify_profile(doc, eq.to_json(), horizon="inf",
                                    route="structured")
             return str(cert.verdict)
 

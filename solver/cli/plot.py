@@ -16,11 +16,10 @@ from dppverify.cli.conventions import (
 )
 from dppverify.cli.map_options import MapRequest, map_options, two_goal_map_options
 from solver.cli.common import experiment_instance
-from solver.cli.solve import ngoal_game
 from solver.errors import InvalidInstanceError, OutputError
 
 if TYPE_CHECKING:
-    from solver.game.indexed_instance import NGame
+    from solver.game.instance import Instance
 
 __all__ = ["plot_group"]
 
@@ -60,15 +59,14 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
 
     refuse_input_as_output(output, [instance, grid.path if grid is not None else None],
                            error=OutputError)
-    game = (ngoal_game(instance, grid, "dpp plot map")
-            if instance is not None or grid is not None else None)
-    if game is not None:
-        _plot_ngoal_map(game, grid.game() if grid is not None else instance, output,
-                        want_progress(progress))
-        return
     bar = PhaseBar(want_progress(progress), "plot map", "reading the instance")
     try:
-        inst = experiment_instance(instance, grid, "dpp plot map")
+        inst = experiment_instance(instance, grid, "dpp plot map", two_goals=False)
+        if inst.n_goals > 2:
+            bar.close()
+            _plot_ngoal_map(inst, grid.game() if grid is not None else instance, output,
+                            want_progress(progress))
+            return
         from solver.plots.style import check_suffix  # matplotlib: not at start-up
 
         check_suffix(output)  # after the inputs' mistakes, before the work
@@ -79,11 +77,11 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     status("wrote " + ", ".join(map(str, files)))
 
 
-def _plot_ngoal_map(game: NGame, checked: Any, output: str, progress: bool) -> None:
+def _plot_ngoal_map(game: Instance, checked: Any, output: str, progress: bool) -> None:
     """The N-goal figure of what ``dpp solve`` writes: the construction, certified by the
     checker on the untruncated game (else one line, exit 3, nothing drawn), then drawn."""
     from dppverify.certify import certify as certify_profile
-    from solver.coalitions.construction import nequilibrium_to_json, solve_ngoal
+    from solver.coalitions.construction import coalition_equilibrium
     from solver.plots import plot_ngoal_map, save_figure
     from solver.plots.grid import grid_array
     from solver.plots.style import check_suffix
@@ -92,9 +90,9 @@ def _plot_ngoal_map(game: NGame, checked: Any, output: str, progress: bool) -> N
     check_suffix(output)
     bar = PhaseBar(progress, "plot map", f"solving ({game.n_goals} goals)")
     try:
-        eq = solve_ngoal(game)
+        eq = coalition_equilibrium(game)
         bar.phase("certifying (structured route, H = inf)")
-        cert = certify_profile(checked, nequilibrium_to_json(eq), horizon="inf",
+        cert = certify_profile(checked, eq.to_json(), horizon="inf",
                                route="structured")
         if cert.verdict != "pass":
             raise click.ClickException("")  # reported below, after the bar is gone

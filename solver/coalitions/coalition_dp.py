@@ -12,8 +12,8 @@ By increasing ``|S|``, ``split_S`` is known before ``m_S``, and ``m_S`` is a sho
 problem with sources: ``m_S(v) = min_x [ dist(v → x) + init_S(x) ]`` over walks whose interior
 avoids the goals, ``init_S`` the split at non-goals and the terminal cost at goals. One
 Dijkstra per ``S`` (exact: integers scaled by ``W·L^(N-1)``, ``W`` the weights' denominator,
-``L`` the lcm of the collections' denominators; scipy's float64 Dijkstra when every value is
-an integer below 2**53, which float64 represents exactly; Python integers otherwise).
+``L`` the lcm of the collections' denominators;
+:func:`~solver.graph.distances.distances_from_sources`).
 
 The balanced collections are the vertices of ``{λ >= 0 : Σ_{T ⊊ S} λ_T 1_T = 1_S}``, found by
 trying every basis (a float pre-filter on the integer determinants, then exact integers).
@@ -24,7 +24,6 @@ exact simplex (:func:`cover_lp`), which also returns its dual ``h`` (``h(S) <= m
 
 from __future__ import annotations
 
-import heapq
 import itertools
 import math
 from collections.abc import Mapping, Sequence
@@ -33,16 +32,14 @@ from fractions import Fraction
 from functools import cache
 
 import numpy as np
-import scipy.sparse as sp
-from scipy.sparse.csgraph import dijkstra
 
-from solver.game.indexed_instance import NGame
+from solver.game.instance import Instance
+from solver.graph.distances import distances_from_sources
 from solver.numbers import pivot, solve_exact
 
 __all__ = ["Coalitions", "CoverSolution", "balanced_collections", "coalition_dp", "cover_lp",
            "subset_members"]
 
-EXACT_FLOAT = 2 ** 53
 
 
 def subset_members(mask: int) -> tuple[int, ...]:
@@ -179,7 +176,7 @@ class Coalitions:
 
     Attributes
     ----------
-    game : NGame
+    instance : Instance
         The game.
     scale : int
         ``m_S(v) = cost[S][v] / scale`` (``scale = W·L^(N-1)``).
@@ -191,7 +188,7 @@ class Coalitions:
         Subset mask -> array: index into :func:`balanced_collections` of an argmin split.
     """
 
-    game: NGame
+    instance: Instance
     scale: int
     cost: Mapping[int, np.ndarray]
     split: Mapping[int, np.ndarray]
@@ -212,14 +209,14 @@ def _collections_in(mask: int) -> list[tuple[tuple[int, Fraction], ...]]:
     return out
 
 
-def coalition_dp(game: NGame) -> Coalitions:
+def coalition_dp(game: Instance) -> Coalitions:
     """The coalition DP at ``H = inf`` (one Dijkstra per subset, by increasing size).
 
     Examples
     --------
     The hub: ``s -> m`` then ``m -> a | b | c`` (unit weights), ``s -> a`` weight 2:
 
-    >>> from solver.game.indexed_instance import ngame_from_json
+    >>> from solver.game.instance_reading import instance_from_json
     >>> doc = {"graph": {"directed": True, "nodes": [{"id": x} for x in "smabc"],
     ...        "edges": [{"source": "s", "target": "m"}, {"source": "m", "target": "a"},
     ...                  {"source": "m", "target": "b"}, {"source": "m", "target": "c"},
@@ -227,7 +224,7 @@ def coalition_dp(game: NGame) -> Coalitions:
     ...                  {"source": "a", "target": "s"}, {"source": "b", "target": "s"},
     ...                  {"source": "c", "target": "s"}]},
     ...        "start": "s", "goals": ["a", "b", "c"], "prior": ["1/2", "1/3", "1/6"]}
-    >>> dp = coalition_dp(ngame_from_json(doc))
+    >>> dp = coalition_dp(instance_from_json(doc))
     >>> [str(dp.m(t, 0)) for t in (1, 2, 4, 7)]
     ['2', '2', '2', '4']
     """
@@ -239,7 +236,7 @@ def coalition_dp(game: NGame) -> Coalitions:
                         for _, lam in coll))
     scale = lcm ** (n_goals - 1)
     is_goal = np.zeros(n, dtype=bool)
-    is_goal[list(game.goals)] = True
+    is_goal[list(game.targets)] = True
     tails = np.repeat(np.arange(n, dtype=np.int64), np.diff(net.indptr))
     keep = ~is_goal[tails]  # walks end at the first goal: arcs out of goals are never used
     t_arc, h_arc = tails[keep], net.indices[keep].astype(np.int64)
@@ -248,7 +245,7 @@ def coalition_dp(game: NGame) -> Coalitions:
     for d in game.dist_to:
         reach |= np.isfinite(d.astype(np.float64))
     term: dict[int, list[int]] = {}
-    for g in game.goals:
+    for g in game.targets:
         term[g] = [int(game.dist_to[t][g]) * scale for t in range(n_goals)]
     cost: dict[int, np.ndarray] = {}
     split: dict[int, np.ndarray] = {}
@@ -256,7 +253,7 @@ def coalition_dp(game: NGame) -> Coalitions:
     nodes = np.flatnonzero(reach & ~is_goal)
     for mask in sorted(range(1, 1 << n_goals), key=lambda t: (bin(t).count("1"), t)):
         init = np.full(n, -1, dtype=object)
-        for g in game.goals:
+        for g in game.targets:
             init[g] = sum(term[g][t] for t in subset_members(mask))
         spl = np.full(n, -1, dtype=object)
         pick = np.full(n, -1, dtype=np.int64)
@@ -278,45 +275,7 @@ def coalition_dp(game: NGame) -> Coalitions:
             spl[nodes] = best // lcm
             pick[nodes] = arg
             init[nodes] = spl[nodes]
-        cost[mask] = _sourced_dijkstra(n, t_arc, h_arc, w_arc, init)
+        cost[mask] = distances_from_sources(n, t_arc, h_arc, w_arc, init)
         split[mask] = spl
         choice[mask] = pick
     return Coalitions(game, scale * game.denominator, cost, split, choice)
-
-
-def _sourced_dijkstra(n: int, tails: np.ndarray, heads: np.ndarray, weights: list[int],
-                      init: np.ndarray) -> np.ndarray:
-    """``min_x [dist(v -> x) + init[x]]`` for every ``v`` (``init < 0``: not a source)."""
-    src = [i for i in range(n) if init[i] >= 0]
-    top = max((int(init[i]) for i in src), default=0) + sum(weights) + 2
-    if top < EXACT_FLOAT:
-        # reversed arcs plus a super-source n with arcs n -> x of weight init[x] + 1 (> 0)
-        rows = np.concatenate([heads, np.full(len(src), n, dtype=np.int64)])
-        cols = np.concatenate([tails, np.asarray(src, dtype=np.int64)])
-        vals = np.concatenate([np.asarray(weights, dtype=np.float64),
-                               np.asarray([int(init[i]) + 1 for i in src], dtype=np.float64)])
-        mat = sp.csr_matrix((vals, (rows, cols)), shape=(n + 1, n + 1))
-        d = dijkstra(mat, directed=True, indices=n)[:n]
-        out = np.full(n, -1, dtype=object)
-        fin = np.isfinite(d)
-        out[fin] = [int(x) - 1 for x in d[fin]]
-        return out
-    pred: list[list[tuple[int, int]]] = [[] for _ in range(n)]
-    for t, h, w in zip(tails.tolist(), heads.tolist(), weights, strict=True):
-        pred[h].append((t, w))
-    best: list[int | None] = [None] * n
-    heap = [(int(init[i]), i) for i in src]
-    for k, i in heap:
-        best[i] = k
-    heapq.heapify(heap)
-    while heap:
-        k, x = heapq.heappop(heap)
-        if (b := best[x]) is not None and k > b:
-            continue
-        for u, w in pred[x]:
-            nk = k + w
-            b = best[u]
-            if b is None or nk < b:
-                best[u] = nk
-                heapq.heappush(heap, (nk, u))
-    return np.array([-1 if b is None else b for b in best], dtype=object)

@@ -12,7 +12,7 @@
 
 Every type pays exactly ``h_θ`` on each of its walks and at least ``h_θ`` on any walk
 (proofs/NEXACT.md NX.4, NX.5), so ``U = b·h = V_inf``. Where the budget of the refinement ends
-first, :func:`solve_ngoal` raises :class:`FixpointNotReached` with an exact value bracket.
+first, :func:`coalition_equilibrium` raises :class:`FixpointNotReached` with an exact value bracket.
 """
 
 from __future__ import annotations
@@ -42,14 +42,12 @@ from solver.coalitions.normal_attacker import normal_attacker
 from solver.coalitions.normal_cover import normal_cover_lp
 from solver.coalitions.vertex_tables import Normal
 from solver.errors import DPPError
-from solver.formats.nodes import node_to_json
-from solver.game.indexed_instance import NGame
-from solver.version import __version__
+from solver.game.instance import Instance
+from solver.game.profile_writing import per_goal_profile
+from solver.game.walks import StrategyWalk
 
-__all__ = ["FixpointNotReached", "NEquilibrium", "arc_graph", "nequilibrium_to_json",
-           "solve_ngoal"]
+__all__ = ["CoalitionEquilibrium", "FixpointNotReached", "arc_graph", "coalition_equilibrium"]
 
-NGOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
 DEFAULT_BUDGET = Budget()
 DOMINATED_ROUNDS = 2
 """Rounds that add the failing directions of the written rule's (dominated) sets as normals."""
@@ -83,13 +81,13 @@ class FixpointNotReached(DPPError):
 
 
 @dataclass(frozen=True, eq=False)
-class NEquilibrium:
+class CoalitionEquilibrium:
     """The N-goal profile the construction gives, with its exact values.
 
     Attributes
     ----------
-    game : NGame
-        The instance.
+    instance : Instance
+        The game (exact weights).
     h : tuple of Fraction
         The Defender's guarantee vector (the root cover LP's canonical optimal dual).
     normals : tuple of tuple of int
@@ -116,7 +114,7 @@ class NEquilibrium:
         Solve time.
     """
 
-    game: NGame = field(repr=False)
+    instance: Instance = field(repr=False)
     h: tuple[Fraction, ...]
     normals: tuple[Normal, ...]
     cover: dict[Normal, Fraction]
@@ -151,28 +149,60 @@ class NEquilibrium:
 
         Examples
         --------
-        >>> from solver.game.indexed_instance import ngame_from_json
+        >>> from solver.game.instance_reading import instance_from_json
         >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
         ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
         ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
-        >>> eq = solve_ngoal(ngame_from_json(doc))
+        >>> eq = coalition_equilibrium(instance_from_json(doc))
         >>> [[str(x) for x in s] for s in eq.defender_along([0, 1])]
         [['1', '0']]
         """
         assert self.fixpoint is not None
         normals = self.fixpoint.system.normals
-        order = priority_order(self.game.prior)
+        order = priority_order(self.instance.prior)
         r = self.h
         out = []
         for v, u in itertools.pairwise(walk):
-            w = Fraction(int(self.game.network.arc_weight(v, u) or 0), self.game.denominator)
+            inst = self.instance
+            w = Fraction(int(inst.network.arc_weight(v, u) or 0), inst.denominator)
             sigma, _ = rule_step(r, normals, self.rule_values(u), w, order)
             out.append(sigma)
             r = tuple(x - w * y for x, y in zip(r, sigma, strict=True))
         return out
 
+    @property
+    def strategies(self) -> tuple[tuple[StrategyWalk, ...], ...]:
+        """``strategies[θ]``: the mixed strategy of goal index θ, as walks with probabilities."""
+        net = self.instance.network
+        return tuple(tuple(StrategyWalk.along(net, walk, p) for walk, p in mix)
+                     for mix in self.mixtures)
 
-def arc_graph(game: NGame) -> tuple[ArcGraph, np.ndarray]:
+    def to_json(self) -> dict[str, Any]:
+        """The ``dpp-ngoal-profile/1`` document with the guarantee rule (``docs/formats.md``
+        §2b), written by :func:`~solver.game.profile_writing.per_goal_profile`.
+
+        Examples
+        --------
+        >>> from solver.game.instance import triangle
+        >>> out = coalition_equilibrium(triangle()).to_json()   # two goals: σ*'s value
+        >>> out["defender"], out["value"]["U"]
+        ({'rule': 'guarantee', 'h': ['3', '1']}, '12/5')
+        """
+        defender: dict[str, Any] = {"rule": "guarantee", "h": [str(x) for x in self.h]}
+        if self.normals:  # only when there are extra ones
+            defender["normals"] = [list(a) for a in self.normals]
+        return per_goal_profile(
+            self.instance, self.strategies, defender=defender,
+            values={"U": str(self.U), "U_types": [str(x) for x in self.costs],
+                    "U_bar": str(self.U_bar), "VoI": str(self.VoI)},
+            method=METHOD,
+            cover={",".join(map(str, a)): str(c)
+                   for a, c in sorted(self.cover.items(), reverse=True)},
+            layers=self.layers, refinement_rounds=self.rounds)
+
+
+
+def arc_graph(game: Instance) -> tuple[ArcGraph, np.ndarray]:
     """The walkable part of ``game`` as arrays, and the game's node index of each node.
 
     The nodes are those on some walk: reachable from the start through non-goal nodes, and
@@ -181,22 +211,22 @@ def arc_graph(game: NGame) -> tuple[ArcGraph, np.ndarray]:
 
     Examples
     --------
-    >>> from solver.game.indexed_instance import ngame_from_json
+    >>> from solver.game.instance_reading import instance_from_json
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "sabz"],
     ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"},
     ...                  {"source": "a", "target": "z"}]},
     ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
-    >>> graph, labels = arc_graph(ngame_from_json(doc))
-    >>> graph.n_nodes, [str(ngame_from_json(doc).label(int(i))) for i in labels]
+    >>> graph, labels = arc_graph(instance_from_json(doc))
+    >>> graph.n_nodes, [str(instance_from_json(doc).label(int(i))) for i in labels]
     (3, ['s', 'a', 'b'])
     """
     net = game.network
     n = net.n_nodes
     goal = np.zeros(n, dtype=bool)
-    goal[list(game.goals)] = True
+    goal[list(game.targets)] = True
     seen = np.zeros(n, dtype=bool)
-    seen[game.start] = True
-    queue = deque([game.start])
+    seen[game.s0] = True
+    queue = deque([game.s0])
     while queue:  # forward: walks continue only from non-goal nodes
         v = queue.popleft()
         if goal[v]:
@@ -224,29 +254,29 @@ def arc_graph(game: NGame) -> tuple[ArcGraph, np.ndarray]:
                     weights.append(int(w))
         indptr.append(len(heads))
     terminal = np.array([[int(game.dist_to[t][g]) for t in range(game.n_goals)]
-                         for g in game.goals], dtype=np.int64)
+                         for g in game.targets], dtype=np.int64)
     graph = ArcGraph(indptr=np.asarray(indptr, dtype=np.int64),
                      heads=np.asarray(heads, dtype=np.int64),
                      weights=np.asarray(weights, dtype=np.int64),
                      denominator=game.denominator,
-                     goals=tuple(int(new[g]) for g in game.goals), terminal=terminal,
-                     start=int(new[game.start]))
+                     goals=tuple(int(new[g]) for g in game.targets), terminal=terminal,
+                     start=int(new[game.s0]))
     return graph, keep
 
 
-def simple_lower_bound(game: NGame) -> tuple[Fraction, str]:
+def simple_lower_bound(game: Instance) -> tuple[Fraction, str]:
     """NG.9: the better of a Defender always guarding one goal and the uniform Defender.
 
     Examples
     --------
-    >>> from solver.game.indexed_instance import ngame_from_json
+    >>> from solver.game.instance_reading import instance_from_json
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
     ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
     ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
-    >>> simple_lower_bound(ngame_from_json(doc))
+    >>> simple_lower_bound(instance_from_json(doc))
     (Fraction(1, 2), 'a Defender always guarding goal 1 (proofs/NGOAL.md NG.9)')
     """
-    d = [game.distance(t, game.start) for t in range(game.n_goals)]
+    d = [game.distance(t, game.s0) for t in range(game.n_goals)]
     guard = [b * x for b, x in zip(game.prior, d, strict=True)]
     best = max(range(game.n_goals), key=lambda t: guard[t])
     uniform = sum(guard, Fraction(0)) / game.n_goals
@@ -260,8 +290,10 @@ def _fixpoint_value(fix: Fixpoint, start: int, prior: tuple[Fraction, ...]) -> F
     return normal_cover_lp(fix.system.normals, costs, list(prior)).value
 
 
-def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
-    """Solve an N-goal game by the exact construction.
+def coalition_equilibrium(game: Instance, budget: Budget = DEFAULT_BUDGET
+                          ) -> CoalitionEquilibrium:
+    """The exact N-goal construction on ``game``: the entry :func:`solver.solve` calls for
+    ``N >= 3`` (for two goals it gives σ*'s values).
 
     Raises
     ------
@@ -270,13 +302,13 @@ def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
 
     Examples
     --------
-    >>> from solver.game.indexed_instance import ngame_from_json
+    >>> from solver.game.instance_reading import instance_from_json
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "smabc"],
     ...        "edges": [{"source": "s", "target": "m"}, {"source": "m", "target": "a"},
     ...                  {"source": "m", "target": "b"}, {"source": "m", "target": "c"},
     ...                  {"source": "s", "target": "a", "weight": 2}]},
     ...        "start": "s", "goals": ["a", "b", "c"], "prior": ["1/2", "1/3", "1/6"]}
-    >>> eq = solve_ngoal(ngame_from_json(doc))
+    >>> eq = coalition_equilibrium(instance_from_json(doc))
     >>> str(eq.U), str(eq.dp_value), eq.normals
     ('3/2', '3/2', ())
     """
@@ -343,11 +375,11 @@ def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
             guarded[theta] += prob * (h0[theta] - game.distance(theta, end))
             walked[theta] += prob * length
     u_val = sum((b * c for b, c in zip(game.prior, type_cost, strict=True)), Fraction(0))
-    u_bar = sum((game.prior[t] * game.distance(t, game.start) for t in range(n)), Fraction(0))
+    u_bar = sum((game.prior[t] * game.distance(t, game.s0) for t in range(n)), Fraction(0))
     mixtures = tuple(tuple(sorted(((tuple(int(labels[v]) for v in w), p)
                                    for w, p in m.items()), key=lambda kv: (-kv[1], kv[0])))
                      for m in mix)
-    return NEquilibrium(game=game, h=h0, normals=found.extra_normals,
+    return CoalitionEquilibrium(instance=game, h=h0, normals=found.extra_normals,
                         cover={normals[j]: c for j, c in plan.root_cover.items()},
                         mixtures=mixtures, costs=tuple(type_cost), guarded=tuple(guarded),
                         walked=tuple(walked), U=u_val, U_bar=u_bar,
@@ -360,48 +392,4 @@ def solve_ngoal(game: NGame, budget: Budget = DEFAULT_BUDGET) -> NEquilibrium:
 def _inverse(labels: np.ndarray, n: int) -> np.ndarray:
     out = np.full(n, -1, dtype=np.int64)
     out[labels] = np.arange(labels.size)
-    return out
-
-
-def nequilibrium_to_json(eq: NEquilibrium) -> dict[str, Any]:
-    """The ``dpp-ngoal-profile/1`` document with the guarantee rule (``docs/formats.md`` §2b).
-
-    Examples
-    --------
-    >>> from solver.game.indexed_instance import ngame_from_json
-    >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
-    ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
-    ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
-    >>> out = nequilibrium_to_json(solve_ngoal(ngame_from_json(doc)))
-    >>> out["defender"], out["value"]["U"]
-    ({'rule': 'guarantee', 'h': ['1', '1']}, '1')
-    """
-    game = eq.game
-    lab = game.label
-
-    def walk_json(walk: tuple[int, ...]) -> list[Any]:
-        return [node_to_json(lab(v)) for v in walk]
-
-    return {
-        "format": NGOAL_PROFILE_FORMAT,
-        "goals": [node_to_json(lab(g)) for g in game.goals],
-        "attacker": [[{"path": walk_json(w), "probability": str(p)} for w, p in mix]
-                     for mix in eq.mixtures],
-        "defender": _defender(eq),
-        "value": {"U": str(eq.U), "U_types": [str(x) for x in eq.costs],
-                  "U_bar": str(eq.U_bar), "VoI": str(eq.VoI)},
-        "exact": True,
-        "tolerance": None,
-        "solver": {"name": "solver", "version": __version__, "method": METHOD,
-                   "cover": {",".join(map(str, a)): str(c)
-                             for a, c in sorted(eq.cover.items(), reverse=True)},
-                   "layers": eq.layers, "refinement_rounds": eq.rounds},
-    }
-
-
-def _defender(eq: NEquilibrium) -> dict[str, Any]:
-    """The guarantee rule: ``h``, and ``normals`` only when there are extra ones."""
-    out: dict[str, Any] = {"rule": "guarantee", "h": [str(x) for x in eq.h]}
-    if eq.normals:
-        out["normals"] = [list(a) for a in eq.normals]
     return out

@@ -34,13 +34,14 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
-from functools import cache
+from functools import cache, cached_property
 
 import numpy as np
 
+from solver.coalitions.block_fixpoint import block_fixpoint, fixpoint_ranks
 from solver.coalitions.normal_cover import normal_cover_lp
 from solver.coalitions.vertex_tables import (
     Direction,
@@ -51,11 +52,11 @@ from solver.coalitions.vertex_tables import (
     vertex_table,
     zero_one_normals,
 )
+from solver.graph.distances import EXACT_FLOAT_LIMIT
 
 __all__ = ["ArcGraph", "Budget", "BudgetExceeded", "GuaranteeSets", "NormalSystem",
            "guarantee_sets", "min_product"]
 
-EXACT = 2 ** 53
 INT_LIMIT = 2 ** 62
 
 
@@ -185,7 +186,7 @@ def min_product(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:
         return np.zeros(0, dtype=np.int64)
     top = int(values.max(initial=0))
     width = (top + 1) * (int(np.abs(scaled).sum(axis=0).max(initial=1)) + 1)
-    if width < EXACT:
+    if width < EXACT_FLOAT_LIMIT:
         return (values.astype(np.float64) @ scaled.astype(np.float64)).min(axis=1).astype(
             np.int64)
     out = (values.astype(object) @ scaled.astype(object)).min(axis=1)
@@ -330,13 +331,18 @@ def failing_arcs(directions: Sequence[Direction], tail_vals: np.ndarray, head_va
         return bad
     for d in directions:
         cols = np.asarray(d.cover.columns, dtype=np.int64)
-        hv = min_product(tail_vals[cols].T, d.cover.scaled)[tail_pos].astype(object)
-        mu = min_product(head_vals.T, d.lams.T)[head_pos].astype(object)
+        hv = min_product(tail_vals[cols].T, d.cover.scaled)[tail_pos]
+        mu = min_product(head_vals.T, d.lams.T)[head_pos]
         # h_v(y) <= w + λ·m_u:  hv / (lcm_T · s) <= w + mu / lcm_λ   (all at scale D)
-        lhs = hv * d.lam_lcm
-        rhs = (w_scaled.astype(object) * d.cover.lcm * d.lam_lcm * d.scale
-               + mu * d.cover.lcm * d.scale)
-        bad |= np.asarray(lhs > rhs, dtype=bool)
+        f_w, f_mu = d.cover.lcm * d.lam_lcm * d.scale, d.cover.lcm * d.scale
+        top = max(int(hv.max(initial=0)) * d.lam_lcm,
+                  int(w_scaled.max(initial=0)) * f_w + int(mu.max(initial=0)) * f_mu)
+        if max(top, f_w, f_mu, d.lam_lcm) < INT_LIMIT:  # int64 holds every term exactly
+            bad |= hv * d.lam_lcm > w_scaled * f_w + mu * f_mu
+        else:
+            lhs = hv.astype(object) * d.lam_lcm
+            rhs = w_scaled.astype(object) * f_w + mu.astype(object) * f_mu
+            bad |= np.asarray(lhs > rhs, dtype=bool)
     return bad
 
 
@@ -354,18 +360,26 @@ class Fixpoint:
         The common denominator ``D``.
     finite : numpy.ndarray
         Whether a goal is reachable from the node.
-    rank : numpy.ndarray
-        ``(|A|, nodes)``: the layer at which ``m_a(v)`` reached its final value.
-    layers : int
-        ``K``: the last layer that changed something.
+    ranks : callable
+        Gives :attr:`rank` (computed on first use: only the certified fixpoint's Attacker and
+        ``K`` need them).
     """
 
     system: NormalSystem
     m: np.ndarray
     scale: int
     finite: np.ndarray
-    rank: np.ndarray
-    layers: int
+    ranks: Callable[[], np.ndarray] = field(repr=False)
+
+    @cached_property
+    def rank(self) -> np.ndarray:
+        """``(|A|, nodes)``: the layer at which ``m_a(v)`` reached its final value."""
+        return self.ranks()
+
+    @cached_property
+    def layers(self) -> int:
+        """``K``: the last layer that changed something."""
+        return int(self.rank.max(initial=0))
 
     def value(self, j: int, v: int) -> Fraction:
         """``m_{a_j}(v)`` exactly."""
@@ -376,7 +390,7 @@ class Fixpoint:
 class LayerFailure:
     """The first layer ``k`` where ``F_v^k ⊄ F_u^{k-1} + wΔ``: its failing tails and the
     values of layers ``k`` (at the recomputed ``rows``) and ``k - 1`` (all nodes) at scale
-    ``scale``."""
+    ``scale`` (``layer`` -1: the failures of a fixpoint, both layers the repeated one)."""
 
     layer: int
     tails: np.ndarray
@@ -439,7 +453,7 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
         live = np.flatnonzero(fin_rows)
         new = np.zeros((a, rows.size), dtype=np.int64)
         sub = step[:, live]
-        exact_float = (big + 1) * width_all < EXACT
+        exact_float = (big + 1) * width_all < EXACT_FLOAT_LIMIT
         subf = sub.T.astype(np.float64) if exact_float else None
         closed: list[np.ndarray | None] = []
         for j, tab in enumerate(system.closures):
@@ -494,7 +508,56 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
         changed = rows[np.any(diff, axis=0)]
         if changed.size == 0:
             break
-    return Fixpoint(system, m, scale, finite, rank, int(rank.max(initial=0)))
+    return Fixpoint(system, m, scale, finite, lambda: rank)
+
+
+def normal_dp(graph: ArcGraph, system: NormalSystem, max_layers: int) -> Fixpoint:
+    """The fixpoint of the normal-restricted DP with the layered DP's ranks.
+
+    By blocks of sourced shortest paths and a label-setting for the ranks
+    (:mod:`solver.coalitions.block_fixpoint`, proofs/NEXACT.md NX.7): the same ``m*``, finite
+    nodes, ranks and ``K`` as :func:`layered_dp` (only the common scale may differ), in a few
+    rounds instead of ``K`` layers. Where that method does not apply it is
+    :func:`layered_dp`.
+
+    Raises
+    ------
+    BudgetExceeded
+        As :func:`layered_dp`: no repeated layer within ``max_layers`` layers (the ranks give
+        ``K``), or numbers beyond the exact range.
+
+    Examples
+    --------
+    >>> graph = ArcGraph(indptr=np.array([0, 2, 2, 2]), heads=np.array([1, 2]),
+    ...                  weights=np.array([1, 1]), denominator=1, goals=(1, 2),
+    ...                  terminal=np.array([[0, 2], [2, 0]]), start=0)
+    >>> fix = normal_dp(graph, NormalSystem(zero_one_normals(2)), 100)
+    >>> [str(fix.value(j, 0)) for j in range(3)], fix.layers
+    (['1', '1', '2'], 1)
+    """
+    normals = np.array(system.normals, dtype=np.int64)
+    goal_values = normals @ graph.terminal.T
+    found = block_fixpoint(graph.indptr, graph.heads, graph.weights, graph.denominator,
+                           graph.goals, goal_values, system.tops, system.closures,
+                           [sum(a) for a in system.normals], max_rounds=max_layers + 1)
+    if found is None:
+        fix = layered_dp(graph, system, check_layers=False, max_layers=max_layers)
+        assert isinstance(fix, Fixpoint)
+        return fix
+    m, scale, finite, _ = found
+
+    def ranks() -> np.ndarray:
+        return fixpoint_ranks(graph.indptr, graph.heads,
+                              graph.weights * (scale // graph.denominator), graph.goals,
+                              system.tops, system.closures, m, finite)
+
+    fix = Fixpoint(system, m, scale, finite, ranks)
+    # K <= the number of (normal, inner node) pairs (the ranks take every value 0..K); below
+    # that the budget of layers is checked on K itself, as the layered DP does
+    inner = int(np.count_nonzero(finite)) - len(set(graph.goals))
+    if max_layers <= len(system.normals) * inner and fix.layers >= max_layers:
+        raise BudgetExceeded(f"no repeated layer within {max_layers:,} layers")
+    return fix
 
 
 def fixpoint_failures(graph: ArcGraph, fix: Fixpoint) -> np.ndarray:
@@ -633,10 +696,9 @@ def guarantee_sets(graph: ArcGraph, budget: Budget | None = None,
     rounds = 0
     while True:
         try:
-            fix = layered_dp(graph, system, check_layers=False, max_layers=max_layers)
+            fix = normal_dp(graph, system, max_layers)
         except BudgetExceeded as exc:
             return Unreached(str(exc), best)
-        assert isinstance(fix, Fixpoint)
         best = fix
         failing = fixpoint_failures(graph, fix)
         if not failing.size:
@@ -647,7 +709,8 @@ def guarantee_sets(graph: ArcGraph, budget: Budget | None = None,
         rounds += 1
         new: list[Normal] = []
         if rounds <= HEURISTIC_ROUNDS:
-            at_fix = LayerFailure(fix.layers, failing, np.arange(graph.n_nodes), fix.m, fix.m,
+            # the fixpoint's own failures (no layer: -1; its ranks are not needed)
+            at_fix = LayerFailure(-1, failing, np.arange(graph.n_nodes), fix.m, fix.m,
                                   fix.finite, fix.scale)
             for v in failing[:8]:
                 new += _local_facets(graph, system, at_fix, int(v), 8)
@@ -683,8 +746,7 @@ def dominated_failures(graph: ArcGraph, normals: tuple[Normal, ...], max_layers:
         When the dominated DP does not repeat a layer within ``max_layers``.
     """
     system = NormalSystem(normals, dominated=True)
-    fix = layered_dp(graph, system, check_layers=False, max_layers=max_layers)
-    assert isinstance(fix, Fixpoint)
+    fix = normal_dp(graph, system, max_layers)
     tails, heads = graph.tails, graph.heads
     keep = fix.finite[tails] & fix.finite[heads]
     w = graph.weights[keep] * (fix.scale // graph.denominator)

@@ -323,8 +323,7 @@ def _run_line(sc: Any, goals: Sequence[Cell], map_path: str | None, missing: str
               config: BatchConfig, checker: Checker) -> dict[str, str]:
     from solver.game.instance import Instance
     from solver.game.instance_writing import instance_to_json
-    from solver.twogoal.equilibrium import solve
-    from solver.twogoal.profile_json import equilibrium_to_json
+    from solver.twogoal.equilibrium import paper_equilibrium
 
     if sc.reason:
         return _error_row(sc, config, sc.reason)
@@ -361,8 +360,8 @@ def _run_line(sc: Any, goals: Sequence[Cell], map_path: str | None, missing: str
         t0 = time.perf_counter()
         inst = Instance.from_grid(blocked, sc.start, (sc.goal, fake), config.prior,
                                   connectivity=config.connectivity)
-        eq = solve(inst)
-        profile = equilibrium_to_json(eq)
+        eq = paper_equilibrium(inst)
+        profile = eq.to_json()
         t1 = time.perf_counter()
         cert = checker.certify(instance_to_json(inst), profile,
                                exact=config.connectivity == 4, route=config.route)

@@ -31,9 +31,9 @@ def line_columns(eq: Equilibrium, goal: Hashable) -> dict[str, str]:
 
     Examples
     --------
-    >>> from solver import solve
     >>> from solver.experiments.compare import paper10_instance
-    >>> cols = line_columns(solve(paper10_instance()), (0, 9))
+    >>> from solver.twogoal.equilibrium import paper_equilibrium
+    >>> cols = line_columns(paper_equilibrium(paper10_instance()), (0, 9))
     >>> cols["distance"], cols["cost"], cols["ldp"], cols["truthful_50"]
     ('18', '20', '107/204', '3/5')
     """

@@ -56,7 +56,7 @@ def check_open_files(workers: int, *, option: str = "--workers") -> None:
 
     Examples
     --------
-    >>> check_open_files(2)  # (tests/experiments/test_local_pool.py: under ulimit -n 20)
+    >>> check_open_files(2)  # (tests/solver/experiments/test_local_pool.py: under ulimit -n 20)
     """
     try:
         import resource

@@ -3,8 +3,9 @@
 On MovingAI maps (4-connected, unit weights) one rule places a start and five goals
 (:func:`corner_cells`); for ``N = 2 … 5`` the first ``N`` goals are used with equal priors
 (``1/N``) and skewed priors (``b_θ ∝ 2^(N-θ)``). Each game is solved by the N-goal
-construction (:func:`solver.coalitions.construction.solve_ngoal`, proofs/NEXACT.md) and the profile
-is handed to a certifier (the command line passes the checker: structured route, ``H = inf``).
+construction (:func:`solver.coalitions.construction.coalition_equilibrium`, proofs/NEXACT.md)
+and the profile is handed to a certifier (the command line passes the checker: structured
+route, ``H = inf``).
 Reported, all exact:
 
 - ``U``: the Attacker's expected cost in the profile, the game's value ``V_inf`` (NEXACT NX.5:
@@ -38,15 +39,19 @@ from typing import Any, TypeVar
 import numpy as np
 from scipy import ndimage
 
-from solver.coalitions.construction import FixpointNotReached, NEquilibrium, solve_ngoal
+from solver.coalitions.construction import (
+    CoalitionEquilibrium,
+    FixpointNotReached,
+    coalition_equilibrium,
+)
 from solver.errors import InvalidInstanceError
-from solver.game.indexed_instance import MAX_NGOALS, ngame_from_grid
+from solver.game.instance import MAX_GOALS, Instance
 
 __all__ = ["GameValue", "NGoalRow", "ValueRow", "corner_cells", "ngoal_csv", "ngoal_figure",
            "ngoal_series", "skewed_prior", "value_csv", "value_figure", "value_series"]
 
 Cell = tuple[int, int]
-Certifier = Callable[[Cell, Sequence[Cell], Sequence[Fraction], NEquilibrium], str]
+Certifier = Callable[[Cell, Sequence[Cell], Sequence[Fraction], CoalitionEquilibrium], str]
 
 
 @dataclass(frozen=True)
@@ -92,7 +97,7 @@ def skewed_prior(n: int) -> tuple[Fraction, ...]:
     return tuple(Fraction(2 ** (n - 1 - i), total) for i in range(n))
 
 
-def corner_cells(blocked: np.ndarray, n_goals: int = MAX_NGOALS) -> tuple[Cell, tuple[Cell, ...]]:
+def corner_cells(blocked: np.ndarray, n_goals: int = MAX_GOALS) -> tuple[Cell, tuple[Cell, ...]]:
     """A start and ``n_goals`` goals placed by one rule on any map.
 
     The start is the free cell nearest (Manhattan, then row, then column) to the bottom-left
@@ -156,7 +161,7 @@ class NGoalRow:
 
 
 def ngoal_series(blocked: np.ndarray, start: Cell, goals: Sequence[Cell], *, map_name: str,
-                 certify: Certifier | None = None, max_goals: int = MAX_NGOALS,
+                 certify: Certifier | None = None, max_goals: int = MAX_GOALS,
                  progress: Callable[[NGoalRow], None] | None = None,
                  starting: Callable[[int, str], None] | None = None) -> list[NGoalRow]:
     """Solve (and certify) the games with the first ``N = 2 … max_goals`` goals, two priors.
@@ -174,11 +179,11 @@ def ngoal_series(blocked: np.ndarray, start: Cell, goals: Sequence[Cell], *, map
         if starting is not None:
             starting(n, kind)
         t0 = time.perf_counter()
-        game = ngame_from_grid(blocked, start, goals[:n], [str(b) for b in prior])
+        game = Instance.from_grid(blocked, start, goals[:n], [str(b) for b in prior])
         try:
-            eq = solve_ngoal(game)
+            eq = coalition_equilibrium(game)
         except FixpointNotReached:
-            u_bar = sum((b * game.distance(t, game.start) for t, b in enumerate(prior)),
+            u_bar = sum((b * game.distance(t, game.s0) for t, b in enumerate(prior)),
                         Fraction(0))
             return NGoalRow(map_name, n, kind, prior, None, u_bar, None, None, None,
                             "not solved", time.perf_counter() - t0, 0.0)
@@ -305,7 +310,7 @@ class ValueRow:
 
 
 def value_series(start: Cell, goals: Sequence[Cell], value: Valuer, *, map_name: str = "map",
-                 max_goals: int = MAX_NGOALS,
+                 max_goals: int = MAX_GOALS,
                  progress: Callable[[ValueRow], None] | None = None) -> list[ValueRow]:
     """The value and VoI for ``N = 2 … len(goals)`` goals with equal and skewed priors.
 

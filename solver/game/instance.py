@@ -1,26 +1,38 @@
-"""The game instance: graph, start node, two candidate goals and the prior over them."""
+"""The game instance for any number of goals: graph, start node, ``N >= 2`` goals, prior.
+
+One type serves every construction: two goals (``N = 2``) are read under the two-goal rules
+(float weights allowed, the paper's primary/secondary views :attr:`Instance.primary`,
+:attr:`Instance.b1`, ...); more goals (``3 <= N <= 5``) under the N-goal rules (exact weights
+only, every goal reachable from the start and from every other goal), as the checker reads them.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Hashable
+from collections.abc import Hashable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import cached_property
 from typing import Any
 
 import networkx as nx
 import numpy as np
 
-from solver.errors import InvalidInstanceError
+from solver.errors import InvalidInstanceError, NotTwoGoalsError
 from solver.game.instance_writing import instance_to_json
+from solver.graph.distances import distances_to
 from solver.graph.network import Network
 from solver.numbers import parse_number
 
-__all__ = ["Instance", "triangle"]
+__all__ = ["MAX_GOALS", "Instance", "triangle"]
+
+MAX_GOALS = 5
+"""The most goals the solver takes: the coalition DP enumerates the minimal balanced
+collections of the goals (1,291 for five goals)."""
 
 
 @dataclass(frozen=True, eq=False)
 class Instance:
-    """A deceptive-path-planning game (paper, Section III-A).
+    """A deceptive-path-planning game (paper, Section III-A) with ``N >= 2`` goals.
 
     Parameters
     ----------
@@ -30,10 +42,11 @@ class Instance:
         :meth:`from_grid`.
     start : node
         The Attacker's initial node ``s0``.
-    goals : pair of nodes
-        The two candidate goals, in any order.
-    prior : pair of numbers
-        ``prior[i]`` is the probability that ``goals[i]`` is the true goal; exact numbers
+    goals : sequence of nodes
+        The ``N`` candidate goals (``2 <= N <=`` :data:`MAX_GOALS`), in any order; the position
+        of a goal is its *goal index* ``θ``.
+    prior : sequence of numbers
+        ``prior[θ]`` is the probability that ``goals[θ]`` is the true goal; exact numbers
         (``Fraction``, int, ``"3/5"``; floats are read through ``str``), each in (0, 1),
         summing to exactly 1.
     weight : str or None, keyword-only
@@ -43,9 +56,12 @@ class Instance:
 
     Notes
     -----
-    The *primary* goal ``g1`` is the goal with the larger prior; at a tie (1/2, 1/2) it is
-    ``goals[0]`` (the paper's footnote 2 leaves this choice free). Reachability of the goals
-    is checked when the instance is solved, where the distances are computed anyway.
+    Two goals are read under the two-goal rules: float weights are allowed (float mode), and
+    the *primary* goal ``g1`` is the goal with the larger prior; at a tie (1/2, 1/2) it is
+    ``goals[0]`` (the paper's footnote 2 leaves this choice free); reachability of the goals
+    is checked when the instance is solved, where the distances are computed anyway. More
+    goals are read under the N-goal rules: exact weights only, and every goal reachable from
+    the start and from every other goal (the terminal costs are finite), checked here.
 
     Examples
     --------
@@ -64,20 +80,40 @@ class Instance:
     ...
     solver.errors.InvalidInstanceError: prior must sum to 1, got 0.666... + 0.333... (floats
     are read as the decimals they print); write exact fractions as strings, e.g. ("2/3", "1/3")
+    >>> star = nx.Graph([("s", "a"), ("s", "b"), ("s", "c", {"weight": 2})])
+    >>> inst = Instance(star, "s", ("a", "b", "c"), ("1/2", "1/3", "1/6"))
+    >>> inst.n_goals, inst.label(inst.targets[2]), inst.distance(2, inst.s0)
+    (3, 'c', Fraction(2, 1))
+    >>> Instance(star, "s", ("a", "b", "a"), ("1/2", "1/4", "1/4"))
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: goals[2]: goal 'a' is listed twice
     """
 
     graph: nx.Graph | Network
     start: Hashable
-    goals: tuple[Hashable, Hashable]
-    prior: tuple[Any, Any]
+    goals: tuple[Hashable, ...]
+    prior: tuple[Any, ...]
     weight: str | None = field(default="weight", kw_only=True, repr=False)
     network: Network = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         goals = tuple(self.goals)
-        if len(goals) != 2:
-            raise InvalidInstanceError(f"goals must be two nodes, got {len(goals)}")
-        prior = tuple(self.prior)
+        if not 2 <= len(goals) <= MAX_GOALS:
+            raise InvalidInstanceError(
+                f"the solver takes 2 to {MAX_GOALS} goals, got {len(goals)} (the coalition DP "
+                "enumerates the minimal balanced collections of the goals: 1,291 for 5 goals)")
+        object.__setattr__(self, "goals", goals)
+        if len(goals) == 2:
+            self._two_goal_rules(tuple(self.prior))
+        else:
+            self._n_goal_rules(tuple(self.prior))
+
+    def _network(self) -> Network:
+        return (self.graph if isinstance(self.graph, Network) else
+                Network.from_networkx(self.graph, weight=self.weight))
+
+    def _two_goal_rules(self, prior: tuple[Any, ...]) -> None:
+        goals = self.goals
         if len(prior) != 2:
             raise InvalidInstanceError(f"prior must be two numbers, got {len(prior)}")
         exact_prior = tuple(parse_number(p, where=f"prior[{i}]") for i, p in enumerate(prior))
@@ -96,16 +132,53 @@ class Instance:
                 f"prior must sum to 1, got {exact_prior[0]} + {exact_prior[1]} "
                 f"= {sum(exact_prior)}"
             )
-        net = (self.graph if isinstance(self.graph, Network) else
-               Network.from_networkx(self.graph, weight=self.weight))
+        net = self._network()
         for what, node in (("start", self.start), ("goal", goals[0]), ("goal", goals[1])):
             if net.index_of(node) is None:
                 raise InvalidInstanceError(f"{what} node {node!r} not found in graph")
         if goals[0] == goals[1]:
             raise InvalidInstanceError(f"the two goals must differ, both are {goals[0]!r}")
-        object.__setattr__(self, "goals", goals)
         object.__setattr__(self, "prior", exact_prior)
         object.__setattr__(self, "network", net)
+
+    def _n_goal_rules(self, prior: tuple[Any, ...]) -> None:
+        n = len(self.goals)
+        if len(prior) != n:
+            raise InvalidInstanceError(f"prior must list {n} numbers (one per goal), "
+                                       f"got {len(prior)}")
+        net = self._network()
+        if not net.numbers.exact:
+            raise InvalidInstanceError("the N-goal solver is exact only: float weights (e.g. "
+                                       "--connectivity 8) are not supported for more than two "
+                                       "goals")
+        b = tuple(Fraction(parse_number(p, where=f"prior[{i}]")) for i, p in enumerate(prior))
+        for i, p in enumerate(b):
+            if not 0 < p < 1:
+                raise InvalidInstanceError(f"prior[{i}] must lie in (0, 1), got {p}")
+        if sum(b) != 1:
+            raise InvalidInstanceError(f"prior must sum to exactly 1, got {sum(b)}")
+        if net.index_of(self.start) is None:
+            raise InvalidInstanceError(f"start node {self.start!r} not found in graph")
+        idx: list[int] = []
+        for i, g in enumerate(self.goals):
+            j = net.index_of(g)
+            if j is None:
+                raise InvalidInstanceError(f"goals[{i}]: node {g!r} not found in graph")
+            if j in idx:
+                raise InvalidInstanceError(f"goals[{i}]: goal {g!r} is listed twice")
+            idx.append(j)
+        object.__setattr__(self, "prior", b)
+        object.__setattr__(self, "network", net)
+        s, dist = self.s0, self.dist_to
+        for t, g in enumerate(idx):
+            if not np.isfinite(float(dist[t][s])):
+                raise InvalidInstanceError(f"goal {net.labels[g]!r} is not reachable from the "
+                                           "start")
+            for g2 in idx:
+                if not np.isfinite(float(dist[t][g2])):
+                    raise InvalidInstanceError(f"goal {net.labels[g]!r} is not reachable from "
+                                               f"goal {net.labels[g2]!r} (terminal costs must "
+                                               "be finite)")
 
     def to_json(self) -> dict[str, Any]:
         """The instance JSON document (docs/formats.md §1), as :func:`solver.instance_to_json`.
@@ -128,17 +201,17 @@ class Instance:
         cls,
         blocked: np.ndarray,
         start: tuple[int, int],
-        goals: tuple[tuple[int, int], tuple[int, int]],
-        prior: tuple[Any, Any],
+        goals: Sequence[tuple[int, int]],
+        prior: Sequence[Any],
         *,
         connectivity: int = 4,
     ) -> Instance:
         """A grid world: ``blocked[r, c]`` True marks an obstacle; cells are ``(r, c)``.
 
         4-connected with unit weights by default; ``connectivity=8`` adds octile diagonals
-        (weight ``sqrt(2)``, float mode, no corner cutting). A start or goal cell outside the
-        grid or on an obstacle is an :class:`InvalidInstanceError` naming the cell and the
-        grid's size.
+        (weight ``sqrt(2)``, float mode, no corner cutting; two goals only). A start or goal
+        cell outside the grid or on an obstacle is an :class:`InvalidInstanceError` naming
+        the cell and the grid's size.
 
         Examples
         --------
@@ -153,39 +226,102 @@ class Instance:
         Traceback (most recent call last):
         solver.errors.InvalidInstanceError: goal cell (3, 0) is outside the 3x3 grid
           (rows 0-2, columns 0-2)
+        >>> game = Instance.from_grid(np.zeros((3, 3), dtype=bool), (2, 0),
+        ...                           [(0, 0), (0, 2), (2, 2)], ["1/2", "1/4", "1/4"])
+        >>> game.n_goals, game.distance(1, game.s0)
+        (3, Fraction(4, 1))
         """
         net = Network.from_grid(blocked, connectivity=connectivity)
-        cells = (_cell(start), _cell(goals[0]), _cell(goals[1]))
-        for what, cell in zip(("start", "goal", "goal"), cells, strict=True):
-            _check_free(net.labels, cell, what)
-        return cls(net, cells[0], (cells[1], cells[2]), prior)
+        start_cell = _cell(start)
+        _check_free(net.labels, start_cell, "start")
+        cells = tuple(_cell(g) for g in goals)
+        for cell in cells:
+            _check_free(net.labels, cell, "goal")
+        return cls(net, start_cell, cells, tuple(prior))
 
     # ------------------------------------------------------------------ derived
     @property
-    def primary_index(self) -> int:
+    def n_goals(self) -> int:
+        """``N``, the number of goals."""
+        return len(self.goals)
+
+    def node_index(self, node: Hashable) -> int:
+        """The node index of ``node`` (its position in :attr:`network`).
+
+        Examples
+        --------
+        >>> triangle().node_index("g1")
+        2
+        """
+        i = self.network.index_of(node)
+        if i is None:
+            raise InvalidInstanceError(f"node {node!r} not found in graph")
+        return i
+
+    def label(self, v: int) -> Hashable:
+        """The node id of node index ``v``."""
+        return self.network.labels[v]
+
+    @cached_property
+    def s0(self) -> int:
+        """The node index of the start ``s0``."""
+        return self.node_index(self.start)
+
+    @cached_property
+    def targets(self) -> tuple[int, ...]:
+        """``targets[θ]``: the node index of ``goals[θ]``."""
+        return tuple(self.node_index(g) for g in self.goals)
+
+    @property
+    def denominator(self) -> int:
+        """The common denominator of the weights in exact mode (distances are numerators
+        over it)."""
+        return self.network.numbers.denominator
+
+    @cached_property
+    def dist_to(self) -> tuple[np.ndarray, ...]:
+        """``dist_to[θ][v]``: ``d(v, goals[θ])`` over the whole graph, as
+        :func:`~solver.graph.distances.distances_to` gives it (in exact mode an integer
+        numerator over :attr:`denominator`; ``inf`` when unreachable). Computed on first use."""
+        return tuple(distances_to(self.network, g) for g in self.targets)
+
+    def distance(self, theta: int, v: int) -> Fraction:
+        """``d(v, goals[θ])`` exactly (exact mode; the caller makes sure it is finite)."""
+        return Fraction(int(self.dist_to[theta][v]), self.denominator)
+
+    # --- the two-goal views (N = 2): the paper's primary and secondary goals ---
+
+    def _two(self, view: str) -> None:
+        if len(self.goals) != 2:
+            raise NotTwoGoalsError(f"{view}: the (primary, secondary) labelling is for two "
+                                   f"goals; this instance has {len(self.goals)}")
+
+    @property
+    def primary_goal_index(self) -> int:
         """The goal index (0 or 1) of the primary goal: its position in ``goals`` and ``prior``
-        (the larger prior; ``0`` at a tie)."""
+        (the larger prior; ``0`` at a tie). Two goals only (:class:`NotTwoGoalsError`)."""
+        self._two("primary_goal_index")
         return 0 if self.prior[0] >= self.prior[1] else 1
 
     @property
     def primary(self) -> Hashable:
         """The primary goal ``g1``."""
-        return self.goals[self.primary_index]
+        return self.goals[self.primary_goal_index]
 
     @property
     def secondary(self) -> Hashable:
         """The secondary goal ``g2``."""
-        return self.goals[1 - self.primary_index]
+        return self.goals[1 - self.primary_goal_index]
 
     @property
     def b1(self) -> Fraction:
         """Prior of the primary goal."""
-        return Fraction(self.prior[self.primary_index])
+        return Fraction(self.prior[self.primary_goal_index])
 
     @property
     def b2(self) -> Fraction:
         """Prior of the secondary goal."""
-        return Fraction(self.prior[1 - self.primary_index])
+        return Fraction(self.prior[1 - self.primary_goal_index])
 
 
 def triangle() -> Instance:

@@ -1,9 +1,15 @@
 """Reading the ``dpp`` instance JSON (``docs/formats.md`` §1) and the compact map instance
 (``dpp-map-instance/1``, §1c: a grid game by reference to its ``.map`` file) into an
-:class:`~solver.game.instance.Instance`."""
+:class:`~solver.game.instance.Instance`, for any number of goals.
+
+A document listing two goals is read under the two-goal rules (``"numbers": "float"``
+allowed); one listing more under the N-goal rules (exact numbers only), as the checker reads
+them. ``two_goals=True``: the caller takes two goals only, and more are refused in one line.
+"""
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
@@ -19,11 +25,12 @@ from solver.formats.nodes import node_from_json
 from solver.game.instance import Instance
 from solver.numbers import parse_number
 
-__all__ = ["instance_from_json", "load_instance"]
+__all__ = ["as_instance", "instance_from_json", "load_instance"]
 
 
-def load_instance(path: str | Path) -> Instance:
-    """Load an instance JSON file.
+def load_instance(path: str | Path, *, two_goals: bool = False) -> Instance:
+    """Load an instance JSON file (:func:`instance_from_json` on its document; errors name the
+    file).
 
     Examples
     --------
@@ -39,15 +46,16 @@ def load_instance(path: str | Path) -> Instance:
     """
     doc = read_json(path)  # its errors name the file
     try:
-        return instance_from_json(doc, base=Path(path).parent)
+        return instance_from_json(doc, base=Path(path).parent, two_goals=two_goals)
     except InstanceFormatError as exc:  # one line naming the file
         raise InstanceFormatError(f"{path}: {exc}") from None
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{path}: {exc}") from None
 
 
-def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None) -> Instance:
-    """Build an :class:`Instance` from the instance JSON document (dict or text).
+def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
+                       two_goals: bool = False) -> Instance:
+    """Build an :class:`Instance` from the instance JSON document (dict or text), any ``N``.
 
     Parameters
     ----------
@@ -57,6 +65,8 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None) 
     base : Path, optional
         The directory a compact map instance's relative ``map`` path is relative to (the
         instance file's; default: the working directory).
+    two_goals : bool
+        Take two goals only: a document listing more is refused (:data:`two_goals_only`).
 
     Returns
     -------
@@ -80,13 +90,21 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None) 
     >>> instance_from_json({"graph": {"nodes": [], "edges": []}})
     Traceback (most recent call last):
     solver.errors.InstanceFormatError: instance is missing key(s): start, goals, prior
+    >>> doc = {"graph": {"nodes": [{"id": x} for x in "sabc"],
+    ...        "edges": [{"source": "s", "target": x} for x in "abc"]},
+    ...        "start": "s", "goals": ["a", "b", "c"], "prior": ["1/2", "1/4", "1/4"]}
+    >>> instance_from_json(doc).n_goals
+    3
+    >>> instance_from_json(doc, two_goals=True)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    solver.errors.InstanceFormatError: 'goals' lists 3 goals: this takes two-goal instances only ...
     """
     if isinstance(data, str):
         data = parse_json_text(data)
     if not isinstance(data, dict):
         raise InstanceFormatError(f"instance must be a JSON object, got {type(data).__name__}")
     if data.get("format") == MAP_INSTANCE_FORMAT:
-        return _from_map_document(data, base)
+        return _from_map_document(data, base, two_goals)
     missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
     if missing:
         raise InstanceFormatError(f"instance is missing key(s): {', '.join(missing)}")
@@ -94,10 +112,19 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None) 
     if mode not in ("exact", "float"):
         raise InstanceFormatError(f"numbers: expected \"exact\" or \"float\", got {mode!r}")
     float_weights = mode == "float"
-    graph = _graph_from_node_link(data["graph"], float_weights=float_weights)
     goals, prior = data["goals"], data["prior"]
-    if isinstance(goals, list) and len(goals) > 2:  # N goals: solver.game.indexed_instance
-        raise InstanceFormatError(two_goals_only(len(goals)))
+    if isinstance(goals, list) and len(goals) > 2:  # N goals: the N-goal rules
+        if two_goals:
+            raise InstanceFormatError(two_goals_only(len(goals)))
+        if float_weights:
+            raise InvalidInstanceError("the N-goal solver is exact only: \"numbers\": \"float\" "
+                                       "is not supported for more than two goals")
+        if not isinstance(prior, list):
+            raise InstanceFormatError("'goals' and 'prior' must be lists")
+        graph = _graph_from_node_link(data["graph"], float_weights=False)
+        return Instance(graph, node_from_json(data["start"]),
+                        tuple(node_from_json(g) for g in goals), tuple(prior))
+    graph = _graph_from_node_link(data["graph"], float_weights=float_weights)
     if not isinstance(goals, list) or len(goals) != 2:
         raise InstanceFormatError(f"'goals' must be a list of two node ids, got "
                                   f"{json_shown(goals)}")
@@ -112,13 +139,38 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None) 
     )
 
 
-def _from_map_document(data: dict[str, Any], base: Path | None) -> Instance:
+def as_instance(instance: Instance | Mapping[str, Any] | str | Path) -> Instance:
+    """An :class:`Instance` from any form the front door takes: itself, an instance document
+    (a dict), or the path of an instance file.
+
+    Examples
+    --------
+    >>> from solver.game.instance import triangle
+    >>> as_instance(triangle().to_json()).b1
+    Fraction(7, 10)
+    >>> as_instance(3)
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: an instance must be an Instance, an instance document \
+(dict) or a file path; got int
+    """
+    if isinstance(instance, Instance):
+        return instance
+    if isinstance(instance, Mapping):
+        return instance_from_json(dict(instance))
+    if isinstance(instance, str | Path):
+        return load_instance(instance)
+    raise InvalidInstanceError("an instance must be an Instance, an instance document (dict) "
+                               f"or a file path; got {type(instance).__name__}")
+
+
+def _from_map_document(data: dict[str, Any], base: Path | None, two_goals: bool) -> Instance:
     """The grid instance of a compact map document (its map's sha256 checked)."""
-    blocked, start, cells, prior, connectivity, ref = read_map_document(data, base)
+    blocked, start, cells, prior, connectivity, ref = read_map_document(
+        data, base, count=2 if two_goals else None)
     try:
-        return Instance.from_grid(blocked, start, (cells[0], cells[1]),
-                                  (parse_number(prior[0], where="prior[0]"),
-                                   parse_number(prior[1], where="prior[1]")),
+        return Instance.from_grid(blocked, start, cells,
+                                  [parse_number(p, where=f"prior[{i}]")
+                                   for i, p in enumerate(prior)],
                                   connectivity=connectivity)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{ref[:200]}: {exc}") from None

@@ -1,24 +1,108 @@
-"""Single-source shortest distances on a :class:`~solver.graph.network.Network`, exactly.
+"""Shortest distances on a :class:`~solver.graph.network.Network`, exactly: one Dijkstra engine.
 
-Exact networks store integer weight numerators. ``scipy.sparse.csgraph.dijkstra`` works
-in float64, which represents every integer below 2**53 exactly; when the total weight of
-the graph (a bound on every shortest distance) stays below that, its result IS the exact
-integer distance. Otherwise a pure-Python Dijkstra on Python integers is used.
+In the style of networkx's ``shortest_paths.weighted``: thin public functions over one private
+engine, :func:`_dijkstra`, with the flexible ``weight`` argument converted once
+(:func:`_weight_function`).
+
+- :func:`distances_from`, :func:`distances_to`: the full-graph fields ``d(source, ·)`` and
+  ``d(·, target)``;
+- :func:`distances_from_sources`: ``min_x [d(v → x) + init[x]]`` for arcs given as arrays (the
+  coalition DP's sourced shortest paths);
+- :func:`costs_to`: ``target``'s distances under any step cost (a callable of the arc that may
+  hide it), for the literature's paths.
+
+Exact networks store integer weight numerators. ``scipy.sparse.csgraph.dijkstra`` works in
+float64, which represents every integer below :data:`EXACT_FLOAT_LIMIT` (``2**53``) exactly:
+when the total weight (a bound on every shortest distance) stays below it, scipy's result IS
+the exact integer distance; otherwise the engine runs on Python integers.
 """
 
 from __future__ import annotations
 
 import heapq
+import operator
+from collections.abc import Callable, Iterable, Sequence
+from typing import Any
 
 import numpy as np
+import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
 from solver.graph.network import Network
 
-__all__ = ["EXACT_FLOAT_LIMIT", "distances_from", "distances_to"]
+__all__ = ["EXACT_FLOAT_LIMIT", "costs_to", "distances_from", "distances_from_sources",
+           "distances_to"]
 
-EXACT_FLOAT_LIMIT = 2.0**53
-"""Integers below this are exact in float64."""
+EXACT_FLOAT_LIMIT = 2**53
+"""Every integer below this is exact in float64."""
+
+Weight = Callable[[int, int, Any], Any]
+"""A step cost ``weight(u, v, w)`` of the arc ``u -> v`` stored with weight ``w``; ``None``
+hides the arc (as networkx's weight functions)."""
+
+Arcs = Callable[[int], Iterable[tuple[int, Any]]]
+"""``arcs(u)``: the ``(v, w)`` pairs of the arcs leaving ``u``."""
+
+
+def _weight_function(weight: Weight | None) -> Weight:
+    """The step cost as a function: the stored weight itself when ``weight`` is None."""
+    if weight is None:
+        return lambda u, v, w: w
+    return weight
+
+
+def _dijkstra(arcs: Arcs, sources: Iterable[tuple[int, Any]], weight: Weight | None = None,
+              less: Callable[[Any, Any], bool] = operator.lt) -> dict[int, Any]:
+    """The engine: the least cost from the sources (each with a starting cost) to every node
+    they reach, on Python numbers (exact on integers and ``Fraction``).
+
+    Heap ties pop the smaller node first; a node is settled when first popped; ``less`` decides
+    whether a new cost improves a known one (float mode passes a tolerance).
+
+    Examples
+    --------
+    >>> line = {0: [(1, 2)], 1: [(2, 1)], 2: []}
+    >>> _dijkstra(line.__getitem__, [(0, 0)])
+    {0: 0, 1: 2, 2: 3}
+    >>> _dijkstra(line.__getitem__, [(0, 5), (2, 0)], lambda u, v, w: 3 * w)
+    {0: 5, 2: 0, 1: 11}
+    """
+    cost = _weight_function(weight)
+    dist: dict[int, Any] = {}
+    heap: list[tuple[Any, int]] = []
+    for s, c in sources:
+        if s not in dist or less(c, dist[s]):
+            dist[s] = c
+            heap.append((c, s))
+    heapq.heapify(heap)
+    done: set[int] = set()
+    while heap:
+        d, u = heapq.heappop(heap)
+        if u in done:
+            continue
+        done.add(u)
+        for v, w in arcs(u):
+            if v in done:
+                continue
+            step = cost(u, v, w)
+            if step is None:
+                continue
+            nd = d + step
+            if v not in dist or less(nd, dist[v]):
+                dist[v] = nd
+                heapq.heappush(heap, (nd, v))
+    return dist
+
+
+def _network_arcs(net: Network) -> Arcs:
+    """``arcs(u)`` of a network, weights as Python numbers (exact integers stay exact)."""
+    indptr, indices, weights = net.indptr, net.indices, net.weights
+
+    def arcs(u: int) -> Iterable[tuple[int, Any]]:
+        lo, hi = int(indptr[u]), int(indptr[u + 1])
+        return zip(indices[lo:hi].tolist(), weights[lo:hi].tolist(), strict=True)
+
+    return arcs
 
 
 def distances_from(net: Network, source: int) -> np.ndarray:
@@ -34,7 +118,7 @@ def distances_from(net: Network, source: int) -> np.ndarray:
     >>> distances_from(net, 0).tolist(), net.numbers.denominator
     ([0.0, 1.0, 3.0], 2)
     """
-    return _engine(net, source)
+    return _field(net, source)
 
 
 def distances_to(net: Network, target: int) -> np.ndarray:
@@ -62,29 +146,76 @@ def distances_to(net: Network, target: int) -> np.ndarray:
     >>> distances_to(net, 2).tolist(), distances_to(net, 0).tolist(), net.numbers.denominator
     ([3.0, 2.0, 0.0], [0.0, inf, inf], 2)
     """
-    return _engine(net.reverse, target)
+    return _field(net.reverse, target)
 
 
-def _engine(net: Network, source: int) -> np.ndarray:
+def _field(net: Network, source: int) -> np.ndarray:
     if not net.numbers.exact or net.weight_total < EXACT_FLOAT_LIMIT:
         return np.asarray(dijkstra(net.matrix(), directed=True, indices=source))
-    return _python_dijkstra(net, source)
+    dist = _dijkstra(_network_arcs(net), [(source, 0)])
+    out = np.full(net.n_nodes, np.inf, dtype=object)
+    for v, d in dist.items():
+        out[v] = d
+    return out
 
 
-def _python_dijkstra(net: Network, source: int) -> np.ndarray:
-    """Dijkstra on arbitrary-precision integers (for huge exact weights)."""
-    dist: list[int | float] = [float("inf")] * net.n_nodes
-    dist[source] = 0
-    heap: list[tuple[int, int]] = [(0, source)]
-    indptr, indices, weights = net.indptr, net.indices, net.weights
-    while heap:
-        d, u = heapq.heappop(heap)
-        if d > dist[u]:
-            continue
-        for k in range(int(indptr[u]), int(indptr[u + 1])):
-            v = int(indices[k])
-            nd = d + int(weights[k])
-            if nd < dist[v]:
-                dist[v] = nd
-                heapq.heappush(heap, (nd, v))
-    return np.array(dist, dtype=object)
+def distances_from_sources(n: int, tails: np.ndarray, heads: np.ndarray,
+                           weights: Sequence[int], init: np.ndarray) -> np.ndarray:
+    """``min_x [d(v → x) + init[x]]`` for every node ``v``: the least cost of walking from
+    ``v`` along the arcs ``tails[k] -> heads[k]`` (integer ``weights``) to a source ``x``
+    (``init[x] >= 0``; ``init < 0``: not a source) and paying ``init[x]`` there; ``-1`` where
+    no source is reached. Exact: scipy's float64 Dijkstra (the reversed arcs plus a super
+    source) while every value is an integer below 2**53, Python integers otherwise.
+
+    Examples
+    --------
+    >>> tails, heads = np.array([0, 1]), np.array([1, 2])      # 0 -> 1 -> 2, node 3 alone
+    >>> init = np.array([-1, 7, 0, -1], dtype=object)           # sources 1 (7) and 2 (0)
+    >>> distances_from_sources(4, tails, heads, [2, 3], init).tolist()
+    [5, 3, 0, -1]
+    """
+    src = [i for i in range(n) if init[i] >= 0]
+    top = max((int(init[i]) for i in src), default=0) + sum(weights) + 2
+    if top < EXACT_FLOAT_LIMIT:
+        # reversed arcs plus a super-source n with arcs n -> x of weight init[x] + 1 (> 0)
+        rows = np.concatenate([heads, np.full(len(src), n, dtype=np.int64)])
+        cols = np.concatenate([tails, np.asarray(src, dtype=np.int64)])
+        vals = np.concatenate([np.asarray(weights, dtype=np.float64),
+                               np.asarray([int(init[i]) + 1 for i in src], dtype=np.float64)])
+        mat = sp.csr_matrix((vals, (rows, cols)), shape=(n + 1, n + 1))
+        d = dijkstra(mat, directed=True, indices=n)[:n]
+        out = np.full(n, -1, dtype=object)
+        fin = np.isfinite(d)
+        out[fin] = [int(x) - 1 for x in d[fin]]
+        return out
+    pred: list[list[tuple[int, int]]] = [[] for _ in range(n)]
+    for t, h, w in zip(tails.tolist(), heads.tolist(), weights, strict=True):
+        pred[h].append((t, w))
+    best = _dijkstra(pred.__getitem__, [(i, int(init[i])) for i in src])
+    out = np.full(n, -1, dtype=object)
+    for v, d in best.items():
+        out[v] = d
+    return out
+
+
+def costs_to(net: Network, target: int, weight: Weight,
+             less: Callable[[Any, Any], bool] = operator.lt, *,
+             start: Any = 0) -> dict[int, Any]:
+    """The least cost from every node that reaches ``target`` to ``target``, under the step
+    cost ``weight(u, v, w)`` of each arc ``u -> v`` (``None`` hides the arc); ``start`` is the
+    cost at ``target`` itself. A Dijkstra from ``target`` on the reversed arcs; ``less`` is
+    the comparison (float mode: a tolerance).
+
+    Examples
+    --------
+    >>> import networkx as nx
+    >>> net = Network.from_networkx(nx.DiGraph([(0, 1), (1, 2), (0, 2, {"weight": 5})]))
+    >>> costs_to(net, 2, lambda u, v, w: w)
+    {2: 0, 0: 2, 1: 1}
+    >>> costs_to(net, 2, lambda u, v, w: None if u == 1 else w)   # no arc leaving node 1
+    {2: 0, 0: 5}
+    """
+    def back(v: int, u: int, w: Any) -> Any:  # the reversed arc v <- u is the arc u -> v
+        return weight(u, v, w)
+
+    return _dijkstra(_network_arcs(net.reverse), [(target, start)], back, less)

@@ -34,7 +34,6 @@ a shortest-path problem with node costs, solved by Dijkstra backwards from ``g^Î
 
 from __future__ import annotations
 
-import heapq
 from collections import deque
 from dataclasses import dataclass
 from fractions import Fraction
@@ -44,6 +43,7 @@ from typing import Literal
 import mpmath
 import numpy as np
 
+from solver.graph.distances import costs_to
 from solver.graph.network import Network
 from solver.literature.dragan_belief import HI, MP, DraganObserver, belief_hi
 
@@ -195,26 +195,10 @@ def deceptive_path(observer: DraganObserver, theta: int, kind: Kind) -> Deceptiv
     terms = node_terms(observer, theta, kind)
     if s0 == goal:
         return DeceptivePath((s0,), theta, kind, _unscale(terms[s0]))
-    rev = net.reverse
-    n = net.n_nodes
+    found = costs_to(net, goal, lambda u, v, w: None if u == fake else terms[u],
+                     start=terms[goal])
     inf = -1  # "unreached" marker (values are non-negative)
-    dist = [inf] * n
-    dist[goal] = terms[goal]
-    heap = [(terms[goal], goal)]
-    done = [False] * n
-    while heap:
-        d, v = heapq.heappop(heap)
-        if done[v]:
-            continue
-        done[v] = True
-        tails, _ = rev.out_arcs(v)
-        for u in tails.tolist():
-            if u == fake or done[u]:
-                continue
-            nd = d + terms[u]
-            if dist[u] == inf or nd < dist[u]:
-                dist[u] = nd
-                heapq.heappush(heap, (nd, u))
+    dist = [found.get(v, inf) for v in range(net.n_nodes)]
     if dist[s0] == inf:
         raise ValueError(f"goal {net.labels[goal]!r} is unreachable from "
                          f"{net.labels[s0]!r} without passing {net.labels[fake]!r}")

@@ -52,7 +52,6 @@ pi_d4 ('s', 'a', 'b', 'g1')
 
 from __future__ import annotations
 
-import heapq
 from collections.abc import Callable, Hashable, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
@@ -60,7 +59,7 @@ from fractions import Fraction
 import numpy as np
 
 from solver.game.instance import Instance
-from solver.graph.distances import distances_from, distances_to
+from solver.graph.distances import costs_to, distances_from, distances_to
 from solver.graph.network import Network
 from solver.graph.shortest_paths import path_to_target
 
@@ -179,23 +178,10 @@ def _leg(net: Network, source: int, target: int, cost: Callable[[int, int, Store
     """Least-cost path ``source -> target`` under ``cost(u, v, w)`` through ``allowed``
     nodes (``source`` and ``target`` always allowed); ties: lowest node index at each step
     (a backward Dijkstra to ``target``, then the tight arcs from ``source``)."""
-    rev = net.reverse
-    dist: dict[int, Stored] = {target: 0}
-    heap: list[tuple[Stored, int]] = [(0, target)]
-    done: set[int] = set()
-    while heap:
-        d, v = heapq.heappop(heap)
-        if v in done:
-            continue
-        done.add(v)
-        tails, ws = rev.out_arcs(v)
-        for u, w in zip(tails.tolist(), ws.tolist(), strict=True):
-            if u != source and not allowed(u):
-                continue
-            nd = d + cost(u, v, w)
-            if u not in dist or _lt(net, nd, dist[u]):
-                dist[u] = nd
-                heapq.heappush(heap, (nd, u))
+    def step(u: int, v: int, w: Stored) -> Stored | None:
+        return cost(u, v, w) if u == source or allowed(u) else None
+
+    dist = costs_to(net, target, step, lambda a, b: _lt(net, a, b))
     if source not in dist:
         return None
     path = [source]

@@ -21,7 +21,7 @@ import numpy as np
 
 from solver.errors import InvalidInstanceError
 from solver.game.instance import Instance
-from solver.game.walks import StrategyPath
+from solver.game.walks import StrategyWalk
 from solver.graph.distances import distances_from, distances_to
 from solver.literature.deceptive_paths import Kind, deceptive_path
 from solver.literature.dragan_belief import DraganObserver
@@ -30,7 +30,7 @@ from solver.literature.masters_sardina import LABELS as MS_LABELS
 from solver.literature.masters_sardina import STRATEGIES as MS_STRATEGIES
 from solver.literature.masters_sardina import plan_all
 from solver.numbers import Number
-from solver.twogoal.equilibrium import Equilibrium, solve
+from solver.twogoal.equilibrium import Equilibrium, paper_equilibrium
 from solver.twogoal.evaluation import Evaluation, Schedule, evaluate
 
 __all__ = ["ATTACKERS", "COMPARE_PAIRS", "DEFENDERS", "LABELS", "MS_PAIRS", "PAIRS", "Attacker",
@@ -73,8 +73,8 @@ class Attacker:
     """A mixed Attacker: per type, walks (node indices) with probabilities summing to 1."""
 
     name: str
-    primary: tuple[StrategyPath, ...]
-    secondary: tuple[StrategyPath, ...]
+    primary: tuple[StrategyWalk, ...]
+    secondary: tuple[StrategyWalk, ...]
 
 
 @dataclass(frozen=True)
@@ -127,7 +127,7 @@ class PairEvaluator:
     @cached_property
     def equilibrium(self) -> Equilibrium:
         """(σ*, γ*) from :func:`solver.solve`."""
-        return solve(self.instance)
+        return paper_equilibrium(self.instance)
 
     @cached_property
     def observer(self) -> DraganObserver:
@@ -165,9 +165,9 @@ class PairEvaluator:
         """π_d1–π_d4 (:mod:`solver.literature.masters_sardina`): one deterministic walk per type."""
         net, out = self.instance.network, {}
         for name, (p1, p2) in plan_all(self.instance).items():
-            out[name] = Attacker(name, (StrategyPath.along(net, p1.walk, Fraction(1),
+            out[name] = Attacker(name, (StrategyWalk.along(net, p1.walk, Fraction(1),
                                                            f"xi1_{name}"),),
-                                 (StrategyPath.along(net, p2.walk, Fraction(1),
+                                 (StrategyWalk.along(net, p2.walk, Fraction(1),
                                                      f"xi2_{name}"),))
         return out
 
@@ -186,7 +186,7 @@ class PairEvaluator:
                     dp = deceptive_path(self.observer, theta, kind)
                 except ValueError as exc:
                     raise InvalidInstanceError(str(exc)) from None
-                paths.append(StrategyPath.along(self.instance.network, dp.walk, Fraction(1),
+                paths.append(StrategyWalk.along(self.instance.network, dp.walk, Fraction(1),
                                                 f"xi{theta}_{tag}"))
             cache[kind] = Attacker(kind, (paths[0],), (paths[1],))
         result: Attacker = cache[kind]

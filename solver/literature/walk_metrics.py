@@ -26,7 +26,7 @@ from fractions import Fraction
 import numpy as np
 
 from solver.game.instance import Instance
-from solver.game.walks import StrategyPath
+from solver.game.walks import StrategyWalk
 from solver.graph.distances import distances_to
 from solver.graph.network import Network
 from solver.graph.shortest_paths import path_to_target
@@ -123,15 +123,15 @@ class RouteMeter:
         cost = mode.convert(net.path_weights(route).sum())
         return route_metrics(flags, cost=cost, optimal=mode.convert(d_real[self.start]))
 
-    def strategy(self, primary: Sequence[StrategyPath],
-                 secondary: Sequence[StrategyPath]) -> tuple[WalkMetrics, ...]:
+    def strategy(self, primary: Sequence[StrategyWalk],
+                 secondary: Sequence[StrategyWalk]) -> tuple[WalkMetrics, ...]:
         """Every walk of a mixed Attacker (primary type's walks first) with its metrics.
 
         Examples
         --------
-        >>> from solver import solve
         >>> from solver.game.instance import triangle
-        >>> eq = solve(triangle())
+        >>> from solver.twogoal.equilibrium import paper_equilibrium
+        >>> eq = paper_equilibrium(triangle())
         >>> rows = RouteMeter.of(triangle()).strategy(eq.primary_paths, (eq.secondary,))
         >>> [(r.theta, r.label, str(r.probability), r.steps) for r in rows]
         [(1, 'xi1_I', '4/7', 1), (1, 'xi1_II', '3/7', 2), (2, 'xi2', '1', 1)]
@@ -156,9 +156,9 @@ class RouteMeter:
 
         Examples
         --------
-        >>> from solver import solve
         >>> from solver.game.instance import triangle
-        >>> eq = solve(triangle())
+        >>> from solver.twogoal.equilibrium import paper_equilibrium
+        >>> eq = paper_equilibrium(triangle())
         >>> meter = RouteMeter.of(triangle())
         >>> e = meter.expectation(meter.strategy(eq.primary_paths, (eq.secondary,)))
         >>> str(e.cost), str(e.cost_ratio), str(e.ldp)

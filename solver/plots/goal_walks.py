@@ -26,7 +26,7 @@ from solver.plots.grid import draw_grid_background, grid_cell_points, large_map
 from solver.plots.style import GOAL_COLOURS, MARKER_COLOUR, STYLE, VOI, num_label
 
 if TYPE_CHECKING:
-    from solver.coalitions.construction import NEquilibrium
+    from solver.coalitions.construction import CoalitionEquilibrium
 
 __all__ = ["plot_ngoal_map"]
 
@@ -41,13 +41,14 @@ def _walk_xy(cells: Sequence[tuple[int, int]], offset: float) -> tuple[np.ndarra
     return rc[:, 1] + offset, rc[:, 0] + offset
 
 
-def plot_ngoal_map(eq: NEquilibrium) -> Figure:
+def plot_ngoal_map(eq: CoalitionEquilibrium) -> Figure:
     """The walks of an N-goal equilibrium on its grid and the Defender's σ along them.
 
     Parameters
     ----------
-    eq : NEquilibrium
-        :func:`solver.coalitions.construction.solve_ngoal` on a grid game (node ids ``(row, col)``).
+    eq : CoalitionEquilibrium
+        :func:`solver.coalitions.construction.coalition_equilibrium` on a grid game (node ids
+        ``(row, col)``).
 
     Returns
     -------
@@ -57,12 +58,12 @@ def plot_ngoal_map(eq: NEquilibrium) -> Figure:
     Examples
     --------
     >>> from solver.formats.movingai import read_map
-    >>> from solver.coalitions.construction import solve_ngoal
-    >>> from solver.game.indexed_instance import ngame_from_grid
+    >>> from solver.coalitions.construction import coalition_equilibrium
+    >>> from solver.game.instance import Instance
     >>> from solver.experiments.compare import paper10_path
-    >>> game = ngame_from_grid(read_map(paper10_path()), (9, 0), [(0, 9), (0, 0), (9, 9)],
-    ...                        ["1/2", "1/3", "1/6"])
-    >>> fig = plot_ngoal_map(solve_ngoal(game))
+    >>> game = Instance.from_grid(read_map(paper10_path()), (9, 0), [(0, 9), (0, 0), (9, 9)],
+    ...                           ["1/2", "1/3", "1/6"])
+    >>> fig = plot_ngoal_map(coalition_equilibrium(game))
     >>> len(fig.axes), fig.axes[1].get_title()
     (4, 'type 1: goal $g^1$ (0, 9), prior 1/2; walk p = 2/3')
     """
@@ -70,8 +71,8 @@ def plot_ngoal_map(eq: NEquilibrium) -> Figure:
         return _plot(eq)
 
 
-def _plot(eq: NEquilibrium) -> Figure:
-    game = eq.game
+def _plot(eq: CoalitionEquilibrium) -> Figure:
+    game = eq.instance
     n = game.n_goals
     labels = game.network.labels
     fig = plt.figure(figsize=(11.5, max(6.9, 1.9 * n + 1.6)))
@@ -96,9 +97,9 @@ def _plot(eq: NEquilibrium) -> Figure:
                               label=f"type {theta + 1} ({count(walks, 'walk')}), "
                                     f"U = {num_label(eq.costs[theta])}"))
     ms = 13.0 if large else float(np.clip(0.7 * cell, 5, 16))
-    markers = [(game.start, "o", "white", "start $s_0$")]
+    markers = [(game.s0, "o", "white", "start $s_0$")]
     markers += [(g, "s", GOAL_COLOURS[t], f"$g^{t + 1}$ (prior {game.prior[t]})")
-                for t, g in enumerate(game.goals)]
+                for t, g in enumerate(game.targets)]
     for node, marker, face, name in markers:
         row, col = _cell(labels, node)
         ax.plot(col, row, marker=marker, ms=ms, mfc=face, mec=MARKER_COLOUR, mew=2,
@@ -119,9 +120,9 @@ def _plot(eq: NEquilibrium) -> Figure:
     return fig
 
 
-def _sigma_panel(ax: Any, eq: NEquilibrium, theta: int) -> None:
+def _sigma_panel(ax: Any, eq: CoalitionEquilibrium, theta: int) -> None:
     """σ after each step of type ``theta``'s most probable walk, stacked over the goals."""
-    game = eq.game
+    game = eq.instance
     walk, p = eq.mixtures[theta][0]
     sig = eq.defender_along(walk)
     steps = np.arange(1, len(walk))
@@ -137,7 +138,7 @@ def _sigma_panel(ax: Any, eq: NEquilibrium, theta: int) -> None:
     ax.xaxis.set_major_locator(MaxNLocator(6, integer=True))
     ax.tick_params(labelsize=9)
     ax.set_ylabel("σ", fontsize=10)
-    cell = game.network.labels[game.goals[theta]]
+    cell = game.network.labels[game.targets[theta]]
     mixed = "" if p == 1 else f"; walk p = {p}"
     ax.set_title(f"type {theta + 1}: goal $g^{theta + 1}$ {cell}, prior "
                  f"{game.prior[theta]}{mixed}", fontsize=10)

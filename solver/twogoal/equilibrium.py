@@ -1,4 +1,5 @@
-"""The constructive PBNE of the paper (Sections IV-V): ``solve(instance) -> Equilibrium``."""
+"""The constructive PBNE of the paper (Sections IV-V) for two goals:
+``paper_equilibrium(instance) -> Equilibrium``, the two-goal layer of :func:`solver.solve`."""
 
 from __future__ import annotations
 
@@ -11,17 +12,17 @@ import numpy as np
 
 from solver.errors import InvalidInstanceError
 from solver.game.instance import Instance
-from solver.game.walks import StrategyPath
+from solver.game.profile_writing import two_goal_profile
+from solver.game.walks import StrategyWalk
 from solver.graph.distances import distances_from, distances_to
 from solver.numbers import DEFAULT_ABS_TOL, Number, NumberMode
 from solver.twogoal.evaluation import Evaluation, Trajectory, evaluate
 from solver.twogoal.phases import Phases, phases_of
 from solver.twogoal.primary import primary_mixture
-from solver.twogoal.profile_json import equilibrium_to_json
 from solver.twogoal.progress import ProgressDefender
 from solver.twogoal.secondary import TIE_BREAK, secondary_best_response
 
-__all__ = ["Equilibrium", "solve"]
+__all__ = ["Equilibrium", "paper_equilibrium"]
 
 METHOD = "constructive PBNE (paper Sec. IV-V; secondary best response by proofs/XI2.md)"
 
@@ -36,13 +37,13 @@ class Equilibrium:
         The solved game.
     defender : ProgressDefender
         σ*, eq. (7): allocate to ``g1`` with probability new-progress / step weight.
-    secondary : StrategyPath
+    secondary : StrategyWalk
         ξ², the secondary type's deterministic path (eq. (9), the argmin), probability 1.
     schedule : tuple
         σ*(g1) after each step of ξ².
     phases : Phases
         ``t_I``, ``t_II``, ``T`` of ξ² (eqs. (10)-(11)).
-    primary_paths : tuple of StrategyPath
+    primary_paths : tuple of StrategyWalk
         ξ^{1,I} and ξ^{1,II} with probabilities ``1 - b2/b1`` and ``b2/b1`` (eq. (15));
         merged into one path when identical, zero-probability paths dropped. Each keeps
         its node indices (``walk``) and node ids (``nodes``).
@@ -60,10 +61,10 @@ class Equilibrium:
 
     instance: Instance
     defender: ProgressDefender = field(repr=False)
-    secondary: StrategyPath
+    secondary: StrategyWalk
     schedule: tuple[Number, ...]
     phases: Phases
-    primary_paths: tuple[StrategyPath, ...]
+    primary_paths: tuple[StrategyWalk, ...]
     U1: Number
     U2: Number
     U: Number
@@ -86,21 +87,35 @@ class Equilibrium:
         return self.evaluation.trajectories
 
     def to_json(self) -> dict[str, Any]:
-        """The ``dpp-profile/1`` document (docs/formats.md §2), as
-        :func:`solver.equilibrium_to_json`: the protocol through which
+        """The ``dpp-profile/1`` document (docs/formats.md §2), written by
+        :func:`~solver.game.profile_writing.two_goal_profile`: the protocol through which
         ``dppverify.certify(instance, equilibrium)`` takes the solver's objects.
 
         Examples
         --------
-        >>> import networkx as nx
-        >>> g = nx.Graph([("s", "a"), ("s", "b")])
-        >>> solve(Instance(g, "s", ("a", "b"), ("1/2", "1/2"))).to_json()["format"]
-        'dpp-profile/1'
+        The triangle's profile, certified by the independent checker:
+
+        >>> from dppverify import certify
+        >>> from solver.game.instance import triangle
+        >>> inst = triangle()
+        >>> doc = paper_equilibrium(inst).to_json()
+        >>> [(p["path"], p["probability"]) for p in doc["attacker"]["primary"]]
+        [(['s', 'g1'], '4/7'), (['s', 'g2'], '3/7')]
+        >>> doc["value"]["U"], doc["phases"], doc["exact"]
+        ('12/5', {'t_I': 0, 't_II': 1, 'T': 1}, True)
+        >>> certify(inst.to_json(), doc).verdict
+        'pass'
         """
-        return equilibrium_to_json(self)
+        ph = self.phases
+        return two_goal_profile(
+            self.instance, self.primary_paths, (self.secondary,),
+            phases={"t_I": ph.t_I, "t_II": ph.t_II, "T": ph.T},
+            values={"U1": self.U1, "U2": self.U2, "U": self.U, "U_bar": self.U_bar,
+                    "VoI": self.VoI},
+            numbers=self.numbers, method=self.method, tie_break=self.tie_break)
 
 
-def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibrium:
+def paper_equilibrium(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibrium:
     """Construct the paper's weak PBNE of ``instance``.
 
     Three Dijkstra runs (from ``s0``, to ``g1``, to ``g2``), a linear scan for ξ² (proofs/XI2.md),
@@ -127,7 +142,7 @@ def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibriu
     Examples
     --------
     >>> from solver.game.instance import triangle
-    >>> eq = solve(triangle())  # s -> g2 (2), g2 -> g1 (2), s -> g1 (3); prior 7/10, 3/10
+    >>> eq = paper_equilibrium(triangle())  # s -> g2 (2), g2 -> g1 (2), s -> g1 (3)
     >>> eq.secondary_path, eq.phases
     (('s', 'g2'), Phases(t_I=0, t_II=1, T=1))
     >>> [(p.nodes, str(p.probability)) for p in eq.primary_paths]
@@ -152,7 +167,7 @@ def solve(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -> Equilibriu
     schedule = defender.schedule(xi2.walk)
     phases = phases_of(schedule)
     mixture = primary_mixture(net, xi2.walk, phases, g1, d1, instance.b1, instance.b2, numbers)
-    secondary = StrategyPath.along(net, xi2.walk, Fraction(1), "xi2")
+    secondary = StrategyWalk.along(net, xi2.walk, Fraction(1), "xi2")
     ev = evaluate(net, defender.schedule, mixture, (secondary,), b1=instance.b1, b2=instance.b2,
                   g1=g1, g2=g2, d_to_g1=d1, d_to_g2=d2, d_from_start=d0)
     return Equilibrium(

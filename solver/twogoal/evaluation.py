@@ -18,7 +18,7 @@ from itertools import pairwise
 
 import numpy as np
 
-from solver.game.walks import StrategyPath
+from solver.game.walks import StrategyWalk
 from solver.graph.network import Network
 from solver.numbers import Number
 
@@ -69,11 +69,11 @@ class Trajectory:
 
 
 @dataclass(frozen=True)
-class _PathRun:
+class _WalkRun:
     """One Attacker walk evaluated against the Defender (internal)."""
 
     theta: int
-    path: StrategyPath
+    strategy: StrategyWalk
     sigma: tuple[Number, ...]
     weights: tuple[Number, ...]
     terminal: Number
@@ -93,21 +93,21 @@ class Evaluation:
     U: Number
     U_bar: Number
     VoI: Number
-    _runs: tuple[_PathRun, ...] = field(repr=False)
+    _runs: tuple[_WalkRun, ...] = field(repr=False)
     _prior: tuple[Fraction, Fraction] = field(repr=False)
 
     @cached_property
     def trajectories(self) -> tuple[Trajectory, ...]:
         """Per walk: σ(g1), Bayes beliefs ``b^1_t`` (eq. (2)) and cumulative allocation."""
-        all_paths = [(r.theta, r.path) for r in self._runs]
+        all_paths = [(r.theta, r.strategy) for r in self._runs]
         out = []
         for run in self._runs:
             alloc: list[Number] = [run.cost - run.cost]  # a zero of the right type
             for w, s in zip(run.weights, run.sigma, strict=True):
                 alloc.append(alloc[-1] + w * (s if run.theta == 1 else 1 - s))
-            out.append(Trajectory(run.theta, run.path.label, run.path.probability,
-                                  run.path.walk, run.path.nodes, run.sigma,
-                                  _beliefs_along(run.path.walk, all_paths, self._prior),
+            out.append(Trajectory(run.theta, run.strategy.label, run.strategy.probability,
+                                  run.strategy.walk, run.strategy.nodes, run.sigma,
+                                  _beliefs_along(run.strategy.walk, all_paths, self._prior),
                                   tuple(alloc), run.terminal, run.cost))
         return tuple(out)
 
@@ -115,8 +115,8 @@ class Evaluation:
 def evaluate(
     net: Network,
     schedule: Schedule,
-    primary: Sequence[StrategyPath],
-    secondary: Sequence[StrategyPath],
+    primary: Sequence[StrategyWalk],
+    secondary: Sequence[StrategyWalk],
     *,
     b1: Fraction,
     b2: Fraction,
@@ -137,7 +137,7 @@ def evaluate(
     >>> from solver.game.instance import triangle
     >>> net = triangle().network   # s=0, g2=1, g1=2
     >>> always_g1 = lambda walk: [Fraction(1)] * (len(walk) - 1)
-    >>> direct = [StrategyPath.along(net, walk, Fraction(1), "direct") for walk in ((0, 2), (0, 1))]
+    >>> direct = [StrategyWalk.along(net, walk, Fraction(1), "direct") for walk in ((0, 2), (0, 1))]
     >>> ev = evaluate(net, always_g1, direct[:1], direct[1:], b1=Fraction(7, 10),
     ...               b2=Fraction(3, 10), g1=2, g2=1, d_to_g1=distances_to(net, 2),
     ...               d_to_g2=distances_to(net, 1), d_from_start=distances_from(net, 0))
@@ -157,7 +157,7 @@ def evaluate(
             paid = _allocation_total(net, raw, sigma, to_g1=theta == 1)
             terminal = numbers.convert((d_to_g1 if theta == 1 else d_to_g2)[sp.walk[-1]])
             cost = paid + terminal
-            runs.append(_PathRun(theta, sp, sigma, tuple(map(convert, raw)), terminal, cost))
+            runs.append(_WalkRun(theta, sp, sigma, tuple(map(convert, raw)), terminal, cost))
             u_theta[theta] = u_theta[theta] + sp.probability * cost
     u1, u2 = u_theta[1], u_theta[2]
     value = b1 * u1 + b2 * u2
@@ -180,7 +180,7 @@ def _allocation_total(net: Network, raw_weights: Sequence[int | float],
     return net.numbers.convert(whole) + part
 
 
-def _beliefs_along(walk: Sequence[int], all_paths: Sequence[tuple[int, StrategyPath]],
+def _beliefs_along(walk: Sequence[int], all_paths: Sequence[tuple[int, StrategyWalk]],
                    prior: tuple[Fraction, Fraction]) -> tuple[Fraction, ...]:
     """Bayes belief in g1 at each prefix of ``walk`` (Bayes' rule, eq. (2), unrolled): the
     prior-weighted mass of primary paths sharing the prefix over the total mass sharing it. The

@@ -13,7 +13,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from solver.game.walks import StrategyPath
+from solver.game.walks import StrategyWalk
 from solver.graph.network import Network
 from solver.graph.shortest_paths import path_to_target
 from solver.numbers import NumberMode
@@ -33,7 +33,7 @@ def branch_path(net: Network, xi2: Sequence[int], t: int, g1: int, d_to_g1: np.n
 
 def primary_mixture(net: Network, xi2: Sequence[int], phases: Phases, g1: int,
                     d_to_g1: np.ndarray, b1: Fraction, b2: Fraction,
-                    numbers: NumberMode) -> tuple[StrategyPath, ...]:
+                    numbers: NumberMode) -> tuple[StrategyWalk, ...]:
     """The primary type's equilibrium mixture over ξ^{1,I} and ξ^{1,II} (eq. (15)).
 
     Examples
@@ -52,9 +52,9 @@ def primary_mixture(net: Network, xi2: Sequence[int], phases: Phases, g1: int,
     path_i = branch_path(net, xi2, phases.t_I, g1, d_to_g1, numbers)
     path_ii = branch_path(net, xi2, phases.t_II, g1, d_to_g1, numbers)
     if path_i == path_ii:
-        return (StrategyPath.along(net, path_i, Fraction(1), "xi1"),)
+        return (StrategyWalk.along(net, path_i, Fraction(1), "xi1"),)
     out = []
     if p_ii < 1:
-        out.append(StrategyPath.along(net, path_i, 1 - p_ii, "xi1_I"))
-    out.append(StrategyPath.along(net, path_ii, p_ii, "xi1_II"))
+        out.append(StrategyWalk.along(net, path_i, 1 - p_ii, "xi1_I"))
+    out.append(StrategyWalk.along(net, path_ii, p_ii, "xi1_II"))
     return tuple(out)

@@ -3,12 +3,15 @@
 from __future__ import annotations
 
 from collections.abc import Hashable, Sequence
+from typing import TYPE_CHECKING
 
 from dppio.text import decimal
-from solver.numbers import Number
-from solver.twogoal.equilibrium import Equilibrium
+from solver.numbers import Number, format_value
 
-__all__ = ["format_value", "path_label", "summarize"]
+if TYPE_CHECKING:
+    from solver.twogoal.equilibrium import Equilibrium
+
+__all__ = ["path_label", "summarize"]
 
 _MAX_NODES = 12
 
@@ -36,9 +39,9 @@ def summarize(eq: Equilibrium) -> str:
 
     Examples
     --------
-    >>> from solver import solve
     >>> from solver.game.instance import triangle
-    >>> print(summarize(solve(triangle())))
+    >>> from solver.twogoal.equilibrium import paper_equilibrium
+    >>> print(summarize(paper_equilibrium(triangle())))
     start 's'; primary goal g1 = 'g1' (prior 7/10), secondary goal g2 = 'g2' (prior 3/10)
     mode: exact (rational)
     <BLANKLINE>
@@ -84,39 +87,6 @@ def summarize(eq: Equilibrium) -> str:
 
 def _steps(first: int, last: int) -> str:
     return f"= steps {first}..{last}" if first <= last else "absent"
-
-
-def format_value(x: Number) -> str:
-    """A value as the text outputs write it: ``p/q (≈ decimal)``, an integer bare.
-
-    The same style as the checker's reports (``dppverify.text.show_value``); a fraction longer
-    than 40 characters is shown by its decimal only (``--json`` has the exact form).
-
-    Parameters
-    ----------
-    x : Fraction, int or float
-        The value (a float is float mode: dppio.text.decimal, no fraction).
-
-    Returns
-    -------
-    str
-
-    Examples
-    --------
-    >>> from fractions import Fraction
-    >>> format_value(Fraction(12, 7)), format_value(Fraction(4)), format_value(2 ** 0.5)
-    ('12/7 (≈ 1.714)', '4', '1.414')
-    >>> format_value(Fraction(10**50 + 1, 10**50))
-    '≈ 1 (exact: a 102-digit fraction, see --json)'
-    """
-    if isinstance(x, float):
-        return decimal(x)
-    if x.denominator == 1:
-        return str(x)
-    text = str(x)
-    if len(text) > 40:
-        return f"≈ {decimal(x)} (exact: a {len(text) - 1}-digit fraction, see --json)"
-    return f"{text} (≈ {decimal(x)})"
 
 
 _num = format_value

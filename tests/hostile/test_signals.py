@@ -67,7 +67,7 @@ def test_signal_to_audit_with_a_python_solver(scratch: Path, sig: signal.Signals
         os.kill(proc.pid, sig)
 
     before = listing(scratch)
-    result = run(["audit", "--solver", "tests.harness.hostile_solvers:loops", "--examples",
+    result = run(["audit", "--solver", "tests.dppverify.audit.hostile_solvers:loops", "--examples",
                   "3", "--timeout", "500", "--output-dir", "af"], scratch, during=send,
                  env={"PYTHONPATH": str(Path(__file__).resolve().parents[2])})
     check(result, Probe([], code=code), before, listing(scratch))

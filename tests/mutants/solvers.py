@@ -13,7 +13,8 @@ from collections.abc import Callable, Hashable, Sequence
 from fractions import Fraction
 from typing import Any
 
-from solver import Equilibrium, instance_from_json, solve
+from solver import Equilibrium, instance_from_json
+from solver.twogoal.equilibrium import paper_equilibrium
 from tests.properties._reference import INF, Game
 
 Doc = dict[str, Any]
@@ -25,7 +26,7 @@ def _json(v: Hashable) -> Any:
 
 
 def _base(doc: Doc) -> tuple[Equilibrium, Game]:
-    return solve(instance_from_json(doc)), Game.from_doc(doc)
+    return paper_equilibrium(instance_from_json(doc)), Game.from_doc(doc)
 
 
 def _psi(game: Game, u: Hashable, *, avoid_first: Hashable | None = None) -> Path:

@@ -9,9 +9,10 @@ Each peer is skipped cleanly when it is not installed. The games are tiny (at mo
 nodes for two goals): Gambit's exact LP needs minutes at a few hundred nodes (``docs/peers.md``).
 
 N goals (any N, one tree route): the same two peers solve the export of N = 3 and N = 4 games
-(``NCASES`` of ``tests/ngoal/test_efg.py``, 136 to 385 game nodes) and must agree with the
-tree route's exact ``V_H`` (:func:`dppverify.tree_route.value_lp.game_value`, bracket closed) and
-with the coalition DP (:func:`dppverify.structured.coalition.coalition_value`), both exact.
+(``NCASES`` of ``tests/dppverify/tree_route/test_efg_any_n.py``, 136 to 385 game nodes) and must
+agree with the tree route's exact ``V_H`` (:func:`dppverify.tree_route.value_lp.game_value`,
+bracket closed) and with the coalition DP (:func:`dppverify.structured.coalition.coalition_value`),
+both exact.
 
 - OpenSpiel: ``pyspiel.load_efg_game`` + ``sequence_form_lp.solve_zero_sum_game`` with HiGHS
   (its default, ECOS, is no longer installed by cvxpy 1.9; its default solver keyword
@@ -37,9 +38,9 @@ from dppverify import game_value
 from dppverify.game.instance import instance_from_json
 from dppverify.structured.coalition import coalition_value
 from dppverify.tree_route.efg import to_efg
-from tests.checker._helpers import triangle_doc
-from tests.checker.test_efg import FRACTIONAL, GRID, KITE, LADDER, THIRDS
-from tests.ngoal.test_efg import DROP3, NCASES, NIDS
+from tests.dppverify._helpers import triangle_doc
+from tests.dppverify.tree_route._efg_reader import FRACTIONAL, GRID, KITE, LADDER, THIRDS
+from tests.dppverify.tree_route.test_efg_any_n import DROP3, NCASES, NIDS
 
 pytestmark = pytest.mark.peers
 
@@ -56,8 +57,12 @@ VARIANT_IDS = ["observes", "blind"]
 
 
 def _exact_value(doc: dict[str, Any], horizon: int) -> Fraction:
-    v = game_value(instance_from_json(doc), horizon)
+    """The tree route's exact V_H (any N); for N > 2 the coalition DP must equal it exactly."""
+    inst = instance_from_json(doc)
+    v = game_value(inst, horizon)
     assert v.bracket.closed and v.bracket.exact is not None
+    if inst.n_goals > 2:
+        assert coalition_value(inst, horizon).value == v.bracket.exact
     return Fraction(v.bracket.exact)
 
 
@@ -103,7 +108,7 @@ def _gambit_solve(gambit: ModuleType, text: str, tmp_path: Path) -> Any:
 
 
 @pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
-@pytest.mark.parametrize(("name", "doc", "horizon"), CASES, ids=IDS)
+@pytest.mark.parametrize(("name", "doc", "horizon"), CASES + NCASES, ids=IDS + NIDS)
 def test_openspiel_sequence_form_lp_gives_v_h(openspiel: Any, name: str, doc: dict[str, Any],
                                               horizon: int, observes: bool) -> None:
     exact = _exact_value(doc, horizon)
@@ -116,7 +121,7 @@ def test_openspiel_sequence_form_lp_gives_v_h(openspiel: Any, name: str, doc: di
 
 
 @pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
-@pytest.mark.parametrize(("name", "doc", "horizon"), CASES, ids=IDS)
+@pytest.mark.parametrize(("name", "doc", "horizon"), CASES + NCASES, ids=IDS + NIDS)
 def test_gambit_exact_lp_gives_exactly_v_h(gambit: ModuleType, tmp_path: Path, name: str,
                                            doc: dict[str, Any], horizon: int,
                                            observes: bool) -> None:
@@ -154,22 +159,21 @@ def test_pitfall_imperfect_recall_refused_by_gambit_misvalued_by_openspiel(
     assert abs(-v0 - float(exact)) > 1  # silently a different number (6.2 vs 31/10)
 
 
-@pytest.mark.xfail(strict=True, reason="Gambit 17.0.0b2 lp_solve (extensive form) mis-solves "
-                   "games with one-action information sets: 9/5 instead of 21/5 here; "
-                   "dppverify.tree_route.efg skips forced moves by default for this reason")
-def test_pitfall_gambit_one_action_infosets(gambit: ModuleType, tmp_path: Path) -> None:
-    exact = _exact_value(LADDER, 1)
-    text = to_efg(instance_from_json(LADDER), 1, forced_moves=True)
+@pytest.mark.parametrize(("doc", "horizon"), [
+    pytest.param(LADDER, 1, id="ladder-H1", marks=pytest.mark.xfail(strict=True, reason=(
+        "Gambit 17.0.0b2 lp_solve (extensive form) mis-solves games with one-action "
+        "information sets: 9/5 instead of 21/5 here; dppverify.tree_route.efg skips forced "
+        "moves by default for this reason"))),
+    pytest.param(DROP3, 2, id="drop3-H2", marks=pytest.mark.xfail(strict=True, reason=(
+        "Gambit 17.0.0b2 lp_solve (extensive form) mis-solves games with one-action "
+        "information sets, with N goals too: 8 instead of 21/2 here (drop3, H = 2: one forced "
+        "walk)")))])
+def test_pitfall_gambit_one_action_infosets(gambit: ModuleType, tmp_path: Path,
+                                            doc: dict[str, Any], horizon: int) -> None:
+    exact = _exact_value(doc, horizon)
+    text = to_efg(instance_from_json(doc), horizon, forced_moves=True)
     eq = _gambit_solve(gambit, text, tmp_path)
     assert eq.payoffs["Defender"] == exact
-
-
-def test_forced_moves_are_harmless_for_openspiel(openspiel: Any) -> None:
-    exact = _exact_value(LADDER, 2)
-    text = to_efg(instance_from_json(LADDER), 2, forced_moves=True)
-    v0, v1, _ = _openspiel_value(openspiel, text)
-    assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
-    assert abs(v1 - float(exact)) <= OPENSPIEL_TOLERANCE
 
 
 # ---------------------------------------------------------------------------------------------
@@ -177,65 +181,19 @@ def test_forced_moves_are_harmless_for_openspiel(openspiel: Any) -> None:
 # ---------------------------------------------------------------------------------------------
 
 
-def _exact_nvalue(doc: dict[str, Any], horizon: int) -> Fraction:
-    """The tree route's exact V_H, which the coalition DP must equal exactly."""
-    inst = instance_from_json(doc)
-    v = game_value(inst, horizon)
-    assert v.bracket.closed and v.bracket.exact is not None
-    assert coalition_value(inst, horizon).value == v.bracket.exact
-    return Fraction(v.bracket.exact)
-
-
 def test_n_goal_cases_include_four_goals_and_a_horizon_drop() -> None:
     # the N-goal cases below are not all alike: one has four goals, one changes with H
     assert {len(doc["goals"]) for _, doc, _ in NCASES} == {3, 4}
-    values = {(name, h): _exact_nvalue(doc, h) for name, doc, h in NCASES if name == "drop3"}
+    values = {(name, h): _exact_value(doc, h) for name, doc, h in NCASES if name == "drop3"}
     assert values == {("drop3", 2): Fraction(21, 2), ("drop3", 3): Fraction(5)}
 
 
-@pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
-@pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
-def test_openspiel_sequence_form_lp_gives_the_n_goal_value(openspiel: Any, name: str,
-                                                          doc: dict[str, Any], horizon: int,
-                                                          observes: bool) -> None:
-    exact = _exact_nvalue(doc, horizon)
-    text = to_efg(instance_from_json(doc), horizon, attacker_observes=observes)
-    v0, v1, nash_conv = _openspiel_value(openspiel, text)
-    assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
-    assert abs(v1 - float(exact)) <= OPENSPIEL_TOLERANCE
-    assert 0 <= nash_conv <= OPENSPIEL_TOLERANCE
-
-
-@pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
-@pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
-def test_gambit_exact_lp_gives_exactly_the_n_goal_value(gambit: ModuleType, tmp_path: Path,
-                                                        name: str, doc: dict[str, Any],
-                                                        horizon: int, observes: bool) -> None:
-    exact = _exact_nvalue(doc, horizon)
-    text = to_efg(instance_from_json(doc), horizon, attacker_observes=observes)
-    eq = _gambit_solve(gambit, text, tmp_path)
-    defender, attacker = eq.payoffs["Defender"], eq.payoffs["Attacker"]
-    assert isinstance(defender, Fraction)
-    assert defender == exact and attacker == -exact
-    assert eq.agent_max_regret() == 0
-
-
-@pytest.mark.parametrize(("name", "doc", "horizon"), NCASES, ids=NIDS)
-def test_forced_moves_are_harmless_for_openspiel_on_n_goals(openspiel: Any, name: str,
-                                                            doc: dict[str, Any],
-                                                            horizon: int) -> None:
-    exact = _exact_nvalue(doc, horizon)
+@pytest.mark.parametrize(("name", "doc", "horizon"), [("ladder", LADDER, 2), *NCASES],
+                         ids=["ladder-H2", *NIDS])
+def test_forced_moves_are_harmless_for_openspiel(openspiel: Any, name: str, doc: dict[str, Any],
+                                                 horizon: int) -> None:
+    exact = _exact_value(doc, horizon)
     text = to_efg(instance_from_json(doc), horizon, forced_moves=True)
     v0, v1, _ = _openspiel_value(openspiel, text)
     assert abs(-v0 - float(exact)) <= OPENSPIEL_TOLERANCE
     assert abs(v1 - float(exact)) <= OPENSPIEL_TOLERANCE
-
-
-@pytest.mark.xfail(strict=True, reason="Gambit 17.0.0b2 lp_solve (extensive form) mis-solves "
-                   "games with one-action information sets, with N goals too: 8 instead of "
-                   "21/2 here (drop3, H = 2: one forced walk)")
-def test_pitfall_gambit_one_action_infosets_n_goals(gambit: ModuleType, tmp_path: Path) -> None:
-    exact = _exact_nvalue(DROP3, 2)
-    text = to_efg(instance_from_json(DROP3), 2, forced_moves=True)
-    eq = _gambit_solve(gambit, text, tmp_path)
-    assert eq.payoffs["Defender"] == exact

@@ -110,7 +110,7 @@ def test_equilibria_off_the_paper_pass(doc: dict[str, Any], data: st.DataObject)
 def test_some_generated_equilibria_are_not_the_papers() -> None:
     """The generator reaches equilibria that Lemma 5 / the phases do not describe (the issue's
     first example: beliefs 1/9 on ξ², and its second: a mixing secondary)."""
-    from tests.checker._helpers import make_doc
+    from tests.dppverify._helpers import make_doc
     doc = make_doc([(0, 1, 1), (2, 1, 2), (3, 1, 1), (2, 0, 2)], 0, [1, 2], ["2/5", "3/5"])
     game = Game.from_doc(doc)
     c0 = game.d_to(game.start, game.g1)

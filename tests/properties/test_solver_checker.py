@@ -17,9 +17,10 @@ from dppverify import Certificate, certify, game_value, instance_from_json, valu
 from dppverify.formats.json_reading import parse_json
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.strategies import grid_worlds, instances, weighted_graphs
-from solver import equilibrium_to_json, instance_to_json, solve
 from solver import instance_from_json as solver_instance_from_json
-from tests.checker._helpers import tree_horizon
+from solver import instance_to_json
+from solver.twogoal.equilibrium import paper_equilibrium
+from tests.dppverify._helpers import tree_horizon
 from tests.properties._reference import Game, key, to_float_doc
 
 Doc = dict[str, Any]
@@ -35,7 +36,7 @@ exact_instances = st.one_of(
 
 def _profile(doc: Doc) -> Doc:
     """The solver's profile as the checker reads it: through JSON text."""
-    text = json.dumps(equilibrium_to_json(solve(solver_instance_from_json(doc))))
+    text = json.dumps(paper_equilibrium(solver_instance_from_json(doc)).to_json())
     return parse_json(text)  # type: ignore[no-any-return]
 
 
@@ -60,14 +61,14 @@ def test_everything_solve_outputs_is_certified_and_its_value_is_V_H(doc: Doc) ->
 
 @given(exact_instances)
 def test_exact_and_float_modes_agree(doc: Doc) -> None:
-    exact = solve(solver_instance_from_json(doc))
+    exact = paper_equilibrium(solver_instance_from_json(doc))
     fdoc = to_float_doc(doc)
-    approx = solve(solver_instance_from_json(fdoc))
+    approx = paper_equilibrium(solver_instance_from_json(fdoc))
     assert not approx.numbers.exact and exact.numbers.exact
     for name in ("U1", "U2", "U", "U_bar", "VoI"):
         a, b = float(getattr(exact, name)), float(getattr(approx, name))
         assert abs(a - b) <= 1e-9 * max(1.0, abs(a)), name
-    cert = certify(fdoc, parse_json(json.dumps(equilibrium_to_json(approx))), exact=False, trials=1)
+    cert = certify(fdoc, parse_json(json.dumps(approx.to_json())), exact=False, trials=1)
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]
     assert not cert.exact and cert.tolerance == DEFAULT_REL_TOL
 
@@ -83,10 +84,10 @@ def test_json_round_trips_are_lossless(doc: Doc) -> None:
     n_nodes = instance_from_json(json.dumps(instance_to_json(inst))).n_nodes
     assert n_nodes == len(doc["graph"]["nodes"])
     # profile: text -> dict -> text is the identity; the checker reads the same numbers
-    profile = equilibrium_to_json(solve(inst))
+    profile = paper_equilibrium(inst).to_json()
     text = json.dumps(profile)
     assert json.dumps(json.loads(text)) == text
-    assert equilibrium_to_json(solve(again)) == profile
+    assert paper_equilibrium(again).to_json() == profile
     # certificate: to_json -> text -> from_json -> to_json is the identity
     cert = certify(doc, parse_json(text), trials=1)
     cert_text = json.dumps(cert.to_json())

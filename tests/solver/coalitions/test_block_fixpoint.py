@@ -1,0 +1,101 @@
+"""The block fixpoint and its ranks agree with the layered DP (proofs/NEXACT.md NX.7).
+
+The layered normal-restricted DP (:func:`solver.coalitions.guarantee_sets.layered_dp`) is the
+oracle: on random digraphs, grids and hub gadgets (N = 2..5), with the 0/1 normals and with
+extra normals, under both readings of the closure (all covers; the written rule's dominated
+covers), :func:`~solver.coalitions.guarantee_sets.normal_dp` gives the same values ``m*``
+(exactly, as fractions), the same finite nodes, the same ranks and the same ``K``; and the
+whole construction writes the same profile document either way.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from solver.coalitions import guarantee_sets as gs
+from solver.coalitions.block_fixpoint import block_fixpoint
+from solver.coalitions.construction import arc_graph, coalition_equilibrium
+from solver.game.instance_reading import instance_from_json
+from tests.solver._ngoal_families import GADGET, draw
+
+EXTRA = {3: [(2, 2, 1)], 4: [(2, 2, 2, 1)], 5: [(2, 2, 1, 1, 1)]}
+
+
+def _layered(graph: gs.ArcGraph, system: gs.NormalSystem, max_layers: int) -> gs.Fixpoint:
+    fix = gs.layered_dp(graph, system, check_layers=False, max_layers=max_layers)
+    assert isinstance(fix, gs.Fixpoint)
+    return fix
+
+
+def _assert_same(old: gs.Fixpoint, new: gs.Fixpoint) -> None:
+    assert np.array_equal(old.finite, new.finite)
+    assert np.array_equal(old.rank, new.rank)
+    assert old.layers == new.layers
+    for j in range(len(old.system.normals)):
+        for v in np.flatnonzero(old.finite).tolist():
+            assert old.value(j, v) == new.value(j, v), (old.system.normals[j], v)
+
+
+def _systems(n: int) -> list[gs.NormalSystem]:
+    out = []
+    for extra in ([], EXTRA.get(n, [])):
+        normals = gs.symmetric_closure([*gs.zero_one_normals(n), *extra])
+        out += [gs.NormalSystem(normals), gs.NormalSystem(normals, dominated=True)]
+    return out
+
+
+def _graph(doc: dict[str, Any]) -> gs.ArcGraph:
+    graph, _ = arc_graph(instance_from_json(doc))
+    return graph
+
+
+def _block_applies(graph: gs.ArcGraph, system: gs.NormalSystem) -> bool:
+    goal_values = np.array(system.normals, dtype=np.int64) @ graph.terminal.T
+    return block_fixpoint(graph.indptr, graph.heads, graph.weights, graph.denominator,
+                          graph.goals, goal_values, system.tops, system.closures,
+                          [sum(a) for a in system.normals], 10_000) is not None
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(family=st.sampled_from(["digraph", "grid", "hub"]), seed=st.integers(0, 10 ** 6),
+       n=st.integers(2, 5))
+def test_normal_dp_equals_layered_dp(family: str, seed: int, n: int) -> None:
+    graph = _graph(draw(family, seed, n))
+    for system in _systems(n):
+        assert _block_applies(graph, system)  # the fast route is the one tested
+        _assert_same(_layered(graph, system, 10_000), gs.normal_dp(graph, system, 10_000))
+
+
+def test_normal_dp_on_the_gadget() -> None:
+    graph = _graph(GADGET)
+    for system in _systems(4):
+        _assert_same(_layered(graph, system, 10_000), gs.normal_dp(graph, system, 10_000))
+
+
+def test_budget_of_layers_is_the_same() -> None:
+    """``max_layers`` is met or missed as by the layered DP: ``K`` below it passes, else the
+    budget is reached."""
+    graph = _graph(draw("grid", 7, 3))
+    system = _systems(3)[0]
+    k = _layered(graph, system, 10_000).layers
+    assert gs.normal_dp(graph, system, k + 1).layers == k
+    with pytest.raises(gs.BudgetExceeded):
+        _layered(graph, system, k)
+    with pytest.raises(gs.BudgetExceeded):
+        gs.normal_dp(graph, system, k)
+
+
+@pytest.mark.parametrize("family,seed,n", [("hub", 3, 4), ("hub", 11, 5), ("grid", 5, 4),
+                                            ("digraph", 2, 5), ("gadget", 0, 4)])
+def test_same_profile_as_the_layered_route(family: str, seed: int, n: int,
+                                           monkeypatch: pytest.MonkeyPatch) -> None:
+    doc = GADGET if family == "gadget" else draw(family, seed, n)
+    new = coalition_equilibrium(instance_from_json(doc)).to_json()
+    monkeypatch.setattr(gs, "normal_dp", _layered)
+    old = coalition_equilibrium(instance_from_json(doc)).to_json()
+    assert new == old
