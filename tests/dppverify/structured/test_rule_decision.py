@@ -8,9 +8,10 @@ mutated (extras dropped, an odd one added), and each type's walks are its judge'
 a random walk, or a mixture. ``dpp certify`` (structured route, the untruncated game) must
 answer PASS or FAIL, never "could not decide", and:
 
-- every type's regret it reports is exact: the judge (``tests/dppverify/structured/_rule_judge.py``: its
-  own layered DP, its own lexicographic minimum by vertex enumeration, every walk of at most
-  ``L`` steps) finds no walk cheaper than the minimum the checker claims, and finds the
+- every type's regret it reports is exact: the judge
+  (``tests/dppverify/structured/_rule_judge.py``: its own layered DP, its own lexicographic
+  minimum by vertex enumeration, every walk of at most ``L`` steps) finds no walk cheaper
+  than the minimum the checker claims, and finds the
   checker's witness walk at the claimed cost; on finite games ``L`` covers every walk, so the
   judge's minimum IS the exact minimum;
 - on finite games the tree route at the longest walk (backward induction on the walk tree, an
