@@ -35,7 +35,7 @@ from typing import Any
 import numpy as np
 
 from dppverify.exact import INF, Number
-from dppverify.game.distances import dijkstra
+from dppverify.game.distances import EXACT_FLOAT_LIMIT, dijkstra
 from dppverify.game.instance import Instance
 from dppverify.structured.coalition import coalition_scale, splits
 from dppverify.structured.cover import (
@@ -299,7 +299,7 @@ def _label_setting(n: int, arcs: tuple[list[int], list[int], list[Fraction]], sc
     rows = heads + [n] * len(src)
     cols = tails + src
     lengths = lengths_arc + [int(init[x]) + 1 for x in src]
-    if max(lengths, default=0) * (n + 2) < 2 ** 53:
+    if max(lengths, default=0) * (n + 2) < EXACT_FLOAT_LIMIT:
         from scipy.sparse import csr_matrix
         from scipy.sparse.csgraph import dijkstra as scipy_dijkstra
 
