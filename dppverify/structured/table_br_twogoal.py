@@ -25,7 +25,7 @@ from dppverify.errors import UndecidedError
 from dppverify.exact import INF, Number, normalize
 from dppverify.game.distances import multi_source_dijkstra, state_dijkstra
 from dppverify.game.instance import Instance, Roles
-from dppverify.game.profile import ProgressRule, TableRule
+from dppverify.game.profile import TableRule
 from dppverify.structured.table_br import Step, exit_costs, trie_induction
 from dppverify.structured.trie import WalkTrie, build_walk_trie
 
@@ -172,6 +172,7 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     3/5), a table that guards g1 everywhere (default 1) lets the secondary walk ``s a g2`` free:
 
     >>> from dppverify.game.examples import kite
+    >>> from dppverify.game.profile import ProgressRule
     >>> inst = kite()
     >>> r = inst.roles()
     >>> table_minima(inst, r, TableRule(goal=r.g1, entries={}, default=Fraction(1)))
@@ -192,9 +193,8 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     trie = build_walk_trie(instance, [_game_prefix(instance, w) for w in rule.entries])
     listed = {p: rule.entries[walk] for walk in rule.entries
               if (p := trie.find(walk)) is not None}
-    default = rule.default
     # the running minimum c(p) towards the progress goal on the trie (parents come first)
-    pgoal = default.goal if isinstance(default, ProgressRule) else rule.goal
+    pgoal = rule.goal if rule.progress_goal is None else rule.progress_goal
     pindex = instance.goals.index(pgoal)
     dg = instance.dist_to[pindex]
     cmin: list[Number] = []
@@ -224,7 +224,7 @@ def _type_minimum(instance: Instance, roles: Roles, rule: TableRule, trie: WalkT
         return sg if mine else mode.difference(mode.one(), sg)
 
     leave: Step
-    if isinstance(default, ProgressRule):
+    if rule.progress_goal is not None:
         same = (roles.g1 if theta == 1 else roles.g2) == pgoal
         exits: set[tuple[int, Number]] = set()
         for p in range(len(trie)):
@@ -244,8 +244,8 @@ def _type_minimum(instance: Instance, roles: Roles, rule: TableRule, trie: WalkT
             return step + (dist[u] if instance.is_goal(u) else rest[(u, c)])
 
         leave = progress_leave
-    elif default is not None:
-        off = share(default)
+    elif rule.constant is not None:
+        off = share(rule.constant)
         const = _constant_exit(instance, roles, off, theta)
 
         def constant_leave(p: int, u: int, w: Number) -> Number | None:
@@ -264,7 +264,7 @@ def _type_minimum(instance: Instance, roles: Roles, rule: TableRule, trie: WalkT
             if default is None:
                 return None
             sg = (mode.ratio(cmin[p] - min(cmin[p], dg[trie.node[c]]), w)
-                  if isinstance(default, ProgressRule) else default)
+                  if rule.constant is None else rule.constant)
         return w * share(sg)
 
     J, _, _ = trie_induction(instance, trie, roles.dist(theta), inside, leave)
