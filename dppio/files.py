@@ -41,10 +41,12 @@ from dppio.inputs import STDIN, open_input, read_input, read_text
 __all__ = [
     "OutputError",
     "file_mode",
+    "make_parents",
     "open_input",
     "read_input",
     "read_text",
     "refuse_input_as_output",
+    "remove_created",
     "short_path",
     "write_atomic",
     "write_files",
@@ -130,7 +132,7 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
     try:
         for target, _ in regular:
             current = target
-            _make_parents(target.parent, created)
+            make_parents(target.parent, created)
         mode = file_mode()
         for target, content in regular:
             current = target
@@ -295,7 +297,22 @@ def _target(path: str | Path, error: ErrorClass) -> Path:
     return p
 
 
-def _make_parents(folder: Path, created: list[Path]) -> None:
+def make_parents(folder: Path, created: list[Path]) -> None:
+    """Create ``folder`` and its missing parents, appending each folder made to ``created``
+    (outermost first) so that :func:`remove_created` can take them away again.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     made: list[Path] = []
+    ...     make_parents(Path(d) / "a" / "b", made)
+    ...     [p.name for p in made], (Path(d) / "a" / "b").is_dir()
+    ...     remove_created(made)
+    ...     made, (Path(d) / "a").exists()
+    (['a', 'b'], True)
+    ([], False)
+    """
     missing = []
     f = folder if str(folder) else Path(".")
     while not f.exists():
@@ -308,9 +325,21 @@ def _make_parents(folder: Path, created: list[Path]) -> None:
         created.append(d)
 
 
-def _clean(temps: list[tuple[str, Path]], created: list[Path]) -> None:
-    for tmp, _ in temps:
-        Path(tmp).unlink(missing_ok=True)
+def remove_created(created: list[Path]) -> None:
+    """Remove the folders :func:`make_parents` made, innermost first (a folder that is no
+    longer empty stays), and forget them.
+
+    Examples
+    --------
+    >>> remove_created([])  # nothing made, nothing removed
+    """
     for d in reversed(created):
         with contextlib.suppress(OSError):
             d.rmdir()
+    created.clear()
+
+
+def _clean(temps: list[tuple[str, Path]], created: list[Path]) -> None:
+    for tmp, _ in temps:
+        Path(tmp).unlink(missing_ok=True)
+    remove_created(created)

@@ -32,7 +32,7 @@ import tempfile
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 
-from dppio.files import file_mode, short_path
+from dppio.files import file_mode, make_parents, remove_created, short_path
 from solver.errors import InvalidInstanceError, OutputError
 from solver.experiments.batch_csv import HEADER, BatchTally, format_rows, parse_row, read_rows
 
@@ -256,7 +256,7 @@ file)
         tmp = None
         fd = None
         try:
-            _make_parents(folder, self._created)
+            make_parents(folder, self._created)
             fd, tmp = tempfile.mkstemp(dir=folder, prefix=".dpp-batch.", suffix=".tmp")
             _write_all(fd, data)
             os.fchmod(fd, file_mode())
@@ -285,7 +285,7 @@ file)
                 raise
             if fd is not None:
                 os.close(fd)
-            _remove_created(self._created)
+            remove_created(self._created)
             if isinstance(exc, OSError) and not isinstance(exc, OutputError):
                 raise OutputError(f"cannot write {self.shown}: {exc.strerror or exc}; nothing "
                                   "was written") from None
@@ -294,7 +294,7 @@ file)
     def close(self) -> None:
         """Release the file (and its lock); folders made for a file never written go."""
         if self._fd is None:
-            _remove_created(self._created)
+            remove_created(self._created)
         elif self._fd >= 0:
             with contextlib.suppress(OSError):
                 os.close(self._fd)
@@ -381,23 +381,3 @@ def _write_all(fd: int, data: bytes) -> None:
     while view:
         n = os.write(fd, view)
         view = view[n:]
-
-
-def _make_parents(folder: Path, created: list[Path]) -> None:
-    missing = []
-    f = folder
-    while not f.exists():
-        missing.append(f)
-        if f.parent == f:
-            break
-        f = f.parent
-    for d in reversed(missing):
-        d.mkdir()
-        created.append(d)
-
-
-def _remove_created(created: list[Path]) -> None:
-    for d in reversed(created):
-        with contextlib.suppress(OSError):
-            d.rmdir()
-    created.clear()
