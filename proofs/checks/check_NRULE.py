@@ -11,7 +11,7 @@ import math
 import random
 from fractions import Fraction
 
-from dppverify.game.examples import hub4
+from dppverify.game.examples import hub4, hub_document
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile_types import GuaranteeRule
 from dppverify.structured.arc_condition import arc_condition, walkable_arcs
@@ -25,24 +25,9 @@ HUB_EXTRAS = [(2, 2, 2, 1), (2, 2, 1, 2), (2, 1, 2, 2), (1, 2, 2, 2)]
 
 
 def _hub(rng: random.Random, n_goals: int) -> Instance:
-    """A random hub gadget (u -> u1 -> middles -> two or three goals; a finite game)."""
-    goals = [f"g{i + 1}" for i in range(n_goals)]
-    mids = [f"m{j}" for j in range(rng.randint(2, 4))]
-    arcs = {("u", "u1"): rng.randint(1, 2)}
-    for m in mids:
-        arcs[("u1", m)] = rng.randint(1, 2)
-        for g in rng.sample(goals, rng.randint(2, min(3, n_goals))):
-            arcs[(m, g)] = rng.randint(1, 2)
-    for g in goals:
-        arcs[(g, "u")] = 10
-        if not any((m, g) in arcs for m in mids):
-            arcs[(rng.choice(mids), g)] = 1
-    ws = [rng.randint(1, 6) for _ in range(n_goals)]
-    doc = {"graph": {"directed": True, "nodes": [{"id": v} for v in ["u", "u1", *mids, *goals]],
-                     "edges": [{"source": a, "target": b, "weight": w}
-                               for (a, b), w in arcs.items()]},
-           "start": "u", "goals": goals, "prior": [str(Fraction(w, sum(ws))) for w in ws]}
-    return instance_from_json(doc)
+    """A random directed hub without shortcuts (u -> u1 -> middles -> two or three goals;
+    every walk has at most three steps): :func:`dppverify.game.examples.hub_document`."""
+    return instance_from_json(hub_document(rng, n_goals, directed=True, shortcuts=False))
 
 
 def _grid(rng: random.Random, n_goals: int) -> Instance:
