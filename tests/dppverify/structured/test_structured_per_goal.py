@@ -30,20 +30,15 @@ from dppverify.routes import tree_fits
 from dppverify.strategies import ngoal_instances, weighted_graphs
 from dppverify.structured.table_br import table_defender, walk_best_response
 from dppverify.tree_route.tree import count_prefixes
+from tests.dppverify._helpers import make_doc
 
 MAX_PREFIXES = 3000
 
 
 def _doc() -> dict[str, Any]:
     """s–g1 (3), s–g2 (2), g2–g1 (2), s–g3 (1), s–h (10); prior 1/2, 3/10, 1/5."""
-    return {"graph": {"directed": False,
-                      "nodes": [{"id": v} for v in ("s", "g1", "g2", "g3", "h")],
-                      "edges": [{"source": "s", "target": "g1", "weight": 3},
-                                {"source": "s", "target": "g2", "weight": 2},
-                                {"source": "g2", "target": "g1", "weight": 2},
-                                {"source": "s", "target": "g3", "weight": 1},
-                                {"source": "s", "target": "h", "weight": 10}]},
-            "start": "s", "goals": ["g1", "g2", "g3"], "prior": ["1/2", "3/10", "1/5"]}
+    return make_doc([("s", "g1", 3), ("s", "g2", 2), ("g2", "g1", 2), ("s", "g3", 1),
+                     ("s", "h", 10)], "s", ["g1", "g2", "g3"], ["1/2", "3/10", "1/5"])
 
 
 def _profile() -> dict[str, Any]:
