@@ -33,9 +33,9 @@ from functools import cache
 
 import numpy as np
 
+from solver.coalitions.normal_cover import normal_cover_lp
 from solver.game.instance import Instance
 from solver.graph.distances import distances_from_sources
-from solver.numbers import pivot, solve_exact
 
 __all__ = ["Coalitions", "CoverSolution", "balanced_collections", "coalition_dp", "cover_lp",
            "subset_members"]
@@ -103,7 +103,8 @@ def cover_lp(costs: Mapping[int, Fraction], b: Sequence[Fraction],
              order: Sequence[int] = ()) -> CoverSolution:
     """``min Σ_S c_S costs[S]`` s.t. ``Σ_S c_S 1_S = b``, ``c >= 0``, by an exact tableau simplex.
 
-    Starts from the singleton basis (feasible: ``b > 0``), Bland's rule (finite). The dual
+    :func:`~solver.coalitions.normal_cover.normal_cover_lp` over the subsets' 0/1 vectors
+    (columns in mask order): from the singleton basis (feasible: ``b > 0``), Bland's rule. The dual
     ``h`` of the optimal basis satisfies ``h(S) <= costs[S]`` for every ``S`` and ``h·b`` =
     value. With ``order`` the right-hand side is perturbed lexicographically,
     ``b + ε e_{order[0]} + ε² e_{order[1]} + …``: the final basis is then optimal for ``b`` and
@@ -122,52 +123,9 @@ def cover_lp(costs: Mapping[int, Fraction], b: Sequence[Fraction],
     """
     n = len(b)
     masks = sorted(costs)
-    col = {t: j for j, t in enumerate(masks)}
-    width = len(masks)
-
-    def rhs(i: int) -> list[Fraction]:
-        out = [Fraction(b[i])]
-        out += [Fraction(int(i == t)) for t in order]
-        return out
-
-    # tableau rows: B^{-1} A | B^{-1} (b, perturbations) ; basis = singletons
-    rows = [[Fraction(t >> i & 1) for t in masks] + rhs(i) for i in range(n)]
-    basis = [1 << i for i in range(n)]
-    while True:
-        h = _duals(basis, costs, n)
-        entering = None
-        for t in masks:
-            if t in basis:
-                continue
-            if costs[t] - sum(h[i] for i in subset_members(t)) < 0:
-                entering = t
-                break
-        if entering is None:
-            value = sum((costs[basis[i]] * rows[i][width] for i in range(n)), Fraction(0))
-            cover = {basis[i]: rows[i][width] for i in range(n) if rows[i][width]}
-            return CoverSolution(value, cover, tuple(h))
-        j = col[entering]
-        best = None
-        for i in range(n):
-            a = rows[i][j]
-            if a > 0:
-                key = ([x / a for x in rows[i][width:]], basis[i])
-                if best is None or key < best[0]:
-                    best = (key, i)
-        if best is None:  # pragma: no cover - c_S <= min b keeps the LP bounded
-            raise AssertionError("cover_lp: unbounded")
-        i = best[1]
-        pivot(rows, i, j)
-        basis[i] = entering
-
-
-def _duals(basis: list[int], costs: Mapping[int, Fraction], n: int) -> list[Fraction]:
-    """``h`` with ``h(T) = costs[T]`` for the basic columns (exact)."""
-    h = solve_exact([[Fraction(basis[r] >> i & 1) for i in range(n)] for r in range(n)],
-                    [Fraction(costs[basis[r]]) for r in range(n)])
-    if h is None:
-        raise ValueError("the cover LP's basis is singular")
-    return h
+    lp = normal_cover_lp([tuple(t >> i & 1 for i in range(n)) for t in masks],
+                         [costs[t] for t in masks], b, order)
+    return CoverSolution(lp.value, {masks[j]: c for j, c in lp.cover.items()}, lp.dual)
 
 
 @dataclass(frozen=True, eq=False)
