@@ -26,12 +26,12 @@ import argparse
 import importlib.resources
 import json
 import os
-import time
 import tracemalloc
 from collections import deque
 from typing import Any
 
 import numpy as np
+from _timing import best
 
 from dppverify import certify, game_value, instance_from_json
 from dppverify.formats.json_reading import parse_json
@@ -77,16 +77,6 @@ def choose(blocked: np.ndarray) -> tuple[tuple[int, int], tuple[int, int], tuple
     start = nearest(free, (rows - 1, 0))
     comp = sorted(component(blocked, start))
     return start, nearest(comp, (0, cols - 1)), nearest(comp, (0, 0))
-
-
-def best(fn: Any, repeat: int) -> tuple[float, Any]:
-    """Best wall time of ``repeat`` calls, and the last result."""
-    times, out = [], None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return min(times), out
 
 
 def bench_map(name: str, repeat: int) -> dict[str, Any]:

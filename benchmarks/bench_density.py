@@ -15,6 +15,8 @@ import argparse
 import os
 import time
 
+from _timing import timed
+
 from solver import Instance, solve
 from solver.experiments.density import DensityConfig, Task, run_density, run_task
 from solver.experiments.sampling import sample_grid
@@ -33,17 +35,13 @@ def main() -> None:
         args.samples, args.workers = 2, 1
     cfg = DensityConfig(samples=args.samples)
     grids = cfg.samples * len(cfg.densities)
-    t0 = time.perf_counter()
-    rows = run_density(cfg, workers=args.workers)
-    wall = time.perf_counter() - t0
+    rows, wall = timed(run_density, cfg, workers=args.workers)
     print(f"full sweep: {grids} grids x 6 pairs = {len(rows)} rows, {args.workers} workers, "
           f"{wall:.2f} s wall ({1000 * wall / grids:.1f} ms/grid); target < {TARGET_SECONDS:.0f} s:"
           f" {'MET' if wall < TARGET_SECONDS else 'MISSED'}")
     # one density, in this process: full task vs solve() alone on the same grids
     probe = Task(cfg, 30, 0, min(40, cfg.samples))
-    t0 = time.perf_counter()
-    run_task(probe)
-    full = time.perf_counter() - t0
+    _, full = timed(run_task, probe)
     t0 = time.perf_counter()
     for k in range(probe.count):
         s = sample_grid(cfg.size, 30, k, cfg.seed, cfg.start, cfg.goals)

@@ -21,8 +21,9 @@ import os
 import resource
 import subprocess
 import sys
-import time
 from fractions import Fraction
+
+from _timing import timed
 
 from dppverify.formats.movingai import GridMap, grid_document
 from dppverify.game.instance import Instance, instance_from_json
@@ -45,12 +46,8 @@ def tree_vs_dp(max_prefixes: int) -> dict[str, object]:
     h = inst.hops[inst.start]
     while count_prefixes(inst, h + 1) <= max_prefixes:
         h += 1
-    t0 = time.perf_counter()
-    tree = game_value(inst, h, max_prefixes=max_prefixes)
-    t_tree = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    dp = coalition_value(inst, h)
-    t_dp = time.perf_counter() - t0
+    tree, t_tree = timed(game_value, inst, h, max_prefixes=max_prefixes)
+    dp, t_dp = timed(coalition_value, inst, h)
     if not tree.bracket.closed or tree.bracket.exact != dp.value:
         raise SystemExit(f"routes disagree at H = {h}: {tree.bracket} vs {dp.value}")
     return {"H": h, "prefixes": tree.prefixes, "value": str(dp.value),
@@ -63,9 +60,7 @@ def single(n: int, size: int) -> dict[str, object]:
     goals = [(r * (size - 1) // 63, c * (size - 1) // 63) for r, c in GOALS64[:n]]
     inst = instance_from_json(grid_document(GridMap(size, size, rows), (size - 1, 0), goals,
                                              [Fraction(1, n)] * n))
-    t0 = time.perf_counter()
-    v = coalition_value(inst, None)
-    seconds = time.perf_counter() - t0
+    v, seconds = timed(coalition_value, inst, None)
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     return {"N": n, "cells": size * size, "layers": v.layers, "value": str(v.value),
             "seconds": round(seconds, 2), "max_rss_mib": round(rss, 1)}

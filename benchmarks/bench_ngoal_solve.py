@@ -58,10 +58,10 @@ import solver.threads  # noqa: F401  (first: one BLAS thread before numpy loads,
 # isort: split
 import argparse
 import os
-import time
 from typing import Any
 
 import numpy as np
+from _timing import best
 
 from dppverify.certify import certify
 from dppverify.formats.movingai import grid_document
@@ -74,15 +74,6 @@ from solver.experiments.ngoal import corner_cells
 from solver.formats.movingai import read_map
 
 MAPS = ("room-32-32-4", "room-64-64-8", "maze-128-128-10", "Berlin_1_256")
-
-
-def _best(fn: Any, repeat: int) -> tuple[float, Any]:
-    best, out = float("inf"), None
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - t0)
-    return best, out
 
 
 ISSUE_ROWS: tuple[tuple[str, tuple[int, int] | None, tuple[tuple[int, int], ...] | None, int],
@@ -106,14 +97,14 @@ def run(name: str, n: int, repeat: int, cells: tuple[Any, Any] | None = None,
     blocked = read_map(path)
     start, goals = corner_cells(blocked, n) if cells is None else cells
     prior = [f"1/{n}"] * n
-    t_n, eq = _best(lambda: coalition_equilibrium(
+    t_n, eq = best(lambda: coalition_equilibrium(
         Instance.from_grid(blocked, start, goals, prior)), repeat)
     t_l = None
     if layered:  # the same construction with the DP layer by layer (the test oracle)
         fast = guarantee_sets.normal_dp
         guarantee_sets.normal_dp = _layered_dp
         try:
-            t_l, old = _best(lambda: coalition_equilibrium(
+            t_l, old = best(lambda: coalition_equilibrium(
                 Instance.from_grid(blocked, start, goals, prior)), repeat)
         finally:
             guarantee_sets.normal_dp = fast
@@ -121,10 +112,10 @@ def run(name: str, n: int, repeat: int, cells: tuple[Any, Any] | None = None,
             raise AssertionError(f"{name}: the layered DP's profile differs")
     doc = grid_document(grid, start, goals, prior)
     prof = eq.to_json()
-    t_c, cert = _best(lambda: certify(doc, prof, horizon="inf", route="structured"),
-                      repeat)
-    t_2, _ = _best(lambda: solve(Instance.from_grid(blocked, start, (goals[0], goals[1]),
-                                                    ("3/5", "2/5"))), max(repeat, 3))
+    t_c, cert = best(lambda: certify(doc, prof, horizon="inf", route="structured"),
+                     repeat)
+    t_2, _ = best(lambda: solve(Instance.from_grid(blocked, start, (goals[0], goals[1]),
+                                                   ("3/5", "2/5"))), max(repeat, 3))
     return {"map": name, "N": n, "nodes": int((~blocked).sum()), "solve_N": t_n,
             "layered_N": t_l, "certify_N": t_c, "verdict": cert.verdict, "solve_2": t_2,
             "ratio": t_n / t_2,

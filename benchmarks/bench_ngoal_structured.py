@@ -22,6 +22,8 @@ import time
 from fractions import Fraction
 from typing import Any
 
+from _timing import timed
+
 from dppverify.certify import certify
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
@@ -71,12 +73,8 @@ def run(name: str, n: int) -> dict[str, Any]:
     doc = grid_document(grid, start, goals, [f"1/{n}"] * n)
     inst = instance_from_json(doc)
     prof = test_profile(inst)
-    t0 = time.perf_counter()
-    cert = certify(inst, prof, horizon="inf", route="structured")
-    total = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    coalition_value(inst, None)
-    dp = time.perf_counter() - t0
+    cert, total = timed(certify, inst, prof, horizon="inf", route="structured")
+    _, dp = timed(coalition_value, inst, None)
     t0 = time.perf_counter()
     p = profile_from_json(prof, inst)
     assert isinstance(p.defender, GoalTable)

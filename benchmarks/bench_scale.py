@@ -48,13 +48,13 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Callable
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 from _grids import corners, free_cell_graph, random_grid, write_map
+from _timing import best
 
 MAPS = ("empty-8-8", "empty-16-16", "empty-32-32", "empty-48-48", "maze-32-32-2",
         "maze-32-32-4", "maze-128-128-2", "maze-128-128-10", "room-32-32-4", "room-64-64-8",
@@ -67,16 +67,6 @@ PRIOR = ("3/5", "2/5")
 def quick_mode(argv: list[str]) -> bool:
     """``--quick`` or the environment variable ``DPP_BENCH_QUICK`` (any non-empty value)."""
     return "--quick" in argv or bool(os.environ.get("DPP_BENCH_QUICK"))
-
-
-def best(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
-    """Best wall time of ``repeat`` calls, and the last result."""
-    times, out = [], None
-    for _ in range(max(1, repeat)):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return min(times), out
 
 
 def _map_path(ref: str) -> str:

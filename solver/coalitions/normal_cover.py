@@ -62,6 +62,16 @@ def normal_cover_lp(columns: Sequence[Sequence[int]], costs: Sequence[Fraction],
     >>> lp = normal_cover_lp(cols, [Fraction(2)] * 7, [Fraction(x) for x in (2, 2, 2, 1)])
     >>> lp.value, sorted(lp.cover.items())
     (Fraction(6, 1), [(4, Fraction(1, 1)), (5, Fraction(1, 1)), (6, Fraction(1, 1))])
+
+    Two goals, the pair covering the prior (1/2, 1/2) at cost 9/2: every ``h`` with
+    ``h_0 + h_1 = 9/2``, ``h_0 <= 9/2``, ``h_1 <= 3`` is an optimal dual; ``order`` picks the
+    lexicographically largest one:
+
+    >>> two = [(1, 0), (0, 1), (1, 1)], [Fraction(9, 2), Fraction(3), Fraction(9, 2)]
+    >>> normal_cover_lp(*two, [Fraction(1, 2)] * 2).dual
+    (Fraction(3, 2), Fraction(3, 1))
+    >>> normal_cover_lp(*two, [Fraction(1, 2)] * 2, order=(0, 1)).dual
+    (Fraction(9, 2), Fraction(0, 1))
     """
     n = len(y)
     vecs = [tuple(int(x) for x in c) for c in columns]
