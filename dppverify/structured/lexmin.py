@@ -91,6 +91,16 @@ def simplex_basis(cost: Sequence[Fraction], eq_rows: Sequence[Sequence[Fraction]
     basis = list(range(nv, nv + m))
     total = nv + m
 
+    def pivot(row: int, col: int) -> None:
+        """Pivot on ``tab[row][col]``: column ``col`` enters the basis in place of row ``row``'s."""
+        piv = tab[row][col]
+        tab[row] = [x / piv for x in tab[row]]
+        for i in range(m):
+            if i != row and tab[i][col]:
+                f = tab[i][col]
+                tab[i] = [x - f * y for x, y in zip(tab[i], tab[row], strict=True)]
+        basis[row] = col
+
     def run(obj: list[Fraction], allowed: int) -> None:
         while True:
             # reduced costs: obj_j - Σ_i obj_{basis_i} tab[i][j]
@@ -114,13 +124,7 @@ def simplex_basis(cost: Sequence[Fraction], eq_rows: Sequence[Sequence[Fraction]
                         best, leave = key, i
             if leave is None:  # pragma: no cover - bounded feasible sets only
                 raise AssertionError("simplex_min: unbounded")
-            piv = tab[leave][enter]
-            tab[leave] = [x / piv for x in tab[leave]]
-            for i in range(m):
-                if i != leave and tab[i][enter]:
-                    f = tab[i][enter]
-                    tab[i] = [x - f * y for x, y in zip(tab[i], tab[leave], strict=True)]
-            basis[leave] = enter
+            pivot(leave, enter)
 
     phase1 = [Fraction(0)] * nv + [Fraction(1)] * m
     run(phase1, total)
@@ -132,13 +136,7 @@ def simplex_basis(cost: Sequence[Fraction], eq_rows: Sequence[Sequence[Fraction]
             j = next((j for j in range(nv) if tab[i][j] != 0 and j not in basis), None)
             if j is None:
                 continue
-            piv = tab[i][j]
-            tab[i] = [x / piv for x in tab[i]]
-            for k in range(m):
-                if k != i and tab[k][j]:
-                    f = tab[k][j]
-                    tab[k] = [x - f * y for x, y in zip(tab[k], tab[i], strict=True)]
-            basis[i] = j
+            pivot(i, j)
     obj = [Fraction(x) for x in cost] + [Fraction(0)] * m
     # artificials still basic sit at 0 on redundant rows: forbid them from entering again
     run(obj, nv)
