@@ -25,18 +25,14 @@ value.
 
 from __future__ import annotations
 
-from fractions import Fraction
-
 from dppverify.certificate import CheckRecord
 from dppverify.checks.per_goal_records import (
     BR,
     NGOAL_IDS,
     NWALKBR,
     PROFILE_DOC,
-    defender_records,
     ngoal_record,
-    payoff_record,
-    value_record,
+    profile_records,
     walk_labels,
 )
 from dppverify.checks.structured_guarantee import guarantee_checks
@@ -126,18 +122,13 @@ def nstructured_checks(instance: Instance, profile: Profile,
                 for i in NGOAL_IDS[1:]]
         return out, len(trie)
     has_default = table.default is not None
-    out = [ngoal_record(NGOAL_IDS[0], "pass", f"{n} types, {len(walks)} walks, Defender table of "
-                f"{len(table.entries)} entries " + ("and a default (defined on every walk)"
-                                                      if has_default else "without a default"),
-                {"walks": len(walks), "prefixes": len(trie)}, PROFILE_DOC, None)]
-    u = normalize(sum((inst.prior[t] * per_type[t] for t in range(n)), Fraction(0)))
-    out.append(payoff_record(per_type, u, profile.claimed_u))
-    attacker = _attacker(inst, tdef, per_type, horizon)
-    out.append(attacker)
-    out += defender_records(inst, tdef, dict(enumerate(trie.masses)), u)
+    text = (f"{n} types, {len(walks)} walks, Defender table of {len(table.entries)} entries "
+            + ("and a default (defined on every walk)" if has_default else "without a default"))
     longest = max(len(w) - 1 for w in walks)
     covered = horizon is None or horizon >= longest  # NW.5: U = V_H for every H >= longest
-    out.append(value_record(inst, u, horizon, covered and all(r.passed for r in out)))
+    out = profile_records(inst, text, {"walks": len(walks), "prefixes": len(trie)}, per_type,
+                          profile.claimed_u, _attacker(inst, tdef, per_type, horizon), tdef,
+                          dict(enumerate(trie.masses)), horizon, covered=covered)
     return out, len(trie)
 
 
