@@ -80,11 +80,7 @@ def nstructured_checks(instance: Instance, profile: Profile,
     n = inst.n_goals
     if profile.defects:
         more = f" (and {len(profile.defects) - 1} more)" if len(profile.defects) > 1 else ""
-        out = [ngoal_record(NGOAL_IDS[0], "fail", f"{profile.defects[0]}{more}", None,
-                            PROFILE_DOC, None)]
-        out += [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
-                for i in NGOAL_IDS[1:]]
-        return out, 0
+        return _ill_formed(f"{profile.defects[0]}{more}"), 0
     if isinstance(profile.defender, GuaranteeRule):  # dppverify.structured.guarantee
         return guarantee_checks(inst, profile, horizon)
     walks = [mw.walk for mix in profile.attacker for mw in mix]
@@ -116,11 +112,8 @@ def nstructured_checks(instance: Instance, profile: Profile,
             total += mw.probability * (cost + inst.dist_to[theta][mw.walk[-1]])
         per_type.append(normalize(total))
     if missing is not None:
-        out = [ngoal_record(NGOAL_IDS[0], "fail", f"the Defender's table has no entry for walk "
-                    f"{walk_labels(inst, missing)} and no default", None, PROFILE_DOC, None)]
-        out += [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
-                for i in NGOAL_IDS[1:]]
-        return out, len(trie)
+        return _ill_formed(f"the Defender's table has no entry for walk "
+                           f"{walk_labels(inst, missing)} and no default"), len(trie)
     has_default = table.default is not None
     text = (f"{n} types, {len(walks)} walks, Defender table of {len(table.entries)} entries "
             + ("and a default (defined on every walk)" if has_default else "without a default"))
@@ -130,6 +123,13 @@ def nstructured_checks(instance: Instance, profile: Profile,
                           profile.claimed_u, _attacker(inst, tdef, per_type, horizon), tdef,
                           dict(enumerate(trie.masses)), horizon, covered=covered)
     return out, len(trie)
+
+
+def _ill_formed(message: str) -> list[CheckRecord]:
+    """``profile.wellformed`` fails with ``message``; every other check is skipped."""
+    return ([ngoal_record(NGOAL_IDS[0], "fail", message, None, PROFILE_DOC, None)]
+            + [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
+               for i in NGOAL_IDS[1:]])
 
 
 def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],
