@@ -18,8 +18,9 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import time
 from typing import Any
+
+from _timing import timed
 
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.formats.standard_maps import standard_map_path
@@ -38,12 +39,8 @@ def run(name: str, n: int) -> dict[str, Any]:
     grid = read_map(standard_map_path(name))
     start, goals = corner_cells(read_blocked(standard_map_path(name)), n)
     inst = instance_from_json(grid_document(grid, start, goals, [f"1/{n}"] * n))
-    t0 = time.perf_counter()
-    dp = coalition_value(inst, None)
-    t_dp = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    v = nvalue(inst, None)
-    t_v = time.perf_counter() - t0
+    dp, t_dp = timed(coalition_value, inst, None)
+    v, t_v = timed(nvalue, inst, None)
     return {"map": name, "goals": n, "nodes": inst.n_nodes, "coalition_dp": str(dp.value),
             "exact": v.closed, "value": None if v.value is None else str(v.value),
             "lower": str(v.lower), "upper": str(v.upper), "extra_normals": len(v.normals),

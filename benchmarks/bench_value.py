@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 import scipy.sparse as sp
+from _timing import timed
 from scipy.optimize import linprog
 
 from dppverify.game.instance import Instance, Roles, instance_from_json
@@ -156,16 +157,10 @@ def bench(hmin: int, hmax: int, peer_timeout: float, memory_gib: float,
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for h in range(hmin, hmax + 1):
-            t0 = time.perf_counter()
-            tree = build_tree(inst, h)
-            t_tree = time.perf_counter() - t0
-            t0 = time.perf_counter()
-            lp = solve_value_lp(tree, roles)
-            t_ours = time.perf_counter() - t0
+            tree, t_tree = timed(build_tree, inst, h)
+            lp, t_ours = timed(solve_value_lp, tree, roles)
             v_highs, t_highs = highs_value_lp(tree, roles)
-            t0 = time.perf_counter()
-            bracket = exact_bracket(tree, roles, lp)
-            t_exact = time.perf_counter() - t0
+            bracket, t_exact = timed(exact_bracket, tree, roles, lp)
             size = efg_size(tree)
             row: dict[str, Any] = {
                 "H": h, "prefixes": tree.n_prefixes, "efg_nodes": size.nodes,

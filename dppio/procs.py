@@ -10,12 +10,22 @@ from __future__ import annotations
 import contextlib
 from pathlib import Path
 
-__all__ = ["descendants"]
+__all__ = ["descendants", "process_table"]
 
 
-def _parents() -> dict[int, int]:
-    """Live (non-zombie) process id -> parent id, read from ``/proc/PID/stat``."""
-    out: dict[int, int] = {}
+def process_table() -> dict[int, list[str]]:
+    """Every process's ``/proc/PID/stat`` fields after its command name: the state first
+    (``Z`` for a zombie), then the parent id, the process group, the session, …; empty where
+    there is no ``/proc``.
+
+    Examples
+    --------
+    >>> import os, sys
+    >>> table = process_table()
+    >>> sys.platform != "linux" or int(table[os.getpid()][1]) == os.getppid()
+    True
+    """
+    out: dict[int, list[str]] = {}
     try:
         entries = list(Path("/proc").iterdir())
     except OSError:
@@ -27,10 +37,17 @@ def _parents() -> dict[int, int]:
             text = (entry / "stat").read_text()
         except OSError:
             continue
-        fields = text[text.rfind(")") + 2:].split()
+        out[int(entry.name)] = text[text.rfind(")") + 2:].split()
+    return out
+
+
+def _parents() -> dict[int, int]:
+    """Live (non-zombie) process id -> parent id."""
+    out: dict[int, int] = {}
+    for pid, fields in process_table().items():
         if fields and fields[0] != "Z":  # a zombie is already dead: nothing to end
             with contextlib.suppress(IndexError, ValueError):
-                out[int(entry.name)] = int(fields[1])
+                out[pid] = int(fields[1])
     return out
 
 

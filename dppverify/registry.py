@@ -65,35 +65,39 @@ class CheckSpec:
 
 
 _T = "the walk tree of H steps"
+_BOTH: tuple[RouteName, ...] = ("tree", "structured")
 _W = "relies on proofs/WALKBR.md"
 _P = "the prefixes of the profile's walks (proofs/L3.md)"
 _PROFILE = "the profile's walks, walk by walk"
 
+
+def _spec(check_id: str, proof: str | None, structured: str, *,
+          routes: tuple[RouteName, ...] = _BOTH, kind: Kind = "check") -> CheckSpec:
+    """A registry row; on the tree route every check relies on the walk tree of H steps."""
+    return CheckSpec(check_id, proof, routes, kind, _T, structured)
+
+
 CHECKS: tuple[CheckSpec, ...] = (
-    CheckSpec("profile.wellformed", None, ("tree", "structured"), "check", _T,
-              "the profile document alone"),
-    CheckSpec("value.U1", "TEL", ("tree", "structured"), "check", _T, _PROFILE),
-    CheckSpec("value.U2", "TEL", ("tree", "structured"), "check", _T, _PROFILE),
-    CheckSpec("value.U", "TEL", ("tree", "structured"), "check", _T, _PROFILE),
-    CheckSpec("value.VoI", "THM", ("tree", "structured"), "check", _T, "the profile's walks"),
-    CheckSpec("profile.phases", "L5", ("tree", "structured"), "check", _T,
-              "σ* along the profile's secondary walk"),
-    CheckSpec("pbne.attacker_br.primary", "L1", ("tree", "structured"), "check", _T, _W),
-    CheckSpec("pbne.attacker_br.secondary", "XI2", ("tree", "structured"), "check", _T, _W),
-    CheckSpec("pbne.defender_br", "L3", ("tree", "structured"), "check", _T, _P),
-    CheckSpec("pbne.sequential_rationality", "THM", ("tree", "structured"), "check", _T, _P),
-    CheckSpec("pbne.belief_consistency", "THM", ("tree", "structured"), "consistency", _T, _P),
-    CheckSpec("game.value", "HORIZON", ("tree", "structured"), "check", _T,
-              "relies on proofs/DP.md"),
-    CheckSpec("lemma.TEL.telescoping", "TEL", ("tree", "structured"), "consistency", _T,
-              "the profile's prefixes (a consistency check of σ*)"),
-    CheckSpec("lemma.L1.lower_bound", "L1", ("tree", "structured"), "fact", _T, _W),
-    CheckSpec("lemma.L2.no_revisits", "L2", ("tree", "structured"), "fact", _T,
-              "the profile's secondary walks"),
-    CheckSpec("lemma.XI2.secondary_value", "XI2", ("tree", "structured"), "fact", _T, _W),
-    CheckSpec("lemma.L3.greedy", "L3", ("tree",), "fact", _T, "–"),
-    CheckSpec("lemma.L4.monotonicity", "L4", ("tree",), "fact", _T, "–"),
-    CheckSpec("lemma.L5.induced_beliefs", "L5", ("tree", "structured"), "fact", _T, _P),
+    _spec("profile.wellformed", None, "the profile document alone"),
+    _spec("value.U1", "TEL", _PROFILE),
+    _spec("value.U2", "TEL", _PROFILE),
+    _spec("value.U", "TEL", _PROFILE),
+    _spec("value.VoI", "THM", "the profile's walks"),
+    _spec("profile.phases", "L5", "σ* along the profile's secondary walk"),
+    _spec("pbne.attacker_br.primary", "L1", _W),
+    _spec("pbne.attacker_br.secondary", "XI2", _W),
+    _spec("pbne.defender_br", "L3", _P),
+    _spec("pbne.sequential_rationality", "THM", _P),
+    _spec("pbne.belief_consistency", "THM", _P, kind="consistency"),
+    _spec("game.value", "HORIZON", "relies on proofs/DP.md"),
+    _spec("lemma.TEL.telescoping", "TEL", "the profile's prefixes (a consistency check of σ*)",
+          kind="consistency"),
+    _spec("lemma.L1.lower_bound", "L1", _W, kind="fact"),
+    _spec("lemma.L2.no_revisits", "L2", "the profile's secondary walks", kind="fact"),
+    _spec("lemma.XI2.secondary_value", "XI2", _W, kind="fact"),
+    _spec("lemma.L3.greedy", "L3", "–", routes=("tree",), kind="fact"),
+    _spec("lemma.L4.monotonicity", "L4", "–", routes=("tree",), kind="fact"),
+    _spec("lemma.L5.induced_beliefs", "L5", _P, kind="fact"),
 )
 """Every check of a two-goal certificate (``dpp-profile/1``), in certificate order."""
 
@@ -105,15 +109,13 @@ _NP = ("the prefixes of the profile's walks (proofs/NWALKBR.md NW.3; off the pat
        "distribution is greedy for the belief uniform on its support)")
 
 NGOAL_CHECKS: tuple[CheckSpec, ...] = (
-    CheckSpec("profile.wellformed", "NGOAL", ("tree", "structured"), "check", _T,
-              "the profile document alone"),
-    CheckSpec("value.U", "NGOAL", ("tree", "structured"), "check", _T, _PROFILE),
-    CheckSpec("pbne.attacker_br", "NGOAL", ("tree", "structured"), "check", _T, _NW),
-    CheckSpec("pbne.defender_br", "NGOAL", ("tree", "structured"), "check", _T, _NP),
-    CheckSpec("pbne.sequential_rationality", "NGOAL", ("tree", "structured"), "check", _T, _NP),
-    CheckSpec("game.value", "NGOAL", ("tree", "structured"), "check", _T,
-              "relies on proofs/NGOAL.md (the guarantee sets' value)"),
-    CheckSpec("game.value.structured", "NGOAL", ("tree",), "consistency", _T, "–"),
+    _spec("profile.wellformed", "NGOAL", "the profile document alone"),
+    _spec("value.U", "NGOAL", _PROFILE),
+    _spec("pbne.attacker_br", "NGOAL", _NW),
+    _spec("pbne.defender_br", "NGOAL", _NP),
+    _spec("pbne.sequential_rationality", "NGOAL", _NP),
+    _spec("game.value", "NGOAL", "relies on proofs/NGOAL.md (the guarantee sets' value)"),
+    _spec("game.value.structured", "NGOAL", "–", routes=("tree",), kind="consistency"),
 )
 """Every check of an N-goal certificate (``dpp-ngoal-profile/1``), in certificate order: the
 same id as two goals for the same question (well formed, ``U``, the Defender's best response,

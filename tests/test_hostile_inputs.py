@@ -31,6 +31,13 @@ INSTANCES = sorted(n for n, m in MANIFEST.items() if m["kind"] == "instance")
 MAPS = sorted(n for n, m in MANIFEST.items() if m["kind"] == "map")
 MAP_CELLS = ["--start", "0,0", "--goals", "0,1", "0,2", "--prior", "0.5,0.5"]
 
+
+def _paper_map(*, map_file: str = "paper10.map", start: str = "9,0", prior: str = "0.6,0.4"
+               ) -> list[str]:
+    """``dpp solve --map`` on the paper's map game, with one part changed."""
+    return ["solve", "--map", map_file, "--start", start, "--goals", "0,9", "0,0", "--prior",
+            prior]
+
 CASES: list[tuple[str, str, list[str], int]] = []
 """(id, program ``dpp`` or ``dppverify``, arguments, expected exit code)."""
 
@@ -99,18 +106,9 @@ for args in (["solve"], ["solve", "tri.json", "-o", ""], ["solve", "tri.json", "
              ["solve", "tri.json", "-o", "tri.json/p.json"], ["solve", "/dev/zero"],
              ["solve", "missing.json"], ["solve", "."], ["solve", "tri.json", "--start", "0,0"],
              ["solve", "--map", "paper10.map"],
-             ["solve", "--map", "paper10.map", "--start", "9,0", "--goals", "0,9", "0,0",
-              "--prior", "0.6"],
-             ["solve", "--map", "paper10.map", "--start", "x", "--goals", "0,9", "0,0",
-              "--prior", "0.6,0.4"],
-             ["solve", "--map", "paper10.map", "--start", "9,0", "--goals", "0,9", "0,0",
-              "--prior", "0.6,0.6"],
-             ["solve", "--map", "paper10.map", "--start", "9,0", "--goals", "0,9", "0,0",
-              "--prior", "1e999999999,0"],
-             ["solve", "--map", "/dev/zero", "--start", "9,0", "--goals", "0,9", "0,0",
-              "--prior", "0.6,0.4"],
-             ["solve", "--map", "missing.map", "--start", "9,0", "--goals", "0,9", "0,0",
-              "--prior", "0.6,0.4"],
+             _paper_map(prior="0.6"), _paper_map(start="x"), _paper_map(prior="0.6,0.6"),
+             _paper_map(prior="1e999999999,0"), _paper_map(map_file="/dev/zero"),
+             _paper_map(map_file="missing.map"),
              ["experiment", "compare", "--output-dir", ""],
              ["experiment", "compare", "--output-dir", "tri.json"],
              ["experiment", "compare", "missing.json"],

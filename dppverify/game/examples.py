@@ -7,17 +7,20 @@ secondary walk ``s -> g2`` is all phase II, the primary mixes ``s -> g1`` (4/7) 
 ``star3`` is a hub graph with three goals: from ``s`` one step to the hub ``m``, from which
 each goal is one step away, plus a direct edge ``s–a`` of weight 2. Walking through ``m``
 keeps every goal possible for one more step. ``hub4`` is the four-goal hub where the
-coalition DP is not the value (``proofs/NGOAL.md``).
+coalition DP is not the value (``proofs/NGOAL.md``); :func:`hub_document` draws random hubs of
+its family (the proof checks' and the property tests' N-goal games).
 """
 
 from __future__ import annotations
 
+import random
+from fractions import Fraction
 from typing import Any
 
 from dppverify.game.instance import Instance, instance_from_json
 
-__all__ = ["hub4", "hub4_document", "kite", "kite_document", "kite_naive_profile", "star3",
-           "star3_document", "star3_profile", "triangle", "triangle_attacker",
+__all__ = ["hub4", "hub4_document", "hub_document", "kite", "kite_document", "kite_naive_profile",
+           "star3", "star3_document", "star3_profile", "triangle", "triangle_attacker",
            "triangle_document", "triangle_profile"]
 
 
@@ -222,3 +225,58 @@ def hub4(prior: tuple[str, ...] = ("2/7", "2/7", "2/7", "1/7"), *,
     4
     """
     return instance_from_json(hub4_document(prior, directed=directed))
+
+
+def hub_document(rng: random.Random, n_goals: int, *, directed: bool | None = None,
+                 shortcuts: bool = True, returns: bool = True) -> dict[str, Any]:
+    """A random hub of :func:`hub4_document`'s family: ``u → u1 → m_j → (two or three goals)``.
+
+    Two to four middles ``m_j``, arc weights 1 or 2; every goal reachable; return arcs
+    ``g → u`` of weight 10 unless ``returns=False`` (then no goal reaches ``u`` again and
+    every walk has at most four steps); random priors (weights 1..6, normalised).
+
+    Parameters
+    ----------
+    rng : random.Random
+        The only source of randomness: the same seed draws the same document.
+    n_goals : int
+        ``N >= 2`` (four or five make gaps between the coalition DP and the value likely).
+    directed : bool or None
+        None draws it (directed with probability 0.6).
+    shortcuts : bool
+        Also draw ``u1 → g`` (probability 0.2 per goal, weight 2..4) and ``u → m`` (0.3).
+    returns : bool
+        The return arcs ``g → u``.
+
+    Examples
+    --------
+    >>> doc = hub_document(random.Random(3), 4, directed=True)
+    >>> doc["start"], doc["goals"], doc["graph"]["directed"]
+    ('u', ['g1', 'g2', 'g3', 'g4'], True)
+    >>> doc == hub_document(random.Random(3), 4, directed=True)
+    True
+    """
+    goals = [f"g{i + 1}" for i in range(n_goals)]
+    mids = [f"m{j}" for j in range(rng.randint(2, 4))]
+    arcs = {("u", "u1"): rng.randint(1, 2)}
+    for m in mids:
+        arcs[("u1", m)] = rng.randint(1, 2)
+        for g in rng.sample(goals, rng.randint(2, min(3, n_goals))):
+            arcs[(m, g)] = rng.randint(1, 2)
+    for g in goals:
+        if returns:
+            arcs[(g, "u")] = 10
+        if not any((m, g) in arcs for m in mids):  # every goal reachable from the start
+            arcs[(rng.choice(mids), g)] = rng.randint(1, 2)
+        if shortcuts and ("u1", g) not in arcs and rng.random() < 0.2:
+            arcs[("u1", g)] = rng.randint(2, 4)
+    if shortcuts and rng.random() < 0.3:
+        arcs[("u", rng.choice(mids))] = rng.randint(2, 3)
+    if directed is None:
+        directed = rng.random() < 0.6
+    ws = [rng.randint(1, 6) for _ in range(n_goals)]
+    return {"graph": {"directed": directed,
+                      "nodes": [{"id": v} for v in ["u", "u1", *mids, *goals]],
+                      "edges": [{"source": a, "target": b, "weight": w}
+                                for (a, b), w in arcs.items()]},
+            "start": "u", "goals": goals, "prior": [str(Fraction(w, sum(ws))) for w in ws]}

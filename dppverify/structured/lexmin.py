@@ -92,7 +92,7 @@ def simplex_basis(cost: Sequence[Fraction], eq_rows: Sequence[Sequence[Fraction]
     total = nv + m
 
     def pivot(row: int, col: int) -> None:
-        """Pivot on ``tab[row][col]``: column ``col`` enters the basis in place of row ``row``'s."""
+        """Column ``col`` enters the basis in row ``row`` (exact Gauss-Jordan step)."""
         piv = tab[row][col]
         tab[row] = [x / piv for x in tab[row]]
         for i in range(m):

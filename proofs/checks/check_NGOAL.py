@@ -20,6 +20,7 @@ from dppverify.structured.cover import packing_vertices, zero_one_normals
 from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.tree import count_prefixes
 from dppverify.tree_route.value_lp import game_value
+from proofs.checks._linear import basic_solutions
 from proofs.checks.ngoal_evidence import FAMILIES, draw_case
 
 
@@ -87,35 +88,15 @@ def test_subadditivity_of_the_max_and_the_NG3_slope() -> None:
 def _packing_vertices_by_hand(n_goals: int) -> set[tuple[Fraction, ...]]:
     """Vertices of P = {λ >= 0 : Σ_S λ_S 1_S <= 1} (all non-empty S): every basis of [A | I].
 
-    Independent of dppverify.structured.proved_value: Gauss–Jordan elimination in Fractions on every
-    choice of N columns of the standard form Σ λ_S 1_S + s = 1, kept when non-singular and
-    non-negative (a vertex of a standard-form polyhedron is a basic feasible solution).
+    Independent of dppverify.structured.proved_value: Gauss–Jordan elimination in Fractions
+    (proofs/checks/_linear.py) on every choice of N columns of the standard form
+    Σ λ_S 1_S + s = 1, kept when non-singular and non-negative (a vertex of a standard-form
+    polyhedron is a basic feasible solution).
     """
     sets = list(range(1, 1 << n_goals))
-    cols = [[Fraction((t >> i) & 1) for i in range(n_goals)] for t in sets]
-    cols += [[Fraction(int(i == j)) for i in range(n_goals)] for j in range(n_goals)]
-    out: set[tuple[Fraction, ...]] = set()
-    for basis in itertools.combinations(range(len(cols)), n_goals):
-        mat = [[cols[j][i] for j in basis] + [Fraction(1)] for i in range(n_goals)]
-        for c in range(n_goals):  # Gauss-Jordan with exact pivots
-            piv = next((r for r in range(c, n_goals) if mat[r][c] != 0), None)
-            if piv is None:
-                break
-            mat[c], mat[piv] = mat[piv], mat[c]
-            mat[c] = [x / mat[c][c] for x in mat[c]]
-            for r in range(n_goals):
-                if r != c and mat[r][c] != 0:
-                    f = mat[r][c]
-                    mat[r] = [a - f * b for a, b in zip(mat[r], mat[c], strict=True)]
-        else:
-            x = [mat[i][-1] for i in range(n_goals)]
-            if all(v >= 0 for v in x):
-                lam = [Fraction(0)] * len(sets)
-                for pos, j in enumerate(basis):
-                    if j < len(sets):
-                        lam[j] = x[pos]
-                out.add(tuple(lam))
-    return out
+    cols = [tuple((t >> i) & 1 for i in range(n_goals)) for t in sets]
+    cols += [tuple(int(i == j) for i in range(n_goals)) for j in range(n_goals)]
+    return {c[:len(sets)] for c in basic_solutions(cols, (1,) * n_goals)}
 
 
 def _y(lam: tuple[Fraction, ...], n_goals: int) -> tuple[Fraction, ...]:

@@ -11,7 +11,7 @@ import math
 import random
 from fractions import Fraction
 
-from dppverify.game.examples import hub4
+from dppverify.game.examples import hub4, hub_document
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile_types import GuaranteeRule
 from dppverify.structured.arc_condition import arc_condition, walkable_arcs
@@ -20,29 +20,15 @@ from dppverify.structured.guarantee import guarantee_sigma, rule_order
 from dppverify.structured.lexmin import simplex_min
 from dppverify.structured.normal_fixpoint import normal_sets
 from dppverify.structured.rule_response import RuleSearch
+from proofs.checks._linear import solve_square
 
 HUB_EXTRAS = [(2, 2, 2, 1), (2, 2, 1, 2), (2, 1, 2, 2), (1, 2, 2, 2)]
 
 
 def _hub(rng: random.Random, n_goals: int) -> Instance:
-    """A random hub gadget (u -> u1 -> middles -> two or three goals; a finite game)."""
-    goals = [f"g{i + 1}" for i in range(n_goals)]
-    mids = [f"m{j}" for j in range(rng.randint(2, 4))]
-    arcs = {("u", "u1"): rng.randint(1, 2)}
-    for m in mids:
-        arcs[("u1", m)] = rng.randint(1, 2)
-        for g in rng.sample(goals, rng.randint(2, min(3, n_goals))):
-            arcs[(m, g)] = rng.randint(1, 2)
-    for g in goals:
-        arcs[(g, "u")] = 10
-        if not any((m, g) in arcs for m in mids):
-            arcs[(rng.choice(mids), g)] = 1
-    ws = [rng.randint(1, 6) for _ in range(n_goals)]
-    doc = {"graph": {"directed": True, "nodes": [{"id": v} for v in ["u", "u1", *mids, *goals]],
-                     "edges": [{"source": a, "target": b, "weight": w}
-                               for (a, b), w in arcs.items()]},
-           "start": "u", "goals": goals, "prior": [str(Fraction(w, sum(ws))) for w in ws]}
-    return instance_from_json(doc)
+    """A random directed hub without shortcuts (u -> u1 -> middles -> two or three goals;
+    every walk has at most three steps): :func:`dppverify.game.examples.hub_document`."""
+    return instance_from_json(hub_document(rng, n_goals, directed=True, shortcuts=False))
 
 
 def _grid(rng: random.Random, n_goals: int) -> Instance:
@@ -174,29 +160,13 @@ def test_NR2_every_walk_costs_at_least_h_when_the_arc_condition_holds() -> None:
             assert total == h[t] - r[t] + Fraction(inst.dist_to[t][v])  # NR.3
 
 
-def _solve(mat: list[list[Fraction]], rhs: list[Fraction]) -> list[Fraction] | None:
-    """The unique solution of a square system in Fractions, None when singular."""
-    n = len(rhs)
-    a = [[*row, b] for row, b in zip(mat, rhs, strict=True)]
-    for col in range(n):
-        piv = next((r for r in range(col, n) if a[r][col] != 0), None)
-        if piv is None:
-            return None
-        a[col], a[piv] = a[piv], a[col]
-        a[col] = [x / a[col][col] for x in a[col]]
-        for r in range(n):
-            if r != col and a[r][col] != 0:
-                a[r] = [x - a[r][col] * y for x, y in zip(a[r], a[col], strict=True)]
-    return [a[i][n] for i in range(n)]
-
-
 def _vertices(normals: tuple[tuple[int, ...], ...], m: list[Fraction]) -> list[list[Fraction]]:
     """The maximal vertices of F = {r : a·r <= m_a, a ∈ A} (N tight, independent rows,
     feasible; not below another vertex)."""
     n = len(normals[0])
     found: set[tuple[Fraction, ...]] = set()
     for rows in itertools.combinations(range(len(normals)), n):
-        r = _solve([[Fraction(x) for x in normals[j]] for j in rows], [m[j] for j in rows])
+        r = solve_square([normals[j] for j in rows], [m[j] for j in rows])
         if r is not None and all(sum((a * x for a, x in zip(normals[j], r, strict=True)),
                                      Fraction(0)) <= m[j] for j in range(len(normals))):
             found.add(tuple(r))

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import itertools
 import random
+from collections.abc import Iterator, Sequence
 from fractions import Fraction
 
 import numpy as np
@@ -162,13 +163,20 @@ def _instance(rng: random.Random, n_goals: int) -> Instance | None:
         return None
 
 
+def _instances(rng: random.Random, count: int, goals: Sequence[int]) -> Iterator[Instance]:
+    """``count`` random instances (drawn until valid), each with a goal count from ``goals``
+    (drawn when there is a choice)."""
+    done = 0
+    while done < count:
+        inst = _instance(rng, goals[0] if len(goals) == 1 else rng.choice(goals))
+        if inst is not None:
+            done += 1
+            yield inst
+
+
 def test_NSOLVE3_label_setting_equals_the_layered_fixpoint() -> None:
     rng = random.Random(1)
-    done = 0
-    while done < 25:
-        inst = _instance(rng, rng.choice([2, 3, 4]))
-        if inst is None:
-            continue
+    for inst in _instances(rng, 25, [2, 3, 4]):
         run = CoalitionRunner(inst)
         layer = run.layer0()
         k = 0
@@ -183,16 +191,11 @@ def test_NSOLVE3_label_setting_equals_the_layered_fixpoint() -> None:
             for v in range(inst.n_nodes):
                 want = None if int(vals[v]) >= run.big else Fraction(int(vals[v]), run.scale)
                 assert sets.value(mask, v) == want
-        done += 1
 
 
 def test_NSOLVE1_every_walk_costs_at_least_h() -> None:
     rng = random.Random(2)
-    done = 0
-    while done < 20:
-        inst = _instance(rng, 3)
-        if inst is None:
-            continue
+    for inst in _instances(rng, 20, [3]):
         sets = guarantee_sets(inst)
         costs = {s: Fraction(int(v[inst.start]), sets.scale) for s, v in sets.m.items()}
         h = min_cover(costs, inst.prior).dual  # an optimal dual: h ∈ G_s0
@@ -212,16 +215,11 @@ def test_NSOLVE1_every_walk_costs_at_least_h() -> None:
             if inst.is_goal(v):
                 for t in range(3):
                     assert paid[t] + Fraction(inst.dist_to[t][v]) >= h[t]
-        done += 1
 
 
 def test_NSOLVE5_two_goals_the_rule_is_the_progress_rule() -> None:
     rng = random.Random(3)
-    done = 0
-    while done < 20:
-        inst = _instance(rng, 2)
-        if inst is None:
-            continue
+    for inst in _instances(rng, 20, [2]):
         sets = guarantee_sets(inst)
         d1 = [Fraction(x) if x != float("inf") else None for x in inst.dist_to[0]]
         m12 = sets.value(3, inst.start)
@@ -241,4 +239,3 @@ def test_NSOLVE5_two_goals_the_rule_is_the_progress_rule() -> None:
                 assert sigma[0] == (c - c_next) / Fraction(w)  # σ*(g1) = new progress / w
                 r = [x - Fraction(w) * s for x, s in zip(r, sigma, strict=True)]
                 v, c = u, c_next
-        done += 1

@@ -17,16 +17,16 @@ Dijkstra per ``S`` (exact: integers scaled by ``W·L^(N-1)``, ``W`` the weights'
 
 The balanced collections are the vertices of ``{λ >= 0 : Σ_{T ⊊ S} λ_T 1_T = 1_S}``, found by
 trying every basis (a float pre-filter on the integer determinants, then exact integers).
-The cover LP at the start, ``min Σ_S c_S m_S(s0)`` s.t. ``Σ_S c_S 1_S = b``, is solved by an
-exact simplex (:func:`cover_lp`), which also returns its dual ``h`` (``h(S) <= m_S(s0)``,
-``h·b`` = the value).
+The cover LP at the start, ``min Σ_S c_S m_S(s0)`` s.t. ``Σ_S c_S 1_S = b``, is the normals'
+cover LP over the subsets' 0/1 vectors (:func:`~solver.coalitions.normal_cover.normal_cover_lp`),
+which also returns its dual ``h`` (``h(S) <= m_S(s0)``, ``h·b`` = the value).
 """
 
 from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import cache
@@ -35,10 +35,8 @@ import numpy as np
 
 from solver.game.instance import Instance
 from solver.graph.distances import distances_from_sources
-from solver.numbers import pivot, solve_exact
 
-__all__ = ["Coalitions", "CoverSolution", "balanced_collections", "coalition_dp", "cover_lp",
-           "subset_members"]
+__all__ = ["Coalitions", "balanced_collections", "coalition_dp", "subset_members"]
 
 
 
@@ -88,86 +86,6 @@ def balanced_collections(size: int) -> tuple[tuple[tuple[int, Fraction], ...], .
             continue
         found.add(tuple(sorted((t, x) for t, x in zip(members, lam, strict=True) if x)))
     return tuple(sorted(found))
-
-
-@dataclass(frozen=True)
-class CoverSolution:
-    """The exact optimum of the cover LP: value, primal cover ``c`` and dual ``h``."""
-
-    value: Fraction
-    cover: Mapping[int, Fraction]
-    dual: tuple[Fraction, ...]
-
-
-def cover_lp(costs: Mapping[int, Fraction], b: Sequence[Fraction],
-             order: Sequence[int] = ()) -> CoverSolution:
-    """``min Σ_S c_S costs[S]`` s.t. ``Σ_S c_S 1_S = b``, ``c >= 0``, by an exact tableau simplex.
-
-    Starts from the singleton basis (feasible: ``b > 0``), Bland's rule (finite). The dual
-    ``h`` of the optimal basis satisfies ``h(S) <= costs[S]`` for every ``S`` and ``h·b`` =
-    value. With ``order`` the right-hand side is perturbed lexicographically,
-    ``b + ε e_{order[0]} + ε² e_{order[1]} + …``: the final basis is then optimal for ``b`` and
-    its dual is the lexicographically largest optimal dual in ``order`` (LP sensitivity: the
-    perturbed problem's dual maximises ``h·b`` first, then ``h_{order[0]}``, …).
-
-    Examples
-    --------
-    >>> costs = {1: 2, 2: 2, 4: 2, 3: 2, 5: 2, 6: 2, 7: 5}
-    >>> sol = cover_lp({k: Fraction(v) for k, v in costs.items()}, [Fraction(1)] * 3)
-    >>> sol.value, sol.dual
-    (Fraction(3, 1), (Fraction(1, 1), Fraction(1, 1), Fraction(1, 1)))
-    >>> two = {1: Fraction(9, 2), 2: Fraction(3), 3: Fraction(9, 2)}
-    >>> cover_lp(two, [Fraction(1, 2)] * 2, order=(0, 1)).dual
-    (Fraction(9, 2), Fraction(0, 1))
-    """
-    n = len(b)
-    masks = sorted(costs)
-    col = {t: j for j, t in enumerate(masks)}
-    width = len(masks)
-
-    def rhs(i: int) -> list[Fraction]:
-        out = [Fraction(b[i])]
-        out += [Fraction(int(i == t)) for t in order]
-        return out
-
-    # tableau rows: B^{-1} A | B^{-1} (b, perturbations) ; basis = singletons
-    rows = [[Fraction(t >> i & 1) for t in masks] + rhs(i) for i in range(n)]
-    basis = [1 << i for i in range(n)]
-    while True:
-        h = _duals(basis, costs, n)
-        entering = None
-        for t in masks:
-            if t in basis:
-                continue
-            if costs[t] - sum(h[i] for i in subset_members(t)) < 0:
-                entering = t
-                break
-        if entering is None:
-            value = sum((costs[basis[i]] * rows[i][width] for i in range(n)), Fraction(0))
-            cover = {basis[i]: rows[i][width] for i in range(n) if rows[i][width]}
-            return CoverSolution(value, cover, tuple(h))
-        j = col[entering]
-        best = None
-        for i in range(n):
-            a = rows[i][j]
-            if a > 0:
-                key = ([x / a for x in rows[i][width:]], basis[i])
-                if best is None or key < best[0]:
-                    best = (key, i)
-        if best is None:  # pragma: no cover - c_S <= min b keeps the LP bounded
-            raise AssertionError("cover_lp: unbounded")
-        i = best[1]
-        pivot(rows, i, j)
-        basis[i] = entering
-
-
-def _duals(basis: list[int], costs: Mapping[int, Fraction], n: int) -> list[Fraction]:
-    """``h`` with ``h(T) = costs[T]`` for the basic columns (exact)."""
-    h = solve_exact([[Fraction(basis[r] >> i & 1) for i in range(n)] for r in range(n)],
-                    [Fraction(costs[basis[r]]) for r in range(n)])
-    if h is None:
-        raise ValueError("the cover LP's basis is singular")
-    return h
 
 
 @dataclass(frozen=True, eq=False)

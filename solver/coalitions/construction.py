@@ -149,13 +149,13 @@ class CoalitionEquilibrium:
 
         Examples
         --------
-        >>> from solver.game.instance_reading import instance_from_json
-        >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
-        ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
-        ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
-        >>> eq = coalition_equilibrium(instance_from_json(doc))
-        >>> [[str(x) for x in s] for s in eq.defender_along([0, 1])]
-        [['1', '0']]
+        The triangle's step ``s → g2`` (weight 2) makes progress 1 toward ``g1``: σ* (N = 2).
+
+        >>> from solver.game.instance import triangle
+        >>> game = triangle()
+        >>> eq = coalition_equilibrium(game)
+        >>> [[str(x) for x in s] for s in eq.defender_along([game.s0, game.targets[1]])]
+        [['1/2', '1/2']]
         """
         assert self.fixpoint is not None
         normals = self.fixpoint.system.normals
@@ -269,12 +269,9 @@ def simple_lower_bound(game: Instance) -> tuple[Fraction, str]:
 
     Examples
     --------
-    >>> from solver.game.instance_reading import instance_from_json
-    >>> doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
-    ...        "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
-    ...        "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}
-    >>> simple_lower_bound(instance_from_json(doc))
-    (Fraction(1, 2), 'a Defender always guarding goal 1 (proofs/NGOAL.md NG.9)')
+    >>> from solver.game.instance import triangle
+    >>> simple_lower_bound(triangle())
+    (Fraction(21, 10), 'a Defender always guarding goal 1 (proofs/NGOAL.md NG.9)')
     """
     d = [game.distance(t, game.s0) for t in range(game.n_goals)]
     guard = [b * x for b, x in zip(game.prior, d, strict=True)]

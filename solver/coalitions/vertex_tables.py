@@ -13,8 +13,10 @@ Two polytopes carry the N-goal mathematics of ``proofs/NEXACT.md``:
 Vertices are basic feasible solutions: every choice of as many columns as the system has rows
 (on the support of the right-hand side) with a non-zero exact integer determinant, solved by
 Cramer's rule, kept when non-negative. Determinants are exact integers (Laplace expansion over
-numpy int64 arrays: entries are small and the matrices at most 5 × 5, so no product leaves
-int64). Nothing is decided in floating point.
+numpy int64 arrays). A table whose determinants (Hadamard's bound), common denominator or
+scaled vertices could reach :data:`INT_LIMIT` is refused with a ``ValueError`` instead of
+being computed in int64 (the construction reports that as an unreached fixpoint with its
+bracket). Nothing is decided in floating point.
 """
 
 from __future__ import annotations
@@ -35,6 +37,9 @@ Normal = tuple[int, ...]
 """A facet normal: a non-negative integer vector with one entry per goal, not all zero."""
 
 CHUNK = 100_000
+
+INT_LIMIT = 2 ** 62
+"""Every integer a table computes or stores stays below this (int64, with room for one sum)."""
 
 
 def zero_one_normals(n_goals: int) -> tuple[Normal, ...]:
@@ -169,6 +174,7 @@ def _vertex_table(columns: tuple[Normal, ...], rhs: Normal, max_bases: int) -> V
     if math.comb(len(keep), m) > max_bases:
         raise ValueError(f"vertex_table: {math.comb(len(keep), m):,} bases exceed the limit "
                          f"of {max_bases:,}")
+    _check_hadamard([[columns[j][i] for i in rows] for j in keep] + [[rhs[i] for i in rows]], m)
     mat = np.array([[columns[j][i] for j in keep] for i in rows], dtype=np.int64)
     b = np.array([rhs[i] for i in rows], dtype=np.int64)
     found: list[np.ndarray] = []
@@ -202,7 +208,10 @@ def _vertex_table(columns: tuple[Normal, ...], rhs: Normal, max_bases: int) -> V
         chunk, det, numer = chunk[feas], det[feas], numer[feas]
         if not chunk.size:
             continue
-        common = int(np.lcm.reduce(np.abs(det)))
+        common = math.lcm(1, *(int(x) for x in np.unique(np.abs(det))))
+        if common * (int(np.abs(numer).max(initial=0)) + 1) >= INT_LIMIT:
+            raise ValueError(f"vertex_table: the vertices' common denominator {common} leaves "
+                             "int64")
         dense = np.zeros((chunk.shape[0], len(keep)), dtype=np.int64)
         idx = np.arange(chunk.shape[0])
         for i in range(m):
@@ -210,12 +219,31 @@ def _vertex_table(columns: tuple[Normal, ...], rhs: Normal, max_bases: int) -> V
         found.append(_unique_rows(dense))  # a degenerate vertex has several bases
         dens.append(common)
     lcm = math.lcm(1, *dens)
+    if max((int(np.abs(d).max(initial=0)) * (lcm // c) for d, c in zip(found, dens, strict=True)),
+           default=0) >= INT_LIMIT:
+        raise ValueError(f"vertex_table: the vertices' common denominator {lcm} leaves int64")
     stacked = (np.concatenate([d * (lcm // c) for d, c in zip(found, dens, strict=True)])
                if found else np.zeros((0, len(keep)), dtype=np.int64))
     unique = _unique_rows(stacked)  # a degenerate vertex has several bases
     g = math.gcd(int(np.gcd.reduce(unique.ravel(), initial=0)), lcm)
     return VertexTable(columns=tuple(keep), scaled=np.ascontiguousarray((unique // g).T),
                        lcm=lcm // g)
+
+
+def _check_hadamard(vectors: list[list[int]], m: int) -> None:
+    """Refuse a system in which an integer of the determinant step could reach
+    :data:`INT_LIMIT`.
+
+    Every ``k × k`` minor of ``m`` of the vectors (the columns, or Cramer's matrices, where the
+    right-hand side replaces a column) is at most ``Π ||v||`` over the ``m`` longest vectors
+    (Hadamard; integer vectors have norm >= 1), a Laplace partial sum at most ``m`` such
+    terms, and checking ``B·x = det·b`` multiplies one by an entry: all below
+    ``2**6 · ||v||_max · Π ||v||``, compared here in exact integers (squared).
+    """
+    squares = sorted((sum(int(x) ** 2 for x in v) for v in vectors), reverse=True)
+    if math.prod(squares[:m]) * squares[0] * 2 ** 12 >= INT_LIMIT ** 2:
+        raise ValueError(f"vertex_table: a {m} × {m} determinant could leave int64 (Hadamard's "
+                         "bound on these entries)")
 
 
 def _unique_rows(arr: np.ndarray) -> np.ndarray:

@@ -168,10 +168,10 @@ def summary_table(rows: Sequence[BaselineRow]) -> str:
             eq = [by[(n, "sigma*", "gamma*")] for n in names]
             gap = [e - s for e, s in zip(eq, star, strict=True)]
             worse = sum(1 for s, x in zip(star, alt, strict=True) if x > s)
-            lines.append(f"| {setting} | {len(names)} | {LABELS[a]} | {decimal(_mean(star))} | "
-                         f"{decimal(_mean(alt))} | {decimal(_mean(gap), sign=True)} | "
-                         f"{decimal(_mean(alt) - _mean(star), sign=True)} | "
-                         f"{worse}/{len(names)} |")
+            lines.append(_row(setting, len(names), LABELS[a], decimal(_mean(star)),
+                              decimal(_mean(alt)), decimal(_mean(gap), sign=True),
+                              decimal(_mean(alt) - _mean(star), sign=True),
+                              f"{worse}/{len(names)}"))
     return "\n".join(lines)
 
 
@@ -197,10 +197,9 @@ def worst_case_table(rows: Sequence[BaselineRow]) -> str:
         alt = [worst[(n, "sigma'")] for n in names]
         more = sum(1 for s, x in zip(star, alt, strict=True) if x > s)
         less = sum(1 for s, x in zip(star, alt, strict=True) if x < s)
-        lines.append(f"| {setting} | {len(names)} | {decimal(_mean(star))} | "
-                     f"{decimal(_mean(alt))} | "
-                     f"{decimal(_mean(alt) - _mean(star), sign=True)} | {more}/{len(names)} | "
-                     f"{less}/{len(names)} |")
+        lines.append(_row(setting, len(names), decimal(_mean(star)), decimal(_mean(alt)),
+                          decimal(_mean(alt) - _mean(star), sign=True), f"{more}/{len(names)}",
+                          f"{less}/{len(names)}"))
     return "\n".join(lines)
 
 
@@ -228,10 +227,13 @@ def field_table(rows: Sequence[BaselineRow]) -> str:
             mean = [_mean_any([m.cost_ratio for m in ms]), _mean_any([m.ldp for m in ms]),
                     _mean_any([m.deceptive_density for m in ms])]
             truth = [_mean_any([m.truthful[i] for m in ms]) for i in range(len(PERCENTS))]
-            lines.append(f"| {setting} | {len(ms)} | {LABELS[a]} | "
-                         + " | ".join(decimal(x) for x in mean) + " | "
-                         + " | ".join(decimal(x) for x in truth) + " |")
+            lines.append(_row(setting, len(ms), LABELS[a], *map(decimal, mean + truth)))
     return "\n".join(lines)
+
+
+def _row(*cells: object) -> str:
+    """One Markdown table row."""
+    return "| " + " | ".join(map(str, cells)) + " |"
 
 
 def _mean_any(xs: Sequence[Any]) -> float:

@@ -29,7 +29,7 @@ import errno
 import os
 import stat
 import tempfile
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
 from dppio.files import file_mode, make_parents, remove_created, short_path
@@ -120,21 +120,11 @@ file)
             raise OutputError("-o: the output path is empty")
         if str(output).endswith(("/", os.sep)):  # Path() would drop the slash
             raise OutputError(f"-o {shown} names a folder (a trailing /); give a file name")
-        try:
-            st_link = os.lstat(output)
-        except FileNotFoundError:
-            st_link = None
-        except OSError as exc:
-            raise _cannot(shown, exc) from None
+        st_link = _stat_or_none(os.lstat, output, shown)
         target = Path(output)
         if st_link is not None and stat.S_ISLNK(st_link.st_mode):
             target = Path(os.path.realpath(output))  # follow the link, keep it
-        try:
-            st = os.stat(target)
-        except FileNotFoundError:
-            st = None
-        except OSError as exc:
-            raise _cannot(shown, exc) from None
+        st = _stat_or_none(os.stat, target, shown)
         if st is None:
             _check_new(shown, target)
             return cls(shown, target, None, set(), BatchTally())
@@ -305,6 +295,18 @@ file)
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+def _stat_or_none(how: Callable[[str | Path], os.stat_result], path: str | Path, shown: str
+                  ) -> os.stat_result | None:
+    """``how(path)`` (``os.stat`` or ``os.lstat``), None when nothing is there; any other
+    failure is the one-line :func:`_cannot`."""
+    try:
+        return how(path)
+    except FileNotFoundError:
+        return None
+    except OSError as exc:
+        raise _cannot(shown, exc) from None
 
 
 def _cannot(shown: str, exc: OSError) -> OutputError:

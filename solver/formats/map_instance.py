@@ -74,7 +74,7 @@ def read_map_document(data: dict[str, Any], base: Path | None, *, count: int | N
         raise InstanceFormatError("map_sha256: must be 64 lowercase hex digits (the sha256 of "
                                   "the map file)")
     connectivity = data.get("connectivity", 4)
-    if isinstance(connectivity, bool) or connectivity not in (4, 8):
+    if type(connectivity) is not int or connectivity not in (4, 8):
         raise InstanceFormatError(f"connectivity: must be 4 or 8, got "
                                   f"{json.dumps(connectivity, default=str)[:40]}")
     goals, prior = data["goals"], data["prior"]

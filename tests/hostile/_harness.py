@@ -24,6 +24,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from dppio.procs import process_table
+
 ROOT = Path(__file__).resolve().parents[2]
 GUARD_SECONDS = 300
 """Wall-clock guard per probe: only there so that a hang fails instead of blocking."""
@@ -31,6 +33,19 @@ DEFAULT_MEMORY = 3 << 30
 """Address-space limit of a probe (bytes): numpy, scipy and cvxpy fit well below it."""
 DEFAULT_CPU = 120
 """CPU-seconds limit of a probe."""
+
+MAP = ["--map", "paper10.map", "--start", "9,0", "--goals", "0,9", "0,0", "--prior", "0.6,0.4"]
+"""The paper's map game as ``--map`` options (paper10.map is in every probe's scratch folder)."""
+
+Setup = Callable[[Path], None]
+"""What a probe prepares in its scratch folder before it runs."""
+
+
+def link(name: str, target: str) -> Setup:
+    """A setup that makes ``name`` a symbolic link to ``target``."""
+    def setup(d: Path) -> None:
+        (d / name).symlink_to(target)
+    return setup
 
 
 @dataclass
@@ -61,18 +76,8 @@ def listing(root: Path) -> dict[str, tuple[str, int, int]]:
 
 
 def _session_members(sid: int) -> list[int]:
-    out = []
-    for entry in Path("/proc").iterdir():
-        if not entry.name.isdigit():
-            continue
-        try:
-            text = (entry / "stat").read_text()
-        except OSError:
-            continue
-        fields = text[text.rfind(")") + 2:].split()
-        if len(fields) > 3 and int(fields[3]) == sid and fields[0] != "Z":
-            out.append(int(entry.name))
-    return out
+    return [pid for pid, fields in process_table().items()
+            if len(fields) > 3 and int(fields[3]) == sid and fields[0] != "Z"]
 
 
 def alive(pid: int) -> bool:
@@ -228,7 +233,7 @@ def write_template(d: Path) -> Path:
 
 
 def run_probe(scratch: Path, name: str, probe: Probe,
-              setup: Callable[[Path], None] | None) -> Result:
+              setup: Setup | None) -> Result:
     """Set up, run and check one probe in ``scratch`` (the ``scratch`` fixture): the shared
     assertions (:func:`check`), no recorded pid alive, no temporary file left, ``/dev/null``
     and FIFOs named ``ff`` left as they were. Probes whose target cannot exist here, or that

@@ -9,27 +9,17 @@ line (a closed pipe: quietly, exit 141) or works; a full disk leaves all outputs
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
 from pathlib import Path
 
 import pytest
 
-from tests.hostile._harness import Probe, run_probe
+from tests.hostile._harness import MAP, Probe, Setup, link, run_probe
 
 pytestmark = pytest.mark.hostile
 
-Setup = Callable[[Path], None]
-
-MAP = ["--map", "paper10.map", "--start", "9,0", "--goals", "0,9", "0,0", "--prior", "0.6,0.4"]
 LONG = "a" * 246  # + a 4-character suffix: 250 bytes, a legal name
 DEEP = "/".join(["d" * 200] * 25)  # past PATH_MAX (4096)
 ODD = os.fsdecode(b"b\xff")  # not UTF-8
-
-
-def _link(name: str, target: str) -> Setup:
-    def setup(d: Path) -> None:
-        (d / name).symlink_to(target)
-    return setup
 
 
 def _copy(source: str, target: str) -> Setup:
@@ -54,16 +44,16 @@ def probe(name: str, args: list[str], setup: Setup | None = None, **kw: object) 
 
 # --- an output is never an input -----------------------------------------------------------
 probe("plot map -o a .png link to its instance", ["plot", "map", "i.json", "-o", "ln.png"],
-      lambda d: (_copy("tri.json", "i.json")(d), _link("ln.png", "i.json")(d)),
+      lambda d: (_copy("tri.json", "i.json")(d), link("ln.png", "i.json")(d)),
       contains="input")
 probe("plot map -o its instance named .png", ["plot", "map", "i.png", "-o", "i.png"],
       _copy("tri.json", "i.png"), contains="input")
 probe("plot map -o a link to its map", ["plot", "map", *MAP, "-o", "m.png"],
-      _link("m.png", "paper10.map"), contains="input")
+      link("m.png", "paper10.map"), contains="input")
 probe("plot beliefs -o a link to its map", ["plot", "beliefs", *MAP, "-o", "m.svg"],
-      _link("m.svg", "paper10.map"), contains="input")
+      link("m.svg", "paper10.map"), contains="input")
 probe("plot voi -o a link to its CSV", ["plot", "voi", "density.csv", "-o", "v.pdf"],
-      lambda d: (_density_csv(d), _link("v.pdf", "density.csv")(d)), contains="input")
+      lambda d: (_density_csv(d), link("v.pdf", "density.csv")(d)), contains="input")
 probe("compare --output-dir over its instance", ["experiment", "compare", "od/compare.csv",
                                                  "--output-dir", "od"],
       _copy("tri.json", "od/compare.csv"), contains="input")

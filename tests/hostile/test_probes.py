@@ -7,19 +7,15 @@ from __future__ import annotations
 import json
 import os
 import stat
-from collections.abc import Callable
 from pathlib import Path
 
 import pytest
 
-from tests.hostile._harness import Probe, check, listing, run, run_probe
+from tests.hostile._harness import MAP, Probe, Setup, check, link, listing, run, run_probe
 
 pytestmark = pytest.mark.hostile
 
-Setup = Callable[[Path], None]
-
 TRI = ["tri.json"]
-MAP = ["--map", "paper10.map", "--start", "9,0", "--goals", "0,9", "0,0", "--prior", "0.6,0.4"]
 
 
 def _float_instance(w: list[float]) -> dict[str, object]:
@@ -49,12 +45,6 @@ def _floats(*w: float) -> Setup:
 def _fifo(name: str) -> Setup:
     def setup(d: Path) -> None:
         os.mkfifo(d / name)
-    return setup
-
-
-def _link(name: str, target: str) -> Setup:
-    def setup(d: Path) -> None:
-        (d / name).symlink_to(target)
     return setup
 
 
@@ -94,12 +84,12 @@ def probe(name: str, args: list[str], setup: Setup | None = None, **kw: object) 
 probe("solve -o /dev/null", ["solve", *TRI, "-o", "/dev/null"], code=0)
 probe("solve -o fifo without reader", ["solve", *TRI, "-o", "ff"], _fifo("ff"),
       contains="FIFO")
-probe("solve -o link to /dev/null", ["solve", *TRI, "-o", "ln"], _link("ln", "/dev/null"),
+probe("solve -o link to /dev/null", ["solve", *TRI, "-o", "ln"], link("ln", "/dev/null"),
       code=0)
 probe("solve -o link to fifo", ["solve", *TRI, "-o", "ln"],
-      _combine(_fifo("ff"), _link("ln", "ff")), contains="FIFO")
+      _combine(_fifo("ff"), link("ln", "ff")), contains="FIFO")
 probe("solve -o link to regular file", ["solve", *TRI, "-o", "ln"],
-      _combine(lambda d: (d / "real.json").write_text("{}"), _link("ln", "real.json")),
+      _combine(lambda d: (d / "real.json").write_text("{}"), link("ln", "real.json")),
       code=0, changes=("real.json",))
 probe("solve --save-instance /dev/null", ["solve", *TRI, "--save-instance", "/dev/null"],
       code=0, one_line=False)
@@ -109,7 +99,7 @@ probe("solve x -o ./sub/../x", ["solve", *TRI, "-o", "sub/../tri.json"], _folder
 probe("solve x --save-instance x", ["solve", *TRI, "--save-instance", "tri.json"],
       contains="input")
 probe("solve --map m -o m", ["solve", *MAP, "-o", "paper10.map"], contains="input")
-probe("solve x -o link-to-x", ["solve", *TRI, "-o", "ln"], _link("ln", "tri.json"),
+probe("solve x -o link-to-x", ["solve", *TRI, "-o", "ln"], link("ln", "tri.json"),
       contains="input")
 probe("export-efg x -o x", ["export-efg", *TRI, "-H", "1", "-o", "tri.json"],
       contains="input")

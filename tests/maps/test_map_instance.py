@@ -102,6 +102,9 @@ def test_the_pair_moves_together_and_every_command_reads_it(
     ({"start": [1, 1]}, "start cell (1, 1) is an obstacle"),
     ({"start": [0]}, "start: a cell is [row, col]"),
     ({"connectivity": 6}, "connectivity: must be 4 or 8"),
+    ({"connectivity": 4.0}, "connectivity: must be 4 or 8"),  # the solver took it once
+    ({"connectivity": True}, "connectivity: must be 4 or 8"),
+    ({"start": [0.0, 0]}, "start"),
     ({"prior": ["1/2", "1/3"]}, "prior"),
 ])
 def test_mistakes_are_one_line_exit_2(game: tuple[Path, Path, Path], change: dict[str, Any],

@@ -7,7 +7,6 @@ Used as the brute-force reference of the property tests; imports neither package
 
 from __future__ import annotations
 
-import heapq
 import itertools
 import math
 from collections.abc import Hashable, Iterator, Sequence
@@ -147,30 +146,27 @@ def _dist_to(succ: dict[Node, tuple[tuple[Node, Fraction], ...]], target: Node
     for u, arcs in succ.items():
         for v, w in arcs:
             pred[v].append((u, w))
-    return _dijkstra(pred, target)
+    return _shortest(pred, target)
 
 
 def _dist_from(succ: dict[Node, tuple[tuple[Node, Fraction], ...]], source: Node
                ) -> dict[Node, Fraction]:
-    return _dijkstra({u: list(a) for u, a in succ.items()}, source)
+    return _shortest({u: list(a) for u, a in succ.items()}, source)
 
 
-def _dijkstra(adj: dict[Node, list[tuple[Node, Fraction]]] | dict[Node, Any], source: Node
+def _shortest(adj: dict[Node, list[tuple[Node, Fraction]]] | dict[Node, Any], source: Node
               ) -> dict[Node, Fraction]:
+    """Exact shortest distances from ``source`` by Bellman–Ford (relax every arc until nothing
+    changes): slower than both packages' Dijkstra and sharing nothing with it."""
     dist: dict[Node, Fraction] = {source: Fraction(0)}
-    heap: list[tuple[Fraction, int, Node]] = [(Fraction(0), 0, source)]
-    tick = 0
-    done: set[Node] = set()
-    while heap:
-        d, _, u = heapq.heappop(heap)
-        if u in done:
-            continue
-        done.add(u)
-        for v, w in adj[u]:
-            if v not in dist or d + w < dist[v]:
-                dist[v] = d + w
-                tick += 1
-                heapq.heappush(heap, (dist[v], tick, v))
+    changed = True
+    while changed:
+        changed = False
+        for u in list(dist):
+            for v, w in adj[u]:
+                if v not in dist or dist[u] + w < dist[v]:
+                    dist[v] = dist[u] + w
+                    changed = True
     return dist
 
 

@@ -22,6 +22,8 @@ from typing import Any
 
 import networkx as nx
 
+from dppverify.game.examples import hub_document
+
 Doc = dict[str, Any]
 
 GADGET: Doc = {
@@ -41,32 +43,14 @@ def _prior(rng: random.Random, n: int) -> list[str]:
 
 
 def hub(rng: random.Random, n_goals: int, *, dag: bool = False) -> Doc:
-    """A random hub gadget (four or five goals make gaps likely; two or three are allowed)."""
-    goals = [f"g{i + 1}" for i in range(n_goals)]
-    mids = [f"m{j}" for j in range(rng.randint(2, 4))]
-    arcs = {("u", "u1"): rng.randint(1, 2)}
-    for m in mids:
-        arcs[("u1", m)] = rng.randint(1, 2)
-        for g in rng.sample(goals, rng.randint(2, min(3, n_goals))):
-            arcs[(m, g)] = rng.randint(1, 2)
-    for g in goals:
-        if not dag:
-            arcs[(g, "u")] = 10
-        if not any((m, g) in arcs for m in mids):
-            arcs[(rng.choice(mids), g)] = rng.randint(1, 2)
-        if ("u1", g) not in arcs and rng.random() < 0.2:
-            arcs[("u1", g)] = rng.randint(2, 4)
-    if rng.random() < 0.3:
-        arcs[("u", rng.choice(mids))] = rng.randint(2, 3)
-    directed = dag or rng.random() < 0.6
-    if dag:  # terminal costs must be finite: goals joined by a cycle among themselves
-        for g, g2 in zip(goals, goals[1:] + goals[:1], strict=True):
-            arcs[(g, g2)] = 3
-    return {"graph": {"directed": directed,
-                      "nodes": [{"id": v} for v in ["u", "u1", *mids, *goals]],
-                      "edges": [{"source": a, "target": b, "weight": w}
-                                for (a, b), w in arcs.items()]},
-            "start": "u", "goals": goals, "prior": _prior(rng, n_goals)}
+    """A random hub gadget (:func:`dppverify.game.examples.hub_document`); ``dag``: no return
+    arcs, the goals joined by a cycle of weight-3 arcs instead (terminal costs stay finite)."""
+    doc = hub_document(rng, n_goals, directed=True if dag else None, returns=not dag)
+    if dag:
+        goals = doc["goals"]
+        doc["graph"]["edges"] += [{"source": g, "target": g2, "weight": 3}
+                                  for g, g2 in zip(goals, goals[1:] + goals[:1], strict=True)]
+    return doc
 
 
 def digraph(rng: random.Random, n_goals: int) -> Doc:

@@ -7,9 +7,9 @@ import random
 from fractions import Fraction
 from typing import Any
 
-from tests.dppverify.structured.test_proved_value import hub_gadget
+from dppverify.game.examples import hub_document
 
-__all__ = ["digraph", "extras", "grid", "hub_gadget", "instance_doc"]
+__all__ = ["digraph", "extras", "grid", "instance_doc"]
 
 
 def _prior(rng: random.Random, n_goals: int) -> list[str]:
@@ -67,7 +67,7 @@ def grid(rng: random.Random, n_goals: int) -> dict[str, Any]:
 def instance_doc(rng: random.Random, n_goals: int, family: str) -> dict[str, Any]:
     """One instance of ``family``: ``digraph``, ``dag``, ``grid`` or ``hub``."""
     if family == "hub":
-        return hub_gadget(rng, n_goals)
+        return hub_document(rng, n_goals)
     if family == "grid":
         return grid(rng, n_goals)
     return digraph(rng, n_goals, acyclic=family == "dag")

@@ -18,6 +18,7 @@ from dppverify.structured.cover import (
     min_cover,
     popcount,
 )
+from proofs.checks._linear import basic_solutions as basic_solutions_by_hand
 
 
 @pytest.mark.parametrize(("size", "count"), [(2, 1), (3, 5), (4, 41), (5, 1291)])
@@ -103,32 +104,6 @@ def test_masks() -> None:
     assert all(len(members(m)) == popcount(m) for m in itertools.chain(range(64)))
 
 
-def _brute_vertices(columns: list[tuple[int, ...]], rhs: tuple[int, ...]
-                    ) -> set[tuple[Fraction, ...]]:
-    """Every basic feasible solution of ``Σ c_j columns[j] = rhs, c >= 0`` by Gauss-Jordan in
-    Fractions over all bases (rhs of full support)."""
-    n = len(rhs)
-    out: set[tuple[Fraction, ...]] = set()
-    for basis in itertools.combinations(range(len(columns)), n):
-        mat = [[Fraction(columns[j][i]) for j in basis] + [Fraction(rhs[i])] for i in range(n)]
-        for col in range(n):
-            piv = next((r for r in range(col, n) if mat[r][col] != 0), None)
-            if piv is None:
-                break
-            mat[col], mat[piv] = mat[piv], mat[col]
-            mat[col] = [x / mat[col][col] for x in mat[col]]
-            for r in range(n):
-                if r != col and mat[r][col] != 0:
-                    mat[r] = [x - mat[r][col] * y for x, y in zip(mat[r], mat[col], strict=True)]
-        else:
-            c = [Fraction(0)] * len(columns)
-            for pos, j in enumerate(basis):
-                c[j] = mat[pos][n]
-            if all(x >= 0 for x in c):
-                out.add(tuple(c))
-    return out
-
-
 def test_vertex_tables_stay_exact_beyond_int64() -> None:
     """Five goals, four normals with large prime entries: the determinants' lcm is about
     10^20 (beyond int64). The table was once built in int64 (its lcm overflowed silently,
@@ -147,4 +122,4 @@ def test_vertex_tables_stay_exact_beyond_int64() -> None:
         assert all(x >= 0 for x in c)
         assert all(sum(c[j] * columns[j][i] for j in range(len(columns))) == rhs[i]
                    for i in range(5))
-    assert got == _brute_vertices(columns, rhs)
+    assert got == basic_solutions_by_hand(columns, rhs)

@@ -17,7 +17,7 @@ import pytest
 import dppverify.structured.proved_value as guarantee
 from dppverify.certify import certify
 from dppverify.cli.value import value_command
-from dppverify.game.examples import hub4, hub4_document
+from dppverify.game.examples import hub4, hub4_document, hub_document
 from dppverify.game.instance import instance_from_json
 from dppverify.structured.arc_condition import arc_condition
 from dppverify.structured.coalition import coalition_value
@@ -27,32 +27,6 @@ from dppverify.structured.proved_value import lower_bound_simple, nvalue
 from dppverify.tree_route.tree import count_prefixes
 from dppverify.tree_route.value_lp import game_value
 from tests.dppverify._helpers import run_cli, write_doc
-
-
-def hub_gadget(rng: random.Random, n_goals: int) -> dict[str, Any]:
-    """A random hub: ``u -> u1 -> m_j -> (2 or 3 goals)``, return arcs, random priors."""
-    goals = [f"g{i + 1}" for i in range(n_goals)]
-    mids = [f"m{j}" for j in range(rng.randint(2, 4))]
-    arcs = {("u", "u1"): rng.randint(1, 2)}
-    for m in mids:
-        arcs[("u1", m)] = rng.randint(1, 2)
-        for g in rng.sample(goals, rng.randint(2, min(3, n_goals))):
-            arcs[(m, g)] = rng.randint(1, 2)
-    for g in goals:
-        arcs[(g, "u")] = 10
-        if not any((m, g) in arcs for m in mids):  # every goal reachable from the start
-            arcs[(rng.choice(mids), g)] = rng.randint(1, 2)
-        if ("u1", g) not in arcs and rng.random() < 0.2:
-            arcs[("u1", g)] = rng.randint(2, 4)
-    if rng.random() < 0.3:
-        arcs[("u", rng.choice(mids))] = rng.randint(2, 3)
-    ws = [rng.randint(1, 6) for _ in range(n_goals)]
-    return {"graph": {"directed": rng.random() < 0.6,
-                      "nodes": [{"id": v} for v in ["u", "u1", *mids, *goals]],
-                      "edges": [{"source": a, "target": b, "weight": w}
-                                for (a, b), w in arcs.items()]},
-            "start": "u", "goals": goals,
-            "prior": [str(Fraction(w, sum(ws))) for w in ws]}
 
 
 def _compare(doc: dict[str, Any], extra: int) -> tuple[int, int]:
@@ -148,7 +122,7 @@ def test_hub_gadgets_with_four_goals_agree_with_the_tree_route() -> None:
     rng = random.Random(4)
     exact = 0
     for _ in range(8):
-        exact += _compare(hub_gadget(rng, 4), 1)[0]
+        exact += _compare(hub_document(rng, 4), 1)[0]
     assert exact > 0
 
 
@@ -158,7 +132,7 @@ def test_hub_gadget_campaign(n_goals: int) -> None:
     rng = random.Random(100 + n_goals)
     exact = 0
     for _ in range(40):
-        exact += _compare(hub_gadget(rng, n_goals), 2)[0]
+        exact += _compare(hub_document(rng, n_goals), 2)[0]
     assert exact > 0  # gaps (value below the coalition DP) are rare here: see the hub tests
 
 
@@ -168,7 +142,7 @@ def test_unrefined_brackets_hold_the_tree_value(monkeypatch: pytest.MonkeyPatch)
     rng = random.Random(1)
     brackets = 0
     docs = [hub4_document(), hub4_document(directed=False)]
-    docs += [hub_gadget(rng, 4) for _ in range(12)]
+    docs += [hub_document(rng, 4) for _ in range(12)]
     for doc in docs:
         inst = instance_from_json(doc)
         h = inst.hops[inst.start] + 1
@@ -183,7 +157,7 @@ def test_unrefined_brackets_hold_the_tree_value(monkeypatch: pytest.MonkeyPatch)
 def test_the_simple_lower_bound_is_below_the_value() -> None:
     rng = random.Random(7)
     for _ in range(6):
-        inst = instance_from_json(hub_gadget(rng, 4))
+        inst = instance_from_json(hub_document(rng, 4))
         low, source = lower_bound_simple(inst)
         assert low <= nvalue(inst, None).upper and "NG.9" in source
 

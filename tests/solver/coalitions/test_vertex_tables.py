@@ -1,0 +1,88 @@
+"""The solver's vertex tables against an independent route (sympy, exact rationals), and
+its int64 guard.
+
+The solver's tables were once a copy of the checker's (``dppverify/structured/cover.py``);
+the checker's copy was later made exact beyond int64 and the solver's was not: on the system
+below it returned 16 "vertices" of which 15 did not solve the system. It now refuses such a
+system with a ``ValueError`` (the construction reports an unreached fixpoint with its
+bracket) and is compared here with sympy, not with the checker.
+"""
+
+from __future__ import annotations
+
+import itertools
+from fractions import Fraction
+
+import pytest
+import sympy
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from solver.coalitions.vertex_tables import vertex_table, zero_one_normals
+
+pytestmark = pytest.mark.filterwarnings("error")
+
+
+def _sympy_vertices(columns: list[tuple[int, ...]], rhs: tuple[int, ...]
+                    ) -> set[tuple[Fraction, ...]]:
+    """Every basic feasible solution, basis by basis, solved by sympy (rhs of full support)."""
+    n = len(rhs)
+    out: set[tuple[Fraction, ...]] = set()
+    b = sympy.Matrix(rhs)
+    for basis in itertools.combinations(range(len(columns)), n):
+        mat = sympy.Matrix([[columns[j][i] for j in basis] for i in range(n)])
+        if mat.det() == 0:
+            continue
+        x = mat.LUsolve(b)
+        if all(v >= 0 for v in x):
+            c = [Fraction(0)] * len(columns)
+            for pos, j in enumerate(basis):
+                c[j] = Fraction(int(x[pos].p), int(x[pos].q))
+            out.add(tuple(c))
+    return out
+
+
+def _solver_vertices(columns: list[tuple[int, ...]], rhs: tuple[int, ...]
+                     ) -> set[tuple[Fraction, ...]]:
+    table = vertex_table(columns, rhs)
+    return {tuple(v.get(j, Fraction(0)) for j in range(len(columns))) for v in table.vertices()}
+
+
+@st.composite
+def systems(draw: st.DrawFn) -> tuple[list[tuple[int, ...]], tuple[int, ...]]:
+    """Unit vectors plus a few extra non-negative normals (entries 0..16), right-hand side of
+    full support: the shape of the solver's cover and packing systems."""
+    n = draw(st.integers(2, 4))
+    units = [tuple(int(i == j) for j in range(n)) for i in range(n)]
+    extra = draw(st.lists(st.tuples(*[st.integers(0, 16)] * n).filter(any), max_size=4))
+    rhs = draw(st.tuples(*[st.integers(1, 5)] * n))
+    return units + extra, rhs
+
+
+@settings(max_examples=40, deadline=None)
+@given(systems())
+def test_vertex_tables_equal_sympys_basic_solutions(system: tuple[list[tuple[int, ...]],
+                                                                   tuple[int, ...]]) -> None:
+    columns, rhs = system
+    assert _solver_vertices(columns, rhs) == _sympy_vertices(columns, rhs)
+
+
+def test_the_zero_one_covers_of_four_goals_equal_sympys() -> None:
+    zo = list(zero_one_normals(4))
+    assert _solver_vertices(zo, (2, 2, 2, 1)) == _sympy_vertices(zo, (2, 2, 2, 1))
+
+
+@pytest.mark.parametrize(("extra", "says"), [
+    # determinants up to ~1e20: Hadamard's bound refuses before any int64 product
+    ([tuple(p if j == i else 1 for j in range(5)) for i, p in
+      enumerate((100003, 100019, 100043, 100049))], "determinant could leave int64"),
+    # entries within the profile format's 0..16, but a common denominator ~4e51
+    ([tuple(16 if j == i else 1 for j in range(5)) for i in range(5)]
+     + [(3, 5, 7, 11, 13), (16, 15, 14, 13, 12)], "common denominator"),
+])
+def test_tables_beyond_int64_are_refused_not_wrapped(extra: list[tuple[int, ...]],
+                                                     says: str) -> None:
+    units = [tuple(int(i == j) for j in range(5)) for i in range(5)]
+    with pytest.raises(ValueError, match=says):
+        vertex_table(units + extra, (1,) * 5)
+
