@@ -23,7 +23,6 @@ from dppverify.game.instance import instance_from_json as checker_instance
 from dppverify.structured import cover as checker_cover
 from dppverify.structured.guarantee import rule_order
 from solver.coalitions import vertex_tables as solver_tables
-from solver.coalitions.coalition_dp import subset_members
 from solver.coalitions.guarantee_rule import priority_order
 from solver.coalitions.guarantee_sets import symmetric_table as solver_symmetric
 from solver.game.instance_reading import instance_from_json as solver_instance
@@ -48,11 +47,6 @@ NORMAL_SETS = [
 @pytest.mark.parametrize("n", [2, 3, 4, 5])
 def test_the_zero_one_normals_in_mask_order(n: int) -> None:
     assert solver_tables.zero_one_normals(n) == checker_cover.zero_one_normals(n)
-
-
-def test_the_members_of_every_subset_mask() -> None:
-    for mask in range(1 << 9):
-        assert subset_members(mask) == checker_cover.members(mask)
 
 
 @settings(max_examples=200, deadline=None)

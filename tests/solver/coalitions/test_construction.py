@@ -33,7 +33,6 @@ from dppverify.structured.coalition import CoalitionRunner
 from dppverify.structured.guarantee import dp_value, guarantee_sets
 from solver import Instance
 from solver.cli import main
-from solver.coalitions.coalition_dp import coalition_dp
 from solver.coalitions.construction import coalition_equilibrium
 from solver.coalitions.guarantee_rule import guarantee_step, priority_order
 from solver.game.instance_reading import instance_from_json as solver_instance
@@ -74,19 +73,28 @@ def test_the_tree_route_agrees_at_the_profiles_horizon(doc: dict[str, Any]) -> N
 @settings(max_examples=30, deadline=None)
 @given(doc=ngoal_instances(min_goals=2, max_goals=4))
 def test_the_solvers_dp_equals_the_checkers_at_every_node(doc: dict[str, Any]) -> None:
+    """The written rule's 0/1 rows (the coalition DP: a cover of 1_S uses subsets of S only)
+    equal the checker's layered DP wherever the solver keeps the node."""
     inst = instance_from_json(doc)
     run = CoalitionRunner(inst)
     nxt, _ = run.fixpoint(None)  # the checker's layered DP until a layer repeats (NGOAL NG.5)
     sets = guarantee_sets(inst)
-    ours = coalition_dp(solver_instance(doc))
-    for mask, vals in nxt.items():
-        for v in range(inst.n_nodes):
+    game = solver_instance(doc)
+    eq = coalition_equilibrium(game)
+    kept = 0
+    for v in range(inst.n_nodes):
+        # the solver's network may number nodes differently: compare by label
+        j = game.network.index_of(inst.nodes[v])
+        assert j is not None
+        ours = eq.rule_values(j)
+        kept += ours[0] is not None
+        for mask, vals in nxt.items():
             layered = None if int(vals[v]) >= run.big else Fraction(int(vals[v]), run.scale)
             assert sets.value(mask, v) == layered
-            # the solver's network may number nodes differently: compare by label
-            j = ours.instance.network.index_of(inst.nodes[v])
-            assert j is not None and ours.m(mask, j) == layered
-    assert dp_value(sets).value == coalition_equilibrium(solver_instance(doc)).dp_value
+            if ours[0] is not None:
+                assert ours[mask - 1] == layered
+    assert kept > 0
+    assert dp_value(sets).value == eq.dp_value
 
 
 def _two_goal_doc(rng: random.Random) -> dict[str, Any]:
@@ -114,7 +122,6 @@ def test_for_two_goals_the_rule_is_sigma_star_on_every_walk(seed: int) -> None:
     doc = _two_goal_doc(rng)
     game = solver_instance(doc)
     eq = coalition_equilibrium(game)
-    dp = coalition_dp(game)
     g = nx.DiGraph() if doc["graph"]["directed"] else nx.Graph()
     g.add_nodes_from(range(len(doc["graph"]["nodes"])))
     for e in doc["graph"]["edges"]:
@@ -140,10 +147,11 @@ def test_for_two_goals_the_rule_is_sigma_star_on_every_walk(seed: int) -> None:
                 break
             k = rng.randrange(heads.size)
             u = int(heads[k])
-            if dp.m(1, u) is None:
+            m_u = eq.rule_values(u)
+            if m_u[0] is None:
                 break
             w = Fraction(int(ws[k]), game.denominator)
-            s, ok = guarantee_step(r, lambda mask, u=u: dp.m(mask, u), w, order)
+            s, ok = guarantee_step(r, lambda mask, m_u=m_u: m_u[mask - 1], w, order)
             assert ok
             rule.append(s[primary])
             r = tuple(x - w * y for x, y in zip(r, s, strict=True))
