@@ -49,11 +49,12 @@ def attacker_br(ctx: EvaluatedContext, theta: int) -> CheckRecord:
     cid = "pbne.attacker_br." + ("primary" if theta == 1 else "secondary")
     proof = "L1" if theta == 1 else "XI2"
     inst, tree, roles = ctx.instance, ctx.tree, ctx.roles
-    br = ctx.best_response(ctx.defender, theta)
-    totals = leaf_totals(tree, roles, ctx.defender, theta)
+    ev = ctx.evaluated
+    br = ctx.best_response(ev.defender, theta)
+    totals = leaf_totals(tree, roles, ev.defender, theta)
     forward = min(totals[p] for p in tree.leaves().tolist())
-    lp = attacker_best_response_lp(tree, roles, ctx.defender, theta)
-    u = ctx.values.U1 if theta == 1 else ctx.values.U2
+    lp = attacker_best_response_lp(tree, roles, ev.defender, theta)
+    u = ev.values.U1 if theta == 1 else ev.values.U2
     regret = ctx.numbers.difference(u, br.value)
     numbers: dict[str, Number | None] = {f"U{theta}": u, "best_response": br.value,
                                          "best_response_lp": lp.value, "regret": regret,
@@ -68,7 +69,7 @@ def attacker_br(ctx: EvaluatedContext, theta: int) -> CheckRecord:
     if regret < 0:
         return CheckRecord(cid, "error", f"U{theta} = {show(u)} is below the best response "
                            f"{show(br.value)}: inconsistent evaluation", numbers, proof)
-    costs = [(walk_cost(inst, roles, ctx.evaluated.rule, w.walk, theta), w)
+    costs = [(walk_cost(inst, roles, ev.rule, w.walk, theta), w)
              for w in ctx.profile.walks(theta) if w.probability > 0]
     worst_cost, worst = max(costs, key=lambda cw: cw[0])
     return CheckRecord(cid, "fail", f"regret {show(regret)}: the walk {show_walk(inst, br.walk)} "

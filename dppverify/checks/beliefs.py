@@ -39,7 +39,8 @@ def belief_consistency(ctx: EvaluatedContext) -> CheckRecord:
         return CheckRecord(cid, "fail", f"the profile states the prior ({show(claim[0])}, "
                            f"{show(claim[1])}) but the instance's is ({show(roles.b1)}, "
                            f"{show(roles.b2)})", numbers, "THM")
-    closed = ctx.beliefs
+    ev = ctx.evaluated
+    closed = ev.beliefs
     recursive: dict[int, Fraction] = {0: roles.b1}
     parent = tree.parent
     mismatches = 0
@@ -48,8 +49,8 @@ def belief_consistency(ctx: EvaluatedContext) -> CheckRecord:
             continue
         q = int(parent[p])
         b = recursive[q]
-        g1 = ctx.x1.get(p, Fraction(0)) / ctx.x1[q] if ctx.x1.get(q) else Fraction(0)
-        g2 = ctx.x2.get(p, Fraction(0)) / ctx.x2[q] if ctx.x2.get(q) else Fraction(0)
+        g1 = ev.x1.get(p, Fraction(0)) / ev.x1[q] if ev.x1.get(q) else Fraction(0)
+        g2 = ev.x2.get(p, Fraction(0)) / ev.x2[q] if ev.x2.get(q) else Fraction(0)
         num = b * g1
         den = num + (1 - b) * g2
         recursive[p] = num / den

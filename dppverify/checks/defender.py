@@ -39,9 +39,10 @@ def defender_br(ctx: EvaluatedContext) -> CheckRecord:
     """
     cid = "pbne.defender_br"
     tree, roles = ctx.tree, ctx.roles
-    u = ctx.values.U
-    br = defender_best_response(tree, roles, {1: ctx.x1, 2: ctx.x2})
-    lp, _ = defender_best_response_lp(tree, roles, {1: ctx.x1, 2: ctx.x2})
+    ev = ctx.evaluated
+    u = ev.values.U
+    br = defender_best_response(tree, roles, {1: ev.x1, 2: ev.x2})
+    lp, _ = defender_best_response_lp(tree, roles, {1: ev.x1, 2: ev.x2})
     regret = ctx.numbers.difference(br.value, u)
     numbers: dict[str, Number | None] = {"U": u, "best_response": br.value,
                                          "best_response_lp": lp.value, "regret": regret}
@@ -57,9 +58,9 @@ def defender_br(ctx: EvaluatedContext) -> CheckRecord:
                            f"{show(br.value)}: inconsistent evaluation", numbers, "L3")
     gains = []
     for p in br.choice:
-        v1 = roles.b1 * ctx.x1.get(p, Fraction(0))
-        v2 = roles.b2 * ctx.x2.get(p, Fraction(0))
-        s = ctx.defender.sigma1[p]
+        v1 = roles.b1 * ev.x1.get(p, Fraction(0))
+        v2 = roles.b2 * ev.x2.get(p, Fraction(0))
+        s = ev.defender.sigma1[p]
         gains.append((tree.weight[p] * (max(v1, v2) - (v1 * s + v2 * (1 - s))), p))
     gain, p = max(gains)
     walk = show_walk(ctx.instance, tree.walk(p))
@@ -91,14 +92,15 @@ def sequential_rationality(ctx: EvaluatedContext) -> CheckRecord:
     is 4/7 but σ(g1) = 1/2
     """
     cid = "pbne.sequential_rationality"
-    beliefs = ctx.beliefs
+    ev = ctx.evaluated
+    beliefs = ev.beliefs
     bad = []
     half = 0
     mode = ctx.numbers
     for p in sorted(beliefs):
         if p == 0:
             continue
-        b, s = beliefs[p], ctx.defender.sigma1[p]
+        b, s = beliefs[p], ev.defender.sigma1[p]
         if b == HALF:
             half += 1
         elif (b > HALF and not mode.equal(s, 1)) or (b < HALF and not mode.equal(s, 0)):

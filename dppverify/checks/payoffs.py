@@ -49,17 +49,18 @@ def values(ctx: EvaluatedContext) -> list[CheckRecord]:
     >>> r.status, r.message
     ('fail', 'U = 12/5 exactly, but the profile claims U = 5/2')
     """
-    v = ctx.values
+    ev = ctx.evaluated
+    v = ev.values
     claims = ctx.profile.claimed_values
     tree, roles = ctx.tree, ctx.roles
     lp_u: dict[int, float] = {}
-    for theta, x in ((1, ctx.x1), (2, ctx.x2)):
+    for theta, x in ((1, ev.x1), (2, ev.x2)):
         vec = np.zeros(tree.n_prefixes)
         for p, prob in x.items():
             vec[p] = float(prob)
-        lp_u[theta] = float(objective_vector(tree, roles, ctx.defender, theta) @ vec)
+        lp_u[theta] = float(objective_vector(tree, roles, ev.defender, theta) @ vec)
     lp_total = float(roles.b1) * lp_u[1] + float(roles.b2) * lp_u[2]
-    tree_u = payoff_on_tree(tree, roles, ctx.defender, {1: ctx.x1, 2: ctx.x2})
+    tree_u = payoff_on_tree(tree, roles, ev.defender, {1: ev.x1, 2: ev.x2})
     out = []
     for cid, key, exact, lp_value in (("value.U1", "U1", v.U1, lp_u[1]),
                                       ("value.U2", "U2", v.U2, lp_u[2]),
@@ -123,8 +124,9 @@ def value_check(ctx: Context) -> CheckRecord:
     defenders = []
     attackers = []
     if isinstance(ctx, EvaluatedContext):
-        defenders.append(("the profile's Defender", ctx.defender))
-        attackers.append(("the profile's Attacker", {1: ctx.x1, 2: ctx.x2}))
+        ev = ctx.evaluated
+        defenders.append(("the profile's Defender", ev.defender))
+        attackers.append(("the profile's Attacker", {1: ev.x1, 2: ev.x2}))
     bracket = exact_bracket(tree, roles, lp, defenders, attackers, sigma_star=ctx.sigma_star)
     numbers: dict[str, Number | None] = {"V_H_lp": lp.value, "V_H": bracket.exact,
                                          "V_H_lower": bracket.lower, "V_H_upper": bracket.upper,
@@ -140,7 +142,7 @@ def value_check(ctx: Context) -> CheckRecord:
                            numbers, "LP")
     if not isinstance(ctx, EvaluatedContext):
         return CheckRecord(cid, "skipped", f"{vh}; {NOT_WELLFORMED}", numbers, "LP")
-    u = ctx.values.U
+    u = ctx.evaluated.values.U
     numbers["U"] = u
     exact_equal = ctx.numbers.equal(bracket.lower, u) and ctx.numbers.equal(bracket.upper, u)
     if exact_equal and lp_agrees(lp.stats, u):

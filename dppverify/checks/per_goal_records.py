@@ -18,7 +18,7 @@ from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.structured.table_br import TableDefender
 
 __all__ = ["BR", "NGOAL_IDS", "NWALKBR", "PAYOFF_WALKS", "PROFILE_DOC", "TRIE", "defender_records",
-           "ngoal_record", "payoff_record", "value_record", "walk_labels"]
+           "ngoal_record", "payoff_record", "profile_records", "value_record", "walk_labels"]
 
 PROOF = "NGOAL"
 BR = "NWALKBR"
@@ -129,6 +129,40 @@ def defender_records(inst: Instance, tdef: TableDefender,
     recs.append(ngoal_record("pbne.sequential_rationality", "fail" if bad else "pass", msg,
                      {"infosets": reached}, TRIE, BR))
     return recs
+
+
+def profile_records(inst: Instance, described: str, sizes: dict[str, Number | None],
+                    per_type: Sequence[Number], claimed_u: Number | None,
+                    attacker: CheckRecord, tdef: TableDefender,
+                    mass: Mapping[int, Sequence[Fraction]], horizon: int | None, *,
+                    covered: bool = True, known: NValue | None = None) -> list[CheckRecord]:
+    """Every record of a well-formed per-goal profile, in certificate order.
+
+    ``profile.wellformed`` passes with ``described`` and ``sizes``; ``value.U`` from the
+    types' payoffs ``per_type`` (:func:`payoff_record`); the Attacker's record ``attacker``;
+    the Defender's (:func:`defender_records` on ``tdef`` and ``mass``); ``game.value``
+    (:func:`value_record`), an equilibrium when ``covered`` (``H`` covers the profile's
+    walks) and every record before it passed.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> from dppverify.structured.table_br import table_defender
+    >>> inst = star3()
+    >>> d = table_defender(inst, {}, (Fraction(1), Fraction(0), Fraction(0)), walks=[(0, 1, 2)])
+    >>> mass = {p: (Fraction(1), Fraction(0), Fraction(0)) for p in range(len(d.trie))}
+    >>> br = ngoal_record("pbne.attacker_br", "pass", "regret 0", None, NWALKBR, BR)
+    >>> recs = profile_records(inst, "one walk", {}, [2, 0, 0], None, br, d, mass, 2)
+    >>> [r.id for r in recs] == list(NGOAL_IDS)
+    True
+    """
+    out = [ngoal_record(NGOAL_IDS[0], "pass", described, sizes, PROFILE_DOC, None)]
+    u = normalize(sum((inst.prior[t] * per_type[t] for t in range(inst.n_goals)), Fraction(0)))
+    out.append(payoff_record(per_type, u, claimed_u))
+    out.append(attacker)
+    out += defender_records(inst, tdef, mass, u)
+    out.append(value_record(inst, u, horizon, covered and all(r.passed for r in out), known))
+    return out
 
 
 def value_record(inst: Instance, u: Number, horizon: int | None, equilibrium: bool,

@@ -13,15 +13,7 @@ from collections.abc import Sequence
 from fractions import Fraction
 
 from dppverify.certificate import CheckRecord
-from dppverify.checks.per_goal_records import (
-    NGOAL_IDS,
-    PROFILE_DOC,
-    defender_records,
-    ngoal_record,
-    payoff_record,
-    value_record,
-    walk_labels,
-)
+from dppverify.checks.per_goal_records import ngoal_record, profile_records, walk_labels
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
 from dppverify.game.profile import Profile
@@ -70,15 +62,12 @@ def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
     text = (f"{n} types, {ev.walks} walks, Defender: the guarantee rule with h = "
             f"({', '.join(map(str, rule.h))}) and {len(rule.normals)} extra normals (defined "
             f"on every walk)")
-    out = [ngoal_record(NGOAL_IDS[0], "pass", text, {"walks": ev.walks, "prefixes": len(trie)},
-                        PROFILE_DOC, None)]
-    u = sum((inst.prior[t] * per_type[t] for t in range(n)), Fraction(0))
-    out.append(payoff_record(per_type, u, profile.claimed_u))
-    out.append(_attacker_record(inst, rule, ev.sets, per_type, horizon))
-    out += defender_records(inst, ev.defender, ev.mass, u)
+    attacker = _attacker_record(inst, rule, ev.sets, per_type, horizon)
     known = (coalition_nvalue(dp_value(ev.sets), inst.n_goals)  # proved for N <= 3 (NG.4)
              if horizon is None and inst.n_goals <= 3 else None)
-    out.append(value_record(inst, u, horizon, all(r.passed for r in out), known))
+    out = profile_records(inst, text, {"walks": ev.walks, "prefixes": len(trie)}, per_type,
+                          profile.claimed_u, attacker, ev.defender, ev.mass, horizon,
+                          known=known)
     return out, len(trie)
 
 

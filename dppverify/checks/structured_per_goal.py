@@ -25,18 +25,14 @@ value.
 
 from __future__ import annotations
 
-from fractions import Fraction
-
 from dppverify.certificate import CheckRecord
 from dppverify.checks.per_goal_records import (
     BR,
     NGOAL_IDS,
     NWALKBR,
     PROFILE_DOC,
-    defender_records,
     ngoal_record,
-    payoff_record,
-    value_record,
+    profile_records,
     walk_labels,
 )
 from dppverify.checks.structured_guarantee import guarantee_checks
@@ -84,11 +80,7 @@ def nstructured_checks(instance: Instance, profile: Profile,
     n = inst.n_goals
     if profile.defects:
         more = f" (and {len(profile.defects) - 1} more)" if len(profile.defects) > 1 else ""
-        out = [ngoal_record(NGOAL_IDS[0], "fail", f"{profile.defects[0]}{more}", None,
-                            PROFILE_DOC, None)]
-        out += [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
-                for i in NGOAL_IDS[1:]]
-        return out, 0
+        return _ill_formed(f"{profile.defects[0]}{more}"), 0
     if isinstance(profile.defender, GuaranteeRule):  # dppverify.structured.guarantee
         return guarantee_checks(inst, profile, horizon)
     walks = [mw.walk for mix in profile.attacker for mw in mix]
@@ -120,25 +112,24 @@ def nstructured_checks(instance: Instance, profile: Profile,
             total += mw.probability * (cost + inst.dist_to[theta][mw.walk[-1]])
         per_type.append(normalize(total))
     if missing is not None:
-        out = [ngoal_record(NGOAL_IDS[0], "fail", f"the Defender's table has no entry for walk "
-                    f"{walk_labels(inst, missing)} and no default", None, PROFILE_DOC, None)]
-        out += [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
-                for i in NGOAL_IDS[1:]]
-        return out, len(trie)
+        return _ill_formed(f"the Defender's table has no entry for walk "
+                           f"{walk_labels(inst, missing)} and no default"), len(trie)
     has_default = table.default is not None
-    out = [ngoal_record(NGOAL_IDS[0], "pass", f"{n} types, {len(walks)} walks, Defender table of "
-                f"{len(table.entries)} entries " + ("and a default (defined on every walk)"
-                                                      if has_default else "without a default"),
-                {"walks": len(walks), "prefixes": len(trie)}, PROFILE_DOC, None)]
-    u = normalize(sum((inst.prior[t] * per_type[t] for t in range(n)), Fraction(0)))
-    out.append(payoff_record(per_type, u, profile.claimed_u))
-    attacker = _attacker(inst, tdef, per_type, horizon)
-    out.append(attacker)
-    out += defender_records(inst, tdef, dict(enumerate(trie.masses)), u)
+    text = (f"{n} types, {len(walks)} walks, Defender table of {len(table.entries)} entries "
+            + ("and a default (defined on every walk)" if has_default else "without a default"))
     longest = max(len(w) - 1 for w in walks)
     covered = horizon is None or horizon >= longest  # NW.5: U = V_H for every H >= longest
-    out.append(value_record(inst, u, horizon, covered and all(r.passed for r in out)))
+    out = profile_records(inst, text, {"walks": len(walks), "prefixes": len(trie)}, per_type,
+                          profile.claimed_u, _attacker(inst, tdef, per_type, horizon), tdef,
+                          dict(enumerate(trie.masses)), horizon, covered=covered)
     return out, len(trie)
+
+
+def _ill_formed(message: str) -> list[CheckRecord]:
+    """``profile.wellformed`` fails with ``message``; every other check is skipped."""
+    return ([ngoal_record(NGOAL_IDS[0], "fail", message, None, PROFILE_DOC, None)]
+            + [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
+               for i in NGOAL_IDS[1:]])
 
 
 def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],

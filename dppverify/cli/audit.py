@@ -17,7 +17,6 @@ from typing import Any
 
 import click
 
-from dppio.limits import MAX_PREFIXES_LIMIT
 from dppverify.audit import (
     AUDIT_MAX_PREFIXES,
     DEFAULT_SHRINK_CALLS,
@@ -30,6 +29,7 @@ from dppverify.audit import (
     format_report,
 )
 from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
+from dppverify.cli.inputs import max_prefixes_option
 from dppverify.errors import AuditError, CheckerError
 from dppverify.limits import MAX_AUDIT_EXAMPLES
 
@@ -72,9 +72,7 @@ class _Seconds(click.FloatRange):
 @click.option("--timeout", type=_Seconds(min=0, min_open=True, max=86400),
               default=DEFAULT_TIMEOUT, show_default=True,
               help="Seconds per solver run (--solver and --solver-cmd alike).")
-@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
-              default=AUDIT_MAX_PREFIXES, show_default=True,
-              help="Skip examples whose walk tree is larger than this.")
+@max_prefixes_option("Skip examples whose walk tree is larger than this.", AUDIT_MAX_PREFIXES)
 @click.option("--instances", "instances_dir", metavar="DIR", type=click.Path(file_okay=False),
               help="Audit on your own instances: every *.json instance file in DIR, in name "
                    "order, instead of random ones.")

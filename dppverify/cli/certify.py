@@ -16,7 +16,6 @@ from typing import Any
 import click
 
 from dppio.inputs import reading_once
-from dppio.limits import MAX_PREFIXES_LIMIT
 from dppverify.certificate import Certificate
 from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli.belongs import profile_mismatch
@@ -30,7 +29,7 @@ from dppverify.cli.conventions import (
 )
 from dppverify.cli.errors import fail
 from dppverify.cli.hints import what_is
-from dppverify.cli.inputs import HORIZON, hinted, load_game
+from dppverify.cli.inputs import HORIZON, hinted, load_game, max_prefixes_option
 from dppverify.cli.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.cli.table import format_table
 from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
@@ -48,7 +47,6 @@ from dppverify.provenance import (
     verify_provenance,
 )
 from dppverify.routes import ROUTES, Route, ngoal_game
-from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 
 __all__ = ["VERDICT_EXIT", "certify_command"]
 
@@ -69,9 +67,7 @@ __all__ = ["VERDICT_EXIT", "certify_command"]
               help="Print the dpp-certificate/1 JSON instead of the table.")
 @output_file_option("Write the dpp-certificate/1 JSON to this file (atomically); stdout stays "
                     "empty, the verdict is one line on stderr.")
-@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
-              default=DEFAULT_MAX_PREFIXES,
-              show_default=True, help="Refuse walk trees larger than this.")
+@max_prefixes_option()
 @click.option("--float", "float_mode", is_flag=True,
               help="Float mode is detected from the instance (\"numbers\": \"float\", e.g. "
                    "--connectivity 8): it is compared within a relative tolerance of 1e-9. "

@@ -4,16 +4,14 @@ from __future__ import annotations
 
 import click
 
-from dppio.limits import MAX_PREFIXES_LIMIT
 from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
 from dppverify.cli.errors import fail
-from dppverify.cli.inputs import load_game
+from dppverify.cli.inputs import load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.formats.files import refuse_input_as_output
 from dppverify.limits import MAX_HORIZON
 from dppverify.tree_route.efg import DEFAULT_MAX_EFG_NODES, write_efg
-from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 
 __all__ = ["export_efg_command"]
 
@@ -30,9 +28,7 @@ __all__ = ["export_efg_command"]
 @click.option("--forced-moves", is_flag=True,
               help="Also write the Attacker's one-action decision nodes (skipped by default: "
                    "Gambit 17.0.0b2's lp_solve mis-solves one-action information sets).")
-@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
-              default=DEFAULT_MAX_PREFIXES,
-              show_default=True, help="Refuse walk trees larger than this.")
+@max_prefixes_option()
 @click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
               show_default=True, help="Refuse games with more nodes than this.")
 @progress_option

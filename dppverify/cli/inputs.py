@@ -1,5 +1,5 @@
-"""What the checker's commands read: the horizon option, the instance (a file or ``--map``),
-and read errors turned into hints.
+"""What the checker's commands read: the horizon option, the walk-tree size limit
+(``--max-prefixes``), the instance (a file or ``--map``), and read errors turned into hints.
 
 ``-H/--horizon`` is read by :data:`HORIZON` into the one horizon type of the package
 (:mod:`dppverify.horizons`): a non-negative integer ``H``, or None for the untruncated game
@@ -8,19 +8,24 @@ and read errors turned into hints.
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 import click
 
+from dppio.limits import MAX_PREFIXES_LIMIT
 from dppverify.cli.hints import file_hint
 from dppverify.cli.map_options import MapRequest, instance_or_map
 from dppverify.errors import CheckerError
 from dppverify.game.instance import Instance
 from dppverify.horizons import INFINITE_WORDS
 from dppverify.limits import MAX_HORIZON
+from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 from dppverify.valuation import game_of
 
-__all__ = ["HORIZON", "HorizonParam", "hinted", "load_game"]
+__all__ = ["HORIZON", "HorizonParam", "hinted", "load_game", "max_prefixes_option"]
+
+F = TypeVar("F", bound=Callable[..., Any])
 
 
 class HorizonParam(click.ParamType):
@@ -53,6 +58,23 @@ class HorizonParam(click.ParamType):
 
 
 HORIZON = HorizonParam()
+
+
+def max_prefixes_option(help: str = "Refuse walk trees larger than this.",
+                        default: int = DEFAULT_MAX_PREFIXES) -> Callable[[F], F]:
+    """``--max-prefixes N`` (parameter ``max_prefixes``): the largest walk tree a command
+    builds, from 1 to the package's limit.
+
+    Examples
+    --------
+    >>> from click.testing import CliRunner
+    >>> from dppverify.cli.examples import echo_command
+    >>> cmd = echo_command(max_prefixes_option(), "max_prefixes")
+    >>> [CliRunner().invoke(cmd, args).output.strip() for args in ([], ["--max-prefixes", "9"])]
+    ['1000000', '9']
+    """
+    return click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
+                        default=default, show_default=True, help=help)
 
 
 def load_game(instance: str | None, grid: MapRequest | None,

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import click
 
-from dppio.limits import MAX_PREFIXES_LIMIT
 from dppio.text import count, decimal
 from dppverify.cli.conventions import (
     PhaseBar,
@@ -21,7 +20,7 @@ from dppverify.cli.conventions import (
     want_progress,
 )
 from dppverify.cli.errors import fail
-from dppverify.cli.inputs import HORIZON, load_game
+from dppverify.cli.inputs import HORIZON, load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.errors import CheckerError
 from dppverify.formats.files import refuse_input_as_output
@@ -29,7 +28,6 @@ from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
 from dppverify.structured.proved_value import NValue
 from dppverify.text import show, show_value
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
-from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 from dppverify.tree_route.value_lp import GameValue
 from dppverify.twogoal.value_dp import StructuredValue
 from dppverify.value_document import value_document
@@ -51,9 +49,7 @@ __all__ = ["routed_lines", "value_command"]
               help="tree: the walk tree's LP; structured: the tree-free DP (docs/checker.md); "
                    "auto: the tree when it fits --max-prefixes, else structured; both: run "
                    "both, a disagreement is an error (exit 1).")
-@click.option("--max-prefixes", type=click.IntRange(min=1, max=MAX_PREFIXES_LIMIT),
-              default=DEFAULT_MAX_PREFIXES,
-              show_default=True, help="Refuse walk trees larger than this.")
+@max_prefixes_option()
 @progress_option
 def value_command(instance: str | None, grid: MapRequest | None, horizon: int | None,
                   as_json: bool, output: str | None, route: Route, max_prefixes: int,

@@ -260,9 +260,10 @@ def payoff_on_tree(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
     >>> from dppverify.tree_route.context import triangle_context
     >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
     >>> tree, r, td = ctx.tree, ctx.roles, ctx.sigma_star   # σ*: progress to g1
-    >>> ctx.x1
+    >>> ev = ctx.evaluated
+    >>> ev.x1
     {0: Fraction(1, 1), 1: Fraction(4, 7), 2: Fraction(3, 7)}
-    >>> payoff_on_tree(tree, r, td, {1: ctx.x1, 2: ctx.x2})
+    >>> payoff_on_tree(tree, r, td, {1: ev.x1, 2: ev.x2})
     Fraction(12, 5)
 
     Three goals, all types walking ``s a`` against a Defender guarding ``a``:
@@ -296,7 +297,8 @@ def defender_best_response(tree: WalkTree, types: AnyTypes,
 
     >>> from dppverify.tree_route.context import triangle_context
     >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
-    >>> br = defender_best_response(ctx.tree, ctx.roles, {1: ctx.x1, 2: ctx.x2})
+    >>> ev = ctx.evaluated
+    >>> br = defender_best_response(ctx.tree, ctx.roles, {1: ev.x1, 2: ev.x2})
     >>> br.value, dict(br.choice)
     (Fraction(12, 5), {1: 1, 2: 1})
 

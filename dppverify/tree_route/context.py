@@ -116,38 +116,15 @@ class Context:
 
 @dataclass(frozen=True, eq=False)
 class EvaluatedContext(Context):
-    """A :class:`Context` whose profile is well-formed and evaluated (:attr:`evaluated`).
+    """A :class:`Context` whose profile is well-formed and evaluated.
 
-    The properties ``defender``, ``x1``, ``x2``, ``values`` and ``beliefs`` read
-    :attr:`evaluated`.
+    Attributes
+    ----------
+    evaluated : EvaluatedProfile
+        The profile's Defender on the tree, realization plans, payoffs and Bayes beliefs.
     """
 
     evaluated: EvaluatedProfile = field(kw_only=True)
-
-    @property
-    def defender(self) -> TreeDefender:
-        """The profile's Defender on every prefix."""
-        return self.evaluated.defender
-
-    @property
-    def x1(self) -> dict[int, Fraction]:
-        """The primary type's realization plan."""
-        return self.evaluated.x1
-
-    @property
-    def x2(self) -> dict[int, Fraction]:
-        """The secondary type's realization plan."""
-        return self.evaluated.x2
-
-    @property
-    def values(self) -> Values:
-        """The profile's payoffs, walk by walk."""
-        return self.evaluated.values
-
-    @property
-    def beliefs(self) -> dict[int, Fraction]:
-        """Closed-form Bayes beliefs at every reached prefix."""
-        return self.evaluated.beliefs
 
     def _cached_defender(self, defender: TreeDefender) -> bool:
         return defender is self.sigma_star or defender is self.evaluated.defender
@@ -191,11 +168,11 @@ def make_context(instance: Instance, tree: WalkTree, profile: Profile,
     ...                  "secondary": [{"path": ["s", "g2"], "probability": 1}]}}
     >>> ctx = make_context(inst, build_tree(inst, 1), profile_from_json(doc, inst),
     ...                    seed=0, trials=2)
-    >>> isinstance(ctx, EvaluatedContext), ctx.x1
+    >>> isinstance(ctx, EvaluatedContext), ctx.evaluated.x1
     (True, {0: Fraction(1, 1), 1: Fraction(4, 7), 2: Fraction(3, 7)})
-    >>> ctx.x2, ctx.values.U
+    >>> ctx.evaluated.x2, ctx.evaluated.values.U
     ({0: Fraction(1, 1), 2: Fraction(1, 1)}, Fraction(12, 5))
-    >>> ctx.defender.sigma1 == ctx.sigma_star.sigma1 == (0, 1, Fraction(1, 2))
+    >>> ctx.evaluated.defender.sigma1 == ctx.sigma_star.sigma1 == (0, 1, Fraction(1, 2))
     True
     >>> bad = make_context(inst, build_tree(inst, 1),
     ...                    profile_from_json({"format": "dpp-profile/1"}, inst), seed=0, trials=2)

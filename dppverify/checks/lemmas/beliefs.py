@@ -59,13 +59,13 @@ def l5_induced_beliefs(ctx: EvaluatedContext) -> CheckRecord:
     problems = []
     for t, p in enumerate(along):
         want = roles.b1 if t <= t1 else (HALF if t <= t2 else Fraction(0))
-        got = ctx.beliefs[p]
+        got = ctx.evaluated.beliefs[p]
         if got != want:
             phase = "I" if t <= t1 else ("II" if t <= t2 else "III")
             problems.append(f"at step {t} of ξ² (phase {phase}) the belief is {show(got)}, "
                             f"not {show(want)}")
     on_xi2 = set(along)
-    off = [p for p in ctx.x1 if p not in on_xi2]
+    off = [p for p in ctx.evaluated.x1 if p not in on_xi2]
     numbers: dict[str, Number | None] = {"t_I": t1, "t_II": t2, "T": T, "b1": roles.b1,
                                          "off_path_prefixes": len(off)}
     if problems:

@@ -103,7 +103,7 @@ def l3_greedy(ctx: Context) -> CheckRecord:
     rng = random.Random(f"{ctx.seed}-L3")
     attackers = []
     if isinstance(ctx, EvaluatedContext):
-        attackers.append(("the profile's attacker", ctx.x1, ctx.x2))
+        attackers.append(("the profile's attacker", ctx.evaluated.x1, ctx.evaluated.x2))
     for k in range(ctx.trials):
         attackers.append((f"random attacker {k + 1}",
                           realization(tree, random_mixture(tree, rng)),
