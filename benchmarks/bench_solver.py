@@ -22,7 +22,7 @@ from fractions import Fraction
 import networkx as nx
 import numpy as np
 from _grids import free_cell_graph, random_grid
-from _timing import best
+from _timing import best, timed
 from scipy.sparse.csgraph import connected_components, dijkstra
 
 from solver import Instance
@@ -57,9 +57,9 @@ def bench_grid(size: int, repeat: int) -> None:
     s = int(node[start])
     t_dij, t_solve = float("inf"), float("inf")
     for _ in range(repeat):  # interleaved, so both see the same machine load
-        t_dij = min(t_dij, best(lambda: dijkstra(mat, directed=True, indices=s), 1)[0])
-        t_solve = min(t_solve, best(
-            lambda: paper_equilibrium(Instance.from_grid(blocked, start, goals, prior)), 1)[0])
+        t_dij = min(t_dij, timed(dijkstra, mat, directed=True, indices=s)[1])
+        t_solve = min(t_solve, timed(
+            lambda: paper_equilibrium(Instance.from_grid(blocked, start, goals, prior)))[1])
     tracemalloc.start()
     eq = paper_equilibrium(Instance.from_grid(blocked, start, goals, prior))
     _, peak = tracemalloc.get_traced_memory()
@@ -110,7 +110,7 @@ def bench_small(repeat: int, sizes: tuple[int, ...] = (8, 10, 12, 14, 16)) -> No
         for u, v in g.edges:
             g[u][v]["weight"] = int(rng.integers(1, 6))
         inst = Instance(g, 0, (n - 1, n - 2), ("3/5", "2/5"))
-        t_brute = best(lambda inst=inst: brute_force_u2(inst), 1)[0]  # type: ignore[misc]
+        t_brute = timed(brute_force_u2, inst)[1]
         t_solve = best(lambda inst=inst: paper_equilibrium(inst), repeat)[0]  # type: ignore[misc]
         assert brute_force_u2(inst) == paper_equilibrium(inst).U2
         print(f"  n={n:2d} m={g.number_of_edges():3d}: enumeration {t_brute * 1e3:9.1f} ms, "

@@ -4,8 +4,8 @@ run: the same answer from both packages on every input tried.
 
 The larger pairs are cross-checked elsewhere: the map and instance readers in
 ``tests/maps/test_readers_agree.py`` and ``tests/maps/test_map_instance.py``; the vertex tables
-each against an independent route (the solver's against sympy in
-``tests/solver/coalitions/test_vertex_tables.py``, the checker's against Fractions in
+each against a third route (Gauss–Jordan in Fractions by hand, ``proofs/checks/_linear.py``,
+in ``tests/solver/coalitions/test_vertex_tables.py`` and
 ``tests/dppverify/structured/test_cover.py``) and with each other below; the number modes,
 phases and N-goal rules by every certificate of a solved profile.
 """

@@ -232,8 +232,8 @@ def hub_document(rng: random.Random, n_goals: int, *, directed: bool | None = No
     """A random hub of :func:`hub4_document`'s family: ``u → u1 → m_j → (two or three goals)``.
 
     Two to four middles ``m_j``, arc weights 1 or 2; every goal reachable; return arcs
-    ``g → u`` of weight 10 unless ``returns=False`` (then no goal reaches ``u`` again and
-    every walk has at most four steps); random priors (weights 1..6, normalised).
+    ``g → u`` of weight 10 unless ``returns=False`` (they keep the distances between goals
+    finite); random priors (weights 1..6, normalised).
 
     Parameters
     ----------

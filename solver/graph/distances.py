@@ -6,8 +6,6 @@ engine, :func:`_dijkstra`, with the flexible ``weight`` argument converted once
 
 - :func:`distances_from`, :func:`distances_to`: the full-graph fields ``d(source, ·)`` and
   ``d(·, target)``;
-- :func:`distances_from_sources`: ``min_x [d(v → x) + init[x]]`` for arcs given as arrays (the
-  coalition DP's sourced shortest paths);
 - :func:`costs_to`: ``target``'s distances under any step cost (a callable of the arc that may
   hide it), for the literature's paths.
 
@@ -21,17 +19,15 @@ from __future__ import annotations
 
 import heapq
 import operator
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable
 from typing import Any
 
 import numpy as np
-import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
 from solver.graph.network import Network
 
-__all__ = ["EXACT_FLOAT_LIMIT", "costs_to", "distances_from", "distances_from_sources",
-           "distances_to"]
+__all__ = ["EXACT_FLOAT_LIMIT", "costs_to", "distances_from", "distances_to"]
 
 EXACT_FLOAT_LIMIT = 2**53
 """Every integer below this is exact in float64."""
@@ -155,45 +151,6 @@ def _field(net: Network, source: int) -> np.ndarray:
     dist = _dijkstra(_network_arcs(net), [(source, 0)])
     out = np.full(net.n_nodes, np.inf, dtype=object)
     for v, d in dist.items():
-        out[v] = d
-    return out
-
-
-def distances_from_sources(n: int, tails: np.ndarray, heads: np.ndarray,
-                           weights: Sequence[int], init: np.ndarray) -> np.ndarray:
-    """``min_x [d(v → x) + init[x]]`` for every node ``v``: the least cost of walking from
-    ``v`` along the arcs ``tails[k] -> heads[k]`` (integer ``weights``) to a source ``x``
-    (``init[x] >= 0``; ``init < 0``: not a source) and paying ``init[x]`` there; ``-1`` where
-    no source is reached. Exact: scipy's float64 Dijkstra (the reversed arcs plus a super
-    source) while every value is an integer below 2**53, Python integers otherwise.
-
-    Examples
-    --------
-    >>> tails, heads = np.array([0, 1]), np.array([1, 2])      # 0 -> 1 -> 2, node 3 alone
-    >>> init = np.array([-1, 7, 0, -1], dtype=object)           # sources 1 (7) and 2 (0)
-    >>> distances_from_sources(4, tails, heads, [2, 3], init).tolist()
-    [5, 3, 0, -1]
-    """
-    src = [i for i in range(n) if init[i] >= 0]
-    top = max((int(init[i]) for i in src), default=0) + sum(weights) + 2
-    if top < EXACT_FLOAT_LIMIT:
-        # reversed arcs plus a super-source n with arcs n -> x of weight init[x] + 1 (> 0)
-        rows = np.concatenate([heads, np.full(len(src), n, dtype=np.int64)])
-        cols = np.concatenate([tails, np.asarray(src, dtype=np.int64)])
-        vals = np.concatenate([np.asarray(weights, dtype=np.float64),
-                               np.asarray([int(init[i]) + 1 for i in src], dtype=np.float64)])
-        mat = sp.csr_matrix((vals, (rows, cols)), shape=(n + 1, n + 1))
-        d = dijkstra(mat, directed=True, indices=n)[:n]
-        out = np.full(n, -1, dtype=object)
-        fin = np.isfinite(d)
-        out[fin] = [int(x) - 1 for x in d[fin]]
-        return out
-    pred: list[list[tuple[int, int]]] = [[] for _ in range(n)]
-    for t, h, w in zip(tails.tolist(), heads.tolist(), weights, strict=True):
-        pred[h].append((t, w))
-    best = _dijkstra(pred.__getitem__, [(i, int(init[i])) for i in src])
-    out = np.full(n, -1, dtype=object)
-    for v, d in best.items():
         out[v] = d
     return out
 

@@ -1,45 +1,23 @@
-"""The solver's vertex tables against an independent route (sympy, exact rationals), and
-its int64 guard.
+"""The solver's vertex tables against an independent route (Gauss–Jordan in Fractions by hand,
+``proofs/checks/_linear.py``, one system at a time), and its int64 guard.
 
 The solver's tables were once a copy of the checker's (``dppverify/structured/cover.py``);
 the checker's copy was later made exact beyond int64 and the solver's was not: on the system
 below it returned 16 "vertices" of which 15 did not solve the system. It now refuses such a
 system with a ``ValueError`` (the construction reports an unreached fixpoint with its
-bracket) and is compared here with sympy, not with the checker.
+bracket) and is compared here with the hand route, not with the checker.
 """
 
 from __future__ import annotations
 
-import itertools
 from fractions import Fraction
 
 import pytest
-import sympy
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from proofs.checks._linear import basic_solutions as basic_solutions_by_hand
 from solver.coalitions.vertex_tables import vertex_table, zero_one_normals
-
-pytestmark = pytest.mark.filterwarnings("error")
-
-
-def _sympy_vertices(columns: list[tuple[int, ...]], rhs: tuple[int, ...]
-                    ) -> set[tuple[Fraction, ...]]:
-    """Every basic feasible solution, basis by basis, solved by sympy (rhs of full support)."""
-    n = len(rhs)
-    out: set[tuple[Fraction, ...]] = set()
-    b = sympy.Matrix(rhs)
-    for basis in itertools.combinations(range(len(columns)), n):
-        mat = sympy.Matrix([[columns[j][i] for j in basis] for i in range(n)])
-        if mat.det() == 0:
-            continue
-        x = mat.LUsolve(b)
-        if all(v >= 0 for v in x):
-            c = [Fraction(0)] * len(columns)
-            for pos, j in enumerate(basis):
-                c[j] = Fraction(int(x[pos].p), int(x[pos].q))
-            out.add(tuple(c))
-    return out
 
 
 def _solver_vertices(columns: list[tuple[int, ...]], rhs: tuple[int, ...]
@@ -61,15 +39,15 @@ def systems(draw: st.DrawFn) -> tuple[list[tuple[int, ...]], tuple[int, ...]]:
 
 @settings(max_examples=40, deadline=None)
 @given(systems())
-def test_vertex_tables_equal_sympys_basic_solutions(system: tuple[list[tuple[int, ...]],
+def test_vertex_tables_equal_the_basic_solutions_by_hand(system: tuple[list[tuple[int, ...]],
                                                                    tuple[int, ...]]) -> None:
     columns, rhs = system
-    assert _solver_vertices(columns, rhs) == _sympy_vertices(columns, rhs)
+    assert _solver_vertices(columns, rhs) == basic_solutions_by_hand(columns, rhs)
 
 
-def test_the_zero_one_covers_of_four_goals_equal_sympys() -> None:
+def test_the_zero_one_covers_of_four_goals_equal_the_hand_route() -> None:
     zo = list(zero_one_normals(4))
-    assert _solver_vertices(zo, (2, 2, 2, 1)) == _sympy_vertices(zo, (2, 2, 2, 1))
+    assert _solver_vertices(zo, (2, 2, 2, 1)) == basic_solutions_by_hand(zo, (2, 2, 2, 1))
 
 
 @pytest.mark.parametrize(("extra", "says"), [
