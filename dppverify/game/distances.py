@@ -34,7 +34,7 @@ if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fas
 __all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "ArcRows", "common_denominator",
            "dijkstra", "exact_distances_to", "hops_by_arrays", "hops_to_targets",
            "multi_source_dijkstra", "scaled_distance_fields", "sparse_dijkstra", "state_dijkstra",
-           "uniform_hops", "unscale"]
+           "state_dijkstra_via", "uniform_hops", "unscale"]
 
 EXACT_FLOAT_LIMIT = 2**53
 """Integer path sums below this are exact in float64."""
@@ -234,6 +234,24 @@ def state_dijkstra(sources: Iterable[tuple[S, Number]],
     dist: defaultdict[S, Number] = defaultdict(lambda: INF)
     _dijkstra(sources, arcs, dist, {}, ordered=False)
     return {x: d for x, d in dist.items() if d != INF}  # a source of infinite cost is unreached
+
+
+def state_dijkstra_via(sources: Iterable[tuple[S, Number]],
+                       arcs: Callable[[S], Iterable[tuple[S, Number]]]
+                       ) -> tuple[dict[S, Number], dict[S, S]]:
+    """:func:`state_dijkstra` with the state each reached state was last reached from (the
+    cheapest walks are read back through it).
+
+    Examples
+    --------
+    >>> line = {"a": [("b", 2), ("c", 5)], "b": [("c", 1)], "c": []}
+    >>> state_dijkstra_via([("a", 0)], lambda x: line[x])
+    ({'a': 0, 'b': 2, 'c': 3}, {'b': 'a', 'c': 'b'})
+    """
+    dist: defaultdict[S, Number] = defaultdict(lambda: INF)
+    via: dict[S, S] = {}
+    _dijkstra(sources, arcs, dist, via, ordered=False)
+    return {x: d for x, d in dist.items() if d != INF}, via
 
 
 def _dijkstra(sources: Iterable[tuple[Any, Number]],

@@ -454,12 +454,13 @@ def min_cover(costs: Mapping[int, Fraction | int], rhs: Sequence[Fraction | int]
         Subset mask -> cost; every singleton must be present (it gives the start basis).
         Masks absent from ``costs`` are not available.
     rhs : sequence
-        Positive weights, one per goal.
+        Non-negative weights, one per goal (a zero: a goal no type mass is on, e.g. a goal the
+        goal-selection Attacker never chooses).
 
     Raises
     ------
     ValueError
-        If a singleton is missing or a weight is not positive.
+        If a singleton is missing or a weight is negative.
 
     Examples
     --------
@@ -473,8 +474,8 @@ def min_cover(costs: Mapping[int, Fraction | int], rhs: Sequence[Fraction | int]
 (Fraction(1, 1), Fraction(1, 1), Fraction(1, 1)))
     """
     r = [Fraction(x) for x in rhs]
-    if any(x <= 0 for x in r):
-        raise ValueError("min_cover: every weight must be positive")
+    if any(x < 0 for x in r):
+        raise ValueError("min_cover: every weight must be non-negative")
     n = len(r)
     cols = sorted(costs)
     for i in range(n):

@@ -58,11 +58,14 @@ from dppverify.structured.normal_dp import BeyondExactRange, normal_dp_value
 from dppverify.structured.normal_fixpoint import NormalSets, normal_sets
 
 __all__ = [
+    "InfiniteSets",
     "NValue",
     "coalition_nvalue",
     "extra_directions",
+    "infinite_sets",
     "lower_bound_simple",
     "nvalue",
+    "translation_at_start",
 ]
 
 MAX_ROUNDS = 4
@@ -302,9 +305,63 @@ def _translated_lower(sets: NormalSets) -> Fraction | None:
     return None
 
 
+@dataclass(frozen=True, eq=False)
+class InfiniteSets:
+    """What :func:`infinite_sets` found at ``H = inf``: the value at the prior, and the sets.
+
+    Attributes
+    ----------
+    value : NValue
+        ``V_inf`` at the instance's prior, exact or a bracket (:func:`nvalue`'s answer).
+    sets : NormalSets
+        The last sets computed (the coalition DP's, or its last refinement's).
+    exact : bool
+        Whether ``sets`` are the exact guarantee sets ``G_v`` (N <= 3: NG.4; else their arc
+        condition holds at every walkable arc, NRULE NR.1(e)); then every prior's value is
+        their support function, not only this prior's.
+    coalition : NormalSets
+        The coalition DP's sets (an outer bound; NG.10 translates them into inner ones).
+    """
+
+    value: NValue
+    sets: NormalSets
+    exact: bool
+    coalition: NormalSets
+
+
+def translation_at_start(sets: NormalSets) -> Fraction | None:
+    """NG.10's least translation ``t(s0)``: ``F_v − t_v·1`` is a sub-fixpoint, so
+    ``F_s0 − t(s0)·1`` lies in the exact guarantee set; None if the longest-path problem does
+    not settle.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> translation_at_start(normal_sets(star3()))
+    Fraction(0, 1)
+    """
+    lower = _translated_lower(sets)
+    return None if lower is None else _sets_value(sets) - lower
+
+
 def _infinite_nvalue(inst: Instance, progress: Callable[[str], None] | None) -> NValue:
-    """:func:`nvalue` at ``H = inf``: label-setting fixpoints (NRULE NR.1), their arc test
-    (NR.2) and a refinement with the failing directions as extra normals."""
+    """:func:`nvalue` at ``H = inf`` (:func:`infinite_sets`'s value)."""
+    return infinite_sets(inst, progress).value
+
+
+def infinite_sets(inst: Instance, progress: Callable[[str], None] | None = None
+                  ) -> InfiniteSets:
+    """:func:`nvalue` at ``H = inf`` with the sets behind it: label-setting fixpoints (NRULE
+    NR.1), their arc test (NR.2) and a refinement with the failing directions as extra
+    normals.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import hub4
+    >>> found = infinite_sets(hub4())
+    >>> found.value.value, found.exact, found.sets.extras
+    (Fraction(12, 7), True, ((2, 2, 2, 1),))
+    """
     n = inst.n_goals
     say = progress or (lambda _msg: None)
     say("the coalition DP at H = inf (one label-setting pass per goal subset)")
@@ -312,13 +369,14 @@ def _infinite_nvalue(inst: Instance, progress: Callable[[str], None] | None) -> 
     coal = dp_value(sets)
     upper = Fraction(coal.value)
     if n <= 3:
-        return coalition_nvalue(coal, n)
+        return InfiniteSets(coalition_nvalue(coal, n), sets, True, sets)
     say("the arc condition of the coalition sets on every walkable arc")
     arc = arc_condition(sets, inst.start)
     src = "coalition DP, certified at every arc (NG.8, NRULE NR.1(e))"
     if arc.holds:
-        return NValue(normalize(upper), normalize(upper), src, src, None, horizon=None,
-                      layers=len(sets.normals), normals=(), coalition=coal)
+        return InfiniteSets(NValue(normalize(upper), normalize(upper), src, src, None,
+                                   horizon=None, layers=len(sets.normals), normals=(),
+                                   coalition=coal), sets, True, sets)
     up_src = "coalition DP (NG.2: an upper bound)"
     reason = _arc_reason(inst, arc, "the coalition DP")
     lower, lo_src = lower_bound_simple(inst)
@@ -350,12 +408,16 @@ def _infinite_nvalue(inst: Instance, progress: Callable[[str], None] | None) -> 
         if arc.holds:
             src = (f"DP over {len(extras)} extra facet normals, certified at every arc "
                    f"(NRULE NR.1(e))")
-            return NValue(normalize(val), normalize(val), src, src, None, horizon=None,
-                          layers=len(sets.normals), normals=tuple(extras), coalition=coal)
+            return InfiniteSets(NValue(normalize(val), normalize(val), src, src, None,
+                                       horizon=None, layers=len(sets.normals),
+                                       normals=tuple(extras), coalition=coal), sets, True,
+                                coalition_sets)
         if lower == upper:
             src = f"{up_src[:-1]}) meeting {lo_src}"
-            return NValue(normalize(upper), normalize(upper), src, src, None, horizon=None,
-                          layers=len(sets.normals), normals=up_normals, coalition=coal)
+            return InfiniteSets(NValue(normalize(upper), normalize(upper), src, src, None,
+                                       horizon=None, layers=len(sets.normals),
+                                       normals=up_normals, coalition=coal), sets, False,
+                                coalition_sets)
         reason = _arc_reason(inst, arc, f"the DP with {len(extras)} extra normals")
     else:
         reason += f"; {MAX_ROUNDS} refinement rounds (the refinement budget)"
@@ -368,13 +430,16 @@ def _infinite_nvalue(inst: Instance, progress: Callable[[str], None] | None) -> 
                                     "sub-fixpoint (NG.10)")
         if lower == upper:
             src = f"{up_src[:-1]}) meeting the translated fixpoint bound (NG.10)"
-            return NValue(normalize(upper), normalize(upper), src, src, None, horizon=None,
-                          layers=len(sets.normals), normals=up_normals, coalition=coal)
+            return InfiniteSets(NValue(normalize(upper), normalize(upper), src, src, None,
+                                       horizon=None, layers=len(sets.normals),
+                                       normals=up_normals, coalition=coal), sets, False,
+                                coalition_sets)
     else:
         lo_src += (f" (NG.10's translated bound not tried: more than {MAX_TRANSLATED_ARCS} "
                    f"walkable arcs)")
-    return NValue(normalize(lower), normalize(upper), lo_src, up_src, reason, horizon=None,
-                  layers=len(sets.normals), normals=up_normals, coalition=coal)
+    return InfiniteSets(NValue(normalize(lower), normalize(upper), lo_src, up_src, reason,
+                               horizon=None, layers=len(sets.normals), normals=up_normals,
+                               coalition=coal), sets, False, coalition_sets)
 
 
 def _failing_directions(arc: ArcCondition) -> list[tuple[Fraction, ...]]:

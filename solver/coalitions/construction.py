@@ -46,7 +46,8 @@ from solver.game.instance import Instance
 from solver.game.profile_writing import per_goal_profile
 from solver.game.walks import StrategyWalk
 
-__all__ = ["CoalitionEquilibrium", "FixpointNotReached", "arc_graph", "coalition_equilibrium"]
+__all__ = ["CertifiedSets", "CoalitionEquilibrium", "FixpointNotReached", "SetsNotCertified",
+           "arc_graph", "certified_sets", "coalition_equilibrium"]
 
 DEFAULT_BUDGET = Budget()
 DOMINATED_ROUNDS = 2
@@ -287,6 +288,98 @@ def _fixpoint_value(fix: Fixpoint, start: int, prior: tuple[Fraction, ...]) -> F
     return normal_cover_lp(fix.system.normals, costs, list(prior)).value
 
 
+@dataclass(frozen=True, eq=False)
+class CertifiedSets:
+    """The exact guarantee sets of a game at ``H = inf``, as the construction uses them.
+
+    Attributes
+    ----------
+    graph : ArcGraph
+        The walkable part of the game (:func:`arc_graph`).
+    labels : numpy.ndarray
+        The game's node index of each node of ``graph``.
+    found : GuaranteeSets
+        The certified fixpoint ``m*`` with its normals and ranks (proofs/NEXACT.md).
+    written : Fixpoint
+        The written rule's DP (the format's dominated reading, ``docs/formats.md`` §2b),
+        which passes the arc test as well.
+    """
+
+    graph: ArcGraph
+    labels: np.ndarray
+    found: GuaranteeSets
+    written: Fixpoint
+
+
+class SetsNotCertified(Exception):
+    """:func:`certified_sets` stopped before a certified fixpoint.
+
+    Attributes
+    ----------
+    reason : str
+        Which limit was reached.
+    fixpoint : Fixpoint or None
+        The DP at hand: the certified fixpoint when ``certified`` (the sets are exact, only the
+        written rule failed), else the best outer DP found (an upper bound), or None.
+    certified : bool
+        Whether ``fixpoint`` is the certified one.
+    start : int
+        The start's index in ``fixpoint``.
+    """
+
+    def __init__(self, reason: str, fixpoint: Fixpoint | None, certified: bool, start: int
+                 ) -> None:
+        super().__init__(reason)
+        self.reason, self.fixpoint, self.certified, self.start = (reason, fixpoint, certified,
+                                                                  start)
+
+
+def certified_sets(game: Instance, budget: Budget = DEFAULT_BUDGET) -> CertifiedSets:
+    """The exact guarantee sets of ``game`` (any prior: the sets do not depend on it).
+
+    Raises
+    ------
+    SetsNotCertified
+        When the budget ends before a certified fixpoint whose written rule passes.
+
+    Examples
+    --------
+    >>> from solver.game.instance import triangle
+    >>> cs = certified_sets(triangle())
+    >>> [str(cs.found.fixpoint.value(j, cs.graph.start)) for j in range(3)]
+    ['3', '2', '4']
+    """
+    graph, labels = arc_graph(game)
+    found = guarantee_sets(graph, budget)
+    written = None
+    for _ in range(DOMINATED_ROUNDS + 1):  # the written rule, under the format's reading
+        if not isinstance(found, GuaranteeSets):
+            break
+        if not found.extra_normals:  # a cover of 1_S uses subsets of S only: the same DP
+            written = found.fixpoint
+            break
+        max_layers = budget.layers if budget.layers is not None else 20 * graph.n_nodes + 200
+        try:
+            written, bad = dominated_failures(graph, found.normals, max_layers)
+        except (BudgetExceeded, ValueError) as exc:
+            found = Unreached(f"the written rule's sets: {exc}", found.fixpoint)
+            break
+        if not bad:
+            break
+        extra = [a for a in bad if a not in found.normals]
+        if not extra or _ + 1 > DOMINATED_ROUNDS:
+            raise SetsNotCertified(
+                "the rule with these normals fails the arc test under the format's dominated "
+                f"reading (docs/formats.md §2b) in direction {bad[0]}", found.fixpoint, True,
+                graph.start)
+        found = guarantee_sets(graph, budget, initial=[*found.extra_normals, *extra])
+    if not isinstance(found, GuaranteeSets):
+        raise SetsNotCertified(found.reason + f"; budget: {budget.describe()}", found.upper,
+                               False, graph.start)
+    assert written is not None
+    return CertifiedSets(graph, labels, found, written)
+
+
 def coalition_equilibrium(game: Instance, budget: Budget = DEFAULT_BUDGET
                           ) -> CoalitionEquilibrium:
     """The exact N-goal construction on ``game``: the entry :func:`solver.solve` calls for
@@ -310,40 +403,22 @@ def coalition_equilibrium(game: Instance, budget: Budget = DEFAULT_BUDGET
     ('3/2', '3/2', ())
     """
     t0 = time.perf_counter()
-    graph, labels = arc_graph(game)
-    found = guarantee_sets(graph, budget)
-    written = None
-    for _ in range(DOMINATED_ROUNDS + 1):  # the written rule, under the format's reading
-        if not isinstance(found, GuaranteeSets):
-            break
-        if not found.extra_normals:  # a cover of 1_S uses subsets of S only: the same DP
-            written = found.fixpoint
-            break
-        max_layers = budget.layers if budget.layers is not None else 20 * graph.n_nodes + 200
-        try:
-            written, bad = dominated_failures(graph, found.normals, max_layers)
-        except (BudgetExceeded, ValueError) as exc:
-            found = Unreached(f"the written rule's sets: {exc}", found.fixpoint)
-            break
-        if not bad:
-            break
-        extra = [a for a in bad if a not in found.normals]
-        if not extra or _ + 1 > DOMINATED_ROUNDS:
-            v = _fixpoint_value(found.fixpoint, graph.start, game.prior)
+    try:
+        cs = certified_sets(game, budget)
+    except SetsNotCertified as exc:
+        if exc.certified:
+            assert exc.fixpoint is not None
+            v = _fixpoint_value(exc.fixpoint, exc.start, game.prior)
             src = "the certified fixpoint (proofs/NEXACT.md NX.5)"
-            raise FixpointNotReached(
-                "the rule with these normals fails the arc test under the format's dominated "
-                f"reading (docs/formats.md §2b) in direction {bad[0]}", v, src, v, src)
-        found = guarantee_sets(graph, budget, initial=[*found.extra_normals, *extra])
-    if not isinstance(found, GuaranteeSets):
+            raise FixpointNotReached(exc.reason, v, src, v, src) from None
         lower, lo_src = simple_lower_bound(game)
-        upper = None if found.upper is None else _fixpoint_value(found.upper, graph.start,
-                                                                 game.prior)
-        up_src = ("none (no fixpoint of the DP)" if found.upper is None else
-                  f"the normal-restricted DP over {len(found.upper.system.normals)} normals at "
-                  "its fixpoint (proofs/NGOAL.md NG.7)")
-        raise FixpointNotReached(found.reason + f"; budget: {budget.describe()}", lower,
-                                 lo_src, upper, up_src)
+        upper = None if exc.fixpoint is None else _fixpoint_value(exc.fixpoint, exc.start,
+                                                                  game.prior)
+        up_src = ("none (no fixpoint of the DP)" if exc.fixpoint is None else
+                  f"the normal-restricted DP over {len(exc.fixpoint.system.normals)} normals "
+                  "at its fixpoint (proofs/NGOAL.md NG.7)")
+        raise FixpointNotReached(exc.reason, lower, lo_src, upper, up_src) from None
+    graph, labels, found, written = cs.graph, cs.labels, cs.found, cs.written
     fix = found.fixpoint
     assert written is not None
     n = game.n_goals

@@ -29,7 +29,7 @@ import numpy as np
 from solver.coalitions.guarantee_sets import ArcGraph, Fixpoint
 from solver.coalitions.normal_cover import normal_cover_lp
 
-__all__ = ["AttackerPlan", "normal_attacker"]
+__all__ = ["AttackerPlan", "normal_attacker", "piece_walks"]
 
 Walk = tuple[int, ...]
 
@@ -88,24 +88,47 @@ def normal_attacker(graph: ArcGraph, fix: Fixpoint, prior: Sequence[Fraction],
     >>> str(plan.value), [w for w, _ in plan.leaves]
     ('1', [(0, 1), (0, 2)])
     """
-    system = fix.system
-    normals = system.normals
+    normals = fix.system.normals
     s0 = graph.start
     costs = [fix.value(j, s0) for j in range(len(normals))]
     root = normal_cover_lp(normals, costs, list(prior), order)
+    leaves = piece_walks(graph, fix, root.cover, max_walks)
+    return AttackerPlan(tuple(root.dual), root.value, dict(root.cover), leaves)
+
+
+def piece_walks(graph: ArcGraph, fix: Fixpoint, pieces: dict[int, Fraction],
+                max_walks: int = 200_000) -> tuple[tuple[Walk, dict[int, Fraction]], ...]:
+    """The walks of the pieces ``pieces`` (normal index -> mass) started at the start: every
+    walk they end on with the masses ending there, sorted (proofs/NEXACT.md NX.2).
+
+    Raises
+    ------
+    ValueError
+        If the pieces end on more than ``max_walks`` walks.
+
+    Examples
+    --------
+    >>> from solver.coalitions.guarantee_sets import guarantee_sets
+    >>> graph = ArcGraph(indptr=np.array([0, 2, 2, 2]), heads=np.array([1, 2]),
+    ...                  weights=np.array([1, 1]), denominator=1, goals=(1, 2),
+    ...                  terminal=np.array([[0, 2], [2, 0]]), start=0)
+    >>> fix = guarantee_sets(graph).fixpoint
+    >>> piece_walks(graph, fix, {2: Fraction(1)})   # the pair (1, 1) splits at the start
+    (((0, 1), {0: Fraction(1, 1)}), ((0, 2), {1: Fraction(1, 1)}))
+    """
     memo: dict[tuple[int, int], list[tuple[int, Fraction, int]]] = {}
     leaves: list[tuple[Walk, dict[int, Fraction]]] = []
-    stack: list[tuple[Walk, dict[int, Fraction]]] = [((s0,), dict(root.cover))]
+    stack: list[tuple[Walk, dict[int, Fraction]]] = [((graph.start,), dict(pieces))]
     while stack:
-        walk, pieces = stack.pop()
+        walk, at = stack.pop()
         v = walk[-1]
         if graph.is_goal[v]:
-            leaves.append((walk, pieces))
+            leaves.append((walk, at))
             if len(leaves) > max_walks:
                 raise ValueError(f"the Attacker's plan exceeds {max_walks:,} walks")
             continue
         nxt: dict[int, dict[int, Fraction]] = {}
-        for j, mass in sorted(pieces.items()):
+        for j, mass in sorted(at.items()):
             key = (j, v)
             if key not in memo:
                 memo[key] = _moves(graph, fix, j, v)
@@ -115,7 +138,7 @@ def normal_attacker(graph: ArcGraph, fix: Fixpoint, prior: Sequence[Fraction],
         for u in sorted(nxt, reverse=True):
             stack.append(((*walk, u), nxt[u]))
     leaves.sort()
-    return AttackerPlan(tuple(root.dual), root.value, dict(root.cover), tuple(leaves))
+    return tuple(leaves)
 
 
 def _moves(graph: ArcGraph, fix: Fixpoint, j: int, v: int) -> list[tuple[int, Fraction, int]]:

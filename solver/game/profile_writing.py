@@ -3,9 +3,13 @@
 - ``dpp-profile/1``: two goals in the paper's labelling (primary and secondary types, the
   progress rule σ*, the phases of ξ²), written by the two-goal construction;
 - ``dpp-ngoal-profile/1``: one mixed strategy per goal index, for any N, written by the
-  coalition construction.
+  coalition construction;
+- ``dpp-selection-profile/1``: the goal-selection game's profile (the Attacker's choice ``q``,
+  one mixed strategy per goal index, the Defender's rule), written by
+  :mod:`solver.selection`.
 
-Both constructions write through :func:`two_goal_profile` and :func:`per_goal_profile`, which
+The constructions write through :func:`two_goal_profile`, :func:`per_goal_profile` and
+:func:`selection_profile`, which
 share the walk entries, the numbers (exact ``"p/q"`` strings; floats in float mode) and the
 solver's provenance block.
 """
@@ -23,14 +27,17 @@ if TYPE_CHECKING:
     from solver.game.instance import Instance
     from solver.game.walks import StrategyWalk
 
-__all__ = ["NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "per_goal_profile", "two_goal_profile",
-           "walk_entry"]
+__all__ = ["NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "SELECTION_PROFILE_FORMAT", "per_goal_profile",
+           "selection_profile", "two_goal_profile", "walk_entry"]
 
 PROFILE_FORMAT = "dpp-profile/1"
 """The two-goal profile format (``docs/formats.md`` §2)."""
 
 NGOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
 """The per-goal profile format, any N (``docs/formats.md`` §2b)."""
+
+SELECTION_PROFILE_FORMAT = "dpp-selection-profile/1"
+"""The goal-selection profile format (``docs/formats.md`` §2c)."""
 
 
 def walk_entry(nodes: Sequence[Hashable], probability: Number,
@@ -127,6 +134,41 @@ def per_goal_profile(instance: Instance, strategies: Sequence[Sequence[StrategyW
     return {
         "format": NGOAL_PROFILE_FORMAT,
         "goals": [node_to_json(g) for g in instance.goals],
+        "attacker": [[walk_entry(w.nodes, w.probability) for w in mix] for mix in strategies],
+        "defender": dict(defender),
+        "value": dict(values),
+        "exact": True,
+        "tolerance": None,
+        "solver": _solver_block(method, **provenance),
+    }
+
+
+def selection_profile(instance: Instance, strategies: Sequence[Sequence[StrategyWalk]], *,
+                      choice: Sequence[Number], defender: Mapping[str, Any],
+                      values: Mapping[str, Any], method: str, **provenance: Any
+                      ) -> dict[str, Any]:
+    """The ``dpp-selection-profile/1`` document: the Attacker chooses goal ``goals[θ]`` with
+    probability ``choice[θ]`` and then plays ``strategies[θ]``; ``defender`` is the Defender's
+    rule (exact numbers only).
+
+    Examples
+    --------
+    >>> from fractions import Fraction
+    >>> from solver.game.instance import triangle
+    >>> from solver.game.walks import StrategyWalk
+    >>> inst = triangle()
+    >>> walks = [[StrategyWalk.along(inst.network, (0, 2), Fraction(1))],
+    ...          [StrategyWalk.along(inst.network, (0, 1), Fraction(1))]]
+    >>> doc = selection_profile(inst, walks, choice=[Fraction(0), Fraction(1)],
+    ...                         defender={"rule": "guarantee", "h": ["3", "2"]},
+    ...                         values={"V": "2"}, method="by hand")
+    >>> doc["format"], doc["choice"], doc["attacker"][1]
+    ('dpp-selection-profile/1', ['0', '1'], [{'path': ['s', 'g2'], 'probability': '1'}])
+    """
+    return {
+        "format": SELECTION_PROFILE_FORMAT,
+        "goals": [node_to_json(g) for g in instance.goals],
+        "choice": [format_number(q) for q in choice],
         "attacker": [[walk_entry(w.nodes, w.probability) for w in mix] for mix in strategies],
         "defender": dict(defender),
         "value": dict(values),

@@ -1,0 +1,1 @@
+"""The goal-selection game: the Attacker chooses its goal (proofs/SELECT.md)."""
