@@ -22,9 +22,15 @@ from fractions import Fraction
 
 from dppverify.exact import Bracket, normalize
 from dppverify.selection.instance import SelectionInstance
-from dppverify.structured.cover import Normal, min_cover_vectors
+from dppverify.structured.cover import Normal, min_cover_vectors, zero_one_normals
+from dppverify.structured.dp_certificate import certified_coalition_dp
 from dppverify.structured.normal_fixpoint import NormalSets
-from dppverify.structured.proved_value import NValue, infinite_sets, translation_at_start
+from dppverify.structured.proved_value import (
+    NValue,
+    infinite_sets,
+    nvalue,
+    translation_at_start,
+)
 
 __all__ = ["SelectionValue", "diagonal_bound", "selection_value"]
 
@@ -111,9 +117,13 @@ def _column(sets: NormalSets) -> list[Fraction]:
     return col
 
 
-def selection_value(selection: SelectionInstance,
+def selection_value(selection: SelectionInstance, horizon: int | None = None,
                     progress: Callable[[str], None] | None = None) -> SelectionValue:
     """``V_sel`` of a goal-selection game, exact where proved, else a bracket naming its bounds.
+
+    ``horizon``: the game truncated at ``H`` steps (SELECT.9: the coalition DP's layer ``H``,
+    exact for N <= 3 and where its certificate holds at every layer); None (the default) is
+    the untruncated game.
 
     Examples
     --------
@@ -126,6 +136,8 @@ def selection_value(selection: SelectionInstance,
     (Fraction(2, 1), (Fraction(1, 4), Fraction(3, 4)), ((0, 1), (1, 1)), 2)
     """
     game, r = selection.game, selection.values
+    if horizon is not None:
+        return _truncated(selection, horizon)
     found = infinite_sets(game, progress)
     sets = found.sets
     upper, binding = diagonal_bound(sets.normals, _column(sets), r)
@@ -174,3 +186,27 @@ def value_at(sets: NormalSets, choice: Sequence[Fraction]) -> Fraction:
     Fraction(4, 3)
     """
     return Fraction(min_cover_vectors(sets.normals, _column(sets), list(choice)).value)
+
+
+def _truncated(selection: SelectionInstance, horizon: int) -> SelectionValue:
+    """SELECT.9: ``V_{H,sel}`` from the coalition DP's layer ``H`` at the start."""
+    game, r = selection.game, selection.values
+    n = game.n_goals
+    coal, fails, _ = certified_coalition_dp(game, horizon, None)
+    normals = zero_one_normals(n)
+    column = [Fraction(coal.coalition_costs[mask]) for mask in range(1, 1 << n)]
+    upper, binding = diagonal_bound(normals, column, r)
+    uniform = nvalue(game, horizon)
+    if not fails:
+        src = (f"the coalition DP at H = {horizon} ("
+               + ("NG.3, NG.4: the exact sets" if n <= 3 else "certified at every layer, NG.8")
+               + "); V_sel = max t with t·1 + r in G_s0 (SELECT.2, SELECT.9)")
+        return SelectionValue(upper, upper, src, src, None, choice=barycentre(binding),
+                              binding=binding, normals=(), uniform=uniform, values=r)
+    lower = min(Fraction(game.dist_to[t][game.start]) / n - r[t] for t in range(n))
+    v, u, _ = fails[0]
+    return SelectionValue(lower, upper, "the uniform Defender: every type pays at least "
+                          "d(s0, g^i)/N (SELECT.2)", f"the coalition DP at H = {horizon} (an "
+                          "upper bound, NG.2)", f"the coalition DP's certificate fails at arc "
+                          f"{game.nodes[v]!r} -> {game.nodes[u]!r}", choice=None,
+                          binding=binding, normals=(), uniform=uniform, values=r)

@@ -6,7 +6,10 @@ allocations made explicit moves. One writer serves any number of goals
 ``docs/formats.md`` §1, "N goals"); with N types:
 
 1. **chance** draws the Attacker's type θ (its true goal g^θ, θ = 1 … N) with the prior ``b``
-   (exact rationals);
+   (exact rationals); in the goal-selection game (``goal_values`` given, proofs/SELECT.md) the
+   root is instead the **Attacker's** own decision ``choose <goal>`` (one information set), and
+   every payoff is shifted by the chosen goal's value (the Attacker pays its cost minus
+   ``r_θ``);
 2. the **Attacker** (player 1) of that type chooses the next node of the walk; its
    information set is its type plus everything it has seen: the walk and the Defender's past
    allocations (``attacker_observes=True``, the default) or only the walk
@@ -90,7 +93,7 @@ p "" 2 1 "D p1 h-" { "alloc a" "alloc b" "alloc c" } 0
 from __future__ import annotations
 
 import sys
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
 from pathlib import Path
@@ -136,8 +139,9 @@ class EfgSize:
 
 
 def efg_size(tree: WalkTree, *, attacker_observes: bool = True,
-             forced_moves: bool = False) -> EfgSize:
-    """Count the exported game's nodes and information sets without writing it.
+             forced_moves: bool = False, selection: bool = False) -> EfgSize:
+    """Count the exported game's nodes and information sets without writing it
+    (``selection``: the goal-selection game, whose root is the Attacker's choice).
 
     Exact at any size (Python integers: ``N^t`` copies of a ``t``-step prefix), so it is
     the size guard of :func:`tree_to_efg`.
@@ -169,9 +173,10 @@ defender_infosets=2)
     dnodes = copies(depth >= 1, shift=1)
     leaves = copies(kids == 0)
     a_infosets = n * (inner_copies if attacker_observes else int(np.count_nonzero(choice)))
+    root = int(selection)  # the goal choice is one more Attacker node and information set
     return EfgSize(nodes=1 + n * (inner_copies + dnodes + leaves), terminals=n * leaves,
-                   attacker_nodes=n * inner_copies, defender_nodes=n * dnodes,
-                   attacker_infosets=a_infosets, defender_infosets=dnodes)
+                   attacker_nodes=n * inner_copies + root, defender_nodes=n * dnodes,
+                   attacker_infosets=a_infosets + root, defender_infosets=dnodes)
 
 
 def _label(text: str) -> str:
@@ -203,8 +208,10 @@ def _number(x: Number) -> str:
 class _Writer:
     """Preorder emission of the game tree (one ``.efg`` line per node)."""
 
-    def __init__(self, tree: WalkTree, attacker_observes: bool, forced_moves: bool) -> None:
+    def __init__(self, tree: WalkTree, attacker_observes: bool, forced_moves: bool,
+                 goal_values: Sequence[Number] | None = None) -> None:
         self.tree = tree
+        self.values = goal_values
         self.forced = forced_moves
         self.inst = tree.instance
         self.observes = attacker_observes
@@ -247,6 +254,13 @@ class _Writer:
 
     def lines(self) -> Iterator[str]:
         inst = self.inst
+        if self.values is not None:  # the goal-selection game: the Attacker chooses its goal
+            num = self._infoset(ATTACKER, ("goal",))
+            acts = " ".join(f'"choose {name}"' for name in self.goal_names)
+            yield f'p "" {ATTACKER} {num} "goal" {{ {acts} }} 0'
+            for theta in self.types:
+                yield from self._attacker(theta, 0, "", -self.numbers.convert(self.values[theta]))
+            return
         branches = " ".join(f'"type {name}" {_number(p)}'
                             for name, p in zip(self.goal_names, inst.prior, strict=True))
         yield f'c "" 1 "type" {{ {branches} }} 0'
@@ -286,14 +300,15 @@ class _Writer:
 
 
 def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves: bool = False,
-                max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
+                max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None,
+                goal_values: Sequence[Number] | None = None) -> str:
     """The ``.efg`` text of the game on an already built walk tree (see :func:`to_efg`).
 
     Parameters
     ----------
     tree : WalkTree
         The walk tree of the truncated game (any number of goals).
-    attacker_observes, forced_moves, max_nodes, title
+    attacker_observes, forced_moves, max_nodes, title, goal_values
         As for :func:`to_efg`.
 
     Returns
@@ -326,7 +341,9 @@ def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves:
     Traceback (most recent call last):
     dppverify.errors.TreeTooLargeError: the .efg game for H = 1 has 15 nodes ...
     """
-    size = efg_size(tree, attacker_observes=attacker_observes, forced_moves=forced_moves)
+    selection = goal_values is not None
+    size = efg_size(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
+                    selection=selection)
     if size.nodes > max_nodes:
         raise TreeTooLargeError(
             f"the .efg game for H = {tree.horizon} has {size.nodes} nodes ({tree.n_prefixes} "
@@ -334,22 +351,26 @@ def tree_to_efg(tree: WalkTree, *, attacker_observes: bool = True, forced_moves:
             f"{max_nodes}; lower the horizon or raise the limit (--max-nodes)")
     n = len(tree.instance.goals)
     goals = f"N = {n} goals, " if n > 2 else ""
-    head = _label(title or f"dppverify truncated DPP game, {goals}H = {tree.horizon}")
+    game = "goal-selection DPP game" if selection else "DPP game"
+    head = _label(title or f"dppverify truncated {game}, {goals}H = {tree.horizon}")
     view = ("the Attacker observes the Defender's past allocations" if attacker_observes else
             "the Attacker does not observe the Defender's allocations")
+    root = ("the Attacker chooses its goal at the root and pays its cost minus the goal's value"
+            if selection else "chance draws the Attacker's true goal")
     comment = (f"Player 1 = Attacker (pays the cost), player 2 = Defender (receives it); "
-               f"chance draws the Attacker's true goal; {view}; the Defender's information "
+               f"{root}; {view}; the Defender's information "
                f"set is the walk prefix plus its own past allocations (perfect recall); "
                f"{tree.n_prefixes} walk prefixes, {size.nodes} game nodes.")
     out = [f'EFG 2 R "{head}" {{ "Attacker" "Defender" }}', f'"{_label(comment)}"', ""]
-    out.extend(_Writer(tree, attacker_observes, forced_moves).lines())
+    out.extend(_Writer(tree, attacker_observes, forced_moves, goal_values).lines())
     out.append("")
     return "\n".join(out)
 
 
 def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
            forced_moves: bool = False, max_prefixes: int = DEFAULT_MAX_PREFIXES,
-           max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None) -> str:
+           max_nodes: int = DEFAULT_MAX_EFG_NODES, title: str | None = None,
+           goal_values: Sequence[Number] | None = None) -> str:
     """The truncated game of ``instance`` with horizon ``horizon`` as Gambit ``.efg`` text.
 
     Parameters
@@ -370,6 +391,10 @@ def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
         Size guard on the exported game (it has ``N^t`` copies of each ``t``-step prefix).
     title : str, optional
         The game's title in the file.
+    goal_values : sequence of numbers, optional
+        The goal-selection game (proofs/SELECT.md): the root is the Attacker's choice of its
+        goal instead of chance, and it pays its cost minus ``goal_values[θ]``; the instance's
+        prior is not used.
 
     Raises
     ------
@@ -384,16 +409,19 @@ def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
     >>> inst = triangle()
     >>> to_efg(inst, 1).splitlines()[3]
     'c "" 1 "type" { "type g1" 7/10 "type g2" 3/10 } 0'
+    >>> to_efg(inst, 1, goal_values=[0, 1]).splitlines()[3:5]
+    ['p "" 1 1 "goal" { "choose g1" "choose g2" } 0', 'p "" 1 2 "T1 p0 h-" { "go g1" "go g2" } 0']
     """
     tree = build_tree(instance, horizon, max_prefixes=max_prefixes)
     return tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
-                       max_nodes=max_nodes, title=title)
+                       max_nodes=max_nodes, title=title, goal_values=goal_values)
 
 
 def write_efg(path: str | Path, instance: Instance, horizon: int, *,
               attacker_observes: bool = True, forced_moves: bool = False,
               max_prefixes: int = DEFAULT_MAX_PREFIXES, max_nodes: int = DEFAULT_MAX_EFG_NODES,
-              title: str | None = None, progress: bool = False) -> EfgSize:
+              title: str | None = None, progress: bool = False,
+              goal_values: Sequence[Number] | None = None) -> EfgSize:
     """Write :func:`to_efg` to ``path`` atomically (a temporary file, then a rename).
 
     Returns the game's size. Nothing is written when the game cannot be built. With
@@ -419,10 +447,11 @@ def write_efg(path: str | Path, instance: Instance, horizon: int, *,
     with tqdm(total=1, desc=f"export .efg ({tree.n_prefixes} prefixes)", disable=not progress,
               leave=False, file=sys.stderr) as bar:
         text = tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
-                           max_nodes=max_nodes, title=title)
+                           max_nodes=max_nodes, title=title, goal_values=goal_values)
         bar.update(1)
     write_files({Path(path): text})  # all or nothing, mode from the umask
-    return efg_size(tree, attacker_observes=attacker_observes, forced_moves=forced_moves)
+    return efg_size(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
+                    selection=goal_values is not None)
 
 
 class EfgWriteError(CheckerError, OSError):
