@@ -154,7 +154,8 @@ def selection_value(selection: SelectionInstance, horizon: int | None = None,
     coal_upper, coal_binding = diagonal_bound(found.coalition.normals, _column(found.coalition),
                                               r)
     up_src = (f"the DP over {len(sets.extras)} extra normals (its sets contain the exact "
-              "ones; SELECT.2)")
+              "ones; SELECT.2)" if sets.extras else
+              "the coalition DP (its sets contain the exact ones; SELECT.2)")
     if coal_upper < upper:
         upper, binding = coal_upper, coal_binding
         up_src = "the coalition DP (its sets contain the exact ones; SELECT.2)"

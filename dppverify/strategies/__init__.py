@@ -13,7 +13,8 @@ prior 1/2.
 - :func:`grid_worlds`: 4-connected grid instances with obstacles (the paper's Sec. VII), by
   default with each goal reachable from the start without passing the other goal;
 - :func:`ngoal_priors` and :func:`ngoal_instances`: N-entry priors and N-goal instances
-  (``N >= 2`` goals, exact weights) for the checker's N-goal routes.
+  (``N >= 2`` goals, exact weights) for the checker's N-goal routes;
+- :func:`selection_instances`: goal-selection instances (no prior, optional goal values).
 
 They produce plain dicts (the checker never imports the solver), ready for
 ``json.dumps``, :func:`dppverify.certify` or any solver reading the instance format.
@@ -28,7 +29,13 @@ Examples
 
 from dppverify.strategies.graphs import WEIGHT_KINDS, weighted_graphs
 from dppverify.strategies.grids import grid_worlds
-from dppverify.strategies.instances import instances, ngoal_instances, ngoal_priors, priors
+from dppverify.strategies.instances import (
+    instances,
+    ngoal_instances,
+    ngoal_priors,
+    priors,
+    selection_instances,
+)
 
 __all__ = ["WEIGHT_KINDS", "grid_worlds", "instances", "ngoal_instances", "ngoal_priors", "priors",
-           "weighted_graphs"]
+           "selection_instances", "weighted_graphs"]

@@ -18,7 +18,7 @@ from dppverify.strategies.graphs import (
     weighted_graphs,
 )
 
-__all__ = ["instances", "ngoal_instances", "ngoal_priors", "priors"]
+__all__ = ["instances", "ngoal_instances", "ngoal_priors", "priors", "selection_instances"]
 
 # ----------------------------------------------------------------------------- priors
 def priors(*, max_denominator: int = 10, allow_half: bool = True) -> st.SearchStrategy[list[str]]:
@@ -237,3 +237,30 @@ def _ngoal_instances(draw: st.DrawFn, graphs: st.SearchStrategy[Doc], lo: int, h
     prior = draw(ngoal_priors(k, max_weight=max_prior_weight))
     return {"graph": graph, "start": adj.ids[start], "goals": [adj.ids[g] for g in goals],
             "prior": prior}
+
+
+def selection_instances(*, min_goals: int = 2, max_goals: int = 4,
+                        graphs: st.SearchStrategy[Doc] | None = None,
+                        values: bool = True) -> st.SearchStrategy[Doc]:
+    """Goal-selection instance documents (``docs/formats.md`` §1, "Goal selection"): the
+    instances of :func:`ngoal_instances` without their prior, marked ``"goal_selection":
+    true``, and with ``values`` sometimes ``"goal_values"`` (halves in ``-2 .. 2``).
+
+    Examples
+    --------
+    >>> from hypothesis import find, settings
+    >>> doc = find(selection_instances(), lambda d: True, settings=settings(database=None))
+    >>> doc["goal_selection"], "prior" in doc, len(doc["goals"])
+    (True, False, 2)
+    """
+    base = ngoal_instances(min_goals=min_goals, max_goals=max_goals, graphs=graphs)
+    return _selection_instances(base, values)
+
+
+@st.composite
+def _selection_instances(draw: st.DrawFn, base: st.SearchStrategy[Doc], values: bool) -> Doc:
+    doc = {k: v for k, v in draw(base).items() if k != "prior"}
+    doc["goal_selection"] = True
+    if values and draw(st.booleans()):
+        doc["goal_values"] = [str(Fraction(draw(st.integers(-4, 4)), 2)) for _ in doc["goals"]]
+    return doc
