@@ -1,5 +1,6 @@
-"""``dpp experiment``: the paper's Section VII experiments (compare, baselines, density) and
-the N-goal series (:mod:`solver.cli.experiment_ngoal`)."""
+"""``dpp experiment``: the paper's Section VII experiments (compare, baselines, density), the
+N-goal series (:mod:`solver.cli.experiment_ngoal`) and the goal-selection sweep
+(:mod:`solver.cli.experiment_selection`)."""
 
 from __future__ import annotations
 
@@ -20,6 +21,7 @@ from solver.cli.common import (
     int_list,
 )
 from solver.cli.experiment_ngoal import ngoal_command
+from solver.cli.experiment_selection import selection_command
 from solver.errors import InvalidInstanceError, OutputError
 from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE
 
@@ -247,3 +249,4 @@ def experiment_density(samples: int, densities: str, seed: int, size: int,
 
 
 experiment_group.add_command(ngoal_command)
+experiment_group.add_command(selection_command)
