@@ -43,9 +43,15 @@ from dppverify.game.instance_reading import (
 )
 from dppverify.game.instance_type import Instance, Roles, finish_game
 
-__all__ = ["NGOAL_REFUSAL", "Instance", "Node", "Roles", "arc_arrays", "as_instance",
-           "finish_game", "goal_distance_fields", "instance_from_json", "load_instance",
-           "node_from_json", "node_to_json", "show_node"]
+SELECTION_REFUSAL = ("goal_selection: this is a goal-selection instance (the Attacker chooses its "
+                     "goal; there is no prior), not a game with a prior: read it with "
+                     "dppverify.selection.instance.selection_from_json (dpp solve, value, "
+                     "certify and export-efg take it as such)")
+"""The one line the prior game's reader gives a goal-selection document."""
+
+__all__ = ["NGOAL_REFUSAL", "SELECTION_REFUSAL", "Instance", "Node", "Roles", "arc_arrays",
+           "as_instance", "finish_game", "goal_distance_fields", "instance_from_json",
+           "load_instance", "node_from_json", "node_to_json", "show_node"]
 
 
 def as_instance(instance: Any, *, two_goals: bool = False) -> Instance:
@@ -169,6 +175,7 @@ def instance_from_json(doc: Any, *, two_goals: bool = False,
             doc = parse_json_text(doc)
         except JsonReadError as exc:
             raise InvalidInstanceError(str(exc)) from None
+    require(not (isinstance(doc, Mapping) and "goal_selection" in doc), SELECTION_REFUSAL)
     if isinstance(doc, Mapping) and "format" in doc and is_map_document(doc):
         return map_game(doc, two_goals=two_goals, base=base)
     try:

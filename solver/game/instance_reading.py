@@ -25,7 +25,13 @@ from solver.formats.nodes import node_from_json
 from solver.game.instance import Instance
 from solver.numbers import parse_number
 
-__all__ = ["as_instance", "instance_from_json", "load_instance"]
+__all__ = ["SELECTION_REFUSAL", "as_instance", "instance_from_json", "load_instance"]
+
+SELECTION_REFUSAL = ("goal_selection: this is a goal-selection instance (the Attacker chooses its "
+                     "goal; there is no prior), not a game with a prior: read it with "
+                     "solver.selection.instance.selection_from_json (dpp solve takes it as "
+                     "such)")
+"""The one line the prior game's reader gives a goal-selection document."""
 
 
 def load_instance(path: str | Path, *, two_goals: bool = False) -> Instance:
@@ -103,6 +109,8 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
         data = parse_json_text(data)
     if not isinstance(data, dict):
         raise InstanceFormatError(f"instance must be a JSON object, got {type(data).__name__}")
+    if "goal_selection" in data:
+        raise InstanceFormatError(SELECTION_REFUSAL)
     if data.get("format") == MAP_INSTANCE_FORMAT:
         return _from_map_document(data, base, two_goals)
     missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]

@@ -165,3 +165,72 @@ def test_reader_refuses_non_ascii(tmp_path: Path) -> None:
     p.write_bytes(HEADER.encode() + "..\u00e9\n...\n".encode())
     with pytest.raises(CheckerInvalid, match="not an ASCII map file"):
         checker_maps.read_map(p)
+
+
+# ---------------------------------------------------------------- goal-selection documents
+def _selection_documents() -> list[dict[str, Any]]:
+    from solver.formats.movingai import map_file, read_map_bytes
+    sha = read_map_bytes(map_file(str(PAPER10)))[1]
+    inline = {k: v for k, v in instance_to_json(Instance.from_grid(
+        solver_maps.read_map(PAPER10), (9, 0), ((0, 9), (0, 0), (9, 9)),
+        ("1/3", "1/3", "1/3"))).items() if k != "prior"}
+    return [
+        {"format": "dpp-map-instance/1", "map": str(PAPER10), "map_sha256": sha,
+         "start": [9, 0], "goals": [[0, 9], [0, 0]], "goal_selection": True},
+        {"format": "dpp-map-instance/1", "map": str(PAPER10), "map_sha256": sha,
+         "start": [9, 0], "goals": [[0, 9], [0, 0]], "goal_selection": True,
+         "goal_values": ["1/2", -1]},
+        {**inline, "goal_selection": True, "goal_values": [0, "0.25", 3]},
+    ]
+
+
+@pytest.mark.parametrize("k", range(3))
+def test_both_selection_readers_read_the_same_game(k: int) -> None:
+    from dppverify.selection.instance import selection_from_json as checker_read
+    from solver.selection.instance import selection_from_json as solver_read
+    doc = _selection_documents()[k]
+    a, b = checker_read(doc), solver_read(doc)
+    assert a.values == b.values
+    game = instance_from_json(instance_to_json(b.game))  # the solver's game, through JSON
+    assert (game.nodes, game.start, game.goals, game.prior) == (
+        a.game.nodes, a.game.start, a.game.goals, a.game.prior)
+    assert game.dist_to == a.game.dist_to
+    # and the document the solver writes back is read the same by the checker
+    assert checker_read(b.to_json()).values == a.values
+
+
+def _mistakes() -> list[tuple[dict[str, Any], str]]:
+    base = _selection_documents()[0]
+    inline = _selection_documents()[2]
+    return [({**base, "prior": ["1/2", "1/2"]}, "has no prior"),
+            ({**base, "goal_selection": False}, "must be true"),
+            ({**base, "goal_selection": "yes"}, "must be true"),
+            ({**base, "goal_values": [1]}, "goal_values: must be a list of 2"),
+            ({**base, "goal_values": "0,1"}, "goal_values: must be a list of 2"),
+            ({**base, "goal_values": ["x", 0]}, "goal_values[0]"),
+            ({**base, "connectivity": 8}, "exact"),
+            ({**inline, "numbers": "float"}, "exact"),
+            ({**inline, "goals": inline["goals"][:1]}, "goals"),
+            ({**base, "map_sha256": "0" * 64}, "map_sha256")]
+
+
+@pytest.mark.parametrize("k", range(10))
+def test_both_selection_readers_refuse_the_same_mistakes(k: int) -> None:
+    from dppverify.selection.instance import selection_from_json as checker_read
+    from solver.selection.instance import selection_from_json as solver_read
+    doc, words = _mistakes()[k]
+    with pytest.raises(CheckerInvalid) as c_err:
+        checker_read(doc)
+    with pytest.raises(SolverInvalid) as s_err:
+        solver_read(doc)
+    for message in (str(c_err.value), str(s_err.value)):
+        assert words in message and "\n" not in message, message
+
+
+def test_the_prior_games_readers_refuse_a_selection_document() -> None:
+    from solver.game.instance_reading import instance_from_json as solver_instance
+    doc = _selection_documents()[0]
+    with pytest.raises(CheckerInvalid, match="goal-selection instance"):
+        instance_from_json(doc)
+    with pytest.raises(SolverInvalid, match="goal-selection instance"):
+        solver_instance(doc)
