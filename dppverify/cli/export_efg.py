@@ -8,6 +8,7 @@ from dppverify.cli.conventions import output_file_option, progress_option, statu
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options
+from dppverify.cli.selection import selection_game, selection_options
 from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.formats.files import refuse_input_as_output
 from dppverify.limits import MAX_HORIZON
@@ -18,6 +19,7 @@ __all__ = ["export_efg_command"]
 
 @click.command("export-efg", short_help="Write the truncated game as a Gambit .efg file.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@selection_options
 @map_options
 @click.option("-H", "--horizon", type=click.IntRange(min=0, max=MAX_HORIZON), required=True,
               help="Horizon H of the truncated game.")
@@ -34,28 +36,35 @@ __all__ = ["export_efg_command"]
 @progress_option
 def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: int,
                        output: str, attacker_observes: bool, forced_moves: bool,
-                       max_prefixes: int, max_nodes: int, progress: bool | None) -> None:
+                       max_prefixes: int, max_nodes: int, goal_selection: bool,
+                       goal_values: str | None, progress: bool | None) -> None:
     """Write INSTANCE's game truncated at H steps as a Gambit .efg file.
 
     Chance draws the Attacker's goal, the Attacker picks each next node, the Defender
     allocates each step to a goal (information set: the walk plus its own past allocations,
     so the game has perfect recall); payoffs sit on the leaves only. Gambit and OpenSpiel
     read the file; every copy of a t-step walk prefix appears 2^t times (N^t with N goals:
-    an instance may list N > 2 goals, docs/formats.md), so keep H small.
+    an instance may list N > 2 goals, docs/formats.md), so keep H small. In the
+    goal-selection game (a goal-selection INSTANCE, or --goal-selection with --map) the root is
+    the Attacker's own choice of its goal instead of chance, and it pays its cost minus the
+    goal's value (proofs/SELECT.md).
 
     \b
     Examples:
       dpp export-efg examples/triangle.json --horizon 2 -o triangle.efg
       dpp export-efg examples/triangle.json -H 3 -o game.efg --attacker-blind
       dpp export-efg --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 2 -o g.efg
+      dpp export-efg --goal-selection --map m.map --start 2,0 --goals 0,3 0,0 -H 2 -o s.efg
     """
     try:
         refuse_input_as_output(output, [instance, grid.path if grid is not None else None])
-        game = load_game(instance, grid, "dpp export-efg")
+        sel = selection_game(instance, grid, goal_selection, goal_values)
+        game = load_game(instance, grid, "dpp export-efg") if sel is None else sel.game
         size = write_efg(output, game, horizon,
                          attacker_observes=attacker_observes, forced_moves=forced_moves,
                          max_prefixes=max_prefixes, max_nodes=max_nodes,
-                         progress=want_progress(progress))
+                         progress=want_progress(progress),
+                         goal_values=None if sel is None else sel.values)
     except TreeTooLargeError as exc:  # a Gambit game is the walk tree: no other route
         fail(TreeTooLargeError(str(exc).replace("use --route structured, or lower the horizon",
                                                 "lower the horizon (a Gambit game is the walk "
@@ -63,6 +72,8 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
     except CheckerError as exc:
         fail(exc)
     goals = f"N = {len(game.goals)} goals, " if len(game.goals) > 2 else ""
+    if sel is not None:
+        goals = f"goal selection, {goals}"
     status(f"wrote {output}: {goals}H = {horizon}, {size.nodes} game nodes ({size.terminals} "
            f"terminals), {size.attacker_infosets} Attacker and {size.defender_infosets} "
            f"Defender information sets")

