@@ -24,8 +24,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
-__all__ = ["CHECKS", "CHECK_IDS", "KINDS", "NGOAL_CHECKS", "NGOAL_CHECK_IDS", "CheckSpec",
-           "kind_of", "not_run", "spec"]
+__all__ = ["CHECKS", "CHECK_IDS", "KINDS", "NGOAL_CHECKS", "NGOAL_CHECK_IDS", "SELECTION_CHECKS",
+           "SELECTION_CHECK_IDS", "CheckSpec", "kind_of", "not_run", "spec"]
 
 RouteName = Literal["tree", "structured"]
 Kind = Literal["check", "consistency", "fact"]
@@ -127,7 +127,26 @@ entry."""
 NGOAL_CHECK_IDS: tuple[str, ...] = tuple(c.id for c in NGOAL_CHECKS)
 """Every check id of an N-goal certificate, in certificate order."""
 
-_BY_ID = {c.id: c for c in NGOAL_CHECKS} | {c.id: c for c in CHECKS}
+_SEL = "relies on proofs/SELECT.md (SELECT.6)"
+
+SELECTION_CHECKS: tuple[CheckSpec, ...] = (
+    *(c for c in NGOAL_CHECKS if "structured" in c.routes),
+    _spec("selection.goal_indifference", "SELECT",
+          f"{_SEL}: c_i, the exact best-response costs of pbne.attacker_br",
+          routes=("structured",)),
+    _spec("selection.value", "SELECT",
+          "relies on proofs/SELECT.md (SELECT.1, SELECT.2: the guarantee sets' V_sel)",
+          routes=("structured",)),
+)
+"""Every check of a goal-selection certificate (``dpp-selection-profile/1``), in certificate
+order: the N-goal structured route's checks on the game with the choice ``q`` as prior, then
+goal indifference and the value (``dppverify/checks.md``, "Goal selection")."""
+
+SELECTION_CHECK_IDS: tuple[str, ...] = tuple(c.id for c in SELECTION_CHECKS)
+"""Every check id of a goal-selection certificate, in certificate order."""
+
+_BY_ID = ({c.id: c for c in SELECTION_CHECKS} | {c.id: c for c in NGOAL_CHECKS}
+          | {c.id: c for c in CHECKS})
 """One entry per id (a shared id: the two-goal entry; both have the same kind and routes)."""
 
 NOT_RUN_REASONS = {

@@ -11,7 +11,7 @@ import dataclasses
 import json
 import os
 import sys
-from typing import Any
+from typing import Any, NoReturn
 
 import click
 
@@ -31,6 +31,7 @@ from dppverify.cli.errors import fail
 from dppverify.cli.hints import what_is
 from dppverify.cli.inputs import HORIZON, hinted, load_game, max_prefixes_option
 from dppverify.cli.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
+from dppverify.cli.selection import selection_game, selection_options
 from dppverify.cli.table import format_table
 from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
 from dppverify.formats.files import read_input, refuse_input_as_output
@@ -47,6 +48,8 @@ from dppverify.provenance import (
     verify_provenance,
 )
 from dppverify.routes import ROUTES, Route, ngoal_game
+from dppverify.selection.certify import certify_selection
+from dppverify.selection.instance import SelectionInstance
 
 __all__ = ["VERDICT_EXIT", "certify_command"]
 
@@ -54,6 +57,7 @@ __all__ = ["VERDICT_EXIT", "certify_command"]
 @click.command("certify", short_help="Certify or refute a profile as a PBNE of an instance.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @click.argument("profile", required=False, type=click.Path(dir_okay=False), metavar="PROFILE")
+@selection_options
 @map_options
 @click.option("-H", "--horizon", type=HORIZON,
               help="Certify the game truncated at H steps instead (an explicit request; the "
@@ -85,7 +89,8 @@ __all__ = ["VERDICT_EXIT", "certify_command"]
 def certify_command(instance: str | None, profile: str | None, grid: MapRequest | None,
                     horizon: int | None, route: Route, as_json: bool,
                     output: str | None, max_prefixes: int, float_mode: bool, seed: int,
-                    trials: int, provenance_of: str | None, progress: bool | None) -> None:
+                    trials: int, provenance_of: str | None, goal_selection: bool,
+                    goal_values: str | None, progress: bool | None) -> None:
     """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE's game (exit 3:
     could not decide).
 
@@ -111,16 +116,24 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
       dpp certify examples/triangle.json profile.json --horizon 4
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
       dpp certify --verify-provenance cert.json examples/triangle.json profile.json
+      dpp certify examples/paper10-selection.json selection-profile.json
+
+    Goal selection (a goal-selection INSTANCE, or --goal-selection with --map): PROFILE is a
+    dpp-selection-profile/1 (or a dpp-profile/1, whose prior is read as the Attacker's
+    choice); the untruncated game only; the checks of the game with prior q plus
+    selection.goal_indifference and selection.value (dppverify/checks.md, "Goal selection").
     """
     with reading_once():  # each input read once: the certificate hashes the bytes parsed
         _certify_files(instance, profile, grid, horizon, route, as_json, output, max_prefixes,
-                       float_mode, seed, trials, provenance_of, progress)
+                       float_mode, seed, trials, provenance_of, progress,
+                       (goal_selection, goal_values))
 
 
 def _certify_files(instance: str | None, profile: str | None, grid: MapRequest | None,
                    horizon: int | None, route: Route, as_json: bool, output: str | None,
                    max_prefixes: int, float_mode: bool, seed: int, trials: int,
-                   provenance_of: str | None, progress: bool | None) -> None:
+                   provenance_of: str | None, progress: bool | None,
+                   selection: tuple[bool, str | None] = (False, None)) -> None:
     """The body of :func:`certify_command` (inside its ``reading_once`` block)."""
     bar = PhaseBar(want_progress(progress), "certify", "reading the instance")
     try:
@@ -140,6 +153,16 @@ def _certify_files(instance: str | None, profile: str | None, grid: MapRequest |
             bar.close()
             _verify_provenance(provenance_of, instance, profile, grid)
             return
+        sel = selection_game(instance, grid, *selection)
+        if sel is not None:
+            if horizon is not None or route == "tree":
+                raise OptionError("a goal-selection profile is certified on the untruncated "
+                                  "game, by the structured route: omit --horizon and --route "
+                                  "tree")
+            bar.phase("certifying (goal selection, structured route, H = inf)")
+            cert = certify_selection(sel, profile)
+            bar.close()
+            _emit(_with_command(cert, instance, profile, grid, sel), as_json, output)
         game = load_game(instance, grid)
         bar.phase("reading the profile")
         doc = _profile_document(profile, game, instance)
@@ -158,7 +181,11 @@ def _certify_files(instance: str | None, profile: str | None, grid: MapRequest |
         solve = f"dpp solve {instance}" if instance is not None else "dpp solve --map ..."
         status(f"note: {profile} looks made for another instance: {reason} (make a profile "
                f"for this one with {solve} -o PROFILE)")
-    cert = _with_command(cert, instance, profile, grid)
+    _emit(_with_command(cert, instance, profile, grid), as_json, output)
+
+
+def _emit(cert: Certificate, as_json: bool, output: str | None) -> NoReturn:
+    """Print or write the certificate and exit with its verdict's code."""
     summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
     emit(cert.to_json(), format_table(cert), as_json=as_json, output=output, summary=summary)
     raise click.exceptions.Exit(VERDICT_EXIT[cert.verdict])
@@ -211,14 +238,16 @@ def _foreign(exc: Exception, path: str, game: Instance, instance: str | None) ->
 
 
 def _with_command(cert: Certificate, instance: str | None, profile: str,
-                  grid: MapRequest | None) -> Certificate:
+                  grid: MapRequest | None, sel: SelectionInstance | None = None) -> Certificate:
     """The certificate with its provenance's command (and, for --map, the grid's hashes)."""
     prov = dict(cert.provenance or provenance_record(instance, profile, route=cert.route,
                                                      exact=cert.exact))
     prov["command"] = _command()
     prov["profile"] = input_record(profile)  # the file's bytes (certify was given its document)
     if grid is not None:
-        prov["instance"] = grid_record(grid.path, grid.document())
+        prov["instance"] = grid_record(grid.path, grid.document() if sel is None else
+                                       grid.selection_document([str(r) for r in sel.values]
+                                                               if any(sel.values) else None))
     elif instance is not None:
         prov["instance"] = input_record(instance)
     return dataclasses.replace(cert, provenance=prov)

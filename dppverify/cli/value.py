@@ -22,9 +22,13 @@ from dppverify.cli.conventions import (
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import HORIZON, load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options
-from dppverify.errors import CheckerError
+from dppverify.cli.selection import selection_game, selection_options
+from dppverify.errors import CheckerError, OptionError
 from dppverify.formats.files import refuse_input_as_output
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
+from dppverify.selection.document import selection_lines, selection_value_document
+from dppverify.selection.instance import SelectionInstance
+from dppverify.selection.value import selection_value
 from dppverify.structured.proved_value import NValue
 from dppverify.text import show, show_value
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
@@ -37,6 +41,7 @@ __all__ = ["routed_lines", "value_command"]
 
 @click.command("value", short_help="The value V_H of the game (untruncated unless --horizon H).")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@selection_options
 @map_options
 @click.option("-H", "--horizon", type=HORIZON, default=None,
               help="Horizon H of the truncated game (an explicit request), or 'inf' for the "
@@ -53,6 +58,7 @@ __all__ = ["routed_lines", "value_command"]
 @progress_option
 def value_command(instance: str | None, grid: MapRequest | None, horizon: int | None,
                   as_json: bool, output: str | None, route: Route, max_prefixes: int,
+                  goal_selection: bool, goal_values: str | None,
                   progress: bool | None) -> None:
     """Print the value of INSTANCE's game: untruncated (H = inf) unless --horizon H is given.
 
@@ -71,11 +77,21 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
       dpp value examples/triangle.json -H 4 --json --route both
       dpp value examples/triangle.json -H 4 -o value.json
       dpp value --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 6
+      dpp value examples/paper10-selection.json     # the goal-selection game: V_sel, q*
+
+    Goal selection (a goal-selection INSTANCE, or --goal-selection with --map and no
+    --prior): V_sel, the value when the Attacker chooses its goal, exactly or as a bracket
+    naming both bounds, with the choice q* and the value at the uniform prior beside it
+    (structured route; --json: a dpp-selection-value/1 document; proofs/SELECT.md).
     """
     show = want_progress(progress)
     bar = PhaseBar(show, "value", "reading the instance")
     try:
         refuse_input_as_output(output, [instance, grid.path if grid else None])
+        sel = selection_game(instance, grid, goal_selection, goal_values)
+        if sel is not None:
+            _selection_value(sel, horizon, route, bar, as_json, output)
+            return
         game = load_game(instance, grid, "dpp value")
         bar.phase(f"V_H (route {route})")
         r = routed_value(game, horizon, route=route, max_prefixes=max_prefixes,
@@ -90,6 +106,21 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
     if r.disagreement is not None:
         click.echo(f"error: {r.disagreement}", err=True)
         raise click.exceptions.Exit(1)
+
+
+def _selection_value(sel: SelectionInstance, horizon: int | None, route: Route, bar: PhaseBar,
+                     as_json: bool, output: str | None) -> None:
+    """``dpp value`` on the goal-selection game (structured route only)."""
+    if route == "tree" or route == "both":
+        raise OptionError("the goal-selection value is computed by the structured route "
+                          "(the guarantee sets); --route tree and both are for a game with a "
+                          "prior (dpp export-efg writes the goal-selection tree for the peers)")
+    bar.phase("V_sel (the guarantee sets)")
+    v = selection_value(sel, horizon, progress=bar.phase)
+    bar.close()
+    lines = selection_lines(v, horizon)
+    emit(selection_value_document(v, horizon), "\n".join(lines), as_json=as_json,
+         output=output, summary=lines[0])
 
 
 def routed_lines(r: RoutedValue) -> list[str]:

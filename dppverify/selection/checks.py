@@ -35,6 +35,7 @@ from dppverify.checks.per_goal_records import (
 from dppverify.checks.structured_per_goal import nstructured_checks
 from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance
+from dppverify.registry import SELECTION_CHECK_IDS
 from dppverify.selection.instance import SelectionInstance
 from dppverify.selection.mixture import ProgressMixture, mixture_response
 from dppverify.selection.profile import SelectionProfile
@@ -52,8 +53,8 @@ VALUE = ("relies on proofs/SELECT.md (SELECT.2: V_sel = max t with t·1 + r in t
 MIXTURE = ("relies on proofs/SELECT.md (SELECT.7: the mixture of the two progress rules' minima "
            "over all walks, proofs/WALKBR.md, or an exact search over (node, running minima))")
 
-SELECTION_IDS = (*NGOAL_IDS, "selection.goal_indifference", "selection.value")
-"""Every check id of a goal-selection certificate, in certificate order."""
+SELECTION_IDS = SELECTION_CHECK_IDS
+"""Every check id of a goal-selection certificate, in certificate order (the registry's)."""
 
 
 def _goal(inst: Instance, t: int) -> str:

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import dppverify
 from dppverify.certify import NGOAL_CHECK_IDS
+from dppverify.registry import SELECTION_CHECK_IDS
 
 PROOFS = Path(__file__).resolve().parents[1]
 ROOT = PROOFS.parent
@@ -16,7 +17,7 @@ IDS = ("TEL", "L1", "L2", "XI2", "L3", "L4", "L5", "THM", "LP", "HORIZON", "DP",
        "TABLEBR", "NGOAL", "NWALKBR", "NSOLVE", "NEXACT", "NRULE", "SELECT")
 FILES = (*IDS, "ERRATA")
 SECTIONS = ("## Statement", "## Proof", "## Checked by")
-CHECK_ID = re.compile(r"`((?:profile|value|pbne|game|lemma|ngoal)\.[A-Za-z0-9_.]+\*?)`")
+CHECK_ID = re.compile(r"`((?:profile|value|pbne|game|lemma|ngoal|selection)\.[A-Za-z0-9_.]+\*?)`")
 TEST_REF = re.compile(r"`((?:tests|proofs)/[\w/]+\.py)(?:::(\w+\*?))?`")
 
 
@@ -58,7 +59,7 @@ def test_index_every_proof_id_in_a_certificate_has_a_file() -> None:
 
 
 def test_index_check_ids_named_in_checked_by_exist() -> None:
-    known = set(dppverify.CHECK_IDS) | set(NGOAL_CHECK_IDS)
+    known = set(dppverify.CHECK_IDS) | set(NGOAL_CHECK_IDS) | set(SELECTION_CHECK_IDS)
     for name in FILES:
         named = CHECK_ID.findall(_checked_by((PROOFS / f"{name}.md").read_text(encoding="utf-8")))
         assert named or name == "ERRATA", f"{name}.md names no dppverify check"

@@ -186,3 +186,16 @@ def test_the_value_of_a_truncated_game_and_the_bracket(monkeypatch: pytest.Monke
     assert open_.value is None and open_.lower <= exact.value <= open_.upper
     assert "coalition DP" in open_.upper_source and open_.reason
     assert selection_value(sel, 3).upper >= selection_value(sel, 7).upper
+
+
+def test_the_selection_ids_are_the_registry_and_the_checks_md_table() -> None:
+    import re
+
+    from dppverify.registry import SELECTION_CHECKS, kind_of
+    table = (Path(__file__).resolve().parents[3] / "dppverify" / "checks.md").read_text()
+    part = table.split("## Goal selection", 1)[1].split("\n## ", 1)[0]
+    rows = re.findall(r"^\| `([^`]+)` \| ([A-Z0-9]+) \|", part, flags=re.M)
+    assert rows == [(c.id, c.proof) for c in SELECTION_CHECKS if c.id.startswith("selection.")]
+    recs = _statuses(paper10(), selection_equilibrium(paper10()).to_json())
+    assert list(recs) == [c.id for c in SELECTION_CHECKS]
+    assert all(kind_of(i) == "check" for i in recs)
