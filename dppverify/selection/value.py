@@ -4,7 +4,7 @@
 ``V_sel = min_q [V(q) − q·r] = sup_σ min_i (c_i(σ) − r_i)`` (SELECT.1). With the guarantee
 sets ``F_v = {x : a·x <= m_a(v), a ∈ A}`` of the untruncated game (the checker's own
 :func:`~dppverify.structured.proved_value.infinite_sets`, at no prior: the sets do not depend on
-one),
+one)::
 
     V_sel = max {t : t·1 + r ∈ F_s0} = min_a (m_a(s0) − a·r) / |a|     (SELECT.2)
 

@@ -69,7 +69,24 @@ def _document(instance: str | None, grid: MapRequest | None, values: str | None
 def solve_selection(instance: str | None, grid: MapRequest | None, values: str | None,
                     defender: str, as_json: bool, output: str | None,
                     save_instance: str | None, progress: bool | None) -> None:
-    """The goal-selection branch of ``dpp solve`` (its options as the command received them)."""
+    """The goal-selection branch of ``dpp solve`` (its options as the command received them).
+
+    Examples
+    --------
+    >>> import json, tempfile
+    >>> from click.testing import CliRunner
+    >>> from solver.cli import main
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     path = Path(d) / "sel.json"
+    ...     doc = {"graph": {"nodes": [{"id": x} for x in "sab"],
+    ...            "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
+    ...            "start": "s", "goals": ["a", "b"], "goal_selection": True}
+    ...     _ = path.write_text(json.dumps(doc))
+    ...     print(CliRunner().invoke(main, ["solve", str(path)]).output, end="")
+    goal selection, N = 2: V_sel = 1 (at the uniform prior: 1; choosing gains 0); \
+q* = (1/2, 1/2); costs (1, 1); Defender: guarantee rule h = (1, 1) (certified: \
+goal-selection checks, structured route, H = inf)
+    """
     from solver.coalitions.construction import FixpointNotReached
     from solver.selection.equilibrium import selection_equilibrium
     from solver.selection.instance import selection_from_json

@@ -94,7 +94,7 @@ def selection_rows(config: DensityConfig, progress: Callable[[int], None] | None
 class SelectionSummary:
     """Per density: the means of ``V(b)``, ``V_sel`` and the gain, how often choosing gains
     anything, the choices (``other``: a tie, the barycentre of an interval of optimal choices,
-SELECT.3), and the two checks of every map."""
+    SELECT.3), and the two checks of every map."""
 
     by_density: dict[int, dict[str, Any]]
     maps: int
@@ -159,7 +159,15 @@ def summarize_selection(rows: Iterable[SelectionRow]) -> SelectionSummary:
 
 
 def rows_to_csv(rows: Sequence[SelectionRow]) -> str:
-    """The rows as CSV text (header :data:`CSV_FIELDS`)."""
+    """The rows as CSV text (header :data:`CSV_FIELDS`).
+
+    Examples
+    --------
+    >>> row = SelectionRow(0, 0, 0, "6", "3", "6", "18/5", "3", "3", "1/4", "0", "3/5", 0.6)
+    >>> print(rows_to_csv([row]), end="")
+    density,sample,obstacles,d1,d2,M,V_prior,V_half,V_sel,q1,alpha,gain,gain_float
+    0,0,0,6,3,6,18/5,3,3,1/4,0,3/5,0.6
+    """
     import csv
     import io
     buf = io.StringIO()

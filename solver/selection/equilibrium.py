@@ -189,7 +189,16 @@ def _selection_bound(fix: Fixpoint, start: int, values: tuple[Fraction, ...]
 
 def selection_value(fix: Fixpoint, start: int, values: tuple[Fraction, ...]) -> Fraction:
     """``max {t : t·1 + r ∈ F_s0}`` for the sets of a DP fixpoint: ``V_sel`` when the sets are
-    the exact ones, an upper bound when they contain them (SELECT.2)."""
+    the exact ones, an upper bound when they contain them (SELECT.2).
+
+    Examples
+    --------
+    >>> from solver.coalitions.construction import certified_sets
+    >>> from solver.game.instance import triangle
+    >>> cs = certified_sets(triangle())   # d1 = 3, d2 = 2, M = 4: min(3, 2, 4/2)
+    >>> selection_value(cs.found.fixpoint, cs.graph.start, (Fraction(0), Fraction(0)))
+    Fraction(2, 1)
+    """
     return _selection_bound(fix, start, values)[0]
 
 

@@ -7,7 +7,7 @@ minimum of ``d(s_t, g)``; against it type ``g`` pays ``d(s0, g)`` on every walk 
 and the other type at least ``M − d(s0, g)`` (``M = min_v d(s0,v) + d(v,g1) + d(v,g2)``). The
 mixture ``α·σ_1 + (1 − α)·σ_2`` (σ_i the progress rule toward ``goals[i]``) guarantees, walk by
 walk, ``c(α) = α·(d1, M − d1) + (1 − α)·(M − d2, d2)``; ``α`` is chosen to put
-``c(α) − r`` on the diagonal where the choice ``q*`` puts weight:
+``c(α) − r`` on the diagonal where the choice ``q*`` puts weight::
 
     α = (2·d2 − M + r1 − r2) / (2·(d1 + d2 − M)), clipped to [0, 1]
 
