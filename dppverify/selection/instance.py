@@ -23,15 +23,9 @@ from typing import Any
 from dppio.text import json_shown
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import INF
-from dppverify.formats.json_reading import (
-    JsonReadError,
-    parse_json_text,
-    parse_number,
-    read_json_file,
-    show_node,
-)
+from dppverify.formats.json_reading import JsonReadError, parse_json_text, parse_number, show_node
 from dppverify.formats.map_instance import MAP_INSTANCE_FORMAT
-from dppverify.game.instance import Instance, instance_from_json
+from dppverify.game.instance import Instance, instance_from_json, read_instance_document
 from dppverify.game.instance_reading import arc_arrays, goal_distance_fields, remember_arrays
 from dppverify.limits import MAX_GOALS
 
@@ -193,12 +187,8 @@ def load_selection(path: str | Path) -> SelectionInstance:
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: /nonexistent.json: cannot read instance file ...
     """
-    p = Path(path)
+    doc = read_instance_document(path)  # the prior game's reader reads the file
     try:
-        doc = read_json_file(p, kind="instance")
-    except JsonReadError as exc:
-        raise InvalidInstanceError(f"{p}: {exc}") from None
-    try:
-        return selection_from_json(doc, base=p.parent)
+        return selection_from_json(doc, base=Path(path).parent)
     except InvalidInstanceError as exc:
-        raise InvalidInstanceError(f"{p}: {exc}") from None
+        raise InvalidInstanceError(f"{path}: {exc}") from None

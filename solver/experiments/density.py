@@ -13,7 +13,7 @@ import csv
 import io
 import math
 import os
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import asdict, dataclass
 from fractions import Fraction
 from typing import Any
@@ -229,13 +229,15 @@ def _run_dask(tasks: list[Task], address: str,
     return results
 
 
-def rows_to_csv(rows: Iterable[Row]) -> str:
-    """The rows as CSV text (header :data:`CSV_FIELDS`).
+def rows_to_csv(rows: Iterable[Any], fields: Sequence[str] = CSV_FIELDS) -> str:
+    """The rows (dataclass records) as CSV text with the header ``fields``.
 
     Parameters
     ----------
     rows : iterable of Row
-        E.g. :func:`run_density`'s.
+        E.g. :func:`run_density`'s (or another experiment's records, with their ``fields``).
+    fields : sequence of str
+        The columns (default :data:`CSV_FIELDS`).
 
     Returns
     -------
@@ -255,7 +257,7 @@ def rows_to_csv(rows: Iterable[Row]) -> str:
     [0.25, 0.25]
     """
     buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=CSV_FIELDS, lineterminator="\n")
+    writer = csv.DictWriter(buf, fieldnames=list(fields), lineterminator="\n")
     writer.writeheader()
     for r in rows:
         writer.writerow(asdict(r))

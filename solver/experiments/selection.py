@@ -15,12 +15,13 @@ from __future__ import annotations
 
 import statistics
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
 from dppio.text import decimal
 from solver.experiments.density import DensityConfig
+from solver.experiments.density import rows_to_csv as density_csv
 from solver.experiments.sampling import sample_grid
 from solver.game.instance import Instance
 from solver.selection.equilibrium import selection_equilibrium
@@ -159,7 +160,7 @@ def summarize_selection(rows: Iterable[SelectionRow]) -> SelectionSummary:
 
 
 def rows_to_csv(rows: Sequence[SelectionRow]) -> str:
-    """The rows as CSV text (header :data:`CSV_FIELDS`).
+    """The rows as CSV text (header :data:`CSV_FIELDS`; the density sweep's writer).
 
     Examples
     --------
@@ -168,11 +169,4 @@ def rows_to_csv(rows: Sequence[SelectionRow]) -> str:
     density,sample,obstacles,d1,d2,M,V_prior,V_half,V_sel,q1,alpha,gain,gain_float
     0,0,0,6,3,6,18/5,3,3,1/4,0,3/5,0.6
     """
-    import csv
-    import io
-    buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=CSV_FIELDS, lineterminator="\n")
-    writer.writeheader()
-    for r in rows:
-        writer.writerow(asdict(r))
-    return buf.getvalue()
+    return density_csv(rows, CSV_FIELDS)

@@ -165,14 +165,8 @@ def selection_profile(instance: Instance, strategies: Sequence[Sequence[Strategy
     >>> doc["format"], doc["choice"], doc["attacker"][1]
     ('dpp-selection-profile/1', ['0', '1'], [{'path': ['s', 'g2'], 'probability': '1'}])
     """
-    return {
-        "format": SELECTION_PROFILE_FORMAT,
-        "goals": [node_to_json(g) for g in instance.goals],
-        "choice": [format_number(q) for q in choice],
-        "attacker": [[walk_entry(w.nodes, w.probability) for w in mix] for mix in strategies],
-        "defender": dict(defender),
-        "value": dict(values),
-        "exact": True,
-        "tolerance": None,
-        "solver": _solver_block(method, **provenance),
-    }
+    doc = per_goal_profile(instance, strategies, defender=defender, values=values,
+                           method=method, **provenance)
+    head = {"format": SELECTION_PROFILE_FORMAT, "goals": doc["goals"],
+            "choice": [format_number(q) for q in choice]}
+    return head | {k: v for k, v in doc.items() if k not in head}
