@@ -94,8 +94,15 @@ def test_min_cover_is_certified_by_its_dual_and_matches_highs(
 def test_min_cover_rejects_bad_input() -> None:
     with pytest.raises(ValueError, match="singleton"):
         min_cover({1: 1, 3: 1}, [1, 1])
-    with pytest.raises(ValueError, match="positive"):
-        min_cover({1: 1, 2: 1}, [1, 0])
+    with pytest.raises(ValueError, match="non-negative"):
+        min_cover({1: 1, 2: 1}, [1, -1])
+
+
+def test_min_cover_takes_a_goal_without_mass() -> None:
+    """A zero weight (a goal the goal-selection Attacker never chooses) is covered by nothing:
+    the cover of (1, 0) is the singleton of goal 1 alone, even when a pair is cheaper."""
+    lp = min_cover({1: 3, 2: 2, 3: 1}, [1, 0])
+    assert lp.value == 3 and dict(lp.cover) == {1: 1}
 
 
 def test_masks() -> None:
