@@ -208,13 +208,15 @@ def _mistakes() -> list[tuple[dict[str, Any], str]]:
             ({**base, "goal_values": [1]}, "goal_values: must be a list of 2"),
             ({**base, "goal_values": "0,1"}, "goal_values: must be a list of 2"),
             ({**base, "goal_values": ["x", 0]}, "goal_values[0]"),
+            ({**base, "goal_values": ["1e400", 0]}, "goal_values[0]"),
+            ({**base, "goal_values": [True, 0]}, "goal_values[0]"),
             ({**base, "connectivity": 8}, "exact"),
             ({**inline, "numbers": "float"}, "exact"),
             ({**inline, "goals": inline["goals"][:1]}, "goals"),
             ({**base, "map_sha256": "0" * 64}, "map_sha256")]
 
 
-@pytest.mark.parametrize("k", range(10))
+@pytest.mark.parametrize("k", range(12))
 def test_both_selection_readers_refuse_the_same_mistakes(k: int) -> None:
     from dppverify.selection.instance import selection_from_json as checker_read
     from solver.selection.instance import selection_from_json as solver_read
