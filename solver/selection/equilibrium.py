@@ -34,6 +34,7 @@ from typing import Any, Literal
 
 from solver.coalitions.construction import (
     DEFAULT_BUDGET,
+    CertifiedSets,
     FixpointNotReached,
     SetsNotCertified,
     certified_sets,
@@ -254,6 +255,23 @@ def _type_mixtures(leaves: tuple[tuple[tuple[int, ...], dict[int, Fraction]], ..
     return {t: tuple(sorted(d.items(), key=lambda kv: (-kv[1], kv[0]))) for t, d in out.items()}
 
 
+def _attacker(cs: CertifiedSets, cover: dict[int, Fraction], choice: tuple[Fraction, ...],
+              tight: dict[int, int]) -> dict[int, Mixture]:
+    """Every type's walks: the pieces of the cover of ``q*`` for the types it chooses, and the
+    pieces of the tight normal ``tight[i]`` (mass 1) for each type ``i`` it never chooses
+    (SELECT.5)."""
+    fix = cs.found.fixpoint
+    normals = fix.system.normals
+    n = len(choice)
+    on = [t for t in range(n) if choice[t]]
+    out = _type_mixtures(piece_walks(cs.graph, fix, cover), normals, list(choice), on,
+                         cs.labels)
+    for t, j in tight.items():
+        out |= _type_mixtures(piece_walks(cs.graph, fix, {j: Fraction(1)}), normals,
+                              [Fraction(normals[j][k]) for k in range(n)], [t], cs.labels)
+    return out
+
+
 def selection_equilibrium(instance: SelectionInstance | dict[str, Any] | str | Path, *,
                           rule: Rule = "guarantee", budget: Budget = DEFAULT_BUDGET
                           ) -> SelectionEquilibrium:
@@ -319,13 +337,7 @@ def selection_equilibrium(instance: SelectionInstance | dict[str, Any] | str | P
     assert all(sum((a * x for a, x in zip(normals[j], h, strict=True)), Fraction(0)) == m0[j]
                for j in root.cover)
     tight = _raise_off_support(h, choice, normals, m0)
-    on = [t for t in range(n) if choice[t]]
-    mixtures = _type_mixtures(piece_walks(cs.graph, fix, root.cover), normals, list(choice),
-                              on, cs.labels)
-    for t, j in tight.items():
-        mixtures |= _type_mixtures(piece_walks(cs.graph, fix, {j: Fraction(1)}), normals,
-                                   [Fraction(normals[j][k]) for k in range(n)], [t],
-                                   cs.labels)
+    mixtures = _attacker(cs, root.cover, choice, tight)
     uniform = [Fraction(1, n)] * n
     uniform_value = (normal_cover_lp(normals, m0, uniform).value
                      - sum(values, Fraction(0)) / n)
