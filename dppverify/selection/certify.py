@@ -1,5 +1,5 @@
 """``certify_selection``: the certificate of a goal-selection profile on the untruncated game
-(proofs/SELECT.md SELECT.6; ``docs/formats.md`` §2c).
+(proofs/SELECT.md SELECT.6; ``docs/formats.md`` §2d).
 
 The records are :func:`dppverify.selection.checks.selection_checks`'s; the certificate is a
 ``dpp-certificate/1`` of the structured route at ``H = inf`` whose ``info`` says

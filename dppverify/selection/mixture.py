@@ -1,7 +1,7 @@
 """Two goals: the per-prefix mixture of the two progress rules, and every type's exact best
 response to it over all walks (proofs/SELECT.md SELECT.5, SELECT.7).
 
-``{"rule": "progress-mixture", "goal": g, "alpha": α}`` (``docs/formats.md`` §2c): after a
+``{"rule": "progress-mixture", "goal": g, "alpha": α}`` (``docs/formats.md`` §2d): after a
 walk prefix the Defender puts ``α·σ_g + (1 − α)·σ_{g'}`` on the goals, ``σ_g`` the progress rule
 toward ``g`` (eq. (7) with ``g`` as primary: ``(c_{t-1} − c_t)/w`` on ``g``, the rest on the other
 goal ``g'``, ``c_t`` the running minimum of ``d(s_t, g)``). ``{"rule": "progress", "goal": g}`` is

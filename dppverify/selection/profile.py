@@ -1,4 +1,4 @@
-"""Reading a goal-selection profile (``dpp-selection-profile/1``, ``docs/formats.md`` §2c).
+"""Reading a goal-selection profile (``dpp-selection-profile/1``, ``docs/formats.md`` §2d).
 
 The document carries the Attacker's choice ``q`` (``"choice"``: one probability per goal), one
 mixed strategy per goal index (as ``dpp-ngoal-profile/1``) and the Defender's rule: the
@@ -39,7 +39,7 @@ from dppverify.selection.mixture import ProgressMixture
 __all__ = ["SELECTION_PROFILE_FORMAT", "SelectionProfile", "selection_profile_from_json"]
 
 SELECTION_PROFILE_FORMAT = "dpp-selection-profile/1"
-"""The goal-selection profile format (``docs/formats.md`` §2c)."""
+"""The goal-selection profile format (``docs/formats.md`` §2d)."""
 
 _PLACEHOLDER = {"rule": "table", "entries": []}
 """The Defender the per-goal reader is given when the rule is a progress mixture (it reads only

@@ -40,7 +40,7 @@ __all__ = ["solve_command"]
 @click.option("--goal-selection", is_flag=True,
               help="The goal-selection game: the Attacker chooses its goal (with --map and no "
                    "--prior; a goal-selection INSTANCE needs no flag). Writes a "
-                   "dpp-selection-profile/1 (docs/formats.md §2c).")
+                   "dpp-selection-profile/1 (docs/formats.md §2d).")
 @click.option("--goal-values", "goal_values", metavar="R1,R2,...",
               help="Goal selection: the value r_i of each goal (the Attacker pays its cost "
                    "minus r_i); default 0.")

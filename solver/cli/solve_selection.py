@@ -1,7 +1,7 @@
 """``dpp solve`` for the goal-selection game (proofs/SELECT.md): a goal-selection INSTANCE, or
 ``--goal-selection`` with ``--map … --start … --goals …`` and no ``--prior``.
 
-The profile (``dpp-selection-profile/1``, docs/formats.md §2c) is certified by the checker on
+The profile (``dpp-selection-profile/1``, docs/formats.md §2d) is certified by the checker on
 the untruncated game before it is written; the summary line prints ``V_sel`` and, beside it,
 the value at the uniform prior, so that the gain of choosing is visible.
 """

@@ -37,7 +37,7 @@ NGOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
 """The per-goal profile format, any N (``docs/formats.md`` §2b)."""
 
 SELECTION_PROFILE_FORMAT = "dpp-selection-profile/1"
-"""The goal-selection profile format (``docs/formats.md`` §2c)."""
+"""The goal-selection profile format (``docs/formats.md`` §2d)."""
 
 
 def walk_entry(nodes: Sequence[Hashable], probability: Number,

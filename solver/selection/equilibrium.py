@@ -121,7 +121,7 @@ class SelectionEquilibrium:
 
     @property
     def defender(self) -> dict[str, Any]:
-        """The Defender's rule as the profile writes it (``docs/formats.md`` §2c)."""
+        """The Defender's rule as the profile writes it (``docs/formats.md`` §2d)."""
         if self.mixture is not None:
             return self.mixture.rule_json(self.selection.game)
         out: dict[str, Any] = {"rule": "guarantee", "h": [str(x) for x in self.h]}
@@ -130,7 +130,7 @@ class SelectionEquilibrium:
         return out
 
     def to_json(self) -> dict[str, Any]:
-        """The ``dpp-selection-profile/1`` document (``docs/formats.md`` §2c).
+        """The ``dpp-selection-profile/1`` document (``docs/formats.md`` §2d).
 
         Examples
         --------
