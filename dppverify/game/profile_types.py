@@ -14,12 +14,13 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import cached_property
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any, Protocol, TypeVar
+from typing import Any, Generic, Protocol, TypeVar
 
 from dppverify.errors import ProfileError
 from dppverify.exact import Number
@@ -39,7 +40,6 @@ __all__ = [
     "VALUE_KEYS",
     "Defect",
     "DefectCollector",
-    "DefenderInterface",
     "DefenderRule",
     "GoalTable",
     "GuaranteeRule",
@@ -82,16 +82,21 @@ class Defect:
         return f"{self.where}{self.sep}{self.message}"
 
 
-class DefenderInterface(Protocol):
-    """What the checks ask of any Defender rule, answered by the rule itself (a new rule
-    answers these, instead of being told apart by its type in every module).
+class ProfileDefender(Protocol):
+    """What the checks ask of the Defender of a profile of either format, answered by the rule
+    itself: a new rule answers these instead of being told apart by its type.
 
-    ``table``: the rule lists walks (a table; its missing walks are its ``default``'s);
-    ``defined_everywhere``: the rule gives a σ after every walk of the game (a table only with a
-    ``default``); ``progress_goal``: the goal index σ* of eq. (7) measures progress towards where
-    the rule follows it (the progress rule, or a table's ``"progress"`` default), else None;
-    ``entries``: the walks the rule lists (none but a table's).
+    ``kind``: the document's ``rule`` (``"progress"``, ``"table"``, ``"guarantee"``);
+    ``table``: the rule lists walks (its missing walks are its ``default``'s);
+    ``defined_everywhere``: the rule gives a distribution after every walk of the game (a
+    table only with a ``default``); ``progress_goal``: the node index σ* of eq. (7) measures
+    progress towards where the rule follows it (the progress rule, or a table's
+    ``"progress"`` default), else None; ``entries``: the walks the rule lists (none but a
+    table's); :meth:`listed_along`: the listed prefixes of one walk, in one pass over it.
     """
+
+    @property
+    def kind(self) -> str: ...
 
     @property
     def table(self) -> bool: ...
@@ -105,8 +110,64 @@ class DefenderInterface(Protocol):
     @property
     def entries(self) -> Mapping[tuple[int, ...], Any]: ...
 
+    def listed_along(self, walk: Sequence[int]) -> Mapping[int, Any]:
+        """``{t: the rule's entry for walk[:t+1]}`` for the listed prefixes (``t >= 1``)."""
+        ...
+
+
+class DefenderRule(ProfileDefender, Protocol):
+    """A two-goal Defender rule (``dpp-profile/1``): after each walk it allocates to ``goal``
+    (a node index) with a probability σ, the rest to the other goal; ``constant``: the
+    probability of a table's numeric ``default`` (else None)."""
+
+    @property
+    def goal(self) -> int: ...
+
+    @property
+    def constant(self) -> Fraction | None: ...
+
 
 _NO_ENTRIES: Mapping[tuple[int, ...], Fraction] = MappingProxyType({})
+_NO_STEPS: Mapping[int, Any] = MappingProxyType({})
+
+V = TypeVar("V")
+
+
+class PrefixIndex(Generic[V]):
+    """The walks a Defender table lists, as a trie: the listed prefixes of a walk are found in
+    one pass over the walk, whatever its length (never a tuple per step).
+
+    Examples
+    --------
+    >>> index = PrefixIndex({(0, 1): "a", (0, 1, 2, 3): "b"})
+    >>> index.along((0, 1, 2, 3, 4)), index.along((0, 2, 1))
+    ({1: 'a', 3: 'b'}, {})
+    """
+
+    def __init__(self, entries: Mapping[tuple[int, ...], V]) -> None:
+        self._child: dict[tuple[int, int], int] = {}
+        self._value: dict[int, V] = {}
+        for walk, value in entries.items():
+            p = 0
+            for v in walk:
+                q = self._child.get((p, v))
+                if q is None:
+                    q = self._child[(p, v)] = len(self._child) + 1
+                p = q
+            self._value[p] = value
+
+    def along(self, walk: Sequence[int]) -> dict[int, V]:
+        """``{t: value of walk[:t+1]}`` for every listed prefix of ``walk`` with ``t >= 1``."""
+        out: dict[int, V] = {}
+        p = 0
+        for t, v in enumerate(walk):
+            q = self._child.get((p, v))
+            if q is None:
+                break
+            p = q
+            if t and p in self._value:
+                out[t] = self._value[p]
+        return out
 
 
 @dataclass(frozen=True)
@@ -121,6 +182,7 @@ class ProgressRule:
     """
 
     goal: int
+    kind = "progress"
     table = False
     defined_everywhere = True
 
@@ -139,6 +201,10 @@ class ProgressRule:
         """No constant probability off a table."""
         return None
 
+    def listed_along(self, walk: Sequence[int]) -> Mapping[int, Fraction]:
+        """No prefix is listed."""
+        return _NO_STEPS
+
 
 @dataclass(frozen=True)
 class TableRule:
@@ -152,7 +218,16 @@ class TableRule:
     goal: int
     entries: Mapping[tuple[int, ...], Fraction]
     default: Fraction | ProgressRule | None
+    kind = "table"
     table = True
+
+    @cached_property
+    def _index(self) -> PrefixIndex[Fraction]:
+        return PrefixIndex(self.entries)
+
+    def listed_along(self, walk: Sequence[int]) -> Mapping[int, Fraction]:
+        """The listed prefixes of ``walk`` (:meth:`PrefixIndex.along`)."""
+        return self._index.along(walk)
 
     @property
     def defined_everywhere(self) -> bool:
@@ -178,10 +253,6 @@ class TableRule:
         return None if isinstance(self.default, ProgressRule) else self.default
 
 
-DefenderRule = ProgressRule | TableRule
-"""A two-goal Defender rule (``dpp-profile/1``); :data:`ProfileDefender` holds any format's."""
-
-
 @dataclass(frozen=True)
 class StrategyWalk:
     """One walk of a type's mixed strategy (Γ_mix) with its probability (JSON: ``"path"``)."""
@@ -202,8 +273,17 @@ class GoalTable:
 
     entries: Mapping[tuple[int, ...], tuple[Fraction, ...]]
     default: tuple[Fraction, ...] | None
+    kind = "table"
     table = True
     progress_goal = None
+
+    @cached_property
+    def _index(self) -> PrefixIndex[tuple[Fraction, ...]]:
+        return PrefixIndex(self.entries)
+
+    def listed_along(self, walk: Sequence[int]) -> Mapping[int, tuple[Fraction, ...]]:
+        """The listed prefixes of ``walk`` (:meth:`PrefixIndex.along`)."""
+        return self._index.along(walk)
 
     @property
     def defined_everywhere(self) -> bool:
@@ -221,6 +301,7 @@ class GuaranteeRule:
 
     h: tuple[Fraction, ...]
     normals: tuple[tuple[int, ...], ...] = ()
+    kind = "guarantee"
     table = False
     defined_everywhere = True
     progress_goal = None
@@ -230,10 +311,9 @@ class GuaranteeRule:
         """No walk is listed: the rule is defined everywhere."""
         return MappingProxyType({})
 
-
-ProfileDefender = ProgressRule | TableRule | GoalTable | GuaranteeRule
-"""The Defender a profile states: a two-goal rule (``dpp-profile/1``), or an N-goal table or the
-guarantee rule (``dpp-ngoal-profile/1``)."""
+    def listed_along(self, walk: Sequence[int]) -> Mapping[int, tuple[Fraction, ...]]:
+        """No prefix is listed."""
+        return _NO_STEPS
 
 
 @dataclass(frozen=True)

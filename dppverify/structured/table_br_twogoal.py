@@ -25,7 +25,7 @@ from dppverify.errors import UndecidedError
 from dppverify.exact import INF, Number, normalize
 from dppverify.game.distances import multi_source_dijkstra, state_dijkstra
 from dppverify.game.instance import Instance, Roles
-from dppverify.game.profile import TableRule
+from dppverify.game.profile import DefenderRule
 from dppverify.structured.table_br import Step, exit_costs, trie_induction
 from dppverify.structured.trie import WalkTrie, build_walk_trie
 
@@ -67,7 +67,7 @@ def _game_prefix(instance: Instance, walk: tuple[int, ...]) -> tuple[int, ...]:
     return walk
 
 
-def _undefined_walk(instance: Instance, rule: TableRule) -> tuple[int, ...] | None:
+def _undefined_walk(instance: Instance, rule: DefenderRule) -> tuple[int, ...] | None:
     """For a table without default: the first walk of the game it leaves undefined, in the
     order the message has always named it (longest trie prefixes first), or None."""
     s0 = instance.start
@@ -142,14 +142,14 @@ def _constant_exit(instance: Instance, roles: Roles, share: Number, theta: int) 
                                  factor=share)[0]
 
 
-def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMinima:
+def table_minima(instance: Instance, roles: Roles, rule: DefenderRule) -> TableMinima:
     """Both types' exact minimum cost over ALL walks against the two-goal ``rule``.
 
     Parameters
     ----------
     instance, roles : Instance, Roles
         The game, and which of its goals is ``g1``.
-    rule : TableRule
+    rule : DefenderRule
         The Defender: ``P(allocate to rule.goal | walk)`` for listed walks, and a default (a
         probability, or the progress rule, eq. (7), with the running minimum ``c_t`` taken
         along the whole walk). Without a default it must list every walk of the game that
@@ -172,7 +172,7 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     3/5), a table that guards g1 everywhere (default 1) lets the secondary walk ``s a g2`` free:
 
     >>> from dppverify.game.examples import kite
-    >>> from dppverify.game.profile import ProgressRule
+    >>> from dppverify.game.profile import ProgressRule, TableRule
     >>> inst = kite()
     >>> r = inst.roles()
     >>> table_minima(inst, r, TableRule(goal=r.g1, entries={}, default=Fraction(1)))
@@ -181,7 +181,7 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     TableMinima(primary=2, secondary=1, trie_prefixes=1)
     """
     mode = instance.numbers
-    if rule.default is None:
+    if not rule.defined_everywhere:
         missing = _undefined_walk(instance, rule)
         if missing is not None:
             raise UndecidedError(
@@ -208,13 +208,12 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
                        trie_prefixes=len(trie))
 
 
-def _type_minimum(instance: Instance, roles: Roles, rule: TableRule, trie: WalkTrie,
+def _type_minimum(instance: Instance, roles: Roles, rule: DefenderRule, trie: WalkTrie,
                   listed: Mapping[int, Fraction], cmin: list[Number], pgoal: int,
                   theta: int) -> Number:
     """Type ``θ``'s minimum over all walks (1 = primary, 2 = secondary): the backward
     induction on the trie, leaving it against the table's default."""
     mode = instance.numbers
-    default = rule.default
     index = instance.goals.index(pgoal)
     dg = instance.dist_to[index]
     mine = (roles.g1 if theta == 1 else roles.g2) == rule.goal
@@ -261,7 +260,7 @@ def _type_minimum(instance: Instance, roles: Roles, rule: TableRule, trie: WalkT
     def inside(p: int, c: int, w: Number) -> Number | None:
         sg: Number | None = listed.get(c)
         if sg is None:
-            if default is None:
+            if not rule.defined_everywhere:
                 return None
             sg = (mode.ratio(cmin[p] - min(cmin[p], dg[trie.node[c]]), w)
                   if rule.constant is None else rule.constant)

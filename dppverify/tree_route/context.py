@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any
+from typing import Any, cast
 
 from dppverify.game.evaluation import Values, evaluate, realization
 from dppverify.game.instance import Instance, Roles
@@ -181,7 +181,7 @@ def make_context(instance: Instance, tree: WalkTree, profile: Profile,
     """
     roles = instance.roles(profile.primary_goal_index)
     sigma_star = tree_defender(tree, roles, ProgressRule(roles.g1))
-    rule = profile.defender if isinstance(profile.defender, DefenderRule) else None  # two goals
+    rule = cast(DefenderRule | None, profile.defender)  # the two-goal reader's rules only
     td = None
     if profile.wellformed and rule is not None:
         td = sigma_star if rule == ProgressRule(roles.g1) else tree_defender(tree, roles, rule)
