@@ -11,7 +11,7 @@ carry mass); payoffs walk by walk; the value by the three-field DP (proofs/DP.md
 the two-goal layer :mod:`dppverify.checks.structured_twogoal`, the phases and the lemmas that
 have a polynomial form. The lemma checks that need the tree (L3's and L4's random attackers
 with their LPs) are not run on this route; the certificate says so. The N-goal records
-(:data:`~dppverify.registry.NGOAL_CHECKS`) are :mod:`dppverify.checks.structured_per_goal`'s.
+(the registry's ``per-goal`` family) are :mod:`dppverify.checks.structured_per_goal`'s.
 """
 
 from __future__ import annotations
@@ -272,13 +272,13 @@ def _attacker(v: Values, mode: NumberMode, minima: dict[int, Number],
     not have, so the record is ``skipped`` (decided by the tree route, or without a horizon).
     """
     out = []
-    for theta, cid, proof in ((1, "pbne.attacker_br.primary", "L1"),
+    for role, cid, proof in ((1, "pbne.attacker_br.primary", "L1"),
                               (2, "pbne.attacker_br.secondary", "XI2")):
-        best = minima[theta]
-        u = v.U1 if theta == 1 else v.U2
+        best = minima[role]
+        u = v.U1 if role == 1 else v.U2
         regret = mode.difference(u, best)
         numbers: dict[str, Number | None] = {"U": u, "min_over_walks": best, "regret": regret}
-        kind = "primary" if theta == 1 else "secondary"
+        kind = "primary" if role == 1 else "secondary"
         if mode.less_than(u, best):
             out.append(_rec(cid, "error", f"the {kind} type's cost {show(u)} is below the "
                             f"minimum over all walks {show(best)}: the routes disagree",

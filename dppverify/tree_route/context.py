@@ -90,8 +90,8 @@ class Context:
     def _cached_defender(self, defender: TreeDefender) -> bool:
         return defender is self.sigma_star
 
-    def best_response(self, defender: TreeDefender, theta: int) -> AttackerBR:
-        """Type ``theta``'s best response over the whole tree against ``defender``.
+    def best_response(self, defender: TreeDefender, role: int) -> AttackerBR:
+        """Type ``role``'s best response over the whole tree against ``defender``.
 
         ``defender`` is :attr:`sigma_star` or (in an :class:`EvaluatedContext`) the profile's
         Defender; several checks need the same backward induction, so each result is
@@ -107,10 +107,10 @@ class Context:
         """
         if not self._cached_defender(defender):
             raise ValueError("best_response caches the context's own Defenders only")
-        key = (id(defender), theta)
+        key = (id(defender), role)
         if key not in self._best_responses:
             self._best_responses[key] = attacker_best_response(self.tree, self.roles, defender,
-                                                               theta)
+                                                               role)
         return self._best_responses[key]
 
 
