@@ -26,14 +26,12 @@ from __future__ import annotations
 
 import difflib
 import json
-import os
 import re
 import shutil
 import sys
 import tempfile
 import warnings
 from collections.abc import Callable, Iterator
-from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -43,20 +41,11 @@ if __package__ in (None, ""):  # run as a script: make ``tests.pins`` importable
 from click.testing import CliRunner
 
 from tests.pins.cases import CASES
+from tests.pins.runner import _cwd
 
 REPO = Path(__file__).resolve().parent.parent.parent
 DATA = REPO / "tests" / "pins" / "data"
 _VERSION = re.compile(r'"dppverify": "[^"]*"')
-
-
-@contextmanager
-def _cwd(path: Path) -> Iterator[None]:
-    old = Path.cwd()
-    os.chdir(path)
-    try:
-        yield
-    finally:
-        os.chdir(old)
 
 
 def _dpp(args: list[str], work: Path) -> str:
