@@ -11,7 +11,10 @@ the families of :mod:`dppverify.registry` is asked of the profile's :class:`Suit
   :mod:`dppverify.twogoal.progress_br` on the structured route
   (:mod:`dppverify.checks.structured`), which keeps the speed on million-cell maps;
 - ``per-goal`` (``dpp-ngoal-profile/1``, any N): one type per goal index
-  (:mod:`dppverify.tree_route.per_goal_checks`, :mod:`dppverify.checks.structured_per_goal`).
+  (:mod:`dppverify.tree_route.per_goal_checks`, :mod:`dppverify.checks.structured_per_goal`);
+- ``selection`` (``dpp-selection-profile/1``, the goal-selection game of proofs/SELECT.md): the
+  per-goal structured checks on the game with the Attacker's choice as prior, then goal
+  indifference and the value (:mod:`dppverify.checks.selection`); the untruncated game only.
 
 Another kind of game plugs in here: its profile format, its family of checks in the registry
 and a :class:`Suite` in :data:`SUITES`.
@@ -29,11 +32,13 @@ from tqdm import tqdm
 
 from dppverify.certificate import CheckRecord
 from dppverify.checks.runners import TREE_RUNNERS, in_registry_order
+from dppverify.checks.selection import selection_checks
 from dppverify.checks.structured import structured_checks
 from dppverify.checks.structured_per_goal import per_goal_structured_checks
-from dppverify.errors import LPError, UndecidedError
+from dppverify.errors import HorizonError, LPError, UndecidedError
 from dppverify.game.instance import Instance, arc_arrays, node_to_json
 from dppverify.game.profile import PER_GOAL_PROFILE_FORMAT, PROFILE_FORMAT, Profile
+from dppverify.game.profile_types import SELECTION_PROFILE_FORMAT
 from dppverify.registry import Family, checks_of
 from dppverify.tree_route.context import Context, make_context
 from dppverify.tree_route.per_goal_checks import per_goal_tree_checks
@@ -221,8 +226,46 @@ class PerGoalSuite:
                        list(instance.prior), seeded=False)
 
 
+SELECTION_UNTRUNCATED = ("a goal-selection profile is certified on the untruncated game (H = inf), "
+                         "by the structured route: omit the horizon (dpp value -H H gives the "
+                         "truncated game's value)")
+
+
+class SelectionSuite:
+    """The ``selection`` family: a profile of the goal-selection game (any N, exact)."""
+
+    family: Family = "selection"
+    exact_only = True
+
+    def longest(self, instance: Instance, profile: Profile) -> tuple[int, str]:
+        return profile.longest, "walk"
+
+    def tree_only(self, profile: Profile) -> bool:
+        return False
+
+    def on_tree(self, instance: Instance, profile: Profile, horizon: int,
+                options: Options) -> Run:
+        raise HorizonError(SELECTION_UNTRUNCATED)
+
+    def structured(self, instance: Instance, profile: Profile, horizon: int | None) -> Run:
+        if horizon is not None:
+            raise HorizonError(SELECTION_UNTRUNCATED)
+        return Run(selection_checks(instance, profile), horizon=None)
+
+    def players(self, instance: Instance, profile: Profile, trie_prefixes: int | None
+                ) -> Players:
+        q = profile.choice or tuple(Fraction(1, instance.n_goals) for _ in instance.goals)
+        info: dict[str, Any] = {
+            "game": "goal selection", "goals": instance.n_goals, "nodes": instance.n_nodes,
+            "choice": None if profile.choice is None else [str(x) for x in profile.choice],
+            "goal_values": [str(r) for r in (instance.goal_values or ())]}
+        return Players(info, [node_to_json(instance.nodes[g]) for g in instance.goals],
+                       list(q), seeded=False)
+
+
 SUITES: dict[str, Suite] = {PROFILE_FORMAT: TwoGoalSuite(),
-                            PER_GOAL_PROFILE_FORMAT: PerGoalSuite()}
+                            PER_GOAL_PROFILE_FORMAT: PerGoalSuite(),
+                            SELECTION_PROFILE_FORMAT: SelectionSuite()}
 """The suite of each profile format."""
 
 

@@ -31,6 +31,7 @@ from dppverify.cli.conventions import (
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import HORIZON, hinted, max_prefixes_option, read_game
 from dppverify.cli.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
+from dppverify.cli.selection import selection_options
 from dppverify.cli.table import format_table
 from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
 from dppverify.formats.files import read_input, refuse_input_as_output
@@ -47,6 +48,7 @@ __all__ = ["VERDICT_EXIT", "certify_command"]
 @click.command("certify", short_help="Certify or refute a profile as a PBNE of an instance.")
 @click.argument("instance", required=False, type=click.Path(dir_okay=False))
 @click.argument("profile", required=False, type=click.Path(dir_okay=False), metavar="PROFILE")
+@selection_options
 @map_options
 @click.option("-H", "--horizon", type=HORIZON,
               help="Certify the game truncated at H steps instead (an explicit request; the "
@@ -101,6 +103,12 @@ def certify_command(**params: Any) -> None:
       dpp certify examples/triangle.json profile.json --horizon 4
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
       dpp certify --verify-provenance cert.json examples/triangle.json profile.json
+      dpp certify examples/paper10-selection.json selection-profile.json
+
+    Goal selection (a goal-selection INSTANCE, or --goal-selection with --map): PROFILE is a
+    dpp-selection-profile/1 (or a dpp-profile/1, whose prior is read as the Attacker's
+    choice); the untruncated game only; the checks of the game with prior q plus
+    selection.goal_indifference and selection.value (dppverify/checks.md, "Goal selection").
     """
     with reading_once():  # each input read once: the certificate hashes the bytes parsed
         _certify_files(_Request(**params))
@@ -123,6 +131,8 @@ class _Request:
     trials: int
     provenance_of: str | None
     progress: bool | None
+    goal_selection: bool = False  # read by the --map group (the grid carries them)
+    goal_values: str | None = None
 
 
 def _certify_files(req: _Request) -> None:

@@ -8,7 +8,7 @@ from dppverify.cli.conventions import output_file_option, progress_option, statu
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options
-from dppverify.cli.selection import selection_game, selection_options
+from dppverify.cli.selection import selection_options
 from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.formats.files import refuse_input_as_output
 from dppverify.limits import MAX_HORIZON
@@ -58,13 +58,12 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
     """
     try:
         refuse_input_as_output(output, [instance, grid.path if grid is not None else None])
-        sel = selection_game(instance, grid, goal_selection, goal_values)
-        game = load_game(instance, grid, "dpp export-efg") if sel is None else sel.game
+        game = load_game(instance, grid, "dpp export-efg")
         size = write_efg(output, game, horizon,
                          attacker_observes=attacker_observes, forced_moves=forced_moves,
                          max_prefixes=max_prefixes, max_nodes=max_nodes,
                          progress=want_progress(progress),
-                         goal_values=None if sel is None else sel.values)
+                         goal_values=game.goal_values)
     except TreeTooLargeError as exc:  # a Gambit game is the walk tree: no other route
         fail(TreeTooLargeError(str(exc).replace("use --route structured, or lower the horizon",
                                                 "lower the horizon (a Gambit game is the walk "
@@ -72,7 +71,7 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
     except CheckerError as exc:
         fail(exc)
     goals = f"N = {len(game.goals)} goals, " if len(game.goals) > 2 else ""
-    if sel is not None:
+    if game.goal_selection:
         goals = f"goal selection, {goals}"
     status(f"wrote {output}: {goals}H = {horizon}, {size.nodes} game nodes ({size.terminals} "
            f"terminals), {size.attacker_infosets} Attacker and {size.defender_infosets} "

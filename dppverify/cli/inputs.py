@@ -18,7 +18,7 @@ from dppverify.cli.hints import file_hint
 from dppverify.cli.map_options import MapRequest, instance_or_map
 from dppverify.errors import CheckerError
 from dppverify.game.inputs import Parsed, read_instance
-from dppverify.game.instance import Instance
+from dppverify.game.instance import Instance, instance_from_json
 from dppverify.horizons import INFINITE_WORDS
 from dppverify.limits import MAX_HORIZON
 from dppverify.provenance import map_identity
@@ -101,8 +101,26 @@ def read_game(instance: str | None, grid: MapRequest | None,
     the door :func:`~dppverify.game.inputs.read_instance`; a read error becomes a hint when the
     file is of another kind), or the ``--map`` option group's grid (its compact map instance,
     ``map`` cut to the file's name, and the ``.map`` file's sha256:
-    :func:`~dppverify.provenance.map_identity`)."""
+    :func:`~dppverify.provenance.map_identity`); with ``--goal-selection`` the grid's
+    goal-selection game.
+
+    Examples
+    --------
+    >>> from dppverify.cli.map_options import map_request
+    >>> from pathlib import Path
+    >>> import dppverify
+    >>> paper10 = Path(dppverify.__file__).parents[1] / "examples" / "paper10.map"
+    >>> grid = map_request(str(paper10), "9,0", ("0,9", "0,0"), None, None,
+    ...                    goal_selection=True)
+    >>> game = read_game(None, grid, "dpp value").value
+    >>> game.goal_selection, game.n_goals
+    (True, 2)
+    """
     instance_or_map(instance, grid)
+    if grid is not None and grid.goal_selection:  # the goal-selection game of the grid
+        doc = grid.selection_document()
+        return Parsed(instance_from_json(doc), map_identity(doc),
+                      (str(grid.path), doc["map_sha256"]))
     if grid is not None:
         doc = grid.document()
         return Parsed(grid.game(), map_identity(doc), (str(grid.path), doc["map_sha256"]))

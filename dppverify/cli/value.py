@@ -22,19 +22,18 @@ from dppverify.cli.conventions import (
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import HORIZON, load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options
-from dppverify.cli.selection import selection_game, selection_options
+from dppverify.cli.selection import selection_options
 from dppverify.errors import CheckerError, OptionError
 from dppverify.formats.files import refuse_input_as_output
+from dppverify.game.instance import Instance
 from dppverify.routes import ROUTES, Route, RoutedValue, routed_value
-from dppverify.selection.document import selection_lines, selection_value_document
-from dppverify.selection.instance import SelectionInstance
-from dppverify.selection.value import selection_value
 from dppverify.structured.proved_value import NValue
+from dppverify.structured.selection_value import selection_value
 from dppverify.text import show, show_value
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.tree_route.value_lp import GameValue
 from dppverify.twogoal.value_dp import StructuredValue
-from dppverify.value_document import value_document
+from dppverify.value_document import selection_lines, selection_value_document, value_document
 
 __all__ = ["routed_lines", "value_command"]
 
@@ -88,11 +87,10 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
     bar = PhaseBar(show, "value", "reading the instance")
     try:
         refuse_input_as_output(output, [instance, grid.path if grid else None])
-        sel = selection_game(instance, grid, goal_selection, goal_values)
-        if sel is not None:
-            _selection_value(sel, horizon, route, bar, as_json, output)
-            return
         game = load_game(instance, grid, "dpp value")
+        if game.goal_selection:
+            _selection_value(game, horizon, route, bar, as_json, output)
+            return
         bar.phase(f"V_H (route {route})")
         r = routed_value(game, horizon, route=route, max_prefixes=max_prefixes,
                          progress=show, phase=bar.phase)
@@ -108,7 +106,7 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
         raise click.exceptions.Exit(1)
 
 
-def _selection_value(sel: SelectionInstance, horizon: int | None, route: Route, bar: PhaseBar,
+def _selection_value(game: Instance, horizon: int | None, route: Route, bar: PhaseBar,
                      as_json: bool, output: str | None) -> None:
     """``dpp value`` on the goal-selection game (structured route only)."""
     if route == "tree" or route == "both":
@@ -116,7 +114,7 @@ def _selection_value(sel: SelectionInstance, horizon: int | None, route: Route, 
                           "(the guarantee sets); --route tree and both are for a game with a "
                           "prior (dpp export-efg writes the goal-selection tree for the peers)")
     bar.phase("V_sel (the guarantee sets)")
-    v = selection_value(sel, horizon, progress=bar.phase)
+    v = selection_value(game, horizon, progress=bar.phase)
     bar.close()
     lines = selection_lines(v, horizon)
     emit(selection_value_document(v, horizon), "\n".join(lines), as_json=as_json,

@@ -36,6 +36,7 @@ from dppverify.errors import InvalidInstanceError, ProfileError
 from dppverify.formats.json_reading import JsonReadError, read_json_document
 from dppverify.game.instance import Instance, instance_from_json, read_instance_file
 from dppverify.game.profile import Profile, profile_from_json
+from dppverify.game.selection_profile import selection_profile_from_json
 
 __all__ = ["GraphKeys", "Parsed", "as_instance", "as_profile", "read_instance", "read_profile"]
 
@@ -159,7 +160,9 @@ def as_profile(profile: Any, instance: Instance) -> Profile:
     profile : Profile, Mapping, bytes, str, Path, or an object with ``to_json()``
         Returned as is (a profile read against this instance); parsed (a document, or JSON
         bytes); read once (a file path); or parsed from ``to_json()`` (the solver's results).
-        A ``dpp-profile/1`` document for two goals, a ``dpp-ngoal-profile/1`` one for any N.
+        A ``dpp-profile/1`` document for two goals, a ``dpp-ngoal-profile/1`` one for any N;
+        for the goal-selection game (``instance.goal_values`` set) a
+        ``dpp-selection-profile/1`` one, or a ``dpp-profile/1`` whose prior is the choice.
     instance : Instance
         The game the profile claims to solve.
 
@@ -209,16 +212,25 @@ def read_profile(profile: Any, instance: Instance) -> Parsed[Profile]:
             doc, data = read_json_document(profile, kind="profile")
         except JsonReadError as exc:
             raise ProfileError(f"{name}: {exc}") from None
-        return Parsed(profile_from_json(doc, instance, name=name), data)
+        return Parsed(_read(doc, instance, name), data)
     doc = profile
     to_json = getattr(profile, "to_json", None)
     if not isinstance(profile, Mapping) and callable(to_json):
         doc = to_json()
     if isinstance(doc, Mapping):
-        return Parsed(profile_from_json(doc, instance), doc)
+        return Parsed(_read(doc, instance, "profile"), doc)
     raise ProfileError("a profile must be a Profile, a JSON document (dict), a file path, JSON "
                        f"bytes or an object with to_json(); got {type(profile).__name__} (the "
                        "solver's results have to_json())")
+
+
+def _read(doc: Any, instance: Instance, name: str) -> Profile:
+    """The profile document read against its game: a goal-selection game reads the
+    goal-selection formats (:mod:`dppverify.game.selection_profile`), any other the prior
+    game's (:func:`~dppverify.game.profile.profile_from_json`)."""
+    if instance.goal_selection:
+        return selection_profile_from_json(doc, instance, name=name)
+    return profile_from_json(doc, instance, name=name)
 
 
 def _is_networkx(x: Any) -> bool:

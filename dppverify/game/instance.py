@@ -34,18 +34,13 @@ from dppverify.formats.json_reading import (
     show_node,
 )
 from dppverify.formats.map_instance import is_map_document
+from dppverify.game.goal_selection import is_selection_document, marked, selection_parts
 from dppverify.game.graph_reading import read_graph, require
 from dppverify.game.grids import map_game
 from dppverify.game.instance_reading import arc_arrays, exact_mode, goal_distance_fields
 from dppverify.game.instance_type import Instance, Roles, finish_game
 
-SELECTION_REFUSAL = ("goal_selection: this is a goal-selection instance (the Attacker chooses its "
-                     "goal; there is no prior), not a game with a prior: read it with "
-                     "dppverify.selection.instance.selection_from_json (dpp solve, value, "
-                     "certify and export-efg take it as such)")
-"""The one line the prior game's reader gives a goal-selection document."""
-
-__all__ = ["SELECTION_REFUSAL", "Instance", "Node", "Roles", "arc_arrays", "finish_game",
+__all__ = ["Instance", "Node", "Roles", "arc_arrays", "finish_game",
            "goal_distance_fields", "instance_from_json", "load_instance", "node_from_json",
            "node_to_json", "read_instance_file", "show_node"]
 
@@ -96,7 +91,8 @@ def read_instance_file(path: str | Path) -> tuple[Instance, bytes]:
 def instance_from_json(doc: Any, *, base: Path | None = None) -> Instance:
     """Build a validated :class:`Instance` from an instance document (dict or JSON text).
 
-    The one instance reader of the checker, for any ``N >= 2`` goals. A document listing
+    The one instance reader of the checker, for any ``N >= 2`` goals and for the goal-selection
+    game (``goal_values`` set). A document listing
     exactly two goals is read under the two-goal rules (``"numbers": "float"`` allowed, the
     two-goal messages); one listing more is read under the N-goal rules (exact numbers only;
     :func:`~dppverify.game.instance_reading.exact_mode`). A compact map instance
@@ -127,13 +123,23 @@ def instance_from_json(doc: Any, *, base: Path | None = None) -> Instance:
 ("numbers": "exact")
     >>> instance_from_json({**triangle_document(), "numbers": "float"}).exact
     False
+
+    A goal-selection document (no prior; ``docs/formats.md`` §1, "Goal selection") is the
+    game with its goal values and the uniform reference prior:
+
+    >>> doc = {k: v for k, v in triangle_document().items() if k != "prior"}
+    >>> inst = instance_from_json({**doc, "goal_selection": True, "goal_values": [0, 1]})
+    >>> inst.goal_values, inst.prior
+    ((Fraction(0, 1), Fraction(1, 1)), (Fraction(1, 2), Fraction(1, 2)))
     """
     if isinstance(doc, str | bytes):
         try:
             doc = parse_json_text(doc)
         except JsonReadError as exc:
             raise InvalidInstanceError(str(exc)) from None
-    require(not (isinstance(doc, Mapping) and "goal_selection" in doc), SELECTION_REFUSAL)
+    if is_selection_document(doc):  # the goal-selection game: no prior, goal values
+        rest, values = selection_parts(doc)
+        return marked(instance_from_json(rest, base=base), values)
     if isinstance(doc, Mapping) and "format" in doc and is_map_document(doc):
         return map_game(doc, base=base)
     try:

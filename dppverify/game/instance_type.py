@@ -91,6 +91,11 @@ class Instance:
         ``dist_to[θ][v]`` = full-graph ``d(v, goals[θ])`` (``math.inf`` if unreachable).
     hops : tuple of int
         Fewest steps from each node to the nearest goal (``-1`` if none): tree pruning.
+    goal_values : tuple of Fraction or None
+        None for the game with a prior. The goal-selection game (``docs/formats.md`` §1, "Goal
+        selection"; proofs/SELECT.md): the Attacker *chooses* its goal and pays its cost minus
+        ``goal_values[θ]``; there is no prior, and :attr:`prior` is then the uniform reference
+        prior (the one the value at the uniform prior is reported for).
 
     Examples
     --------
@@ -128,6 +133,12 @@ goals; this instance has 3
     exact: bool
     dist_to: tuple[tuple[Number, ...], ...]
     hops: tuple[int, ...]
+    goal_values: tuple[Fraction, ...] | None = None
+
+    @property
+    def goal_selection(self) -> bool:
+        """True for the goal-selection game (:attr:`goal_values` set)."""
+        return self.goal_values is not None
 
     @property
     def numbers(self) -> NumberMode:

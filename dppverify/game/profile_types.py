@@ -25,12 +25,15 @@ from dppverify.formats.json_reading import parse_number, parse_probability
 from dppverify.game.rules import GuaranteeRule, ProfileDefender
 
 __all__ = ["MAX_NORMALS", "MAX_NORMAL_ENTRY", "PER_GOAL_PROFILE_FORMAT", "PROFILE_FORMAT",
-           "VALUE_KEYS", "Defect", "DefectCollector", "Profile", "Stated", "StrategyWalk",
-           "parse_guarantee", "parse_normals", "stated_of"]
+           "SELECTION_PROFILE_FORMAT", "VALUE_KEYS", "Defect", "DefectCollector", "Profile",
+           "Stated", "StrategyWalk", "parse_guarantee", "parse_normals", "stated_of"]
 
 PROFILE_FORMAT = "dpp-profile/1"
 """The two-goal profile's ``format`` tag."""
 PER_GOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
+
+SELECTION_PROFILE_FORMAT = "dpp-selection-profile/1"
+"""The goal-selection profile format (``docs/formats.md`` §2d)."""
 """The per-goal profile's ``format`` tag (one mixed strategy per goal index, any N)."""
 VALUE_KEYS = ("U1", "U2", "U", "U_bar", "VoI")
 """The ``value`` numbers a two-goal profile may claim."""
@@ -182,6 +185,9 @@ class Profile:
     stated : Stated
         What the document says about the game it was made for (its goals, prior, start and
         node ids), for a note when a profile looks made for another instance.
+    choice : tuple of Fraction or None
+        A goal-selection profile (``dpp-selection-profile/1``): the Attacker's choice ``q`` of
+        its goal (None elsewhere, or when the document's is unusable: a defect says why).
 
     Examples
     --------
@@ -203,6 +209,7 @@ class Profile:
     longest: int = 0
     defects: tuple[Defect, ...] = ()
     stated: Stated = field(default_factory=Stated)
+    choice: tuple[Fraction, ...] | None = None
 
     @property
     def wellformed(self) -> bool:

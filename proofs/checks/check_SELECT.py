@@ -21,9 +21,9 @@ import sympy as sp
 from scipy.optimize import linprog
 
 from dppverify.errors import HorizonError
-from dppverify.selection.instance import selection_from_json
-from dppverify.selection.mixture import ProgressMixture
-from dppverify.selection.value import selection_value
+from dppverify.game.instance import instance_from_json
+from dppverify.game.mixture_rule import ProgressMixture
+from dppverify.structured.selection_value import goal_values, selection_value
 from dppverify.tree_route.tree import build_tree
 from proofs.checks._linear import solve_square
 from solver.coalitions.construction import certified_sets
@@ -176,7 +176,7 @@ def test_SELECT5_every_walk_costs_h_under_the_written_rule(k: int) -> None:
     assert all(c >= eq.value for c in net_costs)
     assert graph.n_goals == game.n_goals
     # the checker's own V_sel (its own DP, vertex tables and arc test) agrees
-    assert selection_value(selection_from_json(doc)).value == eq.value
+    assert selection_value(instance_from_json(doc)).value == eq.value
 
 
 @pytest.mark.parametrize("k", [k for k in range(len(CASES)) if len(CASES[k]["goals"]) == 2])
@@ -184,9 +184,9 @@ def test_SELECT8_the_mixture_charges_each_walk_h(k: int) -> None:
     doc = _selection_doc(CASES[k], k)
     eq = selection_equilibrium(doc, rule="mixture")
     assert eq.mixture is not None
-    sel = selection_from_json(doc)  # the checker's reading and the checker's mixture
+    sel = instance_from_json(doc)  # the checker's reading and the checker's mixture
     mix = ProgressMixture(0, eq.mixture.alpha)
-    game = sel.game
+    game = sel
     for theta, walks in enumerate(eq.mixtures):
         for walk, _ in walks:
             cost = Fraction(game.dist_to[theta][walk[-1]])
@@ -195,7 +195,7 @@ def test_SELECT8_the_mixture_charges_each_walk_h(k: int) -> None:
                 cost += Fraction(game.weight(v, u)) * dist[theta]
             assert cost == eq.h[theta] == eq.mixture.guaranteed[theta]
     d1, d2, m = eq.mixture.d1, eq.mixture.d2, eq.mixture.M
-    r1, r2 = sel.values
+    r1, r2 = goal_values(sel)
     assert eq.value == min(d1 - r1, d2 - r2, (m - r1 - r2) / 2)
 
 
@@ -248,20 +248,20 @@ def test_SELECT10_two_goals_have_one_kink_at_one_half() -> None:
 
 def _walk_lp(doc: dict, horizon: int) -> float:
     """SELECT.9's LP on the walk tree: variables q, realization masses y_θ(p) (root q_θ), z_p."""
-    sel = selection_from_json(doc)
-    tree = build_tree(sel.game, horizon)
+    sel = instance_from_json(doc)
+    tree = build_tree(sel, horizon)
     n, p_count = sel.n_goals, tree.n_prefixes
     nv = n + n * p_count + p_count  # q, y, z
     yi = lambda t, p: n + t * p_count + p  # noqa: E731
     zi = lambda p: n + n * p_count + p  # noqa: E731
     cost = np.zeros(nv)
-    cost[:n] = [-float(x) for x in sel.values]
+    cost[:n] = [-float(x) for x in goal_values(sel)]
     leaves = tree.leaves()
     for p in range(1, p_count):
         cost[zi(p)] = float(tree.weight[p])
     for t in range(n):
         for p in leaves:
-            cost[yi(t, int(p))] = float(sel.game.dist_to[t][int(tree.node[p])])
+            cost[yi(t, int(p))] = float(sel.dist_to[t][int(tree.node[p])])
     eq_rows, eq_rhs, ub_rows = [], [], []
     row = np.zeros(nv)
     row[:n] = 1
@@ -300,7 +300,7 @@ def test_SELECT9_the_truncated_value_is_the_dp_diagonal(k: int, horizon: int) ->
         lp = _walk_lp(doc, horizon)
     except HorizonError as exc:  # no goal within the horizon: nothing to compare
         pytest.skip(str(exc))
-    v = selection_value(selection_from_json(doc), horizon)
+    v = selection_value(instance_from_json(doc), horizon)
     assert v.value is not None or len(doc["goals"]) > 3
     if v.value is not None:
         assert abs(lp - float(v.value)) <= 1e-9

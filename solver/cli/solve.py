@@ -42,8 +42,8 @@ __all__ = ["solve_command"]
                    "--prior; a goal-selection INSTANCE needs no flag). Writes a "
                    "dpp-selection-profile/1 (docs/formats.md §2d).")
 @click.option("--goal-values", "goal_values", metavar="R1,R2,...",
-              help="Goal selection: the value r_i of each goal (the Attacker pays its cost "
-                   "minus r_i); default 0.")
+              help="With --goal-selection: the value r_i of each goal (the Attacker pays its "
+                   "cost minus r_i); default 0.")
 @click.option("--defender", type=click.Choice(["guarantee", "mixture"]), default="guarantee",
               show_default=True,
               help="Goal selection: the Defender's rule, the guarantee rule (any N) or, for two "
@@ -94,17 +94,13 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
                           and _is_selection_file(instance)):
         from solver.cli.solve_selection import solve_selection
 
-        if goal_selection and instance is not None:
-            raise InvalidInstanceError("--goal-selection goes with --map (a goal-selection "
-                                       "INSTANCE file needs no flag)")
         instance_or_map(instance, grid)
         solve_selection(instance, grid, goal_values, defender, as_json, output, save_instance,
                         progress)
         return
-    if goal_values is not None or defender != "guarantee":
-        raise InvalidInstanceError("--goal-values and --defender are options of the "
-                                   "goal-selection game (--goal-selection, or a goal-selection "
-                                   "INSTANCE)")
+    if defender != "guarantee":
+        raise InvalidInstanceError("--defender is an option of the goal-selection game "
+                                   "(--goal-selection, or a goal-selection INSTANCE)")
     from solver.coalitions.construction import FixpointNotReached
     from solver.game.instance_writing import instance_to_json, map_instance_to_json
     from solver.solution import solve, summarize

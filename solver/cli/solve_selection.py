@@ -19,51 +19,23 @@ from dppverify.cli.map_options import MapRequest
 from solver.cli.common import dumps
 from solver.errors import InvalidInstanceError, OutputError
 
-__all__ = ["parse_values", "solve_selection"]
+__all__ = ["solve_selection"]
 
 CERTIFIED = "certified: goal-selection checks, structured route, H = inf"
-
-
-def parse_values(text: str | None, n_goals: int) -> list[str] | None:
-    """``--goal-values R1,R2,…``: one exact number per goal (None when not given).
-
-    Examples
-    --------
-    >>> parse_values("0,1/2", 2), parse_values(None, 2)
-    (['0', '1/2'], None)
-    >>> parse_values("1", 2)
-    Traceback (most recent call last):
-    solver.errors.InvalidInstanceError: --goal-values takes 2 numbers, one per goal, got '1'
-    """
-    if text is None:
-        return None
-    parts = [p.strip() for p in text.split(",")]
-    if len(parts) != n_goals or not all(parts):
-        raise InvalidInstanceError(f"--goal-values takes {n_goals} numbers, one per goal, got "
-                                   f"{text!r}")
-    from solver.numbers import parse_number
-    for i, p in enumerate(parts):
-        parse_number(p, where=f"--goal-values[{i}]")
-    return parts
 
 
 def _document(instance: str | None, grid: MapRequest | None, values: str | None
               ) -> tuple[dict[str, Any], Path | None]:
     """The goal-selection document of INSTANCE or of the grid, and its base folder."""
     if grid is not None:
-        return grid.selection_document(parse_values(values, grid.n_goals)), None
+        return grid.selection_document(), None
     assert instance is not None
+    if values is not None:
+        raise InvalidInstanceError("--goal-values goes with --goal-selection and --map (a "
+                                   "goal-selection INSTANCE lists its goal_values itself)")
     from solver.formats.json_text import read_json
 
-    doc = read_json(instance)
-    if values is not None:
-        if isinstance(doc, dict) and "goal_values" in doc:
-            raise InvalidInstanceError(f"{instance}: the instance has goal_values already; give "
-                                       "them in the instance or with --goal-values, not both")
-        n = len(doc.get("goals", [])) if isinstance(doc, dict) and isinstance(
-            doc.get("goals"), list) else 0
-        doc = {**doc, "goal_values": parse_values(values, n)}
-    return doc, Path(instance).parent
+    return read_json(instance), Path(instance).parent
 
 
 def solve_selection(instance: str | None, grid: MapRequest | None, values: str | None,
@@ -111,7 +83,7 @@ goal-selection checks, structured route, H = inf)
         else:
             profile = eq.to_json()
             bar.phase("certifying (goal-selection checks, structured route, H = inf)")
-            refusal = _certification_refusal(doc, base, profile)
+            refusal = _certification_refusal(doc if instance is None else instance, profile)
         bar.phase("writing")
     finally:
         bar.close()
@@ -161,21 +133,13 @@ def _relative(map_ref: str, save_instance: str) -> str:
                            os.path.realpath(Path(save_instance).absolute().parent))
 
 
-def _certification_refusal(doc: dict[str, Any], base: Path | None,
-                           profile: dict[str, Any]) -> str | None:
-    """Certify the profile with the checker's goal-selection checks (untruncated game): None
-    when every check passes, else the one line that refuses it."""
-    import json
+def _certification_refusal(checked: str | dict[str, Any], profile: dict[str, Any]) -> str | None:
+    """Certify the profile with the checker (``dppverify.certify``: the goal-selection checks on
+    the untruncated game): None when every check passes, else the one line that refuses it."""
+    from dppverify.certify import certify
 
-    from dppverify.formats.json_reading import parse_json
-    from dppverify.selection.checks import selection_checks
-    from dppverify.selection.instance import selection_from_json as checker_selection
-    from dppverify.selection.profile import selection_profile_from_json
-
-    sel = checker_selection(doc, base=base)
-    recs = selection_checks(sel, selection_profile_from_json(parse_json(json.dumps(profile)),
-                                                             sel))
-    bad = next((r for r in recs if not r.passed), None)
+    cert = certify(checked, profile)
+    bad = next((r for r in cert.checks if not r.passed), None)
     if bad is None:
         return None
     return (f"error: the checker did not certify the solver's profile: {bad.id}: "

@@ -4,11 +4,12 @@ whose root is the Attacker's choice of its goal, and must agree with our exact v
 Marked ``peers`` (run with ``.venv/bin/pytest -m peers tests/peers``). The export
 (:func:`dppverify.tree_route.efg.to_efg` with ``goal_values``) replaces the chance node by an
 Attacker decision ``choose <goal>`` and shifts each payoff by the chosen goal's value. Ours is
-:func:`dppverify.selection.value.selection_value` at the same horizon: the coalition DP's layer
-``H`` at the start, ``min_S (m_S(s0, H) − r(S))/|S|`` (proofs/SELECT.md SELECT.9), which shares no
-code with the export or the peers. Gambit's ``lp_solve(rational=True)`` must equal it exactly,
-OpenSpiel's sequence-form LP within 1e-9; where ``H`` covers the untruncated equilibrium's walks
-the untruncated ``V_sel`` equals both as well.
+:func:`dppverify.structured.selection_value.selection_value` at the same horizon: the
+coalition DP's layer ``H`` at the start, ``min_S (m_S(s0, H) − r(S))/|S|`` (proofs/SELECT.md
+SELECT.9), which shares no code with the export or the peers. Gambit's
+``lp_solve(rational=True)`` must equal it exactly, OpenSpiel's sequence-form LP within 1e-9;
+where ``H`` covers the untruncated equilibrium's walks the untruncated ``V_sel`` equals both as
+well.
 """
 
 from __future__ import annotations
@@ -20,8 +21,8 @@ from typing import Any
 
 import pytest
 
-from dppverify.selection.instance import selection_from_json
-from dppverify.selection.value import selection_value
+from dppverify.game.instance import instance_from_json
+from dppverify.structured.selection_value import selection_value
 from dppverify.tree_route.efg import to_efg
 from tests.dppverify._helpers import triangle_doc
 from tests.dppverify.tree_route._efg_reader import FRACTIONAL, GRID, KITE, LADDER, THIRDS
@@ -54,7 +55,7 @@ def _selection(doc: dict[str, Any], with_values: bool) -> dict[str, Any]:
 
 
 def _ours(doc: dict[str, Any], horizon: int) -> tuple[Any, Fraction]:
-    sel = selection_from_json(doc)
+    sel = instance_from_json(doc)
     v = selection_value(sel, horizon)
     assert v.value is not None, v.reason
     return sel, v.value
@@ -65,7 +66,7 @@ def test_gambit_exact_lp_gives_exactly_the_selection_value(
         gambit: ModuleType, tmp_path: Path, name: str, doc: dict[str, Any], horizon: int,
         with_values: bool) -> None:
     sel, exact = _ours(_selection(doc, with_values), horizon)
-    eq = _gambit_solve(gambit, to_efg(sel.game, horizon, goal_values=sel.values), tmp_path)
+    eq = _gambit_solve(gambit, to_efg(sel, horizon, goal_values=sel.goal_values), tmp_path)
     defender, attacker = eq.payoffs["Defender"], eq.payoffs["Attacker"]
     assert isinstance(defender, Fraction)
     assert defender == exact and attacker == -exact
@@ -78,7 +79,7 @@ def test_openspiel_sequence_form_lp_gives_the_selection_value(
         with_values: bool) -> None:
     sel, exact = _ours(_selection(doc, with_values), horizon)
     v0, v1, nash_conv = _openspiel_value(openspiel,
-                                         to_efg(sel.game, horizon, goal_values=sel.values))
+                                         to_efg(sel, horizon, goal_values=sel.goal_values))
     assert abs(-v0 - float(exact)) <= TOLERANCE
     assert abs(v1 - float(exact)) <= TOLERANCE
     assert 0 <= nash_conv <= TOLERANCE
@@ -89,5 +90,5 @@ def test_the_peers_see_the_choice_gain_over_chance(gambit: ModuleType, tmp_path:
     choosing gains the Attacker something: ``thirds`` at H = 2, 2 against 7/2 (the Attacker
     always picks g2), and Gambit sees both."""
     sel, chosen = _ours(_selection(THIRDS, False), 2)
-    uniform = _gambit_solve(gambit, to_efg(sel.game, 2), tmp_path).payoffs["Defender"]
+    uniform = _gambit_solve(gambit, to_efg(sel, 2), tmp_path).payoffs["Defender"]
     assert (chosen, uniform) == (2, Fraction(7, 2))

@@ -22,11 +22,10 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from dppverify.game.instance import instance_from_json
-from dppverify.selection.instance import selection_from_json
-from dppverify.selection.value import value_at
 from dppverify.strategies import selection_instances
 from dppverify.structured.normal_fixpoint import normal_sets
 from dppverify.structured.proved_value import nvalue
+from dppverify.structured.selection_value import value_at
 from solver.selection.equilibrium import selection_equilibrium
 
 Doc = dict[str, Any]
@@ -51,8 +50,8 @@ def test_choosing_is_never_worse_than_being_drawn(doc: Doc, data: st.DataObject)
     r = eq.selection.values
     b = data.draw(_priors(len(doc["goals"])))
     assert eq.value <= _at(doc, b) - sum((x * y for x, y in zip(b, r, strict=True)), Fraction(0))
-    sel = selection_from_json(doc)   # the checker's own sets at the solver's choice
-    at_q = value_at(normal_sets(sel.game), eq.choice)
+    sel = instance_from_json(doc)   # the checker's own sets at the solver's choice
+    at_q = value_at(normal_sets(sel), eq.choice)
     assert at_q - sum((x * y for x, y in zip(eq.choice, r, strict=True)), Fraction(0)) == eq.value
 
 
@@ -67,12 +66,12 @@ def test_the_value_is_convex_in_the_prior(doc: Doc, data: st.DataObject) -> None
 
 @given(selection_instances(max_goals=2))
 def test_two_goals_one_kink_at_one_half_and_the_closed_form(doc: Doc) -> None:
-    sel = selection_from_json(doc)
-    sets = normal_sets(sel.game)
-    d1, d2, m = sets.column(sel.game.start)  # type: ignore[misc]
+    sel = instance_from_json(doc)
+    sets = normal_sets(sel)
+    d1, d2, m = sets.column(sel.start)  # type: ignore[misc]
     for k in range(1, 8):
         q = Fraction(k, 8)
         above, below = (1 - q) * m + (2 * q - 1) * d1, q * m + (1 - 2 * q) * d2
         assert _at(doc, [q, 1 - q]) == max(above, below)
-    r1, r2 = sel.values
+    r1, r2 = sel.goal_values or (0, 0)
     assert selection_equilibrium(doc).value == min(d1 - r1, d2 - r2, (m - r1 - r2) / 2)

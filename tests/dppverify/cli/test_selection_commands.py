@@ -30,7 +30,8 @@ def test_value_gives_v_sel_the_choice_and_the_uniform_prior(tmp_path: Path) -> N
     assert "V_sel (H = inf, N = 2 goals, the Attacker chooses its goal) = 2 exactly at q* = " \
            "(1/4, 3/4)" in r.output
     assert "at the uniform prior: V = 2 exactly; choosing gains the Attacker 0" in r.output
-    doc = json.loads(run_cli(value_command, [i, "--json", "--goal-values", "0,1"]).output)
+    valued = write_doc(tmp_path, "valued.json", {**TRIANGLE, "goal_values": [0, 1]})
+    doc = json.loads(run_cli(value_command, [valued, "--json"]).output)
     assert doc["format"] == "dpp-selection-value/1" and doc["value"] == "1"
     assert doc["goal_values"] == ["0", "1"] and doc["choice"] == ["0", "1"]  # g2 worth 1 more
     three = {k: v for k, v in star3_document().items() if k != "prior"} | {
@@ -64,9 +65,8 @@ def test_mistakes_are_one_line_exit_2(tmp_path: Path) -> None:
     for cmd, args, words in (
             (certify_command, [i, p, "-H", "3"], "untruncated game"),
             (value_command, [i, "--route", "both"], "structured route"),
-            (value_command, [i, "--goal-values", "1"], "--goal-values takes 2"),
-            (value_command, [write_doc(tmp_path, "t.json", triangle_document()),
-                             "--goal-values", "0,1"], "INSTANCE has a prior"),
+            (value_command, [i, "--goal-values", "0,1"], "go with --map FILE"),
+            (value_command, [i, "--goal-selection"], "go with --map FILE"),
             (certify_command, [i, write_doc(tmp_path, "n.json", {"format": "x"})],
              "dpp-selection-profile/1")):
         r = run_cli(cmd, args)

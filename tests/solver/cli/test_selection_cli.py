@@ -17,10 +17,10 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner, Result
 
+from dppverify.checks.selection import selection_checks
 from dppverify.formats.json_reading import parse_json
-from dppverify.selection.checks import selection_checks
-from dppverify.selection.instance import load_selection
-from dppverify.selection.profile import selection_profile_from_json
+from dppverify.game.instance import load_instance
+from dppverify.game.selection_profile import selection_profile_from_json
 from solver.cli import main
 
 ROOT = Path(__file__).resolve().parents[3]
@@ -46,7 +46,7 @@ def test_paper10_profile_is_written_and_certified(here: Path) -> None:
     doc = parse_json((here / "p.json").read_text())
     assert doc["choice"] == ["1/2", "1/2"] and doc["value"]["V"] == "25/2"
     assert doc["defender"] == {"rule": "progress-mixture", "goal": [0, 9], "alpha": "9/20"}
-    sel = load_selection(here / "sel.json")
+    sel = load_instance(here / "sel.json")
     recs = selection_checks(sel, selection_profile_from_json(doc, sel))
     assert all(x.passed for x in recs)
     again = _run("solve", "sel.json", "--defender", "mixture", "--json")

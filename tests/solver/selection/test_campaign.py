@@ -14,11 +14,10 @@ from fractions import Fraction
 
 import pytest
 
+from dppverify.certify import certify
 from dppverify.formats.json_reading import parse_json
-from dppverify.selection.checks import selection_checks
-from dppverify.selection.instance import selection_from_json as checker_selection
-from dppverify.selection.profile import selection_profile_from_json
-from dppverify.selection.value import selection_value
+from dppverify.game.instance import instance_from_json
+from dppverify.structured.selection_value import selection_value
 from solver.coalitions.construction import FixpointNotReached
 from solver.selection.equilibrium import selection_equilibrium
 from tests.solver._ngoal_families import draw
@@ -42,7 +41,7 @@ def test_campaign(n: int) -> None:
     for family in ("digraph", "grid", "hub"):
         for seed in SEEDS:
             doc = _doc(family, seed, n)
-            sel = checker_selection(doc)
+            sel = instance_from_json(doc)
             try:
                 eq = selection_equilibrium(doc)
             except FixpointNotReached as exc:
@@ -50,10 +49,9 @@ def test_campaign(n: int) -> None:
                 assert exc.lower <= v.lower and (exc.upper is None or v.upper <= exc.upper)
                 outcome["refused (bracket)"] += 1
                 continue
-            recs = selection_checks(sel, selection_profile_from_json(
-                parse_json(json.dumps(eq.to_json())), sel))
-            assert all(r.passed for r in recs), (family, seed, [
-                (r.id, r.message) for r in recs if not r.passed])
+            cert = certify(doc, parse_json(json.dumps(eq.to_json())))
+            assert cert.verdict == "pass", (family, seed, [
+                (r.id, r.message) for r in cert.checks if not r.passed])
             outcome["certified"] += 1
             outcome["off-support goals"] += sum(1 for q in eq.choice if not q)
     print(f"N = {n}: {dict(outcome)}")

@@ -17,10 +17,9 @@ from typing import Any
 
 import pytest
 
+from dppverify.certify import certify
 from dppverify.formats.json_reading import parse_json
-from dppverify.selection.checks import SELECTION_IDS, selection_checks
-from dppverify.selection.instance import selection_from_json as checker_selection
-from dppverify.selection.profile import selection_profile_from_json
+from dppverify.registry import check_ids
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.formats.movingai import map_file, read_map_bytes
 from solver.selection.equilibrium import selection_equilibrium
@@ -39,13 +38,13 @@ def paper10(goals: list[list[int]] | None = None, **more: Any) -> dict[str, Any]
 
 
 def certified(doc: dict[str, Any], rule: str = "guarantee") -> Any:
-    """Solve, write the profile as JSON text, read it back with the checker and certify it."""
+    """Solve, write the profile as JSON text, and certify it with ``dppverify.certify`` (the one
+    flow: the goal-selection suite on the untruncated game)."""
     eq = selection_equilibrium(doc, rule=rule)  # type: ignore[arg-type]
-    text = json.dumps(eq.to_json())
-    sel = checker_selection(doc)
-    recs = selection_checks(sel, selection_profile_from_json(parse_json(text), sel))
-    assert [r.id for r in recs] == list(SELECTION_IDS)
-    assert all(r.passed for r in recs), [(r.id, r.message) for r in recs if not r.passed]
+    cert = certify(doc, parse_json(json.dumps(eq.to_json())))
+    recs = cert.checks
+    assert [r.id for r in recs] == list(check_ids("selection"))
+    assert cert.verdict == "pass", [(r.id, r.message) for r in recs if not r.passed]
     return eq, recs
 
 

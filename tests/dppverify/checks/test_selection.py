@@ -18,13 +18,13 @@ from typing import Any
 
 import pytest
 
+from dppverify.checks.selection import selection_checks
 from dppverify.errors import ProfileError
 from dppverify.game.instance import instance_from_json
-from dppverify.selection.checks import selection_checks
-from dppverify.selection.instance import selection_from_json
-from dppverify.selection.mixture import ProgressMixture, mixture_response
-from dppverify.selection.profile import selection_profile_from_json
-from dppverify.selection.value import selection_value
+from dppverify.game.mixture_rule import ProgressMixture
+from dppverify.game.selection_profile import selection_profile_from_json
+from dppverify.structured.mixture_br import mixture_response
+from dppverify.structured.selection_value import selection_value
 from solver.game.instance import Instance
 from solver.selection.equilibrium import selection_equilibrium
 from solver.solution import solve
@@ -32,7 +32,7 @@ from tests.solver.selection.test_equilibrium import PAPER10, paper10
 
 
 def _statuses(doc: dict[str, Any], profile: dict[str, Any]) -> dict[str, Any]:
-    sel = selection_from_json(doc)
+    sel = instance_from_json(doc)
     return {r.id: r for r in selection_checks(sel, selection_profile_from_json(profile, sel))}
 
 
@@ -112,7 +112,7 @@ def test_broken_documents(equilibrium: dict[str, Any]) -> None:
     assert "two-goal Defender" in _statuses(three, bad)["profile.wellformed"].message
     with pytest.raises(ProfileError, match="dpp-selection-profile/1"):
         selection_profile_from_json({"format": "dpp-ngoal-profile/1"},
-                                    selection_from_json(paper10()))
+                                    instance_from_json(paper10()))
     paper = {"format": "dpp-profile/1", "goals": {"primary": [0, 9], "secondary": [0, 0]},
              "defender": {"rule": "progress", "goal": [0, 9]}, "attacker": {}}
     assert "prior" in _statuses(paper10(), paper)["profile.wellformed"].message
@@ -177,7 +177,7 @@ def test_the_value_of_a_truncated_game_and_the_bracket(monkeypatch: pytest.Monke
                                                        tmp_path: Path) -> None:
     from tests.solver._ngoal_families import GADGET
     doc = {k: v for k, v in GADGET.items() if k != "prior"} | {"goal_selection": True}
-    sel = selection_from_json(doc)
+    sel = instance_from_json(doc)
     exact = selection_value(sel)
     assert exact.value is not None and exact.normals  # needs the normals (2, 2, 2, 1)
     import dppverify.structured.proved_value as pv
@@ -191,11 +191,29 @@ def test_the_value_of_a_truncated_game_and_the_bracket(monkeypatch: pytest.Monke
 def test_the_selection_ids_are_the_registry_and_the_checks_md_table() -> None:
     import re
 
-    from dppverify.registry import SELECTION_CHECKS, kind_of
+    from dppverify.registry import checks_of, kind_of
+    selection = checks_of("selection")
     table = (Path(__file__).resolve().parents[3] / "dppverify" / "checks.md").read_text()
     part = table.split("## Goal selection", 1)[1].split("\n## ", 1)[0]
     rows = re.findall(r"^\| `([^`]+)` \| ([A-Z0-9]+) \|", part, flags=re.M)
-    assert rows == [(c.id, c.proof) for c in SELECTION_CHECKS if c.id.startswith("selection.")]
+    assert rows == [(c.id, c.proof) for c in selection if c.id.startswith("selection.")]
     recs = _statuses(paper10(), selection_equilibrium(paper10()).to_json())
-    assert list(recs) == [c.id for c in SELECTION_CHECKS]
+    assert list(recs) == [c.id for c in selection]
     assert all(kind_of(i) == "check" for i in recs)
+
+
+def test_dppverify_certify_is_the_one_flow_for_the_goal_selection_game() -> None:
+    """``dppverify.certify`` takes the goal-selection instance and profile at its door, runs the
+    ``selection`` suite on the untruncated game and forms the certificate with its provenance."""
+    from dppverify.certificate import Certificate
+    from dppverify.certify import certify
+    from dppverify.errors import HorizonError
+    prof = selection_equilibrium(paper10(), rule="mixture").to_json()
+    cert = certify(paper10(), prof)
+    assert cert.verdict == "pass" and cert.route == "structured" and cert.horizon is None
+    assert cert.info["game"] == "goal selection" and cert.provenance is not None
+    assert Certificate.from_json(cert.to_json()) == cert
+    with pytest.raises(HorizonError, match="untruncated game"):
+        certify(paper10(), prof, horizon=40)
+    with pytest.raises(ProfileError, match="dpp-selection-profile/1"):
+        certify(paper10(), {"format": "dpp-ngoal-profile/1"})

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from dppverify.exact import Bracket, normalize
-from dppverify.selection.instance import SelectionInstance
+from dppverify.game.instance import Instance
 from dppverify.structured.cover import Normal, min_cover_vectors, zero_one_normals
 from dppverify.structured.dp_certificate import certified_coalition_dp
 from dppverify.structured.normal_fixpoint import NormalSets
@@ -32,7 +32,8 @@ from dppverify.structured.proved_value import (
     translation_at_start,
 )
 
-__all__ = ["SelectionValue", "diagonal_bound", "selection_value"]
+__all__ = ["SelectionValue", "barycentre", "diagonal_bound", "goal_values", "selection_value",
+           "value_at"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -117,7 +118,19 @@ def _column(sets: NormalSets) -> list[Fraction]:
     return col
 
 
-def selection_value(selection: SelectionInstance, horizon: int | None = None,
+def goal_values(instance: Instance) -> tuple[Fraction, ...]:
+    """The goal values of a goal-selection game (all 0 for a game with a prior).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> goal_values(triangle())
+    (Fraction(0, 1), Fraction(0, 1))
+    """
+    return instance.goal_values or (Fraction(0),) * instance.n_goals
+
+
+def selection_value(instance: Instance, horizon: int | None = None,
                     progress: Callable[[str], None] | None = None) -> SelectionValue:
     """``V_sel`` of a goal-selection game, exact where proved, else a bracket naming its bounds.
 
@@ -128,16 +141,16 @@ def selection_value(selection: SelectionInstance, horizon: int | None = None,
     Examples
     --------
     >>> from dppverify.game.examples import triangle_document
-    >>> from dppverify.selection.instance import selection_from_json
+    >>> from dppverify.game.instance import instance_from_json
     >>> doc = {**triangle_document(), "goal_selection": True}
     >>> del doc["prior"]
-    >>> v = selection_value(selection_from_json(doc))
+    >>> v = selection_value(instance_from_json(doc))
     >>> v.value, v.choice, v.binding, v.uniform.value
     (Fraction(2, 1), (Fraction(1, 4), Fraction(3, 4)), ((0, 1), (1, 1)), 2)
     """
-    game, r = selection.game, selection.values
+    game, r = instance, goal_values(instance)
     if horizon is not None:
-        return _truncated(selection, horizon)
+        return _truncated(instance, horizon)
     found = infinite_sets(game, progress)
     sets = found.sets
     upper, binding = diagonal_bound(sets.normals, _column(sets), r)
@@ -189,9 +202,9 @@ def value_at(sets: NormalSets, choice: Sequence[Fraction]) -> Fraction:
     return Fraction(min_cover_vectors(sets.normals, _column(sets), list(choice)).value)
 
 
-def _truncated(selection: SelectionInstance, horizon: int) -> SelectionValue:
+def _truncated(instance: Instance, horizon: int) -> SelectionValue:
     """SELECT.9: ``V_{H,sel}`` from the coalition DP's layer ``H`` at the start."""
-    game, r = selection.game, selection.values
+    game, r = instance, goal_values(instance)
     n = game.n_goals
     coal, fails, _ = certified_coalition_dp(game, horizon, None)
     normals = zero_one_normals(n)

@@ -1,1 +1,0 @@
-"""The goal-selection game: the Attacker chooses its goal (proofs/SELECT.md)."""
