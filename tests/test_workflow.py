@@ -73,9 +73,11 @@ NO_JSON = {"export-efg", "plot map", "plot beliefs", "plot voi", "audit", "batch
 """Commands whose product is a file or folder they write (.efg, a figure, the failure folder,
 the batch CSV): their stdout carries no data to print as JSON."""
 
-NO_MAP = {"plot voi", "experiment density", "audit", "batch", "experiment baselines"}
-"""Commands that take no single grid game: a density CSV, random grids, a solver, a .scen file
-(which names its maps), a list of standard maps (--maps)."""
+NO_MAP = {"plot voi", "experiment density", "experiment goal-selection", "audit", "batch",
+          "experiment baselines"}
+"""Commands that take no single grid game: a density CSV, random grids (the density sweep's,
+also for goal selection), a solver, a .scen file (which names its maps), a list of standard
+maps (--maps)."""
 
 
 def test_one_convention_on_every_command() -> None:
