@@ -60,4 +60,10 @@ def main(argv: list[str]) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    try:
+        code = main(sys.argv[1:])
+    except Exception as exc:  # never a traceback, and never exit 1 (refuted) for a failure
+        print(f"error: internal error in the kernel ({type(exc).__name__}: {str(exc)[:200]})",
+              file=sys.stderr)
+        code = 3
+    sys.exit(code)
