@@ -32,6 +32,7 @@ from dppverify.cli.hints import what_is
 from dppverify.cli.inputs import HORIZON, hinted, load_game, max_prefixes_option
 from dppverify.cli.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.cli.table import format_table
+from dppverify.cli.witness import write_witness
 from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
 from dppverify.formats.files import read_input, refuse_input_as_output
 from dppverify.formats.json_reading import JsonReadError, read_json_file
@@ -77,6 +78,10 @@ __all__ = ["VERDICT_EXIT", "certify_command"]
 @click.option("--trials", type=click.IntRange(min=0, max=MAX_TRIALS), default=DEFAULT_TRIALS,
               show_default=True,
               help="Number of random attackers in the L3/L4 checks.")
+@click.option("--witness", type=click.Path(dir_okay=False),
+              help="Also write the dpp-witness/1 of the untruncated game to this file "
+                   "(atomically): the numbers `dpp check` verifies with the trusted kernel "
+                   "(docs/formats.md §5).")
 @click.option("--verify-provenance", "provenance_of", metavar="CERT",
               type=click.Path(dir_okay=False),
               help="Do not certify: check that CERT (a certificate JSON) records the sha256 of "
@@ -85,7 +90,8 @@ __all__ = ["VERDICT_EXIT", "certify_command"]
 def certify_command(instance: str | None, profile: str | None, grid: MapRequest | None,
                     horizon: int | None, route: Route, as_json: bool,
                     output: str | None, max_prefixes: int, float_mode: bool, seed: int,
-                    trials: int, provenance_of: str | None, progress: bool | None) -> None:
+                    trials: int, witness: str | None, provenance_of: str | None,
+                    progress: bool | None) -> None:
     """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE's game (exit 3:
     could not decide).
 
@@ -109,18 +115,20 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
       dpp certify examples/triangle.json profile.json --json
       dpp certify examples/triangle.json profile.json -o certificate.json
       dpp certify examples/triangle.json profile.json --horizon 4
+      dpp certify examples/triangle.json profile.json --witness w.json
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
       dpp certify --verify-provenance cert.json examples/triangle.json profile.json
     """
     with reading_once():  # each input read once: the certificate hashes the bytes parsed
         _certify_files(instance, profile, grid, horizon, route, as_json, output, max_prefixes,
-                       float_mode, seed, trials, provenance_of, progress)
+                       float_mode, seed, trials, provenance_of, progress, witness)
 
 
 def _certify_files(instance: str | None, profile: str | None, grid: MapRequest | None,
                    horizon: int | None, route: Route, as_json: bool, output: str | None,
                    max_prefixes: int, float_mode: bool, seed: int, trials: int,
-                   provenance_of: str | None, progress: bool | None) -> None:
+                   provenance_of: str | None, progress: bool | None,
+                   witness: str | None = None) -> None:
     """The body of :func:`certify_command` (inside its ``reading_once`` block)."""
     bar = PhaseBar(want_progress(progress), "certify", "reading the instance")
     try:
@@ -136,11 +144,18 @@ def _certify_files(instance: str | None, profile: str | None, grid: MapRequest |
             raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
                               f"dpp certify {MAP_USAGE} PROFILE")
         refuse_input_as_output(output, [instance, profile, grid.path if grid else None])
+        refuse_input_as_output(witness, [instance, profile, output, grid.path if grid else None])
+        if witness is not None and horizon is not None:
+            raise OptionError("--witness is for the untruncated game (the kernel decides no "
+                              "truncated game): drop --horizon")
         if provenance_of is not None:
             bar.close()
             _verify_provenance(provenance_of, instance, profile, grid)
             return
         game = load_game(instance, grid)
+        if witness is not None and not game.exact:
+            raise OptionError("--witness: the trusted kernel decides exact games only; this "
+                              "instance is in float mode")
         bar.phase("reading the profile")
         doc = _profile_document(profile, game, instance)
         bar.phase(f"certifying (route {route}; the checks' bars follow)")
@@ -159,6 +174,8 @@ def _certify_files(instance: str | None, profile: str | None, grid: MapRequest |
         status(f"note: {profile} looks made for another instance: {reason} (make a profile "
                f"for this one with {solve} -o PROFILE)")
     cert = _with_command(cert, instance, profile, grid)
+    if witness is not None:
+        write_witness(witness, game, doc, cert.provenance or {})
     summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
     emit(cert.to_json(), format_table(cert), as_json=as_json, output=output, summary=summary)
     raise click.exceptions.Exit(VERDICT_EXIT[cert.verdict])

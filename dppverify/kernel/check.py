@@ -1,0 +1,164 @@
+"""The kernel's decision: read the three documents, verify the witness, return one verdict
+(proofs/KERNEL.md K.2, in its order)."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from itertools import pairwise, repeat
+from pathlib import Path
+from typing import Any
+
+from dppverify.kernel.defender import check_greedy
+from dppverify.kernel.profile import Guarantee, read_profile, walk
+from dppverify.kernel.reading import Instance, parse, read_instance, sha256
+from dppverify.kernel.table import TableRule
+from dppverify.kernel.verdict import BadInput, Refuted, Stop, Undecided, Verdict
+
+__all__ = ["check"]
+
+_KEYS = {"format", "instance_sha256", "profile_sha256", "denominator", "distances", "types",
+         "guarantee", "counterexamples", "producer"}
+
+
+def check(instance: bytes, profile: bytes, witness: bytes, *,
+          base_dir: str | Path | None = None) -> Verdict:
+    """Decide whether ``profile`` is a weak PBNE of the untruncated game ``instance``, from
+    ``witness`` (the three documents' bytes, exactly as read; ``base_dir``: where a map
+    instance's relative ``map`` path starts).
+
+    Examples
+    --------
+    >>> inst = b'''{"graph": {"nodes": [{"id": "s"}, {"id": "a"}, {"id": "b"}],
+    ...   "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
+    ...   "start": "s", "goals": ["a", "b"], "prior": ["1/2", "1/2"]}'''
+    >>> prof = b'''{"format": "dpp-ngoal-profile/1",
+    ...   "attacker": [[{"path": ["s", "a"], "probability": 1}],
+    ...                [{"path": ["s", "b"], "probability": 1}]],
+    ...   "defender": {"rule": "table", "default": ["1/2", "1/2"], "entries": [
+    ...       {"walk": ["s", "a"], "probabilities": [1, 0]},
+    ...       {"walk": ["s", "b"], "probabilities": [0, 1]}]}}'''
+    >>> import json
+    >>> wit = json.dumps({"format": "dpp-witness/1", "instance_sha256": sha256(inst),
+    ...     "profile_sha256": sha256(prof), "denominator": 2,
+    ...     "distances": [[2, 0, 4], [2, 4, 0]],
+    ...     "types": [{"trie": [2, 0, 4], "exit": [1, 0, 4]},
+    ...               {"trie": [2, 4, 0], "exit": [1, 4, 0]}]})
+    >>> check(inst, prof, wit.encode())
+    Verdict(status='pass', message='PASS: a weak PBNE of the untruncated game (2 types, 3 \
+nodes, trie of 3 prefixes, 2 reached prefixes)')
+    >>> check(inst, prof, wit.replace('[1, 0, 4]', '[2, 0, 4]').encode()).message
+    'type 0, node "s": E(x) <= w·q + E(u) fails on an arc'
+    """
+    try:
+        return _decide(instance, profile, witness, None if base_dir is None else Path(base_dir))
+    except Stop as stop:
+        return Verdict(stop.status, str(stop))
+
+
+def _int_lists(raw: Any, count: int, length: int, what: str) -> list[list[Any]]:
+    if type(raw) is not list or len(raw) != count or not all(
+            type(xs) is list and len(xs) == length and set(map(type, xs)) <= {int, type(None)}
+            for xs in raw):
+        raise BadInput(f"witness: {what} must be {count} lists of {length} integers or null")
+    return raw
+
+
+def _bound(witness: Any, weights: set[Fraction], S: int) -> int:
+    """A sentinel above twice every finite label and arc cost: +∞ for potentials."""
+    big = max((int(w * S) + 1 for w in weights), default=1)
+    lists = [*witness["distances"], *(xs for rec in witness.get("types") or []
+                                      if type(rec) is dict for xs in rec.values()
+                                      if type(xs) is list)]
+    for xs in lists:
+        if type(xs) is list and xs and set(map(type, xs)) <= {int, type(None)}:
+            big = max(big, max(map(abs, filter(None, xs)), default=0))
+    return 4 * big + 4
+
+
+def _decide(instance: bytes, profile: bytes, witness: bytes, base_dir: Path | None) -> Verdict:
+    inst = read_instance(instance, base_dir)
+    wit = parse(witness, "witness")
+    if type(wit) is not dict or wit.get("format") != "dpp-witness/1":
+        raise BadInput("witness: not a dpp-witness/1 document")
+    if set(wit) - _KEYS:
+        raise BadInput(f"witness: unknown key(s) {sorted(set(wit) - _KEYS)[:5]}")
+    for key, data in (("instance", instance), ("profile", profile)):
+        if wit.get(f"{key}_sha256") != sha256(data):
+            raise BadInput(f"witness: {key}_sha256 is not the sha256 of this {key}'s bytes (a "
+                           f"witness for another {key})")
+    prof = read_profile(profile, inst)
+    S, n, N = wit.get("denominator"), inst.graph.n, len(inst.goals)
+    if type(S) is not int or S < 1:
+        raise BadInput("witness: denominator must be a positive integer")
+    Draw = _int_lists(wit.get("distances"), N, n, "distances")
+    inf = _bound(wit, inst.graph.weights(), S)
+    dinf = 3 * inf
+    D = [[dinf if x is None else x for x in xs] for xs in Draw]
+    for j, g in enumerate(inst.goals):
+        _check_distances(inst, j, g, D[j], S, dinf)
+    for j in range(N):
+        for v in (inst.start, *inst.goals):
+            if D[j][v] >= dinf:
+                raise BadInput(f"goal {inst.show(inst.goals[j])} is unreachable from "
+                               f"{inst.show(v)}: the instance is not a valid game")
+    alive = [m < dinf for m in map(min, *D)]
+    if isinstance(prof.rule, Guarantee):
+        raise Undecided("the guarantee rule is not decided by this kernel yet")
+    rule = TableRule(inst, prof.rule, D, S, inf)
+    cache: dict[tuple[int, ...], tuple[list[Any], list[Any]]] = {}
+
+    def evaluate(w: tuple[int, ...]) -> tuple[list[Any], list[Any]]:
+        if w not in cache:
+            cache[w] = _evaluate(inst, rule, w, D, S)
+        return cache[w]
+    U = [sum((p * evaluate(w)[1][t] for w, p in mix), Fraction(0))
+         for t, mix in enumerate(prof.mixtures)]
+    reached = check_greedy(inst, prof.mixtures, lambda w: evaluate(w)[0])
+    extra = wit.get("counterexamples", [])
+    for k, c in enumerate(extra if type(extra) is list else [None]):
+        t = c.get("type") if type(c) is dict else None
+        if type(t) is not int or not 0 <= t < N:
+            raise BadInput(f"witness: counterexamples[{k}] needs a \"type\" 0..{N - 1}")
+        try:
+            w = walk(inst, c.get("walk"), f"counterexamples[{k}].walk", True)
+            _sig, cost = _evaluate(inst, rule, w, D, S)
+        except Refuted as exc:
+            raise BadInput(f"witness: {str(exc)[9:]}") from None
+        if cost[t] < U[t]:
+            raise Refuted(f"type {t}: the walk of counterexamples[{k}] costs "
+                          f"{Fraction(cost[t], S)} < U = {U[t] / S}: regret > 0")
+    types = wit.get("types")
+    if type(types) is not list or len(types) != N:
+        raise BadInput(f"witness: types must be a list of {N} records")
+    for t in range(N):
+        rule.check_type(t, types[t], alive, U[t])
+    return Verdict("pass", f"PASS: a weak PBNE of the untruncated game ({N} types, {n} nodes, "
+                           f"trie of {len(rule.node)} prefixes, {reached} reached prefixes)")
+
+
+def _check_distances(inst: Instance, j: int, g: int, D: list[Any], S: int, dinf: int) -> None:
+    """K.1: ``D(g) = 0`` and ``D(v) = min over arcs of w + D(u)`` elsewhere (+∞ = ``dinf``)."""
+    expect = list(map(min, inst.graph.relax(D, Fraction(S), dinf), repeat(dinf)))
+    expect[g] = 0
+    if expect != D:
+        v = next(v for v in range(len(D)) if expect[v] != D[v])
+        what = "D(g) = 0" if v == g else "D(v) = min over arcs (w + D(u))"
+        raise Undecided(f"distances[{j}] (to {inst.show(g)}) at node {inst.show(v)}: {what} "
+                        "fails: not the exact distances")
+
+
+def _evaluate(inst: Instance, rule: TableRule, w: tuple[int, ...], D: list[list[Any]], S: int
+              ) -> tuple[list[Any], list[Any]]:
+    """σ at each step of the walk ``w`` and each type's cost ``S·J_θ(w)``."""
+    mem, sigmas = rule.start(), []
+    cost: list[Any] = [Fraction(0)] * len(inst.goals)
+    for v, u in pairwise(w):
+        wt = inst.graph.weight(v, u)
+        mem, s = rule.step(mem, v, u, wt)  # type: ignore[arg-type]
+        if s is None:
+            shown = ", ".join(inst.show(x) for x in w)
+            raise Refuted(f"profile: the table Defender is undefined on the walk [{shown}] "
+                          "(no entry, no default)")
+        sigmas.append(s)
+        cost = [c + wt * S * x for c, x in zip(cost, s, strict=True)]  # type: ignore[operator]
+    return sigmas, [c + d[w[-1]] for c, d in zip(cost, D, strict=True)]

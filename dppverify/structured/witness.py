@@ -1,0 +1,208 @@
+"""The engine's ``dpp-witness/1`` (``docs/formats.md`` §5): the exact numbers the trusted kernel
+(``dppverify.kernel``, proofs/KERNEL.md) checks, computed with the checker's own mathematics.
+
+For a progress or table Defender, per type: the exact cost-to-go at every prefix of the
+Defender's trie (the backward induction of proofs/TABLEBR.md TB.3 / NWALKBR NW.1,
+:func:`~dppverify.structured.table_br.trie_induction`), and off the trie either the exit costs
+of a constant default (:func:`~dppverify.structured.table_br.exit_costs`) or the two labels of
+the progress default's closed form ``min(P(v), Q(v) − c)`` (KERNEL K.3: ``P`` the exit cost at
+full price, ``Q`` a multi-source Dijkstra from ``d(x, g) + P(x)``). The distances are the
+instance's own (:mod:`dppverify.game.distances`). For a type with positive regret the walk that
+attains its minimum is listed under ``counterexamples``.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Sequence
+from fractions import Fraction
+from typing import Any
+
+from dppverify.exact import INF, Number
+from dppverify.formats.json_reading import node_to_json
+from dppverify.game.distances import multi_source_dijkstra
+from dppverify.game.instance import Instance
+from dppverify.game.profile import GoalTable, Profile, ProgressRule, TableRule
+from dppverify.structured.table_br import exit_costs, goal_free_pred, trie_induction
+from dppverify.structured.trie import build_walk_trie
+
+__all__ = ["WITNESS_FORMAT", "witness_document"]
+
+WITNESS_FORMAT = "dpp-witness/1"
+"""The witness document's ``format`` tag."""
+
+Dist = tuple[Fraction, ...]
+
+
+def _table(instance: Instance, profile: Profile) -> tuple[dict[tuple[int, ...], Dist], Any, int]:
+    """The Defender as entries (goal distributions), a default (distribution, ``"progress"``
+    or None) and the progress goal's index."""
+    rule = profile.defender
+    if isinstance(rule, GoalTable):
+        return dict(rule.entries), rule.default, 0
+    if not isinstance(rule, ProgressRule | TableRule):
+        raise ValueError(f"no table witness for the Defender {type(rule).__name__}")
+    j = instance.goals.index(rule.goal)
+
+    def two(p: Fraction) -> Dist:
+        return (p, 1 - p) if j == 0 else (1 - p, p)
+    if isinstance(rule, ProgressRule):
+        return {}, "progress", j
+    default: Any = rule.default
+    if isinstance(default, ProgressRule):
+        default, j = "progress", instance.goals.index(default.goal)
+    elif default is not None:
+        default = two(Fraction(default))
+    return {w: two(Fraction(p)) for w, p in rule.entries.items()}, default, j
+
+
+def _labels(xs: Sequence[Number], S: int) -> list[int | None]:
+    return [None if x == INF else int(Fraction(x) * S) for x in xs]
+
+
+def witness_document(instance: Instance, profile: Profile, *, instance_sha256: str,
+                     profile_sha256: str) -> dict[str, Any]:
+    """The witness of a well-formed progress- or table-rule ``profile`` on exact ``instance``.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.game.profile import profile_from_json
+    >>> inst = triangle()
+    >>> doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
+    ...        "defender": {"rule": "progress", "goal": "g1"},
+    ...        "attacker": {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
+    ...                                 {"path": ["s", "g2"], "probability": "3/7"}],
+    ...                     "secondary": [{"path": ["s", "g2"], "probability": 1}]}}
+    >>> w = witness_document(inst, profile_from_json(doc, inst), instance_sha256="0" * 64,
+    ...                      profile_sha256="1" * 64)
+    >>> w["distances"], w["types"]
+    ([[3, 0, 2], [2, 2, 0]], [{'trie': [3]}, {'trie': [1], 'P': [2, 2, 0], 'Q': [4, 2, 2]}])
+    """
+    entries, default, pj = _table(instance, profile)
+    progress = default == "progress"
+    _n, goals = instance.n_nodes, instance.goals
+    dist = instance.dist_to
+    dg = dist[pj]
+    trie = build_walk_trie(instance, list(entries))
+    listed = {trie.find(w): d for w, d in entries.items()}
+    cmin: list[Number] = []
+    for p in range(len(trie)):
+        here = dg[trie.node[p]]
+        cmin.append(here if trie.parent[p] < 0 else min(cmin[trie.parent[p]], here))
+    arcs = goal_free_pred(instance)
+
+    def sigma(p: int, c: int, w: Number) -> Dist | None:
+        if c in listed:
+            return listed[c]
+        if progress:
+            x = Fraction(cmin[p] - cmin[c]) / Fraction(w)
+            return (x, 1 - x) if pj == 0 else (1 - x, x)
+        return default  # type: ignore[no-any-return]
+
+    def walk_cost(walk: Sequence[int], theta: int) -> Fraction:
+        p, c, total = 0, dg[walk[0]], Fraction(0)
+        for v, u in itertools.pairwise(walk):
+            q = trie.child(p, u) if p >= 0 else None
+            w = instance.weight(v, u)
+            s = listed.get(q) if q is not None else None
+            if s is None and progress:
+                x = Fraction(c - min(c, dg[u])) / Fraction(w)  # type: ignore[arg-type]
+                s = (x, 1 - x) if pj == 0 else (1 - x, x)
+            total += Fraction(w) * (s or default)[theta]  # type: ignore[arg-type, index]
+            p, c = (-1 if q is None else q), min(c, dg[u])
+        return total + Fraction(dist[theta][walk[-1]])
+
+    labels: list[dict[str, list[Number]]] = []
+    phis: list[list[Number]] = []
+    walks: list[dict[str, Any]] = []
+    for theta in range(len(goals)):
+        rec: dict[str, list[Number]] = {}
+        chain: Any = None
+        if progress and theta != pj:
+            P, via_p = exit_costs(instance, Fraction(1), theta, arcs)
+            Q, via_q = _q_label(instance, dg, P)
+            rec = {"P": P, "Q": Q}
+
+            def chain(u: int, c2: Number, P: Any = P, Q: Any = Q, vp: Any = via_p,
+                      vq: Any = via_q) -> list[int]:
+                out, x = [u], u
+                if Q[x] - c2 < P[x]:
+                    while vq[x] >= 0:
+                        x = vq[x]
+                        out.append(x)
+                while not instance.is_goal(x):
+                    x = vp[x]
+                    out.append(x)
+                return out
+
+            def leave(p: int, u: int, w: Number, P: Any = P, Q: Any = Q) -> Number | None:
+                c2 = min(cmin[p], dg[u])
+                return Fraction(w) - (cmin[p] - c2) + min(P[u], Q[u] - c2)
+        elif progress:
+            def leave(p: int, u: int, w: Number) -> Number | None:
+                return cmin[p]
+
+            def chain(u: int, c2: Number) -> list[int]:
+                out = [u]
+                while not instance.is_goal(out[-1]):
+                    x = out[-1]
+                    out.append(next(y for y, w in instance.succ[x] if dg[y] != INF
+                                    and dg[x] == Fraction(w) + dg[y]))
+                return out
+        elif default is not None:
+            E, via_e = exit_costs(instance, Fraction(default[theta]), theta, arcs)
+            rec = {"exit": E}
+
+            def chain(u: int, c2: Number, via: Any = via_e) -> list[int]:
+                out = [u]
+                while not instance.is_goal(out[-1]):
+                    out.append(via[out[-1]])
+                return out
+
+            def leave(p: int, u: int, w: Number, E: Any = E, q: Any = default[theta]
+                      ) -> Number | None:
+                return Fraction(w) * q + E[u]
+        else:
+            def leave(p: int, u: int, w: Number) -> Number | None:
+                return None
+
+        def inside(p: int, c: int, w: Number, theta: int = theta) -> Number | None:
+            s = sigma(p, c, w)
+            return None if s is None else Fraction(w) * s[theta]
+        J, choice, _undefined = trie_induction(instance, trie, dist[theta], inside, leave)
+        labels.append(rec)
+        phis.append(J)
+        U = sum((mw.probability * walk_cost(mw.walk, theta) for mw in profile.attacker[theta]),
+                Fraction(0))
+        if J[0] != INF and J[0] < U:  # regret > 0: the walk that attains the minimum
+            walk, p = [trie.node[0]], 0
+            while choice[p] is not None:
+                u, c = choice[p]  # type: ignore[misc]
+                if c < 0:
+                    walk += chain(u, min(cmin[p], dg[u]))
+                    break
+                walk.append(u)
+                p = c
+            walks.append({"type": theta, "walk": [node_to_json(x) for x in instance.labels(walk)]})
+    every = [x for d in dist for x in d] + [x for J in phis for x in J] + [
+        x for rec in labels for xs in rec.values() for x in xs]
+    S = math.lcm(*(Fraction(x).denominator for x in every if x != INF))
+    types = [{"trie": _labels(J, S), **{k: _labels(v, S) for k, v in rec.items()}}
+             for J, rec in zip(phis, labels, strict=True)]
+    doc: dict[str, Any] = {"format": WITNESS_FORMAT, "instance_sha256": instance_sha256,
+                           "profile_sha256": profile_sha256, "denominator": S,
+                           "distances": [_labels(d, S) for d in dist], "types": types}
+    if walks:
+        doc["counterexamples"] = walks
+    return doc
+
+
+def _q_label(instance: Instance, dg: Sequence[Number], P: Sequence[Number]
+             ) -> tuple[list[Number], list[int]]:
+    """``Q(v) = min(d(v, g) + P(v), min over arcs (v, u), v not a goal, of w + Q(u))``."""
+    pred = [[(u, w) for u, w in row if not instance.is_goal(u)] for row in instance.pred]
+    sources = [(x, Fraction(dg[x]) + Fraction(P[x])) for x in range(instance.n_nodes)
+               if dg[x] != INF and P[x] != INF]
+    return multi_source_dijkstra(pred, sources)  # type: ignore[return-value]
