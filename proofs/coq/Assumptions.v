@@ -1,0 +1,12 @@
+(** * The main theorems' assumptions: each must print "Closed under the
+    global context" (no axiom, no admitted lemma anywhere below them). *)
+From DPP Require Import Tel Defender Pbne Potential Distances KSound.
+Print Assumptions Tel.tel4.
+Print Assumptions Defender.Upay_decomp.
+Print Assumptions Defender.greedy_optimal.
+Print Assumptions Defender.greedy_seq_rational.
+Print Assumptions Pbne.pbne_of_checks.
+Print Assumptions Potential.potential_bound_ext.
+Print Assumptions Distances.bellman_exact.
+Print Assumptions KSound.kernel_sound.
+Print Assumptions KSound.kernel_defender_optimal.
