@@ -44,4 +44,5 @@ def write_witness(path: str, game: Instance, doc: Mapping[str, Any],
         status(f"note: no witness written to {path}: {exc}")
         return False
     write_files({path: json.dumps(wit, separators=(",", ":")) + "\n"})
+    status(f"wrote {path}: the witness (dpp check verifies it with the trusted kernel)")
     return True

@@ -21,7 +21,8 @@ from dppverify.kernel.reading import MAX_BYTES
 
 __all__ = ["main"]
 
-USAGE = "usage: dpp check INSTANCE PROFILE WITNESS   (- reads one of them from standard input)"
+USAGE = ("usage: dpp check [--base-dir DIR] INSTANCE PROFILE WITNESS   (- reads one of them "
+         "from standard input; DIR: where a map instance's map path starts)")
 
 
 def _read(name: str) -> bytes:
@@ -39,6 +40,9 @@ def main(argv: list[str]) -> int:
     >>> main(["missing.json", "p.json", "w.json"])
     2
     """
+    base = None
+    if argv[:1] == ["--base-dir"] and len(argv) > 1:
+        base, argv = Path(argv[1]), argv[2:]
     if len(argv) != 3 or argv.count("-") > 1:
         print(f"error: {USAGE}", file=sys.stderr)
         return 2
@@ -49,7 +53,8 @@ def main(argv: list[str]) -> int:
         except OSError as exc:
             print(f"error: {name}: cannot read ({exc.strerror})", file=sys.stderr)
             return 2
-    base = Path.cwd() if argv[0] == "-" else Path(argv[0]).resolve().parent
+    if base is None:
+        base = Path.cwd() if argv[0] == "-" else Path(argv[0]).resolve().parent
     verdict = check(data[0], data[1], data[2], base_dir=base)
     if verdict.status == "bad-input":
         print(f"error: {verdict.message}", file=sys.stderr)

@@ -4,13 +4,14 @@
 from __future__ import annotations
 
 from fractions import Fraction
-from itertools import pairwise, repeat
+from itertools import compress, pairwise, repeat
+from operator import lt, not_
 from pathlib import Path
 from typing import Any
 
 from dppverify.kernel.defender import check_greedy
 from dppverify.kernel.profile import Guarantee, read_profile, walk
-from dppverify.kernel.reading import Instance, parse, read_instance, sha256
+from dppverify.kernel.reading import INF, Instance, labels, parse, read_instance, sha256
 from dppverify.kernel.table import TableRule
 from dppverify.kernel.verdict import BadInput, Refuted, Stop, Undecided, Verdict
 
@@ -55,26 +56,6 @@ nodes, trie of 3 prefixes, 2 reached prefixes)')
         return Verdict(stop.status, str(stop))
 
 
-def _int_lists(raw: Any, count: int, length: int, what: str) -> list[list[Any]]:
-    if type(raw) is not list or len(raw) != count or not all(
-            type(xs) is list and len(xs) == length and set(map(type, xs)) <= {int, type(None)}
-            for xs in raw):
-        raise BadInput(f"witness: {what} must be {count} lists of {length} integers or null")
-    return raw
-
-
-def _bound(witness: Any, weights: set[Fraction], S: int) -> int:
-    """A sentinel above twice every finite label and arc cost: +∞ for potentials."""
-    big = max((int(w * S) + 1 for w in weights), default=1)
-    lists = [*witness["distances"], *(xs for rec in witness.get("types") or []
-                                      if type(rec) is dict for xs in rec.values()
-                                      if type(xs) is list)]
-    for xs in lists:
-        if type(xs) is list and xs and set(map(type, xs)) <= {int, type(None)}:
-            big = max(big, max(map(abs, filter(None, xs)), default=0))
-    return 4 * big + 4
-
-
 def _decide(instance: bytes, profile: bytes, witness: bytes, base_dir: Path | None) -> Verdict:
     inst = read_instance(instance, base_dir)
     wit = parse(witness, "witness")
@@ -90,21 +71,22 @@ def _decide(instance: bytes, profile: bytes, witness: bytes, base_dir: Path | No
     S, n, N = wit.get("denominator"), inst.graph.n, len(inst.goals)
     if type(S) is not int or S < 1:
         raise BadInput("witness: denominator must be a positive integer")
-    Draw = _int_lists(wit.get("distances"), N, n, "distances")
-    inf = _bound(wit, inst.graph.weights(), S)
-    dinf = 3 * inf
-    D = [[dinf if x is None else x for x in xs] for xs in Draw]
+    dists = wit.get("distances")
+    if type(dists) is not list or len(dists) != N:
+        raise BadInput(f"witness: distances must be {N} lists (one per goal)")
+    D = [labels(xs, n, f"distances[{j}]") for j, xs in enumerate(dists)]
     for j, g in enumerate(inst.goals):
-        _check_distances(inst, j, g, D[j], S, dinf)
+        _check_distances(inst, j, g, D[j], S)
     for j in range(N):
         for v in (inst.start, *inst.goals):
-            if D[j][v] >= dinf:
+            if D[j][v] == INF:
                 raise BadInput(f"goal {inst.show(inst.goals[j])} is unreachable from "
                                f"{inst.show(v)}: the instance is not a valid game")
-    alive = [m < dinf for m in map(min, *D)]
+    inst.alive = alive = list(map(lt, map(min, *D), repeat(INF)))
+    dead = list(compress(range(n), map(not_, alive)))
     if isinstance(prof.rule, Guarantee):
         raise Undecided("the guarantee rule is not decided by this kernel yet")
-    rule = TableRule(inst, prof.rule, D, S, inf)
+    rule = TableRule(inst, prof.rule, D, S)
     cache: dict[tuple[int, ...], tuple[list[Any], list[Any]]] = {}
 
     def evaluate(w: tuple[int, ...]) -> tuple[list[Any], list[Any]]:
@@ -131,14 +113,14 @@ def _decide(instance: bytes, profile: bytes, witness: bytes, base_dir: Path | No
     if type(types) is not list or len(types) != N:
         raise BadInput(f"witness: types must be a list of {N} records")
     for t in range(N):
-        rule.check_type(t, types[t], alive, U[t])
+        rule.check_type(t, types[t], dead, U[t])
     return Verdict("pass", f"PASS: a weak PBNE of the untruncated game ({N} types, {n} nodes, "
                            f"trie of {len(rule.node)} prefixes, {reached} reached prefixes)")
 
 
-def _check_distances(inst: Instance, j: int, g: int, D: list[Any], S: int, dinf: int) -> None:
-    """K.1: ``D(g) = 0`` and ``D(v) = min over arcs of w + D(u)`` elsewhere (+∞ = ``dinf``)."""
-    expect = list(map(min, inst.graph.relax(D, Fraction(S), dinf), repeat(dinf)))
+def _check_distances(inst: Instance, j: int, g: int, D: list[Any], S: int) -> None:
+    """K.1: ``D(g) = 0`` and ``D(v) = min over arcs of w + D(u)`` elsewhere."""
+    expect = inst.graph.relax(D, Fraction(S), INF)
     expect[g] = 0
     if expect != D:
         v = next(v for v in range(len(D)) if expect[v] != D[v])
@@ -149,16 +131,14 @@ def _check_distances(inst: Instance, j: int, g: int, D: list[Any], S: int, dinf:
 
 def _evaluate(inst: Instance, rule: TableRule, w: tuple[int, ...], D: list[list[Any]], S: int
               ) -> tuple[list[Any], list[Any]]:
-    """σ at each step of the walk ``w`` and each type's cost ``S·J_θ(w)``."""
-    mem, sigmas = rule.start(), []
-    cost: list[Any] = [Fraction(0)] * len(inst.goals)
+    """Each step's costs ``S·w·σ(θ)`` along the walk ``w``, and each type's ``S·J_θ(w)``."""
+    mem, steps = rule.start(), []
     for v, u in pairwise(w):
-        wt = inst.graph.weight(v, u)
-        mem, s = rule.step(mem, v, u, wt)  # type: ignore[arg-type]
+        mem, s = rule.step(mem, v, u, inst.graph.weight(v, u))  # type: ignore[arg-type]
         if s is None:
             shown = ", ".join(inst.show(x) for x in w)
             raise Refuted(f"profile: the table Defender is undefined on the walk [{shown}] "
                           "(no entry, no default)")
-        sigmas.append(s)
-        cost = [c + wt * S * x for c, x in zip(cost, s, strict=True)]  # type: ignore[operator]
-    return sigmas, [c + d[w[-1]] for c, d in zip(cost, D, strict=True)]
+        steps.append(s)
+    return steps, [sum(c) + d[w[-1]] for c, d in zip(zip(*steps, strict=True) if steps else
+                                                     [()] * len(D), D, strict=True)]

@@ -14,11 +14,12 @@ __all__ = ["check_greedy"]
 
 
 def check_greedy(inst: Instance, mixtures: Sequence[Sequence[tuple[tuple[int, ...], Fraction]]],
-                 sigmas: Callable[[tuple[int, ...]], list[Any]]) -> int:
+                 steps: Callable[[tuple[int, ...]], list[Any]]) -> int:
     """Refute unless σ is greedy at every reached prefix; return the number of reached prefixes.
 
     ``m_θ(p) = b_θ · Σ p_W`` over type θ's walks ``W`` through ``p``; at every prefix ``p`` of at
     least one step with positive total mass, ``σ_p(i) > 0`` must imply ``m_i(p) = max m(p)``.
+    ``steps(W)`` gives each step's costs ``S·w·σ(i)``: positive exactly where ``σ(i)`` is.
 
     Examples
     --------
@@ -27,9 +28,9 @@ def check_greedy(inst: Instance, mixtures: Sequence[Sequence[tuple[tuple[int, ..
     ...   "edges": [{"source": "s", "target": "a"}, {"source": "s", "target": "b"}]},
     ...   "start": "s", "goals": ["a", "b"], "prior": ["3/5", "2/5"]}''', None)
     >>> mix = [[((0, 1), Fraction(1))], [((0, 1), Fraction(1))]]
-    >>> check_greedy(inst, mix, lambda w: [(Fraction(1), Fraction(0))])
+    >>> check_greedy(inst, mix, lambda w: [(2, 0)])
     1
-    >>> check_greedy(inst, mix, lambda w: [(Fraction(1, 2), Fraction(1, 2))])
+    >>> check_greedy(inst, mix, lambda w: [(1, 1)])
     Traceback (most recent call last):
     dppverify.kernel.verdict.Refuted: Defender: not greedy at the reached prefix ["s", "a"]: \
 sigma puts 1/2 on goal "b", whose Bayes mass 2/5 is below the largest, 3/5
@@ -41,7 +42,7 @@ sigma puts 1/2 on goal "b", whose Bayes mass 2/5 is below the largest, 3/5
     where: list[tuple[tuple[int, ...], int]] = []
     for theta, mix in enumerate(mixtures):
         for w, p in mix:
-            s = sigmas(w)
+            s = steps(w)
             node = -1
             for t in range(1, len(w)):
                 node = ids.setdefault((node, w[t]), len(mass))
@@ -56,6 +57,6 @@ sigma puts 1/2 on goal "b", whose Bayes mass 2/5 is below the largest, 3/5
             if top > 0 and s[i] > 0 and m[i] < top:
                 shown = ", ".join(inst.show(v) for v in w[:t + 1])
                 raise Refuted(f"Defender: not greedy at the reached prefix [{shown}]: sigma puts "
-                              f"{s[i]} on goal {inst.show(inst.goals[i])}, whose Bayes mass "
-                              f"{m[i]} is below the largest, {top}")
+                              f"{Fraction(s[i]) / sum(s)} on goal {inst.show(inst.goals[i])}, "
+                              f"whose Bayes mass {m[i]} is below the largest, {top}")
     return len(mass)

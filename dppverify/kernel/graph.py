@@ -3,14 +3,13 @@
 Every arc inequality of proofs/KERNEL.md has the form ``X(v) <= k·w(v, u) + Y(u)`` for all arcs
 ``(v, u)``; :meth:`Graph.relax` gives ``min`` over the arcs of ``v`` of the right-hand side, so
 each check is a comparison of two lists (Python integers over the witness's denominator, with
-a sentinel ``inf`` for +∞ that every finite value stays below). :class:`Graph` holds adjacency
-lists; :class:`Grid` is a 4-connected unit-weight MovingAI map read as rows and iterated by
-shifting one padded list (no Python object per arc).
+``float("inf")`` for +∞, which compares exactly with every integer and fraction).
+:class:`Graph` holds adjacency lists; :class:`Grid` is a 4-connected unit-weight MovingAI map,
+each direction one list of neighbour indices (no Python object per arc).
 """
 
 from __future__ import annotations
 
-from bisect import bisect_left
 from fractions import Fraction
 from itertools import compress, repeat
 from operator import add
@@ -52,17 +51,17 @@ class Graph:
         return {w for row in self.adj for _, w in row}
 
     def relax(self, y: list[Any], k: Fraction, inf: int) -> list[Any]:
-        """``M(v) = min over arcs (v, u) of k·w(v, u) + y(u)`` (``2·inf`` without arcs).
+        """``M(v) = min over arcs (v, u) of k·w(v, u) + y(u)`` (``inf`` without arcs).
 
         Examples
         --------
-        >>> Graph([[(1, Fraction(2))], []]).relax([5, 1], Fraction(1), 100)
-        [3, 200]
+        >>> Graph([[(1, Fraction(2))], []]).relax([5, 1], Fraction(1), float("inf"))
+        [3, inf]
         """
         cost = {w: exact(k * w) for w in self.weights()}
         out = []
         for row in self.adj:
-            best = 2 * inf
+            best = inf
             for u, w in row:
                 t = cost[w] + y[u]
                 if t < best:
@@ -76,18 +75,19 @@ class Grid:
 
     Cell ``(r, c)`` sits at position ``(r + 1)·W + c`` of a padded row-major list of width
     ``W = cols + 1`` with one blocked row above and below, so that the four neighbours of every
-    free cell are the positions ``±1`` and ``±W``.
+    free cell are the positions ``±1`` and ``±W``; ``nbr[k][v]`` is node ``v``'s neighbour in
+    direction ``k`` (up, left, right, down), ``n`` where there is none.
     """
 
     def __init__(self, rows: int, cols: int, pos: list[int]) -> None:
         self.rows, self.cols, self.W = rows, cols, cols + 1
-        self.pos = pos
-        self.n = len(pos)
-        self.size = (rows + 2) * self.W
-        inner = bytearray(self.size)
-        for p in pos:
-            inner[p] = 1
-        self.mask = inner[self.W:self.size - self.W]
+        self.pos, self.n = pos, len(pos)
+        idx = [self.n] * ((rows + 2) * self.W)  # padded position -> node (n: no node)
+        for i, p in enumerate(pos):
+            idx[p] = i
+        self.idx = idx
+        self.nbr = [list(map(idx.__getitem__, map(add, pos, repeat(d))))
+                    for d in (-self.W, -1, 1, self.W)]
 
     @classmethod
     def from_map(cls, data: bytes) -> Grid:
@@ -131,11 +131,8 @@ class Grid:
         if not (type(cell) is tuple and len(cell) == 2 and all(type(x) is int for x in cell)):
             return None
         r, c = cell
-        if not (0 <= r < self.rows and 0 <= c < self.cols):
-            return None
-        p = (r + 1) * self.W + c
-        i = bisect_left(self.pos, p)
-        return i if i < self.n and self.pos[i] == p else None
+        i = self.idx[(r + 1) * self.W + c] if 0 <= r < self.rows and 0 <= c < self.cols else -1
+        return i if 0 <= i < self.n else None
 
     def cell(self, v: int) -> tuple[int, int]:
         """The cell ``(r, c)`` of node ``v``."""
@@ -144,13 +141,7 @@ class Grid:
 
     def arcs(self, v: int) -> list[tuple[int, Fraction]]:
         """The arcs ``(u, 1)`` leaving ``v`` (its free neighbours, in node order)."""
-        p = self.pos[v]
-        out = []
-        for q in (p - self.W, p - 1, p + 1, p + self.W):
-            i = bisect_left(self.pos, q)
-            if i < self.n and self.pos[i] == q:
-                out.append((i, Fraction(1)))
-        return out
+        return [(d[v], Fraction(1)) for d in self.nbr if d[v] < self.n]
 
     def weight(self, v: int, u: int) -> Fraction | None:
         """The weight of the arc ``v -> u``: 1 between neighbours, else None."""
@@ -166,12 +157,9 @@ class Grid:
         Examples
         --------
         >>> g = Grid.from_map(b"type octile\\nheight 1\\nwidth 3\\nmap\\n.@.\\n")
-        >>> g.relax([0, 5], Fraction(2), 100)
-        [102, 102]
+        >>> g.relax([0, 5], Fraction(2), float("inf"))
+        [inf, inf]
         """
-        a = [inf] * self.size
-        for p, x in zip(self.pos, y, strict=True):
-            a[p] = x
-        W, L = self.W, self.size
-        m = map(min, a[W - 1:L - W - 1], a[W + 1:L - W + 1], a[:L - 2 * W], a[2 * W:])
-        return list(map(add, compress(m, self.mask), repeat(exact(k))))
+        yy = [*y, inf]
+        m = map(min, *(map(yy.__getitem__, d) for d in self.nbr))
+        return list(map(add, m, repeat(exact(k))))

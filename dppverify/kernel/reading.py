@@ -19,7 +19,11 @@ from typing import Any
 from dppverify.kernel.graph import Graph, Grid
 from dppverify.kernel.verdict import BadInput, Undecided
 
-__all__ = ["MAX_BYTES", "Instance", "node_id", "number", "parse", "read_instance", "sha256"]
+__all__ = ["INF", "MAX_BYTES", "Instance", "labels", "node_id", "number", "parse",
+           "read_instance", "sha256"]
+
+INF = float("inf")
+"""+∞ of labels: it compares exactly with every int and Fraction (``x < INF``, ``INF + x``)."""
 
 MAX_BYTES = 256 * 1024 * 1024
 """Largest document the kernel reads (a witness of a 2000×2000 grid fits)."""
@@ -44,12 +48,6 @@ def _decimal(text: str) -> Fraction:
     return Fraction(text)
 
 
-def _integer(text: str) -> int:
-    if len(text) > 1000:
-        raise ValueError("integer literal longer than 1000 digits")
-    return int(text)
-
-
 def _constant(name: str) -> Any:
     raise ValueError(f"{name} is not a number")
 
@@ -68,12 +66,30 @@ def parse(data: bytes, what: str) -> Any:
     if len(data) > MAX_BYTES:
         raise BadInput(f"{what}: {len(data)} bytes, beyond the kernel's limit of {MAX_BYTES}")
     try:
-        return json.loads(data, parse_float=_decimal, parse_int=_integer,
-                          parse_constant=_constant)
+        return json.loads(data, parse_float=_decimal, parse_constant=_constant)  # int: 4300 digits
     except RecursionError:
         raise BadInput(f"{what}: JSON nested too deeply") from None
     except ValueError as exc:  # JSONDecodeError, UnicodeDecodeError, a numeral refused
         raise BadInput(f"{what}: not JSON ({str(exc)[:120]})") from None
+
+
+def labels(xs: Any, n: int, what: str, dead: list[int] | tuple[()] = ()) -> list[Any]:
+    """A witness list of ``n`` integers or ``null``, with +∞ for ``null`` and at ``dead``.
+
+    Examples
+    --------
+    >>> labels([3, None, 1], 3, "P", [2])
+    [3, inf, inf]
+    """
+    if type(xs) is not list or len(xs) != n or not set(map(type, xs)) <= {int, type(None)}:
+        raise BadInput(f"witness: {what} must be a list of {n} integers or null")
+    xs, i = list(xs), -1
+    for _ in range(xs.count(None)):
+        i = xs.index(None, i + 1)
+        xs[i] = INF
+    for v in dead:
+        xs[v] = INF
+    return xs
 
 
 def number(x: Any) -> Fraction | None:
@@ -132,6 +148,7 @@ class Instance:
                 or sum(p) != 1:  # type: ignore[arg-type]
             raise BadInput("prior: must be one number in (0, 1) per goal, summing to 1")
         self.prior: tuple[Fraction, ...] = tuple(p)  # type: ignore[arg-type]
+        self.alive: list[bool] = []  # set once the distances are verified
         self.is_goal = bytearray(graph.n)
         for g in self.goals:
             self.is_goal[g] = 1

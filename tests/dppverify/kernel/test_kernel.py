@@ -37,6 +37,21 @@ def test_every_conformance_case_is_accepted_with_the_engine_witness(case: dict[s
     assert v.status == "pass", v.message
 
 
+@pytest.mark.parametrize("case", CASES, ids=[c["name"] for c in CASES])
+def test_the_solver_witness_is_the_engine_witness(case: dict[str, Any]) -> None:
+    """``dpp solve --witness`` (the solver's own fields) writes the same numbers as the engine:
+    the same labels over the same denominator, accepted by the kernel."""
+    from solver.game.instance_reading import as_instance
+    from solver.twogoal.witness import twogoal_witness
+
+    i = as_bytes(case["instance"])
+    profile = solve_json(case["instance"])
+    w = twogoal_witness(as_instance(case["instance"]), instance_sha256=sha256(i),
+                        profile_sha256=sha256(as_bytes(profile)))
+    assert kernel_verdict(i, profile, w).status == "pass"
+    assert w == engine_witness(i, profile)
+
+
 @pytest.mark.parametrize(("instance", "profile", "status", "says"), [
     ("triangle", "triangle_profile", "pass", "PASS: a weak PBNE"),
     ("triangle", "triangle_bad_profile", "refuted", "not greedy at the reached prefix"),
@@ -180,5 +195,6 @@ def _full_document(inst: Any) -> dict[str, Any]:
     edges = [{"source": nodes[v], "target": nodes[u], "weight": 1}
              for v in range(inst.n_nodes) for u, _ in inst.succ[v] if u > v]
     return {"graph": {"nodes": [{"id": x} for x in nodes], "edges": edges},
-            "start": list(inst.nodes[inst.start]), "goals": [list(inst.nodes[g]) for g in inst.goals],
+            "start": list(inst.nodes[inst.start]),
+            "goals": [list(inst.nodes[g]) for g in inst.goals],
             "prior": [str(b) for b in inst.prior]}

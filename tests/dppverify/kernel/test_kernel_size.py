@@ -43,7 +43,8 @@ def code_lines(source: str) -> int:
 
 
 def test_code_lines_counts_what_it_says() -> None:
-    src = '"""doc\n\nstring"""\n\nx = 1  # c\n# only a comment\n\ndef f():\n    """d"""\n    return (1,\n            2)\n'
+    src = ('"""doc\n\nstring"""\n\nx = 1  # c\n# only a comment\n\ndef f():\n    """d"""\n'
+           "    return (1,\n            2)\n")
     assert code_lines(src) == 4  # x = 1, def f, return (1, and 2)
 
 
