@@ -5,6 +5,7 @@
     python3 dev.py test    # ... install the test extras too, lint, type-check, run the tests
     python3 dev.py docs    # ... build the documentation site into docs/_build/html (-W)
     python3 dev.py bench   # ... install the bench extras too, run benchmarks/bench_*.py (slow)
+    python3 dev.py coq     # compile proofs/coq and build its extracted checker (coqc, ocamlopt)
 
 Each command installs only what it needs (`demo`: the runtime dependencies; `test`: the
 extras in TEST_EXTRAS; `docs`: the `docs` extra; `bench`: BENCH_EXTRAS) and only when
@@ -12,14 +13,22 @@ pyproject.toml changed since that set (or a larger one) was installed; pip shows
 progress. `test` runs every test not marked `slow`, the peer cross-checks against OpenSpiel
 and Gambit included (a bare `pytest` leaves them out). Extra arguments after `test` are passed
 to pytest (e.g. `python3 dev.py test -m slow`).
+
+`test` first compiles `proofs/coq` (Coq 8.16 and OCaml from Debian: `apt-get install coq
+ocaml-nox`), refuses any `Admitted`, `Axiom`, `Parameter` or `admit` in its `.v` files, checks
+that `Print Assumptions` of the main theorems is closed, and builds the extracted checker that
+the differential test runs; where `coqc` is absent it says so in one line and runs the rest.
 """
 
 from __future__ import annotations
 
 import hashlib
 import os
+import re
+import shutil
 import subprocess
 import sys
+import time
 import venv
 from pathlib import Path
 
@@ -30,6 +39,8 @@ LINT_PATHS = ("solver", "dppverify", "dppio", "tests", "proofs", "benchmarks", "
               "noxfile.py", "docs/conf.py")
 PY = BIN / "python"
 STAMPS = VENV / "dppverify-installed"
+COQ = ROOT / "proofs" / "coq"
+COQ_FORBIDDEN = ("Admitted", "Axiom", "Parameter", "admit")
 TEST_EXTRAS = ("test", "peers", "maps", "docs")
 BENCH_EXTRAS = (*TEST_EXTRAS, "bench")
 
@@ -69,6 +80,58 @@ def ensure_env(extras: tuple[str, ...] = ()) -> None:
     (STAMPS / (",".join(wanted) or "runtime")).write_text(digest)
 
 
+def coq_build() -> bool:
+    """Compile ``proofs/coq`` and build its extracted checker; False (one line) without coqc.
+
+    Files compile in ``_CoqProject`` order, each only when it or an earlier file changed;
+    ``Assumptions.v`` always, and each of its ``Print Assumptions`` must be closed. The OCaml
+    checker (the extraction plus ``driver.ml``) goes to ``proofs/coq/extracted/kcheck``.
+    """
+    if shutil.which("coqc") is None or shutil.which("ocamlopt") is None:
+        print("coqc or ocamlopt not found: skipping the Coq proofs and the differential test "
+              "(install them: apt-get install coq ocaml-nox)", flush=True)
+        return False
+    order = [f for f in (COQ / "_CoqProject").read_text().split() if f.endswith(".v")]
+    for path in sorted(COQ.glob("*.v")):
+        text = path.read_text()
+        for word in COQ_FORBIDDEN:
+            if word in text:
+                sys.exit(f"proofs/coq/{path.name}: contains {word!r}: nothing may be assumed")
+        if path.name not in order:
+            sys.exit(f"proofs/coq/{path.name}: not in _CoqProject (it would not be compiled)")
+    (COQ / "extracted").mkdir(exist_ok=True)
+    t0, newest = time.monotonic(), 0.0
+    for name in order:
+        src, obj = COQ / name, COQ / (name[:-2] + ".vo")
+        newest = max(newest, src.stat().st_mtime)
+        stale = name == "Assumptions.v" or (
+            name == "Extract.v" and not (COQ / "extracted" / "kernel.ml").exists())
+        if not stale and obj.exists() and obj.stat().st_mtime >= newest:
+            newest = obj.stat().st_mtime
+            continue
+        out = subprocess.run(["coqc", "-Q", ".", "DPP", name], cwd=COQ, capture_output=True,
+                             text=True)
+        if out.returncode != 0:
+            sys.exit(f"proofs/coq/{name} does not compile:\n{out.stdout}{out.stderr}")
+        newest = obj.stat().st_mtime
+        if name == "Assumptions.v":
+            said = [ln for ln in out.stdout.splitlines() if ln.strip()]
+            if not said or any(ln != "Closed under the global context" for ln in said):
+                sys.exit("proofs/coq: a main theorem rests on an assumption:\n" + out.stdout)
+    ext = COQ / "extracted"
+    shutil.copy(COQ / "driver.ml", ext / "driver.ml")
+    out = subprocess.run(["ocamlopt", "-o", "kcheck", "kernel.mli", "kernel.ml", "driver.ml"],
+                         cwd=ext, capture_output=True, text=True)
+    if out.returncode != 0:
+        sys.exit(f"proofs/coq: the extracted checker does not build:\n{out.stderr}")
+    for junk in ext.iterdir():
+        if re.search(r"\.(cm[iox]|o)$", junk.name):
+            junk.unlink()
+    print(f"proofs/coq: {len(order)} files checked, Print Assumptions closed, extracted checker "
+          f"built ({time.monotonic() - t0:.1f} s)", flush=True)
+    return True
+
+
 def demo() -> None:
     ensure_env()
     example = ROOT / "examples" / "triangle.json"
@@ -81,6 +144,7 @@ def demo() -> None:
 
 def test(pytest_args: list[str]) -> None:
     ensure_env(TEST_EXTRAS)
+    coq_build()
     lint_paths = [p for p in LINT_PATHS if (ROOT / p).exists()]
     _run(BIN / "ruff", "check", *lint_paths)
     _run(BIN / "mypy")
@@ -116,7 +180,7 @@ def bench() -> None:
 
 
 def main(argv: list[str]) -> None:
-    if not argv or argv[0] not in {"demo", "test", "docs", "bench"}:
+    if not argv or argv[0] not in {"demo", "test", "docs", "bench", "coq"}:
         sys.exit(__doc__)
     if argv[0] == "demo":
         demo()
@@ -124,6 +188,8 @@ def main(argv: list[str]) -> None:
         test(argv[1:])
     elif argv[0] == "docs":
         docs()
+    elif argv[0] == "coq":
+        coq_build()
     else:
         bench()
 

@@ -1,5 +1,5 @@
-(** * The main theorems' assumptions: each must print "Closed under the
-    global context" (no axiom, no admitted lemma anywhere below them). *)
+(** * What the main theorems rest on: each must print "Closed under the
+    global context" (nothing assumed anywhere below them). *)
 From DPP Require Import Tel Defender Pbne Potential Distances KSound.
 Print Assumptions Tel.tel4.
 Print Assumptions Defender.Upay_decomp.

@@ -1,16 +1,11 @@
-(* The extracted kernel's driver (untrusted glue): reads the token stream that translate.py
-   writes (instance, profile, witness), builds the Coq values and prints the verdict of the
-   extracted Kernel.decide: pass, refuted, bad-input or undecided.  Integers arrive as signed
-   binary strings ("0", "+101", "-11"), so no arithmetic happens here. *)
+(* The extracted kernel's driver (untrusted glue): reads token streams that translate.py
+   writes (instance, profile, witness; one stream per line of standard input, or the file named
+   by the first argument), builds the Coq values and prints, one line per stream, the verdict
+   of the extracted Kernel.decide: pass, refuted, bad-input or undecided.  Integers arrive as
+   signed binary strings ("0", "+101", "-11"), so no arithmetic happens here. *)
 open Kernel
 
-let toks =
-  let ic = if Array.length Sys.argv > 1 then open_in Sys.argv.(1) else stdin in
-  let buf = Buffer.create 65536 in
-  (try while true do Buffer.add_channel buf ic 1 done with End_of_file -> ());
-  let s = Buffer.contents buf in
-  let l = String.split_on_char ' ' (String.map (fun c -> if c = '\n' || c = '\t' || c = '\r' then ' ' else c) s) in
-  ref (List.filter (fun t -> t <> "") l)
+let toks : string list ref = ref []
 
 let next () = match !toks with t :: r -> toks := r; t | [] -> failwith "unexpected end of input"
 
@@ -90,13 +85,26 @@ let witness () =
       let rP = labels () in let rQ = labels () in { rec_ok; rtrie; rexit; rP; rQ })) else None in
   { denominator; distances; counterexamples; wtypes }
 
+let verdict_of_line line =
+  toks := List.filter (fun t -> t <> "") (String.split_on_char ' ' line);
+  match !toks with
+  | "VERDICT" :: v :: _ -> v
+  | _ ->
+      let i = instance () in
+      let p = profile () in
+      let w = witness () in
+      if !toks <> [] then failwith "trailing tokens";
+      (match decide i p w with
+       | Pass -> "pass" | Refuted -> "refuted" | BadInput -> "bad-input" | Undecided -> "undecided")
+
 let () =
-  let first = List.hd !toks in
-  if first = "VERDICT" then (ignore (next ()); print_endline (next ()))
-  else begin
-    let i = instance () in
-    let p = profile () in
-    let w = witness () in
-    print_endline (match decide i p w with
-      | Pass -> "pass" | Refuted -> "refuted" | BadInput -> "bad-input" | Undecided -> "undecided")
-  end
+  let ic = if Array.length Sys.argv > 1 then open_in Sys.argv.(1) else stdin in
+  (try
+     while true do
+       let line = String.trim (input_line ic) in
+       if line <> "" then begin
+         let v = try verdict_of_line line with Failure m -> "error: " ^ m in
+         print_endline v; flush stdout
+       end
+     done
+   with End_of_file -> ())

@@ -88,7 +88,8 @@ def _instance(doc: Any, out: _Out) -> tuple[dict[Any, int], int, list[int]]:
     if doc.get("numbers", "exact") != "exact":
         raise _Stop("undecided")
     g = doc.get("graph")
-    if type(g) is not dict or g.get("multigraph", False) or type(g.get("directed", False)) is not bool:
+    if type(g) is not dict or g.get("multigraph", False) or \
+            type(g.get("directed", False)) is not bool:
         raise _Stop("bad-input")
     nodes, edges = g.get("nodes"), g.get("edges", g.get("links"))
     if type(nodes) is not list or type(edges) is not list:
@@ -189,12 +190,14 @@ def _profile(doc: Any, index: dict[Any, int], n: int, goals: list[int], out: _Ou
             extras = d.get("normals", [])
             ok = type(extras) is list and len(extras) <= 64 and all(
                 type(a) is list and len(a) == N and all(type(x) is int and 0 <= x <= 16 for x in a)
-                and any(x > 1 for x in a) for a in extras) and len(set(map(tuple, extras))) == len(extras)
+                and any(x > 1 for x in a) for a in extras) and \
+                len(set(map(tuple, extras))) == len(extras)
             if not ok or set(d) - {"rule", "h", "normals"}:
                 raise _Stop("bad-input")
             out.add("G")
             return
-        if type(d) is not dict or d.get("rule") != "table" or type(d.get("entries", [])) is not list:
+        if type(d) is not dict or d.get("rule") != "table" or \
+                type(d.get("entries", [])) is not list:
             raise _Stop("refuted")
         es = d.get("entries", [])
         out.add("T", len(es))
@@ -228,7 +231,7 @@ def _profile(doc: Any, index: dict[Any, int], n: int, goals: list[int], out: _Ou
     if rule == "progress":
         out.add("P")
     elif rule == "table":
-        es = d.get("entries", [])  # type: ignore[union-attr]
+        es = d.get("entries", [])
         if type(es) is not list:
             raise _Stop("refuted")
         out.add("T", len(es))
@@ -238,7 +241,7 @@ def _profile(doc: Any, index: dict[Any, int], n: int, goals: list[int], out: _Ou
             if p is None:
                 raise _Stop("refuted")
             out.add(_q(p))
-        default = d.get("default")  # type: ignore[union-attr]
+        default = d.get("default")
         if default is None:
             out.add("0")
         elif default == "progress":
@@ -279,7 +282,8 @@ def _witness(wit: dict[str, Any], index: dict[Any, int], n: int, N: int, out: _O
     else:
         out.add(1, len(lists))
         for xs in lists:
-            out.add(len(xs), *("_" if x is None else _z(x) for x in xs))  # type: ignore[arg-type]
+            assert xs is not None
+            out.add(len(xs), *("_" if x is None else _z(x) for x in xs))
     extra = wit.get("counterexamples", [])
     extra = extra if type(extra) is list else [None]
     out.add(len(extra))
@@ -317,7 +321,8 @@ def tokens(instance: bytes, profile: bytes, witness: bytes) -> str:
     try:
         index, n, goals = _instance(_parse(instance), out)
         wit = _parse(witness)
-        if type(wit) is not dict or wit.get("format") != "dpp-witness/1" or set(wit) - _WITNESS_KEYS:
+        if type(wit) is not dict or wit.get("format") != "dpp-witness/1" or \
+                set(wit) - _WITNESS_KEYS:
             raise _Stop("bad-input")
         for key, data in (("instance", instance), ("profile", profile)):
             if wit.get(f"{key}_sha256") != hashlib.sha256(data).hexdigest():
