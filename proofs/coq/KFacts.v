@@ -47,12 +47,6 @@ Proof. intros p l H Hin. destruct (index_of_In p l Hin) as [i Hi]. congruence. Q
 Lemma qsum_sumL : forall (A : Type) (f : A -> Q) l, qsum (map f l) == sumL f l.
 Proof. intros A f. induction l as [| x l IH]; simpl; [reflexivity | rewrite IH; reflexivity]. Qed.
 
-Lemma map_nth_seq : forall (A : Type) (q : list A) d, map (fun t => nth t q d) (seq 0 (length q)) = q.
-Proof.
-  intros A. induction q as [| x q IH]; intros d; simpl; [reflexivity |]. f_equal.
-  rewrite <- seq_shift, map_map. simpl. apply IH.
-Qed.
-
 Lemma sumL_nth_seq : forall q, sumL (fun t => nth t q 0) (seq 0 (length q)) == qsum q.
 Proof.
   intros q. rewrite <- (qsum_sumL nat (fun t => nth t q 0)).

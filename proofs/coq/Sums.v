@@ -158,3 +158,10 @@ Proof.
   intros A. induction l as [| x l IH]; intros v u; [reflexivity |].
   change (last (x :: l) u = last (x :: l) v). rewrite !IH. reflexivity.
 Qed.
+
+Lemma map_nth_seq : forall (A : Type) (q : list A) d, map (fun t => nth t q d) (seq 0 (length q)) = q.
+Proof.
+  intros A. induction q as [| x q IH]; intros d; simpl; [reflexivity |]. f_equal.
+  rewrite <- seq_shift, map_map. simpl. apply IH.
+Qed.
+
