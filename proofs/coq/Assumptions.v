@@ -1,16 +1,12 @@
 (** * What the main theorems rest on: each must print "Closed under the
     global context" (nothing assumed anywhere below them). *)
-From DPP Require Import Tel Defender Pbne Potential Distances KSound Guarantee.
+From DPP Require Import Tel Defender Pbne Distances KSound Guarantee.
 Print Assumptions Tel.tel4.
-Print Assumptions Defender.Upay_decomp.
-Print Assumptions Defender.greedy_optimal.
 Print Assumptions Defender.greedy_seq_rational.
 Print Assumptions Pbne.pbne_of_checks.
-Print Assumptions Potential.potential_bound_ext.
 Print Assumptions Distances.bellman_exact.
 Print Assumptions KSound.kernel_sound.
 Print Assumptions KSound.kernel_defender_optimal.
 Print Assumptions Guarantee.stage_check_lexmin.
-Print Assumptions Guarantee.lexmin_unique.
 Print Assumptions Guarantee.cover_bound.
 Print Assumptions Guarantee.guarantee_pbne.
