@@ -212,6 +212,28 @@ def pinned_triples() -> Iterator[tuple[str, Docs]]:
                     yield f"pinned {prof}", t
 
 
+def grid_triples(rng: random.Random, count: int) -> Iterator[tuple[str, Docs]]:
+    """Random 4-connected grids (6×6 to 20×20, a sixth of the cells off the first row and
+    column blocked) with the solver's profile and the engine's witness: larger product graphs
+    than the conformance cases."""
+    from solver.adapter import solve_json
+
+    for _ in range(count):
+        R = rng.randint(6, 20)
+        free = {(r, c) for r in range(R) for c in range(R)  # row 0 and column 0 stay free
+                if r == 0 or c == 0 or rng.random() > 1 / 6}
+        nodes = sorted(free)
+        edges = [{"source": list(a), "target": list(b)} for a in nodes
+                 for b in ((a[0] + 1, a[1]), (a[0], a[1] + 1)) if b in free]
+        b1 = rng.choice(["1/2", "3/5", "4/5"])
+        doc = {"graph": {"nodes": [{"id": list(x)} for x in nodes], "edges": edges},
+               "start": [R - 1, 0], "goals": [[0, R - 1], [0, 0]],
+               "prior": [b1, str(1 - Fraction(b1))]}
+        t = engine_triple(doc, solve_json(doc))
+        if t is not None:
+            yield f"grid {R}x{R}", t
+
+
 def compare(named: Iterable[tuple[str, Docs]]) -> tuple[Counter[tuple[str, str, str]],
                                                          list[tuple[str, str, str]]]:
     """Run both kernels on every triple: the table (kind, Python, Coq) -> count and the
@@ -222,16 +244,18 @@ def compare(named: Iterable[tuple[str, Docs]]) -> tuple[Counter[tuple[str, str, 
     bad = []
     for (kind, docs), c in zip(named, coq, strict=True):
         p = python_verdict(docs)
-        table[(kind.split(" ")[0] if kind.startswith(("conformance", "pinned")) else kind, p,
-               c)] += 1
+        table[(kind.split(" ")[0] if kind.startswith(("conformance", "pinned", "grid")) else kind,
+               p, c)] += 1
         if p != c:
             bad.append((kind, p, c))
     return table, bad
 
 
-def corpus(rng: random.Random, cases: int | None, per: int) -> Iterator[tuple[str, Docs]]:
-    """Conformance and pinned triples, each followed by ``per`` mutants."""
-    for name, t in [*conformance_triples(cases), *pinned_triples()]:
+def corpus(rng: random.Random, cases: int | None, per: int, grids: int = 0
+           ) -> Iterator[tuple[str, Docs]]:
+    """Conformance, pinned and ``grids`` random grid triples, each followed by ``per``
+    mutants."""
+    for name, t in [*conformance_triples(cases), *pinned_triples(), *grid_triples(rng, grids)]:
         yield name, t
         yield from mutants(t, rng, per)
 
@@ -242,9 +266,10 @@ if __name__ == "__main__":
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--cases", type=int, default=None, help="conformance cases (default all)")
     ap.add_argument("--per", type=int, default=6, help="mutants per triple")
+    ap.add_argument("--grids", type=int, default=12, help="random grid instances")
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args()
-    table, bad = compare(corpus(random.Random(args.seed), args.cases, args.per))
+    table, bad = compare(corpus(random.Random(args.seed), args.cases, args.per, args.grids))
     print("| corpus | Python kernel | extracted Coq checker | count |")
     print("|---|---|---|---|")
     for (k, p, c), n in sorted(table.items()):
