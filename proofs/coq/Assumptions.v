@@ -1,8 +1,9 @@
 (** * What the main theorems rest on: each must print "Closed under the
     global context" (nothing assumed anywhere below them). *)
-From DPP Require Import Tel Defender Pbne Distances KSound Guarantee.
+From DPP Require Import Tel Defender Converse Pbne Distances KSound Guarantee.
 Print Assumptions Tel.tel4.
 Print Assumptions Defender.greedy_seq_rational.
+Print Assumptions Converse.optimal_greedy.
 Print Assumptions Pbne.pbne_of_checks.
 Print Assumptions Distances.bellman_exact.
 Print Assumptions KSound.kernel_sound.
