@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from dppverify.kernel.defender import check_greedy
+from dppverify.kernel.guarantee import GuaranteeRule
 from dppverify.kernel.profile import Guarantee, read_profile, walk
 from dppverify.kernel.reading import INF, Instance, labels, parse, read_instance, sha256
 from dppverify.kernel.table import TableRule
@@ -84,9 +85,16 @@ def _decide(instance: bytes, profile: bytes, witness: bytes, base_dir: Path | No
                                f"{inst.show(v)}: the instance is not a valid game")
     inst.alive = alive = list(map(lt, map(min, *D), repeat(INF)))
     dead = list(compress(range(n), map(not_, alive)))
+    rule: TableRule | GuaranteeRule
     if isinstance(prof.rule, Guarantee):
-        raise Undecided("the guarantee rule is not decided by this kernel yet")
-    rule = TableRule(inst, prof.rule, D, S)
+        if "types" in wit or "counterexamples" in wit:
+            raise BadInput("witness: a guarantee rule's witness has \"guarantee\", not "
+                           "\"types\" or \"counterexamples\"")
+        rule = GuaranteeRule(inst, prof.rule, D, S, wit.get("guarantee"), prof.mixtures, dead)
+    elif "guarantee" in wit:
+        raise BadInput("witness: a table Defender's witness has \"types\", not \"guarantee\"")
+    else:
+        rule = TableRule(inst, prof.rule, D, S)
     cache: dict[tuple[int, ...], tuple[list[Any], list[Any]]] = {}
 
     def evaluate(w: tuple[int, ...]) -> tuple[list[Any], list[Any]]:
@@ -109,6 +117,13 @@ def _decide(instance: bytes, profile: bytes, witness: bytes, base_dir: Path | No
         if cost[t] < U[t]:
             raise Refuted(f"type {t}: the walk of counterexamples[{k}] costs "
                           f"{Fraction(cost[t], S)} < U = {U[t] / S}: regret > 0")
+    if isinstance(rule, GuaranteeRule):
+        for t in range(N):
+            if not U[t] <= prof.rule.h[t] * S:  # type: ignore[union-attr]
+                raise Undecided(f"type {t}: U <= h fails (U = {U[t] / S}, h = "
+                                f"{prof.rule.h[t]}): the guarantee does not prove regret 0")  # type: ignore[union-attr]
+        return Verdict("pass", f"PASS: a weak PBNE of the untruncated game ({N} types, {n} "
+                               f"nodes, the guarantee rule, {reached} reached prefixes)")
     types = wit.get("types")
     if type(types) is not list or len(types) != N:
         raise BadInput(f"witness: types must be a list of {N} records")
@@ -129,7 +144,7 @@ def _check_distances(inst: Instance, j: int, g: int, D: list[Any], S: int) -> No
                         "fails: not the exact distances")
 
 
-def _evaluate(inst: Instance, rule: TableRule, w: tuple[int, ...], D: list[list[Any]], S: int
+def _evaluate(inst: Instance, rule: TableRule | GuaranteeRule, w: tuple[int, ...], D: list[list[Any]], S: int
               ) -> tuple[list[Any], list[Any]]:
     """Each step's costs ``S·w·σ(θ)`` along the walk ``w``, and each type's ``S·J_θ(w)``."""
     mem, steps = rule.start(), []

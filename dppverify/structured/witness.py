@@ -23,7 +23,10 @@ from dppverify.exact import INF, Number
 from dppverify.formats.json_reading import node_to_json
 from dppverify.game.distances import multi_source_dijkstra
 from dppverify.game.instance import Instance
-from dppverify.game.profile import GoalTable, Profile, ProgressRule, TableRule
+from dppverify.game.profile import GoalTable, GuaranteeRule, Profile, ProgressRule, TableRule
+from dppverify.structured.cover import packing_vertices
+from dppverify.structured.guarantee import guarantee_sets, guarantee_sigma, rule_order
+from dppverify.structured.lexmin import simplex_min
 from dppverify.structured.table_br import exit_costs, goal_free_pred, trie_induction
 from dppverify.structured.trie import build_walk_trie
 
@@ -80,6 +83,9 @@ def witness_document(instance: Instance, profile: Profile, *, instance_sha256: s
     >>> w["distances"], w["types"]
     ([[3, 0, 2], [2, 2, 0]], [{'trie': [3]}, {'trie': [1], 'P': [2, 2, 0], 'Q': [4, 2, 2]}])
     """
+    if isinstance(profile.defender, GuaranteeRule):
+        return _guarantee_witness(instance, profile, profile.defender, instance_sha256,
+                                  profile_sha256)
     entries, default, pj = _table(instance, profile)
     progress = default == "progress"
     _n, goals = instance.n_nodes, instance.goals
@@ -206,3 +212,80 @@ def _q_label(instance: Instance, dg: Sequence[Number], P: Sequence[Number]
     sources = [(x, Fraction(dg[x]) + Fraction(P[x])) for x in range(instance.n_nodes)
                if dg[x] != INF and P[x] != INF]
     return multi_source_dijkstra(pred, sources)  # type: ignore[return-value]
+
+
+def _exact(x: Fraction) -> str:
+    return str(Fraction(x))
+
+
+def _guarantee_witness(instance: Instance, profile: Profile, rule: GuaranteeRule,
+                       instance_sha256: str, profile_sha256: str) -> dict[str, Any]:
+    """The guarantee rule's witness (KERNEL K.7): the DP labels, the covers of the packing
+    directions the kernel tests, σ and its stage duals at every prefix of the profile's
+    walks."""
+    sets = guarantee_sets(instance, rule.normals)
+    A, n, N = sets.normals, instance.n_nodes, instance.n_goals
+    dist = instance.dist_to
+    S = math.lcm(sets.scale, *(Fraction(x).denominator for d in dist for x in d if x != INF))
+    m = [[int(row[v]) * (S // sets.scale) if sets.finite[v] else None for v in range(n)]
+         for row in sets.rows]
+    covers = []
+    for lam, y in packing_vertices(A, every=True):
+        if (sum(map(bool, lam)) == 1 and max(y) == 1) or (not sets.extras and set(y) <= {0, 1}):
+            continue
+        rows = [[Fraction(a[i]) for a in A] for i in range(N)]
+        used: set[tuple[Fraction, ...]] = set()
+        for v in range(n):  # the cover that attains h_{F_v}(y) at each tail (exact simplex)
+            if sets.finite[v] and not instance.is_goal(v):
+                x = simplex_min([Fraction(int(row[v])) for row in sets.rows], rows, list(y))
+                if x is not None:
+                    used.add(tuple(x))
+        covers += [[[j, _exact(c)] for j, c in enumerate(x) if c] for x in sorted(used)]
+    order = rule_order(instance.prior)
+    children: dict[tuple[int, int], int] = {}
+    state: list[tuple[Fraction, ...]] = [tuple(rule.h)]
+    steps = []
+    for mix in profile.attacker:
+        for mw in mix:
+            p = -1
+            for v, u in zip(mw.walk, mw.walk[1:], strict=False):
+                q = children.setdefault((p, u), len(steps))
+                if q == len(steps):
+                    r, w = state[p + 1], Fraction(instance.weight(v, u))  # type: ignore[arg-type]
+                    sigma, _ = guarantee_sigma(r, sets, u, w, order)
+                    col = sets.column(u)
+                    beta = [(sum(x * y for x, y in zip(a, r, strict=True)) - mu) / w
+                            for a, mu in zip(A, col or [], strict=True)]
+                    steps.append({"sigma": [_exact(x) for x in sigma],
+                                  "duals": [_stage_dual(A, beta, sigma, order, k)
+                                            for k in range(N - 1)]})
+                    state.append(tuple(x - w * y for x, y in zip(r, sigma, strict=True)))
+                p = q
+    return {"format": WITNESS_FORMAT, "instance_sha256": instance_sha256,
+            "profile_sha256": profile_sha256, "denominator": S,
+            "distances": [_labels(d, S) for d in dist],
+            "guarantee": {"m": m, "covers": covers, "steps": steps}}
+
+
+def _stage_dual(A: Sequence[Sequence[int]], beta: Sequence[Fraction], sigma: Sequence[Fraction],
+                order: Sequence[int], k: int) -> dict[str, Any]:
+    """An optimal dual of stage ``k`` of the lexicographic minimum: ``max β·y + z + Σ_j
+    σ_{o_j} ζ_j`` over ``y >= 0`` with ``Σ_a y_a a + z·1 + Σ_{j<k} ζ_j e_{o_j} <= e_{o_k}``
+    (exact simplex on ``y, z⁺, z⁻, ζ⁺, ζ⁻`` and slacks)."""
+    N, na = len(sigma), len(A)
+    fixed = list(order[:k])
+    width = na + 2 + 2 * k + N
+    rows, rhs = [], []
+    for i in range(N):
+        row = [Fraction(a[i]) for a in A] + [Fraction(1), Fraction(-1)]
+        row += [Fraction(int(j == i)) for j in fixed] + [Fraction(-int(j == i)) for j in fixed]
+        row += [Fraction(int(t == i)) for t in range(N)]
+        rows.append(row)
+        rhs.append(Fraction(int(i == order[k])))
+    cost = [-b for b in beta] + [Fraction(-1), Fraction(1)]
+    cost += [-sigma[j] for j in fixed] + [sigma[j] for j in fixed] + [Fraction(0)] * N
+    x = simplex_min(cost, rows, rhs)
+    assert x is not None and len(x) == width
+    zeta = [x[na + 2 + j] - x[na + 2 + k + j] for j in range(k)]
+    return {"y": [_exact(v) for v in x[:na]], "z": _exact(x[na] - x[na + 1]),
+            "fix": [_exact(v) for v in zeta]}

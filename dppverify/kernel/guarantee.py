@@ -1,0 +1,227 @@
+"""The guarantee rule (N goals, ``docs/formats.md`` §2b): its DP labels, its start set, its arc
+condition and its σ on the profile's prefixes, checked exactly (proofs/KERNEL.md K.7).
+
+The witness gives the labels ``m_a(v)`` (integers over ``S``), covers for the packing
+directions, and for every prefix of the profile's walks the rule's σ with one dual certificate
+per lexicographic stage. The vertex tables of the rule's fixed polytopes (the dominated covers
+of each normal, the packing polytope) are listed by :func:`vertices` once per rule.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+from itertools import combinations, pairwise
+from math import lcm
+from operator import add, le, mul
+from typing import Any
+
+from dppverify.kernel.graph import exact
+from dppverify.kernel.profile import Guarantee
+from dppverify.kernel.reading import INF, Instance, labels, number
+from dppverify.kernel.table import Memory, first_failure
+from dppverify.kernel.verdict import BadInput, Undecided
+
+__all__ = ["MAX_BASES", "GuaranteeRule", "vertices"]
+
+MAX_BASES = 100_000
+"""Most candidate bases the kernel tries for one vertex table (beyond: not decided)."""
+
+Vec = tuple[Fraction, ...]
+
+
+def _solve(cols: list[tuple[int, ...]], rhs: tuple[Any, ...]) -> list[Fraction] | None:
+    """The unique ``x`` with ``Σ_j x_j cols[j] = rhs``, or None (dependent or inconsistent):
+    fraction-free Gaussian elimination on integers."""
+    k = len(cols)
+    rows = [[c[i] for c in cols] + [rhs[i]] for i in range(len(rhs))]
+    for j in range(k):
+        piv = next((r for r in range(j, len(rows)) if rows[r][j]), None)
+        if piv is None:
+            return None
+        rows[j], rows[piv] = rows[piv], rows[j]
+        p = rows[j]
+        for r in range(len(rows)):
+            if r != j and rows[r][j]:
+                f, g = rows[r][j], p[j]
+                rows[r] = [g * x - f * y for x, y in zip(rows[r], p, strict=True)]
+    if any(row[k] for row in rows[k:]):
+        return None
+    return [Fraction(rows[j][k], rows[j][j]) for j in range(k)]
+
+
+def vertices(cols: list[tuple[int, ...]], rhs: tuple[Any, ...]) -> list[Vec]:
+    """Every vertex of ``{x >= 0 : Σ_j x_j cols[j] = rhs}``: its basic feasible solutions.
+
+    Examples
+    --------
+    >>> [[str(x) for x in v] for v in vertices([(1, 0), (0, 1), (1, 1)], (1, 1))]
+    [['0', '0', '1'], ['1', '1', '0']]
+    """
+    out, tried = [], 0
+    for k in range(1, len(rhs) + 1):
+        for K in combinations(range(len(cols)), k):
+            tried += 1
+            if tried > MAX_BASES:
+                raise Undecided(f"a vertex table of the rule's normals needs more than "
+                                f"{MAX_BASES} bases: beyond the kernel's bound")
+            x = _solve([cols[j] for j in K], rhs)
+            if x is not None and all(v > 0 for v in x):
+                full = [Fraction(0)] * len(cols)
+                for j, v in zip(K, x, strict=True):
+                    full[j] = v
+                out.append(tuple(full))
+    return out
+
+
+def _combine(c: Vec, rows: list[list[Any]], L: int) -> list[Any]:
+    """``L·Σ_j c_j rows[j]`` node by node, in integers (``L·c`` must be integral)."""
+    out: list[Any] | None = None
+    for cj, row in zip(c, rows, strict=True):
+        if cj:
+            k = int(cj * L)
+            term = list(map(mul, row, [k] * len(row))) if k != 1 else row
+            out = term if out is None else list(map(add, out, term))
+    assert out is not None
+    return out
+
+
+def _lcm(vecs: list[Vec]) -> int:
+    return lcm(*(x.denominator for v in vecs for x in v))
+
+
+class GuaranteeRule:
+    """The guarantee rule on an instance, its witness checked (K.7)."""
+
+    def __init__(self, inst: Instance, rule: Guarantee, D: list[list[Any]], S: int, wit: Any,
+                 mixtures: Any, dead: list[int]) -> None:
+        self.inst, self.rule, self.S = inst, rule, S
+        A, n, N, graph = rule.normals, inst.graph.n, len(inst.goals), inst.graph
+        if type(wit) is not dict or set(wit) - {"m", "covers", "steps"} or \
+                type(wit.get("m")) is not list or len(wit["m"]) != len(A):
+            raise BadInput(f"witness: guarantee must have \"m\" ({len(A)} lists), \"steps\" "
+                           "and optionally \"covers\"")
+        m = self.m = [labels(xs, n, f"guarantee.m[{i}]", dead) for i, xs in enumerate(wit["m"])]
+        for i, a in enumerate(A):  # the DP's equations (NR.1(c)): goals, steps, splits
+            for g in inst.goals:
+                if m[i][g] != sum(x * D[j][g] for j, x in enumerate(a)):
+                    raise Undecided(f"guarantee.m[{i}] at goal {inst.show(g)}: m_a(g) = "
+                                    "a·d(g, g^.) fails")
+            dom = [j for j, b in enumerate(A) if b != a and all(map(le, b, a))]
+            table = vertices([A[j] for j in dom], a) if dom else []
+            L = _lcm(table)
+            mi = _combine((Fraction(1),), [m[i]], L)
+            best = graph.relax(mi, Fraction(max(a) * S * L), INF)
+            for c in table:
+                best = list(map(min, best, _combine(c, [m[j] for j in dom], L)))
+            for g in inst.goals:
+                best[g] = mi[g]
+            if best != mi:
+                v = next(v for v in range(n) if best[v] != m[i][v])
+                raise Undecided(f"guarantee.m[{i}] at node {inst.show(v)}: m_a(v) = min(steps, "
+                                "dominated covers) fails: not the rule's DP")
+        s0 = inst.start
+        for i, a in enumerate(A):
+            if not sum(x * h for x, h in zip(a, rule.h, strict=True)) * S <= m[i][s0]:
+                raise Undecided(f"h is not in the start set: a·h <= m_a(s0) fails for a = {a}")
+        self._arc_condition(wit.get("covers", []))
+        self.order = sorted(range(N), key=lambda t: (-inst.prior[t], t))
+        self.children: dict[tuple[int, int], int] = {}
+        self.sigma: list[Vec] = []
+        state = [rule.h]
+        steps = wit.get("steps")
+        for mix in mixtures:
+            for w, _ in mix:
+                p = -1
+                for v, u in pairwise(w):
+                    q = self.children.setdefault((p, u), len(self.sigma))
+                    if q == len(self.sigma):
+                        r = state[p + 1]
+                        if type(steps) is not list or q >= len(steps):
+                            raise BadInput("witness: guarantee.steps must list every prefix of "
+                                           "the profile's walks")
+                        s = self._step(q, steps[q], r, u, graph.weight(v, u))  # type: ignore[arg-type]
+                        self.sigma.append(s)
+                        state.append(tuple(x - graph.weight(v, u) * y  # type: ignore[operator]
+                                           for x, y in zip(r, s, strict=True)))
+                    p = q
+        if type(steps) is not list or len(steps) != len(self.sigma):
+            raise BadInput(f"witness: guarantee.steps must have {len(self.sigma)} records")
+
+    def _arc_condition(self, covers: Any) -> None:
+        """``h_{F_v}(y_λ) <= w + λ·m(u)`` on every live arc for every vertex ``λ`` of the packing
+        polytope not implied by the DP's equations (NR.2), ``h_{F_v}`` bounded above by the
+        witness's covers (and ``λ`` itself)."""
+        A, N, S = self.rule.normals, len(self.inst.goals), self.S
+        extras = len(A) > 2 ** N - 1
+        units = [tuple(int(i == j) for i in range(N)) for j in range(N)]
+        mus: dict[Vec, list[Vec]] = {}
+        for k, c in enumerate(covers if type(covers) is list else [None]):
+            pairs = [(x[0], number(x[1])) for x in c] if type(c) is list and all(
+                type(x) is list and len(x) == 2 and type(x[0]) is int and 0 <= x[0] < len(A)
+                for x in c) else [(0, None)]
+            if any(q is None or q < 0 for _, q in pairs):
+                raise BadInput(f"witness: guarantee.covers[{k}] must be [[normal, weight >= 0]]")
+            mu = tuple(sum((q for j2, q in pairs if j2 == j), Fraction(0))  # type: ignore[misc]
+                       for j in range(len(A)))
+            y = tuple(sum(x * a[i] for x, a in zip(mu, A, strict=True)) for i in range(N))
+            mus.setdefault(y, []).append(mu)
+        for lam in vertices([*A, *units], (1,) * N):
+            lam = lam[:len(A)]
+            y = tuple(sum(x * a[i] for x, a in zip(lam, A, strict=True)) for i in range(N))
+            if not any(lam) or (sum(map(bool, lam)) == 1 and max(y) == 1) or (
+                    not extras and set(y) <= {0, 1}):
+                continue  # implied by the DP's step and split equations (K.7)
+            cands = [*mus.get(y, []), lam]
+            L = _lcm(cands)
+            upper = list(map(min, *(_combine(mu, self.m, L) for mu in cands))) if len(cands) > 1 \
+                else _combine(lam, self.m, L)
+            rhs = self.inst.graph.relax(_combine(lam, self.m, L), Fraction(S * L), INF)
+            v = first_failure(upper, rhs, self.inst.goals)  # type: ignore[arg-type]
+            if v is not None:
+                raise Undecided(f"the arc condition F_v in F_u + wΔ fails at node "
+                                f"{self.inst.show(v)} in the direction y = "
+                                f"({', '.join(map(str, y))})")
+
+    def _step(self, q: int, rec: Any, r: Vec, u: int, w: Fraction) -> Vec:
+        """The σ of prefix ``q`` (entering ``u`` from state ``r``), checked to be the
+        lexicographic minimum of ``F`` by its primal point and one dual per stage."""
+        A, N, S = self.rule.normals, len(r), self.S
+        s = [number(x) for x in rec.get("sigma", [])] if type(rec) is dict else []
+        duals = rec.get("duals") if type(rec) is dict else None
+        if len(s) != N or None in s or type(duals) is not list or len(duals) != N - 1:
+            raise BadInput(f"witness: guarantee.steps[{q}] needs \"sigma\" ({N} numbers) and "
+                           f"\"duals\" ({N - 1} records)")
+        beta = [(sum(x * y for x, y in zip(a, r, strict=True)) - Fraction(self.m[i][u], S)) / w
+                for i, a in enumerate(A)]
+        if min(s) < 0 or sum(s) != 1 or any(  # type: ignore[type-var, arg-type]
+                sum(x * y for x, y in zip(a, s, strict=True)) < b for a, b in zip(A, beta,
+                                                                                  strict=True)):
+            raise Undecided(f"guarantee.steps[{q}]: sigma is not in the rule's set F")
+        for k, dual in enumerate(duals):
+            y = [number(x) for x in dual.get("y", [])] if type(dual) is dict else []
+            fix = [number(x) for x in dual.get("fix", [])] if type(dual) is dict else []
+            z = number(dual.get("z")) if type(dual) is dict else None
+            if len(y) != len(A) or len(fix) != k or None in y or None in fix or z is None:
+                raise BadInput(f"witness: guarantee.steps[{q}].duals[{k}] needs y, z, fix")
+            o = self.order
+            ok = min(y) >= 0 and all(  # type: ignore[type-var]
+                sum(yy * a[i] for yy, a in zip(y, A, strict=True)) + z +  # type: ignore[operator]
+                sum(f for f, j in zip(fix, o, strict=False) if j == i) <= int(i == o[k])
+                for i in range(N)) and sum(yy * b for yy, b in zip(y, beta, strict=True)) + z + \
+                sum(f * s[j] for f, j in zip(fix, o, strict=False)) >= s[o[k]]  # type: ignore
+            if not ok:
+                raise Undecided(f"guarantee.steps[{q}]: the dual of stage {k + 1} does not prove "
+                                "sigma the lexicographic minimum")
+        return tuple(s)  # type: ignore[arg-type]
+
+    def start(self) -> Memory:
+        """The memory at the start: the root prefix."""
+        return (-1, None)
+
+    def step(self, mem: Memory, v: int, u: int, w: Fraction) -> tuple[Memory, Any]:
+        """The step's costs ``S·w·σ(θ)`` at a prefix of the profile's walks (None elsewhere)."""
+        q = self.children.get((mem[0], u))
+        if q is None:
+            return (-1, None), None
+        return (q, None), tuple(exact(w * self.S * x) for x in self.sigma[q])
+
