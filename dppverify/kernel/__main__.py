@@ -25,13 +25,6 @@ USAGE = ("usage: dpp check [--base-dir DIR] INSTANCE PROFILE WITNESS   (- reads 
          "from standard input; DIR: where a map instance's map path starts)")
 
 
-def _read(name: str) -> bytes:
-    if name == "-":
-        return sys.stdin.buffer.read(MAX_BYTES + 1)
-    with open(name, "rb") as f:
-        return f.read(MAX_BYTES + 1)
-
-
 def main(argv: list[str]) -> int:
     """Run the kernel on the three files named by ``argv``; print one line; return the exit code.
 
@@ -40,35 +33,30 @@ def main(argv: list[str]) -> int:
     >>> main(["missing.json", "p.json", "w.json"])
     2
     """
-    base = None
-    if argv[:1] == ["--base-dir"] and len(argv) > 1:
-        base, argv = Path(argv[1]), argv[2:]
+    base, argv = (Path(argv[1]), argv[2:]) if argv[:1] == ["--base-dir"] else (None, argv)
     if len(argv) != 3 or argv.count("-") > 1:
         print(f"error: {USAGE}", file=sys.stderr)
         return 2
     data = []
     for name in argv:
         try:
-            data.append(_read(name))
+            with open(sys.stdin.fileno() if name == "-" else name, "rb", closefd=name != "-") as f:
+                data.append(f.read(MAX_BYTES + 1))
         except OSError as exc:
             print(f"error: {name}: cannot read ({exc.strerror})", file=sys.stderr)
             return 2
-    if base is None:
-        base = Path.cwd() if argv[0] == "-" else Path(argv[0]).resolve().parent
-    verdict = check(data[0], data[1], data[2], base_dir=base)
-    if verdict.status == "bad-input":
-        print(f"error: {verdict.message}", file=sys.stderr)
-    else:
-        prefix = {"pass": "", "refuted": "REFUTED: ", "undecided": "NOT PROVED: "}
-        print(prefix[verdict.status] + verdict.message)
-    return verdict.exit_code
+    base = base or (Path.cwd() if argv[0] == "-" else Path(argv[0]).resolve().parent)
+    v = check(data[0], data[1], data[2], base_dir=base)
+    prefix = {"pass": "", "refuted": "REFUTED: ", "undecided": "NOT PROVED: "}
+    print(prefix.get(v.status, "error: ") + v.message, file=sys.stderr if v.status == "bad-input"
+          else sys.stdout)
+    return v.exit_code
 
 
 if __name__ == "__main__":
     try:
         code = main(sys.argv[1:])
     except Exception as exc:  # never a traceback, and never exit 1 (refuted) for a failure
-        print(f"error: internal error in the kernel ({type(exc).__name__}: {str(exc)[:200]})",
-              file=sys.stderr)
+        print(f"error: internal error in the kernel ({exc!r})"[:300], file=sys.stderr)
         code = 3
     sys.exit(code)

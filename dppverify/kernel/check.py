@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 from fractions import Fraction
+from functools import cache
 from itertools import compress, pairwise, repeat
 from operator import lt, not_
 from pathlib import Path
@@ -69,68 +70,51 @@ def _decide(instance: bytes, profile: bytes, witness: bytes, base_dir: Path | No
             raise BadInput(f"witness: {key}_sha256 is not the sha256 of this {key}'s bytes (a "
                            f"witness for another {key})")
     prof = read_profile(profile, inst)
-    S, n, N = wit.get("denominator"), inst.graph.n, len(inst.goals)
-    if type(S) is not int or S < 1:
-        raise BadInput("witness: denominator must be a positive integer")
-    dists = wit.get("distances")
-    if type(dists) is not list or len(dists) != N:
-        raise BadInput(f"witness: distances must be {N} lists (one per goal)")
+    S, n, N, dists = wit.get("denominator"), inst.graph.n, len(inst.goals), wit.get("distances")
+    if type(S) is not int or S < 1 or type(dists) is not list or len(dists) != N:
+        raise BadInput(f"witness: needs a positive integer denominator and {N} distance lists")
     D = [labels(xs, n, f"distances[{j}]") for j, xs in enumerate(dists)]
     for j, g in enumerate(inst.goals):
         _check_distances(inst, j, g, D[j], S)
-    for j in range(N):
-        for v in (inst.start, *inst.goals):
-            if D[j][v] == INF:
-                raise BadInput(f"goal {inst.show(inst.goals[j])} is unreachable from "
-                               f"{inst.show(v)}: the instance is not a valid game")
+    if any(d[v] == INF for d in D for v in (inst.start, *inst.goals)):
+        raise BadInput("a goal is unreachable from the start or from another goal: the "
+                       "instance is not a valid game")
     inst.alive = alive = list(map(lt, map(min, *D), repeat(INF)))
     dead = list(compress(range(n), map(not_, alive)))
     rule: TableRule | GuaranteeRule
     if isinstance(prof.rule, Guarantee):
-        if "types" in wit or "counterexamples" in wit:
-            raise BadInput("witness: a guarantee rule's witness has \"guarantee\", not "
-                           "\"types\" or \"counterexamples\"")
+        if set(wit) & {"types", "counterexamples"}:
+            raise BadInput("witness: the guarantee rule's witness has \"guarantee\" only")
         rule = GuaranteeRule(inst, prof.rule, D, S, wit.get("guarantee"), prof.mixtures, dead)
     elif "guarantee" in wit:
         raise BadInput("witness: a table Defender's witness has \"types\", not \"guarantee\"")
     else:
         rule = TableRule(inst, prof.rule, D, S)
-    cache: dict[tuple[int, ...], tuple[list[Any], list[Any]]] = {}
-
-    def evaluate(w: tuple[int, ...]) -> tuple[list[Any], list[Any]]:
-        if w not in cache:
-            cache[w] = _evaluate(inst, rule, w, D, S)
-        return cache[w]
+    evaluate = cache(lambda w: _evaluate(inst, rule, w, D, S))
     U = [sum((p * evaluate(w)[1][t] for w, p in mix), Fraction(0))
          for t, mix in enumerate(prof.mixtures)]
     reached = check_greedy(inst, prof.mixtures, lambda w: evaluate(w)[0])
     extra = wit.get("counterexamples", [])
     for k, c in enumerate(extra if type(extra) is list else [None]):
         t = c.get("type") if type(c) is dict else None
-        if type(t) is not int or not 0 <= t < N:
-            raise BadInput(f"witness: counterexamples[{k}] needs a \"type\" 0..{N - 1}")
         try:
-            w = walk(inst, c.get("walk"), f"counterexamples[{k}].walk", True)
-            _sig, cost = _evaluate(inst, rule, w, D, S)
-        except Refuted as exc:
+            if type(t) is not int or not 0 <= t < N:
+                raise Refuted(f"profile: counterexamples[{k}] needs a \"type\" 0..{N - 1}")
+            _sig, cost = _evaluate(inst, rule, walk(inst, c.get("walk"), f"counterexamples[{k}]"
+                                                    ".walk", True), D, S)
+        except Refuted as exc:  # a malformed counterexample is the witness's defect
             raise BadInput(f"witness: {str(exc)[9:]}") from None
         if cost[t] < U[t]:
             raise Refuted(f"type {t}: the walk of counterexamples[{k}] costs "
                           f"{Fraction(cost[t], S)} < U = {U[t] / S}: regret > 0")
-    if isinstance(rule, GuaranteeRule):
-        for t in range(N):
-            if not U[t] <= prof.rule.h[t] * S:  # type: ignore[union-attr]
-                raise Undecided(f"type {t}: U <= h fails (U = {U[t] / S}, h = "
-                                f"{prof.rule.h[t]}): the guarantee does not prove regret 0")  # type: ignore[union-attr]
-        return Verdict("pass", f"PASS: a weak PBNE of the untruncated game ({N} types, {n} "
-                               f"nodes, the guarantee rule, {reached} reached prefixes)")
-    types = wit.get("types")
+    types = wit.get("types", [None] * N if isinstance(rule, GuaranteeRule) else None)
     if type(types) is not list or len(types) != N:
         raise BadInput(f"witness: types must be a list of {N} records")
     for t in range(N):
         rule.check_type(t, types[t], dead, U[t])
+    what = f"trie of {len(rule.node)} prefixes" if isinstance(rule, TableRule) else "guarantee rule"
     return Verdict("pass", f"PASS: a weak PBNE of the untruncated game ({N} types, {n} nodes, "
-                           f"trie of {len(rule.node)} prefixes, {reached} reached prefixes)")
+                           f"{what}, {reached} reached prefixes)")
 
 
 def _check_distances(inst: Instance, j: int, g: int, D: list[Any], S: int) -> None:
@@ -138,14 +122,14 @@ def _check_distances(inst: Instance, j: int, g: int, D: list[Any], S: int) -> No
     expect = inst.graph.relax(D, Fraction(S), INF)
     expect[g] = 0
     if expect != D:
-        v = next(v for v in range(len(D)) if expect[v] != D[v])
-        what = "D(g) = 0" if v == g else "D(v) = min over arcs (w + D(u))"
+        what = "D(g) = 0" if (v := next(v for v in range(len(D)) if expect[v] != D[v])) == g \
+            else "D(v) = min over arcs (w + D(u))"
         raise Undecided(f"distances[{j}] (to {inst.show(g)}) at node {inst.show(v)}: {what} "
                         "fails: not the exact distances")
 
 
-def _evaluate(inst: Instance, rule: TableRule | GuaranteeRule, w: tuple[int, ...], D: list[list[Any]], S: int
-              ) -> tuple[list[Any], list[Any]]:
+def _evaluate(inst: Instance, rule: TableRule | GuaranteeRule, w: tuple[int, ...],
+              D: list[list[Any]], S: int) -> tuple[list[Any], list[Any]]:
     """Each step's costs ``S·w·σ(θ)`` along the walk ``w``, and each type's ``S·J_θ(w)``."""
     mem, steps = rule.start(), []
     for v, u in pairwise(w):

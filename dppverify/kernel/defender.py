@@ -35,23 +35,19 @@ def check_greedy(inst: Instance, mixtures: Sequence[Sequence[tuple[tuple[int, ..
     dppverify.kernel.verdict.Refuted: Defender: not greedy at the reached prefix ["s", "a"]: \
 sigma puts 1/2 on goal "b", whose Bayes mass 2/5 is below the largest, 3/5
     """
-    n = len(inst.goals)
-    ids: dict[tuple[int, int], int] = {}
+    n, ids = len(inst.goals), {}
     mass: list[list[Fraction]] = []
-    sig: list[Any] = []
-    where: list[tuple[tuple[int, ...], int]] = []
+    sig: list[Any] = []  # per prefix: its costs and (walk, length) to name it
     for theta, mix in enumerate(mixtures):
         for w, p in mix:
-            s = steps(w)
-            node = -1
+            s, node = steps(w), -1
             for t in range(1, len(w)):
                 node = ids.setdefault((node, w[t]), len(mass))
                 if node == len(mass):
                     mass.append([Fraction(0)] * n)
-                    sig.append(s[t - 1])
-                    where.append((w, t))
+                    sig.append((s[t - 1], w, t))
                 mass[node][theta] += inst.prior[theta] * p
-    for m, s, (w, t) in zip(mass, sig, where, strict=True):
+    for m, (s, w, t) in zip(mass, sig, strict=True):
         top = max(m)
         for i in range(n):
             if top > 0 and s[i] > 0 and m[i] < top:

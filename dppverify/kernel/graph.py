@@ -10,6 +10,7 @@ each direction one list of neighbour indices (no Python object per arc).
 
 from __future__ import annotations
 
+import re
 from fractions import Fraction
 from itertools import compress, repeat
 from operator import add
@@ -46,10 +47,6 @@ class Graph:
         """The weight of the arc ``v -> u`` (None when there is none)."""
         return next((w for x, w in self.adj[v] if x == u), None)
 
-    def weights(self) -> set[Fraction]:
-        """The distinct arc weights."""
-        return {w for row in self.adj for _, w in row}
-
     def relax(self, y: list[Any], k: Fraction, inf: int) -> list[Any]:
         """``M(v) = min over arcs (v, u) of k·w(v, u) + y(u)`` (``inf`` without arcs).
 
@@ -58,7 +55,7 @@ class Graph:
         >>> Graph([[(1, Fraction(2))], []]).relax([5, 1], Fraction(1), float("inf"))
         [3, inf]
         """
-        cost = {w: exact(k * w) for w in self.weights()}
+        cost = {w: exact(k * w) for row in self.adj for _, w in row}
         out = []
         for row in self.adj:
             best = inf
@@ -100,17 +97,10 @@ class Grid:
         (4, (1, 2), 2, [0, 2])
         """
         lines = [ln[:-1] if ln.endswith(b"\r") else ln for ln in data.split(b"\n")]
-        if lines and lines[-1] == b"":
-            lines.pop()
-        head = [ln.split(b" ") for ln in lines[:4]]
-        try:
-            ok = (len(lines) >= 4 and lines[0] == b"type octile" and lines[3] == b"map"
-                  and head[1][0] == b"height" and head[2][0] == b"width" and len(head[1]) == 2
-                  and len(head[2]) == 2 and head[1][1].isdigit() and head[2][1].isdigit())
-            rows, cols = int(head[1][1]), int(head[2][1])
-        except (IndexError, ValueError):
-            ok = False
-        if not ok or not (0 < rows and 0 < cols and rows * cols <= 4_000_000):
+        head = re.fullmatch(rb"type octile\nheight (\d{1,9})\nwidth (\d{1,9})\nmap",
+                            b"\n".join(lines[:4]))
+        rows, cols = (int(head[1]), int(head[2])) if head else (0, 0)
+        if not 0 < rows * cols <= 4_000_000:
             raise BadInput("map: not a MovingAI .map file the kernel reads (header)")
         body = lines[4:]
         while len(body) > rows and not body[-1].strip():
@@ -146,10 +136,6 @@ class Grid:
     def weight(self, v: int, u: int) -> Fraction | None:
         """The weight of the arc ``v -> u``: 1 between neighbours, else None."""
         return Fraction(1) if abs(self.pos[u] - self.pos[v]) in (1, self.W) else None
-
-    def weights(self) -> set[Fraction]:
-        """The distinct arc weights: 1."""
-        return {Fraction(1)}
 
     def relax(self, y: list[Any], k: Fraction, inf: int) -> list[Any]:
         """:meth:`Graph.relax` on the grid: one shifted list per direction.

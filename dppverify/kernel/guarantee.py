@@ -10,9 +10,9 @@ of each normal, the packing polytope) are listed by :func:`vertices` once per ru
 from __future__ import annotations
 
 from fractions import Fraction
-from itertools import combinations, pairwise
+from itertools import combinations, pairwise, repeat
 from math import lcm
-from operator import add, le, mul
+from operator import le, mul
 from typing import Any
 
 from dppverify.kernel.graph import exact
@@ -32,21 +32,17 @@ Vec = tuple[Fraction, ...]
 def _solve(cols: list[tuple[int, ...]], rhs: tuple[Any, ...]) -> list[Fraction] | None:
     """The unique ``x`` with ``Σ_j x_j cols[j] = rhs``, or None (dependent or inconsistent):
     fraction-free Gaussian elimination on integers."""
-    k = len(cols)
-    rows = [[c[i] for c in cols] + [rhs[i]] for i in range(len(rhs))]
+    k, rows = len(cols), [[c[i] for c in cols] + [rhs[i]] for i in range(len(rhs))]
     for j in range(k):
-        piv = next((r for r in range(j, len(rows)) if rows[r][j]), None)
-        if piv is None:
+        if (piv := next((r for r in range(j, len(rows)) if rows[r][j]), None)) is None:
             return None
         rows[j], rows[piv] = rows[piv], rows[j]
         p = rows[j]
-        for r in range(len(rows)):
-            if r != j and rows[r][j]:
-                f, g = rows[r][j], p[j]
-                rows[r] = [g * x - f * y for x, y in zip(rows[r], p, strict=True)]
-    if any(row[k] for row in rows[k:]):
-        return None
-    return [Fraction(rows[j][k], rows[j][j]) for j in range(k)]
+        rows = [row if r == j or not row[j] else [p[j] * x - row[j] * y for x, y in
+                                                  zip(row, p, strict=True)]
+                for r, row in enumerate(rows)]
+    return None if any(row[k] for row in rows[k:]) else [Fraction(rows[j][k], rows[j][j])
+                                                          for j in range(k)]
 
 
 def vertices(cols: list[tuple[int, ...]], rhs: tuple[Any, ...]) -> list[Vec]:
@@ -57,36 +53,38 @@ def vertices(cols: list[tuple[int, ...]], rhs: tuple[Any, ...]) -> list[Vec]:
     >>> [[str(x) for x in v] for v in vertices([(1, 0), (0, 1), (1, 1)], (1, 1))]
     [['0', '0', '1'], ['1', '1', '0']]
     """
-    out, tried = [], 0
-    for k in range(1, len(rhs) + 1):
-        for K in combinations(range(len(cols)), k):
-            tried += 1
-            if tried > MAX_BASES:
-                raise Undecided(f"a vertex table of the rule's normals needs more than "
-                                f"{MAX_BASES} bases: beyond the kernel's bound")
-            x = _solve([cols[j] for j in K], rhs)
-            if x is not None and all(v > 0 for v in x):
-                full = [Fraction(0)] * len(cols)
-                for j, v in zip(K, x, strict=True):
-                    full[j] = v
-                out.append(tuple(full))
+    out = []
+    bases = [K for k in range(1, len(rhs) + 1) for K in combinations(range(len(cols)), k)]
+    if len(bases) > MAX_BASES:
+        raise Undecided(f"a vertex table of the rule's normals needs {len(bases)} bases, "
+                        f"beyond the kernel's bound of {MAX_BASES}")
+    for K in bases:
+        if (x := _solve([cols[j] for j in K], rhs)) is not None and min(x) > 0:
+            out.append(tuple(x[K.index(j)] if j in K else Fraction(0) for j in range(len(cols))))
     return out
 
 
 def _combine(c: Vec, rows: list[list[Any]], L: int) -> list[Any]:
     """``L·Σ_j c_j rows[j]`` node by node, in integers (``L·c`` must be integral)."""
-    out: list[Any] | None = None
-    for cj, row in zip(c, rows, strict=True):
-        if cj:
-            k = int(cj * L)
-            term = list(map(mul, row, [k] * len(row))) if k != 1 else row
-            out = term if out is None else list(map(add, out, term))
-    assert out is not None
-    return out
+    terms = [row if cj * L == 1 else list(map(mul, row, repeat(int(cj * L))))
+             for cj, row in zip(c, rows, strict=True) if cj]
+    return terms[0] if len(terms) == 1 else list(map(sum, zip(*terms, strict=True)))
 
 
 def _lcm(vecs: list[Vec]) -> int:
     return lcm(*(x.denominator for v in vecs for x in v))
+
+
+def _dot(a: Any, b: Any) -> Any:
+    return sum(map(mul, a, b))
+
+
+def _nums(raw: Any, k: int, what: str) -> list[Fraction]:
+    """``k`` exact numbers of the witness (bad input otherwise)."""
+    xs = [number(x) for x in raw] if type(raw) is list and len(raw) == k else [None]
+    if None in xs:
+        raise BadInput(f"witness: {what} must be a list of {k} numbers")
+    return xs  # type: ignore[return-value]
 
 
 class GuaranteeRule:
@@ -103,7 +101,7 @@ class GuaranteeRule:
         m = self.m = [labels(xs, n, f"guarantee.m[{i}]", dead) for i, xs in enumerate(wit["m"])]
         for i, a in enumerate(A):  # the DP's equations (NR.1(c)): goals, steps, splits
             for g in inst.goals:
-                if m[i][g] != sum(x * D[j][g] for j, x in enumerate(a)):
+                if m[i][g] != _dot(a, (d[g] for d in D)):
                     raise Undecided(f"guarantee.m[{i}] at goal {inst.show(g)}: m_a(g) = "
                                     "a·d(g, g^.) fails")
             dom = [j for j, b in enumerate(A) if b != a and all(map(le, b, a))]
@@ -121,7 +119,7 @@ class GuaranteeRule:
                                 "dominated covers) fails: not the rule's DP")
         s0 = inst.start
         for i, a in enumerate(A):
-            if not sum(x * h for x, h in zip(a, rule.h, strict=True)) * S <= m[i][s0]:
+            if not _dot(a, rule.h) * S <= m[i][s0]:
                 raise Undecided(f"h is not in the start set: a·h <= m_a(s0) fails for a = {a}")
         self._arc_condition(wit.get("covers", []))
         self.order = sorted(range(N), key=lambda t: (-inst.prior[t], t))
@@ -135,14 +133,12 @@ class GuaranteeRule:
                 for v, u in pairwise(w):
                     q = self.children.setdefault((p, u), len(self.sigma))
                     if q == len(self.sigma):
-                        r = state[p + 1]
+                        r, wt = state[p + 1], graph.weight(v, u)
                         if type(steps) is not list or q >= len(steps):
                             raise BadInput("witness: guarantee.steps must list every prefix of "
                                            "the profile's walks")
-                        s = self._step(q, steps[q], r, u, graph.weight(v, u))  # type: ignore[arg-type]
-                        self.sigma.append(s)
-                        state.append(tuple(x - graph.weight(v, u) * y  # type: ignore[operator]
-                                           for x, y in zip(r, s, strict=True)))
+                        self.sigma.append(s := self._step(q, steps[q], r, u, wt))  # type: ignore[arg-type]
+                        state.append(tuple(x - wt * y for x, y in zip(r, s, strict=True)))  # type: ignore[operator]
                     p = q
         if type(steps) is not list or len(steps) != len(self.sigma):
             raise BadInput(f"witness: guarantee.steps must have {len(self.sigma)} records")
@@ -156,18 +152,13 @@ class GuaranteeRule:
         units = [tuple(int(i == j) for i in range(N)) for j in range(N)]
         mus: dict[Vec, list[Vec]] = {}
         for k, c in enumerate(covers if type(covers) is list else [None]):
-            pairs = [(x[0], number(x[1])) for x in c] if type(c) is list and all(
-                type(x) is list and len(x) == 2 and type(x[0]) is int and 0 <= x[0] < len(A)
-                for x in c) else [(0, None)]
-            if any(q is None or q < 0 for _, q in pairs):
-                raise BadInput(f"witness: guarantee.covers[{k}] must be [[normal, weight >= 0]]")
-            mu = tuple(sum((q for j2, q in pairs if j2 == j), Fraction(0))  # type: ignore[misc]
-                       for j in range(len(A)))
-            y = tuple(sum(x * a[i] for x, a in zip(mu, A, strict=True)) for i in range(N))
-            mus.setdefault(y, []).append(mu)
+            mu = tuple(_nums(c, len(A), f"guarantee.covers[{k}]"))
+            if min(mu) < 0:
+                raise BadInput(f"witness: guarantee.covers[{k}] has a negative weight")
+            mus.setdefault(tuple(_dot(mu, (a[i] for a in A)) for i in range(N)), []).append(mu)
         for lam in vertices([*A, *units], (1,) * N):
             lam = lam[:len(A)]
-            y = tuple(sum(x * a[i] for x, a in zip(lam, A, strict=True)) for i in range(N))
+            y = tuple(_dot(lam, (a[i] for a in A)) for i in range(N))
             if not any(lam) or (sum(map(bool, lam)) == 1 and max(y) == 1) or (
                     not extras and set(y) <= {0, 1}):
                 continue  # implied by the DP's step and split equations (K.7)
@@ -185,34 +176,33 @@ class GuaranteeRule:
     def _step(self, q: int, rec: Any, r: Vec, u: int, w: Fraction) -> Vec:
         """The σ of prefix ``q`` (entering ``u`` from state ``r``), checked to be the
         lexicographic minimum of ``F`` by its primal point and one dual per stage."""
-        A, N, S = self.rule.normals, len(r), self.S
-        s = [number(x) for x in rec.get("sigma", [])] if type(rec) is dict else []
-        duals = rec.get("duals") if type(rec) is dict else None
-        if len(s) != N or None in s or type(duals) is not list or len(duals) != N - 1:
-            raise BadInput(f"witness: guarantee.steps[{q}] needs \"sigma\" ({N} numbers) and "
-                           f"\"duals\" ({N - 1} records)")
-        beta = [(sum(x * y for x, y in zip(a, r, strict=True)) - Fraction(self.m[i][u], S)) / w
-                for i, a in enumerate(A)]
-        if min(s) < 0 or sum(s) != 1 or any(  # type: ignore[type-var, arg-type]
-                sum(x * y for x, y in zip(a, s, strict=True)) < b for a, b in zip(A, beta,
-                                                                                  strict=True)):
-            raise Undecided(f"guarantee.steps[{q}]: sigma is not in the rule's set F")
+        A, N, S, o = self.rule.normals, len(r), self.S, self.order
+        at = f"guarantee.steps[{q}]"
+        rec = rec if type(rec) is dict else {}
+        s, duals = _nums(rec.get("sigma"), N, f"{at}.sigma"), rec.get("duals")
+        if type(duals) is not list or len(duals) != N - 1:
+            raise BadInput(f"witness: {at}.duals must be {N - 1} records")
+        beta = [(_dot(a, r) - Fraction(self.m[i][u], S)) / w for i, a in enumerate(A)]
+        if min(s) < 0 or sum(s) != 1 or any(_dot(a, s) < b for a, b in zip(A, beta, strict=True)):
+            raise Undecided(f"{at}: sigma is not in the rule's set F")
         for k, dual in enumerate(duals):
-            y = [number(x) for x in dual.get("y", [])] if type(dual) is dict else []
-            fix = [number(x) for x in dual.get("fix", [])] if type(dual) is dict else []
-            z = number(dual.get("z")) if type(dual) is dict else None
-            if len(y) != len(A) or len(fix) != k or None in y or None in fix or z is None:
-                raise BadInput(f"witness: guarantee.steps[{q}].duals[{k}] needs y, z, fix")
-            o = self.order
-            ok = min(y) >= 0 and all(  # type: ignore[type-var]
-                sum(yy * a[i] for yy, a in zip(y, A, strict=True)) + z +  # type: ignore[operator]
-                sum(f for f, j in zip(fix, o, strict=False) if j == i) <= int(i == o[k])
-                for i in range(N)) and sum(yy * b for yy, b in zip(y, beta, strict=True)) + z + \
-                sum(f * s[j] for f, j in zip(fix, o, strict=False)) >= s[o[k]]  # type: ignore
+            dual = dual if type(dual) is dict else {}
+            y = _nums(dual.get("y"), len(A), f"{at}.duals[{k}].y")
+            fix = _nums(dual.get("fix"), k, f"{at}.duals[{k}].fix")
+            z = _nums([dual.get("z")], 1, f"{at}.duals[{k}].z")[0]
+            ok = min(y) >= 0 and all(_dot(y, (a[i] for a in A)) + z + _dot(fix, (
+                int(j == i) for j in o)) <= int(i == o[k]) for i in range(N)) and \
+                _dot(y, beta) + z + _dot(fix, (s[j] for j in o)) >= s[o[k]]
             if not ok:
                 raise Undecided(f"guarantee.steps[{q}]: the dual of stage {k + 1} does not prove "
                                 "sigma the lexicographic minimum")
         return tuple(s)  # type: ignore[arg-type]
+
+    def check_type(self, theta: int, rec: Any, dead: list[int], u_scaled: Fraction) -> None:
+        """Type ``θ``'s bound: ``U_θ <= h_θ`` (NR.2)."""
+        if not u_scaled <= self.rule.h[theta] * self.S:
+            raise Undecided(f"type {theta}: U <= h fails (U = {u_scaled / self.S}, h = "
+                            f"{self.rule.h[theta]}): the guarantee does not prove regret 0")
 
     def start(self) -> Memory:
         """The memory at the start: the root prefix."""

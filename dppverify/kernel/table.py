@@ -34,9 +34,7 @@ def first_failure(xs: list[Any], ys: list[Any], skip: Any = ()) -> int | None:
     ys = list(ys)
     for v in skip:
         ys[v] = INF
-    if all(map(le, xs, ys)):
-        return None
-    return next(v for v in range(len(xs)) if not xs[v] <= ys[v])
+    return None if all(map(le, xs, ys)) else next(v for v in range(len(xs)) if not xs[v] <= ys[v])
 
 
 class TableRule:
@@ -91,32 +89,22 @@ class TableRule:
             P, Q = (labels(rec[k], n, f"types[{theta}].{k}", dead) for k in ("P", "Q"))
             self._arcs(theta, P, Fraction(1), "P(x) <= w + P(u)")
             self._arcs(theta, Q, Fraction(1), "Q(x) <= w + Q(u)", goals=False)
-            v = first_failure(Q, list(map(add, dg, P)))
-            if v is not None:
+            if (v := first_failure(Q, list(map(add, dg, P)))) is not None:
                 raise Undecided(f"type {theta}, node {inst.show(v)}: Q(u) <= d(u, g) + P(u) "
                                 "fails (the progress default's closed form)")
-
-            def exit_phi(u: int, c2: Any) -> Any:
-                return min(P[u], Q[u] - c2)
+            exit_phi = lambda u, c2: min(P[u], Q[u] - c2)  # noqa: E731 (closed form, K.3)
         elif self.progress:
-            def exit_phi(u: int, c2: Any) -> Any:
-                return c2
+            exit_phi = lambda u, c2: c2  # noqa: E731
         elif self.table.default is not None:
             E = labels(rec["exit"], n, f"types[{theta}].exit", dead)
             self._arcs(theta, E, self.table.default[theta], "E(x) <= w·q + E(u)")
-
-            def exit_phi(u: int, c2: Any) -> Any:
-                return E[u]
+            exit_phi = lambda u, c2: E[u]  # noqa: E731
         alive = self.inst.alive
         for p, v in enumerate(self.node):
-            if not alive[v]:
-                continue
-            if inst.is_goal[v]:
-                if not phi[p] <= self.D[theta][v]:
-                    raise Undecided(f"type {theta}, trie prefix {p} (goal {inst.show(v)}): "
-                                    "phi <= terminal cost fails")
-                continue
-            for u, w in inst.graph.arcs(v):
+            if alive[v] and inst.is_goal[v] and not phi[p] <= self.D[theta][v]:
+                raise Undecided(f"type {theta}, trie prefix {p} (goal {inst.show(v)}): "
+                                "phi <= terminal cost fails")
+            for u, w in inst.graph.arcs(v) if alive[v] and not inst.is_goal[v] else ():
                 if not alive[u]:
                     continue
                 q = self.children.get((p, u))
@@ -129,19 +117,17 @@ class TableRule:
                     raise Undecided(f"type {theta}, trie prefix {p} -> node {inst.show(u)}: "
                                     "phi(p) <= cost + phi(next) fails")
         if not u_scaled <= phi[0]:
-            at = Fraction(phi[0], self.S) if phi[0] < INF else INF
-            raise Undecided(f"type {theta}: U <= phi(start) fails (U = {u_scaled / self.S}, "
-                            f"phi = {at}); the witness does not prove regret 0")
+            at = phi[0] / Fraction(self.S) if phi[0] < INF else INF
+            raise Undecided(f"type {theta}: U <= phi(start) fails (U = {u_scaled / self.S}, phi = "
+                            f"{at}); the witness does not prove regret 0")
 
     def _arcs(self, theta: int, X: list[Any], k: Fraction, what: str, goals: bool = True
               ) -> None:
         """``X(x) <= k·w·S + X(u)`` on every live arc from an alive non-goal ``x``, and (with
         ``goals``) ``X(g) <= D_θ(g)`` at the goals."""
         inst = self.inst
-        v = first_failure(X, inst.graph.relax(X, k * self.S, INF), inst.goals)
-        if v is not None:
+        if (v := first_failure(X, inst.graph.relax(X, k * self.S, INF), inst.goals)) is not None:
             raise Undecided(f"type {theta}, node {inst.show(v)}: {what} fails on an arc")
-        for g in inst.goals if goals else ():
-            if not X[g] <= self.D[theta][g]:
-                raise Undecided(f"type {theta}, goal {inst.show(g)}: the exit label <= "
-                                "terminal cost fails")
+        if goals and (g := next((g for g in inst.goals if X[g] > self.D[theta][g]), -1)) >= 0:
+            raise Undecided(f"type {theta}, goal {inst.show(g)}: the exit label <= terminal cost "
+                            "fails")

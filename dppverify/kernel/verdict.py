@@ -60,5 +60,3 @@ class Refuted(Stop):
 
 class Undecided(Stop):
     """The witness does not prove the claim, or the kernel does not decide this game."""
-
-    status = "undecided"

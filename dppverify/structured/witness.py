@@ -240,7 +240,7 @@ def _guarantee_witness(instance: Instance, profile: Profile, rule: GuaranteeRule
                 x = simplex_min([Fraction(int(row[v])) for row in sets.rows], rows, list(y))
                 if x is not None:
                     used.add(tuple(x))
-        covers += [[[j, _exact(c)] for j, c in enumerate(x) if c] for x in sorted(used)]
+        covers += [[_exact(c) for c in x] for x in sorted(used)]
     order = rule_order(instance.prior)
     children: dict[tuple[int, int], int] = {}
     state: list[tuple[Fraction, ...]] = [tuple(rule.h)]

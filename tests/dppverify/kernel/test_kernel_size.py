@@ -21,7 +21,7 @@ KERNEL = Path(__file__).resolve().parents[3] / "dppverify" / "kernel"
 MAX_CODE_LINES = 800
 STDLIB = {"__future__", "bisect", "dataclasses", "fractions", "hashlib", "importlib",
           "importlib.util", "itertools", "json", "operator", "pathlib", "re", "sys", "types",
-          "typing", "collections.abc", "math"}
+          "typing", "collections.abc", "math", "functools"}
 
 
 def code_lines(source: str) -> int:
