@@ -121,7 +121,8 @@ def coq_build() -> bool:
                 continue
             obj = COQ / (name[:-2] + ".vo")
             stale = (not obj.exists() or deps[name] & rebuilt
-                     or obj.stat().st_mtime < (COQ / name).stat().st_mtime
+                     or obj.stat().st_mtime < max((COQ / x).stat().st_mtime for x in [
+                         name, *(d[:-2] + ".vo" for d in deps[name])])
                      or (name == "Extract.v" and not (ext / "kernel.ml").exists()))
             if not stale:
                 done.add(name)

@@ -247,21 +247,30 @@ Proof.
   replace (k + S i)%nat with (S k + i)%nat by lia. apply IH; [exact H | lia].
 Qed.
 
-Lemma decide_spec : forall I P W, decide I P W = Pass ->
-  exists C es dflt gl rs,
-    instance_ok I = true /\ read_profile I P = Some C /\ dist_shape_ok I W = true /\
-    distances_ok I W = true /\ reach_ok I W = true /\ crule C = RTable es dflt gl /\
+Lemma decide_read : forall I P W, decide I P W = Pass ->
+  instance_ok I = true /\ exists C, read_profile I P = Some C.
+Proof.
+  intros I P W H. unfold decide in H.
+  destruct (instance_ok I); [| discriminate]. split; [reflexivity |].
+  destruct (read_profile I P) as [C |]; [exists C; reflexivity | discriminate].
+Qed.
+
+Lemma decide_spec : forall I P W C es dflt gl, decide I P W = Pass -> read_profile I P = Some C ->
+  crule C = RTable es dflt gl ->
+  exists rs,
+    instance_ok I = true /\ dist_shape_ok I W = true /\
+    distances_ok I W = true /\ reach_ok I W = true /\
     forallb (walk_defined I W C) (all_walks C) = true /\ greedy_ok I W C = true /\
     wtypes W = Some rs /\ length rs = N I /\ check_types I W C O rs = None.
 Proof.
-  intros I P W H. unfold decide in H.
-  destruct (instance_ok I) eqn:H1; [| discriminate]. simpl in H.
-  destruct (read_profile I P) as [C |] eqn:H2; [| discriminate].
+  intros I P W C es dflt gl H H2 H6. unfold decide in H.
+  destruct (instance_ok I) eqn:H1; [| discriminate]. simpl in H. rewrite H2 in H.
   destruct (Z.ltb 0 (denominator W)); [| discriminate]. simpl in H.
   destruct (dist_shape_ok I W) eqn:H3; [| discriminate]. simpl in H.
   destruct (distances_ok I W) eqn:H4; [| discriminate]. simpl in H.
   destruct (reach_ok I W) eqn:H5; [| discriminate]. simpl in H.
-  destruct (crule C) as [es dflt gl |] eqn:H6; [| discriminate].
+  rewrite H6 in H.
+  destruct (match wguarantee W with Some _ => true | None => false end); [discriminate |].
   destruct (forallb (walk_defined I W C) (all_walks C)) eqn:H7; [| discriminate]. simpl in H.
   destruct (greedy_ok I W C) eqn:H8; [| discriminate]. simpl in H.
   destruct (first_some (counter_ok I W C) (counterexamples W)) eqn:H9.
@@ -270,21 +279,23 @@ Proof.
   destruct (Nat.eqb (length rs) (N I)) eqn:H11; [| discriminate]. simpl in H.
   destruct (check_types I W C O rs) eqn:H12.
   { subst. exfalso. exact (check_types_not_pass I W C rs O H12). }
-  exists C, es, dflt, gl, rs. apply Nat.eqb_eq in H11. repeat split; assumption.
+  exists rs. apply Nat.eqb_eq in H11. repeat split; assumption.
 Qed.
 
-(** ** The soundness theorem of the kernel. *)
-Theorem kernel_sound : forall I P W, decide I P W = Pass ->
-  exists C, read_profile I P = Some C /\
+(** ** The soundness theorem of the kernel, for table Defenders (the progress
+    rule is the empty table with the progress default). *)
+Theorem kernel_sound : forall I P W C es dflt gl, decide I P W = Pass ->
+  read_profile I P = Some C -> crule C = RTable es dflt gl ->
     (forall j v, (j < N I)%nat -> (v < n I)%nat -> is_distance (adj I) (goal I j) v (D W j v)) /\
     weak_pbne nat Nat.eq_dec (types I) nat Nat.eq_dec (fun a b => has_arc I a b = true) (wt I)
               (isgoal I) (Dv W) (start I) (priorq I) (gamma C) (of_w nat nat (defender I W C))
               (bayes nat (types I) nat Nat.eq_dec (start I) (priorq I) (gamma C)).
 Proof.
-  intros I P W H.
-  destruct (decide_spec I P W H) as [C [es [dflt [gl [rs [Hi [Hc [Hshape [Hdist [Hreach [Hcr [Hdef [Hgr [Hrs [Hlen Hts]]]]]]]]]]]]]]].
+  intros I P W C es dflt gl H Hc Hcr.
+  destruct (decide_spec I P W C es dflt gl H Hc Hcr)
+    as [rs [Hi [Hshape [Hdist [Hreach [Hdef [Hgr [Hrs [Hlen Hts]]]]]]]]].
   destruct (read_profile_spec I Hi P C Hc) as [Hmixlen [Hmix Hrule]].
-  exists C. split; [exact Hc |]. split; [exact (distances_exact I W Hi Hdist) |].
+  split; [exact (distances_exact I W Hi Hdist) |].
   apply pbne_of_checks.
   - unfold types. apply seq_NoDup.
   - intros u v Huv. exact (wt_nonneg I Hi u v Huv).
@@ -301,14 +312,13 @@ Proof.
 Qed.
 
 (** The Bayesian Nash condition (5a) for the Defender, at the root, too. *)
-Corollary kernel_defender_optimal : forall I P W, decide I P W = Pass ->
-  exists C, read_profile I P = Some C /\
+Corollary kernel_defender_optimal : forall I P W C es dflt gl, decide I P W = Pass ->
+  read_profile I P = Some C -> crule C = RTable es dflt gl ->
     defender_optimal nat (types I) nat (wt I) (Dv W) (start I) (priorq I) (gamma C) (of_w nat nat (defender I W C)).
 Proof.
-  intros I P W H.
-  destruct (decide_spec I P W H) as [C [es [dflt [gl [rs [Hi [Hc [Hshape [Hdist [Hreach [Hcr [Hdef [Hgr _]]]]]]]]]]]]].
+  intros I P W C es dflt gl H Hc Hcr.
+  destruct (decide_spec I P W C es dflt gl H Hc Hcr) as [rs [Hi [Hshape [Hdist [Hreach [Hdef [Hgr _]]]]]]].
   destruct (read_profile_spec I Hi P C Hc) as [Hmixlen [Hmix Hrule]].
-  exists C. split; [exact Hc |].
   apply (defender_optimal_of_checks nat (types I) nat Nat.eq_dec (fun a b => has_arc I a b = true) (wt I)
            (isgoal I) (Dv W) (start I) (priorq I) (fun u v Huv => wt_nonneg I Hi u v Huv) (prior_nonneg I Hi)
            (gamma C)).

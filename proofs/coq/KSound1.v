@@ -96,7 +96,7 @@ Section Read.
         (forall e, In e es -> walk_ok I false (fst e) = true /\ dist_ok I (snd e) = true) /\
         (g < N I)%nat /\
         match d with DDist q => dist_ok I q = true | DProgress => N I = 2%nat | DNone => True end
-    | RGuarantee => True
+    | RGuarantee h _ => length h = N I
     end.
 
   Lemma read_profile_spec : forall P C, read_profile I P = Some C ->
@@ -109,7 +109,7 @@ Section Read.
         [discriminate |].
       apply orb_false_iff in Hm as [Hl Hm]. apply negb_false_iff in Hl, Hm.
       apply Nat.eqb_eq in Hl. rewrite forallb_forall in Hm.
-      destruct (nrule p) as [es d g |] eqn:Hr.
+      destruct (nrule p) as [es d g | h ex] eqn:Hr.
       + destruct (negb (entries_ok I es)) eqn:He; [discriminate |]. apply negb_false_iff in He.
         unfold entries_ok in He. apply andb_true_iff in He as [He _]. rewrite forallb_forall in He.
         assert (Hes : forall e, In e es -> walk_ok I false (fst e) = true /\ dist_ok I (snd e) = true)
@@ -117,7 +117,8 @@ Section Read.
         destruct d as [| q |]; [| destruct (dist_ok I q) eqn:Hq |]; try discriminate;
           inversion H; subst; simpl; (split; [exact Hl | split; [exact Hm |]]);
           (split; [exact Hes | split; [lia | auto]]).
-      + inversion H; subst. simpl. auto.
+      + destruct (Nat.eqb (length h) (N I)) eqn:Hh; [| discriminate].
+        inversion H; subst. simpl. apply Nat.eqb_eq in Hh. auto.
     - destruct (find_index (tprimary p) (goals I)) as [first |] eqn:Hf; [| discriminate].
       destruct (find_index (tsecondary p) (goals I)) as [second |] eqn:Hs; [| discriminate].
       destruct (Nat.eqb first second || negb (Nat.eqb (N I) 2)) eqn:Hfs; [discriminate |].

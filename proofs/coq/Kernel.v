@@ -29,7 +29,7 @@ Inductive default := DNone | DDist (q : list Q) | DProgress.
 (** The Defender as the profile states it. *)
 Inductive rule :=
   | RTable (entries : list (list nat * list Q)) (dflt : default) (goal : nat)
-  | RGuarantee.                      (* the guarantee rule: not decided by this kernel yet *)
+  | RGuarantee (h : list Q) (extras : list (list nat)).  (* the guarantee rule: h, extra normals *)
 
 (** [dpp-ngoal-profile/1]: [ngoals] the optional "goals" list, one mixture per
     type (walk, probability), the rule. *)
@@ -52,11 +52,22 @@ Definition labels := option (option (list (option Z))).
 Record typerec := mkType { rec_ok : bool;  (* a JSON object with no other keys than these *)
                            rtrie : labels; rexit : labels; rP : labels; rQ : labels }.
 
+(** The guarantee rule's witness: per normal its labels m_a(v), the covers,
+    and per prefix of the profile's walks σ and one dual (y, fix, z) per
+    stage.  [NBad]: not a list; [NList]: the entries, [None] where not a number. *)
+Inductive nums := NBad | NList (l : list (option Q)).
+Record dualrec := mkDual { dy : nums; dfix : nums; dz : option Q }.
+Record steprec := mkStep { ssigma : nums; sduals : option (list dualrec) }.
+Record gwit := mkGwit { gm : list (option (list (option Z))); gcovers : list nums;
+                        gsteps : option (list steprec) }.
+
 Record witness := mkWitness {
   denominator : Z;
   distances : option (list (list (option Z)));    (* None: not N lists of n integers or null *)
   counterexamples : list (nat * list nat);
-  wtypes : option (list typerec) }.
+  wtypes : option (list typerec);
+  has_types : bool; has_counterexamples : bool;   (* which keys the witness has *)
+  wguarantee : option (option gwit) }.            (* absent / not the right shape / the record *)
 
 (** ** Small helpers. *)
 Fixpoint leqb (a b : list nat) : bool :=
@@ -170,7 +181,7 @@ Section Kernel.
             | DDist q => if dist_ok q then Some (mkCanon (nmix p) (RTable es (DDist q) O)) else None
             | DProgress => None
             end
-        | RGuarantee => Some (mkCanon (nmix p) RGuarantee)
+        | RGuarantee h ex => if Nat.eqb (length h) N then Some (mkCanon (nmix p) (RGuarantee h ex)) else None
         end
     | P2 p =>
         match find_index (tprimary p) (goals I), find_index (tsecondary p) (goals I) with
@@ -225,9 +236,9 @@ Section Kernel.
   (** ** The table Defender ([table.TableRule]). *)
   Variable C : canon.
   Definition tentries : list (list nat * list Q) :=
-    match crule C with RTable es _ _ => es | RGuarantee => [] end.
-  Definition tdefault : default := match crule C with RTable _ d _ => d | RGuarantee => DNone end.
-  Definition tgoal : nat := match crule C with RTable _ _ g => g | RGuarantee => O end.
+    match crule C with RTable es _ _ => es | RGuarantee _ _ => [] end.
+  Definition tdefault : default := match crule C with RTable _ d _ => d | RGuarantee _ _ => DNone end.
+  Definition tgoal : nat := match crule C with RTable _ _ g => g | RGuarantee _ _ => O end.
   Definition progress : bool := match tdefault with DProgress => true | _ => false end.
 
   Definition lookup (p : list nat) : option (list Q) :=
@@ -415,6 +426,292 @@ Section Kernel.
 
   Fixpoint first_some {A} (f : A -> option verdict) (l : list A) : option verdict :=
     match l with [] => None | x :: l' => match f x with Some v => Some v | None => first_some f l' end end.
+
+  (** ** The guarantee rule ([guarantee.GuaranteeRule], K.7). *)
+  Definition gh : list Q := match crule C with RGuarantee h _ => h | _ => [] end.
+  Definition gextras : list (list nat) := match crule C with RGuarantee _ ex => ex | _ => [] end.
+
+  (** The normals: the 0/1 vectors (by their bit masks 1 .. 2^N − 1), then the extras. *)
+  Definition bitq (m i : nat) : Q := if Nat.testbit m i then 1 else 0.
+  Definition normals : list (list Q) :=
+    map (fun m => map (bitq m) (seq 0 N)) (seq 1 (2 ^ N - 1)) ++
+    map (fun a => map (fun x => inject_Z (Z.of_nat x)) a) gextras.
+
+  Definition dotq (a b : list Q) : Q := fold_right Qplus 0 (map (fun p => fst p * snd p) (combine a b)).
+
+  (** [_solve]: the unique x with Σ_j x_j cols[j] = rhs, by Gauss–Jordan
+      elimination ([None] when the columns are dependent or rhs is not in
+      their span). *)
+  Fixpoint find_pivot (rows : list (list Q)) (j r : nat) : option nat :=
+    match rows with
+    | [] => None
+    | row :: rows' => if Nat.leb j r && negb (Qeq_bool (nth j row 0) 0) then Some r
+                      else find_pivot rows' j (S r)
+    end.
+
+  Definition swap {A} (l : list A) (i k : nat) (d : A) : list A :=
+    map (fun r => if Nat.eqb r i then nth k l d else if Nat.eqb r k then nth i l d else nth r l d)
+        (seq 0 (length l)).
+
+  Definition elim (rows : list (list Q)) (j : nat) : option (list (list Q)) :=
+    match find_pivot rows j O with
+    | None => None
+    | Some p =>
+        let rs := swap rows j p [] in
+        let pr := nth j rs [] in
+        let pr' := map (fun x => x / nth j pr 0) pr in
+        Some (map (fun r => let row := nth r rs [] in
+                            if Nat.eqb r j then pr'
+                            else let f := nth j row 0 in map (fun pq => fst pq - f * snd pq) (combine row pr'))
+                  (seq 0 (length rs)))
+    end.
+
+  Fixpoint gauss (rows : list (list Q)) (j k : nat) : option (list (list Q)) :=
+    match k with
+    | O => Some rows
+    | S k' => match elim rows j with Some rs => gauss rs (S j) k' | None => None end
+    end.
+
+  Definition solve (cols : list (list Q)) (rhs : list Q) : option (list Q) :=
+    let k := length cols in
+    let rows := map (fun i => map (fun c => nth i c 0) cols ++ [nth i rhs 0]) (seq 0 (length rhs)) in
+    match gauss rows O k with
+    | None => None
+    | Some rs => if existsb (fun row => negb (Qeq_bool (nth k row 0) 0)) (skipn k rs) then None
+                 else Some (map (fun j => nth k (nth j rs []) 0) (seq 0 k))
+    end.
+
+  (** [vertices]: every basic feasible solution with positive support, bases
+      of 1 .. length rhs columns in lexicographic order; [None] beyond the
+      kernel's bound of 100,000 bases. *)
+  Fixpoint choose (k : nat) (l : list nat) : list (list nat) :=
+    match k, l with
+    | O, _ => [[]]
+    | S _, [] => []
+    | S k', x :: l' => map (cons x) (choose k' l') ++ choose k l'
+    end.
+
+  Definition max_bases : Z := 100000.
+
+  Definition vertices (cols : list (list Q)) (rhs : list Q) : option (list (list Q)) :=
+    let bases := flat_map (fun k => choose k (seq 0 (length cols))) (seq 1 (length rhs)) in
+    if Z.ltb max_bases (Z.of_nat (length bases)) then None else
+    Some (flat_map (fun K =>
+      match solve (map (fun j => nth j cols []) K) rhs with
+      | Some x => if forallb (fun v => ltb 0 v) x
+                  then [map (fun j => match find_index j K with Some i => nth i x 0 | None => 0 end)
+                            (seq 0 (length cols))]
+                  else []
+      | None => []
+      end) bases).
+
+  (** Extended (+∞) combinations of label rows: Σ_j c_j rows_j(v) over c_j ≠ 0. *)
+  Definition combine_at (c : list Q) (rows : list (list (option Q))) (v : nat) : option Q :=
+    fold_right (fun jc acc => if Qeq_bool (fst jc) 0 then acc else
+                              match acc, get (nth (snd jc) rows []) v with
+                              | Some x, Some y => Some (x + fst jc * y)
+                              | _, _ => None
+                              end)
+               (Some 0) (combine c (seq 0 (length c))).
+
+  Definition orelax (f : nat -> option Q) (k : Q) (v : nat) : option Q :=
+    fold_right (fun a acc => omin (oadd (k * snd a) (f (fst a))) acc) None (arcs v).
+
+  (** [labels] for the guarantee's rows: N lists of n integers or null, +∞ at dead nodes. *)
+  Definition glabels (xs : option (list (option Z))) : option (list (option Q)) :=
+    node_labels (match xs with Some l => Some (Some l) | None => Some None end).
+
+  Fixpoint all_some {A} (l : list (option A)) : option (list A) :=
+    match l with [] => Some [] | Some x :: l' => option_map (cons x) (all_some l') | None :: _ => None end.
+
+  Definition le_a (b a : list Q) : bool := forallb (fun p => Qle_bool (fst p) (snd p)) (combine b a).
+  Definition leqq (a b : list Q) : bool := Nat.eqb (length a) (length b) && forallb (fun p => Qeq_bool (fst p) (snd p)) (combine a b).
+  Definition qmaxl (a : list Q) : Q := fold_right qmax2 0 a.
+
+  (** The DP's equations for normal [i]: at the goals m_a(g) = a·d(g, g^.);
+      elsewhere m_a(v) = min(steps, dominated covers). *)
+  Definition dp_ok (m : list (list (option Q))) (i : nat) : option verdict :=
+    let A := normals in
+    let a := nth i A [] in
+    let mi := nth i m [] in
+    if negb (forallb (fun g => match get mi g with
+                              | Some x => Qeq_bool x (dotq a (map (fun j => Dv j g) types))
+                              | None => false end) (goals I)) then Some Undecided else
+    let dom := filter (fun j => negb (leqq (nth j A []) a) && le_a (nth j A []) a) (seq 0 (length A)) in
+    match (if Nat.eqb (length dom) O then Some [] else vertices (map (fun j => nth j A []) dom) a) with
+    | None => Some Undecided
+    | Some table =>
+        let best := fun v =>
+          if isgoal v then get mi v else
+          fold_right (fun c acc => omin acc (combine_at c (map (fun j => nth j m []) dom) v))
+                     (orelax (get mi) (qmaxl a) v) table in
+        if forallb (fun v => oeq (best v) (get mi v)) (seq 0 n) then None else Some Undecided
+    end.
+
+  Fixpoint first_v (f : nat -> option verdict) (l : list nat) : option verdict :=
+    match l with [] => None | x :: l' => match f x with Some v => Some v | None => first_v f l' end end.
+
+  (** The covers: each a list of one number >= 0 per normal. *)
+  Definition covers_ok (cs : list nums) : option (list (list Q)) :=
+    all_some (map (fun c => match c with
+                            | NList l => if Nat.eqb (length l) (length normals) then
+                                           match all_some l with
+                                           | Some mu => if forallb (fun x => Qle_bool 0 x) mu then Some mu else None
+                                           | None => None end
+                                         else None
+                            | NBad => None end) cs).
+
+  Definition ydir (lam : list Q) : list Q :=
+    map (fun i => dotq lam (map (fun a => nth i a 0) normals)) (seq 0 N).
+
+  (** The arc condition on the packing polytope's vertices not implied by the
+      DP's equations: the least cover bound at v is at most w + λ·m(u). *)
+  Definition arc_ok (m : list (list (option Q))) (mus : list (list Q)) : option verdict :=
+    let A := normals in
+    let units := map (fun j => map (fun i => if Nat.eqb i j then 1 else 0) (seq 0 N)) (seq 0 N) in
+    let extras := Nat.ltb (2 ^ N - 1) (length A) in
+    match vertices (A ++ units) (repeat 1 N) with
+    | None => Some Undecided
+    | Some vs =>
+        if forallb (fun lam0 =>
+          let lam := firstn (length A) lam0 in
+          let y := ydir lam in
+          let nz := length (filter (fun x => negb (Qeq_bool x 0)) lam) in
+          if Nat.eqb nz O || (Nat.eqb nz 1 && Qeq_bool (qmaxl y) 1) ||
+             (negb extras && forallb (fun x => Qeq_bool x 0 || Qeq_bool x 1) y) then true else
+          let cands := filter (fun mu => leqq (ydir mu) y) mus ++ [lam] in
+          forallb (fun v => isgoal v ||
+            le_ext (fold_right (fun mu acc => omin (combine_at mu m v) acc) None cands)
+                   (orelax (combine_at lam m) 1 v)) (seq 0 n)) vs
+        then None else Some Undecided
+    end.
+
+  (** The priority order: by decreasing prior, ties by index. *)
+  Fixpoint insert_by (t : nat) (l : list nat) : list nat :=
+    match l with
+    | [] => [t]
+    | x :: l' => if ltb (priorq x) (priorq t) || (Qeq_bool (priorq x) (priorq t) && Nat.ltb t x)
+                 then t :: l else x :: insert_by t l'
+    end.
+  Definition order : list nat := fold_right insert_by [] (rev types).
+
+  (** [_step]: σ of a prefix entering [u] from state [r], a point of F and the
+      lexicographic minimum by one dual per stage. *)
+  Definition nums_k (x : nums) (k : nat) : option (list Q) :=
+    match x with NList l => if Nat.eqb (length l) k then all_some l else None | NBad => None end.
+
+  Definition step_ok (m : list (list (option Q))) (rec : steprec) (r : list Q) (u : nat) (wt0 : Q)
+    : option verdict + list Q :=
+    let A := normals in
+    let o := order in
+    match nums_k (ssigma rec) N with
+    | None => inl (Some BadInput)
+    | Some sg =>
+      match sduals rec with
+      | None => inl (Some BadInput)
+      | Some duals =>
+        if negb (Nat.eqb (length duals) (N - 1)) then inl (Some BadInput) else
+        match all_some (map (fun i => get (nth i m []) u) (seq 0 (length A))) with
+        | None => inl (Some Undecided)
+        | Some mu =>
+          let beta := map (fun i => (dotq (nth i A []) r - nth i mu 0) / wt0) (seq 0 (length A)) in
+          if negb (forallb (fun x => Qle_bool 0 x) sg && Qeq_bool (qsum sg) 1 &&
+                   forallb (fun i => Qle_bool (nth i beta 0) (dotq (nth i A []) sg)) (seq 0 (length A)))
+          then inl (Some Undecided) else
+          let fix stages (k : nat) (ds : list dualrec) : option verdict :=
+            match ds with
+            | [] => None
+            | d :: ds' =>
+                match nums_k (dy d) (length A), nums_k (dfix d) k, dz d with
+                | Some y, Some fx, Some z =>
+                    let ok := forallb (fun x => Qle_bool 0 x) y &&
+                      forallb (fun i => Qle_bool (dotq y (map (fun a => nth i a 0) A) + z +
+                                                  dotq fx (map (fun j => if Nat.eqb j i then 1 else 0) o))
+                                                 (if Nat.eqb i (nth k o O) then 1 else 0)) (seq 0 N) &&
+                      Qle_bool (nth (nth k o O) sg 0) (dotq y beta + z + dotq fx (map (fun j => nth j sg 0) o)) in
+                    if ok then stages (S k) ds' else Some Undecided
+                | _, _, _ => Some BadInput
+                end
+            end in
+          match stages O duals with Some v => inl (Some v) | None => inr sg end
+        end
+      end
+    end.
+
+  (** σ at every prefix of the profile's walks, in the canonical order, with the
+      rule's state after each (r_0 = h, r ← r − w σ). *)
+  Fixpoint run_steps (m : list (list (option Q))) (steps : list steprec) (todo : list (list nat))
+           (q : nat) (acc : list (list nat * list Q * list Q)) : option verdict * list (list nat * list Q * list Q) :=
+    match todo with
+    | [] => (None, acc)
+    | pq :: todo' =>
+        let p := removelast pq in
+        let u := last pq O in
+        let r := if Nat.eqb (length p) 1 then gh else
+                 match find (fun e => leqb (fst (fst e)) p) acc with Some e => snd e | None => gh end in
+        let wt0 := wt (last p O) u in
+        if Nat.leb (length steps) q then (Some BadInput, acc) else
+        match step_ok m (nth q steps (mkStep NBad None)) r u wt0 with
+        | inl v => (v, acc)
+        | inr sg => run_steps m steps todo' (S q)
+                      (acc ++ [(pq, sg, map (fun i => nth i r 0 - wt0 * nth i sg 0) (seq 0 N))])
+        end
+    end.
+
+  Definition gtable (gw : gwit) (m : list (list (option Q))) : option verdict * list (list nat * list Q * list Q) :=
+    match gsteps gw with
+    | None => (Some BadInput, [])
+    | Some steps =>
+        match run_steps m steps mass_trie O [] with
+        | (Some v, acc) => (Some v, acc)
+        | (None, acc) => (if Nat.eqb (length steps) (length mass_trie) then None else Some BadInput, acc)
+        end
+    end.
+
+  (** The costs and the greedy test with the certified σ. *)
+  Definition gsig_t (tab : list (list nat * list Q * list Q)) (p : list nat) (v t : nat) : Q :=
+    match find (fun e => leqb (fst (fst e)) (p ++ [v])) tab with Some e => nth t (snd (fst e)) 0 | None => 0 end.
+
+  Fixpoint gwcost (tab : list (list nat * list Q * list Q)) (t : nat) (p : list nat) (l : list nat) : Q :=
+    match l with
+    | [] => Dv t (last p O)
+    | v :: l' => wt (last p O) v * gsig_t tab p v t + gwcost tab t (p ++ [v]) l'
+    end.
+
+  Definition gU (tab : list (list nat * list Q * list Q)) (t : nat) : Q :=
+    qsum (map (fun e => snd e * gwcost tab t (firstn 1 (fst e)) (tl (fst e))) (nth t (mix C) [])).
+
+  Definition ggreedy_at (tab : list (list nat * list Q * list Q)) (p : list nat) : bool :=
+    let top := qmax (map (fun t => mass t p) types) in
+    forallb (fun i => negb (ltb 0 top && ltb 0 (gsig_t tab (removelast p) (last p O) i) && ltb (mass i p) top)) types.
+
+  Definition decide_guarantee (gw : gwit) : verdict :=
+    let A := normals in
+    if negb (Nat.eqb (length (gm gw)) (length A)) then BadInput else
+    match all_some (map glabels (gm gw)) with
+    | None => BadInput
+    | Some m =>
+      match first_v (dp_ok m) (seq 0 (length A)) with
+      | Some v => v
+      | None =>
+        if negb (forallb (fun i => le_ext (Some (dotq (nth i A []) gh)) (get (nth i m []) (start I)))
+                         (seq 0 (length A))) then Undecided else
+        match covers_ok (gcovers gw) with
+        | None => BadInput
+        | Some mus =>
+          match arc_ok m mus with
+          | Some v => v
+          | None =>
+            match gtable gw m with
+            | (Some v, _) => v
+            | (None, tab) =>
+                if negb (forallb (ggreedy_at tab) mass_trie) then Refuted else
+                if forallb (fun t => Qle_bool (gU tab t) (nth t gh 0)) types then Pass else Undecided
+            end
+          end
+        end
+      end
+    end.
 End Kernel.
 
 (** ** The decision ([check._decide]), in its order. *)
@@ -428,8 +725,14 @@ Definition decide (I : instance) (P : profile) (W : witness) : verdict :=
       if negb (distances_ok I W) then Undecided else
       if negb (reach_ok I W) then BadInput else
       match crule C with
-      | RGuarantee => Undecided
+      | RGuarantee _ _ =>
+          if has_types W || has_counterexamples W then BadInput else
+          match wguarantee W with
+          | Some (Some gw) => decide_guarantee I W C gw
+          | _ => BadInput
+          end
       | RTable _ _ _ =>
+          if match wguarantee W with Some _ => true | None => false end then BadInput else
           if negb (forallb (walk_defined I W C) (all_walks C)) then Refuted else
           if negb (greedy_ok I W C) then Refuted else
           match first_some (counter_ok I W C) (counterexamples W) with

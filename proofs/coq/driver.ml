@@ -54,7 +54,7 @@ let profile () =
             let d = match next () with "0" -> DNone | "D" -> DDist (count q) | "P" -> DProgress
                                       | t -> failwith ("bad default " ^ t) in
             RTable (es, d, O)
-        | "G" -> RGuarantee
+        | "G" -> let h = count q in let ex = count (fun () -> count nat) in RGuarantee (h, ex)
         | t -> failwith ("bad rule " ^ t) in
       PN { ngoals; nmix; nrule }
   | "2" ->
@@ -76,6 +76,25 @@ let profile () =
 let labels () = match next () with
   | "-" -> None | "!" -> Some None | "+" -> Some (Some (count optz)) | t -> failwith ("bad labels " ^ t)
 
+let optq () = match !toks with "_" :: r -> toks := r; None | _ -> Some (q ())
+let nums () = match next () with
+  | "!" -> NBad | "+" -> NList (count optq) | t -> failwith ("bad numbers " ^ t)
+let dual () = let dy = nums () in let dfix = nums () in let dz = optq () in { dy; dfix; dz }
+let steprec () =
+  let ssigma = nums () in
+  let sduals = match next () with "!" -> None | "+" -> Some (count dual) | t -> failwith t in
+  { ssigma; sduals }
+let guarantee () = match next () with
+  | "-" -> None
+  | "!" -> Some None
+  | "+" ->
+      let gm = count (fun () -> match next () with
+        | "!" -> None | "+" -> Some (count optz) | t -> failwith ("bad labels " ^ t)) in
+      let gcovers = count nums in
+      let gsteps = match next () with "!" -> None | "+" -> Some (count steprec) | t -> failwith t in
+      Some (Some { gm; gcovers; gsteps })
+  | t -> failwith ("bad guarantee " ^ t)
+
 let witness () =
   let denominator = z () in
   let distances = if flag () then Some (count (fun () -> count optz)) else None in
@@ -83,7 +102,10 @@ let witness () =
   let wtypes = if flag () then Some (count (fun () ->
       let rec_ok = flag () in let rtrie = labels () in let rexit = labels () in
       let rP = labels () in let rQ = labels () in { rec_ok; rtrie; rexit; rP; rQ })) else None in
-  { denominator; distances; counterexamples; wtypes }
+  let has_types = flag () in
+  let has_counterexamples = flag () in
+  let wguarantee = guarantee () in
+  { denominator; distances; counterexamples; wtypes; has_types; has_counterexamples; wguarantee }
 
 let verdict_of_line line =
   toks := List.filter (fun t -> t <> "") (String.split_on_char ' ' line);

@@ -194,7 +194,9 @@ def _profile(doc: Any, index: dict[Any, int], n: int, goals: list[int], out: _Ou
                 len(set(map(tuple, extras))) == len(extras)
             if not ok or set(d) - {"rule", "h", "normals"}:
                 raise _Stop("bad-input")
-            out.add("G")
+            out.add("G", len(h), *(_q(x) for x in h), len(extras))  # type: ignore[arg-type]
+            for a in extras:
+                out.add(len(a), *a)
             return
         if type(d) is not dict or d.get("rule") != "table" or \
                 type(d.get("entries", [])) is not list:
@@ -272,6 +274,54 @@ def _labels(rec: dict[str, Any], key: str, out: _Out) -> None:
         out.add("+", len(xs), *("_" if x is None else _z(x) for x in xs))
 
 
+def _nums(raw: Any, out: _Out) -> None:
+    """A list of exact numbers (``_`` where an entry is none), or ``!`` when not a list."""
+    if type(raw) is not list:
+        out.add("!")
+        return
+    out.add("+", len(raw))
+    for x in raw:
+        v = _number(x)
+        out.add("_" if v is None else _q(v))
+
+
+def _guarantee(g: Any, out: _Out) -> None:
+    if type(g) is not dict or set(g) - {"m", "covers", "steps"} or type(g.get("m")) is not list:
+        out.add("!")
+        return
+    out.add("+", len(g["m"]))
+    for xs in g["m"]:
+        ys = _int_list(xs)
+        if ys is None:
+            out.add("!")
+        else:
+            out.add("+", len(ys), *("_" if x is None else _z(x) for x in ys))
+    covers = g.get("covers", [])
+    covers = covers if type(covers) is list else [None]
+    out.add(len(covers))
+    for c in covers:
+        _nums(c, out)
+    steps = g.get("steps")
+    if type(steps) is not list:
+        out.add("!")
+        return
+    out.add("+", len(steps))
+    for rec in steps:
+        rec = rec if type(rec) is dict else {}
+        _nums(rec.get("sigma"), out)
+        duals = rec.get("duals")
+        if type(duals) is not list:
+            out.add("!")
+            continue
+        out.add("+", len(duals))
+        for d in duals:
+            d = d if type(d) is dict else {}
+            _nums(d.get("y"), out)
+            _nums(d.get("fix"), out)
+            z = _number(d.get("z"))
+            out.add("_" if z is None else _q(z))
+
+
 def _witness(wit: dict[str, Any], index: dict[Any, int], n: int, N: int, out: _Out) -> None:
     S = wit.get("denominator")
     out.add(_z(S) if type(S) is int else "0")
@@ -298,15 +348,20 @@ def _witness(wit: dict[str, Any], index: dict[Any, int], n: int, N: int, out: _O
     types = wit.get("types")
     if type(types) is not list:
         out.add(0)
-        return
-    out.add(1, len(types))
-    for rec in types:
-        if type(rec) is not dict:
-            out.add(0, "-", "-", "-", "-")
-            continue
-        out.add(1 if set(rec) <= {"trie", "exit", "P", "Q"} else 0)
-        for key in ("trie", "exit", "P", "Q"):
-            _labels(rec, key, out)
+    else:
+        out.add(1, len(types))
+        for rec in types:
+            if type(rec) is not dict:
+                out.add(0, "-", "-", "-", "-")
+                continue
+            out.add(1 if set(rec) <= {"trie", "exit", "P", "Q"} else 0)
+            for key in ("trie", "exit", "P", "Q"):
+                _labels(rec, key, out)
+    out.add(int("types" in wit), int("counterexamples" in wit))
+    if "guarantee" in wit:
+        _guarantee(wit["guarantee"], out)
+    else:
+        out.add("-")
 
 
 def tokens(instance: bytes, profile: bytes, witness: bytes) -> str:

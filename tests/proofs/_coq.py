@@ -104,6 +104,9 @@ def mutants(triple: Docs, rng: random.Random, count: int) -> Iterator[tuple[str,
     witness's shape broken (denominator, a list's length, a record's keys)."""
     ib, pb, wb = triple
     w, prof, inst = json.loads(wb), json.loads(pb), json.loads(ib)
+    if "guarantee" in w:
+        yield from _guarantee_mutants(triple, rng, count)
+        return
     if "types" not in w:
         return
     made = 0
@@ -180,6 +183,92 @@ def mutants(triple: Docs, rng: random.Random, count: int) -> Iterator[tuple[str,
         made += 1
 
 
+def _moved(x: Any, rng: random.Random) -> str:
+    return str(Fraction(str(x)) + rng.choice([Fraction(1, 7), Fraction(-1, 7), Fraction(1, 2)]))
+
+
+def _guarantee_mutants(triple: Docs, rng: random.Random, count: int
+                       ) -> Iterator[tuple[str, Docs]]:
+    """Mutants of a guarantee-rule witness: a label m_a(v) moved by ``1/(k·S)`` or nulled, a
+    σ entry moved (with or without the sum kept at 1), a dual's or a cover's entry moved, the
+    rule's ``h`` or the prior moved, the record's shape broken."""
+    ib, pb, wb = triple
+    w, prof, inst = json.loads(wb), json.loads(pb), json.loads(ib)
+    made = 0
+    for _ in range(8 * count):
+        if made >= count:
+            return
+        m = copy.deepcopy(w)
+        g = m["guarantee"]
+        kind = rng.choice(["m label", "m label", "sigma", "sigma", "dual", "cover", "h",
+                           "prior", "shape"])
+        if kind == "m label":
+            k = rng.choice([2, 3, 7])
+            m["denominator"] *= k
+            m["distances"] = [[None if x is None else k * x for x in d] for d in m["distances"]]
+            g["m"] = [[None if x is None else k * x for x in row] for row in g["m"]]
+            row = rng.choice(g["m"])
+            i = rng.randrange(len(row))
+            row[i] = rng.choice([1, 0]) if row[i] is None else rng.choice(
+                [row[i] + 1, row[i] - 1, None])
+        elif kind in ("sigma", "dual"):
+            if not g["steps"]:
+                continue
+            st = rng.choice(g["steps"])
+            if kind == "sigma":
+                i, j = rng.sample(range(len(st["sigma"])), 2)
+                d = Fraction(rng.choice([1, 2]), 7)
+                st["sigma"][i] = str(Fraction(str(st["sigma"][i])) + d)
+                if rng.random() < 0.7:
+                    st["sigma"][j] = str(Fraction(str(st["sigma"][j])) - d)
+            else:
+                if not st["duals"]:
+                    continue
+                du = rng.choice(st["duals"])
+                key = rng.choice(["y", "z", "fix"] if du["fix"] else ["y", "z"])
+                if key == "z":
+                    du["z"] = _moved(du["z"], rng)
+                else:
+                    i = rng.randrange(len(du[key]))
+                    du[key][i] = _moved(du[key][i], rng)
+        elif kind == "cover":
+            if not g.get("covers"):
+                continue
+            c = rng.choice(g["covers"])
+            i = rng.randrange(len(c))
+            c[i] = _moved(c[i], rng)
+        elif kind == "shape":
+            how = rng.choice(["steps", "sigma", "duals", "key"])
+            if how == "steps" and g["steps"]:
+                g["steps"] = g["steps"][:-1]
+            elif how == "sigma" and g["steps"]:
+                g["steps"][0]["sigma"] = g["steps"][0]["sigma"][:-1]
+            elif how == "duals" and g["steps"]:
+                g["steps"][0]["duals"] = g["steps"][0]["duals"][1:]
+            else:
+                g.pop(rng.choice(["m", "steps"]))
+            kind = f"shape ({how})"
+        else:
+            if kind == "h":
+                p2 = copy.deepcopy(prof)
+                i = rng.randrange(len(p2["defender"]["h"]))
+                p2["defender"]["h"][i] = _moved(p2["defender"]["h"][i], rng)
+                ib2, pb2 = ib, as_bytes(p2)
+            else:
+                i2 = copy.deepcopy(inst)
+                pr = [Fraction(str(x)) for x in i2["prior"]]
+                a, b = rng.sample(range(len(pr)), 2)
+                d = min(pr[a] / 2, Fraction(1, 10))
+                pr[a], pr[b] = pr[a] - d, pr[b] + d
+                i2["prior"] = [str(x) for x in pr]
+                ib2, pb2 = as_bytes(i2), pb
+            yield f"guarantee {kind}", (ib2, pb2, _rehash(m, ib2, pb2))
+            made += 1
+            continue
+        yield f"guarantee {kind}", (ib, pb, as_bytes(m))
+        made += 1
+
+
 def conformance_triples(limit: int | None = None) -> Iterator[tuple[str, Docs]]:
     """Each conformance case with the solver's profile and the engine's witness."""
     from solver.adapter import solve_json
@@ -234,6 +323,42 @@ def grid_triples(rng: random.Random, count: int) -> Iterator[tuple[str, Docs]]:
             yield f"grid {R}x{R}", t
 
 
+NGOAL = ROOT / "tests" / "data" / "ngoal_cases.json"
+
+
+def guarantee_triples(rng: random.Random, count: int) -> Iterator[tuple[str, Docs]]:
+    """The N-goal conformance cases and ``count`` random N-goal instances (3 or 4 goals on
+    small random graphs), each with the solver's guarantee-rule profile and the engine's
+    witness (where the solver certifies one)."""
+    from solver.adapter import solve_json
+    from solver.errors import DPPError
+
+    docs = [(f"ngoal {c['name'].split(',')[0]}", c["instance"])
+            for c in json.loads(NGOAL.read_text())]
+    for k in range(count):
+        n, N = rng.randint(5, 7), rng.choice([3, 3, 4])
+        nodes = [f"v{i}" for i in range(n)]
+        edges = {(i, i + 1) for i in range(n - 1)} | {
+            tuple(sorted(rng.sample(range(n), 2))) for _ in range(n)}
+        goals = rng.sample(nodes[1:], N)
+        prior = [Fraction(rng.randint(1, 4)) for _ in range(N)]
+        prior = [x / sum(prior) for x in prior]
+        docs.append((f"random {k}", {
+            "graph": {"nodes": [{"id": x} for x in nodes],
+                      "edges": [{"source": nodes[a], "target": nodes[b],
+                                 "weight": rng.choice([1, 1, 2, "3/2"])}
+                                for a, b in sorted(edges)]},
+            "start": nodes[0], "goals": goals, "prior": [str(x) for x in prior]}))
+    for name, doc in docs:
+        try:
+            prof = solve_json(doc)
+        except DPPError:  # the solver's budget: no certified profile to check
+            continue
+        t = engine_triple(doc, prof)
+        if t is not None:
+            yield f"guarantee {name}", t
+
+
 def compare(named: Iterable[tuple[str, Docs]]) -> tuple[Counter[tuple[str, str, str]],
                                                          list[tuple[str, str, str]]]:
     """Run both kernels on every triple: the table (kind, Python, Coq) -> count and the
@@ -244,18 +369,20 @@ def compare(named: Iterable[tuple[str, Docs]]) -> tuple[Counter[tuple[str, str, 
     bad = []
     for (kind, docs), c in zip(named, coq, strict=True):
         p = python_verdict(docs)
-        table[(kind.split(" ")[0] if kind.startswith(("conformance", "pinned", "grid")) else kind,
-               p, c)] += 1
+        base = kind.startswith(("conformance", "pinned", "grid")) or (
+            kind.startswith("guarantee") and kind.split(" ")[1] in ("ngoal", "random"))
+        table[(kind.split(" ")[0] if base else kind, p, c)] += 1
         if p != c:
             bad.append((kind, p, c))
     return table, bad
 
 
-def corpus(rng: random.Random, cases: int | None, per: int, grids: int = 0
+def corpus(rng: random.Random, cases: int | None, per: int, grids: int = 0, ngoal: int = 0
            ) -> Iterator[tuple[str, Docs]]:
-    """Conformance, pinned and ``grids`` random grid triples, each followed by ``per``
-    mutants."""
-    for name, t in [*conformance_triples(cases), *pinned_triples(), *grid_triples(rng, grids)]:
+    """Conformance, pinned, ``grids`` random grid and ``ngoal`` random guarantee-rule
+    triples, each followed by ``per`` mutants."""
+    for name, t in [*conformance_triples(cases), *pinned_triples(), *grid_triples(rng, grids),
+                    *guarantee_triples(rng, ngoal)]:
         yield name, t
         yield from mutants(t, rng, per)
 
@@ -267,9 +394,11 @@ if __name__ == "__main__":
     ap.add_argument("--cases", type=int, default=None, help="conformance cases (default all)")
     ap.add_argument("--per", type=int, default=6, help="mutants per triple")
     ap.add_argument("--grids", type=int, default=12, help="random grid instances")
+    ap.add_argument("--ngoal", type=int, default=30, help="random guarantee-rule instances")
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args()
-    table, bad = compare(corpus(random.Random(args.seed), args.cases, args.per, args.grids))
+    table, bad = compare(corpus(random.Random(args.seed), args.cases, args.per, args.grids,
+                                args.ngoal))
     print("| corpus | Python kernel | extracted Coq checker | count |")
     print("|---|---|---|---|")
     for (k, p, c), n in sorted(table.items()):

@@ -1,8 +1,10 @@
 """The extracted Coq checker (proofs/coq: ``Kernel.decide``, proved sound in ``KSound.v``)
 gives exactly the Python kernel's verdict — pass, refuted, bad-input or undecided — on the
-pinned and conformance cases, on hypothesis-drawn two-goal and N-goal instances, and on
-mutants of every witness (labels moved by small rationals or nulled, mixture probabilities and
-priors moved, table entries changed).
+pinned and conformance cases (two goals, and N goals with the guarantee rule), on random grids,
+on random N-goal instances solved with the guarantee rule, on hypothesis-drawn two-goal and
+N-goal table instances, and on mutants of every witness (labels moved by small rationals or
+nulled, mixture probabilities, priors, table entries and the guarantee rule's h moved, its σ,
+duals and covers moved, witness shapes broken).
 
 The default run compares a few hundred witnesses; ``-m slow`` runs the full corpus (every
 conformance and pinned case, more mutants, more drawn instances: over 1,000 witnesses).
@@ -49,7 +51,7 @@ def _check(named: list[tuple[str, Any]]) -> Counter[tuple[str, str, str]]:
 
 @needs_checker
 def test_the_checkers_agree_on_pinned_and_conformance_cases_and_their_mutants() -> None:
-    table = _check(list(corpus(random.Random(1), 12, 3, grids=2)))
+    table = _check(list(corpus(random.Random(1), 12, 3, grids=2, ngoal=3)))
     verdicts = {p for _, p, _ in table}
     # a constant checker could not pass: the corpus holds passes, refutations and failures
     assert {"pass", "refuted", "undecided"} <= verdicts, table
@@ -79,7 +81,7 @@ def test_the_checkers_agree_on_drawn_n_goal_instances(case: Any) -> None:
 @pytest.mark.slow
 @needs_checker
 def test_the_checkers_agree_on_the_full_corpus() -> None:
-    table = _check(list(corpus(random.Random(0), None, 6, grids=12)))
+    table = _check(list(corpus(random.Random(0), None, 6, grids=12, ngoal=30)))
     assert sum(table.values()) >= 1000, table
 
 
