@@ -34,18 +34,21 @@ CASES = ROOT / "tests" / "data" / "conformance_cases.json"
 Docs = tuple[bytes, bytes, bytes]
 
 
-def _translate() -> Any:
-    sys.path.insert(0, str(ROOT / "proofs" / "coq"))
-    try:
-        import translate  # the glue is a standalone script of proofs/coq
-    finally:
-        sys.path.pop(0)
-    return translate.tokens
+def translator() -> Any:
+    """``proofs/coq/translate.py``'s :func:`tokens` (a standalone script, loaded by path)."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("coq_translate",
+                                                  ROOT / "proofs" / "coq" / "translate.py")
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.tokens
 
 
 def coq_verdicts(docs: Iterable[Docs]) -> list[str]:
     """The extracted checker's verdict on each triple (one process for all of them)."""
-    tokens = _translate()
+    tokens = translator()
     lines = [tokens(*d) for d in docs]
     out = subprocess.run([str(KCHECK)], input="\n".join(lines) + "\n", capture_output=True,
                          text=True, check=True, timeout=600)
@@ -279,8 +282,9 @@ def conformance_triples(limit: int | None = None) -> Iterator[tuple[str, Docs]]:
             yield f"conformance {case['name']}", t
 
 
-def pinned_triples() -> Iterator[tuple[str, Docs]]:
-    """Every pinned instance with the solver's profile, and every pinned profile."""
+def pinned_triples(quick: bool = False) -> Iterator[tuple[str, Docs]]:
+    """Every pinned instance with the solver's profile, and every pinned profile (``quick``:
+    fewer than four goals)."""
     from solver.adapter import solve_json
 
     names = sorted(p.stem for p in PINS.glob("*.json"))
@@ -289,7 +293,8 @@ def pinned_triples() -> Iterator[tuple[str, Docs]]:
             doc = json.loads((PINS / f"{name}.json").read_bytes())
         except ValueError:  # the pinned malformed documents
             continue
-        if not (isinstance(doc, dict) and "graph" in doc and "goals" in doc):
+        if not (isinstance(doc, dict) and "graph" in doc and "goals" in doc) or (
+                quick and len(doc["goals"]) >= 4):
             continue
         t = engine_triple(doc, solve_json(doc))
         if t is not None:
@@ -326,17 +331,19 @@ def grid_triples(rng: random.Random, count: int) -> Iterator[tuple[str, Docs]]:
 NGOAL = ROOT / "tests" / "data" / "ngoal_cases.json"
 
 
-def guarantee_triples(rng: random.Random, count: int) -> Iterator[tuple[str, Docs]]:
+def guarantee_triples(rng: random.Random, count: int, quick: bool = False
+                      ) -> Iterator[tuple[str, Docs]]:
     """The N-goal conformance cases and ``count`` random N-goal instances (3 or 4 goals on
     small random graphs), each with the solver's guarantee-rule profile and the engine's
-    witness (where the solver certifies one)."""
+    witness (where the solver certifies one); ``quick``: three goals only (a four-goal
+    vertex table takes seconds per witness, in either kernel)."""
     from solver.adapter import solve_json
     from solver.errors import DPPError
 
     docs = [(f"ngoal {c['name'].split(',')[0]}", c["instance"])
-            for c in json.loads(NGOAL.read_text())]
+            for c in json.loads(NGOAL.read_text()) if not quick or len(c["instance"]["goals"]) < 4]
     for k in range(count):
-        n, N = rng.randint(5, 7), rng.choice([3, 3, 4])
+        n, N = rng.randint(5, 7), 3 if quick else rng.choice([3, 3, 4])
         nodes = [f"v{i}" for i in range(n)]
         edges = {(i, i + 1) for i in range(n - 1)} | {
             tuple(sorted(rng.sample(range(n), 2))) for _ in range(n)}
@@ -377,12 +384,12 @@ def compare(named: Iterable[tuple[str, Docs]]) -> tuple[Counter[tuple[str, str, 
     return table, bad
 
 
-def corpus(rng: random.Random, cases: int | None, per: int, grids: int = 0, ngoal: int = 0
-           ) -> Iterator[tuple[str, Docs]]:
+def corpus(rng: random.Random, cases: int | None, per: int, grids: int = 0, ngoal: int = 0,
+           quick: bool = False) -> Iterator[tuple[str, Docs]]:
     """Conformance, pinned, ``grids`` random grid and ``ngoal`` random guarantee-rule
-    triples, each followed by ``per`` mutants."""
-    for name, t in [*conformance_triples(cases), *pinned_triples(), *grid_triples(rng, grids),
-                    *guarantee_triples(rng, ngoal)]:
+    triples, each followed by ``per`` mutants (``quick``: no four-goal instances)."""
+    for name, t in [*conformance_triples(cases), *pinned_triples(quick), *grid_triples(rng, grids),
+                    *guarantee_triples(rng, ngoal, quick)]:
         yield name, t
         yield from mutants(t, rng, per)
 
