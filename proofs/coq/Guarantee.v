@@ -251,7 +251,9 @@ Section Rule.
 
   (** The rule as a Defender of the game: [s] with the rule's state [rstate]
       (after the prefix ending at [u]) plays the lexicographic minimum of F
-      wherever F is not empty, and a distribution everywhere. *)
+      wherever F is not empty and the labels describe it ([Live]: finite
+      labels, at every node a walk of the game visits), and a distribution
+      everywhere. *)
   Variable s : wstrat nat V.
   Fixpoint rstate (h : list V) (u : V) : nat -> Q :=
     match h with
@@ -260,8 +262,10 @@ Section Rule.
     end.
   Definition betaF (r : nat -> Q) (v : V) (wt : Q) (k : nat) : Q :=
     (dotv N (nth k A []) r - nth k (m v) 0) / wt.
+  Variable Live : V -> Prop.                (* where the labels describe F (finite) *)
+  Hypothesis gamma_live : forall t p l, In t types -> In (p, l) (gamma t) -> forall x, In x l -> Live x.
   Hypothesis rule_dist : forall h u v, dist nat types (s h u v).
-  Hypothesis rule_lexmin : forall h u v, E u v ->
+  Hypothesis rule_lexmin : forall h u v, E u v -> Live v ->
     (exists x, inF N A (betaF (rstate h u) v (w u v)) x) ->
     lexmin N A (betaF (rstate h u) v (w u v)) o (s h u v).
 
@@ -292,22 +296,25 @@ Section Rule.
   (** Along a profile walk, the rule's σ and state are the certified ones. *)
   Lemma along : forall t p, In t types -> forall l0, In (p, l0) (gamma t) ->
     forall l h u, (forall q, In q (steps V h u l) -> In q (steps V [] s0 l0)) ->
+    (forall x, In x l -> Live x) ->
     pwalk V E isgoal u l -> (forall i, In i types -> rstate h u i == rc h u i) ->
     forall q v' u' h', In q (steps V h u l) -> q = v' :: u' :: h' ->
       (forall i, In i types -> s h' u' v' i == cert q i) /\ (forall i, In i types -> rstate h' u' i == rc h' u' i).
   Proof.
-    intros t p Ht l0 Hpl. induction l as [| v l IH]; intros h u Hsub Hw Hr q v' u' h' Hq Heq; [destruct Hq |].
+    intros t p Ht l0 Hpl. induction l as [| v l IH]; intros h u Hsub Hlv Hw Hr q v' u' h' Hq Heq; [destruct Hq |].
     destruct Hw as [_ [Huv Hw]].
     assert (Hq0 := cert_ok t p l0 (v :: u :: h) v u h Ht Hpl (Hsub _ (or_introl eq_refl)) eq_refl).
     apply (lexmin_ext N A _ (betaF (rstate h u) v (w u v))) in Hq0;
       [| intros k; symmetry; apply betaF_ext; exact Hr].
     assert (Hs0 : lexmin N A (betaF (rstate h u) v (w u v)) o (s h u v)).
-    { apply rule_lexmin; [exact Huv |]. exists (cert (v :: u :: h)). exact (proj1 Hq0). }
+    { apply rule_lexmin; [exact Huv | apply Hlv; left; reflexivity |].
+      exists (cert (v :: u :: h)). exact (proj1 Hq0). }
     assert (Heqs : forall i, In i types -> s h u v i == cert (v :: u :: h) i)
       by exact (lexmin_unique N A _ o o_perm _ _ Hs0 Hq0).
     destruct Hq as [<- | Hq].
     - inversion Heq; subst. split; assumption.
-    - apply (IH (u :: h) v); [intros q' Hq'; apply Hsub; right; exact Hq' | exact Hw | | exact Hq | exact Heq].
+    - apply (IH (u :: h) v); [intros q' Hq'; apply Hsub; right; exact Hq' |
+        intros x Hx; apply Hlv; right; exact Hx | exact Hw | | exact Hq | exact Heq].
       intros i Hi. simpl. rewrite (Hr i Hi), (Heqs i Hi). reflexivity.
   Qed.
 
@@ -327,15 +334,17 @@ Section Rule.
 
   Lemma J_Jc : forall t p, In t types -> forall l0, In (p, l0) (gamma t) ->
     forall l h u, (forall q, In q (steps V h u l) -> In q (steps V [] s0 l0)) ->
+    (forall x, In x l -> Live x) ->
     pwalk V E isgoal u l -> (forall i, In i types -> rstate h u i == rc h u i) ->
     J nat V w dterm t s h u l == Jc t h u l.
   Proof.
-    intros t p Ht l0 Hpl. induction l as [| v l IH]; intros h u Hsub Hw Hr; simpl; [reflexivity |].
-    destruct (along t p Ht l0 Hpl (v :: l) h u Hsub Hw Hr (v :: u :: h) v u h (or_introl eq_refl) eq_refl)
+    intros t p Ht l0 Hpl. induction l as [| v l IH]; intros h u Hsub Hlv Hw Hr; simpl; [reflexivity |].
+    destruct (along t p Ht l0 Hpl (v :: l) h u Hsub Hlv Hw Hr (v :: u :: h) v u h (or_introl eq_refl) eq_refl)
       as [Hs _].
     destruct Hw as [Hng [Huv Hw']].
-    rewrite (Hs t Ht). rewrite (IH (u :: h) v); [reflexivity | | exact Hw' |].
+    rewrite (Hs t Ht). rewrite (IH (u :: h) v); [reflexivity | | | exact Hw' |].
     - intros q Hq. apply Hsub. right. exact Hq.
+    - intros x Hx. apply Hlv. right. exact Hx.
     - intros i Hi. simpl. rewrite (Hr i Hi), (Hs i Hi). reflexivity.
   Qed.
 
@@ -350,16 +359,17 @@ Section Rule.
       apply (Qle_trans _ (Ucert t)); [| exact (U_ok t Ht)].
       unfold Ucert. apply Qle_lteq. right. apply sumL_ext. intros [p l0] Hin. simpl.
       destruct (gamma_valid t Ht) as [_ Hall]. destruct (Hall p l0 Hin) as [_ Hw].
-      rewrite (J_Jc t p Ht l0 Hin l0 [] s0 (fun q Hq => Hq) (gwalk_pwalk V E isgoal l0 s0 Hw)
-                 (fun i _ => Qeq_refl _)).
+      rewrite (J_Jc t p Ht l0 Hin l0 [] s0 (fun q Hq => Hq) (gamma_live t p l0 Ht Hin)
+                 (gwalk_pwalk V E isgoal l0 s0 Hw) (fun i _ => Qeq_refl _)).
       reflexivity.
     - intros q Hon.
       destruct (on_path_step nat types V Vdec s0 prior prior_nonneg gamma q Hon) as [t [p [l0 [Ht [Hpl Hq]]]]].
       destruct (steps_shape V l0 [] s0 q Hq) as [v [k Hk]].
       destruct (k ++ [s0]) as [| u h] eqn:Hks; [destruct k; discriminate |]. subst q.
       destruct (gamma_valid t Ht) as [_ Hall]. destruct (Hall p l0 Hpl) as [_ Hw].
-      destruct (along t p Ht l0 Hpl l0 [] s0 (fun q Hq => Hq) (gwalk_pwalk V E isgoal l0 s0 Hw)
-                  (fun i _ => Qeq_refl _) (v :: u :: h) v u h Hq eq_refl) as [Hs _].
+      destruct (along t p Ht l0 Hpl l0 [] s0 (fun q Hq => Hq) (gamma_live t p l0 Ht Hpl)
+                  (gwalk_pwalk V E isgoal l0 s0 Hw) (fun i _ => Qeq_refl _) (v :: u :: h) v u h Hq eq_refl)
+        as [Hs _].
       intros t1 t2 Ht1 Ht2 Hpos. cbn [sig_at of_w] in Hpos. rewrite (Hs t1 Ht1) in Hpos.
       exact (greedy_cert (v :: u :: h) v u h Hon eq_refl t1 t2 Ht1 Ht2 Hpos).
   Qed.

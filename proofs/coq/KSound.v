@@ -83,15 +83,22 @@ Section Final.
   Lemma mix_in : forall t, (t < N I)%nat -> In (nth t (mix C) []) (mix C).
   Proof. intros t Ht. apply nth_In. lia. Qed.
 
-  Lemma mix_walk : forall t e, (t < N I)%nat -> In e (nth t (mix C) []) ->
-    0 <= snd e /\ exists l, fst e = start I :: l /\ gwalk nat E (isgoal I) (start I) l /\
-                            walk_defined I W C (fst e) = true.
+  Lemma mix_walk0 : forall t e, (t < N I)%nat -> In e (nth t (mix C) []) ->
+    0 <= snd e /\ exists l, fst e = start I :: l /\ gwalk nat E (isgoal I) (start I) l.
   Proof.
     intros t e Ht He. pose proof (Hmix _ (mix_in t Ht)) as Hm.
     unfold mixture_ok in Hm. repeat rewrite andb_true_iff in Hm. destruct Hm as [[[_ Hall] _] _].
     rewrite forallb_forall in Hall. specialize (Hall e He). apply andb_true_iff in Hall as [Hp Hw].
     apply Qle_bool_iff in Hp. split; [exact Hp |].
-    destruct (walk_ok_true I _ Hw) as [l [Hl [Hg _]]]. exists l. split; [exact Hl | split; [exact Hg |]].
+    destruct (walk_ok_true I _ Hw) as [l [Hl [Hg _]]]. exists l. auto.
+  Qed.
+
+  Lemma mix_walk : forall t e, (t < N I)%nat -> In e (nth t (mix C) []) ->
+    0 <= snd e /\ exists l, fst e = start I :: l /\ gwalk nat E (isgoal I) (start I) l /\
+                            walk_defined I W C (fst e) = true.
+  Proof.
+    intros t e Ht He. destruct (mix_walk0 t e Ht He) as [Hp [l [Hl Hg]]].
+    split; [exact Hp |]. exists l. split; [exact Hl | split; [exact Hg |]].
     unfold all_walks in Hdef. rewrite forallb_forall in Hdef. apply Hdef.
     apply in_flat_map. exists (nth t (mix C) []). split; [exact (mix_in t Ht) | apply in_map; exact He].
   Qed.
@@ -103,7 +110,7 @@ Section Final.
       pose proof (Hmix _ (mix_in t ltac:(lia))) as Hm. unfold mixture_ok in Hm.
       apply andb_true_iff in Hm as [_ Hs]. apply Qeq_bool_iff in Hs. rewrite <- Hs, qsum_sumL. reflexivity.
     - intros p l Hin. unfold gamma in Hin. apply in_map_iff in Hin as [e [Heq He]]. inversion Heq; subst.
-      destruct (mix_walk t e ltac:(lia) He) as [Hp [l [Hl [Hg _]]]]. rewrite Hl. simpl. auto.
+      destruct (mix_walk0 t e ltac:(lia) He) as [Hp [l [Hl Hg]]]. rewrite Hl. simpl. auto.
   Qed.
 
   (** The kernel's costs along the profile's walks are the game's. *)
@@ -139,7 +146,7 @@ Section Final.
     apply Qmult_comp; [reflexivity |]. rewrite qsum_sumL, sumL_map. apply sumL_ext. intros e He. simpl.
     destruct (Nat.lt_ge_cases t (N I)) as [Ht | Ht].
     2: { rewrite nth_overflow in He by lia. destruct He. }
-    destruct (mix_walk t e Ht He) as [_ [l [Hl _]]]. rewrite Hl. simpl tl.
+    destruct (mix_walk0 t e Ht He) as [_ [l [Hl _]]]. rewrite Hl. simpl tl.
     unfold visits. destruct (in_dec (list_eq_dec Nat.eq_dec) q (steps nat [] (start I) l)) as [Hin | Hnin].
     - apply (step_prefix (start I) l q Hq) in Hin. rewrite Hin. ring.
     - destruct (is_prefix (rev q) (start I :: l)) eqn:Hp; [| ring].

@@ -96,7 +96,7 @@ Section Read.
         (forall e, In e es -> walk_ok I false (fst e) = true /\ dist_ok I (snd e) = true) /\
         (g < N I)%nat /\
         match d with DDist q => dist_ok I q = true | DProgress => N I = 2%nat | DNone => True end
-    | RGuarantee h _ => length h = N I
+    | RGuarantee h ex => length h = N I /\ (forall a, In a ex -> length a = N I)
     end.
 
   Lemma read_profile_spec : forall P C, read_profile I P = Some C ->
@@ -117,8 +117,12 @@ Section Read.
         destruct d as [| q |]; [| destruct (dist_ok I q) eqn:Hq |]; try discriminate;
           inversion H; subst; simpl; (split; [exact Hl | split; [exact Hm |]]);
           (split; [exact Hes | split; [lia | auto]]).
-      + destruct (Nat.eqb (length h) (N I)) eqn:Hh; [| discriminate].
-        inversion H; subst. simpl. apply Nat.eqb_eq in Hh. auto.
+      + destruct (Nat.eqb (length h) (N I) && forallb (fun a => Nat.eqb (length a) (N I)) ex) eqn:Hh;
+          [| discriminate].
+        apply andb_true_iff in Hh as [Hh Hex]. rewrite forallb_forall in Hex.
+        inversion H; subst. simpl. apply Nat.eqb_eq in Hh.
+        split; [exact Hl | split; [exact Hm | split; [exact Hh |]]].
+        intros a Ha. apply Nat.eqb_eq, Hex, Ha.
     - destruct (find_index (tprimary p) (goals I)) as [first |] eqn:Hf; [| discriminate].
       destruct (find_index (tsecondary p) (goals I)) as [second |] eqn:Hs; [| discriminate].
       destruct (Nat.eqb first second || negb (Nat.eqb (N I) 2)) eqn:Hfs; [discriminate |].

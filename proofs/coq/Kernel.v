@@ -181,7 +181,9 @@ Section Kernel.
             | DDist q => if dist_ok q then Some (mkCanon (nmix p) (RTable es (DDist q) O)) else None
             | DProgress => None
             end
-        | RGuarantee h ex => if Nat.eqb (length h) N then Some (mkCanon (nmix p) (RGuarantee h ex)) else None
+        | RGuarantee h ex =>
+            if Nat.eqb (length h) N && forallb (fun a => Nat.eqb (length a) N) ex
+            then Some (mkCanon (nmix p) (RGuarantee h ex)) else None
         end
     | P2 p =>
         match find_index (tprimary p) (goals I), find_index (tsecondary p) (goals I) with
@@ -600,6 +602,28 @@ Section Kernel.
   Definition nums_k (x : nums) (k : nat) : option (list Q) :=
     match x with NList l => if Nat.eqb (length l) k then all_some l else None | NBad => None end.
 
+  (** Stage by stage from [k]: the dual parses ([BadInput] otherwise) and proves
+      σ_{o_k} minimal ([Undecided] otherwise). *)
+  Definition stage_holds (A : list (list Q)) (o : list nat) (sg beta : list Q) (k : nat)
+             (y fx : list Q) (z : Q) : bool :=
+    forallb (fun x => Qle_bool 0 x) y &&
+    forallb (fun i => Qle_bool (dotq y (map (fun a => nth i a 0) A) + z +
+                                dotq fx (map (fun j => if Nat.eqb j i then 1 else 0) o))
+                               (if Nat.eqb i (nth k o O) then 1 else 0)) (seq 0 N) &&
+    Qle_bool (nth (nth k o O) sg 0) (dotq y beta + z + dotq fx (map (fun j => nth j sg 0) o)).
+
+  Fixpoint stages (A : list (list Q)) (o : list nat) (sg beta : list Q) (k : nat) (ds : list dualrec)
+    : option verdict :=
+    match ds with
+    | [] => None
+    | d :: ds' =>
+        match nums_k (dy d) (length A), nums_k (dfix d) k, dz d with
+        | Some y, Some fx, Some z =>
+            if stage_holds A o sg beta k y fx z then stages A o sg beta (S k) ds' else Some Undecided
+        | _, _, _ => Some BadInput
+        end
+    end.
+
   Definition step_ok (m : list (list (option Q))) (rec : steprec) (r : list Q) (u : nat) (wt0 : Q)
     : option verdict + list Q :=
     let A := normals in
@@ -618,47 +642,36 @@ Section Kernel.
           if negb (forallb (fun x => Qle_bool 0 x) sg && Qeq_bool (qsum sg) 1 &&
                    forallb (fun i => Qle_bool (nth i beta 0) (dotq (nth i A []) sg)) (seq 0 (length A)))
           then inl (Some Undecided) else
-          let fix stages (k : nat) (ds : list dualrec) : option verdict :=
-            match ds with
-            | [] => None
-            | d :: ds' =>
-                match nums_k (dy d) (length A), nums_k (dfix d) k, dz d with
-                | Some y, Some fx, Some z =>
-                    let ok := forallb (fun x => Qle_bool 0 x) y &&
-                      forallb (fun i => Qle_bool (dotq y (map (fun a => nth i a 0) A) + z +
-                                                  dotq fx (map (fun j => if Nat.eqb j i then 1 else 0) o))
-                                                 (if Nat.eqb i (nth k o O) then 1 else 0)) (seq 0 N) &&
-                      Qle_bool (nth (nth k o O) sg 0) (dotq y beta + z + dotq fx (map (fun j => nth j sg 0) o)) in
-                    if ok then stages (S k) ds' else Some Undecided
-                | _, _, _ => Some BadInput
-                end
-            end in
-          match stages O duals with Some v => inl (Some v) | None => inr sg end
+          match stages A o sg beta O duals with Some v => inl (Some v) | None => inr sg end
         end
       end
     end.
 
-  (** σ at every prefix of the profile's walks, in the canonical order, with the
-      rule's state after each (r_0 = h, r ← r − w σ). *)
+  (** σ at every prefix of the profile's walks, in the canonical order (the mass
+      trie's), with the rule's state after each (r_0 = h, r ← r − w σ). *)
+  Definition tentry := (list Q * list Q)%type.   (* σ at the prefix, the state after it *)
+
+  Definition parent_state (acc : list tentry) (p : list nat) : list Q :=
+    match index_of p mass_trie with Some j => snd (nth j acc ([], gh)) | None => gh end.
+
   Fixpoint run_steps (m : list (list (option Q))) (steps : list steprec) (todo : list (list nat))
-           (q : nat) (acc : list (list nat * list Q * list Q)) : option verdict * list (list nat * list Q * list Q) :=
+           (q : nat) (acc : list tentry) : option verdict * list tentry :=
     match todo with
     | [] => (None, acc)
     | pq :: todo' =>
         let p := removelast pq in
         let u := last pq O in
-        let r := if Nat.eqb (length p) 1 then gh else
-                 match find (fun e => leqb (fst (fst e)) p) acc with Some e => snd e | None => gh end in
+        let r := parent_state acc p in
         let wt0 := wt (last p O) u in
         if Nat.leb (length steps) q then (Some BadInput, acc) else
         match step_ok m (nth q steps (mkStep NBad None)) r u wt0 with
         | inl v => (v, acc)
         | inr sg => run_steps m steps todo' (S q)
-                      (acc ++ [(pq, sg, map (fun i => nth i r 0 - wt0 * nth i sg 0) (seq 0 N))])
+                      (acc ++ [(sg, map (fun i => nth i r 0 - wt0 * nth i sg 0) (seq 0 N))])
         end
     end.
 
-  Definition gtable (gw : gwit) (m : list (list (option Q))) : option verdict * list (list nat * list Q * list Q) :=
+  Definition gtable (gw : gwit) (m : list (list (option Q))) : option verdict * list tentry :=
     match gsteps gw with
     | None => (Some BadInput, [])
     | Some steps =>
@@ -669,19 +682,19 @@ Section Kernel.
     end.
 
   (** The costs and the greedy test with the certified σ. *)
-  Definition gsig_t (tab : list (list nat * list Q * list Q)) (p : list nat) (v t : nat) : Q :=
-    match find (fun e => leqb (fst (fst e)) (p ++ [v])) tab with Some e => nth t (snd (fst e)) 0 | None => 0 end.
+  Definition gsig_t (tab : list tentry) (p : list nat) (v t : nat) : Q :=
+    match index_of (p ++ [v]) mass_trie with Some i => nth t (fst (nth i tab ([], []))) 0 | None => 0 end.
 
-  Fixpoint gwcost (tab : list (list nat * list Q * list Q)) (t : nat) (p : list nat) (l : list nat) : Q :=
+  Fixpoint gwcost (tab : list tentry) (t : nat) (p : list nat) (l : list nat) : Q :=
     match l with
     | [] => Dv t (last p O)
     | v :: l' => wt (last p O) v * gsig_t tab p v t + gwcost tab t (p ++ [v]) l'
     end.
 
-  Definition gU (tab : list (list nat * list Q * list Q)) (t : nat) : Q :=
+  Definition gU (tab : list tentry) (t : nat) : Q :=
     qsum (map (fun e => snd e * gwcost tab t (firstn 1 (fst e)) (tl (fst e))) (nth t (mix C) [])).
 
-  Definition ggreedy_at (tab : list (list nat * list Q * list Q)) (p : list nat) : bool :=
+  Definition ggreedy_at (tab : list tentry) (p : list nat) : bool :=
     let top := qmax (map (fun t => mass t p) types) in
     forallb (fun i => negb (ltb 0 top && ltb 0 (gsig_t tab (removelast p) (last p O) i) && ltb (mass i p) top)) types.
 
