@@ -82,11 +82,8 @@ def ensure_env(extras: tuple[str, ...] = ()) -> None:
 
 def _coq_deps(path: Path) -> set[str]:
     """The files of proofs/coq that ``path`` requires (its ``From DPP Require Import`` lines)."""
-    names: set[str] = set()
-    for line in path.read_text().splitlines():
-        if line.startswith("From DPP Require Import"):
-            names |= {f"{n}.v" for n in line.rstrip(".").split()[4:]}
-    return names
+    return {f"{n}.v" for group in re.findall(r"From DPP Require Import([^.]*)\.", path.read_text())
+            for n in group.split()}
 
 
 def coq_build() -> bool:

@@ -566,25 +566,33 @@ Section Kernel.
   Definition ydir (lam : list Q) : list Q :=
     map (fun i => dotq lam (map (fun a => nth i a 0) normals)) (seq 0 N).
 
-  (** The arc condition on the packing polytope's vertices not implied by the
-      DP's equations: the least cover bound at v is at most w + λ·m(u). *)
-  Definition arc_ok (m : list (list (option Q))) (mus : list (list Q)) : option verdict :=
-    let A := normals in
+  (** The packing polytope's vertices (the normals' coordinates of the basic
+      solutions of Σ λ_a a + slack = 1) that the DP's equations do not imply:
+      the arc condition's directions; [None] beyond the kernel's bound. *)
+  Definition implied (lam : list Q) : bool :=
+    let y := ydir lam in
+    let nz := length (filter (fun x => negb (Qeq_bool x 0)) lam) in
+    Nat.eqb nz O || (Nat.eqb nz 1 && Qeq_bool (qmaxl y) 1) ||
+    (negb (Nat.ltb (2 ^ N - 1) (length normals)) && forallb (fun x => Qeq_bool x 0 || Qeq_bool x 1) y).
+
+  Definition arc_dirs : option (list (list Q)) :=
     let units := map (fun j => map (fun i => if Nat.eqb i j then 1 else 0) (seq 0 N)) (seq 0 N) in
-    let extras := Nat.ltb (2 ^ N - 1) (length A) in
-    match vertices (A ++ units) (repeat 1 N) with
+    match vertices (normals ++ units) (repeat 1 N) with
+    | None => None
+    | Some vs => Some (filter (fun lam => negb (implied lam)) (map (firstn (length normals)) vs))
+    end.
+
+  (** The arc condition in those directions: the least cover bound of y_λ·r
+      on F_v is at most w + λ·m(u) on every arc of every non-goal node. *)
+  Definition arc_ok (m : list (list (option Q))) (mus : list (list Q)) : option verdict :=
+    match arc_dirs with
     | None => Some Undecided
-    | Some vs =>
-        if forallb (fun lam0 =>
-          let lam := firstn (length A) lam0 in
-          let y := ydir lam in
-          let nz := length (filter (fun x => negb (Qeq_bool x 0)) lam) in
-          if Nat.eqb nz O || (Nat.eqb nz 1 && Qeq_bool (qmaxl y) 1) ||
-             (negb extras && forallb (fun x => Qeq_bool x 0 || Qeq_bool x 1) y) then true else
-          let cands := filter (fun mu => leqq (ydir mu) y) mus ++ [lam] in
+    | Some ds =>
+        if forallb (fun lam =>
+          let cands := filter (fun mu => leqq (ydir mu) (ydir lam)) mus ++ [lam] in
           forallb (fun v => isgoal v ||
             le_ext (fold_right (fun mu acc => omin (combine_at mu m v) acc) None cands)
-                   (orelax (combine_at lam m) 1 v)) (seq 0 n)) vs
+                   (orelax (combine_at lam m) 1 v)) (seq 0 n)) ds
         then None else Some Undecided
     end.
 
@@ -625,24 +633,24 @@ Section Kernel.
     end.
 
   Definition step_ok (m : list (list (option Q))) (rec : steprec) (r : list Q) (u : nat) (wt0 : Q)
-    : option verdict + list Q :=
+    : verdict + list Q :=
     let A := normals in
     let o := order in
     match nums_k (ssigma rec) N with
-    | None => inl (Some BadInput)
+    | None => inl BadInput
     | Some sg =>
       match sduals rec with
-      | None => inl (Some BadInput)
+      | None => inl BadInput
       | Some duals =>
-        if negb (Nat.eqb (length duals) (N - 1)) then inl (Some BadInput) else
+        if negb (Nat.eqb (length duals) (N - 1)) then inl BadInput else
         match all_some (map (fun i => get (nth i m []) u) (seq 0 (length A))) with
-        | None => inl (Some Undecided)
+        | None => inl Undecided
         | Some mu =>
           let beta := map (fun i => (dotq (nth i A []) r - nth i mu 0) / wt0) (seq 0 (length A)) in
           if negb (forallb (fun x => Qle_bool 0 x) sg && Qeq_bool (qsum sg) 1 &&
                    forallb (fun i => Qle_bool (nth i beta 0) (dotq (nth i A []) sg)) (seq 0 (length A)))
-          then inl (Some Undecided) else
-          match stages A o sg beta O duals with Some v => inl (Some v) | None => inr sg end
+          then inl Undecided else
+          match stages A o sg beta O duals with Some v => inl v | None => inr sg end
         end
       end
     end.
@@ -665,7 +673,7 @@ Section Kernel.
         let wt0 := wt (last p O) u in
         if Nat.leb (length steps) q then (Some BadInput, acc) else
         match step_ok m (nth q steps (mkStep NBad None)) r u wt0 with
-        | inl v => (v, acc)
+        | inl v => (Some v, acc)
         | inr sg => run_steps m steps todo' (S q)
                       (acc ++ [(sg, map (fun i => nth i r 0 - wt0 * nth i sg 0) (seq 0 N))])
         end
