@@ -669,3 +669,317 @@ Section Link.
     pose proof (qmax_ge _ _ (in_map (fun t => Kernel.mass I C t (rev (u :: hh) ++ [v])) _ _ Ht')). lra.
   Qed.
 End Link.
+
+(** ** NR.2 in the kernel's terms, and what the kernel's checks give it. *)
+Section NR2.
+  Variable I : instance.
+  Variable W : witness.
+  Variable C : canon.
+  Variable m : list (list (option Q)).
+  Notation A := (normals I C).
+
+  (** The premises NR.2 needs, as the kernel checks them: the labels satisfy the
+      rule's DP equations (NR.1(c)); h ∈ F_{s0}; and on every arc (v, u) of the
+      game with finite labels, every r ∈ F_v satisfies λ·(A r) ≤ w + λ·m(u) in
+      every direction λ of [arc_dirs] (the packing polytope's vertices the DP's
+      equations do not imply). *)
+  Definition nr2_premises : Prop :=
+    (forall i, (i < length A)%nat -> dp_ok I W C m i = None) /\
+    (forall i x, (i < length A)%nat -> get (nth i m []) (start I) = Some x ->
+                 dotv (N I) (nth i A []) (fun j => nth j (gh C) 0) <= x) /\
+    (forall ds lam, arc_dirs I C = Some ds -> In lam ds ->
+       forall v u, has_arc I v u = true -> isgoal I v = false -> live I C m v -> live I C m u ->
+       forall r, (forall i, (i < length A)%nat -> dotv (N I) (nth i A []) r <= nth i (mq I C m v) 0) ->
+       sumL (fun a => nth a lam 0 * dotv (N I) (nth a A []) r) (seq 0 (length A)) <=
+       wt I v u + sumL (fun a => nth a lam 0 * nth a (mq I C m u) 0) (seq 0 (length A))).
+
+  (** NR.2 (proofs/NRULE.md, the one step that stays a written proof): under
+      those premises every walk of the game costs type t at least h_t against
+      a Defender that follows the rule.  It includes the Farkas part of NR.2
+      (the directions of [arc_dirs] describe F_u + wΔ, NG.8(c)) and why the
+      implied directions may be skipped (K.7). *)
+  Definition NR2 (s : wstrat nat nat) : Prop :=
+    nr2_premises -> forall t, In t (types I) -> forall l, gwalk nat (fun a b => has_arc I a b = true) (isgoal I) (start I) l ->
+      nth t (gh C) 0 <= J nat nat (wt I) (Dv W) t s [] (start I) l.
+
+  (** *** The kernel's checks establish the premises. *)
+  Lemma first_v_none : forall f l, first_v f l = None -> forall x, In x l -> f x = None.
+  Proof.
+    intros f. induction l as [| y l IH]; intros H x Hx; [destruct Hx |]. cbn [first_v] in H.
+    destruct (f y) eqn:E; [discriminate |]. destruct Hx as [<- | Hx]; [exact E | exact (IH H x Hx)].
+  Qed.
+
+  Hypothesis Hinst2 : instance_ok I = true.
+
+  Lemma live_get : forall v mu, all_some (map (fun i => get (nth i m []) v) (seq 0 (length A))) = Some mu ->
+    forall j, (j < length A)%nat -> get (nth j m []) v = Some (nth j (mq I C m v) 0).
+  Proof.
+    intros v mu H j Hj. pose proof (all_some_nth _ _ _ j 0 H ltac:(rewrite map_length, seq_length; exact Hj)) as Hn.
+    rewrite (nth_map_lt _ _ _ (seq 0 (length A)) j O None) in Hn by (rewrite seq_length; exact Hj).
+    rewrite seq_nth in Hn by exact Hj. simpl in Hn. rewrite Hn. unfold mq.
+    rewrite (nth_map_lt _ _ _ (seq 0 (length A)) j O 0) by (rewrite seq_length; exact Hj).
+    rewrite seq_nth by exact Hj. simpl. rewrite Hn. reflexivity.
+  Qed.
+
+  Lemma combine_at_live : forall v, live I C m v -> forall c, (length c <= length A)%nat ->
+    exists b, combine_at c m v = Some b /\
+              b == sumL (fun a => nth a c 0 * nth a (mq I C m v) 0) (seq 0 (length c)).
+  Proof.
+    intros v [mu Hmu] c Hc. unfold combine_at.
+    assert (Hgen : forall c k, (k + length c <= length A)%nat ->
+      exists b, fold_right (fun jc acc => if Qeq_bool (fst jc) 0 then acc else
+                              match acc, get (nth (snd jc) m []) v with
+                              | Some x, Some y => Some (x + fst jc * y)
+                              | _, _ => None end) (Some 0) (combine c (seq k (length c))) = Some b /\
+                b == sumL (fun a => nth a c 0 * nth (k + a) (mq I C m v) 0) (seq 0 (length c))).
+    { induction c0 as [| x c0 IH]; intros k Hk.
+      - exists 0. split; reflexivity.
+      - destruct (IH (S k) ltac:(simpl in Hk; lia)) as [b [Hb Hbe]].
+        change (combine (x :: c0) (seq k (length (x :: c0)))) with ((x, k) :: combine c0 (seq (S k) (length c0))).
+        cbn [fold_right fst snd]. rewrite Hb.
+        assert (Hsum : sumL (fun a => nth a (x :: c0) 0 * nth (k + a) (mq I C m v) 0) (seq 0 (length (x :: c0))) ==
+                       x * nth k (mq I C m v) 0 +
+                       sumL (fun a => nth a c0 0 * nth (S k + a) (mq I C m v) 0) (seq 0 (length c0))).
+        { change (length (x :: c0)) with (S (length c0)). cbn [seq sumL].
+          rewrite <- (seq_shift (length c0) 0), sumL_map, Nat.add_0_r.
+          apply Qplus_comp; [reflexivity |]. apply sumL_ext. intros a _. cbn [nth].
+          replace (k + S a)%nat with (S k + a)%nat by lia. reflexivity. }
+        destruct (Qeq_bool x 0) eqn:Ex.
+        + exists b. split; [reflexivity |]. rewrite Hsum. apply Qeq_bool_iff in Ex. rewrite Ex, Hbe. ring.
+        + rewrite (live_get v mu Hmu k ltac:(simpl in Hk; lia)). eexists. split; [reflexivity |].
+          rewrite Hsum, Hbe. ring. }
+    destruct (Hgen c O ltac:(lia)) as [b [Hb Hbe]]. exists b. split; [exact Hb | exact Hbe].
+  Qed.
+
+  Lemma orelax_le : forall f k v u w, In (u, w) (arcs I v) -> ole (orelax I f k v) (oaddq (k * w) (f u)).
+  Proof.
+    intros f k v u w Hin. unfold orelax. induction (arcs I v) as [| a l IH]; [destruct Hin |]. simpl.
+    destruct Hin as [-> | Hin].
+    - simpl. rewrite oadd_oaddq. apply omin_le_left.
+    - eapply ole_trans; [apply omin_le_right | exact (IH Hin)].
+  Qed.
+
+  Lemma fold_omin_some : forall (g : list Q -> option Q) l b,
+    fold_right (fun mu acc => omin (g mu) acc) None l = Some b -> exists mu, In mu l /\ g mu = Some b.
+  Proof.
+    intros g. induction l as [| x l IH]; intros b H; simpl in H; [discriminate |].
+    destruct (g x) as [y |] eqn:Eg; destruct (fold_right _ None l) as [z |] eqn:Ef; simpl in H.
+    - destruct (Qle_bool y z); inversion H; subst.
+      + exists x. split; [left; reflexivity | exact Eg].
+      + destruct (IH b eq_refl) as [mu [Hmu Hg]]. exists mu. split; [right; exact Hmu | exact Hg].
+    - inversion H; subst. exists x. split; [left; reflexivity | exact Eg].
+    - destruct (IH b H) as [mu [Hmu Hg]]. exists mu. split; [right; exact Hmu | exact Hg].
+    - discriminate.
+  Qed.
+
+  Lemma fold_omin_le : forall (g : list Q -> option Q) l mu, In mu l ->
+    ole (fold_right (fun mu acc => omin (g mu) acc) None l) (g mu).
+  Proof.
+    intros g. induction l as [| x l IH]; intros mu Hin; [destruct Hin |]. simpl.
+    destruct Hin as [-> | Hin]; [apply omin_le_left |].
+    eapply ole_trans; [apply omin_le_right | exact (IH mu Hin)].
+  Qed.
+
+  Lemma exchange : forall (lam : list Q) (r : nat -> Q),
+    sumL (fun a => nth a lam 0 * dotv (N I) (nth a A []) r) (seq 0 (length A)) ==
+    sumL (fun i => sumL (fun a => nth a lam 0 * nth i (nth a A []) 0) (seq 0 (length A)) * r i) (seq 0 (N I)).
+  Proof.
+    intros lam r. unfold dotv.
+    rewrite (sumL_ext (fun a => nth a lam 0 * sumL (fun i => nth i (nth a A []) 0 * r i) (seq 0 (N I)))
+                      (fun a => sumL (fun i => nth a lam 0 * nth i (nth a A []) 0 * r i) (seq 0 (N I)))).
+    - rewrite sumL_swap. apply sumL_ext. intros i _. rewrite sumL_scale_r. reflexivity.
+    - intros a _. rewrite <- sumL_scale. apply sumL_ext. intros i _. ring.
+  Qed.
+
+
+  Lemma sum_pad : forall (c : list Q) (f : nat -> Q) K, (length c <= K)%nat ->
+    sumL (fun a => nth a c 0 * f a) (seq 0 (length c)) == sumL (fun a => nth a c 0 * f a) (seq 0 K).
+  Proof.
+    intros c f K H. replace K with (length c + (K - length c))%nat by lia.
+    rewrite seq_app, sumL_app. rewrite (sumL_zero _ (seq (0 + length c) _)); [ring |].
+    intros a Ha. apply in_seq in Ha. rewrite nth_overflow by lia. ring.
+  Qed.
+
+  Lemma leqq_nth : forall a b, leqq a b = true -> forall i, nth i a 0 == nth i b 0.
+  Proof.
+    intros a b H. unfold leqq in H. apply andb_true_iff in H as [Hl H]. apply Nat.eqb_eq in Hl.
+    revert b Hl H. induction a as [| x a IH]; intros [| y b] Hl H i; simpl in *; try discriminate;
+      [destruct i; reflexivity |].
+    apply andb_true_iff in H as [Hxy H]. destruct i as [| i]; [apply Qeq_bool_iff, Hxy |].
+    apply IH; [lia | exact H].
+  Qed.
+
+  Lemma col_sum : forall (c : list Q) i, (length c <= length A)%nat ->
+    dotq c (map (fun a => nth i a 0) A) == sumL (fun a => nth a c 0 * nth i (nth a A []) 0) (seq 0 (length A)).
+  Proof.
+    intros c i Hc. rewrite dotq_sum, map_length. replace (Nat.min (length c) (length A)) with (length c) by lia.
+    rewrite (sumL_ext _ (fun a => nth a c 0 * nth i (nth a A []) 0)).
+    - apply sum_pad. exact Hc.
+    - intros a Ha. apply in_seq in Ha. rewrite (nth_map_lt _ _ _ A a [] 0) by lia. reflexivity.
+  Qed.
+
+  Lemma vertices_nonneg : forall cols rhs vs, vertices cols rhs = Some vs ->
+    forall x, In x vs -> forall i, 0 <= nth i x 0.
+  Proof.
+    intros cols rhs vs H x Hx i. unfold vertices in H. cbv zeta in H.
+    destruct (Z.ltb _ _); [discriminate |]. inversion H; subst vs. clear H.
+    apply in_flat_map in Hx as [K [_ Hx]].
+    destruct (solve (map (fun j => nth j cols []) K) rhs) as [y |]; [| destruct Hx].
+    destruct (forallb (fun v => ltb 0 v) y) eqn:Hy; [| destruct Hx].
+    destruct Hx as [<- | []]. rewrite forallb_forall in Hy.
+    destruct (Nat.lt_ge_cases i (length cols)) as [Hi | Hi].
+    - rewrite (nth_map_lt _ _ _ (seq 0 (length cols)) i O 0) by (rewrite seq_length; exact Hi).
+      rewrite seq_nth by exact Hi. simpl.
+      destruct (find_index i K) as [j |]; [| lra].
+      destruct (Nat.lt_ge_cases j (length y)) as [Hj | Hj].
+      + pose proof (Hy _ (nth_In _ 0 Hj)) as Hp. apply ltb_lt in Hp. lra.
+      + rewrite nth_overflow by exact Hj. lra.
+    - rewrite nth_overflow by (rewrite map_length, seq_length; exact Hi). lra.
+  Qed.
+
+  Lemma arc_dirs_spec : forall ds lam, arc_dirs I C = Some ds -> In lam ds ->
+    (length lam <= length A)%nat /\ forall k, 0 <= nth k lam 0.
+  Proof.
+    intros ds lam H Hl. unfold arc_dirs in H. cbv zeta in H.
+    destruct (vertices _ _) as [vs |] eqn:Hv; [| discriminate]. inversion H; subst ds.
+    apply filter_In in Hl as [Hl _]. apply in_map_iff in Hl as [l0 [<- Hl0]].
+    split; [rewrite firstn_length; lia |].
+    intros k. destruct (Nat.lt_ge_cases k (length A)) as [Hk | Hk].
+    - rewrite nth_firstn_lt by exact Hk. exact (vertices_nonneg _ _ _ Hv l0 Hl0 k).
+    - rewrite nth_overflow by (rewrite firstn_length; lia). lra.
+  Qed.
+
+  Lemma covers_spec : forall cs mus, covers_ok I C cs = Some mus -> forall mu, In mu mus ->
+    length mu = length A /\ forall k, 0 <= nth k mu 0.
+  Proof.
+    intros cs mus H. unfold covers_ok in H. revert mus H.
+    induction cs as [| c cs IH]; intros mus H mu Hmu; simpl in H; [inversion H; subst; destruct Hmu |].
+    destruct c as [| l]; [discriminate |].
+    destruct (Nat.eqb (length l) (length A)) eqn:El; [| discriminate].
+    destruct (all_some l) as [mu0 |] eqn:Ea; [| discriminate].
+    destruct (forallb (fun x => Qle_bool 0 x) mu0) eqn:En; [| discriminate].
+    destruct (all_some (map _ cs)) as [rest |] eqn:Er; simpl in H; [| discriminate].
+    inversion H; subst mus. destruct Hmu as [<- | Hmu]; [| exact (IH rest eq_refl mu Hmu)].
+    apply Nat.eqb_eq in El. split; [rewrite (all_some_len _ _ _ Ea); exact El |].
+    intros k. rewrite forallb_forall in En. destruct (Nat.lt_ge_cases k (length mu0)) as [Hk | Hk].
+    - apply Qle_bool_iff, En, nth_In, Hk.
+    - rewrite nth_overflow by exact Hk. lra.
+  Qed.
+
+  Theorem prem_arc : forall cs mus, covers_ok I C cs = Some mus -> arc_ok I C m mus = None ->
+    forall ds lam, arc_dirs I C = Some ds -> In lam ds ->
+       forall v u, has_arc I v u = true -> isgoal I v = false -> live I C m v -> live I C m u ->
+       forall r, (forall i, (i < length A)%nat -> dotv (N I) (nth i A []) r <= nth i (mq I C m v) 0) ->
+       sumL (fun a => nth a lam 0 * dotv (N I) (nth a A []) r) (seq 0 (length A)) <=
+       wt I v u + sumL (fun a => nth a lam 0 * nth a (mq I C m u) 0) (seq 0 (length A)).
+  Proof.
+    intros cs mus Hcov Harc ds lam Hds Hlam v u Huv Hg Hv Hu r Hr.
+    destruct (arc_dirs_spec ds lam Hds Hlam) as [Hll Hl0].
+    unfold arc_ok in Harc. rewrite Hds in Harc.
+    destruct (forallb _ ds) eqn:Hall; [| discriminate]. rewrite forallb_forall in Hall.
+    specialize (Hall lam Hlam). cbv beta zeta in Hall. rewrite forallb_forall in Hall.
+    assert (Hvn : In v (seq 0 (n I))) by (apply in_seq; pose proof (arc_src I v u Huv); lia).
+    specialize (Hall v Hvn). rewrite Hg in Hall. simpl in Hall. apply le_ext_ole in Hall.
+    pose proof (orelax_le (combine_at lam m) 1 v u (wt I v u) (has_arc_wt I v u Huv)) as Hrel.
+    destruct (combine_at_live u Hu lam Hll) as [bu [Hbu Hbue]]. rewrite Hbu in Hrel. simpl in Hrel.
+    pose proof (ole_trans _ _ _ Hall Hrel) as Hmin.
+    set (cands := filter (fun mu => leqq (ydir I C mu) (ydir I C lam)) mus ++ [lam]) in *.
+    destruct (fold_right (fun mu acc => omin (combine_at mu m v) acc) None cands) as [b |] eqn:Hb;
+      [| contradiction].
+    simpl in Hmin. destruct (fold_omin_some _ _ _ Hb) as [mu [Hmu Hcm]].
+    assert (Hmu_ok : (length mu <= length A)%nat /\ (forall k, 0 <= nth k mu 0) /\
+                     forall i, (i < N I)%nat -> dotq mu (map (fun a => nth i a 0) A) ==
+                                               dotq lam (map (fun a => nth i a 0) A)).
+    { apply in_app_or in Hmu as [Hmu | [<- | []]].
+      - apply filter_In in Hmu as [Hmu Hy]. destruct (covers_spec cs mus Hcov mu Hmu) as [Hlen Hnn].
+        split; [lia | split; [exact Hnn |]]. intros i Hi. pose proof (leqq_nth _ _ Hy i) as Hyi.
+        unfold ydir in Hyi. rewrite !(nth_map_lt _ _ _ (seq 0 (N I)) i O 0) in Hyi by (rewrite seq_length; exact Hi).
+        rewrite seq_nth in Hyi by exact Hi. exact Hyi.
+      - split; [exact Hll | split; [exact Hl0 | intros; reflexivity]]. }
+    destruct Hmu_ok as [Hml [Hmn Hcol]].
+    destruct (combine_at_live v Hv mu Hml) as [bv [Hbv Hbve]]. rewrite Hcm in Hbv. inversion Hbv; subst bv.
+    rewrite (exchange lam r).
+    rewrite (sumL_ext _ (fun i => sumL (fun a => nth a mu 0 * nth i (nth a A []) 0) (seq 0 (length A)) * r i)).
+    2: { intros i Hi. apply in_seq in Hi. specialize (Hcol i ltac:(lia)).
+         rewrite !col_sum in Hcol by lia. rewrite Hcol. reflexivity. }
+    rewrite <- (exchange mu r).
+    apply (Qle_trans _ (sumL (fun a => nth a mu 0 * nth a (mq I C m v) 0) (seq 0 (length A)))).
+    - apply sumL_le. intros a Ha. apply in_seq in Ha. apply Qmul_le_l; [apply Hmn | apply Hr; lia].
+    - rewrite <- (sum_pad mu (fun a => nth a (mq I C m v) 0) (length A) Hml), <- Hbve.
+      rewrite <- (sum_pad lam (fun a => nth a (mq I C m u) 0) (length A) Hll), <- Hbue. lra.
+  Qed.
+End NR2.
+
+Lemma prem_h : forall I C m, (forall a, In a (normals I C) -> length a = N I) -> length (gh C) = N I ->
+  forallb (fun i => le_ext (Some (dotq (nth i (normals I C) []) (gh C))) (get (nth i m []) (start I)))
+          (seq 0 (length (normals I C))) = true ->
+  forall i x, (i < length (normals I C))%nat -> get (nth i m []) (start I) = Some x ->
+    dotv (N I) (nth i (normals I C) []) (fun j => nth j (gh C) 0) <= x.
+Proof.
+  intros I C m HA Hh H i x Hi Hx. rewrite forallb_forall in H.
+  specialize (H i (proj2 (in_seq _ _ _) (conj (Nat.le_0_l i) Hi))).
+  rewrite Hx in H. simpl in H. apply Qle_bool_iff in H.
+  rewrite <- dotq_dotv; [exact H | apply HA, nth_In, Hi | exact Hh].
+Qed.
+
+(** ** The soundness theorem of the guarantee branch, modulo NR.2: if the
+    kernel accepts a guarantee-rule profile, every Defender that follows the
+    rule (with the witness's labels) and for which NR.2 holds is, with the
+    profile's Attacker and Bayes beliefs, a weak PBNE of the untruncated game. *)
+Theorem kernel_sound_guarantee : forall I P W C h ex, decide I P W = Pass ->
+  read_profile I P = Some C -> crule C = RGuarantee h ex ->
+  (forall j v, (j < N I)%nat -> (v < n I)%nat -> is_distance (adj I) (goal I j) v (D W j v)) /\
+  exists gw m, wguarantee W = Some (Some gw) /\ all_some (map (glabels I W) (gm gw)) = Some m /\
+  forall s : wstrat nat nat,
+    (forall hh u v, dist nat (types I) (s hh u v)) ->
+    (forall hh u v, has_arc I u v = true -> live I C m v ->
+       (exists x, inF (N I) (normals I C) (betaF (N I) nat (normals I C) (mq I C m)
+                    (rstate nat (wt I) (fun i => nth i h 0) s hh u) v (wt I u v)) x) ->
+       lexmin (N I) (normals I C) (betaF (N I) nat (normals I C) (mq I C m)
+                (rstate nat (wt I) (fun i => nth i h 0) s hh u) v (wt I u v)) (order I) (s hh u v)) ->
+    NR2 I W C m s ->
+    weak_pbne nat Nat.eq_dec (types I) nat Nat.eq_dec (fun a b => has_arc I a b = true) (wt I)
+              (isgoal I) (Dv W) (start I) (priorq I) (gamma C) (of_w nat nat s)
+              (bayes nat (types I) nat Nat.eq_dec (start I) (priorq I) (gamma C)).
+Proof.
+  intros I P W C h ex H Hc Hcr.
+  destruct (decide_read I P W H) as [Hi _].
+  unfold decide in H. rewrite Hi in H. simpl in H. rewrite Hc in H.
+  destruct (Z.ltb 0 (denominator W)); [| discriminate]. simpl in H.
+  destruct (dist_shape_ok I W) eqn:Hshape; [| discriminate]. simpl in H.
+  destruct (distances_ok I W) eqn:Hdist; [| discriminate]. simpl in H.
+  destruct (reach_ok I W) eqn:Hreach; [| discriminate]. simpl in H.
+  rewrite Hcr in H. destruct (has_types W || has_counterexamples W); [discriminate |].
+  destruct (wguarantee W) as [[gw |] |] eqn:Hwg; try discriminate.
+  destruct (decide_guarantee_spec I W C gw H)
+    as [m [mus [tab [HmA [Hm [Hdp [Hh0 [Hcov [Harc [Htab [Hgr HU]]]]]]]]]]].
+  destruct (read_profile_spec I Hi P C Hc) as [Hmixlen [Hmix Hrule]].
+  split; [exact (distances_exact I W Hi Hdist) |].
+  exists gw, m. split; [reflexivity | split; [exact Hm |]].
+  intros s Hsd Hsl Hnr2.
+  unfold gtable in Htab. destruct (gsteps gw) as [stps |] eqn:Hst; [| discriminate].
+  destruct (run_steps I C m stps (mass_trie C) O []) as [[v |] tab0] eqn:Hrun; [discriminate |].
+  destruct (Nat.eqb (length stps) (length (mass_trie C))); [| discriminate].
+  inversion Htab; subst tab0.
+  assert (HA : forall a, In a (normals I C) -> length a = N I) by exact (A_len I C h ex Hcr Hrule).
+  assert (Hgh : gh C = h) by exact (gh_h C h ex Hcr).
+  assert (Hhl : length h = N I) by exact (h_len I C h ex Hcr Hrule).
+  refine (guarantee_pbne (N I) nat Nat.eq_dec (fun a b => has_arc I a b = true) (wt I) (isgoal I) (Dv W)
+           (start I) (priorq I) (fun u v Huv => wt_nonneg I Hi u v Huv) (Dv_nonneg I W Hi Hshape Hdist)
+           (prior_nonneg I Hi) (gamma C) (gamma_valid I C Hmixlen Hmix)
+           (normals I C) (mq I C m) (fun i => nth i h 0) (order I) (order_perm I) s (live I C m)
+           _ Hsd Hsl _ (cert C tab) _ _ _).
+  - exact (gamma_live I C Hmixlen Hmix h ex Hcr Hrule m stps tab Hrun).
+  - intros t Ht l Hl. rewrite <- Hgh. apply Hnr2; [| exact Ht | exact Hl].
+    split; [| split].
+    + intros i Hi'. apply (first_v_none _ _ Hdp). apply in_seq. lia.
+    + apply prem_h; [exact HA | rewrite Hgh; exact Hhl | exact Hh0].
+    + exact (prem_arc I C m (gcovers gw) mus Hcov Harc).
+  - intros t p l q v u hh Ht Hpl Hq Hqe.
+    exact (proj2 (cert_ok I C Hmixlen Hmix h ex Hcr Hrule m stps tab Hrun t p l q v u hh Ht Hpl Hq Hqe)).
+  - intros t Ht. unfold types in HU. rewrite forallb_forall in HU. specialize (HU t Ht).
+    apply in_seq in Ht. rewrite (Ucert_gU I W C Hmixlen Hmix tab t ltac:(lia)).
+    apply Qle_bool_iff in HU. rewrite Hgh in HU. exact HU.
+  - intros q v u hh Hon Hqe t t' Ht Ht' Hpos.
+    exact (greedy_cert I C Hi Hmixlen Hmix tab Hgr q v u hh Hon Hqe t t' Ht Ht' Hpos).
+Qed.
