@@ -245,7 +245,7 @@ Section Rule.
 
   Variable A : list (list Q).               (* the normals *)
   Variable m : V -> list Q.                 (* the labels m_a(v) *)
-  Variable h0 : nat -> Q.                   (* the rule's parameter h *)
+  Variable h0 : nat -> Q.                   (* the rule's vector h *)
   Variable o : list nat.                    (* the priority order *)
   Hypothesis o_perm : Permutation o types.
 
