@@ -148,13 +148,7 @@ def mutants(triple: Docs, rng: random.Random, count: int) -> Iterator[tuple[str,
             pb2 = as_bytes(p)
             yield "mixture probability", (ib, pb2, _rehash(w, ib, pb2))
         elif kind == "prior":
-            i2 = copy.deepcopy(inst)
-            pr = [Fraction(str(x)) for x in i2["prior"]]
-            a, b = rng.sample(range(len(pr)), 2)
-            d = min(pr[a] / 2, Fraction(1, 10))
-            pr[a], pr[b] = pr[a] - d, pr[b] + d
-            i2["prior"] = [str(x) for x in pr]
-            ib2 = as_bytes(i2)
+            ib2 = _prior_moved(inst, rng)
             yield "prior", (ib2, pb, _rehash(w, ib2, pb))
         elif kind == "shape":
             m = copy.deepcopy(w)
@@ -184,6 +178,17 @@ def mutants(triple: Docs, rng: random.Random, count: int) -> Iterator[tuple[str,
             pb2 = as_bytes(p)
             yield "table entry", (ib, pb2, _rehash(w, ib, pb2))
         made += 1
+
+
+def _prior_moved(inst: dict[str, Any], rng: random.Random) -> bytes:
+    """The instance with some prior mass (at most 1/10) moved from one type to another."""
+    i2 = copy.deepcopy(inst)
+    pr = [Fraction(str(x)) for x in i2["prior"]]
+    a, b = rng.sample(range(len(pr)), 2)
+    d = min(pr[a] / 2, Fraction(1, 10))
+    pr[a], pr[b] = pr[a] - d, pr[b] + d
+    i2["prior"] = [str(x) for x in pr]
+    return as_bytes(i2)
 
 
 def _moved(x: Any, rng: random.Random) -> str:
@@ -258,13 +263,7 @@ def _guarantee_mutants(triple: Docs, rng: random.Random, count: int
                 p2["defender"]["h"][i] = _moved(p2["defender"]["h"][i], rng)
                 ib2, pb2 = ib, as_bytes(p2)
             else:
-                i2 = copy.deepcopy(inst)
-                pr = [Fraction(str(x)) for x in i2["prior"]]
-                a, b = rng.sample(range(len(pr)), 2)
-                d = min(pr[a] / 2, Fraction(1, 10))
-                pr[a], pr[b] = pr[a] - d, pr[b] + d
-                i2["prior"] = [str(x) for x in pr]
-                ib2, pb2 = as_bytes(i2), pb
+                ib2, pb2 = _prior_moved(inst, rng), pb
             yield f"guarantee {kind}", (ib2, pb2, _rehash(m, ib2, pb2))
             made += 1
             continue
