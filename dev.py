@@ -110,7 +110,9 @@ def coq_build() -> bool:
     ext = COQ / "extracted"
     ext.mkdir(exist_ok=True)
     deps = {name: _coq_deps(COQ / name) for name in order}
-    t0, done, rebuilt = time.monotonic(), set(), set()
+    t0 = time.monotonic()
+    done: set[str] = set()
+    rebuilt: set[str] = set()
     running: dict[str, subprocess.Popen[str]] = {}
     while len(done) < len(order):
         for name in order:
