@@ -47,7 +47,7 @@ class Graph:
         """The weight of the arc ``v -> u`` (None when there is none)."""
         return next((w for x, w in self.adj[v] if x == u), None)
 
-    def relax(self, y: list[Any], k: Fraction, inf: int) -> list[Any]:
+    def relax(self, y: list[Any], k: Fraction, inf: float) -> list[Any]:
         """``M(v) = min over arcs (v, u) of k·w(v, u) + y(u)`` (``inf`` without arcs).
 
         Examples
@@ -137,7 +137,7 @@ class Grid:
         """The weight of the arc ``v -> u``: 1 between neighbours, else None."""
         return Fraction(1) if abs(self.pos[u] - self.pos[v]) in (1, self.W) else None
 
-    def relax(self, y: list[Any], k: Fraction, inf: int) -> list[Any]:
+    def relax(self, y: list[Any], k: Fraction, inf: float) -> list[Any]:
         """:meth:`Graph.relax` on the grid: one shifted list per direction.
 
         Examples

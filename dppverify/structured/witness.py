@@ -86,123 +86,124 @@ def witness_document(instance: Instance, profile: Profile, *, instance_sha256: s
     if isinstance(profile.defender, GuaranteeRule):
         return _guarantee_witness(instance, profile, profile.defender, instance_sha256,
                                   profile_sha256)
-    entries, default, pj = _table(instance, profile)
-    progress = default == "progress"
-    _n, goals = instance.n_nodes, instance.goals
+    table = _TableWitness(instance, profile)
+    per_type = [table.type_labels(theta) for theta in range(instance.n_goals)]
     dist = instance.dist_to
-    dg = dist[pj]
-    trie = build_walk_trie(instance, list(entries))
-    listed = {trie.find(w): d for w, d in entries.items()}
-    cmin: list[Number] = []
-    for p in range(len(trie)):
-        here = dg[trie.node[p]]
-        cmin.append(here if trie.parent[p] < 0 else min(cmin[trie.parent[p]], here))
-    arcs = goal_free_pred(instance)
-
-    def sigma(p: int, c: int, w: Number) -> Dist | None:
-        if c in listed:
-            return listed[c]
-        if progress:
-            x = Fraction(cmin[p] - cmin[c]) / Fraction(w)
-            return (x, 1 - x) if pj == 0 else (1 - x, x)
-        return default  # type: ignore[no-any-return]
-
-    def walk_cost(walk: Sequence[int], theta: int) -> Fraction:
-        p, c, total = 0, dg[walk[0]], Fraction(0)
-        for v, u in itertools.pairwise(walk):
-            q = trie.child(p, u) if p >= 0 else None
-            w = instance.weight(v, u)
-            s = listed.get(q) if q is not None else None
-            if s is None and progress:
-                x = Fraction(c - min(c, dg[u])) / Fraction(w)  # type: ignore[arg-type]
-                s = (x, 1 - x) if pj == 0 else (1 - x, x)
-            total += Fraction(w) * (s or default)[theta]  # type: ignore[arg-type, index]
-            p, c = (-1 if q is None else q), min(c, dg[u])
-        return total + Fraction(dist[theta][walk[-1]])
-
-    labels: list[dict[str, list[Number]]] = []
-    phis: list[list[Number]] = []
-    walks: list[dict[str, Any]] = []
-    for theta in range(len(goals)):
-        rec: dict[str, list[Number]] = {}
-        chain: Any = None
-        if progress and theta != pj:
-            P, via_p = exit_costs(instance, Fraction(1), theta, arcs)
-            Q, via_q = _q_label(instance, dg, P)
-            rec = {"P": P, "Q": Q}
-
-            def chain(u: int, c2: Number, P: Any = P, Q: Any = Q, vp: Any = via_p,
-                      vq: Any = via_q) -> list[int]:
-                out, x = [u], u
-                if Q[x] - c2 < P[x]:
-                    while vq[x] >= 0:
-                        x = vq[x]
-                        out.append(x)
-                while not instance.is_goal(x):
-                    x = vp[x]
-                    out.append(x)
-                return out
-
-            def leave(p: int, u: int, w: Number, P: Any = P, Q: Any = Q) -> Number | None:
-                c2 = min(cmin[p], dg[u])
-                return Fraction(w) - (cmin[p] - c2) + min(P[u], Q[u] - c2)
-        elif progress:
-            def leave(p: int, u: int, w: Number) -> Number | None:
-                return cmin[p]
-
-            def chain(u: int, c2: Number) -> list[int]:
-                out = [u]
-                while not instance.is_goal(out[-1]):
-                    x = out[-1]
-                    out.append(next(y for y, w in instance.succ[x] if dg[y] != INF
-                                    and dg[x] == Fraction(w) + dg[y]))
-                return out
-        elif default is not None:
-            E, via_e = exit_costs(instance, Fraction(default[theta]), theta, arcs)
-            rec = {"exit": E}
-
-            def chain(u: int, c2: Number, via: Any = via_e) -> list[int]:
-                out = [u]
-                while not instance.is_goal(out[-1]):
-                    out.append(via[out[-1]])
-                return out
-
-            def leave(p: int, u: int, w: Number, E: Any = E, q: Any = default[theta]
-                      ) -> Number | None:
-                return Fraction(w) * q + E[u]
-        else:
-            def leave(p: int, u: int, w: Number) -> Number | None:
-                return None
-
-        def inside(p: int, c: int, w: Number, theta: int = theta) -> Number | None:
-            s = sigma(p, c, w)
-            return None if s is None else Fraction(w) * s[theta]
-        J, choice, _undefined = trie_induction(instance, trie, dist[theta], inside, leave)
-        labels.append(rec)
-        phis.append(J)
-        U = sum((mw.probability * walk_cost(mw.walk, theta) for mw in profile.attacker[theta]),
-                Fraction(0))
-        if J[0] != INF and J[0] < U:  # regret > 0: the walk that attains the minimum
-            walk, p = [trie.node[0]], 0
-            while choice[p] is not None:
-                u, c = choice[p]  # type: ignore[misc]
-                if c < 0:
-                    walk += chain(u, min(cmin[p], dg[u]))
-                    break
-                walk.append(u)
-                p = c
-            walks.append({"type": theta, "walk": [node_to_json(x) for x in instance.labels(walk)]})
-    every = [x for d in dist for x in d] + [x for J in phis for x in J] + [
-        x for rec in labels for xs in rec.values() for x in xs]
+    every = [x for d in dist for x in d] + [x for _, rec, _ in per_type for xs in rec.values()
+                                            for x in xs]
     S = math.lcm(*(Fraction(x).denominator for x in every if x != INF))
-    types = [{"trie": _labels(J, S), **{k: _labels(v, S) for k, v in rec.items()}}
-             for J, rec in zip(phis, labels, strict=True)]
-    doc: dict[str, Any] = {"format": WITNESS_FORMAT, "instance_sha256": instance_sha256,
-                           "profile_sha256": profile_sha256, "denominator": S,
-                           "distances": [_labels(d, S) for d in dist], "types": types}
+    doc: dict[str, Any] = {
+        "format": WITNESS_FORMAT, "instance_sha256": instance_sha256,
+        "profile_sha256": profile_sha256, "denominator": S,
+        "distances": [_labels(d, S) for d in dist],
+        "types": [{k: _labels(v, S) for k, v in rec.items()} for _, rec, _ in per_type]}
+    walks = [{"type": theta, "walk": [node_to_json(x) for x in instance.labels(w)]}
+             for theta, _, w in per_type if w]
     if walks:
         doc["counterexamples"] = walks
     return doc
+
+
+class _TableWitness:
+    """The exact labels of a table Defender (the progress rule is the empty table with the
+    progress default) on the trie of its entries: KERNEL K.2 item 5, K.3, K.6."""
+
+    def __init__(self, instance: Instance, profile: Profile) -> None:
+        self.instance, self.profile = instance, profile
+        self.entries, self.default, self.pj = _table(instance, profile)
+        self.progress = self.default == "progress"
+        self.dg = dg = instance.dist_to[self.pj]
+        self.trie = trie = build_walk_trie(instance, list(self.entries))
+        self.listed = {trie.find(w): d for w, d in self.entries.items()}
+        self.cmin: list[Number] = []
+        for p in range(len(trie)):
+            here = dg[trie.node[p]]
+            self.cmin.append(here if trie.parent[p] < 0 else min(self.cmin[trie.parent[p]], here))
+        self.arcs = goal_free_pred(instance)
+
+    def sigma(self, p: int, c: int | None, w: Number, c2: Number | None = None) -> Dist | None:
+        """σ on the step from trie prefix ``p`` to its child ``c`` (or off the trie, with the
+        new running minimum ``c2``)."""
+        if c is not None and c in self.listed:
+            return self.listed[c]
+        if self.progress:
+            x = Fraction(self.cmin[p] - (self.cmin[c] if c is not None else c2)) / Fraction(w)  # type: ignore[operator]
+            return (x, 1 - x) if self.pj == 0 else (1 - x, x)
+        return self.default
+
+    def walk_cost(self, walk: Sequence[int], theta: int) -> Fraction:
+        """Type ``θ``'s cost of a walk against the table."""
+        inst, dg = self.instance, self.dg
+        p, c, total = 0, dg[walk[0]], Fraction(0)
+        for v, u in itertools.pairwise(walk):
+            w = Fraction(inst.weight(v, u))  # type: ignore[arg-type]
+            q = self.trie.child(p, u) if p >= 0 else None
+            s = self.listed.get(q) if q is not None else None
+            if s is None and self.progress:
+                x = Fraction(c - min(c, dg[u])) / w
+                s = (x, 1 - x) if self.pj == 0 else (1 - x, x)
+            total += w * (s or self.default)[theta]
+            p, c = (-1 if q is None else q), min(c, dg[u])
+        return total + Fraction(inst.dist_to[theta][walk[-1]])
+
+    def type_labels(self, theta: int) -> tuple[int, dict[str, list[Number]], list[int]]:
+        """Type ``θ``'s labels (``trie`` and the exit labels) and, when its regret is positive,
+        the walk that attains its minimum (else ``[]``)."""
+        inst, dg, cmin = self.instance, self.dg, self.cmin
+        rec: dict[str, list[Number]] = {}
+        P: list[Number] = []
+        Q: list[Number] = []
+        via_p: list[int] = []
+        via_q: list[int] = []
+        E: list[Number] = []
+        if self.progress and theta != self.pj:
+            P, via_p = exit_costs(inst, Fraction(1), theta, self.arcs)
+            Q, via_q = _q_label(inst, dg, P)
+            rec = {"P": P, "Q": Q}
+        elif not self.progress and self.default is not None:
+            E, via_p = exit_costs(inst, Fraction(self.default[theta]), theta, self.arcs)
+            rec = {"exit": E}
+
+        def leave(p: int, u: int, w: Number) -> Number | None:
+            c2 = min(cmin[p], dg[u])
+            if self.progress:
+                return cmin[p] if theta == self.pj else \
+                    Fraction(w) - (cmin[p] - c2) + min(P[u], Q[u] - c2)
+            return None if self.default is None else Fraction(w) * self.default[theta] + E[u]
+
+        def inside(p: int, c: int, w: Number) -> Number | None:
+            s = self.sigma(p, c, w)
+            return None if s is None else Fraction(w) * s[theta]
+
+        J, choice, _ = trie_induction(inst, self.trie, inst.dist_to[theta], inside, leave)
+        U = sum((mw.probability * self.walk_cost(mw.walk, theta)
+                 for mw in self.profile.attacker[theta]), Fraction(0))
+        walk: list[int] = []
+        if J[0] != INF and J[0] < U:  # regret > 0: the walk that attains the minimum
+            walk, p = [self.trie.node[0]], 0
+            while (step := choice[p]) is not None:
+                u, c = step
+                if c >= 0:
+                    walk.append(u)
+                    p = c
+                    continue
+                x = u
+                walk.append(x)
+                if self.progress and theta == self.pj:  # a shortest path to the rule's goal
+                    while not inst.is_goal(x):
+                        x = next(y for y, w in inst.succ[x] if dg[y] != INF
+                                 and dg[x] == Fraction(w) + dg[y])
+                        walk.append(x)
+                    break
+                if self.progress and Q[x] - min(cmin[p], dg[x]) < P[x]:
+                    while via_q[x] >= 0:  # Q's chain to the node attaining the minimum
+                        x = via_q[x]
+                        walk.append(x)
+                while not inst.is_goal(x):
+                    x = via_p[x]
+                    walk.append(x)
+                break
+        return theta, {"trie": J, **rec}, walk
 
 
 def _q_label(instance: Instance, dg: Sequence[Number], P: Sequence[Number]
@@ -211,7 +212,7 @@ def _q_label(instance: Instance, dg: Sequence[Number], P: Sequence[Number]
     pred = [[(u, w) for u, w in row if not instance.is_goal(u)] for row in instance.pred]
     sources = [(x, Fraction(dg[x]) + Fraction(P[x])) for x in range(instance.n_nodes)
                if dg[x] != INF and P[x] != INF]
-    return multi_source_dijkstra(pred, sources)  # type: ignore[return-value]
+    return multi_source_dijkstra(pred, sources)
 
 
 def _exact(x: Fraction) -> str:
@@ -244,7 +245,7 @@ def _guarantee_witness(instance: Instance, profile: Profile, rule: GuaranteeRule
     order = rule_order(instance.prior)
     children: dict[tuple[int, int], int] = {}
     state: list[tuple[Fraction, ...]] = [tuple(rule.h)]
-    steps = []
+    steps: list[dict[str, Any]] = []
     for mix in profile.attacker:
         for mw in mix:
             p = -1
