@@ -104,3 +104,15 @@ def test_two_goals_the_kernel_agrees_with_the_engine(case: tuple[dict[str, Any],
 @given(ngoal_cases())
 def test_n_goals_the_kernel_agrees_with_the_engine(case: tuple[dict[str, Any], ...]) -> None:
     _agree(*case)
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(ngoal_instances(min_goals=3, max_goals=3,
+                       graphs=weighted_graphs(min_nodes=4, max_nodes=6, max_weight=3)))
+def test_n_goals_the_solver_guarantee_rule_is_accepted(doc: dict[str, Any]) -> None:
+    """``dpp solve``'s N-goal profiles (the guarantee rule) pass the kernel on the engine's
+    witness: the DP labels, the arc condition and every stage dual."""
+    prof = solve_json(doc)
+    assert prof["defender"]["rule"] == "guarantee"
+    v = kernel_verdict(doc, prof)
+    assert v.status == "pass", v
