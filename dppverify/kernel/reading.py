@@ -83,7 +83,7 @@ def labels(xs: Any, n: int, what: str, dead: list[int] | tuple[()] = ()) -> list
     """
     if type(xs) is not list or len(xs) != n or not set(map(type, xs)) <= {int, type(None)}:
         raise BadInput(f"witness: {what} must be a list of {n} integers or null")
-    xs, i = list(xs), -1
+    i = -1  # the parsed list is the kernel's own: converted in place
     for _ in range(xs.count(None)):
         i = xs.index(None, i + 1)
         xs[i] = INF

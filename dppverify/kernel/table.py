@@ -31,8 +31,7 @@ def first_failure(xs: list[Any], ys: list[Any], skip: Any = ()) -> int | None:
     >>> first_failure([1, 5, 9], [2, 4, 3], (1,))
     2
     """
-    ys = list(ys)
-    for v in skip:
+    for v in skip:  # ys is the caller's fresh list
         ys[v] = INF
     return None if all(map(le, xs, ys)) else next(v for v in range(len(xs)) if not xs[v] <= ys[v])
 
