@@ -19,15 +19,18 @@ from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any
 
+import numpy as np
+
 from dppverify.exact import INF, Number
 from dppverify.formats.json_reading import node_to_json
-from dppverify.game.distances import multi_source_dijkstra
+from dppverify.game.distances import EXACT_FLOAT_LIMIT, multi_source_dijkstra
 from dppverify.game.instance import Instance
+from dppverify.game.instance_reading import arc_arrays
 from dppverify.game.profile import GoalTable, GuaranteeRule, Profile, ProgressRule, TableRule
 from dppverify.structured.cover import packing_vertices
 from dppverify.structured.guarantee import guarantee_sets, guarantee_sigma, rule_order
 from dppverify.structured.lexmin import simplex_min
-from dppverify.structured.table_br import exit_costs, goal_free_pred, trie_induction
+from dppverify.structured.table_br import goal_free_pred, trie_induction
 from dppverify.structured.trie import build_walk_trie
 
 __all__ = ["WITNESS_FORMAT", "witness_document"]
@@ -156,12 +159,16 @@ class _TableWitness:
         via_p: list[int] = []
         via_q: list[int] = []
         E: list[Number] = []
+        term = inst.dist_to[theta]
         if self.progress and theta != self.pj:
-            P, via_p = exit_costs(inst, Fraction(1), theta, self.arcs)
-            Q, via_q = _q_label(inst, dg, P)
+            P, via_p = _sources_field(inst, {g: term[g] for g in inst.goals}, Fraction(1))
+            Q, via_q = _sources_field(inst, {x: Fraction(dg[x]) + Fraction(P[x]) for x in
+                                             range(inst.n_nodes) if dg[x] != INF and P[x] != INF},
+                                      Fraction(1))
             rec = {"P": P, "Q": Q}
         elif not self.progress and self.default is not None:
-            E, via_p = exit_costs(inst, Fraction(self.default[theta]), theta, self.arcs)
+            E, via_p = _sources_field(inst, {g: term[g] for g in inst.goals},
+                                      Fraction(self.default[theta]))
             rec = {"exit": E}
 
         def leave(p: int, u: int, w: Number) -> Number | None:
@@ -206,13 +213,38 @@ class _TableWitness:
         return theta, {"trie": J, **rec}, walk
 
 
-def _q_label(instance: Instance, dg: Sequence[Number], P: Sequence[Number]
-             ) -> tuple[list[Number], list[int]]:
-    """``Q(v) = min(d(v, g) + P(v), min over arcs (v, u), v not a goal, of w + Q(u))``."""
-    pred = [[(u, w) for u, w in row if not instance.is_goal(u)] for row in instance.pred]
-    sources = [(x, Fraction(dg[x]) + Fraction(P[x])) for x in range(instance.n_nodes)
-               if dg[x] != INF and P[x] != INF]
-    return multi_source_dijkstra(pred, sources)
+def _sources_field(instance: Instance, sources: dict[int, Number], share: Fraction
+                   ) -> tuple[list[Number], list[int]]:
+    """``min over sources x of cost(x) + share·d°(v, x)`` at every node ``v`` (``d°``: no arc
+    leaving a goal: a walk ends at its first goal) and the next node towards it (``-1`` at a
+    source or where none is reached). scipy's Dijkstra on a super-source when every sum is an
+    integer below 2**53 (then exact), else the exact Python Dijkstra."""
+    arcs = arc_arrays(instance)
+    keep = ~np.isin(arcs.tails, np.asarray(instance.goals))
+    values = [Fraction(v) * share for v in arcs.values]
+    scale = math.lcm(*(x.denominator for x in values), *(Fraction(c).denominator
+                                                        for c in sources.values()))
+    w = np.asarray([int(x * scale) for x in values], dtype=np.int64)[arcs.codes[keep]]
+    top = max((int(Fraction(c) * scale) for c in sources.values()), default=0) + 1
+    n = instance.n_nodes
+    if share > 0 and int(w.sum()) + top < EXACT_FLOAT_LIMIT:
+        import scipy.sparse as sp
+        from scipy.sparse.csgraph import dijkstra
+
+        xs = np.fromiter(sources, dtype=np.int64, count=len(sources))
+        cost = np.array([int(Fraction(sources[x]) * scale) + 1 for x in sources], dtype=float)
+        m = sp.csr_matrix((np.concatenate([w.astype(float), cost]),
+                           (np.concatenate([arcs.heads[keep], np.full(xs.size, n)]),
+                            np.concatenate([arcs.tails[keep], xs]))), shape=(n + 1, n + 1))
+        dist, pred = dijkstra(m, directed=True, indices=n, return_predecessors=True)
+        out: list[Number] = [INF if not np.isfinite(d) else Fraction(int(d) - 1, scale)
+                             for d in dist[:n].tolist()]
+        return out, [int(p) if 0 <= p < n else -1 for p in pred[:n].tolist()]
+    pred_rows: list[list[tuple[int, Number]]] = [[] for _ in range(n)]
+    for t, h, c in zip(arcs.tails[keep].tolist(), arcs.heads[keep].tolist(),
+                       arcs.codes[keep].tolist(), strict=True):
+        pred_rows[h].append((t, values[c]))
+    return multi_source_dijkstra(pred_rows, list(sources.items()))
 
 
 def _exact(x: Fraction) -> str:
