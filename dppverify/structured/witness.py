@@ -25,12 +25,12 @@ from dppverify.exact import INF, Number
 from dppverify.formats.json_reading import node_to_json
 from dppverify.game.distances import EXACT_FLOAT_LIMIT, multi_source_dijkstra
 from dppverify.game.instance import Instance
-from dppverify.game.instance_reading import arc_arrays
+from dppverify.game.instance_reading import arc_arrays, goal_distance_fields
 from dppverify.game.profile import GoalTable, GuaranteeRule, Profile, ProgressRule, TableRule
 from dppverify.structured.cover import packing_vertices
 from dppverify.structured.guarantee import guarantee_sets, guarantee_sigma, rule_order
 from dppverify.structured.lexmin import simplex_min
-from dppverify.structured.table_br import goal_free_pred, trie_induction
+from dppverify.structured.table_br import trie_induction
 from dppverify.structured.trie import build_walk_trie
 
 __all__ = ["WITNESS_FORMAT", "witness_document"]
@@ -67,6 +67,34 @@ def _labels(xs: Sequence[Number], S: int) -> list[int | None]:
     return [None if x == INF else int(Fraction(x) * S) for x in xs]
 
 
+Scaled = tuple[np.ndarray, int]
+"""A field of exact numbers ``array / scale`` (float64 holding integers below 2**53, or an
+object array of Python integers; ``inf`` where the field is +∞)."""
+
+
+def _ints(field: Scaled, S: int) -> list[int | None]:
+    """The field's labels over the denominator ``S`` (a multiple of its scale)."""
+    arr, scale = field
+    k = S // scale
+    return [None if x == INF else int(x) * k for x in arr.tolist()]
+
+
+def _at(field: Scaled, v: int) -> Number:
+    x = field[0][v]
+    return INF if x == INF else Fraction(int(x), field[1])
+
+
+def _distance_field(instance: Instance, j: int) -> Scaled:
+    """``d(·, g^j)`` as a scaled field: the reader's own float64 field when it made one."""
+    fields = goal_distance_fields(instance)
+    if fields is not None:
+        return np.asarray(fields[1][instance.goals[j]], dtype=np.float64), fields[0]
+    d = instance.dist_to[j]
+    scale = math.lcm(*(Fraction(x).denominator for x in d if x != INF))
+    return np.array([INF if x == INF else int(Fraction(x) * scale) for x in d], dtype=object), \
+        scale
+
+
 def witness_document(instance: Instance, profile: Profile, *, instance_sha256: str,
                      profile_sha256: str) -> dict[str, Any]:
     """The witness of a well-formed progress- or table-rule ``profile`` on exact ``instance``.
@@ -91,15 +119,16 @@ def witness_document(instance: Instance, profile: Profile, *, instance_sha256: s
                                   profile_sha256)
     table = _TableWitness(instance, profile)
     per_type = [table.type_labels(theta) for theta in range(instance.n_goals)]
-    dist = instance.dist_to
-    every = [x for d in dist for x in d] + [x for _, rec, _ in per_type for xs in rec.values()
-                                            for x in xs]
-    S = math.lcm(*(Fraction(x).denominator for x in every if x != INF))
+    dist = [_distance_field(instance, j) for j in range(instance.n_goals)]
+    S = math.lcm(*(scale for _, scale in dist), *(Fraction(x).denominator for _, rec, _ in per_type
+                                                 for x in rec["trie"] if x != INF),
+                 *(f[1] for _, rec, _ in per_type for k, f in rec.items() if k != "trie"))
     doc: dict[str, Any] = {
         "format": WITNESS_FORMAT, "instance_sha256": instance_sha256,
         "profile_sha256": profile_sha256, "denominator": S,
-        "distances": [_labels(d, S) for d in dist],
-        "types": [{k: _labels(v, S) for k, v in rec.items()} for _, rec, _ in per_type]}
+        "distances": [_ints(d, S) for d in dist],
+        "types": [{k: _labels(v, S) if k == "trie" else _ints(v, S) for k, v in rec.items()}
+                  for _, rec, _ in per_type]}
     walks = [{"type": theta, "walk": [node_to_json(x) for x in instance.labels(w)]}
              for theta, _, w in per_type if w]
     if walks:
@@ -122,7 +151,6 @@ class _TableWitness:
         for p in range(len(trie)):
             here = dg[trie.node[p]]
             self.cmin.append(here if trie.parent[p] < 0 else min(self.cmin[trie.parent[p]], here))
-        self.arcs = goal_free_pred(instance)
 
     def sigma(self, p: int, c: int | None, w: Number, c2: Number | None = None) -> Dist | None:
         """σ on the step from trie prefix ``p`` to its child ``c`` (or off the trie, with the
@@ -149,34 +177,36 @@ class _TableWitness:
             p, c = (-1 if q is None else q), min(c, dg[u])
         return total + Fraction(inst.dist_to[theta][walk[-1]])
 
-    def type_labels(self, theta: int) -> tuple[int, dict[str, list[Number]], list[int]]:
+    def type_labels(self, theta: int) -> tuple[int, dict[str, Any], list[int]]:
         """Type ``θ``'s labels (``trie`` and the exit labels) and, when its regret is positive,
         the walk that attains its minimum (else ``[]``)."""
         inst, dg, cmin = self.instance, self.dg, self.cmin
-        rec: dict[str, list[Number]] = {}
-        P: list[Number] = []
-        Q: list[Number] = []
+        rec: dict[str, Any] = {}
+        P: Scaled = (np.zeros(0), 1)
+        Q: Scaled = (np.zeros(0), 1)
+        E: Scaled = (np.zeros(0), 1)
         via_p: list[int] = []
         via_q: list[int] = []
-        E: list[Number] = []
-        term = inst.dist_to[theta]
+        term = _distance_field(inst, theta)
+        at_goals = np.full(inst.n_nodes, INF, dtype=term[0].dtype)
+        at_goals[list(inst.goals)] = term[0][list(inst.goals)]
         if self.progress and theta != self.pj:
-            P, via_p = _sources_field(inst, {g: term[g] for g in inst.goals}, Fraction(1))
-            Q, via_q = _sources_field(inst, {x: Fraction(dg[x]) + Fraction(P[x]) for x in
-                                             range(inst.n_nodes) if dg[x] != INF and P[x] != INF},
-                                      Fraction(1))
+            P, via_p = _sources_field(inst, (at_goals, term[1]), Fraction(1))
+            dgs = _distance_field(inst, self.pj)
+            scale = math.lcm(P[1], dgs[1])
+            init = dgs[0] * (scale // dgs[1]) + P[0] * (scale // P[1])
+            Q, via_q = _sources_field(inst, (init, scale), Fraction(1))
             rec = {"P": P, "Q": Q}
         elif not self.progress and self.default is not None:
-            E, via_p = _sources_field(inst, {g: term[g] for g in inst.goals},
-                                      Fraction(self.default[theta]))
+            E, via_p = _sources_field(inst, (at_goals, term[1]), Fraction(self.default[theta]))
             rec = {"exit": E}
 
         def leave(p: int, u: int, w: Number) -> Number | None:
             c2 = min(cmin[p], dg[u])
             if self.progress:
                 return cmin[p] if theta == self.pj else \
-                    Fraction(w) - (cmin[p] - c2) + min(P[u], Q[u] - c2)
-            return None if self.default is None else Fraction(w) * self.default[theta] + E[u]
+                    Fraction(w) - (cmin[p] - c2) + min(_at(P, u), _at(Q, u) - c2)
+            return None if self.default is None else Fraction(w) * self.default[theta] + _at(E, u)
 
         def inside(p: int, c: int, w: Number) -> Number | None:
             s = self.sigma(p, c, w)
@@ -202,7 +232,7 @@ class _TableWitness:
                                  and dg[x] == Fraction(w) + dg[y])
                         walk.append(x)
                     break
-                if self.progress and Q[x] - min(cmin[p], dg[x]) < P[x]:
+                if self.progress and _at(Q, x) - min(cmin[p], dg[x]) < _at(P, x):
                     while via_q[x] >= 0:  # Q's chain to the node attaining the minimum
                         x = via_q[x]
                         walk.append(x)
@@ -213,38 +243,36 @@ class _TableWitness:
         return theta, {"trie": J, **rec}, walk
 
 
-def _sources_field(instance: Instance, sources: dict[int, Number], share: Fraction
-                   ) -> tuple[list[Number], list[int]]:
-    """``min over sources x of cost(x) + share·d°(v, x)`` at every node ``v`` (``d°``: no arc
-    leaving a goal: a walk ends at its first goal) and the next node towards it (``-1`` at a
-    source or where none is reached). scipy's Dijkstra on a super-source when every sum is an
-    integer below 2**53 (then exact), else the exact Python Dijkstra."""
+def _sources_field(instance: Instance, init: Scaled, share: Fraction) -> tuple[Scaled, list[int]]:
+    """``min over sources x of init(x) + share·d°(v, x)`` at every node ``v`` (``d°``: no arc
+    leaving a goal: a walk ends at its first goal; the sources are where ``init`` is finite)
+    and the next node towards it (``-1`` at a source or where none is reached). scipy's
+    Dijkstra on a super-source when every sum is an integer below 2**53 (then exact), else the
+    exact Python Dijkstra on integers."""
     arcs = arc_arrays(instance)
     keep = ~np.isin(arcs.tails, np.asarray(instance.goals))
     values = [Fraction(v) * share for v in arcs.values]
-    scale = math.lcm(*(x.denominator for x in values), *(Fraction(c).denominator
-                                                        for c in sources.values()))
+    scale = math.lcm(init[1], *(x.denominator for x in values))
     w = np.asarray([int(x * scale) for x in values], dtype=np.int64)[arcs.codes[keep]]
-    top = max((int(Fraction(c) * scale) for c in sources.values()), default=0) + 1
+    xs = np.flatnonzero(np.asarray(init[0] != INF, dtype=bool))
+    cost = [int(c) * (scale // init[1]) for c in init[0][xs].tolist()]
     n = instance.n_nodes
-    if share > 0 and int(w.sum()) + top < EXACT_FLOAT_LIMIT:
+    if share > 0 and int(w.sum()) + max(cost, default=0) + 1 < EXACT_FLOAT_LIMIT:
         import scipy.sparse as sp
         from scipy.sparse.csgraph import dijkstra
 
-        xs = np.fromiter(sources, dtype=np.int64, count=len(sources))
-        cost = np.array([int(Fraction(sources[x]) * scale) + 1 for x in sources], dtype=float)
-        m = sp.csr_matrix((np.concatenate([w.astype(float), cost]),
+        m = sp.csr_matrix((np.concatenate([w.astype(float), np.asarray(cost, float) + 1]),
                            (np.concatenate([arcs.heads[keep], np.full(xs.size, n)]),
                             np.concatenate([arcs.tails[keep], xs]))), shape=(n + 1, n + 1))
         dist, pred = dijkstra(m, directed=True, indices=n, return_predecessors=True)
-        out: list[Number] = [INF if not np.isfinite(d) else Fraction(int(d) - 1, scale)
-                             for d in dist[:n].tolist()]
-        return out, [int(p) if 0 <= p < n else -1 for p in pred[:n].tolist()]
-    pred_rows: list[list[tuple[int, Number]]] = [[] for _ in range(n)]
-    for t, h, c in zip(arcs.tails[keep].tolist(), arcs.heads[keep].tolist(),
-                       arcs.codes[keep].tolist(), strict=True):
-        pred_rows[h].append((t, values[c]))
-    return multi_source_dijkstra(pred_rows, list(sources.items()))
+        via = np.where((pred[:n] >= 0) & (pred[:n] < n), pred[:n], -1)
+        return (dist[:n] - 1, scale), via.tolist()
+    rows: list[list[tuple[int, int]]] = [[] for _ in range(n)]
+    for t, h, c in zip(arcs.tails[keep].tolist(), arcs.heads[keep].tolist(), w.tolist(),
+                       strict=True):
+        rows[h].append((t, c))
+    keys, via_l = multi_source_dijkstra(rows, list(zip(xs.tolist(), cost, strict=True)))
+    return (np.array(keys, dtype=object), scale), via_l
 
 
 def _exact(x: Fraction) -> str:
