@@ -81,6 +81,6 @@ def kernel_record(witness: dict[str, Any] | str, instance: bytes | None, profile
     elif instance is None or profile is None:
         why = "the inputs have no bytes to tie a witness to"
     else:
-        v = check(instance, profile, json.dumps(witness).encode(), base_dir=base_dir)
+        v = check(instance, profile, witness, base_dir=base_dir)  # the document, not re-read
         return {"status": v.status, "message": v.message}
     return {"status": "not applicable", "message": why}

@@ -23,11 +23,11 @@ _KEYS = {"format", "instance_sha256", "profile_sha256", "denominator", "distance
          "guarantee", "counterexamples", "producer"}
 
 
-def check(instance: bytes, profile: bytes, witness: bytes, *,
+def check(instance: bytes, profile: bytes, witness: bytes | dict[str, Any], *,
           base_dir: str | Path | None = None) -> Verdict:
     """Decide whether ``profile`` is a weak PBNE of the untruncated game ``instance``, from
-    ``witness`` (the three documents' bytes, exactly as read; ``base_dir``: where a map
-    instance's relative ``map`` path starts).
+    ``witness`` (the three documents' bytes, exactly as read, or the witness already parsed as
+    JSON values; ``base_dir``: where a map instance's relative ``map`` path starts).
 
     Examples
     --------
@@ -58,9 +58,10 @@ nodes, trie of 3 prefixes, 2 reached prefixes)')
         return Verdict(stop.status, str(stop))
 
 
-def _decide(instance: bytes, profile: bytes, witness: bytes, base_dir: Path | None) -> Verdict:
+def _decide(instance: bytes, profile: bytes, witness: bytes | dict[str, Any],
+            base_dir: Path | None) -> Verdict:
     inst = read_instance(instance, base_dir)
-    wit = parse(witness, "witness")
+    wit = witness if isinstance(witness, dict) else parse(witness, "witness")
     if type(wit) is not dict or wit.get("format") != "dpp-witness/1":
         raise BadInput("witness: not a dpp-witness/1 document")
     if set(wit) - _KEYS:

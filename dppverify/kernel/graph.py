@@ -79,7 +79,7 @@ class Grid:
     def __init__(self, rows: int, cols: int, pos: list[int]) -> None:
         self.rows, self.cols, self.W = rows, cols, cols + 1
         self.pos, self.n = pos, len(pos)
-        self.idx = idx = dict(zip(pos, range(self.n)))  # padded position -> node
+        self.idx = idx = dict(zip(pos, range(self.n), strict=True))  # padded position -> node
         self.nbr = [list(map(idx.get, map(add, pos, repeat(d)), repeat(self.n)))
                     for d in (-self.W, -1, 1, self.W)]
 
