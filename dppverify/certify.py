@@ -189,6 +189,8 @@ def _kernel(game: Parsed[Instance], prof: Parsed[Profile], horizon: int | None, 
                                instance_sha256=str(provenance["instance"]["sha256"]),
                                profile_sha256=str(provenance["profile"]["sha256"]))
     v = kernel_check(data[0], data[1], witness, base_dir=game.folder)  # type: ignore[arg-type]
+    if not v.applicable:  # a size bound of the kernel, not a doubt about the witness
+        return {"status": "not applicable", "message": v.message}
     if not v.accepted:
         raise UndecidedError(f"the engine certifies this profile but the trusted kernel does not "
                              f"accept the engine's witness ({v.status}: {v.message}): a bug in "

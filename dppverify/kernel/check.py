@@ -15,7 +15,7 @@ from dppverify.kernel.guarantee import GuaranteeRule
 from dppverify.kernel.profile import Guarantee, read_profile, walk
 from dppverify.kernel.reading import INF, Instance, labels, parse, read_instance, sha256
 from dppverify.kernel.table import TableRule
-from dppverify.kernel.verdict import BadInput, Refuted, Stop, Undecided, Verdict
+from dppverify.kernel.verdict import BadInput, Beyond, Refuted, Stop, Undecided, Verdict
 
 __all__ = ["check"]
 
@@ -48,14 +48,14 @@ def check(instance: bytes, profile: bytes, witness: bytes | dict[str, Any], *,
     ...               {"trie": [2, 4, 0], "exit": [1, 4, 0]}]})
     >>> check(inst, prof, wit.encode())
     Verdict(status='pass', message='PASS: a weak PBNE of the untruncated game (2 types, 3 \
-nodes, trie of 3 prefixes, 2 reached prefixes)')
+nodes, trie of 3 prefixes, 2 reached prefixes)', applicable=True)
     >>> check(inst, prof, wit.replace('[1, 0, 4]', '[2, 0, 4]').encode()).message
     'type 0, node "s": E(x) <= w·q + E(u) fails on an arc'
     """
     try:
         return _decide(instance, profile, witness, None if base_dir is None else Path(base_dir))
     except Stop as stop:
-        return Verdict(stop.status, str(stop))
+        return Verdict(stop.status, str(stop), not isinstance(stop, Beyond))
 
 
 def _decide(instance: bytes, profile: bytes, witness: bytes | dict[str, Any],

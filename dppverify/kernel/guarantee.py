@@ -19,7 +19,7 @@ from dppverify.kernel.graph import exact
 from dppverify.kernel.profile import Guarantee
 from dppverify.kernel.reading import INF, Instance, labels, number
 from dppverify.kernel.table import Memory, first_failure
-from dppverify.kernel.verdict import BadInput, Undecided
+from dppverify.kernel.verdict import BadInput, Beyond, Undecided
 
 __all__ = ["MAX_BASES", "GuaranteeRule", "vertices"]
 
@@ -56,7 +56,7 @@ def vertices(cols: list[tuple[int, ...]], rhs: tuple[Any, ...]) -> list[Vec]:
     out = []
     bases = [K for k in range(1, len(rhs) + 1) for K in combinations(range(len(cols)), k)]
     if len(bases) > MAX_BASES:
-        raise Undecided(f"a vertex table of the rule's normals needs {len(bases)} bases, "
+        raise Beyond(f"a vertex table of the rule's normals needs {len(bases)} bases, "
                         f"beyond the kernel's bound of {MAX_BASES}")
     for K in bases:
         if (x := _solve([cols[j] for j in K], rhs)) is not None and min(x) > 0:

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from dppverify.kernel.graph import Graph, Grid
-from dppverify.kernel.verdict import BadInput, Undecided
+from dppverify.kernel.verdict import BadInput, Beyond
 
 __all__ = ["INF", "MAX_BYTES", "Instance", "labels", "node_id", "number", "parse",
            "read_instance", "sha256"]
@@ -179,7 +179,7 @@ def read_instance(data: bytes, base_dir: Path | None) -> Instance:
     if doc.get("format") == "dpp-map-instance/1":
         return _map_instance(doc, base_dir)
     if doc.get("numbers", "exact") != "exact":
-        raise Undecided("the instance is in float mode; the kernel decides exact games only")
+        raise Beyond("the instance is in float mode; the kernel decides exact games only")
     g = doc.get("graph")
     if type(g) is not dict or g.get("multigraph", False) or \
             type(g.get("directed", False)) is not bool:
@@ -211,7 +211,7 @@ def _map_instance(doc: dict[str, Any], base_dir: Path | None) -> Instance:
     if not set(doc) <= keys or not {"map", "map_sha256", "start", "goals", "prior"} <= set(doc):
         raise BadInput(f"dpp-map-instance/1: keys must be {sorted(keys)}")
     if doc.get("connectivity", 4) != 4 or type(doc.get("connectivity", 4)) is not int:
-        raise Undecided("an 8-connected map is a float-mode game; the kernel decides exact "
+        raise Beyond("an 8-connected map is a float-mode game; the kernel decides exact "
                         "games only")
     ref = doc["map"]
     if type(ref) is not str or not ref:

@@ -15,7 +15,7 @@ from typing import Any
 from dppverify.kernel.graph import exact
 from dppverify.kernel.profile import Table
 from dppverify.kernel.reading import INF, Instance, labels
-from dppverify.kernel.verdict import BadInput, Undecided
+from dppverify.kernel.verdict import BadInput, Beyond, Undecided
 
 __all__ = ["Memory", "TableRule", "first_failure"]
 
@@ -109,7 +109,7 @@ class TableRule:
                 q = self.children.get((p, u))
                 (_, c2), cost = self.step((p, self.cmin[p]), v, u, w)
                 if cost is None or (q is None and exit_phi is None):
-                    raise Undecided(f"the table Defender is undefined after the trie prefix {p} "
+                    raise Beyond(f"the table Defender is undefined after the trie prefix {p} "
                                     f"steps to {inst.show(u)} (no entry, no default)")
                 nxt = phi[q] if q is not None else exit_phi(u, c2)
                 if not phi[p] <= cost[theta] + nxt:
