@@ -9,6 +9,7 @@ verdict answers "is the profile a weak PBNE of that game?" (``dppverify/checks.m
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from typing import Any, Unpack
 
@@ -22,6 +23,7 @@ from dppverify.game.instance import Instance
 from dppverify.game.profile import Profile
 from dppverify.horizons import parse_horizon
 from dppverify.kernel import check as kernel_check
+from dppverify.kernel.guarantee import MAX_BASES
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.provenance import canonical_json, provenance_record
 from dppverify.registry import CHECK_IDS, not_run
@@ -178,7 +180,13 @@ def _kernel(game: Parsed[Instance], prof: Parsed[Profile], horizon: int | None, 
     a finite horizon, a float-mode game, inputs without bytes (objects given in Python)."""
     data = [p.data if isinstance(p.data, bytes) or p.data is None else canonical_json(p.data)
             for p in (game, prof)]
+    rule = getattr(prof.value.defender, "normals", None)  # the guarantee rule's extras
+    n_goals = game.value.n_goals
+    bases = 0 if rule is None else sum(math.comb(2**n_goals - 1 + len(rule) + n_goals, k)
+                                       for k in range(1, n_goals + 1))
     why = ("the engine refutes the profile or could not decide it" if verdict != "pass" else
+           f"the guarantee rule's packing polytope needs {bases} candidate bases, beyond the "
+           f"kernel's bound of {MAX_BASES}" if bases > MAX_BASES else
            f"the game truncated at H = {horizon}; the kernel decides the untruncated game"
            if horizon is not None else "a float-mode game; the kernel decides exact games only"
            if not game.value.exact else "objects given in Python have no bytes to tie a "

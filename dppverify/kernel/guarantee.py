@@ -23,8 +23,9 @@ from dppverify.kernel.verdict import BadInput, Beyond, Undecided
 
 __all__ = ["MAX_BASES", "GuaranteeRule", "vertices"]
 
-MAX_BASES = 100_000
-"""Most candidate bases the kernel tries for one vertex table (beyond: not decided)."""
+MAX_BASES = 20_000
+"""Most candidate bases the kernel tries for one vertex table (beyond: not decided); the
+packing polytope of ``|A|`` normals has ``Σ_{k <= N} C(|A| + N, k)``."""
 
 Vec = tuple[Fraction, ...]
 

@@ -27,7 +27,7 @@ from dppverify.game.distances import EXACT_FLOAT_LIMIT, multi_source_dijkstra
 from dppverify.game.instance import Instance
 from dppverify.game.instance_reading import arc_arrays, goal_distance_fields
 from dppverify.game.profile import GoalTable, GuaranteeRule, Profile, ProgressRule, TableRule
-from dppverify.structured.cover import packing_vertices
+from dppverify.structured.cover import basic_solutions, packing_vertices
 from dppverify.structured.guarantee import guarantee_sets, guarantee_sigma, rule_order
 from dppverify.structured.lexmin import simplex_min
 from dppverify.structured.table_br import trie_induction
@@ -294,14 +294,19 @@ def _guarantee_witness(instance: Instance, profile: Profile, rule: GuaranteeRule
     for lam, y in packing_vertices(A, every=True):
         if (sum(map(bool, lam)) == 1 and max(y) == 1) or (not sets.extras and set(y) <= {0, 1}):
             continue
-        rows = [[Fraction(a[i]) for a in A] for i in range(N)]
-        used: set[tuple[Fraction, ...]] = set()
-        for v in range(n):  # the cover that attains h_{F_v}(y) at each tail (exact simplex)
-            if sets.finite[v] and not instance.is_goal(v):
-                x = simplex_min([Fraction(int(row[v])) for row in sets.rows], rows, list(y))
-                if x is not None:
-                    used.add(tuple(x))
-        covers += [[_exact(c) for c in x] for x in sorted(used)]
+        scale = math.lcm(*(Fraction(x).denominator for x in y))
+        table = basic_solutions(A, [int(x * scale) for x in y])
+        tails = [v for v in range(n) if sets.finite[v] and not instance.is_goal(v)]
+        if not tails or not table.scaled.size:
+            continue
+        vals = np.array([[int(sets.rows[j][v]) for j in table.columns] for v in tails],
+                        dtype=object)
+        best = np.argmin(vals @ table.scaled.astype(object), axis=1)  # the cheapest cover
+        for t in sorted(set(best.tolist())):  # at each tail, exactly (Python integers)
+            mu = [Fraction(0)] * len(A)
+            for k, col in enumerate(table.columns):
+                mu[col] = Fraction(int(table.scaled[k, t]), table.lcm * scale)
+            covers.append([_exact(c) for c in mu])
     order = rule_order(instance.prior)
     children: dict[tuple[int, int], int] = {}
     state: list[tuple[Fraction, ...]] = [tuple(rule.h)]
@@ -314,9 +319,9 @@ def _guarantee_witness(instance: Instance, profile: Profile, rule: GuaranteeRule
                 if q == len(steps):
                     r, w = state[p + 1], Fraction(instance.weight(v, u))  # type: ignore[arg-type]
                     sigma, _ = guarantee_sigma(r, sets, u, w, order)
-                    col = sets.column(u)
-                    beta = [(sum(x * y for x, y in zip(a, r, strict=True)) - mu) / w
-                            for a, mu in zip(A, col or [], strict=True)]
+                    column = sets.column(u) or []
+                    beta = [(sum(x * y for x, y in zip(a, r, strict=True)) - mv) / w
+                            for a, mv in zip(A, column, strict=True)]
                     steps.append({"sigma": [_exact(x) for x in sigma],
                                   "duals": [_stage_dual(A, beta, sigma, order, k)
                                             for k in range(N - 1)]})
