@@ -160,7 +160,7 @@ def _certificate(game: Parsed[Instance], prof: Parsed[Profile], chosen: Chosen,
     exploit = exploitability_of(checks, goals=who.goals, priors=who.priors, horizon=horizon,
                                 exact=inst.exact)
     provenance = provenance_record(game, prof, route=chosen, exact=inst.exact)
-    kernel = _kernel(game, prof, horizon, verdict_of(tuple(checks)), provenance)
+    kernel = _kernel(game, prof, horizon, tuple(checks), provenance)
     return Certificate(
         checks=tuple(checks), horizon=horizon, exact=inst.exact,
         tolerance=inst.numbers.rel_tol, lp_solver=LP_SOLVER, lp_tolerance=LP_TOLERANCE,
@@ -171,13 +171,17 @@ def _certificate(game: Parsed[Instance], prof: Parsed[Profile], chosen: Chosen,
         provenance=provenance, exploitability=exploit)
 
 
-def _kernel(game: Parsed[Instance], prof: Parsed[Profile], horizon: int | None, verdict: str,
-            provenance: Mapping[str, Any]) -> dict[str, str]:
+def _kernel(game: Parsed[Instance], prof: Parsed[Profile], horizon: int | None,
+            checks: tuple[CheckRecord, ...], provenance: Mapping[str, Any]) -> dict[str, str]:
     """One verdict: the trusted kernel (:mod:`dppverify.kernel`, proofs/KERNEL.md) on the
     engine's witness (:mod:`dppverify.structured.witness`) of a profile the engine certifies,
     recorded in ``info.kernel``; a PASS the kernel does not accept is a bug of the checker
     (:class:`~dppverify.errors.UndecidedError`, exit 3, naming both). Not applicable (and why):
-    a finite horizon, a float-mode game, inputs without bytes (objects given in Python)."""
+    a finite horizon, a float-mode game, inputs without bytes (objects given in Python), a
+    guarantee rule the engine decided by its exact search (NRULE NR.4: the kernel has NR.2
+    only) or whose packing polytope is beyond the kernel's bound."""
+    verdict = verdict_of(checks)
+    searched = any(c.id == "pbne.attacker_br" and (c.numbers or {}).get("states") for c in checks)
     data = [p.data if isinstance(p.data, bytes) or p.data is None else canonical_json(p.data)
             for p in (game, prof)]
     rule = getattr(prof.value.defender, "normals", None)  # the guarantee rule's extras
@@ -185,6 +189,8 @@ def _kernel(game: Parsed[Instance], prof: Parsed[Profile], horizon: int | None, 
     bases = 0 if rule is None else sum(math.comb(2**n_goals - 1 + len(rule) + n_goals, k)
                                        for k in range(1, n_goals + 1))
     why = ("the engine refutes the profile or could not decide it" if verdict != "pass" else
+           "the engine decided the Attacker by its exact search over the rule's states (NRULE "
+           "NR.4); the kernel decides the guarantee rule by NR.2 only" if searched else
            f"the guarantee rule's packing polytope needs {bases} candidate bases, beyond the "
            f"kernel's bound of {MAX_BASES}" if bases > MAX_BASES else
            f"the game truncated at H = {horizon}; the kernel decides the untruncated game"
