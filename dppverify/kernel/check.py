@@ -15,7 +15,7 @@ from dppverify.kernel.guarantee import GuaranteeRule
 from dppverify.kernel.profile import Guarantee, read_profile, walk
 from dppverify.kernel.reading import INF, Instance, labels, parse, read_instance, sha256
 from dppverify.kernel.table import TableRule
-from dppverify.kernel.verdict import BadInput, Refuted, Stop, Undecided, Verdict
+from dppverify.kernel.verdict import BadInput, Beyond, Refuted, Stop, Undecided, Verdict
 
 __all__ = ["check"]
 
@@ -23,11 +23,11 @@ _KEYS = {"format", "instance_sha256", "profile_sha256", "denominator", "distance
          "guarantee", "counterexamples", "producer"}
 
 
-def check(instance: bytes, profile: bytes, witness: bytes, *,
+def check(instance: bytes, profile: bytes, witness: bytes | dict[str, Any], *,
           base_dir: str | Path | None = None) -> Verdict:
     """Decide whether ``profile`` is a weak PBNE of the untruncated game ``instance``, from
-    ``witness`` (the three documents' bytes, exactly as read; ``base_dir``: where a map
-    instance's relative ``map`` path starts).
+    ``witness`` (the three documents' bytes, exactly as read, or the witness already parsed as
+    JSON values; ``base_dir``: where a map instance's relative ``map`` path starts).
 
     Examples
     --------
@@ -48,19 +48,20 @@ def check(instance: bytes, profile: bytes, witness: bytes, *,
     ...               {"trie": [2, 4, 0], "exit": [1, 4, 0]}]})
     >>> check(inst, prof, wit.encode())
     Verdict(status='pass', message='PASS: a weak PBNE of the untruncated game (2 types, 3 \
-nodes, trie of 3 prefixes, 2 reached prefixes)')
+nodes, trie of 3 prefixes, 2 reached prefixes)', applicable=True)
     >>> check(inst, prof, wit.replace('[1, 0, 4]', '[2, 0, 4]').encode()).message
     'type 0, node "s": E(x) <= w·q + E(u) fails on an arc'
     """
     try:
         return _decide(instance, profile, witness, None if base_dir is None else Path(base_dir))
     except Stop as stop:
-        return Verdict(stop.status, str(stop))
+        return Verdict(stop.status, str(stop), not isinstance(stop, Beyond))
 
 
-def _decide(instance: bytes, profile: bytes, witness: bytes, base_dir: Path | None) -> Verdict:
+def _decide(instance: bytes, profile: bytes, witness: bytes | dict[str, Any],
+            base_dir: Path | None) -> Verdict:
     inst = read_instance(instance, base_dir)
-    wit = parse(witness, "witness")
+    wit = witness if isinstance(witness, dict) else parse(witness, "witness")
     if type(wit) is not dict or wit.get("format") != "dpp-witness/1":
         raise BadInput("witness: not a dpp-witness/1 document")
     if set(wit) - _KEYS:

@@ -35,7 +35,7 @@ def check_greedy(inst: Instance, mixtures: Sequence[Sequence[tuple[tuple[int, ..
     dppverify.kernel.verdict.Refuted: Defender: not greedy at the reached prefix ["s", "a"]: \
 sigma puts 1/2 on goal "b", whose Bayes mass 2/5 is below the largest, 3/5
     """
-    n, ids = len(inst.goals), {}
+    n, ids = len(inst.goals), dict[tuple[int, int], int]()
     mass: list[list[Fraction]] = []
     sig: list[Any] = []  # per prefix: its costs and (walk, length) to name it
     for theta, mix in enumerate(mixtures):

@@ -47,7 +47,7 @@ class Graph:
         """The weight of the arc ``v -> u`` (None when there is none)."""
         return next((w for x, w in self.adj[v] if x == u), None)
 
-    def relax(self, y: list[Any], k: Fraction, inf: int) -> list[Any]:
+    def relax(self, y: list[Any], k: Fraction, inf: float) -> list[Any]:
         """``M(v) = min over arcs (v, u) of k·w(v, u) + y(u)`` (``inf`` without arcs).
 
         Examples
@@ -79,11 +79,8 @@ class Grid:
     def __init__(self, rows: int, cols: int, pos: list[int]) -> None:
         self.rows, self.cols, self.W = rows, cols, cols + 1
         self.pos, self.n = pos, len(pos)
-        idx = [self.n] * ((rows + 2) * self.W)  # padded position -> node (n: no node)
-        for i, p in enumerate(pos):
-            idx[p] = i
-        self.idx = idx
-        self.nbr = [list(map(idx.__getitem__, map(add, pos, repeat(d))))
+        self.idx = idx = dict(zip(pos, range(self.n), strict=True))  # padded position -> node
+        self.nbr = [list(map(idx.get, map(add, pos, repeat(d)), repeat(self.n)))
                     for d in (-self.W, -1, 1, self.W)]
 
     @classmethod
@@ -121,8 +118,8 @@ class Grid:
         if not (type(cell) is tuple and len(cell) == 2 and all(type(x) is int for x in cell)):
             return None
         r, c = cell
-        i = self.idx[(r + 1) * self.W + c] if 0 <= r < self.rows and 0 <= c < self.cols else -1
-        return i if 0 <= i < self.n else None
+        return self.idx.get((r + 1) * self.W + c) if 0 <= r < self.rows and 0 <= c < self.cols \
+            else None
 
     def cell(self, v: int) -> tuple[int, int]:
         """The cell ``(r, c)`` of node ``v``."""
@@ -137,7 +134,7 @@ class Grid:
         """The weight of the arc ``v -> u``: 1 between neighbours, else None."""
         return Fraction(1) if abs(self.pos[u] - self.pos[v]) in (1, self.W) else None
 
-    def relax(self, y: list[Any], k: Fraction, inf: int) -> list[Any]:
+    def relax(self, y: list[Any], k: Fraction, inf: float) -> list[Any]:
         """:meth:`Graph.relax` on the grid: one shifted list per direction.
 
         Examples

@@ -19,12 +19,13 @@ from dppverify.kernel.graph import exact
 from dppverify.kernel.profile import Guarantee
 from dppverify.kernel.reading import INF, Instance, labels, number
 from dppverify.kernel.table import Memory, first_failure
-from dppverify.kernel.verdict import BadInput, Undecided
+from dppverify.kernel.verdict import BadInput, Beyond, Undecided
 
 __all__ = ["MAX_BASES", "GuaranteeRule", "vertices"]
 
-MAX_BASES = 100_000
-"""Most candidate bases the kernel tries for one vertex table (beyond: not decided)."""
+MAX_BASES = 20_000
+"""Most candidate bases the kernel tries for one vertex table (beyond: not decided); the
+packing polytope of ``|A|`` normals has ``Σ_{k <= N} C(|A| + N, k)``."""
 
 Vec = tuple[Fraction, ...]
 
@@ -56,7 +57,7 @@ def vertices(cols: list[tuple[int, ...]], rhs: tuple[Any, ...]) -> list[Vec]:
     out = []
     bases = [K for k in range(1, len(rhs) + 1) for K in combinations(range(len(cols)), k)]
     if len(bases) > MAX_BASES:
-        raise Undecided(f"a vertex table of the rule's normals needs {len(bases)} bases, "
+        raise Beyond(f"a vertex table of the rule's normals needs {len(bases)} bases, "
                         f"beyond the kernel's bound of {MAX_BASES}")
     for K in bases:
         if (x := _solve([cols[j] for j in K], rhs)) is not None and min(x) > 0:
@@ -167,7 +168,7 @@ class GuaranteeRule:
             upper = list(map(min, *(_combine(mu, self.m, L) for mu in cands))) if len(cands) > 1 \
                 else _combine(lam, self.m, L)
             rhs = self.inst.graph.relax(_combine(lam, self.m, L), Fraction(S * L), INF)
-            v = first_failure(upper, rhs, self.inst.goals)  # type: ignore[arg-type]
+            v = first_failure(upper, rhs, self.inst.goals)
             if v is not None:
                 raise Undecided(f"the arc condition F_v in F_u + wΔ fails at node "
                                 f"{self.inst.show(v)} in the direction y = "
@@ -196,7 +197,7 @@ class GuaranteeRule:
             if not ok:
                 raise Undecided(f"guarantee.steps[{q}]: the dual of stage {k + 1} does not prove "
                                 "sigma the lexicographic minimum")
-        return tuple(s)  # type: ignore[arg-type]
+        return tuple(s)
 
     def check_type(self, theta: int, rec: Any, dead: list[int], u_scaled: Fraction) -> None:
         """Type ``θ``'s bound: ``U_θ <= h_θ`` (NR.2)."""

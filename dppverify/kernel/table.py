@@ -15,7 +15,7 @@ from typing import Any
 from dppverify.kernel.graph import exact
 from dppverify.kernel.profile import Table
 from dppverify.kernel.reading import INF, Instance, labels
-from dppverify.kernel.verdict import BadInput, Undecided
+from dppverify.kernel.verdict import BadInput, Beyond, Undecided
 
 __all__ = ["Memory", "TableRule", "first_failure"]
 
@@ -31,8 +31,7 @@ def first_failure(xs: list[Any], ys: list[Any], skip: Any = ()) -> int | None:
     >>> first_failure([1, 5, 9], [2, 4, 3], (1,))
     2
     """
-    ys = list(ys)
-    for v in skip:
+    for v in skip:  # ys is the caller's fresh list
         ys[v] = INF
     return None if all(map(le, xs, ys)) else next(v for v in range(len(xs)) if not xs[v] <= ys[v])
 
@@ -72,7 +71,7 @@ class TableRule:
         if sigma is None and self.progress:
             j, full = self.table.goal, exact(w * self.S)
             return mem2, tuple(c - c2 if i == j else full - (c - c2) for i in range(2))
-        sigma = sigma or self.table.default
+        sigma = sigma or self.table.default  # type: ignore[assignment]
         return mem2, None if sigma is None else tuple(exact(w * self.S * x) for x in sigma)
 
     def check_type(self, theta: int, rec: Any, dead: list[int], u_scaled: Fraction) -> None:
@@ -97,7 +96,7 @@ class TableRule:
             exit_phi = lambda u, c2: c2  # noqa: E731
         elif self.table.default is not None:
             E = labels(rec["exit"], n, f"types[{theta}].exit", dead)
-            self._arcs(theta, E, self.table.default[theta], "E(x) <= w·q + E(u)")
+            self._arcs(theta, E, self.table.default[theta], "E(x) <= w·q + E(u)")  # type: ignore[arg-type]
             exit_phi = lambda u, c2: E[u]  # noqa: E731
         alive = self.inst.alive
         for p, v in enumerate(self.node):
@@ -110,7 +109,7 @@ class TableRule:
                 q = self.children.get((p, u))
                 (_, c2), cost = self.step((p, self.cmin[p]), v, u, w)
                 if cost is None or (q is None and exit_phi is None):
-                    raise Undecided(f"the table Defender is undefined after the trie prefix {p} "
+                    raise Beyond(f"the table Defender is undefined after the trie prefix {p} "
                                     f"steps to {inst.show(u)} (no entry, no default)")
                 nxt = phi[q] if q is not None else exit_phi(u, c2)
                 if not phi[p] <= cost[theta] + nxt:

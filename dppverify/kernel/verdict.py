@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["EXIT_CODES", "BadInput", "Refuted", "Stop", "Undecided", "Verdict"]
+__all__ = ["EXIT_CODES", "BadInput", "Beyond", "Refuted", "Stop", "Undecided", "Verdict"]
 
 EXIT_CODES = {"pass": 0, "refuted": 1, "bad-input": 2, "undecided": 3}
 """The exit code of ``dpp check`` for each status."""
@@ -28,6 +28,9 @@ class Verdict:
 
     status: str
     message: str
+    applicable: bool = True
+    """False for a game the kernel does not decide (float mode, a size bound, a table
+    undefined on a walk of the game): "undecided" then says nothing about the witness."""
 
     @property
     def exit_code(self) -> int:
@@ -60,3 +63,7 @@ class Refuted(Stop):
 
 class Undecided(Stop):
     """The witness does not prove the claim, or the kernel does not decide this game."""
+
+
+class Beyond(Undecided):
+    """The kernel does not decide this game (float mode, a size bound, an undefined table)."""

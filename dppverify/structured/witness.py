@@ -19,15 +19,18 @@ from collections.abc import Sequence
 from fractions import Fraction
 from typing import Any
 
+import numpy as np
+
 from dppverify.exact import INF, Number
 from dppverify.formats.json_reading import node_to_json
-from dppverify.game.distances import multi_source_dijkstra
+from dppverify.game.distances import EXACT_FLOAT_LIMIT, multi_source_dijkstra
 from dppverify.game.instance import Instance
+from dppverify.game.instance_reading import arc_arrays, goal_distance_fields
 from dppverify.game.profile import GoalTable, GuaranteeRule, Profile, ProgressRule, TableRule
-from dppverify.structured.cover import packing_vertices
+from dppverify.structured.cover import basic_solutions, packing_vertices
 from dppverify.structured.guarantee import guarantee_sets, guarantee_sigma, rule_order
 from dppverify.structured.lexmin import simplex_min
-from dppverify.structured.table_br import exit_costs, goal_free_pred, trie_induction
+from dppverify.structured.table_br import trie_induction
 from dppverify.structured.trie import build_walk_trie
 
 __all__ = ["WITNESS_FORMAT", "witness_document"]
@@ -64,6 +67,34 @@ def _labels(xs: Sequence[Number], S: int) -> list[int | None]:
     return [None if x == INF else int(Fraction(x) * S) for x in xs]
 
 
+Scaled = tuple[np.ndarray, int]
+"""A field of exact numbers ``array / scale`` (float64 holding integers below 2**53, or an
+object array of Python integers; ``inf`` where the field is +∞)."""
+
+
+def _ints(field: Scaled, S: int) -> list[int | None]:
+    """The field's labels over the denominator ``S`` (a multiple of its scale)."""
+    arr, scale = field
+    k = S // scale
+    return [None if x == INF else int(x) * k for x in arr.tolist()]
+
+
+def _at(field: Scaled, v: int) -> Number:
+    x = field[0][v]
+    return INF if x == INF else Fraction(int(x), field[1])
+
+
+def _distance_field(instance: Instance, j: int) -> Scaled:
+    """``d(·, g^j)`` as a scaled field: the reader's own float64 field when it made one."""
+    fields = goal_distance_fields(instance)
+    if fields is not None:
+        return np.asarray(fields[1][instance.goals[j]], dtype=np.float64), fields[0]
+    d = instance.dist_to[j]
+    scale = math.lcm(*(Fraction(x).denominator for x in d if x != INF))
+    return np.array([INF if x == INF else int(Fraction(x) * scale) for x in d], dtype=object), \
+        scale
+
+
 def witness_document(instance: Instance, profile: Profile, *, instance_sha256: str,
                      profile_sha256: str) -> dict[str, Any]:
     """The witness of a well-formed progress- or table-rule ``profile`` on exact ``instance``.
@@ -86,132 +117,162 @@ def witness_document(instance: Instance, profile: Profile, *, instance_sha256: s
     if isinstance(profile.defender, GuaranteeRule):
         return _guarantee_witness(instance, profile, profile.defender, instance_sha256,
                                   profile_sha256)
-    entries, default, pj = _table(instance, profile)
-    progress = default == "progress"
-    _n, goals = instance.n_nodes, instance.goals
-    dist = instance.dist_to
-    dg = dist[pj]
-    trie = build_walk_trie(instance, list(entries))
-    listed = {trie.find(w): d for w, d in entries.items()}
-    cmin: list[Number] = []
-    for p in range(len(trie)):
-        here = dg[trie.node[p]]
-        cmin.append(here if trie.parent[p] < 0 else min(cmin[trie.parent[p]], here))
-    arcs = goal_free_pred(instance)
-
-    def sigma(p: int, c: int, w: Number) -> Dist | None:
-        if c in listed:
-            return listed[c]
-        if progress:
-            x = Fraction(cmin[p] - cmin[c]) / Fraction(w)
-            return (x, 1 - x) if pj == 0 else (1 - x, x)
-        return default  # type: ignore[no-any-return]
-
-    def walk_cost(walk: Sequence[int], theta: int) -> Fraction:
-        p, c, total = 0, dg[walk[0]], Fraction(0)
-        for v, u in itertools.pairwise(walk):
-            q = trie.child(p, u) if p >= 0 else None
-            w = instance.weight(v, u)
-            s = listed.get(q) if q is not None else None
-            if s is None and progress:
-                x = Fraction(c - min(c, dg[u])) / Fraction(w)  # type: ignore[arg-type]
-                s = (x, 1 - x) if pj == 0 else (1 - x, x)
-            total += Fraction(w) * (s or default)[theta]  # type: ignore[arg-type, index]
-            p, c = (-1 if q is None else q), min(c, dg[u])
-        return total + Fraction(dist[theta][walk[-1]])
-
-    labels: list[dict[str, list[Number]]] = []
-    phis: list[list[Number]] = []
-    walks: list[dict[str, Any]] = []
-    for theta in range(len(goals)):
-        rec: dict[str, list[Number]] = {}
-        chain: Any = None
-        if progress and theta != pj:
-            P, via_p = exit_costs(instance, Fraction(1), theta, arcs)
-            Q, via_q = _q_label(instance, dg, P)
-            rec = {"P": P, "Q": Q}
-
-            def chain(u: int, c2: Number, P: Any = P, Q: Any = Q, vp: Any = via_p,
-                      vq: Any = via_q) -> list[int]:
-                out, x = [u], u
-                if Q[x] - c2 < P[x]:
-                    while vq[x] >= 0:
-                        x = vq[x]
-                        out.append(x)
-                while not instance.is_goal(x):
-                    x = vp[x]
-                    out.append(x)
-                return out
-
-            def leave(p: int, u: int, w: Number, P: Any = P, Q: Any = Q) -> Number | None:
-                c2 = min(cmin[p], dg[u])
-                return Fraction(w) - (cmin[p] - c2) + min(P[u], Q[u] - c2)
-        elif progress:
-            def leave(p: int, u: int, w: Number) -> Number | None:
-                return cmin[p]
-
-            def chain(u: int, c2: Number) -> list[int]:
-                out = [u]
-                while not instance.is_goal(out[-1]):
-                    x = out[-1]
-                    out.append(next(y for y, w in instance.succ[x] if dg[y] != INF
-                                    and dg[x] == Fraction(w) + dg[y]))
-                return out
-        elif default is not None:
-            E, via_e = exit_costs(instance, Fraction(default[theta]), theta, arcs)
-            rec = {"exit": E}
-
-            def chain(u: int, c2: Number, via: Any = via_e) -> list[int]:
-                out = [u]
-                while not instance.is_goal(out[-1]):
-                    out.append(via[out[-1]])
-                return out
-
-            def leave(p: int, u: int, w: Number, E: Any = E, q: Any = default[theta]
-                      ) -> Number | None:
-                return Fraction(w) * q + E[u]
-        else:
-            def leave(p: int, u: int, w: Number) -> Number | None:
-                return None
-
-        def inside(p: int, c: int, w: Number, theta: int = theta) -> Number | None:
-            s = sigma(p, c, w)
-            return None if s is None else Fraction(w) * s[theta]
-        J, choice, _undefined = trie_induction(instance, trie, dist[theta], inside, leave)
-        labels.append(rec)
-        phis.append(J)
-        U = sum((mw.probability * walk_cost(mw.walk, theta) for mw in profile.attacker[theta]),
-                Fraction(0))
-        if J[0] != INF and J[0] < U:  # regret > 0: the walk that attains the minimum
-            walk, p = [trie.node[0]], 0
-            while choice[p] is not None:
-                u, c = choice[p]  # type: ignore[misc]
-                if c < 0:
-                    walk += chain(u, min(cmin[p], dg[u]))
-                    break
-                walk.append(u)
-                p = c
-            walks.append({"type": theta, "walk": [node_to_json(x) for x in instance.labels(walk)]})
-    every = [x for d in dist for x in d] + [x for J in phis for x in J] + [
-        x for rec in labels for xs in rec.values() for x in xs]
-    S = math.lcm(*(Fraction(x).denominator for x in every if x != INF))
-    types = [{"trie": _labels(J, S), **{k: _labels(v, S) for k, v in rec.items()}}
-             for J, rec in zip(phis, labels, strict=True)]
-    doc: dict[str, Any] = {"format": WITNESS_FORMAT, "instance_sha256": instance_sha256,
-                           "profile_sha256": profile_sha256, "denominator": S,
-                           "distances": [_labels(d, S) for d in dist], "types": types}
+    table = _TableWitness(instance, profile)
+    per_type = [table.type_labels(theta) for theta in range(instance.n_goals)]
+    dist = [_distance_field(instance, j) for j in range(instance.n_goals)]
+    S = math.lcm(*(scale for _, scale in dist), *(Fraction(x).denominator for _, rec, _ in per_type
+                                                 for x in rec["trie"] if x != INF),
+                 *(f[1] for _, rec, _ in per_type for k, f in rec.items() if k != "trie"))
+    doc: dict[str, Any] = {
+        "format": WITNESS_FORMAT, "instance_sha256": instance_sha256,
+        "profile_sha256": profile_sha256, "denominator": S,
+        "distances": [_ints(d, S) for d in dist],
+        "types": [{k: _labels(v, S) if k == "trie" else _ints(v, S) for k, v in rec.items()}
+                  for _, rec, _ in per_type]}
+    walks = [{"type": theta, "walk": [node_to_json(x) for x in instance.labels(w)]}
+             for theta, _, w in per_type if w]
     if walks:
         doc["counterexamples"] = walks
     return doc
 
 
-def _q_label(instance: Instance, dg: Sequence[Number], P: Sequence[Number]
-             ) -> tuple[list[Number], list[int]]:
-    """``Q(v) = min(d(v, g) + P(v), min over arcs (v, u), v not a goal, of w + Q(u))``."""
-    pred = [[(u, w) for u, w in row if not instance.is_goal(u)] for row in instance.pred]
-    sources = [(x, Fraction(dg[x]) + Fraction(P[x])) for x in range(instance.n_nodes)
-               if dg[x] != INF and P[x] != INF]
-    return multi_source_dijkstra(pred, sources)  # type: ignore[return-value]
+class _TableWitness:
+    """The exact labels of a table Defender (the progress rule is the empty table with the
+    progress default) on the trie of its entries: KERNEL K.2 item 5, K.3, K.6."""
+
+    def __init__(self, instance: Instance, profile: Profile) -> None:
+        self.instance, self.profile = instance, profile
+        self.entries, self.default, self.pj = _table(instance, profile)
+        self.progress = self.default == "progress"
+        self.dg = dg = instance.dist_to[self.pj]
+        self.trie = trie = build_walk_trie(instance, list(self.entries))
+        self.listed = {trie.find(w): d for w, d in self.entries.items()}
+        self.cmin: list[Number] = []
+        for p in range(len(trie)):
+            here = dg[trie.node[p]]
+            self.cmin.append(here if trie.parent[p] < 0 else min(self.cmin[trie.parent[p]], here))
+
+    def sigma(self, p: int, c: int | None, w: Number, c2: Number | None = None) -> Dist | None:
+        """σ on the step from trie prefix ``p`` to its child ``c`` (or off the trie, with the
+        new running minimum ``c2``)."""
+        if c is not None and c in self.listed:
+            return self.listed[c]
+        if self.progress:
+            x = Fraction(self.cmin[p] - (self.cmin[c] if c is not None else c2)) / Fraction(w)  # type: ignore[operator]
+            return (x, 1 - x) if self.pj == 0 else (1 - x, x)
+        return self.default
+
+    def walk_cost(self, walk: Sequence[int], theta: int) -> Fraction:
+        """Type ``θ``'s cost of a walk against the table."""
+        inst, dg = self.instance, self.dg
+        p, c, total = 0, dg[walk[0]], Fraction(0)
+        for v, u in itertools.pairwise(walk):
+            w = Fraction(inst.weight(v, u))  # type: ignore[arg-type]
+            q = self.trie.child(p, u) if p >= 0 else None
+            s = self.listed.get(q) if q is not None else None
+            if s is None and self.progress:
+                x = Fraction(c - min(c, dg[u])) / w
+                s = (x, 1 - x) if self.pj == 0 else (1 - x, x)
+            total += w * (s or self.default)[theta]
+            p, c = (-1 if q is None else q), min(c, dg[u])
+        return total + Fraction(inst.dist_to[theta][walk[-1]])
+
+    def type_labels(self, theta: int) -> tuple[int, dict[str, Any], list[int]]:
+        """Type ``θ``'s labels (``trie`` and the exit labels) and, when its regret is positive,
+        the walk that attains its minimum (else ``[]``)."""
+        inst, dg, cmin = self.instance, self.dg, self.cmin
+        rec: dict[str, Any] = {}
+        P: Scaled = (np.zeros(0), 1)
+        Q: Scaled = (np.zeros(0), 1)
+        E: Scaled = (np.zeros(0), 1)
+        via_p: list[int] = []
+        via_q: list[int] = []
+        term = _distance_field(inst, theta)
+        at_goals = np.full(inst.n_nodes, INF, dtype=term[0].dtype)
+        at_goals[list(inst.goals)] = term[0][list(inst.goals)]
+        if self.progress and theta != self.pj:
+            P, via_p = _sources_field(inst, (at_goals, term[1]), Fraction(1))
+            dgs = _distance_field(inst, self.pj)
+            scale = math.lcm(P[1], dgs[1])
+            init = dgs[0] * (scale // dgs[1]) + P[0] * (scale // P[1])
+            Q, via_q = _sources_field(inst, (init, scale), Fraction(1))
+            rec = {"P": P, "Q": Q}
+        elif not self.progress and self.default is not None:
+            E, via_p = _sources_field(inst, (at_goals, term[1]), Fraction(self.default[theta]))
+            rec = {"exit": E}
+
+        def leave(p: int, u: int, w: Number) -> Number | None:
+            c2 = min(cmin[p], dg[u])
+            if self.progress:
+                return cmin[p] if theta == self.pj else \
+                    Fraction(w) - (cmin[p] - c2) + min(_at(P, u), _at(Q, u) - c2)
+            return None if self.default is None else Fraction(w) * self.default[theta] + _at(E, u)
+
+        def inside(p: int, c: int, w: Number) -> Number | None:
+            s = self.sigma(p, c, w)
+            return None if s is None else Fraction(w) * s[theta]
+
+        J, choice, _ = trie_induction(inst, self.trie, inst.dist_to[theta], inside, leave)
+        U = sum((mw.probability * self.walk_cost(mw.walk, theta)
+                 for mw in self.profile.attacker[theta]), Fraction(0))
+        walk: list[int] = []
+        if J[0] != INF and J[0] < U:  # regret > 0: the walk that attains the minimum
+            walk, p = [self.trie.node[0]], 0
+            while (step := choice[p]) is not None:
+                u, c = step
+                if c >= 0:
+                    walk.append(u)
+                    p = c
+                    continue
+                x = u
+                walk.append(x)
+                if self.progress and theta == self.pj:  # a shortest path to the rule's goal
+                    while not inst.is_goal(x):
+                        x = next(y for y, w in inst.succ[x] if dg[y] != INF
+                                 and dg[x] == Fraction(w) + dg[y])
+                        walk.append(x)
+                    break
+                if self.progress and _at(Q, x) - min(cmin[p], dg[x]) < _at(P, x):
+                    while via_q[x] >= 0:  # Q's chain to the node attaining the minimum
+                        x = via_q[x]
+                        walk.append(x)
+                while not inst.is_goal(x):
+                    x = via_p[x]
+                    walk.append(x)
+                break
+        return theta, {"trie": J, **rec}, walk
+
+
+def _sources_field(instance: Instance, init: Scaled, share: Fraction) -> tuple[Scaled, list[int]]:
+    """``min over sources x of init(x) + share·d°(v, x)`` at every node ``v`` (``d°``: no arc
+    leaving a goal: a walk ends at its first goal; the sources are where ``init`` is finite)
+    and the next node towards it (``-1`` at a source or where none is reached). scipy's
+    Dijkstra on a super-source when every sum is an integer below 2**53 (then exact), else the
+    exact Python Dijkstra on integers."""
+    arcs = arc_arrays(instance)
+    keep = ~np.isin(arcs.tails, np.asarray(instance.goals))
+    values = [Fraction(v) * share for v in arcs.values]
+    scale = math.lcm(init[1], *(x.denominator for x in values))
+    w = np.asarray([int(x * scale) for x in values], dtype=np.int64)[arcs.codes[keep]]
+    xs = np.flatnonzero(np.asarray(init[0] != INF, dtype=bool))
+    cost = [int(c) * (scale // init[1]) for c in init[0][xs].tolist()]
+    n = instance.n_nodes
+    if share > 0 and int(w.sum()) + max(cost, default=0) + 1 < EXACT_FLOAT_LIMIT:
+        import scipy.sparse as sp
+        from scipy.sparse.csgraph import dijkstra
+
+        m = sp.csr_matrix((np.concatenate([w.astype(float), np.asarray(cost, float) + 1]),
+                           (np.concatenate([arcs.heads[keep], np.full(xs.size, n)]),
+                            np.concatenate([arcs.tails[keep], xs]))), shape=(n + 1, n + 1))
+        dist, pred = dijkstra(m, directed=True, indices=n, return_predecessors=True)
+        via = np.where((pred[:n] >= 0) & (pred[:n] < n), pred[:n], -1)
+        return (dist[:n] - 1, scale), via.tolist()
+    rows: list[list[tuple[int, int]]] = [[] for _ in range(n)]
+    for t, h, c in zip(arcs.tails[keep].tolist(), arcs.heads[keep].tolist(), w.tolist(),
+                       strict=True):
+        rows[h].append((t, c))
+    keys, via_l = multi_source_dijkstra(rows, list(zip(xs.tolist(), cost, strict=True)))
+    return (np.array(keys, dtype=object), scale), via_l
 
 
 def _exact(x: Fraction) -> str:
@@ -233,18 +294,23 @@ def _guarantee_witness(instance: Instance, profile: Profile, rule: GuaranteeRule
     for lam, y in packing_vertices(A, every=True):
         if (sum(map(bool, lam)) == 1 and max(y) == 1) or (not sets.extras and set(y) <= {0, 1}):
             continue
-        rows = [[Fraction(a[i]) for a in A] for i in range(N)]
-        used: set[tuple[Fraction, ...]] = set()
-        for v in range(n):  # the cover that attains h_{F_v}(y) at each tail (exact simplex)
-            if sets.finite[v] and not instance.is_goal(v):
-                x = simplex_min([Fraction(int(row[v])) for row in sets.rows], rows, list(y))
-                if x is not None:
-                    used.add(tuple(x))
-        covers += [[_exact(c) for c in x] for x in sorted(used)]
+        scale = math.lcm(*(Fraction(x).denominator for x in y))
+        table = basic_solutions(A, [int(x * scale) for x in y])
+        tails = [v for v in range(n) if sets.finite[v] and not instance.is_goal(v)]
+        if not tails or not table.scaled.size:
+            continue
+        vals = np.array([[int(sets.rows[j][v]) for j in table.columns] for v in tails],
+                        dtype=object)
+        best = np.argmin(vals @ table.scaled.astype(object), axis=1)  # the cheapest cover
+        for t in sorted(set(best.tolist())):  # at each tail, exactly (Python integers)
+            mu = [Fraction(0)] * len(A)
+            for k, col in enumerate(table.columns):
+                mu[col] = Fraction(int(table.scaled[k, t]), table.lcm * scale)
+            covers.append([_exact(c) for c in mu])
     order = rule_order(instance.prior)
     children: dict[tuple[int, int], int] = {}
     state: list[tuple[Fraction, ...]] = [tuple(rule.h)]
-    steps = []
+    steps: list[dict[str, Any]] = []
     for mix in profile.attacker:
         for mw in mix:
             p = -1
@@ -253,9 +319,9 @@ def _guarantee_witness(instance: Instance, profile: Profile, rule: GuaranteeRule
                 if q == len(steps):
                     r, w = state[p + 1], Fraction(instance.weight(v, u))  # type: ignore[arg-type]
                     sigma, _ = guarantee_sigma(r, sets, u, w, order)
-                    col = sets.column(u)
-                    beta = [(sum(x * y for x, y in zip(a, r, strict=True)) - mu) / w
-                            for a, mu in zip(A, col or [], strict=True)]
+                    column = sets.column(u) or []
+                    beta = [(sum(x * y for x, y in zip(a, r, strict=True)) - mv) / w
+                            for a, mv in zip(A, column, strict=True)]
                     steps.append({"sigma": [_exact(x) for x in sigma],
                                   "duals": [_stage_dual(A, beta, sigma, order, k)
                                             for k in range(N - 1)]})

@@ -27,7 +27,7 @@ WITNESS_FORMAT = "dpp-witness/1"
 
 
 def _labels(field: np.ndarray) -> list[int | None]:
-    return [None if not math.isfinite(float(x)) else int(x) for x in field.tolist()]
+    return [None if x == math.inf else int(x) for x in field.tolist()]
 
 
 def twogoal_witness(inst: Instance, *, instance_sha256: str, profile_sha256: str
@@ -39,7 +39,7 @@ def twogoal_witness(inst: Instance, *, instance_sha256: str, profile_sha256: str
     >>> from solver.game.instance import triangle
     >>> w = twogoal_witness(triangle(), instance_sha256="0" * 64, profile_sha256="1" * 64)
     >>> w["denominator"], w["distances"], w["types"]
-    (1, [[3, 0, 2], [2, 2, 0]], [{'trie': [3]}, {'trie': [1], 'P': [2, 2, 0], 'Q': [4, 2, 2]}])
+    (1, [[3, 2, 0], [2, 0, 2]], [{'trie': [3]}, {'trie': [1], 'P': [2, 0, 2], 'Q': [4, 2, 2]}])
     """
     if not inst.network.numbers.exact:
         raise ValueError("the trusted kernel decides exact games only (this one is float)")
@@ -47,10 +47,10 @@ def twogoal_witness(inst: Instance, *, instance_sha256: str, profile_sha256: str
     d1, d2 = inst.dist_to[one], inst.dist_to[1 - one]
     goals = inst.targets
     s0 = inst.s0
-    P = sources_to(inst.network, {g: d2[g] for g in goals}, stop=goals)
-    alive = np.isfinite(P.astype(np.float64)) & np.isfinite(d1.astype(np.float64))
-    Q = sources_to(inst.network, {int(x): d1[x] + P[x] for x in np.flatnonzero(alive)},
-                   stop=goals)
+    init = np.full(inst.network.n_nodes, np.inf, dtype=d2.dtype)
+    init[list(goals)] = d2[list(goals)]
+    P = sources_to(inst.network, init, stop=goals)
+    Q = sources_to(inst.network, d1 + P, stop=goals)  # inf where either is
     phi = min(P[s0], Q[s0] - d1[s0])
     types: list[dict[str, Any]] = [{"trie": [int(d1[s0])]},
                                    {"trie": [int(phi)], "P": _labels(P), "Q": _labels(Q)}]

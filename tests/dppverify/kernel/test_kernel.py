@@ -198,3 +198,68 @@ def _full_document(inst: Any) -> dict[str, Any]:
             "start": list(inst.nodes[inst.start]),
             "goals": [list(inst.nodes[g]) for g in inst.goals],
             "prior": [str(b) for b in inst.prior]}
+
+
+# -- the guarantee rule (N goals) ------------------------------------------------------------
+
+@pytest.mark.parametrize("name", ["star3", "star3_equal_prior",
+                                  pytest.param("hub4", marks=pytest.mark.slow),
+                                  pytest.param("hub4_undirected", marks=pytest.mark.slow)])
+def test_the_solver_guarantee_rule_profiles_are_accepted(name: str) -> None:
+    doc = _pin(name)
+    profile = solve_json(json.loads(doc))
+    assert profile["defender"]["rule"] == "guarantee"
+    v = kernel_verdict(doc, profile)
+    assert v.status == "pass" and "guarantee rule" in v.message, v
+
+
+@pytest.mark.slow
+def test_guarantee_witness_mutants_are_not_proved() -> None:
+    """The four-goal hub with its extra normals: a label off the DP, the covers of the extra
+    directions dropped, σ moved, a stage dual broken, a prefix missing."""
+    doc = _pin("hub4")
+    profile = solve_json(json.loads(doc))
+    w = engine_witness(doc, profile)
+    g = w["guarantee"]
+
+    def mutated(change: Any) -> Any:
+        m = copy.deepcopy(w)
+        change(m["guarantee"])
+        return kernel_verdict(doc, profile, m)
+
+    v = mutated(lambda x: x["m"][6].__setitem__(1, x["m"][6][1] + 1))
+    assert v.status == "undecided" and "not the rule's DP" in v.message, v
+    v = mutated(lambda x: x.__setitem__("covers", []))  # the extra normals need the covers
+    assert v.status == "undecided" and "arc condition" in v.message, v
+    s0 = g["steps"][0]["sigma"]
+    moved = [str(Fraction(s0[0]) + Fraction(1, 7)), str(Fraction(s0[1]) - Fraction(1, 7)), *s0[2:]]
+    v = mutated(lambda x: x["steps"][0].__setitem__("sigma", moved))
+    assert v.status == "undecided" and "steps[0]" in v.message, v
+    v = mutated(lambda x: x["steps"][0]["duals"][0].__setitem__("z", "-1"))
+    assert v.status == "undecided" and "dual of stage 1" in v.message, v
+    v = mutated(lambda x: x["steps"].pop())
+    assert v.status == "bad-input", v
+
+
+def test_star3_guarantee_mutants_are_not_proved() -> None:
+    doc = _pin("star3")
+    profile = solve_json(json.loads(doc))
+    w = engine_witness(doc, profile)
+    for i, label in enumerate(w["guarantee"]["m"]):
+        v = next(k for k, x in enumerate(label) if x)
+        m = copy.deepcopy(w)
+        m["guarantee"]["m"][i][v] += 1
+        assert kernel_verdict(doc, profile, m).status == "undecided", (i, v)
+    m = copy.deepcopy(w)
+    m["guarantee"]["steps"][-1]["sigma"] = list(reversed(m["guarantee"]["steps"][-1]["sigma"]))
+    assert kernel_verdict(doc, profile, m).status in ("undecided", "refuted")
+
+
+def test_a_guarantee_rule_with_a_larger_h_is_not_proved() -> None:
+    doc = _pin("star3")
+    profile = solve_json(json.loads(doc))
+    q = copy.deepcopy(profile)
+    q["defender"]["h"] = [str(Fraction(x) + 1) for x in q["defender"]["h"]]
+    w = {**engine_witness(doc, profile), "profile_sha256": sha256(as_bytes(q))}
+    v = kernel_verdict(doc, q, w)
+    assert v.status == "undecided" and "start set" in v.message, v

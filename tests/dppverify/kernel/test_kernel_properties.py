@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 import dppverify
 from dppverify.game.instance import instance_from_json
 from dppverify.strategies.graphs import weighted_graphs
-from dppverify.strategies.instances import instances, ngoal_instances
+from dppverify.strategies.instances import instances, many_goal_instances
 from solver.adapter import solve_json
 from tests.dppverify.kernel._witnesses import kernel_verdict
 
@@ -72,8 +72,8 @@ def two_goal_cases(draw: st.DrawFn) -> tuple[dict[str, Any], dict[str, Any]]:
 
 
 @st.composite
-def ngoal_cases(draw: st.DrawFn) -> tuple[dict[str, Any], dict[str, Any]]:
-    doc = draw(ngoal_instances(min_goals=3, max_goals=4,
+def per_goal_cases(draw: st.DrawFn) -> tuple[dict[str, Any], dict[str, Any]]:
+    doc = draw(many_goal_instances(min_goals=3, max_goals=4,
                                graphs=weighted_graphs(min_nodes=4, max_nodes=6, max_weight=3)))
     n = len(doc["goals"])
     walks = [_walks(draw, doc, 2) for _ in range(n)]
@@ -101,6 +101,18 @@ def test_two_goals_the_kernel_agrees_with_the_engine(case: tuple[dict[str, Any],
 
 
 @SETTINGS
-@given(ngoal_cases())
+@given(per_goal_cases())
 def test_n_goals_the_kernel_agrees_with_the_engine(case: tuple[dict[str, Any], ...]) -> None:
     _agree(*case)
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(many_goal_instances(min_goals=3, max_goals=3,
+                       graphs=weighted_graphs(min_nodes=4, max_nodes=6, max_weight=3)))
+def test_n_goals_the_solver_guarantee_rule_is_accepted(doc: dict[str, Any]) -> None:
+    """``dpp solve``'s N-goal profiles (the guarantee rule) pass the kernel on the engine's
+    witness: the DP labels, the arc condition and every stage dual."""
+    prof = solve_json(doc)
+    assert prof["defender"]["rule"] == "guarantee"
+    v = kernel_verdict(doc, prof)
+    assert v.status == "pass", v
