@@ -485,7 +485,7 @@ Section Kernel.
 
   (** [vertices]: every basic feasible solution with positive support, bases
       of 1 .. length rhs columns in lexicographic order; [None] beyond the
-      kernel's bound of 100,000 bases. *)
+      kernel's bound of 20,000 bases. *)
   Fixpoint choose (k : nat) (l : list nat) : list (list nat) :=
     match k, l with
     | O, _ => [[]]
@@ -493,7 +493,7 @@ Section Kernel.
     | S k', x :: l' => map (cons x) (choose k' l') ++ choose k l'
     end.
 
-  Definition max_bases : Z := 100000.
+  Definition max_bases : Z := 20000.
 
   Definition vertices (cols : list (list Q)) (rhs : list Q) : option (list (list Q)) :=
     let bases := flat_map (fun k => choose k (seq 0 (length cols))) (seq 1 (length rhs)) in
