@@ -21,7 +21,7 @@ from typing import Any
 import pytest
 from hypothesis import HealthCheck, given, settings
 
-from tests.dppverify.kernel.test_kernel_properties import ngoal_cases, two_goal_cases
+from tests.dppverify.kernel.test_kernel_properties import per_goal_cases, two_goal_cases
 from tests.proofs._coq import KCHECK, ROOT, compare, corpus, engine_triple, mutants, translator
 
 COQ = ROOT / "proofs" / "coq"
@@ -72,7 +72,7 @@ def test_the_checkers_agree_on_drawn_two_goal_instances(case: Any) -> None:
 
 @needs_checker
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(ngoal_cases())
+@given(per_goal_cases())
 def test_the_checkers_agree_on_drawn_n_goal_instances(case: Any) -> None:
     _drawn(case, 3, 4)
 
@@ -95,7 +95,7 @@ def test_the_checkers_agree_on_many_drawn_two_goal_instances(case: Any) -> None:
 @pytest.mark.slow
 @needs_checker
 @settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(ngoal_cases())
+@given(per_goal_cases())
 def test_the_checkers_agree_on_many_drawn_n_goal_instances(case: Any) -> None:
     _drawn(case, 5, 8)
 
