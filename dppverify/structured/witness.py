@@ -101,16 +101,11 @@ def witness_document(instance: Instance, profile: Profile, *, instance_sha256: s
 
     Examples
     --------
-    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.game.examples import triangle, triangle_profile
     >>> from dppverify.game.profile import profile_from_json
     >>> inst = triangle()
-    >>> doc = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
-    ...        "defender": {"rule": "progress", "goal": "g1"},
-    ...        "attacker": {"primary": [{"path": ["s", "g1"], "probability": "4/7"},
-    ...                                 {"path": ["s", "g2"], "probability": "3/7"}],
-    ...                     "secondary": [{"path": ["s", "g2"], "probability": 1}]}}
-    >>> w = witness_document(inst, profile_from_json(doc, inst), instance_sha256="0" * 64,
-    ...                      profile_sha256="1" * 64)
+    >>> w = witness_document(inst, profile_from_json(triangle_profile(), inst),
+    ...                      instance_sha256="0" * 64, profile_sha256="1" * 64)
     >>> w["distances"], w["types"]
     ([[3, 0, 2], [2, 2, 0]], [{'trie': [3]}, {'trie': [1], 'P': [2, 2, 0], 'Q': [4, 2, 2]}])
     """
