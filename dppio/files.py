@@ -11,12 +11,16 @@ the README, "Exit codes, limits and output files"):
 - files get the mode ``0666`` minus the umask, like any file a program creates;
 - a target that exists and is not a regular file (``/dev/null``, a FIFO, a device, or a
   symlink to one) is never replaced: the content is streamed into it, after the regular
-  files are complete (a FIFO without a reader is refused at once instead of blocking); a
-  symlink to a regular file keeps its link and has the file it points to replaced;
-- an output that names one of the command's input files is refused
-  (:func:`refuse_input_as_output`);
-- a location that cannot be written raises :class:`~dppio.errors.OutputError` naming the
-  user's path.
+  files are complete (a FIFO without a reader is refused at once instead of blocking);
+- a symlink is kept and written through: to a regular file, that file is replaced; a
+  dangling one, the file it names is created (and its missing folders);
+- ``-`` (:data:`~dppio.inputs.STDIN`) is standard output: the content is written there after
+  the regular files are complete (a file named ``-`` is ``./-``);
+- an output that names one of the command's input files — by any path, symlink or hard
+  link — is refused (:func:`refuse_input_as_output`);
+- a location that cannot be written — a folder that cannot be created (a file or a dangling
+  symlink on the way, no permission), a full disk — raises :class:`~dppio.errors.OutputError`,
+  one line naming the user's path.
 
 Every input is read through :func:`read_input` (or :func:`open_input`), which refuses
 files larger than :data:`dppio.limits.MAX_INPUT_BYTES` (``/dev/zero`` included) without
@@ -30,6 +34,7 @@ import contextlib
 import errno
 import os
 import stat
+import sys
 import tempfile
 from collections.abc import Iterable, Mapping
 from pathlib import Path
@@ -39,8 +44,11 @@ from dppio.errors import ErrorClass, OutputError
 from dppio.inputs import STDIN, open_input, read_input, read_text
 
 __all__ = [
+    "BUSY",
     "OutputError",
+    "OutputLocks",
     "file_mode",
+    "is_busy",
     "make_parents",
     "open_input",
     "read_input",
@@ -48,6 +56,7 @@ __all__ = [
     "refuse_input_as_output",
     "remove_created",
     "short_path",
+    "try_lock",
     "write_atomic",
     "write_files",
 ]
@@ -87,7 +96,8 @@ def short_path(path: str | Path, limit: int = 160) -> str:
 
 
 def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path] = (),
-                error: ErrorClass = OutputError) -> tuple[Path, ...]:
+                error: ErrorClass = OutputError, lock: bool | OutputLocks = False
+                ) -> tuple[Path, ...]:
     """Write several files together: all of them or none.
 
     Parameters
@@ -98,6 +108,12 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
         Files to delete once the new ones are in place (stale files of an earlier write).
     error : callable
         The error class to raise (the caller's package's), called with the message.
+    lock : bool or OutputLocks
+        Follow the lock discipline of the files ``dpp batch`` appends to (:func:`try_lock`):
+        a target that exists is locked (exclusively) before anything is written — or was
+        locked earlier, by the :class:`OutputLocks` given — and one that another process
+        holds is refused; a new target is linked into place with its lock already taken and
+        never replaces a file that appeared meanwhile.
 
     Returns
     -------
@@ -107,8 +123,9 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
     Raises
     ------
     OutputError
-        (or ``error``) An empty path, a target that is a folder, or any error while writing;
-        the message names the user's path. Nothing is left behind.
+        (or ``error``) An empty path, a target that is a folder, a folder that cannot be
+        created, a locked target, or any error while writing; the message names the user's
+        path. Nothing is left behind.
 
     Examples
     --------
@@ -124,10 +141,14 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
     PermissionError: the output path is empty
     """
     targets = [(_target(p, error), c) for p, c in files.items()]
-    regular = [(t, c) for t, c in targets if not _is_special(t)]
+    shown = {t: short_path(p) for (t, _), p in zip(targets, files, strict=True)}  # as given
+    regular = [(t, c) for t, c in targets if not _is_special(t) and str(t) != STDIN]
     special = [(t, c) for t, c in targets if _is_special(t)]
+    streamed = [c for t, c in targets if str(t) == STDIN]
     created: list[Path] = []
     temps: list[tuple[str, Path]] = []
+    held: list[int] = []  # (lock) our new files' descriptors, locked until all are in place
+    locks = OutputLocks(files, error=error) if lock is True else lock or None
     current = targets[0][0] if targets else Path(".")
     try:
         for target, _ in regular:
@@ -139,16 +160,29 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
             fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=_temp_prefix(target),
                                        suffix=".tmp")
             temps.append((tmp, target))
-            data = _encode(content)
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(data)
+            if locks is not None:
+                held.append(fd)
+                try_lock(fd)  # a file of ours: nobody else can hold it yet
+            with os.fdopen(fd, "wb", closefd=locks is None) as fh:
+                fh.write(_encode(content))
             os.chmod(tmp, mode)
         for target, content in special:
             current = target
             _stream(target, _encode(content))
+        for content in streamed:  # standard output: its failure is the stream's own error
+            _to_stdout(_encode(content))
         for tmp, target in temps:
             current = target
-            os.replace(tmp, target)
+            if locks is not None and target in locks.fresh:
+                try:
+                    os.link(tmp, target)  # with its lock: a batch starting now refuses it
+                except FileExistsError:
+                    raise error(f"cannot write {shown[target]}: it appeared while this "
+                                "command ran (another program made it); nothing was written"
+                                ) from None
+                os.unlink(tmp)
+            else:
+                os.replace(tmp, target)
         temps.clear()
     except OSError as exc:
         _clean(temps, created)
@@ -157,9 +191,155 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
     except BaseException:
         _clean(temps, created)
         raise
+    finally:
+        for fd in held:
+            with contextlib.suppress(OSError):
+                os.close(fd)
+        if lock is True and locks is not None:
+            locks.close()
     for p in remove:
         Path(p).unlink(missing_ok=True)
     return tuple(t for t, _ in targets)
+
+
+BUSY = "another dpp batch or dpp batch merge is writing it (try again when it has finished)"
+"""Why a file under the lock discipline (:func:`try_lock`) cannot be written now."""
+
+
+def try_lock(fd: int, *, shared: bool = False) -> bool:
+    """Take the advisory lock (``flock``) of the open file ``fd`` without waiting: exclusive
+    (a writer) or ``shared`` (a reader); False when another process holds a lock that
+    conflicts. The lock lasts until ``fd`` is closed.
+
+    This is the one lock discipline of the files ``dpp batch`` appends to: a batch holds its
+    CSV's exclusive lock while it runs; ``dpp batch merge`` holds its output's exclusive lock
+    and a shared lock on every shard it reads, so a merge never reads a shard a batch is still
+    writing, never replaces a CSV a batch is appending to, and a batch never starts on either.
+
+    Examples
+    --------
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = Path(d) / "rows.csv"
+    ...     _ = p.write_text("")
+    ...     a, b = os.open(p, os.O_RDONLY), os.open(p, os.O_RDONLY)
+    ...     print(try_lock(a, shared=True), try_lock(b, shared=True), try_lock(b))
+    ...     os.close(a); os.close(b)
+    True True False
+    """
+    if os.name != "posix":  # pragma: no cover - Linux and macOS have flock
+        return True
+    import fcntl
+
+    try:
+        fcntl.flock(fd, (fcntl.LOCK_SH if shared else fcntl.LOCK_EX) | fcntl.LOCK_NB)
+    except OSError as exc:
+        if exc.errno in (errno.EWOULDBLOCK, errno.EAGAIN, errno.EACCES):
+            return False
+        raise
+    return True
+
+
+class OutputLocks:
+    """The exclusive locks (:func:`try_lock`) of a command's output files, taken before the
+    command reads its inputs and held until :func:`write_files` (given this object as
+    ``lock``) has put every file in place: no other run can start on them meanwhile. A
+    target that does not exist yet is remembered as new: it is linked into place, never
+    replacing a file that appeared in between. Use as a context manager.
+
+    Raises
+    ------
+    OutputError
+        (or ``error``) Another process holds the lock of one of the files.
+
+    Examples
+    --------
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = Path(d) / "all.csv"
+    ...     _ = p.write_text("old")
+    ...     with OutputLocks([p]) as locks:
+    ...         busy = is_busy(p)
+    ...         _ = write_files({p: "new"}, lock=locks)
+    ...     print(busy, p.read_text(), is_busy(p))
+    True new False
+    """
+
+    def __init__(self, paths: Iterable[Any], *, error: ErrorClass = OutputError) -> None:
+        self.fds: dict[Path, int] = {}
+        """Existing targets, locked: their descriptors."""
+        self.fresh: set[Path] = set()
+        """Targets that did not exist."""
+        try:
+            for path in paths:
+                target = _target(path, error)
+                if str(target) == STDIN or _is_special(target):
+                    continue
+                try:
+                    fd = _locked_existing(target)
+                except OSError:  # (write_files says why, in one line)
+                    continue
+                if fd is None:
+                    self.fresh.add(target)
+                elif fd < 0:
+                    raise error(f"cannot write {short_path(path)}: {BUSY}")
+                else:
+                    self.fds[target] = fd
+        except BaseException:
+            self.close()
+            raise
+
+    def close(self) -> None:
+        """Release the locks."""
+        for fd in self.fds.values():
+            with contextlib.suppress(OSError):
+                os.close(fd)
+        self.fds.clear()
+
+    def __enter__(self) -> OutputLocks:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def is_busy(path: str | Path) -> bool:
+    """True when ``path`` is a regular file whose lock another process holds
+    (:func:`try_lock`): a ``dpp batch`` appending to it, a merge reading or writing it.
+
+    Examples
+    --------
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     p = Path(d) / "rows.csv"
+    ...     _ = p.write_text("")
+    ...     before = is_busy(p)
+    ...     fd = os.open(p, os.O_RDONLY); _ = try_lock(fd)
+    ...     print(before, is_busy(p), is_busy(Path(d) / "new.csv"))
+    ...     os.close(fd)
+    False True False
+    """
+    try:
+        fd = _locked_existing(Path(path))
+    except OSError:
+        return False
+    if fd is not None and fd >= 0:
+        os.close(fd)
+    return fd == -1
+
+
+def _locked_existing(target: Path) -> int | None:
+    """The exclusive lock of an existing regular ``target``: its descriptor (locked), ``-1``
+    when another process holds it, None when there is no such file (a new target)."""
+    try:
+        fd = os.open(target, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC
+                     | getattr(os, "O_NOCTTY", 0))
+    except FileNotFoundError:
+        return None
+    if not stat.S_ISREG(os.fstat(fd).st_mode):
+        os.close(fd)
+        return None
+    if try_lock(fd):
+        return fd
+    os.close(fd)
+    return -1
 
 
 def write_atomic(path: str | Path, text: str | bytes, *, error: ErrorClass = OutputError
@@ -199,7 +379,7 @@ def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Pat
     Traceback (most recent call last):
     dppio.errors.OutputError: ...x.json is an input of this command; refusing to overwrite it ...
     """
-    if output is None or str(output) == "":
+    if output is None or str(output) in ("", STDIN):  # (-o - is standard output)
         return
     out = Path(output)
     for path in inputs:
@@ -213,6 +393,21 @@ def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Pat
         if same and (not os.path.exists(out) or os.path.isfile(out)):
             raise error(f"{option} {short_path(out)} is an input of this command; refusing to "
                         "overwrite it (give another path)")
+
+
+def _to_stdout(data: bytes) -> None:
+    """Write ``data`` to standard output (``-o -``), through ``sys.stdout`` so that what the
+    command printed before stays in order."""
+    stream = sys.stdout
+    if stream is None:  # descriptor 1 was closed: nothing can read it
+        return
+    stream.flush()
+    buffer = getattr(stream, "buffer", None)
+    if buffer is None:  # a text stream without bytes (a test runner's capture)
+        stream.write(data.decode("utf-8", "backslashreplace"))
+    else:
+        buffer.write(data)
+    stream.flush()
 
 
 def _is_special(target: Path) -> bool:
@@ -286,13 +481,16 @@ def _temp_prefix(target: Path) -> str:
 def _target(path: str | Path, error: ErrorClass) -> Path:
     if str(path) == "":
         raise error("the output path is empty")
+    if str(path) == STDIN:
+        return Path(STDIN)  # standard output (a file named - is ./-)
     if str(path).endswith(("/", os.sep)):  # Path() would drop the slash and write a file
         raise error(f"cannot write {short_path(path)}: it names a folder (a trailing /); give "
                     "a file name")
     p = Path(path)
     if os.path.isdir(p):  # (os.path: False, not an exception, for a name too long)
         raise error(f"cannot write {short_path(p)}: it is a folder")
-    if os.path.islink(p) and os.path.isfile(p):  # keep the link; replace the file it points to
+    if os.path.islink(p) and (os.path.isfile(p) or not os.path.exists(p)):
+        # keep the link: replace the file it points to, or create the one a dangling link names
         return Path(os.path.realpath(p))
     return p
 
@@ -316,10 +514,15 @@ def make_parents(folder: Path, created: list[Path]) -> None:
     missing = []
     f = folder if str(folder) else Path(".")
     while not f.exists():
+        if f.is_symlink():  # mkdir would say "File exists"
+            raise OSError(errno.ENOENT, f"{short_path(f)} is a symbolic link to a missing "
+                          f"folder ({short_path(os.readlink(f))})")
         missing.append(f)
         if f.parent == f:
             break
         f = f.parent
+    if not f.is_dir():
+        raise OSError(errno.ENOTDIR, f"{short_path(f)} is not a folder")
     for d in reversed(missing):
         d.mkdir()
         created.append(d)

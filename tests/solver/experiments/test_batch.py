@@ -194,5 +194,7 @@ def test_two_runs_never_append_to_one_file(tmp_path: Path) -> None:
     with open(out, "ab") as held:  # another run holds the file
         fcntl.flock(held.fileno(), fcntl.LOCK_EX)
         r = CliRunner().invoke(main, ["batch", str(EMPTY8), "-o", str(out), "--no-progress"])
-    assert r.exit_code == 2 and r.output == f"error: {out}: another dpp batch is writing it\n"
+    assert r.exit_code == 2 and r.output == (f"error: -o {out}: another dpp batch or dpp batch "
+                                             "merge is writing it (try again when it has "
+                                             "finished)\n")
     assert out.read_bytes() == before
