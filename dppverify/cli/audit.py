@@ -17,6 +17,7 @@ from typing import Any
 
 import click
 
+from dppio.text import terminal_line
 from dppverify.audit import (
     AUDIT_MAX_PREFIXES,
     DEFAULT_SHRINK_CALLS,
@@ -136,7 +137,7 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
                                shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
                                progress=want_progress(progress), log=status)
     except CheckerError as exc:
-        click.echo(f"error: {exc}", err=True)
+        click.echo(terminal_line(f"error: {exc}"), err=True)
         raise click.exceptions.Exit(2) from None
     click.echo(format_report(report))
     if os.environ.get("DPP_DEBUG") and report.failure is not None and report.failure.traceback:
@@ -189,7 +190,7 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
                                                          seconds=shrink_seconds),
                                      progress=want_progress(progress), log=status)
     except CheckerError as exc:
-        click.echo(f"error: {' '.join(str(exc).split())}", err=True)
+        click.echo(terminal_line(f"error: {exc}"), err=True)
         raise click.exceptions.Exit(2) from None
     click.echo(format_report(report))
     if report.files:

@@ -22,6 +22,7 @@ from typing import Any, TypeVar
 
 import click
 
+from dppio.text import terminal_line
 from dppverify.formats.files import write_files
 
 __all__ = ["PhaseBar", "emit", "output_dir_option", "output_file_option", "progress_option",
@@ -66,7 +67,7 @@ def status(message: str) -> None:
     --------
     >>> status("wrote out/p.json")  # goes to stderr, so doctest sees nothing
     """
-    click.echo(message, err=True)
+    click.echo(terminal_line(message), err=True)  # what it quotes cannot forge a line
 
 
 def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str) -> None:
