@@ -26,7 +26,7 @@ from fractions import Fraction
 from typing import Any
 
 __all__ = ["DIGITS", "MAX_LINE_CHARS", "MAX_SHOWN_CHARS", "count", "decimal", "escaped",
-           "json_shown", "terminal_line"]
+           "json_escaped", "json_shown", "terminal_line", "terminal_text"]
 
 MAX_SHOWN_CHARS = 80
 """Characters of a document's string quoted in a message (:func:`escaped`'s default)."""
@@ -78,6 +78,48 @@ def escaped(text: object, limit: int = MAX_SHOWN_CHARS) -> str:
     if not head.isascii() or not head.isprintable():
         head = "".join(_escape(c) if _unsafe(c) else c for c in head)
     return f"{head}… ({len(s)} characters)" if cut else head
+
+
+def json_escaped(text: str) -> str:
+    """JSON text (``json.dumps(..., ensure_ascii=False)``: readable σ\\*, ≈) with every
+    character a terminal would not show as itself written as its ``\\uXXXX`` escape (a
+    surrogate pair beyond the BMP) — the same JSON value, which no document can use to
+    forge or reorder the lines around it. Control characters are escaped by ``json`` itself.
+
+    Examples
+    --------
+    >>> json_escaped(json.dumps({"node": "\u202eg1", "σ*": 1}, ensure_ascii=False))
+    '{"node": "\\\\u202eg1", "σ*": 1}'
+    >>> json.loads(json_escaped(json.dumps(["\U000e0001"], ensure_ascii=False)))
+    ['\U000e0001']
+    """
+    if text.isascii():
+        return text
+    return "".join(_json_escape(c) if not c.isascii() and _unsafe(c) else c for c in text)
+
+
+def _json_escape(ch: str) -> str:
+    n = ord(ch)
+    if n < 0x10000:
+        return f"\\u{n:04x}"
+    n -= 0x10000
+    return f"\\u{0xD800 + (n >> 10):04x}\\u{0xDC00 + (n & 0x3FF):04x}"
+
+
+def terminal_text(text: str) -> str:
+    """Text output of several lines (a report, a table) as it is printed: the line breaks
+    kept, every other character a terminal would not show as itself escaped
+    (:func:`escaped`), however long the lines.
+
+    Examples
+    --------
+    >>> print(terminal_text("path: s → \\x1b[2Ka\\ntotal 3"))
+    path: s → \\x1b[2Ka
+    total 3
+    """
+    if text.isprintable() or not any(_unsafe(c) for c in text if c != "\n"):
+        return text
+    return "\n".join(escaped(line, limit=len(line)) for line in text.split("\n"))
 
 
 def terminal_line(text: str, limit: int = MAX_LINE_CHARS) -> str:

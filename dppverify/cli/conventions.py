@@ -22,7 +22,7 @@ from typing import Any, TypeVar
 
 import click
 
-from dppio.text import terminal_line
+from dppio.text import json_escaped, terminal_line, terminal_text
 from dppverify.formats.files import write_files
 
 __all__ = ["PhaseBar", "emit", "output_dir_option", "output_file_option", "progress_option",
@@ -87,12 +87,12 @@ def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str
     }
     """
     if output is not None:
-        write_files({output: json.dumps(doc, indent=2, ensure_ascii=False) + "\n"})
+        write_files({output: json_escaped(json.dumps(doc, indent=2, ensure_ascii=False)) + "\n"})
         status(f"wrote {output}: {summary}")
     elif as_json:
-        click.echo(json.dumps(doc, indent=2, ensure_ascii=False))
+        click.echo(json_escaped(json.dumps(doc, indent=2, ensure_ascii=False)))
     else:
-        click.echo(text)
+        click.echo(terminal_text(text))
 
 
 class _NonEmptyPath(click.Path):
