@@ -13,7 +13,9 @@ density --workers``): started within the limits, ended with the run, whatever en
   second (other systems, and a worker that started after its parent was gone).
 - **On any error or signal** every worker, its process group, the forkserver and any process
   it was starting are killed (SIGKILL) before the exception goes on, so none outlives the run
-  or prints a traceback after it.
+  or prints a traceback after it — also when the signal lands in the caller's loop between
+  two results: the callers close the results' generator on the way out
+  (``contextlib.closing``).
 - **Bounded work in flight.** :func:`completed` submits at most ``2 * workers`` tasks at a
   time, so ``tasks`` may be a lazy iterator of any length.
 """
@@ -84,7 +86,10 @@ def completed(fn: Callable[[T], R], tasks: Iterable[T], workers: int, *,
     (this module's rules); at most ``2 * workers`` tasks in flight.
 
     ``fn`` and the tasks must be picklable (module-level). When the iteration ends early, or
-    raises (a worker's error, a signal), every process of the pool is killed.
+    raises (a worker's error, a signal), every process of the pool is killed. Iterate it
+    under ``contextlib.closing``: an exception raised in the caller's loop (a signal between
+    two results) then ends the pool at once, not when the generator is collected — after
+    the command's last line, when a worker still starting could print a traceback.
 
     Examples
     --------
