@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import json
 import shutil
-import subprocess
 import sys
 import tomllib
 import zipfile
@@ -22,6 +21,8 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+
+from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[1]
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
@@ -35,9 +36,9 @@ def dists(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
     src = tmp_path_factory.mktemp("src") / "dppverify"
     shutil.copytree(ROOT, src, ignore=shutil.ignore_patterns(*IGNORED))
     out = tmp_path_factory.mktemp("dist")
-    proc = subprocess.run([sys.executable, "-m", "build", "--no-isolation", "--sdist",
-                           "--wheel", "--outdir", str(out), str(src)],
-                          capture_output=True, text=True, timeout=600)
+    proc = _guard.run([sys.executable, "-m", "build", "--no-isolation", "--sdist",
+                       "--wheel", "--outdir", str(out), str(src)],
+                      capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     files = sorted(out.iterdir())
     assert sorted(p.suffix for p in files) == [".gz", ".whl"], files
@@ -45,8 +46,8 @@ def dists(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
 
 
 def test_twine_check_passes(dists: list[Path]) -> None:
-    proc = subprocess.run([sys.executable, "-m", "twine", "check", "--strict",
-                           *map(str, dists)], capture_output=True, text=True, timeout=300)
+    proc = _guard.run([sys.executable, "-m", "twine", "check", "--strict",
+                       *map(str, dists)], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert proc.stdout.count("PASSED") == 2
 

@@ -2,8 +2,9 @@
 under resource limits, in a scratch folder whose contents are compared before and after.
 
 Bounded time and memory are enforced by the kernel (``RLIMIT_CPU``, ``RLIMIT_AS``), not by
-timing assertions; a wall-clock guard only turns a hang into a failure instead of blocking the
-suite. "No surviving process" is checked through the probe's session: every process the
+timing assertions; a progress guard (``tests/_guard.py``: no CPU used for minutes) only turns
+a hang into a failure instead of blocking the suite — never a probe that a loaded machine
+makes slow. "No surviving process" is checked through the probe's session: every process the
 probe started (its session id is the probe's pid) must be gone once it has exited, and the
 pids that hostile solvers write into ``pids/`` must be dead too (escapees in other sessions).
 """
@@ -25,10 +26,9 @@ from pathlib import Path
 from typing import Any
 
 from dppio.procs import process_table
+from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[2]
-GUARD_SECONDS = 300
-"""Wall-clock guard per probe: only there so that a hang fails instead of blocking."""
 DEFAULT_MEMORY = 3 << 30
 """Address-space limit of a probe (bytes): numpy, scipy and cvxpy fit well below it."""
 DEFAULT_CPU = 120
@@ -123,7 +123,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
     bytes piped to its standard input (default: ``/dev/null``). ``fsize``, ``nofile`` and
     ``stdout`` as in :class:`Probe`; ``ignore``: signals the probe starts with ignored
     (``nohup``); ``survivors_seconds``: how long the probe's processes may take to end after
-    it exited."""
+    it exited, on an idle machine (stretched by the load: ``tests/_guard.py``)."""
 
     def limits() -> None:  # pragma: no cover - in the child
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
@@ -171,7 +171,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
     try:
         if during is not None:
             during(proc)
-        out, err = proc.communicate(stdin, timeout=GUARD_SECONDS)
+        out, err = _guard.communicate(proc, stdin)  # as long as it makes progress
     finally:
         if proc.poll() is None:
             with contextlib.suppress(OSError):
@@ -180,7 +180,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
         short.unlink()
     out = out or b""
     # every process of the probe's session is gone once the probe has exited
-    deadline = time.monotonic() + survivors_seconds
+    deadline = time.monotonic() + _guard.latency(survivors_seconds)  # stretched by the load
     members = _session_members(proc.pid)
     while members and time.monotonic() < deadline:  # exit in progress: poll, never assert
         time.sleep(0.05)
@@ -192,12 +192,9 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
 
 def wait_for(predicate: Callable[[], bool], proc: subprocess.Popen[bytes],
              what: str) -> None:
-    """Poll until ``predicate()`` holds (the probe reached some state), while it runs."""
-    deadline = time.monotonic() + GUARD_SECONDS
-    while not predicate():
-        assert proc.poll() is None, f"the probe exited before {what}"
-        assert time.monotonic() < deadline, f"never reached: {what}"
-        time.sleep(0.05)
+    """Poll until ``predicate()`` holds (the probe reached some state), while it runs and
+    makes progress (``tests/_guard.py``)."""
+    _guard.until(predicate, proc, what)
 
 
 def check(result: Result, probe: Probe, before: dict[str, tuple[str, int, int]],

