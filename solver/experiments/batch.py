@@ -101,6 +101,12 @@ class Checker:
     rule: str
 
 
+COLUMNS_VERSION = "columns/2"
+"""What the rows' columns mean, part of the ``config`` hash: a CSV whose rows were computed
+under another definition is another configuration, so a resume or a merge never mixes them
+(``columns/2``: ``truthful_P`` reads the reference script's node ``1 + ⌊P(K−1)/100⌋``)."""
+
+
 @dataclass(frozen=True)
 class BatchConfig:
     """What the rows depend on besides the lines: seed, prior (scenario goal first),
@@ -126,7 +132,7 @@ class BatchConfig:
         True
         """
         text = "|".join([self.rule, self.scen_sha256, str(self.seed), *self.prior,
-                         str(self.connectivity), self.route])
+                         str(self.connectivity), self.route, COLUMNS_VERSION])
         return hashlib.sha256(text.encode()).hexdigest()[:12]
 
 

@@ -176,7 +176,8 @@ def parse_row(raw: bytes, key: str | None = None) -> RowInfo:
         raise ValueError(f"line {row['line'][:40]!r} is not a line number")
     if key is not None and row["config"] != key:
         raise ValueError(f"written for another configuration (config {row['config'][:40]!r}, "
-                         f"now {key}: another .scen file, seed, prior, connectivity or route)")
+                         f"now {key}: another .scen file, seed, prior, connectivity or route, "
+                         "or an earlier dpp whose columns meant something else)")
     _check(row, "config", _CONFIG, "is not a configuration hash (12 hex digits)")
     if row["status"] not in ("ok", "error"):
         raise ValueError(f"status {row['status'][:40]!r} is neither ok nor error")
