@@ -87,6 +87,7 @@ def communicate(proc: subprocess.Popen[Any], input: Any = None, *,
         try:
             return proc.communicate(input, timeout=POLL_SECONDS)
         except subprocess.TimeoutExpired:
+            input = None  # sent (or being sent): a retry must not pass it again
             if progress.stalled():
                 _kill(proc)
                 proc.communicate()

@@ -165,8 +165,13 @@ def parse_row(raw: bytes, key: str | None = None) -> RowInfo:
         raise ValueError(f"a line of more than {MAX_ROW_BYTES} bytes")
     try:
         text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"not CSV text ({exc})") from None
+    if _CONTROL.search(text):  # format_rows writes none (a carriage return, an escape)
+        raise ValueError("a control character in a cell (a batch writes none)")
+    try:
         recs = list(csv.reader([text]))
-    except (UnicodeDecodeError, csv.Error) as exc:
+    except csv.Error as exc:
         raise ValueError(f"not CSV text ({exc})") from None
     rec = recs[0] if len(recs) == 1 else []
     if len(rec) != len(FIELDS):

@@ -100,6 +100,7 @@ def test_parse_row_refuses_what_a_batch_never_writes() -> None:
                                ("reason", "why", "an ok row with a reason")]:
         bad[format_rows([_row(3, **{column: value})]).rstrip(b"\n")] = why
     bad[format_rows([_row(3, "error", reason="")]).rstrip(b"\n")] = "without its reason"
+    bad[good.replace(b",pass,", b',"pa\x1b[2Kss",')] = "a control character"
     bad[format_rows([_row(3, "error", goal="x")]).rstrip(b"\n")] = "goal 'x' is not a cell"
     for raw, why in bad.items():
         with pytest.raises(ValueError, match=re.escape(why)):
