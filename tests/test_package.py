@@ -3,8 +3,8 @@
 - ``python -m build`` (sdist and wheel, ``--no-isolation``: the test environment has
   setuptools; a copy of the sources is built, so the checkout gets no ``build/``) and
   ``twine check`` on both files;
-- the wheel holds the three packages with their typing markers and data, the ``dpp`` entry
-  point and the license, and no tests;
+- the wheel holds the three packages with their typing markers and data, the ``dpp`` launcher
+  and its ``dpp-python`` entry point, and the license, and no tests;
 - ``CITATION.cff`` is valid Citation File Format 1.2.0 (its JSON schema, ``tests/data``) and
   states the version and license that ``pyproject.toml`` states;
 - the changelog has a section for the version.
@@ -63,7 +63,10 @@ def test_the_wheel_holds_the_packages_the_command_and_the_license(dists: list[Pa
     info = f"dppverify-{VERSION}.dist-info"
     assert f"{info}/licenses/LICENSE" in names
     entry = zipfile.ZipFile(wheel).read(f"{info}/entry_points.txt").decode()
-    assert "dpp = solver.cli:main" in entry
+    assert "dpp-python = solver.cli:console" in entry
+    # `dpp` itself is the shell launcher (standard input a folder stops any Python), as is
+    launcher = zipfile.ZipFile(wheel).read(f"dppverify-{VERSION}.data/scripts/dpp")
+    assert launcher == (ROOT / "bin" / "dpp").read_bytes() and launcher.startswith(b"#!/bin/sh")
     meta = zipfile.ZipFile(wheel).read(f"{info}/METADATA").decode()
     for line in ("License-Expression: MIT", "Requires-Python: >=3.11",
                  "Project-URL: Paper, https://arxiv.org/abs/2506.13650"):

@@ -44,5 +44,19 @@ for _command in (solve_command, experiment_group, batch_command, plot_group,
 
 def console() -> None:
     """The ``dpp`` program (the console script ``dpp-python``, which the ``dpp`` launcher runs:
-    ``bin/dpp``): :data:`main` under the name ``dpp`` whichever file started it."""
+    ``bin/dpp``): :data:`main` under the name ``dpp`` whichever file started it.
+
+    Examples
+    --------
+    >>> import sys
+    >>> saved, sys.argv = sys.argv, ["/venv/bin/dpp-python", "--version"]
+    >>> try:
+    ...     console()
+    ... except SystemExit as exc:
+    ...     print("exit", exc.code)
+    ... finally:
+    ...     sys.argv = saved  # doctest: +ELLIPSIS
+    dpp, version ...
+    exit 0
+    """
     main(prog_name="dpp")

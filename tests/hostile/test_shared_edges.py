@@ -85,37 +85,29 @@ def _stop(batch: subprocess.Popen[bytes], out: Path) -> None:
 
 
 # --- merge and batch share one lock discipline -----------------------------------------------
-def test_merge_refuses_the_output_a_running_batch_appends_to(scratch: Path) -> None:
-    """The batch's rows never vanish: a merge onto the CSV a batch is writing is refused (one
-    line, nothing written), and the batch's last line names the rows its file holds."""
+@pytest.mark.parametrize("written, merge, says", [
+    ("C.csv", ["-o", "C.csv", "s.csv"], "another dpp batch"),  # the batch's output
+    ("s-1.csv", ["-o", "all.csv", "s-1.csv"], "still writing this shard"),  # a shard
+], ids=["the output a batch appends to", "a shard a batch writes"])
+def test_merge_refuses_what_a_running_batch_writes(scratch: Path, written: str,
+                                                   merge: list[str], says: str) -> None:
+    """The batch's rows never vanish: a merge onto the CSV a batch is writing, or of a shard
+    a batch is still writing, is refused (one line, nothing written), and the batch's last
+    line names the rows its file holds."""
     _tiny(scratch, repeat=2000)
-    out = scratch / "C.csv"
-    batch = _start([*BATCH, "-o", "C.csv"], scratch)
+    out = scratch / written
+    batch = _start([*BATCH, *(["--shard", "1/2"] if "-1" in written else []), "-o", written],
+                   scratch)
     try:
         _guard.until(lambda: _rows(out) >= 2, batch, "the batch's first rows")
         (scratch / "s.csv").write_bytes(out.read_bytes().split(b"\n", 1)[0] + b"\n")
-        before = {k: v for k, v in listing(scratch).items() if k != "C.csv"}
-        result = run(["batch", "merge", "-o", "C.csv", "s.csv"], scratch)
-        check(result, Probe([], code=2, contains="another dpp batch"), before,
-              {k: v for k, v in listing(scratch).items() if k != "C.csv"})
+        before = {k: v for k, v in listing(scratch).items() if k != written}
+        result = run(["batch", "merge", *merge], scratch)
+        check(result, Probe([], code=2, contains=says), before,
+              {k: v for k, v in listing(scratch).items() if k != written})
         assert batch.poll() is None, "the batch ended before the merge: the probe shows nothing"
     finally:
         _stop(batch, out)
-
-
-def test_merge_refuses_a_shard_a_running_batch_writes(scratch: Path) -> None:
-    _tiny(scratch, repeat=2000)
-    shard = scratch / "s-1.csv"
-    batch = _start([*BATCH, "--shard", "1/2", "-o", "s-1.csv"], scratch)
-    try:
-        _guard.until(lambda: _rows(shard) >= 2, batch, "the shard's first rows")
-        before = {k: v for k, v in listing(scratch).items() if k != "s-1.csv"}
-        result = run(["batch", "merge", "-o", "all.csv", "s-1.csv"], scratch)
-        check(result, Probe([], code=2, contains="still writing this shard"), before,
-              {k: v for k, v in listing(scratch).items() if k != "s-1.csv"})
-        assert batch.poll() is None, "the batch ended before the merge: the probe shows nothing"
-    finally:
-        _stop(batch, shard)
     assert not (scratch / "all.csv").exists()
 
 
