@@ -47,7 +47,7 @@ import hashlib
 import os
 import time
 from collections import deque
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Generator, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
@@ -499,7 +499,7 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
 
 
 def _results(tasks: Iterable[BatchTask], workers: int,
-             dask_address: str | None) -> Iterator[list[dict[str, str]]]:
+             dask_address: str | None) -> Generator[list[dict[str, str]], None, None]:
     if dask_address is not None:
         with contextlib.closing(dask_completed(run_batch_task, tasks, dask_address)) as done:
             for _, rows in done:

@@ -27,7 +27,7 @@ import os
 import signal
 import threading
 import time
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Generator, Iterable
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from pathlib import Path
 from typing import TypeVar, cast
@@ -81,7 +81,7 @@ def check_open_files(workers: int, *, option: str = "--workers") -> None:
 
 
 def completed(fn: Callable[[T], R], tasks: Iterable[T], workers: int, *,
-              option: str = "--workers") -> Iterator[tuple[T, R]]:
+              option: str = "--workers") -> Generator[tuple[T, R], None, None]:
     """``(task, fn(task))`` in completion order, computed by ``workers`` local processes
     (this module's rules); at most ``2 * workers`` tasks in flight.
 
