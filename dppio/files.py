@@ -42,13 +42,12 @@ from typing import Any
 
 from dppio.errors import ErrorClass, OutputError
 from dppio.inputs import STDIN, open_input, read_input, read_text
+from dppio.locks import OutputLocks, try_lock
+from dppio.targets import is_special, make_parents, remove_created, resolve_target, short_path
 
 __all__ = [
-    "BUSY",
     "OutputError",
-    "OutputLocks",
     "file_mode",
-    "is_busy",
     "make_parents",
     "open_input",
     "read_input",
@@ -56,7 +55,6 @@ __all__ = [
     "refuse_input_as_output",
     "remove_created",
     "short_path",
-    "try_lock",
     "write_atomic",
     "write_files",
 ]
@@ -75,24 +73,6 @@ def file_mode() -> int:
     mask = os.umask(0)
     os.umask(mask)
     return 0o666 & ~mask
-
-
-def short_path(path: str | Path, limit: int = 160) -> str:
-    """``path`` for a one-line message: cut in the middle when longer than ``limit``
-    characters (a path past PATH_MAX would make the line kilobytes long).
-
-    Examples
-    --------
-    >>> short_path("out/p.json")
-    'out/p.json'
-    >>> short_path("d" * 400 + "/p.json", limit=20)
-    'dddddddddd…ddd/p.json (407 characters)'
-    """
-    text = str(path)
-    if len(text) <= limit:
-        return text
-    half = limit // 2
-    return f"{text[:half]}…{text[-half:]} ({len(text)} characters)"
 
 
 def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path] = (),
@@ -140,61 +120,19 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
     Traceback (most recent call last):
     PermissionError: the output path is empty
     """
-    targets = [(_target(p, error), c) for p, c in files.items()]
-    shown = {t: short_path(p) for (t, _), p in zip(targets, files, strict=True)}  # as given
-    regular = [(t, c) for t, c in targets if not _is_special(t) and str(t) != STDIN]
-    special = [(t, c) for t, c in targets if _is_special(t)]
-    streamed = [c for t, c in targets if str(t) == STDIN]
-    created: list[Path] = []
-    temps: list[tuple[str, Path]] = []
-    held: list[int] = []  # (lock) our new files' descriptors, locked until all are in place
+    targets = [(resolve_target(p, error), c) for p, c in files.items()]
     locks = OutputLocks(files, error=error) if lock is True else lock or None
-    current = targets[0][0] if targets else Path(".")
+    job = _Write(targets, [short_path(p) for p in files], locks)
     try:
-        for target, _ in regular:
-            current = target
-            make_parents(target.parent, created)
-        mode = file_mode()
-        for target, content in regular:
-            current = target
-            fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=_temp_prefix(target),
-                                       suffix=".tmp")
-            temps.append((tmp, target))
-            if locks is not None:
-                held.append(fd)
-                try_lock(fd)  # a file of ours: nobody else can hold it yet
-            with os.fdopen(fd, "wb", closefd=locks is None) as fh:
-                fh.write(_encode(content))
-            os.chmod(tmp, mode)
-        for target, content in special:
-            current = target
-            _stream(target, _encode(content))
-        for content in streamed:  # standard output: its failure is the stream's own error
-            _to_stdout(_encode(content))
-        for tmp, target in temps:
-            current = target
-            if locks is not None and target in locks.fresh:
-                try:
-                    os.link(tmp, target)  # with its lock: a batch starting now refuses it
-                except FileExistsError:
-                    raise error(f"cannot write {shown[target]}: it appeared while this "
-                                "command ran (another program made it); nothing was written"
-                                ) from None
-                os.unlink(tmp)
-            else:
-                os.replace(tmp, target)
-        temps.clear()
+        job.run()
     except OSError as exc:
-        _clean(temps, created)
-        reason = exc.strerror or str(exc)
-        raise error(f"cannot write {short_path(current)}: {reason}") from None
+        job.clean()
+        raise error(f"cannot write {short_path(job.current)}: {exc.strerror or exc}") from None
     except BaseException:
-        _clean(temps, created)
+        job.clean()
         raise
     finally:
-        for fd in held:
-            with contextlib.suppress(OSError):
-                os.close(fd)
+        job.release()
         if lock is True and locks is not None:
             locks.close()
     for p in remove:
@@ -202,144 +140,67 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
     return tuple(t for t, _ in targets)
 
 
-BUSY = "another dpp batch or dpp batch merge is writing it (try again when it has finished)"
-"""Why a file under the lock discipline (:func:`try_lock`) cannot be written now."""
+class _Write:
+    """One :func:`write_files` call: the temporary files, the folders made, the descriptors
+    held (under a lock), the target being written (for the message)."""
 
+    def __init__(self, targets: list[tuple[Path, str | bytes]], shown: list[str],
+                 locks: OutputLocks | None) -> None:
+        self.regular = [(t, c) for t, c in targets if not is_special(t) and str(t) != STDIN]
+        self.special = [(t, c) for t, c in targets if is_special(t)]
+        self.streamed = [c for t, c in targets if str(t) == STDIN]
+        self.shown = {t: s for (t, _), s in zip(targets, shown, strict=True)}  # as given
+        self.locks = locks
+        self.created: list[Path] = []
+        self.temps: list[tuple[str, Path]] = []
+        self.held: list[int] = []  # (locks) our new files' descriptors, until all are in place
+        self.current = targets[0][0] if targets else Path(".")
 
-def try_lock(fd: int, *, shared: bool = False) -> bool:
-    """Take the advisory lock (``flock``) of the open file ``fd`` without waiting: exclusive
-    (a writer) or ``shared`` (a reader); False when another process holds a lock that
-    conflicts. The lock lasts until ``fd`` is closed.
+    def run(self) -> None:
+        for target, _ in self.regular:
+            self.current = target
+            make_parents(target.parent, self.created)
+        mode = file_mode()
+        for target, content in self.regular:
+            self.current = target
+            fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=_temp_prefix(target),
+                                       suffix=".tmp")
+            self.temps.append((tmp, target))
+            if self.locks is not None:
+                self.held.append(fd)
+                try_lock(fd)  # a file of ours: nobody else can hold it yet
+            with os.fdopen(fd, "wb", closefd=self.locks is None) as fh:
+                fh.write(_encode(content))
+            os.chmod(tmp, mode)
+        for target, content in self.special:
+            self.current = target
+            _stream(target, _encode(content))
+        for content in self.streamed:  # standard output: its failure is the stream's own error
+            _to_stdout(_encode(content))
+        for tmp, target in self.temps:
+            self.current = target
+            self._commit(tmp, target)
+        self.temps.clear()
 
-    This is the one lock discipline of the files ``dpp batch`` appends to: a batch holds its
-    CSV's exclusive lock while it runs; ``dpp batch merge`` holds its output's exclusive lock
-    and a shared lock on every shard it reads, so a merge never reads a shard a batch is still
-    writing, never replaces a CSV a batch is appending to, and a batch never starts on either.
-
-    Examples
-    --------
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = Path(d) / "rows.csv"
-    ...     _ = p.write_text("")
-    ...     a, b = os.open(p, os.O_RDONLY), os.open(p, os.O_RDONLY)
-    ...     print(try_lock(a, shared=True), try_lock(b, shared=True), try_lock(b))
-    ...     os.close(a); os.close(b)
-    True True False
-    """
-    if os.name != "posix":  # pragma: no cover - Linux and macOS have flock
-        return True
-    import fcntl
-
-    try:
-        fcntl.flock(fd, (fcntl.LOCK_SH if shared else fcntl.LOCK_EX) | fcntl.LOCK_NB)
-    except OSError as exc:
-        if exc.errno in (errno.EWOULDBLOCK, errno.EAGAIN, errno.EACCES):
-            return False
-        raise
-    return True
-
-
-class OutputLocks:
-    """The exclusive locks (:func:`try_lock`) of a command's output files, taken before the
-    command reads its inputs and held until :func:`write_files` (given this object as
-    ``lock``) has put every file in place: no other run can start on them meanwhile. A
-    target that does not exist yet is remembered as new: it is linked into place, never
-    replacing a file that appeared in between. Use as a context manager.
-
-    Raises
-    ------
-    OutputError
-        (or ``error``) Another process holds the lock of one of the files.
-
-    Examples
-    --------
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = Path(d) / "all.csv"
-    ...     _ = p.write_text("old")
-    ...     with OutputLocks([p]) as locks:
-    ...         busy = is_busy(p)
-    ...         _ = write_files({p: "new"}, lock=locks)
-    ...     print(busy, p.read_text(), is_busy(p))
-    True new False
-    """
-
-    def __init__(self, paths: Iterable[Any], *, error: ErrorClass = OutputError) -> None:
-        self.fds: dict[Path, int] = {}
-        """Existing targets, locked: their descriptors."""
-        self.fresh: set[Path] = set()
-        """Targets that did not exist."""
+    def _commit(self, tmp: str, target: Path) -> None:
+        if self.locks is None or target not in self.locks.fresh:
+            os.replace(tmp, target)
+            return
         try:
-            for path in paths:
-                target = _target(path, error)
-                if str(target) == STDIN or _is_special(target):
-                    continue
-                try:
-                    fd = _locked_existing(target)
-                except OSError:  # (write_files says why, in one line)
-                    continue
-                if fd is None:
-                    self.fresh.add(target)
-                elif fd < 0:
-                    raise error(f"cannot write {short_path(path)}: {BUSY}")
-                else:
-                    self.fds[target] = fd
-        except BaseException:
-            self.close()
-            raise
+            os.link(tmp, target)  # with its lock: a batch starting now refuses it
+        except FileExistsError:
+            raise OSError(errno.EEXIST, "it appeared while this command ran (another program "
+                          "made it); nothing was written") from None
+        os.unlink(tmp)
 
-    def close(self) -> None:
-        """Release the locks."""
-        for fd in self.fds.values():
+    def clean(self) -> None:
+        _clean(self.temps, self.created)
+
+    def release(self) -> None:
+        for fd in self.held:
             with contextlib.suppress(OSError):
                 os.close(fd)
-        self.fds.clear()
-
-    def __enter__(self) -> OutputLocks:
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.close()
-
-
-def is_busy(path: str | Path) -> bool:
-    """True when ``path`` is a regular file whose lock another process holds
-    (:func:`try_lock`): a ``dpp batch`` appending to it, a merge reading or writing it.
-
-    Examples
-    --------
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = Path(d) / "rows.csv"
-    ...     _ = p.write_text("")
-    ...     before = is_busy(p)
-    ...     fd = os.open(p, os.O_RDONLY); _ = try_lock(fd)
-    ...     print(before, is_busy(p), is_busy(Path(d) / "new.csv"))
-    ...     os.close(fd)
-    False True False
-    """
-    try:
-        fd = _locked_existing(Path(path))
-    except OSError:
-        return False
-    if fd is not None and fd >= 0:
-        os.close(fd)
-    return fd == -1
-
-
-def _locked_existing(target: Path) -> int | None:
-    """The exclusive lock of an existing regular ``target``: its descriptor (locked), ``-1``
-    when another process holds it, None when there is no such file (a new target)."""
-    try:
-        fd = os.open(target, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC
-                     | getattr(os, "O_NOCTTY", 0))
-    except FileNotFoundError:
-        return None
-    if not stat.S_ISREG(os.fstat(fd).st_mode):
-        os.close(fd)
-        return None
-    if try_lock(fd):
-        return fd
-    os.close(fd)
-    return -1
+        self.held.clear()
 
 
 def write_atomic(path: str | Path, text: str | bytes, *, error: ErrorClass = OutputError
@@ -410,16 +271,6 @@ def _to_stdout(data: bytes) -> None:
     stream.flush()
 
 
-def _is_special(target: Path) -> bool:
-    """True when ``target`` exists (through symlinks) and is neither a regular file nor a
-    folder: a device, a FIFO, a socket."""
-    try:
-        st = os.stat(target)
-    except OSError:
-        return False
-    return not stat.S_ISREG(st.st_mode) and not stat.S_ISDIR(st.st_mode)
-
-
 def _is_socket(target: Path) -> bool:
     try:
         return stat.S_ISSOCK(os.stat(target).st_mode)
@@ -476,70 +327,6 @@ def _temp_prefix(target: Path) -> str:
     if len(os.fsencode(target.name)) + len("..XXXXXXXX.tmp") > 255:
         return ".dpp."
     return f".{target.name}."
-
-
-def _target(path: str | Path, error: ErrorClass) -> Path:
-    if str(path) == "":
-        raise error("the output path is empty")
-    if str(path) == STDIN:
-        return Path(STDIN)  # standard output (a file named - is ./-)
-    if str(path).endswith(("/", os.sep)):  # Path() would drop the slash and write a file
-        raise error(f"cannot write {short_path(path)}: it names a folder (a trailing /); give "
-                    "a file name")
-    p = Path(path)
-    if os.path.isdir(p):  # (os.path: False, not an exception, for a name too long)
-        raise error(f"cannot write {short_path(p)}: it is a folder")
-    if os.path.islink(p) and (os.path.isfile(p) or not os.path.exists(p)):
-        # keep the link: replace the file it points to, or create the one a dangling link names
-        return Path(os.path.realpath(p))
-    return p
-
-
-def make_parents(folder: Path, created: list[Path]) -> None:
-    """Create ``folder`` and its missing parents, appending each folder made to ``created``
-    (outermost first) so that :func:`remove_created` can take them away again.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     made: list[Path] = []
-    ...     make_parents(Path(d) / "a" / "b", made)
-    ...     [p.name for p in made], (Path(d) / "a" / "b").is_dir()
-    ...     remove_created(made)
-    ...     made, (Path(d) / "a").exists()
-    (['a', 'b'], True)
-    ([], False)
-    """
-    missing = []
-    f = folder if str(folder) else Path(".")
-    while not f.exists():
-        if f.is_symlink():  # mkdir would say "File exists"
-            raise OSError(errno.ENOENT, f"{short_path(f)} is a symbolic link to a missing "
-                          f"folder ({short_path(os.readlink(f))})")
-        missing.append(f)
-        if f.parent == f:
-            break
-        f = f.parent
-    if not f.is_dir():
-        raise OSError(errno.ENOTDIR, f"{short_path(f)} is not a folder")
-    for d in reversed(missing):
-        d.mkdir()
-        created.append(d)
-
-
-def remove_created(created: list[Path]) -> None:
-    """Remove the folders :func:`make_parents` made, innermost first (a folder that is no
-    longer empty stays), and forget them.
-
-    Examples
-    --------
-    >>> remove_created([])  # nothing made, nothing removed
-    """
-    for d in reversed(created):
-        with contextlib.suppress(OSError):
-            d.rmdir()
-    created.clear()
 
 
 def _clean(temps: list[tuple[str, Path]], created: list[Path]) -> None:

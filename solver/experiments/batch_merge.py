@@ -34,16 +34,10 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from dppio.files import (
-    OutputLocks,
-    open_input,
-    read_input,
-    refuse_input_as_output,
-    try_lock,
-    write_files,
-)
+from dppio.files import open_input, read_input, refuse_input_as_output, write_files
 from dppio.inputs import is_stdin
 from dppio.limits import MAX_INPUT_BYTES
+from dppio.locks import OutputLocks, try_lock
 from dppio.text import escaped
 from solver.errors import InvalidInstanceError, OutputError
 from solver.experiments.batch_csv import FIELDS, HEADER, BatchTally, read_rows
@@ -76,7 +70,7 @@ def read_shard(path: str | Path, locks: contextlib.ExitStack | None = None
                ) -> tuple[list[list[str]], BatchTally]:
     """The rows of one shard's CSV (without the header), every field checked as a resumed
     batch checks its CSV's rows, and their tally. With ``locks``, the shard is read under its
-    shared lock, kept there (:func:`dppio.files.try_lock`): a shard a running batch is still
+    shared lock, kept there (:func:`dppio.locks.try_lock`): a shard a running batch is still
     writing is refused.
 
     Raises
@@ -139,7 +133,7 @@ class MergeResult:
 def merge_shards(shards: Sequence[str | Path], output: str | Path) -> MergeResult:
     """Join the shards' rows into ``output`` (header, rows sorted by line): the output rule of
     every command (``dppio.files``), under the lock discipline of ``dpp batch``
-    (:func:`dppio.files.try_lock`): the output's lock is taken, and a shard or an output that
+    (:func:`dppio.locks.try_lock`): the output's lock is taken, and a shard or an output that
     a running batch holds is refused.
 
     Raises

@@ -19,7 +19,7 @@ The rule (``docs/limits.md``, "Output files"):
 - rows are **appended durably** (written, then ``fsync``-ed); a write that fails (a full
   disk, a file size limit) is rolled back to the last whole row and reported in one line,
   the rows before it kept for the next run.
-- an exclusive advisory lock (``flock``, :func:`dppio.files.try_lock`) on the file keeps
+- an exclusive advisory lock (``flock``, :func:`dppio.locks.try_lock`) on the file keeps
   two runs apart, and a run from a ``dpp batch merge`` that reads the file as a shard or
   writes it (the merge takes the same locks): each refuses the other in one line.
 """
@@ -33,7 +33,8 @@ import tempfile
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
-from dppio.files import BUSY, file_mode, make_parents, remove_created, short_path, try_lock
+from dppio.files import file_mode, make_parents, remove_created, short_path
+from dppio.locks import BUSY, try_lock
 from solver.errors import InvalidInstanceError, OutputError
 from solver.experiments.batch_csv import HEADER, BatchTally, format_rows, parse_row, read_rows
 
@@ -362,7 +363,7 @@ def _check_new(shown: str, target: Path) -> None:
 
 
 def _lock(fd: int, shown: str) -> None:
-    """The run's exclusive lock on its CSV (:func:`dppio.files.try_lock`, the discipline
+    """The run's exclusive lock on its CSV (:func:`dppio.locks.try_lock`, the discipline
     ``dpp batch merge`` follows too): refused while another batch writes the file or a merge
     reads it as a shard or writes it."""
     if not try_lock(fd):
