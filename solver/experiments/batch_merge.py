@@ -97,7 +97,9 @@ interrupted): run that shard again to finish it
     except (OSError, ValueError) as exc:
         raise InvalidInstanceError(f"{path}: cannot read ({getattr(exc, 'strerror', None) or exc})"
                                    ) from None
-    if raw and not raw.endswith(b"\n"):
+    if not raw:  # (a batch that wrote no row leaves no file at all)
+        raise InvalidInstanceError(f"{path}: empty: not a dpp batch CSV")
+    if not raw.endswith(b"\n"):
         raise InvalidInstanceError(f"{path}: its last row is torn (the run was interrupted): "
                                    "run that shard again to finish it")
     first = raw.split(b"\n", 1)[0]

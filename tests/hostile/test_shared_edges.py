@@ -133,7 +133,7 @@ def test_a_batch_refuses_a_shard_and_an_output_a_running_merge_holds(scratch: Pa
     finally:
         os.close(writer)  # the FIFO shard is empty: the merge refuses it
         code, err = _finish(merge)
-    assert code == 2 and "ff: not a dpp batch CSV" in err
+    assert code == 2 and "ff: empty: not a dpp batch CSV" in err
 
 
 # --- outputs: one rule for every command ---------------------------------------------------
