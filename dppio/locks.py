@@ -23,7 +23,7 @@ from dppio.errors import ErrorClass, OutputError
 from dppio.inputs import STDIN
 from dppio.targets import is_special, resolve_target, short_path
 
-__all__ = ["BUSY", "OutputLocks", "is_busy", "try_lock"]
+__all__ = ["BUSY", "OutputLocks", "try_lock"]
 
 BUSY = "another dpp batch or dpp batch merge is writing it (try again when it has finished)"
 """Why a file under the lock discipline (:func:`try_lock`) cannot be written now."""
@@ -82,11 +82,13 @@ class OutputLocks:
     >>> with tempfile.TemporaryDirectory() as d:
     ...     p = Path(d) / "all.csv"
     ...     _ = p.write_text("old")
+    ...     other = os.open(p, os.O_RDONLY)  # another run's descriptor
     ...     with OutputLocks([p]) as locks:
-    ...         busy = is_busy(p)
+    ...         busy = not try_lock(other, shared=True)
     ...         _ = write_files({p: "new"}, lock=locks)
-    ...     print(busy, p.read_text(), is_busy(p))
-    True new False
+    ...     print(busy, p.read_text())
+    ...     os.close(other)
+    True new
     """
 
     def __init__(self, paths: Iterable[Any], *, error: ErrorClass = OutputError) -> None:
@@ -125,31 +127,6 @@ class OutputLocks:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
-
-
-def is_busy(path: str | Path) -> bool:
-    """True when ``path`` is a regular file whose lock another process holds
-    (:func:`try_lock`): a ``dpp batch`` appending to it, a merge reading or writing it.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = Path(d) / "rows.csv"
-    ...     _ = p.write_text("")
-    ...     before = is_busy(p)
-    ...     fd = os.open(p, os.O_RDONLY); _ = try_lock(fd)
-    ...     print(before, is_busy(p), is_busy(Path(d) / "new.csv"))
-    ...     os.close(fd)
-    False True False
-    """
-    try:
-        fd = _locked_existing(Path(path))
-    except OSError:
-        return False
-    if fd is not None and fd >= 0:
-        os.close(fd)
-    return fd == -1
 
 
 def _locked_existing(target: Path) -> int | None:
