@@ -85,11 +85,13 @@ def test(pytest_args: list[str]) -> None:
     _run(BIN / "ruff", "check", *lint_paths)
     _run(BIN / "mypy")
     _run(BIN / "lint-imports")
-    workers = ["-n", "auto"] if (os.cpu_count() or 1) > 1 else []
+    # loadgroup: the tests of one xdist_group (the documentation site's) share a worker, so
+    # the session fixture that builds the site runs once
+    workers = ["-n", "auto", "--dist", "loadgroup"] if (os.cpu_count() or 1) > 1 else []
     # the default run includes the peer cross-checks (OpenSpiel, Gambit: the `peers` extra),
     # which plain `pytest` leaves out; `-m slow` etc. replace this selection
     markers = [] if "-m" in pytest_args else ["-m", "not slow"]
-    _run(PY, "-m", "pytest", *workers, *markers, *pytest_args)
+    _run(PY, "-m", "pytest", *workers, *markers, "--durations=15", *pytest_args)
 
 
 def docs_command(out: Path = ROOT / "docs" / "_build" / "html",

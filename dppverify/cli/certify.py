@@ -29,7 +29,7 @@ from dppverify.cli.conventions import (
 )
 from dppverify.cli.errors import fail
 from dppverify.cli.hints import what_is
-from dppverify.cli.inputs import HORIZON, hinted, load_game, max_prefixes_option
+from dppverify.cli.inputs import HORIZON, INSTANCE_FILE, hinted, load_game, max_prefixes_option
 from dppverify.cli.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.cli.table import format_table
 from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
@@ -52,7 +52,7 @@ __all__ = ["VERDICT_EXIT", "certify_command"]
 
 
 @click.command("certify", short_help="Certify or refute a profile as a PBNE of an instance.")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @click.argument("profile", required=False, type=click.Path(dir_okay=False), metavar="PROFILE")
 @map_options
 @click.option("-H", "--horizon", type=HORIZON,

@@ -6,7 +6,7 @@ import click
 
 from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
 from dppverify.cli.errors import fail
-from dppverify.cli.inputs import load_game, max_prefixes_option
+from dppverify.cli.inputs import INSTANCE_FILE, load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.formats.files import refuse_input_as_output
@@ -17,7 +17,7 @@ __all__ = ["export_efg_command"]
 
 
 @click.command("export-efg", short_help="Write the truncated game as a Gambit .efg file.")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @map_options
 @click.option("-H", "--horizon", type=click.IntRange(min=0, max=MAX_HORIZON), required=True,
               help="Horizon H of the truncated game.")

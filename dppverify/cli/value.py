@@ -20,7 +20,7 @@ from dppverify.cli.conventions import (
     want_progress,
 )
 from dppverify.cli.errors import fail
-from dppverify.cli.inputs import HORIZON, load_game, max_prefixes_option
+from dppverify.cli.inputs import HORIZON, INSTANCE_FILE, load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.errors import CheckerError
 from dppverify.formats.files import refuse_input_as_output
@@ -36,7 +36,7 @@ __all__ = ["routed_lines", "value_command"]
 
 
 @click.command("value", short_help="The value V_H of the game (untruncated unless --horizon H).")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @map_options
 @click.option("-H", "--horizon", type=HORIZON, default=None,
               help="Horizon H of the truncated game (an explicit request), or 'inf' for the "

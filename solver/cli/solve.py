@@ -18,6 +18,7 @@ from dppverify.cli.conventions import (
     status,
     want_progress,
 )
+from dppverify.cli.inputs import INSTANCE_FILE
 from dppverify.cli.map_options import MapRequest, map_options
 from solver.cli.common import START_IS_GOAL, dumps, load_with_digest
 from solver.errors import InvalidInstanceError, OutputError
@@ -27,7 +28,7 @@ __all__ = ["solve_command"]
 
 
 @click.command("solve", short_help="Solve an instance for the paper's equilibrium (PBNE).")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @map_options
 @click.option("--json", "as_json", is_flag=True,
               help="Print the dpp-profile/1 JSON instead of the summary.")

