@@ -10,18 +10,22 @@ examples:paper10 ...``), and so does the ``map`` of a ``dpp-map-instance/1`` doc
 file.
 
 This is the one place that locates a bundled example, shared by both packages (each passes its
-own error class as ``error=``, like every check of :mod:`dppio`).
+own error class as ``error=``, like every check of :mod:`dppio`); :data:`INSTANCE_FILE` is the
+click type of every command's instance argument, which resolves the name at the door.
 """
 
 from __future__ import annotations
 
 import importlib.resources
 from pathlib import Path
+from typing import Any
+
+import click
 
 from dppio.errors import ErrorClass, InputError
 
-__all__ = ["EXAMPLES", "PREFIX", "display_name", "example_names", "example_path",
-           "resolve_input"]
+__all__ = ["EXAMPLES", "INSTANCE_FILE", "PREFIX", "InstanceFile", "display_name",
+           "example_names", "example_path", "resolve_input"]
 
 PREFIX = "examples:"
 """Values starting with this name a bundled example."""
@@ -100,3 +104,32 @@ def display_name(path: str | Path) -> str:
     except (OSError, InputError):  # an odd path, or an installation without its data
         pass
     return str(path)
+
+
+class InstanceFile(click.Path):
+    """An instance file argument: a path, or ``examples:NAME`` for a bundled example, resolved
+    to its file here (an unknown name is a usage error: one line, exit 2).
+
+    Examples
+    --------
+    >>> Path(INSTANCE_FILE.convert("examples:triangle", None, None)).name
+    'triangle.json'
+    >>> INSTANCE_FILE.convert("mine.json", None, None)
+    'mine.json'
+    """
+
+    def __init__(self) -> None:
+        super().__init__(dir_okay=False)
+
+    def convert(self, value: Any, param: click.Parameter | None,
+                ctx: click.Context | None) -> Any:
+        if isinstance(value, str) and value.startswith(PREFIX):
+            try:
+                value = resolve_input(value)
+            except InputError as exc:
+                self.fail(str(exc), param, ctx)
+        return super().convert(value, param, ctx)
+
+
+INSTANCE_FILE = InstanceFile()
+"""The click type of an instance argument (``dpp solve``, ``certify``, ``value``, ...)."""

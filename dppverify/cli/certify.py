@@ -15,6 +15,7 @@ from typing import Any
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppio.inputs import reading_once
 from dppverify.certificate import Certificate
 from dppverify.certify import DEFAULT_TRIALS, certify
@@ -29,7 +30,7 @@ from dppverify.cli.conventions import (
 )
 from dppverify.cli.errors import fail
 from dppverify.cli.hints import what_is
-from dppverify.cli.inputs import HORIZON, INSTANCE_FILE, hinted, load_game, max_prefixes_option
+from dppverify.cli.inputs import HORIZON, hinted, load_game, max_prefixes_option
 from dppverify.cli.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
 from dppverify.cli.table import format_table
 from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
 from dppverify.cli.errors import fail
-from dppverify.cli.inputs import INSTANCE_FILE, load_game, max_prefixes_option
+from dppverify.cli.inputs import load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.formats.files import refuse_input_as_output

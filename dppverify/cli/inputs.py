@@ -13,8 +13,6 @@ from typing import Any, TypeVar
 
 import click
 
-from dppio.errors import InputError
-from dppio.examples import PREFIX, resolve_input
 from dppio.limits import MAX_PREFIXES_LIMIT
 from dppverify.cli.hints import file_hint
 from dppverify.cli.map_options import MapRequest, instance_or_map
@@ -25,8 +23,7 @@ from dppverify.limits import MAX_HORIZON
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 from dppverify.valuation import game_of
 
-__all__ = ["HORIZON", "INSTANCE_FILE", "HorizonParam", "InstanceFile", "hinted", "load_game",
-           "max_prefixes_option"]
+__all__ = ["HORIZON", "HorizonParam", "hinted", "load_game", "max_prefixes_option"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -61,35 +58,6 @@ class HorizonParam(click.ParamType):
 
 
 HORIZON = HorizonParam()
-
-
-class InstanceFile(click.Path):
-    """An instance file argument: a path, or ``examples:NAME`` for a bundled example
-    (:mod:`dppio.examples`), resolved to its file here, at the door.
-
-    Examples
-    --------
-    >>> from pathlib import Path
-    >>> Path(INSTANCE_FILE.convert("examples:triangle", None, None)).name
-    'triangle.json'
-    >>> INSTANCE_FILE.convert("mine.json", None, None)
-    'mine.json'
-    """
-
-    def __init__(self) -> None:
-        super().__init__(dir_okay=False)
-
-    def convert(self, value: Any, param: click.Parameter | None,
-                ctx: click.Context | None) -> Any:
-        if isinstance(value, str) and value.startswith(PREFIX):
-            try:
-                value = resolve_input(value)
-            except InputError as exc:
-                self.fail(str(exc), param, ctx)
-        return super().convert(value, param, ctx)
-
-
-INSTANCE_FILE = InstanceFile()
 
 
 def max_prefixes_option(help: str = "Refuse walk trees larger than this.",

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppio.text import count, decimal
 from dppverify.cli.conventions import (
     PhaseBar,
@@ -20,7 +21,7 @@ from dppverify.cli.conventions import (
     want_progress,
 )
 from dppverify.cli.errors import fail
-from dppverify.cli.inputs import HORIZON, INSTANCE_FILE, load_game, max_prefixes_option
+from dppverify.cli.inputs import HORIZON, load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.errors import CheckerError
 from dppverify.formats.files import refuse_input_as_output

@@ -9,9 +9,9 @@ from typing import Any
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppio.files import refuse_input_as_output, write_files
 from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
-from dppverify.cli.inputs import INSTANCE_FILE
 from dppverify.cli.map_options import MapRequest, two_goal_map_options
 from solver.cli.common import (
     check_dask_address,

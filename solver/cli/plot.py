@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppio.files import read_text, refuse_input_as_output
 from dppverify.cli.conventions import (
     PhaseBar,
@@ -14,7 +15,6 @@ from dppverify.cli.conventions import (
     status,
     want_progress,
 )
-from dppverify.cli.inputs import INSTANCE_FILE
 from dppverify.cli.map_options import MapRequest, map_options, two_goal_map_options
 from solver.cli.common import experiment_instance
 from solver.errors import InvalidInstanceError, OutputError

@@ -8,6 +8,7 @@ from typing import Any
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppio.files import refuse_input_as_output, write_files
 from dppio.inputs import is_stdin
 from dppio.text import decimal
@@ -18,7 +19,6 @@ from dppverify.cli.conventions import (
     status,
     want_progress,
 )
-from dppverify.cli.inputs import INSTANCE_FILE
 from dppverify.cli.map_options import MapRequest, map_options
 from solver.cli.common import START_IS_GOAL, dumps, load_with_digest
 from solver.errors import InvalidInstanceError, OutputError
