@@ -22,6 +22,7 @@ import shutil
 import subprocess
 import sys
 from collections.abc import Iterator
+from html import unescape
 from html.parser import HTMLParser
 from pathlib import Path
 from urllib.parse import unquote, urlsplit
@@ -194,10 +195,16 @@ def test_every_image_and_internal_link_resolves(site: Path) -> None:
 
 
 def test_the_notebook_is_a_page_with_its_outputs(site: Path) -> None:
+    """The notebook ran at build time, in a fresh folder (the map by its bundled name), every
+    cell without an error, and shows the results it describes."""
     html = (site / "examples" / "workflow.html").read_text()
-    assert html.count('class="cell_output') >= 10
-    assert "Fraction(68, 5)" in html and "Fraction(5, 22)" in html  # U*, VoI* exactly
-    assert "wrote p3.json: U = 34/3" in html
+    shown = unescape(html)
+    assert html.count('class="cell_output') >= 10 and "Traceback" not in shown
+    assert "map: paper10.map" in shown
+    assert "Fraction(68, 5)" in shown and "Fraction(5, 22)" in shown  # U*, VoI* exactly
+    assert "('pass', {'horizon': 'inf', 'truncated': False})" in shown
+    assert "wrote p3.json: U = 34/3" in shown and "('dpp-value/1', 3, '34/3', True" in shown
+    assert not (ROOT / "examples" / "p3.json").exists()  # nothing written into the checkout
     images = re.findall(r'<img [^>]*src="\.\./_images/([0-9a-f]+\.png)"', html)
     assert len(images) == 2
     for name in images:
