@@ -96,10 +96,10 @@ def display_name(path: str | Path) -> str:
     >>> display_name(example_path("paper10")), display_name("my/instance.json")
     ('examples:paper10', 'my/instance.json')
     """
-    try:
-        resolved = Path(path).resolve()
+    try:  # the package's own file, not a link to it (the repository's examples/ links)
+        given = Path(path).absolute()
         for name in EXAMPLES:
-            if resolved == example_path(name).resolve():
+            if given == example_path(name).absolute():
                 return PREFIX + name
     except (OSError, InputError):  # an odd path, or an installation without its data
         pass

@@ -55,7 +55,8 @@ def decimal(x: float | int | Fraction, *, sign: bool = False) -> str:
     return plus + f"{d.scaleb(-e).normalize():f}×10^{e}"
 
 
-_PLURALS = {"prefix": "prefixes", "leaf": "leaves", "entry": "entries", "match": "matches"}
+_PLURALS = {"prefix": "prefixes", "leaf": "leaves", "entry": "entries", "match": "matches",
+            "probability": "probabilities"}
 
 
 def count(n: int, noun: str) -> str:

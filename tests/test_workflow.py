@@ -69,13 +69,14 @@ def _leaves(group: click.Group = main, prefix: str = ""):  # type: ignore[no-unt
             yield prefix + name, cmd
 
 
-NO_JSON = {"export-efg", "plot map", "plot beliefs", "plot voi", "audit", "batch"}
-"""Commands whose product is a file or folder they write (.efg, a figure, the failure folder,
-the batch CSV): their stdout carries no data to print as JSON."""
+NO_JSON = {"export-efg", "import-profile", "plot map", "plot beliefs", "plot voi", "audit",
+           "batch"}
+"""Commands whose product is a file or folder they write (.efg, the imported profile, a figure,
+the failure folder, the batch CSV): their stdout carries no data to print as JSON."""
 
 NO_MAP = {"plot voi", "experiment density", "audit", "batch", "experiment baselines"}
 """Commands that take no single grid game: a density CSV, random grids, a solver, a .scen file
-(which names its maps), a list of standard maps (--maps)."""
+(which names its maps), several maps (--map repeated)."""
 
 
 def test_one_convention_on_every_command() -> None:

@@ -16,7 +16,12 @@ import json
 import click
 
 from dppio.examples import INSTANCE_FILE, display_name
-from dppverify.cli.conventions import output_file_option, status
+from dppverify.cli.conventions import (
+    output_file_option,
+    progress_option,
+    status,
+    want_progress,
+)
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import load_game, max_prefixes_option
 from dppverify.cli.map_options import MAP_USAGE, MapRequest, map_options
@@ -58,10 +63,11 @@ DEFAULT_TOLERANCE = 1e-9
 @max_prefixes_option()
 @click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
               show_default=True, help="Refuse games with more nodes than this.")
+@progress_option
 def import_profile_command(instance: str | None, peer_profile: str | None,
                            grid: MapRequest | None, horizon: int, output: str,
                            attacker_observes: bool, forced_moves: bool, tolerance: float,
-                           max_prefixes: int, max_nodes: int) -> None:
+                           max_prefixes: int, max_nodes: int, progress: bool | None) -> None:
     """Write PEER_PROFILE, a behaviour profile of INSTANCE's game exported by dpp export-efg,
     as a profile of the game truncated at H, for dpp certify --horizon H.
 
@@ -93,7 +99,8 @@ def import_profile_command(instance: str | None, peer_profile: str | None,
                                         grid.path if grid is not None else None])
         peer = read_peer_profile(peer_profile)
         game = load_game(instance, grid, "dpp import-profile")
-        tree = build_tree(game, horizon, max_prefixes=max_prefixes)
+        tree = build_tree(game, horizon, max_prefixes=max_prefixes,
+                          progress=want_progress(progress))
         infosets = exported_infosets(tree, attacker_observes=attacker_observes,
                                      forced_moves=forced_moves, max_nodes=max_nodes)
         names = exported_action_names(tree, attacker_observes=attacker_observes,

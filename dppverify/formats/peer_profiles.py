@@ -48,6 +48,7 @@ from typing import Any
 
 from dppio.inputs import read_input
 from dppio.limits import check_json_depth, check_numeral
+from dppio.text import count, decimal
 from dppverify.errors import ProfileError
 
 __all__ = ["Infoset", "PeerProfile", "Rationalisation", "parse_peer_profile", "rationalise",
@@ -334,14 +335,14 @@ class Rationalisation:
         --------
         >>> Rationalisation(0, 1e-9, 0.0).summary()
         'every probability exact'
-        >>> Rationalisation(3, 1e-9, 2.5e-17).summary()
-        '3 float probabilities made exact (simplest rational within 1e-09, largest change 2.5e-17)'
+        >>> print(Rationalisation(3, 1e-9, 2.5e-17).summary())
+        3 float probabilities made exact (simplest rational within 1×10^-9, largest change \
+2.5×10^-17)
         """
         if not self.floats:
             return "every probability exact"
-        return (f"{self.floats} float probabilit{'y' if self.floats == 1 else 'ies'} made exact "
-                f"(simplest rational within {self.tolerance:g}, largest change "
-                f"{self.max_change:.2g})")
+        return (f"{count(self.floats, 'float probability')} made exact (simplest rational "
+                f"within {decimal(self.tolerance)}, largest change {decimal(self.max_change)})")
 
     def to_json(self) -> dict[str, Any]:
         """The record a profile keeps under ``solver.rationalised``."""
@@ -372,7 +373,7 @@ def rationalise(behaviour: Behaviour, tolerance: float
         total = sum(snapped.values(), Fraction(0))
         has_floats = any(isinstance(p, float) for p in row.values())
         if total == 0 or abs(total - 1) > (SUM_SLACK if has_floats else 0):
-            raise ProfileError(f"{label!r}: the probabilities sum to {float(total):.9g}, not 1")
+            raise ProfileError(f"{label!r}: the probabilities sum to {decimal(total)}, not 1")
         if total != 1:
             snapped = {a: p / total for a, p in snapped.items()}
         change = max([change, *(abs(float(snapped[a] - Fraction(p))) for a, p in row.items())])

@@ -120,7 +120,7 @@ probe("density --output-dir on a full disk",
        "--workers", "1", "--output-dir", "dd"], fsize=1000, contains="cannot write",
       stdout="closed")
 probe("baselines --output-dir on a full disk",
-      ["experiment", "baselines", "--samples", "0", "--maps", "", "--output-dir", "bd"],
+      ["experiment", "baselines", "--samples", "0", "--no-maps", "--output-dir", "bd"],
       fsize=3000, contains="cannot write", stdout="closed")
 
 
