@@ -56,7 +56,7 @@ def decimal(x: float | int | Fraction, *, sign: bool = False) -> str:
 
 
 _PLURALS = {"prefix": "prefixes", "leaf": "leaves", "entry": "entries", "match": "matches",
-            "probability": "probabilities"}
+            "probability": "probabilities", "strategy": "strategies"}
 
 
 def count(n: int, noun: str) -> str:
@@ -68,6 +68,8 @@ def count(n: int, noun: str) -> str:
     ('1 example', '3 examples', '0 DP steps', '1 prefix')
     >>> count(2, "prefix"), count(2, "leaf"), count(5, "information set"), count(2, "entry")
     ('2 prefixes', '2 leaves', '5 information sets', '2 entries')
+    >>> count(1, "step"), count(3, "float probability"), count(6, "primary strategy")
+    ('1 step', '3 float probabilities', '6 primary strategies')
     """
     if n == 1:
         return f"{n} {noun}"

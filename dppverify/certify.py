@@ -33,6 +33,7 @@ from typing import Any
 from tqdm import tqdm
 
 from dppio.inputs import reading_once
+from dppio.text import count
 from dppverify.certificate import Certificate, CheckRecord, merge_routes
 from dppverify.checks.runners import TREE_RUNNERS
 from dppverify.checks.structured import structured_checks
@@ -338,7 +339,7 @@ def _check_horizon(asked: int | None, longest: int, word: str) -> None:
     message says "path", as it always has)."""
     if asked is not None and asked < longest:
         raise HorizonError(f"the horizon H = {asked} is shorter than the profile's longest "
-                           f"{word} ({longest} steps): give a horizon of at least "
+                           f"{word} ({count(longest, 'step')}): give a horizon of at least "
                            f"{longest}, or none for the untruncated game")
 
 

@@ -161,7 +161,7 @@ def summarize(result: Solution | Equilibrium, *, certified: str = "") -> str:
     >>> import networkx as nx
     >>> star = nx.Graph([("s", "a"), ("s", "b"), ("s", "c", {"weight": 2})])
     >>> print(summarize(solve(Instance(star, "s", ("a", "b", "c"), ("1/2", "1/3", "1/6")))))
-    N = 3 goals: U = 7/6 (≈ 1.167), VoI = 0, U_bar = 7/6 (≈ 1.167); type costs (1, 1, 2); \
+    N = 3 goals: U = 7/6 (≈ 1.167), VoI = 0, Ū = 7/6 (≈ 1.167); type costs (1, 1, 2); \
 Defender: guarantee rule h = (1, 1, 2)
     """
     if isinstance(result, Equilibrium):
@@ -172,7 +172,7 @@ Defender: guarantee rule h = (1, 1, 2)
     assert ceq is not None
     note = f" ({certified})" if certified else ""
     return (f"N = {result.n_goals} goals: U = {format_value(ceq.U)}{note}, VoI = "
-            f"{format_value(ceq.VoI)}, U_bar = {format_value(ceq.U_bar)}; type costs "
+            f"{format_value(ceq.VoI)}, Ū = {format_value(ceq.U_bar)}; type costs "
             f"({', '.join(map(str, ceq.costs))}); Defender: guarantee rule h = "
             f"({', '.join(map(str, ceq.h))})"
             + (f" with {len(ceq.normals)} extra normals" if ceq.normals else ""))

@@ -1,4 +1,4 @@
-"""Issue 24, a researcher's workflow: one output convention, messages that say what to do next.
+"""A researcher's workflow: one output convention, messages that say what to do next.
 
 Each test is one finding of the issue, run through the ``dpp`` command as a user types it.
 """
@@ -133,7 +133,7 @@ def test_eight_connected_maps_certify_without_float(tmp_path: Path) -> None:
 
 
 # ---------------------------------------------------------------- profile of another game
-# Issue 34 (one verdict): a profile of another game is refuted (exit 1) by the check that
+# One verdict: a profile of another game is refuted (exit 1) by the check that
 # names its claim, as dppverify.certify() and dpp audit refute it, with a note on stderr.
 def _refuted_with_note(r: click.testing.Result) -> str:
     assert r.exit_code == 1, (r.exit_code, r.output)
@@ -173,7 +173,7 @@ def test_profile_of_another_map_is_refuted_naming_the_claim(tmp_path: Path) -> N
     m.write_text("type octile\nheight 10\nwidth 10\nmap\n" + "..........\n" * 10)
     r = dpp("certify", "--map", str(m), *GRID, p)
     note = _refuted_with_note(r)
-    assert "U_bar = 88/5" in note and "72/5" in note
+    assert "Ū = 88/5" in note and "72/5" in note
     assert "the profile claims U_bar = 88/5" in _row(r, "value.VoI")
 
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
+from dppio.text import count
 from dppverify.certificate import CheckRecord, Status
 from dppverify.checks.skipped import NOT_WELLFORMED
 from dppverify.checks.structured_shared import greedy_sums, mass_key
@@ -160,8 +161,9 @@ def _wellformed(instance: Instance, profile: Profile, roles: Roles,
         return _rec("profile.wellformed", "fail", "; ".join(defects[:5]) + more, numbers, None,
                     "the profile document alone")
     return _rec("profile.wellformed", "pass",
-                f"well-formed: {len(profile.primary)} primary and {len(profile.secondary)} "
-                f"secondary walk(s), primary goal {instance.nodes[roles.g1]!r}", numbers, None,
+                f"well-formed: {count(len(profile.primary), 'primary walk')} and "
+                f"{count(len(profile.secondary), 'secondary walk')}, primary goal "
+                f"{instance.nodes[roles.g1]!r}", numbers, None,
                 "the profile document alone")
 
 
@@ -257,7 +259,7 @@ def _values(profile: Profile, v: Values, u_trie: Number, mode: NumberMode) -> li
         out.append(_rec(cid, status, msg, numbers, "TEL", "the profile's walks, walk by walk"))
     bad = [k for k, x in (("U_bar", v.U_bar), ("VoI", v.VoI))
            if k in claims and not mode.equal(claims[k], x)]
-    msg = f"U_bar = {show(v.U_bar)}, VoI = {show(v.VoI)}"
+    msg = f"Ū = {show(v.U_bar)}, VoI = {show(v.VoI)}"
     if bad:
         msg += "; the profile claims " + ", ".join(f"{k} = {show(claims[k])}" for k in bad)
     out.append(_rec("value.VoI", "fail" if bad else "pass", msg,

@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from fractions import Fraction
 
+from dppio.text import count
 from dppverify.certificate import CheckRecord
 from dppverify.checks.per_goal_records import ngoal_record, profile_records, walk_labels
 from dppverify.exact import Number
@@ -95,7 +96,7 @@ def _attacker_record(inst: Instance, rule: GuaranteeRule, sets: NormalSets,
         return ngoal_record(cid, "fail", f"type {r.theta + 1} (goal "
                             f"{inst.nodes[inst.goals[r.theta]]!r}) has regret "
                             f"{r.bound - r.value}: walk {walk_labels(inst, r.walk)} "
-                            f"({len(r.walk) - 1} steps) costs {r.value} against the rule "
+                            f"({count(len(r.walk) - 1, 'step')}) costs {r.value} against the rule "
                             f"({r.how})", nums, NRULE, PROOF)
     undecided = [r for r in out if not r.decided]
     if undecided:

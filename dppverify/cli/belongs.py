@@ -94,7 +94,7 @@ def profile_mismatch(game: Instance, doc: Any) -> str | None:
     >>> print(profile_mismatch(inst, {**ok, "attacker": {"primary": [{"path": ["g2", "g1"]}]}}))
     its walks start at "g2", the instance's start is "s"
     >>> print(profile_mismatch(inst, {**ok, "value": {"U_bar": "3"}}))
-    it states U_bar = 3, but this instance's complete-information value is 27/10
+    it states Ū = 3, but this instance's complete-information value is 27/10
     """
     if not isinstance(doc, Mapping):
         return None
@@ -143,6 +143,6 @@ def profile_mismatch(game: Instance, doc: Any) -> str | None:
         for p, d in zip(game.prior, dist, strict=True):
             u_bar = u_bar + numbers.product(numbers.convert(p), d)
         if not numbers.equal(numbers.convert(claimed), u_bar):
-            return (f"it states U_bar = {show(claimed)}, but this instance's "
+            return (f"it states Ū = {show(claimed)}, but this instance's "
                     f"complete-information value is {show(u_bar)}")
     return None

@@ -1,4 +1,4 @@
-"""Hostile probes, round 3 (issue 34): the outputs of every command.
+"""Hostile probes, third round: the outputs of every command.
 
 An output never names an input (by any path or link); a legal long name, a path past
 PATH_MAX and a non-UTF-8 name are written or refused in one line; standard output that is a

@@ -1,4 +1,4 @@
-"""Hostile probes, round 2 (issue 23): each runs the real ``dpp`` in a session of its own under
+"""Hostile probes, second round: each runs the real ``dpp`` in a session of its own under
 CPU and memory limits and asserts its exit code, exactly one stderr line where an error is
 expected, no traceback, untouched files, and no surviving process."""
 

@@ -1,4 +1,4 @@
-"""Hostile probes, round 3 (issue 34): resources. Too few open files, a map too large for the
+"""Hostile probes, third round: resources. Too few open files, a map too large for the
 memory the process may use, a ``.scen`` file built to make a pre-pass quadratic, and a
 ``--dask`` port where no scheduler answers: each is one line and exit 2, in bounded time and
 memory (enforced by the harness' kernel limits), never a traceback.
