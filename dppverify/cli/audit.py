@@ -182,7 +182,7 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
             ref = map_file if map_file.startswith(PREFIX) else str(path.resolve())
             docs, bad = instances_from_scen(path, scen_path, seed=seed, prior=prior,
                                             map_instances=ref if map_instances else None)
-            source = scen_file
+            source = scen_path if scen_file is None else scen_file
             for line, reason in bad[:3]:
                 status(f"audit: {scen_file}: line {line} left out: {reason}")
             if len(bad) > 3:

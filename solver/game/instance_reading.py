@@ -25,7 +25,7 @@ from solver.formats.nodes import node_from_json
 from solver.game.instance import Instance
 from solver.numbers import parse_number
 
-__all__ = ["as_instance", "instance_from_json", "load_instance"]
+__all__ = ["as_instance", "graph_document", "instance_from_json", "load_instance"]
 
 
 def load_instance(path: str | Path, *, two_goals: bool = False) -> Instance:
@@ -139,28 +139,94 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
     )
 
 
-def as_instance(instance: Instance | Mapping[str, Any] | str | Path) -> Instance:
+def as_instance(instance: Instance | Mapping[str, Any] | str | Path | nx.Graph, *,
+                start: Any = None, goals: Any = None, prior: Any = None,
+                weight: str = "weight") -> Instance:
     """An :class:`Instance` from any form the front door takes: itself, an instance document
-    (a dict), or the path of an instance file.
+    (a dict), the path of an instance file, or a ``networkx`` graph with ``start``, ``goals``
+    and ``prior`` (edge weights from the ``weight`` attribute, 1 where absent: the instance
+    format is networkx's node-link JSON, so the graph is converted to that document once, here,
+    and read like a file).
 
     Examples
     --------
     >>> from solver.game.instance import triangle
     >>> as_instance(triangle().to_json()).b1
     Fraction(7, 10)
+    >>> g = nx.Graph([("s", "g2", {"weight": 2}), ("g2", "g1", {"weight": 2}),
+    ...               ("s", "g1", {"weight": 3})])
+    >>> inst = as_instance(g, start="s", goals=["g1", "g2"], prior=["7/10", "3/10"])
+    >>> inst.start, inst.primary, inst.b1
+    ('s', 'g1', Fraction(7, 10))
     >>> as_instance(3)
     Traceback (most recent call last):
     solver.errors.InvalidInstanceError: an instance must be an Instance, an instance document \
-(dict) or a file path; got int
+(dict), a file path or a networkx graph; got int
     """
+    if isinstance(instance, nx.Graph):
+        return instance_from_json(graph_document(instance, start=start, goals=goals,
+                                                 prior=prior, weight=weight))
+    if start is not None or goals is not None or prior is not None:
+        raise InvalidInstanceError("start=, goals= and prior= go with a networkx graph; an "
+                                   f"instance given as {type(instance).__name__} has its own")
     if isinstance(instance, Instance):
         return instance
     if isinstance(instance, Mapping):
         return instance_from_json(dict(instance))
     if isinstance(instance, str | Path):
         return load_instance(instance)
-    raise InvalidInstanceError("an instance must be an Instance, an instance document (dict) "
-                               f"or a file path; got {type(instance).__name__}")
+    raise InvalidInstanceError("an instance must be an Instance, an instance document (dict), "
+                               f"a file path or a networkx graph; got {type(instance).__name__}")
+
+
+def _json_number(x: Any, where: str) -> Any:
+    """A weight or prior as the instance document writes it (a Fraction as ``"p/q"``)."""
+    if isinstance(x, bool):
+        raise InvalidInstanceError(f"{where}: {x!r} is not a number")
+    if isinstance(x, Fraction):
+        return str(x)
+    if isinstance(x, int | float | str):
+        return x
+    try:
+        return float(x)  # numpy scalars and the like
+    except (TypeError, ValueError):
+        raise InvalidInstanceError(f"{where}: {x!r} is not a number") from None
+
+
+def _json_node(v: Any) -> Any:
+    return [_json_node(x) for x in v] if isinstance(v, tuple) else v
+
+
+def graph_document(graph: nx.Graph, *, start: Any, goals: Any, prior: Any,
+                   weight: str = "weight") -> dict[str, Any]:
+    """The instance document of a ``networkx`` graph (node-link JSON, ``docs/formats.md`` §1).
+
+    Raises
+    ------
+    InvalidInstanceError
+        ``start``, ``goals`` or ``prior`` missing, a multigraph, or a weight that is not a
+        number (one line).
+
+    Examples
+    --------
+    >>> doc = graph_document(nx.DiGraph([(0, 1)]), start=0, goals=[1, 0], prior=[0.5, 0.5])
+    >>> doc["graph"]["directed"], doc["graph"]["edges"]
+    (True, [{'source': 0, 'target': 1, 'weight': 1}])
+    """
+    missing = [k for k, v in (("start", start), ("goals", goals), ("prior", prior)) if v is None]
+    if missing:
+        raise InvalidInstanceError(f"a networkx graph needs {', '.join(k + '=' for k in missing)}"
+                                   " (the start node, the goal nodes, their prior)")
+    if graph.is_multigraph():
+        raise InvalidInstanceError("a multigraph is not a DPP instance: give a Graph or DiGraph")
+    edges = [{"source": _json_node(u), "target": _json_node(v),
+              "weight": _json_number(d.get(weight, 1), f"edge {u!r}-{v!r} {weight}")}
+             for u, v, d in graph.edges(data=True)]
+    return {"graph": {"directed": graph.is_directed(), "multigraph": False,
+                      "nodes": [{"id": _json_node(n)} for n in graph.nodes],
+                      "edges": edges},
+            "start": _json_node(start), "goals": [_json_node(g) for g in goals],
+            "prior": [_json_number(p, "prior") for p in prior]}
 
 
 def _from_map_document(data: dict[str, Any], base: Path | None, two_goals: bool) -> Instance:
