@@ -25,7 +25,7 @@ from solver.formats.nodes import node_from_json
 from solver.game.instance import Instance
 from solver.numbers import parse_number
 
-__all__ = ["as_instance", "graph_document", "instance_from_json", "load_instance"]
+__all__ = ["as_instance", "instance_from_json", "load_instance"]
 
 
 def load_instance(path: str | Path, *, two_goals: bool = False) -> Instance:
@@ -144,9 +144,8 @@ def as_instance(instance: Instance | Mapping[str, Any] | str | Path | nx.Graph, 
                 weight: str = "weight") -> Instance:
     """An :class:`Instance` from any form the front door takes: itself, an instance document
     (a dict), the path of an instance file, or a ``networkx`` graph with ``start``, ``goals``
-    and ``prior`` (edge weights from the ``weight`` attribute, 1 where absent: the instance
-    format is networkx's node-link JSON, so the graph is converted to that document once, here,
-    and read like a file).
+    and ``prior`` (converted here, once, by :class:`Instance` itself: ``weight`` names the
+    edge attribute, as in networkx).
 
     Examples
     --------
@@ -164,8 +163,13 @@ def as_instance(instance: Instance | Mapping[str, Any] | str | Path | nx.Graph, 
 (dict), a file path or a networkx graph; got int
     """
     if isinstance(instance, nx.Graph):
-        return instance_from_json(graph_document(instance, start=start, goals=goals,
-                                                 prior=prior, weight=weight))
+        missing = [k for k, v in (("start", start), ("goals", goals), ("prior", prior))
+                   if v is None]
+        if missing:
+            raise InvalidInstanceError(
+                f"a networkx graph needs {', '.join(k + '=' for k in missing)} (the start "
+                "node, the goal nodes, their prior)")
+        return Instance(instance, start, tuple(goals), tuple(prior), weight=weight)
     if start is not None or goals is not None or prior is not None:
         raise InvalidInstanceError("start=, goals= and prior= go with a networkx graph; an "
                                    f"instance given as {type(instance).__name__} has its own")
@@ -177,56 +181,6 @@ def as_instance(instance: Instance | Mapping[str, Any] | str | Path | nx.Graph, 
         return load_instance(instance)
     raise InvalidInstanceError("an instance must be an Instance, an instance document (dict), "
                                f"a file path or a networkx graph; got {type(instance).__name__}")
-
-
-def _json_number(x: Any, where: str) -> Any:
-    """A weight or prior as the instance document writes it (a Fraction as ``"p/q"``)."""
-    if isinstance(x, bool):
-        raise InvalidInstanceError(f"{where}: {x!r} is not a number")
-    if isinstance(x, Fraction):
-        return str(x)
-    if isinstance(x, int | float | str):
-        return x
-    try:
-        return float(x)  # numpy scalars and the like
-    except (TypeError, ValueError):
-        raise InvalidInstanceError(f"{where}: {x!r} is not a number") from None
-
-
-def _json_node(v: Any) -> Any:
-    return [_json_node(x) for x in v] if isinstance(v, tuple) else v
-
-
-def graph_document(graph: nx.Graph, *, start: Any, goals: Any, prior: Any,
-                   weight: str = "weight") -> dict[str, Any]:
-    """The instance document of a ``networkx`` graph (node-link JSON, ``docs/formats.md`` §1).
-
-    Raises
-    ------
-    InvalidInstanceError
-        ``start``, ``goals`` or ``prior`` missing, a multigraph, or a weight that is not a
-        number (one line).
-
-    Examples
-    --------
-    >>> doc = graph_document(nx.DiGraph([(0, 1)]), start=0, goals=[1, 0], prior=[0.5, 0.5])
-    >>> doc["graph"]["directed"], doc["graph"]["edges"]
-    (True, [{'source': 0, 'target': 1, 'weight': 1}])
-    """
-    missing = [k for k, v in (("start", start), ("goals", goals), ("prior", prior)) if v is None]
-    if missing:
-        raise InvalidInstanceError(f"a networkx graph needs {', '.join(k + '=' for k in missing)}"
-                                   " (the start node, the goal nodes, their prior)")
-    if graph.is_multigraph():
-        raise InvalidInstanceError("a multigraph is not a DPP instance: give a Graph or DiGraph")
-    edges = [{"source": _json_node(u), "target": _json_node(v),
-              "weight": _json_number(d.get(weight, 1), f"edge {u!r}-{v!r} {weight}")}
-             for u, v, d in graph.edges(data=True)]
-    return {"graph": {"directed": graph.is_directed(), "multigraph": False,
-                      "nodes": [{"id": _json_node(n)} for n in graph.nodes],
-                      "edges": edges},
-            "start": _json_node(start), "goals": [_json_node(g) for g in goals],
-            "prior": [_json_number(p, "prior") for p in prior]}
 
 
 def _from_map_document(data: dict[str, Any], base: Path | None, two_goals: bool) -> Instance:

@@ -1,6 +1,6 @@
 """``solver.solve`` takes a ``networkx`` graph with ``start=``, ``goals=``, ``prior=`` and
-``weight=`` (the keywords of ``dppverify.certify``), converted once at the door into the
-instance document the files hold: the same game as the document, bad input one line."""
+``weight=`` (the keywords of ``dppverify.certify``), converted once at the door (``as_instance``,
+by ``Instance`` itself): the same game as its instance document, bad input one line."""
 
 from __future__ import annotations
 
@@ -11,7 +11,6 @@ import pytest
 
 import solver
 from solver.errors import DPPError
-from solver.game.instance_reading import graph_document
 
 
 def _triangle(attr: str = "weight", factor: object = 1) -> nx.Graph:
@@ -43,15 +42,14 @@ def test_weights_fractions_directed_graphs_and_n_goals() -> None:
     star.add_edge("s", "a", weight=2)
     sol = solver.solve(star, start="s", goals=["a", "b", "c"], prior=["1/2", "1/3", "1/6"])
     assert str(sol.U) == "3/2"
-    grid = nx.grid_2d_graph(3, 3)  # tuple node ids become the document's [r, c] lists
-    doc = graph_document(grid, start=(2, 0), goals=[(0, 2), (0, 0)], prior=["3/5", "2/5"])
-    assert doc["start"] == [2, 0] and doc["graph"]["edges"][0]["weight"] == 1
+    grid = nx.grid_2d_graph(3, 3)  # tuple node ids, as the grid instances have them
     assert solver.solve(grid, start=(2, 0), goals=[(0, 2), (0, 0)], prior=["3/5", "2/5"]).U > 0
 
 
 @pytest.mark.parametrize("call, message", [
     (lambda: solver.solve(_triangle(), start="s", goals=["g1", "g2"]), "needs prior="),
-    (lambda: solver.solve(nx.MultiGraph([(0, 1)]), start=0, goals=[1, 0], prior=[1, 0]),
+    (lambda: solver.solve(nx.MultiGraph([(0, 1), (1, 2)]), start=0, goals=[1, 2],
+                          prior=[0.5, 0.5]),
      "multigraph"),
     (lambda: solver.solve(_triangle("weight", "x"), start="s", goals=["g1", "g2"],
                           prior=[0.5, 0.5]), "weight"),
