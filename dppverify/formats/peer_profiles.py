@@ -248,6 +248,18 @@ def read_peer_profile(path: str) -> PeerProfile:
     ------
     ProfileError
         The file cannot be read, or is not a behaviour profile (one line).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> with tempfile.NamedTemporaryFile("w", suffix=".csv", delete=False) as f:
+    ...     _ = f.write("NE,1/2,1/2\\n")
+    >>> read_peer_profile(f.name).flat
+    (Fraction(1, 2), Fraction(1, 2))
+    >>> os.unlink(f.name)
+    >>> read_peer_profile("/nowhere/p.csv")
+    Traceback (most recent call last):
+    dppverify.errors.ProfileError: cannot read /nowhere/p.csv: No such file or directory
     """
     try:
         raw = read_input(path)
@@ -360,6 +372,15 @@ def rationalise(behaviour: Behaviour, tolerance: float
     ProfileError
         A negative probability, a distribution summing to 0 or off 1 by more than
         :data:`SUM_SLACK` (floats) or at all (exact numbers).
+
+    Examples
+    --------
+    >>> exact, report = rationalise({"D p1 h-": {"alloc a": 1 / 3, "alloc b": 2 / 3}}, 1e-9)
+    >>> exact, report.floats
+    ({'D p1 h-': {'alloc a': Fraction(1, 3), 'alloc b': Fraction(2, 3)}}, 2)
+    >>> rationalise({"D p1 h-": {"alloc a": Fraction(1, 2)}}, 1e-9)
+    Traceback (most recent call last):
+    dppverify.errors.ProfileError: 'D p1 h-': the probabilities sum to 0.5, not 1
     """
     out: dict[str, dict[str, Fraction]] = {}
     floats, change = 0, 0.0

@@ -84,7 +84,15 @@ def exported_infosets(tree: WalkTree, *, attacker_observes: bool = True,
                       forced_moves: bool = False,
                       max_nodes: int = DEFAULT_MAX_EFG_NODES) -> tuple[Infoset, ...]:
     """The information sets of the exported game in Gambit's order: the Attacker's, then the
-    Defender's, each by number (the order of a Gambit profile line)."""
+    Defender's, each by number (the order of a Gambit profile line).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> [s.label for s in exported_infosets(build_tree(triangle(), 1), attacker_observes=False)]
+    ['T1 p0', 'T2 p0', 'D p1 h-', 'D p2 h-']
+    """
     seen: dict[tuple[int, int], Infoset] = {}
     for s in _decisions(tree, attacker_observes, forced_moves, max_nodes):
         seen.setdefault((s.player, s.number), s)
@@ -206,6 +214,16 @@ def profile_from_behaviour(tree: WalkTree, behaviour: ExactBehaviour, *,
     ------
     ProfileError
         An information set or action of the game without a probability.
+
+    Examples
+    --------
+    The module docstring converts the triangle's equilibrium; an incomplete profile:
+
+    >>> from dppverify.game.examples import triangle
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> profile_from_behaviour(build_tree(triangle(), 1), {})
+    Traceback (most recent call last):
+    dppverify.errors.ProfileError: the behaviour profile has no probability for 'T1 p0 h-'
     """
     game = _Game(tree, behaviour, attacker_observes, forced_moves)
     inst = tree.instance
