@@ -25,6 +25,7 @@ from collections.abc import Iterator
 from html import unescape
 from html.parser import HTMLParser
 from pathlib import Path
+from typing import ClassVar
 from urllib.parse import unquote, urlsplit
 
 import pytest
@@ -60,9 +61,9 @@ class _Page(HTMLParser):
     """One HTML page: its ids, its references (``href``/``src``), its math nodes and the text a
     reader sees outside math, code and scripts."""
 
-    HIDDEN = {"script", "style", "pre", "code", "textarea"}
-    VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta",
-            "source", "track", "wbr"}
+    HIDDEN: ClassVar[set[str]] = {"script", "style", "pre", "code", "textarea"}
+    VOID: ClassVar[set[str]] = {"area", "base", "br", "col", "embed", "hr", "img", "input",
+                                "link", "meta", "source", "track", "wbr"}
 
     def __init__(self) -> None:
         super().__init__(convert_charrefs=True)

@@ -1,5 +1,5 @@
-"""The figure findings of a review of every figure, each checked on the figure objects (docs/figures/ has the
-contact sheet of all figures at print size)."""
+"""The figure findings of a review of every figure, each checked on the figure objects
+(docs/figures/ has the contact sheet of all figures at print size)."""
 
 from __future__ import annotations
 
