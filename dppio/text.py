@@ -18,7 +18,7 @@ from decimal import Decimal, localcontext
 from fractions import Fraction
 from typing import Any
 
-__all__ = ["DIGITS", "count", "decimal", "json_shown"]
+__all__ = ["DIGITS", "count", "decimal", "json_shown", "plural"]
 
 DIGITS = 4
 """Significant digits of every decimal shown in text and figures."""
@@ -76,6 +76,17 @@ def count(n: int, noun: str) -> str:
     head, _, last = noun.rpartition(" ")
     plural = _PLURALS.get(last, last + "s")
     return f"{n} {head + ' ' if head else ''}{plural}"
+
+
+def plural(n: int, noun: str) -> str:
+    """``noun``, plural unless ``n`` is 1 (the word alone, for a list that follows it).
+
+    Examples
+    --------
+    >>> plural(1, "key"), plural(3, "key"), plural(2, "map character"), plural(0, "entry")
+    ('key', 'keys', 'map characters', 'entries')
+    """
+    return count(n, noun).split(" ", 1)[1]
 
 
 def json_shown(x: Any, limit: int = 80) -> str:

@@ -350,8 +350,9 @@ def _sequential(instance: Instance, trie: WalkTrie, sigma: list[Number | None],
     numbers: dict[str, Number | None] = {"reached": len(beliefs) - 1, "violations": len(bad)}
     if bad:
         i, b, s = bad[0]
-        return _rec("pbne.sequential_rationality", "fail", f"{len(bad)} reached information "
-                    f"set(s) where the Defender is not greedy, e.g. after "
+        return _rec("pbne.sequential_rationality", "fail",
+                    f"{count(len(bad), 'reached information set')} where the Defender is "
+                    f"not greedy, e.g. after "
                     f"{show_walk(instance, trie.walk(i))} the belief is {show(b)} but σ(g1) = "
                     f"{show(s)}", numbers, "THM", TRIE)
     return _rec("pbne.sequential_rationality", "pass", f"greedy on the Bayes belief at all "

@@ -128,6 +128,7 @@ def _why_no_guarantee(inst: Instance, rule: GuaranteeRule, rs: RuleSearch) -> st
     if not rs.arc.holds:
         assert rs.arc.failure is not None
         v, u, _ = rs.arc.failure
-        return (f"the arc condition F_v ⊆ F_u + wΔ fails on {len(rs.arc.failing)} arc(s), e.g. "
+        return (f"the arc condition F_v ⊆ F_u + wΔ fails on "
+                f"{count(len(rs.arc.failing), 'arc')}, e.g. "
                 f"{inst.nodes[v]!r} -> {inst.nodes[u]!r}")
     return "h ∈ F_s0 and the arc condition holds"

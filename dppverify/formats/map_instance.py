@@ -28,6 +28,7 @@ from typing import Any, NamedTuple
 
 from dppio.examples import PREFIX as EXAMPLES_PREFIX
 from dppio.examples import example_path
+from dppio.text import plural
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.files import read_input
 from dppverify.formats.movingai import GridMap, parse_map
@@ -150,11 +151,11 @@ def read_map_reference(doc: Mapping[str, Any], base: Path | None = None) -> MapR
     """
     unknown = sorted(set(doc) - _KEYS)
     if unknown:
-        raise InvalidInstanceError(f"{MAP_INSTANCE_FORMAT}: unknown key(s) "
+        raise InvalidInstanceError(f"{MAP_INSTANCE_FORMAT}: unknown {plural(len(unknown), 'key')} "
                                    f"{', '.join(map(repr, unknown))[:200]}")
     missing = [k for k in _REQUIRED if k not in doc]
     if missing:
-        raise InvalidInstanceError(f"{MAP_INSTANCE_FORMAT}: missing key(s): "
+        raise InvalidInstanceError(f"{MAP_INSTANCE_FORMAT}: missing {plural(len(missing), 'key')}: "
                                    f"{', '.join(missing)}")
     ref, digest = doc["map"], doc["map_sha256"]
     if not isinstance(ref, str) or not ref:

@@ -22,6 +22,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from dppio.text import plural
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import (
     JsonReadError,
@@ -182,7 +183,8 @@ def instance_from_json(doc: Any, *, two_goals: bool = False,
 def _read_game(doc: Any, two_goals: bool = False, *, fast: bool = True) -> Instance:
     require(isinstance(doc, Mapping), f"instance must be a JSON object, got {type(doc).__name__}")
     missing = [k for k in ("graph", "start", "goals", "prior") if k not in doc]
-    require(not missing, f"instance is missing key(s): {', '.join(missing)}")
+    require(not missing, f"instance is missing {plural(len(missing), 'key')}: "
+                         f"{', '.join(missing)}")
     mode = doc.get("numbers", "exact")
     if two_goal_rules(doc["goals"], two_goals):
         require(mode in ("exact", "float"),

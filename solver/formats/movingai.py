@@ -19,6 +19,7 @@ from dppio.examples import PREFIX as EXAMPLES_PREFIX
 from dppio.examples import example_path
 from dppio.files import read_input
 from dppio.limits import MAX_MAP_CELLS
+from dppio.text import plural
 from solver.errors import InstanceFormatError
 
 __all__ = ["DEFAULT_BLOCKED", "STANDARD_PREFIX", "map_file", "parse_map", "read_map",
@@ -175,7 +176,8 @@ def parse_map(text: str, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED) -> n
         chars = np.frombuffer(row.encode("ascii"), dtype="S1")
         bad = set(row) - PASSABLE - blocked_set
         if bad:
-            raise InstanceFormatError(f"line {k + 2 + r}: unknown map character(s) "
+            raise InstanceFormatError(f"line {k + 2 + r}: unknown "
+                                      f"{plural(len(bad), 'map character')} "
                                       f"{''.join(sorted(bad))!r}")
         grid[r] = np.isin(chars, [c.encode() for c in blocked_set])
     return grid

@@ -17,7 +17,7 @@ from typing import Any
 import networkx as nx
 
 from dppio.limits import check_rational
-from dppio.text import json_shown
+from dppio.text import json_shown, plural
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.formats.json_text import parse_json_text, read_json
 from solver.formats.map_instance import MAP_INSTANCE_FORMAT, read_map_document, two_goals_only
@@ -89,7 +89,7 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
     ('g1', 'g2', Fraction(7, 10))
     >>> instance_from_json({"graph": {"nodes": [], "edges": []}})
     Traceback (most recent call last):
-    solver.errors.InstanceFormatError: instance is missing key(s): start, goals, prior
+    solver.errors.InstanceFormatError: instance is missing keys: start, goals, prior
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "sabc"],
     ...        "edges": [{"source": "s", "target": x} for x in "abc"]},
     ...        "start": "s", "goals": ["a", "b", "c"], "prior": ["1/2", "1/4", "1/4"]}
@@ -107,7 +107,8 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
         return _from_map_document(data, base, two_goals)
     missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
     if missing:
-        raise InstanceFormatError(f"instance is missing key(s): {', '.join(missing)}")
+        raise InstanceFormatError(f"instance is missing {plural(len(missing), 'key')}: "
+                                  f"{', '.join(missing)}")
     mode = data.get("numbers", "exact")
     if mode not in ("exact", "float"):
         raise InstanceFormatError(f"numbers: expected \"exact\" or \"float\", got {mode!r}")
