@@ -23,13 +23,13 @@ from dppverify.cli.conventions import (
     want_progress,
 )
 from dppverify.cli.errors import fail
-from dppverify.cli.inputs import load_game, max_prefixes_option
+from dppverify.cli.export_efg import efg_game_options
+from dppverify.cli.inputs import load_game
 from dppverify.cli.map_options import MAP_USAGE, MapRequest, map_options
 from dppverify.errors import CheckerError, OptionError
 from dppverify.formats.files import refuse_input_as_output, write_files
 from dppverify.formats.peer_profiles import rationalise, read_peer_profile
 from dppverify.limits import MAX_HORIZON
-from dppverify.tree_route.efg import DEFAULT_MAX_EFG_NODES
 from dppverify.tree_route.efg_profile import (
     exported_action_names,
     exported_infosets,
@@ -52,17 +52,11 @@ DEFAULT_TOLERANCE = 1e-9
               help="The horizon H the .efg game was exported with.")
 @output_file_option("The dpp-profile/1 (two goals) or dpp-ngoal-profile/1 to write "
                     "(atomically).", required=True)
-@click.option("--attacker-observes/--attacker-blind", default=True, show_default=True,
-              help="As the .efg game was exported (dpp export-efg's option).")
-@click.option("--forced-moves", is_flag=True,
-              help="The .efg game was exported with --forced-moves.")
+@efg_game_options  # as dpp export-efg: the same game
 @click.option("--tolerance", type=click.FloatRange(min=0, max=1e-3), default=DEFAULT_TOLERANCE,
               show_default=True,
               help="A float probability becomes the simplest rational within this distance (0: "
                    "its exact binary value); each distribution is then scaled to sum to 1.")
-@max_prefixes_option()
-@click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
-              show_default=True, help="Refuse games with more nodes than this.")
 @progress_option
 def import_profile_command(instance: str | None, peer_profile: str | None,
                            grid: MapRequest | None, horizon: int, output: str,
