@@ -16,7 +16,9 @@ one worker, ``xdist_group``) and then inspected as HTML:
 
 from __future__ import annotations
 
+import fcntl
 import importlib.util
+import os
 import re
 import shutil
 import subprocess
@@ -47,13 +49,26 @@ def _dev() -> object:
 
 
 @pytest.fixture(scope="session")
-def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
+def site() -> Path:
     """The site, built once: ``dev.py docs``'s own command (warnings are errors)."""
-    out = tmp_path_factory.mktemp("site") / "html"
-    cmd = _dev().docs_command(out, python=sys.executable)  # type: ignore[attr-defined]
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=900, cwd=ROOT)
-    if proc.returncode != 0:
-        pytest.fail((proc.stdout + proc.stderr)[-5000:], pytrace=False)
+    # One build per test run, whichever worker asks first (xdist_group keeps most of these
+    # tests on one worker, not always all): the workers of a run share PYTEST_XDIST_TESTRUNUID,
+    # and autosummary writes into the checkout (docs/site/_generated), so builds take a lock.
+    run = os.environ.get("PYTEST_XDIST_TESTRUNUID") or f"solo-{os.getpid()}"
+    base = ROOT / "docs" / "_build"
+    base.mkdir(parents=True, exist_ok=True)
+    out = base / f"test-site-{run}"
+    with open(base / "test-site.lock", "w") as handle:
+        fcntl.flock(handle, fcntl.LOCK_EX)
+        if (out / "built").is_file():
+            return out
+        for old in base.glob("test-site-*"):  # earlier runs' sites
+            shutil.rmtree(old, ignore_errors=True)
+        cmd = _dev().docs_command(out, python=sys.executable)  # type: ignore[attr-defined]
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=1800, cwd=ROOT)
+        if proc.returncode != 0:
+            pytest.fail((proc.stdout + proc.stderr)[-5000:], pytrace=False)
+        (out / "built").write_text(run)
     return out
 
 
