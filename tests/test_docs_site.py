@@ -32,6 +32,8 @@ from urllib.parse import unquote, urlsplit
 
 import pytest
 
+from tests import _guard
+
 ROOT = Path(__file__).resolve().parents[1]
 pytestmark = pytest.mark.xdist_group("site")  # one build, on one worker (dev.py: loadgroup)
 
@@ -65,7 +67,7 @@ def site() -> Path:
         for old in base.glob("test-site-*"):  # earlier runs' sites
             shutil.rmtree(old, ignore_errors=True)
         cmd = _dev().docs_command(out, python=sys.executable)  # type: ignore[attr-defined]
-        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=1800, cwd=ROOT)
+        proc = _guard.run(cmd, capture_output=True, text=True, cwd=ROOT)  # no clock: CPU-guarded
         if proc.returncode != 0:
             pytest.fail((proc.stdout + proc.stderr)[-5000:], pytrace=False)
         (out / "built").write_text(run)
