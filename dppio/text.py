@@ -26,7 +26,7 @@ from fractions import Fraction
 from typing import Any
 
 __all__ = ["DIGITS", "MAX_LINE_CHARS", "MAX_SHOWN_CHARS", "count", "decimal", "escaped",
-           "json_escaped", "json_shown", "terminal_line", "terminal_text"]
+           "json_escaped", "json_shown", "plural", "terminal_line", "terminal_text"]
 
 MAX_SHOWN_CHARS = 80
 """Characters of a document's string quoted in a message (:func:`escaped`'s default)."""
@@ -178,7 +178,8 @@ def decimal(x: float | int | Fraction, *, sign: bool = False) -> str:
     return plus + f"{d.scaleb(-e).normalize():f}×10^{e}"
 
 
-_PLURALS = {"prefix": "prefixes", "leaf": "leaves", "entry": "entries", "match": "matches"}
+_PLURALS = {"prefix": "prefixes", "leaf": "leaves", "entry": "entries", "match": "matches",
+            "probability": "probabilities", "strategy": "strategies"}
 
 
 def count(n: int, noun: str) -> str:
@@ -190,12 +191,25 @@ def count(n: int, noun: str) -> str:
     ('1 example', '3 examples', '0 DP steps', '1 prefix')
     >>> count(2, "prefix"), count(2, "leaf"), count(5, "information set"), count(2, "entry")
     ('2 prefixes', '2 leaves', '5 information sets', '2 entries')
+    >>> count(1, "step"), count(3, "float probability"), count(6, "primary strategy")
+    ('1 step', '3 float probabilities', '6 primary strategies')
     """
     if n == 1:
         return f"{n} {noun}"
     head, _, last = noun.rpartition(" ")
     plural = _PLURALS.get(last, last + "s")
     return f"{n} {head + ' ' if head else ''}{plural}"
+
+
+def plural(n: int, noun: str) -> str:
+    """``noun``, plural unless ``n`` is 1 (the word alone, for a list that follows it).
+
+    Examples
+    --------
+    >>> plural(1, "key"), plural(3, "key"), plural(2, "map character"), plural(0, "entry")
+    ('key', 'keys', 'map characters', 'entries')
+    """
+    return count(n, noun).split(" ", 1)[1]
 
 
 def json_shown(x: Any, limit: int = 80) -> str:

@@ -14,6 +14,7 @@ from collections.abc import Mapping
 from typing import Any, Unpack
 
 from dppio.inputs import reading_once
+from dppio.text import count
 from dppverify.certificate import Certificate, CheckRecord, merge_routes, verdict_of
 from dppverify.checks.suites import Options, Run, suite_of
 from dppverify.errors import HorizonError, InvalidInstanceError, UndecidedError
@@ -132,7 +133,7 @@ def _certified(game: Parsed[Instance], prof: Parsed[Profile], horizon: int | Non
     longest, word = suite.longest(inst, profile)
     if horizon is not None and horizon < longest:
         raise HorizonError(f"the horizon H = {horizon} is shorter than the profile's longest "
-                           f"{word} ({longest} steps): give a horizon of at least "
+                           f"{word} ({count(longest, 'step')}): give a horizon of at least "
                            f"{longest}, or none for the untruncated game")
     chosen: Chosen = resolve_route(route, inst, horizon, options.max_prefixes, certifying=True,
                                    table=suite.tree_only(profile))

@@ -1,4 +1,4 @@
-"""Every benchmark script runs to completion in its quick mode (issue 22).
+"""Every benchmark script runs to completion in its quick mode.
 
 The benchmarks report ratios (docs/benchmarks.md); here each ``benchmarks/bench_*.py`` runs with
 ``--quick`` (tiny sizes, one repetition) in a subprocess so that a crash like the one

@@ -57,7 +57,8 @@ def test_the_wheel_holds_the_packages_the_command_and_the_license(dists: list[Pa
     assert wheel.name.startswith(f"dppverify-{VERSION}-py3-none-any")
     names = zipfile.ZipFile(wheel).namelist()
     for must in ("dppverify/py.typed", "solver/py.typed", "dppio/py.typed",
-                 "dppverify/checks.md", "solver/data/paper10.map", "dppverify/certify.py"):
+                 "dppverify/checks.md", "dppio/data/paper10.map", "dppio/data/triangle.json",
+                 "dppverify/certify.py"):
         assert must in names, must
     assert not any(n.startswith(("tests/", "docs/", "benchmarks/")) for n in names)
     info = f"dppverify-{VERSION}.dist-info"

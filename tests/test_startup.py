@@ -1,4 +1,4 @@
-"""Start-up stays cheap: the heavy libraries load only where they are used (issue 22).
+"""Start-up stays cheap: the heavy libraries load only where they are used.
 
 Checked by the modules a fresh interpreter has loaded, not by timing (the start-up time itself
 is a benchmark: ``benchmarks/bench_startup.py``).

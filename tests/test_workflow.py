@@ -1,4 +1,4 @@
-"""Issue 24, a researcher's workflow: one output convention, messages that say what to do next.
+"""A researcher's workflow: one output convention, messages that say what to do next.
 
 Each test is one finding of the issue, run through the ``dpp`` command as a user types it.
 """
@@ -69,13 +69,14 @@ def _leaves(group: click.Group = main, prefix: str = ""):  # type: ignore[no-unt
             yield prefix + name, cmd
 
 
-NO_JSON = {"export-efg", "plot map", "plot beliefs", "plot voi", "audit", "batch"}
-"""Commands whose product is a file or folder they write (.efg, a figure, the failure folder,
-the batch CSV): their stdout carries no data to print as JSON."""
+NO_JSON = {"export-efg", "import-profile", "plot map", "plot beliefs", "plot voi", "audit",
+           "batch"}
+"""Commands whose product is a file or folder they write (.efg, the imported profile, a figure,
+the failure folder, the batch CSV): their stdout carries no data to print as JSON."""
 
 NO_MAP = {"plot voi", "experiment density", "audit", "batch", "experiment baselines"}
 """Commands that take no single grid game: a density CSV, random grids, a solver, a .scen file
-(which names its maps), a list of standard maps (--maps)."""
+(which names its maps), several maps (--map repeated)."""
 
 
 def test_one_convention_on_every_command() -> None:
@@ -132,7 +133,7 @@ def test_eight_connected_maps_certify_without_float(tmp_path: Path) -> None:
 
 
 # ---------------------------------------------------------------- profile of another game
-# Issue 34 (one verdict): a profile of another game is refuted (exit 1) by the check that
+# One verdict: a profile of another game is refuted (exit 1) by the check that
 # names its claim, as dppverify.certify() and dpp audit refute it, with a note on stderr.
 def _refuted_with_note(r: click.testing.Result) -> str:
     assert r.exit_code == 1, (r.exit_code, r.output)
@@ -172,7 +173,7 @@ def test_profile_of_another_map_is_refuted_naming_the_claim(tmp_path: Path) -> N
     m.write_text("type octile\nheight 10\nwidth 10\nmap\n" + "..........\n" * 10)
     r = dpp("certify", "--map", str(m), *GRID, p)
     note = _refuted_with_note(r)
-    assert "U_bar = 88/5" in note and "72/5" in note
+    assert "Ū = 88/5" in note and "72/5" in note
     assert "the profile claims U_bar = 88/5" in _row(r, "value.VoI")
 
 

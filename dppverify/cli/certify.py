@@ -16,6 +16,7 @@ from typing import Any
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppio.inputs import reading_once
 from dppverify.certificate import Certificate
 from dppverify.certify import DEFAULT_TRIALS, certify
@@ -46,7 +47,7 @@ __all__ = ["VERDICT_EXIT", "certify_command"]
 
 
 @click.command("certify", short_help="Certify or refute a profile as a PBNE of an instance.")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @click.argument("profile", required=False, type=click.Path(dir_okay=False), metavar="PROFILE")
 @map_options
 @click.option("-H", "--horizon", type=HORIZON,
@@ -99,14 +100,14 @@ def certify_command(**params: Any) -> None:
 
     \b
     Examples:
-      dpp solve examples/triangle.json -o profile.json
-      dpp certify examples/triangle.json profile.json
-      dpp certify examples/triangle.json profile.json --json
-      dpp certify examples/triangle.json profile.json -o certificate.json
-      dpp certify examples/triangle.json profile.json --horizon 4
-      dpp certify examples/triangle.json profile.json --witness w.json
+      dpp solve examples:triangle -o profile.json
+      dpp certify examples:triangle profile.json
+      dpp certify examples:triangle profile.json --json
+      dpp certify examples:triangle profile.json -o certificate.json
+      dpp certify examples:triangle profile.json --horizon 4
+      dpp certify examples:triangle profile.json --witness w.json
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
-      dpp certify --verify-provenance cert.json examples/triangle.json profile.json
+      dpp certify --verify-provenance cert.json examples:triangle profile.json
     """
     with reading_once():  # each input read once: the certificate hashes the bytes parsed
         _certify_files(_Request(**params))

@@ -101,7 +101,14 @@ def read_game(instance: str | None, grid: MapRequest | None,
     the door :func:`~dppverify.game.inputs.read_instance`; a read error becomes a hint when the
     file is of another kind), or the ``--map`` option group's grid (its compact map instance,
     ``map`` cut to the file's name, and the ``.map`` file's sha256:
-    :func:`~dppverify.provenance.map_identity`)."""
+    :func:`~dppverify.provenance.map_identity`).
+
+    Examples
+    --------
+    >>> from dppio.examples import example_path
+    >>> read_game(str(example_path("triangle")), None).value.nodes
+    ('s', 'g1', 'g2')
+    """
     instance_or_map(instance, grid)
     if grid is not None:
         doc = grid.document()

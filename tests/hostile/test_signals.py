@@ -100,7 +100,7 @@ def test_signal_to_density(scratch: Path, sig: signal.Signals, code: int) -> Non
     assert not (scratch / "dd").exists()
 
 
-# --- round 3 (issue 34): dpp batch ------------------------------------------------------------
+# --- third round: dpp batch --- ------------------------------------------------------------
 TINY_MAP = "type octile\nheight 3\nwidth 4\nmap\n....\n.@@.\n....\n"
 TINY_LINES = ["0\ttiny.map\t4\t3\t0\t0\t3\t2\t5", "0\ttiny.map\t4\t3\t3\t0\t0\t2\t5",
               "0\ttiny.map\t4\t3\t0\t2\t3\t0\t3"]
