@@ -1,4 +1,4 @@
-"""How often `dpp solve` still answers "could not decide" for N goals (issue 29), and why.
+"""How often `dpp solve` still answers "could not decide" for N goals, and why.
 
 Draws ``--per`` instances per family (random digraphs, small grids with obstacles, hub gadgets:
 ``tests/solver/_ngoal_families.py``, seeds ``0 … per-1``) and N = 2..5, solves each with

@@ -21,7 +21,8 @@ the checker, the non-pattern directions of proofs/NSOLVE.md); a warm-up run on a
 the same N is done first and not timed.
 
 Run: ``.venv/bin/python benchmarks/bench_ngoal_solve.py [--maps Berlin_1_256 ...]
-[--goals 3 4] [--repeat 1]``; ``--issue`` runs the rows of issue 29 instead: Berlin_1_256 with
+[--goals 3 4] [--repeat 1]``; ``--issue`` runs the rows of the N-goal targets instead:
+Berlin_1_256 with
 start (255, 0), goals (0, 255), (0, 0), (1, 128), (255, 255), equal priors, and N = 5 on the
 four 32×32 maps by the corner rule.
 
@@ -128,7 +129,8 @@ def main() -> None:
     ap.add_argument("--goals", nargs="+", type=int, default=[3, 4])
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--issue", action="store_true",
-                    help="the rows of issue 29: Berlin_1_256 N = 4 (the issue's cells), N = 5 on "
+                    help="the rows of the N-goal targets: Berlin_1_256 N = 4 (the target's "
+                         "cells), N = 5 on "
                          "the 32×32 maps")
     ap.add_argument("--only", nargs="+", default=None, metavar="MAP",
                     help="with --issue: only these maps' rows")

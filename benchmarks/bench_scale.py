@@ -10,14 +10,14 @@ Rows (wall time, best of ``--repeat`` in this process unless a fresh process is 
    ``dpp solve --save-instance`` writes and the profile file, and certifies by the structured
    route, untruncated game, as ``dpp certify`` does) and ``V_H`` at H = inf and at H = the
    equilibrium length (the checker reads the compact instance, then the three-field DP), each
-   over ``solve`` (target: <= 3x). Berlin_1_256 is the headline row (issue 31: certify <= 3x).
+   over ``solve`` (target: <= 3x). Berlin_1_256 is the headline row (target: certify <= 3x).
 3. **The 1000x1000 grid, 20 % obstacles** (seed 0; the same cells), every route from the map
    to the game as a whole ``dpp`` command in a fresh process, timed as a user times it
    (imports included), with its own peak RSS: ``dpp solve --map`` (writing the profile and
    the compact instance), ``dpp certify`` of the saved instance and with ``--map``,
    ``dpp value`` both ways, ``dpp plot map --map``, ``dpp audit --map --scen
    --map-instances`` on two scenario lines (``--full-audit``: also with full instance
-   documents) (issue 31: certify --map <= 3x solve, every route <= 1 GiB); the commands
+   documents) (targets: certify --map <= 3x solve, every route <= 1 GiB); the commands
    interleaved, best of ``--repeat``. Then, in this process,
    ``solve`` (from the obstacle array) against one ``scipy.sparse.csgraph.dijkstra`` from the
    start on the free cells' graph (``_grids.free_cell_graph``, built by the benchmark, the

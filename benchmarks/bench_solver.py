@@ -3,7 +3,7 @@
 1. A 1000x1000 grid with 20% random obstacles: ``solve`` (from the boolean obstacle array,
    CSR construction included) against ONE ``scipy.sparse.csgraph.dijkstra`` from the start on
    the free cells' graph (built by ``_grids.free_cell_graph``, not by the solver). Target:
-   ratio <= 5 (``bench_scale.py`` has the issue-31 target, <= 3.5). Also the peak traced
+   ratio <= 5 (``bench_scale.py`` has the tighter target, <= 3.5). Also the peak traced
    memory of ``solve``.
 2. Small random graphs: ``solve`` against brute-force enumeration of all simple paths for
    the secondary's best response (what the closed form replaces).

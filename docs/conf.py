@@ -10,6 +10,7 @@ errors (``dev.py docs`` passes ``-W``).
 
 from __future__ import annotations
 
+import importlib.util
 import shutil
 import sys
 import types
@@ -28,20 +29,35 @@ version = release = __version__
 
 root_doc = "docs/site/index"
 include_patterns = ["README.md", "CHANGELOG.md", "docs/*.md", "docs/site/**",
-                    "proofs/*.md", "dppverify/checks.md"]
+                    "proofs/*.md", "dppverify/checks.md", "examples/workflow.ipynb"]
 exclude_patterns = ["docs/_build/**", ".venv/**", "docs/site/_templates/**",
                     "docs/site/_extra/**"]
 
 extensions = [
-    "myst_parser",
+    "myst_nb",  # MyST Markdown (it loads myst_parser) and the notebook, executed at build time
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
     "sphinx.ext.mathjax",
     "sphinx.ext.napoleon",  # reads the numpy-style sections (numpydoc's format), fast
 ]
-source_suffix = {".md": "markdown", ".rst": "restructuredtext"}  # .rst: autosummary's pages
+# .rst first: autosummary writes its pages with the first suffix; myst-nb reads the Markdown
+# (as MyST) and the notebook
+source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
 myst_heading_anchors = 3
-myst_enable_extensions = ["dollarmath"]
+# dollarmath: $...$ and $$...$$ as on GitHub, $$...$$ also inside a paragraph (the proofs write
+# their display formulas on the line after the text); html_image: <img> tags become images
+# whose files are copied into the site (the README's and docs/overview.md's figures)
+myst_enable_extensions = ["dollarmath", "html_image"]
+myst_dmath_double_inline = True
+
+# the notebook is executed on every build, in a fresh temporary folder (it reads the bundled
+# examples by name and writes its files there, never into the checkout); a cell that raises
+# fails the build
+nb_execution_mode = "force"
+nb_execution_in_temp = True
+nb_execution_timeout = 600
+nb_execution_raise_on_error = True
+nb_merge_streams = True
 
 autosummary_generate = True
 # autosummary writes its pages into docs/site/_generated and never deletes one: start afresh,
@@ -71,7 +87,14 @@ def setup(app: Any) -> None:
 
 html_theme = "alabaster"
 html_title = f"dppverify {release}"
-html_static_path: list[str] = []
+# MathJax 3 from the sphinx-mathjax-offline package (the docs extra), copied into _static and
+# loaded from there: every formula renders offline, no CDN. (Its Sphinx extension does the same
+# but declares no parallel safety, which would make the build read serially.)
+_MATHJAX = importlib.util.find_spec("sphinx-mathjax-offline")
+if _MATHJAX is None or _MATHJAX.origin is None:
+    raise ImportError("the site needs sphinx-mathjax-offline: pip install -e '.[docs]'")
+html_static_path = [str(Path(_MATHJAX.origin).parent / "static")]
+mathjax_path = "mathjax/tex-chtml.js"
 html_extra_path = ["site/_extra"]  # index.html: the site's front page at the top of the build
 suppress_warnings = [
     "myst.header",  # the proofs number their sections freely (### under #)

@@ -36,11 +36,13 @@ from __future__ import annotations
 
 import hashlib
 import json
+import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from dppio.text import escaped
 from dppverify.errors import CertificateError, InvalidInstanceError
 from dppverify.formats.files import read_input
 from dppverify.game.inputs import Parsed
@@ -184,7 +186,68 @@ class ProvenanceCheck:
 
 
 def _short(h: Any) -> str:
-    return str(h)[:12] if h else "none"
+    return escaped(str(h)[:12]) if h else "none"
+
+
+def _shown(x: Any) -> str:
+    """A field of the certificate for the one line: escaped and bounded (a carriage return
+    or a 5 MB string in a certificate cannot forge or flood the line)."""
+    return escaped(x, limit=40)
+
+
+def _not_certified_hint(prov: Mapping[str, Any], given_map: bool) -> str:
+    """What to do when the given files are not the certified ones: for a certificate made with
+    ``--map``, name the ``--map`` options it recorded (a grid is given again with them).
+
+    Examples
+    --------
+    >>> prov = {"instance": {"map": {"sha256": "0"}},
+    ...         "command": ["dpp", "certify", "--map", "m.map", "--start", "9,0", "p.json"]}
+    >>> print(_not_certified_hint(prov, False))
+    ; the certificate was made with --map: verify with dpp certify --verify-provenance CERT \
+--map m.map --start 9,0 PROFILE, or certify these files with dpp certify INSTANCE PROFILE
+    >>> _not_certified_hint({}, False)
+    '; these are not the files certified: run dpp certify INSTANCE PROFILE to certify them'
+    """
+    rec = prov.get("instance")
+    if not (isinstance(rec, Mapping) and isinstance(rec.get("map"), Mapping)) or given_map:
+        return ("; these are not the files certified: run dpp certify "
+                + ("--map FILE ... PROFILE" if given_map else "INSTANCE PROFILE")
+                + " to certify them")
+    command = prov.get("command")
+    words = [str(w) for w in command] if isinstance(command, list) else []
+    return (f"; the certificate was made with --map: verify with dpp certify "
+            f"--verify-provenance CERT {_map_options(words)} PROFILE, or certify these files "
+            "with dpp certify INSTANCE PROFILE")
+
+
+def _map_options(words: list[str]) -> str:
+    """The ``--map`` option group of a recorded command line (``--goals`` takes every ``R,C``
+    after it, the other options one value), or its usage when there is none.
+
+    Examples
+    --------
+    >>> _map_options(["dpp", "certify", "--map", "m", "--goals", "0,1", "2,3", "p.json"])
+    '--map m --goals 0,1 2,3'
+    >>> _map_options([])
+    '--map FILE --start R,C --goals R,C R,C --prior P,Q'
+    """
+    out: list[str] = []
+    k = 0
+    while k < len(words):
+        word = words[k]
+        k += 1
+        if word not in ("--map", "--start", "--goals", "--prior", "--connectivity"):
+            continue
+        out.append(word)
+        if word == "--goals":
+            while k < len(words) and re.fullmatch(r"-?\d+,-?\d+", words[k]):
+                out.append(words[k])
+                k += 1
+        elif k < len(words):
+            out.append(words[k])
+            k += 1
+    return " ".join(out) or "--map FILE --start R,C --goals R,C R,C --prior P,Q"
 
 
 def verify_provenance(certificate: object, instance: Any, profile: Any, *,
@@ -243,7 +306,7 @@ def verify_provenance(certificate: object, instance: Any, profile: Any, *,
         given_sha[name] = given["sha256"]
         if given["sha256"] != rec["sha256"]:
             how = "" if given["bytes"] == rec.get("bytes") else (
-                f" (recorded over {rec.get('bytes')} bytes, given as {given['bytes']})")
+                f" (recorded over {_shown(rec.get('bytes'))} bytes, given as {given['bytes']})")
             mismatches.append(f"{name} sha256 differs: recorded {_short(rec['sha256'])}..., "
                               f"given {_short(given['sha256'])}...{how}")
         else:
@@ -260,8 +323,8 @@ def verify_provenance(certificate: object, instance: Any, profile: Any, *,
                                       f"..., given {_short(got)}...")
                 else:
                     matched.append("map")
-    version = prov.get("dppverify")
-    note = "" if version == __version__ else (
+    version = _shown(prov.get("dppverify"))
+    note = "" if prov.get("dppverify") == __version__ else (
         f"; certified by dppverify {version}, this is {__version__}")
     if mismatches:
         ok = f" ({', '.join(matched)} match{'es' if len(matched) == 1 else ''})" \
@@ -270,13 +333,13 @@ def verify_provenance(certificate: object, instance: Any, profile: Any, *,
         swapped = (len(given_sha) == 2 and given_sha["instance"] == recorded.get("profile")
                    and given_sha["profile"] == recorded.get("instance"))
         hint = ("; the instance and the profile look swapped: give CERT INSTANCE PROFILE"
-                if swapped else "; these are not the files certified: run dpp certify "
-                "INSTANCE PROFILE to certify them")
+                if swapped else _not_certified_hint(prov, map_file is not None))
         return ProvenanceCheck(tuple(mismatches),
                                f"provenance MISMATCH: {'; '.join(mismatches)}{ok}{note}{hint}")
     return ProvenanceCheck((), f"provenance OK: {', '.join(matched)} match the certificate "
-                               f"(sha256; route {prov.get('route')}, {prov.get('numbers')} "
-                               f"numbers, dppverify {version}){note}")
+                               f"(sha256; route {_shown(prov.get('route'))}, "
+                               f"{_shown(prov.get('numbers'))} numbers, dppverify {version})"
+                               f"{note}")
 
 
 def _given_record(name: str, source: Any) -> dict[str, Any]:

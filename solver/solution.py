@@ -16,13 +16,16 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from solver.coalitions.construction import CoalitionEquilibrium, coalition_equilibrium
 from solver.game.instance import Instance
 from solver.game.instance_reading import as_instance
 from solver.game.walks import StrategyWalk
 from solver.numbers import DEFAULT_ABS_TOL, Number, format_value
+
+if TYPE_CHECKING:
+    import networkx as nx
 from solver.twogoal.equilibrium import Equilibrium, paper_equilibrium
 from solver.twogoal.report import summarize as summarize_two_goals
 
@@ -98,15 +101,23 @@ class Solution:
         return self.coalitions.to_json()
 
 
-def solve(instance: Instance | Mapping[str, Any] | str | Path, *,
+def solve(instance: Instance | Mapping[str, Any] | str | Path | nx.Graph, *,
+          start: Any = None, goals: Any = None, prior: Any = None, weight: str = "weight",
           abs_tol: float = DEFAULT_ABS_TOL) -> Solution:
     """Solve a game with any number of goals (2 to 5).
 
     Parameters
     ----------
-    instance : Instance, dict, str or Path
+    instance : Instance, dict, str, Path or networkx.Graph
         The game: an :class:`Instance`, an instance document (``docs/formats.md`` §1, or a
-        compact ``dpp-map-instance/1``), or the path of an instance file.
+        compact ``dpp-map-instance/1``), the path of an instance file, or a ``networkx``
+        graph (``Graph`` or ``DiGraph``), converted once at the door
+        (:func:`~solver.game.instance_reading.as_instance`).
+    start, goals, prior
+        With a graph only: the start node, the goal nodes and their prior (numbers,
+        ``Fraction`` or ``"p/q"`` strings).
+    weight : str
+        With a graph: the edge attribute holding the weights (1 where absent).
     abs_tol : float
         Two goals with float weights only: the tolerance on distances, relative to the largest
         weight (:func:`~solver.twogoal.equilibrium.paper_equilibrium`).
@@ -135,8 +146,12 @@ def solve(instance: Instance | Mapping[str, Any] | str | Path, *,
     >>> doc = {**doc, "goals": ["a", "b"], "prior": ["7/10", "3/10"]}
     >>> str(solve(doc).U), solve(doc).to_json()["format"]
     ('17/10', 'dpp-profile/1')
+    >>> import networkx as nx
+    >>> g = nx.Graph([("s", "g2", {"w": 2}), ("g2", "g1", {"w": 2}), ("s", "g1", {"w": 3})])
+    >>> str(solve(g, start="s", goals=["g1", "g2"], prior=["7/10", "3/10"], weight="w").U)
+    '12/5'
     """
-    inst = as_instance(instance)
+    inst = as_instance(instance, start=start, goals=goals, prior=prior, weight=weight)
     if inst.n_goals == 2:
         eq = paper_equilibrium(inst, abs_tol=abs_tol)
         p = inst.primary_goal_index
@@ -161,7 +176,7 @@ def summarize(result: Solution | Equilibrium, *, certified: str = "") -> str:
     >>> import networkx as nx
     >>> star = nx.Graph([("s", "a"), ("s", "b"), ("s", "c", {"weight": 2})])
     >>> print(summarize(solve(Instance(star, "s", ("a", "b", "c"), ("1/2", "1/3", "1/6")))))
-    N = 3 goals: U = 7/6 (≈ 1.167), VoI = 0, U_bar = 7/6 (≈ 1.167); type costs (1, 1, 2); \
+    N = 3 goals: U = 7/6 (≈ 1.167), VoI = 0, Ū = 7/6 (≈ 1.167); type costs (1, 1, 2); \
 Defender: guarantee rule h = (1, 1, 2)
     """
     if isinstance(result, Equilibrium):
@@ -172,7 +187,7 @@ Defender: guarantee rule h = (1, 1, 2)
     assert ceq is not None
     note = f" ({certified})" if certified else ""
     return (f"N = {result.n_goals} goals: U = {format_value(ceq.U)}{note}, VoI = "
-            f"{format_value(ceq.VoI)}, U_bar = {format_value(ceq.U_bar)}; type costs "
+            f"{format_value(ceq.VoI)}, Ū = {format_value(ceq.U_bar)}; type costs "
             f"({', '.join(map(str, ceq.costs))}); Defender: guarantee rule h = "
             f"({', '.join(map(str, ceq.h))})"
             + (f" with {len(ceq.normals)} extra normals" if ceq.normals else ""))

@@ -9,6 +9,7 @@ served by ``solver/__init__.py`` as strings.
 
 from __future__ import annotations
 
+import functools
 import io
 import re
 import tokenize
@@ -40,6 +41,7 @@ OLD_NAMES = {
 """Old name -> the glossary's name."""
 
 
+@functools.cache  # every test reads the same modules: tokenized once per process
 def _code_tokens(path: Path) -> list[tuple[int, int, str]]:
     """``(type, line, text)`` of the NAME and NUMBER/OP tokens of a module (no comments or
     strings)."""

@@ -1,4 +1,4 @@
-"""Issue 24, a researcher's workflow: one output convention, messages that say what to do next.
+"""A researcher's workflow: one output convention, messages that say what to do next.
 
 Each test is one finding of the issue, run through the ``dpp`` command as a user types it.
 """
@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -16,6 +15,7 @@ import pytest
 from click.testing import CliRunner
 
 from solver.cli import main
+from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[1]
 TRIANGLE = str(ROOT / "examples" / "triangle.json")
@@ -69,15 +69,16 @@ def _leaves(group: click.Group = main, prefix: str = ""):  # type: ignore[no-unt
             yield prefix + name, cmd
 
 
-NO_JSON = {"export-efg", "plot map", "plot beliefs", "plot voi", "audit", "batch"}
-"""Commands whose product is a file or folder they write (.efg, a figure, the failure folder,
-the batch CSV): their stdout carries no data to print as JSON."""
+NO_JSON = {"export-efg", "import-profile", "plot map", "plot beliefs", "plot voi", "audit",
+           "batch"}
+"""Commands whose product is a file or folder they write (.efg, the imported profile, a figure,
+the failure folder, the batch CSV): their stdout carries no data to print as JSON."""
 
 NO_MAP = {"plot voi", "experiment density", "experiment goal-selection", "audit", "batch",
           "experiment baselines"}
 """Commands that take no single grid game: a density CSV, random grids (the density sweep's,
-also for goal selection), a solver, a .scen file (which names its maps), a list of standard
-maps (--maps)."""
+also for goal selection), a solver, a .scen file (which names its maps), several maps (--map
+repeated)."""
 
 
 def test_one_convention_on_every_command() -> None:
@@ -134,7 +135,7 @@ def test_eight_connected_maps_certify_without_float(tmp_path: Path) -> None:
 
 
 # ---------------------------------------------------------------- profile of another game
-# Issue 34 (one verdict): a profile of another game is refuted (exit 1) by the check that
+# One verdict: a profile of another game is refuted (exit 1) by the check that
 # names its claim, as dppverify.certify() and dpp audit refute it, with a note on stderr.
 def _refuted_with_note(r: click.testing.Result) -> str:
     assert r.exit_code == 1, (r.exit_code, r.output)
@@ -174,7 +175,7 @@ def test_profile_of_another_map_is_refuted_naming_the_claim(tmp_path: Path) -> N
     m.write_text("type octile\nheight 10\nwidth 10\nmap\n" + "..........\n" * 10)
     r = dpp("certify", "--map", str(m), *GRID, p)
     note = _refuted_with_note(r)
-    assert "U_bar = 88/5" in note and "72/5" in note
+    assert "Ū = 88/5" in note and "72/5" in note
     assert "the profile claims U_bar = 88/5" in _row(r, "value.VoI")
 
 
@@ -324,11 +325,11 @@ def test_certify_progress_shows_a_bar_before_the_tree(profile: str) -> None:
 def test_the_mutant_audit_runs_from_any_folder(tmp_path: Path) -> None:
     env = {k: v for k, v in os.environ.items() if not k.startswith(("DPP_", "PYTEST_"))}
     env["PYTHONPATH"] = str(ROOT)
-    run = subprocess.run(
+    run = _guard.run(
         [sys.executable, "-c", "import sys; sys.argv[0] = 'dpp'; from solver.cli import main; "
          "main()", "audit", "--solver", "tests.mutants.solvers:mutant_drop_phase_ii",
          "--examples", "40", "--no-shrink", "--output-dir", "failure"],
-        cwd=tmp_path, env=env, text=True, capture_output=True, timeout=600)
+        cwd=tmp_path, env=env, text=True, capture_output=True)
     assert run.returncode == 1, run.stderr
     assert "cannot import" not in run.stderr
     assert (tmp_path / "failure" / "instance.json").exists()

@@ -44,7 +44,7 @@ def values(ctx: EvaluatedContext) -> list[CheckRecord]:
     value.U1 pass U1 = 3, LP evaluation 3
     value.U2 pass U2 = 1, LP evaluation 1
     value.U pass U = 12/5, LP evaluation 2.4
-    value.VoI pass U_bar = 27/10, VoI = 1/9
+    value.VoI pass Ū = 27/10, VoI = 1/9
     >>> r = values(context(eq, value={"U": "5/2"}))[2]
     >>> r.status, r.message
     ('fail', 'U = 12/5 exactly, but the profile claims U = 5/2')
@@ -89,7 +89,7 @@ def values(ctx: EvaluatedContext) -> list[CheckRecord]:
                "VoI_profile": claims.get("VoI")}
     bad = [k for k, x in (("U_bar", v.U_bar), ("VoI", v.VoI))
            if k in claims and not ctx.numbers.equal(claims[k], x)]
-    msg = f"U_bar = {show(v.U_bar)}, VoI = {show(v.VoI)}"
+    msg = f"Ū = {show(v.U_bar)}, VoI = {show(v.VoI)}"
     if bad:
         msg += "; the profile claims " + ", ".join(f"{k} = {show(claims[k])}" for k in bad)
     out.append(CheckRecord("value.VoI", "fail" if bad else "pass", msg, numbers, "THM"))

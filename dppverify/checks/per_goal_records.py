@@ -8,6 +8,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from fractions import Fraction
 
+from dppio.text import count
 from dppverify.certificate import CheckRecord, Status
 from dppverify.checks.structured_shared import greedy_sums, structured_record
 from dppverify.errors import HorizonError
@@ -122,7 +123,7 @@ def defender_records(inst: Instance, tdef: TableDefender,
                  {"regret": regret, "greedy": greedy}, TRIE, BR)]
     if bad:
         p, belief, s = bad[0]
-        msg = (f"{len(bad)} reached information set(s) where the Defender guards a goal of "
+        msg = (f"{count(len(bad), 'reached information set')} where the Defender guards a goal of "
                f"less than maximal belief, e.g. after {walk_labels(inst, trie.walk(p))}: "
                f"belief {[str(b) for b in belief]}, Defender {[str(x) for x in s]}")
     else:

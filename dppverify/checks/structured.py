@@ -19,6 +19,7 @@ from __future__ import annotations
 from fractions import Fraction
 from typing import cast
 
+from dppio.text import count
 from dppverify.certificate import CheckRecord, Status
 from dppverify.checks.skipped import NOT_WELLFORMED
 from dppverify.checks.structured_shared import greedy_sums, mass_key
@@ -158,8 +159,9 @@ def _wellformed(instance: Instance, profile: Profile, roles: Roles,
         return _rec("profile.wellformed", "fail", "; ".join(defects[:5]) + more, numbers, None,
                     "the profile document alone")
     return _rec("profile.wellformed", "pass",
-                f"well-formed: {len(profile.primary)} primary and {len(profile.secondary)} "
-                f"secondary walk(s), primary goal {instance.nodes[roles.g1]!r}", numbers, None,
+                f"well-formed: {count(len(profile.primary), 'primary walk')} and "
+                f"{count(len(profile.secondary), 'secondary walk')}, primary goal "
+                f"{instance.nodes[roles.g1]!r}", numbers, None,
                 "the profile document alone")
 
 
@@ -255,7 +257,7 @@ def _values(profile: Profile, v: Values, u_trie: Number, mode: NumberMode) -> li
         out.append(_rec(cid, status, msg, numbers, "TEL", "the profile's walks, walk by walk"))
     bad = [k for k, x in (("U_bar", v.U_bar), ("VoI", v.VoI))
            if k in claims and not mode.equal(claims[k], x)]
-    msg = f"U_bar = {show(v.U_bar)}, VoI = {show(v.VoI)}"
+    msg = f"Ū = {show(v.U_bar)}, VoI = {show(v.VoI)}"
     if bad:
         msg += "; the profile claims " + ", ".join(f"{k} = {show(claims[k])}" for k in bad)
     out.append(_rec("value.VoI", "fail" if bad else "pass", msg,
@@ -346,8 +348,9 @@ def _sequential(instance: Instance, trie: WalkTrie, sigma: list[Number | None],
     numbers: dict[str, Number | None] = {"reached": len(beliefs) - 1, "violations": len(bad)}
     if bad:
         i, b, s = bad[0]
-        return _rec("pbne.sequential_rationality", "fail", f"{len(bad)} reached information "
-                    f"set(s) where the Defender is not greedy, e.g. after "
+        return _rec("pbne.sequential_rationality", "fail",
+                    f"{count(len(bad), 'reached information set')} where the Defender is "
+                    f"not greedy, e.g. after "
                     f"{show_walk(instance, trie.walk(i))} the belief is {show(b)} but σ(g1) = "
                     f"{show(s)}", numbers, "THM", TRIE)
     return _rec("pbne.sequential_rationality", "pass", f"greedy on the Bayes belief at all "

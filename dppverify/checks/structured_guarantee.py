@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from fractions import Fraction
 
+from dppio.text import count
 from dppverify.certificate import CheckRecord
 from dppverify.checks.per_goal_records import per_goal_record, profile_records, walk_labels
 from dppverify.exact import Number
@@ -95,7 +96,7 @@ def _attacker_record(inst: Instance, rule: GuaranteeRule, sets: NormalSets,
         return per_goal_record(cid, "fail", f"type {r.theta + 1} (goal "
                             f"{inst.nodes[inst.goals[r.theta]]!r}) has regret "
                             f"{r.bound - r.value}: walk {walk_labels(inst, r.walk)} "
-                            f"({len(r.walk) - 1} steps) costs {r.value} against the rule "
+                            f"({count(len(r.walk) - 1, 'step')}) costs {r.value} against the rule "
                             f"({r.how})", nums, NRULE, PROOF)
     undecided = [r for r in out if not r.decided]
     if undecided:
@@ -127,6 +128,7 @@ def _why_no_guarantee(inst: Instance, rule: GuaranteeRule, rs: RuleSearch) -> st
     if not rs.arc.holds:
         assert rs.arc.failure is not None
         v, u, _ = rs.arc.failure
-        return (f"the arc condition F_v ⊆ F_u + wΔ fails on {len(rs.arc.failing)} arc(s), e.g. "
+        return (f"the arc condition F_v ⊆ F_u + wΔ fails on "
+                f"{count(len(rs.arc.failing), 'arc')}, e.g. "
                 f"{inst.nodes[v]!r} -> {inst.nodes[u]!r}")
     return "h ∈ F_s0 and the arc condition holds"

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 from typing import cast
 
+from dppio.text import count
 from dppverify.certificate import CheckRecord
 from dppverify.checks.per_goal_records import (
     BR,
@@ -176,6 +177,6 @@ def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],
     r, t, walk, v = max(within, key=lambda x: x[0])
     return per_goal_record("pbne.attacker_br", "fail", f"type {t + 1} (goal "
                 f"{inst.nodes[inst.goals[t]]!r}) has regret {r}: walk {walk_labels(inst, walk)} "
-                f"({len(walk) - 1} steps) costs {v}", nums, NWALKBR, BR)
+                f"({count(len(walk) - 1, 'step')}) costs {v}", nums, NWALKBR, BR)
 
 

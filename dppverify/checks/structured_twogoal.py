@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
+from dppio.text import count
 from dppverify.certificate import CheckRecord, Status
 from dppverify.checks.lemmas import OFF_XI2
 from dppverify.checks.structured_shared import structured_record as _rec
@@ -104,7 +105,7 @@ def telescoping_check(instance: Instance, roles: Roles, trie: WalkTrie,
     status: Status = "fail" if bad else "pass"
     return _rec("lemma.TEL.telescoping", status, f"Σ w σ* = c_0 − c_t and σ* ∈ [0, 1] on all "
                 f"{trie.size} prefixes of the profile's walks" if not bad else
-                f"{bad} violation(s) of the telescoping identity", numbers, "TEL",
+                f"{count(bad, 'violation')} of the telescoping identity", numbers, "TEL",
                 "the profile's prefixes (a consistency check of σ*)")
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dppio.text import count
 from dppverify.certificate import CheckRecord
 from dppverify.checks.skipped import skipped
 from dppverify.exact import Number
@@ -27,7 +28,7 @@ def wellformed(ctx: Context) -> CheckRecord:
     >>> from dppverify.tree_route.context import triangle_context as context
     >>> eq = triangle_attacker()
     >>> wellformed(context(eq)).message
-    "well-formed: 2 primary and 1 secondary walk(s), primary goal 'g1'"
+    "well-formed: 2 primary walks and 1 secondary walk, primary goal 'g1'"
     >>> bad = dict(eq, primary=[{"path": ["s", "g1"], "probability": "1/7"},
     ...                         {"path": ["s", "g2"], "probability": "3/7"}])
     >>> r = wellformed(context(bad))
@@ -38,7 +39,7 @@ def wellformed(ctx: Context) -> CheckRecord:
     if ctx.undefined:
         walk = show_walk(ctx.instance, ctx.tree.walk(ctx.undefined[0]))
         defects.append(f"defender: the table has no default and no entry for "
-                       f"{len(ctx.undefined)} walk(s) of the H = {ctx.tree.horizon} tree, "
+                       f"{count(len(ctx.undefined), 'walk')} of the H = {ctx.tree.horizon} tree, "
                        f"e.g. {walk}")
     numbers: dict[str, Number | None] = {"defects": len(defects),
                                          "primary_walks": len(ctx.profile.primary),
@@ -49,8 +50,9 @@ def wellformed(ctx: Context) -> CheckRecord:
         return CheckRecord("profile.wellformed", "fail", shown + more, numbers)
     g1 = ctx.instance.nodes[ctx.roles.g1]
     return CheckRecord("profile.wellformed", "pass",
-                       f"well-formed: {len(ctx.profile.primary)} primary and "
-                       f"{len(ctx.profile.secondary)} secondary walk(s), primary goal {g1!r}",
+                       f"well-formed: {count(len(ctx.profile.primary), 'primary walk')} and "
+                       f"{count(len(ctx.profile.secondary), 'secondary walk')}, primary goal "
+                       f"{g1!r}",
                        numbers)
 
 

@@ -1,8 +1,10 @@
 """The checker's command line: ``python -m dppverify`` and the checker's ``dpp`` commands.
 
 One module per command: :mod:`~dppverify.cli.certify` (``certify``),
+:mod:`~dppverify.cli.check` (``check``: the trusted kernel in its own process),
 :mod:`~dppverify.cli.value` (``value``), :mod:`~dppverify.cli.export_efg` (``export-efg``),
-:mod:`~dppverify.cli.audit` (``audit``); what they share: :mod:`~dppverify.cli.errors` (one
+:mod:`~dppverify.cli.import_profile` (``import-profile``), :mod:`~dppverify.cli.audit`
+(``audit``); what they share: :mod:`~dppverify.cli.errors` (one
 line and an exit code per failure), :mod:`~dppverify.cli.inputs` (the horizon, the instance,
 read errors as hints), :mod:`~dppverify.cli.conventions` (options and output),
 :mod:`~dppverify.cli.map_options` (``--map``), :mod:`~dppverify.cli.table` (the certificate
@@ -23,14 +25,17 @@ import click
 from dppverify import __version__
 from dppverify.cli.audit import audit_command
 from dppverify.cli.certify import certify_command
+from dppverify.cli.check import check_command
 from dppverify.cli.errors import ErrorReportingGroup
 from dppverify.cli.export_efg import export_efg_command
+from dppverify.cli.import_profile import import_profile_command
 from dppverify.cli.inputs import hinted
 from dppverify.cli.value import value_command
 
 __all__ = ["COMMANDS", "ErrorReportingGroup", "hinted", "main"]
 
-COMMANDS: list[click.Command] = [certify_command, value_command, export_efg_command, audit_command]
+COMMANDS: list[click.Command] = [certify_command, check_command, value_command, export_efg_command,
+                                  import_profile_command, audit_command]
 """The checker's commands, in the order ``--help`` lists them."""
 
 

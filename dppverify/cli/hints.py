@@ -12,6 +12,7 @@ import re
 from pathlib import Path
 from typing import Literal
 
+from dppio.examples import display_name
 from dppio.inputs import peek_input
 
 __all__ = ["file_hint"]
@@ -97,7 +98,7 @@ def file_hint(path: str | Path, expected: Kind, command: str = "dpp certify") ->
     True
     """
     kind = what_is(path)
-    name = str(path)
+    name = display_name(path)
     if kind is None:
         return None
     if kind == "map":

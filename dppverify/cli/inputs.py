@@ -106,11 +106,11 @@ def read_game(instance: str | None, grid: MapRequest | None,
 
     Examples
     --------
+    >>> from dppio.examples import example_path
+    >>> read_game(str(example_path("triangle")), None).value.nodes
+    ('s', 'g1', 'g2')
     >>> from dppverify.cli.map_options import map_request
-    >>> from pathlib import Path
-    >>> import dppverify
-    >>> paper10 = Path(dppverify.__file__).parents[1] / "examples" / "paper10.map"
-    >>> grid = map_request(str(paper10), "9,0", ("0,9", "0,0"), None, None,
+    >>> grid = map_request(str(example_path("paper10")), "9,0", ("0,9", "0,0"), None, None,
     ...                    goal_selection=True)
     >>> game = read_game(None, grid, "dpp value").value
     >>> game.goal_selection, game.n_goals
@@ -123,7 +123,8 @@ def read_game(instance: str | None, grid: MapRequest | None,
                       (str(grid.path), doc["map_sha256"]))
     if grid is not None:
         doc = grid.document()
-        return Parsed(grid.game(), map_identity(doc), (str(grid.path), doc["map_sha256"]))
+        return Parsed(grid.game(), map_identity(doc), (str(grid.path), doc["map_sha256"]),
+                      folder=grid.path.resolve().parent)
     assert instance is not None  # instance_or_map: one of the two
     with hinted(instance, "instance", command):
         return read_instance(instance)

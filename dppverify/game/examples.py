@@ -92,7 +92,8 @@ def triangle_profile(attacker: dict[str, Any] | None = None, **claims: Any) -> d
 
 
 def kite_document(prior: tuple[str, str] = ("3/5", "2/5")) -> dict[str, Any]:
-    """The kite of issue 18: ``s–g1``, ``s–g2`` of weight 2, ``s–a`` 1, ``a–g1``, ``a–g2`` 1.
+    """The kite ``s–g1``, ``s–g2`` of weight 2, ``s–a`` 1, ``a–g1``, ``a–g2`` 1: the game
+    where a PASS at ``H = 1`` is not one of the untruncated game.
 
     Walking straight to one's goal (one step of weight 2) is an equilibrium of the game
     truncated at ``H = 1`` but not of the untruncated game, where the secondary's detour

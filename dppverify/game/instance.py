@@ -23,6 +23,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from dppio.text import plural
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import (
     JsonReadError,
@@ -153,7 +154,8 @@ def instance_from_json(doc: Any, *, base: Path | None = None) -> Instance:
 def _read_game(doc: Any, *, fast: bool = True) -> Instance:
     require(isinstance(doc, Mapping), f"instance must be a JSON object, got {type(doc).__name__}")
     missing = [k for k in ("graph", "start", "goals", "prior") if k not in doc]
-    require(not missing, f"instance is missing key(s): {', '.join(missing)}")
+    require(not missing, f"instance is missing {plural(len(missing), 'key')}: "
+                         f"{', '.join(missing)}")
     exact = exact_mode(doc.get("numbers", "exact"), doc["goals"])
     ids, index, directed, succ_t, pred_t, arcs = read_graph(doc["graph"], exact, fast=fast)
     return finish_game(ids, index, directed, succ_t, pred_t, arcs, exact=exact,

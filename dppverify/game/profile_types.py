@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, TypeVar
 
+from dppio.text import plural
 from dppverify.errors import ProfileError
 from dppverify.exact import Number
 from dppverify.formats.json_reading import parse_number, parse_probability
@@ -304,7 +305,8 @@ def parse_guarantee(raw: Mapping[str, Any], n: int, c: DefectCollector
     normals = parse_normals(raw.get("normals", []), n)
     extra = sorted(set(raw) - {"rule", "h", "normals"})
     if extra:
-        c.add("defender", f"unknown key(s) {', '.join(extra)} for the guarantee rule")
+        c.add("defender", f"unknown {plural(len(extra), 'key')} {', '.join(extra)} for the "
+                          "guarantee rule")
         return None
     if not isinstance(h, list) or len(h) != n:
         c.add("defender.h", f"must be a list of {n} numbers (one per goal)")

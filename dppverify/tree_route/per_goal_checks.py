@@ -36,7 +36,7 @@ from collections.abc import Mapping
 from fractions import Fraction
 from typing import cast
 
-from dppio.text import decimal
+from dppio.text import count, decimal
 from dppverify.certificate import CheckRecord, Status
 from dppverify.errors import HorizonError, LPError
 from dppverify.exact import Number, normalize
@@ -168,7 +168,7 @@ def per_goal_tree_checks(inst: Instance, prof: Profile, h: int,
         if any(q > 0 and belief[t] < top for t, q in enumerate(tdef.sigma[p])):
             bad.append(p)
     msg = (f"greedy on the Bayes belief at all {len(mu) - 1} reached information sets" if not bad
-           else f"{len(bad)} reached information set(s) where the Defender guards a goal of "
+           else f"{count(len(bad), 'reached information set')} where the Defender guards a goal of "
                 f"less than maximal belief, e.g. after {list(inst.labels(tree.walk(bad[0])))}: "
                 f"belief {[str(b) for b in mu[bad[0]]]}, "
                 f"Defender {[str(s) for s in tdef.sigma[bad[0]]]}")

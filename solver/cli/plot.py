@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppio.files import read_text, refuse_input_as_output
 from dppverify.cli.conventions import (
     PhaseBar,
@@ -33,7 +34,7 @@ def plot_group() -> None:
 
 
 @plot_group.command("map", short_help="The grid with the equilibrium walks and baselines.")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--no-baselines", is_flag=True, help="Only the equilibrium panel.")
@@ -50,9 +51,9 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
     \b
     Examples:
       dpp plot map -o map.pdf
-      dpp plot map --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4 -o m.png
+      dpp plot map --map examples:paper10 --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4 -o m.png
       dpp plot map room.json -o room.pdf --no-baselines
-      dpp plot map --map examples/paper10.map --start 9,0 --goals 0,9 0,0 9,9 \\
+      dpp plot map --map examples:paper10 --start 9,0 --goals 0,9 0,0 9,9 \\
                    --prior 1/2,1/3,1/6 -o paper10-n3.png
     """
     from solver.plots import plot_map, save_figure
@@ -110,7 +111,7 @@ def _plot_ngoal_map(game: Instance, checked: Any, output: str, progress: bool) -
 
 
 @plot_group.command("beliefs", short_help="Beliefs and expected allocation along the walks.")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @two_goal_map_options
 @output_file_option(_OUT_HELP, required=True, deprecated="--out")
 @click.option("--defender", type=click.Choice(["sigma*", "sigma'"]), default="sigma*",

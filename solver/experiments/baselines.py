@@ -40,7 +40,7 @@ from solver.formats.movingai import read_map
 from solver.game.instance import Instance
 from solver.literature.masters_sardina import STRATEGIES
 from solver.literature.path_metrics import METRIC_FIELDS, PERCENTS, metric_row
-from solver.literature.strategy_pairs import DEFENDERS, LABELS, PairEvaluator
+from solver.literature.strategy_pairs import DEFENDERS, FIGURE_LABELS, LABELS, PairEvaluator
 
 __all__ = [
     "ATTACKERS_ALL",
@@ -314,7 +314,7 @@ def plot_baselines(rows: Sequence[BaselineRow]) -> Any:
         ax.axhline(eq, color="black", linestyle="--", linewidth=0.8,
                    label="PBNE value (σ*, γ*)")
         ax.set_xticks(range(len(ATTACKERS_ALL)),
-                      [LABELS[a] for a in ATTACKERS_ALL], rotation=45, ha="right")
+                      [FIGURE_LABELS[a] for a in ATTACKERS_ALL], rotation=45, ha="right")
         ax.set_title(f"{setting} ({n} instance{'s' if n != 1 else ''})")
         ax.axhline(0, color="grey", linewidth=0.5)
     axes[0][0].set_ylabel("mean VoI (higher: the Attacker gains more)")
@@ -368,7 +368,7 @@ def plot_field_metrics(rows: Sequence[BaselineRow]) -> Any:
             truth = [_mean_any([m.truthful[i] for m in ms]) for i in range(len(PERCENTS))]
             shift = 0.7 * (ATTACKERS_ALL.index(a) - 3)  # equal curves stay visible side by side
             ax.plot([p + shift for p in PERCENTS], truth,
-                    label=LABELS[a] + (" (PBNE, vs σ*)" if eq else ""), **style)
+                    label=FIGURE_LABELS[a] + (" (PBNE, vs σ*)" if eq else ""), **style)
             ax2.scatter(_mean_any([m.ldp for m in ms]), _mean_any([m.cost_ratio for m in ms]),
                         s=90 if eq else 45, color=COLOURS[a], marker=markers[a],
                         edgecolors="black", linewidths=0.5, zorder=style["zorder"])

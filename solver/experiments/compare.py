@@ -1,7 +1,7 @@
 """The comparison of Sec. VII-C: six (Defender, Attacker) pairs on one grid (Figs. 7/8).
 
-The default instance is the bundled 10×10 map ``solver/data/paper10.map`` (copy in
-``examples/``), start (9, 0), g1 = (0, 9) with prior 3/5, g2 = (0, 0) with prior 2/5.
+The default instance is the bundled 10×10 map ``examples:paper10`` (``dppio/data/paper10.map``,
+linked from ``examples/``), start (9, 0), g1 = (0, 9) with prior 3/5, g2 = (0, 0) with prior 2/5.
 """
 
 from __future__ import annotations
@@ -11,10 +11,11 @@ import io
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict
 from fractions import Fraction
-from importlib import resources
 from pathlib import Path
 
+from dppio.examples import example_path
 from dppio.text import decimal
+from solver.errors import InstanceFormatError
 from solver.formats.movingai import read_map
 from solver.game.instance import Instance
 from solver.literature.path_metrics import METRIC_FIELDS, PathMetrics, metric_row
@@ -31,12 +32,12 @@ DEFAULT_PRIOR = ("3/5", "2/5")
 
 
 def paper10_path() -> Path:
-    """Path of the bundled ``paper10.map``.
+    """Path of the bundled ``paper10.map`` (``examples:paper10``, :mod:`dppio.examples`).
 
     Returns
     -------
     Path
-        Inside the installed ``solver`` package (``solver/data/paper10.map``).
+        Inside the installed package (``dppio/data/paper10.map``).
 
     Examples
     --------
@@ -44,7 +45,7 @@ def paper10_path() -> Path:
     >>> p.name, p.read_text().splitlines()[:3]
     ('paper10.map', ['type octile', 'height 10', 'width 10'])
     """
-    return Path(str(resources.files("solver") / "data" / "paper10.map"))
+    return example_path("paper10", error=InstanceFormatError)
 
 
 def paper10_instance() -> Instance:

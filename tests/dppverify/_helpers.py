@@ -207,7 +207,7 @@ def progress_costs(doc: dict[str, Any], walk: Sequence[Any], g1: Any, g2: Any
 
 def tree_horizon(instance: Any, profile: Any) -> int:
     """The profile's own length (at least the steps to the nearest goal): the horizon tests
-    pass explicitly when they exercise the walk tree (issue 18: without a horizon ``certify``
+    pass explicitly when they exercise the walk tree (without a horizon ``certify``
     certifies the untruncated game, by the structured route)."""
     from dppverify.checks.suites import shortest_horizon
     from dppverify.game.inputs import as_instance, as_profile

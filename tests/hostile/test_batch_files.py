@@ -1,4 +1,4 @@
-"""Hostile probes, round 3 (issue 34): ``dpp batch`` and the user's files.
+"""Hostile probes, third round: ``dpp batch`` and the user's files.
 
 The rule under test (``solver/experiments/batch_output.py``): the batch appends only to a file
 that is provably a batch CSV of the same configuration; everything else is refused, one line

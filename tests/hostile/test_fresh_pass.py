@@ -1,4 +1,4 @@
-"""Hostile probes, round 3 (issue 34): what a fresh hostile pass over every command found
+"""Hostile probes, third round: what a fresh hostile pass over every command found
 (besides the classes of the other files). Each was reproduced before its fix; the classes are
 listed in the issue's closing note."""
 

@@ -1,4 +1,4 @@
-"""Hostile probes, round 3 (issue 34): numbers in documents, for both readers (the solver's
+"""Hostile probes, third round: numbers in documents, for both readers (the solver's
 and the checker's are kept apart on purpose). A numeral with a huge exponent, an integer of
 5000 digits, ``Infinity`` where an integer belongs, a CSV field of 300 KB: each is one line and
 exit 2 within the CPU limit, never a hang, an ``OverflowError`` or ``int_max_str_digits``.

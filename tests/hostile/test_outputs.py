@@ -1,4 +1,4 @@
-"""Hostile probes, round 3 (issue 34): the outputs of every command.
+"""Hostile probes, third round: the outputs of every command.
 
 An output never names an input (by any path or link); a legal long name, a path past
 PATH_MAX and a non-UTF-8 name are written or refused in one line; standard output that is a
@@ -120,7 +120,7 @@ probe("density --output-dir on a full disk",
        "--workers", "1", "--output-dir", "dd"], fsize=1000, contains="cannot write",
       stdout="closed")
 probe("baselines --output-dir on a full disk",
-      ["experiment", "baselines", "--samples", "0", "--maps", "", "--output-dir", "bd"],
+      ["experiment", "baselines", "--samples", "0", "--no-maps", "--output-dir", "bd"],
       fsize=3000, contains="cannot write", stdout="closed")
 
 

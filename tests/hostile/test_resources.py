@@ -1,4 +1,4 @@
-"""Hostile probes, round 3 (issue 34): resources. Too few open files, a map too large for the
+"""Hostile probes, third round: resources. Too few open files, a map too large for the
 memory the process may use, a ``.scen`` file built to make a pre-pass quadratic, and a
 ``--dask`` port where no scheduler answers: each is one line and exit 2, in bounded time and
 memory (enforced by the harness' kernel limits), never a traceback.
@@ -37,15 +37,20 @@ def _tiny(d: Path) -> None:
                                  "0\ttiny.map\t4\t3\t0\t2\t3\t0\t3\n")
 
 
-def _quadratic_scen(d: Path) -> None:
-    """60,000 lines on one 300 x 300 map, every goal distinct: a pre-pass drawing each line's
-    fake-goal candidates up front touches 3.6 * 10**9 cells; all but two lines start on
-    nothing (outside the map), so only two games are solved."""
-    _map("big.map", 300, 300)(d)
-    lines = ["version 1", "0\tbig.map\t300\t300\t0\t0\t299\t299\t598",
-             "0\tbig.map\t300\t300\t299\t0\t0\t299\t598"]
-    lines += [f"0\tbig.map\t300\t300\t400\t400\t{k % 300}\t{k // 300}\t1" for k in range(60_000)]
-    (d / "q.scen").write_text("\n".join(lines) + "\n")
+def _quadratic_scen(lines_: int, size: int) -> Setup:
+    """``lines_`` lines on one ``size`` x ``size`` map, every goal distinct: a pre-pass drawing
+    each line's fake-goal candidates up front touches ``lines_ * size**2`` cells (3.6 * 10**9
+    for the slow run's 60,000 lines on 300 x 300, beyond the CPU limit); all but two lines
+    start on nothing (outside the map), so only two games are solved."""
+    def setup(d: Path) -> None:
+        _map("big.map", size, size)(d)
+        s, far = size - 1, 2 * (size - 1)
+        lines = ["version 1", f"0\tbig.map\t{size}\t{size}\t0\t0\t{s}\t{s}\t{far}",
+                 f"0\tbig.map\t{size}\t{size}\t{s}\t0\t0\t{s}\t{far}"]
+        lines += [f"0\tbig.map\t{size}\t{size}\t{size + 100}\t{size + 100}\t{k % size}"
+                  f"\t{k // size % size}\t1" for k in range(lines_)]
+        (d / "q.scen").write_text("\n".join(lines) + "\n")
+    return setup
 
 
 PROBES: list[tuple[str, Probe, Setup | None]] = []
@@ -73,20 +78,28 @@ probe("solve 3 goals on a 4,000,000-cell map in 3 GiB",
       ["solve", "--map", "big.map", "--start", "0,0", "--goals", "1999,1999", "0,1999",
        "1999,0", "--prior", "1/3,1/3,1/3"], _map("big.map", 2000, 2000), contains="memory",
       cpu=60)
-probe("batch on a .scen built to be quadratic", ["batch", "q.scen", "-o", "q.csv",
-                                                 "--no-progress"],
-      _quadratic_scen, code=2, one_line=False, changes=("q.csv",), cpu=100)
-probe("audit --scen on a .scen built to be quadratic",
-      ["audit", "--solver", "solver.adapter:solve_json", "--map", "big.map", "--scen", "q.scen",
-       "--no-shrink", "--output-dir", "af"], _quadratic_scen, code=(0, 1), one_line=False,
-      changes=("af",), cpu=100)
+QUADRATIC = {"": (6_000, 100), " (60,000 lines)": (60_000, 300)}
+"""The short version (default run: 6,000 lines on 100 x 100) and the full campaign (``slow``:
+60,000 lines on 300 x 300) of the quadratic .scen, as (lines, map side)."""
+for _tag, (_n, _size) in QUADRATIC.items():
+    probe(f"batch on a .scen built to be quadratic{_tag}",
+          ["batch", "q.scen", "-o", "q.csv", "--no-progress"],
+          _quadratic_scen(_n, _size), code=2, one_line=False, changes=("q.csv",), cpu=100)
+    probe(f"audit --scen on a .scen built to be quadratic{_tag}",
+          ["audit", "--solver", "solver.adapter:solve_json", "--map", "big.map", "--scen",
+           "q.scen", "--no-shrink", "--output-dir", "af"], _quadratic_scen(_n, _size),
+          code=(0, 1),
+          one_line=False, changes=("af",), cpu=100)
 
 
-@pytest.mark.parametrize("name, probe_, setup", PROBES, ids=[p[0] for p in PROBES])
+@pytest.mark.parametrize("name, probe_, setup", [
+    pytest.param(*p, marks=pytest.mark.slow) if "60,000 lines" in p[0] else p for p in PROBES],
+    ids=[p[0] for p in PROBES])
 def test_resource_probe(scratch: Path, name: str, probe_: Probe, setup: Setup | None) -> None:
     result = run_probe(scratch, name, probe_, setup)
     if name.startswith("batch on a .scen built"):
-        assert result.stdout.startswith("60002 rows: 2 ok"), result.stdout
+        rows = 60_002 if "60,000 lines" in name else 6_002
+        assert result.stdout.startswith(f"{rows} rows: 2 ok"), result.stdout
 
 
 @pytest.fixture
@@ -123,7 +136,8 @@ def test_dask_port_without_a_scheduler(scratch: Path, silent_port: int,
     """``--dask`` at a port where something listens but no scheduler greets: one line naming
     it (before the fix: a wait of 90 s, then another error)."""
     run_probe(scratch, "dask", Probe([*cmd, "--dask", f"tcp://127.0.0.1:{silent_port}"],
-                                     contains="not a Dask scheduler"), _tiny)
+                                     contains="no greeting within 2 s",
+                                     env={"DPP_DASK_CONNECT_SECONDS": "2"}), _tiny)
 
 
 def test_enough_resource_probes() -> None:

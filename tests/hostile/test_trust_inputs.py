@@ -1,4 +1,4 @@
-"""Hostile probes, round 3 (issue 34, helper h34a): inputs and verdicts.
+"""Hostile probes, third round: inputs and verdicts.
 
 Each probe runs the real ``dpp`` in a session of its own under CPU and memory limits, as
 ``test_probes.py`` does, and asserts its exit code, one stderr line where an error is expected,

@@ -2,7 +2,7 @@
 
 The JSON route is the checker's reference: ``grid_document`` then the instance reader.
 Compared field by field (nodes, arcs, weights, distances, hops, priors) on the bundled paper
-map and all twelve standard maps, 4- and 8-connected (issue 22).
+map and all twelve standard maps, 4- and 8-connected.
 """
 
 from __future__ import annotations

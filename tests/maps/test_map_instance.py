@@ -98,7 +98,7 @@ def test_the_pair_moves_together_and_every_command_reads_it(
     ({"map_sha256": "0" * 64}, "map_sha256: the map ../maps/tiny.map has sha256"),
     ({"map_sha256": "ABC"}, "map_sha256: must be 64 lowercase hex digits"),
     ({"map": "../maps/missing.map"}, "missing.map"),
-    ({"extra": 1}, "unknown key(s) 'extra'"),
+    ({"extra": 1}, "unknown key 'extra'"),
     ({"start": [1, 1]}, "start cell (1, 1) is an obstacle"),
     ({"start": [0]}, "start: a cell is [row, col]"),
     ({"connectivity": 6}, "connectivity: must be 4 or 8"),

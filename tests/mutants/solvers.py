@@ -133,7 +133,7 @@ def mutant_defender_lag(doc: Doc) -> Doc:
     """σ* one step late (c_{t-1} read where c_t is due): after s0 … s_t the table Defender
     plays σ*'s allocation of the previous step (0 on the first step). A ``table`` Defender
     listing every walk of at most H steps, with σ* (`"default": "progress"`) on longer ones so
-    that it is defined on every walk of the untruncated game (issue 18)."""
+    that it is defined on every walk of the untruncated game."""
     eq, game = _base(doc)
     profile = _profile(game, [(p.nodes, p.probability) for p in eq.primary_paths],
                        eq.secondary_path)
@@ -201,7 +201,7 @@ def mutant_defender_wrong_goal(doc: Doc) -> Doc:
 
 
 def mutant_first_walk_only(doc: Doc) -> Doc:
-    """The primary plays only the first of its walks, with probability 1 (issue 34: it passes
+    """The primary plays only the first of its walks, with probability 1 (it passes
     small budgets and is caught only where the primary mixes, i.e. when phase II exists)."""
     eq, game = _base(doc)
     first = eq.primary_paths[0]

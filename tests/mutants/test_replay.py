@@ -1,4 +1,4 @@
-"""Issue 34, one verdict: the failure folder ``dpp audit`` writes for each deliberately wrong
+"""One verdict: the failure folder ``dpp audit`` writes for each deliberately wrong
 solver replays to the same verdict with ``dpp certify`` and with ``dppverify.certify()``: the
 same exit code (the one ``failure.json`` records) and the same first failing check.
 """

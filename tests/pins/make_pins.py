@@ -6,10 +6,10 @@ Usage (from the repository root)::
     PYTHONPATH=. python tests/pins/make_pins.py NAME...  # only these cases
     PYTHONPATH=. python tests/pins/make_pins.py --data   # first rewrite tests/pins/data/
 
-The pins were written on the commit before issue 19's refactor; rewriting them afterwards
-defeats their purpose unless a change of output is intended (say so in the commit).
-``--data`` imports the bundled examples by their old module paths (``pin_data.py``), so it
-only works on a commit with the old layout.
+The pins were written on the commit before the refactor that made one model serve any N;
+rewriting them afterwards defeats their purpose unless a change of output is intended (say so
+in the commit). ``--data`` imports the bundled examples by their old module paths
+(``pin_data.py``), so it only works on a commit with the old layout.
 """
 
 from __future__ import annotations

@@ -1,10 +1,10 @@
 """Write the pin cases' input files into ``tests/pins/data/`` (run ONCE, before the refactor).
 
 This module imports the bundled examples (``dppverify.game.examples``, ``dppverify.game.examples``)
-and the conformance files; those module paths move in issue 19, so neither the pin test nor the
-default mode of ``make_pins.py`` imports it: the files it writes are committed, and
-``python tests/pins/make_pins.py --data`` regenerates them only on a commit that still has the
-old layout.
+and the conformance files; those module paths moved in the refactor the pins guard, so neither
+the pin test nor the default mode of ``make_pins.py`` imports it: the files it writes are
+committed, and ``python tests/pins/make_pins.py --data`` regenerates them only on a commit that
+still has the old layout.
 """
 
 from __future__ import annotations
@@ -33,7 +33,7 @@ def _write(name: str, doc: Any) -> None:
 def write_data() -> list[str]:
     """Write every input file; return their names."""
     from dppverify.game import examples as ex2
-    exn = ex2  # the N-goal examples live beside the two-goal ones (issue 19)
+    exn = ex2  # the N-goal examples live beside the two-goal ones (since that refactor)
 
     DATA.mkdir(parents=True, exist_ok=True)
     _write("triangle.json", ex2.triangle_document())

@@ -1,4 +1,5 @@
-"""The CLI gives the same results as on the commit the pins were written on (issue 19).
+"""The CLI gives the same results as on the commit the pins were written on (before the
+refactor to one model for any N).
 
 Every case of ``cases.py`` is re-run (``runner.py``: ``solver.cli.main`` in-process, or the
 documented command line in a subprocess) and its normalized record (exit codes, stdout,

@@ -1,4 +1,4 @@
-"""Issue 18: the default ``certify`` (the untruncated game) refutes wrong profiles.
+"""The default ``certify`` (the untruncated game) refutes wrong profiles.
 
 - The naive profile — each type walks a shortest path to its own goal, the Defender plays σ* —
   is refuted whenever its value differs from the solver's ``U*`` (it is then no equilibrium:

@@ -1,4 +1,4 @@
-"""Issue 18: no equilibrium is refuted or left open because it is not the paper's construction.
+"""No equilibrium is refuted or left open because it is not the paper's construction.
 
 Equilibria built from the naive reference (tests/properties/_reference.py, imports neither
 package): against σ* every primary walk of cost ``d(s0, g1)`` and every secondary simple path

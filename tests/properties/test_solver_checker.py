@@ -43,7 +43,7 @@ def _profile(doc: Doc) -> Doc:
 @given(exact_instances)
 def test_everything_solve_outputs_is_certified_and_its_value_is_V_H(doc: Doc) -> None:
     profile = _profile(doc)
-    cert = certify(doc, profile, trials=2)  # the untruncated game (issue 18)
+    cert = certify(doc, profile, trials=2)  # the untruncated game
     assert cert.passed, [(c.id, c.message) for c in cert.failed()]
     u = Fraction(profile["value"]["U"])
     assert value(doc).structured.value == u  # type: ignore[union-attr]

@@ -10,7 +10,7 @@ import random
 from collections.abc import Sequence
 from fractions import Fraction
 
-from dppio.text import decimal
+from dppio.text import count, decimal
 from dppverify.certificate import CheckRecord, Status
 from dppverify.exact import Number
 from dppverify.game.evaluation import realization
@@ -197,5 +197,5 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
         return CheckRecord("lemma.L4.monotonicity", "fail", "; ".join(violations[:3]), numbers,
                            "L4")
     return CheckRecord("lemma.L4.monotonicity", "pass",
-                       f"b1_t never increases along {len(walks)} secondary walk(s) under "
-                       f"{strategies} primary strategies (seed {ctx.seed})", numbers, "L4")
+                       f"b1_t never increases along {count(len(walks), 'secondary walk')} under "
+                       f"{count(strategies, 'primary strategy')} (seed {ctx.seed})", numbers, "L4")

@@ -119,7 +119,7 @@ def test_audit_through_the_dpp_group() -> None:
 
 
 def test_pruning_goes_towards_undirected_unit_weight_graphs() -> None:
-    """Issue 32: the shrunk failing instance kept fractional weights on a directed graph,
+    """The shrunk failing instance kept fractional weights on a directed graph,
     although shrinking goes towards small undirected unit-weight graphs (docs/audit.md)."""
     from dppverify.audit.examine import examine
     from dppverify.audit.pruning import prune_failure

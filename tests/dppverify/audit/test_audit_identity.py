@@ -1,4 +1,4 @@
-"""Issue 18: the audit's shrinking stays on the first failure; its traceback is kept.
+"""The audit's shrinking stays on the first failure; its traceback is kept.
 
 A solver that fails one way on larger instances and another way on small ones: shrinking must
 not slide from the first failure (its check id, or its exception type and place) to the

@@ -1,4 +1,4 @@
-"""Issue 34: audit campaigns are nested. Example i depends only on the seed, i and the
+"""Audit campaigns are nested. Example i depends only on the seed, i and the
 generator's settings, never on the budget: a budget of N audits exactly the first N examples
 of a larger budget, and a solver caught at example k is caught there by every budget >= k.
 

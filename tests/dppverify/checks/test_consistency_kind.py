@@ -83,7 +83,7 @@ def test_l5_says_the_belief_off_xi2_is_not_evidence() -> None:
 
 
 def test_a_failed_fact_never_decides_the_verdict() -> None:
-    """Issue 18: the paper's lemmas and construction are reported beside the verdict."""
+    """The paper's lemmas and construction are reported beside the verdict."""
     cert = certify(three_phase_doc(), three_phase_profile(), trials=1, horizon=4)
     for fid in FACTS:
         for status in ("fail", "skipped", "error"):

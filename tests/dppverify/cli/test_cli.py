@@ -24,7 +24,8 @@ from tests.dppverify._helpers import (
 
 
 def test_commands_are_registered() -> None:
-    assert {c.name for c in COMMANDS} == {"certify", "value", "export-efg", "audit"}
+    assert {c.name for c in COMMANDS} == {"certify", "check", "value", "export-efg",
+                                           "import-profile", "audit"}
 
 
 def test_certify_passes_with_exit_0_and_a_table(tmp_path: Path) -> None:
@@ -97,7 +98,7 @@ def test_missing_files_and_short_horizon_exit_2(tmp_path: Path) -> None:
 
 
 def test_float_mode_is_detected_from_the_instance(tmp_path: Path) -> None:
-    # issue 24: 8-connected maps (float mode) certify without --float; --float changes nothing
+    # 8-connected maps (float mode) certify without --float; --float changes nothing
     doc = triangle_doc()
     doc["numbers"] = "float"
     i = write_doc(tmp_path, "i.json", doc)
@@ -129,7 +130,7 @@ def test_value_command(tmp_path: Path) -> None:
     assert lp["lp"]["solver"] == "CLARABEL" and lp["lp"]["status"] == "optimal"
     r = run_cli(value_command, [i, "-H", "1"])
     assert r.exit_code == 2 and "no walk" in r.output
-    r = run_cli(value_command, [i])  # issue 18: no horizon is the untruncated game
+    r = run_cli(value_command, [i])  # no horizon is the untruncated game
     assert r.exit_code == 0 and r.output.startswith("V_H (H = inf) = 71/18 (≈ 3.944) exactly")
 
 

@@ -47,7 +47,7 @@ def test_certify_an_n_goal_profile(tmp_path: Path) -> None:
     assert r.exit_code == 0 and r.output.startswith(
         "verdict: PASS for the game truncated at H = 2 (6/6 checks passed; 1/1 consistency "
         "checks agree;")
-    r = run_cli(certify_command, [i, p])  # issue 18: the untruncated game by default
+    r = run_cli(certify_command, [i, p])  # the untruncated game by default
     assert r.exit_code == 1 and r.output.startswith("verdict: FAIL for the untruncated game")
     r = run_cli(certify_command, [i, p, "--json", "-H", "4"])
     cert = Certificate.from_json(r.output)

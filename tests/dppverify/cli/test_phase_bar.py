@@ -1,4 +1,4 @@
-"""``--progress``'s status line keeps its clock running during a long phase (issue 32: a
+"""``--progress``'s status line keeps its clock running during a long phase (it used to stop: a
 refused four-goal solve showed ``[00:05]`` for two minutes)."""
 
 from __future__ import annotations

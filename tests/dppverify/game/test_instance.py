@@ -84,7 +84,7 @@ BAD: list[tuple[str, Any, str]] = [
     ("prior negative", lambda d: d.update(prior=["-1/2", "3/2"]), "strictly between"),
     ("prior sum", lambda d: d.update(prior=["1/2", "1/3"]), "must sum to exactly 1"),
     ("prior length", lambda d: d.update(prior=["1"]), "prior: must be a list of two"),
-    ("missing key", lambda d: d.pop("start"), "missing key(s): start"),
+    ("missing key", lambda d: d.pop("start"), "missing key: start"),
     ("multigraph", lambda d: d["graph"].update(multigraph=True), "multigraph"),
     ("duplicate edge", lambda d: d["graph"]["edges"].append(
         {"source": "g2", "target": "s", "weight": 5}), "duplicate edge"),

@@ -1,5 +1,6 @@
 """The progress rule's σ along a walk: the integer fast path (decided once per walk) gives the
-same numbers, with the same types, as the per-step exact ratio (issue 22)."""
+same numbers, with the same types, as the per-step exact ratio (the faster arithmetic keeps
+the numbers)."""
 
 from __future__ import annotations
 

@@ -164,7 +164,7 @@ def test_the_simple_lower_bound_is_below_the_value() -> None:
 
 @pytest.mark.parametrize("seed", [91, 117])
 def test_five_goal_hub_values_at_h_inf_are_exact_and_equal_the_tree_lp(seed: int) -> None:
-    """Issue 29: ``dpp value`` stayed bracketed on N = 5 hubs whose value is known (the value
+    """``dpp value`` stayed bracketed on N = 5 hubs whose value is known (the value
     is the coalition DP's here, as in the issue's [299/126, 22/9], but its sets fail the arc
     test at u -> u1, so it was not proved; the brackets were [107/42, 55/21] and
     [97/42, 50/21]). The refinement now proves the value at H = inf; these hubs have no
@@ -182,7 +182,7 @@ def test_five_goal_hub_values_at_h_inf_are_exact_and_equal_the_tree_lp(seed: int
 
 
 def test_value_progress_names_each_phase_on_stderr(tmp_path: Path) -> None:
-    """Issue 32: ``dpp value --progress`` printed nothing while the N-goal structured route
+    """``dpp value --progress`` printed nothing while the N-goal structured route
     ran; it now shows a status line naming the phase (the fixpoint passes, the arc test, each
     refinement round), on stderr only."""
     i = write_doc(tmp_path, "hub.json", hub4_document())

@@ -1,4 +1,4 @@
-"""The structured route of ``certify`` (untruncated game, no walk tree): issue 9 items 2-3.
+"""The structured route of ``certify`` (untruncated game, no walk tree).
 
 The solver's profile on a real MovingAI map is certified; five corrupted profiles are refuted
 with the failing check named; both routes agree on every conformance case; the registry is the
@@ -220,7 +220,7 @@ def test_route_refusals() -> None:
         certify(triangle_document(), table, route="structured", horizon=1)
     with pytest.raises(TreeTooLargeError, match="table Defender"):
         certify(triangle_document(), table, max_prefixes=1, horizon=1)
-    # issue 18: a table with a default is certified on the untruncated game
+    # a table with a default is certified on the untruncated game
     assert certify(triangle_document(), table, horizon="inf").route == "structured"
     assert certify(triangle_document(), table).horizon is None
     with pytest.raises(HorizonError, match="finite horizon"):

@@ -1,4 +1,4 @@
-"""Issue 22: the structured route's faster arithmetic gives the numbers of the code it replaced.
+"""The structured route's faster arithmetic gives the numbers of the code it replaced.
 
 On random graphs (integer and fractional weights, exact and float mode) and random mixed
 profiles, the regrouped Defender payoffs, the beliefs cached per mass pair, the Bayes steps

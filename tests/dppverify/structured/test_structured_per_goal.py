@@ -165,7 +165,7 @@ def test_without_a_default_the_route_says_why_unless_the_table_covers_every_walk
     p["defender"].pop("default")
     p["defender"]["entries"] += [{"walk": ["s", "m"], "probabilities": [1, 0, 0]},
                                  {"walk": ["s", "m", "a"], "probabilities": [1, 0, 0]}]
-    # issue 18: on the untruncated game this is undecided (exit 3), never a verdict
+    # on the untruncated game this is undecided (exit 3), never a verdict
     with pytest.raises(UndecidedError, match="would decide"):
         certify(star3_document(), p, horizon="inf")
     cert = certify(star3_document(), p, horizon=4, route="structured")
@@ -194,7 +194,7 @@ def test_route_choice_and_errors() -> None:
     with pytest.raises(HorizonError, match="needs a finite horizon"):
         certify(_doc(), _profile(), horizon="inf", route="both")
     # auto: the tree when it fits, else the untruncated game
-    # issue 18: no horizon is the untruncated game (structured); a horizon the tree
+    # no horizon is the untruncated game (structured); a horizon the tree
     assert certify(_doc(), _profile()).route == "structured"
     assert certify(_doc(), _profile(), horizon=2).route == "tree"
     cert = certify(_doc(), _profile(), max_prefixes=2)

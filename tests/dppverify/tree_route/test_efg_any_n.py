@@ -271,13 +271,14 @@ def test_the_value_depends_on_the_horizon_in_the_export() -> None:
 
 
 def test_ten_goals_or_more_separate_the_history_digits() -> None:
-    # eleven goals after a forced corridor s-a-b: "1"+"11" and "11"+"1" are different histories
+    # eleven goals: g1 and g11 after the corridor s-a-b, the nine others one step from a;
+    # after the steps s-a and a-b, "1"+"11" and "11"+"1" are different histories
     goals = [f"g{i}" for i in range(1, 12)]
-    doc = make_doc([("s", "a", 1), ("a", "b", 1), *[("b", g, 1) for g in goals]], "s", goals,
-                   ["1/11"] * 11)
+    doc = make_doc([("s", "a", 1), ("a", "b", 1), ("b", "g1", 1), ("b", "g11", 1),
+                    *[("a", g, 1) for g in goals[1:10]]], "s", goals, ["1/11"] * 11)
     inst = instance_from_json(doc)
     text = to_efg(inst, 3)
-    assert '"D p3 h1.11"' in text and '"D p3 h11.1"' in text
+    assert '"D p12 h1.11"' in text and '"D p12 h11.1"' in text
     game = parse(text)
     members: dict[tuple[int, int], list[Node]] = defaultdict(list)
     for x in game.nodes():

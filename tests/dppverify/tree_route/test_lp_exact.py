@@ -21,7 +21,7 @@ from dppverify.tree_route.value_lp import game_value
 
 # A four-goal hub (found by a campaign) where rounding the LP solution at every denominator of
 # DENOMINATORS left the bracket open; the exact LP closes it at 44/17 (H = 3, 26 prefixes).
-# Since the LPs are solved on rescaled costs (issue 34) Clarabel's solution is accurate enough
+# Since the LPs are solved on rescaled costs Clarabel's solution is accurate enough
 # that rounding at 360 closes it: the test rounds at small denominators only, which leave it
 # open, so that the exact closure is still what closes it.
 SMALL_DENOMINATORS = (1, 2, 3, 4, 5, 6, 8, 10, 12)

@@ -1,4 +1,4 @@
-"""Issue 18: a PASS means an equilibrium of the game the user asked about.
+"""A PASS means an equilibrium of the game the user asked about.
 
 Without a horizon ``certify`` (CLI and API, two and N goals), ``value`` and the audit work on
 the untruncated game; a finite horizon names the truncated game everywhere; the paper's
@@ -333,7 +333,7 @@ def test_table_without_default_listing_every_walk_is_decided() -> None:
                                            (4, "both")])
 def test_value_reads_the_same_whatever_the_route(horizon: Any, route: Any) -> None:
     r = dppverify.value(kite_document(), horizon, route=route)
-    assert r.value == r.lower == r.upper == Fraction(8, 5)   # kite: V = 8/5 (issue 18)
+    assert r.value == r.lower == r.upper == Fraction(8, 5)   # kite: V = 8/5
 
 
 def test_ngoal_value_reads_the_bounds_whatever_the_route() -> None:

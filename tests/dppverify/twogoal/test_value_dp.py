@@ -1,8 +1,9 @@
 """The structured route's V_H (three-field DP, proofs/DP.md) against the walk tree's LP.
 
-Evidence for issue 9 item 1: structured = tree exactly on every conformance case at several
-horizons and on random instances; V_H non-increasing in H and equal to the solver's U once H
-covers its profile; the untruncated value; int64 / Python-int / float arithmetic; the CLI.
+Evidence that the structured route is exact: structured = tree exactly on every conformance
+case at several horizons and on random instances; V_H non-increasing in H and equal to the
+solver's U once H covers its profile; the untruncated value; int64 / Python-int / float
+arithmetic; the CLI.
 """
 
 from __future__ import annotations

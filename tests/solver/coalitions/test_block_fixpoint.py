@@ -61,14 +61,30 @@ def _block_applies(graph: gs.ArcGraph, system: gs.NormalSystem) -> bool:
                           [sum(a) for a in system.normals], 10_000) is not None
 
 
-@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(family=st.sampled_from(["digraph", "grid", "hub"]), seed=st.integers(0, 10 ** 6),
-       n=st.integers(2, 5))
-def test_normal_dp_equals_layered_dp(family: str, seed: int, n: int) -> None:
+def _normal_dp_equals_layered_dp(family: str, seed: int, n: int) -> None:
     graph = _graph(draw(family, seed, n))
     for system in _systems(n):
         assert _block_applies(graph, system)  # the fast route is the one tested
         _assert_same(_layered(graph, system, 10_000), gs.normal_dp(graph, system, 10_000))
+
+
+GRAPHS = {"family": st.sampled_from(["digraph", "grid", "hub"]),
+          "seed": st.integers(0, 10 ** 6), "n": st.integers(2, 5)}
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(**dict(GRAPHS, n=st.integers(2, 4)))
+def test_normal_dp_equals_layered_dp(family: str, seed: int, n: int) -> None:
+    """Up to four goals here (a five-goal hub's layered DP alone takes 20 s: the campaign
+    below; test_same_profile_as_the_layered_route has a five-goal hub and digraph)."""
+    _normal_dp_equals_layered_dp(family, seed, n)
+
+
+@pytest.mark.slow
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(**GRAPHS)
+def test_normal_dp_equals_layered_dp_campaign(family: str, seed: int, n: int) -> None:
+    _normal_dp_equals_layered_dp(family, seed, n)
 
 
 def test_normal_dp_on_the_gadget() -> None:

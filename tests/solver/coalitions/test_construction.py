@@ -260,7 +260,8 @@ def test_ngoal_map_instance_is_compact_and_read_by_both_packages(tmp_path: Path)
     u = json.loads(out.read_text())["value"]["U"]
     code, stdout, err = _run("solve", str(inst), "--json")   # the solver reads it back
     assert code == 0 and json.loads(stdout)["value"]["U"] == u, err
-    code, _, err = _run("plot", "map", str(inst), "-o", str(tmp_path / "m.png"))  # issue 32
+    # a saved N-goal grid instance draws
+    code, _, err = _run("plot", "map", str(inst), "-o", str(tmp_path / "m.png"))
     assert code == 0 and (tmp_path / "m.png").is_file(), err
     code, _, err = _run("plot", "beliefs", str(inst), "-o", str(tmp_path / "b.png"))
     assert code == 2 and "two-goal instances only" in err and len(err.splitlines()) == 1

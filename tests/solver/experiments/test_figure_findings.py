@@ -1,5 +1,5 @@
-"""Issue 24's figure findings, each checked on the figure objects (docs/figures/ has the
-contact sheet of all figures at print size)."""
+"""The figure findings of a review of every figure, each checked on the figure objects
+(docs/figures/ has the contact sheet of all figures at print size)."""
 
 from __future__ import annotations
 
@@ -124,14 +124,14 @@ def test_legend_mathtext_is_consistent(kind: str) -> None:
     assert all(isinstance(h, Line2D | Patch) for h in _legend(fig))
 
 
-# ---------------------------------------------------------------- issue 32's figure findings
+# ---------------------------------------------------- the second review's figure findings
 def _extent(fig, artist):  # type: ignore[no-untyped-def]
     fig.canvas.draw()
     return artist.get_window_extent(fig.canvas.get_renderer())
 
 
 def test_corner_markers_stay_inside_the_frame_on_large_maps() -> None:
-    """Issue 32: on a large map the start and goal markers (fixed print size) in the corners
+    """On a large map the start and goal markers (fixed print size) in the corners
     covered the '0' tick labels and reached the next panel's title."""
     blocked = np.zeros((200, 200), dtype=bool)
     blocked[60:140, 50:150] = True
@@ -155,7 +155,7 @@ def test_corner_markers_stay_inside_the_frame_on_large_maps() -> None:
 
 
 def test_baselines_legend_covers_no_bar() -> None:
-    """Issue 32: the legend covered the tallest bar of baselines.png."""
+    """The legend covered the tallest bar of baselines.png."""
     from solver.experiments.baselines import instances, plot_baselines, run_baselines
 
     fig = plot_baselines(run_baselines(instances(1, (), ())))

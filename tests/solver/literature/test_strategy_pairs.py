@@ -93,7 +93,7 @@ def test_obstacle_free_grid_sigma_prime_equals_sigma_star() -> None:
 
 
 def test_paper10_map_bundled_and_valid() -> None:
-    assert filecmp.cmp(paper10_path(), ROOT / "examples" / "paper10.map", shallow=False)
+    assert filecmp.cmp(paper10_path(), ROOT / "examples" / "paper10.map", shallow=False)  # the link
     inst = paper10_instance()
     blocked = inst.network.labels.blocked  # type: ignore[attr-defined]
     for goal, other in (((0, 9), (0, 0)), ((0, 0), (0, 9))):
