@@ -6,10 +6,11 @@ by a family of columns (subsets as 0/1 vectors, or non-negative integer *normals
 the structured route:
 
 - :func:`basic_solutions`: every vertex of ``{c >= 0 : Σ_j c_j columns[j] = rhs}`` — every
-  choice of ``|support of rhs|`` columns with a non-zero exact integer determinant
-  (:func:`dets`: Laplace expansion, vectorised), solved by Cramer's rule, kept when
-  non-negative; nothing is decided in floating point. :func:`symmetric_table` shares one table
-  between permuted right-hand sides.
+  choice of ``|support of rhs|`` columns with a non-zero exact integer determinant, solved by
+  Cramer's rule, kept when non-negative; vectorised int64 determinants (:func:`dets`: Laplace
+  expansion) where Hadamard's bound keeps every minor below ``2^62``, else one basis at a time
+  in Python integers (:func:`bareiss_det`); nothing is decided in floating point.
+  :func:`symmetric_table` shares one table between permuted right-hand sides.
 - :func:`balanced_vertices`: the vertices of ``{c >= 0 : Σ_{T ⊊ S} c_T 1_T = 1_S}`` for the
   ground set ``S = {0, …, s-1}`` — the *minimal balanced collections* of cooperative game
   theory (Shapley), 1, 5, 41 and 1291 of them for ``s = 2 … 5``.
@@ -114,6 +115,12 @@ def dets(entries: Sequence[Sequence[np.ndarray]]) -> np.ndarray:
     top = max((int(np.abs(e).max(initial=0)) for row in entries for e in row), default=0)
     if math.factorial(s) * max(top, 1) ** s >= 2 ** 62:  # |minor| <= j!·top^j: Python ints
         entries = [[np.asarray(e, dtype=object) for e in row] for row in entries]
+    return _laplace(entries)
+
+
+def _laplace(entries: Sequence[Sequence[np.ndarray]]) -> np.ndarray:
+    """:func:`dets` in the arrays' own dtype (the caller bounds every minor)."""
+    s = len(entries)
     minors: dict[int, np.ndarray] = {0: np.ones_like(entries[0][0])}
     for j in range(1, s + 1):
         row = s - j
@@ -159,7 +166,11 @@ def basic_solutions(columns: Sequence[Sequence[int]], rhs: Sequence[int]) -> Tab
     Rows outside the support of ``rhs`` force the columns that use them to 0; on the
     support, the unit vectors must be among the columns (full row rank). The vertices are the
     basic feasible solutions: every choice of ``|support|`` columns with a non-zero exact
-    integer determinant, solved by Cramer's rule, kept when non-negative, de-duplicated.
+    integer determinant, solved by Cramer's rule, kept when non-negative, reduced to lowest
+    terms and de-duplicated (a degenerate vertex has several bases). The determinants are
+    int64 (vectorised) when Hadamard's bound proves every minor and every sum of the Laplace
+    expansion below ``2^62``, else Python integers by fraction-free elimination; the table is
+    int64 when its scaled vertices fit, else an array of Python integers (storage only).
 
     Examples
     --------
@@ -174,6 +185,114 @@ def basic_solutions(columns: Sequence[Sequence[int]], rhs: Sequence[int]) -> Tab
     return _basic_solutions(tuple(tuple(int(x) for x in c) for c in columns), rhs)
 
 
+INT_SAFE = 2 ** 62
+"""Every integer the int64 path of :func:`basic_solutions` computes stays below this."""
+
+
+def bareiss_det(mat: Sequence[Sequence[int]]) -> int:
+    """The determinant of a square integer matrix by fraction-free (Bareiss) elimination.
+
+    Every intermediate entry is a minor of ``mat``, so the integers stay as small as the
+    answer allows; exact Python integers throughout.
+
+    Examples
+    --------
+    >>> bareiss_det([[2, 1], [1, 1]]), bareiss_det([[0, 1], [1, 0]]), bareiss_det([[1, 2], [2, 4]])
+    (1, -1, 0)
+    """
+    a = [list(row) for row in mat]
+    n = len(a)
+    sign, prev = 1, 1
+    for k in range(n - 1):
+        if a[k][k] == 0:
+            swap = next((i for i in range(k + 1, n) if a[i][k] != 0), None)
+            if swap is None:
+                return 0
+            a[k], a[swap] = a[swap], a[k]
+            sign = -sign
+        for i in range(k + 1, n):
+            for j in range(k + 1, n):
+                a[i][j] = (a[i][j] * a[k][k] - a[i][k] * a[k][j]) // prev
+        prev = a[k][k]
+    return sign * a[n - 1][n - 1] if n else 1
+
+
+def _hadamard_safe(vectors: Sequence[Sequence[int]], m: int) -> bool:
+    """Whether every ``m × m`` minor of the vectors (and a sum of ``m + 1`` products of one
+    with an entry) stays below :data:`INT_SAFE`: Hadamard's bound ``Π ||v||`` over the ``m``
+    longest vectors, times the longest once more and ``2^6`` for the sums, compared squared."""
+    squares = sorted((sum(x * x for x in v) for v in vectors), reverse=True)
+    return math.prod(squares[:m]) * max(squares[0], 1) * 2 ** 12 < INT_SAFE ** 2
+
+
+Vertex = tuple[tuple[int, ...], int]
+"""A basic solution as ``(numerators over the kept columns, denominator > 0)``, reduced."""
+
+
+def _vertices_int64(mat: list[list[int]], b: list[int]) -> set[Vertex]:
+    """The basic feasible solutions by vectorised int64 determinants (the caller has checked
+    Hadamard's bound, so every determinant and Cramer numerator is exact)."""
+    m, k = len(mat), len(mat[0])
+    arr = np.array(mat, dtype=np.int64)
+    found: set[Vertex] = set()
+    all_combos = itertools.combinations(range(k), m)
+    while True:
+        chunk = np.array(list(itertools.islice(all_combos, 200_000)), dtype=np.int64)
+        if chunk.size == 0:
+            return found
+        entries = [[np.ascontiguousarray(arr[r, chunk[:, c]]) for c in range(m)]
+                   for r in range(m)]
+        det = _laplace(entries)
+        ok = det != 0
+        if not ok.any():
+            continue
+        chunk, det = chunk[ok], det[ok]
+        entries = [[e[ok] for e in row] for row in entries]
+        numer = np.empty((chunk.shape[0], m), dtype=np.int64)
+        for i in range(m):  # Cramer: column i replaced by the right-hand side
+            numer[:, i] = _laplace([[np.full(chunk.shape[0], b[r], dtype=np.int64) if c == i
+                                 else entries[r][c] for c in range(m)] for r in range(m)])
+        sign = np.where(det > 0, 1, -1)
+        numer *= sign[:, None]
+        det = det * sign
+        feas = np.all(numer >= 0, axis=1)
+        chunk, det, numer = chunk[feas], det[feas], numer[feas]
+        if not chunk.size:
+            continue
+        g = np.gcd.reduce(np.concatenate([numer, det[:, None]], axis=1), axis=1)
+        numer //= g[:, None]
+        det //= g
+        dense = np.zeros((chunk.shape[0], k + 1), dtype=np.int64)
+        dense[np.arange(chunk.shape[0])[:, None], chunk] = numer
+        dense[:, k] = det
+        for row in np.unique(dense, axis=0).tolist():  # degenerate vertices have several bases
+            found.add((tuple(row[:k]), row[k]))
+
+
+def _vertices_exact(mat: list[list[int]], b: list[int]) -> set[Vertex]:
+    """The basic feasible solutions one basis at a time in Python integers (Bareiss
+    determinants and Cramer's rule): exact for entries of any size."""
+    m, k = len(mat), len(mat[0])
+    found: set[Vertex] = set()
+    for combo in itertools.combinations(range(k), m):
+        sub = [[mat[r][c] for c in combo] for r in range(m)]
+        det = bareiss_det(sub)
+        if det == 0:
+            continue
+        numer = [bareiss_det([[b[r] if c == i else sub[r][c] for c in range(m)]
+                              for r in range(m)]) for i in range(m)]
+        if det < 0:
+            det, numer = -det, [-x for x in numer]
+        if any(x < 0 for x in numer):
+            continue
+        g = math.gcd(det, *numer)
+        dense = [0] * k
+        for pos, c in enumerate(combo):
+            dense[c] = numer[pos] // g
+        found.add((tuple(dense), det // g))
+    return found
+
+
 @cache
 def _basic_solutions(columns: tuple[Normal, ...], rhs: Normal) -> Table:
     rows = [i for i, x in enumerate(rhs) if x != 0]
@@ -182,60 +301,23 @@ def _basic_solutions(columns: tuple[Normal, ...], rhs: Normal) -> Table:
     m = len(rows)
     if m == 0:
         return Table(columns=(), scaled=np.zeros((0, 1), dtype=np.int64), lcm=1)
-    mat = np.array([[columns[j][i] for j in keep] for i in rows], dtype=np.int64)
-    b = np.array([rhs[i] for i in rows], dtype=np.int64)
-    found: list[np.ndarray] = []
-    dens: list[int] = []
-    all_combos = itertools.combinations(range(len(keep)), m)
-    while True:
-        chunk = np.array(list(itertools.islice(all_combos, 200_000)), dtype=np.int64)
-        if chunk.size == 0:
-            break
-        entries = [[np.ascontiguousarray(mat[r, chunk[:, c]]) for c in range(m)]
-                   for r in range(m)]
-        det = dets(entries)
-        ok = det != 0
-        chunk, det = chunk[ok], det[ok]
-        entries = [[e[ok] for e in row] for row in entries]
-        if not chunk.size:
-            continue
-        numer = np.empty((chunk.shape[0], m), dtype=det.dtype)
-        for i in range(m):  # Cramer: column i replaced by the right-hand side
-            numer[:, i] = dets([[np.full(chunk.shape[0], b[r]) if c == i else entries[r][c]
-                                 for c in range(m)] for r in range(m)])
-        sign = np.where(det > 0, 1, -1).astype(det.dtype)[:, None]
-        feas = np.all(numer * sign >= 0, axis=1)
-        chunk, det, numer = chunk[feas], det[feas], numer[feas]
-        if not chunk.size:
-            continue
-        common = math.lcm(1, *(int(x) for x in np.unique(np.abs(det))))
-        wide = common * (int(np.abs(numer).max(initial=0)) + 1) >= 2 ** 62
-        dense = np.zeros((chunk.shape[0], len(keep)), dtype=object if wide else np.int64)
-        idx = np.arange(chunk.shape[0])
-        factor = np.array([common // int(x) for x in det], dtype=object if wide else np.int64)
-        for i in range(m):
-            dense[idx, chunk[:, i]] = numer[:, i].astype(dense.dtype) * factor
-        # degenerate vertices have several bases
-        found.append(np.unique(dense, axis=0) if not wide else
-                     np.array(sorted(set(map(tuple, dense.tolist()))), dtype=object))
-        dens.append(common)
-    lcm = math.lcm(1, *dens)
-    top = max((int(np.abs(d).max(initial=0)) * (lcm // c) for d, c in
-               zip(found, dens, strict=True)), default=0)
-    if top < 2 ** 62:
-        stacked = np.concatenate([d * (lcm // c) for d, c in zip(found, dens, strict=True)]) \
-            if found else np.zeros((0, len(keep)), dtype=np.int64)
-        unique = np.unique(stacked, axis=0)
-        g = math.gcd(lcm, *(int(x) for x in np.unique(unique)))
-        scaled = np.ascontiguousarray((unique // g).T)
-    else:  # beyond int64: exact Python integers (N = 5 tables can get there)
-        rows_set = {tuple(int(x) * (lcm // c) for x in row) for d, c in
-                    zip(found, dens, strict=True) for row in d.tolist()}
-        rows_sorted = sorted(rows_set)
-        g = math.gcd(lcm, *(x for row in rows_sorted for x in row))
-        scaled = np.array([[x // g for x in row] for row in rows_sorted],
-                          dtype=object).reshape(len(rows_sorted), len(keep)).T.copy()
-    return Table(columns=tuple(keep), scaled=scaled, lcm=lcm // g)
+    mat = [[columns[j][i] for j in keep] for i in rows]
+    b = [rhs[i] for i in rows]
+    vectors = [[columns[j][i] for i in rows] for j in keep] + [b]
+    found = (_vertices_int64(mat, b) if _hadamard_safe(vectors, m)
+             else _vertices_exact(mat, b))
+    ordered = sorted(found)
+    lcm = math.lcm(1, *(den for _, den in ordered))
+    cols = [[x * (lcm // den) for x in numer] for numer, den in ordered]
+    top = max((x for col in cols for x in col), default=0)
+    if top < INT_SAFE:
+        scaled = np.array(cols, dtype=np.int64).reshape(len(cols), len(keep)).T.copy()
+    else:  # the common denominator leaves int64: the table holds Python integers
+        scaled = np.empty((len(keep), len(cols)), dtype=object)
+        for v, col in enumerate(cols):
+            for i, x in enumerate(col):
+                scaled[i, v] = x
+    return Table(columns=tuple(keep), scaled=scaled, lcm=lcm)
 
 
 def symmetric_table(normals: tuple[Normal, ...], rhs: Normal) -> Table:
