@@ -404,7 +404,9 @@ def packing_vertices(normals: tuple[Normal, ...], every: bool = False
 
     Returned as pairs ``(λ, y_λ)``. Vertices whose ``y_λ`` is a 0/1 vector are left out unless
     ``every``: for closed support numbers the arc condition holds for them automatically
-    (``proofs/NGOAL.md`` NG.8); ``λ = 0`` is always left out.
+    (``proofs/NGOAL.md`` NG.8); ``λ = 0`` is always left out. Enumerated by their bases
+    (:func:`_packing_bases`): a vertex whose ``y`` is not the all-ones vector has fewer than
+    ``N`` basic normals, so only those bases are tried unless ``every``.
 
     Examples
     --------
@@ -414,45 +416,33 @@ def packing_vertices(normals: tuple[Normal, ...], every: bool = False
     (Fraction(1, 2), Fraction(1, 1), Fraction(1, 1), Fraction(1, 1))
     """
     n = len(normals[0])
-    slack = tuple(tuple(int(i == j) for i in range(n)) for j in range(n))
-    table = basic_solutions(normals + slack, (1,) * n)
-    out = []
-    for v in table.vertices:
-        lam = [Fraction(0)] * len(normals)
-        for pos, col in enumerate(table.columns):
-            if col < len(normals):
-                lam[col] = v[pos]
-        y = tuple(sum((lam[j] * normals[j][i] for j in range(len(normals))), Fraction(0))
-                  for i in range(n))
-        if any(x not in (0, 1) for x in y) or (every and any(y)):
-            out.append((tuple(lam), y))
-    return tuple(sorted(set(out)))
+    out = set()
+    for lam_sparse, y in _packing_bases(normals, n if every else n - 1):
+        if any(x not in (0, 1) for x in y) or every:
+            lam = [Fraction(0)] * len(normals)
+            for j, c in lam_sparse:
+                lam[j] = c
+            out.add((tuple(lam), y))
+    return tuple(sorted(out))
 
 
-@cache
-def packing_directions(normals: tuple[Normal, ...]) -> tuple[tuple[Fraction, ...], ...]:
-    """Every non-zero ``y_λ = Σ_n λ_n n`` over the vertices ``λ`` of ``{λ >= 0 : Σ_n λ_n n <= 1}``.
+def _packing_bases(normals: tuple[Normal, ...], t_max: int
+                   ) -> set[tuple[tuple[tuple[int, Fraction], ...], tuple[Fraction, ...]]]:
+    """The vertices ``λ != 0`` of ``{λ >= 0 : Σ_n λ_n n <= 1}`` with at most ``t_max`` basic
+    normals, as ``(((j, λ_j > 0), …), y_λ)``.
 
     A vertex has basic normals ``B`` and basic slacks ``S``; with ``T`` the other coordinates,
     ``y_T = 1``, ``B_T λ_B = 1_T`` (``B_T`` non-singular, ``|B| = |T|``), ``λ_B >= 0`` and
-    ``y_S <= 1``. So every such ``y`` has ``max y = 1``, and ``T`` = all coordinates gives
-    ``y = 1`` only: the enumeration runs over ``|T| < N`` and ``|B| = |T|`` normals (exact
-    integer determinants), far fewer bases than the whole polytope's. ``normals`` must contain
-    the unit vectors.
-
-    Examples
-    --------
-    >>> ys = packing_directions(zero_one_normals(4))
-    >>> len(ys), sum(1 for y in ys if any(x not in (0, 1) for x in y))
-    (19, 4)
-    >>> len(packing_directions(zero_one_normals(5))) - 31
-    45
+    ``y_S <= 1``: every choice of ``t = |B| = |T|`` normals and coordinates is tried, with exact
+    integer determinants (vectorised; the entries are small). A degenerate vertex has several
+    bases and is kept once.
     """
     n = len(normals[0])
     amat = np.array(normals, dtype=np.int64)  # K × n
     k = amat.shape[0]
-    found: set[tuple[Fraction, ...]] = {(Fraction(1),) * n}
-    for t in range(1, n):
+    found: set[tuple[tuple[tuple[int, Fraction], ...], tuple[Fraction, ...]]] = set()
+    seen: set[tuple[int, ...]] = set()
+    for t in range(1, t_max + 1):
         combos_all = itertools.combinations(range(k), t)
         while True:
             combos = np.array(list(itertools.islice(combos_all, 200_000)), dtype=np.int64)
@@ -478,11 +468,40 @@ def packing_directions(normals: tuple[Normal, ...]) -> tuple[tuple[Fraction, ...
                 y = (lam[feas][:, :, None] * cols[ok][feas]).sum(axis=1)  # y·|det|
                 ad = np.abs(d[feas])
                 keep = np.all(y <= ad[:, None], axis=1)
-                pairs = np.concatenate([y[keep], ad[keep][:, None]], axis=1)
-                if pairs.dtype != object:
-                    pairs = np.unique(pairs, axis=0)
-                for *row, den in pairs.tolist():
-                    found.add(tuple(Fraction(int(x), int(den)) for x in row))
+                nums = np.concatenate([lam[feas][keep], y[keep], ad[keep][:, None]], axis=1)
+                nums //= np.gcd.reduce(nums, axis=1)[:, None]  # lowest terms: one key per λ
+                rows = np.concatenate([combos[ok][feas][keep], nums], axis=1)
+                for row in np.unique(rows, axis=0).tolist():
+                    seen.add(tuple(row))
+        for row in seen:  # the same λ from another T: already in lowest terms, kept once
+            den = row[-1]
+            lam_row = tuple((j, Fraction(c, den)) for j, c in
+                            zip(row[:t], row[t:2 * t], strict=True) if c)
+            found.add((lam_row, tuple(Fraction(x, den) for x in row[2 * t:-1])))
+        seen.clear()
+    return found
+
+
+@cache
+def packing_directions(normals: tuple[Normal, ...]) -> tuple[tuple[Fraction, ...], ...]:
+    """Every non-zero ``y_λ = Σ_n λ_n n`` over the vertices ``λ`` of ``{λ >= 0 : Σ_n λ_n n <= 1}``.
+
+    Every such ``y`` has ``max y = 1`` (a vertex ``λ != 0`` has a tight row), and a vertex with
+    ``N`` basic normals has ``y = 1``: so the directions are the all-ones vector and those of
+    :func:`_packing_bases` with fewer than ``N`` basic normals. ``normals`` must contain the
+    unit vectors.
+
+    Examples
+    --------
+    >>> ys = packing_directions(zero_one_normals(4))
+    >>> len(ys), sum(1 for y in ys if any(x not in (0, 1) for x in y))
+    (19, 4)
+    >>> len(packing_directions(zero_one_normals(5))) - 31
+    45
+    """
+    n = len(normals[0])
+    found = {y for _, y in _packing_bases(normals, n - 1)}
+    found.add((Fraction(1),) * n)
     return tuple(sorted(found))
 
 
