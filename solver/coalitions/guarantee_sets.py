@@ -41,7 +41,8 @@ from functools import cache, cached_property
 
 import numpy as np
 
-from solver.coalitions.block_fixpoint import block_fixpoint, fixpoint_ranks
+from solver.coalitions.arc_vertices import vertex_failures
+from solver.coalitions.block_fixpoint import block_fixpoint, cover_minimum, fixpoint_ranks
 from solver.coalitions.normal_cover import normal_cover_lp
 from solver.coalitions.vertex_tables import (
     Direction,
@@ -226,7 +227,6 @@ class NormalSystem:
     dominated: bool = False
     tops: np.ndarray = field(init=False, repr=False)
     closures: tuple[VertexTable, ...] = field(init=False, repr=False)
-    directions: tuple[Direction, ...] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "tops", np.array([max(a) for a in self.normals],
@@ -236,8 +236,29 @@ class NormalSystem:
         else:
             closures = tuple(symmetric_table(self.normals, a) for a in self.normals)
         object.__setattr__(self, "closures", closures)
-        object.__setattr__(self, "directions",
-                           packing_directions_symmetric(self.normals, self.dominated))
+
+    @cached_property
+    def by_vertices(self) -> bool:
+        """Whether the arc test goes by the vertices of the sets (:mod:`~solver.coalitions.
+        arc_vertices`): with extra normals whose packing polytope has more than
+        :data:`DIRECTION_BASES` bases to enumerate (the direction test's tables would be
+        large), or whose direction tables would not fit a part."""
+        n = self.n_goals
+        if len(self.normals) == 2 ** n - 1:
+            return False
+        if math.comb(len(self.normals) + n, n) > DIRECTION_BASES:
+            return True
+        try:
+            _ = self.directions
+        except (ValueError, OverflowError):
+            return True
+        return False
+
+    @cached_property
+    def directions(self) -> tuple[Direction, ...]:
+        """The packing polytope's directions with their cover tables (every one with
+        ``dominated``, else the non-0/1 ones)."""
+        return packing_directions_symmetric(self.normals, self.dominated)
 
     @property
     def n_goals(self) -> int:
@@ -246,8 +267,13 @@ class NormalSystem:
 
     @property
     def lcm(self) -> int:
-        """The lcm of the closure tables' denominators."""
-        return math.lcm(1, *(t.lcm for t in self.closures))
+        """The lcm of the closure tables' denominators (over every part)."""
+        return math.lcm(1, *(lcm for t in self.closures for _, lcm in t.parts))
+
+
+DIRECTION_BASES = 200_000
+"""Above this many bases of the packing polytope (``C(|A| + N, N)``) a system with extra
+normals is tested by the vertices of its sets instead of the packing directions."""
 
 
 def symmetric_table(normals: tuple[Normal, ...], rhs: Normal) -> VertexTable:
@@ -270,7 +296,7 @@ def symmetric_table(normals: tuple[Normal, ...], rhs: Normal) -> VertexTable:
         inv[i] = k
     index = {v: j for j, v in enumerate(normals)}
     cols = tuple(index[tuple(normals[j][inv[i]] for i in range(n))] for j in base.columns)
-    return VertexTable(columns=cols, scaled=base.scaled, lcm=base.lcm)
+    return VertexTable(columns=cols, scaled=base.scaled, lcm=base.lcm, more=base.more)
 
 
 def _dominated_table(normals: tuple[Normal, ...], a: Normal) -> VertexTable:
@@ -278,7 +304,7 @@ def _dominated_table(normals: tuple[Normal, ...], a: Normal) -> VertexTable:
     keep = [j for j, n in enumerate(normals) if all(x <= y for x, y in zip(n, a, strict=True))]
     sub = vertex_table(tuple(normals[j] for j in keep), a)
     return VertexTable(columns=tuple(keep[c] for c in sub.columns), scaled=sub.scaled,
-                       lcm=sub.lcm)
+                       lcm=sub.lcm, more=sub.more)
 
 
 @cache
@@ -316,34 +342,66 @@ def packing_directions_raw(normals: tuple[Normal, ...], every: bool = False
     return tuple(out)
 
 
+def arc_failures(system: NormalSystem, tail_vals: np.ndarray, head_vals: np.ndarray,
+                 tail_pos: np.ndarray, head_pos: np.ndarray, w_scaled: np.ndarray
+                 ) -> tuple[np.ndarray, list[Normal]]:
+    """A mask over arcs violating ``F_v ⊆ F_u + wΔ`` and the primitive directions violated.
+
+    By the vertices of the tails' sets (:func:`solver.coalitions.arc_vertices.vertex_failures`,
+    proofs/NRULE.md NR.2(b)) when :attr:`NormalSystem.by_vertices`, else by the packing
+    directions (:func:`failing_arcs`, NG.8(c)). ``tail_vals``/``head_vals`` are ``(|A|, k)``
+    numerators at one scale ``D`` (the distinct tails and heads), ``tail_pos``/``head_pos``
+    each arc's column in them, ``w_scaled`` the weights times ``D``.
+    """
+    if not len(tail_pos):
+        return np.zeros(0, dtype=bool), []
+    if system.by_vertices:
+        return vertex_failures(system.normals, tail_vals, head_vals, tail_pos, head_pos,
+                               w_scaled)
+    bad = np.zeros(len(tail_pos), dtype=bool)
+    dirs: list[Normal] = []
+    for d in system.directions:
+        hit = failing_arcs((d,), tail_vals, head_vals, tail_pos, head_pos, w_scaled)
+        if hit.any():
+            bad |= hit
+            dirs.append(primitive(d.y))
+    return bad, dirs
+
+
 def failing_arcs(directions: Sequence[Direction], tail_vals: np.ndarray, head_vals: np.ndarray,
                  tail_pos: np.ndarray, head_pos: np.ndarray, w_scaled: np.ndarray
                  ) -> np.ndarray:
-    """A mask over arcs violating ``F_v ⊆ F_u + wΔ`` (proofs/NGOAL.md NG.8(c)).
+    """A mask over arcs violating ``F_v ⊆ F_u + wΔ`` in the given directions (proofs/NGOAL.md
+    NG.8(c)): ``h_{F_v}(y) > w + λ·m(u)`` for the cheapest cover at ``v`` and the cheapest
+    packing vertex ``λ`` of ``y`` at ``u``.
 
-    ``tail_vals``/``head_vals`` are ``(|A|, k)`` numerators at one scale ``D`` (the distinct
-    tails and heads), ``tail_pos``/``head_pos`` each arc's column in them, ``w_scaled`` the
-    weights times ``D``. Only the non-0/1 directions are tested (the others hold by the step and
-    the closure).
+    Arguments as :func:`arc_failures`. ``h_{F_v}(y)`` is the least over the cover table's
+    parts, so an arc fails in ``y`` iff it fails for every part.
     """
     bad = np.zeros(len(tail_pos), dtype=bool)
     if not len(tail_pos):
         return bad
     for d in directions:
+        mu = _min_product_exact(head_vals.T, d.lams.T)[head_pos]
+        fails = np.ones(len(tail_pos), dtype=bool)
         cols = np.asarray(d.cover.columns, dtype=np.int64)
-        hv = min_product(tail_vals[cols].T, d.cover.scaled)[tail_pos]
-        mu = min_product(head_vals.T, d.lams.T)[head_pos]
-        # h_v(y) <= w + λ·m_u:  hv / (lcm_T · s) <= w + mu / lcm_λ   (all at scale D)
-        f_w, f_mu = d.cover.lcm * d.lam_lcm * d.scale, d.cover.lcm * d.scale
-        top = max(int(hv.max(initial=0)) * d.lam_lcm,
-                  int(w_scaled.max(initial=0)) * f_w + int(mu.max(initial=0)) * f_mu)
-        if max(top, f_w, f_mu, d.lam_lcm) < INT_LIMIT:  # int64 holds every term exactly
-            bad |= hv * d.lam_lcm > w_scaled * f_w + mu * f_mu
-        else:
+        for scaled, lcm in d.cover.parts:
+            hv = _min_product_exact(tail_vals[cols].T, scaled)[tail_pos]
+            # h_v(y) <= w + λ·m_u:  hv / (lcm_T · s) <= w + mu / lcm_λ   (all at scale D)
+            f_w, f_mu = lcm * d.lam_lcm * d.scale, lcm * d.scale
             lhs = hv.astype(object) * d.lam_lcm
             rhs = w_scaled.astype(object) * f_w + mu.astype(object) * f_mu
-            bad |= np.asarray(lhs > rhs, dtype=bool)
+            fails &= np.asarray(lhs > rhs, dtype=bool)
+        bad |= fails
     return bad
+
+
+def _min_product_exact(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:
+    """:func:`min_product` in Python integers where it would leave int64."""
+    try:
+        return min_product(values, scaled)
+    except BudgetExceeded:
+        return (values.astype(object) @ scaled.astype(object)).min(axis=1)
 
 
 @dataclass(frozen=True, eq=False)
@@ -401,6 +459,23 @@ class LayerFailure:
     scale: int
 
 
+def _gcd_mod(num: np.ndarray, den: int) -> int:
+    """``gcd(den, num mod den)`` over every entry (int64 or Python integers)."""
+    if num.dtype != object and den < INT_LIMIT:
+        return math.gcd(den, int(np.gcd.reduce(num % den, initial=0)))
+    return math.gcd(den, *(int(v) % den for v in num))
+
+
+def _rescaled(num: np.ndarray, grow: int, den: int) -> np.ndarray:
+    """``num · grow / den`` (exact division) as int64, or :class:`BudgetExceeded`."""
+    if num.dtype != object and int(np.abs(num).max(initial=0)) * grow < INT_LIMIT:
+        return num * grow // den
+    vals = [int(v) * grow // den for v in num]
+    if vals and max(vals) >= INT_LIMIT:
+        raise BudgetExceeded("numbers beyond the exact int64 range")
+    return np.asarray(vals, dtype=np.int64)
+
+
 def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
                max_layers: int) -> Fixpoint | LayerFailure:
     """The normal-restricted DP from the goals until a layer repeats (or, with
@@ -425,10 +500,7 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
     changed = goals
     tops = system.tops
     top_all = int(tops.max())
-    lcm_all = max(1, system.lcm)
-    width_all = max(int(np.abs(t.scaled).sum(axis=0).max(initial=1)) + 1
-                    for t in system.closures)
-    trivial = [t.scaled.shape[1] == 1 for t in system.closures]
+    trivial = [t.n_vertices == 1 for t in system.closures]
     mmax = int(m.max(initial=0))
     k = 0
     while True:
@@ -445,7 +517,7 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
         fin_rows = np.logical_or.reduceat(fin_h, seg)
         w_s = graph.weights[arcs] * (scale // den)
         big = mmax + int(w_s.max(initial=0)) * top_all + 1
-        if big * lcm_all * 4 > INT_LIMIT:
+        if big * 4 > INT_LIMIT:
             raise BudgetExceeded("numbers beyond the exact int64 range")
         cand = tops[:, None] * w_s[None, :] + m[:, heads]
         cand[:, ~fin_h] = big
@@ -453,37 +525,35 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
         live = np.flatnonzero(fin_rows)
         new = np.zeros((a, rows.size), dtype=np.int64)
         sub = step[:, live]
-        exact_float = (big + 1) * width_all < EXACT_FLOAT_LIMIT
-        subf = sub.T.astype(np.float64) if exact_float else None
-        closed: list[np.ndarray | None] = []
+        none_lost = np.zeros((live.size, 0), dtype=bool)
+        closed: list[tuple[np.ndarray, int] | None] = []
         for j, tab in enumerate(system.closures):
             if trivial[j]:
                 closed.append(None)  # the only cover is a itself: the step value
-            elif subf is not None:
-                cols = np.asarray(tab.columns, dtype=np.int64)
-                closed.append((subf[:, cols] @ tab.scaled.astype(np.float64)).min(axis=1)
-                              .astype(np.int64))
-            else:
-                cols = np.asarray(tab.columns, dtype=np.int64)
-                closed.append(min_product(sub[cols].T, tab.scaled))
+                continue
+            cols = np.asarray(tab.columns, dtype=np.int64)
+            found = cover_minimum(sub[cols].T, np.broadcast_to(none_lost, (live.size, cols.size)),
+                                  tab)
+            assert found is not None  # a itself is a vertex
+            closed.append((found[0], found[1]))
         # back to scale D: grow D where a closure value is not a multiple of its table's lcm
         grow = 1
-        for j, tab in enumerate(system.closures):
-            x = closed[j]
-            if x is None or tab.lcm == 1 or not np.any(x % tab.lcm):
-                continue
-            g = math.gcd(int(np.gcd.reduce(x, initial=0)), tab.lcm)
-            grow = math.lcm(grow, tab.lcm // g)
+        for x in closed:
+            if x is not None and x[1] > 1:
+                grow = math.lcm(grow, x[1] // _gcd_mod(x[0], x[1]))
         if grow > 1:
             scale *= grow
             m *= grow
             mmax *= grow
             sub = sub * grow
-            if mmax * lcm_all * 4 > INT_LIMIT:
+            if mmax * 4 > INT_LIMIT:
                 raise BudgetExceeded("numbers beyond the exact int64 range")
-        for j, tab in enumerate(system.closures):
+        for j in range(a):
             x = closed[j]
-            new[j, live] = sub[j] if x is None else x * grow // tab.lcm
+            if x is None:
+                new[j, live] = sub[j]
+                continue
+            new[j, live] = _rescaled(x[0], grow, x[1])
         if live.size:
             mmax = max(mmax, int(new[:, live].max()))
         if check_layers:
@@ -491,8 +561,8 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
             keep = t_arcs & fin_h
             if keep.any():
                 arc_tail = np.repeat(np.arange(rows.size), np.diff(np.append(seg, len(arcs))))
-                bad = failing_arcs(system.directions, new, m, arc_tail[keep], heads[keep],
-                                   graph.weights[arcs][keep] * (scale // den))
+                bad, _ = arc_failures(system, new, m, arc_tail[keep], heads[keep],
+                                      graph.weights[arcs][keep] * (scale // den))
                 if bad.any():
                     tails = np.unique(rows[arc_tail[keep][bad]])
                     return LayerFailure(k, tails, rows, new, m.copy(), finite.copy(), scale)
@@ -565,7 +635,7 @@ def fixpoint_failures(graph: ArcGraph, fix: Fixpoint) -> np.ndarray:
     tails, heads = graph.tails, graph.heads
     keep = fix.finite[tails] & fix.finite[heads]
     w = graph.weights[keep] * (fix.scale // graph.denominator)
-    bad = failing_arcs(fix.system.directions, fix.m, fix.m, tails[keep], heads[keep], w)
+    bad, _ = arc_failures(fix.system, fix.m, fix.m, tails[keep], heads[keep], w)
     return np.unique(tails[keep][bad])
 
 
@@ -750,8 +820,5 @@ def dominated_failures(graph: ArcGraph, normals: tuple[Normal, ...], max_layers:
     tails, heads = graph.tails, graph.heads
     keep = fix.finite[tails] & fix.finite[heads]
     w = graph.weights[keep] * (fix.scale // graph.denominator)
-    bad: list[Normal] = []
-    for d in system.directions:
-        if failing_arcs((d,), fix.m, fix.m, tails[keep], heads[keep], w).any():
-            bad.append(primitive(d.y))
+    _, bad = arc_failures(system, fix.m, fix.m, tails[keep], heads[keep], w)
     return fix, bad
