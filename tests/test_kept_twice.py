@@ -24,7 +24,7 @@ from dppverify.structured import cover as checker_cover
 from dppverify.structured.guarantee import rule_order
 from solver.coalitions import vertex_tables as solver_tables
 from solver.coalitions.guarantee_rule import priority_order
-from solver.coalitions.guarantee_sets import symmetric_table as solver_symmetric
+from solver.coalitions.normal_system import symmetric_table as solver_symmetric
 from solver.game.instance_reading import instance_from_json as solver_instance
 
 

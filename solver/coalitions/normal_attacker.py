@@ -26,8 +26,9 @@ from fractions import Fraction
 
 import numpy as np
 
-from solver.coalitions.guarantee_sets import ArcGraph, Fixpoint
+from solver.coalitions.arc_graph import ArcGraph
 from solver.coalitions.normal_cover import normal_cover_lp
+from solver.coalitions.normal_dp import Fixpoint
 
 __all__ = ["AttackerPlan", "normal_attacker"]
 

@@ -300,16 +300,19 @@ def _bareiss(mat: list[list[int]]) -> int:
 def _in_parts(columns: tuple[int, ...], found: Sequence[tuple[tuple[int, ...], int]]
               ) -> VertexTable:
     """The vertices (sorted by denominator) in consecutive parts, each part's common
-    denominator times its largest coordinate below :data:`PART_LIMIT`."""
+    denominator times its largest coordinate below :data:`PART_LIMIT` (a vertex that alone
+    exceeds it is a part of its own, in Python integers past int64)."""
     parts: list[tuple[np.ndarray, int]] = []
     cur: list[tuple[tuple[int, ...], int]] = []
     cur_lcm, cur_top = 1, Fraction(0)
 
     def close() -> None:
         if cur:
-            arr = np.array([[x * (cur_lcm // den) for x in numer] for numer, den in cur],
-                           dtype=np.int64).reshape(len(cur), len(columns))
-            g = math.gcd(cur_lcm, int(np.gcd.reduce(arr.ravel(), initial=0)))
+            rows = [[x * (cur_lcm // den) for x in numer] for numer, den in cur]
+            top = max((x for row in rows for x in row), default=0)
+            arr = np.array(rows, dtype=np.int64 if top < INT_LIMIT else object).reshape(
+                len(cur), len(columns))  # a lone vertex past int64: Python integers
+            g = math.gcd(cur_lcm, *(int(x) for x in arr.ravel()))
             parts.append((np.ascontiguousarray((arr // g).T), cur_lcm // g))
 
     for numer, den in found:
@@ -319,9 +322,6 @@ def _in_parts(columns: tuple[int, ...], found: Sequence[tuple[tuple[int, ...], i
             close()
             cur, cur_lcm, cur_top = [], 1, Fraction(0)
             top, lcm = Fraction(max(numer, default=0), den), den
-        if lcm * top >= PART_LIMIT:
-            raise ValueError(f"vertex_table: a vertex coordinate of {top} over {den} leaves "
-                             "the exact range of a part")
         cur.append((numer, den))
         cur_lcm, cur_top = lcm, top
     close()
