@@ -21,6 +21,7 @@ from hypothesis import strategies as st
 
 from dppverify.game.instance import instance_from_json as checker_instance
 from dppverify.structured import cover as checker_cover
+from dppverify.structured import packing as checker_packing
 from dppverify.structured.guarantee import rule_order
 from solver.coalitions import vertex_tables as solver_tables
 from solver.coalitions.guarantee_rule import priority_order
@@ -60,7 +61,7 @@ def test_the_priority_order_of_the_guarantee_rule(prior: list[Fraction]) -> None
 def test_the_directions_of_the_packing_polytope(normals: tuple[tuple[int, ...], ...]) -> None:
     """The solver keeps the directions that are not 0/1 vectors, the checker all of them."""
     ours = {d.y for d in solver_tables.packing_directions(normals)}
-    theirs = {y for y in checker_cover.packing_directions(normals)
+    theirs = {y for y in checker_packing.packing_directions(normals)
               if any(x not in (0, 1) for x in y)}
     assert ours == theirs
 

@@ -7,7 +7,7 @@ With ``m_a(v)`` the rule's DP at ``H = inf`` over its normals ``A``
 rule's ``F`` non-empty on every walk and guarantees every type ``h_θ`` (NR.2, NSOLVE.1). By
 Farkas' lemma it holds iff ``h_{F_v}(y) <= h_{F_u}(y) + w`` for the finitely many directions
 ``y`` of the packing polytope's vertices
-(:func:`~dppverify.structured.cover.packing_directions`, each with ``max y = 1``); for the 0/1
+(:func:`~dppverify.structured.packing.packing_directions`, each with ``max y = 1``); for the 0/1
 vectors alone the support numbers are closed and the DP's fixpoint gives the 0/1 directions,
 so only the others are tested (none for ``N <= 3``; NSOLVE.2's non-pattern rays
 :func:`bad_rays` are the same test in ray form). The support functions are exact cover LPs at
@@ -25,9 +25,10 @@ from typing import Any
 
 import numpy as np
 
-from dppverify.structured.cover import dets, packing_directions
 from dppverify.structured.cover_lp import cover_values
+from dppverify.structured.exact_bases import dets
 from dppverify.structured.normal_fixpoint import NormalSets
+from dppverify.structured.packing import packing_directions
 from dppverify.structured.set_vertices import SetVertex, maximal_vertices
 from dppverify.structured.sum_membership import sum_membership
 

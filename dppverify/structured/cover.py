@@ -5,17 +5,13 @@ by a family of columns (subsets as 0/1 vectors, or non-negative integer *normals
 ``c >= 0`` with ``Σ_j c_j columns[j] = r``. The one vertex enumeration and the one exact LP of
 the structured route:
 
-- :func:`basic_solutions`: every vertex of ``{c >= 0 : Σ_j c_j columns[j] = rhs}`` — every
-  choice of ``|support of rhs|`` columns with a non-zero exact integer determinant, solved by
-  Cramer's rule, kept when non-negative; vectorised int64 determinants (:func:`dets`: Laplace
-  expansion) where Hadamard's bound keeps every minor below ``2^62``, else one basis at a time
-  in Python integers (:func:`bareiss_det`); nothing is decided in floating point.
+- :func:`basic_solutions`: every vertex of ``{c >= 0 : Σ_j c_j columns[j] = rhs}`` as an
+  integer table (the exact bases of :mod:`dppverify.structured.exact_bases`: int64 under
+  Hadamard's bound, else Python integers; nothing is decided in floating point).
   :func:`symmetric_table` shares one table between permuted right-hand sides.
 - :func:`balanced_vertices`: the vertices of ``{c >= 0 : Σ_{T ⊊ S} c_T 1_T = 1_S}`` for the
   ground set ``S = {0, …, s-1}`` — the *minimal balanced collections* of cooperative game
   theory (Shapley), 1, 5, 41 and 1291 of them for ``s = 2 … 5``.
-- :func:`packing_vertices`: the vertices of the packing polytope ``{λ >= 0 : Σ_n λ_n n <= 1}``
-  of a set of normals (the arc certificate of ``proofs/NGOAL.md`` NG.8).
 - :func:`cheapest`: ``min`` over a table's vertices of ``values · c`` at every row, exactly.
 - :func:`min_cover`: ``min Σ_T c_T m_T`` over covers of any positive ``r`` by all non-empty
   subsets, by the primal simplex method in exact rationals (Bland's rule), starting from the
@@ -35,11 +31,11 @@ from functools import cache
 import numpy as np
 
 from dppverify.game.distances import EXACT_FLOAT_LIMIT
+from dppverify.structured.exact_bases import INT_SAFE, basic_feasible_solutions
 
 __all__ = ["MAX_BALANCED", "BalancedVertices", "CoverLP", "Normal", "Table", "balanced_vertices",
-           "basic_solutions", "cheapest", "dets", "members", "min_cover", "min_cover_vectors",
-           "packing_directions", "packing_vertices", "popcount", "symmetric_table",
-           "zero_one_normals"]
+           "basic_solutions", "cheapest", "members", "min_cover", "min_cover_vectors", "popcount",
+           "symmetric_table", "zero_one_normals"]
 
 Normal = tuple[int, ...]
 """A facet normal (or cover column): a non-negative integer vector, one entry per goal index."""
@@ -95,47 +91,6 @@ class BalancedVertices:
     scaled: np.ndarray
 
 
-def dets(entries: Sequence[Sequence[np.ndarray]]) -> np.ndarray:
-    """Exact integer determinants of a batch of small integer matrices.
-
-    ``entries[r][c]`` holds entry ``(r, c)`` of every matrix (a 1-D int64 array). Laplace
-    expansion bottom-up over column subsets: the minor of the last ``j`` rows on a ``j``-column
-    set ``C`` is ``Σ_{c ∈ C} ± M[s-j, c] · minor(C - c)``. Where a minor could leave int64
-    (``s!·max|entry|^s >= 2^62``) the arithmetic is in Python integers (an object array).
-
-    Examples
-    --------
-    The determinants of ``[[2, 1], [1, 1]]`` and ``[[0, 1], [1, 0]]``:
-
-    >>> a = np.array
-    >>> dets([[a([2, 0]), a([1, 1])], [a([1, 1]), a([1, 0])]]).tolist()
-    [1, -1]
-    """
-    s = len(entries)
-    top = max((int(np.abs(e).max(initial=0)) for row in entries for e in row), default=0)
-    if math.factorial(s) * max(top, 1) ** s >= 2 ** 62:  # |minor| <= j!·top^j: Python ints
-        entries = [[np.asarray(e, dtype=object) for e in row] for row in entries]
-    return _laplace(entries)
-
-
-def _laplace(entries: Sequence[Sequence[np.ndarray]]) -> np.ndarray:
-    """:func:`dets` in the arrays' own dtype (the caller bounds every minor)."""
-    s = len(entries)
-    minors: dict[int, np.ndarray] = {0: np.ones_like(entries[0][0])}
-    for j in range(1, s + 1):
-        row = s - j
-        nxt: dict[int, np.ndarray] = {}
-        for cols in itertools.combinations(range(s), j):
-            mask = sum(1 << c for c in cols)
-            acc = np.zeros_like(entries[0][0])
-            for pos, c in enumerate(cols):
-                term = entries[row][c] * minors[mask & ~(1 << c)]
-                acc = acc - term if pos % 2 else acc + term
-            nxt[mask] = acc
-        minors = nxt
-    return minors[(1 << s) - 1]
-
-
 @dataclass(frozen=True)
 class Table:
     """The vertices of ``{c >= 0 : Σ_j c_j columns[j] = rhs}``, scaled to integers.
@@ -185,114 +140,6 @@ def basic_solutions(columns: Sequence[Sequence[int]], rhs: Sequence[int]) -> Tab
     return _basic_solutions(tuple(tuple(int(x) for x in c) for c in columns), rhs)
 
 
-INT_SAFE = 2 ** 62
-"""Every integer the int64 path of :func:`basic_solutions` computes stays below this."""
-
-
-def bareiss_det(mat: Sequence[Sequence[int]]) -> int:
-    """The determinant of a square integer matrix by fraction-free (Bareiss) elimination.
-
-    Every intermediate entry is a minor of ``mat``, so the integers stay as small as the
-    answer allows; exact Python integers throughout.
-
-    Examples
-    --------
-    >>> bareiss_det([[2, 1], [1, 1]]), bareiss_det([[0, 1], [1, 0]]), bareiss_det([[1, 2], [2, 4]])
-    (1, -1, 0)
-    """
-    a = [list(row) for row in mat]
-    n = len(a)
-    sign, prev = 1, 1
-    for k in range(n - 1):
-        if a[k][k] == 0:
-            swap = next((i for i in range(k + 1, n) if a[i][k] != 0), None)
-            if swap is None:
-                return 0
-            a[k], a[swap] = a[swap], a[k]
-            sign = -sign
-        for i in range(k + 1, n):
-            for j in range(k + 1, n):
-                a[i][j] = (a[i][j] * a[k][k] - a[i][k] * a[k][j]) // prev
-        prev = a[k][k]
-    return sign * a[n - 1][n - 1] if n else 1
-
-
-def _hadamard_safe(vectors: Sequence[Sequence[int]], m: int) -> bool:
-    """Whether every ``m × m`` minor of the vectors (and a sum of ``m + 1`` products of one
-    with an entry) stays below :data:`INT_SAFE`: Hadamard's bound ``Π ||v||`` over the ``m``
-    longest vectors, times the longest once more and ``2^6`` for the sums, compared squared."""
-    squares = sorted((sum(x * x for x in v) for v in vectors), reverse=True)
-    return math.prod(squares[:m]) * max(squares[0], 1) * 2 ** 12 < INT_SAFE ** 2
-
-
-Vertex = tuple[tuple[int, ...], int]
-"""A basic solution as ``(numerators over the kept columns, denominator > 0)``, reduced."""
-
-
-def _vertices_int64(mat: list[list[int]], b: list[int]) -> set[Vertex]:
-    """The basic feasible solutions by vectorised int64 determinants (the caller has checked
-    Hadamard's bound, so every determinant and Cramer numerator is exact)."""
-    m, k = len(mat), len(mat[0])
-    arr = np.array(mat, dtype=np.int64)
-    found: set[Vertex] = set()
-    all_combos = itertools.combinations(range(k), m)
-    while True:
-        chunk = np.array(list(itertools.islice(all_combos, 200_000)), dtype=np.int64)
-        if chunk.size == 0:
-            return found
-        entries = [[np.ascontiguousarray(arr[r, chunk[:, c]]) for c in range(m)]
-                   for r in range(m)]
-        det = _laplace(entries)
-        ok = det != 0
-        if not ok.any():
-            continue
-        chunk, det = chunk[ok], det[ok]
-        entries = [[e[ok] for e in row] for row in entries]
-        numer = np.empty((chunk.shape[0], m), dtype=np.int64)
-        for i in range(m):  # Cramer: column i replaced by the right-hand side
-            numer[:, i] = _laplace([[np.full(chunk.shape[0], b[r], dtype=np.int64) if c == i
-                                 else entries[r][c] for c in range(m)] for r in range(m)])
-        sign = np.where(det > 0, 1, -1)
-        numer *= sign[:, None]
-        det = det * sign
-        feas = np.all(numer >= 0, axis=1)
-        chunk, det, numer = chunk[feas], det[feas], numer[feas]
-        if not chunk.size:
-            continue
-        g = np.gcd.reduce(np.concatenate([numer, det[:, None]], axis=1), axis=1)
-        numer //= g[:, None]
-        det //= g
-        dense = np.zeros((chunk.shape[0], k + 1), dtype=np.int64)
-        dense[np.arange(chunk.shape[0])[:, None], chunk] = numer
-        dense[:, k] = det
-        for row in np.unique(dense, axis=0).tolist():  # degenerate vertices have several bases
-            found.add((tuple(row[:k]), row[k]))
-
-
-def _vertices_exact(mat: list[list[int]], b: list[int]) -> set[Vertex]:
-    """The basic feasible solutions one basis at a time in Python integers (Bareiss
-    determinants and Cramer's rule): exact for entries of any size."""
-    m, k = len(mat), len(mat[0])
-    found: set[Vertex] = set()
-    for combo in itertools.combinations(range(k), m):
-        sub = [[mat[r][c] for c in combo] for r in range(m)]
-        det = bareiss_det(sub)
-        if det == 0:
-            continue
-        numer = [bareiss_det([[b[r] if c == i else sub[r][c] for c in range(m)]
-                              for r in range(m)]) for i in range(m)]
-        if det < 0:
-            det, numer = -det, [-x for x in numer]
-        if any(x < 0 for x in numer):
-            continue
-        g = math.gcd(det, *numer)
-        dense = [0] * k
-        for pos, c in enumerate(combo):
-            dense[c] = numer[pos] // g
-        found.add((tuple(dense), det // g))
-    return found
-
-
 @cache
 def _basic_solutions(columns: tuple[Normal, ...], rhs: Normal) -> Table:
     rows = [i for i, x in enumerate(rhs) if x != 0]
@@ -303,9 +150,7 @@ def _basic_solutions(columns: tuple[Normal, ...], rhs: Normal) -> Table:
         return Table(columns=(), scaled=np.zeros((0, 1), dtype=np.int64), lcm=1)
     mat = [[columns[j][i] for j in keep] for i in rows]
     b = [rhs[i] for i in rows]
-    vectors = [[columns[j][i] for i in rows] for j in keep] + [b]
-    found = (_vertices_int64(mat, b) if _hadamard_safe(vectors, m)
-             else _vertices_exact(mat, b))
+    found = basic_feasible_solutions(mat, b)
     ordered = sorted(found)
     lcm = math.lcm(1, *(den for _, den in ordered))
     cols = [[x * (lcm // den) for x in numer] for numer, den in ordered]
@@ -395,114 +240,6 @@ def balanced_vertices(size: int) -> BalancedVertices:
     assert table.columns == tuple(range(len(proper)))  # every proper subset may be positive
     return BalancedVertices(size=size, columns=tuple(range(1, len(proper) + 1)),
                             vertices=tuple(table.vertices), lcm=table.lcm, scaled=table.scaled)
-
-
-@cache
-def packing_vertices(normals: tuple[Normal, ...], every: bool = False
-                     ) -> tuple[tuple[tuple[Fraction, ...], tuple[Fraction, ...]], ...]:
-    """The vertices ``λ`` of ``{λ >= 0 : Σ_n λ_n n <= 1}`` with ``y_λ = Σ_n λ_n n`` not 0/1.
-
-    Returned as pairs ``(λ, y_λ)``. Vertices whose ``y_λ`` is a 0/1 vector are left out unless
-    ``every``: for closed support numbers the arc condition holds for them automatically
-    (``proofs/NGOAL.md`` NG.8); ``λ = 0`` is always left out. Enumerated by their bases
-    (:func:`_packing_bases`): a vertex whose ``y`` is not the all-ones vector has fewer than
-    ``N`` basic normals, so only those bases are tried unless ``every``.
-
-    Examples
-    --------
-    >>> len(packing_vertices(zero_one_normals(3)))
-    0
-    >>> sorted({y for _, y in packing_vertices(zero_one_normals(4))})[0]
-    (Fraction(1, 2), Fraction(1, 1), Fraction(1, 1), Fraction(1, 1))
-    """
-    n = len(normals[0])
-    out = set()
-    for lam_sparse, y in _packing_bases(normals, n if every else n - 1):
-        if any(x not in (0, 1) for x in y) or every:
-            lam = [Fraction(0)] * len(normals)
-            for j, c in lam_sparse:
-                lam[j] = c
-            out.add((tuple(lam), y))
-    return tuple(sorted(out))
-
-
-def _packing_bases(normals: tuple[Normal, ...], t_max: int
-                   ) -> set[tuple[tuple[tuple[int, Fraction], ...], tuple[Fraction, ...]]]:
-    """The vertices ``λ != 0`` of ``{λ >= 0 : Σ_n λ_n n <= 1}`` with at most ``t_max`` basic
-    normals, as ``(((j, λ_j > 0), …), y_λ)``.
-
-    A vertex has basic normals ``B`` and basic slacks ``S``; with ``T`` the other coordinates,
-    ``y_T = 1``, ``B_T λ_B = 1_T`` (``B_T`` non-singular, ``|B| = |T|``), ``λ_B >= 0`` and
-    ``y_S <= 1``: every choice of ``t = |B| = |T|`` normals and coordinates is tried, with exact
-    integer determinants (vectorised; the entries are small). A degenerate vertex has several
-    bases and is kept once.
-    """
-    n = len(normals[0])
-    amat = np.array(normals, dtype=np.int64)  # K × n
-    k = amat.shape[0]
-    found: set[tuple[tuple[tuple[int, Fraction], ...], tuple[Fraction, ...]]] = set()
-    seen: set[tuple[int, ...]] = set()
-    for t in range(1, t_max + 1):
-        combos_all = itertools.combinations(range(k), t)
-        while True:
-            combos = np.array(list(itertools.islice(combos_all, 200_000)), dtype=np.int64)
-            if combos.size == 0:
-                break
-            cols = amat[combos]  # (C, t, n): the t normals of every combination
-            for tset in itertools.combinations(range(n), t):
-                entries = [[np.ascontiguousarray(cols[:, c, tset[r]]) for c in range(t)]
-                           for r in range(t)]
-                det = dets(entries)
-                ok = det != 0
-                if not ok.any():
-                    continue
-                sub = [[e[ok] for e in row] for row in entries]
-                d = det[ok]
-                ones = np.ones(d.size, dtype=np.int64)
-                lam = np.stack([dets([[ones if c == i else sub[r][c] for c in range(t)]
-                                      for r in range(t)]) for i in range(t)], axis=1)
-                lam = lam * np.where(d > 0, 1, -1).astype(d.dtype)[:, None]  # λ·|det|
-                feas = np.all(lam >= 0, axis=1)
-                if not feas.any():
-                    continue
-                y = (lam[feas][:, :, None] * cols[ok][feas]).sum(axis=1)  # y·|det|
-                ad = np.abs(d[feas])
-                keep = np.all(y <= ad[:, None], axis=1)
-                nums = np.concatenate([lam[feas][keep], y[keep], ad[keep][:, None]], axis=1)
-                nums //= np.gcd.reduce(nums, axis=1)[:, None]  # lowest terms: one key per λ
-                rows = np.concatenate([combos[ok][feas][keep], nums], axis=1)
-                for row in np.unique(rows, axis=0).tolist():
-                    seen.add(tuple(row))
-        for row in seen:  # the same λ from another T: already in lowest terms, kept once
-            den = row[-1]
-            lam_row = tuple((j, Fraction(c, den)) for j, c in
-                            zip(row[:t], row[t:2 * t], strict=True) if c)
-            found.add((lam_row, tuple(Fraction(x, den) for x in row[2 * t:-1])))
-        seen.clear()
-    return found
-
-
-@cache
-def packing_directions(normals: tuple[Normal, ...]) -> tuple[tuple[Fraction, ...], ...]:
-    """Every non-zero ``y_λ = Σ_n λ_n n`` over the vertices ``λ`` of ``{λ >= 0 : Σ_n λ_n n <= 1}``.
-
-    Every such ``y`` has ``max y = 1`` (a vertex ``λ != 0`` has a tight row), and a vertex with
-    ``N`` basic normals has ``y = 1``: so the directions are the all-ones vector and those of
-    :func:`_packing_bases` with fewer than ``N`` basic normals. ``normals`` must contain the
-    unit vectors.
-
-    Examples
-    --------
-    >>> ys = packing_directions(zero_one_normals(4))
-    >>> len(ys), sum(1 for y in ys if any(x not in (0, 1) for x in y))
-    (19, 4)
-    >>> len(packing_directions(zero_one_normals(5))) - 31
-    45
-    """
-    n = len(normals[0])
-    found = {y for _, y in _packing_bases(normals, n - 1)}
-    found.add((Fraction(1),) * n)
-    return tuple(sorted(found))
 
 
 def cheapest(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:

@@ -111,6 +111,28 @@ def _rescaled(num: np.ndarray, grow: int, den: int) -> np.ndarray:
     return np.asarray(vals, dtype=np.int64)
 
 
+def _closures(system: NormalSystem, trivial: list[bool], sub: np.ndarray
+              ) -> tuple[list[tuple[np.ndarray, int] | None], int]:
+    """Every normal's closure ``min_c Σ_n c_n s_n`` over its cover table at the rows of the
+    steps ``sub`` (``(|A|, rows)``), as ``(numerators, denominator)`` (None: the only cover is
+    the normal itself), and the factor by which the common scale must grow to hold them."""
+    closed: list[tuple[np.ndarray, int] | None] = []
+    rows = sub.shape[1]
+    for j, tab in enumerate(system.closures):
+        if trivial[j]:
+            closed.append(None)  # the only cover is a itself: the step value
+            continue
+        cols = np.asarray(tab.columns, dtype=np.int64)
+        found = cover_minimum(sub[cols].T, np.zeros((rows, cols.size), dtype=bool), tab)
+        assert found is not None  # a itself is a vertex
+        closed.append((found[0], found[1]))
+    grow = 1
+    for x in closed:  # grow D where a closure value is not a multiple of its table's lcm
+        if x is not None and x[1] > 1:
+            grow = math.lcm(grow, x[1] // _gcd_mod(x[0], x[1]))
+    return closed, grow
+
+
 def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
                max_layers: int) -> Fixpoint | LayerFailure:
     """The normal-restricted DP from the goals until a layer repeats (or, with
@@ -123,16 +145,13 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
     """
     n = graph.n_nodes
     a = len(system.normals)
-    den = graph.denominator
-    scale = den
-    m = np.zeros((a, n), dtype=np.int64)
-    finite = np.zeros(n, dtype=bool)
-    rank = np.zeros((a, n), dtype=np.int32)
-    normals = np.array(system.normals, dtype=np.int64)  # (|A|, N)
-    goals = np.asarray(graph.goals, dtype=np.int64)
-    m[:, goals] = normals @ graph.terminal.T  # a·d(g, g^·), numerators over den
+    den = scale = graph.denominator
+    m, finite, rank = np.zeros((a, n), dtype=np.int64), np.zeros(n, dtype=bool), np.zeros(
+        (a, n), dtype=np.int32)
+    changed = goals = np.asarray(graph.goals, dtype=np.int64)
+    # a·d(g, g^·) at the goals, numerators over den
+    m[:, goals] = np.array(system.normals, dtype=np.int64) @ graph.terminal.T
     finite[goals] = True
-    changed = goals
     tops = system.tops
     top_all = int(tops.max())
     trivial = [t.n_vertices == 1 for t in system.closures]
@@ -157,23 +176,9 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
         cand = tops[:, None] * w_s[None, :] + m[:, heads]
         cand[:, ~fin_h] = big
         step = np.minimum.reduceat(cand, seg, axis=1)
-        live = np.flatnonzero(fin_rows)
-        new = np.zeros((a, rows.size), dtype=np.int64)
+        live, new = np.flatnonzero(fin_rows), np.zeros((a, rows.size), dtype=np.int64)
         sub = step[:, live]
-        closed: list[tuple[np.ndarray, int] | None] = []
-        for j, tab in enumerate(system.closures):
-            if trivial[j]:
-                closed.append(None)  # the only cover is a itself: the step value
-                continue
-            cols = np.asarray(tab.columns, dtype=np.int64)
-            found = cover_minimum(sub[cols].T, np.zeros((live.size, cols.size), dtype=bool), tab)
-            assert found is not None  # a itself is a vertex
-            closed.append((found[0], found[1]))
-        # back to scale D: grow D where a closure value is not a multiple of its table's lcm
-        grow = 1
-        for x in closed:
-            if x is not None and x[1] > 1:
-                grow = math.lcm(grow, x[1] // _gcd_mod(x[0], x[1]))
+        closed, grow = _closures(system, trivial, sub)
         if grow > 1:
             scale *= grow
             m *= grow
@@ -181,24 +186,18 @@ def layered_dp(graph: ArcGraph, system: NormalSystem, *, check_layers: bool,
             sub = sub * grow
             if mmax * 4 > INT_LIMIT:
                 raise BudgetExceeded("numbers beyond the exact int64 range")
-        for j in range(a):
-            x = closed[j]
-            if x is None:
-                new[j, live] = sub[j]
-                continue
-            new[j, live] = _rescaled(x[0], grow, x[1])
+        for j, x in enumerate(closed):
+            new[j, live] = sub[j] if x is None else _rescaled(x[0], grow, x[1])
         if live.size:
             mmax = max(mmax, int(new[:, live].max()))
         if check_layers:
-            t_arcs = fin_rows[np.repeat(np.arange(rows.size), np.diff(np.append(seg, len(arcs))))]
-            keep = t_arcs & fin_h
-            if keep.any():
-                arc_tail = np.repeat(np.arange(rows.size), np.diff(np.append(seg, len(arcs))))
-                bad, _ = arc_failures(system, new, m, arc_tail[keep], heads[keep],
-                                      graph.weights[arcs][keep] * (scale // den))
-                if bad.any():
-                    tails = np.unique(rows[arc_tail[keep][bad]])
-                    return LayerFailure(k, tails, rows, new, m.copy(), finite.copy(), scale)
+            arc_tail = np.repeat(np.arange(rows.size), np.diff(np.append(seg, len(arcs))))
+            keep = fin_rows[arc_tail] & fin_h
+            bad, _ = arc_failures(system, new, m, arc_tail[keep], heads[keep],
+                                  graph.weights[arcs][keep] * (scale // den))
+            if bad.any():
+                tails = np.unique(rows[arc_tail[keep][bad]])
+                return LayerFailure(k, tails, rows, new, m.copy(), finite.copy(), scale)
         old_fin = finite[rows]
         diff = (new != m[:, rows]) & fin_rows[None, :]
         diff |= (fin_rows & ~old_fin)[None, :]

@@ -56,3 +56,51 @@ def test_too_few_open_files_is_one_line() -> None:
     assert r.stderr.strip().splitlines()[-1].startswith(
         "solver.errors.InvalidInstanceError: --workers 2 needs about ")
     assert "the limit is 20 (ulimit -n)" in r.stderr
+
+
+class _Stop(Exception):
+    """Raised by a progress callback: a signal arriving between two results."""
+
+
+def _live_pool(before: set[int]) -> set[int]:
+    return set(descendants(os.getpid())) - before
+
+
+def test_a_signal_between_two_results_ends_the_density_pool_at_once() -> None:
+    """An exception raised outside the pool's generator (the progress callback, where a
+    signal lands most of the time) ends every worker and the forkserver before it reaches
+    the caller, not when the generator is collected after the command's exit message — the
+    moment a worker still starting would find its semaphores unlinked and print a
+    ``SemLock._rebuild`` traceback. The exception, with its traceback (which holds the
+    generator's frame), is still alive when the pool is checked."""
+    from solver.experiments.density import DensityConfig, _run_local, tasks_of
+
+    tasks = tasks_of(DensityConfig(size=6, start=(5, 0), goals=((0, 5), (0, 0)),
+                                   densities=(0, 10, 20), samples=6, chunk=1))
+    before = set(descendants(os.getpid()))
+
+    def progress(_: int) -> None:
+        raise _Stop
+
+    with pytest.raises(_Stop) as caught:
+        _run_local(tasks, 2, progress)
+    assert caught.value.__traceback__ is not None  # nothing collected yet
+    assert not _live_pool(before), "the pool outlives the exception"
+
+
+def test_a_signal_between_two_results_ends_the_batch_pool_at_once(tmp_path: Path) -> None:
+    """The same for ``dpp batch --workers``: the exception leaves run_batch with no worker."""
+    from solver.cli.batch import batch_example
+    from solver.experiments.batch import BatchConfig, run_batch
+
+    checker, scen = batch_example()
+    before = set(descendants(os.getpid()))
+
+    def progress(_: int) -> None:
+        raise _Stop
+
+    with pytest.raises(_Stop) as caught:
+        run_batch(scen, tmp_path / "b.csv", BatchConfig(), checker, workers=2, chunk=1,
+                  progress=progress)
+    assert caught.value.__traceback__ is not None
+    assert not _live_pool(before), "the pool outlives the exception"
