@@ -1,10 +1,11 @@
 """An independent judge for the guarantee rule with normals (tests only; slow and simple).
 
-Nothing here uses the checker's rule code: the rule's DP is the layered recursion of
-``proofs/NRULE.md`` (dominated covers, NG.7's layers until one repeats) in Fractions (only the
-cover polytopes' vertex tables are the checker's); the rule's ``σ`` is the lexicographic
-minimum found by enumerating the vertices of ``F``; best responses enumerate the walks
-(deduplicated by node and state).
+Nothing here uses the checker's code: the rule's DP is the layered recursion of
+``proofs/NRULE.md`` (dominated covers, NG.7's layers until one repeats) in Fractions over the
+cover polytopes' vertex tables of the *solver* (:func:`solver.coalitions.vertex_tables.
+vertex_table`, an implementation the checker does not share); the rule's ``σ`` is the
+lexicographic minimum found by enumerating the vertices of ``F``; best responses enumerate
+the walks (deduplicated by node and state).
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from fractions import Fraction
 import numpy as np
 
 from dppverify.game.instance import Instance
-from dppverify.structured.cover import basic_solutions
+from solver.coalitions.vertex_tables import vertex_table
 
 Normal = tuple[int, ...]
 
@@ -41,11 +42,9 @@ def solve(mat: list[list[Fraction]], n: int) -> list[Fraction] | None:
 
 @functools.cache
 def cover_vertices(columns: tuple[Normal, ...], rhs: Normal) -> list[dict[int, Fraction]]:
-    """Every vertex of ``{c >= 0 : Σ c_j columns[j] = rhs}`` (the checker's exact vertex
-    enumeration, :func:`dppverify.structured.cover.basic_solutions`: the judge's recursion,
-    rule and walks are its own, the vertex tables are shared for speed)."""
-    table = basic_solutions(list(columns), rhs)
-    return [{table.columns[j]: c for j, c in enumerate(v) if c} for v in table.vertices]
+    """Every vertex of ``{c >= 0 : Σ c_j columns[j] = rhs}`` (the solver's exact vertex
+    enumeration: the checker's is the code under test)."""
+    return vertex_table(list(columns), rhs).vertices()
 
 
 def layered_dp(inst: Instance, normals: Sequence[Normal], max_layers: int = 400
