@@ -51,7 +51,7 @@ def packing_vertices(normals: tuple[Normal, ...], every: bool = False
     return tuple(sorted(out))
 
 
-def _packing_bases(normals: tuple[Normal, ...], t_max: int
+def _packing_bases(normals: tuple[Normal, ...], t_max: int, lambdas: bool = True
                    ) -> set[tuple[tuple[tuple[int, Fraction], ...], tuple[Fraction, ...]]]:
     """The vertices ``λ != 0`` of ``{λ >= 0 : Σ_n λ_n n <= 1}`` with at most ``t_max`` basic
     normals, as ``(((j, λ_j > 0), …), y_λ)``.
@@ -60,7 +60,8 @@ def _packing_bases(normals: tuple[Normal, ...], t_max: int
     ``y_T = 1``, ``B_T λ_B = 1_T`` (``B_T`` non-singular, ``|B| = |T|``), ``λ_B >= 0`` and
     ``y_S <= 1``: every choice of ``t = |B| = |T|`` normals and coordinates is tried, with exact
     integer determinants (vectorised; the entries are small). A degenerate vertex has several
-    bases and is kept once.
+    bases and is kept once. Without ``lambdas`` only the distinct ``y_λ`` are kept (with an
+    empty ``λ``): the directions alone are far fewer than the vertices.
     """
     n = len(normals[0])
     amat = np.array(normals, dtype=np.int64)  # K × n
@@ -93,13 +94,20 @@ def _packing_bases(normals: tuple[Normal, ...], t_max: int
                 y = (lam[feas][:, :, None] * cols[ok][feas]).sum(axis=1)  # y·|det|
                 ad = np.abs(d[feas])
                 keep = np.all(y <= ad[:, None], axis=1)
+                if not lambdas:
+                    nums = np.concatenate([y[keep], ad[keep][:, None]], axis=1)
+                    nums //= np.gcd.reduce(nums, axis=1)[:, None]  # lowest terms: one key per y
+                    seen.update(map(tuple, np.unique(nums, axis=0).tolist()))
+                    continue
                 nums = np.concatenate([lam[feas][keep], y[keep], ad[keep][:, None]], axis=1)
                 nums //= np.gcd.reduce(nums, axis=1)[:, None]  # lowest terms: one key per λ
                 rows = np.concatenate([combos[ok][feas][keep], nums], axis=1)
-                for row in np.unique(rows, axis=0).tolist():
-                    seen.add(tuple(row))
-        for row in seen:  # the same λ from another T: already in lowest terms, kept once
+                seen.update(map(tuple, np.unique(rows, axis=0).tolist()))
+        for row in seen:  # the same λ (or y) from another T: in lowest terms, kept once
             den = row[-1]
+            if not lambdas:
+                found.add(((), tuple(Fraction(x, den) for x in row[:-1])))
+                continue
             lam_row = tuple((j, Fraction(c, den)) for j, c in
                             zip(row[:t], row[t:2 * t], strict=True) if c)
             found.add((lam_row, tuple(Fraction(x, den) for x in row[2 * t:-1])))
@@ -126,6 +134,6 @@ def packing_directions(normals: tuple[Normal, ...]) -> tuple[tuple[Fraction, ...
     45
     """
     n = len(normals[0])
-    found = {y for _, y in _packing_bases(normals, n - 1)}
+    found = {y for _, y in _packing_bases(normals, n - 1, lambdas=False)}
     found.add((Fraction(1),) * n)
     return tuple(sorted(found))
