@@ -18,7 +18,7 @@ start and each type on its judge-cheapest walk. Timed, in one process, interleav
 The target is ``checker / judge <= 5`` on the N = 5 rows with 10–30 extra normals. ``--quick`` runs
 the two N = 4 rows (tests/test_benchmarks.py).
 
-Run: ``.venv/bin/python benchmarks/bench_guarantee_normals.py [--quick] [--repeat 1]``.
+Run: ``PYTHONPATH=. .venv/bin/python benchmarks/bench_guarantee_normals.py [--quick]``.
 """
 
 from __future__ import annotations
@@ -28,21 +28,17 @@ import itertools
 import math
 import os
 import random
-import sys
 import time
 from fractions import Fraction
-from pathlib import Path
 from typing import Any
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-from dppverify.certify import certify  # noqa: E402
-from dppverify.game.instance import Instance, instance_from_json  # noqa: E402
-from dppverify.structured.cover import min_cover_vectors  # noqa: E402
-from dppverify.structured.guarantee import guarantee_sets  # noqa: E402
-from tests.dppverify.structured._instances import digraph  # noqa: E402
-from tests.dppverify.structured._rule_judge import layered_dp, min_over_walks  # noqa: E402
-from tests.solver._ngoal_families import hub  # noqa: E402
+from dppverify.certify import certify
+from dppverify.game.instance import Instance, instance_from_json
+from dppverify.structured.cover import min_cover_vectors
+from dppverify.structured.guarantee import guarantee_sets
+from tests.dppverify.structured._instances import digraph
+from tests.dppverify.structured._rule_judge import layered_dp, min_over_walks
+from tests.solver._ngoal_families import hub
 
 Normal = tuple[int, ...]
 
