@@ -171,8 +171,8 @@ def main() -> None:
         if best is not None:  # the checker's exact minima against the judge's
             u = cert.check("value.U").numbers
             for t, (least, _) in enumerate(best):
-                regret = Fraction(br.numbers[f"regret{t + 1}"] or 0)
-                claimed = Fraction(u[f"U{t + 1}"]) - regret
+                regret = Fraction(str(br.numbers[f"regret{t + 1}"] or 0))
+                claimed = Fraction(str(u[f"U{t + 1}"])) - regret
                 assert least is not None, row["name"]
                 assert least >= claimed if regret == 0 else least == claimed, row["name"]
         t0 = time.perf_counter()
