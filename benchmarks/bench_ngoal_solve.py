@@ -69,8 +69,10 @@ from dppverify.formats.movingai import grid_document
 from dppverify.formats.movingai import read_map as checker_read_map
 from dppverify.formats.standard_maps import standard_map_path
 from solver import Instance, solve
-from solver.coalitions import guarantee_sets
+from solver.coalitions import guarantee_sets, normal_dp
+from solver.coalitions.arc_graph import ArcGraph
 from solver.coalitions.construction import coalition_equilibrium
+from solver.coalitions.normal_system import NormalSystem
 from solver.experiments.ngoal import corner_cells
 from solver.formats.movingai import read_map
 
@@ -84,10 +86,9 @@ ISSUE_ROWS: tuple[tuple[str, tuple[int, int] | None, tuple[tuple[int, int], ...]
                                    "maze-32-32-4")))
 
 
-def _layered_dp(graph: guarantee_sets.ArcGraph, system: guarantee_sets.NormalSystem,
-                max_layers: int) -> guarantee_sets.Fixpoint:
-    fix = guarantee_sets.layered_dp(graph, system, check_layers=False, max_layers=max_layers)
-    assert isinstance(fix, guarantee_sets.Fixpoint)
+def _layered_dp(graph: ArcGraph, system: NormalSystem, max_layers: int) -> normal_dp.Fixpoint:
+    fix = normal_dp.layered_dp(graph, system, check_layers=False, max_layers=max_layers)
+    assert isinstance(fix, normal_dp.Fixpoint)
     return fix
 
 

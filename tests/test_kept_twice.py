@@ -13,6 +13,7 @@ phases and N-goal rules by every certificate of a solved profile.
 from __future__ import annotations
 
 import itertools
+import random
 from fractions import Fraction
 
 import pytest
@@ -21,10 +22,14 @@ from hypothesis import strategies as st
 
 from dppverify.game.instance import instance_from_json as checker_instance
 from dppverify.structured import cover as checker_cover
+from dppverify.structured import packing as checker_packing
 from dppverify.structured.guarantee import rule_order
+from dppverify.structured.set_vertices import maximal_vertices
+from dppverify.structured.sum_membership import sum_membership
 from solver.coalitions import vertex_tables as solver_tables
+from solver.coalitions.arc_vertices import gauge, set_vertices
 from solver.coalitions.guarantee_rule import priority_order
-from solver.coalitions.guarantee_sets import symmetric_table as solver_symmetric
+from solver.coalitions.normal_system import symmetric_table as solver_symmetric
 from solver.game.instance_reading import instance_from_json as solver_instance
 
 
@@ -60,7 +65,7 @@ def test_the_priority_order_of_the_guarantee_rule(prior: list[Fraction]) -> None
 def test_the_directions_of_the_packing_polytope(normals: tuple[tuple[int, ...], ...]) -> None:
     """The solver keeps the directions that are not 0/1 vectors, the checker all of them."""
     ours = {d.y for d in solver_tables.packing_directions(normals)}
-    theirs = {y for y in checker_cover.packing_directions(normals)
+    theirs = {y for y in checker_packing.packing_directions(normals)
               if any(x not in (0, 1) for x in y)}
     assert ours == theirs
 
@@ -88,3 +93,20 @@ def test_the_primary_goal_index_of_two_goal_instances(prior: tuple[str, str]) ->
            "start": "s", "goals": ["a", "b"], "prior": list(prior)}
     assert (solver_instance(doc).primary_goal_index
             == checker_instance(doc).primary_goal_index)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_vertices_of_a_set_and_the_membership_lp(seed: int) -> None:
+    """The arc test by the vertices of ``F_v`` (proofs/NRULE.md NR.2(b)): the maximal vertices
+    and ``φ_u`` of each package agree on sets given by the support numbers of random points."""
+    rng = random.Random(seed)
+    for normals in NORMAL_SETS:
+        pts = [[rng.randint(0, 6) for _ in normals[0]] for _ in range(rng.randint(1, 4))]
+        values = [max(sum(a * p for a, p in zip(nm, pt, strict=True)) for pt in pts)
+                  for nm in normals]
+        ours = {tuple(Fraction(x, t) for x in xs) for xs, t in set_vertices(normals, values)}
+        theirs = {tuple(Fraction(x, t) for x in xs)
+                  for xs, t, _ in maximal_vertices(normals, values)}
+        assert ours == theirs
+        b = [rng.randint(-6, 8) for _ in normals]
+        assert gauge(normals, b)[0] == sum_membership(normals, b, 0).value

@@ -7,7 +7,7 @@ With ``m_a(v)`` the rule's DP at ``H = inf`` over its normals ``A``
 rule's ``F`` non-empty on every walk and guarantees every type ``h_θ`` (NR.2, NSOLVE.1). By
 Farkas' lemma it holds iff ``h_{F_v}(y) <= h_{F_u}(y) + w`` for the finitely many directions
 ``y`` of the packing polytope's vertices
-(:func:`~dppverify.structured.cover.packing_directions`, each with ``max y = 1``); for the 0/1
+(:func:`~dppverify.structured.packing.packing_directions`, each with ``max y = 1``); for the 0/1
 vectors alone the support numbers are closed and the DP's fixpoint gives the 0/1 directions,
 so only the others are tested (none for ``N <= 3``; NSOLVE.2's non-pattern rays
 :func:`bad_rays` are the same test in ray form). The support functions are exact cover LPs at
@@ -25,11 +25,15 @@ from typing import Any
 
 import numpy as np
 
-from dppverify.structured.cover import dets, packing_directions
 from dppverify.structured.cover_lp import cover_values
+from dppverify.structured.exact_bases import dets
 from dppverify.structured.normal_fixpoint import NormalSets
+from dppverify.structured.packing import packing_directions
+from dppverify.structured.set_vertices import SetVertex, maximal_vertices
+from dppverify.structured.sum_membership import sum_membership
 
-__all__ = ["ArcCondition", "arc_condition", "bad_rays", "walkable_arcs"]
+__all__ = ["ArcCondition", "arc_condition", "bad_rays", "direction_test", "vertex_test",
+           "walkable_arcs"]
 
 
 def _minors(mats: np.ndarray) -> np.ndarray:
@@ -111,7 +115,10 @@ class ArcCondition:
     failing : tuple of tuple of int
         Every failing arc ``(v, u)``.
     directions : tuple
-        Every direction ``y`` in which some arc fails.
+        Every direction ``y`` in which some arc fails (the vertex route: the most violated
+        direction at each failing vertex).
+    vertices : int
+        (Arc, vertex of ``F_v``) pairs tested by the vertex route (0 for the directions).
     """
 
     holds: bool
@@ -120,6 +127,7 @@ class ArcCondition:
     failure: tuple[int, int, tuple[tuple[Any, Any], ...]] | None
     failing: tuple[tuple[int, int], ...] = ()
     directions: tuple[tuple[Fraction, ...], ...] = ()
+    vertices: int = 0
 
 
 def walkable_arcs(sets: NormalSets, start: int | None = None
@@ -162,10 +170,14 @@ def walkable_arcs(sets: NormalSets, start: int | None = None
     return tails, heads, wts
 
 
-def arc_condition(sets: NormalSets, start: int | None = None) -> ArcCondition:
+def arc_condition(sets: NormalSets, start: int | None = None, *,
+                  route: str = "auto") -> ArcCondition:
     """Check the arc condition exactly on every walkable arc (see the module docstring).
 
-    ``start``: only the arcs a walk from ``start`` can take.
+    ``start``: only the arcs a walk from ``start`` can take. ``route``: ``"auto"`` (the
+    vertices of ``F_v`` when there are extra normals, else the few non-0/1 directions),
+    ``"directions"`` (the support functions in every packing direction, NR.2(a)), or
+    ``"vertices"``.
 
     Examples
     --------
@@ -180,6 +192,8 @@ def arc_condition(sets: NormalSets, start: int | None = None) -> ArcCondition:
     >>> arc_condition(guarantee_sets(hub4(), extras)).holds
     True
     """
+    if route not in ("auto", "directions", "vertices"):
+        raise ValueError(f"arc_condition: unknown route {route!r}")
     tails, heads, weights = walkable_arcs(sets, start)
     narcs = len(tails)
     if narcs == 0:
@@ -202,15 +216,75 @@ def arc_condition(sets: NormalSets, start: int | None = None) -> ArcCondition:
             k = int(bad[0])
             fail = tuple((tails[i], heads[i]) for i in bad.tolist())
             return ArcCondition(False, narcs, 0, (tails[k], heads[k], (("y", a),)), fail)
-    return _support_test(sets, tails, heads, w_scaled)
+    if route == "vertices" or (route == "auto" and sets.extras):
+        return vertex_test(sets, tails, heads, w_scaled)
+    return direction_test(sets, tails, heads, w_scaled)
 
 
-def _support_test(sets: NormalSets, tails: list[int], heads: list[int],
-                  w_scaled: np.ndarray) -> ArcCondition:
+def vertex_test(sets: NormalSets, tails: list[int], heads: list[int], w_scaled: np.ndarray
+                ) -> ArcCondition:
+    """``F_v ⊆ F_u + wΔ^N`` on every arc by the maximal vertices of ``F_v`` (``proofs/NRULE.md``
+    NR.2(b)): each vertex ``r`` (:func:`~dppverify.structured.set_vertices.maximal_vertices`,
+    once per tail) must satisfy ``φ_u(r) <= w``, one exact LP per vertex and arc with its
+    certificate (:func:`~dppverify.structured.sum_membership.sum_membership`). A failing
+    vertex names the most violated direction ``y_λ`` of its LP.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import hub4
+    >>> from dppverify.structured.guarantee import guarantee_sets
+    >>> sets = guarantee_sets(hub4())
+    >>> t, h, w = walkable_arcs(sets, 0)
+    >>> got = vertex_test(sets, t, h, np.array([int(x * sets.scale) for x in w], dtype=object))
+    >>> got.holds, got.failing, [str(x) for x in got.failure[2][0][1]]
+    (False, ((0, 1),), ['1', '1', '1', '1/2'])
+    """
+    narcs = len(tails)
+    normals = sets.normals
+    n = len(normals[0])
+    cols: dict[int, list[int]] = {}
+
+    def column(v: int) -> list[int]:
+        if v not in cols:
+            cols[v] = [int(row[v]) for row in sets.rows]
+        return cols[v]
+
+    verts: dict[int, tuple[SetVertex, ...]] = {}
+    failing: list[tuple[int, int]] = []
+    first: tuple[int, int, tuple[tuple[Any, Any], ...]] | None = None
+    bad_ys: dict[tuple[Fraction, ...], None] = {}
+    tested = 0
+    for k in range(narcs):
+        v, u, w = tails[k], heads[k], int(w_scaled[k])
+        if v not in verts:
+            verts[v] = maximal_vertices(normals, column(v))
+        mu = column(u)
+        bad = False
+        for x, t, _ in verts[v]:
+            tested += 1
+            b = [sum(a[i] * x[i] for i in range(n) if a[i]) - t * m for a, m in
+                 zip(normals, mu, strict=True)]
+            got = sum_membership(normals, b, t * w)
+            if not got.inside:
+                y = got.direction(normals)
+                bad_ys.setdefault(y, None)
+                if first is None:
+                    first = (v, u, (("y", y),))
+                bad = True
+        if bad:
+            failing.append((v, u))
+    return ArcCondition(first is None, narcs, 0, first, tuple(sorted(set(failing))),
+                        tuple(bad_ys), vertices=tested)
+
+
+def direction_test(sets: NormalSets, tails: list[int], heads: list[int],
+                   w_scaled: np.ndarray) -> ArcCondition:
     """``h_{F_v}(y) <= h_{F_u}(y) + w`` on every arc for every packing direction ``y``
-    (``proofs/NRULE.md`` NR.2; ``max y = 1``). Without extra normals the support numbers are
-    closed and the 0/1 directions hold by the fixpoint's step inequality (NG.8(c)), so only
-    the others are tested."""
+    (``proofs/NRULE.md`` NR.2(a); ``max y = 1``). Without extra normals the support numbers
+    are closed and the 0/1 directions hold by the fixpoint's step inequality (NG.8(c)), so
+    only the others are tested. With extra normals the directions number in the thousands
+    (:func:`vertex_test` is the default there; this route stays as its independent
+    cross-check)."""
     narcs = len(tails)
     ys = [y for y in packing_directions(sets.normals)
           if sets.extras or any(x not in (0, 1) for x in y)]

@@ -5,16 +5,13 @@ by a family of columns (subsets as 0/1 vectors, or non-negative integer *normals
 ``c >= 0`` with ``Σ_j c_j columns[j] = r``. The one vertex enumeration and the one exact LP of
 the structured route:
 
-- :func:`basic_solutions`: every vertex of ``{c >= 0 : Σ_j c_j columns[j] = rhs}`` — every
-  choice of ``|support of rhs|`` columns with a non-zero exact integer determinant
-  (:func:`dets`: Laplace expansion, vectorised), solved by Cramer's rule, kept when
-  non-negative; nothing is decided in floating point. :func:`symmetric_table` shares one table
-  between permuted right-hand sides.
+- :func:`basic_solutions`: every vertex of ``{c >= 0 : Σ_j c_j columns[j] = rhs}`` as an
+  integer table (the exact bases of :mod:`dppverify.structured.exact_bases`: int64 under
+  Hadamard's bound, else Python integers; nothing is decided in floating point).
+  :func:`symmetric_table` shares one table between permuted right-hand sides.
 - :func:`balanced_vertices`: the vertices of ``{c >= 0 : Σ_{T ⊊ S} c_T 1_T = 1_S}`` for the
   ground set ``S = {0, …, s-1}`` — the *minimal balanced collections* of cooperative game
   theory (Shapley), 1, 5, 41 and 1291 of them for ``s = 2 … 5``.
-- :func:`packing_vertices`: the vertices of the packing polytope ``{λ >= 0 : Σ_n λ_n n <= 1}``
-  of a set of normals (the arc certificate of ``proofs/NGOAL.md`` NG.8).
 - :func:`cheapest`: ``min`` over a table's vertices of ``values · c`` at every row, exactly.
 - :func:`min_cover`: ``min Σ_T c_T m_T`` over covers of any positive ``r`` by all non-empty
   subsets, by the primal simplex method in exact rationals (Bland's rule), starting from the
@@ -34,11 +31,11 @@ from functools import cache
 import numpy as np
 
 from dppverify.game.distances import EXACT_FLOAT_LIMIT
+from dppverify.structured.exact_bases import INT_SAFE, basic_feasible_solutions
 
 __all__ = ["MAX_BALANCED", "BalancedVertices", "CoverLP", "Normal", "Table", "balanced_vertices",
-           "basic_solutions", "cheapest", "dets", "members", "min_cover", "min_cover_vectors",
-           "packing_directions", "packing_vertices", "popcount", "symmetric_table",
-           "zero_one_normals"]
+           "basic_solutions", "cheapest", "members", "min_cover", "min_cover_vectors", "popcount",
+           "symmetric_table", "zero_one_normals"]
 
 Normal = tuple[int, ...]
 """A facet normal (or cover column): a non-negative integer vector, one entry per goal index."""
@@ -94,41 +91,6 @@ class BalancedVertices:
     scaled: np.ndarray
 
 
-def dets(entries: Sequence[Sequence[np.ndarray]]) -> np.ndarray:
-    """Exact integer determinants of a batch of small integer matrices.
-
-    ``entries[r][c]`` holds entry ``(r, c)`` of every matrix (a 1-D int64 array). Laplace
-    expansion bottom-up over column subsets: the minor of the last ``j`` rows on a ``j``-column
-    set ``C`` is ``Σ_{c ∈ C} ± M[s-j, c] · minor(C - c)``. Where a minor could leave int64
-    (``s!·max|entry|^s >= 2^62``) the arithmetic is in Python integers (an object array).
-
-    Examples
-    --------
-    The determinants of ``[[2, 1], [1, 1]]`` and ``[[0, 1], [1, 0]]``:
-
-    >>> a = np.array
-    >>> dets([[a([2, 0]), a([1, 1])], [a([1, 1]), a([1, 0])]]).tolist()
-    [1, -1]
-    """
-    s = len(entries)
-    top = max((int(np.abs(e).max(initial=0)) for row in entries for e in row), default=0)
-    if math.factorial(s) * max(top, 1) ** s >= 2 ** 62:  # |minor| <= j!·top^j: Python ints
-        entries = [[np.asarray(e, dtype=object) for e in row] for row in entries]
-    minors: dict[int, np.ndarray] = {0: np.ones_like(entries[0][0])}
-    for j in range(1, s + 1):
-        row = s - j
-        nxt: dict[int, np.ndarray] = {}
-        for cols in itertools.combinations(range(s), j):
-            mask = sum(1 << c for c in cols)
-            acc = np.zeros_like(entries[0][0])
-            for pos, c in enumerate(cols):
-                term = entries[row][c] * minors[mask & ~(1 << c)]
-                acc = acc - term if pos % 2 else acc + term
-            nxt[mask] = acc
-        minors = nxt
-    return minors[(1 << s) - 1]
-
-
 @dataclass(frozen=True)
 class Table:
     """The vertices of ``{c >= 0 : Σ_j c_j columns[j] = rhs}``, scaled to integers.
@@ -159,7 +121,11 @@ def basic_solutions(columns: Sequence[Sequence[int]], rhs: Sequence[int]) -> Tab
     Rows outside the support of ``rhs`` force the columns that use them to 0; on the
     support, the unit vectors must be among the columns (full row rank). The vertices are the
     basic feasible solutions: every choice of ``|support|`` columns with a non-zero exact
-    integer determinant, solved by Cramer's rule, kept when non-negative, de-duplicated.
+    integer determinant, solved by Cramer's rule, kept when non-negative, reduced to lowest
+    terms and de-duplicated (a degenerate vertex has several bases). The determinants are
+    int64 (vectorised) when Hadamard's bound proves every minor and every sum of the Laplace
+    expansion below ``2^62``, else Python integers by fraction-free elimination; the table is
+    int64 when its scaled vertices fit, else an array of Python integers (storage only).
 
     Examples
     --------
@@ -182,60 +148,21 @@ def _basic_solutions(columns: tuple[Normal, ...], rhs: Normal) -> Table:
     m = len(rows)
     if m == 0:
         return Table(columns=(), scaled=np.zeros((0, 1), dtype=np.int64), lcm=1)
-    mat = np.array([[columns[j][i] for j in keep] for i in rows], dtype=np.int64)
-    b = np.array([rhs[i] for i in rows], dtype=np.int64)
-    found: list[np.ndarray] = []
-    dens: list[int] = []
-    all_combos = itertools.combinations(range(len(keep)), m)
-    while True:
-        chunk = np.array(list(itertools.islice(all_combos, 200_000)), dtype=np.int64)
-        if chunk.size == 0:
-            break
-        entries = [[np.ascontiguousarray(mat[r, chunk[:, c]]) for c in range(m)]
-                   for r in range(m)]
-        det = dets(entries)
-        ok = det != 0
-        chunk, det = chunk[ok], det[ok]
-        entries = [[e[ok] for e in row] for row in entries]
-        if not chunk.size:
-            continue
-        numer = np.empty((chunk.shape[0], m), dtype=det.dtype)
-        for i in range(m):  # Cramer: column i replaced by the right-hand side
-            numer[:, i] = dets([[np.full(chunk.shape[0], b[r]) if c == i else entries[r][c]
-                                 for c in range(m)] for r in range(m)])
-        sign = np.where(det > 0, 1, -1).astype(det.dtype)[:, None]
-        feas = np.all(numer * sign >= 0, axis=1)
-        chunk, det, numer = chunk[feas], det[feas], numer[feas]
-        if not chunk.size:
-            continue
-        common = math.lcm(1, *(int(x) for x in np.unique(np.abs(det))))
-        wide = common * (int(np.abs(numer).max(initial=0)) + 1) >= 2 ** 62
-        dense = np.zeros((chunk.shape[0], len(keep)), dtype=object if wide else np.int64)
-        idx = np.arange(chunk.shape[0])
-        factor = np.array([common // int(x) for x in det], dtype=object if wide else np.int64)
-        for i in range(m):
-            dense[idx, chunk[:, i]] = numer[:, i].astype(dense.dtype) * factor
-        # degenerate vertices have several bases
-        found.append(np.unique(dense, axis=0) if not wide else
-                     np.array(sorted(set(map(tuple, dense.tolist()))), dtype=object))
-        dens.append(common)
-    lcm = math.lcm(1, *dens)
-    top = max((int(np.abs(d).max(initial=0)) * (lcm // c) for d, c in
-               zip(found, dens, strict=True)), default=0)
-    if top < 2 ** 62:
-        stacked = np.concatenate([d * (lcm // c) for d, c in zip(found, dens, strict=True)]) \
-            if found else np.zeros((0, len(keep)), dtype=np.int64)
-        unique = np.unique(stacked, axis=0)
-        g = math.gcd(lcm, *(int(x) for x in np.unique(unique)))
-        scaled = np.ascontiguousarray((unique // g).T)
-    else:  # beyond int64: exact Python integers (N = 5 tables can get there)
-        rows_set = {tuple(int(x) * (lcm // c) for x in row) for d, c in
-                    zip(found, dens, strict=True) for row in d.tolist()}
-        rows_sorted = sorted(rows_set)
-        g = math.gcd(lcm, *(x for row in rows_sorted for x in row))
-        scaled = np.array([[x // g for x in row] for row in rows_sorted],
-                          dtype=object).reshape(len(rows_sorted), len(keep)).T.copy()
-    return Table(columns=tuple(keep), scaled=scaled, lcm=lcm // g)
+    mat = [[columns[j][i] for j in keep] for i in rows]
+    b = [rhs[i] for i in rows]
+    found = basic_feasible_solutions(mat, b)
+    ordered = sorted(found)
+    lcm = math.lcm(1, *(den for _, den in ordered))
+    cols = [[x * (lcm // den) for x in numer] for numer, den in ordered]
+    top = max((x for col in cols for x in col), default=0)
+    if top < INT_SAFE:
+        scaled = np.array(cols, dtype=np.int64).reshape(len(cols), len(keep)).T.copy()
+    else:  # the common denominator leaves int64: the table holds Python integers
+        scaled = np.empty((len(keep), len(cols)), dtype=object)
+        for v, col in enumerate(cols):
+            for i, x in enumerate(col):
+                scaled[i, v] = x
+    return Table(columns=tuple(keep), scaled=scaled, lcm=lcm)
 
 
 def symmetric_table(normals: tuple[Normal, ...], rhs: Normal) -> Table:
@@ -313,95 +240,6 @@ def balanced_vertices(size: int) -> BalancedVertices:
     assert table.columns == tuple(range(len(proper)))  # every proper subset may be positive
     return BalancedVertices(size=size, columns=tuple(range(1, len(proper) + 1)),
                             vertices=tuple(table.vertices), lcm=table.lcm, scaled=table.scaled)
-
-
-@cache
-def packing_vertices(normals: tuple[Normal, ...], every: bool = False
-                     ) -> tuple[tuple[tuple[Fraction, ...], tuple[Fraction, ...]], ...]:
-    """The vertices ``λ`` of ``{λ >= 0 : Σ_n λ_n n <= 1}`` with ``y_λ = Σ_n λ_n n`` not 0/1.
-
-    Returned as pairs ``(λ, y_λ)``. Vertices whose ``y_λ`` is a 0/1 vector are left out unless
-    ``every``: for closed support numbers the arc condition holds for them automatically
-    (``proofs/NGOAL.md`` NG.8); ``λ = 0`` is always left out.
-
-    Examples
-    --------
-    >>> len(packing_vertices(zero_one_normals(3)))
-    0
-    >>> sorted({y for _, y in packing_vertices(zero_one_normals(4))})[0]
-    (Fraction(1, 2), Fraction(1, 1), Fraction(1, 1), Fraction(1, 1))
-    """
-    n = len(normals[0])
-    slack = tuple(tuple(int(i == j) for i in range(n)) for j in range(n))
-    table = basic_solutions(normals + slack, (1,) * n)
-    out = []
-    for v in table.vertices:
-        lam = [Fraction(0)] * len(normals)
-        for pos, col in enumerate(table.columns):
-            if col < len(normals):
-                lam[col] = v[pos]
-        y = tuple(sum((lam[j] * normals[j][i] for j in range(len(normals))), Fraction(0))
-                  for i in range(n))
-        if any(x not in (0, 1) for x in y) or (every and any(y)):
-            out.append((tuple(lam), y))
-    return tuple(sorted(set(out)))
-
-
-@cache
-def packing_directions(normals: tuple[Normal, ...]) -> tuple[tuple[Fraction, ...], ...]:
-    """Every non-zero ``y_λ = Σ_n λ_n n`` over the vertices ``λ`` of ``{λ >= 0 : Σ_n λ_n n <= 1}``.
-
-    A vertex has basic normals ``B`` and basic slacks ``S``; with ``T`` the other coordinates,
-    ``y_T = 1``, ``B_T λ_B = 1_T`` (``B_T`` non-singular, ``|B| = |T|``), ``λ_B >= 0`` and
-    ``y_S <= 1``. So every such ``y`` has ``max y = 1``, and ``T`` = all coordinates gives
-    ``y = 1`` only: the enumeration runs over ``|T| < N`` and ``|B| = |T|`` normals (exact
-    integer determinants), far fewer bases than the whole polytope's. ``normals`` must contain
-    the unit vectors.
-
-    Examples
-    --------
-    >>> ys = packing_directions(zero_one_normals(4))
-    >>> len(ys), sum(1 for y in ys if any(x not in (0, 1) for x in y))
-    (19, 4)
-    >>> len(packing_directions(zero_one_normals(5))) - 31
-    45
-    """
-    n = len(normals[0])
-    amat = np.array(normals, dtype=np.int64)  # K × n
-    k = amat.shape[0]
-    found: set[tuple[Fraction, ...]] = {(Fraction(1),) * n}
-    for t in range(1, n):
-        combos_all = itertools.combinations(range(k), t)
-        while True:
-            combos = np.array(list(itertools.islice(combos_all, 200_000)), dtype=np.int64)
-            if combos.size == 0:
-                break
-            cols = amat[combos]  # (C, t, n): the t normals of every combination
-            for tset in itertools.combinations(range(n), t):
-                entries = [[np.ascontiguousarray(cols[:, c, tset[r]]) for c in range(t)]
-                           for r in range(t)]
-                det = dets(entries)
-                ok = det != 0
-                if not ok.any():
-                    continue
-                sub = [[e[ok] for e in row] for row in entries]
-                d = det[ok]
-                ones = np.ones(d.size, dtype=np.int64)
-                lam = np.stack([dets([[ones if c == i else sub[r][c] for c in range(t)]
-                                      for r in range(t)]) for i in range(t)], axis=1)
-                lam = lam * np.where(d > 0, 1, -1).astype(d.dtype)[:, None]  # λ·|det|
-                feas = np.all(lam >= 0, axis=1)
-                if not feas.any():
-                    continue
-                y = (lam[feas][:, :, None] * cols[ok][feas]).sum(axis=1)  # y·|det|
-                ad = np.abs(d[feas])
-                keep = np.all(y <= ad[:, None], axis=1)
-                pairs = np.concatenate([y[keep], ad[keep][:, None]], axis=1)
-                if pairs.dtype != object:
-                    pairs = np.unique(pairs, axis=0)
-                for *row, den in pairs.tolist():
-                    found.add(tuple(Fraction(int(x), int(den)) for x in row))
-    return tuple(sorted(found))
 
 
 def cheapest(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:

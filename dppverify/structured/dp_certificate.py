@@ -30,10 +30,10 @@ from dppverify.structured.cover import (
     Normal,
     Table,
     cheapest,
-    packing_vertices,
     symmetric_table,
     zero_one_normals,
 )
+from dppverify.structured.packing import packing_vertices
 
 __all__ = ["Arc", "DirectionCheck", "certified_coalition_dp", "direction_checks",
            "failing_arc_mask", "failing_arcs"]

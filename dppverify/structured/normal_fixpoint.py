@@ -18,10 +18,13 @@ coalition DP's fixpoint whatever the extras (a cover of ``1_S`` uses 0/1 vectors
 ``F_v = { r : a·r <= m_a(v) for a ∈ A }`` are the sets of the guarantee rule with normals
 (``docs/formats.md`` §2b) and an outer bound of the exact guarantee sets (NG.7).
 
-Exact: integers at one scale ``D`` (every ``m_a(v)·D`` is an integer); the splits are exact
-integer matrix products over the vertex tables of :mod:`dppverify.structured.cover` (float64
-BLAS only where every partial sum is provably an integer below 2**53); the scale grows only
-when a split's table denominator requires it.
+Exact: integers at one scale ``D`` (every ``m_a(v)·D`` is an integer). The 0/1 splits are exact
+integer matrix products over the tables of minimal balanced collections
+(:mod:`dppverify.structured.cover`; float64 BLAS only where every partial sum is provably an
+integer below 2**53); an extra normal's split is its dominated-cover LP, solved exactly at
+every node at once (:func:`dppverify.structured.cover_lp.cover_values`: a handful of optimal
+bases, not the cover polytope's every vertex); the scale grows only when a split's
+denominator requires it.
 """
 
 from __future__ import annotations
@@ -38,14 +41,10 @@ from dppverify.exact import INF, Number
 from dppverify.game.distances import EXACT_FLOAT_LIMIT, dijkstra
 from dppverify.game.instance import Instance
 from dppverify.structured.coalition import coalition_scale, splits
-from dppverify.structured.cover import (
-    Normal,
-    basic_solutions,
-    cheapest,
-    zero_one_normals,
-)
+from dppverify.structured.cover import Normal, cheapest, zero_one_normals
+from dppverify.structured.cover_lp import cover_values
 
-__all__ = ["NormalSets", "normal_sets", "proper_cover_table", "reach_mask"]
+__all__ = ["NormalSets", "dominated_normals", "normal_sets", "reach_mask"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -144,24 +143,20 @@ def reach_mask(instance: Instance) -> np.ndarray:
     return out
 
 
-def proper_cover_table(normals: Sequence[Normal], a: Normal) -> tuple[list[int], Any] | None:
-    """The vertices of ``{c >= 0 : Σ c_j normals[j] = a}`` over the normals ``!= a``.
-
-    Returns ``(indices, table)`` (the table's columns index ``indices``), or None when ``a`` is
-    a unit vector (no proper cover). Only normals ``<= a`` componentwise can take part.
+def dominated_normals(normals: Sequence[Normal], a: Normal) -> list[int]:
+    """The indices of the normals that a dominated cover of ``a`` may use: ``a' <= a``
+    componentwise, ``a' != a`` (empty for a unit vector).
 
     Examples
     --------
-    >>> idx, t = proper_cover_table(zero_one_normals(3), (1, 1, 1))
-    >>> len(t.vertices), t.lcm
-    (5, 2)
+    >>> zo = zero_one_normals(3)
+    >>> [zo[j] for j in dominated_normals(zo + ((2, 1, 0),), (2, 1, 0))]
+    [(1, 0, 0), (0, 1, 0), (1, 1, 0)]
     """
     if sum(a) == 1:
-        return None
-    idx = [j for j, n in enumerate(normals)
-           if tuple(n) != tuple(a) and all(x <= y for x, y in zip(n, a, strict=True))]
-    table = basic_solutions([normals[j] for j in idx], a)
-    return idx, table
+        return []
+    return [j for j, n in enumerate(normals)
+            if tuple(n) != tuple(a) and all(x <= y for x, y in zip(n, a, strict=True))]
 
 
 def normal_sets(instance: Instance, extras: Sequence[Normal] = (),
@@ -232,14 +227,12 @@ def normal_sets(instance: Instance, extras: Sequence[Normal] = (),
                 raise AssertionError("normal_sets: a 0/1 split is not a multiple of 1/scale")
             init[live] = best // sp.lcm
         elif j >= len(zero_one) and live.size:
-            cover = proper_cover_table(normals, a)
-            assert cover is not None  # an extra normal is not a unit vector
-            idx, table = cover
-            mat = np.stack([np.asarray(rows[k], dtype=object)[live]
-                            for k in (idx[c] for c in table.columns)], axis=1)
-            best = np.asarray(cheapest(mat, table.scaled), dtype=object)
-            g = math.gcd(table.lcm, *(int(x) for x in best))
-            grow = table.lcm // g
+            idx = dominated_normals(normals, a)
+            assert idx  # an extra normal is not a unit vector
+            mat = np.stack([np.asarray(rows[k], dtype=object)[live] for k in idx])
+            num, den = cover_values([normals[k] for k in idx], mat, a)
+            g = math.gcd(den, *(int(x) for x in num))
+            grow = den // g
             if grow > 1:  # the split needs a finer scale: rescale everything computed so far
                 scale *= grow
                 for k, row in enumerate(rows):
@@ -247,8 +240,7 @@ def normal_sets(instance: Instance, extras: Sequence[Normal] = (),
                         rows[k] = np.asarray(row, dtype=object) * grow
                 for gg in inst.goals:
                     init[gg] *= grow
-                best = best * grow
-            init[live] = best // table.lcm
+            init[live] = np.asarray(num, dtype=object) // g
         weight = max(a)
         rows[j] = _label_setting(n, arcs, scale, weight, init)
     done = tuple(np.asarray(r) for r in rows)

@@ -48,7 +48,6 @@ from dppverify.structured.cover import (
     Normal,
     cheapest,
     min_cover_vectors,
-    packing_directions,
     zero_one_normals,
 )
 from dppverify.structured.cover_lp import cover_values
@@ -56,6 +55,7 @@ from dppverify.structured.dp_certificate import Arc, certified_coalition_dp, dir
 from dppverify.structured.guarantee import dp_value
 from dppverify.structured.normal_dp import BeyondExactRange, normal_dp_value
 from dppverify.structured.normal_fixpoint import NormalSets, normal_sets
+from dppverify.structured.packing import packing_directions
 
 __all__ = [
     "InfiniteSets",

@@ -27,9 +27,10 @@ from dppverify.game.distances import EXACT_FLOAT_LIMIT, multi_source_dijkstra
 from dppverify.game.instance import Instance
 from dppverify.game.instance_reading import arc_arrays, goal_distance_fields
 from dppverify.game.profile import GoalTable, GuaranteeRule, Profile, ProgressRule, TableRule
-from dppverify.structured.cover import basic_solutions, packing_vertices
+from dppverify.structured.cover import basic_solutions
 from dppverify.structured.guarantee import guarantee_sets, guarantee_sigma, rule_order
 from dppverify.structured.lexmin import simplex_min
+from dppverify.structured.packing import packing_vertices
 from dppverify.structured.table_br import trie_induction
 from dppverify.structured.trie import build_walk_trie
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import random
 from fractions import Fraction
-from itertools import product
+from itertools import pairwise, product
 
 from dppverify.kernel.guarantee import vertices
 from dppverify.structured.cover import basic_solutions, zero_one_normals
@@ -79,9 +79,11 @@ def test_K3_the_closed_form_is_the_least_cost_from_every_state() -> None:
         if INF in (dh[g], dg[h]):
             continue
 
-        def other_cost(walk: tuple[int, ...], c: object) -> object:
+        def other_cost(walk: tuple[int, ...], c: object, dg: list[object] = dg,
+                       dh: list[object] = dh, succ: dict[int, dict[int, Fraction]] = succ
+                       ) -> object:
             total, cm = Fraction(0), c
-            for a, b in zip(walk, walk[1:], strict=False):
+            for a, b in pairwise(walk):
                 c2 = min(cm, dg[b])  # type: ignore[type-var]
                 total += succ[a][b] - (cm - c2)  # type: ignore[operator]
                 cm = c2
@@ -90,9 +92,9 @@ def test_K3_the_closed_form_is_the_least_cost_from_every_state() -> None:
         P, Q = [], []
         for v in range(n):
             ws = list(_walks(n, succ, goals, v))
-            P.append(min((sum((succ[a][b] for a, b in zip(w, w[1:], strict=False)),
+            P.append(min((sum((succ[a][b] for a, b in pairwise(w)),
                               Fraction(0)) + dh[w[-1]] for w in ws), default=INF))  # type: ignore[operator]
-            Q.append(min((sum((succ[a][b] for a, b in zip(w, w[1:], strict=False)),
+            Q.append(min((sum((succ[a][b] for a, b in pairwise(w)),
                               Fraction(0)) + dh[w[-1]] + min(dg[x] for x in w)  # type: ignore[operator, type-var]
                           for w in ws), default=INF))
         for v, x in product(range(n), range(n)):

@@ -19,16 +19,11 @@ import sympy as sp
 import solver.coalitions.guarantee_sets as gsets
 from solver.coalitions.construction import arc_graph
 from solver.coalitions.guarantee_rule import priority_order, rule_step
-from solver.coalitions.guarantee_sets import (
-    GuaranteeSets,
-    LayerFailure,
-    NormalSystem,
-    guarantee_sets,
-    layered_dp,
-    symmetric_closure,
-)
+from solver.coalitions.guarantee_sets import GuaranteeSets, guarantee_sets
 from solver.coalitions.normal_attacker import _moves
 from solver.coalitions.normal_cover import normal_cover_lp
+from solver.coalitions.normal_dp import LayerFailure, layered_dp
+from solver.coalitions.normal_system import NormalSystem, symmetric_closure
 from solver.coalitions.vertex_tables import packing_vertices, primitive, zero_one_normals
 from solver.game.instance_reading import instance_from_json
 from solver.numbers import solve_exact

@@ -16,7 +16,8 @@ from dppverify.agreement import compare_routes
 from dppverify.game.examples import hub4
 from dppverify.game.instance import instance_from_json
 from dppverify.structured.coalition import coalition_value
-from dppverify.structured.cover import packing_vertices, zero_one_normals
+from dppverify.structured.cover import zero_one_normals
+from dppverify.structured.packing import packing_vertices
 from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.tree import count_prefixes
 from dppverify.tree_route.value_lp import game_value

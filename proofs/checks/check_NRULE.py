@@ -11,6 +11,8 @@ import math
 import random
 from fractions import Fraction
 
+import pytest
+
 from dppverify.game.examples import hub4, hub_document
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.rules import GuaranteeRule
@@ -190,17 +192,26 @@ def _in_sum(normals: tuple[tuple[int, ...], ...], r: list[Fraction], m: list[Fra
     return simplex_min([Fraction(0)] * (n + k), rows, rhs) is not None
 
 
-def test_NR2_the_arc_test_is_containment_at_the_vertices_of_F() -> None:
-    """NR.2's criterion, as the checker evaluates it (support functions in the packing
-    directions), against the definition: F_x is down-closed with recession cone -R^N_+, so
-    F_x ⊆ F_u + wΔ^N (also down-closed) iff every vertex of F_x lies in F_u + wΔ^N."""
+def _containment_cases(every: bool) -> list[tuple[Instance, tuple[tuple[int, ...], ...]]]:
     rng = random.Random(9)
-    cases = [(hub4(), ()), (hub4(), (HUB_EXTRAS[0],)), (hub4(), tuple(HUB_EXTRAS))]
-    cases.append((_hub(rng, 4), tuple(rng.sample(HUB_EXTRAS, rng.randint(0, 2)))))
+    cases: list[tuple[Instance, tuple[tuple[int, ...], ...]]] = [
+        (hub4(), ()), (hub4(), (HUB_EXTRAS[0],))]
+    if every:
+        cases.append((hub4(), tuple(HUB_EXTRAS)))
+        cases.append((_hub(rng, 4), tuple(rng.sample(HUB_EXTRAS, rng.randint(0, 2)))))
+    return cases
+
+
+@pytest.mark.parametrize("every", [False, pytest.param(True, marks=pytest.mark.slow)])
+def test_NR2_the_arc_test_is_containment_at_the_vertices_of_F(every: bool) -> None:
+    """NR.2's criterion, as the checker evaluates it (NR.2(a) by the support functions in the
+    packing directions, NR.2(b) by the maximal vertices of F_x and one LP each), against the
+    definition: F_x is down-closed with recession cone -R^N_+, so F_x ⊆ F_u + wΔ^N (also
+    down-closed) iff every vertex of F_x (by brute force over every choice of N rows) lies in
+    F_u + wΔ^N (an exact simplex over σ). Two cases by default, four under ``slow``."""
     verdicts = set()
-    for inst, extra in cases:
+    for inst, extra in _containment_cases(every):
         sets = normal_sets(inst, extra)
-        got = arc_condition(sets, inst.start)
         tails, heads, weights = walkable_arcs(sets, inst.start)
         failing = set()
         for x, u, w in zip(tails, heads, weights, strict=True):
@@ -209,9 +220,11 @@ def test_NR2_the_arc_test_is_containment_at_the_vertices_of_F() -> None:
             if not all(_in_sum(sets.normals, r, mu, Fraction(w))
                        for r in _vertices(sets.normals, mx)):
                 failing.add((x, u))
-        assert got.holds == (not failing), (extra, got, failing)
-        assert set(got.failing) == failing
-        verdicts.add(got.holds)
+        for route in ("directions", "vertices"):
+            got = arc_condition(sets, inst.start, route=route)
+            assert got.holds == (not failing), (extra, route, got, failing)
+            assert set(got.failing) == failing
+        verdicts.add(not failing)
     assert verdicts == {True, False}  # both outcomes occur
 
 

@@ -22,7 +22,8 @@ and float64 products only when every partial sum is an integer below 2**53).
 from __future__ import annotations
 
 import heapq
-from collections.abc import Sequence
+import math
+from collections.abc import Callable, Sequence
 
 import numpy as np
 import scipy.sparse as sp
@@ -31,7 +32,7 @@ from scipy.sparse.csgraph import dijkstra
 from solver.coalitions.vertex_tables import VertexTable
 from solver.graph.distances import EXACT_FLOAT_LIMIT
 
-__all__ = ["block_fixpoint", "exact_totals", "fixpoint_ranks"]
+__all__ = ["block_fixpoint", "cover_minimum", "exact_totals", "fixpoint_ranks"]
 
 INT_LIMIT = 2 ** 62
 UNSET = np.iinfo(np.int32).max
@@ -68,17 +69,76 @@ def exact_totals(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:
     return out.astype(np.int64)
 
 
-def _own_column(table: VertexTable, j: int) -> int | None:
-    """The table's vertex ``e_j`` (the step), or None when the table is not of that shape."""
+def _own_column(table: VertexTable, j: int) -> tuple[int, int] | None:
+    """The table's vertex ``e_j`` (the step) as ``(part, vertex)``, or None when the table is
+    not of that shape."""
     if j not in table.columns:
         return None
     pos = table.columns.index(j)
-    row = table.scaled[pos]
-    own = [k for k in np.flatnonzero(row).tolist()
-           if row[k] == table.lcm and not np.any(np.delete(table.scaled[:, k], pos))]
-    if len(own) != 1 or np.count_nonzero(row) != 1:
+    found: list[tuple[int, int]] = []
+    for p, (scaled, lcm) in enumerate(table.parts):
+        row = scaled[pos]
+        found += [(p, k) for k in np.flatnonzero(row).tolist()
+                  if row[k] == lcm and not np.any(np.delete(scaled[:, k], pos))]
+        if np.count_nonzero(row) != (1 if any(q == p for q, _ in found) else 0):
+            return None
+    return found[0] if len(found) == 1 else None
+
+
+def cover_minimum(values: np.ndarray, lost: np.ndarray, table: VertexTable,
+                  skip: tuple[int, int] | None = None
+                  ) -> tuple[np.ndarray, int, np.ndarray] | None:
+    """``min_c values[row] @ c`` over the table's vertices ``c`` (all parts, but ``skip``)
+    whose support avoids the row's ``lost`` entries, exactly.
+
+    Returns ``(num, den, got)``: the minimum is ``num[row] / den`` where ``got[row]`` (some
+    vertex avoids the lost entries); ``num`` is int64 for a one-part table, else Python
+    integers over the lcm of the parts' denominators. None when every vertex is skipped.
+
+    Examples
+    --------
+    >>> from solver.coalitions.vertex_tables import vertex_table
+    >>> t = vertex_table(((1, 0), (0, 1), (1, 1)), (1, 1))
+    >>> num, den, got = cover_minimum(np.array([[2, 3, 4], [2, 3, 6]]),
+    ...                               np.zeros((2, 3), dtype=bool), t)
+    >>> num.tolist(), den, got.tolist()
+    ([4, 5], 1, [True, True])
+    """
+    parts = [(p, sc if skip is None or skip[0] != p else np.delete(sc, skip[1], axis=1), lcm)
+             for p, (sc, lcm) in enumerate(table.parts)]
+    parts = [(p, sc, lcm) for p, sc, lcm in parts if sc.shape[1]]
+    if not parts:
         return None
-    return int(own[0])
+    finite = values[~lost]
+    top = int(finite.max(initial=0))
+    den = math.lcm(*(lcm for _, _, lcm in parts))
+    best: np.ndarray | None = None
+    got = np.zeros(values.shape[0], dtype=bool)
+    for _, sc, lcm in parts:
+        # an unreachable step: a value above every finite cover's total
+        big = top * int(sc.sum(axis=0).max(initial=1)) + 1
+        vals = np.where(lost, big, values)
+        if big >= INT_LIMIT:
+            vals = vals.astype(object)
+        mins = [_row_minimum(vals[lo:lo + CHUNK], sc) for lo in range(0, values.shape[0], CHUNK)]
+        low = np.concatenate(mins) if mins else np.zeros(0, dtype=np.int64)
+        ok = low < big
+        if len(parts) == 1:
+            return np.where(ok, low, 0).astype(low.dtype), den, ok
+        low = np.where(ok, low, 0).astype(object) * (den // lcm)
+        best = low if best is None else np.where(ok & (~got | (low < best)), low, best)
+        got |= ok
+    assert best is not None
+    return best, den, got
+
+
+def _row_minimum(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:
+    """Row-wise ``min`` of ``values @ scaled`` exactly: int64 when it fits, else Python
+    integers."""
+    try:
+        return exact_totals(values, scaled).min(axis=1).astype(np.int64)
+    except OverflowError:
+        return (values.astype(object) @ scaled.astype(object)).min(axis=1)
 
 
 def _steps(indptr: np.ndarray, heads: np.ndarray, w_top: np.ndarray, x: np.ndarray,
@@ -168,6 +228,19 @@ def _reverse(tails: np.ndarray, heads: np.ndarray, n: int, weights: np.ndarray |
     return indptr, tails[order].astype(np.int64), order.astype(np.int64)
 
 
+def _step_inputs(step: Callable[[int], tuple[np.ndarray, np.ndarray]], tab: VertexTable,
+                 is_goal: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The steps of a table's columns at the non-goal nodes, and where they are infinite."""
+    live = np.flatnonzero(~is_goal)
+    vals = np.zeros((live.size, len(tab.columns)), dtype=np.int64)
+    lost = np.zeros((live.size, len(tab.columns)), dtype=bool)
+    for p, c in enumerate(tab.columns):
+        s, has = step(c)
+        vals[:, p] = s[live]
+        lost[:, p] = ~has[live]
+    return vals, lost
+
+
 def block_fixpoint(indptr: np.ndarray, heads: np.ndarray, weights: np.ndarray, den: int,
                    goals: Sequence[int], goal_values: np.ndarray, tops: np.ndarray,
                    closures: Sequence[VertexTable], sums: Sequence[int], max_rounds: int
@@ -236,39 +309,33 @@ def block_fixpoint(indptr: np.ndarray, heads: np.ndarray, weights: np.ndarray, d
                 init = np.zeros(n, dtype=np.int64)
                 src = is_goal.copy()
                 init[goals_a] = x[j, goals_a]
-                k_own = own[j]
-                others = [k for k in range(tab.scaled.shape[1]) if k != k_own]
-                if others:
-                    sc = tab.scaled[:, others]
-                    live = np.flatnonzero(~is_goal)
-                    vals = np.zeros((live.size, len(tab.columns)), dtype=np.int64)
-                    lost = np.zeros((live.size, len(tab.columns)), dtype=bool)
-                    for p, c in enumerate(tab.columns):
-                        s, has = step(c)
-                        vals[:, p] = s[live]
-                        lost[:, p] = ~has[live]
-                    # an unreachable step: a value above every finite cover's total
-                    top = int(vals[~lost].max(initial=0))
-                    big = top * int(sc.sum(axis=0).max(initial=1)) + 1
-                    vals[lost] = big
-                    best = np.concatenate(
-                        [exact_totals(vals[lo:lo + CHUNK], sc).min(axis=1).astype(np.int64)
-                         for lo in range(0, live.size, CHUNK)] or [np.zeros(0, np.int64)])
-                    got = best < big
-                    vals_live, nodes = best[got].astype(np.int64), live[got]
-                    if tab.lcm > 1 and np.any(vals_live % tab.lcm):
-                        g = int(np.gcd.reduce(vals_live % tab.lcm, initial=0))
-                        grow = tab.lcm // np.gcd(g, tab.lcm)
-                        grow = int(grow)
+                found = cover_minimum(*_step_inputs(step, tab, is_goal), tab, skip=own[j])
+                if found is not None:
+                    low, lcm, got = found
+                    nodes = np.flatnonzero(~is_goal)[got]
+                    vals_live = low[got]
+                    grow = 1
+                    if lcm > 1 and vals_live.dtype != object and lcm < INT_LIMIT:
+                        grow = lcm // math.gcd(lcm, int(np.gcd.reduce(vals_live % lcm,
+                                                                      initial=0)))
+                    elif lcm > 1:
+                        grow = lcm // math.gcd(lcm, *(int(v) % lcm for v in vals_live))
+                    if grow > 1:
                         scale *= grow
                         if int(x.max(initial=0)) * grow * 4 >= INT_LIMIT:
                             return None
                         x *= grow
                         goal_values = goal_values * grow
-                        vals_live = vals_live * grow
                         step_cache.clear()
                         init[goals_a] = x[j, goals_a]
-                    init[nodes] = vals_live // tab.lcm
+                    if vals_live.dtype != object and int(
+                            vals_live.max(initial=0)) * grow < INT_LIMIT:
+                        init[nodes] = vals_live * grow // lcm
+                    else:
+                        quot = [int(v) * grow // lcm for v in vals_live]
+                        if quot and max(quot) >= INT_LIMIT:
+                            return None
+                        init[nodes] = np.asarray(quot, dtype=np.int64)
                     src[nodes] = True
                 seen[j] = inputs
                 w_top = weights * (int(tops[j]) * (scale // den))
@@ -327,18 +394,22 @@ def fixpoint_ranks(indptr: np.ndarray, heads: np.ndarray, w_scaled: np.ndarray,
         opt_arc[j] = ok_arc & (cand == s[tails])
     # the attained covers: entries (normal a, node v, support of the vertex), by node
     live = np.flatnonzero(inner)
-    width = max(1, max(int((t.scaled > 0).sum(axis=0).max(initial=1)) for t in closures))
+    width = max(1, max(int((sc > 0).sum(axis=0).max(initial=1)) for t in closures
+                       for sc, _ in t.parts))
     ent_a, ent_v, ent_s = [], [], []
     for j, tab in enumerate(closures):
         cols = np.asarray(tab.columns, dtype=np.int64)
-        hit_v, hit_q = _attaining(s_star[cols][:, live].T, tab.scaled, m[j, live] * tab.lcm)
-        supp = np.full((tab.scaled.shape[1], width), -1, dtype=np.int64)
-        for q in range(tab.scaled.shape[1]):
-            nz = cols[np.flatnonzero(tab.scaled[:, q])]
-            supp[q, :nz.size] = nz
-        ent_a.append(np.full(hit_v.size, j, dtype=np.int64))
-        ent_v.append(live[hit_v])
-        ent_s.append(supp[hit_q])
+        for sc, lcm in tab.parts:
+            target = m[j, live].astype(object) * lcm if lcm * int(
+                m.max(initial=0)) >= INT_LIMIT else m[j, live] * lcm
+            hit_v, hit_q = _attaining(s_star[cols][:, live].T, sc, target)
+            supp = np.full((sc.shape[1], width), -1, dtype=np.int64)
+            for q in range(sc.shape[1]):
+                nz = cols[np.flatnonzero(sc[:, q])]
+                supp[q, :nz.size] = nz
+            ent_a.append(np.full(hit_v.size, j, dtype=np.int64))
+            ent_v.append(live[hit_v])
+            ent_s.append(supp[hit_q])
     e_a = np.concatenate(ent_a)
     e_v = np.concatenate(ent_v)
     e_s = np.concatenate(ent_s)
@@ -388,7 +459,10 @@ def _attaining(values: np.ndarray, scaled: np.ndarray, target: np.ndarray
     rows: list[np.ndarray] = []
     verts: list[np.ndarray] = []
     for lo in range(0, values.shape[0], CHUNK):
-        tot = exact_totals(values[lo:lo + CHUNK], scaled)
+        try:
+            tot = exact_totals(values[lo:lo + CHUNK], scaled)
+        except OverflowError:  # totals beyond int64: Python integers
+            tot = values[lo:lo + CHUNK].astype(object) @ scaled.astype(object)
         r, q = np.nonzero(tot == target[lo:lo + CHUNK, None])
         rows.append(r + lo)
         verts.append(q)

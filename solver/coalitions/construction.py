@@ -27,12 +27,10 @@ from typing import Any
 
 import numpy as np
 
+from solver.coalitions.arc_graph import ArcGraph
+from solver.coalitions.budget import Budget, BudgetExceeded
 from solver.coalitions.guarantee_rule import priority_order, rule_step
 from solver.coalitions.guarantee_sets import (
-    ArcGraph,
-    Budget,
-    BudgetExceeded,
-    Fixpoint,
     GuaranteeSets,
     Unreached,
     dominated_failures,
@@ -40,6 +38,7 @@ from solver.coalitions.guarantee_sets import (
 )
 from solver.coalitions.normal_attacker import normal_attacker
 from solver.coalitions.normal_cover import normal_cover_lp
+from solver.coalitions.normal_dp import Fixpoint
 from solver.coalitions.vertex_tables import Normal
 from solver.errors import DPPError
 from solver.game.instance import Instance

@@ -26,8 +26,9 @@ from fractions import Fraction
 
 import numpy as np
 
-from solver.coalitions.guarantee_sets import ArcGraph, Fixpoint
+from solver.coalitions.arc_graph import ArcGraph
 from solver.coalitions.normal_cover import normal_cover_lp
+from solver.coalitions.normal_dp import Fixpoint
 
 __all__ = ["AttackerPlan", "normal_attacker", "piece_walks"]
 
@@ -159,15 +160,17 @@ def _moves(graph: ArcGraph, fix: Fixpoint, j: int, v: int) -> list[tuple[int, Fr
         return [(j, Fraction(1), int(heads[best_arc[j]]))]
     tab = system.closures[j]
     cols = np.asarray(tab.columns, dtype=np.int64)
-    totals = best[cols].astype(object) @ tab.scaled.astype(object)
-    k = next((i for i, x in enumerate(totals) if x == target * tab.lcm), None)
-    if k is None:  # pragma: no cover - NX.2: a ranked cover always exists
-        raise AssertionError("normal Attacker: no ranked cover attains m*")
-    out = []
-    for pos, col in enumerate(tab.columns):
-        c = int(tab.scaled[pos, k])
-        if c:
-            if int(best[col]) >= big:  # pragma: no cover - NX.2
-                raise AssertionError("normal Attacker: a cover uses an unrealised normal")
-            out.append((col, Fraction(c, tab.lcm), int(heads[best_arc[col]])))
-    return out
+    for scaled, lcm in tab.parts:
+        totals = best[cols].astype(object) @ scaled.astype(object)
+        k = next((i for i, x in enumerate(totals) if x == target * lcm), None)
+        if k is None:
+            continue
+        out = []
+        for pos, col in enumerate(tab.columns):
+            c = int(scaled[pos, k])
+            if c:
+                if int(best[col]) >= big:  # pragma: no cover - NX.2
+                    raise AssertionError("normal Attacker: a cover uses an unrealised normal")
+                out.append((col, Fraction(c, lcm), int(heads[best_arc[col]])))
+        return out
+    raise AssertionError("normal Attacker: no ranked cover attains m*")  # pragma: no cover

@@ -12,11 +12,12 @@ Two polytopes carry the N-goal mathematics of ``proofs/NEXACT.md``:
 
 Vertices are basic feasible solutions: every choice of as many columns as the system has rows
 (on the support of the right-hand side) with a non-zero exact integer determinant, solved by
-Cramer's rule, kept when non-negative. Determinants are exact integers (Laplace expansion over
-numpy int64 arrays). A table whose determinants (Hadamard's bound), common denominator or
-scaled vertices could reach :data:`INT_LIMIT` is refused with a ``ValueError`` instead of
-being computed in int64 (the construction reports that as an unreached fixpoint with its
-bracket). Nothing is decided in floating point.
+Cramer's rule, kept when non-negative, reduced to lowest terms. Determinants are exact
+integers: Laplace expansion over numpy int64 arrays where Hadamard's bound keeps every integer
+of the step below :data:`INT_LIMIT`, else fraction-free (Bareiss) elimination in Python
+integers, one basis at a time. A table is stored in *parts* (:class:`VertexTable`), each with
+its own common denominator, so that no table is refused because the denominators of all its
+vertices together leave int64. Nothing is decided in floating point.
 """
 
 from __future__ import annotations
@@ -39,7 +40,11 @@ Normal = tuple[int, ...]
 CHUNK = 100_000
 
 INT_LIMIT = 2 ** 62
-"""Every integer a table computes or stores stays below this (int64, with room for one sum)."""
+"""Every integer the int64 determinant path computes stays below this (room for one sum)."""
+
+PART_LIMIT = 2 ** 40
+"""Every scaled coordinate of a table's part stays below this (a part's products with DP
+values stay in int64 or exact float64 far longer than the whole table's would)."""
 
 
 def zero_one_normals(n_goals: int) -> tuple[Normal, ...]:
@@ -71,21 +76,39 @@ def primitive(y: Sequence[Fraction | int]) -> Normal:
 
 @dataclass(frozen=True)
 class VertexTable:
-    """The vertices of ``{c >= 0 : Σ_j c_j columns[j] = rhs}``, scaled to integers.
+    """The vertices of ``{c >= 0 : Σ_j c_j columns[j] = rhs}``, scaled to integers by parts.
+
+    The vertices are split into *parts*, each with its own common denominator small enough
+    that every scaled coordinate stays below :data:`PART_LIMIT` (int64 arithmetic over a part
+    stays exact); one part when the whole table's denominator is small, which is the rule.
 
     Attributes
     ----------
     columns : tuple of int
         Indices (into the caller's column list) of the columns that may be positive.
     scaled : numpy.ndarray
-        ``lcm · c`` for every vertex, shape ``(len(columns), n_vertices)``, int64.
+        The first part: ``lcm · c`` for its vertices, shape ``(len(columns), n_vertices)``,
+        int64.
     lcm : int
-        The common denominator of every vertex coordinate.
+        The first part's common denominator.
+    more : tuple of (numpy.ndarray, int)
+        The other parts, ``(scaled, lcm)`` each.
     """
 
     columns: tuple[int, ...]
     scaled: np.ndarray
     lcm: int
+    more: tuple[tuple[np.ndarray, int], ...] = ()
+
+    @property
+    def parts(self) -> tuple[tuple[np.ndarray, int], ...]:
+        """Every part as ``(scaled, lcm)``, the first one first."""
+        return ((self.scaled, self.lcm), *self.more)
+
+    @property
+    def n_vertices(self) -> int:
+        """The number of vertices over every part."""
+        return sum(sc.shape[1] for sc, _ in self.parts)
 
     def vertices(self) -> list[dict[int, Fraction]]:
         """Every vertex as ``{column index: c_j > 0}``.
@@ -97,9 +120,10 @@ class VertexTable:
         [[(0, Fraction(1, 1)), (1, Fraction(1, 1))], [(2, Fraction(1, 1))]]
         """
         out = []
-        for col in self.scaled.T:
-            out.append({self.columns[i]: Fraction(int(x), self.lcm)
-                        for i, x in enumerate(col) if x})
+        for scaled, lcm in self.parts:
+            for col in scaled.T:
+                out.append({self.columns[i]: Fraction(int(x), lcm)
+                            for i, x in enumerate(col) if x})
         return out
 
 
@@ -174,12 +198,21 @@ def _vertex_table(columns: tuple[Normal, ...], rhs: Normal, max_bases: int) -> V
     if math.comb(len(keep), m) > max_bases:
         raise ValueError(f"vertex_table: {math.comb(len(keep), m):,} bases exceed the limit "
                          f"of {max_bases:,}")
-    _check_hadamard([[columns[j][i] for i in rows] for j in keep] + [[rhs[i] for i in rows]], m)
-    mat = np.array([[columns[j][i] for j in keep] for i in rows], dtype=np.int64)
-    b = np.array([rhs[i] for i in rows], dtype=np.int64)
-    found: list[np.ndarray] = []
-    dens: list[int] = []
-    all_combos = _combinations(len(keep), m)
+    mat = [[columns[j][i] for j in keep] for i in rows]
+    b = [rhs[i] for i in rows]
+    if _hadamard_ok([[columns[j][i] for i in rows] for j in keep] + [b], m):
+        found = _bases_int64(np.array(mat, dtype=np.int64), np.array(b, dtype=np.int64))
+    else:  # entries too large for int64 determinants: one basis at a time, Python integers
+        found = _bases_python(mat, b)
+    return _in_parts(tuple(keep), sorted(found, key=lambda v: (v[1], v[0])))
+
+
+def _bases_int64(mat: np.ndarray, b: np.ndarray) -> set[tuple[tuple[int, ...], int]]:
+    """The basic feasible solutions ``(numerators over the columns, denominator)`` in lowest
+    terms, by int64 determinants (the caller checked Hadamard's bound)."""
+    m, k = mat.shape
+    found: set[tuple[tuple[int, ...], int]] = set()
+    all_combos = _combinations(k, m)
     for lo in range(0, all_combos.shape[0], CHUNK):
         chunk = all_combos[lo:lo + CHUNK]
         entries = [[np.ascontiguousarray(mat[r, chunk[:, c]]) for c in range(m)]
@@ -204,35 +237,103 @@ def _vertex_table(columns: tuple[Normal, ...], rhs: Normal, max_bases: int) -> V
             for i in range(m):
                 numer[wrong, i] = _dets([[np.full(n_w, b[r]) if c == i else sub[r][c]
                                           for c in range(m)] for r in range(m)])
-        feas = np.all(numer * np.sign(det)[:, None] >= 0, axis=1)
+        sign = np.sign(det)
+        numer *= sign[:, None]
+        det = det * sign
+        feas = np.all(numer >= 0, axis=1)
         chunk, det, numer = chunk[feas], det[feas], numer[feas]
         if not chunk.size:
             continue
-        common = math.lcm(1, *(int(x) for x in np.unique(np.abs(det))))
-        if common * (int(np.abs(numer).max(initial=0)) + 1) >= INT_LIMIT:
-            raise ValueError(f"vertex_table: the vertices' common denominator {common} leaves "
-                             "int64")
-        dense = np.zeros((chunk.shape[0], len(keep)), dtype=np.int64)
-        idx = np.arange(chunk.shape[0])
-        for i in range(m):
-            dense[idx, chunk[:, i]] = numer[:, i] * (common // det)
-        found.append(_unique_rows(dense))  # a degenerate vertex has several bases
-        dens.append(common)
-    lcm = math.lcm(1, *dens)
-    if max((int(np.abs(d).max(initial=0)) * (lcm // c) for d, c in zip(found, dens, strict=True)),
-           default=0) >= INT_LIMIT:
-        raise ValueError(f"vertex_table: the vertices' common denominator {lcm} leaves int64")
-    stacked = (np.concatenate([d * (lcm // c) for d, c in zip(found, dens, strict=True)])
-               if found else np.zeros((0, len(keep)), dtype=np.int64))
-    unique = _unique_rows(stacked)  # a degenerate vertex has several bases
-    g = math.gcd(int(np.gcd.reduce(unique.ravel(), initial=0)), lcm)
-    return VertexTable(columns=tuple(keep), scaled=np.ascontiguousarray((unique // g).T),
-                       lcm=lcm // g)
+        g = np.gcd.reduce(np.concatenate([numer, det[:, None]], axis=1), axis=1)
+        dense = np.zeros((chunk.shape[0], k + 1), dtype=np.int64)
+        dense[np.arange(chunk.shape[0])[:, None], chunk] = numer // g[:, None]
+        dense[:, k] = det // g
+        for row in _unique_rows(dense).tolist():  # a degenerate vertex has several bases
+            found.add((tuple(row[:k]), row[k]))
+    return found
 
 
-def _check_hadamard(vectors: list[list[int]], m: int) -> None:
-    """Refuse a system in which an integer of the determinant step could reach
-    :data:`INT_LIMIT`.
+def _bases_python(mat: list[list[int]], b: list[int]) -> set[tuple[tuple[int, ...], int]]:
+    """:func:`_bases_int64` for any integers: fraction-free (Bareiss) determinants and Cramer's
+    rule in Python integers, one basis at a time."""
+    m, k = len(mat), len(mat[0])
+    found: set[tuple[tuple[int, ...], int]] = set()
+    for combo in itertools.combinations(range(k), m):
+        sub = [[mat[r][c] for c in combo] for r in range(m)]
+        det = _bareiss(sub)
+        if det == 0:
+            continue
+        numer = [_bareiss([[b[r] if c == i else sub[r][c] for c in range(m)]
+                           for r in range(m)]) for i in range(m)]
+        if det < 0:
+            det, numer = -det, [-x for x in numer]
+        if min(numer) < 0:
+            continue
+        g = math.gcd(det, *numer)
+        dense = [0] * k
+        for pos, c in enumerate(combo):
+            dense[c] = numer[pos] // g
+        found.add((tuple(dense), det // g))
+    return found
+
+
+def _bareiss(mat: list[list[int]]) -> int:
+    """The determinant of a square integer matrix, fraction-free (every intermediate entry is a
+    minor, so exact division)."""
+    a = [row[:] for row in mat]
+    n = len(a)
+    sign, prev = 1, 1
+    for k in range(n - 1):
+        if a[k][k] == 0:
+            swap = next((i for i in range(k + 1, n) if a[i][k] != 0), None)
+            if swap is None:
+                return 0
+            a[k], a[swap] = a[swap], a[k]
+            sign = -sign
+        for i in range(k + 1, n):
+            for j in range(k + 1, n):
+                a[i][j] = (a[i][j] * a[k][k] - a[i][k] * a[k][j]) // prev
+        prev = a[k][k]
+    return sign * a[n - 1][n - 1] if n else 1
+
+
+def _in_parts(columns: tuple[int, ...], found: Sequence[tuple[tuple[int, ...], int]]
+              ) -> VertexTable:
+    """The vertices (sorted by denominator) in consecutive parts, each part's common
+    denominator times its largest coordinate below :data:`PART_LIMIT` (a vertex that alone
+    exceeds it is a part of its own, in Python integers past int64)."""
+    parts: list[tuple[np.ndarray, int]] = []
+    cur: list[tuple[tuple[int, ...], int]] = []
+    cur_lcm, cur_top = 1, Fraction(0)
+
+    def close() -> None:
+        if cur:
+            rows = [[x * (cur_lcm // den) for x in numer] for numer, den in cur]
+            top = max((x for row in rows for x in row), default=0)
+            arr = np.array(rows, dtype=np.int64 if top < INT_LIMIT else object).reshape(
+                len(cur), len(columns))  # a lone vertex past int64: Python integers
+            g = math.gcd(cur_lcm, *(int(x) for x in arr.ravel()))
+            parts.append((np.ascontiguousarray((arr // g).T), cur_lcm // g))
+
+    for numer, den in found:
+        top = max(Fraction(max(numer, default=0), den), cur_top)
+        lcm = math.lcm(cur_lcm, den)
+        if cur and (lcm * top >= PART_LIMIT):
+            close()
+            cur, cur_lcm, cur_top = [], 1, Fraction(0)
+            top, lcm = Fraction(max(numer, default=0), den), den
+        cur.append((numer, den))
+        cur_lcm, cur_top = lcm, top
+    close()
+    if not parts:
+        return VertexTable(columns=columns, scaled=np.zeros((len(columns), 0), dtype=np.int64),
+                           lcm=1)
+    (first, lcm0), *rest = parts
+    return VertexTable(columns=columns, scaled=first, lcm=lcm0, more=tuple(rest))
+
+
+def _hadamard_ok(vectors: list[list[int]], m: int) -> bool:
+    """Whether every integer of the int64 determinant step stays below :data:`INT_LIMIT`.
 
     Every ``k × k`` minor of ``m`` of the vectors (the columns, or Cramer's matrices, where the
     right-hand side replaces a column) is at most ``Π ||v||`` over the ``m`` longest vectors
@@ -241,9 +342,7 @@ def _check_hadamard(vectors: list[list[int]], m: int) -> None:
     ``2**6 · ||v||_max · Π ||v||``, compared here in exact integers (squared).
     """
     squares = sorted((sum(int(x) ** 2 for x in v) for v in vectors), reverse=True)
-    if math.prod(squares[:m]) * squares[0] * 2 ** 12 >= INT_LIMIT ** 2:
-        raise ValueError(f"vertex_table: a {m} × {m} determinant could leave int64 (Hadamard's "
-                         "bound on these entries)")
+    return math.prod(squares[:m]) * squares[0] * 2 ** 12 < INT_LIMIT ** 2
 
 
 def _unique_rows(arr: np.ndarray) -> np.ndarray:

@@ -19,7 +19,7 @@ from pathlib import Path
 
 KERNEL = Path(__file__).resolve().parents[3] / "dppverify" / "kernel"
 MAX_CODE_LINES = 800
-STDLIB = {"__future__", "bisect", "dataclasses", "fractions", "hashlib", "importlib",
+STDLIB = {"__future__", "dataclasses", "fractions", "hashlib", "importlib",
           "importlib.util", "itertools", "json", "operator", "pathlib", "re", "sys", "types",
           "typing", "collections.abc", "math", "functools"}
 

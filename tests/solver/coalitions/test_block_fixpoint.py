@@ -1,9 +1,9 @@
 """The block fixpoint and its ranks agree with the layered DP (proofs/NEXACT.md NX.7).
 
-The layered normal-restricted DP (:func:`solver.coalitions.guarantee_sets.layered_dp`) is the
+The layered normal-restricted DP (:func:`solver.coalitions.normal_dp.layered_dp`) is the
 oracle: on random digraphs, grids and hub gadgets (N = 2..5), with the 0/1 normals and with
 extra normals, under both readings of the closure (all covers; the written rule's dominated
-covers), :func:`~solver.coalitions.guarantee_sets.normal_dp` gives the same values ``m*``
+covers), :func:`~solver.coalitions.normal_dp.normal_dp` gives the same values ``m*``
 (exactly, as fractions), the same finite nodes, the same ranks and the same ``K``; and the
 whole construction writes the same profile document either way.
 """
@@ -17,16 +17,20 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from solver.coalitions import guarantee_sets as gs
+from solver.coalitions import normal_dp as gs
+from solver.coalitions.arc_graph import ArcGraph
 from solver.coalitions.block_fixpoint import block_fixpoint
+from solver.coalitions.budget import BudgetExceeded
 from solver.coalitions.construction import arc_graph, coalition_equilibrium
+from solver.coalitions.normal_system import NormalSystem, symmetric_closure
+from solver.coalitions.vertex_tables import zero_one_normals
 from solver.game.instance_reading import instance_from_json
 from tests.solver._ngoal_families import GADGET, draw
 
 EXTRA = {3: [(2, 2, 1)], 4: [(2, 2, 2, 1)], 5: [(2, 2, 1, 1, 1)]}
 
 
-def _layered(graph: gs.ArcGraph, system: gs.NormalSystem, max_layers: int) -> gs.Fixpoint:
+def _layered(graph: ArcGraph, system: NormalSystem, max_layers: int) -> gs.Fixpoint:
     fix = gs.layered_dp(graph, system, check_layers=False, max_layers=max_layers)
     assert isinstance(fix, gs.Fixpoint)
     return fix
@@ -41,20 +45,20 @@ def _assert_same(old: gs.Fixpoint, new: gs.Fixpoint) -> None:
             assert old.value(j, v) == new.value(j, v), (old.system.normals[j], v)
 
 
-def _systems(n: int) -> list[gs.NormalSystem]:
+def _systems(n: int) -> list[NormalSystem]:
     out = []
     for extra in ([], EXTRA.get(n, [])):
-        normals = gs.symmetric_closure([*gs.zero_one_normals(n), *extra])
-        out += [gs.NormalSystem(normals), gs.NormalSystem(normals, dominated=True)]
+        normals = symmetric_closure([*zero_one_normals(n), *extra])
+        out += [NormalSystem(normals), NormalSystem(normals, dominated=True)]
     return out
 
 
-def _graph(doc: dict[str, Any]) -> gs.ArcGraph:
+def _graph(doc: dict[str, Any]) -> ArcGraph:
     graph, _ = arc_graph(instance_from_json(doc))
     return graph
 
 
-def _block_applies(graph: gs.ArcGraph, system: gs.NormalSystem) -> bool:
+def _block_applies(graph: ArcGraph, system: NormalSystem) -> bool:
     goal_values = np.array(system.normals, dtype=np.int64) @ graph.terminal.T
     return block_fixpoint(graph.indptr, graph.heads, graph.weights, graph.denominator,
                           graph.goals, goal_values, system.tops, system.closures,
@@ -100,9 +104,9 @@ def test_budget_of_layers_is_the_same() -> None:
     system = _systems(3)[0]
     k = _layered(graph, system, 10_000).layers
     assert gs.normal_dp(graph, system, k + 1).layers == k
-    with pytest.raises(gs.BudgetExceeded):
+    with pytest.raises(BudgetExceeded):
         _layered(graph, system, k)
-    with pytest.raises(gs.BudgetExceeded):
+    with pytest.raises(BudgetExceeded):
         gs.normal_dp(graph, system, k)
 
 

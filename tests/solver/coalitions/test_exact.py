@@ -28,12 +28,12 @@ from dppverify.certify import certify
 from dppverify.game.instance import instance_from_json
 from dppverify.structured.proved_value import nvalue
 from solver.cli import main
+from solver.coalitions.budget import Budget
 from solver.coalitions.construction import (
     CoalitionEquilibrium,
     FixpointNotReached,
     coalition_equilibrium,
 )
-from solver.coalitions.guarantee_sets import Budget
 from solver.game.instance import Instance
 from solver.game.instance_reading import instance_from_json as solver_instance
 from tests.solver._ngoal_families import GADGET, draw

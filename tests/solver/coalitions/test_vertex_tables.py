@@ -1,11 +1,12 @@
 """The solver's vertex tables against an independent route (Gauss–Jordan in Fractions by hand,
-``proofs/checks/_linear.py``, one system at a time), and its int64 guard.
+``proofs/checks/_linear.py``, one system at a time), within int64 and past it.
 
 The solver's tables were once a copy of the checker's (``dppverify/structured/cover.py``);
-the checker's copy was later made exact beyond int64 and the solver's was not: on the system
-below it returned 16 "vertices" of which 15 did not solve the system. It now refuses such a
-system with a ``ValueError`` (the construction reports an unreached fixpoint with its
-bracket) and is compared here with the hand route, not with the checker.
+the checker's copy was later made exact beyond int64 and the solver's was not: on the first
+system below it returned 16 "vertices" of which 15 did not solve the system. It then refused
+such systems; now it computes them exactly (Bareiss determinants in Python integers past
+Hadamard's int64 bound, and parts with their own denominators when the whole table's common
+denominator leaves int64), and is compared here with the hand route, not with the checker.
 """
 
 from __future__ import annotations
@@ -50,17 +51,19 @@ def test_the_zero_one_covers_of_four_goals_equal_the_hand_route() -> None:
     assert _solver_vertices(zo, (2, 2, 2, 1)) == basic_solutions_by_hand(zo, (2, 2, 2, 1))
 
 
-@pytest.mark.parametrize(("extra", "says"), [
-    # determinants up to ~1e20: Hadamard's bound refuses before any int64 product
+@pytest.mark.parametrize(("extra", "parts"), [
+    # determinants up to ~1e20: past Hadamard's int64 bound, Python integers
     ([tuple(p if j == i else 1 for j in range(5)) for i, p in
-      enumerate((100003, 100019, 100043, 100049))], "determinant could leave int64"),
-    # entries within the profile format's 0..16, but a common denominator ~4e51
+      enumerate((100003, 100019, 100043, 100049))], 1),
+    # entries within the profile format's 0..16, but a common denominator ~4e51: parts
     ([tuple(16 if j == i else 1 for j in range(5)) for i in range(5)]
-     + [(3, 5, 7, 11, 13), (16, 15, 14, 13, 12)], "common denominator"),
+     + [(3, 5, 7, 11, 13), (16, 15, 14, 13, 12)], 2),
 ])
-def test_tables_beyond_int64_are_refused_not_wrapped(extra: list[tuple[int, ...]],
-                                                     says: str) -> None:
+def test_tables_beyond_int64_are_exact(extra: list[tuple[int, ...]], parts: int) -> None:
     units = [tuple(int(i == j) for j in range(5)) for i in range(5)]
-    with pytest.raises(ValueError, match=says):
-        vertex_table(units + extra, (1,) * 5)
-
+    table = vertex_table(units + extra, (1,) * 5)
+    assert len(table.parts) >= parts
+    for scaled, lcm in table.parts:  # every part exact with its own denominator
+        assert lcm > 0 and all(int(x) >= 0 for x in scaled.ravel())
+    assert _solver_vertices(units + extra, (1,) * 5) == basic_solutions_by_hand(units + extra,
+                                                                               (1,) * 5)
