@@ -178,8 +178,8 @@ def _kernel(game: Parsed[Instance], prof: Parsed[Profile], horizon: int | None,
     engine's witness (:mod:`dppverify.structured.witness`) of a profile the engine certifies,
     recorded in ``info.kernel``; a PASS the kernel does not accept is a bug of the checker
     (:class:`~dppverify.errors.UndecidedError`, exit 3, naming both). Not applicable (and why):
-    a finite horizon, a float-mode game, inputs without bytes (objects given in Python), a
-    guarantee rule the engine decided by its exact search (NRULE NR.4: the kernel has NR.2
+    a finite horizon, a float-mode game, inputs without bytes (objects given in Python), the
+    goal-selection game (its documents are not the kernel's formats), a guarantee rule the engine decided by its exact search (NRULE NR.4: the kernel has NR.2
     only) or whose packing polytope is beyond the kernel's bound."""
     verdict = verdict_of(checks)
     searched = any(c.id == "pbne.attacker_br" and (c.numbers or {}).get("states") for c in checks)
@@ -190,6 +190,8 @@ def _kernel(game: Parsed[Instance], prof: Parsed[Profile], horizon: int | None,
     bases = 0 if rule is None else sum(math.comb(2**n_goals - 1 + len(rule) + n_goals, k)
                                        for k in range(1, n_goals + 1))
     why = ("the engine refutes the profile or could not decide it" if verdict != "pass" else
+           "the goal-selection game (proofs/SELECT.md): the kernel reads games with a prior "
+           "only" if game.value.goal_selection else
            "the engine decided the Attacker by its exact search over the rule's states (NRULE "
            "NR.4); the kernel decides the guarantee rule by NR.2 only" if searched else
            f"the guarantee rule's packing polytope needs {bases} candidate bases, beyond the "

@@ -173,6 +173,9 @@ def _certify_files(req: _Request) -> None:
         if req.witness is not None and not game.value.exact:
             raise OptionError("--witness: the trusted kernel decides exact games only; this "
                               "instance is in float mode")
+        if req.witness is not None and game.value.goal_selection:
+            raise OptionError("--witness: the trusted kernel does not decide the goal-selection "
+                              "game (proofs/SELECT.md); the certificate's checks do")
         bar.phase("reading the profile")
         prof = _read_profile(profile, game.value, instance)
         bar.phase(f"certifying (route {req.route}; the checks' bars follow)")

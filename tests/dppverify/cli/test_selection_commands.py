@@ -49,6 +49,8 @@ def test_certify_passes_the_equilibrium_and_refutes_sigma_star(tmp_path: Path) -
     cert = Certificate.from_json(json.loads(r.output))
     assert cert.info["game"] == "goal selection" and cert.provenance is not None
     assert cert.check("selection.value").passed
+    assert cert.info["kernel"]["status"] == "not applicable"  # the kernel reads prior games only
+    assert "goal-selection" in cert.info["kernel"]["message"]
     paper = {"format": "dpp-profile/1", "goals": {"primary": "g1", "secondary": "g2"},
              "prior": {"primary": "7/10", "secondary": "3/10"},
              "defender": {"rule": "progress", "goal": "g1"},
@@ -67,6 +69,8 @@ def test_mistakes_are_one_line_exit_2(tmp_path: Path) -> None:
             (value_command, [i, "--route", "both"], "structured route"),
             (value_command, [i, "--goal-values", "0,1"], "go with --map FILE"),
             (value_command, [i, "--goal-selection"], "go with --map FILE"),
+            (certify_command, [i, p, "--witness", str(tmp_path / "w.json")],
+             "does not decide the goal-selection game"),
             (certify_command, [i, write_doc(tmp_path, "n.json", {"format": "x"})],
              "dpp-selection-profile/1")):
         r = run_cli(cmd, args)

@@ -66,6 +66,8 @@ def test_summary_and_goal_values(here: Path) -> None:
     (["solve", "--goal-selection", *GRID, "--goal-values", "1"], "--goal-values takes 2"),
     (["solve", "--goal-selection", "--map", "paper10.map", "--start", "9,0", "--goals", "0,9",
       "0,0", "9,9", "--defender", "mixture"], "two-goal Defender"),
+    (["solve", "--goal-selection", *GRID, "--witness", "w.json"],
+     "does not decide the goal-selection game"),
     (["export-efg", "--goal-selection", *GRID, "-H", "1", "-o", "g.efg", "--goal-values", "1"],
      "--goal-values takes 2"),
 ])
