@@ -179,8 +179,9 @@ def _kernel(game: Parsed[Instance], prof: Parsed[Profile], horizon: int | None,
     recorded in ``info.kernel``; a PASS the kernel does not accept is a bug of the checker
     (:class:`~dppverify.errors.UndecidedError`, exit 3, naming both). Not applicable (and why):
     a finite horizon, a float-mode game, inputs without bytes (objects given in Python), the
-    goal-selection game (its documents are not the kernel's formats), a guarantee rule the engine decided by its exact search (NRULE NR.4: the kernel has NR.2
-    only) or whose packing polytope is beyond the kernel's bound."""
+    goal-selection game (its documents are not the kernel's formats), a guarantee rule the
+    engine decided by its exact search (NRULE NR.4: the kernel has NR.2 only) or whose packing
+    polytope is beyond the kernel's bound."""
     verdict = verdict_of(checks)
     searched = any(c.id == "pbne.attacker_br" and (c.numbers or {}).get("states") for c in checks)
     data = [p.data if isinstance(p.data, bytes) or p.data is None else canonical_json(p.data)
