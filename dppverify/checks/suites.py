@@ -231,17 +231,11 @@ SELECTION_UNTRUNCATED = ("a goal-selection profile is certified on the untruncat
                          "truncated game's value)")
 
 
-class SelectionSuite:
-    """The ``selection`` family: a profile of the goal-selection game (any N, exact)."""
+class SelectionSuite(PerGoalSuite):
+    """The ``selection`` family: a profile of the goal-selection game (any N, exact; its
+    walks and rule are read as a per-goal profile's, on the structured route only)."""
 
     family: Family = "selection"
-    exact_only = True
-
-    def longest(self, instance: Instance, profile: Profile) -> tuple[int, str]:
-        return profile.longest, "walk"
-
-    def tree_only(self, profile: Profile) -> bool:
-        return False
 
     def on_tree(self, instance: Instance, profile: Profile, horizon: int,
                 options: Options) -> Run:
