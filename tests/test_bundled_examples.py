@@ -34,7 +34,7 @@ def _leaves(group: click.Group = main, prefix: str = "") -> list[tuple[str, clic
 
 
 def test_the_examples_are_package_data_and_the_repository_links_to_them() -> None:
-    assert example_names() == ("paper10", "triangle")
+    assert example_names() == ("paper10", "paper10-selection", "triangle")
     for name, file in EXAMPLES.items():
         path = example_path(name)
         assert path.parent.name == "data" and path.parent.parent.name == "dppio"
@@ -46,7 +46,7 @@ def test_the_examples_are_package_data_and_the_repository_links_to_them() -> Non
 def test_help_examples_name_no_file_of_a_clone(name: str, cmd: click.Command) -> None:
     text = cmd.help or ""
     assert "examples/" not in text, f"dpp {name} --help names a file of the repository"
-    for ref in re.findall(r"examples:(\w+)", text):
+    for ref in re.findall(r"examples:([\w-]+)", text):
         assert ref in EXAMPLES, (name, ref)
 
 

@@ -110,7 +110,7 @@ def certify_command(**params: Any) -> None:
       dpp certify examples:triangle profile.json --witness w.json
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
       dpp certify --verify-provenance cert.json examples:triangle profile.json
-      dpp certify examples/paper10-selection.json selection-profile.json
+      dpp certify examples:paper10-selection selection-profile.json
 
     Goal selection (a goal-selection INSTANCE, or --goal-selection with --map): PROFILE is a
     dpp-selection-profile/1 (or a dpp-profile/1, whose prior is read as the Attacker's

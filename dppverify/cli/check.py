@@ -9,16 +9,33 @@ from pathlib import Path
 
 import click
 
+from dppio.examples import PREFIX, resolve_input
 from dppio.inputs import read_input
 from dppverify import kernel
+from dppverify.cli.conventions import (
+    PhaseBar,
+    emit,
+    output_file_option,
+    progress_option,
+    want_progress,
+)
+from dppverify.cli.errors import fail
 from dppverify.cli.map_options import MAP_USAGE, MapRequest, map_options
+from dppverify.errors import CheckerError, OptionError
+from dppverify.formats.files import refuse_input_as_output
 
-__all__ = ["KERNEL_MAIN", "check_command", "run_kernel"]
+__all__ = ["KERNEL_MAIN", "VERDICT_FORMAT", "check_command", "run_kernel"]
 
 KERNEL_MAIN = Path(kernel.__file__).resolve().parent / "__main__.py"
 """The file ``dpp check`` runs in a fresh interpreter (it loads only the kernel)."""
 
 _STDIN_LIMIT = 256 * 1024 * 1024
+
+VERDICT_FORMAT = "dpp-kernel-verdict/1"
+"""The ``format`` of the document ``dpp check --json`` prints (and ``-o FILE`` writes)."""
+
+_STATUS = {0: "pass", 1: "refuted", 3: "undecided"}
+_PREFIX = {"pass": "", "refuted": "REFUTED: ", "undecided": "NOT PROVED: "}
 
 
 def run_kernel(args: list[str], stdin: bytes | None = None) -> subprocess.CompletedProcess[bytes]:
@@ -38,7 +55,13 @@ def run_kernel(args: list[str], stdin: bytes | None = None) -> subprocess.Comple
 @click.argument("files", nargs=-1, type=click.Path(dir_okay=False, allow_dash=True),
                 metavar="INSTANCE PROFILE WITNESS")
 @map_options
-def check_command(files: tuple[str, ...], grid: MapRequest | None) -> None:
+@click.option("--json", "as_json", is_flag=True,
+              help=f"Print the verdict as a JSON document ({VERDICT_FORMAT}: status, message, "
+                   "exit_code) instead of its line.")
+@output_file_option("Write the verdict document to FILE (nothing is written for bad input).")
+@progress_option
+def check_command(files: tuple[str, ...], grid: MapRequest | None, as_json: bool,
+                  output: str | None, progress: bool | None) -> None:
     """Decide with the trusted kernel whether PROFILE is an equilibrium of INSTANCE's
     untruncated game, from the numbers in WITNESS (a dpp-witness/1 document, written by
     `dpp certify --witness` or `dpp solve --witness`).
@@ -52,17 +75,24 @@ def check_command(files: tuple[str, ...], grid: MapRequest | None) -> None:
     the line names the state and the inequality that fails — or the game is not one the
     kernel decides, e.g. float mode). `-` reads one of the three from standard input. With
     --map the game is the grid (as `dpp certify --map` recorded it) and the arguments are
-    PROFILE WITNESS.
+    PROFILE WITNESS. --json prints the verdict as a document (status, message, exit_code);
+    -o FILE writes it (the exit code is the same).
 
     \b
     Examples:
-      dpp solve examples/triangle.json -o p.json --witness w.json
-      dpp check examples/triangle.json p.json w.json
-      dpp certify examples/triangle.json p.json --witness w2.json
-      cat w2.json | dpp check examples/triangle.json p.json -
+      dpp solve examples:triangle -o p.json --witness w.json
+      dpp check examples:triangle p.json w.json
+      dpp certify examples:triangle p.json --witness w2.json
+      cat w2.json | dpp check examples:triangle p.json -
       dpp check --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 p.json w.json
     """
     args, data, prefix = list(files), None, []
+    try:
+        if grid is None and args and args[0].startswith(PREFIX):  # examples:NAME
+            args[0] = resolve_input(args[0], error=OptionError)
+        refuse_input_as_output(output, [*args, grid.path if grid else None])
+    except CheckerError as exc:
+        fail(exc)
     if len(args) != (2 if grid is not None else 3):
         usage = f"dpp check {MAP_USAGE} PROFILE WITNESS" if grid is not None else \
             "dpp check INSTANCE PROFILE WITNESS"
@@ -88,12 +118,22 @@ def check_command(files: tuple[str, ...], grid: MapRequest | None) -> None:
         except (OSError, ValueError) as exc:
             click.echo(f"error: standard input: {exc}", err=True)
             raise SystemExit(2) from None
+    bar = PhaseBar(want_progress(progress), "check", "the kernel (its own process)")
     done = run_kernel([*prefix, *args], data)
+    bar.close()
     out, err = done.stdout.decode(errors="replace"), done.stderr.decode(errors="replace")
     if done.returncode not in (0, 1, 2, 3):
         click.echo(f"error: the kernel process ended abnormally (exit {done.returncode}): "
                    f"{(err.strip().splitlines() or [''])[-1][:200]}", err=True)
         raise SystemExit(3)
-    click.echo(out, nl=False)
+    status = _STATUS.get(done.returncode)
+    if status is None or not (as_json or output is not None):  # bad input, or the plain line
+        click.echo(out, nl=False)
+        click.echo(err, nl=False, err=True)
+        raise SystemExit(done.returncode)
+    line = out.strip()
+    doc = {"format": VERDICT_FORMAT, "status": status,
+           "message": line.removeprefix(_PREFIX[status]), "exit_code": done.returncode}
+    emit(doc, line, as_json=as_json, output=output, summary=line[:120])
     click.echo(err, nl=False, err=True)
     raise SystemExit(done.returncode)

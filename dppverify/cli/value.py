@@ -77,7 +77,7 @@ def value_command(instance: str | None, grid: MapRequest | None, horizon: int | 
       dpp value examples:triangle -H 4 --json --route both
       dpp value examples:triangle -H 4 -o value.json
       dpp value --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 -H 6
-      dpp value examples/paper10-selection.json     # the goal-selection game: V_sel, q*
+      dpp value examples:paper10-selection     # the goal-selection game: V_sel, q*
 
     Goal selection (a goal-selection INSTANCE, or --goal-selection with --map and no
     --prior): V_sel, the value when the Attacker chooses its goal, exactly or as a bracket

@@ -135,7 +135,7 @@ def _mixture(raw: Mapping[str, Any], instance: Instance, c: DefectCollector
     allowed = {"rule", "goal"} | ({"alpha"} if rule == "progress-mixture" else set())
     extra = sorted(set(raw) - allowed)
     if extra:
-        c.add("defender", f"unknown key(s) {', '.join(extra)} for the rule {rule!r}")
+        c.add("defender", f"keys not in the format: {', '.join(extra)} for the rule {rule!r}")
         return None
     node = lookup_node(instance.index, raw.get("goal"))
     theta = None if node is None else instance.goal_index(node)

@@ -47,9 +47,9 @@ def main(argv: list[str]) -> int:
             return 2
     base = base or (Path.cwd() if argv[0] == "-" else Path(argv[0]).resolve().parent)
     v = check(data[0], data[1], data[2], base_dir=base)
-    prefix = {"pass": "", "refuted": "REFUTED: ", "undecided": "NOT PROVED: "}
-    print(prefix.get(v.status, "error: ") + v.message, file=sys.stderr if v.status == "bad-input"
-          else sys.stdout)
+    out = {"pass": "", "refuted": "REFUTED: ", "undecided": "NOT PROVED: "}
+    print(out.get(v.status, "error: ") + v.message, file=sys.stdout if v.status in out else
+          sys.stderr)
     return v.exit_code
 
 

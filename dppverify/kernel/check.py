@@ -65,7 +65,7 @@ def _decide(instance: bytes, profile: bytes, witness: bytes | dict[str, Any],
     if type(wit) is not dict or wit.get("format") != "dpp-witness/1":
         raise BadInput("witness: not a dpp-witness/1 document")
     if set(wit) - _KEYS:
-        raise BadInput(f"witness: unknown key(s) {sorted(set(wit) - _KEYS)[:5]}")
+        raise BadInput(f"witness: keys not in the format: {sorted(set(wit) - _KEYS)[:5]}")
     for key, data in (("instance", instance), ("profile", profile)):
         if wit.get(f"{key}_sha256") != sha256(data):
             raise BadInput(f"witness: {key}_sha256 is not the sha256 of this {key}'s bytes (a "

