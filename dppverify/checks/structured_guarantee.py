@@ -11,9 +11,15 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from fractions import Fraction
+from typing import cast
 
 from dppverify.certificate import CheckRecord
-from dppverify.checks.per_goal_records import per_goal_record, profile_records, walk_labels
+from dppverify.checks.per_goal_records import (
+    Evaluated,
+    per_goal_record,
+    profile_records,
+    walk_labels,
+)
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
 from dppverify.game.profile import Profile
@@ -54,8 +60,7 @@ def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
     """
     inst = instance
     n = inst.n_goals
-    rule = profile.defender
-    assert isinstance(rule, GuaranteeRule)  # the caller dispatches on the guarantee rule
+    rule = cast(GuaranteeRule, profile.defender)  # the caller dispatches on rule.kind
     ev = evaluate_rule_profile(inst, rule, profile.attacker)
     per_type = ev.per_type
     trie = ev.defender.trie
@@ -65,9 +70,9 @@ def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
     attacker = _attacker_record(inst, rule, ev.sets, per_type, horizon)
     known = (coalition_nvalue(dp_value(ev.sets), inst.n_goals)  # proved for N <= 3 (NG.4)
              if horizon is None and inst.n_goals <= 3 else None)
-    out = profile_records(inst, text, {"walks": ev.walks, "prefixes": len(trie)}, per_type,
-                          profile.claimed_u, attacker, ev.defender, ev.mass, horizon,
-                          known=known)
+    out = profile_records(inst, Evaluated(text, {"walks": ev.walks, "prefixes": len(trie)},
+                                          per_type, attacker, ev.defender, ev.mass,
+                                          known=known), profile.claimed_u, horizon)
     return out, len(trie)
 
 

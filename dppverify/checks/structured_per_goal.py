@@ -33,6 +33,7 @@ from dppverify.checks.per_goal_records import (
     NWALKBR,
     PROFILE_DOC,
     STRUCTURED_IDS,
+    Evaluated,
     per_goal_record,
     profile_records,
     walk_labels,
@@ -118,9 +119,10 @@ def per_goal_structured_checks(instance: Instance, profile: Profile,
             + ("and a default (defined on every walk)" if has_default else "without a default"))
     longest = max(len(w) - 1 for w in walks)
     covered = horizon is None or horizon >= longest  # NW.5: U = V_H for every H >= longest
-    out = profile_records(inst, text, {"walks": len(walks), "prefixes": len(trie)}, per_type,
-                          profile.claimed_u, _attacker(inst, tdef, per_type, horizon), tdef,
-                          dict(enumerate(trie.masses)), horizon, covered=covered)
+    ev = Evaluated(text, {"walks": len(walks), "prefixes": len(trie)}, per_type,
+                   _attacker(inst, tdef, per_type, horizon), tdef, dict(enumerate(trie.masses)),
+                   covered=covered)
+    out = profile_records(inst, ev, profile.claimed_u, horizon)
     return out, len(trie)
 
 
