@@ -51,10 +51,14 @@ from dppverify.tree_route.best_response import (
     payoff_on_tree,
 )
 from dppverify.tree_route.bracket import Bracket
-from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
 from dppverify.tree_route.players import DefenderOnTree, defender_from_table
 from dppverify.tree_route.tree import WalkTree, build_tree
-from dppverify.tree_route.value_lp import ValueLP, exact_bracket, solve_value_lp
+from dppverify.tree_route.value_lp import (
+    ValueLP,
+    exact_bracket,
+    solve_value_lp,
+    structured_agrees,
+)
 
 __all__ = ["PerGoalTree", "attacker_record", "defender_record", "payoff_of_type",
            "payoff_record", "per_goal_tree", "sequential_record", "value_records",
@@ -237,9 +241,7 @@ def _structured_record(ctx: PerGoalTree, lp: ValueLP, bracket: Bracket) -> Check
         sv = nvalue(ctx.instance, ctx.tree.horizon)
     except (ValueError, HorizonError) as exc:
         return CheckRecord("game.value.structured", "skipped", str(exc))
-    overlap = sv.lower <= bracket.upper and bracket.lower <= sv.upper
-    agree = overlap and (sv.value is None or (bracket.lower <= sv.value <= bracket.upper
-                                              and lp_agrees(lp.stats, sv.value, LP_TOLERANCE)))
+    agree = structured_agrees(bracket, lp.stats, sv)
     said = (f"structured V_H = {sv.value} ({sv.upper_source})" if sv.value is not None else
             f"structured bracket [{sv.lower}, {sv.upper}]")
     return CheckRecord(
