@@ -29,7 +29,6 @@ __all__ = [
     "defender_records",
     "payoff_record",
     "per_goal_record",
-    "profile_records",
     "value_record",
     "walk_labels",
 ]
@@ -174,40 +173,6 @@ class Evaluated:
     mass: Mapping[int, Sequence[Fraction]]
     covered: bool = True
     known: NValue | None = None
-
-
-def profile_records(inst: Instance, ev: Evaluated, claimed_u: Number | None,
-                    horizon: int | None) -> list[CheckRecord]:
-    """Every record of a well-formed per-goal profile, in certificate order.
-
-    ``profile.wellformed`` passes; ``value.U`` from the types' payoffs against the profile's
-    claim ``claimed_u`` (:func:`payoff_record`); the engine's ``pbne.attacker_br``; the
-    Defender's (:func:`defender_records`); ``game.value`` at ``horizon``
-    (:func:`value_record`), an equilibrium when ``ev.covered`` and every record before it
-    passed.
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import star3
-    >>> from dppverify.structured.table_br import table_defender
-    >>> inst = star3()
-    >>> d = table_defender(inst, {}, (Fraction(1), Fraction(0), Fraction(0)), walks=[(0, 1, 2)])
-    >>> mass = {p: (Fraction(1), Fraction(0), Fraction(0)) for p in range(len(d.trie))}
-    >>> br = per_goal_record("pbne.attacker_br", "pass", "regret 0", None, NWALKBR, BR)
-    >>> recs = profile_records(inst, Evaluated("one walk", {}, [2, 0, 0], br, d, mass), None, 2)
-    >>> [r.id for r in recs] == list(STRUCTURED_IDS)
-    True
-    """
-    out = [per_goal_record(STRUCTURED_IDS[0], "pass", ev.described, ev.sizes, PROFILE_DOC,
-                           None)]
-    per_type = ev.per_type
-    u = normalize(sum((inst.prior[t] * per_type[t] for t in range(inst.n_goals)), Fraction(0)))
-    out.append(payoff_record(per_type, u, claimed_u))
-    out.append(ev.attacker)
-    out += defender_records(inst, ev.defender, ev.mass, u)
-    out.append(value_record(inst, u, horizon, ev.covered and all(r.passed for r in out),
-                            ev.known))
-    return out
 
 
 def value_record(inst: Instance, u: Number, horizon: int | None, equilibrium: bool,

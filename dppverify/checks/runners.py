@@ -9,8 +9,9 @@ records of its ids, in that order:
 - two-goal, tree: :class:`~dppverify.tree_route.context.Context` (σ*, the lemmas' facts: the
   two-goal mathematics behind the ids);
 - per-goal, tree: :class:`~dppverify.tree_route.per_goal_checks.PerGoalTree`;
-- both families, structured route: a :class:`StructuredInput` (the structured engines
-  compute a family's records in one pass over the trie of the profile's walks).
+- two-goal, structured: :class:`~dppverify.checks.structured.TwoGoalStructured`;
+- per-goal, structured: :class:`~dppverify.checks.structured_per_goal.PerGoalStructured`
+  (the profile evaluated by its Defender's engine, chosen there by the rule's ``kind``).
 
 A runner of checks about the profile (:func:`on_profile`) runs only on a profile that can be
 evaluated; otherwise its records are ``skipped``.
@@ -21,10 +22,11 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
-from functools import cached_property
 from typing import Any
 
 from dppverify.certificate import CheckRecord
+from dppverify.checks import structured as st
+from dppverify.checks import structured_per_goal as spg
 from dppverify.checks.attacker import attacker_br
 from dppverify.checks.beliefs import belief_consistency
 from dppverify.checks.defender import defender_br, sequential_rationality
@@ -39,18 +41,14 @@ from dppverify.checks.lemmas import (
 )
 from dppverify.checks.payoffs import value_check, values
 from dppverify.checks.skipped import skipped
-from dppverify.checks.structured import structured_checks
-from dppverify.checks.structured_per_goal import per_goal_structured_checks
 from dppverify.checks.wellformed import phases, wellformed
 from dppverify.errors import LPError
-from dppverify.game.instance import Instance
-from dppverify.game.profile import Profile
 from dppverify.registry import CHECKS, Family, RouteName, spec
 from dppverify.tree_route import per_goal_checks as pg
 from dppverify.tree_route.context import EvaluatedContext
 
-__all__ = ["RUNNERS", "Runner", "StructuredInput", "in_registry_order", "on_profile",
-           "run_checks", "runners_of"]
+__all__ = ["RUNNERS", "Runner", "in_registry_order", "on_profile", "run_checks",
+           "runners_of"]
 
 
 @dataclass(frozen=True)
@@ -68,20 +66,6 @@ class Runner:
     run: Callable[[Any], list[CheckRecord]]
     family: Family = "two-goal"
     route: RouteName = "tree"
-
-
-@dataclass(frozen=True, eq=False)
-class StructuredInput:
-    """The structured route's context: the game, the profile, ``H`` (None: untruncated)."""
-
-    instance: Instance
-    profile: Profile
-    horizon: int | None
-
-    @cached_property
-    def per_goal(self) -> tuple[list[CheckRecord], int]:
-        """The per-goal records and the size of the trie of the profile's walks."""
-        return per_goal_structured_checks(self.instance, self.profile, self.horizon)
 
 
 def on_profile(ids: tuple[str, ...], fn: Callable[[Any], list[CheckRecord]],
@@ -105,6 +89,30 @@ def on_profile(ids: tuple[str, ...], fn: Callable[[Any], list[CheckRecord]],
             return fn(ctx)
         return [skipped(i, spec(i).proof) for i in ids]
     return Runner(ids, run, family)
+
+
+def _structured(ids: tuple[str, ...], fn: Callable[[Any], Any], *, always: bool = False,
+                skip_proof: str | None = None) -> Runner:
+    """A two-goal structured runner: ``fn`` on a usable profile (``always``: any profile),
+    else ``skipped`` records (``skip_proof`` their proof)."""
+    def run(ctx: st.TwoGoalStructured) -> list[CheckRecord]:
+        if always or ctx.usable:
+            got = fn(ctx)
+            return got if isinstance(got, list) else [got]
+        return [st.skipped_record(i, skip_proof) for i in ids]
+    return Runner(ids, run, "two-goal", "structured")
+
+
+def _per_goal_structured(ids: tuple[str, ...], fn: Callable[[Any], Any], *,
+                         always: bool = False) -> Runner:
+    """A per-goal structured runner: ``fn`` on a well-formed profile (``always``: any), else
+    ``skipped`` records."""
+    def run(ctx: spg.PerGoalStructured) -> list[CheckRecord]:
+        if always or ctx.wellformed:
+            got = fn(ctx)
+            return got if isinstance(got, list) else [got]
+        return [spg.skipped_record(i) for i in ids]
+    return Runner(ids, run, "per-goal", "structured")
 
 
 def _one(check_id: str, fn: Callable[[Any], CheckRecord], family: Family = "two-goal"
@@ -140,11 +148,26 @@ RUNNERS: tuple[Runner, ...] = (
     _one_on_profile("pbne.defender_br", pg.defender_record, "per-goal"),
     _one_on_profile("pbne.sequential_rationality", pg.sequential_record, "per-goal"),
     on_profile(("game.value", "game.value.structured"), pg.value_records, "per-goal"),
-    Runner(tuple(c.id for c in CHECKS if c.family == "two-goal" and "structured" in c.routes),
-           lambda s: structured_checks(s.instance, s.profile, s.horizon), "two-goal",
-           "structured"),
-    Runner(tuple(c.id for c in CHECKS if c.family == "per-goal" and "structured" in c.routes),
-           lambda s: s.per_goal[0], "per-goal", "structured"),
+    _structured(("profile.wellformed",), st.wellformed_record, always=True),
+    _structured(("value.U1", "value.U2", "value.U", "value.VoI"), st.values_records),
+    _structured(("profile.phases",), st.phases_record),
+    _structured(("pbne.attacker_br.primary", "pbne.attacker_br.secondary"),
+                st.attacker_records),
+    _structured(("pbne.defender_br",), st.defender_record),
+    _structured(("pbne.sequential_rationality",), st.sequential_record),
+    _structured(("pbne.belief_consistency",), st.belief_record),
+    _structured(("game.value",), st.game_value_record),
+    _structured(("lemma.TEL.telescoping",), st.telescoping_record),
+    _structured(("lemma.L1.lower_bound",), st.l1_record),
+    _structured(("lemma.L2.no_revisits",), st.l2_record),
+    _structured(("lemma.XI2.secondary_value",), st.xi2_record, always=True),
+    _structured(("lemma.L5.induced_beliefs",), st.l5_record, skip_proof="L5"),
+    _per_goal_structured(("profile.wellformed",), spg.wellformed_record, always=True),
+    _per_goal_structured(("value.U",), spg.payoff_record_of),
+    _per_goal_structured(("pbne.attacker_br",), spg.attacker_record),
+    _per_goal_structured(("pbne.defender_br", "pbne.sequential_rationality"),
+                         spg.defender_records_of),
+    _per_goal_structured(("game.value",), spg.value_record_of),
 )
 """Every runner, each family's and route's in registry order."""
 

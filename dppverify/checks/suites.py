@@ -29,7 +29,9 @@ from typing import Any, Protocol
 from tqdm import tqdm
 
 from dppverify.certificate import CheckRecord
-from dppverify.checks.runners import StructuredInput, run_checks
+from dppverify.checks.runners import run_checks
+from dppverify.checks.structured import TwoGoalStructured
+from dppverify.checks.structured_per_goal import PerGoalStructured
 from dppverify.errors import UndecidedError
 from dppverify.game.instance import Instance, arc_arrays, node_to_json
 from dppverify.game.profile import PER_GOAL_PROFILE_FORMAT, PROFILE_FORMAT, Profile
@@ -169,7 +171,7 @@ class TwoGoalSuite:
         return Run(records, tree.n_prefixes, tree.n_leaves, horizon)
 
     def structured(self, instance: Instance, profile: Profile, horizon: int | None) -> Run:
-        ctx = StructuredInput(instance, profile, horizon)
+        ctx = TwoGoalStructured(instance, profile, horizon)
         return Run(run_checks(self.family, "structured", ctx), horizon=horizon)
 
     def players(self, instance: Instance, profile: Profile, trie_prefixes: int | None
@@ -204,9 +206,9 @@ class PerGoalSuite:
                    tree.horizon)
 
     def structured(self, instance: Instance, profile: Profile, horizon: int | None) -> Run:
-        ctx = StructuredInput(instance, profile, horizon)
+        ctx = PerGoalStructured(instance, profile, horizon)
         records = run_checks(self.family, "structured", ctx)
-        size = ctx.per_goal[1]
+        size = ctx.trie_prefixes
         rule = profile.defender
         if horizon is None and rule is not None and not rule.defined_everywhere:
             br = next((r for r in records if r.id == "pbne.attacker_br"), None)

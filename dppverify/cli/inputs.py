@@ -101,7 +101,19 @@ def read_game(instance: str | None, grid: MapRequest | None,
     the door :func:`~dppverify.game.inputs.read_instance`; a read error becomes a hint when the
     file is of another kind), or the ``--map`` option group's grid (its compact map instance,
     ``map`` cut to the file's name, and the ``.map`` file's sha256:
-    :func:`~dppverify.provenance.map_identity`)."""
+    :func:`~dppverify.provenance.map_identity`).
+
+    Examples
+    --------
+    >>> import json, os, tempfile
+    >>> from dppverify.game.examples import triangle_document
+    >>> with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+    ...     json.dump(triangle_document(), f)
+    >>> read = read_game(f.name, None)
+    >>> read.value.n_goals, json.loads(read.data) == triangle_document()
+    (2, True)
+    >>> os.unlink(f.name)
+    """
     instance_or_map(instance, grid)
     if grid is not None:
         doc = grid.document()

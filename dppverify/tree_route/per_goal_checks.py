@@ -60,9 +60,7 @@ from dppverify.tree_route.value_lp import (
     structured_agrees,
 )
 
-__all__ = ["PerGoalTree", "attacker_record", "defender_record", "payoff_of_type",
-           "payoff_record", "per_goal_tree", "sequential_record", "value_records",
-           "wellformed_record"]
+__all__ = ["NOT_WELL_FORMED", "PerGoalTree", "payoff_of_type", "per_goal_tree"]
 
 PROOF = "NGOAL"
 NOT_WELL_FORMED = "the profile is not well formed"
