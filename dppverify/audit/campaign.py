@@ -220,6 +220,7 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
     seen: set[str] = set()
     found: list[Outcome] = []
     files: list[tuple[Any, ...]] = [()]
+    unwritten: list[str] = []  # why the failure's files could not be written
     skip_limit = max(SKIP_FLOOR, SKIP_FACTOR * examples)
     stopped = [""]
     bar = tqdm(total=examples, desc="audit", unit="ex", disable=not progress, file=sys.stderr,
@@ -228,14 +229,14 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
     def record(outcome: Outcome) -> None:
         found.append(outcome)
         if out is not None:
-            files[0] = save_failure(outcome, out, seed=seed, log=log)
+            files[0] = save_failure(outcome, out, seed=seed, unwritten=unwritten)
         if len(found) > 1:
             bar.set_description(f"shrinking: {budget.used}/{budget.calls} calls, "
                                 f"{len(outcome.instance['graph']['nodes'])} nodes")
 
     def first(outcome: Outcome) -> None:
         record(outcome)
-        if log is not None:
+        if log is not None and not unwritten:  # (else the end says it, in its one line)
             where = f"; written to {out}" if out is not None else ""
             plan = (f"; shrinking it (budget: {budget.describe()})" if shrink else "")
             log(f"audit: example {counts['examples']} fails {outcome.check}{where}{plan}")
@@ -321,5 +322,6 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
         bar.close()
     return AuditReport(False, counts["examples"], counts["skipped"], budget.used, minimal,
                        found[0], files[0], seed, max_nodes, shrunk=shrink,
-                       budget_exhausted=shrink and budget.exhausted)
+                       budget_exhausted=shrink and budget.exhausted,
+                       unwritten=unwritten[0] if unwritten and not files[0] else "")
 

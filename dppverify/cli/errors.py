@@ -18,6 +18,7 @@ import click
 
 from dppio.inputs import STDIN, reading_once
 from dppio.memory import memory_limit_text
+from dppio.text import terminal_line
 from dppverify.cli.interrupts import Terminated, as_signal, exit_code, signals_as_exceptions
 from dppverify.cli.interrupts import message as interrupt_message
 from dppverify.cli.streams import (
@@ -29,7 +30,10 @@ from dppverify.cli.streams import (
 )
 from dppverify.errors import CheckerError, LPError, UndecidedError
 
-__all__ = ["ErrorReportingGroup", "error_code", "error_line", "fail"]
+__all__ = ["OUTPUT_OPTIONS", "ErrorReportingGroup", "error_code", "error_line", "fail"]
+
+OUTPUT_OPTIONS = frozenset({"-o", "--output", "--out", "--save-instance"})
+"""The options whose value names an output: ``-`` after one of them is standard output."""
 
 
 class ErrorReportingGroup(click.Group):
@@ -62,9 +66,11 @@ class ErrorReportingGroup(click.Group):
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
         words = args[:args.index("--")] if "--" in args else args
-        if words.count(STDIN) > 1:  # one stream, one input (dppio.inputs)
+        inputs = [w for i, w in enumerate(words)  # `-o -` is standard output, not an input
+                  if w == STDIN and (i == 0 or words[i - 1] not in OUTPUT_OPTIONS)]
+        if len(inputs) > 1:  # one stream, one input (dppio.inputs)
             click.echo(f"error: {STDIN} (standard input) can stand for one input only, "
-                       f"got it {words.count(STDIN)} times", err=True)
+                       f"got it {len(inputs)} times", err=True)
             ctx.exit(2)
         try:
             return super().parse_args(ctx, args)
@@ -97,8 +103,8 @@ class ErrorReportingGroup(click.Group):
                 ctx.exit(exit_code(sig))
             if os.environ.get("DPP_DEBUG"):
                 raise
-            click.echo(f"internal error: {type(exc).__name__}: {' '.join(str(exc).split())} "
-                       "(set DPP_DEBUG=1 for details)", err=True)
+            click.echo(terminal_line(f"internal error: {type(exc).__name__}: {exc} "
+                                     "(set DPP_DEBUG=1 for details)"), err=True)
             ctx.exit(3)
 
 
@@ -126,7 +132,7 @@ def _usage_error(exc: click.UsageError) -> None:
         click.echo(f"error: missing command (see '{where} --help')", err=True)
         return
     message = " ".join(exc.format_message().split())
-    click.echo(f"error: {message} (see '{where} --help')", err=True)
+    click.echo(terminal_line(f"error: {message} (see '{where} --help')"), err=True)
 
 
 def error_code(exc: Exception) -> int:
@@ -153,9 +159,9 @@ failure of the checker on a valid input, not an error in it)"
     """
     text = " ".join(str(exc).split())
     if isinstance(exc, LPError):
-        return (f"error: could not decide: {text} (a numerical failure of the checker on a "
-                "valid input, not an error in it)")
-    return f"error: {text}"
+        return terminal_line(f"error: could not decide: {text} (a numerical failure of the "
+                             "checker on a valid input, not an error in it)")
+    return terminal_line(f"error: {text}")
 
 
 def fail(exc: Exception) -> NoReturn:
@@ -173,7 +179,7 @@ def fail(exc: Exception) -> NoReturn:
     exit 2
     """
     if isinstance(exc, UndecidedError):  # "could not decide": exit 3, never a verdict
-        click.echo(f"undecided: {' '.join(str(exc).split())}", err=True)
+        click.echo(terminal_line(f"undecided: {' '.join(str(exc).split())}"), err=True)
         raise click.exceptions.Exit(3)
     if (sig := as_signal(exc)) is not None:  # interrupted: the signal's line and code
         click.echo(interrupt_message(sig), err=True)

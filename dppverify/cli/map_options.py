@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import click
 
 from dppio.memory import check_memory
+from dppio.text import terminal_line
 from dppverify.errors import CheckerError, InvalidInstanceError, OptionError
 from dppverify.formats.json_reading import parse_number
 from dppverify.formats.map_instance import MapReference, map_document
@@ -464,7 +465,7 @@ def _map_options(fn: F, *, only_two: bool) -> F:
                                   f"(N goals: dpp solve, certify, value, export-efg, plot map)")
             grid = map_request(map_file, start, goals, prior_text, connectivity)
         except CheckerError as exc:
-            click.echo(f"error: {exc}", err=True)
+            click.echo(terminal_line(f"error: {exc}"), err=True)
             raise click.exceptions.Exit(2) from None
         return fn(*args, grid=grid, **kwargs)
 

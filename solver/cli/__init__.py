@@ -22,7 +22,7 @@ from solver.cli.plot import plot_group
 from solver.cli.solve import solve_command
 from solver.errors import DPPError
 
-__all__ = ["batch_checker", "main"]
+__all__ = ["batch_checker", "console", "main"]
 
 
 class _DppGroup(checker_cli.ErrorReportingGroup):
@@ -40,3 +40,23 @@ def main() -> None:
 for _command in (solve_command, experiment_group, batch_command, plot_group,
                  *checker_cli.COMMANDS):
     main.add_command(_command)
+
+
+def console() -> None:
+    """The ``dpp`` program (the console script ``dpp-python``, which the ``dpp`` launcher runs:
+    ``bin/dpp``): :data:`main` under the name ``dpp`` whichever file started it.
+
+    Examples
+    --------
+    >>> import sys
+    >>> saved, sys.argv = sys.argv, ["/venv/bin/dpp-python", "--version"]
+    >>> try:
+    ...     console()
+    ... except SystemExit as exc:
+    ...     print("exit", exc.code)
+    ... finally:
+    ...     sys.argv = saved  # doctest: +ELLIPSIS
+    dpp, version ...
+    exit 0
+    """
+    main(prog_name="dpp")

@@ -10,7 +10,7 @@ import click
 
 from dppio.files import refuse_input_as_output, write_files
 from dppio.inputs import is_stdin
-from dppio.text import decimal
+from dppio.text import decimal, terminal_text
 from dppverify.cli.conventions import (
     PhaseBar,
     output_file_option,
@@ -113,7 +113,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     elif as_json:
         click.echo(dumps(doc), nl=False)
     else:
-        click.echo(summarize(result, certified=CERTIFIED))
+        click.echo(terminal_text(summarize(result, certified=CERTIFIED)))  # node names: escaped
     if save_instance is not None:
         status(f"wrote {save_instance}: the instance")
 

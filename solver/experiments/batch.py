@@ -42,11 +42,12 @@ pre-pass is linear in the file and at most ``2 * workers`` tasks are in flight.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import os
 import time
 from collections import deque
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Generator, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
@@ -100,6 +101,12 @@ class Checker:
     rule: str
 
 
+COLUMNS_VERSION = "columns/2"
+"""What the rows' columns mean, part of the ``config`` hash: a CSV whose rows were computed
+under another definition is another configuration, so a resume or a merge never mixes them
+(``columns/2``: ``truthful_P`` reads the reference script's node ``1 + ⌊P(K−1)/100⌋``)."""
+
+
 @dataclass(frozen=True)
 class BatchConfig:
     """What the rows depend on besides the lines: seed, prior (scenario goal first),
@@ -125,7 +132,7 @@ class BatchConfig:
         True
         """
         text = "|".join([self.rule, self.scen_sha256, str(self.seed), *self.prior,
-                         str(self.connectivity), self.route])
+                         str(self.connectivity), self.route, COLUMNS_VERSION])
         return hashlib.sha256(text.encode()).hexdigest()[:12]
 
 
@@ -475,11 +482,12 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
         tasks: Iterable[BatchTask] = plan.tasks(out.done, chunk, select)
         if limit is not None:
             tasks = (t for _, t in zip(range(limit), tasks, strict=False))
-        try:
-            for rows in _results(tasks, workers, dask_address):
-                out.append(rows)
-                if progress is not None:
-                    progress(len(rows))
+        try:  # the results closed on the way out: a signal ends the pool at once
+            with contextlib.closing(_results(tasks, workers, dask_address)) as results:
+                for rows in results:
+                    out.append(rows)
+                    if progress is not None:
+                        progress(len(rows))
         except BaseException:  # a signal, an error: the rows the file really holds
             if on_end is not None:
                 on_end(out.rows_in_file())
@@ -491,10 +499,11 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
 
 
 def _results(tasks: Iterable[BatchTask], workers: int,
-             dask_address: str | None) -> Iterator[list[dict[str, str]]]:
+             dask_address: str | None) -> Generator[list[dict[str, str]], None, None]:
     if dask_address is not None:
-        for _, rows in dask_completed(run_batch_task, tasks, dask_address):
-            yield rows
+        with contextlib.closing(dask_completed(run_batch_task, tasks, dask_address)) as done:
+            for _, rows in done:
+                yield rows
         return
     if workers <= 1:
         for t in tasks:
@@ -502,8 +511,9 @@ def _results(tasks: Iterable[BatchTask], workers: int,
         return
     from solver.experiments.local_pool import completed
 
-    for _, rows in completed(run_batch_task, tasks, workers):
-        yield rows
+    with contextlib.closing(completed(run_batch_task, tasks, workers)) as pooled:
+        for _, rows in pooled:  # closing this generator closes the pool's at once
+            yield rows
 
 
 def parse_prior(text: str) -> tuple[str, str]:
