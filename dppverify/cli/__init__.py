@@ -1,6 +1,7 @@
 """The checker's command line: ``python -m dppverify`` and the checker's ``dpp`` commands.
 
 One module per command: :mod:`~dppverify.cli.certify` (``certify``),
+:mod:`~dppverify.cli.check` (``check``: the trusted kernel in its own process),
 :mod:`~dppverify.cli.value` (``value``), :mod:`~dppverify.cli.export_efg` (``export-efg``),
 :mod:`~dppverify.cli.audit` (``audit``); what they share: :mod:`~dppverify.cli.errors` (one
 line and an exit code per failure), :mod:`~dppverify.cli.inputs` (the horizon, the instance,
@@ -23,6 +24,7 @@ import click
 from dppverify import __version__
 from dppverify.cli.audit import audit_command
 from dppverify.cli.certify import certify_command
+from dppverify.cli.check import check_command
 from dppverify.cli.errors import ErrorReportingGroup
 from dppverify.cli.export_efg import export_efg_command
 from dppverify.cli.inputs import hinted
@@ -30,7 +32,8 @@ from dppverify.cli.value import value_command
 
 __all__ = ["COMMANDS", "ErrorReportingGroup", "hinted", "main"]
 
-COMMANDS: list[click.Command] = [certify_command, value_command, export_efg_command, audit_command]
+COMMANDS: list[click.Command] = [certify_command, check_command, value_command, export_efg_command,
+                                  audit_command]
 """The checker's commands, in the order ``--help`` lists them."""
 
 
