@@ -3,12 +3,12 @@
 Three files are package data (``dppio/data/``): ``examples:triangle`` (``triangle.json``, the
 smallest two-goal instance with every phase of the game, U* = 12/5), ``examples:paper10``
 (``paper10.map``, the paper's 10×10 MovingAI map) and ``examples:paper10-selection``
-(``paper10-selection.json``, the goal-selection game on that map, V_sel = 25/2). Every command that reads an instance file
-or a ``--map`` accepts the name (``dpp solve examples:triangle``, ``dpp certify --map
-examples:paper10 ...``), and so does the ``map`` of a ``dpp-map-instance/1`` document; the
-``--help`` examples and the notebook therefore run outside a clone of the repository, whose
-``examples/`` folder links to the same files. In Python, :func:`example_path` gives the
-file.
+(``paper10-selection.json``, the goal-selection game on that map, V_sel = 25/2). Every command
+that reads an instance file or a ``--map`` accepts the name (``dpp solve examples:triangle``,
+``dpp certify --map examples:paper10 ...``), and so does the ``map`` of a
+``dpp-map-instance/1`` document; the ``--help`` examples and the notebook therefore run outside
+a clone of the repository, whose ``examples/`` folder links to the same files. In Python,
+:func:`example_path` gives the file.
 
 This is the one place that locates a bundled example, shared by both packages (each passes its
 own error class as ``error=``, like every check of :mod:`dppio`); :data:`INSTANCE_FILE` is the

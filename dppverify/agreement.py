@@ -15,9 +15,8 @@ from dataclasses import dataclass
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
 from dppverify.structured.proved_value import NValue, nvalue
-from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
-from dppverify.tree_route.value_lp import GameValue, game_value
+from dppverify.tree_route.value_lp import GameValue, game_value, structured_agrees
 
 __all__ = ["RouteAgreement", "compare_routes"]
 
@@ -67,10 +66,5 @@ def compare_routes(instance: Instance, horizon: int, *,
     """
     tree = game_value(instance, horizon, max_prefixes=max_prefixes)
     sv = nvalue(instance, horizon)
-    b = tree.bracket
-    agree = sv.lower <= b.upper and b.lower <= sv.upper
-    if sv.value is not None:
-        agree = agree and b.lower <= sv.value <= b.upper and lp_agrees(tree.lp, sv.value,
-                                                                       LP_TOLERANCE)
     return RouteAgreement(horizon=horizon, dp=sv.coalition.value, structured=sv, tree=tree,
-                          agree=bool(agree))
+                          agree=structured_agrees(tree.bracket, tree.lp, sv))

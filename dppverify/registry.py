@@ -1,10 +1,11 @@
 """The check registry: every check's id, certificate order, proof, routes and kind, once.
 
-The certificate order, :data:`CHECK_IDS`, the routes each check runs on, what each relies on,
-and the table in ``dppverify/checks.md`` (tested against this registry) all come from
+One registry for every family of checks (:data:`Family`: the two-goal profile's and the
+per-goal profile's): the certificate order, the routes each check runs on, what each relies
+on, and the tables in ``dppverify/checks.md`` (tested against this registry) all come from
 :data:`CHECKS`, declared here once; this module imports nothing of the checker. The function
-computing each tree check is declared beside the checks
-(:data:`dppverify.checks.runners.TREE_RUNNERS`); ``certify`` runs them in registry order.
+computing each check is declared in the one runner table
+(:data:`dppverify.checks.runners.RUNNERS`); ``certify`` runs them in registry order.
 
 ``kind``: ``check`` is evidence for the one question the verdict answers, "is the profile a
 (weak) PBNE of the game?"; ``consistency`` compares two computations of the checker's own (a

@@ -26,7 +26,7 @@ from dppverify.structured.cover import MAX_BALANCED
 from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.tree_route.lp import lp_agrees
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, tree_fits
-from dppverify.tree_route.value_lp import GameValue, game_value
+from dppverify.tree_route.value_lp import GameValue, game_value, structured_agrees
 from dppverify.twogoal.value_dp import StructuredValue, structured_value
 
 __all__ = ["ROUTES", "Chosen", "Route", "RoutedValue", "resolve_route", "routed_value",
@@ -283,12 +283,9 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
 
 def _brackets_agree(tree: GameValue, dp: NValue, horizon: int | None) -> str | None:
     """None when the tree's exact bracket and the guarantee sets' value or bracket agree."""
-    b = tree.bracket
-    overlap = dp.lower <= b.upper and b.lower <= dp.upper
-    exact_ok = dp.value is None or (b.lower <= dp.value <= b.upper
-                                    and lp_agrees(tree.lp, dp.value))
-    if overlap and exact_ok:
+    if structured_agrees(tree.bracket, tree.lp, dp):
         return None
+    b = tree.bracket
     return (f"the routes disagree at H = {horizon}: structured route [{dp.lower}, {dp.upper}], "
             f"tree route in [{b.lower}, {b.upper}] (LP {tree.value!r}) — a bug; please keep "
             f"this instance")

@@ -6,6 +6,7 @@ the Defender's regret and sequential rationality on the walk trie, and the value
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from fractions import Fraction
 
 from dppio.text import count
@@ -18,9 +19,20 @@ from dppverify.registry import checks_of
 from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.structured.table_br import TableDefender
 
-__all__ = ["BR", "NWALKBR", "PAYOFF_WALKS", "PROFILE_DOC", "STRUCTURED_IDS", "TRIE",
-           "defender_records", "payoff_record", "per_goal_record", "profile_records",
-           "value_record", "walk_labels"]
+__all__ = [
+    "BR",
+    "NWALKBR",
+    "PAYOFF_WALKS",
+    "PROFILE_DOC",
+    "STRUCTURED_IDS",
+    "TRIE",
+    "Evaluated",
+    "defender_records",
+    "payoff_record",
+    "per_goal_record",
+    "value_record",
+    "walk_labels",
+]
 
 PROOF = "NGOAL"
 BR = "NWALKBR"
@@ -133,38 +145,35 @@ def defender_records(inst: Instance, tdef: TableDefender,
     return recs
 
 
-def profile_records(inst: Instance, described: str, sizes: dict[str, Number | None],
-                    per_type: Sequence[Number], claimed_u: Number | None,
-                    attacker: CheckRecord, tdef: TableDefender,
-                    mass: Mapping[int, Sequence[Fraction]], horizon: int | None, *,
-                    covered: bool = True, known: NValue | None = None) -> list[CheckRecord]:
-    """Every record of a well-formed per-goal profile, in certificate order.
+@dataclass(frozen=True)
+class Evaluated:
+    """A well-formed per-goal profile evaluated on the trie of its walks by its Defender's
+    engine (a table, or the guarantee rule).
 
-    ``profile.wellformed`` passes with ``described`` and ``sizes``; ``value.U`` from the
-    types' payoffs ``per_type`` (:func:`payoff_record`); the Attacker's record ``attacker``;
-    the Defender's (:func:`defender_records` on ``tdef`` and ``mass``); ``game.value``
-    (:func:`value_record`), an equilibrium when ``covered`` (``H`` covers the profile's
-    walks) and every record before it passed.
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import star3
-    >>> from dppverify.structured.table_br import table_defender
-    >>> inst = star3()
-    >>> d = table_defender(inst, {}, (Fraction(1), Fraction(0), Fraction(0)), walks=[(0, 1, 2)])
-    >>> mass = {p: (Fraction(1), Fraction(0), Fraction(0)) for p in range(len(d.trie))}
-    >>> br = per_goal_record("pbne.attacker_br", "pass", "regret 0", None, NWALKBR, BR)
-    >>> recs = profile_records(inst, "one walk", {}, [2, 0, 0], None, br, d, mass, 2)
-    >>> [r.id for r in recs] == list(STRUCTURED_IDS)
-    True
+    Attributes
+    ----------
+    described, sizes
+        The ``profile.wellformed`` message and numbers.
+    per_type : sequence of Number
+        Every type's payoff ``U_θ``.
+    attacker : CheckRecord
+        ``pbne.attacker_br``, from the engine.
+    defender : TableDefender
+        The Defender on the trie; ``mass[p][θ]``: type θ's realization mass at prefix ``p``.
+    covered : bool
+        ``H`` covers the profile's walks (NW.5: ``U = V_H`` for an equilibrium then).
+    known : NValue, optional
+        The value when the engine proved it.
     """
-    out = [per_goal_record(STRUCTURED_IDS[0], "pass", described, sizes, PROFILE_DOC, None)]
-    u = normalize(sum((inst.prior[t] * per_type[t] for t in range(inst.n_goals)), Fraction(0)))
-    out.append(payoff_record(per_type, u, claimed_u))
-    out.append(attacker)
-    out += defender_records(inst, tdef, mass, u)
-    out.append(value_record(inst, u, horizon, covered and all(r.passed for r in out), known))
-    return out
+
+    described: str
+    sizes: dict[str, Number | None]
+    per_type: Sequence[Number]
+    attacker: CheckRecord
+    defender: TableDefender
+    mass: Mapping[int, Sequence[Fraction]]
+    covered: bool = True
+    known: NValue | None = None
 
 
 def value_record(inst: Instance, u: Number, horizon: int | None, equilibrium: bool,

@@ -6,7 +6,7 @@
    every type's exact regret over all walks is 0 (**every** type, also those ``q`` never
    chooses), the Defender's regret given ``q`` is 0 and it is sequentially rational on the
    prefixes ``q`` reaches; these are the records of the per-goal structured route on the game at
-   ``q`` (:func:`~dppverify.checks.structured_per_goal.per_goal_structured_checks`: the
+   ``q`` (:class:`~dppverify.checks.structured_per_goal.PerGoalStructured`: the
    guarantee rule or a table), or of :mod:`dppverify.structured.mixture_br` for the two-goal
    progress mixture;
 2. ``selection.goal_indifference``: with ``c_i`` type ``i``'s exact best-response cost against
@@ -21,6 +21,7 @@ profile's claim.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 from fractions import Fraction
 
 from dppverify.certificate import CheckRecord, Status
@@ -34,7 +35,8 @@ from dppverify.checks.per_goal_records import (
     value_record,
     walk_labels,
 )
-from dppverify.checks.structured_per_goal import per_goal_structured_checks
+from dppverify.checks.runners import run_checks
+from dppverify.checks.structured_per_goal import PerGoalStructured
 from dppverify.exact import Number, normalize
 from dppverify.game.goal_selection import with_choice
 from dppverify.game.instance import Instance
@@ -46,7 +48,7 @@ from dppverify.structured.selection_value import SelectionValue, goal_values, se
 from dppverify.structured.table_br import TableDefender
 from dppverify.structured.trie import mass_trie
 
-__all__ = ["SELECTION_IDS", "selection_checks"]
+__all__ = ["SELECTION_IDS", "SelectionContext", "selection_checks"]
 
 SELECT = "SELECT"
 INDIFFERENCE = ("relies on proofs/SELECT.md (SELECT.6: c_i, the exact best-response costs of "
@@ -58,6 +60,22 @@ MIXTURE = ("relies on proofs/SELECT.md (SELECT.7: the mixture of the two progres
 
 SELECTION_IDS = check_ids("selection")
 """Every check id of a goal-selection certificate, in certificate order (the registry's)."""
+
+
+@dataclass(frozen=True)
+class SelectionContext:
+    """The goal-selection family's context on the structured route (the one runner table's
+    row of the family, :data:`dppverify.checks.runners.RUNNERS`): the game and the profile.
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> SelectionContext(star3(), None).instance.n_goals  # type: ignore[arg-type]
+    3
+    """
+
+    instance: Instance
+    profile: Profile
 
 
 def _goal(inst: Instance, t: int) -> str:
@@ -108,7 +126,7 @@ Attacker 2/5
     if isinstance(profile.defender, ProgressMixture):
         recs = _mixture_records(game, profile, profile.defender)
     else:
-        recs, _ = per_goal_structured_checks(game, profile, None)
+        recs = run_checks("per-goal", "structured", PerGoalStructured(game, profile, None))
     byid = {r.id: r for r in recs}
     costs = _best_costs(byid, n)
     values = goal_values(instance)

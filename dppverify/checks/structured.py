@@ -1,4 +1,4 @@
-"""The structured route of ``certify``: the untruncated game, without the walk tree.
+"""The structured route's checks of a two-goal profile: the untruncated game, no walk tree.
 
 For a two-goal profile whose Defender is a progress rule (σ* or the progress rule towards the
 other goal) or a table with a ``default``: both Attacker types' exact regret over ALL walks of
@@ -16,7 +16,9 @@ with their LPs) are not run on this route; the certificate says so. The N-goal r
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from fractions import Fraction
+from functools import cached_property
 from typing import cast
 
 from dppio.text import count
@@ -46,87 +48,179 @@ from dppverify.numbers import NumberMode
 from dppverify.structured.table_br_twogoal import table_minima
 from dppverify.structured.trie import WalkTrie, mass_trie
 from dppverify.text import show, show_walk
-from dppverify.twogoal.progress_br import walk_minima
+from dppverify.twogoal.progress_br import WalkMinima, walk_minima
 from dppverify.twogoal.value_dp import structured_value
 
-__all__ = ["structured_checks"]
+__all__ = ["TwoGoalStructured"]
 
 
 TABLEBR = "relies on proofs/TABLEBR.md (a table Defender with a default)"
 DP = "relies on proofs/DP.md"
 
 
-def structured_checks(instance: Instance, profile: Profile,
-                      horizon: int | None) -> list[CheckRecord]:
-    """Every check of the structured route, in certificate order.
+@dataclass(frozen=True, eq=False)
+class TwoGoalStructured:
+    """A two-goal profile on the structured route: what its checks share, each part computed
+    once (the runners of :data:`dppverify.checks.runners.RUNNERS` read it in registry order).
 
-    Parameters
+    Attributes
     ----------
-    instance : Instance
-        The game.
-    profile : Profile
-        The resolved profile; its Defender must be a progress rule or a table with a default
-        (or the profile ill-formed).
+    instance, profile
+        The game and the resolved profile.
     horizon : int or None
         ``H`` of the truncated game for ``game.value``; None for the untruncated game.
-
-    Returns
-    -------
-    list of CheckRecord
 
     Examples
     --------
     >>> from dppverify.game.examples import triangle, triangle_profile
     >>> from dppverify.game.profile import profile_from_json
     >>> inst = triangle()
-    >>> recs = structured_checks(inst, profile_from_json(triangle_profile(), inst),
-    ...                          None)
-    >>> [r.status for r in recs] == ["pass"] * len(recs), len(recs)
-    (True, 17)
+    >>> ctx = TwoGoalStructured(inst, profile_from_json(triangle_profile(), inst), None)
+    >>> ctx.usable, [r.status for r in values_records(ctx)], game_value_record(ctx).message
+    (True, ['pass', 'pass', 'pass', 'pass'], 'V_H (H = inf) = 12/5 = U by the three-field DP \
+(2 steps, int64)')
     """
-    roles = instance.roles(profile.primary_goal_index)
-    mode = instance.numbers
-    missing = _unlisted_profile_prefix(profile)
-    out: list[CheckRecord] = [_wellformed(instance, profile, roles, missing)]
-    usable = profile.wellformed and missing is None and profile.defender is not None
-    if not usable:
-        ids = ("value.U1", "value.U2", "value.U", "value.VoI", "profile.phases",
-               "pbne.attacker_br.primary", "pbne.attacker_br.secondary", "pbne.defender_br",
-               "pbne.sequential_rationality", "pbne.belief_consistency", "game.value",
-               "lemma.TEL.telescoping", "lemma.L1.lower_bound", "lemma.L2.no_revisits")
-        out += [_rec(i, "skipped", NOT_WELLFORMED, None, None, None) for i in ids]
-        out.append(xi2_check(instance, roles, mode, walk_minima(instance, roles.g1)))
-        out.append(_rec("lemma.L5.induced_beliefs", "skipped", NOT_WELLFORMED, None, "L5", None))
-        return out
-    rule = cast(DefenderRule, profile.defender)  # the two-goal reader's rules only
-    v = evaluate(instance, roles, rule, profile.primary, profile.secondary)
-    trie = mass_trie([profile.primary, profile.secondary])
-    sigma = _sigma_on_trie(instance, roles, rule, trie)
-    defender_max, u_trie = _defender_payoffs(instance, roles, trie, sigma)
-    out += _values(profile, v, u_trie, mode)
-    out.append(phases_check(instance, profile, roles, mode))
-    star = walk_minima(instance, roles.g1)  # shared by the Attacker, L1 and XI2 checks
+
+    instance: Instance
+    profile: Profile
+    horizon: int | None
+
+    @cached_property
+    def roles(self) -> Roles:
+        """The labelling the profile uses."""
+        return self.instance.roles(self.profile.primary_goal_index)
+
+    @property
+    def mode(self) -> NumberMode:
+        """The instance's number mode."""
+        return self.instance.numbers
+
+    @cached_property
+    def missing(self) -> tuple[int, ...] | None:
+        """A prefix of a profile walk that a table without default leaves undefined."""
+        return _unlisted_profile_prefix(self.profile)
+
+    @property
+    def usable(self) -> bool:
+        """True when the checks about the profile can run (a well-formed profile)."""
+        return (self.profile.wellformed and self.missing is None
+                and self.profile.defender is not None)
+
+    @property
+    def rule(self) -> DefenderRule:
+        """The profile's Defender (the two-goal reader's rules only)."""
+        return cast(DefenderRule, self.profile.defender)
+
+    @cached_property
+    def values(self) -> Values:
+        """U¹, U², U, Ū and VoI walk by walk."""
+        return evaluate(self.instance, self.roles, self.rule, self.profile.primary,
+                        self.profile.secondary)
+
+    @cached_property
+    def trie(self) -> WalkTrie:
+        """The trie of the profile's walks, with each type's realization masses."""
+        return mass_trie([self.profile.primary, self.profile.secondary])
+
+    @cached_property
+    def sigma(self) -> list[Number | None]:
+        """σ(g1 | p) at every prefix of the trie."""
+        return _sigma_on_trie(self.instance, self.roles, self.rule, self.trie)
+
+    @cached_property
+    def payoffs(self) -> tuple[Number, Number]:
+        """``max_σ U`` (greedy per prefix) and ``U`` at the profile's σ, on the trie."""
+        return _defender_payoffs(self.instance, self.roles, self.trie, self.sigma)
+
+    @cached_property
+    def star(self) -> WalkMinima:
+        """The minima over all walks against σ* (shared by the Attacker, L1 and XI2 checks)."""
+        return walk_minima(self.instance, self.roles.g1)
+
+    @cached_property
+    def beliefs(self) -> dict[int, Fraction]:
+        """The Bayes belief in the primary type at every reached prefix."""
+        return _beliefs(self.roles, self.trie)
+
+
+def wellformed_record(ctx: TwoGoalStructured) -> CheckRecord:
+    """``profile.wellformed`` (also a walk the profile plays that a table leaves undefined)."""
+    return _wellformed(ctx.instance, ctx.profile, ctx.roles, ctx.missing)
+
+
+def values_records(ctx: TwoGoalStructured) -> list[CheckRecord]:
+    """``value.U1``, ``value.U2``, ``value.U`` walk by walk (and on the trie), ``value.VoI``."""
+    return _values(ctx.profile, ctx.values, ctx.payoffs[1], ctx.mode)
+
+
+def phases_record(ctx: TwoGoalStructured) -> CheckRecord:
+    """``profile.phases`` (the two-goal layer's)."""
+    return phases_check(ctx.instance, ctx.profile, ctx.roles, ctx.mode)
+
+
+def attacker_records(ctx: TwoGoalStructured) -> list[CheckRecord]:
+    """Both types' regrets over all walks: against σ* (WALKBR) or a table (TABLEBR)."""
+    rule, roles = ctx.rule, ctx.roles
     if not rule.table:  # σ*'s best responses (proofs/WALKBR.md), else a table's
-        mins = star if rule.goal == roles.g1 else walk_minima(instance, rule.goal)
+        mins = ctx.star if rule.goal == roles.g1 else walk_minima(ctx.instance, rule.goal)
         same = roles.g1 == rule.goal
         best = {1: mins.same if same else mins.other, 2: mins.other if same else mins.same}
         relies = WALKBR
     else:
-        tm = table_minima(instance, roles, rule)
+        tm = table_minima(ctx.instance, roles, rule)
         best = {1: tm.primary, 2: tm.secondary}
         relies = TABLEBR
-    out += _attacker(v, mode, best, relies, horizon)
-    out.append(_defender(v, defender_max, mode))
-    beliefs = _beliefs(roles, trie)
-    out.append(_sequential(instance, trie, sigma, beliefs, mode))
-    out.append(_belief_consistency(instance, profile, roles, trie, beliefs))
-    out.append(_game_value(instance, v, mode, horizon))
-    out.append(telescoping_check(instance, roles, trie, mode))
-    out.append(l1_check(instance, roles, profile, mode, star))
-    out.append(l2_check(instance, profile))
-    out.append(xi2_check(instance, roles, mode, star))
-    out.append(l5_check(instance, profile, roles, trie, beliefs, mode))
-    return out
+    return _attacker(ctx.values, ctx.mode, best, relies, ctx.horizon)
+
+
+def defender_record(ctx: TwoGoalStructured) -> CheckRecord:
+    """``pbne.defender_br`` on the trie."""
+    return _defender(ctx.values, ctx.payoffs[0], ctx.mode)
+
+
+def sequential_record(ctx: TwoGoalStructured) -> CheckRecord:
+    """``pbne.sequential_rationality`` at the reached prefixes."""
+    return _sequential(ctx.instance, ctx.trie, ctx.sigma, ctx.beliefs, ctx.mode)
+
+
+def belief_record(ctx: TwoGoalStructured) -> CheckRecord:
+    """``pbne.belief_consistency``: Bayes' rule step by step against the closed form."""
+    return _belief_consistency(ctx.instance, ctx.profile, ctx.roles, ctx.trie, ctx.beliefs)
+
+
+def game_value_record(ctx: TwoGoalStructured) -> CheckRecord:
+    """``game.value`` by the three-field DP."""
+    return _game_value(ctx.instance, ctx.values, ctx.mode, ctx.horizon)
+
+
+def telescoping_record(ctx: TwoGoalStructured) -> CheckRecord:
+    """``lemma.TEL.telescoping`` on the trie."""
+    return telescoping_check(ctx.instance, ctx.roles, ctx.trie, ctx.mode)
+
+
+def l1_record(ctx: TwoGoalStructured) -> CheckRecord:
+    """``lemma.L1.lower_bound``."""
+    return l1_check(ctx.instance, ctx.roles, ctx.profile, ctx.mode, ctx.star)
+
+
+def l2_record(ctx: TwoGoalStructured) -> CheckRecord:
+    """``lemma.L2.no_revisits``."""
+    return l2_check(ctx.instance, ctx.profile)
+
+
+def xi2_record(ctx: TwoGoalStructured) -> CheckRecord:
+    """``lemma.XI2.secondary_value`` (a fact of the instance: run for any profile)."""
+    return xi2_check(ctx.instance, ctx.roles, ctx.mode, ctx.star)
+
+
+def l5_record(ctx: TwoGoalStructured) -> CheckRecord:
+    """``lemma.L5.induced_beliefs``."""
+    return l5_check(ctx.instance, ctx.profile, ctx.roles, ctx.trie, ctx.beliefs, ctx.mode)
+
+
+def skipped_record(check_id: str, proof: str | None = None) -> CheckRecord:
+    """The record of a check about an ill-formed profile (the profile's checks skipped)."""
+    return _rec(check_id, "skipped", NOT_WELLFORMED, None, proof, None)
 
 
 def _unlisted_profile_prefix(profile: Profile) -> tuple[int, ...] | None:

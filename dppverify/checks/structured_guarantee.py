@@ -11,10 +11,11 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from fractions import Fraction
+from typing import cast
 
 from dppio.text import count
 from dppverify.certificate import CheckRecord
-from dppverify.checks.per_goal_records import per_goal_record, profile_records, walk_labels
+from dppverify.checks.per_goal_records import Evaluated, per_goal_record, walk_labels
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
 from dppverify.game.profile import Profile
@@ -28,7 +29,7 @@ from dppverify.structured.normal_fixpoint import NormalSets
 from dppverify.structured.proved_value import coalition_nvalue
 from dppverify.structured.rule_response import RuleSearch, rule_response
 
-__all__ = ["NRULE", "guarantee_checks"]
+__all__ = ["NRULE", "guarantee_evaluation"]
 
 NRULE = ("relies on proofs/NRULE.md (NR.2: every walk costs type θ at least h_θ when h ∈ F_s0 "
          "and the arc condition holds; NR.4: the exact search over the rule's states; NR.3: "
@@ -36,9 +37,11 @@ NRULE = ("relies on proofs/NRULE.md (NR.2: every walk costs type θ at least h_�
 PROOF = "NRULE"
 
 
-def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
-                     ) -> tuple[list[CheckRecord], int]:
-    """The structured route's records for a profile whose Defender is the guarantee rule.
+def guarantee_evaluation(instance: Instance, profile: Profile, horizon: int | None
+                         ) -> tuple[Evaluated, int]:
+    """The engine of the guarantee rule: the profile evaluated on the trie of its walks (the
+    rule evaluated there, every type's regret by the guarantee or the exact search), and the
+    size of that trie.
 
     Examples
     --------
@@ -49,14 +52,13 @@ def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
     ...                     [{"path": ["s", "m", "b"], "probability": 1}],
     ...                     [{"path": ["s", "m", "c"], "probability": 1}]],
     ...        "defender": {"rule": "guarantee", "h": [2, 1, 1]}}
-    >>> recs, _ = guarantee_checks(star3(), profile_from_json(doc, star3()), None)
-    >>> [(r.id, r.status) for r in recs][2]
-    ('pbne.attacker_br', 'pass')
+    >>> ev, size = guarantee_evaluation(star3(), profile_from_json(doc, star3()), None)
+    >>> ev.attacker.id, ev.attacker.status, size
+    ('pbne.attacker_br', 'pass', 5)
     """
     inst = instance
     n = inst.n_goals
-    rule = profile.defender
-    assert isinstance(rule, GuaranteeRule)  # the caller dispatches on the guarantee rule
+    rule = cast(GuaranteeRule, profile.defender)  # the caller dispatches on rule.kind
     ev = evaluate_rule_profile(inst, rule, profile.attacker)
     per_type = ev.per_type
     trie = ev.defender.trie
@@ -66,10 +68,8 @@ def guarantee_checks(instance: Instance, profile: Profile, horizon: int | None
     attacker = _attacker_record(inst, rule, ev.sets, per_type, horizon)
     known = (coalition_nvalue(dp_value(ev.sets), inst.n_goals)  # proved for N <= 3 (NG.4)
              if horizon is None and inst.n_goals <= 3 else None)
-    out = profile_records(inst, text, {"walks": ev.walks, "prefixes": len(trie)}, per_type,
-                          profile.claimed_u, attacker, ev.defender, ev.mass, horizon,
-                          known=known)
-    return out, len(trie)
+    return Evaluated(text, {"walks": ev.walks, "prefixes": len(trie)}, per_type, attacker,
+                     ev.defender, ev.mass, known=known), len(trie)
 
 
 def _normal_text(inst: Instance, a: tuple[int, ...]) -> str:

@@ -25,6 +25,10 @@ value.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
+from fractions import Fraction
+from functools import cached_property
 from typing import cast
 
 from dppio.text import count
@@ -34,30 +38,38 @@ from dppverify.checks.per_goal_records import (
     NWALKBR,
     PROFILE_DOC,
     STRUCTURED_IDS,
+    Evaluated,
+    defender_records,
+    payoff_record,
     per_goal_record,
-    profile_records,
+    value_record,
     walk_labels,
 )
-from dppverify.checks.structured_guarantee import guarantee_checks
+from dppverify.checks.structured_guarantee import guarantee_evaluation
 from dppverify.exact import INF, Number, normalize
 from dppverify.game.instance import Instance
 from dppverify.game.profile import GoalTable, Profile
 from dppverify.structured.table_br import TableDefender, exit_costs, walk_best_response
 from dppverify.structured.trie import mass_trie
 
-__all__ = ["per_goal_structured_checks"]
+__all__ = ["ENGINES", "Evaluation", "PerGoalStructured"]
 
 
-def per_goal_structured_checks(instance: Instance, profile: Profile,
-                       horizon: int | None) -> tuple[list[CheckRecord], int]:
-    """Every check of the N-goal structured route, in certificate order, and the trie size.
+Evaluation = tuple[Evaluated | str, int]
+"""An engine's result: the profile evaluated on the trie of its walks, or why it is not well
+formed; and the size of that trie."""
 
-    Parameters
+
+@dataclass(frozen=True, eq=False)
+class PerGoalStructured:
+    """A per-goal profile on the structured route: what its checks share, each part computed
+    once. The profile is evaluated by its Defender's engine (:data:`ENGINES`, by the rule's
+    ``kind``: a table, or the guarantee rule of :mod:`dppverify.checks.structured_guarantee`).
+
+    Attributes
     ----------
-    instance : Instance
-        The game.
-    profile : Profile
-        The resolved profile.
+    instance, profile
+        The game and the resolved profile.
     horizon : int or None
         ``H`` of the value check (the guarantee sets); None for the untruncated game. The
         equilibrium checks are always over all walks of any length.
@@ -70,20 +82,102 @@ def per_goal_structured_checks(instance: Instance, profile: Profile,
     >>> from dppverify.game.examples import star3, star3_profile
     >>> from dppverify.game.profile import profile_from_json
     >>> inst = star3()
-    >>> prof = profile_from_json(star3_profile(), inst)
-    >>> recs, size = per_goal_structured_checks(inst, prof, None)
-    >>> [(r.id, r.status) for r in recs][2:4], size
-    ([('pbne.attacker_br', 'fail'), ('pbne.defender_br', 'pass')], 5)
-    >>> recs[2].message
-    "type 2 (goal 'b') has regret 1: walk ['s', 'm', 's', 'm', 'b'] (4 steps) costs 0"
+    >>> ctx = PerGoalStructured(inst, profile_from_json(star3_profile(), inst), None)
+    >>> ctx.trie_prefixes, attacker_record(ctx).message
+    (5, "type 2 (goal 'b') has regret 1: walk ['s', 'm', 's', 'm', 'b'] (4 steps) costs 0")
     """
-    inst = instance
+
+    instance: Instance
+    profile: Profile
+    horizon: int | None
+
+    @cached_property
+    def evaluation(self) -> Evaluation:
+        """The engine's result (:data:`Evaluation`)."""
+        defects = self.profile.defects
+        if defects:
+            more = f" (and {len(defects) - 1} more)" if len(defects) > 1 else ""
+            return f"{defects[0]}{more}", 0
+        rule = self.profile.defender
+        assert rule is not None  # well formed: a Defender
+        return ENGINES[rule.kind](self.instance, self.profile, self.horizon)
+
+    @property
+    def wellformed(self) -> bool:
+        """True when the checks about the profile can run."""
+        return not isinstance(self.evaluation[0], str)
+
+    @property
+    def ev(self) -> Evaluated:
+        """The evaluated profile (a well-formed profile only)."""
+        ev = self.evaluation[0]
+        assert not isinstance(ev, str)  # the runners call the profile's checks only then
+        return ev
+
+    @property
+    def trie_prefixes(self) -> int:
+        """The size of the trie of the profile's walks."""
+        return self.evaluation[1]
+
+    @cached_property
+    def u(self) -> Number:
+        """``U = Σ_θ b_θ U^θ``."""
+        inst = self.instance
+        return normalize(sum((inst.prior[t] * self.ev.per_type[t] for t in range(inst.n_goals)),
+                             Fraction(0)))
+
+    @cached_property
+    def payoff(self) -> CheckRecord:
+        """``value.U``."""
+        return payoff_record(self.ev.per_type, self.u, self.profile.claimed_u)
+
+    @cached_property
+    def defender(self) -> list[CheckRecord]:
+        """``pbne.defender_br`` and ``pbne.sequential_rationality``."""
+        return defender_records(self.instance, self.ev.defender, self.ev.mass, self.u)
+
+
+def wellformed_record(ctx: PerGoalStructured) -> CheckRecord:
+    """``profile.wellformed``: why the profile is ill formed, or what the engine evaluated."""
+    ev = ctx.evaluation[0]
+    if isinstance(ev, str):
+        return per_goal_record(STRUCTURED_IDS[0], "fail", ev, None, PROFILE_DOC, None)
+    return per_goal_record(STRUCTURED_IDS[0], "pass", ev.described, ev.sizes, PROFILE_DOC, None)
+
+
+def payoff_record_of(ctx: PerGoalStructured) -> CheckRecord:
+    """``value.U``: every type's payoff, walk by walk, and ``U``."""
+    return ctx.payoff
+
+
+def attacker_record(ctx: PerGoalStructured) -> CheckRecord:
+    """``pbne.attacker_br``: every type's exact regret over all walks, from the engine."""
+    return ctx.ev.attacker
+
+
+def defender_records_of(ctx: PerGoalStructured) -> list[CheckRecord]:
+    """``pbne.defender_br`` and ``pbne.sequential_rationality`` on the prefixes with mass."""
+    return ctx.defender
+
+
+def value_record_of(ctx: PerGoalStructured) -> CheckRecord:
+    """``game.value``: ``U`` against the structured value at ``H``; where only a bracket is
+    known, decisive for an equilibrium (every record before it passed, ``H`` covering the
+    profile's walks)."""
+    before = [wellformed_record(ctx), ctx.payoff, ctx.ev.attacker, *ctx.defender]
+    return value_record(ctx.instance, ctx.u, ctx.horizon,
+                        ctx.ev.covered and all(r.passed for r in before), ctx.ev.known)
+
+
+def skipped_record(check_id: str) -> CheckRecord:
+    """A check after an ill-formed profile."""
+    return per_goal_record(check_id, "skipped", "the profile is not well formed", None, "–")
+
+
+def table_evaluation(inst: Instance, profile: Profile, horizon: int | None) -> Evaluation:
+    """The engine of a table Defender: payoffs walk by walk on the trie of the profile's walks
+    and every type's best response over all walks (:func:`_attacker`)."""
     n = inst.n_goals
-    if profile.defects:
-        more = f" (and {len(profile.defects) - 1} more)" if len(profile.defects) > 1 else ""
-        return _ill_formed(f"{profile.defects[0]}{more}"), 0
-    if profile.defender is not None and profile.defender.kind == "guarantee":
-        return guarantee_checks(inst, profile, horizon)  # dppverify.structured.guarantee
     walks = [mw.walk for mix in profile.attacker for mw in mix]
     # realization masses x_θ(p) on the profile's walks, then the table's entries
     trie = mass_trie(profile.attacker, start=inst.start)
@@ -112,24 +206,17 @@ def per_goal_structured_checks(instance: Instance, profile: Profile,
             total += mw.probability * (cost + inst.dist_to[theta][mw.walk[-1]])
         per_type.append(normalize(total))
     if missing is not None:
-        return _ill_formed(f"the Defender's table has no entry for walk "
-                           f"{walk_labels(inst, missing)} and no default"), len(trie)
+        return (f"the Defender's table has no entry for walk {walk_labels(inst, missing)} and "
+                f"no default"), len(trie)
     has_default = table.default is not None
     text = (f"{n} types, {len(walks)} walks, Defender table of {len(table.entries)} entries "
             + ("and a default (defined on every walk)" if has_default else "without a default"))
     longest = max(len(w) - 1 for w in walks)
     covered = horizon is None or horizon >= longest  # NW.5: U = V_H for every H >= longest
-    out = profile_records(inst, text, {"walks": len(walks), "prefixes": len(trie)}, per_type,
-                          profile.claimed_u, _attacker(inst, tdef, per_type, horizon), tdef,
-                          dict(enumerate(trie.masses)), horizon, covered=covered)
-    return out, len(trie)
-
-
-def _ill_formed(message: str) -> list[CheckRecord]:
-    """``profile.wellformed`` fails with ``message``; every other check is skipped."""
-    return ([per_goal_record(STRUCTURED_IDS[0], "fail", message, None, PROFILE_DOC, None)]
-            + [per_goal_record(i, "skipped", "the profile is not well formed", None, "–")
-               for i in STRUCTURED_IDS[1:]])
+    ev = Evaluated(text, {"walks": len(walks), "prefixes": len(trie)}, per_type,
+                   _attacker(inst, tdef, per_type, horizon), tdef, dict(enumerate(trie.masses)),
+                   covered=covered)
+    return ev, len(trie)
 
 
 def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],
@@ -180,3 +267,8 @@ def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],
                 f"({count(len(walk) - 1, 'step')}) costs {v}", nums, NWALKBR, BR)
 
 
+
+
+ENGINES: dict[str, Callable[[Instance, Profile, int | None], Evaluation]] = {
+    "table": table_evaluation, "guarantee": guarantee_evaluation}
+"""The engine of each Defender ``kind`` of a per-goal profile."""

@@ -1,8 +1,9 @@
 """The structured route's two-goal layer (N = 2): the checks that only the two-goal mathematics
 has — the phases of σ* along ξ² (proofs/L5.md), the telescoping identity (proofs/TEL.md), the
 lemmas L1, L2, XI2 and L5 in their polynomial forms — on the profile's walk trie, used by
-:func:`dppverify.checks.structured.structured_checks` where N = 2. The lemma checks that need
-the walk tree (L3's and L4's random attackers with their LPs) are not run on this route.
+the two-goal structured runners (:class:`dppverify.checks.structured.TwoGoalStructured`). The
+lemma checks that need the walk tree (L3's and L4's random attackers with their LPs) are not
+run on this route.
 """
 
 from __future__ import annotations

@@ -7,16 +7,17 @@ the families of :mod:`dppverify.registry` is asked of the profile's :class:`Suit
 
 - ``two-goal`` (``dpp-profile/1``): the paper's primary and secondary types; the two-goal
   mathematics runs behind its ids — σ*, the phases, the lemmas L1–L5, TEL and XI2 on the walk
-  tree (:data:`~dppverify.checks.runners.TREE_RUNNERS`), the three-field value DP and
-  :mod:`dppverify.twogoal.progress_br` on the structured route
-  (:mod:`dppverify.checks.structured`), which keeps the speed on million-cell maps;
+  tree, the three-field value DP and :mod:`dppverify.twogoal.progress_br` on the structured
+  route (:mod:`dppverify.checks.structured`), which keeps the speed on million-cell maps;
 - ``per-goal`` (``dpp-ngoal-profile/1``, any N): one type per goal index
   (:mod:`dppverify.tree_route.per_goal_checks`, :mod:`dppverify.checks.structured_per_goal`);
 - ``selection`` (``dpp-selection-profile/1``, the goal-selection game of proofs/SELECT.md): the
   per-goal structured checks on the game with the Attacker's choice as prior, then goal
   indifference and the value (:mod:`dppverify.checks.selection`); the untruncated game only.
 
-Another kind of game plugs in here: its profile format, its family of checks in the registry
+A suite builds its family's context for a route; the one runner table and its loop
+(:func:`dppverify.checks.runners.run_checks`) compute the records. Another kind of game plugs
+in here: its profile format, its family of checks in the registry, its runners in the table,
 and a :class:`Suite` in :data:`SUITES`.
 """
 
@@ -31,17 +32,17 @@ from typing import Any, Protocol
 from tqdm import tqdm
 
 from dppverify.certificate import CheckRecord
-from dppverify.checks.runners import TREE_RUNNERS, in_registry_order
-from dppverify.checks.selection import selection_checks
-from dppverify.checks.structured import structured_checks
-from dppverify.checks.structured_per_goal import per_goal_structured_checks
-from dppverify.errors import HorizonError, LPError, UndecidedError
+from dppverify.checks.runners import run_checks
+from dppverify.checks.selection import SelectionContext
+from dppverify.checks.structured import TwoGoalStructured
+from dppverify.checks.structured_per_goal import PerGoalStructured
+from dppverify.errors import HorizonError, UndecidedError
 from dppverify.game.instance import Instance, arc_arrays, node_to_json
 from dppverify.game.profile import PER_GOAL_PROFILE_FORMAT, PROFILE_FORMAT, Profile
 from dppverify.game.profile_types import SELECTION_PROFILE_FORMAT
 from dppverify.registry import Family, checks_of
-from dppverify.tree_route.context import Context, make_context
-from dppverify.tree_route.per_goal_checks import per_goal_tree_checks
+from dppverify.tree_route.context import make_context
+from dppverify.tree_route.per_goal_checks import per_goal_tree
 from dppverify.tree_route.tree import build_tree
 
 __all__ = ["SUITES", "Options", "Run", "Suite", "shortest_horizon", "suite_of"]
@@ -171,12 +172,12 @@ class TwoGoalSuite:
                   file=sys.stderr) as bar:
             ctx = make_context(instance, tree, profile, seed=options.seed, trials=options.trials)
             bar.update(1)
-            records = _run_tree_checks(ctx, bar)
+            records = run_checks(self.family, "tree", ctx, bar)
         return Run(records, tree.n_prefixes, tree.n_leaves, horizon)
 
     def structured(self, instance: Instance, profile: Profile, horizon: int | None) -> Run:
-        return Run(in_registry_order(structured_checks(instance, profile, horizon),
-                                     "structured"), horizon=horizon)
+        ctx = TwoGoalStructured(instance, profile, horizon)
+        return Run(run_checks(self.family, "structured", ctx), horizon=horizon)
 
     def players(self, instance: Instance, profile: Profile, trie_prefixes: int | None
                 ) -> Players:
@@ -204,11 +205,15 @@ class PerGoalSuite:
 
     def on_tree(self, instance: Instance, profile: Profile, horizon: int,
                 options: Options) -> Run:
-        records, tree = per_goal_tree_checks(instance, profile, horizon, options.max_prefixes)
-        return Run(records, tree.n_prefixes, tree.n_leaves, tree.horizon)
+        ctx = per_goal_tree(instance, profile, horizon, options.max_prefixes)
+        tree = ctx.tree
+        return Run(run_checks(self.family, "tree", ctx), tree.n_prefixes, tree.n_leaves,
+                   tree.horizon)
 
     def structured(self, instance: Instance, profile: Profile, horizon: int | None) -> Run:
-        records, size = per_goal_structured_checks(instance, profile, horizon)
+        ctx = PerGoalStructured(instance, profile, horizon)
+        records = run_checks(self.family, "structured", ctx)
+        size = ctx.trie_prefixes
         rule = profile.defender
         if horizon is None and rule is not None and not rule.defined_everywhere:
             br = next((r for r in records if r.id == "pbne.attacker_br"), None)
@@ -244,7 +249,8 @@ class SelectionSuite(PerGoalSuite):
     def structured(self, instance: Instance, profile: Profile, horizon: int | None) -> Run:
         if horizon is not None:
             raise HorizonError(SELECTION_UNTRUNCATED)
-        return Run(selection_checks(instance, profile), horizon=None)
+        return Run(run_checks(self.family, "structured", SelectionContext(instance, profile)),
+                   horizon=None)
 
     def players(self, instance: Instance, profile: Profile, trie_prefixes: int | None
                 ) -> Players:
@@ -274,22 +280,3 @@ def suite_of(profile: Profile) -> Suite:
     'per-goal'
     """
     return SUITES[profile.format]
-
-
-def _run_tree_checks(ctx: Context, bar: tqdm | None = None) -> list[CheckRecord]:
-    """Every two-goal tree check in registry order; ``bar`` names each check as it starts."""
-    out: list[CheckRecord] = []
-    for s in checks_of("two-goal"):
-        if s.id not in TREE_RUNNERS:
-            continue
-        ids, fn = TREE_RUNNERS[s.id].ids, TREE_RUNNERS[s.id].run
-        if bar is not None:
-            bar.set_description(f"certify: {', '.join(ids)}")
-        try:
-            records = fn(ctx)
-        except LPError as exc:
-            records = [CheckRecord(i, "error", f"LP failure: {exc}") for i in ids]
-        out += records
-        if bar is not None:
-            bar.update(len(ids))
-    return in_registry_order(out, "tree")

@@ -144,6 +144,8 @@ def _key(raw: Any) -> Any:
     kind = type(raw)
     if kind is str or kind is int:
         return (kind, raw)
+    if kind is list:  # a grid cell [r, c]
+        return (list, tuple(_key(x) for x in raw))
     return json.dumps(raw, sort_keys=True, default=str)
 
 

@@ -29,12 +29,13 @@ from __future__ import annotations
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 from tqdm import tqdm
 
 from dppverify.errors import HorizonError
+from dppverify.exact import Number
 from dppverify.game.inputs import as_instance
 from dppverify.game.instance import Instance, Roles
 from dppverify.game.profile import ProgressRule
@@ -48,8 +49,10 @@ from dppverify.tree_route.bracket import (
     upper_bound,
 )
 from dppverify.tree_route.lp import (
+    LP_TOLERANCE,
     LPStats,
     cost_scale,
+    lp_agrees,
     realization_constraints,
     solve,
     unscaled,
@@ -215,6 +218,40 @@ def exact_bracket(tree: WalkTree, types: AnyTypes, lp: ValueLP | None = None,
             search.reason = "float-mode instance: no exact LP closure"
     return search.bracket(lambda plan: upper_bound(tree, ts, dict.fromkeys(ts.keys, plan)),
                           tree)
+
+
+class Bounds(Protocol):
+    """A structured value or bracket: ``lower <= V_H <= upper``, ``value`` when proved."""
+
+    @property
+    def lower(self) -> Number: ...
+
+    @property
+    def upper(self) -> Number: ...
+
+    @property
+    def value(self) -> Number | None: ...
+
+
+def structured_agrees(bracket: Bracket, lp: LPStats, structured: Bounds) -> bool:
+    """True when a structured value or bracket agrees with the tree route's: the brackets
+    overlap, and a proved structured value lies in the tree's exact bracket and matches the
+    LP within :data:`~dppverify.tree_route.lp.LP_TOLERANCE` (the one rule of agreement; a
+    disagreement is a bug, never smoothed over).
+
+    Examples
+    --------
+    >>> from dppverify.game.examples import star3
+    >>> from dppverify.structured.proved_value import nvalue
+    >>> v = game_value(star3(), 3)
+    >>> structured_agrees(v.bracket, v.lp, nvalue(star3(), 3))
+    True
+    """
+    b, sv = bracket, structured
+    if not (sv.lower <= b.upper and b.lower <= sv.upper):
+        return False
+    return sv.value is None or bool(b.lower <= sv.value <= b.upper
+                                    and lp_agrees(lp, sv.value, LP_TOLERANCE))
 
 
 @dataclass(frozen=True)
