@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-__all__ = ["DppioError", "ErrorClass", "InputError", "LimitError", "OutputError"]
+__all__ = ["DppioError", "ErrorClass", "InputError", "LimitError", "OptionError", "OutputError"]
 
 ErrorClass = Callable[[str], Exception]
 """What a check or a writer raises: called with the one-line message."""
@@ -30,3 +30,8 @@ class InputError(DppioError, ValueError):
 
 class LimitError(InputError):
     """An input beyond one of the limits of :mod:`dppio.limits`."""
+
+
+class OptionError(DppioError, ValueError):
+    """A command-line option (of the shared ``--map`` group, :mod:`dppio.cli.map_options`) that
+    cannot be used as given."""

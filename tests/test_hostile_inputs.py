@@ -17,8 +17,8 @@ from typing import Any
 import pytest
 from click.testing import CliRunner
 
+from dpp import main as dpp_main
 from dppverify.__main__ import main as checker_main
-from solver.cli import main as dpp_main
 from tests.hostile._harness import write_template
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -62,7 +62,7 @@ def test_the_wheel_holds_the_packages_the_command_and_the_license(dists: list[Pa
     info = f"dppverify-{VERSION}.dist-info"
     assert f"{info}/licenses/LICENSE" in names
     entry = zipfile.ZipFile(wheel).read(f"{info}/entry_points.txt").decode()
-    assert "dpp = solver.cli:main" in entry
+    assert "dpp = dpp:main" in entry
     meta = zipfile.ZipFile(wheel).read(f"{info}/METADATA").decode()
     for line in ("License-Expression: MIT", "Requires-Python: >=3.11",
                  "Project-URL: Paper, https://arxiv.org/abs/2506.13650"):

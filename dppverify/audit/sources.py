@@ -160,7 +160,7 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
 
     Examples
     --------
-    >>> from dppverify.formats.standard_maps import standard_map_path
+    >>> from dppio.standard_maps import standard_map_path
     >>> m = standard_map_path("empty-8-8")
     >>> docs, bad = instances_from_scen(m, m.with_name("empty-8-8-even-1.scen"))
     >>> len(docs), bad, docs[0][0], docs[0][1]["goals"]

@@ -17,6 +17,7 @@ from typing import Any
 
 import click
 
+from dppio.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.audit import (
     AUDIT_MAX_PREFIXES,
     DEFAULT_SHRINK_CALLS,
@@ -28,9 +29,8 @@ from dppverify.audit import (
     SolverRunner,
     format_report,
 )
-from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.cli.inputs import max_prefixes_option
-from dppverify.errors import AuditError, CheckerError
+from dppverify.errors import AuditError, CheckerError, InvalidInstanceError
 from dppverify.limits import MAX_AUDIT_EXAMPLES
 
 __all__ = ["audit_command", "format_report"]
@@ -153,8 +153,8 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
                    shrink: bool, shrink_calls: int, shrink_seconds: float, max_prefixes: int,
                    progress: bool | None) -> None:
     """``dpp audit --instances DIR`` / ``--map FILE --scen FILE``: the user's own instances."""
+    from dppio.standard_maps import PREFIX, resolve_map
     from dppverify.audit.sources import audit_documents, instances_from_dir, instances_from_scen
-    from dppverify.formats.standard_maps import PREFIX, resolve_map
 
     try:
         if (solver_spec is None) == (solver_cmd is None):  # before reading any input
@@ -171,7 +171,7 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
             if map_file is None or scen_file is None:
                 raise AuditError("--map and --scen go together: --map FILE --scen FILE")
             prior = _scen_prior(prior_text)
-            path = resolve_map(map_file)
+            path = resolve_map(map_file, error=InvalidInstanceError)
             ref = map_file if map_file.startswith(PREFIX) else str(path.resolve())
             docs, bad = instances_from_scen(path, scen_file, seed=seed, prior=prior,
                                             map_instances=ref if map_instances else None)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
+from dppio.cli.conventions import output_file_option, progress_option, status, want_progress
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options

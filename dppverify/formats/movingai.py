@@ -135,7 +135,7 @@ def read_map_file(path: str | Path) -> tuple[GridMap, bytes]:
 
     Examples
     --------
-    >>> from dppverify.formats.standard_maps import standard_map_path
+    >>> from dppio.standard_maps import standard_map_path
     >>> grid, data = read_map_file(standard_map_path("empty-8-8"))
     >>> grid.height, data[:11]
     (8, b'type octile')

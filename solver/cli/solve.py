@@ -8,18 +8,18 @@ from typing import Any
 
 import click
 
-from dppio.files import refuse_input_as_output, write_files
-from dppio.inputs import is_stdin
-from dppio.text import decimal
-from dppverify.cli.conventions import (
+from dppio.cli.conventions import (
     PhaseBar,
     output_file_option,
     progress_option,
     status,
     want_progress,
 )
-from dppverify.cli.map_options import MapRequest, map_options
-from solver.cli.common import START_IS_GOAL, dumps, load_with_digest
+from dppio.cli.map_options import MapRequest, map_options
+from dppio.files import refuse_input_as_output, write_files
+from dppio.inputs import is_stdin
+from dppio.text import decimal
+from solver.cli.common import START_IS_GOAL, checker_game, dumps, load_with_digest
 from solver.errors import InvalidInstanceError, OutputError
 
 __all__ = ["solve_command"]
@@ -150,7 +150,7 @@ def _certification_refusal(instance: str | None, grid: MapRequest | None,
     the one line that refuses it."""
     from dppverify.certify import certify as certify_profile
 
-    checked = grid.game() if grid is not None else instance
+    checked = checker_game(grid) if grid is not None else instance
     assert checked is not None
     cert = certify_profile(checked, doc, horizon="inf", route="structured")
     if cert.verdict == "pass":

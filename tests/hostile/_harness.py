@@ -118,7 +118,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
         stdin: bytes | None = None, fsize: int | None = None, nofile: int | None = None,
         stdout: str = "pipe", ignore: tuple[int, ...] = (),
         survivors_seconds: float = 10) -> Result:
-    """Run ``python -m solver.cli ARGS`` in ``cwd`` under the limits; ``during`` is called
+    """Run ``python -m dpp ARGS`` in ``cwd`` under the limits; ``during`` is called
     with the running process (to send it a signal, say) before waiting for it; ``stdin``:
     bytes piped to its standard input (default: ``/dev/null``). ``fsize``, ``nofile`` and
     ``stdout`` as in :class:`Probe`; ``ignore``: signals the probe starts with ignored
@@ -158,7 +158,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
         out_target = open("/dev/full", "wb")  # noqa: SIM115 - closed below
     elif stdout == "closed":
         out_target = subprocess.DEVNULL  # and closed in the child
-    proc = subprocess.Popen([sys.executable, "-m", "solver.cli", *args], cwd=cwd,
+    proc = subprocess.Popen([sys.executable, "-m", "dpp", *args], cwd=cwd,
                             env=full_env,
                             stdin=subprocess.DEVNULL if stdin is None else subprocess.PIPE,
                             stdout=out_target,

@@ -1,6 +1,6 @@
 """The CLI gives the same results as on the commit the pins were written on (issue 19).
 
-Every case of ``cases.py`` is re-run (``runner.py``: ``solver.cli.main`` in-process, or the
+Every case of ``cases.py`` is re-run (``runner.py``: ``dpp.main`` in-process, or the
 documented command line in a subprocess) and its normalized record (exit codes, stdout,
 stderr, files written) must equal ``expected/<case>.txt`` exactly. A difference is shown as a
 unified diff. To re-pin after an intended change of output, run

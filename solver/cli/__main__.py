@@ -1,5 +1,0 @@
-"""``python -m solver.cli``: the ``dpp`` command."""
-
-from solver.cli import main
-
-main()
