@@ -21,8 +21,8 @@ import os
 from typing import Any
 
 from _timing import timed
-from dppio.standard_maps import standard_map_path
 
+from dppio.standard_maps import standard_map_path
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.game.instance import instance_from_json
 from dppverify.structured.coalition import coalition_value

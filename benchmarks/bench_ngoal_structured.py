@@ -23,8 +23,8 @@ from fractions import Fraction
 from typing import Any
 
 from _timing import timed
-from dppio.standard_maps import standard_map_path
 
+from dppio.standard_maps import standard_map_path
 from dppverify.certify import certify
 from dppverify.formats.movingai import grid_document, read_map
 from dppverify.game.instance import Instance, instance_from_json

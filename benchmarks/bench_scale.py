@@ -288,7 +288,6 @@ def solver_rows(blocked: np.ndarray, cells: tuple[tuple[int, int], ...],
 
 def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str]:
     from dppio.standard_maps import standard_map_path
-
     from dppverify.formats.movingai import read_map
     from dppverify.game.grids import grid_game
     from dppverify.structured.coalition import coalition_value

@@ -29,25 +29,21 @@ import hashlib
 import json
 import sys
 from collections.abc import Callable
-from pathlib import Path
 from typing import Any
 
 from hypothesis import HealthCheck, Phase, Verbosity, given, reject, settings
 from hypothesis import seed as hypothesis_seed
 from hypothesis import strategies as st
 
-from dppverify.audit.defaults import (
-    AUDIT_MAX_PREFIXES,
-    AUDIT_TRIALS,
-    DEFAULT_SHRINK_CALLS,
-    DEFAULT_SHRINK_SECONDS,
-    DEFAULT_TIMEOUT,
+from dppverify.audit.config import (
+    DEFAULT_CONFIG,
     HYPOTHESIS_SHARE,
     SKIP_FACTOR,
     SKIP_FLOOR,
+    AuditConfig,
 )
 from dppverify.audit.examine import Outcome, examine
-from dppverify.audit.pruning import ShrinkBudget, prune_failure
+from dppverify.audit.pruning import prune_failure
 from dppverify.audit.report import AuditReport, check_output_folder, save_failure
 from dppverify.audit.runner import PythonRunner, SolverRunner
 from dppverify.errors import AuditError, TreeTooLargeError
@@ -103,22 +99,10 @@ class _Found(Exception):
     """Raised inside the hypothesis test to mark a failing example."""
 
 
-def _check_int(name: str, value: Any, low: int, high: int | None = None) -> None:
-    if isinstance(value, bool) or not isinstance(value, int) or value < low or (
-            high is not None and value > high):
-        bound = f"between {low} and {high}" if high is not None else f">= {low}"
-        raise AuditError(f"{name}={value!r} must be an integer {bound}")
-
-
-def run_audit(solver: SolverRunner | Callable[[Doc], Any], *, examples: int = 100,
-              seed: int = 0, max_nodes: int = 8, out: str | Path | None = None,
-              shrink: bool = True, progress: bool = False,
-              strategy: st.SearchStrategy[Doc] | None = None,
-              max_prefixes: int = AUDIT_MAX_PREFIXES, trials: int = AUDIT_TRIALS,
-              timeout: float = DEFAULT_TIMEOUT, shrink_calls: int = DEFAULT_SHRINK_CALLS,
-              shrink_seconds: float = DEFAULT_SHRINK_SECONDS,
+def run_audit(solver: SolverRunner | Callable[[Doc], Any], config: AuditConfig = DEFAULT_CONFIG,
+              *, strategy: st.SearchStrategy[Doc] | None = None,
               log: Callable[[str], None] | None = None) -> AuditReport:
-    """Audit ``solver`` on up to ``examples`` generated instances.
+    """Audit ``solver`` on up to ``config.examples`` generated instances.
 
     Parameters
     ----------
@@ -126,29 +110,15 @@ def run_audit(solver: SolverRunner | Callable[[Doc], Any], *, examples: int = 10
         A runner (:class:`~dppverify.audit.runner.PythonRunner`,
         :class:`~dppverify.audit.runner.CommandRunner`) or a callable mapping an instance
         document to a profile document, which is then run in a worker process
-        (:class:`~dppverify.audit.runner.PythonRunner` with ``timeout``).
-    examples : int
-        Example budget: the first ``examples`` distinct games of the seed's stream (a
-        smaller budget audits a prefix of a larger one; see the module docstring).
-    seed : int
-        Seed of the generation: the same seed, strategy and solver give the same campaign.
-    max_nodes : int
-        Largest instance (nodes) of the default strategy :func:`audit_instances`.
-    out : path, optional
-        Directory for the failing instance, profile and certificate: written as soon as
-        the first failure is found, rewritten whenever shrinking finds a smaller one.
-    shrink : bool
-        Shrink the first failure (default True).
-    progress : bool
-        Show a tqdm progress bar on stderr (generation, then shrinking).
+        (:class:`~dppverify.audit.runner.PythonRunner` with ``config.timeout``).
+    config : AuditConfig
+        The campaign: its example budget (the first ``examples`` distinct games of the
+        seed's stream: a smaller budget audits a prefix of a larger one, see the module
+        docstring), seed, instance size, certification options, shrinking budget, output
+        folder (written as soon as the first failure is found, rewritten whenever shrinking
+        finds a smaller one) and progress bar.
     strategy : SearchStrategy, optional
-        Instances to draw instead of :func:`audit_instances`.
-    max_prefixes, trials : int
-        Passed to :func:`dppverify.certify` (tree-size guard; random attackers of L3/L4).
-    timeout : float
-        Seconds per solver run (for a callable; a runner has its own).
-    shrink_calls, shrink_seconds : int, float
-        The shrinking budget: at most this many solver calls and seconds.
+        Instances to draw instead of :func:`audit_instances` (``max_nodes`` is then unused).
     log : callable, optional
         Receives one-line status messages (the first failure and where it was written).
 
@@ -164,26 +134,22 @@ def run_audit(solver: SolverRunner | Callable[[Doc], Any], *, examples: int = 10
     >>> from hypothesis import strategies as st
     >>> from dppverify.game.examples import triangle_document, triangle_profile
     >>> answer = triangle_profile()
-    >>> run_audit(lambda doc: answer, examples=3, strategy=st.just(triangle_document())).passed
+    >>> run_audit(lambda doc: answer, AuditConfig(examples=3),
+    ...           strategy=st.just(triangle_document())).passed
     True
-    >>> report = run_audit(lambda doc: answer, examples=20, shrink=False)
+    >>> report = run_audit(lambda doc: answer, AuditConfig(examples=20, shrink=False))
     >>> report.passed, report.examples, report.failure.check
     (False, 1, 'profile.wellformed')
     """
-    _check_int("examples", examples, 1, MAX_AUDIT_EXAMPLES)
-    _check_int("seed", seed, 0)
-    if out is not None:
-        check_output_folder(out)  # before any example: never a campaign that cannot report
-    source = audit_instances(max_nodes=max_nodes) if strategy is None else strategy
-    budget = ShrinkBudget(calls=shrink_calls, seconds=shrink_seconds)
+    if config.out is not None:
+        check_output_folder(config.out)  # before any example: never a campaign that cannot report
+    source = audit_instances(max_nodes=config.max_nodes) if strategy is None else strategy
     if isinstance(solver, SolverRunner):
         runner, owned = solver, False
     else:
-        runner, owned = PythonRunner(solver, timeout=timeout), True
+        runner, owned = PythonRunner(solver, timeout=config.timeout), True
     try:
-        return _campaign(runner, source, examples=examples, seed=seed, max_nodes=max_nodes,
-                         out=out, shrink=shrink, progress=progress, max_prefixes=max_prefixes,
-                         trials=trials, budget=budget, log=log)
+        return _campaign(runner, source, config, log=log)
     finally:
         if owned:
             runner.close()
@@ -208,13 +174,14 @@ def game_key(doc: Doc) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples: int,
-              seed: int, max_nodes: int, out: str | Path | None, shrink: bool, progress: bool,
-              max_prefixes: int, trials: int, budget: ShrinkBudget,
+def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], config: AuditConfig, *,
               log: Callable[[str], None] | None) -> AuditReport:
     """One hypothesis run whose settings never depend on ``examples`` (see the module
     docstring, "Nested campaigns"): the budget only says when to stop."""
     from tqdm import tqdm
+
+    examples, seed, out, shrink = config.examples, config.seed, config.out, config.shrink
+    budget = config.budget()
 
     counts = {"examples": 0, "skipped": 0}
     seen: set[str] = set()
@@ -222,8 +189,8 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
     files: list[tuple[Any, ...]] = [()]
     skip_limit = max(SKIP_FLOOR, SKIP_FACTOR * examples)
     stopped = [""]
-    bar = tqdm(total=examples, desc="audit", unit="ex", disable=not progress, file=sys.stderr,
-               leave=False)
+    bar = tqdm(total=examples, desc="audit", unit="ex", disable=not config.progress,
+               file=sys.stderr, leave=False)
 
     def record(outcome: Outcome) -> None:
         found.append(outcome)
@@ -250,7 +217,7 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
             return
         bar.update(1)
         try:
-            outcome = examine(runner, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
+            outcome = examine(runner, doc, config)
         except TreeTooLargeError:
             reject()  # raises: hypothesis discards the example
         if outcome.passed or outcome.identity != found[0].identity:
@@ -269,7 +236,7 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
             raise _Enough
         seen.add(key)
         try:
-            outcome = examine(runner, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
+            outcome = examine(runner, doc, config)
         except TreeTooLargeError:
             # skipped, not rejected: what hypothesis draws next must not depend on the solver
             counts["skipped"] += 1
@@ -286,11 +253,11 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
     phases = [Phase.generate, Phase.shrink] if shrink else [Phase.generate]
     # max_examples is the same for every budget: hypothesis' generation (its early small
     # examples, its mutations) is then the same sequence whatever the budget
-    config = settings(parent=settings.get_profile("default"), max_examples=MAX_AUDIT_EXAMPLES,
-                      database=None, deadline=None, derandomize=False, phases=phases,
-                      verbosity=Verbosity.quiet, suppress_health_check=list(HealthCheck),
-                      print_blob=False, report_multiple_bugs=False)
-    test = config(hypothesis_seed(seed)(given(source)(one)))
+    run = settings(parent=settings.get_profile("default"), max_examples=MAX_AUDIT_EXAMPLES,
+                   database=None, deadline=None, derandomize=False, phases=phases,
+                   verbosity=Verbosity.quiet, suppress_health_check=list(HealthCheck),
+                   print_blob=False, report_multiple_bugs=False)
+    test = run(hypothesis_seed(seed)(given(source)(one)))
     try:
         test()
     except _Enough:
@@ -302,7 +269,7 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
         bar.close()
         if stopped[0]:
             raise AuditError(f"every generated example was skipped: walk trees larger than "
-                             f"max_prefixes={max_prefixes} (lower --max-nodes)")
+                             f"max_prefixes={config.max_prefixes} (lower --max-nodes)")
         raise AuditError("the instance strategy gave no example")
     note = ""
     if not found and counts["examples"] < examples:
@@ -311,15 +278,15 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples:
     try:
         if not found:
             return AuditReport(True, counts["examples"], counts["skipped"], 0, None, None,
-                               seed=seed, max_nodes=max_nodes, shrunk=shrink, note=note)
+                               seed=seed, max_nodes=config.max_nodes, shrunk=shrink, note=note)
         # every failure accepted while shrinking is smaller and has the first one's identity
         minimal = found[-1]
         if shrink:
-            minimal, _ = prune_failure(runner, minimal, max_prefixes=max_prefixes,
-                                       trials=trials, seed=seed, budget=budget, on_improve=record)
+            minimal, _ = prune_failure(runner, minimal, config, budget=budget,
+                                       on_improve=record)
     finally:
         bar.close()
     return AuditReport(False, counts["examples"], counts["skipped"], budget.used, minimal,
-                       found[0], files[0], seed, max_nodes, shrunk=shrink,
+                       found[0], files[0], seed, config.max_nodes, shrunk=shrink,
                        budget_exhausted=shrink and budget.exhausted)
 

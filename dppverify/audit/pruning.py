@@ -1,79 +1,27 @@
-"""Shrinking a failure under a budget: the budget itself and the greedy pruning pass.
+"""Shrinking a failure under a budget: the greedy pruning pass.
 
 Hypothesis shrinks the *draws*; :func:`prune_failure` then deletes nodes and edges the
 failure does not need. Both spend solver calls, and a slow solver makes every call count,
-so both draw on one :class:`ShrinkBudget` (solver calls and seconds).
+so both draw on one :class:`~dppverify.audit.config.ShrinkBudget` (solver calls and seconds).
 """
 
 from __future__ import annotations
 
 import json
 import math
-import time
 from collections.abc import Callable
 from fractions import Fraction
 from typing import Any
 
-from dppverify.audit.defaults import (
-    AUDIT_MAX_PREFIXES,
-    AUDIT_TRIALS,
-    DEFAULT_SHRINK_CALLS,
-    DEFAULT_SHRINK_SECONDS,
-)
+from dppverify.audit.config import DEFAULT_CONFIG, AuditConfig, ShrinkBudget
 from dppverify.audit.examine import Outcome, examine
 from dppverify.audit.runner import SolverRunner
-from dppverify.errors import AuditError, CheckerError, TreeTooLargeError
+from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.game.instance import instance_from_json
 
-__all__ = ["ShrinkBudget", "prune_failure"]
+__all__ = ["prune_failure", "simpler_graphs"]
 
 Doc = dict[str, Any]
-
-
-class ShrinkBudget:
-    """Solver calls and seconds left for shrinking (the clock starts at :meth:`start`).
-
-    Examples
-    --------
-    >>> b = ShrinkBudget(calls=2, seconds=60).start()
-    >>> b.spend(), b.spend(), b.spend()
-    (True, True, False)
-    >>> b.used, b.exhausted
-    (2, True)
-    """
-
-    def __init__(self, *, calls: int = DEFAULT_SHRINK_CALLS,
-                 seconds: float = DEFAULT_SHRINK_SECONDS) -> None:
-        given: object = calls  # checked as given, whatever its type
-        if isinstance(given, bool) or not isinstance(given, int) or given < 0:
-            raise AuditError(f"shrink calls={calls!r} must be a non-negative integer")
-        if not seconds >= 0:
-            raise AuditError(f"shrink seconds={seconds!r} must be non-negative")
-        self.calls, self.seconds = calls, float(seconds)
-        self.used = 0
-        self.started = 0.0
-        self.deadline = float("inf")
-        self.exhausted = False
-
-    def start(self) -> ShrinkBudget:
-        """Start the clock; returns ``self``."""
-        self.started = time.monotonic()
-        self.deadline = self.started + self.seconds
-        return self
-
-    def spend(self, share: float = 1.0) -> bool:
-        """Take one solver call from the first ``share`` of the budget; False when none is
-        left (with ``share`` 1, the budget is then exhausted)."""
-        calls, deadline = self.calls * share, self.started + self.seconds * share
-        if self.used >= calls or time.monotonic() > min(deadline, self.deadline):
-            self.exhausted = self.exhausted or share >= 1.0
-            return False
-        self.used += 1
-        return True
-
-    def describe(self) -> str:
-        """The budget in words, e.g. ``500 solver calls or 120 s``."""
-        return f"{self.calls} solver calls or {self.seconds:g} s"
 
 
 def simpler_graphs(graph: Doc) -> list[Doc]:
@@ -107,9 +55,8 @@ def simpler_graphs(graph: Doc) -> list[Doc]:
     return out
 
 
-def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome, *,
-                  max_prefixes: int = AUDIT_MAX_PREFIXES, trials: int = AUDIT_TRIALS,
-                  seed: int = 0, budget: ShrinkBudget | None = None,
+def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
+                  config: AuditConfig = DEFAULT_CONFIG, *, budget: ShrinkBudget | None = None,
                   on_improve: Callable[[Outcome], None] | None = None) -> tuple[Outcome, int]:
     """Delete nodes and edges from a failing instance while it still fails the same way (the
     same :attr:`~dppverify.audit.examine.Outcome.identity`: check id, or exception type and
@@ -120,8 +67,10 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
     than the start and the goals (with its edges), then every edge, then tries the simpler
     graphs of :func:`simpler_graphs` (undirected, integer and unit weights), keeping a change
     when the instance stays valid and the solver's answer still fails the same check; it
-    repeats until nothing changes or the ``budget`` is spent. ``on_improve`` is called with
-    every smaller failure. Returns the pruned outcome and the solver calls spent.
+    repeats until nothing changes or the ``budget`` is spent (default: a fresh one of
+    ``config``). Each attempt is examined as ``config`` says (:func:`examine`).
+    ``on_improve`` is called with every smaller failure. Returns the pruned outcome and the
+    solver calls spent.
 
     Examples
     --------
@@ -137,7 +86,7 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
     >>> [n["id"] for n in pruned.instance["graph"]["nodes"]], pruned.check
     ([0, 1, 2], 'profile.wellformed')
     """
-    budget = budget if budget is not None else ShrinkBudget().start()
+    budget = budget if budget is not None else config.budget().start()
     calls = 0
     best = outcome
     keep = {json.dumps(best.instance["start"]), *(json.dumps(g) for g in best.instance["goals"])}
@@ -152,7 +101,7 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
             return None
         calls += 1
         try:
-            result = examine(solver, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
+            result = examine(solver, doc, config)
         except TreeTooLargeError:
             return None
         return result if result.identity == best.identity else None

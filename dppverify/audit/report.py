@@ -135,9 +135,9 @@ def format_report(report: AuditReport) -> str:
     Examples
     --------
     >>> from hypothesis import strategies as st
-    >>> from dppverify.audit import run_audit
+    >>> from dppverify.audit import AuditConfig, run_audit
     >>> from dppverify.game.examples import triangle_document
-    >>> report = run_audit(lambda doc: 1 / 0, examples=5, shrink=False,
+    >>> report = run_audit(lambda doc: 1 / 0, AuditConfig(examples=5, shrink=False),
     ...                    strategy=st.just(triangle_document()))
     >>> print(format_report(report))  # doctest: +ELLIPSIS
     audit FAIL after 1 example (seed 0; no shrinking): the solver raised ZeroDivisionError: ...

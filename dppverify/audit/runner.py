@@ -55,7 +55,7 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
-from dppverify.audit.defaults import READY_TIMEOUT
+from dppverify.audit.config import READY_TIMEOUT
 from dppverify.audit.procs import SUPERVISOR, become_subreaper, kill_tree
 from dppverify.errors import AuditError
 from dppverify.formats.files import read_input

@@ -23,9 +23,9 @@ from dppverify.audit import (
     DEFAULT_SHRINK_CALLS,
     DEFAULT_SHRINK_SECONDS,
     DEFAULT_TIMEOUT,
+    AuditConfig,
     CommandRunner,
     PythonRunner,
-    ShrinkBudget,
     SolverRunner,
     format_report,
 )
@@ -112,6 +112,10 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
     """
     from dppverify.audit.campaign import run_audit  # loads hypothesis: only when run
 
+    config = AuditConfig(examples=examples, seed=seed, max_nodes=max_nodes,
+                         max_prefixes=max_prefixes, timeout=timeout, shrink=shrink,
+                         shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
+                         out=output_dir, progress=want_progress(progress))
     if map_instances and scen_file is None:
         click.echo("error: --map-instances goes with --map FILE --scen FILE", err=True)
         raise click.exceptions.Exit(2)
@@ -124,17 +128,13 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
                        "with the random campaign; --instances and --scen audit every "
                        "instance they give", err=True)
             raise click.exceptions.Exit(2)
-        _own_instances(solver_spec, solver_cmd, timeout, instances_dir, map_file, scen_file,
-                       prior_text, map_instances, seed=seed, output_dir=output_dir,
-                       shrink=shrink, shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
-                       max_prefixes=max_prefixes, progress=progress)
+        _own_instances(solver_spec, solver_cmd, instances_dir, map_file, scen_file, prior_text,
+                       map_instances, config)
         return
     try:
-        with _private_hypothesis_home(), _make_runner(solver_spec, solver_cmd, timeout) as runner:
-            report = run_audit(runner, examples=examples, seed=seed, max_nodes=max_nodes,
-                               out=output_dir, shrink=shrink, max_prefixes=max_prefixes,
-                               shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
-                               progress=want_progress(progress), log=status)
+        with _private_hypothesis_home(), _make_runner(solver_spec, solver_cmd,
+                                                      timeout) as runner:
+            report = run_audit(runner, config, log=status)
     except CheckerError as exc:
         click.echo(f"error: {exc}", err=True)
         raise click.exceptions.Exit(2) from None
@@ -147,12 +147,11 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
     raise click.exceptions.Exit(0 if report.passed else 1)
 
 
-def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: float,
-                   instances_dir: str | None, map_file: str | None, scen_file: str | None,
-                   prior_text: str, map_instances: bool, *, seed: int, output_dir: str,
-                   shrink: bool, shrink_calls: int, shrink_seconds: float, max_prefixes: int,
-                   progress: bool | None) -> None:
+def _own_instances(solver_spec: str | None, solver_cmd: str | None, instances_dir: str | None,
+                   map_file: str | None, scen_file: str | None, prior_text: str,
+                   map_instances: bool, config: AuditConfig) -> None:
     """``dpp audit --instances DIR`` / ``--map FILE --scen FILE``: the user's own instances."""
+    output_dir = str(config.out)
     from dppio.standard_maps import PREFIX, resolve_map
     from dppverify.audit.sources import audit_documents, instances_from_dir, instances_from_scen
 
@@ -173,7 +172,7 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
             prior = _scen_prior(prior_text)
             path = resolve_map(map_file, error=InvalidInstanceError)
             ref = map_file if map_file.startswith(PREFIX) else str(path.resolve())
-            docs, bad = instances_from_scen(path, scen_file, seed=seed, prior=prior,
+            docs, bad = instances_from_scen(path, scen_file, seed=config.seed, prior=prior,
                                             map_instances=ref if map_instances else None)
             source = scen_file
             for line, reason in bad[:3]:
@@ -182,12 +181,8 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
                 status(f"audit: {scen_file}: {len(bad) - 3} more lines left out")
             if not docs:
                 raise AuditError(f"--scen {scen_file}: no scenario line makes a game")
-        with _make_runner(solver_spec, solver_cmd, timeout) as runner:
-            report = audit_documents(runner, docs, source=source, out=output_dir,
-                                     shrink=shrink, max_prefixes=max_prefixes, seed=seed,
-                                     budget=ShrinkBudget(calls=shrink_calls,
-                                                         seconds=shrink_seconds),
-                                     progress=want_progress(progress), log=status)
+        with _make_runner(solver_spec, solver_cmd, config.timeout) as runner:
+            report = audit_documents(runner, docs, config, source=source, log=status)
     except CheckerError as exc:
         click.echo(f"error: {' '.join(str(exc).split())}", err=True)
         raise click.exceptions.Exit(2) from None
