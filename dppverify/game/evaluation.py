@@ -34,10 +34,6 @@ class Values:
     U_bar: Number
     VoI: Number
 
-    def as_dict(self) -> dict[str, Number]:
-        """``{"U1": …, "U2": …, "U": …, "U_bar": …, "VoI": …}``."""
-        return {"U1": self.U1, "U2": self.U2, "U": self.U, "U_bar": self.U_bar, "VoI": self.VoI}
-
 
 def walk_cost(instance: Instance, roles: Roles, rule: DefenderRule, walk: tuple[int, ...],
               theta: int) -> Number:

@@ -98,7 +98,7 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
-from dppverify.errors import CheckerError, TreeTooLargeError
+from dppverify.errors import TreeTooLargeError
 from dppverify.exact import Number
 from dppverify.formats.files import write_files
 from dppverify.game.instance import Instance
@@ -424,6 +424,3 @@ def write_efg(path: str | Path, instance: Instance, horizon: int, *,
     write_files({Path(path): text})  # all or nothing, mode from the umask
     return efg_size(tree, attacker_observes=attacker_observes, forced_moves=forced_moves)
 
-
-class EfgWriteError(CheckerError, OSError):
-    """The ``.efg`` file could not be written."""

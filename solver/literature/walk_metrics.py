@@ -146,10 +146,6 @@ class RouteMeter:
                                        self.walk_metrics(p.walk, theta)))
         return tuple(out)
 
-    def type_expectation(self, walks: Sequence[WalkMetrics], theta: int) -> PathMetrics:
-        """The expectation of type θ's walks (by their probabilities)."""
-        return expectation([(w.probability, w.metrics) for w in walks if w.theta == theta])
-
     def expectation(self, walks: Sequence[WalkMetrics]) -> PathMetrics:
         """The expectation over both types (by the prior) and their walks: the mixture's
         expected metrics.
