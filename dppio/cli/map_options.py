@@ -192,18 +192,8 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
     dppio.errors.OptionError: --map needs --start R,C --goals R,C R,C --prior P,Q:
       missing --goals and --prior
     """
-    if goals is not None and any(" " in g.strip() for g in goals):
-        quoted = next(g for g in goals if " " in g.strip())
-        raise OptionError(f"--goals takes the cells as separate arguments ROW,COL ROW,COL, "
-                          f"e.g. --goals {_cells_typed(goals)}, not one quoted argument "
-                          f"{quoted!r}")
     if goals is not None:
-        if len(goals) < 2:
-            raise OptionError(f"--goals takes two cells ROW,COL ROW,COL, got one: {goals[0]!r}")
-        second = goals[1]
-        if second.startswith("--") or (second.startswith("-") and "," not in second):
-            raise OptionError(f"--goals takes two cells ROW,COL ROW,COL, got one: "
-                              f"{goals[0]!r} (then {second!r})")
+        _check_goals(goals)
     given = {"--start": start, "--goals": goals, "--prior": prior,
              "--connectivity": connectivity}
     if map_file is None:
@@ -223,23 +213,44 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
                           f"missing {' and '.join(missing)}")
     assert start is not None and goals is not None and prior is not None
     cells = tuple(_cell(g, "--goals") for g in goals)
-    parts = prior.split(",")
-    if len(parts) != len(cells) or not all(p.strip() for p in parts):
-        if len(cells) == 2:
-            raise OptionError(f"--prior takes two numbers P,Q (e.g. 0.6,0.4 or 3/5,2/5), "
-                              f"got {prior!r}")
-        raise OptionError(f"--prior takes {len(cells)} numbers, one per goal (e.g. "
-                          f"{','.join(['1/' + str(len(cells))] * len(cells))}), got {prior!r}")
-    check_prior([p.strip() for p in parts])
+    priors = _priors(prior, len(cells))
     if len(cells) > 2 and connectivity == "8":
         raise OptionError(f"--connectivity 8 (diagonal steps of weight √2, float numbers) "
                           f"takes two goals; with {len(cells)} goals the game is exact: use "
                           f"--connectivity 4 (the default)")
     path = resolve_map(map_file)
     refuse_scenario(map_file, path)
-    return request(map=map_file, path=path, start=_cell(start, "--start"),
-                      goals=cells, prior=tuple(p.strip() for p in parts),
-                      connectivity=int(connectivity or 4))
+    return request(map=map_file, path=path, start=_cell(start, "--start"), goals=cells,
+                   prior=priors, connectivity=int(connectivity or 4))
+
+
+def _check_goals(goals: tuple[str, ...]) -> None:
+    """Refuse ``--goals`` values that are not separate cells: one quoted argument, or a
+    single cell followed by an option."""
+    if any(" " in g.strip() for g in goals):
+        quoted = next(g for g in goals if " " in g.strip())
+        raise OptionError(f"--goals takes the cells as separate arguments ROW,COL ROW,COL, "
+                          f"e.g. --goals {_cells_typed(goals)}, not one quoted argument "
+                          f"{quoted!r}")
+    if len(goals) < 2:
+        raise OptionError(f"--goals takes two cells ROW,COL ROW,COL, got one: {goals[0]!r}")
+    second = goals[1]
+    if second.startswith("--") or (second.startswith("-") and "," not in second):
+        raise OptionError(f"--goals takes two cells ROW,COL ROW,COL, got one: "
+                          f"{goals[0]!r} (then {second!r})")
+
+
+def _priors(prior: str, n: int) -> tuple[str, ...]:
+    """``--prior``'s ``n`` numbers as typed (stripped), checked (:func:`check_prior`)."""
+    parts = prior.split(",")
+    if len(parts) != n or not all(p.strip() for p in parts):
+        if n == 2:
+            raise OptionError(f"--prior takes two numbers P,Q (e.g. 0.6,0.4 or 3/5,2/5), "
+                              f"got {prior!r}")
+        raise OptionError(f"--prior takes {n} numbers, one per goal (e.g. "
+                          f"{','.join(['1/' + str(n)] * n)}), got {prior!r}")
+    check_prior([p.strip() for p in parts])
+    return tuple(p.strip() for p in parts)
 
 
 def refuse_scenario(given: str, path: Path) -> None:

@@ -180,113 +180,131 @@ def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], config: Audi
     docstring, "Nested campaigns"): the budget only says when to stop."""
     from tqdm import tqdm
 
-    examples, seed, out, shrink = config.examples, config.seed, config.out, config.shrink
-    budget = config.budget()
-
-    counts = {"examples": 0, "skipped": 0}
-    seen: set[str] = set()
-    found: list[Outcome] = []
-    files: list[tuple[Any, ...]] = [()]
-    skip_limit = max(SKIP_FLOOR, SKIP_FACTOR * examples)
-    stopped = [""]
-    bar = tqdm(total=examples, desc="audit", unit="ex", disable=not config.progress,
+    bar = tqdm(total=config.examples, desc="audit", unit="ex", disable=not config.progress,
                file=sys.stderr, leave=False)
-
-    def record(outcome: Outcome) -> None:
-        found.append(outcome)
-        if out is not None:
-            files[0] = save_failure(outcome, out, seed=seed, log=log)
-        if len(found) > 1:
-            bar.set_description(f"shrinking: {budget.used}/{budget.calls} calls, "
-                                f"{len(outcome.instance['graph']['nodes'])} nodes")
-
-    def first(outcome: Outcome) -> None:
-        record(outcome)
-        if log is not None:
-            where = f"; written to {out}" if out is not None else ""
-            plan = (f"; shrinking it (budget: {budget.describe()})" if shrink else "")
-            log(f"audit: example {counts['examples']} fails {outcome.check}{where}{plan}")
-        budget.start()
-        if shrink:
-            bar.reset(total=budget.calls)
-            bar.set_description("shrinking")
-
-    def shrinking(doc: Doc) -> None:
-        # hypothesis' shrinking gets half the budget, the pruning pass the rest
-        if not shrink or not budget.spend(HYPOTHESIS_SHARE):
-            return
-        bar.update(1)
-        try:
-            outcome = examine(runner, doc, config)
-        except TreeTooLargeError:
-            reject()  # raises: hypothesis discards the example
-        if outcome.passed or outcome.identity != found[0].identity:
-            return  # another failure: shrinking stays on the first one (as hypothesis)
-        record(outcome)
-        raise _Found(outcome.message)
-
-    def one(doc: Doc) -> None:
-        if found:  # shrinking (or hypothesis replaying the failure)
-            shrinking(doc)
-            return
-        key = game_key(doc)
-        if key in seen:
-            return  # a game already audited is not an example again
-        if counts["examples"] >= examples:
-            raise _Enough
-        seen.add(key)
-        try:
-            outcome = examine(runner, doc, config)
-        except TreeTooLargeError:
-            # skipped, not rejected: what hypothesis draws next must not depend on the solver
-            counts["skipped"] += 1
-            if counts["skipped"] >= skip_limit:
-                stopped[0] = "skipped"
-                raise _Enough from None
-            return
-        counts["examples"] += 1
-        bar.update(1)
-        if not outcome.passed:
-            first(outcome)
-            raise _Found(outcome.message)
-
-    phases = [Phase.generate, Phase.shrink] if shrink else [Phase.generate]
+    run = _Campaign(runner, config, log, bar)
+    phases = [Phase.generate, Phase.shrink] if config.shrink else [Phase.generate]
     # max_examples is the same for every budget: hypothesis' generation (its early small
     # examples, its mutations) is then the same sequence whatever the budget
-    run = settings(parent=settings.get_profile("default"), max_examples=MAX_AUDIT_EXAMPLES,
-                   database=None, deadline=None, derandomize=False, phases=phases,
-                   verbosity=Verbosity.quiet, suppress_health_check=list(HealthCheck),
-                   print_blob=False, report_multiple_bugs=False)
-    test = run(hypothesis_seed(seed)(given(source)(one)))
+    hypothesis_settings = settings(
+        parent=settings.get_profile("default"), max_examples=MAX_AUDIT_EXAMPLES,
+        database=None, deadline=None, derandomize=False, phases=phases,
+        verbosity=Verbosity.quiet, suppress_health_check=list(HealthCheck), print_blob=False,
+        report_multiple_bugs=False)
+    test = hypothesis_settings(hypothesis_seed(config.seed)(given(source)(run.one)))
     try:
         test()
     except _Enough:
         pass
     except Exception:  # _Found, or hypothesis' Flaky error around a failure
-        if not found:
+        if not run.found:
             raise
-    if not found and counts["examples"] == 0:
-        bar.close()
-        if stopped[0]:
-            raise AuditError(f"every generated example was skipped: walk trees larger than "
-                             f"max_prefixes={config.max_prefixes} (lower --max-nodes)")
-        raise AuditError("the instance strategy gave no example")
-    note = ""
-    if not found and counts["examples"] < examples:
-        note = (f"stopped after {counts['skipped']} skipped examples" if stopped[0] else
-                "the generator has no further distinct game")
     try:
-        if not found:
-            return AuditReport(True, counts["examples"], counts["skipped"], 0, None, None,
-                               seed=seed, max_nodes=config.max_nodes, shrunk=shrink, note=note)
-        # every failure accepted while shrinking is smaller and has the first one's identity
-        minimal = found[-1]
-        if shrink:
-            minimal, _ = prune_failure(runner, minimal, config, budget=budget,
-                                       on_improve=record)
+        return run.report()
     finally:
         bar.close()
-    return AuditReport(False, counts["examples"], counts["skipped"], budget.used, minimal,
-                       found[0], files[0], seed, config.max_nodes, shrunk=shrink,
-                       budget_exhausted=shrink and budget.exhausted)
 
+
+class _Campaign:
+    """The state of one campaign: what hypothesis drew so far, the failures found (the first
+    one, then every smaller one with its identity), the budget and the files written."""
+
+    def __init__(self, runner: SolverRunner, config: AuditConfig,
+                 log: Callable[[str], None] | None, bar: Any) -> None:
+        self.runner, self.config, self.log, self.bar = runner, config, log, bar
+        self.budget = config.budget()
+        self.examples = self.skipped = 0
+        self.seen: set[str] = set()
+        self.found: list[Outcome] = []
+        self.files: tuple[Any, ...] = ()
+        self.skip_limit = max(SKIP_FLOOR, SKIP_FACTOR * config.examples)
+        self.stopped = False
+
+    def record(self, outcome: Outcome) -> None:
+        """Keep a failure (the first, or a smaller one) and write it to ``config.out``."""
+        self.found.append(outcome)
+        if self.config.out is not None:
+            self.files = save_failure(outcome, self.config.out, seed=self.config.seed,
+                                      log=self.log)
+        if len(self.found) > 1:
+            self.bar.set_description(f"shrinking: {self.budget.used}/{self.budget.calls} calls, "
+                                     f"{len(outcome.instance['graph']['nodes'])} nodes")
+
+    def first(self, outcome: Outcome) -> None:
+        """The first failure: keep it, say so, start the shrinking budget."""
+        self.record(outcome)
+        out, shrink = self.config.out, self.config.shrink
+        if self.log is not None:
+            where = f"; written to {out}" if out is not None else ""
+            plan = (f"; shrinking it (budget: {self.budget.describe()})" if shrink else "")
+            self.log(f"audit: example {self.examples} fails {outcome.check}{where}{plan}")
+        self.budget.start()
+        if shrink:
+            self.bar.reset(total=self.budget.calls)
+            self.bar.set_description("shrinking")
+
+    def shrinking(self, doc: Doc) -> None:
+        """Hypothesis shrinking: keep ``doc`` when it fails as the first failure did."""
+        # hypothesis' shrinking gets half the budget, the pruning pass the rest
+        if not self.config.shrink or not self.budget.spend(HYPOTHESIS_SHARE):
+            return
+        self.bar.update(1)
+        try:
+            outcome = examine(self.runner, doc, self.config)
+        except TreeTooLargeError:
+            reject()  # raises: hypothesis discards the example
+        if outcome.passed or outcome.identity != self.found[0].identity:
+            return  # another failure: shrinking stays on the first one (as hypothesis)
+        self.record(outcome)
+        raise _Found(outcome.message)
+
+    def one(self, doc: Doc) -> None:
+        """The hypothesis test: examine one drawn game."""
+        if self.found:  # shrinking (or hypothesis replaying the failure)
+            self.shrinking(doc)
+            return
+        key = game_key(doc)
+        if key in self.seen:
+            return  # a game already audited is not an example again
+        if self.examples >= self.config.examples:
+            raise _Enough
+        self.seen.add(key)
+        try:
+            outcome = examine(self.runner, doc, self.config)
+        except TreeTooLargeError:
+            # skipped, not rejected: what hypothesis draws next must not depend on the solver
+            self.skipped += 1
+            if self.skipped >= self.skip_limit:
+                self.stopped = True
+                raise _Enough from None
+            return
+        self.examples += 1
+        self.bar.update(1)
+        if not outcome.passed:
+            self.first(outcome)
+            raise _Found(outcome.message)
+
+    def report(self) -> AuditReport:
+        """The campaign's report; the first failure pruned within what is left of the budget."""
+        config, shrink = self.config, self.config.shrink
+        if not self.found and self.examples == 0:
+            if self.stopped:
+                raise AuditError(f"every generated example was skipped: walk trees larger than "
+                                 f"max_prefixes={config.max_prefixes} (lower --max-nodes)")
+            raise AuditError("the instance strategy gave no example")
+        if not self.found:
+            note = ""
+            if self.examples < config.examples:
+                note = (f"stopped after {self.skipped} skipped examples" if self.stopped else
+                        "the generator has no further distinct game")
+            return AuditReport(True, self.examples, self.skipped, 0, None, None,
+                               seed=config.seed, max_nodes=config.max_nodes, shrunk=shrink,
+                               note=note)
+        # every failure accepted while shrinking is smaller and has the first one's identity
+        minimal = self.found[-1]
+        if shrink:
+            minimal, _ = prune_failure(self.runner, minimal, config, budget=self.budget,
+                                       on_improve=self.record)
+        return AuditReport(False, self.examples, self.skipped, self.budget.used, minimal,
+                           self.found[0], self.files, config.seed, config.max_nodes,
+                           shrunk=shrink, budget_exhausted=shrink and self.budget.exhausted)

@@ -19,9 +19,9 @@ from typing import Any
 
 from dppverify.game.instance import Instance, instance_from_json
 
-__all__ = ["hub4", "hub4_document", "hub_document", "kite", "kite_document", "kite_naive_profile",
-           "star3", "star3_document", "star3_profile", "triangle", "triangle_attacker",
-           "triangle_document", "triangle_profile"]
+__all__ = ["fork", "hub4", "hub4_document", "hub_document", "kite", "kite_document",
+           "kite_naive_profile", "star3", "star3_document", "star3_profile", "triangle",
+           "triangle_attacker", "triangle_document", "triangle_profile"]
 
 
 def triangle_document(prior: tuple[str, str] = ("7/10", "3/10")) -> dict[str, Any]:
@@ -50,6 +50,23 @@ def triangle(prior: tuple[str, str] = ("7/10", "3/10")) -> Instance:
     ('g1', (Fraction(7, 10), Fraction(3, 10)))
     """
     return instance_from_json(triangle_document(prior))
+
+
+def fork() -> Instance:
+    """The undirected path ``2 - 0 - 1 - 3``, start ``0``, goals ``2`` and ``3``, prior 1/2 -
+    1/2 (walk trees of every depth stay small).
+
+    Examples
+    --------
+    >>> inst = fork()
+    >>> inst.start, inst.goals, inst.n_nodes
+    (0, (2, 3), 4)
+    """
+    return instance_from_json({
+        "graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
+                  "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
+                            {"source": 1, "target": 3}]},
+        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]})
 
 
 def triangle_attacker(p_g1: str = "4/7", p_g2: str = "3/7") -> dict[str, Any]:
