@@ -105,13 +105,7 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
         raise InstanceFormatError(f"instance must be a JSON object, got {type(data).__name__}")
     if data.get("format") == MAP_INSTANCE_FORMAT:
         return _from_map_document(data, base, two_goals)
-    missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
-    if missing:
-        raise InstanceFormatError(f"instance is missing key(s): {', '.join(missing)}")
-    mode = data.get("numbers", "exact")
-    if mode not in ("exact", "float"):
-        raise InstanceFormatError(f"numbers: expected \"exact\" or \"float\", got {mode!r}")
-    float_weights = mode == "float"
+    float_weights = _float_mode(data)
     goals, prior = data["goals"], data["prior"]
     if isinstance(goals, list) and len(goals) > 2:  # N goals: the N-goal rules
         if two_goals:
@@ -137,6 +131,17 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
         (node_from_json(goals[0]), node_from_json(goals[1])),
         (parse_number(prior[0], where="prior[0]"), parse_number(prior[1], where="prior[1]")),
     )
+
+
+def _float_mode(data: dict[str, Any]) -> bool:
+    """Whether a node-link document has every key and asks for float weights."""
+    missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
+    if missing:
+        raise InstanceFormatError(f"instance is missing key(s): {', '.join(missing)}")
+    mode = data.get("numbers", "exact")
+    if mode not in ("exact", "float"):
+        raise InstanceFormatError(f"numbers: expected \"exact\" or \"float\", got {mode!r}")
+    return bool(mode == "float")
 
 
 def as_instance(instance: Instance | Mapping[str, Any] | str | Path) -> Instance:

@@ -200,9 +200,9 @@ class PairEvaluator:
             self.defender(defender) if isinstance(defender, str) else defender)
         att = self.attacker(attacker) if isinstance(attacker, str) else attacker
         inst = self.instance
-        return evaluate(inst.network, schedule, att.primary, att.secondary, b1=inst.b1,
-                        b2=inst.b2, g1=self.g1, g2=self.g2, d_to_g1=self.d_to_g1,
-                        d_to_g2=self.d_to_g2, d_from_start=self.d_from_start)
+        return evaluate(inst.network, schedule, att.primary, att.secondary,
+                        prior=(inst.b1, inst.b2), goals=(self.g1, self.g2),
+                        d_to=(self.d_to_g1, self.d_to_g2), d_from_start=self.d_from_start)
 
     def pair(self, defender: str, attacker: str) -> PairResult:
         """U¹, U², U, Ū, VoI of a named pair."""
