@@ -161,7 +161,7 @@ class SolverRunner:
         return self
 
     def __exit__(self, kind: type[BaseException] | None, exc: BaseException | None,
-                 tb: TracebackType | None) -> None:
+                 _traceback: TracebackType | None) -> None:
         self.close()
 
 
