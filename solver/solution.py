@@ -153,6 +153,18 @@ def summarize(result: Solution | Equilibrium, *, certified: str = "") -> str:
     more, one line (value, VoI, type costs, the guarantee rule's ``h``; ``certified`` says how
     it was certified).
 
+    Parameters
+    ----------
+    result : Solution or Equilibrium
+        What :func:`solve` returned.
+    certified : str
+        How an N-goal result was certified, for its line.
+
+    Returns
+    -------
+    str
+        The text, without a final newline.
+
     Examples
     --------
     >>> from solver.game.instance import triangle

@@ -92,6 +92,26 @@ def examine(solver: SolverRunner | Callable[[Doc], Any], doc: Doc,
     ``config.max_prefixes`` (the caller skips the example); everything the solver does wrong
     is an :class:`Outcome` with ``passed`` False.
 
+    Parameters
+    ----------
+    solver : SolverRunner or callable
+        The solver under test.
+    doc : dict
+        The instance document given to it.
+    config : AuditConfig
+        The certification options (``max_prefixes``, ``trials``, ``seed``).
+
+    Returns
+    -------
+    Outcome
+        The instance, the solver's profile, its certificate and the first failing check (empty
+        when it passed).
+
+    Raises
+    ------
+    TreeTooLargeError
+        The walk tree is larger than ``config.max_prefixes`` (the caller skips the example).
+
     Examples
     --------
     >>> from dppverify.game.examples import triangle_document

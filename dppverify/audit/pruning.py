@@ -72,6 +72,24 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
     ``on_improve`` is called with every smaller failure. Returns the pruned outcome and the
     solver calls spent.
 
+    Parameters
+    ----------
+    solver : SolverRunner or callable
+        The solver under test.
+    outcome : Outcome
+        The failure to shrink.
+    config : AuditConfig
+        How each smaller instance is examined, and the default budget.
+    budget : ShrinkBudget, optional
+        The budget to draw on (started); default a fresh one of ``config``.
+    on_improve : callable, optional
+        Called with every smaller failure.
+
+    Returns
+    -------
+    (Outcome, int)
+        The smallest failure found and the solver calls spent.
+
     Examples
     --------
     >>> def stay_put(doc):           # a wrong solver: the Attacker never moves

@@ -125,6 +125,11 @@ class AuditReport:
 def format_report(report: AuditReport) -> str:
     """What ``dpp audit`` prints for a report.
 
+    Parameters
+    ----------
+    report : AuditReport
+        The result of :func:`~dppverify.audit.run_audit` or of an audit of given instances.
+
     Returns
     -------
     str

@@ -54,6 +54,16 @@ def grid_worlds(
     priors : SearchStrategy, optional
         Prior pairs (default :func:`priors`).
 
+    Returns
+    -------
+    SearchStrategy of dict
+        Grid instance documents (``docs/formats.md`` §1), node ids ``[row, col]``.
+
+    Raises
+    ------
+    hypothesis.errors.InvalidArgument
+        Bounds out of range or inconsistent (checked when the strategy is built).
+
     Examples
     --------
     >>> from hypothesis import find, settings

@@ -148,6 +148,25 @@ def count_prefixes(instance: Instance, horizon: int, *, limit: int | None = None
     stops as soon as the start's count exceeds it (returning ``limit + 1``). A negative
     ``horizon`` raises :class:`HorizonError`.
 
+    Parameters
+    ----------
+    instance : Instance
+        The game (any number of goals).
+    horizon : int
+        ``H >= 0``.
+    limit : int, optional
+        Stop counting above this (the result is then ``limit + 1``).
+
+    Returns
+    -------
+    int
+        The number of prefixes (0 when no walk reaches a goal within ``horizon`` steps).
+
+    Raises
+    ------
+    HorizonError
+        A negative ``horizon``.
+
     Examples
     --------
     The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3``:
@@ -240,6 +259,11 @@ def build_tree(instance: G, horizon: int, *, max_prefixes: int = DEFAULT_MAX_PRE
         :class:`TreeTooLargeError` is raised before any memory is spent when it is larger.
     progress : bool
         Show a tqdm progress bar on stderr.
+
+    Returns
+    -------
+    WalkTree
+        The prefixes breadth first: node, parent, depth, children and step weight of each.
 
     Raises
     ------

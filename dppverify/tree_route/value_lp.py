@@ -257,6 +257,29 @@ def game_value(instance: Instance | Any, horizon: int, *,
     is called primary (the LP is symmetric in the types), so the instance's own labelling is
     used.
 
+    Parameters
+    ----------
+    instance : Instance or document, path, object with ``to_json()``
+        The game.
+    horizon : int
+        ``H >= 0``: the truncated game.
+    max_prefixes : int
+        The largest walk tree built (:func:`~dppverify.tree_route.tree.build_tree`).
+    progress : bool
+        Progress bars on stderr.
+
+    Returns
+    -------
+    GameValue
+        The LP's value, its exact bracket and the tree's size.
+
+    Raises
+    ------
+    HorizonError
+        No walk reaches a goal within ``horizon`` steps.
+    TreeTooLargeError
+        The walk tree (or its LP) is larger than allowed.
+
     Examples
     --------
     >>> from dppverify.game.examples import triangle

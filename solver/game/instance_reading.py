@@ -32,6 +32,24 @@ def load_instance(path: str | Path, *, two_goals: bool = False) -> Instance:
     """Load an instance JSON file (:func:`instance_from_json` on its document; errors name the
     file).
 
+    Parameters
+    ----------
+    path : str or Path
+        An instance file (a node-link document, or a compact map instance).
+    two_goals : bool
+        Take two goals only.
+
+    Returns
+    -------
+    Instance
+
+    Raises
+    ------
+    InstanceFormatError
+        Not an instance document (the message names the file).
+    InvalidInstanceError
+        A document that is not a valid game (the message names the file).
+
     Examples
     --------
     >>> import tempfile, json, os
