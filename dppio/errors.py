@@ -10,8 +10,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-__all__ = ["DppioError", "ErrorClass", "InputError", "LimitError", "OptionError", "OutputError"]
-
 ErrorClass = Callable[[str], Exception]
 """What a check or a writer raises: called with the one-line message."""
 

@@ -22,8 +22,6 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
-__all__ = ["INF", "Bracket", "Number", "format_number", "normalize"]
-
 Number = int | Fraction | float
 """An exact rational (``int`` or ``Fraction``) or, in float mode, a ``float``."""
 

@@ -14,7 +14,6 @@ from dppverify.formats.json_reading import show_node
 if TYPE_CHECKING:
     from dppverify.game.instance import Instance
 
-__all__ = ["show", "show_value", "show_walk"]
 
 
 def show_value(x: Number | None, digits: int = 40) -> str:

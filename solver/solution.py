@@ -26,8 +26,6 @@ from solver.numbers import DEFAULT_ABS_TOL, Number, format_value
 from solver.twogoal.equilibrium import Equilibrium, paper_equilibrium
 from solver.twogoal.report import summarize as summarize_two_goals
 
-__all__ = ["Solution", "solve", "summarize"]
-
 
 @dataclass(frozen=True, eq=False)
 class Solution:

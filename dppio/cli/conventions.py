@@ -24,9 +24,6 @@ import click
 
 from dppio.files import write_files
 
-__all__ = ["PhaseBar", "emit", "output_dir_option", "output_file_option", "progress_option",
-           "status", "want_progress"]
-
 F = TypeVar("F", bound=Callable[..., Any])
 
 PROGRESS_HELP = "Progress bars on stderr (default: only when stderr is a terminal)."

@@ -29,8 +29,6 @@ from dppio.errors import DppioError
 from dppio.inputs import STDIN, reading_once
 from dppio.memory import memory_limit_text
 
-__all__ = ["ErrorReportingGroup", "fail"]
-
 
 class ErrorReportingGroup(click.Group):
     """A click group for the ``dpp`` commands: bad input is one line and exit 2.

@@ -14,8 +14,6 @@ from typing import Literal
 
 from dppio.inputs import peek_input
 
-__all__ = ["file_hint", "hinted", "what_is"]
-
 Kind = Literal["instance", "profile", "density CSV"]
 
 PEEK_BYTES = 4096

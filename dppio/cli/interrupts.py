@@ -26,8 +26,6 @@ from collections.abc import Iterator
 from types import FrameType
 from typing import Any
 
-__all__ = ["Terminated", "as_signal", "exit_code", "message", "signals_as_exceptions"]
-
 _RECEIVED: list[int] = []
 """The signals received inside the current :func:`signals_as_exceptions` block."""
 

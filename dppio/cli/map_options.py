@@ -30,9 +30,6 @@ from dppio.limits import check_numeral, check_rational
 from dppio.standard_maps import PREFIX, resolve_map, standard_map_names
 from dppio.text import show
 
-__all__ = ["MAP_USAGE", "CellsOption", "MapRequest", "check_prior", "instance_or_map",
-           "map_options", "map_request", "two_goal_map_options"]
-
 F = TypeVar("F", bound=Callable[..., Any])
 
 Cell = tuple[int, int]

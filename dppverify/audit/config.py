@@ -19,22 +19,6 @@ from pathlib import Path
 from dppverify.errors import AuditError
 from dppverify.limits import MAX_AUDIT_EXAMPLES
 
-__all__ = [
-    "AUDIT_MAX_PREFIXES",
-    "AUDIT_TRIALS",
-    "DEFAULT_CONFIG",
-    "DEFAULT_SHRINK_CALLS",
-    "DEFAULT_SHRINK_SECONDS",
-    "DEFAULT_TIMEOUT",
-    "HYPOTHESIS_SHARE",
-    "MAX_AUDIT_INSTANCES",
-    "READY_TIMEOUT",
-    "SKIP_FACTOR",
-    "SKIP_FLOOR",
-    "AuditConfig",
-    "ShrinkBudget",
-]
-
 AUDIT_MAX_PREFIXES = 200_000
 """Default size guard of the walk tree per example; larger examples are skipped."""
 

@@ -21,8 +21,6 @@ from dppverify.certify import certify
 from dppverify.errors import CheckerError, ProfileError, TreeTooLargeError, UndecidedError
 from dppverify.formats.json_reading import parse_json
 
-__all__ = ["Outcome", "examine"]
-
 Doc = dict[str, Any]
 
 

@@ -11,8 +11,6 @@ from __future__ import annotations
 from dppio.text import count, show
 from dppverify.certificate import Certificate, CheckRecord
 
-__all__ = ["CONSISTENCY_HEADING", "FACTS_HEADING", "format_table"]
-
 NUMBERS_WIDTH = 44
 
 CONSISTENCY_HEADING = ("consistency checks (the checker's own computations compared; a failure "

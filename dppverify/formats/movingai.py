@@ -35,10 +35,6 @@ from dppio.limits import MAX_MAP_CELLS
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_number
 
-__all__ = ["BLOCKED", "PASSABLE", "GridArcs", "GridMap", "grid_arcs", "grid_document",
-           "parse_map", "read_map", "read_map_file"]
-
-
 PASSABLE = frozenset(".GS")
 """Map characters of free cells (ground, ground, swamp)."""
 

@@ -21,7 +21,6 @@ from dppverify.game.step_weights import step_weights
 if TYPE_CHECKING:  # the game model does not import the tree route
     from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["Values", "complete_information_value", "evaluate", "realization", "walk_cost"]
 
 
 @dataclass(frozen=True)

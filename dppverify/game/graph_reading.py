@@ -21,9 +21,6 @@ from dppverify.exact import Number
 from dppverify.formats.json_reading import Node, node_from_json, parse_number, show_node
 from dppverify.game.distances import ArcArrays, ArcRows
 
-__all__ = ["Graph", "Rows", "edge_arrays", "known_node", "plain_graph", "read_graph",
-           "regular_graph", "require"]
-
 Rows = Sequence[tuple[tuple[int, Number], ...]]
 """``succ`` or ``pred``: ``rows[u]`` = the ``(node, weight)`` pairs of ``u``'s arcs."""
 

@@ -17,8 +17,6 @@ from typing import Any
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-__all__ = ["WEIGHT_KINDS", "weighted_graphs"]
-
 WEIGHT_KINDS = ("units", "integers", "fractions", "floats")
 """Named edge-weight kinds: all 1; integers; exact fractions ``"p/q"``; binary floats."""
 

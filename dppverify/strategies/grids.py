@@ -14,7 +14,6 @@ from hypothesis.errors import InvalidArgument
 from dppverify.strategies.graphs import Doc, check_bool, check_int, weight_strategy
 from dppverify.strategies.instances import priors as _prior_pairs
 
-__all__ = ["grid_worlds"]
 
 # ----------------------------------------------------------------------------- grid worlds
 def grid_worlds(

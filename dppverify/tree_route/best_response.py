@@ -34,10 +34,6 @@ from dppverify.tree_route.lp import LPStats, cost_scale, realization_constraints
 from dppverify.tree_route.players import AnyTypes, Plan, TreeStrategy, Types, as_types
 from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["AttackerBR", "DefenderBR", "attacker_best_response", "attacker_best_response_lp",
-           "beliefs", "defender_best_response", "defender_best_response_lp", "leaf_totals",
-           "objective_vector", "payoff_on_tree", "terminal_costs"]
-
 
 @dataclass(frozen=True)
 class AttackerBR:

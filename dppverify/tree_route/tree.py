@@ -41,8 +41,6 @@ from dppverify.structured.cover import MAX_BALANCED
 if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
     import scipy.sparse as sp
 
-__all__ = ["DEFAULT_MAX_PREFIXES", "WalkTree", "build_tree", "count_prefixes", "flow_matrix",
-           "lp_prefix_limit", "simple_mask", "tree_fits"]
 
 DEFAULT_MAX_PREFIXES = 1_000_000
 """Default size guard: trees with more prefixes raise :class:`TreeTooLargeError`."""

@@ -40,8 +40,6 @@ from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance, Roles
 from dppverify.twogoal.value_fixpoint import Arcs, fixpoint_fields, goal_terminal_arcs
 
-__all__ = ["Fields", "StructuredValue", "structured_value", "value_fields"]
-
 
 @dataclass(frozen=True, eq=False)
 class Fields:

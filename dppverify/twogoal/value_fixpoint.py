@@ -17,8 +17,6 @@ from dppverify.exact import Number
 from dppverify.game.distances import EXACT_FLOAT_LIMIT, common_denominator, sparse_dijkstra
 from dppverify.game.instance import Instance, Roles, arc_arrays
 
-__all__ = ["INT64_LIMIT", "Arcs", "Fixpoint", "fixpoint_fields", "goal_terminal_arcs"]
-
 INT64_LIMIT = 2**60
 """Finite field values must stay below this for ``int64`` (sums of two sentinels fit)."""
 

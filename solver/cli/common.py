@@ -13,18 +13,6 @@ from solver.errors import DPPError, InvalidInstanceError
 if TYPE_CHECKING:  # the solver's modules load numpy, scipy, networkx: imported per command
     from solver.game.instance import Instance
 
-__all__ = [
-    "START_IS_GOAL",
-    "check_dask_address",
-    "check_grid_count",
-    "check_map_memory",
-    "checker_game",
-    "dumps",
-    "experiment_instance",
-    "int_list",
-    "load_instance",
-    "load_with_digest",
-]
 
 
 def dumps(doc: object) -> str:

@@ -30,9 +30,6 @@ from functools import cache
 
 import numpy as np
 
-__all__ = ["Direction", "Normal", "VertexTable", "packing_directions",
-           "primitive", "vertex_table", "zero_one_normals"]
-
 Normal = tuple[int, ...]
 """A facet normal: a non-negative integer vector with one entry per goal, not all zero."""
 

@@ -16,8 +16,6 @@ from dppio.files import read_text
 from dppio.limits import MAX_JSON_DEPTH, check_json_depth, check_numeral
 from solver.errors import InstanceFormatError, InvalidInstanceError
 
-__all__ = ["parse_json_text", "read_json"]
-
 
 def read_json(path: str | Path) -> Any:
     """Read a JSON file, decimals as exact ``Fraction``; errors name the file and line.

@@ -25,8 +25,6 @@ from solver.formats.nodes import node_from_json
 from solver.game.instance import Instance
 from solver.numbers import parse_number
 
-__all__ = ["as_instance", "instance_from_json", "load_instance"]
-
 
 def load_instance(path: str | Path, *, two_goals: bool = False) -> Instance:
     """Load an instance JSON file (:func:`instance_from_json` on its document; errors name the

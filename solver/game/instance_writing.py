@@ -20,7 +20,6 @@ from solver.numbers import format_number, parse_number
 if TYPE_CHECKING:
     from solver.game.instance import Instance
 
-__all__ = ["instance_to_json", "map_instance_to_json"]
 
 
 def map_instance_to_json(map_ref: str, inst: Instance, *, relative_to: Path | None = None,

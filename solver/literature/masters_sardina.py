@@ -63,9 +63,6 @@ from solver.graph.distances import costs_to, distances_to
 from solver.graph.network import Network
 from solver.graph.shortest_paths import path_to_target
 
-__all__ = ["LABELS", "STRATEGIES", "MSPath", "last_deceptive_point", "plan", "plan_all",
-           "truthful"]
-
 STRATEGIES = ("pi_d1", "pi_d2", "pi_d3", "pi_d4")
 """The four strategies, as CSV/CLI names."""
 

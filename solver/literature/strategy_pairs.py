@@ -33,9 +33,6 @@ from solver.numbers import Number
 from solver.twogoal.equilibrium import Equilibrium, paper_equilibrium
 from solver.twogoal.evaluation import Evaluation, Schedule, evaluate
 
-__all__ = ["ATTACKERS", "COMPARE_PAIRS", "DEFENDERS", "LABELS", "MS_PAIRS", "PAIRS", "Attacker",
-           "PairEvaluator", "PairResult", "pair_label"]
-
 DEFENDERS = ("sigma*", "sigma'")
 ATTACKERS = ("gamma*", "ambiguity", "exaggeration")
 PAIRS: tuple[tuple[str, str], ...] = (

@@ -33,8 +33,6 @@ from solver.graph.shortest_paths import path_to_target
 from solver.literature.masters_sardina import truthful
 from solver.literature.path_metrics import PathMetrics, expectation, route_metrics
 
-__all__ = ["RouteMeter", "WalkMetrics"]
-
 
 @dataclass(frozen=True)
 class WalkMetrics:

@@ -22,8 +22,6 @@ from solver.twogoal.primary import primary_mixture
 from solver.twogoal.progress import ProgressDefender
 from solver.twogoal.secondary import TIE_BREAK, secondary_best_response
 
-__all__ = ["Equilibrium", "paper_equilibrium"]
-
 METHOD = "constructive PBNE (paper Sec. IV-V; secondary best response by proofs/XI2.md)"
 
 

@@ -22,8 +22,6 @@ from solver.game.walks import StrategyWalk
 from solver.graph.network import Network
 from solver.numbers import Number
 
-__all__ = ["Evaluation", "Schedule", "Trajectory", "evaluate"]
-
 Schedule = Callable[[Sequence[int]], list[Number]]
 """A Defender: walk (node indices) -> probability of allocating to g1 after each step."""
 

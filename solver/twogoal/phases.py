@@ -12,8 +12,6 @@ from dataclasses import dataclass
 
 from solver.numbers import Number
 
-__all__ = ["Phases", "phases_of"]
-
 
 @dataclass(frozen=True)
 class Phases:
