@@ -55,6 +55,23 @@ def simpler_graphs(graph: Doc) -> list[Doc]:
     return out
 
 
+def _smaller_graphs(graph: Doc, keep: set[str]) -> list[Doc]:
+    """The graphs one deletion or simplification away: without one node not in ``keep`` (and
+    its edges), without one edge, then :func:`simpler_graphs`."""
+    candidates = []
+    for node in graph["nodes"]:
+        key = json.dumps(node["id"])
+        if key in keep:
+            continue
+        edges = [e for e in graph["edges"]
+                 if key not in (json.dumps(e["source"]), json.dumps(e["target"]))]
+        nodes = [n for n in graph["nodes"] if n is not node]
+        candidates.append({**graph, "nodes": nodes, "edges": edges})
+    for edge in graph["edges"]:
+        candidates.append({**graph, "edges": [e for e in graph["edges"] if e is not edge]})
+    return candidates + simpler_graphs(graph)
+
+
 def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
                   config: AuditConfig = DEFAULT_CONFIG, *, budget: ShrinkBudget | None = None,
                   on_improve: Callable[[Outcome], None] | None = None) -> tuple[Outcome, int]:
@@ -67,10 +84,7 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
     than the start and the goals (with its edges), then every edge, then tries the simpler
     graphs of :func:`simpler_graphs` (undirected, integer and unit weights), keeping a change
     when the instance stays valid and the solver's answer still fails the same check; it
-    repeats until nothing changes or the ``budget`` is spent (default: a fresh one of
-    ``config``). Each attempt is examined as ``config`` says (:func:`examine`).
-    ``on_improve`` is called with every smaller failure. Returns the pruned outcome and the
-    solver calls spent.
+    repeats until nothing changes or the budget is spent.
 
     Parameters
     ----------
@@ -127,20 +141,7 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
     changed = True
     while changed and not budget.exhausted:
         changed = False
-        graph = best.instance["graph"]
-        candidates = []
-        for node in graph["nodes"]:
-            key = json.dumps(node["id"])
-            if key in keep:
-                continue
-            edges = [e for e in graph["edges"]
-                     if key not in (json.dumps(e["source"]), json.dumps(e["target"]))]
-            nodes = [n for n in graph["nodes"] if n is not node]
-            candidates.append({**graph, "nodes": nodes, "edges": edges})
-        for edge in graph["edges"]:
-            candidates.append({**graph, "edges": [e for e in graph["edges"] if e is not edge]})
-        candidates += simpler_graphs(graph)
-        for smaller_graph in candidates:
+        for smaller_graph in _smaller_graphs(best.instance["graph"], keep):
             smaller = attempt({**best.instance, "graph": smaller_graph})
             if smaller is not None:
                 best, changed = smaller, True

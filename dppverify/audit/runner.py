@@ -186,7 +186,7 @@ def _load(spec: str) -> Solver:
 def _worker(target: str | Solver, conn: Connection) -> None:  # pragma: no cover - in a child
     os.setsid()  # a process group of its own: a timeout kills the solver's children too
     for s in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
-        signal.signal(s, signal.SIG_DFL)  # not the audit's handlers (dppverify.cli.interrupts)
+        signal.signal(s, signal.SIG_DFL)  # not the audit's handlers (dppio.cli.interrupts)
     become_subreaper(signal.SIGKILL)  # the solver's escaped children stay under the worker
     devnull = os.open(os.devnull, os.O_RDWR)
     for fd in (0, 1, 2):

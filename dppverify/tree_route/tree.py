@@ -143,8 +143,7 @@ def count_prefixes(instance: Instance, horizon: int, *, limit: int | None = None
     nodes a prefix can be at (a goal within the steps left, reached within the steps taken):
     at most ``O(H·|E|)``, and ``O(total walk length)`` on a path. Bounded: the count is
     non-decreasing in the steps left, so with a ``limit`` it saturates just above it and
-    stops as soon as the start's count exceeds it (returning ``limit + 1``). A negative
-    ``horizon`` raises :class:`HorizonError`.
+    stops as soon as the start's count exceeds it (returning ``limit + 1``).
 
     Parameters
     ----------
