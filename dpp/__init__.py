@@ -20,7 +20,7 @@ from dppverify.errors import CheckerError
 from solver import cli as solver_cli
 from solver.errors import DPPError
 
-__all__ = ["main"]
+__all__ = ["console", "main"]
 
 
 class _DppGroup(CheckerGroup):
@@ -37,3 +37,9 @@ def main() -> None:
 
 for _command in (*solver_cli.COMMANDS, *checker_cli.COMMANDS):
     main.add_command(_command)
+
+
+def console() -> None:
+    """The ``dpp`` program as a console script: :data:`main` under the name ``dpp``, whichever
+    file started it."""
+    main(prog_name="dpp")
