@@ -41,5 +41,18 @@ for _command in (*solver_cli.COMMANDS, *checker_cli.COMMANDS):
 
 def console() -> None:
     """The ``dpp`` program as a console script: :data:`main` under the name ``dpp``, whichever
-    file started it."""
+    file started it.
+
+    Examples
+    --------
+    >>> import sys
+    >>> from unittest import mock
+    >>> with mock.patch.object(sys, "argv", ["/any/launcher", "--version"]):
+    ...     try:
+    ...         console()
+    ...     except SystemExit as exc:
+    ...         print("exit", exc.code)  # doctest: +ELLIPSIS
+    dpp, version ...
+    exit 0
+    """
     main(prog_name="dpp")
