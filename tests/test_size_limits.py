@@ -18,6 +18,8 @@ from __future__ import annotations
 import ast
 from pathlib import Path
 
+from tests.test_docstrings import _is_click
+
 ROOT = Path(__file__).resolve().parents[1]
 PACKAGES = ("dppverify", "solver", "dppio", "dpp")
 MAX_FUNCTION_LINES = 80
@@ -61,14 +63,6 @@ KNOWN: dict[str, str] = {
 }
 """``path`` (a module), ``path:function lines`` or ``path:function parameters`` -> why it is
 still over its limit."""
-
-
-def _is_click(function: ast.FunctionDef | ast.AsyncFunctionDef) -> bool:
-    for decorator in function.decorator_list:
-        target = decorator.func if isinstance(decorator, ast.Call) else decorator
-        if isinstance(target, ast.Attribute) and target.attr in ("command", "group"):
-            return True
-    return False
 
 
 def _parameters(function: ast.FunctionDef | ast.AsyncFunctionDef) -> int:
