@@ -53,9 +53,7 @@ KNOWN: dict[str, str] = {
                                                                      "to it",
     "solver/experiments/batch.py": "batch, merge and outputs, being reworked",
     "solver/experiments/batch.py:run_batch parameters": "batch, being reworked",
-    # one engine each, a hot loop over shared state: splitting it needs a state record
-    "dppverify/twogoal/value_dp.py:_value_fields lines": "the three-field DP's one loop",
-    "dppverify/twogoal/value_fixpoint.py:_fixpoint lines": "the three Dijkstra runs' one loop",
+    # one engine, its rounds over shared state: splitting it needs a state record
     "solver/coalitions/block_fixpoint.py:block_fixpoint lines": "the block fixpoint's rounds "
                                                                "share a growing common scale",
     "solver/coalitions/block_fixpoint.py:block_fixpoint parameters": "its CSR arrays and tables",
