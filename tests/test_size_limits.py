@@ -53,11 +53,8 @@ KNOWN: dict[str, str] = {
                                                                      "to it",
     "solver/experiments/batch.py": "batch, merge and outputs, being reworked",
     "solver/experiments/batch.py:run_batch parameters": "batch, being reworked",
-    # one engine, its rounds over shared state: splitting it needs a state record
-    "solver/coalitions/block_fixpoint.py:block_fixpoint lines": "the block fixpoint's rounds "
-                                                               "share a growing common scale",
+    # called from the guarantee sets, split on another branch now: its CSR arrays become one
     "solver/coalitions/block_fixpoint.py:block_fixpoint parameters": "its CSR arrays and tables",
-    "solver/coalitions/block_fixpoint.py:fixpoint_ranks lines": "one pass over the fixpoint",
 }
 """``path`` (a module), ``path:function lines`` or ``path:function parameters`` -> why it is
 still over its limit."""

@@ -191,99 +191,131 @@ def block_fixpoint(indptr: np.ndarray, heads: np.ndarray, weights: np.ndarray, d
     >>> m[:, 0].tolist(), scale, rounds
     ([1, 1, 2], 1, 2)
     """
-    n = len(indptr) - 1
-    n_a = len(closures)
     if weights.size and int(weights.min()) <= 0:
         return None
     own = [_own_column(t, j) for j, t in enumerate(closures)]
     if any(k is None for k in own):
         return None
-    tails = np.repeat(np.arange(n, dtype=np.int64), np.diff(indptr))
-    heads = heads.astype(np.int64)
-    rev = _reverse(tails, heads, n, weights)
-    goals_a = np.asarray(goals, dtype=np.int64)
-    is_goal = np.zeros(n, dtype=bool)
-    is_goal[goals_a] = True
-    scale = den
-    x = np.zeros((n_a, n), dtype=np.int64)
-    fin = np.zeros((n_a, n), dtype=bool)
-    x[:, goals_a] = goal_values
-    fin[:, goals_a] = True
-    order = sorted(range(n_a), key=lambda j: (sums[j], j))
-    step_cache: dict[int, tuple[int, np.ndarray, np.ndarray]] = {}
-    version = [0] * n_a
-    seen: dict[int, tuple[int, ...]] = {}
-
-    def step(j: int) -> tuple[np.ndarray, np.ndarray]:
-        hit = step_cache.get(j)
-        if hit is None or hit[0] != version[j]:
-            w_top = weights * (int(tops[j]) * (scale // den))
-            s, has = _steps(indptr, heads, w_top, x[j], fin[j])
-            hit = (version[j], s, has)
-            step_cache[j] = hit
-        return hit[1], hit[2]
-
+    blocks = _Blocks(indptr, heads, weights, den, goals, goal_values, tops, closures,
+                     [int(k) for k in own if k is not None])
+    order = sorted(range(len(closures)), key=lambda j: (sums[j], j))
     try:
         for rounds in range(1, max_rounds + 1):
             changed = False
             for j in order:
-                tab = closures[j]
-                inputs = tuple(version[c] for c in tab.columns if c != j)
-                if seen.get(j) == inputs:
-                    continue  # the same sources (up to the common scale): the same solution
-                init = np.zeros(n, dtype=np.int64)
-                src = is_goal.copy()
-                init[goals_a] = x[j, goals_a]
-                k_own = own[j]
-                others = [k for k in range(tab.scaled.shape[1]) if k != k_own]
-                if others:
-                    sc = tab.scaled[:, others]
-                    live = np.flatnonzero(~is_goal)
-                    vals = np.zeros((live.size, len(tab.columns)), dtype=np.int64)
-                    lost = np.zeros((live.size, len(tab.columns)), dtype=bool)
-                    for p, c in enumerate(tab.columns):
-                        s, has = step(c)
-                        vals[:, p] = s[live]
-                        lost[:, p] = ~has[live]
-                    # an unreachable step: a value above every finite cover's total
-                    top = int(vals[~lost].max(initial=0))
-                    big = top * int(sc.sum(axis=0).max(initial=1)) + 1
-                    vals[lost] = big
-                    best = np.concatenate(
-                        [exact_totals(vals[lo:lo + CHUNK], sc).min(axis=1).astype(np.int64)
-                         for lo in range(0, live.size, CHUNK)] or [np.zeros(0, np.int64)])
-                    got = best < big
-                    vals_live, nodes = best[got].astype(np.int64), live[got]
-                    if tab.lcm > 1 and np.any(vals_live % tab.lcm):
-                        g = int(np.gcd.reduce(vals_live % tab.lcm, initial=0))
-                        grow = tab.lcm // np.gcd(g, tab.lcm)
-                        grow = int(grow)
-                        scale *= grow
-                        if int(x.max(initial=0)) * grow * 4 >= INT_LIMIT:
-                            return None
-                        x *= grow
-                        goal_values = goal_values * grow
-                        vals_live = vals_live * grow
-                        step_cache.clear()
-                        init[goals_a] = x[j, goals_a]
-                    init[nodes] = vals_live // tab.lcm
-                    src[nodes] = True
-                seen[j] = inputs
-                w_top = weights * (int(tops[j]) * (scale // den))
-                new, nfin = _sourced(rev, w_top, init, np.flatnonzero(src), n)
-                if not (np.array_equal(nfin, fin[j]) and np.array_equal(new[nfin], x[j, nfin])):
-                    changed = True
-                    new[~nfin] = 0
-                    x[j], fin[j] = new, nfin
-                    version[j] += 1
+                solved = blocks.solve(j)
+                if solved is None:
+                    return None
+                changed = changed or solved
             if not changed:
+                fin = blocks.fin
                 finite = np.asarray(fin.any(axis=0), dtype=bool)
                 if not np.array_equal(fin, np.broadcast_to(finite, fin.shape)):
                     return None  # pragma: no cover - every normal reaches the same goals
-                return x, scale, finite, rounds
+                return blocks.x, blocks.scale, finite, rounds
     except OverflowError:
         return None
     return None
+
+
+class _Blocks:
+    """The state of :func:`block_fixpoint`: every normal's values ``x`` at the common scale
+    (finite where ``fin``), the steps' cache and each block's version (what it was last solved
+    from)."""
+
+    def __init__(self, indptr: np.ndarray, heads: np.ndarray, weights: np.ndarray, den: int,
+                 goals: Sequence[int], goal_values: np.ndarray, tops: np.ndarray,
+                 closures: Sequence[VertexTable], own: Sequence[int]) -> None:
+        n = len(indptr) - 1
+        self.indptr, self.weights, self.den, self.tops = indptr, weights, den, tops
+        self.closures, self.own, self.n = closures, own, n
+        tails = np.repeat(np.arange(n, dtype=np.int64), np.diff(indptr))
+        self.heads = heads.astype(np.int64)
+        self.rev = _reverse(tails, self.heads, n, weights)
+        self.goals = np.asarray(goals, dtype=np.int64)
+        self.is_goal = np.zeros(n, dtype=bool)
+        self.is_goal[self.goals] = True
+        self.scale = den
+        self.x = np.zeros((len(closures), n), dtype=np.int64)
+        self.fin = np.zeros((len(closures), n), dtype=bool)
+        self.x[:, self.goals] = goal_values
+        self.fin[:, self.goals] = True
+        self.step_cache: dict[int, tuple[int, np.ndarray, np.ndarray]] = {}
+        self.version = [0] * len(closures)
+        self.seen: dict[int, tuple[int, ...]] = {}
+
+    def step(self, j: int) -> tuple[np.ndarray, np.ndarray]:
+        """The step ``s_j(v)`` of normal ``j`` at every node, and where it is finite."""
+        hit = self.step_cache.get(j)
+        if hit is None or hit[0] != self.version[j]:
+            w_top = self.weights * (int(self.tops[j]) * (self.scale // self.den))
+            s, has = _steps(self.indptr, self.heads, w_top, self.x[j], self.fin[j])
+            hit = (self.version[j], s, has)
+            self.step_cache[j] = hit
+        return hit[1], hit[2]
+
+    def solve(self, j: int) -> bool | None:
+        """Solve block ``j`` from the others (one sourced Dijkstra): whether it changed, or
+        None when the numbers would leave int64."""
+        tab = self.closures[j]
+        inputs = tuple(self.version[c] for c in tab.columns if c != j)
+        if self.seen.get(j) == inputs:
+            return False  # the same sources (up to the common scale): the same solution
+        n, goals = self.n, self.goals
+        init = np.zeros(n, dtype=np.int64)
+        src = self.is_goal.copy()
+        init[goals] = self.x[j, goals]
+        others = [k for k in range(tab.scaled.shape[1]) if k != self.own[j]]
+        if others:
+            found = self._covers(tab, others)
+            if found is None:
+                return None
+            vals_live, nodes = found
+            init[goals] = self.x[j, goals]  # rescaled, if the scale grew
+            init[nodes] = vals_live // tab.lcm
+            src[nodes] = True
+        self.seen[j] = inputs
+        w_top = self.weights * (int(self.tops[j]) * (self.scale // self.den))
+        new, nfin = _sourced(self.rev, w_top, init, np.flatnonzero(src), n)
+        if np.array_equal(nfin, self.fin[j]) and np.array_equal(new[nfin], self.x[j, nfin]):
+            return False
+        new[~nfin] = 0
+        self.x[j], self.fin[j] = new, nfin
+        self.version[j] += 1
+        return True
+
+    def _covers(self, tab: VertexTable, others: list[int]
+                ) -> tuple[np.ndarray, np.ndarray] | None:
+        """``init_a(v)`` times ``tab.lcm`` at the live nodes where a cover other than ``a``
+        is finite (the scale grown when a value is not a multiple of ``tab.lcm``); None when
+        the numbers would leave int64."""
+        sc = tab.scaled[:, others]
+        live = np.flatnonzero(~self.is_goal)
+        vals = np.zeros((live.size, len(tab.columns)), dtype=np.int64)
+        lost = np.zeros((live.size, len(tab.columns)), dtype=bool)
+        for p, c in enumerate(tab.columns):
+            s, has = self.step(c)
+            vals[:, p] = s[live]
+            lost[:, p] = ~has[live]
+        # an unreachable step: a value above every finite cover's total
+        top = int(vals[~lost].max(initial=0))
+        big = top * int(sc.sum(axis=0).max(initial=1)) + 1
+        vals[lost] = big
+        best = np.concatenate(
+            [exact_totals(vals[lo:lo + CHUNK], sc).min(axis=1).astype(np.int64)
+             for lo in range(0, live.size, CHUNK)] or [np.zeros(0, np.int64)])
+        got = best < big
+        vals_live, nodes = best[got].astype(np.int64), live[got]
+        if tab.lcm > 1 and np.any(vals_live % tab.lcm):
+            g = int(np.gcd.reduce(vals_live % tab.lcm, initial=0))
+            grow = int(tab.lcm // np.gcd(g, tab.lcm))
+            self.scale *= grow
+            if int(self.x.max(initial=0)) * grow * 4 >= INT_LIMIT:
+                return None
+            self.x *= grow
+            vals_live = vals_live * grow
+            self.step_cache.clear()
+        return vals_live, nodes
 
 
 def fixpoint_ranks(indptr: np.ndarray, heads: np.ndarray, w_scaled: np.ndarray,
@@ -323,23 +355,7 @@ def fixpoint_ranks(indptr: np.ndarray, heads: np.ndarray, w_scaled: np.ndarray,
         s, _ = _steps(indptr, heads, w_scaled * int(tops[j]), m[j], finite)
         s_star[j] = np.where(inner, s, 0)
         opt_arc[j] = ok_arc & (cand == s[tails])
-    # the attained covers: entries (normal a, node v, support of the vertex), by node
-    live = np.flatnonzero(inner)
-    width = max(1, max(int((t.scaled > 0).sum(axis=0).max(initial=1)) for t in closures))
-    ent_a, ent_v, ent_s = [], [], []
-    for j, tab in enumerate(closures):
-        cols = np.asarray(tab.columns, dtype=np.int64)
-        hit_v, hit_q = _attaining(s_star[cols][:, live].T, tab.scaled, m[j, live] * tab.lcm)
-        supp = np.full((tab.scaled.shape[1], width), -1, dtype=np.int64)
-        for q in range(tab.scaled.shape[1]):
-            nz = cols[np.flatnonzero(tab.scaled[:, q])]
-            supp[q, :nz.size] = nz
-        ent_a.append(np.full(hit_v.size, j, dtype=np.int64))
-        ent_v.append(live[hit_v])
-        ent_s.append(supp[hit_q])
-    e_a = np.concatenate(ent_a)
-    e_v = np.concatenate(ent_v)
-    e_s = np.concatenate(ent_s)
+    e_a, e_v, e_s = _attained_covers(closures, s_star, m, np.flatnonzero(inner))
     # each entry waits for its support's steps: a count, and the slots by (normal, node)
     waiting = (e_s >= 0).sum(axis=1)
     slot_e, slot_n = np.nonzero(e_s >= 0)
@@ -377,6 +393,25 @@ def fixpoint_ranks(indptr: np.ndarray, heads: np.ndarray, w_scaled: np.ndarray,
     if np.any(rank == UNSET):  # pragma: no cover - NX.7: every value is attained by a cover
         raise AssertionError("fixpoint ranks: a value no ranked cover attains")
     return rank.astype(np.int32)
+
+
+def _attained_covers(closures: Sequence[VertexTable], s_star: np.ndarray, m: np.ndarray,
+                     live: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The vertex covers that attain ``m*`` at the ``live`` nodes, as entries: the normal
+    ``a``, the node ``v`` and the support of the vertex (normals, padded with -1)."""
+    width = max(1, max(int((t.scaled > 0).sum(axis=0).max(initial=1)) for t in closures))
+    ent_a, ent_v, ent_s = [], [], []
+    for j, tab in enumerate(closures):
+        cols = np.asarray(tab.columns, dtype=np.int64)
+        hit_v, hit_q = _attaining(s_star[cols][:, live].T, tab.scaled, m[j, live] * tab.lcm)
+        supp = np.full((tab.scaled.shape[1], width), -1, dtype=np.int64)
+        for q in range(tab.scaled.shape[1]):
+            nz = cols[np.flatnonzero(tab.scaled[:, q])]
+            supp[q, :nz.size] = nz
+        ent_a.append(np.full(hit_v.size, j, dtype=np.int64))
+        ent_v.append(live[hit_v])
+        ent_s.append(supp[hit_q])
+    return np.concatenate(ent_a), np.concatenate(ent_v), np.concatenate(ent_s)
 
 
 def _attaining(values: np.ndarray, scaled: np.ndarray, target: np.ndarray
