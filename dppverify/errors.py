@@ -22,7 +22,16 @@ class InvalidInstanceError(CheckerError, ValueError):
 
 
 class ProfileError(CheckerError, ValueError):
-    """The profile document cannot be parsed at all (not JSON, wrong format tag...)."""
+    """The profile document cannot be parsed at all (not JSON, wrong format tag...).
+
+    ``stated``: what the document says about the game it was made for, when it is a JSON
+    object (:class:`dppverify.game.profile_types.Stated`; None otherwise), so that a command
+    can say which game it looks made for.
+    """
+
+    def __init__(self, message: str, stated: object = None) -> None:
+        super().__init__(message)
+        self.stated = stated
 
 
 class LPError(CheckerError, RuntimeError):

@@ -6,7 +6,7 @@ exhausting memory.
 
 Examples
 --------
->>> MAX_HORIZON, MAX_TRIALS, MAX_AUDIT_EXAMPLES, MAX_NGOAL_LP_CELLS
+>>> MAX_HORIZON, MAX_TRIALS, MAX_AUDIT_EXAMPLES, MAX_LP_CELLS
 (10000, 10000, 1000000, 100000)
 """
 
@@ -21,7 +21,7 @@ MAX_TRIALS = 10_000
 MAX_AUDIT_EXAMPLES = 1_000_000
 """Largest example budget of ``dpp audit --examples``."""
 
-MAX_NGOAL_LP_CELLS = 100_000
+MAX_LP_CELLS = 100_000
 """N goals: the most (goal, prefix) pairs of a walk tree's LP, which has one variable per goal
 and prefix (the size rule of N goals; two goals have ``--max-prefixes`` alone). Measured: a
 star of 300 goals at H = 2 (90,000 pairs) takes about 25 s, one of 500 goals (250,000) about

@@ -43,6 +43,7 @@ from typing import Any
 
 from dppverify.errors import CertificateError, InvalidInstanceError
 from dppverify.formats.files import read_input
+from dppverify.game.inputs import Parsed
 
 __all__ = ["PROVENANCE_KEYS", "ProvenanceCheck", "canonical_json", "file_sha256",
            "grid_record", "input_record", "map_identity", "provenance_record",
@@ -102,10 +103,11 @@ def input_record(source: Any) -> dict[str, Any]:
 
     Parameters
     ----------
-    source : path, bytes, str, Mapping, or an object
-        A ``str``/``Path`` is a file path; ``bytes`` are the document's bytes; a ``Mapping``
-        or an object with ``to_json()`` is hashed by :func:`canonical_json`; anything else
-        has no bytes (``sha256`` None).
+    source : Parsed, path, bytes, str, Mapping, or an object
+        What the door parsed (:class:`~dppverify.game.inputs.Parsed`: its bytes, its document
+        or nothing, and a ``.map`` file's record); a ``str``/``Path`` is a file path;
+        ``bytes`` are the document's bytes; a ``Mapping`` or an object with ``to_json()`` is
+        hashed by :func:`canonical_json`; anything else has no bytes (``sha256`` None).
 
     Examples
     --------
@@ -115,6 +117,11 @@ def input_record(source: Any) -> dict[str, Any]:
     >>> input_record(object())
     {'sha256': None, 'bytes': 'object'}
     """
+    if isinstance(source, Parsed):  # what the door parsed: hashed without reading again
+        rec = input_record(source.data if source.data is not None else object())
+        if source.map_file is not None:
+            rec["map"] = {"path": source.map_file[0], "sha256": source.map_file[1]}
+        return rec
     if isinstance(source, bytes):
         return {"sha256": hashlib.sha256(source).hexdigest(), "bytes": "file"}
     if isinstance(source, str | Path):

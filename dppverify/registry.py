@@ -24,23 +24,28 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
-__all__ = ["CHECKS", "CHECK_IDS", "KINDS", "NGOAL_CHECKS", "NGOAL_CHECK_IDS", "CheckSpec",
-           "kind_of", "not_run", "spec"]
+__all__ = ["CHECKS", "CHECK_IDS", "FAMILIES", "KINDS", "CheckSpec", "Family", "check_ids",
+           "checks_of", "kind_of", "not_run", "spec"]
 
 RouteName = Literal["tree", "structured"]
 Kind = Literal["check", "consistency", "fact"]
 KINDS: tuple[Kind, ...] = ("check", "consistency", "fact")
 """The kinds, in the order reports show them."""
+Family = Literal["two-goal", "per-goal"]
+"""The check family of a certificate, chosen by the profile's format: ``two-goal`` for a
+``dpp-profile/1`` profile (the paper's primary and secondary types, with the paper's lemmas and
+facts), ``per-goal`` for a ``dpp-ngoal-profile/1`` profile (one type per goal index, any N)."""
+FAMILIES: tuple[Family, ...] = ("two-goal", "per-goal")
 
 
 @dataclass(frozen=True)
 class CheckSpec:
-    """One check: id, proof file id, routes, kind, and what each route relies on.
+    """One check of one family: id, proof file id, routes, kind, and what each route relies on.
 
     Attributes
     ----------
     id : str
-        Stable check id.
+        Stable check id (the same id in both families for the same question).
     proof : str or None
         The proof file id in ``proofs/`` the check tests.
     routes : tuple of str
@@ -49,6 +54,8 @@ class CheckSpec:
         See the module docstring.
     tree, structured : str
         What the check relies on, per route (``"–"`` when it does not run there).
+    family : {"two-goal", "per-goal"}
+        The certificates that hold it (:data:`Family`).
 
     Examples
     --------
@@ -62,6 +69,7 @@ class CheckSpec:
     kind: Kind
     tree: str
     structured: str
+    family: Family = "two-goal"
 
 
 _T = "the walk tree of H steps"
@@ -69,12 +77,22 @@ _BOTH: tuple[RouteName, ...] = ("tree", "structured")
 _W = "relies on proofs/WALKBR.md"
 _P = "the prefixes of the profile's walks (proofs/L3.md)"
 _PROFILE = "the profile's walks, walk by walk"
+_NW = "relies on proofs/NWALKBR.md (NW.1: the minimum over all walks of any length)"
+_NP = ("the prefixes of the profile's walks (proofs/NWALKBR.md NW.3; off the path NW.4: any "
+       "distribution is greedy for the belief uniform on its support)")
 
 
 def _spec(check_id: str, proof: str | None, structured: str, *,
-          routes: tuple[RouteName, ...] = _BOTH, kind: Kind = "check") -> CheckSpec:
+          routes: tuple[RouteName, ...] = _BOTH, kind: Kind = "check",
+          family: Family = "two-goal") -> CheckSpec:
     """A registry row; on the tree route every check relies on the walk tree of H steps."""
-    return CheckSpec(check_id, proof, routes, kind, _T, structured)
+    return CheckSpec(check_id, proof, routes, kind, _T, structured, family)
+
+
+def _per_goal(check_id: str, structured: str, *, routes: tuple[RouteName, ...] = _BOTH,
+              kind: Kind = "check") -> CheckSpec:
+    """A row of the per-goal family (every one tests proofs/NGOAL.md)."""
+    return _spec(check_id, "NGOAL", structured, routes=routes, kind=kind, family="per-goal")
 
 
 CHECKS: tuple[CheckSpec, ...] = (
@@ -98,37 +116,51 @@ CHECKS: tuple[CheckSpec, ...] = (
     _spec("lemma.L3.greedy", "L3", "–", routes=("tree",), kind="fact"),
     _spec("lemma.L4.monotonicity", "L4", "–", routes=("tree",), kind="fact"),
     _spec("lemma.L5.induced_beliefs", "L5", _P, kind="fact"),
+    _per_goal("profile.wellformed", "the profile document alone"),
+    _per_goal("value.U", _PROFILE),
+    _per_goal("pbne.attacker_br", _NW),
+    _per_goal("pbne.defender_br", _NP),
+    _per_goal("pbne.sequential_rationality", _NP),
+    _per_goal("game.value", "relies on proofs/NGOAL.md (the guarantee sets' value)"),
+    _per_goal("game.value.structured", "–", routes=("tree",), kind="consistency"),
 )
-"""Every check of a two-goal certificate (``dpp-profile/1``), in certificate order."""
+"""Every check of every family, each family in its certificate order.
 
-CHECK_IDS: tuple[str, ...] = tuple(c.id for c in CHECKS)
+The two-goal family (``dpp-profile/1``) asks the paper's questions of the primary and the
+secondary type, with the lemmas and facts behind them. The per-goal family
+(``dpp-ngoal-profile/1``, any N) uses the same id for the same question (well formed, ``U``,
+the Defender's best response, sequential rationality, ``V_H = U``); ``pbne.attacker_br`` holds
+every type's regret (two goals split it by type, with the lemmas behind each), and
+``game.value.structured`` compares the structured value with the tree route's. The two-goal
+facts (phases, lemmas) have no per-goal row."""
+
+
+def checks_of(family: Family) -> tuple[CheckSpec, ...]:
+    """The rows of ``family``, in certificate order.
+
+    Examples
+    --------
+    >>> [c.id for c in checks_of("per-goal")][:3]
+    ['profile.wellformed', 'value.U', 'pbne.attacker_br']
+    """
+    return tuple(c for c in CHECKS if c.family == family)
+
+
+def check_ids(family: Family) -> tuple[str, ...]:
+    """The check ids of ``family``'s certificates, in certificate order.
+
+    Examples
+    --------
+    >>> len(check_ids("two-goal")), len(check_ids("per-goal"))
+    (19, 7)
+    """
+    return tuple(c.id for c in checks_of(family))
+
+
+CHECK_IDS: tuple[str, ...] = check_ids("two-goal")
 """Every check id of a two-goal certificate, in certificate order."""
 
-_NW = "relies on proofs/NWALKBR.md (NW.1: the minimum over all walks of any length)"
-_NP = ("the prefixes of the profile's walks (proofs/NWALKBR.md NW.3; off the path NW.4: any "
-       "distribution is greedy for the belief uniform on its support)")
-
-NGOAL_CHECKS: tuple[CheckSpec, ...] = (
-    _spec("profile.wellformed", "NGOAL", "the profile document alone"),
-    _spec("value.U", "NGOAL", _PROFILE),
-    _spec("pbne.attacker_br", "NGOAL", _NW),
-    _spec("pbne.defender_br", "NGOAL", _NP),
-    _spec("pbne.sequential_rationality", "NGOAL", _NP),
-    _spec("game.value", "NGOAL", "relies on proofs/NGOAL.md (the guarantee sets' value)"),
-    _spec("game.value.structured", "NGOAL", "–", routes=("tree",), kind="consistency"),
-)
-"""Every check of an N-goal certificate (``dpp-ngoal-profile/1``), in certificate order: the
-same id as two goals for the same question (well formed, ``U``, the Defender's best response,
-sequential rationality, ``V_H = U``); ``pbne.attacker_br`` holds every type's regret (two
-goals split it by type, with the lemmas behind each), ``game.value.structured`` compares the
-structured value with the tree route's. The two-goal facts (phases, lemmas) have no N-goal
-entry."""
-
-NGOAL_CHECK_IDS: tuple[str, ...] = tuple(c.id for c in NGOAL_CHECKS)
-"""Every check id of an N-goal certificate, in certificate order."""
-
-_BY_ID = {c.id: c for c in NGOAL_CHECKS} | {c.id: c for c in CHECKS}
-"""One entry per id (a shared id: the two-goal entry; both have the same kind and routes)."""
+_BY_ID = {(c.family, c.id): c for c in CHECKS}
 
 NOT_RUN_REASONS = {
     "lemma.L3.greedy": "needs the walk tree (an LP per random attacker over all prefixes); "
@@ -142,39 +174,39 @@ NOT_RUN_REASONS = {
 }
 
 
-def spec(check_id: str) -> CheckSpec:
-    """The registry entry of ``check_id``, for two or N goals (KeyError if unknown).
+def spec(check_id: str, family: Family = "two-goal") -> CheckSpec:
+    """The registry row of ``check_id`` in ``family`` (KeyError if unknown).
 
     Examples
     --------
-    >>> spec("lemma.L3.greedy").routes
-    ('tree',)
+    >>> spec("lemma.L3.greedy").routes, spec("value.U", "per-goal").proof
+    (('tree',), 'NGOAL')
     """
-    return _BY_ID[check_id]
+    return _BY_ID[(family, check_id)]
 
 
 def kind_of(check_id: str) -> Kind:
-    """The kind of ``check_id``; an id the registry does not know (a certificate written by
-    another version) counts as ``check``.
+    """The kind of ``check_id`` (the same in every family that has it); an id the registry
+    does not know (a certificate written by another version) counts as ``check``.
 
     Examples
     --------
     >>> kind_of("pbne.belief_consistency"), kind_of("value.U"), kind_of("no.such.check")
     ('consistency', 'check', 'check')
     """
-    s = _BY_ID.get(check_id)
+    s = _BY_ID.get(("two-goal", check_id)) or _BY_ID.get(("per-goal", check_id))
     return "check" if s is None else s.kind
 
 
-def not_run(route: RouteName, *, n_goals: int = 2) -> dict[str, str]:
-    """The checks ``route`` does not run on a game of ``n_goals`` goals, each with the reason.
+def not_run(route: RouteName, family: Family = "two-goal") -> dict[str, str]:
+    """The checks of ``family`` that ``route`` does not run, each with the reason.
 
     Examples
     --------
     >>> sorted(not_run("structured"))
     ['lemma.L3.greedy', 'lemma.L4.monotonicity']
-    >>> not_run("tree"), list(not_run("structured", n_goals=3))
+    >>> not_run("tree"), list(not_run("structured", "per-goal"))
     ({}, ['game.value.structured'])
     """
     return {c.id: NOT_RUN_REASONS.get(c.id, "not on this route")
-            for c in (CHECKS if n_goals == 2 else NGOAL_CHECKS) if route not in c.routes}
+            for c in checks_of(family) if route not in c.routes}

@@ -29,27 +29,12 @@ from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES, tree_fits
 from dppverify.tree_route.value_lp import GameValue, game_value
 from dppverify.twogoal.value_dp import StructuredValue, structured_value
 
-__all__ = ["ROUTES", "Chosen", "Route", "RoutedValue", "ngoal_game", "resolve_route",
-           "routed_value", "tree_fits", "values_agree"]
+__all__ = ["ROUTES", "Chosen", "Route", "RoutedValue", "resolve_route", "routed_value",
+           "tree_fits", "values_agree"]
 
 Route = Literal["auto", "tree", "structured", "both"]
 Chosen = Literal["tree", "structured", "both"]
 ROUTES: tuple[Route, ...] = ("auto", "tree", "structured", "both")
-
-
-def ngoal_game(game: Instance) -> bool:
-    """True when ``game`` is played by the N-goal checker and value routes (the one test of
-    which game an instance is; :func:`dppverify.valuation.game_of` reads a document with more
-    than two goals as one).
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import triangle
-    >>> from dppverify.game.examples import star3
-    >>> ngoal_game(triangle()), ngoal_game(star3())
-    (False, True)
-    """
-    return game.n_goals > 2
 
 
 def resolve_route(route: Route, instance: Instance, horizon: int | None,
@@ -279,37 +264,31 @@ def routed_value(instance: Instance, horizon: int | None, *, route: Route = "aut
     (Fraction(3, 2), Fraction(3, 2), None)
     """
     chosen = resolve_route(route, instance, horizon, max_prefixes)
-    if ngoal_game(instance):
-        return _nrouted_value(instance, horizon, chosen, max_prefixes, phase)
-    tree = sv = None
+    two = instance.n_goals == 2  # N = 2: the three-field DP, fast on million-cell maps
+    tree = structured = None
     if chosen in ("structured", "both"):
-        sv = structured_value(instance, horizon)
+        structured = (structured_value(instance, horizon) if two
+                      else nvalue(instance, horizon, progress=phase))
     if chosen in ("tree", "both"):
-        assert horizon is not None
+        assert horizon is not None  # resolve_route: the tree route needs a finite horizon
         tree = game_value(instance, horizon, max_prefixes=max_prefixes, progress=progress)
     why = None
-    if tree is not None and sv is not None:
-        why = values_agree(tree, sv.value, instance.numbers)
-    return RoutedValue(route=chosen, horizon=horizon, tree=tree, structured=sv, disagreement=why)
+    if tree is not None and isinstance(structured, StructuredValue):
+        why = values_agree(tree, structured.value, instance.numbers)
+    elif tree is not None and isinstance(structured, NValue):
+        why = _brackets_agree(tree, structured, horizon)
+    return RoutedValue(route=chosen, horizon=horizon, tree=tree, structured=structured,
+                       disagreement=why, goals=instance.n_goals)
 
 
-def _nrouted_value(instance: Instance, horizon: int | None, chosen: Chosen,
-                   max_prefixes: int, phase: Callable[[str], None] | None = None
-                   ) -> RoutedValue:
-    """:func:`routed_value` with N goals: the tree LP with N types, the guarantee sets."""
-    tree = (game_value(instance, horizon, max_prefixes=max_prefixes)
-            if chosen in ("tree", "both") and horizon is not None else None)
-    dp = (nvalue(instance, horizon, progress=phase) if chosen in ("structured", "both")
-          else None)
-    disagreement = None
-    if tree is not None and dp is not None:
-        b = tree.bracket
-        overlap = dp.lower <= b.upper and b.lower <= dp.upper
-        exact_ok = dp.value is None or (b.lower <= dp.value <= b.upper
-                                        and lp_agrees(tree.lp, dp.value))
-        if not (overlap and exact_ok):
-            disagreement = (f"the routes disagree at H = {horizon}: structured route "
-                            f"[{dp.lower}, {dp.upper}], tree route in [{b.lower}, {b.upper}] "
-                            f"(LP {tree.value!r}) — a bug; please keep this instance")
-    return RoutedValue(route=chosen, horizon=horizon, tree=tree, structured=dp,
-                       disagreement=disagreement, goals=instance.n_goals)
+def _brackets_agree(tree: GameValue, dp: NValue, horizon: int | None) -> str | None:
+    """None when the tree's exact bracket and the guarantee sets' value or bracket agree."""
+    b = tree.bracket
+    overlap = dp.lower <= b.upper and b.lower <= dp.upper
+    exact_ok = dp.value is None or (b.lower <= dp.value <= b.upper
+                                    and lp_agrees(tree.lp, dp.value))
+    if overlap and exact_ok:
+        return None
+    return (f"the routes disagree at H = {horizon}: structured route [{dp.lower}, {dp.upper}], "
+            f"tree route in [{b.lower}, {b.upper}] (LP {tree.value!r}) — a bug; please keep "
+            f"this instance")

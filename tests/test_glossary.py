@@ -31,6 +31,11 @@ OLD_NAMES = {
     "ngame_from_json": "instance_from_json",
     "ngame_from_grid": "Instance.from_grid",
     "MAX_NGOALS": "MAX_GOALS",
+    "game_of": "as_instance (the checker's one door, dppverify.game.inputs)",
+    "ngoal_game": "the profile's check suite (dppverify.checks.suites.suite_of)",
+    "NGOAL_CHECKS": "checks_of(\"per-goal\") (one registry)",
+    "NGOAL_CHECK_IDS": "check_ids(\"per-goal\") (one registry)",
+    "load_profile_document": "as_profile (the checker's one door)",
 }
 """Old name -> the glossary's name."""
 
@@ -74,3 +79,19 @@ def test_the_glossary_names_what_the_test_enforces() -> None:
     for old in ("StrategyPath", "primary_slot", "primary_index", "EXACT_FLOAT", "NGame",
                 "NEquilibrium"):
         assert re.search(rf"`{old}`", section), f"the glossary does not name {old}"
+
+
+def test_theta_is_a_goal_index_in_the_checker() -> None:
+    """``theta`` names a goal index (0 .. N-1); the two-goal labelling's 1 / 2 is a ``role``:
+    no ``theta`` of the checker is compared with, or drawn from, the roles 1 and 2."""
+    found = []
+    for p in sorted((ROOT / "dppverify").rglob("*.py")):
+        toks = [t[2] for t in _code_tokens(p)]
+        lines = [t[1] for t in _code_tokens(p)]
+        for k in range(len(toks) - 2):
+            if toks[k] == "theta" and toks[k + 1] in ("==", "!=") and toks[k + 2] in ("1", "2"):
+                found.append(f"{p.relative_to(ROOT)}:{lines[k]}")
+            if toks[k:k + 3] == ["for", "theta", ","] and "(" in toks[k + 3:k + 8] and any(
+                    toks[j:j + 2] == ["(", "1"] for j in range(k + 3, k + 10)):
+                found.append(f"{p.relative_to(ROOT)}:{lines[k]}")
+    assert not found, f"a role (1 primary, 2 secondary) is named theta: {found}"

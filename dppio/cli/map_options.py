@@ -75,12 +75,12 @@ class CellsOption(click.Option):
         return (value,)
 
 
-def _options(two_goals: bool) -> list[Callable[[Any], Any]]:
-    """The group's options; ``two_goals``: the help of a command that takes two goals only."""
-    goals_help = ("The two goal cells ROW,COL ROW,COL (with --map)." if two_goals else
+def _options(only_two: bool) -> list[Callable[[Any], Any]]:
+    """The group's options; ``only_two``: the help of a command that takes two goals only."""
+    goals_help = ("The two goal cells ROW,COL ROW,COL (with --map)." if only_two else
                   "The goal cells ROW,COL ROW,COL: two, or N for an N-goal game (with --map).")
     prior_help = ("Priors of the two goals, in --goals order, e.g. 0.6,0.4 or 3/5,2/5 (with "
-                  "--map)." if two_goals else
+                  "--map)." if only_two else
                   "Priors of the goals, in --goals order, e.g. 0.6,0.4 or 3/5,2/5 (N numbers "
                   "for N goals; with --map).")
     return [
@@ -90,7 +90,7 @@ def _options(two_goals: bool) -> list[Callable[[Any], Any]]:
                           f"{PREFIX}room-32-32-4."),
         click.option("--start", metavar="R,C", help="Start cell ROW,COL (with --map)."),
         click.option("--goals", cls=CellsOption,
-                     metavar="R,C R,C" if two_goals else "R,C R,C [R,C ...]", help=goals_help),
+                     metavar="R,C R,C" if only_two else "R,C R,C [R,C ...]", help=goals_help),
         click.option("--prior", "prior_text", metavar="P,Q", help=prior_help),
         click.option("--connectivity", type=click.Choice(["4", "8"]), default=None,
                      help="Grid moves (with --map): 4 = up/down/left/right, unit weights, "
@@ -99,7 +99,7 @@ def _options(two_goals: bool) -> list[Callable[[Any], Any]]:
     ]
 
 
-_OPTIONS = _options(two_goals=False)
+_OPTIONS = _options(only_two=False)
 
 
 @dataclass(frozen=True)
@@ -390,7 +390,7 @@ def two_goal_map_options(fn: F, *, request: type[MapRequest] = MapRequest) -> F:
     >>> r.exit_code, r.output  # doctest: +ELLIPSIS
     (2, 'error: --goals: this command takes two goals, got 3 (N goals: dpp solve, ...)\\n')
     """
-    return _map_options(fn, two_goals=True, request=request)
+    return _map_options(fn, only_two=True, request=request)
 
 
 def map_options(fn: F, *, request: type[MapRequest] = MapRequest) -> F:
@@ -415,16 +415,16 @@ def map_options(fn: F, *, request: type[MapRequest] = MapRequest) -> F:
     >>> r.exit_code, r.output
     (2, 'error: --start goes with --map FILE, which is missing\\n')
     """
-    return _map_options(fn, two_goals=False, request=request)
+    return _map_options(fn, only_two=False, request=request)
 
 
-def _map_options(fn: F, *, two_goals: bool, request: type[MapRequest]) -> F:
+def _map_options(fn: F, *, only_two: bool, request: type[MapRequest]) -> F:
     @functools.wraps(fn)
     def command(*args: Any, map_file: str | None, start: str | None,
                 goals: tuple[str, ...] | None, prior_text: str | None,
                 connectivity: str | None, **kwargs: Any) -> Any:
         try:
-            if two_goals and map_file is not None and goals is not None and len(goals) > 2:
+            if only_two and map_file is not None and goals is not None and len(goals) > 2:
                 raise OptionError(f"--goals: this command takes two goals, got {len(goals)} "
                                   f"(N goals: dpp solve, certify, value, export-efg, plot map)")
             grid = map_request(map_file, start, goals, prior_text, connectivity,
@@ -435,6 +435,6 @@ def _map_options(fn: F, *, two_goals: bool, request: type[MapRequest]) -> F:
         return fn(*args, grid=grid, **kwargs)
 
     wrapped: Any = command
-    for option in reversed(_options(two_goals) if two_goals else _OPTIONS):
+    for option in reversed(_options(only_two) if only_two else _OPTIONS):
         wrapped = option(wrapped)
     return wrapped

@@ -126,7 +126,7 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
     def attempt(doc: Doc) -> Outcome | None:
         nonlocal calls
         try:
-            instance_from_json(doc, two_goals=True)
+            instance_from_json(doc)
         except CheckerError:  # e.g. a goal became unreachable
             return None
         if not budget.spend():

@@ -119,7 +119,7 @@ def instances_from_dir(folder: str | Path) -> tuple[list[tuple[str, Doc]], list[
                 left_out.append((p.name, f"an instance with {len(goals)} goals (the audit "
                                          "runs two-goal solvers)"))
                 continue
-            instance_from_json(doc, two_goals=True)
+            instance_from_json(doc)
         except CheckerError as exc:
             raise AuditError(f"{p}: {exc}") from None
         out.append((p.name, _plain(doc)))

@@ -13,7 +13,7 @@ from dppverify.tree_route.lp import lp_agrees
 __all__ = ["attacker_br"]
 
 
-def attacker_br(ctx: EvaluatedContext, theta: int) -> CheckRecord:
+def attacker_br(ctx: EvaluatedContext, role: int) -> CheckRecord:
     """``pbne.attacker_br.primary`` / ``.secondary``: type θ's exact regret is 0.
 
     The regret is ``U^θ(profile) − min over ALL walks of the tree`` against the profile's
@@ -24,7 +24,7 @@ def attacker_br(ctx: EvaluatedContext, theta: int) -> CheckRecord:
     ----------
     ctx : Context
         The shared inputs (:func:`~dppverify.tree_route.context.make_context`).
-    theta : int
+    role : int
         1 (primary) or 2 (secondary).
 
     Returns
@@ -46,17 +46,17 @@ def attacker_br(ctx: EvaluatedContext, theta: int) -> CheckRecord:
     >>> r.status, r.numbers["regret"]
     ('fail', 1)
     """
-    cid = "pbne.attacker_br." + ("primary" if theta == 1 else "secondary")
-    proof = "L1" if theta == 1 else "XI2"
+    cid = "pbne.attacker_br." + ("primary" if role == 1 else "secondary")
+    proof = "L1" if role == 1 else "XI2"
     inst, tree, roles = ctx.instance, ctx.tree, ctx.roles
     ev = ctx.evaluated
-    br = ctx.best_response(ev.defender, theta)
-    totals = leaf_totals(tree, roles, ev.defender, theta)
+    br = ctx.best_response(ev.defender, role)
+    totals = leaf_totals(tree, roles, ev.defender, role)
     forward = min(totals[p] for p in tree.leaves().tolist())
-    lp = attacker_best_response_lp(tree, roles, ev.defender, theta)
-    u = ev.values.U1 if theta == 1 else ev.values.U2
+    lp = attacker_best_response_lp(tree, roles, ev.defender, role)
+    u = ev.values.U1 if role == 1 else ev.values.U2
     regret = ctx.numbers.difference(u, br.value)
-    numbers: dict[str, Number | None] = {f"U{theta}": u, "best_response": br.value,
+    numbers: dict[str, Number | None] = {f"U{role}": u, "best_response": br.value,
                                          "best_response_lp": lp.value, "regret": regret,
                                          "walks": tree.n_leaves}
     where = f"over all {tree.n_leaves} walks with <= {tree.horizon} steps"
@@ -64,15 +64,15 @@ def attacker_br(ctx: EvaluatedContext, theta: int) -> CheckRecord:
         return CheckRecord(cid, "error", f"backward induction {show(br.value)}, forward pass "
                            f"{show(forward)} and LP {show(lp.value)} disagree", numbers, proof)
     if ctx.numbers.equal(regret, 0):
-        return CheckRecord(cid, "pass", f"regret 0: U{theta} = {show(u)} is the minimum {where} "
+        return CheckRecord(cid, "pass", f"regret 0: U{role} = {show(u)} is the minimum {where} "
                            f"(LP {show(lp.value)})", numbers, proof)
     if regret < 0:
-        return CheckRecord(cid, "error", f"U{theta} = {show(u)} is below the best response "
+        return CheckRecord(cid, "error", f"U{role} = {show(u)} is below the best response "
                            f"{show(br.value)}: inconsistent evaluation", numbers, proof)
-    costs = [(walk_cost(inst, roles, ev.rule, w.walk, theta), w)
-             for w in ctx.profile.walks(theta) if w.probability > 0]
+    costs = [(walk_cost(inst, roles, ev.rule, w.walk, role), w)
+             for w in ctx.profile.walks(role) if w.probability > 0]
     worst_cost, worst = max(costs, key=lambda cw: cw[0])
     return CheckRecord(cid, "fail", f"regret {show(regret)}: the walk {show_walk(inst, br.walk)} "
-                       f"costs {show(br.value)} < U{theta} = {show(u)}; the profile's walk "
+                       f"costs {show(br.value)} < U{role} = {show(u)}; the profile's walk "
                        f"{show_walk(inst, worst.walk)} (probability {show(worst.probability)}) "
                        f"costs {show(worst_cost)}", numbers, proof)

@@ -54,11 +54,11 @@ def values(ctx: EvaluatedContext) -> list[CheckRecord]:
     claims = ctx.profile.claimed_values
     tree, roles = ctx.tree, ctx.roles
     lp_u: dict[int, float] = {}
-    for theta, x in ((1, ev.x1), (2, ev.x2)):
+    for role, x in ((1, ev.x1), (2, ev.x2)):
         vec = np.zeros(tree.n_prefixes)
         for p, prob in x.items():
             vec[p] = float(prob)
-        lp_u[theta] = float(objective_vector(tree, roles, ev.defender, theta) @ vec)
+        lp_u[role] = float(objective_vector(tree, roles, ev.defender, role) @ vec)
     lp_total = float(roles.b1) * lp_u[1] + float(roles.b2) * lp_u[2]
     tree_u = payoff_on_tree(tree, roles, ev.defender, {1: ev.x1, 2: ev.x2})
     out = []

@@ -13,12 +13,13 @@ from dppverify.checks.structured_shared import greedy_sums, structured_record
 from dppverify.errors import HorizonError
 from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance
-from dppverify.registry import NGOAL_CHECKS
+from dppverify.registry import checks_of
 from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.structured.table_br import TableDefender
 
-__all__ = ["BR", "NGOAL_IDS", "NWALKBR", "PAYOFF_WALKS", "PROFILE_DOC", "TRIE", "defender_records",
-           "ngoal_record", "payoff_record", "profile_records", "value_record", "walk_labels"]
+__all__ = ["BR", "NWALKBR", "PAYOFF_WALKS", "PROFILE_DOC", "STRUCTURED_IDS", "TRIE",
+           "defender_records", "payoff_record", "per_goal_record", "profile_records",
+           "value_record", "walk_labels"]
 
 PROOF = "NGOAL"
 BR = "NWALKBR"
@@ -28,18 +29,18 @@ TRIE = ("the prefixes of the profile's walks (proofs/NWALKBR.md NW.3; off the pa
         "distribution is greedy for the belief uniform on its support)")
 PROFILE_DOC = "the profile document alone"
 
-NGOAL_IDS = tuple(c.id for c in NGOAL_CHECKS if "structured" in c.routes)
-"""The N-goal structured route's check ids, in certificate order (the registry's)."""
+STRUCTURED_IDS = tuple(c.id for c in checks_of("per-goal") if "structured" in c.routes)
+"""The per-goal structured route's check ids, in certificate order (the registry's)."""
 
 
-def ngoal_record(cid: str, status: Status, message: str,
+def per_goal_record(cid: str, status: Status, message: str,
                  numbers: dict[str, Number | None] | None, relies_on: str,
                  proof: str | None = PROOF) -> CheckRecord:
-    """A record of the N-goal structured route (proof ``NGOAL`` unless given).
+    """A record of the per-goal structured route (proof ``NGOAL`` unless given).
 
     Examples
     --------
-    >>> ngoal_record("value.U", "pass", "U = 1", None, PAYOFF_WALKS).proof
+    >>> per_goal_record("value.U", "pass", "U = 1", None, PAYOFF_WALKS).proof
     'NGOAL'
     """
     return structured_record(cid, status, message, numbers, proof, relies_on)
@@ -58,7 +59,7 @@ def payoff_record(per_type: Sequence[Number], u: Number, claimed_u: Number | Non
     nums["U"] = u
     ok = claimed_u is None or claimed_u == u
     said = "" if claimed_u is None else f" (profile says {claimed_u})"
-    return ngoal_record("value.U", "pass" if ok else "fail", f"U = {u}{said}", nums,
+    return per_goal_record("value.U", "pass" if ok else "fail", f"U = {u}{said}", nums,
                         PAYOFF_WALKS)
 
 
@@ -116,7 +117,7 @@ def defender_records(inst: Instance, tdef: TableDefender,
     regret = normalize(best - at)
     greedy = normalize(u + regret)
     status: Status = "pass" if regret == 0 else "fail"
-    recs = [ngoal_record("pbne.defender_br", status, "Defender regret 0" if regret == 0 else
+    recs = [per_goal_record("pbne.defender_br", status, "Defender regret 0" if regret == 0 else
                  f"Defender regret {regret}: greedy best response {greedy}, profile {u}",
                  {"regret": regret, "greedy": greedy}, TRIE, BR)]
     if bad:
@@ -126,7 +127,7 @@ def defender_records(inst: Instance, tdef: TableDefender,
                f"belief {[str(b) for b in belief]}, Defender {[str(x) for x in s]}")
     else:
         msg = f"greedy on the Bayes belief at all {reached} reached information sets"
-    recs.append(ngoal_record("pbne.sequential_rationality", "fail" if bad else "pass", msg,
+    recs.append(per_goal_record("pbne.sequential_rationality", "fail" if bad else "pass", msg,
                      {"infosets": reached}, TRIE, BR))
     return recs
 
@@ -151,12 +152,12 @@ def profile_records(inst: Instance, described: str, sizes: dict[str, Number | No
     >>> inst = star3()
     >>> d = table_defender(inst, {}, (Fraction(1), Fraction(0), Fraction(0)), walks=[(0, 1, 2)])
     >>> mass = {p: (Fraction(1), Fraction(0), Fraction(0)) for p in range(len(d.trie))}
-    >>> br = ngoal_record("pbne.attacker_br", "pass", "regret 0", None, NWALKBR, BR)
+    >>> br = per_goal_record("pbne.attacker_br", "pass", "regret 0", None, NWALKBR, BR)
     >>> recs = profile_records(inst, "one walk", {}, [2, 0, 0], None, br, d, mass, 2)
-    >>> [r.id for r in recs] == list(NGOAL_IDS)
+    >>> [r.id for r in recs] == list(STRUCTURED_IDS)
     True
     """
-    out = [ngoal_record(NGOAL_IDS[0], "pass", described, sizes, PROFILE_DOC, None)]
+    out = [per_goal_record(STRUCTURED_IDS[0], "pass", described, sizes, PROFILE_DOC, None)]
     u = normalize(sum((inst.prior[t] * per_type[t] for t in range(inst.n_goals)), Fraction(0)))
     out.append(payoff_record(per_type, u, claimed_u))
     out.append(attacker)
@@ -184,26 +185,26 @@ def value_record(inst: Instance, u: Number, horizon: int | None, equilibrium: bo
     try:
         v = known if known is not None else nvalue(inst, horizon)
     except (ValueError, HorizonError) as exc:
-        return ngoal_record("game.value", "skipped", f"no structured value: {exc}", None,
+        return per_goal_record("game.value", "skipped", f"no structured value: {exc}", None,
                             relies)
     nums: dict[str, Number | None] = {"V_H_lower": v.lower, "V_H_upper": v.upper, "U": u}
     if v.value is not None:
         nums = {"V_H": v.value, "U": u}
         if v.value == u:
-            return ngoal_record("game.value", "pass", f"V_H (H = {h}) = {v.value} = U "
+            return per_goal_record("game.value", "pass", f"V_H (H = {h}) = {v.value} = U "
                         f"({v.upper_source}, {v.effort})", nums, relies)
-        return ngoal_record("game.value", "fail", f"U = {u} differs from V_H = {v.value} "
+        return per_goal_record("game.value", "fail", f"U = {u} differs from V_H = {v.value} "
                     f"(H = {h}; {v.upper_source}): the profile is not an equilibrium",
                     nums, relies)
     if u > v.upper or u < v.lower:
-        return ngoal_record("game.value", "fail", f"U = {u} lies outside the exact bracket "
+        return per_goal_record("game.value", "fail", f"U = {u} lies outside the exact bracket "
                     f"[{v.lower}, {v.upper}] of V_H (H = {h}; lower: {v.lower_source}, upper: "
                     f"{v.upper_source}): the profile is not an equilibrium", nums, relies)
     if equilibrium:
-        return ngoal_record("game.value", "pass", f"U = {u} lies in the bracket [{v.lower}, "
+        return per_goal_record("game.value", "pass", f"U = {u} lies in the bracket [{v.lower}, "
                     f"{v.upper}] of V_H (H = {h}), and the equilibrium checks above passed with "
                     f"H covering the profile's walks, so V_H = U by the certified equilibrium "
                     f"(NWALKBR NW.5)", nums, relies)
-    return ngoal_record("game.value", "skipped", f"U = {u} lies in the bracket [{v.lower}, "
+    return per_goal_record("game.value", "skipped", f"U = {u} lies in the bracket [{v.lower}, "
                 f"{v.upper}] of V_H (H = {h}; not proved exact: {v.reason}): not decisive; "
                 f"the failed checks above refute the profile", nums, relies)

@@ -10,6 +10,7 @@ profile its records are ``skipped``.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -29,10 +30,10 @@ from dppverify.checks.lemmas import (
 from dppverify.checks.payoffs import value_check, values
 from dppverify.checks.skipped import skipped
 from dppverify.checks.wellformed import phases, wellformed
-from dppverify.registry import spec
+from dppverify.registry import CHECKS, RouteName, spec
 from dppverify.tree_route.context import Context, EvaluatedContext
 
-__all__ = ["TREE_RUNNERS", "Runner", "on_profile", "runner_of"]
+__all__ = ["TREE_RUNNERS", "Runner", "in_registry_order", "on_profile", "runner_of"]
 
 Run = Callable[[Context], list[CheckRecord]]
 
@@ -109,9 +110,32 @@ def runner_of(check_id: str) -> Runner:
     --------
     >>> runner_of("lemma.L3.greedy").ids
     ('lemma.L3.greedy',)
-    >>> from dppverify.registry import CHECKS
+    >>> from dppverify.registry import checks_of
     >>> [i for r in TREE_RUNNERS.values() for i in r.ids] == [
-    ...     c.id for c in CHECKS if "tree" in c.routes]
+    ...     c.id for c in checks_of("two-goal") if "tree" in c.routes]
     True
     """
     return TREE_RUNNERS[check_id]
+
+
+def in_registry_order(records: list[CheckRecord], route: RouteName) -> list[CheckRecord]:
+    """The two-goal records in registry order, each tagged with its route and what it relies
+    on; a check of the route without a record becomes an ``error`` record (never a silent gap).
+
+    Examples
+    --------
+    >>> recs = in_registry_order([CheckRecord("value.U", "pass", "")], "tree")
+    >>> len(recs), recs[0].status, recs[3].route, recs[3].relies_on
+    (19, 'error', 'tree', 'the walk tree of H steps')
+    """
+    by_id = {r.id: r for r in records}
+    out = []
+    for s in CHECKS:
+        if s.family != "two-goal" or route not in s.routes:
+            continue
+        r = by_id.get(s.id)
+        if r is None:
+            r = CheckRecord(s.id, "error", "internal: the check produced no record", {}, s.proof)
+        relies = s.tree if route == "tree" else s.structured
+        out.append(dataclasses.replace(r, route=route, relies_on=r.relies_on or relies))
+    return out

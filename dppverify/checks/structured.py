@@ -11,12 +11,13 @@ carry mass); payoffs walk by walk; the value by the three-field DP (proofs/DP.md
 the two-goal layer :mod:`dppverify.checks.structured_twogoal`, the phases and the lemmas that
 have a polynomial form. The lemma checks that need the tree (L3's and L4's random attackers
 with their LPs) are not run on this route; the certificate says so. The N-goal records
-(:data:`~dppverify.registry.NGOAL_CHECKS`) are :mod:`dppverify.checks.structured_per_goal`'s.
+(the registry's ``per-goal`` family) are :mod:`dppverify.checks.structured_per_goal`'s.
 """
 
 from __future__ import annotations
 
 from fractions import Fraction
+from typing import cast
 
 from dppverify.certificate import CheckRecord, Status
 from dppverify.checks.skipped import NOT_WELLFORMED
@@ -38,7 +39,7 @@ from dppverify.game.defender import sigma_along
 from dppverify.game.distances import ArcRows
 from dppverify.game.evaluation import Values, evaluate
 from dppverify.game.instance import Instance, Roles
-from dppverify.game.profile import DefenderRule, Profile, ProgressRule, TableRule
+from dppverify.game.profile import DefenderRule, Profile
 from dppverify.game.step_weights import step_weight
 from dppverify.numbers import NumberMode
 from dppverify.structured.table_br_twogoal import table_minima
@@ -86,8 +87,7 @@ def structured_checks(instance: Instance, profile: Profile,
     mode = instance.numbers
     missing = _unlisted_profile_prefix(profile)
     out: list[CheckRecord] = [_wellformed(instance, profile, roles, missing)]
-    usable = profile.wellformed and missing is None and isinstance(
-        profile.defender, ProgressRule | TableRule)
+    usable = profile.wellformed and missing is None and profile.defender is not None
     if not usable:
         ids = ("value.U1", "value.U2", "value.U", "value.VoI", "profile.phases",
                "pbne.attacker_br.primary", "pbne.attacker_br.secondary", "pbne.defender_br",
@@ -97,8 +97,7 @@ def structured_checks(instance: Instance, profile: Profile,
         out.append(xi2_check(instance, roles, mode, walk_minima(instance, roles.g1)))
         out.append(_rec("lemma.L5.induced_beliefs", "skipped", NOT_WELLFORMED, None, "L5", None))
         return out
-    rule = profile.defender
-    assert isinstance(rule, DefenderRule)  # usable
+    rule = cast(DefenderRule, profile.defender)  # the two-goal reader's rules only
     v = evaluate(instance, roles, rule, profile.primary, profile.secondary)
     trie = mass_trie([profile.primary, profile.secondary])
     sigma = _sigma_on_trie(instance, roles, rule, trie)
@@ -106,7 +105,7 @@ def structured_checks(instance: Instance, profile: Profile,
     out += _values(profile, v, u_trie, mode)
     out.append(phases_check(instance, profile, roles, mode))
     star = walk_minima(instance, roles.g1)  # shared by the Attacker, L1 and XI2 checks
-    if isinstance(rule, ProgressRule):  # σ*'s best responses (proofs/WALKBR.md), else a table's
+    if not rule.table:  # σ*'s best responses (proofs/WALKBR.md), else a table's
         mins = star if rule.goal == roles.g1 else walk_minima(instance, rule.goal)
         same = roles.g1 == rule.goal
         best = {1: mins.same if same else mins.other, 2: mins.other if same else mins.same}
@@ -137,11 +136,10 @@ def _unlisted_profile_prefix(profile: Profile) -> tuple[int, ...] | None:
         return None
     best: tuple[int, ...] | None = None
     for mw in (*profile.primary, *profile.secondary):
-        for t in range(2, len(mw.walk) + 1):
-            if mw.walk[:t] not in rule.entries:
-                if best is None or t < len(best):
-                    best = mw.walk[:t]
-                break
+        listed = rule.listed_along(mw.walk)
+        t = next((t for t in range(1, len(mw.walk)) if t not in listed), None)
+        if t is not None and (best is None or t + 1 < len(best)):
+            best = mw.walk[:t + 1]
     return best
 
 
@@ -274,13 +272,13 @@ def _attacker(v: Values, mode: NumberMode, minima: dict[int, Number],
     not have, so the record is ``skipped`` (decided by the tree route, or without a horizon).
     """
     out = []
-    for theta, cid, proof in ((1, "pbne.attacker_br.primary", "L1"),
+    for role, cid, proof in ((1, "pbne.attacker_br.primary", "L1"),
                               (2, "pbne.attacker_br.secondary", "XI2")):
-        best = minima[theta]
-        u = v.U1 if theta == 1 else v.U2
+        best = minima[role]
+        u = v.U1 if role == 1 else v.U2
         regret = mode.difference(u, best)
         numbers: dict[str, Number | None] = {"U": u, "min_over_walks": best, "regret": regret}
-        kind = "primary" if theta == 1 else "secondary"
+        kind = "primary" if role == 1 else "secondary"
         if mode.less_than(u, best):
             out.append(_rec(cid, "error", f"the {kind} type's cost {show(u)} is below the "
                             f"minimum over all walks {show(best)}: the routes disagree",

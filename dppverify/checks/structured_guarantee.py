@@ -13,7 +13,7 @@ from collections.abc import Sequence
 from fractions import Fraction
 
 from dppverify.certificate import CheckRecord
-from dppverify.checks.per_goal_records import ngoal_record, profile_records, walk_labels
+from dppverify.checks.per_goal_records import per_goal_record, profile_records, walk_labels
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
 from dppverify.game.profile import Profile
@@ -92,7 +92,7 @@ def _attacker_record(inst: Instance, rule: GuaranteeRule, sets: NormalSets,
     if found:
         r = max(found, key=lambda x: (x.bound - (x.value or 0), -x.theta))
         assert r.value is not None and r.walk is not None
-        return ngoal_record(cid, "fail", f"type {r.theta + 1} (goal "
+        return per_goal_record(cid, "fail", f"type {r.theta + 1} (goal "
                             f"{inst.nodes[inst.goals[r.theta]]!r}) has regret "
                             f"{r.bound - r.value}: walk {walk_labels(inst, r.walk)} "
                             f"({len(r.walk) - 1} steps) costs {r.value} against the rule "
@@ -100,13 +100,13 @@ def _attacker_record(inst: Instance, rule: GuaranteeRule, sets: NormalSets,
     undecided = [r for r in out if not r.decided]
     if undecided:
         r = undecided[0]
-        return ngoal_record(cid, "error", f"could not decide type {r.theta + 1}'s regret: "
+        return per_goal_record(cid, "error", f"could not decide type {r.theta + 1}'s regret: "
                             f"{r.how} without a walk below its cost {r.bound} or a proof that "
                             f"none exists ({_why_no_guarantee(inst, rule, rs)})", nums, NRULE,
                             PROOF)
     hows = sorted({r.how for r in out})
     walks = "of any length" if horizon is None else f"of at most {horizon} steps"
-    return ngoal_record(cid, "pass", f"every type's exact regret over all walks {walks} "
+    return per_goal_record(cid, "pass", f"every type's exact regret over all walks {walks} "
                         f"is 0 ({'; '.join(hows)}; {_guarantee_text(inst, rule, rs)})", nums,
                         NRULE, PROOF)
 

@@ -1,4 +1,4 @@
-"""The structured route's N-goal records (``dpp-ngoal-profile/1``): the game without a walk tree.
+"""The structured route's records of a per-goal profile (``dpp-ngoal-profile/1``): no walk tree.
 
 For a ``dpp-ngoal-profile/1`` whose Defender is a table with a ``default`` (so that it is
 defined on every walk of the game):
@@ -25,30 +25,29 @@ value.
 
 from __future__ import annotations
 
+from typing import cast
+
 from dppverify.certificate import CheckRecord
 from dppverify.checks.per_goal_records import (
     BR,
-    NGOAL_IDS,
     NWALKBR,
     PROFILE_DOC,
-    ngoal_record,
+    STRUCTURED_IDS,
+    per_goal_record,
     profile_records,
     walk_labels,
 )
 from dppverify.checks.structured_guarantee import guarantee_checks
 from dppverify.exact import INF, Number, normalize
 from dppverify.game.instance import Instance
-from dppverify.game.profile import GoalTable, GuaranteeRule, Profile
-from dppverify.registry import not_run
+from dppverify.game.profile import GoalTable, Profile
 from dppverify.structured.table_br import TableDefender, exit_costs, walk_best_response
 from dppverify.structured.trie import mass_trie
 
-__all__ = ["NSTRUCTURED_NOT_RUN", "nstructured_checks"]
+__all__ = ["per_goal_structured_checks"]
 
-NSTRUCTURED_NOT_RUN = not_run("structured", n_goals=3)
-"""The N-goal checks the structured route does not run, with the reason (the registry's)."""
 
-def nstructured_checks(instance: Instance, profile: Profile,
+def per_goal_structured_checks(instance: Instance, profile: Profile,
                        horizon: int | None) -> tuple[list[CheckRecord], int]:
     """Every check of the N-goal structured route, in certificate order, and the trie size.
 
@@ -70,7 +69,8 @@ def nstructured_checks(instance: Instance, profile: Profile,
     >>> from dppverify.game.examples import star3, star3_profile
     >>> from dppverify.game.profile import profile_from_json
     >>> inst = star3()
-    >>> recs, size = nstructured_checks(inst, profile_from_json(star3_profile(), inst), None)
+    >>> prof = profile_from_json(star3_profile(), inst)
+    >>> recs, size = per_goal_structured_checks(inst, prof, None)
     >>> [(r.id, r.status) for r in recs][2:4], size
     ([('pbne.attacker_br', 'fail'), ('pbne.defender_br', 'pass')], 5)
     >>> recs[2].message
@@ -81,13 +81,12 @@ def nstructured_checks(instance: Instance, profile: Profile,
     if profile.defects:
         more = f" (and {len(profile.defects) - 1} more)" if len(profile.defects) > 1 else ""
         return _ill_formed(f"{profile.defects[0]}{more}"), 0
-    if isinstance(profile.defender, GuaranteeRule):  # dppverify.structured.guarantee
-        return guarantee_checks(inst, profile, horizon)
+    if profile.defender is not None and profile.defender.kind == "guarantee":
+        return guarantee_checks(inst, profile, horizon)  # dppverify.structured.guarantee
     walks = [mw.walk for mix in profile.attacker for mw in mix]
     # realization masses x_θ(p) on the profile's walks, then the table's entries
     trie = mass_trie(profile.attacker, start=inst.start)
-    table = profile.defender
-    assert isinstance(table, GoalTable)  # well-formed: a table or the guarantee rule
+    table = cast(GoalTable, profile.defender)  # well formed: a table, or the guarantee rule
     sigma = {trie.insert(w): tuple(d) for w, d in table.entries.items()}
     tdef = TableDefender(instance=inst, trie=trie, sigma=sigma, default=None
                          if table.default is None else tuple(table.default))
@@ -127,9 +126,9 @@ def nstructured_checks(instance: Instance, profile: Profile,
 
 def _ill_formed(message: str) -> list[CheckRecord]:
     """``profile.wellformed`` fails with ``message``; every other check is skipped."""
-    return ([ngoal_record(NGOAL_IDS[0], "fail", message, None, PROFILE_DOC, None)]
-            + [ngoal_record(i, "skipped", "the profile is not well formed", None, "–")
-               for i in NGOAL_IDS[1:]])
+    return ([per_goal_record(STRUCTURED_IDS[0], "fail", message, None, PROFILE_DOC, None)]
+            + [per_goal_record(i, "skipped", "the profile is not well formed", None, "–")
+               for i in STRUCTURED_IDS[1:]])
 
 
 def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],
@@ -149,7 +148,7 @@ def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],
         br = walk_best_response(tdef, theta, exits)
         if br.value is None:
             assert br.undefined is not None
-            return ngoal_record("pbne.attacker_br", "error", f"the Defender has no default "
+            return per_goal_record("pbne.attacker_br", "error", f"the Defender has no default "
                         f"and its table has no entry for walk "
                         f"{walk_labels(inst, br.undefined)}: no best response over all walks "
                         f"can be computed (give a default, or certify on the walk tree: --route "
@@ -159,23 +158,23 @@ def _attacker(inst: Instance, tdef: TableDefender, per_type: list[Number],
     nums: dict[str, Number | None] = {f"regret{t + 1}": r for r, t, _, _ in regrets}
     if any(r < 0 for r, _, _, _ in regrets):
         r, t, _, v = min(regrets, key=lambda x: x[0])
-        return ngoal_record("pbne.attacker_br", "error", f"type {t + 1}'s profile cost is "
+        return per_goal_record("pbne.attacker_br", "error", f"type {t + 1}'s profile cost is "
                     f"below its minimum over all walks {v} (regret {r}): the checker's "
                     f"computations disagree", nums, NWALKBR, BR)
     worst = max(regrets, key=lambda x: x[0])
     if worst[0] == 0:
-        return ngoal_record("pbne.attacker_br", "pass", "every type's exact regret over all "
+        return per_goal_record("pbne.attacker_br", "pass", "every type's exact regret over all "
                     "walks of any length is 0", nums, NWALKBR, BR)
     within = [x for x in regrets if x[0] > 0 and (horizon is None or len(x[2]) - 1 <= horizon)]
     if not within:
         r, t, walk, v = worst
-        return ngoal_record("pbne.attacker_br", "skipped", f"type {t + 1}'s regret over "
+        return per_goal_record("pbne.attacker_br", "skipped", f"type {t + 1}'s regret over "
                     f"walks of any length is {r} (walk {walk_labels(inst, walk)}, "
                     f"{len(walk) - 1} steps > H = {horizon}); whether a walk of at most "
                     f"{horizon} steps beats the profile is not decided by the structured route "
                     f"(use --route tree, or omit the horizon)", nums, NWALKBR, BR)
     r, t, walk, v = max(within, key=lambda x: x[0])
-    return ngoal_record("pbne.attacker_br", "fail", f"type {t + 1} (goal "
+    return per_goal_record("pbne.attacker_br", "fail", f"type {t + 1} (goal "
                 f"{inst.nodes[inst.goals[t]]!r}) has regret {r}: walk {walk_labels(inst, walk)} "
                 f"({len(walk) - 1} steps) costs {v}", nums, NWALKBR, BR)
 

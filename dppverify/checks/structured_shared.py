@@ -76,8 +76,8 @@ def greedy_sums(masses: Masses, prior: Sequence[Fraction],
             acc = groups[key] = [0] * (len(row) + 1)
             of_key[key] = mass
         acc[0] += w
-        for theta, s in enumerate(row, start=1):
-            acc[theta] += w * s
+        for k, s in enumerate(row, start=1):
+            acc[k] += w * s
     best: Number = 0
     at_sigma: Number = 0
     for key, acc in groups.items():

@@ -228,7 +228,7 @@ def _scen_prior(text: str) -> list[str]:
     probe = {"graph": {"nodes": [{"id": 0}, {"id": 1}], "edges": [{"source": 0, "target": 1}]},
              "start": 0, "goals": [0, 1], "prior": prior}
     try:
-        instance_from_json(probe, two_goals=True)
+        instance_from_json(probe)
     except CheckerError as exc:
         raise AuditError(f"--prior {text}: {' '.join(str(exc).split())}") from None
     return prior

@@ -11,15 +11,12 @@ import dataclasses
 import json
 import os
 import sys
+from dataclasses import dataclass
 from typing import Any
 
 import click
 
-from dppio.inputs import reading_once
-from dppverify.certificate import Certificate
-from dppverify.certify import DEFAULT_TRIALS, certify
-from dppverify.cli.belongs import profile_mismatch
-from dppverify.cli.conventions import (
+from dppio.cli.conventions import (
     PhaseBar,
     emit,
     output_file_option,
@@ -27,26 +24,23 @@ from dppverify.cli.conventions import (
     status,
     want_progress,
 )
+from dppio.cli.map_options import MAP_USAGE, instance_or_map
+from dppio.inputs import reading_once
+from dppverify.certificate import Certificate
+from dppverify.certify import DEFAULT_TRIALS, certify
+from dppverify.cli.belongs import profile_mismatch
 from dppverify.cli.errors import fail
-from dppverify.cli.hints import what_is
-from dppverify.cli.inputs import HORIZON, hinted, load_game, max_prefixes_option
-from dppverify.cli.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
+from dppverify.cli.inputs import HORIZON, hinted, max_prefixes_option, read_game
+from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.cli.table import format_table
 from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
 from dppverify.formats.files import read_input, refuse_input_as_output
-from dppverify.formats.json_reading import JsonReadError, read_json_file
+from dppverify.game.inputs import Parsed, read_profile
 from dppverify.game.instance import Instance
-from dppverify.game.profile import load_profile_document
+from dppverify.game.profile import Profile, Stated
 from dppverify.limits import MAX_TRIALS
-from dppverify.provenance import (
-    command_line,
-    grid_record,
-    input_record,
-    map_identity,
-    provenance_record,
-    verify_provenance,
-)
-from dppverify.routes import ROUTES, Route, ngoal_game
+from dppverify.provenance import command_line, map_identity, verify_provenance
+from dppverify.routes import ROUTES, Route
 
 __all__ = ["VERDICT_EXIT", "certify_command"]
 
@@ -82,10 +76,7 @@ __all__ = ["VERDICT_EXIT", "certify_command"]
               help="Do not certify: check that CERT (a certificate JSON) records the sha256 of "
                    "INSTANCE and PROFILE (exit 0), or say in one line what differs (exit 1).")
 @progress_option
-def certify_command(instance: str | None, profile: str | None, grid: MapRequest | None,
-                    horizon: int | None, route: Route, as_json: bool,
-                    output: str | None, max_prefixes: int, float_mode: bool, seed: int,
-                    trials: int, provenance_of: str | None, progress: bool | None) -> None:
+def certify_command(**params: Any) -> None:
     """Certify (exit 0) or refute (exit 1) PROFILE as a weak PBNE of INSTANCE's game (exit 3:
     could not decide).
 
@@ -113,54 +104,70 @@ def certify_command(instance: str | None, profile: str | None, grid: MapRequest 
       dpp certify --verify-provenance cert.json examples/triangle.json profile.json
     """
     with reading_once():  # each input read once: the certificate hashes the bytes parsed
-        _certify_files(instance, profile, grid, horizon, route, as_json, output, max_prefixes,
-                       float_mode, seed, trials, provenance_of, progress)
+        _certify_files(_Request(**params))
 
 
-def _certify_files(instance: str | None, profile: str | None, grid: MapRequest | None,
-                   horizon: int | None, route: Route, as_json: bool, output: str | None,
-                   max_prefixes: int, float_mode: bool, seed: int, trials: int,
-                   provenance_of: str | None, progress: bool | None) -> None:
+@dataclass(frozen=True)
+class _Request:
+    """The options of one ``dpp certify`` run, as click parsed them."""
+
+    instance: str | None
+    profile: str | None
+    grid: MapRequest | None
+    horizon: int | None
+    route: Route
+    as_json: bool
+    output: str | None
+    max_prefixes: int
+    float_mode: bool
+    seed: int
+    trials: int
+    provenance_of: str | None
+    progress: bool | None
+
+
+def _certify_files(req: _Request) -> None:
     """The body of :func:`certify_command` (inside its ``reading_once`` block)."""
-    bar = PhaseBar(want_progress(progress), "certify", "reading the instance")
+    bar = PhaseBar(want_progress(req.progress), "certify", "reading the instance")
+    instance, profile, grid, output = req.instance, req.profile, req.grid, req.output
     try:
         if grid is not None and profile is not None:
             raise OptionError(f"with --map, certify takes only PROFILE (got {instance!r} and "
                               f"{profile!r})")
         if grid is not None:
             instance, profile = None, instance
-        if profile is None and provenance_of is not None:
+        if profile is None and req.provenance_of is not None:
             raise OptionError("missing INSTANCE or PROFILE: dpp certify --verify-provenance "
                               "CERT INSTANCE PROFILE (with --map: CERT PROFILE)")
         if profile is None:
             raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
                               f"dpp certify {MAP_USAGE} PROFILE")
         refuse_input_as_output(output, [instance, profile, grid.path if grid else None])
-        if provenance_of is not None:
+        if req.provenance_of is not None:
             bar.close()
-            _verify_provenance(provenance_of, instance, profile, grid)
+            _verify_provenance(req.provenance_of, instance, profile, grid)
             return
-        game = load_game(instance, grid)
+        game = read_game(instance, grid)
         bar.phase("reading the profile")
-        doc = _profile_document(profile, game, instance)
-        bar.phase(f"certifying (route {route}; the checks' bars follow)")
-        # N goals: the file itself, whose reader checks its format tag and names the file
-        cert = certify(game, profile if ngoal_game(game) else doc, horizon=horizon,
-                       exact=game.exact and not float_mode, max_prefixes=max_prefixes,
-                       seed=seed, trials=trials, progress=want_progress(progress),
-                       route=route)
+        prof = _read_profile(profile, game.value, instance)
+        bar.phase(f"certifying (route {req.route}; the checks' bars follow)")
+        cert = certify(game, prof, horizon=req.horizon,
+                       exact=game.value.exact and not req.float_mode,
+                       max_prefixes=req.max_prefixes, seed=req.seed, trials=req.trials,
+                       progress=want_progress(req.progress), route=req.route)
     except CheckerError as exc:
         bar.close()
         fail(exc)
     bar.close()
-    reason = profile_mismatch(game, doc)
+    reason = profile_mismatch(game.value, prof.value.stated)
     if reason is not None and cert.verdict != "pass":  # refuted; say why it looks foreign
-        solve = f"dpp solve {instance}" if instance is not None else "dpp solve --map ..."
         status(f"note: {profile} looks made for another instance: {reason} (make a profile "
-               f"for this one with {solve} -o PROFILE)")
-    cert = _with_command(cert, instance, profile, grid)
+               f"for this one with {_solve_hint(instance)} -o PROFILE)")
+    assert cert.provenance is not None  # certify records what it parsed
+    cert = dataclasses.replace(cert, provenance={**cert.provenance, "command": _command()})
     summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
-    emit(cert.to_json(), format_table(cert), as_json=as_json, output=output, summary=summary)
+    emit(cert.to_json(), format_table(cert), as_json=req.as_json, output=output,
+         summary=summary)
     raise click.exceptions.Exit(VERDICT_EXIT[cert.verdict])
 
 
@@ -171,57 +178,28 @@ verdict (a check could not run) decides nothing, so it is "could not decide" (3)
 refutation (1)."""
 
 
-def _profile_document(path: str, game: Instance, instance: str | None) -> dict[str, Any]:
-    """The profile document at ``path`` (not JSON, or not a profile document of the game's
-    format: bad input, one line). Whatever it says about the game is the certificate's
-    business: a claim or a goal that disagrees with the instance is refuted by a named check
-    (docs/formats.md, "One verdict")."""
-    ngoal = ngoal_game(game)
+def _read_profile(path: str, game: Instance, instance: str | None) -> Parsed[Profile]:
+    """The profile file at ``path``, read once (not JSON, or not a profile document of the
+    game's format: bad input, one line, naming the game it looks made for when it can be
+    told). Whatever it says about the game is the certificate's business: a claim or a goal
+    that disagrees with the instance is refuted by a named check (docs/formats.md, "One
+    verdict")."""
     with hinted(path, "profile"):
-        if ngoal or what_is(path) == "dpp-ngoal-profile/1":  # (for two goals: not its game)
-            try:
-                doc = read_json_file(path, kind="profile")
-            except JsonReadError as exc:
-                raise ProfileError(f"{path}: {exc}") from None
-        else:
-            try:
-                doc = load_profile_document(path)
-            except ProfileError as exc:  # the other format: say whose game it looks like
-                raise ProfileError(_foreign(exc, path, game, instance)) from None
-    if ngoal and isinstance(doc, dict) and doc.get("format") != "dpp-ngoal-profile/1":
-        raise ProfileError(_foreign(ProfileError(
-            f"{path}: \"format\" must be \"dpp-ngoal-profile/1\" for an instance with more "
-            f"than two goals, got {json.dumps(doc.get('format'), default=str)[:60]}"),
-            path, game, instance))
-    return dict(doc)
+        try:
+            return read_profile(path, game)
+        except ProfileError as exc:
+            reason = (profile_mismatch(game, exc.stated) if isinstance(exc.stated, Stated)
+                      else None)
+            if reason is None:
+                raise
+            raise ProfileError(f"{exc}; it looks made for another instance: {reason} (make a "
+                               f"profile for this one with {_solve_hint(instance)} -o "
+                               f"PROFILE)") from None
 
 
-def _foreign(exc: Exception, path: str, game: Instance, instance: str | None) -> str:
-    """A format error of the profile at ``path``, with what it looks made for when that can
-    be told (another game's goals: a two-goal profile for an N-goal instance, say)."""
-    try:
-        reason = profile_mismatch(game, read_json_file(path, kind="profile"))
-    except (JsonReadError, ValueError, TypeError, RecursionError):
-        reason = None
-    if reason is None:
-        return str(exc)
-    solve = f"dpp solve {instance}" if instance is not None else "dpp solve --map ..."
-    return (f"{exc}; it looks made for another instance: {reason} (make a profile for this one "
-            f"with {solve} -o PROFILE)")
-
-
-def _with_command(cert: Certificate, instance: str | None, profile: str,
-                  grid: MapRequest | None) -> Certificate:
-    """The certificate with its provenance's command (and, for --map, the grid's hashes)."""
-    prov = dict(cert.provenance or provenance_record(instance, profile, route=cert.route,
-                                                     exact=cert.exact))
-    prov["command"] = _command()
-    prov["profile"] = input_record(profile)  # the file's bytes (certify was given its document)
-    if grid is not None:
-        prov["instance"] = grid_record(grid.path, grid.document())
-    elif instance is not None:
-        prov["instance"] = input_record(instance)
-    return dataclasses.replace(cert, provenance=prov)
+def _solve_hint(instance: str | None) -> str:
+    """The ``dpp solve`` command that makes a profile for this game."""
+    return f"dpp solve {instance}" if instance is not None else "dpp solve --map ..."
 
 
 def _command() -> list[str]:

@@ -15,16 +15,18 @@ import click
 
 from dppio.cli.hints import Kind
 from dppio.cli.hints import hinted as shared_hinted
+from dppio.cli.map_options import instance_or_map
 from dppio.limits import MAX_PREFIXES_LIMIT
-from dppverify.cli.map_options import MapRequest, instance_or_map
+from dppverify.cli.map_options import MapRequest
 from dppverify.errors import CheckerError
+from dppverify.game.inputs import Parsed, read_instance
 from dppverify.game.instance import Instance
 from dppverify.horizons import INFINITE_WORDS
 from dppverify.limits import MAX_HORIZON
+from dppverify.provenance import map_identity
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
-from dppverify.valuation import game_of
 
-__all__ = ["HORIZON", "HorizonParam", "hinted", "load_game", "max_prefixes_option"]
+__all__ = ["HORIZON", "HorizonParam", "hinted", "load_game", "max_prefixes_option", "read_game"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -82,8 +84,7 @@ def max_prefixes_option(help: str = "Refuse walk trees larger than this.",
 
 def load_game(instance: str | None, grid: MapRequest | None,
               command: str = "dpp certify") -> Instance:
-    """The instance of a command, two or N goals: the INSTANCE file (read once,
-    :func:`~dppverify.valuation.game_of`) or the ``--map`` option group's grid.
+    """The instance of a command, two or N goals (:func:`read_game`'s value).
 
     Examples
     --------
@@ -95,12 +96,23 @@ def load_game(instance: str | None, grid: MapRequest | None,
     ('s', 'g1', 'g2')
     >>> os.unlink(f.name)
     """
+    return read_game(instance, grid, command).value
+
+
+def read_game(instance: str | None, grid: MapRequest | None,
+              command: str = "dpp certify") -> Parsed[Instance]:
+    """The instance of a command and what was parsed: the INSTANCE file (read once, through
+    the door :func:`~dppverify.game.inputs.read_instance`; a read error becomes a hint when the
+    file is of another kind), or the ``--map`` option group's grid (its compact map instance,
+    ``map`` cut to the file's name, and the ``.map`` file's sha256:
+    :func:`~dppverify.provenance.map_identity`)."""
     instance_or_map(instance, grid)
     if grid is not None:
-        return grid.game()
+        doc = grid.document()
+        return Parsed(grid.game(), map_identity(doc), (str(grid.path), doc["map_sha256"]))
     assert instance is not None  # instance_or_map: one of the two
     with hinted(instance, "instance", command):
-        return game_of(instance)
+        return read_instance(instance)
 
 
 def hinted(path: str, kind: Kind, command: str = "dpp certify") -> shared_hinted:
@@ -110,7 +122,7 @@ def hinted(path: str, kind: Kind, command: str = "dpp certify") -> shared_hinted
     Examples
     --------
     >>> with hinted("/nowhere/x.map", "instance"):  # doctest: +ELLIPSIS
-    ...     game_of("/nowhere/x.map")
+    ...     read_instance("/nowhere/x.map")
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: /nowhere/x.map is a MovingAI .map file: give it as ...
     """

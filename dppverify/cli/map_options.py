@@ -14,14 +14,11 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from dppio.cli import map_options as shared
-from dppio.cli.map_options import MAP_USAGE, instance_or_map
 from dppverify.formats.map_instance import MapReference, read_grid_reference
 from dppverify.game.grids import reference_game
 
 if TYPE_CHECKING:
     from dppverify.game.instance import Instance
-
-__all__ = ["MAP_USAGE", "MapRequest", "instance_or_map", "map_options"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 

@@ -11,14 +11,14 @@ from __future__ import annotations
 
 import click
 
-from dppio.text import count, decimal
-from dppverify.cli.conventions import (
+from dppio.cli.conventions import (
     PhaseBar,
     emit,
     output_file_option,
     progress_option,
     want_progress,
 )
+from dppio.text import count, decimal
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import HORIZON, load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options
@@ -102,7 +102,7 @@ def routed_lines(r: RoutedValue) -> list[str]:
     V_H (H = inf) = 12/5 (≈ 2.4) exactly; structured route (... DP steps, fixpoint reached, ...)
     """
     if r.goals > 2:
-        return _ngoal_lines(r)
+        return _per_goal_lines(r)
     tree = r.tree if isinstance(r.tree, GameValue) else None
     sv = r.structured if isinstance(r.structured, StructuredValue) else None
     return ([_tree_line(tree)] if tree is not None else []) + \
@@ -131,13 +131,13 @@ def _structured_line(v: StructuredValue) -> str:
 
 
 
-def _ngoal_lines(r: RoutedValue) -> list[str]:
+def _per_goal_lines(r: RoutedValue) -> list[str]:
     """The lines ``dpp value`` prints for an N-goal instance.
 
     Examples
     --------
     >>> from dppverify.game.examples import star3
-    >>> print(_ngoal_lines(routed_value(star3(), None))[0])
+    >>> print(_per_goal_lines(routed_value(star3(), None))[0])
     V_H (H = inf, N = 3 goals) = 3/2 (≈ 1.5) exactly; coalition DP (NG.4: the value for \
 three goals) (7 label-setting passes)
     """

@@ -46,8 +46,8 @@ from dppverify.exact import Number, normalize
 from dppverify.formats.files import read_input
 
 __all__ = ["JsonReadError", "Node", "WalkGame", "lookup_node", "node_from_json", "node_to_json",
-           "parse_json", "parse_json_text", "parse_number", "parse_probability", "read_json_file",
-           "resolve_walk", "show_node"]
+           "parse_json", "parse_json_text", "parse_number", "parse_probability",
+           "read_json_document", "read_json_file", "resolve_walk", "show_node"]
 
 Node = Hashable
 """A node id after JSON conversion (lists become tuples)."""
@@ -192,16 +192,27 @@ def read_json_file(source: str | Path | bytes, *, kind: str) -> Any:
     Traceback (most recent call last):
     dppverify...JsonReadError: cannot read instance file (No such file or directory)
     """
+    return read_json_document(source, kind=kind)[0]
+
+
+def read_json_document(source: str | Path | bytes, *, kind: str) -> tuple[Any, bytes]:
+    """:func:`read_json_file`, with the bytes it parsed (a file's exactly as read).
+
+    Examples
+    --------
+    >>> read_json_document(b'{"a": 1}', kind="instance")
+    ({'a': 1}, b'{"a": 1}')
+    """
     if isinstance(source, bytes):
-        text: str | bytes = source
-    else:
-        try:
-            text = read_input(source).decode("utf-8")
-        except (OSError, UnicodeDecodeError, ValueError) as exc:
-            reason = (exc.strerror if isinstance(exc, OSError) else
-                      "not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc))
-            raise JsonReadError(f"cannot read {kind} file ({reason})") from None
-    return parse_json_text(text, profile=kind == "profile")
+        return parse_json_text(source, profile=kind == "profile"), source
+    try:
+        data = read_input(source)
+        text = data.decode("utf-8")
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        reason = (exc.strerror if isinstance(exc, OSError) else
+                  "not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc))
+        raise JsonReadError(f"cannot read {kind} file ({reason})") from None
+    return parse_json_text(text, profile=kind == "profile"), data
 
 
 # --- numbers --------------------------------------------------------------------------------

@@ -28,22 +28,25 @@ class UndefinedStrategyError(LookupError):
 def _rule_sigma_to_goal(instance: Instance, rule: DefenderRule, walk: Sequence[int]
                         ) -> list[Number]:
     """σ(rule.goal | walk[:t+1]) for t = 1..T: the rule's listed walks, else σ* towards its
-    progress goal, else its constant default (the progress rule lists no walk)."""
-    result: list[Number] = []
+    progress goal, else its constant default; linear in the walk's length (the listed prefixes
+    are found in one pass, :meth:`~dppverify.game.profile_types.ProfileDefender.listed_along`)."""
+    listed = rule.listed_along(walk)
     progress: list[Number] | None = None
+    if len(listed) < len(walk) - 1 and rule.progress_goal is not None:
+        progress = progress_sigma(instance, ProgressRule(rule.progress_goal), walk)
+    result: list[Number] = []
     for t in range(1, len(walk)):
-        key = tuple(walk[:t + 1])
-        if key in rule.entries:
-            result.append(rule.entries[key])
-        elif rule.progress_goal is not None:
-            if progress is None:
-                progress = progress_sigma(instance, ProgressRule(rule.progress_goal), walk)
+        listed_t = listed.get(t)
+        if listed_t is not None:
+            result.append(listed_t)
+        elif progress is not None:
             result.append(progress[t - 1])
         elif rule.constant is not None:
             result.append(rule.constant)
         else:
             raise UndefinedStrategyError(f"the Defender's table has no entry for walk "
-                                         f"{instance.labels(key)} and no default")
+                                         f"{instance.labels(tuple(walk[:t + 1]))} and no "
+                                         f"default")
     return result
 
 

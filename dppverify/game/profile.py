@@ -1,38 +1,16 @@
 """Read strategy profiles leniently: ``dpp-profile/1`` and ``dpp-ngoal-profile/1``.
 
 ``docs/formats.md`` §2 and §2b; the types are in :mod:`dppverify.game.profile_types`.
-Only a document that is not JSON, not a JSON object, or not tagged with its format raises
+Only a document that is not a JSON object tagged with a format of its game raises
 :class:`ProfileError`. Everything else wrong with a profile — probabilities that are negative
 or do not sum to 1, a step that is not an edge, a walk that does not start at ``s0``, does not
 end at a goal or continues past its first goal, unknown nodes, duplicate walks, goals that do
 not match the instance — is recorded as a :class:`Defect`: the checker then *refutes* the
-profile (check ``profile.wellformed``, ``profile.wellformed``) instead of crashing.
+profile (check ``profile.wellformed``) instead of crashing.
 
-Two-goal Defender rules (``dpp-profile/1``, ``defender``):
-
-- ``{"rule": "progress", "goal": g}``: the paper's σ* (eq. (7)) measuring progress towards
-  goal ``g`` and allocating to ``g`` with probability new-progress / step weight.
-- ``{"rule": "table", "goal": g, "entries": [{"walk": [s0, …, s_t], "probability": p}, …],
-  "default": q}``: after observing the walk ``s0 … s_t`` (``t >= 1``) allocate to ``g`` with
-  probability ``p``. Unlisted walks use ``default``: a probability, or ``"progress"`` meaning
-  the progress rule towards the same goal ``g``. Without ``default`` every walk the game
-  can reach must be listed.
-
-N-goal document (``dpp-ngoal-profile/1``)::
-
-    {"format": "dpp-ngoal-profile/1",
-     "goals": [g^1, …, g^N],                       (optional; must be the instance's, in order)
-     "attacker": [[{"path": [s0, …, g], "probability": p, "label": …}, …],   one list per type
-                  …],
-     "defender": {"rule": "table",
-                  "entries": [{"walk": [s0, …, s_t], "probabilities": [q_1, …, q_N]}, …],
-                  "default": [q_1, …, q_N]},        (optional)
-              or {"rule": "guarantee", "h": [h_1, …, h_N]}   (dppverify.structured.guarantee)
-     "value": {"U": …}}                             (optional, informative)
-
-``attacker[θ]`` is the mixed strategy of goal index θ (its goal is ``goals[θ]``); after
-observing the walk ``s0 … s_t`` the Defender puts the step's weight on goal ``g^i`` with
-probability ``q_i``; or the Defender is the guarantee rule.
+The formats themselves (the two-goal Defender rules ``progress`` and ``table``, the
+per-goal ``table`` of goal distributions and the ``guarantee`` rule) are ``docs/formats.md``'s;
+``attacker[θ]`` of a per-goal profile is the mixed strategy of goal index θ.
 """
 
 from __future__ import annotations
@@ -43,34 +21,36 @@ from fractions import Fraction
 from types import MappingProxyType
 from typing import Any
 
+from dppverify.errors import ProfileError
 from dppverify.exact import Number
 from dppverify.formats.json_reading import lookup_node, resolve_walk, show_node
 from dppverify.game.instance import Instance
 from dppverify.game.profile_types import (
-    GUARANTEE_RULE,
-    NGOAL_PROFILE_FORMAT,
+    PER_GOAL_PROFILE_FORMAT,
     PROFILE_FORMAT,
     VALUE_KEYS,
     Defect,
     DefectCollector,
+    Profile,
+    Stated,
+    StrategyWalk,
+    parse_guarantee,
+    stated_of,
+)
+from dppverify.game.rules import (
+    GUARANTEE_RULE,
     DefenderRule,
     GoalTable,
     GuaranteeRule,
-    Profile,
     ProfileDefender,
     ProgressRule,
-    StrategyWalk,
     TableRule,
-    check_format,
-    load_profile_document,
-    parse_guarantee,
 )
-from dppverify.numbers import EXACT, NumberMode
+from dppverify.numbers import NumberMode
 
-__all__ = ["NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "Defect", "DefenderRule", "GoalTable",
-           "GuaranteeRule", "Profile", "ProfileDefender", "ProgressRule", "StrategyWalk",
-           "TableRule", "check_format", "load_profile_document", "profile_from_json",
-           "validate_walk"]
+__all__ = ["PER_GOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "Defect", "DefenderRule", "GoalTable",
+           "GuaranteeRule", "Profile", "ProfileDefender", "ProgressRule", "Stated",
+           "StrategyWalk", "TableRule", "profile_from_json", "stated_of", "validate_walk"]
 
 
 def validate_walk(instance: Instance, raw: Any, *, complete: bool) -> tuple[int, ...] | str:
@@ -103,31 +83,35 @@ def validate_walk(instance: Instance, raw: Any, *, complete: bool) -> tuple[int,
                         subject="path" if complete else "walk")
 
 
-def profile_from_json(doc: Mapping[str, Any], instance: Instance,
-                      tolerance: NumberMode | None = None, *, fmt: str | None = None
-                      ) -> Profile:
-    """Resolve a profile document of either format against ``instance``, recording defects.
+def profile_from_json(doc: Any, instance: Instance, *, name: str = "profile") -> Profile:
+    """Resolve a profile document against ``instance``, recording its defects.
+
+    The document's ``format`` tag picks the reader: ``dpp-ngoal-profile/1`` (one mixed
+    strategy per goal index) for any number of goals, ``dpp-profile/1`` (primary and
+    secondary) for two. The sums of a two-goal profile's probabilities are compared in the
+    instance's number mode (within the float tolerance in float mode), a per-goal profile's
+    exactly.
 
     Parameters
     ----------
-    doc : Mapping
-        The document (numbers as ``int``, ``Fraction``, ``"p/q"`` strings or floats).
+    doc : Any
+        The parsed document (numbers as ``int``, ``Fraction``, ``"p/q"`` strings or floats).
     instance : Instance
         The game the profile claims to solve.
-    tolerance : NumberMode, optional
-        ``dpp-profile/1``: how the sum of a mixed strategy's probabilities is compared with 1:
-        exactly (the default and always for exact instances) or within the float-mode
-        tolerance (``dpp-ngoal-profile/1`` compares exactly).
-    fmt : str, optional
-        The format to read ``doc`` as; by default its ``format`` tag
-        (``dpp-ngoal-profile/1``, else ``dpp-profile/1``). The ``dpp-profile/1`` reader checks
-        the tag (:func:`check_format`); ``dpp-ngoal-profile/1`` is read as given (its tag is
-        checked where its file is loaded, :func:`load_profile_document`).
+    name : str
+        The document's name in messages (its file path, or ``"profile"``).
+
+    Returns
+    -------
+    Profile
+        With what the document says about its game (:class:`Stated`) and every defect.
 
     Raises
     ------
     ProfileError
-        Only when a ``dpp-profile/1`` ``doc`` is not an object tagged ``dpp-profile/1``.
+        Only when ``doc`` is not a JSON object tagged with a format of the instance's game
+        (``dpp-ngoal-profile/1``, or ``dpp-profile/1`` for two goals); the error holds the
+        document's :class:`Stated` when it is an object.
 
     Examples
     --------
@@ -152,13 +136,38 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
     >>> bad = {**star3_profile(), "attacker": star3_profile()["attacker"][:2]}
     >>> [str(d) for d in profile_from_json(bad, star3()).defects]
     ['attacker: must be a list of 3 mixed strategies (one per goal), got 2']
+    >>> profile_from_json(doc, star3(), name="p.json")
+    Traceback (most recent call last):
+    dppverify.errors.ProfileError: p.json: "format" must be "dpp-ngoal-profile/1" for an \
+instance with more than two goals, got "dpp-profile/1"
     """
-    given: object = doc  # a parsed JSON value, checked as given
-    if fmt == NGOAL_PROFILE_FORMAT or (fmt is None and isinstance(given, Mapping)
-                                       and given.get("format") == NGOAL_PROFILE_FORMAT):
-        return _ngoal_profile(doc, instance)
-    check_format(doc)
-    tol = tolerance or EXACT
+    fmt = _format_of(doc, instance, name)
+    stated = stated_of(doc)
+    if fmt == PER_GOAL_PROFILE_FORMAT:
+        return _per_goal_profile(doc, instance, stated)
+    return _two_goal_profile(doc, instance, stated)
+
+
+def _format_of(doc: Any, instance: Instance, name: str) -> str:
+    """The format to read ``doc`` as, or :class:`ProfileError` naming the one expected."""
+    if isinstance(doc, Mapping) and doc.get("format") == PER_GOAL_PROFILE_FORMAT:
+        return PER_GOAL_PROFILE_FORMAT
+    fmt = PROFILE_FORMAT if instance.n_goals == 2 else PER_GOAL_PROFILE_FORMAT
+    two = fmt == PROFILE_FORMAT
+    if not isinstance(doc, Mapping):
+        what = f"a {fmt} document" if two else "a profile"
+        raise ProfileError(f"{name}: {what} must be a JSON object, got {type(doc).__name__}")
+    tag = doc.get("format")
+    if tag != fmt:
+        why = "" if two else " for an instance with more than two goals"
+        raise ProfileError(f"{name}: \"format\" must be \"{fmt}\"{why}, got "
+                           f"{json.dumps(tag, default=str)}", stated_of(doc))
+    return fmt
+
+
+def _two_goal_profile(doc: Mapping[str, Any], instance: Instance, stated: Stated) -> Profile:
+    """Resolve a ``dpp-profile/1`` document against the two-goal ``instance``."""
+    tol = instance.numbers
     c = DefectCollector()
     primary_goal_index = _goals(doc, instance, c)
     defender = _defender(doc, instance, c, tol)
@@ -168,8 +177,8 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
     if not isinstance(attacker, Mapping):
         c.add("attacker", "missing, or not an object with \"primary\" and \"secondary\"")
         attacker = {}
-    for theta, key in ((1, "primary"), (2, "secondary")):
-        walks[theta], steps = _mixed(attacker.get(key), f"attacker.{key}", instance, c, tol)
+    for role, key in ((1, "primary"), (2, "secondary")):
+        walks[role], steps = _mixed(attacker.get(key), f"attacker.{key}", instance, c, tol)
         longest = max(longest, steps)
     pair = (walks[1], walks[2])
     return Profile(
@@ -180,7 +189,7 @@ def profile_from_json(doc: Mapping[str, Any], instance: Instance,
         claimed_phases=_claimed_phases(doc, c),
         declared_exact=doc.get("exact") if isinstance(doc.get("exact"), bool) else None,
         declared_tolerance=_declared_tolerance(doc),
-        longest=longest, defects=tuple(c.defects))
+        longest=longest, defects=tuple(c.defects), stated=stated)
 
 
 def _goal_node(raw: Any, instance: Instance) -> int | None:
@@ -360,7 +369,7 @@ def _declared_tolerance(doc: Mapping[str, Any]) -> float | None:
     return None
 
 
-def _ngoal_profile(doc: Mapping[str, Any], instance: Instance) -> Profile:
+def _per_goal_profile(doc: Mapping[str, Any], instance: Instance, stated: Stated) -> Profile:
     """Resolve a ``dpp-ngoal-profile/1`` document against ``instance``, recording defects."""
     n = instance.n_goals
     c = DefectCollector()
@@ -394,9 +403,9 @@ def _ngoal_profile(doc: Mapping[str, Any], instance: Instance) -> Profile:
     value = doc.get("value")
     if isinstance(value, Mapping) and value.get("U") is not None:
         claimed = c.number(value["U"], "value.U")
-    return Profile(attacker=tuple(types), defender=defender, format=NGOAL_PROFILE_FORMAT,
+    return Profile(attacker=tuple(types), defender=defender, format=PER_GOAL_PROFILE_FORMAT,
                    claimed_values=MappingProxyType({} if claimed is None else {"U": claimed}),
-                   longest=longest, defects=tuple(c.defects))
+                   longest=longest, defects=tuple(c.defects), stated=stated)
 
 
 def _nmixed(mix: Any, where: str, instance: Instance, c: DefectCollector

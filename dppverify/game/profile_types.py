@@ -4,64 +4,36 @@ Two documents describe a strategy profile (``docs/formats.md`` §2, §2b): ``dpp
 (two goals: the paper's primary and secondary types, a Defender allocating to one goal) and
 ``dpp-ngoal-profile/1`` (``N >= 2`` goals: one mixed strategy per goal index, a Defender table
 of goal distributions or the guarantee rule). Both are read into the one :class:`Profile`
-(its ``format`` says which document it came from). Both list each type's mixed strategy as
-:class:`StrategyWalk` s, record everything wrong as :class:`Defect` s
-(:class:`DefectCollector`) and are loaded by :func:`load_profile_document`. The readers are
-in :mod:`dppverify.game.profile`.
+(its ``format`` says which document it came from), with what the document says about its
+game (:class:`Stated`). Both list each type's mixed strategy as :class:`StrategyWalk` s and
+record everything wrong as :class:`Defect` s (:class:`DefectCollector`); the Defender rules
+are :mod:`dppverify.game.rules`'. The readers are in :mod:`dppverify.game.profile`.
 """
 
 from __future__ import annotations
 
 import json
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from fractions import Fraction
-from pathlib import Path
-from types import MappingProxyType
-from typing import Any, Protocol, TypeVar
+from typing import Any, TypeVar
 
 from dppverify.errors import ProfileError
 from dppverify.exact import Number
-from dppverify.formats.json_reading import (
-    JsonReadError,
-    parse_number,
-    parse_probability,
-    read_json_file,
-)
+from dppverify.formats.json_reading import parse_number, parse_probability
+from dppverify.game.rules import GuaranteeRule, ProfileDefender
 
-__all__ = [
-    "GUARANTEE_RULE",
-    "MAX_NORMALS",
-    "MAX_NORMAL_ENTRY",
-    "NGOAL_PROFILE_FORMAT",
-    "PROFILE_FORMAT",
-    "VALUE_KEYS",
-    "Defect",
-    "DefectCollector",
-    "DefenderInterface",
-    "DefenderRule",
-    "GoalTable",
-    "GuaranteeRule",
-    "Profile",
-    "ProfileDefender",
-    "ProgressRule",
-    "StrategyWalk",
-    "TableRule",
-    "check_format",
-    "load_profile_document",
-    "parse_guarantee",
-    "parse_normals",
-]
+__all__ = ["MAX_NORMALS", "MAX_NORMAL_ENTRY", "PER_GOAL_PROFILE_FORMAT", "PROFILE_FORMAT",
+           "VALUE_KEYS", "Defect", "DefectCollector", "Profile", "Stated", "StrategyWalk",
+           "parse_guarantee", "parse_normals", "stated_of"]
 
 PROFILE_FORMAT = "dpp-profile/1"
 """The two-goal profile's ``format`` tag."""
-NGOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
-"""The N-goal profile's ``format`` tag."""
+PER_GOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
+"""The per-goal profile's ``format`` tag (one mixed strategy per goal index, any N)."""
 VALUE_KEYS = ("U1", "U2", "U", "U_bar", "VoI")
 """The ``value`` numbers a two-goal profile may claim."""
-GUARANTEE_RULE = "guarantee"
-"""The ``rule`` of the N-goal guarantee Defender (:class:`GuaranteeRule`)."""
 
 T = TypeVar("T")
 
@@ -82,106 +54,6 @@ class Defect:
         return f"{self.where}{self.sep}{self.message}"
 
 
-class DefenderInterface(Protocol):
-    """What the checks ask of any Defender rule, answered by the rule itself (a new rule
-    answers these, instead of being told apart by its type in every module).
-
-    ``table``: the rule lists walks (a table; its missing walks are its ``default``'s);
-    ``defined_everywhere``: the rule gives a σ after every walk of the game (a table only with a
-    ``default``); ``progress_goal``: the goal index σ* of eq. (7) measures progress towards where
-    the rule follows it (the progress rule, or a table's ``"progress"`` default), else None;
-    ``entries``: the walks the rule lists (none but a table's).
-    """
-
-    @property
-    def table(self) -> bool: ...
-
-    @property
-    def defined_everywhere(self) -> bool: ...
-
-    @property
-    def progress_goal(self) -> int | None: ...
-
-    @property
-    def entries(self) -> Mapping[tuple[int, ...], Any]: ...
-
-
-_NO_ENTRIES: Mapping[tuple[int, ...], Fraction] = MappingProxyType({})
-
-
-@dataclass(frozen=True)
-class ProgressRule:
-    """σ* of eq. (7) measuring progress towards ``goal`` (a node index); allocates to ``goal``.
-
-    Examples
-    --------
-    >>> rule = ProgressRule(1)
-    >>> rule.table, rule.defined_everywhere, rule.progress_goal, dict(rule.entries), rule.constant
-    (False, True, 1, {}, None)
-    """
-
-    goal: int
-    table = False
-    defined_everywhere = True
-
-    @property
-    def progress_goal(self) -> int:
-        """σ*'s goal: this rule's."""
-        return self.goal
-
-    @property
-    def entries(self) -> Mapping[tuple[int, ...], Fraction]:
-        """No walk is listed: σ* everywhere."""
-        return _NO_ENTRIES
-
-    @property
-    def constant(self) -> Fraction | None:
-        """No constant probability off a table."""
-        return None
-
-
-@dataclass(frozen=True)
-class TableRule:
-    """An explicit behavioural Defender strategy: ``P(allocate to goal | walk)``.
-
-    ``entries`` maps walks (node-index tuples with at least one step) to probabilities;
-    ``default`` is used for unlisted walks: a probability, a :class:`ProgressRule`, or None
-    (unlisted walks are then undefined).
-    """
-
-    goal: int
-    entries: Mapping[tuple[int, ...], Fraction]
-    default: Fraction | ProgressRule | None
-    table = True
-
-    @property
-    def defined_everywhere(self) -> bool:
-        """A σ after every walk: with a ``default`` only.
-
-        Examples
-        --------
-        >>> TableRule(0, {}, None).defined_everywhere, TableRule(0, {}, Fraction(1, 2)).constant
-        (False, Fraction(1, 2))
-        >>> TableRule(0, {}, ProgressRule(2)).progress_goal
-        2
-        """
-        return self.default is not None
-
-    @property
-    def progress_goal(self) -> int | None:
-        """σ*'s goal when the ``default`` is ``"progress"``."""
-        return self.default.goal if isinstance(self.default, ProgressRule) else None
-
-    @property
-    def constant(self) -> Fraction | None:
-        """The ``default`` when it is a probability."""
-        return None if isinstance(self.default, ProgressRule) else self.default
-
-
-DefenderRule = ProgressRule | TableRule
-"""A two-goal Defender rule (``dpp-profile/1``); :data:`ProfileDefender` holds any format's."""
-
-
 @dataclass(frozen=True)
 class StrategyWalk:
     """One walk of a type's mixed strategy (Γ_mix) with its probability (JSON: ``"path"``)."""
@@ -192,48 +64,83 @@ class StrategyWalk:
 
 
 @dataclass(frozen=True)
-class GoalTable:
-    """An N-goal Defender table: after observing a walk, a distribution over the goals.
+class Stated:
+    """What a profile document says about the game it was made for, read once with the
+    document and without the instance: the JSON values as the document gives them.
 
-    ``entries`` maps walks (node-index tuples with at least one step) to distributions
-    ``(q_0, …, q_{N-1})`` over the goal indices; ``default`` is used for unlisted walks (None:
-    unlisted walks are undefined).
+    ``goals`` and ``prior`` as listed (a two-goal profile's ``primary`` then ``secondary``;
+    None when absent or not a list or object); ``nodes``: every node id its walks visit, each
+    once, first seen first; ``starts``: the first node of each walk, each once; ``u_bar``: its
+    ``value.U_bar`` (None when not stated); ``rule``: its Defender's ``rule``.
+
+    Examples
+    --------
+    >>> s = stated_of({"goals": ["a", "b"], "attacker": [[{"path": ["s", "m", "a"]}],
+    ...                                                [{"path": ["s", [1, 2]]}]]})
+    >>> s.goals, s.nodes, s.starts
+    (('a', 'b'), ('s', 'm', 'a', [1, 2]), ('s',))
     """
 
-    entries: Mapping[tuple[int, ...], tuple[Fraction, ...]]
-    default: tuple[Fraction, ...] | None
-    table = True
-    progress_goal = None
-
-    @property
-    def defined_everywhere(self) -> bool:
-        """A distribution after every walk: with a ``default`` only."""
-        return self.default is not None
+    goals: tuple[Any, ...] | None = None
+    prior: tuple[Any, ...] | None = None
+    nodes: tuple[Any, ...] = ()
+    starts: tuple[Any, ...] = ()
+    u_bar: Any = None
+    rule: Any = None
 
 
-@dataclass(frozen=True)
-class GuaranteeRule:
-    """The N-goal guarantee rule: its starting state ``h`` and its extra facet normals.
+def stated_of(doc: Mapping[str, Any]) -> Stated:
+    """What a profile document (either format) says about the game it was made for.
 
-    The Defender of :mod:`dppverify.structured.guarantee` (``{"rule": "guarantee", "h": [...],
-    "normals": [...]}``); ``normals`` are the normals beyond the 0/1 vectors (always included).
+    Examples
+    --------
+    >>> from dppverify.game.examples import triangle_profile
+    >>> s = stated_of(triangle_profile(value={"U_bar": "27/10"}))
+    >>> s.goals, s.starts, s.u_bar, s.rule
+    (('g1', 'g2'), ('s',), '27/10', 'progress')
     """
+    goals, prior = doc.get("goals"), doc.get("prior")
+    if isinstance(goals, Mapping):
+        goals = [goals.get("primary"), goals.get("secondary")]
+    if isinstance(prior, Mapping):
+        prior = [prior.get("primary"), prior.get("secondary")]
+    nodes: dict[Any, Any] = {}
+    starts: dict[Any, Any] = {}
+    for walk in _listed_walks(doc):
+        for k, raw in enumerate(walk):
+            key = _key(raw)
+            nodes.setdefault(key, raw)
+            if k == 0:
+                starts.setdefault(key, raw)
+    value, defender = doc.get("value"), doc.get("defender")
+    return Stated(goals=tuple(goals) if isinstance(goals, list) and goals else None,
+                  prior=tuple(prior) if isinstance(prior, list) else None,
+                  nodes=tuple(nodes.values()), starts=tuple(starts.values()),
+                  u_bar=value.get("U_bar") if isinstance(value, Mapping) else None,
+                  rule=defender.get("rule") if isinstance(defender, Mapping) else None)
 
-    h: tuple[Fraction, ...]
-    normals: tuple[tuple[int, ...], ...] = ()
-    table = False
-    defined_everywhere = True
-    progress_goal = None
 
-    @property
-    def entries(self) -> Mapping[tuple[int, ...], tuple[Fraction, ...]]:
-        """No walk is listed: the rule is defined everywhere."""
-        return MappingProxyType({})
+def _listed_walks(doc: Mapping[str, Any]) -> Iterator[list[Any]]:
+    """Every walk (a ``path`` list) under ``attacker``, either format; malformed ones skipped."""
+    attacker = doc.get("attacker")
+    groups: list[Any] = []
+    if isinstance(attacker, Mapping):
+        groups = [attacker.get("primary"), attacker.get("secondary")]
+    elif isinstance(attacker, list):
+        groups = attacker
+    for group in groups:
+        if isinstance(group, list):
+            for entry in group:
+                if isinstance(entry, Mapping) and isinstance(entry.get("path"), list):
+                    yield entry["path"]
 
 
-ProfileDefender = ProgressRule | TableRule | GoalTable | GuaranteeRule
-"""The Defender a profile states: a two-goal rule (``dpp-profile/1``), or an N-goal table or the
-guarantee rule (``dpp-ngoal-profile/1``)."""
+def _key(raw: Any) -> Any:
+    """A hashable key of a JSON node id (equal ids, equal keys)."""
+    kind = type(raw)
+    if kind is str or kind is int:
+        return (kind, raw)
+    return json.dumps(raw, sort_keys=True, default=str)
 
 
 @dataclass(frozen=True)
@@ -255,7 +162,7 @@ class Profile:
         ``dpp-ngoal-profile/1``: a :class:`GoalTable` or the :class:`GuaranteeRule`. None when
         the ``defender`` section is unusable (then a defect says why).
     format : str
-        The document's format tag (:data:`PROFILE_FORMAT` or :data:`NGOAL_PROFILE_FORMAT`).
+        The document's format tag (:data:`PROFILE_FORMAT` or :data:`PER_GOAL_PROFILE_FORMAT`).
     primary_goal_index : int
         ``dpp-profile/1``: goal index of the goal the profile calls primary. Falls back to the
         instance's primary goal when the profile's is unusable.
@@ -272,6 +179,9 @@ class Profile:
         Steps of the longest listed attacker walk (valid or not).
     defects : tuple of Defect
         Everything that makes the profile ill-formed.
+    stated : Stated
+        What the document says about the game it was made for (its goals, prior, start and
+        node ids), for a note when a profile looks made for another instance.
 
     Examples
     --------
@@ -292,6 +202,7 @@ class Profile:
     declared_tolerance: float | None = None
     longest: int = 0
     defects: tuple[Defect, ...] = ()
+    stated: Stated = field(default_factory=Stated)
 
     @property
     def wellformed(self) -> bool:
@@ -313,9 +224,9 @@ class Profile:
         """Two goals: the secondary type's mixed strategy."""
         return self.attacker[1 - self.primary_goal_index]
 
-    def walks(self, theta: int) -> tuple[StrategyWalk, ...]:
-        """Two goals: mixed strategy of type ``theta`` (1 = primary, 2 = secondary)."""
-        return self.primary if theta == 1 else self.secondary
+    def walks(self, role: int) -> tuple[StrategyWalk, ...]:
+        """Two goals: the mixed strategy of the type of ``role`` (1 = primary, 2 = secondary)."""
+        return self.primary if role == 1 else self.secondary
 
 
 MAX_NORMALS = 64
@@ -398,56 +309,6 @@ def parse_guarantee(raw: Mapping[str, Any], n: int, c: DefectCollector
             return None
         out.append(Fraction(y))
     return GuaranteeRule(tuple(out), normals)
-
-
-def load_profile_document(source: str | Path | bytes, fmt: str = PROFILE_FORMAT
-                          ) -> dict[str, Any]:
-    """Read a profile file (path) or JSON text (bytes) and check its format tag ``fmt``.
-
-    Raises
-    ------
-    ProfileError
-        One line when the file cannot be read, is not JSON, is not an object, or is not
-        tagged ``fmt`` (``dpp-profile/1`` or ``dpp-ngoal-profile/1``).
-
-    Examples
-    --------
-    >>> load_profile_document(b'{"format": "dpp-profile/2"}')
-    Traceback (most recent call last):
-    dppverify.errors.ProfileError: profile: "format" must be "dpp-profile/1", got "dpp-profile/2"
-    >>> load_profile_document(b'{"format": "dpp-profile/1"}', NGOAL_PROFILE_FORMAT)
-    Traceback (most recent call last):
-    dppverify.errors.ProfileError: profile: "format" must be "dpp-ngoal-profile/1" for an \
-instance with more than two goals, got "dpp-profile/1"
-    """
-    name = "profile" if isinstance(source, bytes) else str(source)
-    try:
-        doc = read_json_file(source, kind="profile")
-    except JsonReadError as exc:
-        raise ProfileError(f"{name}: {exc}") from None
-    check_format(doc, name, fmt)
-    return dict(doc)
-
-
-def check_format(doc: Any, name: str = "profile", fmt: str = PROFILE_FORMAT) -> None:
-    """Raise :class:`ProfileError` unless ``doc`` is an object tagged ``fmt``.
-
-    Examples
-    --------
-    >>> check_format({"format": "dpp-ngoal-profile/1"}, "p.json", NGOAL_PROFILE_FORMAT)
-    >>> check_format([], "p.json")
-    Traceback (most recent call last):
-    dppverify.errors.ProfileError: p.json: a dpp-profile/1 document must be a JSON object, got list
-    """
-    two = fmt == PROFILE_FORMAT
-    if not isinstance(doc, Mapping):
-        what = f"a {fmt} document" if two else "a profile"
-        raise ProfileError(f"{name}: {what} must be a JSON object, got {type(doc).__name__}")
-    tag = doc.get("format")
-    if tag != fmt:
-        why = "" if two else " for an instance with more than two goals"
-        raise ProfileError(f"{name}: \"format\" must be \"{fmt}\"{why}, got "
-                           f"{json.dumps(tag, default=str)}")
 
 
 class DefectCollector:

@@ -19,7 +19,7 @@ from typing import cast
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import Number
 from dppverify.game.instance_type import Instance
-from dppverify.game.profile_types import ProgressRule
+from dppverify.game.rules import ProgressRule
 from dppverify.game.step_weights import step_weights
 
 

@@ -12,7 +12,7 @@ prior 1/2.
   chosen so that ``d(s0,g1)``, ``d(s0,g2)``, ``d(g1,g2)`` and ``d(g2,g1)`` are finite;
 - :func:`grid_worlds`: 4-connected grid instances with obstacles (the paper's Sec. VII), by
   default with each goal reachable from the start without passing the other goal;
-- :func:`ngoal_priors` and :func:`ngoal_instances`: N-entry priors and N-goal instances
+- :func:`goal_priors` and :func:`many_goal_instances`: N-entry priors and N-goal instances
   (``N >= 2`` goals, exact weights) for the checker's N-goal routes.
 
 They produce plain dicts (the checker never imports the solver), ready for
@@ -28,7 +28,7 @@ Examples
 
 from dppverify.strategies.graphs import WEIGHT_KINDS, weighted_graphs
 from dppverify.strategies.grids import grid_worlds
-from dppverify.strategies.instances import instances, ngoal_instances, ngoal_priors, priors
+from dppverify.strategies.instances import goal_priors, instances, many_goal_instances, priors
 
-__all__ = ["WEIGHT_KINDS", "grid_worlds", "instances", "ngoal_instances", "ngoal_priors", "priors",
-           "weighted_graphs"]
+__all__ = ["WEIGHT_KINDS", "goal_priors", "grid_worlds", "instances", "many_goal_instances",
+           "priors", "weighted_graphs"]

@@ -18,7 +18,7 @@ from dppverify.strategies.graphs import (
     weighted_graphs,
 )
 
-__all__ = ["instances", "ngoal_instances", "ngoal_priors", "priors"]
+__all__ = ["goal_priors", "instances", "many_goal_instances", "priors"]
 
 # ----------------------------------------------------------------------------- priors
 def priors(*, max_denominator: int = 10, allow_half: bool = True) -> st.SearchStrategy[list[str]]:
@@ -149,7 +149,7 @@ def _instances(draw: st.DrawFn, graphs: st.SearchStrategy[Doc],
 
 
 # ----------------------------------------------------------------------------- N goals
-def ngoal_priors(n_goals: int, *, max_weight: int = 6) -> st.SearchStrategy[list[str]]:
+def goal_priors(n_goals: int, *, max_weight: int = 6) -> st.SearchStrategy[list[str]]:
     """N-entry priors ``k_i / Σ k`` (each ``k_i`` in ``1 .. max_weight``) as ``"p/q"`` strings.
 
     Every entry lies in (0, 1) and they sum to exactly 1; shrinking goes to the uniform prior.
@@ -169,9 +169,9 @@ def ngoal_priors(n_goals: int, *, max_weight: int = 6) -> st.SearchStrategy[list
     Examples
     --------
     >>> from hypothesis import find, settings
-    >>> find(ngoal_priors(3), lambda p: True, settings=settings(database=None))
+    >>> find(goal_priors(3), lambda p: True, settings=settings(database=None))
     ['1/3', '1/3', '1/3']
-    >>> find(ngoal_priors(3), lambda p: p[0] != p[1], settings=settings(database=None))
+    >>> find(goal_priors(3), lambda p: p[0] != p[1], settings=settings(database=None))
     ['1/4', '1/2', '1/4']
     """
     k = check_int(n_goals, "n_goals", 2)
@@ -180,7 +180,7 @@ def ngoal_priors(n_goals: int, *, max_weight: int = 6) -> st.SearchStrategy[list
         lambda ws: [str(Fraction(w, sum(ws))) for w in ws])
 
 
-def ngoal_instances(*, min_goals: int = 3, max_goals: int = 4,
+def many_goal_instances(*, min_goals: int = 3, max_goals: int = 4,
                     graphs: st.SearchStrategy[Doc] | None = None,
                     max_prior_weight: int = 6) -> st.SearchStrategy[Doc]:
     """N-goal instance documents (``docs/formats.md`` §1, "N goals"), valid by construction.
@@ -199,7 +199,7 @@ def ngoal_instances(*, min_goals: int = 3, max_goals: int = 4,
         Node-link graphs (default: :func:`weighted_graphs` with ``max_goals + 1`` to
         ``max_goals + 4`` nodes and integer weights 1–4).
     max_prior_weight : int
-        The prior is drawn by :func:`ngoal_priors` with this ``max_weight``.
+        The prior is drawn by :func:`goal_priors` with this ``max_weight``.
 
     Returns
     -------
@@ -214,10 +214,10 @@ def ngoal_instances(*, min_goals: int = 3, max_goals: int = 4,
     Examples
     --------
     >>> from hypothesis import find, settings
-    >>> doc = find(ngoal_instances(), lambda d: True, settings=settings(database=None))
+    >>> doc = find(many_goal_instances(), lambda d: True, settings=settings(database=None))
     >>> doc["start"], doc["goals"], doc["prior"]
     (3, [0, 1, 2], ['1/3', '1/3', '1/3'])
-    >>> ngoal_instances(min_goals=4, max_goals=3)
+    >>> many_goal_instances(min_goals=4, max_goals=3)
     Traceback (most recent call last):
     hypothesis.errors.InvalidArgument: max_goals=3 < min_goals=4
     """
@@ -230,11 +230,11 @@ def ngoal_instances(*, min_goals: int = 3, max_goals: int = 4,
                       if graphs is None else graphs)
     if not isinstance(graph_strategy, st.SearchStrategy):
         raise InvalidArgument(f"graphs={graphs!r} must be a SearchStrategy")
-    return _ngoal_instances(graph_strategy, lo, hi, max_prior_weight)
+    return _many_goal_instances(graph_strategy, lo, hi, max_prior_weight)
 
 
 @st.composite
-def _ngoal_instances(draw: st.DrawFn, graphs: st.SearchStrategy[Doc], lo: int, hi: int,
+def _many_goal_instances(draw: st.DrawFn, graphs: st.SearchStrategy[Doc], lo: int, hi: int,
                      max_prior_weight: int) -> Doc:
     graph = draw(graphs)
     adj = Adjacency(graph)
@@ -266,6 +266,6 @@ def _ngoal_instances(draw: st.DrawFn, graphs: st.SearchStrategy[Doc], lo: int, h
     inner = sorted(adj.reach(first, backwards=True) - set(goals))
     at_goal = not inner or draw(st.integers(0, 4)) == 4
     start = draw(st.sampled_from(sorted(goals) if at_goal else inner))
-    prior = draw(ngoal_priors(k, max_weight=max_prior_weight))
+    prior = draw(goal_priors(k, max_weight=max_prior_weight))
     return {"graph": graph, "start": adj.ids[start], "goals": [adj.ids[g] for g in goals],
             "prior": prior}

@@ -26,7 +26,8 @@ from fractions import Fraction
 
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
-from dppverify.game.profile_types import GuaranteeRule, StrategyWalk
+from dppverify.game.profile_types import StrategyWalk
+from dppverify.game.rules import GuaranteeRule
 from dppverify.structured.coalition import CoalitionValue
 from dppverify.structured.cover import Normal, min_cover
 from dppverify.structured.lexmin import lexmin

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from dppverify.game.instance import Instance
-from dppverify.game.profile_types import GuaranteeRule
+from dppverify.game.rules import GuaranteeRule
 from dppverify.structured.arc_condition import ArcCondition, arc_condition, walkable_arcs
 from dppverify.structured.lexmin import lexmin
 from dppverify.structured.normal_fixpoint import NormalSets

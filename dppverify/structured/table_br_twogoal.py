@@ -25,7 +25,7 @@ from dppverify.errors import UndecidedError
 from dppverify.exact import INF, Number, normalize
 from dppverify.game.distances import multi_source_dijkstra, state_dijkstra
 from dppverify.game.instance import Instance, Roles
-from dppverify.game.profile import TableRule
+from dppverify.game.profile import DefenderRule
 from dppverify.structured.table_br import Step, exit_costs, trie_induction
 from dppverify.structured.trie import WalkTrie, build_walk_trie
 
@@ -51,9 +51,9 @@ class TableMinima:
     secondary: Number
     trie_prefixes: int
 
-    def of(self, theta: int) -> Number:
-        """The minimum of type ``theta`` (1 = primary, 2 = secondary)."""
-        return self.primary if theta == 1 else self.secondary
+    def of(self, role: int) -> Number:
+        """The minimum of type ``role`` (1 = primary, 2 = secondary)."""
+        return self.primary if role == 1 else self.secondary
 
 
 def _game_prefix(instance: Instance, walk: tuple[int, ...]) -> tuple[int, ...]:
@@ -67,7 +67,7 @@ def _game_prefix(instance: Instance, walk: tuple[int, ...]) -> tuple[int, ...]:
     return walk
 
 
-def _undefined_walk(instance: Instance, rule: TableRule) -> tuple[int, ...] | None:
+def _undefined_walk(instance: Instance, rule: DefenderRule) -> tuple[int, ...] | None:
     """For a table without default: the first walk of the game it leaves undefined, in the
     order the message has always named it (longest trie prefixes first), or None."""
     s0 = instance.start
@@ -90,14 +90,14 @@ def _undefined_walk(instance: Instance, rule: TableRule) -> tuple[int, ...] | No
     return None
 
 
-def _progress_exit(instance: Instance, roles: Roles, goal: int, theta: int, same: bool,
+def _progress_exit(instance: Instance, roles: Roles, goal: int, role: int, same: bool,
                    exits: set[tuple[int, Number]]) -> dict[tuple[int, Number], Number]:
     """Cost-to-go from the states ``(node, c)`` in ``exits`` against the progress rule towards
     ``goal`` (running minimum ``c``): exact Dijkstra on the product graph, backwards from the
     goal states."""
     index = instance.goals.index(goal)
     dg = instance.dist_to[index]
-    dist = roles.dist(theta)
+    dist = roles.dist(role)
     values = sorted({c for _, c in exits} | {x for x in dg if x != INF})
     n = instance.n_nodes
     states = sum(1 for x in range(n) for c in values if c <= dg[x])
@@ -130,26 +130,26 @@ def _progress_exit(instance: Instance, roles: Roles, goal: int, theta: int, same
     return {s: best.get(s, INF) for s in exits}
 
 
-def _constant_exit(instance: Instance, roles: Roles, share: Number, theta: int) -> list[Number]:
+def _constant_exit(instance: Instance, roles: Roles, share: Number, role: int) -> list[Number]:
     """Cost-to-go from each node against a constant allocation ``share`` to ``g^θ``
     (:func:`exit_costs`; float mode: the same Dijkstra on the float weights)."""
-    index = instance.goals.index(roles.g1 if theta == 1 else roles.g2)
+    index = instance.goals.index(roles.g1 if role == 1 else roles.g2)
     if instance.exact:
         return exit_costs(instance, Fraction(share), index)[0]
     pred = [[(u, w) for u, w in arcs if not instance.is_goal(u)] for arcs in instance.pred]
-    dist = roles.dist(theta)
+    dist = roles.dist(role)
     return multi_source_dijkstra(pred, [(g, dist[g]) for g in instance.goals],
                                  factor=share)[0]
 
 
-def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMinima:
+def table_minima(instance: Instance, roles: Roles, rule: DefenderRule) -> TableMinima:
     """Both types' exact minimum cost over ALL walks against the two-goal ``rule``.
 
     Parameters
     ----------
     instance, roles : Instance, Roles
         The game, and which of its goals is ``g1``.
-    rule : TableRule
+    rule : DefenderRule
         The Defender: ``P(allocate to rule.goal | walk)`` for listed walks, and a default (a
         probability, or the progress rule, eq. (7), with the running minimum ``c_t`` taken
         along the whole walk). Without a default it must list every walk of the game that
@@ -172,7 +172,7 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     3/5), a table that guards g1 everywhere (default 1) lets the secondary walk ``s a g2`` free:
 
     >>> from dppverify.game.examples import kite
-    >>> from dppverify.game.profile import ProgressRule
+    >>> from dppverify.game.profile import ProgressRule, TableRule
     >>> inst = kite()
     >>> r = inst.roles()
     >>> table_minima(inst, r, TableRule(goal=r.g1, entries={}, default=Fraction(1)))
@@ -181,7 +181,7 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     TableMinima(primary=2, secondary=1, trie_prefixes=1)
     """
     mode = instance.numbers
-    if rule.default is None:
+    if not rule.defined_everywhere:
         missing = _undefined_walk(instance, rule)
         if missing is not None:
             raise UndecidedError(
@@ -201,23 +201,22 @@ def table_minima(instance: Instance, roles: Roles, rule: TableRule) -> TableMini
     for p in range(len(trie)):
         here = dg[trie.node[p]]
         cmin.append(here if trie.parent[p] < 0 else min(cmin[trie.parent[p]], here))
-    out = [_type_minimum(instance, roles, rule, trie, listed, cmin, pgoal, theta)
-           for theta in (1, 2)]
+    out = [_type_minimum(instance, roles, rule, trie, listed, cmin, pgoal, role)
+           for role in (1, 2)]
     return TableMinima(primary=mode.convert(out[0]) if out[0] != INF else INF,
                        secondary=mode.convert(out[1]) if out[1] != INF else INF,
                        trie_prefixes=len(trie))
 
 
-def _type_minimum(instance: Instance, roles: Roles, rule: TableRule, trie: WalkTrie,
+def _type_minimum(instance: Instance, roles: Roles, rule: DefenderRule, trie: WalkTrie,
                   listed: Mapping[int, Fraction], cmin: list[Number], pgoal: int,
-                  theta: int) -> Number:
+                  role: int) -> Number:
     """Type ``θ``'s minimum over all walks (1 = primary, 2 = secondary): the backward
     induction on the trie, leaving it against the table's default."""
     mode = instance.numbers
-    default = rule.default
     index = instance.goals.index(pgoal)
     dg = instance.dist_to[index]
-    mine = (roles.g1 if theta == 1 else roles.g2) == rule.goal
+    mine = (roles.g1 if role == 1 else roles.g2) == rule.goal
 
     def share(sg: Number) -> Number:
         """``σ(g^θ | p)`` from ``σ(rule.goal | p)``."""
@@ -225,7 +224,7 @@ def _type_minimum(instance: Instance, roles: Roles, rule: TableRule, trie: WalkT
 
     leave: Step
     if rule.progress_goal is not None:
-        same = (roles.g1 if theta == 1 else roles.g2) == pgoal
+        same = (roles.g1 if role == 1 else roles.g2) == pgoal
         exits: set[tuple[int, Number]] = set()
         for p in range(len(trie)):
             v = trie.node[p]
@@ -234,8 +233,8 @@ def _type_minimum(instance: Instance, roles: Roles, rule: TableRule, trie: WalkT
             for u, _ in instance.succ[v]:
                 if trie.child(p, u) is None and not instance.is_goal(u):
                     exits.add((u, min(cmin[p], dg[u])))
-        rest = _progress_exit(instance, roles, pgoal, theta, same, exits) if exits else {}
-        dist = roles.dist(theta)
+        rest = _progress_exit(instance, roles, pgoal, role, same, exits) if exits else {}
+        dist = roles.dist(role)
 
         def progress_leave(p: int, u: int, w: Number) -> Number | None:
             c = min(cmin[p], dg[u])
@@ -246,7 +245,7 @@ def _type_minimum(instance: Instance, roles: Roles, rule: TableRule, trie: WalkT
         leave = progress_leave
     elif rule.constant is not None:
         off = share(rule.constant)
-        const = _constant_exit(instance, roles, off, theta)
+        const = _constant_exit(instance, roles, off, role)
 
         def constant_leave(p: int, u: int, w: Number) -> Number | None:
             return w * off + const[u]
@@ -261,12 +260,12 @@ def _type_minimum(instance: Instance, roles: Roles, rule: TableRule, trie: WalkT
     def inside(p: int, c: int, w: Number) -> Number | None:
         sg: Number | None = listed.get(c)
         if sg is None:
-            if default is None:
+            if not rule.defined_everywhere:
                 return None
             sg = (mode.ratio(cmin[p] - min(cmin[p], dg[trie.node[c]]), w)
                   if rule.constant is None else rule.constant)
         return w * share(sg)
 
-    J, _, _ = trie_induction(instance, trie, roles.dist(theta), inside, leave)
+    J, _, _ = trie_induction(instance, trie, roles.dist(role), inside, leave)
     root = J[0]
     return root if root == INF or not mode.exact else normalize(root)

@@ -37,9 +37,10 @@ from dppverify.tree_route.tree import WalkTree
 
 @dataclass(frozen=True)
 class AttackerBR:
-    """Type θ's best response in the tree: its cost and one minimising walk."""
+    """The best response of type ``who`` (a role or a goal index) in the tree: its cost and one
+    minimising walk."""
 
-    theta: int
+    who: int
     value: Number
     leaf: int
     walk: tuple[int, ...]
@@ -58,7 +59,7 @@ class DefenderBR:
     choice: Mapping[int, int]
 
 
-def terminal_costs(tree: WalkTree, types: AnyTypes, theta: int
+def terminal_costs(tree: WalkTree, types: AnyTypes, who: int
                    ) -> list[Number]:
     """``d(end(p), g^θ)`` at every leaf ``p`` (0 at inner prefixes), full-graph distances.
 
@@ -71,7 +72,7 @@ def terminal_costs(tree: WalkTree, types: AnyTypes, theta: int
     >>> terminal_costs(tree, inst.roles(), 1), terminal_costs(tree, inst.roles(), 2)
     ([0, 0, 2], [0, 2, 0])
     """
-    d = as_types(types).dist(theta)
+    d = as_types(types).dist(who)
     out: list[Number] = [0] * tree.n_prefixes
     for p in tree.leaves().tolist():
         out[p] = d[int(tree.node[p])]
@@ -79,7 +80,7 @@ def terminal_costs(tree: WalkTree, types: AnyTypes, theta: int
 
 
 def leaf_totals(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
-                theta: int) -> list[Number]:
+                who: int) -> list[Number]:
     """Forward pass: total cost of type θ for the walk of every prefix.
 
     At a leaf: the walk's stage costs plus its terminal cost; at an inner prefix: the stage
@@ -97,19 +98,19 @@ def leaf_totals(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
     >>> leaf_totals(tree, r, td, 1), leaf_totals(tree, r, td, 2)
     ([0, 3, 3], [0, 2, 1])
     """
-    a = tdef.alloc(theta)
+    a = tdef.alloc(who)
     parent = tree.parent.tolist()
     acc: list[Number] = [0] * tree.n_prefixes
     for p in range(1, tree.n_prefixes):
         acc[p] = acc[parent[p]] + a[p]
-    term = terminal_costs(tree, types, theta)
+    term = terminal_costs(tree, types, who)
     for p in tree.leaves().tolist():
         acc[p] = acc[p] + term[p]
     return acc
 
 
 def attacker_best_response(tree: WalkTree, types: AnyTypes,
-                           tdef: TreeStrategy, theta: int,
+                           tdef: TreeStrategy, who: int,
                            allowed: np.ndarray | None = None) -> AttackerBR:
     """Exact best response of type θ by backward induction over the walk tree.
 
@@ -117,7 +118,7 @@ def attacker_best_response(tree: WalkTree, types: AnyTypes,
     ----------
     tree, types, tdef
         The tree, the types, and the Defender evaluated on the tree.
-    theta : int
+    who : int
         The type.
     allowed : numpy.ndarray of bool, optional
         Restrict to walks through allowed prefixes only (e.g. simple paths, Lemma 2).
@@ -143,8 +144,8 @@ def attacker_best_response(tree: WalkTree, types: AnyTypes,
     ...                                               attacker_best_response(t, inst, d, 1))]
     [(2, ('s', 'm', 'a')), (0, ('s', 'm', 'b'))]
     """
-    a = tdef.alloc(theta)
-    term = terminal_costs(tree, types, theta)
+    a = tdef.alloc(who)
+    term = terminal_costs(tree, types, who)
     start = tree.child_start.tolist()
     stop = tree.child_stop.tolist()
     ok = allowed.tolist() if allowed is not None else None
@@ -171,11 +172,11 @@ def attacker_best_response(tree: WalkTree, types: AnyTypes,
     while best[p] >= 0:
         p = best[p]
     value = tree.instance.numbers.convert(J[0])
-    return AttackerBR(theta=theta, value=value, leaf=p, walk=tree.walk(p))
+    return AttackerBR(who=who, value=value, leaf=p, walk=tree.walk(p))
 
 
 def objective_vector(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
-                     theta: int) -> np.ndarray:
+                     who: int) -> np.ndarray:
     """Type θ's sequence-form cost vector: stage cost at every prefix plus terminal at leaves.
 
     ``objective_vector(...) @ x`` is type θ's expected cost under realization plan ``x``.
@@ -188,14 +189,14 @@ def objective_vector(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
     >>> c.tolist(), float(c @ [1, 4 / 7, 3 / 7])   # U¹ of the mixture (4/7, 3/7)
     ([0.0, 3.0, 3.0], 3.0)
     """
-    c = np.array([float(v) for v in tdef.alloc(theta)])
+    c = np.array([float(v) for v in tdef.alloc(who)])
     c[0] = 0.0
-    c += np.array([float(v) for v in terminal_costs(tree, types, theta)])
+    c += np.array([float(v) for v in terminal_costs(tree, types, who)])
     return c
 
 
 def attacker_best_response_lp(tree: WalkTree, types: AnyTypes,
-                              tdef: TreeStrategy, theta: int) -> LPStats:
+                              tdef: TreeStrategy, who: int) -> LPStats:
     """Type θ's best-response value as the sequence-form LP ``min c·x`` (realization plans).
 
     The exact counterpart is :func:`attacker_best_response`.
@@ -211,11 +212,11 @@ def attacker_best_response_lp(tree: WalkTree, types: AnyTypes,
     """
     import cvxpy as cp  # lazily: its import costs ~0.5 s
 
-    c = objective_vector(tree, types, tdef, theta)
+    c = objective_vector(tree, types, tdef, who)
     scale = cost_scale(c)  # costs of size one (lp.py)
     x = cp.Variable(tree.n_prefixes)
     problem = cp.Problem(cp.Minimize((scale * c) @ x), realization_constraints(tree, x))
-    return unscaled(solve(problem, f"attacker best response LP (type {theta}, H = "
+    return unscaled(solve(problem, f"attacker best response LP (type {who}, H = "
                                    f"{tree.horizon})"), scale)
 
 
@@ -223,9 +224,9 @@ def _terminal_part(tree: WalkTree, types: Types, plans: Mapping[int, Plan]) -> N
     """``Σ_θ b_θ Σ_leaves x_θ(ℓ) d(end ℓ, g^θ)``."""
     total: Number = 0
     leaf = tree.is_leaf_mask()
-    for theta, x in plans.items():
-        d = types.dist(theta)
-        b = types.prior(theta)
+    for who, x in plans.items():
+        d = types.dist(who)
+        b = types.prior(who)
         for p, prob in x.items():
             if leaf[p]:
                 total += b * prob * d[int(tree.node[p])]
@@ -274,9 +275,9 @@ def payoff_on_tree(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
     """
     t = as_types(types)
     total: Number = _terminal_part(tree, t, plans)
-    for theta, x in plans.items():
-        a = tdef.alloc(theta)
-        b = t.prior(theta)
+    for who, x in plans.items():
+        a = tdef.alloc(who)
+        b = t.prior(who)
         for p, prob in x.items():
             if p:
                 total += b * prob * a[p]
@@ -312,9 +313,9 @@ def defender_best_response(tree: WalkTree, types: AnyTypes,
     choice: dict[int, int] = {}
     w = tree.weight
     for p in sorted({p for x in plans.values() for p, prob in x.items() if prob and p}):
-        masses = [(t.prior(theta) * x.get(p, Fraction(0)), theta) for theta, x in plans.items()]
+        masses = [(t.prior(who) * x.get(p, Fraction(0)), who) for who, x in plans.items()]
         top = max(m for m, _ in masses)
-        choice[p] = next(theta for m, theta in masses if m == top)
+        choice[p] = next(who for m, who in masses if m == top)
         total += w[p] * top
     return DefenderBR(value=tree.instance.numbers.convert(total), choice=choice)
 
@@ -361,15 +362,15 @@ def defender_best_response_lp(tree: WalkTree, types: AnyTypes,
     if len(plans) != 2:
         raise ValueError(f"the Defender's LP takes two types' plans, got {len(plans)}")
     t = as_types(types)
-    (th1, x1), (th2, x2) = plans.items()
+    (w1, x1), (w2, x2) = plans.items()
     support = sorted(p for p in set(x1) | set(x2) if p != 0)
     const = float(_terminal_part(tree, t, plans))
     w = tree.weight_float
     if not support:
         return LPStats(const, "optimal", 0, 0, 0.0), {}
     idx = np.array(support)
-    b1x1 = np.array([float(t.prior(th1) * x1.get(p, Fraction(0))) for p in support])
-    b2x2 = np.array([float(t.prior(th2) * x2.get(p, Fraction(0))) for p in support])
+    b1x1 = np.array([float(t.prior(w1) * x1.get(p, Fraction(0))) for p in support])
+    b2x2 = np.array([float(t.prior(w2) * x2.get(p, Fraction(0))) for p in support])
     import cvxpy as cp  # lazily: its import costs ~0.5 s
 
     sigma = cp.Variable(len(support))
@@ -398,7 +399,7 @@ def beliefs(tree: WalkTree, types: AnyTypes, plans: Mapping[int, Plan]
     t = as_types(types)
     out: dict[int, tuple[Fraction, ...]] = {}
     for p in sorted({p for x in plans.values() for p, prob in x.items() if prob}):
-        masses = [t.prior(theta) * x.get(p, Fraction(0)) for theta, x in plans.items()]
+        masses = [t.prior(who) * x.get(p, Fraction(0)) for who, x in plans.items()]
         tot = sum(masses, Fraction(0))
         out[p] = tuple(m / tot for m in masses)
     return out

@@ -61,8 +61,8 @@ def lower_bound(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy) -> Number:
     Fraction(2, 3)
     """
     ts = as_types(types)
-    total = sum((ts.prior(theta) * attacker_best_response(tree, ts, tdef, theta).value
-                 for theta in ts.thetas), Fraction(0))
+    total = sum((ts.prior(who) * attacker_best_response(tree, ts, tdef, who).value
+                 for who in ts.keys), Fraction(0))
     return tree.instance.numbers.convert(total)
 
 
@@ -108,7 +108,7 @@ def rounded_defender(tree: WalkTree, types: Types, sigma: np.ndarray, den: int
     ((0, 0), (1, 0), (Fraction(1, 2), Fraction(1, 2)))
     """
     exact = tree.instance.exact
-    k = len(types.thetas)
+    k = len(types.keys)
     rows: list[tuple[Number, ...]] = [tuple(0 for _ in range(k))]
     for p in range(1, tree.n_prefixes):
         raw = [float(sigma[j, p]) if np.isfinite(sigma[j, p]) else 0.0 for j in range(k)]

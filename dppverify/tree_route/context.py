@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any
+from typing import Any, cast
 
 from dppverify.game.evaluation import Values, evaluate, realization
 from dppverify.game.instance import Instance, Roles
@@ -90,8 +90,8 @@ class Context:
     def _cached_defender(self, defender: TreeDefender) -> bool:
         return defender is self.sigma_star
 
-    def best_response(self, defender: TreeDefender, theta: int) -> AttackerBR:
-        """Type ``theta``'s best response over the whole tree against ``defender``.
+    def best_response(self, defender: TreeDefender, role: int) -> AttackerBR:
+        """Type ``role``'s best response over the whole tree against ``defender``.
 
         ``defender`` is :attr:`sigma_star` or (in an :class:`EvaluatedContext`) the profile's
         Defender; several checks need the same backward induction, so each result is
@@ -107,10 +107,10 @@ class Context:
         """
         if not self._cached_defender(defender):
             raise ValueError("best_response caches the context's own Defenders only")
-        key = (id(defender), theta)
+        key = (id(defender), role)
         if key not in self._best_responses:
             self._best_responses[key] = attacker_best_response(self.tree, self.roles, defender,
-                                                               theta)
+                                                               role)
         return self._best_responses[key]
 
 
@@ -181,7 +181,7 @@ def make_context(instance: Instance, tree: WalkTree, profile: Profile,
     """
     roles = instance.roles(profile.primary_goal_index)
     sigma_star = tree_defender(tree, roles, ProgressRule(roles.g1))
-    rule = profile.defender if isinstance(profile.defender, DefenderRule) else None  # two goals
+    rule = cast(DefenderRule | None, profile.defender)  # the two-goal reader's rules only
     td = None
     if profile.wellformed and rule is not None:
         td = sigma_star if rule == ProgressRule(roles.g1) else tree_defender(tree, roles, rule)

@@ -1,8 +1,8 @@
-"""The N-goal tree route's checks: a ``dpp-ngoal-profile/1`` profile on the walk tree of H steps.
+"""The tree route's checks of a per-goal profile (``dpp-ngoal-profile/1``, any N) on the walk tree.
 
-Called by :func:`dppverify.certify` for an instance with more than two goals when the route is
-``tree`` or ``both`` (the route is chosen in :func:`dppverify.routes.resolve_route`). Checks,
-in order (ids in ``dppverify/checks.md``, "N goals"):
+Run by :func:`dppverify.certify` for a per-goal profile when the route is ``tree`` or ``both``
+(the route is chosen in :func:`dppverify.routes.resolve_route`). Checks, in order (ids in
+``dppverify/checks.md``, "N goals"):
 
 ``profile.wellformed``
     The profile parses, every walk is a walk of the game, probabilities sum to exactly 1, and
@@ -34,6 +34,7 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Mapping
 from fractions import Fraction
+from typing import cast
 
 from dppio.text import decimal
 from dppverify.certificate import CheckRecord, Status
@@ -41,7 +42,7 @@ from dppverify.errors import HorizonError, LPError
 from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance
 from dppverify.game.profile import GoalTable, GuaranteeRule, Profile
-from dppverify.registry import NGOAL_CHECK_IDS as REGISTRY_NGOAL_IDS
+from dppverify.registry import check_ids
 from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.best_response import (
     attacker_best_response,
@@ -54,10 +55,9 @@ from dppverify.tree_route.players import DefenderOnTree, defender_from_table
 from dppverify.tree_route.tree import WalkTree, build_tree
 from dppverify.tree_route.value_lp import exact_bracket, solve_value_lp
 
-__all__ = ["NGOAL_CHECK_IDS", "ngoal_tree_checks", "payoff_of_type"]
+__all__ = ["payoff_of_type", "per_goal_tree_checks"]
 
-NGOAL_CHECK_IDS = REGISTRY_NGOAL_IDS
-"""The N-goal certificate's check ids, in order (the registry's)."""
+_IDS = check_ids("per-goal")
 
 PROOF = "NGOAL"
 
@@ -81,14 +81,15 @@ def _plans(tree: WalkTree, profile: Profile) -> list[dict[int, Fraction]]:
 
 def _defender(tree: WalkTree, profile: Profile) -> DefenderOnTree | str:
     rule = profile.defender
-    if isinstance(rule, GuaranteeRule):  # evaluated on every prefix of the tree
+    if rule is not None and rule.kind == "guarantee":  # evaluated on every prefix of the tree
         from dppverify.structured.guarantee import guarantee_sets, rule_on_trie
 
-        sets = guarantee_sets(tree.instance, rule.normals)
-        sigma, _ = rule_on_trie(tree.instance, rule, sets, tree.parent.tolist(),
+        g = cast(GuaranteeRule, rule)
+        sets = guarantee_sets(tree.instance, g.normals)
+        sigma, _ = rule_on_trie(tree.instance, g, sets, tree.parent.tolist(),
                                 tree.node.tolist())
         return defender_from_table(tree, sigma, None)
-    assert isinstance(rule, GoalTable)  # well-formed: a table or the guarantee rule
+    rule = cast(GoalTable, rule)  # well formed: a table, or the guarantee rule
     table: dict[int, tuple[Fraction, ...]] = {}
     for walk, dist in rule.entries.items():
         p = tree.find(walk)
@@ -101,18 +102,18 @@ def _defender(tree: WalkTree, profile: Profile) -> DefenderOnTree | str:
         return f"the Defender's table has no entry for walk {list(labels)} and no default"
 
 
-def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
+def per_goal_tree_checks(inst: Instance, prof: Profile, h: int,
                       max_prefixes: int) -> tuple[list[CheckRecord], WalkTree]:
     """The tree route's records of an N-goal profile on the walk tree of ``h`` steps.
 
     The tree is built at ``max(h, hops to the nearest goal)``; the records are
-    :data:`NGOAL_CHECK_IDS`, in that order, tagged with the tree route.
+    the per-goal family's ids, in registry order, tagged with the tree route.
 
     Examples
     --------
     >>> from dppverify.game.examples import star3, star3_profile
     >>> from dppverify.game.profile import profile_from_json
-    >>> checks, tree = ngoal_tree_checks(star3(), profile_from_json(star3_profile(), star3()),
+    >>> checks, tree = per_goal_tree_checks(star3(), profile_from_json(star3_profile(), star3()),
     ...                                  2, 1000)
     >>> [c.status for c in checks], tree.n_prefixes
     (['pass', 'pass', 'pass', 'pass', 'pass', 'pass', 'pass'], 6)
@@ -124,7 +125,7 @@ def ngoal_tree_checks(inst: Instance, prof: Profile, h: int,
     if problems:
         more = f" (and {len(problems) - 1} more)" if len(problems) > 1 else ""
         checks.append(CheckRecord("profile.wellformed", "fail", problems[0] + more))
-        checks += _skipped(NGOAL_CHECK_IDS[1:], "the profile is not well formed")
+        checks += _skipped(_IDS[1:], "the profile is not well formed")
         return _tagged(checks), tree
     assert isinstance(tdef, DefenderOnTree)
     checks.append(CheckRecord("profile.wellformed", "pass",

@@ -1,10 +1,11 @@
 """The players on the walk tree (any ``N >= 2`` goals): the Attacker's types and a Defender.
 
-The Attacker's *types* θ (:class:`Types`: a prior and the distances to the type's goal) are
-either the two-goal labelling (:class:`~dppverify.game.instance.Roles`, θ = 1 primary, 2
-secondary) or an instance's N goals in document order (θ = the goal index ``0 .. N-1``); an
-Attacker type plays a realization plan (:data:`Plan`). A Defender evaluated on the tree gives
-type θ the stage cost ``a_θ(p) = w(p)·σ(g^θ | p)`` at every prefix ``p``
+The Attacker's *types* (:class:`Types`: a prior and the distances to the type's goal) are
+keyed either by role, for the two-goal labelling (:class:`~dppverify.game.instance.Roles`:
+1 primary, 2 secondary), or by goal index θ ``0 .. N-1``, for an instance's N goals in
+document order; ``who`` names a type by its key. An Attacker type plays a realization plan
+(:data:`Plan`). A Defender evaluated on the tree gives type ``who`` the stage cost
+``a(p) = w(p)·σ(goal of who | p)`` at every prefix ``p``
 (:class:`TreeStrategy`): the two-goal
 :class:`~dppverify.tree_route.tree_defender.TreeDefender`, or a :class:`DefenderOnTree` for any
 number of goals.
@@ -27,36 +28,36 @@ Plan = Mapping[int, Fraction]
 
 @dataclass(frozen=True)
 class Types:
-    """The Attacker's types: for each θ its prior and the distances to its goal.
+    """The Attacker's types: for each its key, its prior and the distances to its goal.
 
     Attributes
     ----------
-    thetas : tuple of int
-        The types, in order.
+    keys : tuple of int
+        The types' keys, in order: roles (1, 2) or goal indices θ (0 .. N-1).
     priors : tuple of Fraction
-        ``priors[k]``: the prior of type ``thetas[k]``.
+        ``priors[k]``: the prior of type ``keys[k]``.
     dists : tuple
-        ``dists[k][v]``: full-graph ``d(v, goal of type thetas[k])``.
+        ``dists[k][v]``: full-graph ``d(v, goal of type keys[k])``.
 
     Examples
     --------
     >>> from dppverify.game.examples import triangle
     >>> t = as_types(triangle().roles())
-    >>> t.thetas, t.prior(2), t.dist(1)
+    >>> t.keys, t.prior(2), t.dist(1)
     ((1, 2), Fraction(3, 10), (3, 0, 2))
     """
 
-    thetas: tuple[int, ...]
+    keys: tuple[int, ...]
     priors: tuple[Fraction, ...]
     dists: tuple[Sequence[Number], ...]
 
-    def prior(self, theta: int) -> Fraction:
-        """The prior of type ``theta``."""
-        return self.priors[self.thetas.index(theta)]
+    def prior(self, who: int) -> Fraction:
+        """The prior of type ``who``."""
+        return self.priors[self.keys.index(who)]
 
-    def dist(self, theta: int) -> Sequence[Number]:
-        """Distances from every node to the goal of type ``theta``."""
-        return self.dists[self.thetas.index(theta)]
+    def dist(self, who: int) -> Sequence[Number]:
+        """Distances from every node to the goal of type ``who``."""
+        return self.dists[self.keys.index(who)]
 
 
 AnyTypes = Types | Roles | Instance
@@ -64,28 +65,29 @@ AnyTypes = Types | Roles | Instance
 
 
 def as_types(types: AnyTypes) -> Types:
-    """The types of a two-goal labelling (θ = 1, 2) or of an instance's goals (θ = 0 .. N-1).
+    """The types of a two-goal labelling (keys: the roles 1, 2) or of an instance's goals
+    (keys: the goal indices θ = 0 .. N-1).
 
     Examples
     --------
     >>> from dppverify.game.examples import star3
     >>> t = as_types(star3())
-    >>> t.thetas, t.priors
+    >>> t.keys, t.priors
     ((0, 1, 2), (Fraction(1, 2), Fraction(1, 3), Fraction(1, 6)))
     """
     if isinstance(types, Types):
         return types
     if isinstance(types, Roles):
-        return Types(thetas=(1, 2), priors=(types.b1, types.b2), dists=(types.d1, types.d2))
-    return Types(thetas=tuple(range(len(types.goals))), priors=types.prior,
+        return Types(keys=(1, 2), priors=(types.b1, types.b2), dists=(types.d1, types.d2))
+    return Types(keys=tuple(range(len(types.goals))), priors=types.prior,
                  dists=types.dist_to)
 
 
 class TreeStrategy(Protocol):
-    """A Defender evaluated at every prefix of the tree: type θ's stage costs."""
+    """A Defender evaluated at every prefix of the tree: each type's stage costs."""
 
-    def alloc(self, theta: int) -> Sequence[Number]:
-        """``a_θ(p) = w(p)·σ(g^θ | p)`` for every prefix ``p`` (0 at the root)."""
+    def alloc(self, who: int) -> Sequence[Number]:
+        """``w(p)·σ(goal of who | p)`` for every prefix ``p`` (0 at the root)."""
         ...
 
 
@@ -96,11 +98,11 @@ class DefenderOnTree:
     Attributes
     ----------
     sigma : tuple
-        ``sigma[p][k] = σ(g^θ | p)`` for ``θ = thetas[k]`` (the root's entry is all zeros: no
+        ``sigma[p][k] = σ(g^θ | p)`` for ``θ = keys[k]`` (the root's entry is all zeros: no
         action there).
     allocs : tuple
-        ``allocs[k][p] = w(p)·σ(g^θ | p)``: type ``θ = thetas[k]``'s stage cost at ``p``.
-    thetas : tuple of int
+        ``allocs[k][p] = w(p)·σ(g^θ | p)``: type ``θ = keys[k]``'s stage cost at ``p``.
+    keys : tuple of int
         The types (the goal indices ``0 .. N-1`` for :func:`defender_from_table`).
 
     Examples
@@ -115,11 +117,11 @@ class DefenderOnTree:
 
     sigma: tuple[tuple[Number, ...], ...]
     allocs: tuple[tuple[Number, ...], ...]
-    thetas: tuple[int, ...]
+    keys: tuple[int, ...]
 
-    def alloc(self, theta: int) -> tuple[Number, ...]:
-        """Type ``theta``'s stage costs."""
-        return self.allocs[self.thetas.index(theta)]
+    def alloc(self, who: int) -> tuple[Number, ...]:
+        """Type ``who``'s stage costs."""
+        return self.allocs[self.keys.index(who)]
 
 
 def defender_from_table(tree: WalkTree, entries: Mapping[int, Sequence[Fraction]],
@@ -155,12 +157,12 @@ def defender_from_table(tree: WalkTree, entries: Mapping[int, Sequence[Fraction]
         for theta in range(n_goals):
             alloc[theta][p] = normalize(tree.weight[p] * s[theta])
     return DefenderOnTree(sigma=tuple(sigma), allocs=tuple(tuple(a) for a in alloc),
-                          thetas=tuple(range(n_goals)))
+                          keys=tuple(range(n_goals)))
 
 
 def defender_from_rows(tree: WalkTree, types: Types, rows: Sequence[Sequence[Number]]
                        ) -> DefenderOnTree:
-    """The Defender with ``σ(g^θ | p) = rows[p][k]`` (``θ = thetas[k]``; each row sums to 1).
+    """The Defender with ``σ(g^θ | p) = rows[p][k]`` (``θ = keys[k]``; each row sums to 1).
 
     The last type's stage cost is the rest of the step's weight, ``w - Σ`` of the others'
     (so that in float mode the two stage costs of a step add up to its weight exactly).
@@ -177,7 +179,7 @@ def defender_from_rows(tree: WalkTree, types: Types, rows: Sequence[Sequence[Num
     """
     numbers = tree.instance.numbers
     w = tree.weight
-    k = len(types.thetas)
+    k = len(types.keys)
     allocs: list[list[Number]] = [[0] * tree.n_prefixes for _ in range(k)]
     for p in range(1, tree.n_prefixes):
         rest = w[p]
@@ -186,4 +188,4 @@ def defender_from_rows(tree: WalkTree, types: Types, rows: Sequence[Sequence[Num
             rest = numbers.difference(rest, allocs[j][p])
         allocs[k - 1][p] = rest
     return DefenderOnTree(sigma=tuple(tuple(r) for r in rows),
-                          allocs=tuple(tuple(a) for a in allocs), thetas=types.thetas)
+                          allocs=tuple(tuple(a) for a in allocs), keys=types.keys)

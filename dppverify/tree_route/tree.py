@@ -35,7 +35,7 @@ from tqdm import tqdm
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.exact import Number
 from dppverify.game.instance import Instance
-from dppverify.limits import MAX_NGOAL_LP_CELLS
+from dppverify.limits import MAX_LP_CELLS
 from dppverify.structured.cover import MAX_BALANCED
 
 if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
@@ -355,7 +355,7 @@ def _tree_size(instance: Instance, horizon: int, max_prefixes: int) -> int:
     if size > cap < max_prefixes:
         raise TreeTooLargeError(
             f"N = {instance.n_goals} goals: the walk tree's LP has one variable per goal and "
-            f"prefix, at most {MAX_NGOAL_LP_CELLS:,} (so {cap:,} prefixes for "
+            f"prefix, at most {MAX_LP_CELLS:,} (so {cap:,} prefixes for "
             f"{instance.n_goals} goals), and the tree for horizon H = {horizon} has at least "
             f"{size:,} prefixes; lower the horizon" + (
                 ", or use --route structured" if instance.n_goals <= MAX_BALANCED
@@ -370,7 +370,7 @@ def _tree_size(instance: Instance, horizon: int, max_prefixes: int) -> int:
 
 def lp_prefix_limit(instance: Instance, max_prefixes: int) -> int:
     """The most prefixes a walk tree of ``instance`` may have: ``max_prefixes``, and with more
-    than two goals also ``MAX_NGOAL_LP_CELLS // N`` (the tree's LP has one variable per goal
+    than two goals also ``MAX_LP_CELLS // N`` (the tree's LP has one variable per goal
     and prefix: the size rule of N goals, ``docs/limits.md``).
 
     Examples
@@ -381,7 +381,7 @@ def lp_prefix_limit(instance: Instance, max_prefixes: int) -> int:
     """
     if instance.n_goals <= 2:
         return max_prefixes
-    return min(max_prefixes, MAX_NGOAL_LP_CELLS // instance.n_goals)
+    return min(max_prefixes, MAX_LP_CELLS // instance.n_goals)
 
 
 def tree_fits(instance: Instance, horizon: int | None, max_prefixes: int) -> bool:

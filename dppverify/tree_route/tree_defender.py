@@ -34,9 +34,9 @@ class TreeDefender:
     alloc2: tuple[Number, ...]
     undefined: tuple[int, ...] = ()
 
-    def alloc(self, theta: int) -> tuple[Number, ...]:
-        """Stage costs of type ``theta`` (1 = primary, 2 = secondary)."""
-        return self.alloc1 if theta == 1 else self.alloc2
+    def alloc(self, role: int) -> tuple[Number, ...]:
+        """Stage costs of type ``role`` (1 = primary, 2 = secondary)."""
+        return self.alloc1 if role == 1 else self.alloc2
 
 
 def tree_defender(tree: WalkTree, roles: Roles, rule: DefenderRule) -> TreeDefender:

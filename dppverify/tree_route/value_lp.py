@@ -35,7 +35,8 @@ import numpy as np
 from tqdm import tqdm
 
 from dppverify.errors import HorizonError
-from dppverify.game.instance import Instance, Roles, as_instance
+from dppverify.game.inputs import as_instance
+from dppverify.game.instance import Instance, Roles
 from dppverify.game.profile import ProgressRule
 from dppverify.horizons import parse_horizon
 from dppverify.tree_route.bracket import (
@@ -113,12 +114,12 @@ def solve_value_lp(tree: WalkTree, types: AnyTypes) -> ValueLP:
     import cvxpy as cp
 
     t = as_types(types)
-    what = (f"value LP (H = {tree.horizon})" if len(t.thetas) == 2 else
-            f"N-goal value LP (N = {len(t.thetas)}, H = {tree.horizon})")
+    what = (f"value LP (H = {tree.horizon})" if len(t.keys) == 2 else
+            f"N-goal value LP (N = {len(t.keys)}, H = {tree.horizon})")
     n = tree.n_prefixes
     leaf = tree.is_leaf_mask()
     node = tree.node
-    xs = [cp.Variable(n) for _ in t.thetas]
+    xs = [cp.Variable(n) for _ in t.keys]
     cons: list[cp.Constraint] = []
     costs = [np.array([float(b) * float(d[int(v)]) if leaf[p] else 0.0
                        for p, v in enumerate(node)]) for b, d in zip(t.priors, t.dists,
@@ -162,7 +163,7 @@ def _candidates(tree: WalkTree, types: AnyTypes,
             if id(progress) not in given:
                 out.append((name, progress))
         return out
-    k = len(as_types(types).thetas)
+    k = len(as_types(types).keys)
     uniform = defender_from_table(tree, {}, tuple(Fraction(1, k) for _ in range(k)))
     return [("uniform Defender", uniform), *defenders]
 
@@ -204,15 +205,15 @@ def exact_bracket(tree: WalkTree, types: AnyTypes, lp: ValueLP | None = None,
     if lp is not None:
         search.rounded(
             lambda den: lower_bound(tree, ts, rounded_defender(tree, ts, lp.sigma, den)),
-            lambda den: upper_bound(tree, ts, {theta: rational_plan(tree, lp.plans[k], den)
-                                               for k, theta in enumerate(ts.thetas)}))
+            lambda den: upper_bound(tree, ts, {who: rational_plan(tree, lp.plans[k], den)
+                                               for k, who in enumerate(ts.keys)}))
         if tree.instance.exact:
             search.exact_lp(
                 tree, ts, lambda sigma: lower_bound(tree, ts, defender_from_rows(tree, ts, sigma)),
-                lambda plans: upper_bound(tree, ts, dict(zip(ts.thetas, plans, strict=True))))
+                lambda plans: upper_bound(tree, ts, dict(zip(ts.keys, plans, strict=True))))
         else:
             search.reason = "float-mode instance: no exact LP closure"
-    return search.bracket(lambda plan: upper_bound(tree, ts, dict.fromkeys(ts.thetas, plan)),
+    return search.bracket(lambda plan: upper_bound(tree, ts, dict.fromkeys(ts.keys, plan)),
                           tree)
 
 
@@ -251,9 +252,9 @@ def game_value(instance: Instance | Any, horizon: int, *,
                max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False) -> GameValue:
     """``V_H`` of the truncated game of ``instance``: compact LP plus exact bracket.
 
-    ``instance`` may be a game instance with any number of goals, or (two goals) an instance
-    document (dict), a file path or any object with ``to_json()``
-    (:func:`~dppverify.game.instance.as_instance`). The value does not depend on which goal
+    ``instance`` may be a game instance with any number of goals, or any form the door
+    :func:`~dppverify.game.inputs.as_instance` takes (a document, bytes, a file path, any
+    object with ``to_json()``). The value does not depend on which goal
     is called primary (the LP is symmetric in the types), so the instance's own labelling is
     used.
 
@@ -296,7 +297,7 @@ def game_value(instance: Instance | Any, horizon: int, *,
         raise HorizonError("game_value is the truncated game's LP and needs a finite horizon; "
                            "dppverify.value(instance) gives the untruncated game's value")
     horizon = h
-    game = instance if isinstance(instance, Instance) else as_instance(instance)
+    game = as_instance(instance)
     tree = build_tree(game, horizon, max_prefixes=max_prefixes, progress=progress)
     types: AnyTypes = game.roles() if game.n_goals == 2 else game
     with tqdm(total=2, desc=f"value LP ({tree.n_prefixes} prefixes)", disable=not progress,

@@ -13,7 +13,7 @@ from fractions import Fraction
 
 from dppverify.game.examples import hub4, hub_document
 from dppverify.game.instance import Instance, instance_from_json
-from dppverify.game.profile_types import GuaranteeRule
+from dppverify.game.rules import GuaranteeRule
 from dppverify.structured.arc_condition import arc_condition, walkable_arcs
 from dppverify.structured.cover import basic_solutions, min_cover_vectors, zero_one_normals
 from dppverify.structured.guarantee import guarantee_sigma, rule_order

@@ -209,12 +209,11 @@ def tree_horizon(instance: Any, profile: Any) -> int:
     """The profile's own length (at least the steps to the nearest goal): the horizon tests
     pass explicitly when they exercise the walk tree (issue 18: without a horizon ``certify``
     certifies the untruncated game, by the structured route)."""
-    from dppverify.certify import shortest_horizon
-    from dppverify.game.instance import as_instance
-    from dppverify.game.profile import profile_from_json
+    from dppverify.checks.suites import shortest_horizon
+    from dppverify.game.inputs import as_instance, as_profile
 
     inst = as_instance(instance)
-    return shortest_horizon(inst, profile_from_json(profile, inst))
+    return shortest_horizon(inst, as_profile(profile, inst))
 
 
 def instance_documents(max_nodes: int, max_weight: int, float_nodes: int, grid_size: int,

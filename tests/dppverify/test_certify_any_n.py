@@ -9,11 +9,11 @@ from typing import Any
 
 import pytest
 
-from dppverify.certify import NGOAL_CHECK_IDS, certify
+from dppverify.certify import certify
 from dppverify.errors import HorizonError, ProfileError
-from dppverify.game.examples import star3_document, star3_profile
-from dppverify.game.profile import NGOAL_PROFILE_FORMAT, load_profile_document
-from dppverify.registry import CHECKS, NGOAL_CHECKS, kind_of, spec
+from dppverify.game.examples import star3, star3_document, star3_profile, triangle
+from dppverify.game.inputs import as_profile
+from dppverify.registry import check_ids, checks_of, kind_of, spec
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -27,7 +27,7 @@ def _failed(profile: dict[str, Any], **kw: Any) -> set[str]:
 def test_the_equilibrium_passes_and_a_longer_game_needs_a_longer_table() -> None:
     cert = certify(star3_document(), star3_profile(), horizon=2)
     assert cert.passed, cert.failed()
-    assert [c.id for c in cert.checks] == list(NGOAL_CHECK_IDS)
+    assert [c.id for c in cert.checks] == list(check_ids("per-goal"))
     assert cert.check("game.value").numbers["V_H_lower"] == cert.check(
         "value.U").numbers["U"]
     # At H = 4 type b may loop s m s m b: the table lists only s m b, the default guards a.
@@ -40,20 +40,21 @@ def test_the_equilibrium_passes_and_a_longer_game_needs_a_longer_table() -> None
 def test_every_n_goal_check_id_is_in_the_registry_and_the_checks_md_table() -> None:
     """One check vocabulary for any N: a shared id keeps its kind and routes, and every id of
     an N-goal certificate (tree route, structured route, both) is a registry id."""
-    shared = {c.id for c in CHECKS} & {c.id for c in NGOAL_CHECKS}
+    per_goal = checks_of("per-goal")
+    shared = {c.id for c in checks_of("two-goal")} & {c.id for c in per_goal}
     assert shared == {"profile.wellformed", "value.U", "pbne.defender_br",
                       "pbne.sequential_rationality", "game.value"}
-    for c in NGOAL_CHECKS:
+    for c in per_goal:
         if c.id in shared:
             assert (spec(c.id).kind, spec(c.id).routes) == (c.kind, c.routes), c.id
         assert kind_of(c.id) == c.kind
     for kw in ({"horizon": 2}, {}, {"horizon": 2, "route": "both"}):
         cert = certify(star3_document(), star3_profile(), **kw)
-        assert {c.id for c in cert.checks} | set(cert.not_run) <= set(NGOAL_CHECK_IDS), kw
+        assert {c.id for c in cert.checks} | set(cert.not_run) <= set(check_ids("per-goal")), kw
     table = (ROOT / "dppverify" / "checks.md").read_text(encoding="utf-8")
     part = table.split("## N goals", 1)[1]
     rows = re.findall(r"^\| `([^`]+)` \| ([A-Z0-9–-]+) \|", part, flags=re.M)
-    assert rows == [(c.id, c.proof) for c in NGOAL_CHECKS]
+    assert rows == [(c.id, c.proof) for c in per_goal]
 
 
 def test_a_type_with_a_cheaper_walk_is_refuted() -> None:
@@ -105,6 +106,6 @@ def test_bad_input_is_an_error() -> None:
                                            r"none for the untruncated game"):
         certify(star3_document(), star3_profile(), horizon=1)
     with pytest.raises(ProfileError, match="dpp-ngoal-profile/1"):
-        load_profile_document(b'{"format": "dpp-profile/1"}', NGOAL_PROFILE_FORMAT)
+        as_profile(b'{"format": "dpp-profile/1"}', star3())
     with pytest.raises(ProfileError, match="not JSON"):
-        load_profile_document(b"{", NGOAL_PROFILE_FORMAT)
+        as_profile(b"{", triangle())

@@ -23,7 +23,7 @@ from dppverify.errors import HorizonError
 from dppverify.exact import Number
 from dppverify.game.examples import star3, star3_document
 from dppverify.game.instance import Instance, instance_from_json
-from dppverify.strategies import instances, ngoal_instances, weighted_graphs
+from dppverify.strategies import instances, many_goal_instances, weighted_graphs
 from dppverify.structured.coalition import CoalitionRunner, coalition_value
 from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.tree import count_prefixes
@@ -69,7 +69,7 @@ def test_star3_by_hand() -> None:
     assert coalition_value(inst, None).value == Fraction(3, 2)
 
 
-@given(ngoal_instances(min_goals=3, max_goals=5,
+@given(many_goal_instances(min_goals=3, max_goals=5,
                        graphs=weighted_graphs(min_nodes=5, max_nodes=6, max_weight=4)))
 def test_structured_and_tree_routes_agree(doc: dict[str, Any]) -> None:
     inst = instance_from_json(doc)
@@ -86,10 +86,9 @@ def test_structured_and_tree_routes_agree(doc: dict[str, Any]) -> None:
 
 @given(instances(graphs=weighted_graphs(max_nodes=6, weights="fractions", max_weight=5)))
 def test_for_two_goals_the_dp_is_the_two_goal_value(doc: dict[str, Any]) -> None:
-    inst = instance_from_json(doc)
-    two = instance_from_json(doc, two_goals=True)  # the two-goal reading rules
+    inst = instance_from_json(doc)  # two goals: read under the two-goal rules
     for h in _horizons(inst, 3):
-        tree = game_value(two, h, max_prefixes=MAX_PREFIXES)
+        tree = game_value(inst, h, max_prefixes=MAX_PREFIXES)
         assert tree.bracket.closed
         assert coalition_value(inst, h).value == tree.bracket.exact
 
@@ -106,7 +105,7 @@ def test_recorded_cases_agree() -> None:
             assert compare_routes(inst, h).agree, case["name"]
 
 
-@given(ngoal_instances(min_goals=2, max_goals=4), st.integers(2, 5),
+@given(many_goal_instances(min_goals=2, max_goals=4), st.integers(2, 5),
        st.permutations(range(4)))
 def test_value_is_homogeneous_and_symmetric(doc: dict[str, Any], factor: int,
                                            perm: list[int]) -> None:
@@ -123,7 +122,7 @@ def test_value_is_homogeneous_and_symmetric(doc: dict[str, Any], factor: int,
     assert coalition_value(instance_from_json(permuted), h).value == base
 
 
-@given(ngoal_instances(min_goals=2, max_goals=5))
+@given(many_goal_instances(min_goals=2, max_goals=5))
 def test_values_do_not_increase_with_h_and_reach_the_infinite_horizon(
         doc: dict[str, Any]) -> None:
     inst = instance_from_json(doc)

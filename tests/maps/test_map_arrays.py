@@ -67,8 +67,8 @@ def test_same_n_goal_instance() -> None:
     goals = (g1, g2, (r, grid.width - 1 - c))
     assert len(set(goals)) == 3
     prior = ("1/2", "1/3", "1/6")
-    _same(grid_game(grid, start, goals, prior, two_goals=False),
-          instance_from_json(grid_document(grid, start, goals, prior), two_goals=False))
+    _same(grid_game(grid, start, goals, prior),
+          instance_from_json(grid_document(grid, start, goals, prior)))
 
 
 @pytest.mark.parametrize(("text", "start", "goals", "prior"), [

@@ -13,12 +13,12 @@ from dppverify import certify
 from dppverify.certificate import Certificate, CheckRecord
 from dppverify.checks.lemmas import OFF_XI2, l5_induced_beliefs, telescoping
 from dppverify.cli.table import CONSISTENCY_HEADING, FACTS_HEADING, format_table
-from dppverify.registry import CHECKS
+from dppverify.registry import checks_of
 from dppverify.tree_route.context import triangle_context
 from tests.dppverify._helpers import three_phase_doc, three_phase_profile
 
-CONSISTENCY = {c.id for c in CHECKS if c.kind == "consistency"}
-FACTS = {c.id for c in CHECKS if c.kind == "fact"}
+CONSISTENCY = {c.id for c in checks_of("two-goal") if c.kind == "consistency"}
+FACTS = {c.id for c in checks_of("two-goal") if c.kind == "fact"}
 
 
 def test_the_registry_names_the_consistency_checks() -> None:

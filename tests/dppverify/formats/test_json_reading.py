@@ -20,8 +20,8 @@ from dppverify.formats.json_reading import (
     resolve_walk,
 )
 from dppverify.game.examples import star3, triangle
-from dppverify.game.instance import read_instance_document
-from dppverify.game.profile import NGOAL_PROFILE_FORMAT, load_profile_document
+from dppverify.game.inputs import as_profile
+from dppverify.game.instance import load_instance
 
 ROOT = Path(__file__).resolve().parents[3]
 PARSERS = ("dppverify/game/instance.py", "dppverify/game/profile.py",
@@ -79,9 +79,9 @@ def test_read_json_file_is_bounded(kind: str, want: str) -> None:
 
 
 def test_every_document_reader_refuses_dev_zero_in_one_line() -> None:
-    for load, error in ((load_profile_document, ProfileError),
-                        (partial(load_profile_document, fmt=NGOAL_PROFILE_FORMAT), ProfileError),
-                        (read_instance_document, InvalidInstanceError)):
+    for load, error in ((partial(as_profile, instance=triangle()), ProfileError),
+                        (partial(as_profile, instance=star3()), ProfileError),
+                        (load_instance, InvalidInstanceError)):
         with pytest.raises(error) as exc:
             load("/dev/zero")
         text = str(exc.value)

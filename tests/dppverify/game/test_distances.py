@@ -36,7 +36,7 @@ def _same_fields(inst: Instance, h: int | None, slot: int) -> None:
 @settings(deadline=None, max_examples=120)
 @given(docs, st.booleans())
 def test_dijkstra_fixpoint_equals_the_layers(doc: dict[str, Any], swap: bool) -> None:
-    inst = _read_game(doc, True)
+    inst = _read_game(doc)
     slot = 1 - inst.primary_goal_index if swap and inst.tied else inst.primary_goal_index
     fx = fixpoint_fields(inst, inst.roles(slot))
     last = fx.last if fx is not None else 2 * inst.n_nodes
@@ -55,7 +55,7 @@ def test_a_maze_fixpoint_is_found_by_dijkstra_and_equals_the_layers() -> None:
              for a in cells for dr, dc in ((0, 1), (1, 0)) if (a[0] + dr, a[1] + dc) in idx]
     doc = {"graph": {"nodes": [{"id": list(c)} for c in cells], "edges": edges},
            "start": [14, 0], "goals": [[0, 14], [0, 0]], "prior": ["2/3", "1/3"]}
-    inst = _read_game(doc, True)
+    inst = _read_game(doc)
     fx = fixpoint_fields(inst)
     assert fx is not None and fx.last > 50  # a long serpentine: many layers
     for h in (fx.last - 1, fx.last, fx.last + 1, fx.last + 7, None):
@@ -67,7 +67,7 @@ def test_a_maze_fixpoint_is_found_by_dijkstra_and_equals_the_layers() -> None:
 @given(docs)
 def test_structured_value_is_the_layers_value_at_every_horizon(doc: dict[str, Any]) -> None:
     """``structured_value`` may take the fixpoint once the start's fields are final."""
-    inst = _read_game(doc, True)
+    inst = _read_game(doc)
     fx = fixpoint_fields(inst)
     last = fx.last if fx is not None else 2 * inst.n_nodes
     s0 = inst.start

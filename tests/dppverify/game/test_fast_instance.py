@@ -29,7 +29,7 @@ from dppverify.game import instance_reading as instance_module
 from dppverify.game.distances import EXACT_FLOAT_LIMIT, ArcRows, exact_distances_to
 from dppverify.game.graph_reading import regular_graph
 from dppverify.game.instance import Instance, _read_game, arc_arrays
-from dppverify.strategies import grid_worlds, instances, ngoal_instances, weighted_graphs
+from dppverify.strategies import grid_worlds, instances, many_goal_instances, weighted_graphs
 from dppverify.twogoal.value_dp import _Frontier, value_fields
 from dppverify.twogoal.value_fixpoint import goal_terminal_arcs
 from tests.dppverify._helpers import instance_documents
@@ -47,18 +47,18 @@ def _types(x: Any) -> Any:
     return type(x)
 
 
-def _read(doc: Any, *, fast: bool, two_goals: bool = True) -> Any:
+def _read(doc: Any, *, fast: bool) -> Any:
     """The instance's fields (with their types), or the error message."""
     try:
-        g = _read_game(copy.deepcopy(doc), two_goals, fast=fast)
+        g = _read_game(copy.deepcopy(doc), fast=fast)
     except (InvalidInstanceError, ValueError, TypeError) as exc:
         return ("error", type(exc).__name__, str(exc))
     return ({f: getattr(g, f) for f in FIELDS}, {f: _types(getattr(g, f)) for f in FIELDS},
             dict(g.index))
 
 
-def _same(doc: Any, **kw: Any) -> Any:
-    fast, slow = _read(doc, fast=True, **kw), _read(doc, fast=False, **kw)
+def _same(doc: Any) -> Any:
+    fast, slow = _read(doc, fast=True), _read(doc, fast=False)
     assert fast == slow
     return fast
 
@@ -89,9 +89,9 @@ def test_regular_documents_read_the_same_fast_and_plain(doc: dict[str, Any], ids
 
 
 @settings(deadline=None, max_examples=30)
-@given(ngoal_instances(max_goals=4))
+@given(many_goal_instances(max_goals=4))
 def test_ngoal_documents_read_the_same_fast_and_plain(doc: dict[str, Any]) -> None:
-    _same(doc, two_goals=False)
+    _same(doc)
 
 
 def _corrupt(doc: dict[str, Any], how: str, k: int) -> dict[str, Any]:
@@ -169,7 +169,7 @@ def _grid(rows: int, cols: int, weight: Any) -> dict[str, Any]:
 def test_the_float64_guard_and_its_fallback(weight: str) -> None:
     doc = _grid(4, 5, weight)
     got = _same(doc)
-    inst = _read_game(doc, True)
+    inst = _read_game(doc)
     arcs = arc_arrays(inst)
     w = Fraction(weight)
     total = w * w.denominator * len(arcs.codes)
@@ -194,7 +194,7 @@ def test_the_guard_boundary_exactly() -> None:
         for e, w in zip(doc["graph"]["edges"], weights, strict=True):
             e["weight"] = w
         got = _same(doc)
-        inst = _read_game(doc, True)
+        inst = _read_game(doc)
         assert (exact_distances_to(arc_arrays(inst), 3, inst.goals) is not None) == scipy_ok
         assert got[0]["dist_to"][1][0] == min(2 * a, a + rest)  # exact past 2**53 too
 
@@ -229,7 +229,7 @@ def test_goal_terminal_arcs_equal_the_plain_loop(doc: dict[str, Any], extra: tup
     if huge and doc.get("numbers") != "float":
         for e in doc["graph"]["edges"]:
             e["weight"] = str(Fraction(e["weight"]) * 10**20)
-    inst = _read_game(doc, True, fast=huge)  # arrays from either reading
+    inst = _read_game(doc, fast=huge)  # arrays from either reading
     a = goal_terminal_arcs(inst, extra=extra if inst.exact else ())
     want = _plain_goal_terminal_arcs(inst, extra if inst.exact else ())
     got = (a.tails.tolist(), a.starts.tolist(), a.heads.tolist(), a.weights.tolist(), a.scale,
@@ -239,9 +239,9 @@ def test_goal_terminal_arcs_equal_the_plain_loop(doc: dict[str, Any], extra: tup
 
 
 def test_arc_arrays_are_kept_per_instance() -> None:
-    inst = _read_game(_grid(2, 2, 1), True)
+    inst = _read_game(_grid(2, 2, 1))
     assert arc_arrays(inst) is instance_module._ARC_ARRAYS[inst]
-    plain = _read_game(_grid(2, 2, 1), True, fast=False)
+    plain = _read_game(_grid(2, 2, 1), fast=False)
     assert plain not in instance_module._ARC_ARRAYS
     a, b = arc_arrays(inst), arc_arrays(plain)
     assert (a.tails.tolist(), a.heads.tolist(), a.weights()) == (b.tails.tolist(),
@@ -345,7 +345,7 @@ def test_value_fields_equal_the_plain_recursion(doc: dict[str, Any], extra: int,
     if huge and doc.get("numbers") != "float":  # Python-integer arithmetic
         for e in doc["graph"]["edges"]:
             e["weight"] = str(Fraction(e["weight"]) * 10**20)
-    inst = _read_game(doc, True)
+    inst = _read_game(doc)
     for h in (inst.hops[inst.start] + extra, extra, None):
         f = value_fields(inst, h)
         want, steps, fixpoint = _plain_fields(inst, h)
@@ -367,7 +367,7 @@ def test_value_fields_equal_the_plain_recursion_on_a_maze(
     g["nodes"] = [nd for nd in g["nodes"] if tuple(nd["id"]) not in walls]
     g["edges"] = [e for e in g["edges"]
                   if tuple(e["source"]) not in walls and tuple(e["target"]) not in walls]
-    inst = _read_game(doc, True)
+    inst = _read_game(doc)
     for h in (10, 37, None):
         want, steps, fixpoint = _plain_fields(inst, h)
         for method in ("layers", "auto"):  # auto: the Dijkstra fixpoint where H reaches it

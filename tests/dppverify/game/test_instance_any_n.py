@@ -10,7 +10,7 @@ from hypothesis import HealthCheck, given, settings
 
 from dppverify.errors import InvalidInstanceError
 from dppverify.game.examples import star3_document, triangle_document
-from dppverify.game.instance import Instance, goal_count, instance_from_json, load_instance
+from dppverify.game.instance import Instance, instance_from_json, load_instance
 from dppverify.strategies import instances
 
 
@@ -50,24 +50,14 @@ def test_goals_must_reach_each_other() -> None:
     assert instance_from_json(doc).dist_to[0][doc["graph"]["nodes"].index({"id": "c"})] == 2
 
 
-def test_two_goal_documents_read_the_same_by_both_parsers() -> None:
-    doc = triangle_document()
-    two = instance_from_json(doc, two_goals=True)  # the two-goal reading rules
-    n = instance_from_json(doc)  # the reader for any N
-    assert n.goals == two.goals and n.prior == two.prior and n.dist_to == two.dist_to
-    assert n.succ == two.succ and n.hops == two.hops and n.start == two.start
+def test_float_numbers_only_for_two_goals() -> None:
+    """The one rule of the number mode: "numbers": "float" is read for two goals only."""
+    assert not instance_from_json({**triangle_document(), "numbers": "float"}).exact
+    with pytest.raises(InvalidInstanceError, match="N-goal instances must be exact"):
+        instance_from_json({**star3_document(), "numbers": "float"})
 
 
-def test_the_two_goal_parser_refuses_more_goals_and_points_at_the_n_goal_checker() -> None:
-    with pytest.raises(InvalidInstanceError) as info:
-        instance_from_json(star3_document(), two_goals=True)
-    text = str(info.value)
-    assert "lists 3 goals" in text and "dppverify.certify" in text and "dpp value" in text
-
-
-def test_goal_count_and_file_errors(tmp_path: Any) -> None:
-    assert goal_count(star3_document()) == 3
-    assert goal_count([1, 2]) is None
+def test_file_errors(tmp_path: Any) -> None:
     bad = tmp_path / "bad.json"
     bad.write_text("{", encoding="utf-8")
     with pytest.raises(InvalidInstanceError, match=r"bad\.json: malformed JSON at line 1"):

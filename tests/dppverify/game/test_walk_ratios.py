@@ -25,7 +25,7 @@ docs = st.one_of(
 @settings(deadline=None, max_examples=100)
 @given(docs, st.data())
 def test_progress_sigma_equals_the_per_step_ratio(doc: dict[str, Any], data: Any) -> None:
-    inst = _read_game(doc, True)
+    inst = _read_game(doc)
     walk = [inst.start]
     for _ in range(data.draw(st.integers(min_value=1, max_value=8))):
         arcs = inst.succ[walk[-1]]

@@ -27,7 +27,7 @@ from dppverify.game.examples import star3_document, star3_profile
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile import profile_from_json
 from dppverify.routes import tree_fits
-from dppverify.strategies import ngoal_instances, weighted_graphs
+from dppverify.strategies import many_goal_instances, weighted_graphs
 from dppverify.structured.table_br import table_defender, walk_best_response
 from dppverify.tree_route.tree import count_prefixes
 from tests.dppverify._helpers import make_doc
@@ -224,7 +224,7 @@ def test_cli_routes(tmp_path: Path) -> None:
 
 @st.composite
 def _cases(draw: st.DrawFn) -> tuple[dict[str, Any], dict[str, Any]]:
-    doc = draw(ngoal_instances(min_goals=3, max_goals=3,
+    doc = draw(many_goal_instances(min_goals=3, max_goals=3,
                                graphs=weighted_graphs(min_nodes=4, max_nodes=5, max_weight=3)))
     inst = instance_from_json(doc)
     ids = inst.nodes
@@ -298,7 +298,7 @@ def test_tree_and_structured_routes_agree(case: tuple[dict[str, Any], dict[str, 
             "pbne.attacker_br").numbers[key]
 
 
-@given(ngoal_instances(min_goals=3, max_goals=4,
+@given(many_goal_instances(min_goals=3, max_goals=4,
                        graphs=weighted_graphs(min_nodes=4, max_nodes=7, max_weight=3)),
        st.integers(1, 200))
 def test_the_saturating_size_count_decides_like_the_exact_count(doc: dict[str, Any],

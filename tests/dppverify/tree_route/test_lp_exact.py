@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 import dppverify.tree_route.bracket as bracket
 import dppverify.tree_route.lp_exact as lp_exact
 from dppverify.game.instance import instance_from_json
-from dppverify.strategies import instances, ngoal_instances, weighted_graphs
+from dppverify.strategies import instances, many_goal_instances, weighted_graphs
 from dppverify.structured.coalition import coalition_value
 from dppverify.tree_route.lp_exact import solve_tree_lp_exactly
 from dppverify.tree_route.tree import build_tree, count_prefixes
@@ -68,18 +68,17 @@ def test_an_open_bracket_says_why(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 GAMES = {"N=2": instances(graphs=weighted_graphs(max_nodes=6, weights="fractions", max_weight=5)),
-         "N=3,4": ngoal_instances(min_goals=3, max_goals=4,
+         "N=3,4": many_goal_instances(min_goals=3, max_goals=4,
                                   graphs=weighted_graphs(min_nodes=4, max_nodes=6, max_weight=4))}
 
 
 @pytest.mark.parametrize("games", GAMES.values(), ids=GAMES.keys())
 @given(data=st.data())
 def test_brackets_close(games: st.SearchStrategy[dict[str, Any]], data: st.DataObject) -> None:
-    """The exact bracket of V_H closes on small games for any N; for two goals (read under the
-    two-goal rules) at the coalition DP's value (NG.3: the DP is the value)."""
+    """The exact bracket of V_H closes on small games for any N; for two goals at the
+    coalition DP's value (NG.3: the DP is the value)."""
     doc = data.draw(games)
-    ninst = instance_from_json(doc)  # the reader for any N
-    inst = instance_from_json(doc, two_goals=True) if ninst.n_goals == 2 else ninst
+    ninst = inst = instance_from_json(doc)  # the reader for any N
     first = ninst.hops[ninst.start]
     for h in range(first, first + 3):
         if count_prefixes(ninst, h) > 1500:

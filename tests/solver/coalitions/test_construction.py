@@ -30,7 +30,7 @@ from dpp import main
 from dppio.text import decimal
 from dppverify.certify import certify
 from dppverify.game.instance import instance_from_json
-from dppverify.strategies import ngoal_instances
+from dppverify.strategies import many_goal_instances
 from dppverify.structured.coalition import CoalitionRunner
 from dppverify.structured.guarantee import dp_value, guarantee_sets
 from solver import Instance
@@ -59,7 +59,7 @@ def _certify(doc: dict[str, Any]) -> tuple[Any, Any]:
 
 
 @settings(max_examples=40, deadline=None)
-@given(doc=ngoal_instances(min_goals=2, max_goals=4))
+@given(doc=many_goal_instances(min_goals=2, max_goals=4))
 def test_solver_profiles_are_certified_on_the_untruncated_game(doc: dict[str, Any]) -> None:
     eq, cert = _certify(doc)
     assert cert.verdict == "pass", cert.checks
@@ -68,7 +68,7 @@ def test_solver_profiles_are_certified_on_the_untruncated_game(doc: dict[str, An
 
 
 @settings(max_examples=25, deadline=None)
-@given(doc=ngoal_instances(min_goals=3, max_goals=4))
+@given(doc=many_goal_instances(min_goals=3, max_goals=4))
 def test_the_tree_route_agrees_at_the_profiles_horizon(doc: dict[str, Any]) -> None:
     eq, cert = _certify(doc)
     longest = max(len(w) - 1 for mix in eq.mixtures for w, _ in mix)
@@ -82,7 +82,7 @@ def test_the_tree_route_agrees_at_the_profiles_horizon(doc: dict[str, Any]) -> N
 
 
 @settings(max_examples=30, deadline=None)
-@given(doc=ngoal_instances(min_goals=2, max_goals=4))
+@given(doc=many_goal_instances(min_goals=2, max_goals=4))
 def test_the_solvers_dp_equals_the_checkers_at_every_node(doc: dict[str, Any]) -> None:
     """The written rule's 0/1 rows (the coalition DP: a cover of 1_S uses subsets of S only)
     equal the checker's layered DP wherever the solver keeps the node."""
