@@ -27,18 +27,13 @@ MAX_PARAMETERS = 9
 MAX_MODULE_LINES = 500
 
 KNOWN: dict[str, str] = {
-    # rewritten by the one certification pipeline for any N (certify, the checks, the CLI's
-    # profile reading): they shrink there
-    "dppverify/certify.py:certify lines": "its contract, restated at every level, moves to "
-                                          "where it is enforced in the one pipeline",
-    "dppverify/checks/per_goal_records.py:profile_records parameters": "the one pipeline",
-    "dppverify/cli/belongs.py:profile_mismatch lines": "the one pipeline: on the parsed profile",
-    "dppverify/cli/certify.py:_certify_files parameters": "the one pipeline",
-    "dppverify/game/instance_reading.py:game_parts parameters": "the one pipeline's reader",
-    "dppverify/game/instance_type.py:finish_game parameters": "the one pipeline's reader",
-    "dppverify/provenance.py:verify_provenance lines": "the one pipeline (one provenance)",
-    "dppverify/tree_route/per_goal_checks.py:ngoal_tree_checks lines": "the one pipeline: "
-                                                                       "one runner table",
+    # the one certification pipeline's second stage (one runner table for every profile)
+    "dppverify/checks/per_goal_records.py:profile_records parameters": "the one runner table",
+    "dppverify/game/instance_reading.py:game_parts parameters": "the one reader's parts",
+    "dppverify/game/instance_type.py:finish_game parameters": "the one reader's parts",
+    "dppverify/provenance.py:verify_provenance lines": "the provenance check, one flow",
+    "dppverify/tree_route/per_goal_checks.py:per_goal_tree_checks lines": "the one runner "
+                                                                          "table",
     # the exact N-goal layers, changed on other branches now (the vertex tables and covers,
     # the guarantee sets split by concept, goal selection)
     "dppverify/structured/cover.py": "exact bases and covers, being reworked",
