@@ -44,6 +44,7 @@ from typing import Any
 from dppverify.errors import CertificateError, InvalidInstanceError
 from dppverify.formats.files import read_input
 from dppverify.game.inputs import Parsed
+from dppverify.version import __version__
 
 __all__ = ["PROVENANCE_KEYS", "ProvenanceCheck", "canonical_json", "file_sha256",
            "grid_record", "input_record", "map_identity", "provenance_record",
@@ -154,8 +155,6 @@ def provenance_record(instance: Any, profile: Any, *, route: str, exact: bool,
     >>> list(rec) == list(PROVENANCE_KEYS), rec["numbers"], rec["command"]
     (True, 'exact', None)
     """
-    from dppverify.version import __version__
-
     return {"instance": input_record(instance), "profile": input_record(profile),
             "dppverify": __version__, "route": route,
             "numbers": "exact" if exact else "float",
@@ -224,16 +223,14 @@ def verify_provenance(certificate: object, instance: Any, profile: Any, *,
     >>> verify_provenance(cert, other, triangle_profile()).line  # doctest: +ELLIPSIS
     'provenance MISMATCH: instance sha256 differs: recorded ..., given ... (profile matches); ...'
     """
-    from dppverify.version import __version__
-
     prov = certificate.get("provenance") if isinstance(certificate, Mapping) else None
     if not isinstance(prov, Mapping):
         raise CertificateError("the certificate has no provenance record (written by a "
                                "dppverify without provenance, or edited)")
     mismatches: list[str] = []
     matched: list[str] = []
-    inputs: list[tuple[str, Any, Any]] = [("instance", instance, prov.get("instance")),
-                                          ("profile", profile, prov.get("profile"))]
+    inputs = [("instance", instance, prov.get("instance")), ("profile", profile,
+                                                             prov.get("profile"))]
     given_sha: dict[str, str] = {}
     for name, source, rec in inputs:
         if not isinstance(rec, Mapping) or not isinstance(rec.get("sha256"), str):
@@ -249,17 +246,8 @@ def verify_provenance(certificate: object, instance: Any, profile: Any, *,
         else:
             matched.append(name)
         if name == "instance" and map_file is not None:
-            mrec = rec.get("map")
-            if not isinstance(mrec, Mapping) or not isinstance(mrec.get("sha256"), str):
-                mismatches.append("map: the certificate records no .map file (not made with "
-                                  "--map)")
-            else:
-                got = _given_record("map", str(map_file))["sha256"]
-                if got != mrec["sha256"]:
-                    mismatches.append(f"map sha256 differs: recorded {_short(mrec['sha256'])}"
-                                      f"..., given {_short(got)}...")
-                else:
-                    matched.append("map")
+            wrong = _map_mismatch(rec.get("map"), map_file)
+            (mismatches if wrong else matched).append(wrong or "map")
     version = prov.get("dppverify")
     note = "" if version == __version__ else (
         f"; certified by dppverify {version}, this is {__version__}")
@@ -277,6 +265,18 @@ def verify_provenance(certificate: object, instance: Any, profile: Any, *,
     return ProvenanceCheck((), f"provenance OK: {', '.join(matched)} match the certificate "
                                f"(sha256; route {prov.get('route')}, {prov.get('numbers')} "
                                f"numbers, dppverify {version}){note}")
+
+
+def _map_mismatch(recorded: Any, map_file: str | Path) -> str:
+    """How the ``.map`` file differs from the certificate's record of it ("" when it
+    matches)."""
+    if not isinstance(recorded, Mapping) or not isinstance(recorded.get("sha256"), str):
+        return "map: the certificate records no .map file (not made with --map)"
+    got = _given_record("map", str(map_file))["sha256"]
+    if got != recorded["sha256"]:
+        return (f"map sha256 differs: recorded {_short(recorded['sha256'])}..., given "
+                f"{_short(got)}...")
+    return ""
 
 
 def _given_record(name: str, source: Any) -> dict[str, Any]:

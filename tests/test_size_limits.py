@@ -29,9 +29,6 @@ MAX_MODULE_LINES = 500
 KNOWN: dict[str, str] = {
     # the one certification pipeline's second stage (one runner table for every profile)
     "dppverify/checks/per_goal_records.py:profile_records parameters": "the one runner table",
-    "dppverify/game/instance_reading.py:game_parts parameters": "the one reader's parts",
-    "dppverify/game/instance_type.py:finish_game parameters": "the one reader's parts",
-    "dppverify/provenance.py:verify_provenance lines": "the provenance check, one flow",
     "dppverify/tree_route/per_goal_checks.py:per_goal_tree_checks lines": "the one runner "
                                                                           "table",
     # the exact N-goal layers, changed on other branches now (the vertex tables and covers,

@@ -25,6 +25,11 @@ Rows = Sequence[tuple[tuple[int, Number], ...]]
 """``succ`` or ``pred``: ``rows[u]`` = the ``(node, weight)`` pairs of ``u``'s arcs."""
 
 Graph = tuple[list[Node], dict[Node, int], bool, Rows, Rows, ArcArrays | None]
+
+ReadGraph = tuple[Sequence[Node], Mapping[Node, int], bool, Rows, Rows, ArcArrays | None]
+"""What the game is built on: node ids, their index, ``directed``, the successor and
+predecessor rows and the arcs as arrays (None: an irregular document); :data:`Graph` or a
+map's arrays."""
 """Node ids, their index, ``directed``, ``succ``, ``pred`` and the arcs as arrays (or None)."""
 
 

@@ -144,9 +144,10 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
     # undirected: the arcs entering v are those leaving it, so pred is succ
     n = int(a.framed.size)
     succ = ArcRows(n, a.tails, a.heads, a.codes, values, bounds=a.indptr)
-    return finish_game(GridCells(a.framed, a.stride), GridIndex(a.node_at, a.stride, n), False,
-                       succ, succ, arcs, exact=a.exact,
-                       start=list(start), goals=[list(g) for g in goals], prior=list(prior))
+    graph = (GridCells(a.framed, a.stride), GridIndex(a.node_at, a.stride, n), False, succ,
+             succ, arcs)
+    return finish_game(graph, exact=a.exact, start=list(start), goals=[list(g) for g in goals],
+                       prior=list(prior))
 
 
 def map_game(doc: Mapping[str, Any], *, base: Path | None = None) -> Instance:
