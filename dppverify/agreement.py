@@ -19,8 +19,6 @@ from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 from dppverify.tree_route.value_lp import GameValue, game_value
 
-__all__ = ["RouteAgreement", "compare_routes"]
-
 
 @dataclass(frozen=True)
 class RouteAgreement:

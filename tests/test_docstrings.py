@@ -32,6 +32,42 @@ PENDING: dict[str, str] = {
 """Public names whose docstrings are not complete yet, with why; an entry that passes fails
 the test, so the list only shrinks."""
 
+ALL_PENDING = frozenset((
+    "dppio/files.py", "dppio/inputs.py", "dppio/text.py", "dppverify/audit/campaign.py",
+    "dppverify/audit/report.py", "dppverify/audit/runner.py", "dppverify/audit/sources.py",
+    "dppverify/certify.py", "dppverify/checks/lemmas/__init__.py",
+    "dppverify/checks/lemmas/random_attackers.py", "dppverify/checks/payoffs.py",
+    "dppverify/checks/per_goal_records.py", "dppverify/checks/runners.py",
+    "dppverify/checks/structured.py", "dppverify/checks/structured_guarantee.py",
+    "dppverify/checks/structured_per_goal.py", "dppverify/checks/structured_twogoal.py",
+    "dppverify/checks/suites.py", "dppverify/checks/wellformed.py", "dppverify/cli/__init__.py",
+    "dppverify/cli/audit.py", "dppverify/cli/belongs.py", "dppverify/cli/certify.py",
+    "dppverify/cli/errors.py", "dppverify/cli/export_efg.py", "dppverify/cli/inputs.py",
+    "dppverify/cli/value.py", "dppverify/formats/map_instance.py", "dppverify/formats/scen.py",
+    "dppverify/game/distances.py", "dppverify/game/inputs.py", "dppverify/game/instance.py",
+    "dppverify/game/profile.py", "dppverify/game/profile_types.py", "dppverify/provenance.py",
+    "dppverify/registry.py", "dppverify/routes.py", "dppverify/strategies/instances.py",
+    "dppverify/structured/arc_condition.py", "dppverify/structured/cover.py",
+    "dppverify/structured/normal_fixpoint.py", "dppverify/structured/proved_value.py",
+    "dppverify/tree_route/efg.py", "dppverify/tree_route/per_goal_checks.py",
+    "dppverify/valuation.py", "dppverify/value_document.py", "solver/cli/__init__.py",
+    "solver/cli/batch.py", "solver/cli/experiment.py", "solver/cli/experiment_ngoal.py",
+    "solver/cli/plot.py", "solver/cli/solve.py", "solver/coalitions/construction.py",
+    "solver/coalitions/guarantee_sets.py", "solver/coalitions/normal_attacker.py",
+    "solver/experiments/batch.py", "solver/experiments/batch_csv.py",
+    "solver/experiments/batch_lines.py", "solver/experiments/batch_merge.py",
+    "solver/experiments/batch_output.py", "solver/experiments/compare.py",
+    "solver/experiments/dask_tasks.py", "solver/experiments/density.py",
+    "solver/experiments/local_pool.py", "solver/formats/movingai.py",
+    "solver/game/profile_writing.py", "solver/graph/distances.py",
+    "solver/literature/path_metrics.py",
+))
+"""Internal modules that still have an ``__all__``: modules other branches rework now (the
+certification pipeline's second stage, batch and its outputs, goal selection, the kernel, the
+documentation site), and two facades whose importers still take re-exported names from them
+(``game/profile.py``, ``checks/lemmas``); each loses it when that work lands. The list only
+shrinks."""
+
 
 @dataclass(frozen=True)
 class Public:
@@ -183,6 +219,17 @@ def test_the_public_modules_exist_and_have_an_all() -> None:
         assert _path(module).is_file(), module
         tree = ast.parse(_path(module).read_text(encoding="utf-8"))
         assert _exported(tree), f"{module} is public API: it needs an __all__"
+
+
+def test_only_the_public_modules_have_an_all() -> None:
+    public = {_path(m).relative_to(ROOT).as_posix() for m in public_modules()}
+    having = {path.relative_to(ROOT).as_posix() for package in PACKAGES
+              for path in (ROOT / package).rglob("*.py")
+              if _exported(ast.parse(path.read_text(encoding="utf-8"))) is not None}
+    extra = sorted(having - public - ALL_PENDING)
+    assert not extra, "an __all__ in a module that is not public API:\n" + "\n".join(extra)
+    done = sorted(ALL_PENDING - having)
+    assert not done, "no __all__ any more, remove from ALL_PENDING:\n" + "\n".join(done)
 
 
 def test_public_names_have_full_numpy_docstrings() -> None:

@@ -19,8 +19,6 @@ from dppverify.audit.runner import SolverRunner
 from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.game.instance import instance_from_json
 
-__all__ = ["prune_failure", "simpler_graphs"]
-
 Doc = dict[str, Any]
 
 

@@ -64,7 +64,7 @@ def on_profile(ids: tuple[str, ...],
 
     Examples
     --------
-    >>> from dppverify.tree_route.context import triangle_context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context
     >>> r = on_profile(("pbne.defender_br",), lambda ctx: [])
     >>> [(x.id, x.status) for x in r.run(triangle_context({"primary": []}))]
     [('pbne.defender_br', 'skipped')]

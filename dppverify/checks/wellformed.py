@@ -24,7 +24,7 @@ def wellformed(ctx: Context) -> CheckRecord:
 
     >>> from dppverify.game.examples import triangle_attacker
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> eq = triangle_attacker()
     >>> wellformed(context(eq)).message
     "well-formed: 2 primary and 1 secondary walk(s), primary goal 'g1'"
@@ -63,7 +63,7 @@ def phases(ctx: Context) -> CheckRecord:
 
     >>> from dppverify.game.examples import triangle_attacker
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> eq = triangle_attacker()
     >>> dict(phases(context(eq)).numbers)
     {'t_I': 0, 't_II': 1, 'T': 1}

@@ -6,7 +6,7 @@ hops: tests/maps/test_map_arrays.py compares them on the bundled maps), from the
 :func:`dppverify.formats.movingai.grid_arcs`. Every route from a map to the game goes through
 :func:`reference_game`: a compact map instance (``dpp-map-instance/1``,
 :mod:`dppverify.formats.map_instance`) by :func:`map_game`, the ``--map`` option group
-(:mod:`dppverify.cli.map_options`) from the map it read, :func:`map_instance` from a file.
+(:mod:`dppverify.cli.map_options`) from the map it read.
 """
 
 from __future__ import annotations
@@ -19,13 +19,10 @@ import numpy as np
 
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.map_instance import MapReference, read_map_reference
-from dppverify.formats.movingai import Cell, GridMap, grid_arcs, read_map
+from dppverify.formats.movingai import Cell, GridMap, grid_arcs
 from dppverify.game.distances import ArcArrays, ArcRows
 from dppverify.game.instance_reading import exact_mode
 from dppverify.game.instance_type import Instance, finish_game
-
-__all__ = ["GridCells", "GridIndex", "grid_game", "map_game", "map_instance",
-           "reference_game"]
 
 
 class GridCells(Sequence[Cell]):
@@ -203,23 +200,3 @@ def reference_game(m: MapReference) -> Instance:
         return grid_game(m.grid, m.start, m.goals, m.prior, connectivity=m.connectivity)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{m.ref[:200]}: {exc}") from None
-
-
-def map_instance(path: str | Path, start: Cell, goals: tuple[Cell, Cell],
-                 prior: tuple[Any, Any], *, connectivity: int = 4) -> Instance:
-    """Read a ``.map`` file and build the validated grid :class:`Instance`.
-
-    Errors name the file: ``PATH: start cell (3, 8) is an obstacle (...)``.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = Path(d) / "tiny.map"
-    ...     _ = p.write_text("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
-    ...     inst = map_instance(p, (1, 0), ((1, 2), (0, 0)), ("0.6", "0.4"))
-    >>> inst.n_nodes, inst.nodes[inst.start], inst.dist_to[0][inst.start]
-    (5, (1, 0), 4)
-    """
-    return reference_game(MapReference(read_map(path), start, goals, prior, connectivity,
-                                       str(path)))

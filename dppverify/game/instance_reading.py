@@ -38,9 +38,6 @@ from dppverify.limits import MAX_GOALS
 if TYPE_CHECKING:
     from dppverify.game.instance import Instance
 
-__all__ = ["FLOAT_REFUSAL", "GameParts", "arc_arrays", "exact_mode", "game_parts",
-           "goal_distance_fields", "read_goals", "read_node", "read_prior", "remember_arrays",
-           "two_goal_rules"]
 
 FLOAT_REFUSAL = 'numbers: N-goal instances must be exact ("numbers": "exact")'
 """Why a document with more than two goals cannot be in float mode (:func:`exact_mode`)."""

@@ -24,8 +24,6 @@ from dppverify.game.graph_reading import ReadGraph, Rows
 from dppverify.game.instance_reading import game_parts, remember_arrays
 from dppverify.numbers import NumberMode, number_mode
 
-__all__ = ["Instance", "Roles", "finish_game"]
-
 
 @dataclass(frozen=True)
 class Roles:

@@ -68,7 +68,6 @@ from dppverify.tree_route.tree_defender import TreeDefender, tree_defender
 if TYPE_CHECKING:  # imported where the LP is built: cvxpy's import costs ~0.5 s
     import cvxpy as cp
 
-__all__ = ["GameValue", "ValueLP", "exact_bracket", "game_value", "solve_value_lp"]
 
 
 @dataclass(frozen=True)

@@ -94,7 +94,7 @@ def l3_greedy(ctx: Context) -> CheckRecord:
     --------
     The profile's attacker and ``ctx.trials = 2`` random ones:
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> r = l3_greedy(context())
     >>> r.status, r.numbers["attackers"], r.numbers["max_value_gap"] < 1e-7
     ('pass', 3, True)
@@ -154,7 +154,7 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> r = l4_monotonicity(context())
     >>> r.status, dict(r.numbers)
     ('pass', {'secondary_walks': 1, 'primary_strategies': 3, 'violations': 0, 'seed': 0})
