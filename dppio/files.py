@@ -11,12 +11,16 @@ the README, "Exit codes, limits and output files"):
 - files get the mode ``0666`` minus the umask, like any file a program creates;
 - a target that exists and is not a regular file (``/dev/null``, a FIFO, a device, or a
   symlink to one) is never replaced: the content is streamed into it, after the regular
-  files are complete (a FIFO without a reader is refused at once instead of blocking); a
-  symlink to a regular file keeps its link and has the file it points to replaced;
-- an output that names one of the command's input files is refused
-  (:func:`refuse_input_as_output`);
-- a location that cannot be written raises :class:`~dppio.errors.OutputError` naming the
-  user's path.
+  files are complete (a FIFO without a reader is refused at once instead of blocking);
+- a symlink is kept and written through: to a regular file, that file is replaced; a
+  dangling one, the file it names is created (and its missing folders);
+- ``-`` (:data:`~dppio.inputs.STDIN`) is standard output: the content is written there after
+  the regular files are complete (a file named ``-`` is ``./-``);
+- an output that names one of the command's input files — by any path, symlink or hard
+  link — is refused (:func:`refuse_input_as_output`);
+- a location that cannot be written — a folder that cannot be created (a file or a dangling
+  symlink on the way, no permission), a full disk — raises :class:`~dppio.errors.OutputError`,
+  one line naming the user's path.
 
 Every input is read through :func:`read_input` (or :func:`open_input`), which refuses
 files larger than :data:`dppio.limits.MAX_INPUT_BYTES` (``/dev/zero`` included) without
@@ -30,6 +34,7 @@ import contextlib
 import errno
 import os
 import stat
+import sys
 import tempfile
 from collections.abc import Iterable, Mapping
 from pathlib import Path
@@ -37,6 +42,8 @@ from typing import Any
 
 from dppio.errors import ErrorClass, OutputError
 from dppio.inputs import STDIN, open_input, read_input, read_text
+from dppio.locks import OutputLocks, try_lock
+from dppio.targets import is_special, make_parents, remove_created, resolve_target, short_path
 
 __all__ = [
     "OutputError",
@@ -48,7 +55,6 @@ __all__ = [
     "refuse_input_as_output",
     "remove_created",
     "short_path",
-    "write_atomic",
     "write_files",
 ]
 
@@ -68,26 +74,9 @@ def file_mode() -> int:
     return 0o666 & ~mask
 
 
-def short_path(path: str | Path, limit: int = 160) -> str:
-    """``path`` for a one-line message: cut in the middle when longer than ``limit``
-    characters (a path past PATH_MAX would make the line kilobytes long).
-
-    Examples
-    --------
-    >>> short_path("out/p.json")
-    'out/p.json'
-    >>> short_path("d" * 400 + "/p.json", limit=20)
-    'dddddddddd…ddd/p.json (407 characters)'
-    """
-    text = str(path)
-    if len(text) <= limit:
-        return text
-    half = limit // 2
-    return f"{text[:half]}…{text[-half:]} ({len(text)} characters)"
-
-
 def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path] = (),
-                error: ErrorClass = OutputError) -> tuple[Path, ...]:
+                error: ErrorClass = OutputError, lock: bool | OutputLocks = False
+                ) -> tuple[Path, ...]:
     """Write several files together: all of them or none.
 
     Parameters
@@ -98,6 +87,12 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
         Files to delete once the new ones are in place (stale files of an earlier write).
     error : callable
         The error class to raise (the caller's package's), called with the message.
+    lock : bool or OutputLocks
+        Follow the lock discipline of the files ``dpp batch`` appends to (:func:`try_lock`):
+        a target that exists is locked (exclusively) before anything is written — or was
+        locked earlier, by the :class:`OutputLocks` given — and one that another process
+        holds is refused; a new target is linked into place with its lock already taken and
+        never replaces a file that appeared meanwhile.
 
     Returns
     -------
@@ -107,8 +102,9 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
     Raises
     ------
     OutputError
-        (or ``error``) An empty path, a target that is a folder, or any error while writing;
-        the message names the user's path. Nothing is left behind.
+        (or ``error``) An empty path, a target that is a folder, a folder that cannot be
+        created, a locked target, or any error while writing; the message names the user's
+        path. Nothing is left behind.
 
     Examples
     --------
@@ -123,61 +119,87 @@ def write_files(files: Mapping[Any, str | bytes], *, remove: Iterable[str | Path
     Traceback (most recent call last):
     PermissionError: the output path is empty
     """
-    targets = [(_target(p, error), c) for p, c in files.items()]
-    regular = [(t, c) for t, c in targets if not _is_special(t)]
-    special = [(t, c) for t, c in targets if _is_special(t)]
-    created: list[Path] = []
-    temps: list[tuple[str, Path]] = []
-    current = targets[0][0] if targets else Path(".")
+    targets = [(resolve_target(p, error), c) for p, c in files.items()]
+    locks = OutputLocks(files, error=error) if lock is True else lock or None
+    job = _Write(targets, [short_path(p) for p in files], locks)
     try:
-        for target, _ in regular:
-            current = target
-            make_parents(target.parent, created)
-        mode = file_mode()
-        for target, content in regular:
-            current = target
-            fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=_temp_prefix(target),
-                                       suffix=".tmp")
-            temps.append((tmp, target))
-            data = _encode(content)
-            with os.fdopen(fd, "wb") as fh:
-                fh.write(data)
-            os.chmod(tmp, mode)
-        for target, content in special:
-            current = target
-            _stream(target, _encode(content))
-        for tmp, target in temps:
-            current = target
-            os.replace(tmp, target)
-        temps.clear()
+        job.run()
     except OSError as exc:
-        _clean(temps, created)
-        reason = exc.strerror or str(exc)
-        raise error(f"cannot write {short_path(current)}: {reason}") from None
+        job.clean()
+        raise error(f"cannot write {short_path(job.current)}: {exc.strerror or exc}") from None
     except BaseException:
-        _clean(temps, created)
+        job.clean()
         raise
+    finally:
+        job.release()
+        if lock is True and locks is not None:
+            locks.close()
     for p in remove:
         Path(p).unlink(missing_ok=True)
     return tuple(t for t, _ in targets)
 
 
-def write_atomic(path: str | Path, text: str | bytes, *, error: ErrorClass = OutputError
-                 ) -> Path:
-    """Write one file atomically (:func:`write_files` with one target).
+class _Write:
+    """One :func:`write_files` call: the temporary files, the folders made, the descriptors
+    held (under a lock), the target being written (for the message)."""
 
-    Examples
-    --------
-    The file is replaced, and no temporary file is left behind:
+    def __init__(self, targets: list[tuple[Path, str | bytes]], shown: list[str],
+                 locks: OutputLocks | None) -> None:
+        self.regular = [(t, c) for t, c in targets if not is_special(t) and str(t) != STDIN]
+        self.special = [(t, c) for t, c in targets if is_special(t)]
+        self.streamed = [c for t, c in targets if str(t) == STDIN]
+        self.shown = {t: s for (t, _), s in zip(targets, shown, strict=True)}  # as given
+        self.locks = locks
+        self.created: list[Path] = []
+        self.temps: list[tuple[str, Path]] = []
+        self.held: list[int] = []  # (locks) our new files' descriptors, until all are in place
+        self.current = targets[0][0] if targets else Path(".")
 
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     target = Path(d) / "profile.json"
-    ...     _ = write_atomic(target, "old")
-    ...     _ = write_atomic(target, "new")
-    ...     print(target.read_text(), sorted(p.name for p in Path(d).iterdir()))
-    new ['profile.json']
-    """
-    return write_files({Path(path): text}, error=error)[0]
+    def run(self) -> None:
+        for target, _ in self.regular:
+            self.current = target
+            make_parents(target.parent, self.created)
+        mode = file_mode()
+        for target, content in self.regular:
+            self.current = target
+            fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=_temp_prefix(target),
+                                       suffix=".tmp")
+            self.temps.append((tmp, target))
+            if self.locks is not None:
+                self.held.append(fd)
+                try_lock(fd)  # a file of ours: nobody else can hold it yet
+            with os.fdopen(fd, "wb", closefd=self.locks is None) as fh:
+                fh.write(_encode(content))
+            os.chmod(tmp, mode)
+        for target, content in self.special:
+            self.current = target
+            _stream(target, _encode(content))
+        for content in self.streamed:  # standard output: its failure is the stream's own error
+            _to_stdout(_encode(content))
+        for tmp, target in self.temps:
+            self.current = target
+            self._commit(tmp, target)
+        self.temps.clear()
+
+    def _commit(self, tmp: str, target: Path) -> None:
+        if self.locks is None or target not in self.locks.fresh:
+            os.replace(tmp, target)
+            return
+        try:
+            os.link(tmp, target)  # with its lock: a batch starting now refuses it
+        except FileExistsError:
+            raise OSError(errno.EEXIST, "it appeared while this command ran (another program "
+                          "made it); nothing was written") from None
+        os.unlink(tmp)
+
+    def clean(self) -> None:
+        _clean(self.temps, self.created)
+
+    def release(self) -> None:
+        for fd in self.held:
+            with contextlib.suppress(OSError):
+                os.close(fd)
+        self.held.clear()
 
 
 def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Path | None], *,
@@ -199,7 +221,7 @@ def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Pat
     Traceback (most recent call last):
     dppio.errors.OutputError: ...x.json is an input of this command; refusing to overwrite it ...
     """
-    if output is None or str(output) == "":
+    if output is None or str(output) in ("", STDIN):  # (-o - is standard output)
         return
     out = Path(output)
     for path in inputs:
@@ -215,14 +237,19 @@ def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Pat
                         "overwrite it (give another path)")
 
 
-def _is_special(target: Path) -> bool:
-    """True when ``target`` exists (through symlinks) and is neither a regular file nor a
-    folder: a device, a FIFO, a socket."""
-    try:
-        st = os.stat(target)
-    except OSError:
-        return False
-    return not stat.S_ISREG(st.st_mode) and not stat.S_ISDIR(st.st_mode)
+def _to_stdout(data: bytes) -> None:
+    """Write ``data`` to standard output (``-o -``), through ``sys.stdout`` so that what the
+    command printed before stays in order."""
+    stream = sys.stdout
+    if stream is None:  # descriptor 1 was closed: nothing can read it
+        return
+    stream.flush()
+    buffer = getattr(stream, "buffer", None)
+    if buffer is None:  # a text stream without bytes (a test runner's capture)
+        stream.write(data.decode("utf-8", "backslashreplace"))
+    else:
+        buffer.write(data)
+    stream.flush()
 
 
 def _is_socket(target: Path) -> bool:
@@ -281,62 +308,6 @@ def _temp_prefix(target: Path) -> str:
     if len(os.fsencode(target.name)) + len("..XXXXXXXX.tmp") > 255:
         return ".dpp."
     return f".{target.name}."
-
-
-def _target(path: str | Path, error: ErrorClass) -> Path:
-    if str(path) == "":
-        raise error("the output path is empty")
-    if str(path).endswith(("/", os.sep)):  # Path() would drop the slash and write a file
-        raise error(f"cannot write {short_path(path)}: it names a folder (a trailing /); give "
-                    "a file name")
-    p = Path(path)
-    if os.path.isdir(p):  # (os.path: False, not an exception, for a name too long)
-        raise error(f"cannot write {short_path(p)}: it is a folder")
-    if os.path.islink(p) and os.path.isfile(p):  # keep the link; replace the file it points to
-        return Path(os.path.realpath(p))
-    return p
-
-
-def make_parents(folder: Path, created: list[Path]) -> None:
-    """Create ``folder`` and its missing parents, appending each folder made to ``created``
-    (outermost first) so that :func:`remove_created` can take them away again.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     made: list[Path] = []
-    ...     make_parents(Path(d) / "a" / "b", made)
-    ...     [p.name for p in made], (Path(d) / "a" / "b").is_dir()
-    ...     remove_created(made)
-    ...     made, (Path(d) / "a").exists()
-    (['a', 'b'], True)
-    ([], False)
-    """
-    missing = []
-    f = folder if str(folder) else Path(".")
-    while not f.exists():
-        missing.append(f)
-        if f.parent == f:
-            break
-        f = f.parent
-    for d in reversed(missing):
-        d.mkdir()
-        created.append(d)
-
-
-def remove_created(created: list[Path]) -> None:
-    """Remove the folders :func:`make_parents` made, innermost first (a folder that is no
-    longer empty stays), and forget them.
-
-    Examples
-    --------
-    >>> remove_created([])  # nothing made, nothing removed
-    """
-    for d in reversed(created):
-        with contextlib.suppress(OSError):
-            d.rmdir()
-    created.clear()
 
 
 def _clean(temps: list[tuple[str, Path]], created: list[Path]) -> None:

@@ -33,6 +33,7 @@ Examples
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import stat
 import sys
@@ -43,8 +44,8 @@ from typing import BinaryIO
 from dppio.errors import InputError, LimitError
 from dppio.limits import MAX_INPUT_BYTES
 
-__all__ = ["MEMO_BYTES", "STDIN", "is_stdin", "open_input", "peek_input", "read_input",
-           "read_text", "reading_once"]
+__all__ = ["FOLDER_MARK", "MEMO_BYTES", "STDIN", "StdinError", "is_stdin", "open_input",
+           "peek_input", "read_input", "read_text", "reading_once", "stdin_problem"]
 
 STDIN = "-"
 """The input name that means standard input."""
@@ -108,19 +109,73 @@ def reading_once() -> Iterator[None]:
         _SESSION.reset(token)
 
 
+class StdinError(OSError):
+    """Standard input cannot be read: it is closed, a folder, or a stream that refuses to be
+    read. Its text is the one sentence (``str()`` and ``strerror`` alike), so every reader's
+    message names the reason the same way.
+
+    Examples
+    --------
+    >>> exc = StdinError("standard input is a folder")
+    >>> str(exc), exc.strerror
+    ('standard input is a folder', 'standard input is a folder')
+    """
+
+    def __init__(self, sentence: str) -> None:
+        super().__init__(errno.EBADF, sentence)
+
+    def __str__(self) -> str:
+        return str(self.strerror)
+
+
+FOLDER_MARK = "DPP_STDIN_IS_FOLDER"
+"""Set (to ``1``) by the ``dpp`` launcher when it found standard input to be a folder, which
+no Python interpreter can start with: it gave the command ``/dev/null`` instead, and ``-``
+is refused. Consumed when this module is imported, so the command's children do not see it."""
+
+_STDIN_FOLDER = os.environ.pop(FOLDER_MARK, "") == "1"
+_STDIN_NAMES = frozenset({"/dev/stdin", "/dev/fd/0", "/proc/self/fd/0"})
+
+
+def stdin_problem() -> str | None:
+    """Why standard input cannot be read, known without reading it (it is closed, a folder),
+    or None.
+
+    Examples
+    --------
+    >>> stdin_problem() in (None, "standard input is closed")
+    True
+    """
+    if _STDIN_FOLDER:
+        return "standard input is a folder"
+    try:
+        st = os.fstat(0)
+    except OSError:
+        return "standard input is closed"
+    if stat.S_ISDIR(st.st_mode):
+        return "standard input is a folder"
+    if sys.stdin is None:  # descriptor 0 was closed when the interpreter started
+        return "standard input is closed"
+    return None
+
+
 def _stdin_bytes(limit: int) -> bytes:
     """Standard input's bytes (at most ``max(limit, MAX_INPUT_BYTES) + 1``), read once."""
     stream = sys.stdin
     for owner, data in _STDIN_READ:
         if owner is stream:
             return data
-    if stream is None:
-        raise OSError("standard input is closed")
+    problem = stdin_problem()
+    if problem is not None or stream is None:
+        raise StdinError(problem or "standard input is closed")
     raw = getattr(stream, "buffer", stream)
     try:
         got = raw.read(max(limit, MAX_INPUT_BYTES) + 1)
     except ValueError:  # a closed stream
-        raise OSError("standard input is closed") from None
+        raise StdinError("standard input is closed") from None
+    except OSError as exc:  # opened for writing only, a socket that resets, an I/O error
+        raise StdinError("standard input is not open for reading" if exc.errno == errno.EBADF
+                         else f"standard input cannot be read: {exc.strerror or exc}") from None
     data = got.encode("utf-8") if isinstance(got, str) else bytes(got)
     _STDIN_READ[:] = [(stream, data)]
     return data
@@ -154,6 +209,8 @@ def read_input(path: str | os.PathLike[str], *, limit: int = MAX_INPUT_BYTES) ->
         if session is not None:
             session.remember(key, data, regular=False)
     else:
+        if _STDIN_FOLDER and key in _STDIN_NAMES:  # the launcher gave /dev/null for a folder
+            raise StdinError("standard input is a folder")
         with open_input(path) as fh:
             regular = stat.S_ISREG(os.fstat(fh.fileno()).st_mode)
             data = fh.read(max(limit, MAX_INPUT_BYTES if session is not None else limit) + 1)
@@ -235,6 +292,9 @@ def open_input(path: str | os.PathLike[str]) -> BinaryIO:
     b''
     """
     if os.fspath(path) == STDIN:
+        problem = stdin_problem()
+        if problem is not None:
+            raise StdinError(problem)
         return os.fdopen(os.dup(0), "rb")
     fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
     try:

@@ -8,6 +8,12 @@
   :data:`MAX_EXACT_CHARS` characters long, else (and for a float) its :func:`decimal`;
 - :func:`json_shown`: a value from a user's JSON document, written back as the user wrote
   it for a one-line message (never a Python repr such as ``Fraction(7, 10)``).
+- :func:`escaped`: a string from a document (a certificate's version, a map name, a CSV
+  cell, a file name) as it may reach a terminal: every character that could move the cursor,
+  end the line or reorder the text (control characters, line and paragraph separators,
+  bidirectional overrides) written as a visible escape, and the text cut at a bound — so no
+  document can forge or hide a line. :func:`terminal_line` applies the same rule to a whole
+  message at the place where it is printed.
 
 These decide no result (formatting only), so they live in the shared edges.
 """
@@ -16,11 +22,125 @@ from __future__ import annotations
 
 import json
 import math
+import unicodedata
 from decimal import Decimal, localcontext
 from fractions import Fraction
 from typing import Any
 
-__all__ = ["DIGITS", "MAX_EXACT_CHARS", "count", "decimal", "json_shown", "show"]
+MAX_SHOWN_CHARS = 80
+"""Characters of a document's string quoted in a message (:func:`escaped`'s default)."""
+
+MAX_LINE_CHARS = 2000
+"""Characters of one printed message line (:func:`terminal_line`): beyond, cut in the middle."""
+
+_SAFE_FORMAT = frozenset("\u200d")  # the zero-width joiner of emoji sequences: harmless
+
+
+def _unsafe(ch: str) -> bool:
+    """True for a character a terminal does not show as itself: a control character (C0,
+    DEL, C1), a line or paragraph separator, a format character (bidirectional overrides and
+    isolates, zero-width spaces, the byte-order mark), a lone surrogate (a file name that is
+    not UTF-8)."""
+    if " " <= ch <= "~":
+        return False
+    return unicodedata.category(ch) in ("Cc", "Cf", "Zl", "Zp", "Cs", "Co", "Cn") \
+        and ch not in _SAFE_FORMAT
+
+
+def _escape(ch: str) -> str:
+    n = ord(ch)
+    if n < 0x100:
+        return f"\\x{n:02x}"
+    return f"\\u{n:04x}" if n < 0x10000 else f"\\U{n:08x}"
+
+
+def escaped(text: object, limit: int = MAX_SHOWN_CHARS) -> str:
+    """``text`` (a string from a document, or any value as ``str``) safe to print inside a
+    one-line message: every character a terminal would not show as itself written as a
+    ``\\xNN`` / ``\\uNNNN`` escape, and at most ``limit`` characters of it kept (then
+    ``…`` and the full length).
+
+    Examples
+    --------
+    >>> escaped("0.1.0\\rprovenance OK")
+    '0.1.0\\\\x0dprovenance OK'
+    >>> escaped("a\\x1b[2Kb"), escaped("\\u202egnp.exe"), escaped("café σ*")
+    ('a\\\\x1b[2Kb', '\\\\u202egnp.exe', 'café σ*')
+    >>> escaped("v" * 5_000_000, limit=10)
+    'vvvvvvvvvv… (5000000 characters)'
+    >>> escaped(None), escaped(3)
+    ('None', '3')
+    """
+    s = text if isinstance(text, str) else str(text)
+    cut = len(s) > limit
+    head = s[:limit] if cut else s
+    if not head.isascii() or not head.isprintable():
+        head = "".join(_escape(c) if _unsafe(c) else c for c in head)
+    return f"{head}… ({len(s)} characters)" if cut else head
+
+
+def json_escaped(text: str) -> str:
+    """JSON text (``json.dumps(..., ensure_ascii=False)``: readable σ\\*, ≈) with every
+    character a terminal would not show as itself written as its ``\\uXXXX`` escape (a
+    surrogate pair beyond the BMP) — the same JSON value, which no document can use to
+    forge or reorder the lines around it. Control characters are escaped by ``json`` itself.
+
+    Examples
+    --------
+    >>> json_escaped(json.dumps({"node": "\u202eg1", "σ*": 1}, ensure_ascii=False))
+    '{"node": "\\\\u202eg1", "σ*": 1}'
+    >>> json.loads(json_escaped(json.dumps(["\U000e0001"], ensure_ascii=False)))
+    ['\U000e0001']
+    """
+    if text.isascii():
+        return text
+    return "".join(_json_escape(c) if not c.isascii() and _unsafe(c) else c for c in text)
+
+
+def _json_escape(ch: str) -> str:
+    n = ord(ch)
+    if n < 0x10000:
+        return f"\\u{n:04x}"
+    n -= 0x10000
+    return f"\\u{0xD800 + (n >> 10):04x}\\u{0xDC00 + (n & 0x3FF):04x}"
+
+
+def terminal_text(text: str) -> str:
+    """Text output of several lines (a report, a table) as it is printed: the line breaks
+    kept, every other character a terminal would not show as itself escaped
+    (:func:`escaped`), however long the lines.
+
+    Examples
+    --------
+    >>> print(terminal_text("path: s → \\x1b[2Ka\\ntotal 3"))
+    path: s → \\x1b[2Ka
+    total 3
+    """
+    if text.isprintable() or not any(_unsafe(c) for c in text if c != "\n"):
+        return text
+    return "\n".join(escaped(line, limit=len(line)) for line in text.split("\n"))
+
+
+def terminal_line(text: str, limit: int = MAX_LINE_CHARS) -> str:
+    """One message line as it is printed: a line break or any other white space but the
+    space becomes a space, every other character a terminal would not show as itself an
+    escape (:func:`escaped`), and a line longer than ``limit`` characters is cut in the
+    middle — the last defence at the print sites, whatever a message quotes.
+
+    Examples
+    --------
+    >>> terminal_line("error: bad\\r\\nname\\x1b[1A in x.json")
+    'error: bad  name\\\\x1b[1A in x.json'
+    >>> len(terminal_line("x" * 10_000)) < 2100
+    True
+    """
+    flat = text
+    if not text.isprintable():
+        flat = "".join(" " if c.isspace() else c for c in text)
+    if len(flat) > limit:
+        half = limit // 2
+        flat = f"{flat[:half]} … ({len(flat)} characters) … {flat[-half:]}"
+    return escaped(flat, limit=len(flat))
 
 DIGITS = 4
 """Significant digits of every decimal shown in text and figures."""

@@ -41,6 +41,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from dppio.text import escaped
 from dppverify.errors import CertificateError, InvalidInstanceError
 from dppverify.formats.files import read_input
 from dppverify.game.inputs import Parsed
@@ -183,7 +184,13 @@ class ProvenanceCheck:
 
 
 def _short(h: Any) -> str:
-    return str(h)[:12] if h else "none"
+    return escaped(str(h)[:12]) if h else "none"
+
+
+def _shown(x: Any) -> str:
+    """A field of the certificate for the one line: escaped and bounded (a carriage return
+    or a 5 MB string in a certificate cannot forge or flood the line)."""
+    return escaped(x, limit=40)
 
 
 def verify_provenance(certificate: object, instance: Any, profile: Any, *,
@@ -240,7 +247,7 @@ def verify_provenance(certificate: object, instance: Any, profile: Any, *,
         given_sha[name] = given["sha256"]
         if given["sha256"] != rec["sha256"]:
             how = "" if given["bytes"] == rec.get("bytes") else (
-                f" (recorded over {rec.get('bytes')} bytes, given as {given['bytes']})")
+                f" (recorded over {_shown(rec.get('bytes'))} bytes, given as {given['bytes']})")
             mismatches.append(f"{name} sha256 differs: recorded {_short(rec['sha256'])}..., "
                               f"given {_short(given['sha256'])}...{how}")
         else:
@@ -248,8 +255,8 @@ def verify_provenance(certificate: object, instance: Any, profile: Any, *,
         if name == "instance" and map_file is not None:
             wrong = _map_mismatch(rec.get("map"), map_file)
             (mismatches if wrong else matched).append(wrong or "map")
-    version = prov.get("dppverify")
-    note = "" if version == __version__ else (
+    version = _shown(prov.get("dppverify"))
+    note = "" if prov.get("dppverify") == __version__ else (
         f"; certified by dppverify {version}, this is {__version__}")
     if mismatches:
         ok = f" ({', '.join(matched)} match{'es' if len(matched) == 1 else ''})" \
@@ -263,8 +270,9 @@ def verify_provenance(certificate: object, instance: Any, profile: Any, *,
         return ProvenanceCheck(tuple(mismatches),
                                f"provenance MISMATCH: {'; '.join(mismatches)}{ok}{note}{hint}")
     return ProvenanceCheck((), f"provenance OK: {', '.join(matched)} match the certificate "
-                               f"(sha256; route {prov.get('route')}, {prov.get('numbers')} "
-                               f"numbers, dppverify {version}){note}")
+                               f"(sha256; route {_shown(prov.get('route'))}, "
+                               f"{_shown(prov.get('numbers'))} numbers, dppverify {version})"
+                               f"{note}")
 
 
 def _map_mismatch(recorded: Any, map_file: str | Path) -> str:

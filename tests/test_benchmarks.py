@@ -8,11 +8,12 @@ The benchmarks report ratios (docs/benchmarks.md); here each ``benchmarks/bench_
 from __future__ import annotations
 
 import os
-import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+
+from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[1]
 SCRIPTS = sorted((ROOT / "benchmarks").glob("bench_*.py"))
@@ -25,7 +26,7 @@ def test_every_script_is_listed() -> None:
 @pytest.mark.parametrize("script", SCRIPTS, ids=lambda p: p.stem)
 def test_benchmark_runs_in_quick_mode(script: Path) -> None:
     env = {**os.environ, "PYTHONPATH": str(ROOT), "DPP_BENCH_QUICK": "1"}
-    out = subprocess.run([sys.executable, str(script), "--quick"], capture_output=True,
-                         text=True, timeout=600, env=env, cwd=ROOT)
+    out = _guard.run([sys.executable, str(script), "--quick"], capture_output=True,
+                     text=True, env=env, cwd=ROOT)
     assert out.returncode == 0, out.stderr[-3000:]
     assert out.stdout.strip(), "a benchmark prints its rows"

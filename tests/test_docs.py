@@ -32,11 +32,12 @@ from pathlib import Path
 
 import pytest
 
+from tests import _guard
+
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = (ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md")))
 FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
 SLOW_MARK = "<!-- console: slow -->"
-TIMEOUT = 600
 
 
 @dataclass(frozen=True)
@@ -133,8 +134,8 @@ def test_console_block(block: Block, tmp_path: Path) -> None:
     checker = doctest.OutputChecker()
     for cmd in block.commands:
         where = f"{block.path.relative_to(ROOT)}:{cmd.line}: $ {cmd.text}"
-        run = subprocess.run(["bash", "-c", cmd.text], cwd=work, env=env, text=True,
-                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=TIMEOUT)
+        run = _guard.run(["bash", "-c", cmd.text], cwd=work, env=env, text=True,
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
         got = run.stdout
         if cmd.expected.strip():
             ok = checker.check_output(cmd.expected, got, FLAGS)

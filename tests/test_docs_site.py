@@ -4,10 +4,10 @@ the figures and holds the API reference generated from the docstrings."""
 from __future__ import annotations
 
 import importlib.util
-import subprocess
 import sys
 from pathlib import Path
 
+from tests import _guard
 from tests.test_docstrings import public_modules
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -24,7 +24,7 @@ def _dev() -> object:
 def test_the_site_builds_without_warnings(tmp_path: Path) -> None:
     out = tmp_path / "html"
     cmd = _dev().docs_command(out, python=sys.executable)  # type: ignore[attr-defined]
-    proc = subprocess.run(cmd, capture_output=True, text=True, timeout=900, cwd=ROOT)
+    proc = _guard.run(cmd, capture_output=True, text=True, cwd=ROOT)
     assert proc.returncode == 0, (proc.stdout + proc.stderr)[-5000:]
     assert (out / "index.html").is_file() and (out / "docs/site/index.html").is_file()
     # the guides, the proofs and the README are pages; their figures are rendered

@@ -9,23 +9,23 @@ from __future__ import annotations
 import json
 import os
 import shutil
-import signal
 from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
 
 import pytest
 from click.testing import CliRunner
 
 from dpp import main as dpp_main
 from dppverify.__main__ import main as checker_main
+from tests import _guard
 from tests.hostile._harness import write_template
 
 ROOT = Path(__file__).resolve().parents[1]
 CORPUS = ROOT / "tests" / "data" / "invalid"
 MANIFEST = json.loads((CORPUS / "manifest.json").read_text())
-GUARD_SECONDS = 120
-"""Kill guard per case: generous, only there so that a hang fails instead of blocking."""
+GUARD_CPU_SECONDS = 120
+"""CPU budget per case (tests/_guard.py: CPU time, and no CPU at all for minutes is a hang):
+generous, only there so that a hang fails instead of blocking."""
 
 INSTANCES = sorted(n for n, m in MANIFEST.items() if m["kind"] == "instance")
 MAPS = sorted(n for n, m in MANIFEST.items() if m["kind"] == "map")
@@ -153,10 +153,6 @@ def scratch(scratch_template: Path, tmp_path: Path,
     yield d
 
 
-def _alarm(signum: int, frame: Any) -> None:
-    raise TimeoutError(f"hostile case still running after {GUARD_SECONDS} s")
-
-
 def test_at_least_150_cases() -> None:
     assert len(CASES) >= 150
     assert len({c[0] for c in CASES}) == len(CASES)
@@ -166,15 +162,10 @@ def test_at_least_150_cases() -> None:
 def test_hostile_input(scratch: Path, name: str, program: str, args: list[str],
                        code: int) -> None:
     before = _listing(scratch)
-    previous = signal.signal(signal.SIGALRM, _alarm)
-    signal.alarm(GUARD_SECONDS)
-    try:
+    with _guard.progress_guard(GUARD_CPU_SECONDS):  # CPU seconds: load does not stretch them
         main = dpp_main if program == "dpp" else checker_main
         result = CliRunner().invoke(main, args, prog_name=program,
                                     env={"DPP_DEBUG": None, "COLUMNS": "200"})
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, previous)
     stderr = result.stderr
     assert "Traceback" not in result.output and "Traceback" not in stderr
     assert result.exception is None or isinstance(result.exception, SystemExit), \

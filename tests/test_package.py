@@ -3,8 +3,8 @@
 - ``python -m build`` (sdist and wheel, ``--no-isolation``: the test environment has
   setuptools; a copy of the sources is built, so the checkout gets no ``build/``) and
   ``twine check`` on both files;
-- the wheel holds the three packages with their typing markers and data, the ``dpp`` entry
-  point and the license, and no tests;
+- the wheel holds the three packages with their typing markers and data, the ``dpp`` launcher
+  and its ``dpp-python`` entry point, and the license, and no tests;
 - ``CITATION.cff`` is valid Citation File Format 1.2.0 (its JSON schema, ``tests/data``) and
   states the version and license that ``pyproject.toml`` states;
 - the changelog has a section for the version.
@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import json
 import shutil
-import subprocess
 import sys
 import tomllib
 import zipfile
@@ -22,6 +21,8 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+
+from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[1]
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
@@ -35,9 +36,9 @@ def dists(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
     src = tmp_path_factory.mktemp("src") / "dppverify"
     shutil.copytree(ROOT, src, ignore=shutil.ignore_patterns(*IGNORED))
     out = tmp_path_factory.mktemp("dist")
-    proc = subprocess.run([sys.executable, "-m", "build", "--no-isolation", "--sdist",
-                           "--wheel", "--outdir", str(out), str(src)],
-                          capture_output=True, text=True, timeout=600)
+    proc = _guard.run([sys.executable, "-m", "build", "--no-isolation", "--sdist",
+                       "--wheel", "--outdir", str(out), str(src)],
+                      capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     files = sorted(out.iterdir())
     assert sorted(p.suffix for p in files) == [".gz", ".whl"], files
@@ -45,8 +46,8 @@ def dists(tmp_path_factory: pytest.TempPathFactory) -> list[Path]:
 
 
 def test_twine_check_passes(dists: list[Path]) -> None:
-    proc = subprocess.run([sys.executable, "-m", "twine", "check", "--strict",
-                           *map(str, dists)], capture_output=True, text=True, timeout=300)
+    proc = _guard.run([sys.executable, "-m", "twine", "check", "--strict",
+                       *map(str, dists)], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout + proc.stderr
     assert proc.stdout.count("PASSED") == 2
 
@@ -62,7 +63,10 @@ def test_the_wheel_holds_the_packages_the_command_and_the_license(dists: list[Pa
     info = f"dppverify-{VERSION}.dist-info"
     assert f"{info}/licenses/LICENSE" in names
     entry = zipfile.ZipFile(wheel).read(f"{info}/entry_points.txt").decode()
-    assert "dpp = dpp:main" in entry
+    assert "dpp-python = dpp:console" in entry
+    # `dpp` itself is the shell launcher (standard input a folder stops any Python), as is
+    launcher = zipfile.ZipFile(wheel).read(f"dppverify-{VERSION}.data/scripts/dpp")
+    assert launcher == (ROOT / "bin" / "dpp").read_bytes() and launcher.startswith(b"#!/bin/sh")
     meta = zipfile.ZipFile(wheel).read(f"{info}/METADATA").decode()
     for line in ("License-Expression: MIT", "Requires-Python: >=3.11",
                  "Project-URL: Paper, https://arxiv.org/abs/2506.13650"):

@@ -8,12 +8,12 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
 import sys
 
 import pytest
 
 from solver.threads import BLAS_THREAD_VARIABLES
+from tests import _guard
 
 HEAVY = ("cvxpy", "clarabel", "scipy.stats", "matplotlib", "hypothesis", "dask")
 """Loaded only by the commands that need them (LPs, figures, audits, distributed sweeps)."""
@@ -25,8 +25,8 @@ LIGHT_CLI = (*HEAVY, "scipy", "networkx", "solver.twogoal.equilibrium")
 def _loaded(code: str, names: tuple[str, ...]) -> list[str]:
     probe = (f"import sys\n{code}\nimport json\n"
              f"print(json.dumps([m for m in {list(names)!r} if m in sys.modules]))")
-    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
-                         check=True, timeout=120)
+    out = _guard.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                     check=True)
     return list(json.loads(out.stdout.strip().splitlines()[-1]))
 
 
@@ -71,6 +71,6 @@ def test_dpp_runs_single_threaded_blas_unless_told(preset: str | None, code: str
     if preset is not None:
         env["OPENBLAS_NUM_THREADS"] = preset
     probe = f"{code}\nimport os\nprint(os.environ.get('OPENBLAS_NUM_THREADS'))"
-    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
-                         check=True, timeout=120, env=env)
+    out = _guard.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                     check=True, env=env)
     assert out.stdout.strip() == str(want)

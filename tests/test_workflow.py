@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import json
 import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -16,6 +15,7 @@ import pytest
 from click.testing import CliRunner
 
 from dpp import main
+from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[1]
 TRIANGLE = str(ROOT / "examples" / "triangle.json")
@@ -322,11 +322,11 @@ def test_certify_progress_shows_a_bar_before_the_tree(profile: str) -> None:
 def test_the_mutant_audit_runs_from_any_folder(tmp_path: Path) -> None:
     env = {k: v for k, v in os.environ.items() if not k.startswith(("DPP_", "PYTEST_"))}
     env["PYTHONPATH"] = str(ROOT)
-    run = subprocess.run(
+    run = _guard.run(
         [sys.executable, "-c", "import sys; sys.argv[0] = 'dpp'; from dpp import main; "
          "main()", "audit", "--solver", "tests.mutants.solvers:mutant_drop_phase_ii",
          "--examples", "40", "--no-shrink", "--output-dir", "failure"],
-        cwd=tmp_path, env=env, text=True, capture_output=True, timeout=600)
+        cwd=tmp_path, env=env, text=True, capture_output=True)
     assert run.returncode == 1, run.stderr
     assert "cannot import" not in run.stderr
     assert (tmp_path / "failure" / "instance.json").exists()

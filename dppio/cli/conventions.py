@@ -23,6 +23,7 @@ from typing import Any, TypeVar
 import click
 
 from dppio.files import write_files
+from dppio.text import json_escaped, terminal_line, terminal_text
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -65,7 +66,7 @@ def status(message: str) -> None:
     --------
     >>> status("wrote out/p.json")  # goes to stderr, so doctest sees nothing
     """
-    click.echo(message, err=True)
+    click.echo(terminal_line(message), err=True)  # what it quotes cannot forge a line
 
 
 def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str) -> None:
@@ -86,12 +87,12 @@ def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str
     }
     """
     if output is not None:
-        write_files({output: json.dumps(doc, indent=2, ensure_ascii=False) + "\n"})
+        write_files({output: json_escaped(json.dumps(doc, indent=2, ensure_ascii=False)) + "\n"})
         status(f"wrote {output}: {summary}")
     elif as_json:
-        click.echo(json.dumps(doc, indent=2, ensure_ascii=False))
+        click.echo(json_escaped(json.dumps(doc, indent=2, ensure_ascii=False)))
     else:
-        click.echo(text)
+        click.echo(terminal_text(text))
 
 
 class _NonEmptyPath(click.Path):

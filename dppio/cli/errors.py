@@ -28,6 +28,10 @@ from dppio.cli.streams import (
 from dppio.errors import DppioError
 from dppio.inputs import STDIN, reading_once
 from dppio.memory import memory_limit_text
+from dppio.text import terminal_line
+
+OUTPUT_OPTIONS = frozenset({"-o", "--output", "--out", "--save-instance"})
+"""The options whose value names an output: ``-`` after one of them is standard output."""
 
 
 class ErrorReportingGroup(click.Group):
@@ -64,9 +68,11 @@ class ErrorReportingGroup(click.Group):
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
         words = args[:args.index("--")] if "--" in args else args
-        if words.count(STDIN) > 1:  # one stream, one input (dppio.inputs)
+        inputs = [w for i, w in enumerate(words)  # `-o -` is standard output, not an input
+                  if w == STDIN and (i == 0 or words[i - 1] not in OUTPUT_OPTIONS)]
+        if len(inputs) > 1:  # one stream, one input (dppio.inputs)
             click.echo(f"error: {STDIN} (standard input) can stand for one input only, "
-                       f"got it {words.count(STDIN)} times", err=True)
+                       f"got it {len(inputs)} times", err=True)
             ctx.exit(2)
         try:
             return super().parse_args(ctx, args)
@@ -99,8 +105,8 @@ class ErrorReportingGroup(click.Group):
                 ctx.exit(exit_code(sig))
             if os.environ.get("DPP_DEBUG"):
                 raise
-            click.echo(f"internal error: {type(exc).__name__}: {' '.join(str(exc).split())} "
-                       "(set DPP_DEBUG=1 for details)", err=True)
+            click.echo(terminal_line(f"internal error: {type(exc).__name__}: {exc} "
+                                     "(set DPP_DEBUG=1 for details)"), err=True)
             ctx.exit(3)
 
 
@@ -128,7 +134,7 @@ def _usage_error(exc: click.UsageError) -> None:
         click.echo(f"error: missing command (see '{where} --help')", err=True)
         return
     message = " ".join(exc.format_message().split())
-    click.echo(f"error: {message} (see '{where} --help')", err=True)
+    click.echo(terminal_line(f"error: {message} (see '{where} --help')"), err=True)
 
 
 def fail(exc: Exception, *, line: str | None = None, code: int = 2) -> NoReturn:
@@ -147,5 +153,6 @@ def fail(exc: Exception, *, line: str | None = None, code: int = 2) -> NoReturn:
     if (sig := as_signal(exc)) is not None:  # interrupted: the signal's line and code
         click.echo(interrupt_message(sig), err=True)
         raise click.exceptions.Exit(exit_code(sig))
-    click.echo(f"error: {' '.join(str(exc).split())}" if line is None else line, err=True)
+    click.echo(terminal_line(f"error: {' '.join(str(exc).split())}") if line is None else line,
+               err=True)
     raise click.exceptions.Exit(code)

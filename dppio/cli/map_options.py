@@ -28,7 +28,7 @@ import click
 from dppio.errors import DppioError, OptionError
 from dppio.limits import check_numeral, check_rational
 from dppio.standard_maps import PREFIX, resolve_map, standard_map_names
-from dppio.text import show
+from dppio.text import show, terminal_line
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -430,7 +430,7 @@ def _map_options(fn: F, *, only_two: bool, request: type[MapRequest]) -> F:
             grid = map_request(map_file, start, goals, prior_text, connectivity,
                                request=request)
         except DppioError as exc:
-            click.echo(f"error: {exc}", err=True)
+            click.echo(terminal_line(f"error: {exc}"), err=True)
             raise click.exceptions.Exit(2) from None
         return fn(*args, grid=grid, **kwargs)
 

@@ -217,6 +217,7 @@ class _Campaign:
         self.seen: set[str] = set()
         self.found: list[Outcome] = []
         self.files: tuple[Any, ...] = ()
+        self.unwritten: list[str] = []  # why the failure's files could not be written
         self.skip_limit = max(SKIP_FLOOR, SKIP_FACTOR * config.examples)
         self.stopped = False
 
@@ -225,7 +226,7 @@ class _Campaign:
         self.found.append(outcome)
         if self.config.out is not None:
             self.files = save_failure(outcome, self.config.out, seed=self.config.seed,
-                                      log=self.log)
+                                      unwritten=self.unwritten)
         if len(self.found) > 1:
             self.bar.set_description(f"shrinking: {self.budget.used}/{self.budget.calls} calls, "
                                      f"{len(outcome.instance['graph']['nodes'])} nodes")
@@ -234,7 +235,7 @@ class _Campaign:
         """The first failure: keep it, say so, start the shrinking budget."""
         self.record(outcome)
         out, shrink = self.config.out, self.config.shrink
-        if self.log is not None:
+        if self.log is not None and not self.unwritten:  # (else the end says it, in one line)
             where = f"; written to {out}" if out is not None else ""
             plan = (f"; shrinking it (budget: {self.budget.describe()})" if shrink else "")
             self.log(f"audit: example {self.examples} fails {outcome.check}{where}{plan}")
@@ -307,4 +308,6 @@ class _Campaign:
                                        on_improve=self.record)
         return AuditReport(False, self.examples, self.skipped, self.budget.used, minimal,
                            self.found[0], self.files, config.seed, config.max_nodes,
-                           shrunk=shrink, budget_exhausted=shrink and self.budget.exhausted)
+                           shrunk=shrink, budget_exhausted=shrink and self.budget.exhausted,
+                           unwritten=self.unwritten[0] if self.unwritten and not self.files
+                           else "")

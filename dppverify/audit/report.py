@@ -17,12 +17,12 @@ from __future__ import annotations
 import json
 import os
 import stat
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
+from dppio.files import short_path
 from dppio.text import count
 from dppverify.audit.examine import Outcome
 from dppverify.formats.files import OutputError, write_files
@@ -79,6 +79,10 @@ class AuditReport:
     random campaign."""
     note: str = ""
     """Why a passing campaign certified fewer examples than its budget (empty otherwise)."""
+    unwritten: str = ""
+    """Why the failure's files could not be written to the output folder (empty when they
+    were, or when no failure was found): the command then ends with this one line, exit 2,
+    like every command whose output cannot be written."""
 
     def summary(self) -> str:
         """One line: the verdict and the examples used.
@@ -205,6 +209,10 @@ a folder
         try:
             st = probe.stat()
         except (FileNotFoundError, NotADirectoryError):
+            if probe.is_symlink():  # a link to nothing: mkdir would find it in the way
+                raise OutputError(f"--output-dir {short_path(out)}: cannot be created: "
+                                  f"{short_path(probe)} is a symbolic link to a missing "
+                                  f"folder") from None
             if probe.parent == probe:
                 break
             probe = probe.parent
@@ -217,6 +225,11 @@ a folder
         if not os.access(probe, os.W_OK | os.X_OK):
             raise OutputError(f"--output-dir {out}: cannot be written: no write permission "
                               f"in {probe}")
+        if probe == folder:  # the folder exists: its failure files must be writable files
+            for name in FAILURE_FILES:
+                if (folder / name).is_dir():
+                    raise OutputError(f"--output-dir {short_path(out)}: cannot be written: "
+                                      f"{name} in it is a folder")
         return
     raise OutputError(f"--output-dir {out}: cannot be created")
 
@@ -310,11 +323,11 @@ _WRITTEN: set[Path] = set()
 
 
 def save_failure(outcome: Outcome, out: str | Path, *, seed: int = 0,
-                 log: Callable[[str], None] | None = None) -> tuple[Path, ...]:
+                 unwritten: list[str] | None = None) -> tuple[Path, ...]:
     """:func:`write_failure`, but a folder that cannot be written (the audit checks it up
-    front, :func:`check_output_folder`, so this is something like a full disk) is said on
-    ``log`` in one line and the audit goes on to its verdict; returns the files written (none
-    then).
+    front, :func:`check_output_folder`, so this is something like a full disk) is appended
+    to ``unwritten`` in one line and the audit goes on to its end, which reports it
+    (:attr:`AuditReport.unwritten`: exit 2); returns the files written (none then).
 
     Examples
     --------
@@ -323,14 +336,17 @@ def save_failure(outcome: Outcome, out: str | Path, *, seed: int = 0,
     >>> from dppverify.game.examples import triangle_document
     >>> d = Path(tempfile.mkdtemp())
     >>> _ = (d / "f").write_text("")
-    >>> save_failure(examine(lambda doc: 1 / 0, triangle_document()), d / "f", log=print)
-    ... # doctest: +ELLIPSIS
-    audit: could not write the failure: cannot write .../f/instance.json: Not a directory
+    >>> why: list[str] = []
+    >>> save_failure(examine(lambda doc: 1 / 0, triangle_document()), d / "f", unwritten=why)
     ()
+    >>> why  # doctest: +ELLIPSIS
+    ['cannot write the failing example (solver.error) to .../f: .../f is not a folder']
     """
     try:
         return write_failure(outcome, out, seed=seed)
     except OutputError as exc:
-        if log is not None:
-            log(f"audit: could not write the failure: {' '.join(str(exc).split())}")
+        if unwritten is not None:
+            why = " ".join(str(exc).split()).split(": ", 1)[-1]
+            unwritten.append(f"cannot write the failing example ({outcome.check}) to "
+                             f"{short_path(out)}: {why}")
         return ()

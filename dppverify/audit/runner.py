@@ -38,6 +38,7 @@ import importlib
 import json
 import multiprocessing
 import os
+import pickle
 import shlex
 import shutil
 import signal
@@ -55,6 +56,7 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
+from dppio.limits import MAX_INPUT_BYTES
 from dppverify.audit.config import READY_TIMEOUT
 from dppverify.audit.procs import SUPERVISOR, become_subreaper, kill_tree
 from dppverify.errors import AuditError
@@ -129,17 +131,45 @@ def call_in_process(solver: Solver, doc: Doc) -> Answer:
     except BaseException as exc:
         frames = traceback.extract_tb(exc.__traceback__)
         place = f"{frames[-1].filename}:{frames[-1].lineno}" if frames else "?"
+        text = "".join(traceback.format_exception(exc))
+        if len(text) > TRACEBACK_CAP:  # the end says where it was raised
+            text = f"... ({len(text) - TRACEBACK_CAP} characters cut)\n" + text[-TRACEBACK_CAP:]
         return Answer(None, "solver.error",
                       f"the solver raised {type(exc).__name__}: {one_line(exc)}",
-                      traceback="".join(traceback.format_exception(exc)),
-                      where=f"{type(exc).__name__}@{place}")
+                      traceback=text, where=f"{type(exc).__name__}@{place}")
     if not isinstance(answer, dict):
         return Answer(None, "solver.output",
                       f"the solver returned {type(answer).__name__}, not a JSON object")
     try:
-        return Answer(json.dumps(answer, default=_number_default))
+        text = json.dumps(answer, default=_number_default)
     except (TypeError, ValueError, RecursionError) as exc:
         return Answer(None, "solver.output", f"the solver's profile is not JSON: {one_line(exc)}")
+    size = len(text) if len(text) > MAX_INPUT_BYTES or text.isascii() else len(text.encode())
+    if size > MAX_INPUT_BYTES:
+        return Answer(None, "solver.output", too_large(size))
+    return Answer(text)
+
+
+def too_large(size: int | None = None) -> str:
+    """The failure of an answer beyond the input limit (every input of ``dpp`` is bounded at
+    :data:`~dppio.limits.MAX_INPUT_BYTES`, a solver's profile too).
+
+    Examples
+    --------
+    >>> too_large(800_000_000)
+    "the solver's profile is larger than the limit of 64 MiB for every input (800000000 bytes)"
+    """
+    got = "" if size is None else f" ({size} bytes)"
+    return (f"the solver's profile is larger than the limit of {MAX_INPUT_BYTES >> 20} MiB for "
+            f"every input{got}")
+
+
+TRACEBACK_CAP = 1 << 16
+"""Characters of a solver's traceback kept (its end) in the answer and ``failure.json``."""
+
+MESSAGE_CAP = MAX_INPUT_BYTES + 4 * TRACEBACK_CAP + 4096
+"""Largest message the audit accepts from its worker: a profile at the input limit, a
+traceback, the rest of the answer. A larger one is never read (the worker is ended)."""
 
 
 class SolverRunner:
@@ -284,11 +314,19 @@ class PythonRunner(SolverRunner):
                 self.close()
                 return Answer(None, "solver.timeout",
                               f"the solver timed out after {self.timeout:g} s")
-            text, check, message, *exc_info = conn.recv()
-        except (EOFError, OSError):
+            data = conn.recv_bytes(MESSAGE_CAP)  # bounded: never more than the input limit
+        except OSError as exc:
+            if "bad message length" in str(exc):  # (what recv_bytes says of a larger message)
+                self.close()
+                return Answer(None, "solver.output", too_large())
             code = self._proc.exitcode if self._proc is not None else None
             self.close()
             return Answer(None, "solver.error", f"the solver's process exited (code {code})")
+        except EOFError:
+            code = self._proc.exitcode if self._proc is not None else None
+            self.close()
+            return Answer(None, "solver.error", f"the solver's process exited (code {code})")
+        text, check, message, *exc_info = pickle.loads(data)  # (our own worker's message)
         return Answer(text, check, message, *exc_info)
 
     def close(self) -> None:

@@ -251,6 +251,7 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]],
     examples = skipped = 0
     first: Outcome | None = None
     files: tuple[Path, ...] = ()
+    unwritten: list[str] = []  # why the failure's files could not be written
     with tqdm(total=len(documents), desc="audit", unit="inst", disable=not config.progress,
               file=sys.stderr, leave=False) as bar:
         for name, doc in documents:
@@ -267,8 +268,8 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]],
                 # a compact map instance has no nodes or edges to delete: it is not pruned
                 shrink = shrink and not is_map_document(outcome.instance)
                 if out is not None:
-                    files = save_failure(outcome, out, seed=seed, log=log)
-                if log is not None:
+                    files = save_failure(outcome, out, seed=seed, unwritten=unwritten)
+                if log is not None and not unwritten:  # (else the end says it, in one line)
                     where = f"; written to {out}" if out is not None else ""
                     plan = f"; shrinking it (budget: {budget.describe()})" if shrink else ""
                     log(f"audit: {source}: {name} fails {outcome.check}{where}{plan}")
@@ -282,9 +283,9 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]],
         def improved(o: Outcome) -> None:
             nonlocal files
             if out is not None:
-                files = save_failure(o, out, seed=seed, log=log)
+                files = save_failure(o, out, seed=seed, unwritten=unwritten)
 
         minimal, _ = prune_failure(runner, first, config, budget=budget, on_improve=improved)
     return AuditReport(False, examples, skipped, budget.used, minimal, first, files, seed,
                        shrunk=shrink, budget_exhausted=shrink and budget.exhausted,
-                       source=source)
+                       source=source, unwritten=unwritten[0] if unwritten and not files else "")

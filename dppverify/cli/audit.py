@@ -18,6 +18,7 @@ from typing import Any
 import click
 
 from dppio.cli.conventions import output_dir_option, progress_option, status, want_progress
+from dppio.text import terminal_line
 from dppverify.audit import (
     AUDIT_MAX_PREFIXES,
     DEFAULT_SHRINK_CALLS,
@@ -136,8 +137,9 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
                                                       timeout) as runner:
             report = run_audit(runner, config, log=status)
     except CheckerError as exc:
-        click.echo(f"error: {exc}", err=True)
+        click.echo(terminal_line(f"error: {exc}"), err=True)
         raise click.exceptions.Exit(2) from None
+    _refuse_unwritten(report)
     click.echo(format_report(report))
     if os.environ.get("DPP_DEBUG") and report.failure is not None and report.failure.traceback:
         click.echo("the solver's traceback (DPP_DEBUG):\n" + report.failure.traceback.rstrip(),
@@ -184,12 +186,21 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, instances_di
         with _make_runner(solver_spec, solver_cmd, config.timeout) as runner:
             report = audit_documents(runner, docs, config, source=source, log=status)
     except CheckerError as exc:
-        click.echo(f"error: {' '.join(str(exc).split())}", err=True)
+        click.echo(terminal_line(f"error: {exc}"), err=True)
         raise click.exceptions.Exit(2) from None
+    _refuse_unwritten(report)
     click.echo(format_report(report))
     if report.files:
         status("wrote " + ", ".join(str(p) for p in report.files))
     raise click.exceptions.Exit(0 if report.passed else 1)
+
+
+def _refuse_unwritten(report: Any) -> None:
+    """A failure whose files could not be written ends the audit like any output that cannot
+    be written: one line naming the failing check and why, exit 2."""
+    if report.unwritten:
+        click.echo(terminal_line(f"error: {report.unwritten}"), err=True)
+        raise click.exceptions.Exit(2)
 
 
 def _refuse_output_in(output_dir: str, instances_dir: str) -> None:

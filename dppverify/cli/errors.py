@@ -17,6 +17,7 @@ import click
 
 from dppio.cli import errors as shared
 from dppio.errors import DppioError
+from dppio.text import terminal_line
 from dppverify.errors import CheckerError, LPError, UndecidedError
 
 __all__ = ["CheckerGroup", "error_code", "error_line", "fail"]
@@ -56,9 +57,9 @@ failure of the checker on a valid input, not an error in it)"
     """
     text = " ".join(str(exc).split())
     if isinstance(exc, LPError):
-        return (f"error: could not decide: {text} (a numerical failure of the checker on a "
-                "valid input, not an error in it)")
-    return f"error: {text}"
+        return terminal_line(f"error: could not decide: {text} (a numerical failure of the "
+                             "checker on a valid input, not an error in it)")
+    return terminal_line(f"error: {text}")
 
 
 def fail(exc: Exception) -> NoReturn:
@@ -76,6 +77,6 @@ def fail(exc: Exception) -> NoReturn:
     exit 2
     """
     if isinstance(exc, UndecidedError):  # "could not decide": exit 3, never a verdict
-        click.echo(f"undecided: {' '.join(str(exc).split())}", err=True)
+        click.echo(terminal_line(f"undecided: {' '.join(str(exc).split())}"), err=True)
         raise click.exceptions.Exit(3)
     shared.fail(exc, line=error_line(exc), code=error_code(exc))

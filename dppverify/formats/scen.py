@@ -16,14 +16,16 @@ use this module, so they build the same games.
 from __future__ import annotations
 
 import random
+import re
 from collections import deque
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 from dppverify.errors import InvalidInstanceError
 
-__all__ = ["BATCH_RULE", "MAX_MAP_NAME", "MAX_SCEN_LINES", "Scenario", "candidates_of",
-           "component", "fake_goal", "fake_goal_candidates", "goals_by_map", "parse_scen"]
+__all__ = ["BATCH_RULE", "MAX_LENGTH_DIGITS", "MAX_MAP_NAME", "MAX_SCEN_LINES", "Scenario",
+           "candidates_of", "component", "fake_goal", "fake_goal_candidates", "goals_by_map",
+           "parse_scen"]
 
 Cell = tuple[int, int]
 
@@ -36,6 +38,16 @@ MAX_SCEN_LINES = 1_000_000
 MAX_MAP_NAME = 4096
 """Longest map name of a scenario line (PATH_MAX on Linux): a longer one cannot name a file,
 so its line is malformed."""
+
+MAX_LENGTH_DIGITS = 30
+"""Digits of a published optimal length on each side of its decimal point (MovingAI writes
+``53.89949493``): the length is carried into ``dpp batch``'s rows as written, so it must be a
+finite non-negative decimal — ``nan``, ``inf``, ``1e999999999``, ``-7`` or 5,000 digits make
+the line an error row with that reason."""
+
+_INTEGER = re.compile(r"\s*[0-9]{1,10}\s*", re.ASCII)
+_LENGTH = re.compile(rf"[0-9]{{1,{MAX_LENGTH_DIGITS}}}(?:\.[0-9]{{0,{MAX_LENGTH_DIGITS}}})?"
+                     rf"|\.[0-9]{{1,{MAX_LENGTH_DIGITS}}}", re.ASCII)
 
 
 @dataclass(frozen=True)
@@ -70,6 +82,7 @@ def parse_scen(text: str) -> list[Scenario]:
     (4, 'malformed scenario line: 2 fields, expected 9')
     """
     out: list[Scenario] = []
+    text = text.removeprefix("\ufeff")  # a byte-order mark (Windows editors) before "version"
     for number, raw in enumerate(text.splitlines(), start=1):
         line = raw.strip()
         if not line or (number == 1 and line.lower().startswith("version")):
@@ -82,20 +95,25 @@ def parse_scen(text: str) -> list[Scenario]:
                                 "expected 9 (bucket, map, width, height, start_x, start_y, "
                                 "goal_x, goal_y, optimal_length)"))
             continue
-        try:
-            w, h, sx, sy, gx, gy = (int(p) for p in parts[2:8])
-            float(parts[8])
-        except ValueError:
+        fields = parts[2:8]
+        if not all(_INTEGER.fullmatch(p) for p in fields):
             out.append(Scenario(number, reason="malformed scenario line: width, height and "
-                                "the cells must be integers, the length a number"))
+                                "the cells must be integers (ASCII digits)"))
+            continue
+        w, h, sx, sy, gx, gy = (int(p) for p in fields)
+        length = parts[8].strip()
+        if not _LENGTH.fullmatch(length):
+            shown = repr(length[:40]) + ("…" if len(length) > 40 else "")
+            out.append(Scenario(number, reason=f"malformed scenario line: the published length "
+                                f"{shown} is not a finite non-negative decimal (at most "
+                                f"{MAX_LENGTH_DIGITS} digits on each side of the point)"))
             continue
         name = parts[1].strip()
         if len(name) > MAX_MAP_NAME:
             out.append(Scenario(number, reason=f"malformed scenario line: a map name of "
                                 f"{len(name)} characters (at most {MAX_MAP_NAME})"))
             continue
-        out.append(Scenario(number, name, w, h, (sy, sx), (gy, gx),
-                            optimal=parts[8].strip()))
+        out.append(Scenario(number, name, w, h, (sy, sx), (gy, gx), optimal=length))
     return out
 
 

@@ -15,7 +15,7 @@ from dppio.cli.interrupts import Terminated, exit_code, message
 from dppio.text import count
 from dppverify.errors import CheckerError
 from solver.cli.common import check_dask_address
-from solver.errors import InvalidInstanceError, OutputError
+from solver.errors import InvalidInstanceError
 
 __all__ = ["BatchProgress", "batch_checker", "batch_command", "batch_example", "merge_command"]
 
@@ -71,14 +71,11 @@ def merge_command(shards: tuple[str, ...], output: str) -> None:
       dpp batch merge -o room.csv room-1.csv room-2.csv room-3.csv room-4.csv
       dpp batch merge -o room.csv shards/room-*.csv
     """
-    from solver.experiments.batch_csv import summarize_file
     from solver.experiments.batch_merge import merge_shards
 
-    if os.path.isdir(output):  # (os.path: False, not an exception, for a name too long)
-        raise OutputError(f"-o {output!r} is a directory")
-    rows = merge_shards(shards, output)
-    click.echo(summarize_file(output))
-    status(f"wrote {output}: {count(rows, 'row')} from {count(len(shards), 'shard')}")
+    result = merge_shards(shards, output)
+    click.echo(result.tally.summary(), err=output == "-")  # -o -: the CSV has standard output
+    status(f"wrote {output}: {count(result.rows, 'row')} from {count(len(shards), 'shard')}")
 
 
 class _BatchCommand(click.Command):

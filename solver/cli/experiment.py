@@ -12,6 +12,7 @@ import click
 from dppio.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppio.cli.map_options import MapRequest, two_goal_map_options
 from dppio.files import refuse_input_as_output, write_files
+from dppio.text import terminal_text
 from solver.cli.common import (
     check_dask_address,
     check_grid_count,
@@ -80,7 +81,7 @@ def experiment_compare(instance: str | None, grid: MapRequest | None,
 
         click.echo(dumps(list(csv.DictReader(io.StringIO(table_csv)))), nl=False)
     else:
-        click.echo(text, nl=False)
+        click.echo(terminal_text(text), nl=False)  # the instance's node names: escaped
     if output_dir == "":
         raise OutputError("--output-dir: the output path is empty")
     if output_dir is not None:

@@ -18,12 +18,11 @@ from dppio.cli.conventions import (
 from dppio.cli.map_options import MapRequest, map_options
 from dppio.files import refuse_input_as_output, write_files
 from dppio.inputs import is_stdin
-from dppio.text import decimal
+from dppio.text import decimal, terminal_text
 from solver.cli.common import START_IS_GOAL, checker_game, dumps, load_with_digest
 from solver.errors import InvalidInstanceError, OutputError
 
 __all__ = ["solve_command"]
-
 
 
 @click.command("solve", short_help="Solve an instance for the paper's equilibrium (PBNE).")
@@ -113,7 +112,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     elif as_json:
         click.echo(dumps(doc), nl=False)
     else:
-        click.echo(summarize(result, certified=CERTIFIED))
+        click.echo(terminal_text(summarize(result, certified=CERTIFIED)))  # node names: escaped
     if save_instance is not None:
         status(f"wrote {save_instance}: the instance")
 

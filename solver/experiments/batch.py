@@ -42,11 +42,12 @@ pre-pass is linear in the file and at most ``2 * workers`` tasks are in flight.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import os
 import time
 from collections import deque
-from collections.abc import Callable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Generator, Iterable, Iterator, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from functools import lru_cache
@@ -58,14 +59,13 @@ import numpy as np
 from dppio.files import read_input
 from solver.errors import DPPError, InvalidInstanceError
 from solver.experiments.batch_columns import exploitability_cell, line_columns
-from solver.experiments.batch_csv import FIELDS, read_done, summarize_file
+from solver.experiments.batch_csv import FIELDS, summarize_file
 from solver.experiments.batch_lines import LineSelection
 from solver.experiments.batch_output import BatchOutput
 from solver.experiments.dask_tasks import dask_completed
 
 __all__ = ["FIELDS", "BatchConfig", "BatchPlan", "BatchResult", "BatchTask", "Checker",
-           "parse_prior", "plan_batch", "read_done", "run_batch", "run_batch_task",
-           "scen_tasks", "summarize_file"]
+           "parse_prior", "plan_batch", "run_batch", "run_batch_task", "summarize_file"]
 
 Cell = tuple[int, int]
 
@@ -100,6 +100,12 @@ class Checker:
     rule: str
 
 
+COLUMNS_VERSION = "columns/2"
+"""What the rows' columns mean, part of the ``config`` hash: a CSV whose rows were computed
+under another definition is another configuration, so a resume or a merge never mixes them
+(``columns/2``: ``truthful_P`` reads the reference script's node ``1 + ⌊P(K−1)/100⌋``)."""
+
+
 @dataclass(frozen=True)
 class BatchConfig:
     """What the rows depend on besides the lines: seed, prior (scenario goal first),
@@ -125,7 +131,7 @@ class BatchConfig:
         True
         """
         text = "|".join([self.rule, self.scen_sha256, str(self.seed), *self.prior,
-                         str(self.connectivity), self.route])
+                         str(self.connectivity), self.route, COLUMNS_VERSION])
         return hashlib.sha256(text.encode()).hexdigest()[:12]
 
 
@@ -257,25 +263,6 @@ def plan_batch(scen: str | Path, config: BatchConfig, checker: Checker) -> Batch
     return BatchPlan(config, checker, path, scenarios, maps, checker.goals_by_map(scenarios))
 
 
-def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
-               skip: Iterable[int] = (), chunk: int = 8,
-               select: LineSelection | None = None) -> tuple[list[BatchTask], int]:
-    """Read a ``.scen`` file and cut the lines not in ``skip`` into tasks of ``chunk`` lines.
-
-    Returns the tasks and the total number of rows the file gives (of the lines ``select``
-    keeps, :mod:`solver.experiments.batch_lines`: ``--lines`` and ``--shard``).
-
-    Examples
-    --------
-    >>> from solver.cli.batch import batch_example
-    >>> checker, scen = batch_example()
-    >>> tasks, total = scen_tasks(scen, BatchConfig(), checker, chunk=10)
-    >>> total, len(tasks), tasks[0].scenarios[0].line
-    (32, 4, 2)
-    """
-    plan = plan_batch(scen, config, checker)
-    return list(plan.tasks(skip, chunk, select)), len(plan.chosen(select))
-
 @lru_cache(maxsize=8)
 def _blocked(path: str, mtime_ns: int) -> np.ndarray:
     from solver.formats.movingai import read_map
@@ -394,9 +381,9 @@ def run_batch_task(task: BatchTask) -> list[dict[str, str]]:
     --------
     >>> from solver.cli.batch import batch_example
     >>> checker, scen = batch_example()
-    >>> tasks, _ = scen_tasks(scen, BatchConfig(), checker, chunk=2)
+    >>> task = next(iter(plan_batch(scen, BatchConfig(), checker).tasks((), 2, None)))
     >>> [(r["line"], r["status"], r["goal"], r["fake_goal"], r["verdict"])
-    ...  for r in run_batch_task(tasks[0])]
+    ...  for r in run_batch_task(task)]
     [('2', 'ok', '0,1', '1,5', 'pass'), ('3', 'ok', '6,5', '0,1', 'pass')]
     """
     rows = []
@@ -475,11 +462,12 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
         tasks: Iterable[BatchTask] = plan.tasks(out.done, chunk, select)
         if limit is not None:
             tasks = (t for _, t in zip(range(limit), tasks, strict=False))
-        try:
-            for rows in _results(tasks, workers, dask_address):
-                out.append(rows)
-                if progress is not None:
-                    progress(len(rows))
+        try:  # the results closed on the way out: a signal ends the pool at once
+            with contextlib.closing(_results(tasks, workers, dask_address)) as results:
+                for rows in results:
+                    out.append(rows)
+                    if progress is not None:
+                        progress(len(rows))
         except BaseException:  # a signal, an error: the rows the file really holds
             if on_end is not None:
                 on_end(out.rows_in_file())
@@ -491,10 +479,11 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
 
 
 def _results(tasks: Iterable[BatchTask], workers: int,
-             dask_address: str | None) -> Iterator[list[dict[str, str]]]:
+             dask_address: str | None) -> Generator[list[dict[str, str]], None, None]:
     if dask_address is not None:
-        for _, rows in dask_completed(run_batch_task, tasks, dask_address):
-            yield rows
+        with contextlib.closing(dask_completed(run_batch_task, tasks, dask_address)) as done:
+            for _, rows in done:
+                yield rows
         return
     if workers <= 1:
         for t in tasks:
@@ -502,8 +491,9 @@ def _results(tasks: Iterable[BatchTask], workers: int,
         return
     from solver.experiments.local_pool import completed
 
-    for _, rows in completed(run_batch_task, tasks, workers):
-        yield rows
+    with contextlib.closing(completed(run_batch_task, tasks, workers)) as pooled:
+        for _, rows in pooled:  # closing this generator closes the pool's at once
+            yield rows
 
 
 def parse_prior(text: str) -> tuple[str, str]:

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from dppio.files import open_input
-from dppio.text import count, decimal
+from dppio.text import count, decimal, escaped
 from solver.errors import InvalidInstanceError
 from solver.literature.path_metrics import METRIC_FIELDS
 
@@ -27,9 +27,9 @@ __all__ = [
     "MAX_ROW_BYTES",
     "BatchTally",
     "RowInfo",
+    "example_row",
     "format_rows",
     "parse_row",
-    "read_done",
     "read_rows",
     "summarize_file",
 ]
@@ -58,6 +58,17 @@ VERDICTS = ("pass", "fail", "error", "incomplete")
 _LINE = re.compile(r"[1-9][0-9]{0,9}")
 _FLOAT = re.compile(r"[-+]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][-+]?[0-9]{1,3})?|nan|inf")
 _CONTROL = re.compile(r"[\x00-\x1f\x7f\x85\u2028\u2029]")
+_VALUE = re.compile(r"-?[0-9]{1,400}(?:/[1-9][0-9]{0,400})?"  # exact p/q, or a float's repr
+                    r"|-?(?:[0-9]{1,400}\.[0-9]{0,400}|\.[0-9]{1,400})(?:e[-+]?[0-9]{1,3})?"
+                    r"|-?[0-9]\.?[0-9]{0,20}e[-+]?[0-9]{1,3}", re.ASCII)
+_CELL = re.compile(r"[0-9]{1,10},[0-9]{1,10}", re.ASCII)
+_PRIOR = re.compile(r"[0-9./]{1,1000},[0-9./]{1,1000}", re.ASCII)
+_LENGTH = re.compile(r"(?:[0-9]{1,30}(?:\.[0-9]{0,30})?|\.[0-9]{1,30})", re.ASCII)
+_CONFIG = re.compile(r"[0-9a-f]{12}", re.ASCII)
+_ROUTE = re.compile(r"[a-z][a-z-]{0,30}", re.ASCII)
+_VALUES = ("distance", "U1", "U2", "U", "U_bar", "VoI", *METRIC_FIELDS)
+"""The number columns of an ``ok`` row: exact ``p/q`` (exact mode) or a float (float mode)."""
+_CELLS = ("start", "goal", "fake_goal", "primary")
 
 
 @dataclass(frozen=True)
@@ -73,6 +84,32 @@ class RowInfo:
     reason: str = ""
 
 
+def example_row(line: int, status: str = "error", *, config: str = "0123456789ab",
+                **cells: str) -> dict[str, str]:
+    """A well-formed row of ``line`` (an ``error`` row: no fake goal; an ``ok`` row: the
+    tiny 1×3 corridor's numbers), with ``cells`` changed: rows for examples and tests, which
+    :func:`parse_row` reads back.
+
+    Examples
+    --------
+    >>> row = example_row(7, "ok", VoI="abc")
+    >>> row["status"], row["VoI"], row["config"]
+    ('ok', 'abc', '0123456789ab')
+    """
+    row = dict.fromkeys(FIELDS, "") | {"line": str(line), "status": status, "config": config,
+                                       "map": "tiny.map", "start": "0,0", "goal": "0,2",
+                                       "prior": "1/2,1/2", "scen_optimal": "2"}
+    if status == "ok":
+        row |= {"fake_goal": "0,1", "primary": "0,2", "distance": "2", "U1": "2", "U2": "0",
+                "U": "1", "U_bar": "3/2", "VoI": "1/3", "VoI_float": "0.25", "verdict": "pass",
+                "nash_conv": "0", "route": "structured", "solve_seconds": "0.5",
+                "certify_seconds": "1"}
+        row |= {k: "0" for k in METRIC_FIELDS}
+    else:
+        row["reason"] = "no fake goal"
+    return row | cells
+
+
 def format_rows(rows: Iterable[dict[str, str]]) -> bytes:
     """The CSV lines of ``rows`` (UTF-8): one physical line per row, whatever the fields hold
     (line breaks and control characters become spaces, the reason is cut to
@@ -80,8 +117,7 @@ def format_rows(rows: Iterable[dict[str, str]]) -> bytes:
 
     Examples
     --------
-    >>> row = dict.fromkeys(FIELDS, "") | {"line": "2", "status": "error",
-    ...                                    "reason": "two\\nlines", "config": "0123456789ab"}
+    >>> row = example_row(2, reason="two\\nlines")
     >>> format_rows([row]).endswith(b",two lines,0123456789ab\\n"), format_rows([row]).count(b"\\n")
     (True, 1)
     """
@@ -114,21 +150,27 @@ def parse_row(raw: bytes, key: str | None = None) -> RowInfo:
 
     Examples
     --------
-    >>> line = format_rows([dict.fromkeys(FIELDS, "") | {"line": "7", "status": "ok",
-    ...     "verdict": "pass", "VoI_float": "0.25", "solve_seconds": "0.5",
-    ...     "certify_seconds": "1", "config": "0123456789ab"}]).rstrip(b"\\n")
+    >>> line = format_rows([example_row(7, "ok")]).rstrip(b"\\n")
     >>> parse_row(line, "0123456789ab").voi
     0.25
     >>> parse_row(line.replace(b"0.25", b"1e999999"))
     Traceback (most recent call last):
     ValueError: VoI_float '1e999999' is not a number
+    >>> parse_row(format_rows([example_row(7, "ok", VoI="abc")]).rstrip(b"\\n"))
+    Traceback (most recent call last):
+    ValueError: VoI 'abc' is not a number
     """
     if len(raw) > MAX_ROW_BYTES:
         raise ValueError(f"a line of more than {MAX_ROW_BYTES} bytes")
     try:
         text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"not CSV text ({exc})") from None
+    if _CONTROL.search(text):  # format_rows writes none (a carriage return, an escape)
+        raise ValueError("a control character in a cell (a batch writes none)")
+    try:
         recs = list(csv.reader([text]))
-    except (UnicodeDecodeError, csv.Error) as exc:
+    except csv.Error as exc:
         raise ValueError(f"not CSV text ({exc})") from None
     rec = recs[0] if len(recs) == 1 else []
     if len(rec) != len(FIELDS):
@@ -138,16 +180,42 @@ def parse_row(raw: bytes, key: str | None = None) -> RowInfo:
         raise ValueError(f"line {row['line'][:40]!r} is not a line number")
     if key is not None and row["config"] != key:
         raise ValueError(f"written for another configuration (config {row['config'][:40]!r}, "
-                         f"now {key}: another .scen file, seed, prior, connectivity or route)")
-    if row["status"] == "error":
-        return RowInfo(int(row["line"]), "error", reason=row["reason"])
-    if row["status"] != "ok":
+                         f"now {key}: another .scen file, seed, prior, connectivity or route, "
+                         "or an earlier dpp whose columns meant something else)")
+    _check(row, "config", _CONFIG, "is not a configuration hash (12 hex digits)")
+    if row["status"] not in ("ok", "error"):
         raise ValueError(f"status {row['status'][:40]!r} is neither ok nor error")
+    ok = row["status"] == "ok"
+    for column in _CELLS:  # an error row has the cells it got to
+        _check(row, column, _CELL, "is not a cell row,col", required=ok)
+    _check(row, "prior", _PRIOR, "is not a prior P,Q", required=ok)
+    _check(row, "scen_optimal", _LENGTH, "is not a finite non-negative decimal length",
+           required=False)
+    if not ok:
+        if not row["reason"]:
+            raise ValueError("an error row without its reason")
+        return RowInfo(int(row["line"]), "error", reason=row["reason"])
+    if row["reason"]:
+        raise ValueError("an ok row with a reason")
+    for column in _VALUES:
+        _check(row, column, _VALUE, "is not a number")
+    _check(row, "nash_conv", _VALUE, "is not a number", required=False)
+    _check(row, "route", _ROUTE, "is not a route")
     if row["verdict"] not in VERDICTS:
         raise ValueError(f"verdict {row['verdict'][:40]!r} is not one of {', '.join(VERDICTS)}")
     return RowInfo(int(row["line"]), "ok", row["verdict"], _number(row["VoI_float"], "VoI_float"),
                    _number(row["solve_seconds"], "solve_seconds"),
                    _number(row["certify_seconds"], "certify_seconds"))
+
+
+def _check(row: dict[str, str], column: str, pattern: re.Pattern[str], what: str, *,
+           required: bool = True) -> None:
+    """Refuse ``row[column]`` unless it matches ``pattern`` (or is empty, when not
+    ``required``): a ``ValueError`` naming the column and the value, escaped and cut."""
+    text = row[column]
+    if (text or required) and not pattern.fullmatch(text):
+        shown = repr(text[:40]) + ("…" if len(text) > 40 else "")
+        raise ValueError(f"{column} {shown} {what}")
 
 
 def read_rows(chunks: Iterable[bytes], key: str | None = None, *, where: str = "the file"
@@ -163,8 +231,7 @@ def read_rows(chunks: Iterable[bytes], key: str | None = None, *, where: str = "
 
     Examples
     --------
-    >>> ok = format_rows([dict.fromkeys(FIELDS, "") | {"line": "3", "status": "error",
-    ...                   "reason": "no fake goal", "config": "0123456789ab"}])
+    >>> ok = format_rows([example_row(3)])
     >>> rows = list(read_rows([HEADER + ok + b"4,o"]))  # (end offset, row); 4 is torn
     >>> [(end == len(HEADER + ok), r.line) for end, r in rows]
     [(True, 3)]
@@ -248,15 +315,37 @@ certify 1 s in total'
         if self.first_error is None or row.line < self.first_error[0]:
             self.first_error = (row.line, row.reason)
 
+    def merge(self, other: BatchTally) -> None:
+        """Count the rows of ``other`` too (another shard's rows).
+
+        Examples
+        --------
+        >>> a, b = BatchTally(), BatchTally()
+        >>> a.add(RowInfo(3, "error", reason="x")); b.add(RowInfo(2, "error", reason="y"))
+        >>> a.merge(b); a.rows, a.first_error
+        (2, (2, 'y'))
+        """
+        self.rows += other.rows
+        self.ok += other.ok
+        for k, v in other.verdicts.items():
+            self.verdicts[k] = self.verdicts.get(k, 0) + v
+        self.errors += other.errors
+        self.internal += other.internal
+        if other.first_error is not None and (self.first_error is None
+                                              or other.first_error[0] < self.first_error[0]):
+            self.first_error = other.first_error
+        self.voi += other.voi
+        self.solve_seconds += other.solve_seconds
+        self.certify_seconds += other.certify_seconds
+
     def summary(self) -> str:
         """One line: rows, ok (by verdict), errors (the first by line), mean VoI, times."""
         vs = ", ".join(f"verdict {k} {v}" for k, v in sorted(self.verdicts.items()))
         ok = f"{self.ok} ok" + (f" ({vs})" if vs else "")
         err = count(self.errors, "error")
         if self.first_error is not None:
-            line, reason = self.first_error
-            short = reason if len(reason) <= 100 else reason[:99] + "…"
-            err += f" (first: line {line}: {short})"
+            line, reason = self.first_error  # from a file: escaped and bounded
+            err += f" (first: line {line}: {escaped(reason, 100)})"
         voi = f"mean VoI {decimal(self.voi / self.ok)}" if self.ok else "no VoI (no ok row)"
         return (f"{count(self.rows, 'row')}: {ok}, {err}; {voi}; solve "
                 f"{decimal(self.solve_seconds)} s, certify {decimal(self.certify_seconds)} s in "
@@ -294,32 +383,6 @@ def _checked(path: str | Path, key: str | None) -> Iterator[RowInfo]:
         raise InvalidInstanceError(f"{path}: cannot read ({exc.strerror or exc})") from None
 
 
-def read_done(path: str | Path, key: str) -> set[int]:
-    """The scenario lines an existing batch CSV holds (a torn last row left out), every row
-    checked to belong to configuration ``key``; an empty set when there is no file. Reads
-    only: the file is never changed.
-
-    Raises
-    ------
-    InvalidInstanceError
-        The file is not a batch CSV, repeats a line, or was written for another configuration.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> p = Path(tempfile.mkdtemp()) / "b.csv"
-    >>> read_done(p, "0123456789ab")
-    set()
-    >>> _ = p.write_text(",".join(FIELDS) + "\\n3,error" + ",x" * (len(FIELDS) - 3)
-    ...                  + ",0123456789ab" + "\\n2,o")
-    >>> read_done(p, "0123456789ab"), p.read_text().endswith("2,o")
-    ({3}, True)
-    """
-    if not Path(path).exists():
-        return set()
-    return {row.line for row in _checked(path, key)}
-
-
 def summarize_file(path: str | Path) -> str:
     """One line about a batch CSV (:meth:`BatchTally.summary`), every row checked.
 
@@ -327,11 +390,7 @@ def summarize_file(path: str | Path) -> str:
     --------
     >>> import tempfile
     >>> out = Path(tempfile.mkdtemp()) / "b.csv"
-    >>> ok = dict.fromkeys(FIELDS, "") | {"status": "ok", "verdict": "pass", "VoI_float": "0.25",
-    ...                                   "solve_seconds": "0.5", "certify_seconds": "1"}
-    >>> bad = dict.fromkeys(FIELDS, "") | {"status": "error", "reason": "no fake goal"}
-    >>> rows: Sequence[dict[str, str]] = [ok | {"line": "2"}, ok | {"line": "3"},
-    ...                                   bad | {"line": "4"}]
+    >>> rows = [example_row(2, "ok"), example_row(3, "ok"), example_row(4)]
     >>> _ = out.write_bytes(HEADER + format_rows(rows))
     >>> summarize_file(out)
     '3 rows: 2 ok (verdict pass 2), 1 error (first: line 4: no fake goal); mean VoI 0.25; \

@@ -24,6 +24,7 @@ import re
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from dppio.text import escaped
 from solver.errors import InvalidInstanceError
 
 __all__ = ["LineSelection", "parse_selection"]
@@ -101,13 +102,18 @@ shard=3, shards=4))
     >>> parse_selection(None, "5/4")
     Traceback (most recent call last):
     solver.errors.InvalidInstanceError: --shard 5/4: i must lie in 1 … n (shard i of n)
+    >>> parse_selection(None, "1/\u0662")  # ASCII digits only: an Arabic-Indic two is not 2
+    Traceback (most recent call last):
+    solver.errors.InvalidInstanceError: --shard takes i/n (shard i of n, e.g. 1/4; ASCII \
+digits), got '1/\u0662'
     """
     first, last = 1, None
     if lines is not None:
-        m = re.fullmatch(r"\s*(\d{1,10})\s*(?:(-)\s*(\d{1,10})?)?\s*", lines)
+        m = re.fullmatch(r" *([0-9]{1,10}) *(?:(-) *([0-9]{1,10})?)? *", lines, re.ASCII)
         if m is None:
             raise InvalidInstanceError(f"--lines takes A-B, A or A- (file line numbers, as the "
-                                       f"CSV's line column), got {lines!r}")
+                                       f"CSV's line column; ASCII digits), got "
+                                       f"{escaped(repr(lines))}")
         first = int(m.group(1))
         last = first if m.group(2) is None else (None if m.group(3) is None
                                                  else int(m.group(3)))
@@ -117,10 +123,10 @@ shard=3, shards=4))
             raise InvalidInstanceError(f"--lines {lines}: the first line is after the last")
     i, n = 1, 1
     if shard is not None:
-        m = re.fullmatch(r"\s*(\d{1,7})\s*/\s*(\d{1,7})\s*", shard)
+        m = re.fullmatch(r" *([0-9]{1,7}) */ *([0-9]{1,7}) *", shard, re.ASCII)
         if m is None:
-            raise InvalidInstanceError(f"--shard takes i/n (shard i of n, e.g. 1/4), got "
-                                       f"{shard!r}")
+            raise InvalidInstanceError(f"--shard takes i/n (shard i of n, e.g. 1/4; ASCII "
+                                       f"digits), got {escaped(repr(shard))}")
         i, n = int(m.group(1)), int(m.group(2))
         if n < 1 or not 1 <= i <= n:
             raise InvalidInstanceError(f"--shard {shard}: i must lie in 1 … n (shard i of n)")

@@ -19,13 +19,14 @@ The rule (``docs/limits.md``, "Output files"):
 - rows are **appended durably** (written, then ``fsync``-ed); a write that fails (a full
   disk, a file size limit) is rolled back to the last whole row and reported in one line,
   the rows before it kept for the next run.
-- an exclusive advisory lock (``flock``) on the file keeps two runs apart.
+- an exclusive advisory lock (``flock``, :func:`dppio.locks.try_lock`) on the file keeps
+  two runs apart, and a run from a ``dpp batch merge`` that reads the file as a shard or
+  writes it (the merge takes the same locks): each refuses the other in one line.
 """
 
 from __future__ import annotations
 
 import contextlib
-import errno
 import os
 import stat
 import tempfile
@@ -33,6 +34,7 @@ from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
 from dppio.files import file_mode, make_parents, remove_created, short_path
+from dppio.locks import BUSY, try_lock
 from solver.errors import InvalidInstanceError, OutputError
 from solver.experiments.batch_csv import HEADER, BatchTally, format_rows, parse_row, read_rows
 
@@ -53,10 +55,9 @@ class BatchOutput:
     Examples
     --------
     >>> import tempfile
-    >>> from solver.experiments.batch_csv import FIELDS
+    >>> from solver.experiments.batch_csv import example_row
     >>> d = Path(tempfile.mkdtemp())
-    >>> row = dict.fromkeys(FIELDS, "") | {"line": "2", "status": "error", "reason": "x",
-    ...                                    "config": "0123456789ab"}
+    >>> row = example_row(2, reason="x")
     >>> with BatchOutput.open(d / "b.csv", "0123456789ab", lines={2, 3}) as out:
     ...     print(out.done, (d / "b.csv").exists())
     ...     out.append([row])
@@ -118,6 +119,9 @@ file)
         shown = short_path(output)
         if shown == "":
             raise OutputError("-o: the output path is empty")
+        if str(output) == "-":
+            raise OutputError("-o - (standard output): dpp batch appends its rows to a CSV it "
+                              "reads back to resume; give a file (a file named - is ./-)")
         if str(output).endswith(("/", os.sep)):  # Path() would drop the slash
             raise OutputError(f"-o {shown} names a folder (a trailing /); give a file name")
         st_link = _stat_or_none(os.lstat, output, shown)
@@ -359,16 +363,11 @@ def _check_new(shown: str, target: Path) -> None:
 
 
 def _lock(fd: int, shown: str) -> None:
-    if os.name != "posix":  # pragma: no cover - Linux and macOS have flock
-        return
-    import fcntl
-
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except OSError as exc:
-        if exc.errno in (errno.EWOULDBLOCK, errno.EAGAIN, errno.EACCES):
-            raise OutputError(f"{shown}: another dpp batch is writing it") from None
-        raise
+    """The run's exclusive lock on its CSV (:func:`dppio.locks.try_lock`, the discipline
+    ``dpp batch merge`` follows too): refused while another batch writes the file or a merge
+    reads it as a shard or writes it."""
+    if not try_lock(fd):
+        raise OutputError(f"-o {shown}: {BUSY}")
 
 
 def _read_chunks(fd: int, size: int = 1 << 20) -> Iterator[bytes]:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import contextlib
 import re
 import socket
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Generator, Iterable
 from typing import Any, TypeVar, cast
 
 from solver.errors import InvalidInstanceError
@@ -57,7 +57,7 @@ def check_scheduler(address: str, seconds: float = CONNECT_SECONDS) -> None:
 
 
 def dask_completed(fn: Callable[[T], Any], tasks: Iterable[T],
-                   address: str) -> Iterator[tuple[T, Any]]:
+                   address: str) -> Generator[tuple[T, Any], None, None]:
     """``(task, fn(task))`` in completion order, computed by the scheduler at ``address``;
     at most twice its threads (at least 8) tasks in flight; the client is closed when the
     iteration ends or stops.

@@ -9,6 +9,7 @@ inputs, so local processes, one process, or a Dask scheduler give identical rows
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import math
@@ -212,20 +213,26 @@ def _run_local(tasks: list[Task], workers: int,
     from solver.experiments.local_pool import completed
 
     results = []
-    for task, rows in completed(run_task, tasks, min(workers, len(tasks))):
-        results.append(rows)
-        if progress:
-            progress(task.count)
+    # closed on the way out, whatever ends the loop: a signal raised here, between two
+    # results, ends the pool at once (local_pool.completed), not when the generator is
+    # collected after the exit message — when a worker still starting may find its
+    # semaphores gone and print a traceback (SemLock._rebuild: FileNotFoundError)
+    with contextlib.closing(completed(run_task, tasks, min(workers, len(tasks)))) as done:
+        for task, rows in done:
+            results.append(rows)
+            if progress:
+                progress(task.count)
     return results
 
 
 def _run_dask(tasks: list[Task], address: str,
               progress: Callable[[int], None] | None) -> list[list[Row]]:
     results = []
-    for task, rows in dask_completed(run_task, tasks, address):
-        results.append(rows)
-        if progress:
-            progress(task.count)
+    with contextlib.closing(dask_completed(run_task, tasks, address)) as done:
+        for task, rows in done:
+            results.append(rows)
+            if progress:
+                progress(task.count)
     return results
 
 

@@ -13,7 +13,9 @@ density --workers``): started within the limits, ended with the run, whatever en
   second (other systems, and a worker that started after its parent was gone).
 - **On any error or signal** every worker, its process group, the forkserver and any process
   it was starting are killed (SIGKILL) before the exception goes on, so none outlives the run
-  or prints a traceback after it.
+  or prints a traceback after it — also when the signal lands in the caller's loop between
+  two results: the callers close the results' generator on the way out
+  (``contextlib.closing``).
 - **Bounded work in flight.** :func:`completed` submits at most ``2 * workers`` tasks at a
   time, so ``tasks`` may be a lazy iterator of any length.
 """
@@ -25,7 +27,7 @@ import os
 import signal
 import threading
 import time
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Generator, Iterable
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from pathlib import Path
 from typing import TypeVar, cast
@@ -79,12 +81,15 @@ def check_open_files(workers: int, *, option: str = "--workers") -> None:
 
 
 def completed(fn: Callable[[T], R], tasks: Iterable[T], workers: int, *,
-              option: str = "--workers") -> Iterator[tuple[T, R]]:
+              option: str = "--workers") -> Generator[tuple[T, R], None, None]:
     """``(task, fn(task))`` in completion order, computed by ``workers`` local processes
     (this module's rules); at most ``2 * workers`` tasks in flight.
 
     ``fn`` and the tasks must be picklable (module-level). When the iteration ends early, or
-    raises (a worker's error, a signal), every process of the pool is killed.
+    raises (a worker's error, a signal), every process of the pool is killed. Iterate it
+    under ``contextlib.closing``: an exception raised in the caller's loop (a signal between
+    two results) then ends the pool at once, not when the generator is collected — after
+    the command's last line, when a worker still starting could print a traceback.
 
     Examples
     --------

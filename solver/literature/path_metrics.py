@@ -22,8 +22,10 @@ from and which reading we took where the paper is ambiguous):
 - ``deceptive_density``: the share of deceptive (not truthful) nodes among ``u_1 … u_k*``, the
   steps up to and including the LDP (1 when no truthful node comes before the LDP, the
   paper's "maximum deceptive density"; 0 when ``k* = 0``).
-- ``truthful_P`` (P ∈ 10, 25, 50, 75, 90, 99): 1 if node ``u_j`` with ``j = ⌊P·K/100⌋`` is
-  truthful, else 0 (the script's ``int(P/100 * (len(path) - 1))``, in integers).
+- ``truthful_P`` (P ∈ 10, 25, 50, 75, 90, 99): 1 if node ``u_j`` with
+  ``j = 1 + ⌊P·(K−1)/100⌋`` is truthful, else 0 — the reference script's index: its path has
+  no start node (``path1[1:] + path2[1:]``: ``u_1 … u_K``), and it reads
+  ``path[int(P/100 * (len(path) - 1))]``, here in integers.
 
 For a mixture of routes every metric is the probability-weighted mean
 (:func:`expectation`): ``truthful_P`` becomes the probability that the Attacker is truthful at
@@ -98,11 +100,14 @@ def route_metrics(truthful: Sequence[bool], *, cost: Number, optimal: Number) ->
 
     Examples
     --------
-    The reference script's index for 99 % of a 10-step route is node 9, not 10:
+    The reference script's index for 99 % of a 10-step route is node ``1 + ⌊99·9/100⌋ = 9``,
+    not 10; for 10 % of a 3-step route node ``1 + ⌊10·2/100⌋ = 1``, never the start:
 
     >>> m = route_metrics([False] * 10 + [True], cost=10, optimal=10)
     >>> str(m.ldp), m.truthful[-1]
     ('9/10', Fraction(0, 1))
+    >>> [int(t) for t in route_metrics([False, True, True, True], cost=3, optimal=3).truthful]
+    [1, 1, 1, 1, 1, 1]
     >>> route_metrics([False], cost=0, optimal=1)
     Traceback (most recent call last):
     ValueError: a route needs at least one step
@@ -114,7 +119,7 @@ def route_metrics(truthful: Sequence[bool], *, cost: Number, optimal: Number) ->
     last = max(k for k, t in enumerate(flags) if not t) if not all(flags) else 0
     deceptive = sum(1 for t in flags[1:last + 1] if not t)
     density = Fraction(deceptive, last) if last else Fraction(0)
-    at = tuple(Fraction(int(flags[p * k_steps // 100])) for p in PERCENTS)
+    at = tuple(Fraction(int(flags[1 + p * (k_steps - 1) // 100])) for p in PERCENTS)
     exact = not isinstance(cost, float) and not isinstance(optimal, float)
     ratio = Fraction(cost) / Fraction(optimal) if exact else float(cost) / float(optimal)
     return PathMetrics(Fraction(cost) if exact else float(cost), ratio, Fraction(last, k_steps),
@@ -131,7 +136,7 @@ def expectation(items: Sequence[tuple[Fraction, PathMetrics]]) -> PathMetrics:
     >>> b = route_metrics([False, True, True], cost=2, optimal=2)
     >>> e = expectation([(Fraction(1, 4), a), (Fraction(3, 4), b)])
     >>> str(e.cost), str(e.ldp), [str(t) for t in e.truthful]
-    ('9/4', '1/8', ['0', '0', '3/4', '3/4', '3/4', '3/4'])
+    ('9/4', '1/8', ['3/4', '3/4', '3/4', '3/4', '3/4', '3/4'])
     """
     if not items:
         raise ValueError("an expectation needs at least one route")

@@ -2,8 +2,9 @@
 under resource limits, in a scratch folder whose contents are compared before and after.
 
 Bounded time and memory are enforced by the kernel (``RLIMIT_CPU``, ``RLIMIT_AS``), not by
-timing assertions; a wall-clock guard only turns a hang into a failure instead of blocking the
-suite. "No surviving process" is checked through the probe's session: every process the
+timing assertions; a progress guard (``tests/_guard.py``: no CPU used for minutes) only turns
+a hang into a failure instead of blocking the suite — never a probe that a loaded machine
+makes slow. "No surviving process" is checked through the probe's session: every process the
 probe started (its session id is the probe's pid) must be gone once it has exited, and the
 pids that hostile solvers write into ``pids/`` must be dead too (escapees in other sessions).
 """
@@ -25,10 +26,9 @@ from pathlib import Path
 from typing import Any
 
 from dppio.procs import process_table
+from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[2]
-GUARD_SECONDS = 300
-"""Wall-clock guard per probe: only there so that a hang fails instead of blocking."""
 DEFAULT_MEMORY = 3 << 30
 """Address-space limit of a probe (bytes): numpy, scipy and cvxpy fit well below it."""
 DEFAULT_CPU = 120
@@ -117,13 +117,18 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
         during: Callable[[subprocess.Popen[bytes]], None] | None = None,
         stdin: bytes | None = None, fsize: int | None = None, nofile: int | None = None,
         stdout: str = "pipe", ignore: tuple[int, ...] = (),
-        survivors_seconds: float = 10) -> Result:
+        survivors_seconds: float = 10, stdin_is: str = "",
+        program: list[str] | None = None) -> Result:
     """Run ``python -m dpp ARGS`` in ``cwd`` under the limits; ``during`` is called
     with the running process (to send it a signal, say) before waiting for it; ``stdin``:
     bytes piped to its standard input (default: ``/dev/null``). ``fsize``, ``nofile`` and
     ``stdout`` as in :class:`Probe`; ``ignore``: signals the probe starts with ignored
     (``nohup``); ``survivors_seconds``: how long the probe's processes may take to end after
-    it exited."""
+    it exited, on an idle machine (stretched by the load: ``tests/_guard.py``);
+    ``stdin_is``: standard input that is ``folder`` (the scratch folder), ``closed``
+    (descriptor 0 closed) or ``write-only`` (``/dev/null`` opened for writing); ``program``:
+    what runs instead of ``python -m solver.cli`` (the installed launcher: :func:`launcher`).
+    """
 
     def limits() -> None:  # pragma: no cover - in the child
         resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
@@ -137,6 +142,8 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
             signal.signal(s, signal.SIG_IGN)
         if stdout == "closed":
             os.close(1)
+        if stdin_is == "closed":
+            os.close(0)
 
     full_env = {k: v for k, v in os.environ.items() if k not in ("DPP_DEBUG",)}
     tmp = cwd.parent / "tmp"  # the probe's TMPDIR: a short link (AF_UNIX paths, < 108 bytes)
@@ -158,12 +165,19 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
         out_target = open("/dev/full", "wb")  # noqa: SIM115 - closed below
     elif stdout == "closed":
         out_target = subprocess.DEVNULL  # and closed in the child
-    proc = subprocess.Popen([sys.executable, "-m", "dpp", *args], cwd=cwd,
-                            env=full_env,
-                            stdin=subprocess.DEVNULL if stdin is None else subprocess.PIPE,
+    in_target: Any = subprocess.DEVNULL if stdin is None else subprocess.PIPE
+    in_fd = None
+    if stdin_is == "folder":
+        in_target = in_fd = os.open(cwd, os.O_RDONLY)
+    elif stdin_is == "write-only":
+        in_target = in_fd = os.open(os.devnull, os.O_WRONLY)
+    command = program if program is not None else [sys.executable, "-m", "dpp"]
+    proc = subprocess.Popen([*command, *args], cwd=cwd, env=full_env, stdin=in_target,
                             stdout=out_target,
                             stderr=subprocess.PIPE, start_new_session=True,
                             preexec_fn=limits)
+    if in_fd is not None:
+        os.close(in_fd)
     if pipe_w is not None:
         os.close(pipe_w)
     if stdout == "full":
@@ -171,7 +185,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
     try:
         if during is not None:
             during(proc)
-        out, err = proc.communicate(stdin, timeout=GUARD_SECONDS)
+        out, err = _guard.communicate(proc, stdin)  # as long as it makes progress
     finally:
         if proc.poll() is None:
             with contextlib.suppress(OSError):
@@ -180,7 +194,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
         short.unlink()
     out = out or b""
     # every process of the probe's session is gone once the probe has exited
-    deadline = time.monotonic() + survivors_seconds
+    deadline = time.monotonic() + _guard.latency(survivors_seconds)  # stretched by the load
     members = _session_members(proc.pid)
     while members and time.monotonic() < deadline:  # exit in progress: poll, never assert
         time.sleep(0.05)
@@ -190,14 +204,23 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
                   err.decode("utf-8", "replace"), proc.pid)
 
 
+def launcher() -> list[str] | None:
+    """The installed ``dpp`` program when it is this checkout's shell launcher (``bin/dpp``,
+    installed next to the interpreter by ``pip install -e .``), else None: the only way to
+    start ``dpp`` with standard input a folder (no Python interpreter can)."""
+    installed = Path(sys.executable).with_name("dpp")
+    try:
+        same = installed.read_bytes() == (ROOT / "bin" / "dpp").read_bytes()
+    except OSError:
+        return None
+    return [str(installed)] if same and installed.with_name("dpp-python").exists() else None
+
+
 def wait_for(predicate: Callable[[], bool], proc: subprocess.Popen[bytes],
              what: str) -> None:
-    """Poll until ``predicate()`` holds (the probe reached some state), while it runs."""
-    deadline = time.monotonic() + GUARD_SECONDS
-    while not predicate():
-        assert proc.poll() is None, f"the probe exited before {what}"
-        assert time.monotonic() < deadline, f"never reached: {what}"
-        time.sleep(0.05)
+    """Poll until ``predicate()`` holds (the probe reached some state), while it runs and
+    makes progress (``tests/_guard.py``)."""
+    _guard.until(predicate, proc, what)
 
 
 def check(result: Result, probe: Probe, before: dict[str, tuple[str, int, int]],

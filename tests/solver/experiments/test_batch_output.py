@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import random
+import re
 import time
 from pathlib import Path
 
@@ -21,10 +22,10 @@ from dppverify.formats.scen import (
 from solver.cli.batch import BatchProgress
 from solver.errors import InvalidInstanceError, OutputError
 from solver.experiments.batch_csv import (
-    FIELDS,
     HEADER,
     BatchTally,
     RowInfo,
+    example_row,
     format_rows,
     parse_row,
     read_rows,
@@ -35,13 +36,8 @@ KEY = "0123456789ab"
 
 
 def _row(line: int, status: str = "ok", **kw: str) -> dict[str, str]:
-    row = dict.fromkeys(FIELDS, "") | {"line": str(line), "status": status, "config": KEY}
-    if status == "ok":
-        row |= {"verdict": "pass", "VoI_float": "0.25", "solve_seconds": "0.1",
-                "certify_seconds": "0.2"}
-    else:
-        row["reason"] = "no fake goal"
-    return row | kw
+    times = {"solve_seconds": "0.1", "certify_seconds": "0.2"} if status == "ok" else {}
+    return example_row(line, status, config=KEY, **times) | kw
 
 
 def _reference_candidates(scenarios: list[Scenario], index: int, seed: int) -> list:
@@ -91,8 +87,23 @@ def test_parse_row_refuses_what_a_batch_never_writes() -> None:
         good.replace(b"3,ok", b"3,fine", 1): "status",
         good.replace(b"3,ok", b"\xff,ok", 1): "CSV text",
     }
+    # every field a batch writes, not only those the tally reads (a hand-edited cell)
+    for column, value, why in [("VoI", "abc", "VoI 'abc' is not a number"),
+                               ("U1", "1/0", "U1 '1/0' is not a number"),
+                               ("U_bar", "", "U_bar '' is not a number"),
+                               ("truthful_50", "nan", "truthful_50 'nan' is not a number"),
+                               ("start", "0;0", "start '0;0' is not a cell"),
+                               ("scen_optimal", "inf", "scen_optimal 'inf' is not a finite"),
+                               ("scen_optimal", "-7", "scen_optimal '-7' is not a finite"),
+                               ("route", "", "route '' is not a route"),
+                               ("config", "0123456789aB", "config"),
+                               ("reason", "why", "an ok row with a reason")]:
+        bad[format_rows([_row(3, **{column: value})]).rstrip(b"\n")] = why
+    bad[format_rows([_row(3, "error", reason="")]).rstrip(b"\n")] = "without its reason"
+    bad[good.replace(b",pass,", b',"pa\x1b[2Kss",')] = "a control character"
+    bad[format_rows([_row(3, "error", goal="x")]).rstrip(b"\n")] = "goal 'x' is not a cell"
     for raw, why in bad.items():
-        with pytest.raises(ValueError, match=why):
+        with pytest.raises(ValueError, match=re.escape(why)):
             parse_row(raw, KEY)
     with pytest.raises(ValueError, match="another configuration"):
         parse_row(good, "ffffffffffff")

