@@ -9,21 +9,26 @@ verdict answers "is the profile a weak PBNE of that game?" (``dppverify/checks.m
 
 from __future__ import annotations
 
+import math
+from collections.abc import Mapping
 from typing import Any, Unpack
 
 from dppio.inputs import reading_once
-from dppverify.certificate import Certificate, CheckRecord, merge_routes
+from dppverify.certificate import Certificate, CheckRecord, merge_routes, verdict_of
 from dppverify.checks.suites import Options, Run, suite_of
-from dppverify.errors import HorizonError, InvalidInstanceError
+from dppverify.errors import HorizonError, InvalidInstanceError, UndecidedError
 from dppverify.exploitability import exploitability_of
 from dppverify.game.inputs import GraphKeys, Parsed, read_instance, read_profile
 from dppverify.game.instance import Instance
 from dppverify.game.profile import Profile
 from dppverify.horizons import parse_horizon
+from dppverify.kernel import check as kernel_check
+from dppverify.kernel.guarantee import MAX_BASES
 from dppverify.numbers import DEFAULT_REL_TOL
-from dppverify.provenance import provenance_record
+from dppverify.provenance import canonical_json, provenance_record
 from dppverify.registry import CHECK_IDS, not_run
 from dppverify.routes import ROUTES, Chosen, Route, resolve_route
+from dppverify.structured.witness import witness_document
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 
@@ -154,11 +159,54 @@ def _certificate(game: Parsed[Instance], prof: Parsed[Profile], chosen: Chosen,
     who = suite.players(inst, profile, None if structured is None else structured.trie_prefixes)
     exploit = exploitability_of(checks, goals=who.goals, priors=who.priors, horizon=horizon,
                                 exact=inst.exact)
+    provenance = provenance_record(game, prof, route=chosen, exact=inst.exact)
+    kernel = _kernel(game, prof, horizon, tuple(checks), provenance)
     return Certificate(
         checks=tuple(checks), horizon=horizon, exact=inst.exact,
         tolerance=inst.numbers.rel_tol, lp_solver=LP_SOLVER, lp_tolerance=LP_TOLERANCE,
         prefixes=tree.prefixes if tree else 0, leaves=tree.leaves if tree else 0,
-        seed=options.seed if who.seeded else None, info=who.info, route=chosen,
+        seed=options.seed if who.seeded else None, info={**who.info, "kernel": kernel},
+        route=chosen,
         not_run=not_run("structured", suite.family) if chosen == "structured" else {},
-        provenance=provenance_record(game, prof, route=chosen, exact=inst.exact),
-        exploitability=exploit)
+        provenance=provenance, exploitability=exploit)
+
+
+def _kernel(game: Parsed[Instance], prof: Parsed[Profile], horizon: int | None,
+            checks: tuple[CheckRecord, ...], provenance: Mapping[str, Any]) -> dict[str, str]:
+    """One verdict: the trusted kernel (:mod:`dppverify.kernel`, proofs/KERNEL.md) on the
+    engine's witness (:mod:`dppverify.structured.witness`) of a profile the engine certifies,
+    recorded in ``info.kernel``; a PASS the kernel does not accept is a bug of the checker
+    (:class:`~dppverify.errors.UndecidedError`, exit 3, naming both). Not applicable (and why):
+    a finite horizon, a float-mode game, inputs without bytes (objects given in Python), a
+    guarantee rule the engine decided by its exact search (NRULE NR.4: the kernel has NR.2
+    only) or whose packing polytope is beyond the kernel's bound."""
+    verdict = verdict_of(checks)
+    searched = any(c.id == "pbne.attacker_br" and (c.numbers or {}).get("states") for c in checks)
+    data = [p.data if isinstance(p.data, bytes) or p.data is None else canonical_json(p.data)
+            for p in (game, prof)]
+    rule = getattr(prof.value.defender, "normals", None)  # the guarantee rule's extras
+    n_goals = game.value.n_goals
+    bases = 0 if rule is None else sum(math.comb(2**n_goals - 1 + len(rule) + n_goals, k)
+                                       for k in range(1, n_goals + 1))
+    why = ("the engine refutes the profile or could not decide it" if verdict != "pass" else
+           "the engine decided the Attacker by its exact search over the rule's states (NRULE "
+           "NR.4); the kernel decides the guarantee rule by NR.2 only" if searched else
+           f"the guarantee rule's packing polytope needs {bases} candidate bases, beyond the "
+           f"kernel's bound of {MAX_BASES}" if bases > MAX_BASES else
+           f"the game truncated at H = {horizon}; the kernel decides the untruncated game"
+           if horizon is not None else "a float-mode game; the kernel decides exact games only"
+           if not game.value.exact else "objects given in Python have no bytes to tie a "
+           "witness to" if None in data else None)
+    if why is not None:
+        return {"status": "not applicable", "message": why}
+    witness = witness_document(game.value, prof.value,
+                               instance_sha256=str(provenance["instance"]["sha256"]),
+                               profile_sha256=str(provenance["profile"]["sha256"]))
+    v = kernel_check(data[0], data[1], witness, base_dir=game.folder)  # type: ignore[arg-type]
+    if not v.applicable:  # a size bound of the kernel, not a doubt about the witness
+        return {"status": "not applicable", "message": v.message}
+    if not v.accepted:
+        raise UndecidedError(f"the engine certifies this profile but the trusted kernel does not "
+                             f"accept the engine's witness ({v.status}: {v.message}): a bug in "
+                             "dppverify; please report it")
+    return {"status": v.status, "message": v.message}

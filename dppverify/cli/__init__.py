@@ -1,6 +1,7 @@
 """The checker's command line: ``python -m dppverify`` and the checker's ``dpp`` commands.
 
 One module per command: :mod:`~dppverify.cli.certify` (``certify``),
+:mod:`~dppverify.cli.check` (``check``: the trusted kernel in its own process),
 :mod:`~dppverify.cli.value` (``value``), :mod:`~dppverify.cli.export_efg` (``export-efg``),
 :mod:`~dppverify.cli.audit` (``audit``); what they share of their own:
 :mod:`~dppverify.cli.errors` (the checker's errors as one line and an exit code),
@@ -23,13 +24,15 @@ import click
 from dppverify import __version__
 from dppverify.cli.audit import audit_command
 from dppverify.cli.certify import certify_command
+from dppverify.cli.check import check_command
 from dppverify.cli.errors import CheckerGroup
 from dppverify.cli.export_efg import export_efg_command
 from dppverify.cli.value import value_command
 
 __all__ = ["COMMANDS", "main"]
 
-COMMANDS: list[click.Command] = [certify_command, value_command, export_efg_command, audit_command]
+COMMANDS: list[click.Command] = [certify_command, check_command, value_command, export_efg_command,
+                                  audit_command]
 """The checker's commands, in the order ``--help`` lists them."""
 
 

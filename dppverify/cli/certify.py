@@ -33,6 +33,7 @@ from dppverify.cli.errors import fail
 from dppverify.cli.inputs import HORIZON, hinted, max_prefixes_option, read_game
 from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.cli.table import format_table
+from dppverify.cli.witness import engine_witness, write_witness
 from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
 from dppverify.formats.files import read_input, refuse_input_as_output
 from dppverify.game.inputs import Parsed, read_profile
@@ -71,6 +72,10 @@ __all__ = ["VERDICT_EXIT", "certify_command"]
 @click.option("--trials", type=click.IntRange(min=0, max=MAX_TRIALS), default=DEFAULT_TRIALS,
               show_default=True,
               help="Number of random attackers in the L3/L4 checks.")
+@click.option("--witness", type=click.Path(dir_okay=False),
+              help="Also write the dpp-witness/1 of the untruncated game to this file "
+                   "(atomically): the numbers `dpp check` verifies with the trusted kernel "
+                   "(docs/formats.md §5).")
 @click.option("--verify-provenance", "provenance_of", metavar="CERT",
               type=click.Path(dir_okay=False),
               help="Do not certify: check that CERT (a certificate JSON) records the sha256 of "
@@ -100,6 +105,7 @@ def certify_command(**params: Any) -> None:
       dpp certify examples/triangle.json profile.json --json
       dpp certify examples/triangle.json profile.json -o certificate.json
       dpp certify examples/triangle.json profile.json --horizon 4
+      dpp certify examples/triangle.json profile.json --witness w.json
       dpp certify --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 profile.json
       dpp certify --verify-provenance cert.json examples/triangle.json profile.json
     """
@@ -122,6 +128,7 @@ class _Request:
     float_mode: bool
     seed: int
     trials: int
+    witness: str | None
     provenance_of: str | None
     progress: bool | None
 
@@ -143,11 +150,19 @@ def _certify_files(req: _Request) -> None:
             raise OptionError("missing PROFILE: dpp certify INSTANCE PROFILE, or "
                               f"dpp certify {MAP_USAGE} PROFILE")
         refuse_input_as_output(output, [instance, profile, grid.path if grid else None])
+        refuse_input_as_output(req.witness, [instance, profile, output,
+                                             grid.path if grid else None])
+        if req.witness is not None and req.horizon is not None:
+            raise OptionError("--witness is for the untruncated game (the kernel decides no "
+                              "truncated game): drop --horizon")
         if req.provenance_of is not None:
             bar.close()
             _verify_provenance(req.provenance_of, instance, profile, grid)
             return
         game = read_game(instance, grid)
+        if req.witness is not None and not game.value.exact:
+            raise OptionError("--witness: the trusted kernel decides exact games only; this "
+                              "instance is in float mode")
         bar.phase("reading the profile")
         prof = _read_profile(profile, game.value, instance)
         bar.phase(f"certifying (route {req.route}; the checks' bars follow)")
@@ -165,6 +180,8 @@ def _certify_files(req: _Request) -> None:
                f"for this one with {_solve_hint(instance)} -o PROFILE)")
     assert cert.provenance is not None  # certify records what it parsed
     cert = dataclasses.replace(cert, provenance={**cert.provenance, "command": _command()})
+    if req.witness is not None:
+        write_witness(req.witness, engine_witness(game.value, prof.value, cert.provenance or {}))
     summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
     emit(cert.to_json(), format_table(cert), as_json=req.as_json, output=output,
          summary=summary)

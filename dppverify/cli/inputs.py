@@ -109,7 +109,8 @@ def read_game(instance: str | None, grid: MapRequest | None,
     instance_or_map(instance, grid)
     if grid is not None:
         doc = grid.document()
-        return Parsed(grid.game(), map_identity(doc), (str(grid.path), doc["map_sha256"]))
+        return Parsed(grid.game(), map_identity(doc), (str(grid.path), doc["map_sha256"]),
+                      folder=grid.path.resolve().parent)
     assert instance is not None  # instance_or_map: one of the two
     with hinted(instance, "instance", command):
         return read_instance(instance)

@@ -56,11 +56,15 @@ class Parsed(Generic[T]):
     map_file : tuple of str, optional
         For a grid read from a MovingAI ``.map`` file (``--map``): the file's path and the
         sha256 of its bytes.
+    folder : Path, optional
+        Where a relative ``map`` path of a compact map instance starts (the instance file's
+        folder, or the ``.map`` file's for ``--map``); None: the working directory.
     """
 
     value: T
     data: bytes | Mapping[str, Any] | None = None
     map_file: tuple[str, str] | None = None
+    folder: Path | None = None
 
 
 class GraphKeys(TypedDict, total=False):
@@ -139,7 +143,8 @@ def read_instance(instance: Any, **graph: Unpack[GraphKeys]) -> Parsed[Instance]
         return Parsed(instance_from_json(instance), instance)
     if isinstance(instance, str | Path):
         inst, data = read_instance_file(instance)
-        return Parsed(inst, data)
+        return Parsed(inst, data, folder=None if str(instance) == "-" else
+                      Path(instance).resolve().parent)
     to_json = getattr(instance, "to_json", None)
     if callable(to_json):
         doc = to_json()

