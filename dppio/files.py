@@ -41,22 +41,9 @@ from pathlib import Path
 from typing import Any
 
 from dppio.errors import ErrorClass, OutputError
-from dppio.inputs import STDIN, open_input, read_input, read_text
+from dppio.inputs import STDIN
 from dppio.locks import OutputLocks, try_lock
 from dppio.targets import is_special, make_parents, remove_created, resolve_target, short_path
-
-__all__ = [
-    "OutputError",
-    "file_mode",
-    "make_parents",
-    "open_input",
-    "read_input",
-    "read_text",
-    "refuse_input_as_output",
-    "remove_created",
-    "short_path",
-    "write_files",
-]
 
 
 def file_mode() -> int:

@@ -50,8 +50,6 @@ from dppverify.errors import AuditError, TreeTooLargeError
 from dppverify.limits import MAX_AUDIT_EXAMPLES
 from dppverify.strategies import grid_worlds, instances, priors, weighted_graphs
 
-__all__ = ["audit_instances", "game_key", "run_audit"]
-
 Doc = dict[str, Any]
 
 

@@ -27,9 +27,6 @@ from dppio.text import count
 from dppverify.audit.examine import Outcome
 from dppverify.formats.files import OutputError, write_files
 
-__all__ = ["FAILURE_FILES", "AuditReport", "certify_exit", "check_output_folder", "format_report",
-           "save_failure", "write_failure"]
-
 FAILURE_FILES = ("instance.json", "profile.json", "certificate.json", "failure.json")
 """The files of a failure directory, in the order they are listed."""
 

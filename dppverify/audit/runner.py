@@ -62,9 +62,6 @@ from dppverify.audit.procs import SUPERVISOR, become_subreaper, kill_tree
 from dppverify.errors import AuditError
 from dppverify.formats.files import read_input
 
-__all__ = ["Answer", "CommandRunner", "PythonRunner", "SolverRunner",
-           "call_in_process", "one_line"]
-
 Doc = dict[str, Any]
 Solver = Callable[[Doc], Any]
 

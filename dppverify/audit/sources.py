@@ -39,9 +39,6 @@ from dppverify.formats.json_reading import parse_json
 from dppverify.formats.map_instance import is_map_document
 from dppverify.game.instance import instance_from_json
 
-__all__ = ["audit_documents", "instances_from_dir",
-           "instances_from_scen"]
-
 Doc = dict[str, Any]
 
 

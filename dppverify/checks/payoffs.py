@@ -14,8 +14,6 @@ from dppverify.tree_route.context import Context, EvaluatedContext
 from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
 from dppverify.tree_route.value_lp import exact_bracket, solve_value_lp
 
-__all__ = ["value_check", "values"]
-
 
 def values(ctx: EvaluatedContext) -> list[CheckRecord]:
     """``value.U1``, ``value.U2``, ``value.U``, ``value.VoI``.

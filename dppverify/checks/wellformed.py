@@ -11,8 +11,6 @@ from dppverify.text import show_walk
 from dppverify.tree_route.context import Context
 from dppverify.twogoal.phases import phases_of
 
-__all__ = ["phases", "wellformed"]
-
 
 def wellformed(ctx: Context) -> CheckRecord:
     """``profile.wellformed``: the document describes a profile of this game.

@@ -29,8 +29,6 @@ from dppverify.cli.errors import CheckerGroup
 from dppverify.cli.export_efg import export_efg_command
 from dppverify.cli.value import value_command
 
-__all__ = ["COMMANDS", "main"]
-
 COMMANDS: list[click.Command] = [certify_command, check_command, value_command, export_efg_command,
                                   audit_command]
 """The checker's commands, in the order ``--help`` lists them."""

@@ -34,8 +34,6 @@ from dppverify.cli.inputs import max_prefixes_option
 from dppverify.errors import AuditError, CheckerError, InvalidInstanceError
 from dppverify.limits import MAX_AUDIT_EXAMPLES
 
-__all__ = ["audit_command", "format_report"]
-
 
 class _Seconds(click.FloatRange):
     """A float range that also refuses ``nan`` (which compares false with both bounds)."""

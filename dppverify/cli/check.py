@@ -14,8 +14,6 @@ from dppio.inputs import read_input
 from dppverify import kernel
 from dppverify.cli.map_options import MapRequest, map_options
 
-__all__ = ["KERNEL_MAIN", "check_command", "run_kernel"]
-
 KERNEL_MAIN = Path(kernel.__file__).resolve().parent / "__main__.py"
 """The file ``dpp check`` runs in a fresh interpreter (it loads only the kernel)."""
 

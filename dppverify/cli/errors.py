@@ -20,8 +20,6 @@ from dppio.errors import DppioError
 from dppio.text import terminal_line
 from dppverify.errors import CheckerError, LPError, UndecidedError
 
-__all__ = ["CheckerGroup", "error_code", "error_line", "fail"]
-
 
 class CheckerGroup(shared.ErrorReportingGroup):
     """The shared error-reporting group with the checker's errors (:func:`fail`)."""

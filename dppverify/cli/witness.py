@@ -14,8 +14,6 @@ from dppverify.game.instance import Instance
 from dppverify.game.profile import Profile
 from dppverify.structured.witness import witness_document
 
-__all__ = ["engine_witness", "write_witness"]
-
 
 def engine_witness(game: Instance, profile: Profile, provenance: Mapping[str, Any]
                    ) -> dict[str, Any] | str:

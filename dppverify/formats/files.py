@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from dppio import files as _files
-from dppio.files import read_input as read_input  # the checker's modules read through here
+from dppio.inputs import read_input as read_input  # the checker's modules read through here
 from dppverify.errors import CheckerError
 
 

@@ -33,9 +33,6 @@ from dppverify.formats.files import read_input
 from dppverify.formats.movingai import PASSABLE, GridMap, parse_map, read_map_file
 from dppverify.limits import map_memory
 
-__all__ = ["MAP_INSTANCE_FORMAT", "MapReference", "is_map_document", "map_document",
-           "map_sha256", "read_grid_reference", "read_map_reference", "resolve_map_reference"]
-
 MAP_INSTANCE_FORMAT = "dpp-map-instance/1"
 """The ``format`` value of a compact map instance."""
 

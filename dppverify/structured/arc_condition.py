@@ -29,8 +29,6 @@ from dppverify.structured.cover import dets, packing_directions
 from dppverify.structured.cover_lp import cover_values
 from dppverify.structured.normal_fixpoint import NormalSets
 
-__all__ = ["ArcCondition", "arc_condition", "bad_rays", "walkable_arcs"]
-
 
 def _minors(mats: np.ndarray) -> np.ndarray:
     """Signed maximal minors of a batch of ``(j, j+1)`` integer matrices: ``x_c = (-1)^c

@@ -45,8 +45,6 @@ from dppverify.structured.cover import (
     zero_one_normals,
 )
 
-__all__ = ["NormalSets", "normal_sets", "proper_cover_table", "reach_mask"]
-
 
 @dataclass(frozen=True, eq=False)
 class NormalSets:

@@ -19,7 +19,5 @@ from solver.cli.experiment import experiment_group
 from solver.cli.plot import plot_group
 from solver.cli.solve import solve_command
 
-__all__ = ["COMMANDS"]
-
 COMMANDS: list[click.Command] = [solve_command, experiment_group, batch_command, plot_group]
 """The solver's commands (the ``dpp`` group, :mod:`dpp`, adds the checker's)."""

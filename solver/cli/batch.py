@@ -5,7 +5,6 @@ from __future__ import annotations
 import functools
 import os
 import sys
-from pathlib import Path
 from typing import Any
 
 import click
@@ -16,8 +15,6 @@ from dppio.text import count
 from dppverify.errors import CheckerError
 from solver.cli.common import check_dask_address
 from solver.errors import InvalidInstanceError
-
-__all__ = ["BatchProgress", "batch_checker", "batch_command", "batch_example", "merge_command"]
 
 
 def batch_checker() -> Any:
@@ -41,19 +38,6 @@ def batch_checker() -> Any:
                    standard_map_path=functools.partial(standard_map_path,
                                                        error=CheckerInstanceError),
                    errors=(CheckerError,), rule=BATCH_RULE)
-
-
-def batch_example() -> tuple[Any, Path]:
-    """:func:`batch_checker` and its bundled ``empty-8-8-even-1.scen`` (the examples' input).
-
-    Examples
-    --------
-    >>> checker, scen = batch_example()
-    >>> scen.name
-    'empty-8-8-even-1.scen'
-    """
-    checker = batch_checker()
-    return checker, Path(checker.standard_map_path("empty-8-8")).with_name("empty-8-8-even-1.scen")
 
 
 @click.command("merge", short_help="Join the CSVs of a batch's shards.")

@@ -22,7 +22,6 @@ if TYPE_CHECKING:
     from dppverify.formats.movingai import GridMap
     from solver.experiments.ngoal import GameValue, Valuer
 
-__all__ = ["checker_valuer", "ngoal_command"]
 
 Cell = tuple[int, int]
 DEFAULT_MAP = "paper10"

@@ -14,14 +14,14 @@ from dppio.cli.conventions import (
     want_progress,
 )
 from dppio.cli.map_options import MapRequest, map_options, two_goal_map_options
-from dppio.files import read_text, refuse_input_as_output
+from dppio.files import refuse_input_as_output
+from dppio.inputs import read_text
 from solver.cli.common import checker_game, experiment_instance
 from solver.errors import InvalidInstanceError, OutputError
 
 if TYPE_CHECKING:
     from solver.game.instance import Instance
 
-__all__ = ["plot_group"]
 
 
 _OUT_HELP = "The figure file: .png, .svg or .pdf (the suffix picks the format)."

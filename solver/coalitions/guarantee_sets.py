@@ -54,9 +54,6 @@ from solver.coalitions.vertex_tables import (
 )
 from solver.graph.distances import EXACT_FLOAT_LIMIT
 
-__all__ = ["ArcGraph", "Budget", "BudgetExceeded", "GuaranteeSets", "NormalSystem",
-           "guarantee_sets", "min_product"]
-
 INT_LIMIT = 2 ** 62
 
 

@@ -9,7 +9,7 @@ one scenario per line, nine tab-separated fields::
 ``(start_y, start_x)``. For each scenario line the batch builds a two-goal game on the map:
 
 - **true goal**: the line's goal; **fake goal**: the goal of another scenario line of the
-  same file and map, chosen by ``dppverify.formats.scen.fake_goal_candidates`` — the other lines'
+  same file and map, chosen by ``dppverify.formats.scen.candidates_of`` — the other lines'
   goal cells
   (in file order, without repeats, without the line's own start and goal) permuted by
   ``random.Random("dpp-batch:SEED:LINE")`` (Python's seeded Mersenne Twister, the seed
@@ -56,16 +56,13 @@ from typing import Any, cast
 
 import numpy as np
 
-from dppio.files import read_input
+from dppio.inputs import read_input
 from solver.errors import DPPError, InvalidInstanceError
 from solver.experiments.batch_columns import exploitability_cell, line_columns
-from solver.experiments.batch_csv import FIELDS, summarize_file
+from solver.experiments.batch_csv import FIELDS
 from solver.experiments.batch_lines import LineSelection
 from solver.experiments.batch_output import BatchOutput
 from solver.experiments.dask_tasks import dask_completed
-
-__all__ = ["FIELDS", "BatchConfig", "BatchPlan", "BatchResult", "BatchTask", "Checker",
-           "parse_prior", "plan_batch", "run_batch", "run_batch_task", "summarize_file"]
 
 Cell = tuple[int, int]
 
@@ -229,7 +226,7 @@ def plan_batch(scen: str | Path, config: BatchConfig, checker: Checker) -> Batch
 
     Examples
     --------
-    >>> from solver.cli.batch import batch_example
+    >>> from tests.solver.experiments.doctest_inputs import batch_example
     >>> checker, scen = batch_example()
     >>> plan = plan_batch(scen, BatchConfig(), checker)
     >>> len(plan.scenarios), len(plan.goals["empty-8-8.map"]), plan.config.key == BatchConfig().key
@@ -379,7 +376,7 @@ def run_batch_task(task: BatchTask) -> list[dict[str, str]]:
 
     Examples
     --------
-    >>> from solver.cli.batch import batch_example
+    >>> from tests.solver.experiments.doctest_inputs import batch_example
     >>> checker, scen = batch_example()
     >>> task = next(iter(plan_batch(scen, BatchConfig(), checker).tasks((), 2, None)))
     >>> [(r["line"], r["status"], r["goal"], r["fake_goal"], r["verdict"])
@@ -445,7 +442,7 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     Examples
     --------
     >>> import tempfile
-    >>> from solver.cli.batch import batch_example
+    >>> from tests.solver.experiments.doctest_inputs import batch_example
     >>> checker, scen = batch_example()
     >>> out = Path(tempfile.mkdtemp()) / "b.csv"
     >>> first = run_batch(scen, out, BatchConfig(), checker, limit=1)

