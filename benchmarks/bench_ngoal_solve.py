@@ -64,10 +64,10 @@ from typing import Any
 import numpy as np
 from _timing import best
 
+from dppio.standard_maps import standard_map_path
 from dppverify.certify import certify
 from dppverify.formats.movingai import grid_document
 from dppverify.formats.movingai import read_map as checker_read_map
-from dppverify.formats.standard_maps import standard_map_path
 from solver import Instance, solve
 from solver.coalitions import guarantee_sets, normal_dp
 from solver.coalitions.arc_graph import ArcGraph

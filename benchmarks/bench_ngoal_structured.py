@@ -24,9 +24,9 @@ from typing import Any
 
 from _timing import timed
 
+from dppio.standard_maps import standard_map_path
 from dppverify.certify import certify
 from dppverify.formats.movingai import grid_document, read_map
-from dppverify.formats.standard_maps import standard_map_path
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.game.profile import GoalTable, profile_from_json
 from dppverify.structured.coalition import coalition_value

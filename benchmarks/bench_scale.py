@@ -31,8 +31,9 @@ empty-16-16, one repetition: seconds, for the test suite (no timing is asserted 
 ``--sections`` runs some of ``startup maps grid ngoal`` only.
 
 The script measures the code on ``PYTHONPATH`` (``dpp`` commands are run as
-``python -c "from solver.cli import main; ..."``), so the same command measures a "before"
-checkout: ``PYTHONPATH=<checkout> .venv/bin/python benchmarks/bench_scale.py``.
+``python -c "from dpp import main; ..."``, or ``solver.cli``'s ``main`` where an older
+checkout had the group there), so the same command measures a "before" checkout:
+``PYTHONPATH=<checkout> .venv/bin/python benchmarks/bench_scale.py``.
 
 Run: ``.venv/bin/python benchmarks/bench_scale.py [--quick] [--repeat 3] [--maps NAME ...]
 [--sections grid maps] [--no-plot]``
@@ -125,7 +126,8 @@ def save_game(map_ref: str, cells: tuple[tuple[int, int], ...], d: Path) -> tupl
     return inst_file, prof_file, eq
 
 
-DPP = "import sys; from solver.cli import main; sys.argv[0] = 'dpp'; sys.exit(main())"
+DPP = ("import sys\ntry:\n    from dpp import main\nexcept ImportError:  # a checkout from before "
+       "the dpp package\n    from solver.cli import main\nsys.argv[0] = 'dpp'\nsys.exit(main())")
 """``dpp`` as a fresh process on the code of ``PYTHONPATH`` (a "before" checkout, too)."""
 
 
@@ -157,7 +159,7 @@ def _show(r: dict[str, Any], base: dict[str, Any] | None = None) -> str:
 
 # ---------------------------------------------------------------- the rows
 def startup(repeat: int) -> list[str]:
-    dpp = [sys.executable, "-c", "from solver.cli import main; main()", "--help"]
+    dpp = [sys.executable, "-c", DPP, "--help"]
     runs = {"python -c pass": [sys.executable, "-c", "pass"], "dpp --help": dpp,
             "import dppverify": [sys.executable, "-c", "import dppverify"],
             "import solver": [sys.executable, "-c", "import solver"]}
@@ -285,8 +287,8 @@ def solver_rows(blocked: np.ndarray, cells: tuple[tuple[int, int], ...],
 
 
 def ngoal_rows(name: str, goal_counts: tuple[int, ...], repeat: int) -> list[str]:
+    from dppio.standard_maps import standard_map_path
     from dppverify.formats.movingai import read_map
-    from dppverify.formats.standard_maps import standard_map_path
     from dppverify.game.grids import grid_game
     from dppverify.structured.coalition import coalition_value
     from dppverify.twogoal.value_dp import structured_value

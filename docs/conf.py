@@ -72,7 +72,8 @@ napoleon_use_rtype = False
 
 # a module page: its docstring, its members, its submodules
 templates_path = [str(ROOT / "docs/site/_templates")]
-autodoc_default_options["ignore-module-all"] = True  # each object once, on its own module's page
+# a module's page documents exactly its __all__ (the public modules: docs/cli.md "Python API");
+# the front doors' names are indexed there, their home modules' pages are not indexed again
 
 
 def _skip_aliases(app: object, what: str, name: str, obj: object, skip: bool,

@@ -21,4 +21,3 @@ error classes (the checks and writers take ``error=``). ``dppio`` imports neithe
 67108864
 """
 
-__all__: list[str] = []

@@ -10,8 +10,6 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-__all__ = ["DppioError", "ErrorClass", "InputError", "LimitError", "OutputError"]
-
 ErrorClass = Callable[[str], Exception]
 """What a check or a writer raises: called with the one-line message."""
 
@@ -30,3 +28,8 @@ class InputError(DppioError, ValueError):
 
 class LimitError(InputError):
     """An input beyond one of the limits of :mod:`dppio.limits`."""
+
+
+class OptionError(DppioError, ValueError):
+    """A command-line option (of the shared ``--map`` group, :mod:`dppio.cli.map_options`) that
+    cannot be used as given."""

@@ -41,23 +41,9 @@ from pathlib import Path
 from typing import Any
 
 from dppio.errors import ErrorClass, OutputError
-from dppio.inputs import STDIN, open_input, read_input, read_text
+from dppio.inputs import STDIN
 from dppio.locks import OutputLocks, try_lock
 from dppio.targets import is_special, make_parents, remove_created, resolve_target, short_path
-
-__all__ = [
-    "OutputError",
-    "file_mode",
-    "make_parents",
-    "open_input",
-    "read_input",
-    "read_text",
-    "refuse_input_as_output",
-    "remove_created",
-    "short_path",
-    "write_atomic",
-    "write_files",
-]
 
 
 def file_mode() -> int:
@@ -201,24 +187,6 @@ class _Write:
             with contextlib.suppress(OSError):
                 os.close(fd)
         self.held.clear()
-
-
-def write_atomic(path: str | Path, text: str | bytes, *, error: ErrorClass = OutputError
-                 ) -> Path:
-    """Write one file atomically (:func:`write_files` with one target).
-
-    Examples
-    --------
-    The file is replaced, and no temporary file is left behind:
-
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     target = Path(d) / "profile.json"
-    ...     _ = write_atomic(target, "old")
-    ...     _ = write_atomic(target, "new")
-    ...     print(target.read_text(), sorted(p.name for p in Path(d).iterdir()))
-    new ['profile.json']
-    """
-    return write_files({Path(path): text}, error=error)[0]
 
 
 def refuse_input_as_output(output: str | Path | None, inputs: Iterable[str | Path | None], *,

@@ -44,9 +44,6 @@ from typing import BinaryIO
 from dppio.errors import InputError, LimitError
 from dppio.limits import MAX_INPUT_BYTES
 
-__all__ = ["FOLDER_MARK", "MEMO_BYTES", "STDIN", "StdinError", "is_stdin", "open_input",
-           "peek_input", "read_input", "read_text", "reading_once", "stdin_problem"]
-
 STDIN = "-"
 """The input name that means standard input."""
 

@@ -28,21 +28,6 @@ from typing import Any
 from dppio.errors import ErrorClass, LimitError
 from dppio.text import decimal
 
-__all__ = [
-    "MAX_EXPONENT",
-    "MAX_FLOAT_WEIGHT_RATIO",
-    "MAX_INPUT_BYTES",
-    "MAX_JSON_DEPTH",
-    "MAX_MAP_CELLS",
-    "MAX_NUMBER_DIGITS",
-    "MAX_NUMERAL_CHARS",
-    "MAX_PREFIXES_LIMIT",
-    "check_float_weights",
-    "check_json_depth",
-    "check_numeral",
-    "check_rational",
-]
-
 MAX_INPUT_BYTES = 64 * 1024 * 1024
 """Largest input file read (instance, profile, certificate, ``.map``, ``.scen``, CSV): 64 MiB."""
 

@@ -23,8 +23,6 @@ from dppio.errors import ErrorClass, OutputError
 from dppio.inputs import STDIN
 from dppio.targets import is_special, resolve_target, short_path
 
-__all__ = ["BUSY", "OutputLocks", "try_lock"]
-
 BUSY = "another dpp batch or dpp batch merge is writing it (try again when it has finished)"
 """Why a file under the lock discipline (:func:`try_lock`) cannot be written now."""
 

@@ -15,8 +15,6 @@ from pathlib import Path
 from dppio.errors import ErrorClass, LimitError
 from dppio.text import decimal
 
-__all__ = ["available_memory", "check_memory", "memory_limit_text"]
-
 
 def _rlimit_as() -> int | None:
     with contextlib.suppress(ImportError, OSError, ValueError):

@@ -10,8 +10,6 @@ from __future__ import annotations
 import contextlib
 from pathlib import Path
 
-__all__ = ["descendants", "process_table"]
-
 
 def process_table() -> dict[int, list[str]]:
     """Every process's ``/proc/PID/stat`` fields after its command name: the state first

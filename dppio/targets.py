@@ -21,8 +21,6 @@ from pathlib import Path
 from dppio.errors import ErrorClass
 from dppio.inputs import STDIN
 
-__all__ = ["is_special", "make_parents", "remove_created", "resolve_target", "short_path"]
-
 
 def short_path(path: str | Path, limit: int = 160) -> str:
     """``path`` for a one-line message: cut in the middle when longer than ``limit``

@@ -4,6 +4,8 @@
   ``p/q``, a float-mode result, an LP value, a mean) has :data:`DIGITS` significant digits,
   trailing zeros dropped, powers of ten outside ``[10^-4, 10^6)`` written ``×10^e``; the
   exact value (or the full float) is in the command's JSON or CSV output.
+- :func:`show`: a number in a message: an exact rational as ``p/q`` while it is at most
+  :data:`MAX_EXACT_CHARS` characters long, else (and for a float) its :func:`decimal`;
 - :func:`json_shown`: a value from a user's JSON document, written back as the user wrote
   it for a one-line message (never a Python repr such as ``Fraction(7, 10)``).
 - :func:`escaped`: a string from a document (a certificate's version, a map name, a CSV
@@ -24,9 +26,6 @@ import unicodedata
 from decimal import Decimal, localcontext
 from fractions import Fraction
 from typing import Any
-
-__all__ = ["DIGITS", "MAX_LINE_CHARS", "MAX_SHOWN_CHARS", "count", "decimal", "escaped",
-           "json_escaped", "json_shown", "plural", "terminal_line", "terminal_text"]
 
 MAX_SHOWN_CHARS = 80
 """Characters of a document's string quoted in a message (:func:`escaped`'s default)."""
@@ -146,6 +145,9 @@ def terminal_line(text: str, limit: int = MAX_LINE_CHARS) -> str:
 DIGITS = 4
 """Significant digits of every decimal shown in text and figures."""
 
+MAX_EXACT_CHARS = 24
+"""An exact number longer than this is shown as a decimal (its exact form is in ``--json``)."""
+
 
 def decimal(x: float | int | Fraction, *, sign: bool = False) -> str:
     """``x`` with :data:`DIGITS` significant digits (``sign``: a ``+`` before positives).
@@ -176,6 +178,32 @@ def decimal(x: float | int | Fraction, *, sign: bool = False) -> str:
     if -4 <= e < 6:
         return plus + f"{d:f}"
     return plus + f"{d.scaleb(-e).normalize():f}×10^{e}"
+
+
+def show(x: float | int | Fraction | None) -> str:
+    """A number for a message: exact rationals as ``p/q``, floats as :func:`decimal`.
+
+    An exact number longer than :data:`MAX_EXACT_CHARS` characters is shown as ``≈`` and its
+    :func:`decimal` (powers of ten for large ones): the exact value is in the ``--json``
+    output.
+
+    Examples
+    --------
+    >>> show(Fraction(12, 5)), show(3), show(2.4000000000001), show(None)
+    ('12/5', '3', '2.4', '-')
+    >>> show(Fraction(10**30 + 1, 3)), show(2**300)
+    ('≈3.333×10^29', '≈2.037×10^90')
+    >>> show(Fraction(2**100 + 1, 2**100))
+    '≈1'
+    """
+    if x is None:
+        return "-"
+    if isinstance(x, float):
+        return decimal(x)
+    text = str(Fraction(x))
+    if len(text) <= MAX_EXACT_CHARS:
+        return text
+    return "≈" + decimal(x)
 
 
 _PLURALS = {"prefix": "prefixes", "leaf": "leaves", "entry": "entries", "match": "matches",

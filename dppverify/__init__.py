@@ -21,7 +21,7 @@ It never imports ``solver``: it reads instances and strategy profiles as JSON
 from __future__ import annotations
 
 from dppverify.certificate import Certificate, CheckRecord
-from dppverify.certify import CHECK_IDS, certify
+from dppverify.certify import certify
 from dppverify.errors import (
     CertificateError,
     CheckerError,
@@ -33,6 +33,7 @@ from dppverify.errors import (
     UndecidedError,
 )
 from dppverify.game.instance import Instance, instance_from_json, load_instance
+from dppverify.registry import CHECK_IDS
 from dppverify.tree_route.tree import WalkTree, build_tree, count_prefixes
 from dppverify.tree_route.value_lp import GameValue, game_value
 from dppverify.valuation import value

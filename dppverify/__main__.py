@@ -9,7 +9,5 @@ from __future__ import annotations
 
 from dppverify.cli import main
 
-__all__ = ["main"]
-
 if __name__ == "__main__":
     main(prog_name="python -m dppverify")

@@ -18,8 +18,6 @@ from dppverify.structured.proved_value import NValue, nvalue
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 from dppverify.tree_route.value_lp import GameValue, game_value, structured_agrees
 
-__all__ = ["RouteAgreement", "compare_routes"]
-
 
 @dataclass(frozen=True)
 class RouteAgreement:

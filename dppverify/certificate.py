@@ -21,8 +21,7 @@ from dppverify.exploitability import Exploitability, exploitability_of
 from dppverify.limits import MAX_HORIZON
 from dppverify.registry import KINDS, Kind, kind_of
 
-__all__ = ["CERTIFICATE_FORMAT", "STATUSES", "Certificate", "CheckRecord", "Status", "Verdict",
-           "merge_routes", "verdict_of"]
+__all__ = ["CERTIFICATE_FORMAT", "STATUSES", "Certificate", "CheckRecord", "Status", "Verdict"]
 
 CERTIFICATE_FORMAT = "dpp-certificate/1"
 

@@ -27,13 +27,11 @@ from dppverify.kernel import check as kernel_check
 from dppverify.kernel.guarantee import MAX_BASES
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.provenance import canonical_json, provenance_record
-from dppverify.registry import CHECK_IDS, not_run
+from dppverify.registry import not_run
 from dppverify.routes import ROUTES, Chosen, Route, resolve_route
 from dppverify.structured.witness import witness_document
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
-
-__all__ = ["CHECK_IDS", "DEFAULT_TRIALS", "FLOAT_MODE_REFUSED", "certify"]
 
 DEFAULT_TRIALS = 5
 """Random non-reacting attackers tried by the L3 and L4 checks."""

@@ -22,8 +22,6 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
-__all__ = ["INF", "Bracket", "Number", "format_number", "normalize", "to_float"]
-
 Number = int | Fraction | float
 """An exact rational (``int`` or ``Fraction``) or, in float mode, a ``float``."""
 
@@ -57,17 +55,6 @@ def format_number(x: Number | None) -> str | float | int | None:
     if isinstance(x, float):
         return x if math.isfinite(x) else str(x)
     return str(Fraction(x))
-
-
-def to_float(x: Number) -> float:
-    """``float(x)`` (for LP data and reports).
-
-    Examples
-    --------
-    >>> to_float(Fraction(1, 4))
-    0.25
-    """
-    return float(x)
 
 
 @dataclass(frozen=True)

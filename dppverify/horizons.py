@@ -16,8 +16,6 @@ from typing import Any
 from dppverify.errors import HorizonError
 from dppverify.limits import MAX_HORIZON
 
-__all__ = ["INFINITE_WORDS", "parse_horizon"]
-
 INFINITE_WORDS = ("inf", "infinity")
 """The words (any case) that mean the untruncated game, H = inf."""
 

@@ -12,9 +12,6 @@ Examples
 
 from __future__ import annotations
 
-__all__ = ["MAP_BYTES_PER_CELL", "MAX_AUDIT_EXAMPLES", "MAX_GOALS", "MAX_HORIZON",
-           "MAX_LP_CELLS", "MAX_TRIALS", "map_memory"]
-
 MAX_HORIZON = 10_000
 """Largest horizon H of a truncated game (``--horizon``)."""
 

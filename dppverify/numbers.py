@@ -23,9 +23,6 @@ from typing import ClassVar
 
 from dppverify.exact import Number, normalize
 
-__all__ = ["DEFAULT_REL_TOL", "EXACT", "ExactNumbers", "FloatNumbers", "NumberMode",
-           "number_mode"]
-
 DEFAULT_REL_TOL = 1e-9
 """Relative tolerance of float mode: ``|a - b| <= 1e-9 * max(1, |a|, |b|)``."""
 

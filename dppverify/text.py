@@ -1,4 +1,5 @@
-"""Small formatting helpers for check messages."""
+"""Small formatting helpers for check messages (numbers: :func:`dppio.text.show`, the one
+rule of both packages)."""
 
 from __future__ import annotations
 
@@ -6,58 +7,13 @@ from collections.abc import Sequence
 from fractions import Fraction
 from typing import TYPE_CHECKING
 
-from dppio.text import decimal
+from dppio.text import decimal, show
 from dppverify.exact import Number
 from dppverify.formats.json_reading import show_node
 
 if TYPE_CHECKING:
     from dppverify.game.instance import Instance
 
-__all__ = ["MAX_EXACT_CHARS", "approx", "show", "show_value", "show_walk"]
-
-
-MAX_EXACT_CHARS = 24
-"""An exact number longer than this is shown as a decimal (its exact form is in ``--json``)."""
-
-
-def approx(x: Number) -> str:
-    """``x`` as a decimal: :func:`dppio.text.decimal` (the one rule of both packages).
-
-    Works for rationals of any size (no float overflow).
-
-    Examples
-    --------
-    >>> approx(Fraction(10**80 * 109, 100)), approx(Fraction(1, 3)), approx(Fraction(-1, 10**9))
-    ('1.09×10^80', '0.3333', '-1×10^-9')
-    """
-    return decimal(x)
-
-
-def show(x: Number | None) -> str:
-    """A number for a message: exact rationals as ``p/q``, floats with 12 significant digits.
-
-    An exact number longer than :data:`MAX_EXACT_CHARS` characters is shown as ``≈`` and a
-    decimal (powers of ten for large ones): the exact value is in the ``--json`` output.
-
-    Examples
-    --------
-    >>> show(Fraction(12, 5)), show(3), show(2.4000000000001), show(None)
-    ('12/5', '3', '2.4', '-')
-    >>> show(Fraction(10**30 + 1, 3)), show(2**300)
-    ('≈3.333×10^29', '≈2.037×10^90')
-    >>> show(Fraction(2**100 + 1, 2**100))
-    '≈1'
-    """
-    if x is None:
-        return "-"
-    if isinstance(x, float):
-        if x != x or x in (float("inf"), float("-inf")):
-            return str(x)
-        return decimal(x)
-    text = str(Fraction(x))
-    if len(text) <= MAX_EXACT_CHARS:
-        return text
-    return "≈" + approx(x)
 
 
 def show_value(x: Number | None, digits: int = 40) -> str:
@@ -78,8 +34,8 @@ def show_value(x: Number | None, digits: int = 40) -> str:
         return str(q)
     text = str(q)
     if len(text) <= digits:
-        return f"{text} (≈ {approx(q)})"
-    return f"≈ {approx(q)} (exact: a {len(text) - 1}-digit fraction, see --json)"
+        return f"{text} (≈ {decimal(q)})"
+    return f"≈ {decimal(q)} (exact: a {len(text) - 1}-digit fraction, see --json)"
 
 
 def show_walk(instance: Instance, walk: Sequence[int]) -> str:

@@ -16,8 +16,6 @@ from dppverify.horizons import parse_horizon
 from dppverify.routes import Route, RoutedValue, routed_value
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
 
-__all__ = ["value"]
-
 
 def value(instance: Any, horizon: int | str | float | None = "inf", *, route: Route = "auto",
           max_prefixes: int = DEFAULT_MAX_PREFIXES, progress: bool = False,

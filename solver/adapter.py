@@ -18,6 +18,16 @@ def solve_json(instance_doc: dict[str, Any]) -> dict[str, Any]:
     """Solve an instance document (``docs/formats.md`` §1) and return its profile document:
     ``dpp-profile/1`` for two goals (§2), ``dpp-ngoal-profile/1`` for more (§2b).
 
+    Parameters
+    ----------
+    instance_doc : dict
+        An instance document, any number of goals.
+
+    Returns
+    -------
+    dict
+        The profile document of :func:`solver.solve`.
+
     Examples
     --------
     The triangle of ``examples/triangle.json``:

@@ -13,8 +13,6 @@ Examples
 
 from __future__ import annotations
 
-__all__ = ["MAP_BYTES_PER_CELL", "MAX_DENSITY_GRIDS", "MAX_DENSITY_SIZE", "map_memory"]
-
 MAX_DENSITY_SIZE = 200
 """Largest grid side of ``dpp experiment density --size``."""
 

@@ -26,19 +26,6 @@ from dppio.limits import check_numeral, check_rational
 from dppio.text import decimal
 from solver.errors import InvalidInstanceError
 
-__all__ = [
-    "DEFAULT_ABS_TOL",
-    "ExactNumbers",
-    "FloatNumbers",
-    "Number",
-    "NumberMode",
-    "format_number",
-    "format_value",
-    "parse_number",
-    "pivot",
-    "solve_exact",
-]
-
 Number = Fraction | float
 """An exact rational, or a float in float mode (e.g. octile weights)."""
 

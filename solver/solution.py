@@ -29,8 +29,6 @@ if TYPE_CHECKING:
 from solver.twogoal.equilibrium import Equilibrium, paper_equilibrium
 from solver.twogoal.report import summarize as summarize_two_goals
 
-__all__ = ["Solution", "solve", "summarize"]
-
 
 @dataclass(frozen=True, eq=False)
 class Solution:
@@ -167,6 +165,18 @@ def summarize(result: Solution | Equilibrium, *, certified: str = "") -> str:
     with σ* per step and its phases, the primary's mixture, the values: several lines); for
     more, one line (value, VoI, type costs, the guarantee rule's ``h``; ``certified`` says how
     it was certified).
+
+    Parameters
+    ----------
+    result : Solution or Equilibrium
+        What :func:`solve` returned.
+    certified : str
+        How an N-goal result was certified, for its line.
+
+    Returns
+    -------
+    str
+        The text, without a final newline.
 
     Examples
     --------

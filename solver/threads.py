@@ -17,8 +17,6 @@ from __future__ import annotations
 
 import os
 
-__all__ = ["BLAS_THREAD_VARIABLES"]
-
 BLAS_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")
 """The variables set (to ``"1"``) when absent."""
 

@@ -13,7 +13,7 @@ import click
 import pytest
 from click.testing import CliRunner
 
-from solver.cli import main
+from dpp import main
 
 ROOT = Path(__file__).resolve().parents[1]
 TRIANGLE = str(ROOT / "examples" / "triangle.json")

@@ -106,7 +106,7 @@ def _shims(bin_dir: Path) -> None:
     bin_dir.mkdir()
     dpp = bin_dir / "dpp"
     dpp.write_text(f"#!/bin/sh\nexec '{sys.executable}' -c 'import sys; sys.argv[0] = \"dpp\"; "
-                   f"from solver.cli import main; main()' \"$@\"\n", encoding="utf-8")
+                   f"from dpp import main; main()' \"$@\"\n", encoding="utf-8")
     dpp.chmod(0o755)
     for name in ("python", "python3"):  # a script, not a link: a venv is found by its path
         shim = bin_dir / name
@@ -213,7 +213,7 @@ def test_bash_command_parses(path: Path, number: int, text: str, tmp_path: Path,
 
     import click
 
-    from solver.cli import main
+    from dpp import main
 
     args = shlex.split(text, comments=True)[1:]
     monkeypatch.chdir(tmp_path)

@@ -1,22 +1,57 @@
-"""The docstring standard: every public function has a runnable example, every public class
-a docstring.
+"""The docstring standard (networkx's rule): the public API has full numpy-style docstrings,
+everything else a short one.
 
-"Public" means top-level in a module of ``solver/`` or ``dppverify/``, not starting with
-``_``, and listed in the module's ``__all__`` (every name, when a module has no
-``__all__``). Click commands and groups are excepted: their ``--help`` is their
-documentation and their tests use click's ``CliRunner``. The scan reads the sources with
-:mod:`ast`, so it imports none of the modules it checks.
+*Public* means a name in the ``__all__`` of a module that docs/cli.md's "Python API" table
+lists; only those modules have an ``__all__``. A public function's docstring has a summary,
+``Parameters`` (when it takes any), ``Returns`` (unless it returns None), ``Raises`` (when its
+body raises) and ``Examples`` that run (``>>>``: the doctests run them); a public class has a
+docstring. A name a front door re-exports is checked where it is defined. Every other
+top-level function and class of the packages has a docstring; a contract is stated once, where
+it is enforced. Click commands are checked like any function, without the sections: their
+``--help`` is their documentation. The scan reads the sources with :mod:`ast`, so it imports
+none of the modules it checks.
 """
 
 from __future__ import annotations
 
 import ast
+import re
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("solver", "dppverify", "dppio")
+PACKAGES = ("solver", "dppverify", "dppio", "dpp")
+
+PENDING: dict[str, str] = {
+    "dppverify.game.instance.instance_from_json": "the one reader of the certification "
+                                                  "pipeline replaces it",
+    "dppverify.game.instance.load_instance": "the one reader of the certification pipeline "
+                                             "replaces it",
+}
+"""Public names whose docstrings are not complete yet, with why; an entry that passes fails
+the test, so the list only shrinks."""
+
+ALL_PENDING = frozenset((
+    "dppverify/checks/lemmas/__init__.py", "dppverify/checks/per_goal_records.py",
+    "dppverify/checks/runners.py", "dppverify/checks/structured.py",
+    "dppverify/checks/structured_guarantee.py", "dppverify/checks/structured_per_goal.py",
+    "dppverify/checks/structured_twogoal.py", "dppverify/checks/suites.py",
+    "dppverify/cli/certify.py", "dppverify/cli/export_efg.py", "dppverify/cli/inputs.py",
+    "dppverify/cli/value.py", "dppverify/game/distances.py", "dppverify/game/inputs.py",
+    "dppverify/game/instance.py", "dppverify/game/profile.py", "dppverify/game/profile_types.py",
+    "dppverify/registry.py", "dppverify/routes.py", "dppverify/strategies/instances.py",
+    "dppverify/structured/cover.py", "dppverify/structured/proved_value.py",
+    "dppverify/tree_route/efg.py", "dppverify/tree_route/per_goal_checks.py",
+    "dppverify/value_document.py", "solver/cli/experiment.py", "solver/cli/solve.py",
+    "solver/coalitions/construction.py", "solver/coalitions/normal_attacker.py",
+    "solver/experiments/density.py", "solver/game/profile_writing.py",
+))
+"""Internal modules that still have an ``__all__``: modules other branches rework now (the
+certification pipeline's second stage, batch and its outputs, goal selection, the kernel, the
+documentation site), and two facades whose importers still take re-exported names from them
+(``game/profile.py``, ``checks/lemmas``); each loses it when that work lands. The list only
+shrinks."""
 
 
 @dataclass(frozen=True)
@@ -26,9 +61,23 @@ class Public:
     docstring: str
 
 
-def _exported(module: ast.Module) -> set[str] | None:
+def public_modules() -> list[str]:
+    """The modules of docs/cli.md's "Python API" table, in its order."""
+    text = (ROOT / "docs" / "cli.md").read_text(encoding="utf-8")
+    section = text[text.index("## Python API"):]
+    section = section[:section.index("\n## ", 1)]
+    rows = [line for line in section.splitlines() if line.startswith("| `")]
+    return [re.match(r"\| `([\w.]+)`", row).group(1) for row in rows]  # type: ignore[union-attr]
+
+
+def _path(module: str) -> Path:
+    base = ROOT.joinpath(*module.split("."))
+    return base / "__init__.py" if base.is_dir() else base.with_suffix(".py")
+
+
+def _exported(module: ast.Module) -> list[str] | None:
     """The names of ``__all__`` (None when the module has none); ``+=`` extensions included."""
-    names: set[str] | None = None
+    names: list[str] | None = None
     for node in module.body:
         if isinstance(node, ast.Assign):
             targets, value = node.targets, node.value
@@ -40,9 +89,9 @@ def _exported(module: ast.Module) -> set[str] | None:
             continue
         if not isinstance(value, ast.List | ast.Tuple):
             raise AssertionError(f"__all__ at line {node.lineno} is not a literal list")
-        found = {e.value for e in value.elts
-                 if isinstance(e, ast.Constant) and isinstance(e.value, str)}
-        names = found if names is None or not isinstance(node, ast.AugAssign) else names | found
+        found = [e.value for e in value.elts
+                 if isinstance(e, ast.Constant) and isinstance(e.value, str)]
+        names = found if names is None or not isinstance(node, ast.AugAssign) else names + found
     return names
 
 
@@ -56,14 +105,13 @@ def _is_click(function: ast.FunctionDef | ast.AsyncFunctionDef) -> bool:
 
 
 def scan_source(source: str, where: str) -> list[Public]:
-    """The public functions and classes of one module's source."""
-    module = ast.parse(source)
-    exported = _exported(module)
+    """The top-level functions and classes of one module's source whose names do not start
+    with ``_``."""
     found = []
-    for node in module.body:
+    for node in ast.parse(source).body:
         if not isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
             continue
-        if node.name.startswith("_") or (exported is not None and node.name not in exported):
+        if node.name.startswith("_"):
             continue
         if isinstance(node, ast.ClassDef):
             kind = "class"
@@ -76,7 +124,7 @@ def scan_source(source: str, where: str) -> list[Public]:
 
 @cache
 def scan() -> tuple[Public, ...]:
-    """Every public function and class of the packages (read once per test session)."""
+    """Every such function and class of the packages (read once per test session)."""
     found: list[Public] = []
     for package in PACKAGES:
         for path in sorted((ROOT / package).rglob("*.py")):
@@ -85,24 +133,106 @@ def scan() -> tuple[Public, ...]:
     return tuple(found)
 
 
-def test_public_functions_have_runnable_examples() -> None:
-    functions = [p for p in scan() if p.kind == "function"]
-    assert len(functions) > 50, "the scan found too few functions: is it still looking?"
-    missing = [p.where for p in functions if ">>>" not in p.docstring]
-    assert not missing, "public functions without a >>> example:\n" + "\n".join(missing)
+def _definition(module: str, name: str) -> tuple[str, ast.AST] | None:
+    """Where ``name`` of ``module`` is defined: the module itself, or the package module it
+    is imported from (followed); None for a constant, an alias or a lazy import."""
+    for _ in range(6):
+        tree = ast.parse(_path(module).read_text(encoding="utf-8"))
+        for node in tree.body:
+            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef) \
+                    and node.name == name:
+                return f"{module}.{name}", node
+        source = next((node for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)
+                       and node.module and node.module.split(".")[0] in PACKAGES
+                       and any((a.asname or a.name) == name for a in node.names)), None)
+        if source is None or source.module is None:
+            return None
+        name = next(a.name for a in source.names if (a.asname or a.name) == name)
+        module = source.module
+    return None
 
 
-def test_public_classes_have_docstrings() -> None:
-    classes = [p for p in scan() if p.kind == "class"]
-    assert len(classes) > 30, "the scan found too few classes: is it still looking?"
-    missing = [p.where for p in classes if not p.docstring.strip()]
-    assert not missing, "public classes without a docstring:\n" + "\n".join(missing)
+def missing_sections(node: ast.AST) -> list[str]:
+    """What a public definition's docstring lacks (networkx's rule)."""
+    assert isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef)
+    doc = ast.get_docstring(node) or ""
+    if not doc.strip():
+        return ["a docstring"]
+    if isinstance(node, ast.ClassDef) or _is_click(node):
+        return []
+    missing = []
+    args = node.args
+    named = [a.arg for a in (*args.posonlyargs, *args.args, *args.kwonlyargs)]
+    if [n for n in named if n not in ("self", "cls")] and not _section(doc, "Parameters"):
+        missing.append("Parameters")
+    returns_none = isinstance(node.returns, ast.Constant) and node.returns.value is None
+    if not returns_none and not (_section(doc, "Returns") or _section(doc, "Yields")):
+        missing.append("Returns")
+    raises = any(isinstance(n, ast.Raise) and n.exc is not None for n in ast.walk(node))
+    if raises and not _section(doc, "Raises"):
+        missing.append("Raises")
+    if ">>>" not in doc:
+        missing.append("Examples")
+    return missing
 
 
-def test_only_click_commands_are_excepted() -> None:
-    excepted = {p.where.split()[-1] for p in scan() if p.kind == "click"}
-    assert "main" in excepted and "certify_command" in excepted
-    assert all(name == "main" or name.endswith(("_command", "_group")) for name in excepted)
+def _section(doc: str, title: str) -> bool:
+    return re.search(rf"^{title}\n-+$", doc, re.MULTILINE) is not None
+
+
+@cache
+def public_problems() -> dict[str, str]:
+    """``module.name`` -> what its docstring lacks, for every public name."""
+    problems = {}
+    for module in public_modules():
+        tree = ast.parse(_path(module).read_text(encoding="utf-8"))
+        for name in _exported(tree) or ():
+            found = _definition(module, name)
+            if found is None:
+                continue
+            where, node = found
+            missing = missing_sections(node)
+            if missing:
+                problems[where] = ", ".join(missing)
+    return problems
+
+
+def test_the_public_modules_exist_and_have_an_all() -> None:
+    modules = public_modules()
+    assert "dppverify" in modules and "solver" in modules and len(modules) >= 8
+    for module in modules:
+        assert _path(module).is_file(), module
+        tree = ast.parse(_path(module).read_text(encoding="utf-8"))
+        assert _exported(tree), f"{module} is public API: it needs an __all__"
+
+
+def test_only_the_public_modules_have_an_all() -> None:
+    public = {_path(m).relative_to(ROOT).as_posix() for m in public_modules()}
+    having = {path.relative_to(ROOT).as_posix() for package in PACKAGES
+              for path in (ROOT / package).rglob("*.py")
+              if _exported(ast.parse(path.read_text(encoding="utf-8"))) is not None}
+    extra = sorted(having - public - ALL_PENDING)
+    assert not extra, "an __all__ in a module that is not public API:\n" + "\n".join(extra)
+    done = sorted(ALL_PENDING - having)
+    assert not done, "no __all__ any more, remove from ALL_PENDING:\n" + "\n".join(done)
+
+
+def test_public_names_have_full_numpy_docstrings() -> None:
+    problems = {k: v for k, v in public_problems().items() if k not in PENDING}
+    assert not problems, "public names whose docstrings lack sections:\n" + "\n".join(
+        f"{k}: {v}" for k, v in sorted(problems.items()))
+
+
+def test_every_pending_docstring_is_still_incomplete() -> None:
+    done = sorted(set(PENDING) - set(public_problems()))
+    assert not done, "complete now, remove from PENDING:\n" + "\n".join(done)
+
+
+def test_every_function_and_class_has_a_docstring() -> None:
+    found = scan()
+    assert len(found) > 300, "the scan found too few definitions: is it still looking?"
+    missing = [p.where for p in found if not p.docstring.strip()]
+    assert not missing, "functions and classes without a docstring:\n" + "\n".join(missing)
 
 
 _SAMPLE = '''
@@ -122,19 +252,34 @@ def sub() -> None:
 def cmd() -> None:
     """Cmd."""
 
-def plain() -> None:
-    """No example."""
+def plain(x: int) -> int:
+    """No sections."""
 
-def documented() -> None:
+def documented(x: int) -> int:
+    """Twice.
+
+    Parameters
+    ----------
+    x : int
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ValueError
+
+    Examples
+    --------
+    >>> documented(1)
+    2
     """
-    >>> 1
-    1
-    """
+    if x < 0:
+        raise ValueError(x)
+    return 2 * x
 
 def late() -> None:
-    pass
-
-def not_exported() -> None:
     pass
 
 class Thing:
@@ -149,11 +294,16 @@ def test_scan_classifies_a_sample_module() -> None:
     found = {p.where.split()[-1]: p for p in scan_source(_SAMPLE, "sample.py")}
     assert set(found) == {"group", "sub", "cmd", "plain", "documented", "late", "Thing"}
     assert {n for n, p in found.items() if p.kind == "click"} == {"group", "sub", "cmd"}
-    assert found["Thing"].kind == "class" and found["Thing"].docstring == ""
-    assert ">>>" in found["documented"].docstring and ">>>" not in found["plain"].docstring
-    assert found["late"].docstring == ""
+    assert found["Thing"].docstring == "" and found["late"].docstring == ""
+    assert _exported(ast.parse(_SAMPLE)) == ["plain", "cmd", "sub", "group", "Thing",
+                                              "documented", "late"]
 
 
-def test_scan_without_all_takes_every_public_name() -> None:
-    found = scan_source("def f() -> None:\n    pass\n\ndef _g() -> None:\n    pass\n", "x.py")
-    assert [p.where for p in found] == ["x.py:1 f"]
+def test_the_sections_rule_on_a_sample_module() -> None:
+    nodes = {n.name: n for n in ast.parse(_SAMPLE).body
+             if isinstance(n, ast.FunctionDef | ast.ClassDef)}
+    assert missing_sections(nodes["documented"]) == []
+    assert missing_sections(nodes["plain"]) == ["Parameters", "Returns", "Examples"]
+    assert missing_sections(nodes["late"]) == ["a docstring"]
+    assert missing_sections(nodes["cmd"]) == [] and missing_sections(nodes["Thing"]) == [
+        "a docstring"]

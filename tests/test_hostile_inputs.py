@@ -15,8 +15,8 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from dpp import main as dpp_main
 from dppverify.__main__ import main as checker_main
-from solver.cli import main as dpp_main
 from tests import _guard
 from tests.hostile._harness import write_template
 

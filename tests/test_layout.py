@@ -100,6 +100,35 @@ def test_the_docs_tables_agree_with_the_contract(doc: str, package: str,
                     f"{doc}: the {package} table puts {a} below {b}, the contract above it")
 
 
+def _architecture_rows(header: str) -> list[set[str]]:
+    """Per row of docs/architecture.md's table under ``header``: the names it gives in
+    backticks (``game/`` as ``game``)."""
+    arch = (ROOT / "docs" / "architecture.md").read_text()
+    rows = _table(arch[arch.index(header):], "| ")
+    names = [[t.rstrip("/").rstrip("*") for t in re.findall(r"`([^`]+)`", row[0] + row[1])]
+             for row in rows]
+    return [{part for t in row for part in (t, t.rsplit("/", 1)[-1])} for row in names]
+
+
+@pytest.mark.parametrize(("package", "header"), [("dppverify", "## The checker"),
+                                                 ("solver", "## The solver"),
+                                                 ("dppio", "# Architecture")])
+def test_the_architecture_tables_name_every_module(package: str, header: str) -> None:
+    """Every module of a sub-package (``game/distances.py``) is named in the row that names
+    its sub-package (``game/``); a ``structured*`` prefix names the modules it starts."""
+    rows = _architecture_rows(header)
+    missing = []
+    for path in sorted((ROOT / package).rglob("*.py")):
+        parts = path.relative_to(ROOT / package).with_suffix("").parts
+        if parts[-1] in ("__init__", "__main__") or (len(parts) < 2 and package != "dppio"):
+            continue  # the top-level modules of dppverify and solver: the layer tables
+        folder, name = (parts[-2] if len(parts) > 1 else package), parts[-1]
+        if not any(folder in row and (name in row or any(
+                name.startswith(t) for t in row if len(t) > 3)) for row in rows):
+            missing.append("/".join(parts))
+    assert not missing, f"docs/architecture.md does not name {missing}"
+
+
 def test_no_module_is_named_for_n_goals() -> None:
     """One core serves any N: only the ``dpp experiment ngoal`` command's modules say ngoal."""
     found = sorted(str(p.relative_to(ROOT)) for package in PACKAGES
@@ -120,3 +149,12 @@ def test_the_tests_mirror_the_package(package: str) -> None:
                if p.is_dir() and p.name != "__pycache__"}
     assert folders, f"tests/{package}/ has no layer folders"
     assert folders <= _children(package), f"tests/{package}/ has folders no layer of {package} has"
+
+
+def test_every_folder_of_modules_is_a_package() -> None:
+    """A folder of modules without ``__init__.py`` is a namespace package, which setuptools
+    leaves out of the wheel: every one is a package."""
+    loose = sorted(str(folder.relative_to(ROOT)) for package in (*PACKAGES, "dppio", "dpp")
+                   for folder in {p.parent for p in (ROOT / package).rglob("*.py")}
+                   if not (folder / "__init__.py").is_file())
+    assert loose == []

@@ -64,7 +64,7 @@ def test_the_wheel_holds_the_packages_the_command_and_the_license(dists: list[Pa
     info = f"dppverify-{VERSION}.dist-info"
     assert f"{info}/licenses/LICENSE" in names
     entry = zipfile.ZipFile(wheel).read(f"{info}/entry_points.txt").decode()
-    assert "dpp-python = solver.cli:console" in entry
+    assert "dpp-python = dpp:console" in entry
     # `dpp` itself is the shell launcher (standard input a folder stops any Python), as is
     launcher = zipfile.ZipFile(wheel).read(f"dppverify-{VERSION}.data/scripts/dpp")
     assert launcher == (ROOT / "bin" / "dpp").read_bytes() and launcher.startswith(b"#!/bin/sh")

@@ -33,13 +33,13 @@ def _loaded(code: str, names: tuple[str, ...]) -> list[str]:
 @pytest.mark.parametrize("code", ["import dppverify", "import solver",
                                   "from dppverify import certify, game_value, Instance",
                                   "from solver import solve, Instance, instance_to_json",
-                                  "import dppverify.cli", "import solver.cli"])
+                                  "import dppverify.cli", "import solver.cli", "import dpp"])
 def test_imports_load_no_heavy_library(code: str) -> None:
     assert _loaded(code, HEAVY) == []
 
 
 def test_dpp_help_loads_no_solver_or_scipy() -> None:
-    code = ("from click.testing import CliRunner\nfrom solver.cli import main\n"
+    code = ("from click.testing import CliRunner\nfrom dpp import main\n"
             "r = CliRunner().invoke(main, ['--help'])\nassert r.exit_code == 0, r.output")
     assert _loaded(code, LIGHT_CLI) == []
 
@@ -63,7 +63,7 @@ def test_an_lp_still_loads_cvxpy() -> None:
 
 
 @pytest.mark.parametrize(("preset", "code", "want"), [
-    (None, "import solver.cli", "1"), ("3", "import solver.cli", "3"),
+    (None, "import dpp", "1"), ("3", "import dpp", "3"),
     (None, "import dppverify, solver", None)])
 def test_dpp_runs_single_threaded_blas_unless_told(preset: str | None, code: str,
                                                    want: str | None) -> None:

@@ -14,7 +14,7 @@ import click
 import pytest
 from click.testing import CliRunner
 
-from solver.cli import main
+from dpp import main
 from tests import _guard
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -326,7 +326,7 @@ def test_the_mutant_audit_runs_from_any_folder(tmp_path: Path) -> None:
     env = {k: v for k, v in os.environ.items() if not k.startswith(("DPP_", "PYTEST_"))}
     env["PYTHONPATH"] = str(ROOT)
     run = _guard.run(
-        [sys.executable, "-c", "import sys; sys.argv[0] = 'dpp'; from solver.cli import main; "
+        [sys.executable, "-c", "import sys; sys.argv[0] = 'dpp'; from dpp import main; "
          "main()", "audit", "--solver", "tests.mutants.solvers:mutant_drop_phase_ii",
          "--examples", "40", "--no-shrink", "--output-dir", "failure"],
         cwd=tmp_path, env=env, text=True, capture_output=True)

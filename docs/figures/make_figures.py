@@ -43,7 +43,7 @@ BASELINES = ["baselines.png", "field_metrics.png"]  # written by `dpp experiment
 
 def dpp(*args: str) -> None:
     cmd = [sys.executable, "-c", "import sys; sys.argv[0] = 'dpp'; "
-           "from solver.cli import main; main()", *args]
+           "from dpp import main; main()", *args]
     subprocess.run(cmd, check=True, cwd=ROOT)
 
 

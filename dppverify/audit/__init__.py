@@ -11,7 +11,8 @@ object, or a command line ``'prog {instance} {profile}'`` run on files. One modu
 - :mod:`~dppverify.audit.campaign` draws instances with hypothesis (:func:`run_audit`);
 - :mod:`~dppverify.audit.pruning` shrinks a failure within a budget;
 - :mod:`~dppverify.audit.report` holds the result and writes the failure directory.
-- :mod:`~dppverify.audit.defaults` holds every default and budget of ``dpp audit``.
+- :mod:`~dppverify.audit.config` holds the one record of how an audit runs
+  (:class:`AuditConfig`) and every default and budget of ``dpp audit``.
 
 An example *fails* when the solver raises, exits or times out (``solver.error``,
 ``solver.timeout``), returns something that is not a JSON object (``solver.output``), returns
@@ -24,7 +25,7 @@ time, in the worker process.
 Examples
 --------
 >>> from fractions import Fraction
->>> from dppverify.audit import run_audit
+>>> from dppverify.audit import AuditConfig, run_audit
 >>> def stay_put(doc):           # a wrong solver: the Attacker never moves
 ...     goals, prior = doc["goals"], [Fraction(p) for p in doc["prior"]]
 ...     g1, g2 = goals if prior[0] >= prior[1] else goals[::-1]
@@ -32,7 +33,7 @@ Examples
 ...     return {"format": "dpp-profile/1", "goals": {"primary": g1, "secondary": g2},
 ...             "defender": {"rule": "progress", "goal": g1},
 ...             "attacker": {"primary": stay, "secondary": stay}}
->>> report = run_audit(stay_put, examples=50, seed=1)
+>>> report = run_audit(stay_put, AuditConfig(examples=50, seed=1))
 >>> report.passed, report.failure.check
 (False, 'profile.wellformed')
 >>> inst = report.failure.instance       # shrunk: a tiny instance, start off the goals
@@ -44,23 +45,26 @@ from __future__ import annotations
 
 from typing import Any
 
-from dppverify.audit.defaults import (
+from dppverify.audit.config import (
     AUDIT_MAX_PREFIXES,
     AUDIT_TRIALS,
     DEFAULT_SHRINK_CALLS,
     DEFAULT_SHRINK_SECONDS,
     DEFAULT_TIMEOUT,
+    AuditConfig,
+    ShrinkBudget,
 )
 from dppverify.audit.examine import Outcome, examine
-from dppverify.audit.pruning import ShrinkBudget, prune_failure
+from dppverify.audit.pruning import prune_failure
 from dppverify.audit.report import AuditReport, format_report, write_failure
 from dppverify.audit.runner import Answer, CommandRunner, PythonRunner, SolverRunner
 from dppverify.errors import AuditError
 
 __all__ = ["AUDIT_MAX_PREFIXES", "AUDIT_TRIALS", "DEFAULT_SHRINK_CALLS", "DEFAULT_SHRINK_SECONDS",
-           "DEFAULT_TIMEOUT", "Answer", "AuditError", "AuditReport", "CommandRunner", "Outcome",
-           "PythonRunner", "ShrinkBudget", "SolverRunner", "audit_instances", "examine",
-           "format_report", "prune_failure", "run_audit", "write_failure"]
+           "DEFAULT_TIMEOUT", "Answer", "AuditConfig", "AuditError", "AuditReport",
+           "CommandRunner", "Outcome", "PythonRunner", "ShrinkBudget", "SolverRunner",
+           "audit_instances", "examine", "format_report", "prune_failure", "run_audit",
+           "write_failure"]
 
 
 def __getattr__(name: str) -> Any:

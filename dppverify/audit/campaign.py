@@ -29,32 +29,26 @@ import hashlib
 import json
 import sys
 from collections.abc import Callable
-from pathlib import Path
 from typing import Any
 
 from hypothesis import HealthCheck, Phase, Verbosity, given, reject, settings
 from hypothesis import seed as hypothesis_seed
 from hypothesis import strategies as st
 
-from dppverify.audit.defaults import (
-    AUDIT_MAX_PREFIXES,
-    AUDIT_TRIALS,
-    DEFAULT_SHRINK_CALLS,
-    DEFAULT_SHRINK_SECONDS,
-    DEFAULT_TIMEOUT,
+from dppverify.audit.config import (
+    DEFAULT_CONFIG,
     HYPOTHESIS_SHARE,
     SKIP_FACTOR,
     SKIP_FLOOR,
+    AuditConfig,
 )
 from dppverify.audit.examine import Outcome, examine
-from dppverify.audit.pruning import ShrinkBudget, prune_failure
+from dppverify.audit.pruning import prune_failure
 from dppverify.audit.report import AuditReport, check_output_folder, save_failure
 from dppverify.audit.runner import PythonRunner, SolverRunner
 from dppverify.errors import AuditError, TreeTooLargeError
 from dppverify.limits import MAX_AUDIT_EXAMPLES
 from dppverify.strategies import grid_worlds, instances, priors, weighted_graphs
-
-__all__ = ["audit_instances", "game_key", "run_audit"]
 
 Doc = dict[str, Any]
 
@@ -103,22 +97,10 @@ class _Found(Exception):
     """Raised inside the hypothesis test to mark a failing example."""
 
 
-def _check_int(name: str, value: Any, low: int, high: int | None = None) -> None:
-    if isinstance(value, bool) or not isinstance(value, int) or value < low or (
-            high is not None and value > high):
-        bound = f"between {low} and {high}" if high is not None else f">= {low}"
-        raise AuditError(f"{name}={value!r} must be an integer {bound}")
-
-
-def run_audit(solver: SolverRunner | Callable[[Doc], Any], *, examples: int = 100,
-              seed: int = 0, max_nodes: int = 8, out: str | Path | None = None,
-              shrink: bool = True, progress: bool = False,
-              strategy: st.SearchStrategy[Doc] | None = None,
-              max_prefixes: int = AUDIT_MAX_PREFIXES, trials: int = AUDIT_TRIALS,
-              timeout: float = DEFAULT_TIMEOUT, shrink_calls: int = DEFAULT_SHRINK_CALLS,
-              shrink_seconds: float = DEFAULT_SHRINK_SECONDS,
+def run_audit(solver: SolverRunner | Callable[[Doc], Any], config: AuditConfig = DEFAULT_CONFIG,
+              *, strategy: st.SearchStrategy[Doc] | None = None,
               log: Callable[[str], None] | None = None) -> AuditReport:
-    """Audit ``solver`` on up to ``examples`` generated instances.
+    """Audit ``solver`` on up to ``config.examples`` generated instances.
 
     Parameters
     ----------
@@ -126,29 +108,15 @@ def run_audit(solver: SolverRunner | Callable[[Doc], Any], *, examples: int = 10
         A runner (:class:`~dppverify.audit.runner.PythonRunner`,
         :class:`~dppverify.audit.runner.CommandRunner`) or a callable mapping an instance
         document to a profile document, which is then run in a worker process
-        (:class:`~dppverify.audit.runner.PythonRunner` with ``timeout``).
-    examples : int
-        Example budget: the first ``examples`` distinct games of the seed's stream (a
-        smaller budget audits a prefix of a larger one; see the module docstring).
-    seed : int
-        Seed of the generation: the same seed, strategy and solver give the same campaign.
-    max_nodes : int
-        Largest instance (nodes) of the default strategy :func:`audit_instances`.
-    out : path, optional
-        Directory for the failing instance, profile and certificate: written as soon as
-        the first failure is found, rewritten whenever shrinking finds a smaller one.
-    shrink : bool
-        Shrink the first failure (default True).
-    progress : bool
-        Show a tqdm progress bar on stderr (generation, then shrinking).
+        (:class:`~dppverify.audit.runner.PythonRunner` with ``config.timeout``).
+    config : AuditConfig
+        The campaign: its example budget (the first ``examples`` distinct games of the
+        seed's stream: a smaller budget audits a prefix of a larger one, see the module
+        docstring), seed, instance size, certification options, shrinking budget, output
+        folder (written as soon as the first failure is found, rewritten whenever shrinking
+        finds a smaller one) and progress bar.
     strategy : SearchStrategy, optional
-        Instances to draw instead of :func:`audit_instances`.
-    max_prefixes, trials : int
-        Passed to :func:`dppverify.certify` (tree-size guard; random attackers of L3/L4).
-    timeout : float
-        Seconds per solver run (for a callable; a runner has its own).
-    shrink_calls, shrink_seconds : int, float
-        The shrinking budget: at most this many solver calls and seconds.
+        Instances to draw instead of :func:`audit_instances` (``max_nodes`` is then unused).
     log : callable, optional
         Receives one-line status messages (the first failure and where it was written).
 
@@ -164,26 +132,22 @@ def run_audit(solver: SolverRunner | Callable[[Doc], Any], *, examples: int = 10
     >>> from hypothesis import strategies as st
     >>> from dppverify.game.examples import triangle_document, triangle_profile
     >>> answer = triangle_profile()
-    >>> run_audit(lambda doc: answer, examples=3, strategy=st.just(triangle_document())).passed
+    >>> run_audit(lambda doc: answer, AuditConfig(examples=3),
+    ...           strategy=st.just(triangle_document())).passed
     True
-    >>> report = run_audit(lambda doc: answer, examples=20, shrink=False)
+    >>> report = run_audit(lambda doc: answer, AuditConfig(examples=20, shrink=False))
     >>> report.passed, report.examples, report.failure.check
     (False, 1, 'profile.wellformed')
     """
-    _check_int("examples", examples, 1, MAX_AUDIT_EXAMPLES)
-    _check_int("seed", seed, 0)
-    if out is not None:
-        check_output_folder(out)  # before any example: never a campaign that cannot report
-    source = audit_instances(max_nodes=max_nodes) if strategy is None else strategy
-    budget = ShrinkBudget(calls=shrink_calls, seconds=shrink_seconds)
+    if config.out is not None:
+        check_output_folder(config.out)  # before any example: never a campaign that cannot report
+    source = audit_instances(max_nodes=config.max_nodes) if strategy is None else strategy
     if isinstance(solver, SolverRunner):
         runner, owned = solver, False
     else:
-        runner, owned = PythonRunner(solver, timeout=timeout), True
+        runner, owned = PythonRunner(solver, timeout=config.timeout), True
     try:
-        return _campaign(runner, source, examples=examples, seed=seed, max_nodes=max_nodes,
-                         out=out, shrink=shrink, progress=progress, max_prefixes=max_prefixes,
-                         trials=trials, budget=budget, log=log)
+        return _campaign(runner, source, config, log=log)
     finally:
         if owned:
             runner.close()
@@ -208,120 +172,140 @@ def game_key(doc: Doc) -> str:
     return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
-def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], *, examples: int,
-              seed: int, max_nodes: int, out: str | Path | None, shrink: bool, progress: bool,
-              max_prefixes: int, trials: int, budget: ShrinkBudget,
+def _campaign(runner: SolverRunner, source: st.SearchStrategy[Doc], config: AuditConfig, *,
               log: Callable[[str], None] | None) -> AuditReport:
     """One hypothesis run whose settings never depend on ``examples`` (see the module
     docstring, "Nested campaigns"): the budget only says when to stop."""
     from tqdm import tqdm
 
-    counts = {"examples": 0, "skipped": 0}
-    seen: set[str] = set()
-    found: list[Outcome] = []
-    files: list[tuple[Any, ...]] = [()]
-    unwritten: list[str] = []  # why the failure's files could not be written
-    skip_limit = max(SKIP_FLOOR, SKIP_FACTOR * examples)
-    stopped = [""]
-    bar = tqdm(total=examples, desc="audit", unit="ex", disable=not progress, file=sys.stderr,
-               leave=False)
-
-    def record(outcome: Outcome) -> None:
-        found.append(outcome)
-        if out is not None:
-            files[0] = save_failure(outcome, out, seed=seed, unwritten=unwritten)
-        if len(found) > 1:
-            bar.set_description(f"shrinking: {budget.used}/{budget.calls} calls, "
-                                f"{len(outcome.instance['graph']['nodes'])} nodes")
-
-    def first(outcome: Outcome) -> None:
-        record(outcome)
-        if log is not None and not unwritten:  # (else the end says it, in its one line)
-            where = f"; written to {out}" if out is not None else ""
-            plan = (f"; shrinking it (budget: {budget.describe()})" if shrink else "")
-            log(f"audit: example {counts['examples']} fails {outcome.check}{where}{plan}")
-        budget.start()
-        if shrink:
-            bar.reset(total=budget.calls)
-            bar.set_description("shrinking")
-
-    def shrinking(doc: Doc) -> None:
-        # hypothesis' shrinking gets half the budget, the pruning pass the rest
-        if not shrink or not budget.spend(HYPOTHESIS_SHARE):
-            return
-        bar.update(1)
-        try:
-            outcome = examine(runner, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
-        except TreeTooLargeError:
-            reject()  # raises: hypothesis discards the example
-        if outcome.passed or outcome.identity != found[0].identity:
-            return  # another failure: shrinking stays on the first one (as hypothesis)
-        record(outcome)
-        raise _Found(outcome.message)
-
-    def one(doc: Doc) -> None:
-        if found:  # shrinking (or hypothesis replaying the failure)
-            shrinking(doc)
-            return
-        key = game_key(doc)
-        if key in seen:
-            return  # a game already audited is not an example again
-        if counts["examples"] >= examples:
-            raise _Enough
-        seen.add(key)
-        try:
-            outcome = examine(runner, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
-        except TreeTooLargeError:
-            # skipped, not rejected: what hypothesis draws next must not depend on the solver
-            counts["skipped"] += 1
-            if counts["skipped"] >= skip_limit:
-                stopped[0] = "skipped"
-                raise _Enough from None
-            return
-        counts["examples"] += 1
-        bar.update(1)
-        if not outcome.passed:
-            first(outcome)
-            raise _Found(outcome.message)
-
-    phases = [Phase.generate, Phase.shrink] if shrink else [Phase.generate]
+    bar = tqdm(total=config.examples, desc="audit", unit="ex", disable=not config.progress,
+               file=sys.stderr, leave=False)
+    run = _Campaign(runner, config, log, bar)
+    phases = [Phase.generate, Phase.shrink] if config.shrink else [Phase.generate]
     # max_examples is the same for every budget: hypothesis' generation (its early small
     # examples, its mutations) is then the same sequence whatever the budget
-    config = settings(parent=settings.get_profile("default"), max_examples=MAX_AUDIT_EXAMPLES,
-                      database=None, deadline=None, derandomize=False, phases=phases,
-                      verbosity=Verbosity.quiet, suppress_health_check=list(HealthCheck),
-                      print_blob=False, report_multiple_bugs=False)
-    test = config(hypothesis_seed(seed)(given(source)(one)))
+    hypothesis_settings = settings(
+        parent=settings.get_profile("default"), max_examples=MAX_AUDIT_EXAMPLES,
+        database=None, deadline=None, derandomize=False, phases=phases,
+        verbosity=Verbosity.quiet, suppress_health_check=list(HealthCheck), print_blob=False,
+        report_multiple_bugs=False)
+    test = hypothesis_settings(hypothesis_seed(config.seed)(given(source)(run.one)))
     try:
         test()
     except _Enough:
         pass
     except Exception:  # _Found, or hypothesis' Flaky error around a failure
-        if not found:
+        if not run.found:
             raise
-    if not found and counts["examples"] == 0:
-        bar.close()
-        if stopped[0]:
-            raise AuditError(f"every generated example was skipped: walk trees larger than "
-                             f"max_prefixes={max_prefixes} (lower --max-nodes)")
-        raise AuditError("the instance strategy gave no example")
-    note = ""
-    if not found and counts["examples"] < examples:
-        note = (f"stopped after {counts['skipped']} skipped examples" if stopped[0] else
-                "the generator has no further distinct game")
     try:
-        if not found:
-            return AuditReport(True, counts["examples"], counts["skipped"], 0, None, None,
-                               seed=seed, max_nodes=max_nodes, shrunk=shrink, note=note)
-        # every failure accepted while shrinking is smaller and has the first one's identity
-        minimal = found[-1]
-        if shrink:
-            minimal, _ = prune_failure(runner, minimal, max_prefixes=max_prefixes,
-                                       trials=trials, seed=seed, budget=budget, on_improve=record)
+        return run.report()
     finally:
         bar.close()
-    return AuditReport(False, counts["examples"], counts["skipped"], budget.used, minimal,
-                       found[0], files[0], seed, max_nodes, shrunk=shrink,
-                       budget_exhausted=shrink and budget.exhausted,
-                       unwritten=unwritten[0] if unwritten and not files[0] else "")
 
+
+class _Campaign:
+    """The state of one campaign: what hypothesis drew so far, the failures found (the first
+    one, then every smaller one with its identity), the budget and the files written."""
+
+    def __init__(self, runner: SolverRunner, config: AuditConfig,
+                 log: Callable[[str], None] | None, bar: Any) -> None:
+        self.runner, self.config, self.log, self.bar = runner, config, log, bar
+        self.budget = config.budget()
+        self.examples = self.skipped = 0
+        self.seen: set[str] = set()
+        self.found: list[Outcome] = []
+        self.files: tuple[Any, ...] = ()
+        self.unwritten: list[str] = []  # why the failure's files could not be written
+        self.skip_limit = max(SKIP_FLOOR, SKIP_FACTOR * config.examples)
+        self.stopped = False
+
+    def record(self, outcome: Outcome) -> None:
+        """Keep a failure (the first, or a smaller one) and write it to ``config.out``."""
+        self.found.append(outcome)
+        if self.config.out is not None:
+            self.files = save_failure(outcome, self.config.out, seed=self.config.seed,
+                                      unwritten=self.unwritten)
+        if len(self.found) > 1:
+            self.bar.set_description(f"shrinking: {self.budget.used}/{self.budget.calls} calls, "
+                                     f"{len(outcome.instance['graph']['nodes'])} nodes")
+
+    def first(self, outcome: Outcome) -> None:
+        """The first failure: keep it, say so, start the shrinking budget."""
+        self.record(outcome)
+        out, shrink = self.config.out, self.config.shrink
+        if self.log is not None and not self.unwritten:  # (else the end says it, in one line)
+            where = f"; written to {out}" if out is not None else ""
+            plan = (f"; shrinking it (budget: {self.budget.describe()})" if shrink else "")
+            self.log(f"audit: example {self.examples} fails {outcome.check}{where}{plan}")
+        self.budget.start()
+        if shrink:
+            self.bar.reset(total=self.budget.calls)
+            self.bar.set_description("shrinking")
+
+    def shrinking(self, doc: Doc) -> None:
+        """Hypothesis shrinking: keep ``doc`` when it fails as the first failure did."""
+        # hypothesis' shrinking gets half the budget, the pruning pass the rest
+        if not self.config.shrink or not self.budget.spend(HYPOTHESIS_SHARE):
+            return
+        self.bar.update(1)
+        try:
+            outcome = examine(self.runner, doc, self.config)
+        except TreeTooLargeError:
+            reject()  # raises: hypothesis discards the example
+        if outcome.passed or outcome.identity != self.found[0].identity:
+            return  # another failure: shrinking stays on the first one (as hypothesis)
+        self.record(outcome)
+        raise _Found(outcome.message)
+
+    def one(self, doc: Doc) -> None:
+        """The hypothesis test: examine one drawn game."""
+        if self.found:  # shrinking (or hypothesis replaying the failure)
+            self.shrinking(doc)
+            return
+        key = game_key(doc)
+        if key in self.seen:
+            return  # a game already audited is not an example again
+        if self.examples >= self.config.examples:
+            raise _Enough
+        self.seen.add(key)
+        try:
+            outcome = examine(self.runner, doc, self.config)
+        except TreeTooLargeError:
+            # skipped, not rejected: what hypothesis draws next must not depend on the solver
+            self.skipped += 1
+            if self.skipped >= self.skip_limit:
+                self.stopped = True
+                raise _Enough from None
+            return
+        self.examples += 1
+        self.bar.update(1)
+        if not outcome.passed:
+            self.first(outcome)
+            raise _Found(outcome.message)
+
+    def report(self) -> AuditReport:
+        """The campaign's report; the first failure pruned within what is left of the budget."""
+        config, shrink = self.config, self.config.shrink
+        if not self.found and self.examples == 0:
+            if self.stopped:
+                raise AuditError(f"every generated example was skipped: walk trees larger than "
+                                 f"max_prefixes={config.max_prefixes} (lower --max-nodes)")
+            raise AuditError("the instance strategy gave no example")
+        if not self.found:
+            note = ""
+            if self.examples < config.examples:
+                note = (f"stopped after {self.skipped} skipped examples" if self.stopped else
+                        "the generator has no further distinct game")
+            return AuditReport(True, self.examples, self.skipped, 0, None, None,
+                               seed=config.seed, max_nodes=config.max_nodes, shrunk=shrink,
+                               note=note)
+        # every failure accepted while shrinking is smaller and has the first one's identity
+        minimal = self.found[-1]
+        if shrink:
+            minimal, _ = prune_failure(self.runner, minimal, config, budget=self.budget,
+                                       on_improve=self.record)
+        return AuditReport(False, self.examples, self.skipped, self.budget.used, minimal,
+                           self.found[0], self.files, config.seed, config.max_nodes,
+                           shrunk=shrink, budget_exhausted=shrink and self.budget.exhausted,
+                           unwritten=self.unwritten[0] if self.unwritten and not self.files
+                           else "")

@@ -14,14 +14,12 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from dppverify.audit.defaults import AUDIT_MAX_PREFIXES, AUDIT_TRIALS
+from dppverify.audit.config import DEFAULT_CONFIG, AuditConfig
 from dppverify.audit.runner import Answer, SolverRunner, call_in_process, one_line
 from dppverify.certificate import Certificate
 from dppverify.certify import certify
 from dppverify.errors import CheckerError, ProfileError, TreeTooLargeError, UndecidedError
 from dppverify.formats.json_reading import parse_json
-
-__all__ = ["Outcome", "examine"]
 
 Doc = dict[str, Any]
 
@@ -80,17 +78,37 @@ class Outcome:
         return f"{self.check}:{self.where}" if self.where else self.check
 
 
-def examine(solver: SolverRunner | Callable[[Doc], Any], doc: Doc, *,
-            max_prefixes: int = AUDIT_MAX_PREFIXES, trials: int = AUDIT_TRIALS,
-            seed: int = 0) -> Outcome:
-    """Solve ``doc`` with ``solver`` and certify the answer.
+def examine(solver: SolverRunner | Callable[[Doc], Any], doc: Doc,
+            config: AuditConfig = DEFAULT_CONFIG) -> Outcome:
+    """Solve ``doc`` with ``solver`` and certify the answer (``config``'s ``max_prefixes``,
+    ``trials`` and ``seed``).
 
     ``solver`` is a :class:`~dppverify.audit.runner.SolverRunner` (isolated, as
     :func:`~dppverify.audit.run_audit` uses) or a plain callable, called in this process.
 
     Raises :class:`~dppverify.errors.TreeTooLargeError` when the walk tree exceeds
-    ``max_prefixes`` (the caller skips the example); everything the solver does wrong is an
-    :class:`Outcome` with ``passed`` False.
+    ``config.max_prefixes`` (the caller skips the example); everything the solver does wrong
+    is an :class:`Outcome` with ``passed`` False.
+
+    Parameters
+    ----------
+    solver : SolverRunner or callable
+        The solver under test.
+    doc : dict
+        The instance document given to it.
+    config : AuditConfig
+        The certification options (``max_prefixes``, ``trials``, ``seed``).
+
+    Returns
+    -------
+    Outcome
+        The instance, the solver's profile, its certificate and the first failing check (empty
+        when it passed).
+
+    Raises
+    ------
+    TreeTooLargeError
+        The walk tree is larger than ``config.max_prefixes`` (the caller skips the example).
 
     Examples
     --------
@@ -112,7 +130,8 @@ def examine(solver: SolverRunner | Callable[[Doc], Any], doc: Doc, *,
         return Outcome(doc, None, None, "solver.output",
                        f"the solver's profile is {type(profile).__name__}, not a JSON object")
     try:
-        cert = certify(doc, profile, max_prefixes=max_prefixes, trials=trials, seed=seed)
+        cert = certify(doc, profile, max_prefixes=config.max_prefixes, trials=config.trials,
+                       seed=config.seed)
     except TreeTooLargeError:
         raise
     except UndecidedError as exc:  # never a pass: the game cannot be decided for the profile

@@ -31,8 +31,6 @@ import signal
 
 from dppio.procs import descendants
 
-__all__ = ["SUPERVISOR", "become_subreaper", "descendants", "kill_tree"]
-
 PR_SET_PDEATHSIG = 1
 PR_SET_CHILD_SUBREAPER = 36
 

@@ -1,79 +1,25 @@
-"""Shrinking a failure under a budget: the budget itself and the greedy pruning pass.
+"""Shrinking a failure under a budget: the greedy pruning pass.
 
 Hypothesis shrinks the *draws*; :func:`prune_failure` then deletes nodes and edges the
 failure does not need. Both spend solver calls, and a slow solver makes every call count,
-so both draw on one :class:`ShrinkBudget` (solver calls and seconds).
+so both draw on one :class:`~dppverify.audit.config.ShrinkBudget` (solver calls and seconds).
 """
 
 from __future__ import annotations
 
 import json
 import math
-import time
 from collections.abc import Callable
 from fractions import Fraction
 from typing import Any
 
-from dppverify.audit.defaults import (
-    AUDIT_MAX_PREFIXES,
-    AUDIT_TRIALS,
-    DEFAULT_SHRINK_CALLS,
-    DEFAULT_SHRINK_SECONDS,
-)
+from dppverify.audit.config import DEFAULT_CONFIG, AuditConfig, ShrinkBudget
 from dppverify.audit.examine import Outcome, examine
 from dppverify.audit.runner import SolverRunner
-from dppverify.errors import AuditError, CheckerError, TreeTooLargeError
+from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.game.instance import instance_from_json
 
-__all__ = ["ShrinkBudget", "prune_failure"]
-
 Doc = dict[str, Any]
-
-
-class ShrinkBudget:
-    """Solver calls and seconds left for shrinking (the clock starts at :meth:`start`).
-
-    Examples
-    --------
-    >>> b = ShrinkBudget(calls=2, seconds=60).start()
-    >>> b.spend(), b.spend(), b.spend()
-    (True, True, False)
-    >>> b.used, b.exhausted
-    (2, True)
-    """
-
-    def __init__(self, *, calls: int = DEFAULT_SHRINK_CALLS,
-                 seconds: float = DEFAULT_SHRINK_SECONDS) -> None:
-        given: object = calls  # checked as given, whatever its type
-        if isinstance(given, bool) or not isinstance(given, int) or given < 0:
-            raise AuditError(f"shrink calls={calls!r} must be a non-negative integer")
-        if not seconds >= 0:
-            raise AuditError(f"shrink seconds={seconds!r} must be non-negative")
-        self.calls, self.seconds = calls, float(seconds)
-        self.used = 0
-        self.started = 0.0
-        self.deadline = float("inf")
-        self.exhausted = False
-
-    def start(self) -> ShrinkBudget:
-        """Start the clock; returns ``self``."""
-        self.started = time.monotonic()
-        self.deadline = self.started + self.seconds
-        return self
-
-    def spend(self, share: float = 1.0) -> bool:
-        """Take one solver call from the first ``share`` of the budget; False when none is
-        left (with ``share`` 1, the budget is then exhausted)."""
-        calls, deadline = self.calls * share, self.started + self.seconds * share
-        if self.used >= calls or time.monotonic() > min(deadline, self.deadline):
-            self.exhausted = self.exhausted or share >= 1.0
-            return False
-        self.used += 1
-        return True
-
-    def describe(self) -> str:
-        """The budget in words, e.g. ``500 solver calls or 120 s``."""
-        return f"{self.calls} solver calls or {self.seconds:g} s"
 
 
 def simpler_graphs(graph: Doc) -> list[Doc]:
@@ -107,9 +53,25 @@ def simpler_graphs(graph: Doc) -> list[Doc]:
     return out
 
 
-def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome, *,
-                  max_prefixes: int = AUDIT_MAX_PREFIXES, trials: int = AUDIT_TRIALS,
-                  seed: int = 0, budget: ShrinkBudget | None = None,
+def _smaller_graphs(graph: Doc, keep: set[str]) -> list[Doc]:
+    """The graphs one deletion or simplification away: without one node not in ``keep`` (and
+    its edges), without one edge, then :func:`simpler_graphs`."""
+    candidates = []
+    for node in graph["nodes"]:
+        key = json.dumps(node["id"])
+        if key in keep:
+            continue
+        edges = [e for e in graph["edges"]
+                 if key not in (json.dumps(e["source"]), json.dumps(e["target"]))]
+        nodes = [n for n in graph["nodes"] if n is not node]
+        candidates.append({**graph, "nodes": nodes, "edges": edges})
+    for edge in graph["edges"]:
+        candidates.append({**graph, "edges": [e for e in graph["edges"] if e is not edge]})
+    return candidates + simpler_graphs(graph)
+
+
+def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
+                  config: AuditConfig = DEFAULT_CONFIG, *, budget: ShrinkBudget | None = None,
                   on_improve: Callable[[Outcome], None] | None = None) -> tuple[Outcome, int]:
     """Delete nodes and edges from a failing instance while it still fails the same way (the
     same :attr:`~dppverify.audit.examine.Outcome.identity`: check id, or exception type and
@@ -120,8 +82,25 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
     than the start and the goals (with its edges), then every edge, then tries the simpler
     graphs of :func:`simpler_graphs` (undirected, integer and unit weights), keeping a change
     when the instance stays valid and the solver's answer still fails the same check; it
-    repeats until nothing changes or the ``budget`` is spent. ``on_improve`` is called with
-    every smaller failure. Returns the pruned outcome and the solver calls spent.
+    repeats until nothing changes or the budget is spent.
+
+    Parameters
+    ----------
+    solver : SolverRunner or callable
+        The solver under test.
+    outcome : Outcome
+        The failure to shrink.
+    config : AuditConfig
+        How each smaller instance is examined, and the default budget.
+    budget : ShrinkBudget, optional
+        The budget to draw on (started); default a fresh one of ``config``.
+    on_improve : callable, optional
+        Called with every smaller failure.
+
+    Returns
+    -------
+    (Outcome, int)
+        The smallest failure found and the solver calls spent.
 
     Examples
     --------
@@ -137,7 +116,7 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
     >>> [n["id"] for n in pruned.instance["graph"]["nodes"]], pruned.check
     ([0, 1, 2], 'profile.wellformed')
     """
-    budget = budget if budget is not None else ShrinkBudget().start()
+    budget = budget if budget is not None else config.budget().start()
     calls = 0
     best = outcome
     keep = {json.dumps(best.instance["start"]), *(json.dumps(g) for g in best.instance["goals"])}
@@ -152,7 +131,7 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
             return None
         calls += 1
         try:
-            result = examine(solver, doc, max_prefixes=max_prefixes, trials=trials, seed=seed)
+            result = examine(solver, doc, config)
         except TreeTooLargeError:
             return None
         return result if result.identity == best.identity else None
@@ -160,20 +139,7 @@ def prune_failure(solver: SolverRunner | Callable[[Doc], Any], outcome: Outcome,
     changed = True
     while changed and not budget.exhausted:
         changed = False
-        graph = best.instance["graph"]
-        candidates = []
-        for node in graph["nodes"]:
-            key = json.dumps(node["id"])
-            if key in keep:
-                continue
-            edges = [e for e in graph["edges"]
-                     if key not in (json.dumps(e["source"]), json.dumps(e["target"]))]
-            nodes = [n for n in graph["nodes"] if n is not node]
-            candidates.append({**graph, "nodes": nodes, "edges": edges})
-        for edge in graph["edges"]:
-            candidates.append({**graph, "edges": [e for e in graph["edges"] if e is not edge]})
-        candidates += simpler_graphs(graph)
-        for smaller_graph in candidates:
+        for smaller_graph in _smaller_graphs(best.instance["graph"], keep):
             smaller = attempt({**best.instance, "graph": smaller_graph})
             if smaller is not None:
                 best, changed = smaller, True

@@ -27,9 +27,6 @@ from dppio.text import count
 from dppverify.audit.examine import Outcome
 from dppverify.formats.files import OutputError, write_files
 
-__all__ = ["FAILURE_FILES", "AuditReport", "certify_exit", "check_output_folder", "format_report",
-           "save_failure", "write_failure"]
-
 FAILURE_FILES = ("instance.json", "profile.json", "certificate.json", "failure.json")
 """The files of a failure directory, in the order they are listed."""
 
@@ -129,6 +126,11 @@ class AuditReport:
 def format_report(report: AuditReport) -> str:
     """What ``dpp audit`` prints for a report.
 
+    Parameters
+    ----------
+    report : AuditReport
+        The result of :func:`~dppverify.audit.run_audit` or of an audit of given instances.
+
     Returns
     -------
     str
@@ -139,9 +141,9 @@ def format_report(report: AuditReport) -> str:
     Examples
     --------
     >>> from hypothesis import strategies as st
-    >>> from dppverify.audit import run_audit
+    >>> from dppverify.audit import AuditConfig, run_audit
     >>> from dppverify.game.examples import triangle_document
-    >>> report = run_audit(lambda doc: 1 / 0, examples=5, shrink=False,
+    >>> report = run_audit(lambda doc: 1 / 0, AuditConfig(examples=5, shrink=False),
     ...                    strategy=st.just(triangle_document()))
     >>> print(format_report(report))  # doctest: +ELLIPSIS
     audit FAIL after 1 example (seed 0; no shrinking): the solver raised ZeroDivisionError: ...

@@ -57,13 +57,10 @@ from types import TracebackType
 from typing import Any
 
 from dppio.limits import MAX_INPUT_BYTES
-from dppverify.audit.defaults import READY_TIMEOUT
+from dppverify.audit.config import READY_TIMEOUT
 from dppverify.audit.procs import SUPERVISOR, become_subreaper, kill_tree
 from dppverify.errors import AuditError
 from dppverify.formats.files import read_input
-
-__all__ = ["Answer", "CommandRunner", "PythonRunner", "SolverRunner",
-           "call_in_process", "one_line"]
 
 Doc = dict[str, Any]
 Solver = Callable[[Doc], Any]
@@ -191,7 +188,7 @@ class SolverRunner:
         return self
 
     def __exit__(self, kind: type[BaseException] | None, exc: BaseException | None,
-                 tb: TracebackType | None) -> None:
+                 _traceback: TracebackType | None) -> None:
         self.close()
 
 
@@ -216,7 +213,7 @@ def _load(spec: str) -> Solver:
 def _worker(target: str | Solver, conn: Connection) -> None:  # pragma: no cover - in a child
     os.setsid()  # a process group of its own: a timeout kills the solver's children too
     for s in (signal.SIGTERM, signal.SIGINT, signal.SIGHUP):
-        signal.signal(s, signal.SIG_DFL)  # not the audit's handlers (dppverify.cli.interrupts)
+        signal.signal(s, signal.SIG_DFL)  # not the audit's handlers (dppio.cli.interrupts)
     become_subreaper(signal.SIGKILL)  # the solver's escaped children stay under the worker
     devnull = os.open(os.devnull, os.O_RDWR)
     for fd in (0, 1, 2):

@@ -28,9 +28,9 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from dppverify.audit.defaults import AUDIT_MAX_PREFIXES, AUDIT_TRIALS, MAX_AUDIT_INSTANCES
+from dppverify.audit.config import DEFAULT_CONFIG, MAX_AUDIT_INSTANCES, AuditConfig
 from dppverify.audit.examine import Outcome, examine
-from dppverify.audit.pruning import ShrinkBudget, prune_failure
+from dppverify.audit.pruning import prune_failure
 from dppverify.audit.report import AuditReport, check_output_folder, save_failure
 from dppverify.audit.runner import SolverRunner
 from dppverify.errors import AuditError, CheckerError, TreeTooLargeError
@@ -38,9 +38,6 @@ from dppverify.formats.files import read_input
 from dppverify.formats.json_reading import parse_json
 from dppverify.formats.map_instance import is_map_document
 from dppverify.game.instance import instance_from_json
-
-__all__ = ["audit_documents", "instances_from_dir",
-           "instances_from_scen"]
 
 Doc = dict[str, Any]
 
@@ -160,7 +157,7 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
 
     Examples
     --------
-    >>> from dppverify.formats.standard_maps import standard_map_path
+    >>> from dppio.standard_maps import standard_map_path
     >>> m = standard_map_path("empty-8-8")
     >>> docs, bad = instances_from_scen(m, m.with_name("empty-8-8-even-1.scen"))
     >>> len(docs), bad, docs[0][0], docs[0][1]["goals"]
@@ -226,14 +223,12 @@ def instances_from_scen(map_file: str | Path, scen_file: str | Path, *, seed: in
     return docs, bad
 
 
-def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], *,
-                    source: str, out: str | Path | None = None, shrink: bool = True,
-                    max_prefixes: int = AUDIT_MAX_PREFIXES, trials: int = AUDIT_TRIALS,
-                    seed: int = 0, budget: ShrinkBudget | None = None,
-                    progress: bool = False,
+def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]],
+                    config: AuditConfig = DEFAULT_CONFIG, *, source: str,
                     log: Callable[[str], None] | None = None) -> AuditReport:
     """Audit ``runner`` on the given ``(name, document)`` pairs, in order; stop at the first
-    failure, write it to ``out``, shrink it with the pruning pass.
+    failure, write it to ``config.out``, shrink it with the pruning pass within ``config``'s
+    budget (``examples`` and ``max_nodes`` are the random campaign's: every pair is audited).
 
     Examples
     --------
@@ -246,19 +241,19 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], 
     """
     from tqdm import tqdm
 
+    out, seed = config.out, config.seed
     if out is not None:
         check_output_folder(out)  # before any instance: never an audit that cannot report
-    budget = budget if budget is not None else ShrinkBudget()
+    budget, shrink = config.budget(), config.shrink
     examples = skipped = 0
     first: Outcome | None = None
     files: tuple[Path, ...] = ()
     unwritten: list[str] = []  # why the failure's files could not be written
-    with tqdm(total=len(documents), desc="audit", unit="inst", disable=not progress,
+    with tqdm(total=len(documents), desc="audit", unit="inst", disable=not config.progress,
               file=sys.stderr, leave=False) as bar:
         for name, doc in documents:
             try:
-                outcome = examine(runner, doc, max_prefixes=max_prefixes, trials=trials,
-                                  seed=seed)
+                outcome = examine(runner, doc, config)
             except TreeTooLargeError:
                 skipped += 1
                 bar.update(1)
@@ -287,8 +282,7 @@ def audit_documents(runner: SolverRunner, documents: Sequence[tuple[str, Doc]], 
             if out is not None:
                 files = save_failure(o, out, seed=seed, unwritten=unwritten)
 
-        minimal, _ = prune_failure(runner, first, max_prefixes=max_prefixes, trials=trials,
-                                   seed=seed, budget=budget, on_improve=improved)
+        minimal, _ = prune_failure(runner, first, config, budget=budget, on_improve=improved)
     return AuditReport(False, examples, skipped, budget.used, minimal, first, files, seed,
                        shrunk=shrink, budget_exhausted=shrink and budget.exhausted,
                        source=source, unwritten=unwritten[0] if unwritten and not files else "")

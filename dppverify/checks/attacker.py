@@ -10,8 +10,6 @@ from dppverify.tree_route.best_response import attacker_best_response_lp, leaf_t
 from dppverify.tree_route.context import EvaluatedContext
 from dppverify.tree_route.lp import lp_agrees
 
-__all__ = ["attacker_br"]
-
 
 def attacker_br(ctx: EvaluatedContext, role: int) -> CheckRecord:
     """``pbne.attacker_br.primary`` / ``.secondary``: type θ's exact regret is 0.
@@ -37,7 +35,7 @@ def attacker_br(ctx: EvaluatedContext, role: int) -> CheckRecord:
 
     >>> from dppverify.game.examples import triangle_attacker
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> eq = triangle_attacker()
     >>> r = attacker_br(context(eq), 2)
     >>> r.id, r.status, r.numbers["U2"], r.numbers["best_response"], r.numbers["regret"]

@@ -9,8 +9,6 @@ from dppverify.exact import Number
 from dppverify.text import show
 from dppverify.tree_route.context import EvaluatedContext
 
-__all__ = ["belief_consistency"]
-
 
 def belief_consistency(ctx: EvaluatedContext) -> CheckRecord:
     """``pbne.belief_consistency``: beliefs follow Bayes' rule (eq. (2)) from the prior.
@@ -23,7 +21,7 @@ def belief_consistency(ctx: EvaluatedContext) -> CheckRecord:
     Examples
     --------
     >>> from dppverify.game.examples import triangle_attacker
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> eq = triangle_attacker()
     >>> dict(belief_consistency(context(eq)).numbers)
     {'b1': Fraction(7, 10), 'b2': Fraction(3, 10), 'infosets': 2, 'mismatches': 0}

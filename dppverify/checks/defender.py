@@ -12,8 +12,6 @@ from dppverify.tree_route.best_response import defender_best_response, defender_
 from dppverify.tree_route.context import EvaluatedContext
 from dppverify.tree_route.lp import lp_agrees
 
-__all__ = ["defender_br", "sequential_rationality"]
-
 HALF = Fraction(1, 2)
 
 
@@ -27,7 +25,7 @@ def defender_br(ctx: EvaluatedContext) -> CheckRecord:
 
     >>> from dppverify.game.examples import triangle_attacker
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> eq = triangle_attacker()
     >>> defender_br(context(eq)).numbers["regret"]
     0
@@ -81,7 +79,7 @@ def sequential_rationality(ctx: EvaluatedContext) -> CheckRecord:
 
     >>> from dppverify.game.examples import triangle_attacker
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> eq = triangle_attacker()
     >>> dict(sequential_rationality(context(eq)).numbers)
     {'infosets': 2, 'at_one_half': 1, 'violations': 0}

@@ -14,8 +14,6 @@ from dppverify.tree_route.context import Context, EvaluatedContext
 from dppverify.tree_route.lp import LP_TOLERANCE, lp_agrees
 from dppverify.tree_route.value_lp import exact_bracket, solve_value_lp
 
-__all__ = ["value_check", "values"]
-
 
 def values(ctx: EvaluatedContext) -> list[CheckRecord]:
     """``value.U1``, ``value.U2``, ``value.U``, ``value.VoI``.
@@ -37,7 +35,7 @@ def values(ctx: EvaluatedContext) -> list[CheckRecord]:
     Examples
     --------
     >>> from dppverify.game.examples import triangle_attacker
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> eq = triangle_attacker()
     >>> for r in values(context(eq)):
     ...     print(r.id, r.status, r.message)
@@ -109,7 +107,7 @@ def value_check(ctx: Context) -> CheckRecord:
 
     >>> from dppverify.game.examples import triangle_attacker
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> eq = triangle_attacker()
     >>> r = value_check(context(eq))
     >>> r.status, r.numbers["V_H"], r.numbers["U"]

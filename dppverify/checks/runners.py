@@ -76,7 +76,7 @@ def on_profile(ids: tuple[str, ...], fn: Callable[[Any], list[CheckRecord]],
 
     Examples
     --------
-    >>> from dppverify.tree_route.context import triangle_context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context
     >>> r = on_profile(("pbne.defender_br",), lambda ctx: [])
     >>> [(x.id, x.status) for x in r.run(triangle_context({"primary": []}))]
     [('pbne.defender_br', 'skipped')]
@@ -126,12 +126,10 @@ def _one_on_profile(check_id: str, fn: Callable[[Any], CheckRecord],
 
 
 def _selection(ctx: Any) -> list[CheckRecord]:
-    """The goal-selection family's records from its context (a
-    :class:`~dppverify.checks.selection.SelectionContext`): the per-goal structured rows of
-    this table on the game at the choice, then the family's own checks."""
-    from dppverify.checks.selection import selection_checks  # it runs this table's rows
-
-    return selection_checks(ctx.instance, ctx.profile)
+    """The goal-selection family's records: its context
+    (:class:`~dppverify.checks.selection.SelectionContext`) runs this table's per-goal
+    structured rows on the game at the choice, then the family's own checks."""
+    return list(ctx.records())
 
 
 RUNNERS: tuple[Runner, ...] = (

@@ -64,18 +64,23 @@ SELECTION_IDS = check_ids("selection")
 
 @dataclass(frozen=True)
 class SelectionContext:
-    """The goal-selection family's context on the structured route (the one runner table's
-    row of the family, :data:`dppverify.checks.runners.RUNNERS`): the game and the profile.
+    """The goal-selection family's context on the structured route (its row of the one runner
+    table, :data:`dppverify.checks.runners.RUNNERS`): the game and the profile.
 
     Examples
     --------
     >>> from dppverify.game.examples import star3
-    >>> SelectionContext(star3(), None).instance.n_goals  # type: ignore[arg-type]
+    >>> ctx = SelectionContext(star3(), None)  # type: ignore[arg-type]
+    >>> ctx.instance.n_goals
     3
     """
 
     instance: Instance
     profile: Profile
+
+    def records(self) -> list[CheckRecord]:
+        """Every record of the family (:func:`selection_checks`)."""
+        return selection_checks(self.instance, self.profile)
 
 
 def _goal(inst: Instance, t: int) -> str:

@@ -7,8 +7,6 @@ from collections.abc import Mapping
 from dppverify.certificate import CheckRecord
 from dppverify.exact import Number
 
-__all__ = ["NOT_WELLFORMED", "skipped"]
-
 NOT_WELLFORMED = "not evaluated: the profile is not well-formed (see profile.wellformed)"
 
 

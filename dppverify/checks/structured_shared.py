@@ -12,8 +12,6 @@ from fractions import Fraction
 from dppverify.certificate import CheckRecord, Status
 from dppverify.exact import Number
 
-__all__ = ["greedy_sums", "mass_key", "structured_record"]
-
 
 def structured_record(cid: str, status: Status, message: str,
                       numbers: dict[str, Number | None] | None, proof: str | None,

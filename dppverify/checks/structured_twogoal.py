@@ -41,7 +41,8 @@ def phases_check(instance: Instance, profile: Profile, roles: Roles,
 
     Examples
     --------
-    >>> inst, r, prof, t, mins = _triangle()
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_inputs
+    >>> inst, r, prof, t, mins = triangle_inputs()
     >>> phases_check(inst, prof, r, inst.numbers).message
     'no phases claimed; recomputed t_I = 0, t_II = 1, T = 1'
     """
@@ -72,7 +73,8 @@ def telescoping_check(instance: Instance, roles: Roles, trie: WalkTrie,
 
     Examples
     --------
-    >>> inst, r, prof, t, mins = _triangle()
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_inputs
+    >>> inst, r, prof, t, mins = triangle_inputs()
     >>> telescoping_check(inst, r, t, inst.numbers).status
     'pass'
     """
@@ -117,7 +119,8 @@ def l1_check(instance: Instance, roles: Roles, profile: Profile, mode: NumberMod
 
     Examples
     --------
-    >>> inst, r, prof, t, mins = _triangle()
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_inputs
+    >>> inst, r, prof, t, mins = triangle_inputs()
     >>> l1_check(inst, r, prof, inst.numbers, mins).status
     'pass'
     """
@@ -161,7 +164,8 @@ def l2_check(instance: Instance, profile: Profile) -> CheckRecord:
 
     Examples
     --------
-    >>> inst, r, prof, t, mins = _triangle()
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_inputs
+    >>> inst, r, prof, t, mins = triangle_inputs()
     >>> l2_check(inst, prof).message
     'every secondary walk played is simple'
     """
@@ -183,7 +187,8 @@ def xi2_check(instance: Instance, roles: Roles, mode: NumberMode, mins: WalkMini
 
     Examples
     --------
-    >>> inst, r, prof, t, mins = _triangle()
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_inputs
+    >>> inst, r, prof, t, mins = triangle_inputs()
     >>> xi2_check(inst, r, inst.numbers, mins).status
     'pass'
     """
@@ -207,7 +212,8 @@ def l5_check(instance: Instance, profile: Profile, roles: Roles, trie: WalkTrie,
 
     Examples
     --------
-    >>> inst, r, prof, t, mins = _triangle()
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_inputs
+    >>> inst, r, prof, t, mins = triangle_inputs()
     >>> b = {i: r.b1 * m[0] / (r.b1 * m[0] + r.b2 * m[1]) for i, m in enumerate(t.masses)}
     >>> l5_check(inst, prof, r, t, b, inst.numbers).status
     'pass'
@@ -238,16 +244,3 @@ def l5_check(instance: Instance, profile: Profile, roles: Roles, trie: WalkTrie,
     return _rec(cid, "pass", f"beliefs along ξ² are {show(roles.b1)} on phase I (t <= {t1}), "
                 f"1/2 on phase II (t <= {t2}), 0 on phase III (t <= {T}); {OFF_XI2}", numbers,
                 "L5", TRIE)
-
-
-def _triangle() -> tuple[Instance, Roles, Profile, WalkTrie, WalkMinima]:
-    """The examples' inputs: the triangle, its equilibrium profile, the profile's trie and the
-    minima over all walks against σ*."""
-    from dppverify.game.examples import triangle, triangle_profile
-    from dppverify.game.profile import profile_from_json
-    from dppverify.structured.trie import mass_trie
-    from dppverify.twogoal.progress_br import walk_minima
-
-    inst = triangle()
-    r, prof = inst.roles(), profile_from_json(triangle_profile(), inst)
-    return inst, r, prof, mass_trie([prof.primary, prof.secondary]), walk_minima(inst, r.g1)

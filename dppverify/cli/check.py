@@ -9,22 +9,21 @@ from pathlib import Path
 
 import click
 
-from dppio.examples import PREFIX, resolve_input
-from dppio.inputs import read_input
-from dppverify import kernel
-from dppverify.cli.conventions import (
+from dppio.cli.conventions import (
     PhaseBar,
     emit,
     output_file_option,
     progress_option,
     want_progress,
 )
+from dppio.cli.map_options import MAP_USAGE
+from dppio.examples import PREFIX, resolve_input
+from dppio.inputs import read_input
+from dppverify import kernel
 from dppverify.cli.errors import fail
-from dppverify.cli.map_options import MAP_USAGE, MapRequest, map_options
+from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.errors import CheckerError, OptionError
 from dppverify.formats.files import refuse_input_as_output
-
-__all__ = ["KERNEL_MAIN", "VERDICT_FORMAT", "check_command", "run_kernel"]
 
 KERNEL_MAIN = Path(kernel.__file__).resolve().parent / "__main__.py"
 """The file ``dpp check`` runs in a fresh interpreter (it loads only the kernel)."""

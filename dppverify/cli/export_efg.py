@@ -7,8 +7,8 @@ from typing import Any, TypeVar
 
 import click
 
+from dppio.cli.conventions import output_file_option, progress_option, status, want_progress
 from dppio.examples import INSTANCE_FILE
-from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options

@@ -15,17 +15,18 @@ import json
 
 import click
 
-from dppio.examples import INSTANCE_FILE, display_name
-from dppverify.cli.conventions import (
+from dppio.cli.conventions import (
     output_file_option,
     progress_option,
     status,
     want_progress,
 )
+from dppio.cli.map_options import MAP_USAGE
+from dppio.examples import INSTANCE_FILE, display_name
 from dppverify.cli.errors import fail
 from dppverify.cli.export_efg import efg_game_options
 from dppverify.cli.inputs import load_game
-from dppverify.cli.map_options import MAP_USAGE, MapRequest, map_options
+from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.errors import CheckerError, OptionError
 from dppverify.formats.files import refuse_input_as_output, write_files
 from dppverify.formats.peer_profiles import rationalise, read_peer_profile

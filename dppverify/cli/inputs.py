@@ -13,9 +13,11 @@ from typing import Any, TypeVar
 
 import click
 
+from dppio.cli.hints import Kind
+from dppio.cli.hints import hinted as shared_hinted
+from dppio.cli.map_options import instance_or_map
 from dppio.limits import MAX_PREFIXES_LIMIT
-from dppverify.cli.hints import file_hint
-from dppverify.cli.map_options import MapRequest, instance_or_map
+from dppverify.cli.map_options import MapRequest
 from dppverify.errors import CheckerError
 from dppverify.game.inputs import Parsed, read_instance
 from dppverify.game.instance import Instance, instance_from_json
@@ -69,8 +71,10 @@ def max_prefixes_option(help: str = "Refuse walk trees larger than this.",
     Examples
     --------
     >>> from click.testing import CliRunner
-    >>> from dppverify.cli.examples import echo_command
-    >>> cmd = echo_command(max_prefixes_option(), "max_prefixes")
+    >>> @click.command()
+    ... @max_prefixes_option()
+    ... def cmd(max_prefixes: int) -> None:
+    ...     click.echo(max_prefixes)
     >>> [CliRunner().invoke(cmd, args).output.strip() for args in ([], ["--max-prefixes", "9"])]
     ['1000000', '9']
     """
@@ -130,9 +134,9 @@ def read_game(instance: str | None, grid: MapRequest | None,
         return read_instance(instance)
 
 
-class hinted:
-    """Context manager: a read error of ``path`` becomes :func:`~dppverify.cli.hints.file_hint`'s
-    hint (the file is of another kind: swapped arguments, a ``.map`` file, ...) when it has one.
+def hinted(path: str, kind: Kind, command: str = "dpp certify") -> shared_hinted:
+    """:class:`dppio.cli.hints.hinted` for the checker's errors: a read error of ``path``
+    becomes the hint of :func:`~dppio.cli.hints.file_hint` when it has one.
 
     Examples
     --------
@@ -141,17 +145,4 @@ class hinted:
     Traceback (most recent call last):
     dppverify.errors.InvalidInstanceError: /nowhere/x.map is a MovingAI .map file: give it as ...
     """
-
-    def __init__(self, path: str, kind: Any, command: str = "dpp certify",
-                 errors: tuple[type[Exception], ...] = (CheckerError,)) -> None:
-        self.path, self.kind, self.command, self.errors = path, kind, command, errors
-
-    def __enter__(self) -> None:
-        return None
-
-    def __exit__(self, kind: Any, exc: Any, tb: Any) -> None:
-        if isinstance(exc, self.errors):
-            hint = file_hint(self.path, self.kind, self.command)
-            if hint is not None:
-                raise type(exc)(hint) from None
-
+    return shared_hinted(path, kind, command, errors=(CheckerError,))

@@ -8,13 +8,8 @@ player's exact regret and NashConv, :mod:`dppverify.exploitability`).
 
 from __future__ import annotations
 
-from typing import Any
-
-from dppio.text import count
+from dppio.text import count, show
 from dppverify.certificate import Certificate, CheckRecord
-from dppverify.text import show
-
-__all__ = ["CONSISTENCY_HEADING", "FACTS_HEADING", "format_table"]
 
 NUMBERS_WIDTH = 44
 
@@ -25,12 +20,6 @@ FACTS_HEADING = ("facts about the profile and the instance (the paper's lemmas, 
                  "the paper's construction; reported beside the verdict, never deciding it):")
 
 
-def _short(x: Any) -> str:
-    """A number for the table: ``show`` (floats, e.g. LP values, with dppio.text.DIGITS
-    significant digits)."""
-    return show(x)
-
-
 def _numbers(rec: CheckRecord) -> list[str]:
     """The record's numbers as ``key=value`` items, wrapped into lines of NUMBERS_WIDTH.
 
@@ -38,7 +27,7 @@ def _numbers(rec: CheckRecord) -> list[str]:
     exact form is in the ``--json`` certificate.
     """
     lines: list[str] = []
-    for item in (f"{k}={_short(v)}" for k, v in rec.numbers.items() if v is not None):
+    for item in (f"{k}={show(v)}" for k, v in rec.numbers.items() if v is not None):
         if lines and len(lines[-1]) + 1 + len(item) <= NUMBERS_WIDTH:
             lines[-1] += " " + item
         else:
@@ -85,24 +74,7 @@ def format_table(cert: Certificate) -> str:
     exploitability on the game truncated at H = 1: NashConv 0 = Attacker 0 (type regrets: g1 0,
       g2 0, weighted by the prior) + Defender 0
     """
-    counts = cert.counts()
-    passed, total = counts["check"]
-    tally = f"{passed}/{total} checks passed"
-    if counts["consistency"][1]:
-        tally += "; {}/{} consistency checks agree".format(*counts["consistency"])
-    if counts["fact"][1]:
-        tally += "; {}/{} facts hold".format(*counts["fact"])
-    mode = "exact" if cert.exact else f"float mode, relative tolerance {cert.tolerance:g}"
     game = cert.game_line()
-    if cert.route == "structured":
-        skipped = f"; not run: {', '.join(cert.not_run)}" if cert.not_run else ""
-        head = (f"verdict: {cert.verdict.upper()} for {game} ({tally}; structured route (no "
-                f"walk tree), {mode}{skipped})")
-    else:
-        both = ", both routes" if cert.route == "both" else ""
-        head = (f"verdict: {cert.verdict.upper()} for {game} ({tally}; "
-                f"{count(cert.prefixes, 'prefix')}{both}, {mode}; LP "
-                f"{cert.lp_solver} agreement within {cert.lp_tolerance:g} relative)")
     evidence = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("check")]
     own = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("consistency")]
     facts = [(c.id, c.status, _numbers(c), c.message) for c in cert.of_kind("fact")]
@@ -116,7 +88,7 @@ def format_table(cert: Certificate) -> str:
         return [first, *(f"{'':<{w0}}  {'':<{w1}}  {x}".rstrip() for x in c[1:])]
 
     note = cert.truncation_note()
-    lines = [head] + ([f"note: {note}"] if note else [])
+    lines = [_header(cert)] + ([f"note: {note}"] if note else [])
     for r in rows[:1 + len(evidence)]:
         lines += row(*r)
     for heading, group in ((CONSISTENCY_HEADING, own), (FACTS_HEADING, facts)):
@@ -128,3 +100,24 @@ def format_table(cert: Certificate) -> str:
         lines.append(f"exploitability on {game}: {cert.exploitability.summary()}")
     return "\n".join(lines)
 
+
+
+def _header(cert: Certificate) -> str:
+    """The verdict line: the game, the tallies, the route and the number mode."""
+    counts = cert.counts()
+    passed, total = counts["check"]
+    tally = f"{passed}/{total} checks passed"
+    if counts["consistency"][1]:
+        tally += "; {}/{} consistency checks agree".format(*counts["consistency"])
+    if counts["fact"][1]:
+        tally += "; {}/{} facts hold".format(*counts["fact"])
+    mode = "exact" if cert.exact else f"float mode, relative tolerance {cert.tolerance:g}"
+    game = cert.game_line()
+    if cert.route == "structured":
+        skipped = f"; not run: {', '.join(cert.not_run)}" if cert.not_run else ""
+        return (f"verdict: {cert.verdict.upper()} for {game} ({tally}; structured route (no "
+                f"walk tree), {mode}{skipped})")
+    both = ", both routes" if cert.route == "both" else ""
+    return (f"verdict: {cert.verdict.upper()} for {game} ({tally}; "
+            f"{count(cert.prefixes, 'prefix')}{both}, {mode}; LP "
+            f"{cert.lp_solver} agreement within {cert.lp_tolerance:g} relative)")

@@ -11,15 +11,15 @@ from __future__ import annotations
 
 import click
 
-from dppio.examples import INSTANCE_FILE
-from dppio.text import count, decimal
-from dppverify.cli.conventions import (
+from dppio.cli.conventions import (
     PhaseBar,
     emit,
     output_file_option,
     progress_option,
     want_progress,
 )
+from dppio.examples import INSTANCE_FILE
+from dppio.text import count, decimal
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import HORIZON, load_game, max_prefixes_option
 from dppverify.cli.map_options import MapRequest, map_options

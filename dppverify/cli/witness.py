@@ -8,13 +8,11 @@ import json
 from collections.abc import Mapping
 from typing import Any
 
-from dppverify.cli.conventions import status
+from dppio.cli.conventions import status
 from dppverify.formats.files import write_files
 from dppverify.game.instance import Instance
 from dppverify.game.profile import Profile
 from dppverify.structured.witness import witness_document
-
-__all__ = ["engine_witness", "write_witness"]
 
 
 def engine_witness(game: Instance, profile: Profile, provenance: Mapping[str, Any]

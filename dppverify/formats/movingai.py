@@ -35,10 +35,6 @@ from dppio.limits import MAX_MAP_CELLS
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_number
 
-__all__ = ["BLOCKED", "PASSABLE", "GridArcs", "GridMap", "grid_arcs", "grid_document",
-           "parse_map", "read_map", "read_map_file"]
-
-
 PASSABLE = frozenset(".GS")
 """Map characters of free cells (ground, ground, swamp)."""
 
@@ -135,7 +131,7 @@ def read_map_file(path: str | Path) -> tuple[GridMap, bytes]:
 
     Examples
     --------
-    >>> from dppverify.formats.standard_maps import standard_map_path
+    >>> from dppio.standard_maps import standard_map_path
     >>> grid, data = read_map_file(standard_map_path("empty-8-8"))
     >>> grid.height, data[:11]
     (8, b'type octile')

@@ -23,10 +23,6 @@ from dataclasses import dataclass
 
 from dppverify.errors import InvalidInstanceError
 
-__all__ = ["BATCH_RULE", "MAX_LENGTH_DIGITS", "MAX_MAP_NAME", "MAX_SCEN_LINES", "Scenario",
-           "candidates_of", "component", "fake_goal", "fake_goal_candidates", "goals_by_map",
-           "parse_scen"]
-
 Cell = tuple[int, int]
 
 BATCH_RULE = "dpp-batch/1"
@@ -150,27 +146,6 @@ def candidates_of(goals: Sequence[Cell], scenario: Scenario, seed: int) -> list[
     out = [g for g in goals if g not in own]
     random.Random(f"dpp-batch:{seed}:{scenario.line}").shuffle(out)
     return out
-
-
-def fake_goal_candidates(scenarios: Sequence[Scenario], index: int, seed: int) -> list[Cell]:
-    """The fake-goal candidates of ``scenarios[index]``, in the order the rule tries them.
-
-    The goal cells of the other well-formed lines of the same map, in file order, without
-    repeats and without the line's own start and goal, permuted by
-    ``random.Random(f"dpp-batch:{seed}:{line}")``. (For every line of a file, build
-    :func:`goals_by_map` once and call :func:`candidates_of`: the same lists, in linear
-    time per line.)
-
-    Examples
-    --------
-    >>> sc = [Scenario(2, "m", 4, 4, (0, 0), (3, 3)), Scenario(3, "m", 4, 4, (1, 1), (0, 3)),
-    ...       Scenario(4, "m", 4, 4, (2, 2), (3, 0)), Scenario(5, "x", 4, 4, (0, 1), (1, 0))]
-    >>> fake_goal_candidates(sc, 0, seed=0), fake_goal_candidates(sc, 0, seed=1)
-    ([(0, 3), (3, 0)], [(3, 0), (0, 3)])
-    """
-    me = scenarios[index]
-    same_map = [s for s in scenarios if s.map == me.map]
-    return candidates_of(goals_by_map(same_map).get(me.map, ()), me, seed)
 
 
 def component(free: Callable[[int, int], bool], height: int, width: int, start: Cell,

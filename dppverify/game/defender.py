@@ -18,8 +18,6 @@ from dppverify.game.instance import Instance, Roles
 from dppverify.game.profile import DefenderRule, ProgressRule
 from dppverify.game.progress_rule import progress_sigma
 
-__all__ = ["UndefinedStrategyError", "sigma_along"]
-
 
 class UndefinedStrategyError(LookupError):
     """A table Defender without default has no entry for a walk the game reaches."""

@@ -21,7 +21,6 @@ from dppverify.game.step_weights import step_weights
 if TYPE_CHECKING:  # the game model does not import the tree route
     from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["Values", "complete_information_value", "evaluate", "realization", "walk_cost"]
 
 
 @dataclass(frozen=True)
@@ -33,10 +32,6 @@ class Values:
     U: Number
     U_bar: Number
     VoI: Number
-
-    def as_dict(self) -> dict[str, Number]:
-        """``{"U1": …, "U2": …, "U": …, "U_bar": …, "VoI": …}``."""
-        return {"U1": self.U1, "U2": self.U2, "U": self.U, "U_bar": self.U_bar, "VoI": self.VoI}
 
 
 def walk_cost(instance: Instance, roles: Roles, rule: DefenderRule, walk: tuple[int, ...],

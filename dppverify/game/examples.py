@@ -19,13 +19,23 @@ from typing import Any
 
 from dppverify.game.instance import Instance, instance_from_json
 
-__all__ = ["hub4", "hub4_document", "hub_document", "kite", "kite_document", "kite_naive_profile",
-           "star3", "star3_document", "star3_profile", "triangle", "triangle_attacker",
-           "triangle_document", "triangle_profile"]
+__all__ = ["fork", "hub4", "hub4_document", "hub_document", "kite", "kite_document",
+           "kite_naive_profile", "star3", "star3_document", "star3_profile", "triangle",
+           "triangle_attacker", "triangle_document", "triangle_profile"]
 
 
 def triangle_document(prior: tuple[str, str] = ("7/10", "3/10")) -> dict[str, Any]:
     """The triangle ``s–g2`` (2), ``g2–g1`` (2), ``s–g1`` (3) as an instance document.
+
+    Parameters
+    ----------
+    prior : (str, str)
+        The prior of ``goals[0]`` and ``goals[1]``, as exact strings.
+
+    Returns
+    -------
+    dict
+        The instance document (``docs/formats.md`` §1).
 
     Examples
     --------
@@ -43,6 +53,15 @@ def triangle_document(prior: tuple[str, str] = ("7/10", "3/10")) -> dict[str, An
 def triangle(prior: tuple[str, str] = ("7/10", "3/10")) -> Instance:
     """The triangle as a parsed :class:`~dppverify.game.instance.Instance`.
 
+    Parameters
+    ----------
+    prior : (str, str)
+        The prior of ``goals[0]`` and ``goals[1]``, as exact strings.
+
+    Returns
+    -------
+    Instance
+
     Examples
     --------
     >>> inst = triangle()
@@ -52,11 +71,42 @@ def triangle(prior: tuple[str, str] = ("7/10", "3/10")) -> Instance:
     return instance_from_json(triangle_document(prior))
 
 
+def fork() -> Instance:
+    """The undirected path ``2 - 0 - 1 - 3``, start ``0``, goals ``2`` and ``3``, prior 1/2 -
+    1/2 (walk trees of every depth stay small).
+
+    Returns
+    -------
+    Instance
+
+    Examples
+    --------
+    >>> inst = fork()
+    >>> inst.start, inst.goals, inst.n_nodes
+    (0, (2, 3), 4)
+    """
+    return instance_from_json({
+        "graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
+                  "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
+                            {"source": 1, "target": 3}]},
+        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]})
+
+
 def triangle_attacker(p_g1: str = "4/7", p_g2: str = "3/7") -> dict[str, Any]:
     """The ``attacker`` part of a triangle profile: the equilibrium mixture by default.
 
     The primary goes ``s -> g1`` with ``p_g1`` and ``s -> g2`` with ``p_g2`` (eq. (15): 4/7
     and 3/7 at the prior 7/10); the secondary goes ``s -> g2``.
+
+    Parameters
+    ----------
+    p_g1, p_g2 : str
+        The primary's probabilities of ``s -> g1`` and ``s -> g2``.
+
+    Returns
+    -------
+    dict
+        The profile's ``attacker`` object.
 
     Examples
     --------
@@ -77,6 +127,12 @@ def triangle_profile(attacker: dict[str, Any] | None = None, **claims: Any) -> d
         The ``attacker`` member (default: :func:`triangle_attacker`, the equilibrium).
     **claims
         Extra members, e.g. ``value={"U": "12/5"}`` or ``phases={...}``.
+
+    Returns
+    -------
+    dict
+        The ``dpp-profile/1`` document (``attacker`` given or the equilibrium's, ``claims``
+        added).
 
     Examples
     --------
@@ -99,6 +155,16 @@ def kite_document(prior: tuple[str, str] = ("3/5", "2/5")) -> dict[str, Any]:
     truncated at ``H = 1`` but not of the untruncated game, where the secondary's detour
     ``s a g2`` (two steps) costs 1 against σ*; ``V = 8/5``.
 
+    Parameters
+    ----------
+    prior : (str, str)
+        The prior of ``goals[0]`` and ``goals[1]``, as exact strings.
+
+    Returns
+    -------
+    dict
+        The instance document (``docs/formats.md`` §1).
+
     Examples
     --------
     >>> from dppverify import certify
@@ -117,6 +183,15 @@ def kite_document(prior: tuple[str, str] = ("3/5", "2/5")) -> dict[str, Any]:
 def kite(prior: tuple[str, str] = ("3/5", "2/5")) -> Instance:
     """The kite (:func:`kite_document`) as a parsed :class:`~dppverify.game.instance.Instance`.
 
+    Parameters
+    ----------
+    prior : (str, str)
+        The prior of ``goals[0]`` and ``goals[1]``, as exact strings.
+
+    Returns
+    -------
+    Instance
+
     Examples
     --------
     >>> kite().nodes
@@ -127,6 +202,11 @@ def kite(prior: tuple[str, str] = ("3/5", "2/5")) -> Instance:
 
 def kite_naive_profile() -> dict[str, Any]:
     """Each type walks straight to its goal; the Defender is σ* (the progress rule to g1).
+
+    Returns
+    -------
+    dict
+        The profile document.
 
     Examples
     --------
@@ -141,6 +221,16 @@ def kite_naive_profile() -> dict[str, Any]:
 
 def star3_document(prior: tuple[str, ...] = ("1/2", "1/3", "1/6")) -> dict[str, Any]:
     """The hub instance ``s–m`` (1), ``m–a``, ``m–b``, ``m–c`` (1 each), ``s–a`` (2).
+
+    Parameters
+    ----------
+    prior : tuple of str
+        One exact prior per goal.
+
+    Returns
+    -------
+    dict
+        The instance document (``docs/formats.md`` §1).
 
     Examples
     --------
@@ -161,6 +251,15 @@ def star3_document(prior: tuple[str, ...] = ("1/2", "1/3", "1/6")) -> dict[str, 
 def star3(prior: tuple[str, ...] = ("1/2", "1/3", "1/6")) -> Instance:
     """The hub instance, parsed.
 
+    Parameters
+    ----------
+    prior : tuple of str
+        One exact prior per goal.
+
+    Returns
+    -------
+    Instance
+
     Examples
     --------
     >>> inst = star3()
@@ -176,6 +275,11 @@ def star3_profile() -> dict[str, Any]:
     Every type walks ``s m`` and then to its own goal; the Defender guards ``a`` (the
     largest prior) on ``s m`` and everywhere off the walks, and the true goal on ``s m b``
     and ``s m c``. ``U = 1/2 · 2 + 1/3 · 1 + 1/6 · 1 = 3/2 = V_2``.
+
+    Returns
+    -------
+    dict
+        The ``dpp-ngoal-profile/1`` document.
 
     Examples
     --------
@@ -200,6 +304,18 @@ def hub4_document(prior: tuple[str, ...] = ("2/7", "2/7", "2/7", "1/7"), *,
     the default prior the coalition DP is 25/14 and the value 12/7 at every ``H >= 3``.
     ``directed=False`` gives the undirected version (same gap).
 
+    Parameters
+    ----------
+    prior : tuple of str
+        One exact prior per goal.
+    directed : bool
+        Directed arcs (the hub's) or undirected edges.
+
+    Returns
+    -------
+    dict
+        The instance document (``docs/formats.md`` §1).
+
     Examples
     --------
     >>> doc = hub4_document()
@@ -219,6 +335,17 @@ def hub4_document(prior: tuple[str, ...] = ("2/7", "2/7", "2/7", "1/7"), *,
 def hub4(prior: tuple[str, ...] = ("2/7", "2/7", "2/7", "1/7"), *,
          directed: bool = True) -> Instance:
     """The four-goal hub, parsed (:func:`hub4_document`).
+
+    Parameters
+    ----------
+    prior : tuple of str
+        One exact prior per goal.
+    directed : bool
+        Directed arcs (the hub's) or undirected edges.
+
+    Returns
+    -------
+    Instance
 
     Examples
     --------
@@ -248,6 +375,11 @@ def hub_document(rng: random.Random, n_goals: int, *, directed: bool | None = No
         Also draw ``u1 → g`` (probability 0.2 per goal, weight 2..4) and ``u → m`` (0.3).
     returns : bool
         The return arcs ``g → u``.
+
+    Returns
+    -------
+    dict
+        The instance document (``docs/formats.md`` §1).
 
     Examples
     --------

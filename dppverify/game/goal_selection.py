@@ -26,7 +26,7 @@ from dppverify.game.instance_reading import arc_arrays, goal_distance_fields, re
 from dppverify.game.instance_type import Instance
 
 __all__ = ["GOAL_SELECTION", "GOAL_VALUES", "MAX_SELECTION_GOALS", "is_selection_document",
-           "marked", "selection_parts", "with_choice"]
+           "marked", "selection_document", "selection_parts", "with_choice"]
 
 GOAL_SELECTION = "goal_selection"
 """The key that marks a goal-selection instance (its value must be ``true``)."""
@@ -36,6 +36,23 @@ GOAL_VALUES = "goal_values"
 
 MAX_SELECTION_GOALS = 5
 """The most goals of a goal-selection game (the guarantee sets' tables, as for ``dpp value``)."""
+
+
+def selection_document(document: Mapping[str, Any], goal_values: Sequence[str] | None = None
+                       ) -> dict[str, Any]:
+    """The goal-selection document of a game document with a prior: the prior dropped, the
+    mark set, the goal values (as typed) added when given.
+
+    Examples
+    --------
+    >>> selection_document({"start": [0, 0], "prior": ["1/2", "1/2"]}, ["0", "1/2"])
+    {'start': [0, 0], 'goal_selection': True, 'goal_values': ['0', '1/2']}
+    """
+    doc = {k: v for k, v in document.items() if k != "prior"}
+    doc[GOAL_SELECTION] = True
+    if goal_values is not None:
+        doc[GOAL_VALUES] = list(goal_values)
+    return doc
 
 
 def is_selection_document(doc: Any) -> bool:

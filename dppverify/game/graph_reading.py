@@ -21,13 +21,15 @@ from dppverify.exact import Number
 from dppverify.formats.json_reading import Node, node_from_json, parse_number, show_node
 from dppverify.game.distances import ArcArrays, ArcRows
 
-__all__ = ["Graph", "Rows", "edge_arrays", "known_node", "plain_graph", "read_graph",
-           "regular_graph", "require"]
-
 Rows = Sequence[tuple[tuple[int, Number], ...]]
 """``succ`` or ``pred``: ``rows[u]`` = the ``(node, weight)`` pairs of ``u``'s arcs."""
 
 Graph = tuple[list[Node], dict[Node, int], bool, Rows, Rows, ArcArrays | None]
+
+ReadGraph = tuple[Sequence[Node], Mapping[Node, int], bool, Rows, Rows, ArcArrays | None]
+"""What the game is built on: node ids, their index, ``directed``, the successor and
+predecessor rows and the arcs as arrays (None: an irregular document); :data:`Graph` or a
+map's arrays."""
 """Node ids, their index, ``directed``, ``succ``, ``pred`` and the arcs as arrays (or None)."""
 
 

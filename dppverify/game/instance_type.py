@@ -19,12 +19,10 @@ from typing import Any
 from dppverify.errors import NotTwoGoalsError
 from dppverify.exact import Number
 from dppverify.formats.json_reading import Node
-from dppverify.game.distances import ArcArrays, ArcRows
-from dppverify.game.graph_reading import Rows
+from dppverify.game.distances import ArcRows
+from dppverify.game.graph_reading import ReadGraph, Rows
 from dppverify.game.instance_reading import game_parts, remember_arrays
 from dppverify.numbers import NumberMode, number_mode
-
-__all__ = ["Instance", "Roles", "finish_game"]
 
 
 @dataclass(frozen=True)
@@ -239,8 +237,7 @@ goals; this instance has 3
                      d1=self.dist_to[i], d2=self.dist_to[j])
 
 
-def finish_game(ids: Sequence[Node], index: Mapping[Node, int], directed: bool, succ_t: Rows,
-                pred_t: Rows, arcs: ArcArrays | None, *, exact: bool, start: Any, goals: Any,
+def finish_game(graph: ReadGraph, *, exact: bool, start: Any, goals: Any,
                 prior: Any) -> Instance:
     """The game on a read graph: start, goals and prior (as JSON values) checked, distances.
 
@@ -253,13 +250,12 @@ def finish_game(ids: Sequence[Node], index: Mapping[Node, int], directed: bool, 
     >>> g = {"nodes": [{"id": "s"}, {"id": "a"}, {"id": "b"}],
     ...      "edges": [{"source": "s", "target": "a"}, {"source": "a", "target": "b"}]}
     >>> from dppverify.game.graph_reading import read_graph
-    >>> inst = finish_game(*read_graph(g, True), exact=True, start="s", goals=["a", "b"],
+    >>> inst = finish_game(read_graph(g, True), exact=True, start="s", goals=["a", "b"],
     ...                    prior=["1/2", "1/2"])
     >>> inst.dist_to, inst.hops
     (((1, 0, 1), (2, 1, 0)), (1, 0, 0))
     """
-    parts = game_parts(ids, index, directed, succ_t, pred_t, arcs, exact=exact, start=start,
-                       goals=goals, prior=prior)
+    parts = game_parts(graph, exact=exact, start=start, goals=goals, prior=prior)
     game = Instance(**parts.fields)
-    remember_arrays(game, arcs, parts.scaled)
+    remember_arrays(game, graph[5], parts.scaled)
     return game

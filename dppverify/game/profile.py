@@ -187,8 +187,6 @@ def _two_goal_profile(doc: Mapping[str, Any], instance: Instance, stated: Stated
         claimed_prior=_claimed_prior(doc, c),
         claimed_values=MappingProxyType(_claimed_values(doc, c)),
         claimed_phases=_claimed_phases(doc, c),
-        declared_exact=doc.get("exact") if isinstance(doc.get("exact"), bool) else None,
-        declared_tolerance=_declared_tolerance(doc),
         longest=longest, defects=tuple(c.defects), stated=stated)
 
 
@@ -360,13 +358,6 @@ def _claimed_phases(doc: Mapping[str, Any], c: DefectCollector) -> tuple[int, in
         c.add("phases", "must be an object of integers {\"t_I\", \"t_II\", \"T\"}")
         return None
     return (raw["t_I"], raw["t_II"], raw["T"])
-
-
-def _declared_tolerance(doc: Mapping[str, Any]) -> float | None:
-    raw = doc.get("tolerance")
-    if isinstance(raw, int | float | Fraction) and not isinstance(raw, bool):
-        return float(raw)
-    return None
 
 
 def _per_goal_profile(doc: Mapping[str, Any], instance: Instance, stated: Stated) -> Profile:

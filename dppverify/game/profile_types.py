@@ -179,8 +179,6 @@ class Profile:
         ``prior`` (primary, secondary) as the profile states it.
     claimed_phases : tuple or None
         ``(t_I, t_II, T)`` as the profile states them.
-    declared_exact, declared_tolerance
-        The profile's ``exact`` / ``tolerance`` (informative only, never trusted).
     longest : int
         Steps of the longest listed attacker walk (valid or not).
     defects : tuple of Defect
@@ -207,8 +205,6 @@ class Profile:
     claimed_values: Mapping[str, Number] = field(default_factory=dict)
     claimed_prior: tuple[Fraction, Fraction] | None = None
     claimed_phases: tuple[int, int, int] | None = None
-    declared_exact: bool | None = None
-    declared_tolerance: float | None = None
     longest: int = 0
     defects: tuple[Defect, ...] = ()
     stated: Stated = field(default_factory=Stated)

@@ -22,8 +22,6 @@ from dppverify.game.instance_type import Instance
 from dppverify.game.rules import ProgressRule
 from dppverify.game.step_weights import step_weights
 
-__all__ = ["distances_to_goal", "progress_along", "progress_sigma"]
-
 
 def distances_to_goal(instance: Instance, goal: int) -> Sequence[Number]:
     """``d(., goal)`` over the whole graph (InvalidInstanceError if ``goal`` is no goal).

@@ -18,9 +18,6 @@ from functools import cached_property
 from types import MappingProxyType
 from typing import Any, Generic, Protocol, TypeVar
 
-__all__ = ["GUARANTEE_RULE", "DefenderRule", "GoalTable", "GuaranteeRule", "PrefixIndex",
-           "ProfileDefender", "ProgressRule", "TableRule"]
-
 GUARANTEE_RULE = "guarantee"
 """The ``rule`` of the N-goal guarantee Defender (:class:`GuaranteeRule`)."""
 

@@ -9,8 +9,6 @@ from dppverify.errors import ProfileError
 from dppverify.exact import Number
 from dppverify.game.instance_type import Instance
 
-__all__ = ["step_weight", "step_weights"]
-
 
 def step_weight(instance: Instance, walk: Sequence[int], t: int) -> Number:
     """The weight of step ``t`` (``walk[t-1] -> walk[t]``) of ``walk``.

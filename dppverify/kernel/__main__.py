@@ -19,8 +19,6 @@ if __package__ in (None, ""):  # run as a file: the kernel without the rest of d
 from dppverify.kernel.check import check
 from dppverify.kernel.reading import MAX_BYTES
 
-__all__ = ["main"]
-
 USAGE = ("usage: dpp check [--base-dir DIR] INSTANCE PROFILE WITNESS   (- reads one of them "
          "from standard input; DIR: where a map instance's map path starts)")
 

@@ -17,8 +17,6 @@ from dppverify.kernel.reading import INF, Instance, labels, parse, read_instance
 from dppverify.kernel.table import TableRule
 from dppverify.kernel.verdict import BadInput, Beyond, Refuted, Stop, Undecided, Verdict
 
-__all__ = ["check"]
-
 _KEYS = {"format", "instance_sha256", "profile_sha256", "denominator", "distances", "types",
          "guarantee", "counterexamples", "producer"}
 
@@ -28,6 +26,23 @@ def check(instance: bytes, profile: bytes, witness: bytes | dict[str, Any], *,
     """Decide whether ``profile`` is a weak PBNE of the untruncated game ``instance``, from
     ``witness`` (the three documents' bytes, exactly as read, or the witness already parsed as
     JSON values; ``base_dir``: where a map instance's relative ``map`` path starts).
+
+    Parameters
+    ----------
+    instance, profile : bytes
+        The instance and the profile documents, exactly as read (their sha256 must be the
+        witness's ``instance_sha256`` and ``profile_sha256``).
+    witness : bytes or dict
+        The ``dpp-witness/1`` document (``docs/formats.md`` §5), as bytes or parsed.
+    base_dir : str or Path, optional
+        Where a compact map instance's relative ``map`` path starts.
+
+    Returns
+    -------
+    Verdict
+        ``pass``, ``fail`` (with the counterexample the kernel verified), ``bad-input`` or
+        ``undecided`` (the inequality that fails, or a game the kernel does not decide), with
+        its one line; never raises on any input.
 
     Examples
     --------

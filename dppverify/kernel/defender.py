@@ -10,8 +10,6 @@ from typing import Any
 from dppverify.kernel.reading import Instance
 from dppverify.kernel.verdict import Refuted
 
-__all__ = ["check_greedy"]
-
 
 def check_greedy(inst: Instance, mixtures: Sequence[Sequence[tuple[tuple[int, ...], Fraction]]],
                  steps: Callable[[tuple[int, ...]], list[Any]]) -> int:

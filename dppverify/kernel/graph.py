@@ -18,8 +18,6 @@ from typing import Any
 
 from dppverify.kernel.verdict import BadInput
 
-__all__ = ["Graph", "Grid", "exact"]
-
 
 def exact(x: Fraction) -> int | Fraction:
     """``x`` as an ``int`` when it is integral (integers compare fastest).

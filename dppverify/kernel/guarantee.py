@@ -21,8 +21,6 @@ from dppverify.kernel.reading import INF, Instance, labels, number
 from dppverify.kernel.table import Memory, first_failure
 from dppverify.kernel.verdict import BadInput, Beyond, Undecided
 
-__all__ = ["MAX_BASES", "GuaranteeRule", "vertices"]
-
 MAX_BASES = 20_000
 """Most candidate bases the kernel tries for one vertex table (beyond: not decided); the
 packing polytope of ``|A|`` normals has ``Σ_{k <= N} C(|A| + N, k)``."""

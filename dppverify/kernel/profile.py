@@ -17,8 +17,6 @@ from typing import Any
 from dppverify.kernel.reading import Instance, number, parse
 from dppverify.kernel.verdict import BadInput, Refuted
 
-__all__ = ["Guarantee", "Profile", "Table", "read_profile", "walk"]
-
 Walk = tuple[int, ...]
 
 

@@ -19,9 +19,6 @@ from typing import Any
 from dppverify.kernel.graph import Graph, Grid
 from dppverify.kernel.verdict import BadInput, Beyond
 
-__all__ = ["INF", "MAX_BYTES", "Instance", "labels", "node_id", "number", "parse",
-           "read_instance", "sha256"]
-
 INF = float("inf")
 """+∞ of labels: it compares exactly with every int and Fraction (``x < INF``, ``INF + x``)."""
 

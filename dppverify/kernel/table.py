@@ -17,8 +17,6 @@ from dppverify.kernel.profile import Table
 from dppverify.kernel.reading import INF, Instance, labels
 from dppverify.kernel.verdict import BadInput, Beyond, Undecided
 
-__all__ = ["Memory", "TableRule", "first_failure"]
-
 Memory = tuple[int, Any]
 """The Defender's state after a prefix: ``(trie prefix or -1, running minimum c)``."""
 

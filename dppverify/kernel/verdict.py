@@ -9,8 +9,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["EXIT_CODES", "BadInput", "Beyond", "Refuted", "Stop", "Undecided", "Verdict"]
-
 EXIT_CODES = {"pass": 0, "refuted": 1, "bad-input": 2, "undecided": 3}
 """The exit code of ``dpp check`` for each status."""
 

@@ -17,8 +17,6 @@ from typing import Any
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-__all__ = ["WEIGHT_KINDS", "weighted_graphs"]
-
 WEIGHT_KINDS = ("units", "integers", "fractions", "floats")
 """Named edge-weight kinds: all 1; integers; exact fractions ``"p/q"``; binary floats."""
 
@@ -27,6 +25,8 @@ Doc = dict[str, Any]
 
 # ----------------------------------------------------------------------------- validation
 def check_int(value: object, name: str, minimum: int) -> int:
+    """``value`` when it is an integer (not a bool) of at least ``minimum``, else
+    hypothesis' ``InvalidArgument`` naming ``name``."""
     if isinstance(value, bool) or not isinstance(value, int):
         raise InvalidArgument(f"{name}={value!r} must be an integer")
     if value < minimum:
@@ -35,6 +35,7 @@ def check_int(value: object, name: str, minimum: int) -> int:
 
 
 def check_bool(value: object, name: str, *, allow_none: bool = False) -> None:
+    """Refuse a ``value`` that is not a bool (or None, with ``allow_none``)."""
     if not (isinstance(value, bool) or (allow_none and value is None)):
         what = "True, False or None" if allow_none else "True or False"
         raise InvalidArgument(f"{name}={value!r} must be {what}")
@@ -232,6 +233,7 @@ class Adjacency:
 
 
 def edges_of(graph: Doc) -> list[Doc]:
+    """A node-link graph's edges (``"edges"``, or networkx's older ``"links"``)."""
     edges = graph.get("edges", graph.get("links"))
     return list(edges) if isinstance(edges, list) else []
 

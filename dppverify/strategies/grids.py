@@ -14,7 +14,6 @@ from hypothesis.errors import InvalidArgument
 from dppverify.strategies.graphs import Doc, check_bool, check_int, weight_strategy
 from dppverify.strategies.instances import priors as _prior_pairs
 
-__all__ = ["grid_worlds"]
 
 # ----------------------------------------------------------------------------- grid worlds
 def grid_worlds(
@@ -53,6 +52,16 @@ def grid_worlds(
         named kinds draw from ``[1, 9]``).
     priors : SearchStrategy, optional
         Prior pairs (default :func:`priors`).
+
+    Returns
+    -------
+    SearchStrategy of dict
+        Grid instance documents (``docs/formats.md`` §1), node ids ``[row, col]``.
+
+    Raises
+    ------
+    hypothesis.errors.InvalidArgument
+        Bounds out of range or inconsistent (checked when the strategy is built).
 
     Examples
     --------

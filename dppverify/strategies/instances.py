@@ -35,6 +35,11 @@ def priors(*, max_denominator: int = 10, allow_half: bool = True) -> st.SearchSt
     allow_half : bool
         Whether ``[1/2, 1/2]`` may be generated.
 
+    Returns
+    -------
+    SearchStrategy of list of str
+        ``[p, 1 - p]`` as ``"p/q"`` strings.
+
     Examples
     --------
     >>> from hypothesis import find, settings
@@ -85,6 +90,11 @@ def instances(*, graphs: st.SearchStrategy[Doc] | None = None,
     -------
     SearchStrategy of dict
         ``{"graph", "start", "goals", "prior"}`` (plus ``"numbers"`` in float mode).
+
+    Raises
+    ------
+    hypothesis.errors.InvalidArgument
+        A graph strategy that draws fewer than two nodes (when the example is drawn).
 
     Examples
     --------
@@ -144,6 +154,18 @@ def goal_priors(n_goals: int, *, max_weight: int = 6) -> st.SearchStrategy[list[
 
     Every entry lies in (0, 1) and they sum to exactly 1; shrinking goes to the uniform prior.
 
+    Parameters
+    ----------
+    n_goals : int
+        ``N``, at least 2.
+    max_weight : int
+        Largest ``k_i``.
+
+    Returns
+    -------
+    SearchStrategy of list of str
+        ``N`` exact priors, summing to 1.
+
     Examples
     --------
     >>> from hypothesis import find, settings
@@ -178,6 +200,16 @@ def many_goal_instances(*, min_goals: int = 3, max_goals: int = 4,
         ``max_goals + 4`` nodes and integer weights 1–4).
     max_prior_weight : int
         The prior is drawn by :func:`goal_priors` with this ``max_weight``.
+
+    Returns
+    -------
+    SearchStrategy of dict
+        ``{"graph", "start", "goals", "prior"}`` with ``N`` goals.
+
+    Raises
+    ------
+    hypothesis.errors.InvalidArgument
+        Bounds out of range or inconsistent (when the strategy is built).
 
     Examples
     --------

@@ -32,9 +32,6 @@ from dppverify.structured.packing import packing_directions
 from dppverify.structured.set_vertices import SetVertex, maximal_vertices
 from dppverify.structured.sum_membership import sum_membership
 
-__all__ = ["ArcCondition", "arc_condition", "bad_rays", "direction_test", "vertex_test",
-           "walkable_arcs"]
-
 
 def _minors(mats: np.ndarray) -> np.ndarray:
     """Signed maximal minors of a batch of ``(j, j+1)`` integer matrices: ``x_c = (-1)^c

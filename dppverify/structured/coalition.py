@@ -49,9 +49,6 @@ from dppverify.game.distances import EXACT_FLOAT_LIMIT
 from dppverify.game.instance import Instance
 from dppverify.structured.cover import MAX_BALANCED, balanced_vertices, members, min_cover, popcount
 
-__all__ = ["CoalitionRunner", "CoalitionValue", "Split", "coalition_scale", "coalition_value",
-           "coalition_values", "same_layer", "splits", "too_many_goals"]
-
 
 @dataclass(frozen=True)
 class CoalitionValue:
@@ -342,26 +339,3 @@ def coalition_value(instance: Instance, horizon: int | None, *,
         return run.value(layer, horizon, horizon)
     fixpoint, k = run.fixpoint(max_layers)
     return run.value(fixpoint, None, k)
-
-
-def coalition_values(instance: Instance, horizons: range) -> dict[int, Number]:
-    """``V_H`` for every ``H`` of ``horizons`` (one DP pass; unreachable horizons omitted).
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import star3
-    >>> coalition_values(star3(), range(4))
-    {1: 2, 2: Fraction(3, 2), 3: Fraction(3, 2)}
-    """
-    run = CoalitionRunner(instance)
-    layer = run.layer0()
-    out: dict[int, Number] = {}
-    for k in range(0, horizons.stop):
-        if k:
-            layer = run.step(layer, k)
-        if k in horizons:
-            try:
-                out[k] = run.value(layer, k, k).value
-            except HorizonError:
-                continue
-    return out

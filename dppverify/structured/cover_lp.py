@@ -23,8 +23,6 @@ import numpy as np
 from dppverify.structured.cover import Normal
 from dppverify.structured.lexmin import simplex_basis
 
-__all__ = ["cover_values"]
-
 
 def _adjugate(mat: list[list[int]]) -> tuple[int, list[list[int]]]:
     """``(det, adj)`` of a small integer matrix (``adj = det · mat^{-1}``; ``det = 0``: no

@@ -35,9 +35,6 @@ from dppverify.structured.cover import (
 )
 from dppverify.structured.packing import packing_vertices
 
-__all__ = ["Arc", "DirectionCheck", "certified_coalition_dp", "direction_checks",
-           "failing_arc_mask", "failing_arcs"]
-
 
 @dataclass(frozen=True)
 class DirectionCheck:

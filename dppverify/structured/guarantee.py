@@ -35,9 +35,6 @@ from dppverify.structured.normal_fixpoint import NormalSets, normal_sets
 from dppverify.structured.table_br import TableDefender
 from dppverify.structured.trie import build_walk_trie
 
-__all__ = ["GuaranteeRule", "RuleProfile", "dp_value", "evaluate_rule_profile",
-           "guarantee_sets", "guarantee_sigma", "in_start_set", "rule_on_trie", "rule_order"]
-
 
 def rule_order(prior: Sequence[Fraction]) -> tuple[int, ...]:
     """The priority order: types by decreasing prior, ties by goal index.

@@ -17,8 +17,6 @@ from __future__ import annotations
 from collections.abc import Sequence
 from fractions import Fraction
 
-__all__ = ["lexmin", "reduce_rows", "simplex_basis", "simplex_min"]
-
 Row = tuple[tuple[int, ...], Fraction]
 
 

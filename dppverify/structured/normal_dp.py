@@ -31,8 +31,6 @@ from dppverify.structured.cover import (
 )
 from dppverify.structured.dp_certificate import Arc, direction_checks, failing_arcs
 
-__all__ = ["BeyondExactRange", "NormalDP", "normal_dp_value"]
-
 
 class BeyondExactRange(Exception):
     """The normal-restricted DP's numbers left the range of exact float64/int64 arithmetic."""

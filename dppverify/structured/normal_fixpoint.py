@@ -44,8 +44,6 @@ from dppverify.structured.coalition import coalition_scale, splits
 from dppverify.structured.cover import Normal, cheapest, zero_one_normals
 from dppverify.structured.cover_lp import cover_values
 
-__all__ = ["NormalSets", "dominated_normals", "normal_sets", "reach_mask"]
-
 
 @dataclass(frozen=True, eq=False)
 class NormalSets:

@@ -38,7 +38,6 @@ from dppverify.structured.arc_condition import ArcCondition, arc_condition, walk
 from dppverify.structured.lexmin import lexmin
 from dppverify.structured.normal_fixpoint import NormalSets
 
-__all__ = ["MAX_STATES", "RuleResponse", "RuleSearch", "rule_response"]
 
 def _dot(a: tuple[int, ...], r: State) -> Fraction | None:
     """``a·r``, or None when ``a`` involves a dropped coordinate (NR.4(b))."""

@@ -41,9 +41,6 @@ from dppverify.game.distances import common_denominator, multi_source_dijkstra
 from dppverify.game.instance import Instance
 from dppverify.structured.trie import WalkTrie, build_walk_trie
 
-__all__ = ["GoalFreePred", "TableDefender", "WalkBestResponse", "exit_costs", "goal_free_pred",
-           "table_defender", "trie_induction", "walk_best_response"]
-
 GoalFreePred = tuple[int, list[list[tuple[int, int]]]]
 """``(W, pred)``: ``W`` the common denominator of the weights and ``pred[x]`` the arcs
 ``(u, W·w(u, x))`` entering ``x`` from non-goal nodes (:func:`goal_free_pred`)."""

@@ -29,8 +29,6 @@ from dppverify.game.profile import DefenderRule
 from dppverify.structured.table_br import Step, exit_costs, trie_induction
 from dppverify.structured.trie import WalkTrie, build_walk_trie
 
-__all__ = ["MAX_PRODUCT_STATES", "TableMinima", "table_minima"]
-
 MAX_PRODUCT_STATES = 400_000
 """Largest (node, running minimum) product graph the ``"progress"`` default is solved on."""
 

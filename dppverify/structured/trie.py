@@ -15,8 +15,6 @@ from collections.abc import Iterable, Iterator, Mapping, Sequence
 from fractions import Fraction
 from typing import Protocol
 
-__all__ = ["WalkTrie", "build_walk_trie", "mass_trie"]
-
 
 class MixedWalk(Protocol):
     """A walk with a probability (:class:`~dppverify.game.profile.StrategyWalk` and its N-goal

@@ -34,8 +34,6 @@ from dppverify.structured.packing import packing_vertices
 from dppverify.structured.table_br import trie_induction
 from dppverify.structured.trie import build_walk_trie
 
-__all__ = ["WITNESS_FORMAT", "witness_document"]
-
 WITNESS_FORMAT = "dpp-witness/1"
 """The witness document's ``format`` tag."""
 

@@ -34,10 +34,6 @@ from dppverify.tree_route.lp import LPStats, cost_scale, realization_constraints
 from dppverify.tree_route.players import AnyTypes, Plan, TreeStrategy, Types, as_types
 from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["AttackerBR", "DefenderBR", "attacker_best_response", "attacker_best_response_lp",
-           "beliefs", "defender_best_response", "defender_best_response_lp", "leaf_totals",
-           "objective_vector", "payoff_on_tree", "terminal_costs"]
-
 
 @dataclass(frozen=True)
 class AttackerBR:
@@ -96,7 +92,7 @@ def leaf_totals(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
     Against σ* on the triangle, ``s -> g2`` costs the primary 1 + d(g2, g1) = 3, as much
     as ``s -> g1`` (Lemma 1), and the secondary 1 (σ* = 1/2 on that step):
 
-    >>> from dppverify.tree_route.context import triangle_context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context
     >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
     >>> tree, r, td = ctx.tree, ctx.roles, ctx.sigma_star   # σ*: progress to g1
     >>> leaf_totals(tree, r, td, 1), leaf_totals(tree, r, td, 2)
@@ -129,7 +125,7 @@ def attacker_best_response(tree: WalkTree, types: AnyTypes,
 
     Examples
     --------
-    >>> from dppverify.tree_route.context import triangle_context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context
     >>> ctx = triangle_context(horizon=3)
     >>> br = attacker_best_response(ctx.tree, ctx.roles, ctx.sigma_star, 2)
     >>> br.value, ctx.instance.labels(br.walk)
@@ -187,7 +183,7 @@ def objective_vector(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
 
     Examples
     --------
-    >>> from dppverify.tree_route.context import triangle_context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context
     >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2; σ*: progress to g1
     >>> c = objective_vector(ctx.tree, ctx.roles, ctx.sigma_star, 1)
     >>> c.tolist(), float(c @ [1, 4 / 7, 3 / 7])   # U¹ of the mixture (4/7, 3/7)
@@ -207,7 +203,7 @@ def attacker_best_response_lp(tree: WalkTree, types: AnyTypes,
 
     Examples
     --------
-    >>> from dppverify.tree_route.context import triangle_context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context
     >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
     >>> tree, r, td = ctx.tree, ctx.roles, ctx.sigma_star   # σ*: progress to g1
     >>> lp = attacker_best_response_lp(tree, r, td, 2)
@@ -258,7 +254,7 @@ def payoff_on_tree(tree: WalkTree, types: AnyTypes, tdef: TreeStrategy,
     The triangle's equilibrium: primary ``s -> g1`` w.p. 4/7, ``s -> g2`` w.p. 3/7;
     secondary ``s -> g2``. ``U = 7/10 · 3 + 3/10 · 1``:
 
-    >>> from dppverify.tree_route.context import triangle_context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context
     >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
     >>> tree, r, td = ctx.tree, ctx.roles, ctx.sigma_star   # σ*: progress to g1
     >>> ev = ctx.evaluated
@@ -296,7 +292,7 @@ def defender_best_response(tree: WalkTree, types: AnyTypes,
     --------
     Against the triangle's equilibrium plans (the primary's mixture 4/7, 3/7):
 
-    >>> from dppverify.tree_route.context import triangle_context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context
     >>> ctx = triangle_context()   # prefixes: 0 = s, 1 = s g1, 2 = s g2
     >>> ev = ctx.evaluated
     >>> br = defender_best_response(ctx.tree, ctx.roles, {1: ev.x1, 2: ev.x2})

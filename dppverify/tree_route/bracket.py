@@ -28,9 +28,6 @@ from dppverify.tree_route.players import (
 )
 from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["DENOMINATORS", "Bracket", "BracketSearch", "lower_bound", "rational_plan",
-           "rounded_defender", "upper_bound"]
-
 DENOMINATORS = (1, 2, 3, 4, 5, 6, 8, 10, 12, 20, 24, 60, 100, 360, 720, 1000, 5040, 10**4, 10**6)
 """Denominator limits tried when rounding LP solutions to rationals."""
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from fractions import Fraction
-from typing import Any, cast
+from typing import cast
 
 from dppverify.game.evaluation import Values, evaluate, realization
 from dppverify.game.instance import Instance, Roles
@@ -22,8 +22,6 @@ from dppverify.tree_route.best_response import AttackerBR, attacker_best_respons
 from dppverify.tree_route.best_response import beliefs as bayes_beliefs
 from dppverify.tree_route.tree import WalkTree
 from dppverify.tree_route.tree_defender import TreeDefender, tree_defender
-
-__all__ = ["Context", "EvaluatedContext", "EvaluatedProfile", "make_context", "triangle_context"]
 
 
 @dataclass(frozen=True)
@@ -99,7 +97,7 @@ class Context:
 
         Examples
         --------
-        >>> from dppverify.tree_route.context import triangle_context
+        >>> from tests.dppverify.checks.doctest_inputs import triangle_context
         >>> ctx = triangle_context()
         >>> br = ctx.best_response(ctx.sigma_star, 2)
         >>> br.value, ctx.best_response(ctx.sigma_star, 2) is br
@@ -203,29 +201,3 @@ def make_context(instance: Instance, tree: WalkTree, profile: Profile,
     return EvaluatedContext(instance=instance, tree=tree, profile=profile, roles=roles,
                             sigma_star=sigma_star, seed=seed, trials=trials,
                             evaluated=evaluated)
-
-
-def triangle_context(attacker: dict[str, Any] | None = None, *, horizon: int = 1,
-                     **claims: Any) -> Context:
-    """The checks' shared inputs for a triangle profile (exact, seed 0, 2 random trials).
-
-    Parameters
-    ----------
-    attacker, **claims
-        As for :func:`triangle_profile`.
-    horizon : int
-        The walk tree's horizon.
-
-    Examples
-    --------
-    >>> ctx = triangle_context()
-    >>> ctx.tree.n_prefixes, ctx.profile.primary[0].probability
-    (3, Fraction(4, 7))
-    """
-    from dppverify.game.examples import triangle, triangle_profile
-    from dppverify.game.profile import profile_from_json
-    from dppverify.tree_route.tree import build_tree
-
-    inst = triangle()
-    prof = profile_from_json(triangle_profile(attacker, **claims), inst)
-    return make_context(inst, build_tree(inst, horizon), prof, seed=0, trials=2)

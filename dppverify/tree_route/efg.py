@@ -101,7 +101,7 @@ from pathlib import Path
 import numpy as np
 from tqdm import tqdm
 
-from dppverify.errors import CheckerError, TreeTooLargeError
+from dppverify.errors import TreeTooLargeError
 from dppverify.exact import Number
 from dppverify.formats.files import write_files
 from dppverify.game.instance import Instance
@@ -453,6 +453,3 @@ def write_efg(path: str | Path, instance: Instance, horizon: int, *,
     return efg_size(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
                     selection=goal_values is not None)
 
-
-class EfgWriteError(CheckerError, OSError):
-    """The ``.efg`` file could not be written."""

@@ -34,19 +34,6 @@ from dppverify.tree_route.tree import WalkTree, flow_matrix
 if TYPE_CHECKING:  # cvxpy (with scipy.stats) costs ~0.5 s: imported where an LP is built
     import cvxpy as cp
 
-__all__ = [
-    "LP_SOLVER",
-    "LP_TOLERANCE",
-    "SCALED_BEYOND",
-    "SOLVER_SETTINGS",
-    "LPStats",
-    "cost_scale",
-    "flow_matrix",
-    "lp_agrees",
-    "realization_constraints",
-    "solve",
-    "unscaled",
-]
 
 LP_SOLVER = "CLARABEL"
 """The LP solver (through cvxpy)."""

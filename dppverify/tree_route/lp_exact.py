@@ -41,8 +41,6 @@ from dppverify.exact import Number
 from dppverify.tree_route.lp import cost_scale
 from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["MAX_EXACT_ROWS", "ExactLP", "solve_tree_lp_exactly"]
-
 MAX_EXACT_ROWS = 40_000
 """Largest LP (constraint rows) the exact closure attempts."""
 

@@ -22,9 +22,6 @@ from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance, Roles
 from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["AnyTypes", "DefenderOnTree", "Plan", "TreeStrategy", "Types", "as_types",
-           "defender_from_rows", "defender_from_table"]
-
 Plan = Mapping[int, Fraction]
 """A realization plan: prefix -> reach probability (reached prefixes)."""
 

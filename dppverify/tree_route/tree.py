@@ -34,15 +34,13 @@ from tqdm import tqdm
 
 from dppverify.errors import HorizonError, TreeTooLargeError
 from dppverify.exact import Number
-from dppverify.game.instance import Instance, instance_from_json
+from dppverify.game.instance import Instance
 from dppverify.limits import MAX_LP_CELLS
 from dppverify.structured.cover import MAX_BALANCED
 
 if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
     import scipy.sparse as sp
 
-__all__ = ["DEFAULT_MAX_PREFIXES", "WalkTree", "build_tree", "count_prefixes", "flow_matrix",
-           "lp_prefix_limit", "simple_mask", "tree_fits"]
 
 DEFAULT_MAX_PREFIXES = 1_000_000
 """Default size guard: trees with more prefixes raise :class:`TreeTooLargeError`."""
@@ -145,14 +143,33 @@ def count_prefixes(instance: Instance, horizon: int, *, limit: int | None = None
     nodes a prefix can be at (a goal within the steps left, reached within the steps taken):
     at most ``O(H·|E|)``, and ``O(total walk length)`` on a path. Bounded: the count is
     non-decreasing in the steps left, so with a ``limit`` it saturates just above it and
-    stops as soon as the start's count exceeds it (returning ``limit + 1``). A negative
-    ``horizon`` raises :class:`HorizonError`.
+    stops as soon as the start's count exceeds it (returning ``limit + 1``).
+
+    Parameters
+    ----------
+    instance : Instance
+        The game (any number of goals).
+    horizon : int
+        ``H >= 0``.
+    limit : int, optional
+        Stop counting above this (the result is then ``limit + 1``).
+
+    Returns
+    -------
+    int
+        The number of prefixes (0 when no walk reaches a goal within ``horizon`` steps).
+
+    Raises
+    ------
+    HorizonError
+        A negative ``horizon``.
 
     Examples
     --------
-    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3`` (:func:`_fork`):
+    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3``:
 
-    >>> [count_prefixes(_fork(), h) for h in range(5)]
+    >>> from dppverify.game.examples import fork
+    >>> [count_prefixes(fork(), h) for h in range(5)]
     [0, 2, 4, 6, 8]
     """
     if horizon < 0:
@@ -240,6 +257,11 @@ def build_tree(instance: G, horizon: int, *, max_prefixes: int = DEFAULT_MAX_PRE
     progress : bool
         Show a tqdm progress bar on stderr.
 
+    Returns
+    -------
+    WalkTree
+        The prefixes breadth first: node, parent, depth, children and step weight of each.
+
     Raises
     ------
     HorizonError
@@ -249,12 +271,13 @@ def build_tree(instance: G, horizon: int, *, max_prefixes: int = DEFAULT_MAX_PRE
 
     Examples
     --------
-    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3`` (:func:`_fork`):
+    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3``:
 
-    >>> t = build_tree(_fork(), 4)
+    >>> from dppverify.game.examples import fork
+    >>> t = build_tree(fork(), 4)
     >>> [t.walk(int(p)) for p in t.leaves()]
     [(0, 2), (0, 1, 3), (0, 1, 0, 2), (0, 1, 0, 1, 3)]
-    >>> build_tree(_fork(), 4, max_prefixes=5)  # doctest: +ELLIPSIS
+    >>> build_tree(fork(), 4, max_prefixes=5)  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 4 has at least 6 prefixes, ...
 
@@ -268,25 +291,22 @@ def build_tree(instance: G, horizon: int, *, max_prefixes: int = DEFAULT_MAX_PRE
     Traceback (most recent call last):
     dppverify.errors.TreeTooLargeError: the walk tree for horizon H = 3 has at least 8 prefixes, ...
     """
-    cap = lp_prefix_limit(instance, max_prefixes)
-    size = count_prefixes(instance, horizon, limit=cap)
-    if size == 0:
-        raise HorizonError(f"no walk from the start reaches a goal within H = {horizon} steps "
-                           f"(the nearest goal is {instance.hops[instance.start]} steps away)")
-    if size > cap < max_prefixes:
-        raise TreeTooLargeError(
-            f"N = {instance.n_goals} goals: the walk tree's LP has one variable per goal and "
-            f"prefix, at most {MAX_LP_CELLS:,} (so {cap:,} prefixes for "
-            f"{instance.n_goals} goals), and the tree for horizon H = {horizon} has at least "
-            f"{size:,} prefixes; lower the horizon" + (
-                ", or use --route structured" if instance.n_goals <= MAX_BALANCED
-                else ""))
-    if size > max_prefixes:
-        raise TreeTooLargeError(
-            f"the walk tree for horizon H = {horizon} has at least {size} prefixes, more than "
-            f"the limit of {max_prefixes} (--max-prefixes); use --route structured, or lower "
-            "the horizon")
-    inst = instance
+    size = _tree_size(instance, horizon, max_prefixes)
+    node, parent, depth, weight, child_start, child_stop = _levels(instance, horizon, size,
+                                                                   progress)
+    return WalkTree(instance=instance, horizon=horizon,
+                    node=np.asarray(node, dtype=np.int32),
+                    parent=np.asarray(parent, dtype=np.int64),
+                    depth=np.asarray(depth, dtype=np.int32),
+                    child_start=np.asarray(child_start, dtype=np.int64),
+                    child_stop=np.asarray(child_stop, dtype=np.int64),
+                    weight=tuple(weight))
+
+
+def _levels(inst: Instance, horizon: int, size: int, progress: bool) -> tuple[
+        list[int], list[int], list[int], list[Number], list[int], list[int]]:
+    """The walk tree level by level (breadth first): each prefix's node, parent, depth, last
+    step's weight and children's range; ``size`` is its count (:func:`count_prefixes`)."""
     goal = [inst.is_goal(v) for v in range(inst.n_nodes)]
     hops = inst.hops
     node = [inst.start]
@@ -321,13 +341,31 @@ def build_tree(instance: G, horizon: int, *, max_prefixes: int = DEFAULT_MAX_PRE
     bar.close()
     if len(node) != size:  # pragma: no cover - the count and the build share the pruning rule
         raise AssertionError(f"tree size {len(node)} differs from its count {size}")
-    return WalkTree(instance=inst, horizon=horizon,
-               node=np.asarray(node, dtype=np.int32),
-               parent=np.asarray(parent, dtype=np.int64),
-               depth=np.asarray(depth, dtype=np.int32),
-               child_start=np.asarray(child_start, dtype=np.int64),
-               child_stop=np.asarray(child_stop, dtype=np.int64),
-               weight=tuple(weight))
+    return node, parent, depth, weight, child_start, child_stop
+
+
+def _tree_size(instance: Instance, horizon: int, max_prefixes: int) -> int:
+    """The number of prefixes of the walk tree, refused (before any memory is spent) when no
+    walk reaches a goal or the tree is larger than ``max_prefixes`` or its LP allows."""
+    cap = lp_prefix_limit(instance, max_prefixes)
+    size = count_prefixes(instance, horizon, limit=cap)
+    if size == 0:
+        raise HorizonError(f"no walk from the start reaches a goal within H = {horizon} steps "
+                           f"(the nearest goal is {instance.hops[instance.start]} steps away)")
+    if size > cap < max_prefixes:
+        raise TreeTooLargeError(
+            f"N = {instance.n_goals} goals: the walk tree's LP has one variable per goal and "
+            f"prefix, at most {MAX_LP_CELLS:,} (so {cap:,} prefixes for "
+            f"{instance.n_goals} goals), and the tree for horizon H = {horizon} has at least "
+            f"{size:,} prefixes; lower the horizon" + (
+                ", or use --route structured" if instance.n_goals <= MAX_BALANCED
+                else ""))
+    if size > max_prefixes:
+        raise TreeTooLargeError(
+            f"the walk tree for horizon H = {horizon} has at least {size} prefixes, more than "
+            f"the limit of {max_prefixes} (--max-prefixes); use --route structured, or lower "
+            "the horizon")
+    return size
 
 
 def lp_prefix_limit(instance: Instance, max_prefixes: int) -> int:
@@ -376,9 +414,10 @@ def simple_mask(tree: WalkTree) -> np.ndarray:
 
     Examples
     --------
-    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3`` (:func:`_fork`):
+    The path graph ``2 - 0 - 1 - 3`` from ``0`` with goals ``2`` and ``3``:
 
-    >>> t = build_tree(_fork(), 4)
+    >>> from dppverify.game.examples import fork
+    >>> t = build_tree(fork(), 4)
     >>> [t.walk(int(p)) for p in t.leaves()[simple_mask(t)[t.leaves()]]]
     [(0, 2), (0, 1, 3)]
     """
@@ -416,13 +455,3 @@ def flow_matrix(tree: WalkTree) -> sp.csr_matrix:
     cols = np.concatenate([inner, children])
     vals = np.concatenate([np.ones(inner.size), -np.ones(children.size)])
     return sp.csr_matrix((vals, (rows, cols)), shape=(inner.size, n))
-
-
-def _fork() -> Instance:
-    """The docstrings' example: the undirected path ``2 - 0 - 1 - 3``, start ``0``, goals
-    ``2`` and ``3``, prior 1/2 - 1/2."""
-    return instance_from_json({
-        "graph": {"nodes": [{"id": 0}, {"id": 1}, {"id": 2}, {"id": 3}],
-                  "edges": [{"source": 0, "target": 1}, {"source": 0, "target": 2},
-                            {"source": 1, "target": 3}]},
-        "start": 0, "goals": [2, 3], "prior": ["1/2", "1/2"]})

@@ -14,8 +14,6 @@ from dppverify.game.instance import Roles
 from dppverify.game.profile import DefenderRule
 from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["TreeDefender", "tree_defender"]
-
 
 @dataclass(frozen=True)
 class TreeDefender:

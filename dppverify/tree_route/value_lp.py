@@ -71,7 +71,6 @@ from dppverify.tree_route.tree_defender import TreeDefender, tree_defender
 if TYPE_CHECKING:  # imported where the LP is built: cvxpy's import costs ~0.5 s
     import cvxpy as cp
 
-__all__ = ["GameValue", "ValueLP", "exact_bracket", "game_value", "solve_value_lp"]
 
 
 @dataclass(frozen=True)
@@ -294,6 +293,29 @@ def game_value(instance: Instance | Any, horizon: int, *,
     object with ``to_json()``). The value does not depend on which goal
     is called primary (the LP is symmetric in the types), so the instance's own labelling is
     used.
+
+    Parameters
+    ----------
+    instance : Instance or document, path, object with ``to_json()``
+        The game.
+    horizon : int
+        ``H >= 0``: the truncated game.
+    max_prefixes : int
+        The largest walk tree built (:func:`~dppverify.tree_route.tree.build_tree`).
+    progress : bool
+        Progress bars on stderr.
+
+    Returns
+    -------
+    GameValue
+        The LP's value, its exact bracket and the tree's size.
+
+    Raises
+    ------
+    HorizonError
+        No walk reaches a goal within ``horizon`` steps.
+    TreeTooLargeError
+        The walk tree (or its LP) is larger than allowed.
 
     Examples
     --------

@@ -12,8 +12,6 @@ from dataclasses import dataclass
 from dppverify.exact import Number
 from dppverify.numbers import EXACT, NumberMode
 
-__all__ = ["Phases", "phases_of"]
-
 
 @dataclass(frozen=True)
 class Phases:

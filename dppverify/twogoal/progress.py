@@ -15,7 +15,6 @@ from dppverify.game.progress_rule import distances_to_goal
 if TYPE_CHECKING:
     from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["progress_on_tree"]
 
 
 def progress_on_tree(tree: WalkTree, goal: int) -> list[Number]:

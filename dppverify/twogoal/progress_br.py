@@ -25,9 +25,6 @@ from dppverify.exact import INF, Number, normalize
 from dppverify.game.distances import ArcArrays, dijkstra, sparse_dijkstra
 from dppverify.game.instance import Instance, arc_arrays, goal_distance_fields
 
-__all__ = ["ScaledArcs", "WalkMinima", "avoiding_distances", "scaled_arcs", "scaled_distances",
-           "split_minimum", "walk_minima"]
-
 
 @dataclass(frozen=True, eq=False)
 class ScaledArcs:

@@ -40,8 +40,6 @@ from dppverify.exact import Number, normalize
 from dppverify.game.instance import Instance, Roles
 from dppverify.twogoal.value_fixpoint import Arcs, fixpoint_fields, goal_terminal_arcs
 
-__all__ = ["Fields", "StructuredValue", "structured_value", "value_fields"]
-
 
 @dataclass(frozen=True, eq=False)
 class Fields:
@@ -155,17 +153,12 @@ def value_fields(instance: Instance, horizon: int | None, roles: Roles | None = 
     return _value_fields(instance, horizon, roles, method, None)
 
 
-def _value_fields(instance: Instance, horizon: int | None, roles: Roles | None,
-                  method: Literal["auto", "layers"], node: int | None) -> Fields:
-    """:func:`value_fields`; with ``node``, only that node's entries are asked for, and the
-    Dijkstra fixpoint serves as soon as they are final by ``H`` (steps and flags unchanged)."""
-    if horizon is not None and horizon < 0:
-        raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
-    inst = instance
-    r = inst.roles() if roles is None else roles
-    n = inst.n_nodes
-    cap = 2 * n + 2  # the fields are constant from k = 2n - 2 on (proofs/DP.md, DP.3)
-    limit = cap if horizon is None else min(horizon, cap)
+def _arithmetic(inst: Instance, r: Roles, limit: int) -> tuple[
+        Arcs, int | float, type, str, tuple[int, int, int] | tuple[float, float, float]]:
+    """How the value fields are computed up to ``limit`` steps: the goal-terminal arcs, the
+    sentinel above every finite value, the dtype and its name (int64 while every sum fits,
+    else Python integers; float64 in float mode), and the goals' entries ``(0, d(g2, g1),
+    d(g1, g2))`` at the arcs' scale."""
     d12, d21 = r.d2[r.g1], r.d1[r.g2]
     if inst.exact:
         arcs = goal_terminal_arcs(inst, extra=(d12, d21))
@@ -190,6 +183,21 @@ def _value_fields(instance: Instance, horizon: int | None, roles: Roles | None,
         dtype = np.float64
         arithmetic = "float64"
         g_vals = (0.0, float(d21), float(d12))
+    return arcs, sentinel, dtype, arithmetic, g_vals
+
+
+def _value_fields(instance: Instance, horizon: int | None, roles: Roles | None,
+                  method: Literal["auto", "layers"], node: int | None) -> Fields:
+    """:func:`value_fields`; with ``node``, only that node's entries are asked for, and the
+    Dijkstra fixpoint serves as soon as they are final by ``H`` (steps and flags unchanged)."""
+    if horizon is not None and horizon < 0:
+        raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
+    inst = instance
+    r = inst.roles() if roles is None else roles
+    n = inst.n_nodes
+    cap = 2 * n + 2  # the fields are constant from k = 2n - 2 on (proofs/DP.md, DP.3)
+    limit = cap if horizon is None else min(horizon, cap)
+    arcs, sentinel, dtype, arithmetic, g_vals = _arithmetic(inst, r, limit)
     zero, g2_to_g1, g1_to_g2 = g_vals
     if method == "auto" and arithmetic == "int64":
         fx = fixpoint_fields(inst, r, arcs=arcs)

@@ -17,8 +17,6 @@ from dppverify.exact import Number
 from dppverify.game.distances import EXACT_FLOAT_LIMIT, common_denominator, sparse_dijkstra
 from dppverify.game.instance import Instance, Roles, arc_arrays
 
-__all__ = ["INT64_LIMIT", "Arcs", "Fixpoint", "fixpoint_fields", "goal_terminal_arcs"]
-
 INT64_LIMIT = 2**60
 """Finite field values must stay below this for ``int64`` (sums of two sentinels fit)."""
 
@@ -150,6 +148,33 @@ def fixpoint_fields(instance: Instance, roles: Roles | None = None, *,
     return cache[key]
 
 
+def _reversed_arrays(inst: Instance, r: Roles, scale: int, base: int) -> tuple[
+        np.ndarray, np.ndarray, np.ndarray, int]:
+    """The reversed arcs ``u -> v`` for ``v -> u`` as CSR arrays (weights encoded with
+    ``base``), with room for a last row: a source node ``n`` with an arc to every seed, which
+    each run of the fixpoint writes after the arcs. It is the instance's reversed graph (built
+    once per instance, shared with the other shortest-path passes); the arcs out of a goal
+    (goals are terminal) weigh inf, which no shortest path uses. Returns the weights, heads,
+    row pointers and the number of arcs."""
+    n = inst.n_nodes
+    arrays = arc_arrays(inst)
+    rows_r, cols, order = arrays.rows(n, reverse=True)
+    codes = arrays.codes if order is None else arrays.codes[order]
+    from_goal = (cols == r.g1) | (cols == r.g2)
+    table = np.full(len(arrays.values), np.inf)
+    used = np.flatnonzero(np.bincount(codes[~from_goal], minlength=table.size))
+    table[used] = [float(int(arrays.values[c] * scale) * base + 1) for c in used.tolist()]
+    m_arcs = cols.size
+    weights = np.empty(m_arcs + n, dtype=np.float64)
+    np.take(table, codes, out=weights[:m_arcs])
+    weights[:m_arcs][from_goal] = np.inf
+    heads = np.empty(m_arcs + n, dtype=np.int32)
+    heads[:m_arcs] = cols
+    indptr = np.empty(n + 2, dtype=np.int32 if m_arcs + n < 2**31 else np.int64)
+    indptr[:n + 1] = rows_r
+    return weights, heads, indptr, m_arcs
+
+
 def _fixpoint(inst: Instance, r: Roles, given: Arcs | None, *,
               prune: bool = True) -> Fixpoint | None:
     if not inst.exact:
@@ -168,26 +193,7 @@ def _fixpoint(inst: Instance, r: Roles, given: Arcs | None, *,
     from scipy.sparse import csr_matrix
 
     g1, g2 = r.g1, r.g2
-    # the reversed arcs u -> v for v -> u, by row: the instance's reversed graph (built once
-    # per instance, shared with the other shortest-path passes), the arcs out of a goal
-    # (goals are terminal) weighing inf, which no shortest path uses
-    arrays = arc_arrays(inst)
-    rows_r, cols, order = arrays.rows(n, reverse=True)
-    codes = arrays.codes if order is None else arrays.codes[order]
-    from_goal = (cols == g1) | (cols == g2)
-    table = np.full(len(arrays.values), np.inf)
-    used = np.flatnonzero(np.bincount(codes[~from_goal], minlength=table.size))
-    table[used] = [float(int(arrays.values[c] * arcs.scale) * base + 1) for c in used.tolist()]
-    # the graph's arrays with room for a last row (a source node n with an arc to every seed),
-    # filled once; each run writes its seeds after the arcs and reads a prefix
-    m_arcs = cols.size
-    weights = np.empty(m_arcs + n, dtype=np.float64)
-    np.take(table, codes, out=weights[:m_arcs])
-    weights[:m_arcs][from_goal] = np.inf
-    heads = np.empty(m_arcs + n, dtype=np.int32)
-    heads[:m_arcs] = cols
-    indptr = np.empty(n + 2, dtype=np.int32 if m_arcs + n < 2**31 else np.int64)
-    indptr[:n + 1] = rows_r
+    weights, heads, indptr, m_arcs = _reversed_arrays(inst, r, arcs.scale, base)
     big = np.iinfo(np.int64).max
 
     # seed pruning is exact while a seed plus one arc stays below 2**53 in the encoding

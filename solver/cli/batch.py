@@ -2,21 +2,19 @@
 
 from __future__ import annotations
 
+import functools
 import os
 import sys
-from pathlib import Path
 from typing import Any
 
 import click
 
+from dppio.cli.conventions import output_file_option, progress_option, status, want_progress
+from dppio.cli.interrupts import Terminated, exit_code, message
 from dppio.text import count
-from dppverify.cli.conventions import output_file_option, progress_option, status, want_progress
-from dppverify.cli.interrupts import Terminated, exit_code, message
 from dppverify.errors import CheckerError
 from solver.cli.common import check_dask_address
 from solver.errors import InvalidInstanceError
-
-__all__ = ["BatchProgress", "batch_checker", "batch_command", "batch_example", "merge_command"]
 
 
 def batch_checker() -> Any:
@@ -29,27 +27,17 @@ def batch_checker() -> Any:
     >>> checker.rule, checker.certify.__module__
     ('dpp-batch/1', 'dppverify.certify')
     """
+    from dppio.standard_maps import standard_map_path
     from dppverify.certify import certify
+    from dppverify.errors import InvalidInstanceError as CheckerInstanceError
     from dppverify.formats.scen import BATCH_RULE, candidates_of, goals_by_map, parse_scen
-    from dppverify.formats.standard_maps import standard_map_path
     from solver.experiments.batch import Checker
 
     return Checker(certify=certify, parse_scen=parse_scen, goals_by_map=goals_by_map,
-                   candidates_of=candidates_of, standard_map_path=standard_map_path,
+                   candidates_of=candidates_of,
+                   standard_map_path=functools.partial(standard_map_path,
+                                                       error=CheckerInstanceError),
                    errors=(CheckerError,), rule=BATCH_RULE)
-
-
-def batch_example() -> tuple[Any, Path]:
-    """:func:`batch_checker` and its bundled ``empty-8-8-even-1.scen`` (the examples' input).
-
-    Examples
-    --------
-    >>> checker, scen = batch_example()
-    >>> scen.name
-    'empty-8-8-even-1.scen'
-    """
-    checker = batch_checker()
-    return checker, Path(checker.standard_map_path("empty-8-8")).with_name("empty-8-8-even-1.scen")
 
 
 @click.command("merge", short_help="Join the CSVs of a batch's shards.")
@@ -151,13 +139,13 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
       dpp batch s.scen -o s-2.csv --shard 2/4     # then: dpp batch merge -o s.csv s-*.csv
       dpp batch s.scen -o s.csv --dask tcp://127.0.0.1:8786
     """
-    from dppverify.formats.standard_maps import PREFIX, standard_scen_path
+    from dppio.standard_maps import PREFIX, standard_scen_path
     from solver.experiments.batch import BatchConfig, parse_prior, run_batch
     from solver.experiments.batch_lines import parse_selection
 
     select = parse_selection(lines, shard)
     if scen.startswith(PREFIX):
-        scen = str(standard_scen_path(scen[len(PREFIX):]))
+        scen = str(standard_scen_path(scen[len(PREFIX):], error=InvalidInstanceError))
     check_dask_address(dask_address)
     for folder in maps:
         if not os.path.isdir(folder):  # False on any error (a name too long, a NUL byte)

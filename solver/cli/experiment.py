@@ -10,11 +10,11 @@ from typing import Any
 
 import click
 
+from dppio.cli.conventions import output_dir_option, progress_option, status, want_progress
+from dppio.cli.map_options import MapRequest, two_goal_map_options
 from dppio.examples import INSTANCE_FILE
 from dppio.files import refuse_input_as_output, write_files
 from dppio.text import terminal_text
-from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
-from dppverify.cli.map_options import MapRequest, two_goal_map_options
 from solver.cli.common import (
     check_dask_address,
     check_grid_count,
@@ -157,7 +157,7 @@ def experiment_baselines(samples: int, densities: str, maps: tuple[str, ...], no
     """
     from tqdm import tqdm
 
-    from dppverify.formats.standard_maps import resolve_map
+    from dppio.standard_maps import resolve_map
     from solver.experiments.baselines import (
         baseline_walks_csv,
         field_table,
@@ -178,7 +178,7 @@ def experiment_baselines(samples: int, densities: str, maps: tuple[str, ...], no
     specs = _baseline_maps(maps, no_maps, legacy_maps)
     placed = []
     for spec in specs:
-        path = resolve_map(spec)
+        path = resolve_map(spec, error=InvalidInstanceError)
         start, goals = corner_cells(read_map(path), 2)
         placed.append((map_name(spec), path, start, (goals[0], goals[1])))
     maps_ = placed

@@ -11,10 +11,10 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
+from dppio.cli.conventions import output_dir_option, progress_option, status, want_progress
+from dppio.cli.map_options import CellsOption
 from dppio.files import refuse_input_as_output, write_files
 from dppio.text import decimal
-from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
-from dppverify.cli.map_options import _CellsOption as CellsOption
 from solver.cli.common import dumps, map_name
 from solver.errors import InvalidInstanceError, OutputError
 
@@ -22,7 +22,6 @@ if TYPE_CHECKING:
     from dppverify.formats.movingai import GridMap
     from solver.experiments.ngoal import GameValue, Valuer
 
-__all__ = ["checker_valuer", "ngoal_command"]
 
 Cell = tuple[int, int]
 DEFAULT_MAP = "paper10"
@@ -117,8 +116,8 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
           --output-dir out/ngoal
       dpp experiment ngoal --values --goals 0,9 0,0 0,5 --output-dir out/ngoal-values
     """
+    from dppio.standard_maps import resolve_map
     from dppverify.formats.movingai import read_map as checker_read_map
-    from dppverify.formats.standard_maps import resolve_map
     from solver.experiments.compare import paper10_path
     from solver.experiments.ngoal import corner_cells
     from solver.formats.movingai import read_map
@@ -128,7 +127,8 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
     specs = maps or (DEFAULT_MAP,)
     d = None if output_dir is None else Path(output_dir)
     for target in () if d is None else (d / "ngoal.csv", d / "ngoal.png"):  # never an input
-        refuse_input_as_output(target, [resolve_map(spec) for spec in specs],
+        refuse_input_as_output(target, [resolve_map(spec, error=InvalidInstanceError)
+                                        for spec in specs],
                                option="--output-dir", error=OutputError)
     if len(specs) > 1 and (start is not None or goals is not None):
         raise InvalidInstanceError("--start/--goals need a single --map")
@@ -136,7 +136,8 @@ def ngoal_command(maps: tuple[str, ...], start: str | None, goals: tuple[str, ..
     goal_cells = _goal_cells(goals)
     placed = []
     for spec in specs:  # read every map and place the cells before printing anything
-        path = paper10_path() if spec == DEFAULT_MAP and not maps else resolve_map(spec)
+        path = (paper10_path() if spec == DEFAULT_MAP and not maps else
+                resolve_map(spec, error=InvalidInstanceError))
         blocked = read_map(path)
         s, g = start_cell, goal_cells
         if s is None or g is None:  # the corner rule places what is not given

@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING
 
 import click
 
+from dppio.cli.conventions import output_dir_option, progress_option, status, want_progress
 from dppio.files import write_files
-from dppverify.cli.conventions import output_dir_option, progress_option, status, want_progress
 from solver.cli.common import check_grid_count, dumps, int_list
 from solver.errors import InvalidInstanceError, OutputError
 from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE

@@ -6,23 +6,23 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
-from dppio.examples import INSTANCE_FILE
-from dppio.files import read_text, refuse_input_as_output
-from dppverify.cli.conventions import (
+from dppio.cli.conventions import (
     PhaseBar,
     output_file_option,
     progress_option,
     status,
     want_progress,
 )
-from dppverify.cli.map_options import MapRequest, map_options, two_goal_map_options
-from solver.cli.common import experiment_instance
+from dppio.cli.map_options import MapRequest, map_options, two_goal_map_options
+from dppio.examples import INSTANCE_FILE
+from dppio.files import refuse_input_as_output
+from dppio.inputs import read_text
+from solver.cli.common import checker_game, experiment_instance
 from solver.errors import InvalidInstanceError, OutputError
 
 if TYPE_CHECKING:
     from solver.game.instance import Instance
 
-__all__ = ["plot_group"]
 
 
 _OUT_HELP = "The figure file: .png, .svg or .pdf (the suffix picks the format)."
@@ -65,7 +65,7 @@ def plot_map_command(instance: str | None, grid: MapRequest | None,
         inst = experiment_instance(instance, grid, "dpp plot map", two_goals=False)
         if inst.n_goals > 2:
             bar.close()
-            _plot_ngoal_map(inst, grid.game() if grid is not None else instance, output,
+            _plot_ngoal_map(inst, checker_game(grid) if grid is not None else instance, output,
                             want_progress(progress))
             return
         from solver.plots.style import check_suffix  # matplotlib: not at start-up
@@ -157,7 +157,7 @@ def plot_voi_command(csv_file: str, output: str, progress: bool | None) -> None:
       dpp experiment density --samples 20 --output-dir out/small
       dpp plot voi out/small/density.csv -o voi.pdf
     """
-    from dppverify.cli.hints import file_hint
+    from dppio.cli.hints import file_hint
     from solver.experiments.density import rows_from_csv
     from solver.plots import plot_voi, save_figure
 

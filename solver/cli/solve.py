@@ -8,23 +8,28 @@ from typing import Any
 
 import click
 
-from dppio.examples import INSTANCE_FILE
-from dppio.files import refuse_input_as_output, write_files
-from dppio.inputs import is_stdin
-from dppio.text import decimal, terminal_text
-from dppverify.cli.conventions import (
+from dppio.cli.conventions import (
     PhaseBar,
     output_file_option,
     progress_option,
     status,
     want_progress,
 )
-from dppverify.cli.map_options import MapRequest, instance_or_map, map_options
-from solver.cli.common import START_IS_GOAL, dumps, load_with_digest
+from dppio.cli.map_options import MapRequest, instance_or_map, map_options
+from dppio.examples import INSTANCE_FILE
+from dppio.files import refuse_input_as_output, write_files
+from dppio.inputs import is_stdin
+from dppio.text import decimal, terminal_text
+from solver.cli.common import (
+    START_IS_GOAL,
+    checker_game,
+    checker_reading,
+    dumps,
+    load_with_digest,
+)
 from solver.errors import InvalidInstanceError, OutputError
 
 __all__ = ["solve_command"]
-
 
 
 @click.command("solve", short_help="Solve an instance for the paper's equilibrium (PBNE).")
@@ -86,23 +91,7 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
       dpp solve --goal-selection --map examples:paper10 --start 9,0 --goals 0,9 0,0 \\
                 -o selection.json
     """
-    if output is not None and save_instance is not None and \
-            Path(output).absolute() == Path(save_instance).absolute():
-        raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
-    inputs = [instance, grid.path if grid is not None else None]
-    if save_instance is not None and grid is not None and is_stdin(grid.map):
-        raise InvalidInstanceError("--save-instance with --map -: the saved instance would name "
-                                   "a map that cannot be read again; save the map to a file "
-                                   "and give --map FILE")
-    refuse_input_as_output(output, inputs, option="-o", error=OutputError)
-    refuse_input_as_output(save_instance, inputs, option="--save-instance",
-                           error=OutputError)
-    if witness is not None:
-        refuse_input_as_output(witness, [*inputs, output, save_instance], option="--witness",
-                               error=OutputError)
-        if output is None and not as_json:
-            raise InvalidInstanceError("--witness ties the witness to the profile's bytes: "
-                                       "write the profile too (-o FILE or --json)")
+    _refuse_outputs(instance, grid, output, save_instance, witness, as_json)
     if goal_selection or (instance is not None and grid is None
                           and _is_selection_file(instance)):
         from solver.cli.solve_selection import solve_selection
@@ -183,6 +172,27 @@ def _is_selection_file(path: str) -> bool:
         return is_selection_document(read_json(path))
     except DPPError:
         return False
+def _refuse_outputs(instance: str | None, grid: MapRequest | None, output: str | None,
+                    save_instance: str | None, witness: str | None, as_json: bool) -> None:
+    """Refuse, before any work, outputs that clash: with each other, with an input, a saved
+    instance naming a map read from standard input, a witness without its profile."""
+    if output is not None and save_instance is not None and \
+            Path(output).absolute() == Path(save_instance).absolute():
+        raise InvalidInstanceError(f"-o and --save-instance name the same file {output!r}")
+    inputs = [instance, grid.path if grid is not None else None]
+    if save_instance is not None and grid is not None and is_stdin(grid.map):
+        raise InvalidInstanceError("--save-instance with --map -: the saved instance would name "
+                                   "a map that cannot be read again; save the map to a file "
+                                   "and give --map FILE")
+    refuse_input_as_output(output, inputs, option="-o", error=OutputError)
+    refuse_input_as_output(save_instance, inputs, option="--save-instance",
+                           error=OutputError)
+    if witness is not None:
+        refuse_input_as_output(witness, [*inputs, output, save_instance], option="--witness",
+                               error=OutputError)
+        if output is None and not as_json:
+            raise InvalidInstanceError("--witness ties the witness to the profile's bytes: "
+                                       "write the profile too (-o FILE or --json)")
 
 
 CERTIFIED = "certified: structured route, H = inf"
@@ -214,7 +224,7 @@ def _witness_text(inst: Any, instance: str | None, grid: MapRequest | None, prof
     from solver.twogoal.witness import twogoal_witness
 
     record = ({"sha256": hashlib.sha256(saved.encode()).hexdigest()} if saved is not None else
-              grid_record(grid.path, grid.document()) if grid is not None else
+              grid_record(grid.path, checker_reading(grid)[1]) if grid is not None else
               input_record(instance))
     if result.twogoal is None:  # N goals: the profile was certified by the checker
         return _checker_witness(instance, grid, profile, str(record["sha256"]))
@@ -238,7 +248,7 @@ def _checker_witness(instance: str | None, grid: MapRequest | None, profile: str
     from dppverify.game.profile import profile_from_json
     from dppverify.structured.witness import witness_document
 
-    game = grid.game() if grid is not None else load_instance(str(instance))
+    game = checker_game(grid) if grid is not None else load_instance(str(instance))
     doc = witness_document(game, profile_from_json(json.loads(profile), game),
                            instance_sha256=instance_sha256,
                            profile_sha256=hashlib.sha256(profile.encode()).hexdigest())
@@ -260,7 +270,7 @@ def _certification_refusal(instance: str | None, grid: MapRequest | None,
     the one line that refuses it."""
     from dppverify.certify import certify as certify_profile
 
-    checked = grid.game() if grid is not None else instance
+    checked = checker_game(grid) if grid is not None else instance
     assert checked is not None
     cert = certify_profile(checked, doc, horizon="inf", route="structured")
     if cert.verdict == "pass":

@@ -13,9 +13,9 @@ from typing import Any
 
 import click
 
+from dppio.cli.conventions import PhaseBar, status, want_progress
+from dppio.cli.map_options import MapRequest
 from dppio.files import write_files
-from dppverify.cli.conventions import PhaseBar, status, want_progress
-from dppverify.cli.map_options import MapRequest
 from solver.cli.common import dumps
 from solver.errors import InvalidInstanceError, OutputError
 
@@ -27,8 +27,11 @@ CERTIFIED = "certified: goal-selection checks, structured route, H = inf"
 def _document(instance: str | None, grid: MapRequest | None, values: str | None
               ) -> tuple[dict[str, Any], Path | None]:
     """The goal-selection document of INSTANCE or of the grid, and its base folder."""
-    if grid is not None:
-        return grid.selection_document(), None
+    if grid is not None:  # the checker's reading of the grid (one reader of the map)
+        from dppverify.game.goal_selection import selection_document
+        from solver.cli.common import checker_reading
+
+        return selection_document(checker_reading(grid)[1], grid.goal_values), None
     assert instance is not None
     if values is not None:
         raise InvalidInstanceError("--goal-values goes with --goal-selection and --map (a "

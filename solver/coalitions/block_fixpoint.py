@@ -32,8 +32,6 @@ from scipy.sparse.csgraph import dijkstra
 from solver.coalitions.vertex_tables import VertexTable
 from solver.graph.distances import EXACT_FLOAT_LIMIT
 
-__all__ = ["block_fixpoint", "cover_minimum", "exact_totals", "fixpoint_ranks"]
-
 INT_LIMIT = 2 ** 62
 UNSET = np.iinfo(np.int32).max
 NONE = np.iinfo(np.int64).max

@@ -21,12 +21,10 @@ ones (``σ_θ >= 0``, and ``σ(S) >= a_S`` for ``a_S > 0`` not implied by a subs
 from __future__ import annotations
 
 import itertools
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from fractions import Fraction
 
 from solver.numbers import solve_exact
-
-__all__ = ["guarantee_step", "priority_order", "rule_step"]
 
 
 def priority_order(prior: Sequence[Fraction]) -> tuple[int, ...]:
@@ -38,36 +36,6 @@ def priority_order(prior: Sequence[Fraction]) -> tuple[int, ...]:
     (1, 0, 2)
     """
     return tuple(sorted(range(len(prior)), key=lambda t: (-prior[t], t)))
-
-
-def guarantee_step(r: Sequence[Fraction], m_next: Callable[[int], Fraction | None], w: Fraction,
-                   order: Sequence[int]) -> tuple[tuple[Fraction, ...], bool]:
-    """The canonical ``σ`` of one step and whether ``F`` was non-empty.
-
-    Parameters
-    ----------
-    r : sequence of Fraction
-        The state before the step.
-    m_next : callable
-        ``mask -> m_S(u)`` at the step's head (None: no constraint).
-    w : Fraction
-        The step's weight.
-    order : sequence of int
-        The priority order (:func:`priority_order`).
-
-    Examples
-    --------
-    Two types, ``r = (3, 1)``, ``m(u) = {1}: 2, {2}: 1, {12}: 3`` and ``w = 1``: type 1 must
-    get at least 1, so ``σ = (1, 0)``:
-
-    >>> m = {1: Fraction(2), 2: Fraction(1), 3: Fraction(3)}
-    >>> guarantee_step([Fraction(3), Fraction(1)], m.get, Fraction(1), (0, 1))
-    ((Fraction(1, 1), Fraction(0, 1)), True)
-    """
-    n = len(r)
-    masks = range(1, 1 << n)
-    normals = [tuple((mask >> i) & 1 for i in range(n)) for mask in masks]
-    return rule_step(r, normals, [m_next(mask) for mask in masks], w, order)
 
 
 def rule_step(r: Sequence[Fraction], normals: Sequence[Sequence[int]],

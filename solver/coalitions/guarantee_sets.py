@@ -35,8 +35,6 @@ from solver.coalitions.normal_dp import (
 from solver.coalitions.normal_system import NormalSystem, symmetric_closure
 from solver.coalitions.vertex_tables import Normal, zero_one_normals
 
-__all__ = ["GuaranteeSets", "Unreached", "dominated_failures", "guarantee_sets"]
-
 
 @dataclass(frozen=True, eq=False)
 class GuaranteeSets:

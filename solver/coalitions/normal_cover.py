@@ -16,8 +16,6 @@ from fractions import Fraction
 
 from solver.numbers import pivot, solve_exact
 
-__all__ = ["NormalCover", "normal_cover_lp"]
-
 
 @dataclass(frozen=True)
 class NormalCover:

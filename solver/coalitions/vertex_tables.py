@@ -3,9 +3,9 @@
 Two polytopes carry the N-goal mathematics of ``proofs/NEXACT.md``:
 
 - the *covers* of a non-negative integer vector ``a`` by a set of normals ``A``,
-  ``{c >= 0 : Σ_n c_n n = a}`` (:func:`cover_table`): the support function of a set
-  ``F = {r : n·r <= m_n ∀ n ∈ A}`` at ``a`` is ``min_c Σ_n c_n m_n`` over its vertices (LP
-  duality; NEXACT.3);
+  ``{c >= 0 : Σ_n c_n n = a}`` (:func:`vertex_table` of ``A`` and ``a``): the support
+  function of a set ``F = {r : n·r <= m_n ∀ n ∈ A}`` at ``a`` is ``min_c Σ_n c_n m_n`` over
+  its vertices (LP duality; NEXACT.3);
 - the *packing* polytope ``P_A = {λ >= 0 : Σ_n λ_n n <= 1}`` (:func:`packing_directions`):
   ``F_u + wΔ = {r : y_λ·r <= w + λ·m(u) for every vertex λ}``, ``y_λ = Σ_n λ_n n`` (Farkas;
   proofs/NGOAL.md NG.8(c)).
@@ -30,9 +30,6 @@ from fractions import Fraction
 from functools import cache
 
 import numpy as np
-
-__all__ = ["Direction", "Normal", "VertexTable", "cover_table", "packing_directions",
-           "primitive", "vertex_table", "zero_one_normals"]
 
 Normal = tuple[int, ...]
 """A facet normal: a non-negative integer vector with one entry per goal, not all zero."""
@@ -355,20 +352,6 @@ def _unique_rows(arr: np.ndarray) -> np.ndarray:
                                      ).ravel()):
         seen.setdefault(row.tobytes(), i)
     return arr[sorted(seen.values())]
-
-
-def cover_table(normals: tuple[Normal, ...], a: Normal) -> VertexTable:
-    """The vertices of ``{c >= 0 : Σ_n c_n n = a}`` over the normals (columns index them).
-
-    The trivial cover ``c = e_a`` is among them when ``a`` is one of the normals.
-
-    Examples
-    --------
-    >>> zo = zero_one_normals(3)
-    >>> len(cover_table(zo, (1, 1, 1)).vertices())  # 5 balanced collections + {1, 2, 3}
-    6
-    """
-    return vertex_table(normals, a)
 
 
 @dataclass(frozen=True)

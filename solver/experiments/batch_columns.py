@@ -16,14 +16,9 @@ from __future__ import annotations
 from collections.abc import Hashable, Mapping
 from typing import Any
 
-from solver.literature.path_metrics import METRIC_FIELDS, metric_row
+from solver.literature.path_metrics import metric_row
 from solver.literature.walk_metrics import RouteMeter
 from solver.twogoal.equilibrium import Equilibrium
-
-__all__ = ["FIELD_COLUMNS", "exploitability_cell", "line_columns"]
-
-FIELD_COLUMNS = ("scen_optimal", "distance", *METRIC_FIELDS, "nash_conv")
-"""The columns this module fills."""
 
 
 def line_columns(eq: Equilibrium, goal: Hashable) -> dict[str, str]:

@@ -15,25 +15,10 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from dppio.files import open_input
+from dppio.inputs import open_input
 from dppio.text import count, decimal, escaped
 from solver.errors import InvalidInstanceError
 from solver.literature.path_metrics import METRIC_FIELDS
-
-__all__ = [
-    "FIELDS",
-    "HEADER",
-    "MAX_REASON_CHARS",
-    "MAX_ROW_BYTES",
-    "BatchTally",
-    "RowInfo",
-    "example_row",
-    "format_rows",
-    "parse_row",
-    "read_done",
-    "read_rows",
-    "summarize_file",
-]
 
 FIELDS = ("line", "status", "map", "start", "goal", "fake_goal", "prior", "primary",
           "scen_optimal", "distance", "U1", "U2", "U", "U_bar", "VoI", "VoI_float",
@@ -85,32 +70,6 @@ class RowInfo:
     reason: str = ""
 
 
-def example_row(line: int, status: str = "error", *, config: str = "0123456789ab",
-                **cells: str) -> dict[str, str]:
-    """A well-formed row of ``line`` (an ``error`` row: no fake goal; an ``ok`` row: the
-    tiny 1×3 corridor's numbers), with ``cells`` changed: rows for examples and tests, which
-    :func:`parse_row` reads back.
-
-    Examples
-    --------
-    >>> row = example_row(7, "ok", VoI="abc")
-    >>> row["status"], row["VoI"], row["config"]
-    ('ok', 'abc', '0123456789ab')
-    """
-    row = dict.fromkeys(FIELDS, "") | {"line": str(line), "status": status, "config": config,
-                                       "map": "tiny.map", "start": "0,0", "goal": "0,2",
-                                       "prior": "1/2,1/2", "scen_optimal": "2"}
-    if status == "ok":
-        row |= {"fake_goal": "0,1", "primary": "0,2", "distance": "2", "U1": "2", "U2": "0",
-                "U": "1", "U_bar": "3/2", "VoI": "1/3", "VoI_float": "0.25", "verdict": "pass",
-                "nash_conv": "0", "route": "structured", "solve_seconds": "0.5",
-                "certify_seconds": "1"}
-        row |= {k: "0" for k in METRIC_FIELDS}
-    else:
-        row["reason"] = "no fake goal"
-    return row | cells
-
-
 def format_rows(rows: Iterable[dict[str, str]]) -> bytes:
     """The CSV lines of ``rows`` (UTF-8): one physical line per row, whatever the fields hold
     (line breaks and control characters become spaces, the reason is cut to
@@ -118,6 +77,7 @@ def format_rows(rows: Iterable[dict[str, str]]) -> bytes:
 
     Examples
     --------
+    >>> from tests.solver.experiments.doctest_inputs import example_row
     >>> row = example_row(2, reason="two\\nlines")
     >>> format_rows([row]).endswith(b",two lines,0123456789ab\\n"), format_rows([row]).count(b"\\n")
     (True, 1)
@@ -151,6 +111,7 @@ def parse_row(raw: bytes, key: str | None = None) -> RowInfo:
 
     Examples
     --------
+    >>> from tests.solver.experiments.doctest_inputs import example_row
     >>> line = format_rows([example_row(7, "ok")]).rstrip(b"\\n")
     >>> parse_row(line, "0123456789ab").voi
     0.25
@@ -232,6 +193,7 @@ def read_rows(chunks: Iterable[bytes], key: str | None = None, *, where: str = "
 
     Examples
     --------
+    >>> from tests.solver.experiments.doctest_inputs import example_row
     >>> ok = format_rows([example_row(3)])
     >>> rows = list(read_rows([HEADER + ok + b"4,o"]))  # (end offset, row); 4 is torn
     >>> [(end == len(HEADER + ok), r.line) for end, r in rows]
@@ -382,47 +344,3 @@ def _checked(path: str | Path, key: str | None) -> Iterator[RowInfo]:
             yield row
     except OSError as exc:
         raise InvalidInstanceError(f"{path}: cannot read ({exc.strerror or exc})") from None
-
-
-def read_done(path: str | Path, key: str) -> set[int]:
-    """The scenario lines an existing batch CSV holds (a torn last row left out), every row
-    checked to belong to configuration ``key``; an empty set when there is no file. Reads
-    only: the file is never changed.
-
-    Raises
-    ------
-    InvalidInstanceError
-        The file is not a batch CSV, repeats a line, or was written for another configuration.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> p = Path(tempfile.mkdtemp()) / "b.csv"
-    >>> read_done(p, "0123456789ab")
-    set()
-    >>> _ = p.write_bytes(HEADER + format_rows([example_row(3)]) + b"2,o")
-    >>> read_done(p, "0123456789ab"), p.read_text().endswith("2,o")
-    ({3}, True)
-    """
-    if not Path(path).exists():
-        return set()
-    return {row.line for row in _checked(path, key)}
-
-
-def summarize_file(path: str | Path) -> str:
-    """One line about a batch CSV (:meth:`BatchTally.summary`), every row checked.
-
-    Examples
-    --------
-    >>> import tempfile
-    >>> out = Path(tempfile.mkdtemp()) / "b.csv"
-    >>> rows = [example_row(2, "ok"), example_row(3, "ok"), example_row(4)]
-    >>> _ = out.write_bytes(HEADER + format_rows(rows))
-    >>> summarize_file(out)
-    '3 rows: 2 ok (verdict pass 2), 1 error (first: line 4: no fake goal); mean VoI 0.25; \
-solve 1 s, certify 2 s in total'
-    """
-    tally = BatchTally()
-    for row in _checked(path, None):
-        tally.add(row)
-    return tally.summary()

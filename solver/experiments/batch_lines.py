@@ -27,8 +27,6 @@ from dataclasses import dataclass
 from dppio.text import escaped
 from solver.errors import InvalidInstanceError
 
-__all__ = ["LineSelection", "parse_selection"]
-
 _MAX = 10**9
 
 

@@ -12,7 +12,8 @@ Examples
 --------
 >>> import tempfile
 >>> from pathlib import Path
->>> from solver.experiments.batch_csv import HEADER, example_row, format_rows
+>>> from solver.experiments.batch_csv import HEADER, format_rows
+>>> from tests.solver.experiments.doctest_inputs import example_row
 >>> d = Path(tempfile.mkdtemp())
 >>> def shard(name, *lines):
 ...     (d / name).write_bytes(HEADER + format_rows([example_row(n) for n in lines]))
@@ -34,15 +35,13 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from dppio.files import open_input, read_input, refuse_input_as_output, write_files
-from dppio.inputs import is_stdin
+from dppio.files import refuse_input_as_output, write_files
+from dppio.inputs import is_stdin, open_input, read_input
 from dppio.limits import MAX_INPUT_BYTES
 from dppio.locks import OutputLocks, try_lock
 from dppio.text import escaped
 from solver.errors import InvalidInstanceError, OutputError
 from solver.experiments.batch_csv import FIELDS, HEADER, BatchTally, read_rows
-
-__all__ = ["MergeResult", "merge_shards", "read_shard"]
 
 
 def _shard_bytes(path: str | Path, locks: contextlib.ExitStack) -> bytes:

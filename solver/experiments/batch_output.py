@@ -38,8 +38,6 @@ from dppio.locks import BUSY, try_lock
 from solver.errors import InvalidInstanceError, OutputError
 from solver.experiments.batch_csv import HEADER, BatchTally, format_rows, parse_row, read_rows
 
-__all__ = ["BatchOutput"]
-
 NAME_MAX = 255
 """Longest file name (bytes) on the file systems the batch writes to (Linux: 255)."""
 
@@ -55,7 +53,7 @@ class BatchOutput:
     Examples
     --------
     >>> import tempfile
-    >>> from solver.experiments.batch_csv import example_row
+    >>> from tests.solver.experiments.doctest_inputs import example_row
     >>> d = Path(tempfile.mkdtemp())
     >>> row = example_row(2, reason="x")
     >>> with BatchOutput.open(d / "b.csv", "0123456789ab", lines={2, 3}) as out:

@@ -19,11 +19,8 @@ from solver.errors import InstanceFormatError
 from solver.formats.movingai import read_map
 from solver.game.instance import Instance
 from solver.literature.path_metrics import METRIC_FIELDS, PathMetrics, metric_row
-from solver.literature.strategy_pairs import LABELS, PAIRS, PairEvaluator, PairResult
+from solver.literature.strategy_pairs import LABELS, PairResult
 from solver.numbers import Number
-
-__all__ = ["DEFAULT_GOALS", "DEFAULT_PRIOR", "DEFAULT_START", "compare_csv", "compare_table",
-           "paper10_instance", "paper10_path", "run_compare", "verdict"]
 
 DEFAULT_START = (9, 0)
 DEFAULT_GOALS = ((0, 9), (0, 0))
@@ -61,18 +58,6 @@ def paper10_instance() -> Instance:
                               DEFAULT_PRIOR)
 
 
-def run_compare(instance: Instance) -> tuple[PairResult, ...]:
-    """U¹, U², U, VoI of the six pairs of :data:`solver.literature.strategy_pairs.PAIRS`, exactly.
-
-    Examples
-    --------
-    >>> rows = run_compare(paper10_instance())
-    >>> [(r.defender, r.attacker) for r in rows][:2]
-    [('sigma*', 'gamma*'), ("sigma'", 'gamma*')]
-    """
-    return PairEvaluator.of(instance).compare(PAIRS)
-
-
 def _num(x: Number) -> str:
     if isinstance(x, Fraction):
         return str(x) if x.denominator == 1 else f"{x} (≈ {decimal(x)})"
@@ -80,7 +65,8 @@ def _num(x: Number) -> str:
 
 
 def compare_table(results: Sequence[PairResult]) -> str:
-    """A fixed-width text table of ``results`` (e.g. :func:`run_compare`'s): a header, a rule
+    """A fixed-width text table of ``results`` (e.g. ``PairEvaluator.of(inst).compare(PAIRS)``):
+    a header, a rule
     and one row per pair, exact values with decimals.
 
     Examples

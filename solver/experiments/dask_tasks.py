@@ -19,8 +19,6 @@ from typing import Any, TypeVar, cast
 
 from solver.errors import InvalidInstanceError
 
-__all__ = ["CONNECT_SECONDS", "check_scheduler", "connect_seconds", "dask_completed"]
-
 T = TypeVar("T")
 
 CONNECT_SECONDS = 10.0

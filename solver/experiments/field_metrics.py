@@ -31,8 +31,6 @@ from solver.literature.strategy_pairs import LABELS, PairEvaluator
 from solver.literature.walk_metrics import RouteMeter, WalkMetrics
 from solver.numbers import Number
 
-__all__ = ["WALK_FIELDS", "AttackerMetrics", "attacker_metrics", "metrics_table", "walks_csv"]
-
 WALK_FIELDS = ("attacker", "type", "goal", "walk", "probability", "steps", *METRIC_FIELDS)
 """The columns of a walks CSV (one row per walk of each Attacker), before any leading
 columns naming the instance."""

@@ -35,8 +35,6 @@ from typing import TypeVar, cast
 from dppio.procs import descendants
 from solver.errors import InvalidInstanceError
 
-__all__ = ["check_open_files", "completed", "kill_pool"]
-
 T = TypeVar("T")
 R = TypeVar("R")
 

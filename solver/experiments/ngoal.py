@@ -47,9 +47,6 @@ from solver.coalitions.construction import (
 from solver.errors import InvalidInstanceError
 from solver.game.instance import MAX_GOALS, Instance
 
-__all__ = ["GameValue", "NGoalRow", "ValueRow", "corner_cells", "ngoal_csv", "ngoal_figure",
-           "ngoal_series", "skewed_prior", "value_csv", "value_figure", "value_series"]
-
 Cell = tuple[int, int]
 Certifier = Callable[[Cell, Sequence[Cell], Sequence[Fraction], CoalitionEquilibrium], str]
 

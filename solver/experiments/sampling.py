@@ -16,8 +16,6 @@ from scipy import ndimage
 
 from solver.errors import InvalidInstanceError
 
-__all__ = ["MAX_ATTEMPTS", "Cell", "GridSample", "goals_separately_reachable", "sample_grid"]
-
 Cell = tuple[int, int]
 MAX_ATTEMPTS = 100_000
 """Give up (an error) after this many rejected draws of one sample."""

@@ -27,8 +27,6 @@ from typing import Any
 from dppio.text import decimal
 from solver.literature.strategy_pairs import PAIRS, pair_label
 
-__all__ = ["Claim", "DensitySummary", "Stats", "summarize_density"]
-
 
 @dataclass(frozen=True)
 class Stats:

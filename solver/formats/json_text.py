@@ -12,11 +12,9 @@ from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
-from dppio.files import read_text
+from dppio.inputs import read_text
 from dppio.limits import MAX_JSON_DEPTH, check_json_depth, check_numeral
 from solver.errors import InstanceFormatError, InvalidInstanceError
-
-__all__ = ["parse_json_text", "read_json"]
 
 
 def read_json(path: str | Path) -> Any:

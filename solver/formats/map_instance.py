@@ -14,9 +14,6 @@ from dppio.text import json_shown, plural
 from solver.errors import InstanceFormatError, InvalidInstanceError
 from solver.formats.movingai import map_file, read_map_bytes
 
-__all__ = ["MAP_INSTANCE_FORMAT", "read_map_document", "two_goals_only"]
-
-
 MAP_INSTANCE_FORMAT = "dpp-map-instance/1"
 """The ``format`` of a compact map instance (``docs/formats.md`` §1c)."""
 

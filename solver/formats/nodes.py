@@ -11,8 +11,6 @@ import numpy as np
 
 from solver.errors import InstanceFormatError
 
-__all__ = ["node_from_json", "node_to_json"]
-
 
 def node_from_json(x: Any) -> Hashable:
     """JSON node id to Python: lists become tuples (grid cells ``[r, c]`` -> ``(r, c)``).

@@ -23,8 +23,6 @@ from solver.graph.distances import distances_to
 from solver.graph.network import Network
 from solver.numbers import parse_number
 
-__all__ = ["MAX_GOALS", "Instance", "triangle"]
-
 MAX_GOALS = 5
 """The most goals the solver takes: the coalition DP enumerates the minimal balanced
 collections of the goals (1,291 for five goals)."""

@@ -25,8 +25,6 @@ from solver.formats.nodes import node_from_json
 from solver.game.instance import Instance
 from solver.numbers import parse_number
 
-__all__ = ["SELECTION_REFUSAL", "as_instance", "instance_from_json", "load_instance"]
-
 SELECTION_REFUSAL = ("goal_selection: this is a goal-selection instance (the Attacker chooses its "
                      "goal; there is no prior), not a game with a prior: read it with "
                      "solver.selection.instance.selection_from_json (dpp solve takes it as "
@@ -37,6 +35,24 @@ SELECTION_REFUSAL = ("goal_selection: this is a goal-selection instance (the Att
 def load_instance(path: str | Path, *, two_goals: bool = False) -> Instance:
     """Load an instance JSON file (:func:`instance_from_json` on its document; errors name the
     file).
+
+    Parameters
+    ----------
+    path : str or Path
+        An instance file (a node-link document, or a compact map instance).
+    two_goals : bool
+        Take two goals only.
+
+    Returns
+    -------
+    Instance
+
+    Raises
+    ------
+    InstanceFormatError
+        Not an instance document (the message names the file).
+    InvalidInstanceError
+        A document that is not a valid game (the message names the file).
 
     Examples
     --------
@@ -113,14 +129,7 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
         raise InstanceFormatError(SELECTION_REFUSAL)
     if data.get("format") == MAP_INSTANCE_FORMAT:
         return _from_map_document(data, base, two_goals)
-    missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
-    if missing:
-        raise InstanceFormatError(f"instance is missing {plural(len(missing), 'key')}: "
-                                  f"{', '.join(missing)}")
-    mode = data.get("numbers", "exact")
-    if mode not in ("exact", "float"):
-        raise InstanceFormatError(f"numbers: expected \"exact\" or \"float\", got {mode!r}")
-    float_weights = mode == "float"
+    float_weights = _float_mode(data)
     goals, prior = data["goals"], data["prior"]
     if isinstance(goals, list) and len(goals) > 2:  # N goals: the N-goal rules
         if two_goals:
@@ -146,6 +155,18 @@ def instance_from_json(data: dict[str, Any] | str, *, base: Path | None = None,
         (node_from_json(goals[0]), node_from_json(goals[1])),
         (parse_number(prior[0], where="prior[0]"), parse_number(prior[1], where="prior[1]")),
     )
+
+
+def _float_mode(data: dict[str, Any]) -> bool:
+    """Whether a node-link document has every key and asks for float weights."""
+    missing = [k for k in ("graph", "start", "goals", "prior") if k not in data]
+    if missing:
+        raise InstanceFormatError(f"instance is missing {plural(len(missing), 'key')}: "
+                                  f"{', '.join(missing)}")
+    mode = data.get("numbers", "exact")
+    if mode not in ("exact", "float"):
+        raise InstanceFormatError(f"numbers: expected \"exact\" or \"float\", got {mode!r}")
+    return bool(mode == "float")
 
 
 def as_instance(instance: Instance | Mapping[str, Any] | str | Path | nx.Graph, *,

@@ -10,8 +10,9 @@ from typing import TYPE_CHECKING, Any
 
 import networkx as nx
 
+from dppio.standard_maps import PREFIX
 from solver.formats.map_instance import MAP_INSTANCE_FORMAT
-from solver.formats.movingai import STANDARD_PREFIX, map_file, read_map_bytes
+from solver.formats.movingai import map_file, read_map_bytes
 from solver.formats.nodes import node_to_json
 from solver.graph.network import GridLabels
 from solver.numbers import format_number, parse_number
@@ -19,7 +20,6 @@ from solver.numbers import format_number, parse_number
 if TYPE_CHECKING:
     from solver.game.instance import Instance
 
-__all__ = ["instance_to_json", "map_instance_to_json"]
 
 
 def map_instance_to_json(map_ref: str, inst: Instance, *, relative_to: Path | None = None,
@@ -56,7 +56,7 @@ def map_instance_to_json(map_ref: str, inst: Instance, *, relative_to: Path | No
     if digest is None:
         _, digest = read_map_bytes(map_file(map_ref))
     ref = map_ref
-    if not map_ref.startswith(STANDARD_PREFIX) and relative_to is not None:
+    if not map_ref.startswith(PREFIX) and relative_to is not None:
         # between the real folders: through a symlinked folder, ".." is taken from the
         # folder the link points to, so the path resolves however the instance is reached
         ref = os.path.relpath(os.path.realpath(map_ref), os.path.realpath(relative_to))

@@ -18,8 +18,6 @@ from fractions import Fraction
 
 from solver.graph.network import Network
 
-__all__ = ["StrategyWalk"]
-
 
 @dataclass(frozen=True)
 class StrategyWalk:

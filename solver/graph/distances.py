@@ -27,8 +27,6 @@ from scipy.sparse.csgraph import dijkstra
 
 from solver.graph.network import Network
 
-__all__ = ["EXACT_FLOAT_LIMIT", "costs_to", "distances_from", "distances_to", "sources_to"]
-
 EXACT_FLOAT_LIMIT = 2**53
 """Every integer below this is exact in float64."""
 

@@ -32,8 +32,6 @@ from solver.numbers import (
     parse_number,
 )
 
-__all__ = ["GridLabels", "Network"]
-
 SQRT2 = math.sqrt(2.0)
 
 

@@ -16,8 +16,6 @@ import numpy as np
 from solver.graph.network import Network
 from solver.numbers import NumberMode
 
-__all__ = ["path_from_source", "path_to_target"]
-
 
 def path_to_target(net: Network, start: int, target: int, dist_to: np.ndarray,
                    numbers: NumberMode) -> list[int]:

@@ -47,9 +47,6 @@ from solver.graph.distances import costs_to
 from solver.graph.network import Network
 from solver.literature.dragan_belief import HI, MP, DraganObserver, belief_hi
 
-__all__ = ["KINDS", "SCALE_BITS", "TIE_UNITS", "DeceptivePath", "deceptive_path",
-           "node_terms", "objective"]
-
 Kind = Literal["exaggeration", "ambiguity"]
 KINDS: tuple[Kind, Kind] = ("exaggeration", "ambiguity")
 

@@ -35,8 +35,6 @@ from mpmath.ctx_mp import MPContext
 
 from solver.graph.network import Network
 
-__all__ = ["DPS", "HI", "MP", "DraganObserver", "belief_hi", "ln_at_least"]
-
 DPS = 50
 """Decimal digits of the mpmath values of Dragan's belief."""
 

@@ -15,8 +15,6 @@ from fractions import Fraction
 
 from solver.literature.dragan_belief import DraganObserver
 
-__all__ = ["DraganDefender"]
-
 _ONE, _ZERO = Fraction(1), Fraction(0)
 
 

@@ -59,12 +59,9 @@ from fractions import Fraction
 import numpy as np
 
 from solver.game.instance import Instance
-from solver.graph.distances import costs_to, distances_from, distances_to
+from solver.graph.distances import costs_to, distances_to
 from solver.graph.network import Network
 from solver.graph.shortest_paths import path_to_target
-
-__all__ = ["LABELS", "STRATEGIES", "MSPath", "last_deceptive_point", "plan", "plan_all",
-           "truthful"]
 
 STRATEGIES = ("pi_d1", "pi_d2", "pi_d3", "pi_d4")
 """The four strategies, as CSV/CLI names."""
@@ -102,7 +99,6 @@ class _Game:
     net: Network
     s0: int
     goals: tuple[int, int]            # (g1, g2) as indices
-    d_from: np.ndarray                # d(s0, v)
     d_to: tuple[np.ndarray, np.ndarray]  # d(v, g1), d(v, g2)
 
     @classmethod
@@ -110,8 +106,7 @@ class _Game:
         net = inst.network
         s0, g1, g2 = (net.index_of(x) for x in (inst.start, inst.primary, inst.secondary))
         assert s0 is not None and g1 is not None and g2 is not None
-        return cls(net, s0, (g1, g2), distances_from(net, s0),
-                   (distances_to(net, g1), distances_to(net, g2)))
+        return cls(net, s0, (g1, g2), (distances_to(net, g1), distances_to(net, g2)))
 
 
 def _lt(net: Network, a: object, b: object) -> bool:

@@ -48,9 +48,6 @@ from fractions import Fraction
 
 from solver.numbers import Number
 
-__all__ = ["METRIC_FIELDS", "PERCENTS", "PathMetrics", "expectation", "metric_row",
-           "route_metrics"]
-
 PERCENTS = (10, 25, 50, 75, 90, 99)
 """The path percentages of the reference script's truthfulness columns."""
 

@@ -33,10 +33,6 @@ from solver.numbers import Number
 from solver.twogoal.equilibrium import Equilibrium, paper_equilibrium
 from solver.twogoal.evaluation import Evaluation, Schedule, evaluate
 
-__all__ = ["ATTACKERS", "COMPARE_PAIRS", "DEFENDERS", "FIGURE_LABELS", "LABELS", "MS_PAIRS",
-           "PAIRS", "Attacker",
-           "PairEvaluator", "PairResult", "pair_label"]
-
 DEFENDERS = ("sigma*", "sigma'")
 ATTACKERS = ("gamma*", "ambiguity", "exaggeration")
 PAIRS: tuple[tuple[str, str], ...] = (
@@ -206,9 +202,9 @@ class PairEvaluator:
             self.defender(defender) if isinstance(defender, str) else defender)
         att = self.attacker(attacker) if isinstance(attacker, str) else attacker
         inst = self.instance
-        return evaluate(inst.network, schedule, att.primary, att.secondary, b1=inst.b1,
-                        b2=inst.b2, g1=self.g1, g2=self.g2, d_to_g1=self.d_to_g1,
-                        d_to_g2=self.d_to_g2, d_from_start=self.d_from_start)
+        return evaluate(inst.network, schedule, att.primary, att.secondary,
+                        prior=(inst.b1, inst.b2), goals=(self.g1, self.g2),
+                        d_to=(self.d_to_g1, self.d_to_g2), d_from_start=self.d_from_start)
 
     def pair(self, defender: str, attacker: str) -> PairResult:
         """U¹, U², U, Ū, VoI of a named pair."""

@@ -33,8 +33,6 @@ from solver.graph.shortest_paths import path_to_target
 from solver.literature.masters_sardina import truthful
 from solver.literature.path_metrics import PathMetrics, expectation, route_metrics
 
-__all__ = ["RouteMeter", "WalkMetrics"]
-
 
 @dataclass(frozen=True)
 class WalkMetrics:
@@ -145,10 +143,6 @@ class RouteMeter:
                                        len(self.route(p.walk, theta)) - 1,
                                        self.walk_metrics(p.walk, theta)))
         return tuple(out)
-
-    def type_expectation(self, walks: Sequence[WalkMetrics], theta: int) -> PathMetrics:
-        """The expectation of type θ's walks (by their probabilities)."""
-        return expectation([(w.probability, w.metrics) for w in walks if w.theta == theta])
 
     def expectation(self, walks: Sequence[WalkMetrics]) -> PathMetrics:
         """The expectation over both types (by the prior) and their walks: the mixture's

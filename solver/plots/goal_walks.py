@@ -28,7 +28,6 @@ from solver.plots.style import GOAL_COLOURS, MARKER_COLOUR, STYLE, VOI, num_labe
 if TYPE_CHECKING:
     from solver.coalitions.construction import CoalitionEquilibrium
 
-__all__ = ["plot_ngoal_map"]
 
 
 def _cell(labels: Sequence[Hashable], v: int) -> tuple[int, int]:

@@ -35,9 +35,6 @@ from solver.plots.style import (
     tex_label,
 )
 
-__all__ = ["draw_grid_background", "grid_array", "grid_cell_points", "large_map", "plot_beliefs",
-           "plot_map"]
-
 _PHASE_NAMES = {1: "I", 2: "II", 3: "III"}
 
 
@@ -209,6 +206,20 @@ def plot_map(instance: Instance, *, baselines: bool = True,
     in a second panel. No label is drawn on the grid, so none can cover a path; start and
     goal markers lie under the paths, so even a one-step phase stays visible.
 
+    Parameters
+    ----------
+    instance : Instance
+        A two-goal grid game (node ids ``(row, col)``).
+    baselines : bool
+        Also draw the literature's ambiguity and exaggeration paths, in a second panel.
+    game : PairEvaluator, optional
+        The instance's evaluator, when the caller has one already (else built here).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The figure (write it with :func:`save_figure`).
+
     Examples
     --------
     >>> from solver.experiments.compare import paper10_instance
@@ -310,6 +321,19 @@ def plot_beliefs(instance: Instance, *, defender: str = "sigma*",
     equilibrium paths, Dragan's belief, eq. (17), for the baselines) and the cumulative expected
     allocation to the true goal under ``defender`` (bottom). The phases of ξ² are shaded in
     their colours and ``t_I``, ``t_II`` marked; time ticks are integers.
+
+    Parameters
+    ----------
+    instance : Instance
+        A two-goal grid game.
+    defender : str
+        The Defender whose allocations are drawn (``"sigma*"`` or ``"sigma'"``).
+    game : PairEvaluator, optional
+        The instance's evaluator, when the caller has one already (else built here).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
 
     Examples
     --------

@@ -16,26 +16,6 @@ from dppio.files import write_files
 from dppio.text import decimal
 from solver.errors import DPPError, OutputError
 
-__all__ = [
-    "DEFENDER_HATCH",
-    "FORMATS",
-    "GOAL_COLOURS",
-    "LARGE_MAP",
-    "LARGE_MARKER",
-    "MARKER_COLOUR",
-    "PATH_STYLES",
-    "PHASE_COLOURS",
-    "STRATEGY_COLOURS",
-    "STYLE",
-    "T_I",
-    "T_II",
-    "VOI",
-    "check_suffix",
-    "num_label",
-    "save_figure",
-    "tex_label",
-]
-
 PHASE_COLOURS = {1: "#E69F00", 2: "#CC79A7", 3: "#56B4E9"}
 """Phase I (σ* = 1 along ξ²) orange, phase II (belief 1/2) pink, phase III sky blue — in every
 figure (map segments, beliefs-plot bands). No strategy uses these colours."""

@@ -14,13 +14,22 @@ from solver.errors import InvalidInstanceError
 from solver.literature.strategy_pairs import FIGURE_LABELS, LABELS, PAIRS
 from solver.plots.style import DEFENDER_HATCH, STRATEGY_COLOURS, STYLE, VOI
 
-__all__ = ["plot_voi"]
-
 
 def plot_voi(rows: Iterable[Mapping[str, Any] | Any],
              pairs: Sequence[tuple[str, str]] = PAIRS) -> Figure:
     """Box plots of VoI by density, one box per strategy pair (means as '+'): colour = the
     Attacker's strategy, hatching = the Defender σ'.
+
+    Parameters
+    ----------
+    rows : iterable of mappings or density rows
+        The sweep's rows (``density``, ``defender``, ``attacker``, ``VoI_float``).
+    pairs : sequence of (str, str)
+        The (Defender, Attacker) pairs, one box each per density.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
 
     Examples
     --------

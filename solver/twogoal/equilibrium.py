@@ -22,8 +22,6 @@ from solver.twogoal.primary import primary_mixture
 from solver.twogoal.progress import ProgressDefender
 from solver.twogoal.secondary import TIE_BREAK, secondary_best_response
 
-__all__ = ["Equilibrium", "paper_equilibrium"]
-
 METHOD = "constructive PBNE (paper Sec. IV-V; secondary best response by proofs/XI2.md)"
 
 
@@ -168,8 +166,8 @@ def paper_equilibrium(instance: Instance, *, abs_tol: float = DEFAULT_ABS_TOL) -
     phases = phases_of(schedule)
     mixture = primary_mixture(net, xi2.walk, phases, g1, d1, instance.b1, instance.b2, numbers)
     secondary = StrategyWalk.along(net, xi2.walk, Fraction(1), "xi2")
-    ev = evaluate(net, defender.schedule, mixture, (secondary,), b1=instance.b1, b2=instance.b2,
-                  g1=g1, g2=g2, d_to_g1=d1, d_to_g2=d2, d_from_start=d0)
+    ev = evaluate(net, defender.schedule, mixture, (secondary,), prior=(instance.b1, instance.b2),
+                  goals=(g1, g2), d_to=(d1, d2), d_from_start=d0)
     return Equilibrium(
         instance=instance,
         defender=defender,

@@ -22,8 +22,6 @@ from solver.game.walks import StrategyWalk
 from solver.graph.network import Network
 from solver.numbers import Number
 
-__all__ = ["Evaluation", "Schedule", "Trajectory", "evaluate"]
-
 Schedule = Callable[[Sequence[int]], list[Number]]
 """A Defender: walk (node indices) -> probability of allocating to g1 after each step."""
 
@@ -118,18 +116,17 @@ def evaluate(
     primary: Sequence[StrategyWalk],
     secondary: Sequence[StrategyWalk],
     *,
-    b1: Fraction,
-    b2: Fraction,
-    g1: int,
-    g2: int,
-    d_to_g1: np.ndarray,
-    d_to_g2: np.ndarray,
+    prior: tuple[Fraction, Fraction],
+    goals: tuple[int, int],
+    d_to: tuple[np.ndarray, np.ndarray],
     d_from_start: np.ndarray,
 ) -> Evaluation:
     """Evaluate a Defender schedule against a mixed Attacker, exactly.
 
     ``U^θ = Σ_ξ γ(ξ|θ) [Σ_t w(e_t) σ_t(g^θ) + d(s_T, g^θ)]`` (eq. (3)),
-    ``U = b1 U1 + b2 U2`` (eq. (4)), ``VoI = (Ū − U)/Ū`` with ``Ū = b1 d(s0,g1) + b2 d(s0,g2)``.
+    ``U = b1 U1 + b2 U2`` (eq. (4)), ``VoI = (Ū − U)/Ū`` with ``Ū = b1 d(s0,g1) + b2 d(s0,g2)``;
+    ``prior`` is ``(b1, b2)``, ``goals`` the node indices ``(g1, g2)``, ``d_to`` the distance
+    fields ``(d(·, g1), d(·, g2))``.
 
     Examples
     --------
@@ -138,14 +135,16 @@ def evaluate(
     >>> net = triangle().network   # s=0, g2=1, g1=2
     >>> always_g1 = lambda walk: [Fraction(1)] * (len(walk) - 1)
     >>> direct = [StrategyWalk.along(net, walk, Fraction(1), "direct") for walk in ((0, 2), (0, 1))]
-    >>> ev = evaluate(net, always_g1, direct[:1], direct[1:], b1=Fraction(7, 10),
-    ...               b2=Fraction(3, 10), g1=2, g2=1, d_to_g1=distances_to(net, 2),
-    ...               d_to_g2=distances_to(net, 1), d_from_start=distances_from(net, 0))
+    >>> ev = evaluate(net, always_g1, direct[:1], direct[1:],
+    ...               prior=(Fraction(7, 10), Fraction(3, 10)), goals=(2, 1),
+    ...               d_to=(distances_to(net, 2), distances_to(net, 1)),
+    ...               d_from_start=distances_from(net, 0))
     >>> str(ev.U1), str(ev.U2), str(ev.U), str(ev.VoI)
     ('3', '0', '21/10', '2/9')
     >>> [str(x) for x in ev.trajectories[0].allocation]
     ['0', '3']
     """
+    (b1, b2), (g1, g2), (d_to_g1, d_to_g2) = prior, goals, d_to
     runs = []
     numbers = net.numbers
     convert = functools.cache(numbers.convert)  # a walk's weights take few distinct values

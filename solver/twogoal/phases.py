@@ -12,8 +12,6 @@ from dataclasses import dataclass
 
 from solver.numbers import Number
 
-__all__ = ["Phases", "phases_of"]
-
 
 @dataclass(frozen=True)
 class Phases:
@@ -23,12 +21,6 @@ class Phases:
     t_I: int
     t_II: int
     T: int
-
-    def phase_of_step(self, t: int) -> int:
-        """The phase (1, 2 or 3) of step ``t`` (``t >= 1``); node ``s_0`` counts as phase 1."""
-        if t <= self.t_I:
-            return 1
-        return 2 if t <= self.t_II else 3
 
 
 def phases_of(schedule: Sequence[Number]) -> Phases:

@@ -19,8 +19,6 @@ from solver.graph.shortest_paths import path_to_target
 from solver.numbers import NumberMode
 from solver.twogoal.phases import Phases
 
-__all__ = ["primary_mixture"]
-
 
 def branch_path(net: Network, xi2: Sequence[int], t: int, g1: int, d_to_g1: np.ndarray,
                 numbers: NumberMode) -> tuple[int, ...]:

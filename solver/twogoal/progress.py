@@ -15,8 +15,6 @@ import numpy as np
 from solver.graph.network import Network
 from solver.numbers import Number, NumberMode
 
-__all__ = ["ProgressDefender"]
-
 
 @dataclass(frozen=True, eq=False)
 class ProgressDefender:

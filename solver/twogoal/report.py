@@ -11,7 +11,6 @@ from solver.numbers import Number, format_value
 if TYPE_CHECKING:
     from solver.twogoal.equilibrium import Equilibrium
 
-__all__ = ["path_label", "summarize"]
 
 _MAX_NODES = 12
 

@@ -18,8 +18,6 @@ from solver.graph.network import Network
 from solver.graph.shortest_paths import path_from_source, path_to_target
 from solver.numbers import NumberMode
 
-__all__ = ["SecondaryPath", "secondary_best_response"]
-
 TIE_BREAK = (
     "v* is the lowest-index minimiser of d(s0,v)+d(v,g1)+d(v,g2); the path s0->v* is traced "
     "back from v* through lowest-index tight predecessors, v*->g2 forward through "

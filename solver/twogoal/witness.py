@@ -20,8 +20,6 @@ import numpy as np
 from solver.game.instance import Instance
 from solver.graph.distances import sources_to
 
-__all__ = ["WITNESS_FORMAT", "twogoal_witness"]
-
 WITNESS_FORMAT = "dpp-witness/1"
 """The witness document's ``format`` tag."""
 

@@ -115,7 +115,7 @@ def test_map_certificate_pins_the_map_file(tmp_path: Path, monkeypatch: pytest.M
     prof = tmp_path / "p.json"
     cells = ["--start", "1,0", "--goals", "1,2", "0,0", "--prior", "1/2,1/2"]
     grid = ["--map", str(m), *cells]
-    from solver.cli import main
+    from dpp import main
 
     saved = tmp_path / "saved" / "i.json"
     saved.parent.mkdir()

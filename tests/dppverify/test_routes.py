@@ -20,16 +20,35 @@ from hypothesis import strategies as st
 
 from dppverify.agreement import compare_routes
 from dppverify.errors import HorizonError
+from dppverify.exact import Number
 from dppverify.game.examples import star3, star3_document
 from dppverify.game.instance import Instance, instance_from_json
 from dppverify.strategies import instances, many_goal_instances, weighted_graphs
-from dppverify.structured.coalition import CoalitionRunner, coalition_value, coalition_values
+from dppverify.structured.coalition import CoalitionRunner, coalition_value
 from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.tree import count_prefixes
 from dppverify.tree_route.value_lp import game_value
 
 MAX_PREFIXES = 2500
 DATA = Path(__file__).resolve().parents[1] / "data" / "ngoal_cases.json"
+
+
+def coalition_values(instance: Instance, horizons: range) -> dict[int, Number]:
+    """``V_H`` of the coalition DP for every ``H`` of ``horizons``, from one pass of its
+    layers (unreachable horizons omitted)."""
+    run = CoalitionRunner(instance)
+    layer = run.layer0()
+    out: dict[int, Number] = {}
+    for k in range(0, horizons.stop):
+        if k:
+            layer = run.step(layer, k)
+        if k in horizons:
+            try:
+                out[k] = run.value(layer, k, k).value
+            except HorizonError:
+                continue
+    return out
+
 
 
 def _horizons(inst: Instance, extra: int) -> list[int]:

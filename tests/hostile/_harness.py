@@ -119,7 +119,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
         stdout: str = "pipe", ignore: tuple[int, ...] = (),
         survivors_seconds: float = 10, stdin_is: str = "",
         program: list[str] | None = None) -> Result:
-    """Run ``python -m solver.cli ARGS`` in ``cwd`` under the limits; ``during`` is called
+    """Run ``python -m dpp ARGS`` in ``cwd`` under the limits; ``during`` is called
     with the running process (to send it a signal, say) before waiting for it; ``stdin``:
     bytes piped to its standard input (default: ``/dev/null``). ``fsize``, ``nofile`` and
     ``stdout`` as in :class:`Probe`; ``ignore``: signals the probe starts with ignored
@@ -171,7 +171,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
         in_target = in_fd = os.open(cwd, os.O_RDONLY)
     elif stdin_is == "write-only":
         in_target = in_fd = os.open(os.devnull, os.O_WRONLY)
-    command = program if program is not None else [sys.executable, "-m", "solver.cli"]
+    command = program if program is not None else [sys.executable, "-m", "dpp"]
     proc = subprocess.Popen([*command, *args], cwd=cwd, env=full_env, stdin=in_target,
                             stdout=out_target,
                             stderr=subprocess.PIPE, start_new_session=True,

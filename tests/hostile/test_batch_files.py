@@ -72,7 +72,7 @@ def _batch_csv(name: str, edit: Callable[[str], str] = lambda text: text,
     """``name``: the CSV a run of BATCH writes (made by running it), then edited."""
     def setup(d: Path) -> None:
         env = {**os.environ, "PYTHONPATH": str(Path(__file__).resolve().parents[2])}
-        subprocess.run([os.sys.executable, "-m", "solver.cli", *BATCH, "-o", name,  # type: ignore[attr-defined]
+        subprocess.run([os.sys.executable, "-m", "dpp", *BATCH, "-o", name,  # type: ignore[attr-defined]
                         *(extra or [])], cwd=d, env=env, capture_output=True, check=False)
         p = d / name
         p.write_text(edit(p.read_text()))

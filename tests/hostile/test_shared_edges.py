@@ -44,7 +44,7 @@ def _ok(result: Result, probe: Probe, before: dict[str, tuple[str, int, int]], d
 
 def _start(args: list[str], d: Path) -> subprocess.Popen[bytes]:
     """A second ``dpp`` run beside the probe (its own session; ended by the test)."""
-    return subprocess.Popen([sys.executable, "-m", "solver.cli", *args], cwd=d,
+    return subprocess.Popen([sys.executable, "-m", "dpp", *args], cwd=d,
                             env={**os.environ, "PYTHONPATH": str(ROOT)},
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                             start_new_session=True)

@@ -114,7 +114,7 @@ def _scen(d: Path, repeat: int) -> list[str]:
 
 def _room() -> list[str]:
     """A .scen of real work (130 lines on room-32-32-4, seconds each with --route auto)."""
-    from dppverify.formats.standard_maps import standard_map_path
+    from dppio.standard_maps import standard_map_path
 
     scen = standard_map_path("room-32-32-4").with_name("room-32-32-4-even-1.scen")
     return ["batch", str(scen), "-o", "b.csv", "--no-progress", "--chunk", "1"]

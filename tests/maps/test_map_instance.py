@@ -16,12 +16,12 @@ from typing import Any
 import pytest
 from click.testing import CliRunner
 
+from dpp import main
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.map_instance import MAP_INSTANCE_FORMAT
 from dppverify.formats.movingai import grid_document, parse_map
 from dppverify.game.instance import instance_from_json as checker_from_json
 from dppverify.game.instance import load_instance as checker_load
-from solver.cli import main
 from solver.errors import DPPError
 from solver.game.instance_reading import load_instance as solver_load
 from solver.game.instance_writing import instance_to_json

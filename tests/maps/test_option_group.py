@@ -2,7 +2,7 @@
 
 Every such command — solve, certify, value, export-efg, plot map, plot beliefs, experiment
 compare — accepts ``--map FILE --start R,C --goals R,C R,C --prior p,q [--connectivity 4|8]``
-(one definition, ``dppverify.cli.map_options``), gives the same result as with the instance JSON
+(one definition, ``dppio.cli.map_options``), gives the same result as with the instance JSON
 that ``dpp solve --save-instance`` writes for that grid, and reports every mistake in the
 group as one line with exit code 2, leaving no file behind.
 """
@@ -20,10 +20,10 @@ import click
 import pytest
 from click.testing import CliRunner
 
+from dpp import main
 from dppverify.__main__ import main as checker_main
 from dppverify.game.instance import instance_from_json as checker_from_json
 from dppverify.game.instance import load_instance as checker_load
-from solver.cli import main
 from solver.formats.movingai import read_map
 from solver.game.instance import Instance
 from solver.game.instance_reading import load_instance

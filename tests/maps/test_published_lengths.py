@@ -29,8 +29,8 @@ import numpy as np
 import pytest
 from scipy.sparse.csgraph import dijkstra
 
+from dppio.standard_maps import standard_map_names, standard_map_path
 from dppverify.formats.scen import parse_scen
-from dppverify.formats.standard_maps import standard_map_names, standard_map_path
 from solver.formats.movingai import read_map
 from solver.graph.network import Network
 

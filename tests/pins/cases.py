@@ -1,4 +1,4 @@
-"""The pinned CLI invocations: ``dpp`` (``solver.cli:main``) and ``python -m dppverify``.
+"""The pinned CLI invocations: ``dpp`` (``dpp:main``) and ``python -m dppverify``.
 
 Each case is one or more commands run in order in one fresh directory holding
 ``tests/pins/data/*`` and ``examples/`` (``runner.py``); its record (exit codes, stdout,

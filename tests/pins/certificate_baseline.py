@@ -49,7 +49,7 @@ _VERSION = re.compile(r'"dppverify": "[^"]*"')
 
 
 def _dpp(args: list[str], work: Path) -> str:
-    from solver.cli import main
+    from dpp import main
 
     with _cwd(work), warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -3,12 +3,12 @@
 A case runs in a fresh temporary directory holding copies of ``tests/pins/data/*`` and of
 ``examples/`` (as ``examples/``), so that every path on a command line is relative and short.
 Each step is one command: ``dpp ...`` runs in this process through click's ``CliRunner`` on
-``solver.cli.main`` (the ``dpp`` entry point); ``dpp! ...`` and ``python -m dppverify ...`` run
+``dpp.main`` (the ``dpp`` entry point); ``dpp! ...`` and ``python -m dppverify ...`` run
 as subprocesses (their certificates record the real command line). The record holds, per step,
 the exit code, stdout and stderr, then every file the case wrote, each normalized
 (``normalize.py``).
 
-Only ``solver.cli.main`` and the documented command line are used: no module whose path may
+Only ``dpp.main`` and the documented command line are used: no module whose path may
 move is imported.
 """
 
@@ -34,7 +34,7 @@ __all__ = ["EXPECTED", "record", "run_case"]
 HERE = Path(__file__).resolve().parent
 DATA = HERE / "data"
 EXPECTED = HERE / "expected"
-_DPP_SCRIPT = "import sys; sys.argv[0] = 'dpp'; from solver.cli import main; main()"
+_DPP_SCRIPT = "import sys; sys.argv[0] = 'dpp'; from dpp import main; main()"
 
 
 @contextmanager
@@ -56,7 +56,7 @@ def _subprocess(argv: list[str], work: Path) -> tuple[int, str, str]:
 
 
 def _in_process(args: list[str], work: Path) -> tuple[int, str, str, str]:
-    from solver.cli import main
+    from dpp import main
 
     with _cwd(work), warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")

@@ -1,7 +1,7 @@
 """The CLI gives the same results as on the commit the pins were written on (before the
 refactor to one model for any N).
 
-Every case of ``cases.py`` is re-run (``runner.py``: ``solver.cli.main`` in-process, or the
+Every case of ``cases.py`` is re-run (``runner.py``: ``dpp.main`` in-process, or the
 documented command line in a subprocess) and its normalized record (exit codes, stdout,
 stderr, files written) must equal ``expected/<case>.txt`` exactly. A difference is shown as a
 unified diff. To re-pin after an intended change of output, run

@@ -17,8 +17,6 @@ from dppverify.text import show
 from dppverify.tree_route.context import EvaluatedContext
 from dppverify.twogoal.phases import phases_of
 
-__all__ = ["OFF_XI2", "l5_induced_beliefs"]
-
 HALF = Fraction(1, 2)
 
 OFF_XI2 = ("off ξ² the belief is 1 by construction (the single secondary walk puts no mass "
@@ -36,7 +34,7 @@ def l5_induced_beliefs(ctx: EvaluatedContext) -> CheckRecord:
 
     >>> from dppverify.game.examples import triangle_attacker
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> l5_induced_beliefs(context()).status
     'pass'
     >>> r = l5_induced_beliefs(context(triangle_attacker("3/7", "4/7")))

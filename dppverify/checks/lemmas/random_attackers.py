@@ -21,9 +21,6 @@ from dppverify.tree_route.context import Context, EvaluatedContext
 from dppverify.tree_route.lp import lp_agrees
 from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["GREEDY_COEFFICIENT", "GREEDY_SIGMA_TOLERANCE", "l3_greedy", "l4_monotonicity",
-           "random_mixture"]
-
 GREEDY_COEFFICIENT = 1e-6
 """L3: LP allocations are checked for greediness where the exact objective coefficient
 ``|w (b1 x1 − b2 x2)|`` is at least this fraction of the largest one (below it an
@@ -94,7 +91,7 @@ def l3_greedy(ctx: Context) -> CheckRecord:
     --------
     The profile's attacker and ``ctx.trials = 2`` random ones:
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> r = l3_greedy(context())
     >>> r.status, r.numbers["attackers"], r.numbers["max_value_gap"] < 1e-7
     ('pass', 3, True)
@@ -154,7 +151,7 @@ def l4_monotonicity(ctx: Context) -> CheckRecord:
 
     Examples
     --------
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> r = l4_monotonicity(context())
     >>> r.status, dict(r.numbers)
     ('pass', {'secondary_walks': 1, 'primary_strategies': 3, 'violations': 0, 'seed': 0})

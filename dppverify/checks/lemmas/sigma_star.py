@@ -16,15 +16,13 @@ from dppverify.tree_route.best_response import attacker_best_response, leaf_tota
 from dppverify.tree_route.context import Context
 from dppverify.tree_route.tree import WalkTree, simple_mask
 
-__all__ = ["l1_lower_bound", "l2_no_revisits", "telescoping", "xi2_secondary_value"]
-
 
 def telescoping(ctx: Context) -> CheckRecord:
     """``lemma.TEL.telescoping`` (proofs/TEL.md) on every prefix of the tree.
 
     Examples
     --------
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> r = telescoping(context())
     >>> r.status, dict(r.numbers)
     ('pass', {'prefixes': 3, 'sum_violations': 0, 'range_violations': 0})
@@ -75,7 +73,7 @@ def l1_lower_bound(ctx: Context) -> CheckRecord:
     On the triangle the primary pays ``d(s, g1) = 3`` against σ* on both walks: ``s -> g2``
     costs it 1 (σ* = 1/2 on a step of weight 2) plus ``d(g2, g1) = 2``.
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> r = l1_lower_bound(context())
     >>> r.status, r.numbers["d_s0_g1"], r.numbers["min_U1"], r.numbers["walks_to_g2_attaining"]
     ('pass', 3, 3, 1)
@@ -127,7 +125,7 @@ def l2_no_revisits(ctx: Context) -> CheckRecord:
     --------
     The triangle's tree has no revisiting walk (every neighbour of ``s`` is a goal):
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> r = l2_no_revisits(context())
     >>> r.status, r.numbers["min_U2_walks"], r.numbers["min_U2_paths"], r.numbers["walks"]
     ('pass', 1, 1, 2)
@@ -171,7 +169,7 @@ def xi2_secondary_value(ctx: Context) -> CheckRecord:
     --------
     ``M = min_v d(s0, v) + d(v, g1) + d(v, g2) = 4`` (at ``v = g2``), so ``U²* = 4 − 3 = 1``:
 
-    >>> from dppverify.tree_route.context import triangle_context as context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context as context
     >>> r = xi2_secondary_value(context())
     >>> r.status, dict(r.numbers)
     ('pass', {'M': 4, 'U2_star': 1, 'min_U2_tree': 1})

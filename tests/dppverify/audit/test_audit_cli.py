@@ -110,7 +110,7 @@ def test_bad_options_exit_2(args: list[str]) -> None:
 
 
 def test_audit_through_the_dpp_group() -> None:
-    from solver.cli import main
+    from dpp import main
 
     result = CliRunner().invoke(main, ["audit", "--solver", "solver.adapter:solve_json",
                                        "--examples", "3"])

@@ -14,7 +14,7 @@ from typing import Any
 from click.testing import CliRunner
 from hypothesis import strategies as st
 
-from dppverify.audit import run_audit
+from dppverify.audit import AuditConfig, run_audit
 from dppverify.audit.examine import examine
 from dppverify.cli.audit import audit_command
 from dppverify.game.examples import triangle_document
@@ -48,8 +48,9 @@ def _big_first() -> st.SearchStrategy[Doc]:
 
 
 def test_shrinking_keeps_the_exception_type_and_place(tmp_path: Path) -> None:
-    report = run_audit(two_faced, examples=60, seed=3, strategy=_big_first(),
-                       out=tmp_path / "fail", shrink_calls=80, shrink_seconds=60)
+    report = run_audit(two_faced, AuditConfig(examples=60, seed=3, out=tmp_path / "fail",
+                                              shrink_calls=80, shrink_seconds=60),
+                       strategy=_big_first())
     assert not report.passed and report.first_failure is not None
     first = report.first_failure
     assert first.where.startswith("ValueError@")  # the generated examples have 4+ nodes
@@ -61,8 +62,9 @@ def test_shrinking_keeps_the_exception_type_and_place(tmp_path: Path) -> None:
 
 
 def test_shrinking_keeps_the_check_id(tmp_path: Path) -> None:
-    report = run_audit(wrong_then_raising, examples=60, seed=5, strategy=_big_first(),
-                       shrink_calls=80, shrink_seconds=60)
+    report = run_audit(wrong_then_raising, AuditConfig(examples=60, seed=5, shrink_calls=80,
+                                                       shrink_seconds=60),
+                       strategy=_big_first())
     assert not report.passed and report.first_failure is not None
     assert report.failure is not None
     assert report.failure.identity == report.first_failure.identity

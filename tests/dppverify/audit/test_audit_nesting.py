@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from dppverify.audit import Answer, AuditReport, SolverRunner, run_audit
+from dppverify.audit import Answer, AuditConfig, AuditReport, SolverRunner, run_audit
 from dppverify.audit.campaign import game_key
 from dppverify.audit.runner import call_in_process
 from solver.adapter import solve_json
@@ -41,7 +41,8 @@ class Recording(SolverRunner):
 def audit(solve: Callable[[Doc], Any], examples: int, seed: int,
           max_nodes: int = 8) -> tuple[AuditReport, list[str]]:
     runner = Recording(solve)
-    report = run_audit(runner, examples=examples, seed=seed, max_nodes=max_nodes, shrink=False)
+    report = run_audit(runner, AuditConfig(examples=examples, seed=seed, max_nodes=max_nodes,
+                                           shrink=False))
     return report, runner.games
 
 

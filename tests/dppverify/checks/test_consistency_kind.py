@@ -14,8 +14,8 @@ from dppverify.certificate import Certificate, CheckRecord
 from dppverify.checks.lemmas import OFF_XI2, l5_induced_beliefs, telescoping
 from dppverify.cli.table import CONSISTENCY_HEADING, FACTS_HEADING, format_table
 from dppverify.registry import checks_of
-from dppverify.tree_route.context import triangle_context
 from tests.dppverify._helpers import three_phase_doc, three_phase_profile
+from tests.dppverify.checks.doctest_inputs import triangle_context
 
 CONSISTENCY = {c.id for c in checks_of("two-goal") if c.kind == "consistency"}
 FACTS = {c.id for c in checks_of("two-goal") if c.kind == "fact"}

@@ -135,7 +135,7 @@ def test_value_command(tmp_path: Path) -> None:
 
 
 def test_dpp_group_and_python_m_dppverify(tmp_path: Path) -> None:
-    from solver.cli import main
+    from dpp import main
 
     i = write_doc(tmp_path, "i.json", three_phase_doc())
     p = write_doc(tmp_path, "p.json", three_phase_profile())

@@ -9,7 +9,7 @@ import threading
 
 import pytest
 
-from dppverify.cli.conventions import PhaseBar
+from dppio.cli.conventions import PhaseBar
 
 
 def test_the_elapsed_time_is_redrawn_without_any_call(monkeypatch: pytest.MonkeyPatch) -> None:

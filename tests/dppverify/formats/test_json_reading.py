@@ -16,7 +16,7 @@ from dppverify.errors import InvalidInstanceError, ProfileError
 from dppverify.formats.json_reading import (
     JsonReadError,
     lookup_node,
-    read_json_file,
+    read_json_document,
     resolve_walk,
 )
 from dppverify.game.examples import star3, triangle
@@ -28,7 +28,7 @@ PARSERS = ("dppverify/game/instance.py", "dppverify/game/profile.py",
            "dppverify/game/instance_reading.py", "dppverify/game/graph_reading.py",
            "dppverify/game/profile_types.py")
 PRIMITIVES = {"parse_json", "parse_number", "node_from_json", "show_node", "lookup_node",
-              "resolve_walk", "read_json_file", "parse_json_text", "read_input"}
+              "resolve_walk", "read_json_document", "parse_json_text", "read_input"}
 
 
 @pytest.mark.parametrize("path", PARSERS)
@@ -73,9 +73,9 @@ def test_lookup_node_never_raises() -> None:
 
 @pytest.mark.parametrize("kind, want", [("instance", "cannot read instance file"),
                                         ("profile", "cannot read profile file")])
-def test_read_json_file_is_bounded(kind: str, want: str) -> None:
+def test_read_json_document_is_bounded(kind: str, want: str) -> None:
     with pytest.raises(JsonReadError, match=want):
-        read_json_file("/dev/zero", kind=kind)
+        read_json_document("/dev/zero", kind=kind)
 
 
 def test_every_document_reader_refuses_dev_zero_in_one_line() -> None:

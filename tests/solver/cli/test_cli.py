@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from solver.cli import main
+from dpp import main
 
 ROOT = Path(__file__).resolve().parents[3]
 TRIANGLE = str(ROOT / "examples" / "triangle.json")

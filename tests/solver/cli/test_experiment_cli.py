@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from solver.cli import main
+from dpp import main
 from solver.experiments.compare import paper10_instance
 from solver.literature.strategy_pairs import COMPARE_PAIRS, PAIRS, PairEvaluator
 

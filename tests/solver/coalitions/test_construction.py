@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import json
 import random
+from collections.abc import Callable, Sequence
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
@@ -25,6 +26,7 @@ from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from dpp import main
 from dppio.text import decimal
 from dppverify.certify import certify
 from dppverify.game.instance import instance_from_json
@@ -32,13 +34,22 @@ from dppverify.strategies import many_goal_instances
 from dppverify.structured.coalition import CoalitionRunner
 from dppverify.structured.guarantee import dp_value, guarantee_sets
 from solver import Instance
-from solver.cli import main
 from solver.coalitions.construction import coalition_equilibrium
-from solver.coalitions.guarantee_rule import guarantee_step, priority_order
+from solver.coalitions.guarantee_rule import priority_order, rule_step
 from solver.game.instance_reading import instance_from_json as solver_instance
 from solver.twogoal.equilibrium import paper_equilibrium
 from solver.twogoal.progress import ProgressDefender
 from tests.solver._ngoal_families import GADGET  # NGOAL's N = 4 counterexample
+
+
+def guarantee_step(r: Sequence[Fraction], m_next: Callable[[int], Fraction | None],
+                   w: Fraction, order: Sequence[int]) -> tuple[tuple[Fraction, ...], bool]:
+    """The guarantee rule's step over the 0/1 normals (``m_next``: mask -> ``m_S(u)``)."""
+    n = len(r)
+    masks = range(1, 1 << n)
+    normals = [tuple((mask >> i) & 1 for i in range(n)) for mask in masks]
+    return rule_step(r, normals, [m_next(mask) for mask in masks], w, order)
+
 
 
 def _certify(doc: dict[str, Any]) -> tuple[Any, Any]:

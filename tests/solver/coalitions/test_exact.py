@@ -24,10 +24,10 @@ from click.testing import CliRunner
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from dpp import main
 from dppverify.certify import certify
 from dppverify.game.instance import instance_from_json
 from dppverify.structured.proved_value import nvalue
-from solver.cli import main
 from solver.coalitions.budget import Budget
 from solver.coalitions.construction import (
     CoalitionEquilibrium,

@@ -13,9 +13,10 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from dpp import main
+from dppio.standard_maps import standard_map_path
 from dppverify.formats.scen import parse_scen
-from dppverify.formats.standard_maps import standard_map_path
-from solver.cli import batch_checker, main
+from solver.cli.batch import batch_checker
 from solver.experiments.batch import FIELDS, BatchConfig
 from solver.experiments.batch import run_batch as _run_batch
 from tests import _guard
@@ -121,7 +122,7 @@ def test_interrupted_run_resumes_without_loss_or_duplicates(tmp_path: Path) -> N
 
 def test_killed_process_resumes(tmp_path: Path) -> None:
     out = tmp_path / "room.csv"
-    cmd = [sys.executable, "-m", "solver.cli", "batch", str(ROOM), "-o", str(out),
+    cmd = [sys.executable, "-m", "dpp", "batch", str(ROOM), "-o", str(out),
            "--chunk", "1", "--no-progress"]
     env = {**os.environ, "PYTHONPATH": str(ROOT)}
     proc = subprocess.Popen(cmd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,

@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from dpp import main
 from dppverify.formats.scen import parse_scen
-from solver.cli import main
 
 MAP = "type octile\nheight 3\nwidth 4\nmap\n....\n.@@.\n....\n"
 LINES = ["0\tt.map\t4\t3\t0\t0\t3\t2\t5", "0\tt.map\t4\t3\t3\t0\t0\t2\t5",

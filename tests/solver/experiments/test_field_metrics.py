@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from solver.cli import main
+from dpp import main
 from solver.literature.path_metrics import PERCENTS
 
 ROOT = Path(__file__).resolve().parents[3]

@@ -90,8 +90,8 @@ def test_a_signal_between_two_results_ends_the_density_pool_at_once() -> None:
 
 def test_a_signal_between_two_results_ends_the_batch_pool_at_once(tmp_path: Path) -> None:
     """The same for ``dpp batch --workers``: the exception leaves run_batch with no worker."""
-    from solver.cli.batch import batch_example
     from solver.experiments.batch import BatchConfig, run_batch
+    from tests.solver.experiments.doctest_inputs import batch_example
 
     checker, scen = batch_example()
     before = set(descendants(os.getpid()))

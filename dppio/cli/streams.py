@@ -25,8 +25,6 @@ import sys
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["StreamError", "flush_stdout", "silence_stdout", "standard_streams", "stream_failure"]
-
 SIGPIPE_EXIT = 128 + 13
 """The exit code of a command whose standard output is a pipe nobody reads any more."""
 

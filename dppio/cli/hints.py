@@ -15,22 +15,11 @@ from typing import Literal
 from dppio.examples import display_name
 from dppio.inputs import peek_input
 
-__all__ = ["file_hint"]
-
 Kind = Literal["instance", "profile", "density CSV"]
 
 PEEK_BYTES = 4096
 _FORMAT = re.compile(rb'"format"\s*:\s*"([^"]{1,40})"')
 _GRAPH = re.compile(rb'"graph"\s*:')
-
-USAGE = {"instance": "INSTANCE", "profile": "PROFILE", "density CSV": "CSV"}
-
-
-def _peek(path: str | Path) -> bytes:
-    """The first bytes of an input: those already read (standard input, or an input this
-    command read), else the start of a regular file (never opens a FIFO or device: that could
-    block; :func:`dppio.inputs.peek_input`)."""
-    return peek_input(path, PEEK_BYTES)
 
 
 def what_is(path: str | Path) -> str | None:
@@ -51,7 +40,7 @@ def what_is(path: str | Path) -> str | None:
     p.json dpp-profile/1
     i.json instance
     """
-    head = _peek(path)
+    head = peek_input(path, PEEK_BYTES)  # never opens a FIFO or device: that could block
     if head.lstrip().startswith(b"type ") or str(path).lower().endswith(".map"):
         return "map"
     tag = _FORMAT.search(head)
@@ -85,10 +74,12 @@ def file_hint(path: str | Path, expected: Kind, command: str = "dpp certify") ->
 
     Examples
     --------
-    >>> import os
-    >>> from dppverify.cli.examples import scratch_file
-    >>> p = scratch_file("p.json", '{"format": "dpp-profile/1"}')
-    >>> print(file_hint(p, "instance").replace(os.path.dirname(p) + os.sep, ""))
+    >>> import os, tempfile
+    >>> folder = tempfile.mkdtemp()
+    >>> p = os.path.join(folder, "p.json")
+    >>> with open(p, "w") as f:
+    ...     _ = f.write('{"format": "dpp-profile/1"}')
+    >>> print(file_hint(p, "instance").replace(folder + os.sep, ""))
     p.json is a dpp-profile/1 document, not an instance: are the arguments swapped? \
 (dpp certify INSTANCE PROFILE)
     >>> print(file_hint("m.map", "instance", "dpp solve"))  # a .map name suffices
@@ -126,3 +117,30 @@ def file_hint(path: str | Path, expected: Kind, command: str = "dpp certify") ->
         return (f"{name} is {what}, not a density CSV: make one with dpp experiment density "
                 "--output-dir DIR (it writes DIR/density.csv)")
     return None
+
+
+class hinted:
+    """Context manager: an error of one of the classes ``errors`` while reading ``path``
+    becomes :func:`file_hint`'s hint (the file is of another kind: swapped arguments, a
+    ``.map`` file, ...) when it has one, raised as the same class.
+
+    Examples
+    --------
+    >>> with hinted("/nowhere/x.map", "instance", "dpp solve", errors=(ValueError,)):
+    ...     raise ValueError("cannot read /nowhere/x.map")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ValueError: /nowhere/x.map is a MovingAI .map file: give it as dpp solve --map ...
+    """
+
+    def __init__(self, path: str, kind: Kind, command: str, *,
+                 errors: tuple[type[Exception], ...]) -> None:
+        self.path, self.kind, self.command, self.errors = path, kind, command, errors
+
+    def __enter__(self) -> None:
+        return None
+
+    def __exit__(self, kind: object, exc: BaseException | None, _traceback: object) -> None:
+        if isinstance(exc, self.errors):
+            hint = file_hint(self.path, self.kind, self.command)
+            if hint is not None:
+                raise type(exc)(hint) from None

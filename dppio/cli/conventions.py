@@ -7,8 +7,8 @@
 - data (tables, JSON, summaries) on stdout; status messages ("wrote ...", warnings) on stderr;
   a result's JSON written with ``-o FILE`` leaves stdout empty (:func:`emit`).
 
-Both the checker's commands and the solver's (``solver.cli``) use these decorators, so the
-names cannot drift apart.
+Both the checker's commands and the solver's use these decorators, so the names cannot drift
+apart.
 """
 
 from __future__ import annotations
@@ -22,11 +22,8 @@ from typing import Any, TypeVar
 
 import click
 
+from dppio.files import write_files
 from dppio.text import json_escaped, terminal_line, terminal_text
-from dppverify.formats.files import write_files
-
-__all__ = ["PhaseBar", "emit", "output_dir_option", "output_file_option", "progress_option",
-           "status", "want_progress"]
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -39,9 +36,11 @@ def progress_option(fn: F) -> F:
     Examples
     --------
     >>> from click.testing import CliRunner
-    >>> from dppverify.cli.examples import echo_command
-    >>> cmd = echo_command(progress_option, "progress", repr)
-    >>> [CliRunner().invoke(cmd, args).output.strip() for args in ([], ["--progress"])]
+    >>> @click.command()
+    ... @progress_option
+    ... def show(progress: bool | None) -> None:
+    ...     click.echo(repr(progress))
+    >>> [CliRunner().invoke(show, args).output.strip() for args in ([], ["--progress"])]
     ['None', 'True']
     """
     return click.option("--progress/--no-progress", "progress", default=None,
@@ -73,7 +72,8 @@ def status(message: str) -> None:
 def emit(doc: Any, text: str, *, as_json: bool, output: str | None, summary: str) -> None:
     """The one output convention of the checker's commands.
 
-    ``-o FILE``: the JSON document is written to FILE (atomically) and ``wrote FILE: SUMMARY``
+    ``-o FILE``: the JSON document is written to FILE (atomically,
+    :func:`dppio.files.write_files`) and ``wrote FILE: SUMMARY``
     is the only line, on stderr (stdout stays empty, with or without ``--json``). Otherwise
     stdout gets the JSON (``--json``) or the text.
 
@@ -133,8 +133,10 @@ def output_file_option(help: str, *, required: bool = False,
     Examples
     --------
     >>> from click.testing import CliRunner
-    >>> from dppverify.cli.examples import echo_command
-    >>> cmd = echo_command(output_file_option("The file.", deprecated="--out"), "output")
+    >>> @click.command()
+    ... @output_file_option("The file.", deprecated="--out")
+    ... def cmd(output: str | None) -> None:
+    ...     click.echo(output)
     >>> CliRunner().invoke(cmd, ["-o", "a.png"]).output
     'a.png\\n'
     >>> r = CliRunner().invoke(cmd, ["--out", "b.png"])
@@ -163,8 +165,10 @@ def output_dir_option(help: str, *, default: str | None = None,
     Examples
     --------
     >>> from click.testing import CliRunner
-    >>> from dppverify.cli.examples import echo_command
-    >>> cmd = echo_command(output_dir_option("Where to write.", default="out/x"), "output_dir")
+    >>> @click.command()
+    ... @output_dir_option("Where to write.", default="out/x")
+    ... def cmd(output_dir: str) -> None:
+    ...     click.echo(output_dir)
     >>> [CliRunner().invoke(cmd, a).stdout for a in ([], ["--output-dir", "d"], ["--out", "e"])]
     ['out/x\\n', 'd\\n', 'e\\n']
     """

@@ -1,0 +1,5 @@
+"""``python -m dpp``: the ``dpp`` command."""
+
+from dpp import main
+
+main()
