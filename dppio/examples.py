@@ -39,10 +39,15 @@ EXAMPLES = {"triangle": "triangle.json", "paper10": "paper10.map",
 def example_names() -> tuple[str, ...]:
     """The names of the bundled examples, sorted.
 
+    Returns
+    -------
+    tuple of str
+        The names ``NAME`` of ``examples:NAME``.
+
     Examples
     --------
     >>> example_names()
-    ('paper10', 'triangle')
+    ('paper10', 'paper10-selection', 'triangle')
     """
     return tuple(sorted(EXAMPLES))
 
@@ -50,6 +55,18 @@ def example_names() -> tuple[str, ...]:
 def example_path(name: str, *, error: ErrorClass = InputError) -> Path:
     """The file of the bundled example ``name`` (with or without the ``examples:`` prefix or
     the file's suffix).
+
+    Parameters
+    ----------
+    name : str
+        ``NAME``, ``examples:NAME`` or the file's name (``triangle.json``).
+    error : callable, default InputError
+        The error class to raise, called with the one-line message.
+
+    Returns
+    -------
+    pathlib.Path
+        The file inside the installed package (``dppio/data/``).
 
     Raises
     ------
@@ -80,6 +97,23 @@ def example_path(name: str, *, error: ErrorClass = InputError) -> Path:
 def resolve_input(value: str, *, error: ErrorClass = InputError) -> str:
     """The file an input argument names: ``examples:NAME`` or a path (returned as is).
 
+    Parameters
+    ----------
+    value : str
+        An instance argument or a ``--map`` value.
+    error : callable, default InputError
+        The error class to raise for an unknown example, called with the one-line message.
+
+    Returns
+    -------
+    str
+        The path of the file.
+
+    Raises
+    ------
+    InputError
+        (or ``error``) An unknown example name.
+
     Examples
     --------
     >>> resolve_input("my/instance.json")
@@ -92,6 +126,16 @@ def resolve_input(value: str, *, error: ErrorClass = InputError) -> str:
 
 def display_name(path: str | Path) -> str:
     """How messages name a file: ``examples:NAME`` for a bundled example's file, else the path.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A file a command read.
+
+    Returns
+    -------
+    str
+        ``examples:NAME``, or the path as given.
 
     Examples
     --------

@@ -15,8 +15,8 @@ import click
 import pytest
 from click.testing import CliRunner
 
+from dpp import main
 from dppio.examples import EXAMPLES, example_names, example_path
-from solver.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
 GRID = ["--start", "9,0", "--goals", "0,9", "0,0", "--prior", "0.6,0.4"]
@@ -53,7 +53,7 @@ def test_help_examples_name_no_file_of_a_clone(name: str, cmd: click.Command) ->
 def test_commands_take_the_names_from_any_folder(tmp_path: Path) -> None:
     """A fresh folder outside the repository, the real dpp program."""
     def dpp(*args: str) -> subprocess.CompletedProcess[str]:
-        return subprocess.run([sys.executable, "-m", "solver.cli", *args], cwd=tmp_path,
+        return subprocess.run([sys.executable, "-m", "dpp", *args], cwd=tmp_path,
                               capture_output=True, text=True, timeout=300)
 
     solved = dpp("solve", "examples:triangle", "-o", "p.json")

@@ -25,7 +25,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-FIRST_PARTY = {"solver", "dppverify", "dppio", "tests", "proofs", "benchmarks", "examples",
+FIRST_PARTY = {"solver", "dppverify", "dppio", "dpp", "tests", "proofs", "benchmarks", "examples",
                # helper modules next to the benchmark scripts, imported by them as scripts
                *(p.stem for p in (ROOT / "benchmarks").glob("_*.py"))}
 DEV_EXTRAS = ("test", "peers", "maps", "bench")
@@ -102,7 +102,7 @@ def test_runtime_imports_are_declared() -> None:
     groups = _project()
     extras = set().union(*(v for k, v in groups.items() if k))
     seen = set()
-    for module, top, path in _third_party(("solver", "dppverify", "dppio")):
+    for module, top, path in _third_party(("solver", "dppverify", "dppio", "dpp")):
         seen.add(module)
         allowed = groups[""] if top else groups[""] | extras
         where = "[project] dependencies" if top else "the dependencies or an extra"

@@ -27,26 +27,22 @@ MAX_PARAMETERS = 9
 MAX_MODULE_LINES = 500
 
 KNOWN: dict[str, str] = {
-    # the one certification pipeline's second stage (one runner table for every profile)
-    "dppverify/checks/per_goal_records.py:profile_records parameters": "the one runner table",
-    "dppverify/tree_route/per_goal_checks.py:per_goal_tree_checks lines": "the one runner "
-                                                                          "table",
-    # the exact N-goal layers, changed on other branches now (the vertex tables and covers,
-    # the guarantee sets split by concept, goal selection)
-    "dppverify/structured/cover.py": "exact bases and covers, being reworked",
+    # the exact N-goal layers (the vertex tables past int64, goal selection's sets)
     "dppverify/structured/cover_lp.py:cover_values lines": "exact covers, being reworked",
     "dppverify/structured/normal_fixpoint.py:normal_sets lines": "exact covers, being reworked",
     "dppverify/structured/proved_value.py": "goal selection adds to it",
     "dppverify/structured/proved_value.py:nvalue lines": "goal selection adds to it",
+    "dppverify/structured/proved_value.py:infinite_sets lines": "the exact sets past int64 "
+                                                                "and goal selection's",
     "dppverify/game/distances.py": "goal selection adds to it",
-    "solver/coalitions/guarantee_sets.py": "split by concept",
-    "solver/coalitions/guarantee_sets.py:layered_dp lines": "split by concept",
-    "solver/coalitions/construction.py:coalition_equilibrium lines": "goal selection adds "
-                                                                     "to it",
+    "dppverify/tree_route/efg.py:write_efg parameters": "the goal-selection root decision",
     "solver/experiments/batch.py": "batch, merge and outputs, being reworked",
     "solver/experiments/batch.py:run_batch parameters": "batch, being reworked",
-    # called from the guarantee sets, split on another branch now: its CSR arrays become one
+    # the blocks' fixpoint past int64 (its split into a blocks record was done before the
+    # exact tables changed the loop; to be redone on the new loop)
     "solver/coalitions/block_fixpoint.py:block_fixpoint parameters": "its CSR arrays and tables",
+    "solver/coalitions/block_fixpoint.py:block_fixpoint lines": "the loop past int64",
+    "solver/coalitions/block_fixpoint.py:fixpoint_ranks lines": "the label-setting past int64",
 }
 """``path`` (a module), ``path:function lines`` or ``path:function parameters`` -> why it is
 still over its limit."""

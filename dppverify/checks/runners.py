@@ -201,7 +201,7 @@ def run_checks(family: Family, route: RouteName, ctx: Any, bar: Any = None
 
     Examples
     --------
-    >>> from dppverify.tree_route.context import triangle_context
+    >>> from tests.dppverify.checks.doctest_inputs import triangle_context
     >>> [r.status for r in run_checks("two-goal", "tree", triangle_context())][:4]
     ['pass', 'pass', 'pass', 'pass']
     """

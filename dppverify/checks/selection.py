@@ -48,8 +48,6 @@ from dppverify.structured.selection_value import SelectionValue, goal_values, se
 from dppverify.structured.table_br import TableDefender
 from dppverify.structured.trie import mass_trie
 
-__all__ = ["SELECTION_IDS", "SelectionContext", "selection_checks"]
-
 SELECT = "SELECT"
 INDIFFERENCE = ("relies on proofs/SELECT.md (SELECT.6: c_i, the exact best-response costs of "
                 "pbne.attacker_br)")

@@ -2,16 +2,15 @@
 
 For a two-goal profile whose Defender is a progress rule (σ* or the progress rule towards the
 other goal) or a table with a ``default``: both Attacker types' exact regret over ALL walks of
-any length (proofs/WALKBR.md, shortest paths only; for a table proofs/TABLEBR.md, the
-backward induction of :mod:`dppverify.structured.table_br` on the table's trie plus an exact
-Dijkstra off it); the Defender's exact regret (the greedy sums of
+any length (proofs/WALKBR.md, shortest paths only; for a table proofs/TABLEBR.md, the backward
+induction of :mod:`dppverify.structured.table_br` on the table's trie plus an exact Dijkstra
+off it); the Defender's exact regret (the greedy sums of
 :mod:`dppverify.checks.structured_shared`, written once for N types), sequential rationality
 and Bayes beliefs on the prefixes of the profile's own walks (the only information sets that
 carry mass); payoffs walk by walk; the value by the three-field DP (proofs/DP.md); and, from
 the two-goal layer :mod:`dppverify.checks.structured_twogoal`, the phases and the lemmas that
 have a polynomial form. The lemma checks that need the tree (L3's and L4's random attackers
-with their LPs) are not run on this route; the certificate says so. The N-goal records
-(the registry's ``per-goal`` family) are :mod:`dppverify.checks.structured_per_goal`'s.
+with their LPs) are not run here; the certificate says so.
 """
 
 from __future__ import annotations

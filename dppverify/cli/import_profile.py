@@ -38,8 +38,6 @@ from dppverify.tree_route.efg_profile import (
 )
 from dppverify.tree_route.tree import build_tree
 
-__all__ = ["DEFAULT_TOLERANCE", "import_profile_command"]
-
 DEFAULT_TOLERANCE = 1e-9
 """How far a float probability may move to the simplest rational near it."""
 

@@ -113,9 +113,10 @@ def read_game(instance: str | None, grid: MapRequest | None,
     >>> from dppio.examples import example_path
     >>> read_game(str(example_path("triangle")), None).value.nodes
     ('s', 'g1', 'g2')
-    >>> from dppverify.cli.map_options import map_request
+    >>> from dppio.cli.map_options import map_request
+    >>> from dppverify.cli.map_options import MapRequest
     >>> grid = map_request(str(example_path("paper10")), "9,0", ("0,9", "0,0"), None, None,
-    ...                    goal_selection=True)
+    ...                    request=MapRequest, goal_selection=True)
     >>> game = read_game(None, grid, "dpp value").value
     >>> game.goal_selection, game.n_goals
     (True, 2)

@@ -10,8 +10,6 @@ from typing import Any, TypeVar
 
 import click
 
-__all__ = ["selection_options"]
-
 F = TypeVar("F", bound=Callable[..., Any])
 
 

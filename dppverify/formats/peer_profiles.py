@@ -51,9 +51,6 @@ from dppio.limits import check_json_depth, check_numeral
 from dppio.text import count, decimal
 from dppverify.errors import ProfileError
 
-__all__ = ["Infoset", "PeerProfile", "Rationalisation", "parse_peer_profile", "rationalise",
-           "read_peer_profile", "simplest_within"]
-
 Number = Fraction | float
 Behaviour = dict[str, dict[str, Number]]
 """Information set label -> action label -> probability."""

@@ -25,9 +25,6 @@ from dppverify.formats.map_instance import MAP_INSTANCE_FORMAT
 from dppverify.game.instance_reading import arc_arrays, goal_distance_fields, remember_arrays
 from dppverify.game.instance_type import Instance
 
-__all__ = ["GOAL_SELECTION", "GOAL_VALUES", "MAX_SELECTION_GOALS", "is_selection_document",
-           "marked", "selection_document", "selection_parts", "with_choice"]
-
 GOAL_SELECTION = "goal_selection"
 """The key that marks a goal-selection instance (its value must be ``true``)."""
 

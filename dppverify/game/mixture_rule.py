@@ -20,8 +20,6 @@ from types import MappingProxyType
 from dppverify.exact import Number
 from dppverify.game.instance_type import Instance
 
-__all__ = ["ProgressMixture"]
-
 
 @dataclass(frozen=True)
 class ProgressMixture:

@@ -44,8 +44,6 @@ from dppverify.game.profile_types import (
 )
 from dppverify.game.rules import ProgressRule
 
-__all__ = ["selection_profile_from_json"]
-
 _PLACEHOLDER = {"rule": "table", "entries": []}
 """The Defender the per-goal reader is given when the rule is a progress mixture (it reads only
 the walks then; the mixture is read here)."""

@@ -278,6 +278,20 @@ def selection_instances(*, min_goals: int = 2, max_goals: int = 4,
     instances of :func:`many_goal_instances` without their prior, marked ``"goal_selection":
     true``, and with ``values`` sometimes ``"goal_values"`` (halves in ``-2 .. 2``).
 
+    Parameters
+    ----------
+    min_goals, max_goals : int
+        The number of goals, as for :func:`many_goal_instances`.
+    graphs : hypothesis strategy of dict, optional
+        The graphs (node-link documents), as for :func:`many_goal_instances`.
+    values : bool, default True
+        Whether documents may carry ``"goal_values"``.
+
+    Returns
+    -------
+    hypothesis strategy of dict
+        Goal-selection instance documents, valid by construction.
+
     Examples
     --------
     >>> from hypothesis import find, settings

@@ -17,8 +17,6 @@ from collections.abc import Sequence
 
 import numpy as np
 
-__all__ = ["INT_SAFE", "Vertex", "bareiss_det", "basic_feasible_solutions", "dets"]
-
 
 def dets(entries: Sequence[Sequence[np.ndarray]]) -> np.ndarray:
     """Exact integer determinants of a batch of small integer matrices.

@@ -27,8 +27,6 @@ from dppverify.game.instance import Instance
 from dppverify.game.mixture_rule import ProgressMixture
 from dppverify.twogoal.progress_br import walk_minima
 
-__all__ = ["MAX_STATES", "MixtureResponse", "mixture_response"]
-
 MAX_STATES = 400_000
 """The exact search's budget of states per type (an undecided check beyond it)."""
 

@@ -18,8 +18,6 @@ import numpy as np
 from dppverify.structured.cover import Normal
 from dppverify.structured.exact_bases import dets
 
-__all__ = ["packing_directions", "packing_vertices"]
-
 
 @cache
 def packing_vertices(normals: tuple[Normal, ...], every: bool = False

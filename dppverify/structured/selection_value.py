@@ -32,9 +32,6 @@ from dppverify.structured.proved_value import (
     translation_at_start,
 )
 
-__all__ = ["SelectionValue", "barycentre", "diagonal_bound", "goal_values", "selection_value",
-           "value_at"]
-
 
 @dataclass(frozen=True, kw_only=True)
 class SelectionValue(Bracket):

@@ -30,8 +30,6 @@ from collections.abc import Sequence
 
 from dppverify.structured.cover import Normal
 
-__all__ = ["SetVertex", "maximal_vertices"]
-
 SetVertex = tuple[tuple[int, ...], int, int]
 """A vertex ``r = x / t`` of ``F`` as ``(x, t, tight)``: integer ``x``, ``t > 0`` and the
 bitmask (bit ``j``: normal ``j``) of the normals tight at ``r``."""

@@ -26,8 +26,6 @@ from fractions import Fraction
 
 from dppverify.structured.cover import Normal
 
-__all__ = ["Membership", "sum_membership"]
-
 
 @dataclass(frozen=True)
 class Membership:

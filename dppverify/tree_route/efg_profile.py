@@ -62,9 +62,6 @@ from dppverify.game.instance import Instance
 from dppverify.tree_route.efg import DEFAULT_MAX_EFG_NODES, _node_names, tree_to_efg
 from dppverify.tree_route.tree import WalkTree
 
-__all__ = ["ImportedProfile", "exported_action_names", "exported_infosets",
-           "profile_from_behaviour"]
-
 ExactBehaviour = Mapping[str, Mapping[str, Fraction]]
 
 _LINE = re.compile(r'^p "" (\d) (\d+) "([^"]*)" \{ (.*?) \} 0$', re.M)

@@ -18,8 +18,6 @@ from solver.limits import MAX_DENSITY_GRIDS, MAX_DENSITY_SIZE
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["selection_command"]
-
 
 @click.command("goal-selection",
                short_help="V(b) at the paper's prior against V_sel on the density sweep's maps.")

@@ -92,20 +92,10 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
                 -o selection.json
     """
     _refuse_outputs(instance, grid, output, save_instance, witness, as_json)
-    if goal_selection or (instance is not None and grid is None
-                          and _is_selection_file(instance)):
-        from solver.cli.solve_selection import solve_selection
-
-        instance_or_map(instance, grid)
-        if witness is not None:
-            raise InvalidInstanceError("--witness: the trusted kernel does not decide the "
-                                       "goal-selection game (dpp certify checks its profile)")
-        solve_selection(instance, grid, goal_values, defender, as_json, output, save_instance,
-                        progress)
+    if _selection_game(instance, grid, goal_selection, defender):
+        _solve_selection(instance, grid, goal_values, defender, as_json, output, save_instance,
+                         witness, progress)
         return
-    if defender != "guarantee":
-        raise InvalidInstanceError("--defender is an option of the goal-selection game "
-                                   "(--goal-selection, or a goal-selection INSTANCE)")
     from solver.coalitions.construction import FixpointNotReached
     from solver.game.instance_writing import instance_to_json, map_instance_to_json
     from solver.solution import solve, summarize
@@ -147,16 +137,52 @@ def solve_command(instance: str | None, grid: MapRequest | None, as_json: bool,
         raise click.exceptions.Exit(3)
     _write_outputs(output, dumps(doc), save_instance, instance_text,
                    {witness: witness_text} if witness is not None and witness_text else {})
-    if output is not None:  # the one output convention: -o writes, stdout stays empty
-        status(f"wrote {output}: {_values_line(doc, inst.n_goals)}")
+    _announce(output, as_json, doc, inst.n_goals, summarize(result, certified=CERTIFIED),
+              save_instance, witness)
+
+
+def _announce(output: str | None, as_json: bool, doc: dict[str, Any], n_goals: int, text: str,
+              save_instance: str | None, witness: str | None) -> None:
+    """What ``dpp solve`` says once its files are written (the one output convention: -o
+    writes and stdout stays empty; else the JSON or the text, node names escaped)."""
+    if output is not None:
+        status(f"wrote {output}: {_values_line(doc, n_goals)}")
     elif as_json:
         click.echo(dumps(doc), nl=False)
     else:
-        click.echo(terminal_text(summarize(result, certified=CERTIFIED)))  # node names: escaped
+        click.echo(terminal_text(text))
     if save_instance is not None:
         status(f"wrote {save_instance}: the instance")
     if witness is not None:
         status(f"wrote {witness}: the witness (dpp check verifies it with the trusted kernel)")
+
+
+def _selection_game(instance: str | None, grid: MapRequest | None, goal_selection: bool,
+                    defender: str) -> bool:
+    """Whether the game is the goal-selection game (``--goal-selection``, or a goal-selection
+    INSTANCE); ``--defender`` is refused for any other game."""
+    if goal_selection or (instance is not None and grid is None
+                          and _is_selection_file(instance)):
+        return True
+    if defender != "guarantee":
+        raise InvalidInstanceError("--defender is an option of the goal-selection game "
+                                   "(--goal-selection, or a goal-selection INSTANCE)")
+    return False
+
+
+def _solve_selection(instance: str | None, grid: MapRequest | None, goal_values: str | None,
+                     defender: str, as_json: bool, output: str | None,
+                     save_instance: str | None, witness: str | None,
+                     progress: bool | None) -> None:
+    """``dpp solve`` on the goal-selection game (:mod:`solver.cli.solve_selection`)."""
+    from solver.cli.solve_selection import solve_selection
+
+    instance_or_map(instance, grid)
+    if witness is not None:
+        raise InvalidInstanceError("--witness: the trusted kernel does not decide the "
+                                   "goal-selection game (dpp certify checks its profile)")
+    solve_selection(instance, grid, goal_values, defender, as_json, output, save_instance,
+                    progress)
 
 
 def _is_selection_file(path: str) -> bool:
@@ -172,6 +198,8 @@ def _is_selection_file(path: str) -> bool:
         return is_selection_document(read_json(path))
     except DPPError:
         return False
+
+
 def _refuse_outputs(instance: str | None, grid: MapRequest | None, output: str | None,
                     save_instance: str | None, witness: str | None, as_json: bool) -> None:
     """Refuse, before any work, outputs that clash: with each other, with an input, a saved

@@ -19,8 +19,6 @@ from dppio.files import write_files
 from solver.cli.common import dumps
 from solver.errors import InvalidInstanceError, OutputError
 
-__all__ = ["solve_selection"]
-
 CERTIFIED = "certified: goal-selection checks, structured route, H = inf"
 
 
@@ -50,7 +48,7 @@ def solve_selection(instance: str | None, grid: MapRequest | None, values: str |
     --------
     >>> import json, tempfile
     >>> from click.testing import CliRunner
-    >>> from solver.cli import main
+    >>> from dpp import main
     >>> with tempfile.TemporaryDirectory() as d:
     ...     path = Path(d) / "sel.json"
     ...     doc = {"graph": {"nodes": [{"id": x} for x in "sab"],

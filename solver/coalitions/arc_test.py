@@ -16,8 +16,6 @@ from solver.coalitions.normal_system import NormalSystem
 from solver.coalitions.vertex_tables import Direction, Normal, primitive
 from solver.graph.distances import EXACT_FLOAT_LIMIT
 
-__all__ = ["arc_failures", "failing_arcs", "min_product"]
-
 INT_LIMIT = 2 ** 62
 
 def min_product(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:

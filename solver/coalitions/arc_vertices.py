@@ -30,8 +30,6 @@ import numpy as np
 from solver.coalitions.normal_cover import normal_cover_lp
 from solver.coalitions.vertex_tables import Normal, primitive
 
-__all__ = ["gauge", "set_vertices", "vertex_failures"]
-
 
 def set_vertices(normals: Sequence[Normal], values: Sequence[int]
                  ) -> list[tuple[tuple[int, ...], int]]:

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["Budget", "BudgetExceeded"]
-
 
 class BudgetExceeded(Exception):
     """The fixpoint or the normals were not found within the stated budget."""

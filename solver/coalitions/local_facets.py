@@ -13,8 +13,6 @@ from solver.coalitions.normal_dp import LayerFailure
 from solver.coalitions.normal_system import NormalSystem
 from solver.coalitions.vertex_tables import Normal, packing_vertices, primitive
 
-__all__ = ["local_facets"]
-
 
 def local_facets(graph: ArcGraph, system: NormalSystem, fail: LayerFailure, v: int,
                   max_new: int) -> list[Normal]:

@@ -35,8 +35,6 @@ from solver.coalitions.block_fixpoint import block_fixpoint, cover_minimum, fixp
 from solver.coalitions.budget import BudgetExceeded
 from solver.coalitions.normal_system import NormalSystem
 
-__all__ = ["Fixpoint", "LayerFailure", "fixpoint_failures", "layered_dp", "normal_dp"]
-
 INT_LIMIT = 2 ** 62
 
 @dataclass(frozen=True, eq=False)

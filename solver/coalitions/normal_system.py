@@ -27,9 +27,6 @@ from solver.coalitions.vertex_tables import (
     zero_one_normals,
 )
 
-__all__ = ["DIRECTION_BASES", "NormalSystem", "packing_directions_raw",
-           "packing_directions_symmetric", "symmetric_closure", "symmetric_table"]
-
 
 def symmetric_closure(normals: Sequence[Normal]) -> tuple[Normal, ...]:
     """The normals with every permutation of each, 0/1 vectors first (mask order), the others

@@ -72,6 +72,7 @@ def compare_table(results: Sequence[PairResult]) -> str:
     Examples
     --------
     >>> from solver.game.instance import triangle
+    >>> from solver.literature.strategy_pairs import PairEvaluator
     >>> results = PairEvaluator.of(triangle()).compare()
     >>> print(compare_table(results[:2]))
     Defender  Attacker  U1              U2  U             VoI
@@ -91,16 +92,20 @@ def compare_table(results: Sequence[PairResult]) -> str:
 
 def verdict(results: Sequence[PairResult]) -> str:
     """Whether the paper's observation ``U(σ',γ*) < U(σ*,γ*)`` holds on ``results`` (e.g.
-    :func:`run_compare`'s): one sentence, empty when they lack one of the two pairs.
+    ``PairEvaluator.of(inst).compare(PAIRS)``'s): one sentence, empty when they lack one of
+    the two pairs.
 
     Examples
     --------
     It holds on the paper's map, not on the triangle (where both Defenders get 12/5):
 
-    >>> print(verdict(run_compare(paper10_instance())))  # doctest: +NORMALIZE_WHITESPACE
+    >>> from solver.literature.strategy_pairs import PAIRS, PairEvaluator
+    >>> results = PairEvaluator.of(paper10_instance()).compare(PAIRS)
+    >>> print(verdict(results))  # doctest: +NORMALIZE_WHITESPACE
     U(σ',γ*) = 64/5 (≈ 12.8) < U(σ*,γ*) = 68/5 (≈ 13.6): the paper's observation
     U(σ',γ*) < U(σ*,γ*) holds on this instance
     >>> from solver.game.instance import triangle
+    >>> from solver.literature.strategy_pairs import PairEvaluator
     >>> results = PairEvaluator.of(triangle()).compare()
     >>> "does NOT hold" in verdict(results), verdict(results[:1])
     (True, '')
@@ -117,14 +122,15 @@ def verdict(results: Sequence[PairResult]) -> str:
 
 def compare_csv(results: Sequence[PairResult],
                 metrics: Mapping[str, PathMetrics] | None = None) -> str:
-    """``results`` (e.g. :func:`run_compare`'s) as CSV: a header line and one line per pair,
-    exact ``p/q`` strings; with ``metrics`` (each Attacker's expected path metrics,
-    :func:`solver.experiments.field_metrics.attacker_metrics`) also the field's columns
+    """``results`` (e.g. ``PairEvaluator.of(inst).compare(PAIRS)``'s) as CSV: a header line and one
+    line per pair, exact ``p/q`` strings; with ``metrics`` (each Attacker's expected path
+    metrics, :func:`solver.experiments.field_metrics.attacker_metrics`) also the field's columns
     (:data:`~solver.literature.path_metrics.METRIC_FIELDS`) after ``VoI``.
 
     Examples
     --------
     >>> from solver.game.instance import triangle
+    >>> from solver.literature.strategy_pairs import PairEvaluator
     >>> results = PairEvaluator.of(triangle()).compare()
     >>> print(compare_csv(results[:2]), end="")
     defender,attacker,U1,U2,U,U_bar,VoI

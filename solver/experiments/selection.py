@@ -28,9 +28,6 @@ from solver.selection.equilibrium import selection_equilibrium
 from solver.selection.instance import SelectionInstance
 from solver.twogoal.equilibrium import paper_equilibrium
 
-__all__ = ["CSV_FIELDS", "SelectionRow", "SelectionSummary", "rows_to_csv", "selection_rows",
-           "summarize_selection"]
-
 
 @dataclass(frozen=True)
 class SelectionRow:

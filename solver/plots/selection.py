@@ -15,8 +15,6 @@ from solver.errors import InvalidInstanceError
 from solver.plots.style import MARKER_COLOUR, STYLE
 from solver.selection.mixture import minimising_choices, value_curve
 
-__all__ = ["plot_selection"]
-
 PRIOR = Fraction(3, 5)
 """The paper's prior of g1, marked on the curves."""
 

@@ -50,8 +50,6 @@ from solver.game.walks import StrategyWalk
 from solver.selection.instance import SelectionInstance, as_selection
 from solver.selection.mixture import TwoGoalMixture, two_goal_mixture
 
-__all__ = ["SelectionEquilibrium", "selection_equilibrium", "selection_value"]
-
 Rule = Literal["guarantee", "mixture"]
 Mixture = tuple[tuple[tuple[int, ...], Fraction], ...]
 

@@ -28,9 +28,6 @@ from solver.game.instance_reading import instance_from_json
 from solver.game.instance_writing import instance_to_json, map_instance_to_json
 from solver.numbers import format_number, parse_number
 
-__all__ = ["GOAL_SELECTION", "GOAL_VALUES", "SelectionInstance", "as_selection",
-           "is_selection_document", "load_selection", "selection_from_json"]
-
 GOAL_SELECTION = "goal_selection"
 """The key that marks a goal-selection instance (its value must be ``true``)."""
 

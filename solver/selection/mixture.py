@@ -25,8 +25,6 @@ from typing import Any
 from solver.formats.nodes import node_to_json
 from solver.game.instance import Instance
 
-__all__ = ["TwoGoalMixture", "minimising_choices", "two_goal_mixture", "value_curve"]
-
 
 @dataclass(frozen=True)
 class TwoGoalMixture:

@@ -17,11 +17,11 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner, Result
 
+from dpp import main
 from dppverify.checks.selection import selection_checks
 from dppverify.formats.json_reading import parse_json
 from dppverify.game.instance import load_instance
 from dppverify.game.selection_profile import selection_profile_from_json
-from solver.cli import main
 
 ROOT = Path(__file__).resolve().parents[3]
 GRID = ["--map", "paper10.map", "--start", "9,0", "--goals", "0,9", "0,0"]

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from click.testing import CliRunner
 
-from solver.cli import main
+from dpp import main
 from solver.experiments.density import DensityConfig
 from solver.experiments.selection import selection_rows, summarize_selection
 from solver.selection.mixture import minimising_choices
