@@ -28,8 +28,6 @@ MAX_MODULE_LINES = 500
 
 KNOWN: dict[str, str] = {
     # the exact N-goal layers (the vertex tables past int64, goal selection's sets)
-    "dppverify/structured/cover_lp.py:cover_values lines": "exact covers, being reworked",
-    "dppverify/structured/normal_fixpoint.py:normal_sets lines": "exact covers, being reworked",
     "dppverify/structured/proved_value.py": "goal selection adds to it",
     "dppverify/structured/proved_value.py:nvalue lines": "goal selection adds to it",
     "dppverify/structured/proved_value.py:infinite_sets lines": "the exact sets past int64 "
