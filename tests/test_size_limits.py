@@ -28,10 +28,6 @@ MAX_MODULE_LINES = 500
 
 KNOWN: dict[str, str] = {
     # the exact N-goal layers (the vertex tables past int64, goal selection's sets)
-    "dppverify/structured/proved_value.py": "goal selection adds to it",
-    "dppverify/structured/proved_value.py:nvalue lines": "goal selection adds to it",
-    "dppverify/structured/proved_value.py:infinite_sets lines": "the exact sets past int64 "
-                                                                "and goal selection's",
     "dppverify/game/distances.py": "goal selection adds to it",
     "dppverify/tree_route/efg.py:write_efg parameters": "the goal-selection root decision",
     "solver/experiments/batch.py": "batch, merge and outputs, being reworked",
