@@ -28,7 +28,6 @@ MAX_MODULE_LINES = 500
 
 KNOWN: dict[str, str] = {
     # the exact N-goal layers (the vertex tables past int64, goal selection's sets)
-    "dppverify/tree_route/efg.py:write_efg parameters": "the goal-selection root decision",
     "solver/experiments/batch.py": "batch, merge and outputs, being reworked",
     "solver/experiments/batch.py:run_batch parameters": "batch, being reworked",
     # the blocks' fixpoint past int64 (its split into a blocks record was done before the
