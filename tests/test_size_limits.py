@@ -28,8 +28,6 @@ MAX_MODULE_LINES = 500
 
 KNOWN: dict[str, str] = {
     # the exact N-goal layers (the vertex tables past int64, goal selection's sets)
-    "solver/experiments/batch.py": "batch, merge and outputs, being reworked",
-    "solver/experiments/batch.py:run_batch parameters": "batch, being reworked",
     # the blocks' fixpoint past int64 (its split into a blocks record was done before the
     # exact tables changed the loop; to be redone on the new loop)
     "solver/coalitions/block_fixpoint.py:block_fixpoint parameters": "its CSR arrays and tables",
