@@ -26,14 +26,7 @@ MAX_FUNCTION_LINES = 80
 MAX_PARAMETERS = 9
 MAX_MODULE_LINES = 500
 
-KNOWN: dict[str, str] = {
-    # the exact N-goal layers (the vertex tables past int64, goal selection's sets)
-    # the blocks' fixpoint past int64 (its split into a blocks record was done before the
-    # exact tables changed the loop; to be redone on the new loop)
-    "solver/coalitions/block_fixpoint.py:block_fixpoint parameters": "its CSR arrays and tables",
-    "solver/coalitions/block_fixpoint.py:block_fixpoint lines": "the loop past int64",
-    "solver/coalitions/block_fixpoint.py:fixpoint_ranks lines": "the label-setting past int64",
-}
+KNOWN: dict[str, str] = {}
 """``path`` (a module), ``path:function lines`` or ``path:function parameters`` -> why it is
 still over its limit."""
 
