@@ -24,10 +24,10 @@ from dppverify.checks.structured import (
 )
 from dppverify.checks.structured_twogoal import HALF, telescoping_check
 from dppverify.formats.json_reading import _resolve_walk_fast, resolve_walk
+from dppverify.game.arc_rows import ArcRows
 from dppverify.game.defender import sigma_along
 from dppverify.game.distances import (
     ArcArrays,
-    ArcRows,
     hops_by_arrays,
     scaled_distance_fields,
     uniform_hops,
