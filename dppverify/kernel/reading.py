@@ -11,6 +11,7 @@ from __future__ import annotations
 import hashlib
 import importlib.util
 import json
+import math
 import re
 from fractions import Fraction
 from pathlib import Path
@@ -25,7 +26,37 @@ INF = float("inf")
 MAX_BYTES = 256 * 1024 * 1024
 """Largest document the kernel reads (a witness of a 2000×2000 grid fits)."""
 
-_NUMERAL = re.compile(r"[-+]?(\d+(/0*[1-9]\d*)?|(\d+\.\d*|\.?\d+)([eE][-+]?\d{1,3})?)")
+_NUMERAL = re.compile(r"\s*[-+]?(\d+(/0*[1-9]\d*)?|(\d+\.\d*|\.?\d+)([eE][-+]?\d{1,3})?)\s*",
+                      re.ASCII)
+"""An exact numeral (``Fraction``'s grammar in ASCII digits, as the checker reads it: no
+``'١'``, no ``'1_0'``; blanks around it allowed)."""
+
+
+MAX_DENOMINATOR_DIGITS = 100
+"""The instance's numbers (edge weights and prior, together) have a common denominator below
+10**100, as the checker's readers require (``dppio.limits``; the kernel keeps its own copy)."""
+
+MAX_DISTRIBUTION_DIGITS = 1000
+"""One distribution of the profile has a common denominator below 10**1000."""
+
+
+def common_denominator(denominators: Any, what: str, digits: int) -> int:
+    """The lcm of ``denominators``, or bad input once it reaches ``10**digits`` (step by step:
+    a long list of large coprime denominators costs no more than a short one).
+
+    Examples
+    --------
+    >>> common_denominator([2, 3, 4], "graph", 100)
+    12
+    """
+    bound, m = 10 ** digits, 1
+    for d in set(denominators):
+        if m % d:
+            m = m * d // math.gcd(m, d)
+            if m >= bound:
+                raise BadInput(f"{what}: the numbers' common denominator reaches 10**{digits}, "
+                               "beyond the kernel's limit")
+    return m
 
 
 def sha256(data: bytes) -> str:
@@ -137,6 +168,10 @@ class Instance:
         if len(p) != len(self.goals) or None in p or not all(0 < x < 1 for x in p) or sum(p) != 1:  # type: ignore[arg-type, operator]
             raise BadInput("prior: must be one number in (0, 1) per goal, summing to 1")
         self.prior: tuple[Fraction, ...] = tuple(p)  # type: ignore[arg-type]
+        weights = (w.denominator for row in graph.adj for _, w in row) \
+            if isinstance(graph, Graph) else ()
+        common_denominator([*weights, *(x.denominator for x in self.prior)],
+                           "instance (weights and prior)", MAX_DENOMINATOR_DIGITS)
         self.alive: list[bool] = []  # set once the distances are verified
         self.is_goal = bytearray(graph.n)
         for g in self.goals:
