@@ -46,8 +46,15 @@ def run_kernel(args: list[str], stdin: bytes | None = None) -> subprocess.Comple
     >>> r.returncode, r.stderr.decode().startswith("error: missing.json: cannot read")
     (2, True)
     """
-    return subprocess.run([sys.executable, "-I", str(KERNEL_MAIN), *args], input=stdin,
-                          capture_output=True, check=False)
+    fds = tuple(int(a[8:]) for a in args if a.startswith("/dev/fd/") and a[8:].isdigit()
+                and a[8:].isascii())  # a shell's <(...) names a descriptor of ours: pass it
+    try:
+        return subprocess.run([sys.executable, "-I", str(KERNEL_MAIN), *args], input=stdin,
+                              capture_output=True, check=False, pass_fds=fds)
+    except OSError as exc:  # a /dev/fd/N that names no open descriptor
+        names = ", ".join(f"/dev/fd/{fd}" for fd in fds)
+        return subprocess.CompletedProcess(args, 2, b"", f"error: {names}: cannot read "
+                                                         f"({exc.strerror})\n".encode())
 
 
 @click.command("check", short_help="Check a profile against its witness with the trusted kernel.")
