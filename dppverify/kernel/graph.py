@@ -36,7 +36,7 @@ class Graph:
     def __init__(self, adj: list[list[tuple[int, Fraction]]]) -> None:
         self.adj = adj
         self.n = len(adj)
-        self._rows: dict[int, dict[int, Fraction]] = {}  # weight() lookups at busy nodes
+        self._big = {v: dict(row) for v, row in enumerate(adj) if len(row) > 8}  # weight()
 
     def arcs(self, v: int) -> list[tuple[int, Fraction]]:
         """The arcs ``(u, w)`` leaving ``v``."""
@@ -52,12 +52,8 @@ class Graph:
         >>> g.weight(0, 7), g.weight(0, 0), g.weight(1, 0)
         (Fraction(7, 1), None, None)
         """
-        row = self.adj[v]
-        if len(row) <= 8:
-            return next((w for x, w in row if x == u), None)
-        if (index := self._rows.get(v)) is None:
-            index = self._rows[v] = dict(row)
-        return index.get(u)
+        big = self._big.get(v)
+        return big.get(u) if big is not None else next((w for x, w in self.adj[v] if x == u), None)
 
     def relax(self, y: list[Any], k: Fraction, inf: float) -> list[Any]:
         """``M(v) = min over arcs (v, u) of k·w(v, u) + y(u)`` (``inf`` without arcs).
