@@ -26,24 +26,7 @@ MAX_FUNCTION_LINES = 80
 MAX_PARAMETERS = 9
 MAX_MODULE_LINES = 500
 
-KNOWN: dict[str, str] = {
-    # the exact N-goal layers (the vertex tables past int64, goal selection's sets)
-    "dppverify/structured/cover_lp.py:cover_values lines": "exact covers, being reworked",
-    "dppverify/structured/normal_fixpoint.py:normal_sets lines": "exact covers, being reworked",
-    "dppverify/structured/proved_value.py": "goal selection adds to it",
-    "dppverify/structured/proved_value.py:nvalue lines": "goal selection adds to it",
-    "dppverify/structured/proved_value.py:infinite_sets lines": "the exact sets past int64 "
-                                                                "and goal selection's",
-    "dppverify/game/distances.py": "goal selection adds to it",
-    "dppverify/tree_route/efg.py:write_efg parameters": "the goal-selection root decision",
-    "solver/experiments/batch.py": "batch, merge and outputs, being reworked",
-    "solver/experiments/batch.py:run_batch parameters": "batch, being reworked",
-    # the blocks' fixpoint past int64 (its split into a blocks record was done before the
-    # exact tables changed the loop; to be redone on the new loop)
-    "solver/coalitions/block_fixpoint.py:block_fixpoint parameters": "its CSR arrays and tables",
-    "solver/coalitions/block_fixpoint.py:block_fixpoint lines": "the loop past int64",
-    "solver/coalitions/block_fixpoint.py:fixpoint_ranks lines": "the label-setting past int64",
-}
+KNOWN: dict[str, str] = {}
 """``path`` (a module), ``path:function lines`` or ``path:function parameters`` -> why it is
 still over its limit."""
 

@@ -37,8 +37,8 @@ from dppverify.checks.structured_twogoal import (
     xi2_check,
 )
 from dppverify.exact import Number
+from dppverify.game.arc_rows import ArcRows
 from dppverify.game.defender import sigma_along
-from dppverify.game.distances import ArcRows
 from dppverify.game.evaluation import Values, evaluate
 from dppverify.game.instance import Instance, Roles
 from dppverify.game.profile import DefenderRule, Profile

@@ -17,6 +17,7 @@ from dppverify.errors import CheckerError, TreeTooLargeError
 from dppverify.formats.files import refuse_input_as_output
 from dppverify.limits import MAX_HORIZON
 from dppverify.tree_route.efg import DEFAULT_MAX_EFG_NODES, write_efg
+from dppverify.tree_route.tree import build_tree
 
 __all__ = ["efg_game_options", "export_efg_command"]
 
@@ -85,10 +86,10 @@ def export_efg_command(instance: str | None, grid: MapRequest | None, horizon: i
     try:
         refuse_input_as_output(output, [instance, grid.path if grid is not None else None])
         game = load_game(instance, grid, "dpp export-efg")
-        size = write_efg(output, game, horizon,
-                         attacker_observes=attacker_observes, forced_moves=forced_moves,
-                         max_prefixes=max_prefixes, max_nodes=max_nodes,
-                         progress=want_progress(progress),
+        show = want_progress(progress)
+        tree = build_tree(game, horizon, max_prefixes=max_prefixes, progress=show)
+        size = write_efg(output, tree, attacker_observes=attacker_observes,
+                         forced_moves=forced_moves, max_nodes=max_nodes, progress=show,
                          goal_values=game.goal_values)
     except TreeTooLargeError as exc:  # a Gambit game is the walk tree: no other route
         fail(TreeTooLargeError(str(exc).replace("use --route structured, or lower the horizon",

@@ -18,7 +18,7 @@ from __future__ import annotations
 import heapq
 import math
 from collections import defaultdict, deque
-from collections.abc import Callable, Hashable, Iterable, Iterator, Sequence
+from collections.abc import Callable, Hashable, Iterable, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from itertools import count
@@ -31,7 +31,7 @@ from dppverify.exact import INF, Number
 if TYPE_CHECKING:  # scipy loads where a matrix is built (`dpp --help` stays fast)
     import scipy.sparse as sp
 
-__all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "ArcRows", "common_denominator",
+__all__ = ["EXACT_FLOAT_LIMIT", "Adjacency", "ArcArrays", "common_denominator",
            "dijkstra", "exact_distances_to", "hops_by_arrays", "hops_to_targets",
            "multi_source_dijkstra", "scaled_distance_fields", "sparse_dijkstra", "state_dijkstra",
            "state_dijkstra_via", "uniform_hops", "unscale"]
@@ -41,121 +41,6 @@ EXACT_FLOAT_LIMIT = 2**53
 
 Adjacency = Sequence[Sequence[tuple[int, Number]]]
 """``adj[u]`` lists the arcs ``(v, w(u, v))`` leaving ``u`` (node indices)."""
-
-
-class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
-    """An instance's ``succ`` (or ``pred``): ``rows[u]`` = the ``(head, weight)`` pairs of
-    ``u``'s arcs, built on access from arrays (arcs sorted by tail, then head).
-
-    It reads like the tuple of tuples it stands for (indexing, iteration, ``len``, equality
-    with any sequence of rows), in memory linear in the arcs as numpy arrays: a grid of a
-    million cells holds no Python object per arc.
-
-    Examples
-    --------
-    >>> rows = ArcRows(3, np.array([0, 0, 2]), np.array([1, 2, 0]), np.array([0, 1, 0]),
-    ...                (1, Fraction(3, 2)))
-    >>> rows[0], rows[1], len(rows), rows == ((( 1, 1), (2, Fraction(3, 2))), (), ((0, 1),))
-    (((1, 1), (2, Fraction(3, 2))), (), 3, True)
-    """
-
-    __slots__ = ("_bounds", "_codes", "_heads", "_n", "_values")
-
-    def __init__(self, n: int, tails: np.ndarray, heads: np.ndarray, codes: np.ndarray,
-                 values: tuple[Number, ...], *, bounds: np.ndarray | None = None) -> None:
-        self._n = n
-        # bounds: the CSR row pointer when the caller has it (rows u are bounds[u]:bounds[u+1])
-        self._bounds = np.searchsorted(tails, np.arange(n + 1)) if bounds is None else bounds
-        self._heads = heads
-        self._codes = codes
-        self._values = values
-
-    def __len__(self) -> int:
-        return self._n
-
-    def _row(self, u: int) -> tuple[tuple[int, Number], ...]:
-        a, b = int(self._bounds[u]), int(self._bounds[u + 1])
-        heads = self._heads[a:b].tolist()
-        if len(self._values) == 1:
-            w = self._values[0]
-            return tuple([(h, w) for h in heads])
-        values = self._values
-        return tuple(zip(heads, [values[c] for c in self._codes[a:b].tolist()], strict=True))
-
-    def __getitem__(self, u: Any) -> Any:
-        if isinstance(u, slice):
-            return tuple(self._row(i) for i in range(*u.indices(self._n)))
-        i = u.__index__()
-        if i < 0:
-            i += self._n
-        if not 0 <= i < self._n:
-            raise IndexError(u)
-        return self._row(i)
-
-    def __iter__(self) -> Iterator[tuple[tuple[int, Number], ...]]:
-        for u in range(self._n):
-            yield self._row(u)
-
-    def find(self, u: int, v: int) -> Number | None:
-        """The weight of the arc ``u -> v`` (None when there is none), by binary search.
-
-        Examples
-        --------
-        >>> rows = ArcRows(2, np.array([0]), np.array([1]), np.array([0]), (Fraction(1, 2),))
-        >>> rows.find(0, 1), rows.find(1, 0)
-        (Fraction(1, 2), None)
-        """
-        a, b = int(self._bounds[u]), int(self._bounds[u + 1])
-        try:  # rows are short: a list search beats numpy's per-call overhead
-            i = a + self._heads[a:b].tolist().index(v)
-        except ValueError:
-            return None
-        return self._values[int(self._codes[i])] if len(self._values) > 1 else self._values[0]
-
-    def find_many(self, tails: Sequence[int], heads: Sequence[int]) -> list[Number | None]:
-        """:meth:`find` for many arcs at once (one numpy pass per position in a row).
-
-        Examples
-        --------
-        >>> rows = ArcRows(3, np.array([0, 0, 1]), np.array([1, 2, 2]), np.array([0, 1, 0]),
-        ...                (Fraction(1, 2), 3))
-        >>> rows.find_many([0, 0, 1, 2], [2, 1, 2, 0])
-        [3, Fraction(1, 2), Fraction(1, 2), None]
-        """
-        u = np.asarray(tails, dtype=np.int64)
-        v = np.asarray(heads, dtype=np.int64)
-        if u.size == 0 or self._heads.size == 0:
-            return [None] * int(u.size)
-        start = self._bounds[u]
-        degree = self._bounds[u + 1] - start
-        pos = np.full(u.size, -1, dtype=np.int64)
-        last = self._heads.size - 1
-        for k in range(int(degree.max())):  # the first match in the row, as find's index()
-            idx = start + k
-            hit = (pos < 0) & (k < degree) & (self._heads[np.minimum(idx, last)] == v)
-            pos[hit] = idx[hit]
-        found = (pos >= 0).tolist()
-        if len(self._values) == 1:
-            w = self._values[0]
-            return [w if ok else None for ok in found]
-        values = self._values
-        codes = self._codes[np.maximum(pos, 0)].tolist()
-        return [values[c] if ok else None for c, ok in zip(codes, found, strict=True)]
-
-    def degree(self, u: int) -> int:
-        """The number of arcs of ``u`` (without building its row)."""
-        return int(self._bounds[u + 1] - self._bounds[u])
-
-    def __eq__(self, other: object) -> bool:
-        if not isinstance(other, Sequence):
-            return NotImplemented
-        return len(self) == len(other) and all(
-            tuple(a) == tuple(b) for a, b in zip(self, other, strict=True))
-
-    # defining __eq__ makes the class unhashable (Python sets __hash__ to None), like a list
-
-    def __repr__(self) -> str:
-        return f"ArcRows({self._n} nodes, {self._heads.size} arcs)"
 
 
 def dijkstra(adj: Adjacency, source: int) -> list[Number]:

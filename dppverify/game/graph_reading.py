@@ -19,7 +19,8 @@ import numpy as np
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import Number
 from dppverify.formats.json_reading import Node, node_from_json, parse_number, show_node
-from dppverify.game.distances import ArcArrays, ArcRows
+from dppverify.game.arc_rows import ArcRows
+from dppverify.game.distances import ArcArrays
 
 Rows = Sequence[tuple[tuple[int, Number], ...]]
 """``succ`` or ``pred``: ``rows[u]`` = the ``(node, weight)`` pairs of ``u``'s arcs."""

@@ -20,7 +20,8 @@ import numpy as np
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.map_instance import MapReference, read_map_reference
 from dppverify.formats.movingai import Cell, GridMap, grid_arcs
-from dppverify.game.distances import ArcArrays, ArcRows
+from dppverify.game.arc_rows import ArcRows
+from dppverify.game.distances import ArcArrays
 from dppverify.game.instance_reading import exact_mode
 from dppverify.game.instance_type import Instance, finish_game
 

@@ -1,6 +1,6 @@
 """The one game instance type for any number of goals, and how a read graph becomes one.
 
-:class:`Instance` is frozen: nodes, arcs (as arrays, :class:`~dppverify.game.distances.ArcRows`),
+:class:`Instance` is frozen: nodes, arcs (as arrays, :class:`~dppverify.game.arc_rows.ArcRows`),
 start, goals, prior and the full-graph distances to every goal. Two goals are the case
 ``N = 2``: :attr:`Instance.primary_goal_index`, :attr:`Instance.tied` and
 :meth:`Instance.roles` are the paper's (primary, secondary) views and raise
@@ -19,7 +19,7 @@ from typing import Any
 from dppverify.errors import NotTwoGoalsError
 from dppverify.exact import Number
 from dppverify.formats.json_reading import Node
-from dppverify.game.distances import ArcRows
+from dppverify.game.arc_rows import ArcRows
 from dppverify.game.graph_reading import ReadGraph, Rows
 from dppverify.game.instance_reading import game_parts, remember_arrays
 from dppverify.numbers import NumberMode, number_mode
@@ -76,7 +76,7 @@ class Instance:
         False when every edge can be walked both ways.
     succ, pred : ArcRows
         ``succ[u]`` = arcs ``(v, w)`` leaving ``u``; ``pred[v]`` = arcs ``(u, w)`` entering ``v``
-        (tuples built on access from arrays, :class:`~dppverify.game.distances.ArcRows`).
+        (tuples built on access from arrays, :class:`~dppverify.game.arc_rows.ArcRows`).
     start : int
         ``s0``.
     goals : tuple of int

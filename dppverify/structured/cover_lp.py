@@ -118,6 +118,52 @@ def _checked(amat: list[list[int]], b: list[int], basis: list[int]
     return (det, adj, cnum) if all(x >= 0 for x in cnum) else None
 
 
+def _exact_basis(cost: np.ndarray, amat: list[list[int]], b: list[int]
+                 ) -> tuple[list[int], tuple[int, list[list[int]], list[int]]]:
+    """An optimal basis of ``min cost·c`` s.t. ``amat c = b``, ``c >= 0`` by the exact simplex,
+    with its :func:`_checked` ``(det, adj, adj·b)``."""
+    found = simplex_basis([Fraction(int(x)) for x in cost],
+                          [[Fraction(x) for x in row] for row in amat],
+                          [Fraction(x) for x in b])
+    assert found is not None  # the unit vectors cover rhs
+    basis = found[1]
+    assert -1 not in basis  # full row rank: the unit vectors are columns
+    adjusted = _checked(amat, b, basis)
+    assert adjusted is not None  # primal feasible
+    return basis, adjusted
+
+
+def _candidate_basis(cost: np.ndarray, amat: list[list[int]], b: list[int]
+                     ) -> tuple[list[int], tuple[int, list[list[int]], list[int]]]:
+    """A feasible basis for the node whose costs are ``cost``: the float simplex's when it is
+    non-singular and primal feasible, else the exact simplex's."""
+    col_v = np.array([float(x) for x in cost])
+    scale_v = max(1.0, float(np.abs(col_v).max(initial=0.0)))
+    basis = _float_basis(col_v / scale_v, np.array(amat, dtype=np.float64),
+                         np.array(b, dtype=np.float64))
+    adjusted = None if basis is None else _checked(amat, b, basis)
+    if basis is None or adjusted is None:  # the float simplex stalled or erred
+        return _exact_basis(cost, amat, b)
+    return basis, adjusted
+
+
+def _optimal_where(vals: np.ndarray, idx: np.ndarray, basis: list[int],
+                   adjusted: tuple[int, list[list[int]], list[int]], amat: list[list[int]]
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """``(num, ok)`` over the nodes ``idx``: ``ok`` where the basis is optimal (its dual
+    ``π·det = m_B^T adj`` satisfies ``a·π·det <= det·m_a`` for every usable normal ``a``),
+    ``num = h·det`` there."""
+    det, adj, cnum = adjusted
+    top = int(np.max(np.abs(vals), initial=0)) if vals.size else 0
+    bound = (top + 1) * (max(abs(x) for row in adj for x in row) + 1) * (
+        max(max(r) for r in amat) + 1) * (len(amat) + 1) ** 2 * (det + 1)
+    mb = _as(vals[basis][:, idx].T, bound)  # nodes × m
+    pi = mb @ _as(np.array(adj, dtype=object), bound)  # nodes × m  (π·det)
+    red = pi @ _as(np.array(amat, dtype=object), bound)  # nodes × k  (a·π·det)
+    ok = np.all(red <= _as(vals[:, idx].T, bound) * det, axis=1)
+    return mb @ _as(np.array(cnum, dtype=object), bound), ok
+
+
 def cover_values(normals: Sequence[Normal], values: np.ndarray, rhs: Sequence[int]
                  ) -> tuple[np.ndarray, int]:
     """``h(v) = min { Σ_j c_j values[j, v] : c >= 0, Σ_j c_j normals[j] = rhs }`` at every
@@ -146,61 +192,27 @@ def cover_values(normals: Sequence[Normal], values: np.ndarray, rhs: Sequence[in
     amat = [[int(normals[j][i]) for j in usable] for i in rows]  # m × k
     b = [rhs[i] for i in rows]
     vals = np.asarray(values, dtype=object)[usable]  # k × nodes
-    top = int(np.max(np.abs(vals), initial=0)) if vals.size else 0
-    k = len(usable)
-    acols = np.array(amat, dtype=object).T  # k × m
-    results: list[tuple[int, np.ndarray]] = []  # (den = |det|, numerators h·den) per basis
+    dens: list[int] = []  # den = |det| per basis found
     value = np.full(n_nodes, None, dtype=object)
     den_of = np.zeros(n_nodes, dtype=object)
     open_ = np.ones(n_nodes, dtype=bool)
     while open_.any():
-        v = int(np.flatnonzero(open_)[0])
-        col_v = np.array([float(x) for x in vals[:, v]])
-        scale_v = max(1.0, float(np.abs(col_v).max(initial=0.0)))
-        basis = _float_basis(col_v / scale_v, np.array(amat, dtype=np.float64),
-                             np.array(b, dtype=np.float64))
-        adjusted = None if basis is None else _checked(amat, b, basis)
-        if adjusted is None:  # the exact simplex: the float one stalled or erred
-            cost = [Fraction(int(x)) for x in vals[:, v]]
-            found = simplex_basis(cost, [[Fraction(x) for x in row] for row in amat],
-                                  [Fraction(x) for x in b])
-            assert found is not None  # the unit vectors cover rhs
-            basis = found[1]
-            assert -1 not in basis  # full row rank: the unit vectors are columns
-            adjusted = _checked(amat, b, basis)
-            assert adjusted is not None  # primal feasible
-        det, adj, cnum = adjusted
-        # dual at every open node: π·det = m_B^T adj;  optimal iff a·π·det <= det·m_a
-        bound = (top + 1) * (max(abs(x) for row in adj for x in row) + 1) * (
-            max(max(r) for r in amat) + 1) * (len(rows) + 1) ** 2 * (det + 1)
         idx = np.flatnonzero(open_)
-        mb = _as(vals[basis][:, idx].T, bound)  # nodes × m
-        pi = mb @ _as(np.array(adj, dtype=object), bound)  # nodes × m  (π·det)
-        red = pi @ _as(acols.T, bound)  # nodes × k  (a·π·det)
-        ok = np.all(red <= _as(vals[:, idx].T, bound) * det, axis=1)
-        if not ok[int(np.searchsorted(idx, v))]:  # the float basis is not optimal at v
-            cost = [Fraction(int(x)) for x in vals[:, v]]
-            found = simplex_basis(cost, [[Fraction(x) for x in row] for row in amat],
-                                  [Fraction(x) for x in b])
-            assert found is not None and -1 not in found[1]
-            exact = _checked(amat, b, found[1])
-            assert exact is not None
-            det, adj, cnum = exact
-            basis = found[1]
-            mb = _as(vals[basis][:, idx].T, bound)
-            pi = mb @ _as(np.array(adj, dtype=object), bound)
-            red = pi @ _as(acols.T, bound)
-            ok = np.all(red <= _as(vals[:, idx].T, bound) * det, axis=1)
-            assert ok[int(np.searchsorted(idx, v))]  # optimal where it was found
-        num = mb @ _as(np.array(cnum, dtype=object), bound)  # h·det
+        v = int(idx[0])  # the first open node, ok[0] below
+        basis, adjusted = _candidate_basis(vals[:, v], amat, b)
+        num, ok = _optimal_where(vals, idx, basis, adjusted, amat)
+        if not ok[0]:  # the float basis is not optimal at v
+            basis, adjusted = _exact_basis(vals[:, v], amat, b)
+            num, ok = _optimal_where(vals, idx, basis, adjusted, amat)
+            assert ok[0]  # optimal where it was found
         good = idx[ok]
         value[good] = np.asarray(num, dtype=object)[ok]
-        den_of[good] = det
+        den_of[good] = adjusted[0]
         open_[good] = False
-        results.append((det, np.asarray(num)))
-        if len(results) > 10 * k + 100:  # pragma: no cover - each round adds a new basis
+        dens.append(int(adjusted[0]))
+        if len(dens) > 10 * len(usable) + 100:  # pragma: no cover - each round adds a basis
             raise AssertionError("cover_values: too many bases")
-    den = math.lcm(*(int(d) for d, _ in results))
+    den = math.lcm(*dens)
     out = np.array([int(x) * (den // int(d)) for x, d in zip(value, den_of, strict=True)],
                    dtype=object)
     return out, den

@@ -40,7 +40,7 @@ import numpy as np
 from dppverify.exact import INF, Number
 from dppverify.game.distances import EXACT_FLOAT_LIMIT, dijkstra
 from dppverify.game.instance import Instance
-from dppverify.structured.coalition import coalition_scale, splits
+from dppverify.structured.coalition import Split, coalition_scale, splits
 from dppverify.structured.cover import Normal, cheapest, zero_one_normals
 from dppverify.structured.cover_lp import cover_values
 
@@ -183,66 +183,88 @@ def normal_sets(instance: Instance, extras: Sequence[Normal] = (),
     (Fraction(12, 1), Fraction(13, 1))
     """
     inst = instance
-    n_goals = inst.n_goals
-    zero_one = zero_one_normals(n_goals)
+    zero_one = zero_one_normals(inst.n_goals)
     normals = zero_one + tuple(tuple(int(x) for x in e) for e in extras)
-    n = inst.n_nodes
     finite = reach_mask(inst)
-    goal = np.zeros(n, dtype=bool)
+    goal = np.zeros(inst.n_nodes, dtype=bool)
     goal[list(inst.goals)] = True
     live = np.flatnonzero(finite & ~goal)
     arcs = _arcs(inst, finite, goal)
-    split_of = {sp.mask: sp for sp in splits(n_goals)}
-    scale = coalition_scale(inst, list(split_of.values()))
+    split_of = {sp.mask: sp for sp in splits(inst.n_goals)}
+    reuse = _reusable(base, inst, normals)
+    scale = base.scale if base is not None and reuse else coalition_scale(
+        inst, list(split_of.values()))
     rows: list[np.ndarray | None] = [None] * len(normals)
-    order = sorted(range(len(normals)), key=lambda j: (sum(normals[j]), j))
-    reuse: dict[int, np.ndarray] = {}
-    if base is not None and base.instance is inst:
-        old = {a: k for k, a in enumerate(base.normals)}
-        fresh = [a for a in normals if a not in old]
-        for j, a in enumerate(normals):
-            k = old.get(a)
-            if k is not None and not any(b != a and all(x <= y for x, y in zip(b, a, strict=True))
-                                         for b in fresh):
-                reuse[j] = np.asarray(base.rows[k], dtype=object)
-        if reuse:
-            scale = base.scale
-    for j in order:
+    for j in sorted(range(len(normals)), key=lambda j: (sum(normals[j]), j)):
         a = normals[j]
-        if j in reuse:
-            rows[j] = reuse[j] * (scale // base.scale) if base is not None else reuse[j]
+        if base is not None and j in reuse:
+            rows[j] = reuse[j] * (scale // base.scale)
             continue
-        init = np.full(n, -1, dtype=object)
-        for g in inst.goals:
-            init[g] = sum(int(Fraction(inst.dist_to[t][g]) * scale) * a[t]
-                          for t in range(n_goals))
+        init = _goal_costs(inst, a, scale)
         if j < len(zero_one) and sum(a) > 1 and live.size:
-            sp = split_of[j + 1]
-            mat = np.stack([np.asarray(rows[int(c) - 1], dtype=object)[live]
-                            for c in sp.columns], axis=1)
-            best = np.asarray(cheapest(mat, sp.scaled), dtype=object)
-            if any(int(x) % sp.lcm for x in best):  # pragma: no cover - the coalition scale
-                raise AssertionError("normal_sets: a 0/1 split is not a multiple of 1/scale")
-            init[live] = best // sp.lcm
+            init[live] = _zero_one_split(split_of[j + 1], rows, live)
         elif j >= len(zero_one) and live.size:
-            idx = dominated_normals(normals, a)
-            assert idx  # an extra normal is not a unit vector
-            mat = np.stack([np.asarray(rows[k], dtype=object)[live] for k in idx])
-            num, den = cover_values([normals[k] for k in idx], mat, a)
-            g = math.gcd(den, *(int(x) for x in num))
-            grow = den // g
+            split, grow = _extra_split(normals, a, rows, live)
             if grow > 1:  # the split needs a finer scale: rescale everything computed so far
                 scale *= grow
-                for k, row in enumerate(rows):
-                    if row is not None:
-                        rows[k] = np.asarray(row, dtype=object) * grow
-                for gg in inst.goals:
-                    init[gg] *= grow
-            init[live] = np.asarray(num, dtype=object) // g
-        weight = max(a)
-        rows[j] = _label_setting(n, arcs, scale, weight, init)
+                rows = [None if row is None else np.asarray(row, dtype=object) * grow
+                        for row in rows]
+                for g in inst.goals:
+                    init[g] *= grow
+            init[live] = split
+        rows[j] = _label_setting(inst.n_nodes, arcs, scale, max(a), init)
     done = tuple(np.asarray(r) for r in rows)
     return NormalSets(inst, normals, scale, tuple(_compact(r, finite) for r in done), finite)
+
+
+def _reusable(base: NormalSets | None, inst: Instance, normals: Sequence[Normal]
+              ) -> dict[int, np.ndarray]:
+    """The rows of ``base`` (at its scale) that stay valid for ``normals``, by index in
+    ``normals``: those of a normal it has, unless a new normal lies below it."""
+    if base is None or base.instance is not inst:
+        return {}
+    old = {a: k for k, a in enumerate(base.normals)}
+    fresh = [a for a in normals if a not in old]
+    reuse = {}
+    for j, a in enumerate(normals):
+        k = old.get(a)
+        if k is not None and not any(b != a and all(x <= y for x, y in zip(b, a, strict=True))
+                                     for b in fresh):
+            reuse[j] = np.asarray(base.rows[k], dtype=object)
+    return reuse
+
+
+def _goal_costs(inst: Instance, a: Normal, scale: int) -> np.ndarray:
+    """The terminal costs ``a·d(g, g^·)·scale`` at the goals, ``-1`` (no source) elsewhere."""
+    init = np.full(inst.n_nodes, -1, dtype=object)
+    for g in inst.goals:
+        init[g] = sum(int(Fraction(inst.dist_to[t][g]) * scale) * a[t]
+                      for t in range(inst.n_goals))
+    return init
+
+
+def _zero_one_split(sp: Split, rows: Sequence[np.ndarray | None], live: np.ndarray
+                    ) -> np.ndarray:
+    """The split of a 0/1 normal on the ``live`` nodes (scaled integers): its cheapest
+    minimal balanced collection over the rows already computed."""
+    mat = np.stack([np.asarray(rows[int(c) - 1], dtype=object)[live] for c in sp.columns],
+                   axis=1)
+    best = np.asarray(cheapest(mat, sp.scaled), dtype=object)
+    if any(int(x) % sp.lcm for x in best):  # pragma: no cover - the coalition scale
+        raise AssertionError("normal_sets: a 0/1 split is not a multiple of 1/scale")
+    return best // sp.lcm
+
+
+def _extra_split(normals: Sequence[Normal], a: Normal, rows: Sequence[np.ndarray | None],
+                 live: np.ndarray) -> tuple[np.ndarray, int]:
+    """The split of the extra normal ``a`` on the ``live`` nodes, its dominated-cover LP:
+    ``(num, grow)`` with ``split = num / (scale·grow)`` (``grow > 1``: the scale must grow)."""
+    idx = dominated_normals(normals, a)
+    assert idx  # an extra normal is not a unit vector
+    mat = np.stack([np.asarray(rows[k], dtype=object)[live] for k in idx])
+    num, den = cover_values([normals[k] for k in idx], mat, a)
+    g = math.gcd(den, *(int(x) for x in num))
+    return np.asarray(num, dtype=object) // g, den // g
 
 
 def _compact(row: np.ndarray, finite: np.ndarray) -> np.ndarray:

@@ -21,7 +21,8 @@ an arc fails, adds the failing direction ``y_λ`` and its permutations to ``M`` 
 integer normals and re-runs the DP (vectorised, exact integers at a reduced common scale; for
 ``H = inf`` started from the coalition fixpoint), a few rounds. Where no certificate is found
 it returns a bracket naming both bounds: the best DP above, and below the better of two simple
-Defenders (NG.9) and the coalition fixpoint's sets translated into a sub-fixpoint (NG.10).
+Defenders (NG.9) and the coalition fixpoint's sets translated into a sub-fixpoint (NG.10;
+both in :mod:`dppverify.structured.lower_bounds`).
 Everything is exact; vertices come from exact integer determinants of every basis
 (:mod:`dppverify.structured.cover`; no polyhedral library: the normals form a fixed small
 table, so each basis is enumerated once per table, and tables of permuted right-hand sides are
@@ -43,19 +44,17 @@ from dppverify.exact import Bracket, Number, normalize
 from dppverify.game.instance import Instance
 from dppverify.structured.arc_condition import ArcCondition, arc_condition, walkable_arcs
 from dppverify.structured.coalition import CoalitionRunner, CoalitionValue, too_many_goals
-from dppverify.structured.cover import (
-    MAX_BALANCED,
-    Normal,
-    cheapest,
-    min_cover_vectors,
-    zero_one_normals,
-)
-from dppverify.structured.cover_lp import cover_values
-from dppverify.structured.dp_certificate import Arc, certified_coalition_dp, direction_checks
+from dppverify.structured.cover import MAX_BALANCED, Normal, zero_one_normals
+from dppverify.structured.dp_certificate import Arc, certified_coalition_dp
 from dppverify.structured.guarantee import dp_value
+from dppverify.structured.lower_bounds import (
+    deflated_lower,
+    lower_bound_simple,
+    sets_value,
+    translated_lower,
+)
 from dppverify.structured.normal_dp import BeyondExactRange, normal_dp_value
 from dppverify.structured.normal_fixpoint import NormalSets, normal_sets
-from dppverify.structured.packing import packing_directions
 
 __all__ = [
     "InfiniteSets",
@@ -63,9 +62,7 @@ __all__ = [
     "coalition_nvalue",
     "extra_directions",
     "infinite_sets",
-    "lower_bound_simple",
     "nvalue",
-    "translation_at_start",
 ]
 
 MAX_ROUNDS = 4
@@ -90,30 +87,6 @@ def extra_directions(ys: Sequence[Sequence[Fraction]]) -> list[Normal]:
         g = math.gcd(*ints)
         out.append(tuple(x // g for x in ints))
     return out
-
-
-def lower_bound_simple(instance: Instance) -> tuple[Fraction, str]:
-    """A cheap exact lower bound on every ``V_H`` (and ``V_inf``) from two simple Defenders.
-
-    A Defender that always guards goal ``θ`` makes type ``θ`` pay at least ``d(s0, g^θ)``
-    (the walk's weight plus the terminal cost); the uniform Defender makes every type ``θ``
-    pay at least ``d(s0, g^θ)/N``. The bound is the better of ``max_θ b_θ d(s0, g^θ)`` and
-    ``Σ_θ b_θ d(s0, g^θ) / N`` (``proofs/NGOAL.md`` NG.9).
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import star3
-    >>> lower_bound_simple(star3())
-    (Fraction(1, 1), 'a Defender that always guards goal 1 (NG.9)')
-    """
-    inst = instance
-    d = [Fraction(inst.dist_to[t][inst.start]) for t in range(inst.n_goals)]
-    guard = [inst.prior[t] * d[t] for t in range(inst.n_goals)]
-    best = max(range(inst.n_goals), key=lambda t: guard[t])
-    uniform = sum(guard, Fraction(0)) / inst.n_goals
-    if uniform > guard[best]:
-        return uniform, "the uniform Defender (NG.9)"
-    return guard[best], f"a Defender that always guards goal {best + 1} (NG.9)"
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -170,58 +143,6 @@ class NValue(Bracket):
         return f"{self.layers} layer{'' if self.layers == 1 else 's'}"
 
 
-def _deflated_lower(run: CoalitionRunner, layer: dict[int, np.ndarray]) -> Fraction | None:
-    """NG.10: ``DP_inf - t(s0)`` for the least translations ``t`` making ``F - t·1`` a sub-fixpoint.
-
-    ``F`` are the coalition DP's sets at its fixpoint ``layer``. With ``F'_v = F_v - t_v·1``
-    (``t >= 0``, ``t = 0`` at goals) the arc condition for ``(v, u)`` reads
-    ``t_v - t_u >= ℓ(v, u)``, the largest ``(h_{F_v}(y_λ) - w - λ·m_u) / (1·y_λ)`` over the vertices
-    ``λ`` of the packing polytope (the 0/1 ones give ``(m_A(v) - w - m_A(u)) / |A|``). The least
-    such ``t`` is a longest-path fixpoint (Bellman-Ford from ``t = 0``); None if it does not
-    settle within ``n + 1`` rounds (a positive cycle).
-    """
-    inst = run.inst
-    arr, finite = run.stacked(layer)
-    keep = finite[run.src] & finite[run.dst]
-    src, dst, wts = run.src[keep], run.dst[keep], run.wts[keep].astype(object)
-    scale = run.scale
-    frac = np.frompyfunc(lambda num, den: Fraction(int(num), int(den)), 2, 1)
-    ell: np.ndarray | None = None
-    for mask in range(1, 1 << inst.n_goals):
-        size = bin(mask).count("1")
-        e = arr[mask - 1][src].astype(object) - wts - arr[mask - 1][dst].astype(object)
-        cand = frac(e, scale * size)
-        ell = cand if ell is None else np.maximum(ell, cand)
-    zo = zero_one_normals(inst.n_goals)
-    for chk in direction_checks(zo):
-        cols = np.asarray(chk.cover.columns, dtype=np.int64)
-        hv = np.asarray(cheapest(arr[cols][:, src].T, chk.cover.scaled), dtype=object)
-        mu = np.asarray(cheapest(arr[:, dst].T, chk.lams.T), dtype=object)
-        num = (hv * chk.lam_lcm - wts * chk.cover.lcm * chk.scale * chk.lam_lcm
-               - mu * chk.cover.lcm * chk.scale)
-        ones = sum(chk.y, Fraction(0))
-        den = scale * chk.cover.lcm * chk.scale * chk.lam_lcm
-        cand = frac(num, den) / ones
-        ell = cand if ell is None else np.maximum(ell, cand)
-    if ell is None or src.size == 0:
-        return Fraction(0)
-    tails = np.unique(src)
-    seg = np.searchsorted(src, tails)
-    den = math.lcm(1, *{int(x.denominator) for x in ell})
-    nums = [int(x * den) for x in ell]
-    bound = (max(abs(x) for x in nums) + 1) * (inst.n_nodes + 2)
-    lengths = np.asarray(nums, dtype=np.int64 if bound < 2 ** 62 else object)
-    t = np.zeros(inst.n_nodes, dtype=lengths.dtype)  # t · den, exact integers
-    for _ in range(inst.n_nodes + 1):
-        best = np.maximum.reduceat(t[dst] + lengths, seg)
-        new = t.copy()
-        new[tails] = np.maximum(best, 0)
-        if np.array_equal(new, t):
-            return Fraction(int(t[inst.start]), den)
-        t = new
-    return None
-
-
 def coalition_nvalue(coal: CoalitionValue, n_goals: int) -> NValue:
     """The proved value of an instance with ``n_goals <= 3`` from its coalition DP, already run.
 
@@ -257,52 +178,8 @@ limit on ``normals``)."""
 
 
 MAX_TRANSLATED_ARCS = 20_000
-"""NG.10's translated lower bound (:func:`_translated_lower`, exact arithmetic per arc) is
-tried at ``H = inf`` only up to this many walkable arcs."""
-
-
-def _sets_value(sets: NormalSets) -> Fraction:
-    inst = sets.instance
-    col = sets.column(inst.start)
-    assert col is not None  # the start reaches a goal
-    return Fraction(min_cover_vectors(sets.normals, col, inst.prior).value)
-
-
-def _translated_lower(sets: NormalSets) -> Fraction | None:
-    """NG.10 in support-function form: ``DP_inf - t(s0)`` for the least ``t >= 0`` (0 at the
-    goals) with ``(t_v - t_u)·(1·y) >= h_{F_v}(y) - h_{F_u}(y) - w`` for every walkable arc and
-    packing direction ``y``; None if that longest-path problem does not settle (a positive
-    cycle)."""
-    inst = sets.instance
-    tails, heads, weights = walkable_arcs(sets, inst.start)
-    if not tails:
-        return _sets_value(sets)
-    nodes = np.unique(np.asarray(tails + heads, dtype=np.int64))
-    stacked = np.stack([np.asarray(r, dtype=object)[nodes] for r in sets.rows])
-    t_pos = np.searchsorted(nodes, np.asarray(tails, dtype=np.int64))
-    h_pos = np.searchsorted(nodes, np.asarray(heads, dtype=np.int64))
-    wts = [Fraction(w) for w in weights]
-    ell = [Fraction(-10 ** 30)] * len(tails)
-    for y in packing_directions(sets.normals):
-        s = math.lcm(*(x.denominator for x in y))
-        num, den = cover_values(sets.normals, stacked, tuple(int(x * s) for x in y))
-        size = sum(y, Fraction(0))
-        for k in range(len(tails)):
-            gap = (Fraction(int(num[t_pos[k]]) - int(num[h_pos[k]]), den * sets.scale * s)
-                   - wts[k]) / size
-            if gap > ell[k]:
-                ell[k] = gap
-    t = dict.fromkeys(nodes.tolist(), Fraction(0))
-    for _ in range(len(t) + 1):
-        changed = False
-        for k, (v, u) in enumerate(zip(tails, heads, strict=True)):
-            want = max(Fraction(0), t[u] + ell[k])
-            if not inst.is_goal(v) and want > t[v]:
-                t[v] = want
-                changed = True
-        if not changed:
-            return _sets_value(sets) - t[inst.start]
-    return None
+"""NG.10's translated lower bound (:func:`~dppverify.structured.lower_bounds.translated_lower`,
+exact arithmetic per arc) is tried at ``H = inf`` only up to this many walkable arcs."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -329,24 +206,12 @@ class InfiniteSets:
     coalition: NormalSets
 
 
-def translation_at_start(sets: NormalSets) -> Fraction | None:
-    """NG.10's least translation ``t(s0)``: ``F_v − t_v·1`` is a sub-fixpoint, so
-    ``F_s0 − t(s0)·1`` lies in the exact guarantee set; None if the longest-path problem does
-    not settle.
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import star3
-    >>> translation_at_start(normal_sets(star3()))
-    Fraction(0, 1)
-    """
-    lower = _translated_lower(sets)
-    return None if lower is None else _sets_value(sets) - lower
-
-
-def _infinite_nvalue(inst: Instance, progress: Callable[[str], None] | None) -> NValue:
-    """:func:`nvalue` at ``H = inf`` (:func:`infinite_sets`'s value)."""
-    return infinite_sets(inst, progress).value
+def _proved(value: Fraction, src: str, *, horizon: int | None, layers: int,
+            normals: tuple[Normal, ...], coalition: CoalitionValue) -> NValue:
+    """The closed :class:`NValue` at ``value``, both bounds from ``src``."""
+    v = normalize(value)
+    return NValue(v, v, src, src, None, horizon=horizon, layers=layers, normals=normals,
+                  coalition=coalition)
 
 
 def infinite_sets(inst: Instance, progress: Callable[[str], None] | None = None
@@ -367,25 +232,29 @@ def infinite_sets(inst: Instance, progress: Callable[[str], None] | None = None
     say("the coalition DP at H = inf (one label-setting pass per goal subset)")
     sets = normal_sets(inst)
     coal = dp_value(sets)
-    upper = Fraction(coal.value)
     if n <= 3:
         return InfiniteSets(coalition_nvalue(coal, n), sets, True, sets)
     say("the arc condition of the coalition sets on every walkable arc")
     arc = arc_condition(sets, inst.start)
-    src = "coalition DP, certified at every arc (NG.8, NRULE NR.1(e))"
     if arc.holds:
-        return InfiniteSets(NValue(normalize(upper), normalize(upper), src, src, None,
-                                   horizon=None, layers=len(sets.normals), normals=(),
-                                   coalition=coal), sets, True, sets)
-    up_src = "coalition DP (NG.2: an upper bound)"
+        src = "coalition DP, certified at every arc (NG.8, NRULE NR.1(e))"
+        return InfiniteSets(_proved(Fraction(coal.value), src, horizon=None,
+                                    layers=len(sets.normals), normals=(), coalition=coal),
+                            sets, True, sets)
+    return _refined_infinite(sets, coal, arc, say)
+
+
+def _refined_infinite(coalition_sets: NormalSets, coal: CoalitionValue, arc: ArcCondition,
+                      say: Callable[[str], None]) -> InfiniteSets:
+    """:func:`infinite_sets` past a failing arc of the coalition sets: refinement rounds with
+    the failing directions as extra normals, then, for a bracket, NG.10's translated bound."""
+    inst, sets = coalition_sets.instance, coalition_sets
+    upper, up_src = Fraction(coal.value), "coalition DP (NG.2: an upper bound)"
     reason = _arc_reason(inst, arc, "the coalition DP")
     lower, lo_src = lower_bound_simple(inst)
-    coalition_sets = sets
     extras: list[Normal] = []
     up_normals: tuple[Normal, ...] = ()
     for round_ in range(1, MAX_ROUNDS + 1):
-        failing = arc.failure
-        assert failing is not None
         new = [d for d in dict.fromkeys(extra_directions(_failing_directions(arc)))
                if d not in extras and any(x > 1 for x in d)]
         if not new:
@@ -398,7 +267,7 @@ def infinite_sets(inst: Instance, progress: Callable[[str], None] | None = None
         extras += sorted(new, reverse=True)
         say(f"refinement round {round_}: {len(extras)} extra normals")
         sets = normal_sets(inst, extras, base=sets)
-        val = _sets_value(sets)
+        val = sets_value(sets)
         if val < upper:
             upper, up_normals = val, tuple(extras)
             up_src = (f"DP over {len(extras)} extra facet normals (NRULE NR.1(a): an upper "
@@ -408,31 +277,27 @@ def infinite_sets(inst: Instance, progress: Callable[[str], None] | None = None
         if arc.holds:
             src = (f"DP over {len(extras)} extra facet normals, certified at every arc "
                    f"(NRULE NR.1(e))")
-            return InfiniteSets(NValue(normalize(val), normalize(val), src, src, None,
-                                       horizon=None, layers=len(sets.normals),
-                                       normals=tuple(extras), coalition=coal), sets, True,
+            return InfiniteSets(_proved(val, src, horizon=None, layers=len(sets.normals),
+                                        normals=tuple(extras), coalition=coal), sets, True,
                                 coalition_sets)
         if lower == upper:
-            src = f"{up_src[:-1]}) meeting {lo_src}"
-            return InfiniteSets(NValue(normalize(upper), normalize(upper), src, src, None,
-                                       horizon=None, layers=len(sets.normals),
-                                       normals=up_normals, coalition=coal), sets, False,
-                                coalition_sets)
+            return InfiniteSets(_proved(upper, f"{up_src[:-1]}) meeting {lo_src}", horizon=None,
+                                        layers=len(sets.normals), normals=up_normals,
+                                        coalition=coal), sets, False, coalition_sets)
         reason = _arc_reason(inst, arc, f"the DP with {len(extras)} extra normals")
     else:
         reason += f"; {MAX_ROUNDS} refinement rounds (the refinement budget)"
     # NG.10 only for the bracket: a longest-path problem over every walkable arc in Fractions
     if len(walkable_arcs(coalition_sets, inst.start)[0]) <= MAX_TRANSLATED_ARCS:
         say("a lower bound from the coalition sets translated into a sub-fixpoint (NG.10)")
-        shift = _translated_lower(coalition_sets)
+        shift = translated_lower(coalition_sets)
         if shift is not None and shift > lower:
             lower, lo_src = shift, ("the coalition DP's fixpoint sets translated into a "
                                     "sub-fixpoint (NG.10)")
         if lower == upper:
             src = f"{up_src[:-1]}) meeting the translated fixpoint bound (NG.10)"
-            return InfiniteSets(NValue(normalize(upper), normalize(upper), src, src, None,
-                                       horizon=None, layers=len(sets.normals),
-                                       normals=up_normals, coalition=coal), sets, False,
+            return InfiniteSets(_proved(upper, src, horizon=None, layers=len(sets.normals),
+                                        normals=up_normals, coalition=coal), sets, False,
                                 coalition_sets)
     else:
         lo_src += (f" (NG.10's translated bound not tried: more than {MAX_TRANSLATED_ARCS} "
@@ -485,7 +350,7 @@ def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = 
     if horizon is not None and horizon < 0:
         raise HorizonError(f"the horizon must be a non-negative integer, got {horizon}")
     if horizon is None:
-        return _infinite_nvalue(inst, progress)
+        return infinite_sets(inst, progress).value
     coal, fails, start = certified_coalition_dp(inst, horizon, max_layers)
     upper, layers = Fraction(coal.value), coal.layers
     n = inst.n_goals
@@ -493,28 +358,13 @@ def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = 
            "coalition DP (NG.4: the value for three goals)" if n == 3 else
            "coalition DP, certified at every arc (NG.8)")
     if not fails:
-        return NValue(normalize(upper), normalize(upper), src, src, None,
-                      horizon=horizon, layers=layers, normals=(),
-                      coalition=coal)
+        return _proved(upper, src, horizon=horizon, layers=layers, normals=(), coalition=coal)
     up_src = "coalition DP (NG.2: an upper bound)"
     reason = _fail_reason(inst, fails[0], "the coalition DP")
-    lower, lo_src = lower_bound_simple(inst)
-    fixpoint = start  # the coalition fixpoint, for NG.10 (it bounds every H)
-    if fixpoint is None:
-        fix = certified_coalition_dp(inst, None, max_layers, certify=False)
-        fixpoint, dp_inf = fix[2], Fraction(fix[0].value)
-    else:
-        dp_inf = upper
-    assert fixpoint is not None
-    shift = _deflated_lower(*fixpoint)
-    if shift is not None and dp_inf - shift > lower:
-        lower, lo_src = dp_inf - shift, ("the coalition DP's fixpoint sets translated into a "
-                                         "sub-fixpoint (NG.10)")
+    lower, lo_src = _finite_lower(inst, start, upper, max_layers)
     if lower == upper:
         src = "coalition DP (NG.2) meeting the translated fixpoint bound (NG.10)"
-        return NValue(normalize(upper), normalize(upper), src, src, None,
-                      horizon=horizon, layers=layers, normals=(),
-                      coalition=coal)
+        return _proved(upper, src, horizon=horizon, layers=layers, normals=(), coalition=coal)
     extras: list[Normal] = []
     up_normals: tuple[Normal, ...] = ()
     cap = max_layers if max_layers is not None else 50 * inst.n_nodes + 100
@@ -538,18 +388,36 @@ def nvalue(instance: Instance, horizon: int | None, *, max_layers: int | None = 
             up_src = f"DP over {len(extras)} extra facet normals (NG.7: an upper bound)"
         if not fails:
             src = f"DP over {len(extras)} extra facet normals, certified at every arc (NG.8)"
-            return NValue(normalize(val), normalize(val), src, src, None,
-                          horizon=horizon, layers=layers_g, normals=tuple(extras),
-                          coalition=coal)
+            return _proved(val, src, horizon=horizon, layers=layers_g, normals=tuple(extras),
+                           coalition=coal)
         if lower == upper:
-            src = f"{up_src[:-1]}) meeting {lo_src}"
-            return NValue(normalize(upper), normalize(upper), src, src, None,
-                          horizon=horizon, layers=layers, normals=up_normals,
-                          coalition=coal)
+            return _proved(upper, f"{up_src[:-1]}) meeting {lo_src}", horizon=horizon,
+                           layers=layers, normals=up_normals, coalition=coal)
         reason = _fail_reason(inst, fails[0], f"the DP with {len(extras)} extra normals")
     return NValue(normalize(lower), normalize(upper), lo_src, up_src, reason,
                   horizon=horizon, layers=layers, normals=up_normals,
                   coalition=coal)
+
+
+def _finite_lower(inst: Instance, start: tuple[CoalitionRunner, dict[int, np.ndarray]] | None,
+                  dp: Fraction, max_layers: int | None) -> tuple[Fraction, str]:
+    """The better lower bound on ``V_H`` (finite ``H``) and its source: the simple Defenders
+    (NG.9) or the coalition fixpoint translated into a sub-fixpoint (NG.10). ``start`` is the
+    fixpoint when the coalition DP at ``H`` reached it (``dp`` its value), else None (then it
+    is run to its fixpoint here)."""
+    lower, lo_src = lower_bound_simple(inst)
+    fixpoint = start  # the coalition fixpoint, for NG.10 (it bounds every H)
+    if fixpoint is None:
+        fix = certified_coalition_dp(inst, None, max_layers, certify=False)
+        fixpoint, dp_inf = fix[2], Fraction(fix[0].value)
+    else:
+        dp_inf = dp
+    assert fixpoint is not None
+    shift = deflated_lower(*fixpoint)
+    if shift is not None and dp_inf - shift > lower:
+        return dp_inf - shift, ("the coalition DP's fixpoint sets translated into a "
+                                "sub-fixpoint (NG.10)")
+    return lower, lo_src
 
 
 def _fail_reason(inst: Instance, arc: Arc, what: str) -> str:

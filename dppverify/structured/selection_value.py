@@ -24,13 +24,9 @@ from dppverify.exact import Bracket, normalize
 from dppverify.game.instance import Instance
 from dppverify.structured.cover import Normal, min_cover_vectors, zero_one_normals
 from dppverify.structured.dp_certificate import certified_coalition_dp
+from dppverify.structured.lower_bounds import translation_at_start
 from dppverify.structured.normal_fixpoint import NormalSets
-from dppverify.structured.proved_value import (
-    NValue,
-    infinite_sets,
-    nvalue,
-    translation_at_start,
-)
+from dppverify.structured.proved_value import NValue, infinite_sets, nvalue
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -417,33 +417,34 @@ def to_efg(instance: Instance, horizon: int, *, attacker_observes: bool = True,
                        max_nodes=max_nodes, title=title, goal_values=goal_values)
 
 
-def write_efg(path: str | Path, instance: Instance, horizon: int, *,
-              attacker_observes: bool = True, forced_moves: bool = False,
-              max_prefixes: int = DEFAULT_MAX_PREFIXES, max_nodes: int = DEFAULT_MAX_EFG_NODES,
+def write_efg(path: str | Path, tree: WalkTree, *, attacker_observes: bool = True,
+              forced_moves: bool = False, max_nodes: int = DEFAULT_MAX_EFG_NODES,
               title: str | None = None, progress: bool = False,
               goal_values: Sequence[Number] | None = None) -> EfgSize:
-    """Write :func:`to_efg` to ``path`` atomically (a temporary file, then a rename).
+    """Write :func:`tree_to_efg` of ``tree`` to ``path`` atomically (a temporary file, then a
+    rename).
 
     Returns the game's size. Nothing is written when the game cannot be built. With
-    ``progress``, tqdm bars on stderr show the tree build and the export.
+    ``progress``, a tqdm bar on stderr shows the export (``build_tree(..., progress=True)``
+    shows the tree's build).
 
     Raises
     ------
     CheckerError
-        As :func:`to_efg`; or the file cannot be written (one-line message).
+        As :func:`tree_to_efg`; or the file cannot be written (one-line message).
 
     Examples
     --------
     >>> import pathlib, tempfile
     >>> from dppverify.game.examples import triangle
-    >>> inst = triangle()
+    >>> from dppverify.tree_route.tree import build_tree
+    >>> tree = build_tree(triangle(), 1)
     >>> with tempfile.TemporaryDirectory() as d:
-    ...     size = write_efg(pathlib.Path(d) / "game.efg", inst, 1)
+    ...     size = write_efg(pathlib.Path(d) / "game.efg", tree)
     ...     first = (pathlib.Path(d) / "game.efg").read_text().split()[0]
     >>> size.nodes, first
     (15, 'EFG')
     """
-    tree = build_tree(instance, horizon, max_prefixes=max_prefixes, progress=progress)
     with tqdm(total=1, desc=f"export .efg ({tree.n_prefixes} prefixes)", disable=not progress,
               leave=False, file=sys.stderr) as bar:
         text = tree_to_efg(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
@@ -452,4 +453,3 @@ def write_efg(path: str | Path, instance: Instance, horizon: int, *,
     write_files({Path(path): text})  # all or nothing, mode from the umask
     return efg_size(tree, attacker_observes=attacker_observes, forced_moves=forced_moves,
                     selection=goal_values is not None)
-

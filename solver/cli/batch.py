@@ -18,7 +18,7 @@ from solver.errors import InvalidInstanceError
 
 
 def batch_checker() -> Any:
-    """The checker's functions ``dpp batch`` uses (:class:`solver.experiments.batch.Checker`):
+    """The checker's functions ``dpp batch`` uses (:class:`solver.experiments.batch_line.Checker`):
     the package :mod:`solver.cli` is the one place the solver's side imports ``dppverify``.
 
     Examples
@@ -31,7 +31,7 @@ def batch_checker() -> Any:
     from dppverify.certify import certify
     from dppverify.errors import InvalidInstanceError as CheckerInstanceError
     from dppverify.formats.scen import BATCH_RULE, candidates_of, goals_by_map, parse_scen
-    from solver.experiments.batch import Checker
+    from solver.experiments.batch_line import Checker
 
     return Checker(certify=certify, parse_scen=parse_scen, goals_by_map=goals_by_map,
                    candidates_of=candidates_of,
@@ -140,7 +140,8 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
       dpp batch s.scen -o s.csv --dask tcp://127.0.0.1:8786
     """
     from dppio.standard_maps import PREFIX, standard_scen_path
-    from solver.experiments.batch import BatchConfig, parse_prior, run_batch
+    from solver.experiments.batch import BatchRun, parse_prior, run_batch
+    from solver.experiments.batch_line import BatchConfig
     from solver.experiments.batch_lines import parse_selection
 
     select = parse_selection(lines, shard)
@@ -154,10 +155,10 @@ def batch_command(scen: str, output: str, seed: int, prior_text: str, connectivi
                          connectivity=int(connectivity), maps=maps, route=route)
     bar = BatchProgress(want_progress(progress), output)
     try:
-        result = run_batch(scen, output, config, batch_checker(), workers=workers,
-                           dask_address=dask_address, chunk=chunk, progress=bar.update,
-                           on_start=bar.start, on_end=bar.end,
-                           select=None if select.everything else select)
+        run = BatchRun(workers=workers, dask_address=dask_address, chunk=chunk,
+                       select=None if select.everything else select, progress=bar.update,
+                       on_start=bar.start, on_end=bar.end)
+        result = run_batch(scen, output, config, batch_checker(), run)
     except (KeyboardInterrupt, Terminated) as exc:
         bar.close()
         click.echo(bar.interrupted(exc), err=True)

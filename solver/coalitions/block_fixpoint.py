@@ -16,7 +16,8 @@ layer at which each ``m_a(v)`` settled) from ``m*`` alone, by a bottleneck label
 the arcs and covers that attain ``m*`` (NX.7).
 
 Everything is exact integers at a common scale ``D`` (numpy int64; scipy's float64 Dijkstra
-and float64 products only when every partial sum is an integer below 2**53).
+and float64 products only when every partial sum is an integer below 2**53; the covers' totals
+are :mod:`solver.coalitions.cover_totals`).
 """
 
 from __future__ import annotations
@@ -29,42 +30,14 @@ import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.csgraph import dijkstra
 
-from solver.coalitions.vertex_tables import VertexTable
+from solver.coalitions.arc_graph import ArcGraph
+from solver.coalitions.cover_totals import attaining, cover_minimum
+from solver.coalitions.normal_system import NormalSystem
+from solver.coalitions.vertex_tables import INT_LIMIT, VertexTable
 from solver.graph.distances import EXACT_FLOAT_LIMIT
 
-INT_LIMIT = 2 ** 62
 UNSET = np.iinfo(np.int32).max
 NONE = np.iinfo(np.int64).max
-CHUNK = 8192
-"""Rows per block of the cover totals (bounds the temporaries: 8192 × vertices)."""
-
-
-def exact_totals(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:
-    """``values @ scaled`` for non-negative int64 data, exactly.
-
-    float64 (every entry an integer below 2**53, so comparisons and ``min`` are exact) when
-    every partial sum is provably such an integer, else int64 through Python integers.
-
-    Raises
-    ------
-    OverflowError
-        When a total leaves the int64 range used here (``2**62``).
-
-    Examples
-    --------
-    >>> exact_totals(np.array([[2, 3, 4]]), np.array([[1, 0], [1, 0], [0, 1]])).tolist()
-    [[5.0, 4.0]]
-    """
-    if values.shape[0] == 0 or scaled.shape[1] == 0:
-        return np.zeros((values.shape[0], scaled.shape[1]), dtype=np.int64)
-    top = int(values.max(initial=0))
-    width = (top + 1) * (int(np.abs(scaled).sum(axis=0).max(initial=1)) + 1)
-    if width < EXACT_FLOAT_LIMIT:
-        return values.astype(np.float64) @ scaled.astype(np.float64)
-    out = values.astype(object) @ scaled.astype(object)
-    if max((int(x) for x in out.flat), default=0) >= INT_LIMIT:
-        raise OverflowError("numbers beyond the exact int64 range")
-    return out.astype(np.int64)
 
 
 def _own_column(table: VertexTable, j: int) -> tuple[int, int] | None:
@@ -81,62 +54,6 @@ def _own_column(table: VertexTable, j: int) -> tuple[int, int] | None:
         if np.count_nonzero(row) != (1 if any(q == p for q, _ in found) else 0):
             return None
     return found[0] if len(found) == 1 else None
-
-
-def cover_minimum(values: np.ndarray, lost: np.ndarray, table: VertexTable,
-                  skip: tuple[int, int] | None = None
-                  ) -> tuple[np.ndarray, int, np.ndarray] | None:
-    """``min_c values[row] @ c`` over the table's vertices ``c`` (all parts, but ``skip``)
-    whose support avoids the row's ``lost`` entries, exactly.
-
-    Returns ``(num, den, got)``: the minimum is ``num[row] / den`` where ``got[row]`` (some
-    vertex avoids the lost entries); ``num`` is int64 for a one-part table, else Python
-    integers over the lcm of the parts' denominators. None when every vertex is skipped.
-
-    Examples
-    --------
-    >>> from solver.coalitions.vertex_tables import vertex_table
-    >>> t = vertex_table(((1, 0), (0, 1), (1, 1)), (1, 1))
-    >>> num, den, got = cover_minimum(np.array([[2, 3, 4], [2, 3, 6]]),
-    ...                               np.zeros((2, 3), dtype=bool), t)
-    >>> num.tolist(), den, got.tolist()
-    ([4, 5], 1, [True, True])
-    """
-    parts = [(p, sc if skip is None or skip[0] != p else np.delete(sc, skip[1], axis=1), lcm)
-             for p, (sc, lcm) in enumerate(table.parts)]
-    parts = [(p, sc, lcm) for p, sc, lcm in parts if sc.shape[1]]
-    if not parts:
-        return None
-    finite = values[~lost]
-    top = int(finite.max(initial=0))
-    den = math.lcm(*(lcm for _, _, lcm in parts))
-    best: np.ndarray | None = None
-    got = np.zeros(values.shape[0], dtype=bool)
-    for _, sc, lcm in parts:
-        # an unreachable step: a value above every finite cover's total
-        big = top * int(sc.sum(axis=0).max(initial=1)) + 1
-        vals = np.where(lost, big, values)
-        if big >= INT_LIMIT:
-            vals = vals.astype(object)
-        mins = [_row_minimum(vals[lo:lo + CHUNK], sc) for lo in range(0, values.shape[0], CHUNK)]
-        low = np.concatenate(mins) if mins else np.zeros(0, dtype=np.int64)
-        ok = low < big
-        if len(parts) == 1:
-            return np.where(ok, low, 0).astype(low.dtype), den, ok
-        low = np.where(ok, low, 0).astype(object) * (den // lcm)
-        best = low if best is None else np.where(ok & (~got | (low < best)), low, best)
-        got |= ok
-    assert best is not None
-    return best, den, got
-
-
-def _row_minimum(values: np.ndarray, scaled: np.ndarray) -> np.ndarray:
-    """Row-wise ``min`` of ``values @ scaled`` exactly: int64 when it fits, else Python
-    integers."""
-    try:
-        return exact_totals(values, scaled).min(axis=1).astype(np.int64)
-    except OverflowError:
-        return (values.astype(object) @ scaled.astype(object)).min(axis=1)
 
 
 def _steps(indptr: np.ndarray, heads: np.ndarray, w_top: np.ndarray, x: np.ndarray,
@@ -239,178 +156,179 @@ def _step_inputs(step: Callable[[int], tuple[np.ndarray, np.ndarray]], tab: Vert
     return vals, lost
 
 
-def block_fixpoint(indptr: np.ndarray, heads: np.ndarray, weights: np.ndarray, den: int,
-                   goals: Sequence[int], goal_values: np.ndarray, tops: np.ndarray,
-                   closures: Sequence[VertexTable], sums: Sequence[int], max_rounds: int
+def block_fixpoint(graph: ArcGraph, system: NormalSystem, max_rounds: int
                    ) -> tuple[np.ndarray, int, np.ndarray, int] | None:
     """The greatest fixpoint of the normal-restricted DP by blocks (see the module docstring).
 
-    ``goal_values[j, i]`` is ``m_{a_j}(goals[i])`` over ``den``; ``sums[j]`` orders the blocks
-    (smallest first). Returns ``(m, scale, finite, rounds)`` with ``m_{a_j}(v) = m[j, v] /
-    scale`` where ``finite[v]``, or None when the method does not apply (a weight that is not
-    positive, a cover table not of the expected shape, numbers beyond int64) or ``max_rounds``
-    rounds did not settle: the caller then runs the layered DP.
+    The blocks are solved by increasing entry sum of their normals. Returns
+    ``(m, scale, finite, rounds)`` with ``m_{a_j}(v) = m[j, v] / scale`` where ``finite[v]``,
+    or None when the method does not apply (a weight that is not positive, a cover table not
+    of the expected shape, numbers beyond int64) or ``max_rounds`` rounds did not settle: the
+    caller then runs the layered DP.
 
     Examples
     --------
     Two goals one step from the start, the 0/1 normals:
 
-    >>> from solver.coalitions.vertex_tables import vertex_table, zero_one_normals
-    >>> zo = zero_one_normals(2)
-    >>> tabs = [vertex_table(zo, a) for a in zo]
-    >>> m, scale, fin, rounds = block_fixpoint(
-    ...     np.array([0, 2, 2, 2]), np.array([1, 2]), np.array([1, 1]), 1, (1, 2),
-    ...     np.array([[0, 2], [2, 0], [2, 2]]), np.array([1, 1, 1]), tabs, [1, 1, 2], 10)
+    >>> from solver.coalitions.vertex_tables import zero_one_normals
+    >>> graph = ArcGraph(indptr=np.array([0, 2, 2, 2]), heads=np.array([1, 2]),
+    ...                  weights=np.array([1, 1]), denominator=1, goals=(1, 2),
+    ...                  terminal=np.array([[0, 2], [2, 0]]), start=0)
+    >>> m, scale, fin, rounds = block_fixpoint(graph, NormalSystem(zero_one_normals(2)), 10)
     >>> m[:, 0].tolist(), scale, rounds
     ([1, 1, 2], 1, 2)
     """
-    n = len(indptr) - 1
-    n_a = len(closures)
-    if weights.size and int(weights.min()) <= 0:
+    if graph.weights.size and int(graph.weights.min()) <= 0:
         return None
-    own = [_own_column(t, j) for j, t in enumerate(closures)]
+    own = [_own_column(t, j) for j, t in enumerate(system.closures)]
     if any(k is None for k in own):
         return None
-    tails = np.repeat(np.arange(n, dtype=np.int64), np.diff(indptr))
-    heads = heads.astype(np.int64)
-    rev = _reverse(tails, heads, n, weights)
-    goals_a = np.asarray(goals, dtype=np.int64)
-    is_goal = np.zeros(n, dtype=bool)
-    is_goal[goals_a] = True
-    scale = den
-    x = np.zeros((n_a, n), dtype=np.int64)
-    fin = np.zeros((n_a, n), dtype=bool)
-    x[:, goals_a] = goal_values
-    fin[:, goals_a] = True
-    order = sorted(range(n_a), key=lambda j: (sums[j], j))
-    step_cache: dict[int, tuple[int, np.ndarray, np.ndarray]] = {}
-    version = [0] * n_a
-    seen: dict[int, tuple[int, ...]] = {}
-
-    def step(j: int) -> tuple[np.ndarray, np.ndarray]:
-        hit = step_cache.get(j)
-        if hit is None or hit[0] != version[j]:
-            w_top = weights * (int(tops[j]) * (scale // den))
-            s, has = _steps(indptr, heads, w_top, x[j], fin[j])
-            hit = (version[j], s, has)
-            step_cache[j] = hit
-        return hit[1], hit[2]
-
+    sums = [sum(a) for a in system.normals]
+    order = sorted(range(len(sums)), key=lambda j: (sums[j], j))
+    blocks = _Blocks(graph, system, own)
     try:
         for rounds in range(1, max_rounds + 1):
             changed = False
             for j in order:
-                tab = closures[j]
-                inputs = tuple(version[c] for c in tab.columns if c != j)
-                if seen.get(j) == inputs:
-                    continue  # the same sources (up to the common scale): the same solution
-                init = np.zeros(n, dtype=np.int64)
-                src = is_goal.copy()
-                init[goals_a] = x[j, goals_a]
-                found = cover_minimum(*_step_inputs(step, tab, is_goal), tab, skip=own[j])
-                if found is not None:
-                    low, lcm, got = found
-                    nodes = np.flatnonzero(~is_goal)[got]
-                    vals_live = low[got]
-                    grow = 1
-                    if lcm > 1 and vals_live.dtype != object and lcm < INT_LIMIT:
-                        grow = lcm // math.gcd(lcm, int(np.gcd.reduce(vals_live % lcm,
-                                                                      initial=0)))
-                    elif lcm > 1:
-                        grow = lcm // math.gcd(lcm, *(int(v) % lcm for v in vals_live))
-                    if grow > 1:
-                        scale *= grow
-                        if int(x.max(initial=0)) * grow * 4 >= INT_LIMIT:
-                            return None
-                        x *= grow
-                        goal_values = goal_values * grow
-                        step_cache.clear()
-                        init[goals_a] = x[j, goals_a]
-                    if vals_live.dtype != object and int(
-                            vals_live.max(initial=0)) * grow < INT_LIMIT:
-                        init[nodes] = vals_live * grow // lcm
-                    else:
-                        quot = [int(v) * grow // lcm for v in vals_live]
-                        if quot and max(quot) >= INT_LIMIT:
-                            return None
-                        init[nodes] = np.asarray(quot, dtype=np.int64)
-                    src[nodes] = True
-                seen[j] = inputs
-                w_top = weights * (int(tops[j]) * (scale // den))
-                new, nfin = _sourced(rev, w_top, init, np.flatnonzero(src), n)
-                if not (np.array_equal(nfin, fin[j]) and np.array_equal(new[nfin], x[j, nfin])):
+                if blocks.solve(j):
                     changed = True
-                    new[~nfin] = 0
-                    x[j], fin[j] = new, nfin
-                    version[j] += 1
             if not changed:
+                fin = blocks.fin
                 finite = np.asarray(fin.any(axis=0), dtype=bool)
                 if not np.array_equal(fin, np.broadcast_to(finite, fin.shape)):
                     return None  # pragma: no cover - every normal reaches the same goals
-                return x, scale, finite, rounds
-    except OverflowError:
+                return blocks.x, blocks.scale, finite, rounds
+    except OverflowError:  # numbers beyond int64: the layered DP, exact in Python integers
         return None
     return None
 
 
-def fixpoint_ranks(indptr: np.ndarray, heads: np.ndarray, w_scaled: np.ndarray,
-                   goals: Sequence[int], tops: np.ndarray, closures: Sequence[VertexTable],
-                   m: np.ndarray, finite: np.ndarray) -> np.ndarray:
-    """The layered DP's ranks from its fixpoint ``m`` (proofs/NEXACT.md NX.7).
+class _Blocks:
+    """The state of :func:`block_fixpoint`'s rounds: every normal's values ``x`` at the common
+    scale (finite where ``fin``), the steps' cache, and what each block was last solved from
+    (the versions of the blocks its covers read)."""
+
+    def __init__(self, graph: ArcGraph, system: NormalSystem,
+                 own: Sequence[tuple[int, int] | None]) -> None:
+        n = graph.n_nodes
+        self.graph, self.system, self.own = graph, system, own
+        self.heads = graph.heads.astype(np.int64)
+        self.rev = _reverse(graph.tails, self.heads, n, graph.weights)
+        self.goals = np.asarray(graph.goals, dtype=np.int64)
+        self.scale = graph.denominator
+        self.x = np.zeros((len(system.normals), n), dtype=np.int64)
+        self.fin = np.zeros((len(system.normals), n), dtype=bool)
+        self.x[:, self.goals] = np.array(system.normals, dtype=np.int64) @ graph.terminal.T
+        self.fin[:, self.goals] = True
+        self.version = [0] * len(system.normals)
+        self._step_cache: dict[int, tuple[int, np.ndarray, np.ndarray]] = {}
+        self._seen: dict[int, tuple[int, ...]] = {}
+
+    def _w_top(self, j: int) -> np.ndarray:
+        """The arcs' weights times ``max(a_j)`` at the common scale."""
+        graph = self.graph
+        return graph.weights * (int(self.system.tops[j]) * (self.scale // graph.denominator))
+
+    def step(self, j: int) -> tuple[np.ndarray, np.ndarray]:
+        """The step ``s_j(v)`` of normal ``j`` at every node, and where it is finite."""
+        hit = self._step_cache.get(j)
+        if hit is None or hit[0] != self.version[j]:
+            s, has = _steps(self.graph.indptr, self.heads, self._w_top(j), self.x[j],
+                            self.fin[j])
+            hit = (self.version[j], s, has)
+            self._step_cache[j] = hit
+        return hit[1], hit[2]
+
+    def solve(self, j: int) -> bool:
+        """Solve block ``j`` from the others (one sourced Dijkstra): whether it changed.
+
+        Raises OverflowError when the numbers would leave int64."""
+        tab = self.system.closures[j]
+        inputs = tuple(self.version[c] for c in tab.columns if c != j)
+        if self._seen.get(j) == inputs:
+            return False  # the same sources (up to the common scale): the same solution
+        init, src = self._sources(j)
+        self._seen[j] = inputs
+        new, nfin = _sourced(self.rev, self._w_top(j), init, np.flatnonzero(src),
+                             self.graph.n_nodes)
+        if np.array_equal(nfin, self.fin[j]) and np.array_equal(new[nfin], self.x[j, nfin]):
+            return False
+        new[~nfin] = 0
+        self.x[j], self.fin[j] = new, nfin
+        self.version[j] += 1
+        return True
+
+    def _sources(self, j: int) -> tuple[np.ndarray, np.ndarray]:
+        """Block ``j``'s sources: ``(init, src)``, the goals' values and ``init_a(v)`` (the
+        cheapest cover other than ``a`` itself) where it is finite; the common scale grows
+        first when a cover's value is not a multiple of ``1/scale``."""
+        tab, is_goal = self.system.closures[j], self.graph.is_goal
+        init = np.zeros(self.graph.n_nodes, dtype=np.int64)
+        src = is_goal.copy()
+        found = cover_minimum(*_step_inputs(self.step, tab, is_goal), tab, skip=self.own[j])
+        if found is not None:
+            low, lcm, got = found
+            nodes = np.flatnonzero(~is_goal)[got]
+            vals_live = low[got]
+            grow = _growth(vals_live, lcm)
+            if grow > 1:
+                self.scale *= grow
+                if int(self.x.max(initial=0)) * grow * 4 >= INT_LIMIT:
+                    raise OverflowError("numbers beyond the exact int64 range")
+                self.x *= grow
+                self._step_cache.clear()
+            init[nodes] = _quotients(vals_live, grow, lcm)
+            src[nodes] = True
+        init[self.goals] = self.x[j, self.goals]  # at the scale, grown or not
+        return init, src
+
+
+def _growth(vals: np.ndarray, lcm: int) -> int:
+    """The least ``grow`` with every ``vals · grow / lcm`` an integer."""
+    if lcm > 1 and vals.dtype != object and lcm < INT_LIMIT:
+        return lcm // math.gcd(lcm, int(np.gcd.reduce(vals % lcm, initial=0)))
+    if lcm > 1:
+        return lcm // math.gcd(lcm, *(int(v) % lcm for v in vals))
+    return 1
+
+
+def _quotients(vals: np.ndarray, grow: int, lcm: int) -> np.ndarray:
+    """``vals · grow / lcm`` (exact division) as int64; OverflowError past the int64 range."""
+    if vals.dtype != object and int(vals.max(initial=0)) * grow < INT_LIMIT:
+        return vals * grow // lcm
+    quot = [int(v) * grow // lcm for v in vals]
+    if quot and max(quot) >= INT_LIMIT:
+        raise OverflowError("numbers beyond the exact int64 range")
+    return np.asarray(quot, dtype=np.int64)
+
+
+def fixpoint_ranks(graph: ArcGraph, system: NormalSystem, scale: int, m: np.ndarray,
+                   finite: np.ndarray) -> np.ndarray:
+    """The layered DP's ranks from its fixpoint ``m`` at ``scale`` (proofs/NEXACT.md NX.7).
 
     ``rank[a, v]`` is the first layer ``k`` with ``m_a^k(v) = m*_a(v)``: 0 at goals (and where
     no goal is reachable); elsewhere the least, over the vertex covers ``c`` attaining
     ``m*_a(v)``, of the largest ``ready[n, v]`` over ``n`` with ``c_n > 0``, where
     ``ready[n, v]`` is one more than the least ``rank[n, u]`` over the arcs ``(v, u)`` attaining
-    the step ``s*_n(v)``. ``w_scaled`` are the weights at ``m``'s scale.
+    the step ``s*_n(v)``.
 
     Examples
     --------
-    >>> from solver.coalitions.vertex_tables import vertex_table, zero_one_normals
-    >>> zo = zero_one_normals(2)
-    >>> tabs = [vertex_table(zo, a) for a in zo]
-    >>> fixpoint_ranks(np.array([0, 2, 2, 2]), np.array([1, 2]), np.array([1, 1]), (1, 2),
-    ...                np.array([1, 1, 1]), tabs, np.array([[1, 0, 2], [1, 2, 0], [2, 2, 2]]),
+    >>> from solver.coalitions.vertex_tables import zero_one_normals
+    >>> graph = ArcGraph(indptr=np.array([0, 2, 2, 2]), heads=np.array([1, 2]),
+    ...                  weights=np.array([1, 1]), denominator=1, goals=(1, 2),
+    ...                  terminal=np.array([[0, 2], [2, 0]]), start=0)
+    >>> fixpoint_ranks(graph, NormalSystem(zero_one_normals(2)), 1,
+    ...                np.array([[1, 0, 2], [1, 2, 0], [2, 2, 2]]),
     ...                np.array([True, True, True]))[:, 0].tolist()
     [1, 1, 1]
     """
-    n = len(indptr) - 1
-    n_a = len(closures)
-    tails = np.repeat(np.arange(n, dtype=np.int64), np.diff(indptr))
-    heads = heads.astype(np.int64)
-    goals_a = np.asarray(goals, dtype=np.int64)
-    is_goal = np.zeros(n, dtype=bool)
-    is_goal[goals_a] = True
-    inner = finite & ~is_goal
-    ok_arc = finite[heads] & inner[tails]
-    s_star = np.zeros((n_a, n), dtype=np.int64)
-    opt_arc = np.zeros((n_a, heads.size), dtype=bool)
-    for j in range(n_a):
-        cand = w_scaled * int(tops[j]) + m[j, heads]
-        s, _ = _steps(indptr, heads, w_scaled * int(tops[j]), m[j], finite)
-        s_star[j] = np.where(inner, s, 0)
-        opt_arc[j] = ok_arc & (cand == s[tails])
-    # the attained covers: entries (normal a, node v, support of the vertex), by node
-    live = np.flatnonzero(inner)
-    width = max(1, max(int((sc > 0).sum(axis=0).max(initial=1)) for t in closures
-                       for sc, _ in t.parts))
-    ent_a, ent_v, ent_s = [], [], []
-    for j, tab in enumerate(closures):
-        cols = np.asarray(tab.columns, dtype=np.int64)
-        for sc, lcm in tab.parts:
-            target = m[j, live].astype(object) * lcm if lcm * int(
-                m.max(initial=0)) >= INT_LIMIT else m[j, live] * lcm
-            hit_v, hit_q = _attaining(s_star[cols][:, live].T, sc, target)
-            supp = np.full((sc.shape[1], width), -1, dtype=np.int64)
-            for q in range(sc.shape[1]):
-                nz = cols[np.flatnonzero(sc[:, q])]
-                supp[q, :nz.size] = nz
-            ent_a.append(np.full(hit_v.size, j, dtype=np.int64))
-            ent_v.append(live[hit_v])
-            ent_s.append(supp[hit_q])
-    e_a = np.concatenate(ent_a)
-    e_v = np.concatenate(ent_v)
-    e_s = np.concatenate(ent_s)
+    n, n_a = graph.n_nodes, len(system.closures)
+    tails, heads = graph.tails, graph.heads.astype(np.int64)
+    goals_a = np.asarray(graph.goals, dtype=np.int64)
+    inner = finite & ~graph.is_goal
+    s_star, opt_arc = _optimal_steps(graph, system.tops, scale, m, finite)
+    e_a, e_v, e_s = _attained_covers(system.closures, s_star, m, np.flatnonzero(inner))
     # each entry waits for its support's steps: a count, and the slots by (normal, node)
     waiting = (e_s >= 0).sum(axis=1)
     slot_e, slot_n = np.nonzero(e_s >= 0)
@@ -450,23 +368,45 @@ def fixpoint_ranks(indptr: np.ndarray, heads: np.ndarray, w_scaled: np.ndarray,
     return rank.astype(np.int32)
 
 
-def _attaining(values: np.ndarray, scaled: np.ndarray, target: np.ndarray
-               ) -> tuple[np.ndarray, np.ndarray]:
-    """The pairs (row, vertex) with ``values[row] @ scaled[:, vertex] == target[row]``, exactly
-    (by blocks of rows: the totals of one block at a time)."""
-    rows: list[np.ndarray] = []
-    verts: list[np.ndarray] = []
-    for lo in range(0, values.shape[0], CHUNK):
-        try:
-            tot = exact_totals(values[lo:lo + CHUNK], scaled)
-        except OverflowError:  # totals beyond int64: Python integers
-            tot = values[lo:lo + CHUNK].astype(object) @ scaled.astype(object)
-        r, q = np.nonzero(tot == target[lo:lo + CHUNK, None])
-        rows.append(r + lo)
-        verts.append(q)
-    if not rows:
-        return np.zeros(0, dtype=np.int64), np.zeros(0, dtype=np.int64)
-    return np.concatenate(rows), np.concatenate(verts)
+def _optimal_steps(graph: ArcGraph, tops: np.ndarray, scale: int, m: np.ndarray,
+                   finite: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """At the fixpoint ``m``: every normal's step ``s*_a(v)`` at the inner nodes (0 elsewhere)
+    and the arcs ``(v, u)`` that attain it."""
+    heads = graph.heads.astype(np.int64)
+    w_scaled = graph.weights * (scale // graph.denominator)
+    inner = finite & ~graph.is_goal
+    ok_arc = finite[heads] & inner[graph.tails]
+    s_star = np.zeros((len(tops), graph.n_nodes), dtype=np.int64)
+    opt_arc = np.zeros((len(tops), heads.size), dtype=bool)
+    for j in range(len(tops)):
+        cand = w_scaled * int(tops[j]) + m[j, heads]
+        s, _ = _steps(graph.indptr, heads, w_scaled * int(tops[j]), m[j], finite)
+        s_star[j] = np.where(inner, s, 0)
+        opt_arc[j] = ok_arc & (cand == s[graph.tails])
+    return s_star, opt_arc
+
+
+def _attained_covers(closures: Sequence[VertexTable], s_star: np.ndarray, m: np.ndarray,
+                     live: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The vertex covers that attain ``m*`` at the ``live`` nodes, as entries: the normal
+    ``a``, the node ``v`` and the support of the vertex (normals, padded with -1)."""
+    width = max(1, max(int((sc > 0).sum(axis=0).max(initial=1)) for t in closures
+                       for sc, _ in t.parts))
+    ent_a, ent_v, ent_s = [], [], []
+    for j, tab in enumerate(closures):
+        cols = np.asarray(tab.columns, dtype=np.int64)
+        for sc, lcm in tab.parts:
+            target = m[j, live].astype(object) * lcm if lcm * int(
+                m.max(initial=0)) >= INT_LIMIT else m[j, live] * lcm
+            hit_v, hit_q = attaining(s_star[cols][:, live].T, sc, target)
+            supp = np.full((sc.shape[1], width), -1, dtype=np.int64)
+            for q in range(sc.shape[1]):
+                nz = cols[np.flatnonzero(sc[:, q])]
+                supp[q, :nz.size] = nz
+            ent_a.append(np.full(hit_v.size, j, dtype=np.int64))
+            ent_v.append(live[hit_v])
+            ent_s.append(supp[hit_q])
+    return np.concatenate(ent_a), np.concatenate(ent_v), np.concatenate(ent_s)
 
 
 def _expand(ptr: np.ndarray, cnt: np.ndarray, keys: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

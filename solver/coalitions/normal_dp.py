@@ -31,8 +31,9 @@ import numpy as np
 
 from solver.coalitions.arc_graph import ArcGraph
 from solver.coalitions.arc_test import arc_failures
-from solver.coalitions.block_fixpoint import block_fixpoint, cover_minimum, fixpoint_ranks
+from solver.coalitions.block_fixpoint import block_fixpoint, fixpoint_ranks
 from solver.coalitions.budget import BudgetExceeded
+from solver.coalitions.cover_totals import cover_minimum
 from solver.coalitions.normal_system import NormalSystem
 
 INT_LIMIT = 2 ** 62
@@ -236,11 +237,7 @@ def normal_dp(graph: ArcGraph, system: NormalSystem, max_layers: int) -> Fixpoin
     >>> [str(fix.value(j, 0)) for j in range(3)], fix.layers
     (['1', '1', '2'], 1)
     """
-    normals = np.array(system.normals, dtype=np.int64)
-    goal_values = normals @ graph.terminal.T
-    found = block_fixpoint(graph.indptr, graph.heads, graph.weights, graph.denominator,
-                           graph.goals, goal_values, system.tops, system.closures,
-                           [sum(a) for a in system.normals], max_rounds=max_layers + 1)
+    found = block_fixpoint(graph, system, max_rounds=max_layers + 1)
     if found is None:
         fix = layered_dp(graph, system, check_layers=False, max_layers=max_layers)
         assert isinstance(fix, Fixpoint)
@@ -248,9 +245,7 @@ def normal_dp(graph: ArcGraph, system: NormalSystem, max_layers: int) -> Fixpoin
     m, scale, finite, _ = found
 
     def ranks() -> np.ndarray:
-        return fixpoint_ranks(graph.indptr, graph.heads,
-                              graph.weights * (scale // graph.denominator), graph.goals,
-                              system.tops, system.closures, m, finite)
+        return fixpoint_ranks(graph, system, scale, m, finite)
 
     fix = Fixpoint(system, m, scale, finite, ranks)
     # K <= the number of (normal, inner node) pairs (the ranks take every value 0..K); below

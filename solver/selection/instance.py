@@ -25,7 +25,7 @@ from solver.formats.json_text import parse_json_text, read_json
 from solver.formats.map_instance import MAP_INSTANCE_FORMAT
 from solver.game.instance import MAX_GOALS, Instance
 from solver.game.instance_reading import instance_from_json
-from solver.game.instance_writing import instance_to_json, map_instance_to_json
+from solver.game.instance_writing import instance_to_json
 from solver.numbers import format_number, parse_number
 
 GOAL_SELECTION = "goal_selection"
@@ -70,12 +70,6 @@ class SelectionInstance:
     def to_json(self) -> dict[str, Any]:
         """The goal-selection instance document (``docs/formats.md`` §1, "Goal selection")."""
         return _marked(instance_to_json(self.game), self.values)
-
-    def map_json(self, map_ref: str, *, relative_to: Path | None = None,
-                 digest: str | None = None) -> dict[str, Any]:
-        """The compact map instance (§1c) of a grid game read from ``map_ref``, marked."""
-        return _marked(map_instance_to_json(map_ref, self.game, relative_to=relative_to,
-                                            digest=digest), self.values)
 
 
 def _marked(doc: dict[str, Any], values: tuple[Fraction, ...]) -> dict[str, Any]:

@@ -26,7 +26,8 @@ from hypothesis import strategies as st
 from dppverify.errors import InvalidInstanceError
 from dppverify.formats.json_reading import parse_json
 from dppverify.game import instance_reading as instance_module
-from dppverify.game.distances import EXACT_FLOAT_LIMIT, ArcRows, exact_distances_to
+from dppverify.game.arc_rows import ArcRows
+from dppverify.game.distances import EXACT_FLOAT_LIMIT, exact_distances_to
 from dppverify.game.graph_reading import regular_graph
 from dppverify.game.instance import Instance, _read_game, arc_arrays
 from dppverify.strategies import grid_worlds, instances, many_goal_instances, weighted_graphs

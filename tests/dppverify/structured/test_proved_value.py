@@ -22,8 +22,9 @@ from dppverify.game.instance import instance_from_json
 from dppverify.structured.arc_condition import arc_condition
 from dppverify.structured.coalition import coalition_value
 from dppverify.structured.cover import balanced_vertices, basic_solutions, zero_one_normals
+from dppverify.structured.lower_bounds import lower_bound_simple
 from dppverify.structured.normal_fixpoint import normal_sets
-from dppverify.structured.proved_value import lower_bound_simple, nvalue
+from dppverify.structured.proved_value import nvalue
 from dppverify.tree_route.tree import count_prefixes
 from dppverify.tree_route.value_lp import game_value
 from tests.dppverify._helpers import run_cli, write_doc

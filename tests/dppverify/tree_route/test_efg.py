@@ -26,6 +26,7 @@ from dppverify.cli.export_efg import export_efg_command
 from dppverify.errors import CheckerError
 from dppverify.game.instance import instance_from_json
 from dppverify.tree_route.efg import to_efg, write_efg
+from dppverify.tree_route.tree import build_tree
 from tests.dppverify._helpers import (
     make_doc,
 )
@@ -155,12 +156,12 @@ def test_float_instances_export_decimals() -> None:
 def test_write_efg_is_atomic_and_reports_the_size(tmp_path: Path) -> None:
     target = tmp_path / "game.efg"
     target.write_text("old")
-    size = write_efg(target, instance_from_json(KITE), 2)
+    size = write_efg(target, build_tree(instance_from_json(KITE), 2))
     assert list(tmp_path.iterdir()) == [target]
     game = parse(target.read_text())
     assert size.nodes == sum(1 for _ in game.nodes())
     with pytest.raises(CheckerError, match="cannot write"):  # a file where a folder must be
-        write_efg(target / "g.efg", instance_from_json(KITE), 2)
+        write_efg(target / "g.efg", build_tree(instance_from_json(KITE), 2))
     assert list(tmp_path.iterdir()) == [target]
 
 

@@ -301,11 +301,13 @@ def test_size_guards_and_horizon_errors(tmp_path: Path, doc: dict[str, Any], hor
     with pytest.raises(TreeTooLargeError, match="--max-nodes"):
         to_efg(inst, horizon, max_nodes=nodes - 1)
     with pytest.raises(TreeTooLargeError, match="--max-prefixes"):
-        write_efg(tmp_path / "g.efg", inst, horizon, max_prefixes=prefixes)
+        to_efg(inst, horizon, max_prefixes=prefixes)
+    with pytest.raises(TreeTooLargeError, match="--max-nodes"):
+        write_efg(tmp_path / "g.efg", build_tree(inst, horizon), max_nodes=nodes - 1)
     assert list(tmp_path.iterdir()) == []
     with pytest.raises(HorizonError):
         to_efg(inst, too_short)
-    size = write_efg(tmp_path / "g.efg", inst, horizon)
+    size = write_efg(tmp_path / "g.efg", build_tree(inst, horizon))
     assert size.nodes == nodes == sum(1 for _ in parse((tmp_path / "g.efg").read_text()).nodes())
 
 

@@ -59,10 +59,7 @@ def _graph(doc: dict[str, Any]) -> ArcGraph:
 
 
 def _block_applies(graph: ArcGraph, system: NormalSystem) -> bool:
-    goal_values = np.array(system.normals, dtype=np.int64) @ graph.terminal.T
-    return block_fixpoint(graph.indptr, graph.heads, graph.weights, graph.denominator,
-                          graph.goals, goal_values, system.tops, system.closures,
-                          [sum(a) for a in system.normals], 10_000) is not None
+    return block_fixpoint(graph, system, 10_000) is not None
 
 
 def _normal_dp_equals_layered_dp(family: str, seed: int, n: int) -> None:

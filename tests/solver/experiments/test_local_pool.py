@@ -90,7 +90,8 @@ def test_a_signal_between_two_results_ends_the_density_pool_at_once() -> None:
 
 def test_a_signal_between_two_results_ends_the_batch_pool_at_once(tmp_path: Path) -> None:
     """The same for ``dpp batch --workers``: the exception leaves run_batch with no worker."""
-    from solver.experiments.batch import BatchConfig, run_batch
+    from solver.experiments.batch import BatchRun, run_batch
+    from solver.experiments.batch_line import BatchConfig
     from tests.solver.experiments.doctest_inputs import batch_example
 
     checker, scen = batch_example()
@@ -100,7 +101,7 @@ def test_a_signal_between_two_results_ends_the_batch_pool_at_once(tmp_path: Path
         raise _Stop
 
     with pytest.raises(_Stop) as caught:
-        run_batch(scen, tmp_path / "b.csv", BatchConfig(), checker, workers=2, chunk=1,
-                  progress=progress)
+        run_batch(scen, tmp_path / "b.csv", BatchConfig(), checker,
+                  BatchRun(workers=2, chunk=1, progress=progress))
     assert caught.value.__traceback__ is not None
     assert not _live_pool(before), "the pool outlives the exception"
