@@ -1,7 +1,8 @@
 """The ``dpp`` command: the solver's commands and the checker's in one click group.
 
 This is the one module that imports both command lines: the solver's commands
-(:data:`solver.cli.COMMANDS`) and the checker's (:data:`dppverify.cli.COMMANDS`) share only
+(:data:`solver.cli.HOMES`) and the checker's (:data:`dppverify.cli.HOMES`), each command's
+module imported when it runs (:class:`dppio.cli.lazy.LazyCommands`), share only
 the conventions of :mod:`dppio.cli`, and neither imports the other (import-linter enforces
 it). Every command reports bad input as one line on stderr (``error: ...``) and exits 2; an
 unexpected internal failure prints one line and exits 3 (set ``DPP_DEBUG=1`` for the
@@ -13,6 +14,7 @@ from __future__ import annotations
 import click
 
 import solver.threads  # noqa: F401  (first: one BLAS thread, before numpy loads)
+from dppio.cli.lazy import LazyCommands
 from dppio.errors import DppioError
 from dppverify import cli as checker_cli
 from dppverify.cli.errors import CheckerGroup
@@ -35,8 +37,7 @@ def main() -> None:
     """Deceptive path planning games: solve, certify, audit, experiment."""
 
 
-for _command in (*solver_cli.COMMANDS, *checker_cli.COMMANDS):
-    main.add_command(_command)
+main.commands = LazyCommands({**solver_cli.HOMES, **checker_cli.HOMES})  # imported when run
 
 
 def console() -> None:

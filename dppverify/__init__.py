@@ -20,6 +20,8 @@ It never imports ``solver``: it reads instances and strategy profiles as JSON
 
 from __future__ import annotations
 
+import sys
+import types
 from typing import TYPE_CHECKING, Any
 
 from dppverify.version import __version__
@@ -79,3 +81,17 @@ def __getattr__(name: str) -> Any:
 
 def __dir__() -> list[str]:
     return sorted({*globals(), *_LAZY})
+
+
+class _Package(types.ModuleType):
+    """The package's module type: ``dppverify.certify`` stays the function when its module
+    of the same name is imported (the import system sets the submodule as the package's
+    attribute; the eager ``from dppverify.certify import certify`` used to set it back)."""
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if name == "certify" and isinstance(value, types.ModuleType):
+            value = value.certify
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Package

@@ -11,13 +11,24 @@ imports the solver.
 
 from __future__ import annotations
 
-import click
+from typing import Any
 
 import solver.threads  # noqa: F401  (first: one BLAS thread, before numpy loads)
-from solver.cli.batch import batch_command
-from solver.cli.experiment import experiment_group
-from solver.cli.plot import plot_group
-from solver.cli.solve import solve_command
 
-COMMANDS: list[click.Command] = [solve_command, experiment_group, batch_command, plot_group]
-"""The solver's commands (the ``dpp`` group, :mod:`dpp`, adds the checker's)."""
+HOMES: dict[str, tuple[str, str]] = {
+    "solve": ("solver.cli.solve", "solve_command"),
+    "experiment": ("solver.cli.experiment", "experiment_group"),
+    "batch": ("solver.cli.batch", "batch_command"),
+    "plot": ("solver.cli.plot", "plot_group"),
+}
+"""The solver's commands by name: each one's module and attribute (the ``dpp`` group,
+:mod:`dpp`, adds the checker's and imports a command's module only when it runs)."""
+
+
+def __getattr__(name: str) -> Any:
+    """``COMMANDS``: the solver's commands (all imported), in ``HOMES`` order."""
+    if name != "COMMANDS":
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    import importlib
+
+    return [getattr(importlib.import_module(m), a) for m, a in HOMES.values()]
