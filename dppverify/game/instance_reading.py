@@ -120,7 +120,8 @@ def game_parts(graph: ReadGraph, *, exact: bool, start: Any, goals: Any,
     prior = read_prior(prior, len(goals), two)
     if exact:  # one common denominator of bounded size, before any distance is summed
         weights = arcs.values if arcs is not None else [w for row in succ_t for _, w in row]
-        bounded_denominator([*(w.denominator for w in weights), *(p.denominator for p in prior)],
+        bounded_denominator([*(w.denominator for w in weights if not isinstance(w, float)),
+                             *(p.denominator for p in prior)],
                             where="instance (edge weights and prior)",
                             error=InvalidInstanceError)
     n = len(ids)

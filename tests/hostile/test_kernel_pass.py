@@ -39,6 +39,7 @@ from typing import Any
 import pytest
 
 from tests.hostile._harness import Probe, check, listing, run, run_probe
+from tests.hostile.test_probes import _combine
 
 pytestmark = pytest.mark.hostile
 
@@ -68,13 +69,6 @@ def _witness(name: str = "w.json", edit: Callable[[str], str | bytes] = lambda t
     return setup
 
 
-def _combine(*setups: Setup) -> Setup:
-    def setup(d: Path) -> None:
-        for s in setups:
-            s(d)
-    return setup
-
-
 def _write(name: str, text: str | bytes) -> Setup:
     def setup(d: Path) -> None:
         (d / name).write_bytes(text if isinstance(text, bytes) else text.encode())
@@ -86,8 +80,8 @@ def _coprime_path(name: str, k: int) -> Setup:
     limit (10**200) but share no small common denominator."""
     def setup(d: Path) -> None:
         nodes = ["s", *(f"v{i}" for i in range(k)), "g1", "g2"]
-        edges = [{"source": nodes[i], "target": nodes[i + 1],
-                  "weight": f"1/{10 ** 190 + i}"} for i in range(k + 1)]
+        edges: list[dict[str, Any]] = [{"source": nodes[i], "target": nodes[i + 1],
+                                        "weight": f"1/{10 ** 190 + i}"} for i in range(k + 1)]
         edges.append({"source": nodes[k], "target": "g2", "weight": 1})
         (d / name).write_text(json.dumps({
             "graph": {"nodes": [{"id": x} for x in nodes], "edges": edges}, "start": "s",
@@ -300,15 +294,18 @@ probe("export-efg examples:paper10-selection -H 2 (no goal within reach)",
 IMPORT = ["import-profile", TRI, "ne.csv", "-H", "2", "-o", "ip.json"]
 probe("import-profile: the right line", IMPORT, _write("ne.csv", "NE,1,0,0,1,1,0,0,1\n"), code=0,
       changes=("ip.json",))
-for text, words in (("NE,1,0\n", "2 probabilities"), ("NE,nan,0,0,1,1,0,0,1\n", "nan"),
+PEER_LINES: tuple[tuple[str | bytes, str], ...] = (
+                    ("NE,1,0\n", "2 probabilities"), ("NE,nan,0,0,1,1,0,0,1\n", "nan"),
                     ("NE,-1,2,0,1,1,0,0,1\n", "negative"), (b"\xff\xfe\0", "UTF-8"),
                     ("NE," + ",".join(["1/" + "3" * 900] * 8) + "\n", "not 1"),
                     ('{"T1 p0 h-": {"go g1": 1, "go g2": 0}}', "missing"),
-                    ('{"0-0-x": [[0, 1.0]]}', "OpenSpiel")):
-    probe(f"import-profile: {words}", IMPORT, _write("ne.csv", text), contains=words)
+                    ('{"0-0-x": [[0, 1.0]]}', "OpenSpiel"))
+for peer, words in PEER_LINES:
+    probe(f"import-profile: {words}", IMPORT, _write("ne.csv", peer), contains=words)
 probe("import-profile: the .efg itself", ["import-profile", TRI, "g.efg", "-H", "2", "-o",
                                           "ip.json"],
-      lambda d: run(["export-efg", TRI, "-H", "2", "-o", "g.efg"], d) and None,
+      lambda d: None if run(["export-efg", TRI, "-H", "2", "-o", "g.efg"], d).code == 0
+      else pytest.fail("export-efg failed"),
       changes=("g.efg",), contains="not a behaviour profile")
 probe("import-profile -o the peer profile", [*IMPORT[:-1], "ne.csv"],
       _write("ne.csv", "NE,1,0,0,1,1,0,0,1\n"), contains="is an input")
