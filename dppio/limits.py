@@ -20,6 +20,7 @@ dppio.errors.LimitError: weight: the exponent of '1e999999999' is beyond the lim
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Iterable
 from fractions import Fraction
@@ -42,6 +43,17 @@ MAX_EXPONENT = 400
 
 MAX_NUMBER_DIGITS = 200
 """Every number is a rational p/q with abs(p) and q below 10**200 (after reduction)."""
+
+MAX_COMMON_DENOMINATOR_DIGITS = 100
+"""The numbers of one instance (its edge weights and its prior, together) have a common
+denominator below 10**100: each number within its own limit, a few hundred weights with
+distinct large denominators would otherwise make every distance a fraction of thousands of
+digits (minutes of arithmetic, values no profile can state within its own limits)."""
+
+MAX_DISTRIBUTION_DENOMINATOR_DIGITS = 1000
+"""The probabilities of one distribution in a profile (a mixture over walks, a Defender's
+allocation, a choice of goal) have a common denominator below 10**1000: the sum that is
+checked against 1 stays a number of at most that size, however many entries it has."""
 
 MAX_FLOAT_WEIGHT_RATIO = 10**6
 """Float mode (``"numbers": "float"``): largest / smallest edge weight. Float comparisons use
@@ -79,15 +91,46 @@ def check_numeral(text: str, *, where: str, error: ErrorClass = LimitError) -> N
     >>> check_numeral("1" * 1001, where="w", error=ValueError)
     Traceback (most recent call last):
     ValueError: w: a numeral of 1001 characters is beyond the limit of 1000
+    >>> check_numeral("\u0663/5", where="prior[0]")
+    Traceback (most recent call last):
+    dppio.errors.LimitError: prior[0]: '\u0663/5' is not a number (ASCII digits, no '_')
     """
     if len(text) > MAX_NUMERAL_CHARS:
         raise error(f"{where}: a numeral of {len(text)} characters is beyond the limit "
                     f"of {MAX_NUMERAL_CHARS}")
+    if not text.isascii() or "_" in text:  # Python reads '١' and '1_0' as numbers; we do not
+        raise error(f"{where}: {text[:40]!a} is not a number (ASCII digits, no '_')")
     for part in text.split("/", 1):
         m = _NUMERAL.fullmatch(part)
         if m and m.group(3) is not None and abs(int(m.group(3))) > MAX_EXPONENT:
             raise error(f"{where}: the exponent of {text!r} is beyond the limit of "
                         f"{MAX_EXPONENT}")
+
+
+def common_denominator(denominators: Iterable[int], *, where: str,
+                       digits: int = MAX_COMMON_DENOMINATOR_DIGITS,
+                       error: ErrorClass = LimitError) -> int:
+    """The least common multiple of ``denominators``, refused (``error``, one line naming
+    ``where``) once it reaches ``10**digits``: computed step by step, it never grows past the
+    bound, so a long list of large coprime denominators costs no more than a short one.
+
+    Examples
+    --------
+    >>> common_denominator([2, 3, 4], where="weights")
+    12
+    >>> common_denominator([10**60 + 1, 10**60 + 3], where="weights")
+    Traceback (most recent call last):
+    dppio.errors.LimitError: weights: the numbers' common denominator reaches 10**100, beyond \
+the limit (each number is within its own)
+    """
+    bound, m = 10 ** digits, 1
+    for d in set(denominators):
+        if m % d:
+            m = math.lcm(m, d)
+            if m >= bound:
+                raise error(f"{where}: the numbers' common denominator reaches 10**{digits}, "
+                            "beyond the limit (each number is within its own)")
+    return m
 
 
 def check_rational(x: object, *, where: str, error: ErrorClass = LimitError) -> None:

@@ -150,7 +150,7 @@ class MapRequest:
 def _cell(text: str, option: str) -> Cell:
     parts = text.split(",")
     try:
-        if len(parts) != 2:
+        if len(parts) != 2 or not text.isascii() or "_" in text:  # int() reads '٩' and '1_0'
             raise ValueError
         return (int(parts[0]), int(parts[1]))
     except ValueError:

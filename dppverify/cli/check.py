@@ -3,8 +3,12 @@
 
 from __future__ import annotations
 
+import contextlib
+import os
+import stat
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import click
@@ -37,6 +41,19 @@ _STATUS = {0: "pass", 1: "refuted", 3: "undecided"}
 _PREFIX = {"pass": "", "refuted": "REFUTED: ", "undecided": "NOT PROVED: "}
 
 
+def _read_fifos(args: list[str], folder: str) -> dict[int, str]:
+    """The FIFOs among ``args``, read here as every command reads an input (a FIFO without a
+    writer reads empty, never blocks) into files of ``folder`` that the kernel reads instead
+    (it would open the FIFO again, and wait for a writer that has gone)."""
+    out = {}
+    for i, a in enumerate(args):
+        with contextlib.suppress(OSError):
+            if a != "-" and stat.S_ISFIFO(os.stat(a).st_mode):
+                out[i] = os.path.join(folder, f"input{i}")
+                Path(out[i]).write_bytes(read_input(a, limit=_STDIN_LIMIT))
+    return out
+
+
 def run_kernel(args: list[str], stdin: bytes | None = None) -> subprocess.CompletedProcess[bytes]:
     """Run the kernel's main on ``args`` in a fresh, isolated interpreter (``python -I``).
 
@@ -46,8 +63,15 @@ def run_kernel(args: list[str], stdin: bytes | None = None) -> subprocess.Comple
     >>> r.returncode, r.stderr.decode().startswith("error: missing.json: cannot read")
     (2, True)
     """
-    return subprocess.run([sys.executable, "-I", str(KERNEL_MAIN), *args], input=stdin,
-                          capture_output=True, check=False)
+    fds = tuple(int(a[8:]) for a in args if a.startswith("/dev/fd/") and a[8:].isdigit()
+                and a[8:].isascii())  # a shell's <(...) names a descriptor of ours: pass it
+    try:
+        return subprocess.run([sys.executable, "-I", str(KERNEL_MAIN), *args], input=stdin,
+                              capture_output=True, check=False, pass_fds=fds)
+    except OSError as exc:  # a /dev/fd/N that names no open descriptor
+        names = ", ".join(f"/dev/fd/{fd}" for fd in fds)
+        return subprocess.CompletedProcess(args, 2, b"", f"error: {names}: cannot read "
+                                                         f"({exc.strerror})\n".encode())
 
 
 @click.command("check", short_help="Check a profile against its witness with the trusted kernel.")
@@ -118,7 +142,15 @@ def check_command(files: tuple[str, ...], grid: MapRequest | None, as_json: bool
             click.echo(f"error: standard input: {exc}", err=True)
             raise SystemExit(2) from None
     bar = PhaseBar(want_progress(progress), "check", "the kernel (its own process)")
-    done = run_kernel([*prefix, *args], data)
+    with tempfile.TemporaryDirectory(prefix="dpp-check-") as folder:
+        try:
+            fifos = _read_fifos(args, folder)
+        except ValueError as exc:  # beyond the size limit
+            click.echo(f"error: {exc}", err=True)
+            raise SystemExit(2) from None
+        if 0 in fifos and not prefix:  # a map instance's map path starts at its own folder
+            prefix = ["--base-dir", str(Path(args[0]).resolve().parent)]
+        done = run_kernel([*prefix, *(fifos.get(i, a) for i, a in enumerate(args))], data)
     bar.close()
     out, err = done.stdout.decode(errors="replace"), done.stderr.decode(errors="replace")
     if done.returncode not in (0, 1, 2, 3):

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 import numpy as np
 
 from dppio.limits import check_float_weights
+from dppio.limits import common_denominator as bounded_denominator
 from dppio.text import json_shown
 from dppverify.errors import InvalidInstanceError
 from dppverify.exact import INF, normalize
@@ -117,6 +118,12 @@ def game_parts(graph: ReadGraph, *, exact: bool, start: Any, goals: Any,
     start = read_node(start, index, "start")
     goals = read_goals(goals, index, ids, two)
     prior = read_prior(prior, len(goals), two)
+    if exact:  # one common denominator of bounded size, before any distance is summed
+        weights = arcs.values if arcs is not None else [w for row in succ_t for _, w in row]
+        bounded_denominator([*(w.denominator for w in weights if not isinstance(w, float)),
+                             *(p.denominator for p in prior)],
+                            where="instance (edge weights and prior)",
+                            error=InvalidInstanceError)
     n = len(ids)
     fields = scaled_distance_fields(arcs, n, goals) if arcs is not None and exact else None
     if fields is not None:

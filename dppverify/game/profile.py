@@ -21,6 +21,7 @@ from fractions import Fraction
 from types import MappingProxyType
 from typing import Any
 
+from dppio.text import show
 from dppverify.errors import ProfileError
 from dppverify.exact import Number
 from dppverify.formats.json_reading import lookup_node, resolve_walk, show_node
@@ -276,7 +277,7 @@ def _mixed(raw: Any, where: str, instance: Instance, c: DefectCollector,
         return (), 0
     out: list[StrategyWalk] = []
     seen: dict[tuple[int, ...], int] = {}
-    total: Fraction = Fraction(0)
+    probs: list[Fraction] = []
     ok_sum = True
     longest = 0
     for k, e in enumerate(raw):
@@ -294,7 +295,7 @@ def _mixed(raw: Any, where: str, instance: Instance, c: DefectCollector,
             c.add(f"{w}.probability", f"is negative ({prob})")
             ok_sum = False
         else:
-            total += Fraction(prob)
+            probs.append(Fraction(prob))
         walk = validate_walk(instance, e.get("path"), complete=True)
         if isinstance(walk, str):
             c.add(w, walk)
@@ -307,8 +308,8 @@ def _mixed(raw: Any, where: str, instance: Instance, c: DefectCollector,
         if prob is not None and prob >= 0:
             out.append(StrategyWalk(walk, Fraction(prob),
                                     label if isinstance(label, str) else None))
-    if ok_sum and not tol.equal(total, 1):
-        c.add(where, f"probabilities sum to {total}, not 1")
+    if ok_sum and c.bounded(probs, where) and not tol.equal(total := sum(probs, Fraction(0)), 1):
+        c.add(where, f"probabilities sum to {show(total)}, not 1")
     return tuple(out), longest
 
 
@@ -406,7 +407,7 @@ def _nmixed(mix: Any, where: str, instance: Instance, c: DefectCollector
         c.add(where, "must be a non-empty list of walks")
         return (), 0
     walks: list[StrategyWalk] = []
-    total = Fraction(0)
+    listed: set[tuple[int, ...]] = set()
     longest = 0
     for j, entry in enumerate(mix):
         at = f"{where}[{j}]"
@@ -422,14 +423,13 @@ def _nmixed(mix: Any, where: str, instance: Instance, c: DefectCollector
             continue
         if prob is None:
             continue
-        if any(w.walk == walk for w in walks):
+        if walk in listed:
             c.add(f"{at}.path", "the same walk is listed twice")
             continue
-        total += prob
+        listed.add(walk)
         label = entry.get("label")
         walks.append(StrategyWalk(walk, prob, None if label is None else str(label)))
-    if total != 1:
-        c.add(where, f"probabilities sum to {total}, not 1")
+    c.sums_to_one([w.probability for w in walks], where)
     return tuple(walks), longest
 
 
@@ -464,7 +464,6 @@ def _distribution(raw: Any, n: int, where: str, c: DefectCollector
     out = tuple(q for q in qs if q is not None)
     if len(out) < len(qs):
         return None
-    if sum(out) != 1:
-        c.add(where, f"probabilities sum to {sum(out)}, not 1")
+    if not c.sums_to_one(out, where):
         return None
     return out

@@ -14,12 +14,13 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Callable, Iterator, Mapping
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from fractions import Fraction
 from typing import Any, TypeVar
 
-from dppio.text import plural
+from dppio.limits import MAX_DISTRIBUTION_DENOMINATOR_DIGITS, common_denominator
+from dppio.text import plural, show
 from dppverify.errors import ProfileError
 from dppverify.exact import Number
 from dppverify.formats.json_reading import parse_number, parse_probability
@@ -344,6 +345,37 @@ class DefectCollector:
     def probability(self, raw: Any, where: str) -> Fraction | None:
         """``raw`` as a probability in [0, 1], or None with a defect."""
         return self._parsed(parse_probability, raw, where)
+
+    def bounded(self, values: Sequence[Fraction], where: str) -> bool:
+        """Whether the common denominator of ``values`` is within the distribution limit
+        (``dppio.limits``), else False with a defect."""
+        try:
+            common_denominator((Fraction(x).denominator for x in values), where=where,
+                               digits=MAX_DISTRIBUTION_DENOMINATOR_DIGITS, error=ValueError)
+        except ValueError as exc:
+            self.add(where, str(exc).split(": ", 1)[-1])
+            return False
+        return True
+
+    def sums_to_one(self, values: Sequence[Fraction], where: str) -> bool:
+        """Whether the probabilities ``values`` sum to exactly 1, else False with a defect;
+        their common denominator is bounded first (``dppio.limits``), so the sum of many
+        entries is never a number of millions of digits.
+
+        Examples
+        --------
+        >>> c = DefectCollector()
+        >>> c.sums_to_one([Fraction(1, 2)] * 2, "a"), c.sums_to_one([Fraction(1, 3)], "b")
+        (True, False)
+        >>> [str(d) for d in c.defects]
+        ['b: probabilities sum to 1/3, not 1']
+        """
+        if not self.bounded(values, where):
+            return False
+        total = sum(values, Fraction(0))
+        if total != 1:
+            self.add(where, f"probabilities sum to {show(total)}, not 1")
+        return total == 1
 
     def _parsed(self, parse: Callable[..., T], raw: Any, where: str) -> T | None:
         try:

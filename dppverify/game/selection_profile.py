@@ -117,8 +117,7 @@ def _choice(raw: Any, n: int, c: DefectCollector) -> tuple[Fraction, ...] | None
     out = tuple(q for q in qs if q is not None)
     if len(out) < n:
         return None
-    if sum(out) != 1:
-        c.add("choice", f"probabilities sum to {sum(out)}, not 1")
+    if not c.sums_to_one(out, "choice"):
         return None
     return out
 

@@ -14,7 +14,7 @@ from fractions import Fraction
 from itertools import pairwise
 from typing import Any
 
-from dppverify.kernel.reading import Instance, number, parse
+from dppverify.kernel.reading import Instance, common_denominator, number, parse
 from dppverify.kernel.verdict import BadInput, Refuted
 
 Walk = tuple[int, ...]
@@ -90,6 +90,7 @@ def _mixture(inst: Instance, raw: Any, where: str) -> tuple[tuple[Walk, Fraction
         if w in out:
             raise Refuted(f"profile: {where}[{k}]: the same walk is listed twice")
         out[w] = p
+    common_denominator((p.denominator for p in out.values()), f"profile: {where}", 1000)
     if sum(out.values()) != 1:
         raise Refuted(f"profile: {where}: probabilities sum to {sum(out.values())}, not 1")
     return tuple(out.items())

@@ -11,8 +11,10 @@ from __future__ import annotations
 import hashlib
 import importlib.util
 import json
+import math
 import re
 from fractions import Fraction
+from itertools import accumulate
 from pathlib import Path
 from typing import Any
 
@@ -25,7 +27,24 @@ INF = float("inf")
 MAX_BYTES = 256 * 1024 * 1024
 """Largest document the kernel reads (a witness of a 2000×2000 grid fits)."""
 
-_NUMERAL = re.compile(r"[-+]?(\d+(/0*[1-9]\d*)?|(\d+\.\d*|\.?\d+)([eE][-+]?\d{1,3})?)")
+# Fraction's grammar in ASCII digits, blanks around it allowed (no '١', no '1_0': as the checker)
+_NUMERAL = re.compile(r"(?a)\s*[-+]?(\d+(/0*[1-9]\d*)?|(\d+\.\d*|\.?\d+)([eE][-+]?\d{1,3})?)\s*")
+
+
+def common_denominator(denominators: Any, what: str, digits: int) -> None:
+    """Bad input once the lcm of ``denominators`` reaches ``10**digits`` (step by step: a
+    long list of large coprime denominators costs no more than a short one). The instance's
+    weights and prior share one below 10**100, a distribution of the profile one below
+    10**1000, as the checker's readers require (``dppio.limits``, the kernel's own copy).
+
+    Examples
+    --------
+    >>> common_denominator([2, 3, 4], "prior", 1)
+    Traceback (most recent call last):
+    dppverify.kernel.verdict.BadInput: prior: common denominator >= 10**1, beyond the limit
+    """
+    if any(m >= 10 ** digits for m in accumulate(set(denominators), math.lcm, initial=1)):
+        raise BadInput(f"{what}: common denominator >= 10**{digits}, beyond the limit")
 
 
 def sha256(data: bytes) -> str:
@@ -137,6 +156,8 @@ class Instance:
         if len(p) != len(self.goals) or None in p or not all(0 < x < 1 for x in p) or sum(p) != 1:  # type: ignore[arg-type, operator]
             raise BadInput("prior: must be one number in (0, 1) per goal, summing to 1")
         self.prior: tuple[Fraction, ...] = tuple(p)  # type: ignore[arg-type]
+        dens = [w.denominator for row in getattr(graph, "adj", ()) for _, w in row]  # Grid: 1
+        common_denominator(dens + [x.denominator for x in self.prior], "instance", 100)
         self.alive: list[bool] = []  # set once the distances are verified
         self.is_goal = bytearray(graph.n)
         for g in self.goals:

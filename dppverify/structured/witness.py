@@ -247,7 +247,9 @@ def _sources_field(instance: Instance, init: Scaled, share: Fraction) -> tuple[S
     keep = ~np.isin(arcs.tails, np.asarray(instance.goals))
     values = [Fraction(v) * share for v in arcs.values]
     scale = math.lcm(init[1], *(x.denominator for x in values))
-    w = np.asarray([int(x * scale) for x in values], dtype=np.int64)[arcs.codes[keep]]
+    ints = [int(x * scale) for x in values]  # int64 unless a weight's numerator leaves it
+    w = np.asarray(ints, dtype=np.int64 if max(ints, default=0) < 2**63 else object
+                   )[arcs.codes[keep]]
     xs = np.flatnonzero(np.asarray(init[0] != INF, dtype=bool))
     cost = [int(c) * (scale // init[1]) for c in init[0][xs].tolist()]
     n = instance.n_nodes

@@ -17,6 +17,7 @@ from typing import Any
 import networkx as nx
 import numpy as np
 
+from dppio.limits import common_denominator
 from solver.errors import InvalidInstanceError, NotTwoGoalsError
 from solver.game.instance_writing import instance_to_json
 from solver.graph.distances import distances_to
@@ -136,6 +137,7 @@ class Instance:
                 raise InvalidInstanceError(f"{what} node {node!r} not found in graph")
         if goals[0] == goals[1]:
             raise InvalidInstanceError(f"the two goals must differ, both are {goals[0]!r}")
+        _bounded(net, exact_prior)
         object.__setattr__(self, "prior", exact_prior)
         object.__setattr__(self, "network", net)
 
@@ -165,6 +167,7 @@ class Instance:
             if j in idx:
                 raise InvalidInstanceError(f"goals[{i}]: goal {g!r} is listed twice")
             idx.append(j)
+        _bounded(net, b)
         object.__setattr__(self, "prior", b)
         object.__setattr__(self, "network", net)
         s, dist = self.s0, self.dist_to
@@ -354,3 +357,11 @@ def _check_free(labels: Any, cell: tuple[int, int], what: str) -> None:
     if labels.blocked[r, c]:
         raise InvalidInstanceError(f"{what} cell ({r}, {c}) is an obstacle in the "
                                    f"{height}x{width} grid")
+
+
+def _bounded(net: Network, prior: tuple[Any, ...]) -> None:
+    """The weights' and the prior's common denominator within ``dppio.limits`` (exact mode)."""
+    if net.numbers.exact:
+        common_denominator([net.numbers.denominator, *(Fraction(p).denominator for p in prior)],
+                           where="instance (edge weights and prior)",
+                           error=InvalidInstanceError)

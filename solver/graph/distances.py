@@ -196,9 +196,14 @@ def sources_to(net: Network, init: np.ndarray, *, stop: Iterable[int] = ()) -> n
         keep[net.indptr[x]:net.indptr[x + 1]] = False
     tails = np.repeat(np.arange(n, dtype=np.int64), np.diff(net.indptr))[keep]
     heads, weights = net.indices[keep].astype(np.int64), net.weights[keep]
-    finite = np.isfinite(np.asarray(init, dtype=np.float64))
+    try:
+        as_float = np.asarray(init, dtype=np.float64)
+    except OverflowError:  # exact numerators past the float range: Python integers below
+        as_float = np.array([np.inf if x == np.inf else 0.0 for x in init])
+        as_float[np.isfinite(as_float)] = EXACT_FLOAT_LIMIT
+    finite = np.isfinite(as_float)
     xs = np.flatnonzero(finite)
-    top = float(np.max(np.asarray(init, dtype=np.float64)[finite], initial=0)) + 1
+    top = float(np.max(as_float[finite], initial=0)) + 1
     if net.numbers.exact and net.weight_total + top < EXACT_FLOAT_LIMIT:
         import scipy.sparse as sp  # the reversed arcs, and one super-source arc per source
 

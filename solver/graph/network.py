@@ -21,7 +21,7 @@ import networkx as nx
 import numpy as np
 import scipy.sparse as sp
 
-from dppio.limits import check_float_weights
+from dppio.limits import check_float_weights, common_denominator
 from solver.errors import InvalidInstanceError
 from solver.numbers import (
     DEFAULT_ABS_TOL,
@@ -206,7 +206,8 @@ class Network:
         fractions = [w for w in values if isinstance(w, Fraction)]
         numbers: NumberMode
         if len(fractions) == len(values):
-            den = math.lcm(*(w.denominator for w in fractions)) if fractions else 1
+            den = common_denominator((w.denominator for w in fractions),
+                                     where="edge weights", error=InvalidInstanceError)
             nums = [int(w * den) for w in fractions]
             big = max(nums, default=0) >= 2**62
             data = np.array(nums, dtype=object if big else np.int64)
@@ -369,8 +370,12 @@ class Network:
 
     @cached_property
     def weight_total(self) -> float:
-        """Sum of all stored weights: an upper bound on every simple path's length."""
-        return float(np.sum(self.weights, dtype=np.float64))
+        """Sum of all stored weights: an upper bound on every simple path's length (``inf``
+        past the float range: exact numerators of weights with a large common denominator)."""
+        try:
+            return float(np.sum(self.weights, dtype=np.float64))
+        except OverflowError:
+            return math.inf
 
 
 def _sorted_csr(n: int, tails: np.ndarray, heads: np.ndarray, weights: np.ndarray
