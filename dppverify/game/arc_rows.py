@@ -12,6 +12,9 @@ import numpy as np
 
 from dppverify.exact import Number
 
+_SHORT_ROW = 32
+"""Rows longer than this are searched by bisection (their heads are sorted)."""
+
 
 class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
     """An instance's ``succ`` (or ``pred``): ``rows[u]`` = the ``(head, weight)`` pairs of
@@ -30,7 +33,7 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
     (((1, 1), (2, Fraction(3, 2))), (), 3, True)
     """
 
-    __slots__ = ("_bounds", "_codes", "_heads", "_n", "_values")
+    __slots__ = ("_bounds", "_codes", "_heads", "_keys", "_n", "_order", "_values")
 
     def __init__(self, n: int, tails: np.ndarray, heads: np.ndarray, codes: np.ndarray,
                  values: tuple[Number, ...], *, bounds: np.ndarray | None = None) -> None:
@@ -40,6 +43,8 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
         self._heads = heads
         self._codes = codes
         self._values = values
+        self._keys: np.ndarray | None = None  # tail·n + head per arc, sorted (built on use)
+        self._order: np.ndarray | None = None  # arc positions in key order, when not arc order
 
     def __len__(self) -> int:
         return self._n
@@ -78,14 +83,20 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
         (Fraction(1, 2), None)
         """
         a, b = int(self._bounds[u]), int(self._bounds[u + 1])
-        try:  # rows are short: a list search beats numpy's per-call overhead
-            i = a + self._heads[a:b].tolist().index(v)
-        except ValueError:
-            return None
+        if b - a > _SHORT_ROW:  # a hub: a binary search
+            found = self._positions(np.array([u], dtype=np.int64), np.array([v], dtype=np.int64))
+            if found[0] < 0:
+                return None
+            i = int(found[0])
+        else:
+            try:  # a short row: a list search beats numpy's per-call overhead
+                i = a + self._heads[a:b].tolist().index(v)
+            except ValueError:
+                return None
         return self._values[int(self._codes[i])] if len(self._values) > 1 else self._values[0]
 
     def find_many(self, tails: Sequence[int], heads: Sequence[int]) -> list[Number | None]:
-        """:meth:`find` for many arcs at once (one numpy pass per position in a row).
+        """:meth:`find` for many arcs at once (one binary search per arc, in one numpy call).
 
         Examples
         --------
@@ -99,14 +110,7 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
         v = np.asarray(heads, dtype=np.int64)
         if u.size == 0 or self._heads.size == 0:
             return [None] * int(u.size)
-        start = self._bounds[u]
-        degree = self._bounds[u + 1] - start
-        pos = np.full(u.size, -1, dtype=np.int64)
-        last = self._heads.size - 1
-        for k in range(int(degree.max())):  # the first match in the row, as find's index()
-            idx = start + k
-            hit = (pos < 0) & (k < degree) & (self._heads[np.minimum(idx, last)] == v)
-            pos[hit] = idx[hit]
+        pos = self._positions(u, v)
         found = (pos >= 0).tolist()
         if len(self._values) == 1:
             w = self._values[0]
@@ -114,6 +118,24 @@ class ArcRows(Sequence[tuple[tuple[int, Number], ...]]):
         values = self._values
         codes = self._codes[np.maximum(pos, 0)].tolist()
         return [values[c] if ok else None for c, ok in zip(codes, found, strict=True)]
+
+    def _positions(self, u: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """The position of the first arc ``u[k] -> v[k]`` for each ``k`` (-1: none), by one
+        binary search each in the arcs' ``tail·n + head`` keys (built once, sorted once)."""
+        if self._keys is None:
+            tails = np.repeat(np.arange(self._n, dtype=np.int64), np.diff(self._bounds))
+            keys = tails * self._n + self._heads.astype(np.int64)
+            if keys.size and bool(np.any(keys[1:] < keys[:-1])):
+                self._order = np.argsort(keys, kind="stable")
+                keys = keys[self._order]
+            self._keys = keys
+        keys, query = self._keys, u * self._n + v
+        pos = np.searchsorted(keys, query)
+        hit = pos < keys.size
+        hit[hit] = keys[pos[hit]] == query[hit]
+        if self._order is not None:
+            pos[hit] = self._order[pos[hit]]
+        return np.where(hit, pos, -1)
 
     def degree(self, u: int) -> int:
         """The number of arcs of ``u`` (without building its row)."""
