@@ -25,6 +25,7 @@ from dppverify.game.profile import Profile
 from dppverify.horizons import parse_horizon
 from dppverify.kernel import check as kernel_check
 from dppverify.kernel.guarantee import MAX_BASES
+from dppverify.limits import DEFAULT_TRIALS
 from dppverify.numbers import DEFAULT_REL_TOL
 from dppverify.provenance import canonical_json, provenance_record
 from dppverify.registry import not_run
@@ -32,9 +33,6 @@ from dppverify.routes import ROUTES, Chosen, Route, resolve_route
 from dppverify.structured.witness import witness_document
 from dppverify.tree_route.lp import LP_SOLVER, LP_TOLERANCE
 from dppverify.tree_route.tree import DEFAULT_MAX_PREFIXES
-
-DEFAULT_TRIALS = 5
-"""Random non-reacting attackers tried by the L3 and L4 checks."""
 
 FLOAT_MODE_REFUSED = (
     "the instance uses \"numbers\": \"float\" (binary float weights), so it cannot be "

@@ -18,6 +18,9 @@ MAX_HORIZON = 10_000
 MAX_TRIALS = 10_000
 """Most random attackers per L3/L4 lemma check (``--trials``)."""
 
+DEFAULT_TRIALS = 5
+"""Random non-reacting attackers tried by the L3 and L4 checks (``--trials``' default)."""
+
 MAX_AUDIT_EXAMPLES = 1_000_000
 """Largest example budget of ``dpp audit --examples``."""
 

@@ -28,20 +28,18 @@ from dppio.cli.map_options import MAP_USAGE, instance_or_map
 from dppio.examples import INSTANCE_FILE
 from dppio.inputs import reading_once
 from dppverify.certificate import Certificate
-from dppverify.certify import DEFAULT_TRIALS, certify
 from dppverify.cli.belongs import profile_mismatch
 from dppverify.cli.errors import fail
 from dppverify.cli.inputs import HORIZON, hinted, max_prefixes_option, read_game
 from dppverify.cli.map_options import MapRequest, map_options
 from dppverify.cli.selection import selection_options
 from dppverify.cli.table import format_table
-from dppverify.cli.witness import engine_witness, write_witness
 from dppverify.errors import CertificateError, CheckerError, OptionError, ProfileError
 from dppverify.formats.files import read_input, refuse_input_as_output
 from dppverify.game.inputs import Parsed, read_profile
 from dppverify.game.instance import Instance
 from dppverify.game.profile import Profile, Stated
-from dppverify.limits import MAX_TRIALS
+from dppverify.limits import DEFAULT_TRIALS, MAX_TRIALS
 from dppverify.provenance import command_line, map_identity, verify_provenance
 from dppverify.routes import ROUTES, Route
 
@@ -180,6 +178,8 @@ def _certify_files(req: _Request) -> None:
         bar.phase("reading the profile")
         prof = _read_profile(profile, game.value, instance)
         bar.phase(f"certifying (route {req.route}; the checks' bars follow)")
+        from dppverify.certify import certify  # here: a refused input never loads the checks
+
         cert = certify(game, prof, horizon=req.horizon,
                        exact=game.value.exact and not req.float_mode,
                        max_prefixes=req.max_prefixes, seed=req.seed, trials=req.trials,
@@ -195,6 +195,8 @@ def _certify_files(req: _Request) -> None:
     assert cert.provenance is not None  # certify records what it parsed
     cert = dataclasses.replace(cert, provenance={**cert.provenance, "command": _command()})
     if req.witness is not None:
+        from dppverify.cli.witness import engine_witness, write_witness
+
         write_witness(req.witness, engine_witness(game.value, prof.value, cert.provenance or {}))
     summary = format_table(cert).split("\n", 1)[0].removeprefix("verdict: ")
     emit(cert.to_json(), format_table(cert), as_json=req.as_json, output=output,
