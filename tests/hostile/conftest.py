@@ -4,12 +4,34 @@ profile, the bundled map and a set of misbehaving solver programs."""
 from __future__ import annotations
 
 import shutil
+from collections import Counter
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
 from tests.hostile._harness import write_template
+
+CAMPAIGNS = {("test_trust_inputs.py", "test_probe"), ("test_probes.py", "test_probe"),
+             ("test_outputs.py", "test_output_probe"), ("test_batch_files.py", "test_batch_probe")}
+"""The long probe lists of earlier rounds (hundreds of real processes): the default run takes
+every :data:`SAMPLE`-th probe of each, by its place in the list; the others are ``slow``
+(``python3 dev.py test -m hostile`` runs every probe, ``-m slow`` the rest). This round's
+probes (``test_kernel_pass.py``) and every other hostile test always run."""
+
+SAMPLE = 3
+
+
+@pytest.hookimpl(tryfirst=True)  # before ``-m`` deselects by marker
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Mark all but every :data:`SAMPLE`-th probe of the :data:`CAMPAIGNS` ``slow``."""
+    seen: Counter[tuple[str, str]] = Counter()
+    for item in items:
+        key = (item.path.name, getattr(item, "originalname", ""))
+        if key in CAMPAIGNS and item.path.parent.name == "hostile" and hasattr(item, "callspec"):
+            if seen[key] % SAMPLE:
+                item.add_marker(pytest.mark.slow)
+            seen[key] += 1
 
 SCRIPTS = {
     # a command-line solver that makes a FIFO at its profile path and exits 0
