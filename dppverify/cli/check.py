@@ -152,6 +152,13 @@ def check_command(files: tuple[str, ...], grid: MapRequest | None, as_json: bool
             prefix = ["--base-dir", str(Path(args[0]).resolve().parent)]
         done = run_kernel([*prefix, *(fifos.get(i, a) for i, a in enumerate(args))], data)
     bar.close()
+    _report(done, as_json, output)
+
+
+def _report(done: subprocess.CompletedProcess[bytes], as_json: bool, output: str | None
+            ) -> None:
+    """Say what the kernel's process decided (its line, or the verdict document with --json
+    or -o) and exit with its code; an abnormal end of the process is exit 3."""
     out, err = done.stdout.decode(errors="replace"), done.stderr.decode(errors="replace")
     if done.returncode not in (0, 1, 2, 3):
         click.echo(f"error: the kernel process ended abnormally (exit {done.returncode}): "
