@@ -127,7 +127,7 @@ def run(args: list[str], cwd: Path, *, memory: int = DEFAULT_MEMORY, cpu: int = 
     it exited, on an idle machine (stretched by the load: ``tests/_guard.py``);
     ``stdin_is``: standard input that is ``folder`` (the scratch folder), ``closed``
     (descriptor 0 closed) or ``write-only`` (``/dev/null`` opened for writing); ``program``:
-    what runs instead of ``python -m solver.cli`` (the installed launcher: :func:`launcher`).
+    what runs instead of ``python -m dpp`` (the installed launcher: :func:`launcher`).
     """
 
     def limits() -> None:  # pragma: no cover - in the child
