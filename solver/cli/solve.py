@@ -249,37 +249,19 @@ def _witness_text(inst: Any, instance: str | None, grid: MapRequest | None, prof
     import json
 
     from dppverify.provenance import grid_record, input_record
+    from solver.coalitions.witness import guarantee_witness
     from solver.twogoal.witness import twogoal_witness
 
     record = ({"sha256": hashlib.sha256(saved.encode()).hexdigest()} if saved is not None else
               grid_record(grid.path, checker_reading(grid)[1]) if grid is not None else
               input_record(instance))
-    if result.twogoal is None:  # N goals: the profile was certified by the checker
-        return _checker_witness(instance, grid, profile, str(record["sha256"]))
+    sha = {"instance_sha256": str(record["sha256"]),
+           "profile_sha256": hashlib.sha256(profile.encode()).hexdigest()}
     try:
-        doc = twogoal_witness(inst, instance_sha256=str(record["sha256"]),
-                              profile_sha256=hashlib.sha256(profile.encode()).hexdigest())
+        doc = twogoal_witness(inst, **sha) if result.twogoal is not None else \
+            guarantee_witness(result.coalitions, **sha)
     except ValueError as exc:
         raise InvalidInstanceError(f"--witness: {exc}") from None
-    return json.dumps(doc, separators=(",", ":")) + "\n"
-
-
-def _checker_witness(instance: str | None, grid: MapRequest | None, profile: str,
-                     instance_sha256: str) -> str:
-    """The guarantee rule's witness from the checker's emitter (``dpp solve`` certifies an
-    N-goal profile with the checker before writing it; the witness comes from the same run's
-    mathematics: ``dppverify.structured.witness``)."""
-    import hashlib
-    import json
-
-    from dppverify.game.instance import load_instance
-    from dppverify.game.profile import profile_from_json
-    from dppverify.structured.witness import witness_document
-
-    game = checker_game(grid) if grid is not None else load_instance(str(instance))
-    doc = witness_document(game, profile_from_json(json.loads(profile), game),
-                           instance_sha256=instance_sha256,
-                           profile_sha256=hashlib.sha256(profile.encode()).hexdigest())
     return json.dumps(doc, separators=(",", ":")) + "\n"
 
 

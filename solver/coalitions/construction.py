@@ -202,12 +202,13 @@ class CoalitionEquilibrium:
 
 
 
-def arc_graph(game: Instance) -> tuple[ArcGraph, np.ndarray]:
+def arc_graph(game: Instance, *, whole: bool = False) -> tuple[ArcGraph, np.ndarray]:
     """The walkable part of ``game`` as arrays, and the game's node index of each node.
 
     The nodes are those on some walk: reachable from the start through non-goal nodes, and
-    from which a goal is reachable, and every goal. Arcs out of goals are dropped (walks end
-    there).
+    from which a goal is reachable, and every goal (with ``whole``: every node from which a
+    goal is reachable, as the trusted kernel checks the DP). Arcs out of goals are dropped
+    (walks end there).
 
     Examples
     --------
@@ -224,7 +225,7 @@ def arc_graph(game: Instance) -> tuple[ArcGraph, np.ndarray]:
     n = net.n_nodes
     goal = np.zeros(n, dtype=bool)
     goal[list(game.targets)] = True
-    seen = np.zeros(n, dtype=bool)
+    seen = np.full(n, whole, dtype=bool)
     seen[game.s0] = True
     queue = deque([game.s0])
     while queue:  # forward: walks continue only from non-goal nodes

@@ -27,8 +27,8 @@ if TYPE_CHECKING:
     from solver.game.instance import Instance
     from solver.game.walks import StrategyWalk
 
-__all__ = ["NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "SELECTION_PROFILE_FORMAT", "per_goal_profile",
-           "selection_profile", "two_goal_profile", "walk_entry"]
+__all__ = ["NGOAL_PROFILE_FORMAT", "PROFILE_FORMAT", "SELECTION_PROFILE_FORMAT", "WITNESS_FORMAT",
+           "per_goal_profile", "selection_profile", "two_goal_profile", "walk_entry"]
 
 PROFILE_FORMAT = "dpp-profile/1"
 """The two-goal profile format (``docs/formats.md`` §2)."""
@@ -38,6 +38,10 @@ NGOAL_PROFILE_FORMAT = "dpp-ngoal-profile/1"
 
 SELECTION_PROFILE_FORMAT = "dpp-selection-profile/1"
 """The goal-selection profile format (``docs/formats.md`` §2d)."""
+
+WITNESS_FORMAT = "dpp-witness/1"
+"""The witness format ``dpp solve --witness`` writes for the trusted kernel (``docs/formats.md``
+§5)."""
 
 
 def walk_entry(nodes: Sequence[Hashable], probability: Number,

@@ -18,10 +18,8 @@ from typing import Any
 import numpy as np
 
 from solver.game.instance import Instance
+from solver.game.profile_writing import WITNESS_FORMAT
 from solver.graph.distances import sources_to
-
-WITNESS_FORMAT = "dpp-witness/1"
-"""The witness document's ``format`` tag."""
 
 
 def _labels(field: np.ndarray) -> list[int | None]:
