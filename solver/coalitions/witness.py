@@ -39,14 +39,10 @@ def guarantee_witness(eq: CoalitionEquilibrium, *, instance_sha256: str, profile
 
     Examples
     --------
+    >>> from dppverify.game.examples import star3_document
     >>> from solver.coalitions.construction import coalition_equilibrium
     >>> from solver.game.instance_reading import instance_from_json
-    >>> doc = {"graph": {"nodes": [{"id": x} for x in "smabc"],
-    ...        "edges": [{"source": "s", "target": "m"}, {"source": "m", "target": "a"},
-    ...                  {"source": "m", "target": "b"}, {"source": "m", "target": "c"},
-    ...                  {"source": "s", "target": "a", "weight": 2}]},
-    ...        "start": "s", "goals": ["a", "b", "c"], "prior": ["1/2", "1/3", "1/6"]}
-    >>> w = guarantee_witness(coalition_equilibrium(instance_from_json(doc)),
+    >>> w = guarantee_witness(coalition_equilibrium(instance_from_json(star3_document())),
     ...                       instance_sha256="0" * 64, profile_sha256="1" * 64)
     >>> w["denominator"], w["guarantee"]["m"][0], len(w["guarantee"]["steps"])
     (1, [2, 1, 0, 2, 2], 4)
