@@ -182,9 +182,10 @@ def test(pytest_args: list[str]) -> None:
     _run(BIN / "ruff", "check", *lint_paths)
     _run(BIN / "mypy")
     _run(BIN / "lint-imports")
-    # loadgroup: the tests of one xdist_group (the documentation site's) share a worker, so
-    # the session fixture that builds the site runs once
-    workers = ["-n", "auto", "--dist", "loadgroup"] if (os.cpu_count() or 1) > 1 else []
+    # loadfile: the tests of one file share a worker, so the documentation site's session
+    # fixture builds it once (pytest-xdist's loadgroup does not group under pytest 9: it
+    # renames items through an attribute pytest 9 no longer reads)
+    workers = ["-n", "auto", "--dist", "loadfile"] if (os.cpu_count() or 1) > 1 else []
     # the default run includes the peer cross-checks (OpenSpiel, Gambit: the `peers` extra),
     # which plain `pytest` leaves out; `-m slow` etc. replace this selection
     markers = [] if "-m" in pytest_args else ["-m", "not slow"]

@@ -36,7 +36,7 @@ from tests import _guard
 from tests.test_docstrings import public_modules
 
 ROOT = Path(__file__).resolve().parents[1]
-pytestmark = pytest.mark.xdist_group("site")  # one build, on one worker (dev.py: loadgroup)
+pytestmark = pytest.mark.xdist_group("site")  # one build, on one worker (dev.py: loadfile)
 
 RENDERED_PAGES = ("docs/site/index.html", "proofs/DP.html", "examples/workflow.html",
                   "docs/site/_generated/dppverify.html")
