@@ -63,15 +63,7 @@ SELECTION_IDS = check_ids("selection")
 @dataclass(frozen=True)
 class SelectionContext:
     """The goal-selection family's context on the structured route (its row of the one runner
-    table, :data:`dppverify.checks.runners.RUNNERS`): the game and the profile.
-
-    Examples
-    --------
-    >>> from dppverify.game.examples import star3
-    >>> ctx = SelectionContext(star3(), None)  # type: ignore[arg-type]
-    >>> ctx.instance.n_goals
-    3
-    """
+    table, :data:`dppverify.checks.runners.RUNNERS`): the game and the profile."""
 
     instance: Instance
     profile: Profile
